@@ -1,0 +1,7 @@
+"""``python -m rancf``: the command line."""
+
+import sys
+
+from rancf.cli import main
+
+sys.exit(main())

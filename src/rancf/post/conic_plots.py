@@ -1,0 +1,142 @@
+"""Figures of a conic-section element (conic-section paper, Figs. 6–10, 12 and 13)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from rancf.elements.cable import cable_shape_functions
+from rancf.elements.mapping import gradient_ratio
+from rancf.geometry.conic import Conic
+
+__all__ = ["plot_conic"]
+
+
+def _k_set(k_opt: float, k_used: float) -> list[float]:
+    ks = sorted({0.2, round(k_opt, 4), 0.6, round(k_used, 4)})
+    return ks
+
+
+def plot_conic(
+    conic: Conic, k_opt: float, k_used: float, path: str | Path, n_elements: int = 1
+) -> Path:
+    """Write a 2×3 panel PNG describing the conic and its K-family of element definitions.
+
+    Panels: (a) the arc with the control polygons of the cubic forms (Fig. 7); (b) points at equal
+    steps of ξ for several K (Fig. 13, parameter distribution); (c) ``|r_ξ|`` against ξ for several
+    K including Kopt (Figs. 10, 12); (d) interior weights against K (Fig. 8); (e) gradient ratio
+    against K with Kopt marked (eq. 29); (f) shape functions for several K (Fig. 9).
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    path = Path(path)
+    ks = _k_set(k_opt, k_used)
+    colors = plt.cm.viridis(np.linspace(0.0, 0.9, len(ks)))
+    fig, axes = plt.subplots(2, 3, figsize=(15, 8.5), constrained_layout=True)
+    u = np.linspace(0.0, 1.0, 400)
+    pts = conic(u)
+    xi = np.linspace(0.0, 1.0, 400)
+    xi_pts = np.linspace(0.0, 1.0, 11)
+
+    ax = axes[0, 0]
+    ax.plot(pts[:, 0], pts[:, 1], "k-", lw=2, label=f"{conic.kind} arc, ω = {conic.omega:.5f}")
+    tri = np.array([conic.p0, conic.p1, conic.p2])
+    ax.plot(tri[:, 0], tri[:, 1], "k:", lw=1, label="tangent triangle P0 P1 P2")
+    for kk, col in zip(ks, colors, strict=True):
+        q = conic.cubic(kk).points
+        ax.plot(
+            q[:, 0], q[:, 1], "o--", color=col, ms=4, lw=1, label=f"control polygon K = {kk:.4g}"
+        )
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    ax.set_title("(a) arc and cubic control polygons")
+    ax.legend(fontsize=7)
+
+    ax = axes[0, 1]
+    ax.plot(pts[:, 0], pts[:, 1], "-", color="0.7", lw=1)
+    for i, (kk, col) in enumerate(zip(ks, colors, strict=True)):
+        p = conic.cubic(kk)(xi_pts)
+        off = (i - len(ks) / 2) * 0.02 * conic.chord
+        ax.plot(
+            p[:, 0],
+            p[:, 1] + off,
+            "o",
+            color=col,
+            ms=4,
+            label=f"K = {kk:.4g} (offset {off:+.3f} m)",
+        )
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m] (curves offset for legibility)")
+    ax.set_title("(b) points at ξ = 0, 0.1, ..., 1")
+    ax.legend(fontsize=7)
+
+    ax = axes[0, 2]
+    for kk, col in zip(ks, colors, strict=True):
+        c = conic.cubic(kk)
+        sp = np.linalg.norm(c.derivatives(xi, 1)[1], axis=1)
+        lab = f"K = {kk:.4g}, ratio {gradient_ratio(c):.3f}"
+        if abs(kk - k_opt) < 5e-5:
+            lab += " (Kopt)"
+        ax.plot(xi, sp, color=col, label=lab)
+    ax.set_xlabel("ξ [-]")
+    ax.set_ylabel("|r_ξ| [m]")
+    ax.set_title("(c) gradient magnitude along the element")
+    ax.legend(fontsize=7)
+
+    kgrid = np.linspace(0.03, 0.97, 95)
+    w = np.array([conic.cubic(kk).weights for kk in kgrid])
+    ax = axes[1, 0]
+    ax.plot(kgrid, w[:, 1], label="w1")
+    ax.plot(kgrid, w[:, 2], label="w2")
+    ax.axvline(k_opt, color="k", ls=":", label=f"Kopt = {k_opt:.4f}")
+    ax.set_yscale("log")
+    ax.set_xlabel("K [-]")
+    ax.set_ylabel("interior weight [-]")
+    ax.set_title("(d) interior weights against K")
+    ax.legend(fontsize=7)
+
+    ratios = np.array([gradient_ratio(conic.cubic(kk)) for kk in kgrid])
+    ax = axes[1, 1]
+    ax.plot(kgrid, ratios, "b-")
+    ax.plot([k_opt], [gradient_ratio(conic.cubic(k_opt))], "r*", ms=12, label=f"Kopt = {k_opt:.4f}")
+    if abs(k_used - k_opt) > 5e-5:
+        ax.plot(
+            [k_used], [gradient_ratio(conic.cubic(k_used))], "ks", label=f"K used = {k_used:.4g}"
+        )
+    ax.set_yscale("log")
+    ax.set_xlabel("K [-]")
+    ax.set_ylabel("gradient ratio max|r_ξ| / min|r_ξ| [-]")
+    ax.set_title("(e) gradient ratio against K")
+    ax.legend(fontsize=7)
+
+    ax = axes[1, 2]
+    length = conic.arc_length()
+    for kk, col in zip(ks, colors, strict=True):
+        n = cable_shape_functions(conic.cubic(kk).weights[None, :], [length], xi)[0][0]
+        for j, ls in enumerate(["-", "--", "-.", ":"]):
+            ax.plot(
+                xi,
+                n[:, j],
+                ls,
+                color=col,
+                lw=1,
+                label=f"S{j + 1}, K = {kk:.4g}" if j == 0 else None,
+            )
+    ax.set_xlabel("ξ [-]")
+    ax.set_ylabel("shape function [-] (S2, S4 in m)")
+    ax.set_title("(f) shape functions S1 (—) S2 (--) S3 (-.) S4 (:)")
+    ax.legend(fontsize=7)
+
+    fig.suptitle(
+        f"Conic arc: chord {conic.chord:.4g} m, {conic.kind}, arc length {length:.5f} m, "
+        f"Kopt = {k_opt:.4f}, {n_elements} element(s)"
+    )
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
