@@ -13,12 +13,17 @@ XI = np.linspace(0.0, 1.0, 101)
 
 
 def _shared_node_mismatch(mesh):
+    """Largest disagreement of element ends with the shared nodal vectors, relative."""
     d = mesh.evaluate([0.0, 1.0], order=1) / mesh.scales[:, None, None]
     p = mesh.evaluate([0.0, 1.0])
-    return max(
-        np.abs(np.concatenate([d[:-1, 1] - d[1:, 0], p[:-1, 1] - p[1:, 0]])).max(initial=0.0),
-        np.abs(p[:, 0] - mesh.nodes[:-1, 0]).max(),
-        np.abs(d[:, 0] - mesh.nodes[:-1, 1]).max(),
+    size = np.abs(mesh.nodes).max()
+    return (
+        max(
+            np.abs(np.concatenate([d[:-1, 1] - d[1:, 0], p[:-1, 1] - p[1:, 0]])).max(initial=0.0),
+            np.abs(p[:, 0] - mesh.nodes[:-1, 0]).max(),
+            np.abs(d[:, 0] - mesh.nodes[:-1, 1]).max(),
+        )
+        / size
     )
 
 
