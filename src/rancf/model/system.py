@@ -1,0 +1,347 @@
+"""Assembled models: element kernels, supports, loads and damping on a chain of nodes.
+
+Coordinates.  The full nodal coordinates ``q`` are ordered node by node (``dpn`` per node: ``[r,
+r_x]`` for cables, ``[x, y, θ]`` for beams).  Supports are linear constraints handled by an
+orthogonal change of coordinates ``q = T y`` plus fixed entries of ``y``:
+
+* pin: the node's position entries are fixed;
+* clamp: position fixed and, for cables, the gradient direction fixed — the node's gradient block
+  is rotated into the basis ``(t0, n0[, n1])`` of its reference tangent and the normal components
+  are fixed, so the gradient may still stretch along ``t0``; for beams ``θ`` is fixed too.
+
+``T`` is block diagonal within node blocks, so every assembled matrix keeps the band structure of
+the chain (half bandwidth ``2 dpn - 1``).  Banded matrices use LAPACK general band storage
+``ab[ku + i - j, j] = A[i, j]`` (``scipy.linalg.solve_banded``).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Literal
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from rancf.elements.beam import BeamKernel
+from rancf.elements.cable_mechanics import CableKernel, CableProperties
+from rancf.errors import InputError
+from rancf.model.mesh import CableMesh, to_ancf
+
+__all__ = ["Section", "Material", "Support", "PointLoad", "Model", "ElementKind"]
+
+ElementKind = Literal["rancf", "ancf", "beam"]
+
+
+@dataclass(frozen=True)
+class Section:
+    """Cross-section: area ``A`` and second moment of area ``I``."""
+
+    area: float
+    inertia: float
+
+    def __post_init__(self) -> None:
+        for name in ("area", "inertia"):
+            v = getattr(self, name)
+            if not (np.isfinite(v) and v > 0):
+                raise InputError(f"section.{name}", v, "a finite number > 0")
+
+    @classmethod
+    def circular(cls, radius: float) -> Section:
+        """Solid circular section: ``A = π r²``, ``I = π r⁴ / 4``."""
+        if not (np.isfinite(radius) and radius > 0):
+            raise InputError("section.radius", radius, "a finite radius > 0")
+        return cls(np.pi * radius**2, np.pi * radius**4 / 4.0)
+
+
+@dataclass(frozen=True)
+class Material:
+    """Linear elastic material: density ``ρ`` and Young's modulus ``E``."""
+
+    density: float
+    youngs_modulus: float
+
+    def __post_init__(self) -> None:
+        for name in ("density", "youngs_modulus"):
+            v = getattr(self, name)
+            if not (np.isfinite(v) and v > 0):
+                raise InputError(f"material.{name}", v, "a finite number > 0")
+
+
+@dataclass(frozen=True)
+class Support:
+    """A support at a node: ``"pin"`` (position fixed) or ``"clamp"`` (also the direction)."""
+
+    node: int
+    kind: Literal["pin", "clamp"] = "pin"
+
+
+@dataclass(frozen=True)
+class PointLoad:
+    """A force at a node: constant, or harmonic ``F0 sin(2π f t)`` when ``frequency_hz`` is set."""
+
+    node: int
+    force: tuple[float, ...]
+    frequency_hz: float | None = None
+
+    def value(self, t: float) -> NDArray[np.float64]:
+        """The force vector at time ``t``."""
+        f = np.asarray(self.force, dtype=float)
+        if self.frequency_hz is None:
+            return f
+        return f * np.sin(2.0 * np.pi * self.frequency_hz * t)
+
+
+def _orthonormal_basis(t: NDArray) -> NDArray:
+    """Columns ``(t, n0[, n1])``: an orthonormal basis whose first vector is ``t / |t|``."""
+    t = t / np.linalg.norm(t)
+    if t.size == 2:
+        return np.array([[t[0], -t[1]], [t[1], t[0]]])
+    helper = np.eye(3)[int(np.argmin(np.abs(t)))]
+    n0 = np.cross(t, helper)
+    n0 /= np.linalg.norm(n0)
+    n1 = np.cross(t, n0)
+    return np.stack([t, n0, n1], axis=1)
+
+
+class Model:
+    """An assembled model: constant matrices precomputed, forces and tangents on demand.
+
+    Parameters
+    ----------
+    mesh : CableMesh
+        The geometry mesh (an exact RANCF mesh; converted for ``"ancf"`` and ``"beam"``).
+    element : {"rancf", "ancf", "beam"}
+    section : Section
+    material : Material
+    supports : sequence of Support
+    gravity : array_like, shape (dim,), optional
+    point_loads : sequence of PointLoad
+    damping : float
+        Mass-proportional damping coefficient ``c`` in ``C = c M`` [1/s].
+    initial_velocities : dict of node -> velocity vector
+    n_qp : int
+        Gauss points per cable element.
+    """
+
+    def __init__(
+        self,
+        mesh: CableMesh,
+        element: ElementKind,
+        section: Section,
+        material: Material,
+        supports: Sequence[Support] = (),
+        gravity: ArrayLike | None = None,
+        point_loads: Sequence[PointLoad] = (),
+        damping: float = 0.0,
+        initial_velocities: dict[int, ArrayLike] | None = None,
+        n_qp: int = 10,
+    ) -> None:
+        self.element = element
+        self.section = section
+        self.material = material
+        self.dim = mesh.dim
+        self.n_nodes = mesh.n_nodes
+        self.n_el = mesh.n_elements
+        rho, e_mod = material.density, material.youngs_modulus
+        props = CableProperties(e_mod * section.area, e_mod * section.inertia, rho * section.area)
+        self.props = props
+        if element == "beam":
+            if self.dim != 2:
+                raise InputError("mesh.element", "beam", "the beam element is planar (2D geometry)")
+            t = mesh.nodes[:, 1]
+            self.kernel: CableKernel | BeamKernel = BeamKernel(
+                mesh.nodes[:, 0], np.arctan2(t[:, 1], t[:, 0]), props, rho * section.inertia
+            )
+            self.dpn = 3
+            q0 = np.concatenate([mesh.nodes[:, 0], np.zeros((self.n_nodes, 1))], axis=1).ravel()
+            self.mesh = mesh
+        elif element in ("rancf", "ancf"):
+            m = to_ancf(mesh) if (element == "ancf" and mesh.kind != "ancf") else mesh
+            self.mesh = m
+            self.kernel = CableKernel(m.weights, m.scales, m.element_nodal(), props, n_qp)
+            self.dpn = 2 * self.dim
+            q0 = m.q0
+        else:
+            raise InputError("mesh.element", element, 'one of "rancf", "ancf", "beam"')
+        self.n = self.n_nodes * self.dpn
+        self.nde = 2 * self.dpn
+        self.ku = self.nde - 1
+        self._el_idx = np.arange(self.n_el)[:, None] * self.dpn + np.arange(self.nde)[None, :]
+
+        # supports -> rotations of gradient blocks and fixed entries of y
+        self.fixed = np.zeros(self.n, dtype=bool)
+        self._rot: list[tuple[int, NDArray]] = []
+        for sup in supports:
+            node = self.check_node(sup.node, "supports.at")
+            base = node * self.dpn
+            self.fixed[base : base + self.dim] = True
+            if sup.kind == "clamp":
+                if element == "beam":
+                    self.fixed[base + 2] = True
+                else:
+                    basis = _orthonormal_basis(q0[base + self.dim : base + 2 * self.dim])
+                    self._rot.append((base + self.dim, basis))
+                    self.fixed[base + self.dim + 1 : base + 2 * self.dim] = True
+            elif sup.kind != "pin":
+                raise InputError("supports.kind", sup.kind, 'one of "pin", "clamp"')
+        self.supports = tuple(supports)
+        # element-level transformations for elements touching a rotated node
+        aff = sorted(
+            {
+                min(max(off // self.dpn - j, 0), self.n_el - 1)
+                for off, _ in self._rot
+                for j in (0, 1)
+            }
+        )
+        self._aff = np.array(aff, dtype=int)
+        te = np.repeat(np.eye(self.nde)[None], len(aff), axis=0)
+        for i, e in enumerate(aff):
+            for off, basis in self._rot:
+                loc = off - e * self.dpn
+                if 0 <= loc < self.nde:
+                    te[i, loc : loc + self.dim, loc : loc + self.dim] = basis
+        self._te = te
+
+        self.q0 = q0
+        self.y0 = self.y_from_q(q0)
+        self.mass_el = self._to_y_elements(self.kernel.mass_matrices())
+        self.mass_band = self.assemble_band(self.mass_el)
+        self.gravity = None if gravity is None else np.asarray(gravity, dtype=float)
+        if self.gravity is not None and self.gravity.size != self.dim:
+            raise InputError("loads.gravity", self.gravity.tolist(), f"{self.dim} components")
+        self.f_gravity = (
+            np.zeros(self.n)
+            if self.gravity is None
+            else self.to_y(self.assemble_vector(self.kernel.gravity_forces(self.gravity)))
+        )
+        self.point_loads = tuple(point_loads)
+        for pl in self.point_loads:
+            self.check_node(pl.node, "loads.point.at")
+            if len(pl.force) != self.dim:
+                raise InputError("loads.point.force", list(pl.force), f"{self.dim} components")
+        if not (np.isfinite(damping) and damping >= 0):
+            raise InputError("damping.mass_proportional", damping, "a finite number >= 0")
+        self.damping = float(damping)
+        v0 = np.zeros(self.n)
+        for node, vel in (initial_velocities or {}).items():
+            nd = self.check_node(node, "initial_velocity.at")
+            vv = np.asarray(vel, dtype=float)
+            if vv.size != self.dim:
+                raise InputError("initial_velocity.value", vv.tolist(), f"{self.dim} components")
+            v0[nd * self.dpn : nd * self.dpn + self.dim] = vv
+        self.v0 = self.to_y(v0)
+        self.v0[self.fixed] = 0.0
+
+    # ------------------------------------------------------------------ bookkeeping
+    def check_node(self, node: int, key: str) -> int:
+        """Resolve a node index (negative counts from the end) or raise naming ``key``."""
+        try:
+            i = int(node)
+        except (TypeError, ValueError):
+            raise InputError(
+                key, node, f"a node index in [-{self.n_nodes}, {self.n_nodes - 1}]"
+            ) from None
+        if not -self.n_nodes <= i < self.n_nodes or i != node:
+            raise InputError(key, node, f"a node index in [-{self.n_nodes}, {self.n_nodes - 1}]")
+        return i % self.n_nodes
+
+    def q_from_y(self, y: ArrayLike) -> NDArray[np.float64]:
+        """Full nodal coordinates from model coordinates (``q = T y``; works on ``(..., n)``)."""
+        q = np.array(y, dtype=float)
+        for off, basis in self._rot:
+            q[..., off : off + self.dim] = q[..., off : off + self.dim] @ basis.T
+        return q
+
+    def y_from_q(self, q: ArrayLike) -> NDArray[np.float64]:
+        """Inverse of :meth:`q_from_y` (``y = Tᵀ q``)."""
+        y = np.array(q, dtype=float)
+        for off, basis in self._rot:
+            y[..., off : off + self.dim] = y[..., off : off + self.dim] @ basis
+        return y
+
+    to_y = y_from_q  # forces transform like coordinates (T orthogonal)
+
+    def node_positions(self, q: ArrayLike) -> NDArray[np.float64]:
+        """Node positions ``(..., n_nodes, dim)`` from full coordinates."""
+        q = np.asarray(q, dtype=float)
+        return q.reshape(q.shape[:-1] + (self.n_nodes, self.dpn))[..., : self.dim]
+
+    def gather(self, q: NDArray) -> NDArray[np.float64]:
+        """Element coordinates ``(n_el, nde)`` from a global vector."""
+        return q[self._el_idx]
+
+    def assemble_vector(self, fe: NDArray) -> NDArray[np.float64]:
+        """Sum element vectors ``(n_el, nde)`` into a global vector ``(n,)``."""
+        out = np.zeros((self.n_nodes, self.dpn))
+        out[:-1] += fe[:, : self.dpn]
+        out[1:] += fe[:, self.dpn :]
+        return out.ravel()
+
+    def assemble_band(self, ke: NDArray) -> NDArray[np.float64]:
+        """Sum element matrices ``(n_el, nde, nde)`` into general band storage ``(2 ku + 1, n)``."""
+        ab = np.zeros((2 * self.ku + 1, self.n))
+        dpn, n_el = self.dpn, self.n_el
+        for i in range(self.nde):
+            for j in range(self.nde):
+                ab[self.ku + i - j, j : j + dpn * n_el : dpn] += ke[:, i, j]
+        return ab
+
+    def _to_y_elements(self, ke: NDArray) -> NDArray:
+        if self._aff.size:
+            ke = np.array(ke)
+            t = self._te
+            ke[self._aff] = np.einsum("eia,eij,ejb->eab", t, ke[self._aff], t)
+        return ke
+
+    # ------------------------------------------------------------------ physics
+    def internal_force(self, y: ArrayLike) -> NDArray[np.float64]:
+        """Elastic force ``∂U/∂y`` ``(n,)``."""
+        q = self.q_from_y(y)
+        return self.to_y(self.assemble_vector(self.kernel.forces(self.gather(q))))
+
+    def internal_force_and_tangent(self, y: ArrayLike) -> tuple[NDArray, NDArray]:
+        """Elastic force ``(n,)`` and tangent stiffness in band storage ``(2 ku + 1, n)``."""
+        q = self.q_from_y(y)
+        fe, ke = self.kernel.forces_and_stiffness(self.gather(q))
+        return self.to_y(self.assemble_vector(fe)), self.assemble_band(self._to_y_elements(ke))
+
+    def strain_energy(self, y: ArrayLike) -> float:
+        """Total strain energy ``U``."""
+        return float(np.sum(self.kernel.energies(self.gather(self.q_from_y(y)))))
+
+    def mass_times(self, v: NDArray) -> NDArray[np.float64]:
+        """``M v`` (element by element)."""
+        return self.assemble_vector(np.einsum("eij,ej->ei", self.mass_el, self.gather(v)))
+
+    def kinetic_energy(self, v: NDArray) -> float:
+        """``½ vᵀ M v``."""
+        return 0.5 * float(v @ self.mass_times(v))
+
+    def gravity_energy(self, y: NDArray) -> float:
+        """Gravitational potential ``-Q_gᵀ (y - y0)`` (zero in the reference configuration)."""
+        return -float(self.f_gravity @ (np.asarray(y) - self.y0))
+
+    def external_force(self, t: float) -> NDArray[np.float64]:
+        """Gravity plus point loads at time ``t`` ``(n,)`` (point loads act on positions)."""
+        f = self.f_gravity.copy()
+        for pl in self.point_loads:
+            base = (pl.node % self.n_nodes) * self.dpn
+            f[base : base + self.dim] += pl.value(t)
+        return f
+
+    @property
+    def total_mass(self) -> float:
+        """Mass of the model: ``Σ_ij M_ij`` over the x components."""
+        ones = np.zeros(self.n)
+        ones.reshape(self.n_nodes, self.dpn)[:, 0] = 1.0
+        return float(ones @ self.mass_times(ones))
+
+    def dense(self, ab: NDArray) -> NDArray[np.float64]:
+        """A band-stored matrix as a dense ``(n, n)`` array."""
+        out = np.zeros((self.n, self.n))
+        for k in range(2 * self.ku + 1):
+            off = self.ku - k  # column - row
+            i = np.arange(max(0, -off), min(self.n, self.n - off))
+            out[i, i + off] = ab[k, i + off]
+        return out

@@ -1,0 +1,291 @@
+"""Implicit generalized-α time integration (Chung & Hulbert 1993) with Newton on the exact tangent.
+
+For ``M ÿ + c M ẏ + f_int(y) = f_ext(t)`` and spectral radius at infinity ``ρ∞ ∈ [0, 1]``:
+
+    α_m = (2ρ∞ - 1)/(ρ∞ + 1),  α_f = ρ∞/(ρ∞ + 1),  γ = ½ - α_m + α_f,  β = ¼ (1 - α_m + α_f)²
+
+Newmark updates ``y_{n+1} = y_n + h v_n + h² ((½ - β) a_n + β a_{n+1})``,
+``v_{n+1} = v_n + h ((1 - γ) a_n + γ a_{n+1})`` and the balance at the intermediate point
+
+    M a_{n+1-α_m} + c M v_{n+1-α_f} + f_int(y_{n+1-α_f}) = f_ext(t_{n+1-α_f}).
+
+Newton solves for ``y_{n+1}`` with Jacobian
+``[(1-α_m)/(β h²) + c (1-α_f) γ/(β h)] M + (1-α_f) K_T(y_{n+1-α_f})``.  The scheme is second
+order; ``ρ∞ = 1`` is the trapezoidal rule (no numerical dissipation).
+
+Step control: fixed steps, or adaptive steps from the local error estimate
+``e = h² |β - 1/6| |a_{n+1} - a_n|`` (Zienkiewicz & Xie 1991).  A step whose Newton iteration fails
+is retried with a quarter of the step; below ``min_step`` the run stops with status ``FAILED``
+and keeps everything computed up to then.
+"""
+
+from __future__ import annotations
+
+import enum
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import NDArray
+
+from rancf.errors import InputError
+from rancf.model.system import Model
+from rancf.solvers.linalg import BandedSystem
+from rancf.solvers.newton import newton
+
+__all__ = ["DynamicOptions", "DynamicStatus", "DynamicResult", "GeneralizedAlpha", "integrate"]
+
+
+class DynamicStatus(enum.Enum):
+    """How a run ended."""
+
+    COMPLETED = "completed"
+    FAILED = "failed"
+    INTERRUPTED = "interrupted"
+
+
+@dataclass(frozen=True)
+class DynamicOptions:
+    """Options of :func:`integrate`.
+
+    Attributes
+    ----------
+    t_end : float
+        End time [s].
+    step : float
+        (Initial) time step [s].
+    rho_inf : float
+        Spectral radius at infinity in [0, 1].
+    adaptive : bool
+        Adapt the step to ``rtol`` (local error relative to the model size).
+    rtol : float
+    min_step, max_step : float, optional
+        Step bounds (defaults ``step / 1024`` and ``output_step``).
+    output_step : float, optional
+        Interval of stored states (default: every ``step``).
+    newton_tol : float
+        Newton stops when ``max |Δy| <= newton_tol * size`` (size = model extent).
+    max_newton : int
+    """
+
+    t_end: float
+    step: float
+    rho_inf: float = 0.9
+    adaptive: bool = False
+    rtol: float = 1e-5
+    min_step: float | None = None
+    max_step: float | None = None
+    output_step: float | None = None
+    newton_tol: float = 1e-10
+    max_newton: int = 12
+
+    def __post_init__(self) -> None:
+        if not (np.isfinite(self.t_end) and self.t_end > 0):
+            raise InputError("solver.t_end", self.t_end, "a finite end time > 0")
+        if not (np.isfinite(self.step) and self.step > 0):
+            raise InputError("solver.step", self.step, "a finite time step > 0")
+        if not (0.0 <= self.rho_inf <= 1.0):
+            raise InputError("solver.rho_inf", self.rho_inf, "a spectral radius in [0, 1]")
+        if self.output_step is not None and not self.output_step > 0:
+            raise InputError("solver.output_step", self.output_step, "a number > 0")
+
+
+@dataclass
+class DynamicResult:
+    """States at the output times, energies, status and counters."""
+
+    t: NDArray[np.float64]
+    q: NDArray[np.float64]
+    v: NDArray[np.float64]
+    kinetic: NDArray[np.float64]
+    strain: NDArray[np.float64]
+    gravity: NDArray[np.float64]
+    status: DynamicStatus
+    message: str
+    n_steps: int = 0
+    n_newton: int = 0
+    n_factorizations: int = 0
+    n_rejected: int = 0
+    wall_time: float = 0.0
+    steps: list[float] = field(default_factory=list)
+
+    @property
+    def total_energy(self) -> NDArray[np.float64]:
+        """Kinetic + strain + gravitational potential."""
+        return self.kinetic + self.strain + self.gravity
+
+    @property
+    def t_reached(self) -> float:
+        """Last stored time."""
+        return float(self.t[-1]) if self.t.size else 0.0
+
+
+class GeneralizedAlpha:
+    """One-step generalized-α integrator on a :class:`Model` (state ``y, v, a, t``)."""
+
+    def __init__(self, model: Model, rho_inf: float, newton_tol: float, max_newton: int) -> None:
+        self.model = model
+        r = rho_inf
+        self.am = (2.0 * r - 1.0) / (r + 1.0)
+        self.af = r / (r + 1.0)
+        self.gamma = 0.5 - self.am + self.af
+        self.beta = 0.25 * (1.0 - self.am + self.af) ** 2
+        self.linear = BandedSystem(model.n, model.ku, model.fixed)
+        size = float(np.ptp(model.node_positions(model.q0), axis=0).max()) or 1.0
+        self.tol = newton_tol * size
+        self.size = size
+        self.max_newton = max_newton
+        self.n_newton = 0
+
+    def initial_acceleration(self, y: NDArray, v: NDArray, t: float) -> NDArray:
+        """``a0 = M⁻¹ (f_ext - f_int - c M v)`` (Cholesky of the constant band mass)."""
+        m = self.model
+        rhs = m.external_force(t) - m.internal_force(y) - m.damping * m.mass_times(v)
+        return self.linear.solve_spd(m.mass_band, rhs)
+
+    def step(
+        self, y: NDArray, v: NDArray, a: NDArray, t: float, h: float
+    ) -> tuple[bool, NDArray, NDArray, NDArray, int]:
+        """Advance by ``h``; returns ``(converged, y1, v1, a1, newton_iterations)``."""
+        m = self.model
+        am, af, g, b = self.am, self.af, self.gamma, self.beta
+        c = m.damping
+        base = y + h * v + h * h * (0.5 - b) * a
+        tf = t + (1.0 - af) * h
+        f_ext = m.external_force(tf)
+        cm = (1.0 - am) / (b * h * h) + c * (1.0 - af) * g / (b * h)
+
+        def kin(y1: NDArray) -> tuple[NDArray, NDArray]:
+            a1 = (y1 - base) / (b * h * h)
+            v1 = v + h * ((1.0 - g) * a + g * a1)
+            return a1, v1
+
+        def increment(y1: NDArray) -> NDArray:
+            a1, v1 = kin(y1)
+            yf = (1.0 - af) * y1 + af * y
+            fi, kb = m.internal_force_and_tangent(yf)
+            inertia = m.mass_times((1.0 - am) * a1 + am * a + c * ((1.0 - af) * v1 + af * v))
+            res = inertia + fi - f_ext
+            jac = cm * m.mass_band + (1.0 - af) * kb
+            return self.linear.solve(jac, res)
+
+        res = newton(y + h * v + 0.5 * h * h * a, increment, self.tol, self.max_newton)
+        self.n_newton += res.n_iter
+        a1, v1 = kin(res.x)
+        return res.converged, res.x, v1, a1, res.n_iter
+
+    def error_estimate(self, a0: NDArray, a1: NDArray, h: float, rtol: float) -> float:
+        """Local displacement error relative to ``rtol * size``."""
+        e = h * h * abs(self.beta - 1.0 / 6.0) * float(np.max(np.abs(a1 - a0)))
+        return e / (rtol * self.size)
+
+
+def integrate(
+    model: Model,
+    options: DynamicOptions,
+    on_output: Callable[[float, Callable[[], DynamicResult]], None] | None = None,
+    should_stop: Callable[[], bool] | None = None,
+) -> DynamicResult:
+    """Integrate the model from its reference configuration and initial velocities.
+
+    Parameters
+    ----------
+    model : Model
+    options : DynamicOptions
+    on_output : callable, optional
+        Called as ``on_output(t, snapshot)`` after every stored output; ``snapshot()`` builds the
+        result so far (call it only now and then, e.g. for checkpoints: it copies the history).
+    should_stop : callable, optional
+        Polled after every step; returning True ends the run with status ``INTERRUPTED``.
+
+    Returns
+    -------
+    DynamicResult
+        Never raises on non-convergence: the status says ``FAILED`` and the message names the
+        time reached.
+    """
+    o = options
+    integ = GeneralizedAlpha(model, o.rho_inf, o.newton_tol, o.max_newton)
+    out_dt = o.output_step if o.output_step is not None else o.step
+    n_out = int(np.floor(o.t_end / out_dt + 1e-9))
+    out_times = out_dt * np.arange(1, n_out + 1)
+    if out_times.size == 0 or out_times[-1] < o.t_end * (1 - 1e-12):
+        out_times = np.append(out_times, o.t_end)
+    min_step = o.min_step if o.min_step is not None else o.step / 1024.0
+    max_step = o.max_step if o.max_step is not None else max(out_dt, o.step)
+
+    y = model.y0.copy()
+    v = model.v0.copy()
+    t = 0.0
+    start = time.perf_counter()
+    a = integ.initial_acceleration(y, v, t)
+    ts, qs, vs, ek, es, eg = [0.0], [model.q_from_y(y)], [model.q_from_y(v)], [], [], []
+
+    def energies(yy: NDArray, vv: NDArray) -> None:
+        ek.append(model.kinetic_energy(vv))
+        es.append(model.strain_energy(yy))
+        eg.append(model.gravity_energy(yy))
+
+    energies(y, v)
+    result = DynamicResult(
+        np.array(ts),
+        np.array(qs),
+        np.array(vs),
+        np.array(ek),
+        np.array(es),
+        np.array(eg),
+        DynamicStatus.COMPLETED,
+        "",
+    )
+
+    def snapshot(status: DynamicStatus, message: str) -> DynamicResult:
+        result.t, result.q, result.v = np.array(ts), np.array(qs), np.array(vs)
+        result.kinetic, result.strain, result.gravity = np.array(ek), np.array(es), np.array(eg)
+        result.status, result.message = status, message
+        result.n_newton = integ.n_newton
+        result.n_factorizations = integ.linear.n_factorizations
+        result.wall_time = time.perf_counter() - start
+        return result
+
+    h = o.step
+    k_out = 0
+    status, message = DynamicStatus.COMPLETED, f"reached t_end = {o.t_end:g} s"
+    while k_out < out_times.size:
+        target = out_times[k_out]
+        h_try = min(h, target - t)
+        if target - (t + h_try) < 1e-12 * max(1.0, target):
+            h_try = target - t
+        ok, y1, v1, a1, _ = integ.step(y, v, a, t, h_try)
+        err = integ.error_estimate(a, a1, h_try, o.rtol) if (ok and o.adaptive) else 0.0
+        if not ok or err > 1.0:
+            result.n_rejected += 1
+            h = h_try * (0.25 if not ok else max(0.2, 0.9 * err ** (-1.0 / 3.0)))
+            if h < min_step:
+                status = DynamicStatus.FAILED
+                message = (
+                    f"Newton iteration did not converge at t = {t:.6g} s even with the minimum "
+                    f"step {min_step:.3g} s; results up to t = {t:.6g} s are kept"
+                )
+                break
+            continue
+        y, v, a, t = y1, v1, a1, t + h_try
+        result.n_steps += 1
+        result.steps.append(h_try)
+        if o.adaptive:
+            h = min(max_step, h_try * min(2.0, 0.9 * max(err, 1e-10) ** (-1.0 / 3.0)))
+        else:
+            h = o.step
+        if abs(t - target) <= 1e-12 * max(1.0, target):
+            t = float(target)
+            ts.append(t)
+            qs.append(model.q_from_y(y))
+            vs.append(model.q_from_y(v))
+            energies(y, v)
+            k_out += 1
+            if on_output is not None:
+                on_output(t, lambda: snapshot(DynamicStatus.INTERRUPTED, f"running, t = {t:g} s"))
+        if should_stop is not None and should_stop():
+            status, message = DynamicStatus.INTERRUPTED, f"interrupted at t = {t:.6g} s"
+            break
+    return snapshot(status, message)

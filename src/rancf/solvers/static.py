@@ -1,0 +1,93 @@
+"""Static equilibrium ``f_int(y) = λ f_ext`` by Newton with load stepping.
+
+The load factor ``λ`` rises from 0 to 1 in ``load_steps`` equal increments; an increment whose
+Newton iteration fails is halved (down to ``1e-4`` of the nominal increment).  Loads are gravity
+and every point load at its amplitude ``F0`` (harmonic loads count with their amplitude).
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from rancf.errors import ConvergenceError, InputError
+from rancf.model.system import Model
+from rancf.solvers.linalg import BandedSystem
+from rancf.solvers.newton import newton
+
+__all__ = ["StaticResult", "solve_static"]
+
+
+@dataclass(frozen=True)
+class StaticResult:
+    """Equilibrium configuration and counters."""
+
+    q: NDArray[np.float64]
+    y: NDArray[np.float64]
+    load_factors: NDArray[np.float64]
+    n_newton: int
+    n_factorizations: int
+    wall_time: float
+
+
+def static_load(model: Model) -> NDArray[np.float64]:
+    """Gravity plus point loads at their amplitudes, in model coordinates."""
+    f = model.f_gravity.copy()
+    for pl in model.point_loads:
+        base = (pl.node % model.n_nodes) * model.dpn
+        f[base : base + model.dim] += np.asarray(pl.force, dtype=float)
+    return f
+
+
+def solve_static(
+    model: Model, load_steps: int = 10, tol: float = 1e-10, max_iter: int = 25
+) -> StaticResult:
+    """Static equilibrium under the model's loads.
+
+    Raises
+    ------
+    ConvergenceError
+        With the load factor reached, if an increment fails even when halved repeatedly (for
+        example a mechanism: a pendulum has no static equilibrium near its reference).
+    """
+    if int(load_steps) != load_steps or load_steps < 1:
+        raise InputError("solver.load_steps", load_steps, "an integer >= 1")
+    start = time.perf_counter()
+    lin = BandedSystem(model.n, model.ku, model.fixed)
+    size = float(np.ptp(model.node_positions(model.q0), axis=0).max()) or 1.0
+    f_ext = static_load(model)
+    y = model.y0.copy()
+    lam, dlam = 0.0, 1.0 / load_steps
+    factors = [0.0]
+    n_newton = 0
+    while lam < 1.0 - 1e-12:
+        target = min(1.0, lam + dlam)
+
+        def increment(x: NDArray, target: float = target) -> NDArray:
+            fi, kb = model.internal_force_and_tangent(x)
+            return lin.solve(kb, fi - target * f_ext)
+
+        res = newton(y, increment, tol * size, max_iter)
+        n_newton += res.n_iter
+        if res.converged:
+            y, lam = res.x, target
+            factors.append(lam)
+            continue
+        dlam *= 0.5
+        if dlam < 1e-4 / load_steps:
+            raise ConvergenceError(
+                f"static Newton iteration did not converge beyond load factor {lam:.4g} "
+                "(is the model a mechanism, or the load beyond a limit point?)",
+                reached=lam,
+            )
+    return StaticResult(
+        model.q_from_y(y),
+        y,
+        np.array(factors),
+        n_newton,
+        lin.n_factorizations,
+        time.perf_counter() - start,
+    )
