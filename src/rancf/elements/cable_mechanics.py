@@ -272,7 +272,7 @@ class CableKernel:
         return f.reshape(self.n_el, self.n_dof_el)
 
     def forces_and_stiffness(self, e: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-        """Elastic forces ``(n_el, 4 dim)`` and tangent stiffness ``∂²U/∂e²`` ``(n_el, 4 dim, 4 dim)``."""
+        """Elastic forces ``(n_el, 4 dim)`` and tangent ``∂²U/∂e²`` ``(n_el, 4 dim, 4 dim)``."""
         a, b = self._ab(e)
         _, g, h = energy_density_derivatives(
             a, b, self.s0, self.kappa0, self.j0, self.props.ea, self.props.ei, hessian=True

@@ -284,7 +284,8 @@ def integrate(
             energies(y, v)
             k_out += 1
             if on_output is not None:
-                on_output(t, lambda: snapshot(DynamicStatus.INTERRUPTED, f"running, t = {t:g} s"))
+                msg = f"running, t = {t:g} s"
+                on_output(t, lambda msg=msg: snapshot(DynamicStatus.INTERRUPTED, msg))
         if should_stop is not None and should_stop():
             status, message = DynamicStatus.INTERRUPTED, f"interrupted at t = {t:.6g} s"
             break
