@@ -123,6 +123,9 @@ def _parser() -> argparse.ArgumentParser:
     c.add_argument("--plot", metavar="FILE.png", default=None, help="write the K-study figure")
     c.set_defaults(func=_cmd_conic)
 
+    from rancf import cli_sim
+
+    cli_sim.add_parsers(sub)
     return p
 
 

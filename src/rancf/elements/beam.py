@@ -5,11 +5,14 @@ coordinates ``(x, y, θ)`` per node, ``θ`` the rotation of the node from its re
 With current chord ``d = x2 - x1``, length ``L``, chord rotation ``α`` from the reference chord
 (unwrapped near the mean nodal rotation) the local deformations are
 
-    u = L - L0,    θ̄_i = θ_i - α
+    ε = (L² - L0²) / (2 L0²),    θ̄_i = θ_i - α
 
-so a polygonal reference with any nodal tangent angles is stress free.  Local forces
-``N = EA u / L0``, ``[M1, M2] = (EI / L0) [[4, 2], [2, 4]] [θ̄1, θ̄2]``; global force ``f = Bᵀ
-[N, M1, M2]`` and tangent ``K = Bᵀ D B + (N / L) z zᵀ + ((M1 + M2) / L²)(r zᵀ + z rᵀ)`` with
+so a polygonal reference with any nodal tangent angles is stress free.  The axial strain is the
+Green–Lagrange strain of the chord — the same measure as the cable elements, so that the three
+element types model the same material at large strain.  Energy ``½ EA ε² L0 + (EI / L0)(2θ̄1² +
+2θ̄1θ̄2 + 2θ̄2²)``; chord force ``N = EA ε L / L0``, ``[M1, M2] = (EI / L0) [[4, 2], [2, 4]]
+[θ̄1, θ̄2]``; global force ``f = Bᵀ [N, M1, M2]`` and tangent ``K = Bᵀ D B + (N / L) z zᵀ +
+((M1 + M2) / L²)(r zᵀ + z rᵀ)`` with ``D = diag(EA (L²/L0³ + ε/L0), (EI/L0)[[4, 2], [2, 4]])``,
 ``r = [-c, -s, 0, c, s, 0]``, ``z = [s, -c, 0, -s, c, 0]``.
 
 The mass matrix is constant: consistent linear interpolation of the translations (exact for the
@@ -68,15 +71,15 @@ class BeamKernel:
             [cr * self.d0[:, 0] - sr * self.d0[:, 1], sr * self.d0[:, 0] + cr * self.d0[:, 1]], 1
         )
         alpha = tm + np.arctan2(rd0[:, 0] * d[:, 1] - rd0[:, 1] * d[:, 0], np.sum(rd0 * d, axis=1))
-        u = length - self.l0
+        eps = (length**2 - self.l0**2) / (2.0 * self.l0**2)
         t1, t2 = th1 - alpha, th2 - alpha
-        return length, c, s, u, t1, t2
+        return length, c, s, eps, t1, t2
 
     def energies(self, e: ArrayLike) -> NDArray[np.float64]:
         """Strain energy per element ``(n_el,)``."""
-        _, _, _, u, t1, t2 = self._local(np.asarray(e))
+        _, _, _, eps, t1, t2 = self._local(np.asarray(e))
         ea, ei = self.props.ea, self.props.ei
-        return 0.5 * ea * u**2 / self.l0 + 2.0 * ei / self.l0 * (t1**2 + t1 * t2 + t2**2)
+        return 0.5 * ea * eps**2 * self.l0 + 2.0 * ei / self.l0 * (t1**2 + t1 * t2 + t2**2)
 
     def _bmat(self, length: NDArray, c: NDArray, s: NDArray) -> tuple[NDArray, NDArray, NDArray]:
         z0 = np.zeros_like(c)
@@ -90,27 +93,27 @@ class BeamKernel:
         b[:, 2, 5] += 1.0
         return b, r, z
 
-    def _local_forces(self, u: NDArray, t1: NDArray, t2: NDArray) -> NDArray:
+    def _local_forces(self, length: NDArray, eps: NDArray, t1: NDArray, t2: NDArray) -> NDArray:
         ea, ei = self.props.ea, self.props.ei
-        n = ea * u / self.l0
+        n = ea * eps * length / self.l0
         m1 = ei / self.l0 * (4.0 * t1 + 2.0 * t2)
         m2 = ei / self.l0 * (2.0 * t1 + 4.0 * t2)
         return np.stack([n, m1, m2], axis=1)
 
     def forces(self, e: ArrayLike) -> NDArray[np.float64]:
         """Elastic forces ``(n_el, 6)``."""
-        length, c, s, u, t1, t2 = self._local(np.asarray(e))
+        length, c, s, eps, t1, t2 = self._local(np.asarray(e))
         b, _, _ = self._bmat(length, c, s)
-        return np.einsum("eij,ei->ej", b, self._local_forces(u, t1, t2))
+        return np.einsum("eij,ei->ej", b, self._local_forces(length, eps, t1, t2))
 
     def forces_and_stiffness(self, e: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Elastic forces ``(n_el, 6)`` and tangent stiffness ``(n_el, 6, 6)``."""
-        length, c, s, u, t1, t2 = self._local(np.asarray(e))
+        length, c, s, eps, t1, t2 = self._local(np.asarray(e))
         b, r, z = self._bmat(length, c, s)
-        fl = self._local_forces(u, t1, t2)
+        fl = self._local_forces(length, eps, t1, t2)
         ea, ei = self.props.ea, self.props.ei
         d = np.zeros((self.n_el, 3, 3))
-        d[:, 0, 0] = ea / self.l0
+        d[:, 0, 0] = ea * (length**2 / self.l0**3 + eps / self.l0)
         d[:, 1:, 1:] = (ei / self.l0)[:, None, None] * np.array([[4.0, 2.0], [2.0, 4.0]])
         k = np.einsum("eia,eij,ejb->eab", b, d, b)
         k += (fl[:, 0] / length)[:, None, None] * np.einsum("ea,eb->eab", z, z)

@@ -109,7 +109,8 @@ def energy_density_derivatives(
     else:
         bb = np.einsum("...i,...i->...", b, b)
         ab = np.einsum("...i,...i->...", a, b)
-        q = aa * bb - ab**2
+        cr = np.cross(a, b)
+        q = np.einsum("...i,...i->...", cr, cr)  # = aa bb - ab², without the cancellation
         s_ = aa**-3.0
         q_a = 2.0 * bb[..., None] * a - 2.0 * ab[..., None] * b
         q_b = 2.0 * aa[..., None] * b - 2.0 * ab[..., None] * a
