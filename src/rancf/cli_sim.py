@@ -31,6 +31,7 @@ def dynamic_options(solver: dict[str, Any]) -> Any:
         output_step=solver["output_step"],
         newton_tol=solver["newton_tol"],
         max_newton=solver["max_newton"],
+        newton=solver["newton"],
     )
 
 

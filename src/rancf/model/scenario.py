@@ -252,7 +252,8 @@ def parse_scenario(raw: dict[str, Any], path: str = "<scenario>") -> Scenario:
             raise _err(path, "mesh.k", f'must be "opt" or a number in (0, 1), got {m["k"]!r}')
         m["k"] = k
     m["spacing"] = _choice(path, "mesh.spacing", m["spacing"], ("arc", "parameter"))
-    m["quadrature_points"] = _integer(path, "mesh.quadrature_points", m["quadrature_points"], 2)
+    if m["quadrature_points"] is not None:
+        m["quadrature_points"] = _integer(path, "mesh.quadrature_points", m["quadrature_points"], 2)
     if m["element"] == "beam" and dim != 2:
         raise _err(path, "mesh.element", "the beam element is planar: use 2-coordinate geometry")
     d["mesh"] = m
@@ -335,6 +336,7 @@ def parse_scenario(raw: dict[str, Any], path: str = "<scenario>") -> Scenario:
             "min_step": None,
             "newton_tol": 1e-10,
             "max_newton": 12,
+            "newton": "full",
         },
     )
     sv["t_end"] = _number(path, "solver.t_end", sv["t_end"], positive=True)
@@ -351,6 +353,7 @@ def parse_scenario(raw: dict[str, Any], path: str = "<scenario>") -> Scenario:
             sv[k] = _number(path, f"solver.{k}", sv[k], positive=True)
     sv["newton_tol"] = _number(path, "solver.newton_tol", sv["newton_tol"], positive=True)
     sv["max_newton"] = _integer(path, "solver.max_newton", sv["max_newton"], 1)
+    sv["newton"] = _choice(path, "solver.newton", sv["newton"], ("full", "modified"))
     d["solver"] = sv
 
     md = _table(path, "modes", raw.get("modes", {}), {"count": 6, "about": "reference"})

@@ -120,8 +120,12 @@ class Model:
     damping : float
         Mass-proportional damping coefficient ``c`` in ``C = c M`` [1/s].
     initial_velocities : dict of node -> velocity vector
-    n_qp : int
-        Gauss points per cable element.
+    n_qp : int, optional
+        Gauss points per cable element; default 6 for polynomial (ANCF, all weights 1) elements,
+        whose axial energy that rule integrates exactly on a straight reference, and 10 for
+        rational ones (see the quadrature convergence test).
+    backend : {"numba", "numpy"}
+        Compiled kernels (default) or the NumPy reference kernels; both give the same numbers.
     """
 
     def __init__(
@@ -135,8 +139,12 @@ class Model:
         point_loads: Sequence[PointLoad] = (),
         damping: float = 0.0,
         initial_velocities: dict[int, ArrayLike] | None = None,
-        n_qp: int = 10,
+        n_qp: int | None = None,
+        backend: Literal["numba", "numpy"] = "numba",
     ) -> None:
+        if backend not in ("numba", "numpy"):
+            raise InputError("backend", backend, 'one of "numba", "numpy"')
+        self.backend = backend
         self.element = element
         self.section = section
         self.material = material
@@ -159,6 +167,8 @@ class Model:
         elif element in ("rancf", "ancf"):
             m = to_ancf(mesh) if (element == "ancf" and mesh.kind != "ancf") else mesh
             self.mesh = m
+            if n_qp is None:
+                n_qp = 6 if np.all(m.weights == 1.0) else 10
             self.kernel = CableKernel(m.weights, m.scales, m.element_nodal(), props, n_qp)
             self.dpn = 2 * self.dim
             q0 = m.q0
@@ -232,6 +242,55 @@ class Model:
             v0[nd * self.dpn : nd * self.dpn + self.dim] = vv
         self.v0 = self.to_y(v0)
         self.v0[self.fixed] = 0.0
+        self.arrays = self._compiled_arrays()
+
+    def _compiled_arrays(self) -> tuple:
+        """Plain arrays for :mod:`rancf.solvers.compiled` (element data, rotations)."""
+        k = self.kernel
+        n_el = self.n_el
+        if isinstance(k, CableKernel):
+            kind = 0
+            n1, n2 = np.ascontiguousarray(k.n1), np.ascontiguousarray(k.n2)
+            gw, s0, k0, j0 = k.gw.copy(), k.s0.copy(), k.kappa0.copy(), k.j0.copy()
+            l0, d0 = np.zeros(n_el), np.zeros((n_el, 2))
+        else:
+            kind = 1
+            n1 = n2 = np.zeros((n_el, 1, 4))
+            gw = np.zeros(1)
+            s0 = k0 = j0 = np.zeros((n_el, 1))
+            l0, d0 = k.l0.copy(), np.ascontiguousarray(k.d0)
+        rot_of_node = np.full(self.n_nodes, -1, dtype=np.int64)
+        rot = np.zeros((max(len(self._rot), 1), self.dim, self.dim))
+        for i, (off, basis) in enumerate(self._rot):
+            rot_of_node[off // self.dpn] = i
+            rot[i] = basis
+        return (
+            kind,
+            self.dim,
+            self.dpn,
+            n_el,
+            n1,
+            n2,
+            gw,
+            s0,
+            k0,
+            j0,
+            l0,
+            d0,
+            self.props.ea,
+            self.props.ei,
+            rot_of_node,
+            rot,
+        )
+
+    def load_arrays(self) -> tuple[NDArray, NDArray, NDArray]:
+        """Point loads as ``(base index, F0, frequency)`` arrays (frequency 0: constant)."""
+        base = np.array(
+            [(p.node % self.n_nodes) * self.dpn for p in self.point_loads], dtype=np.int64
+        )
+        f0 = np.array([p.force for p in self.point_loads], dtype=float).reshape(-1, self.dim)
+        freq = np.array([p.frequency_hz or 0.0 for p in self.point_loads], dtype=float)
+        return base, f0, freq
 
     # ------------------------------------------------------------------ bookkeeping
     def check_node(self, node: int, key: str) -> int:
@@ -297,17 +356,34 @@ class Model:
     # ------------------------------------------------------------------ physics
     def internal_force(self, y: ArrayLike) -> NDArray[np.float64]:
         """Elastic force ``∂U/∂y`` ``(n,)``."""
+        if self.backend == "numba":
+            from rancf.solvers.compiled import assemble
+
+            f = np.empty(self.n)
+            assemble(np.asarray(y, dtype=float), *self.arrays, f, np.empty((0, 0)), False)
+            return f
         q = self.q_from_y(y)
         return self.to_y(self.assemble_vector(self.kernel.forces(self.gather(q))))
 
     def internal_force_and_tangent(self, y: ArrayLike) -> tuple[NDArray, NDArray]:
         """Elastic force ``(n,)`` and tangent stiffness in band storage ``(2 ku + 1, n)``."""
+        if self.backend == "numba":
+            from rancf.solvers.compiled import assemble
+
+            f = np.empty(self.n)
+            ab = np.empty((2 * self.ku + 1, self.n))
+            assemble(np.asarray(y, dtype=float), *self.arrays, f, ab, True)
+            return f, ab
         q = self.q_from_y(y)
         fe, ke = self.kernel.forces_and_stiffness(self.gather(q))
         return self.to_y(self.assemble_vector(fe)), self.assemble_band(self._to_y_elements(ke))
 
     def strain_energy(self, y: ArrayLike) -> float:
         """Total strain energy ``U``."""
+        if self.backend == "numba":
+            from rancf.solvers.compiled import strain_energy
+
+            return float(strain_energy(np.asarray(y, dtype=float), *self.arrays))
         return float(np.sum(self.kernel.energies(self.gather(self.q_from_y(y)))))
 
     def mass_times(self, v: NDArray) -> NDArray[np.float64]:

@@ -67,6 +67,11 @@ class DynamicOptions:
     newton_tol : float
         Newton stops when ``max |Δy| <= newton_tol * size`` (size = model extent).
     max_newton : int
+    newton : {"full", "modified"}
+        ``"full"``: the exact tangent is assembled and factored at every iteration.
+        ``"modified"``: the factored Jacobian is reused across iterations and steps and refreshed
+        from the exact tangent when the increments stop shrinking fast (compiled backend only;
+        the converged answer is the same to the Newton tolerance).
     """
 
     t_end: float
@@ -79,6 +84,7 @@ class DynamicOptions:
     output_step: float | None = None
     newton_tol: float = 1e-10
     max_newton: int = 12
+    newton: str = "full"
 
     def __post_init__(self) -> None:
         if not (np.isfinite(self.t_end) and self.t_end > 0):
@@ -89,6 +95,8 @@ class DynamicOptions:
             raise InputError("solver.rho_inf", self.rho_inf, "a spectral radius in [0, 1]")
         if self.output_step is not None and not self.output_step > 0:
             raise InputError("solver.output_step", self.output_step, "a number > 0")
+        if self.newton not in ("full", "modified"):
+            raise InputError("solver.newton", self.newton, 'one of "full", "modified"')
 
 
 @dataclass
@@ -124,7 +132,14 @@ class DynamicResult:
 class GeneralizedAlpha:
     """One-step generalized-α integrator on a :class:`Model` (state ``y, v, a, t``)."""
 
-    def __init__(self, model: Model, rho_inf: float, newton_tol: float, max_newton: int) -> None:
+    def __init__(
+        self,
+        model: Model,
+        rho_inf: float,
+        newton_tol: float,
+        max_newton: int,
+        newton: str = "full",
+    ) -> None:
         self.model = model
         r = rho_inf
         self.am = (2.0 * r - 1.0) / (r + 1.0)
@@ -137,6 +152,11 @@ class GeneralizedAlpha:
         self.size = size
         self.max_newton = max_newton
         self.n_newton = 0
+        self._loads = model.load_arrays()
+        # band LU factors kept between calls (modified Newton); state: valid, variant, count
+        self._lu = np.zeros((2 * model.ku + 1, model.n))
+        self._lu_state = np.array([0, 1 if newton == "modified" else 0, 0], dtype=np.int64)
+        self._lu_h = -1.0
 
     def initial_acceleration(self, y: NDArray, v: NDArray, t: float) -> NDArray:
         """``a0 = M⁻¹ (f_ext - f_int - c M v)`` (Cholesky of the constant band mass)."""
@@ -170,10 +190,97 @@ class GeneralizedAlpha:
             jac = cm * m.mass_band + (1.0 - af) * kb
             return self.linear.solve(jac, res)
 
+        if m.backend == "numba":
+            status, it, y1, v1, a1 = self._compiled_step(y, v, a, t, h)
+            self.n_newton += it
+            if status >= 0:
+                return status == 1, y1, v1, a1, it
         res = newton(y + h * v + 0.5 * h * h * a, increment, self.tol, self.max_newton)
         self.n_newton += res.n_iter
         a1, v1 = kin(res.x)
         return res.converged, res.x, v1, a1, res.n_iter
+
+    def run_steps(
+        self, y: NDArray, v: NDArray, a: NDArray, t: float, h: float, n_steps: int, per_out: int
+    ) -> tuple:
+        """Compiled fixed-step loop (``y, v, a`` updated in place); see ``compiled.run_steps``."""
+        from rancf.solvers.compiled import run_steps
+
+        m = self.model
+        n_out = n_steps // per_out
+        oy, ov, oe = np.empty((n_out, m.n)), np.empty((n_out, m.n)), np.empty((n_out, 3))
+        self._check_lu(h)
+        before = int(self._lu_state[2])
+        done, status, iters, stored = run_steps(
+            y,
+            v,
+            a,
+            t,
+            h,
+            n_steps,
+            per_out,
+            self.am,
+            self.af,
+            self.gamma,
+            self.beta,
+            m.damping,
+            self.tol,
+            self.max_newton,
+            m.mass_band,
+            m.f_gravity,
+            m.y0,
+            *self._loads,
+            *m.arrays,
+            m.fixed,
+            oy,
+            ov,
+            oe,
+            self._lu,
+            self._lu_state,
+        )
+        self.n_newton += iters
+        self.linear.n_factorizations += int(self._lu_state[2]) - before
+        return done, status, iters, stored, oy, ov, oe
+
+    def _check_lu(self, h: float) -> None:
+        """Invalidate kept factors when the step size changes (they depend on h)."""
+        if h != self._lu_h:
+            self._lu_state[0] = 0
+            self._lu_h = h
+
+    def _compiled_step(self, y: NDArray, v: NDArray, a: NDArray, t: float, h: float) -> tuple:
+        from rancf.solvers.compiled import newton_step
+
+        m = self.model
+        y1, v1, a1 = np.empty_like(y), np.empty_like(y), np.empty_like(y)
+        self._check_lu(h)
+        before = int(self._lu_state[2])
+        status, it = newton_step(
+            y,
+            v,
+            a,
+            t,
+            h,
+            self.am,
+            self.af,
+            self.gamma,
+            self.beta,
+            m.damping,
+            self.tol,
+            self.max_newton,
+            m.mass_band,
+            m.f_gravity,
+            *self._loads,
+            *m.arrays,
+            m.fixed,
+            y1,
+            v1,
+            a1,
+            self._lu,
+            self._lu_state,
+        )
+        self.linear.n_factorizations += int(self._lu_state[2]) - before
+        return status, it, y1, v1, a1
 
     def error_estimate(self, a0: NDArray, a1: NDArray, h: float, rtol: float) -> float:
         """Local displacement error relative to ``rtol * size``."""
@@ -206,7 +313,7 @@ def integrate(
         time reached.
     """
     o = options
-    integ = GeneralizedAlpha(model, o.rho_inf, o.newton_tol, o.max_newton)
+    integ = GeneralizedAlpha(model, o.rho_inf, o.newton_tol, o.max_newton, o.newton)
     out_dt = o.output_step if o.output_step is not None else o.step
     n_out = int(np.floor(o.t_end / out_dt + 1e-9))
     out_times = out_dt * np.arange(1, n_out + 1)
@@ -251,8 +358,58 @@ def integrate(
     h = o.step
     k_out = 0
     status, message = DynamicStatus.COMPLETED, f"reached t_end = {o.t_end:g} s"
+    # compiled fixed-step loop: outputs on a grid that is a whole number of steps
+    ratio = out_dt / o.step
+    per_out = int(round(ratio))
+    n_grid = out_times.size if out_times[-1] == out_dt * out_times.size else out_times.size - 1
+    fast = (
+        model.backend == "numba" and not o.adaptive and per_out >= 1 and abs(ratio - per_out) < 1e-9
+    )
+    chunk_out = max(1, n_grid // 100)
+
+    def store(tt: float, yy: NDArray, vv: NDArray) -> None:
+        ts.append(tt)
+        qs.append(model.q_from_y(yy))
+        vs.append(model.q_from_y(vv))
+
     while k_out < out_times.size:
         target = out_times[k_out]
+        on_grid = abs(t - (out_times[k_out - 1] if k_out else 0.0)) <= 1e-12 * max(1.0, t)
+        if fast and h == o.step and k_out < n_grid and on_grid:
+            n_chunk = min(chunk_out, n_grid - k_out)
+            done, st, iters, stored, oy, ov, oe = integ.run_steps(
+                y, v, a, t, o.step, n_chunk * per_out, per_out
+            )
+            result.n_steps += done
+            result.steps.extend([o.step] * done)
+            for i in range(stored):
+                ts.append(float(out_times[k_out + i]))
+                qs.append(model.q_from_y(oy[i]))
+                vs.append(model.q_from_y(ov[i]))
+                ek.append(oe[i, 0])
+                es.append(oe[i, 1])
+                eg.append(oe[i, 2])
+            t_chunk = t + done * o.step
+            k_out += stored
+            t = float(out_times[k_out - 1]) if (stored and done % per_out == 0) else t_chunk
+            if stored and on_output is not None:
+                msg = f"running, t = {t:g} s"
+                on_output(t, lambda msg=msg: snapshot(DynamicStatus.INTERRUPTED, msg))
+            if should_stop is not None and should_stop():
+                status, message = DynamicStatus.INTERRUPTED, f"interrupted at t = {t:.6g} s"
+                break
+            if st == 1:
+                continue
+            h = o.step * 0.25  # the failing step is retried below, smaller
+            result.n_rejected += 1
+            if h < min_step:
+                status = DynamicStatus.FAILED
+                message = (
+                    f"Newton iteration did not converge at t = {t:.6g} s even with the minimum "
+                    f"step {min_step:.3g} s; results up to t = {t:.6g} s are kept"
+                )
+                break
+            continue
         h_try = min(h, target - t)
         if target - (t + h_try) < 1e-12 * max(1.0, target):
             h_try = target - t
@@ -278,9 +435,7 @@ def integrate(
             h = o.step
         if abs(t - target) <= 1e-12 * max(1.0, target):
             t = float(target)
-            ts.append(t)
-            qs.append(model.q_from_y(y))
-            vs.append(model.q_from_y(v))
+            store(t, y, v)
             energies(y, v)
             k_out += 1
             if on_output is not None:
