@@ -126,6 +126,7 @@ def _parser() -> argparse.ArgumentParser:
     from rancf import cli_sim
 
     cli_sim.add_parsers(sub)
+    cli_sim.add_study_parsers(sub)
     return p
 
 

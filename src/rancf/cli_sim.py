@@ -201,3 +201,63 @@ def add_parsers(sub: Any) -> None:
     m.add_argument("--json", action="store_true", help="print one JSON object")
     m.add_argument("--plot", metavar="FILE.png", default=None, help="write mode-shape plots")
     m.set_defaults(func=_cmd_modes)
+
+
+def _cmd_example(args: argparse.Namespace) -> int:
+    from rancf.studies import EXAMPLES, study_runner
+    from rancf.studies.common import example_path
+
+    if args.action == "list":
+        for name, what in EXAMPLES.items():
+            print(f"{name:18s} paper {what}  ({example_path(name).name})")
+        return 0
+    if args.name is None:
+        raise InputError("NAME", None, f"an example name: {', '.join(EXAMPLES)}")
+    runner = study_runner(args.name)
+    if args.out is None:
+        raise InputError("--out", None, "an output directory")
+    return _run_studies([args.name], [runner], Path(args.out), args.quick)
+
+
+def _cmd_report(args: argparse.Namespace) -> int:
+    from rancf.studies import EXAMPLES, study_runner
+
+    names = list(EXAMPLES)
+    return _run_studies(names, [study_runner(n) for n in names], Path(args.out), args.quick)
+
+
+def _run_studies(names: list[str], runners: list[Any], out: Path, quick: bool) -> int:
+    from rancf.post.report import write_report
+
+    out.mkdir(parents=True, exist_ok=True)
+    done = []
+    for name, runner in zip(names, runners, strict=True):
+        folder = out / name
+        print(f"running {name}{' (quick)' if quick else ''} ...", file=sys.stderr)
+        res = runner(folder, quick)
+        res.write_comparison_csv(folder)
+        done.append((res, folder))
+        print(f"  {name}: {len(res.figures)} figures, {res.wall_time_s:.1f} s", file=sys.stderr)
+        for c in res.comparison:
+            print(f"    {c.quantity:60s} paper {c.paper:>10s}   ours {c.ours}")
+    path = write_report(out, done, quick)
+    print(f"report written to {path}")
+    return 0
+
+
+def add_study_parsers(sub: Any) -> None:
+    """Register ``example`` and ``report``."""
+    e = sub.add_parser("example", help="list or run the paper's examples")
+    e.add_argument("action", choices=["list", "run"])
+    e.add_argument("name", nargs="?", default=None, help="example name (see `rancf example list`)")
+    e.add_argument("--out", default=None, help="output directory")
+    e.add_argument(
+        "--quick", action="store_true", help="reduced runs (fewer elements, shorter time)"
+    )
+    e.set_defaults(func=_cmd_example)
+    r = sub.add_parser("report", help="run every example and write one HTML report")
+    r.add_argument("--out", required=True, help="output directory")
+    r.add_argument(
+        "--quick", action="store_true", help="reduced runs (fewer elements, shorter time)"
+    )
+    r.set_defaults(func=_cmd_report)

@@ -10,7 +10,46 @@ from rancf.elements.cable import cable_shape_functions
 from rancf.elements.mapping import gradient_ratio
 from rancf.geometry.conic import Conic
 
-__all__ = ["plot_conic"]
+__all__ = ["plot_conic", "draw_gradient_curves", "draw_parameter_points"]
+
+
+def draw_parameter_points(ax, conic: Conic, ks, colors) -> None:  # noqa: ANN001
+    """Points at ξ = 0, 0.1, ..., 1 for several K (paper Fig. 13), curves offset for legibility."""
+    pts = conic(np.linspace(0.0, 1.0, 400))
+    ax.plot(pts[:, 0], pts[:, 1], "-", color="0.7", lw=1)
+    xi_pts = np.linspace(0.0, 1.0, 11)
+    for i, (kk, col) in enumerate(zip(ks, colors, strict=True)):
+        p = conic.cubic(kk)(xi_pts)
+        off = (i - len(ks) / 2) * 0.02 * conic.chord
+        ax.plot(
+            p[:, 0],
+            p[:, 1] + off,
+            "o",
+            color=col,
+            ms=4,
+            label=f"K = {kk:.4g} (offset {off:+.3f} m)",
+        )
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m] (curves offset for legibility)")
+    ax.set_title("points at ξ = 0, 0.1, ..., 1")
+    ax.legend(fontsize=7)
+
+
+def draw_gradient_curves(ax, conic: Conic, ks, k_opt: float, colors) -> None:  # noqa: ANN001
+    """``|r_ξ|`` against ξ for several K, Kopt marked (paper Figs. 10, 12)."""
+    xi = np.linspace(0.0, 1.0, 400)
+    for kk, col in zip(ks, colors, strict=True):
+        c = conic.cubic(kk)
+        sp = np.linalg.norm(c.derivatives(xi, 1)[1], axis=1)
+        lab = f"K = {kk:.4g}, ratio {gradient_ratio(c):.3f}"
+        if abs(kk - k_opt) < 5e-5:
+            lab += " (Kopt)"
+        ax.plot(xi, sp, color=col, label=lab)
+    ax.set_xlabel("ξ [-]")
+    ax.set_ylabel("|r_ξ| [m]")
+    ax.set_title("gradient magnitude along the element")
+    ax.legend(fontsize=7)
 
 
 def _k_set(k_opt: float, k_used: float) -> list[float]:
@@ -40,7 +79,6 @@ def plot_conic(
     u = np.linspace(0.0, 1.0, 400)
     pts = conic(u)
     xi = np.linspace(0.0, 1.0, 400)
-    xi_pts = np.linspace(0.0, 1.0, 11)
 
     ax = axes[0, 0]
     ax.plot(pts[:, 0], pts[:, 1], "k-", lw=2, label=f"{conic.kind} arc, ω = {conic.omega:.5f}")
@@ -57,37 +95,8 @@ def plot_conic(
     ax.set_title("(a) arc and cubic control polygons")
     ax.legend(fontsize=7)
 
-    ax = axes[0, 1]
-    ax.plot(pts[:, 0], pts[:, 1], "-", color="0.7", lw=1)
-    for i, (kk, col) in enumerate(zip(ks, colors, strict=True)):
-        p = conic.cubic(kk)(xi_pts)
-        off = (i - len(ks) / 2) * 0.02 * conic.chord
-        ax.plot(
-            p[:, 0],
-            p[:, 1] + off,
-            "o",
-            color=col,
-            ms=4,
-            label=f"K = {kk:.4g} (offset {off:+.3f} m)",
-        )
-    ax.set_aspect("equal")
-    ax.set_xlabel("x [m]")
-    ax.set_ylabel("y [m] (curves offset for legibility)")
-    ax.set_title("(b) points at ξ = 0, 0.1, ..., 1")
-    ax.legend(fontsize=7)
-
-    ax = axes[0, 2]
-    for kk, col in zip(ks, colors, strict=True):
-        c = conic.cubic(kk)
-        sp = np.linalg.norm(c.derivatives(xi, 1)[1], axis=1)
-        lab = f"K = {kk:.4g}, ratio {gradient_ratio(c):.3f}"
-        if abs(kk - k_opt) < 5e-5:
-            lab += " (Kopt)"
-        ax.plot(xi, sp, color=col, label=lab)
-    ax.set_xlabel("ξ [-]")
-    ax.set_ylabel("|r_ξ| [m]")
-    ax.set_title("(c) gradient magnitude along the element")
-    ax.legend(fontsize=7)
+    draw_parameter_points(axes[0, 1], conic, ks, colors)
+    draw_gradient_curves(axes[0, 2], conic, ks, k_opt, colors)
 
     kgrid = np.linspace(0.03, 0.97, 95)
     w = np.array([conic.cubic(kk).weights for kk in kgrid])

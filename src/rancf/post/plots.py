@@ -70,3 +70,49 @@ def plot_modes(model: Model, modal: Any, path: str | Path, y: NDArray | None = N
     fig.savefig(path, dpi=100)
     plt.close(fig)
     return path
+
+
+def positions_at(model: Model, q: NDArray, sbar: NDArray) -> NDArray[np.float64]:
+    """Centreline points at material points given by normalized reference arc length ``sbar``.
+
+    Cable elements: each element's reference arc length ``s_e(ξ)`` is tabulated on a fine grid
+    and inverted by interpolation (plotting accuracy, about 1e-8); beams: linear along chords.
+    Shape ``(n_s, dim)`` (``q`` one configuration) or ``(n_t, n_s, dim)`` (``q`` a history).
+    """
+    q = np.asarray(q, dtype=float)
+    sbar = np.asarray(sbar, dtype=float)
+    hist = q.reshape(-1, model.n)
+    if model.element == "beam":
+        pos0 = model.node_positions(model.q0)
+        seg = np.linalg.norm(np.diff(pos0, axis=0), axis=1)
+        s_nodes = np.concatenate([[0.0], np.cumsum(seg)]) / seg.sum()
+        idx = np.clip(np.searchsorted(s_nodes, sbar, side="right") - 1, 0, model.n_el - 1)
+        w = (sbar - s_nodes[idx]) / (s_nodes[idx + 1] - s_nodes[idx])
+        pos = model.node_positions(hist)
+        out = (1.0 - w)[None, :, None] * pos[:, idx] + w[None, :, None] * pos[:, idx + 1]
+        return out[0] if q.ndim == 1 else out
+    xi = np.linspace(0.0, 1.0, 401)
+    _, n1, _ = cable_shape_functions(model.mesh.weights, model.mesh.scales, xi)
+    ref = model.gather(model.q0).reshape(model.n_el, 4, model.dim)
+    speed = np.linalg.norm(np.einsum("eqk,ekd->eqd", n1, ref), axis=2)
+    cum = np.concatenate(
+        [
+            np.zeros((model.n_el, 1)),
+            np.cumsum(0.5 * (speed[:, 1:] + speed[:, :-1]) * np.diff(xi), axis=1),
+        ],
+        axis=1,
+    )
+    starts = np.concatenate([[0.0], np.cumsum(cum[:, -1])])
+    total = starts[-1]
+    s_abs = sbar * total
+    el = np.clip(np.searchsorted(starts, s_abs, side="right") - 1, 0, model.n_el - 1)
+    xis = np.array([np.interp(s - starts[e], cum[e], xi) for s, e in zip(s_abs, el, strict=True)])
+    out = np.empty((hist.shape[0], sbar.size, model.dim))
+    for e in np.unique(el):
+        sel = el == e
+        n = cable_shape_functions(
+            model.mesh.weights[e : e + 1], model.mesh.scales[e : e + 1], xis[sel]
+        )[0][0]
+        nodal = hist[:, model._el_idx[e]].reshape(hist.shape[0], 4, model.dim)
+        out[:, sel] = np.einsum("sk,tkd->tsd", n, nodal)
+    return out[0] if q.ndim == 1 else out

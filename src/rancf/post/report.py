@@ -1,0 +1,81 @@
+"""A self-contained HTML report of the paper studies (figures embedded as base64 PNG)."""
+
+from __future__ import annotations
+
+import base64
+import datetime
+import html
+import json
+import platform
+from collections.abc import Sequence
+from pathlib import Path
+
+from rancf.post.results import atomic_write
+from rancf.studies.common import StudyResult
+
+__all__ = ["write_report"]
+
+_CSS = """
+body { font-family: system-ui, sans-serif; max-width: 1200px; margin: 2em auto; color: #222; }
+h1, h2, h3 { color: #1a3d6d; }
+table { border-collapse: collapse; margin: 0.8em 0 1.5em 0; font-size: 0.9em; }
+th, td { border: 1px solid #bbb; padding: 0.3em 0.6em; text-align: left; vertical-align: top; }
+th { background: #e8eef7; }
+figure { margin: 1em 0 2em 0; }
+figcaption { font-style: italic; color: #555; }
+img { max-width: 100%; border: 1px solid #ddd; }
+.note { background: #f7f7f0; border-left: 4px solid #c9b458; padding: 0.5em 1em; margin: 1em 0; }
+"""
+
+
+def _table(header: Sequence[str], rows: Sequence[Sequence[object]]) -> str:
+    head = "".join(f"<th>{html.escape(str(h))}</th>" for h in header)
+    body = "".join(
+        "<tr>" + "".join(f"<td>{html.escape(str(c))}</td>" for c in row) + "</tr>" for row in rows
+    )
+    return f"<table><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
+
+
+def write_report(out: str | Path, studies: Sequence[tuple[StudyResult, Path]], quick: bool) -> Path:
+    """Write ``report.html`` (and ``report.json``) for studies whose files are in their folders."""
+    out = Path(out)
+    parts = [
+        "<!DOCTYPE html><html><head><meta charset='utf-8'>",
+        f"<title>rancf: paper studies</title><style>{_CSS}</style></head><body>",
+        "<h1>RANCF conic-section cable elements: the paper's studies</h1>",
+        f"<p>Generated {datetime.datetime.now().isoformat(timespec='seconds')} on "
+        f"{html.escape(platform.platform())}, Python {platform.python_version()}"
+        f"{' — <b>reduced (quick) runs</b>' if quick else ''}. Total wall time "
+        f"{sum(s.wall_time_s for s, _ in studies):.1f} s.</p>",
+        "<h2>Contents</h2><ul>",
+    ]
+    parts += [f"<li><a href='#{s.name}'>{html.escape(s.title)}</a></li>" for s, _ in studies]
+    parts.append("</ul>")
+    summary = {}
+    for s, folder in studies:
+        parts.append(f"<h2 id='{s.name}'>{html.escape(s.title)}</h2>")
+        parts.append(
+            f"<p>Wall time {s.wall_time_s:.1f} s; files in <code>{folder.name}/</code>.</p>"
+        )
+        for note in s.notes:
+            parts.append(f"<div class='note'>{html.escape(note)}</div>")
+        for title, header, rows, filename in s.tables:
+            parts.append(f"<h3>{html.escape(title)} <small>({html.escape(filename)})</small></h3>")
+            parts.append(_table(header, rows))
+        for caption, filename in s.figures:
+            data = base64.b64encode((folder / filename).read_bytes()).decode("ascii")
+            parts.append(
+                f"<figure><img alt='{html.escape(caption)}' src='data:image/png;base64,{data}'>"
+                f"<figcaption>{html.escape(caption)} ({html.escape(filename)})</figcaption>"
+                "</figure>"
+            )
+        summary[s.name] = {
+            "wall_time_s": s.wall_time_s,
+            "comparison": [c.__dict__ for c in s.comparison],
+            "figures": [f for _, f in s.figures],
+        }
+    parts.append("</body></html>")
+    path = out / "report.html"
+    atomic_write(path, "\n".join(parts))
+    atomic_write(out / "report.json", json.dumps(summary, indent=2, default=str) + "\n")
+    return path

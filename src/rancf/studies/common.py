@@ -1,0 +1,263 @@
+"""Shared pieces of the paper studies: example scenarios, variants, series, FFT, result records."""
+
+from __future__ import annotations
+
+import copy
+import csv
+import tomllib
+from dataclasses import dataclass, field
+from importlib import resources
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.signal import detrend
+
+from rancf.model.scenario import Scenario, parse_scenario
+from rancf.model.system import Model
+from rancf.solvers.dynamic import DynamicOptions, DynamicResult, integrate
+
+__all__ = [
+    "EXAMPLES",
+    "example_path",
+    "load_example",
+    "variant",
+    "run",
+    "fft_peak",
+    "Comparison",
+    "StudyResult",
+]
+
+#: Shipped example scenarios (name -> paper section).
+EXAMPLES = {
+    "planar-pendulum": "6.1 planar pendulum with an elliptical-arc cable",
+    "spatial-pendulum": "6.2 spatial pendulum with an elliptical-arc cable",
+    "arc-vibration": "6.3 free and forced vibration of a cable arc",
+}
+
+
+def example_path(name: str) -> Path:
+    """Path of a shipped example scenario file."""
+    return Path(str(resources.files("rancf.examples").joinpath(f"{name}.toml")))
+
+
+def load_example(name: str) -> dict[str, Any]:
+    """The parsed TOML of a shipped example (a plain dictionary to derive variants from)."""
+    return tomllib.loads(example_path(name).read_text(encoding="utf-8"))
+
+
+def variant(raw: dict[str, Any], name: str, **changes: Any) -> tuple[Scenario, Model]:
+    """A validated scenario and its model with some keys changed.
+
+    ``changes`` use ``table__key`` names, e.g. ``mesh__elements=8``, ``solver__t_end=0.5``; a
+    plain table name replaces the whole table (``initial_velocity=[]``).
+    """
+    d = copy.deepcopy(raw)
+    for key, value in changes.items():
+        if "__" in key:
+            table, sub = key.split("__")
+            d.setdefault(table, {})[sub] = value
+        else:
+            d[key] = value
+    sc = parse_scenario(d, f"{name} (variant {changes})" if changes else name)
+    return sc, sc.build_model()
+
+
+def run(sc: Scenario, model: Model, **overrides: Any) -> DynamicResult:
+    """Integrate a scenario's model with its ``[solver]`` settings (``overrides`` win)."""
+    s = dict(sc.solver)
+    s.update(overrides)
+    opts = DynamicOptions(
+        t_end=s["t_end"],
+        step=s["step"],
+        rho_inf=s["rho_inf"],
+        adaptive=s["adaptive"],
+        rtol=s["rtol"],
+        min_step=s["min_step"],
+        output_step=s["output_step"],
+        newton_tol=s["newton_tol"],
+        max_newton=s["max_newton"],
+        newton=s["newton"],
+    )
+    return integrate(model, opts)
+
+
+def fft_peak(t: NDArray, x: NDArray, f_min: float = 0.0) -> dict[str, Any]:
+    """Amplitude spectrum of the linearly detrended signal and its peak above ``f_min``.
+
+    Returns the frequencies, the one-sided amplitude spectrum, the peak frequency on the FFT
+    grid, the resolution ``1 / T`` and a refined peak from parabolic interpolation of the log
+    amplitude around the maximum (Hann window).
+    """
+    t = np.asarray(t, dtype=float)
+    x = detrend(np.asarray(x, dtype=float))
+    n = x.size
+    dt = float(np.mean(np.diff(t)))
+    window = np.hanning(n)
+    spec = np.abs(np.fft.rfft(x * window)) * 2.0 / window.sum()
+    freqs = np.fft.rfftfreq(n, dt)
+    sel = freqs > f_min
+    i = int(np.flatnonzero(sel)[np.argmax(spec[sel])])
+    refined = freqs[i]
+    if 0 < i < spec.size - 1 and spec[i - 1] > 0 and spec[i + 1] > 0:
+        a, b, c = np.log(spec[i - 1]), np.log(spec[i]), np.log(spec[i + 1])
+        denom = a - 2 * b + c
+        if denom != 0:
+            refined = freqs[i] + 0.5 * (a - c) / denom * (freqs[1] - freqs[0])
+    return {
+        "freqs": freqs,
+        "amplitude": spec,
+        "peak_hz": float(freqs[i]),
+        "refined_hz": float(refined),
+        "resolution_hz": float(1.0 / (n * dt)),
+        "peak_amplitude": float(spec[i]),
+    }
+
+
+@dataclass
+class Comparison:
+    """One row of a "paper says / we get" table."""
+
+    quantity: str
+    paper: str
+    ours: str
+    difference: str
+    note: str = ""
+
+
+@dataclass
+class StudyResult:
+    """What a study produced: figures, tables, the comparison with the paper, notes."""
+
+    name: str
+    title: str
+    figures: list[tuple[str, str]] = field(default_factory=list)
+    tables: list[tuple[str, list[str], list[list[Any]], str]] = field(default_factory=list)
+    comparison: list[Comparison] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)
+    data: dict[str, Any] = field(default_factory=dict)
+    wall_time_s: float = 0.0
+
+    def add_table(
+        self, out: Path, title: str, header: list[str], rows: list[list[Any]], filename: str
+    ) -> None:
+        """Record a table and write it as CSV into ``out``."""
+        with open(out / filename, "w", newline="") as fh:
+            w = csv.writer(fh)
+            w.writerow(header)
+            w.writerows(rows)
+        self.tables.append((title, header, rows, filename))
+
+    def write_comparison_csv(self, out: Path) -> None:
+        """Write the comparison table as ``comparison.csv``."""
+        self.add_table(
+            out,
+            "Paper says / we get",
+            ["quantity", "paper", "ours", "difference", "note"],
+            [[c.quantity, c.paper, c.ours, c.difference, c.note] for c in self.comparison],
+            "comparison.csv",
+        )
+        self.tables.insert(0, self.tables.pop())
+
+
+def slug(s: str) -> str:
+    """A file-name-safe version of ``s``."""
+    return "".join(c if c.isalnum() else "_" for c in s.lower()).strip("_")
+
+
+def save_figure(fig: Any, path: Path, res: StudyResult, caption: str) -> None:
+    """Write a figure as PNG and record it in the study result."""
+    import matplotlib.pyplot as plt
+
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+    res.figures.append((caption, path.name))
+
+
+def convergence_runs(
+    raw: dict[str, Any],
+    name: str,
+    kinds: dict[str, dict[str, Any]],
+    ns: list[int],
+    reference: tuple[int, str],
+    tol: float,
+    extra_after: int = 4,
+    **solver: Any,
+) -> tuple[dict[str, dict[int, dict[str, Any]]], dict[str, Any], dict[str, int | None]]:
+    """Run every element kind for increasing numbers of elements against a fine reference.
+
+    The error of a run is ``max_t |r_B(t) - r_B,ref(t)|`` over the output times; each kind stops
+    ``extra_after`` sizes after the first one that meets ``tol``.
+
+    Returns
+    -------
+    runs : kind -> n -> {"t", "ab", "tip", "err", "model", "result", "wall"}
+    ref : {"model", "result", "tip", "ab"} of the reference run
+    found : kind -> smallest n with error <= tol (None if none tried did)
+    """
+    n_ref, ref_kind = reference
+    sc, m = variant(raw, name, mesh__elements=n_ref, **kinds[ref_kind], **solver)
+    r = run(sc, m)
+    pos = m.node_positions(r.q)
+    ref = {
+        "model": m,
+        "result": r,
+        "tip": pos[:, -1],
+        "ab": np.linalg.norm(pos[:, -1] - pos[:, 0], axis=1),
+    }
+    runs: dict[str, dict[int, dict[str, Any]]] = {k: {} for k in kinds}
+    found: dict[str, int | None] = {}
+    for kind, opts in kinds.items():
+        found[kind] = None
+        for n in ns:
+            sc, m = variant(raw, name, mesh__elements=n, **opts, **solver)
+            r = run(sc, m)
+            pos = m.node_positions(r.q)
+            err = float(np.max(np.linalg.norm(pos[:, -1] - ref["tip"], axis=1)))
+            runs[kind][n] = {
+                "t": r.t,
+                "ab": np.linalg.norm(pos[:, -1] - pos[:, 0], axis=1),
+                "tip": pos[:, -1],
+                "err": err,
+                "model": m,
+                "result": r,
+                "wall": r.wall_time,
+            }
+            if found[kind] is None and err <= tol:
+                found[kind] = n
+            if found[kind] is not None and n >= found[kind] + extra_after:
+                break
+    return runs, ref, found
+
+
+def plot_ab(
+    plt: Any, runs: dict[int, dict[str, Any]], ref: dict[str, Any], show: list[int], title: str
+) -> Any:
+    """AB(t) for several numbers of elements and the reference (paper Figs. 15–17, 21, 24, 26)."""
+    fig, ax = plt.subplots(figsize=(7, 4.2), constrained_layout=True)
+    for n in show:
+        if n in runs:
+            ax.plot(runs[n]["t"], runs[n]["ab"], label=f"{n} elements")
+    ax.plot(ref["result"].t, ref["ab"], "k--", lw=1, label=f"reference ({ref['model'].n_el} el)")
+    ax.set_xlabel("t [s]")
+    ax.set_ylabel("distance AB [m]")
+    ax.set_title(title)
+    ax.legend(fontsize=8)
+    return fig
+
+
+def plot_errors(
+    plt: Any, runs: dict[str, dict[int, dict[str, Any]]], tol: float, title: str
+) -> Any:
+    """Tip error against the number of elements, one curve per element kind."""
+    fig, ax = plt.subplots(figsize=(7, 4.5), constrained_layout=True)
+    for kind, by_n in runs.items():
+        n_list = sorted(by_n)
+        ax.semilogy(n_list, [by_n[n]["err"] for n in n_list], "o-", label=kind)
+    ax.axhline(tol, color="k", ls="--", label=f"tolerance {tol:g} m")
+    ax.set_xlabel("number of elements")
+    ax.set_ylabel("max_t |tip - tip_ref| [m]")
+    ax.set_title(title)
+    ax.legend(fontsize=8)
+    return fig
