@@ -213,7 +213,7 @@ def run_study(out: str | Path, quick: bool = False) -> StudyResult:
         axes[1].plot(sbar, prof[n][1], ls, label=f"{n} elements")
     axes[2].plot(sbar, diff_u, "r-")
     axes[2].set_title(
-        f"Fig. 20: difference; L2 = {l2:.5f} m, L∞ = {linf:.5f} m (paper 0.00173, 0.00393)"
+        f"Fig. 20: difference\nL2 = {l2:.5f} m, L∞ = {linf:.5f} m (paper 0.00173, 0.00393)"
     )
     axes[0].set_title(f"Fig. 18: vertical displacement u_y(s), t = {t_cmp} s")
     axes[1].set_title(f"Fig. 19: centreline height y(s), t = {t_cmp} s")

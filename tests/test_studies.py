@@ -1,0 +1,92 @@
+"""Every shipped example in reduced form: physical sanity, not numbers copied from the paper."""
+
+import numpy as np
+import pytest
+
+from rancf.cli import main
+from rancf.model.scenario import load_scenario
+from rancf.studies import EXAMPLES, study_runner
+from rancf.studies.common import example_path
+
+
+@pytest.mark.parametrize("name", list(EXAMPLES))
+def test_example_scenarios_are_valid(name):
+    sc = load_scenario(example_path(name))
+    model = sc.build_model()
+    assert model.n_el >= 1 and sc.sensors
+
+
+@pytest.fixture(scope="module")
+def studies(tmp_path_factory):
+    out = tmp_path_factory.mktemp("studies")
+    return {name: (study_runner(name)(out / name, True), out / name) for name in EXAMPLES}
+
+
+def test_planar_pendulum(studies):
+    res, folder = studies["planar-pendulum"]
+    assert all((folder / f).stat().st_size > 5000 for _, f in res.figures)
+    assert (folder / "element_efficiency.csv").exists()
+    # the Kopt element is the most uniform parameterization
+    ratios = res.data["ratios"]
+    assert ratios[1] < ratios[2] < ratios[0]
+    # energy of the reference run: generalized-alpha with rho_inf = 0.9 keeps it within 0.1 %
+    assert res.data["energy_drift"] < 1e-3
+    # the pendulum swings down: the tip ends well below the hinge
+    assert res.data["ref_tip"][-1, 1] < -0.2
+
+
+def test_spatial_pendulum_moves_out_of_plane_and_converges(studies):
+    res, _ = studies["spatial-pendulum"]
+    assert res.data["out_of_plane"] > 0.01
+    assert res.data["energy_drift"] < 1e-2
+    errs = {
+        row[0]: float(row[2])
+        for row in [r for t in res.tables if t[3] == "error_vs_elements.csv" for r in t[2]]
+        if row[1] == 4
+    }
+    first = {
+        row[0]: float(row[2])
+        for row in [r for t in res.tables if t[3] == "error_vs_elements.csv" for r in t[2]]
+        if row[1] == 1
+    }
+    for kind in ("Kopt", "K = 0.1"):
+        assert errs[kind] < first[kind]
+
+
+def test_arc_vibration(studies):
+    res, folder = studies["arc-vibration"]
+    d = res.data
+    # FFT peak of the free in-plane vibration agrees with the eigenvalue analysis
+    assert abs(d["f_fft"] - d["f_modal"]) < 0.05 * d["f_modal"]
+    # other element types give the same frequency
+    assert d["f_ancf"] == pytest.approx(d["f_modal"], rel=1e-4)
+    assert d["f_beam"] == pytest.approx(d["f_modal"], rel=5e-3)
+    # undamped, rho_inf = 1: energy conserved
+    assert d["drift_in"] < 1e-3
+    # curved spatial cable: zero-frequency out-of-plane modes are reported, not hidden
+    assert d["n_zero_out"] >= 1
+    # the forced response oscillates at the excitation frequency, near the linear amplitude
+    assert d["f_forced"] == pytest.approx(d["f_fft"], rel=0.05)
+    assert 0.5 * d["lin"] < d["amp"] < 1.2 * d["lin"]
+    assert (folder / "modes.csv").exists()
+
+
+def test_example_cli(tmp_path, capsys):
+    assert main(["example", "list"]) == 0
+    out = capsys.readouterr().out
+    assert all(name in out for name in EXAMPLES)
+    assert main(["example", "run", "no-such-example", "--out", str(tmp_path)]) == 2
+    assert "no-such-example" in capsys.readouterr().err
+
+
+def test_report_html(studies, tmp_path):
+    from rancf.post.report import write_report
+
+    items = [(res, folder) for res, folder in studies.values()]
+    for res, folder in items:
+        res.write_comparison_csv(folder)
+    path = write_report(tmp_path, items, quick=True)
+    text = path.read_text()
+    assert text.count("data:image/png;base64,") == sum(len(r.figures) for r, _ in items)
+    assert "Paper says / we get" in text
+    assert np.all([(f / "comparison.csv").exists() for _, f in items])
