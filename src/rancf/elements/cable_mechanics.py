@@ -4,7 +4,13 @@ Conic-section paper sec. 5 (eqs. 34–41); math note sec. 6.  With ``a = r_ξ`` 
 at a quadrature point and the reference ``a0 = r0_ξ`` (``J0 = |a0|``, ``s0 = J0²``):
 
 * axial strain (Green–Lagrange, relative to the reference): ``ε = (a·a - s0) / (2 s0)``;
-* curvature: planar (signed) ``κ = (a × b)_z / |a|³``; spatial ``κ = |a × b| / |a|³``;
+* curvature: planar (signed) ``κ = (a × b)_z / |a|³``; spatial ``κ = |a × b| / |a|³`` on a
+  straight reference, and at curved reference points the regularized magnitude
+  ``κr = sqrt(κ² + η² κ0²)`` with energy ``½ EI (1 + η²)(κr - κ0 sqrt(1 + η²))²`` (η = ``ETA``
+  = 0.05): zero at the reference, the same linearized stiffness as ``|κ|``, and smooth everywhere,
+  whereas the plain magnitude has a cusp at κ = 0 that stops Newton's method when a curved cable
+  passes through a straight shape in 3D; the difference from ``(|κ| - κ0)²`` is confined to
+  ``|κ| ≲ η κ0``;
 * strain energy per unit ξ: ``W = ½ [EA ε² + EI (κ - κ0)²] J0``;
 * mass ``M = ∫ ρA Sᵀ S J0 dξ``, gravity ``Q_g = ∫ ρA Sᵀ g J0 dξ``; all integrals over the true
   reference arc length, so the reference configuration is exactly stress-free.
@@ -14,8 +20,7 @@ by the chain rule with ``∂a/∂e_k = N'_k I``, ``∂b/∂e_k = N''_k I``.
 
 Shape conventions: element nodal coordinates ``E`` ``(n_el, 4, dim)``; quadrature data
 ``(n_el, n_qp, ...)``; element force vectors ``(n_el, 4 dim)`` and matrices
-``(n_el, 4 dim, 4 dim)`` ordered ``(node block k, component i) -> 4 k ... `` i.e. index
-``k dim + i``.
+``(n_el, 4 dim, 4 dim)`` with the coordinate ``i`` of node block ``k`` at index ``k dim + i``.
 """
 
 from __future__ import annotations
@@ -32,6 +37,8 @@ __all__ = ["CableKernel", "energy_density_derivatives"]
 
 #: Below this relative curvature a spatial reference point counts as straight (κ0 = 0 branch).
 _STRAIGHT = 1e-12
+#: Regularization of the spatial magnitude curvature at curved reference points (see CableKernel).
+ETA = 0.05
 
 
 def energy_density_derivatives(
@@ -43,6 +50,7 @@ def energy_density_derivatives(
     ea: float,
     ei: float,
     hessian: bool = True,
+    qreg: NDArray | None = None,
 ) -> tuple[NDArray, NDArray, NDArray | None]:
     """Energy density ``W`` and its gradient and Hessian in ``z = (a, b)``.
 
@@ -54,6 +62,9 @@ def energy_density_derivatives(
         Reference ``|r0_ξ|²``, curvature and ``|r0_ξ|``.
     ea, ei : float
         Axial and bending stiffness.
+    qreg : ndarray, shape (...), optional
+        Spatial only: ``η² κ0²`` at curved reference points (zero elsewhere), the regularization
+        of the magnitude curvature.
 
     Returns
     -------
@@ -107,6 +118,9 @@ def energy_density_derivatives(
             hab = hab + s * (outer("...i,...j->...ij", k_a, k_b) + d * k_ab)
             hbb = hbb + s * outer("...i,...j->...ij", k_b, k_b)
     else:
+        # u = κ² = |a × b|² / |a|⁶ is smooth; at curved reference points the bending term is
+        # ½ EI (1 + η²) (κr - κr0)² with κr = sqrt(u + η² κ0²), κr0 = κ0 sqrt(1 + η²)
+        # (qreg = η² κ0², zero where the reference is straight).
         bb = np.einsum("...i,...i->...", b, b)
         ab = np.einsum("...i,...i->...", a, b)
         cr = np.cross(a, b)
@@ -115,25 +129,20 @@ def energy_density_derivatives(
         q_a = 2.0 * bb[..., None] * a - 2.0 * ab[..., None] * b
         q_b = 2.0 * aa[..., None] * b - 2.0 * ab[..., None] * a
         s_a = (-6.0 * aa**-4.0)[..., None] * a
-        # κ² = q s and its derivatives
-        k2_a = q_a * s_[..., None] + q[..., None] * s_a
-        k2_b = q_b * s_[..., None]
-        half = 0.5 * ei * j0
-        # κ0 J0 = dθ/dξ is scale free; below _STRAIGHT the reference point counts as straight
-        # and only the smooth κ² = q s term is used (no derivative of |a × b| at zero).
-        curved = kappa0 * j0 > _STRAIGHT
-        m = np.where(curved, np.sqrt(np.maximum(q, 1e-24 * aa * bb + 1e-300)), 1.0)
-        p = aa**-1.5
-        kappa = m * p
-        w = w + half * (q * s_ - 2.0 * kappa0 * kappa + kappa0**2)
-        p_a = (-3.0 * aa**-2.5)[..., None] * a
-        m_a = q_a / (2.0 * m)[..., None]
-        m_b = q_b / (2.0 * m)[..., None]
-        k_a = m_a * p[..., None] + m[..., None] * p_a
-        k_b = m_b * p[..., None]
-        cf = np.where(curved, kappa0, 0.0)[..., None]
-        ga = ga + half[..., None] * (k2_a - 2.0 * cf * k_a)
-        gb = gb + half[..., None] * (k2_b - 2.0 * cf * k_b)
+        u = q * s_
+        u_a = q_a * s_[..., None] + q[..., None] * s_a
+        u_b = q_b * s_[..., None]
+        c = np.zeros_like(u) if qreg is None else qreg
+        curved = c > 0.0
+        fac = np.where(curved, 1.0 + ETA**2, 1.0)
+        kr = np.sqrt(u + c)
+        kr0 = kappa0 * np.sqrt(1.0 + ETA**2)
+        ratio = np.where(curved, kr0 / np.where(curved, kr, 1.0), 0.0)  # κr0 / κr
+        half = 0.5 * ei * j0 * fac
+        w = w + half * (u + c - 2.0 * kr0 * kr * curved + kr0**2 * curved)
+        gfac = (half * (1.0 - ratio))[..., None]
+        ga = ga + gfac * u_a
+        gb = gb + gfac * u_b
         if hessian:
             o = lambda x, y: outer("...i,...j->...ij", x, y)  # noqa: E731
             q_aa = 2.0 * bb[..., None, None] * eye - 2.0 * o(b, b)
@@ -143,25 +152,14 @@ def energy_density_derivatives(
                 ..., None, None
             ] * o(a, a)
             sx = s_[..., None, None]
-            k2_aa = q_aa * sx + o(q_a, s_a) + o(s_a, q_a) + q[..., None, None] * s_aa
-            k2_ab = q_ab * sx + o(s_a, q_b)
-            k2_bb = q_bb * sx
-            mm = m[..., None, None]
-            m_aa = q_aa / (2.0 * mm) - o(q_a, q_a) / (4.0 * mm**3)
-            m_ab = q_ab / (2.0 * mm) - o(q_a, q_b) / (4.0 * mm**3)
-            m_bb = q_bb / (2.0 * mm) - o(q_b, q_b) / (4.0 * mm**3)
-            p_aa = (-3.0 * aa**-2.5)[..., None, None] * eye + (15.0 * aa**-3.5)[
-                ..., None, None
-            ] * o(a, a)
-            px = p[..., None, None]
-            k_aa = m_aa * px + o(m_a, p_a) + o(p_a, m_a) + mm * p_aa
-            k_ab = m_ab * px + o(p_a, m_b)
-            k_bb = m_bb * px
-            hx = half[..., None, None]
-            cx = cf[..., None]
-            haa = haa + hx * (k2_aa - 2.0 * cx * k_aa)
-            hab = hab + hx * (k2_ab - 2.0 * cx * k_ab)
-            hbb = hbb + hx * (k2_bb - 2.0 * cx * k_bb)
+            u_aa = q_aa * sx + o(q_a, s_a) + o(s_a, q_a) + q[..., None, None] * s_aa
+            u_ab = q_ab * sx + o(s_a, q_b)
+            u_bb = q_bb * sx
+            h1 = gfac[..., None]
+            h2 = (half * ratio / (2.0 * np.where(curved, u + c, 1.0)))[..., None, None]
+            haa = haa + h1 * u_aa + h2 * o(u_a, u_a)
+            hab = hab + h1 * u_ab + h2 * o(u_a, u_b)
+            hbb = hbb + h1 * u_bb + h2 * o(u_b, u_b)
     grad = np.concatenate([ga, gb], axis=-1)
     if not hessian:
         return w, grad, None
@@ -219,6 +217,11 @@ class CableKernel:
         self.s0 = np.einsum("eqd,eqd->eq", a0, a0)
         self.j0 = np.sqrt(self.s0)
         self.kappa0 = self._curvature(a0, b0)
+        # spatial: η² κ0² at curved reference points (κ0 J0 above round-off), zero elsewhere
+        self.qreg = np.zeros_like(self.s0)
+        if self.dim == 3:
+            curved = self.kappa0 * self.j0 > _STRAIGHT
+            self.qreg = np.where(curved, (ETA * self.kappa0) ** 2, 0.0)
         self.wj = gw[None, :] * self.j0  # (n_el, n_qp): dξ weight times reference speed
 
     def _curvature(self, a: NDArray, b: NDArray) -> NDArray:
@@ -253,7 +256,7 @@ class CableKernel:
         """Strain energy of every element, shape ``(n_el,)``."""
         a, b = self._ab(e)
         w, _, _ = energy_density_derivatives(
-            a, b, self.s0, self.kappa0, self.j0, self.props.ea, self.props.ei, hessian=False
+            a, b, self.s0, self.kappa0, self.j0, self.props.ea, self.props.ei, False, self.qreg
         )
         return np.einsum("q,eq->e", self.gw, w)
 
@@ -261,7 +264,7 @@ class CableKernel:
         """Generalized elastic forces ``∂U/∂e``, shape ``(n_el, 4 dim)``."""
         a, b = self._ab(e)
         _, g, _ = energy_density_derivatives(
-            a, b, self.s0, self.kappa0, self.j0, self.props.ea, self.props.ei, hessian=False
+            a, b, self.s0, self.kappa0, self.j0, self.props.ea, self.props.ei, False, self.qreg
         )
         return self._force_from_grad(g)
 
@@ -276,7 +279,7 @@ class CableKernel:
         """Elastic forces ``(n_el, 4 dim)`` and tangent ``∂²U/∂e²`` ``(n_el, 4 dim, 4 dim)``."""
         a, b = self._ab(e)
         _, g, h = energy_density_derivatives(
-            a, b, self.s0, self.kappa0, self.j0, self.props.ea, self.props.ei, hessian=True
+            a, b, self.s0, self.kappa0, self.j0, self.props.ea, self.props.ei, True, self.qreg
         )
         d = self.dim
         # B_q: (n_el, n_qp, 2 dim, 4 dim) maps element coordinates to z = (a, b)

@@ -252,12 +252,14 @@ class Model:
             kind = 0
             n1, n2 = np.ascontiguousarray(k.n1), np.ascontiguousarray(k.n2)
             gw, s0, k0, j0 = k.gw.copy(), k.s0.copy(), k.kappa0.copy(), k.j0.copy()
+            qr = k.qreg.copy()
             l0, d0 = np.zeros(n_el), np.zeros((n_el, 2))
         else:
             kind = 1
             n1 = n2 = np.zeros((n_el, 1, 4))
             gw = np.zeros(1)
             s0 = k0 = j0 = np.zeros((n_el, 1))
+            qr = np.zeros((n_el, 1))
             l0, d0 = k.l0.copy(), np.ascontiguousarray(k.d0)
         rot_of_node = np.full(self.n_nodes, -1, dtype=np.int64)
         rot = np.zeros((max(len(self._rot), 1), self.dim, self.dim))
@@ -275,6 +277,7 @@ class Model:
             s0,
             k0,
             j0,
+            qr,
             l0,
             d0,
             self.props.ea,

@@ -21,6 +21,8 @@ import math
 import numpy as np
 from numba import njit
 
+from rancf.elements.cable_mechanics import ETA
+
 __all__ = [
     "assemble",
     "strain_energy",
@@ -30,6 +32,7 @@ __all__ = [
 ]
 
 _CACHE = True
+_ETA2 = ETA**2
 
 
 _FM = {"contract", "arcp", "reassoc"}  # no "nnan"/"ninf": NaN checks stay meaningful
@@ -87,8 +90,12 @@ def _cable_qp_2d(a0, a1, b0, b1, s0, k0, j0, ea, ei, g, h, want_h):  # noqa: PLR
 
 
 @njit(cache=_CACHE, fastmath=_FM, inline="always", error_model="numpy")
-def _cable_qp_3d(a, b, s0, k0, j0, ea, ei, g, h, want_h):  # noqa: PLR0913
-    """Gradient ``g (6,)`` and Hessian ``h (6, 6)`` of the energy density, spatial."""
+def _cable_qp_3d(a, b, s0, k0, j0, qr, ea, ei, g, h, want_h):  # noqa: PLR0913
+    """Gradient ``g (6,)`` and Hessian ``h (6, 6)`` of the energy density, spatial.
+
+    ``u = κ² = |a × b|² / |a|⁶``; at curved reference points (``qr = η² κ0² > 0``) the bending
+    term is ``½ EI (1 + η²)(κr - κr0)²`` with ``κr = sqrt(u + qr)``, ``κr0 = κ0 sqrt(1 + η²)``.
+    """
     aa = a[0] * a[0] + a[1] * a[1] + a[2] * a[2]
     bb = b[0] * b[0] + b[1] * b[1] + b[2] * b[2]
     ab = a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
@@ -99,61 +106,51 @@ def _cable_qp_3d(a, b, s0, k0, j0, ea, ei, g, h, want_h):  # noqa: PLR0913
     c2 = a[0] * b[1] - a[1] * b[0]
     q = c0 * c0 + c1 * c1 + c2 * c2
     sx = aa**-3.0
-    half = 0.5 * ei * j0
-    curved = k0 * j0 > 1e-12
-    m = 1.0
+    u = q * sx
+    curved = qr > 0.0
+    half = 0.5 * ei * j0 * (1.0 + _ETA2 if curved else 1.0)
+    ratio = 0.0
+    h2 = 0.0
     if curved:
-        m = math.sqrt(max(q, 1e-24 * aa * bb + 1e-300))
-    p = aa**-1.5
-    cf = k0 if curved else 0.0
+        kr2 = u + qr
+        ratio = k0 * math.sqrt(1.0 + _ETA2) / math.sqrt(kr2)
+        h2 = half * ratio / (2.0 * kr2)
+    h1 = half * (1.0 - ratio)
     qa = np.empty(3)
     qb = np.empty(3)
     sa = np.empty(3)
-    pa = np.empty(3)
-    ma = np.empty(3)
-    mb = np.empty(3)
-    ka = np.empty(3)
-    kb = np.empty(3)
+    ua = np.empty(3)
+    ub = np.empty(3)
+    s4 = -6.0 * aa**-4.0
     for i in range(3):
         qa[i] = 2.0 * bb * a[i] - 2.0 * ab * b[i]
         qb[i] = 2.0 * aa * b[i] - 2.0 * ab * a[i]
-        sa[i] = -6.0 * aa**-4.0 * a[i]
-        pa[i] = -3.0 * aa**-2.5 * a[i]
-        ma[i] = qa[i] / (2.0 * m)
-        mb[i] = qb[i] / (2.0 * m)
-        ka[i] = ma[i] * p + m * pa[i]
-        kb[i] = mb[i] * p
-        g[i] = fe * a[i] + half * (qa[i] * sx + q * sa[i] - 2.0 * cf * ka[i])
-        g[3 + i] = half * (qb[i] * sx - 2.0 * cf * kb[i])
+        sa[i] = s4 * a[i]
+        ua[i] = qa[i] * sx + q * sa[i]
+        ub[i] = qb[i] * sx
+        g[i] = fe * a[i] + h1 * ua[i]
+        g[3 + i] = h1 * ub[i]
     if not want_h:
         return
-    m3 = m * m * m
+    s5 = 48.0 * aa**-5.0
     for i in range(3):
         for j in range(3):
             eye = 1.0 if i == j else 0.0
             qaa = 2.0 * bb * eye - 2.0 * b[i] * b[j]
             qbb = 2.0 * aa * eye - 2.0 * a[i] * a[j]
             qab = 4.0 * a[i] * b[j] - 2.0 * b[i] * a[j] - 2.0 * ab * eye
-            saa = -6.0 * aa**-4.0 * eye + 48.0 * aa**-5.0 * a[i] * a[j]
-            k2aa = qaa * sx + qa[i] * sa[j] + sa[i] * qa[j] + q * saa
-            k2ab = qab * sx + sa[i] * qb[j]
-            k2bb = qbb * sx
-            maa = qaa / (2.0 * m) - qa[i] * qa[j] / (4.0 * m3)
-            mab = qab / (2.0 * m) - qa[i] * qb[j] / (4.0 * m3)
-            mbb = qbb / (2.0 * m) - qb[i] * qb[j] / (4.0 * m3)
-            paa = -3.0 * aa**-2.5 * eye + 15.0 * aa**-3.5 * a[i] * a[j]
-            kaa = maa * p + ma[i] * pa[j] + pa[i] * ma[j] + m * paa
-            kab = mab * p + pa[i] * mb[j]
-            kbb = mbb * p
-            haa = ea * j0 / (s0 * s0) * a[i] * a[j] + fe * eye + half * (k2aa - 2.0 * cf * kaa)
-            h[i, j] = haa
-            h[i, 3 + j] = half * (k2ab - 2.0 * cf * kab)
+            saa = s4 * eye + s5 * a[i] * a[j]
+            uaa = qaa * sx + qa[i] * sa[j] + sa[i] * qa[j] + q * saa
+            uab = qab * sx + sa[i] * qb[j]
+            ubb = qbb * sx
+            h[i, j] = ea * j0 / (s0 * s0) * a[i] * a[j] + fe * eye + h1 * uaa + h2 * ua[i] * ua[j]
+            h[i, 3 + j] = h1 * uab + h2 * ua[i] * ub[j]
             h[3 + j, i] = h[i, 3 + j]
-            h[3 + i, 3 + j] = half * (k2bb - 2.0 * cf * kbb)
+            h[3 + i, 3 + j] = h1 * ubb + h2 * ub[i] * ub[j]
 
 
 @njit(cache=_CACHE, fastmath=_FM, error_model="numpy")
-def _cable_element(e, el, n1, n2, gw, s0, k0, j0, ea, ei, dim, fe, ke, want_k, a, b, g, h):  # noqa: PLR0913
+def _cable_element(e, el, n1, n2, gw, s0, k0, j0, qr, ea, ei, dim, fe, ke, want_k, a, b, g, h):  # noqa: PLR0913
     """Forces ``fe (4 dim,)`` and stiffness ``ke`` of cable element ``el`` with coordinates ``e``.
 
     ``a, b, g, h`` are work arrays of sizes ``dim, dim, 2 dim, (2 dim, 2 dim)``.
@@ -176,7 +173,7 @@ def _cable_element(e, el, n1, n2, gw, s0, k0, j0, ea, ei, dim, fe, ke, want_k, a
                 a[0], a[1], b[0], b[1], s0[el, q], k0[el, q], j0[el, q], ea, ei, g, h, want_k
             )
         else:
-            _cable_qp_3d(a, b, s0[el, q], k0[el, q], j0[el, q], ea, ei, g, h, want_k)
+            _cable_qp_3d(a, b, s0[el, q], k0[el, q], j0[el, q], qr[el, q], ea, ei, g, h, want_k)
         w = gw[q]
         for k in range(4):
             for i in range(dim):
@@ -205,7 +202,7 @@ def _cable_element(e, el, n1, n2, gw, s0, k0, j0, ea, ei, dim, fe, ke, want_k, a
 
 
 @njit(cache=_CACHE, error_model="numpy")
-def _cable_energy(e, n1, n2, gw, s0, k0, j0, ea, ei, dim):  # noqa: PLR0913
+def _cable_energy(e, n1, n2, gw, s0, k0, j0, qr, ea, ei, dim):  # noqa: PLR0913
     total = 0.0
     for q in range(gw.size):
         a = np.zeros(dim)
@@ -220,12 +217,18 @@ def _cable_energy(e, n1, n2, gw, s0, k0, j0, ea, ei, dim):  # noqa: PLR0913
         eps = (aa - s0[q]) / (2.0 * s0[q])
         if dim == 2:
             kappa = (a[0] * b[1] - a[1] * b[0]) * aa**-1.5
+            bend = (kappa - k0[q]) ** 2
         else:
             c0 = a[1] * b[2] - a[2] * b[1]
             c1 = a[2] * b[0] - a[0] * b[2]
             c2 = a[0] * b[1] - a[1] * b[0]
-            kappa = math.sqrt(c0 * c0 + c1 * c1 + c2 * c2) * aa**-1.5
-        total += gw[q] * 0.5 * (ea * eps * eps + ei * (kappa - k0[q]) ** 2) * j0[q]
+            u = (c0 * c0 + c1 * c1 + c2 * c2) * aa**-3.0
+            if qr[q] > 0.0:  # regularized magnitude curvature, see _cable_qp_3d
+                kr = math.sqrt(u + qr[q])
+                bend = (1.0 + _ETA2) * (kr - k0[q] * math.sqrt(1.0 + _ETA2)) ** 2
+            else:
+                bend = u
+        total += gw[q] * 0.5 * (ea * eps * eps + ei * bend) * j0[q]
     return total
 
 
@@ -414,6 +417,7 @@ def assemble(  # noqa: PLR0913
     s0,
     k0,
     j0,
+    qr,
     l0,
     d0,
     ea,
@@ -449,7 +453,7 @@ def assemble(  # noqa: PLR0913
         _rotate_element(e, ke, fe, el, dim, dpn, rot_of_node, rot, True)
         if kind == 0:
             _cable_element(
-                e, el, n1, n2, gw, s0, k0, j0, ea, ei, dim, fe, ke, want_k, wa, wb, wg, wh
+                e, el, n1, n2, gw, s0, k0, j0, qr, ea, ei, dim, fe, ke, want_k, wa, wb, wg, wh
             )
         else:
             _beam_element(e, l0[el], d0[el, 0], d0[el, 1], ea, ei, fe, ke, want_k)
@@ -464,7 +468,7 @@ def assemble(  # noqa: PLR0913
 
 @njit(cache=_CACHE, error_model="numpy")
 def strain_energy(
-    y, kind, dim, dpn, n_el, n1, n2, gw, s0, k0, j0, l0, d0, ea, ei, rot_of_node, rot
+    y, kind, dim, dpn, n_el, n1, n2, gw, s0, k0, j0, qr, l0, d0, ea, ei, rot_of_node, rot
 ):  # noqa: PLR0913
     """Total strain energy of model coordinates ``y``."""
     nde = 2 * dpn
@@ -477,7 +481,9 @@ def strain_energy(
             e[i] = y[el * dpn + i]
         _rotate_element(e, dummy_k, dummy_f, el, dim, dpn, rot_of_node, rot, True)
         if kind == 0:
-            total += _cable_energy(e, n1[el], n2[el], gw, s0[el], k0[el], j0[el], ea, ei, dim)
+            total += _cable_energy(
+                e, n1[el], n2[el], gw, s0[el], k0[el], j0[el], qr[el], ea, ei, dim
+            )
         else:
             total += _beam_energy(e, l0[el], d0[el, 0], d0[el, 1], ea, ei)
     return total
@@ -582,6 +588,7 @@ def newton_step(  # noqa: PLR0913
     s0,
     k0,
     j0,
+    qr,
     l0,
     d0,
     ea,
@@ -651,6 +658,7 @@ def newton_step(  # noqa: PLR0913
             s0,
             k0,
             j0,
+            qr,
             l0,
             d0,
             ea,
@@ -731,6 +739,7 @@ def run_steps(  # noqa: PLR0913
     s0,
     k0,
     j0,
+    qr,
     l0,
     d0,
     ea,
@@ -788,6 +797,7 @@ def run_steps(  # noqa: PLR0913
             s0,
             k0,
             j0,
+            qr,
             l0,
             d0,
             ea,
@@ -818,7 +828,24 @@ def run_steps(  # noqa: PLR0913
                 grav -= f_grav[i] * (y[i] - y_ref[i])
             out_e[stored, 0] = kin
             out_e[stored, 1] = strain_energy(
-                y, kind, dim, dpn, n_el, n1, n2, gw, s0, k0, j0, l0, d0, ea, ei, rot_of_node, rot
+                y,
+                kind,
+                dim,
+                dpn,
+                n_el,
+                n1,
+                n2,
+                gw,
+                s0,
+                k0,
+                j0,
+                qr,
+                l0,
+                d0,
+                ea,
+                ei,
+                rot_of_node,
+                rot,
             )
             out_e[stored, 2] = grav
             stored += 1

@@ -14,9 +14,10 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.signal import detrend
 
+from rancf.errors import ConvergenceError
 from rancf.model.scenario import Scenario, parse_scenario
 from rancf.model.system import Model
-from rancf.solvers.dynamic import DynamicOptions, DynamicResult, integrate
+from rancf.solvers.dynamic import DynamicOptions, DynamicResult, DynamicStatus, integrate
 
 __all__ = [
     "EXAMPLES",
@@ -199,6 +200,10 @@ def convergence_runs(
     n_ref, ref_kind = reference
     sc, m = variant(raw, name, mesh__elements=n_ref, **kinds[ref_kind], **solver)
     r = run(sc, m)
+    if r.status is not DynamicStatus.COMPLETED:
+        raise ConvergenceError(
+            f"the reference run ({n_ref} elements) failed: {r.message}", r.t_reached
+        )
     pos = m.node_positions(r.q)
     ref = {
         "model": m,
@@ -214,7 +219,10 @@ def convergence_runs(
             sc, m = variant(raw, name, mesh__elements=n, **opts, **solver)
             r = run(sc, m)
             pos = m.node_positions(r.q)
-            err = float(np.max(np.linalg.norm(pos[:, -1] - ref["tip"], axis=1)))
+            k = pos.shape[0]
+            err = float(np.max(np.linalg.norm(pos[:, -1] - ref["tip"][:k], axis=1)))
+            if r.status is not DynamicStatus.COMPLETED:
+                err = float("inf")  # a run that stopped early never meets the tolerance
             runs[kind][n] = {
                 "t": r.t,
                 "ab": np.linalg.norm(pos[:, -1] - pos[:, 0], axis=1),
@@ -223,6 +231,7 @@ def convergence_runs(
                 "model": m,
                 "result": r,
                 "wall": r.wall_time,
+                "message": r.message,
             }
             if found[kind] is None and err <= tol:
                 found[kind] = n
@@ -253,8 +262,11 @@ def plot_errors(
     """Tip error against the number of elements, one curve per element kind."""
     fig, ax = plt.subplots(figsize=(7, 4.5), constrained_layout=True)
     for kind, by_n in runs.items():
-        n_list = sorted(by_n)
+        n_list = [n for n in sorted(by_n) if np.isfinite(by_n[n]["err"])]
         ax.semilogy(n_list, [by_n[n]["err"] for n in n_list], "o-", label=kind)
+        failed = [n for n in sorted(by_n) if not np.isfinite(by_n[n]["err"])]
+        if failed:
+            ax.plot([], [], " ", label=f"{kind}: run failed for n = {failed}")
     ax.axhline(tol, color="k", ls="--", label=f"tolerance {tol:g} m")
     ax.set_xlabel("number of elements")
     ax.set_ylabel("max_t |tip - tip_ref| [m]")
