@@ -288,6 +288,13 @@ class GeneralizedAlpha:
         return e / (rtol * self.size)
 
 
+def _failure_message(t: float, min_step: float) -> str:
+    return (
+        f"Newton iteration did not converge at t = {t:.6g} s even with the minimum "
+        f"step {min_step:.3g} s; results up to t = {t:.6g} s are kept"
+    )
+
+
 def integrate(
     model: Model,
     options: DynamicOptions,
@@ -403,11 +410,7 @@ def integrate(
             h = o.step * 0.25  # the failing step is retried below, smaller
             result.n_rejected += 1
             if h < min_step:
-                status = DynamicStatus.FAILED
-                message = (
-                    f"Newton iteration did not converge at t = {t:.6g} s even with the minimum "
-                    f"step {min_step:.3g} s; results up to t = {t:.6g} s are kept"
-                )
+                status, message = DynamicStatus.FAILED, _failure_message(t, min_step)
                 break
             continue
         h_try = min(h, target - t)
@@ -419,11 +422,7 @@ def integrate(
             result.n_rejected += 1
             h = h_try * (0.25 if not ok else max(0.2, 0.9 * err ** (-1.0 / 3.0)))
             if h < min_step:
-                status = DynamicStatus.FAILED
-                message = (
-                    f"Newton iteration did not converge at t = {t:.6g} s even with the minimum "
-                    f"step {min_step:.3g} s; results up to t = {t:.6g} s are kept"
-                )
+                status, message = DynamicStatus.FAILED, _failure_message(t, min_step)
                 break
             continue
         y, v, a, t = y1, v1, a1, t + h_try

@@ -88,8 +88,8 @@ def run_study(out: str | Path, quick: bool = False) -> StudyResult:
     axes[0].set_title("Fig. 25: gradient curves")
     save_figure(fig, out / "fig25_gradients.png", res, "Fig. 25: gradient curves, K = 0.1 and Kopt")
 
-    ns = [1, 2, 4] if quick else [1, 2, 3, 4, 5, 6, 8, 10, 12]
-    n_ref = 8 if quick else 16
+    ns = [1, 2, 4] if quick else [1, 2, 3, 4, 5, 6, 8, 10, 12, 16]
+    n_ref = 8 if quick else 24
     runs, ref, found = convergence_runs(
         raw, NAME, KINDS, ns, (n_ref, "Kopt"), TOL, extra_after=3, solver__t_end=t_end
     )
