@@ -1,0 +1,35 @@
+"""The benchmark runner works (quick mode; Exudyn cases only where Exudyn is installed)."""
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def test_benchmark_runner_quick(tmp_path):
+    p = subprocess.run(
+        [
+            sys.executable,
+            str(ROOT / "benchmarks" / "run.py"),
+            "--quick",
+            "--repeats",
+            "1",
+            "--out",
+            str(tmp_path),
+        ],
+        capture_output=True,
+        text=True,
+        check=True,
+        timeout=600,
+    )
+    assert "pendulum 8 el" in p.stdout
+    data = json.loads((tmp_path / "bench.json").read_text())
+    rows = {r["case"]: r for r in data["rows"]}
+    assert rows["pendulum 8 el (full Newton)"]["rancf_us_per_step"] > 0
+    assert (tmp_path / "bench.csv").read_text().startswith("case,")
+    # speed never changes the answer: full and modified Newton give the same tip
+    full = rows["pendulum 8 el (full Newton)"]["rancf_tip"]
+    mod = rows["pendulum 8 el (modified Newton)"]["rancf_tip"]
+    assert abs(full[0] - mod[0]) < 1e-8 and abs(full[1] - mod[1]) < 1e-8
