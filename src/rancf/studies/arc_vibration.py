@@ -13,7 +13,6 @@ against the linear frequency response ``(K - ω² M + iω c M)⁻¹ F`` of the s
 
 from __future__ import annotations
 
-import time
 from pathlib import Path
 from typing import Any
 
@@ -24,13 +23,14 @@ from rancf.solvers.modal import natural_modes
 from rancf.studies.common import (
     Comparison,
     StudyResult,
+    begin_study,
     fft_peak,
-    load_example,
     run,
     save_figure,
     variant,
 )
 
+TITLE = "6.3 Free and forced vibration of a cable arc"
 NAME = "arc-vibration"
 PAPER_F1 = 2.2497
 STRAIGHT_F1 = (
@@ -67,13 +67,8 @@ def _free(raw: dict[str, Any], name: str, t_end: float, component: int) -> dict[
 
 def run_study(out: str | Path, quick: bool = False) -> StudyResult:
     """Run the study; figures and CSV tables go to ``out``."""
-    start = time.perf_counter()
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
+    out, res, raw = begin_study(out, NAME, TITLE, __doc__)
     plt = pyplot()
-    raw = load_example(NAME)
-    res = StudyResult(NAME, "6.3 Free and forced vibration of a cable arc")
-    res.notes.append(__doc__.split("\n\n", 1)[1].strip())
     t_free = 4.0 if quick else 20.0
 
     inplane = _free(raw, NAME, t_free, 1)
@@ -254,8 +249,7 @@ def run_study(out: str | Path, quick: bool = False) -> StudyResult:
         drift_out=outplane["energy_drift"],
         f_forced=spec_f["refined_hz"],
     )
-    res.wall_time_s = time.perf_counter() - start
-    return res
+    return res.finish()
 
 
 def _linear_response(model: Any, freq: float, force: float) -> float:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import copy
 import csv
+import time
 import tomllib
 from dataclasses import dataclass, field
 from importlib import resources
@@ -139,6 +140,12 @@ class StudyResult:
     notes: list[str] = field(default_factory=list)
     data: dict[str, Any] = field(default_factory=dict)
     wall_time_s: float = 0.0
+    started: float = field(default_factory=time.perf_counter)
+
+    def finish(self) -> StudyResult:
+        """Record the wall time since the study started; returns ``self``."""
+        self.wall_time_s = time.perf_counter() - self.started
+        return self
 
     def add_table(
         self, out: Path, title: str, header: list[str], rows: list[list[Any]], filename: str
@@ -160,6 +167,19 @@ class StudyResult:
             "comparison.csv",
         )
         self.tables.insert(0, self.tables.pop())
+
+
+def begin_study(
+    out: str | Path, name: str, title: str, doc: str | None
+) -> tuple[Path, StudyResult, dict[str, Any]]:
+    """Create the output folder, the result record (the module docstring's body as its first
+    note) and load the example scenario ``name``."""
+    path = Path(out)
+    path.mkdir(parents=True, exist_ok=True)
+    res = StudyResult(name, title)
+    if doc:
+        res.notes.append(doc.split("\n\n", 1)[1].strip())
+    return path, res, load_example(name)
 
 
 def slug(s: str) -> str:

@@ -9,7 +9,6 @@ with error ≤ 1e-3 m is reported for each element type.
 
 from __future__ import annotations
 
-import time
 from pathlib import Path
 from typing import Any
 
@@ -22,8 +21,8 @@ from rancf.post.plots import centerline, positions_at, pyplot
 from rancf.studies.common import (
     Comparison,
     StudyResult,
+    begin_study,
     convergence_runs,
-    load_example,
     plot_ab,
     plot_errors,
     run,
@@ -32,6 +31,7 @@ from rancf.studies.common import (
     variant,
 )
 
+TITLE = "6.1 Planar pendulum with an elliptical-arc cable"
 NAME = "planar-pendulum"
 TOL = 1e-3
 KINDS = {
@@ -46,14 +46,11 @@ PAPER_ELEMENTS = {"Kopt": 5, "K = 0.2": 7, "K = 0.6": 10, "ANCF": 9, "Euler–Be
 
 def run_study(out: str | Path, quick: bool = False) -> StudyResult:
     """Run the study; figures and CSV tables go to ``out``."""
-    start = time.perf_counter()
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
+    out, res, raw = begin_study(
+        out, NAME, "6.1 Planar pendulum with an elliptical-arc cable", __doc__
+    )
     plt = pyplot()
-    raw = load_example(NAME)
     t_end = 0.3 if quick else 1.0
-    res = StudyResult(NAME, "6.1 Planar pendulum with an elliptical-arc cable")
-    res.notes.append(__doc__.split("\n\n", 1)[1].strip())
 
     # --- K study (Figs. 12, 13) -------------------------------------------------------------
     conic = conic_arc(0.5, [30.0, 40.0], [0.315, 0.077])
@@ -275,8 +272,7 @@ def run_study(out: str | Path, quick: bool = False) -> StudyResult:
         energy_drift=_energy_drift(r_ref),
         ref_tip=ref["tip"],
     )
-    res.wall_time_s = time.perf_counter() - start
-    return res
+    return res.finish()
 
 
 def _energy_drift(r: Any) -> float:

@@ -18,7 +18,6 @@ are reported as failed, never hidden.
 
 from __future__ import annotations
 
-import time
 from pathlib import Path
 
 import numpy as np
@@ -30,13 +29,14 @@ from rancf.post.plots import centerline, pyplot
 from rancf.studies.common import (
     Comparison,
     StudyResult,
+    begin_study,
     convergence_runs,
-    load_example,
     plot_ab,
     plot_errors,
     save_figure,
 )
 
+TITLE = "6.2 Spatial pendulum with an elliptical-arc cable"
 NAME = "spatial-pendulum"
 TOL = 1e-3
 KINDS = {
@@ -47,14 +47,11 @@ KINDS = {
 
 def run_study(out: str | Path, quick: bool = False) -> StudyResult:
     """Run the study; figures and CSV tables go to ``out``."""
-    start = time.perf_counter()
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
+    out, res, raw = begin_study(
+        out, NAME, "6.2 Spatial pendulum with an elliptical-arc cable", __doc__
+    )
     plt = pyplot()
-    raw = load_example(NAME)
     t_end = 0.3 if quick else 1.0
-    res = StudyResult(NAME, "6.2 Spatial pendulum with an elliptical-arc cable")
-    res.notes.append(__doc__.split("\n\n", 1)[1].strip())
 
     conic = conic_arc(0.5, [60.0, 30.0], [0.264, 0.069])
     k_opt = kopt(conic)
@@ -168,5 +165,4 @@ def run_study(out: str | Path, quick: bool = False) -> StudyResult:
         spans,
         "gradient_spread.csv",
     )
-    res.wall_time_s = time.perf_counter() - start
-    return res
+    return res.finish()
