@@ -174,3 +174,50 @@ def test_load_from_file(tmp_path):
     assert sc.path == str(f)
     assert Path(sc.path).exists()
     assert np.allclose(sc.build_model().node_positions(sc.build_model().q0)[-1], [0.5, 0.0])
+
+
+NURBS = """
+[geometry]
+kind = "nurbs"
+degree = 2
+knots = KNOTS
+control_points = [[0.0, 0.0], [0.25, 0.2], [0.5, 0.0]]
+weights = WEIGHTS
+
+[mesh]
+elements = 2
+
+[section]
+radius = 0.02
+
+[material]
+density = 6000.0
+youngs_modulus = 2.0e6
+
+[[supports]]
+at = "start"
+kind = "clamp"
+"""
+
+
+@pytest.mark.parametrize(
+    ("knots", "weights", "needle"),
+    [
+        ("[0.0, 0.0, 0.0, 1.0, 1.0, 1.0]", "[1.0, 0.8, 1.0]", None),
+        ("[0.0, 0.0, 1.0, 0.5, 1.0, 1.0]", "[1.0, 0.8, 1.0]", "non-decreasing"),
+        ("[0.0, 0.0, 0.0, 1.0, 1.0, 1.0]", "[1.0, -0.8, 1.0]", "weights"),
+        ("[0.0, 0.0, 0.0, 1.0, 1.0, 1.0]", "[1.0, 0.0, 1.0]", "weights"),
+    ],
+)
+def test_nurbs_geometry_bad_knots_and_weights_through_the_cli(
+    tmp_path, capsys, knots, weights, needle
+):
+    f = tmp_path / "n.toml"
+    f.write_text(NURBS.replace("KNOTS", knots).replace("WEIGHTS", weights))
+    code = main(["modes", str(f), "--json", "--count", "1"])
+    out, err = capsys.readouterr()
+    if needle is None:
+        assert code == 0 and json.loads(out)["frequencies_hz"][0] > 0
+        return
+    assert code == 2 and out == ""
+    assert len(err.strip().splitlines()) == 1 and needle in err and str(f) in err

@@ -215,6 +215,8 @@ def run_study(out: str | Path, quick: bool = False) -> StudyResult:
     axes[0].plot(r.t, tip * 1e3)
     axes[0].axhline(amp * 1e3, color="k", ls=":", label=f"steady amplitude {amp * 1e3:.2f} mm")
     axes[0].axhline(-amp * 1e3, color="k", ls=":")
+    axes[0].axhline(20.0, color="r", ls="--", lw=1, label="paper: ±0.02 m")
+    axes[0].axhline(-20.0, color="r", ls="--", lw=1)
     axes[0].set_xlabel("t [s]")
     axes[0].set_ylabel("tip displacement y [mm]")
     axes[0].set_title(f"Fig. 30: forced response, F0 = 0.1 N at {f_exc:.3f} Hz, c = 0.5")
@@ -222,6 +224,7 @@ def run_study(out: str | Path, quick: bool = False) -> StudyResult:
     sel = spec_f["freqs"] <= 10
     axes[1].plot(spec_f["freqs"][sel], spec_f["amplitude"][sel] / spec_f["amplitude"][sel].max())
     axes[1].axvline(f_exc, color="k", ls=":", label=f"excitation {f_exc:.3f} Hz")
+    axes[1].axvline(2.25, color="r", ls="--", label="paper 2.25 Hz")
     axes[1].set_xlabel("frequency [Hz]")
     axes[1].set_ylabel("normalized amplitude [-]")
     axes[1].set_title("Fig. 31: spectrum of the steady state")

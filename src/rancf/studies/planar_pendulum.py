@@ -162,6 +162,17 @@ def run_study(out: str | Path, quick: bool = False) -> StudyResult:
         TOL,
         f"Tip-position error over t ∈ [0, {t_end:g}] s (reference: {n_ref} Kopt elements)",
     )
+    ax = fig.axes[0]
+    for i, (kind, n_paper) in enumerate(PAPER_ELEMENTS.items()):
+        ax.plot(
+            [n_paper],
+            [TOL * 0.8],
+            "v",
+            color=f"C{i}",
+            ms=9,
+            label=f"paper: {kind} needs {n_paper}" if i == 0 else f"paper: {n_paper} ({kind})",
+        )
+    ax.legend(fontsize=7)
     save_figure(
         fig, out / "error_vs_elements.png", res, "Tip-position error against the number of elements"
     )
