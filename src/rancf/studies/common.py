@@ -281,12 +281,12 @@ def plot_errors(
 ) -> Any:
     """Tip error against the number of elements, one curve per element kind."""
     fig, ax = plt.subplots(figsize=(7, 4.5), constrained_layout=True)
-    for kind, by_n in runs.items():
+    for i, (kind, by_n) in enumerate(runs.items()):  # colour C{i} per kind, as callers assume
         n_list = [n for n in sorted(by_n) if np.isfinite(by_n[n]["err"])]
-        ax.semilogy(n_list, [by_n[n]["err"] for n in n_list], "o-", label=kind)
+        ax.semilogy(n_list, [by_n[n]["err"] for n in n_list], "o-", color=f"C{i}", label=kind)
         failed = [n for n in sorted(by_n) if not np.isfinite(by_n[n]["err"])]
         if failed:
-            ax.plot([], [], " ", label=f"{kind}: run failed for n = {failed}")
+            ax.plot([], [], " ", color=f"C{i}", label=f"{kind}: run failed for n = {failed}")
     ax.axhline(tol, color="k", ls="--", label=f"tolerance {tol:g} m")
     ax.set_xlabel("number of elements")
     ax.set_ylabel("max_t |tip - tip_ref| [m]")
