@@ -363,7 +363,7 @@ class Model:
             from rancf.solvers.compiled import assemble
 
             f = np.empty(self.n)
-            assemble(np.asarray(y, dtype=float), *self.arrays, f, np.empty((0, 0)), False)
+            assemble(np.asarray(y, dtype=float), self.arrays, f, np.empty((0, 0)), False)
             return f
         q = self.q_from_y(y)
         return self.to_y(self.assemble_vector(self.kernel.forces(self.gather(q))))
@@ -375,7 +375,7 @@ class Model:
 
             f = np.empty(self.n)
             ab = np.empty((2 * self.ku + 1, self.n))
-            assemble(np.asarray(y, dtype=float), *self.arrays, f, ab, True)
+            assemble(np.asarray(y, dtype=float), self.arrays, f, ab, True)
             return f, ab
         q = self.q_from_y(y)
         fe, ke = self.kernel.forces_and_stiffness(self.gather(q))
@@ -386,7 +386,7 @@ class Model:
         if self.backend == "numba":
             from rancf.solvers.compiled import strain_energy
 
-            return float(strain_energy(np.asarray(y, dtype=float), *self.arrays))
+            return float(strain_energy(np.asarray(y, dtype=float), self.arrays))
         return float(np.sum(self.kernel.energies(self.gather(self.q_from_y(y)))))
 
     def mass_times(self, v: NDArray) -> NDArray[np.float64]:

@@ -405,30 +405,9 @@ def _assemble_cable_2d(  # noqa: PLR0913
 
 
 @njit(cache=_CACHE, error_model="numpy")
-def assemble(  # noqa: PLR0913
-    y,
-    kind,
-    dim,
-    dpn,
-    n_el,
-    n1,
-    n2,
-    gw,
-    s0,
-    k0,
-    j0,
-    qr,
-    l0,
-    d0,
-    ea,
-    ei,
-    rot_of_node,
-    rot,
-    f_out,
-    ab_out,
-    want_k,
-):
+def assemble(y, arrs, f_out, ab_out, want_k):
     """Internal force ``f_out (n,)`` and, if ``want_k``, tangent ``ab_out`` in model coordinates."""
+    kind, dim, dpn, n_el, n1, n2, gw, s0, k0, j0, qr, l0, d0, ea, ei, rot_of_node, rot = arrs
     nde = 2 * dpn
     ku = nde - 1
     f_out[:] = 0.0
@@ -467,10 +446,9 @@ def assemble(  # noqa: PLR0913
 
 
 @njit(cache=_CACHE, error_model="numpy")
-def strain_energy(
-    y, kind, dim, dpn, n_el, n1, n2, gw, s0, k0, j0, qr, l0, d0, ea, ei, rot_of_node, rot
-):  # noqa: PLR0913
-    """Total strain energy of model coordinates ``y``."""
+def strain_energy(y, arrs):
+    """Total strain energy of model coordinates ``y`` (``arrs``: the model arrays)."""
+    kind, dim, dpn, n_el, n1, n2, gw, s0, k0, j0, qr, l0, d0, ea, ei, rot_of_node, rot = arrs
     nde = 2 * dpn
     e = np.empty(nde)
     dummy_f = np.empty(nde)
@@ -561,46 +539,7 @@ def band_lu_solve(ab, rhs, ku, fixed):
 
 @njit(cache=_CACHE, error_model="numpy")
 def newton_step(  # noqa: PLR0913
-    y0,
-    v0,
-    a0,
-    t,
-    h,
-    am,
-    af,
-    gamma,
-    beta,
-    damping,
-    tol,
-    max_iter,
-    mass_band,
-    f_grav,
-    load_base,
-    load_f0,
-    load_freq,
-    kind,
-    dim,
-    dpn,
-    n_el,
-    n1,
-    n2,
-    gw,
-    s0,
-    k0,
-    j0,
-    qr,
-    l0,
-    d0,
-    ea,
-    ei,
-    rot_of_node,
-    rot,
-    fixed,
-    y1,
-    v1,
-    a1,
-    lu,
-    lu_state,
+    y0, v0, a0, t, h, scheme, mass_band, f_grav, loads, arrs, fixed, y1, v1, a1, lu, lu_state
 ):
     """One generalized-α step (see :mod:`rancf.solvers.dynamic`); fills ``y1, v1, a1``.
 
@@ -615,6 +554,9 @@ def newton_step(  # noqa: PLR0913
     Returns ``(status, iterations)``: status 1 converged, 0 not converged, -1 a tiny pivot (the
     caller repeats the step on the pivoting path).
     """
+    am, af, gamma, beta, damping, tol, max_iter = scheme
+    load_base, load_f0, load_freq = loads
+    dim, dpn = arrs[1], arrs[2]
     n = y0.size
     ku = 2 * dpn - 1
     bh2 = beta * h * h
@@ -646,29 +588,7 @@ def newton_step(  # noqa: PLR0913
             tmp[i] = (1.0 - am) * a1[i] + am * a0[i] + damping * ((1.0 - af) * v1[i] + af * v0[i])
         fresh = (not modified) or lu_state[0] == 0
         target = lu if modified else kab
-        assemble(
-            yf,
-            kind,
-            dim,
-            dpn,
-            n_el,
-            n1,
-            n2,
-            gw,
-            s0,
-            k0,
-            j0,
-            qr,
-            l0,
-            d0,
-            ea,
-            ei,
-            rot_of_node,
-            rot,
-            fi,
-            target,
-            fresh,
-        )
+        assemble(yf, arrs, fi, target, fresh)
         band_matvec(mass_band, tmp, ku, mv)
         for i in range(n):
             tmp[i] = mv[i] + fi[i] - f_ext[i]
@@ -716,36 +636,12 @@ def run_steps(  # noqa: PLR0913
     h,
     n_steps,
     out_every,
-    am,
-    af,
-    gamma,
-    beta,
-    damping,
-    tol,
-    max_iter,
+    scheme,
     mass_band,
     f_grav,
     y_ref,
-    load_base,
-    load_f0,
-    load_freq,
-    kind,
-    dim,
-    dpn,
-    n_el,
-    n1,
-    n2,
-    gw,
-    s0,
-    k0,
-    j0,
-    qr,
-    l0,
-    d0,
-    ea,
-    ei,
-    rot_of_node,
-    rot,
+    loads,
+    arrs,
     fixed,
     out_y,
     out_v,
@@ -759,6 +655,7 @@ def run_steps(  # noqa: PLR0913
     in the next rows of ``out_y, out_v, out_e``.  Returns ``(steps done, status of the last step,
     Newton iterations, outputs stored)``; a step that fails is not taken (status 0 or -1).
     """
+    dpn = arrs[2]
     n = y.size
     ku = 2 * dpn - 1
     y1 = np.empty(n)
@@ -770,46 +667,7 @@ def run_steps(  # noqa: PLR0913
     for s in range(n_steps):
         t = t0 + s * h
         status, it = newton_step(
-            y,
-            v,
-            a,
-            t,
-            h,
-            am,
-            af,
-            gamma,
-            beta,
-            damping,
-            tol,
-            max_iter,
-            mass_band,
-            f_grav,
-            load_base,
-            load_f0,
-            load_freq,
-            kind,
-            dim,
-            dpn,
-            n_el,
-            n1,
-            n2,
-            gw,
-            s0,
-            k0,
-            j0,
-            qr,
-            l0,
-            d0,
-            ea,
-            ei,
-            rot_of_node,
-            rot,
-            fixed,
-            y1,
-            v1,
-            a1,
-            lu,
-            lu_state,
+            y, v, a, t, h, scheme, mass_band, f_grav, loads, arrs, fixed, y1, v1, a1, lu, lu_state
         )
         iters += it
         if status != 1:
@@ -827,26 +685,7 @@ def run_steps(  # noqa: PLR0913
                 kin += 0.5 * v[i] * mv[i]
                 grav -= f_grav[i] * (y[i] - y_ref[i])
             out_e[stored, 0] = kin
-            out_e[stored, 1] = strain_energy(
-                y,
-                kind,
-                dim,
-                dpn,
-                n_el,
-                n1,
-                n2,
-                gw,
-                s0,
-                k0,
-                j0,
-                qr,
-                l0,
-                d0,
-                ea,
-                ei,
-                rot_of_node,
-                rot,
-            )
+            out_e[stored, 1] = strain_energy(y, arrs)
             out_e[stored, 2] = grav
             stored += 1
     return n_steps, 1, iters, stored

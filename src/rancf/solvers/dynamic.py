@@ -219,18 +219,12 @@ class GeneralizedAlpha:
             h,
             n_steps,
             per_out,
-            self.am,
-            self.af,
-            self.gamma,
-            self.beta,
-            m.damping,
-            self.tol,
-            self.max_newton,
+            self._scheme(),
             m.mass_band,
             m.f_gravity,
             m.y0,
-            *self._loads,
-            *m.arrays,
+            self._loads,
+            m.arrays,
             m.fixed,
             oy,
             ov,
@@ -241,6 +235,18 @@ class GeneralizedAlpha:
         self.n_newton += iters
         self.linear.n_factorizations += int(self._lu_state[2]) - before
         return done, status, iters, stored, oy, ov, oe
+
+    def _scheme(self) -> tuple:
+        """Integrator constants for the compiled step: ``(α_m, α_f, γ, β, c, tol, max_iter)``."""
+        return (
+            self.am,
+            self.af,
+            self.gamma,
+            self.beta,
+            float(self.model.damping),
+            self.tol,
+            int(self.max_newton),
+        )
 
     def _check_lu(self, h: float) -> None:
         """Invalidate kept factors when the step size changes (they depend on h)."""
@@ -261,17 +267,11 @@ class GeneralizedAlpha:
             a,
             t,
             h,
-            self.am,
-            self.af,
-            self.gamma,
-            self.beta,
-            m.damping,
-            self.tol,
-            self.max_newton,
+            self._scheme(),
             m.mass_band,
             m.f_gravity,
-            *self._loads,
-            *m.arrays,
+            self._loads,
+            m.arrays,
             m.fixed,
             y1,
             v1,
