@@ -10,7 +10,23 @@ from rancf.elements.cable import cable_shape_functions
 from rancf.elements.mapping import gradient_ratio
 from rancf.geometry.conic import Conic
 
-__all__ = ["plot_conic", "draw_gradient_curves", "draw_parameter_points"]
+__all__ = ["plot_conic", "draw_gradient_curves", "draw_parameter_points", "k_study_figure"]
+
+
+def k_study_figure(conic: Conic, ks, k_opt: float, titles: tuple[str, str]):  # noqa: ANN001, ANN201
+    """Gradient curves and parameter distributions side by side (paper Figs. 12–13, 25)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(1, 2, figsize=(12, 4.2), constrained_layout=True)
+    colors = plt.cm.viridis(np.linspace(0, 0.9, len(ks)))
+    draw_gradient_curves(axes[0], conic, ks, k_opt, colors)
+    draw_parameter_points(axes[1], conic, ks, colors)
+    axes[0].set_title(titles[0])
+    axes[1].set_title(titles[1])
+    return fig
 
 
 def draw_parameter_points(ax, conic: Conic, ks, colors) -> None:  # noqa: ANN001

@@ -232,21 +232,24 @@ def _cable_energy(e, n1, n2, gw, s0, k0, j0, qr, ea, ei, dim):  # noqa: PLR0913
     return total
 
 
-@njit(cache=_CACHE, error_model="numpy")
-def _beam_element(e, l0, d0x, d0y, ea, ei, fe, ke, want_k):  # noqa: PLR0913
+@njit(cache=_CACHE, inline="always", error_model="numpy")
+def _beam_local(e, l0, d0x, d0y):
+    """Chord length, direction cosines, chord strain and local rotations of a beam element."""
     dx = e[3] - e[0]
     dy = e[4] - e[1]
     length = math.sqrt(dx * dx + dy * dy)
-    c = dx / length
-    s = dy / length
     tm = 0.5 * (e[2] + e[5])
     cr, sr = math.cos(tm), math.sin(tm)
     rx = cr * d0x - sr * d0y
     ry = sr * d0x + cr * d0y
     alpha = tm + math.atan2(rx * dy - ry * dx, rx * dx + ry * dy)
     eps = (length * length - l0 * l0) / (2.0 * l0 * l0)
-    t1 = e[2] - alpha
-    t2 = e[5] - alpha
+    return length, dx / length, dy / length, eps, e[2] - alpha, e[5] - alpha
+
+
+@njit(cache=_CACHE, error_model="numpy")
+def _beam_element(e, l0, d0x, d0y, ea, ei, fe, ke, want_k):  # noqa: PLR0913
+    length, c, s, eps, t1, t2 = _beam_local(e, l0, d0x, d0y)
     n = ea * eps * length / l0
     m1 = ei / l0 * (4.0 * t1 + 2.0 * t2)
     m2 = ei / l0 * (2.0 * t1 + 4.0 * t2)
@@ -278,17 +281,7 @@ def _beam_element(e, l0, d0x, d0y, ea, ei, fe, ke, want_k):  # noqa: PLR0913
 
 @njit(cache=_CACHE, error_model="numpy")
 def _beam_energy(e, l0, d0x, d0y, ea, ei):
-    dx = e[3] - e[0]
-    dy = e[4] - e[1]
-    length = math.sqrt(dx * dx + dy * dy)
-    tm = 0.5 * (e[2] + e[5])
-    cr, sr = math.cos(tm), math.sin(tm)
-    rx = cr * d0x - sr * d0y
-    ry = sr * d0x + cr * d0y
-    alpha = tm + math.atan2(rx * dy - ry * dx, rx * dx + ry * dy)
-    eps = (length * length - l0 * l0) / (2.0 * l0 * l0)
-    t1 = e[2] - alpha
-    t2 = e[5] - alpha
+    _, _, _, eps, t1, t2 = _beam_local(e, l0, d0x, d0y)
     return 0.5 * ea * eps * eps * l0 + 2.0 * ei / l0 * (t1 * t1 + t1 * t2 + t2 * t2)
 
 

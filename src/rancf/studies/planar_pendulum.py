@@ -16,7 +16,7 @@ import numpy as np
 
 from rancf.elements.mapping import gradient_ratio, kopt
 from rancf.geometry.conic import conic_arc
-from rancf.post.conic_plots import draw_gradient_curves, draw_parameter_points
+from rancf.post.conic_plots import k_study_figure
 from rancf.post.plots import centerline, positions_at, pyplot
 from rancf.studies.common import (
     Comparison,
@@ -68,12 +68,12 @@ def run_study(out: str | Path, quick: bool = False) -> StudyResult:
                 "the paper rounds to 2 decimals",
             )
         )
-    fig, axes = plt.subplots(1, 2, figsize=(12, 4.2), constrained_layout=True)
-    colors = plt.cm.viridis(np.linspace(0, 0.9, 3))
-    draw_gradient_curves(axes[0], conic, ks, k_opt, colors)
-    draw_parameter_points(axes[1], conic, ks, colors)
-    axes[0].set_title("Fig. 12: gradient curves")
-    axes[1].set_title("Fig. 13: parameter distributions (ξ = 0, 0.1, ..., 1)")
+    fig = k_study_figure(
+        conic,
+        ks,
+        k_opt,
+        ("Fig. 12: gradient curves", "Fig. 13: parameter distributions (ξ = 0, 0.1, ..., 1)"),
+    )
     save_figure(
         fig,
         out / "fig12_13_gradients.png",

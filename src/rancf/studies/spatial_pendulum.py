@@ -24,7 +24,7 @@ import numpy as np
 
 from rancf.elements.mapping import gradient_ratio, kopt
 from rancf.geometry.conic import conic_arc
-from rancf.post.conic_plots import draw_gradient_curves, draw_parameter_points
+from rancf.post.conic_plots import k_study_figure
 from rancf.post.plots import centerline, pyplot
 from rancf.studies.common import (
     Comparison,
@@ -78,11 +78,12 @@ def run_study(out: str | Path, quick: bool = False) -> StudyResult:
             "gradient ratio, Kopt", "not given", f"{gradient_ratio(conic.cubic(k_opt)):.3f}", "", ""
         )
     )
-    fig, axes = plt.subplots(1, 2, figsize=(12, 4.2), constrained_layout=True)
-    colors = plt.cm.viridis(np.linspace(0, 0.9, 2))
-    draw_gradient_curves(axes[0], conic, [0.1, k_opt], k_opt, colors)
-    draw_parameter_points(axes[1], conic, [0.1, k_opt], colors)
-    axes[0].set_title("Fig. 25: gradient curves")
+    fig = k_study_figure(
+        conic,
+        [0.1, k_opt],
+        k_opt,
+        ("Fig. 25: gradient curves", "parameter distributions (ξ = 0, 0.1, ..., 1)"),
+    )
     save_figure(fig, out / "fig25_gradients.png", res, "Fig. 25: gradient curves, K = 0.1 and Kopt")
 
     ns = [1, 2, 4] if quick else [1, 2, 3, 4, 5, 6, 8, 10, 12, 16]
