@@ -49,6 +49,30 @@ def _settings(t_end: float, step: float, rho_inf: float, sparse: bool = False) -
     return ss
 
 
+def _straight_cable(
+    n: int, length: float, rho_a: float, ei: float, ea: float, fixed: list[int], **kw: object
+) -> tuple[object, object, list[int]]:
+    """A straight ANCFCable2D chain along x; ``fixed`` constrains node 0 (x, y, x', y').
+
+    The system container is returned too: it must outlive the system.
+    """
+    sc = exu.SystemContainer()
+    mbs = sc.AddSystem()
+    cable = Cable2D(
+        physicsMassPerLength=rho_a, physicsBendingStiffness=ei, physicsAxialStiffness=ea
+    )
+    nodes = GenerateStraightLineANCFCable2D(
+        mbs=mbs,
+        positionOfNode0=[0, 0, 0],
+        positionOfNode1=[length, 0, 0],
+        numberOfElements=n,
+        cableTemplate=cable,
+        fixedConstraintsNode0=fixed,
+        **kw,
+    )[0]
+    return sc, mbs, nodes
+
+
 def straight_pendulum(
     n: int,
     t_end: float,
@@ -65,22 +89,15 @@ def straight_pendulum(
 
     ``sparse`` selects Exudyn's EigenSparse linear solver instead of its dense default.
     """
-    sc = exu.SystemContainer()
-    mbs = sc.AddSystem()
-    cable = Cable2D(
-        physicsMassPerLength=density * area,
-        physicsBendingStiffness=youngs * inertia,
-        physicsAxialStiffness=youngs * area,
-    )
-    nodes = GenerateStraightLineANCFCable2D(
-        mbs=mbs,
-        positionOfNode0=[0, 0, 0],
-        positionOfNode1=[length, 0, 0],
-        numberOfElements=n,
-        cableTemplate=cable,
+    sc, mbs, nodes = _straight_cable(
+        n,
+        length,
+        density * area,
+        youngs * inertia,
+        youngs * area,
+        [1, 1, 0, 0],
         massProportionalLoad=[0, -9.81, 0],
-        fixedConstraintsNode0=[1, 1, 0, 0],
-    )[0]
+    )
     mbs.Assemble()
     ss = _settings(t_end, step, rho_inf, sparse)
     t0 = time.perf_counter()
@@ -99,21 +116,7 @@ def static_cantilever(
     youngs: float,
 ) -> tuple[float, np.ndarray]:
     """Clamped cantilever (position and slope direction fixed) with a vertical tip load."""
-    sc = exu.SystemContainer()
-    mbs = sc.AddSystem()
-    cable = Cable2D(
-        physicsMassPerLength=1.0,
-        physicsBendingStiffness=youngs * inertia,
-        physicsAxialStiffness=youngs * area,
-    )
-    nodes = GenerateStraightLineANCFCable2D(
-        mbs=mbs,
-        positionOfNode0=[0, 0, 0],
-        positionOfNode1=[length, 0, 0],
-        numberOfElements=n,
-        cableTemplate=cable,
-        fixedConstraintsNode0=[1, 1, 0, 1],
-    )[0]
+    sc, mbs, nodes = _straight_cable(n, length, 1.0, youngs * inertia, youngs * area, [1, 1, 0, 1])
     marker = mbs.AddMarker(MarkerNodePosition(nodeNumber=nodes[-1]))
     mbs.AddLoad(LoadForceVector(markerNumber=marker, loadVector=[0, -force, 0]))
     mbs.Assemble()

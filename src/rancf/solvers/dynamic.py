@@ -379,6 +379,11 @@ def integrate(
         qs.append(model.q_from_y(yy))
         vs.append(model.q_from_y(vv))
 
+    def notify(tt: float) -> None:
+        if on_output is not None:
+            msg = f"running, t = {tt:g} s"
+            on_output(tt, lambda: snapshot(DynamicStatus.INTERRUPTED, msg))
+
     while k_out < out_times.size:
         target = out_times[k_out]
         on_grid = abs(t - (out_times[k_out - 1] if k_out else 0.0)) <= 1e-12 * max(1.0, t)
@@ -390,18 +395,15 @@ def integrate(
             result.n_steps += done
             result.steps.extend([o.step] * done)
             for i in range(stored):
-                ts.append(float(out_times[k_out + i]))
-                qs.append(model.q_from_y(oy[i]))
-                vs.append(model.q_from_y(ov[i]))
+                store(float(out_times[k_out + i]), oy[i], ov[i])
                 ek.append(oe[i, 0])
                 es.append(oe[i, 1])
                 eg.append(oe[i, 2])
             t_chunk = t + done * o.step
             k_out += stored
             t = float(out_times[k_out - 1]) if (stored and done % per_out == 0) else t_chunk
-            if stored and on_output is not None:
-                msg = f"running, t = {t:g} s"
-                on_output(t, lambda msg=msg: snapshot(DynamicStatus.INTERRUPTED, msg))
+            if stored:
+                notify(t)
             if should_stop is not None and should_stop():
                 status, message = DynamicStatus.INTERRUPTED, f"interrupted at t = {t:.6g} s"
                 break
@@ -437,9 +439,7 @@ def integrate(
             store(t, y, v)
             energies(y, v)
             k_out += 1
-            if on_output is not None:
-                msg = f"running, t = {t:g} s"
-                on_output(t, lambda msg=msg: snapshot(DynamicStatus.INTERRUPTED, msg))
+            notify(t)
         if should_stop is not None and should_stop():
             status, message = DynamicStatus.INTERRUPTED, f"interrupted at t = {t:.6g} s"
             break
