@@ -23,9 +23,10 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from rancf.elements.beam import BeamKernel
-from rancf.elements.cable_mechanics import CableKernel, CableProperties
 from rancf.errors import InputError
+from rancf.kernels import _core
+from rancf.kernels.beam import BeamKernel
+from rancf.kernels.cable import CableKernel, CableProperties
 from rancf.model.mesh import CableMesh, to_ancf
 
 __all__ = ["Section", "Material", "Support", "PointLoad", "Model", "ElementKind"]
@@ -84,13 +85,6 @@ class PointLoad:
     force: tuple[float, ...]
     frequency_hz: float | None = None
 
-    def value(self, t: float) -> NDArray[np.float64]:
-        """The force vector at time ``t``."""
-        f = np.asarray(self.force, dtype=float)
-        if self.frequency_hz is None:
-            return f
-        return f * np.sin(2.0 * np.pi * self.frequency_hz * t)
-
 
 def _orthonormal_basis(t: NDArray) -> NDArray:
     """Columns ``(t, n0[, n1])``: an orthonormal basis whose first vector is ``t / |t|``."""
@@ -124,8 +118,11 @@ class Model:
         Gauss points per cable element; default 6 for polynomial (ANCF, all weights 1) elements,
         whose axial energy that rule integrates exactly on a straight reference, and 10 for
         rational ones (see the quadrature convergence test).
-    backend : {"numba", "numpy"}
-        Compiled kernels (default) or the NumPy reference kernels; both give the same numbers.
+
+    Notes
+    -----
+    Forces, tangents and energies are evaluated by the compiled core on :attr:`core`, the model
+    as one named structure (:class:`rancf.kernels._core.Model`).
     """
 
     def __init__(
@@ -140,11 +137,7 @@ class Model:
         damping: float = 0.0,
         initial_velocities: dict[int, ArrayLike] | None = None,
         n_qp: int | None = None,
-        backend: Literal["numba", "numpy"] = "numba",
     ) -> None:
-        if backend not in ("numba", "numpy"):
-            raise InputError("backend", backend, 'one of "numba", "numpy"')
-        self.backend = backend
         self.element = element
         self.section = section
         self.material = material
@@ -242,48 +235,34 @@ class Model:
             v0[nd * self.dpn : nd * self.dpn + self.dim] = vv
         self.v0 = self.to_y(v0)
         self.v0[self.fixed] = 0.0
-        self.arrays = self._compiled_arrays()
+        self.core = self._core_model()
 
-    def _compiled_arrays(self) -> tuple:
-        """Plain arrays for :mod:`rancf.solvers.compiled` (element data, rotations)."""
+    def _core_model(self) -> _core.Model:
+        """The model as the compiled core's named structure (arrays shared, not copied)."""
         k = self.kernel
-        n_el = self.n_el
-        if isinstance(k, CableKernel):
-            kind = 0
-            n1, n2 = np.ascontiguousarray(k.n1), np.ascontiguousarray(k.n2)
-            gw, s0, k0, j0 = k.gw.copy(), k.s0.copy(), k.kappa0.copy(), k.j0.copy()
-            qr = k.qreg.copy()
-            l0, d0 = np.zeros(n_el), np.zeros((n_el, 2))
-        else:
-            kind = 1
-            n1 = n2 = np.zeros((n_el, 1, 4))
-            gw = np.zeros(1)
-            s0 = k0 = j0 = np.zeros((n_el, 1))
-            qr = np.zeros((n_el, 1))
-            l0, d0 = k.l0.copy(), np.ascontiguousarray(k.d0)
+        cable = k.core_data() if isinstance(k, CableKernel) else _empty_cable()
+        beam = k.core_data() if isinstance(k, BeamKernel) else _empty_beam()
         rot_of_node = np.full(self.n_nodes, -1, dtype=np.int64)
         rot = np.zeros((max(len(self._rot), 1), self.dim, self.dim))
         for i, (off, basis) in enumerate(self._rot):
             rot_of_node[off // self.dpn] = i
             rot[i] = basis
-        return (
-            kind,
-            self.dim,
-            self.dpn,
-            n_el,
-            n1,
-            n2,
-            gw,
-            s0,
-            k0,
-            j0,
-            qr,
-            l0,
-            d0,
-            self.props.ea,
-            self.props.ei,
-            rot_of_node,
-            rot,
+        base, f0, freq = self.load_arrays()
+        return _core.Model(
+            kind=1 if isinstance(k, BeamKernel) else 0,
+            dim=self.dim,
+            dpn=self.dpn,
+            n_el=self.n_el,
+            ea=self.props.ea,
+            ei=self.props.ei,
+            cable=cable,
+            beam=beam,
+            supports=_core.Supports(
+                fixed=self.fixed.astype(np.uint8), rot_of_node=rot_of_node, rot=rot
+            ),
+            loads=_core.Loads(f_gravity=self.f_gravity, base=base, f0=f0, freq=freq),
+            mass_band=np.ascontiguousarray(self.mass_band),
+            y_ref=np.ascontiguousarray(self.y0),
         )
 
     def load_arrays(self) -> tuple[NDArray, NDArray, NDArray]:
@@ -359,35 +338,20 @@ class Model:
     # ------------------------------------------------------------------ physics
     def internal_force(self, y: ArrayLike) -> NDArray[np.float64]:
         """Elastic force ``∂U/∂y`` ``(n,)``."""
-        if self.backend == "numba":
-            from rancf.solvers.compiled import assemble
-
-            f = np.empty(self.n)
-            assemble(np.asarray(y, dtype=float), self.arrays, f, np.empty((0, 0)), False)
-            return f
-        q = self.q_from_y(y)
-        return self.to_y(self.assemble_vector(self.kernel.forces(self.gather(q))))
+        f = np.empty(self.n)
+        self.core.internal_force(np.asarray(y, dtype=float), f)
+        return f
 
     def internal_force_and_tangent(self, y: ArrayLike) -> tuple[NDArray, NDArray]:
         """Elastic force ``(n,)`` and tangent stiffness in band storage ``(2 ku + 1, n)``."""
-        if self.backend == "numba":
-            from rancf.solvers.compiled import assemble
-
-            f = np.empty(self.n)
-            ab = np.empty((2 * self.ku + 1, self.n))
-            assemble(np.asarray(y, dtype=float), self.arrays, f, ab, True)
-            return f, ab
-        q = self.q_from_y(y)
-        fe, ke = self.kernel.forces_and_stiffness(self.gather(q))
-        return self.to_y(self.assemble_vector(fe)), self.assemble_band(self._to_y_elements(ke))
+        f = np.empty(self.n)
+        ab = np.empty((2 * self.ku + 1, self.n))
+        self.core.internal_force_and_tangent(np.asarray(y, dtype=float), f, ab)
+        return f, ab
 
     def strain_energy(self, y: ArrayLike) -> float:
         """Total strain energy ``U``."""
-        if self.backend == "numba":
-            from rancf.solvers.compiled import strain_energy
-
-            return float(strain_energy(np.asarray(y, dtype=float), self.arrays))
-        return float(np.sum(self.kernel.energies(self.gather(self.q_from_y(y)))))
+        return float(self.core.strain_energy(np.asarray(y, dtype=float)))
 
     def mass_times(self, v: NDArray) -> NDArray[np.float64]:
         """``M v`` (element by element)."""
@@ -403,10 +367,8 @@ class Model:
 
     def external_force(self, t: float) -> NDArray[np.float64]:
         """Gravity plus point loads at time ``t`` ``(n,)`` (point loads act on positions)."""
-        f = self.f_gravity.copy()
-        for pl in self.point_loads:
-            base = (pl.node % self.n_nodes) * self.dpn
-            f[base : base + self.dim] += pl.value(t)
+        f = np.empty(self.n)
+        self.core.external_force(float(t), f)
         return f
 
     @property
@@ -424,3 +386,13 @@ class Model:
             i = np.arange(max(0, -off), min(self.n, self.n - off))
             out[i, i + off] = ab[k, i + off]
         return out
+
+
+def _empty_cable() -> _core.CableData:
+    z = np.zeros(0)
+    return _core.CableData(n1=z, n2=z, gw=z, s0=z, k0=z, j0=z, qr=z)
+
+
+def _empty_beam() -> _core.BeamData:
+    z = np.zeros(0)
+    return _core.BeamData(l0=z, d0=z)

@@ -30,9 +30,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rancf.errors import InputError
+from rancf.kernels import _core
 from rancf.model.system import Model
-from rancf.solvers.linalg import BandedSystem
-from rancf.solvers.newton import newton
 
 __all__ = ["DynamicOptions", "DynamicStatus", "DynamicResult", "GeneralizedAlpha", "integrate"]
 
@@ -70,8 +69,8 @@ class DynamicOptions:
     newton : {"full", "modified"}
         ``"full"``: the exact tangent is assembled and factored at every iteration.
         ``"modified"``: the factored Jacobian is reused across iterations and steps and refreshed
-        from the exact tangent when the increments stop shrinking fast (compiled backend only;
-        the converged answer is the same to the Newton tolerance).
+        from the exact tangent when the increments stop shrinking fast (the converged answer is
+        the same to the Newton tolerance).
     """
 
     t_end: float
@@ -130,7 +129,11 @@ class DynamicResult:
 
 
 class GeneralizedAlpha:
-    """One-step generalized-α integrator on a :class:`Model` (state ``y, v, a, t``)."""
+    """One-step generalized-α integrator on a :class:`Model` (state ``y, v, a, t``).
+
+    The Newton iterations of a step and the fixed-step loop run in the compiled core
+    (:class:`rancf.kernels._core.Integrator`); this class holds the constants and counters.
+    """
 
     def __init__(
         self,
@@ -146,141 +149,57 @@ class GeneralizedAlpha:
         self.af = r / (r + 1.0)
         self.gamma = 0.5 - self.am + self.af
         self.beta = 0.25 * (1.0 - self.am + self.af) ** 2
-        self.linear = BandedSystem(model.n, model.ku, model.fixed)
         size = float(np.ptp(model.node_positions(model.q0), axis=0).max()) or 1.0
         self.tol = newton_tol * size
         self.size = size
         self.max_newton = max_newton
         self.n_newton = 0
-        self._loads = model.load_arrays()
-        # band LU factors kept between calls (modified Newton); state: valid, variant, count
-        self._lu = np.zeros((2 * model.ku + 1, model.n))
-        self._lu_state = np.array([0, 1 if newton == "modified" else 0, 0], dtype=np.int64)
-        self._lu_h = -1.0
+        scheme = _core.Scheme(
+            alpha_m=self.am,
+            alpha_f=self.af,
+            gamma=self.gamma,
+            beta=self.beta,
+            damping=float(model.damping),
+            tol=self.tol,
+            max_iter=int(max_newton),
+            modified=newton == "modified",
+        )
+        self._core = _core.Integrator(model.core, scheme)
+
+    @property
+    def n_factorizations(self) -> int:
+        """Band LU factorizations so far (Jacobians and the mass matrix)."""
+        return int(self._core.factorizations)
 
     def initial_acceleration(self, y: NDArray, v: NDArray, t: float) -> NDArray:
-        """``a0 = M⁻¹ (f_ext - f_int - c M v)`` (Cholesky of the constant band mass)."""
-        m = self.model
-        rhs = m.external_force(t) - m.internal_force(y) - m.damping * m.mass_times(v)
-        return self.linear.solve_spd(m.mass_band, rhs)
+        """``a0 = M⁻¹ (f_ext - f_int - c M v)``."""
+        a = np.empty(self.model.n)
+        self._core.initial_acceleration(y, v, t, a)
+        return a
 
     def step(
         self, y: NDArray, v: NDArray, a: NDArray, t: float, h: float
     ) -> tuple[bool, NDArray, NDArray, NDArray, int]:
         """Advance by ``h``; returns ``(converged, y1, v1, a1, newton_iterations)``."""
-        m = self.model
-        am, af, g, b = self.am, self.af, self.gamma, self.beta
-        c = m.damping
-        base = y + h * v + h * h * (0.5 - b) * a
-        tf = t + (1.0 - af) * h
-        f_ext = m.external_force(tf)
-        cm = (1.0 - am) / (b * h * h) + c * (1.0 - af) * g / (b * h)
-
-        def kin(y1: NDArray) -> tuple[NDArray, NDArray]:
-            a1 = (y1 - base) / (b * h * h)
-            v1 = v + h * ((1.0 - g) * a + g * a1)
-            return a1, v1
-
-        def increment(y1: NDArray) -> NDArray:
-            a1, v1 = kin(y1)
-            yf = (1.0 - af) * y1 + af * y
-            fi, kb = m.internal_force_and_tangent(yf)
-            inertia = m.mass_times((1.0 - am) * a1 + am * a + c * ((1.0 - af) * v1 + af * v))
-            res = inertia + fi - f_ext
-            jac = cm * m.mass_band + (1.0 - af) * kb
-            return self.linear.solve(jac, res)
-
-        if m.backend == "numba":
-            status, it, y1, v1, a1 = self._compiled_step(y, v, a, t, h)
-            self.n_newton += it
-            if status >= 0:
-                return status == 1, y1, v1, a1, it
-        res = newton(y + h * v + 0.5 * h * h * a, increment, self.tol, self.max_newton)
-        self.n_newton += res.n_iter
-        a1, v1 = kin(res.x)
-        return res.converged, res.x, v1, a1, res.n_iter
+        y1, v1, a1 = np.empty_like(y), np.empty_like(y), np.empty_like(y)
+        ok, it = self._core.step(y, v, a, t, h, y1, v1, a1)
+        self.n_newton += it
+        return ok, y1, v1, a1, it
 
     def run_steps(
         self, y: NDArray, v: NDArray, a: NDArray, t: float, h: float, n_steps: int, per_out: int
     ) -> tuple:
-        """Compiled fixed-step loop (``y, v, a`` updated in place); see ``compiled.run_steps``."""
-        from rancf.solvers.compiled import run_steps
+        """Fixed steps in the core (``y, v, a`` updated in place).
 
-        m = self.model
+        Returns ``(steps done, status, iterations, outputs stored, out_y, out_v, out_e)``;
+        status is 1 if every step converged, else 0 (the failing step is not taken).
+        """
+        n = self.model.n
         n_out = n_steps // per_out
-        oy, ov, oe = np.empty((n_out, m.n)), np.empty((n_out, m.n)), np.empty((n_out, 3))
-        self._check_lu(h)
-        before = int(self._lu_state[2])
-        done, status, iters, stored = run_steps(
-            y,
-            v,
-            a,
-            t,
-            h,
-            n_steps,
-            per_out,
-            self._scheme(),
-            m.mass_band,
-            m.f_gravity,
-            m.y0,
-            self._loads,
-            m.arrays,
-            m.fixed,
-            oy,
-            ov,
-            oe,
-            self._lu,
-            self._lu_state,
-        )
+        oy, ov, oe = np.empty((n_out, n)), np.empty((n_out, n)), np.empty((n_out, 3))
+        done, ok, iters, stored = self._core.run(y, v, a, t, h, n_steps, per_out, oy, ov, oe)
         self.n_newton += iters
-        self.linear.n_factorizations += int(self._lu_state[2]) - before
-        return done, status, iters, stored, oy, ov, oe
-
-    def _scheme(self) -> tuple:
-        """Integrator constants for the compiled step: ``(α_m, α_f, γ, β, c, tol, max_iter)``."""
-        return (
-            self.am,
-            self.af,
-            self.gamma,
-            self.beta,
-            float(self.model.damping),
-            self.tol,
-            int(self.max_newton),
-        )
-
-    def _check_lu(self, h: float) -> None:
-        """Invalidate kept factors when the step size changes (they depend on h)."""
-        if h != self._lu_h:
-            self._lu_state[0] = 0
-            self._lu_h = h
-
-    def _compiled_step(self, y: NDArray, v: NDArray, a: NDArray, t: float, h: float) -> tuple:
-        from rancf.solvers.compiled import newton_step
-
-        m = self.model
-        y1, v1, a1 = np.empty_like(y), np.empty_like(y), np.empty_like(y)
-        self._check_lu(h)
-        before = int(self._lu_state[2])
-        status, it = newton_step(
-            y,
-            v,
-            a,
-            t,
-            h,
-            self._scheme(),
-            m.mass_band,
-            m.f_gravity,
-            self._loads,
-            m.arrays,
-            m.fixed,
-            y1,
-            v1,
-            a1,
-            self._lu,
-            self._lu_state,
-        )
-        self.linear.n_factorizations += int(self._lu_state[2]) - before
-        return status, it, y1, v1, a1
+        return done, int(ok), iters, stored, oy, ov, oe
 
     def error_estimate(self, a0: NDArray, a1: NDArray, h: float, rtol: float) -> float:
         """Local displacement error relative to ``rtol * size``."""
@@ -358,7 +277,7 @@ def integrate(
         result.kinetic, result.strain, result.gravity = np.array(ek), np.array(es), np.array(eg)
         result.status, result.message = status, message
         result.n_newton = integ.n_newton
-        result.n_factorizations = integ.linear.n_factorizations
+        result.n_factorizations = integ.n_factorizations
         result.wall_time = time.perf_counter() - start
         return result
 
@@ -369,9 +288,7 @@ def integrate(
     ratio = out_dt / o.step
     per_out = int(round(ratio))
     n_grid = out_times.size if out_times[-1] == out_dt * out_times.size else out_times.size - 1
-    fast = (
-        model.backend == "numba" and not o.adaptive and per_out >= 1 and abs(ratio - per_out) < 1e-9
-    )
+    fast = not o.adaptive and per_out >= 1 and abs(ratio - per_out) < 1e-9
     chunk_out = max(1, n_grid // 100)
 
     def store(tt: float, yy: NDArray, vv: NDArray) -> None:

@@ -1,5 +1,7 @@
 """Static equilibrium ``f_int(y) = λ f_ext`` by Newton with load stepping.
 
+The Newton iterations (exact tangent, band LU with partial pivoting) run in the compiled core.
+
 The load factor ``λ`` rises from 0 to 1 in ``load_steps`` equal increments; an increment whose
 Newton iteration fails is halved (down to ``1e-4`` of the nominal increment).  Loads are gravity
 and every point load at its amplitude ``F0`` (harmonic loads count with their amplitude).
@@ -15,8 +17,6 @@ from numpy.typing import NDArray
 
 from rancf.errors import ConvergenceError, InputError
 from rancf.model.system import Model
-from rancf.solvers.linalg import BandedSystem
-from rancf.solvers.newton import newton
 
 __all__ = ["StaticResult", "solve_static"]
 
@@ -56,7 +56,6 @@ def solve_static(
     if int(load_steps) != load_steps or load_steps < 1:
         raise InputError("solver.load_steps", load_steps, "an integer >= 1")
     start = time.perf_counter()
-    lin = BandedSystem(model.n, model.ku, model.fixed)
     size = float(np.ptp(model.node_positions(model.q0), axis=0).max()) or 1.0
     f_ext = static_load(model)
     y = model.y0.copy()
@@ -65,15 +64,11 @@ def solve_static(
     n_newton = 0
     while lam < 1.0 - 1e-12:
         target = min(1.0, lam + dlam)
-
-        def increment(x: NDArray, target: float = target) -> NDArray:
-            fi, kb = model.internal_force_and_tangent(x)
-            return lin.solve(kb, fi - target * f_ext)
-
-        res = newton(y, increment, tol * size, max_iter)
-        n_newton += res.n_iter
-        if res.converged:
-            y, lam = res.x, target
+        trial = y.copy()
+        converged, n_iter, _ = model.core.static_newton(trial, target * f_ext, tol * size, max_iter)
+        n_newton += n_iter
+        if converged:
+            y, lam = trial, target
             factors.append(lam)
             continue
         dlam *= 0.5
@@ -88,6 +83,6 @@ def solve_static(
         y,
         np.array(factors),
         n_newton,
-        lin.n_factorizations,
+        n_newton,  # one band LU factorization per Newton iteration
         time.perf_counter() - start,
     )

@@ -3,14 +3,17 @@
 import numpy as np
 import pytest
 
-from rancf.elements.beam import BeamKernel
-from rancf.elements.cable_mechanics import CableKernel, CableProperties
 from rancf.geometry.conic import conic_arc, conic_arc_through
 from rancf.geometry.quadrature import integrate
-from rancf.model.mesh import mesh_conic, mesh_line, to_ancf
+from rancf.kernels.cable import CableKernel, CableProperties
+from rancf.model.mesh import CableMesh, mesh_conic, mesh_line, to_ancf
+from rancf.model.system import Material, Model, Section
 from tests.conftest import EXAMPLE1, EXAMPLE2
 
 PROPS = CableProperties(ea=1.0e3, ei=2.0, rho_a=3.0)
+# a section and material with EA = 1e3, EI = 2 and rho A = 3 (as PROPS)
+SEC = Section(area=1.0, inertia=2.0e-3)
+MAT = Material(density=3.0, youngs_modulus=1.0e3)
 
 
 def _mesh(dim, geometry, k):
@@ -39,30 +42,34 @@ CASES = [
 ]
 
 
-def _kernel(dim, geo, k):
-    m = _mesh(dim, geo, k)
-    return CableKernel(m.weights, m.scales, m.element_nodal(), PROPS), m.element_nodal()
+def _model(mesh: CableMesh, element: str = "rancf", n_qp: int | None = None) -> Model:
+    """A free (unsupported) model: model coordinates are the nodal coordinates."""
+    return Model(mesh, element, SEC, MAT, n_qp=n_qp)
+
+
+def _fd_check(model: Model, y: np.ndarray) -> None:
+    """Force = FD of the energy, tangent = FD of the force (central differences)."""
+    f, kb = model.internal_force_and_tangent(y)
+    kt = model.dense(kb)
+    assert np.abs(model.internal_force(y) - f).max() <= 1e-13 * np.abs(f).max()
+    h = 1e-6
+    fd_f = np.zeros_like(f)
+    fd_k = np.zeros_like(kt)
+    for i in range(y.size):
+        d = np.zeros_like(y)
+        d[i] = h
+        fd_f[i] = (model.strain_energy(y + d) - model.strain_energy(y - d)) / (2 * h)
+        fd_k[:, i] = (model.internal_force(y + d) - model.internal_force(y - d)) / (2 * h)
+    assert np.abs(fd_f - f).max() <= 1e-7 * np.abs(f).max()
+    assert np.abs(fd_k - kt).max() <= 1e-7 * np.abs(kt).max()
+    assert np.abs(kt - kt.T).max() <= 1e-13 * np.abs(kt).max()
 
 
 @pytest.mark.parametrize(("dim", "geo", "k"), CASES)
 def test_forces_and_tangent_against_finite_differences(dim, geo, k):
-    kern, ref = _kernel(dim, geo, k)
-    e = ref + 0.03 * np.random.default_rng(7).normal(size=ref.shape)
-    f, kt = kern.forces_and_stiffness(e)
-    assert np.allclose(f, kern.forces(e), rtol=1e-13, atol=1e-13 * np.abs(f).max())
-    flat = e.reshape(kern.n_el, -1)
-    h = 1e-6
-    fd_f = np.zeros_like(f)
-    fd_k = np.zeros_like(kt)
-    for i in range(flat.shape[1]):
-        d = np.zeros_like(flat)
-        d[:, i] = h
-        up, dn = (flat + d).reshape(ref.shape), (flat - d).reshape(ref.shape)
-        fd_f[:, i] = (kern.energies(up) - kern.energies(dn)) / (2 * h)
-        fd_k[:, :, i] = (kern.forces(up) - kern.forces(dn)) / (2 * h)
-    assert np.abs(fd_f - f).max() <= 1e-7 * np.abs(f).max()
-    assert np.abs(fd_k - kt).max() <= 1e-7 * np.abs(kt).max()
-    assert np.abs(kt - kt.transpose(0, 2, 1)).max() <= 1e-13 * np.abs(kt).max()
+    model = _model(_mesh(dim, geo, k))
+    y = model.y0 + 0.03 * np.random.default_rng(7).normal(size=model.n)
+    _fd_check(model, y)
 
 
 def _rotation(dim, angle):
@@ -76,37 +83,36 @@ def _rotation(dim, angle):
 
 @pytest.mark.parametrize(("dim", "geo", "k"), CASES)
 def test_reference_and_its_rigid_motions_are_stress_free(dim, geo, k):
-    kern, ref = _kernel(dim, geo, k)
+    model = _model(_mesh(dim, geo, k))
     scale = PROPS.ea  # force of a unit strain
-    assert np.abs(kern.forces(ref)).max() <= 1e-10 * scale
+    assert np.abs(model.internal_force(model.y0)).max() <= 1e-10 * scale
     rot = _rotation(dim, 2.1)
-    moved = ref @ rot.T
-    moved[:, [0, 2]] += np.arange(1, dim + 1) * 0.7  # translate positions only
-    assert np.abs(kern.forces(moved)).max() <= 1e-10 * scale
+    nodes = model.y0.reshape(model.n_nodes, 2, dim) @ rot.T
+    nodes[:, 0] += np.arange(1, dim + 1) * 0.7  # translate positions only
+    moved = nodes.ravel()
+    assert np.abs(model.internal_force(moved)).max() <= 1e-10 * scale
+    kern = model.kernel
     bending_scale = PROPS.ei * np.sum(kern.wj * kern.kappa0**2) + 1e-30
-    assert kern.energies(moved).sum() <= 1e-12 * bending_scale + 1e-24 * PROPS.ea
+    assert model.strain_energy(moved) <= 1e-12 * bending_scale + 1e-24 * PROPS.ea
 
 
 def test_beam_against_finite_differences_and_rigid_motion():
     x = np.array([[0, 0], [0.2, 0.05], [0.4, 0.03], [0.55, -0.05]])
     ang = np.array([0.3, 0.1, -0.2, -0.6])
-    kern = BeamKernel(x, ang, PROPS, 0.01)
-    ref = np.concatenate([x, np.zeros((4, 1))], 1)
-    el = np.concatenate([ref[:-1], ref[1:]], 1)
-    assert np.abs(kern.forces(el)).max() < 1e-12 * PROPS.ea
+    t = np.stack([np.cos(ang), np.sin(ang)], axis=1)
+    mesh = CableMesh(
+        nodes=np.stack([x, t], axis=1),
+        weights=np.ones((3, 4)),
+        scales=np.linalg.norm(np.diff(x, axis=0), axis=1),
+        kind="ancf",
+    )
+    model = _model(mesh, "beam")
+    ref = model.y0
+    assert np.abs(model.internal_force(ref)).max() < 1e-12 * PROPS.ea
     rot = _rotation(2, 2.5)
-    moved = np.concatenate([x @ rot.T + [1.0, -2.0], 2.5 * np.ones((4, 1))], 1)
-    assert np.abs(kern.forces(np.concatenate([moved[:-1], moved[1:]], 1))).max() < 1e-10 * PROPS.ea
-    e = el + 0.05 * np.random.default_rng(3).normal(size=el.shape)
-    f, kt = kern.forces_and_stiffness(e)
-    h = 1e-6
-    for i in range(6):
-        d = np.zeros_like(e)
-        d[:, i] = h
-        fd = (kern.energies(e + d) - kern.energies(e - d)) / (2 * h)
-        assert np.abs(fd - f[:, i]).max() <= 1e-7 * np.abs(f).max()
-        fdk = (kern.forces(e + d) - kern.forces(e - d)) / (2 * h)
-        assert np.abs(fdk - kt[:, :, i]).max() <= 1e-7 * np.abs(kt).max()
+    moved = np.concatenate([x @ rot.T + [1.0, -2.0], 2.5 * np.ones((4, 1))], 1).ravel()
+    assert np.abs(model.internal_force(moved)).max() < 1e-10 * PROPS.ea
+    _fd_check(model, ref + 0.05 * np.random.default_rng(3).normal(size=ref.size))
 
 
 def _arc_integral(conic, fn):
@@ -117,7 +123,7 @@ def _arc_integral(conic, fn):
 def test_mass_matrix_reproduces_mass_centre_and_inertia(k):
     conic = conic_arc(*EXAMPLE1)
     m = mesh_conic(conic, 4, k)
-    kern = CableKernel(m.weights, m.scales, m.element_nodal(), PROPS)
+    kern = CableKernel(m.weights, m.scales, m.element_nodal(), PROPS, 10)
     me = kern.mass_matrices()
     q = m.element_nodal().reshape(m.n_elements, -1)
     n_el = m.n_elements
@@ -155,14 +161,14 @@ def test_gravity_force_is_weight_and_quadrature_converged():
         np.abs(k10.mass_matrices() - k20.mass_matrices()).max()
         < 1e-12 * np.abs(k20.mass_matrices()).max()
     )
-    e = m.element_nodal() * 1.01
-    f10, f20 = k10.forces(e), k20.forces(e)
+    y = m.q0 * 1.01
+    f10, f20 = _model(m, n_qp=10).internal_force(y), _model(m, n_qp=20).internal_force(y)
     assert np.abs(f10 - f20).max() < 1e-9 * np.abs(f20).max()
 
 
 def test_planar_curvature_is_signed():
     m = mesh_conic(conic_arc(*EXAMPLE1), 2)
-    kern = CableKernel(m.weights, m.scales, m.element_nodal(), PROPS)
+    kern = CableKernel(m.weights, m.scales, m.element_nodal(), PROPS, 10)
     assert np.all(kern.kappa0 < 0)  # the arc turns clockwise from start to end
     mirrored = m.element_nodal() * np.array([1.0, -1.0])
     assert np.allclose(kern.curvatures(mirrored), -kern.kappa0, rtol=1e-13)

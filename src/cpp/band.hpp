@@ -1,0 +1,46 @@
+// Band matrices: views on band storage, products, and LU with partial pivoting.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace rancf {
+
+/// A square band matrix stored as A(i, j) = data[(off + i - j) * rs + j * cs].
+struct BandView {
+  double* data;
+  std::ptrdiff_t rs;  ///< stride between band rows
+  std::ptrdiff_t cs;  ///< stride between columns
+  int off;            ///< storage row of the diagonal
+  double& at(int i, int j) const { return data[(off + i - j) * rs + j * cs]; }
+};
+
+/// View on NumPy's (2 ku + 1, n) C-order band storage (LAPACK general band, kl = ku).
+inline BandView numpy_band(double* ab, int n, int ku) { return {ab, n, 1, ku}; }
+
+/// out = A x for a (2 ku + 1, n) C-order band matrix.
+void band_matvec(const double* ab, const double* x, int n, int ku, double* out);
+
+/// LU factorization with partial pivoting of a band matrix with kl = ku (LAPACK dgbtf2 / dgbtrs).
+/// Column-major storage with leading dimension 3 ku + 1; the diagonal sits at row 2 ku.
+class BandLU {
+ public:
+  BandLU(int n, int ku);
+  /// The matrix to factor, set to zero (fill-in rows included).
+  BandView matrix();
+  /// Rows and columns of the held coordinates replaced by the identity, then factored in place.
+  /// Returns false for an exactly singular matrix.
+  bool factor(const std::uint8_t* fixed);
+  /// Solve in place with the factors (rhs[fixed] set to zero first).
+  void solve(double* rhs, const std::uint8_t* fixed) const;
+  [[nodiscard]] int n() const { return n_; }
+  [[nodiscard]] int ku() const { return ku_; }
+
+ private:
+  int n_, ku_, ld_;
+  std::vector<double> ab_;
+  std::vector<int> piv_;
+};
+
+}  // namespace rancf

@@ -1,0 +1,78 @@
+// Planar co-rotational Euler-Bernoulli beam element (Crisfield vol. 1, sec. 7.3).
+//
+// Nodal coordinates (x, y, theta).  Chord d = x2 - x1, length L, chord rotation alpha from the
+// reference chord (unwrapped near the mean nodal rotation):
+//   eps = (L^2 - L0^2) / (2 L0^2),  tb_i = theta_i - alpha
+//   U = 1/2 EA eps^2 L0 + (EI / L0)(2 tb1^2 + 2 tb1 tb2 + 2 tb2^2)
+//   N = EA eps L / L0,  [M1, M2] = (EI / L0) [[4, 2], [2, 4]] [tb1, tb2]
+//   f = B^T [N, M1, M2],  K = B^T D B + (N / L) z z^T + ((M1 + M2) / L^2)(r z^T + z r^T)
+// with D = diag(EA (L^2 / L0^3 + eps / L0), (EI / L0)[[4, 2], [2, 4]]),
+// r = [-c, -s, 0, c, s, 0], z = [s, -c, 0, -s, c, 0].
+#include <cmath>
+
+#include "registry.hpp"
+
+namespace rancf {
+namespace {
+
+struct BeamLocal {
+  double length, c, s, eps, t1, t2;
+};
+
+BeamLocal beam_local(const Model& m, int el, const double* e) {
+  const double l0 = m.beam.l0[el];
+  const double d0x = m.beam.d0[2 * el], d0y = m.beam.d0[2 * el + 1];
+  const double dx = e[3] - e[0], dy = e[4] - e[1];
+  const double length = std::sqrt(dx * dx + dy * dy);
+  const double tm = 0.5 * (e[2] + e[5]);
+  const double cr = std::cos(tm), sr = std::sin(tm);
+  const double rx = cr * d0x - sr * d0y, ry = sr * d0x + cr * d0y;
+  const double alpha = tm + std::atan2(rx * dy - ry * dx, rx * dx + ry * dy);
+  const double eps = (length * length - l0 * l0) / (2.0 * l0 * l0);
+  return {length, dx / length, dy / length, eps, e[2] - alpha, e[5] - alpha};
+}
+
+void beam_forces(const Model& m, int el, const double* e, double* fe, double* ke) {
+  const BeamLocal b = beam_local(m, el, e);
+  const double l0 = m.beam.l0[el], ea = m.stiffness.ea, ei = m.stiffness.ei;
+  const double n = ea * b.eps * b.length / l0;
+  const double m1 = ei / l0 * (4.0 * b.t1 + 2.0 * b.t2);
+  const double m2 = ei / l0 * (2.0 * b.t1 + 4.0 * b.t2);
+  const double r[6] = {-b.c, -b.s, 0.0, b.c, b.s, 0.0};
+  const double z[6] = {b.s, -b.c, 0.0, -b.s, b.c, 0.0};
+  double bm[3][6];
+  for (int j = 0; j < 6; ++j) {
+    bm[0][j] = r[j];
+    bm[1][j] = -z[j] / b.length;
+    bm[2][j] = -z[j] / b.length;
+  }
+  bm[1][2] += 1.0;
+  bm[2][5] += 1.0;
+  for (int j = 0; j < 6; ++j) fe[j] = bm[0][j] * n + bm[1][j] * m1 + bm[2][j] * m2;
+  if (ke == nullptr) return;
+  const double d00 = ea * (b.length * b.length / (l0 * l0 * l0) + b.eps / l0);
+  const double k4 = 4.0 * ei / l0, k2 = 2.0 * ei / l0;
+  for (int i = 0; i < 6; ++i) {
+    for (int j = 0; j < 6; ++j) {
+      double v = d00 * bm[0][i] * bm[0][j];
+      v += k4 * (bm[1][i] * bm[1][j] + bm[2][i] * bm[2][j]);
+      v += k2 * (bm[1][i] * bm[2][j] + bm[2][i] * bm[1][j]);
+      v += n / b.length * z[i] * z[j];
+      v += (m1 + m2) / (b.length * b.length) * (r[i] * z[j] + z[i] * r[j]);
+      ke[i * 6 + j] = v;
+    }
+  }
+}
+
+double beam_energy(const Model& m, int el, const double* e) {
+  const BeamLocal b = beam_local(m, el, e);
+  const double l0 = m.beam.l0[el];
+  return 0.5 * m.stiffness.ea * b.eps * b.eps * l0 +
+         2.0 * m.stiffness.ei / l0 * (b.t1 * b.t1 + b.t1 * b.t2 + b.t2 * b.t2);
+}
+
+}  // namespace
+
+const ElementKernel beam_kernel = {beam_forces, beam_energy};
+
+}  // namespace rancf

@@ -1,0 +1,318 @@
+// Python bindings of the compiled core (module rancf._core).  Conversion and forwarding only:
+// the holders keep the NumPy arrays alive and expose them to the core as the named structs of
+// model.hpp; sizes are checked here so that the core never reads out of bounds.
+#include <nanobind/nanobind.h>
+#include <nanobind/ndarray.h>
+#include <nanobind/stl/string.h>
+#include <nanobind/stl/tuple.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+
+#include "assembly.hpp"
+#include "cable.hpp"
+#include "integrator.hpp"
+#include "model.hpp"
+
+namespace nb = nanobind;
+using namespace nb::literals;
+
+namespace {
+
+using In = nb::ndarray<const double, nb::c_contig, nb::device::cpu>;
+using Out = nb::ndarray<double, nb::c_contig, nb::device::cpu>;
+using InI = nb::ndarray<const std::int64_t, nb::c_contig, nb::device::cpu>;
+using InB = nb::ndarray<const std::uint8_t, nb::c_contig, nb::device::cpu>;
+
+template <class A>
+void expect_size(const A& a, std::size_t size, const char* name) {
+  if (a.size() != size)
+    throw std::invalid_argument(std::string(name) + ": expected " + std::to_string(size) +
+                                " values, got " + std::to_string(a.size()));
+}
+
+struct CableHolder {
+  In n1, n2, gw, s0, k0, j0, qr;
+};
+struct BeamHolder {
+  In l0, d0;
+};
+struct SupportsHolder {
+  InB fixed;
+  InI rot_of_node;
+  In rot;
+};
+struct LoadsHolder {
+  In f_gravity;
+  InI base;
+  In f0, freq;
+};
+
+/// A model: the holders plus the core view on them.
+struct ModelHolder {
+  CableHolder cable;
+  BeamHolder beam;
+  SupportsHolder supports;
+  LoadsHolder loads;
+  In mass_band, y_ref;
+  rancf::Model m;
+
+  ModelHolder(int kind, int dim, int dpn, int n_el, double ea, double ei, CableHolder c,
+              BeamHolder b, SupportsHolder s, LoadsHolder l, In mass, In yref)
+      : cable(std::move(c)), beam(std::move(b)), supports(std::move(s)), loads(std::move(l)),
+        mass_band(std::move(mass)), y_ref(std::move(yref)) {
+    if (kind != 0 && kind != 1) throw std::invalid_argument("kind: expected 0 (cable) or 1 (beam)");
+    if (dim != 2 && dim != 3) throw std::invalid_argument("dim: expected 2 or 3");
+    if (n_el < 1) throw std::invalid_argument("n_el: expected >= 1");
+    m.kind = static_cast<rancf::ElementKind>(kind);
+    m.dim = dim;
+    m.dpn = dpn;
+    m.n_el = n_el;
+    m.n_nodes = n_el + 1;
+    m.stiffness = {ea, ei};
+    const auto n = static_cast<std::size_t>(m.n()), ne = static_cast<std::size_t>(n_el);
+    if (m.kind == rancf::ElementKind::cable) {
+      if (dpn != 2 * dim) throw std::invalid_argument("dpn: a cable has 2 dim coordinates per node");
+      const std::size_t nq = cable.gw.size();
+      expect_size(cable.n1, ne * nq * 4, "cable.n1");
+      expect_size(cable.n2, ne * nq * 4, "cable.n2");
+      for (const auto* a : {&cable.s0, &cable.k0, &cable.j0, &cable.qr})
+        expect_size(*a, ne * nq, "cable quadrature data");
+      m.cable = {static_cast<int>(nq), cable.n1.data(), cable.n2.data(), cable.gw.data(),
+                 cable.s0.data(), cable.k0.data(), cable.j0.data(), cable.qr.data()};
+    } else {
+      if (dim != 2 || dpn != 3) throw std::invalid_argument("beam: planar, 3 coordinates per node");
+      expect_size(beam.l0, ne, "beam.l0");
+      expect_size(beam.d0, 2 * ne, "beam.d0");
+      m.beam = {beam.l0.data(), beam.d0.data()};
+    }
+    expect_size(supports.fixed, n, "supports.fixed");
+    expect_size(supports.rot_of_node, ne + 1, "supports.rot_of_node");
+    const auto n_rot = supports.rot.size() / static_cast<std::size_t>(dim * dim);
+    for (std::size_t i = 0; i <= ne; ++i)
+      if (supports.rot_of_node.data()[i] >= static_cast<std::int64_t>(n_rot))
+        throw std::invalid_argument("supports.rot_of_node: index out of range");
+    m.supports = {supports.fixed.data(), supports.rot_of_node.data(), supports.rot.data()};
+    expect_size(loads.f_gravity, n, "loads.f_gravity");
+    const std::size_t np = loads.base.size();
+    expect_size(loads.f0, np * static_cast<std::size_t>(dim), "loads.f0");
+    expect_size(loads.freq, np, "loads.freq");
+    for (std::size_t i = 0; i < np; ++i) {
+      const std::int64_t b0 = loads.base.data()[i];
+      if (b0 < 0 || b0 + dim > static_cast<std::int64_t>(n))
+        throw std::invalid_argument("loads.base: index out of range");
+    }
+    m.loads = {loads.f_gravity.data(), static_cast<int>(np), loads.base.data(), loads.f0.data(),
+               loads.freq.data()};
+    expect_size(mass_band, static_cast<std::size_t>(2 * m.ku() + 1) * n, "mass_band");
+    expect_size(y_ref, n, "y_ref");
+    m.mass_band = mass_band.data();
+    m.y_ref = y_ref.data();
+  }
+
+  [[nodiscard]] std::size_t n() const { return static_cast<std::size_t>(m.n()); }
+  [[nodiscard]] std::size_t band_size() const { return static_cast<std::size_t>(2 * m.ku() + 1) * n(); }
+};
+
+struct IntegratorHolder {
+  rancf::Integrator integ;
+  std::size_t n;
+  IntegratorHolder(const ModelHolder& mh, const rancf::Scheme& s) : integ(mh.m, s), n(mh.n()) {}
+};
+
+}  // namespace
+
+NB_MODULE(_core, mod) {
+  mod.doc() = "rancf compiled core: element kernels, banded assembly and LU, generalized-alpha";
+  mod.attr("CABLE_ETA") = rancf::kCableEta;
+  mod.attr("CABLE_STRAIGHT") = rancf::kCableStraight;
+
+  nb::class_<CableHolder>(mod, "CableData", "Cable quadrature data (see model.hpp).")
+      .def(nb::init<In, In, In, In, In, In, In>(), nb::kw_only(), "n1"_a, "n2"_a, "gw"_a, "s0"_a,
+           "k0"_a, "j0"_a, "qr"_a);
+  nb::class_<BeamHolder>(mod, "BeamData", "Reference chords of beam elements.")
+      .def(nb::init<In, In>(), nb::kw_only(), "l0"_a, "d0"_a);
+  nb::class_<SupportsHolder>(mod, "Supports", "Held coordinates and clamp rotations.")
+      .def(nb::init<InB, InI, In>(), nb::kw_only(), "fixed"_a, "rot_of_node"_a, "rot"_a);
+  nb::class_<LoadsHolder>(mod, "Loads", "Gravity forces and point loads.")
+      .def(nb::init<In, InI, In, In>(), nb::kw_only(), "f_gravity"_a, "base"_a, "f0"_a, "freq"_a);
+
+  nb::class_<rancf::Scheme>(mod, "Scheme", "Generalized-alpha constants and Newton settings.")
+      .def(
+          "__init__",
+          [](rancf::Scheme* s, double am, double af, double gamma, double beta, double damping,
+             double tol, int max_iter, bool modified) {
+            new (s) rancf::Scheme{am, af, gamma, beta, damping, tol, max_iter, modified};
+          },
+          nb::kw_only(), "alpha_m"_a, "alpha_f"_a, "gamma"_a, "beta"_a, "damping"_a, "tol"_a,
+          "max_iter"_a, "modified"_a)
+      .def_ro("alpha_m", &rancf::Scheme::alpha_m)
+      .def_ro("alpha_f", &rancf::Scheme::alpha_f)
+      .def_ro("tol", &rancf::Scheme::tol)
+      .def_ro("max_iter", &rancf::Scheme::max_iter);
+
+  nb::class_<ModelHolder>(mod, "Model", "An assembled model (named parts, arrays by reference).")
+      .def(nb::init<int, int, int, int, double, double, CableHolder, BeamHolder, SupportsHolder,
+                    LoadsHolder, In, In>(),
+           nb::kw_only(), "kind"_a, "dim"_a, "dpn"_a, "n_el"_a, "ea"_a, "ei"_a, "cable"_a,
+           "beam"_a, "supports"_a, "loads"_a, "mass_band"_a, "y_ref"_a)
+      .def_prop_ro("n", [](const ModelHolder& h) { return h.n(); })
+      .def(
+          "internal_force",
+          [](const ModelHolder& h, In y, Out f) {
+            expect_size(y, h.n(), "y");
+            expect_size(f, h.n(), "f");
+            rancf::assemble(h.m, y.data(), f.data(), nullptr, 0.0);
+          },
+          "y"_a, "f"_a.noconvert(), "Internal force f = dU/dy (written into f).")
+      .def(
+          "internal_force_and_tangent",
+          [](const ModelHolder& h, In y, Out f, Out ab) {
+            expect_size(y, h.n(), "y");
+            expect_size(f, h.n(), "f");
+            expect_size(ab, h.band_size(), "ab");
+            std::fill(ab.data(), ab.data() + ab.size(), 0.0);
+            const rancf::BandView k = rancf::numpy_band(ab.data(), h.m.n(), h.m.ku());
+            rancf::assemble(h.m, y.data(), f.data(), &k, 1.0);
+          },
+          "y"_a, "f"_a.noconvert(), "ab"_a.noconvert(),
+          "Internal force and tangent stiffness in (2 ku + 1, n) band storage.")
+      .def(
+          "strain_energy",
+          [](const ModelHolder& h, In y) {
+            expect_size(y, h.n(), "y");
+            return rancf::strain_energy(h.m, y.data());
+          },
+          "y"_a)
+      .def(
+          "kinetic_energy",
+          [](const ModelHolder& h, In v) {
+            expect_size(v, h.n(), "v");
+            return rancf::kinetic_energy(h.m, v.data());
+          },
+          "v"_a)
+      .def(
+          "external_force",
+          [](const ModelHolder& h, double t, Out f) {
+            expect_size(f, h.n(), "f");
+            rancf::external_force(h.m, t, f.data());
+          },
+          "t"_a, "f"_a.noconvert())
+      .def(
+          "static_newton",
+          [](const ModelHolder& h, Out y, In f_target, double tol, int max_iter) {
+            expect_size(y, h.n(), "y");
+            expect_size(f_target, h.n(), "f_target");
+            rancf::NewtonOutcome r;
+            {
+              nb::gil_scoped_release release;
+              r = rancf::static_newton(h.m, y.data(), f_target.data(), tol, max_iter);
+            }
+            return std::make_tuple(r.converged, r.iterations, r.increment);
+          },
+          "y"_a.noconvert(), "f_target"_a, "tol"_a, "max_iter"_a,
+          "Newton iterations for f_int(y) = f_target; returns (converged, iterations, increment).");
+
+  nb::class_<IntegratorHolder>(mod, "Integrator", "Generalized-alpha steps on a model.")
+      .def(nb::init<const ModelHolder&, const rancf::Scheme&>(), "model"_a, "scheme"_a,
+           nb::keep_alive<1, 2>())
+      .def_prop_ro("factorizations", [](const IntegratorHolder& h) { return h.integ.factorizations(); })
+      .def(
+          "step",
+          [](IntegratorHolder& h, In y0, In v0, In a0, double t, double dt, Out y1, Out v1, Out a1) {
+            for (const auto* a : {&y0, &v0, &a0}) expect_size(*a, h.n, "state");
+            for (const auto* a : {&y1, &v1, &a1}) expect_size(*a, h.n, "state");
+            rancf::StepOutcome r;
+            {
+              nb::gil_scoped_release release;
+              r = h.integ.step(y0.data(), v0.data(), a0.data(), t, dt, y1.data(), v1.data(),
+                               a1.data());
+            }
+            return std::make_tuple(r.converged, r.iterations);
+          },
+          "y0"_a, "v0"_a, "a0"_a, "t"_a, "h"_a, "y1"_a.noconvert(), "v1"_a.noconvert(),
+          "a1"_a.noconvert(), "One step; returns (converged, iterations).")
+      .def(
+          "run",
+          [](IntegratorHolder& h, Out y, Out v, Out a, double t0, double dt, int n_steps,
+             int out_every, Out out_y, Out out_v, Out out_e) {
+            for (const auto* x : {&y, &v, &a}) expect_size(*x, h.n, "state");
+            if (out_every < 1 || n_steps < 0) throw std::invalid_argument("run: bad step counts");
+            const auto n_out = static_cast<std::size_t>(n_steps / out_every);
+            expect_size(out_y, n_out * h.n, "out_y");
+            expect_size(out_v, n_out * h.n, "out_v");
+            expect_size(out_e, n_out * 3, "out_e");
+            rancf::RunOutcome r;
+            {
+              nb::gil_scoped_release release;
+              r = h.integ.run(y.data(), v.data(), a.data(), t0, dt, n_steps, out_every,
+                              out_y.data(), out_v.data(), out_e.data());
+            }
+            return std::make_tuple(r.steps, r.converged, r.iterations, r.stored);
+          },
+          "y"_a.noconvert(), "v"_a.noconvert(), "a"_a.noconvert(), "t0"_a, "h"_a, "n_steps"_a,
+          "out_every"_a, "out_y"_a.noconvert(), "out_v"_a.noconvert(), "out_e"_a.noconvert(),
+          "Fixed steps; returns (steps, converged, iterations, stored).")
+      .def(
+          "initial_acceleration",
+          [](IntegratorHolder& h, In y, In v, double t, Out a) {
+            for (const auto* x : {&y, &v}) expect_size(*x, h.n, "state");
+            expect_size(a, h.n, "a");
+            h.integ.initial_acceleration(y.data(), v.data(), t, a.data());
+          },
+          "y"_a, "v"_a, "t"_a, "a"_a.noconvert());
+
+  mod.def(
+      "band_solve",
+      [](In ab, Out rhs, InB fixed) {
+        // ab: (2 ku + 1, n) band storage; rhs: (n), solved in place; fixed: (n)
+        const std::size_t n = rhs.size();
+        expect_size(fixed, n, "fixed");
+        if (n == 0 || ab.size() % n != 0 || (ab.size() / n) % 2 != 1)
+          throw std::invalid_argument("ab: expected shape (2 ku + 1, n)");
+        const int ni = static_cast<int>(n), ku = static_cast<int>((ab.size() / n - 1) / 2);
+        rancf::BandLU lu(ni, ku);
+        const rancf::BandView a = lu.matrix();
+        for (int j = 0; j < ni; ++j)
+          for (int i = std::max(0, j - ku); i < std::min(ni, j + ku + 1); ++i)
+            a.at(i, j) = ab.data()[static_cast<std::size_t>(ku + i - j) * n + static_cast<std::size_t>(j)];
+        if (!lu.factor(fixed.data())) return false;
+        lu.solve(rhs.data(), fixed.data());
+        return true;
+      },
+      "ab"_a, "rhs"_a.noconvert(), "fixed"_a,
+      "Solve A x = rhs in place (band LU with partial pivoting; x[fixed] = 0); False if singular.");
+
+  mod.def(
+      "cable_qp_geometry",
+      [](In n1, In n2, In e, int dim, Out aa, Out kappa) {
+        // n1, n2: (n_el, n_qp, 4); e: (n_el, 4, dim); aa, kappa: (n_el, n_qp)
+        const std::size_t npts = aa.size();
+        expect_size(kappa, npts, "kappa");
+        expect_size(n1, npts * 4, "n1");
+        expect_size(n2, npts * 4, "n2");
+        if (dim != 2 && dim != 3) throw std::invalid_argument("dim: expected 2 or 3");
+        const std::size_t ud = static_cast<std::size_t>(dim);
+        if (npts == 0) return;
+        const std::size_t n_el = e.size() / (4 * ud);
+        if (n_el == 0 || npts % n_el != 0) throw std::invalid_argument("e: shape mismatch");
+        const std::size_t nq = npts / n_el;
+        for (std::size_t k = 0; k < npts; ++k) {
+          const double* ee = e.data() + (k / nq) * 4 * ud;
+          double a[3] = {0, 0, 0}, b[3] = {0, 0, 0};
+          for (std::size_t i = 0; i < ud; ++i)
+            for (std::size_t j = 0; j < 4; ++j) {
+              a[i] += n1.data()[4 * k + j] * ee[j * ud + i];
+              b[i] += n2.data()[4 * k + j] * ee[j * ud + i];
+            }
+          const rancf::QpGeometry g = rancf::cable_qp_geometry(a, b, dim);
+          aa.data()[k] = g.aa;
+          kappa.data()[k] = g.kappa;
+        }
+      },
+      "n1"_a, "n2"_a, "e"_a, "dim"_a, "aa"_a.noconvert(), "kappa"_a.noconvert(),
+      "|r'|^2 and the curvature at the Gauss points of every element (e: element coordinates).");
+}

@@ -1,0 +1,76 @@
+// The model structure shared by every part of the compiled core.
+//
+// Plain structs with named fields; arrays are views (pointers) into memory owned by Python
+// (NumPy arrays kept alive by the binding layer).  Layouts are C order:
+//   cable quadrature data  (n_el, n_qp[, 4]);   band matrices (2 ku + 1, n) with
+//   A(i, j) = ab[(ku + i - j) * n + j]   (LAPACK general band storage, kl = ku).
+#pragma once
+
+#include <cstdint>
+
+namespace rancf {
+
+/// Element families; each has one kernel file and one entry in the registry (registry.cpp).
+enum class ElementKind : int { cable = 0, beam = 1 };
+
+/// Quadrature data of cable elements (rancf-math §3, §6).
+struct CableData {
+  int n_qp = 0;
+  const double* n1 = nullptr;  ///< dS/dxi   at the Gauss points, (n_el, n_qp, 4)
+  const double* n2 = nullptr;  ///< d2S/dxi2 at the Gauss points, (n_el, n_qp, 4)
+  const double* gw = nullptr;  ///< Gauss weights on [0, 1], (n_qp)
+  const double* s0 = nullptr;  ///< reference |r0'|^2, (n_el, n_qp)
+  const double* k0 = nullptr;  ///< reference curvature, (n_el, n_qp)
+  const double* j0 = nullptr;  ///< reference |r0'|, (n_el, n_qp)
+  const double* qr = nullptr;  ///< spatial: eta^2 k0^2 at curved points, else 0, (n_el, n_qp)
+};
+
+/// Reference chords of co-rotational beam elements.
+struct BeamData {
+  const double* l0 = nullptr;  ///< reference chord length, (n_el)
+  const double* d0 = nullptr;  ///< reference chord vector, (n_el, 2)
+};
+
+/// Section stiffnesses.
+struct Stiffness {
+  double ea = 0.0;  ///< axial stiffness E A
+  double ei = 0.0;  ///< bending stiffness E I
+};
+
+/// Supports: fixed model coordinates and the clamp rotations of gradient blocks (q = T y).
+struct Supports {
+  const std::uint8_t* fixed = nullptr;       ///< (n): 1 where the coordinate is held
+  const std::int64_t* rot_of_node = nullptr; ///< (n_nodes): index into rot, or -1
+  const double* rot = nullptr;               ///< (n_rot, dim, dim): basis columns (t0, n0[, n1])
+};
+
+/// External loads: constant gravity forces and nodal point forces F0 [sin(2 pi f t)].
+struct Loads {
+  const double* f_gravity = nullptr;  ///< (n), model coordinates
+  int n_point = 0;
+  const std::int64_t* base = nullptr; ///< (n_point): index of the node's first coordinate
+  const double* f0 = nullptr;         ///< (n_point, dim)
+  const double* freq = nullptr;       ///< (n_point): Hz, 0 for a constant force
+};
+
+/// An assembled model as the compiled core sees it.
+struct Model {
+  ElementKind kind = ElementKind::cable;
+  int dim = 2;      ///< space dimension (2 or 3)
+  int dpn = 4;      ///< coordinates per node
+  int n_el = 0;
+  int n_nodes = 0;
+  Stiffness stiffness;
+  CableData cable;
+  BeamData beam;
+  Supports supports;
+  Loads loads;
+  const double* mass_band = nullptr;  ///< constant mass matrix, band storage (2 ku + 1, n)
+  const double* y_ref = nullptr;      ///< reference configuration, model coordinates (n)
+
+  [[nodiscard]] int n() const { return n_nodes * dpn; }
+  [[nodiscard]] int nde() const { return 2 * dpn; }
+  [[nodiscard]] int ku() const { return 2 * dpn - 1; }
+};
+
+}  // namespace rancf
