@@ -1,13 +1,18 @@
-"""Benchmark runner: rancf against Exudyn, side by side in one process.
+"""Benchmark runner: rancf against Exudyn, side by side in one run.
 
-    python benchmarks/run.py [--out DIR] [--repeats N] [--quick]
+    python benchmarks/run.py [--out DIR] [--repeats N] [--quick] [--install]
 
 Prints a table and writes ``bench.csv`` and ``bench.json`` to ``--out`` (default
 ``benchmarks/results``).  Without Exudyn installed (``pip install .[bench]``) only rancf's own
-cases are timed.  Each figure is the median over ``--repeats`` runs after a warm-up run (the
-warm-up also loads rancf's compiled code from its on-disk cache); a ratio below 1 means rancf is
-faster.  Wall time is that of the solve call on both sides (rancf: ``integrate``/``solve_static``
-including the initial acceleration; Exudyn: ``SolveDynamic``/``SolveStatic``).
+cases are timed.  A ratio is rancf / Exudyn, the median of per-pair ratios (A B A B ...);
+below 1 means rancf is faster.
+
+* ``simulate pendulum N el``: the straight pendulum through ``rancf simulate`` as a whole process
+  (see ``cli_cases.py``) against ``exudyn_pendulum.py``: per-step solve time from each side's own
+  report, set-up time (process start to the first step), whole-process wall time.
+* ``static cantilever`` and ``time to 1e-3 m``: the Python API (``solve_static``/``integrate``)
+  in this process against Exudyn's ``SolveStatic``/``SolveDynamic``.
+* ``--install``: the wall time of ``pip wheel`` of this checkout (the C++ core's build).
 """
 
 from __future__ import annotations
@@ -27,6 +32,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
+import cli_cases  # noqa: E402
 import exudyn_cases as ex  # noqa: E402
 
 import rancf  # noqa: E402
@@ -67,70 +73,10 @@ def _paired(fa: Any, fb: Any, repeats: int) -> tuple[float, float, float, Any, A
     return statistics.median(ta), statistics.median(tb), statistics.median(ratios), ra, rb
 
 
-def _best_exudyn(n: int, t_end: float, step: float, row: dict[str, Any]) -> Any:
-    """Exudyn's faster linear solver for this size (dense default or EigenSparse), timed once."""
-    times = {}
-    for sparse in (False, True):
-        ex.straight_pendulum(n, min(t_end, 0.01), step, 0.9, sparse=sparse, **PEND)
-        times[sparse] = ex.straight_pendulum(n, t_end, step, 0.9, sparse=sparse, **PEND)[0]
-    best = min(times, key=times.get)
-    row["exudyn_solver"] = "EigenSparse" if best else "dense"
-    row["exudyn_dense_s"], row["exudyn_sparse_s"] = times[False], times[True]
-    return lambda: ex.straight_pendulum(n, t_end, step, 0.9, sparse=best, **PEND)
-
-
 def _timed(fn: Any, *args: Any, **kw: Any) -> tuple[float, Any]:
     t0 = time.perf_counter()
     out = fn(*args, **kw)
     return time.perf_counter() - t0, out
-
-
-def ours_pendulum(
-    n: int, t_end: float, step: float, newton: str = "full"
-) -> tuple[float, np.ndarray]:
-    """Solve time and tip position of rancf's straight pendulum (model built outside the timing)."""
-    m = Model(
-        mesh_line([0, 0], [PEND["length"], 0], n),
-        "ancf",
-        Section(PEND["area"], PEND["inertia"]),
-        Material(PEND["density"], PEND["youngs"]),
-        [Support(0, "pin")],
-        gravity=[0, -9.81],
-    )
-    opts = DynamicOptions(t_end=t_end, step=step, rho_inf=0.9, output_step=t_end, newton=newton)
-    wall, r = _timed(integrate, m, opts)
-    return wall, m.node_positions(r.q[-1])[-1]
-
-
-def pendulum_cases(ns: list[int], t_end: float, repeats: int) -> list[dict[str, Any]]:
-    rows = []
-    step = 1e-3
-    steps = round(t_end / step)
-    for n in ns:
-        for newton in ("full", "modified"):
-            fa = lambda n=n, nw=newton: ours_pendulum(n, t_end, step, nw)  # noqa: E731
-            row = {
-                "case": f"pendulum {n} el ({newton} Newton)",
-                "elements": n,
-                "steps": steps,
-            }
-            if ex.AVAILABLE:
-                fb = _best_exudyn(n, t_end, step, row)
-                t_ours, t_ex, ratio, tip, tip_ex = _paired(fa, fb, repeats)
-                row.update(
-                    exudyn_s=t_ex,
-                    exudyn_us_per_step=1e6 * t_ex / steps,
-                    ratio=ratio,
-                    exudyn_tip=tip_ex.tolist(),
-                    tip_difference_m=float(np.linalg.norm(tip - tip_ex)),
-                )
-            else:
-                t_ours, tip = _median_time(fa, repeats)
-            row.update(
-                rancf_s=t_ours, rancf_us_per_step=1e6 * t_ours / steps, rancf_tip=tip.tolist()
-            )
-            rows.append(row)
-    return rows
 
 
 def static_case(repeats: int) -> dict[str, Any]:
@@ -173,24 +119,6 @@ def static_case(repeats: int) -> dict[str, Any]:
         rancf_s=t_ours, rancf_tip=tip.tolist(), analytic_small_deflection_note="large deflection"
     )
     return row
-
-
-def scaling_cases(ns: list[int], repeats: int) -> list[dict[str, Any]]:
-    rows = []
-    t_end, step = 0.05, 1e-3
-    steps = round(t_end / step)
-    for n in ns:
-        fa = lambda n=n: ours_pendulum(n, t_end, step)  # noqa: E731
-        row: dict[str, Any] = {"case": f"scaling {n} el", "elements": n, "steps": steps}
-        if ex.AVAILABLE:
-            fb = _best_exudyn(n, t_end, step, row)
-            t_ours, t_ex, ratio, _, _ = _paired(fa, fb, repeats)
-            row.update(exudyn_s=t_ex, exudyn_us_per_step=1e6 * t_ex / steps, ratio=ratio)
-        else:
-            t_ours, _ = _median_time(fa, repeats)
-        row.update(rancf_s=t_ours, rancf_us_per_step=1e6 * t_ours / steps)
-        rows.append(row)
-    return rows
 
 
 def time_to_accuracy(repeats: int, tol: float = 1e-3, t_end: float = 0.5) -> list[dict[str, Any]]:
@@ -257,6 +185,20 @@ def time_to_accuracy(repeats: int, tol: float = 1e-3, t_end: float = 0.5) -> lis
     return rows
 
 
+def install_case() -> dict[str, Any]:
+    """Wall time of building this checkout's wheel (C++ core included) with pip."""
+    import subprocess
+    import tempfile
+
+    root = Path(__file__).resolve().parents[1]
+    with tempfile.TemporaryDirectory() as tmp:
+        t0 = time.perf_counter()
+        cmd = [sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", "-w", tmp, str(root)]
+        subprocess.run(cmd, check=True, capture_output=True)
+        wall = time.perf_counter() - t0
+    return {"case": "install: pip wheel (build of the core)", "rancf_s": wall}
+
+
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(
         description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
@@ -264,6 +206,7 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--out", default=str(Path(__file__).resolve().parent / "results"))
     p.add_argument("--repeats", type=int, default=5)
     p.add_argument("--quick", action="store_true", help="small sizes, for a smoke test")
+    p.add_argument("--install", action="store_true", help="also time the build of the core")
     args = p.parse_args(argv)
     quick = args.quick
     meta = {
@@ -274,11 +217,17 @@ def main(argv: list[str] | None = None) -> int:
         "numpy": np.__version__,
         "exudyn": ex.VERSION,
     }
-    rows = pendulum_cases([8] if quick else [8, 32, 128], 0.05 if quick else 1.0, args.repeats)
+    ns = [8] if quick else [8, 32, 128, 512]
+    rows = cli_cases.simulate_cases(
+        ns, ["full", "modified"], args.repeats, 0.05 if quick else 1.0, ex.AVAILABLE
+    )
+    if not quick:  # linear in n: full Newton up to 4096 elements, rancf alone, 0.1 s
+        rows += cli_cases.simulate_cases([1024, 2048, 4096], ["full"], 1, 0.1, False)
     rows.append(static_case(args.repeats))
-    rows += scaling_cases([8, 16] if quick else [8, 16, 32, 64, 128, 256, 512], args.repeats)
     if not quick:
         rows += time_to_accuracy(args.repeats)
+    if args.install:
+        rows.append(install_case())
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     keys = sorted({k for r in rows for k in r}, key=lambda k: (k != "case", k))
@@ -289,7 +238,7 @@ def main(argv: list[str] | None = None) -> int:
             w.writerow({k: json.dumps(v) if isinstance(v, list) else v for k, v in r.items()})
     (out / "bench.json").write_text(json.dumps({"meta": meta, "rows": rows}, indent=2) + "\n")
     print(f"# {meta}")
-    print(f"{'case':50s} {'rancf':>12s} {'Exudyn':>12s} {'ratio':>7s} {'tip diff [m]':>13s}")
+    print(f"{'case':50s} {'rancf':>12s} {'Exudyn':>12s} {'ratio':>7s} {'process':>8s}")
     for r in rows:
         a = r.get("rancf_us_per_step")
         b = r.get("exudyn_us_per_step")
@@ -299,7 +248,7 @@ def main(argv: list[str] | None = None) -> int:
             sa = f"{r.get('rancf_s', r.get('wall_s', float('nan'))):9.4f} s"
             sb = f"{r['exudyn_s']:9.4f} s" if "exudyn_s" in r else "-"
         ratio = f"{r['ratio']:7.3f}" if "ratio" in r else "-"
-        diff = f"{r['tip_difference_m']:13.3e}" if "tip_difference_m" in r else ""
+        diff = f"{r['process_ratio']:8.3f}" if "process_ratio" in r else ""
         if "elements" in r and r["case"].startswith("time to"):
             sb = f"{r['elements']} el"
         print(f"{r['case']:50s} {sa:>12s} {sb:>12s} {ratio:>7s} {diff}")

@@ -24,12 +24,14 @@ def test_benchmark_runner_quick(tmp_path):
         check=True,
         timeout=600,
     )
-    assert "pendulum 8 el" in p.stdout
+    assert "simulate pendulum 8 el" in p.stdout
     data = json.loads((tmp_path / "bench.json").read_text())
     rows = {r["case"]: r for r in data["rows"]}
-    assert rows["pendulum 8 el (full Newton)"]["rancf_us_per_step"] > 0
+    full_row = rows["simulate pendulum 8 el (full Newton)"]
+    assert full_row["rancf_us_per_step"] > 0
+    assert full_row["rancf_process_s"] > full_row["rancf_us_per_step"] * 1e-6 * full_row["steps"]
     assert (tmp_path / "bench.csv").read_text().startswith("case,")
     # speed never changes the answer: full and modified Newton give the same tip
-    full = rows["pendulum 8 el (full Newton)"]["rancf_tip"]
-    mod = rows["pendulum 8 el (modified Newton)"]["rancf_tip"]
+    full = full_row["rancf_tip"]
+    mod = rows["simulate pendulum 8 el (modified Newton)"]["rancf_tip"]
     assert abs(full[0] - mod[0]) < 1e-8 and abs(full[1] - mod[1]) < 1e-8

@@ -1,8 +1,8 @@
 #include "assembly.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
-#include <vector>
 
 #include "registry.hpp"
 
@@ -64,8 +64,8 @@ void assemble(const Model& m, const double* y, double* f, const BandView* k, dou
   const ElementKernel& kern = kernel_for(m);
   const int nde = m.nde(), n = m.n();
   std::fill(f, f + n, 0.0);
-  std::vector<double> e(static_cast<std::size_t>(nde)), fe(static_cast<std::size_t>(nde));
-  std::vector<double> ke(k != nullptr ? static_cast<std::size_t>(nde * nde) : 0U);
+  std::array<double, kMaxElementDofs> e{}, fe{};
+  std::array<double, kMaxElementDofs * kMaxElementDofs> ke{};
   double* kep = k != nullptr ? ke.data() : nullptr;
   for (int el = 0; el < m.n_el; ++el) {
     const int base = el * m.dpn;
@@ -86,7 +86,7 @@ void assemble(const Model& m, const double* y, double* f, const BandView* k, dou
 double strain_energy(const Model& m, const double* y) {
   const ElementKernel& kern = kernel_for(m);
   const int nde = m.nde();
-  std::vector<double> e(static_cast<std::size_t>(nde));
+  std::array<double, kMaxElementDofs> e{};
   double total = 0.0;
   for (int el = 0; el < m.n_el; ++el) {
     const int base = el * m.dpn;

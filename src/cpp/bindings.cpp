@@ -66,6 +66,8 @@ struct ModelHolder {
         mass_band(std::move(mass)), y_ref(std::move(yref)) {
     if (kind != 0 && kind != 1) throw std::invalid_argument("kind: expected 0 (cable) or 1 (beam)");
     if (dim != 2 && dim != 3) throw std::invalid_argument("dim: expected 2 or 3");
+    if (dpn < 1 || 2 * dpn > rancf::kMaxElementDofs)
+      throw std::invalid_argument("dpn: too many coordinates per node");
     if (n_el < 1) throw std::invalid_argument("n_el: expected >= 1");
     m.kind = static_cast<rancf::ElementKind>(kind);
     m.dim = dim;

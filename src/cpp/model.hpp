@@ -10,6 +10,9 @@
 
 namespace rancf {
 
+/// Largest number of coordinates of one element (2 nodes x 7 for a spatial rod).
+inline constexpr int kMaxElementDofs = 14;
+
 /// Element families; each has one kernel file and one entry in the registry (registry.cpp).
 enum class ElementKind : int { cable = 0, beam = 1 };
 

@@ -1,10 +1,5 @@
 """rancf: rational ANCF conic-section cable elements — geometry, CAD conversions and dynamics."""
 
-from importlib.metadata import PackageNotFoundError, version
-
-try:
-    __version__ = version("rancf")
-except PackageNotFoundError:  # pragma: no cover - running from a source tree
-    __version__ = "0+unknown"
+__version__ = "0.2.0"  # the single source of the version (pyproject reads it)
 
 __all__ = ["__version__"]

@@ -9,7 +9,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.optimize import minimize_scalar
 
 from rancf.elements.cable import nodal_from_bezier
 from rancf.geometry.bezier import RationalBezier
@@ -26,6 +25,8 @@ def gradient_extrema(curve: RationalBezier) -> tuple[float, float]:
     A dense sample brackets each extremum; a bounded Brent search on the neighbouring sample
     interval refines it (``xatol`` 1e-13), so the ratio is exact to far better than 1e-4.
     """
+    from scipy.optimize import minimize_scalar  # lazy: a 0.4 s import, not needed for lines
+
     xi = np.linspace(0.0, 1.0, _SAMPLES)
 
     def speed(x: NDArray | float) -> NDArray:
@@ -60,6 +61,8 @@ def kopt(conic: Conic, xatol: float = 1e-10) -> float:
 
     The ratio is unimodal in K, so a bounded Brent search converges in a few dozen evaluations.
     """
+    from scipy.optimize import minimize_scalar  # lazy: a 0.4 s import, not needed for lines
+
     res = minimize_scalar(
         lambda k: gradient_ratio(conic.cubic(k)),
         bounds=(1e-4, 1.0 - 1e-4),

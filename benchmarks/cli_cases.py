@@ -1,0 +1,145 @@
+"""`rancf simulate` against the equivalent Exudyn script, as whole processes, pairs interleaved.
+
+Each pair runs A (`rancf simulate SCENARIO --out DIR --quiet`) then B (`exudyn_pendulum.py`);
+per-step times come from each side's own report (rancf: `summary.json`, `solve_wall_time_s /
+steps`; Exudyn: its script's solve time), whole-process wall times are measured from outside,
+and the ratio A/B is taken pair by pair (median quoted), so machine drift cancels.
+"""
+
+from __future__ import annotations
+
+import json
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+from typing import Any
+
+HERE = Path(__file__).resolve().parent
+
+SCENARIO = """\
+[geometry]
+kind = "line"
+start = [0.0, 0.0]
+end = [1.2, 0.0]
+
+[mesh]
+elements = {n}
+element = "ancf"
+
+[section]
+radius = 0.02
+
+[material]
+density = 6000.0
+youngs_modulus = 2.0e8
+
+[[supports]]
+at = "start"
+kind = "pin"
+
+[loads]
+gravity = [0.0, -9.81]
+
+[solver]
+t_end = {t_end}
+step = 1.0e-3
+rho_inf = 0.9
+output_step = {out}
+newton = "{newton}"
+
+[[sensors]]
+name = "tip"
+kind = "position"
+at = "end"
+"""
+
+
+def _run_rancf(scenario: Path, out: Path) -> dict[str, Any]:
+    t0 = time.perf_counter()
+    cmd = [sys.executable, "-m", "rancf", "simulate", str(scenario), "--out", str(out), "--quiet"]
+    subprocess.run(cmd, check=True, capture_output=True)
+    wall = time.perf_counter() - t0
+    s = json.loads((out / "summary.json").read_text())
+    lines = (out / "sensors.csv").read_text().splitlines()
+    tip = dict(zip(lines[0].split(","), map(float, lines[-1].split(",")), strict=True))
+    return {
+        "wall_s": wall,
+        "solve_s": s["solve_wall_time_s"],
+        "setup_s": s.get("setup_wall_time_s"),
+        "steps": s["steps"],
+        "newton": s["newton_iterations"],
+        "tip": [tip.get("tip_x"), tip.get("tip_y")],
+    }
+
+
+def _run_exudyn(n: int, solver: str, t_end: float) -> dict[str, Any]:
+    t0 = time.perf_counter()
+    cmd = [sys.executable, str(HERE / "exudyn_pendulum.py"), "--elements", str(n)]
+    cmd += ["--solver", solver, "--t-end", str(t_end)]
+    p = subprocess.run(cmd, check=True, capture_output=True, text=True)
+    wall = time.perf_counter() - t0
+    out = json.loads(p.stdout.strip().splitlines()[-1])
+    out["wall_s"] = wall
+    return out
+
+
+def simulate_cases(
+    ns: list[int], newtons: list[str], repeats: int, t_end: float, exudyn: bool
+) -> list[dict[str, Any]]:
+    """Per-step and whole-process times of the straight pendulum through `rancf simulate`."""
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        tmpd = Path(tmp)
+        for n in ns:
+            solver = "dense"
+            if exudyn:  # Exudyn's faster linear solver for this size, from one run of each
+                times = {s: _run_exudyn(n, s, t_end)["solve_s"] for s in ("dense", "sparse")}
+                solver = min(times, key=times.get)
+            for newton in newtons:
+                sc = tmpd / f"p{n}-{newton}.toml"
+                sc.write_text(SCENARIO.format(n=n, t_end=t_end, out=t_end / 10, newton=newton))
+                out = tmpd / f"run{n}-{newton}"
+                a_runs, b_runs = [], []
+                _run_rancf(sc, out)  # warm-up (file-system caches), not counted
+                for _ in range(repeats):
+                    a_runs.append(_run_rancf(sc, out))
+                    if exudyn:
+                        b_runs.append(_run_exudyn(n, solver, t_end))
+                rows.append(_row(n, newton, solver, a_runs, b_runs))
+    return rows
+
+
+def _med(runs: list[dict[str, Any]], key: str) -> float | None:
+    vals = [r[key] for r in runs if r.get(key) is not None]
+    return statistics.median(vals) if vals else None
+
+
+def _row(n: int, newton: str, solver: str, a: list[dict], b: list[dict]) -> dict[str, Any]:
+    steps = a[0]["steps"]
+    row: dict[str, Any] = {
+        "case": f"simulate pendulum {n} el ({newton} Newton)",
+        "elements": n,
+        "steps": steps,
+        "newton_iterations": a[0]["newton"],
+        "rancf_us_per_step": 1e6 * _med([{"x": r["solve_s"] / r["steps"]} for r in a], "x"),
+        "rancf_setup_s": _med(a, "setup_s"),
+        "rancf_process_s": _med(a, "wall_s"),
+        "rancf_tip": a[-1]["tip"],
+    }
+    if b:
+        pairs = list(zip(a, b, strict=True))
+        ratios = [(x["solve_s"] / x["steps"]) / (y["solve_s"] / y["steps"]) for x, y in pairs]
+        wall_ratios = [x["wall_s"] / y["wall_s"] for x, y in pairs]
+        row.update(
+            exudyn_solver=solver,
+            exudyn_us_per_step=1e6 * _med([{"x": r["solve_s"] / r["steps"]} for r in b], "x"),
+            exudyn_setup_s=_med(b, "setup_s"),
+            exudyn_process_s=_med(b, "wall_s"),
+            ratio=statistics.median(ratios),
+            process_ratio=statistics.median(wall_ratios),
+            exudyn_tip=b[-1]["tip"],
+        )
+    return row
