@@ -130,6 +130,9 @@ def _parser() -> argparse.ArgumentParser:
     from rancf import cli_post
 
     cli_post.add_parsers(sub)
+    from rancf import cli_sweep
+
+    cli_sweep.add_parsers(sub)
     return p
 
 
