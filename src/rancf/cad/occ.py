@@ -81,10 +81,15 @@ def _from_geom(b: Any) -> NurbsCurve:
     return NurbsCurve(int(b.Degree()), np.repeat(kn, mu), pts, w)
 
 
-def _set_static(key: str, value: str) -> None:
+def _set_static(key: str, value: str | int) -> None:
     from OCP.Interface import Interface_Static
 
-    if not Interface_Static.SetCVal_s(key, value):  # pragma: no cover - OCP API change
+    ok = (
+        Interface_Static.SetIVal_s(key, value)
+        if isinstance(value, int)
+        else Interface_Static.SetCVal_s(key, value)
+    )
+    if not ok:  # pragma: no cover - OCP API change
         raise RuntimeError(f"OpenCASCADE did not accept {key} = {value}")
 
 
@@ -116,6 +121,7 @@ def write_occ(path: Path, curve: NurbsCurve, kind: Kind, name: str = "") -> None
         sw.SendModel(StepAP214.Protocol_s())
         ok = sw.Print(buf)
     else:
+        from OCP.GeomToIGES import GeomToIGES_GeomCurve
         from OCP.IGESControl import IGESControl_Writer
         from OCP.IGESData import IGESData_IGESWriter
         from OCP.IGESSelect import IGESSelect_WorkLibrary
@@ -125,7 +131,12 @@ def write_occ(path: Path, curve: NurbsCurve, kind: Kind, name: str = "") -> None
         gs = w.Model().GlobalSection()
         gs.SetCascadeUnit(1000.0)  # our lengths are metres (1000 mm); no rescaling on output
         w.Model().SetGlobalSection(gs)
-        w.AddShape(edge)
+        # the curve itself as entity 126: no shape processing, which splits curves at C1 knots
+        geom = _to_geom(curve)
+        conv = GeomToIGES_GeomCurve()
+        conv.SetModel(w.Model())
+        conv.SetUnit(1.0)  # file unit = model unit (metre)
+        w.AddEntity(conv.TransferCurve(geom, geom.FirstParameter(), geom.LastParameter()))
         w.ComputeModel()
         iw = IGESData_IGESWriter(w.Model())
         iw.FloatWriter().SetFormat("%.17G", True)
@@ -178,6 +189,8 @@ def read_occ(path: Path, kind: Kind) -> list[CadCurve]:
         from OCP.IGESControl import IGESControl_Reader
 
         reader = IGESControl_Reader()
+        # keep B-splines whole (the default splits them at knots of low continuity)
+        _set_static("read.iges.bspline.continuity", 0)
     _set_static("xstep.cascade.unit", "M")
     if reader.ReadFile(str(path)) != IFSelect_RetDone:
         raise InputError("file", str(path), f"a readable {kind.upper()} file")
