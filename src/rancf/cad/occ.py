@@ -14,6 +14,8 @@ writer), so that reading the file back gives the same doubles.
 from __future__ import annotations
 
 import io
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any, Literal
 
@@ -81,16 +83,32 @@ def _from_geom(b: Any) -> NurbsCurve:
     return NurbsCurve(int(b.Degree()), np.repeat(kn, mu), pts, w)
 
 
-def _set_static(key: str, value: str | int) -> None:
+@contextmanager
+def _statics() -> Iterator[Callable[[str, str | int], None]]:
+    """Set OpenCASCADE's process-wide translator parameters for one read or write and restore
+    the previous values afterwards (other OpenCASCADE users in the process are unaffected)."""
     from OCP.Interface import Interface_Static
 
-    ok = (
-        Interface_Static.SetIVal_s(key, value)
-        if isinstance(value, int)
-        else Interface_Static.SetCVal_s(key, value)
-    )
-    if not ok:  # pragma: no cover - OCP API change
-        raise RuntimeError(f"OpenCASCADE did not accept {key} = {value}")
+    saved: list[tuple[str, str | int]] = []
+
+    def put(key: str, value: str | int) -> None:
+        if isinstance(value, int):
+            saved.append((key, Interface_Static.IVal_s(key)))
+            ok = Interface_Static.SetIVal_s(key, value)
+        else:
+            saved.append((key, Interface_Static.CVal_s(key)))
+            ok = Interface_Static.SetCVal_s(key, value)
+        if not ok:  # pragma: no cover - OCP API change
+            raise RuntimeError(f"OpenCASCADE did not accept {key} = {value}")
+
+    try:
+        yield put
+    finally:
+        for key, value in reversed(saved):
+            if isinstance(value, int):
+                Interface_Static.SetIVal_s(key, value)
+            else:
+                Interface_Static.SetCVal_s(key, value)
 
 
 def write_occ(path: Path, curve: NurbsCurve, kind: Kind, name: str = "") -> None:
@@ -98,50 +116,51 @@ def write_occ(path: Path, curve: NurbsCurve, kind: Kind, name: str = "") -> None
     _ocp()
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
 
-    edge = BRepBuilderAPI_MakeEdge(_to_geom(curve)).Edge()
-    buf = io.BytesIO()
-    if kind == "step":
-        from OCP.StepAP214 import StepAP214
-        from OCP.STEPControl import STEPControl_AsIs, STEPControl_Writer
-        from OCP.StepData import StepData_StepWriter
-        from OCP.TCollection import TCollection_HAsciiString
+    with _statics() as put:
+        edge = BRepBuilderAPI_MakeEdge(_to_geom(curve)).Edge()
+        buf = io.BytesIO()
+        if kind == "step":
+            from OCP.StepAP214 import StepAP214
+            from OCP.STEPControl import STEPControl_AsIs, STEPControl_Writer
+            from OCP.StepData import StepData_StepWriter
+            from OCP.TCollection import TCollection_HAsciiString
 
-        w = STEPControl_Writer()  # registers the static parameters set next
-        _set_static("xstep.cascade.unit", "M")
-        _set_static("write.step.unit", "M")
-        w.Transfer(edge, STEPControl_AsIs)
-        model = w.Model()
-        if name:
-            for i in range(1, model.NbEntities() + 1):
-                ent = model.Value(i)
-                if ent.DynamicType().Name() == "StepGeom_TrimmedCurve":
-                    ent.SetName(TCollection_HAsciiString(name))
-        sw = StepData_StepWriter(model)
-        sw.FloatWriter().SetFormat("%.17G", True)
-        sw.SendModel(StepAP214.Protocol_s())
-        ok = sw.Print(buf)
-    else:
-        from OCP.GeomToIGES import GeomToIGES_GeomCurve
-        from OCP.IGESControl import IGESControl_Writer
-        from OCP.IGESData import IGESData_IGESWriter
-        from OCP.IGESSelect import IGESSelect_WorkLibrary
+            w = STEPControl_Writer()  # registers the static parameters set next
+            put("xstep.cascade.unit", "M")
+            put("write.step.unit", "M")
+            w.Transfer(edge, STEPControl_AsIs)
+            model = w.Model()
+            if name:
+                for i in range(1, model.NbEntities() + 1):
+                    ent = model.Value(i)
+                    if ent.DynamicType().Name() == "StepGeom_TrimmedCurve":
+                        ent.SetName(TCollection_HAsciiString(name))
+            sw = StepData_StepWriter(model)
+            sw.FloatWriter().SetFormat("%.17G", True)
+            sw.SendModel(StepAP214.Protocol_s())
+            ok = sw.Print(buf)
+        else:
+            from OCP.GeomToIGES import GeomToIGES_GeomCurve
+            from OCP.IGESControl import IGESControl_Writer
+            from OCP.IGESData import IGESData_IGESWriter
+            from OCP.IGESSelect import IGESSelect_WorkLibrary
 
-        w = IGESControl_Writer("M", 0)
-        _set_static("xstep.cascade.unit", "M")
-        gs = w.Model().GlobalSection()
-        gs.SetCascadeUnit(1000.0)  # our lengths are metres (1000 mm); no rescaling on output
-        w.Model().SetGlobalSection(gs)
-        # the curve itself as entity 126: no shape processing, which splits curves at C1 knots
-        geom = _to_geom(curve)
-        conv = GeomToIGES_GeomCurve()
-        conv.SetModel(w.Model())
-        conv.SetUnit(1.0)  # file unit = model unit (metre)
-        w.AddEntity(conv.TransferCurve(geom, geom.FirstParameter(), geom.LastParameter()))
-        w.ComputeModel()
-        iw = IGESData_IGESWriter(w.Model())
-        iw.FloatWriter().SetFormat("%.17G", True)
-        iw.SendModel(IGESSelect_WorkLibrary.DefineProtocol_s())
-        ok = iw.Print(buf)
+            w = IGESControl_Writer("M", 0)
+            put("xstep.cascade.unit", "M")
+            gs = w.Model().GlobalSection()
+            gs.SetCascadeUnit(1000.0)  # our lengths are metres (1000 mm); no rescaling on output
+            w.Model().SetGlobalSection(gs)
+            # the curve itself as entity 126: no shape processing, which splits curves at C1 knots
+            geom = _to_geom(curve)
+            conv = GeomToIGES_GeomCurve()
+            conv.SetModel(w.Model())
+            conv.SetUnit(1.0)  # file unit = model unit (metre)
+            w.AddEntity(conv.TransferCurve(geom, geom.FirstParameter(), geom.LastParameter()))
+            w.ComputeModel()
+            iw = IGESData_IGESWriter(w.Model())
+            iw.FloatWriter().SetFormat("%.17G", True)
+            iw.SendModel(IGESSelect_WorkLibrary.DefineProtocol_s())
+            ok = iw.Print(buf)
     if not ok:
         raise InputError("--nurbs", str(path), f"a {kind.upper()} file OpenCASCADE can write")
     data = buf.getvalue()
@@ -181,33 +200,34 @@ def read_occ(path: Path, kind: Kind) -> list[CadCurve]:
     from OCP.TopAbs import TopAbs_EDGE
     from OCP.TopExp import TopExp_Explorer
 
-    if kind == "step":
-        from OCP.STEPControl import STEPControl_Reader
+    with _statics() as put:
+        if kind == "step":
+            from OCP.STEPControl import STEPControl_Reader
 
-        reader = STEPControl_Reader()
-    else:
-        from OCP.IGESControl import IGESControl_Reader
+            reader = STEPControl_Reader()
+        else:
+            from OCP.IGESControl import IGESControl_Reader
 
-        reader = IGESControl_Reader()
-        # keep B-splines whole (the default splits them at knots of low continuity)
-        _set_static("read.iges.bspline.continuity", 0)
-    _set_static("xstep.cascade.unit", "M")
-    if reader.ReadFile(str(path)) != IFSelect_RetDone:
-        raise InputError("file", str(path), f"a readable {kind.upper()} file")
-    reader.TransferRoots()
-    transfer = reader.WS().TransferReader()
-    out: list[CadCurve] = []
-    for s in range(1, reader.NbShapes() + 1):
-        ex = TopExp_Explorer(reader.Shape(s), TopAbs_EDGE)
-        while ex.More():
-            edge = ex.Current()
-            name = ""
-            ent = transfer.EntityFromShapeResult(edge, 1)
-            if ent is not None and hasattr(ent, "Name"):
-                try:
-                    name = ent.Name().ToCString()
-                except AttributeError:
-                    name = ""
-            out.append(CadCurve(len(out), name, _from_geom(_edge_curve(edge))))
-            ex.Next()
+            reader = IGESControl_Reader()
+            # keep B-splines whole (the default splits them at knots of low continuity)
+            put("read.iges.bspline.continuity", 0)
+        put("xstep.cascade.unit", "M")
+        if reader.ReadFile(str(path)) != IFSelect_RetDone:
+            raise InputError("file", str(path), f"a readable {kind.upper()} file")
+        reader.TransferRoots()
+        transfer = reader.WS().TransferReader()
+        out: list[CadCurve] = []
+        for s in range(1, reader.NbShapes() + 1):
+            ex = TopExp_Explorer(reader.Shape(s), TopAbs_EDGE)
+            while ex.More():
+                edge = ex.Current()
+                name = ""
+                ent = transfer.EntityFromShapeResult(edge, 1)
+                if ent is not None and hasattr(ent, "Name"):
+                    try:
+                        name = ent.Name().ToCString()
+                    except AttributeError:
+                        name = ""
+                out.append(CadCurve(len(out), name, _from_geom(_edge_curve(edge))))
+                ex.Next()
     return out
