@@ -102,7 +102,7 @@ def _other_tool_files(d):
     iw.Write(str(d / "arc_mm.igs"))
 
 
-CONIC = 'start = [0.0, 0.0]\nend = [0.5, 0.0]\nangles_deg = [30.0, 40.0]\npoint = [0.315, 0.077]'
+CONIC = "start = [0.0, 0.0]\nend = [0.5, 0.0]\nangles_deg = [30.0, 40.0]\npoint = [0.315, 0.077]"
 SCEN = BASE.replace('kind = "conic"\n' + CONIC, 'kind = "cad"\nfile = "FILE"\ncurve = CURVE')
 
 
