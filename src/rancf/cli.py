@@ -127,6 +127,12 @@ def _parser() -> argparse.ArgumentParser:
 
     cli_sim.add_parsers(sub)
     cli_sim.add_study_parsers(sub)
+    from rancf import cli_post
+
+    cli_post.add_parsers(sub)
+    from rancf import cli_sweep
+
+    cli_sweep.add_parsers(sub)
     return p
 
 

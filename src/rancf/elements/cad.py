@@ -7,9 +7,10 @@
   nodal gradient ``r_x = r_u / c`` is the same from both sides of a C¹ break point.
 * NURBS of degree 2 or 3 → chain of RANCF elements (Bézier extraction in homogeneous
   coordinates, degree elevation of quadratic spans).
-* A chain of ANCF/RANCF elements → one cubic NURBS with interior knots of multiplicity 3, which
-  represents any chain exactly (adjacent segments' weights are rescaled to share the joint's
-  homogeneous control point).
+* A chain of ANCF/RANCF elements → one cubic NURBS: first with interior knots of multiplicity 3,
+  which represents any chain exactly (adjacent segments' weights are rescaled to share the joint's
+  homogeneous control point), then with every knot removed that the curve's smoothness allows
+  (Piegl & Tiller A5.8), so a chain that came from a smooth curve gets its knot vector back.
 """
 
 from __future__ import annotations
@@ -27,6 +28,7 @@ from rancf.elements.cable import (
 )
 from rancf.errors import InputError, WeightError
 from rancf.geometry.bezier import RationalBezier, to_homogeneous
+from rancf.geometry.knot_removal import remove_knots
 from rancf.geometry.nurbs import NurbsCurve, extraction
 
 __all__ = [
@@ -158,11 +160,15 @@ def nurbs_to_rancf(curve: NurbsCurve, length_scale: float = 1.0) -> ElementChain
 
 
 def chain_to_nurbs(chain: ElementChain) -> NurbsCurve:
-    """One cubic NURBS curve that represents a chain of (R)ANCF elements exactly.
+    """One cubic NURBS curve that represents a chain of (R)ANCF elements exactly, with the lowest
+    interior knot multiplicities that do.
 
-    Knots ``[b0]*4 + [b1]*3 + ... + [bn]*4``: every interior break point has multiplicity 3, so
-    each span is exactly one element's rational cubic.  Element ``j + 1``'s weights are scaled so
-    its first homogeneous control point equals element ``j``'s last.
+    First knots ``[b0]*4 + [b1]*3 + ... + [bn]*4``: every interior break point has multiplicity
+    3, so each span is exactly one element's rational cubic (element ``j + 1``'s weights scaled
+    so its first homogeneous control point equals element ``j``'s last); then
+    :func:`~rancf.geometry.knot_removal.remove_knots` lowers each multiplicity as far as the
+    curve stays the same to 1e-12 (the Sanborn & Shabana Fig. 5 knot vector comes back as
+    itself from its ANCF chain).
 
     Raises
     ------
@@ -192,7 +198,7 @@ def chain_to_nurbs(chain: ElementChain) -> NurbsCurve:
     b = chain.breakpoints
     knots = np.concatenate([[b[0]] * 4, np.repeat(b[1:-1], 3), [b[-1]] * 4])
     h = np.array(hpts)
-    return NurbsCurve(3, knots, h[:, :-1] / h[:, -1:], h[:, -1])
+    return remove_knots(NurbsCurve(3, knots, h[:, :-1] / h[:, -1:], h[:, -1]))
 
 
 def _check_scale(c: float) -> float:

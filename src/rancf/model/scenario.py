@@ -192,9 +192,15 @@ def parse_scenario(raw: dict[str, Any], path: str = "<scenario>") -> Scenario:
             "knots": None,
             "control_points": None,
             "weights": None,
+            "file": None,
+            "curve": None,
         },
     )
-    kind = _choice(path, "geometry.kind", g["kind"], ("conic", "line", "nurbs"))
+    kind = _choice(path, "geometry.kind", g["kind"], ("conic", "line", "nurbs", "cad"))
+    if kind == "cad":
+        from rancf.model.cad_geometry import parse_cad_geometry
+
+        dim = parse_cad_geometry(path, g)
     if kind in ("conic", "line"):
         for k in ("start", "end"):
             if g[k] is None:
@@ -402,6 +408,10 @@ def _geometry_mesh(sc: Scenario) -> Any:
         return mesh_conic(conic, m["elements"], m["k"], m["spacing"])
     if g["kind"] == "line":
         return mesh_line(g["start"], g["end"], m["elements"])
+    if g["kind"] == "cad":
+        from rancf.model.cad_geometry import mesh_curve_chain
+
+        return mesh_curve_chain(g["curves"], g["labels"], m["elements"])
     pts = np.array(g["control_points"])
     w = np.ones(len(pts)) if g["weights"] is None else np.array(g["weights"])
     return mesh_nurbs(NurbsCurve(g["degree"], np.array(g["knots"]), pts, w), m["elements"])

@@ -1,0 +1,125 @@
+"""CAD files in and out: B-spline/NURBS curves of STEP, IGES, DXF and geomdl JSON files.
+
+* ``.json`` — geomdl's exchange format (``{"shape": {"type": "curve", "data": [...]}}``);
+* ``.dxf`` — ``SPLINE`` entities, through ezdxf;
+* ``.step``/``.stp`` and ``.igs``/``.iges`` — through cadquery-ocp (OpenCASCADE), the optional
+  extra ``pip install 'rancf[cad]'``.  Lengths are in metres (files in other units are converted
+  on reading; files are written in metres), and reals are written with 17 significant digits so
+  that a round trip reproduces the curve to round-off.
+
+Every reader returns :class:`CadCurve` records in file order; every writer writes one curve
+atomically (temporary file + rename).
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+from rancf.errors import InputError
+from rancf.geometry.nurbs import NurbsCurve
+
+__all__ = [
+    "CadCurve",
+    "read_curves",
+    "write_curve",
+    "atomic_file",
+    "READ_SUFFIXES",
+    "WRITE_SUFFIXES",
+]
+
+READ_SUFFIXES = (".json", ".dxf", ".step", ".stp", ".igs", ".iges")
+WRITE_SUFFIXES = READ_SUFFIXES
+
+
+@dataclass(frozen=True)
+class CadCurve:
+    """One curve of a CAD file.
+
+    Attributes
+    ----------
+    index : int
+        Position in the file (0-based, file order).
+    name : str
+        Its name in the file ("" when the format or the file gives none).
+    curve : NurbsCurve
+        Control points as stored (3 coordinates for DXF, STEP and IGES).
+    """
+
+    index: int
+    name: str
+    curve: NurbsCurve
+
+
+def atomic_file(path: Path, write: Callable[[str], object]) -> None:
+    """Call ``write(tmp)`` on a temporary file beside ``path``, then rename it to ``path``."""
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=path.suffix, dir=path.parent)
+    os.close(fd)
+    try:
+        write(tmp)
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+
+
+def _suffix(path: Path, allowed: tuple[str, ...], what: str) -> str:
+    s = path.suffix.lower()
+    if s not in allowed:
+        raise InputError(what, str(path), f"a file ending in {', '.join(allowed)}")
+    return s
+
+
+def read_curves(path: str | Path) -> list[CadCurve]:
+    """All B-spline/NURBS curves of a CAD file, in file order.
+
+    Raises
+    ------
+    InputError
+        Unknown suffix, unreadable file, or no curve in it.
+    MissingExtraError
+        STEP/IGES without cadquery-ocp installed.
+    """
+    p = Path(path)
+    s = _suffix(p, READ_SUFFIXES, "file")
+    if not p.is_file():
+        raise InputError("file", str(p), "an existing, readable CAD file")
+    if s == ".json":
+        from rancf.cad.geomdl_json import read_json
+
+        curves = read_json(p)
+    elif s == ".dxf":
+        from rancf.cad.dxf import read_dxf
+
+        curves = read_dxf(p)
+    else:
+        from rancf.cad.occ import read_occ
+
+        curves = read_occ(p, "step" if s in (".step", ".stp") else "iges")
+    if not curves:
+        raise InputError("file", str(p), "a CAD file holding at least one B-spline/NURBS curve")
+    return curves
+
+
+def write_curve(path: str | Path, curve: NurbsCurve, name: str = "") -> Path:
+    """Write ``curve`` as the only curve of a new CAD file (format from the suffix)."""
+    p = Path(path)
+    s = _suffix(p, WRITE_SUFFIXES, "--nurbs")
+    if not p.parent.is_dir():
+        raise InputError("--nurbs", str(p), "a file in an existing directory")
+    if s == ".json":
+        from rancf.cad.geomdl_json import write_json
+
+        write_json(p, curve, name)
+    elif s == ".dxf":
+        from rancf.cad.dxf import write_dxf
+
+        write_dxf(p, curve)
+    else:
+        from rancf.cad.occ import write_occ
+
+        write_occ(p, curve, "step" if s in (".step", ".stp") else "iges", name)
+    return p

@@ -1,0 +1,177 @@
+"""Figures and animations of any finished run (``rancf plot``, ``rancf animate``).
+
+The configurations are the densely sampled exact element curves
+(:func:`rancf.post.run_data.sample_centerline`), never the node polyline.  Animations use
+Matplotlib's ``FuncAnimation``: GIF through Pillow, MP4 through the ``ffmpeg`` executable that the
+optional ``imageio-ffmpeg`` package ships (``pip install 'rancf[mp4]'``).
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from rancf.errors import InputError
+from rancf.extras import require
+from rancf.post.plots import pyplot
+from rancf.post.run_data import RunData, frame_indices, sample_centerline
+
+__all__ = ["plot_run", "animate_run"]
+
+
+def _axes_of(run: RunData, pts: NDArray) -> tuple[int, int]:
+    """The two coordinates to draw: x–y for planar runs, the two of largest extent otherwise."""
+    if run.dim == 2:
+        return 0, 1
+    span = np.ptp(pts.reshape(-1, 3), axis=0)
+    a, b = sorted(np.argsort(span)[-2:])
+    return int(a), int(b)
+
+
+def _save(fig: Any, path: Path) -> None:
+    plt = pyplot()
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".png", dir=path.parent)
+    os.close(fd)
+    try:
+        fig.savefig(tmp, dpi=100, format="png")
+        os.replace(tmp, path)
+    finally:
+        plt.close(fig)
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+
+
+def plot_run(run: RunData, out_dir: str | Path, n_configurations: int = 6) -> list[Path]:
+    """Write ``sensors.png`` (every sensor column over time), ``energy.png`` and
+    ``configurations.png`` (the centreline at ``n_configurations`` evenly spaced stored times).
+
+    Returns the written paths.
+    """
+    plt = pyplot()
+    out = Path(out_dir)
+    if out.exists() and not out.is_dir():
+        raise InputError("--out", str(out), "a directory (it exists and is a file)")
+    out.mkdir(parents=True, exist_ok=True)
+    written = []
+
+    cols = run.sensor_names
+    if cols:
+        fig, axes = plt.subplots(
+            len(cols),
+            1,
+            figsize=(7, 1.9 * len(cols) + 0.6),
+            sharex=True,
+            squeeze=False,
+            constrained_layout=True,
+        )
+        for k, name in enumerate(cols):
+            axes[k, 0].plot(run.t, run.sensors[:, k])
+            axes[k, 0].set_ylabel(f"{name} [m]")
+        axes[-1, 0].set_xlabel("t [s]")
+        fig.suptitle(f"sensors of {run.name}")
+        written.append(out / "sensors.png")
+        _save(fig, written[-1])
+
+    fig, ax = plt.subplots(figsize=(7, 4), constrained_layout=True)
+    e = run.energies
+    for key in ("kinetic", "strain", "gravity"):
+        ax.plot(run.t, e[key], label=key)
+    ax.plot(run.t, e["kinetic"] + e["strain"] + e["gravity"], "k--", label="total")
+    ax.set_xlabel("t [s]")
+    ax.set_ylabel("energy [J]")
+    ax.legend()
+    ax.set_title(f"energies of {run.name}")
+    written.append(out / "energy.png")
+    _save(fig, written[-1])
+
+    idx = np.unique(np.linspace(0, run.t.size - 1, max(n_configurations, 1)).round().astype(int))
+    lines = [sample_centerline(run, int(i)).points for i in idx]
+    a, b = _axes_of(run, _pad(np.array(lines)))
+    fig, ax = plt.subplots(figsize=(7, 5), constrained_layout=True)
+    cmap = plt.get_cmap("viridis")
+    for j, (i, pts) in enumerate(zip(idx, lines, strict=True)):
+        ax.plot(
+            pts[:, a],
+            pts[:, b],
+            color=cmap(j / max(len(idx) - 1, 1)),
+            label=f"t = {run.t[i]:.4g} s",
+        )
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_xlabel(f"{'xyz'[a]} [m]")
+    ax.set_ylabel(f"{'xyz'[b]} [m]")
+    ax.legend(fontsize=8)
+    ax.set_title(f"configurations of {run.name}")
+    written.append(out / "configurations.png")
+    _save(fig, written[-1])
+    return written
+
+
+def _pad(a: NDArray) -> NDArray:
+    return a if a.shape[-1] == 3 else np.concatenate([a, np.zeros(a.shape[:-1] + (1,))], axis=-1)
+
+
+def _writer(path: Path, fps: int) -> tuple[Any, str]:
+    from matplotlib import animation
+
+    suffix = path.suffix.lower()
+    if suffix == ".gif":
+        return animation.PillowWriter(fps=fps), ".gif"
+    if suffix == ".mp4":
+        imageio_ffmpeg = require("imageio_ffmpeg", "mp4", "MP4 animations")
+        import matplotlib
+
+        matplotlib.rcParams["animation.ffmpeg_path"] = imageio_ffmpeg.get_ffmpeg_exe()
+        return animation.FFMpegWriter(
+            fps=fps, codec="libx264", extra_args=["-pix_fmt", "yuv420p"]
+        ), ".mp4"
+    raise InputError("--out", str(path), "a file name ending in .gif or .mp4")
+
+
+def animate_run(
+    run: RunData, path: str | Path, fps: int = 20, every: int = 1, dpi: int = 80
+) -> int:
+    """Render the motion to ``path`` (``.gif`` or ``.mp4``); one frame per selected stored time.
+
+    Frames are :func:`~rancf.post.run_data.frame_indices` ``(n_t, every)``.  Returns the number
+    of frames written.
+    """
+    if isinstance(fps, bool) or not isinstance(fps, int) or fps < 1:
+        raise InputError("--fps", fps, "an integer >= 1")
+    path = Path(path)
+    writer, suffix = _writer(path, fps)
+    if not path.parent.is_dir():
+        raise InputError("--out", str(path), "a file in an existing directory")
+    plt = pyplot()
+    idx = frame_indices(run.t.size, every)
+    lines = np.array([_pad(sample_centerline(run, int(i)).points) for i in idx])
+    a, b = _axes_of(run, lines)
+    lo, hi = lines[..., [a, b]].min(axis=(0, 1)), lines[..., [a, b]].max(axis=(0, 1))
+    pad = 0.05 * max(float(np.max(hi - lo)), 1e-9)
+    fig, ax = plt.subplots(figsize=(6, 4.5))
+    ax.set_xlim(lo[0] - pad, hi[0] + pad)
+    ax.set_ylim(lo[1] - pad, hi[1] + pad)
+    ax.set_aspect("equal", adjustable="box")
+    ax.set_xlabel(f"{'xyz'[a]} [m]")
+    ax.set_ylabel(f"{'xyz'[b]} [m]")
+    ax.plot(lines[0, :, a], lines[0, :, b], color="0.75", lw=1, label="t = 0")
+    (line,) = ax.plot([], [], "C0", lw=2)
+    title = ax.set_title("")
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=suffix, dir=path.parent)
+    os.close(fd)
+    try:
+        with writer.saving(fig, tmp, dpi):
+            for k, i in enumerate(idx):
+                line.set_data(lines[k, :, a], lines[k, :, b])
+                title.set_text(f"{run.name}: t = {run.t[i]:.4f} s")
+                writer.grab_frame()
+        os.replace(tmp, path)
+    finally:
+        plt.close(fig)
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+    return int(idx.size)

@@ -1,0 +1,97 @@
+"""ParaView output: one VTK unstructured grid (``.vtu``, written by meshio) per stored time and a
+``.pvd`` collection that lists them with their times.
+
+Each ``.vtu`` holds the densely sampled centreline (:func:`rancf.post.run_data.sample_centerline`)
+as a polyline of ``line`` cells with point data ``displacement``, ``velocity`` (3 components; zero
+``z`` for planar runs), ``axial_strain``, ``curvature``, ``radius`` (for ParaView's Tube filter,
+"Vary Radius: By Scalar" or a constant radius) and ``element``.  Every file is written to a
+temporary name and moved into place, so an interrupted export never leaves a corrupt file.
+"""
+
+from __future__ import annotations
+
+import html
+import os
+import tempfile
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import NDArray
+
+from rancf.errors import InputError
+from rancf.post.results import atomic_write
+from rancf.post.run_data import RunData, frame_indices, sample_centerline
+
+__all__ = ["export_vtk", "centerline_mesh"]
+
+
+def _pad3(a: NDArray) -> NDArray:
+    return a if a.shape[-1] == 3 else np.concatenate([a, np.zeros(a.shape[:-1] + (1,))], axis=-1)
+
+
+def centerline_mesh(run: RunData, i: int, per_element: int = 16):  # -> meshio.Mesh
+    """The meshio mesh of stored state ``i`` (see the module docstring for its fields)."""
+    import meshio
+
+    c = sample_centerline(run, i, per_element)
+    n = c.points.shape[0]
+    cells = np.stack([np.arange(n - 1), np.arange(1, n)], axis=1)
+    data = {
+        "displacement": _pad3(c.displacement),
+        "velocity": _pad3(c.velocity),
+        "axial_strain": c.axial_strain,
+        "curvature": c.curvature,
+        "element": c.element.astype(np.int32),
+    }
+    if run.radius is not None:
+        data["radius"] = np.full(n, run.radius)
+    return meshio.Mesh(_pad3(c.points), [("line", cells)], point_data=data)
+
+
+def _write_vtu(mesh, path: Path) -> None:  # mesh: meshio.Mesh
+    import meshio
+
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".vtu", dir=path.parent)
+    os.close(fd)
+    try:
+        meshio.write(tmp, mesh, file_format="vtu")
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+
+
+def export_vtk(run: RunData, out_dir: str | Path, every: int = 1, per_element: int = 16) -> Path:
+    """Write ``OUT_DIR/<run>_NNNNN.vtu`` for every ``every``-th stored time and ``<run>.pvd``.
+
+    Returns the path of the ``.pvd`` file.
+    """
+    out = Path(out_dir)
+    if out.exists() and not out.is_dir():
+        raise InputError("--vtk", str(out), "a directory (it exists and is a file)")
+    out.mkdir(parents=True, exist_ok=True)
+    idx = frame_indices(run.t.size, every)
+    name = run.name
+    entries = []
+    for k, i in enumerate(idx):
+        fname = f"{name}_{k:05d}.vtu"
+        _write_vtu(centerline_mesh(run, int(i), per_element), out / fname)
+        entries.append(
+            f'    <DataSet timestep="{float(run.t[i])!r}" group="" part="0" '
+            f'file="{html.escape(fname, quote=True)}"/>'
+        )
+    pvd = "\n".join(
+        [
+            '<?xml version="1.0"?>',
+            '<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">',
+            "  <Collection>",
+            *entries,
+            "  </Collection>",
+            "</VTKFile>",
+            "",
+        ]
+    )
+    path = out / f"{name}.pvd"
+    atomic_write(path, pvd)
+    return path

@@ -1,0 +1,171 @@
+"""CAD files in and out: round trips at 1e-12, files written by other tools, chains and kinks."""
+
+import numpy as np
+import pytest
+
+from rancf.cad import read_curves, write_curve
+from rancf.cli import main
+from rancf.elements.cad import bspline_to_ancf, chain_to_nurbs, nurbs_to_rancf
+from rancf.errors import ScenarioError
+from rancf.geometry.nurbs import NurbsCurve
+from rancf.model.scenario import load_scenario
+from tests.model.test_scenario import BASE
+
+FIG5 = np.array([0, 0, 0, 0, 1, 2, 2, 3, 3, 3, 5, 5, 5, 5], float)
+
+
+def test_fig5_knot_vector_round_trip():
+    rng = np.random.default_rng(3)
+    pts = rng.normal(size=(10, 2))
+    back = chain_to_nurbs(bspline_to_ancf(NurbsCurve.bspline(3, FIG5, pts)))
+    assert np.array_equal(back.knots, FIG5)
+    assert np.abs(back.points - pts).max() < 1e-14
+    w = rng.uniform(0.3, 3.0, 10)
+    back = chain_to_nurbs(nurbs_to_rancf(NurbsCurve(3, FIG5, pts, w)))
+    assert np.array_equal(back.knots, FIG5)
+    assert np.abs(back.weights / back.weights[0] - w / w[0]).max() < 1e-13
+
+
+def test_knot_removal_keeps_a_real_kink():
+    pts = np.array([[0, 0], [1, 0], [2, 0], [2, 0], [2, 1], [2, 2], [2, 3]], float)
+    knots = [0, 0, 0, 0, 1, 1, 1, 2, 2, 2, 2]
+    back = chain_to_nurbs(bspline_to_ancf(NurbsCurve.bspline(3, knots, pts)))
+    assert np.array_equal(back.knots, knots)
+
+
+@pytest.mark.parametrize("suffix", ["json", "dxf", "step", "stp", "igs", "iges"])
+@pytest.mark.parametrize("dim", [2, 3])
+def test_written_files_read_back_to_1e12(tmp_path, suffix, dim):
+    rng = np.random.default_rng(dim)
+    curve = NurbsCurve(3, FIG5, rng.normal(size=(10, dim)), rng.uniform(0.2, 5.0, 10))
+    path = write_curve(tmp_path / f"c.{suffix}", curve, "route")
+    (back,) = read_curves(path)
+    u = np.linspace(0, 5, 501)
+    x = back.curve(u)
+    assert np.abs(x[:, :dim] - curve(u)).max() <= 1e-12 * np.abs(curve(u)).max()
+    assert np.all(x[:, dim:] == 0)
+    assert np.array_equal(back.curve.knots, FIG5)
+    if suffix in ("json", "step", "stp"):
+        assert back.name == "route"
+
+
+def test_geomdl_reads_our_json(tmp_path):
+    from geomdl import exchange
+
+    curve = NurbsCurve(3, FIG5, np.random.default_rng(1).normal(size=(10, 3)), np.ones(10))
+    write_curve(tmp_path / "c.json", curve)
+    (g,) = exchange.import_json(str(tmp_path / "c.json"))
+    assert g.degree == 3
+    u = np.linspace(0, 1, 11)  # geomdl normalizes the knot vector to [0, 1]
+    pts = np.array([g.evaluate_single(float(x)) for x in u])
+    assert np.abs(pts - curve(5 * u)).max() < 1e-12
+
+
+def _other_tool_files(d):
+    """Files written with ezdxf and OpenCASCADE directly (not through rancf)."""
+    import ezdxf
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
+    from OCP.GC import GC_MakeArcOfCircle
+    from OCP.gp import gp_Ax2, gp_Circ, gp_Dir, gp_Pnt
+    from OCP.IGESControl import IGESControl_Writer
+    from OCP.STEPControl import STEPControl_AsIs, STEPControl_Writer
+
+    s = np.sqrt(0.5)
+    doc = ezdxf.new("R2000")
+    msp = doc.modelspace()
+    # quarter circle r = 0.5 from (0.5, 0) to (0, 0.5), then a straight continuation to
+    # (-0.3, 0.5) drawn backwards, then a spline with a kink at (0.3, 0.5)
+    msp.add_rational_spline(
+        [(0.5, 0, 0), (0.5, 0.5, 0), (0, 0.5, 0)], [1, s, 1], 2, [0, 0, 0, 1, 1, 1]
+    )
+    msp.add_open_spline(
+        [(-0.3, 0.5, 0), (-0.2, 0.5, 0), (-0.1, 0.5, 0), (0, 0.5, 0)], 3, [0] * 4 + [1] * 4
+    )
+    kinked = [
+        (0, 0.5, 0),
+        (0.1, 0.5, 0),
+        (0.2, 0.5, 0),
+        (0.3, 0.5, 0),
+        (0.3, 0.6, 0),
+        (0.3, 0.7, 0),
+    ]
+    msp.add_open_spline(kinked + [(0.3, 0.8, 0)], 3, [0] * 4 + [1] * 3 + [2] * 4)
+    doc.saveas(d / "route.dxf")
+    circ = gp_Circ(gp_Ax2(gp_Pnt(0, 0, 0.2), gp_Dir(0, 0, 1)), 500.0)  # millimetres, at z = 0.2 mm
+    edge = BRepBuilderAPI_MakeEdge(GC_MakeArcOfCircle(circ, 0.0, np.pi / 3, True).Value()).Edge()
+    w = STEPControl_Writer()
+    w.Transfer(edge, STEPControl_AsIs)
+    w.Write(str(d / "arc_mm.step"))
+    iw = IGESControl_Writer("MM", 0)
+    iw.AddShape(edge)
+    iw.ComputeModel()
+    iw.Write(str(d / "arc_mm.igs"))
+
+
+CONIC = "start = [0.0, 0.0]\nend = [0.5, 0.0]\nangles_deg = [30.0, 40.0]\npoint = [0.315, 0.077]"
+SCEN = BASE.replace('kind = "conic"\n' + CONIC, 'kind = "cad"\nfile = "FILE"\ncurve = CURVE')
+
+
+def _scenario(d, file, curve, gravity="[0.0, -9.81]"):
+    f = d / "cad.toml"
+    text = SCEN.replace("FILE", file).replace("CURVE", curve)
+    f.write_text(text.replace("gravity = [0.0, -9.81]", f"gravity = {gravity}"))
+    return f
+
+
+@pytest.fixture(scope="module")
+def cad_dir(tmp_path_factory):
+    d = tmp_path_factory.mktemp("cad")
+    _other_tool_files(d)
+    return d
+
+
+@pytest.mark.parametrize("file", ["arc_mm.step", "arc_mm.igs"])
+def test_other_tool_circle_meshes_exactly(cad_dir, file):
+    model = load_scenario(_scenario(cad_dir, file, "0", "[0.0, 0.0, -9.81]")).build_model()
+    mesh = model.mesh
+    assert mesh.dim == 3 and mesh.n_elements == 3  # z = 0.2 mm: spatial
+    pts = mesh.evaluate(np.linspace(0, 1, 41)).reshape(-1, 3)
+    assert np.abs(np.linalg.norm(pts[:, :2], axis=1) - 0.5).max() < 1e-12 * 0.5
+    assert np.abs(pts[:, 2] - 2e-4).max() < 1e-15
+    assert mesh.arc_lengths().sum() == pytest.approx(0.5 * np.pi / 3, rel=1e-12)
+
+
+def test_dxf_chain_is_one_exact_planar_mesh(cad_dir):
+    model = load_scenario(_scenario(cad_dir, "route.dxf", "[0, 1]")).build_model()
+    mesh = model.mesh
+    assert mesh.dim == 2 and mesh.n_elements == 6
+    assert np.allclose(mesh.nodes[[0, 3, 6], 0], [[0.5, 0], [0, 0.5], [-0.3, 0.5]], atol=1e-15)
+    arc = mesh.evaluate(np.linspace(0, 1, 21))[:3].reshape(-1, 2)
+    assert np.abs(np.linalg.norm(arc, axis=1) - 0.5).max() < 1e-15
+    assert mesh.arc_lengths().sum() == pytest.approx(0.25 * np.pi + 0.3, rel=1e-12)
+
+
+def test_kink_and_gap_are_reported_by_location(cad_dir):
+    with pytest.raises(ScenarioError, match=r"kink of 90 deg at \(0\.3, 0\.5\) \(curve 2"):
+        load_scenario(_scenario(cad_dir, "route.dxf", "[2]"))
+    with pytest.raises(ScenarioError, match=r"kink of 180 deg at \(0, 0\.5\).*curve 0.*curve 2"):
+        load_scenario(_scenario(cad_dir, "route.dxf", "[0, 2]"))
+    with pytest.raises(ScenarioError, match=r"geometry.curve.*index in 0..2"):
+        load_scenario(_scenario(cad_dir, "route.dxf", "7"))
+    with pytest.raises(ScenarioError, match=r"geometry.file.*existing"):
+        load_scenario(_scenario(cad_dir, "missing.dxf", "0"))
+
+
+def test_cad_list(cad_dir, capsys):
+    assert main(["cad", "list", str(cad_dir / "route.dxf")]) == 0
+    out = capsys.readouterr().out.splitlines()
+    assert len(out) == 4 and "(0.5, 0, 0) -> (0, 0.5, 0)" in out[1]
+
+
+def test_missing_ocp_message(monkeypatch, tmp_path, capsys):
+    import sys
+
+    monkeypatch.setitem(sys.modules, "OCP", None)
+    (tmp_path / "x.step").write_text("ISO-10303-21;")
+    assert main(["cad", "list", str(tmp_path / "x.step")]) == 1
+    err = capsys.readouterr().err
+    assert err == (
+        "rancf: error: STEP and IGES files need the optional package 'OCP': "
+        "pip install 'rancf[cad]'\n"
+    )

@@ -1,0 +1,165 @@
+"""rancf sweep on a local Dask cluster and on a separately started scheduler + worker."""
+
+import csv
+import socket
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from rancf.cli import main
+from rancf.errors import ScenarioError
+from rancf.sweep.spec import load_sweep
+from tests.model.test_scenario import BASE
+
+SWEEP = """
+base = "pend.toml"
+analysis = "simulate"
+[grid]
+"mesh.elements" = [2, 3]
+"solver.max_newton" = [12, 1]
+"""
+TIMES = ("wall_time_s", "solve_time_s")
+
+
+def _write(d: Path) -> Path:
+    # 5 steps of 1 ms; max_newton = 1 with min_step = step cannot converge: two failed runs
+    (d / "pend.toml").write_text(
+        BASE.replace(
+            "t_end = 0.02\nstep = 1.0e-3", "t_end = 0.005\nstep = 1.0e-3\nmin_step = 1.0e-3"
+        )
+    )
+    (d / "sweep.toml").write_text(SWEEP)
+    return d / "sweep.toml"
+
+
+def _rows(path: Path) -> list[dict]:
+    with open(path) as fh:
+        return [{k: v for k, v in r.items() if k not in TIMES} for r in csv.DictReader(fh)]
+
+
+@pytest.fixture(scope="module")
+def local_sweep(tmp_path_factory):
+    d = tmp_path_factory.mktemp("sweep")
+    f = _write(d)
+    assert main(["sweep", str(f), "--out", str(d / "out"), "--workers", "2", "--quiet"]) == 0
+    return d
+
+
+def test_local_cluster_rows_and_failures(local_sweep, capsys):
+    rows = _rows(local_sweep / "out" / "results.csv")
+    assert [r["run"] for r in rows] == [
+        "0000_elements=2_max_newton=12",
+        "0001_elements=2_max_newton=1",
+        "0002_elements=3_max_newton=12",
+        "0003_elements=3_max_newton=1",
+    ]
+    assert [r["status"] for r in rows] == ["completed", "failed"] * 2
+    assert "Newton" in rows[1]["message"] and rows[1]["AB"] != ""  # state up to the failure
+    assert float(rows[0]["t_reached"]) == pytest.approx(0.005)
+    for r in rows:
+        assert (local_sweep / "out" / "runs" / r["run"] / "row.json").is_file()
+    # same numbers as `rancf simulate` of the same variant
+    sc = local_sweep / "out" / "runs" / rows[2]["run"] / "scenario.toml"
+    assert main(["simulate", str(sc), "--out", str(local_sweep / "single"), "--quiet"]) == 0
+    last = (local_sweep / "single" / "sensors.csv").read_text().splitlines()[-1].split(",")
+    assert float(last[1]) == pytest.approx(float(rows[2]["AB"]), rel=1e-11)
+
+
+def test_resume_skips_finished_runs(local_sweep, capsys):
+    out = local_sweep / "out"
+    before = _rows(out / "results.csv")
+    gone = out / "runs" / before[3]["run"] / "row.json"
+    gone.unlink()  # as if the sweep had been interrupted before this run finished
+    stamp = (out / "runs" / before[0]["run"] / "row.json").stat().st_mtime_ns
+    argv = ["sweep", str(local_sweep / "sweep.toml"), "--out", str(out), "--workers", "1"]
+    assert main([*argv, "--quiet"]) == 0
+    assert "4 run(s): 3 already finished, 1 run on" in capsys.readouterr().out
+    assert (out / "runs" / before[0]["run"] / "row.json").stat().st_mtime_ns == stamp
+    assert gone.is_file() and _rows(out / "results.csv") == before
+
+
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def test_separate_scheduler_gives_identical_values(local_sweep, tmp_path):
+    dask = str(Path(sys.executable).parent / "dask")
+    port = _free_port()
+    addr = f"tcp://127.0.0.1:{port}"
+    sched = subprocess.Popen(
+        [dask, "scheduler", "--host", "127.0.0.1", "--port", str(port), "--no-dashboard"],
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+    )
+    worker = None
+    try:
+        worker = subprocess.Popen(
+            [
+                dask,
+                "worker",
+                addr,
+                "--host",
+                "127.0.0.1",
+                "--nthreads",
+                "1",
+                "--nworkers",
+                "1",
+                "--no-dashboard",
+            ],
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL,
+        )
+        from dask.distributed import Client
+
+        deadline = time.monotonic() + 60
+        while True:
+            try:
+                with Client(addr, timeout=5) as c:
+                    c.wait_for_workers(1, timeout=60)
+                break
+            except OSError:
+                if time.monotonic() > deadline:
+                    raise
+                time.sleep(0.5)
+        f = _write(tmp_path)
+        out = tmp_path / "out"
+        assert main(["sweep", str(f), "--out", str(out), "--scheduler", addr, "--quiet"]) == 0
+    finally:
+        for p in (worker, sched):
+            if p is not None:
+                p.terminate()
+                p.wait(timeout=30)
+    assert _rows(out / "results.csv") == _rows(local_sweep / "out" / "results.csv")
+
+
+def test_bad_sweep_files_name_the_key(tmp_path):
+    f = _write(tmp_path)
+    f.write_text(SWEEP.replace('"mesh.elements"', '"mesh.elemnts"'))
+    with pytest.raises(ScenarioError, match=r"grid \(run 0000_elemnts=2.*mesh.elemnts"):
+        load_sweep(f)
+    f.write_text(SWEEP.replace('"simulate"', '"dynamics"'))
+    with pytest.raises(ScenarioError, match=r"\[analysis\] must be one of"):
+        load_sweep(f)
+    f.write_text(SWEEP.replace("[2, 3]", "[]"))
+    with pytest.raises(ScenarioError, match=r"grid.mesh.elements\] must be a non-empty list"):
+        load_sweep(f)
+
+
+def test_static_and_modes_sweeps(tmp_path):
+    (tmp_path / "cant.toml").write_text(
+        __import__("tests.test_cli_sim", fromlist=["CANTILEVER"]).CANTILEVER
+    )
+    for analysis, col in (("static", "tip_y"), ("modes", "f1_hz")):
+        f = tmp_path / f"{analysis}.toml"
+        f.write_text(
+            f'base = "cant.toml"\nanalysis = "{analysis}"\n[grid]\n"mesh.elements" = [2, 4]\n'
+        )
+        out = tmp_path / analysis
+        assert main(["sweep", str(f), "--out", str(out), "--workers", "1", "--quiet"]) == 0
+        rows = _rows(out / "results.csv")
+        assert [r["status"] for r in rows] == ["completed"] * 2 and rows[1][col] != ""
