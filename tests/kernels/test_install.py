@@ -1,0 +1,80 @@
+"""A read-only install used without a home directory: nothing compiled, cached or written."""
+
+import os
+import shutil
+import stat
+import subprocess
+import sys
+from pathlib import Path
+
+import rancf
+
+SCENARIO = """\
+[geometry]
+kind = "line"
+start = [0.0, 0.0]
+end = [1.2, 0.0]
+[mesh]
+elements = 8
+element = "ancf"
+[section]
+radius = 0.02
+[material]
+density = 6000.0
+youngs_modulus = 2.0e8
+[[supports]]
+at = "start"
+kind = "pin"
+[loads]
+gravity = [0.0, -9.81]
+[solver]
+t_end = 0.1
+step = 1.0e-3
+[[sensors]]
+name = "tip"
+kind = "position"
+at = "end"
+"""
+
+
+def _tree(root: Path) -> dict[str, float]:
+    return {str(p.relative_to(root)): p.stat().st_mtime for p in root.rglob("*")}
+
+
+def test_read_only_install_without_home(tmp_path):
+    ro = tmp_path / "site"
+    shutil.copytree(
+        Path(rancf.__file__).parent, ro / "rancf", ignore=shutil.ignore_patterns("__pycache__")
+    )
+    for p in [ro, *ro.rglob("*")]:  # read-only for everyone (root ignores it: see the tree check)
+        mode = p.stat().st_mode & ~(stat.S_IWUSR | stat.S_IWGRP | stat.S_IWOTH)
+        p.chmod(mode)
+    before = _tree(ro)
+    home = tmp_path / "no-such-home"
+    env = {k: v for k, v in os.environ.items() if not k.startswith(("MPL", "NUMBA", "XDG"))}
+    env.update(HOME=str(home), PYTHONPATH=str(ro), PYTHONDONTWRITEBYTECODE="1")
+    scenario = tmp_path / "p.toml"
+    scenario.write_text(SCENARIO)
+
+    def run(*args: str) -> subprocess.CompletedProcess:
+        return subprocess.run(
+            [sys.executable, *args], env=env, cwd=tmp_path, capture_output=True, text=True
+        )
+
+    where = run("-c", "import rancf.kernels._core as c, rancf; print(rancf.__file__)")
+    assert where.returncode == 0, where.stderr
+    assert where.stdout.strip().startswith(str(ro))
+    sim = run("-m", "rancf", "simulate", str(scenario), "--out", "out", "--quiet")
+    assert sim.returncode == 0, sim.stderr
+    assert (tmp_path / "out" / "summary.json").is_file()
+    rep = run("-m", "rancf", "report", "--quick", "--out", "rep")
+    assert rep.returncode == 0, rep.stderr
+    assert (tmp_path / "rep" / "report.html").is_file()
+    assert "Traceback" not in sim.stderr + rep.stderr
+    assert _tree(ro) == before  # nothing written into the install
+    # nor anything of ours in a home directory (running as root, Matplotlib may create its own
+    # font cache there; an ordinary user without a home gets its temporary-directory fallback)
+    made = {p.relative_to(home).parts for p in home.rglob("*")} if home.exists() else set()
+    assert all(len(p) < 2 or p[1] == "matplotlib" for p in made), made
+    for p in [ro, *ro.rglob("*")]:
+        p.chmod(p.stat().st_mode | stat.S_IWUSR)  # let pytest clean up
