@@ -28,9 +28,9 @@ def _power_basis(curve: RationalBezier) -> tuple[NDArray, NDArray]:
     n = curve.degree
     basis = np.zeros((n + 1, n + 1))  # row i: Bernstein B_i^n in the power basis
     for i in range(n + 1):
-        basis[i] = P.polymul(
-            P.polypow([0.0, 1.0], i), P.polypow([1.0, -1.0], n - i)
-        )[: n + 1] * comb(n, i)
+        basis[i] = P.polymul(P.polypow([0.0, 1.0], i), P.polypow([1.0, -1.0], n - i))[
+            : n + 1
+        ] * comb(n, i)
     h = curve.homogeneous
     coef = basis.T @ h  # (n + 1, dim + 1)
     return coef[:, :-1].T, coef[:, -1]
@@ -84,6 +84,7 @@ def gradient_extrema(curve: RationalBezier) -> tuple[float, float]:
 
     f = slope(grid)
     xs = [0.0, 1.0]
+
     def scalar(t: float) -> float:
         return float(slope(t)[0])
 
