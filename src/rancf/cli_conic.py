@@ -15,7 +15,26 @@ __all__ = ["add_parsers", "MAX_ELEMENTS"]
 MAX_ELEMENTS = 1000
 
 
+#: Argument names of the geometry functions -> options of ``rancf conic``.
+_OPTIONS = {
+    "chord": "--chord",
+    "angles (theta0)": "--angles T0",
+    "angles (theta1)": "--angles T1",
+    "point": "--point",
+    "k": "--k",
+}
+
+
 def _cmd_conic(args: argparse.Namespace) -> int:
+    try:
+        return _conic(args)
+    except InputError as exc:
+        if exc.parameter not in _OPTIONS:
+            raise
+        raise InputError(_OPTIONS[exc.parameter], exc.value, exc.allowed) from None
+
+
+def _conic(args: argparse.Namespace) -> int:
     import numpy as np
 
     from rancf.elements.mapping import conic_element, kopt

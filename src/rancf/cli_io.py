@@ -60,6 +60,8 @@ def check_plot_path(path: str, option: str = "--plot") -> Path:
     if p.is_dir():
         raise InputError(option, str(p), "a file name (this path is a directory)")
     parent = p.absolute().parent
+    if parent.exists() and not parent.is_dir():
+        raise InputError(option, str(p), f"a file in a directory ({parent} is a file)")
     if not parent.is_dir():
         raise InputError(option, str(p), f"a file in an existing directory ({parent} is missing)")
     _writable(option, p, "a file in a writable directory")
