@@ -118,3 +118,15 @@ def test_modes_pendulum_removes_rigid_mode(pendulum_file, capsys):
     d = json.loads(capsys.readouterr().out)
     assert d["rigid_body_modes_removed"] == 1
     assert d["frequencies_hz"][0] > 0.1
+
+
+def test_summary_separates_setup_and_time_loop(tmp_path, pendulum_file, capsys):
+    out = tmp_path / "run"
+    assert main(["simulate", str(pendulum_file), "--out", str(out)]) == 0
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["setup_wall_time_s"] > 0 and summary["solve_wall_time_s"] > 0
+    assert summary["pid"] > 0 and summary["started_at"] and summary["updated_at"]
+    assert summary["time_per_step_s"] == pytest.approx(summary["solve_wall_time_s"] / 20)
+    line = capsys.readouterr().out
+    assert f"{1e3 * summary['time_per_step_s']:.3f} ms/step" in line
+    assert not (out / ".history").exists()

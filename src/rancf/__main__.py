@@ -1,7 +1,36 @@
-"""``python -m rancf``: the command line."""
+"""``python -m rancf`` and the ``rancf`` console script.
 
+Kept minimal: an interrupt while the command line's modules are still being imported ends with
+the same one line and exit status 130 as any later interrupt.
+"""
+
+import os
 import sys
 
-from rancf.cli import main
 
-sys.exit(main())
+def run() -> int:
+    """Import the command line and run it; Ctrl-C during the import exits 130 quietly.
+
+    After an interrupt the process ends with ``os._exit(130)`` once the output is flushed: an
+    interrupt that passed through C-level code run by an extension's import can leave CPython
+    set to re-raise SIGINT at exit, which would turn status 130 into "killed by SIGINT".
+    """
+    try:
+        from rancf.cli import main
+
+        status = main()
+    except KeyboardInterrupt:
+        print("rancf: interrupted", file=sys.stderr)
+        status = 130
+    if status == 130:
+        for stream in (sys.stdout, sys.stderr):
+            try:
+                stream.flush()
+            except (OSError, ValueError):
+                pass
+        os._exit(130)
+    return status
+
+
+if __name__ == "__main__":
+    sys.exit(run())

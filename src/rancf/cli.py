@@ -1,157 +1,146 @@
-"""The ``rancf`` command line.
+"""The ``rancf`` command line: a table of sub-commands and one error path.
 
-Every sub-command validates its input; an :class:`~rancf.errors.InputError` or
-:class:`~rancf.errors.ScenarioError` is printed on one line to standard error and the process
-exits with status 2, without a traceback.
+Sub-commands live in their own modules; each registers its parsers with an ``add_parsers(sub)``
+function listed in :data:`COMMAND_MODULES` (add a line there to add commands).  Heavy imports
+(NumPy, the compiled core, Matplotlib) happen inside the commands, so ``rancf --help`` is fast
+and an interrupt during them reaches the error path below.
+
+Every expected failure ends here as one line on standard error, ``rancf: error: ...`` naming the
+file, key or option, the value and what is allowed:
+
+* bad input (options, scenario files, geometry), unusable paths, unreadable or non-UTF-8 files,
+  too large a run: exit status 2, and nothing written;
+* a run that started and failed to converge: exit status 3 (results so far are kept);
+* Ctrl-C (SIGINT) or SIGTERM at any moment: exit status 130 (a started run keeps its files);
+* standard output closed early by the reader (``rancf conic --json | head``): exit status 141,
+  silently, as a process killed by SIGPIPE.
 """
 
 from __future__ import annotations
 
 import argparse
-import json
+import importlib
+import os
+import signal
 import sys
 from collections.abc import Callable, Sequence
+from typing import Any, NoReturn
 
-import numpy as np
+__all__ = ["main", "COMMAND_MODULES"]
 
-from rancf.errors import ConvergenceError, InputError, RancfError, ScenarioError
-
-__all__ = ["main"]
-
-
-def _cmd_conic(args: argparse.Namespace) -> int:
-    from rancf.elements.mapping import conic_element, kopt
-    from rancf.geometry.conic import conic_arc
-    from rancf.model.mesh import check_element_count, mesh_conic
-
-    conic = conic_arc(args.chord, args.angles, args.point)
-    n = check_element_count(args.elements)
-    k_opt = kopt(conic)
-    single = conic_element(conic, args.k)
-    mesh = mesh_conic(conic, n, "opt" if args.k is None else args.k, args.spacing)
-    ratios = mesh.gradient_ratios()
-    elements = []
-    for j in range(n):
-        elements.append(
-            {
-                "k": float(mesh.k[j]),
-                "weights": mesh.weights[j].tolist(),
-                "scale": float(mesh.scales[j]),
-                "nodal_coordinates": mesh.element_nodal()[j].ravel().tolist(),
-                "gradient_ratio": float(ratios[j]),
-            }
-        )
-    out = {
-        "type": conic.kind,
-        "circular": conic.is_circular(),
-        "omega": conic.omega,
-        "chord": conic.chord,
-        "angles_deg": [float(a) for a in args.angles],
-        "point": [float(p) for p in args.point],
-        "control_points": [conic.p0.tolist(), conic.p1.tolist(), conic.p2.tolist()],
-        "arc_length": conic.arc_length(),
-        "kopt": k_opt,
-        "k": single.k,
-        "gradient_ratio": single.gradient_ratio,
-        "gradient_ratio_kopt": float(conic_element(conic, k_opt).gradient_ratio),
-        "spacing": args.spacing,
-        "elements": elements,
-    }
-    if args.plot:
-        from rancf.post.conic_plots import plot_conic
-
-        plot_conic(conic, k_opt, single.k, args.plot, n)
-    if args.json:
-        print(json.dumps(out, indent=2))
-    else:
-        circ = " (circular arc)" if out["circular"] else ""
-        print(f"conic type      {conic.kind}{circ}")
-        print(f"omega           {conic.omega:.6f}")
-        print(f"arc length      {out['arc_length']:.6f} m")
-        print(f"Kopt            {k_opt:.4f}   (gradient ratio {out['gradient_ratio_kopt']:.4f})")
-        print(f"K used          {single.k:.4f}   (gradient ratio {single.gradient_ratio:.4f})")
-        print(f"weights         {np.array2string(single.weights, precision=6)}")
-        print(f"{n} element(s), {args.spacing} spacing:")
-        print("   #        K   gradient ratio    weights")
-        for j, e in enumerate(elements):
-            w = ", ".join(f"{x:.5f}" for x in e["weights"])
-            print(f"  {j:2d}  {e['k']:.4f}   {e['gradient_ratio']:14.5f}    [{w}]")
-        if args.plot:
-            print(f"plot written to {args.plot}")
-    return 0
+#: Modules that register sub-commands, in the order they appear in ``rancf --help``.
+COMMAND_MODULES = (
+    "rancf.cli_conic",
+    "rancf.cli_sim",
+    "rancf.cli_files",
+    "rancf.cli_post",
+    "rancf.cli_sweep",
+)
 
 
-def _parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(
+class UsageError(Exception):
+    """A command line argparse rejects (printed on one line, exit status 2)."""
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message: str) -> NoReturn:
+        raise UsageError(f"{message} (see `{self.prog} --help`)")
+
+
+def _version() -> str:
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("rancf")
+    except PackageNotFoundError:  # pragma: no cover - running from a source tree
+        return "0+unknown"
+
+
+class _Version(argparse.Action):
+    def __call__(self, parser: Any, namespace: Any, values: Any, option_string: Any = None) -> None:
+        print(f"rancf {_version()}")
+        parser.exit()
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The argument parser with every registered sub-command."""
+    p = _Parser(
         prog="rancf",
         description="Rational ANCF conic-section cable elements: geometry, CAD and dynamics.",
     )
-    sub = p.add_subparsers(dest="command", required=True)
-
-    c = sub.add_parser(
-        "conic",
-        help="define a conic arc from chord, end angles and one interior point",
-        description="Conic arc in the local frame P0=(0,0), P2=(L,0); reports ω, type, arc "
-        "length, Kopt and the element definition(s).",
-    )
-    c.add_argument("--chord", type=float, required=True, help="chord length L [m], > 0")
-    c.add_argument(
-        "--angles",
-        type=float,
-        nargs=2,
-        required=True,
-        metavar=("T0", "T1"),
-        help="end tangent-to-chord angles [deg], each in (0, 90)",
-    )
-    c.add_argument(
-        "--point",
-        type=float,
-        nargs=2,
-        required=True,
-        metavar=("X", "Y"),
-        help="an interior point of the arc [m], strictly inside the tangent triangle",
-    )
-    c.add_argument("--k", type=float, default=None, help="mapping factor K in (0, 1); default Kopt")
-    c.add_argument("--elements", type=int, default=1, help="number of elements (default 1)")
-    c.add_argument(
-        "--spacing",
-        choices=["arc", "parameter"],
-        default="arc",
-        help="element ends at equal arc length (default) or equal conic parameter",
-    )
-    c.add_argument("--json", action="store_true", help="print one JSON object")
-    c.add_argument("--plot", metavar="FILE.png", default=None, help="write the K-study figure")
-    c.set_defaults(func=_cmd_conic)
-
-    from rancf import cli_sim
-
-    cli_sim.add_parsers(sub)
-    cli_sim.add_study_parsers(sub)
-    from rancf import cli_post
-
-    cli_post.add_parsers(sub)
-    from rancf import cli_sweep
-
-    cli_sweep.add_parsers(sub)
+    p.add_argument("--version", action=_Version, nargs=0, help="print the version and exit")
+    sub = p.add_subparsers(dest="command", required=True, parser_class=_Parser)
+    for name in COMMAND_MODULES:
+        importlib.import_module(name).add_parsers(sub)
     return p
 
 
+def _fail(message: str, status: int) -> int:
+    print(f"rancf: {message}", file=sys.stderr)
+    return status
+
+
+def _on_sigterm(signum: int, frame: Any) -> None:
+    raise KeyboardInterrupt
+
+
 def main(argv: Sequence[str] | None = None) -> int:
-    """Entry point of the ``rancf`` console script."""
-    parser = _parser()
-    args = parser.parse_args(argv)
-    func: Callable[[argparse.Namespace], int] = args.func
+    """Entry point of the ``rancf`` console script; returns the exit status."""
+    old_term = signal.getsignal(signal.SIGTERM)
+    if old_term in (signal.SIG_DFL, None):
+        signal.signal(signal.SIGTERM, _on_sigterm)
     try:
-        return func(args)
+        return _dispatch(argv)
+    except KeyboardInterrupt:
+        signal.signal(signal.SIGINT, signal.SIG_IGN)  # a second Ctrl-C must not add a traceback
+        return _fail("interrupted", 130)
+    except BrokenPipeError:
+        _silence_stdout()
+        return 141
+    finally:
+        if old_term in (signal.SIG_DFL, None):
+            signal.signal(signal.SIGTERM, signal.SIG_DFL)
+
+
+def _dispatch(argv: Sequence[str] | None) -> int:
+    from rancf.errors import ConvergenceError, InputError, RancfError, ScenarioError
+
+    try:
+        args = build_parser().parse_args(argv)
+        func: Callable[[argparse.Namespace], int] = args.func
+        status = func(args)
+        sys.stdout.flush()
+        return status
+    except SystemExit as exc:  # --help, --version
+        return int(exc.code or 0) if not isinstance(exc.code, str) else _fail(exc.code, 2)
+    except UsageError as exc:
+        return _fail(f"error: {exc}", 2)
     except (InputError, ScenarioError) as exc:
-        print(f"rancf: error: {exc}", file=sys.stderr)
-        return 2
+        return _fail(f"error: {_one_line(exc)}", 2)
     except ConvergenceError as exc:
-        print(f"rancf: did not converge: {exc}", file=sys.stderr)
-        return 3
+        return _fail(f"did not converge: {_one_line(exc)}", 3)
     except RancfError as exc:
-        print(f"rancf: error: {exc}", file=sys.stderr)
-        return 1
+        return _fail(f"error: {_one_line(exc)}", 2)
+    except BrokenPipeError:
+        raise
+    except MemoryError:
+        return _fail("error: out of memory (make the model or the run smaller)", 2)
+    except OSError as exc:
+        where = exc.filename if exc.filename is not None else ""
+        return _fail(f"error: {where}: {exc.strerror or exc}", 2)
+
+
+def _one_line(exc: BaseException) -> str:
+    return " ".join(str(exc).split())
+
+
+def _silence_stdout() -> None:
+    """After a broken pipe, point stdout at /dev/null so the interpreter's final flush is quiet."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, ValueError):  # pragma: no cover - stdout already gone
+        pass
 
 
 if __name__ == "__main__":  # pragma: no cover

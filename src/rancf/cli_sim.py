@@ -4,17 +4,21 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
+import os
 import signal
 import sys
 import time
 from pathlib import Path
 from typing import Any
 
-import numpy as np
+from rancf.cli_io import OutputDir, atomic_path, check_out_dir, check_plot_path
+from rancf.errors import InputError, RancfError
 
-from rancf.errors import InputError
+__all__ = ["add_parsers", "dynamic_options", "DEFAULT_MAX_OUTPUT_GB"]
 
-__all__ = ["add_parsers", "dynamic_options"]
+#: Default ``--max-output-gb``: the disk a run's stored states may take.
+DEFAULT_MAX_OUTPUT_GB = 2.0
 
 
 def dynamic_options(solver: dict[str, Any]) -> Any:
@@ -35,51 +39,155 @@ def dynamic_options(solver: dict[str, Any]) -> Any:
     )
 
 
-def _cmd_simulate(args: argparse.Namespace) -> int:
-    from tqdm import tqdm
+def _process_age() -> float:
+    """Seconds since this process started (Linux ``/proc``; else since the CLI was imported)."""
+    try:
+        with open("/proc/self/stat", encoding="ascii") as fh:
+            start_ticks = int(fh.read().rsplit(")", 1)[1].split()[19])
+        with open("/proc/uptime", encoding="ascii") as fh:
+            uptime = float(fh.read().split()[0])
+        return max(0.0, uptime - start_ticks / os.sysconf("SC_CLK_TCK"))
+    except (OSError, ValueError, IndexError):  # pragma: no cover - not Linux
+        return time.monotonic() - _IMPORTED
 
+
+_IMPORTED = time.monotonic()
+
+
+def _positive(option: str, value: float, what: str) -> float:
+    if not (math.isfinite(value) and value > 0):
+        raise InputError(option, value, what)
+    return value
+
+
+def _cmd_simulate(args: argparse.Namespace) -> int:
+    every = _positive("--checkpoint-every", args.checkpoint_every, "a finite number of seconds > 0")
+    limit = _positive("--max-output-gb", args.max_output_gb, "a finite size in GB > 0")
+    out = check_out_dir(args.out)
     from rancf.model.scenario import load_scenario
-    from rancf.post.results import write_run
-    from rancf.solvers.dynamic import DynamicStatus, integrate
+    from rancf.post.history import HistoryStore, estimate_output_bytes
+    from rancf.post.results import run_summary
 
     sc = load_scenario(args.scenario)
+    opts = sc.dynamic_options()
     model = sc.build_model()
-    opts = dynamic_options(sc.solver)
-    out = Path(args.out)
-    if out.exists() and not out.is_dir():
-        raise InputError("--out", str(out), "a directory (it exists and is a file)")
-    out.mkdir(parents=True, exist_ok=True)
-    extra = {"scenario": str(Path(args.scenario).resolve())}
+    n_cols = sum(len(s.columns(model.dim)) for s in sc.sensors)
+    need = estimate_output_bytes(opts.n_outputs, model.q0.size, n_cols)
+    if need > limit * 1e9:
+        raise RunTooLargeError(
+            f"{sc.path}: this run would write about {need / 1e9:.3g} GB ({opts.n_outputs} stored "
+            f"states of {model.q0.size} coordinates), more than --max-output-gb = {limit:g}; "
+            "raise solver.output_step, shorten solver.t_end or raise the limit"
+        )
+    stop = _StopFlag()
+    with stop, OutputDir(out) as od:
+        info = {"scenario": str(Path(args.scenario).resolve()), "setup_wall_time_s": None}
+        store = HistoryStore(out, model, sc.sensors, info)
+        try:
+            store.write_summary(_running(model, 0.0))
+            od.keep()
+            res = _run(args, model, opts, store, stop, every)
+        except BaseException as exc:
+            store.finish(_broken(model, store, exc))
+            raise
+        summary = run_summary(model, res)
+        store.finish(summary)
+    return _report(args, res, {**summary, **store.info}, out)
 
-    stop = {"flag": False}
 
-    def on_sigint(signum: int, frame: Any) -> None:
-        stop["flag"] = True
+class RunTooLargeError(RancfError):
+    """A run whose stored output would exceed the ``--max-output-gb`` limit."""
 
-    old = signal.signal(signal.SIGINT, on_sigint)
-    bar = tqdm(
-        total=opts.t_end,
-        unit="s",
-        disable=args.quiet,
-        file=sys.stderr,
-        leave=False,
-        bar_format="{l_bar}{bar}| t = {n:.4g}/{total:.4g} s [{elapsed}<{remaining}]",
-    )
-    last = {"ckpt": time.monotonic()}
+
+class _StopFlag:
+    """While active, SIGINT and SIGTERM set a flag instead of raising (polled between steps)."""
+
+    def __init__(self) -> None:
+        self.flag = False
+        self._old: dict[int, Any] = {}
+
+    def __call__(self) -> bool:
+        return self.flag
+
+    def _set(self, signum: int, frame: Any) -> None:
+        self.flag = True
+
+    def __enter__(self) -> _StopFlag:
+        for sig in (signal.SIGINT, signal.SIGTERM):
+            self._old[sig] = signal.signal(sig, self._set)
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        for sig, old in self._old.items():
+            signal.signal(sig, old)
+
+
+def _running(model: Any, t: float) -> dict[str, Any]:
+    return {
+        "status": "running",
+        "message": f"running, t = {t:g} s",
+        "t_reached": t,
+        "n_elements": model.n_el,
+        "element": model.element,
+        "n_dofs": model.n,
+    }
+
+
+def _broken(model: Any, store: Any, exc: BaseException) -> dict[str, Any]:
+    """Summary of a run ended by an exception (the error path prints the message)."""
+    kind = "interrupted" if isinstance(exc, KeyboardInterrupt) else "failed"
+    return {
+        "status": kind,
+        "message": " ".join(str(exc).split()) or type(exc).__name__,
+        "outputs": store.n_outputs,
+        "n_elements": model.n_el,
+        "element": model.element,
+        "n_dofs": model.n,
+    }
+
+
+def _run(args: argparse.Namespace, model: Any, opts: Any, store: Any, stop: Any, every: float):
+    from tqdm import tqdm
+
+    from rancf.post.results import run_summary
+    from rancf.solvers.dynamic import integrate
+
+    bar: list[Any] = []
+    pace = {"next": time.monotonic() + every, "every": every}
+
+    def on_start() -> None:
+        store.info["setup_wall_time_s"] = _process_age()
+        store.checkpoint(_running(model, 0.0))  # every file exists before the first step
+        bar.append(
+            tqdm(
+                total=opts.t_end,
+                unit="s",
+                disable=args.quiet,
+                file=sys.stderr,
+                leave=False,
+                bar_format="{l_bar}{bar}| t = {n:.4g}/{total:.4g} s [{elapsed}<{remaining}]",
+            )
+        )
 
     def on_output(t: float, snapshot: Any) -> None:
-        bar.update(t - bar.n)
+        bar[0].update(t - bar[0].n)
         now = time.monotonic()
-        if now - last["ckpt"] >= args.checkpoint_every:
-            write_run(out, model, sc.sensors, snapshot(), extra)
-            last["ckpt"] = now
+        if now >= pace["next"]:
+            summary = {**run_summary(model, snapshot()), **_running(model, t)}
+            store.checkpoint(summary)
+            took = time.monotonic() - now
+            pace["next"] = time.monotonic() + max(pace["every"], 4.0 * took)
 
     try:
-        res = integrate(model, opts, on_output, lambda: stop["flag"])
+        return integrate(model, opts, on_output, stop, sink=store, on_start=on_start)
     finally:
-        bar.close()
-        signal.signal(signal.SIGINT, old)
-    summary = write_run(out, model, sc.sensors, res, extra)
+        if bar:
+            bar[0].close()
+
+
+def _report(args: argparse.Namespace, res: Any, summary: dict[str, Any], out: Path) -> int:
+    from rancf.solvers.dynamic import DynamicStatus
+
     if res.status is DynamicStatus.FAILED:
         print(f"rancf: simulation failed: {res.message} (written to {out})", file=sys.stderr)
         return 3
@@ -87,11 +195,11 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         print(f"rancf: {res.message}; results so far written to {out}", file=sys.stderr)
         return 130
     if not args.quiet:
+        per_step = summary["time_per_step_s"] or 0.0
         print(
             f"{summary['status']}: t = {summary['t_reached']:g} s, {summary['steps']} steps, "
             f"{summary['newton_iterations']} Newton iterations, "
-            f"{summary['solve_wall_time_s']:.3f} s ({1e3 * summary['time_per_step_s']:.3f} ms/step)"
-            f" -> {out}"
+            f"{summary['solve_wall_time_s']:.3f} s ({1e3 * per_step:.3f} ms/step) -> {out}"
         )
     return 0
 
@@ -125,24 +233,39 @@ def _cmd_static(args: argparse.Namespace) -> int:
 
 
 def _cmd_modes(args: argparse.Namespace) -> int:
+    import numpy as np
+
     from rancf.model.scenario import load_scenario
     from rancf.solvers.modal import natural_modes
     from rancf.solvers.static import solve_static
 
+    plot = check_plot_path(args.plot) if args.plot else None
+    if args.count is not None and args.count < 1:
+        raise InputError("--count", args.count, "an integer >= 1")
     sc = load_scenario(args.scenario)
     model = sc.build_model()
     about = args.about or sc.data["modes"]["about"]
     count = args.count if args.count is not None else sc.data["modes"]["count"]
-    if count < 1:
-        raise InputError("--count", count, "an integer >= 1")
+    key = "--count" if args.count is not None else f"{sc.path}: modes.count"
+    n_free = int(np.sum(~model.fixed))
+    if count > n_free:
+        raise InputError(key, count, f"at most {n_free} (the free coordinates of this model)")
     y = None
     if about == "static":
         y = solve_static(model, sc.solver["load_steps"]).y
     res = natural_modes(model, y, count)
-    if args.plot:
+    if res.frequencies_hz.size < count:
+        raise InputError(
+            key,
+            count,
+            f"at most {res.frequencies_hz.size}: this model has {n_free} free coordinates and "
+            f"{res.n_rigid} rigid-body mode(s), which are removed",
+        )
+    if plot is not None:
         from rancf.post.plots import plot_modes
 
-        plot_modes(model, res, args.plot, y)
+        with atomic_path(plot) as tmp:
+            plot_modes(model, res, tmp, y)
     out = {
         "frequencies_hz": res.frequencies_hz.tolist(),
         "rigid_body_modes_removed": res.n_rigid,
@@ -180,6 +303,14 @@ def add_parsers(sub: Any) -> None:
         metavar="SECONDS",
         help="write the result files every SECONDS of wall time while running (default 10)",
     )
+    s.add_argument(
+        "--max-output-gb",
+        type=float,
+        default=DEFAULT_MAX_OUTPUT_GB,
+        metavar="GB",
+        help="refuse a run whose stored states would need more disk than this "
+        f"(default {DEFAULT_MAX_OUTPUT_GB:g})",
+    )
     s.set_defaults(func=_cmd_simulate)
 
     st = sub.add_parser("static", help="static equilibrium of a scenario (Newton, load steps)")
@@ -201,63 +332,3 @@ def add_parsers(sub: Any) -> None:
     m.add_argument("--json", action="store_true", help="print one JSON object")
     m.add_argument("--plot", metavar="FILE.png", default=None, help="write mode-shape plots")
     m.set_defaults(func=_cmd_modes)
-
-
-def _cmd_example(args: argparse.Namespace) -> int:
-    from rancf.studies import EXAMPLES, study_runner
-    from rancf.studies.common import example_path
-
-    if args.action == "list":
-        for name, what in EXAMPLES.items():
-            print(f"{name:18s} paper {what}  ({example_path(name).name})")
-        return 0
-    if args.name is None:
-        raise InputError("NAME", None, f"an example name: {', '.join(EXAMPLES)}")
-    runner = study_runner(args.name)
-    if args.out is None:
-        raise InputError("--out", None, "an output directory")
-    return _run_studies([args.name], [runner], Path(args.out), args.quick)
-
-
-def _cmd_report(args: argparse.Namespace) -> int:
-    from rancf.studies import EXAMPLES, study_runner
-
-    names = list(EXAMPLES)
-    return _run_studies(names, [study_runner(n) for n in names], Path(args.out), args.quick)
-
-
-def _run_studies(names: list[str], runners: list[Any], out: Path, quick: bool) -> int:
-    from rancf.post.report import write_report
-
-    out.mkdir(parents=True, exist_ok=True)
-    done = []
-    for name, runner in zip(names, runners, strict=True):
-        folder = out / name
-        print(f"running {name}{' (quick)' if quick else ''} ...", file=sys.stderr)
-        res = runner(folder, quick)
-        res.write_comparison_csv(folder)
-        done.append((res, folder))
-        print(f"  {name}: {len(res.figures)} figures, {res.wall_time_s:.1f} s", file=sys.stderr)
-        for c in res.comparison:
-            print(f"    {c.quantity:60s} paper {c.paper:>10s}   ours {c.ours}")
-    path = write_report(out, done, quick)
-    print(f"report written to {path}")
-    return 0
-
-
-def add_study_parsers(sub: Any) -> None:
-    """Register ``example`` and ``report``."""
-    e = sub.add_parser("example", help="list or run the paper's examples")
-    e.add_argument("action", choices=["list", "run"])
-    e.add_argument("name", nargs="?", default=None, help="example name (see `rancf example list`)")
-    e.add_argument("--out", default=None, help="output directory")
-    e.add_argument(
-        "--quick", action="store_true", help="reduced runs (fewer elements, shorter time)"
-    )
-    e.set_defaults(func=_cmd_example)
-    r = sub.add_parser("report", help="run every example and write one HTML report")
-    r.add_argument("--out", required=True, help="output directory")
-    r.add_argument(
-        "--quick", action="store_true", help="reduced runs (fewer elements, shorter time)"
-    )
-    r.set_defaults(func=_cmd_report)

@@ -163,7 +163,7 @@ def test_missing_ocp_message(monkeypatch, tmp_path, capsys):
 
     monkeypatch.setitem(sys.modules, "OCP", None)
     (tmp_path / "x.step").write_text("ISO-10303-21;")
-    assert main(["cad", "list", str(tmp_path / "x.step")]) == 1
+    assert main(["cad", "list", str(tmp_path / "x.step")]) == 2
     err = capsys.readouterr().err
     assert err == (
         "rancf: error: STEP and IGES files need the optional package 'OCP': "

@@ -55,7 +55,7 @@ def test_kopt_per_element_and_single_k(example1):
     m = mesh_conic(example1, 4)
     for j in range(4):
         sub = example1.sub_arc(m.parameters[j], m.parameters[j + 1])
-        assert m.k[j] == pytest.approx(kopt(sub), abs=1e-9)
+        assert m.k[j] == pytest.approx(kopt(sub), abs=1e-6)  # vectorized Kopt (conic_chain)
     assert np.all(m.k > 0.4) and np.all(m.gradient_ratios() < 1.01)
     m2 = mesh_conic(example1, 4, 0.3)
     assert np.all(m2.k == 0.3)

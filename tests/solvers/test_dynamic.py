@@ -79,7 +79,7 @@ def test_adaptive_steps_track_fixed_steps():
     assert adapt.status is DynamicStatus.COMPLETED
     assert np.allclose(adapt.t, fixed.t)
     assert np.abs(adapt.q - fixed.q).max() < 5e-4
-    assert len(set(np.round(adapt.steps, 12))) > 1
+    assert adapt.min_step_taken < adapt.max_step_taken
 
 
 def test_failed_newton_keeps_what_was_computed():

@@ -25,18 +25,20 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from rancf.elements.cable import cable_shape_functions, nodal_from_bezier
-from rancf.elements.mapping import gradient_ratio, kopt
+from rancf.elements.cable import cable_shape_functions
+from rancf.elements.mapping import gradient_ratio
 from rancf.errors import ElementCountError, InputError
 from rancf.geometry.bezier import RationalBezier
 from rancf.geometry.conic import Conic, check_mapping_factor
 from rancf.geometry.nurbs import NurbsCurve
-from rancf.geometry.quadrature import integrate
+from rancf.geometry.quadrature import integrate_many
+from rancf.model.conic_chain import arc_breakpoints, cubic_forms, kopt_many, sub_arcs
 
 __all__ = [
     "CableMesh",
     "check_element_count",
     "mesh_from_curves",
+    "mesh_from_arrays",
     "mesh_conic",
     "mesh_line",
     "mesh_nurbs",
@@ -150,23 +152,43 @@ class CableMesh:
         n = cable_shape_functions(self.weights, self.scales, xi)[order]
         return np.einsum("eqk,ekd->eqd", n, self.element_nodal(q))
 
+    def control_points(self) -> NDArray[np.float64]:
+        """Rational Bézier control points of every element ``(n_el, 4, dim)`` (reference)."""
+        e = self.element_nodal()
+        w, sc = self.weights, self.scales
+        a = (sc * w[:, 0] / (3.0 * w[:, 1]))[:, None]
+        b = (sc * w[:, 3] / (3.0 * w[:, 2]))[:, None]
+        return np.stack([e[:, 0], e[:, 0] + a * e[:, 1], e[:, 2] - b * e[:, 3], e[:, 2]], axis=1)
+
     def arc_lengths(self) -> NDArray[np.float64]:
-        """Reference arc length of each element (adaptive quadrature)."""
-        out = np.empty(self.n_elements)
-        for j in range(self.n_elements):
-            w, s = self.weights[j : j + 1], self.scales[j : j + 1]
-            nod = self.element_nodal()[j]
-
-            def speed(x: NDArray, w=w, s=s, nod=nod) -> NDArray:
-                return np.linalg.norm(cable_shape_functions(w, s, x)[1][0] @ nod, axis=1)
-
-            out[j] = integrate(speed, 0.0, 1.0, rtol=1e-13)
-        return out
+        """Reference arc length of each element (adaptive quadrature, all elements at once)."""
+        return _arc_lengths(self.control_points(), self.weights)
 
 
-def _end_derivatives(curve: RationalBezier) -> tuple[NDArray, NDArray]:
-    w, q = curve.weights, curve.points
-    return 3.0 * w[1] / w[0] * (q[1] - q[0]), 3.0 * w[2] / w[3] * (q[3] - q[2])
+def cubic_speed(points: NDArray, weights: NDArray, xi: NDArray) -> NDArray[np.float64]:
+    """``|r_ξ|`` of rational cubics ``(points (n, 4, dim), weights (n, 4))`` at ``xi (n, m)``.
+
+    Points are taken relative to each curve's start, so short curves far from the origin keep
+    full relative precision.
+    """
+    points = points - points[:, :1]
+    b = np.stack([(1 - xi) ** 3, 3 * xi * (1 - xi) ** 2, 3 * xi**2 * (1 - xi), xi**3], axis=-1)
+    db = np.stack(
+        [-3 * (1 - xi) ** 2, 3 * (1 - xi) * (1 - 3 * xi), 3 * xi * (2 - 3 * xi), 3 * xi**2], axis=-1
+    )
+    hw = weights[:, None, :]
+    d = np.sum(b * hw, axis=-1)
+    dd = np.sum(db * hw, axis=-1)
+    a = np.einsum("nmk,nkd->nmd", b * hw, points)
+    da = np.einsum("nmk,nkd->nmd", db * hw, points)
+    return np.linalg.norm(da * d[..., None] - a * dd[..., None], axis=-1) / d**2
+
+
+def _arc_lengths(points: NDArray, weights: NDArray) -> NDArray[np.float64]:
+    n = points.shape[0]
+    return integrate_many(
+        lambda i, x: cubic_speed(points[i], weights[i], x), np.zeros(n), np.ones(n), rtol=1e-13
+    )
 
 
 def mesh_from_curves(
@@ -178,60 +200,98 @@ def mesh_from_curves(
 ) -> CableMesh:
     """Chain of rational cubic curves → mesh with consistent shared nodes (math note sec. 6).
 
-    Raises
-    ------
-    InputError
-        If adjacent curves do not meet, or their tangents at the joint are not parallel
-        (a kink cannot be represented by one shared nodal gradient).
+    See :func:`mesh_from_arrays` (this takes a list of :class:`RationalBezier` cubics).
     """
     if not curves:
         raise ElementCountError("elements", 0, "at least one element")
-    n_el = len(curves)
-    ends = [_end_derivatives(c) for c in curves]
-    g0 = np.array([np.linalg.norm(d0) for d0, _ in ends])
-    g1 = np.array([np.linalg.norm(d1) for _, d1 in ends])
-    size = max(float(np.abs(np.concatenate([c.points for c in curves])).max()), 1e-300)
-    for j in range(n_el - 1):
-        gap = np.linalg.norm(curves[j].points[-1] - curves[j + 1].points[0])
-        t_a = ends[j][1] / g1[j]
-        t_b = ends[j + 1][0] / g0[j + 1]
-        if gap > 1e-10 * size or np.linalg.norm(t_a - t_b) > 1e-8:
-            raise InputError(
-                "geometry",
-                f"joint {j + 1}: gap {gap:.3g}, tangent jump {np.linalg.norm(t_a - t_b):.3g}",
-                "a tangent-continuous chain of curves (shared end points, parallel end tangents)",
-            )
-    scales = np.empty(n_el)
-    m = 1.0
-    for j in range(n_el):
-        scales[j] = g0[j] / m
-        m = g1[j] / scales[j]
-    if total_length is None:
-        total_length = 0.0
-        for c in curves:
-            total_length += integrate(
-                lambda x, c=c: np.linalg.norm(c.derivatives(x, 1)[1], axis=1), 0.0, 1.0, rtol=1e-13
-            )
-    scales *= total_length / scales.sum()
-    nodes = np.empty((n_el + 1, 2, curves[0].dim))
-    for j, c in enumerate(curves):
-        e = nodal_from_bezier(c, float(scales[j]))
-        nodes[j] = e[:2]
-        if j == n_el - 1:
-            nodes[j + 1] = e[2:]
+    for c in curves:
+        if c.degree != 3:
+            raise InputError("curve.degree", c.degree, "cubic (degree 3) rational Bézier curves")
+    points = np.array([c.points for c in curves])
     weights = np.array([c.weights for c in curves])
-    span = float(
-        np.max(np.linalg.norm(nodes[:, 1], axis=1)) / np.min(np.linalg.norm(nodes[:, 1], axis=1))
+    return mesh_from_arrays(points, weights, k, parameters, kind, total_length)
+
+
+def mesh_from_arrays(
+    points: NDArray,
+    weights: NDArray,
+    k: ArrayLike | None = None,
+    parameters: ArrayLike | None = None,
+    kind: Literal["rancf", "ancf"] = "rancf",
+    total_length: float | None = None,
+) -> CableMesh:
+    """Chain of rational cubics ``(points (n_el, 4, dim), weights (n_el, 4))`` → mesh.
+
+    Vectorized over the elements (O(n_el)).  The gradient-scale walk
+    ``l_e = g0_e / m_e``, ``m_{e+1} = g1_e / l_e`` is a cumulative product.
+
+    Raises
+    ------
+    InputError
+        If adjacent curves do not meet, their tangents at a joint are not parallel (a kink
+        cannot be represented by one shared nodal gradient), or a curve is degenerate (a
+        vanishing derivative somewhere, e.g. from coincident control points).
+    """
+    points = np.asarray(points, dtype=float)
+    weights = np.asarray(weights, dtype=float)
+    n_el = points.shape[0]
+    if n_el == 0:
+        raise ElementCountError("elements", 0, "at least one element")
+    size = max(
+        float(np.abs(points).max()),
+        float(np.ptp(points.reshape(-1, points.shape[-1]), axis=0).max()),
+        1e-300,
     )
+    xi = np.broadcast_to(np.linspace(0.0, 1.0, 9), (n_el, 9))
+    speed = cubic_speed(points, weights, xi)
+    chord = np.linalg.norm(points[:, 3] - points[:, 0], axis=1)
+    bad = ~np.all(np.isfinite(speed), axis=1) | (
+        speed.min(axis=1) <= 1e-9 * np.maximum(chord, 1e-12 * size)
+    )
+    if np.any(bad):
+        j = int(np.argmax(bad))
+        raise InputError(
+            "geometry",
+            f"element {j}: |dr/dxi| = {float(np.nanmin(speed[j])):.3g} somewhere",
+            "a regular curve (no vanishing derivative: distinct, non-coincident control points)",
+        )
+    d0 = 3.0 * (weights[:, 1] / weights[:, 0])[:, None] * (points[:, 1] - points[:, 0])
+    d1 = 3.0 * (weights[:, 2] / weights[:, 3])[:, None] * (points[:, 3] - points[:, 2])
+    g0, g1 = np.linalg.norm(d0, axis=1), np.linalg.norm(d1, axis=1)
+    gap = np.linalg.norm(points[:-1, 3] - points[1:, 0], axis=1)
+    jump = np.linalg.norm(d1[:-1] / g1[:-1, None] - d0[1:] / g0[1:, None], axis=1)
+    bad = (gap > 1e-10 * size) | (jump > 1e-8)
+    if np.any(bad):
+        j = int(np.argmax(bad))
+        raise InputError(
+            "geometry",
+            f"joint {j + 1}: gap {gap[j]:.3g}, tangent jump {jump[j]:.3g}",
+            "a tangent-continuous chain of curves (shared end points, parallel end tangents)",
+        )
+    log_m = np.concatenate([[0.0], np.cumsum(np.log(g1[:-1]) - np.log(g0[:-1]))])
+    scales = g0 * np.exp(-log_m)
+    if total_length is None:
+        total_length = float(_arc_lengths(points, weights).sum())
+    scales *= total_length / scales.sum()
+    a = 3.0 * weights[:, 1] / (weights[:, 0] * scales)
+    b = 3.0 * weights[:, 2] / (weights[:, 3] * scales)
+    nodes = np.empty((n_el + 1, 2, points.shape[2]))
+    nodes[:-1, 0] = points[:, 0]
+    nodes[:-1, 1] = a[:, None] * (points[:, 1] - points[:, 0])
+    nodes[-1, 0] = points[-1, 3]
+    nodes[-1, 1] = b[-1] * (points[-1, 3] - points[-1, 2])
+    mags = np.linalg.norm(nodes[:, 1], axis=1)
+    span = float(mags.max() / mags.min())
+    kk = np.full(n_el, np.nan) if k is None else np.asarray(k, dtype=float)
     if span > GRADIENT_SPAN_WARNING:
+        fixed = bool(np.all(np.isfinite(kk))) and np.ptp(kk) == 0.0
         logger.warning(
-            "nodal gradient magnitudes span a factor %.3g over %d elements: with one fixed K far "
-            "from Kopt the consistent shared nodes grow geometrically along the chain and the "
-            "model is badly conditioned; use k='opt' or fewer elements",
+            "nodal gradient magnitudes span a factor %.3g over %d elements: the consistent "
+            "shared nodes grow along the chain and the model is badly conditioned; %s",
             span,
             n_el,
+            "use k='opt' or fewer elements" if fixed else "use fewer elements",
         )
-    kk = np.full(n_el, np.nan) if k is None else np.asarray(k, dtype=float)
     par = np.linspace(0.0, 1.0, n_el + 1) if parameters is None else np.asarray(parameters, float)
     return CableMesh(nodes, weights, scales, kind, kk, par)
 
@@ -246,15 +306,13 @@ def conic_breakpoints(conic: Conic, n: int, spacing: Spacing = "arc") -> NDArray
         return np.linspace(0.0, 1.0, n + 1)
     if spacing != "arc":
         raise InputError("spacing", spacing, 'one of "arc", "parameter"')
-    total = conic.arc_length()
-    u = conic.parameters_at_arc_lengths(total * np.arange(1, n) / n)
-    return np.concatenate([[0.0], u, [1.0]])
+    return arc_breakpoints(conic, n)
 
 
 def mesh_conic(
     conic: Conic, n: int, k: float | str | None = None, spacing: Spacing = "arc"
 ) -> CableMesh:
-    """Exact subdivision of a conic arc into ``n`` RANCF conic-section elements.
+    """Exact subdivision of a conic arc into ``n`` RANCF conic-section elements (O(n)).
 
     Parameters
     ----------
@@ -262,18 +320,19 @@ def mesh_conic(
     n : int
         Number of elements (>= 1).
     k : float, "opt" or None
-        One mapping factor for every element, or Kopt of each sub-arc (``"opt"``/None).
+        One mapping factor for every element, or Kopt of each sub-arc (``"opt"``/None;
+        :func:`rancf.model.conic_chain.kopt_many`).
     spacing : {"arc", "parameter"}
     """
     n = check_element_count(n)
     u = conic_breakpoints(conic, n, spacing)
-    subs = [conic.sub_arc(u[j], u[j + 1]) for j in range(n)]
+    pts, om = sub_arcs(conic, u)
     if k is None or (isinstance(k, str) and k == "opt"):
-        ks = np.array([kopt(s) for s in subs])
+        ks = kopt_many(pts, om)
     else:
         ks = np.full(n, check_mapping_factor(k))  # type: ignore[arg-type]
-    curves = [s.cubic(kk) for s, kk in zip(subs, ks, strict=True)]
-    return mesh_from_curves(curves, ks, u, "rancf", total_length=conic.arc_length())
+    cp, w = cubic_forms(pts, om, ks)
+    return mesh_from_arrays(cp, w, ks, u, "rancf", total_length=conic.arc_length())
 
 
 def mesh_line(start: ArrayLike, end: ArrayLike, n: int) -> CableMesh:
@@ -287,14 +346,10 @@ def mesh_line(start: ArrayLike, end: ArrayLike, n: int) -> CableMesh:
     if not length > 0.0:
         raise InputError("end", b.tolist(), "a point different from start (length > 0)")
     t = np.linspace(0.0, 1.0, n + 1)
-    pts = a + t[:, None] * (b - a)
-    curves = [
-        RationalBezier(
-            np.array([pts[j] + f * (pts[j + 1] - pts[j]) for f in (0, 1 / 3, 2 / 3, 1)]), np.ones(4)
-        )
-        for j in range(n)
-    ]
-    return mesh_from_curves(curves, None, t, "ancf", total_length=length)
+    f = t[:-1, None] + np.array([0.0, 1.0, 2.0, 3.0])[None, :] / (3.0 * n)
+    f[:, -1] = t[1:]
+    pts = a + f[..., None] * (b - a)
+    return mesh_from_arrays(pts, np.ones((n, 4)), None, t, "ancf", total_length=length)
 
 
 def mesh_nurbs(curve: NurbsCurve, n_per_span: int = 1) -> CableMesh:

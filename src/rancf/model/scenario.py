@@ -11,17 +11,32 @@ import tomllib
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from rancf.errors import InputError, ScenarioError
-from rancf.model.system import Material, Model, PointLoad, Section, Support
 
-__all__ = ["Scenario", "load_scenario", "parse_scenario", "Sensor"]
+if TYPE_CHECKING:
+    from rancf.model.system import Model
+    from rancf.solvers.dynamic import DynamicOptions
+
+__all__ = ["Scenario", "load_scenario", "parse_scenario", "Sensor", "MAX_ELEMENTS", "K_RANGE"]
 
 _REQ = object()  # marker: required key
+
+#: Largest ``mesh.elements`` (and total number of elements of a NURBS mesh).
+MAX_ELEMENTS = 1_000_000
+#: The mapping factors a scenario may fix (``mesh.k``); outside, the cubic form degenerates.
+K_RANGE = (1e-4, 1.0 - 1e-4)
+#: Keys of ``[geometry]`` for each kind.
+GEOMETRY_KEYS = {
+    "conic": ("start", "end", "angles_deg", "point"),
+    "line": ("start", "end"),
+    "nurbs": ("degree", "knots", "control_points", "weights"),
+    "cad": ("file", "curve"),
+}
 
 
 @dataclass(frozen=True)
@@ -62,7 +77,21 @@ class Scenario:
 
     def build_model(self) -> Model:
         """Mesh the geometry and assemble the model (errors name the scenario key)."""
-        return _guard(self.path, "model", lambda: _build(self))
+        from rancf.model.scenario_model import build_model
+
+        return build_model(self)
+
+    def dynamic_options(self) -> DynamicOptions:
+        """:class:`~rancf.solvers.dynamic.DynamicOptions` of the ``[solver]`` table."""
+        return _guard(self.path, "solver", lambda: _dynamic_options(self.solver))
+
+
+def _dynamic_options(sv: dict[str, Any]) -> DynamicOptions:
+    from rancf.solvers.dynamic import DynamicOptions
+
+    keys = ("t_end", "step", "rho_inf", "adaptive", "rtol", "min_step", "output_step")
+    keys += ("newton_tol", "max_newton", "newton")
+    return DynamicOptions(**{k: sv[k] for k in keys})
 
 
 # ---------------------------------------------------------------------------- schema helpers
@@ -137,7 +166,15 @@ def _guard(path: str, key: str, fn: Callable[[], Any]) -> Any:
     except ScenarioError:
         raise
     except InputError as exc:
-        raise _err(path, exc.parameter, str(exc)) from None
+        raise _err(path, exc.parameter, f"{exc.allowed} (got {_show(exc.value)})") from None
+
+
+def _show(value: Any) -> str:
+    if isinstance(value, float):
+        return f"{value:.6g}"
+    if isinstance(value, np.ndarray):
+        return np.array2string(value, precision=6, separator=", ").replace("\n", "")
+    return str(value) if isinstance(value, str) else repr(value)
 
 
 _TOP = (
@@ -159,9 +196,16 @@ def load_scenario(path: str | Path) -> Scenario:
     """Read and validate a TOML scenario file."""
     p = Path(path)
     try:
-        text = p.read_text(encoding="utf-8")
+        data = p.read_bytes()
     except OSError as exc:
         raise _err(str(p), "file", f"cannot be read: {exc.strerror}") from None
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        line = data[: exc.start].count(b"\n") + 1
+        raise _err(
+            str(p), "file", f"is not UTF-8 text (byte {exc.start}, line {line}); save it as UTF-8"
+        ) from None
     try:
         raw = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -196,7 +240,14 @@ def parse_scenario(raw: dict[str, Any], path: str = "<scenario>") -> Scenario:
             "curve": None,
         },
     )
-    kind = _choice(path, "geometry.kind", g["kind"], ("conic", "line", "nurbs", "cad"))
+    kind = _choice(path, "geometry.kind", g["kind"], tuple(GEOMETRY_KEYS))
+    for k in g:
+        if k != "kind" and g[k] is not None and k not in GEOMETRY_KEYS[kind]:
+            raise _err(
+                path,
+                f"geometry.{k}",
+                f"does not apply to kind = {kind!r} (its keys: {', '.join(GEOMETRY_KEYS[kind])})",
+            )
     if kind == "cad":
         from rancf.model.cad_geometry import parse_cad_geometry
 
@@ -219,8 +270,17 @@ def parse_scenario(raw: dict[str, Any], path: str = "<scenario>") -> Scenario:
             if g[k] is None:
                 raise _err(path, f"geometry.{k}", "required key is missing for kind = 'nurbs'")
         g["degree"] = _integer(path, "geometry.degree", g["degree"], 2)
+        if g["degree"] > 3:
+            raise _err(path, "geometry.degree", f"must be 2 or 3, got {g['degree']!r}")
         if not isinstance(g["control_points"], list) or not g["control_points"]:
             raise _err(path, "geometry.control_points", "must be a list of points")
+        if len(g["control_points"]) < g["degree"] + 1:
+            raise _err(
+                path,
+                "geometry.control_points",
+                f"a NURBS of degree {g['degree']} needs at least {g['degree'] + 1} control "
+                f"points, got {len(g['control_points'])}",
+            )
         first = _vector(path, "geometry.control_points[0]", g["control_points"][0], (2, 3))
         dim = len(first)
         g["control_points"] = [
@@ -247,19 +307,25 @@ def parse_scenario(raw: dict[str, Any], path: str = "<scenario>") -> Scenario:
             "element": "rancf",
             "k": "opt",
             "spacing": "arc",
-            "quadrature_points": 10,
+            "quadrature_points": None,
         },
     )
     m["elements"] = _integer(path, "mesh.elements", m["elements"], 1)
+    if m["elements"] > MAX_ELEMENTS:
+        raise _err(path, "mesh.elements", f"must be at most {MAX_ELEMENTS}, got {m['elements']!r}")
     m["element"] = _choice(path, "mesh.element", m["element"], ("rancf", "ancf", "beam"))
     if m["k"] != "opt":
         k = _number(path, "mesh.k", m["k"])
-        if not 0 < k < 1:
-            raise _err(path, "mesh.k", f'must be "opt" or a number in (0, 1), got {m["k"]!r}')
+        lo, hi = K_RANGE
+        if not lo <= k <= hi:
+            raise _err(path, "mesh.k", f'must be "opt" or a number in [{lo:g}, {hi:g}], got {k!r}')
         m["k"] = k
     m["spacing"] = _choice(path, "mesh.spacing", m["spacing"], ("arc", "parameter"))
     if m["quadrature_points"] is not None:
-        m["quadrature_points"] = _integer(path, "mesh.quadrature_points", m["quadrature_points"], 2)
+        q = _integer(path, "mesh.quadrature_points", m["quadrature_points"], 2)
+        if q > 64:
+            raise _err(path, "mesh.quadrature_points", f"must be at most 64, got {q!r}")
+        m["quadrature_points"] = q
     if m["element"] == "beam" and dim != 2:
         raise _err(path, "mesh.element", "the beam element is planar: use 2-coordinate geometry")
     d["mesh"] = m
@@ -361,6 +427,7 @@ def parse_scenario(raw: dict[str, Any], path: str = "<scenario>") -> Scenario:
     sv["max_newton"] = _integer(path, "solver.max_newton", sv["max_newton"], 1)
     sv["newton"] = _choice(path, "solver.newton", sv["newton"], ("full", "modified"))
     d["solver"] = sv
+    _guard(path, "solver", lambda: _dynamic_options(sv))
 
     md = _table(path, "modes", raw.get("modes", {}), {"count": 6, "about": "reference"})
     md["count"] = _integer(path, "modes.count", md["count"], 1)
@@ -395,67 +462,3 @@ def parse_scenario(raw: dict[str, Any], path: str = "<scenario>") -> Scenario:
             nodes = (_place(path, f"sensors[{i}].at", t["at"]),)
         sensors.append(Sensor(t["name"], kd, nodes))
     return Scenario(path, d, dim, tuple(sensors))
-
-
-def _geometry_mesh(sc: Scenario) -> Any:
-    from rancf.geometry.conic import conic_arc_through
-    from rancf.geometry.nurbs import NurbsCurve
-    from rancf.model.mesh import mesh_conic, mesh_line, mesh_nurbs
-
-    g, m = sc.data["geometry"], sc.data["mesh"]
-    if g["kind"] == "conic":
-        conic = conic_arc_through(g["start"], g["end"], g["angles_deg"], g["point"])
-        return mesh_conic(conic, m["elements"], m["k"], m["spacing"])
-    if g["kind"] == "line":
-        return mesh_line(g["start"], g["end"], m["elements"])
-    if g["kind"] == "cad":
-        from rancf.model.cad_geometry import mesh_curve_chain
-
-        return mesh_curve_chain(g["curves"], g["labels"], m["elements"])
-    pts = np.array(g["control_points"])
-    w = np.ones(len(pts)) if g["weights"] is None else np.array(g["weights"])
-    return mesh_nurbs(NurbsCurve(g["degree"], np.array(g["knots"]), pts, w), m["elements"])
-
-
-def _build(sc: Scenario) -> Model:
-    d = sc.data
-    mesh = _guard(sc.path, "geometry", lambda: _geometry_mesh(sc))
-    n_nodes = mesh.n_nodes
-    # node references are checked against the mesh first, naming the scenario key
-    for i, t in enumerate(d["supports"]):
-        _check_node(sc, n_nodes, f"supports[{i}].at", t["at"])
-    for i, t in enumerate(d["loads"]["point"]):
-        _check_node(sc, n_nodes, f"loads.point[{i}].at", t["at"])
-    for sn in sc.sensors:
-        for nd in sn.nodes:
-            _check_node(sc, n_nodes, f"sensors.{sn.name}", nd)
-    v0 = {
-        _check_node(sc, n_nodes, f"initial_velocity[{i}].at", t["at"]): t["value"]
-        for i, t in enumerate(d["initial_velocity"])
-    }
-    s = d["section"]
-    section = (
-        Section.circular(s["radius"])
-        if s["radius"] is not None
-        else Section(s["area"], s["inertia"])
-    )
-    return Model(
-        mesh,
-        d["mesh"]["element"],
-        section,
-        Material(d["material"]["density"], d["material"]["youngs_modulus"]),
-        [Support(t["at"], t["kind"]) for t in d["supports"]],
-        d["loads"]["gravity"],
-        [PointLoad(t["at"], tuple(t["force"]), t["frequency_hz"]) for t in d["loads"]["point"]],
-        d["damping"]["mass_proportional"],
-        v0,
-        d["mesh"]["quadrature_points"],
-    )
-
-
-def _check_node(sc: Scenario, n_nodes: int, key: str, node: int) -> int:
-    if not -n_nodes <= node < n_nodes:
-        raise _err(
-            sc.path, key, f"node {node} does not exist (the mesh has nodes 0..{n_nodes - 1})"
-        )
-    return node % n_nodes

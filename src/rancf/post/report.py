@@ -7,6 +7,7 @@ import datetime
 import html
 import json
 import platform
+import re
 from collections.abc import Sequence
 from pathlib import Path
 
@@ -26,6 +27,23 @@ figcaption { font-style: italic; color: #555; }
 img { max-width: 100%; border: 1px solid #ddd; }
 .note { background: #f7f7f0; border-left: 4px solid #c9b458; padding: 0.5em 1em; margin: 1em 0; }
 """
+
+
+#: Tables longer than this are collapsed (``<details>``).
+_LONG_TABLE = 20
+
+_CITATION = (
+    "The studies reproduce the numerical examples (sections 6.1–6.3) of the paper on rational "
+    "ANCF conic-section cable elements that rancf implements; the CAD conversions follow "
+    "Sanborn &amp; Shabana (2009), <i>A rational finite element method based on the absolute "
+    "nodal coordinate formulation</i>, Nonlinear Dynamics."
+)
+
+
+def _text(s: str) -> str:
+    """Escaped HTML with reStructuredText ``literals`` shown as code, not as backticks."""
+    out = html.escape(s)
+    return re.sub(r"``(.+?)``|`(.+?)`", lambda m: f"<code>{m.group(1) or m.group(2)}</code>", out)
 
 
 def _table(header: Sequence[str], rows: Sequence[Sequence[object]]) -> str:
@@ -58,23 +76,26 @@ def write_report(out: str | Path, studies: Sequence[tuple[StudyResult, Path]], q
             f"<p>Wall time {s.wall_time_s:.1f} s; files in <code>{folder.name}/</code>.</p>"
         )
         for note in s.notes:
-            parts.append(f"<div class='note'>{html.escape(note)}</div>")
-        for title, header, rows, filename in s.tables:
-            parts.append(f"<h3>{html.escape(title)} <small>({html.escape(filename)})</small></h3>")
-            parts.append(_table(header, rows))
-        for caption, filename in s.figures:
+            parts.append(f"<div class='note'>{_text(note)}</div>")
+        for caption, filename in s.figures:  # figures first, then the tables
             data = base64.b64encode((folder / filename).read_bytes()).decode("ascii")
             parts.append(
                 f"<figure><img alt='{html.escape(caption)}' src='data:image/png;base64,{data}'>"
-                f"<figcaption>{html.escape(caption)} ({html.escape(filename)})</figcaption>"
+                f"<figcaption>{_text(caption)} ({html.escape(filename)})</figcaption>"
                 "</figure>"
             )
+        for title, header, rows, filename in s.tables:
+            head = f"{_text(title)} <small>({html.escape(filename)}, {len(rows)} rows)</small>"
+            if len(rows) > _LONG_TABLE:
+                parts.append(f"<details><summary>{head}</summary>{_table(header, rows)}</details>")
+            else:
+                parts.append(f"<h3>{head}</h3>{_table(header, rows)}")
         summary[s.name] = {
             "wall_time_s": s.wall_time_s,
             "comparison": [c.__dict__ for c in s.comparison],
             "figures": [f for _, f in s.figures],
         }
-    parts.append("</body></html>")
+    parts.append(f"<h2>Reference</h2><p>{_CITATION}</p></body></html>")
     path = out / "report.html"
     atomic_write(path, "\n".join(parts))
     atomic_write(out / "report.json", json.dumps(summary, indent=2, default=str) + "\n")

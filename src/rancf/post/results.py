@@ -6,21 +6,26 @@ A run directory holds
 * ``energy.csv`` — ``t, kinetic, strain, gravity, total`` [J];
 * ``results.npz`` — the full state history (``t``, ``q``, ``v``, energies, mesh data, JSON
   metadata), loadable with :func:`load_results` or plain ``numpy.load``;
-* ``summary.json`` — status, message, time reached, counters and wall time.
+* ``summary.json`` — status, message, time reached, counters and wall times (strict JSON:
+  a non-finite number is written as ``null``).
 
-Each file is written to a temporary file in the same directory and moved into place with
-:func:`os.replace`, which is atomic on POSIX and Windows.
+Each file is written to a temporary file in the same directory, given the permissions the
+process umask allows (like any newly created file, e.g. 0644 under umask 0022) and moved into
+place with :func:`os.replace`, which is atomic on POSIX and Windows.  Histories are written in
+chunks of rows, so a long run's files are built without holding them in memory.
 """
 
 from __future__ import annotations
 
-import io
+import contextlib
 import json
+import math
 import os
 import tempfile
-from collections.abc import Sequence
+import zipfile
+from collections.abc import Iterator, Sequence
 from pathlib import Path
-from typing import Any
+from typing import IO, Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -29,24 +34,70 @@ from rancf.model.scenario import Sensor
 from rancf.model.system import Model
 from rancf.solvers.dynamic import DynamicResult
 
-__all__ = ["atomic_write", "write_run", "load_results", "sensor_table"]
+__all__ = [
+    "atomic_file",
+    "atomic_write",
+    "strict_json",
+    "write_history_files",
+    "write_run",
+    "run_summary",
+    "load_results",
+    "sensor_table",
+]
+
+#: Rows of a history handled at once when writing files.
+CHUNK_BYTES = 1 << 24
+
+
+def _umask() -> int:
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return mask
+
+
+@contextlib.contextmanager
+def atomic_file(path: str | Path) -> Iterator[IO[bytes]]:
+    """A binary file handle whose content replaces ``path`` atomically when the block ends.
+
+    On an exception (or interrupt) inside the block the temporary file is removed and ``path``
+    is left as it was.
+    """
+    path = Path(path)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    try:
+        with os.fdopen(fd, "wb") as fh:
+            yield fh
+            fh.flush()
+            os.fsync(fh.fileno())
+        os.chmod(tmp, 0o666 & ~_umask())
+        os.replace(tmp, path)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        raise
 
 
 def atomic_write(path: str | Path, data: bytes | str) -> None:
     """Write ``data`` to ``path`` through a temporary file and an atomic rename."""
-    path = Path(path)
-    raw = data.encode("utf-8") if isinstance(data, str) else data
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            fh.write(raw)
-            fh.flush()
-            os.fsync(fh.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
+    with atomic_file(path) as fh:
+        fh.write(data.encode("utf-8") if isinstance(data, str) else data)
+
+
+def _finite(value: Any) -> Any:
+    if isinstance(value, float | np.floating):
+        return float(value) if math.isfinite(value) else None
+    if isinstance(value, np.integer):
+        return int(value)
+    if isinstance(value, dict):
+        return {k: _finite(v) for k, v in value.items()}
+    if isinstance(value, list | tuple):
+        return [_finite(v) for v in value]
+    return value
+
+
+def strict_json(value: Any) -> str:
+    """JSON text with every non-finite number replaced by ``null`` (never ``NaN``)."""
+    return json.dumps(_finite(value), indent=2, allow_nan=False) + "\n"
 
 
 def sensor_table(
@@ -63,28 +114,46 @@ def sensor_table(
     return names, vals
 
 
-def _csv(header: list[str], data: NDArray) -> str:
-    buf = io.StringIO()
-    np.savetxt(buf, data, delimiter=",", header=",".join(header), comments="", fmt="%.12g")
-    return buf.getvalue()
+def _rows(n: int, width: int) -> Iterator[slice]:
+    step = max(1, CHUNK_BYTES // (8 * max(width, 1)))
+    for i in range(0, n, step):
+        yield slice(i, min(n, i + step))
 
 
-def write_run(
-    out: str | Path,
+def _npy(zf: zipfile.ZipFile, name: str, shape: tuple[int, ...], chunks: Iterator[NDArray]) -> None:
+    with zf.open(f"{name}.npy", "w", force_zip64=True) as f:
+        header = {"descr": "<f8", "fortran_order": False, "shape": shape}
+        np.lib.format.write_array_header_2_0(f, header)
+        for c in chunks:
+            f.write(np.ascontiguousarray(c, dtype="<f8").tobytes())
+
+
+def write_history_files(
+    out: Path,
     model: Model,
     sensors: Sequence[Sensor],
-    result: DynamicResult,
-    extra: dict[str, Any] | None = None,
-) -> dict[str, Any]:
-    """Write the four files of a run directory; returns the summary dictionary."""
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
-    names, vals = sensor_table(model, sensors, result.q)
-    atomic_write(out / "sensors.csv", _csv(["t", *names], np.column_stack([result.t, vals])))
-    energy = np.column_stack(
-        [result.t, result.kinetic, result.strain, result.gravity, result.total_energy]
-    )
-    atomic_write(out / "energy.csv", _csv(["t", "kinetic", "strain", "gravity", "total"], energy))
+    t: NDArray,
+    q: NDArray,
+    v: NDArray,
+    energy: NDArray,
+) -> list[str]:
+    """``sensors.csv``, ``energy.csv`` and ``results.npz`` of a history, chunk by chunk.
+
+    ``t (n,)``, ``q`` and ``v (n, n_q)``, ``energy (n, 3)`` may be memory maps.  Returns the
+    sensor column names.
+    """
+    n = t.shape[0]
+    names, _ = sensor_table(model, sensors, q[:1])
+    with atomic_file(out / "sensors.csv") as fh:
+        fh.write((",".join(["t", *names]) + "\n").encode())
+        for r in _rows(n, q.shape[1]):
+            _, vals = sensor_table(model, sensors, q[r])
+            np.savetxt(fh, np.column_stack([t[r], vals]), delimiter=",", fmt="%.12g")
+    with atomic_file(out / "energy.csv") as fh:
+        fh.write(b"t,kinetic,strain,gravity,total\n")
+        for r in _rows(n, 5):
+            e = energy[r]
+            np.savetxt(fh, np.column_stack([t[r], e, e.sum(axis=1)]), delimiter=",", fmt="%.12g")
     meta = {
         "element": model.element,
         "dim": model.dim,
@@ -93,24 +162,31 @@ def write_run(
         "n_elements": model.n_el,
         "sensor_columns": names,
     }
-    buf = io.BytesIO()
-    np.savez_compressed(
-        buf,
-        t=result.t,
-        q=result.q,
-        v=result.v,
-        kinetic=result.kinetic,
-        strain=result.strain,
-        gravity=result.gravity,
-        sensors=vals,
-        weights=model.mesh.weights,
-        scales=model.mesh.scales,
-        reference=model.q0,
-        metadata=np.array(json.dumps(meta)),
-    )
-    atomic_write(out / "results.npz", buf.getvalue())
-    steps = np.asarray(result.steps)
-    summary = {
+    small = {
+        "weights": model.mesh.weights,
+        "scales": model.mesh.scales,
+        "reference": model.q0,
+        "metadata": np.array(json.dumps(meta)),
+    }
+    with atomic_file(out / "results.npz") as fh:
+        with zipfile.ZipFile(fh, "w", zipfile.ZIP_DEFLATED, allowZip64=True, compresslevel=1) as z:
+            _npy(z, "t", (n,), (t[r] for r in _rows(n, 1)))
+            for name, arr in (("q", q), ("v", v)):
+                _npy(z, name, arr.shape, (arr[r] for r in _rows(n, arr.shape[1])))
+            for j, name in enumerate(("kinetic", "strain", "gravity")):
+                _npy(z, name, (n,), (energy[r, j] for r in _rows(n, 3)))
+            shape = (n, len(names))
+            rows = _rows(n, q.shape[1])
+            _npy(z, "sensors", shape, (sensor_table(model, sensors, q[r])[1] for r in rows))
+            for name, arr in small.items():
+                with z.open(f"{name}.npy", "w") as f:
+                    np.lib.format.write_array(f, np.asarray(arr), allow_pickle=False)
+    return names
+
+
+def run_summary(model: Model, result: DynamicResult) -> dict[str, Any]:
+    """The counters of ``summary.json`` for a result (status, times, steps, sizes, energies)."""
+    return {
         "status": result.status.value,
         "message": result.message,
         "t_reached": result.t_reached,
@@ -120,20 +196,34 @@ def write_run(
         "factorizations": result.n_factorizations,
         "solve_wall_time_s": result.wall_time,
         "time_per_step_s": result.wall_time / result.n_steps if result.n_steps else None,
-        "min_step_s": float(steps.min()) if steps.size else None,
-        "max_step_s": float(steps.max()) if steps.size else None,
+        "min_step_s": result.min_step_taken,
+        "max_step_s": result.max_step_taken,
         "n_elements": model.n_el,
         "element": model.element,
         "n_dofs": model.n,
-        "outputs": int(result.t.size),
+        "outputs": result.n_outputs,
         "final_energy_j": {
             "kinetic": float(result.kinetic[-1]),
             "strain": float(result.strain[-1]),
             "gravity": float(result.gravity[-1]),
         },
-        **(extra or {}),
     }
-    atomic_write(out / "summary.json", json.dumps(summary, indent=2) + "\n")
+
+
+def write_run(
+    out: str | Path,
+    model: Model,
+    sensors: Sequence[Sensor],
+    result: DynamicResult,
+    extra: dict[str, Any] | None = None,
+) -> dict[str, Any]:
+    """Write the four files of a run directory from an in-memory result; returns the summary."""
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    energy = np.column_stack([result.kinetic, result.strain, result.gravity])
+    write_history_files(out, model, sensors, result.t, result.q, result.v, energy)
+    summary = {**run_summary(model, result), **(extra or {})}
+    atomic_write(out / "summary.json", strict_json(summary))
     return summary
 
 

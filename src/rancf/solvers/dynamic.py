@@ -24,7 +24,7 @@ from __future__ import annotations
 import enum
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
@@ -32,6 +32,7 @@ from numpy.typing import NDArray
 from rancf.errors import InputError
 from rancf.kernels import _core
 from rancf.model.system import Model
+from rancf.solvers.output import MemorySink, OutputSink
 
 __all__ = ["DynamicOptions", "DynamicStatus", "DynamicResult", "GeneralizedAlpha", "integrate"]
 
@@ -46,23 +47,24 @@ class DynamicStatus(enum.Enum):
 
 @dataclass(frozen=True)
 class DynamicOptions:
-    """Options of :func:`integrate`.
+    """Options of :func:`integrate`; meaningless combinations are refused on construction.
 
     Attributes
     ----------
     t_end : float
-        End time [s].
+        End time [s], finite and > 0.
     step : float
-        (Initial) time step [s].
+        (Initial) time step [s], in (0, t_end].
     rho_inf : float
         Spectral radius at infinity in [0, 1].
     adaptive : bool
         Adapt the step to ``rtol`` (local error relative to the model size).
     rtol : float
     min_step, max_step : float, optional
-        Step bounds (defaults ``step / 1024`` and ``output_step``).
+        Step bounds (defaults ``step / 1024`` and ``max(output_step, step)``);
+        ``min_step <= step`` and ``min_step <= max_step``.
     output_step : float, optional
-        Interval of stored states (default: every ``step``).
+        Interval of stored states (default: every ``step``), in (0, t_end].
     newton_tol : float
         Newton stops when ``max |Δy| <= newton_tol * size`` (size = model extent).
     max_newton : int
@@ -71,6 +73,11 @@ class DynamicOptions:
         ``"modified"``: the factored Jacobian is reused across iterations and steps and refreshed
         from the exact tangent when the increments stop shrinking fast (the converged answer is
         the same to the Newton tolerance).
+
+    Raises
+    ------
+    InputError
+        Naming the ``solver.*`` key, e.g. ``step > t_end`` or ``min_step > step``.
     """
 
     t_end: float
@@ -86,21 +93,48 @@ class DynamicOptions:
     newton: str = "full"
 
     def __post_init__(self) -> None:
-        if not (np.isfinite(self.t_end) and self.t_end > 0):
-            raise InputError("solver.t_end", self.t_end, "a finite end time > 0")
-        if not (np.isfinite(self.step) and self.step > 0):
-            raise InputError("solver.step", self.step, "a finite time step > 0")
+        def positive(name: str, value: object, upper: float = np.inf, what: str = "") -> None:
+            ok = isinstance(value, int | float) and not isinstance(value, bool)
+            if not (ok and np.isfinite(value) and 0 < value <= upper):  # type: ignore[operator]
+                raise InputError(f"solver.{name}", value, f"a finite number > 0{what}")
+
+        positive("t_end", self.t_end)
+        positive("step", self.step, self.t_end, f" and <= t_end = {self.t_end:g}")
         if not (0.0 <= self.rho_inf <= 1.0):
             raise InputError("solver.rho_inf", self.rho_inf, "a spectral radius in [0, 1]")
-        if self.output_step is not None and not self.output_step > 0:
-            raise InputError("solver.output_step", self.output_step, "a number > 0")
+        positive("rtol", self.rtol)
+        if self.output_step is not None:
+            positive("output_step", self.output_step, self.t_end, f" and <= t_end = {self.t_end:g}")
+        if self.min_step is not None:
+            positive("min_step", self.min_step, self.step, f" and <= step = {self.step:g}")
+        if self.max_step is not None:
+            low = self.min_step if self.min_step is not None else 0.0
+            positive("max_step", self.max_step)
+            if self.max_step < low:
+                raise InputError("solver.max_step", self.max_step, f">= min_step = {low:g}")
+        positive("newton_tol", self.newton_tol)
+        if isinstance(self.max_newton, bool) or not isinstance(self.max_newton, int):
+            raise InputError("solver.max_newton", self.max_newton, "an integer >= 1")
+        if self.max_newton < 1:
+            raise InputError("solver.max_newton", self.max_newton, "an integer >= 1")
         if self.newton not in ("full", "modified"):
             raise InputError("solver.newton", self.newton, 'one of "full", "modified"')
+
+    @property
+    def n_outputs(self) -> int:
+        """Number of stored states, the initial one included."""
+        out_dt = self.output_step if self.output_step is not None else self.step
+        n_grid = int(np.floor(self.t_end / out_dt + 1e-9))
+        return 1 + n_grid + (1 if out_dt * n_grid < self.t_end * (1 - 1e-12) else 0)
 
 
 @dataclass
 class DynamicResult:
-    """States at the output times, energies, status and counters."""
+    """States at the output times, energies, status and counters.
+
+    With a ``sink`` given to :func:`integrate`, the arrays hold only the last stored state (the
+    history went to the sink); ``n_outputs`` counts all of them.
+    """
 
     t: NDArray[np.float64]
     q: NDArray[np.float64]
@@ -115,7 +149,9 @@ class DynamicResult:
     n_factorizations: int = 0
     n_rejected: int = 0
     wall_time: float = 0.0
-    steps: list[float] = field(default_factory=list)
+    min_step_taken: float | None = None
+    max_step_taken: float | None = None
+    n_outputs: int = 0
 
     @property
     def total_energy(self) -> NDArray[np.float64]:
@@ -126,6 +162,14 @@ class DynamicResult:
     def t_reached(self) -> float:
         """Last stored time."""
         return float(self.t[-1]) if self.t.size else 0.0
+
+    def took(self, h: float, count: int = 1) -> None:
+        """Count ``count`` accepted steps of size ``h``."""
+        if count <= 0:
+            return
+        self.n_steps += count
+        self.min_step_taken = h if self.min_step_taken is None else min(self.min_step_taken, h)
+        self.max_step_taken = h if self.max_step_taken is None else max(self.max_step_taken, h)
 
 
 class GeneralizedAlpha:
@@ -219,6 +263,8 @@ def integrate(
     options: DynamicOptions,
     on_output: Callable[[float, Callable[[], DynamicResult]], None] | None = None,
     should_stop: Callable[[], bool] | None = None,
+    sink: OutputSink | None = None,
+    on_start: Callable[[], None] | None = None,
 ) -> DynamicResult:
     """Integrate the model from its reference configuration and initial velocities.
 
@@ -228,53 +274,65 @@ def integrate(
     options : DynamicOptions
     on_output : callable, optional
         Called as ``on_output(t, snapshot)`` after every stored output; ``snapshot()`` builds the
-        result so far (call it only now and then, e.g. for checkpoints: it copies the history).
+        result so far (call it only now and then: without a sink it copies the history).
     should_stop : callable, optional
         Polled after every step; returning True ends the run with status ``INTERRUPTED``.
+    sink : OutputSink, optional
+        Receives every stored state (e.g. streamed to disk); the result then holds only the
+        last one, so memory does not grow with ``t_end``.  Default: kept in memory.
+    on_start : callable, optional
+        Called once, right before the time loop (after the initial acceleration).
 
     Returns
     -------
     DynamicResult
         Never raises on non-convergence: the status says ``FAILED`` and the message names the
-        time reached.
+        time reached.  ``wall_time`` is the time loop alone.
     """
     o = options
     integ = GeneralizedAlpha(model, o.rho_inf, o.newton_tol, o.max_newton, o.newton)
     out_dt = o.output_step if o.output_step is not None else o.step
-    n_out = int(np.floor(o.t_end / out_dt + 1e-9))
-    out_times = out_dt * np.arange(1, n_out + 1)
-    if out_times.size == 0 or out_times[-1] < o.t_end * (1 - 1e-12):
-        out_times = np.append(out_times, o.t_end)
+    n_out = o.n_outputs - 1
+    n_grid = int(np.floor(o.t_end / out_dt + 1e-9))
+
+    def out_time(i: int) -> float:  # the i-th output after the initial state (0-based)
+        return out_dt * (i + 1) if i < n_grid else o.t_end
+
     min_step = o.min_step if o.min_step is not None else o.step / 1024.0
     max_step = o.max_step if o.max_step is not None else max(out_dt, o.step)
+    memory = MemorySink() if sink is None else None
+    target_sink: OutputSink = memory if memory is not None else sink  # type: ignore[assignment]
+    last: list = []
+
+    def store(tt: float, yy: NDArray, vv: NDArray, e: NDArray | None = None) -> None:
+        if e is None:
+            e = np.array(
+                [model.kinetic_energy(vv), model.strain_energy(yy), model.gravity_energy(yy)]
+            )
+        row = (tt, model.q_from_y(yy), model.q_from_y(vv), np.asarray(e, dtype=float))
+        target_sink.append(*row)
+        last[:] = [row]
+        result.n_outputs += 1
 
     y = model.y0.copy()
     v = model.v0.copy()
     t = 0.0
-    start = time.perf_counter()
     a = integ.initial_acceleration(y, v, t)
-    ts, qs, vs, ek, es, eg = [0.0], [model.q_from_y(y)], [model.q_from_y(v)], [], [], []
-
-    def energies(yy: NDArray, vv: NDArray) -> None:
-        ek.append(model.kinetic_energy(vv))
-        es.append(model.strain_energy(yy))
-        eg.append(model.gravity_energy(yy))
-
-    energies(y, v)
-    result = DynamicResult(
-        np.array(ts),
-        np.array(qs),
-        np.array(vs),
-        np.array(ek),
-        np.array(es),
-        np.array(eg),
-        DynamicStatus.COMPLETED,
-        "",
-    )
+    empty = np.empty(0)
+    result = DynamicResult(empty, empty, empty, empty, empty, empty, DynamicStatus.COMPLETED, "")
+    store(0.0, y, v)
+    if on_start is not None:
+        on_start()
+    start = time.perf_counter()
 
     def snapshot(status: DynamicStatus, message: str) -> DynamicResult:
-        result.t, result.q, result.v = np.array(ts), np.array(qs), np.array(vs)
-        result.kinetic, result.strain, result.gravity = np.array(ek), np.array(es), np.array(eg)
+        if memory is not None:
+            ts, qs, vs, es = memory.arrays()
+        else:
+            tt, qq, vv, ee = last[0]
+            ts, qs, vs, es = np.array([tt]), qq[None], vv[None], ee[None]
+        result.t, result.q, result.v = ts, qs, vs
+        result.kinetic, result.strain, result.gravity = es[:, 0], es[:, 1], es[:, 2]
         result.status, result.message = status, message
         result.n_newton = integ.n_newton
         result.n_factorizations = integ.n_factorizations
@@ -287,38 +345,29 @@ def integrate(
     # compiled fixed-step loop: outputs on a grid that is a whole number of steps
     ratio = out_dt / o.step
     per_out = int(round(ratio))
-    n_grid = out_times.size if out_times[-1] == out_dt * out_times.size else out_times.size - 1
     fast = not o.adaptive and per_out >= 1 and abs(ratio - per_out) < 1e-9
-    chunk_out = max(1, n_grid // 100)
-
-    def store(tt: float, yy: NDArray, vv: NDArray) -> None:
-        ts.append(tt)
-        qs.append(model.q_from_y(yy))
-        vs.append(model.q_from_y(vv))
+    # outputs per compiled call: ~1 % of the run, at most ~16 MB of stored states per array
+    chunk_out = int(np.clip(n_grid // 100, 1, max(1, (1 << 21) // model.n)))
 
     def notify(tt: float) -> None:
         if on_output is not None:
             msg = f"running, t = {tt:g} s"
             on_output(tt, lambda: snapshot(DynamicStatus.INTERRUPTED, msg))
 
-    while k_out < out_times.size:
-        target = out_times[k_out]
-        on_grid = abs(t - (out_times[k_out - 1] if k_out else 0.0)) <= 1e-12 * max(1.0, t)
+    while k_out < n_out:
+        target = out_time(k_out)
+        on_grid = abs(t - (out_time(k_out - 1) if k_out else 0.0)) <= 1e-12 * max(1.0, t)
         if fast and h == o.step and k_out < n_grid and on_grid:
             n_chunk = min(chunk_out, n_grid - k_out)
             done, st, iters, stored, oy, ov, oe = integ.run_steps(
                 y, v, a, t, o.step, n_chunk * per_out, per_out
             )
-            result.n_steps += done
-            result.steps.extend([o.step] * done)
+            result.took(o.step, done)
             for i in range(stored):
-                store(float(out_times[k_out + i]), oy[i], ov[i])
-                ek.append(oe[i, 0])
-                es.append(oe[i, 1])
-                eg.append(oe[i, 2])
+                store(float(out_time(k_out + i)), oy[i], ov[i], oe[i])
             t_chunk = t + done * o.step
             k_out += stored
-            t = float(out_times[k_out - 1]) if (stored and done % per_out == 0) else t_chunk
+            t = float(out_time(k_out - 1)) if (stored and done % per_out == 0) else t_chunk
             if stored:
                 notify(t)
             if should_stop is not None and should_stop():
@@ -345,8 +394,7 @@ def integrate(
                 break
             continue
         y, v, a, t = y1, v1, a1, t + h_try
-        result.n_steps += 1
-        result.steps.append(h_try)
+        result.took(h_try)
         if o.adaptive:
             h = min(max_step, h_try * min(2.0, 0.9 * max(err, 1e-10) ** (-1.0 / 3.0)))
         else:
@@ -354,7 +402,6 @@ def integrate(
         if abs(t - target) <= 1e-12 * max(1.0, target):
             t = float(target)
             store(t, y, v)
-            energies(y, v)
             k_out += 1
             notify(t)
         if should_stop is not None and should_stop():

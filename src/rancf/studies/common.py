@@ -70,18 +70,9 @@ def run(sc: Scenario, model: Model, **overrides: Any) -> DynamicResult:
     """Integrate a scenario's model with its ``[solver]`` settings (``overrides`` win)."""
     s = dict(sc.solver)
     s.update(overrides)
-    opts = DynamicOptions(
-        t_end=s["t_end"],
-        step=s["step"],
-        rho_inf=s["rho_inf"],
-        adaptive=s["adaptive"],
-        rtol=s["rtol"],
-        min_step=s["min_step"],
-        output_step=s["output_step"],
-        newton_tol=s["newton_tol"],
-        max_newton=s["max_newton"],
-        newton=s["newton"],
-    )
+    keys = ("t_end", "step", "rho_inf", "adaptive", "rtol", "min_step", "output_step")
+    keys += ("newton_tol", "max_newton", "newton")
+    opts = DynamicOptions(**{k: s[k] for k in keys})
     return integrate(model, opts)
 
 

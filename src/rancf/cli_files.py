@@ -1,0 +1,140 @@
+"""Sub-commands around the shipped files: ``example``, ``report`` and ``schema``.
+
+``rancf example list | run NAME --out DIR | copy NAME DIR`` lists, runs (paper studies) or
+copies (any shipped scenario, to edit) the scenario files in ``rancf/examples``; ``rancf report``
+runs every study into one HTML report; ``rancf schema`` prints the scenario JSON Schema.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+from typing import Any
+
+from rancf.cli_io import OutputDir, check_out_dir
+from rancf.errors import InputError
+
+__all__ = ["add_parsers", "shipped_scenarios"]
+
+
+def shipped_scenarios() -> dict[str, str]:
+    """Shipped scenario names -> one-line description (paper studies first)."""
+    from importlib import resources
+
+    from rancf.studies.common import EXAMPLES
+
+    out = {name: f"paper {what}" for name, what in EXAMPLES.items()}
+    for f in sorted(resources.files("rancf.examples").iterdir(), key=lambda p: p.name):
+        name = f.name.removesuffix(".toml")
+        if f.name.endswith(".toml") and name not in out:
+            first = f.read_text(encoding="utf-8").splitlines()[0]
+            out[name] = first.lstrip("# ").rstrip(".") if first.startswith("#") else "scenario"
+    return out
+
+
+def _scenario_name(name: str) -> str:
+    names = shipped_scenarios()
+    if name not in names:
+        raise InputError("NAME", name, f"one of {', '.join(names)} (see `rancf example list`)")
+    return name
+
+
+def _cmd_list(args: argparse.Namespace) -> int:
+    for name, what in shipped_scenarios().items():
+        print(f"{name:18s} {what}  ({name}.toml)")
+    return 0
+
+
+def _cmd_copy(args: argparse.Namespace) -> int:
+    from rancf.post.results import atomic_write
+    from rancf.studies.common import example_path
+
+    name = _scenario_name(args.name)
+    target = Path(args.dir) / f"{name}.toml"
+    if target.exists() and not args.force:
+        raise InputError("DIR", args.dir, f"a directory without {target.name} (or use --force)")
+    with OutputDir(Path(args.dir), "DIR") as od:
+        atomic_write(target, example_path(name).read_bytes())
+        od.keep()
+    print(f"wrote {target}")
+    return 0
+
+
+def _cmd_run(args: argparse.Namespace) -> int:
+    from rancf.studies import EXAMPLES, study_runner
+
+    if args.name not in EXAMPLES:
+        _scenario_name(args.name)
+        raise InputError(
+            "NAME",
+            args.name,
+            f"a paper study, one of {', '.join(EXAMPLES)} (run other scenarios with "
+            "`rancf simulate`)",
+        )
+    out = check_out_dir(args.out)
+    return _run_studies([args.name], [study_runner(args.name)], out, args.quick, nested=False)
+
+
+def _cmd_report(args: argparse.Namespace) -> int:
+    from rancf.studies import EXAMPLES, study_runner
+
+    out = check_out_dir(args.out)
+    names = list(EXAMPLES)
+    runners = [study_runner(n) for n in names]
+    return _run_studies(names, runners, out, args.quick, nested=True)
+
+
+def _run_studies(names: list[str], runners: list[Any], out: Path, quick: bool, nested: bool) -> int:
+    """Run studies into ``out`` (one sub-folder each when ``nested``) and write the report."""
+    from rancf.post.report import write_report
+
+    done = []
+    with OutputDir(out) as od:
+        for name, runner in zip(names, runners, strict=True):
+            folder = out / name if nested else out
+            print(f"running {name}{' (quick)' if quick else ''} ...", file=sys.stderr)
+            res = runner(folder, quick)
+            res.write_comparison_csv(folder)
+            od.keep()
+            done.append((res, folder))
+            print(f"  {name}: {len(res.figures)} figures, {res.wall_time_s:.1f} s", file=sys.stderr)
+            for c in res.comparison:
+                print(f"    {c.quantity:60s} paper {c.paper:>10s}   ours {c.ours}")
+        path = write_report(out, done, quick)
+    print(f"report written to {path}")
+    return 0
+
+
+def _cmd_schema(args: argparse.Namespace) -> int:
+    from rancf.model.schema import scenario_schema
+
+    print(json.dumps(scenario_schema(), indent=2))
+    return 0
+
+
+def add_parsers(sub: Any) -> None:
+    """Register ``example`` (``list``, ``run``, ``copy``), ``report`` and ``schema``."""
+    e = sub.add_parser("example", help="list, run or copy the shipped scenarios")
+    actions = e.add_subparsers(dest="action", required=True)
+    lst = actions.add_parser("list", help="list the shipped scenarios")
+    lst.set_defaults(func=_cmd_list)
+    run = actions.add_parser("run", help="run one of the paper's studies")
+    run.add_argument("name", metavar="NAME", help="a study (see `rancf example list`)")
+    run.add_argument("--out", required=True, help="output directory (created if needed)")
+    run.add_argument("--quick", action="store_true", help="reduced runs (fewer elements)")
+    run.set_defaults(func=_cmd_run)
+    cp = actions.add_parser("copy", help="write a shipped scenario file into DIR, to edit")
+    cp.add_argument("name", metavar="NAME", help="a scenario (see `rancf example list`)")
+    cp.add_argument("dir", metavar="DIR", help="directory (created if needed)")
+    cp.add_argument("--force", action="store_true", help="overwrite DIR/NAME.toml")
+    cp.set_defaults(func=_cmd_copy)
+
+    r = sub.add_parser("report", help="run every paper study and write one HTML report")
+    r.add_argument("--out", required=True, help="output directory")
+    r.add_argument("--quick", action="store_true", help="reduced runs (fewer elements)")
+    r.set_defaults(func=_cmd_report)
+
+    s = sub.add_parser("schema", help="print the scenario file format as a JSON Schema")
+    s.set_defaults(func=_cmd_schema)

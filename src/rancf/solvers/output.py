@@ -1,0 +1,48 @@
+"""Where :func:`rancf.solvers.dynamic.integrate` puts the stored states: output sinks.
+
+A sink receives one row per output time: ``t``, nodal coordinates ``q (n_q,)``, velocities
+``v (n_q,)`` and the energies ``(kinetic, strain, gravity)``.  :class:`MemorySink` keeps them in
+memory (the default, for library use); the command line streams them to disk with
+:class:`rancf.post.history.HistoryStore`, so memory stays bounded whatever ``t_end``.
+"""
+
+from __future__ import annotations
+
+from typing import Protocol
+
+import numpy as np
+from numpy.typing import NDArray
+
+__all__ = ["OutputSink", "MemorySink"]
+
+
+class OutputSink(Protocol):
+    """Receives the stored states of a run, in time order."""
+
+    def append(
+        self, t: float, q: NDArray[np.float64], v: NDArray[np.float64], energy: NDArray[np.float64]
+    ) -> None:
+        """Store one output: time, ``q (n_q,)``, ``v (n_q,)``, energies ``(3,)``."""
+
+
+class MemorySink:
+    """Keeps every output in memory; :meth:`arrays` stacks them."""
+
+    def __init__(self) -> None:
+        self.t: list[float] = []
+        self.q: list[NDArray[np.float64]] = []
+        self.v: list[NDArray[np.float64]] = []
+        self.e: list[NDArray[np.float64]] = []
+
+    def append(
+        self, t: float, q: NDArray[np.float64], v: NDArray[np.float64], energy: NDArray[np.float64]
+    ) -> None:
+        """Store one output (copies of the arrays)."""
+        self.t.append(float(t))
+        self.q.append(np.array(q, dtype=float))
+        self.v.append(np.array(v, dtype=float))
+        self.e.append(np.array(energy, dtype=float))
+
+    def arrays(self) -> tuple[NDArray, NDArray, NDArray, NDArray]:
+        """``t (n,)``, ``q (n, n_q)``, ``v (n, n_q)``, energies ``(n, 3)``."""
+        return np.array(self.t), np.array(self.q), np.array(self.v), np.array(self.e).reshape(-1, 3)

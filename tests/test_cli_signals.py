@@ -1,0 +1,150 @@
+"""The command line as a real process: interrupts, kills, broken pipes, file modes (issue 10)."""
+
+from __future__ import annotations
+
+import json
+import os
+import random
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from rancf.cli import main
+from rancf.post.results import load_results
+from tests.test_cli_errors import mutated
+
+RANCF = [sys.executable, "-m", "rancf"]
+
+# meshing and assembly take a noticeable moment, then ~2 s of time stepping
+SLOW = mutated(mesh__elements=3000, solver__t_end=0.15, solver__output_step=1e-3)
+LONG = mutated(mesh__elements=40, solver__t_end=100.0, solver__output_step=1e-2)
+
+
+def _start(args: list[str], cwd: Path) -> subprocess.Popen:
+    return subprocess.Popen(
+        [*RANCF, *args], cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.PIPE
+    )
+
+
+def _check_run_dir(run: Path) -> dict:
+    """Every file of a run directory is complete and consistent; returns the summary."""
+    summary = json.loads((run / "summary.json").read_text())  # strict JSON
+    sensors = np.loadtxt(run / "sensors.csv", delimiter=",", skiprows=1, ndmin=2)
+    energy = np.loadtxt(run / "energy.csv", delimiter=",", skiprows=1, ndmin=2)
+    res = load_results(run / "results.npz")
+    assert sensors.shape[0] == energy.shape[0] == res["t"].size == res["q"].shape[0]
+    assert np.all(np.diff(sensors[:, 0]) > 0)
+    return summary
+
+
+def _boot_time() -> float:
+    """Time the interpreter takes to start and load ``rancf.__main__`` (no rancf code runs
+    before that: an interrupt then is Python's own start-up, outside the project's reach)."""
+    times = []
+    for _ in range(3):
+        t0 = time.monotonic()
+        subprocess.run([sys.executable, "-c", "import rancf.__main__"], check=True)
+        times.append(time.monotonic() - t0)
+    return max(times)
+
+
+def test_sigint_at_random_moments(tmp_path):
+    """Ctrl-C during imports, meshing, assembly, stepping and writing: one line, status 130,
+    either no output at all or a complete, truthful run directory."""
+    (tmp_path / "s.toml").write_text(SLOW)
+    rng = random.Random(20261122)
+    boot = _boot_time()
+    delays = [boot + d for d in (0.02, 0.2, 0.5, 1.0)]
+    delays += [boot + rng.uniform(0.0, 3.0) for _ in range(4)]
+    seen = set()
+    for i, delay in enumerate(delays):
+        run = tmp_path / f"run{i}"
+        p = _start(["simulate", "s.toml", "--out", run.name, "--quiet"], tmp_path)
+        time.sleep(delay)
+        p.send_signal(signal.SIGINT)
+        _, err = p.communicate(timeout=120)
+        text = err.decode()
+        assert "Traceback" not in text, text
+        assert p.returncode in (0, 130), (delay, p.returncode, text)
+        assert len(text.strip().splitlines()) == (p.returncode == 130), text
+        if not run.exists():
+            seen.add("before the run")
+            assert p.returncode == 130
+            continue
+        summary = _check_run_dir(run)
+        assert not (run / ".history").exists()
+        seen.add(summary["status"])
+        expected = "completed" if p.returncode == 0 else "interrupted"
+        assert summary["status"] in (expected, "completed"), (summary, text)
+    assert "before the run" in seen and "interrupted" in seen
+
+
+def test_sigkill_during_a_run_leaves_readable_files(tmp_path):
+    (tmp_path / "s.toml").write_text(LONG)
+    run = tmp_path / "run"
+    p = _start(
+        ["simulate", "s.toml", "--out", "run", "--quiet", "--checkpoint-every", "0.2"], tmp_path
+    )
+    deadline = time.monotonic() + 60
+    while time.monotonic() < deadline:
+        try:
+            doc = json.loads((run / "summary.json").read_text())
+        except (OSError, ValueError):
+            doc = {}
+        if doc.get("t_reached", 0) > 0.05:
+            break
+        time.sleep(0.05)
+    p.send_signal(signal.SIGKILL)
+    p.communicate(timeout=30)
+    summary = _check_run_dir(run)
+    assert summary["status"] == "running" and summary["pid"] == p.pid
+    assert summary["t_reached"] > 0.05
+    with pytest.raises(ProcessLookupError):
+        os.kill(p.pid, 0)
+
+
+def test_broken_pipe_is_quiet(tmp_path):
+    args = ["conic", "--chord", "0.5", "--angles", "30", "40", "--point", "0.315", "0.077"]
+    p = _start([*args, "--json", "--elements", "200"], tmp_path)
+    head = p.stdout.read(10)
+    p.stdout.close()
+    err = p.stderr.read().decode()
+    p.wait(timeout=60)
+    assert len(head) == 10
+    assert "Traceback" not in err and err == ""
+    assert p.returncode == 141
+
+
+def test_errors_in_a_real_process_are_one_line(tmp_path):
+    (tmp_path / "latin.toml").write_bytes("# café\n".encode("latin-1"))
+    (tmp_path / "afile").write_text("x")
+    for args, needle in (
+        (["static", "latin.toml"], "UTF-8"),
+        (["simulate", "latin.toml", "--out", "afile/run"], "--out"),
+    ):
+        p = subprocess.run([*RANCF, *args], cwd=tmp_path, capture_output=True, text=True)
+        assert p.returncode == 2 and p.stdout == ""
+        assert len(p.stderr.splitlines()) == 1 and needle in p.stderr, p.stderr
+
+
+@pytest.mark.parametrize(
+    ("umask", "file_mode", "dir_mode"), [(0o022, 0o644, 0o755), (0o027, 0o640, 0o750)]
+)
+def test_files_honour_the_umask(tmp_path, monkeypatch, umask, file_mode, dir_mode):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "s.toml").write_text(mutated())
+    old = os.umask(umask)
+    try:
+        assert main(["simulate", "s.toml", "--out", "run", "--quiet"]) == 0
+    finally:
+        os.umask(old)
+    run = tmp_path / "run"
+    assert run.stat().st_mode & 0o777 == dir_mode
+    files = sorted(run.iterdir())
+    assert [f.name for f in files] == ["energy.csv", "results.npz", "sensors.csv", "summary.json"]
+    assert all(f.stat().st_mode & 0o777 == file_mode for f in files)
