@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "registry.hpp"
+#include "rod.hpp"
 
 namespace rancf {
 namespace {
@@ -97,13 +98,99 @@ double strain_energy(const Model& m, const double* y) {
   return total;
 }
 
-void external_force(const Model& m, double t, double* f) {
+void nodal_gradient(const Model& m, const double* y, int node, double* rx) {
+  const int d = m.dim;
+  const double* g = y + node * m.dpn + d;
+  const std::int64_t r = m.supports.rot_of_node[node];
+  for (int i = 0; i < d; ++i) rx[i] = g[i];
+  if (r < 0) return;
+  const double* bas = m.supports.rot + r * d * d;
+  for (int i = 0; i < d; ++i) {
+    rx[i] = 0.0;
+    for (int j = 0; j < d; ++j) rx[i] += bas[i * d + j] * g[j];
+  }
+}
+
+namespace {
+
+double load_factor(double freq, double t, bool amplitude) {
+  return (freq > 0.0 && !amplitude) ? std::sin(2.0 * kPi * freq * t) : 1.0;
+}
+
+// Moment p at its node: generalized force g (4) on (r_x, phi) in model coordinates and, if kl,
+// its derivative (4 x 4) with respect to the model coordinates (r_x, phi) of that node.
+void moment_terms(const Model& m, int p, double t, const double* y, bool amplitude, double* g,
+                  double* kl) {
+  const int node = static_cast<int>(m.loads.moment_node[p]);
+  const double fac = load_factor(m.loads.moment_freq[p], t, amplitude);
+  double mom[3], rx[3];
+  for (int i = 0; i < 3; ++i) mom[i] = fac * m.loads.moment[3 * p + i];
+  nodal_gradient(m, y, node, rx);
+  rod_moment_load(mom, rx, g, kl);
+  const std::int64_t r = m.supports.rot_of_node[node];
+  if (r < 0) return;
+  const double* bas = m.supports.rot + r * 9;  // q = T y on the r_x block: map g and kl back
+  double tmp[3] = {0.0, 0.0, 0.0};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) tmp[i] += bas[j * 3 + i] * g[j];
+  for (int i = 0; i < 3; ++i) g[i] = tmp[i];
+  if (kl == nullptr) return;
+  double k2[16];
+  for (int i = 0; i < 4; ++i)  // kl_y = T4^T kl_q T4, T4 = diag(bas, 1)
+    for (int j = 0; j < 4; ++j) {
+      double v = 0.0;
+      for (int a = 0; a < 4; ++a)
+        for (int b = 0; b < 4; ++b) {
+          const double ta = a < 3 ? (i < 3 ? bas[a * 3 + i] : 0.0) : (i == 3 ? 1.0 : 0.0);
+          const double tb = b < 3 ? (j < 3 ? bas[b * 3 + j] : 0.0) : (j == 3 ? 1.0 : 0.0);
+          v += ta * kl[a * 4 + b] * tb;
+        }
+      k2[i * 4 + j] = v;
+    }
+  for (int i = 0; i < 16; ++i) kl[i] = k2[i];
+}
+
+}  // namespace
+
+void external_force(const Model& m, double t, const double* y, double* f, bool amplitude) {
   const int n = m.n();
   std::copy(m.loads.f_gravity, m.loads.f_gravity + n, f);
   for (int p = 0; p < m.loads.n_point; ++p) {
-    double fac = 1.0;
-    if (m.loads.freq[p] > 0.0) fac = std::sin(2.0 * kPi * m.loads.freq[p] * t);
+    const double fac = load_factor(m.loads.freq[p], t, amplitude);
     for (int i = 0; i < m.dim; ++i) f[m.loads.base[p] + i] += m.loads.f0[p * m.dim + i] * fac;
+  }
+  for (int p = 0; p < m.loads.n_moment; ++p) {
+    double g[4];
+    moment_terms(m, p, t, y, amplitude, g, nullptr);
+    const int o = static_cast<int>(m.loads.moment_node[p]) * m.dpn + 3;
+    for (int i = 0; i < 4; ++i) f[o + i] += g[i];
+  }
+}
+
+void subtract_load_stiffness(const Model& m, double t, const double* y, const BandView& k,
+                             double scale, bool amplitude) {
+  for (int p = 0; p < m.loads.n_moment; ++p) {
+    double g[4], kl[16];
+    moment_terms(m, p, t, y, amplitude, g, kl);
+    const int o = static_cast<int>(m.loads.moment_node[p]) * m.dpn + 3;
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j) k.at(o + i, o + j) -= scale * kl[i * 4 + j];
+  }
+}
+
+void rereference(const Model& m, const double* y) {
+  if (m.kind != ElementKind::rod) return;
+  std::array<double, 3> rx{};
+  for (int node = 0; node < m.n_nodes; ++node) {
+    nodal_gradient(m, y, node, rx.data());
+    double* tr = m.rod.tref + 3 * node;
+    double* mr = m.rod.m1ref + 3 * node;
+    double t3[3], u[3];
+    rod_nodal_triad(tr, mr, rx.data(), 0.0, t3, u);
+    for (int i = 0; i < 3; ++i) {
+      tr[i] = t3[i];
+      mr[i] = u[i];
+    }
   }
 }
 

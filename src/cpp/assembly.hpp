@@ -17,7 +17,19 @@ void assemble(const Model& m, const double* y, double* f, const BandView* k, dou
 /// Total strain energy.
 double strain_energy(const Model& m, const double* y);
 
-/// External force at time t (gravity plus point loads): f (n).
-void external_force(const Model& m, double t, double* f);
+/// External force at time t and configuration y (gravity, point forces, point moments): f (n).
+/// With `amplitude`, harmonic loads count with their amplitude (statics) and t is ignored.
+void external_force(const Model& m, double t, const double* y, double* f, bool amplitude = false);
+
+/// Subtract scale * d f_ext / dy (the load stiffness of point moments) from the band matrix k.
+void subtract_load_stiffness(const Model& m, double t, const double* y, const BandView& k,
+                             double scale, bool amplitude = false);
+
+/// The full nodal gradient r_x (dim values) of `node` from model coordinates y (undoes a clamp
+/// rotation).
+void nodal_gradient(const Model& m, const double* y, int node, double* rx);
+
+/// Re-reference the rod's nodal triads at configuration y (no-op for other elements).
+void rereference(const Model& m, const double* y);
 
 }  // namespace rancf

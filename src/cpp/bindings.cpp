@@ -4,9 +4,11 @@
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
 #include <nanobind/stl/string.h>
+#include <nanobind/stl/array.h>
 #include <nanobind/stl/tuple.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -16,6 +18,7 @@
 #include "cable.hpp"
 #include "integrator.hpp"
 #include "model.hpp"
+#include "rod.hpp"
 
 namespace nb = nanobind;
 using namespace nb::literals;
@@ -40,6 +43,10 @@ struct CableHolder {
 struct BeamHolder {
   In l0, d0;
 };
+struct RodHolder {
+  In n1, n2, xi, gw, j0, kref;
+  Out tref, m1ref;  // re-referenced in place by the core
+};
 struct SupportsHolder {
   InB fixed;
   InI rot_of_node;
@@ -49,22 +56,26 @@ struct LoadsHolder {
   In f_gravity;
   InI base;
   In f0, freq;
+  InI moment_node;
+  In moment, moment_freq;
 };
 
 /// A model: the holders plus the core view on them.
 struct ModelHolder {
   CableHolder cable;
   BeamHolder beam;
+  RodHolder rod;
   SupportsHolder supports;
   LoadsHolder loads;
   In mass_band, y_ref;
   rancf::Model m;
 
-  ModelHolder(int kind, int dim, int dpn, int n_el, double ea, double ei, CableHolder c,
-              BeamHolder b, SupportsHolder s, LoadsHolder l, In mass, In yref)
-      : cable(std::move(c)), beam(std::move(b)), supports(std::move(s)), loads(std::move(l)),
-        mass_band(std::move(mass)), y_ref(std::move(yref)) {
-    if (kind != 0 && kind != 1) throw std::invalid_argument("kind: expected 0 (cable) or 1 (beam)");
+  ModelHolder(int kind, int dim, int dpn, int n_el, const rancf::Stiffness& st, CableHolder c,
+              BeamHolder b, RodHolder r, SupportsHolder s, LoadsHolder l, In mass, In yref)
+      : cable(std::move(c)), beam(std::move(b)), rod(std::move(r)), supports(std::move(s)),
+        loads(std::move(l)), mass_band(std::move(mass)), y_ref(std::move(yref)) {
+    if (kind < 0 || kind > 2)
+      throw std::invalid_argument("kind: expected 0 (cable), 1 (beam) or 2 (rod)");
     if (dim != 2 && dim != 3) throw std::invalid_argument("dim: expected 2 or 3");
     if (dpn < 1 || 2 * dpn > rancf::kMaxElementDofs)
       throw std::invalid_argument("dpn: too many coordinates per node");
@@ -74,7 +85,7 @@ struct ModelHolder {
     m.dpn = dpn;
     m.n_el = n_el;
     m.n_nodes = n_el + 1;
-    m.stiffness = {ea, ei};
+    m.stiffness = st;
     const auto n = static_cast<std::size_t>(m.n()), ne = static_cast<std::size_t>(n_el);
     if (m.kind == rancf::ElementKind::cable) {
       if (dpn != 2 * dim) throw std::invalid_argument("dpn: a cable has 2 dim coordinates per node");
@@ -85,11 +96,24 @@ struct ModelHolder {
         expect_size(*a, ne * nq, "cable quadrature data");
       m.cable = {static_cast<int>(nq), cable.n1.data(), cable.n2.data(), cable.gw.data(),
                  cable.s0.data(), cable.k0.data(), cable.j0.data(), cable.qr.data()};
-    } else {
+    } else if (m.kind == rancf::ElementKind::beam) {
       if (dim != 2 || dpn != 3) throw std::invalid_argument("beam: planar, 3 coordinates per node");
       expect_size(beam.l0, ne, "beam.l0");
       expect_size(beam.d0, 2 * ne, "beam.d0");
       m.beam = {beam.l0.data(), beam.d0.data()};
+    } else {
+      if (dim != 3 || dpn != 7) throw std::invalid_argument("rod: spatial, 7 coordinates per node");
+      const std::size_t nq = rod.gw.size();
+      expect_size(rod.xi, nq, "rod.xi");
+      expect_size(rod.n1, ne * nq * 4, "rod.n1");
+      expect_size(rod.n2, ne * nq * 4, "rod.n2");
+      expect_size(rod.j0, ne * nq, "rod.j0");
+      expect_size(rod.kref, ne * nq * 3, "rod.kref");
+      expect_size(rod.tref, 3 * (ne + 1), "rod.tref");
+      expect_size(rod.m1ref, 3 * (ne + 1), "rod.m1ref");
+      m.rod = {static_cast<int>(nq), rod.n1.data(),   rod.n2.data(),   rod.xi.data(),
+               rod.gw.data(),        rod.j0.data(),   rod.kref.data(), rod.tref.data(),
+               rod.m1ref.data()};
     }
     expect_size(supports.fixed, n, "supports.fixed");
     expect_size(supports.rot_of_node, ne + 1, "supports.rot_of_node");
@@ -107,8 +131,19 @@ struct ModelHolder {
       if (b0 < 0 || b0 + dim > static_cast<std::int64_t>(n))
         throw std::invalid_argument("loads.base: index out of range");
     }
+    const std::size_t nm = loads.moment_node.size();
+    expect_size(loads.moment, 3 * nm, "loads.moment");
+    expect_size(loads.moment_freq, nm, "loads.moment_freq");
+    if (nm > 0 && m.kind != rancf::ElementKind::rod)
+      throw std::invalid_argument("loads.moment: point moments need rod elements");
+    for (std::size_t i = 0; i < nm; ++i) {
+      const std::int64_t nd = loads.moment_node.data()[i];
+      if (nd < 0 || nd > static_cast<std::int64_t>(ne))
+        throw std::invalid_argument("loads.moment_node: index out of range");
+    }
     m.loads = {loads.f_gravity.data(), static_cast<int>(np), loads.base.data(), loads.f0.data(),
-               loads.freq.data()};
+               loads.freq.data(),      static_cast<int>(nm), loads.moment_node.data(),
+               loads.moment.data(),    loads.moment_freq.data()};
     expect_size(mass_band, static_cast<std::size_t>(2 * m.ku() + 1) * n, "mass_band");
     expect_size(y_ref, n, "y_ref");
     m.mass_band = mass_band.data();
@@ -137,10 +172,21 @@ NB_MODULE(_core, mod) {
            "k0"_a, "j0"_a, "qr"_a);
   nb::class_<BeamHolder>(mod, "BeamData", "Reference chords of beam elements.")
       .def(nb::init<In, In>(), nb::kw_only(), "l0"_a, "d0"_a);
+  nb::class_<RodHolder>(mod, "RodData", "Rod quadrature data and nodal reference triads.")
+      .def(nb::init<In, In, In, In, In, In, Out, Out>(), nb::kw_only(), "n1"_a, "n2"_a, "xi"_a,
+           "gw"_a, "j0"_a, "kref"_a, "tref"_a.noconvert(), "m1ref"_a.noconvert());
+  nb::class_<rancf::Stiffness>(mod, "Stiffness", "Section stiffnesses (EA, EI; rod: GJ, EI2, EI3).")
+      .def(
+          "__init__",
+          [](rancf::Stiffness* st, double ea, double ei, double gj, double ei2, double ei3) {
+            new (st) rancf::Stiffness{ea, ei, gj, ei2, ei3};
+          },
+          nb::kw_only(), "ea"_a, "ei"_a = 0.0, "gj"_a = 0.0, "ei2"_a = 0.0, "ei3"_a = 0.0);
   nb::class_<SupportsHolder>(mod, "Supports", "Held coordinates and clamp rotations.")
       .def(nb::init<InB, InI, In>(), nb::kw_only(), "fixed"_a, "rot_of_node"_a, "rot"_a);
   nb::class_<LoadsHolder>(mod, "Loads", "Gravity forces and point loads.")
-      .def(nb::init<In, InI, In, In>(), nb::kw_only(), "f_gravity"_a, "base"_a, "f0"_a, "freq"_a);
+      .def(nb::init<In, InI, In, In, InI, In, In>(), nb::kw_only(), "f_gravity"_a, "base"_a,
+           "f0"_a, "freq"_a, "moment_node"_a, "moment"_a, "moment_freq"_a);
 
   nb::class_<rancf::Scheme>(mod, "Scheme", "Generalized-alpha constants and Newton settings.")
       .def(
@@ -157,10 +203,10 @@ NB_MODULE(_core, mod) {
       .def_ro("max_iter", &rancf::Scheme::max_iter);
 
   nb::class_<ModelHolder>(mod, "Model", "An assembled model (named parts, arrays by reference).")
-      .def(nb::init<int, int, int, int, double, double, CableHolder, BeamHolder, SupportsHolder,
-                    LoadsHolder, In, In>(),
-           nb::kw_only(), "kind"_a, "dim"_a, "dpn"_a, "n_el"_a, "ea"_a, "ei"_a, "cable"_a,
-           "beam"_a, "supports"_a, "loads"_a, "mass_band"_a, "y_ref"_a)
+      .def(nb::init<int, int, int, int, const rancf::Stiffness&, CableHolder, BeamHolder,
+                    RodHolder, SupportsHolder, LoadsHolder, In, In>(),
+           nb::kw_only(), "kind"_a, "dim"_a, "dpn"_a, "n_el"_a, "stiffness"_a, "cable"_a,
+           "beam"_a, "rod"_a, "supports"_a, "loads"_a, "mass_band"_a, "y_ref"_a)
       .def_prop_ro("n", [](const ModelHolder& h) { return h.n(); })
       .def(
           "internal_force",
@@ -198,25 +244,83 @@ NB_MODULE(_core, mod) {
           "v"_a)
       .def(
           "external_force",
-          [](const ModelHolder& h, double t, Out f) {
+          [](const ModelHolder& h, double t, In y, Out f, bool amplitude) {
+            expect_size(y, h.n(), "y");
             expect_size(f, h.n(), "f");
-            rancf::external_force(h.m, t, f.data());
+            rancf::external_force(h.m, t, y.data(), f.data(), amplitude);
           },
-          "t"_a, "f"_a.noconvert())
+          "t"_a, "y"_a, "f"_a.noconvert(), "amplitude"_a = false,
+          "External force at time t and configuration y (amplitude: harmonic loads at F0).")
+      .def(
+          "load_stiffness",
+          [](const ModelHolder& h, double t, In y, Out ab, bool amplitude) {
+            expect_size(y, h.n(), "y");
+            expect_size(ab, h.band_size(), "ab");
+            std::fill(ab.data(), ab.data() + ab.size(), 0.0);
+            const rancf::BandView k = rancf::numpy_band(ab.data(), h.m.n(), h.m.ku());
+            rancf::subtract_load_stiffness(h.m, t, y.data(), k, -1.0, amplitude);
+          },
+          "t"_a, "y"_a, "ab"_a.noconvert(), "amplitude"_a = false,
+          "d f_ext / dy (point moments) in (2 ku + 1, n) band storage.")
+      .def(
+          "rereference",
+          [](const ModelHolder& h, In y) {
+            expect_size(y, h.n(), "y");
+            rancf::rereference(h.m, y.data());
+          },
+          "y"_a, "Re-reference the rod's nodal triads at configuration y (no-op otherwise).")
+      .def(
+          "nodal_triads",
+          [](const ModelHolder& h, In y, Out t, Out m1) {
+            expect_size(y, h.n(), "y");
+            const auto nn = static_cast<std::size_t>(h.m.n_nodes);
+            expect_size(t, 3 * nn, "t");
+            expect_size(m1, 3 * nn, "m1");
+            if (h.m.kind != rancf::ElementKind::rod)
+              throw std::invalid_argument("nodal_triads: rod models only");
+            for (int node = 0; node < h.m.n_nodes; ++node) {
+              double rx[3];
+              rancf::nodal_gradient(h.m, y.data(), node, rx);
+              rancf::rod_nodal_triad(h.m.rod.tref + 3 * node, h.m.rod.m1ref + 3 * node, rx,
+                                     y.data()[node * h.m.dpn + 6], t.data() + 3 * node,
+                                     m1.data() + 3 * node);
+            }
+          },
+          "y"_a, "t"_a.noconvert(), "m1"_a.noconvert(),
+          "Current nodal tangents and directors m1 (rod models), (n_nodes, 3) each.")
+      .def(
+          "rod_curvatures",
+          [](const ModelHolder& h, In y, Out k, Out eps) {
+            expect_size(y, h.n(), "y");
+            if (h.m.kind != rancf::ElementKind::rod)
+              throw std::invalid_argument("rod_curvatures: rod models only");
+            const auto npts = static_cast<std::size_t>(h.m.n_el * h.m.rod.n_qp);
+            expect_size(k, 3 * npts, "k");
+            expect_size(eps, npts, "eps");
+            double e[rancf::kMaxElementDofs];
+            for (int el = 0; el < h.m.n_el; ++el) {
+              for (int i = 0; i < 14; ++i) e[i] = y.data()[el * 7 + i];
+              for (int a = 0; a < 2; ++a) rancf::nodal_gradient(h.m, y.data(), el + a, e + 7 * a + 3);
+              const int o = el * h.m.rod.n_qp;
+              rancf::rod_curvatures(h.m, el, e, k.data() + 3 * o, eps.data() + o);
+            }
+          },
+          "y"_a, "k"_a.noconvert(), "eps"_a.noconvert(),
+          "Material curvatures (n_el, n_qp, 3) and axial strains (n_el, n_qp) of a rod model.")
       .def(
           "static_newton",
-          [](const ModelHolder& h, Out y, In f_target, double tol, int max_iter) {
+          [](const ModelHolder& h, Out y, double load_factor, double tol, int max_iter) {
             expect_size(y, h.n(), "y");
-            expect_size(f_target, h.n(), "f_target");
             rancf::NewtonOutcome r;
             {
               nb::gil_scoped_release release;
-              r = rancf::static_newton(h.m, y.data(), f_target.data(), tol, max_iter);
+              r = rancf::static_newton(h.m, y.data(), load_factor, tol, max_iter);
             }
             return std::make_tuple(r.converged, r.iterations, r.increment);
           },
-          "y"_a.noconvert(), "f_target"_a, "tol"_a, "max_iter"_a,
-          "Newton iterations for f_int(y) = f_target; returns (converged, iterations, increment).");
+          "y"_a.noconvert(), "load_factor"_a, "tol"_a, "max_iter"_a,
+          "Newton iterations for f_int(y) = load_factor f_ext(y) (loads at their amplitudes); "
+          "returns (converged, iterations, increment).");
 
   nb::class_<IntegratorHolder>(mod, "Integrator", "Generalized-alpha steps on a model.")
       .def(nb::init<const ModelHolder&, const rancf::Scheme&>(), "model"_a, "scheme"_a,
@@ -266,6 +370,19 @@ NB_MODULE(_core, mod) {
             h.integ.initial_acceleration(y.data(), v.data(), t, a.data());
           },
           "y"_a, "v"_a, "t"_a, "a"_a.noconvert());
+
+  mod.def(
+      "rod_nodal_triad",
+      [](In tref, In m1ref, In rx, double phi) {
+        expect_size(tref, 3, "tref");
+        expect_size(m1ref, 3, "m1ref");
+        expect_size(rx, 3, "rx");
+        std::array<double, 3> t{}, m1{};
+        rancf::rod_nodal_triad(tref.data(), m1ref.data(), rx.data(), phi, t.data(), m1.data());
+        return std::make_tuple(t, m1);
+      },
+      "tref"_a, "m1ref"_a, "rx"_a, "phi"_a,
+      "(t, m1): t = rx/|rx|, m1 = cos(phi) u + sin(phi) t x u, u = SR(tref -> t) m1ref.");
 
   mod.def(
       "band_solve",

@@ -30,7 +30,9 @@ StepOutcome Integrator::step(const double* y0, const double* v0, const double* a
     base_[sz(i)] = y0[i] + h * v0[i] + h * h * (0.5 - beta) * a0[i];
     y1[i] = y0[i] + h * v0[i] + 0.5 * h * h * a0[i];
   }
-  external_force(m_, t + (1.0 - af) * h, fext_.data());
+  const double tf = t + (1.0 - af) * h;
+  const bool moments = m_.loads.n_moment > 0;  // configuration-dependent loads
+  if (!moments) external_force(m_, tf, y0, fext_.data());
   const double cm = (1.0 - am) / bh2 + c * (1.0 - af) * gamma / (beta * h);
   double prev = std::numeric_limits<double>::infinity();
   for (int it = 1; it <= max_iter; ++it) {
@@ -40,10 +42,12 @@ StepOutcome Integrator::step(const double* y0, const double* v0, const double* a
       yf_[sz(i)] = (1.0 - af) * y1[i] + af * y0[i];
       tmp_[sz(i)] = (1.0 - am) * a1[i] + am * a0[i] + c * ((1.0 - af) * v1[i] + af * v0[i]);
     }
+    if (moments) external_force(m_, tf, yf_.data(), fext_.data());
     const bool fresh = !s_.modified || !lu_valid_;
     if (fresh) {
       BandView jac = lu_.matrix();
       assemble(m_, yf_.data(), fi_.data(), &jac, 1.0 - af);
+      if (moments) subtract_load_stiffness(m_, tf, yf_.data(), jac, 1.0 - af);
       for (int j = 0; j < n; ++j) {
         const int i0 = std::max(0, j - ku), i1 = std::min(n, j + ku + 1);
         for (int i = i0; i < i1; ++i)
@@ -103,6 +107,7 @@ RunOutcome Integrator::run(double* y, double* v, double* a, double t0, double h,
     std::copy(y1.begin(), y1.end(), y);
     std::copy(v1.begin(), v1.end(), v);
     std::copy(a1.begin(), a1.end(), a);
+    rereference(m_, y);
     out.steps = s + 1;
     if ((s + 1) % out_every != 0) continue;
     const std::ptrdiff_t row = static_cast<std::ptrdiff_t>(out.stored) * n;
@@ -120,7 +125,7 @@ RunOutcome Integrator::run(double* y, double* v, double* a, double t0, double h,
 
 void Integrator::initial_acceleration(const double* y, const double* v, double t, double* a) {
   const int n = m_.n(), ku = m_.ku();
-  external_force(m_, t, a);
+  external_force(m_, t, y, a);
   assemble(m_, y, fi_.data(), nullptr, 0.0);
   band_matvec(m_.mass_band, v, n, ku, mv_.data());
   for (int i = 0; i < n; ++i) a[i] -= fi_[sz(i)] + s_.damping * mv_[sz(i)];
@@ -139,16 +144,18 @@ void Integrator::initial_acceleration(const double* y, const double* v, double t
   mass.solve(a, m_.supports.fixed);
 }
 
-NewtonOutcome static_newton(const Model& m, double* y, const double* f_target, double tol,
+NewtonOutcome static_newton(const Model& m, double* y, double load_factor, double tol,
                             int max_iter) {
   const int n = m.n();
   BandLU lu(n, m.ku());
-  std::vector<double> f(sz(n));
+  std::vector<double> f(sz(n)), fext(sz(n));
   double norm = std::numeric_limits<double>::infinity();
   for (int it = 1; it <= max_iter; ++it) {
     BandView k = lu.matrix();
     assemble(m, y, f.data(), &k, 1.0);
-    for (int i = 0; i < n; ++i) f[sz(i)] -= f_target[i];
+    external_force(m, 0.0, y, fext.data(), true);
+    subtract_load_stiffness(m, 0.0, y, k, load_factor, true);
+    for (int i = 0; i < n; ++i) f[sz(i)] -= load_factor * fext[sz(i)];
     if (!lu.factor(m.supports.fixed)) return {false, it, norm};
     lu.solve(f.data(), m.supports.fixed);
     norm = 0.0;
@@ -157,7 +164,10 @@ NewtonOutcome static_newton(const Model& m, double* y, const double* f_target, d
       norm = std::max(norm, std::abs(f[sz(i)]));
     }
     if (!std::isfinite(norm)) return {false, it, norm};
-    if (norm <= tol) return {true, it, norm};
+    if (norm <= tol) {
+      rereference(m, y);
+      return {true, it, norm};
+    }
   }
   return {false, max_iter, norm};
 }

@@ -42,7 +42,7 @@ class Integrator {
   /// One step of size h from (y0, v0, a0) at time t into (y1, v1, a1).
   StepOutcome step(const double* y0, const double* v0, const double* a0, double t, double h,
                    double* y1, double* v1, double* a1);
-  /// Up to n_steps fixed steps, y, v, a updated in place; every out_every steps the state and
+  /// Up to n_steps fixed steps (rod triads re-referenced after each), y, v, a updated in place; every out_every steps the state and
   /// the energies (kinetic, strain, gravity) go to the next rows of out_y, out_v, out_e.
   RunOutcome run(double* y, double* v, double* a, double t0, double h, int n_steps,
                  int out_every, double* out_y, double* out_v, double* out_e);
@@ -66,8 +66,9 @@ struct NewtonOutcome {
   double increment;  ///< max |increment| of the last iteration
 };
 
-/// Newton iterations for f_int(y) = f_target (statics), y updated in place.
-NewtonOutcome static_newton(const Model& m, double* y, const double* f_target, double tol,
+/// Newton iterations for f_int(y) = load_factor f_ext(y) (statics: gravity, point forces and
+/// moments at their amplitudes), y updated in place; converged rod triads are re-referenced.
+NewtonOutcome static_newton(const Model& m, double* y, double load_factor, double tol,
                             int max_iter);
 
 /// Kinetic energy 1/2 v^T M v.

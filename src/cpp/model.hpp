@@ -14,7 +14,7 @@ namespace rancf {
 inline constexpr int kMaxElementDofs = 14;
 
 /// Element families; each has one kernel file and one entry in the registry (registry.cpp).
-enum class ElementKind : int { cable = 0, beam = 1 };
+enum class ElementKind : int { cable = 0, beam = 1, rod = 2 };
 
 /// Quadrature data of cable elements (rancf-math §3, §6).
 struct CableData {
@@ -34,10 +34,26 @@ struct BeamData {
   const double* d0 = nullptr;  ///< reference chord vector, (n_el, 2)
 };
 
+/// Quadrature data and nodal reference triads of spatial rod elements (rod-math §2-§5).
+struct RodData {
+  int n_qp = 0;
+  const double* n1 = nullptr;    ///< dS/dxi   at the Gauss points, (n_el, n_qp, 4)
+  const double* n2 = nullptr;    ///< d2S/dxi2 at the Gauss points, (n_el, n_qp, 4)
+  const double* xi = nullptr;    ///< Gauss points on [0, 1], (n_qp)
+  const double* gw = nullptr;    ///< Gauss weights, (n_qp)
+  const double* j0 = nullptr;    ///< reference |r0'|, (n_el, n_qp)
+  const double* kref = nullptr;  ///< reference material curvatures K1, K2, K3, (n_el, n_qp, 3)
+  double* tref = nullptr;        ///< nodal reference tangents, (n_nodes, 3); re-referenced
+  double* m1ref = nullptr;       ///< nodal reference directors, (n_nodes, 3); re-referenced
+};
+
 /// Section stiffnesses.
 struct Stiffness {
-  double ea = 0.0;  ///< axial stiffness E A
-  double ei = 0.0;  ///< bending stiffness E I
+  double ea = 0.0;   ///< axial stiffness E A
+  double ei = 0.0;   ///< bending stiffness E I (cable, beam)
+  double gj = 0.0;   ///< torsional stiffness G J (rod)
+  double ei2 = 0.0;  ///< bending stiffness about m1 (rod)
+  double ei3 = 0.0;  ///< bending stiffness about m2 (rod)
 };
 
 /// Supports: fixed model coordinates and the clamp rotations of gradient blocks (q = T y).
@@ -54,6 +70,10 @@ struct Loads {
   const std::int64_t* base = nullptr; ///< (n_point): index of the node's first coordinate
   const double* f0 = nullptr;         ///< (n_point, dim)
   const double* freq = nullptr;       ///< (n_point): Hz, 0 for a constant force
+  int n_moment = 0;                   ///< rod only: point moments M0 [sin(2 pi f t)]
+  const std::int64_t* moment_node = nullptr;  ///< (n_moment): node index
+  const double* moment = nullptr;             ///< (n_moment, 3)
+  const double* moment_freq = nullptr;        ///< (n_moment): Hz, 0 for a constant moment
 };
 
 /// An assembled model as the compiled core sees it.
@@ -66,6 +86,7 @@ struct Model {
   Stiffness stiffness;
   CableData cable;
   BeamData beam;
+  RodData rod;
   Supports supports;
   Loads loads;
   const double* mass_band = nullptr;  ///< constant mass matrix, band storage (2 ku + 1, n)

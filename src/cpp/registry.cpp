@@ -10,6 +10,8 @@ const ElementKernel& kernel_for(const Model& m) {
       return m.dim == 2 ? cable2d_kernel : cable3d_kernel;
     case ElementKind::beam:
       return beam_kernel;
+    case ElementKind::rod:
+      return rod_kernel;
   }
   throw std::invalid_argument("unknown element kind");
 }

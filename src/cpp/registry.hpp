@@ -22,5 +22,6 @@ const ElementKernel& kernel_for(const Model& m);
 extern const ElementKernel cable2d_kernel;  // cable.cpp
 extern const ElementKernel cable3d_kernel;  // cable.cpp
 extern const ElementKernel beam_kernel;     // beam.cpp
+extern const ElementKernel rod_kernel;      // rod.cpp
 
 }  // namespace rancf

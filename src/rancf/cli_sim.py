@@ -146,31 +146,41 @@ def _broken(model: Any, store: Any, exc: BaseException) -> dict[str, Any]:
     }
 
 
-def _run(args: argparse.Namespace, model: Any, opts: Any, store: Any, stop: Any, every: float):
-    from tqdm import tqdm
+#: A progress bar appears once a run has been stepping this long [s] (short runs stay silent).
+PROGRESS_AFTER_S = 0.5
 
+
+def _progress_bar(t_end: float, t: float) -> Any:
+    from tqdm import tqdm  # imported only for runs long enough to show a bar
+
+    return tqdm(
+        total=t_end,
+        initial=t,
+        unit="s",
+        file=sys.stderr,
+        leave=False,
+        bar_format="{l_bar}{bar}| t = {n:.4g}/{total:.4g} s [{elapsed}<{remaining}]",
+    )
+
+
+def _run(args: argparse.Namespace, model: Any, opts: Any, store: Any, stop: Any, every: float):
     from rancf.post.results import run_summary
     from rancf.solvers.dynamic import integrate
 
     bar: list[Any] = []
-    pace = {"next": time.monotonic() + every, "every": every}
+    pace = {"next": time.monotonic() + every, "every": every, "bar": math.inf}
 
     def on_start() -> None:
         store.info["setup_wall_time_s"] = _process_age()
         store.checkpoint(_running(model, 0.0))  # every file exists before the first step
-        bar.append(
-            tqdm(
-                total=opts.t_end,
-                unit="s",
-                disable=args.quiet,
-                file=sys.stderr,
-                leave=False,
-                bar_format="{l_bar}{bar}| t = {n:.4g}/{total:.4g} s [{elapsed}<{remaining}]",
-            )
-        )
+        if not args.quiet:
+            pace["bar"] = time.monotonic() + PROGRESS_AFTER_S
 
     def on_output(t: float, snapshot: Any) -> None:
-        bar[0].update(t - bar[0].n)
+        if bar:
+            bar[0].update(t - bar[0].n)
+        elif time.monotonic() >= pace["bar"]:
+            bar.append(_progress_bar(opts.t_end, t))
         now = time.monotonic()
         if now >= pace["next"]:
             summary = {**run_summary(model, snapshot()), **_running(model, t)}

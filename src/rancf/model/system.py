@@ -17,7 +17,6 @@ the chain (half bandwidth ``2 dpn - 1``).  Banded matrices use LAPACK general ba
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
@@ -27,63 +26,13 @@ from rancf.errors import InputError
 from rancf.kernels import _core
 from rancf.kernels.beam import BeamKernel
 from rancf.kernels.cable import CableKernel, CableProperties
+from rancf.kernels.rod import ROD_DOFS, RodKernel
 from rancf.model.mesh import CableMesh, to_ancf
+from rancf.model.parts import Material, PointLoad, Section, Support
 
 __all__ = ["Section", "Material", "Support", "PointLoad", "Model", "ElementKind"]
 
-ElementKind = Literal["rancf", "ancf", "beam"]
-
-
-@dataclass(frozen=True)
-class Section:
-    """Cross-section: area ``A`` and second moment of area ``I``."""
-
-    area: float
-    inertia: float
-
-    def __post_init__(self) -> None:
-        for name in ("area", "inertia"):
-            v = getattr(self, name)
-            if not (np.isfinite(v) and v > 0):
-                raise InputError(f"section.{name}", v, "a finite number > 0")
-
-    @classmethod
-    def circular(cls, radius: float) -> Section:
-        """Solid circular section: ``A = π r²``, ``I = π r⁴ / 4``."""
-        if not (np.isfinite(radius) and radius > 0):
-            raise InputError("section.radius", radius, "a finite radius > 0")
-        return cls(np.pi * radius**2, np.pi * radius**4 / 4.0)
-
-
-@dataclass(frozen=True)
-class Material:
-    """Linear elastic material: density ``ρ`` and Young's modulus ``E``."""
-
-    density: float
-    youngs_modulus: float
-
-    def __post_init__(self) -> None:
-        for name in ("density", "youngs_modulus"):
-            v = getattr(self, name)
-            if not (np.isfinite(v) and v > 0):
-                raise InputError(f"material.{name}", v, "a finite number > 0")
-
-
-@dataclass(frozen=True)
-class Support:
-    """A support at a node: ``"pin"`` (position fixed) or ``"clamp"`` (also the direction)."""
-
-    node: int
-    kind: Literal["pin", "clamp"] = "pin"
-
-
-@dataclass(frozen=True)
-class PointLoad:
-    """A force at a node: constant, or harmonic ``F0 sin(2π f t)`` when ``frequency_hz`` is set."""
-
-    node: int
-    force: tuple[float, ...]
-    frequency_hz: float | None = None
+ElementKind = Literal["rancf", "ancf", "beam", "rod"]
 
 
 def _orthonormal_basis(t: NDArray) -> NDArray:
@@ -157,16 +106,35 @@ class Model:
             self.dpn = 3
             q0 = np.concatenate([mesh.nodes[:, 0], np.zeros((self.n_nodes, 1))], axis=1).ravel()
             self.mesh = mesh
-        elif element in ("rancf", "ancf"):
+        elif element in ("rancf", "ancf", "rod"):
             m = to_ancf(mesh) if (element == "ancf" and mesh.kind != "ancf") else mesh
             self.mesh = m
             if n_qp is None:
                 n_qp = 6 if np.all(m.weights == 1.0) else 10
-            self.kernel = CableKernel(m.weights, m.scales, m.element_nodal(), props, n_qp)
-            self.dpn = 2 * self.dim
-            q0 = m.q0
+            if element == "rod":
+                if self.dim != 3:
+                    raise InputError(
+                        "mesh.element", "rod", "the rod element is spatial (3D geometry)"
+                    )
+                self.kernel = RodKernel(
+                    m.weights,
+                    m.scales,
+                    m.element_nodal(),
+                    props,
+                    rho * section.polar,
+                    n_qp,
+                    section.orientation,
+                )
+                self.dpn = ROD_DOFS
+                q0 = np.concatenate(
+                    [m.nodes.reshape(self.n_nodes, 6), np.zeros((self.n_nodes, 1))], axis=1
+                ).ravel()
+            else:
+                self.kernel = CableKernel(m.weights, m.scales, m.element_nodal(), props, n_qp)
+                self.dpn = 2 * self.dim
+                q0 = m.q0
         else:
-            raise InputError("mesh.element", element, 'one of "rancf", "ancf", "beam"')
+            raise InputError("mesh.element", element, 'one of "rancf", "ancf", "beam", "rod"')
         self.n = self.n_nodes * self.dpn
         self.nde = 2 * self.dpn
         self.ku = self.nde - 1
@@ -188,6 +156,10 @@ class Model:
                     self.fixed[base + self.dim + 1 : base + 2 * self.dim] = True
             elif sup.kind != "pin":
                 raise InputError("supports.kind", sup.kind, 'one of "pin", "clamp"')
+            if element == "rod" and (sup.kind == "clamp" or sup.fix_twist):
+                self.fixed[base + 6] = True  # the twist: the cross-section's orientation
+            elif sup.fix_twist:
+                raise InputError("supports.fix_twist", True, "rod elements (they have a twist)")
         self.supports = tuple(supports)
         # element-level transformations for elements touching a rotated node
         aff = sorted(
@@ -221,8 +193,12 @@ class Model:
         self.point_loads = tuple(point_loads)
         for pl in self.point_loads:
             self.check_node(pl.node, "loads.point.at")
-            if len(pl.force) != self.dim:
+            if pl.force is not None and len(pl.force) != self.dim:
                 raise InputError("loads.point.force", list(pl.force), f"{self.dim} components")
+            if pl.moment is not None and element != "rod":
+                raise InputError("loads.point.moment", list(pl.moment), "rod elements only")
+            if pl.moment is not None and len(pl.moment) != 3:
+                raise InputError("loads.point.moment", list(pl.moment), "3 components")
         if not (np.isfinite(damping) and damping >= 0):
             raise InputError("damping.mass_proportional", damping, "a finite number >= 0")
         self.damping = float(damping)
@@ -236,42 +212,79 @@ class Model:
         self.v0 = self.to_y(v0)
         self.v0[self.fixed] = 0.0
         self.core = self._core_model()
+        if isinstance(self.kernel, RodKernel):  # reference curvatures by the core itself
+            k, eps = self.kernel.kref.copy(), np.empty(self.kernel.kref.shape[:2])
+            self.core.rod_curvatures(self.y0, k, eps)
+            self.kernel.set_reference_curvatures(k)
+            self._triads0 = (self.kernel.tref.copy(), self.kernel.m1ref.copy())
+
+    def reset_triads(self) -> None:
+        """Rods: put the nodal reference triads back to those of the reference configuration.
+
+        The solvers re-reference the triads after every converged step (the model's only
+        state); :func:`~rancf.solvers.dynamic.integrate` and
+        :func:`~rancf.solvers.static.solve_static` call this first.  No-op for other elements.
+        """
+        if isinstance(self.kernel, RodKernel):
+            self.kernel.tref[...] = self._triads0[0]
+            self.kernel.m1ref[...] = self._triads0[1]
 
     def _core_model(self) -> _core.Model:
         """The model as the compiled core's named structure (arrays shared, not copied)."""
         k = self.kernel
         cable = k.core_data() if isinstance(k, CableKernel) else _empty_cable()
         beam = k.core_data() if isinstance(k, BeamKernel) else _empty_beam()
+        rod = k.core_data() if isinstance(k, RodKernel) else _empty_rod()
+        kind = {CableKernel: 0, BeamKernel: 1, RodKernel: 2}[type(k)]
+        sec, mat = self.section, self.material
+        stiffness = _core.Stiffness(ea=self.props.ea, ei=self.props.ei)
+        if kind == 2:
+            e_mod = mat.youngs_modulus
+            stiffness = _core.Stiffness(
+                ea=self.props.ea,
+                ei=self.props.ei,
+                gj=mat.shear * sec.torsion,
+                ei2=e_mod * sec.inertia,
+                ei3=e_mod * sec.inertia_2,
+            )
         rot_of_node = np.full(self.n_nodes, -1, dtype=np.int64)
         rot = np.zeros((max(len(self._rot), 1), self.dim, self.dim))
         for i, (off, basis) in enumerate(self._rot):
             rot_of_node[off // self.dpn] = i
             rot[i] = basis
         base, f0, freq = self.load_arrays()
+        moments = [p for p in self.point_loads if p.moment is not None]
         return _core.Model(
-            kind=1 if isinstance(k, BeamKernel) else 0,
+            kind=kind,
             dim=self.dim,
             dpn=self.dpn,
             n_el=self.n_el,
-            ea=self.props.ea,
-            ei=self.props.ei,
+            stiffness=stiffness,
             cable=cable,
             beam=beam,
+            rod=rod,
             supports=_core.Supports(
                 fixed=self.fixed.astype(np.uint8), rot_of_node=rot_of_node, rot=rot
             ),
-            loads=_core.Loads(f_gravity=self.f_gravity, base=base, f0=f0, freq=freq),
+            loads=_core.Loads(
+                f_gravity=self.f_gravity,
+                base=base,
+                f0=f0,
+                freq=freq,
+                moment_node=np.array([p.node % self.n_nodes for p in moments], dtype=np.int64),
+                moment=np.array([p.moment for p in moments], dtype=float).reshape(-1, 3),
+                moment_freq=np.array([p.frequency_hz or 0.0 for p in moments], dtype=float),
+            ),
             mass_band=np.ascontiguousarray(self.mass_band),
             y_ref=np.ascontiguousarray(self.y0),
         )
 
     def load_arrays(self) -> tuple[NDArray, NDArray, NDArray]:
-        """Point loads as ``(base index, F0, frequency)`` arrays (frequency 0: constant)."""
-        base = np.array(
-            [(p.node % self.n_nodes) * self.dpn for p in self.point_loads], dtype=np.int64
-        )
-        f0 = np.array([p.force for p in self.point_loads], dtype=float).reshape(-1, self.dim)
-        freq = np.array([p.frequency_hz or 0.0 for p in self.point_loads], dtype=float)
+        """Point forces as ``(base index, F0, frequency)`` arrays (frequency 0: constant)."""
+        forces = [p for p in self.point_loads if p.force is not None]
+        base = np.array([(p.node % self.n_nodes) * self.dpn for p in forces], dtype=np.int64)
+        f0 = np.array([p.force for p in forces], dtype=float).reshape(-1, self.dim)
+        freq = np.array([p.frequency_hz or 0.0 for p in forces], dtype=float)
         return base, f0, freq
 
     # ------------------------------------------------------------------ bookkeeping
@@ -365,10 +378,17 @@ class Model:
         """Gravitational potential ``-Q_gᵀ (y - y0)`` (zero in the reference configuration)."""
         return -float(self.f_gravity @ (np.asarray(y) - self.y0))
 
-    def external_force(self, t: float) -> NDArray[np.float64]:
-        """Gravity plus point loads at time ``t`` ``(n,)`` (point loads act on positions)."""
+    def external_force(
+        self, t: float, y: ArrayLike | None = None, amplitude: bool = False
+    ) -> NDArray[np.float64]:
+        """Gravity, point forces and (rods) point moments at time ``t`` and configuration ``y``.
+
+        ``amplitude``: harmonic loads at their amplitude (statics).  Moments depend on ``y``
+        (default: the reference).
+        """
         f = np.empty(self.n)
-        self.core.external_force(float(t), f)
+        yy = self.y0 if y is None else np.asarray(y, dtype=float)
+        self.core.external_force(float(t), yy, f, amplitude)
         return f
 
     @property
@@ -396,3 +416,10 @@ def _empty_cable() -> _core.CableData:
 def _empty_beam() -> _core.BeamData:
     z = np.zeros(0)
     return _core.BeamData(l0=z, d0=z)
+
+
+def _empty_rod() -> _core.RodData:
+    z = np.zeros(0)
+    return _core.RodData(
+        n1=z, n2=z, xi=z, gw=z, j0=z, kref=z, tref=np.zeros(0), m1ref=np.zeros(0)
+    )  # fmt: skip

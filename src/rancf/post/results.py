@@ -169,7 +169,7 @@ def write_history_files(
         "metadata": np.array(json.dumps(meta)),
     }
     with atomic_file(out / "results.npz") as fh:
-        with zipfile.ZipFile(fh, "w", zipfile.ZIP_DEFLATED, allowZip64=True, compresslevel=1) as z:
+        with zipfile.ZipFile(fh, "w", zipfile.ZIP_STORED, allowZip64=True) as z:
             _npy(z, "t", (n,), (t[r] for r in _rows(n, 1)))
             for name, arr in (("q", q), ("v", v)):
                 _npy(z, name, arr.shape, (arr[r] for r in _rows(n, arr.shape[1])))

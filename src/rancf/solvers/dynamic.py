@@ -290,6 +290,7 @@ def integrate(
         time reached.  ``wall_time`` is the time loop alone.
     """
     o = options
+    model.reset_triads()
     integ = GeneralizedAlpha(model, o.rho_inf, o.newton_tol, o.max_newton, o.newton)
     out_dt = o.output_step if o.output_step is not None else o.step
     n_out = o.n_outputs - 1
@@ -394,6 +395,7 @@ def integrate(
                 break
             continue
         y, v, a, t = y1, v1, a1, t + h_try
+        model.core.rereference(y)  # rods: nodal triads follow the accepted step
         result.took(h_try)
         if o.adaptive:
             h = min(max_step, h_try * min(2.0, 0.9 * max(err, 1e-10) ** (-1.0 / 3.0)))

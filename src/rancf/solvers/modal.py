@@ -61,6 +61,9 @@ def rigid_body_modes(model: Model, y: NDArray) -> NDArray[np.float64]:
         else:
             v[:, :3] = np.cross(w, pos - centre)
             v[:, 3:6] = np.cross(w, nodes[:, 3:6])
+            if model.element == "rod":  # the cross-section turns with it: spin w·t about t
+                g = nodes[:, 3:6]
+                v[:, 6] = g @ w / np.linalg.norm(g, axis=1)
         cols.append(v.ravel())
     r = model.y_from_q(np.array(cols)).T  # (n, n_candidates)
     fixed = model.fixed
@@ -89,6 +92,8 @@ def natural_modes(model: Model, y: NDArray | None = None, count: int | None = No
     count : int, optional
         Number of (non-rigid) modes to return; default all.
     """
+    if y is None:
+        model.reset_triads()
     y = model.y0 if y is None else np.asarray(y, dtype=float)
     _, kb = model.internal_force_and_tangent(y)
     free = ~model.fixed

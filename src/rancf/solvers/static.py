@@ -33,15 +33,6 @@ class StaticResult:
     wall_time: float
 
 
-def static_load(model: Model) -> NDArray[np.float64]:
-    """Gravity plus point loads at their amplitudes, in model coordinates."""
-    f = model.f_gravity.copy()
-    for pl in model.point_loads:
-        base = (pl.node % model.n_nodes) * model.dpn
-        f[base : base + model.dim] += np.asarray(pl.force, dtype=float)
-    return f
-
-
 def solve_static(
     model: Model, load_steps: int = 10, tol: float = 1e-10, max_iter: int = 25
 ) -> StaticResult:
@@ -56,8 +47,8 @@ def solve_static(
     if int(load_steps) != load_steps or load_steps < 1:
         raise InputError("solver.load_steps", load_steps, "an integer >= 1")
     start = time.perf_counter()
+    model.reset_triads()
     size = float(np.ptp(model.node_positions(model.q0), axis=0).max()) or 1.0
-    f_ext = static_load(model)
     y = model.y0.copy()
     lam, dlam = 0.0, 1.0 / load_steps
     factors = [0.0]
@@ -65,7 +56,7 @@ def solve_static(
     while lam < 1.0 - 1e-12:
         target = min(1.0, lam + dlam)
         trial = y.copy()
-        converged, n_iter, _ = model.core.static_newton(trial, target * f_ext, tol * size, max_iter)
+        converged, n_iter, _ = model.core.static_newton(trial, target, tol * size, max_iter)
         n_newton += n_iter
         if converged:
             y, lam = trial, target

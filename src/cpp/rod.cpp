@@ -1,0 +1,57 @@
+// Spatial Kirchhoff rod with torsion on the RANCF centerline (rod-math.md; Meier, Popp & Wall 2014).
+//
+// The element math is in rod_kernel.hpp (derivation: docs/rod-derivation.md); this file connects it
+// to the model: element inputs from RodData, the registry entry, point moments and the
+// re-referencing of the nodal triads after converged steps.
+//
+// Re-referencing keeps the nodal twist phi as a degree of freedom that accumulates: the reference
+// director becomes u = SR(t_ref -> t) m1_ref (the untwisted transported director) and t_ref <- t.
+// The nodal triad m1 = cos(phi) u + sin(phi) t x u is unchanged, so the state is the same, and phi
+// stays the twist of the cross-section about the tangent relative to the reference director
+// transported along the motion by smallest rotations (the twist sensor).
+#include "rod.hpp"
+
+#include "registry.hpp"
+#include "rod_kernel.hpp"
+
+namespace rancf {
+namespace {
+
+rod::ElementInput rod_input(const Model& m, int el) {
+  const RodData& r = m.rod;
+  const int nq = r.n_qp;
+  return {r.n1 + el * nq * 4, r.n2 + el * nq * 4, r.xi, r.gw, r.j0 + el * nq,
+          r.kref + el * nq * 3, nq, r.tref + el * 3, r.m1ref + el * 3, r.tref + (el + 1) * 3,
+          r.m1ref + (el + 1) * 3};
+}
+
+rod::Stiffness rod_stiffness(const Model& m) {
+  return {m.stiffness.ea, m.stiffness.gj, m.stiffness.ei2, m.stiffness.ei3};
+}
+
+void rod_forces(const Model& m, int el, const double* e, double* fe, double* ke) {
+  rod::forces(rod_input(m, el), rod_stiffness(m), e, fe, ke);
+}
+
+double rod_energy(const Model& m, int el, const double* e) {
+  return rod::energy(rod_input(m, el), rod_stiffness(m), e);
+}
+
+}  // namespace
+
+const ElementKernel rod_kernel = {rod_forces, rod_energy};
+
+void rod_curvatures(const Model& m, int el, const double* e, double* k, double* eps) {
+  rod::curvatures(rod_input(m, el), e, k, eps);
+}
+
+void rod_nodal_triad(const double* tref, const double* m1ref, const double* rx, double phi,
+                     double* t, double* m1) {
+  rod::nodal_triad(tref, m1ref, rx, phi, t, m1);
+}
+
+void rod_moment_load(const double* moment, const double* rx, double* g, double* kl) {
+  rod::moment_load(moment, rx, g, kl);
+}
+
+}  // namespace rancf

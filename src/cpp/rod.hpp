@@ -1,0 +1,19 @@
+// Rod-specific operations beyond the element kernel (see rod.cpp).
+#pragma once
+
+#include "model.hpp"
+
+namespace rancf {
+
+/// Material curvatures k (n_qp, 3) and axial strains eps (n_qp) of element el, coordinates e (q).
+void rod_curvatures(const Model& m, int el, const double* e, double* k, double* eps);
+
+/// Nodal triad: t = rx/|rx|, m1 = cos(phi) u + sin(phi) t x u, u = SR(tref -> t) m1ref.
+void rod_nodal_triad(const double* tref, const double* m1ref, const double* rx, double phi,
+                     double* t, double* m1);
+
+/// Point moment at a node: generalized force g (4: on r_x, then phi) and, if kl is not null,
+/// its derivative kl (4 x 4, row-major) with respect to (r_x, phi).
+void rod_moment_load(const double* moment, const double* rx, double* g, double* kl);
+
+}  // namespace rancf

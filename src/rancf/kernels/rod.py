@@ -1,0 +1,145 @@
+"""Spatial Kirchhoff rods with torsion on the RANCF centerline: data, triads, mass and gravity.
+
+The element (``src/cpp/rod_kernel.hpp``, derivation in ``docs/rod-derivation.md``) keeps the
+cable's exact centerline — nodal ``r``, ``r_x``, weights and gradient scales — and adds one twist
+``φ`` per node (7 coordinates per node: ``r, r_x, φ``).  Material triads follow Meier, Popp & Wall
+(2014): node ``N`` has the triad ``m1 = cos φ u + sin φ t × u`` with ``u = SR(t_ref → t) m1_ref``
+(smallest rotation of a reference triad onto the current tangent); inside an element the triad
+is carried from node A by smallest rotations and turned by the interpolated relative twist.
+Strain energy::
+
+    U = ½ ∫ [EA ε² + GJ (K1 - K1⁰)² + EI2 (K2 - K2⁰)² + EI3 (K3 - K3⁰)²] |r0'| dξ
+
+with the cable's Green–Lagrange ``ε``, the material curvatures ``K1`` (torsion), ``K2 = κ·m1``,
+``K3 = κ·m2`` and ``K⁰`` evaluated on the reference with the reference triads, so any curved
+reference is stress free.  This module prepares the data the core takes and holds, in NumPy,
+the constant mass (the cable's translational mass plus the torsional inertia
+``½ ∫ ρJ φ̇² |r0'| dξ`` with ``φ̇`` linear between the nodes) and gravity.
+
+Shapes: element coordinates ``(n_el, 14)`` ordered ``[rA, rA_x, φA, rB, rB_x, φB]``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from rancf.errors import InputError
+from rancf.kernels import _core
+from rancf.kernels.cable import CableKernel, CableProperties
+
+__all__ = ["RodKernel", "initial_triads", "ROD_DOFS"]
+
+#: Coordinates per node of a rod: position (3), gradient (3), twist (1).
+ROD_DOFS = 7
+#: Position of the cable's 12 element coordinates within the rod's 14.
+_CABLE_IDX = np.r_[0:6, 7:13]
+
+
+def _plane_normal(points: NDArray) -> NDArray | None:
+    """Unit normal of the plane holding ``points`` (None if they are collinear or not planar)."""
+    c = points - points.mean(axis=0)
+    _, s, vt = np.linalg.svd(c, full_matrices=False)
+    scale = s[0] if s.size else 0.0
+    if scale == 0.0 or s[1] <= 1e-12 * scale or (s.size > 2 and s[2] > 1e-10 * scale):
+        return None
+    return vt[2]
+
+
+def initial_triads(
+    nodes: NDArray, tangents: NDArray, orientation: ArrayLike | None = None
+) -> NDArray[np.float64]:
+    """Reference directors ``m1`` of every node, ``(n_nodes, 3)`` (rod-math §2).
+
+    ``orientation`` (projected normal to the first tangent) fixes ``m1`` at the first node; without
+    it a planar centerline gets ``m1 = e × t`` with ``e`` the plane normal (so ``m2 = e``, the
+    in-plane bending axis), and a straight one the global axis least aligned with it.  The
+    director is carried from node to node by smallest rotations of the tangent.
+    """
+    t = tangents / np.linalg.norm(tangents, axis=1, keepdims=True)
+    if orientation is not None:
+        o = np.asarray(orientation, dtype=float)
+        m1 = o - (o @ t[0]) * t[0]
+        if not np.linalg.norm(m1) > 1e-9 * max(np.linalg.norm(o), 1e-300):
+            raise InputError(
+                "section.orientation", o.tolist(), "a vector not parallel to the first tangent"
+            )
+    else:
+        e = _plane_normal(np.concatenate([nodes, nodes + t]))
+        if e is None:  # straight (or not planar): the global axis least aligned with t0
+            e = np.eye(3)[int(np.argmin(np.abs(t[0])))]
+            e = e - (e @ t[0]) * t[0]
+        m1 = np.cross(e, t[0])
+    out = np.empty_like(t)
+    out[0] = m1 / np.linalg.norm(m1)
+    for k in range(1, len(t)):
+        _, out[k] = _core.rod_nodal_triad(t[k - 1], out[k - 1], t[k], 0.0)
+    return out
+
+
+class RodKernel:
+    """Quadrature data, nodal triads, mass and gravity of a rod mesh.
+
+    Parameters
+    ----------
+    weights, scales, reference
+        As :class:`~rancf.kernels.cable.CableKernel` (``reference``: ``(n_el, 4, 3)``).
+    props : CableProperties
+        ``EA``, ``EI`` (unused) and ``ρA``.
+    rho_j : float
+        Torsional mass moment per length ``ρJ``.
+    n_qp : int
+        Gauss points per element.
+    orientation : array_like, optional
+        First principal axis at the first node (see :func:`initial_triads`).
+    """
+
+    def __init__(
+        self,
+        weights: ArrayLike,
+        scales: ArrayLike,
+        reference: ArrayLike,
+        props: CableProperties,
+        rho_j: float,
+        n_qp: int,
+        orientation: ArrayLike | None = None,
+    ) -> None:
+        self.cable = CableKernel(weights, scales, reference, props, n_qp)
+        c = self.cable
+        self.n_el = c.n_el
+        self.rho_j = float(rho_j)
+        ref = c.reference
+        nodes = np.concatenate([ref[:, 0], ref[-1:, 2]])
+        grads = np.concatenate([ref[:, 1], ref[-1:, 3]])
+        self.tref = np.ascontiguousarray(grads / np.linalg.norm(grads, axis=1, keepdims=True))
+        self.m1ref = np.ascontiguousarray(initial_triads(nodes, grads, orientation))
+        self.kref = np.zeros((self.n_el, c.n1.shape[1], 3))
+        self.xi = np.ascontiguousarray(c.xi)
+
+    def core_data(self) -> _core.RodData:
+        """The data as the core's named structure (``tref``/``m1ref`` are updated in place)."""
+        c = self.cable
+        return _core.RodData(
+            n1=c.n1, n2=c.n2, xi=self.xi, gw=c.gw, j0=c.j0, kref=self.kref,
+            tref=self.tref, m1ref=self.m1ref,
+        )  # fmt: skip
+
+    def set_reference_curvatures(self, k: NDArray) -> None:
+        """Store ``K⁰`` (computed by the core on the reference) in place."""
+        self.kref[...] = k
+
+    def mass_matrices(self) -> NDArray[np.float64]:
+        """Element mass matrices ``(n_el, 14, 14)``: cable translation plus ``ρJ`` torsion."""
+        m = np.zeros((self.n_el, 14, 14))
+        m[:, _CABLE_IDX[:, None], _CABLE_IDX[None, :]] = self.cable.mass_matrices()
+        xi = self.xi
+        lin = np.stack([1.0 - xi, xi], axis=1)  # (n_qp, 2): φ̇ interpolation
+        mt = self.rho_j * np.einsum("eq,qa,qb->eab", self.cable.wj, lin, lin)
+        m[:, [[6, 6], [13, 13]], [[6, 13], [6, 13]]] = mt
+        return m
+
+    def gravity_forces(self, g: ArrayLike) -> NDArray[np.float64]:
+        """Element gravity forces ``(n_el, 14)`` (on positions and gradients, as the cable)."""
+        f = np.zeros((self.n_el, 14))
+        f[:, _CABLE_IDX] = self.cable.gravity_forces(g)
+        return f

@@ -1,0 +1,119 @@
+"""The parts of a model: cross-section, material, supports and point loads (frozen values)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Literal
+
+import numpy as np
+
+from rancf.errors import InputError
+
+__all__ = ["Section", "Material", "Support", "PointLoad"]
+
+
+def _positive(key: str, v: float | None, what: str = "a finite number > 0") -> None:
+    if v is not None and not (np.isfinite(v) and v > 0):
+        raise InputError(key, v, what)
+
+
+@dataclass(frozen=True)
+class Section:
+    """Cross-section: area ``A``, second moments of area and (rods) torsion constant.
+
+    ``inertia`` is ``I`` of a cable or beam; for a rod it is ``I_y``, about the first principal
+    axis ``m1`` (set by ``orientation`` at the first node), and ``inertia_z`` (default
+    ``inertia``) is about ``m2``.  ``torsion_constant`` ``J`` defaults to the polar moment
+    ``I_y + I_z`` (exact for a circle).
+    """
+
+    area: float
+    inertia: float
+    inertia_z: float | None = None
+    torsion_constant: float | None = None
+    orientation: tuple[float, float, float] | None = None
+
+    def __post_init__(self) -> None:
+        for name in ("area", "inertia", "inertia_z", "torsion_constant"):
+            _positive(f"section.{name}", getattr(self, name))
+        if self.orientation is not None and (
+            len(self.orientation) != 3 or not np.all(np.isfinite(self.orientation))
+        ):
+            raise InputError("section.orientation", list(self.orientation), "3 finite numbers")
+
+    @classmethod
+    def circular(cls, radius: float) -> Section:
+        """Solid circular section: ``A = π r²``, ``I = π r⁴ / 4``, ``J = 2 I``."""
+        if not (np.isfinite(radius) and radius > 0):
+            raise InputError("section.radius", radius, "a finite radius > 0")
+        return cls(np.pi * radius**2, np.pi * radius**4 / 4.0)
+
+    @property
+    def inertia_2(self) -> float:
+        """``I_z``, about the second principal axis."""
+        return self.inertia if self.inertia_z is None else self.inertia_z
+
+    @property
+    def polar(self) -> float:
+        """Polar moment of area ``I_y + I_z`` (torsional inertia per length: ``ρ`` times it)."""
+        return self.inertia + self.inertia_2
+
+    @property
+    def torsion(self) -> float:
+        """Torsion constant ``J``."""
+        return self.polar if self.torsion_constant is None else self.torsion_constant
+
+
+@dataclass(frozen=True)
+class Material:
+    """Linear elastic material: density ``ρ``, Young's modulus ``E`` and (rods) ``G`` or ``ν``."""
+
+    density: float
+    youngs_modulus: float
+    shear_modulus: float | None = None
+    poisson_ratio: float | None = None
+
+    def __post_init__(self) -> None:
+        for name in ("density", "youngs_modulus", "shear_modulus"):
+            _positive(f"material.{name}", getattr(self, name))
+        nu = self.poisson_ratio
+        if nu is not None and not (np.isfinite(nu) and -1.0 < nu < 0.5):
+            raise InputError("material.poisson_ratio", nu, "a number in (-1, 0.5)")
+        if self.shear_modulus is not None and nu is not None:
+            raise InputError(
+                "material.poisson_ratio", nu, "absent when material.shear_modulus is given"
+            )
+
+    @property
+    def shear(self) -> float:
+        """Shear modulus ``G`` (given, or ``E / (2 (1 + ν))``)."""
+        if self.shear_modulus is not None:
+            return self.shear_modulus
+        if self.poisson_ratio is None:
+            raise InputError(
+                "material.shear_modulus", None, "shear_modulus or poisson_ratio (rod elements)"
+            )
+        return self.youngs_modulus / (2.0 * (1.0 + self.poisson_ratio))
+
+
+@dataclass(frozen=True)
+class Support:
+    """A support at a node: ``"pin"`` (position fixed) or ``"clamp"`` (also the direction).
+
+    For rods a clamp also holds the twist (the full cross-section orientation), and a pin with
+    ``fix_twist`` holds the position and the twist.
+    """
+
+    node: int
+    kind: Literal["pin", "clamp"] = "pin"
+    fix_twist: bool = False
+
+
+@dataclass(frozen=True)
+class PointLoad:
+    """A force and/or (rods) a moment at a node: constant, or ``× sin(2π f t)`` with a frequency."""
+
+    node: int
+    force: tuple[float, ...] | None = None
+    frequency_hz: float | None = None
+    moment: tuple[float, float, float] | None = None
