@@ -87,3 +87,16 @@ def test_schema_command_prints_json(capsys):
     doc = json.loads(capsys.readouterr().out)
     assert doc["$schema"].startswith("https://json-schema.org/")
     assert doc["required"] == ["geometry", "mesh", "section", "material"]
+
+
+def test_command_table_names_every_command_of_its_module():
+    """`rancf CMD` imports only CMD's module: the table must list exactly what each registers."""
+    import argparse
+    import importlib
+
+    from rancf.cli import COMMAND_MODULES
+
+    for module, commands in COMMAND_MODULES.items():
+        sub = argparse.ArgumentParser().add_subparsers()
+        importlib.import_module(module).add_parsers(sub)
+        assert tuple(sub.choices) == commands, module

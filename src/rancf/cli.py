@@ -1,7 +1,8 @@
 """The ``rancf`` command line: a table of sub-commands and one error path.
 
 Sub-commands live in their own modules; each registers its parsers with an ``add_parsers(sub)``
-function listed in :data:`COMMAND_MODULES` (add a line there to add commands).  Heavy imports
+function listed in :data:`COMMAND_MODULES` with the commands it adds (add a line there to add
+commands); a command line imports only the module of its command.  Heavy imports
 (NumPy, the compiled core, Matplotlib) happen inside the commands, so ``rancf --help`` is fast
 and an interrupt during them reaches the error path below.
 
@@ -28,14 +29,14 @@ from typing import Any, NoReturn
 
 __all__ = ["main", "COMMAND_MODULES"]
 
-#: Modules that register sub-commands, in the order they appear in ``rancf --help``.
-COMMAND_MODULES = (
-    "rancf.cli_conic",
-    "rancf.cli_sim",
-    "rancf.cli_files",
-    "rancf.cli_post",
-    "rancf.cli_sweep",
-)
+#: Modules that register sub-commands, and their commands, in the order of ``rancf --help``.
+COMMAND_MODULES: dict[str, tuple[str, ...]] = {
+    "rancf.cli_conic": ("conic",),
+    "rancf.cli_sim": ("simulate", "static", "modes"),
+    "rancf.cli_files": ("example", "report", "schema"),
+    "rancf.cli_post": ("export", "plot", "animate", "cad"),
+    "rancf.cli_sweep": ("sweep",),
+}
 
 
 class UsageError(Exception):
@@ -48,12 +49,9 @@ class _Parser(argparse.ArgumentParser):
 
 
 def _version() -> str:
-    from importlib.metadata import PackageNotFoundError, version
+    from rancf import __version__
 
-    try:
-        return version("rancf")
-    except PackageNotFoundError:  # pragma: no cover - running from a source tree
-        return "0+unknown"
+    return __version__
 
 
 class _Version(argparse.Action):
@@ -62,15 +60,16 @@ class _Version(argparse.Action):
         parser.exit()
 
 
-def build_parser() -> argparse.ArgumentParser:
-    """The argument parser with every registered sub-command."""
+def build_parser(command: str | None = None) -> argparse.ArgumentParser:
+    """The argument parser: of ``command``'s module alone, or of every sub-command."""
     p = _Parser(
         prog="rancf",
         description="Rational ANCF conic-section cable elements: geometry, CAD and dynamics.",
     )
     p.add_argument("--version", action=_Version, nargs=0, help="print the version and exit")
     sub = p.add_subparsers(dest="command", required=True, parser_class=_Parser)
-    for name in COMMAND_MODULES:
+    modules = [m for m, cmds in COMMAND_MODULES.items() if command in cmds] or COMMAND_MODULES
+    for name in modules:
         importlib.import_module(name).add_parsers(sub)
     return p
 
@@ -105,8 +104,9 @@ def main(argv: Sequence[str] | None = None) -> int:
 def _dispatch(argv: Sequence[str] | None) -> int:
     from rancf.errors import ConvergenceError, InputError, RancfError, ScenarioError
 
+    argv = sys.argv[1:] if argv is None else list(argv)
     try:
-        args = build_parser().parse_args(argv)
+        args = build_parser(argv[0] if argv else None).parse_args(argv)
         func: Callable[[argparse.Namespace], int] = args.func
         status = func(args)
         sys.stdout.flush()
