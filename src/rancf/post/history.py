@@ -90,6 +90,14 @@ class HistoryStore:
         if self._pending >= self._rows_per_flush:
             self.flush()
 
+    def append_block(self, t: NDArray, q: NDArray, v: NDArray, energy: NDArray) -> None:
+        """Store consecutive outputs: ``t (k,)``, ``q, v (k, n_q)``, ``energy (k, 3)``."""
+        for key, val in zip(_FILES, (t, q, v, energy), strict=True):
+            self._buf[key].append(np.asarray(val, dtype="<f8").ravel())
+        self._pending += len(t)
+        if self._pending >= self._rows_per_flush:
+            self.flush()
+
     def flush(self) -> None:
         """Append the buffered outputs to the raw files."""
         for key in _FILES:

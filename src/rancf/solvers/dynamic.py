@@ -315,6 +315,14 @@ def integrate(
         last[:] = [row]
         result.n_outputs += 1
 
+    def store_block(k0: int, oy: NDArray, ov: NDArray, oe: NDArray) -> None:
+        """Outputs ``k0, k0 + 1, ...`` from the core's loop, passed on as one block."""
+        ts = np.array([out_time(k0 + i) for i in range(len(oy))])
+        qs, vs = model.q_from_y(oy), model.q_from_y(ov)
+        target_sink.append_block(ts, qs, vs, oe)
+        last[:] = [(float(ts[-1]), qs[-1], vs[-1], np.array(oe[-1]))]
+        result.n_outputs += len(oy)
+
     y = model.y0.copy()
     v = model.v0.copy()
     t = 0.0
@@ -364,8 +372,8 @@ def integrate(
                 y, v, a, t, o.step, n_chunk * per_out, per_out
             )
             result.took(o.step, done)
-            for i in range(stored):
-                store(float(out_time(k_out + i)), oy[i], ov[i], oe[i])
+            if stored:
+                store_block(k_out, oy[:stored], ov[:stored], oe[:stored])
             t_chunk = t + done * o.step
             k_out += stored
             t = float(out_time(k_out - 1)) if (stored and done % per_out == 0) else t_chunk

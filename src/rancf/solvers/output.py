@@ -24,6 +24,15 @@ class OutputSink(Protocol):
     ) -> None:
         """Store one output: time, ``q (n_q,)``, ``v (n_q,)``, energies ``(3,)``."""
 
+    def append_block(
+        self,
+        t: NDArray[np.float64],
+        q: NDArray[np.float64],
+        v: NDArray[np.float64],
+        energy: NDArray,
+    ) -> None:
+        """Store consecutive outputs: ``t (k,)``, ``q, v (k, n_q)``, ``energy (k, 3)``."""
+
 
 class MemorySink:
     """Keeps every output in memory; :meth:`arrays` stacks them."""
@@ -42,6 +51,19 @@ class MemorySink:
         self.q.append(np.array(q, dtype=float))
         self.v.append(np.array(v, dtype=float))
         self.e.append(np.array(energy, dtype=float))
+
+    def append_block(
+        self,
+        t: NDArray[np.float64],
+        q: NDArray[np.float64],
+        v: NDArray[np.float64],
+        energy: NDArray,
+    ) -> None:
+        """Store consecutive outputs (the rows are kept as views of copies of the blocks)."""
+        self.t.extend(np.asarray(t, dtype=float).tolist())
+        self.q.extend(np.array(q, dtype=float))
+        self.v.extend(np.array(v, dtype=float))
+        self.e.extend(np.array(energy, dtype=float))
 
     def arrays(self) -> tuple[NDArray, NDArray, NDArray, NDArray]:
         """``t (n,)``, ``q (n, n_q)``, ``v (n, n_q)``, energies ``(n, 3)``."""
