@@ -121,6 +121,15 @@ inline void density_3d(const double* a, const double* b, double s0, double k0, d
   }
 }
 
+// a = r'(xi) = sum_k p_k e_k and b = r''(xi) = sum_k r_k e_k at one Gauss point.
+template <int D>
+inline void gather_ab(const double* p, const double* r, const double* e, double* a, double* b) {
+  for (int i = 0; i < D; ++i) {
+    a[i] = p[0] * e[i] + p[1] * e[D + i] + p[2] * e[2 * D + i] + p[3] * e[3 * D + i];
+    b[i] = r[0] * e[i] + r[1] * e[D + i] + r[2] * e[2 * D + i] + r[3] * e[3 * D + i];
+  }
+}
+
 // Element forces and (optionally) tangent, dimension D; node block k of e holds e[k D + i].
 template <int D>
 void cable_forces(const Model& m, int el, const double* e, double* fe, double* ke) {
@@ -134,10 +143,7 @@ void cable_forces(const Model& m, int el, const double* e, double* fe, double* k
     const int k = el * c.n_qp + q;
     const double* p = c.n1 + 4 * k;
     const double* r = c.n2 + 4 * k;
-    for (int i = 0; i < D; ++i) {
-      a[i] = p[0] * e[i] + p[1] * e[D + i] + p[2] * e[2 * D + i] + p[3] * e[3 * D + i];
-      b[i] = r[0] * e[i] + r[1] * e[D + i] + r[2] * e[2 * D + i] + r[3] * e[3 * D + i];
-    }
+    gather_ab<D>(p, r, e, a, b);
     if constexpr (D == 2)
       density_2d(a, b, c.s0[k], c.k0[k], c.j0[k], m.stiffness, g, ke != nullptr ? h : nullptr);
     else
@@ -175,10 +181,7 @@ double cable_energy(const Model& m, int el, const double* e) {
     const int k = el * c.n_qp + q;
     const double* p = c.n1 + 4 * k;
     const double* r = c.n2 + 4 * k;
-    for (int i = 0; i < D; ++i) {
-      a[i] = p[0] * e[i] + p[1] * e[D + i] + p[2] * e[2 * D + i] + p[3] * e[3 * D + i];
-      b[i] = r[0] * e[i] + r[1] * e[D + i] + r[2] * e[2 * D + i] + r[3] * e[3 * D + i];
-    }
+    gather_ab<D>(p, r, e, a, b);
     const QpGeometry geo = cable_qp_geometry(a, b, D);
     const double eps = (geo.aa - c.s0[k]) / (2.0 * c.s0[k]);
     double bend;

@@ -8,33 +8,7 @@ import sys
 from pathlib import Path
 
 import rancf
-
-SCENARIO = """\
-[geometry]
-kind = "line"
-start = [0.0, 0.0]
-end = [1.2, 0.0]
-[mesh]
-elements = 8
-element = "ancf"
-[section]
-radius = 0.02
-[material]
-density = 6000.0
-youngs_modulus = 2.0e8
-[[supports]]
-at = "start"
-kind = "pin"
-[loads]
-gravity = [0.0, -9.81]
-[solver]
-t_end = 0.1
-step = 1.0e-3
-[[sensors]]
-name = "tip"
-kind = "position"
-at = "end"
-"""
+from tests.model.test_scenario import BASE as SCENARIO  # a short planar pendulum
 
 
 def _tree(root: Path) -> dict[str, float]:
