@@ -125,6 +125,8 @@ def _row(n: int, newton: str, solver: str, a: list[dict], b: list[dict]) -> dict
         "steps": steps,
         "newton_iterations": a[0]["newton"],
         "rancf_us_per_step": 1e6 * _med([{"x": r["solve_s"] / r["steps"]} for r in a], "x"),
+        "rancf_ns_per_element_iteration": 1e9
+        * _med([{"x": r["solve_s"] / r["newton"] / n} for r in a], "x"),
         "rancf_setup_s": _med(a, "setup_s"),
         "rancf_process_s": _med(a, "wall_s"),
         "rancf_tip": a[-1]["tip"],

@@ -15,8 +15,10 @@ import argparse
 import json
 import math
 import time
+import warnings
 
 T0 = time.perf_counter()
+warnings.filterwarnings("ignore", category=DeprecationWarning)  # Exudyn's renamed settings
 
 import exudyn as exu  # noqa: E402
 from exudyn.beams import GenerateStraightLineANCFCable2D  # noqa: E402
