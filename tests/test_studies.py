@@ -80,7 +80,7 @@ def test_example_cli(tmp_path, capsys):
 
 
 def test_report_html(studies, tmp_path):
-    from rancf.post.report import write_report
+    from rancf.studies.report import write_report
 
     items = [(res, folder) for res, folder in studies.values()]
     for res, folder in items:

@@ -88,7 +88,7 @@ def _cmd_report(args: argparse.Namespace) -> int:
 
 def _run_studies(names: list[str], runners: list[Any], out: Path, quick: bool, nested: bool) -> int:
     """Run studies into ``out`` (one sub-folder each when ``nested``) and write the report."""
-    from rancf.post.report import write_report
+    from rancf.studies.report import write_report
 
     done = []
     with OutputDir(out) as od:

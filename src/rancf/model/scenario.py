@@ -19,8 +19,8 @@ from numpy.typing import NDArray
 from rancf.errors import InputError, ScenarioError
 
 if TYPE_CHECKING:
+    from rancf.model.analysis import DynamicOptions
     from rancf.model.system import Model
-    from rancf.solvers.dynamic import DynamicOptions
 
 __all__ = ["Scenario", "load_scenario", "parse_scenario", "Sensor", "MAX_ELEMENTS", "K_RANGE"]
 
@@ -87,7 +87,7 @@ class Scenario:
 
 
 def _dynamic_options(sv: dict[str, Any]) -> DynamicOptions:
-    from rancf.solvers.dynamic import DynamicOptions
+    from rancf.model.analysis import DynamicOptions
 
     keys = ("t_end", "step", "rho_inf", "adaptive", "rtol", "min_step", "output_step")
     keys += ("newton_tol", "max_newton", "newton")

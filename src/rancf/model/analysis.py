@@ -1,0 +1,98 @@
+"""Analysis settings of a time integration (:class:`DynamicOptions`): plain, validated data.
+
+They sit with the model (a scenario file describes both) and are consumed by
+:func:`rancf.solvers.dynamic.integrate`, which re-exports them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from rancf.errors import InputError
+
+__all__ = ["DynamicOptions"]
+
+
+@dataclass(frozen=True)
+class DynamicOptions:
+    """Options of :func:`integrate`; meaningless combinations are refused on construction.
+
+    Attributes
+    ----------
+    t_end : float
+        End time [s], finite and > 0.
+    step : float
+        (Initial) time step [s], in (0, t_end].
+    rho_inf : float
+        Spectral radius at infinity in [0, 1].
+    adaptive : bool
+        Adapt the step to ``rtol`` (local error relative to the model size).
+    rtol : float
+    min_step, max_step : float, optional
+        Step bounds (defaults ``step / 1024`` and ``max(output_step, step)``);
+        ``min_step <= step`` and ``min_step <= max_step``.
+    output_step : float, optional
+        Interval of stored states (default: every ``step``), in (0, t_end].
+    newton_tol : float
+        Newton stops when ``max |Δy| <= newton_tol * size`` (size = model extent).
+    max_newton : int
+    newton : {"full", "modified"}
+        ``"full"``: the exact tangent is assembled and factored at every iteration.
+        ``"modified"``: the factored Jacobian is reused across iterations and steps and refreshed
+        from the exact tangent when the increments stop shrinking fast (the converged answer is
+        the same to the Newton tolerance).
+
+    Raises
+    ------
+    InputError
+        Naming the ``solver.*`` key, e.g. ``step > t_end`` or ``min_step > step``.
+    """
+
+    t_end: float
+    step: float
+    rho_inf: float = 0.9
+    adaptive: bool = False
+    rtol: float = 1e-5
+    min_step: float | None = None
+    max_step: float | None = None
+    output_step: float | None = None
+    newton_tol: float = 1e-10
+    max_newton: int = 12
+    newton: str = "full"
+
+    def __post_init__(self) -> None:
+        def positive(name: str, value: object, upper: float = np.inf, what: str = "") -> None:
+            ok = isinstance(value, int | float) and not isinstance(value, bool)
+            if not (ok and np.isfinite(value) and 0 < value <= upper):  # type: ignore[operator]
+                raise InputError(f"solver.{name}", value, f"a finite number > 0{what}")
+
+        positive("t_end", self.t_end)
+        positive("step", self.step, self.t_end, f" and <= t_end = {self.t_end:g}")
+        if not (0.0 <= self.rho_inf <= 1.0):
+            raise InputError("solver.rho_inf", self.rho_inf, "a spectral radius in [0, 1]")
+        positive("rtol", self.rtol)
+        if self.output_step is not None:
+            positive("output_step", self.output_step, self.t_end, f" and <= t_end = {self.t_end:g}")
+        if self.min_step is not None:
+            positive("min_step", self.min_step, self.step, f" and <= step = {self.step:g}")
+        if self.max_step is not None:
+            low = self.min_step if self.min_step is not None else 0.0
+            positive("max_step", self.max_step)
+            if self.max_step < low:
+                raise InputError("solver.max_step", self.max_step, f">= min_step = {low:g}")
+        positive("newton_tol", self.newton_tol)
+        if isinstance(self.max_newton, bool) or not isinstance(self.max_newton, int):
+            raise InputError("solver.max_newton", self.max_newton, "an integer >= 1")
+        if self.max_newton < 1:
+            raise InputError("solver.max_newton", self.max_newton, "an integer >= 1")
+        if self.newton not in ("full", "modified"):
+            raise InputError("solver.newton", self.newton, 'one of "full", "modified"')
+
+    @property
+    def n_outputs(self) -> int:
+        """Number of stored states, the initial one included."""
+        out_dt = self.output_step if self.output_step is not None else self.step
+        n_grid = int(np.floor(self.t_end / out_dt + 1e-9))
+        return 1 + n_grid + (1 if out_dt * n_grid < self.t_end * (1 - 1e-12) else 0)
