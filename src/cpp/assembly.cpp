@@ -126,7 +126,7 @@ void moment_terms(const Model& m, int p, double t, const double* y, bool amplitu
   double mom[3], rx[3];
   for (int i = 0; i < 3; ++i) mom[i] = fac * m.loads.moment[3 * p + i];
   nodal_gradient(m, y, node, rx);
-  rod_moment_load(mom, rx, g, kl);
+  rod_moment_load(m, node, mom, rx, g, kl);
   const std::int64_t r = m.supports.rot_of_node[node];
   if (r < 0) return;
   const double* bas = m.supports.rot + r * 9;  // q = T y on the r_x block: map g and kl back

@@ -50,8 +50,9 @@ void rod_nodal_triad(const double* tref, const double* m1ref, const double* rx, 
   rod::nodal_triad(tref, m1ref, rx, phi, t, m1);
 }
 
-void rod_moment_load(const double* moment, const double* rx, double* g, double* kl) {
-  rod::moment_load(moment, rx, g, kl);
+void rod_moment_load(const Model& m, int node, const double* moment, const double* rx, double* g,
+                     double* kl) {
+  rod::moment_load(moment, m.rod.tref + 3 * node, m.rod.m1ref + 3 * node, rx, g, kl);
 }
 
 }  // namespace rancf

@@ -12,8 +12,9 @@ void rod_curvatures(const Model& m, int el, const double* e, double* k, double* 
 void rod_nodal_triad(const double* tref, const double* m1ref, const double* rx, double phi,
                      double* t, double* m1);
 
-/// Point moment at a node: generalized force g (4: on r_x, then phi) and, if kl is not null,
-/// its derivative kl (4 x 4, row-major) with respect to (r_x, phi).
-void rod_moment_load(const double* moment, const double* rx, double* g, double* kl);
+/// Point moment at `node` with gradient rx: generalized force g (4: on r_x, then phi) and, if kl
+/// is not null, its derivative kl (4 x 4, row-major) with respect to (r_x, phi).
+void rod_moment_load(const Model& m, int node, const double* moment, const double* rx, double* g,
+                     double* kl);
 
 }  // namespace rancf
