@@ -92,3 +92,28 @@ def test_simulate_writes_the_twist_column(tmp_path, capsys):
     rows = (tmp_path / "r" / "sensors.csv").read_text().splitlines()
     assert rows[0] == "t,phi"
     assert len(rows) == 22 and float(rows[-1].split(",")[1]) != 0.0
+
+
+def test_modes_command_reports_torsional_modes(tmp_path, capsys):
+    """``rancf modes`` on a clamped straight rod lists the torsion bar's first frequency
+    ``sqrt(G / ρ) / (4 L)`` among the bending ones (no zero modes)."""
+    d = tomllib.loads(ROD)
+    d["geometry"] = {"kind": "line", "start": [0.0, 0.0, 0.0], "end": [0.0, 0.0, 0.5]}
+    d["mesh"]["elements"] = 16
+    (tmp_path / "t.toml").write_text(dump(d))
+    assert main(["modes", str(tmp_path / "t.toml"), "--count", "12", "--json"]) == 0
+    f = np.array(json.loads(capsys.readouterr().out)["frequencies_hz"])
+    g = 2.0e7 / (2 * 1.3)
+    torsion = np.sqrt(g / 6000.0) / (4 * 0.5)
+    assert f.min() > 1.0
+    assert np.min(np.abs(f / torsion - 1)) < 5e-3
+
+
+def test_modes_note_points_curved_spatial_cables_to_the_rod(tmp_path, capsys):
+    d = tomllib.loads(ROD)
+    d["mesh"]["element"] = "rancf"
+    del d["material"]["poisson_ratio"]
+    (tmp_path / "c.toml").write_text(dump(d))
+    assert main(["modes", str(tmp_path / "c.toml")]) == 0
+    out = capsys.readouterr().out
+    assert "0.000000 Hz" in out and 'mesh.element = "rod"' in out
