@@ -55,7 +55,16 @@ def dump(d: dict) -> str:
 
 def mutated(**changes) -> str:
     """BASE with ``table__key=value`` changes (``None`` deletes; ``table=...`` replaces)."""
-    d = tomllib.loads(BASE)
+    return _mutated(BASE, changes)
+
+
+def rod(**changes) -> str:
+    """ROD (a clamped spatial rod arc) with changes, as :func:`mutated`."""
+    return _mutated(ROD, changes)
+
+
+def _mutated(text: str, changes: dict) -> str:
+    d = tomllib.loads(text)
     for key, value in changes.items():
         if "__" in key:
             table, sub = key.split("__")
@@ -77,6 +86,36 @@ NURBS = {
     "control_points": [[0.0, 0.0], [0.25, 0.2], [0.5, 0.0]],
 }
 LINE = {"kind": "line", "start": [0.0, 0.0], "end": [0.5, 0.0]}
+ROD = """
+[geometry]
+kind = "conic"
+start = [0.0, 0.0, 0.0]
+end = [0.5, 0.0, 0.0]
+angles_deg = [30.0, 30.0]
+point = [0.25, 0.067, 0.0]
+[mesh]
+elements = 3
+element = "rod"
+[section]
+radius = 0.03
+[material]
+density = 6000.0
+youngs_modulus = 2.0e7
+poisson_ratio = 0.3
+[[supports]]
+at = "start"
+kind = "clamp"
+[solver]
+t_end = 0.02
+step = 1.0e-3
+"""
+
+
+def _without(d: dict, key: str) -> dict:
+    return {k: v for k, v in d.items() if k != key}
+
+
+PRINCIPAL = {"area": 1e-3, "inertia_y": 1e-7, "inertia_z": 2e-7, "orientation": [0.0, 0.0, 1.0]}
 
 
 def nurbs(**g) -> str:
@@ -269,6 +308,93 @@ SCENARIOS = [
     ("sensor-node", mutated(sensors=[{"name": "a", "kind": "position", "at": 42}]), 2, "sensors.a"),
     ("modes-count-0", mutated(modes={"count": 0}), 2, "modes.count"),
     ("modes-about", mutated(modes={"about": "dynamic"}), 2, "modes.about"),
+    ("rod-2d", mutated(mesh__element="rod", material__shear_modulus=1e6), 2, "mesh.element"),
+    ("rod-no-shear", rod(material__poisson_ratio=None), 2, "material.shear_modulus"),
+    ("rod-shear-and-nu", rod(material__shear_modulus=8e6), 2, "material.poisson_ratio"),
+    ("rod-nu-0.5", rod(material__poisson_ratio=0.5), 2, "material.poisson_ratio"),
+    ("rod-nu-string", rod(material__poisson_ratio="0.3"), 2, "material.poisson_ratio"),
+    (
+        "rod-shear-zero",
+        rod(material__poisson_ratio=None, material__shear_modulus=0.0),
+        2,
+        "material.shear_modulus",
+    ),  # fmt: skip
+    ("cable-shear", mutated(material__shear_modulus=1e6), 2, "material.shear_modulus"),
+    ("cable-nu", mutated(material__poisson_ratio=0.3), 2, "material.poisson_ratio"),
+    ("cable-inertia-y", mutated(section={**PRINCIPAL}), 2, "section.inertia_y"),
+    ("cable-torsion", mutated(section__torsion_constant=1e-8), 2, "section.torsion_constant"),
+    ("rod-torsion-negative", rod(section__torsion_constant=-1e-8), 2, "section.torsion_constant"),
+    (
+        "rod-no-orientation",
+        rod(section=_without(PRINCIPAL, "orientation")),
+        2,
+        "section.orientation",
+    ),  # fmt: skip
+    ("rod-no-inertia-z", rod(section=_without(PRINCIPAL, "inertia_z")), 2, "section.inertia_z"),
+    ("rod-inertia-and-y", rod(section={**PRINCIPAL, "inertia": 1e-7}), 2, "section.inertia"),
+    ("rod-radius-and-y", rod(section__inertia_y=1e-7), 2, "section"),
+    (
+        "rod-orientation-2",
+        rod(section={**PRINCIPAL, "orientation": [1.0, 0.0]}),
+        2,
+        "section.orientation",
+    ),  # fmt: skip
+    (
+        "rod-orientation-zero",
+        rod(section={**PRINCIPAL, "orientation": [0.0, 0.0, 0.0]}),
+        2,
+        "section.orientation",
+    ),  # fmt: skip
+    (
+        "rod-orientation-tangent",
+        rod(section={**PRINCIPAL, "orientation": [3**0.5 / 2, 0.5, 0.0]}),
+        2,
+        "section.orientation",
+    ),  # fmt: skip
+    (
+        "rod-moment-2",
+        rod(loads={"point": [{"at": "end", "moment": [0.0, 1.0]}]}),
+        2,
+        "loads.point[0].moment",
+    ),  # fmt: skip
+    (
+        "rod-moment-nan",
+        rod(loads={"point": [{"at": "end", "moment": [0.0, float("nan"), 1.0]}]}),
+        2,
+        "loads.point[0].moment[1]",
+    ),  # fmt: skip
+    ("load-neither", rod(loads={"point": [{"at": "end"}]}), 2, "loads.point[0].force"),
+    (
+        "cable-moment",
+        mutated(loads={"point": [{"at": "end", "moment": [0.0, 0.0, 1.0]}]}),
+        2,
+        "loads.point[0].moment",
+    ),  # fmt: skip
+    (
+        "cable-fix-twist",
+        mutated(supports=[{"at": "start", "fix_twist": True}]),
+        2,
+        "supports[0].fix_twist",
+    ),  # fmt: skip
+    (
+        "rod-fix-twist-string",
+        rod(supports=[{"at": "start", "fix_twist": "yes"}]),
+        2,
+        "supports[0].fix_twist",
+    ),  # fmt: skip
+    (
+        "cable-twist-sensor",
+        mutated(sensors=[{"name": "a", "kind": "twist", "at": "end"}]),
+        2,
+        "sensors[0].kind",
+    ),  # fmt: skip
+    (
+        "rod-twist-between",
+        rod(sensors=[{"name": "a", "kind": "twist", "between": [0, 1]}]),
+        2,
+        "sensors[0].at",
+    ),  # fmt: skip
+    ("rod-twist-node", rod(sensors=[{"name": "a", "kind": "twist", "at": 9}]), 2, "sensors.a"),
     ("t-end-1e6", mutated(solver__t_end=1e6), 2, "GB"),
     ("t-end-1e12", mutated(solver__t_end=1e12, solver__output_step=1.0), 2, "GB"),
 ]

@@ -12,7 +12,12 @@ from rancf.cli import main
 from tests.model.test_scenario import BASE
 
 README = Path(__file__).resolve().parents[1] / "README.md"
-SECTIONS = ("### Looking at a run", "### CAD in and out", "### Parameter sweeps on Dask")
+SECTIONS = (
+    "### Looking at a run",
+    "### CAD in and out",
+    "### Parameter sweeps on Dask",
+    "### Rods with torsion",
+)
 
 
 def _section(title: str) -> str:
@@ -41,6 +46,7 @@ def test_readme_console_examples(tmp_path, capsys, monkeypatch):
     (tmp_path / "short.toml").write_text(BASE)
     sweep = _section(SECTIONS[2])
     (tmp_path / "sweep.toml").write_text(_blocks(sweep, "toml")[0])
+    (tmp_path / "rod.toml").write_text(_blocks(_section(SECTIONS[3]), "toml")[0])
     n = 0
     for title in SECTIONS:
         for block in _blocks(_section(title), "console"):

@@ -51,6 +51,11 @@ def test_spatial_pendulum_moves_out_of_plane_and_converges(studies):
     }
     for kind in ("Kopt", "K = 0.1"):
         assert errs[kind] < first[kind]
+    # the rod reruns the study: converging, energy kept, out of plane too
+    rod = res.data["rod_errors"]
+    assert rod[4] < rod[2]
+    assert res.data["rod_energy_drift"] < 1e-2
+    assert res.data["rod_out_of_plane"] > 0.01
 
 
 def test_arc_vibration(studies):
@@ -69,6 +74,12 @@ def test_arc_vibration(studies):
     assert d["f_forced"] == pytest.approx(d["f_fft"], rel=0.05)
     assert 0.5 * d["lin"] < d["amp"] < 1.2 * d["lin"]
     assert (folder / "modes.csv").exists()
+    # the rod: no zero modes, in-plane modes of the planar cable, out-of-plane ones converging
+    # from above, and the free out-of-plane vibration at the first out-of-plane frequency
+    assert d["rod_n_zero"] == 0 and d["rod_in_diff"] < 1e-8
+    assert np.all(np.diff(d["rod_out_modes"], axis=0) < 0)
+    assert d["rod_fft_out"] == pytest.approx(d["rod_f1_out"], rel=0.05)
+    assert (folder / "rod_out_of_plane_modes.csv").exists()
 
 
 def test_example_cli(tmp_path, capsys):

@@ -295,7 +295,8 @@ def _cmd_modes(args: argparse.Namespace) -> int:
             print(
                 "  note: zero-frequency modes that are not rigid-body motions are kept; for a "
                 "curved spatial cable they are the out-of-plane bending the magnitude "
-                "curvature does not resist (see README)."
+                'curvature does not resist: use mesh.element = "rod" (torsion and out-of-plane '
+                "bending stiffness) for curved spatial structures (see README)."
             )
     return 0
 

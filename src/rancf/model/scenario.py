@@ -30,6 +30,10 @@ _REQ = object()  # marker: required key
 MAX_ELEMENTS = 1_000_000
 #: The mapping factors a scenario may fix (``mesh.k``); outside, the cubic form degenerates.
 K_RANGE = (1e-4, 1.0 - 1e-4)
+#: Element kinds of ``mesh.element``.
+ELEMENTS = ("rancf", "ancf", "beam", "rod")
+#: Sensor kinds (``twist``: rods only).
+SENSOR_KINDS = ("distance", "position", "twist")
 #: Keys of ``[geometry]`` for each kind.
 GEOMETRY_KEYS = {
     "conic": ("start", "end", "angles_deg", "point"),
@@ -41,7 +45,13 @@ GEOMETRY_KEYS = {
 
 @dataclass(frozen=True)
 class Sensor:
-    """A monitored quantity: ``distance`` between two nodes or ``position`` of one node."""
+    """A monitored quantity of one or two nodes.
+
+    ``distance`` between two nodes, ``position`` of one node, or (rods) ``twist`` of one node:
+    its twist coordinate ``φ`` [rad], the rotation of the cross-section about the tangent
+    relative to the reference director carried along with the tangent by smallest rotations
+    (docs/rod-derivation.md; cumulative: it is not wrapped to ``(-π, π]``).
+    """
 
     name: str
     kind: str
@@ -49,15 +59,20 @@ class Sensor:
 
     def columns(self, dim: int) -> list[str]:
         """CSV column names of the sensor's scalars."""
-        if self.kind == "distance":
+        if self.kind in ("distance", "twist"):
             return [self.name]
         return [f"{self.name}_{c}" for c in "xyz"[:dim]]
 
-    def evaluate(self, positions: NDArray) -> NDArray[np.float64]:
-        """Values ``(n_t, n_columns)`` from node positions ``(n_t, n_nodes, dim)``."""
+    def evaluate(self, positions: NDArray, twists: NDArray | None = None) -> NDArray[np.float64]:
+        """Values ``(n_t, n_columns)`` from node positions ``(n_t, n_nodes, dim)`` and, for
+        ``twist``, the nodal twists ``(n_t, n_nodes)``."""
         if self.kind == "distance":
             d = positions[:, self.nodes[1]] - positions[:, self.nodes[0]]
             return np.linalg.norm(d, axis=1)[:, None]
+        if self.kind == "twist":
+            if twists is None:
+                raise InputError(f"sensors.{self.name}", "twist", "a rod model (nodal twists)")
+            return twists[:, self.nodes[0], None]
         return positions[:, self.nodes[0]]
 
 
@@ -313,7 +328,7 @@ def parse_scenario(raw: dict[str, Any], path: str = "<scenario>") -> Scenario:
     m["elements"] = _integer(path, "mesh.elements", m["elements"], 1)
     if m["elements"] > MAX_ELEMENTS:
         raise _err(path, "mesh.elements", f"must be at most {MAX_ELEMENTS}, got {m['elements']!r}")
-    m["element"] = _choice(path, "mesh.element", m["element"], ("rancf", "ancf", "beam"))
+    m["element"] = _choice(path, "mesh.element", m["element"], ELEMENTS)
     if m["k"] != "opt":
         k = _number(path, "mesh.k", m["k"])
         lo, hi = K_RANGE
@@ -328,53 +343,27 @@ def parse_scenario(raw: dict[str, Any], path: str = "<scenario>") -> Scenario:
         m["quadrature_points"] = q
     if m["element"] == "beam" and dim != 2:
         raise _err(path, "mesh.element", "the beam element is planar: use 2-coordinate geometry")
+    if m["element"] == "rod" and dim != 3:
+        raise _err(path, "mesh.element", "the rod element is spatial: use 3-coordinate geometry")
     d["mesh"] = m
 
-    s = _table(path, "section", raw["section"], {"radius": None, "area": None, "inertia": None})
-    if s["radius"] is not None:
-        if s["area"] is not None or s["inertia"] is not None:
-            raise _err(path, "section", "give either radius, or area and inertia, not both")
-        s["radius"] = _number(path, "section.radius", s["radius"], positive=True)
-    else:
-        if s["area"] is None or s["inertia"] is None:
-            raise _err(path, "section", "requires radius, or both area and inertia")
-        s["area"] = _number(path, "section.area", s["area"], positive=True)
-        s["inertia"] = _number(path, "section.inertia", s["inertia"], positive=True)
-    d["section"] = s
-
-    mat = _table(path, "material", raw["material"], {"density": _REQ, "youngs_modulus": _REQ})
-    mat["density"] = _number(path, "material.density", mat["density"], positive=True)
-    mat["youngs_modulus"] = _number(
-        path, "material.youngs_modulus", mat["youngs_modulus"], positive=True
+    from rancf.model.scenario_parts import (
+        parse_material,
+        parse_point_loads,
+        parse_section,
+        parse_supports,
     )
-    d["material"] = mat
 
-    sups = raw.get("supports", [])
-    if not isinstance(sups, list):
-        raise _err(path, "supports", "must be an array of tables [[supports]]")
-    d["supports"] = []
-    for i, sp in enumerate(sups):
-        t = _table(path, f"supports[{i}]", sp, {"at": _REQ, "kind": "pin"})
-        t["at"] = _place(path, f"supports[{i}].at", t["at"])
-        t["kind"] = _choice(path, f"supports[{i}].kind", t["kind"], ("pin", "clamp"))
-        d["supports"].append(t)
+    el = m["element"]
+    d["section"] = parse_section(path, raw["section"], el)
+    d["material"] = parse_material(path, raw["material"], el)
+
+    d["supports"] = parse_supports(path, raw.get("supports", []), el)
 
     ld = _table(path, "loads", raw.get("loads", {}), {"gravity": None, "point": []})
     if ld["gravity"] is not None:
         ld["gravity"] = _vector(path, "loads.gravity", ld["gravity"], (dim,))
-    if not isinstance(ld["point"], list):
-        raise _err(path, "loads.point", "must be an array of tables [[loads.point]]")
-    pts = []
-    for i, pl in enumerate(ld["point"]):
-        t = _table(path, f"loads.point[{i}]", pl, {"at": _REQ, "force": _REQ, "frequency_hz": None})
-        t["at"] = _place(path, f"loads.point[{i}].at", t["at"])
-        t["force"] = _vector(path, f"loads.point[{i}].force", t["force"], (dim,))
-        if t["frequency_hz"] is not None:
-            t["frequency_hz"] = _number(
-                path, f"loads.point[{i}].frequency_hz", t["frequency_hz"], positive=True
-            )
-        pts.append(t)
-    ld["point"] = pts
+    ld["point"] = parse_point_loads(path, ld["point"], dim, el)
     d["loads"] = ld
 
     dm = _table(path, "damping", raw.get("damping", {}), {"mass_proportional": 0.0})
@@ -448,7 +437,12 @@ def parse_scenario(raw: dict[str, Any], path: str = "<scenario>") -> Scenario:
         if t["name"] in names or t["name"] == "t":
             raise _err(path, f"sensors[{i}].name", f"{t['name']!r} is used twice or reserved")
         names.add(t["name"])
-        kd = _choice(path, f"sensors[{i}].kind", t["kind"], ("distance", "position"))
+        kd = _choice(path, f"sensors[{i}].kind", t["kind"], SENSOR_KINDS)
+        if kd == "twist" and m["element"] != "rod":
+            raise _err(
+                path, f"sensors[{i}].kind", f"'twist' needs rod elements (mesh.element = \"rod\"), "
+                f"not {m['element']!r}",
+            )  # fmt: skip
         if kd == "distance":
             b = t["between"]
             if t["at"] is not None or not isinstance(b, list) or len(b) != 2:
@@ -458,7 +452,7 @@ def parse_scenario(raw: dict[str, Any], path: str = "<scenario>") -> Scenario:
             nodes = tuple(_place(path, f"sensors[{i}].between[{j}]", x) for j, x in enumerate(b))
         else:
             if t["between"] is not None or t["at"] is None:
-                raise _err(path, f"sensors[{i}].at", "a position sensor needs at = PLACE")
+                raise _err(path, f"sensors[{i}].at", f"a {kd} sensor needs at = PLACE")
             nodes = (_place(path, f"sensors[{i}].at", t["at"]),)
         sensors.append(Sensor(t["name"], kd, nodes))
     return Scenario(path, d, dim, tuple(sensors))

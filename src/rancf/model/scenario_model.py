@@ -8,6 +8,7 @@ geometry whose arc length cannot be integrated is a geometry error, not a solver
 
 from __future__ import annotations
 
+from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -124,21 +125,34 @@ def build_model(sc: Scenario) -> Model:
                 "with a velocity",
             )
         v0[node] = t["value"]
-    s = d["section"]
-    section = (
-        Section.circular(s["radius"])
-        if s["radius"] is not None
-        else Section(s["area"], s["inertia"])
-    )
+    s, mat = d["section"], d["material"]
+    if s["radius"] is not None:
+        section = Section.circular(s["radius"])
+        section = replace(section, torsion_constant=s["torsion_constant"])
+    else:
+        inertia = s["inertia"] if s["inertia"] is not None else s["inertia_y"]
+        orient = None if s["orientation"] is None else tuple(s["orientation"])
+        section = Section(s["area"], inertia, s["inertia_z"], s["torsion_constant"], orient)
+    loads = [
+        PointLoad(
+            t["at"],
+            None if t["force"] is None else tuple(t["force"]),
+            t["frequency_hz"],
+            None if t["moment"] is None else tuple(t["moment"]),
+        )
+        for t in d["loads"]["point"]
+    ]
     try:
         return Model(
             mesh,
             d["mesh"]["element"],
             section,
-            Material(d["material"]["density"], d["material"]["youngs_modulus"]),
-            [Support(t["at"], t["kind"]) for t in d["supports"]],
+            Material(
+                mat["density"], mat["youngs_modulus"], mat["shear_modulus"], mat["poisson_ratio"]
+            ),
+            [Support(t["at"], t["kind"], t["fix_twist"]) for t in d["supports"]],
             d["loads"]["gravity"],
-            [PointLoad(t["at"], tuple(t["force"]), t["frequency_hz"]) for t in d["loads"]["point"]],
+            loads,
             d["damping"]["mass_proportional"],
             v0,
             d["mesh"]["quadrature_points"],

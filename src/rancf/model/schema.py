@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from rancf.model.scenario import GEOMETRY_KEYS, K_RANGE, MAX_ELEMENTS
+from rancf.model.scenario import ELEMENTS, GEOMETRY_KEYS, K_RANGE, MAX_ELEMENTS, SENSOR_KINDS
 
 __all__ = ["scenario_schema"]
 
@@ -71,7 +71,11 @@ def scenario_schema() -> dict[str, Any]:
     mesh = _table(
         {
             "elements": {"type": "integer", "minimum": 1, "maximum": MAX_ELEMENTS},
-            "element": {"enum": ["rancf", "ancf", "beam"], "default": "rancf"},
+            "element": {
+                "enum": list(ELEMENTS),
+                "default": "rancf",
+                "description": '"rod": spatial rod with torsion (3D geometry only)',
+            },
             "k": {
                 "oneOf": [{"const": "opt"}, {"type": "number", "minimum": lo, "maximum": hi}],
                 "default": "opt",
@@ -87,10 +91,34 @@ def scenario_schema() -> dict[str, Any]:
         ("elements",),
     )
     section = _table(
-        {"radius": _POS, "area": _POS, "inertia": _POS},
-        oneOf=[{"required": ["radius"]}, {"required": ["area", "inertia"]}],
+        {
+            "radius": _POS,
+            "area": _POS,
+            "inertia": _POS,
+            "inertia_y": {**_POS, "description": "rods: about the first principal axis"},
+            "inertia_z": {**_POS, "description": "rods: about the second principal axis"},
+            "orientation": {
+                **_vec((3,)),
+                "description": "rods: the first principal axis at the first node",
+            },
+            "torsion_constant": {**_POS, "description": "rods; default inertia_y + inertia_z"},
+        },
+        oneOf=[
+            {"required": ["radius"]},
+            {"required": ["area", "inertia"]},
+            {"required": ["area", "inertia_y", "inertia_z", "orientation"]},
+        ],
     )
-    point_load = _table({"at": _PLACE, "force": _vec(), "frequency_hz": _POS}, ("at", "force"))
+    point_load = _table(
+        {
+            "at": _PLACE,
+            "force": _vec(),
+            "moment": {**_vec((3,)), "description": "rods: a point moment [N m]"},
+            "frequency_hz": _POS,
+        },
+        ("at",),
+        anyOf=[{"required": ["force"]}, {"required": ["moment"]}],
+    )
     solver = _table(
         {
             "t_end": {**_POS, "default": 1.0},
@@ -109,7 +137,10 @@ def scenario_schema() -> dict[str, Any]:
     sensor = _table(
         {
             "name": {"type": "string", "pattern": "^[A-Za-z_][A-Za-z0-9_]*$"},
-            "kind": {"enum": ["distance", "position"]},
+            "kind": {
+                "enum": list(SENSOR_KINDS),
+                "description": '"twist" (rods): the nodal twist angle [rad]',
+            },
             "between": {"type": "array", "items": _PLACE, "minItems": 2, "maxItems": 2},
             "at": _PLACE,
         },
@@ -125,12 +156,31 @@ def scenario_schema() -> dict[str, Any]:
                 "mesh": mesh,
                 "section": section,
                 "material": _table(
-                    {"density": _POS, "youngs_modulus": _POS}, ("density", "youngs_modulus")
+                    {
+                        "density": _POS,
+                        "youngs_modulus": _POS,
+                        "shear_modulus": {**_POS, "description": "rods (or poisson_ratio)"},
+                        "poisson_ratio": {
+                            "type": "number",
+                            "exclusiveMinimum": -1,
+                            "exclusiveMaximum": 0.5,
+                            "description": "rods (or shear_modulus): G = E / (2 (1 + ν))",
+                        },
+                    },
+                    ("density", "youngs_modulus"),
                 ),
                 "supports": {
                     "type": "array",
                     "items": _table(
-                        {"at": _PLACE, "kind": {"enum": ["pin", "clamp"], "default": "pin"}},
+                        {
+                            "at": _PLACE,
+                            "kind": {"enum": ["pin", "clamp"], "default": "pin"},
+                            "fix_twist": {
+                                "type": "boolean",
+                                "default": False,
+                                "description": "rods: also hold the twist (a clamp holds it)",
+                            },
+                        },
                         ("at",),
                     ),
                 },

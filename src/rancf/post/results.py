@@ -103,13 +103,20 @@ def strict_json(value: Any) -> str:
 def sensor_table(
     model: Model, sensors: Sequence[Sensor], q: NDArray
 ) -> tuple[list[str], NDArray[np.float64]]:
-    """Column names and values ``(n_t, n_columns)`` of the sensors for states ``q``."""
-    pos = model.node_positions(np.atleast_2d(q))
+    """Column names and values ``(n_t, n_columns)`` of the sensors for states ``q``.
+
+    ``twist`` sensors (rods) read the node's twist coordinate ``φ`` (the 7th of the node).
+    """
+    qq = np.atleast_2d(q)
+    pos = model.node_positions(qq)
+    twists = None
+    if model.element == "rod":
+        twists = qq.reshape(qq.shape[:-1] + (model.n_nodes, model.dpn))[..., 6]
     names: list[str] = []
     cols = []
     for s in sensors:
         names += s.columns(model.dim)
-        cols.append(s.evaluate(pos))
+        cols.append(s.evaluate(pos, twists))
     vals = np.concatenate(cols, axis=1) if cols else np.empty((pos.shape[0], 0))
     return names, vals
 

@@ -6,7 +6,9 @@ infinitesimal translations and rotations of the configuration that the supports 
 rigid subspace; an eigenvector lying in it (M-norm share above 0.99) is a rigid-body mode and is
 removed.  Any other zero or near-zero frequency is reported as it is — for instance the
 out-of-plane bending of a curved spatial cable, which the magnitude curvature ``|r' × r''|/|r'|³``
-does not resist to first order (math note sec. 6).
+does not resist to first order (math note sec. 6); the rod element (``"rod"``) has that stiffness.
+Rod models linearized about a static equilibrium under point moments leave out the moments'
+(non-symmetric) load stiffness: the problem solved is the symmetric part of the elastic tangent.
 """
 
 from __future__ import annotations

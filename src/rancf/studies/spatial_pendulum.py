@@ -7,7 +7,8 @@ swing in its own plane, so the free end B is given an initial velocity of 1 m/s 
 the plane: the motion is then truly three-dimensional (the tip leaves the plane by several
 centimetres within 0.3 s).  The spatial cable bends with the magnitude curvature
 ``|r' × r''| / |r'|³``, which gives a curved reference no linear out-of-plane bending stiffness;
-here tension (gravity, centripetal) carries the out-of-plane motion.
+here tension (gravity, centripetal) carries the out-of-plane motion.  The study is rerun with the
+rod element (torsion and out-of-plane bending, :mod:`rancf.studies.rod_runs`) beside the cable.
 
 Time integration uses ρ∞ = 0.5 and h = 0.5 ms (the example file says why).  K = 0.1 needs one
 more caution: with one fixed K far from Kopt the consistent shared nodal gradients grow
@@ -35,6 +36,7 @@ from rancf.studies.common import (
     plot_errors,
     save_figure,
 )
+from rancf.studies.rod_runs import spatial_pendulum_rod
 
 TITLE = "6.2 Spatial pendulum with an elliptical-arc cable"
 NAME = "spatial-pendulum"
@@ -166,4 +168,5 @@ def run_study(out: str | Path, quick: bool = False) -> StudyResult:
         spans,
         "gradient_spread.csv",
     )
+    spatial_pendulum_rod(raw, out, res, quick, ref)
     return res.finish()

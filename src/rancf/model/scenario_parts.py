@@ -1,0 +1,148 @@
+"""Scenario tables of the model's parts: ``[section]``, ``[material]``, ``[[supports]]`` and
+``[[loads.point]]``, with the keys of rod elements.
+
+Rules (each violation names its key, see :func:`rancf.model.scenario.parse_scenario`):
+
+* ``[section]``: ``radius``; or ``area`` + ``inertia``; or (rods) ``area`` + ``inertia_y`` +
+  ``inertia_z`` + ``orientation`` (the first principal axis ``m1`` at the first node, bending
+  stiffness ``E inertia_y`` about it); optional ``torsion_constant`` (rods; default the polar
+  moment ``I_y + I_z``, exact for a circle).
+* ``[material]``: rods need exactly one of ``shear_modulus`` and ``poisson_ratio``
+  (``G = E / (2 (1 + ν))``); cables and beams refuse both (they have no torsion, so a value
+  there would be silently meaningless).
+* ``[[supports]]``: ``fix_twist = true`` (rods) also holds the twist of a pin; a clamp holds it
+  anyway.
+* ``[[loads.point]]``: ``force``, ``moment = [mx, my, mz]`` (rods) or both.
+
+Keys that only rods have are refused, naming the key, for other elements.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from rancf.model.scenario import _REQ, _choice, _err, _number, _place, _table, _vector
+
+__all__ = ["parse_section", "parse_material", "parse_supports", "parse_point_loads"]
+
+SECTION_KEYS = ("radius", "area", "inertia", "inertia_y", "inertia_z", "orientation")
+SECTION_KEYS += ("torsion_constant",)
+_ROD_SECTION = ("inertia_y", "inertia_z", "orientation", "torsion_constant")
+
+
+def _rod_only(path: str, key: str, element: str) -> None:
+    if element != "rod":
+        raise _err(
+            path, key, f'applies to rod elements only (mesh.element = "rod"), not {element!r}'
+        )
+
+
+def parse_section(path: str, raw: Any, element: str) -> dict[str, Any]:
+    """The ``[section]`` table: one of the three ways to give a section (module docstring)."""
+    s = _table(path, "section", raw, dict.fromkeys(SECTION_KEYS))
+    for k in _ROD_SECTION:
+        if s[k] is not None:
+            _rod_only(path, f"section.{k}", element)
+    for k in ("radius", "area", "inertia", "inertia_y", "inertia_z", "torsion_constant"):
+        if s[k] is not None:
+            s[k] = _number(path, f"section.{k}", s[k], positive=True)
+    principal = [k for k in ("inertia_y", "inertia_z", "orientation") if s[k] is not None]
+    if s["radius"] is not None:
+        extra = [k for k in ("area", "inertia", *principal) if s[k] is not None]
+        if extra:
+            raise _err(
+                path, "section", f"give either radius, or area and inertia, not both ({extra[0]})"
+            )
+    elif principal:
+        if s["inertia"] is not None:
+            raise _err(
+                path, "section.inertia", "give inertia (equal bending stiffnesses) or "
+                "inertia_y + inertia_z + orientation, not both",
+            )  # fmt: skip
+        for k in ("area", "inertia_y", "inertia_z", "orientation"):
+            if s[k] is None:
+                raise _err(
+                    path, f"section.{k}", "required with principal inertias "
+                    "(area + inertia_y + inertia_z + orientation)",
+                )  # fmt: skip
+        s["orientation"] = _vector(path, "section.orientation", s["orientation"], (3,))
+        if not any(x != 0.0 for x in s["orientation"]):
+            raise _err(path, "section.orientation", "must be a nonzero vector, got [0, 0, 0]")
+    elif s["area"] is None or s["inertia"] is None:
+        raise _err(path, "section", "requires radius, or both area and inertia")
+    return s
+
+
+def parse_material(path: str, raw: Any, element: str) -> dict[str, Any]:
+    """The ``[material]`` table; ``shear_modulus`` xor ``poisson_ratio`` for rods only."""
+    mat = _table(
+        path, "material", raw, {"density": _REQ, "youngs_modulus": _REQ,
+                                "shear_modulus": None, "poisson_ratio": None},
+    )  # fmt: skip
+    for k in ("density", "youngs_modulus"):
+        mat[k] = _number(path, f"material.{k}", mat[k], positive=True)
+    for k in ("shear_modulus", "poisson_ratio"):
+        if mat[k] is not None:
+            _rod_only(path, f"material.{k}", element)
+    if mat["shear_modulus"] is not None:
+        if mat["poisson_ratio"] is not None:
+            raise _err(
+                path, "material.poisson_ratio", "give shear_modulus or poisson_ratio, not both"
+            )
+        mat["shear_modulus"] = _number(
+            path, "material.shear_modulus", mat["shear_modulus"], positive=True
+        )
+    elif mat["poisson_ratio"] is not None:
+        nu = _number(path, "material.poisson_ratio", mat["poisson_ratio"])
+        if not -1.0 < nu < 0.5:
+            raise _err(path, "material.poisson_ratio", f"must be in (-1, 0.5), got {nu!r}")
+        mat["poisson_ratio"] = nu
+    elif element == "rod":
+        raise _err(
+            path, "material.shear_modulus", "required for rod elements: give shear_modulus or "
+            "poisson_ratio (the torsional stiffness is G J)",
+        )  # fmt: skip
+    return mat
+
+
+def parse_supports(path: str, raw: Any, element: str) -> list[dict[str, Any]]:
+    """The ``[[supports]]`` array: ``at``, ``kind`` and (rods) ``fix_twist``."""
+    if not isinstance(raw, list):
+        raise _err(path, "supports", "must be an array of tables [[supports]]")
+    out = []
+    for i, sp in enumerate(raw):
+        key = f"supports[{i}]"
+        t = _table(path, key, sp, {"at": _REQ, "kind": "pin", "fix_twist": False})
+        t["at"] = _place(path, f"{key}.at", t["at"])
+        t["kind"] = _choice(path, f"{key}.kind", t["kind"], ("pin", "clamp"))
+        if not isinstance(t["fix_twist"], bool):
+            raise _err(path, f"{key}.fix_twist", f"must be true or false, got {t['fix_twist']!r}")
+        if t["fix_twist"]:
+            _rod_only(path, f"{key}.fix_twist", element)
+        out.append(t)
+    return out
+
+
+def parse_point_loads(path: str, raw: Any, dim: int, element: str) -> list[dict[str, Any]]:
+    """The ``[[loads.point]]`` array: ``at``, ``force`` and/or (rods) ``moment``, and
+    ``frequency_hz``."""
+    if not isinstance(raw, list):
+        raise _err(path, "loads.point", "must be an array of tables [[loads.point]]")
+    pts = []
+    for i, pl in enumerate(raw):
+        key = f"loads.point[{i}]"
+        t = _table(path, key, pl, {"at": _REQ, "force": None, "moment": None, "frequency_hz": None})
+        t["at"] = _place(path, f"{key}.at", t["at"])
+        if t["force"] is None and t["moment"] is None:
+            raise _err(path, f"{key}.force", "required key is missing (give force, moment or both)")
+        if t["force"] is not None:
+            t["force"] = _vector(path, f"{key}.force", t["force"], (dim,))
+        if t["moment"] is not None:
+            _rod_only(path, f"{key}.moment", element)
+            t["moment"] = _vector(path, f"{key}.moment", t["moment"], (3,))
+        if t["frequency_hz"] is not None:
+            t["frequency_hz"] = _number(
+                path, f"{key}.frequency_hz", t["frequency_hz"], positive=True
+            )
+        pts.append(t)
+    return pts
