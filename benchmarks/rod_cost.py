@@ -49,6 +49,30 @@ def newton_time(model: Model, steps: int) -> float:
     return res.wall_time / res.n_newton
 
 
+def measure(n: int, reps: int, steps: int) -> list[dict[str, object]]:
+    """Rows ``{case, cable_us, rod_us, ratio}`` per mesh and quantity (per element)."""
+    rng = np.random.default_rng(0)
+    rows: list[dict[str, object]] = []
+    for name, mesh in meshes(n).items():
+        models = {
+            el: Model(mesh, el, SEC, MAT, [Support(0)], gravity=[0.0, 0.0, -9.81])
+            for el in ("rancf", "rod")
+        }
+        ys = {el: m.y0 + 1e-4 * rng.standard_normal(m.n) for el, m in models.items()}
+        asm: dict[str, list[float]] = {el: [] for el in models}
+        for _ in range(3):  # interleaved: cable, rod, cable, rod, ...
+            for el, m in models.items():
+                asm[el].append(assembly_time(m, ys[el], reps))
+        t_a = {el: min(v) / n * 1e6 for el, v in asm.items()}
+        t_n = {el: newton_time(m, steps) / n * 1e6 for el, m in models.items()}
+        for label, t in (("force+tangent per element", t_a),
+                         ("whole Newton iteration per element", t_n)):  # fmt: skip
+            rows.append({"case": f"rod vs 3D cable, {name}, {n} el: {label}",
+                         "cable_us": t["rancf"], "rod_us": t["rod"],
+                         "ratio": t["rod"] / t["rancf"]})  # fmt: skip
+    return rows
+
+
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--elements", type=int, default=64)
@@ -56,25 +80,10 @@ def main() -> None:
     p.add_argument("--quick", action="store_true")
     a = p.parse_args()
     n, reps, steps = (8, 5, 5) if a.quick else (a.elements, a.repeats, 500)
-    rng = np.random.default_rng(0)
     print(f"{platform.processor() or platform.machine()}, {n} elements")
-    print("mesh        quantity                              cable       rod   rod/cable")
-    for name, mesh in meshes(n).items():
-        models = {
-            el: Model(mesh, el, SEC, MAT, [Support(0)], gravity=[0.0, 0.0, -9.81])
-            for el in ("rancf", "rod")
-        }
-        ys = {el: m.y0 + 1e-4 * rng.standard_normal(m.n) for el, m in models.items()}
-        asm = {el: [] for el in models}
-        for _ in range(3):  # interleaved: cable, rod, cable, rod, ...
-            for el, m in models.items():
-                asm[el].append(assembly_time(m, ys[el], reps))
-        t_a = {el: min(v) / n * 1e6 for el, v in asm.items()}
-        t_n = {el: newton_time(m, steps) / n * 1e6 for el, m in models.items()}
-        for label, t in (("force+tangent per element [us]", t_a),
-                         ("whole Newton iteration per element [us]", t_n)):  # fmt: skip
-            print(f"{name:10s}  {label:36s} {t['rancf']:7.3f}  {t['rod']:7.3f}  "
-                  f"{t['rod'] / t['rancf']:6.2f}")  # fmt: skip
+    print(f"{'case':75s} {'cable us':>9s} {'rod us':>9s} {'rod/cable':>9s}")
+    for r in measure(n, reps, steps):
+        print(f"{r['case']:75s} {r['cable_us']:9.3f} {r['rod_us']:9.3f} {r['ratio']:9.2f}")
 
 
 if __name__ == "__main__":

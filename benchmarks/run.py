@@ -34,6 +34,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import cli_cases  # noqa: E402
 import exudyn_cases as ex  # noqa: E402
+import rod_cost  # noqa: E402
 
 import rancf  # noqa: E402
 from rancf.geometry.conic import conic_arc  # noqa: E402
@@ -224,6 +225,7 @@ def main(argv: list[str] | None = None) -> int:
     if not quick:  # linear in n: full Newton up to 4096 elements, rancf alone, 0.1 s
         rows += cli_cases.simulate_cases([1024, 2048, 4096], ["full"], 1, 0.1, False)
     rows.append(static_case(args.repeats))
+    rows += rod_cost.measure(8, 5, 5) if quick else rod_cost.measure(64, 300, 500)
     if not quick:
         rows += time_to_accuracy(args.repeats)
     if args.install:
@@ -247,6 +249,8 @@ def main(argv: list[str] | None = None) -> int:
         else:
             sa = f"{r.get('rancf_s', r.get('wall_s', float('nan'))):9.4f} s"
             sb = f"{r['exudyn_s']:9.4f} s" if "exudyn_s" in r else "-"
+        if "rod_us" in r:
+            sa, sb = f"{r['rod_us']:9.3f} us", f"cable {r['cable_us']:.3f}"
         ratio = f"{r['ratio']:7.3f}" if "ratio" in r else "-"
         diff = f"{r['process_ratio']:8.3f}" if "process_ratio" in r else ""
         if "elements" in r and r["case"].startswith("time to"):
