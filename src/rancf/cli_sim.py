@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import signal
 import sys
 import time
@@ -204,45 +205,88 @@ def add_parsers(sub: Any) -> None:
 
 
 def _cmd_example(args: argparse.Namespace) -> int:
-    from rancf.studies import EXAMPLES, study_runner
+    from rancf.studies import EXAMPLES
     from rancf.studies.common import example_path
 
     if args.action == "list":
         for name, what in EXAMPLES.items():
-            print(f"{name:18s} paper {what}  ({example_path(name).name})")
+            print(f"{name:18s} {what}  ({example_path(name).name})")
         return 0
     if args.name is None:
         raise InputError("NAME", None, f"an example name: {', '.join(EXAMPLES)}")
-    runner = study_runner(args.name)
+    if args.name not in EXAMPLES:
+        raise InputError("example", args.name, f"one of {', '.join(EXAMPLES)}")
     if args.out is None:
         raise InputError("--out", None, "an output directory")
-    return _run_studies([args.name], [runner], Path(args.out), args.quick)
+    return _run_studies([args.name], Path(args.out), args.quick, args.workers)
 
 
 def _cmd_report(args: argparse.Namespace) -> int:
-    from rancf.studies import EXAMPLES, study_runner
+    from rancf.studies import EXAMPLES
 
-    names = list(EXAMPLES)
-    return _run_studies(names, [study_runner(n) for n in names], Path(args.out), args.quick)
+    return _run_studies(list(EXAMPLES), Path(args.out), args.quick, args.workers)
 
 
-def _run_studies(names: list[str], runners: list[Any], out: Path, quick: bool) -> int:
+def _run_studies(names: list[str], out: Path, quick: bool, workers: int | None) -> int:
+    """Run studies into ``out/<name>/`` and write the report.
+
+    With one worker everything runs here, one run after another.  Otherwise one local Dask
+    cluster serves every study: a study with a mesh grid sends its runs to it (the figures are
+    drawn here), and a study without one runs whole on a worker, started first.
+    """
+    from contextlib import ExitStack
+
     from rancf.post.report import write_report
+    from rancf.studies import runs_a_grid, study_runner
+    from rancf.sweep.engine import DaskExecutor, LocalExecutor, dask_client
 
+    n = workers if workers is not None else (os.cpu_count() or 1)
+    if isinstance(n, bool) or not isinstance(n, int) or n < 1:
+        raise InputError("--workers", workers, "an integer >= 1")
     out.mkdir(parents=True, exist_ok=True)
+    t0 = time.perf_counter()
+    with ExitStack() as stack:
+        if n == 1:
+            executor: Any = LocalExecutor()
+            whole: dict[str, Any] = {}
+        else:
+            client = stack.enter_context(dask_client(None, n))
+            executor = DaskExecutor(client)
+            whole = {
+                name: client.submit(
+                    study_runner(name), out / name, quick, key=f"rancf-study-{name}", pure=False
+                )
+                for name in names
+                if not runs_a_grid(name)
+            }
+        print(
+            f"running {len(names)} stud{'y' if len(names) == 1 else 'ies'}"
+            f"{' (quick)' if quick else ''} on {executor.description} ...",
+            file=sys.stderr,
+        )
+        results = {}
+        for name in names:
+            if name not in whole:
+                results[name] = study_runner(name)(out / name, quick, executor)
+        for name, fut in whole.items():
+            results[name] = fut.result()
     done = []
-    for name, runner in zip(names, runners, strict=True):
-        folder = out / name
-        print(f"running {name}{' (quick)' if quick else ''} ...", file=sys.stderr)
-        res = runner(folder, quick)
+    for name in names:
+        res, folder = results[name], out / name
         res.write_comparison_csv(folder)
         done.append((res, folder))
         print(f"  {name}: {len(res.figures)} figures, {res.wall_time_s:.1f} s", file=sys.stderr)
         for c in res.comparison:
             print(f"    {c.quantity:60s} paper {c.paper:>10s}   ours {c.ours}")
-    path = write_report(out, done, quick)
+    path = write_report(out, done, quick, time.perf_counter() - t0)
     print(f"report written to {path}")
     return 0
+
+
+WORKERS_HELP = (
+    "local Dask worker processes (default: the number of cores); 1 runs everything in this "
+    "process, one run after another"
+)
 
 
 def add_study_parsers(sub: Any) -> None:
@@ -254,10 +298,12 @@ def add_study_parsers(sub: Any) -> None:
     e.add_argument(
         "--quick", action="store_true", help="reduced runs (fewer elements, shorter time)"
     )
+    e.add_argument("--workers", type=int, default=None, help=WORKERS_HELP)
     e.set_defaults(func=_cmd_example)
     r = sub.add_parser("report", help="run every example and write one HTML report")
     r.add_argument("--out", required=True, help="output directory")
     r.add_argument(
         "--quick", action="store_true", help="reduced runs (fewer elements, shorter time)"
     )
+    r.add_argument("--workers", type=int, default=None, help=WORKERS_HELP)
     r.set_defaults(func=_cmd_report)

@@ -32,11 +32,12 @@ __all__ = [
     "StudyResult",
 ]
 
-#: Shipped example scenarios (name -> paper section).
+#: Shipped example scenarios (name -> what it is).
 EXAMPLES = {
-    "planar-pendulum": "6.1 planar pendulum with an elliptical-arc cable",
-    "spatial-pendulum": "6.2 spatial pendulum with an elliptical-arc cable",
-    "arc-vibration": "6.3 free and forced vibration of a cable arc",
+    "planar-pendulum": "paper 6.1 planar pendulum with an elliptical-arc cable",
+    "spatial-pendulum": "paper 6.2 spatial pendulum with an elliptical-arc cable",
+    "arc-vibration": "paper 6.3 free and forced vibration of a cable arc",
+    "exact-geometry": "where exact geometry pays: 6.1 pendulum, E from 2e6 to 2e10 Pa",
 }
 
 
@@ -136,6 +137,7 @@ class StudyResult:
     name: str
     title: str
     figures: list[tuple[str, str]] = field(default_factory=list)
+    animations: list[tuple[str, str]] = field(default_factory=list)
     tables: list[tuple[str, list[str], list[list[Any]], str]] = field(default_factory=list)
     comparison: list[Comparison] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
@@ -195,6 +197,25 @@ def save_figure(fig: Any, path: Path, res: StudyResult, caption: str) -> None:
     fig.savefig(path, dpi=100)
     plt.close(fig)
     res.figures.append((caption, path.name))
+
+
+def add_animation(
+    res: StudyResult,
+    run_dir: Path,
+    path: Path,
+    caption: str,
+    frames: int = 50,
+    magnify: float = 1.0,
+) -> None:
+    """Animate the run in ``run_dir`` (about ``frames`` frames) into the GIF ``path`` and record
+    it for the report."""
+    from rancf.post.run_data import load_run
+    from rancf.post.run_plots import animate_run
+
+    data = load_run(run_dir)
+    every = max(1, -(-data.t.size // frames))
+    animate_run(data, path, fps=10, every=every, dpi=60, magnify=magnify)
+    res.animations.append((caption, path.name))
 
 
 def convergence_runs(

@@ -21,6 +21,7 @@ from rancf.post.plots import centerline, positions_at, pyplot
 from rancf.studies.common import (
     Comparison,
     StudyResult,
+    add_animation,
     begin_study,
     convergence_runs,
     plot_ab,
@@ -183,6 +184,12 @@ def run_study(
     )
 
     # Figs. 15–17 and 21: AB(t) convergence
+    add_animation(
+        res,
+        ref["folder"],
+        out / "animation.gif",
+        f"Motion of the reference run ({n_ref} Kopt elements)",
+    )
     show = [n for n in (1, 2, 3, 5, 10) if n in runs["Kopt"]]
     for kind, fig_name in (
         ("Kopt", "fig15"),

@@ -29,6 +29,7 @@ from rancf.post.plots import centerline, pyplot
 from rancf.studies.common import (
     Comparison,
     StudyResult,
+    add_animation,
     begin_study,
     convergence_runs,
     plot_ab,
@@ -103,6 +104,12 @@ def run_study(
         sweep_dir=out / "sweep",
         executor=executor,
         solver__t_end=t_end,
+    )
+    add_animation(
+        res,
+        ref["folder"],
+        out / "animation.gif",
+        f"Motion of the reference run ({n_ref} Kopt elements; largest two coordinates)",
     )
     show = [n for n in (1, 2, 3, 5, 10) if n in runs["Kopt"]]
     for kind, fig_name in (("Kopt", "fig24"), ("K = 0.1", "fig26")):
