@@ -228,48 +228,24 @@ def _cmd_report(args: argparse.Namespace) -> int:
 
 
 def _run_studies(names: list[str], out: Path, quick: bool, workers: int | None) -> int:
-    """Run studies into ``out/<name>/`` and write the report.
-
-    With one worker everything runs here, one run after another.  Otherwise one local Dask
-    cluster serves every study: a study with a mesh grid sends its runs to it (the figures are
-    drawn here), and a study without one runs whole on a worker, started first.
-    """
-    from contextlib import ExitStack
-
+    """Run studies into ``out/<name>/`` and write the report: with one worker one after another
+    in this process, else all at once (:func:`rancf.studies.parallel.run_studies_parallel`)."""
     from rancf.post.report import write_report
-    from rancf.studies import runs_a_grid, study_runner
-    from rancf.sweep.engine import DaskExecutor, LocalExecutor, dask_client
+    from rancf.studies.parallel import run_studies_here, run_studies_parallel
 
     n = workers if workers is not None else (os.cpu_count() or 1)
     if isinstance(n, bool) or not isinstance(n, int) or n < 1:
         raise InputError("--workers", workers, "an integer >= 1")
     out.mkdir(parents=True, exist_ok=True)
+    where = "this process" if n == 1 else f"a local Dask cluster of {n} worker(s)"
+    print(
+        f"running {', '.join(names)}{' (quick)' if quick else ''} on {where} ...", file=sys.stderr
+    )
     t0 = time.perf_counter()
-    with ExitStack() as stack:
-        if n == 1:
-            executor: Any = LocalExecutor()
-            whole: dict[str, Any] = {}
-        else:
-            client = stack.enter_context(dask_client(None, n))
-            executor = DaskExecutor(client)
-            whole = {
-                name: client.submit(
-                    study_runner(name), out / name, quick, key=f"rancf-study-{name}", pure=False
-                )
-                for name in names
-                if not runs_a_grid(name)
-            }
-        print(
-            f"running {len(names)} stud{'y' if len(names) == 1 else 'ies'}"
-            f"{' (quick)' if quick else ''} on {executor.description} ...",
-            file=sys.stderr,
-        )
-        results = {}
-        for name in names:
-            if name not in whole:
-                results[name] = study_runner(name)(out / name, quick, executor)
-        for name, fut in whole.items():
-            results[name] = fut.result()
+    if n == 1:
+        results = run_studies_here(names, out, quick)
+    else:
+        results = run_studies_parallel(names, out, quick, n)
     done = []
     for name in names:
         res, folder = results[name], out / name
@@ -278,8 +254,10 @@ def _run_studies(names: list[str], out: Path, quick: bool, workers: int | None) 
         print(f"  {name}: {len(res.figures)} figures, {res.wall_time_s:.1f} s", file=sys.stderr)
         for c in res.comparison:
             print(f"    {c.quantity:60s} paper {c.paper:>10s}   ours {c.ours}")
-    path = write_report(out, done, quick, time.perf_counter() - t0)
+    wall = time.perf_counter() - t0
+    path = write_report(out, done, quick, wall)
     print(f"report written to {path}")
+    print(f"wall time {wall:.1f} s on {where}", file=sys.stderr)
     return 0
 
 
