@@ -1,5 +1,5 @@
-"""Runs the console examples of the README sections on export, CAD and sweeps, and compares
-their output with the README's."""
+"""Runs the console examples of the README sections on export, CAD, sweeps and the fourth study,
+and compares their output with the README's."""
 
 import os
 import re
@@ -12,7 +12,12 @@ from rancf.cli import main
 from tests.model.test_scenario import BASE
 
 README = Path(__file__).resolve().parents[1] / "README.md"
-SECTIONS = ("### Looking at a run", "### CAD in and out", "### Parameter sweeps on Dask")
+SECTIONS = (
+    "### Looking at a run",
+    "### CAD in and out",
+    "### Parameter sweeps on Dask",
+    "### Where exact geometry pays",
+)
 
 
 def _section(title: str) -> str:

@@ -4,9 +4,10 @@
 :func:`run_studies_parallel` starts one local Dask cluster (``workers`` processes on
 127.0.0.1) and one driver process per study; each driver sends its mesh grid to the cluster
 through the sweep engine and draws its own figures, so the drivers' figures, meshes and GIFs
-overlap with the other studies' runs.  A study without a mesh grid (6.3) runs whole in its
-driver.  Both give the same numbers: the runs are the same function calls on the same
-scenarios.
+overlap with the other studies' runs; the grids run in the order of ``names`` (the first
+studies draw the most figures, so theirs are done while the last grid runs).  A study without
+a mesh grid (6.3) runs whole in its driver.  Both give the same numbers: the runs are the same
+function calls on the same scenarios.
 """
 
 from __future__ import annotations
@@ -28,9 +29,11 @@ def run_studies_here(names: list[str], out: Path, quick: bool) -> dict[str, Stud
     return {name: study_runner(name)(out / name, quick) for name in names}
 
 
-def run_on_cluster(name: str, out: Path, quick: bool, address: str) -> StudyResult:
+def run_on_cluster(
+    name: str, out: Path, quick: bool, address: str, priority: int = 0
+) -> StudyResult:
     """Run one study (in a driver process) with its mesh grid on the Dask scheduler at
-    ``address``."""
+    ``address``; grids of a higher ``priority`` go first."""
     from dask.distributed import Client
 
     from rancf.sweep.engine import DaskExecutor
@@ -38,7 +41,7 @@ def run_on_cluster(name: str, out: Path, quick: bool, address: str) -> StudyResu
     if not runs_a_grid(name):
         return study_runner(name)(out, quick)
     with Client(address, timeout=30) as client:
-        return study_runner(name)(out, quick, DaskExecutor(client))
+        return study_runner(name)(out, quick, DaskExecutor(client, priority))
 
 
 def run_studies_parallel(
@@ -53,7 +56,10 @@ def run_studies_parallel(
         list(pool.map(_warm, range(len(names))))
         with dask_client(None, workers) as client:
             address = client.scheduler.address
-            futures = {n: pool.submit(run_on_cluster, n, out / n, quick, address) for n in names}
+            futures = {
+                n: pool.submit(run_on_cluster, n, out / n, quick, address, len(names) - i)
+                for i, n in enumerate(names)
+            }
             return {n: f.result() for n, f in futures.items()}
 
 

@@ -148,10 +148,14 @@ class DaskExecutor:
     ----------
     client : dask.distributed.Client
         Of a local cluster (:func:`dask_client`) or an existing scheduler.
+    priority : int
+        When several executors share a cluster, the runs of one with a higher priority start
+        before those of one with a lower priority.
     """
 
-    def __init__(self, client: Any) -> None:
+    def __init__(self, client: Any, priority: int = 0) -> None:
         self.client = client
+        self.priority = priority
         self.description = f"a Dask cluster of {len(client.scheduler_info()['workers'])} worker(s)"
 
     def execute(self, calls: list[tuple[str, tuple[Any, ...]]], on_done: OnDone) -> None:
@@ -167,7 +171,7 @@ class DaskExecutor:
                 *args,
                 key=f"rancf-sweep-{name}-{token}",
                 pure=False,
-                priority=len(calls) - i,
+                priority=self.priority * 1_000_000 + len(calls) - i,
             )
             futures[fut] = name
         by_name = {n: f for f, n in futures.items()}
