@@ -1,5 +1,5 @@
-"""Runs the console examples of the README sections on export, CAD and sweeps, and compares
-their output with the README's."""
+"""Runs the console examples of the README sections on export, CAD, sweeps and the fourth study,
+and compares their output with the README's."""
 
 import os
 import re
@@ -17,6 +17,7 @@ SECTIONS = (
     "### CAD in and out",
     "### Parameter sweeps on Dask",
     "### Rods with torsion",
+    "### Where exact geometry pays",
 )
 
 

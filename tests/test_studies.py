@@ -82,6 +82,46 @@ def test_arc_vibration(studies):
     assert (folder / "rod_out_of_plane_modes.csv").exists()
 
 
+def test_exact_geometry_pays_when_stiff(studies):
+    res, folder = studies["exact-geometry"]
+    errs = res.data["errors"]
+    soft, stiff = 2e6, 2e9
+    ancf = "ANCF (Hermite reference)"
+    for e in (soft, stiff):
+        kopt = errs[e]["Kopt"]
+        assert kopt[3] < kopt[2] < kopt[1]  # converges under refinement
+        assert res.data["ref_check"][e] < kopt[3]  # the reference resolves the errors compared
+    # stiff: the exact reference geometry beats the Hermite one; soft: the two are alike
+    assert errs[stiff][ancf][3] > 1.5 * errs[stiff]["Kopt"][3]
+    assert errs[soft][ancf][3] < 1.5 * errs[soft]["Kopt"][3]
+    # the beam's chord-polygon reference is worse still when stiff
+    assert errs[stiff]["Euler–Bernoulli beam"][3] > errs[stiff][ancf][3]
+    # every run is a row of the study's sweep
+    rows = (folder / "sweep" / "results.csv").read_text().splitlines()[1:]
+    assert len(rows) == 2 * 2 + 2 * 5 * 3 and all(",completed," in r for r in rows)
+    assert (folder / "elements_needed.csv").exists() and (folder / "animation.gif").exists()
+
+
+def test_grid_on_dask_gives_the_sequential_numbers(studies, tmp_path, capsys):
+    # a driver process with its grid on a local cluster: the tables of the sequential run
+    seq, folder = studies["planar-pendulum"]
+    argv = ["example", "run", "planar-pendulum", "--quick", "--out", str(tmp_path)]
+    assert main([*argv, "--workers", "2"]) == 0
+    assert "on a local Dask cluster of 2 worker(s)" in capsys.readouterr().err
+    par = tmp_path  # `example run` writes its files directly into --out
+    for name in ("error_vs_elements.csv", "element_efficiency.csv", "mesh_refinement.csv"):
+        a = (folder / name).read_text().splitlines()
+        b = (par / name).read_text().splitlines()
+        if name == "element_efficiency.csv":  # the last column is a wall time
+            a, b = ([r.rsplit(",", 1)[0] for r in x] for x in (a, b))
+        assert a == b, name
+    # every run of the sequential loop ran (a size beyond its stop may have run before it was
+    # cancelled; the tables leave it out)
+    runs = {p.name for p in (par / "sweep" / "runs").iterdir()}
+    assert runs >= {p.name for p in (folder / "sweep" / "runs").iterdir()}
+    assert (tmp_path / "report.html").is_file()
+
+
 def test_example_cli(tmp_path, capsys):
     assert main(["example", "list"]) == 0
     out = capsys.readouterr().out
@@ -99,5 +139,8 @@ def test_report_html(studies, tmp_path):
     path = write_report(tmp_path, items, quick=True)
     text = path.read_text()
     assert text.count("data:image/png;base64,") == sum(len(r.figures) for r, _ in items)
+    # one animation per study, embedded as GIF
+    assert all(len(r.animations) == 1 for r, _ in items)
+    assert text.count("data:image/gif;base64,R0lGOD") == len(items)
     assert "Paper says / we get" in text
     assert np.all([(f / "comparison.csv").exists() for _, f in items])

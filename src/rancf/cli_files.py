@@ -9,7 +9,9 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
+import time
 from pathlib import Path
 from typing import Any
 
@@ -25,7 +27,7 @@ def shipped_scenarios() -> dict[str, str]:
 
     from rancf.studies.common import EXAMPLES
 
-    out = {name: f"paper {what}" for name, what in EXAMPLES.items()}
+    out = dict(EXAMPLES)
     for f in sorted(resources.files("rancf.examples").iterdir(), key=lambda p: p.name):
         name = f.name.removesuffix(".toml")
         if f.name.endswith(".toml") and name not in out:
@@ -63,7 +65,7 @@ def _cmd_copy(args: argparse.Namespace) -> int:
 
 
 def _cmd_run(args: argparse.Namespace) -> int:
-    from rancf.studies import EXAMPLES, study_runner
+    from rancf.studies import EXAMPLES
 
     if args.name not in EXAMPLES:
         _scenario_name(args.name)
@@ -74,37 +76,75 @@ def _cmd_run(args: argparse.Namespace) -> int:
             "`rancf simulate`)",
         )
     out = check_out_dir(args.out)
-    return _run_studies([args.name], [study_runner(args.name)], out, args.quick, nested=False)
+    return _run_studies([args.name], out, args.quick, args.workers, nested=False)
 
 
 def _cmd_report(args: argparse.Namespace) -> int:
-    from rancf.studies import EXAMPLES, study_runner
+    from rancf.studies import EXAMPLES
 
     out = check_out_dir(args.out)
-    names = list(EXAMPLES)
-    runners = [study_runner(n) for n in names]
-    return _run_studies(names, runners, out, args.quick, nested=True)
+    return _run_studies(list(EXAMPLES), out, args.quick, args.workers, nested=True)
 
 
-def _run_studies(names: list[str], runners: list[Any], out: Path, quick: bool, nested: bool) -> int:
-    """Run studies into ``out`` (one sub-folder each when ``nested``) and write the report."""
+def _workers(workers: int | None) -> int:
+    n = workers if workers is not None else (os.cpu_count() or 1)
+    if n < 1:
+        raise InputError("--workers", workers, "an integer >= 1")
+    return n
+
+
+def _run_studies(
+    names: list[str], out: Path, quick: bool, workers: int | None, nested: bool
+) -> int:
+    """Run studies into ``out`` (one sub-folder each when ``nested``) and write the report.
+
+    With one worker every run happens in this process, one after another; with more, the
+    studies' mesh grids go to a local Dask cluster (:mod:`rancf.studies.parallel`).
+    """
+    from rancf.studies.parallel import run_studies_here, run_studies_parallel
     from rancf.studies.report import write_report
 
-    done = []
+    n = _workers(workers)
+    where = "this process" if n == 1 else f"a local Dask cluster of {n} worker(s)"
+    print(
+        f"running {', '.join(names)}{' (quick)' if quick else ''} on {where} ...", file=sys.stderr
+    )
+    t0 = time.perf_counter()
     with OutputDir(out) as od:
-        for name, runner in zip(names, runners, strict=True):
-            folder = out / name if nested else out
-            print(f"running {name}{' (quick)' if quick else ''} ...", file=sys.stderr)
-            res = runner(folder, quick)
+        if nested:
+            run = run_studies_here if n == 1 else run_studies_parallel
+            results = run(names, out, quick, *(() if n == 1 else (n,)))
+            folders = {name: out / name for name in names}
+        else:  # one study, its files directly in ``out``
+            results = {names[0]: _run_one(names[0], out, quick, n)}
+            folders = {names[0]: out}
+        od.keep()
+        done = []
+        for name in names:
+            res, folder = results[name], folders[name]
             res.write_comparison_csv(folder)
-            od.keep()
             done.append((res, folder))
             print(f"  {name}: {len(res.figures)} figures, {res.wall_time_s:.1f} s", file=sys.stderr)
             for c in res.comparison:
                 print(f"    {c.quantity:60s} paper {c.paper:>10s}   ours {c.ours}")
-        path = write_report(out, done, quick)
+        wall = time.perf_counter() - t0
+        path = write_report(out, done, quick, wall)
     print(f"report written to {path}")
+    print(f"wall time {wall:.1f} s on {where}", file=sys.stderr)
     return 0
+
+
+def _run_one(name: str, out: Path, quick: bool, workers: int) -> Any:
+    """One study into ``out``: here, or with its mesh grid on a local Dask cluster."""
+    from rancf.studies import runs_a_grid, study_runner
+
+    if workers == 1 or not runs_a_grid(name):
+        return study_runner(name)(out, quick)
+    from rancf.studies.parallel import run_on_cluster
+    from rancf.sweep.engine import dask_client
+
+    with dask_client(None, workers) as client:
+        return run_on_cluster(name, out, quick, client.scheduler.address)
 
 
 def _cmd_schema(args: argparse.Namespace) -> int:
@@ -112,6 +152,12 @@ def _cmd_schema(args: argparse.Namespace) -> int:
 
     print(json.dumps(scenario_schema(), indent=2))
     return 0
+
+
+WORKERS_HELP = (
+    "local Dask worker processes (default: the number of cores); 1 runs everything in this "
+    "process, one run after another"
+)
 
 
 def add_parsers(sub: Any) -> None:
@@ -124,6 +170,7 @@ def add_parsers(sub: Any) -> None:
     run.add_argument("name", metavar="NAME", help="a study (see `rancf example list`)")
     run.add_argument("--out", required=True, help="output directory (created if needed)")
     run.add_argument("--quick", action="store_true", help="reduced runs (fewer elements)")
+    run.add_argument("--workers", type=int, default=None, help=WORKERS_HELP)
     run.set_defaults(func=_cmd_run)
     cp = actions.add_parser("copy", help="write a shipped scenario file into DIR, to edit")
     cp.add_argument("name", metavar="NAME", help="a scenario (see `rancf example list`)")
@@ -134,6 +181,7 @@ def add_parsers(sub: Any) -> None:
     r = sub.add_parser("report", help="run every paper study and write one HTML report")
     r.add_argument("--out", required=True, help="output directory")
     r.add_argument("--quick", action="store_true", help="reduced runs (fewer elements)")
+    r.add_argument("--workers", type=int, default=None, help=WORKERS_HELP)
     r.set_defaults(func=_cmd_report)
 
     s = sub.add_parser("schema", help="print the scenario file format as a JSON Schema")

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import os
 import tempfile
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -133,12 +134,18 @@ def _writer(path: Path, fps: int) -> tuple[Any, str]:
 
 
 def animate_run(
-    run: RunData, path: str | Path, fps: int = 20, every: int = 1, dpi: int = 80
+    run: RunData,
+    path: str | Path,
+    fps: int = 20,
+    every: int = 1,
+    dpi: int = 80,
+    magnify: float = 1.0,
 ) -> int:
     """Render the motion to ``path`` (``.gif`` or ``.mp4``); one frame per selected stored time.
 
-    Frames are :func:`~rancf.post.run_data.frame_indices` ``(n_t, every)``.  Returns the number
-    of frames written.
+    Frames are :func:`~rancf.post.run_data.frame_indices` ``(n_t, every)``; ``magnify`` scales
+    the displacement from the reference configuration (small vibrations; the title says so).
+    Returns the number of frames written.
     """
     if isinstance(fps, bool) or not isinstance(fps, int) or fps < 1:
         raise InputError("--fps", fps, "an integer >= 1")
@@ -149,6 +156,10 @@ def animate_run(
     plt = pyplot()
     idx = frame_indices(run.t.size, every)
     lines = np.array([_pad(sample_centerline(run, int(i)).points) for i in idx])
+    if magnify != 1.0:
+        ref = replace(run, q=run.reference[None], v=np.zeros_like(run.reference)[None])
+        base = _pad(sample_centerline(ref, 0).points)
+        lines = base + magnify * (lines - base)
     a, b = _axes_of(run, lines)
     lo, hi = lines[..., [a, b]].min(axis=(0, 1)), lines[..., [a, b]].max(axis=(0, 1))
     pad = 0.05 * max(float(np.max(hi - lo)), 1e-9)
@@ -161,13 +172,14 @@ def animate_run(
     ax.plot(lines[0, :, a], lines[0, :, b], color="0.75", lw=1, label="t = 0")
     (line,) = ax.plot([], [], "C0", lw=2)
     title = ax.set_title("")
+    label = f" (displacement × {magnify:g})" if magnify != 1.0 else ""
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=suffix, dir=path.parent)
     os.close(fd)
     try:
         with writer.saving(fig, tmp, dpi):
             for k, i in enumerate(idx):
                 line.set_data(lines[k, :, a], lines[k, :, b])
-                title.set_text(f"{run.name}: t = {run.t[i]:.4f} s")
+                title.set_text(f"{run.name}: t = {run.t[i]:.4f} s{label}")
                 writer.grab_frame()
         os.replace(tmp, path)
     finally:

@@ -15,16 +15,19 @@ of the same model.
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from rancf.post.plots import pyplot
+from rancf.post.results import write_run
 from rancf.solvers.modal import natural_modes
 from rancf.studies.common import (
     Comparison,
     StudyResult,
+    add_animation,
     begin_study,
     fft_peak,
     run,
@@ -185,6 +188,16 @@ def run_study(out: str | Path, quick: bool = False) -> StudyResult:
         loads={"point": [{"at": "end", "force": [0.0, 0.1], "frequency_hz": f_exc}]},
     )
     r = run(sc, m)
+    tail = r.t >= r.t[-1] - 3.0 / f_exc
+    cut = {k: getattr(r, k)[tail] for k in ("t", "q", "v", "kinetic", "strain", "gravity")}
+    write_run(out / "forced_run", m, sc.sensors, replace(r, **cut))
+    add_animation(
+        res,
+        out / "forced_run",
+        out / "animation.gif",
+        "Forced response, last three periods (displacement × 10)",
+        magnify=10.0,
+    )
     tip = m.node_positions(r.q)[:, -1, 1]
     period = 1.0 / f_exc
     last = r.t >= r.t[-1] - 5 * period

@@ -19,6 +19,7 @@ from rancf.errors import ConvergenceError
 from rancf.model.scenario import Scenario, parse_scenario
 from rancf.model.system import Model
 from rancf.solvers.dynamic import DynamicOptions, DynamicResult, DynamicStatus, integrate
+from rancf.studies.grid import Executor, GridRun, grid_variant, run_grid
 
 __all__ = [
     "EXAMPLES",
@@ -31,11 +32,12 @@ __all__ = [
     "StudyResult",
 ]
 
-#: Shipped example scenarios (name -> paper section).
+#: Shipped example scenarios (name -> what it is).
 EXAMPLES = {
-    "planar-pendulum": "6.1 planar pendulum with an elliptical-arc cable",
-    "spatial-pendulum": "6.2 spatial pendulum with an elliptical-arc cable",
-    "arc-vibration": "6.3 free and forced vibration of a cable arc",
+    "planar-pendulum": "paper 6.1 planar pendulum with an elliptical-arc cable",
+    "spatial-pendulum": "paper 6.2 spatial pendulum with an elliptical-arc cable",
+    "arc-vibration": "paper 6.3 free and forced vibration of a cable arc",
+    "exact-geometry": "where exact geometry pays: 6.1 pendulum, E from 2e6 to 2e10 Pa",
 }
 
 
@@ -126,6 +128,7 @@ class StudyResult:
     name: str
     title: str
     figures: list[tuple[str, str]] = field(default_factory=list)
+    animations: list[tuple[str, str]] = field(default_factory=list)
     tables: list[tuple[str, list[str], list[list[Any]], str]] = field(default_factory=list)
     comparison: list[Comparison] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
@@ -187,6 +190,25 @@ def save_figure(fig: Any, path: Path, res: StudyResult, caption: str) -> None:
     res.figures.append((caption, path.name))
 
 
+def add_animation(
+    res: StudyResult,
+    run_dir: Path,
+    path: Path,
+    caption: str,
+    frames: int = 50,
+    magnify: float = 1.0,
+) -> None:
+    """Animate the run in ``run_dir`` (about ``frames`` frames) into the GIF ``path`` and record
+    it for the report."""
+    from rancf.post.run_data import load_run
+    from rancf.post.run_plots import animate_run
+
+    data = load_run(run_dir)
+    every = max(1, -(-data.t.size // frames))
+    animate_run(data, path, fps=10, every=every, dpi=60, magnify=magnify)
+    res.animations.append((caption, path.name))
+
+
 def convergence_runs(
     raw: dict[str, Any],
     name: str,
@@ -195,60 +217,95 @@ def convergence_runs(
     reference: tuple[int, str],
     tol: float,
     extra_after: int = 4,
+    *,
+    sweep_dir: Path,
+    executor: Executor | None = None,
+    extra: dict[str, dict[str, Any]] | None = None,
     **solver: Any,
-) -> tuple[dict[str, dict[int, dict[str, Any]]], dict[str, Any], dict[str, int | None]]:
+) -> tuple[dict[str, dict[int, GridRun]], GridRun, dict[str, int | None]]:
     """Run every element kind for increasing numbers of elements against a fine reference.
 
     The error of a run is ``max_t |r_B(t) - r_B,ref(t)|`` over the output times; each kind stops
-    ``extra_after`` sizes after the first one that meets ``tol``.
+    ``extra_after`` sizes after the first one that meets ``tol`` (a run that stopped early never
+    meets it).  The runs are one sweep (:func:`rancf.studies.grid.run_grid`) in ``sweep_dir``:
+    the reference first, then the sizes in increasing order; once a kind's stopping size is
+    known its larger sizes are cancelled (with a parallel executor some may have run already:
+    they are left out, so the results are those of the sequential loop).  ``extra`` adds named
+    runs (``{label: variant changes}``, returned in ``runs[label][0]``); ``solver`` holds
+    variant changes common to every run (``solver__t_end=0.3``).
 
     Returns
     -------
-    runs : kind -> n -> {"t", "ab", "tip", "err", "model", "result", "wall"}
-    ref : {"model", "result", "tip", "ab"} of the reference run
+    runs : kind -> n -> :class:`~rancf.studies.grid.GridRun` with ``err``
+    ref : the reference run
     found : kind -> smallest n with error <= tol (None if none tried did)
     """
     n_ref, ref_kind = reference
-    sc, m = variant(raw, name, mesh__elements=n_ref, **kinds[ref_kind], **solver)
-    r = run(sc, m)
-    if r.status is not DynamicStatus.COMPLETED:
+    plan = {"reference": ("reference", n_ref, {**kinds[ref_kind], "mesh__elements": n_ref})}
+    for label, changes in (extra or {}).items():
+        plan[f"extra {label}"] = (label, 0, {**changes})
+    for n in ns:
+        for kind, opts in kinds.items():
+            plan[f"{kind} n={n}"] = (kind, n, {**opts, "mesh__elements": n})
+    variants = [
+        grid_variant(raw, i, key, **changes, **solver)
+        for i, (key, (_, _, changes)) in enumerate(plan.items())
+    ]
+    what = {v.name: plan[key][:2] for v, key in zip(variants, plan, strict=True)}
+    by_kind_n = {plan[key][:2]: v.name for v, key in zip(variants, plan, strict=True)}
+    done: dict[str, GridRun] = {}
+
+    def on_run(vname: str, run: GridRun) -> list[str]:
+        done[vname] = run
+        ref = done.get(variants[0].name)
+        if ref is None:
+            return []
+        cancel = []
+        for kind in kinds:
+            errs = {n: _error(r, ref) for (k, n), r in _runs_of(done, what, kind).items()}
+            hit = [n for n in ns if n in errs and errs[n] <= tol]
+            if hit:  # the stop can only come earlier as more sizes finish
+                stop = next((n for n in ns if n >= hit[0] + extra_after), ns[-1])
+                cancel += [by_kind_n[(kind, n)] for n in ns if n > stop]
+        return cancel
+
+    run_grid(executor, variants, example_path(name), sweep_dir, on_run)
+    ref = done[variants[0].name]
+    if ref["status"] != DynamicStatus.COMPLETED.value:
         raise ConvergenceError(
-            f"the reference run ({n_ref} elements) failed: {r.message}", r.t_reached
+            f"the reference run ({n_ref} elements) failed: {ref['message']}",
+            float(ref["t"][-1]) if ref["t"].size else 0.0,
         )
-    pos = m.node_positions(r.q)
-    ref = {
-        "model": m,
-        "result": r,
-        "tip": pos[:, -1],
-        "ab": np.linalg.norm(pos[:, -1] - pos[:, 0], axis=1),
-    }
-    runs: dict[str, dict[int, dict[str, Any]]] = {k: {} for k in kinds}
+    runs: dict[str, dict[int, GridRun]] = {k: {} for k in kinds}
     found: dict[str, int | None] = {}
-    for kind, opts in kinds.items():
+    for kind in kinds:
         found[kind] = None
+        by_n = _runs_of(done, what, kind)
         for n in ns:
-            sc, m = variant(raw, name, mesh__elements=n, **opts, **solver)
-            r = run(sc, m)
-            pos = m.node_positions(r.q)
-            k = pos.shape[0]
-            err = float(np.max(np.linalg.norm(pos[:, -1] - ref["tip"][:k], axis=1)))
-            if r.status is not DynamicStatus.COMPLETED:
-                err = float("inf")  # a run that stopped early never meets the tolerance
-            runs[kind][n] = {
-                "t": r.t,
-                "ab": np.linalg.norm(pos[:, -1] - pos[:, 0], axis=1),
-                "tip": pos[:, -1],
-                "err": err,
-                "model": m,
-                "result": r,
-                "wall": r.wall_time,
-                "message": r.message,
-            }
-            if found[kind] is None and err <= tol:
+            run = by_n[(kind, n)]
+            run["err"] = _error(run, ref)
+            runs[kind][n] = run
+            if found[kind] is None and run["err"] <= tol:
                 found[kind] = n
             if found[kind] is not None and n >= found[kind] + extra_after:
                 break
+    for label in extra or {}:
+        runs[label] = {0: done[by_kind_n[(label, 0)]]}
     return runs, ref, found
+
+
+def _runs_of(
+    done: dict[str, GridRun], what: dict[str, tuple[str, int]], kind: str
+) -> dict[tuple[str, int], GridRun]:
+    return {what[v]: r for v, r in done.items() if what[v][0] == kind}
+
+
+def _error(run: GridRun, ref: GridRun) -> float:
+    """``max_t |tip - tip_ref|`` over the run's output times; inf for a run that stopped."""
+    if run["status"] != DynamicStatus.COMPLETED.value:
+        return float("inf")
+    k = run["tip"].shape[0]
+    return float(np.max(np.linalg.norm(run["tip"] - ref["tip"][:k], axis=1)))
 
 
 def plot_ab(
@@ -259,7 +316,7 @@ def plot_ab(
     for n in show:
         if n in runs:
             ax.plot(runs[n]["t"], runs[n]["ab"], label=f"{n} elements")
-    ax.plot(ref["result"].t, ref["ab"], "k--", lw=1, label=f"reference ({ref['model'].n_el} el)")
+    ax.plot(ref["t"], ref["ab"], "k--", lw=1, label=f"reference ({ref['n_el']} el)")
     ax.set_xlabel("t [s]")
     ax.set_ylabel("distance AB [m]")
     ax.set_title(title)

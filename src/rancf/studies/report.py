@@ -54,8 +54,25 @@ def _table(header: Sequence[str], rows: Sequence[Sequence[object]]) -> str:
     return f"<table><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
 
 
-def write_report(out: str | Path, studies: Sequence[tuple[StudyResult, Path]], quick: bool) -> Path:
-    """Write ``report.html`` (and ``report.json``) for studies whose files are in their folders."""
+def _timing(studies: Sequence[tuple[StudyResult, Path]], wall_time_s: float | None) -> str:
+    total = sum(s.wall_time_s for s, _ in studies)
+    if wall_time_s is None:
+        return f"Total wall time {total:.1f} s."
+    return f"Wall time {wall_time_s:.1f} s (the studies' own wall times add up to {total:.1f} s)."
+
+
+def write_report(
+    out: str | Path,
+    studies: Sequence[tuple[StudyResult, Path]],
+    quick: bool,
+    wall_time_s: float | None = None,
+) -> Path:
+    """Write ``report.html`` (and ``report.json``) for studies whose files are in their folders.
+
+    ``wall_time_s`` is the wall time of the whole report (the studies may have run in
+    parallel); without it the sum of the studies' wall times is shown.  Figures (PNG) and
+    animations (GIF) are embedded.
+    """
     out = Path(out)
     parts = [
         "<!DOCTYPE html><html><head><meta charset='utf-8'>",
@@ -63,8 +80,8 @@ def write_report(out: str | Path, studies: Sequence[tuple[StudyResult, Path]], q
         "<h1>RANCF conic-section cable elements: the paper's studies</h1>",
         f"<p>Generated {datetime.datetime.now().isoformat(timespec='seconds')} on "
         f"{html.escape(platform.platform())}, Python {platform.python_version()}"
-        f"{' — <b>reduced (quick) runs</b>' if quick else ''}. Total wall time "
-        f"{sum(s.wall_time_s for s, _ in studies):.1f} s.</p>",
+        f"{' — <b>reduced (quick) runs</b>' if quick else ''}. {_timing(studies, wall_time_s)}"
+        "</p>",
         "<h2>Contents</h2><ul>",
     ]
     parts += [f"<li><a href='#{s.name}'>{html.escape(s.title)}</a></li>" for s, _ in studies]
@@ -84,6 +101,13 @@ def write_report(out: str | Path, studies: Sequence[tuple[StudyResult, Path]], q
                 f"<figcaption>{_text(caption)} ({html.escape(filename)})</figcaption>"
                 "</figure>"
             )
+        for caption, filename in s.animations:
+            data = base64.b64encode((folder / filename).read_bytes()).decode("ascii")
+            parts.append(
+                f"<figure><img alt='{html.escape(caption)}' src='data:image/gif;base64,{data}'>"
+                f"<figcaption>{_text(caption)} ({html.escape(filename)})</figcaption>"
+                "</figure>"
+            )
         for title, header, rows, filename in s.tables:
             head = f"{_text(title)} <small>({html.escape(filename)}, {len(rows)} rows)</small>"
             if len(rows) > _LONG_TABLE:
@@ -94,6 +118,7 @@ def write_report(out: str | Path, studies: Sequence[tuple[StudyResult, Path]], q
             "wall_time_s": s.wall_time_s,
             "comparison": [c.__dict__ for c in s.comparison],
             "figures": [f for _, f in s.figures],
+            "animations": [f for _, f in s.animations],
         }
     parts.append(f"<h2>Reference</h2><p>{_CITATION}</p></body></html>")
     path = out / "report.html"

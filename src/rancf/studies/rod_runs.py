@@ -27,6 +27,7 @@ from rancf.studies.common import (
     save_figure,
     variant,
 )
+from rancf.studies.grid import Executor
 
 __all__ = ["spatial_pendulum_rod", "arc_rod_modes", "split_in_out_of_plane", "POISSON"]
 
@@ -36,11 +37,17 @@ ROD = dict(mesh__element="rod", mesh__k="opt", material__poisson_ratio=POISSON)
 
 
 def spatial_pendulum_rod(
-    raw: dict[str, Any], out: Path, res: StudyResult, quick: bool, cable_ref: dict[str, Any]
+    raw: dict[str, Any],
+    out: Path,
+    res: StudyResult,
+    quick: bool,
+    cable_ref: dict[str, Any],
+    executor: Executor | None = None,
 ) -> None:
     """Example 6.2 with the rod: convergence against a fine rod run, and rod against cable.
 
-    ``cable_ref`` is the cable study's reference run (``model``, ``result``, ``tip``).
+    ``cable_ref`` is the cable study's reference run (``model``, ``result``, ``tip``); the rod's
+    mesh grid runs through the sweep engine (in ``out/sweep-rod``, on ``executor``).
     """
     plt = pyplot()
     t_end = float(cable_ref["result"].t[-1])
@@ -54,6 +61,8 @@ def spatial_pendulum_rod(
         (n_ref, "rod"),
         1e-3,
         3,
+        sweep_dir=out / "sweep-rod",
+        executor=executor,
         solver__t_end=t_end,
     )
     rows = [

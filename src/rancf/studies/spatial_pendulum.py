@@ -30,12 +30,14 @@ from rancf.post.plots import centerline, pyplot
 from rancf.studies.common import (
     Comparison,
     StudyResult,
+    add_animation,
     begin_study,
     convergence_runs,
     plot_ab,
     plot_errors,
     save_figure,
 )
+from rancf.studies.grid import Executor
 from rancf.studies.rod_runs import spatial_pendulum_rod
 
 TITLE = "6.2 Spatial pendulum with an elliptical-arc cable"
@@ -47,8 +49,11 @@ KINDS = {
 }
 
 
-def run_study(out: str | Path, quick: bool = False) -> StudyResult:
-    """Run the study; figures and CSV tables go to ``out``."""
+def run_study(
+    out: str | Path, quick: bool = False, executor: Executor | None = None
+) -> StudyResult:
+    """Run the study; figures and CSV tables go to ``out``; the mesh grid runs on ``executor``
+    (default: this process)."""
     out, res, raw = begin_study(
         out, NAME, "6.2 Spatial pendulum with an elliptical-arc cable", __doc__
     )
@@ -91,7 +96,22 @@ def run_study(out: str | Path, quick: bool = False) -> StudyResult:
     ns = [1, 2, 4] if quick else [1, 2, 3, 4, 5, 6, 8, 10, 12, 16]
     n_ref = 8 if quick else 24
     runs, ref, found = convergence_runs(
-        raw, NAME, KINDS, ns, (n_ref, "Kopt"), TOL, extra_after=3, solver__t_end=t_end
+        raw,
+        NAME,
+        KINDS,
+        ns,
+        (n_ref, "Kopt"),
+        TOL,
+        extra_after=3,
+        sweep_dir=out / "sweep",
+        executor=executor,
+        solver__t_end=t_end,
+    )
+    add_animation(
+        res,
+        ref["folder"],
+        out / "animation.gif",
+        f"Motion of the reference run ({n_ref} Kopt elements; largest two coordinates)",
     )
     show = [n for n in (1, 2, 3, 5, 10) if n in runs["Kopt"]]
     for kind, fig_name in (("Kopt", "fig24"), ("K = 0.1", "fig26")):
@@ -159,8 +179,8 @@ def run_study(out: str | Path, quick: bool = False) -> StudyResult:
     spans = []
     for kind in KINDS:
         for n, v in sorted(runs[kind].items()):
-            g = np.linalg.norm(v["model"].mesh.nodes[:, 1], axis=1)
-            spans.append([kind, n, f"{g.max() / g.min():.3e}", v["result"].status.value])
+            g = v["gradients"]
+            spans.append([kind, n, f"{g.max() / g.min():.3e}", v["status"]])
     res.add_table(
         out,
         "Conditioning: spread of the nodal gradient magnitudes",
@@ -168,5 +188,5 @@ def run_study(out: str | Path, quick: bool = False) -> StudyResult:
         spans,
         "gradient_spread.csv",
     )
-    spatial_pendulum_rod(raw, out, res, quick, ref)
+    spatial_pendulum_rod(raw, out, res, quick, ref, executor)
     return res.finish()

@@ -17,7 +17,8 @@ import json
 import logging
 import os
 import sys
-from collections.abc import Iterator
+import uuid
+from collections.abc import Callable, Iterable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
@@ -28,7 +29,15 @@ from rancf.post.results import atomic_write
 from rancf.sweep.runner import ROW_FILE, run_variant
 from rancf.sweep.spec import SweepSpec, Variant
 
-__all__ = ["run_sweep", "SweepReport", "dask_client", "results_table"]
+__all__ = [
+    "run_sweep",
+    "run_variants",
+    "LocalExecutor",
+    "DaskExecutor",
+    "SweepReport",
+    "dask_client",
+    "results_table",
+]
 
 logger = logging.getLogger(__name__)
 
@@ -109,14 +118,110 @@ def _num(x: Any) -> str:
     return "" if x is None else repr(float(x))
 
 
-def run_sweep(
-    spec: SweepSpec,
+#: ``on_done(name, row) -> names of later calls that are no longer needed``.
+OnDone = Callable[[str, dict[str, Any]], Iterable[str]]
+
+
+class LocalExecutor:
+    """Runs the variants one after another in this process, in order (no Dask).
+
+    The sequential baseline of a parallel sweep: the same :func:`run_variant` calls, so the
+    same numbers.
+    """
+
+    description = "this process"
+
+    def execute(self, calls: list[tuple[str, tuple[Any, ...]]], on_done: OnDone) -> None:
+        """Call :func:`run_variant` with each ``(name, args)``; ``on_done(name, row)`` returns
+        the names of calls still to come that are no longer needed (they are skipped)."""
+        skip: set[str] = set()
+        for name, args in calls:
+            if name in skip:
+                continue
+            skip.update(on_done(name, run_variant(*args)))
+
+
+class DaskExecutor:
+    """Runs the variants on a Dask cluster, earlier calls first (Dask priorities).
+
+    Parameters
+    ----------
+    client : dask.distributed.Client
+        Of a local cluster (:func:`dask_client`) or an existing scheduler.
+    priority : int
+        When several executors share a cluster, the runs of one with a higher priority start
+        before those of one with a lower priority.
+    """
+
+    def __init__(self, client: Any, priority: int = 0) -> None:
+        self.client = client
+        self.priority = priority
+        self.description = f"a Dask cluster of {len(client.scheduler_info()['workers'])} worker(s)"
+
+    def execute(self, calls: list[tuple[str, tuple[Any, ...]]], on_done: OnDone) -> None:
+        """Submit every call; ``on_done(name, row)`` (called as rows arrive, in any order)
+        returns names of calls no longer needed: those not started yet are cancelled."""
+        from dask.distributed import as_completed
+
+        token = uuid.uuid4().hex[:12]
+        futures = {}
+        for i, (name, args) in enumerate(calls):
+            fut = self.client.submit(
+                run_variant,
+                *args,
+                key=f"rancf-sweep-{name}-{token}",
+                pure=False,
+                priority=self.priority * 1_000_000 + len(calls) - i,
+            )
+            futures[fut] = name
+        by_name = {n: f for f, n in futures.items()}
+        pending = as_completed(list(futures))
+        for fut in pending:
+            if fut.cancelled():
+                continue
+            name = futures[fut]
+            try:
+                row = fut.result()
+            except Exception as exc:  # noqa: BLE001 - a lost worker: recorded, retried on resume
+                row = {"status": "failed", "message": f"worker error: {exc}"}
+            for other in on_done(name, row):
+                if other in by_name and not by_name[other].done():
+                    by_name[other].cancel()
+
+
+def run_variants(
+    executor: LocalExecutor | DaskExecutor,
+    variants: list[Variant],
+    base: str | Path,
+    analysis: str,
     out: str | Path,
-    scheduler: str | None = None,
-    workers: int | None = None,
     progress: bool = True,
-) -> SweepReport:
-    """Run every variant not finished yet; write ``out/runs/<name>/`` and ``out/results.csv``."""
+    on_row: OnDone | None = None,
+) -> dict[str, dict[str, Any]]:
+    """Run every variant not finished yet into ``out/runs/<name>/``; keep ``out/results.csv``.
+
+    Parameters
+    ----------
+    executor : LocalExecutor or DaskExecutor
+    variants : list of Variant
+        In priority order (earlier ones start first).
+    base : path
+        The base scenario (relative CAD files are resolved against it).
+    analysis : {"simulate", "static", "modes"}
+    out : path
+        The sweep directory.
+    progress : bool
+        Show a progress bar.
+    on_row : callable, optional
+        ``on_row(name, row)`` for each finished run (finished before included); returns the
+        names of variants that are no longer needed (not started ones are skipped).
+
+    Returns
+    -------
+    dict
+        Run name -> result row (``run``, ``status``, ``message``, ``wall_time_s``,
+        ``solve_time_s``, ``values``) of every finished run.
+    """
     from tqdm import tqdm
 
     out = Path(out)
@@ -124,7 +229,6 @@ def run_sweep(
         raise InputError("--out", str(out), "a directory (it exists and is a file)")
     runs = out / "runs"
     runs.mkdir(parents=True, exist_ok=True)
-    variants = spec.variants()
     rows: dict[str, dict[str, Any]] = {}
     for v in variants:
         f = runs / v.name / ROW_FILE
@@ -133,38 +237,57 @@ def run_sweep(
                 rows[v.name] = json.loads(f.read_text(encoding="utf-8"))
             except (OSError, ValueError):
                 pass  # a damaged row: run again
-    skipped = len(rows)
-    todo = [v for v in variants if v.name not in rows]
+    skip: set[str] = set()
+    for name, row in list(rows.items()):
+        if on_row is not None:
+            skip.update(on_row(name, row))
+    todo = [v for v in variants if v.name not in rows and v.name not in skip]
     csv_path = out / "results.csv"
     atomic_write(csv_path, results_table(variants, rows))
-    if todo:
-        bar = tqdm(
-            total=len(variants), initial=skipped, unit="run", file=sys.stderr, disable=not progress
-        )
-        with dask_client(scheduler, workers) as client:
-            from dask.distributed import as_completed
+    if not todo:
+        return rows
+    bar = tqdm(
+        total=len(variants), initial=len(rows), unit="run", file=sys.stderr, disable=not progress
+    )
 
-            futures = {
-                client.submit(
-                    run_variant,
-                    v.name,
-                    v.raw,
-                    str(spec.base),
-                    spec.analysis,
-                    str((runs / v.name).resolve()),
-                    key=f"rancf-sweep-{v.name}-{os.getpid()}",
-                    pure=False,
-                ): v
-                for v in todo
-            }
-            for fut in as_completed(futures):
-                v = futures[fut]
-                try:
-                    rows[v.name] = fut.result()
-                except Exception as exc:  # noqa: BLE001 - a lost worker: recorded, retried on resume
-                    rows[v.name] = {"status": "failed", "message": f"worker error: {exc}"}
-                atomic_write(csv_path, results_table(variants, rows))
-                bar.update(1)
+    def done(name: str, row: dict[str, Any]) -> Iterable[str]:
+        rows[name] = row
+        atomic_write(csv_path, results_table(variants, rows))
+        bar.update(1)
+        return on_row(name, row) if on_row is not None else ()
+
+    calls = [
+        (v.name, (v.name, v.raw, str(base), analysis, str((runs / v.name).resolve()))) for v in todo
+    ]
+    try:
+        executor.execute(calls, done)
+    finally:
         bar.close()
+    return rows
+
+
+def run_sweep(
+    spec: SweepSpec,
+    out: str | Path,
+    scheduler: str | None = None,
+    workers: int | None = None,
+    progress: bool = True,
+) -> SweepReport:
+    """Run every variant not finished yet; write ``out/runs/<name>/`` and ``out/results.csv``."""
+    out = Path(out)
+    variants = spec.variants()
+    finished = (
+        {v.name for v in variants if (out / "runs" / v.name / ROW_FILE).is_file()}
+        if out.is_dir()
+        else set()
+    )
+    if len(finished) == len(variants):
+        rows = run_variants(LocalExecutor(), variants, spec.base, spec.analysis, out, progress)
+    else:
+        with dask_client(scheduler, workers) as client:
+            rows = run_variants(
+                DaskExecutor(client), variants, spec.base, spec.analysis, out, progress
+            )
+    skipped = sum(1 for name in finished if name in rows)
     failed = sum(1 for r in rows.values() if r.get("status") != "completed")
-    return SweepReport(len(variants), skipped, len(todo), failed, csv_path)
+    return SweepReport(len(variants), skipped, len(variants) - skipped, failed, out / "results.csv")
