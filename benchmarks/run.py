@@ -251,6 +251,8 @@ def main(argv: list[str] | None = None) -> int:
             sb = f"{r['exudyn_s']:9.4f} s" if "exudyn_s" in r else "-"
         if "rod_us" in r:
             sa, sb = f"{r['rod_us']:9.3f} us", f"cable {r['cable_us']:.3f}"
+        if "exudyn_failed" in r:
+            sb = f"failed {r['exudyn_wall_s']:.0f} s"
         ratio = f"{r['ratio']:7.3f}" if "ratio" in r else "-"
         diff = f"{r['process_ratio']:8.3f}" if "process_ratio" in r else ""
         if "elements" in r and r["case"].startswith("time to"):
