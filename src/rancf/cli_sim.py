@@ -15,28 +15,10 @@ from typing import Any
 from rancf.cli_io import OutputDir, atomic_path, check_out_dir, check_plot_path
 from rancf.errors import InputError, RancfError
 
-__all__ = ["add_parsers", "dynamic_options", "DEFAULT_MAX_OUTPUT_GB"]
+__all__ = ["add_parsers", "DEFAULT_MAX_OUTPUT_GB"]
 
 #: Default ``--max-output-gb``: the disk a run's stored states may take.
 DEFAULT_MAX_OUTPUT_GB = 2.0
-
-
-def dynamic_options(solver: dict[str, Any]) -> Any:
-    """:class:`DynamicOptions` from a scenario's ``[solver]`` table."""
-    from rancf.solvers.dynamic import DynamicOptions
-
-    return DynamicOptions(
-        t_end=solver["t_end"],
-        step=solver["step"],
-        rho_inf=solver["rho_inf"],
-        adaptive=solver["adaptive"],
-        rtol=solver["rtol"],
-        min_step=solver["min_step"],
-        output_step=solver["output_step"],
-        newton_tol=solver["newton_tol"],
-        max_newton=solver["max_newton"],
-        newton=solver["newton"],
-    )
 
 
 def _process_age() -> float:
