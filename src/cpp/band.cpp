@@ -16,7 +16,9 @@ void band_matvec(const double* ab, const double* x, int n, int ku, double* out) 
 }
 
 BandLU::BandLU(int n, int ku)
-    : n_(n), ku_(ku), ld_(3 * ku + 1),
+    : n_(n),
+      ku_(ku),
+      ld_(3 * ku + 1),
       ab_(static_cast<std::size_t>(ld_) * static_cast<std::size_t>(n)),
       piv_(static_cast<std::size_t>(n)) {}
 
@@ -79,7 +81,7 @@ void BandLU::solve(double* rhs, const std::uint8_t* fixed) const {
     const double* col = a + static_cast<std::ptrdiff_t>(j) * ld_ + kv;
     for (int p = 1; p <= lm; ++p) rhs[j + p] -= col[p] * bj;
   }
-  for (int j = n - 1; j >= 0; --j) {  // U, bandwidth kl + ku
+  for (int j = n - 1; j >= 0; --j) {                                    // U, bandwidth kl + ku
     const double* col = a + static_cast<std::ptrdiff_t>(j) * ld_ + kv;  // col[i - j] = U(i, j)
     rhs[j] /= col[0];
     const double bj = rhs[j];

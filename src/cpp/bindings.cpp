@@ -3,8 +3,8 @@
 // model.hpp; sizes are checked here so that the core never reads out of bounds.
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
-#include <nanobind/stl/string.h>
 #include <nanobind/stl/array.h>
+#include <nanobind/stl/string.h>
 #include <nanobind/stl/tuple.h>
 
 #include <algorithm>
@@ -72,8 +72,13 @@ struct ModelHolder {
 
   ModelHolder(int kind, int dim, int dpn, int n_el, const rancf::Stiffness& st, CableHolder c,
               BeamHolder b, RodHolder r, SupportsHolder s, LoadsHolder l, In mass, In yref)
-      : cable(std::move(c)), beam(std::move(b)), rod(std::move(r)), supports(std::move(s)),
-        loads(std::move(l)), mass_band(std::move(mass)), y_ref(std::move(yref)) {
+      : cable(std::move(c)),
+        beam(std::move(b)),
+        rod(std::move(r)),
+        supports(std::move(s)),
+        loads(std::move(l)),
+        mass_band(std::move(mass)),
+        y_ref(std::move(yref)) {
     if (kind < 0 || kind > 2)
       throw std::invalid_argument("kind: expected 0 (cable), 1 (beam) or 2 (rod)");
     if (dim != 2 && dim != 3) throw std::invalid_argument("dim: expected 2 or 3");
@@ -88,14 +93,15 @@ struct ModelHolder {
     m.stiffness = st;
     const auto n = static_cast<std::size_t>(m.n()), ne = static_cast<std::size_t>(n_el);
     if (m.kind == rancf::ElementKind::cable) {
-      if (dpn != 2 * dim) throw std::invalid_argument("dpn: a cable has 2 dim coordinates per node");
+      if (dpn != 2 * dim)
+        throw std::invalid_argument("dpn: a cable has 2 dim coordinates per node");
       const std::size_t nq = cable.gw.size();
       expect_size(cable.n1, ne * nq * 4, "cable.n1");
       expect_size(cable.n2, ne * nq * 4, "cable.n2");
       for (const auto* a : {&cable.s0, &cable.k0, &cable.j0, &cable.qr})
         expect_size(*a, ne * nq, "cable quadrature data");
       m.cable = {static_cast<int>(nq), cable.n1.data(), cable.n2.data(), cable.gw.data(),
-                 cable.s0.data(), cable.k0.data(), cable.j0.data(), cable.qr.data()};
+                 cable.s0.data(),      cable.k0.data(), cable.j0.data(), cable.qr.data()};
     } else if (m.kind == rancf::ElementKind::beam) {
       if (dim != 2 || dpn != 3) throw std::invalid_argument("beam: planar, 3 coordinates per node");
       expect_size(beam.l0, ne, "beam.l0");
@@ -111,9 +117,9 @@ struct ModelHolder {
       expect_size(rod.kref, ne * nq * 3, "rod.kref");
       expect_size(rod.tref, 3 * (ne + 1), "rod.tref");
       expect_size(rod.m1ref, 3 * (ne + 1), "rod.m1ref");
-      m.rod = {static_cast<int>(nq), rod.n1.data(),   rod.n2.data(),   rod.xi.data(),
-               rod.gw.data(),        rod.j0.data(),   rod.kref.data(), rod.tref.data(),
-               rod.m1ref.data()};
+      m.rod = {static_cast<int>(nq), rod.n1.data(),   rod.n2.data(),
+               rod.xi.data(),        rod.gw.data(),   rod.j0.data(),
+               rod.kref.data(),      rod.tref.data(), rod.m1ref.data()};
     }
     expect_size(supports.fixed, n, "supports.fixed");
     expect_size(supports.rot_of_node, ne + 1, "supports.rot_of_node");
@@ -141,9 +147,9 @@ struct ModelHolder {
       if (nd < 0 || nd > static_cast<std::int64_t>(ne))
         throw std::invalid_argument("loads.moment_node: index out of range");
     }
-    m.loads = {loads.f_gravity.data(), static_cast<int>(np), loads.base.data(), loads.f0.data(),
-               loads.freq.data(),      static_cast<int>(nm), loads.moment_node.data(),
-               loads.moment.data(),    loads.moment_freq.data()};
+    m.loads = {loads.f_gravity.data(),   static_cast<int>(np), loads.base.data(),
+               loads.f0.data(),          loads.freq.data(),    static_cast<int>(nm),
+               loads.moment_node.data(), loads.moment.data(),  loads.moment_freq.data()};
     expect_size(mass_band, static_cast<std::size_t>(2 * m.ku() + 1) * n, "mass_band");
     expect_size(y_ref, n, "y_ref");
     m.mass_band = mass_band.data();
@@ -151,7 +157,9 @@ struct ModelHolder {
   }
 
   [[nodiscard]] std::size_t n() const { return static_cast<std::size_t>(m.n()); }
-  [[nodiscard]] std::size_t band_size() const { return static_cast<std::size_t>(2 * m.ku() + 1) * n(); }
+  [[nodiscard]] std::size_t band_size() const {
+    return static_cast<std::size_t>(2 * m.ku() + 1) * n();
+  }
 };
 
 struct IntegratorHolder {
@@ -185,8 +193,8 @@ NB_MODULE(_core, mod) {
   nb::class_<SupportsHolder>(mod, "Supports", "Held coordinates and clamp rotations.")
       .def(nb::init<InB, InI, In>(), nb::kw_only(), "fixed"_a, "rot_of_node"_a, "rot"_a);
   nb::class_<LoadsHolder>(mod, "Loads", "Gravity forces and point loads.")
-      .def(nb::init<In, InI, In, In, InI, In, In>(), nb::kw_only(), "f_gravity"_a, "base"_a,
-           "f0"_a, "freq"_a, "moment_node"_a, "moment"_a, "moment_freq"_a);
+      .def(nb::init<In, InI, In, In, InI, In, In>(), nb::kw_only(), "f_gravity"_a, "base"_a, "f0"_a,
+           "freq"_a, "moment_node"_a, "moment"_a, "moment_freq"_a);
 
   nb::class_<rancf::Scheme>(mod, "Scheme", "Generalized-alpha constants and Newton settings.")
       .def(
@@ -203,10 +211,10 @@ NB_MODULE(_core, mod) {
       .def_ro("max_iter", &rancf::Scheme::max_iter);
 
   nb::class_<ModelHolder>(mod, "Model", "An assembled model (named parts, arrays by reference).")
-      .def(nb::init<int, int, int, int, const rancf::Stiffness&, CableHolder, BeamHolder,
-                    RodHolder, SupportsHolder, LoadsHolder, In, In>(),
-           nb::kw_only(), "kind"_a, "dim"_a, "dpn"_a, "n_el"_a, "stiffness"_a, "cable"_a,
-           "beam"_a, "rod"_a, "supports"_a, "loads"_a, "mass_band"_a, "y_ref"_a)
+      .def(nb::init<int, int, int, int, const rancf::Stiffness&, CableHolder, BeamHolder, RodHolder,
+                    SupportsHolder, LoadsHolder, In, In>(),
+           nb::kw_only(), "kind"_a, "dim"_a, "dpn"_a, "n_el"_a, "stiffness"_a, "cable"_a, "beam"_a,
+           "rod"_a, "supports"_a, "loads"_a, "mass_band"_a, "y_ref"_a)
       .def_prop_ro("n", [](const ModelHolder& h) { return h.n(); })
       .def(
           "internal_force",
@@ -300,7 +308,8 @@ NB_MODULE(_core, mod) {
             double e[rancf::kMaxElementDofs];
             for (int el = 0; el < h.m.n_el; ++el) {
               for (int i = 0; i < 14; ++i) e[i] = y.data()[el * 7 + i];
-              for (int a = 0; a < 2; ++a) rancf::nodal_gradient(h.m, y.data(), el + a, e + 7 * a + 3);
+              for (int a = 0; a < 2; ++a)
+                rancf::nodal_gradient(h.m, y.data(), el + a, e + 7 * a + 3);
               const int o = el * h.m.rod.n_qp;
               rancf::rod_curvatures(h.m, el, e, k.data() + 3 * o, eps.data() + o);
             }
@@ -325,10 +334,12 @@ NB_MODULE(_core, mod) {
   nb::class_<IntegratorHolder>(mod, "Integrator", "Generalized-alpha steps on a model.")
       .def(nb::init<const ModelHolder&, const rancf::Scheme&>(), "model"_a, "scheme"_a,
            nb::keep_alive<1, 2>())
-      .def_prop_ro("factorizations", [](const IntegratorHolder& h) { return h.integ.factorizations(); })
+      .def_prop_ro("factorizations",
+                   [](const IntegratorHolder& h) { return h.integ.factorizations(); })
       .def(
           "step",
-          [](IntegratorHolder& h, In y0, In v0, In a0, double t, double dt, Out y1, Out v1, Out a1) {
+          [](IntegratorHolder& h, In y0, In v0, In a0, double t, double dt, Out y1, Out v1,
+             Out a1) {
             for (const auto* a : {&y0, &v0, &a0}) expect_size(*a, h.n, "state");
             for (const auto* a : {&y1, &v1, &a1}) expect_size(*a, h.n, "state");
             rancf::StepOutcome r;
@@ -397,7 +408,8 @@ NB_MODULE(_core, mod) {
         const rancf::BandView a = lu.matrix();
         for (int j = 0; j < ni; ++j)
           for (int i = std::max(0, j - ku); i < std::min(ni, j + ku + 1); ++i)
-            a.at(i, j) = ab.data()[static_cast<std::size_t>(ku + i - j) * n + static_cast<std::size_t>(j)];
+            a.at(i, j) =
+                ab.data()[static_cast<std::size_t>(ku + i - j) * n + static_cast<std::size_t>(j)];
         if (!lu.factor(fixed.data())) return false;
         lu.solve(rhs.data(), fixed.data());
         return true;

@@ -11,9 +11,10 @@
 // curvature: the linearization of |kappa| at the reference, smooth where |kappa| has a cusp).
 // The gradient g = dW/dz and Hessian h = d2W/dz2, z = (a, b), are hand-derived; element forces
 // and tangents follow from da/de_k = N'_k I, db/de_k = N''_k I and the Gauss rule.
+#include "cable.hpp"
+
 #include <cmath>
 
-#include "cable.hpp"
 #include "registry.hpp"
 
 namespace rancf {
@@ -66,8 +67,8 @@ inline void density_2d(const double* a, const double* b, double s0, double k0, d
 }
 
 // Spatial density: gradient g (6) and, if h, Hessian h (6 x 6) in z = (a, b).
-inline void density_3d(const double* a, const double* b, double s0, double k0, double j0,
-                       double qr, const Stiffness& st, double* g, double (*h)[6]) {
+inline void density_3d(const double* a, const double* b, double s0, double k0, double j0, double qr,
+                       const Stiffness& st, double* g, double (*h)[6]) {
   const double aa = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
   const double bb = b[0] * b[0] + b[1] * b[1] + b[2] * b[2];
   const double ab = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
@@ -159,8 +160,8 @@ void cable_forces(const Model& m, int el, const double* e, double* fe, double* k
         const double c21 = w * r[kk] * p[l], c22 = w * r[kk] * r[l];
         for (int i = 0; i < D; ++i)
           for (int j = 0; j < D; ++j)
-            ke[(kk * D + i) * N + l * D + j] += c11 * h[i][j] + c12 * h[i][D + j] +
-                                                c21 * h[D + i][j] + c22 * h[D + i][D + j];
+            ke[(kk * D + i) * N + l * D + j] +=
+                c11 * h[i][j] + c12 * h[i][D + j] + c21 * h[D + i][j] + c22 * h[D + i][D + j];
       }
     }
   }
@@ -168,7 +169,8 @@ void cable_forces(const Model& m, int el, const double* e, double* fe, double* k
   for (int kk = 0; kk < 4; ++kk)  // lower block triangle from the upper one (K symmetric)
     for (int l = kk + 1; l < 4; ++l)
       for (int i = 0; i < D; ++i)
-        for (int j = 0; j < D; ++j) ke[(l * D + j) * N + kk * D + i] = ke[(kk * D + i) * N + l * D + j];
+        for (int j = 0; j < D; ++j)
+          ke[(l * D + j) * N + kk * D + i] = ke[(kk * D + i) * N + l * D + j];
 }
 
 template <int D>

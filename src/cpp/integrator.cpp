@@ -13,8 +13,15 @@ std::size_t sz(int n) { return static_cast<std::size_t>(n); }
 }  // namespace
 
 Integrator::Integrator(const Model& m, const Scheme& s)
-    : m_(m), s_(s), lu_(m.n(), m.ku()), base_(sz(m.n())), fext_(sz(m.n())), yf_(sz(m.n())),
-      fi_(sz(m.n())), tmp_(sz(m.n())), mv_(sz(m.n())) {}
+    : m_(m),
+      s_(s),
+      lu_(m.n(), m.ku()),
+      base_(sz(m.n())),
+      fext_(sz(m.n())),
+      yf_(sz(m.n())),
+      fi_(sz(m.n())),
+      tmp_(sz(m.n())),
+      mv_(sz(m.n())) {}
 
 StepOutcome Integrator::step(const double* y0, const double* v0, const double* a0, double t,
                              double h, double* y1, double* v1, double* a1) {

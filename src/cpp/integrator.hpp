@@ -18,8 +18,8 @@ namespace rancf {
 /// Integrator constants and Newton settings.
 struct Scheme {
   double alpha_m = 0.0, alpha_f = 0.0, gamma = 0.5, beta = 0.25;
-  double damping = 0.0;   ///< c in C = c M [1/s]
-  double tol = 1e-10;     ///< absolute tolerance on max |increment|
+  double damping = 0.0;  ///< c in C = c M [1/s]
+  double tol = 1e-10;    ///< absolute tolerance on max |increment|
   int max_iter = 12;
   bool modified = false;  ///< modified Newton (reuse the factored Jacobian)
 };
@@ -42,10 +42,11 @@ class Integrator {
   /// One step of size h from (y0, v0, a0) at time t into (y1, v1, a1).
   StepOutcome step(const double* y0, const double* v0, const double* a0, double t, double h,
                    double* y1, double* v1, double* a1);
-  /// Up to n_steps fixed steps (rod triads re-referenced after each), y, v, a updated in place; every out_every steps the state and
-  /// the energies (kinetic, strain, gravity) go to the next rows of out_y, out_v, out_e.
-  RunOutcome run(double* y, double* v, double* a, double t0, double h, int n_steps,
-                 int out_every, double* out_y, double* out_v, double* out_e);
+  /// Up to n_steps fixed steps (rod triads re-referenced after each), y, v, a updated in place;
+  /// every out_every steps the state and the energies (kinetic, strain, gravity) go to the next
+  /// rows of out_y, out_v, out_e.
+  RunOutcome run(double* y, double* v, double* a, double t0, double h, int n_steps, int out_every,
+                 double* out_y, double* out_v, double* out_e);
   /// a = M^-1 (f_ext(t) - f_int(y) - c M v).
   void initial_acceleration(const double* y, const double* v, double t, double* a);
   [[nodiscard]] long factorizations() const { return factorizations_; }

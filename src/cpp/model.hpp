@@ -58,19 +58,19 @@ struct Stiffness {
 
 /// Supports: fixed model coordinates and the clamp rotations of gradient blocks (q = T y).
 struct Supports {
-  const std::uint8_t* fixed = nullptr;       ///< (n): 1 where the coordinate is held
-  const std::int64_t* rot_of_node = nullptr; ///< (n_nodes): index into rot, or -1
-  const double* rot = nullptr;               ///< (n_rot, dim, dim): basis columns (t0, n0[, n1])
+  const std::uint8_t* fixed = nullptr;        ///< (n): 1 where the coordinate is held
+  const std::int64_t* rot_of_node = nullptr;  ///< (n_nodes): index into rot, or -1
+  const double* rot = nullptr;                ///< (n_rot, dim, dim): basis columns (t0, n0[, n1])
 };
 
 /// External loads: constant gravity forces and nodal point forces F0 [sin(2 pi f t)].
 struct Loads {
   const double* f_gravity = nullptr;  ///< (n), model coordinates
   int n_point = 0;
-  const std::int64_t* base = nullptr; ///< (n_point): index of the node's first coordinate
-  const double* f0 = nullptr;         ///< (n_point, dim)
-  const double* freq = nullptr;       ///< (n_point): Hz, 0 for a constant force
-  int n_moment = 0;                   ///< rod only: point moments M0 [sin(2 pi f t)]
+  const std::int64_t* base = nullptr;         ///< (n_point): index of the node's first coordinate
+  const double* f0 = nullptr;                 ///< (n_point, dim)
+  const double* freq = nullptr;               ///< (n_point): Hz, 0 for a constant force
+  int n_moment = 0;                           ///< rod only: point moments M0 [sin(2 pi f t)]
   const std::int64_t* moment_node = nullptr;  ///< (n_moment): node index
   const double* moment = nullptr;             ///< (n_moment, 3)
   const double* moment_freq = nullptr;        ///< (n_moment): Hz, 0 for a constant moment
@@ -79,8 +79,8 @@ struct Loads {
 /// An assembled model as the compiled core sees it.
 struct Model {
   ElementKind kind = ElementKind::cable;
-  int dim = 2;      ///< space dimension (2 or 3)
-  int dpn = 4;      ///< coordinates per node
+  int dim = 2;  ///< space dimension (2 or 3)
+  int dpn = 4;  ///< coordinates per node
   int n_el = 0;
   int n_nodes = 0;
   Stiffness stiffness;

@@ -1,4 +1,5 @@
-// Spatial Kirchhoff rod with torsion on the RANCF centerline (rod-math.md; Meier, Popp & Wall 2014).
+// Spatial Kirchhoff rod with torsion on the RANCF centerline (rod-math.md; Meier, Popp & Wall
+// 2014).
 //
 // The element math is in rod_kernel.hpp (derivation: docs/rod-derivation.md); this file connects it
 // to the model: element inputs from RodData, the registry entry, point moments and the
@@ -20,8 +21,16 @@ namespace {
 rod::ElementInput rod_input(const Model& m, int el) {
   const RodData& r = m.rod;
   const int nq = r.n_qp;
-  return {r.n1 + el * nq * 4, r.n2 + el * nq * 4, r.xi, r.gw, r.j0 + el * nq,
-          r.kref + el * nq * 3, nq, r.tref + el * 3, r.m1ref + el * 3, r.tref + (el + 1) * 3,
+  return {r.n1 + el * nq * 4,
+          r.n2 + el * nq * 4,
+          r.xi,
+          r.gw,
+          r.j0 + el * nq,
+          r.kref + el * nq * 3,
+          nq,
+          r.tref + el * 3,
+          r.m1ref + el * 3,
+          r.tref + (el + 1) * 3,
           r.m1ref + (el + 1) * 3};
 }
 

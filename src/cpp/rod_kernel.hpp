@@ -1,31 +1,38 @@
 // rod_kernel.hpp -- spatial Kirchhoff rod with torsion on a rational ANCF (RANCF) cable centerline.
 //
-// Formulation: docs/rod-derivation.md (smallest-rotation triads plus an interpolated relative twist,
-// after Meier, Popp & Wall 2014, CMAME 278). Centerline interpolation: rancf-math.md sections 3 and 6.
-// Derivation of every formula below, in the order of the code: docs/rod-derivation.md.
+// Formulation: docs/rod-derivation.md (smallest-rotation triads plus an interpolated relative
+// twist, after Meier, Popp & Wall 2014, CMAME 278). Centerline interpolation: rancf-math.md
+// sections 3 and 6. Derivation of every formula below, in the order of the code:
+// docs/rod-derivation.md.
 //
 // Header-only, dependency-free C++17. Plain pointers, row-major matrices.
 //
-// Element coordinates e[14]: node A = e[0..6] = (rA, rA_x, phiA), node B = e[7..13] = (rB, rB_x, phiB).
+// Element coordinates e[14]: node A = e[0..6] = (rA, rA_x, phiA), node B = e[7..13] = (rB, rB_x,
+// phiB).
 //
 // Structure of the computation (docs/rod-derivation.md section 0), all derivatives hand-derived:
-//   * per element: node A's transported frame R0 = (tA, uA, vA), uA = SR(tref_A -> tA) m1ref_A, vA = tA x uA,
-//     with first derivatives with respect to rA_x and the few scalars that give its second derivatives in
-//     contracted form; node B's triad (values); the relative twist
-//     alpha_B = wrap(phiB - phiA + beta) where beta depends on the two tangents only, with a closed-form
-//     gradient and 6x6 Hessian (twist vectors of smallest rotations); the four position blocks rotated into
-//     R0: p~_k = R0^T p_k.
-//   * per quadrature point: the energy density written in R0 depends only on (a~, b~, phiA, alpha_B)
-//     (a~, b~ = r', r'' in R0; the material triad is turned by theta = phiA + xi alpha_B about t); its gradient
-//     and 8x8 Hessian are mapped by the 4 shape-function blocks exactly like the 3D cable.
-//   * per element again: the chain rule from (p~, phiA, alpha_B) back to e (R0 depends on rA_x only).
+//   * per element: node A's transported frame R0 = (tA, uA, vA), uA = SR(tref_A -> tA) m1ref_A, vA
+//   = tA x uA,
+//     with first derivatives with respect to rA_x and the few scalars that give its second
+//     derivatives in contracted form; node B's triad (values); the relative twist alpha_B =
+//     wrap(phiB - phiA + beta) where beta depends on the two tangents only, with a closed-form
+//     gradient and 6x6 Hessian (twist vectors of smallest rotations); the four position blocks
+//     rotated into R0: p~_k = R0^T p_k.
+//   * per quadrature point: the energy density written in R0 depends only on (a~, b~, phiA,
+//   alpha_B)
+//     (a~, b~ = r', r'' in R0; the material triad is turned by theta = phiA + xi alpha_B about t);
+//     its gradient and 8x8 Hessian are mapped by the 4 shape-function blocks exactly like the 3D
+//     cable.
+//   * per element again: the chain rule from (p~, phiA, alpha_B) back to e (R0 depends on rA_x
+//   only).
 //
-// Singular configurations: the smallest rotation SR(a -> b) is undefined for a.b = -1. The kernel requires
-// 1 + a.b > kMinAlign for (t_ref, t) at both nodes, (t_A, t_B) and (t_A, t(xi_q)) at every quadrature point.
-// This holds whenever nodes are re-referenced after converged steps. Otherwise energy() returns NaN and
-// curvatures()/forces() fill every output with NaN on purpose (so the caller's isfinite check on the
-// residual rejects the step); min_alignment() returns the smallest of these quantities, so a caller can
-// test before evaluating. A zero tangent (|r'| = 0 or |r_x| = 0) is outside the model, as for the cable.
+// Singular configurations: the smallest rotation SR(a -> b) is undefined for a.b = -1. The kernel
+// requires 1 + a.b > kMinAlign for (t_ref, t) at both nodes, (t_A, t_B) and (t_A, t(xi_q)) at every
+// quadrature point. This holds whenever nodes are re-referenced after converged steps. Otherwise
+// energy() returns NaN and curvatures()/forces() fill every output with NaN on purpose (so the
+// caller's isfinite check on the residual rejects the step); min_alignment() returns the smallest
+// of these quantities, so a caller can test before evaluating. A zero tangent (|r'| = 0 or |r_x| =
+// 0) is outside the model, as for the cable.
 #ifndef RANCF_ROD_KERNEL_HPP
 #define RANCF_ROD_KERNEL_HPP
 
@@ -38,10 +45,11 @@ struct Stiffness {
   double ea, gj, ei2, ei3;
 };
 
-// Node dofs: 7 per node = r(3), r_x(3), phi(1). Element vector e[14]: node A e[0..6], node B e[7..13].
-// n1[q*4+k], n2[q*4+k]: first/second xi-derivatives of the 4 cable shape-function blocks
-// (k = 0: rA, 1: rA_x, 2: rB, 3: rB_x); xi[q] Gauss point in [0,1], gw[q] weight, j0[q] = |r0'(xi_q)|,
-// kref[q*3+i] = reference material curvatures (K1^0, K2^0, K3^0). Nodal reference triads: unit, orthogonal.
+// Node dofs: 7 per node = r(3), r_x(3), phi(1). Element vector e[14]: node A e[0..6], node B
+// e[7..13]. n1[q*4+k], n2[q*4+k]: first/second xi-derivatives of the 4 cable shape-function blocks
+// (k = 0: rA, 1: rA_x, 2: rB, 3: rB_x); xi[q] Gauss point in [0,1], gw[q] weight, j0[q] =
+// |r0'(xi_q)|, kref[q*3+i] = reference material curvatures (K1^0, K2^0, K3^0). Nodal reference
+// triads: unit, orthogonal.
 struct ElementInput {
   const double* n1;
   const double* n2;
@@ -61,7 +69,9 @@ constexpr double kMinAlign = 1e-8;
 
 namespace detail {
 
-inline double dot3(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+inline double dot3(const double* a, const double* b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 
 inline void cross3(const double* a, const double* b, double* c) {
   c[0] = a[1] * b[2] - a[2] * b[1];
@@ -71,15 +81,16 @@ inline void cross3(const double* a, const double* b, double* c) {
 
 inline double nan_value() { return std::nan(""); }
 
-constexpr int kPosOff[4] = {0, 3, 7, 10};            // e offsets of the blocks rA, rA_x, rB, rB_x
+constexpr int kPosOff[4] = {0, 3, 7, 10};  // e offsets of the blocks rA, rA_x, rB, rB_x
 constexpr int kAlphaDof[8] = {3, 4, 5, 6, 10, 11, 12, 13};  // e indices of (rA_x, phiA, rB_x, phiB)
 
 // ---------------------------------------------------------------------------------------------------------
-// Nodal triad, values only (rod-math section 2, docs/rod-derivation.md 1). Returns 1 + tref.t (the SR alignment).
-//   t = x/|x|,  u = SR(tr -> t) mr = mr - (t.mr)/(1 + tr.t) (t + tr),  v = SR(tr -> t)(tr x mr) (= t x u),
-//   m1 = cos(phi) u + sin(phi) v,  m2 = t x m1 = cos(phi) v - sin(phi) u.
-inline double triad_value(const double* tr, const double* mr, const double* x, double phi, double* t, double* u,
-                          double* v, double* m1, double* m2) {
+// Nodal triad, values only (rod-math section 2, docs/rod-derivation.md 1). Returns 1 + tref.t (the
+// SR alignment).
+//   t = x/|x|,  u = SR(tr -> t) mr = mr - (t.mr)/(1 + tr.t) (t + tr),  v = SR(tr -> t)(tr x mr) (=
+//   t x u), m1 = cos(phi) u + sin(phi) v,  m2 = t x m1 = cos(phi) v - sin(phi) u.
+inline double triad_value(const double* tr, const double* mr, const double* x, double phi,
+                          double* t, double* u, double* v, double* m1, double* m2) {
   const double s = std::sqrt(dot3(x, x));
   for (int i = 0; i < 3; ++i) t[i] = x[i] / s;
   const double p = 1.0 + dot3(tr, t);
@@ -97,12 +108,13 @@ inline double triad_value(const double* tr, const double* mr, const double* x, d
   return p;
 }
 
-// Node A's transported frame (t, u, v) with first derivatives with respect to x = r_x, and the scalar
-// ingredients of the second derivatives (docs/rod-derivation.md 1). dt[i][j] = d t_i / d x_j (= Pt, symmetric),
-// du, dv likewise. u = mr - ku (t + tr), v = m2r - kv (t + tr), ku = t.mr/p, kv = t.m2r/p, p = 1 + tr.t.
-// Second derivatives are never stored as tensors: only their contractions with vectors are needed, via
-//   sum_i g_i d2t_i/dx dx = -(g t^T + t g^T + (g.t)(I - 3 t t^T))/s^2                       (contract_t)
-//   sum_i g_i d2u_i/dx dx = contract_t(-ku g) - (g.w) d2ku - (Pt g) dku^T - dku (Pt g)^T,  w = t + tr.
+// Node A's transported frame (t, u, v) with first derivatives with respect to x = r_x, and the
+// scalar ingredients of the second derivatives (docs/rod-derivation.md 1). dt[i][j] = d t_i / d x_j
+// (= Pt, symmetric), du, dv likewise. u = mr - ku (t + tr), v = m2r - kv (t + tr), ku = t.mr/p, kv
+// = t.m2r/p, p = 1 + tr.t. Second derivatives are never stored as tensors: only their contractions
+// with vectors are needed, via
+//   sum_i g_i d2t_i/dx dx = -(g t^T + t g^T + (g.t)(I - 3 t t^T))/s^2 (contract_t) sum_i g_i
+//   d2u_i/dx dx = contract_t(-ku g) - (g.w) d2ku - (Pt g) dku^T - dku (Pt g)^T,  w = t + tr.
 struct FrameJet {
   double t[3], u[3], v[3], w[3];
   double s, align;  // |x|, 1 + tr.t
@@ -115,7 +127,8 @@ inline void contract_t(const double* g, const double* t, double s, double (*C)[3
   const double gt = dot3(g, t), is2 = 1.0 / (s * s);
   for (int j = 0; j < 3; ++j)
     for (int l = 0; l < 3; ++l)
-      C[j][l] = -(g[j] * t[l] + t[j] * g[l] + gt * ((j == l ? 1.0 : 0.0) - 3.0 * t[j] * t[l])) * is2;
+      C[j][l] =
+          -(g[j] * t[l] + t[j] * g[l] + gt * ((j == l ? 1.0 : 0.0) - 3.0 * t[j] * t[l])) * is2;
 }
 
 template <bool WithH>
@@ -164,32 +177,34 @@ inline void frame_jet(const double* tr, const double* mr, const double* x, Frame
 }
 
 // ---------------------------------------------------------------------------------------------------------
-// Relative twist (rod-math 3, docs/rod-derivation.md 2). With m1_N = R_{t_N}(phi_N) u_N (rotation about t_N) and
-// SR(tA -> tB) R_{tA}(phiA) = R_{tB}(phiA) SR(tA -> tB):
-//   alpha_B = wrap(phiB - phiA + beta),  beta = atan2(Y, X) = angle about tB from SR(tA -> tB) uA to uB,
-//   X = uB.uA - (tB.uA)(uB.tA)/(1 + tA.tB),  Y = uB.vA - (tB.vA)(uB.tA)/(1 + tA.tB),
-// wrap() maps to [-pi, pi) (the atan2 branch of rod-math 3). beta depends on (rA_x, rB_x) only, so the Hessian
-// of alpha_B is the 6x6 Hessian of beta.
+// Relative twist (rod-math 3, docs/rod-derivation.md 2). With m1_N = R_{t_N}(phi_N) u_N (rotation
+// about t_N) and SR(tA -> tB) R_{tA}(phiA) = R_{tB}(phiA) SR(tA -> tB):
+//   alpha_B = wrap(phiB - phiA + beta),  beta = atan2(Y, X) = angle about tB from SR(tA -> tB) uA
+//   to uB, X = uB.uA - (tB.uA)(uB.tA)/(1 + tA.tB),  Y = uB.vA - (tB.vA)(uB.tA)/(1 + tA.tB),
+// wrap() maps to [-pi, pi) (the atan2 branch of rod-math 3). beta depends on (rA_x, rB_x) only, so
+// the Hessian of alpha_B is the 6x6 Hessian of beta.
 inline double wrap_pi(double a) {
   constexpr double pi = 3.14159265358979323846;
   return a - 2.0 * pi * std::floor((a + pi) / (2.0 * pi));
 }
 
-inline double beta_value(const double* tA, const double* uA, const double* vA, const double* tB, const double* uB,
-                         double& align) {
+inline double beta_value(const double* tA, const double* uA, const double* vA, const double* tB,
+                         const double* uB, double& align) {
   align = 1.0 + dot3(tA, tB);
   const double g = dot3(uB, tA) / align;
   return std::atan2(dot3(uB, vA) - dot3(tB, vA) * g, dot3(uB, uA) - dot3(tB, uA) * g);
 }
 
-// Gradient and Hessian of beta (docs/rod-derivation.md 2). beta depends on the nodal tangents only. With the twist
-// vector of a smallest rotation, V(t, r) = (t x r)/(1 + r.t), the first variation is
-//   d beta = (V(tB, trB) + V(tA, tB)) . dtB + (V(tA, tB) - V(tA, trA)) . dtA =: WB . dtB + WA . dtA,
-// (axial spin of node B's transported frame, minus that of node A's, minus the twist of SR(tA -> tB)).
-// WN is perpendicular to tN, so grad_{xN} beta = WN/sN (sN = |xN|), and
+// Gradient and Hessian of beta (docs/rod-derivation.md 2). beta depends on the nodal tangents only.
+// With the twist vector of a smallest rotation, V(t, r) = (t x r)/(1 + r.t), the first variation is
+//   d beta = (V(tB, trB) + V(tA, tB)) . dtB + (V(tA, tB) - V(tA, trA)) . dtA =: WB . dtB + WA .
+//   dtA,
+// (axial spin of node B's transported frame, minus that of node A's, minus the twist of SR(tA ->
+// tB)). WN is perpendicular to tN, so grad_{xN} beta = WN/sN (sN = |xN|), and
 //   H_NN = [ dWN/dtN (I - tN tN^T) - WN tN^T ]/sN^2,  H_BA = dWB/dtA (I - tA tA^T)/(sA sB),
 // with dV/dt = -([r x] + V r^T)/(1 + r.t) and dV/dr = ([t x] - V t^T)/(1 + r.t).
-inline void sr_twist(const double* t, const double* r, double* V, double (*Mt)[3], double (*Mr)[3]) {
+inline void sr_twist(const double* t, const double* r, double* V, double (*Mt)[3],
+                     double (*Mr)[3]) {
   const double ip = 1.0 / (1.0 + dot3(r, t));
   double txr[3];
   cross3(t, r, txr);
@@ -255,12 +270,13 @@ inline void beta_derivs(const double* tA, double sA, const double* trA, const do
 }
 
 // ---------------------------------------------------------------------------------------------------------
-// Material curvatures at a quadrature point (docs/rod-derivation.md 3). Local frame: node A's triad at phiA = 0,
-// (tA, uA, vA); a = r', b = r'' in that frame; the twist angle of the material triad at xi about the transported
-// frame is theta = phiA + xi alpha_B:
-//   n = |a|, d = n + a0 (= n (1 + tA.t)), rho = 1/n^2, B = n b0 + a.b, sigma = B/(n^3 d), h = a2 b1 - a1 b2,
-//   P = a2 sigma - b2 rho (= kappa.SR(uA)), Q = b1 rho - a1 sigma (= kappa.SR(vA)), tau = h/(n^2 d),
-//   K1 = alpha_B/n + tau, K2 = cos(theta) P + sin(theta) Q, K3 = cos(theta) Q - sin(theta) P.
+// Material curvatures at a quadrature point (docs/rod-derivation.md 3). Local frame: node A's triad
+// at phiA = 0, (tA, uA, vA); a = r', b = r'' in that frame; the twist angle of the material triad
+// at xi about the transported frame is theta = phiA + xi alpha_B:
+//   n = |a|, d = n + a0 (= n (1 + tA.t)), rho = 1/n^2, B = n b0 + a.b, sigma = B/(n^3 d), h = a2 b1
+//   - a1 b2, P = a2 sigma - b2 rho (= kappa.SR(uA)), Q = b1 rho - a1 sigma (= kappa.SR(vA)), tau =
+//   h/(n^2 d), K1 = alpha_B/n + tau, K2 = cos(theta) P + sin(theta) Q, K3 = cos(theta) Q -
+//   sin(theta) P.
 // Returns false if 1 + tA.t <= kMinAlign.
 inline bool qcurv(const double* a, const double* b, double aB, double th, double* K, double& n2) {
   n2 = dot3(a, a);
@@ -278,11 +294,13 @@ inline bool qcurv(const double* a, const double* b, double aB, double th, double
   return true;
 }
 
-// Energy density f (times W = gw j0), its gradient g[8] and (if WithH) Hessian H[8][8] (upper triangle) in
-// the variables (a0, a1, a2, b0, b1, b2, phiA, alpha_B) (docs/rod-derivation.md 4). th = phiA + xi alpha_B.
+// Energy density f (times W = gw j0), its gradient g[8] and (if WithH) Hessian H[8][8] (upper
+// triangle) in the variables (a0, a1, a2, b0, b1, b2, phiA, alpha_B) (docs/rod-derivation.md 4). th
+// = phiA + xi alpha_B.
 template <bool WithH>
-inline bool qdensity(const double* ain, const double* bin, double aB, double th, double xi, double W, double j0,
-                     const double* k0, const Stiffness& s, double& f, double* g, double (*H)[8]) {
+inline bool qdensity(const double* ain, const double* bin, double aB, double th, double xi,
+                     double W, double j0, const double* k0, const Stiffness& s, double& f,
+                     double* g, double (*H)[8]) {
   const double a[3] = {ain[0], ain[1], ain[2]}, b[3] = {bin[0], bin[1], bin[2]};
   const double n2 = a[0] * a[0] + a[1] * a[1] + a[2] * a[2], n = std::sqrt(n2);
   const double d = n + a[0];
@@ -371,7 +389,8 @@ inline bool qdensity(const double* ain, const double* bin, double aB, double th,
   const double lt = c1, lP = c2 * C - c3 * S, lQ = c2 * S + c3 * C;
   const double ms = lP * a[2] - lQ * a[1], mr = lQ * b[1] - lP * b[2];
   // symmetric rank-2 part X + X^T, X = lt gh gpsi^T + ms gB gchi^T + vs gsig^T + vr grho^T,
-  // vs = lP e_a2 - lQ e_a1, vr = lQ e_b1 - lP e_b2. X has nonzero columns 0..2 and rows 1, 2 (all columns).
+  // vs = lP e_a2 - lQ e_a1, vr = lQ e_b1 - lP e_b2. X has nonzero columns 0..2 and rows 1, 2 (all
+  // columns).
   double X[6][3];
   for (int i = 0; i < 6; ++i)
     for (int j = 0; j < 3; ++j) X[i][j] = lt * gh[i] * gpsi[j] + ms * gB[i] * gchi[j];
@@ -384,15 +403,18 @@ inline bool qdensity(const double* ain, const double* bin, double aB, double th,
   // aa block: X + X^T + cI I + ctt t t^T + cww w w^T + A2 g2 g2^T + A3 g3 g3^T (+ EA terms)
   const double A2 = lt * h * psi, A3 = ms * B * chi;
   const double in3 = rho * invn, nd = invn * invd, rr = rho * rho, msb = ms * chi * b[0] * invn;
-  const double cI = -(2.0 * A2 + 3.0 * A3) * rho - (A2 + A3) * nd + msb - 2.0 * mr * rr - lt * aB * in3 + cE * ij2;
-  const double ctt = (4.0 * A2 + 6.0 * A3) * rho + (A2 + A3) * nd - msb + 8.0 * mr * rr + 3.0 * lt * aB * in3;
+  const double cI = -(2.0 * A2 + 3.0 * A3) * rho - (A2 + A3) * nd + msb - 2.0 * mr * rr -
+                    lt * aB * in3 + cE * ij2;
+  const double ctt =
+      (4.0 * A2 + 6.0 * A3) * rho + (A2 + A3) * nd - msb + 8.0 * mr * rr + 3.0 * lt * aB * in3;
   const double cww = (A2 + A3) * invd * invd;
   for (int i = 0; i < 3; ++i)
     for (int j = i; j < 3; ++j)
       H[i][j] += X[i][j] + X[j][i] + ctt * t[i] * t[j] + cww * w[i] * w[j] + A2 * g2[i] * g2[j] +
                  A3 * g3[i] * g3[j] + wE * a[i] * a[j];
   for (int i = 0; i < 3; ++i) H[i][i] += cI;
-  // ab block: X^T + rows 1,2 of vs gsig^T + ms chi (t_i delta_j0 + delta_ij) + lt psi ([i=2,j=1] - [i=1,j=2])
+  // ab block: X^T + rows 1,2 of vs gsig^T + ms chi (t_i delta_j0 + delta_ij) + lt psi ([i=2,j=1] -
+  // [i=1,j=2])
   const double msp = ms * chi, ltp = lt * psi;
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) H[i][3 + j] += X[3 + j][i];
@@ -422,7 +444,8 @@ struct ElemValues {
 
 inline void elem_values(const ElementInput& in, const double* e, ElemValues& v) {
   const double pa = triad_value(in.tref_a, in.m1ref_a, e + 3, e[6], v.tA, v.uA, v.vA, v.m1A, v.m2A);
-  const double pb = triad_value(in.tref_b, in.m1ref_b, e + 10, e[13], v.tB, v.uB, v.vB, v.m1B, v.m2B);
+  const double pb =
+      triad_value(in.tref_b, in.m1ref_b, e + 10, e[13], v.tB, v.uB, v.vB, v.m1B, v.m2B);
   double pab = 0.0;
   const double beta = beta_value(v.tA, v.uA, v.vA, v.tB, v.uB, pab);
   v.alphaB = wrap_pi(e[13] - e[6] + beta);
@@ -440,7 +463,8 @@ inline void local_ab(const ElementInput& in, int q, const double (*pt)[3], doubl
   }
 }
 
-inline void rotate_blocks(const double* e, const double* f0, const double* f1, const double* f2, double (*pt)[3]) {
+inline void rotate_blocks(const double* e, const double* f0, const double* f1, const double* f2,
+                          double (*pt)[3]) {
   for (int k = 0; k < 4; ++k) {
     const double* p = e + kPosOff[k];
     pt[k][0] = dot3(f0, p);
@@ -450,8 +474,10 @@ inline void rotate_blocks(const double* e, const double* f0, const double* f1, c
 }
 
 template <bool WithH>
-inline bool element_forces(const ElementInput& in, const Stiffness& s, const double* e, double* fe, double* ke) {
-  // ---- per element: nodal jets, beta (alpha_B = wrap(phiB - phiA + beta)); local frame R0 = (tA, uA, vA)
+inline bool element_forces(const ElementInput& in, const Stiffness& s, const double* e, double* fe,
+                           double* ke) {
+  // ---- per element: nodal jets, beta (alpha_B = wrap(phiB - phiA + beta)); local frame R0 = (tA,
+  // uA, vA)
   FrameJet JA;
   frame_jet<WithH>(in.tref_a, in.m1ref_a, e + 3, JA);
   double tB[3], uB[3];  // node B: t and u = SR(tref_B -> tB) m1ref_B are all that is needed
@@ -467,8 +493,7 @@ inline bool element_forces(const ElementInput& in, const Stiffness& s, const dou
   const double beta = beta_value(JA.t, JA.u, JA.v, tB, uB, pab);
   if (!(pab > kMinAlign)) return false;
   double gb[6], Hb[6][6];
-  beta_derivs<WithH>(JA.t, JA.s, in.tref_a, tB, sB, in.tref_b,
-                     gb, Hb);
+  beta_derivs<WithH>(JA.t, JA.s, in.tref_a, tB, sB, in.tref_b, gb, Hb);
   const double aB = wrap_pi(e[13] - e[6] + beta);
   const double* F[3] = {JA.t, JA.u, JA.v};
   const double (*dF[3])[3] = {JA.dt, JA.du, JA.dv};  // dF[i][j][m] = d F_i[j] / d rA_x[m]
@@ -486,7 +511,8 @@ inline bool element_forces(const ElementInput& in, const Stiffness& s, const dou
     double a[3], b[3], f, g[8], H[8][8];
     local_ab(in, q, pt, a, b);
     const double xq = in.xi[q];
-    if (!qdensity<WithH>(a, b, aB, e[6] + xq * aB, xq, in.gw[q] * in.j0[q], in.j0[q], in.kref + 3 * q, s, f, g, H))
+    if (!qdensity<WithH>(a, b, aB, e[6] + xq * aB, xq, in.gw[q] * in.j0[q], in.j0[q],
+                         in.kref + 3 * q, s, f, g, H))
       return false;
     const double n1[4] = {in.n1[4 * q], in.n1[4 * q + 1], in.n1[4 * q + 2], in.n1[4 * q + 3]};
     const double n2[4] = {in.n2[4 * q], in.n2[4 * q + 1], in.n2[4 * q + 2], in.n2[4 * q + 3]};
@@ -497,7 +523,8 @@ inline bool element_forces(const ElementInput& in, const Stiffness& s, const dou
     if (WithH) {
       for (int i = 0; i < 6; ++i)
         for (int j = 0; j < i; ++j) H[i][j] = H[j][i];
-      // V = H N (rows rho = a0..b2; columns 3l+j of p~, then phiA, alpha_B), Ht_row(3k+i) += n1k V_i + n2k V_3+i
+      // V = H N (rows rho = a0..b2; columns 3l+j of p~, then phiA, alpha_B), Ht_row(3k+i) += n1k
+      // V_i + n2k V_3+i
       double V[6][14];
       for (int r = 0; r < 6; ++r) {
         for (int l = 0; l < 4; ++l)
@@ -518,7 +545,8 @@ inline bool element_forces(const ElementInput& in, const Stiffness& s, const dou
     }
   }
 
-  // ---- chain rule back to e (docs/rod-derivation.md 5): p_k = R0 p~_k with R0 = R0(rA_x); alpha_B = alpha_B(e)
+  // ---- chain rule back to e (docs/rod-derivation.md 5): p_k = R0 p~_k with R0 = R0(rA_x); alpha_B
+  // = alpha_B(e)
   constexpr int pmap[12] = {0, 1, 2, 3, 4, 5, 7, 8, 9, 10, 11, 12};
   double G[3][3];  // G_i = sum_k gt_{k,i} p_k
   for (int i = 0; i < 3; ++i)
@@ -529,7 +557,8 @@ inline bool element_forces(const ElementInput& in, const Stiffness& s, const dou
       fe[pmap[3 * k + j]] = F[0][j] * gt[3 * k] + F[1][j] * gt[3 * k + 1] + F[2][j] * gt[3 * k + 2];
   for (int m = 0; m < 3; ++m) {
     double acc = 0.0;
-    for (int i = 0; i < 3; ++i) acc += dF[i][0][m] * G[i][0] + dF[i][1][m] * G[i][1] + dF[i][2][m] * G[i][2];
+    for (int i = 0; i < 3; ++i)
+      acc += dF[i][0][m] * G[i][0] + dF[i][1][m] * G[i][1] + dF[i][2][m] * G[i][2];
     fe[3 + m] += acc;
   }
   const double galpha = gt[13];  // dU/d alpha_B
@@ -564,8 +593,10 @@ inline bool element_forces(const ElementInput& in, const Stiffness& s, const dou
     const double* p = e + kPosOff[k];
     for (int m = 0; m < 3; ++m) {
       double dd[3];
-      for (int i = 0; i < 3; ++i) dd[i] = dF[i][0][m] * p[0] + dF[i][1][m] * p[1] + dF[i][2][m] * p[2];
-      for (int j = 0; j < 3; ++j) E[3 * k + j][m] = F[0][j] * dd[0] + F[1][j] * dd[1] + F[2][j] * dd[2];
+      for (int i = 0; i < 3; ++i)
+        dd[i] = dF[i][0][m] * p[0] + dF[i][1][m] * p[1] + dF[i][2][m] * p[2];
+      for (int j = 0; j < 3; ++j)
+        E[3 * k + j][m] = F[0][j] * dd[0] + F[1][j] * dd[1] + F[2][j] * dd[2];
     }
   }
   double HE[12][3];
@@ -594,7 +625,8 @@ inline bool element_forces(const ElementInput& in, const Stiffness& s, const dou
         K[3 + m][pmap[3 * k + j]] += v;
       }
   // H_xx = E^T HE + sum_i d2F_i . G_i, the latter as contractions (FrameJet comment):
-  //   contract_t(G0 - ku G1 - kv G2) - (G1.w) d2ku - (G2.w) d2kv - sym(2 dku (Pt G1)^T) - sym(2 dkv (Pt G2)^T)
+  //   contract_t(G0 - ku G1 - kv G2) - (G1.w) d2ku - (G2.w) d2kv - sym(2 dku (Pt G1)^T) - sym(2 dkv
+  //   (Pt G2)^T)
   {
     double gc[3], C[3][3], PG1[3], PG2[3];
     for (int j = 0; j < 3; ++j) {
@@ -619,8 +651,10 @@ inline bool element_forces(const ElementInput& in, const Stiffness& s, const dou
     double hp[12], hq[12];
     for (int k = 0; k < 4; ++k)
       for (int j = 0; j < 3; ++j) {
-        hp[3 * k + j] = F[0][j] * Ht[3 * k][12] + F[1][j] * Ht[3 * k + 1][12] + F[2][j] * Ht[3 * k + 2][12];
-        hq[3 * k + j] = F[0][j] * Ht[3 * k][13] + F[1][j] * Ht[3 * k + 1][13] + F[2][j] * Ht[3 * k + 2][13];
+        hp[3 * k + j] =
+            F[0][j] * Ht[3 * k][12] + F[1][j] * Ht[3 * k + 1][12] + F[2][j] * Ht[3 * k + 2][12];
+        hq[3 * k + j] =
+            F[0][j] * Ht[3 * k][13] + F[1][j] * Ht[3 * k + 1][13] + F[2][j] * Ht[3 * k + 2][13];
       }
     for (int r = 0; r < 12; ++r) {
       K[pmap[r]][6] += hp[r];
@@ -666,7 +700,8 @@ inline bool element_forces(const ElementInput& in, const Stiffness& s, const dou
 // ---------------------------------------------------------------------------------------------------------
 // Public API
 
-// Material curvatures K1, K2, K3 (out_k[q*3+i]) and Green-Lagrange axial strain (out_eps[q]) at every q.
+// Material curvatures K1, K2, K3 (out_k[q*3+i]) and Green-Lagrange axial strain (out_eps[q]) at
+// every q.
 inline void curvatures(const ElementInput& in, const double* e, double* out_k, double* out_eps) {
   detail::ElemValues v;
   detail::elem_values(in, e, v);
@@ -697,18 +732,21 @@ inline double energy(const ElementInput& in, const Stiffness& s, const double* e
   for (int q = 0; q < in.nq; ++q) {
     double a[3], b[3], K[3], n2;
     detail::local_ab(in, q, pt, a, b);
-    if (!detail::qcurv(a, b, v.alphaB, e[6] + in.xi[q] * v.alphaB, K, n2)) return detail::nan_value();
+    if (!detail::qcurv(a, b, v.alphaB, e[6] + in.xi[q] * v.alphaB, K, n2))
+      return detail::nan_value();
     const double j2 = in.j0[q] * in.j0[q];
     const double eps = 0.5 * (n2 - j2) / j2;
     const double* k0 = in.kref + 3 * q;
     const double r1 = K[0] - k0[0], r2 = K[1] - k0[1], r3 = K[2] - k0[2];
-    U += 0.5 * in.gw[q] * in.j0[q] * (s.ea * eps * eps + s.gj * r1 * r1 + s.ei2 * r2 * r2 + s.ei3 * r3 * r3);
+    U += 0.5 * in.gw[q] * in.j0[q] *
+         (s.ea * eps * eps + s.gj * r1 * r1 + s.ei2 * r2 * r2 + s.ei3 * r3 * r3);
   }
   return U;
 }
 
 // fe[14] = dU/de and, if ke != nullptr, ke[14*14] = d2U/de2 (exact, symmetric).
-inline void forces(const ElementInput& in, const Stiffness& s, const double* e, double* fe, double* ke) {
+inline void forces(const ElementInput& in, const Stiffness& s, const double* e, double* fe,
+                   double* ke) {
   const bool ok = ke ? detail::element_forces<true>(in, s, e, fe, ke)
                      : detail::element_forces<false>(in, s, e, fe, nullptr);
   if (!ok) {
@@ -718,8 +756,8 @@ inline void forces(const ElementInput& in, const Stiffness& s, const double* e, 
 }
 
 // Nodal triad for the current nodal gradient rx and twist phi (rod-math 2).
-inline void nodal_triad(const double* tref, const double* m1ref, const double* rx, double phi, double* t_out,
-                        double* m1_out) {
+inline void nodal_triad(const double* tref, const double* m1ref, const double* rx, double phi,
+                        double* t_out, double* m1_out) {
   double u[3], v[3], m2[3];
   const double p = detail::triad_value(tref, m1ref, rx, phi, t_out, u, v, m1_out, m2);
   if (!(p > kMinAlign)) {
@@ -747,7 +785,9 @@ inline D3 operator*(const D3& a, const D3& b) {
   for (int i = 0; i < 3; ++i) r.d[i] = a.d[i] * b.v + a.v * b.d[i];
   return r;
 }
-inline D3 operator*(double s, const D3& a) { return {s * a.v, {s * a.d[0], s * a.d[1], s * a.d[2]}}; }
+inline D3 operator*(double s, const D3& a) {
+  return {s * a.v, {s * a.d[0], s * a.d[1], s * a.d[2]}};
+}
 inline D3 operator/(const D3& a, const D3& b) {
   D3 r{a.v / b.v, {}};
   for (int i = 0; i < 3; ++i) r.d[i] = (a.d[i] - r.v * b.d[i]) / b.v;
@@ -784,7 +824,8 @@ void moment_force(const double* m, const double* tr, const double* mr, const T* 
   v[2] = t[0] * u[1] - t[1] * u[0];
   const T tv = tr[0] * v[0] + tr[1] * v[1] + tr[2] * v[2];
   const T a = tv / (one + c);
-  for (int i = 0; i < 3; ++i) w[i] = (k * a) * lift(tr[i], rx[0]) - a * lift(mr[i], rx[0]) - k * v[i];
+  for (int i = 0; i < 3; ++i)
+    w[i] = (k * a) * lift(tr[i], rx[0]) - a * lift(mr[i], rx[0]) - k * v[i];
   const T mt = m[0] * t[0] + m[1] * t[1] + m[2] * t[2];
   f[0] = m[1] * t[2] - m[2] * t[1] + mt * w[0];
   f[1] = m[2] * t[0] - m[0] * t[2] + mt * w[1];
@@ -799,8 +840,8 @@ void moment_force(const double* m, const double* tr, const double* mr, const T* 
 // Point moment M at a node with gradient rx and reference triad (tref, m1ref):
 // g[4] = generalized force on (r_x, phi) and, if kl, kl[4*4] = dg/d(rx, phi) (exact, forward mode;
 // g does not depend on phi).  At a re-referenced node (tref = t) g = ((M x t)/|rx|, M.t).
-inline void moment_load(const double* m, const double* tref, const double* m1ref, const double* rx, double* g,
-                        double* kl) {
+inline void moment_load(const double* m, const double* tref, const double* m1ref, const double* rx,
+                        double* g, double* kl) {
   if (!kl) {
     detail::moment_force(m, tref, m1ref, rx, g);
     return;
@@ -818,8 +859,8 @@ inline void moment_load(const double* m, const double* tref, const double* m1ref
   }
 }
 
-// Smallest 1 + a.b over the smallest rotations the element uses: (tref_A, tA), (tref_B, tB), (tA, tB) and
-// (tA, t(xi_q)) for all q. The kernels return NaN when this is <= kMinAlign.
+// Smallest 1 + a.b over the smallest rotations the element uses: (tref_A, tA), (tref_B, tB), (tA,
+// tB) and (tA, t(xi_q)) for all q. The kernels return NaN when this is <= kMinAlign.
 inline double min_alignment(const ElementInput& in, const double* e) {
   detail::ElemValues v;
   detail::elem_values(in, e, v);

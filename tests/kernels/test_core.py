@@ -3,6 +3,7 @@
 import os
 import shutil
 import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -124,3 +125,19 @@ def test_core_sources_compile_without_warnings():
             continue
         p = subprocess.run([cxx, *flags, str(f)], capture_output=True, text=True)
         assert p.returncode == 0, p.stderr
+
+
+def test_core_sources_are_formatted():
+    """C++ formatted consistently: clang-format (style in .clang-format) changes nothing."""
+    exe = shutil.which("clang-format") or str(Path(sys.executable).parent / "clang-format")
+    if not Path(exe).exists():
+        pytest.skip("clang-format not installed (it comes with the test extra)")
+    src = sorted((ROOT / "src" / "cpp").glob("*.[ch]pp"))
+    if not src:
+        pytest.skip("C++ sources not in this checkout")
+    p = subprocess.run(
+        [exe, "--dry-run", "--Werror", f"--style=file:{ROOT / '.clang-format'}", *map(str, src)],
+        capture_output=True,
+        text=True,
+    )
+    assert p.returncode == 0, p.stderr[:2000]
