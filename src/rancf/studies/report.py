@@ -63,8 +63,8 @@ _INTRO = (
 #: Words a study writes into a table cell instead of a number, and what they mean.
 _CELL_NOTES = {
     NOT_REACHED: "the time integration stopped before t_end (Newton did not converge even at "
-    "the smallest step), so the run has no error over the whole interval and never counts as "
-    "meeting a tolerance",
+    "the smallest step, or the run was interrupted), so the run has no error over the whole "
+    "interval and never counts as meeting a tolerance",
     NOT_RUN: "the run was not made (outside the range this column covers; see the notes)",
 }
 
