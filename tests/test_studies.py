@@ -1,5 +1,7 @@
 """Every shipped example in reduced form: physical sanity, not numbers copied from the paper."""
 
+import re
+
 import numpy as np
 import pytest
 
@@ -144,3 +146,44 @@ def test_report_html(studies, tmp_path):
     assert text.count("data:image/gif;base64,R0lGOD") == len(items)
     assert "Paper says / we get" in text
     assert np.all([(f / "comparison.csv").exists() for _, f in items])
+
+
+def test_report_cites_the_papers_and_explains_missing_values(studies, tmp_path):
+    from rancf.studies.report import write_report
+
+    items = [(res, folder) for res, folder in studies.values()]
+    text = write_report(tmp_path, items, quick=True).read_text()
+    refs = text[text.index("<h2 id='references'>") :]
+    assert "10.1007/s11044-009-9157-3" in refs and "Sanborn" in refs and "Shabana" in refs
+    assert "conic-section" in refs and "P. L., Y. L., M. S., M. L." in refs
+    assert "DOI" in refs.split("[2]")[0]  # the missing DOI of [1] is said, not left silent
+    # no bare non-finite numbers in any table cell
+    cells = re.findall(r"<td>([^<]*)</td>", re.sub(r"base64,[A-Za-z0-9+/=]+", "", text))
+    assert not [c for c in cells if c.strip().lower() in {"inf", "-inf", "nan"}]
+
+
+def test_missing_values_in_tables_are_explained():
+    from rancf.studies.common import NOT_REACHED, NOT_RUN, format_error
+    from rancf.studies.report import _table
+
+    assert format_error(float("inf")) == NOT_REACHED
+    assert format_error(float("nan")) == NOT_RUN
+    assert format_error(1.5e-3) == "1.5000e-03"
+    html = _table(["n", "error"], [[1, format_error(float("inf"))], [2, "inf"], [3, "2e-3"]])
+    assert "<td>inf</td>" not in html and "—*" in html
+    assert f"“{NOT_REACHED}”:" in html and "no value" in html
+    assert "footnote" not in _table(["n", "error"], [[1, "2e-3"]])
+
+
+def test_legends_count_one_element_in_the_singular():
+    from rancf.post.plots import pyplot
+    from rancf.studies.common import n_elements, plot_ab
+
+    assert (n_elements(1), n_elements(2)) == ("1 element", "2 elements")
+    plt = pyplot()
+    t = np.linspace(0.0, 1.0, 5)
+    runs = {n: {"t": t, "ab": t * n} for n in (1, 2)}
+    fig = plot_ab(plt, runs, {"t": t, "ab": t, "n_el": 8}, [1, 2], "AB")
+    labels = [x.get_text() for x in fig.axes[0].get_legend().get_texts()]
+    plt.close(fig)
+    assert labels == ["1 element", "2 elements", "reference (8 elements)"]

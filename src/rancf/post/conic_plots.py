@@ -13,8 +13,18 @@ from rancf.geometry.conic import Conic
 __all__ = ["plot_conic", "draw_gradient_curves", "draw_parameter_points", "k_study_figure"]
 
 
-def k_study_figure(conic: Conic, ks, k_opt: float, titles: tuple[str, str]):  # noqa: ANN001, ANN201
-    """Gradient curves and parameter distributions side by side (paper Figs. 12–13, 25)."""
+def k_study_figure(  # noqa: ANN201
+    conic: Conic,
+    ks,  # noqa: ANN001
+    k_opt: float,
+    titles: tuple[str, str],
+    plane: tuple[str, str] = ("x", "y"),
+):
+    """Gradient curves and parameter distributions side by side (paper Figs. 12–13, 25).
+
+    ``plane`` names the model's axes that the conic's local x and y lie along (``("X", "Z")``
+    for an arc in a vertical plane of a spatial model).
+    """
     import matplotlib
 
     matplotlib.use("Agg")
@@ -23,14 +33,19 @@ def k_study_figure(conic: Conic, ks, k_opt: float, titles: tuple[str, str]):  # 
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.2), constrained_layout=True)
     colors = plt.cm.viridis(np.linspace(0, 0.9, len(ks)))
     draw_gradient_curves(axes[0], conic, ks, k_opt, colors)
-    draw_parameter_points(axes[1], conic, ks, colors)
+    draw_parameter_points(axes[1], conic, ks, colors, plane)
     axes[0].set_title(titles[0])
     axes[1].set_title(titles[1])
     return fig
 
 
-def draw_parameter_points(ax, conic: Conic, ks, colors) -> None:  # noqa: ANN001
-    """Points at ξ = 0, 0.1, ..., 1 for several K (paper Fig. 13), curves offset for legibility."""
+def draw_parameter_points(  # noqa: ANN001
+    ax, conic: Conic, ks, colors, plane: tuple[str, str] = ("x", "y")
+) -> None:
+    """Points at ξ = 0, 0.1, ..., 1 for several K (paper Fig. 13), curves offset for legibility.
+
+    ``plane``: the names of the axes the conic's local x and y lie along.
+    """
     pts = conic(np.linspace(0.0, 1.0, 400))
     ax.plot(pts[:, 0], pts[:, 1], "-", color="0.7", lw=1)
     xi_pts = np.linspace(0.0, 1.0, 11)
@@ -46,8 +61,8 @@ def draw_parameter_points(ax, conic: Conic, ks, colors) -> None:  # noqa: ANN001
             label=f"K = {kk:.4g} (offset {off:+.3f} m)",
         )
     ax.set_aspect("equal")
-    ax.set_xlabel("x [m]")
-    ax.set_ylabel("y [m] (curves offset for legibility)")
+    ax.set_xlabel(f"{plane[0]} [m]")
+    ax.set_ylabel(f"{plane[1]} [m] (curves offset for legibility)")
     ax.set_title("points at ξ = 0, 0.1, ..., 1")
     ax.legend(fontsize=7)
 

@@ -31,6 +31,9 @@ from rancf.studies.common import (
     add_animation,
     begin_study,
     example_path,
+    format_error,
+    kind_style,
+    n_elements,
     save_figure,
 )
 from rancf.studies.grid import Executor, grid_variant, run_grid
@@ -128,7 +131,7 @@ def run_study(
         "Elements needed for a tip error of 1e-3 m / 1e-4 m",
         ["E [Pa]", "reference check [m]", *kinds],
         [
-            [f"{e:g}", f"{ref_check[e]:.1e}"]
+            [f"{e:g}", format_error(ref_check[e], ".1e")]
             + [" / ".join(_fmt(n, ns, errs[e][k]) for n in needed[e][k]) for k in kinds]
             for e in es
         ],
@@ -138,7 +141,7 @@ def run_study(
         out,
         "Tip error against elements",
         ["E [Pa]", "element", "elements", "max tip error [m]"],
-        [[f"{e:g}", k, n, f"{errs[e][k][n]:.4e}"] for e in es for k in kinds for n in ns],
+        [[f"{e:g}", k, n, format_error(errs[e][k][n])] for e in es for k in kinds for n in ns],
         "error_vs_elements.csv",
     )
     _figures(out, res, errs, needed, es, ns, kinds, p)
@@ -192,6 +195,8 @@ def _figures(
     kinds: list[str],
     p: dict[str, Any],
 ) -> None:
+    from matplotlib.ticker import MaxNLocator
+
     plt = pyplot()
     fig, axes = plt.subplots(
         1, len(es), figsize=(3.4 * len(es), 3.8), sharey=True, constrained_layout=True
@@ -199,11 +204,14 @@ def _figures(
     for ax, e in zip(np.atleast_1d(axes), es, strict=True):
         for i, k in enumerate(kinds):
             ok = [n for n in ns if np.isfinite(errs[e][k][n])]
-            ax.semilogy(ok, [errs[e][k][n] for n in ok], "o-", ms=3, color=f"C{i}", label=k)
+            style = kind_style(i, k)
+            style["ms"] = 0.7 * style["ms"]
+            ax.semilogy(ok, [errs[e][k][n] for n in ok], label=k, **style)
         for tol in TOLS:
             ax.axhline(tol, color="k", ls=":", lw=0.8)
         ax.set_title(f"E = {e:g} Pa")
         ax.set_xlabel("elements")
+        ax.xaxis.set_major_locator(MaxNLocator(integer=True))
     np.atleast_1d(axes)[0].set_ylabel(f"max over t ∈ [0, {p['t_end']:g}] s of |tip − ref| [m]")
     np.atleast_1d(axes)[-1].legend(fontsize=7)
     save_figure(
@@ -219,13 +227,13 @@ def _figures(
         axes[0].semilogx(
             [e for e, n in zip(es, need, strict=True) if n is not None],
             [n for n in need if n is not None],
-            "o-",
-            color=f"C{i}",
             label=k,
+            **kind_style(i, k),
         )
-        axes[1].loglog(es, [errs[e][k][n_fixed] for e in es], "o-", color=f"C{i}", label=k)
-    axes[0].set_ylabel("elements for tip error ≤ 1e-4 m (missing: more than tried)")
-    axes[1].set_ylabel(f"tip error with {n_fixed} elements [m]")
+        axes[1].loglog(es, [errs[e][k][n_fixed] for e in es], label=k, **kind_style(i, k))
+    axes[0].set_ylabel("elements for tip error ≤ 1e-4 m\n(no point: more than tried)")
+    axes[0].yaxis.set_major_locator(MaxNLocator(integer=True))
+    axes[1].set_ylabel(f"tip error with {n_elements(n_fixed)} [m]")
     for ax in axes:
         ax.set_xlabel("Young's modulus E [Pa]")
         ax.legend(fontsize=7)

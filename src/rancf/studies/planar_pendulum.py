@@ -24,6 +24,8 @@ from rancf.studies.common import (
     add_animation,
     begin_study,
     convergence_runs,
+    format_error,
+    n_elements,
     plot_ab,
     plot_errors,
     save_figure,
@@ -123,7 +125,7 @@ def run_study(
                 kind,
                 PAPER_ELEMENTS[kind],
                 f if f is not None else f"> {max(runs[kind])}",
-                f"{runs[kind][f]['err']:.3e}" if f else "",
+                format_error(runs[kind][f]["err"], ".3e") if f else "",
                 f"{runs[kind][f]['wall']:.3f}" if f else "",
             ]
         )
@@ -154,7 +156,7 @@ def run_study(
         rows,
         "element_efficiency.csv",
     )
-    err_rows = [[kind, n, f"{v['err']:.4e}"] for kind in KINDS for n, v in runs[kind].items()]
+    err_rows = [[kind, n, format_error(v["err"])] for kind in KINDS for n, v in runs[kind].items()]
     res.add_table(
         out,
         "Tip error against elements",
@@ -259,14 +261,17 @@ def run_study(
     )
     fig, axes = plt.subplots(1, 3, figsize=(15, 4.2), constrained_layout=True)
     for n, ls in ((n_a, "-"), (n_b, "--")):
-        axes[0].plot(sbar, prof[n][0], ls, label=f"{n} elements")
-        axes[1].plot(sbar, prof[n][1], ls, label=f"{n} elements")
+        axes[0].plot(sbar, prof[n][0], ls, label=n_elements(n))
+        axes[1].plot(sbar, prof[n][1], ls, label=n_elements(n))
     axes[2].plot(sbar, diff_u, "r-")
+    # three short lines: one line of this length is wider than the panel and gets clipped
     axes[2].set_title(
-        f"Fig. 20: difference\nL2 = {l2:.5f} m, L∞ = {linf:.5f} m (paper 0.00173, 0.00393)"
+        f"Fig. 20: difference, {n_a} − {n_b} elements\n"
+        f"L2 = {l2:.5f} m, L∞ = {linf:.5f} m\n"
+        "(paper, 5 − 10 elements: 0.00173 m, 0.00393 m)"
     )
-    axes[0].set_title(f"Fig. 18: vertical displacement u_y(s), t = {t_cmp} s")
-    axes[1].set_title(f"Fig. 19: centreline height y(s), t = {t_cmp} s")
+    axes[0].set_title(f"Fig. 18: vertical displacement u_y(s)\nt = {t_cmp:g} s")
+    axes[1].set_title(f"Fig. 19: centreline height y(s)\nt = {t_cmp:g} s")
     for ax in axes:
         ax.set_xlabel("normalized reference arc length s/L [-]")
     axes[0].set_ylabel("u_y [m]")
@@ -275,7 +280,10 @@ def run_study(
     axes[0].legend()
     axes[1].legend()
     save_figure(
-        fig, out / "fig18_20_mesh_refinement.png", res, "Figs. 18–20: mesh refinement at t = 0.5 s"
+        fig,
+        out / "fig18_20_mesh_refinement.png",
+        res,
+        f"Figs. 18–20: mesh refinement at t = {t_cmp:g} s",
     )
     res.add_table(
         out,

@@ -12,9 +12,9 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from rancf.post.results import atomic_write
-from rancf.studies.common import StudyResult
+from rancf.studies.common import NOT_REACHED, NOT_RUN, StudyResult
 
-__all__ = ["write_report"]
+__all__ = ["write_report", "REFERENCES"]
 
 _CSS = """
 body { font-family: system-ui, sans-serif; max-width: 1200px; margin: 2em auto; color: #222; }
@@ -26,18 +26,50 @@ figure { margin: 1em 0 2em 0; }
 figcaption { font-style: italic; color: #555; }
 img { max-width: 100%; border: 1px solid #ddd; }
 .note { background: #f7f7f0; border-left: 4px solid #c9b458; padding: 0.5em 1em; margin: 1em 0; }
+.footnote { font-size: 0.85em; color: #555; margin-top: -1em; }
 """
 
 
 #: Tables longer than this are collapsed (``<details>``).
 _LONG_TABLE = 20
 
-_CITATION = (
-    "The studies reproduce the numerical examples (sections 6.1–6.3) of the paper on rational "
-    "ANCF conic-section cable elements that rancf implements; the CAD conversions follow "
-    "Sanborn &amp; Shabana (2009), <i>A rational finite element method based on the absolute "
-    "nodal coordinate formulation</i>, Nonlinear Dynamics."
+#: The works the studies reproduce and build on (HTML), cited in the report's "References".
+#: The conic-section paper is cited by what its text gives: the copy rancf was written from
+#: carries no title page, so its title, full author names, journal, year and DOI are not known
+#: here and are not guessed.
+REFERENCES = (
+    "[1] The paper on the direct definition of rational ANCF (RANCF) conic-section cable "
+    "elements, the mapping factor <i>K</i> and the optimal <i>K</i><sub>opt</sub> "
+    "(conic from chord, end-tangent angles and one interior point; degree elevation; "
+    "gradient-ratio criterion, eq. 29; numerical examples in sections 6.1–6.3, which the "
+    "studies of this report reproduce). Authors, by the initials of its author-contributions "
+    "statement: P. L., Y. L., M. S., M. L.; funded by the Henan Provincial R&amp;D Plan Joint "
+    "Fund (No. 225101610072). The text rancf was built from gives neither its title nor the "
+    "authors' full names, the journal, the year or a DOI; they are left out rather than "
+    "guessed.",
+    "[2] G. G. Sanborn, A. A. Shabana, <i>On the integration of computer aided design and "
+    "analysis using the finite element absolute nodal coordinate formulation</i>, Multibody "
+    "System Dynamics 22 (2009) 181–197, DOI "
+    "<a href='https://doi.org/10.1007/s11044-009-9157-3'>10.1007/s11044-009-9157-3</a> "
+    "(the ANCF cable element as a cubic Bézier curve; B-spline and NURBS conversions, which "
+    "rancf's CAD import follows).",
 )
+
+_INTRO = (
+    "The studies reproduce the numerical examples (sections 6.1–6.3) of the conic-section "
+    "paper [1] that rancf implements; see the references at the end."
+)
+
+#: Words a study writes into a table cell instead of a number, and what they mean.
+_CELL_NOTES = {
+    NOT_REACHED: "the time integration stopped before t_end (Newton did not converge even at "
+    "the smallest step, or the run was interrupted), so the run has no error over the whole "
+    "interval and never counts as meeting a tolerance",
+    NOT_RUN: "the run was not made (outside the range this column covers; see the notes)",
+}
+
+#: Bare non-finite numbers, shown as a dash with a footnote if a table still holds one.
+_NON_FINITE = {"inf", "-inf", "nan", "infinity", "-infinity"}
 
 
 def _text(s: str) -> str:
@@ -47,11 +79,30 @@ def _text(s: str) -> str:
 
 
 def _table(header: Sequence[str], rows: Sequence[Sequence[object]]) -> str:
+    """An HTML table; cells that hold no number are explained in a footnote below it.
+
+    A bare ``inf``/``nan`` (a study that formatted a missing value as a number) is shown as
+    "—" with the footnote that it has no value.
+    """
+    bare = False
+    used: list[str] = []
+
+    def cell(c: object) -> str:
+        nonlocal bare
+        text = str(c)
+        if text.strip().lower() in _NON_FINITE:
+            bare = True
+            return "<td>—*</td>"
+        used.extend(w for w in _CELL_NOTES if w in text and w not in used)
+        return f"<td>{html.escape(text)}</td>"
+
     head = "".join(f"<th>{html.escape(str(h))}</th>" for h in header)
-    body = "".join(
-        "<tr>" + "".join(f"<td>{html.escape(str(c))}</td>" for c in row) + "</tr>" for row in rows
-    )
-    return f"<table><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
+    body = "".join("<tr>" + "".join(cell(c) for c in row) + "</tr>" for row in rows)
+    notes = [f"“{html.escape(w)}”: {html.escape(_CELL_NOTES[w])}." for w in used]
+    if bare:
+        notes.append("—*: no value (the run stopped before t_end or was not made).")
+    foot = f"<p class='footnote'>{'<br>'.join(notes)}</p>" if notes else ""
+    return f"<table><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>{foot}"
 
 
 def _timing(studies: Sequence[tuple[StudyResult, Path]], wall_time_s: float | None) -> str:
@@ -82,10 +133,11 @@ def write_report(
         f"{html.escape(platform.platform())}, Python {platform.python_version()}"
         f"{' — <b>reduced (quick) runs</b>' if quick else ''}. {_timing(studies, wall_time_s)}"
         "</p>",
+        f"<p>{_INTRO}</p>",
         "<h2>Contents</h2><ul>",
     ]
     parts += [f"<li><a href='#{s.name}'>{html.escape(s.title)}</a></li>" for s, _ in studies]
-    parts.append("</ul>")
+    parts.append("<li><a href='#references'>References</a></li></ul>")
     summary = {}
     for s, folder in studies:
         parts.append(f"<h2 id='{s.name}'>{html.escape(s.title)}</h2>")
@@ -120,7 +172,9 @@ def write_report(
             "figures": [f for _, f in s.figures],
             "animations": [f for _, f in s.animations],
         }
-    parts.append(f"<h2>Reference</h2><p>{_CITATION}</p></body></html>")
+    parts.append("<h2 id='references'>References</h2>")
+    parts += [f"<p>{ref}</p>" for ref in REFERENCES]
+    parts.append("</body></html>")
     path = out / "report.html"
     atomic_write(path, "\n".join(parts))
     atomic_write(out / "report.json", json.dumps(summary, indent=2, default=str) + "\n")

@@ -22,6 +22,7 @@ from rancf.studies.common import (
     StudyResult,
     convergence_runs,
     fft_peak,
+    format_error,
     plot_errors,
     run,
     save_figure,
@@ -66,7 +67,7 @@ def spatial_pendulum_rod(
         solver__t_end=t_end,
     )
     rows = [
-        [n, f"{v['err']:.4e}", v["result"].n_newton, f"{v['wall']:.3f}"]
+        [n, format_error(v["err"]), v["result"].n_newton, f"{v['wall']:.3f}"]
         for n, v in runs["rod"].items()
     ]
     res.add_table(

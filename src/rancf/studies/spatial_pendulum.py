@@ -33,6 +33,7 @@ from rancf.studies.common import (
     add_animation,
     begin_study,
     convergence_runs,
+    format_error,
     plot_ab,
     plot_errors,
     save_figure,
@@ -90,6 +91,7 @@ def run_study(
         [0.1, k_opt],
         k_opt,
         ("Fig. 25: gradient curves", "parameter distributions (ξ = 0, 0.1, ..., 1)"),
+        plane=("X", "Z"),  # the arc lies in the vertical X–Z plane
     )
     save_figure(fig, out / "fig25_gradients.png", res, "Fig. 25: gradient curves, K = 0.1 and Kopt")
 
@@ -145,7 +147,7 @@ def run_study(
         out,
         "Tip error against elements",
         ["element", "elements", "max tip error [m]"],
-        [[k, n, f"{v['err']:.4e}"] for k in KINDS for n, v in runs[k].items()],
+        [[k, n, format_error(v["err"])] for k in KINDS for n, v in runs[k].items()],
         "error_vs_elements.csv",
     )
 
@@ -159,10 +161,13 @@ def run_study(
         pts = centerline(m, r.q[i])
         ax.plot(pts[:, 0], pts[:, 1], pts[:, 2], color=col, label=f"t = {r.t[i]:.2f} s")
     ax.scatter([0], [0], [0], color="k", marker="s", label="pin A")
+    # equal scales on the three axes: the out-of-plane excursion (Y) is small against the
+    # pendulum's size and must look small, not be stretched to the height of the other axes
+    ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel("X [m]")
-    ax.set_ylabel("Y [m]")
+    ax.set_ylabel("Y [m] (out of plane)")
     ax.set_zlabel("Z [m]")
-    ax.set_title(f"Fig. 23: configurations, {m.n_el} Kopt elements")
+    ax.set_title(f"Fig. 23: configurations, {m.n_el} Kopt elements (equal axis scales)")
     ax.legend(fontsize=8)
     save_figure(fig, out / "fig23_configurations.png", res, "Fig. 23: configurations in 3D")
 
