@@ -22,7 +22,7 @@ from collections.abc import Callable, Iterable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, Protocol
 
 from rancf.errors import InputError
 from rancf.post.results import atomic_write
@@ -34,6 +34,7 @@ __all__ = [
     "run_variants",
     "LocalExecutor",
     "DaskExecutor",
+    "SweepExecutor",
     "SweepReport",
     "dask_client",
     "results_table",
@@ -54,7 +55,9 @@ class SweepReport:
 
 
 @contextmanager
-def dask_client(scheduler: str | None, workers: int | None) -> Iterator[Any]:
+def dask_client(
+    scheduler: str | None, workers: int | None, processes: bool = True
+) -> Iterator[Any]:
     """A Dask client: of the scheduler at ``scheduler``, or of a new local cluster of
     ``workers`` processes (default: the number of cores) listening on 127.0.0.1 only."""
     from dask.distributed import Client, LocalCluster
@@ -76,7 +79,8 @@ def dask_client(scheduler: str | None, workers: int | None) -> Iterator[Any]:
         LocalCluster(
             n_workers=n,
             threads_per_worker=1,
-            processes=True,
+            processes=processes,
+            protocol="tcp://",
             host="127.0.0.1",
             dashboard_address=None,
             silence_logs=logging.ERROR,
@@ -120,6 +124,13 @@ def _num(x: Any) -> str:
 
 #: ``on_done(name, row) -> names of later calls that are no longer needed``.
 OnDone = Callable[[str, dict[str, Any]], Iterable[str]]
+
+
+class SweepExecutor(Protocol):
+    """What runs a sweep's calls: :class:`LocalExecutor`, :class:`DaskExecutor` or another
+    object with the same :meth:`execute`."""
+
+    def execute(self, calls: list[tuple[str, tuple[Any, ...]]], on_done: OnDone) -> None: ...
 
 
 class LocalExecutor:
@@ -190,7 +201,7 @@ class DaskExecutor:
 
 
 def run_variants(
-    executor: LocalExecutor | DaskExecutor,
+    executor: SweepExecutor,
     variants: list[Variant],
     base: str | Path,
     analysis: str,
@@ -202,7 +213,7 @@ def run_variants(
 
     Parameters
     ----------
-    executor : LocalExecutor or DaskExecutor
+    executor : SweepExecutor (LocalExecutor, DaskExecutor)
     variants : list of Variant
         In priority order (earlier ones start first).
     base : path
