@@ -31,6 +31,10 @@ __all__ = ["run_studies_here", "run_studies_parallel", "run_on_cluster"]
 CLUSTER_START_TIMEOUT = 120.0
 #: Longest scheduler address the drivers can be told (bytes).
 _ADDRESS_SIZE = 256
+#: Runs per Dask task (:class:`~rancf.sweep.engine.DaskExecutor`) of grids that never cancel a
+#: run: the exact-geometry grid's 260 runs take about 40 ms each, and a task costs the cluster
+#: and the driver a few ms of CPU.  Convergence grids (6.1, 6.2) cancel sizes: one run a task.
+RUNS_PER_TASK = {"exact-geometry": 5}
 
 
 def run_studies_here(names: list[str], out: Path, quick: bool) -> dict[str, StudyResult]:
@@ -50,7 +54,8 @@ def run_on_cluster(
     if not runs_a_grid(name):
         return study_runner(name)(out, quick)
     with Client(address, timeout=30) as client:
-        return study_runner(name)(out, quick, DaskExecutor(client, priority))
+        executor = DaskExecutor(client, priority, RUNS_PER_TASK.get(name, 1))
+        return study_runner(name)(out, quick, executor)
 
 
 class ClusterWhenReady:
@@ -58,8 +63,9 @@ class ClusterWhenReady:
     for the scheduler's address (set by :func:`run_studies_parallel`), connects, and runs the
     grid as :class:`~rancf.sweep.engine.DaskExecutor` does; :meth:`close` disconnects."""
 
-    def __init__(self, priority: int) -> None:
+    def __init__(self, priority: int, runs_per_task: int = 1) -> None:
         self.priority = priority
+        self.runs_per_task = runs_per_task
         self._stack = ExitStack()
         self._executor: Any = None
 
@@ -71,7 +77,7 @@ class ClusterWhenReady:
             from rancf.sweep.engine import DaskExecutor
 
             client = self._stack.enter_context(Client(_cluster_address(), timeout=30))
-            self._executor = DaskExecutor(client, self.priority)
+            self._executor = DaskExecutor(client, self.priority, self.runs_per_task)
         self._executor.execute(calls, on_done)
 
     def close(self) -> None:
@@ -124,7 +130,7 @@ def _drive(name: str, out: Path, quick: bool, priority: int) -> StudyResult:
     """One study in a driver process; its grid goes to the cluster once the cluster is up."""
     if not runs_a_grid(name):
         return study_runner(name)(out, quick)
-    executor = ClusterWhenReady(priority)
+    executor = ClusterWhenReady(priority, RUNS_PER_TASK.get(name, 1))
     try:
         return study_runner(name)(out, quick, executor)
     finally:
