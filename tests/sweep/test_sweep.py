@@ -137,6 +137,31 @@ def test_separate_scheduler_gives_identical_values(local_sweep, tmp_path):
     assert _rows(out / "results.csv") == _rows(local_sweep / "out" / "results.csv")
 
 
+def test_several_runs_per_task_on_worker_threads(local_sweep, tmp_path):
+    # the report's cluster: worker threads, consecutive runs as one task; same rows, and a task
+    # none of whose runs is needed any more is cancelled unless it started already (both or none)
+    from rancf.sweep.engine import DaskExecutor, dask_client, run_variants
+
+    spec = load_sweep(_write(tmp_path))
+    variants = spec.variants()
+    seen = []
+
+    def on_row(name, row):
+        seen.append(name)
+        return [v.name for v in variants[2:]]  # the second task (runs 2 and 3) is not needed
+
+    with dask_client(None, 1, processes=False) as client:
+        ex = DaskExecutor(client, runs_per_task=2)
+        run_variants(ex, variants, spec.base, "simulate", tmp_path / "out", False, on_row)
+    rows = _rows(tmp_path / "out" / "results.csv")
+    assert seen[:2] == [v.name for v in variants[:2]]
+    full = _rows(local_sweep / "out" / "results.csv")
+    assert rows[:2] == full[:2]
+    assert rows[2:] in ([{**r, "status": "pending", "message": ""} for r in rows[2:]], full[2:])
+    with pytest.raises(ValueError, match="runs_per_task"):
+        DaskExecutor(client, runs_per_task=0)
+
+
 def test_bad_sweep_files_name_the_key(tmp_path):
     f = _write(tmp_path)
     f.write_text(SWEEP.replace('"mesh.elements"', '"mesh.elemnts"'))

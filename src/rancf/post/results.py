@@ -22,6 +22,7 @@ import json
 import math
 import os
 import tempfile
+import threading
 import zipfile
 from collections.abc import Iterator, Sequence
 from pathlib import Path
@@ -49,9 +50,15 @@ __all__ = [
 CHUNK_BYTES = 1 << 24
 
 
+_UMASK_LOCK = threading.Lock()
+
+
 def _umask() -> int:
-    mask = os.umask(0o022)
-    os.umask(mask)
+    """The process umask.  Reading it means setting it for a moment, which threads (the worker
+    threads of the report's local Dask cluster write run folders) must not do at once."""
+    with _UMASK_LOCK:
+        mask = os.umask(0o022)
+        os.umask(mask)
     return mask
 
 

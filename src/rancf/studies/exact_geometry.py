@@ -101,9 +101,17 @@ def run_study(
         )  # fmt: skip
         for i, (e, kind, n, opts) in enumerate(plan)
     ]
+    soft_ref = variants[0].name  # the reference at the softest E: animated as soon as it ran
+
+    def on_run(name: str, run: Any) -> tuple[str, ...]:
+        if name == soft_ref:  # drawn while the grid runs, not after it
+            caption = f"E = {es[0]:g} Pa, reference run"
+            add_animation(res, run["folder"], out / "animation.gif", caption)
+        return ()
+
     with ThreadPoolExecutor(1) as pool:  # Exudyn's column here while the grid runs elsewhere
         exudyn_future = pool.submit(_exudyn_errors, raw, es, ns, p)
-        done = run_grid(executor, variants, example_path(NAME), out / "sweep")
+        done = run_grid(executor, variants, example_path(NAME), out / "sweep", on_run)
         exudyn = exudyn_future.result()
     runs = {(e, kind, n): done[v.name] for v, (e, kind, n, _) in zip(variants, plan, strict=True)}
 
@@ -145,8 +153,6 @@ def run_study(
         "error_vs_elements.csv",
     )
     _figures(out, res, errs, needed, es, ns, kinds, p)
-    soft = runs[(es[0], "reference", p["n_ref"])]
-    add_animation(res, soft["folder"], out / "animation.gif", f"E = {es[0]:g} Pa, reference run")
     _explain(res, errs, needed, ref_check, es, ns, p["n_ref"], p["n_check"])
     res.data.update(errors=errs, needed=needed, ref_check=ref_check, exudyn=exudyn is not None)
     return res.finish()

@@ -22,12 +22,12 @@ from typing import Any
 import numpy as np
 
 from rancf.post.results import load_results
-from rancf.sweep.engine import DaskExecutor, LocalExecutor, run_variants
+from rancf.sweep.engine import LocalExecutor, SweepExecutor, run_variants
 from rancf.sweep.spec import Variant
 
 __all__ = ["GridRun", "grid_variant", "run_grid", "Executor"]
 
-Executor = LocalExecutor | DaskExecutor
+Executor = SweepExecutor
 
 
 class GridRun(dict):  # type: ignore[type-arg]

@@ -22,11 +22,11 @@ from collections.abc import Callable, Iterable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, Protocol
 
 from rancf.errors import InputError
 from rancf.post.results import atomic_write
-from rancf.sweep.runner import ROW_FILE, run_variant
+from rancf.sweep.runner import ROW_FILE, run_variant, run_variants_in_order
 from rancf.sweep.spec import SweepSpec, Variant
 
 __all__ = [
@@ -34,6 +34,7 @@ __all__ = [
     "run_variants",
     "LocalExecutor",
     "DaskExecutor",
+    "SweepExecutor",
     "SweepReport",
     "dask_client",
     "results_table",
@@ -54,7 +55,9 @@ class SweepReport:
 
 
 @contextmanager
-def dask_client(scheduler: str | None, workers: int | None) -> Iterator[Any]:
+def dask_client(
+    scheduler: str | None, workers: int | None, processes: bool = True
+) -> Iterator[Any]:
     """A Dask client: of the scheduler at ``scheduler``, or of a new local cluster of
     ``workers`` processes (default: the number of cores) listening on 127.0.0.1 only."""
     from dask.distributed import Client, LocalCluster
@@ -76,7 +79,8 @@ def dask_client(scheduler: str | None, workers: int | None) -> Iterator[Any]:
         LocalCluster(
             n_workers=n,
             threads_per_worker=1,
-            processes=True,
+            processes=processes,
+            protocol="tcp://",
             host="127.0.0.1",
             dashboard_address=None,
             silence_logs=logging.ERROR,
@@ -122,6 +126,13 @@ def _num(x: Any) -> str:
 OnDone = Callable[[str, dict[str, Any]], Iterable[str]]
 
 
+class SweepExecutor(Protocol):
+    """What runs a sweep's calls: :class:`LocalExecutor`, :class:`DaskExecutor` or another
+    object with the same :meth:`execute`."""
+
+    def execute(self, calls: list[tuple[str, tuple[Any, ...]]], on_done: OnDone) -> None: ...
+
+
 class LocalExecutor:
     """Runs the variants one after another in this process, in order (no Dask).
 
@@ -151,46 +162,71 @@ class DaskExecutor:
     priority : int
         When several executors share a cluster, the runs of one with a higher priority start
         before those of one with a lower priority.
+    runs_per_task : int
+        Consecutive calls sent as one Dask task (:func:`~rancf.sweep.runner.run_variants_in_order`):
+        fewer, longer tasks cost the scheduler, the workers and this client less (a few ms of
+        CPU per task), but a task is cancelled only when none of its runs is needed any more.
+        1 (default) for grids that cancel runs; more for many short runs.
     """
 
-    def __init__(self, client: Any, priority: int = 0) -> None:
+    def __init__(self, client: Any, priority: int = 0, runs_per_task: int = 1) -> None:
+        k = runs_per_task
+        if isinstance(k, bool) or not isinstance(k, int) or k < 1:
+            raise InputError("runs_per_task", runs_per_task, "an integer >= 1")
         self.client = client
         self.priority = priority
+        self.runs_per_task = runs_per_task
         self.description = f"a Dask cluster of {len(client.scheduler_info()['workers'])} worker(s)"
 
     def execute(self, calls: list[tuple[str, tuple[Any, ...]]], on_done: OnDone) -> None:
-        """Submit every call; ``on_done(name, row)`` (called as rows arrive, in any order)
-        returns names of calls no longer needed: those not started yet are cancelled."""
+        """Submit every call; ``on_done(name, row)`` (called as rows arrive, in any order across
+        tasks, in call order within one) returns names of calls no longer needed: a task not
+        started yet whose calls are all unneeded is cancelled."""
         from dask.distributed import as_completed
 
         token = uuid.uuid4().hex[:12]
+        k = self.runs_per_task
+        tasks = [calls[i : i + k] for i in range(0, len(calls), k)]
         futures = {}
-        for i, (name, args) in enumerate(calls):
-            fut = self.client.submit(
-                run_variant,
-                *args,
-                key=f"rancf-sweep-{name}-{token}",
-                pure=False,
-                priority=self.priority * 1_000_000 + len(calls) - i,
-            )
-            futures[fut] = name
-        by_name = {n: f for f, n in futures.items()}
-        pending = as_completed(list(futures))
-        for fut in pending:
+        for i, task in enumerate(tasks):
+            names = [name for name, _ in task]
+            if len(task) == 1:
+                fut = self.client.submit(
+                    run_variant,
+                    *task[0][1],
+                    key=f"rancf-sweep-{names[0]}-{token}",
+                    pure=False,
+                    priority=self.priority * 1_000_000 + len(tasks) - i,
+                )
+            else:
+                fut = self.client.submit(
+                    run_variants_in_order,
+                    [args for _, args in task],
+                    key=f"rancf-sweep-{names[0]}+{len(task) - 1}-{token}",
+                    pure=False,
+                    priority=self.priority * 1_000_000 + len(tasks) - i,
+                )
+            futures[fut] = names
+        by_name = {n: f for f, names in futures.items() for n in names}
+        unneeded: set[str] = set()
+        for fut in as_completed(list(futures)):
             if fut.cancelled():
                 continue
-            name = futures[fut]
+            names = futures[fut]
             try:
-                row = fut.result()
+                result = fut.result()
+                rows = [result] if len(names) == 1 else result
             except Exception as exc:  # noqa: BLE001 - a lost worker: recorded, retried on resume
-                row = {"status": "failed", "message": f"worker error: {exc}"}
-            for other in on_done(name, row):
-                if other in by_name and not by_name[other].done():
-                    by_name[other].cancel()
+                rows = [{"status": "failed", "message": f"worker error: {exc}"}] * len(names)
+            for name, row in zip(names, rows, strict=True):
+                unneeded.update(on_done(name, row))
+            for other in {by_name[n] for n in unneeded if n in by_name}:
+                if not other.done() and all(n in unneeded for n in futures[other]):
+                    other.cancel()
 
 
 def run_variants(
-    executor: LocalExecutor | DaskExecutor,
+    executor: SweepExecutor,
     variants: list[Variant],
     base: str | Path,
     analysis: str,
@@ -202,7 +238,7 @@ def run_variants(
 
     Parameters
     ----------
-    executor : LocalExecutor or DaskExecutor
+    executor : SweepExecutor (LocalExecutor, DaskExecutor)
     variants : list of Variant
         In priority order (earlier ones start first).
     base : path

@@ -18,7 +18,7 @@ from typing import Any
 from rancf.post.results import atomic_write
 from rancf.sweep.toml_out import dumps
 
-__all__ = ["run_variant", "ROW_FILE", "FREQUENCY_COLUMNS"]
+__all__ = ["run_variant", "run_variants_in_order", "ROW_FILE", "FREQUENCY_COLUMNS"]
 
 ROW_FILE = "row.json"
 #: Number of natural frequencies reported per ``modes`` run.
@@ -106,6 +106,12 @@ def run_variant(
     }
     atomic_write(out / ROW_FILE, json.dumps(row, indent=2) + "\n")
     return row
+
+
+def run_variants_in_order(calls: list[tuple[Any, ...]]) -> list[dict[str, Any]]:
+    """:func:`run_variant` for each argument tuple, one after another (one Dask task for
+    several short runs); the rows in call order."""
+    return [run_variant(*args) for args in calls]
 
 
 def _one_line(exc: BaseException) -> str:
