@@ -1,6 +1,8 @@
 // Python bindings of the compiled core (module rancf._core).  Conversion and forwarding only:
 // the holders keep the NumPy arrays alive and expose them to the core as the named structs of
 // model.hpp; sizes are checked here so that the core never reads out of bounds.
+#include "bindings.hpp"
+
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
 #include <nanobind/stl/array.h>
@@ -25,17 +27,11 @@ using namespace nb::literals;
 
 namespace {
 
-using In = nb::ndarray<const double, nb::c_contig, nb::device::cpu>;
-using Out = nb::ndarray<double, nb::c_contig, nb::device::cpu>;
-using InI = nb::ndarray<const std::int64_t, nb::c_contig, nb::device::cpu>;
-using InB = nb::ndarray<const std::uint8_t, nb::c_contig, nb::device::cpu>;
-
-template <class A>
-void expect_size(const A& a, std::size_t size, const char* name) {
-  if (a.size() != size)
-    throw std::invalid_argument(std::string(name) + ": expected " + std::to_string(size) +
-                                " values, got " + std::to_string(a.size()));
-}
+using rancf_bind::expect_size;
+using rancf_bind::In;
+using rancf_bind::InB;
+using rancf_bind::InI;
+using rancf_bind::Out;
 
 struct CableHolder {
   In n1, n2, gw, s0, k0, j0, qr;
@@ -382,68 +378,5 @@ NB_MODULE(_core, mod) {
           },
           "y"_a, "v"_a, "t"_a, "a"_a.noconvert());
 
-  mod.def(
-      "rod_nodal_triad",
-      [](In tref, In m1ref, In rx, double phi) {
-        expect_size(tref, 3, "tref");
-        expect_size(m1ref, 3, "m1ref");
-        expect_size(rx, 3, "rx");
-        std::array<double, 3> t{}, m1{};
-        rancf::rod_nodal_triad(tref.data(), m1ref.data(), rx.data(), phi, t.data(), m1.data());
-        return std::make_tuple(t, m1);
-      },
-      "tref"_a, "m1ref"_a, "rx"_a, "phi"_a,
-      "(t, m1): t = rx/|rx|, m1 = cos(phi) u + sin(phi) t x u, u = SR(tref -> t) m1ref.");
-
-  mod.def(
-      "band_solve",
-      [](In ab, Out rhs, InB fixed) {
-        // ab: (2 ku + 1, n) band storage; rhs: (n), solved in place; fixed: (n)
-        const std::size_t n = rhs.size();
-        expect_size(fixed, n, "fixed");
-        if (n == 0 || ab.size() % n != 0 || (ab.size() / n) % 2 != 1)
-          throw std::invalid_argument("ab: expected shape (2 ku + 1, n)");
-        const int ni = static_cast<int>(n), ku = static_cast<int>((ab.size() / n - 1) / 2);
-        rancf::BandLU lu(ni, ku);
-        const rancf::BandView a = lu.matrix();
-        for (int j = 0; j < ni; ++j)
-          for (int i = std::max(0, j - ku); i < std::min(ni, j + ku + 1); ++i)
-            a.at(i, j) =
-                ab.data()[static_cast<std::size_t>(ku + i - j) * n + static_cast<std::size_t>(j)];
-        if (!lu.factor(fixed.data())) return false;
-        lu.solve(rhs.data(), fixed.data());
-        return true;
-      },
-      "ab"_a, "rhs"_a.noconvert(), "fixed"_a,
-      "Solve A x = rhs in place (band LU with partial pivoting; x[fixed] = 0); False if singular.");
-
-  mod.def(
-      "cable_qp_geometry",
-      [](In n1, In n2, In e, int dim, Out aa, Out kappa) {
-        // n1, n2: (n_el, n_qp, 4); e: (n_el, 4, dim); aa, kappa: (n_el, n_qp)
-        const std::size_t npts = aa.size();
-        expect_size(kappa, npts, "kappa");
-        expect_size(n1, npts * 4, "n1");
-        expect_size(n2, npts * 4, "n2");
-        if (dim != 2 && dim != 3) throw std::invalid_argument("dim: expected 2 or 3");
-        const std::size_t ud = static_cast<std::size_t>(dim);
-        if (npts == 0) return;
-        const std::size_t n_el = e.size() / (4 * ud);
-        if (n_el == 0 || npts % n_el != 0) throw std::invalid_argument("e: shape mismatch");
-        const std::size_t nq = npts / n_el;
-        for (std::size_t k = 0; k < npts; ++k) {
-          const double* ee = e.data() + (k / nq) * 4 * ud;
-          double a[3] = {0, 0, 0}, b[3] = {0, 0, 0};
-          for (std::size_t i = 0; i < ud; ++i)
-            for (std::size_t j = 0; j < 4; ++j) {
-              a[i] += n1.data()[4 * k + j] * ee[j * ud + i];
-              b[i] += n2.data()[4 * k + j] * ee[j * ud + i];
-            }
-          const rancf::QpGeometry g = rancf::cable_qp_geometry(a, b, dim);
-          aa.data()[k] = g.aa;
-          kappa.data()[k] = g.kappa;
-        }
-      },
-      "n1"_a, "n2"_a, "e"_a, "dim"_a, "aa"_a.noconvert(), "kappa"_a.noconvert(),
-      "|r'|^2 and the curvature at the Gauss points of every element (e: element coordinates).");
+  rancf_bind::bind_functions(mod);
 }

@@ -121,7 +121,7 @@ def test_core_sources_compile_without_warnings():
     flags = ["-std=c++17", "-fsyntax-only", "-Wall", "-Wextra", "-Wpedantic", "-Wshadow"]
     flags += ["-Wconversion", "-Werror"]
     for f in src:
-        if f.name == "bindings.cpp":
+        if f.name.startswith("bindings"):  # need the nanobind headers (built by pip)
             continue
         p = subprocess.run([cxx, *flags, str(f)], capture_output=True, text=True)
         assert p.returncode == 0, p.stderr
