@@ -3,7 +3,7 @@
 Everything goes through the public :class:`~rancf.model.system.Model` and its compiled core as a
 black box: forces against central differences of the strain energy, tangents against central
 differences of the forces, the load stiffness of point moments against central differences of
-the external force, rigid motions, and the closed forms of ``../shared/design/rod-math.md`` §7
+the external force, rigid motions, and the closed forms of ``docs/rod-derivation.md`` (rod-math §7)
 (restated in the README).
 """
 
