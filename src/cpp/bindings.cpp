@@ -247,6 +247,13 @@ NB_MODULE(_core, mod) {
           },
           "v"_a)
       .def(
+          "gravity_energy",
+          [](const ModelHolder& h, In y) {
+            expect_size(y, h.n(), "y");
+            return rancf::gravity_energy(h.m, y.data());
+          },
+          "y"_a)
+      .def(
           "external_force",
           [](const ModelHolder& h, double t, In y, Out f, bool amplitude) {
             expect_size(y, h.n(), "y");

@@ -120,11 +120,9 @@ RunOutcome Integrator::run(double* y, double* v, double* a, double t0, double h,
     const std::ptrdiff_t row = static_cast<std::ptrdiff_t>(out.stored) * n;
     std::copy(y, y + n, out_y + row);
     std::copy(v, v + n, out_v + row);
-    double grav = 0.0;
-    for (int i = 0; i < n; ++i) grav -= m_.loads.f_gravity[i] * (y[i] - m_.y_ref[i]);
     out_e[3 * out.stored] = kinetic_energy(m_, v);
     out_e[3 * out.stored + 1] = strain_energy(m_, y);
-    out_e[3 * out.stored + 2] = grav;
+    out_e[3 * out.stored + 2] = gravity_energy(m_, y);
     ++out.stored;
   }
   return out;
@@ -186,6 +184,12 @@ double kinetic_energy(const Model& m, const double* v) {
   double k = 0.0;
   for (int i = 0; i < n; ++i) k += 0.5 * v[i] * mv[sz(i)];
   return k;
+}
+
+double gravity_energy(const Model& m, const double* y) {
+  double g = 0.0;
+  for (int i = 0; i < m.n(); ++i) g -= m.loads.f_gravity[i] * (y[i] - m.y_ref[i]);
+  return g;
 }
 
 }  // namespace rancf

@@ -75,4 +75,7 @@ NewtonOutcome static_newton(const Model& m, double* y, double load_factor, doubl
 /// Kinetic energy 1/2 v^T M v.
 double kinetic_energy(const Model& m, const double* v);
 
+/// Gravitational potential -Q_g^T (y - y_ref) (zero in the reference configuration).
+double gravity_energy(const Model& m, const double* y);
+
 }  // namespace rancf

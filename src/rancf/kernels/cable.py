@@ -139,11 +139,6 @@ class CableKernel:
         n = self.props.rho_a * np.einsum("eq,eqk->ek", self.wj, self.n0)
         return (n[:, :, None] * g[None, None, :]).reshape(self.n_el, self.n_dof_el)
 
-    def strains(self, e: ArrayLike) -> NDArray[np.float64]:
-        """Axial Green–Lagrange strain at the Gauss points, ``(n_el, n_qp)``."""
-        aa, _ = qp_geometry(self.n1, self.n2, np.asarray(e).reshape(self.reference.shape))
-        return (aa - self.s0) / (2.0 * self.s0)
-
     def curvatures(self, e: ArrayLike) -> NDArray[np.float64]:
         """Curvature at the Gauss points, ``(n_el, n_qp)``."""
         return qp_geometry(self.n1, self.n2, np.asarray(e).reshape(self.reference.shape))[1]

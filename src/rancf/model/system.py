@@ -370,13 +370,13 @@ class Model:
         """``M v`` (element by element)."""
         return self.assemble_vector(np.einsum("eij,ej->ei", self.mass_el, self.gather(v)))
 
-    def kinetic_energy(self, v: NDArray) -> float:
-        """``½ vᵀ M v``."""
-        return 0.5 * float(v @ self.mass_times(v))
+    def kinetic_energy(self, v: ArrayLike) -> float:
+        """``½ vᵀ M v`` (by the core, as in the time loop's outputs)."""
+        return float(self.core.kinetic_energy(np.asarray(v, dtype=float)))
 
-    def gravity_energy(self, y: NDArray) -> float:
+    def gravity_energy(self, y: ArrayLike) -> float:
         """Gravitational potential ``-Q_gᵀ (y - y0)`` (zero in the reference configuration)."""
-        return -float(self.f_gravity @ (np.asarray(y) - self.y0))
+        return float(self.core.gravity_energy(np.asarray(y, dtype=float)))
 
     def external_force(
         self, t: float, y: ArrayLike | None = None, amplitude: bool = False
