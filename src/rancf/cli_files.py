@@ -143,8 +143,8 @@ def _run_one(name: str, out: Path, quick: bool, workers: int) -> Any:
     from rancf.studies.parallel import run_on_cluster
     from rancf.sweep.engine import dask_client
 
-    with dask_client(None, workers) as client:
-        return run_on_cluster(name, out, quick, client.scheduler.address)
+    with dask_client(None, workers, processes=False) as client:
+        return run_on_cluster(name, out, quick, client)
 
 
 def _cmd_schema(args: argparse.Namespace) -> int:

@@ -70,7 +70,6 @@ def gradient_extrema(curve: RationalBezier) -> tuple[float, float]:
     """
     from scipy.optimize import brentq  # lazy: scipy.optimize takes 0.4 s to import
 
-
     approx = speed_critical_points(curve)
     grid = np.unique(
         np.clip(
@@ -115,7 +114,6 @@ def kopt(conic: Conic, xatol: float = 1e-10) -> float:
     search refines it inside that bracket.
     """
     from scipy.optimize import minimize_scalar  # lazy, as above
-
 
     z = np.linspace(*(np.log(k / (1.0 - k)) for k in K_RANGE), 41)
     ks = 1.0 / (1.0 + np.exp(-z))

@@ -13,7 +13,6 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.signal import detrend
 
 from rancf.errors import ConvergenceError
 from rancf.model.scenario import Scenario, parse_scenario
@@ -88,6 +87,8 @@ def fft_peak(t: NDArray, x: NDArray, f_min: float = 0.0) -> dict[str, Any]:
     grid, the resolution ``1 / T`` and a refined peak from parabolic interpolation of the log
     amplitude around the maximum (Hann window).
     """
+    from scipy.signal import detrend  # imported here: scipy.signal takes 0.6 s to import
+
     t = np.asarray(t, dtype=float)
     x = detrend(np.asarray(x, dtype=float))
     n = x.size

@@ -1,14 +1,20 @@
 """Running several studies: one after another in this process, or all at once on every core.
 
 :func:`run_studies_here` is the sequential baseline: every run in this process, in order.
-:func:`run_studies_parallel` starts one driver process per study and one local Dask cluster
-(``workers`` processes on 127.0.0.1); each driver sends its mesh grid to the cluster through
-the sweep engine and draws its own figures, so the drivers' figures, meshes and GIFs overlap
-with the other studies' runs; the grids run in the order of ``names`` (the first studies draw
-the most figures, so theirs are done while the last grid runs).  The drivers start before the
-cluster: what a study computes before its grid (6.3, which has no mesh grid, is all of it)
-overlaps with the cluster's start-up, and a driver connects when it reaches its grid.  Both
-give the same numbers: the runs are the same function calls on the same scenarios.
+
+:func:`run_studies_parallel` forks one driver process per study and then starts one local Dask
+cluster in this process (``workers`` worker threads, in-process transport: the compiled core
+releases the GIL while it integrates, so no worker processes, imports or sockets are needed).
+Each driver runs its study as ``--workers 1`` would, but its mesh grids go through the sweep
+engine to a :class:`RelayExecutor`, which hands the calls over a pipe to a thread of this
+process; that thread runs them on the cluster with :class:`~rancf.sweep.engine.DaskExecutor` and
+sends each finished row back, and the driver's answer (runs no longer needed) back again.  So the
+drivers draw their figures and animations while the other studies' runs go on, the cluster
+has a single client, and the drivers never import Dask.  The grids run in the order of
+``names`` (Dask priorities: the first studies draw the most figures after their grid, so theirs
+are done while the last grid runs).  Both functions give the same numbers: the runs are the
+same function calls on the same scenarios, and the drivers see the rows in the order they
+finish, as a grid on the cluster of ``rancf sweep`` would.
 """
 
 from __future__ import annotations
@@ -16,8 +22,9 @@ from __future__ import annotations
 import importlib
 import multiprocessing
 import sys
+import threading
 from concurrent.futures import ProcessPoolExecutor
-from contextlib import ExitStack
+from multiprocessing.connection import Connection
 from pathlib import Path
 from typing import Any
 
@@ -25,15 +32,11 @@ from rancf.studies import runs_a_grid, study_runner
 from rancf.studies.common import StudyResult
 from rancf.sweep.engine import OnDone
 
-__all__ = ["run_studies_here", "run_studies_parallel", "run_on_cluster"]
+__all__ = ["run_studies_here", "run_studies_parallel", "run_on_cluster", "RelayExecutor"]
 
-#: Seconds a driver waits for the cluster's address before it gives up.
-CLUSTER_START_TIMEOUT = 120.0
-#: Longest scheduler address the drivers can be told (bytes).
-_ADDRESS_SIZE = 256
 #: Runs per Dask task (:class:`~rancf.sweep.engine.DaskExecutor`) of grids that never cancel a
-#: run: the exact-geometry grid's 260 runs take about 40 ms each, and a task costs the cluster
-#: and the driver a few ms of CPU.  Convergence grids (6.1, 6.2) cancel sizes: one run a task.
+#: run: the exact-geometry grid's 260 runs take about 20 ms each, and a task costs the cluster
+#: a few ms of CPU.  Convergence grids (6.1, 6.2) cancel sizes: one run a task.
 RUNS_PER_TASK = {"exact-geometry": 5}
 
 
@@ -42,95 +45,144 @@ def run_studies_here(names: list[str], out: Path, quick: bool) -> dict[str, Stud
     return {name: study_runner(name)(out / name, quick) for name in names}
 
 
-def run_on_cluster(
-    name: str, out: Path, quick: bool, address: str, priority: int = 0
-) -> StudyResult:
-    """Run one study (in a driver process) with its mesh grid on the Dask scheduler at
-    ``address``; grids of a higher ``priority`` go first."""
-    from dask.distributed import Client
-
+def run_on_cluster(name: str, out: Path, quick: bool, client: Any) -> StudyResult:
+    """Run one study in this process with its mesh grid on the Dask cluster of ``client``."""
     from rancf.sweep.engine import DaskExecutor
 
     if not runs_a_grid(name):
         return study_runner(name)(out, quick)
-    with Client(address, timeout=30) as client:
-        executor = DaskExecutor(client, priority, RUNS_PER_TASK.get(name, 1))
-        return study_runner(name)(out, quick, executor)
+    return study_runner(name)(out, quick, DaskExecutor(client, 0, RUNS_PER_TASK.get(name, 1)))
 
 
-class ClusterWhenReady:
-    """A sweep executor for a driver started before its cluster: at its first grid it waits
-    for the scheduler's address (set by :func:`run_studies_parallel`), connects, and runs the
-    grid as :class:`~rancf.sweep.engine.DaskExecutor` does; :meth:`close` disconnects."""
+class RelayExecutor:
+    """A sweep executor that runs a driver's calls on the cluster of the process that forked it.
 
-    def __init__(self, priority: int, runs_per_task: int = 1) -> None:
-        self.priority = priority
-        self.runs_per_task = runs_per_task
-        self._stack = ExitStack()
-        self._executor: Any = None
+    The driver sends ``("execute", calls)`` over ``conn`` and answers every ``("row", name,
+    row)`` with ``("answer", names)`` (what ``on_done(name, row)`` returned) until ``("done",)``;
+    ``("error", message)`` raises.  If ``on_done`` raises, the driver sends ``("stop",)`` and the
+    grid is abandoned; :meth:`close` sends ``("end",)``.  The other end is :func:`_serve`.
+    """
+
+    description = "the report's Dask cluster"
+
+    def __init__(self, conn: Connection) -> None:
+        self.conn = conn
 
     def execute(self, calls: list[tuple[str, tuple[Any, ...]]], on_done: OnDone) -> None:
-        """Run ``calls`` on the cluster (see :meth:`rancf.sweep.engine.DaskExecutor.execute`)."""
-        if self._executor is None:
-            from dask.distributed import Client
-
-            from rancf.sweep.engine import DaskExecutor
-
-            client = self._stack.enter_context(Client(_cluster_address(), timeout=30))
-            self._executor = DaskExecutor(client, self.priority, self.runs_per_task)
-        self._executor.execute(calls, on_done)
+        """Run ``calls`` (see :meth:`rancf.sweep.engine.DaskExecutor.execute`)."""
+        self.conn.send(("execute", calls))
+        while True:
+            msg = self.conn.recv()
+            if msg[0] == "done":
+                return
+            if msg[0] == "error":
+                raise RuntimeError(f"the report's Dask cluster: {msg[1]}")
+            try:
+                unneeded = list(on_done(msg[1], msg[2]))
+            except BaseException:
+                self.conn.send(("stop",))
+                raise
+            self.conn.send(("answer", unneeded))
 
     def close(self) -> None:
-        self._stack.close()
+        """Tell the cluster side that this driver sends no more grids."""
+        self.conn.send(("end",))
 
 
 def run_studies_parallel(
     names: list[str], out: Path, quick: bool, workers: int
 ) -> dict[str, StudyResult]:
     """Run the studies ``names`` into ``out/<name>/`` at once: one driver process per study,
-    their mesh grids on a local Dask cluster of ``workers`` processes."""
-    from rancf.sweep.engine import dask_client
+    their mesh grids on a local Dask cluster of ``workers`` threads in this process."""
+    from threadpoolctl import threadpool_limits
 
     ctx = _context()
-    ready, address = ctx.Event(), ctx.Array("c", _ADDRESS_SIZE)
-    with ProcessPoolExecutor(
-        len(names), mp_context=ctx, initializer=_driver_init, initargs=(ready, address)
-    ) as pool:
-        # the drivers start now, before the cluster's threads exist (safe to fork)
+    pipes = {n: ctx.Pipe() for n in names if runs_a_grid(n)}
+    ends = {n: child for n, (_, child) in pipes.items()}
+    # one BLAS thread per process: more would only spin on cores the runs already use
+    with (
+        threadpool_limits(1),
+        ProcessPoolExecutor(
+            len(names), mp_context=ctx, initializer=_driver_init, initargs=(ends,)
+        ) as pool,
+    ):
+        # the drivers start now, before this process has any thread (safe to fork)
         list(pool.map(_warm, range(len(names))))
-        futures = {
-            n: pool.submit(_drive, n, out / n, quick, len(names) - i) for i, n in enumerate(names)
-        }
-        try:
-            with dask_client(None, workers, processes=False) as client:
-                address.value = client.scheduler.address.encode()
-                ready.set()
-                return {n: f.result() for n, f in futures.items()}
-        finally:
-            ready.set()  # a driver still waiting now learns that there is no cluster
+        for child in ends.values():
+            child.close()  # the drivers hold their own copies
+        futures = {n: pool.submit(_drive, n, out / n, quick) for n in names}
+        import dask
+
+        from rancf.sweep.engine import QUIET_DASK, dask_client
+
+        with dask.config.set(QUIET_DASK), dask_client(None, workers, processes=False) as client:
+            servers = [
+                threading.Thread(
+                    target=_serve,
+                    args=(parent, client, len(names) - names.index(n), RUNS_PER_TASK.get(n, 1)),
+                    name=f"rancf-relay-{n}",
+                    daemon=True,
+                )
+                for n, (parent, _) in pipes.items()
+            ]
+            for t in servers:
+                t.start()
+            results = {n: f.result() for n, f in futures.items()}
+            for t in servers:
+                t.join()  # each driver has sent "end"
+            return results
 
 
-# the cluster's address in a driver process (inherited from run_studies_parallel)
-_READY: Any = None
-_ADDRESS: Any = None
+def _serve(conn: Connection, client: Any, priority: int, runs_per_task: int) -> None:
+    """The cluster side of one driver's :class:`RelayExecutor` (a thread of the report)."""
+    from rancf.sweep.engine import DaskExecutor
+
+    executor = DaskExecutor(client, priority, runs_per_task)
+
+    def relay(name: str, row: dict[str, Any]) -> list[str]:
+        conn.send(("row", name, row))
+        answer = conn.recv()
+        if answer[0] != "answer":
+            raise _DriverStopped(answer[0])
+        return list(answer[1])
+
+    try:
+        while True:
+            msg = conn.recv()
+            if msg[0] == "end":
+                return
+            try:
+                executor.execute(msg[1], relay)
+            except _DriverStopped as stop:
+                if stop.args[0] == "end":
+                    return
+                continue
+            except Exception as exc:  # noqa: BLE001 - the driver raises it with the message
+                conn.send(("error", f"{type(exc).__name__}: {exc}"))
+                continue
+            conn.send(("done",))
+    except (EOFError, OSError):
+        return
 
 
-def _driver_init(ready: Any, address: Any) -> None:
-    global _READY, _ADDRESS
-    _READY, _ADDRESS = ready, address
+class _DriverStopped(Exception):
+    """The driver stopped its grid (``"stop"``: its ``on_done`` raised) or ended (``"end"``)."""
 
 
-def _cluster_address() -> str:
-    if not _READY.wait(CLUSTER_START_TIMEOUT) or not _ADDRESS.value:
-        raise RuntimeError("the local Dask cluster did not start")
-    return _ADDRESS.value.decode()
+# the driver ends of the pipes (inherited from run_studies_parallel by fork)
+_ENDS: dict[str, Connection] = {}
 
 
-def _drive(name: str, out: Path, quick: bool, priority: int) -> StudyResult:
-    """One study in a driver process; its grid goes to the cluster once the cluster is up."""
-    if not runs_a_grid(name):
+def _driver_init(ends: dict[str, Connection]) -> None:
+    global _ENDS
+    _ENDS = ends
+
+
+def _drive(name: str, out: Path, quick: bool) -> StudyResult:
+    """One study in a driver process; its grids go to the report's cluster."""
+    if name not in _ENDS:
         return study_runner(name)(out, quick)
-    executor = ClusterWhenReady(priority, RUNS_PER_TASK.get(name, 1))
+    executor = RelayExecutor(_ENDS[name])
     try:
         return study_runner(name)(out, quick, executor)
     finally:
@@ -138,20 +190,48 @@ def _drive(name: str, out: Path, quick: bool, priority: int) -> StudyResult:
 
 
 def _context() -> multiprocessing.context.BaseContext:
-    """``fork`` on Linux after importing what the drivers need (each spawned driver would
-    spend about 2 s of CPU importing it again), else ``spawn``."""
+    """``fork`` on Linux after importing what the drivers need, else ``spawn``.
+
+    Everything a driver would import after the fork is imported here, once: each driver would
+    otherwise import it again (scipy.optimize, used by three drivers, costs 0.4 s of CPU each),
+    and a first drawing with text loads the fonts the drivers share.
+    """
     if sys.platform != "linux":
         return multiprocessing.get_context("spawn")
-    import dask.distributed  # noqa: F401
+    import io
 
+    for name in _PRE_FORK:
+        importlib.import_module(name)
     from rancf.post.plots import pyplot
 
-    pyplot()
-    for name in (
-        "planar_pendulum", "spatial_pendulum", "arc_vibration", "exact_geometry", "exudyn_cable"
-    ):  # fmt: skip
-        importlib.import_module(f"rancf.studies.{name}")
+    plt = pyplot()
+    fig, ax = plt.subplots(figsize=(2, 2), constrained_layout=True)
+    ax.semilogy([1, 2], [1, 10], label="warm")
+    ax.set(title="warm", xlabel="x", ylabel="y")
+    ax.legend(fontsize=7)
+    fig.savefig(io.BytesIO(), format="png", dpi=60)
+    plt.close(fig)
     return multiprocessing.get_context("fork")
+
+
+#: Modules the drivers use, imported before they are forked.
+_PRE_FORK = (
+    "scipy.optimize",
+    "tqdm",
+    "matplotlib.animation",
+    "PIL.GifImagePlugin",
+    "PIL.PngImagePlugin",
+    "rancf.extras",
+    "rancf.examples",
+    "rancf.post.run_data",
+    "rancf.post.run_plots",
+    "rancf.sweep.engine",
+    "rancf.studies.planar_pendulum",
+    "rancf.studies.spatial_pendulum",
+    "rancf.studies.arc_vibration",
+    "rancf.studies.exact_geometry",
+    "rancf.studies.exudyn_cable",
+)
 
 
 def _warm(i: int) -> int:
