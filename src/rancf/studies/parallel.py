@@ -119,7 +119,13 @@ def run_studies_parallel(
             servers = [
                 threading.Thread(
                     target=_serve,
-                    args=(parent, client, len(names) - names.index(n), RUNS_PER_TASK.get(n, 1)),
+                    args=(
+                        parent,
+                        client,
+                        len(names) - names.index(n),
+                        RUNS_PER_TASK.get(n, 1),
+                        len(names),
+                    ),
                     name=f"rancf-relay-{n}",
                     daemon=True,
                 )
@@ -133,8 +139,15 @@ def run_studies_parallel(
             return results
 
 
-def _serve(conn: Connection, client: Any, priority: int, runs_per_task: int) -> None:
-    """The cluster side of one driver's :class:`RelayExecutor` (a thread of the report)."""
+def _serve(
+    conn: Connection, client: Any, priority: int, runs_per_task: int, stride: int = 0
+) -> None:
+    """The cluster side of one driver's :class:`RelayExecutor` (a thread of the report).
+
+    The driver's first grid runs with ``priority``, each later one ``stride`` lower (a study's
+    second grid, which waits for what the study drew after its first, goes after every
+    study's first grid).
+    """
     from rancf.sweep.engine import DaskExecutor
 
     executor = DaskExecutor(client, priority, runs_per_task)
@@ -160,6 +173,8 @@ def _serve(conn: Connection, client: Any, priority: int, runs_per_task: int) -> 
             except Exception as exc:  # noqa: BLE001 - the driver raises it with the message
                 conn.send(("error", f"{type(exc).__name__}: {exc}"))
                 continue
+            finally:
+                executor.priority -= stride
             conn.send(("done",))
     except (EOFError, OSError):
         return
