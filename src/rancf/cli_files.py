@@ -101,6 +101,7 @@ def _run_studies(
     With one worker every run happens in this process, one after another; with more, the
     studies' mesh grids go to a local Dask cluster (:mod:`rancf.studies.parallel`).
     """
+    from rancf.studies import runs_a_grid
     from rancf.studies.parallel import run_studies_here, run_studies_parallel
     from rancf.studies.report import write_report
 
@@ -110,14 +111,13 @@ def _run_studies(
         f"running {', '.join(names)}{' (quick)' if quick else ''} on {where} ...", file=sys.stderr
     )
     t0 = time.perf_counter()
+    # one sub-folder per study, or one study with its files directly in ``out``
+    folders = {name: out / name for name in names} if nested else {names[0]: out}
     with OutputDir(out) as od:
-        if nested:
-            run = run_studies_here if n == 1 else run_studies_parallel
-            results = run(names, out, quick, *(() if n == 1 else (n,)))
-            folders = {name: out / name for name in names}
-        else:  # one study, its files directly in ``out``
-            results = {names[0]: _run_one(names[0], out, quick, n)}
-            folders = {names[0]: out}
+        if n == 1 or not any(runs_a_grid(name) for name in names):
+            results = run_studies_here(folders, quick)
+        else:
+            results = run_studies_parallel(folders, quick, n)
         od.keep()
         done = []
         for name in names:
@@ -134,19 +134,6 @@ def _run_studies(
     return 0
 
 
-def _run_one(name: str, out: Path, quick: bool, workers: int) -> Any:
-    """One study into ``out``: here, or with its mesh grid on a local Dask cluster."""
-    from rancf.studies import runs_a_grid, study_runner
-
-    if workers == 1 or not runs_a_grid(name):
-        return study_runner(name)(out, quick)
-    from rancf.studies.parallel import run_on_cluster
-    from rancf.sweep.engine import dask_client
-
-    with dask_client(None, workers, processes=False) as client:
-        return run_on_cluster(name, out, quick, client)
-
-
 def _cmd_schema(args: argparse.Namespace) -> int:
     from rancf.model.schema import scenario_schema
 
@@ -155,8 +142,8 @@ def _cmd_schema(args: argparse.Namespace) -> int:
 
 
 WORKERS_HELP = (
-    "local Dask worker processes (default: the number of cores); 1 runs everything in this "
-    "process, one run after another"
+    "workers of a local Dask cluster, threads of this process (default: the number of cores); "
+    "1 runs everything in this process, one run after another"
 )
 
 

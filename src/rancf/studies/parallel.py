@@ -32,7 +32,7 @@ from rancf.studies import runs_a_grid, study_runner
 from rancf.studies.common import StudyResult
 from rancf.sweep.engine import OnDone
 
-__all__ = ["run_studies_here", "run_studies_parallel", "run_on_cluster", "RelayExecutor"]
+__all__ = ["run_studies_here", "run_studies_parallel", "RelayExecutor"]
 
 #: Runs per Dask task (:class:`~rancf.sweep.engine.DaskExecutor`) of grids that never cancel a
 #: run: the exact-geometry grid's 260 runs take about 20 ms each, and a task costs the cluster
@@ -40,18 +40,9 @@ __all__ = ["run_studies_here", "run_studies_parallel", "run_on_cluster", "RelayE
 RUNS_PER_TASK = {"exact-geometry": 5}
 
 
-def run_studies_here(names: list[str], out: Path, quick: bool) -> dict[str, StudyResult]:
-    """Run the studies ``names`` into ``out/<name>/`` one after another in this process."""
-    return {name: study_runner(name)(out / name, quick) for name in names}
-
-
-def run_on_cluster(name: str, out: Path, quick: bool, client: Any) -> StudyResult:
-    """Run one study in this process with its mesh grid on the Dask cluster of ``client``."""
-    from rancf.sweep.engine import DaskExecutor
-
-    if not runs_a_grid(name):
-        return study_runner(name)(out, quick)
-    return study_runner(name)(out, quick, DaskExecutor(client, 0, RUNS_PER_TASK.get(name, 1)))
+def run_studies_here(folders: dict[str, Path], quick: bool) -> dict[str, StudyResult]:
+    """Run each study ``name`` into ``folders[name]`` one after another in this process."""
+    return {name: study_runner(name)(out, quick) for name, out in folders.items()}
 
 
 class RelayExecutor:
@@ -90,12 +81,13 @@ class RelayExecutor:
 
 
 def run_studies_parallel(
-    names: list[str], out: Path, quick: bool, workers: int
+    folders: dict[str, Path], quick: bool, workers: int
 ) -> dict[str, StudyResult]:
-    """Run the studies ``names`` into ``out/<name>/`` at once: one driver process per study,
-    their mesh grids on a local Dask cluster of ``workers`` threads in this process."""
+    """Run each study ``name`` into ``folders[name]``, all at once: one driver process per
+    study, their mesh grids on a local Dask cluster of ``workers`` threads in this process."""
     from threadpoolctl import threadpool_limits
 
+    names = list(folders)
     ctx = _context()
     pipes = {n: ctx.Pipe() for n in names if runs_a_grid(n)}
     ends = {n: child for n, (_, child) in pipes.items()}
@@ -110,12 +102,10 @@ def run_studies_parallel(
         list(pool.map(_warm, range(len(names))))
         for child in ends.values():
             child.close()  # the drivers hold their own copies
-        futures = {n: pool.submit(_drive, n, out / n, quick) for n in names}
-        import dask
+        futures = {n: pool.submit(_drive, n, folders[n], quick) for n in names}
+        from rancf.sweep.engine import dask_client
 
-        from rancf.sweep.engine import QUIET_DASK, dask_client
-
-        with dask.config.set(QUIET_DASK), dask_client(None, workers, processes=False) as client:
+        with dask_client(None, workers, processes=False) as client:
             servers = [
                 threading.Thread(
                     target=_serve,

@@ -83,7 +83,7 @@ def dask_client(
     127.0.0.1 only, or, with ``processes=False``, worker threads of this process that talk to
     the scheduler in memory (no sockets)."""
     import dask
-    from dask.distributed import Client, LocalCluster
+    from dask.distributed import Client, LocalCluster  # first: it adds its config defaults
 
     if scheduler is not None:
         try:
