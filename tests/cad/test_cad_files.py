@@ -45,8 +45,46 @@ def test_written_files_read_back_to_1e12(tmp_path, suffix, dim):
     assert np.abs(x[:, :dim] - curve(u)).max() <= 1e-12 * np.abs(curve(u)).max()
     assert np.all(x[:, dim:] == 0)
     assert np.array_equal(back.curve.knots, FIG5)
-    if suffix in ("json", "step", "stp"):
-        assert back.name == "route"
+    # DXF entities have no names: a SPLINE is named by its handle
+    assert back.name == "route" if suffix != "dxf" else back.name.startswith("#")
+
+
+@pytest.mark.parametrize("suffix", ["step", "igs"])
+def test_long_curve_names_round_trip(tmp_path, suffix):
+    # IGES: the whole name as a Name property (406-15), its first 8 characters as the label
+    name = "hose route A, segment 2"
+    curve = NurbsCurve(2, [0, 0, 0, 1, 1, 1], [[0, 0], [1, 1], [2, 0]], [1, 0.7, 1])
+    (back,) = read_curves(write_curve(tmp_path / f"c.{suffix}", curve, name))
+    assert back.name == name
+
+
+def test_iges_entity_label_names_a_curve(tmp_path):
+    # an IGES file written by OpenCASCADE directly, with only the 8-character entity label
+    import io
+
+    from OCP.GeomToIGES import GeomToIGES_GeomCurve
+    from OCP.IGESControl import IGESControl_Writer
+    from OCP.IGESData import IGESData_IGESWriter
+    from OCP.IGESSelect import IGESSelect_WorkLibrary
+    from OCP.TCollection import TCollection_HAsciiString
+
+    from rancf.cad.occ import _to_geom
+
+    curve = NurbsCurve(2, [0, 0, 0, 1, 1, 1], [[0, 0, 0], [1, 1, 0], [2, 0, 0]], [1, 0.7, 1])
+    w = IGESControl_Writer("M", 0)
+    conv = GeomToIGES_GeomCurve()
+    conv.SetModel(w.Model())
+    ent = conv.TransferCurve(_to_geom(curve), 0.0, 1.0)
+    ent.SetLabel(TCollection_HAsciiString("HOSE1"))
+    w.AddEntity(ent)
+    w.ComputeModel()
+    iw = IGESData_IGESWriter(w.Model())
+    iw.SendModel(IGESSelect_WorkLibrary.DefineProtocol_s())
+    buf = io.BytesIO()
+    assert iw.Print(buf)
+    (tmp_path / "label.igs").write_bytes(buf.getvalue())
+    (back,) = read_curves(tmp_path / "label.igs")
+    assert back.name == "HOSE1"
 
 
 def test_geomdl_reads_our_json(tmp_path):

@@ -155,7 +155,10 @@ def write_occ(path: Path, curve: NurbsCurve, kind: Kind, name: str = "") -> None
             conv = GeomToIGES_GeomCurve()
             conv.SetModel(w.Model())
             conv.SetUnit(1.0)  # file unit = model unit (metre)
-            w.AddEntity(conv.TransferCurve(geom, geom.FirstParameter(), geom.LastParameter()))
+            ent = conv.TransferCurve(geom, geom.FirstParameter(), geom.LastParameter())
+            if name:
+                _name_iges_entity(ent, name)
+            w.AddEntity(ent)
             w.ComputeModel()
             iw = IGESData_IGESWriter(w.Model())
             iw.FloatWriter().SetFormat("%.17G", True)
@@ -165,6 +168,35 @@ def write_occ(path: Path, curve: NurbsCurve, kind: Kind, name: str = "") -> None
         raise InputError("--nurbs", str(path), f"a {kind.upper()} file OpenCASCADE can write")
     data = buf.getvalue()
     atomic_file(path, lambda tmp: Path(tmp).write_bytes(data))
+
+
+def _name_iges_entity(ent: Any, name: str) -> None:
+    """Give an IGES entity ``name``: as its 8-character entity label and, whole, as a Name
+    property (entity 406, form 15), which IGES readers show as the entity's name."""
+    from OCP.IGESBasic import IGESBasic_Name
+    from OCP.TCollection import TCollection_HAsciiString
+
+    ent.SetLabel(TCollection_HAsciiString(name[:8]))
+    prop = IGESBasic_Name()
+    prop.Init(1, TCollection_HAsciiString(name))
+    ent.AddProperty(prop)
+
+
+def _entity_name(ent: Any) -> str:
+    """The name of the file entity an edge came from: a STEP item's name; an IGES entity's
+    Name property (406-15) or else its entity label; "" when it has none."""
+    if ent is None:
+        return ""
+    try:
+        if hasattr(ent, "HasName"):  # IGES
+            if ent.HasName():
+                return str(ent.NameValue().ToCString()).strip()
+            return str(ent.ShortLabel().ToCString()).strip() if ent.HasShortLabel() else ""
+        if hasattr(ent, "Name"):  # STEP representation items
+            return str(ent.Name().ToCString()).strip()
+    except AttributeError:  # an entity without a name string
+        return ""
+    return ""
 
 
 def _edge_curve(edge: Any) -> Any:
@@ -221,13 +253,7 @@ def read_occ(path: Path, kind: Kind) -> list[CadCurve]:
             ex = TopExp_Explorer(reader.Shape(s), TopAbs_EDGE)
             while ex.More():
                 edge = ex.Current()
-                name = ""
-                ent = transfer.EntityFromShapeResult(edge, 1)
-                if ent is not None and hasattr(ent, "Name"):
-                    try:
-                        name = ent.Name().ToCString()
-                    except AttributeError:
-                        name = ""
+                name = _entity_name(transfer.EntityFromShapeResult(edge, 1))
                 out.append(CadCurve(len(out), name, _from_geom(_edge_curve(edge))))
                 ex.Next()
     return out
