@@ -3,7 +3,7 @@ the same tables as the sequential run."""
 
 from __future__ import annotations
 
-import csv
+import json
 import multiprocessing
 import subprocess
 import sys
@@ -63,29 +63,26 @@ def test_relay_stops_a_grid_whose_callback_raises(relay, tmp_path):
     assert not server.is_alive()
 
 
-def _tables(folder: Path) -> dict[str, list[list[str]]]:
-    """Every study table of a report folder, without its wall-time columns."""
-    out = {}
-    for f in sorted(folder.rglob("*.csv")):
-        rel = f.relative_to(folder)
-        if any(part.startswith("sweep") for part in rel.parts):
-            continue  # run folders and the sweeps' own results.csv (statuses of cancelled runs)
-        rows = list(csv.reader(f.open(encoding="utf-8")))
-        keep = [i for i, h in enumerate(rows[0]) if "time" not in h.lower()]
-        out[str(rel)] = [[r[i] for i in keep if i < len(r)] for r in rows]
-    return out
-
-
 def test_parallel_report_has_the_sequential_tables(tmp_path):
-    argv = [sys.executable, "-m", "rancf", "report", "--quick"]
-    seq, par = tmp_path / "seq", tmp_path / "par"
-    for out, workers in ((seq, "1"), (par, "2")):
-        done = subprocess.run(
-            [*argv, "--out", str(out), "--workers", workers], capture_output=True, text=True
-        )
-        assert done.returncode == 0, done.stderr[-2000:]
-    assert "on a local Dask cluster of 2 worker(s)" in done.stderr
-    a, b = _tables(seq), _tables(par)
-    assert len(a) >= 10 and a.keys() == b.keys()
-    for name in a:
-        assert a[name] == b[name], name
+    # the benchmark's own pair: `report --quick` with 1 and with 2 workers, tables compared
+    bench = Path(__file__).resolve().parents[1] / "benchmarks" / "report_ratio.py"
+    done = subprocess.run(
+        [sys.executable, str(bench), "--quick", "--pairs", "1", "--out", str(tmp_path)],
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+    assert done.returncode == 0, done.stdout + done.stderr[-2000:]
+    data = json.loads((tmp_path / "report_ratio.json").read_text())
+    (pair,) = data["pairs"]
+    assert pair["tables"] >= 10 and pair["tables_identical"] and data["all_tables_identical"]
+    assert pair["workers_2"]["printed_s"] > 0 and pair["workers_1"]["cpu_s"] > 0
+
+
+def test_study_tables_drop_times_and_sweeps(tmp_path):
+    from rancf.studies.report import study_tables
+
+    (tmp_path / "a" / "sweep").mkdir(parents=True)
+    (tmp_path / "a" / "t.csv").write_text("n,error,wall time [s]\n1,0.5,0.01\n")
+    (tmp_path / "a" / "sweep" / "results.csv").write_text("run,status\nx,failed\n")
+    assert study_tables(tmp_path) == {"a/t.csv": [["n", "error"], ["1", "0.5"]]}

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import base64
+import csv
 import datetime
 import html
 import json
@@ -14,7 +15,7 @@ from pathlib import Path
 from rancf.post.results import atomic_write
 from rancf.studies.common import NOT_REACHED, NOT_RUN, StudyResult
 
-__all__ = ["write_report", "REFERENCES"]
+__all__ = ["write_report", "study_tables", "REFERENCES"]
 
 _CSS = """
 body { font-family: system-ui, sans-serif; max-width: 1200px; margin: 2em auto; color: #222; }
@@ -179,3 +180,28 @@ def write_report(
     atomic_write(path, "\n".join(parts))
     atomic_write(out / "report.json", json.dumps(summary, indent=2, default=str) + "\n")
     return path
+
+
+def study_tables(folder: str | Path) -> dict[str, list[list[str]]]:
+    """Every study table (CSV) under a report or study folder, without wall-time columns.
+
+    For comparing two runs of the same studies (``--workers 1`` against more): run folders and
+    the sweeps' own ``results.csv`` (under ``sweep*/``, whose statuses of cancelled runs depend
+    on timing) are left out, and so is every column whose header mentions a time.
+
+    Returns
+    -------
+    dict
+        Path relative to ``folder`` -> rows (header first).
+    """
+    folder = Path(folder)
+    out = {}
+    for f in sorted(folder.rglob("*.csv")):
+        rel = f.relative_to(folder)
+        if any(part.startswith("sweep") for part in rel.parts):
+            continue
+        with f.open(encoding="utf-8", newline="") as fh:
+            rows = list(csv.reader(fh))
+        keep = [i for i, h in enumerate(rows[0] if rows else []) if "time" not in h.lower()]
+        out[str(rel)] = [[r[i] for i in keep if i < len(r)] for r in rows]
+    return out
