@@ -15,7 +15,8 @@ __all__ = ["add_parsers", "run_to_nurbs"]
 
 
 def run_to_nurbs(run: Any, i: int) -> Any:
-    """The configuration of stored state ``i`` as one exact NURBS curve (cable elements).
+    """The configuration of stored state ``i`` as one exact NURBS curve (cable and rod elements:
+    a rod's centreline).
 
     The nodal coordinates give an :class:`~rancf.elements.cad.ElementChain` (breakpoints: the
     cumulative reference gradient scales, i.e. reference arc length) and
@@ -28,9 +29,11 @@ def run_to_nurbs(run: Any, i: int) -> Any:
         raise InputError(
             "RUN_DIR",
             str(run.path),
-            "a run of cable elements (rancf, ancf): beam elements have no exact curve to export",
+            "a run of cable or rod elements: beam elements have no exact curve to export",
         )
-    nodes = np.asarray(run.q[i]).reshape(run.n_nodes, 2, run.dim)
+    from rancf.post.run_data import centerline_nodes
+
+    nodes = centerline_nodes(run, run.q[i])
     nodal = np.concatenate([nodes[:-1], nodes[1:]], axis=1)
     breaks = np.concatenate([[0.0], np.cumsum(run.scales)])
     return chain_to_nurbs(ElementChain(nodal, run.weights, run.scales, breaks))
@@ -49,6 +52,8 @@ def _cmd_export(args: argparse.Namespace) -> int:
         n = frame_indices(run.t.size, args.every).size
         pvd = export_vtk(run, args.vtk, args.every, args.samples)
         print(f"{n} VTK frame(s) of {run.name} written; open {pvd} in ParaView")
+        if run.directors is not None:
+            print(f"rod nodes and material frames: {pvd.with_name(f'{run.name}_nodes.pvd')}")
     if args.nurbs is not None:
         from rancf.cad import write_curve
 

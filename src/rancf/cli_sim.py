@@ -54,7 +54,8 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     opts = sc.dynamic_options()
     model = sc.build_model()
     n_cols = sum(len(s.columns(model.dim)) for s in sc.sensors)
-    need = estimate_output_bytes(opts.n_outputs, model.q0.size, n_cols)
+    rod_directors = 3 * model.n_nodes if model.element == "rod" else 0
+    need = estimate_output_bytes(opts.n_outputs, model.q0.size, n_cols, rod_directors)
     if need > limit * 1e9:
         raise RunTooLargeError(
             f"{sc.path}: this run would write about {need / 1e9:.3g} GB ({opts.n_outputs} stored "

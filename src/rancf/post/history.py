@@ -33,13 +33,15 @@ __all__ = ["HistoryStore", "estimate_output_bytes"]
 _FILES = ("t", "q", "v", "e")
 
 
-def estimate_output_bytes(n_outputs: int, n_q: int, n_sensor_columns: int) -> int:
+def estimate_output_bytes(
+    n_outputs: int, n_q: int, n_sensor_columns: int, n_directors: int = 0
+) -> int:
     """Disk space a run needs at its end (raw history + results.npz + the two CSV files).
 
-    Raw and ``.npz`` copies of ``t, q, v`` and energies (8 bytes a number each), about 20 bytes a
-    number in the CSV files.
+    Raw and ``.npz`` copies of ``t, q, v``, energies and ``n_directors`` director components (a
+    rod's 3 per node) at 8 bytes a number each, about 20 bytes a number in the CSV files.
     """
-    per_row = 2 * 8 * (2 * n_q + 4 + n_sensor_columns) + 20 * (n_sensor_columns + 6)
+    per_row = 2 * 8 * (2 * n_q + 4 + n_sensor_columns + n_directors) + 20 * (n_sensor_columns + 6)
     return int(n_outputs) * per_row
 
 
@@ -76,31 +78,49 @@ class HistoryStore:
         self.info = {"pid": os.getpid(), "started_at": _now(), **info}
         self.raw = self.out / ".history"
         self.raw.mkdir(exist_ok=True)
-        self._fh = {k: open(self.raw / f"{k}.f64", "wb") for k in _FILES}  # noqa: SIM115
-        self._buf: dict[str, list[NDArray]] = {k: [] for k in _FILES}
+        # rods: the nodal directors too ("m", 3 numbers a node)
+        self._keys = _FILES + (("m",) if model.element == "rod" else ())
+        self._fh = {k: open(self.raw / f"{k}.f64", "wb") for k in self._keys}  # noqa: SIM115
+        self._buf: dict[str, list[NDArray]] = {k: [] for k in self._keys}
         self._rows_per_flush = max(1, buffer_bytes // (16 * model.n + 32))
         self.n_rows = 0
         self._pending = 0
 
-    def append(self, t: float, q: NDArray, v: NDArray, energy: NDArray) -> None:
+    def append(
+        self,
+        t: float,
+        q: NDArray,
+        v: NDArray,
+        energy: NDArray,
+        directors: NDArray | None = None,
+    ) -> None:
         """Store one output (sink protocol of :func:`~rancf.solvers.dynamic.integrate`)."""
-        for key, val in zip(_FILES, (np.array([t]), q, v, energy), strict=True):
-            self._buf[key].append(np.asarray(val, dtype="<f8").ravel())
-        self._pending += 1
-        if self._pending >= self._rows_per_flush:
-            self.flush()
+        self._add((np.array([t]), q, v, energy, directors), 1)
 
-    def append_block(self, t: NDArray, q: NDArray, v: NDArray, energy: NDArray) -> None:
-        """Store consecutive outputs: ``t (k,)``, ``q, v (k, n_q)``, ``energy (k, 3)``."""
-        for key, val in zip(_FILES, (t, q, v, energy), strict=True):
+    def append_block(
+        self,
+        t: NDArray,
+        q: NDArray,
+        v: NDArray,
+        energy: NDArray,
+        directors: NDArray | None = None,
+    ) -> None:
+        """Store consecutive outputs: ``t (k,)``, ``q, v (k, n_q)``, ``energy (k, 3)``, rods'
+        ``directors (k, n_nodes, 3)``."""
+        self._add((t, q, v, energy, directors), len(t))
+
+    def _add(self, values: tuple[NDArray | None, ...], rows: int) -> None:
+        for key, val in zip(self._keys, values, strict=False):
+            if val is None:
+                raise ValueError(f"output stream {key!r} missing")
             self._buf[key].append(np.asarray(val, dtype="<f8").ravel())
-        self._pending += len(t)
+        self._pending += rows
         if self._pending >= self._rows_per_flush:
             self.flush()
 
     def flush(self) -> None:
         """Append the buffered outputs to the raw files."""
-        for key in _FILES:
+        for key in self._keys:
             if self._buf[key]:
                 self._fh[key].write(np.concatenate(self._buf[key]).tobytes())
                 self._buf[key].clear()
@@ -108,14 +128,15 @@ class HistoryStore:
         self.n_rows += self._pending
         self._pending = 0
 
-    def _arrays(self) -> tuple[NDArray, NDArray, NDArray, NDArray]:
+    def _arrays(self) -> tuple[NDArray, NDArray, NDArray, NDArray, NDArray | None]:
         n, nq = self.n_rows, self.model.q0.size
 
         def mm(key: str, width: int) -> NDArray:
             arr = np.memmap(self.raw / f"{key}.f64", dtype="<f8", mode="r", shape=(n * width,))
             return arr.reshape(n, width) if width > 1 else arr
 
-        return mm("t", 1), mm("q", nq), mm("v", nq), mm("e", 3)
+        m1 = mm("m", 3 * self.model.n_nodes) if "m" in self._keys else None
+        return mm("t", 1), mm("q", nq), mm("v", nq), mm("e", 3), m1
 
     def write_summary(self, summary: dict[str, Any]) -> None:
         """Rewrite ``summary.json`` (strict JSON) with the run's fixed keys added."""

@@ -150,11 +150,13 @@ def write_history_files(
     q: NDArray,
     v: NDArray,
     energy: NDArray,
+    directors: NDArray | None = None,
 ) -> list[str]:
     """``sensors.csv``, ``energy.csv`` and ``results.npz`` of a history, chunk by chunk.
 
-    ``t (n,)``, ``q`` and ``v (n, n_q)``, ``energy (n, 3)`` may be memory maps.  Returns the
-    sensor column names.
+    ``t (n,)``, ``q`` and ``v (n, n_q)``, ``energy (n, 3)`` and a rod's nodal ``directors``
+    (``(n, 3 n_nodes)`` or ``(n, n_nodes, 3)``, stored as ``directors (n, n_nodes, 3)``) may be
+    memory maps.  Returns the sensor column names.
     """
     n = t.shape[0]
     names, _ = sensor_table(model, sensors, q[:1])
@@ -189,6 +191,10 @@ def write_history_files(
                 _npy(z, name, arr.shape, (arr[r] for r in _rows(n, arr.shape[1])))
             for j, name in enumerate(("kinetic", "strain", "gravity")):
                 _npy(z, name, (n,), (energy[r, j] for r in _rows(n, 3)))
+            if directors is not None:
+                m1 = directors.reshape(n, -1)
+                shape3 = (n, m1.shape[1] // 3, 3)
+                _npy(z, "directors", shape3, (m1[r] for r in _rows(n, m1.shape[1])))
             shape = (n, len(names))
             rows = _rows(n, q.shape[1])
             _npy(z, "sensors", shape, (sensor_table(model, sensors, q[r])[1] for r in rows))
@@ -235,7 +241,7 @@ def write_run(
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     energy = np.column_stack([result.kinetic, result.strain, result.gravity])
-    write_history_files(out, model, sensors, result.t, result.q, result.v, energy)
+    write_history_files(out, model, sensors, result.t, result.q, result.v, energy, result.directors)
     summary = {**run_summary(model, result), **(extra or {})}
     atomic_write(out / "summary.json", strict_json(summary))
     return summary

@@ -14,6 +14,10 @@ for cable elements ``r(ξ) = Σ N_k(ξ) e_k`` with the rational shape functions 
 * curvature ``κ = (r' × r'')·e_z / |r'|³`` (planar, signed) or ``|r' × r''| / |r'|³`` (spatial);
 * displacement ``r − r0`` and velocity ``Σ N_k(ξ) ė_k``.
 
+Rod elements (nodal ``r, r_x, φ``) have the cable's centreline; their runs also store the nodal
+directors ``m1`` (:attr:`RunData.directors`), which with the tangent give each node's material
+frame (:func:`nodal_frames`).
+
 Beam elements (nodal ``x, y, θ``) are drawn as the cubic Hermite curve through the nodes with end
 tangents ``L (cos ψ, sin ψ)``, ``ψ = ψ0 + θ``, ``L`` the current chord; their axial strain is the
 element's chord strain ``(L² − L0²) / (2 L0²)``.
@@ -37,7 +41,16 @@ from rancf.elements.cable import cable_shape_functions
 from rancf.errors import InputError
 from rancf.post.results import load_results
 
-__all__ = ["RunData", "Centerline", "load_run", "sample_centerline", "frame_indices"]
+__all__ = [
+    "RunData",
+    "Centerline",
+    "NodalFrames",
+    "load_run",
+    "sample_centerline",
+    "centerline_nodes",
+    "nodal_frames",
+    "frame_indices",
+]
 
 logger = logging.getLogger(__name__)
 
@@ -66,6 +79,8 @@ class RunData:
         Section radius (``sqrt(A / π)`` for a section given by area); None without scenario.
     tangent_angles : ndarray (n_nodes,) or None
         Reference tangent angles of beam nodes (None for cables or without scenario).
+    directors : ndarray (n_t, n_nodes, 3) or None
+        Rods: the first material axis ``m1`` of every node's triad (None for other elements).
     """
 
     path: Path
@@ -82,6 +97,7 @@ class RunData:
     energies: dict[str, NDArray[np.float64]]
     radius: float | None
     tangent_angles: NDArray[np.float64] | None
+    directors: NDArray[np.float64] | None = None
 
     @property
     def name(self) -> str:
@@ -167,6 +183,7 @@ def load_run(run_dir: str | Path) -> RunData:
         energies={k: data[k] for k in ("kinetic", "strain", "gravity")},
         radius=radius,
         tangent_angles=angles,
+        directors=data.get("directors"),
     )
 
 
@@ -215,12 +232,20 @@ def _curvature(d1: NDArray, d2: NDArray) -> NDArray:
     return cross / speed**3
 
 
+def centerline_nodes(run: RunData, x: NDArray) -> NDArray[np.float64]:
+    """Nodal position and gradient ``(n_nodes, 2, dim)`` of a cable or rod state ``x``
+    (coordinates or velocities); a rod's twist ``φ`` is left out."""
+    if run.element == "beam":
+        raise ValueError("beam elements have no nodal gradients")
+    nodes = np.asarray(x, dtype=float).reshape(run.n_nodes, -1)
+    return nodes[:, : 2 * run.dim].reshape(run.n_nodes, 2, run.dim)
+
+
 def _cable_fields(run: RunData, q: NDArray, v: NDArray, xi: NDArray) -> tuple[NDArray, ...]:
     n, n1, n2 = cable_shape_functions(run.weights, run.scales, xi)
-    shape = (run.n_nodes, 2, run.dim)
 
     def element_nodal(x: NDArray) -> NDArray:
-        nodes = x.reshape(shape)
+        nodes = centerline_nodes(run, x)
         return np.concatenate([nodes[:-1], nodes[1:]], axis=1)  # (n_el, 4, dim)
 
     e, e0, ev = element_nodal(q), element_nodal(run.reference), element_nodal(v)
@@ -303,4 +328,47 @@ def sample_centerline(run: RunData, i: int, per_element: int = 16) -> Centerline
         axial_strain=_join(strain),
         curvature=_join(kappa),
         element=_join(el),
+    )
+
+
+@dataclass(frozen=True)
+class NodalFrames:
+    """A rod's nodes in one configuration with their material frames.
+
+    Attributes
+    ----------
+    points, displacement, velocity : ndarray, shape (n_nodes, 3)
+    tangent, m1, m2 : ndarray, shape (n_nodes, 3)
+        Unit tangent and the two material axes of the cross-section (``m2 = t × m1``).
+    twist : ndarray, shape (n_nodes,)
+        The nodal twist coordinate ``φ`` [rad] (cumulative, as the ``twist`` sensor).
+    """
+
+    points: NDArray[np.float64]
+    displacement: NDArray[np.float64]
+    velocity: NDArray[np.float64]
+    tangent: NDArray[np.float64]
+    m1: NDArray[np.float64]
+    m2: NDArray[np.float64]
+    twist: NDArray[np.float64]
+
+
+def nodal_frames(run: RunData, i: int) -> NodalFrames:
+    """The nodes and material frames of stored state ``i`` of a rod run (the stored directors
+    ``m1``; the tangent is the nodal gradient's direction)."""
+    if run.element != "rod" or run.directors is None:
+        raise InputError("RUN_DIR", str(run.path), "a run of rod elements (with stored directors)")
+    nodes, ref = centerline_nodes(run, run.q[i]), centerline_nodes(run, run.reference)
+    vel = centerline_nodes(run, run.v[i])
+    t = nodes[:, 1] / np.linalg.norm(nodes[:, 1], axis=1, keepdims=True)
+    m1 = np.asarray(run.directors[i], dtype=float)
+    twist = np.asarray(run.q[i], dtype=float).reshape(run.n_nodes, -1)[:, 6]
+    return NodalFrames(
+        points=nodes[:, 0],
+        displacement=nodes[:, 0] - ref[:, 0],
+        velocity=vel[:, 0],
+        tangent=t,
+        m1=m1,
+        m2=np.cross(t, m1),
+        twist=twist,
     )

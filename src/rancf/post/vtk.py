@@ -4,8 +4,14 @@
 Each ``.vtu`` holds the densely sampled centreline (:func:`rancf.post.run_data.sample_centerline`)
 as a polyline of ``line`` cells with point data ``displacement``, ``velocity`` (3 components; zero
 ``z`` for planar runs), ``axial_strain``, ``curvature``, ``radius`` (for ParaView's Tube filter,
-"Vary Radius: By Scalar" or a constant radius) and ``element``.  Every file is written to a
-temporary name and moved into place, so an interrupted export never leaves a corrupt file.
+"Vary Radius: By Scalar" or a constant radius) and ``element``.
+
+Rod runs also get ``<run>_nodes.pvd`` with one ``.vtu`` per stored time holding the nodes as
+``vertex`` cells with point data ``twist`` (the nodal ``φ``), ``tangent`` and the material frame
+``m1``, ``m2`` (ParaView's Glyph filter draws them as arrows), ``displacement`` and ``velocity``:
+the frames are those the run carried along its path (:func:`rancf.post.run_data.nodal_frames`).
+Every file is written to a temporary name and moved into place, so an interrupted export never
+leaves a corrupt file.
 """
 
 from __future__ import annotations
@@ -20,9 +26,9 @@ from numpy.typing import NDArray
 
 from rancf.errors import InputError
 from rancf.post.results import atomic_write
-from rancf.post.run_data import RunData, frame_indices, sample_centerline
+from rancf.post.run_data import RunData, frame_indices, nodal_frames, sample_centerline
 
-__all__ = ["export_vtk", "centerline_mesh"]
+__all__ = ["export_vtk", "centerline_mesh", "nodes_mesh"]
 
 
 def _pad3(a: NDArray) -> NDArray:
@@ -48,6 +54,23 @@ def centerline_mesh(run: RunData, i: int, per_element: int = 16):  # -> meshio.M
     return meshio.Mesh(_pad3(c.points), [("line", cells)], point_data=data)
 
 
+def nodes_mesh(run: RunData, i: int):  # -> meshio.Mesh
+    """The meshio mesh of a rod's nodes and material frames at stored state ``i``."""
+    import meshio
+
+    f = nodal_frames(run, i)
+    n = f.points.shape[0]
+    data = {
+        "twist": f.twist,
+        "tangent": f.tangent,
+        "m1": f.m1,
+        "m2": f.m2,
+        "displacement": f.displacement,
+        "velocity": f.velocity,
+    }
+    return meshio.Mesh(f.points, [("vertex", np.arange(n)[:, None])], point_data=data)
+
+
 def _write_vtu(mesh, path: Path) -> None:  # mesh: meshio.Mesh
     import meshio
 
@@ -63,35 +86,40 @@ def _write_vtu(mesh, path: Path) -> None:  # mesh: meshio.Mesh
 
 
 def export_vtk(run: RunData, out_dir: str | Path, every: int = 1, per_element: int = 16) -> Path:
-    """Write ``OUT_DIR/<run>_NNNNN.vtu`` for every ``every``-th stored time and ``<run>.pvd``.
+    """Write ``OUT_DIR/<run>_NNNNN.vtu`` for every ``every``-th stored time and ``<run>.pvd``
+    (rods: also ``<run>_nodes_NNNNN.vtu`` and ``<run>_nodes.pvd``).
 
-    Returns the path of the ``.pvd`` file.
+    Returns the path of the centreline's ``.pvd`` file.
     """
     out = Path(out_dir)
     if out.exists() and not out.is_dir():
         raise InputError("--vtk", str(out), "a directory (it exists and is a file)")
     out.mkdir(parents=True, exist_ok=True)
     idx = frame_indices(run.t.size, every)
-    name = run.name
-    entries = []
-    for k, i in enumerate(idx):
-        fname = f"{name}_{k:05d}.vtu"
-        _write_vtu(centerline_mesh(run, int(i), per_element), out / fname)
-        entries.append(
-            f'    <DataSet timestep="{float(run.t[i])!r}" group="" part="0" '
-            f'file="{html.escape(fname, quote=True)}"/>'
+    parts = [(run.name, lambda i: centerline_mesh(run, i, per_element))]
+    if run.element == "rod" and run.directors is not None:
+        parts.append((f"{run.name}_nodes", lambda i: nodes_mesh(run, i)))
+    paths = []
+    for name, mesh_at in parts:
+        entries = []
+        for k, i in enumerate(idx):
+            fname = f"{name}_{k:05d}.vtu"
+            _write_vtu(mesh_at(int(i)), out / fname)
+            entries.append(
+                f'    <DataSet timestep="{float(run.t[i])!r}" group="" part="0" '
+                f'file="{html.escape(fname, quote=True)}"/>'
+            )
+        pvd = "\n".join(
+            [
+                '<?xml version="1.0"?>',
+                '<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">',
+                "  <Collection>",
+                *entries,
+                "  </Collection>",
+                "</VTKFile>",
+                "",
+            ]
         )
-    pvd = "\n".join(
-        [
-            '<?xml version="1.0"?>',
-            '<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">',
-            "  <Collection>",
-            *entries,
-            "  </Collection>",
-            "</VTKFile>",
-            "",
-        ]
-    )
-    path = out / f"{name}.pvd"
-    atomic_write(path, pvd)
-    return path
+        paths.append(out / f"{name}.pvd")
+        atomic_write(paths[-1], pvd)
+    return paths[0]

@@ -69,6 +69,8 @@ class DynamicResult:
     min_step_taken: float | None = None
     max_step_taken: float | None = None
     n_outputs: int = 0
+    #: Rods: nodal directors ``m1`` at the output times, ``(n_t, n_nodes, 3)``; else None.
+    directors: NDArray[np.float64] | None = None
 
     @property
     def total_energy(self) -> NDArray[np.float64]:
@@ -222,22 +224,35 @@ def integrate(
     target_sink: OutputSink = memory if memory is not None else sink  # type: ignore[assignment]
     last: list = []
 
+    rod = model.element == "rod"
+
+    def directors(yy: NDArray) -> NDArray | None:
+        """Rods: the nodal directors of ``yy``, the state the triads were last carried to."""
+        if not rod:
+            return None
+        t_nodes, m1 = np.empty(3 * model.n_nodes), np.empty(3 * model.n_nodes)
+        model.core.nodal_triads(yy, t_nodes, m1)
+        return m1.reshape(model.n_nodes, 3)
+
     def store(tt: float, yy: NDArray, vv: NDArray, e: NDArray | None = None) -> None:
         if e is None:
             e = np.array(
                 [model.kinetic_energy(vv), model.strain_energy(yy), model.gravity_energy(yy)]
             )
-        row = (tt, model.q_from_y(yy), model.q_from_y(vv), np.asarray(e, dtype=float))
-        target_sink.append(*row)
+        m1 = directors(yy)
+        row = (tt, model.q_from_y(yy), model.q_from_y(vv), np.asarray(e, dtype=float), m1)
+        target_sink.append(*row[:4], directors=m1)
         last[:] = [row]
         result.n_outputs += 1
 
     def store_block(k0: int, oy: NDArray, ov: NDArray, oe: NDArray) -> None:
-        """Outputs ``k0, k0 + 1, ...`` from the core's loop, passed on as one block."""
+        """Outputs ``k0, k0 + 1, ...`` from the core's loop, passed on as one block (rods: one
+        output a block, whose state is the one the triads were carried to)."""
         ts = np.array([out_time(k0 + i) for i in range(len(oy))])
         qs, vs = model.q_from_y(oy), model.q_from_y(ov)
-        target_sink.append_block(ts, qs, vs, oe)
-        last[:] = [(float(ts[-1]), qs[-1], vs[-1], np.array(oe[-1]))]
+        m1 = directors(oy[-1])
+        target_sink.append_block(ts, qs, vs, oe, directors=None if m1 is None else m1[None])
+        last[:] = [(float(ts[-1]), qs[-1], vs[-1], np.array(oe[-1]), m1)]
         result.n_outputs += len(oy)
 
     y = model.y0.copy()
@@ -254,9 +269,11 @@ def integrate(
     def snapshot(status: DynamicStatus, message: str) -> DynamicResult:
         if memory is not None:
             ts, qs, vs, es = memory.arrays()
+            result.directors = memory.directors()
         else:
-            tt, qq, vv, ee = last[0]
+            tt, qq, vv, ee, m1 = last[0]
             ts, qs, vs, es = np.array([tt]), qq[None], vv[None], ee[None]
+            result.directors = None if m1 is None else m1[None]
         result.t, result.q, result.v = ts, qs, vs
         result.kinetic, result.strain, result.gravity = es[:, 0], es[:, 1], es[:, 2]
         result.status, result.message = status, message
@@ -274,6 +291,8 @@ def integrate(
     fast = not o.adaptive and per_out >= 1 and abs(ratio - per_out) < 1e-9
     # outputs per compiled call: ~1 % of the run, at most ~16 MB of stored states per array
     chunk_out = int(np.clip(n_grid // 100, 1, max(1, (1 << 21) // model.n)))
+    if rod:  # the triads at a call's end are those of its one stored state
+        chunk_out = 1
 
     def notify(tt: float) -> None:
         if on_output is not None:
