@@ -86,3 +86,30 @@ def test_study_tables_drop_times_and_sweeps(tmp_path):
     (tmp_path / "a" / "t.csv").write_text("n,error,wall time [s]\n1,0.5,0.01\n")
     (tmp_path / "a" / "sweep" / "results.csv").write_text("run,status\nx,failed\n")
     assert study_tables(tmp_path) == {"a/t.csv": [["n", "error"], ["1", "0.5"]]}
+
+
+@pytest.mark.parametrize("workers", [1, 2])
+def test_an_interrupted_report_keeps_the_finished_studies(tmp_path, monkeypatch, workers):
+    # the second study is interrupted (Ctrl-C): the first's files and a partial report stay
+    import rancf.studies.parallel as parallel
+    from rancf.cli import main
+    from rancf.studies.common import StudyResult
+
+    def runner(name):
+        def run(out, quick, executor=None):
+            if name == "spatial-pendulum":
+                raise KeyboardInterrupt
+            out.mkdir(parents=True, exist_ok=True)
+            (out / "table.csv").write_text("x\n1\n")
+            return StudyResult(name, f"the {name} study").finish()
+
+        return run
+
+    monkeypatch.setattr(parallel, "study_runner", runner)
+    monkeypatch.setattr(parallel, "runs_a_grid", lambda name: False)  # drivers only, no cluster
+    out = tmp_path / "rep"
+    assert main(["report", "--quick", "--out", str(out), "--workers", str(workers)]) == 130
+    doc = json.loads((out / "report.json").read_text())
+    assert doc["complete"] is False and "spatial-pendulum" in doc["unfinished"]
+    assert "planar-pendulum" in doc["studies"] and (out / "planar-pendulum" / "table.csv").exists()
+    assert "Incomplete report" in (out / "report.html").read_text()

@@ -106,6 +106,8 @@ def _run_studies(
     from rancf.studies.report import write_report
 
     n = _workers(workers)
+    if not any(runs_a_grid(name) for name in names):
+        n = 1  # no grid to share out: everything runs here
     where = "this process" if n == 1 else f"a local Dask cluster of {n} worker(s)"
     print(
         f"running {', '.join(names)}{' (quick)' if quick else ''} on {where} ...", file=sys.stderr
@@ -113,22 +115,36 @@ def _run_studies(
     t0 = time.perf_counter()
     # one sub-folder per study, or one study with its files directly in ``out``
     folders = {name: out / name for name in names} if nested else {names[0]: out}
+    results: dict[str, Any] = {}  # filled as studies finish
     with OutputDir(out) as od:
-        if n == 1 or not any(runs_a_grid(name) for name in names):
-            results = run_studies_here(folders, quick)
-        else:
-            results = run_studies_parallel(folders, quick, n)
-        od.keep()
-        done = []
-        for name in names:
-            res, folder = results[name], folders[name]
-            res.write_comparison_csv(folder)
-            done.append((res, folder))
-            print(f"  {name}: {len(res.figures)} figures, {res.wall_time_s:.1f} s", file=sys.stderr)
-            for c in res.comparison:
-                print(f"    {c.quantity:60s} paper {c.paper:>10s}   ours {c.ours}")
-        wall = time.perf_counter() - t0
-        path = write_report(out, done, quick, wall)
+        od.keep()  # what the studies compute stays, even if a later one fails or is interrupted
+        try:
+            if n == 1:
+                run_studies_here(folders, quick, results)
+            else:
+                run_studies_parallel(folders, quick, n, results)
+        finally:
+            done = []
+            for name in (name for name in names if name in results):
+                res, folder = results[name], folders[name]
+                res.write_comparison_csv(folder)
+                done.append((res, folder))
+                print(
+                    f"  {name}: {len(res.figures)} figures, {res.wall_time_s:.1f} s",
+                    file=sys.stderr,
+                )
+                for c in res.comparison:
+                    print(f"    {c.quantity:60s} paper {c.paper:>10s}   ours {c.ours}")
+            wall = time.perf_counter() - t0
+            unfinished = [name for name in names if name not in results]
+            if done or not unfinished:
+                path = write_report(out, done, quick, wall, unfinished)
+            if unfinished and done:
+                print(
+                    f"partial report ({len(done)} of {len(names)} studies; not finished: "
+                    f"{', '.join(unfinished)}) written to {path}",
+                    file=sys.stderr,
+                )
     print(f"report written to {path}")
     print(f"wall time {wall:.1f} s on {where}", file=sys.stderr)
     return 0

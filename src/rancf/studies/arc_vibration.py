@@ -22,7 +22,7 @@ from typing import Any
 import numpy as np
 
 from rancf.post.plots import pyplot
-from rancf.post.results import write_run
+from rancf.post.results import atomic_write, write_run
 from rancf.solvers.modal import natural_modes
 from rancf.studies.common import (
     Comparison,
@@ -34,7 +34,9 @@ from rancf.studies.common import (
     save_figure,
     variant,
 )
+from rancf.studies.grid import variant_raw
 from rancf.studies.rod_runs import arc_rod_modes
+from rancf.sweep.toml_out import dumps
 
 TITLE = "6.3 Free and forced vibration of a cable arc"
 NAME = "arc-vibration"
@@ -197,18 +199,21 @@ def run_study(out: str | Path, quick: bool = False) -> StudyResult:
     # forced near-resonant response, in plane
     f_exc = f_fft
     t_forced = 8.0 if quick else 30.0
-    sc, m = variant(
+    forced = variant_raw(
         raw,
-        NAME,
         solver__t_end=t_forced,
         damping__mass_proportional=0.5,
         initial_velocity=[],
         loads={"point": [{"at": "end", "force": [0.0, 0.1], "frequency_hz": f_exc}]},
     )
+    sc, m = variant(forced, NAME)
     r = run(sc, m)
     tail = r.t >= r.t[-1] - 3.0 / f_exc
     cut = {k: getattr(r, k)[tail] for k in ("t", "q", "v", "kinetic", "strain", "gravity")}
     write_run(out / "forced_run", m, sc.sensors, replace(r, **cut))
+    # the scenario beside the run: `rancf plot`/`animate` (and the animation below) read the
+    # section radius from it
+    atomic_write(out / "forced_run" / "scenario.toml", dumps(forced))
     add_animation(
         res,
         out / "forced_run",

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import copy
 import csv
 import time
 import tomllib
@@ -18,7 +17,7 @@ from rancf.errors import ConvergenceError
 from rancf.model.scenario import Scenario, parse_scenario
 from rancf.model.system import Model
 from rancf.solvers.dynamic import DynamicOptions, DynamicResult, DynamicStatus, integrate
-from rancf.studies.grid import Executor, GridRun, grid_variant, run_grid
+from rancf.studies.grid import Executor, GridRun, grid_variant, run_grid, variant_raw
 
 __all__ = [
     "EXAMPLES",
@@ -54,18 +53,8 @@ def load_example(name: str) -> dict[str, Any]:
 
 
 def variant(raw: dict[str, Any], name: str, **changes: Any) -> tuple[Scenario, Model]:
-    """A validated scenario and its model with some keys changed.
-
-    ``changes`` use ``table__key`` names, e.g. ``mesh__elements=8``, ``solver__t_end=0.5``; a
-    plain table name replaces the whole table (``initial_velocity=[]``).
-    """
-    d = copy.deepcopy(raw)
-    for key, value in changes.items():
-        if "__" in key:
-            table, sub = key.split("__")
-            d.setdefault(table, {})[sub] = value
-        else:
-            d[key] = value
+    """A validated scenario (:func:`variant_raw`) and its model."""
+    d = variant_raw(raw, **changes)
     sc = parse_scenario(d, f"{name} (variant {changes})" if changes else name)
     return sc, sc.build_model()
 

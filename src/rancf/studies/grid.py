@@ -25,7 +25,7 @@ from rancf.post.results import load_results
 from rancf.sweep.engine import LocalExecutor, SweepExecutor, run_variants
 from rancf.sweep.spec import Variant
 
-__all__ = ["GridRun", "grid_variant", "run_grid", "Executor"]
+__all__ = ["GridRun", "grid_variant", "variant_raw", "run_grid", "Executor"]
 
 Executor = SweepExecutor
 
@@ -101,21 +101,30 @@ def read_run(folder: Path, row: dict[str, Any]) -> GridRun:
     )
 
 
+def variant_raw(raw: dict[str, Any], **changes: Any) -> dict[str, Any]:
+    """A copy of the scenario dictionary ``raw`` with some keys changed.
+
+    ``changes`` use ``table__key`` names, e.g. ``mesh__elements=8``, ``solver__t_end=0.5``; a
+    plain table name replaces the whole table (``initial_velocity=[]``).
+    """
+    d = copy.deepcopy(raw)
+    for key, value in changes.items():
+        if "__" in key:
+            table, sub = key.split("__")
+            d.setdefault(table, {})[sub] = value
+        else:
+            d[key] = value
+    return d
+
+
 def grid_variant(raw: dict[str, Any], index: int, label: str, **changes: Any) -> Variant:
     """A sweep variant of the scenario dictionary ``raw``.
 
     ``changes`` use ``table__key`` names (``mesh__elements=8``); a plain name replaces a whole
     table.  ``label`` names the run folder (``<index>_<label>``).
     """
-    d = copy.deepcopy(raw)
-    values = {}
-    for key, value in changes.items():
-        if "__" in key:
-            table, sub = key.split("__")
-            d.setdefault(table, {})[sub] = value
-            values[f"{table}.{sub}"] = value
-        else:
-            d[key] = value
+    d = variant_raw(raw, **changes)
+    values = {key.replace("__", "."): value for key, value in changes.items() if "__" in key}
     safe = "".join(c if c.isalnum() or c in ".-+=" else "-" for c in label)
     return Variant(index, f"{index:04d}_{safe}"[:120], values, d)
 

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import importlib
 import multiprocessing
+import signal
 import sys
 import threading
 from concurrent.futures import ProcessPoolExecutor
@@ -40,9 +41,18 @@ __all__ = ["run_studies_here", "run_studies_parallel", "RelayExecutor"]
 RUNS_PER_TASK = {"exact-geometry": 5}
 
 
-def run_studies_here(folders: dict[str, Path], quick: bool) -> dict[str, StudyResult]:
-    """Run each study ``name`` into ``folders[name]`` one after another in this process."""
-    return {name: study_runner(name)(out, quick) for name, out in folders.items()}
+def run_studies_here(
+    folders: dict[str, Path], quick: bool, results: dict[str, StudyResult] | None = None
+) -> dict[str, StudyResult]:
+    """Run each study ``name`` into ``folders[name]`` one after another in this process.
+
+    ``results`` (default: a new dict) receives each study's result as it finishes, so a caller
+    still has the finished ones when a later study fails or is interrupted; it is returned.
+    """
+    results = {} if results is None else results
+    for name, out in folders.items():
+        results[name] = study_runner(name)(out, quick)
+    return results
 
 
 class RelayExecutor:
@@ -81,12 +91,22 @@ class RelayExecutor:
 
 
 def run_studies_parallel(
-    folders: dict[str, Path], quick: bool, workers: int
+    folders: dict[str, Path],
+    quick: bool,
+    workers: int,
+    results: dict[str, StudyResult] | None = None,
 ) -> dict[str, StudyResult]:
     """Run each study ``name`` into ``folders[name]``, all at once: one driver process per
-    study, their mesh grids on a local Dask cluster of ``workers`` threads in this process."""
+    study, their mesh grids on a local Dask cluster of ``workers`` threads in this process.
+
+    ``results`` receives each study's result as it finishes (see :func:`run_studies_here`); a
+    study that raises does not stop the others, and the first such error is raised at the end.
+    """
+    from concurrent.futures import as_completed
+
     from threadpoolctl import threadpool_limits
 
+    results = {} if results is None else results
     names = list(folders)
     ctx = _context()
     pipes = {n: ctx.Pipe() for n in names if runs_a_grid(n)}
@@ -123,10 +143,24 @@ def run_studies_parallel(
             ]
             for t in servers:
                 t.start()
-            results = {n: f.result() for n, f in futures.items()}
+            errors = []
+            name_of = {f: n for n, f in futures.items()}
+            try:
+                for f in as_completed(futures.values()):
+                    try:
+                        results[name_of[f]] = f.result()
+                    except Exception as exc:  # noqa: BLE001 - raised once the others are done
+                        errors.append(exc)
+            finally:  # interrupted: keep every study that did finish
+                for n, f in futures.items():
+                    if n not in results and f.done() and not f.cancelled():
+                        if f.exception() is None:
+                            results[n] = f.result()
             for t in servers:
                 t.join()  # each driver has sent "end"
-            return results
+            if errors:
+                raise errors[0]
+            return {n: results[n] for n in names}
 
 
 def _serve(
@@ -181,17 +215,34 @@ _ENDS: dict[str, Connection] = {}
 def _driver_init(ends: dict[str, Connection]) -> None:
     global _ENDS
     _ENDS = ends
+    _idle_signals()
+
+
+def _idle_signals() -> None:
+    """A driver without a study ignores Ctrl-C and ends silently on SIGTERM: the report process
+    handles both (an interrupt there would only print a worker's traceback)."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+
+
+def _on_sigterm(signum: int, frame: Any) -> None:
+    raise KeyboardInterrupt
 
 
 def _drive(name: str, out: Path, quick: bool) -> StudyResult:
-    """One study in a driver process; its grids go to the report's cluster."""
-    if name not in _ENDS:
-        return study_runner(name)(out, quick)
-    executor = RelayExecutor(_ENDS[name])
+    """One study in a driver process; its grids go to the report's cluster.  While it runs, Ctrl-C
+    and SIGTERM stop it (its future then holds the KeyboardInterrupt)."""
+    signal.signal(signal.SIGINT, signal.default_int_handler)
+    signal.signal(signal.SIGTERM, _on_sigterm)
+    executor = RelayExecutor(_ENDS[name]) if name in _ENDS else None
     try:
+        if executor is None:
+            return study_runner(name)(out, quick)
         return study_runner(name)(out, quick, executor)
     finally:
-        executor.close()
+        if executor is not None:
+            executor.close()
+        _idle_signals()
 
 
 def _context() -> multiprocessing.context.BaseContext:

@@ -118,12 +118,15 @@ def write_report(
     studies: Sequence[tuple[StudyResult, Path]],
     quick: bool,
     wall_time_s: float | None = None,
+    unfinished: Sequence[str] = (),
 ) -> Path:
     """Write ``report.html`` (and ``report.json``) for studies whose files are in their folders.
 
     ``wall_time_s`` is the wall time of the whole report (the studies may have run in
     parallel); without it the sum of the studies' wall times is shown.  Figures (PNG) and
-    animations (GIF) are embedded.
+    animations (GIF) are embedded.  ``unfinished`` names studies that did not finish (failed or
+    interrupted): the report then says at the top that it is incomplete, and ``report.json``
+    has ``"complete": false``.
     """
     out = Path(out)
     parts = [
@@ -135,6 +138,13 @@ def write_report(
         f"{' — <b>reduced (quick) runs</b>' if quick else ''}. {_timing(studies, wall_time_s)}"
         "</p>",
         f"<p>{_INTRO}</p>",
+    ]
+    if unfinished:
+        parts.append(
+            "<div class='note'><b>Incomplete report.</b> Not finished (failed or interrupted): "
+            f"{html.escape(', '.join(unfinished))}; their folders may hold partial files.</div>"
+        )
+    parts += [
         "<h2>Contents</h2><ul>",
     ]
     parts += [f"<li><a href='#{s.name}'>{html.escape(s.title)}</a></li>" for s, _ in studies]
@@ -178,7 +188,14 @@ def write_report(
     parts.append("</body></html>")
     path = out / "report.html"
     atomic_write(path, "\n".join(parts))
-    atomic_write(out / "report.json", json.dumps(summary, indent=2, default=str) + "\n")
+    doc = {
+        "complete": not unfinished,
+        "unfinished": list(unfinished),
+        "quick": quick,
+        "wall_time_s": wall_time_s,
+        "studies": summary,
+    }
+    atomic_write(out / "report.json", json.dumps(doc, indent=2, default=str) + "\n")
     return path
 
 
