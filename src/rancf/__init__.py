@@ -18,7 +18,7 @@ _API = {
     "conic_arc": "rancf.geometry.conic",
     "conic_arc_through": "rancf.geometry.conic",
     "circular_arc": "rancf.geometry.conic",
-    "Conic": "rancf.geometry.conic",
+    "Conic": "rancf.geometry.conic_curve",
     "NurbsCurve": "rancf.geometry.nurbs",
     "RationalBezier": "rancf.geometry.bezier",
     # elements and conversions
