@@ -40,7 +40,7 @@ _API = {
     "Material": "rancf.model.system",
     "Support": "rancf.model.system",
     "PointLoad": "rancf.model.system",
-    "Sensor": "rancf.model.scenario",
+    "Sensor": "rancf.model.scenario_sensors",
     "Scenario": "rancf.model.scenario",
     "load_scenario": "rancf.model.scenario",
     "parse_scenario": "rancf.model.scenario",
