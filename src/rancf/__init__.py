@@ -18,7 +18,7 @@ _API = {
     "conic_arc": "rancf.geometry.conic",
     "conic_arc_through": "rancf.geometry.conic",
     "circular_arc": "rancf.geometry.conic",
-    "Conic": "rancf.geometry.conic",
+    "Conic": "rancf.geometry.conic_curve",
     "NurbsCurve": "rancf.geometry.nurbs",
     "RationalBezier": "rancf.geometry.bezier",
     # elements and conversions
@@ -40,7 +40,7 @@ _API = {
     "Material": "rancf.model.system",
     "Support": "rancf.model.system",
     "PointLoad": "rancf.model.system",
-    "Sensor": "rancf.model.scenario",
+    "Sensor": "rancf.model.scenario_sensors",
     "Scenario": "rancf.model.scenario",
     "load_scenario": "rancf.model.scenario",
     "parse_scenario": "rancf.model.scenario",

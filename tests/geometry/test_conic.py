@@ -5,14 +5,8 @@ from hypothesis import strategies as st
 from scipy.integrate import quad
 
 from rancf.errors import AngleError, ChordError, InteriorPointError, MappingFactorError
-from rancf.geometry.conic import (
-    Conic,
-    circular_arc,
-    conic_arc,
-    conic_arc_through,
-    cubic_parameter,
-    quadratic_parameter,
-)
+from rancf.geometry.conic import Conic, circular_arc, conic_arc, conic_arc_through
+from rancf.geometry.conic_params import cubic_parameter, quadratic_parameter
 from tests.conftest import EXAMPLE1, EXAMPLE3
 
 U = np.linspace(0.0, 1.0, 1000)

@@ -14,7 +14,8 @@ from numpy.typing import NDArray
 
 from rancf.elements.cable import nodal_from_bezier
 from rancf.geometry.bezier import RationalBezier
-from rancf.geometry.conic import Conic, check_mapping_factor
+from rancf.geometry.conic_curve import Conic
+from rancf.geometry.conic_params import check_mapping_factor
 
 __all__ = ["gradient_extrema", "gradient_ratio", "kopt", "ConicElement", "conic_element"]
 

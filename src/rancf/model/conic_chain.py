@@ -15,7 +15,7 @@ from numpy.typing import NDArray
 
 from rancf.elements.mapping import K_RANGE
 from rancf.errors import ConvergenceError
-from rancf.geometry.conic import Conic
+from rancf.geometry.conic_curve import Conic
 from rancf.geometry.quadrature import integrate_many
 
 __all__ = ["quadratic_speed", "arc_breakpoints", "sub_arcs", "cubic_forms", "kopt_many"]

@@ -29,7 +29,8 @@ from rancf.elements.cable import cable_shape_functions
 from rancf.elements.mapping import gradient_ratio
 from rancf.errors import ElementCountError, InputError
 from rancf.geometry.bezier import RationalBezier
-from rancf.geometry.conic import Conic, check_mapping_factor
+from rancf.geometry.conic_curve import Conic
+from rancf.geometry.conic_params import check_mapping_factor
 from rancf.geometry.nurbs import NurbsCurve
 from rancf.geometry.quadrature import integrate_many
 from rancf.model.conic_chain import arc_breakpoints, cubic_forms, kopt_many, sub_arcs

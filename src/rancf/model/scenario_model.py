@@ -63,7 +63,7 @@ def _mesh(sc: Scenario) -> Any:
     from rancf.geometry.conic import conic_arc_through
     from rancf.geometry.nurbs import NurbsCurve
     from rancf.model.mesh import mesh_conic, mesh_line, mesh_nurbs
-    from rancf.model.scenario import MAX_ELEMENTS
+    from rancf.model.scenario_tables import MAX_ELEMENTS
 
     g, m = sc.data["geometry"], sc.data["mesh"]
     if g["kind"] == "conic":

@@ -21,7 +21,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from rancf.model.scenario import _REQ, _choice, _err, _number, _place, _table, _vector
+from rancf.model.scenario_checks import _REQ, _choice, _err, _number, _place, _table, _vector
 
 __all__ = ["parse_section", "parse_material", "parse_supports", "parse_point_loads"]
 

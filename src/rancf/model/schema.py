@@ -10,7 +10,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from rancf.model.scenario import ELEMENTS, GEOMETRY_KEYS, K_RANGE, MAX_ELEMENTS, SENSOR_KINDS
+from rancf.model.scenario_sensors import SENSOR_KINDS
+from rancf.model.scenario_tables import ELEMENTS, GEOMETRY_KEYS, K_RANGE, MAX_ELEMENTS
 
 __all__ = ["scenario_schema"]
 

@@ -23,12 +23,12 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from rancf.errors import InputError
-from rancf.kernels import _core
 from rancf.kernels.beam import BeamKernel
 from rancf.kernels.cable import CableKernel, CableProperties
 from rancf.kernels.rod import ROD_DOFS, RodKernel
 from rancf.model.mesh import CableMesh, to_ancf
 from rancf.model.parts import Material, PointLoad, Section, Support
+from rancf.model.system_core import core_model
 
 __all__ = ["Section", "Material", "Support", "PointLoad", "Model", "ElementKind"]
 
@@ -211,7 +211,7 @@ class Model:
             v0[nd * self.dpn : nd * self.dpn + self.dim] = vv
         self.v0 = self.to_y(v0)
         self.v0[self.fixed] = 0.0
-        self.core = self._core_model()
+        self.core = core_model(self)
         if isinstance(self.kernel, RodKernel):  # reference curvatures by the core itself
             k, eps = self.kernel.kref.copy(), np.empty(self.kernel.kref.shape[:2])
             self.core.rod_curvatures(self.y0, k, eps)
@@ -228,56 +228,6 @@ class Model:
         if isinstance(self.kernel, RodKernel):
             self.kernel.tref[...] = self._triads0[0]
             self.kernel.m1ref[...] = self._triads0[1]
-
-    def _core_model(self) -> _core.Model:
-        """The model as the compiled core's named structure (arrays shared, not copied)."""
-        k = self.kernel
-        cable = k.core_data() if isinstance(k, CableKernel) else _empty_cable()
-        beam = k.core_data() if isinstance(k, BeamKernel) else _empty_beam()
-        rod = k.core_data() if isinstance(k, RodKernel) else _empty_rod()
-        kind = {CableKernel: 0, BeamKernel: 1, RodKernel: 2}[type(k)]
-        sec, mat = self.section, self.material
-        stiffness = _core.Stiffness(ea=self.props.ea, ei=self.props.ei)
-        if kind == 2:
-            e_mod = mat.youngs_modulus
-            stiffness = _core.Stiffness(
-                ea=self.props.ea,
-                ei=self.props.ei,
-                gj=mat.shear * sec.torsion,
-                ei2=e_mod * sec.inertia,
-                ei3=e_mod * sec.inertia_2,
-            )
-        rot_of_node = np.full(self.n_nodes, -1, dtype=np.int64)
-        rot = np.zeros((max(len(self._rot), 1), self.dim, self.dim))
-        for i, (off, basis) in enumerate(self._rot):
-            rot_of_node[off // self.dpn] = i
-            rot[i] = basis
-        base, f0, freq = self.load_arrays()
-        moments = [p for p in self.point_loads if p.moment is not None]
-        return _core.Model(
-            kind=kind,
-            dim=self.dim,
-            dpn=self.dpn,
-            n_el=self.n_el,
-            stiffness=stiffness,
-            cable=cable,
-            beam=beam,
-            rod=rod,
-            supports=_core.Supports(
-                fixed=self.fixed.astype(np.uint8), rot_of_node=rot_of_node, rot=rot
-            ),
-            loads=_core.Loads(
-                f_gravity=self.f_gravity,
-                base=base,
-                f0=f0,
-                freq=freq,
-                moment_node=np.array([p.node % self.n_nodes for p in moments], dtype=np.int64),
-                moment=np.array([p.moment for p in moments], dtype=float).reshape(-1, 3),
-                moment_freq=np.array([p.frequency_hz or 0.0 for p in moments], dtype=float),
-            ),
-            mass_band=np.ascontiguousarray(self.mass_band),
-            y_ref=np.ascontiguousarray(self.y0),
-        )
 
     def load_arrays(self) -> tuple[NDArray, NDArray, NDArray]:
         """Point forces as ``(base index, F0, frequency)`` arrays (frequency 0: constant)."""
@@ -406,20 +356,3 @@ class Model:
             i = np.arange(max(0, -off), min(self.n, self.n - off))
             out[i, i + off] = ab[k, i + off]
         return out
-
-
-def _empty_cable() -> _core.CableData:
-    z = np.zeros(0)
-    return _core.CableData(n1=z, n2=z, gw=z, s0=z, k0=z, j0=z, qr=z)
-
-
-def _empty_beam() -> _core.BeamData:
-    z = np.zeros(0)
-    return _core.BeamData(l0=z, d0=z)
-
-
-def _empty_rod() -> _core.RodData:
-    z = np.zeros(0)
-    return _core.RodData(
-        n1=z, n2=z, xi=z, gw=z, j0=z, kref=z, tref=np.zeros(0), m1ref=np.zeros(0)
-    )  # fmt: skip

@@ -8,7 +8,7 @@ import numpy as np
 
 from rancf.elements.cable import cable_shape_functions
 from rancf.elements.mapping import gradient_ratio
-from rancf.geometry.conic import Conic
+from rancf.geometry.conic_curve import Conic
 
 __all__ = ["plot_conic", "draw_gradient_curves", "draw_parameter_points", "k_study_figure"]
 

@@ -24,7 +24,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from rancf.model.scenario import Sensor
+from rancf.model.scenario_sensors import Sensor
 from rancf.model.system import Model
 from rancf.post.results import atomic_write, strict_json, write_history_files
 

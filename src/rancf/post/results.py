@@ -31,7 +31,7 @@ from typing import IO, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from rancf.model.scenario import Sensor
+from rancf.model.scenario_sensors import Sensor
 from rancf.model.system import Model
 from rancf.solvers.dynamic import DynamicResult
 

@@ -1,0 +1,106 @@
+"""Sensors of a scenario (``[[sensors]]``): the :class:`Sensor` record and its parser.
+
+A sensor names one monitored quantity of one or two nodes; the solvers write its values as CSV
+columns and the post-processing reads them back.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from rancf.errors import InputError
+from rancf.model.scenario_checks import _REQ, _choice, _err, _place, _table
+
+__all__ = ["Sensor", "SENSOR_KINDS", "parse_sensors"]
+
+
+#: Sensor kinds (``twist``: rods only).
+SENSOR_KINDS = ("distance", "position", "twist")
+
+
+@dataclass(frozen=True)
+class Sensor:
+    """A monitored quantity of one or two nodes.
+
+    ``distance`` between two nodes, ``position`` of one node, or (rods) ``twist`` of one node:
+    its twist coordinate ``φ`` [rad], the rotation of the cross-section about the tangent
+    relative to the reference director carried along with the tangent by smallest rotations
+    (docs/rod-derivation.md; cumulative: it is not wrapped to ``(-π, π]``).
+    """
+
+    name: str
+    kind: str
+    nodes: tuple[int, ...]
+
+    def columns(self, dim: int) -> list[str]:
+        """CSV column names of the sensor's scalars."""
+        if self.kind in ("distance", "twist"):
+            return [self.name]
+        return [f"{self.name}_{c}" for c in "xyz"[:dim]]
+
+    def evaluate(self, positions: NDArray, twists: NDArray | None = None) -> NDArray[np.float64]:
+        """Values ``(n_t, n_columns)`` from node positions ``(n_t, n_nodes, dim)`` and, for
+        ``twist``, the nodal twists ``(n_t, n_nodes)``."""
+        if self.kind == "distance":
+            d = positions[:, self.nodes[1]] - positions[:, self.nodes[0]]
+            return np.linalg.norm(d, axis=1)[:, None]
+        if self.kind == "twist":
+            if twists is None:
+                raise InputError(f"sensors.{self.name}", "twist", "a rod model (nodal twists)")
+            return twists[:, self.nodes[0], None]
+        return positions[:, self.nodes[0]]
+
+
+def parse_sensors(path: str, raw: Any, element: str) -> tuple[Sensor, ...]:
+    """Validate the ``[[sensors]]`` array of tables.
+
+    Parameters
+    ----------
+    path : str
+        The scenario's path (named in errors).
+    raw : Any
+        The array as read from the file (``[]`` when absent).
+    element : str
+        The mesh's element kind (``twist`` sensors need rods).
+
+    Returns
+    -------
+    tuple of Sensor
+        The sensors in file order, with unique names.
+    """
+    if not isinstance(raw, list):
+        raise _err(path, "sensors", "must be an array of tables [[sensors]]")
+    sensors = []
+    names: set[str] = set()
+    for i, sn in enumerate(raw):
+        t = _table(
+            path, f"sensors[{i}]", sn, {"name": _REQ, "kind": _REQ, "between": None, "at": None}
+        )
+        if not isinstance(t["name"], str) or not t["name"].isidentifier():
+            raise _err(path, f"sensors[{i}].name", f"must be a simple name, got {t['name']!r}")
+        if t["name"] in names or t["name"] == "t":
+            raise _err(path, f"sensors[{i}].name", f"{t['name']!r} is used twice or reserved")
+        names.add(t["name"])
+        kd = _choice(path, f"sensors[{i}].kind", t["kind"], SENSOR_KINDS)
+        if kd == "twist" and element != "rod":
+            raise _err(
+                path, f"sensors[{i}].kind", f"'twist' needs rod elements (mesh.element = \"rod\"), "
+                f"not {element!r}",
+            )  # fmt: skip
+        if kd == "distance":
+            b = t["between"]
+            if t["at"] is not None or not isinstance(b, list) or len(b) != 2:
+                raise _err(
+                    path, f"sensors[{i}].between", "a distance sensor needs between = [A, B]"
+                )
+            nodes = tuple(_place(path, f"sensors[{i}].between[{j}]", x) for j, x in enumerate(b))
+        else:
+            if t["between"] is not None or t["at"] is None:
+                raise _err(path, f"sensors[{i}].at", f"a {kd} sensor needs at = PLACE")
+            nodes = (_place(path, f"sensors[{i}].at", t["at"]),)
+        sensors.append(Sensor(t["name"], kd, nodes))
+    return tuple(sensors)

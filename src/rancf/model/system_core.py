@@ -1,0 +1,102 @@
+"""The assembled model as the compiled core's named structure (:class:`rancf.kernels._core.Model`).
+
+:func:`core_model` gathers what a :class:`~rancf.model.system.Model` has assembled (kernel data,
+stiffness, support rotations, loads, mass) into the one structure on which the core evaluates
+forces, tangents and energies.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from rancf.kernels import _core
+from rancf.kernels.beam import BeamKernel
+from rancf.kernels.cable import CableKernel
+from rancf.kernels.rod import RodKernel
+
+if TYPE_CHECKING:
+    from rancf.model.system import Model
+
+__all__ = ["core_model"]
+
+
+def core_model(model: Model) -> _core.Model:
+    """The model as the compiled core's named structure (arrays shared, not copied).
+
+    Parameters
+    ----------
+    model : Model
+        An assembled model: kernel, section and material, supports, loads and mass in place.
+
+    Returns
+    -------
+    rancf.kernels._core.Model
+        The structure kept as :attr:`Model.core <rancf.model.system.Model.core>`.
+    """
+
+    k = model.kernel
+    cable = k.core_data() if isinstance(k, CableKernel) else _empty_cable()
+    beam = k.core_data() if isinstance(k, BeamKernel) else _empty_beam()
+    rod = k.core_data() if isinstance(k, RodKernel) else _empty_rod()
+    kind = {CableKernel: 0, BeamKernel: 1, RodKernel: 2}[type(k)]
+    sec, mat = model.section, model.material
+    stiffness = _core.Stiffness(ea=model.props.ea, ei=model.props.ei)
+    if kind == 2:
+        e_mod = mat.youngs_modulus
+        stiffness = _core.Stiffness(
+            ea=model.props.ea,
+            ei=model.props.ei,
+            gj=mat.shear * sec.torsion,
+            ei2=e_mod * sec.inertia,
+            ei3=e_mod * sec.inertia_2,
+        )
+    rot_of_node = np.full(model.n_nodes, -1, dtype=np.int64)
+    rot = np.zeros((max(len(model._rot), 1), model.dim, model.dim))
+    for i, (off, basis) in enumerate(model._rot):
+        rot_of_node[off // model.dpn] = i
+        rot[i] = basis
+    base, f0, freq = model.load_arrays()
+    moments = [p for p in model.point_loads if p.moment is not None]
+    return _core.Model(
+        kind=kind,
+        dim=model.dim,
+        dpn=model.dpn,
+        n_el=model.n_el,
+        stiffness=stiffness,
+        cable=cable,
+        beam=beam,
+        rod=rod,
+        supports=_core.Supports(
+            fixed=model.fixed.astype(np.uint8), rot_of_node=rot_of_node, rot=rot
+        ),
+        loads=_core.Loads(
+            f_gravity=model.f_gravity,
+            base=base,
+            f0=f0,
+            freq=freq,
+            moment_node=np.array([p.node % model.n_nodes for p in moments], dtype=np.int64),
+            moment=np.array([p.moment for p in moments], dtype=float).reshape(-1, 3),
+            moment_freq=np.array([p.frequency_hz or 0.0 for p in moments], dtype=float),
+        ),
+        mass_band=np.ascontiguousarray(model.mass_band),
+        y_ref=np.ascontiguousarray(model.y0),
+    )
+
+
+def _empty_cable() -> _core.CableData:
+    z = np.zeros(0)
+    return _core.CableData(n1=z, n2=z, gw=z, s0=z, k0=z, j0=z, qr=z)
+
+
+def _empty_beam() -> _core.BeamData:
+    z = np.zeros(0)
+    return _core.BeamData(l0=z, d0=z)
+
+
+def _empty_rod() -> _core.RodData:
+    z = np.zeros(0)
+    return _core.RodData(
+        n1=z, n2=z, xi=z, gw=z, j0=z, kref=z, tref=np.zeros(0), m1ref=np.zeros(0)
+    )  # fmt: skip
