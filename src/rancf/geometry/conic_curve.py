@@ -16,7 +16,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from rancf.errors import ChordError, InputError, InteriorPointError, WeightError
 from rancf.geometry.bezier import RationalBezier, blossom
-from rancf.geometry.conic_params import barycentric, check_mapping_factor, cross2, mapping_rho
+from rancf.geometry.conic_params import barycentric, check_mapping_factor, cross2, mapping_rho, pad3
 from rancf.geometry.quadrature import integrate
 
 __all__ = ["Conic", "ConicKind"]
@@ -54,7 +54,7 @@ class Conic:
         chord = np.linalg.norm(pts[2] - pts[0])
         if not chord > 0.0:
             raise ChordError("chord", float(chord), "start and end points must differ")
-        area = np.linalg.norm(np.cross(_pad3(pts[1] - pts[0]), _pad3(pts[2] - pts[0])))
+        area = np.linalg.norm(np.cross(pad3(pts[1] - pts[0]), pad3(pts[2] - pts[0])))
         if not area > 1e-14 * chord**2:
             raise InteriorPointError(
                 "p1", pts[1].tolist(), "the tangent intersection must not lie on the chord"
@@ -194,9 +194,9 @@ class Conic:
     # ----------------------------------------------------------------- implicit form
     def plane_frame(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Orthonormal ``(e1, e2)`` spanning the plane of the arc, ``e1`` along the chord."""
-        e1 = _pad3(self.p2 - self.p0)
+        e1 = pad3(self.p2 - self.p0)
         e1 /= np.linalg.norm(e1)
-        v = _pad3(self.p1 - self.p0)
+        v = pad3(self.p1 - self.p0)
         e2 = v - np.dot(v, e1) * e1
         e2 /= np.linalg.norm(e2)
         return e1[: self.dim], e2[: self.dim]
@@ -274,11 +274,6 @@ class Conic:
         return RationalBezier(np.array([self.p0, q1, q2, self.p2]), w)
 
 
-def _pad3(v: NDArray) -> NDArray:
-    v = np.asarray(v, dtype=float)
-    return v if v.size == 3 else np.array([v[0], v[1], 0.0])
-
-
 def _angle(a: NDArray, b: NDArray) -> float:
-    a3, b3 = _pad3(a), _pad3(b)
+    a3, b3 = pad3(a), pad3(b)
     return float(np.arctan2(np.linalg.norm(np.cross(a3, b3)), np.dot(a3, b3)))

@@ -16,6 +16,7 @@ from rancf.errors import MappingFactorError
 
 __all__ = [
     "cross2",
+    "pad3",
     "tangent_intersection",
     "barycentric",
     "weight_from_point",
@@ -24,6 +25,13 @@ __all__ = [
     "quadratic_parameter",
     "cubic_parameter",
 ]
+
+
+def pad3(a: NDArray) -> NDArray:
+    """Planar vectors ``(..., 2)`` as spatial ones ``(..., 3)`` with ``z = 0``; spatial ones are
+    returned as they are (as float arrays)."""
+    a = np.asarray(a, dtype=float)
+    return a if a.shape[-1] == 3 else np.concatenate([a, np.zeros(a.shape[:-1] + (1,))], axis=-1)
 
 
 def cross2(a: NDArray, b: NDArray) -> NDArray:

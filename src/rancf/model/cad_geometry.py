@@ -21,6 +21,7 @@ from numpy.typing import NDArray
 
 from rancf.errors import InputError
 from rancf.geometry.bezier import RationalBezier
+from rancf.geometry.conic_params import pad3
 from rancf.geometry.nurbs import NurbsCurve
 from rancf.model.mesh import CableMesh, check_element_count, mesh_from_curves
 
@@ -80,13 +81,9 @@ def select_cad_curves(file: Path, selection: Any) -> tuple[list[NurbsCurve], lis
     planar = all(c.dim == 2 or np.all(c.points[:, 2] == 0.0) for c in picked)
     out = []
     for c in picked:
-        pts = c.points[:, :2] if planar else _pad3(c.points)
+        pts = c.points[:, :2] if planar else pad3(c.points)
         out.append(NurbsCurve(c.degree, c.knots, pts, c.weights))
     return out, labels
-
-
-def _pad3(p: NDArray) -> NDArray:
-    return p if p.shape[1] == 3 else np.column_stack([p, np.zeros(p.shape[0])])
 
 
 def _where(x: NDArray) -> str:

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
+from rancf.elements.mapping import K_RANGE  # the factors a scenario may fix
 from rancf.model.scenario_checks import (
     _REQ,
     _choice,
@@ -38,8 +39,6 @@ __all__ = [
 
 #: Largest ``mesh.elements`` (and total number of elements of a NURBS mesh).
 MAX_ELEMENTS = 1_000_000
-#: The mapping factors a scenario may fix (``mesh.k``); outside, the cubic form degenerates.
-K_RANGE = (1e-4, 1.0 - 1e-4)
 #: Element kinds of ``mesh.element``.
 ELEMENTS = ("rancf", "ancf", "beam", "rod")
 #: Keys of ``[geometry]`` for each kind.

@@ -22,17 +22,13 @@ import tempfile
 from pathlib import Path
 
 import numpy as np
-from numpy.typing import NDArray
 
 from rancf.errors import InputError
+from rancf.geometry.conic_params import pad3
 from rancf.post.results import atomic_write
 from rancf.post.run_data import RunData, frame_indices, nodal_frames, sample_centerline
 
 __all__ = ["export_vtk", "centerline_mesh", "nodes_mesh"]
-
-
-def _pad3(a: NDArray) -> NDArray:
-    return a if a.shape[-1] == 3 else np.concatenate([a, np.zeros(a.shape[:-1] + (1,))], axis=-1)
 
 
 def centerline_mesh(run: RunData, i: int, per_element: int = 16):  # -> meshio.Mesh
@@ -43,15 +39,15 @@ def centerline_mesh(run: RunData, i: int, per_element: int = 16):  # -> meshio.M
     n = c.points.shape[0]
     cells = np.stack([np.arange(n - 1), np.arange(1, n)], axis=1)
     data = {
-        "displacement": _pad3(c.displacement),
-        "velocity": _pad3(c.velocity),
+        "displacement": pad3(c.displacement),
+        "velocity": pad3(c.velocity),
         "axial_strain": c.axial_strain,
         "curvature": c.curvature,
         "element": c.element.astype(np.int32),
     }
     if run.radius is not None:
         data["radius"] = np.full(n, run.radius)
-    return meshio.Mesh(_pad3(c.points), [("line", cells)], point_data=data)
+    return meshio.Mesh(pad3(c.points), [("line", cells)], point_data=data)
 
 
 def nodes_mesh(run: RunData, i: int):  # -> meshio.Mesh
