@@ -30,7 +30,7 @@ from numpy.typing import NDArray
 
 from rancf.model.system import Model
 
-__all__ = ["ModalResult", "natural_modes", "rigid_body_modes"]
+__all__ = ["ModalResult", "natural_modes", "rigid_body_modes", "tangent_stiffness"]
 
 
 @dataclass(frozen=True)
@@ -128,23 +128,16 @@ def natural_modes(model: Model, y: NDArray | None = None, count: int | None = No
     """
     if y is None:
         model.reset_triads()
-        y = model.y0
-        kl = None
-    else:
-        y = np.asarray(y, dtype=float)
-        kl = model.load_stiffness(0.0, y, amplitude=True)
-    _, kb = model.internal_force_and_tangent(y)
+    k_full, symmetric = tangent_stiffness(model, y)  # the reference: no loads
+    y = model.y0 if y is None else np.asarray(y, dtype=float)
     free = ~model.fixed
-    k = model.dense(kb)[np.ix_(free, free)]
+    k = k_full[np.ix_(free, free)]
     m = model.dense(model.mass_band)[np.ix_(free, free)]
-    kl = None if kl is None else model.dense(kl)[np.ix_(free, free)]
-    if kl is None or not kl.any():
+    if symmetric:
         k = 0.5 * (k + k.T)
         lam, phi = scipy.linalg.eigh(k, m)
-        symmetric = True
     else:
-        lam, phi = _general_modes(k - kl, m)
-        symmetric = False
+        lam, phi = _general_modes(k, m)
     rigid = rigid_body_modes(model, y)[free]
     n_rigid = rigid.shape[1]
     keep = np.ones(lam.size, dtype=bool)
@@ -166,6 +159,26 @@ def natural_modes(model: Model, y: NDArray | None = None, count: int | None = No
         freqs = root.real / (2.0 * np.pi)
         growth = np.abs(root.imag)
     return ModalResult(freqs, modes, int(np.sum(~keep)), lam, growth, symmetric)
+
+
+def tangent_stiffness(model: Model, y: NDArray | None = None) -> tuple[NDArray[np.float64], bool]:
+    """The tangent :func:`natural_modes` linearizes with, dense ``(n, n)``, and whether it is the
+    symmetric elastic tangent alone.
+
+    Without ``y``: the elastic tangent at the reference (the unloaded structure).  With ``y``:
+    ``∂(f_int - f_ext)/∂y`` at ``y`` with the loads at their amplitude (as in statics) — the
+    elastic tangent minus the point moments' load stiffness; ``False`` when the latter is
+    present (non-zero), so that the general eigenproblem is solved.
+    """
+    yy = model.y0 if y is None else np.asarray(y, dtype=float)
+    _, kb = model.internal_force_and_tangent(yy)
+    k = model.dense(kb)
+    if y is None:
+        return k, True
+    kl = model.dense(model.load_stiffness(0.0, yy, amplitude=True))
+    if not kl.any():
+        return k, True
+    return k - kl, False
 
 
 def _general_modes(
