@@ -206,7 +206,7 @@ def test_lowest_frequency_under_a_bending_moment_matches_the_dynamic_response():
 
 
 def test_cli_modes_about_static_reports_growth_rates(tmp_path, capsys):
-    """The CLI: the general problem is named, growth rates printed and in the JSON."""
+    """The CLI: the general problem is named, growth rates printed, in the JSON and plotted."""
     f = tmp_path / "torque.toml"
     f.write_text(
         '[geometry]\nkind = "line"\nstart = [0.0, 0.0, 0.0]\nend = [0.5, 0.0, 0.0]\n'
@@ -219,7 +219,9 @@ def test_cli_modes_about_static_reports_growth_rates(tmp_path, capsys):
     d = json.loads(capsys.readouterr().out)
     assert d["eigenproblem"] == "general"
     assert d["growth_rates_per_s"][0] == pytest.approx(0.734, abs=1e-3)
-    assert main(["modes", str(f), "--about", "static", "--count", "2"]) == 0
+    png = tmp_path / "modes.png"
+    assert main(["modes", str(f), "--about", "static", "--count", "2", "--plot", str(png)]) == 0
+    assert png.stat().st_size > 0  # mode shapes of a rod (its twist left out of the centreline)
     out = capsys.readouterr().out.splitlines()
     assert out[1] == "  mode  1      1.937528 Hz  growth rate 0.734094 1/s"
     assert "flutter" in out[-1]

@@ -44,7 +44,8 @@ class ModalResult:
     modes : ndarray
         ``(count, n)`` shapes in full coordinates, M-normalized.  A complex mode (flutter) is
         stored as the real part of ``φ`` scaled so that ``φᴴ M φ = 1`` and its largest
-        component is real and positive (the shape when that component peaks).
+        component is real and positive (the shape when that component peaks); the two modes
+        of a conjugate pair then show the same shape.
     n_rigid : int
     eigenvalues : ndarray
         ``λ = ω²``: real for the symmetric problem, complex for the general one.
