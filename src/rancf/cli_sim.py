@@ -259,8 +259,11 @@ def _cmd_modes(args: argparse.Namespace) -> int:
 
         with atomic_path(plot) as tmp:
             plot_modes(model, res, tmp, y)
+    growth = res.growth_rates if res.growth_rates is not None else np.zeros_like(res.frequencies_hz)
     out = {
         "frequencies_hz": res.frequencies_hz.tolist(),
+        "growth_rates_per_s": growth.tolist(),
+        "eigenproblem": "symmetric" if res.symmetric else "general",
         "rigid_body_modes_removed": res.n_rigid,
         "about": about,
         "n_dofs_free": int(np.sum(~model.fixed)),
@@ -272,8 +275,15 @@ def _cmd_modes(args: argparse.Namespace) -> int:
             f"natural frequencies about the {about} configuration "
             f"({res.n_rigid} rigid-body mode(s) removed):"
         )
-        for i, f in enumerate(res.frequencies_hz, 1):
-            print(f"  mode {i:2d}  {f:12.6f} Hz")
+        for i, (f, g) in enumerate(zip(res.frequencies_hz, growth, strict=True), 1):
+            extra = "" if res.symmetric else f"  growth rate {g:.6g} 1/s"
+            print(f"  mode {i:2d}  {f:12.6f} Hz{extra}")
+        if not res.symmetric:
+            print(
+                "  note: general eigenproblem (the point moments' load stiffness is not "
+                "symmetric);\n  a growth rate > 0 is an unstable mode: flutter (frequency > 0) "
+                "or divergence (frequency 0)."
+            )
         if np.any(res.frequencies_hz < 1e-6):
             print(
                 "  note: zero-frequency modes that are not rigid-body motions are kept; for a "

@@ -341,6 +341,19 @@ class Model:
         self.core.external_force(float(t), yy, f, amplitude)
         return f
 
+    def load_stiffness(
+        self, t: float, y: ArrayLike | None = None, amplitude: bool = False
+    ) -> NDArray[np.float64]:
+        """``∂f_ext/∂y`` at ``t`` and ``y`` (band storage ``(2 ku + 1, n)``).
+
+        Only point moments (rods) depend on the configuration; the core evaluates their load
+        stiffness as in Newton's tangent.  Zero for every other model.
+        """
+        ab = np.empty((2 * self.ku + 1, self.n))
+        yy = self.y0 if y is None else np.asarray(y, dtype=float)
+        self.core.load_stiffness(float(t), yy, ab, amplitude)
+        return ab
+
     @property
     def total_mass(self) -> float:
         """Mass of the model: ``Σ_ij M_ij`` over the x components."""

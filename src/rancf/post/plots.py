@@ -27,14 +27,19 @@ def pyplot() -> Any:
 def centerline(model: Model, q: NDArray, per_element: int = 16) -> NDArray[np.float64]:
     """Points along the centreline of configuration ``q``, shape ``(n_points, dim)``.
 
-    Cable elements are evaluated with their shape functions; beam elements as their chords.
+    Cable and rod elements are evaluated with their shape functions (a rod's twist is left out);
+    beam elements as their chords.
     """
     q = np.asarray(q, dtype=float)
     if model.element == "beam":
         return model.node_positions(q)
     xi = np.linspace(0.0, 1.0, per_element + 1)
     n = cable_shape_functions(model.mesh.weights, model.mesh.scales, xi)[0]
-    e = model.gather(q).reshape(model.n_el, 4, model.dim)
+    if model.element == "rod":  # r, r_x of both nodes
+        nodes = q.reshape(model.n_nodes, model.dpn)[:, : 2 * model.dim]
+        e = np.concatenate([nodes[:-1], nodes[1:]], axis=1).reshape(model.n_el, 4, model.dim)
+    else:
+        e = model.gather(q).reshape(model.n_el, 4, model.dim)
     pts = np.einsum("eqk,ekd->eqd", n, e)
     return np.concatenate([pts[:, :-1].reshape(-1, model.dim), pts[-1:, -1]], axis=0)
 
@@ -58,7 +63,11 @@ def plot_modes(model: Model, modal: Any, path: str | Path, y: NDArray | None = N
         cur = centerline(model, base + amp * shape)
         ax.plot(*ref.T, color="0.6", lw=1, label="configuration")
         ax.plot(*cur.T, color="C3", lw=2, label="mode (scaled)")
-        ax.set_title(f"mode {i + 1}: {modal.frequencies_hz[i]:.4f} Hz")
+        title = f"mode {i + 1}: {modal.frequencies_hz[i]:.4f} Hz"
+        growth = getattr(modal, "growth_rates", None)
+        if growth is not None and growth[i] > 0:
+            title += f", growth {growth[i]:.3g} 1/s"
+        ax.set_title(title)
         ax.set_xlabel("x [m]")
         ax.set_ylabel("y [m]")
         if three:

@@ -1,14 +1,23 @@
 """Natural frequencies and mode shapes of a model linearized about a configuration.
 
-``K_T(y*) φ = ω² M φ`` on the free coordinates (generalized symmetric eigenproblem, LAPACK
-``sygvd`` via :func:`scipy.linalg.eigh`).  Rigid-body modes are identified geometrically: the
-infinitesimal translations and rotations of the configuration that the supports allow span the
-rigid subspace; an eigenvector lying in it (M-norm share above 0.99) is a rigid-body mode and is
-removed.  Any other zero or near-zero frequency is reported as it is — for instance the
-out-of-plane bending of a curved spatial cable, which the magnitude curvature ``|r' × r''|/|r'|³``
-does not resist to first order (math note sec. 6); the rod element (``"rod"``) has that stiffness.
-Rod models linearized about a static equilibrium under point moments leave out the moments'
-(non-symmetric) load stiffness: the problem solved is the symmetric part of the elastic tangent.
+``K_T(y*) φ = ω² M φ`` on the free coordinates.  About the reference configuration, and about any
+configuration whose loads do not depend on the configuration, ``K_T`` is the (symmetric) elastic
+tangent: generalized symmetric eigenproblem, LAPACK ``sygvd`` via :func:`scipy.linalg.eigh`.
+About a loaded configuration (``y`` given, e.g. the static equilibrium) ``K_T`` also holds the
+load stiffness ``-∂f_ext/∂y`` of the loads at their amplitude: gravity and point forces are dead
+loads (none), a rod's point moments have one, non-symmetric in general (the core's, as in the
+static Newton tangent).  That problem is solved by the general QZ algorithm
+(:func:`scipy.linalg.eig`); its eigenvalues ``λ = ω²`` may be complex (flutter) or negative
+(divergence): a motion ``e^{μt}`` with ``μ² = -λ``, ``√λ = a + ib`` (principal root) oscillates
+at ``a / 2π`` Hz and one of its roots grows like ``e^{|b| t}`` — reported as ``growth_rates``
+[1/s], never dropped.
+
+Rigid-body modes are identified geometrically: the infinitesimal translations and rotations of the
+configuration that the supports allow span the rigid subspace; an eigenvector lying in it (M-norm
+share above 0.99) is a rigid-body mode and is removed.  Any other zero or near-zero frequency is
+reported as it is — for instance the out-of-plane bending of a curved spatial cable, which the
+magnitude curvature ``|r' × r''|/|r'|³`` does not resist to first order (math note sec. 6); the
+rod element (``"rod"``) has that stiffness.
 """
 
 from __future__ import annotations
@@ -21,17 +30,38 @@ from numpy.typing import NDArray
 
 from rancf.model.system import Model
 
-__all__ = ["ModalResult", "natural_modes", "rigid_body_modes"]
+__all__ = ["ModalResult", "natural_modes", "rigid_body_modes", "tangent_stiffness"]
 
 
 @dataclass(frozen=True)
 class ModalResult:
-    """Frequencies (Hz, ascending, rigid-body modes removed) and full-coordinate mode shapes."""
+    """Frequencies (Hz, ascending, rigid-body modes removed) and full-coordinate mode shapes.
+
+    Attributes
+    ----------
+    frequencies_hz : ndarray
+        ``Re √λ / 2π`` (0 for ``λ <= 0``).
+    modes : ndarray
+        ``(count, n)`` shapes in full coordinates, M-normalized.  A complex mode (flutter) is
+        stored as the real part of ``φ`` scaled so that ``φᴴ M φ = 1`` and its largest
+        component is real and positive (the shape when that component peaks); the two modes
+        of a conjugate pair then show the same shape.
+    n_rigid : int
+    eigenvalues : ndarray
+        ``λ = ω²``: real for the symmetric problem, complex for the general one.
+    growth_rates : ndarray
+        ``|Im √λ|`` [1/s]: 0 for a stable mode, the e-folding rate of the growing root of an
+        unstable one (flutter if the frequency is > 0, divergence if it is 0).
+    symmetric : bool
+        True when the symmetric problem was solved (no configuration-dependent loads).
+    """
 
     frequencies_hz: NDArray[np.float64]
     modes: NDArray[np.float64]
     n_rigid: int
-    eigenvalues: NDArray[np.float64]
+    eigenvalues: NDArray[np.float64] | NDArray[np.complex128]
+    growth_rates: NDArray[np.float64] | None = None
+    symmetric: bool = True
 
 
 def rigid_body_modes(model: Model, y: NDArray) -> NDArray[np.float64]:
@@ -90,31 +120,78 @@ def natural_modes(model: Model, y: NDArray | None = None, count: int | None = No
     ----------
     model : Model
     y : ndarray, optional
-        Configuration to linearize about, e.g. a static equilibrium.
+        Configuration to linearize about, in equilibrium with the model's loads at their
+        amplitude, e.g. :func:`rancf.solvers.static.solve_static`'s ``y`` (with the rod triads
+        it leaves).  Its load stiffness (point moments) enters the tangent.  Without ``y``: the
+        unloaded reference configuration.
     count : int, optional
         Number of (non-rigid) modes to return; default all.
     """
     if y is None:
         model.reset_triads()
+    k_full, symmetric = tangent_stiffness(model, y)  # the reference: no loads
     y = model.y0 if y is None else np.asarray(y, dtype=float)
-    _, kb = model.internal_force_and_tangent(y)
     free = ~model.fixed
-    k = model.dense(kb)[np.ix_(free, free)]
+    k = k_full[np.ix_(free, free)]
     m = model.dense(model.mass_band)[np.ix_(free, free)]
-    k = 0.5 * (k + k.T)
-    lam, phi = scipy.linalg.eigh(k, m)
+    if symmetric:
+        k = 0.5 * (k + k.T)
+        lam, phi = scipy.linalg.eigh(k, m)
+    else:
+        lam, phi = _general_modes(k, m)
     rigid = rigid_body_modes(model, y)[free]
     n_rigid = rigid.shape[1]
     keep = np.ones(lam.size, dtype=bool)
     if n_rigid:
-        share = np.sum((rigid.T @ m @ phi) ** 2, axis=0)  # φ M-normalized by eigh
+        share = np.sum(np.abs(rigid.T @ m @ phi) ** 2, axis=0)  # φ M-normalized
         order = np.argsort(-share)[:n_rigid]
         keep[order[share[order] > 0.99]] = False
     lam, phi = lam[keep], phi[:, keep]
     if count is not None:
         lam, phi = lam[:count], phi[:, :count]
     modes = np.zeros((lam.size, model.n))
-    modes[:, free] = phi.T
+    modes[:, free] = phi.real.T
     modes = model.q_from_y(modes)
-    freqs = np.sqrt(np.clip(lam, 0.0, None)) / (2.0 * np.pi)
-    return ModalResult(freqs, modes, int(np.sum(~keep)), lam)
+    if symmetric:
+        freqs = np.sqrt(np.clip(lam, 0.0, None)) / (2.0 * np.pi)
+        growth = np.sqrt(np.clip(-lam, 0.0, None))
+    else:
+        root = np.sqrt(lam)  # principal branch: real part >= 0
+        freqs = root.real / (2.0 * np.pi)
+        growth = np.abs(root.imag)
+    return ModalResult(freqs, modes, int(np.sum(~keep)), lam, growth, symmetric)
+
+
+def tangent_stiffness(model: Model, y: NDArray | None = None) -> tuple[NDArray[np.float64], bool]:
+    """The tangent :func:`natural_modes` linearizes with, dense ``(n, n)``, and whether it is the
+    symmetric elastic tangent alone.
+
+    Without ``y``: the elastic tangent at the reference (the unloaded structure).  With ``y``:
+    ``∂(f_int - f_ext)/∂y`` at ``y`` with the loads at their amplitude (as in statics) — the
+    elastic tangent minus the point moments' load stiffness; ``False`` when the latter is
+    present (non-zero), so that the general eigenproblem is solved.
+    """
+    yy = model.y0 if y is None else np.asarray(y, dtype=float)
+    _, kb = model.internal_force_and_tangent(yy)
+    k = model.dense(kb)
+    if y is None:
+        return k, True
+    kl = model.dense(model.load_stiffness(0.0, yy, amplitude=True))
+    if not kl.any():
+        return k, True
+    return k - kl, False
+
+
+def _general_modes(
+    k: NDArray[np.float64], m: NDArray[np.float64]
+) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
+    """``k φ = λ m φ`` for a non-symmetric ``k`` (QZ): ``λ`` ascending by real, then imaginary
+    part; ``φ`` scaled to ``φᴴ m φ = 1`` with its largest component real and positive."""
+    lam, phi = scipy.linalg.eig(k, m)
+    lam = lam.astype(np.complex128)
+    order = np.lexsort((lam.imag, lam.real))
+    lam, phi = lam[order], phi[:, order].astype(np.complex128)
+    phi /= np.sqrt(np.einsum("ij,ik,kj->j", phi.conj(), m, phi).real)
+    big = phi[np.argmax(np.abs(phi), axis=0), np.arange(phi.shape[1])]
+    phi *= big.conj() / np.abs(big)
+    return lam, phi
