@@ -13,11 +13,11 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from rancf.exudyn_compat import cable2d, dynamic_settings, quiet_settings, straight_cable2d
+
 try:
     import exudyn as exu
-    from exudyn.beams import GenerateStraightLineANCFCable2D
     from exudyn.itemInterface import (
-        Cable2D,
         CoordinateConstraint,
         LoadForceVector,
         LoadMassProportional,
@@ -35,22 +35,14 @@ except ImportError:  # pragma: no cover - optional
     VERSION = None
 
 
-def _settings(t_end: float, step: float, rho_inf: float, sparse: bool = False) -> object:
-    ss = exu.SimulationSettings()
-    if sparse:
-        ss.linearSolverType = exu.LinearSolverType.EigenSparse
-    ss.timeIntegration.numberOfSteps = int(round(t_end / step))
-    ss.timeIntegration.endTime = t_end
-    ss.timeIntegration.generalizedAlpha.spectralRadius = rho_inf
-    ss.timeIntegration.verboseMode = 0
-    ss.solutionSettings.writeSolutionToFile = False
-    ss.displayComputationTime = False
-    ss.displayStatistics = False
-    return ss
-
-
-def _straight_cable(
-    n: int, length: float, rho_a: float, ei: float, ea: float, fixed: list[int], **kw: object
+def straight_cable(
+    n: int,
+    length: float,
+    rho_a: float,
+    ei: float,
+    ea: float,
+    fixed: list[int],
+    gravity: Sequence[float] = (0.0, 0.0, 0.0),
 ) -> tuple[object, object, list[int]]:
     """A straight ANCFCable2D chain along x; ``fixed`` constrains node 0 (x, y, x', y').
 
@@ -58,18 +50,8 @@ def _straight_cable(
     """
     sc = exu.SystemContainer()
     mbs = sc.AddSystem()
-    cable = Cable2D(
-        physicsMassPerLength=rho_a, physicsBendingStiffness=ei, physicsAxialStiffness=ea
-    )
-    nodes = GenerateStraightLineANCFCable2D(
-        mbs=mbs,
-        positionOfNode0=[0, 0, 0],
-        positionOfNode1=[length, 0, 0],
-        numberOfElements=n,
-        cableTemplate=cable,
-        fixedConstraintsNode0=fixed,
-        **kw,
-    )[0]
+    cable = cable2d(massPerLength=rho_a, bendingStiffness=ei, axialStiffness=ea)
+    nodes = straight_cable2d(mbs, [0, 0, 0], [length, 0, 0], n, cable, gravity, fixed)
     return sc, mbs, nodes
 
 
@@ -89,17 +71,11 @@ def straight_pendulum(
 
     ``sparse`` selects Exudyn's EigenSparse linear solver instead of its dense default.
     """
-    sc, mbs, nodes = _straight_cable(
-        n,
-        length,
-        density * area,
-        youngs * inertia,
-        youngs * area,
-        [1, 1, 0, 0],
-        massProportionalLoad=[0, -9.81, 0],
+    sc, mbs, nodes = straight_cable(
+        n, length, density * area, youngs * inertia, youngs * area, [1, 1, 0, 0], [0, -9.81, 0]
     )
     mbs.Assemble()
-    ss = _settings(t_end, step, rho_inf, sparse)
+    ss = dynamic_settings(t_end, step, rho_inf, sparse)
     t0 = time.perf_counter()
     mbs.SolveDynamic(ss)
     wall = time.perf_counter() - t0
@@ -116,16 +92,13 @@ def static_cantilever(
     youngs: float,
 ) -> tuple[float, np.ndarray]:
     """Clamped cantilever (position and slope direction fixed) with a vertical tip load."""
-    sc, mbs, nodes = _straight_cable(n, length, 1.0, youngs * inertia, youngs * area, [1, 1, 0, 1])
+    sc, mbs, nodes = straight_cable(n, length, 1.0, youngs * inertia, youngs * area, [1, 1, 0, 1])
     marker = mbs.AddMarker(MarkerNodePosition(nodeNumber=nodes[-1]))
     mbs.AddLoad(LoadForceVector(markerNumber=marker, loadVector=[0, -force, 0]))
     mbs.Assemble()
-    ss = exu.SimulationSettings()
+    ss = quiet_settings()
     ss.staticSolver.numberOfLoadSteps = load_steps
     ss.staticSolver.verboseMode = 0
-    ss.solutionSettings.writeSolutionToFile = False
-    ss.displayComputationTime = False
-    ss.displayStatistics = False
     t0 = time.perf_counter()
     mbs.SolveStatic(ss)
     wall = time.perf_counter() - t0
@@ -156,11 +129,11 @@ def curved_pendulum(
     ]
     for i, length in enumerate(lengths):
         obj = mbs.AddObject(
-            Cable2D(
-                physicsLength=length,
-                physicsMassPerLength=density * area,
-                physicsBendingStiffness=youngs * inertia,
-                physicsAxialStiffness=youngs * area,
+            cable2d(
+                length=length,
+                massPerLength=density * area,
+                bendingStiffness=youngs * inertia,
+                axialStiffness=youngs * area,
                 strainIsRelativeToReference=1.0,
                 nodeNumbers=[nodes[i], nodes[i + 1]],
             )
@@ -176,7 +149,7 @@ def curved_pendulum(
         mn = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=nodes[0], coordinate=c))
         mbs.AddObject(CoordinateConstraint(markerNumbers=[mg, mn]))
     mbs.Assemble()
-    ss = _settings(t_end, step, rho_inf)
+    ss = dynamic_settings(t_end, step, rho_inf)
     t0 = time.perf_counter()
     mbs.SolveDynamic(ss)
     wall = time.perf_counter() - t0

@@ -6,7 +6,9 @@ L = 1.2 m, circular section r = 0.02 m, rho = 6000 kg/m^3, E = 2e8 Pa, pinned at
 horizontal under gravity; generalized-alpha rho_inf = 0.9, h = 1 ms, 1 s.  Prints one JSON line:
 set-up time (model building and assembly), solve time, steps and the tip position.  Like
 `rancf simulate`, the time counts from the start of this script's own code (imports included in
-the whole-process time measured outside).
+the whole-process time measured outside).  The chain is ``exudyn_cases.straight_cable``, Exudyn's
+names for this version come from ``rancf.exudyn_compat``, which imports no other part of rancf
+(about 1 ms).
 """
 
 from __future__ import annotations
@@ -15,14 +17,13 @@ import argparse
 import json
 import math
 import time
-import warnings
 
 T0 = time.perf_counter()
-warnings.filterwarnings("ignore", category=DeprecationWarning)  # Exudyn's renamed settings
 
 import exudyn as exu  # noqa: E402
-from exudyn.beams import GenerateStraightLineANCFCable2D  # noqa: E402
-from exudyn.itemInterface import Cable2D  # noqa: E402
+from exudyn_cases import straight_cable  # noqa: E402
+
+from rancf.exudyn_compat import dynamic_settings  # noqa: E402
 
 LENGTH, RADIUS, DENSITY, YOUNGS = 1.2, 0.02, 6000.0, 2.0e8
 
@@ -35,33 +36,17 @@ def main() -> None:
     p.add_argument("--step", type=float, default=1e-3)
     a = p.parse_args()
     area, inertia = math.pi * RADIUS**2, math.pi * RADIUS**4 / 4.0
-    sc = exu.SystemContainer()
-    mbs = sc.AddSystem()
-    cable = Cable2D(
-        physicsMassPerLength=DENSITY * area,
-        physicsBendingStiffness=YOUNGS * inertia,
-        physicsAxialStiffness=YOUNGS * area,
+    sc, mbs, nodes = straight_cable(
+        a.elements,
+        LENGTH,
+        DENSITY * area,
+        YOUNGS * inertia,
+        YOUNGS * area,
+        [1, 1, 0, 0],
+        [0, -9.81, 0],
     )
-    nodes = GenerateStraightLineANCFCable2D(
-        mbs=mbs,
-        positionOfNode0=[0, 0, 0],
-        positionOfNode1=[LENGTH, 0, 0],
-        numberOfElements=a.elements,
-        cableTemplate=cable,
-        massProportionalLoad=[0, -9.81, 0],
-        fixedConstraintsNode0=[1, 1, 0, 0],
-    )[0]
     mbs.Assemble()
-    ss = exu.SimulationSettings()
-    if a.solver == "sparse":
-        ss.linearSolverType = exu.LinearSolverType.EigenSparse
-    ss.timeIntegration.numberOfSteps = int(round(a.t_end / a.step))
-    ss.timeIntegration.endTime = a.t_end
-    ss.timeIntegration.generalizedAlpha.spectralRadius = 0.9
-    ss.timeIntegration.verboseMode = 0
-    ss.solutionSettings.writeSolutionToFile = False
-    ss.displayComputationTime = False
-    ss.displayStatistics = False
+    ss = dynamic_settings(a.t_end, a.step, 0.9, sparse=a.solver == "sparse")
     t1 = time.perf_counter()
     mbs.SolveDynamic(ss)
     t2 = time.perf_counter()

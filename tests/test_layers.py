@@ -9,6 +9,7 @@ ROOT = Path(__file__).resolve().parents[1] / "src" / "rancf"
 LAYERS = {
     "errors": 0,
     "extras": 0,
+    "exudyn_compat": 0,
     "geometry": 1,
     "elements": 2,
     "cad": 2,

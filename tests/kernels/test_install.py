@@ -1,10 +1,20 @@
-"""A read-only install used without a home directory: nothing compiled, cached or written."""
+"""A read-only install used without a home directory: nothing compiled, cached or written.
 
+The installed package is copied read-only and run from the copy.  An editable install
+(``pip install -e``, scikit-build-core's redirect mode) splits the package: the compiled core in
+site-packages, the Python files and scenarios in ``src/rancf``, joined by an import hook that
+takes ``rancf`` before ``PYTHONPATH`` is looked at.  There the copy joins both parts (what a
+wheel installs) and runs without ``site`` (no hook; site-packages on ``PYTHONPATH`` instead).
+"""
+
+import json
 import os
 import shutil
+import site
 import stat
 import subprocess
 import sys
+from importlib import metadata
 from pathlib import Path
 
 import rancf
@@ -15,24 +25,35 @@ def _tree(root: Path) -> dict[str, float]:
     return {str(p.relative_to(root)): p.stat().st_mtime for p in root.rglob("*")}
 
 
+def _editable() -> bool:
+    """Whether rancf is an editable install (PEP 610: ``direct_url.json``, ``dir_info``)."""
+    url = metadata.distribution("rancf").read_text("direct_url.json")
+    return bool(url and json.loads(url).get("dir_info", {}).get("editable"))
+
+
 def test_read_only_install_without_home(tmp_path):
     ro = tmp_path / "site"
-    shutil.copytree(
-        Path(rancf.__file__).parent, ro / "rancf", ignore=shutil.ignore_patterns("__pycache__")
-    )
+    for part in rancf.__path__:  # one folder; an editable install's two, joined
+        shutil.copytree(
+            part, ro / "rancf", ignore=shutil.ignore_patterns("__pycache__"), dirs_exist_ok=True
+        )
+    assert list((ro / "rancf" / "kernels").glob("_core.*")) and (ro / "rancf" / "examples").is_dir()
     for p in [ro, *ro.rglob("*")]:  # read-only for everyone (root ignores it: see the tree check)
         mode = p.stat().st_mode & ~(stat.S_IWUSR | stat.S_IWGRP | stat.S_IWOTH)
         p.chmod(mode)
     before = _tree(ro)
     home = tmp_path / "no-such-home"
     env = {k: v for k, v in os.environ.items() if not k.startswith(("MPL", "NUMBA", "XDG"))}
-    env.update(HOME=str(home), PYTHONPATH=str(ro), PYTHONDONTWRITEBYTECODE="1")
+    path, flags = [str(ro)], []
+    if _editable():
+        path, flags = [*path, *site.getsitepackages()], ["-S"]
+    env.update(HOME=str(home), PYTHONPATH=os.pathsep.join(path), PYTHONDONTWRITEBYTECODE="1")
     scenario = tmp_path / "p.toml"
     scenario.write_text(SCENARIO)
 
     def run(*args: str) -> subprocess.CompletedProcess:
         return subprocess.run(
-            [sys.executable, *args], env=env, cwd=tmp_path, capture_output=True, text=True
+            [sys.executable, *flags, *args], env=env, cwd=tmp_path, capture_output=True, text=True
         )
 
     where = run("-c", "import rancf.kernels._core as c, rancf; print(rancf.__file__)")

@@ -3,7 +3,7 @@
 Exudyn is optional (``pip install 'rancf[bench]'``); :data:`AVAILABLE` says whether it imported.
 The model mirrors ``benchmarks/exudyn_cases.py`` (``curved_pendulum``): one ``Cable2D`` per
 element between ``NodePoint2DSlope1`` nodes at the exact node positions and unit tangents of the
-conic, ``physicsLength`` the element's arc length, ``strainIsRelativeToReference = 1`` (the
+conic, ``length`` the element's arc length, ``strainIsRelativeToReference = 1`` (the
 Hermite cubic through the nodes is the stress-free reference), gravity as a mass-proportional
 load, the first node pinned.  Exudyn uses the axial strain ``|r'| - 1`` and the curvature
 ``(r' × r'')_z / |r'|²`` (rancf: Green–Lagrange strain, ``/ |r'|³``), so its converged answer
@@ -17,6 +17,8 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
+
+from rancf.exudyn_compat import cable2d, dynamic_settings
 
 try:
     import exudyn as exu
@@ -61,7 +63,6 @@ def curved_pendulum_tip(
     tip : ndarray, shape (n_t, 2)
     """
     from exudyn.itemInterface import (
-        Cable2D,
         CoordinateConstraint,
         LoadMassProportional,
         MarkerBodyMass,
@@ -78,11 +79,11 @@ def curved_pendulum_tip(
     ]
     for i, length in enumerate(lengths):
         obj = mbs.AddObject(
-            Cable2D(
-                physicsLength=float(length),
-                physicsMassPerLength=density * area,
-                physicsBendingStiffness=youngs * inertia,
-                physicsAxialStiffness=youngs * area,
+            cable2d(
+                length=float(length),
+                massPerLength=density * area,
+                bendingStiffness=youngs * inertia,
+                axialStiffness=youngs * area,
                 strainIsRelativeToReference=1.0,
                 nodeNumbers=[ids[i], ids[i + 1]],
             )
@@ -102,15 +103,12 @@ def curved_pendulum_tip(
         )
     )
     mbs.Assemble()
-    ss = exu.SimulationSettings()
-    ss.timeIntegration.numberOfSteps = int(round(solver["t_end"] / solver["step"]))
-    ss.timeIntegration.endTime = solver["t_end"]
-    ss.timeIntegration.generalizedAlpha.spectralRadius = solver["rho_inf"]
-    ss.timeIntegration.verboseMode = 0
-    ss.solutionSettings.writeSolutionToFile = False
-    ss.solutionSettings.sensorsWritePeriod = solver["output_step"]
-    ss.displayComputationTime = False
-    ss.displayStatistics = False
+    ss = dynamic_settings(
+        solver["t_end"],
+        solver["step"],
+        solver["rho_inf"],
+        sensors_write_period=solver["output_step"],
+    )
     mbs.SolveDynamic(ss)
     data = np.asarray(mbs.GetSensorStoredData(sensor))
     return data[:, 0], data[:, 1:3]
