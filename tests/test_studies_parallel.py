@@ -8,6 +8,7 @@ import multiprocessing
 import subprocess
 import sys
 import threading
+import time
 from pathlib import Path
 
 import pytest
@@ -98,6 +99,14 @@ def test_an_interrupted_report_keeps_the_finished_studies(tmp_path, monkeypatch,
     def runner(name):
         def run(out, quick, executor=None):
             if name == "spatial-pendulum":
+                # interrupted once the planar study has finished (in a driver of its own with
+                # 2 workers: wait for its result to have reached the report process)
+                done = out.parent / "planar-pendulum" / "table.csv"
+                for _ in range(500):
+                    if done.exists():
+                        break
+                    time.sleep(0.01)
+                time.sleep(0.5)
                 raise KeyboardInterrupt
             out.mkdir(parents=True, exist_ok=True)
             (out / "table.csv").write_text("x\n1\n")
