@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import argparse
+import sys
 from pathlib import Path
 from typing import Any
 
@@ -54,6 +55,12 @@ def _cmd_export(args: argparse.Namespace) -> int:
         print(f"{n} VTK frame(s) of {run.name} written; open {pvd} in ParaView")
         if run.directors is not None:
             print(f"rod nodes and material frames: {pvd.with_name(f'{run.name}_nodes.pvd')}")
+        elif run.element == "rod":
+            print(
+                f"rancf: note: {run.path} holds no rod directors (written by an older rancf): "
+                "no material frames exported; run `rancf simulate` again to get them",
+                file=sys.stderr,
+            )
     if args.nurbs is not None:
         from rancf.cad import write_curve
 

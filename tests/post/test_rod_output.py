@@ -149,3 +149,21 @@ def test_plot_animate_and_nurbs_export_of_a_rod_run(rod_run, capsys):
         + [breaks[-1:]]
     )
     assert np.abs(back.curve(u) - c.points).max() < 1e-12 * np.abs(c.points).max()
+
+
+def test_a_rod_run_without_directors_exports_its_centreline_and_says_why_no_frames(
+    rod_run, tmp_path, capsys
+):
+    # a run directory written before the directors were stored
+    import shutil
+
+    old = tmp_path / "old"
+    shutil.copytree(rod_run / "run", old)
+    data = dict(np.load(old / "results.npz"))
+    del data["directors"]
+    np.savez(old / "results.npz", **data)
+    assert main(["export", str(old), "--vtk", str(tmp_path / "vtk")]) == 0
+    err = capsys.readouterr().err
+    assert "no rod directors" in err and "no material frames" in err
+    assert (tmp_path / "vtk" / "old.pvd").is_file()
+    assert not list((tmp_path / "vtk").glob("old_nodes*"))
