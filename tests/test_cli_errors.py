@@ -556,6 +556,8 @@ BAD_ARGS = [
     ("report-out-under-file", ["report", "--out", "afile/rep"], 2, "--out"),
     ("static-missing", ["static", "missing.toml"], 2, "missing.toml"),
     ("static-directory", ["static", "adir"], 2, "adir"),
+    ("static-out-file", ["static", "s.toml", "--out", "afile"], 2, "--out"),
+    ("static-out-under-file", ["static", "s.toml", "--out", "afile/st"], 2, "--out"),
 ]
 
 

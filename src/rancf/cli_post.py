@@ -66,10 +66,11 @@ def _cmd_export(args: argparse.Namespace) -> int:
 
         i = run.time_index(args.time)
         curve = run_to_nurbs(run, i)
-        path = write_curve(args.nurbs, curve, f"{run.name} t={run.t[i]:g}")
+        label = f"{'lambda' if run.static else 't'}={run.t[i]:g}"  # ASCII: STEP/IGES names
+        path = write_curve(args.nurbs, curve, f"{run.name} {label}")
         interior = curve.knots[curve.degree + 1 : curve.n_ctrl]
         print(
-            f"t = {run.t[i]:g} s: cubic NURBS, {curve.n_ctrl} control points, "
+            f"{run.time_text(run.t[i], 'g')}: cubic NURBS, {curve.n_ctrl} control points, "
             f"{np.unique(interior).size} interior knot value(s) -> {path}"
         )
     return 0

@@ -13,7 +13,7 @@ from pathlib import Path
 from typing import Any
 
 from rancf.cli_io import OutputDir, atomic_path, check_out_dir, check_plot_path
-from rancf.errors import InputError, RancfError
+from rancf.errors import ConvergenceError, InputError, RancfError
 
 __all__ = ["add_parsers", "DEFAULT_MAX_OUTPUT_GB"]
 
@@ -202,9 +202,28 @@ def _cmd_static(args: argparse.Namespace) -> int:
     from rancf.post.results import sensor_table
     from rancf.solvers.static import solve_static
 
+    out_dir = check_out_dir(args.out) if args.out else None
     sc = load_scenario(args.scenario)
     model = sc.build_model()
-    res = solve_static(model, sc.solver["load_steps"])
+    steps: list[tuple[float, Any, Any]] = []  # the load path, for --out
+
+    def on_step(lam: float, y: Any) -> None:
+        steps.append((lam, y.copy(), model.nodal_directors(y)))
+
+    if out_dir is None:
+        res = solve_static(model, sc.solver["load_steps"])
+    else:
+        with OutputDir(out_dir) as od:
+            try:
+                res = solve_static(model, sc.solver["load_steps"], on_step=on_step)
+                status, message = "completed", "reached load factor 1"
+            except ConvergenceError as exc:
+                status, message = "failed", str(exc)
+                raise
+            finally:
+                if steps:  # what converged is kept, also when a later increment fails
+                    _write_static(out_dir, model, sc, args.scenario, steps, status, message)
+                    od.keep()
     pos = model.node_positions(res.q)
     names, vals = sensor_table(model, sc.sensors, res.q)
     out = {
@@ -218,11 +237,31 @@ def _cmd_static(args: argparse.Namespace) -> int:
     else:
         print(
             f"static equilibrium: {len(res.load_factors) - 1} load steps, "
-            f"{res.n_newton} Newton iterations"
+            f"{res.n_newton} Newton iterations" + (f" -> {out_dir}" if out_dir is not None else "")
         )
         for k, v in out["sensors"].items():
             print(f"  {k:12s} {v: .9g}")
     return 0
+
+
+def _write_static(
+    out: Path, model: Any, sc: Any, scenario: str, steps: list, status: str, message: str
+) -> None:
+    """The load path of ``rancf static --out`` as a run directory."""
+    import numpy as np
+
+    from rancf.post.results import write_static_run
+
+    rod = model.element == "rod"
+    write_static_run(
+        out,
+        model,
+        sc.sensors,
+        np.array([lam for lam, _, _ in steps]),
+        np.array([y for _, y, _ in steps]),
+        {"status": status, "message": message, "scenario": str(Path(scenario).resolve())},
+        np.array([m for _, _, m in steps]) if rod else None,
+    )
 
 
 def _cmd_modes(args: argparse.Namespace) -> int:
@@ -320,6 +359,12 @@ def add_parsers(sub: Any) -> None:
     st = sub.add_parser("static", help="static equilibrium of a scenario (Newton, load steps)")
     st.add_argument("scenario")
     st.add_argument("--json", action="store_true", help="print one JSON object")
+    st.add_argument(
+        "--out",
+        default=None,
+        help="also write the load path as a run directory (λ in place of t) for export, plot "
+        "and animate",
+    )
     st.set_defaults(func=_cmd_static)
 
     m = sub.add_parser("modes", help="natural frequencies and mode shapes of a scenario")

@@ -354,6 +354,15 @@ class Model:
         self.core.load_stiffness(float(t), yy, ab, amplitude)
         return ab
 
+    def nodal_directors(self, y: ArrayLike) -> NDArray[np.float64] | None:
+        """Rods: each node's director ``m1`` ``(n_nodes, 3)`` at ``y``, from the nodal triads as
+        the solvers last carried them (exact for the state they were carried to); else None."""
+        if self.element != "rod":
+            return None
+        t, m1 = np.empty(3 * self.n_nodes), np.empty(3 * self.n_nodes)
+        self.core.nodal_triads(np.asarray(y, dtype=float), t, m1)
+        return m1.reshape(self.n_nodes, 3)
+
     @property
     def total_mass(self) -> float:
         """Mass of the model: ``Σ_ij M_ij`` over the x components."""

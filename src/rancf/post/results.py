@@ -247,6 +247,45 @@ def write_run(
     return summary
 
 
+def write_static_run(
+    out: str | Path,
+    model: Model,
+    sensors: Sequence[Sensor],
+    load_factors: NDArray,
+    ys: NDArray,
+    summary: dict[str, Any],
+    directors: NDArray | None = None,
+) -> dict[str, Any]:
+    """Write a static load path as a run directory (``rancf static --out``).
+
+    The files are those of a dynamic run with the load factor ``λ`` in place of the time
+    (``t`` of ``results.npz`` and the CSV files; ``summary.json`` has ``"analysis": "static"``),
+    zero velocities and kinetic energy, so ``export``, ``plot`` and ``animate`` read it; ``ys``
+    are the model coordinates of the converged load steps.  Returns the summary written.
+    """
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    ys = np.atleast_2d(ys)
+    q = model.q_from_y(ys)
+    energy = np.array(
+        [[0.0, model.strain_energy(y), model.gravity_energy(y)] for y in ys], dtype=float
+    )
+    t = np.asarray(load_factors, dtype=float)
+    write_history_files(out, model, sensors, t, q, np.zeros_like(q), energy, directors)
+    doc = {
+        "analysis": "static",
+        "load_factor_reached": float(t[-1]),
+        "load_steps_converged": int(t.size - 1),
+        "n_elements": model.n_el,
+        "element": model.element,
+        "n_dofs": model.n,
+        "outputs": int(t.size),
+        **summary,
+    }
+    atomic_write(out / "summary.json", strict_json(doc))
+    return doc
+
+
 def load_results(path: str | Path) -> dict[str, Any]:
     """Read a ``results.npz`` into a dictionary (``metadata`` decoded from JSON)."""
     with np.load(path, allow_pickle=False) as z:

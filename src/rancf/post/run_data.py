@@ -81,6 +81,8 @@ class RunData:
         Reference tangent angles of beam nodes (None for cables or without scenario).
     directors : ndarray (n_t, n_nodes, 3) or None
         Rods: the first material axis ``m1`` of every node's triad (None for other elements).
+    static : bool
+        A static load path (``rancf static --out``): ``t`` holds the load factor ``λ``.
     """
 
     path: Path
@@ -98,6 +100,16 @@ class RunData:
     radius: float | None
     tangent_angles: NDArray[np.float64] | None
     directors: NDArray[np.float64] | None = None
+    static: bool = False
+
+    @property
+    def time_label(self) -> str:
+        """Axis label of ``t``: the time, or the load factor of a static load path."""
+        return "load factor λ [-]" if self.static else "t [s]"
+
+    def time_text(self, value: float, fmt: str = ".4g") -> str:
+        """``t = 0.5 s``, or ``λ = 0.5`` for a static load path."""
+        return f"λ = {value:{fmt}}" if self.static else f"t = {value:{fmt}} s"
 
     @property
     def name(self) -> str:
@@ -120,18 +132,21 @@ class RunData:
         return int(np.argmin(np.abs(self.t - time)))
 
 
+def _summary(run_dir: Path) -> dict[str, Any]:
+    try:
+        doc = json.loads((run_dir / "summary.json").read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return {}
+    return doc if isinstance(doc, dict) else {}
+
+
 def _find_scenario(run_dir: Path) -> Path | None:
     own = run_dir / "scenario.toml"
     if own.is_file():
         return own
-    summary = run_dir / "summary.json"
-    if summary.is_file():
-        try:
-            recorded = json.loads(summary.read_text(encoding="utf-8")).get("scenario")
-        except (OSError, ValueError):
-            return None
-        if recorded and Path(recorded).is_file():
-            return Path(recorded)
+    recorded = _summary(run_dir).get("scenario")
+    if isinstance(recorded, str) and recorded and Path(recorded).is_file():
+        return Path(recorded)
     return None
 
 
@@ -184,6 +199,7 @@ def load_run(run_dir: str | Path) -> RunData:
         radius=radius,
         tangent_angles=angles,
         directors=data.get("directors"),
+        static=_summary(path).get("analysis") == "static",
     )
 
 

@@ -73,7 +73,7 @@ def plot_run(run: RunData, out_dir: str | Path, n_configurations: int = 6) -> li
         for k, name in enumerate(cols):
             axes[k, 0].plot(run.t, run.sensors[:, k])
             axes[k, 0].set_ylabel(f"{name} [m]")
-        axes[-1, 0].set_xlabel("t [s]")
+        axes[-1, 0].set_xlabel(run.time_label)
         fig.suptitle(f"sensors of {run.name}")
         written.append(out / "sensors.png")
         _save(fig, written[-1])
@@ -83,7 +83,7 @@ def plot_run(run: RunData, out_dir: str | Path, n_configurations: int = 6) -> li
     for key in ("kinetic", "strain", "gravity"):
         ax.plot(run.t, e[key], label=key)
     ax.plot(run.t, e["kinetic"] + e["strain"] + e["gravity"], "k--", label="total")
-    ax.set_xlabel("t [s]")
+    ax.set_xlabel(run.time_label)
     ax.set_ylabel("energy [J]")
     ax.legend()
     ax.set_title(f"energies of {run.name}")
@@ -100,7 +100,7 @@ def plot_run(run: RunData, out_dir: str | Path, n_configurations: int = 6) -> li
             pts[:, a],
             pts[:, b],
             color=cmap(j / max(len(idx) - 1, 1)),
-            label=f"t = {run.t[i]:.4g} s",
+            label=run.time_text(run.t[i]),
         )
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel(f"{'xyz'[a]} [m]")
@@ -169,7 +169,7 @@ def animate_run(
     ax.set_aspect("equal", adjustable="box")
     ax.set_xlabel(f"{'xyz'[a]} [m]")
     ax.set_ylabel(f"{'xyz'[b]} [m]")
-    ax.plot(lines[0, :, a], lines[0, :, b], color="0.75", lw=1, label="t = 0")
+    ax.plot(lines[0, :, a], lines[0, :, b], color="0.75", lw=1, label=run.time_text(0.0))
     (line,) = ax.plot([], [], "C0", lw=2)
     title = ax.set_title("")
     label = f" (displacement × {magnify:g})" if magnify != 1.0 else ""
@@ -179,7 +179,7 @@ def animate_run(
         with writer.saving(fig, tmp, dpi):
             for k, i in enumerate(idx):
                 line.set_data(lines[k, :, a], lines[k, :, b])
-                title.set_text(f"{run.name}: t = {run.t[i]:.4f} s{label}")
+                title.set_text(f"{run.name}: {run.time_text(run.t[i], '.4f')}{label}")
                 writer.grab_frame()
         os.replace(tmp, path)
     finally:

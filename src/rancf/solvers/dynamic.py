@@ -225,14 +225,7 @@ def integrate(
     last: list = []
 
     rod = model.element == "rod"
-
-    def directors(yy: NDArray) -> NDArray | None:
-        """Rods: the nodal directors of ``yy``, the state the triads were last carried to."""
-        if not rod:
-            return None
-        t_nodes, m1 = np.empty(3 * model.n_nodes), np.empty(3 * model.n_nodes)
-        model.core.nodal_triads(yy, t_nodes, m1)
-        return m1.reshape(model.n_nodes, 3)
+    directors = model.nodal_directors  # rods: of the state the triads were last carried to
 
     def store(tt: float, yy: NDArray, vv: NDArray, e: NDArray | None = None) -> None:
         if e is None:

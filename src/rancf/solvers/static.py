@@ -10,6 +10,7 @@ and every point load at its amplitude ``F0`` (harmonic loads count with their am
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -34,9 +35,17 @@ class StaticResult:
 
 
 def solve_static(
-    model: Model, load_steps: int = 10, tol: float = 1e-10, max_iter: int = 25
+    model: Model,
+    load_steps: int = 10,
+    tol: float = 1e-10,
+    max_iter: int = 25,
+    on_step: Callable[[float, NDArray[np.float64]], None] | None = None,
 ) -> StaticResult:
     """Static equilibrium under the model's loads.
+
+    ``on_step(λ, y)`` is called with the reference (``λ = 0``) and after every converged load
+    increment, with the model coordinates ``y`` (the load path; rods: the model's triads are
+    those of ``y`` at the call).
 
     Raises
     ------
@@ -53,14 +62,20 @@ def solve_static(
     lam, dlam = 0.0, 1.0 / load_steps
     factors = [0.0]
     n_newton = 0
+    if on_step is not None:
+        on_step(0.0, y)
     while lam < 1.0 - 1e-12:
         target = min(1.0, lam + dlam)
+        if target > 1.0 - 1e-12:
+            target = 1.0  # the last increment ends at the full load, not 1 - rounding
         trial = y.copy()
         converged, n_iter, _ = model.core.static_newton(trial, target, tol * size, max_iter)
         n_newton += n_iter
         if converged:
             y, lam = trial, target
             factors.append(lam)
+            if on_step is not None:
+                on_step(lam, y)
             continue
         dlam *= 0.5
         if dlam < 1e-4 / load_steps:
