@@ -2,7 +2,8 @@
 
 The folder holds ``scenario.toml`` (the variant, with a CAD ``file`` made absolute), the
 analysis output (``simulate``: the files of :func:`rancf.post.results.write_run`; ``static``:
-``static.json``; ``modes``: ``modes.json``) and, written last and atomically, ``row.json`` — its
+``static.json`` and the load path as a run directory, :func:`rancf.post.results.write_static_run`;
+``modes``: ``modes.json``) and, written last and atomically, ``row.json`` — its
 presence marks the run as finished, so an interrupted sweep resumes with the runs that lack it.
 """
 
@@ -14,6 +15,8 @@ import time
 import traceback
 from pathlib import Path
 from typing import Any
+
+import numpy as np
 
 from rancf.post.results import atomic_write
 from rancf.sweep.toml_out import dumps
@@ -54,15 +57,30 @@ def _analyse(sc: Any, analysis: str, folder: Path) -> tuple[str, str, float, dic
         values.update(zip(names, map(float, vals[0]), strict=True))
         return summary["status"], res.message, float(res.wall_time), values
     if analysis == "static":
+        from rancf.post.results import write_static_run
         from rancf.solvers.static import solve_static
 
+        path: list[tuple[float, Any, Any]] = []  # the load path, as `rancf static --out` keeps it
+
+        def on_step(lam: float, y: Any) -> None:
+            path.append((lam, y.copy(), model.nodal_directors(y)))
+
         t0 = time.perf_counter()
-        res = solve_static(model, sc.solver["load_steps"])
+        res = solve_static(model, sc.solver["load_steps"], on_step=on_step)
         wall = time.perf_counter() - t0
         names, vals = sensor_table(model, sc.sensors, res.q)
         values = dict(zip(names, map(float, vals[0]), strict=True))
         out = {"positions": model.node_positions(res.q).tolist(), "sensors": values}
         atomic_write(folder / "static.json", json.dumps(out, indent=2) + "\n")
+        write_static_run(
+            folder,
+            model,
+            sc.sensors,
+            np.array([lam for lam, _, _ in path]),
+            np.array([y for _, y, _ in path]),
+            {"status": "completed", "message": "", "scenario": str(folder / "scenario.toml")},
+            np.array([m for _, _, m in path]) if model.element == "rod" else None,
+        )
         return "completed", "", wall, values
     from rancf.solvers.modal import natural_modes
 
