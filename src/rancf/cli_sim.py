@@ -199,30 +199,27 @@ def _report(args: argparse.Namespace, res: Any, summary: dict[str, Any], out: Pa
 
 def _cmd_static(args: argparse.Namespace) -> int:
     from rancf.model.scenario import load_scenario
-    from rancf.post.results import sensor_table
+    from rancf.post.results import LoadPath, sensor_table, write_static_run
     from rancf.solvers.static import solve_static
 
     out_dir = check_out_dir(args.out) if args.out else None
     sc = load_scenario(args.scenario)
     model = sc.build_model()
-    steps: list[tuple[float, Any, Any]] = []  # the load path, for --out
-
-    def on_step(lam: float, y: Any) -> None:
-        steps.append((lam, y.copy(), model.nodal_directors(y)))
-
+    path = LoadPath(model)  # the load path, for --out
     if out_dir is None:
         res = solve_static(model, sc.solver["load_steps"])
     else:
         with OutputDir(out_dir) as od:
+            info = {"scenario": str(Path(args.scenario).resolve())}
             try:
-                res = solve_static(model, sc.solver["load_steps"], on_step=on_step)
-                status, message = "completed", "reached load factor 1"
+                res = solve_static(model, sc.solver["load_steps"], on_step=path.record)
+                info.update(status="completed", message="reached load factor 1")
             except ConvergenceError as exc:
-                status, message = "failed", str(exc)
+                info.update(status="failed", message=str(exc))
                 raise
             finally:
-                if steps:  # what converged is kept, also when a later increment fails
-                    _write_static(out_dir, model, sc, args.scenario, steps, status, message)
+                if path.steps:  # what converged is kept, also when a later increment fails
+                    write_static_run(out_dir, path, sc.sensors, info)
                     od.keep()
     pos = model.node_positions(res.q)
     names, vals = sensor_table(model, sc.sensors, res.q)
@@ -242,26 +239,6 @@ def _cmd_static(args: argparse.Namespace) -> int:
         for k, v in out["sensors"].items():
             print(f"  {k:12s} {v: .9g}")
     return 0
-
-
-def _write_static(
-    out: Path, model: Any, sc: Any, scenario: str, steps: list, status: str, message: str
-) -> None:
-    """The load path of ``rancf static --out`` as a run directory."""
-    import numpy as np
-
-    from rancf.post.results import write_static_run
-
-    rod = model.element == "rod"
-    write_static_run(
-        out,
-        model,
-        sc.sensors,
-        np.array([lam for lam, _, _ in steps]),
-        np.array([y for _, y, _ in steps]),
-        {"status": status, "message": message, "scenario": str(Path(scenario).resolve())},
-        np.array([m for _, _, m in steps]) if rod else None,
-    )
 
 
 def _cmd_modes(args: argparse.Namespace) -> int:

@@ -247,31 +247,40 @@ def write_run(
     return summary
 
 
+class LoadPath:
+    """The converged load steps of a static solve: pass :meth:`record` as ``on_step`` of
+    :func:`rancf.solvers.static.solve_static`, then :func:`write_static_run`."""
+
+    def __init__(self, model: Model) -> None:
+        self.model = model
+        self.steps: list[tuple[float, NDArray, NDArray | None]] = []
+
+    def record(self, load_factor: float, y: NDArray) -> None:
+        """Keep one converged step (rods: with the nodal directors the triads were carried to)."""
+        self.steps.append((load_factor, np.array(y, dtype=float), self.model.nodal_directors(y)))
+
+
 def write_static_run(
-    out: str | Path,
-    model: Model,
-    sensors: Sequence[Sensor],
-    load_factors: NDArray,
-    ys: NDArray,
-    summary: dict[str, Any],
-    directors: NDArray | None = None,
+    out: str | Path, path: LoadPath, sensors: Sequence[Sensor], summary: dict[str, Any]
 ) -> dict[str, Any]:
-    """Write a static load path as a run directory (``rancf static --out``).
+    """Write a static load path as a run directory (``rancf static --out``, static sweeps).
 
     The files are those of a dynamic run with the load factor ``λ`` in place of the time
     (``t`` of ``results.npz`` and the CSV files; ``summary.json`` has ``"analysis": "static"``),
-    zero velocities and kinetic energy, so ``export``, ``plot`` and ``animate`` read it; ``ys``
-    are the model coordinates of the converged load steps.  Returns the summary written.
+    zero velocities and kinetic energy, so ``export``, ``plot`` and ``animate`` read it.
+    Returns the summary written.
     """
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    ys = np.atleast_2d(ys)
+    model = path.model
+    t = np.array([lam for lam, _, _ in path.steps], dtype=float)
+    ys = np.array([y for _, y, _ in path.steps], dtype=float)
     q = model.q_from_y(ys)
     energy = np.array(
         [[0.0, model.strain_energy(y), model.gravity_energy(y)] for y in ys], dtype=float
     )
-    t = np.asarray(load_factors, dtype=float)
-    write_history_files(out, model, sensors, t, q, np.zeros_like(q), energy, directors)
+    m1 = np.array([m for _, _, m in path.steps]) if model.element == "rod" else None
+    write_history_files(out, model, sensors, t, q, np.zeros_like(q), energy, m1)
     doc = {
         "analysis": "static",
         "load_factor_reached": float(t[-1]),

@@ -16,8 +16,6 @@ import traceback
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-
 from rancf.post.results import atomic_write
 from rancf.sweep.toml_out import dumps
 
@@ -57,30 +55,19 @@ def _analyse(sc: Any, analysis: str, folder: Path) -> tuple[str, str, float, dic
         values.update(zip(names, map(float, vals[0]), strict=True))
         return summary["status"], res.message, float(res.wall_time), values
     if analysis == "static":
-        from rancf.post.results import write_static_run
+        from rancf.post.results import LoadPath, write_static_run
         from rancf.solvers.static import solve_static
 
-        path: list[tuple[float, Any, Any]] = []  # the load path, as `rancf static --out` keeps it
-
-        def on_step(lam: float, y: Any) -> None:
-            path.append((lam, y.copy(), model.nodal_directors(y)))
-
+        path = LoadPath(model)  # the load path, as `rancf static --out` keeps it
         t0 = time.perf_counter()
-        res = solve_static(model, sc.solver["load_steps"], on_step=on_step)
+        res = solve_static(model, sc.solver["load_steps"], on_step=path.record)
         wall = time.perf_counter() - t0
         names, vals = sensor_table(model, sc.sensors, res.q)
         values = dict(zip(names, map(float, vals[0]), strict=True))
         out = {"positions": model.node_positions(res.q).tolist(), "sensors": values}
         atomic_write(folder / "static.json", json.dumps(out, indent=2) + "\n")
-        write_static_run(
-            folder,
-            model,
-            sc.sensors,
-            np.array([lam for lam, _, _ in path]),
-            np.array([y for _, y, _ in path]),
-            {"status": "completed", "message": "", "scenario": str(folder / "scenario.toml")},
-            np.array([m for _, _, m in path]) if model.element == "rod" else None,
-        )
+        info = {"status": "completed", "message": "", "scenario": str(folder / "scenario.toml")}
+        write_static_run(folder, path, sc.sensors, info)
         return "completed", "", wall, values
     from rancf.solvers.modal import natural_modes
 
