@@ -8,9 +8,6 @@
 #include "rod.hpp"
 
 namespace rancf {
-namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Gradient blocks of clamped nodes: e <- T e (to q) for the element's two nodes.
 void rotate_to_q(const Model& m, int el, double* e) {
@@ -59,6 +56,8 @@ bool has_rotation(const Model& m, int el) {
   return m.supports.rot_of_node[el] >= 0 || m.supports.rot_of_node[el + 1] >= 0;
 }
 
+namespace {
+constexpr double kPi = 3.14159265358979323846;
 }  // namespace
 
 void assemble(const Model& m, const double* y, double* f, const BandView* k, double k_scale) {

@@ -230,7 +230,7 @@ def integrate(
     def store(tt: float, yy: NDArray, vv: NDArray, e: NDArray | None = None) -> None:
         if e is None:
             e = np.array(
-                [model.kinetic_energy(vv), model.strain_energy(yy), model.gravity_energy(yy)]
+                [model.kinetic_energy(vv, yy), model.strain_energy(yy), model.gravity_energy(yy)]
             )
         m1 = directors(yy)
         row = (tt, model.q_from_y(yy), model.q_from_y(vv), np.asarray(e, dtype=float), m1)
@@ -332,7 +332,7 @@ def integrate(
                 break
             continue
         y, v, a, t = y1, v1, a1, t + h_try
-        model.core.rereference(y)  # rods: nodal triads follow the accepted step
+        model.core.rereference(y, v, a)  # rods: triads follow the step, twist rates keep the spin
         result.took(h_try)
         if o.adaptive:
             h = min(max_step, h_try * min(2.0, 0.9 * max(err, 1e-10) ** (-1.0 / 3.0)))
