@@ -2,7 +2,6 @@
 // the holders keep the NumPy arrays alive and expose them to the core as the named structs of
 // model.hpp; sizes are checked here so that the core never reads out of bounds.
 #include "bindings.hpp"
-#include "bindings_model.hpp"
 
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
@@ -20,6 +19,7 @@
 #include <tuple>
 
 #include "assembly.hpp"
+#include "bindings_model.hpp"
 #include "cable.hpp"
 #include "inertia.hpp"
 #include "integrator.hpp"
@@ -31,18 +31,18 @@ using namespace nb::literals;
 
 namespace {
 
+using rancf_bind::BeamHolder;
+using rancf_bind::CableHolder;
 using rancf_bind::expect_size;
 using rancf_bind::In;
 using rancf_bind::InB;
 using rancf_bind::InI;
+using rancf_bind::IntegratorHolder;
+using rancf_bind::LoadsHolder;
 using rancf_bind::ModelHolder;
 using rancf_bind::Out;
-using rancf_bind::CableHolder;
-using rancf_bind::BeamHolder;
 using rancf_bind::RodHolder;
 using rancf_bind::SupportsHolder;
-using rancf_bind::LoadsHolder;
-using rancf_bind::IntegratorHolder;
 
 }  // namespace
 
@@ -97,144 +97,147 @@ NB_MODULE(_core, mod) {
       .def_ro("max_iter", &rancf::Scheme::max_iter);
 
   auto model_cls =
-      nb::class_<ModelHolder>(mod, "Model", "An assembled model (named parts, arrays by reference).")
-      .def(nb::init<int, int, int, int, const rancf::Stiffness&, CableHolder, BeamHolder, RodHolder,
-                    SupportsHolder, LoadsHolder, In, In, const rancf::SectionInertia&>(),
-           nb::kw_only(), "kind"_a, "dim"_a, "dpn"_a, "n_el"_a, "stiffness"_a, "cable"_a, "beam"_a,
-           "rod"_a, "supports"_a, "loads"_a, "mass_band"_a, "y_ref"_a,
-           "rotary"_a = rancf::SectionInertia{})
-      .def_prop_ro("n", [](const ModelHolder& h) { return h.n(); })
-      .def(
-          "internal_force",
-          [](const ModelHolder& h, In y, Out f) {
-            expect_size(y, h.n(), "y");
-            expect_size(f, h.n(), "f");
-            rancf::assemble(h.m, y.data(), f.data(), nullptr, 0.0);
-          },
-          "y"_a, "f"_a.noconvert(), "Internal force f = dU/dy (written into f).")
-      .def(
-          "internal_force_and_tangent",
-          [](const ModelHolder& h, In y, Out f, Out ab) {
-            expect_size(y, h.n(), "y");
-            expect_size(f, h.n(), "f");
-            expect_size(ab, h.band_size(), "ab");
-            std::fill(ab.data(), ab.data() + ab.size(), 0.0);
-            const rancf::BandView k = rancf::numpy_band(ab.data(), h.m.n(), h.m.ku());
-            rancf::assemble(h.m, y.data(), f.data(), &k, 1.0);
-          },
-          "y"_a, "f"_a.noconvert(), "ab"_a.noconvert(),
-          "Internal force and tangent stiffness in (2 ku + 1, n) band storage.")
-      .def(
-          "strain_energy",
-          [](const ModelHolder& h, In y) {
-            expect_size(y, h.n(), "y");
-            return rancf::strain_energy(h.m, y.data());
-          },
-          "y"_a)
-      .def(
-          "kinetic_energy",
-          [](const ModelHolder& h, In y, In v) {
-            expect_size(y, h.n(), "y");
-            expect_size(v, h.n(), "v");
-            return rancf::kinetic_energy(h.m, y.data(), v.data());
-          },
-          "y"_a, "v"_a, "Kinetic energy at (y, v), rods' rotary part included.")
-      .def(
-          "gravity_energy",
-          [](const ModelHolder& h, In y) {
-            expect_size(y, h.n(), "y");
-            return rancf::gravity_energy(h.m, y.data());
-          },
-          "y"_a)
-      .def(
-          "external_force",
-          [](const ModelHolder& h, double t, In y, Out f, bool amplitude) {
-            expect_size(y, h.n(), "y");
-            expect_size(f, h.n(), "f");
-            rancf::external_force(h.m, t, y.data(), f.data(), amplitude);
-          },
-          "t"_a, "y"_a, "f"_a.noconvert(), "amplitude"_a = false,
-          "External force at time t and configuration y (amplitude: harmonic loads at F0).")
-      .def(
-          "load_stiffness",
-          [](const ModelHolder& h, double t, In y, Out ab, bool amplitude) {
-            expect_size(y, h.n(), "y");
-            expect_size(ab, h.band_size(), "ab");
-            std::fill(ab.data(), ab.data() + ab.size(), 0.0);
-            const rancf::BandView k = rancf::numpy_band(ab.data(), h.m.n(), h.m.ku());
-            rancf::subtract_load_stiffness(h.m, t, y.data(), k, -1.0, amplitude);
-          },
-          "t"_a, "y"_a, "ab"_a.noconvert(), "amplitude"_a = false,
-          "d f_ext / dy (point moments) in (2 ku + 1, n) band storage.")
-      .def(
-          "rereference",
-          [](const ModelHolder& h, In y, std::optional<Out> v, std::optional<Out> a) {
-            expect_size(y, h.n(), "y");
-            if (v.has_value() != a.has_value())
-              throw std::invalid_argument("rereference: give both v and a, or neither");
-            if (v) {
-              expect_size(*v, h.n(), "v");
-              expect_size(*a, h.n(), "a");
-              rancf::rereference_rates(h.m, y.data(), v->data(), a->data());
-            }
-            rancf::rereference(h.m, y.data());
-          },
-          "y"_a, "v"_a.noconvert() = nb::none(), "a"_a.noconvert() = nb::none(),
-          "Re-reference the rod's nodal triads at configuration y (no-op otherwise); with v and a "
-          "(updated in place) the twist rates keep the spin.")
-      .def(
-          "nodal_triads",
-          [](const ModelHolder& h, In y, Out t, Out m1) {
-            expect_size(y, h.n(), "y");
-            const auto nn = static_cast<std::size_t>(h.m.n_nodes);
-            expect_size(t, 3 * nn, "t");
-            expect_size(m1, 3 * nn, "m1");
-            if (h.m.kind != rancf::ElementKind::rod)
-              throw std::invalid_argument("nodal_triads: rod models only");
-            for (int node = 0; node < h.m.n_nodes; ++node) {
-              double rx[3];
-              rancf::nodal_gradient(h.m, y.data(), node, rx);
-              rancf::rod_nodal_triad(h.m.rod.tref + 3 * node, h.m.rod.m1ref + 3 * node, rx,
-                                     y.data()[node * h.m.dpn + 6], t.data() + 3 * node,
-                                     m1.data() + 3 * node);
-            }
-          },
-          "y"_a, "t"_a.noconvert(), "m1"_a.noconvert(),
-          "Current nodal tangents and directors m1 (rod models), (n_nodes, 3) each.")
-      .def(
-          "rod_curvatures",
-          [](const ModelHolder& h, In y, Out k, Out eps) {
-            expect_size(y, h.n(), "y");
-            if (h.m.kind != rancf::ElementKind::rod)
-              throw std::invalid_argument("rod_curvatures: rod models only");
-            const auto npts = static_cast<std::size_t>(h.m.n_el * h.m.rod.n_qp);
-            expect_size(k, 3 * npts, "k");
-            expect_size(eps, npts, "eps");
-            double e[rancf::kMaxElementDofs];
-            for (int el = 0; el < h.m.n_el; ++el) {
-              for (int i = 0; i < 14; ++i) e[i] = y.data()[el * 7 + i];
-              for (int a = 0; a < 2; ++a)
-                rancf::nodal_gradient(h.m, y.data(), el + a, e + 7 * a + 3);
-              const int o = el * h.m.rod.n_qp;
-              rancf::rod_curvatures(h.m, el, e, k.data() + 3 * o, eps.data() + o);
-            }
-          },
-          "y"_a, "k"_a.noconvert(), "eps"_a.noconvert(),
-          "Material curvatures (n_el, n_qp, 3) and axial strains (n_el, n_qp) of a rod model.")
-      .def(
-          "static_newton",
-          [](const ModelHolder& h, Out y, double load_factor, double tol, int max_iter) {
-            expect_size(y, h.n(), "y");
-            rancf::NewtonOutcome r;
-            {
-              nb::gil_scoped_release release;
-              r = rancf::static_newton(h.m, y.data(), load_factor, tol, max_iter);
-            }
-            return std::make_tuple(r.converged, r.iterations, r.increment);
-          },
-          "y"_a.noconvert(), "load_factor"_a, "tol"_a, "max_iter"_a,
-          "Newton iterations for f_int(y) = load_factor f_ext(y) (loads at their amplitudes); "
-          "returns (converged, iterations, increment).");
+      nb::class_<ModelHolder>(mod, "Model",
+                              "An assembled model (named parts, arrays by reference).")
+          .def(nb::init<int, int, int, int, const rancf::Stiffness&, CableHolder, BeamHolder,
+                        RodHolder, SupportsHolder, LoadsHolder, In, In,
+                        const rancf::SectionInertia&>(),
+               nb::kw_only(), "kind"_a, "dim"_a, "dpn"_a, "n_el"_a, "stiffness"_a, "cable"_a,
+               "beam"_a, "rod"_a, "supports"_a, "loads"_a, "mass_band"_a, "y_ref"_a,
+               "rotary"_a = rancf::SectionInertia{})
+          .def_prop_ro("n", [](const ModelHolder& h) { return h.n(); })
+          .def(
+              "internal_force",
+              [](const ModelHolder& h, In y, Out f) {
+                expect_size(y, h.n(), "y");
+                expect_size(f, h.n(), "f");
+                rancf::assemble(h.m, y.data(), f.data(), nullptr, 0.0);
+              },
+              "y"_a, "f"_a.noconvert(), "Internal force f = dU/dy (written into f).")
+          .def(
+              "internal_force_and_tangent",
+              [](const ModelHolder& h, In y, Out f, Out ab) {
+                expect_size(y, h.n(), "y");
+                expect_size(f, h.n(), "f");
+                expect_size(ab, h.band_size(), "ab");
+                std::fill(ab.data(), ab.data() + ab.size(), 0.0);
+                const rancf::BandView k = rancf::numpy_band(ab.data(), h.m.n(), h.m.ku());
+                rancf::assemble(h.m, y.data(), f.data(), &k, 1.0);
+              },
+              "y"_a, "f"_a.noconvert(), "ab"_a.noconvert(),
+              "Internal force and tangent stiffness in (2 ku + 1, n) band storage.")
+          .def(
+              "strain_energy",
+              [](const ModelHolder& h, In y) {
+                expect_size(y, h.n(), "y");
+                return rancf::strain_energy(h.m, y.data());
+              },
+              "y"_a)
+          .def(
+              "kinetic_energy",
+              [](const ModelHolder& h, In y, In v) {
+                expect_size(y, h.n(), "y");
+                expect_size(v, h.n(), "v");
+                return rancf::kinetic_energy(h.m, y.data(), v.data());
+              },
+              "y"_a, "v"_a, "Kinetic energy at (y, v), rods' rotary part included.")
+          .def(
+              "gravity_energy",
+              [](const ModelHolder& h, In y) {
+                expect_size(y, h.n(), "y");
+                return rancf::gravity_energy(h.m, y.data());
+              },
+              "y"_a)
+          .def(
+              "external_force",
+              [](const ModelHolder& h, double t, In y, Out f, bool amplitude) {
+                expect_size(y, h.n(), "y");
+                expect_size(f, h.n(), "f");
+                rancf::external_force(h.m, t, y.data(), f.data(), amplitude);
+              },
+              "t"_a, "y"_a, "f"_a.noconvert(), "amplitude"_a = false,
+              "External force at time t and configuration y (amplitude: harmonic loads at F0).")
+          .def(
+              "load_stiffness",
+              [](const ModelHolder& h, double t, In y, Out ab, bool amplitude) {
+                expect_size(y, h.n(), "y");
+                expect_size(ab, h.band_size(), "ab");
+                std::fill(ab.data(), ab.data() + ab.size(), 0.0);
+                const rancf::BandView k = rancf::numpy_band(ab.data(), h.m.n(), h.m.ku());
+                rancf::subtract_load_stiffness(h.m, t, y.data(), k, -1.0, amplitude);
+              },
+              "t"_a, "y"_a, "ab"_a.noconvert(), "amplitude"_a = false,
+              "d f_ext / dy (point moments) in (2 ku + 1, n) band storage.")
+          .def(
+              "rereference",
+              [](const ModelHolder& h, In y, std::optional<Out> v, std::optional<Out> a) {
+                expect_size(y, h.n(), "y");
+                if (v.has_value() != a.has_value())
+                  throw std::invalid_argument("rereference: give both v and a, or neither");
+                if (v) {
+                  expect_size(*v, h.n(), "v");
+                  expect_size(*a, h.n(), "a");
+                  rancf::rereference_rates(h.m, y.data(), v->data(), a->data());
+                }
+                rancf::rereference(h.m, y.data());
+              },
+              "y"_a, "v"_a.noconvert() = nb::none(), "a"_a.noconvert() = nb::none(),
+              "Re-reference the rod's nodal triads at configuration y (no-op otherwise); with v "
+              "and a "
+              "(updated in place) the twist rates keep the spin.")
+          .def(
+              "nodal_triads",
+              [](const ModelHolder& h, In y, Out t, Out m1) {
+                expect_size(y, h.n(), "y");
+                const auto nn = static_cast<std::size_t>(h.m.n_nodes);
+                expect_size(t, 3 * nn, "t");
+                expect_size(m1, 3 * nn, "m1");
+                if (h.m.kind != rancf::ElementKind::rod)
+                  throw std::invalid_argument("nodal_triads: rod models only");
+                for (int node = 0; node < h.m.n_nodes; ++node) {
+                  double rx[3];
+                  rancf::nodal_gradient(h.m, y.data(), node, rx);
+                  rancf::rod_nodal_triad(h.m.rod.tref + 3 * node, h.m.rod.m1ref + 3 * node, rx,
+                                         y.data()[node * h.m.dpn + 6], t.data() + 3 * node,
+                                         m1.data() + 3 * node);
+                }
+              },
+              "y"_a, "t"_a.noconvert(), "m1"_a.noconvert(),
+              "Current nodal tangents and directors m1 (rod models), (n_nodes, 3) each.")
+          .def(
+              "rod_curvatures",
+              [](const ModelHolder& h, In y, Out k, Out eps) {
+                expect_size(y, h.n(), "y");
+                if (h.m.kind != rancf::ElementKind::rod)
+                  throw std::invalid_argument("rod_curvatures: rod models only");
+                const auto npts = static_cast<std::size_t>(h.m.n_el * h.m.rod.n_qp);
+                expect_size(k, 3 * npts, "k");
+                expect_size(eps, npts, "eps");
+                double e[rancf::kMaxElementDofs];
+                for (int el = 0; el < h.m.n_el; ++el) {
+                  for (int i = 0; i < 14; ++i) e[i] = y.data()[el * 7 + i];
+                  for (int a = 0; a < 2; ++a)
+                    rancf::nodal_gradient(h.m, y.data(), el + a, e + 7 * a + 3);
+                  const int o = el * h.m.rod.n_qp;
+                  rancf::rod_curvatures(h.m, el, e, k.data() + 3 * o, eps.data() + o);
+                }
+              },
+              "y"_a, "k"_a.noconvert(), "eps"_a.noconvert(),
+              "Material curvatures (n_el, n_qp, 3) and axial strains (n_el, n_qp) of a rod model.")
+          .def(
+              "static_newton",
+              [](const ModelHolder& h, Out y, double load_factor, double tol, int max_iter) {
+                expect_size(y, h.n(), "y");
+                rancf::NewtonOutcome r;
+                {
+                  nb::gil_scoped_release release;
+                  r = rancf::static_newton(h.m, y.data(), load_factor, tol, max_iter);
+                }
+                return std::make_tuple(r.converged, r.iterations, r.increment);
+              },
+              "y"_a.noconvert(), "load_factor"_a, "tol"_a, "max_iter"_a,
+              "Newton iterations for f_int(y) = load_factor f_ext(y) (loads at their amplitudes); "
+              "returns (converged, iterations, increment).");
   rancf_bind::bind_inertia(model_cls);
 
   nb::class_<IntegratorHolder>(mod, "Integrator", "Generalized-alpha steps on a model.")

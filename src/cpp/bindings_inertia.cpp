@@ -1,5 +1,7 @@
 // Methods of rancf._core.Model for the configuration-dependent (rotary) inertia of rods
 // (inertia.hpp). Conversion and forwarding only (see bindings.cpp).
+#include <nanobind/stl/array.h>
+
 #include <algorithm>
 #include <array>
 

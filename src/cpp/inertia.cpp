@@ -39,8 +39,8 @@ void assemble_inertia(const Model& m, const double* y, const double* v, const do
     gather(m, el, y, e.data());
     gather(m, el, v, ed.data());
     gather(m, el, a, edd.data());
-    rod_inertia(m, el, e.data(), ed.data(), edd.data(), terms.damping, terms.ck, terms.cv,
-                terms.ca, fe.data(), kep);
+    rod_inertia(m, el, e.data(), ed.data(), edd.data(), terms.damping, terms.ck, terms.cv, terms.ca,
+                fe.data(), kep);
     if (has_rotation(m, el)) rotate_back(m, el, fe.data(), kep);
     for (int i = 0; i < nde; ++i) r[base + i] += fe[static_cast<std::size_t>(i)];
     if (jac == nullptr) continue;

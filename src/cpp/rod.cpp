@@ -82,7 +82,6 @@ void rod_moment_load(const Model& m, int node, const double* moment, const doubl
   rod::moment_load(moment, m.rod.tref + 3 * node, m.rod.m1ref + 3 * node, rx, g, kl);
 }
 
-
 void rod_inertia(const Model& m, int el, const double* e, const double* ed, const double* edd,
                  double damping, double ck, double cv, double ca, double* fe, double* ke) {
   rod::inertia(rod_input(m, el), rod_inertia_coef(m), e, ed, edd, {damping, ck, cv, ca}, fe, ke);

@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include "rod_common.hpp"
 
@@ -52,8 +53,8 @@ inline Dual operator*(Dual a, Dual b) { return {a.v * b.v, a.d * b.v + a.v * b.d
 inline Dual operator*(double s, Dual a) { return {s * a.v, s * a.d}; }
 inline Dual operator*(Dual a, double s) { return {s * a.v, s * a.d}; }
 inline Dual operator/(double s, Dual a) {
-  const double r = s / a.v;
-  return {r, -r * a.d / a.v};
+  const double r = 1.0 / a.v;
+  return {s * r, -s * r * r * a.d};
 }
 inline Dual sqrt(Dual a) {
   const double r = std::sqrt(a.v);
@@ -62,11 +63,12 @@ inline Dual sqrt(Dual a) {
 inline double val(double x) { return x; }
 inline double val(Dual x) { return x.v; }
 
-// Node spin coefficient (11.3): nu = c . xdot with c = (x x tr) / E, E = |x| (|x| + tr . x), and
-// Dc = dc/dx = -[tr x] / E - c (dE/dx)^T / E, dE/dx = 2 x + (tr . x) x / |x| + |x| tr.
-// Returns the alignment 1 + tr . t.
+// Node spin (11.3): nu = c . w (w = xdot) with c = (x x tr) / E, E = |x| (|x| + tr . x); its
+// gradient h = dnu/dx = (tr x w - q nu) / E, q = dE/dx = 2 x + (tr . x) x / |x| + |x| tr; and, if
+// Dc, dc/dx = -([tr x] + c q^T) / E (values). Returns the alignment 1 + tr . t.
 template <class T>
-inline double node_coef(const T* x, const double* tr, T* c, T (*Dc)[3]) {
+inline double node_spin(const T* x, const T* w, const double* tr, T* c, T& nu, T* h,
+                        double (*Dc)[3]) {
   using std::sqrt;
   const T s = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
   const T tx = tr[0] * x[0] + tr[1] * x[1] + tr[2] * x[2];
@@ -74,76 +76,86 @@ inline double node_coef(const T* x, const double* tr, T* c, T (*Dc)[3]) {
   c[0] = (x[1] * tr[2] - x[2] * tr[1]) * iE;
   c[1] = (x[2] * tr[0] - x[0] * tr[2]) * iE;
   c[2] = (x[0] * tr[1] - x[1] * tr[0]) * iE;
+  nu = c[0] * w[0] + c[1] * w[1] + c[2] * w[2];
   const double align = 1.0 + val(tx) / val(s);
-  if (Dc == nullptr) return align;
+  if (h == nullptr) return align;
   const T txs = tx * (1.0 / s);
   T q[3];
   for (int j = 0; j < 3; ++j) q[j] = 2.0 * x[j] + txs * x[j] + s * tr[j];
+  h[0] = (tr[1] * w[2] - tr[2] * w[1] - q[0] * nu) * iE;
+  h[1] = (tr[2] * w[0] - tr[0] * w[2] - q[1] * nu) * iE;
+  h[2] = (tr[0] * w[1] - tr[1] * w[0] - q[2] * nu) * iE;
+  if (Dc == nullptr) return align;
   const double trx[3][3] = {{0.0, -tr[2], tr[1]}, {tr[2], 0.0, -tr[0]}, {-tr[1], tr[0], 0.0}};
-  for (int i = 0; i < 3; ++i) {
-    const T ci = c[i] * iE;
-    for (int j = 0; j < 3; ++j) Dc[i][j] = -trx[i][j] * iE - ci * q[j];
-  }
+  const double ie = val(iE);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) Dc[i][j] = -(trx[i][j] + val(c[i]) * val(q[j])) * ie;
   return align;
 }
 
-// Pair spin coefficients (11.3): sigma = c1 . xdot1 + c2 . xdot2, k = x2 x x1,
-// D = |x1||x2| + x1 . x2, ci = k / (|xi| D). Dc (6 x 6): rows (c1, c2), columns (x1, x2):
-//   dc1/dx1 = [x2 x]/(s1 D) - c1 (t1/s1 + e1)^T,  dc1/dx2 = -[x1 x]/(s1 D) - c1 e2^T
-//   dc2/dx1 = [x2 x]/(s2 D) - c2 e1^T,            dc2/dx2 = -[x1 x]/(s2 D) - c2 (t2/s2 + e2)^T
-// with e1 = (s2 t1 + x2)/D, e2 = (s1 t2 + x1)/D. Returns the alignment 1 + t1 . t2.
+// Pair spin (11.3): sigma = c1 . w1 + c2 . w2 with k = x2 x x1, D = |x1||x2| + x1 . x2,
+// ci = k / (|xi| D); its gradient (h on x1, x2), with y = w1/(s1 D) + w2/(s2 D) and
+// sigma_i = ci . wi,
+//   h1 = y x x2 - u1 sigma_1 - e1 sigma_2,   h2 = x1 x y - e2 sigma_1 - u2 sigma_2,
+//   e1 = (s2 t1 + x2)/D, e2 = (s1 t2 + x1)/D, u1 = t1/s1 + e1, u2 = t2/s2 + e2;
+// and, if Dc (6 x 6, rows c1, c2, columns x1, x2; values):
+//   dc1/dx1 = [x2 x]/(s1 D) - c1 u1^T,  dc1/dx2 = -[x1 x]/(s1 D) - c1 e2^T
+//   dc2/dx1 = [x2 x]/(s2 D) - c2 e1^T,  dc2/dx2 = -[x1 x]/(s2 D) - c2 u2^T.
+// Returns the alignment 1 + t1 . t2.
 template <class T>
-inline double pair_coef(const T* x1, const T* x2, T* c, T (*Dc)[6]) {
+inline double pair_spin(const T* x1, const T* x2, const T* w1, const T* w2, T* c, T& sig, T* h,
+                        double (*Dc)[6]) {
   using std::sqrt;
   const T s1 = sqrt(x1[0] * x1[0] + x1[1] * x1[1] + x1[2] * x1[2]);
   const T s2 = sqrt(x2[0] * x2[0] + x2[1] * x2[1] + x2[2] * x2[2]);
-  const T s12 = s1 * s2;
   const T x12 = x1[0] * x2[0] + x1[1] * x2[1] + x1[2] * x2[2];
-  const T D = s12 + x12;
-  const T iD = 1.0 / D;
-  const T i1 = 1.0 / (s1 * D), i2 = 1.0 / (s2 * D);
+  const T s12 = s1 * s2, D = s12 + x12;
+  const T iD = 1.0 / D, is1 = 1.0 / s1, is2 = 1.0 / s2;
+  const T i1 = is1 * iD, i2 = is2 * iD;
   const T k[3] = {x2[1] * x1[2] - x2[2] * x1[1], x2[2] * x1[0] - x2[0] * x1[2],
                   x2[0] * x1[1] - x2[1] * x1[0]};
   for (int i = 0; i < 3; ++i) {
     c[i] = k[i] * i1;
     c[3 + i] = k[i] * i2;
   }
+  const T sg1 = (k[0] * w1[0] + k[1] * w1[1] + k[2] * w1[2]) * i1;
+  const T sg2 = (k[0] * w2[0] + k[1] * w2[1] + k[2] * w2[2]) * i2;
+  sig = sg1 + sg2;
   const double align = 1.0 + val(x12) / val(s12);
-  if (Dc == nullptr) return align;
-  const T is1 = 1.0 / s1, is2 = 1.0 / s2;
-  T e1[3], e2[3], u1[3], u2[3];  // u1 = t1/s1 + e1, u2 = t2/s2 + e2
+  if (h == nullptr) return align;
+  T e1[3], e2[3], u1[3], u2[3], y[3];
+  const T r1 = s2 * is1 * iD, r2 = s1 * is2 * iD, q1 = is1 * is1, q2 = is2 * is2;
   for (int j = 0; j < 3; ++j) {
-    e1[j] = (s2 * is1 * x1[j] + x2[j]) * iD;
-    e2[j] = (s1 * is2 * x2[j] + x1[j]) * iD;
-    u1[j] = x1[j] * is1 * is1 + e1[j];
-    u2[j] = x2[j] * is2 * is2 + e2[j];
+    e1[j] = r1 * x1[j] + x2[j] * iD;
+    e2[j] = r2 * x2[j] + x1[j] * iD;
+    u1[j] = x1[j] * q1 + e1[j];
+    u2[j] = x2[j] * q2 + e2[j];
+    y[j] = w1[j] * i1 + w2[j] * i2;
   }
-  const T X2[3][3] = {{0.0, -1.0 * x2[2], x2[1]}, {x2[2], 0.0, -1.0 * x2[0]},
-                      {-1.0 * x2[1], x2[0], 0.0}};
-  const T X1[3][3] = {{0.0, -1.0 * x1[2], x1[1]}, {x1[2], 0.0, -1.0 * x1[0]},
-                      {-1.0 * x1[1], x1[0], 0.0}};
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) {
-      Dc[i][j] = X2[i][j] * i1 - c[i] * u1[j];
-      Dc[i][3 + j] = -1.0 * X1[i][j] * i1 - c[i] * e2[j];
-      Dc[3 + i][j] = X2[i][j] * i2 - c[3 + i] * e1[j];
-      Dc[3 + i][3 + j] = -1.0 * X1[i][j] * i2 - c[3 + i] * u2[j];
-    }
-  return align;
-}
-
-// r'(xi_q), its velocity and acceleration (a, adot, addot).
-inline void point_rates(const ElementInput& in, int q, const double* e, const double* ed,
-                        const double* edd, double* a, double* ad, double* add) {
-  const double* c1 = in.n1 + 4 * q;
+  h[0] = y[1] * x2[2] - y[2] * x2[1] - u1[0] * sg1 - e1[0] * sg2;
+  h[1] = y[2] * x2[0] - y[0] * x2[2] - u1[1] * sg1 - e1[1] * sg2;
+  h[2] = y[0] * x2[1] - y[1] * x2[0] - u1[2] * sg1 - e1[2] * sg2;
+  h[3] = x1[1] * y[2] - x1[2] * y[1] - e2[0] * sg1 - u2[0] * sg2;
+  h[4] = x1[2] * y[0] - x1[0] * y[2] - e2[1] * sg1 - u2[1] * sg2;
+  h[5] = x1[0] * y[1] - x1[1] * y[0] - e2[2] * sg1 - u2[2] * sg2;
+  if (Dc == nullptr) return align;
+  const double a1 = val(i1), a2 = val(i2);
+  const double X2[3][3] = {{0.0, -val(x2[2]), val(x2[1])},
+                           {val(x2[2]), 0.0, -val(x2[0])},
+                           {-val(x2[1]), val(x2[0]), 0.0}};
+  const double X1[3][3] = {{0.0, -val(x1[2]), val(x1[1])},
+                           {val(x1[2]), 0.0, -val(x1[0])},
+                           {-val(x1[1]), val(x1[0]), 0.0}};
   for (int i = 0; i < 3; ++i) {
-    a[i] = ad[i] = add[i] = 0.0;
-    for (int k = 0; k < 4; ++k) {
-      a[i] += c1[k] * e[kPosOff[k] + i];
-      ad[i] += c1[k] * ed[kPosOff[k] + i];
-      if (edd) add[i] += c1[k] * edd[kPosOff[k] + i];
+    const double ca = val(c[i]), cb = val(c[3 + i]);
+    for (int j = 0; j < 3; ++j) {
+      Dc[i][j] = X2[i][j] * a1 - ca * val(u1[j]);
+      Dc[i][3 + j] = -X1[i][j] * a1 - ca * val(e2[j]);
+      Dc[3 + i][j] = X2[i][j] * a2 - cb * val(e1[j]);
+      Dc[3 + i][3 + j] = -X1[i][j] * a2 - cb * val(u2[j]);
     }
   }
+  return align;
 }
 
 // 11-vector x on (xA, xB, a, phiA, phiB) -> 14 element coordinates (the map L^T, a = sum n1_k p_k).
@@ -163,63 +175,70 @@ inline void dq_da(const double* a, double n2, const double* w, const double* Qw,
   const double aw = dot3(a, w), in2 = 1.0 / n2;
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
-      D[i][j] = (-(aw * (i == j ? 1.0 : 0.0) + a[i] * w[j]) * in2 + 2.0 * aw * a[i] * a[j] * in2 * in2) *
-                    in2 -
-                2.0 * Qw[i] * a[j] * in2;
+      D[i][j] =
+          (-(aw * (i == j ? 1.0 : 0.0) + a[i] * w[j]) * in2 + 2.0 * aw * a[i] * a[j] * in2 * in2) *
+              in2 -
+          2.0 * Qw[i] * a[j] * in2;
 }
 
-// Per-element spin pieces, with time derivatives: nodal and pair coefficients and their
-// gradients h = (dc/dx)^T xdot (11.3).
+// Per-element spin pieces (11.2): the node spins nu_A, nu_B and the pair spin sigma(A, B) with
+// their coefficients c and gradients h (T = Dual: with time derivatives) and dc/dx (values).
+template <class T>
 struct SpinPieces {
-  Dual xA[3], xB[3], vA[3], vB[3], pA, pB;
-  Dual cA[3], DcA[3][3], cB[3], DcB[3][3], cAB[6], DcAB[6][6];
-  Dual nuA, nuB, sAB, hA[3], hB[3], hAB[6];
+  T xA[3], vA[3], pA, pB;  // node A's gradient and its rate; twist rates
+  T cA[3], cB[3], cAB[6], nuA, nuB, sAB, hA[3], hB[3], hAB[6];
+  double DcA[3][3], DcB[3][3], DcAB[6][6];
 };
 
-// Fills the pieces; false if a smallest rotation is singular.
-inline bool spin_pieces(const ElementInput& in, const double* e, const double* ed,
-                        const double* edd, SpinPieces& P) {
+// Element coordinates as T (value, or value and rate) at offset o: x = e + o, w = ed + o.
+template <class T>
+inline void lift3(const double* e, const double* ed, const double* edd, int o, T* x, T* w);
+template <>
+inline void lift3<double>(const double* e, const double* ed, const double*, int o, double* x,
+                          double* w) {
   for (int i = 0; i < 3; ++i) {
-    P.xA[i] = Dual(e[3 + i], ed[3 + i]);
-    P.xB[i] = Dual(e[10 + i], ed[10 + i]);
-    P.vA[i] = Dual(ed[3 + i], edd ? edd[3 + i] : 0.0);
-    P.vB[i] = Dual(ed[10 + i], edd ? edd[10 + i] : 0.0);
+    x[i] = e[o + i];
+    w[i] = ed[o + i];
   }
-  P.pA = Dual(ed[6], edd ? edd[6] : 0.0);
-  P.pB = Dual(ed[13], edd ? edd[13] : 0.0);
-  double al = node_coef(P.xA, in.tref_a, P.cA, P.DcA);
-  al = std::min(al, node_coef(P.xB, in.tref_b, P.cB, P.DcB));
-  al = std::min(al, pair_coef(P.xA, P.xB, P.cAB, P.DcAB));
-  if (!(al > kMinAlign)) return false;
-  const Dual W[6] = {P.vA[0], P.vA[1], P.vA[2], P.vB[0], P.vB[1], P.vB[2]};
-  P.nuA = P.cA[0] * P.vA[0] + P.cA[1] * P.vA[1] + P.cA[2] * P.vA[2];
-  P.nuB = P.cB[0] * P.vB[0] + P.cB[1] * P.vB[1] + P.cB[2] * P.vB[2];
-  P.sAB = Dual(0.0);
-  for (int i = 0; i < 6; ++i) P.sAB = P.sAB + P.cAB[i] * W[i];
-  for (int j = 0; j < 3; ++j) {
-    P.hA[j] = P.DcA[0][j] * P.vA[0] + P.DcA[1][j] * P.vA[1] + P.DcA[2][j] * P.vA[2];
-    P.hB[j] = P.DcB[0][j] * P.vB[0] + P.DcB[1][j] * P.vB[1] + P.DcB[2][j] * P.vB[2];
+}
+template <>
+inline void lift3<Dual>(const double* e, const double* ed, const double* edd, int o, Dual* x,
+                        Dual* w) {
+  for (int i = 0; i < 3; ++i) {
+    x[i] = Dual(e[o + i], ed[o + i]);
+    w[i] = Dual(ed[o + i], edd[o + i]);
   }
-  for (int j = 0; j < 6; ++j) {
-    P.hAB[j] = Dual(0.0);
-    for (int i = 0; i < 6; ++i) P.hAB[j] = P.hAB[j] + P.DcAB[i][j] * W[i];
+}
+// Fills the pieces (gradients only WithH); false if a smallest rotation is singular.
+template <class T, bool WithH>
+inline bool spin_pieces(const ElementInput& in, const double* e, const double* ed,
+                        const double* edd, SpinPieces<T>& P) {
+  T xB[3], vB[3];
+  lift3<T>(e, ed, edd, 3, P.xA, P.vA);
+  lift3<T>(e, ed, edd, 10, xB, vB);
+  const double* z = edd != nullptr ? edd : ed;  // unused for T = double
+  P.pA = T(ed[6]);
+  P.pB = T(ed[13]);
+  if constexpr (std::is_same_v<T, Dual>) {
+    P.pA = Dual(ed[6], z[6]);
+    P.pB = Dual(ed[13], z[13]);
   }
-  return true;
+  double al = node_spin(P.xA, P.vA, in.tref_a, P.cA, P.nuA, WithH ? P.hA : nullptr,
+                        WithH ? P.DcA : nullptr);
+  al = std::min(al, node_spin(xB, vB, in.tref_b, P.cB, P.nuB, WithH ? P.hB : nullptr,
+                              WithH ? P.DcB : nullptr));
+  al = std::min(al, pair_spin(P.xA, xB, P.vA, vB, P.cAB, P.sAB, WithH ? P.hAB : nullptr,
+                              WithH ? P.DcAB : nullptr));
+  return al > kMinAlign;
 }
 
-// Spin at point q (11.2) with g = ds/dW (11) and h = ds/dX (9) on W = (xA., xB., a., phiA.,
-// phiB.), X = (xA, xB, a); the pair (xA, a) coefficients in cq, Dcq. False if singular.
-inline bool point_spin(const SpinPieces& P, double xi, const double* a, const double* ad,
-                       const double* add, Dual& s, Dual* g, Dual* h, Dual* cq, Dual (*Dcq)[6]) {
-  Dual xa[3], va[3];
-  for (int i = 0; i < 3; ++i) {
-    xa[i] = Dual(a[i], ad[i]);
-    va[i] = Dual(ad[i], add[i]);
-  }
-  if (!(pair_coef(P.xA, xa, cq, Dcq) > kMinAlign)) return false;
-  const Dual Wq[6] = {P.vA[0], P.vA[1], P.vA[2], va[0], va[1], va[2]};
-  Dual sq(0.0);
-  for (int i = 0; i < 6; ++i) sq = sq + cq[i] * Wq[i];
+// Spin at point q (11.2) with g = ds/dW (11) on W = (xA., xB., a., phiA., phiB.) and, if h,
+// h = ds/dX (9) on X = (xA, xB, a) and the pair (xA, a) dc/dx in Dcq. False if singular.
+template <class T>
+inline bool point_spin(const SpinPieces<T>& P, double xi, const T* a, const T* va, T& s, T* g, T* h,
+                       double (*Dcq)[6]) {
+  T cq[6], sq, hq[6];
+  if (!(pair_spin(P.xA, a, P.vA, va, cq, sq, h ? hq : nullptr, Dcq) > kMinAlign)) return false;
   const double wa = 1.0 - xi;
   s = wa * (P.pA + P.nuA) + xi * (P.pB + P.nuB) - xi * P.sAB + sq;
   for (int i = 0; i < 3; ++i) {
@@ -227,20 +246,30 @@ inline bool point_spin(const SpinPieces& P, double xi, const double* a, const do
     g[3 + i] = xi * P.cB[i] - xi * P.cAB[3 + i];
     g[6 + i] = cq[3 + i];
   }
-  g[9] = Dual(wa);
-  g[10] = Dual(xi);
+  g[9] = T(wa);
+  g[10] = T(xi);
   if (h == nullptr) return true;
   for (int j = 0; j < 3; ++j) {
-    Dual hq0(0.0), hq1(0.0);
-    for (int i = 0; i < 6; ++i) {
-      hq0 = hq0 + Dcq[i][j] * Wq[i];
-      hq1 = hq1 + Dcq[i][3 + j] * Wq[i];
-    }
-    h[j] = wa * P.hA[j] - xi * P.hAB[j] + hq0;
+    h[j] = wa * P.hA[j] - xi * P.hAB[j] + hq[j];
     h[3 + j] = xi * P.hB[j] - xi * P.hAB[3 + j];
-    h[6 + j] = hq1;
+    h[6 + j] = hq[3 + j];
   }
   return true;
+}
+
+// r'(xi_q) and its rate (T = Dual: a with adot, and adot with addot).
+template <class T>
+inline void point_rates(const ElementInput& in, int q, const double* e, const double* ed,
+                        const double* edd, T* a, T* va) {
+  const double* c1 = in.n1 + 4 * q;
+  double x[3] = {0.0, 0.0, 0.0}, xd[3] = {0.0, 0.0, 0.0}, xdd[3] = {0.0, 0.0, 0.0};
+  for (int k = 0; k < 4; ++k)
+    for (int i = 0; i < 3; ++i) {
+      x[i] += c1[k] * e[kPosOff[k] + i];
+      xd[i] += c1[k] * ed[kPosOff[k] + i];
+      if (edd != nullptr) xdd[i] += c1[k] * edd[kPosOff[k] + i];
+    }
+  lift3<T>(x, xd, xdd, 0, a, va);
 }
 
 // Element inertial force fe = F (11.4) and, with Tangent, ke = ck dF/de + cv dF/dedot +
@@ -249,21 +278,23 @@ template <bool Tangent>
 inline bool element_inertia(const ElementInput& in, const InertiaCoef& ic, const double* e,
                             const double* ed, const double* edd, const InertiaScales& sc,
                             double* fe, double* ke) {
-  SpinPieces P;
-  if (!spin_pieces(in, e, ed, edd, P)) return false;
-  for (int i = 0; i < 14; ++i) fe[i] = 0.0;
-  if (Tangent)
-    for (int i = 0; i < 196; ++i) ke[i] = 0.0;
+  SpinPieces<Dual> P;
+  if (!spin_pieces<Dual, Tangent>(in, e, ed, edd, P)) return false;
+  alignas(64) double K[196] = {0.0};
+  double F[14] = {0.0};
   const double c = sc.damping, ck = sc.ck, cv = sc.cv, ca = sc.ca;
   double kA = 0.0, kB = 0.0;  // sum_q ck w rho_polar (sdot + c s)(1 - xi), ... xi (11.5)
   for (int q = 0; q < in.nq; ++q) {
     const double xi = in.xi[q], w = in.gw[q] * in.j0[q];
     const double wp = w * ic.polar, wb = w * ic.bend;
     const double* n1 = in.n1 + 4 * q;
-    double a[3], ad[3], add[3];
-    point_rates(in, q, e, ed, edd, a, ad, add);
-    Dual s, g[11], h[9], cq[6], Dcq[6][6];
-    if (!point_spin(P, xi, a, ad, add, s, g, Tangent ? h : nullptr, cq, Dcq)) return false;
+    Dual aq[3], vq[3], s, g[11], h[9];
+    double Dcq[6][6];
+    point_rates(in, q, e, ed, edd, aq, vq);
+    if (!point_spin(P, xi, aq, vq, s, g, Tangent ? h : nullptr, Tangent ? Dcq : nullptr))
+      return false;
+    const double a[3] = {aq[0].v, aq[1].v, aq[2].v}, ad[3] = {vq[0].v, vq[1].v, vq[2].v};
+    const double add[3] = {vq[0].d, vq[1].d, vq[2].d};
     const double n2 = dot3(a, a), n = std::sqrt(n2), in2 = 1.0 / n2, in3 = in2 / n;
     double axd[3], EL[3];
     cross3(a, ad, axd);
@@ -273,7 +304,7 @@ inline bool element_inertia(const ElementInput& in, const InertiaCoef& ic, const
     for (int i = 0; i < 11; ++i) f[i] = wp * sdc * g[i].v;
     for (int i = 0; i < 3; ++i) f[6 + i] += wp * s.v * EL[i];
     const double aad = dot3(a, ad) * in2;
-    double Qd[3], Qdd[3];
+    double Qd[3] = {0.0, 0.0, 0.0}, Qdd[3] = {0.0, 0.0, 0.0};
     if (wb != 0.0) {  // bending rotary inertia ("full"): P addot / n^2 - 2 (a.adot / n^2) Q(adot)
       const double aadd = dot3(a, add) * in2;
       for (int i = 0; i < 3; ++i) {
@@ -284,25 +315,25 @@ inline bool element_inertia(const ElementInput& in, const InertiaCoef& ic, const
     }
     double f14[14];
     map_to_element(f, n1, f14);
-    for (int i = 0; i < 14; ++i) fe[i] += f14[i];
+    for (int i = 0; i < 14; ++i) F[i] += f14[i];
     if (!Tangent) continue;
     // rank-one parts: wp G (ca g + cv (gdot + h + c g) + ck (hdot + c h))^T + wp EL (cv g + ck h)^T
     double U[11], Z[11], El[11] = {0.0}, gv[11];
     for (int i = 0; i < 11; ++i) {
       const double hv = i < 9 ? h[i].v : 0.0, hd = i < 9 ? h[i].d : 0.0;
-      gv[i] = g[i].v;
+      gv[i] = wp * g[i].v;
       U[i] = ca * g[i].v + cv * (g[i].d + hv + c * g[i].v) + ck * (hd + c * hv);
       Z[i] = cv * g[i].v + ck * hv;
     }
-    for (int i = 0; i < 3; ++i) El[6 + i] = EL[i];
+    for (int i = 0; i < 3; ++i) El[6 + i] = wp * EL[i];
     double G14[14], U14[14], E14[14], Z14[14];
     map_to_element(gv, n1, G14);
     map_to_element(U, n1, U14);
     map_to_element(El, n1, E14);
     map_to_element(Z, n1, Z14);
     for (int r = 0; r < 14; ++r) {
-      const double gr = wp * G14[r], er = wp * E14[r];
-      double* row = ke + 14 * r;
+      const double gr = G14[r], er = E14[r];
+      double* row = K + 14 * r;
       for (int col = 0; col < 14; ++col) row[col] += gr * U14[col] + er * Z14[col];
     }
     // (sdot + c s) dG/de: the element pieces once per element (kA, kB), the pair (xA, a) here
@@ -312,15 +343,17 @@ inline bool element_inertia(const ElementInput& in, const InertiaCoef& ic, const
     double B[3][3];  // the a-a block before mapping
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) {
-        ke[14 * (3 + i) + 3 + j] += kap * Dcq[i][j].v;
-        B[i][j] = kap * Dcq[3 + i][3 + j].v;
+        K[14 * (3 + i) + 3 + j] += kap * Dcq[i][j];
+        B[i][j] = kap * Dcq[3 + i][3 + j];
       }
-    for (int k = 0; k < 4; ++k)
+    for (int k = 0; k < 4; ++k) {
+      const double kn = kap * n1[k];
       for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) {
-          ke[14 * (3 + i) + kPosOff[k] + j] += kap * n1[k] * Dcq[i][3 + j].v;
-          ke[14 * (kPosOff[k] + i) + 3 + j] += kap * n1[k] * Dcq[3 + i][j].v;
+          K[14 * (3 + i) + kPosOff[k] + j] += kn * Dcq[i][3 + j];
+          K[14 * (kPosOff[k] + i) + 3 + j] += kn * Dcq[3 + i][j];
         }
+    }
     // s (cv dEL/dadot + ck dEL/da): dEL/dadot = -[a x]/n^3, dEL/da = [adot x]/n^3 - 3 EL a^T/n^2
     const double ax[3][3] = {{0.0, -a[2], a[1]}, {a[2], 0.0, -a[0]}, {-a[1], a[0], 0.0}};
     const double dx[3][3] = {{0.0, -ad[2], ad[1]}, {ad[2], 0.0, -ad[0]}, {-ad[1], ad[0], 0.0}};
@@ -345,18 +378,36 @@ inline bool element_inertia(const ElementInput& in, const InertiaCoef& ic, const
     for (int k = 0; k < 4; ++k)
       for (int l = 0; l < 4; ++l) {
         const double nkl = n1[k] * n1[l];
+        double* blk = K + 14 * kPosOff[k] + kPosOff[l];
         for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) ke[14 * (kPosOff[k] + i) + kPosOff[l] + j] += nkl * B[i][j];
+          for (int j = 0; j < 3; ++j) blk[14 * i + j] += nkl * B[i][j];
       }
   }
-  if (Tangent)
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) {
-        ke[14 * (3 + i) + 3 + j] += kA * P.DcA[i][j].v - kB * P.DcAB[i][j].v;
-        ke[14 * (3 + i) + 10 + j] -= kB * P.DcAB[i][3 + j].v;
-        ke[14 * (10 + i) + 3 + j] -= kB * P.DcAB[3 + i][j].v;
-        ke[14 * (10 + i) + 10 + j] += kB * (P.DcB[i][j].v - P.DcAB[3 + i][3 + j].v);
-      }
+  for (int i = 0; i < 14; ++i) fe[i] = F[i];
+  if (!Tangent) return true;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      K[14 * (3 + i) + 3 + j] += kA * P.DcA[i][j] - kB * P.DcAB[i][j];
+      K[14 * (3 + i) + 10 + j] -= kB * P.DcAB[i][3 + j];
+      K[14 * (10 + i) + 3 + j] -= kB * P.DcAB[3 + i][j];
+      K[14 * (10 + i) + 10 + j] += kB * (P.DcB[i][j] - P.DcAB[3 + i][3 + j]);
+    }
+  for (int i = 0; i < 196; ++i) ke[i] = K[i];
+  return true;
+}
+
+// Spin s and the point's r', r'-rate at every point, values only (energy, momentum). False if
+// a smallest rotation is singular.
+template <class Fn>
+inline bool for_each_spin(const ElementInput& in, const double* e, const double* ed, Fn&& fn) {
+  SpinPieces<double> P;
+  if (!spin_pieces<double, false>(in, e, ed, nullptr, P)) return false;
+  for (int q = 0; q < in.nq; ++q) {
+    double a[3], ad[3], s, g[11];
+    point_rates(in, q, e, ed, nullptr, a, ad);
+    if (!point_spin<double>(P, in.xi[q], a, ad, s, g, nullptr, nullptr)) return false;
+    fn(q, s, a, ad);
+  }
   return true;
 }
 
@@ -381,42 +432,28 @@ inline void inertia(const ElementInput& in, const InertiaCoef& ic, const double*
 // Rotary kinetic energy of the element (11.1). NaN at a singular smallest rotation.
 inline double rotary_energy(const ElementInput& in, const InertiaCoef& ic, const double* e,
                             const double* ed) {
-  detail::SpinPieces P;
-  if (!detail::spin_pieces(in, e, ed, nullptr, P)) return detail::nan_value();
   double T = 0.0;
-  for (int q = 0; q < in.nq; ++q) {
-    double a[3], ad[3], add[3];
-    detail::point_rates(in, q, e, ed, nullptr, a, ad, add);
-    detail::Dual s, g[11], cq[6], Dcq[6][6];
-    if (!detail::point_spin(P, in.xi[q], a, ad, add, s, g, nullptr, cq, Dcq))
-      return detail::nan_value();
-    const double n2 = detail::dot3(a, a), aad = detail::dot3(a, ad);
-    const double pd2 = (detail::dot3(ad, ad) - aad * aad / n2) / n2;  // |P adot|^2 / n^2
-    T += 0.5 * in.gw[q] * in.j0[q] * (ic.polar * s.v * s.v + ic.bend * pd2);
-  }
-  return T;
+  const bool ok =
+      detail::for_each_spin(in, e, ed, [&](int q, double s, const double* a, const double* ad) {
+        const double n2 = detail::dot3(a, a), aad = detail::dot3(a, ad);
+        const double pd2 = (detail::dot3(ad, ad) - aad * aad / n2) / n2;  // |P adot|^2 / n^2
+        T += 0.5 * in.gw[q] * in.j0[q] * (ic.polar * s * s + ic.bend * pd2);
+      });
+  return ok ? T : detail::nan_value();
 }
 
 // Rotary angular momentum of the element, out[3] += sum_q w [rho_polar s t + rho_bend t x tdot].
 inline void rotary_momentum(const ElementInput& in, const InertiaCoef& ic, const double* e,
                             const double* ed, double* out) {
-  detail::SpinPieces P;
-  if (!detail::spin_pieces(in, e, ed, nullptr, P)) {
-    detail::fill_nan(out, 3);
-    return;
-  }
-  for (int q = 0; q < in.nq; ++q) {
-    double a[3], ad[3], add[3], axd[3];
-    detail::point_rates(in, q, e, ed, nullptr, a, ad, add);
-    detail::Dual s, g[11], cq[6], Dcq[6][6];
-    if (!detail::point_spin(P, in.xi[q], a, ad, add, s, g, nullptr, cq, Dcq)) {
-      detail::fill_nan(out, 3);
-      return;
-    }
-    const double w = in.gw[q] * in.j0[q], n2 = detail::dot3(a, a), n = std::sqrt(n2);
-    detail::cross3(a, ad, axd);
-    for (int i = 0; i < 3; ++i) out[i] += w * (ic.polar * s.v * a[i] / n + ic.bend * axd[i] / n2);
-  }
+  double L[3] = {0.0, 0.0, 0.0};
+  const bool ok =
+      detail::for_each_spin(in, e, ed, [&](int q, double s, const double* a, const double* ad) {
+        const double w = in.gw[q] * in.j0[q], n2 = detail::dot3(a, a), n = std::sqrt(n2);
+        double axd[3];
+        detail::cross3(a, ad, axd);
+        for (int i = 0; i < 3; ++i) L[i] += w * (ic.polar * s * a[i] / n + ic.bend * axd[i] / n2);
+      });
+  for (int i = 0; i < 3; ++i) out[i] += ok ? L[i] : detail::nan_value();
 }
 
 // Re-referencing a node (11.6) keeps its spin phidot + nu and spin rate phiddot + nudot: with the
@@ -424,11 +461,12 @@ inline void rotary_momentum(const ElementInput& in, const InertiaCoef& ic, const
 // reference) are added to the twist rate and its acceleration.
 inline void rereference_rates(const double* tref, const double* x, const double* xd,
                               const double* xdd, double& phid, double& phidd) {
-  detail::Dual X[3], c[3];
-  for (int i = 0; i < 3; ++i) X[i] = detail::Dual(x[i], xd[i]);
-  detail::node_coef(X, tref, c, static_cast<detail::Dual(*)[3]>(nullptr));
-  detail::Dual nu(0.0);
-  for (int i = 0; i < 3; ++i) nu = nu + c[i] * detail::Dual(xd[i], xdd[i]);
+  detail::Dual X[3], W[3], c[3], nu;
+  for (int i = 0; i < 3; ++i) {
+    X[i] = detail::Dual(x[i], xd[i]);
+    W[i] = detail::Dual(xd[i], xdd[i]);
+  }
+  detail::node_spin<detail::Dual>(X, W, tref, c, nu, nullptr, nullptr);
   phid += nu.v;
   phidd += nu.d;
 }

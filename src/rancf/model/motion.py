@@ -132,10 +132,10 @@ def angular_momentum(
         lz += (0.5 * k.rho_i * k.l0 * (th[:, :-1] + th[:, 1:])).sum(axis=1)
         return lz[:, None]
     m4 = _scalar_mass_blocks(model)
-    pos = [nodes_q[:, :-1, :dim] - c, nodes_q[:, :-1, dim:], nodes_q[:, 1:, :dim] - c,
-           nodes_q[:, 1:, dim:]]  # fmt: skip
-    vel = [nodes_v[:, :-1, :dim], nodes_v[:, :-1, dim : 2 * dim], nodes_v[:, 1:, :dim],
-           nodes_v[:, 1:, dim : 2 * dim]]  # fmt: skip
+    g = slice(dim, 2 * dim)
+    pos = [nodes_q[:, :-1, :dim] - c, nodes_q[:, :-1, g], nodes_q[:, 1:, :dim] - c,
+           nodes_q[:, 1:, g]]  # fmt: skip
+    vel = [nodes_v[:, :-1, :dim], nodes_v[:, :-1, g], nodes_v[:, 1:, :dim], nodes_v[:, 1:, g]]
     out = np.zeros((n_t, 3 if dim == 3 else 1))
     for k in range(4):
         for m in range(4):
