@@ -93,8 +93,9 @@ def check_supports_at_rest(model: Model, v: NDArray) -> None:
     if bad.size:
         node = int(bad[0] // model.dpn)
         raise InputError(
-            "initial_motion", f"a velocity at supported node {node}",
-            "a rigid motion that leaves the supports at rest (e.g. about = the pinned point)",
+            "initial_motion", f"supported node {node} moving",
+            "a rigid motion that leaves the supports at rest (about = a pinned point; a clamp "
+            "cannot turn)",
         )  # fmt: skip
 
 

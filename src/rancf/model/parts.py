@@ -73,7 +73,9 @@ class Section:
             return 0.0
         if self.inertia_2 != self.inertia:
             raise InputError(
-                "section.rotary_inertia", "full", 'equal inertia_y and inertia_z (else "torsion")'
+                "section.rotary_inertia",
+                "full",
+                'equal inertia_y and inertia_z for "full" (else "torsion")',
             )
         return density * self.inertia
 

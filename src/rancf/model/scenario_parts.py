@@ -179,7 +179,7 @@ def parse_initial_motion(path: str, raw: Any, dim: int) -> dict[str, Any] | None
         key = "initial_motion.angular_velocity"
         if dim == 2:
             if isinstance(w, list):
-                raise _err(path, key, "a number in 2D (the rate about z) [rad/s]")
+                raise _err(path, key, f"must be a number in 2D (the rate about z), got {w!r}")
             t["angular_velocity"] = [_number(path, key, w)]
         else:
             t["angular_velocity"] = _vector(path, key, w, (3,))
