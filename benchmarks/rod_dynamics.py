@@ -141,8 +141,9 @@ def top_case(quick: bool, exudyn: bool) -> list[dict[str, Any]]:
     return rows
 
 
-def arc_case(quick: bool, exudyn: bool) -> list[dict[str, Any]]:
-    n, h, ne, he = (8, 1e-3, 8, 1e-3) if quick else (16, 5e-4, 16, 1e-3)
+def arc_case(quick: bool, exudyn: bool, ne: int = 16, he: float = 1e-3) -> list[dict[str, Any]]:
+    n, h = (8, 1e-3) if quick else (16, 5e-4)
+    ne, he = (8, 1e-3) if quick else (ne, he)
     motion = RigidMotion(angular_velocity=(0.0, 0.0, 2.0))
     rows = []
     m, r, wall = rancf_run(mesh_conic(ARC, n), "torsion", E, h, 1.0, initial_motion=motion)
@@ -240,26 +241,40 @@ def main() -> None:
     p.add_argument("--quick", action="store_true", help="coarse meshes and steps (smoke run)")
     p.add_argument("--no-exudyn", action="store_true")
     p.add_argument("--out", default=str(Path(__file__).resolve().parent / "results"))
+    p.add_argument("--cases", default="top,arc,energy,cost", help="comma-separated subset")
+    p.add_argument("--exudyn-arc", default="16,1e-3", help="Exudyn's arc elements,step")
     a = p.parse_args()
+    cases = set(a.cases.split(","))
+    ne, he = a.exudyn_arc.split(",")
     exudyn = exr.AVAILABLE and not a.no_exudyn
     print(f"{platform.processor() or platform.machine()}, Exudyn: "
           f"{__import__('exudyn').__version__ if exudyn else 'not used'}")  # fmt: skip
-    res = {"top": top_case(a.quick, exudyn), "arc": arc_case(a.quick, exudyn),
-           "energy": energy_case(), "cost": cost_case(a.quick)}  # fmt: skip
-    for row in res["top"] + res["arc"]:
+    res: dict[str, Any] = {}
+    if "top" in cases:
+        res["top"] = top_case(a.quick, exudyn)
+    if "arc" in cases:
+        res["arc"] = arc_case(a.quick, exudyn, int(ne), float(he))
+    if "energy" in cases:
+        res["energy"] = energy_case()
+    if "cost" in cases:
+        res["cost"] = cost_case(a.quick)
+    for row in res.get("top", []) + res.get("arc", []):
         print()
         for k, v in row.items():
             print(f"  {k:28s} {np.round(v, 5).tolist() if isinstance(v, list) else v}")
     print("\nkinetic energy of a rigid rotation, relative error at 4/8/16/32/64 elements:")
-    for k, v in res["energy"].items():
+    for k, v in res.get("energy", {}).items():
         print(f"  {k:14s} " + " ".join(f"{e:.1e}" for e in v))
     print("\ncost per element [us]: elastic force+tangent, inertia force+tangent, ratio")
-    for r in res["cost"]:
+    for r in res.get("cost", []):
         print(f"  {r['mesh']:28s} {r['rotary']:8s} {r['elastic_us']:7.3f} {r['inertia_us']:7.3f}"
               f" {r['ratio']:6.2f}")  # fmt: skip
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
-    (out / "rod_dynamics.json").write_text(json.dumps(res, indent=1, default=str) + "\n")
+    name = (
+        "rod_dynamics.json" if len(cases) == 4 else f"rod_dynamics_{'_'.join(sorted(cases))}.json"
+    )
+    (out / name).write_text(json.dumps(res, indent=1, default=str) + "\n")
 
 
 if __name__ == "__main__":
