@@ -100,7 +100,7 @@ def check_supports_at_rest(model: Model, v: NDArray) -> None:
 
 
 def _scalar_mass_blocks(model: Model) -> NDArray[np.float64]:
-    """``m_kl = ρA ∫ S_k S_l |r0'| dξ`` per element, ``(n_el, 4, 4)`` (blocks rA, r_xA, rB, r_xB)."""
+    """``m_kl = ρA ∫ S_k S_l |r0'| dξ`` per element ``(n_el, 4, 4)``, blocks rA, r_xA, rB, r_xB."""
     from rancf.kernels.rod import RodKernel
 
     k = model.kernel
@@ -111,7 +111,7 @@ def _scalar_mass_blocks(model: Model) -> NDArray[np.float64]:
 def angular_momentum(
     model: Model, q: ArrayLike, v: ArrayLike, about: ArrayLike | None = None
 ) -> NDArray[np.float64]:
-    """Angular momentum (M.2) about ``about`` of states ``q``, ``v`` ``(n_t, n)`` (full nodal coords).
+    """Angular momentum (M.2) about ``about`` of states ``q``, ``v`` ``(n_t, n)`` (full coords).
 
     Returns ``(n_t, 3)`` in 3D and ``(n_t, 1)`` (the ``z`` component) in 2D.  Rods: the states
     must be re-referenced ones (every stored output is), so the twist rate is the nodal spin.

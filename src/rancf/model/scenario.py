@@ -143,7 +143,9 @@ def parse_scenario(raw: dict[str, Any], path: str = "<scenario>") -> Scenario:
 
     d["initial_motion"] = parse_initial_motion(path, raw.get("initial_motion"), dim)
     if d["initial_motion"] is not None and d["initial_velocity"]:
-        raise _err(path, "initial_motion", "give [initial_motion] or [[initial_velocity]], not both")
+        raise _err(
+            path, "initial_motion", "give [initial_motion] or [[initial_velocity]], not both"
+        )
 
     d["solver"] = parse_solver(path, raw.get("solver", {}))
 

@@ -108,7 +108,7 @@ def parse_sensors(path: str, raw: Any, element: str, dim: int = 3) -> tuple[Sens
         if kd in ("angular_momentum", "energy"):
             for k in ("at", "between"):
                 if t[k] is not None:
-                    raise _err(path, f"sensors[{i}].{k}", f"not for a {kd} sensor (of the whole model)")
+                    raise _err(path, f"sensors[{i}].{k}", f"not for a {kd} sensor (whole model)")
             about = None
             if t["about"] is not None:
                 about = tuple(_vector(path, f"sensors[{i}].about", t["about"], (dim,)))
