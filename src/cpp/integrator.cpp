@@ -100,7 +100,8 @@ StepOutcome Integrator::step(const double* y0, const double* v0, const double* a
 }
 
 RunOutcome Integrator::run(double* y, double* v, double* a, double t0, double h, int n_steps,
-                           int out_every, double* out_y, double* out_v, double* out_e) {
+                           int out_every, double* out_y, double* out_v, double* out_a,
+                           double* out_e) {
   const int n = m_.n();
   std::vector<double> y1(sz(n)), v1(sz(n)), a1(sz(n));
   RunOutcome out{0, true, 0, 0};
@@ -120,6 +121,7 @@ RunOutcome Integrator::run(double* y, double* v, double* a, double t0, double h,
     const std::ptrdiff_t row = static_cast<std::ptrdiff_t>(out.stored) * n;
     std::copy(y, y + n, out_y + row);
     std::copy(v, v + n, out_v + row);
+    std::copy(a, a + n, out_a + row);
     out_e[3 * out.stored] = kinetic_energy(m_, v);
     out_e[3 * out.stored + 1] = strain_energy(m_, y);
     out_e[3 * out.stored + 2] = gravity_energy(m_, y);
@@ -147,34 +149,6 @@ void Integrator::initial_acceleration(const double* y, const double* v, double t
     return;
   }
   mass.solve(a, m_.supports.fixed);
-}
-
-NewtonOutcome static_newton(const Model& m, double* y, double load_factor, double tol,
-                            int max_iter) {
-  const int n = m.n();
-  BandLU lu(n, m.ku());
-  std::vector<double> f(sz(n)), fext(sz(n));
-  double norm = std::numeric_limits<double>::infinity();
-  for (int it = 1; it <= max_iter; ++it) {
-    BandView k = lu.matrix();
-    assemble(m, y, f.data(), &k, 1.0);
-    external_force(m, 0.0, y, fext.data(), true);
-    subtract_load_stiffness(m, 0.0, y, k, load_factor, true);
-    for (int i = 0; i < n; ++i) f[sz(i)] -= load_factor * fext[sz(i)];
-    if (!lu.factor(m.supports.fixed)) return {false, it, norm};
-    lu.solve(f.data(), m.supports.fixed);
-    norm = 0.0;
-    for (int i = 0; i < n; ++i) {
-      y[i] -= f[sz(i)];
-      norm = std::max(norm, std::abs(f[sz(i)]));
-    }
-    if (!std::isfinite(norm)) return {false, it, norm};
-    if (norm <= tol) {
-      rereference(m, y);
-      return {true, it, norm};
-    }
-  }
-  return {false, max_iter, norm};
 }
 
 double kinetic_energy(const Model& m, const double* v) {

@@ -1,4 +1,4 @@
-// Generalized-alpha time stepping (Chung & Hulbert 1993) and static Newton iterations.
+// Generalized-alpha time stepping (Chung & Hulbert 1993).
 //
 // For M a + c M v + f_int(y) = f_ext(t):
 //   y1 = y0 + h v0 + h^2 ((1/2 - beta) a0 + beta a1),  v1 = v0 + h ((1 - gamma) a0 + gamma a1)
@@ -43,10 +43,10 @@ class Integrator {
   StepOutcome step(const double* y0, const double* v0, const double* a0, double t, double h,
                    double* y1, double* v1, double* a1);
   /// Up to n_steps fixed steps (rod triads re-referenced after each), y, v, a updated in place;
-  /// every out_every steps the state and the energies (kinetic, strain, gravity) go to the next
-  /// rows of out_y, out_v, out_e.
+  /// every out_every steps the state (y, v, a) and the energies (kinetic, strain, gravity) go to
+  /// the next rows of out_y, out_v, out_a, out_e.
   RunOutcome run(double* y, double* v, double* a, double t0, double h, int n_steps, int out_every,
-                 double* out_y, double* out_v, double* out_e);
+                 double* out_y, double* out_v, double* out_a, double* out_e);
   /// a = M^-1 (f_ext(t) - f_int(y) - c M v).
   void initial_acceleration(const double* y, const double* v, double t, double* a);
   [[nodiscard]] long factorizations() const { return factorizations_; }
@@ -60,17 +60,6 @@ class Integrator {
   long factorizations_ = 0;
   std::vector<double> base_, fext_, yf_, fi_, tmp_, mv_;
 };
-
-struct NewtonOutcome {
-  bool converged;
-  int iterations;
-  double increment;  ///< max |increment| of the last iteration
-};
-
-/// Newton iterations for f_int(y) = load_factor f_ext(y) (statics: gravity, point forces and
-/// moments at their amplitudes), y updated in place; converged rod triads are re-referenced.
-NewtonOutcome static_newton(const Model& m, double* y, double load_factor, double tol,
-                            int max_iter);
 
 /// Kinetic energy 1/2 v^T M v.
 double kinetic_energy(const Model& m, const double* v);

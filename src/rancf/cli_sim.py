@@ -50,9 +50,13 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     from rancf.post.history import HistoryStore, estimate_output_bytes
     from rancf.post.results import run_summary
 
+    from rancf.cli_equilibrium import initial_state
+    from rancf.model.outputs import DerivedOutputs
+
     sc = load_scenario(args.scenario)
     opts = sc.dynamic_options()
     model = sc.build_model()
+    y_start, start_info = initial_state(sc, model)
     n_cols = sum(len(s.columns(model.dim)) for s in sc.sensors)
     rod_directors = 3 * model.n_nodes if model.element == "rod" else 0
     need = estimate_output_bytes(opts.n_outputs, model.q0.size, n_cols, rod_directors)
@@ -65,11 +69,13 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     stop = _StopFlag()
     with stop, OutputDir(out) as od:
         info = {"scenario": str(Path(args.scenario).resolve()), "setup_wall_time_s": None}
-        store = HistoryStore(out, model, sc.sensors, info)
+        info.update(start_info)
+        derived = DerivedOutputs(model, sc.support_labels)
+        store = HistoryStore(out, model, sc.sensors, info, derived=derived)
         try:
             store.write_summary(_running(model, 0.0))
             od.keep()
-            res = _run(args, model, opts, store, stop, every)
+            res = _run(args, model, opts, store, stop, every, y_start)
         except BaseException as exc:
             store.finish(_broken(model, store, exc))
             raise
@@ -146,7 +152,15 @@ def _progress_bar(t_end: float, t: float) -> Any:
     )
 
 
-def _run(args: argparse.Namespace, model: Any, opts: Any, store: Any, stop: Any, every: float):
+def _run(
+    args: argparse.Namespace,
+    model: Any,
+    opts: Any,
+    store: Any,
+    stop: Any,
+    every: float,
+    y_start: Any = None,
+):
     from rancf.post.results import run_summary
     from rancf.solvers.dynamic import integrate
 
@@ -172,7 +186,9 @@ def _run(args: argparse.Namespace, model: Any, opts: Any, store: Any, stop: Any,
             pace["next"] = time.monotonic() + max(pace["every"], 4.0 * took)
 
     try:
-        return integrate(model, opts, on_output, stop, sink=store, on_start=on_start)
+        return integrate(
+            model, opts, on_output, stop, sink=store, on_start=on_start, initial=y_start
+        )
     finally:
         if bar:
             bar[0].close()
@@ -198,6 +214,7 @@ def _report(args: argparse.Namespace, res: Any, summary: dict[str, Any], out: Pa
 
 
 def _cmd_static(args: argparse.Namespace) -> int:
+    from rancf.cli_equilibrium import reactions_json
     from rancf.model.scenario import load_scenario
     from rancf.post.results import LoadPath, sensor_table, write_static_run
     from rancf.solvers.static import solve_static
@@ -205,14 +222,17 @@ def _cmd_static(args: argparse.Namespace) -> int:
     out_dir = check_out_dir(args.out) if args.out else None
     sc = load_scenario(args.scenario)
     model = sc.build_model()
-    path = LoadPath(model)  # the load path, for --out
+    path = LoadPath(model, sc.support_labels)  # the load path, for --out
+    method = sc.solver["static_method"]
     if out_dir is None:
-        res = solve_static(model, sc.solver["load_steps"])
+        res = solve_static(model, sc.solver["load_steps"], method=method)
     else:
         with OutputDir(out_dir) as od:
             info = {"scenario": str(Path(args.scenario).resolve())}
             try:
-                res = solve_static(model, sc.solver["load_steps"], on_step=path.record)
+                res = solve_static(
+                    model, sc.solver["load_steps"], on_step=path.record, method=method
+                )
                 info.update(status="completed", message="reached load factor 1")
             except ConvergenceError as exc:
                 info.update(status="failed", message=str(exc))
@@ -228,6 +248,9 @@ def _cmd_static(args: argparse.Namespace) -> int:
         "sensors": dict(zip(names, vals[0].tolist(), strict=True)),
         "load_factors": res.load_factors.tolist(),
         "newton_iterations": res.n_newton,
+        "method": res.method,
+        "wall_time_s": res.wall_time,
+        "reactions": reactions_json(sc, model, res.y),
     }
     if args.json:
         print(json.dumps(out, indent=2))
@@ -238,7 +261,14 @@ def _cmd_static(args: argparse.Namespace) -> int:
         )
         for k, v in out["sensors"].items():
             print(f"  {k:12s} {v: .9g}")
+        for r in out["reactions"]:
+            moment = f"  moment {_vec(r['moment'])}" if "moment" in r else ""
+            print(f"  reaction at {r['at']!s:6s} force {_vec(r['force'])}{moment}")
     return 0
+
+
+def _vec(v: list[float]) -> str:
+    return "[" + ", ".join(f"{x:.9g}" for x in v) + "]"
 
 
 def _cmd_modes(args: argparse.Namespace) -> int:
@@ -261,7 +291,7 @@ def _cmd_modes(args: argparse.Namespace) -> int:
         raise InputError(key, count, f"at most {n_free} (the free coordinates of this model)")
     y = None
     if about == "static":
-        y = solve_static(model, sc.solver["load_steps"]).y
+        y = solve_static(model, sc.solver["load_steps"], method=sc.solver["static_method"]).y
     res = natural_modes(model, y, count)
     if res.frequencies_hz.size < count:
         raise InputError(

@@ -24,13 +24,14 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from rancf.model.outputs import DerivedOutputs
 from rancf.model.scenario_sensors import Sensor
 from rancf.model.system import Model
 from rancf.post.results import atomic_write, strict_json, write_history_files
 
 __all__ = ["HistoryStore", "estimate_output_bytes"]
 
-_FILES = ("t", "q", "v", "e")
+_FILES = ("t", "q", "v", "e", "a")
 
 
 def estimate_output_bytes(
@@ -71,18 +72,22 @@ class HistoryStore:
         sensors: Sequence[Sensor],
         info: dict[str, Any],
         buffer_bytes: int = 1 << 23,
+        derived: DerivedOutputs | None = None,
     ) -> None:
         self.out = Path(out)
         self.model = model
         self.sensors = sensors
         self.info = {"pid": os.getpid(), "started_at": _now(), **info}
+        self.derived = derived if derived is not None else DerivedOutputs(model)
         self.raw = self.out / ".history"
         self.raw.mkdir(exist_ok=True)
         # rods: the nodal directors too ("m", 3 numbers a node)
         self._keys = _FILES + (("m",) if model.element == "rod" else ())
-        self._fh = {k: open(self.raw / f"{k}.f64", "wb") for k in self._keys}  # noqa: SIM115
+        # derived at every flush from the buffered rows: reactions "r", section values "s"
+        files = self._keys + ("r", "s")
+        self._fh = {k: open(self.raw / f"{k}.f64", "wb") for k in files}  # noqa: SIM115
         self._buf: dict[str, list[NDArray]] = {k: [] for k in self._keys}
-        self._rows_per_flush = max(1, buffer_bytes // (16 * model.n + 32))
+        self._rows_per_flush = max(1, buffer_bytes // (24 * model.n + 32))
         self.n_rows = 0
         self._pending = 0
 
@@ -93,9 +98,10 @@ class HistoryStore:
         v: NDArray,
         energy: NDArray,
         directors: NDArray | None = None,
+        a: NDArray | None = None,
     ) -> None:
         """Store one output (sink protocol of :func:`~rancf.solvers.dynamic.integrate`)."""
-        self._add((np.array([t]), q, v, energy, directors), 1)
+        self._add((np.array([t]), q, v, energy, a, directors), 1)
 
     def append_block(
         self,
@@ -104,10 +110,11 @@ class HistoryStore:
         v: NDArray,
         energy: NDArray,
         directors: NDArray | None = None,
+        a: NDArray | None = None,
     ) -> None:
         """Store consecutive outputs: ``t (k,)``, ``q, v (k, n_q)``, ``energy (k, 3)``, rods'
-        ``directors (k, n_nodes, 3)``."""
-        self._add((t, q, v, energy, directors), len(t))
+        ``directors (k, n_nodes, 3)``, ``accelerations (k, n_q)``."""
+        self._add((t, q, v, energy, a, directors), len(t))
 
     def _add(self, values: tuple[NDArray | None, ...], rows: int) -> None:
         for key, val in zip(self._keys, values, strict=False):
@@ -119,16 +126,25 @@ class HistoryStore:
             self.flush()
 
     def flush(self) -> None:
-        """Append the buffered outputs to the raw files."""
-        for key in self._keys:
-            if self._buf[key]:
-                self._fh[key].write(np.concatenate(self._buf[key]).tobytes())
-                self._buf[key].clear()
-            self._fh[key].flush()
+        """Append the buffered outputs, and their reactions and section values, to the raw
+        files."""
+        if self._pending:
+            rows = {k: np.concatenate(self._buf[k]) for k in self._keys}
+            k = self._pending
+            reac, along = self.derived.rows(
+                rows["t"], rows["q"].reshape(k, -1), rows["v"].reshape(k, -1),
+                rows["a"].reshape(k, -1), rows["m"].reshape(k, -1) if "m" in rows else None,
+            )  # fmt: skip
+            rows["r"], rows["s"] = reac.ravel(), along.ravel()
+            for key, val in rows.items():
+                self._fh[key].write(np.ascontiguousarray(val, dtype="<f8").tobytes())
+                self._buf.get(key, []).clear()
+        for fh in self._fh.values():
+            fh.flush()
         self.n_rows += self._pending
         self._pending = 0
 
-    def _arrays(self) -> tuple[NDArray, NDArray, NDArray, NDArray, NDArray | None]:
+    def _arrays(self) -> tuple[NDArray, ...]:
         n, nq = self.n_rows, self.model.q0.size
 
         def mm(key: str, width: int) -> NDArray:
@@ -136,7 +152,10 @@ class HistoryStore:
             return arr.reshape(n, width) if width > 1 else arr
 
         m1 = mm("m", 3 * self.model.n_nodes) if "m" in self._keys else None
-        return mm("t", 1), mm("q", nq), mm("v", nq), mm("e", 3), m1
+        d = self.derived
+        n_r, n_s = len(d.reaction_names), d.n_points * len(d.section_names)
+        r = mm("r", n_r).reshape(n, n_r) if n_r else np.empty((n, 0))
+        return mm("t", 1), mm("q", nq), mm("v", nq), mm("e", 3), m1, mm("a", nq), r, mm("s", n_s)
 
     def write_summary(self, summary: dict[str, Any]) -> None:
         """Rewrite ``summary.json`` (strict JSON) with the run's fixed keys added."""
@@ -146,7 +165,10 @@ class HistoryStore:
     def checkpoint(self, summary: dict[str, Any]) -> None:
         """Flush, rebuild ``sensors.csv``, ``energy.csv``, ``results.npz``; then the summary."""
         self.flush()
-        write_history_files(self.out, self.model, self.sensors, *self._arrays())
+        t, q, v, e, m1, a, r, along = self._arrays()
+        write_history_files(
+            self.out, self.model, self.sensors, t, q, v, e, m1, a, self.derived, (r, along)
+        )
         self.write_summary(summary)
 
     def finish(self, summary: dict[str, Any]) -> None:

@@ -71,6 +71,16 @@ class DynamicResult:
     n_outputs: int = 0
     #: Rods: nodal directors ``m1`` at the output times, ``(n_t, n_nodes, 3)``; else None.
     directors: NDArray[np.float64] | None = None
+    #: Accelerations ``(n_t, n_q)`` in full coordinates (the integrator's ``a``).
+    a: NDArray[np.float64] | None = None
+
+    def select(self, index: NDArray | slice) -> DynamicResult:
+        """The result restricted to some of its outputs (every per-output array sliced)."""
+        from dataclasses import replace
+
+        per_output = ("t", "q", "v", "kinetic", "strain", "gravity", "directors", "a")
+        cut = {k: getattr(self, k)[index] for k in per_output if getattr(self, k) is not None}
+        return replace(self, **cut)
 
     @property
     def total_energy(self) -> NDArray[np.float64]:
@@ -154,15 +164,16 @@ class GeneralizedAlpha:
     ) -> tuple:
         """Fixed steps in the core (``y, v, a`` updated in place).
 
-        Returns ``(steps done, status, iterations, outputs stored, out_y, out_v, out_e)``;
-        status is 1 if every step converged, else 0 (the failing step is not taken).
+        Returns ``(steps done, status, iterations, outputs stored, out_y, out_v, out_a,
+        out_e)``; status is 1 if every step converged, else 0 (the failing step is not taken).
         """
         n = self.model.n
         n_out = n_steps // per_out
-        oy, ov, oe = np.empty((n_out, n)), np.empty((n_out, n)), np.empty((n_out, 3))
-        done, ok, iters, stored = self._core.run(y, v, a, t, h, n_steps, per_out, oy, ov, oe)
+        oy, ov, oa = np.empty((n_out, n)), np.empty((n_out, n)), np.empty((n_out, n))
+        oe = np.empty((n_out, 3))
+        done, ok, iters, stored = self._core.run(y, v, a, t, h, n_steps, per_out, oy, ov, oa, oe)
         self.n_newton += iters
-        return done, int(ok), iters, stored, oy, ov, oe
+        return done, int(ok), iters, stored, oy, ov, oa, oe
 
     def error_estimate(self, a0: NDArray, a1: NDArray, h: float, rtol: float) -> float:
         """Local displacement error relative to ``rtol * size``."""
@@ -184,8 +195,10 @@ def integrate(
     should_stop: Callable[[], bool] | None = None,
     sink: OutputSink | None = None,
     on_start: Callable[[], None] | None = None,
+    initial: NDArray | None = None,
 ) -> DynamicResult:
-    """Integrate the model from its reference configuration and initial velocities.
+    """Integrate the model from its reference configuration (or ``initial``) and initial
+    velocities.
 
     Parameters
     ----------
@@ -201,6 +214,11 @@ def integrate(
         last one, so memory does not grow with ``t_end``.  Default: kept in memory.
     on_start : callable, optional
         Called once, right before the time loop (after the initial acceleration).
+    initial : ndarray, optional
+        Model coordinates to start from instead of the reference, e.g. a static equilibrium
+        (:func:`rancf.solvers.static.solve_static`'s ``y``; rods: with the nodal triads the
+        static solve left, which are then kept).  The velocities are the model's initial
+        velocities either way.
 
     Returns
     -------
@@ -209,7 +227,8 @@ def integrate(
         time reached.  ``wall_time`` is the time loop alone.
     """
     o = options
-    model.reset_triads()
+    if initial is None:
+        model.reset_triads()
     integ = GeneralizedAlpha(model, o.rho_inf, o.newton_tol, o.max_newton, o.newton)
     out_dt = o.output_step if o.output_step is not None else o.step
     n_out = o.n_outputs - 1
@@ -227,34 +246,32 @@ def integrate(
     rod = model.element == "rod"
     directors = model.nodal_directors  # rods: of the state the triads were last carried to
 
-    def store(tt: float, yy: NDArray, vv: NDArray, e: NDArray | None = None) -> None:
-        if e is None:
-            e = np.array(
-                [model.kinetic_energy(vv), model.strain_energy(yy), model.gravity_energy(yy)]
-            )
+    def store(tt: float, yy: NDArray, vv: NDArray, aa: NDArray) -> None:
+        e = np.array([model.kinetic_energy(vv), model.strain_energy(yy), model.gravity_energy(yy)])
         m1 = directors(yy)
-        row = (tt, model.q_from_y(yy), model.q_from_y(vv), np.asarray(e, dtype=float), m1)
-        target_sink.append(*row[:4], directors=m1)
+        qa = model.q_from_y(aa)
+        row = (tt, model.q_from_y(yy), model.q_from_y(vv), e, m1, qa)
+        target_sink.append(*row[:4], directors=m1, a=qa)
         last[:] = [row]
         result.n_outputs += 1
 
-    def store_block(k0: int, oy: NDArray, ov: NDArray, oe: NDArray) -> None:
+    def store_block(k0: int, oy: NDArray, ov: NDArray, oa: NDArray, oe: NDArray) -> None:
         """Outputs ``k0, k0 + 1, ...`` from the core's loop, passed on as one block (rods: one
         output a block, whose state is the one the triads were carried to)."""
         ts = np.array([out_time(k0 + i) for i in range(len(oy))])
-        qs, vs = model.q_from_y(oy), model.q_from_y(ov)
+        qs, vs, qa = model.q_from_y(oy), model.q_from_y(ov), model.q_from_y(oa)
         m1 = directors(oy[-1])
-        target_sink.append_block(ts, qs, vs, oe, directors=None if m1 is None else m1[None])
-        last[:] = [(float(ts[-1]), qs[-1], vs[-1], np.array(oe[-1]), m1)]
+        target_sink.append_block(ts, qs, vs, oe, directors=None if m1 is None else m1[None], a=qa)
+        last[:] = [(float(ts[-1]), qs[-1], vs[-1], np.array(oe[-1]), m1, qa[-1])]
         result.n_outputs += len(oy)
 
-    y = model.y0.copy()
+    y = model.y0.copy() if initial is None else np.array(initial, dtype=float)
     v = model.v0.copy()
     t = 0.0
     a = integ.initial_acceleration(y, v, t)
     empty = np.empty(0)
     result = DynamicResult(empty, empty, empty, empty, empty, empty, DynamicStatus.COMPLETED, "")
-    store(0.0, y, v)
+    store(0.0, y, v, a)
     if on_start is not None:
         on_start()
     start = time.perf_counter()
@@ -262,11 +279,13 @@ def integrate(
     def snapshot(status: DynamicStatus, message: str) -> DynamicResult:
         if memory is not None:
             ts, qs, vs, es = memory.arrays()
-            result.directors = memory.directors()
+            result.directors = memory.stream("directors")
+            result.a = memory.stream("a")
         else:
-            tt, qq, vv, ee, m1 = last[0]
+            tt, qq, vv, ee, m1, qa = last[0]
             ts, qs, vs, es = np.array([tt]), qq[None], vv[None], ee[None]
             result.directors = None if m1 is None else m1[None]
+            result.a = qa[None]
         result.t, result.q, result.v = ts, qs, vs
         result.kinetic, result.strain, result.gravity = es[:, 0], es[:, 1], es[:, 2]
         result.status, result.message = status, message
@@ -297,12 +316,12 @@ def integrate(
         on_grid = abs(t - (out_time(k_out - 1) if k_out else 0.0)) <= 1e-12 * max(1.0, t)
         if fast and h == o.step and k_out < n_grid and on_grid:
             n_chunk = min(chunk_out, n_grid - k_out)
-            done, st, iters, stored, oy, ov, oe = integ.run_steps(
+            done, st, iters, stored, oy, ov, oa, oe = integ.run_steps(
                 y, v, a, t, o.step, n_chunk * per_out, per_out
             )
             result.took(o.step, done)
             if stored:
-                store_block(k_out, oy[:stored], ov[:stored], oe[:stored])
+                store_block(k_out, oy[:stored], ov[:stored], oa[:stored], oe[:stored])
             t_chunk = t + done * o.step
             k_out += stored
             t = float(out_time(k_out - 1)) if (stored and done % per_out == 0) else t_chunk
@@ -340,7 +359,7 @@ def integrate(
             h = o.step
         if abs(t - target) <= 1e-12 * max(1.0, target):
             t = float(target)
-            store(t, y, v)
+            store(t, y, v, a)
             k_out += 1
             notify(t)
         if should_stop is not None and should_stop():
