@@ -8,8 +8,9 @@ about 20 % strain, where they are different materials, so converged tip position
 
 from __future__ import annotations
 
+import math
 import time
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 
 import numpy as np
 
@@ -33,6 +34,50 @@ try:
 except ImportError:  # pragma: no cover - optional
     AVAILABLE = False
     VERSION = None
+
+
+def spin_up(t: float, omega_s: float, t_s: float) -> tuple[float, float]:
+    """Angle [rad] and angular velocity [rad/s] of the spin-up (Kane, Ryan & Banerjee 1987).
+
+    theta = (Os/Ts) [t^2/2 + (Ts/2pi)^2 (cos(2pi t/Ts) - 1)] for t <= Ts, Os (t - Ts/2) after;
+    the rate rises smoothly from 0 to Os (zero acceleration at 0 and Ts).
+    """
+    if t <= t_s:
+        c = t_s / (2.0 * math.pi)
+        return (
+            omega_s / t_s * (0.5 * t * t + c * c * (math.cos(t / c) - 1.0)),
+            omega_s / t_s * (t - c * math.sin(t / c)),
+        )
+    return omega_s * (t - 0.5 * t_s), omega_s
+
+
+def hold(
+    mbs: object,
+    node: int,
+    coordinate: int,
+    motion: Callable[[float], tuple[float, float]] | None = None,
+) -> None:
+    """Hold ``coordinate`` of ``node`` at its reference value, or move it by ``motion(t)``.
+
+    ``motion`` returns the displacement from the reference and its rate (a ``CoordinateConstraint``
+    to the ground with offset user functions: Exudyn's coordinate constraints act on the
+    displacement, not on the reference value).
+    """
+    ground = mbs.AddNode(NodePointGround(referenceCoordinates=[0, 0, 0]))
+    markers = [
+        mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=ground, coordinate=0)),
+        mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=node, coordinate=coordinate)),
+    ]
+    if motion is None:
+        mbs.AddObject(CoordinateConstraint(markerNumbers=markers))
+        return
+    mbs.AddObject(
+        CoordinateConstraint(
+            markerNumbers=markers,
+            offsetUserFunction=lambda mbs, t, item, offset: motion(t)[0],
+            offsetUserFunction_t=lambda mbs, t, item, offset: motion(t)[1],
+        )
+    )
 
 
 def straight_cable(
