@@ -337,7 +337,7 @@ def elastic_catenary(
         return lam(t) * ny / t
 
     def integral(f: Callable[[float, float], float], a: float, b: float, h: float) -> float:
-        return quad(f, a, b, args=(h,), epsabs=0.0, epsrel=1e-12, limit=200)[0]
+        return quad(f, a, b, args=(h,), epsabs=1e-13 * length, epsrel=1e-12, limit=200)[0]
 
     def x_end(h: float) -> float:
         return 2.0 * integral(dx, 0.0, 0.5 * length, h)
