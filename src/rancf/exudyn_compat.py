@@ -7,7 +7,7 @@ Exudyn 1.12.258 renamed the parameters of ``ObjectANCFCable2D`` (``physicsLength
 ``beams.GenerateStraightLineANCFCable2D`` by ``beams.GenerateBeamElementsAlongLine``.  The old
 names still work there but emit a ``DeprecationWarning``.  These helpers use the new names where
 the installed Exudyn has them and the old ones before, with the same values, so the results do not
-depend on which.
+depend on which (:func:`item` for any item whose parameters lost the ``physics`` prefix).
 
 Importing this module imports neither Exudyn nor the rest of rancf (``benchmarks/
 exudyn_pendulum.py`` times its own start-up); the functions import Exudyn when called.
