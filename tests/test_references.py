@@ -169,3 +169,23 @@ def test_hanging_chain_frequencies_by_finite_differences():
     off = stiff_off / np.sqrt(mass[:-1] * mass[1:])
     omega2 = eigh_tridiagonal(diag, off, select="i", select_range=(0, 2))[0]
     np.testing.assert_allclose(np.sqrt(omega2) / (2 * np.pi), f, rtol=1e-5)
+
+
+def test_conjugate_points_of_a_straight_compressed_rod():
+    """Clamped-clamped: the first conjugate point of a straight rod under the compression P is
+    where it would buckle, s = 2 pi sqrt(EI/P) (times the stretch, here 1 - 3e-3)."""
+    for force, expected in ((10.0, 2 * np.pi * np.sqrt(EI / 10.0)), (3.0, None)):
+        rod = el._shape(np.array([-force, 0.0]), 1.0, EA, EI, 0.0, "energy", 1e-12, 11)
+        found = el.conjugate_points(rod)
+        if expected is None:  # below the Euler load 4 pi^2 EI / L^2 = 3.10 N: stable
+            assert found.size == 0
+        else:
+            assert found[0] == pytest.approx(expected, rel=5e-3)
+
+
+def test_hose_hangs_down_or_arches_up_and_both_are_stable(hose):
+    up = el.installed_hose(branch="up")
+    assert -0.3 < up.mid_sag < -0.2 and np.argmax(up.y) == len(up.y) // 2
+    assert up.start_force[0] > hose.start_force[0] > 0  # the arch is more compressed
+    assert up.start_force[1] == pytest.approx(hose.start_force[1], rel=1e-12)  # half the weight
+    assert el.conjugate_points(hose).size == 0 and el.conjugate_points(up).size == 0

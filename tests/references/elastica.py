@@ -106,6 +106,8 @@ class Elastica:
     end_moment: float
     #: the dense solution of (3)-(4) over [0, L]: ``solution(s) -> state``
     solution: Callable[[np.ndarray], np.ndarray]
+    #: the problem: reference length, EA, EI, weight per reference length, law, tolerance
+    problem: tuple[float, float, float, float, Law, float]
 
 
 def _midpoint(
@@ -172,6 +174,7 @@ def clamped_elastica(
     tol: float = 1e-12,
     points: int = 401,
     sag_step: float = 0.02,
+    branch: Literal["down", "up"] = "down",
 ) -> Elastica:
     """The rod of reference ``length`` under its ``weight`` [N/m of reference length], both ends
     clamped horizontally at height 0, ``x = 0`` and ``x = span`` (``span <= length``).
@@ -191,9 +194,28 @@ def clamped_elastica(
     beam's to the buckled rod's, downward, without a bifurcation.  ``weight = 0``: the path is
     followed with the weight ``10 EI/L^3``, which is then taken to zero at the final span (the
     downward-buckled weightless elastica).
+
+    ``branch="up"``: the arch, the other symmetric first-mode equilibrium: the weightless
+    solution mirrored (``y -> -y``), then the weight raised from 0 (a RuntimeError if the arch
+    stops existing on the way: it snaps through).  For the installed hose of issue 16 both
+    exist and neither has a conjugate point (:func:`conjugate_points`): both are stable, so
+    which one a solver finds depends on its load path.
     """
     if not 0.0 < span <= length:
         raise ValueError(f"span {span} must be in (0, length = {length}]")
+    if branch == "up":
+        flat = clamped_elastica(length, span, ea, ei, 0.0, law=law, tol=tol, sag_step=sag_step)
+        u = np.array([-flat.start_force[0], flat.start_moment])  # mirrored: m(0) -> -m(0)
+        arch = lambda tau: (  # noqa: E731
+            lambda v: (lambda z: np.array([z[0] - 0.5 * span, z[2]]))(
+                _midpoint(v, length, ea, ei, tau * weight, law, tol)
+            )
+        )
+        try:
+            u = _follow(u, arch, tol, 10)
+        except RuntimeError as err:
+            raise RuntimeError(f"no arch (branch 'up') under this weight: {err}") from None
+        return _shape(u, length, ea, ei, weight, law, tol, points)
     w1 = weight if weight > 0.0 else 10.0 * ei / length**3
 
     def mid(u: np.ndarray, w: float) -> np.ndarray:
@@ -226,7 +248,20 @@ def clamped_elastica(
         raise RuntimeError("no solution at the span")
     if w1 != weight:
         u = _follow(u, lambda tau: at_span(span, w1 + tau * (weight - w1)), tol, 10)
+    return _shape(u, length, ea, ei, weight, law, tol, points)
 
+
+def _shape(
+    u: np.ndarray,
+    length: float,
+    ea: float,
+    ei: float,
+    weight: float,
+    law: Law,
+    tol: float,
+    points: int,
+) -> Elastica:
+    """The :class:`Elastica` integrated over the whole rod from ``u = [n_x(0), m(0)]``."""
     z0 = [0.0, 0.0, 0.0, u[0], -0.5 * weight * length, u[1]]
     full = solve_ivp(
         _rhs(ea, ei, weight, law),
@@ -257,7 +292,44 @@ def clamped_elastica(
         end_force=np.array(end[3:5]),
         end_moment=float(end[5]),
         solution=full.sol,
+        problem=(length, ea, ei, weight, law, tol),
     )
+
+
+def conjugate_points(e: Elastica, samples: int = 2000, delta: float = 1e-6) -> np.ndarray:
+    """Arc lengths in (0, L) where ``det d(x, y, theta)(s) / d(n_x, n_y, m)(0)`` changes sign.
+
+    Jacobi's test for the rod clamped at both ends under dead loads (Manning, Rogers & Maddocks,
+    Proc. R. Soc. A 454, 1998): an equilibrium without conjugate points is stable, one with a
+    conjugate point is not.  The Jacobian comes from three integrations with the start values
+    perturbed by ``delta`` (relative); ``samples`` points in (0, L].  Meant for compressed rods
+    (in strong tension the determinant grows exponentially and the differences lose it).
+    """
+    length, ea, ei, weight, law, tol = e.problem
+    s = np.linspace(length / samples, length, samples)
+    z0 = np.array(e.solution(0.0))
+
+    def shoot(z: np.ndarray) -> np.ndarray:
+        sol = solve_ivp(
+            _rhs(ea, ei, weight, law),
+            (0.0, length),
+            z,
+            method="DOP853",
+            rtol=tol,
+            atol=tol,
+            dense_output=True,
+        )
+        return sol.sol(s)[:3]
+
+    base = shoot(z0)
+    columns = []
+    for k in (3, 4, 5):
+        z = z0.copy()
+        step = delta * max(1.0, abs(z[k]))
+        z[k] += step
+        columns.append((shoot(z) - base) / step)
+    det = np.linalg.det(np.moveaxis(np.stack(columns, axis=1), -1, 0))
+    return s[:-1][np.diff(np.sign(det)) != 0]
 
 
 def clamped_elastica_inextensible(length: float, span: float, ei: float) -> dict[str, float]:
