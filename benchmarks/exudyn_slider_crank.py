@@ -21,6 +21,19 @@ k G A with k = 0.9 and nu = 0.3); it is pinned to the crank tip and to the slide
 Newton: absolute tolerance 1e-13 * EA * elements [N] (above the residual's round-off; Exudyn's
 default does not converge on stiff rods, see ``exudyn_spinup.py``), no adaptive step.
 
+Convergence (ANCF, rho_inf = 0.9; slider x [m] and midpoint deflection [m] at 0.05 .. 0.2 s):
+
+    16 el, h = 1e-5   0.1643942  0.3002164  0.4489003  0.3336058
+                      -4.77887e-4  -2.73077e-3  -5.92989e-4  3.44866e-3
+    16 el, h = 5e-6   -4.77885e-4  -2.73074e-3  -5.93014e-4  3.44862e-3
+    32 el, h = 5e-6   -4.77885e-4  -2.73075e-3  -5.93009e-4  3.44863e-3
+
+16 elements and h = 1e-5 s are within 4e-8 m of the finest run (8 elements: 1.2e-7 m; 4
+elements and h = 1e-4 s: 2e-6 m); rho_inf = 0.6 moves them by 3e-8 m; another crank mass and
+inertia (0.5 kg, 0.004 kg m^2) by less than 1e-12 m.  The geometrically exact beam
+(``--element beam``; 32, 64, 128 elements, h = 1e-5 s, second order in n) extrapolates to
+deflections within 0.2 % of these (its shear flexibility and rotary inertia).
+
 Prints one JSON line: ``setup_s``, ``solve_s``, ``steps``, and at t = 0.05, 0.1, 0.15, 0.2 s
 (``--t-end`` permitting; linear interpolation where a time is not a step) the slider's x and the
 rod midpoint's deflection from the chord of the rod's ends, positive to the left of the chord
