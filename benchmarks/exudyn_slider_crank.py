@@ -2,6 +2,7 @@
 
     python benchmarks/exudyn_slider_crank.py --elements N [--step H] [--t-end T]
         [--element ancf|beam] [--rho-inf R] [--crank-mass M] [--crank-inertia J]
+        [--user-functions symbolic|python]
 
 A rigid crank of 0.15 m turns about the origin with the prescribed angle
 (``exudyn_cases.spin_up``, Os = 150 rad/s, Ts = 0.05 s); a flexible steel connecting rod of
@@ -11,7 +12,8 @@ rest, the crank along +x and the rod straight from (0.15, 0) to (0.45, 0).  Gene
 with rho_inf = 0.9 (``--rho-inf``), fixed step.
 
 The crank is an ``ObjectRigidBody2D`` whose node sits at the pivot (the origin) with its position
-held and its angle prescribed (``CoordinateConstraint`` with an offset user function): its motion
+held and its angle prescribed (``CoordinateConstraint`` with offset user functions: Exudyn's
+symbolic user functions by default, Python callbacks with ``--user-functions python``): its motion
 is given, so its mass and inertia (``--crank-mass``, ``--crank-inertia``, default 1 kg and
 1 kg m^2, not given by the issue) change only the motor torque, not the motion (check: run with
 other values).  The rod is ``ObjectANCFCable2D`` (``--element ancf``, default) or Exudyn's
@@ -62,7 +64,7 @@ from exudyn.itemInterface import (  # noqa: E402
     ObjectJointRevolute2D,
     SensorNode,
 )
-from exudyn_cases import hold, spin_up  # noqa: E402
+from exudyn_cases import hold, spin_up_drive  # noqa: E402
 
 from rancf.exudyn_compat import dynamic_settings, item  # noqa: E402
 
@@ -75,15 +77,12 @@ TIMES = (0.05, 0.1, 0.15, 0.2)
 NEWTON_TOL = 1e-13
 
 
-def theta(t: float) -> tuple[float, float]:
-    """Crank angle and rate at ``t``: the spin-up law with Os = 150 rad/s, Ts = 0.05 s."""
-    return spin_up(t, OMEGA_S, T_S)
-
-
-def build(a: argparse.Namespace) -> tuple[object, object, list[int], int, float]:
-    """The mechanism: (container, system, rod nodes, slider node, the rod's EA)."""
+def build(a: argparse.Namespace) -> tuple[object, object, list[int], int, float, tuple]:
+    """The mechanism: the container, the system, the rod's nodes, the slider's node, the rod's
+    EA and the drive's user functions (they must outlive the system)."""
     sc = exu.SystemContainer()
     mbs = sc.AddSystem()
+    drive = spin_up_drive(mbs, OMEGA_S, T_S, a.user_functions == "symbolic")
     area = math.pi * DIAMETER**2 / 4.0
     inertia = math.pi * DIAMETER**4 / 64.0
     ea, ei, rho_a = YOUNGS * area, YOUNGS * inertia, DENSITY * area
@@ -99,7 +98,7 @@ def build(a: argparse.Namespace) -> tuple[object, object, list[int], int, float]
     )
     hold(mbs, crank_node, 0)
     hold(mbs, crank_node, 1)
-    hold(mbs, crank_node, 2, theta)
+    hold(mbs, crank_node, 2, drive)
 
     n, le = a.elements, ROD / a.elements
     xs = [CRANK + i * le for i in range(n + 1)]
@@ -134,7 +133,7 @@ def build(a: argparse.Namespace) -> tuple[object, object, list[int], int, float]
         ],
     ):
         mbs.AddObject(ObjectJointRevolute2D(markerNumbers=pair))
-    return sc, mbs, rod, slider, ea
+    return sc, mbs, rod, slider, ea, drive
 
 
 def main() -> None:
@@ -149,10 +148,11 @@ def main() -> None:
     p.add_argument("--shear-stiffness", type=float, default=None)
     p.add_argument("--solver", choices=["dense", "sparse"], default="dense")
     p.add_argument("--newton-tol", type=float, default=None)
+    p.add_argument("--user-functions", choices=["symbolic", "python"], default="symbolic")
     a = p.parse_args()
     if a.elements < 2 or a.elements % 2:
         p.error(f"--elements {a.elements}: an even number >= 2 (the rod's midpoint is a node)")
-    sc, mbs, rod, slider, ea = build(a)
+    sc, mbs, rod, slider, ea, drive = build(a)
     watched = [rod[0], rod[len(rod) // 2], rod[-1], slider]
     sensors = [
         mbs.AddSensor(
@@ -187,6 +187,7 @@ def main() -> None:
         "rho_inf": a.rho_inf,
         "crank_mass": a.crank_mass,
         "crank_inertia": a.crank_inertia,
+        "user_functions": a.user_functions,
         "converged": bool(ok),
         "setup_s": t1 - T0,
         "solve_s": t2 - t1,

@@ -2,6 +2,7 @@
 
     python benchmarks/exudyn_spinup.py --elements N [--step H] [--t-end T]
         [--element ancf|beam] [--rho-inf R] [--solver dense|sparse]
+        [--user-functions symbolic|python]
 
 L = 10 m, EA = 2.8e7 N, EI = 1.4e4 N m^2, rhoA = 1.2 kg/m, no gravity.  The root is clamped to a
 hub at the origin whose angle is prescribed (``exudyn_cases.spin_up``, Os = 6 rad/s, Ts = 15 s);
@@ -9,7 +10,9 @@ the beam is straight along x and at rest at t = 0.  Generalized-alpha with rho_i
 (``--rho-inf``).
 
 ``--element ancf`` (default): ``ObjectANCFCable2D``; the hub is a ``NodeRigidBody2D`` whose angle
-a ``CoordinateConstraint`` with an offset user function prescribes, and the cable's first node is
+a ``CoordinateConstraint`` with offset user functions prescribes (``--user-functions symbolic``,
+default: Exudyn's symbolic user functions, evaluated in C++; ``python``: Python callbacks, same
+results, slower), and the cable's first node is
 held at the origin (two ``CoordinateConstraint``) with its slope direction locked to the hub's
 frame (``ObjectJointGeneric``, rotation about z only): a clamp that leaves the root's axial strain
 free.  ``--element beam``: Exudyn's geometrically exact 2D beam (``ObjectBeamGeometricallyExact2D``,
@@ -62,7 +65,7 @@ from exudyn.itemInterface import (  # noqa: E402
     ObjectJointGeneric,
     SensorNode,
 )
-from exudyn_cases import hold, spin_up  # noqa: E402
+from exudyn_cases import hold, spin_up, spin_up_drive  # noqa: E402
 
 from rancf.exudyn_compat import dynamic_settings, item  # noqa: E402
 
@@ -77,10 +80,17 @@ def theta(t: float) -> tuple[float, float]:
     return spin_up(t, OMEGA_S, T_S)
 
 
-def build(n: int, element: str, shear_stiffness: float) -> tuple[object, object, list[int], list]:
-    """The beam of ``n`` elements clamped to the driven hub: (container, system, nodes, objects)."""
+def build(
+    n: int, element: str, shear_stiffness: float, symbolic: bool
+) -> tuple[object, object, list[int], list, tuple]:
+    """The beam of ``n`` elements clamped to the driven hub.
+
+    Returns the container, the system, the nodes, the elements and the drive's user functions
+    (they must outlive the system).
+    """
     sc = exu.SystemContainer()
     mbs = sc.AddSystem()
+    drive = spin_up_drive(mbs, OMEGA_S, T_S, symbolic)
     le = LENGTH / n
     xs = [i * le for i in range(n + 1)]
     if element == "beam":
@@ -99,7 +109,7 @@ def build(n: int, element: str, shear_stiffness: float) -> tuple[object, object,
         ]
         hold(mbs, nodes[0], 0)
         hold(mbs, nodes[0], 1)
-        hold(mbs, nodes[0], 2, theta)
+        hold(mbs, nodes[0], 2, drive)
     else:
         nodes = [mbs.AddNode(NodePoint2DSlope1(referenceCoordinates=[x, 0, 1, 0])) for x in xs]
         params = dict(length=le, massPerLength=RHO_A, bendingStiffness=EI, axialStiffness=EA)
@@ -113,13 +123,13 @@ def build(n: int, element: str, shear_stiffness: float) -> tuple[object, object,
         for c in (0, 1):
             hold(mbs, hub, c)
             hold(mbs, nodes[0], c)
-        hold(mbs, hub, 2, theta)
+        hold(mbs, hub, 2, drive)
         markers = [
             mbs.AddMarker(MarkerNodeRigid(nodeNumber=hub)),
             mbs.AddMarker(MarkerNodeRigid(nodeNumber=nodes[0])),
         ]
         mbs.AddObject(ObjectJointGeneric(markerNumbers=markers, constrainedAxes=[0, 0, 0, 0, 0, 1]))
-    return sc, mbs, nodes, objs
+    return sc, mbs, nodes, objs, drive
 
 
 def elongation(mbs: object, objs: list, le: float) -> float:
@@ -146,8 +156,10 @@ def main() -> None:
     p.add_argument("--shear-stiffness", type=float, default=EA)
     p.add_argument("--solver", choices=["dense", "sparse"], default="dense")
     p.add_argument("--newton-tol", type=float, default=None)
+    p.add_argument("--user-functions", choices=["symbolic", "python"], default="symbolic")
     a = p.parse_args()
-    sc, mbs, nodes, objs = build(a.elements, a.element, a.shear_stiffness)
+    symbolic = a.user_functions == "symbolic"
+    sc, mbs, nodes, objs, drive = build(a.elements, a.element, a.shear_stiffness, symbolic)
     tip = mbs.AddSensor(
         SensorNode(
             nodeNumber=nodes[-1],
@@ -179,6 +191,7 @@ def main() -> None:
         "elements": a.elements,
         "step": a.step,
         "rho_inf": a.rho_inf,
+        "user_functions": a.user_functions,
         "converged": bool(ok),
         "t_end": float(t[-1]),
         "setup_s": t1 - T0,

@@ -34,12 +34,16 @@ def run(script: str, *args: str) -> dict:
 
 
 def test_spin_up_first_five_seconds():
-    out = run("exudyn_spinup.py", "--elements", "8", "--step", "0.01", "--t-end", "5")
+    args = ("--elements", "8", "--step", "0.01", "--t-end", "5")
+    out = run("exudyn_spinup.py", *args)
     assert out["converged"] and out["steps"] == 500 and out["t_end"] == pytest.approx(5.0)
-    assert out["setup_s"] > 0 and out["solve_s"] > 0
+    assert out["setup_s"] > 0 and out["solve_s"] > 0 and out["user_functions"] == "symbolic"
     # issue 18 (converged): v(5 s) = -0.46844 m; 8 elements and h = 0.01 s are 5e-5 m off
     assert out["v_5"] == pytest.approx(-0.46844, rel=2e-4)
     assert out["v_10"] is None
+    # the hub driven by Python callbacks instead of Exudyn's symbolic functions: the same run
+    python = run("exudyn_spinup.py", *args, "--user-functions", "python")
+    assert python["v_5"] == pytest.approx(out["v_5"], rel=1e-12)
 
 
 def test_slider_crank_first_revolutions():
