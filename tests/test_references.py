@@ -13,6 +13,7 @@ import pytest
 from scipy.integrate import quad
 from scipy.linalg import eigh_tridiagonal
 
+from tests.references import catenary as cat
 from tests.references import elastica as el
 
 H = el.HOSE
@@ -135,17 +136,17 @@ def test_shooting_is_stationary_for_rancfs_energy(hose):
 
 
 def test_elastic_catenary_quadrature_matches_irvine_and_ssnl114():
-    c = el.SSNL114
+    c = cat.SSNL114
     ea, w = c["youngs"] * c["area"], c["density"] * c["area"] * 9.81
-    eng = el.ssnl114("engineering")
-    irvine = el.irvine_catenary(c["span"], c["length"], ea, w)
+    eng = cat.ssnl114("engineering")
+    irvine = cat.irvine_catenary(c["span"], c["length"], ea, w)
     for key in ("horizontal", "end_tension", "mid_sag"):
         assert getattr(eng, key) == pytest.approx(irvine[key], rel=1e-10)
     # Irvine's SSNL114 values (engineering strain): 6.352 m, 13206 N, 13247 N
     assert irvine["mid_sag"] == pytest.approx(6.352, abs=5e-4)
     assert irvine["horizontal"] == pytest.approx(13206, abs=0.5)
     assert irvine["end_tension"] == pytest.approx(13247, abs=0.5)
-    gl = el.ssnl114()  # rancf's Green-Lagrange law: 6.3489 m, 13213 N, 13253 N
+    gl = cat.ssnl114()  # rancf's Green-Lagrange law: 6.3489 m, 13213 N, 13253 N
     assert gl.mid_sag == pytest.approx(6.3489, abs=5e-5)
     assert gl.horizontal == pytest.approx(13213, abs=0.5)
     assert gl.end_tension == pytest.approx(13253, abs=0.5)
@@ -157,7 +158,7 @@ def test_hanging_chain_frequencies_by_finite_differences():
     """(g s u')' + omega^2 u = 0 on s in [0, L] (s from the free end), u(L) = 0, finite
     differences on 4000 cells (second order), against the Bessel zeros."""
     length, g, n = 1.0, 9.81, 4000
-    f = el.chain_frequencies(length, g, 3)
+    f = cat.chain_frequencies(length, g, 3)
     np.testing.assert_allclose(f, [0.5994, 1.3758, 2.1569], atol=5e-5)
     ds = length / n
     # nodes s_i = i ds, i = 0..n-1 (u_n = 0); node 0 has half a cell and no flux at s = 0
