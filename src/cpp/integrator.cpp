@@ -100,8 +100,7 @@ StepOutcome Integrator::step(const double* y0, const double* v0, const double* a
 }
 
 RunOutcome Integrator::run(double* y, double* v, double* a, double t0, double h, int n_steps,
-                           int out_every, double* out_y, double* out_v, double* out_a,
-                           double* out_e) {
+                           int out_every, double* out_y, double* out_v, double* out_e) {
   const int n = m_.n();
   std::vector<double> y1(sz(n)), v1(sz(n)), a1(sz(n));
   RunOutcome out{0, true, 0, 0};
@@ -121,7 +120,6 @@ RunOutcome Integrator::run(double* y, double* v, double* a, double t0, double h,
     const std::ptrdiff_t row = static_cast<std::ptrdiff_t>(out.stored) * n;
     std::copy(y, y + n, out_y + row);
     std::copy(v, v + n, out_v + row);
-    std::copy(a, a + n, out_a + row);
     out_e[3 * out.stored] = kinetic_energy(m_, v);
     out_e[3 * out.stored + 1] = strain_energy(m_, y);
     out_e[3 * out.stored + 2] = gravity_energy(m_, y);

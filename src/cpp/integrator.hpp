@@ -43,10 +43,10 @@ class Integrator {
   StepOutcome step(const double* y0, const double* v0, const double* a0, double t, double h,
                    double* y1, double* v1, double* a1);
   /// Up to n_steps fixed steps (rod triads re-referenced after each), y, v, a updated in place;
-  /// every out_every steps the state (y, v, a) and the energies (kinetic, strain, gravity) go to
-  /// the next rows of out_y, out_v, out_a, out_e.
+  /// every out_every steps the state and the energies (kinetic, strain, gravity) go to the next
+  /// rows of out_y, out_v, out_e.
   RunOutcome run(double* y, double* v, double* a, double t0, double h, int n_steps, int out_every,
-                 double* out_y, double* out_v, double* out_a, double* out_e);
+                 double* out_y, double* out_v, double* out_e);
   /// a = M^-1 (f_ext(t) - f_int(y) - c M v).
   void initial_acceleration(const double* y, const double* v, double t, double* a);
   [[nodiscard]] long factorizations() const { return factorizations_; }

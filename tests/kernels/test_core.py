@@ -90,14 +90,13 @@ def test_fixed_step_loop_equals_single_steps():
     a = integ.initial_acceleration(y, v, 0.0)
     ys, vs, as_ = y.copy(), v.copy(), a.copy()
     h = 2e-3
-    done, ok, _, stored, oy, _, oa, oe = integ.run_steps(y, v, a, 0.0, h, 20, 5)
+    done, ok, _, stored, oy, _, oe = integ.run_steps(y, v, a, 0.0, h, 20, 5)
     assert (done, ok, stored) == (20, 1, 4)
     for k in range(20):
         conv, ys, vs, as_, _ = integ.step(ys, vs, as_, k * h, h)
         assert conv
         if (k + 1) % 5 == 0:
             assert np.array_equal(ys, oy[(k + 1) // 5 - 1])
-            assert np.array_equal(as_, oa[(k + 1) // 5 - 1])
     assert np.array_equal(ys, y) and np.array_equal(vs, v) and np.array_equal(as_, a)
     assert oe[-1, 1] == m.strain_energy(y)
     assert oe[-1, 0] == pytest.approx(m.kinetic_energy(v), rel=1e-13)

@@ -31,7 +31,7 @@ from rancf.post.results import atomic_write, strict_json, write_history_files
 
 __all__ = ["HistoryStore", "estimate_output_bytes"]
 
-_FILES = ("t", "q", "v", "e", "a")
+_FILES = ("t", "q", "v", "e")
 
 
 def estimate_output_bytes(
@@ -83,11 +83,12 @@ class HistoryStore:
         self.raw.mkdir(exist_ok=True)
         # rods: the nodal directors too ("m", 3 numbers a node)
         self._keys = _FILES + (("m",) if model.element == "rod" else ())
-        # derived at every flush from the buffered rows: reactions "r", section values "s"
-        files = self._keys + ("r", "s")
+        # derived at every flush from the buffered rows: accelerations "a", reactions "r",
+        # section values "s"
+        files = self._keys + ("a", "r", "s")
         self._fh = {k: open(self.raw / f"{k}.f64", "wb") for k in files}  # noqa: SIM115
         self._buf: dict[str, list[NDArray]] = {k: [] for k in self._keys}
-        self._rows_per_flush = max(1, buffer_bytes // (24 * model.n + 32))
+        self._rows_per_flush = max(1, buffer_bytes // (16 * model.n + 32))
         self.n_rows = 0
         self._pending = 0
 
@@ -98,10 +99,9 @@ class HistoryStore:
         v: NDArray,
         energy: NDArray,
         directors: NDArray | None = None,
-        a: NDArray | None = None,
     ) -> None:
         """Store one output (sink protocol of :func:`~rancf.solvers.dynamic.integrate`)."""
-        self._add((np.array([t]), q, v, energy, a, directors), 1)
+        self._add((np.array([t]), q, v, energy, directors), 1)
 
     def append_block(
         self,
@@ -110,11 +110,10 @@ class HistoryStore:
         v: NDArray,
         energy: NDArray,
         directors: NDArray | None = None,
-        a: NDArray | None = None,
     ) -> None:
         """Store consecutive outputs: ``t (k,)``, ``q, v (k, n_q)``, ``energy (k, 3)``, rods'
-        ``directors (k, n_nodes, 3)``, ``accelerations (k, n_q)``."""
-        self._add((t, q, v, energy, a, directors), len(t))
+        ``directors (k, n_nodes, 3)``."""
+        self._add((t, q, v, energy, directors), len(t))
 
     def _add(self, values: tuple[NDArray | None, ...], rows: int) -> None:
         for key, val in zip(self._keys, values, strict=False):
@@ -131,11 +130,11 @@ class HistoryStore:
         if self._pending:
             rows = {k: np.concatenate(self._buf[k]) for k in self._keys}
             k = self._pending
-            reac, along = self.derived.rows(
+            acc, reac, along = self.derived.rows(
                 rows["t"], rows["q"].reshape(k, -1), rows["v"].reshape(k, -1),
-                rows["a"].reshape(k, -1), rows["m"].reshape(k, -1) if "m" in rows else None,
+                rows["m"].reshape(k, -1) if "m" in rows else None,
             )  # fmt: skip
-            rows["r"], rows["s"] = reac.ravel(), along.ravel()
+            rows["a"], rows["r"], rows["s"] = acc.ravel(), reac.ravel(), along.ravel()
             for key, val in rows.items():
                 self._fh[key].write(np.ascontiguousarray(val, dtype="<f8").tobytes())
                 self._buf.get(key, []).clear()
@@ -167,7 +166,7 @@ class HistoryStore:
         self.flush()
         t, q, v, e, m1, a, r, along = self._arrays()
         write_history_files(
-            self.out, self.model, self.sensors, t, q, v, e, m1, a, self.derived, (r, along)
+            self.out, self.model, self.sensors, t, q, v, e, m1, self.derived, (a, r, along)
         )
         self.write_summary(summary)
 

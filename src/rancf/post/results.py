@@ -152,32 +152,30 @@ def write_history_files(
     v: NDArray,
     energy: NDArray,
     directors: NDArray | None = None,
-    accelerations: NDArray | None = None,
     derived: DerivedOutputs | None = None,
-    precomputed: tuple[NDArray, NDArray] | None = None,
+    precomputed: tuple[NDArray, NDArray, NDArray] | None = None,
     static: bool = False,
 ) -> list[str]:
     """``sensors.csv``, ``energy.csv``, ``reactions.csv`` and ``results.npz`` of a history,
     chunk by chunk.
 
-    ``t (n,)``, ``q``, ``v`` and ``accelerations (n, n_q)``, ``energy (n, 3)`` and a rod's nodal
-    ``directors`` (``(n, 3 n_nodes)`` or ``(n, n_nodes, 3)``, stored as ``directors (n, n_nodes,
-    3)``) may be memory maps.  The reactions and section values (:class:`DerivedOutputs`) come
-    from ``precomputed = (reactions (n, n_r), along (n, n_points * n_names))`` or are computed
-    from the rows (``static``: rows of a load path, ``t`` the load factor).  Returns the sensor
-    column names.
+    ``t (n,)``, ``q`` and ``v (n, n_q)``, ``energy (n, 3)`` and a rod's nodal ``directors``
+    (``(n, 3 n_nodes)`` or ``(n, n_nodes, 3)``, stored as ``directors (n, n_nodes, 3)``) may be
+    memory maps.  The accelerations, reactions and section values (:class:`DerivedOutputs`)
+    come from ``precomputed = (a (n, n_q), reactions (n, n_r), along (n, n_points * n_names))``
+    or are computed from the rows (``static``: rows of a load path, ``t`` the path parameter).
+    Returns the sensor column names.
     """
     n = t.shape[0]
     derived = derived if derived is not None else DerivedOutputs(model)
     m1 = None if directors is None else directors.reshape(n, -1)
 
-    def derived_rows(r: slice) -> tuple[NDArray, NDArray]:
+    def derived_rows(r: slice) -> tuple[NDArray, NDArray, NDArray]:
         if precomputed is not None:
-            return precomputed[0][r], precomputed[1][r]
-        a = None if accelerations is None else accelerations[r]
+            return precomputed[0][r], precomputed[1][r], precomputed[2][r]
         mm = None if m1 is None else m1[r]
-        reac, along = derived.rows(t[r], q[r], v[r], a, mm, static=static)
-        return reac, along.reshape(along.shape[0], -1)
+        acc, reac, along = derived.rows(t[r], q[r], v[r], mm, static=static)
+        return acc, reac, along.reshape(along.shape[0], -1)
 
     names, _ = sensor_table(model, sensors, q[:1])
     with atomic_file(out / "sensors.csv") as fh:
@@ -191,11 +189,11 @@ def write_history_files(
             e = energy[r]
             np.savetxt(fh, np.column_stack([t[r], e, e.sum(axis=1)]), delimiter=",", fmt="%.12g")
     width = len(derived.section_names) * derived.n_points
-    chunks = [(r, *derived_rows(r)) for r in _rows(n, q.shape[1] + width)]
+    chunks = [(r, *derived_rows(r)) for r in _rows(n, 2 * q.shape[1] + width)]
     if derived.reaction_names:
         with atomic_file(out / "reactions.csv") as fh:
             fh.write((",".join(["t", *derived.reaction_names]) + "\n").encode())
-            for r, reac, _ in chunks:
+            for r, _, reac, _ in chunks:
                 np.savetxt(fh, np.column_stack([t[r], reac]), delimiter=",", fmt="%.12g")
     meta = {
         "element": model.element,
@@ -219,10 +217,9 @@ def write_history_files(
     with atomic_file(out / "results.npz") as fh:
         with zipfile.ZipFile(fh, "w", zipfile.ZIP_STORED, allowZip64=True) as z:
             _npy(z, "t", (n,), (t[r] for r in _rows(n, 1)))
-            arrays = (("q", q), ("v", v), ("a", accelerations))
-            for name, arr in arrays:
-                if arr is not None:
-                    _npy(z, name, arr.shape, (arr[r] for r in _rows(n, arr.shape[1])))
+            for name, arr in (("q", q), ("v", v)):
+                _npy(z, name, arr.shape, (arr[r] for r in _rows(n, arr.shape[1])))
+            _npy(z, "a", q.shape, (c[1] for c in chunks))
             for j, name in enumerate(("kinetic", "strain", "gravity")):
                 _npy(z, name, (n,), (energy[r, j] for r in _rows(n, 3)))
             if m1 is not None:
@@ -231,8 +228,8 @@ def write_history_files(
             shape = (n, len(names))
             rows = _rows(n, q.shape[1])
             _npy(z, "sensors", shape, (sensor_table(model, sensors, q[r])[1] for r in rows))
-            _npy(z, "reactions", (n, n_r), (c[1] for c in chunks))
-            _npy(z, "along", along_shape, (c[2] for c in chunks))
+            _npy(z, "reactions", (n, n_r), (c[2] for c in chunks))
+            _npy(z, "along", along_shape, (c[3] for c in chunks))
             for name, arr in small.items():
                 with z.open(f"{name}.npy", "w") as f:
                     np.lib.format.write_array(f, np.asarray(arr), allow_pickle=False)
@@ -281,7 +278,7 @@ def write_run(
     out.mkdir(parents=True, exist_ok=True)
     energy = np.column_stack([result.kinetic, result.strain, result.gravity])
     write_history_files(
-        out, model, sensors, result.t, result.q, result.v, energy, result.directors, result.a,
+        out, model, sensors, result.t, result.q, result.v, energy, result.directors,
         DerivedOutputs(model, labels),
     )  # fmt: skip
     summary = {**run_summary(model, result), **(extra or {})}
@@ -326,9 +323,8 @@ def write_static_run(
         [[0.0, model.strain_energy(y), model.gravity_energy(y)] for y in ys], dtype=float
     )
     m1 = np.array([m for _, _, m in path.steps]) if model.element == "rod" else None
-    zero = np.zeros_like(q)
     write_history_files(
-        out, model, sensors, t, q, zero, energy, m1, zero, path.derived, static=True
+        out, model, sensors, t, q, np.zeros_like(q), energy, m1, path.derived, static=True
     )
     write_along_csv(out / "along.csv", path, q[-1], None if m1 is None else m1[-1])
     doc = {
@@ -350,8 +346,8 @@ def write_along_csv(path: Path, load_path: LoadPath, q: NDArray, m1: NDArray | N
     reference arc length ``s``, the position and the section quantities."""
     d = load_path.derived
     lam = load_path.steps[-1][0]
-    _, along = d.rows(np.array([lam]), q[None], directors=None if m1 is None else m1[None],
-                      static=True)  # fmt: skip
+    _, _, along = d.rows(np.array([lam]), q[None], directors=None if m1 is None else m1[None],
+                         static=True)  # fmt: skip
     pos = d.sampler.positions(load_path.model.y_from_q(q))
     axes = ["x", "y", "z"][: load_path.model.dim]
     head = ",".join(["s", *axes, *d.section_names]) + "\n"

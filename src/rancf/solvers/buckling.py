@@ -32,6 +32,7 @@ from numpy.typing import NDArray
 from rancf.errors import ConvergenceError, InputError
 from rancf.model.system import Model
 from rancf.solvers.equilibrium import EquilibriumProblem
+from rancf.solvers.modal import rigid_body_modes, unresisted_motions
 
 __all__ = ["BucklingResult", "linear_buckling"]
 
@@ -88,7 +89,11 @@ def linear_buckling(
         ys, lam0 = np.asarray(y, dtype=float), problem.stages[-1][1]
         problem.stage = len(problem.stages) - 1
     _, k0 = problem.tangent(ys, lam0)
-    u = problem.solve(k0, _loads(problem, ys, k0))
+    free = problem.free
+    kd = _dense_tangent(problem, ys, lam0)
+    mass = model.dense(model.mass_band)[np.ix_(free, free)]
+    rigid = unresisted_motions(rigid_body_modes(model, ys)[free], kd[np.ix_(free, free)], mass)
+    u = problem.solve(k0, _loads(problem, ys, k0)) if rigid.shape[1] == 0 else None
     if u is None:
         raise ConvergenceError(
             "the tangent stiffness is singular: the structure is a mechanism (add supports)"
@@ -100,8 +105,6 @@ def linear_buckling(
     kp = _dense_tangent(problem, ys + h * u, lam0, h)
     km = _dense_tangent(problem, ys - h * u, lam0, -h)
     ks = (kp - km) / (2.0 * h)
-    kd = _dense_tangent(problem, ys, lam0)
-    free = problem.free
     a, b = -ks[np.ix_(free, free)], kd[np.ix_(free, free)]
     symmetric = problem.conservative and np.allclose(b, b.T, rtol=0, atol=1e-9 * np.abs(b).max())
     inv_mu = None

@@ -71,14 +71,12 @@ class DynamicResult:
     n_outputs: int = 0
     #: Rods: nodal directors ``m1`` at the output times, ``(n_t, n_nodes, 3)``; else None.
     directors: NDArray[np.float64] | None = None
-    #: Accelerations ``(n_t, n_q)`` in full coordinates (the integrator's ``a``).
-    a: NDArray[np.float64] | None = None
 
     def select(self, index: NDArray | slice) -> DynamicResult:
         """The result restricted to some of its outputs (every per-output array sliced)."""
         from dataclasses import replace
 
-        per_output = ("t", "q", "v", "kinetic", "strain", "gravity", "directors", "a")
+        per_output = ("t", "q", "v", "kinetic", "strain", "gravity", "directors")
         cut = {k: getattr(self, k)[index] for k in per_output if getattr(self, k) is not None}
         return replace(self, **cut)
 
@@ -164,16 +162,15 @@ class GeneralizedAlpha:
     ) -> tuple:
         """Fixed steps in the core (``y, v, a`` updated in place).
 
-        Returns ``(steps done, status, iterations, outputs stored, out_y, out_v, out_a,
-        out_e)``; status is 1 if every step converged, else 0 (the failing step is not taken).
+        Returns ``(steps done, status, iterations, outputs stored, out_y, out_v, out_e)``;
+        status is 1 if every step converged, else 0 (the failing step is not taken).
         """
         n = self.model.n
         n_out = n_steps // per_out
-        oy, ov, oa = np.empty((n_out, n)), np.empty((n_out, n)), np.empty((n_out, n))
-        oe = np.empty((n_out, 3))
-        done, ok, iters, stored = self._core.run(y, v, a, t, h, n_steps, per_out, oy, ov, oa, oe)
+        oy, ov, oe = np.empty((n_out, n)), np.empty((n_out, n)), np.empty((n_out, 3))
+        done, ok, iters, stored = self._core.run(y, v, a, t, h, n_steps, per_out, oy, ov, oe)
         self.n_newton += iters
-        return done, int(ok), iters, stored, oy, ov, oa, oe
+        return done, int(ok), iters, stored, oy, ov, oe
 
     def error_estimate(self, a0: NDArray, a1: NDArray, h: float, rtol: float) -> float:
         """Local displacement error relative to ``rtol * size``."""
@@ -246,23 +243,22 @@ def integrate(
     rod = model.element == "rod"
     directors = model.nodal_directors  # rods: of the state the triads were last carried to
 
-    def store(tt: float, yy: NDArray, vv: NDArray, aa: NDArray) -> None:
+    def store(tt: float, yy: NDArray, vv: NDArray) -> None:
         e = np.array([model.kinetic_energy(vv), model.strain_energy(yy), model.gravity_energy(yy)])
         m1 = directors(yy)
-        qa = model.q_from_y(aa)
-        row = (tt, model.q_from_y(yy), model.q_from_y(vv), e, m1, qa)
-        target_sink.append(*row[:4], directors=m1, a=qa)
+        row = (tt, model.q_from_y(yy), model.q_from_y(vv), e, m1)
+        target_sink.append(*row[:4], directors=m1)
         last[:] = [row]
         result.n_outputs += 1
 
-    def store_block(k0: int, oy: NDArray, ov: NDArray, oa: NDArray, oe: NDArray) -> None:
+    def store_block(k0: int, oy: NDArray, ov: NDArray, oe: NDArray) -> None:
         """Outputs ``k0, k0 + 1, ...`` from the core's loop, passed on as one block (rods: one
         output a block, whose state is the one the triads were carried to)."""
         ts = np.array([out_time(k0 + i) for i in range(len(oy))])
-        qs, vs, qa = model.q_from_y(oy), model.q_from_y(ov), model.q_from_y(oa)
+        qs, vs = model.q_from_y(oy), model.q_from_y(ov)
         m1 = directors(oy[-1])
-        target_sink.append_block(ts, qs, vs, oe, directors=None if m1 is None else m1[None], a=qa)
-        last[:] = [(float(ts[-1]), qs[-1], vs[-1], np.array(oe[-1]), m1, qa[-1])]
+        target_sink.append_block(ts, qs, vs, oe, directors=None if m1 is None else m1[None])
+        last[:] = [(float(ts[-1]), qs[-1], vs[-1], np.array(oe[-1]), m1)]
         result.n_outputs += len(oy)
 
     y = model.y0.copy() if initial is None else np.array(initial, dtype=float)
@@ -271,7 +267,7 @@ def integrate(
     a = integ.initial_acceleration(y, v, t)
     empty = np.empty(0)
     result = DynamicResult(empty, empty, empty, empty, empty, empty, DynamicStatus.COMPLETED, "")
-    store(0.0, y, v, a)
+    store(0.0, y, v)
     if on_start is not None:
         on_start()
     start = time.perf_counter()
@@ -280,12 +276,10 @@ def integrate(
         if memory is not None:
             ts, qs, vs, es = memory.arrays()
             result.directors = memory.stream("directors")
-            result.a = memory.stream("a")
         else:
-            tt, qq, vv, ee, m1, qa = last[0]
+            tt, qq, vv, ee, m1 = last[0]
             ts, qs, vs, es = np.array([tt]), qq[None], vv[None], ee[None]
             result.directors = None if m1 is None else m1[None]
-            result.a = qa[None]
         result.t, result.q, result.v = ts, qs, vs
         result.kinetic, result.strain, result.gravity = es[:, 0], es[:, 1], es[:, 2]
         result.status, result.message = status, message
@@ -316,12 +310,12 @@ def integrate(
         on_grid = abs(t - (out_time(k_out - 1) if k_out else 0.0)) <= 1e-12 * max(1.0, t)
         if fast and h == o.step and k_out < n_grid and on_grid:
             n_chunk = min(chunk_out, n_grid - k_out)
-            done, st, iters, stored, oy, ov, oa, oe = integ.run_steps(
+            done, st, iters, stored, oy, ov, oe = integ.run_steps(
                 y, v, a, t, o.step, n_chunk * per_out, per_out
             )
             result.took(o.step, done)
             if stored:
-                store_block(k_out, oy[:stored], ov[:stored], oa[:stored], oe[:stored])
+                store_block(k_out, oy[:stored], ov[:stored], oe[:stored])
             t_chunk = t + done * o.step
             k_out += stored
             t = float(out_time(k_out - 1)) if (stored and done % per_out == 0) else t_chunk
@@ -359,7 +353,7 @@ def integrate(
             h = o.step
         if abs(t - target) <= 1e-12 * max(1.0, target):
             t = float(target)
-            store(t, y, v, a)
+            store(t, y, v)
             k_out += 1
             notify(t)
         if should_stop is not None and should_stop():

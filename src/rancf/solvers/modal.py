@@ -35,7 +35,13 @@ from numpy.typing import NDArray
 
 from rancf.model.system import Model
 
-__all__ = ["ModalResult", "natural_modes", "rigid_body_modes", "tangent_stiffness"]
+__all__ = [
+    "ModalResult",
+    "natural_modes",
+    "rigid_body_modes",
+    "tangent_stiffness",
+    "unresisted_motions",
+]
 
 
 @dataclass(frozen=True)
@@ -144,7 +150,7 @@ def natural_modes(model: Model, y: NDArray | None = None, count: int | None = No
         lam, phi = scipy.linalg.eigh(k, m)
     else:
         lam, phi = _general_modes(k, m)
-    rigid = _unresisted(rigid_body_modes(model, y)[free], k, m)
+    rigid = unresisted_motions(rigid_body_modes(model, y)[free], k, m)
     n_rigid = rigid.shape[1]
     keep = np.ones(lam.size, dtype=bool)
     if n_rigid:
@@ -167,7 +173,7 @@ def natural_modes(model: Model, y: NDArray | None = None, count: int | None = No
     return ModalResult(freqs, modes, int(np.sum(~keep)), lam, growth, symmetric)
 
 
-def _unresisted(r: NDArray, k: NDArray, m: NDArray) -> NDArray[np.float64]:
+def unresisted_motions(r: NDArray, k: NDArray, m: NDArray) -> NDArray[np.float64]:
     """The part of the rigid candidates ``r`` (M-orthonormal columns) that ``k`` does not
     resist: the null space of ``rᵀ k r`` to round-off (module docstring)."""
     if r.shape[1] == 0:

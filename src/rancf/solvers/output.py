@@ -1,10 +1,9 @@
 """Where :func:`rancf.solvers.dynamic.integrate` puts the stored states: output sinks.
 
 A sink receives one row per output time: ``t``, nodal coordinates ``q (n_q,)``, velocities
-``v (n_q,)``, the energies ``(kinetic, strain, gravity)`` and named streams: the accelerations
-``a (n_q,)`` and, for rods, the nodal directors ``directors (n_nodes, 3)`` (the first material
-axis of each node's triad, which the stored coordinates alone do not fix: the triads are carried
-along the whole path of the run).  :class:`MemorySink` keeps them in memory (the default, for
+``v (n_q,)``, the energies ``(kinetic, strain, gravity)`` and named streams: for rods, the nodal
+directors ``directors (n_nodes, 3)`` (the first material axis of each node's triad, which the
+stored coordinates alone do not fix: the triads are carried along the whole path of the run).  :class:`MemorySink` keeps them in memory (the default, for
 library use); the command line streams them to disk with
 :class:`rancf.post.history.HistoryStore`, so memory stays bounded whatever ``t_end``.
 """
@@ -19,7 +18,7 @@ from numpy.typing import NDArray
 __all__ = ["OutputSink", "MemorySink", "STREAMS"]
 
 #: Named streams of a row besides ``t, q, v`` and the energies.
-STREAMS = ("a", "directors")
+STREAMS = ("directors",)
 
 
 class OutputSink(Protocol):
@@ -34,7 +33,7 @@ class OutputSink(Protocol):
         **streams: NDArray[np.float64] | None,
     ) -> None:
         """Store one output: time, ``q (n_q,)``, ``v (n_q,)``, energies ``(3,)`` and the
-        :data:`STREAMS` (``a (n_q,)``, rods' ``directors (n_nodes, 3)``; None: absent)."""
+        :data:`STREAMS` (rods' ``directors (n_nodes, 3)``; None: absent)."""
 
     def append_block(
         self,
