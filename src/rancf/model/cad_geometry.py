@@ -21,7 +21,7 @@ from numpy.typing import NDArray
 
 from rancf.errors import InputError
 from rancf.geometry.bezier import RationalBezier
-from rancf.geometry.conic_params import pad3
+from rancf.geometry.conic_params import pad3, vector_angle
 from rancf.geometry.nurbs import NurbsCurve
 from rancf.model.mesh import CableMesh, check_element_count, mesh_from_curves
 
@@ -90,11 +90,6 @@ def _where(x: NDArray) -> str:
     return "(" + ", ".join(f"{v:.6g}" for v in x) + ")"
 
 
-def _angle(t0: NDArray, t1: NDArray) -> float:
-    c = float(np.dot(t0, t1) / (np.linalg.norm(t0) * np.linalg.norm(t1)))
-    return float(np.arccos(np.clip(c, -1.0, 1.0)))
-
-
 def _end_tangents(seg: RationalBezier) -> tuple[NDArray, NDArray]:
     q = seg.points
     return q[1] - q[0], q[-1] - q[-2]
@@ -153,7 +148,7 @@ def chain_segments(
     for j in range(len(segments) - 1):
         t0 = _end_tangents(segments[j])[1]
         t1 = _end_tangents(segments[j + 1])[0]
-        ang = _angle(t0, t1)
+        ang = vector_angle(t0, t1)
         if ang > KINK_TOL:
             where = segments[j].points[-1]
             between = owner[j] if owner[j] == owner[j + 1] else f"{owner[j]} and {owner[j + 1]}"
