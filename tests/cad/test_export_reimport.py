@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from rancf.cli import main
-from rancf.geometry.conic_params import vector_angle
+from rancf.geometry.tangents import vector_angle
 from rancf.model.scenario import load_scenario
 from rancf.post.run_data import centerline_nodes, load_run
 from tests.model.test_scenario import BASE

@@ -22,9 +22,9 @@ from rancf.geometry.conic_params import (
     cross2,
     mapping_rho,
     pad3,
-    vector_angle,
 )
 from rancf.geometry.quadrature import integrate
+from rancf.geometry.tangents import vector_angle
 
 __all__ = ["Conic", "ConicKind"]
 

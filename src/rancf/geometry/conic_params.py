@@ -17,7 +17,6 @@ from rancf.errors import MappingFactorError
 __all__ = [
     "cross2",
     "pad3",
-    "vector_angle",
     "tangent_intersection",
     "barycentric",
     "weight_from_point",
@@ -33,16 +32,6 @@ def pad3(a: NDArray) -> NDArray:
     returned as they are (as float arrays)."""
     a = np.asarray(a, dtype=float)
     return a if a.shape[-1] == 3 else np.concatenate([a, np.zeros(a.shape[:-1] + (1,))], axis=-1)
-
-
-def vector_angle(a: ArrayLike, b: ArrayLike) -> float:
-    """Angle [rad] in ``[0, π]`` between two planar or spatial vectors.
-
-    ``atan2(|a × b|, a · b)``: accurate for every angle, unlike ``arccos`` of the normalized
-    dot product, which turns one unit of round-off below 1 into about 1.5e-8 rad.
-    """
-    a3, b3 = pad3(a), pad3(b)
-    return float(np.arctan2(np.linalg.norm(np.cross(a3, b3)), np.dot(a3, b3)))
 
 
 def cross2(a: NDArray, b: NDArray) -> NDArray:
