@@ -33,7 +33,13 @@ from rancf.geometry.conic_curve import Conic
 from rancf.geometry.conic_params import check_mapping_factor
 from rancf.geometry.quadrature import integrate_many
 from rancf.geometry.tangents import GAP_RTOL, KINK_TOL, is_closed
-from rancf.model.conic_chain import arc_breakpoints, cubic_forms, kopt_many, sub_arcs
+from rancf.model.conic_chain import (
+    arc_breakpoints,
+    cubic_forms,
+    kopt_many,
+    refined_extreme,
+    sub_arcs,
+)
 
 __all__ = [
     "CableMesh",
@@ -143,9 +149,27 @@ class CableMesh:
             bezier_from_nodal(e[j], self.weights[j], self.scales[j]) for j in range(self.n_elements)
         ]
 
-    def gradient_ratios(self) -> NDArray[np.float64]:
-        """Gradient ratio of each element's reference curve."""
-        return np.array([gradient_ratio(c) for c in self.element_curves()])
+    def gradient_ratios(self, exact: bool = True) -> NDArray[np.float64]:
+        """Gradient ratio ``max |r_ξ| / min |r_ξ|`` of each element's reference curve (eq. 29).
+
+        ``exact``: every extremum located by root finding
+        (:func:`rancf.elements.mapping.gradient_ratio`, about 1 ms an element); otherwise all
+        elements at once from 33 samples each, the extremes of ``log |r_ξ|`` refined by
+        parabolas as in :func:`rancf.model.conic_chain.kopt_many`: a million elements in
+        seconds, relative error below 1e-10 for the short elements of a fine mesh (measured
+        against the exact ratios at 1001 elements of four conics) but up to ~1e-6 for one
+        element spanning a whole arc.
+        """
+        if exact:
+            return np.array([gradient_ratio(c) for c in self.element_curves()])
+        pts, w, out = self.control_points(), self.weights, np.empty(self.n_elements)
+        xi = np.linspace(0.0, 1.0, 33)
+        for i in range(0, self.n_elements, 16384):
+            part = slice(i, i + 16384)
+            m = w[part].shape[0]
+            log_s = np.log(cubic_speed(pts[part], w[part], np.broadcast_to(xi, (m, xi.size))))
+            out[part] = np.exp(refined_extreme(log_s, 1.0) - refined_extreme(log_s, -1.0))
+        return out
 
     def evaluate(self, xi: ArrayLike, q: ArrayLike | None = None, order: int = 0) -> NDArray:
         """Points (or ξ-derivatives) at ``xi`` in every element, ``(n_el, n_xi, dim)``."""
