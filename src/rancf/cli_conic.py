@@ -109,8 +109,8 @@ def _conic(args: argparse.Namespace) -> int:
         for j, e in enumerate(elements()):
             w = ", ".join(f"{x:.5f}" for x in e["weights"])
             print(f"  {j:2d}  {e['k']:.4f}   {e['gradient_ratio']:14.5f}    [{w}]")
-        if args.plot:
-            print(f"plot written to {args.plot}")
+    if plot is not None:  # with --json on standard error: stdout stays one JSON object
+        print(f"plot written to {plot}", file=sys.stderr if args.json else sys.stdout)
     return 0
 
 

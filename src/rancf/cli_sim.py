@@ -307,6 +307,8 @@ def _cmd_modes(args: argparse.Namespace) -> int:
                 'curvature does not resist: use mesh.element = "rod" (torsion and out-of-plane '
                 "bending stiffness) for curved spatial structures (see README)."
             )
+    if plot is not None:  # after the JSON object, on standard error: stdout stays one object
+        print(f"mode shapes written to {plot}", file=sys.stderr if args.json else sys.stdout)
     return 0
 
 

@@ -40,6 +40,7 @@ __all__ = [
     "atomic_write",
     "strict_json",
     "write_history_files",
+    "reader_metadata",
     "write_run",
     "run_summary",
     "load_results",
@@ -142,6 +143,17 @@ def _npy(zf: zipfile.ZipFile, name: str, shape: tuple[int, ...], chunks: Iterato
             f.write(np.ascontiguousarray(c, dtype="<f8").tobytes())
 
 
+def reader_metadata(model: Model) -> dict[str, Any]:
+    """What readers of a run directory need besides the states (no scenario file required):
+    ``section_radius`` (``sqrt(A / π)``, the radius of a circular section) and, for beams, the
+    reference nodal ``tangent_angles`` [rad]."""
+    meta: dict[str, Any] = {"section_radius": model.section.radius}
+    if model.element == "beam":
+        t = model.mesh.nodes[:, 1]
+        meta["tangent_angles"] = np.arctan2(t[:, 1], t[:, 0]).tolist()
+    return meta
+
+
 def write_history_files(
     out: Path,
     model: Model,
@@ -177,6 +189,7 @@ def write_history_files(
         "n_nodes": model.n_nodes,
         "n_elements": model.n_el,
         "sensor_columns": names,
+        **reader_metadata(model),
     }
     small = {
         "weights": model.mesh.weights,

@@ -35,19 +35,19 @@ img { max-width: 100%; border: 1px solid #ddd; }
 _LONG_TABLE = 20
 
 #: The works the studies reproduce and build on (HTML), cited in the report's "References".
-#: The conic-section paper is cited by what its text gives: the copy rancf was written from
-#: carries no title page, so its title, full author names, journal, year and DOI are not known
-#: here and are not guessed.
+#: The conic-section paper is described by what the copy rancf was written from gives: its
+#: abstract, keywords, the initials of its author-contributions statement and its funding (that
+#: copy has no title page, so no title, journal or year is cited; none is invented).
 REFERENCES = (
-    "[1] The paper on the direct definition of rational ANCF (RANCF) conic-section cable "
-    "elements, the mapping factor <i>K</i> and the optimal <i>K</i><sub>opt</sub> "
-    "(conic from chord, end-tangent angles and one interior point; degree elevation; "
-    "gradient-ratio criterion, eq. 29; numerical examples in sections 6.1–6.3, which the "
-    "studies of this report reproduce). Authors, by the initials of its author-contributions "
-    "statement: P. L., Y. L., M. S., M. L.; funded by the Henan Provincial R&amp;D Plan Joint "
-    "Fund (No. 225101610072). The text rancf was built from gives neither its title nor the "
-    "authors' full names, the journal, the year or a DOI; they are left out rather than "
-    "guessed.",
+    "[1] P. L., Y. L., M. S., M. L.: the conic-section RANCF paper, which in its abstract "
+    "“propose[s] a direct definition method for RANCF elements that explicitly exploits the "
+    "analytic properties of conic sections” and introduces the mapping factor <i>K</i> and the "
+    "optimal <i>K</i><sub>opt</sub> (conic from chord, end-tangent angles and one interior "
+    "point; degree elevation; gradient-ratio criterion, eq. 29; numerical examples in sections "
+    "6.1–6.3, which the studies of this report reproduce). Keywords: rational absolute nodal "
+    "coordinate formulation; conic section element; weights; mapping relationship; "
+    "parameterization. Funded by the Henan Provincial R&amp;D Plan Joint Fund "
+    "(No. 225101610072).",
     "[2] G. G. Sanborn, A. A. Shabana, <i>On the integration of computer aided design and "
     "analysis using the finite element absolute nodal coordinate formulation</i>, Multibody "
     "System Dynamics 22 (2009) 181–197, DOI "
