@@ -33,6 +33,7 @@ from numpy.typing import NDArray
 
 from rancf.model.scenario_sensors import Sensor
 from rancf.model.system import Model
+from rancf.post.checks import run_warnings
 from rancf.solvers.dynamic import DynamicResult
 
 __all__ = [
@@ -255,7 +256,11 @@ def write_run(
     out.mkdir(parents=True, exist_ok=True)
     energy = np.column_stack([result.kinetic, result.strain, result.gravity])
     write_history_files(out, model, sensors, result.t, result.q, result.v, energy, result.directors)
-    summary = {**run_summary(model, result), **(extra or {})}
+    summary = {
+        **run_summary(model, result),
+        "warnings": run_warnings(model, result.t, result.q),
+        **(extra or {}),
+    }
     atomic_write(out / "summary.json", strict_json(summary))
     return summary
 
@@ -302,6 +307,7 @@ def write_static_run(
         "element": model.element,
         "n_dofs": model.n,
         "outputs": int(t.size),
+        "warnings": run_warnings(model, t, q, static=True),
         **summary,
     }
     atomic_write(out / "summary.json", strict_json(doc))

@@ -38,7 +38,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from rancf.elements.cable import cable_shape_functions
+from rancf.elements.cable import axial_strain, cable_shape_functions
 from rancf.errors import InputError
 from rancf.post.results import load_results
 
@@ -275,8 +275,7 @@ def _cable_fields(run: RunData, q: NDArray, v: NDArray, xi: NDArray) -> tuple[ND
     d1, d10 = np.einsum("eqk,ekd->eqd", n1, e), np.einsum("eqk,ekd->eqd", n1, e0)
     d2 = np.einsum("eqk,ekd->eqd", n2, e)
     vel = np.einsum("eqk,ekd->eqd", n, ev)
-    g, g0 = np.sum(d1 * d1, axis=-1), np.sum(d10 * d10, axis=-1)
-    return r, r0, vel, (g - g0) / (2.0 * g0), _curvature(d1, d2)
+    return r, r0, vel, axial_strain(d1, d10), _curvature(d1, d2)
 
 
 def _hermite(xi: NDArray) -> tuple[NDArray, NDArray, NDArray]:
@@ -328,8 +327,7 @@ def _beam_fields(run: RunData, q: NDArray, v: NDArray, xi: NDArray) -> tuple[NDA
         1,
     )
     vel = np.einsum("qk,ekd->eqd", h, ev)
-    l0 = np.linalg.norm(chord0, axis=1)
-    strain = np.repeat(((length**2 - l0**2) / (2 * l0**2))[:, None], xi.size, axis=1)
+    strain = np.repeat(axial_strain(d, chord0)[:, None], xi.size, axis=1)
     return r, r0, vel, strain, _curvature(d1, d2)
 
 
