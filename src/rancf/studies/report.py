@@ -44,7 +44,7 @@ REFERENCES = (
     "analytic properties of conic sections” and introduces the mapping factor <i>K</i> and the "
     "optimal <i>K</i><sub>opt</sub> (conic from chord, end-tangent angles and one interior "
     "point; degree elevation; gradient-ratio criterion, eq. 29; numerical examples in sections "
-    "6.1–6.3, which the studies of this report reproduce). Keywords: rational absolute nodal "
+    "6.1–6.3, which rancf's paper studies reproduce). Keywords: rational absolute nodal "
     "coordinate formulation; conic section element; weights; mapping relationship; "
     "parameterization. Funded by the Henan Provincial R&amp;D Plan Joint Fund "
     "(No. 225101610072).",
@@ -119,6 +119,7 @@ def write_report(
     quick: bool,
     wall_time_s: float | None = None,
     unfinished: Sequence[str] = (),
+    heading: tuple[str, str] | None = None,
 ) -> Path:
     """Write ``report.html`` (and ``report.json``) for studies whose files are in their folders.
 
@@ -126,18 +127,20 @@ def write_report(
     parallel); without it the sum of the studies' wall times is shown.  Figures (PNG) and
     animations (GIF) are embedded.  ``unfinished`` names studies that did not finish (failed or
     interrupted): the report then says at the top that it is incomplete, and ``report.json``
-    has ``"complete": false``.
+    has ``"complete": false``.  ``heading`` replaces the title and introduction of the paper's
+    studies (``(title, introduction HTML)``, for other shipped scenarios).
     """
+    title, intro = heading or ("RANCF conic-section cable elements: the paper's studies", _INTRO)
     out = Path(out)
     parts = [
         "<!DOCTYPE html><html><head><meta charset='utf-8'>",
-        f"<title>rancf: paper studies</title><style>{_CSS}</style></head><body>",
-        "<h1>RANCF conic-section cable elements: the paper's studies</h1>",
+        f"<title>{html.escape(title)}</title><style>{_CSS}</style></head><body>",
+        f"<h1>{html.escape(title)}</h1>",
         f"<p>Generated {datetime.datetime.now().isoformat(timespec='seconds')} on "
         f"{html.escape(platform.platform())}, Python {platform.python_version()}"
         f"{' — <b>reduced (quick) runs</b>' if quick else ''}. {_timing(studies, wall_time_s)}"
         "</p>",
-        f"<p>{_INTRO}</p>",
+        f"<p>{intro}</p>",
     ]
     if unfinished:
         parts.append(
