@@ -138,6 +138,13 @@ class HistoryStore:
         m1 = mm("m", 3 * self.model.n_nodes) if "m" in self._keys else None
         return mm("t", 1), mm("q", nq), mm("v", nq), mm("e", 3), m1
 
+    def states(self) -> tuple[NDArray, NDArray]:
+        """Times ``(n,)`` and coordinates ``q (n, n_q)`` of the outputs stored so far (memory
+        maps of the raw files)."""
+        self.flush()
+        t, q, *_ = self._arrays()
+        return t, q
+
     def write_summary(self, summary: dict[str, Any]) -> None:
         """Rewrite ``summary.json`` (strict JSON) with the run's fixed keys added."""
         doc = {**summary, **self.info, "updated_at": _now()}

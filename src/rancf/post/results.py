@@ -33,6 +33,7 @@ from numpy.typing import NDArray
 
 from rancf.model.scenario_sensors import Sensor
 from rancf.model.system import Model
+from rancf.post.checks import run_warnings
 from rancf.solvers.dynamic import DynamicResult
 
 __all__ = [
@@ -40,6 +41,7 @@ __all__ = [
     "atomic_write",
     "strict_json",
     "write_history_files",
+    "reader_metadata",
     "write_run",
     "run_summary",
     "load_results",
@@ -142,6 +144,17 @@ def _npy(zf: zipfile.ZipFile, name: str, shape: tuple[int, ...], chunks: Iterato
             f.write(np.ascontiguousarray(c, dtype="<f8").tobytes())
 
 
+def reader_metadata(model: Model) -> dict[str, Any]:
+    """What readers of a run directory need besides the states (no scenario file required):
+    ``section_radius`` (``sqrt(A / π)``, the radius of a circular section) and, for beams, the
+    reference nodal ``tangent_angles`` [rad]."""
+    meta: dict[str, Any] = {"section_radius": model.section.radius}
+    if model.element == "beam":
+        t = model.mesh.nodes[:, 1]
+        meta["tangent_angles"] = np.arctan2(t[:, 1], t[:, 0]).tolist()
+    return meta
+
+
 def write_history_files(
     out: Path,
     model: Model,
@@ -177,6 +190,7 @@ def write_history_files(
         "n_nodes": model.n_nodes,
         "n_elements": model.n_el,
         "sensor_columns": names,
+        **reader_metadata(model),
     }
     small = {
         "weights": model.mesh.weights,
@@ -242,7 +256,11 @@ def write_run(
     out.mkdir(parents=True, exist_ok=True)
     energy = np.column_stack([result.kinetic, result.strain, result.gravity])
     write_history_files(out, model, sensors, result.t, result.q, result.v, energy, result.directors)
-    summary = {**run_summary(model, result), **(extra or {})}
+    summary = {
+        **run_summary(model, result),
+        "warnings": run_warnings(model, result.t, result.q),
+        **(extra or {}),
+    }
     atomic_write(out / "summary.json", strict_json(summary))
     return summary
 
@@ -289,6 +307,7 @@ def write_static_run(
         "element": model.element,
         "n_dofs": model.n,
         "outputs": int(t.size),
+        "warnings": run_warnings(model, t, q, static=True),
         **summary,
     }
     atomic_write(out / "summary.json", strict_json(doc))
