@@ -47,6 +47,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     limit = _positive("--max-output-gb", args.max_output_gb, "a finite size in GB > 0")
     out = check_out_dir(args.out)
     from rancf.model.scenario import load_scenario
+    from rancf.post.checks import run_warnings, section_warnings
     from rancf.post.history import HistoryStore, estimate_output_bytes
     from rancf.post.results import run_summary
 
@@ -67,11 +68,12 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
             "raise solver.output_step, shorten solver.t_end or raise the limit"
         )
     stop = _StopFlag()
+    notes = _warn(section_warnings(model))  # likely unit mistakes: the run goes on
     with stop, OutputDir(out) as od:
         info = {"scenario": str(Path(args.scenario).resolve()), "setup_wall_time_s": None}
         info.update(start_info)
         derived = DerivedOutputs(model, sc.support_labels)
-        store = HistoryStore(out, model, sc.sensors, info, derived=derived)
+        store = HistoryStore(out, model, sc.sensors, {**info, "warnings": notes}, derived=derived)
         try:
             store.write_summary(_running(model, 0.0))
             od.keep()
@@ -80,8 +82,17 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
             store.finish(_broken(model, store, exc))
             raise
         summary = run_summary(model, res)
+        store.info["warnings"] = run_warnings(model, *store.states())  # + the largest strain
         store.finish(summary)
+    _warn(store.info["warnings"][len(notes) :])
     return _report(args, res, {**summary, **store.info}, out)
+
+
+def _warn(notes: list[str]) -> list[str]:
+    """Print each warning as one line on standard error; returns them."""
+    for note in notes:
+        print(f"rancf: warning: {note}", file=sys.stderr)
+    return notes
 
 
 class RunTooLargeError(RancfError):
@@ -214,8 +225,11 @@ def _report(args: argparse.Namespace, res: Any, summary: dict[str, Any], out: Pa
 
 
 def _cmd_static(args: argparse.Namespace) -> int:
+    import numpy as np
+
     from rancf.cli_equilibrium import reactions_json
     from rancf.model.scenario import load_scenario
+    from rancf.post.checks import run_warnings
     from rancf.post.results import LoadPath, sensor_table, write_static_run
     from rancf.solvers.static import solve_static
 
@@ -241,6 +255,9 @@ def _cmd_static(args: argparse.Namespace) -> int:
                 if path.steps:  # what converged is kept, also when a later increment fails
                     write_static_run(out_dir, path, sc.sensors, info)
                     od.keep()
+    states = [(lam, model.q_from_y(y)) for lam, y, _ in path.steps] or [(1.0, res.q)]
+    lams, qs = (np.array(x) for x in zip(*states, strict=True))
+    notes = _warn(run_warnings(model, lams, qs, static=True))
     pos = model.node_positions(res.q)
     names, vals = sensor_table(model, sc.sensors, res.q)
     out = {
@@ -251,6 +268,7 @@ def _cmd_static(args: argparse.Namespace) -> int:
         "method": res.method,
         "wall_time_s": res.wall_time,
         "reactions": reactions_json(sc, model, res.y),
+        "warnings": notes,
     }
     if args.json:
         print(json.dumps(out, indent=2))
@@ -275,6 +293,7 @@ def _cmd_modes(args: argparse.Namespace) -> int:
     import numpy as np
 
     from rancf.model.scenario import load_scenario
+    from rancf.post.checks import run_warnings
     from rancf.solvers.modal import natural_modes
     from rancf.solvers.static import solve_static
 
@@ -292,6 +311,8 @@ def _cmd_modes(args: argparse.Namespace) -> int:
     y = None
     if about == "static":
         y = solve_static(model, sc.solver["load_steps"], method=sc.solver["static_method"]).y
+    static = [] if y is None else [model.q_from_y(y)]  # the strain of the equilibrium
+    notes = _warn(run_warnings(model, np.ones(len(static)), np.array(static), static=True))
     res = natural_modes(model, y, count)
     if res.frequencies_hz.size < count:
         raise InputError(
@@ -313,6 +334,7 @@ def _cmd_modes(args: argparse.Namespace) -> int:
         "rigid_body_modes_removed": res.n_rigid,
         "about": about,
         "n_dofs_free": int(np.sum(~model.fixed)),
+        "warnings": notes,
     }
     if args.json:
         print(json.dumps(out, indent=2))
@@ -337,6 +359,8 @@ def _cmd_modes(args: argparse.Namespace) -> int:
                 'curvature does not resist: use mesh.element = "rod" (torsion and out-of-plane '
                 "bending stiffness) for curved spatial structures (see README)."
             )
+    if plot is not None:  # after the JSON object, on standard error: stdout stays one object
+        print(f"mode shapes written to {plot}", file=sys.stderr if args.json else sys.stdout)
     return 0
 
 

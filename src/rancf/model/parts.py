@@ -49,6 +49,12 @@ class Section:
         return cls(np.pi * radius**2, np.pi * radius**4 / 4.0)
 
     @property
+    def radius(self) -> float:
+        """Radius of the circle of the same area, ``sqrt(A / π)`` (a circular section's radius,
+        to round-off)."""
+        return float(np.sqrt(self.area / np.pi))
+
+    @property
     def inertia_2(self) -> float:
         """``I_z``, about the second principal axis."""
         return self.inertia if self.inertia_z is None else self.inertia_z

@@ -62,7 +62,8 @@ def _value(v: Any) -> str:
 def _mesh(sc: Scenario) -> Any:
     from rancf.geometry.conic import conic_arc_through
     from rancf.geometry.nurbs import NurbsCurve
-    from rancf.model.mesh import mesh_conic, mesh_line, mesh_nurbs
+    from rancf.model.mesh import mesh_conic, mesh_line
+    from rancf.model.nurbs_mesh import mesh_nurbs
     from rancf.model.scenario_tables import MAX_ELEMENTS
 
     g, m = sc.data["geometry"], sc.data["mesh"]

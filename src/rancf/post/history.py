@@ -156,6 +156,13 @@ class HistoryStore:
         r = mm("r", n_r).reshape(n, n_r) if n_r else np.empty((n, 0))
         return mm("t", 1), mm("q", nq), mm("v", nq), mm("e", 3), m1, mm("a", nq), r, mm("s", n_s)
 
+    def states(self) -> tuple[NDArray, NDArray]:
+        """Times ``(n,)`` and coordinates ``q (n, n_q)`` of the outputs stored so far (memory
+        maps of the raw files)."""
+        self.flush()
+        t, q, *_ = self._arrays()
+        return t, q
+
     def write_summary(self, summary: dict[str, Any]) -> None:
         """Rewrite ``summary.json`` (strict JSON) with the run's fixed keys added."""
         doc = {**summary, **self.info, "updated_at": _now()}

@@ -34,6 +34,7 @@ from numpy.typing import NDArray
 from rancf.model.outputs import DerivedOutputs
 from rancf.model.scenario_sensors import Sensor
 from rancf.model.system import Model
+from rancf.post.checks import run_warnings
 from rancf.solvers.dynamic import DynamicResult
 
 __all__ = [
@@ -41,6 +42,7 @@ __all__ = [
     "atomic_write",
     "strict_json",
     "write_history_files",
+    "reader_metadata",
     "write_run",
     "run_summary",
     "load_results",
@@ -143,6 +145,17 @@ def _npy(zf: zipfile.ZipFile, name: str, shape: tuple[int, ...], chunks: Iterato
             f.write(np.ascontiguousarray(c, dtype="<f8").tobytes())
 
 
+def reader_metadata(model: Model) -> dict[str, Any]:
+    """What readers of a run directory need besides the states (no scenario file required):
+    ``section_radius`` (``sqrt(A / π)``, the radius of a circular section) and, for beams, the
+    reference nodal ``tangent_angles`` [rad]."""
+    meta: dict[str, Any] = {"section_radius": model.section.radius}
+    if model.element == "beam":
+        t = model.mesh.nodes[:, 1]
+        meta["tangent_angles"] = np.arctan2(t[:, 1], t[:, 0]).tolist()
+    return meta
+
+
 def write_history_files(
     out: Path,
     model: Model,
@@ -204,6 +217,7 @@ def write_history_files(
         "sensor_columns": names,
         "reaction_columns": derived.reaction_names,
         "section_names": list(derived.section_names),
+        **reader_metadata(model),
     }
     small = {
         "weights": model.mesh.weights,
@@ -281,7 +295,11 @@ def write_run(
         out, model, sensors, result.t, result.q, result.v, energy, result.directors,
         DerivedOutputs(model, labels),
     )  # fmt: skip
-    summary = {**run_summary(model, result), **(extra or {})}
+    summary = {
+        **run_summary(model, result),
+        "warnings": run_warnings(model, result.t, result.q),
+        **(extra or {}),
+    }
     atomic_write(out / "summary.json", strict_json(summary))
     return summary
 
@@ -335,6 +353,7 @@ def write_static_run(
         "element": model.element,
         "n_dofs": model.n,
         "outputs": int(t.size),
+        "warnings": run_warnings(model, t, q, static=True),
         **summary,
     }
     atomic_write(out / "summary.json", strict_json(doc))
