@@ -46,13 +46,12 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     every = _positive("--checkpoint-every", args.checkpoint_every, "a finite number of seconds > 0")
     limit = _positive("--max-output-gb", args.max_output_gb, "a finite size in GB > 0")
     out = check_out_dir(args.out)
+    from rancf.cli_equilibrium import initial_state
+    from rancf.model.outputs import DerivedOutputs
     from rancf.model.scenario import load_scenario
     from rancf.post.checks import run_warnings, section_warnings
     from rancf.post.history import HistoryStore, estimate_output_bytes
     from rancf.post.results import run_summary
-
-    from rancf.cli_equilibrium import initial_state
-    from rancf.model.outputs import DerivedOutputs
 
     sc = load_scenario(args.scenario)
     opts = sc.dynamic_options()

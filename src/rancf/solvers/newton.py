@@ -106,7 +106,7 @@ def newton(
             return NewtonOutcome(False, y, it, residuals, inc)
         g0 = float(d @ r)
 
-        def g(s: float, d: NDArray = d) -> float:
+        def g(s: float, d: NDArray = d, y: NDArray = y) -> float:
             return float(d @ problem.residual(y + s * d, lam))
 
         s, evals = line_search(g, g0)

@@ -3,9 +3,10 @@
 A sink receives one row per output time: ``t``, nodal coordinates ``q (n_q,)``, velocities
 ``v (n_q,)``, the energies ``(kinetic, strain, gravity)`` and named streams: for rods, the nodal
 directors ``directors (n_nodes, 3)`` (the first material axis of each node's triad, which the
-stored coordinates alone do not fix: the triads are carried along the whole path of the run).  :class:`MemorySink` keeps them in memory (the default, for
-library use); the command line streams them to disk with
-:class:`rancf.post.history.HistoryStore`, so memory stays bounded whatever ``t_end``.
+stored coordinates alone do not fix: the triads are carried along the whole path of the run).
+:class:`MemorySink` keeps them in memory (the default, for library use); the command line
+streams them to disk with :class:`rancf.post.history.HistoryStore`, so memory stays bounded
+whatever ``t_end``.
 """
 
 from __future__ import annotations
