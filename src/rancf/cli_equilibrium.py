@@ -1,5 +1,4 @@
-"""Equilibrium on the command line: ``rancf buckling``, the reactions of ``rancf static`` and
-the static initial state of ``rancf simulate``."""
+"""Equilibrium on the command line: ``rancf buckling`` and the reactions of ``rancf static``."""
 
 from __future__ import annotations
 
@@ -9,9 +8,9 @@ import sys
 from typing import Any
 
 from rancf.cli_io import atomic_path, check_plot_path
-from rancf.errors import InputError, ScenarioError
+from rancf.errors import InputError
 
-__all__ = ["add_parsers", "reactions_json", "initial_state"]
+__all__ = ["add_parsers", "reactions_json"]
 
 
 def reactions_json(sc: Any, model: Any, y: Any) -> list[dict[str, Any]]:
@@ -29,36 +28,6 @@ def reactions_json(sc: Any, model: Any, y: Any) -> list[dict[str, Any]]:
             item["moment"] = r.moment.tolist()
         out.append(item)
     return out
-
-
-def initial_state(sc: Any, model: Any) -> tuple[Any, dict[str, Any]]:
-    """The start of ``simulate``: ``(None, {...})`` from the reference, or the static
-    equilibrium's ``y`` (``solver.initial_state = "static"``) and its summary entry."""
-    from rancf.solvers.static import solve_static
-
-    key = sc.installed_support()
-    if sc.solver["initial_state"] == "reference":
-        if key is not None:
-            raise ScenarioError(
-                sc.path,
-                key,
-                "installs a support away from its reference, which needs solver.initial_state "
-                '= "static" (the static solution moves it there before the run)',
-            )
-        return None, {"initial_state": "reference"}
-    res = solve_static(
-        model, sc.solver["load_steps"], method=sc.solver["static_method"], at_time=0.0
-    )
-    info = {
-        "initial_state": "static",
-        "static": {
-            "method": res.method,
-            "load_steps": int(len(res.load_factors) - 1),
-            "newton_iterations": res.n_newton,
-            "wall_time_s": res.wall_time,
-        },
-    }
-    return res.y, info
 
 
 def _cmd_buckling(args: argparse.Namespace) -> int:

@@ -46,17 +46,17 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     every = _positive("--checkpoint-every", args.checkpoint_every, "a finite number of seconds > 0")
     limit = _positive("--max-output-gb", args.max_output_gb, "a finite size in GB > 0")
     out = check_out_dir(args.out)
-    from rancf.cli_equilibrium import initial_state
     from rancf.model.outputs import DerivedOutputs
     from rancf.model.scenario import load_scenario
     from rancf.post.checks import run_warnings, section_warnings
     from rancf.post.history import HistoryStore, estimate_output_bytes
     from rancf.post.results import run_summary
+    from rancf.solvers.static import start_state
 
     sc = load_scenario(args.scenario)
     opts = sc.dynamic_options()
     model = sc.build_model()
-    y_start, start_info = initial_state(sc, model)
+    y_start, start_info = start_state(sc, model)
     n_cols = sum(len(s.columns(model.dim)) for s in sc.sensors)
     rod_directors = 3 * model.n_nodes if model.element == "rod" else 0
     need = estimate_output_bytes(opts.n_outputs, model.q0.size, n_cols, rod_directors)
@@ -246,7 +246,7 @@ def _cmd_static(args: argparse.Namespace) -> int:
                 res = solve_static(
                     model, sc.solver["load_steps"], on_step=path.record, method=method
                 )
-                info.update(status="completed", message="reached load factor 1")
+                info.update(status="completed", message="reached the end of the load path")
             except ConvergenceError as exc:
                 info.update(status="failed", message=str(exc))
                 raise
@@ -278,14 +278,16 @@ def _cmd_static(args: argparse.Namespace) -> int:
         )
         for k, v in out["sensors"].items():
             print(f"  {k:12s} {v: .9g}")
+        # forces below the round-off of the internal forces (100 ε EA) print as 0
+        floor = 100 * np.finfo(float).eps * model.props.ea
         for r in out["reactions"]:
-            moment = f"  moment {_vec(r['moment'])}" if "moment" in r else ""
-            print(f"  reaction at {r['at']!s:6s} force {_vec(r['force'])}{moment}")
+            moment = f"  moment {_vec(r['moment'], floor)}" if "moment" in r else ""
+            print(f"  reaction at {r['at']!s:6s} force {_vec(r['force'], floor)}{moment}")
     return 0
 
 
-def _vec(v: list[float]) -> str:
-    return "[" + ", ".join(f"{x:.9g}" for x in v) + "]"
+def _vec(v: list[float], floor: float) -> str:
+    return "[" + ", ".join(f"{x:.9g}" if abs(x) > floor else "0" for x in v) + "]"
 
 
 def _cmd_modes(args: argparse.Namespace) -> int:

@@ -26,17 +26,17 @@ from __future__ import annotations
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Literal
+from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import NDArray
 
-from rancf.errors import ConvergenceError, InputError
+from rancf.errors import ConvergenceError, InputError, ScenarioError
 from rancf.model.system import Model
 from rancf.solvers.equilibrium import EquilibriumProblem
 from rancf.solvers.newton import newton
 
-__all__ = ["StaticResult", "solve_static", "StaticMethod"]
+__all__ = ["StaticResult", "solve_static", "StaticMethod", "start_state"]
 
 StaticMethod = Literal["load", "arc_length"]
 
@@ -124,6 +124,41 @@ def solve_static(
         path.n_residuals,
         method,
     )
+
+
+def start_state(sc: Any, model: Model) -> tuple[NDArray[np.float64] | None, dict[str, Any]]:
+    """Where a scenario's dynamic run starts: ``(None, info)`` from the reference, or the static
+    equilibrium's model coordinates (``solver.initial_state = "static"``: loads as they act at
+    ``t = 0``, supports installed) and the ``summary.json`` entries describing it.
+
+    Raises
+    ------
+    ScenarioError
+        A support installed away from its reference with ``initial_state = "reference"``.
+    """
+    key = sc.installed_support()
+    if sc.solver["initial_state"] == "reference":
+        if key is not None:
+            raise ScenarioError(
+                sc.path,
+                key,
+                "installs a support away from its reference, which needs solver.initial_state "
+                '= "static" (the static solution moves it there before the run)',
+            )
+        return None, {"initial_state": "reference"}
+    res = solve_static(
+        model, sc.solver["load_steps"], method=sc.solver["static_method"], at_time=0.0
+    )
+    info = {
+        "initial_state": "static",
+        "static": {
+            "method": res.method,
+            "load_steps": int(len(res.load_factors) - 1),
+            "newton_iterations": res.n_newton,
+            "wall_time_s": res.wall_time,
+        },
+    }
+    return res.y, info
 
 
 class _Path:
