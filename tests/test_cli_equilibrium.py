@@ -77,3 +77,18 @@ def test_buckling_json_and_plot(tmp_path):
     assert out["about"] == "reference" and (tmp_path / "b.png").stat().st_size > 0
     p = _run(["buckling", "cantilever.toml", "--about", "sideways"], tmp_path, code=2)
     assert len(p.stderr.splitlines()) == 1 and "--about" in p.stderr
+
+
+def test_vtk_export_carries_the_section_quantities(hose):
+    import meshio
+
+    _run(["static", "installed-hose.toml", "--out", "st"], hose)
+    _run(["export", "st", "--vtk", "vtk"], hose)
+    files = sorted((hose / "vtk").glob("st_*.vtu"))
+    mesh = meshio.read(files[-1])
+    for name in ("section_axial_force", "section_bending_moment", "section_curvature"):
+        assert name in mesh.point_data
+    moment = mesh.point_data["section_bending_moment"]
+    along = np.genfromtxt(hose / "st" / "along.csv", delimiter=",", names=True)
+    assert moment[0] == pytest.approx(along["bending_moment"][0], rel=1e-12)
+    assert moment[-1] == pytest.approx(along["bending_moment"][-1], rel=1e-12)
