@@ -81,7 +81,8 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
             store.finish(_broken(model, store, exc))
             raise
         summary = run_summary(model, res)
-        store.info["warnings"] = run_warnings(model, *store.states())  # + the largest strain
+        store.flush()  # every row's derived outputs, the strain among them
+        store.info["warnings"] = run_warnings(model, largest=derived.largest_strain)
         store.finish(summary)
     _warn(store.info["warnings"][len(notes) :])
     return _report(args, res, {**summary, **store.info}, out)
@@ -254,9 +255,10 @@ def _cmd_static(args: argparse.Namespace) -> int:
                 if path.steps:  # what converged is kept, also when a later increment fails
                     write_static_run(out_dir, path, sc.sensors, info)
                     od.keep()
-    states = [(lam, model.q_from_y(y)) for lam, y, _ in path.steps] or [(1.0, res.q)]
-    lams, qs = (np.array(x) for x in zip(*states, strict=True))
-    notes = _warn(run_warnings(model, lams, qs, static=True))
+    if path.steps:  # the load path's outputs tracked the largest strain
+        notes = _warn(run_warnings(model, static=True, largest=path.derived.largest_strain))
+    else:
+        notes = _warn(run_warnings(model, res.load_factors[-1:], res.q[None], static=True))
     pos = model.node_positions(res.q)
     names, vals = sensor_table(model, sc.sensors, res.q)
     out = {

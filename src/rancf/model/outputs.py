@@ -57,6 +57,8 @@ class DerivedOutputs:
         self.reaction_names = reaction_columns(model, self.labels)
         self.section_names = section_names(model)
         self._mass_factor: NDArray | None = None
+        #: The largest |axial strain| of the rows seen so far, and the ``t`` of its row.
+        self.largest_strain: tuple[float, float] = (0.0, 0.0)
 
     @property
     def n_points(self) -> int:
@@ -121,6 +123,9 @@ class DerivedOutputs:
                         res += m.damping * m.mass_times(vy)
                 reactions[i] = reaction_row(support_reactions(m, y, res, self.labels))
                 along[i] = self.sampler.values(y)
+                strain = float(np.max(np.abs(along[i, :, 0])))
+                if strain > self.largest_strain[0]:  # NaN (a diverged state) is never larger
+                    self.largest_strain = (strain, float(t[i]))
         return acc, reactions, along
 
     @contextlib.contextmanager

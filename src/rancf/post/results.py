@@ -353,7 +353,7 @@ def write_static_run(
         "element": model.element,
         "n_dofs": model.n,
         "outputs": int(t.size),
-        "warnings": run_warnings(model, t, q, static=True),
+        "warnings": run_warnings(model, static=True, largest=path.derived.largest_strain),
         **summary,
     }
     atomic_write(out / "summary.json", strict_json(doc))
