@@ -151,7 +151,7 @@ def build_model(sc: Scenario) -> Model:
             Material(
                 mat["density"], mat["youngs_modulus"], mat["shear_modulus"], mat["poisson_ratio"]
             ),
-            [Support(t["at"], t["kind"], t["fix_twist"]) for t in d["supports"]],
+            [_support(t) for t in d["supports"]],
             d["loads"]["gravity"],
             loads,
             d["damping"]["mass_proportional"],
@@ -162,6 +162,15 @@ def build_model(sc: Scenario) -> Model:
         raise ScenarioError(
             sc.path, exc.parameter, f"{exc.allowed} (got {_value(exc.value)})"
         ) from None
+
+
+def _support(t: dict[str, Any]) -> Support:
+    def vec(v: list[float] | None) -> tuple[float, ...] | None:
+        return None if v is None else tuple(v)
+
+    return Support(
+        t["at"], t["kind"], t["fix_twist"], vec(t["position"]), vec(t["direction"]), vec(t["axis"])
+    )
 
 
 def _check_node(sc: Scenario, n_nodes: int, key: str, node: int) -> int:

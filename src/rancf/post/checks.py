@@ -6,19 +6,18 @@ and an entry of ``summary.json``'s ``"warnings"`` list.
 * The section's radius (``sqrt(A / π)`` for a section given by its area) exceeds
   :data:`RADIUS_LIMIT` (a tenth) of the body's reference length: e.g. 10 m meant as 10 mm.
 
-The axial strain is the elements' own Green–Lagrange measure
-(:func:`rancf.elements.cable.axial_strain`), of a cable or rod centreline at every node and
-element middle, and of a beam's chords (about 1 µs per stored state of a 128-element model).
+The axial strain is the elements' own Green–Lagrange measure at the section sample points
+(:class:`rancf.model.sections.SectionSampler`: the compiled core's strain, at ``ξ = 0, 1/4, 1/2,
+3/4`` of every element and the last node); a run's outputs track it as they are written
+(:class:`rancf.model.outputs.DerivedOutputs`), so checking it costs nothing extra.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
-
 import numpy as np
 from numpy.typing import NDArray
 
-from rancf.elements.cable import axial_strain, cable_shape_functions
+from rancf.model.sections import SectionSampler
 from rancf.model.system import Model
 
 __all__ = [
@@ -26,7 +25,7 @@ __all__ = [
     "RADIUS_LIMIT",
     "section_warnings",
     "strain_warning",
-    "StrainCheck",
+    "largest_strain",
     "run_warnings",
     "at_time",
     "at_load_factor",
@@ -41,7 +40,7 @@ RADIUS_LIMIT = 0.1
 def section_warnings(model: Model) -> list[str]:
     """A warning if the section's radius exceeds a tenth of the body's reference length."""
     r = model.section.radius
-    length = float(np.sum(model.mesh.scales))  # Σ l_e: the reference arc length
+    length = float(SectionSampler(model, 1).s[-1])  # the reference arc length
     if r <= RADIUS_LIMIT * length:
         return []
     return [
@@ -61,66 +60,6 @@ def strain_warning(strain: float, when: str) -> str | None:
     )
 
 
-class StrainCheck:
-    """The largest axial strain of a model's states, block by block (memory stays bounded).
-
-    Attributes
-    ----------
-    largest : float
-        Largest ``|ε|`` seen so far (0 before any state).
-    at : float
-        The time (or load factor) of that state.
-    """
-
-    def __init__(self, model: Model) -> None:
-        self.model = model
-        self.largest = 0.0
-        self.at = 0.0
-        if model.element == "beam":
-            x0 = model.q0.reshape(model.n_nodes, 3)[:, :2]
-            self._ref = x0[1:] - x0[:-1]
-        else:  # r_ξ at an element's ends is l r_x exactly; in its middle from N_ξ(1/2)
-            n1 = cable_shape_functions(model.mesh.weights, model.mesh.scales, [0.5])[1]
-            self._n1 = n1[:, 0, None, :]  # (n_el, 1, 4)
-            self._ref = self._tangents(model.q0[None])[0]
-
-    def _tangents(self, q: NDArray) -> NDArray:
-        """Tangents ``(k, n_nodes + n_el, dim)`` of states ``q (k, n)``: the nodal gradients,
-        then ``r_ξ(1/2)`` of every element (each a multiple of ``dr/ds`` that the reference
-        shares, so the strain of :func:`axial_strain` is exact there)."""
-        m = self.model
-        nodes = q.reshape(q.shape[0], m.n_nodes, m.dpn)[..., : 2 * m.dim]
-        e = np.concatenate([nodes[:, :-1], nodes[:, 1:]], axis=2)
-        e = e.reshape(q.shape[0], m.n_el, 4, m.dim)
-        mid = (self._n1 @ e)[:, :, 0]  # (n_el, 1, 4) @ (k, n_el, 4, dim), batched
-        return np.concatenate([nodes[..., m.dim :], mid], axis=1)
-
-    def add(self, t: NDArray, q: NDArray) -> None:
-        """Take states ``q (k, n)`` at times ``t (k,)`` into account."""
-        q = np.asarray(q, dtype=float)
-        if q.size == 0:
-            return
-        q = np.atleast_2d(q)
-        t = np.atleast_1d(np.asarray(t, dtype=float))
-        m = self.model
-        rows = max(1, (1 << 21) // max(1, 4 * m.n * m.dim))
-        for i in range(0, q.shape[0], rows):
-            part = q[i : i + rows]
-            if m.element == "beam":
-                x = part.reshape(part.shape[0], m.n_nodes, 3)[..., :2]
-                eps = axial_strain(x[:, 1:] - x[:, :-1], self._ref)
-            else:
-                eps = axial_strain(self._tangents(part), self._ref)
-            per_state = np.abs(eps).max(axis=1)
-            j = int(np.argmax(per_state))
-            if per_state[j] > self.largest:
-                self.largest, self.at = float(per_state[j]), float(t[i + j])
-
-    def warning(self, when: Callable[[float], str]) -> str | None:
-        """:func:`strain_warning` of the largest strain; ``when(at)`` describes its state."""
-        return strain_warning(self.largest, when(self.at))
-
-
 def at_time(t: float) -> str:
     """``at t = 0.5 s``."""
     return f"at t = {t:g} s"
@@ -131,10 +70,33 @@ def at_load_factor(lam: float) -> str:
     return f"at load factor λ = {lam:g}"
 
 
-def run_warnings(model: Model, t: NDArray, q: NDArray, static: bool = False) -> list[str]:
-    """Every warning of a run: the section's radius, and the largest axial strain of the
-    states ``q (n_t, n)`` at times (or load factors, ``static``) ``t``."""
-    check = StrainCheck(model)
-    check.add(t, q)
-    strain = check.warning(at_load_factor if static else at_time)
+def run_warnings(
+    model: Model,
+    t: NDArray | None = None,
+    q: NDArray | None = None,
+    static: bool = False,
+    largest: tuple[float, float] | None = None,
+) -> list[str]:
+    """Every warning of a run: the section's radius, and the largest axial strain — ``largest =
+    (strain, t)`` as a :class:`~rancf.model.outputs.DerivedOutputs` tracked it, or of the states
+    ``q (n_t, n)`` at times (or load factors, ``static``) ``t``."""
+    if largest is None:
+        largest = (
+            largest_strain(model, np.atleast_1d(t), np.atleast_2d(q))
+            if q is not None and np.size(q)
+            else (0.0, 0.0)
+        )
+    strain = strain_warning(largest[0], (at_load_factor if static else at_time)(largest[1]))
     return section_warnings(model) + ([strain] if strain else [])
+
+
+def largest_strain(model: Model, t: NDArray, q: NDArray) -> tuple[float, float]:
+    """The largest ``|ε|`` of the states ``q (n_t, n)`` at the section sample points (the
+    elements' own strain, :class:`~rancf.model.sections.SectionSampler`) and its ``t``."""
+    sampler = SectionSampler(model)
+    best = (0.0, 0.0)
+    for tt, qq in zip(t, q, strict=True):
+        eps = float(np.max(np.abs(sampler.values(model.y_from_q(qq))[:, 0])))
+        if eps > best[0]:
+            best = (eps, float(tt))
+    return best

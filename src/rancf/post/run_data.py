@@ -31,7 +31,7 @@ from __future__ import annotations
 import json
 import logging
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -86,6 +86,11 @@ class RunData:
         Rods: the first material axis ``m1`` of every node's triad (None for other elements).
     static : bool
         A static load path (``rancf static --out``): ``t`` holds the load factor ``λ``.
+    along : ndarray (n_t, n_points, n_names) or None
+        Section quantities at ``ξ = 0, 1/4, 1/2, 3/4`` of every element and the last node
+        (:mod:`rancf.model.sections`; None for older runs).
+    section_names : list of str
+        Their names.
     """
 
     path: Path
@@ -104,6 +109,8 @@ class RunData:
     tangent_angles: NDArray[np.float64] | None
     directors: NDArray[np.float64] | None = None
     static: bool = False
+    along: NDArray[np.float64] | None = None
+    section_names: list[str] = field(default_factory=list)
 
     @property
     def time_label(self) -> str:
@@ -206,6 +213,8 @@ def load_run(run_dir: str | Path) -> RunData:
         tangent_angles=angles,
         directors=data.get("directors"),
         static=_summary(path).get("analysis") == "static",
+        along=data.get("along"),
+        section_names=list(meta.get("section_names", [])),
     )
 
 

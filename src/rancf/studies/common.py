@@ -44,7 +44,10 @@ EXAMPLES = {
 
 #: Shipped scenarios that are not paper studies, and what ``rancf example run`` does with each
 #: (:mod:`rancf.studies.scenario_example`): ``"simulate"``, ``"static"`` and/or ``"modes"``.
-SCENARIO_ANALYSES: dict[str, tuple[str, ...]] = {"cantilever": ("static", "modes")}
+SCENARIO_ANALYSES: dict[str, tuple[str, ...]] = {
+    "cantilever": ("static", "modes"),
+    "installed-hose": ("static", "simulate"),
+}
 
 
 def example_path(name: str) -> Path:

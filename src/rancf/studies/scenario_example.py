@@ -81,11 +81,14 @@ def run_scenario(name: str, out: str | Path, quick: bool = False) -> StudyResult
         if analysis == "static":
             from rancf.solvers.static import solve_static
 
-            path, summary = LoadPath(model), {}
+            path, summary = LoadPath(model, sc.support_labels), {}
             info = {"scenario": str(scenario.resolve())}
             try:
-                st = solve_static(model, sc.solver["load_steps"], on_step=path.record)
-                info.update(status="completed", message="reached load factor 1")
+                st = solve_static(
+                    model, sc.solver["load_steps"], on_step=path.record,
+                    method=sc.solver["static_method"],
+                )  # fmt: skip
+                info.update(status="completed", message="reached the end of the load path")
             except ConvergenceError as exc:
                 info.update(status="failed", message=str(exc))
                 raise
@@ -126,11 +129,12 @@ def run_scenario(name: str, out: str | Path, quick: bool = False) -> StudyResult
             )
         else:  # simulate
             from rancf.solvers.dynamic import integrate
+            from rancf.solvers.static import start_state
 
-            result = integrate(model, sc.dynamic_options())
-            summary = write_run(
-                out / "run", model, sc.sensors, result, {"scenario": str(scenario.resolve())}
-            )
+            y0, start = start_state(sc, model)
+            result = integrate(model, sc.dynamic_options(), initial=y0)
+            extra = {"scenario": str(scenario.resolve()), **start}
+            summary = write_run(out / "run", model, sc.sensors, result, extra, sc.support_labels)
             _notes(res, summary)
             _figures(res, out, out / "run", "simulation")
             names, vals = sensor_table(model, sc.sensors, result.q[-1:])
