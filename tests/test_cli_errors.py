@@ -614,7 +614,6 @@ BAD_ARGS = [
     ("no-command", [], 2, "command"),
     ("example-unknown-action", ["example", "fly"], 2, "fly"),
     ("example-run-unknown", ["example", "run", "nope", "--out", "x"], 2, "nope"),
-    ("example-run-plain-scenario", ["example", "run", "cantilever", "--out", "x"], 2, "cantilever"),
     ("example-run-out-file", ["example", "run", "planar-pendulum", "--out", "afile"], 2, "--out"),
     ("example-run-no-out", ["example", "run", "planar-pendulum"], 2, "--out"),
     ("example-copy-unknown", ["example", "copy", "nope", "adir"], 2, "nope"),

@@ -40,6 +40,10 @@ void subtract_load_stiffness(const Model& m, double t, const double* y, const Ba
 /// rotation).
 void nodal_gradient(const Model& m, const double* y, int node, double* rx);
 
+/// Element coordinates e (2 dpn values, full nodal coordinates q) of element el from model
+/// coordinates y (clamp rotations undone).
+void element_coordinates(const Model& m, const double* y, int el, double* e);
+
 /// Re-reference the rod's nodal triads at configuration y (no-op for other elements).
 void rereference(const Model& m, const double* y);
 

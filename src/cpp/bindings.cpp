@@ -25,6 +25,7 @@
 #include "integrator.hpp"
 #include "model.hpp"
 #include "rod.hpp"
+#include "sections.hpp"
 
 namespace nb = nanobind;
 using namespace nb::literals;
@@ -65,7 +66,12 @@ NB_MODULE(_core, mod) {
           [](rancf::Stiffness* st, double ea, double ei, double gj, double ei2, double ei3) {
             new (st) rancf::Stiffness{ea, ei, gj, ei2, ei3};
           },
-          nb::kw_only(), "ea"_a, "ei"_a = 0.0, "gj"_a = 0.0, "ei2"_a = 0.0, "ei3"_a = 0.0);
+          nb::kw_only(), "ea"_a, "ei"_a = 0.0, "gj"_a = 0.0, "ei2"_a = 0.0, "ei3"_a = 0.0)
+      .def_ro("ea", &rancf::Stiffness::ea)
+      .def_ro("ei", &rancf::Stiffness::ei)
+      .def_ro("gj", &rancf::Stiffness::gj)
+      .def_ro("ei2", &rancf::Stiffness::ei2)
+      .def_ro("ei3", &rancf::Stiffness::ei3);
   nb::class_<rancf::SectionInertia>(mod, "SectionInertia",
                                     "Rotary inertia of rod sections per length (rho Ip, rho I).")
       .def(
@@ -225,19 +231,24 @@ NB_MODULE(_core, mod) {
               "y"_a, "k"_a.noconvert(), "eps"_a.noconvert(),
               "Material curvatures (n_el, n_qp, 3) and axial strains (n_el, n_qp) of a rod model.")
           .def(
-              "static_newton",
-              [](const ModelHolder& h, Out y, double load_factor, double tol, int max_iter) {
+              "section_strains",
+              [](const ModelHolder& h, In xi, In n1, In n2, In ref, In y, Out out) {
+                // xi (n); n1, n2 (n_el, n, 4); ref (n_el, n): s0 (cable) or j0 (rod); out
+                // (n_el, n, section_width)
                 expect_size(y, h.n(), "y");
-                rancf::NewtonOutcome r;
-                {
-                  nb::gil_scoped_release release;
-                  r = rancf::static_newton(h.m, y.data(), load_factor, tol, max_iter);
-                }
-                return std::make_tuple(r.converged, r.iterations, r.increment);
+                const std::size_t np = xi.size(), ne = static_cast<std::size_t>(h.m.n_el);
+                const bool pts = h.m.kind != rancf::ElementKind::beam;
+                expect_size(n1, pts ? ne * np * 4 : n1.size(), "n1");
+                expect_size(n2, pts ? ne * np * 4 : n2.size(), "n2");
+                expect_size(ref, pts ? ne * np : ref.size(), "ref");
+                const auto w = static_cast<std::size_t>(rancf::section_width(h.m));
+                expect_size(out, ne * np * w, "out");
+                const rancf::SamplePoints p{static_cast<int>(np), xi.data(), n1.data(), n2.data(),
+                                            ref.data()};
+                rancf::section_strains(h.m, p, y.data(), out.data());
               },
-              "y"_a.noconvert(), "load_factor"_a, "tol"_a, "max_iter"_a,
-              "Newton iterations for f_int(y) = load_factor f_ext(y) (loads at their amplitudes); "
-              "returns (converged, iterations, increment).");
+              "xi"_a, "n1"_a, "n2"_a, "ref"_a, "y"_a, "out"_a.noconvert(),
+              "Strains and curvatures at sample points of every element (see sections.hpp).");
   rancf_bind::bind_inertia(model_cls);
 
   nb::class_<IntegratorHolder>(mod, "Integrator", "Generalized-alpha steps on a model.")

@@ -101,9 +101,9 @@ struct ModelHolder {
                rod.kref.data(),      rod.tref.data(), rod.m1ref.data()};
     }
     expect_size(supports.fixed, n, "supports.fixed");
-    expect_size(supports.rot_of_node, ne + 1, "supports.rot_of_node");
+    expect_size(supports.rot_of_node, 2 * (ne + 1), "supports.rot_of_node");
     const auto n_rot = supports.rot.size() / static_cast<std::size_t>(dim * dim);
-    for (std::size_t i = 0; i <= ne; ++i)
+    for (std::size_t i = 0; i < 2 * (ne + 1); ++i)
       if (supports.rot_of_node.data()[i] >= static_cast<std::int64_t>(n_rot))
         throw std::invalid_argument("supports.rot_of_node: index out of range");
     m.supports = {supports.fixed.data(), supports.rot_of_node.data(), supports.rot.data()};

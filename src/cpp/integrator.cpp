@@ -168,34 +168,6 @@ void Integrator::initial_acceleration(const double* y, const double* v, double t
   mass.solve(a, m_.supports.fixed);
 }
 
-NewtonOutcome static_newton(const Model& m, double* y, double load_factor, double tol,
-                            int max_iter) {
-  const int n = m.n();
-  BandLU lu(n, m.ku());
-  std::vector<double> f(sz(n)), fext(sz(n));
-  double norm = std::numeric_limits<double>::infinity();
-  for (int it = 1; it <= max_iter; ++it) {
-    BandView k = lu.matrix();
-    assemble(m, y, f.data(), &k, 1.0);
-    external_force(m, 0.0, y, fext.data(), true);
-    subtract_load_stiffness(m, 0.0, y, k, load_factor, true);
-    for (int i = 0; i < n; ++i) f[sz(i)] -= load_factor * fext[sz(i)];
-    if (!lu.factor(m.supports.fixed)) return {false, it, norm};
-    lu.solve(f.data(), m.supports.fixed);
-    norm = 0.0;
-    for (int i = 0; i < n; ++i) {
-      y[i] -= f[sz(i)];
-      norm = std::max(norm, std::abs(f[sz(i)]));
-    }
-    if (!std::isfinite(norm)) return {false, it, norm};
-    if (norm <= tol) {
-      rereference(m, y);
-      return {true, it, norm};
-    }
-  }
-  return {false, max_iter, norm};
-}
-
 double kinetic_energy(const Model& m, const double* y, const double* v) {
   return kinetic_energy(m, v) + rotary_kinetic_energy(m, y, v);
 }

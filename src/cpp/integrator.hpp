@@ -1,4 +1,4 @@
-// Generalized-alpha time stepping (Chung & Hulbert 1993) and static Newton iterations.
+// Generalized-alpha time stepping (Chung & Hulbert 1993).
 //
 // For M a + c M v + f_int(y) = f_ext(t):
 //   y1 = y0 + h v0 + h^2 ((1/2 - beta) a0 + beta a1),  v1 = v0 + h ((1 - gamma) a0 + gamma a1)
@@ -64,17 +64,6 @@ class Integrator {
   std::vector<double> base_, fext_, yf_, fi_, tmp_, mv_;
   std::vector<double> vf_, aam_;  // rods: v at 1 - alpha_f, a at 1 - alpha_m (rotary inertia)
 };
-
-struct NewtonOutcome {
-  bool converged;
-  int iterations;
-  double increment;  ///< max |increment| of the last iteration
-};
-
-/// Newton iterations for f_int(y) = load_factor f_ext(y) (statics: gravity, point forces and
-/// moments at their amplitudes), y updated in place; converged rod triads are re-referenced.
-NewtonOutcome static_newton(const Model& m, double* y, double load_factor, double tol,
-                            int max_iter);
 
 /// Kinetic energy of the constant mass, 1/2 v^T M_c v.
 double kinetic_energy(const Model& m, const double* v);

@@ -62,11 +62,12 @@ struct SectionInertia {
   double bend = 0.0;   ///< rho I of both bending directions ("full"; 0 for "torsion")
 };
 
-/// Supports: fixed model coordinates and the clamp rotations of gradient blocks (q = T y).
+/// Supports: fixed model coordinates and the rotated blocks of supported nodes (q = T y): a
+/// roller's position block into (axis, normals), a clamp's gradient block into (t0, normals).
 struct Supports {
   const std::uint8_t* fixed = nullptr;        ///< (n): 1 where the coordinate is held
-  const std::int64_t* rot_of_node = nullptr;  ///< (n_nodes): index into rot, or -1
-  const double* rot = nullptr;                ///< (n_rot, dim, dim): basis columns (t0, n0[, n1])
+  const std::int64_t* rot_of_node = nullptr;  ///< (n_nodes, 2): [position, gradient] -> rot, or -1
+  const double* rot = nullptr;                ///< (n_rot, dim, dim): basis columns
 };
 
 /// External loads: constant gravity forces and nodal point forces F0 [sin(2 pi f t)].

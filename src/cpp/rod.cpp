@@ -13,6 +13,7 @@
 #include "rod.hpp"
 
 #include <cmath>
+#include <vector>
 
 #include "registry.hpp"
 #include "rod_inertia.hpp"
@@ -70,6 +71,29 @@ const ElementKernel rod_kernel = {rod_forces, rod_energy};
 
 void rod_curvatures(const Model& m, int el, const double* e, double* k, double* eps) {
   rod::curvatures(rod_input(m, el), e, k, eps);
+}
+
+void rod_point_strains(const Model& m, int el, const double* e, int n, const double* xi,
+                       const double* n1, const double* n2, const double* j0, double* out) {
+  const RodData& r = m.rod;
+  const rod::ElementInput in{n1,
+                             n2,
+                             xi,
+                             nullptr,
+                             j0,
+                             nullptr,
+                             n,
+                             r.tref + el * 3,
+                             r.m1ref + el * 3,
+                             r.tref + (el + 1) * 3,
+                             r.m1ref + (el + 1) * 3};
+  std::vector<double> k(static_cast<std::size_t>(3 * n)), eps(static_cast<std::size_t>(n));
+  rod::curvatures(in, e, k.data(), eps.data());
+  for (int q = 0; q < n; ++q) {
+    const auto uq = static_cast<std::size_t>(q);
+    out[4 * q] = eps[uq];
+    for (int i = 0; i < 3; ++i) out[4 * q + 1 + i] = k[3 * uq + static_cast<std::size_t>(i)];
+  }
 }
 
 void rod_nodal_triad(const double* tref, const double* m1ref, const double* rx, double phi,

@@ -8,6 +8,12 @@ namespace rancf {
 /// Material curvatures k (n_qp, 3) and axial strains eps (n_qp) of element el, coordinates e (q).
 void rod_curvatures(const Model& m, int el, const double* e, double* k, double* eps);
 
+/// Axial strain and material curvatures at n points of element el (coordinates e, q), out
+/// (n, 4) = [eps, K1, K2, K3], with the model's current nodal triads; n1, n2 (n, 4) and j0 (n)
+/// at the points xi (n).
+void rod_point_strains(const Model& m, int el, const double* e, int n, const double* xi,
+                       const double* n1, const double* n2, const double* j0, double* out);
+
 /// Nodal triad: t = rx/|rx|, m1 = cos(phi) u + sin(phi) t x u, u = SR(tref -> t) m1ref.
 void rod_nodal_triad(const double* tref, const double* m1ref, const double* rx, double phi,
                      double* t, double* m1);

@@ -46,13 +46,17 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     every = _positive("--checkpoint-every", args.checkpoint_every, "a finite number of seconds > 0")
     limit = _positive("--max-output-gb", args.max_output_gb, "a finite size in GB > 0")
     out = check_out_dir(args.out)
+    from rancf.model.outputs import DerivedOutputs
     from rancf.model.scenario import load_scenario
+    from rancf.post.checks import run_warnings, section_warnings
     from rancf.post.history import HistoryStore, estimate_output_bytes
     from rancf.post.results import run_summary
+    from rancf.solvers.static import start_state
 
     sc = load_scenario(args.scenario)
     opts = sc.dynamic_options()
     model = sc.build_model()
+    y_start, start_info = start_state(sc, model)
     n_cols = sum(len(s.columns(model.dim)) for s in sc.sensors)
     rod_directors = 3 * model.n_nodes if model.element == "rod" else 0
     need = estimate_output_bytes(opts.n_outputs, model.q0.size, n_cols, rod_directors)
@@ -63,19 +67,32 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
             "raise solver.output_step, shorten solver.t_end or raise the limit"
         )
     stop = _StopFlag()
+    notes = _warn(section_warnings(model))  # likely unit mistakes: the run goes on
     with stop, OutputDir(out) as od:
         info = {"scenario": str(Path(args.scenario).resolve()), "setup_wall_time_s": None}
-        store = HistoryStore(out, model, sc.sensors, info)
+        info.update(start_info)
+        derived = DerivedOutputs(model, sc.support_labels)
+        store = HistoryStore(out, model, sc.sensors, {**info, "warnings": notes}, derived=derived)
         try:
             store.write_summary(_running(model, 0.0))
             od.keep()
-            res = _run(args, model, opts, store, stop, every)
+            res = _run(args, model, opts, store, stop, every, y_start)
         except BaseException as exc:
             store.finish(_broken(model, store, exc))
             raise
         summary = run_summary(model, res)
+        store.flush()  # every row's derived outputs, the strain among them
+        store.info["warnings"] = run_warnings(model, largest=derived.largest_strain)
         store.finish(summary)
+    _warn(store.info["warnings"][len(notes) :])
     return _report(args, res, {**summary, **store.info}, out)
+
+
+def _warn(notes: list[str]) -> list[str]:
+    """Print each warning as one line on standard error; returns them."""
+    for note in notes:
+        print(f"rancf: warning: {note}", file=sys.stderr)
+    return notes
 
 
 class RunTooLargeError(RancfError):
@@ -146,7 +163,15 @@ def _progress_bar(t_end: float, t: float) -> Any:
     )
 
 
-def _run(args: argparse.Namespace, model: Any, opts: Any, store: Any, stop: Any, every: float):
+def _run(
+    args: argparse.Namespace,
+    model: Any,
+    opts: Any,
+    store: Any,
+    stop: Any,
+    every: float,
+    y_start: Any = None,
+):
     from rancf.post.results import run_summary
     from rancf.solvers.dynamic import integrate
 
@@ -172,7 +197,9 @@ def _run(args: argparse.Namespace, model: Any, opts: Any, store: Any, stop: Any,
             pace["next"] = time.monotonic() + max(pace["every"], 4.0 * took)
 
     try:
-        return integrate(model, opts, on_output, stop, sink=store, on_start=on_start)
+        return integrate(
+            model, opts, on_output, stop, sink=store, on_start=on_start, initial=y_start
+        )
     finally:
         if bar:
             bar[0].close()
@@ -198,22 +225,29 @@ def _report(args: argparse.Namespace, res: Any, summary: dict[str, Any], out: Pa
 
 
 def _cmd_static(args: argparse.Namespace) -> int:
+    import numpy as np
+
+    from rancf.cli_equilibrium import reactions_json
     from rancf.model.scenario import load_scenario
+    from rancf.post.checks import run_warnings
     from rancf.post.results import LoadPath, sensor_table, write_static_run
     from rancf.solvers.static import solve_static
 
     out_dir = check_out_dir(args.out) if args.out else None
     sc = load_scenario(args.scenario)
     model = sc.build_model()
-    path = LoadPath(model)  # the load path, for --out
+    path = LoadPath(model, sc.support_labels)  # the load path, for --out
+    method = sc.solver["static_method"]
     if out_dir is None:
-        res = solve_static(model, sc.solver["load_steps"])
+        res = solve_static(model, sc.solver["load_steps"], method=method)
     else:
         with OutputDir(out_dir) as od:
             info = {"scenario": str(Path(args.scenario).resolve())}
             try:
-                res = solve_static(model, sc.solver["load_steps"], on_step=path.record)
-                info.update(status="completed", message="reached load factor 1")
+                res = solve_static(
+                    model, sc.solver["load_steps"], on_step=path.record, method=method
+                )
+                info.update(status="completed", message="reached the end of the load path")
             except ConvergenceError as exc:
                 info.update(status="failed", message=str(exc))
                 raise
@@ -221,6 +255,10 @@ def _cmd_static(args: argparse.Namespace) -> int:
                 if path.steps:  # what converged is kept, also when a later increment fails
                     write_static_run(out_dir, path, sc.sensors, info)
                     od.keep()
+    if path.steps:  # the load path's outputs tracked the largest strain
+        notes = _warn(run_warnings(model, static=True, largest=path.derived.largest_strain))
+    else:
+        notes = _warn(run_warnings(model, res.load_factors[-1:], res.q[None], static=True))
     pos = model.node_positions(res.q)
     names, vals = sensor_table(model, sc.sensors, res.q)
     out = {
@@ -228,6 +266,10 @@ def _cmd_static(args: argparse.Namespace) -> int:
         "sensors": dict(zip(names, vals[0].tolist(), strict=True)),
         "load_factors": res.load_factors.tolist(),
         "newton_iterations": res.n_newton,
+        "method": res.method,
+        "wall_time_s": res.wall_time,
+        "reactions": reactions_json(sc, model, res.y),
+        "warnings": notes,
     }
     if args.json:
         print(json.dumps(out, indent=2))
@@ -238,13 +280,23 @@ def _cmd_static(args: argparse.Namespace) -> int:
         )
         for k, v in out["sensors"].items():
             print(f"  {k:12s} {v: .9g}")
+        # forces below the round-off of the internal forces (100 ε EA) print as 0
+        floor = 100 * np.finfo(float).eps * model.props.ea
+        for r in out["reactions"]:
+            moment = f"  moment {_vec(r['moment'], floor)}" if "moment" in r else ""
+            print(f"  reaction at {r['at']!s:6s} force {_vec(r['force'], floor)}{moment}")
     return 0
+
+
+def _vec(v: list[float], floor: float) -> str:
+    return "[" + ", ".join(f"{x:.9g}" if abs(x) > floor else "0" for x in v) + "]"
 
 
 def _cmd_modes(args: argparse.Namespace) -> int:
     import numpy as np
 
     from rancf.model.scenario import load_scenario
+    from rancf.post.checks import run_warnings
     from rancf.solvers.modal import natural_modes
     from rancf.solvers.static import solve_static
 
@@ -261,7 +313,9 @@ def _cmd_modes(args: argparse.Namespace) -> int:
         raise InputError(key, count, f"at most {n_free} (the free coordinates of this model)")
     y = None
     if about == "static":
-        y = solve_static(model, sc.solver["load_steps"]).y
+        y = solve_static(model, sc.solver["load_steps"], method=sc.solver["static_method"]).y
+    static = [] if y is None else [model.q_from_y(y)]  # the strain of the equilibrium
+    notes = _warn(run_warnings(model, np.ones(len(static)), np.array(static), static=True))
     res = natural_modes(model, y, count)
     if res.frequencies_hz.size < count:
         raise InputError(
@@ -283,6 +337,7 @@ def _cmd_modes(args: argparse.Namespace) -> int:
         "rigid_body_modes_removed": res.n_rigid,
         "about": about,
         "n_dofs_free": int(np.sum(~model.fixed)),
+        "warnings": notes,
     }
     if args.json:
         print(json.dumps(out, indent=2))
@@ -307,6 +362,8 @@ def _cmd_modes(args: argparse.Namespace) -> int:
                 'curvature does not resist: use mesh.element = "rod" (torsion and out-of-plane '
                 "bending stiffness) for curved spatial structures (see README)."
             )
+    if plot is not None:  # after the JSON object, on standard error: stdout stays one object
+        print(f"mode shapes written to {plot}", file=sys.stderr if args.json else sys.stdout)
     return 0
 
 

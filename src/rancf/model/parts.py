@@ -58,6 +58,12 @@ class Section:
         return cls(np.pi * radius**2, np.pi * radius**4 / 4.0)
 
     @property
+    def radius(self) -> float:
+        """Radius of the circle of the same area, ``sqrt(A / π)`` (a circular section's radius,
+        to round-off)."""
+        return float(np.sqrt(self.area / np.pi))
+
+    @property
     def inertia_2(self) -> float:
         """``I_z``, about the second principal axis."""
         return self.inertia if self.inertia_z is None else self.inertia_z
@@ -119,15 +125,23 @@ class Material:
 
 @dataclass(frozen=True)
 class Support:
-    """A support at a node: ``"pin"`` (position fixed) or ``"clamp"`` (also the direction).
+    """A support at a node.
 
-    For rods a clamp also holds the twist (the full cross-section orientation), and a pin with
-    ``fix_twist`` holds the position and the twist.
+    Kinds: ``"pin"`` (position held), ``"clamp"`` (position and tangent direction held; a rod's
+    whole cross-section) and ``"roller"`` (the node moves freely along ``axis`` only).  For rods
+    a clamp also holds the twist, and a pin or roller with ``fix_twist`` holds it too.
+
+    ``position`` (pin, clamp; a point of the line for a roller) and ``direction`` (clamp: the
+    held tangent) install the node away from its reference: the static solution moves it there
+    along the load path (pre-tension by installation); default the reference.
     """
 
     node: int
-    kind: Literal["pin", "clamp"] = "pin"
+    kind: Literal["pin", "clamp", "roller"] = "pin"
     fix_twist: bool = False
+    position: tuple[float, ...] | None = None
+    direction: tuple[float, ...] | None = None
+    axis: tuple[float, ...] | None = None
 
 
 @dataclass(frozen=True)

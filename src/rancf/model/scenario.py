@@ -56,6 +56,20 @@ class Scenario:
 
         return build_model(self)
 
+    @property
+    def support_labels(self) -> list[int | str]:
+        """Each support's ``at`` as written (``"start"``, ``"end"`` or a node index)."""
+        return [t["label"] for t in self.data["supports"]]
+
+    def installed_support(self) -> str | None:
+        """The key of the first support installed away from its reference (``position`` or
+        ``direction``), or None."""
+        for i, t in enumerate(self.data["supports"]):
+            for k in ("position", "direction"):
+                if t[k] is not None:
+                    return f"supports[{i}].{k}"
+        return None
+
     def dynamic_options(self) -> DynamicOptions:
         """:class:`~rancf.solvers.dynamic.DynamicOptions` of the ``[solver]`` table."""
         return _guard(self.path, "solver", lambda: dynamic_options(self.solver))
@@ -117,7 +131,7 @@ def parse_scenario(raw: dict[str, Any], path: str = "<scenario>") -> Scenario:
     d["section"] = parse_section(path, raw["section"], el)
     d["material"] = parse_material(path, raw["material"], el)
 
-    d["supports"] = parse_supports(path, raw.get("supports", []), el)
+    d["supports"] = parse_supports(path, raw.get("supports", []), el, dim)
 
     ld = _table(path, "loads", raw.get("loads", {}), {"gravity": None, "point": []})
     if ld["gravity"] is not None:

@@ -62,7 +62,8 @@ def _value(v: Any) -> str:
 def _mesh(sc: Scenario) -> Any:
     from rancf.geometry.conic import conic_arc_through
     from rancf.geometry.nurbs import NurbsCurve
-    from rancf.model.mesh import mesh_conic, mesh_line, mesh_nurbs
+    from rancf.model.mesh import mesh_conic, mesh_line
+    from rancf.model.nurbs_mesh import mesh_nurbs
     from rancf.model.scenario_tables import MAX_ELEMENTS
 
     g, m = sc.data["geometry"], sc.data["mesh"]
@@ -152,7 +153,7 @@ def build_model(sc: Scenario) -> Model:
             Material(
                 mat["density"], mat["youngs_modulus"], mat["shear_modulus"], mat["poisson_ratio"]
             ),
-            [Support(t["at"], t["kind"], t["fix_twist"]) for t in d["supports"]],
+            [_support(t) for t in d["supports"]],
             d["loads"]["gravity"],
             loads,
             d["damping"]["mass_proportional"],
@@ -164,6 +165,15 @@ def build_model(sc: Scenario) -> Model:
         raise ScenarioError(
             sc.path, exc.parameter, f"{exc.allowed} (got {_value(exc.value)})"
         ) from None
+
+
+def _support(t: dict[str, Any]) -> Support:
+    def vec(v: list[float] | None) -> tuple[float, ...] | None:
+        return None if v is None else tuple(v)
+
+    return Support(
+        t["at"], t["kind"], t["fix_twist"], vec(t["position"]), vec(t["direction"]), vec(t["axis"])
+    )
 
 
 def _check_node(sc: Scenario, n_nodes: int, key: str, node: int) -> int:

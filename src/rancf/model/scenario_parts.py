@@ -119,20 +119,40 @@ def parse_material(path: str, raw: Any, element: str) -> dict[str, Any]:
     return mat
 
 
-def parse_supports(path: str, raw: Any, element: str) -> list[dict[str, Any]]:
-    """The ``[[supports]]`` array: ``at``, ``kind`` and (rods) ``fix_twist``."""
+def parse_supports(path: str, raw: Any, element: str, dim: int) -> list[dict[str, Any]]:
+    """The ``[[supports]]`` array: ``at``, ``kind`` (``pin``, ``clamp``, ``roller``), ``axis``
+    (roller), ``position`` and ``direction`` (clamp) of the installed support, and (rods)
+    ``fix_twist``; ``label`` keeps ``at`` as written (reaction columns)."""
     if not isinstance(raw, list):
         raise _err(path, "supports", "must be an array of tables [[supports]]")
     out = []
     for i, sp in enumerate(raw):
         key = f"supports[{i}]"
-        t = _table(path, key, sp, {"at": _REQ, "kind": "pin", "fix_twist": False})
+        t = _table(
+            path, key, sp, {"at": _REQ, "kind": "pin", "fix_twist": False, "position": None,
+                            "direction": None, "axis": None},
+        )  # fmt: skip
+        t["label"] = t["at"]
         t["at"] = _place(path, f"{key}.at", t["at"])
-        t["kind"] = _choice(path, f"{key}.kind", t["kind"], ("pin", "clamp"))
+        t["kind"] = _choice(path, f"{key}.kind", t["kind"], ("pin", "clamp", "roller"))
         if not isinstance(t["fix_twist"], bool):
             raise _err(path, f"{key}.fix_twist", f"must be true or false, got {t['fix_twist']!r}")
         if t["fix_twist"]:
             _rod_only(path, f"{key}.fix_twist", element)
+        for k in ("position", "direction", "axis"):
+            if t[k] is not None:
+                t[k] = _vector(path, f"{key}.{k}", t[k], (dim,))
+        if t["kind"] == "roller" and t["axis"] is None:
+            raise _err(path, f"{key}.axis", "required for a roller (the direction it moves along)")
+        if t["kind"] != "roller" and t["axis"] is not None:
+            raise _err(path, f"{key}.axis", f'applies to kind = "roller" only, not {t["kind"]!r}')
+        if t["kind"] != "clamp" and t["direction"] is not None:
+            raise _err(
+                path, f"{key}.direction", f'applies to kind = "clamp" only, not {t["kind"]!r}'
+            )
+        for k in ("direction", "axis"):
+            if t[k] is not None and not any(x != 0.0 for x in t[k]):
+                raise _err(path, f"{key}.{k}", "must be a nonzero vector")
         out.append(t)
     return out
 

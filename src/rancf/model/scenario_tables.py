@@ -227,6 +227,8 @@ def parse_solver(path: str, raw: Any) -> dict[str, Any]:
             "newton_tol": 1e-10,
             "max_newton": 12,
             "newton": "full",
+            "static_method": "load",
+            "initial_state": "reference",
         },
     )
     sv["t_end"] = _number(path, "solver.t_end", sv["t_end"], positive=True)
@@ -244,6 +246,12 @@ def parse_solver(path: str, raw: Any) -> dict[str, Any]:
     sv["newton_tol"] = _number(path, "solver.newton_tol", sv["newton_tol"], positive=True)
     sv["max_newton"] = _integer(path, "solver.max_newton", sv["max_newton"], 1)
     sv["newton"] = _choice(path, "solver.newton", sv["newton"], ("full", "modified"))
+    sv["static_method"] = _choice(
+        path, "solver.static_method", sv["static_method"], ("load", "arc_length")
+    )
+    sv["initial_state"] = _choice(
+        path, "solver.initial_state", sv["initial_state"], ("reference", "static")
+    )
     _guard(path, "solver", lambda: dynamic_options(sv))
     return sv
 

@@ -138,6 +138,16 @@ def scenario_schema() -> dict[str, Any]:
             "newton_tol": {**_POS, "default": 1e-10},
             "max_newton": {"type": "integer", "minimum": 1, "default": 12},
             "newton": {"enum": ["full", "modified"], "default": "full"},
+            "static_method": {
+                "enum": ["load", "arc_length"],
+                "default": "load",
+                "description": "statics: adaptive load increments or arc length (limit points)",
+            },
+            "initial_state": {
+                "enum": ["reference", "static"],
+                "default": "reference",
+                "description": "simulate: start from the reference or the static equilibrium",
+            },
         }
     )
     sensor = _table(
@@ -182,12 +192,21 @@ def scenario_schema() -> dict[str, Any]:
                     "items": _table(
                         {
                             "at": _PLACE,
-                            "kind": {"enum": ["pin", "clamp"], "default": "pin"},
+                            "kind": {"enum": ["pin", "clamp", "roller"], "default": "pin"},
                             "fix_twist": {
                                 "type": "boolean",
                                 "default": False,
                                 "description": "rods: also hold the twist (a clamp holds it)",
                             },
+                            "position": {
+                                **_vec(),
+                                "description": "installed position (default: the reference)",
+                            },
+                            "direction": {
+                                **_vec(),
+                                "description": "clamp: installed tangent (default: reference)",
+                            },
+                            "axis": {**_vec(), "description": "roller: the line it moves along"},
                         },
                         ("at",),
                     ),

@@ -29,23 +29,12 @@ from rancf.kernels.rod import ROD_DOFS, RodKernel
 from rancf.model.mesh import CableMesh, to_ancf
 from rancf.model.motion import RigidMotion, check_supports_at_rest, rigid_velocity
 from rancf.model.parts import Material, PointLoad, Section, Support
+from rancf.model.supports import support_layout
 from rancf.model.system_core import core_model
 
 __all__ = ["Section", "Material", "Support", "PointLoad", "Model", "ElementKind", "RigidMotion"]
 
 ElementKind = Literal["rancf", "ancf", "beam", "rod"]
-
-
-def _orthonormal_basis(t: NDArray) -> NDArray:
-    """Columns ``(t, n0[, n1])``: an orthonormal basis whose first vector is ``t / |t|``."""
-    t = t / np.linalg.norm(t)
-    if t.size == 2:
-        return np.array([[t[0], -t[1]], [t[1], t[0]]])
-    helper = np.eye(3)[int(np.argmin(np.abs(t)))]
-    n0 = np.cross(t, helper)
-    n0 /= np.linalg.norm(n0)
-    n1 = np.cross(t, n0)
-    return np.stack([t, n0, n1], axis=1)
 
 
 class Model:
@@ -150,26 +139,12 @@ class Model:
         self.ku = self.nde - 1
         self._el_idx = np.arange(self.n_el)[:, None] * self.dpn + np.arange(self.nde)[None, :]
 
-        # supports -> rotations of gradient blocks and fixed entries of y
-        self.fixed = np.zeros(self.n, dtype=bool)
-        self._rot: list[tuple[int, NDArray]] = []
-        for sup in supports:
-            node = self.check_node(sup.node, "supports.at")
-            base = node * self.dpn
-            self.fixed[base : base + self.dim] = True
-            if sup.kind == "clamp":
-                if element == "beam":
-                    self.fixed[base + 2] = True
-                else:
-                    basis = _orthonormal_basis(q0[base + self.dim : base + 2 * self.dim])
-                    self._rot.append((base + self.dim, basis))
-                    self.fixed[base + self.dim + 1 : base + 2 * self.dim] = True
-            elif sup.kind != "pin":
-                raise InputError("supports.kind", sup.kind, 'one of "pin", "clamp"')
-            if element == "rod" and (sup.kind == "clamp" or sup.fix_twist):
-                self.fixed[base + 6] = True  # the twist: the cross-section's orientation
-            elif sup.fix_twist:
-                raise InputError("supports.fix_twist", True, "rod elements (they have a twist)")
+        # supports -> held entries of y, rotated blocks, installed values
+        tangents = mesh.nodes[:, 1]
+        layout = support_layout(supports, element, self.dim, self.dpn, q0, tangents,
+                                self.check_node)  # fmt: skip
+        self.fixed = layout.fixed
+        self._rot = list(layout.rotations)
         self.supports = tuple(supports)
         # element-level transformations for elements touching a rotated node
         aff = sorted(
@@ -190,6 +165,10 @@ class Model:
 
         self.q0 = q0
         self.y0 = self.y_from_q(q0)
+        #: ``y0`` with the held entries at the installed supports' values
+        self.y_installed = self.y0.copy()
+        for i, val in layout.installed.items():
+            self.y_installed[i] = val
         self.mass_el = self._to_y_elements(self.kernel.mass_matrices())
         self.mass_band = self.assemble_band(self.mass_el)
         self.gravity = None if gravity is None else np.asarray(gravity, dtype=float)

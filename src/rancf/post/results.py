@@ -32,8 +32,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rancf.model.motion import angular_momentum
+from rancf.model.outputs import DerivedOutputs
 from rancf.model.scenario_sensors import Sensor
 from rancf.model.system import Model
+from rancf.post.checks import run_warnings
 from rancf.solvers.dynamic import DynamicResult
 
 __all__ = [
@@ -41,6 +43,7 @@ __all__ = [
     "atomic_write",
     "strict_json",
     "write_history_files",
+    "reader_metadata",
     "write_run",
     "run_summary",
     "load_results",
@@ -167,6 +170,17 @@ def _npy(zf: zipfile.ZipFile, name: str, shape: tuple[int, ...], chunks: Iterato
             f.write(np.ascontiguousarray(c, dtype="<f8").tobytes())
 
 
+def reader_metadata(model: Model) -> dict[str, Any]:
+    """What readers of a run directory need besides the states (no scenario file required):
+    ``section_radius`` (``sqrt(A / π)``, the radius of a circular section) and, for beams, the
+    reference nodal ``tangent_angles`` [rad]."""
+    meta: dict[str, Any] = {"section_radius": model.section.radius}
+    if model.element == "beam":
+        t = model.mesh.nodes[:, 1]
+        meta["tangent_angles"] = np.arctan2(t[:, 1], t[:, 0]).tolist()
+    return meta
+
+
 def write_history_files(
     out: Path,
     model: Model,
@@ -176,14 +190,31 @@ def write_history_files(
     v: NDArray,
     energy: NDArray,
     directors: NDArray | None = None,
+    derived: DerivedOutputs | None = None,
+    precomputed: tuple[NDArray, NDArray, NDArray] | None = None,
+    static: bool = False,
 ) -> list[str]:
-    """``sensors.csv``, ``energy.csv`` and ``results.npz`` of a history, chunk by chunk.
+    """``sensors.csv``, ``energy.csv``, ``reactions.csv`` and ``results.npz`` of a history,
+    chunk by chunk.
 
     ``t (n,)``, ``q`` and ``v (n, n_q)``, ``energy (n, 3)`` and a rod's nodal ``directors``
     (``(n, 3 n_nodes)`` or ``(n, n_nodes, 3)``, stored as ``directors (n, n_nodes, 3)``) may be
-    memory maps.  Returns the sensor column names.
+    memory maps.  The accelerations, reactions and section values (:class:`DerivedOutputs`)
+    come from ``precomputed = (a (n, n_q), reactions (n, n_r), along (n, n_points * n_names))``
+    or are computed from the rows (``static``: rows of a load path, ``t`` the path parameter).
+    Returns the sensor column names.
     """
     n = t.shape[0]
+    derived = derived if derived is not None else DerivedOutputs(model)
+    m1 = None if directors is None else directors.reshape(n, -1)
+
+    def derived_rows(r: slice) -> tuple[NDArray, NDArray, NDArray]:
+        if precomputed is not None:
+            return precomputed[0][r], precomputed[1][r], precomputed[2][r]
+        mm = None if m1 is None else m1[r]
+        acc, reac, along = derived.rows(t[r], q[r], v[r], mm, static=static)
+        return acc, reac, along.reshape(along.shape[0], -1)
+
     names, _ = sensor_table(model, sensors, q[:1])
     with atomic_file(out / "sensors.csv") as fh:
         fh.write((",".join(["t", *names]) + "\n").encode())
@@ -195,6 +226,13 @@ def write_history_files(
         for r in _rows(n, 5):
             e = energy[r]
             np.savetxt(fh, np.column_stack([t[r], e, e.sum(axis=1)]), delimiter=",", fmt="%.12g")
+    width = len(derived.section_names) * derived.n_points
+    chunks = [(r, *derived_rows(r)) for r in _rows(n, 2 * q.shape[1] + width)]
+    if derived.reaction_names:
+        with atomic_file(out / "reactions.csv") as fh:
+            fh.write((",".join(["t", *derived.reaction_names]) + "\n").encode())
+            for r, _, reac, _ in chunks:
+                np.savetxt(fh, np.column_stack([t[r], reac]), delimiter=",", fmt="%.12g")
     meta = {
         "element": model.element,
         "dim": model.dim,
@@ -202,28 +240,36 @@ def write_history_files(
         "n_nodes": model.n_nodes,
         "n_elements": model.n_el,
         "sensor_columns": names,
+        "reaction_columns": derived.reaction_names,
+        "section_names": list(derived.section_names),
+        **reader_metadata(model),
     }
     small = {
         "weights": model.mesh.weights,
         "scales": model.mesh.scales,
         "reference": model.q0,
+        "along_s": derived.sampler.s,
         "metadata": np.array(json.dumps(meta)),
     }
+    n_r = len(derived.reaction_names)
+    along_shape = (n, derived.n_points, len(derived.section_names))
     with atomic_file(out / "results.npz") as fh:
         with zipfile.ZipFile(fh, "w", zipfile.ZIP_STORED, allowZip64=True) as z:
             _npy(z, "t", (n,), (t[r] for r in _rows(n, 1)))
             for name, arr in (("q", q), ("v", v)):
                 _npy(z, name, arr.shape, (arr[r] for r in _rows(n, arr.shape[1])))
+            _npy(z, "a", q.shape, (c[1] for c in chunks))
             for j, name in enumerate(("kinetic", "strain", "gravity")):
                 _npy(z, name, (n,), (energy[r, j] for r in _rows(n, 3)))
-            if directors is not None:
-                m1 = directors.reshape(n, -1)
+            if m1 is not None:
                 shape3 = (n, m1.shape[1] // 3, 3)
                 _npy(z, "directors", shape3, (m1[r] for r in _rows(n, m1.shape[1])))
             shape = (n, len(names))
             rows = _rows(n, q.shape[1])
             vals = (sensor_table(model, sensors, q[r], v[r], energy[r])[1] for r in rows)
             _npy(z, "sensors", shape, vals)
+            _npy(z, "reactions", (n, n_r), (c[2] for c in chunks))
+            _npy(z, "along", along_shape, (c[3] for c in chunks))
             for name, arr in small.items():
                 with z.open(f"{name}.npy", "w") as f:
                     np.lib.format.write_array(f, np.asarray(arr), allow_pickle=False)
@@ -262,23 +308,38 @@ def write_run(
     sensors: Sequence[Sensor],
     result: DynamicResult,
     extra: dict[str, Any] | None = None,
+    labels: Sequence[int | str] | None = None,
 ) -> dict[str, Any]:
-    """Write the four files of a run directory from an in-memory result; returns the summary."""
+    """Write the files of a run directory from an in-memory result; returns the summary.
+
+    ``labels``: the supports' ``at`` as written in the scenario (reaction column names).
+    """
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     energy = np.column_stack([result.kinetic, result.strain, result.gravity])
-    write_history_files(out, model, sensors, result.t, result.q, result.v, energy, result.directors)
-    summary = {**run_summary(model, result), **(extra or {})}
+    write_history_files(
+        out, model, sensors, result.t, result.q, result.v, energy, result.directors,
+        DerivedOutputs(model, labels),
+    )  # fmt: skip
+    summary = {
+        **run_summary(model, result),
+        "warnings": run_warnings(model, result.t, result.q),
+        **(extra or {}),
+    }
     atomic_write(out / "summary.json", strict_json(summary))
     return summary
 
 
 class LoadPath:
     """The converged load steps of a static solve: pass :meth:`record` as ``on_step`` of
-    :func:`rancf.solvers.static.solve_static`, then :func:`write_static_run`."""
+    :func:`rancf.solvers.static.solve_static`, then :func:`write_static_run`.
 
-    def __init__(self, model: Model) -> None:
+    ``labels``: the supports' ``at`` as written in the scenario (reaction column names).
+    """
+
+    def __init__(self, model: Model, labels: Sequence[int | str] | None = None) -> None:
         self.model = model
+        self.derived = DerivedOutputs(model, labels)
         self.steps: list[tuple[float, NDArray, NDArray | None]] = []
 
     def record(self, load_factor: float, y: NDArray) -> None:
@@ -306,7 +367,10 @@ def write_static_run(
         [[0.0, model.strain_energy(y), model.gravity_energy(y)] for y in ys], dtype=float
     )
     m1 = np.array([m for _, _, m in path.steps]) if model.element == "rod" else None
-    write_history_files(out, model, sensors, t, q, np.zeros_like(q), energy, m1)
+    write_history_files(
+        out, model, sensors, t, q, np.zeros_like(q), energy, m1, path.derived, static=True
+    )
+    write_along_csv(out / "along.csv", path, q[-1], None if m1 is None else m1[-1])
     doc = {
         "analysis": "static",
         "load_factor_reached": float(t[-1]),
@@ -315,10 +379,26 @@ def write_static_run(
         "element": model.element,
         "n_dofs": model.n,
         "outputs": int(t.size),
+        "warnings": run_warnings(model, static=True, largest=path.derived.largest_strain),
         **summary,
     }
     atomic_write(out / "summary.json", strict_json(doc))
     return doc
+
+
+def write_along_csv(path: Path, load_path: LoadPath, q: NDArray, m1: NDArray | None) -> None:
+    """``along.csv`` of the last state of a load path: one row per section sample point with the
+    reference arc length ``s``, the position and the section quantities."""
+    d = load_path.derived
+    lam = load_path.steps[-1][0]
+    _, _, along = d.rows(np.array([lam]), q[None], directors=None if m1 is None else m1[None],
+                         static=True)  # fmt: skip
+    pos = d.sampler.positions(load_path.model.y_from_q(q))
+    axes = ["x", "y", "z"][: load_path.model.dim]
+    head = ",".join(["s", *axes, *d.section_names]) + "\n"
+    with atomic_file(path) as fh:
+        fh.write(head.encode())
+        np.savetxt(fh, np.column_stack([d.sampler.s, pos, along[0]]), delimiter=",", fmt="%.12g")
 
 
 def load_results(path: str | Path) -> dict[str, Any]:

@@ -1,10 +1,11 @@
 """A finished run directory read back, and its centreline sampled densely from the elements.
 
 A run directory (written by :func:`rancf.post.results.write_run`) holds ``results.npz`` with the
-full state history; :func:`load_run` reads it together with the scenario that produced it (the
-run's ``scenario.toml`` when present — sweeps write one — else the path recorded in
-``summary.json``), which supplies the section radius and, for beam meshes, the reference nodal
-tangents.
+full state history and, in its metadata, the section radius and (beams) the reference nodal
+tangent angles (:func:`rancf.post.results.reader_metadata`), so :func:`load_run` needs no
+scenario file.  Runs written before those keys existed take them from the scenario that
+produced them (the run's ``scenario.toml`` when present, else the path recorded in
+``summary.json``).
 
 :func:`sample_centerline` evaluates the *exact* element interpolation, not the node polyline:
 for cable elements ``r(ξ) = Σ N_k(ξ) e_k`` with the rational shape functions of
@@ -30,14 +31,14 @@ from __future__ import annotations
 import json
 import logging
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-from rancf.elements.cable import cable_shape_functions
+from rancf.elements.cable import axial_strain, cable_shape_functions
 from rancf.errors import InputError
 from rancf.post.results import load_results
 
@@ -76,13 +77,20 @@ class RunData:
     energies : dict of str -> ndarray (n_t,)
         ``kinetic``, ``strain``, ``gravity``.
     radius : float or None
-        Section radius (``sqrt(A / π)`` for a section given by area); None without scenario.
+        Section radius (``sqrt(A / π)`` for a section given by area), from the run's metadata
+        (older runs: from their scenario; None if there is neither).
     tangent_angles : ndarray (n_nodes,) or None
-        Reference tangent angles of beam nodes (None for cables or without scenario).
+        Reference tangent angles of beam nodes (None for cables, or an older run without its
+        scenario).
     directors : ndarray (n_t, n_nodes, 3) or None
         Rods: the first material axis ``m1`` of every node's triad (None for other elements).
     static : bool
         A static load path (``rancf static --out``): ``t`` holds the load factor ``λ``.
+    along : ndarray (n_t, n_points, n_names) or None
+        Section quantities at ``ξ = 0, 1/4, 1/2, 3/4`` of every element and the last node
+        (:mod:`rancf.model.sections`; None for older runs).
+    section_names : list of str
+        Their names.
     """
 
     path: Path
@@ -101,6 +109,8 @@ class RunData:
     tangent_angles: NDArray[np.float64] | None
     directors: NDArray[np.float64] | None = None
     static: bool = False
+    along: NDArray[np.float64] | None = None
+    section_names: list[str] = field(default_factory=list)
 
     @property
     def time_label(self) -> str:
@@ -161,7 +171,10 @@ def load_run(run_dir: str | Path) -> RunData:
     path = Path(run_dir)
     npz = path / "results.npz"
     if not path.is_dir():
-        raise InputError("RUN_DIR", str(path), "a run directory written by `rancf simulate`")
+        why = "it is a file" if path.exists() else "the folder does not exist"
+        raise InputError(
+            "RUN_DIR", str(path), f"a run directory written by `rancf simulate` ({why})"
+        )
     if not npz.is_file():
         raise InputError("RUN_DIR", str(path), "a run directory holding results.npz")
     try:
@@ -169,9 +182,9 @@ def load_run(run_dir: str | Path) -> RunData:
     except (OSError, ValueError, KeyError) as exc:
         raise InputError("RUN_DIR", str(npz), f"a readable results.npz ({exc})") from None
     meta: dict[str, Any] = data["metadata"]
-    radius = None
-    angles = None
-    sc_path = _find_scenario(path)
+    radius = meta.get("section_radius")
+    angles = None if meta.get("tangent_angles") is None else np.array(meta["tangent_angles"])
+    sc_path = None if radius is not None else _find_scenario(path)  # runs of rancf < 0.3
     if sc_path is not None:
         from rancf.model.scenario import load_scenario
 
@@ -181,7 +194,7 @@ def load_run(run_dir: str | Path) -> RunData:
         if meta["element"] == "beam":
             nodes = sc.build_model().mesh.nodes
             angles = np.arctan2(nodes[:, 1, 1], nodes[:, 1, 0])
-    else:
+    elif radius is None:
         logger.warning("%s: no scenario found; no radius field, beams drawn with chords", path)
     return RunData(
         path=path,
@@ -200,6 +213,8 @@ def load_run(run_dir: str | Path) -> RunData:
         tangent_angles=angles,
         directors=data.get("directors"),
         static=_summary(path).get("analysis") == "static",
+        along=data.get("along"),
+        section_names=list(meta.get("section_names", [])),
     )
 
 
@@ -269,8 +284,7 @@ def _cable_fields(run: RunData, q: NDArray, v: NDArray, xi: NDArray) -> tuple[ND
     d1, d10 = np.einsum("eqk,ekd->eqd", n1, e), np.einsum("eqk,ekd->eqd", n1, e0)
     d2 = np.einsum("eqk,ekd->eqd", n2, e)
     vel = np.einsum("eqk,ekd->eqd", n, ev)
-    g, g0 = np.sum(d1 * d1, axis=-1), np.sum(d10 * d10, axis=-1)
-    return r, r0, vel, (g - g0) / (2.0 * g0), _curvature(d1, d2)
+    return r, r0, vel, axial_strain(d1, d10), _curvature(d1, d2)
 
 
 def _hermite(xi: NDArray) -> tuple[NDArray, NDArray, NDArray]:
@@ -322,8 +336,7 @@ def _beam_fields(run: RunData, q: NDArray, v: NDArray, xi: NDArray) -> tuple[NDA
         1,
     )
     vel = np.einsum("qk,ekd->eqd", h, ev)
-    l0 = np.linalg.norm(chord0, axis=1)
-    strain = np.repeat(((length**2 - l0**2) / (2 * l0**2))[:, None], xi.size, axis=1)
+    strain = np.repeat(axial_strain(d, chord0)[:, None], xi.size, axis=1)
     return r, r0, vel, strain, _curvature(d1, d2)
 
 

@@ -32,24 +32,13 @@ def _analyse(sc: Any, analysis: str, folder: Path) -> tuple[str, str, float, dic
 
     model = sc.build_model()
     if analysis == "simulate":
-        from rancf.solvers.dynamic import DynamicOptions, integrate
+        from rancf.solvers.dynamic import integrate
+        from rancf.solvers.static import start_state
 
-        s = sc.solver
-        opts = DynamicOptions(
-            t_end=s["t_end"],
-            step=s["step"],
-            rho_inf=s["rho_inf"],
-            adaptive=s["adaptive"],
-            rtol=s["rtol"],
-            min_step=s["min_step"],
-            output_step=s["output_step"],
-            newton_tol=s["newton_tol"],
-            max_newton=s["max_newton"],
-            newton=s["newton"],
-        )
-        res = integrate(model, opts)
-        extra = {"scenario": str(folder / "scenario.toml")}
-        summary = write_run(folder, model, sc.sensors, res, extra)
+        y0, start = start_state(sc, model)
+        res = integrate(model, sc.dynamic_options(), initial=y0)
+        extra = {"scenario": str(folder / "scenario.toml"), **start}
+        summary = write_run(folder, model, sc.sensors, res, extra, sc.support_labels)
         energy = [[res.kinetic[-1], res.strain[-1], res.gravity[-1]]]
         names, vals = sensor_table(model, sc.sensors, res.q[-1:], res.v[-1:], energy)
         values = {"t_reached": float(res.t_reached), "steps": float(res.n_steps)}
@@ -59,9 +48,11 @@ def _analyse(sc: Any, analysis: str, folder: Path) -> tuple[str, str, float, dic
         from rancf.post.results import LoadPath, write_static_run
         from rancf.solvers.static import solve_static
 
-        path = LoadPath(model)  # the load path, as `rancf static --out` keeps it
+        path = LoadPath(model, sc.support_labels)  # the load path, as `static --out` keeps it
         t0 = time.perf_counter()
-        res = solve_static(model, sc.solver["load_steps"], on_step=path.record)
+        res = solve_static(
+            model, sc.solver["load_steps"], on_step=path.record, method=sc.solver["static_method"]
+        )
         wall = time.perf_counter() - t0
         names, vals = sensor_table(model, sc.sensors, res.q)
         values = dict(zip(names, map(float, vals[0]), strict=True))
