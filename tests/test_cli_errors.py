@@ -395,6 +395,73 @@ SCENARIOS = [
         "sensors[0].at",
     ),  # fmt: skip
     ("rod-twist-node", rod(sensors=[{"name": "a", "kind": "twist", "at": 9}]), 2, "sensors.a"),
+    ("rotary-on-cable", mutated(section__rotary_inertia="full"), 2, "section.rotary_inertia"),
+    ("rotary-bad", rod(section__rotary_inertia="bending"), 2, "section.rotary_inertia"),
+    (
+        "rotary-full-unequal",
+        rod(section={**PRINCIPAL, "rotary_inertia": "full"}),
+        2,
+        "section.rotary_inertia",
+    ),
+    ("motion-empty", rod(initial_motion={}), 2, "initial_motion"),
+    (
+        "motion-unknown-key",
+        rod(initial_motion={"omega": [0.0, 0.0, 1.0]}),
+        2,
+        "initial_motion.omega",
+    ),
+    (
+        "motion-2d-vector",
+        mutated(initial_motion={"angular_velocity": [0.0, 0.0, 1.0]}),
+        2,
+        "initial_motion.angular_velocity",
+    ),
+    (
+        "motion-3d-number",
+        rod(initial_motion={"angular_velocity": 1.0}),
+        2,
+        "initial_motion.angular_velocity",
+    ),
+    (
+        "motion-about-2",
+        rod(initial_motion={"angular_velocity": [0.0, 0.0, 1.0], "about": [0.0, 0.0]}),
+        2,
+        "initial_motion.about",
+    ),
+    ("motion-moves-clamp", rod(initial_motion={"velocity": [0.0, 1.0, 0.0]}), 2, "initial_motion"),
+    (
+        "motion-turns-clamp",
+        rod(initial_motion={"angular_velocity": [0.0, 0.0, 1.0]}),
+        2,
+        "initial_motion",
+    ),
+    (
+        "motion-and-velocity",
+        mutated(
+            initial_motion={"angular_velocity": 1.0},
+            initial_velocity=[{"at": "end", "value": [0.0, 0.1]}],
+        ),
+        2,
+        "initial_motion",
+    ),
+    (
+        "momentum-at",
+        rod(sensors=[{"name": "L", "kind": "angular_momentum", "at": "end"}]),
+        2,
+        "sensors[0].at",
+    ),
+    (
+        "about-on-position",
+        rod(sensors=[{"name": "p", "kind": "position", "at": "end", "about": [0.0, 0.0, 0.0]}]),
+        2,
+        "sensors[0].about",
+    ),
+    (
+        "momentum-about-2",
+        rod(sensors=[{"name": "L", "kind": "angular_momentum", "about": [0.0, 0.0]}]),
+        2,
+        "sensors[0].about",
+    ),
     ("t-end-1e6", mutated(solver__t_end=1e6), 2, "GB"),
     ("t-end-1e12", mutated(solver__t_end=1e12, solver__output_step=1.0), 2, "GB"),
 ]

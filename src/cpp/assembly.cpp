@@ -8,9 +8,6 @@
 #include "rod.hpp"
 
 namespace rancf {
-namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Rotated blocks of supported nodes (a roller's position, a clamp's gradient): e <- T e (to q)
 // for the element's two nodes.  Block b of node a starts at a dpn + b dim.
@@ -67,6 +64,8 @@ bool has_rotation(const Model& m, int el) {
   return false;
 }
 
+namespace {
+constexpr double kPi = 3.14159265358979323846;
 }  // namespace
 
 void assemble(const Model& m, const double* y, double* f, const BandView* k, double k_scale) {

@@ -11,6 +11,17 @@
 
 namespace rancf {
 
+/// Element coordinates e (model coordinates y) to full nodal coordinates q: the gradient blocks
+/// of clamped nodes rotated (e <- T e); only needed where has_rotation(m, el).
+void rotate_to_q(const Model& m, int el, double* e);
+
+/// Element force and matrix back to model coordinates: fe <- T^T fe, ke <- T^T ke T (ke may be
+/// null).
+void rotate_back(const Model& m, int el, double* fe, double* ke);
+
+/// True if one of the element's nodes has a clamp rotation.
+bool has_rotation(const Model& m, int el);
+
 /// Internal force f (n) and, if k is not null, the tangent added into *k (scaled by k_scale).
 void assemble(const Model& m, const double* y, double* f, const BandView* k, double k_scale);
 

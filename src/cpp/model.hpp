@@ -56,6 +56,12 @@ struct Stiffness {
   double ei3 = 0.0;  ///< bending stiffness about m2 (rod)
 };
 
+/// Rotary inertia of rod sections per length (configuration dependent: inertia.hpp).
+struct SectionInertia {
+  double polar = 0.0;  ///< rho (I2 + I3): spin about the tangent
+  double bend = 0.0;   ///< rho I of both bending directions ("full"; 0 for "torsion")
+};
+
 /// Supports: fixed model coordinates and the rotated blocks of supported nodes (q = T y): a
 /// roller's position block into (axis, normals), a clamp's gradient block into (t0, normals).
 struct Supports {
@@ -85,12 +91,14 @@ struct Model {
   int n_el = 0;
   int n_nodes = 0;
   Stiffness stiffness;
+  SectionInertia rotary;  ///< rods: rotary inertia (not in mass_band)
   CableData cable;
   BeamData beam;
   RodData rod;
   Supports supports;
   Loads loads;
-  const double* mass_band = nullptr;  ///< constant mass matrix, band storage (2 ku + 1, n)
+  const double* mass_band = nullptr;  ///< constant mass matrix, band storage (2 ku + 1, n); rods:
+                                      ///< translation only (the rotary part: inertia.hpp)
   const double* y_ref = nullptr;      ///< reference configuration, model coordinates (n)
 
   [[nodiscard]] int n() const { return n_nodes * dpn; }

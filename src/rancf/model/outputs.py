@@ -3,10 +3,12 @@
 A run stores its states ``(t, q, v)`` (and, for rods, the nodal directors ``m1``, which the
 coordinates alone do not fix).  :class:`DerivedOutputs` turns rows of them into
 
-* the accelerations consistent with the state, ``a = M⁻¹ (f_ext(t, y) - f_int(y) - c M v)`` on
-  the free coordinates (zero on the held ones);
+* the accelerations consistent with the state, ``a = M(y)⁻¹ (f_ext(t, y) - f_int(y) - c M v -
+  g(y, v))`` on the free coordinates (zero on the held ones; ``M(y)`` and the gyroscopic
+  ``g`` include a rod's rotary inertia);
 * the reactions of every support (:mod:`rancf.model.reactions`): the held rows of the residual
-  ``M a + c M v + f_int(y) - f_ext(t, y)``;
+  ``F_in(y, v, a) + f_int(y) - f_ext(t, y)`` with the inertial force
+  ``F_in = M(y) a + g(y, v) + c M v``;
 * the section quantities at the sample points (:mod:`rancf.model.sections`).
 
 Static rows (the load path, ``t`` the path parameter ``p`` with the loads at ``min(p, 1)``) have
@@ -65,12 +67,33 @@ class DerivedOutputs:
         """Section sample points."""
         return self.sampler.n_points
 
-    def acceleration(self, t: float, y: NDArray, v: NDArray | None) -> NDArray[np.float64]:
-        """``M⁻¹ (f_ext(t, y) - f_int(y) - c M v)`` on the free coordinates (model coordinates);
-        the Cholesky factor of the mass matrix is computed once."""
+    def inertial_force(self, y: NDArray, v: NDArray, a: NDArray) -> NDArray[np.float64]:
+        """``F_in(y, v, a) = M(y) a + g(y, v) + c M v`` (model coordinates)."""
+        m = self.model
+        f = m.mass_times(a) + m.damping * m.mass_times(v)
+        if m.element == "rod":  # the rotary inertia: M_r(y) a + g(y, v) + c M_r(y) v
+            fr, ab = np.empty(m.n), np.empty_like(m.mass_band)
+            m.core.inertia(y, v, a, m.damping, 0.0, 0.0, 0.0, fr, ab)
+            f += fr
+        return f
+
+    def acceleration(self, t: float, y: NDArray, v: NDArray) -> NDArray[np.float64]:
+        """``M(y)⁻¹ (f_ext(t, y) - f_int(y) - F_in(y, v, 0))`` on the free coordinates (model
+        coordinates); for cables and beams the Cholesky factor of the constant mass matrix is
+        computed once."""
         import scipy.linalg
 
         m = self.model
+        rhs = m.external_force(float(t), y) - m.internal_force(y)
+        rhs -= self.inertial_force(y, v, np.zeros(m.n))
+        rhs[m.fixed] = 0.0
+        if m.element == "rod":
+            from rancf.kernels import _core
+
+            a = rhs.copy()
+            if not _core.band_solve(m.mass_matrix(y), a, m.fixed.astype(np.uint8)):
+                return np.full(m.n, np.nan)
+            return a
         if self._mass_factor is None:
             ab = m.mass_band[: m.ku + 1].copy()  # upper band storage of the symmetric M
             held = np.flatnonzero(m.fixed)
@@ -81,10 +104,6 @@ class DerivedOutputs:
                 ab[k, cols[cols < m.n]] = 0.0
             ab[m.ku, held] = 1.0
             self._mass_factor = scipy.linalg.cholesky_banded(ab)
-        rhs = m.external_force(float(t), y) - m.internal_force(y)
-        if v is not None and m.damping:
-            rhs -= m.damping * m.mass_times(v)
-        rhs[m.fixed] = 0.0
         return scipy.linalg.cho_solve_banded((self._mass_factor, False), rhs)
 
     def rows(
@@ -115,12 +134,11 @@ class DerivedOutputs:
                     lam = min(float(t[i]), 1.0)
                     res = m.internal_force(y) - lam * m.external_force(0.0, y, True)
                 else:
-                    vy = None if v is None else m.y_from_q(np.asarray(v[i], dtype=float))
+                    vy = np.zeros(m.n) if v is None else m.y_from_q(np.asarray(v[i], dtype=float))
                     a = self.acceleration(float(t[i]), y, vy)
                     acc[i] = m.q_from_y(a)
-                    res = m.internal_force(y) - m.external_force(float(t[i]), y) + m.mass_times(a)
-                    if vy is not None and m.damping:
-                        res += m.damping * m.mass_times(vy)
+                    res = m.internal_force(y) - m.external_force(float(t[i]), y)
+                    res += self.inertial_force(y, vy, a)
                 reactions[i] = reaction_row(support_reactions(m, y, res, self.labels))
                 along[i] = self.sampler.values(y)
                 strain = float(np.max(np.abs(along[i, :, 0])))

@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING, Any
 
 from rancf.model.scenario_checks import _REQ, _err, _guard, _number, _place, _table, _vector
 from rancf.model.scenario_parts import (
+    parse_initial_motion,
     parse_material,
     parse_point_loads,
     parse_section,
@@ -83,6 +84,7 @@ _TOP = (
     "loads",
     "damping",
     "initial_velocity",
+    "initial_motion",
     "solver",
     "sensors",
     "modes",
@@ -153,9 +155,15 @@ def parse_scenario(raw: dict[str, Any], path: str = "<scenario>") -> Scenario:
         t["value"] = _vector(path, f"initial_velocity[{i}].value", t["value"], (dim,))
         d["initial_velocity"].append(t)
 
+    d["initial_motion"] = parse_initial_motion(path, raw.get("initial_motion"), dim)
+    if d["initial_motion"] is not None and d["initial_velocity"]:
+        raise _err(
+            path, "initial_motion", "give [initial_motion] or [[initial_velocity]], not both"
+        )
+
     d["solver"] = parse_solver(path, raw.get("solver", {}))
 
     d["modes"] = parse_modes(path, raw.get("modes", {}))
 
-    sensors = parse_sensors(path, raw.get("sensors", []), m["element"])
+    sensors = parse_sensors(path, raw.get("sensors", []), m["element"], dim)
     return Scenario(path, d, dim, sensors)

@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from rancf.errors import ConvergenceError, InputError, ScenarioError
-from rancf.model.system import Material, Model, PointLoad, Section, Support
+from rancf.model.system import Material, Model, PointLoad, RigidMotion, Section, Support
 
 if TYPE_CHECKING:
     from rancf.model.scenario import Scenario
@@ -134,6 +134,8 @@ def build_model(sc: Scenario) -> Model:
         inertia = s["inertia"] if s["inertia"] is not None else s["inertia_y"]
         orient = None if s["orientation"] is None else tuple(s["orientation"])
         section = Section(s["area"], inertia, s["inertia_z"], s["torsion_constant"], orient)
+    if s["rotary_inertia"] is not None:
+        section = replace(section, rotary_inertia=s["rotary_inertia"])
     loads = [
         PointLoad(
             t["at"],
@@ -157,6 +159,7 @@ def build_model(sc: Scenario) -> Model:
             d["damping"]["mass_proportional"],
             v0,
             d["mesh"]["quadrature_points"],
+            None if d["initial_motion"] is None else RigidMotion(**d["initial_motion"]),
         )
     except InputError as exc:
         raise ScenarioError(

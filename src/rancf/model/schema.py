@@ -103,6 +103,11 @@ def scenario_schema() -> dict[str, Any]:
                 "description": "rods: the first principal axis at the first node",
             },
             "torsion_constant": {**_POS, "description": "rods; default inertia_y + inertia_z"},
+            "rotary_inertia": {
+                "enum": ["torsion", "full"],
+                "default": "torsion",
+                "description": 'rods: "full" adds rho I of both bending directions',
+            },
         },
         oneOf=[
             {"required": ["radius"]},
@@ -150,10 +155,12 @@ def scenario_schema() -> dict[str, Any]:
             "name": {"type": "string", "pattern": "^[A-Za-z_][A-Za-z0-9_]*$"},
             "kind": {
                 "enum": list(SENSOR_KINDS),
-                "description": '"twist" (rods): the nodal twist angle [rad]',
+                "description": '"twist" (rods): the nodal twist angle [rad]; '
+                '"angular_momentum" (about `about`) and "energy": of the whole model',
             },
             "between": {"type": "array", "items": _PLACE, "minItems": 2, "maxItems": 2},
             "at": _PLACE,
+            "about": {**_vec(), "description": "angular_momentum: the point (default origin)"},
         },
         ("name", "kind"),
     )
@@ -212,6 +219,17 @@ def scenario_schema() -> dict[str, Any]:
                     "type": "array",
                     "items": _table({"at": _PLACE, "value": _vec()}, ("at", "value")),
                 },
+                "initial_motion": _table(
+                    {
+                        "velocity": _vec(),
+                        "angular_velocity": {
+                            "oneOf": [{"type": "number"}, _vec((3,))],
+                            "description": "3 components in 3D, the rate about z in 2D [rad/s]",
+                        },
+                        "about": {**_vec(), "description": "default: the origin"},
+                    },
+                    description="a rigid-body velocity v0 + w x (x - about) on every coordinate",
+                ),
                 "solver": solver,
                 "modes": _table(
                     {

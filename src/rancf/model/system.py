@@ -27,11 +27,12 @@ from rancf.kernels.beam import BeamKernel
 from rancf.kernels.cable import CableKernel, CableProperties
 from rancf.kernels.rod import ROD_DOFS, RodKernel
 from rancf.model.mesh import CableMesh, to_ancf
+from rancf.model.motion import RigidMotion, check_supports_at_rest, rigid_velocity
 from rancf.model.parts import Material, PointLoad, Section, Support
 from rancf.model.supports import support_layout
 from rancf.model.system_core import core_model
 
-__all__ = ["Section", "Material", "Support", "PointLoad", "Model", "ElementKind"]
+__all__ = ["Section", "Material", "Support", "PointLoad", "Model", "ElementKind", "RigidMotion"]
 
 ElementKind = Literal["rancf", "ancf", "beam", "rod"]
 
@@ -52,10 +53,15 @@ class Model:
     damping : float
         Mass-proportional damping coefficient ``c`` in ``C = c M`` [1/s].
     initial_velocities : dict of node -> velocity vector
+        The velocity of single nodes' positions (nothing else moves: its kinetic energy depends
+        on the mesh).
     n_qp : int, optional
         Gauss points per cable element; default 6 for polynomial (ANCF, all weights 1) elements,
         whose axial energy that rule integrates exactly on a straight reference, and 10 for
         rational ones (see the quadrature convergence test).
+    initial_motion : RigidMotion, optional
+        A rigid-body initial velocity field given exactly to every coordinate
+        (:mod:`rancf.model.motion`); not together with ``initial_velocities``.
 
     Notes
     -----
@@ -75,6 +81,7 @@ class Model:
         damping: float = 0.0,
         initial_velocities: dict[int, ArrayLike] | None = None,
         n_qp: int | None = None,
+        initial_motion: RigidMotion | None = None,
     ) -> None:
         self.element = element
         self.section = section
@@ -113,6 +120,7 @@ class Model:
                     rho * section.polar,
                     n_qp,
                     section.orientation,
+                    section.bending_rotary(rho),
                 )
                 self.dpn = ROD_DOFS
                 q0 = np.concatenate(
@@ -124,6 +132,8 @@ class Model:
                 q0 = m.q0
         else:
             raise InputError("mesh.element", element, 'one of "rancf", "ancf", "beam", "rod"')
+        if element != "rod" and section.rotary_inertia != "torsion":
+            raise InputError("section.rotary_inertia", section.rotary_inertia, "rod elements")
         self.n = self.n_nodes * self.dpn
         self.nde = 2 * self.dpn
         self.ku = self.nde - 1
@@ -188,7 +198,15 @@ class Model:
             if vv.size != self.dim:
                 raise InputError("initial_velocity.value", vv.tolist(), f"{self.dim} components")
             v0[nd * self.dpn : nd * self.dpn + self.dim] = vv
+        if initial_motion is not None:
+            if initial_velocities:
+                raise InputError(
+                    "initial_motion", "with initial_velocity", "one of the two, not both"
+                )
+            v0 = rigid_velocity(self, initial_motion)
         self.v0 = self.to_y(v0)
+        if initial_motion is not None:
+            check_supports_at_rest(self, self.v0)
         self.v0[self.fixed] = 0.0
         self.core = core_model(self)
         if isinstance(self.kernel, RodKernel):  # reference curvatures by the core itself
@@ -207,14 +225,6 @@ class Model:
         if isinstance(self.kernel, RodKernel):
             self.kernel.tref[...] = self._triads0[0]
             self.kernel.m1ref[...] = self._triads0[1]
-
-    def load_arrays(self) -> tuple[NDArray, NDArray, NDArray]:
-        """Point forces as ``(base index, F0, frequency)`` arrays (frequency 0: constant)."""
-        forces = [p for p in self.point_loads if p.force is not None]
-        base = np.array([(p.node % self.n_nodes) * self.dpn for p in forces], dtype=np.int64)
-        f0 = np.array([p.force for p in forces], dtype=float).reshape(-1, self.dim)
-        freq = np.array([p.frequency_hz or 0.0 for p in forces], dtype=float)
-        return base, f0, freq
 
     # ------------------------------------------------------------------ bookkeeping
     def check_node(self, node: int, key: str) -> int:
@@ -299,9 +309,21 @@ class Model:
         """``M v`` (element by element)."""
         return self.assemble_vector(np.einsum("eij,ej->ei", self.mass_el, self.gather(v)))
 
-    def kinetic_energy(self, v: ArrayLike) -> float:
-        """``½ vᵀ M v`` (by the core, as in the time loop's outputs)."""
-        return float(self.core.kinetic_energy(np.asarray(v, dtype=float)))
+    def kinetic_energy(self, v: ArrayLike, y: ArrayLike | None = None) -> float:
+        """``½ vᵀ M(y) v`` (by the core, as in the time loop's outputs; ``y`` default the
+        reference: only a rod's rotary inertia depends on it)."""
+        yy = self.y0 if y is None else np.asarray(y, dtype=float)
+        return float(self.core.kinetic_energy(yy, np.asarray(v, dtype=float)))
+
+    def mass_matrix(self, y: ArrayLike | None = None) -> NDArray[np.float64]:
+        """The mass matrix at ``y`` (default the reference) in band storage: the constant
+        :attr:`mass_band` plus a rod's rotary mass ``M_r(y)`` (the core's ``inertia``)."""
+        if self.element != "rod":
+            return self.mass_band.copy()
+        yy = self.y0 if y is None else np.asarray(y, dtype=float)
+        z, f, ab = np.zeros(self.n), np.empty(self.n), np.empty_like(self.mass_band)
+        self.core.inertia(yy, z, z, 0.0, 0.0, 0.0, 1.0, f, ab)
+        return self.mass_band + ab
 
     def gravity_energy(self, y: ArrayLike) -> float:
         """Gravitational potential ``-Q_gᵀ (y - y0)`` (zero in the reference configuration)."""

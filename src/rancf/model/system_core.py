@@ -62,7 +62,7 @@ def core_model(model: Model) -> _core.Model:
     for i, (off, basis) in enumerate(model._rot):  # block 0: position, 1: gradient
         rot_of_node[off // model.dpn, (off % model.dpn) // model.dim] = i
         rot[i] = basis
-    base, f0, freq = model.load_arrays()
+    base, f0, freq = _point_forces(model)
     moments = [p for p in model.point_loads if p.moment is not None]
     return _core.Model(
         kind=kind,
@@ -87,7 +87,17 @@ def core_model(model: Model) -> _core.Model:
         ),
         mass_band=np.ascontiguousarray(model.mass_band),
         y_ref=np.ascontiguousarray(model.y0),
+        rotary=k.core_inertia() if isinstance(k, RodKernel) else _core.SectionInertia(),
     )
+
+
+def _point_forces(model: Model) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Point forces as ``(base index, F0, frequency)`` arrays (frequency 0: constant)."""
+    forces = [p for p in model.point_loads if p.force is not None]
+    base = np.array([(p.node % model.n_nodes) * model.dpn for p in forces], dtype=np.int64)
+    f0 = np.array([p.force for p in forces], dtype=float).reshape(-1, model.dim)
+    freq = np.array([p.frequency_hz or 0.0 for p in forces], dtype=float)
+    return base, f0, freq
 
 
 def _empty_cable() -> _core.CableData:

@@ -31,6 +31,7 @@ from typing import IO, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from rancf.model.motion import angular_momentum
 from rancf.model.outputs import DerivedOutputs
 from rancf.model.scenario_sensors import Sensor
 from rancf.model.system import Model
@@ -111,13 +112,21 @@ def strict_json(value: Any) -> str:
 
 
 def sensor_table(
-    model: Model, sensors: Sequence[Sensor], q: NDArray
+    model: Model,
+    sensors: Sequence[Sensor],
+    q: NDArray,
+    v: NDArray | None = None,
+    energy: NDArray | None = None,
 ) -> tuple[list[str], NDArray[np.float64]]:
-    """Column names and values ``(n_t, n_columns)`` of the sensors for states ``q``.
+    """Column names and values ``(n_t, n_columns)`` of the sensors for states ``q``, ``v``.
 
-    ``twist`` sensors (rods) read the node's twist coordinate ``φ`` (the 7th of the node).
+    ``twist`` sensors (rods) read the node's twist coordinate ``φ`` (the 7th of the node);
+    ``angular_momentum`` needs the velocities ``v`` (default zero: a static state);
+    ``energy`` sums the rows of ``energy`` ``(n_t, 3)`` (kinetic, strain, gravity; computed
+    from ``q``, ``v`` when not given).
     """
     qq = np.atleast_2d(q)
+    vv = np.zeros_like(qq) if v is None else np.atleast_2d(v)
     pos = model.node_positions(qq)
     twists = None
     if model.element == "rod":
@@ -126,9 +135,25 @@ def sensor_table(
     cols = []
     for s in sensors:
         names += s.columns(model.dim)
-        cols.append(s.evaluate(pos, twists))
+        if s.kind == "angular_momentum":
+            cols.append(angular_momentum(model, qq, vv, s.about))
+        elif s.kind == "energy":
+            if energy is None:
+                energy = _energies(model, qq, vv)
+            cols.append(np.atleast_2d(energy).sum(axis=1)[:, None])
+        else:
+            cols.append(s.evaluate(pos, twists))
     vals = np.concatenate(cols, axis=1) if cols else np.empty((pos.shape[0], 0))
     return names, vals
+
+
+def _energies(model: Model, q: NDArray, v: NDArray) -> NDArray[np.float64]:
+    """``(kinetic, strain, gravity)`` of states ``q``, ``v`` (full coordinates), ``(n_t, 3)``."""
+    ys, vs = model.y_from_q(q), model.y_from_q(v)
+    return np.array(
+        [[model.kinetic_energy(b, a), model.strain_energy(a), model.gravity_energy(a)]
+         for a, b in zip(ys, vs, strict=True)]
+    )  # fmt: skip
 
 
 def _rows(n: int, width: int) -> Iterator[slice]:
@@ -194,7 +219,7 @@ def write_history_files(
     with atomic_file(out / "sensors.csv") as fh:
         fh.write((",".join(["t", *names]) + "\n").encode())
         for r in _rows(n, q.shape[1]):
-            _, vals = sensor_table(model, sensors, q[r])
+            _, vals = sensor_table(model, sensors, q[r], v[r], energy[r])
             np.savetxt(fh, np.column_stack([t[r], vals]), delimiter=",", fmt="%.12g")
     with atomic_file(out / "energy.csv") as fh:
         fh.write(b"t,kinetic,strain,gravity,total\n")
@@ -241,7 +266,8 @@ def write_history_files(
                 _npy(z, "directors", shape3, (m1[r] for r in _rows(n, m1.shape[1])))
             shape = (n, len(names))
             rows = _rows(n, q.shape[1])
-            _npy(z, "sensors", shape, (sensor_table(model, sensors, q[r])[1] for r in rows))
+            vals = (sensor_table(model, sensors, q[r], v[r], energy[r])[1] for r in rows)
+            _npy(z, "sensors", shape, vals)
             _npy(z, "reactions", (n, n_r), (c[2] for c in chunks))
             _npy(z, "along", along_shape, (c[3] for c in chunks))
             for name, arr in small.items():

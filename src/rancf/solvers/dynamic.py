@@ -244,7 +244,9 @@ def integrate(
     directors = model.nodal_directors  # rods: of the state the triads were last carried to
 
     def store(tt: float, yy: NDArray, vv: NDArray) -> None:
-        e = np.array([model.kinetic_energy(vv), model.strain_energy(yy), model.gravity_energy(yy)])
+        e = np.array(
+            [model.kinetic_energy(vv, yy), model.strain_energy(yy), model.gravity_energy(yy)]
+        )
         m1 = directors(yy)
         row = (tt, model.q_from_y(yy), model.q_from_y(vv), e, m1)
         target_sink.append(*row[:4], directors=m1)
@@ -345,7 +347,7 @@ def integrate(
                 break
             continue
         y, v, a, t = y1, v1, a1, t + h_try
-        model.core.rereference(y)  # rods: nodal triads follow the accepted step
+        model.core.rereference(y, v, a)  # rods: triads follow the step, twist rates keep the spin
         result.took(h_try)
         if o.adaptive:
             h = min(max_step, h_try * min(2.0, 0.9 * max(err, 1e-10) ** (-1.0 / 3.0)))

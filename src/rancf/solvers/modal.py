@@ -117,7 +117,7 @@ def rigid_body_modes(model: Model, y: NDArray) -> NDArray[np.float64]:
         r = r @ vt[rank:].T
     if r.shape[1] == 0:
         return r
-    m = model.dense(model.mass_band)
+    m = model.dense(model.mass_matrix(y))
     gram = r.T @ m @ r
     w, u = np.linalg.eigh(gram)
     keep = w > 1e-12 * w.max()
@@ -144,7 +144,7 @@ def natural_modes(model: Model, y: NDArray | None = None, count: int | None = No
     y = model.y0 if y is None else np.asarray(y, dtype=float)
     free = ~model.fixed
     k = k_full[np.ix_(free, free)]
-    m = model.dense(model.mass_band)[np.ix_(free, free)]
+    m = model.dense(model.mass_matrix(y))[np.ix_(free, free)]
     if symmetric:
         k = 0.5 * (k + k.T)
         lam, phi = scipy.linalg.eigh(k, m)

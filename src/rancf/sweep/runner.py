@@ -39,7 +39,8 @@ def _analyse(sc: Any, analysis: str, folder: Path) -> tuple[str, str, float, dic
         res = integrate(model, sc.dynamic_options(), initial=y0)
         extra = {"scenario": str(folder / "scenario.toml"), **start}
         summary = write_run(folder, model, sc.sensors, res, extra, sc.support_labels)
-        names, vals = sensor_table(model, sc.sensors, res.q[-1:])
+        energy = [[res.kinetic[-1], res.strain[-1], res.gravity[-1]]]
+        names, vals = sensor_table(model, sc.sensors, res.q[-1:], res.v[-1:], energy)
         values = {"t_reached": float(res.t_reached), "steps": float(res.n_steps)}
         values.update(zip(names, map(float, vals[0]), strict=True))
         return summary["status"], res.message, float(res.wall_time), values
