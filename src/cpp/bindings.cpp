@@ -303,4 +303,5 @@ NB_MODULE(_core, mod) {
           "y"_a, "v"_a, "t"_a, "a"_a.noconvert());
 
   rancf_bind::bind_functions(mod);
+  rancf_bind::bind_system(mod);
 }
