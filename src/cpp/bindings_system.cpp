@@ -240,6 +240,32 @@ void bind_system(nb::module_& mod) {
           "index"_a, "y"_a, "t"_a,
           "(global indices of the place's coordinates, d x / d local (3 x n, row-major)).")
       .def(
+          "dense_jacobian",
+          [](const SystemHolder& h, In y, In v, In a, In lam, double t, double ck, double cv,
+             double ca, bool dynamic, Out out) {
+            const auto n = static_cast<std::size_t>(h.s.n), m = static_cast<std::size_t>(h.s.m);
+            for (const auto* x : {&y, &v, &a}) expect_size(*x, n, "state");
+            expect_size(lam, m, "lam");
+            expect_size(out, (n + m) * (n + m), "out");
+            rancf::BorderedLU lu(h.s.offset, h.s.block_size, h.s.block_ku, h.s.fixed.data());
+            std::vector<double> r(n + m);
+            rancf::AssemblyTerms terms;
+            terms.ck = ck;
+            terms.cv = cv;
+            terms.ca = ca;
+            terms.tf = terms.t1 = t;
+            if (!rancf::assemble_system(h.s, y.data(), dynamic ? v.data() : nullptr,
+                                        dynamic ? a.data() : nullptr, lam.data(), y.data(), terms,
+                                        r.data(), &lu))
+              return false;
+            lu.dense(h.s.m, out.data());
+            return true;
+          },
+          "y"_a, "v"_a, "a"_a, "lam"_a, "t"_a, "ck"_a, "cv"_a, "ca"_a, "dynamic"_a = true,
+          "out"_a.noconvert(),
+          "The Jacobian of residual() (balance and constraints) with respect to (y, lambda): ck "
+          "d/dy + cv d/dv + ca d/da, dense (n + m)^2, held rows and columns as assembled.")
+      .def(
           "energies",
           [](const SystemHolder& h, In y, In v) {
             expect_size(y, static_cast<std::size_t>(h.s.n), "y");

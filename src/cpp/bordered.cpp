@@ -43,6 +43,29 @@ void BorderedLU::add_q(int row, int col, double v) {
 }
 void BorderedLU::add_d(int i, int j, double v) { d_[sz(i * p_ + j)] += v; }
 
+void BorderedLU::dense(int keep, double* out) {
+  const int w = n_ + keep;
+  std::fill(out, out + sz(w) * sz(w), 0.0);
+  for (std::size_t b = 0; b < lu_.size(); ++b) {
+    const BandView v = lu_[b].view();
+    const int o = off_[b], nb = size_[b], ku = lu_[b].ku();
+    for (int i = 0; i < nb; ++i)
+      for (int j = std::max(0, i - ku); j < std::min(nb, i + ku + 1); ++j)
+        out[sz(o + i) * sz(w) + sz(o + j)] = v.at(i, j);
+  }
+  for (int c = 0; c < p_; ++c) {
+    if (c < keep) {
+      for (const Entry& e : pcol_[sz(c)]) out[sz(e.index) * sz(w) + sz(n_ + c)] += e.value;
+      for (const Entry& e : qrow_[sz(c)]) out[sz(n_ + c) * sz(w) + sz(e.index)] += e.value;
+      for (int d = 0; d < keep; ++d) out[sz(n_ + c) * sz(w) + sz(n_ + d)] += d_[sz(c * p_ + d)];
+    } else {  // z_c = Q_c x: A += P_c Q_c
+      for (const Entry& pe : pcol_[sz(c)])
+        for (const Entry& qe : qrow_[sz(c)])
+          out[sz(pe.index) * sz(w) + sz(qe.index)] += pe.value * qe.value;
+    }
+  }
+}
+
 void BorderedLU::solve_blocks(double* x, const std::vector<char>* touched) const {
   for (std::size_t b = 0; b < lu_.size(); ++b) {
     double* xb = x + off_[b];

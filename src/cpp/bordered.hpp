@@ -40,6 +40,10 @@ class BorderedLU {
   /// Solve in place: x (n) holds r, z (p) holds s.
   void solve(double* x, double* z) const;
   [[nodiscard]] int border() const { return p_; }
+  /// Before factor(): the dense matrix of x and the first `keep` border unknowns, the others
+  /// (coupling unknowns with D = -I) eliminated: [A + P_z Q_z, P_k; Q_k, D_kk], row-major
+  /// (n + keep)^2.  For checks and small eigenproblems.
+  void dense(int keep, double* out);
 
  private:
   struct Entry {

@@ -80,18 +80,41 @@ void place_force(const PlaceEval& p, const double* F, const double* T, int dim, 
   (void)rigid3d;
 }
 
-/// Central differences of F(u) (k values) with respect to u (k values): K[a][b] = dF_a/du_b.
+/// Whether a place's local coordinate j enters its position or frame nonlinearly (a rotation:
+/// a cable's or rod's gradient and twist, a beam's or rigid body's angle, a quaternion); the
+/// derivatives of the other (positions) are constant.
+bool nonlinear_local(PlaceKind kind, int dim, int j) {
+  switch (kind) {
+    case PlaceKind::cable:
+    case PlaceKind::rod:
+      return j >= dim;
+    case PlaceKind::beam:
+    case PlaceKind::rigid2d:
+      return j == 2;
+    case PlaceKind::rigid3d:
+      return j >= 3;
+    default:
+      return false;
+  }
+}
+
+/// Central differences of F(u) (k values) with respect to u (k values): K[a][b] = dF_a/du_b,
+/// only for the columns b with vary[b] (the others are zero).
 template <class Fn>
-void jacobian_fd(int k, double* u, Fn fn, double* K) {
-  std::vector<double> fp(sz(k)), fm(sz(k));
+void jacobian_fd(int k, double* u, Fn fn, double* K, const bool* vary = nullptr) {
+  double fp[2 * kMaxLocal], fm[2 * kMaxLocal];
   for (int b = 0; b < k; ++b) {
+    if (vary != nullptr && !vary[b]) {
+      for (int a = 0; a < k; ++a) K[a * k + b] = 0.0;
+      continue;
+    }
     const double u0 = u[b], h = 1e-6 * (1.0 + std::abs(u0));
     u[b] = u0 + h;
-    fn(fp.data());
+    fn(fp);
     u[b] = u0 - h;
-    fn(fm.data());
+    fn(fm);
     u[b] = u0;
-    for (int a = 0; a < k; ++a) K[a * k + b] = (fp[sz(a)] - fm[sz(a)]) / (2.0 * h);
+    for (int a = 0; a < k; ++a) K[a * k + b] = (fp[a] - fm[a]) / (2.0 * h);
   }
 }
 
@@ -123,7 +146,7 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
   std::fill(r, r + n + m, 0.0);
   Far far;
   // ---- flexible bodies: elements, loads, constant mass, rotary inertia
-  std::vector<double> f, g;
+  thread_local std::vector<double> f, g, acc, mv;  // work arrays, kept between calls
   for (std::size_t b = 0; b < s.flex.size(); ++b) {
     const Model& mod = *s.flex[b];
     const int o = s.offset[b], nb = mod.n(), ku = mod.ku();
@@ -137,7 +160,8 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
       subtract_load_stiffness(mod, tm.tf, yf + o, jac, tm.ck * tm.load_factor, tm.amplitude);
     for (int i = 0; i < nb; ++i) r[o + i] += f[sz(i)] - tm.load_factor * g[sz(i)];
     if (am != nullptr) {  // M (am + c vf)
-      std::vector<double> acc(sz(nb)), mv(sz(nb));
+      acc.resize(sz(nb));
+      mv.resize(sz(nb));
       for (int i = 0; i < nb; ++i) acc[sz(i)] = am[o + i] + c * vf[o + i];
       band_matvec(mod.mass_band, acc.data(), nb, ku, mv.data());
       for (int i = 0; i < nb; ++i) r[o + i] += mv[sz(i)];
@@ -295,13 +319,29 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
     for (int j = 0; j < mb.n; ++j) idx[ma.n + j] = mb.index[j];
     for (int a = 0; a < k; ++a) r[idx[a]] += gl[sz(a)];
     if (lu != nullptr) {
-      bool any = false;
-      for (int q = 0; q < rows; ++q) any = any || lj[q] != 0.0;
-      if (any) {
-        std::vector<double> K(sz(k * k));
-        jacobian_fd(k, u.data(), gtl, K.data());
-        for (double& v : K) v *= tm.ck;
-        add_matrix(*lu, idx, k, K.data(), far);
+      // d(G^T lambda)/du: only rotation-like coordinates change G (a pin or slider between
+      // places whose positions are linear in their coordinates has none: skipped)
+      bool vary[2 * kMaxLocal], any = false;
+      for (int a = 0; a < k; ++a) {
+        vary[a] = a < ma.n ? nonlinear_local(pa.kind, s.dim, a)
+                           : nonlinear_local(pb.kind, s.dim, a - ma.n);
+        any = any || vary[a];
+      }
+      bool lam_nonzero = false;
+      for (int q = 0; q < rows; ++q) lam_nonzero = lam_nonzero || lj[q] != 0.0;
+      const bool pinlike = jd.info.kind == JointKind::pin && !jd.info.driven;
+      const bool rigid = pa.kind == PlaceKind::rigid2d || pa.kind == PlaceKind::rigid3d ||
+                         pb.kind == PlaceKind::rigid2d || pb.kind == PlaceKind::rigid3d;
+      if (any && lam_nonzero && (!pinlike || rigid)) {
+        double K[4 * kMaxLocal * kMaxLocal];
+        jacobian_fd(k, u.data(), gtl, K, vary);
+        // lambda^T g'' is symmetric: the columns of positions (not differenced) from the rows;
+        // positions enter the joint rows at most linearly, so their block is zero
+        for (int a = 0; a < k; ++a)
+          for (int b = 0; b < k; ++b)
+            if (!vary[b]) K[a * k + b] = vary[a] ? K[b * k + a] : 0.0;
+        for (int i = 0; i < k * k; ++i) K[i] *= tm.ck;
+        add_matrix(*lu, idx, k, K, far);
       }
     }
   }

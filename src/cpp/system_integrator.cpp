@@ -24,6 +24,17 @@ SystemIntegrator::SystemIntegrator(const System& s, const Scheme& scheme)
       r_(sz(s.n + s.m)),
       dz_(sz(s.n + s.m)) {}
 
+void SystemIntegrator::solve_negative() {
+  // dz = -[A P; Q D]^-1 r: the border holds the multipliers (m) and the couplings' unknowns,
+  // whose right-hand side is zero
+  const int n = s_.n, m = s_.m, p = lu_.border();
+  zb_.assign(sz(p), 0.0);
+  for (int i = 0; i < n; ++i) dz_[sz(i)] = -r_[sz(i)];
+  for (int i = 0; i < m; ++i) zb_[sz(i)] = -r_[sz(n + i)];
+  lu_.solve(dz_.data(), zb_.data());
+  for (int i = 0; i < m; ++i) dz_[sz(n + i)] = zb_[sz(i)];
+}
+
 void SystemIntegrator::set_prescribed(double t, double* y, double* v, double* a) const {
   for (const Prescribed& p : s_.prescribed) {
     const TimeValue u = evaluate(s_.tfs[sz(p.tf)], p.comp, t);
@@ -76,8 +87,7 @@ StepOutcome SystemIntegrator::step(const double* y0, const double* v0, const dou
       lu_valid_ = lu_.factor();
       if (!lu_valid_) return {false, it};
     }
-    for (int i = 0; i < n + m; ++i) dz_[sz(i)] = -r_[sz(i)];
-    lu_.solve(dz_.data(), dz_.data() + n);
+    solve_negative();
     double norm = 0.0;
     for (int i = 0; i < n; ++i) {
       y1[i] += dz_[sz(i)];
@@ -172,8 +182,7 @@ bool SystemIntegrator::initial_acceleration(const double* y, const double* v, do
     constraints(s_, y, t, g0.data());
     for (int i = 0; i < m; ++i) r_[sz(n + i)] = (gp[sz(i)] - 2.0 * g0[sz(i)] + gm[sz(i)]) / (e * e);
   }
-  for (int i = 0; i < n + m; ++i) dz_[sz(i)] = -r_[sz(i)];
-  lu_.solve(dz_.data(), dz_.data() + n);
+  solve_negative();
   for (int i = 0; i < n; ++i) a[i] = known[sz(i)] + dz_[sz(i)];
   for (int i = 0; i < m; ++i) lam[i] = dz_[sz(n + i)];
   lu_valid_ = false;  // the factors are of the mass matrix
@@ -196,8 +205,7 @@ bool SystemIntegrator::static_increment(const double* y, const double* lam, doub
   std::copy(r_.begin(), r_.end(), residual);
   ++factorizations_;
   if (!lu_.factor()) return false;
-  for (int i = 0; i < n + m; ++i) dz_[sz(i)] = -r_[sz(i)];
-  lu_.solve(dz_.data(), dz_.data() + n);
+  solve_negative();
   std::copy(dz_.begin(), dz_.begin() + n, dy);
   std::copy(dz_.begin() + n, dz_.end(), dlam);
   return true;

@@ -39,13 +39,14 @@ class SystemIntegrator {
   void set_prescribed(double t, double* y, double* v, double* a) const;
 
  private:
+  void solve_negative();
   const System& s_;
   Scheme sc_;
   BorderedLU lu_;
   bool lu_valid_ = false;
   double lu_h_ = -1.0;
   long factorizations_ = 0;
-  std::vector<double> base_, yf_, vf_, am_, r_, dz_;
+  std::vector<double> base_, yf_, vf_, am_, r_, dz_, zb_;
 };
 
 /// Kinetic, strain (elements and springs) and gravitational energy of the system at (y, v)

@@ -316,12 +316,15 @@ class System:
             raise InputError("joints.kind", "fixed",
                              "a frame on at least one side (a 3D cable has only a tangent: use rods)")  # fmt: skip
         if j.kind == "slider":
+            if len(fb) < 3:
+                raise InputError("joints.between", str(j.between[1]), "a place with a frame")
             n1, n2 = _normals(axis)
             info["normals_b"] = np.r_[fb @ n1, fb @ n2]
             return info
         if j.kind == "revolute":
-            if len(fa) < 3:
-                raise InputError("joints.between", str(j.between[0]), "a place with a frame")
+            if len(fa) < 3 or len(fb) < 3:
+                raise InputError("joints.between", [str(x) for x in j.between],
+                                 "places with a frame (a 3D cable node has only a tangent: a rod)")  # fmt: skip
             n1, n2 = _normals(axis)
             info["axis_a"], info["normals_b"] = fa @ axis, np.r_[fb @ n1, fb @ n2]
             if j.angle is not None:
