@@ -6,7 +6,7 @@ import argparse
 import json
 from typing import Any
 
-from rancf.cli_io import atomic_path, check_plot_path
+from rancf.cli_io import check_plot_path
 from rancf.errors import InputError
 
 __all__ = ["add_parsers", "MAX_ELEMENTS"]
@@ -80,8 +80,7 @@ def _conic(args: argparse.Namespace) -> int:
     if plot is not None:
         from rancf.post.conic_plots import plot_conic
 
-        with atomic_path(plot) as tmp:
-            plot_conic(conic, k_opt, single.k, tmp, n)
+        plot_conic(conic, k_opt, single.k, plot, n)
     if args.json:
         print(json.dumps(out, indent=2))
     else:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import math
 import os
@@ -12,8 +13,8 @@ import time
 from pathlib import Path
 from typing import Any
 
-from rancf.cli_io import OutputDir, atomic_path, check_out_dir, check_plot_path
-from rancf.errors import ConvergenceError, InputError, RancfError
+from rancf.cli_io import OutputDir, check_plot_path
+from rancf.errors import InputError, RunFailedError
 
 __all__ = ["add_parsers", "DEFAULT_MAX_OUTPUT_GB"]
 
@@ -42,12 +43,24 @@ def _positive(option: str, value: float, what: str) -> float:
     return value
 
 
+def _scenario_text(path: str) -> str:
+    """What the run folder keeps as ``scenario.toml`` (readers use it, not the original file,
+    which may be edited or moved later)."""
+    import tomllib
+
+    from rancf.sweep.toml_out import scenario_copy
+
+    text = Path(path).read_text(encoding="utf-8")  # load_scenario has read it already
+    return scenario_copy(text, tomllib.loads(text), path)
+
+
 def _cmd_simulate(args: argparse.Namespace) -> int:
     every = _positive("--checkpoint-every", args.checkpoint_every, "a finite number of seconds > 0")
     limit = _positive("--max-output-gb", args.max_output_gb, "a finite size in GB > 0")
-    out = check_out_dir(args.out)
+    od = OutputDir(args.out, kind="run", overwrite=args.overwrite)  # checks the path up front
+    from rancf.atomic import atomic_write
     from rancf.model.scenario import load_scenario
-    from rancf.post.history import HistoryStore, estimate_output_bytes
+    from rancf.post.history import HistoryStore, check_output_size
     from rancf.post.results import run_summary
 
     sc = load_scenario(args.scenario)
@@ -55,31 +68,48 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     model = sc.build_model()
     n_cols = sum(len(s.columns(model.dim)) for s in sc.sensors)
     rod_directors = 3 * model.n_nodes if model.element == "rod" else 0
-    need = estimate_output_bytes(opts.n_outputs, model.q0.size, n_cols, rod_directors)
-    if need > limit * 1e9:
-        raise RunTooLargeError(
-            f"{sc.path}: this run would write about {need / 1e9:.3g} GB ({opts.n_outputs} stored "
-            f"states of {model.q0.size} coordinates), more than --max-output-gb = {limit:g}; "
-            "raise solver.output_step, shorten solver.t_end or raise the limit"
-        )
+    check_output_size(sc.path, opts.n_outputs, model.q0.size, n_cols, rod_directors, limit)
+    copy = _scenario_text(args.scenario)
+    out = od.path
     stop = _StopFlag()
-    with stop, OutputDir(out) as od:
+    with stop, od:
         info = {"scenario": str(Path(args.scenario).resolve()), "setup_wall_time_s": None}
         store = HistoryStore(out, model, sc.sensors, info)
         try:
+            atomic_write(out / "scenario.toml", copy)
             store.write_summary(_running(model, 0.0))
-            od.keep()
-            res = _run(args, model, opts, store, stop, every)
+            res = _run(args, model, opts, store, stop, every, od.keep)
+            summary = run_summary(model, res)
+            store.finish(summary)
         except BaseException as exc:
-            store.finish(_broken(model, store, exc))
-            raise
-        summary = run_summary(model, res)
-        store.finish(summary)
+            err = _end_broken(store, model, exc, od.kept, out)
+            if err is exc:
+                raise
+            raise err from None
     return _report(args, res, {**summary, **store.info}, out)
 
 
-class RunTooLargeError(RancfError):
-    """A run whose stored output would exceed the ``--max-output-gb`` limit."""
+def _end_broken(store: Any, model: Any, exc: BaseException, kept: bool, out: Path) -> BaseException:
+    """Leave the run folder truthful after ``exc``; returns the exception to raise.
+
+    Before the first checkpoint nothing of the run is kept (its files are removed; the folder
+    too if this command created it).  After it, the folder keeps the last complete checkpoint,
+    its summary says ``failed``, and an operating-system error (a full disk) becomes a
+    :class:`~rancf.errors.RunFailedError` naming the file and the time the files reach.
+    """
+    if not kept:
+        store.discard()
+        with contextlib.suppress(OSError):
+            (out / "scenario.toml").unlink()
+        return exc
+    store.fail(_broken(model, store, exc))
+    if isinstance(exc, OSError):
+        where = f"{exc.filename}: " if exc.filename is not None else ""
+        return RunFailedError(
+            f"{where}{exc.strerror or exc}; the run stopped; {out} keeps its results up to "
+            f"t = {store.saved_t or 0.0:g} s (summary.json says failed)"
+        )
+    return exc
 
 
 class _StopFlag:
@@ -122,7 +152,8 @@ def _broken(model: Any, store: Any, exc: BaseException) -> dict[str, Any]:
     return {
         "status": kind,
         "message": " ".join(str(exc).split()) or type(exc).__name__,
-        "outputs": store.n_outputs,
+        "t_reached": store.saved_t,
+        "outputs": store.n_rows,
         "n_elements": model.n_el,
         "element": model.element,
         "n_dofs": model.n,
@@ -146,7 +177,16 @@ def _progress_bar(t_end: float, t: float) -> Any:
     )
 
 
-def _run(args: argparse.Namespace, model: Any, opts: Any, store: Any, stop: Any, every: float):
+def _run(
+    args: argparse.Namespace,
+    model: Any,
+    opts: Any,
+    store: Any,
+    stop: Any,
+    every: float,
+    started: Any,
+) -> Any:
+    """Integrate into ``store``; ``started()`` once the first checkpoint is on disk."""
     from rancf.post.results import run_summary
     from rancf.solvers.dynamic import integrate
 
@@ -156,6 +196,7 @@ def _run(args: argparse.Namespace, model: Any, opts: Any, store: Any, stop: Any,
     def on_start() -> None:
         store.info["setup_wall_time_s"] = _process_age()
         store.checkpoint(_running(model, 0.0))  # every file exists before the first step
+        started()
         if not args.quiet:
             pace["bar"] = time.monotonic() + PROGRESS_AFTER_S
 
@@ -202,24 +243,37 @@ def _cmd_static(args: argparse.Namespace) -> int:
     from rancf.post.results import LoadPath, sensor_table, write_static_run
     from rancf.solvers.static import solve_static
 
-    out_dir = check_out_dir(args.out) if args.out else None
+    od = None if args.out is None else OutputDir(args.out, kind="run", overwrite=args.overwrite)
     sc = load_scenario(args.scenario)
     model = sc.build_model()
     path = LoadPath(model)  # the load path, for --out
-    if out_dir is None:
+    if od is None:
         res = solve_static(model, sc.solver["load_steps"])
     else:
-        with OutputDir(out_dir) as od:
+        from rancf.atomic import atomic_write
+        from rancf.post.history import check_output_size
+
+        n_cols = sum(len(s.columns(model.dim)) for s in sc.sensors)
+        rods = 3 * model.n_nodes if model.element == "rod" else 0
+        steps = sc.solver["load_steps"] + 1
+        check_output_size(sc.path, steps, model.q0.size, n_cols, rods, DEFAULT_MAX_OUTPUT_GB)
+        copy = _scenario_text(args.scenario)
+        out_dir = od.path
+        with od:
             info = {"scenario": str(Path(args.scenario).resolve())}
             try:
                 res = solve_static(model, sc.solver["load_steps"], on_step=path.record)
                 info.update(status="completed", message="reached load factor 1")
-            except ConvergenceError as exc:
-                info.update(status="failed", message=str(exc))
+            except BaseException as exc:
+                kind = "interrupted" if isinstance(exc, KeyboardInterrupt) else "failed"
+                lam = path.steps[-1][0] if path.steps else 0.0
+                text = " ".join(str(exc).split()) or f"{kind} at load factor {lam:g}"
+                info.update(status=kind, message=text)
                 raise
             finally:
                 if path.steps:  # what converged is kept, also when a later increment fails
                     write_static_run(out_dir, path, sc.sensors, info)
+                    atomic_write(out_dir / "scenario.toml", copy)
                     od.keep()
     pos = model.node_positions(res.q)
     names, vals = sensor_table(model, sc.sensors, res.q)
@@ -273,8 +327,7 @@ def _cmd_modes(args: argparse.Namespace) -> int:
     if plot is not None:
         from rancf.post.plots import plot_modes
 
-        with atomic_path(plot) as tmp:
-            plot_modes(model, res, tmp, y)
+        plot_modes(model, res, plot, y)
     growth = res.growth_rates if res.growth_rates is not None else np.zeros_like(res.frequencies_hz)
     out = {
         "frequencies_hz": res.frequencies_hz.tolist(),
@@ -310,12 +363,19 @@ def _cmd_modes(args: argparse.Namespace) -> int:
     return 0
 
 
+OVERWRITE_HELP = (
+    "replace the earlier run in --out (all of that folder's contents); without it --out must "
+    "be a new or empty folder"
+)
+
+
 def add_parsers(sub: Any) -> None:
     """Register ``simulate``, ``static`` and ``modes`` on the ``rancf`` sub-parser set."""
     s = sub.add_parser("simulate", help="run the dynamics of a scenario file")
     s.add_argument("scenario", help="scenario TOML file")
     s.add_argument("--out", required=True, help="output directory (created if needed)")
     s.add_argument("--quiet", action="store_true", help="no progress bar or summary line")
+    s.add_argument("--overwrite", action="store_true", help=OVERWRITE_HELP)
     s.add_argument(
         "--checkpoint-every",
         type=float,
@@ -342,6 +402,7 @@ def add_parsers(sub: Any) -> None:
         help="also write the load path as a run directory (λ in place of t) for export, plot "
         "and animate",
     )
+    st.add_argument("--overwrite", action="store_true", help=OVERWRITE_HELP)
     st.set_defaults(func=_cmd_static)
 
     m = sub.add_parser("modes", help="natural frequencies and mode shapes of a scenario")

@@ -7,7 +7,8 @@ from pathlib import Path
 
 import numpy as np
 
-from rancf.cad import CadCurve, atomic_file
+from rancf.atomic import atomic_path
+from rancf.cad import CadCurve
 from rancf.errors import InputError
 from rancf.geometry.nurbs import NurbsCurve
 
@@ -50,4 +51,5 @@ def write_dxf(path: Path, curve: NurbsCurve) -> None:
         msp.add_rational_spline(
             pts.tolist(), curve.weights.tolist(), curve.degree, curve.knots.tolist()
         )
-    atomic_file(path, doc.saveas)
+    with atomic_path(path) as tmp:
+        doc.saveas(tmp)

@@ -13,7 +13,8 @@ from typing import Any
 
 import numpy as np
 
-from rancf.cad import CadCurve, atomic_file
+from rancf.atomic import atomic_write
+from rancf.cad import CadCurve
 from rancf.errors import InputError
 from rancf.geometry.nurbs import NurbsCurve
 
@@ -40,7 +41,7 @@ def write_json(path: Path, curve: NurbsCurve, name: str = "") -> None:
     """Write one curve in geomdl's JSON exchange format."""
     doc = {"shape": {"type": "curve", "count": 1, "data": [curve_dict(curve, name)]}}
     text = json.dumps(doc, indent=2) + "\n"
-    atomic_file(path, lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))
+    atomic_write(path, text)
 
 
 def read_json(path: Path) -> list[CadCurve]:

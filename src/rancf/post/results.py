@@ -9,35 +9,31 @@ A run directory holds
 * ``summary.json`` — status, message, time reached, counters and wall times (strict JSON:
   a non-finite number is written as ``null``).
 
-Each file is written to a temporary file in the same directory, given the permissions the
-process umask allows (like any newly created file, e.g. 0644 under umask 0022) and moved into
-place with :func:`os.replace`, which is atomic on POSIX and Windows.  Histories are written in
-chunks of rows, so a long run's files are built without holding them in memory.
+Every file is written through :mod:`rancf.atomic`: under a temporary name, given the permissions
+the umask allows (0644 under umask 0022) and renamed into place; the history files
+(``sensors.csv``, ``energy.csv``, ``results.npz``) are renamed together once all three are
+written, so they always hold the same rows.  Histories are written in chunks of rows, so a long
+run's files are built without holding them in memory.
 """
 
 from __future__ import annotations
 
-import contextlib
 import json
 import math
-import os
-import tempfile
-import threading
 import zipfile
 from collections.abc import Iterator, Sequence
 from pathlib import Path
-from typing import IO, Any
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
+from rancf.atomic import FileSet
 from rancf.model.scenario_sensors import Sensor
 from rancf.model.system import Model
 from rancf.solvers.dynamic import DynamicResult
 
 __all__ = [
-    "atomic_file",
-    "atomic_write",
     "strict_json",
     "write_history_files",
     "write_run",
@@ -48,46 +44,6 @@ __all__ = [
 
 #: Rows of a history handled at once when writing files.
 CHUNK_BYTES = 1 << 24
-
-
-_UMASK_LOCK = threading.Lock()
-
-
-def _umask() -> int:
-    """The process umask.  Reading it means setting it for a moment, which threads (the worker
-    threads of the report's local Dask cluster write run folders) must not do at once."""
-    with _UMASK_LOCK:
-        mask = os.umask(0o022)
-        os.umask(mask)
-    return mask
-
-
-@contextlib.contextmanager
-def atomic_file(path: str | Path) -> Iterator[IO[bytes]]:
-    """A binary file handle whose content replaces ``path`` atomically when the block ends.
-
-    On an exception (or interrupt) inside the block the temporary file is removed and ``path``
-    is left as it was.
-    """
-    path = Path(path)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            yield fh
-            fh.flush()
-            os.fsync(fh.fileno())
-        os.chmod(tmp, 0o666 & ~_umask())
-        os.replace(tmp, path)
-    except BaseException:
-        with contextlib.suppress(OSError):
-            os.unlink(tmp)
-        raise
-
-
-def atomic_write(path: str | Path, data: bytes | str) -> None:
-    """Write ``data`` to ``path`` through a temporary file and an atomic rename."""
-    with atomic_file(path) as fh:
-        fh.write(data.encode("utf-8") if isinstance(data, str) else data)
 
 
 def _finite(value: Any) -> Any:
@@ -151,21 +107,27 @@ def write_history_files(
     v: NDArray,
     energy: NDArray,
     directors: NDArray | None = None,
+    files: FileSet | None = None,
 ) -> list[str]:
     """``sensors.csv``, ``energy.csv`` and ``results.npz`` of a history, chunk by chunk.
 
     ``t (n,)``, ``q`` and ``v (n, n_q)``, ``energy (n, 3)`` and a rod's nodal ``directors``
     (``(n, 3 n_nodes)`` or ``(n, n_nodes, 3)``, stored as ``directors (n, n_nodes, 3)``) may be
-    memory maps.  Returns the sensor column names.
+    memory maps.  The three files replace the old ones together (see :mod:`rancf.atomic`): when
+    the block ends, or with ``files`` given, when that set is committed.  Returns the sensor
+    column names.
     """
+    if files is None:
+        with FileSet() as own:
+            return write_history_files(out, model, sensors, t, q, v, energy, directors, own)
     n = t.shape[0]
     names, _ = sensor_table(model, sensors, q[:1])
-    with atomic_file(out / "sensors.csv") as fh:
+    with files.file(out / "sensors.csv") as fh:
         fh.write((",".join(["t", *names]) + "\n").encode())
         for r in _rows(n, q.shape[1]):
             _, vals = sensor_table(model, sensors, q[r])
             np.savetxt(fh, np.column_stack([t[r], vals]), delimiter=",", fmt="%.12g")
-    with atomic_file(out / "energy.csv") as fh:
+    with files.file(out / "energy.csv") as fh:
         fh.write(b"t,kinetic,strain,gravity,total\n")
         for r in _rows(n, 5):
             e = energy[r]
@@ -184,7 +146,7 @@ def write_history_files(
         "reference": model.q0,
         "metadata": np.array(json.dumps(meta)),
     }
-    with atomic_file(out / "results.npz") as fh:
+    with files.file(out / "results.npz") as fh:
         with zipfile.ZipFile(fh, "w", zipfile.ZIP_STORED, allowZip64=True) as z:
             _npy(z, "t", (n,), (t[r] for r in _rows(n, 1)))
             for name, arr in (("q", q), ("v", v)):
@@ -241,9 +203,12 @@ def write_run(
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     energy = np.column_stack([result.kinetic, result.strain, result.gravity])
-    write_history_files(out, model, sensors, result.t, result.q, result.v, energy, result.directors)
     summary = {**run_summary(model, result), **(extra or {})}
-    atomic_write(out / "summary.json", strict_json(summary))
+    with FileSet() as files:  # the four files replace an earlier run's together
+        write_history_files(
+            out, model, sensors, result.t, result.q, result.v, energy, result.directors, files
+        )
+        files.write(out / "summary.json", strict_json(summary))
     return summary
 
 
@@ -280,7 +245,6 @@ def write_static_run(
         [[0.0, model.strain_energy(y), model.gravity_energy(y)] for y in ys], dtype=float
     )
     m1 = np.array([m for _, _, m in path.steps]) if model.element == "rod" else None
-    write_history_files(out, model, sensors, t, q, np.zeros_like(q), energy, m1)
     doc = {
         "analysis": "static",
         "load_factor_reached": float(t[-1]),
@@ -291,7 +255,9 @@ def write_static_run(
         "outputs": int(t.size),
         **summary,
     }
-    atomic_write(out / "summary.json", strict_json(doc))
+    with FileSet() as files:
+        write_history_files(out, model, sensors, t, q, np.zeros_like(q), energy, m1, files)
+        files.write(out / "summary.json", strict_json(doc))
     return doc
 
 

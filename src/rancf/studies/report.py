@@ -12,7 +12,7 @@ import re
 from collections.abc import Sequence
 from pathlib import Path
 
-from rancf.post.results import atomic_write
+from rancf.atomic import atomic_write
 from rancf.studies.common import NOT_REACHED, NOT_RUN, StudyResult
 
 __all__ = ["write_report", "study_tables", "REFERENCES"]

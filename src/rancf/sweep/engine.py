@@ -27,8 +27,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Protocol
 
+from rancf.atomic import atomic_write
 from rancf.errors import InputError
-from rancf.post.results import atomic_write
 from rancf.sweep.runner import ROW_FILE, run_variant, run_variants_in_order
 from rancf.sweep.spec import SweepSpec, Variant
 

@@ -9,15 +9,14 @@ presence marks the run as finished, so an interrupted sweep resumes with the run
 
 from __future__ import annotations
 
-import copy
 import json
 import time
 import traceback
 from pathlib import Path
 from typing import Any
 
-from rancf.post.results import atomic_write
-from rancf.sweep.toml_out import dumps
+from rancf.atomic import atomic_write
+from rancf.sweep.toml_out import dumps, with_absolute_paths
 
 __all__ = ["run_variant", "run_variants_in_order", "ROW_FILE", "FREQUENCY_COLUMNS"]
 
@@ -90,10 +89,7 @@ def run_variant(
     t0 = time.perf_counter()
     out = Path(folder)
     out.mkdir(parents=True, exist_ok=True)
-    raw = copy.deepcopy(raw)
-    geo = raw.get("geometry", {})
-    if geo.get("kind") == "cad" and isinstance(geo.get("file"), str):
-        geo["file"] = str((Path(base).parent / geo["file"]).resolve())
+    raw = with_absolute_paths(raw, base)
     atomic_write(out / "scenario.toml", dumps(raw))
     try:
         sc = parse_scenario(raw, base)
