@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import json
 from typing import Any
 
 from rancf.cli_io import check_plot_path
@@ -37,7 +36,7 @@ def _cmd_conic(args: argparse.Namespace) -> int:
 def _conic(args: argparse.Namespace) -> int:
     import numpy as np
 
-    from rancf.elements.mapping import conic_element, kopt
+    from rancf.elements.mapping import K_RANGE, conic_element, kopt
     from rancf.geometry.conic import conic_arc
     from rancf.model.mesh import check_element_count, mesh_conic
 
@@ -45,6 +44,9 @@ def _conic(args: argparse.Namespace) -> int:
     if n > MAX_ELEMENTS:
         raise InputError("--elements", n, f"at most {MAX_ELEMENTS} (one table row per element)")
     plot = check_plot_path(args.plot) if args.plot else None
+    if args.k is not None and not K_RANGE[0] <= args.k <= K_RANGE[1]:  # NaN included
+        lo, hi = K_RANGE
+        raise InputError("--k", args.k, f"a mapping factor in [{lo:g}, {hi:g}] (as mesh.k)")
     conic = conic_arc(args.chord, args.angles, args.point)
     k_opt = kopt(conic)
     single = conic_element(conic, args.k)
@@ -82,7 +84,9 @@ def _conic(args: argparse.Namespace) -> int:
 
         plot_conic(conic, k_opt, single.k, plot, n)
     if args.json:
-        print(json.dumps(out, indent=2))
+        from rancf.post.results import strict_json
+
+        print(strict_json(out), end="")
     else:
         circ = " (circular arc)" if out["circular"] else ""
         print(f"conic type      {conic.kind}{circ}")

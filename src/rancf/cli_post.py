@@ -10,6 +10,7 @@ from typing import Any
 
 import numpy as np
 
+from rancf.cli_io import OutputDir, check_out_dir
 from rancf.errors import InputError
 
 __all__ = ["add_parsers", "run_to_nurbs"]
@@ -45,13 +46,17 @@ def _cmd_export(args: argparse.Namespace) -> int:
 
     if args.vtk is None and args.nurbs is None:
         raise InputError("--vtk/--nurbs", None, "at least one of --vtk OUT_DIR, --nurbs FILE")
+    out = OutputDir(args.vtk, "--vtk") if args.vtk is not None else None
     run = load_run(args.run_dir)
-    if args.vtk is not None:
+    if out is not None:
         from rancf.post.run_data import frame_indices
-        from rancf.post.vtk import export_vtk
+        from rancf.post.vtk import check_export_size, export_vtk
 
         n = frame_indices(run.t.size, args.every).size
-        pvd = export_vtk(run, args.vtk, args.every, args.samples)
+        check_export_size(run, args.every, args.samples)
+        with out:
+            pvd = export_vtk(run, out.path, args.every, args.samples)
+            out.keep()
         print(f"{n} VTK frame(s) of {run.name} written; open {pvd} in ParaView")
         if run.directors is not None:
             print(f"rod nodes and material frames: {pvd.with_name(f'{run.name}_nodes.pvd')}")
@@ -80,11 +85,23 @@ def _cmd_plot(args: argparse.Namespace) -> int:
     from rancf.post.run_data import load_run
     from rancf.post.run_plots import plot_run
 
+    if args.out is not None:
+        check_out_dir(args.out)
     run = load_run(args.run_dir)
-    out = Path(args.out) if args.out else run.path / "plots"
-    for p in plot_run(run, out, args.configurations):
+    if not 1 <= args.configurations <= MAX_CONFIGURATIONS:
+        raise InputError(
+            "--configurations", args.configurations, f"an integer in [1, {MAX_CONFIGURATIONS}]"
+        )
+    with OutputDir(Path(args.out) if args.out is not None else run.path / "plots") as out:
+        written = plot_run(run, out.path, args.configurations)
+        out.keep()
+    for p in written:
         print(p)
     return 0
+
+
+#: Most configurations ``rancf plot`` draws in one figure.
+MAX_CONFIGURATIONS = 100
 
 
 def _cmd_animate(args: argparse.Namespace) -> int:

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import argparse
 import contextlib
-import json
 import math
 import os
 import signal
@@ -240,7 +239,7 @@ def _report(args: argparse.Namespace, res: Any, summary: dict[str, Any], out: Pa
 
 def _cmd_static(args: argparse.Namespace) -> int:
     from rancf.model.scenario import load_scenario
-    from rancf.post.results import LoadPath, sensor_table, write_static_run
+    from rancf.post.results import LoadPath, sensor_table, strict_json, write_static_run
     from rancf.solvers.static import solve_static
 
     od = None if args.out is None else OutputDir(args.out, kind="run", overwrite=args.overwrite)
@@ -284,7 +283,7 @@ def _cmd_static(args: argparse.Namespace) -> int:
         "newton_iterations": res.n_newton,
     }
     if args.json:
-        print(json.dumps(out, indent=2))
+        print(strict_json(out), end="")
     else:
         print(
             f"static equilibrium: {len(res.load_factors) - 1} load steps, "
@@ -299,6 +298,7 @@ def _cmd_modes(args: argparse.Namespace) -> int:
     import numpy as np
 
     from rancf.model.scenario import load_scenario
+    from rancf.post.results import strict_json
     from rancf.solvers.modal import natural_modes
     from rancf.solvers.static import solve_static
 
@@ -338,7 +338,7 @@ def _cmd_modes(args: argparse.Namespace) -> int:
         "n_dofs_free": int(np.sum(~model.fixed)),
     }
     if args.json:
-        print(json.dumps(out, indent=2))
+        print(strict_json(out), end="")
     else:
         print(
             f"natural frequencies about the {about} configuration "

@@ -21,7 +21,7 @@ from __future__ import annotations
 import json
 import math
 import zipfile
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -58,9 +58,10 @@ def _finite(value: Any) -> Any:
     return value
 
 
-def strict_json(value: Any) -> str:
-    """JSON text with every non-finite number replaced by ``null`` (never ``NaN``)."""
-    return json.dumps(_finite(value), indent=2, allow_nan=False) + "\n"
+def strict_json(value: Any, default: Callable[[Any], Any] | None = None) -> str:
+    """JSON text with every non-finite number replaced by ``null`` (never ``NaN`` or
+    ``Infinity``, which strict JSON readers refuse); ``default`` converts other objects."""
+    return json.dumps(_finite(value), indent=2, allow_nan=False, default=default) + "\n"
 
 
 def sensor_table(

@@ -30,6 +30,7 @@ from __future__ import annotations
 import json
 import logging
 import math
+import os
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -38,7 +39,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rancf.elements.cable import cable_shape_functions
-from rancf.errors import InputError
+from rancf.errors import InputError, shorten
 from rancf.post.results import load_results
 
 __all__ = [
@@ -113,8 +114,9 @@ class RunData:
 
     @property
     def name(self) -> str:
-        """The run's name (its directory name)."""
-        return self.path.resolve().name
+        """The run's name: its directory name (bytes that are not UTF-8 shown as U+FFFD, so the
+        name can go into file names, XML and figure titles)."""
+        return os.fsencode(self.path.resolve().name).decode("utf-8", "replace")
 
     @property
     def n_nodes(self) -> int:
@@ -140,23 +142,93 @@ def _summary(run_dir: Path) -> dict[str, Any]:
     return doc if isinstance(doc, dict) else {}
 
 
-def _find_scenario(run_dir: Path) -> Path | None:
+def _find_scenario(run_dir: Path) -> tuple[Path | None, bool]:
+    """The run's scenario and whether it is the run's own copy (``scenario.toml``)."""
     own = run_dir / "scenario.toml"
     if own.is_file():
-        return own
+        return own, True
     recorded = _summary(run_dir).get("scenario")
     if isinstance(recorded, str) and recorded and Path(recorded).is_file():
-        return Path(recorded)
+        return Path(recorded), False
+    return None, False
+
+
+#: Element kinds and coordinates per node a results.npz may hold.
+_DOFS_PER_NODE = {"rancf": {2: 4, 3: 6}, "ancf": {2: 4, 3: 6}, "beam": {2: 3}, "rod": {3: 7}}
+
+
+def _check_results(npz: Path, data: dict[str, Any]) -> None:
+    """Refuse a ``results.npz`` whose arrays do not fit together (cut short, or mixed from two
+    runs), naming what disagrees."""
+
+    def bad(problem: str) -> InputError:
+        return InputError("RUN_DIR", str(npz), f"a consistent results.npz ({problem})")
+
+    meta = data["metadata"]
+    if not isinstance(meta, dict):
+        raise bad("its metadata is not a table")
+    element, dim = meta.get("element"), meta.get("dim")
+    dpn = _DOFS_PER_NODE.get(element, {}).get(dim) if isinstance(dim, int) else None
+    if dpn is None:
+        raise bad(f"element {element!r} in {dim!r} dimensions is not a known kind")
+    names = meta.get("sensor_columns")
+    if not isinstance(names, list) or not all(isinstance(n, str) for n in names):
+        raise bad("its sensor columns are not a list of names")
+    t = np.asarray(data["t"])
+    n_t = t.size
+    if t.ndim != 1 or n_t < 1 or not np.all(np.isfinite(t)) or np.any(np.diff(t) <= 0):
+        raise bad("its times are not an increasing list of finite numbers")
+    n_el = np.shape(data["scales"])[0] if np.ndim(data["scales"]) == 1 else -1
+    n = (n_el + 1) * dpn
+    shapes = {
+        "scales": (n_el,),
+        "weights": (n_el, 4),
+        "reference": (n,),
+        "q": (n_t, n),
+        "v": (n_t, n),
+        "kinetic": (n_t,),
+        "strain": (n_t,),
+        "gravity": (n_t,),
+        "sensors": (n_t, len(names)),
+    }
+    if "directors" in data:
+        shapes["directors"] = (n_t, n_el + 1, 3)
+    if n_el < 1 or meta.get("n_elements", n_el) != n_el:
+        raise bad(f"{n_el} element scales for {meta.get('n_elements')!r} elements")
+    for key, shape in shapes.items():
+        got = np.shape(data[key])
+        if key == "sensors" and got == (n_t * len(names),):
+            continue
+        if got != shape:
+            raise bad(f"{key} has shape {got}, expected {shape} for {n_t} times")
+
+
+def _scenario_fits(sc: Any, meta: dict[str, Any]) -> str | None:
+    """Why the scenario ``sc`` is not the one of a run with ``meta`` (None: it fits)."""
+    mesh = sc.data["mesh"]
+    if mesh["element"] != meta["element"] or sc.dim != meta["dim"]:
+        return (
+            f"the scenario has {mesh['element']} elements in {sc.dim} dimensions, the results "
+            f"{meta['element']} elements in {meta['dim']}"
+        )
+    kind = sc.data["geometry"]["kind"]
+    if kind in ("conic", "line") and mesh["elements"] != meta["n_elements"]:
+        return f"the scenario has {mesh['elements']} elements, the results {meta['n_elements']}"
     return None
 
 
 def load_run(run_dir: str | Path) -> RunData:
     """Read ``RUN_DIR/results.npz`` (and the scenario, if it can be found).
 
+    The run's own ``scenario.toml`` must match the results; a scenario found only through the
+    path ``summary.json`` records (older runs) is skipped, with a warning, when it no longer
+    matches or no longer reads.
+
     Raises
     ------
     InputError
-        If ``run_dir`` is not a directory holding a readable ``results.npz``.
+        If ``run_dir`` is not a directory holding a readable, consistent ``results.npz``, or
+        its own ``scenario.toml`` does not match it.
     """
     path = Path(run_dir)
     npz = path / "results.npz"
@@ -166,20 +238,45 @@ def load_run(run_dir: str | Path) -> RunData:
         raise InputError("RUN_DIR", str(path), "a run directory holding results.npz")
     try:
         data = load_results(npz)
-    except (OSError, ValueError, KeyError) as exc:
-        raise InputError("RUN_DIR", str(npz), f"a readable results.npz ({exc})") from None
+        _check_results(npz, data)
+    except InputError:
+        raise
+    except Exception as exc:  # noqa: BLE001 - a damaged file: cut short, empty, not a zip
+        reason = shorten(" ".join(f"{type(exc).__name__}: {exc}".split()))
+        raise InputError("RUN_DIR", str(npz), f"a readable results.npz ({reason})") from None
     meta: dict[str, Any] = data["metadata"]
     radius = None
     angles = None
-    sc_path = _find_scenario(path)
+    sc_path, own = _find_scenario(path)
+    sc = None
     if sc_path is not None:
+        from rancf.errors import ScenarioError
         from rancf.model.scenario import load_scenario
 
-        sc = load_scenario(sc_path)
+        try:
+            sc = load_scenario(sc_path)
+            why = _scenario_fits(sc, meta)
+        except ScenarioError as exc:
+            if own:
+                raise
+            sc, why = None, str(exc)
+        if why is not None and own:
+            raise InputError(
+                "RUN_DIR", str(path), f"a run whose scenario.toml fits its results ({why})"
+            )
+        if why is not None:
+            logger.warning("%s: skipping the scenario %s: %s", path, sc_path, why)
+            sc = None
+    if sc is not None:
         s = sc.data["section"]
         radius = s["radius"] if s["radius"] is not None else math.sqrt(s["area"] / math.pi)
         if meta["element"] == "beam":
             nodes = sc.build_model().mesh.nodes
+            if nodes.shape[0] != meta["n_elements"] + 1:
+                raise InputError(
+                    "RUN_DIR", str(path), f"a run whose scenario fits its results ({sc_path} "
+                    f"meshes {nodes.shape[0] - 1} elements, the results hold {meta['n_elements']})",
+                )  # fmt: skip
             angles = np.arctan2(nodes[:, 1, 1], nodes[:, 1, 0])
     else:
         logger.warning("%s: no scenario found; no radius field, beams drawn with chords", path)

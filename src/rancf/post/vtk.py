@@ -30,7 +30,38 @@ from rancf.errors import InputError
 from rancf.geometry.conic_params import pad3
 from rancf.post.run_data import RunData, frame_indices, nodal_frames, sample_centerline
 
-__all__ = ["export_vtk", "centerline_mesh", "nodes_mesh"]
+__all__ = ["export_vtk", "centerline_mesh", "nodes_mesh", "check_export_size"]
+
+#: Most centreline points of one frame (``--samples`` per element times the elements).
+MAX_POINTS_PER_FRAME = 10**6
+#: Most centreline points of one export (all frames): about 2 GB of ``.vtu`` files.
+MAX_POINTS = 2 * 10**7
+
+
+def check_export_size(run: RunData, every: int, per_element: int) -> None:
+    """Refuse, before anything is written, an export of more than :data:`MAX_POINTS_PER_FRAME`
+    points a frame (``--samples``) or :data:`MAX_POINTS` in all (``--every``)."""
+    n_el = run.weights.shape[0]
+    n_frames = frame_indices(run.t.size, every).size
+    if isinstance(per_element, bool) or not isinstance(per_element, int) or per_element < 1:
+        raise InputError("--samples", per_element, "an integer >= 1")
+    if per_element * n_el > MAX_POINTS_PER_FRAME:
+        most = max(1, MAX_POINTS_PER_FRAME // n_el)
+        raise InputError(
+            "--samples",
+            per_element,
+            f"at most {most} points per element for this run of {n_el} elements "
+            f"({MAX_POINTS_PER_FRAME:.0e} points a frame)",
+        )
+    total = per_element * n_el * n_frames
+    if total > MAX_POINTS:
+        raise InputError(
+            "--every",
+            every,
+            f"fewer frames: {n_frames} frames of {per_element * n_el} points would be "
+            f"{total:.3g} points, more than {MAX_POINTS:.0e} (about 2 GB); raise --every or "
+            "lower --samples",
+        )
 
 
 def centerline_mesh(run: RunData, i: int, per_element: int = 16):  # -> meshio.Mesh
@@ -75,6 +106,7 @@ def export_vtk(run: RunData, out_dir: str | Path, every: int = 1, per_element: i
 
     Returns the path of the centreline's ``.pvd`` file.
     """
+    check_export_size(run, every, per_element)
     out = Path(out_dir)
     if out.exists() and not out.is_dir():
         raise InputError("--vtk", str(out), "a directory (it exists and is a file)")

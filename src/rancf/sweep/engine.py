@@ -13,11 +13,15 @@ run whose folder already holds ``row.json`` is not run again.
 
 from __future__ import annotations
 
+import contextlib
 import csv
 import io
 import json
 import logging
+import math
 import os
+import re
+import shutil
 import sys
 import time
 import uuid
@@ -29,8 +33,9 @@ from typing import Any, Protocol
 
 from rancf.atomic import atomic_write
 from rancf.errors import InputError
-from rancf.sweep.runner import ROW_FILE, run_variant, run_variants_in_order
+from rancf.sweep.runner import ROW_FILE, run_variant, run_variants_in_order, scenario_hash
 from rancf.sweep.spec import SweepSpec, Variant
+from rancf.sweep.toml_out import with_absolute_paths
 
 __all__ = [
     "run_sweep",
@@ -86,9 +91,10 @@ def dask_client(
     from dask.distributed import Client, LocalCluster  # first: it adds its config defaults
 
     if scheduler is not None:
+        check_scheduler(scheduler)
         try:
             client = Client(scheduler, timeout=30)
-        except (OSError, TimeoutError) as exc:
+        except (OSError, TimeoutError, ValueError, TypeError) as exc:
             raise InputError(
                 "--scheduler", scheduler, f"a reachable Dask scheduler ({exc})"
             ) from None
@@ -98,19 +104,53 @@ def dask_client(
     n = workers if workers is not None else (os.cpu_count() or 1)
     if isinstance(n, bool) or not isinstance(n, int) or n < 1:
         raise InputError("--workers", workers, "an integer >= 1")
-    with (
-        dask.config.set(QUIET_DASK),
-        LocalCluster(
-            n_workers=n,
-            threads_per_worker=1,
-            processes=processes,
-            **({"protocol": "tcp://", "host": "127.0.0.1"} if processes else {}),
-            dashboard_address=None,
-            silence_logs=logging.ERROR,
-        ) as cluster,
-        Client(cluster) as client,
-    ):
-        yield client
+    with dask.config.set(QUIET_DASK):
+        with _quiet_children() if processes else contextlib.nullcontext():
+            cluster = LocalCluster(
+                n_workers=n,
+                threads_per_worker=1,
+                processes=processes,
+                **({"protocol": "tcp://", "host": "127.0.0.1"} if processes else {}),
+                dashboard_address=None,
+                silence_logs=logging.ERROR,
+            )
+        with cluster, Client(cluster) as client:
+            yield client
+
+
+@contextmanager
+def _quiet_children() -> Iterator[None]:
+    """Processes started inside the block (a local cluster's workers, multiprocessing's resource
+    tracker) get /dev/null as their standard error: stopped by Ctrl-C or SIGTERM they would
+    print connection tracebacks and warnings.  Their failures still reach the sweep: a run's
+    exception is its row's message and its ``error.txt``, a lost worker a ``worker error`` row."""
+    try:
+        sys.stderr.flush()
+        saved = os.dup(2)
+    except (OSError, ValueError, AttributeError):  # pragma: no cover - no standard error
+        yield
+        return
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    try:
+        os.dup2(devnull, 2)
+        yield
+    finally:
+        os.dup2(saved, 2)
+        os.close(saved)
+        os.close(devnull)
+
+
+#: Address schemes of a Dask scheduler ``--scheduler`` accepts.
+SCHEDULER_SCHEMES = ("tcp", "tls", "ws", "wss", "ucx")
+
+
+def check_scheduler(address: str) -> str:
+    """Refuse a scheduler address that is not ``SCHEME://HOST:PORT`` (before any connection)."""
+    m = re.fullmatch(r"([a-z]+)://(\[[0-9a-fA-F:.]+\]|[A-Za-z0-9_.-]+):(\d{1,5})", address)
+    if m is None or m[1] not in SCHEDULER_SCHEMES or not 1 <= int(m[3]) <= 65535:
+        schemes = "|".join(SCHEDULER_SCHEMES)
+        raise InputError("--scheduler", address, f"an address {schemes}://HOST:PORT")
+    return address
 
 
 def results_table(variants: list[Variant], rows: dict[str, dict[str, Any]]) -> str:
@@ -142,7 +182,8 @@ def results_table(variants: list[Variant], rows: dict[str, dict[str, Any]]) -> s
 
 
 def _num(x: Any) -> str:
-    return "" if x is None else repr(float(x))
+    """A number of the table: empty for none, or for a non-finite one (the row failed)."""
+    return "" if x is None or not math.isfinite(float(x)) else repr(float(x))
 
 
 #: ``on_done(name, row) -> names of later calls that are no longer needed``.
@@ -288,14 +329,10 @@ def run_variants(
         raise InputError("--out", str(out), "a directory (it exists and is a file)")
     runs = out / "runs"
     runs.mkdir(parents=True, exist_ok=True)
-    rows: dict[str, dict[str, Any]] = {}
-    for v in variants:
-        f = runs / v.name / ROW_FILE
-        if f.is_file():
-            try:
-                rows[v.name] = json.loads(f.read_text(encoding="utf-8"))
-            except (OSError, ValueError):
-                pass  # a damaged row: run again
+    rows = finished_rows(variants, base, analysis, out)
+    for v in variants:  # a run of another scenario (the base or the grid changed): run again
+        if v.name not in rows and (runs / v.name).is_dir():
+            shutil.rmtree(runs / v.name)
     skip: set[str] = set()
     for name, row in list(rows.items()):
         if on_row is not None:
@@ -327,7 +364,30 @@ def run_variants(
         executor.execute(calls, done)
     finally:
         bar.close()
+        # runs that finished in a worker but whose row had not reached us (an interrupt)
+        rows.update(finished_rows(variants, base, analysis, out))
         atomic_write(csv_path, results_table(variants, rows))
+    return rows
+
+
+def finished_rows(
+    variants: list[Variant], base: str | Path, analysis: str, out: str | Path
+) -> dict[str, dict[str, Any]]:
+    """The rows of the runs in ``out/runs`` that finished for the scenario they have now: a
+    readable ``row.json`` whose ``scenario_sha256`` is that of the variant's scenario (with
+    its CAD file made absolute) and ``analysis``."""
+    rows: dict[str, dict[str, Any]] = {}
+    for v in variants:
+        f = Path(out) / "runs" / v.name / ROW_FILE
+        if not f.is_file():
+            continue
+        try:
+            row = json.loads(f.read_text(encoding="utf-8"))
+        except (OSError, ValueError):
+            continue  # a damaged row: run again
+        want = scenario_hash(with_absolute_paths(v.raw, base), analysis)
+        if isinstance(row, dict) and row.get("scenario_sha256") == want:
+            rows[v.name] = row
     return rows
 
 
@@ -342,17 +402,20 @@ def run_sweep(
     out = Path(out)
     variants = spec.variants()
     finished = (
-        {v.name for v in variants if (out / "runs" / v.name / ROW_FILE).is_file()}
-        if out.is_dir()
-        else set()
+        set(finished_rows(variants, spec.base, spec.analysis, out)) if out.is_dir() else set()
     )
     if len(finished) == len(variants):
         rows = run_variants(LocalExecutor(), variants, spec.base, spec.analysis, out, progress)
     else:
-        with dask_client(scheduler, workers) as client:
-            rows = run_variants(
-                DaskExecutor(client), variants, spec.base, spec.analysis, out, progress
-            )
+        try:
+            with dask_client(scheduler, workers) as client:
+                rows = run_variants(
+                    DaskExecutor(client), variants, spec.base, spec.analysis, out, progress
+                )
+        finally:  # the workers are stopped now: the table holds every run that finished
+            if (out / "results.csv").is_file():
+                done = finished_rows(variants, spec.base, spec.analysis, out)
+                atomic_write(out / "results.csv", results_table(variants, done))
     skipped = sum(1 for name in finished if name in rows)
     failed = sum(1 for r in rows.values() if r.get("status") != "completed")
     return SweepReport(len(variants), skipped, len(variants) - skipped, failed, out / "results.csv")
