@@ -396,7 +396,7 @@ SCENARIOS = [
     ),  # fmt: skip
     ("rod-twist-node", rod(sensors=[{"name": "a", "kind": "twist", "at": 9}]), 2, "sensors.a"),
     ("t-end-1e6", mutated(solver__t_end=1e6), 2, "GB"),
-    ("t-end-1e12", mutated(solver__t_end=1e12, solver__output_step=1.0), 2, "GB"),
+    ("t-end-1e12", mutated(solver__t_end=1e12, solver__output_step=1.0), 2, "solver.t_end"),
 ]
 
 

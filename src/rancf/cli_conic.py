@@ -86,7 +86,7 @@ def _conic(args: argparse.Namespace) -> int:
     if args.json:
         from rancf.post.results import strict_json
 
-        print(strict_json(out), end="")
+        print(strict_json(out).rstrip())
     else:
         circ = " (circular arc)" if out["circular"] else ""
         print(f"conic type      {conic.kind}{circ}")

@@ -283,11 +283,11 @@ def _cmd_static(args: argparse.Namespace) -> int:
         "newton_iterations": res.n_newton,
     }
     if args.json:
-        print(strict_json(out), end="")
+        print(strict_json(out).rstrip())
     else:
         print(
             f"static equilibrium: {len(res.load_factors) - 1} load steps, "
-            f"{res.n_newton} Newton iterations" + (f" -> {out_dir}" if out_dir is not None else "")
+            f"{res.n_newton} Newton iterations" + (f" -> {od.path}" if od is not None else "")
         )
         for k, v in out["sensors"].items():
             print(f"  {k:12s} {v: .9g}")
@@ -338,7 +338,7 @@ def _cmd_modes(args: argparse.Namespace) -> int:
         "n_dofs_free": int(np.sum(~model.fixed)),
     }
     if args.json:
-        print(strict_json(out), end="")
+        print(strict_json(out).rstrip())
     else:
         print(
             f"natural frequencies about the {about} configuration "
