@@ -148,9 +148,12 @@ def _running(model: Any, t: float) -> dict[str, Any]:
 def _broken(model: Any, store: Any, exc: BaseException) -> dict[str, Any]:
     """Summary of a run ended by an exception (the error path prints the message)."""
     kind = "interrupted" if isinstance(exc, KeyboardInterrupt) else "failed"
+    text = str(exc)
+    if isinstance(exc, OSError) and exc.strerror:
+        text = f"{exc.filename}: {exc.strerror}" if exc.filename is not None else exc.strerror
     return {
         "status": kind,
-        "message": " ".join(str(exc).split()) or type(exc).__name__,
+        "message": " ".join(text.split()) or type(exc).__name__,
         "t_reached": store.saved_t,
         "outputs": store.n_rows,
         "n_elements": model.n_el,

@@ -161,10 +161,14 @@ class HistoryStore:
     def flush(self) -> None:
         """Append the buffered outputs to the raw files."""
         for key in self._keys:
-            if self._buf[key]:
-                self._fh[key].write(np.concatenate(self._buf[key]).tobytes())
-                self._buf[key].clear()
-            self._fh[key].flush()
+            try:
+                if self._buf[key]:
+                    self._fh[key].write(np.concatenate(self._buf[key]).tobytes())
+                    self._buf[key].clear()
+                self._fh[key].flush()
+            except OSError as exc:  # a full disk: name the file
+                where = str(self.raw / f"{key}.f64")
+                raise OSError(exc.errno, exc.strerror or str(exc), where) from None
         self.n_rows += self._pending
         self._pending = 0
 
