@@ -97,29 +97,29 @@ CASES = [
         "conic-chord-1e-300",
         ["conic", "--chord", "1e-300", "--angles", "30", "40", "--point", "1e-301", "1e-302"],
         "--chord",
-    ),  # fmt: skip
+    ),
     Case("conic-k-1e-300", [*CONIC, "--k", "1e-300"], "--k"),
     Case(
         "conic-angle-1e-300",
         ["conic", "--chord", "0.5", "--angles", "1e-300", "40", "--point", "0.315", "0.077"],
         "--angles T0",
-    ),  # fmt: skip
+    ),
     Case(
         "conic-angle-near-90",
         ["conic", "--chord", "0.5", "--angles", "30", "89.99999999999999", "--point", "0.3", "0.1"],
         "--angles T1",
-    ),  # fmt: skip
+    ),
     Case(
         "conic-point-1e308",
         ["conic", "--chord", "0.5", "--angles", "30", "40", "--point", "0.315", "1e308"],
         "--point",
-    ),  # fmt: skip
+    ),
     Case(
         "sweep-scheduler-garbage",
         ["sweep", "w.toml", "--out", "sw", "--scheduler", "garbage"],
         "--scheduler",
         {"w.toml": _sweep('"mesh.elements" = [2]')},
-    ),  # fmt: skip
+    ),
     Case(
         "sweep-10000-runs-too-large",
         ["sweep", "w.toml", "--out", "sw"],
@@ -137,19 +137,19 @@ CASES = [
         ["sweep", "w.toml", "--out", "sw"],
         "nested too deeply",
         {"w.toml": DEEP_TOML},
-    ),  # fmt: skip
+    ),
     Case(
         "sweep-out-empty",
         ["sweep", "w.toml", "--out", ""],
         "--out",
         {"w.toml": _sweep('"mesh.elements" = [2]')},
-    ),  # fmt: skip
+    ),
     Case(
         "sweep-out-not-a-sweep",
         ["sweep", "w.toml", "--out", RUN],
         "--out",
-        {"w.toml": _sweep('"mesh.elements" = [2]')},
-    ),  # fmt: skip
+        {"w.toml": _sweep('"mesh.elements" = [2]'), "s.toml": mutated()},
+    ),
     Case("stdout-closed", CONIC, "standard output is closed", stdout="closed"),
     Case("stdout-full", [*CONIC, "--json"], "standard output: No space left", stdout="full"),
     Case(
@@ -157,48 +157,48 @@ CASES = [
         ["cad", "list", "bin.json"],
         "bin.json",
         {"bin.json": bytes(range(256)) * 64},
-    ),  # fmt: skip
+    ),
     Case(
         "cad-list-nested-json",
         ["cad", "list", "deep.json"],
         "nested too deeply",
         {"deep.json": "[" * 100_000},
-    ),  # fmt: skip
+    ),
     Case("out-empty", ["simulate", "s.toml", "--out", ""], "--out", {"s.toml": mutated()}),
     Case(
         "out-earlier-run",
         ["simulate", "s.toml", "--out", RUN],
         "--overwrite",
         {"s.toml": mutated()},
-    ),  # fmt: skip
+    ),
     Case(
         "out-not-a-run",
         ["simulate", "s.toml", "--out", "."],
         "not a rancf run folder",
         {"s.toml": mutated()},
-    ),  # fmt: skip
+    ),
     Case(
         "static-out-earlier-run",
         ["static", "s.toml", "--out", RUN],
         "--overwrite",
         {"s.toml": mutated(**CLAMPED)},
-    ),  # fmt: skip
+    ),
     Case("export-vtk-empty", ["export", RUN, "--vtk", ""], "--vtk"),
     Case("plot-out-empty", ["plot", RUN, "--out", ""], "--out"),
     Case(
         "export-samples-5000000", ["export", RUN, "--vtk", "v", "--samples", "5000000"], "--samples"
-    ),  # fmt: skip
+    ),
     Case("export-truncated-npz", ["export", RUN, "--vtk", "v"], "results.npz", damage="half"),
     Case("plot-empty-npz", ["plot", RUN], "results.npz", damage="empty"),
     Case(
         "export-garbage-npz", ["export", RUN, "--nurbs", "c.json"], "results.npz", damage="garbage"
-    ),  # fmt: skip
+    ),
     Case(
         "animate-npz-of-another-run",
         ["animate", RUN, "--out", "a.gif"],
         "scenario.toml",
         damage="foreign",
-    ),  # fmt: skip
+    ),
     Case("export-npz-without-q", ["export", RUN, "--vtk", "v"], "results.npz", damage="no-q"),
 ]
 
