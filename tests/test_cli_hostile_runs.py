@@ -309,3 +309,20 @@ def test_a_sweep_stopped_by_sigterm_is_quiet_and_truthful(tmp_path):
     finished = {r.split(",")[0] for r in rows if ",pending," not in r}
     assert finished == {f.parent.name for f in tmp_path.glob("sw/runs/*/row.json")}
     assert finished and len(finished) < 12
+
+
+def test_a_refused_process_never_removes_what_another_wrote(tmp_path):
+    """A process that made the folder but lost the lock to another (a race of two starts)
+    leaves the folder and the other's files alone."""
+    from rancf.cli_io import OutputDir
+    from rancf.errors import InputError
+
+    with OutputDir(tmp_path / "new", kind="run") as first:
+        (first.path / "summary.json").write_text("{}")
+        second = OutputDir(tmp_path / "new", kind="run")
+        second.created = tmp_path / "new"  # as if the second had made it a moment earlier
+        with pytest.raises(InputError, match="no other rancf process"):
+            second.__enter__()
+        assert (tmp_path / "new/summary.json").is_file()
+        first.keep()
+    assert sorted(p.name for p in (tmp_path / "new").iterdir()) == ["summary.json"]

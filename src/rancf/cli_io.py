@@ -222,12 +222,29 @@ class OutputDir:
         self._mkdir()
         try:
             self._acquire()
+            if any(p.name != LOCK_NAME for p in self.path.iterdir()):
+                self.created = None  # another process wrote here first: not ours to remove
             self._apply_policy()
         except BaseException:
             self._release()
-            self._undo()
+            self._remove_empty()
             raise
         return self
+
+    def _remove_empty(self) -> None:
+        """Remove the folders this process created, as far as they are empty (a refused
+        command leaves a folder another process has meanwhile written into alone)."""
+        if self.created is None:
+            return
+        p = self.path.absolute()
+        while True:
+            try:
+                p.rmdir()
+            except OSError:
+                return
+            if p == self.created or p == p.parent:
+                return
+            p = p.parent
 
     def keep(self) -> None:
         """The command's results are in: keep the directory whatever happens next."""
