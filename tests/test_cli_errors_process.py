@@ -235,7 +235,10 @@ def _run(case: Case, root: Path) -> tuple[int, str, dict, dict]:
         kw = {"stdout": None, "preexec_fn": lambda: os.close(1)}
     elif case.stdout == "full":
         kw = {"stdout": open("/dev/full", "wb")}  # noqa: SIM115 - closed with the process
-    p = subprocess.run([*RANCF, *case.argv], cwd=root, stderr=subprocess.PIPE, timeout=120, **kw)
+    try:
+        p = subprocess.run([*RANCF, *case.argv], cwd=root, stderr=subprocess.PIPE, timeout=60, **kw)
+    except subprocess.TimeoutExpired:  # refused too late, or not at all
+        return -1, "timed out after 60 s", before, _tree(root)
     return p.returncode, p.stderr.decode(errors="replace"), before, _tree(root)
 
 
