@@ -12,7 +12,8 @@ __all__ = ["add_parsers"]
 
 def _cmd_sweep(args: argparse.Namespace) -> int:
     from rancf.cli_io import OutputDir
-    from rancf.sweep.engine import check_scheduler, run_sweep
+    from rancf.sweep.cluster import check_scheduler
+    from rancf.sweep.engine import run_sweep
     from rancf.sweep.spec import load_sweep
 
     if args.scheduler is not None:
