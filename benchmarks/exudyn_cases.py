@@ -8,8 +8,10 @@ about 20 % strain, where they are different materials, so converged tip position
 
 from __future__ import annotations
 
+import math
 import time
 from collections.abc import Sequence
+from typing import Any
 
 import numpy as np
 
@@ -33,6 +35,73 @@ try:
 except ImportError:  # pragma: no cover - optional
     AVAILABLE = False
     VERSION = None
+
+
+def _spin_up(t: Any, omega_s: float, t_s: float, m: Any) -> tuple[Any, Any]:
+    """The spin-up law on numbers (``m = math``) or on Exudyn's symbolic reals (``exu.symbolic``).
+
+    theta = (Os/Ts) [t^2/2 + (Ts/2pi)^2 (cos(2pi t/Ts) - 1)] for t <= Ts, Os (t - Ts/2) after;
+    the rate rises smoothly from 0 to Os (zero acceleration at 0 and Ts).
+    """
+    c = t_s / (2.0 * math.pi)
+    select = getattr(m, "IfThenElse", lambda cond, a, b: a if cond else b)
+    angle = select(
+        t <= t_s,
+        omega_s / t_s * (0.5 * t * t + c * c * (m.cos(t / c) - 1.0)),
+        omega_s * (t - 0.5 * t_s),
+    )
+    rate = select(t <= t_s, omega_s / t_s * (t - c * m.sin(t / c)), omega_s + 0.0 * t)
+    return angle, rate
+
+
+def spin_up(t: float, omega_s: float, t_s: float) -> tuple[float, float]:
+    """Angle [rad] and angular velocity [rad/s] of the spin-up (Kane, Ryan & Banerjee 1987)."""
+    return _spin_up(t, omega_s, t_s, math)
+
+
+def spin_up_drive(mbs: Any, omega_s: float, t_s: float, symbolic: bool) -> tuple[Any, Any]:
+    """``offsetUserFunction`` and ``offsetUserFunction_t`` of a ``CoordinateConstraint`` that
+    drives a coordinate by the spin-up angle: Python functions, or (``symbolic``) Exudyn's
+    symbolic user functions, evaluated in C++ without calling Python (``exudyn.advancedUtilities
+    .CreateSymbolicUserFunction``; keep them alive as long as ``mbs``)."""
+    if not symbolic:
+        return (
+            lambda mbs, t, item, offset: spin_up(t, omega_s, t_s)[0],
+            lambda mbs, t, item, offset: spin_up(t, omega_s, t_s)[1],
+        )
+    from exudyn.advancedUtilities import CreateSymbolicUserFunction
+
+    def component(k: int) -> Any:  # Exudyn checks the user function's exact arguments
+        return lambda mbs, t, itemNumber, lOffset: _spin_up(t, omega_s, t_s, exu.symbolic)[k]
+
+    return tuple(
+        CreateSymbolicUserFunction(
+            mbs, component(k), name, itemTypeName="ObjectConnectorCoordinate"
+        )
+        for k, name in enumerate(("offsetUserFunction", "offsetUserFunction_t"))
+    )
+
+
+def hold(mbs: Any, node: int, coordinate: int, drive: tuple[Any, Any] | None = None) -> None:
+    """Hold ``coordinate`` of ``node`` at its reference value, or move it by ``drive``.
+
+    ``drive``: the offset user function and its time derivative (:func:`spin_up_drive`) of a
+    ``CoordinateConstraint`` to the ground (Exudyn's coordinate constraints act on the
+    displacement from the reference value, not on the value).
+    """
+    ground = mbs.AddNode(NodePointGround(referenceCoordinates=[0, 0, 0]))
+    markers = [
+        mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=ground, coordinate=0)),
+        mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=node, coordinate=coordinate)),
+    ]
+    if drive is None:
+        mbs.AddObject(CoordinateConstraint(markerNumbers=markers))
+        return
+    mbs.AddObject(
+        CoordinateConstraint(
+            markerNumbers=markers, offsetUserFunction=drive[0], offsetUserFunction_t=drive[1]
+        )
+    )
 
 
 def straight_cable(

@@ -12,6 +12,8 @@ below 1 means rancf is faster.
   report, set-up time (process start to the first step), whole-process wall time.
 * ``static cantilever`` and ``time to 1e-3 m``: the Python API (``solve_static``/``integrate``)
   in this process against Exudyn's ``SolveStatic``/``SolveDynamic``.
+* ``static ... catenary``: issue 16's catenaries through ``rancf static --json`` as whole
+  processes (``catenary_cases.py``): solve time, Newton iterations, process wall time.
 * ``--install``: the wall time of ``pip wheel`` of this checkout (the C++ core's build).
 """
 
@@ -32,6 +34,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
+import catenary_cases  # noqa: E402
 import cli_cases  # noqa: E402
 import exudyn_cases as ex  # noqa: E402
 import rod_cost  # noqa: E402
@@ -225,6 +228,7 @@ def main(argv: list[str] | None = None) -> int:
     if not quick:  # linear in n: full Newton up to 4096 elements, rancf alone, 0.1 s
         rows += cli_cases.simulate_cases([1024, 2048, 4096], ["full"], 1, 0.1, False)
     rows.append(static_case(args.repeats))
+    rows += catenary_cases.measure(1 if quick else args.repeats)
     rows += rod_cost.measure(8, 5, 5) if quick else rod_cost.measure(64, 300, 500)
     if not quick:
         rows += time_to_accuracy(args.repeats)
@@ -257,6 +261,8 @@ def main(argv: list[str] | None = None) -> int:
         diff = f"{r['process_ratio']:8.3f}" if "process_ratio" in r else ""
         if "elements" in r and r["case"].startswith("time to"):
             sb = f"{r['elements']} el"
+        if "newton_iterations" in r:
+            sb = f"{r['newton_iterations']} Newton"
         print(f"{r['case']:50s} {sa:>12s} {sb:>12s} {ratio:>7s} {diff}")
     return 0
 

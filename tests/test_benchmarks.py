@@ -35,3 +35,16 @@ def test_benchmark_runner_quick(tmp_path):
     full = full_row["rancf_tip"]
     mod = rows["simulate pendulum 8 el (modified Newton)"]["rancf_tip"]
     assert abs(full[0] - mod[0]) < 1e-8 and abs(full[1] - mod[1]) < 1e-8
+
+
+def test_rod_dynamics_benchmark_quick(tmp_path):
+    """benchmarks/rod_dynamics.py runs (quick, without Exudyn; its energy case): a rigid
+    rotation's energy is exact for every mesh."""
+    subprocess.run(
+        [sys.executable, str(ROOT / "benchmarks" / "rod_dynamics.py"), "--quick", "--no-exudyn",
+         "--cases", "energy", "--out", str(tmp_path)],
+        capture_output=True, text=True, check=True, timeout=600,
+    )  # fmt: skip
+    data = json.loads((tmp_path / "rod_dynamics_energy.json").read_text())
+    assert set(data["energy"]) == {"rancf", "rod torsion", "rod full"}
+    assert max(max(v) for v in data["energy"].values()) < 1e-10

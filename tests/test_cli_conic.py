@@ -133,3 +133,45 @@ def test_bad_chord_through_a_real_process():
     assert p.stdout == ""
     assert p.stderr.strip().count("\n") == 0
     assert "chord = -0.5 is not allowed" in p.stderr and "Traceback" not in p.stderr
+
+
+EX1 = ("conic", "--chord", "0.5", "--angles", "30", "40", "--point", "0.315", "0.077")
+
+
+def test_json_takes_more_elements_than_the_table(capsys):
+    # the table stops at 1000 rows; --json takes the scenario limit (issue 15, item 5)
+    from rancf.elements.mapping import gradient_ratio
+    from rancf.geometry.conic import conic_arc
+    from rancf.model.mesh import mesh_conic
+
+    code, out, _ = run(capsys, *EX1, "--elements", "1500", "--json")
+    assert code == 0
+    d = json.loads(out)
+    assert len(d["elements"]) == 1500 and d["type"] == "ellipse"
+    e = np.array([x["nodal_coordinates"] for x in d["elements"]])
+    assert np.array_equal(e[:-1, 4:], e[1:, :4])  # shared nodes
+    assert e[-1, 4:6].tolist() == [0.5, 0.0]
+    # beyond the table the ratios are sampled (33 points, parabolas): checked against the exact
+    ratios = np.array([x["gradient_ratio"] for x in d["elements"]])
+    mesh = mesh_conic(conic_arc(0.5, (30.0, 40.0), (0.315, 0.077)), 1500)
+    some = np.linspace(0, 1499, 12).astype(int)
+    curves = mesh.element_curves()
+    exact = np.array([gradient_ratio(curves[j]) for j in some])
+    assert np.abs(ratios[some] / exact - 1.0).max() < 1e-9
+
+
+def test_table_stops_at_1000_elements_and_says_json_goes_further(capsys):
+    code, out, err = run(capsys, *EX1, "--elements", "1001")
+    assert code == 2 and out == ""
+    assert err.count("\n") == 1 and "at most 1000 for the table" in err and "--json" in err
+    code, out, err = run(capsys, *EX1, "--elements", "1000001", "--json")
+    assert code == 2 and out == "" and "at most 1000000" in err
+
+
+def test_json_text_is_the_json_of_the_whole_object():
+    from rancf.cli_conic import json_text
+
+    head = {"a": 1, "b": [1.5, 2.0], "c": {"d": "e"}}
+    for items in ([], [{"x": 0.1, "y": [1, 2]}], [{"x": i / 7} for i in range(5)]):
+        text = "".join(json_text(head, "items", iter(items)))
+        assert json.loads(text) == {**head, "items": items} and text.endswith("}\n")

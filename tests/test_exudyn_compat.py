@@ -150,3 +150,25 @@ def test_names_follow_the_installed_exudyn(monkeypatch, old):
 def test_a_setting_missing_under_both_names_is_an_error():
     with pytest.raises(AttributeError, match="neither show.statistics nor displayStatistics"):
         exudyn_compat._assign(_ns(), "show.statistics", "displayStatistics", False)
+
+
+class OldMassPoint2D:
+    def __init__(self, nodeNumber=None, physicsMass=0.0):
+        self.kw = dict(nodeNumber=nodeNumber, physicsMass=physicsMass)
+
+
+class NewMassPoint2D:
+    def __init__(self, nodeNumber=None, mass=0.0, physicsMass=None):
+        self.kw = dict(nodeNumber=nodeNumber, mass=mass, physicsMass=physicsMass)
+
+
+@pytest.mark.parametrize("old", [True, False])
+def test_any_item_under_its_current_names(monkeypatch, old):
+    """``item`` passes ``mass`` as ``physicsMass`` only where the item has no ``mass``."""
+    items = _module("exudyn.itemInterface", MassPoint2D=OldMassPoint2D if old else NewMassPoint2D)
+    _fake_exudyn(monkeypatch, items, _module("exudyn.beams"), new_settings)
+    point = exudyn_compat.item("MassPoint2D", nodeNumber=3, mass=0.5)
+    if old:
+        assert point.kw == {"nodeNumber": 3, "physicsMass": 0.5}
+    else:
+        assert point.kw == {"nodeNumber": 3, "mass": 0.5, "physicsMass": None}

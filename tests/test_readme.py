@@ -1,4 +1,5 @@
-"""The README tells the truth: its console transcripts and Python examples are run and compared."""
+"""The README tells the truth: its console transcripts and Python examples are run and compared
+(text exactly, numbers within :data:`tests.numbers.RTOL`: round-off differs between machines)."""
 
 from __future__ import annotations
 
@@ -13,6 +14,7 @@ from pathlib import Path
 import pytest
 
 from rancf.model.scenario import parse_scenario
+from tests.numbers import assert_lines_match
 
 README = Path(__file__).resolve().parents[1] / "README.md"
 TEXT = README.read_text(encoding="utf-8")
@@ -73,7 +75,7 @@ def test_console_block(block, shell_env, tmp_path):
         )
         assert p.returncode == 0, (command, p.stderr)
         got = [_normalize(x) for x in p.stdout.splitlines()]
-        assert got == [_normalize(x) for x in expected], command
+        assert_lines_match(got, [_normalize(x) for x in expected], what=command)
 
 
 def test_python_examples(tmp_path, monkeypatch, capsys):
@@ -88,7 +90,7 @@ def test_python_examples(tmp_path, monkeypatch, capsys):
             for ln in code.splitlines()
             if ln.startswith("print(") and "  # " in ln
         ]
-        assert out == expected
+        assert_lines_match(out, expected, what="python example")
 
 
 def test_scenario_example_is_valid():

@@ -1,15 +1,18 @@
 """Runs the console examples of the README sections on export, CAD, sweeps and the fourth study,
-and compares their output with the README's."""
+and compares their output with the README's (text exactly, numbers within
+:data:`tests.numbers.RTOL`)."""
 
 import os
 import re
 import shlex
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from rancf.cli import main
 from tests.model.test_scenario import BASE
+from tests.numbers import assert_lines_match
 
 README = Path(__file__).resolve().parents[1] / "README.md"
 SECTIONS = (
@@ -17,6 +20,7 @@ SECTIONS = (
     "### CAD in and out",
     "### Parameter sweeps on Dask",
     "### Rods with torsion",
+    "### Rod dynamics",
     "### Where exact geometry pays",
 )
 
@@ -48,6 +52,8 @@ def test_readme_console_examples(tmp_path, capsys, monkeypatch):
     sweep = _section(SECTIONS[2])
     (tmp_path / "sweep.toml").write_text(_blocks(sweep, "toml")[0])
     (tmp_path / "rod.toml").write_text(_blocks(_section(SECTIONS[3]), "toml")[0])
+    dynamics = _section("### Rod dynamics")
+    (tmp_path / "top.toml").write_text(_blocks(dynamics, "toml")[0])
     n = 0
     for title in SECTIONS:
         for block in _blocks(_section(title), "console"):
@@ -57,11 +63,17 @@ def test_readme_console_examples(tmp_path, capsys, monkeypatch):
                 capsys.readouterr()
                 assert main(argv[1:]) == 0, cmd
                 got = capsys.readouterr().out.rstrip("\n").splitlines()
-                assert got == expected, cmd
+                assert_lines_match(got, expected, what=cmd)
                 n += 1
     assert n >= 8
     assert len(list((tmp_path / "run" / "vtk").glob("*.vtu"))) == 5
     assert os.path.getsize(tmp_path / "run.gif") > 0
+    # the heavy top's sensors as the README shows them (numbers across machines: 1e-6)
+    shown = _blocks(dynamics, "text")[0].splitlines()
+    run = (tmp_path / "top" / "sensors.csv").read_text().splitlines()
+    assert run[0] == shown[0] and len(run) == len(shown)
+    got, want = (np.array([r.split(",") for r in rows[1:]], dtype=float) for rows in (run, shown))
+    assert np.allclose(got, want, rtol=1e-6, atol=1e-6)
 
 
 @pytest.mark.parametrize("title", SECTIONS)

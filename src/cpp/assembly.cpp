@@ -8,57 +8,64 @@
 #include "rod.hpp"
 
 namespace rancf {
-namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
-// Gradient blocks of clamped nodes: e <- T e (to q) for the element's two nodes.
+// Rotated blocks of supported nodes (a roller's position, a clamp's gradient): e <- T e (to q)
+// for the element's two nodes.  Block b of node a starts at a dpn + b dim.
 void rotate_to_q(const Model& m, int el, double* e) {
   const int d = m.dim;
   for (int a = 0; a < 2; ++a) {
-    const std::int64_t r = m.supports.rot_of_node[el + a];
-    if (r < 0) continue;
-    const double* bas = m.supports.rot + r * d * d;
-    double* g = e + a * m.dpn + d;
-    double tmp[3] = {0.0, 0.0, 0.0};
-    for (int i = 0; i < d; ++i)
-      for (int j = 0; j < d; ++j) tmp[i] += bas[i * d + j] * g[j];
-    for (int i = 0; i < d; ++i) g[i] = tmp[i];
+    for (int blk = 0; blk < 2; ++blk) {
+      const std::int64_t r = m.supports.rot_of_node[2 * (el + a) + blk];
+      if (r < 0) continue;
+      const double* bas = m.supports.rot + r * d * d;
+      double* g = e + a * m.dpn + blk * d;
+      double tmp[3] = {0.0, 0.0, 0.0};
+      for (int i = 0; i < d; ++i)
+        for (int j = 0; j < d; ++j) tmp[i] += bas[i * d + j] * g[j];
+      for (int i = 0; i < d; ++i) g[i] = tmp[i];
+    }
   }
 }
 
-// f <- T^T f and K <- T^T K T for the element's clamped nodes.
-void rotate_back(const Model& m, int el, double* fe, double* ke) {
+// f <- T^T f and K <- T^T K T for the element's rotated blocks.
+void rotate_block_back(const Model& m, const double* bas, int o, double* fe, double* ke) {
   const int d = m.dim, nde = m.nde();
-  for (int a = 0; a < 2; ++a) {
-    const std::int64_t r = m.supports.rot_of_node[el + a];
-    if (r < 0) continue;
-    const double* bas = m.supports.rot + r * d * d;
-    const int o = a * m.dpn + d;
-    double tmp[3] = {0.0, 0.0, 0.0};
+  double tmp[3] = {0.0, 0.0, 0.0};
+  for (int i = 0; i < d; ++i)
+    for (int j = 0; j < d; ++j) tmp[i] += bas[j * d + i] * fe[o + j];
+  for (int i = 0; i < d; ++i) fe[o + i] = tmp[i];
+  if (ke == nullptr) return;
+  for (int c = 0; c < nde; ++c) {  // rows
+    double t[3] = {0.0, 0.0, 0.0};
     for (int i = 0; i < d; ++i)
-      for (int j = 0; j < d; ++j) tmp[i] += bas[j * d + i] * fe[o + j];
-    for (int i = 0; i < d; ++i) fe[o + i] = tmp[i];
-    if (ke == nullptr) continue;
-    for (int c = 0; c < nde; ++c) {  // rows
-      double t[3] = {0.0, 0.0, 0.0};
-      for (int i = 0; i < d; ++i)
-        for (int j = 0; j < d; ++j) t[i] += bas[j * d + i] * ke[(o + j) * nde + c];
-      for (int i = 0; i < d; ++i) ke[(o + i) * nde + c] = t[i];
-    }
-    for (int c = 0; c < nde; ++c) {  // columns
-      double t[3] = {0.0, 0.0, 0.0};
-      for (int i = 0; i < d; ++i)
-        for (int j = 0; j < d; ++j) t[i] += ke[c * nde + o + j] * bas[j * d + i];
-      for (int i = 0; i < d; ++i) ke[c * nde + o + i] = t[i];
-    }
+      for (int j = 0; j < d; ++j) t[i] += bas[j * d + i] * ke[(o + j) * nde + c];
+    for (int i = 0; i < d; ++i) ke[(o + i) * nde + c] = t[i];
   }
+  for (int c = 0; c < nde; ++c) {  // columns
+    double t[3] = {0.0, 0.0, 0.0};
+    for (int i = 0; i < d; ++i)
+      for (int j = 0; j < d; ++j) t[i] += ke[c * nde + o + j] * bas[j * d + i];
+    for (int i = 0; i < d; ++i) ke[c * nde + o + i] = t[i];
+  }
+}
+
+void rotate_back(const Model& m, int el, double* fe, double* ke) {
+  for (int a = 0; a < 2; ++a)
+    for (int blk = 0; blk < 2; ++blk) {
+      const std::int64_t r = m.supports.rot_of_node[2 * (el + a) + blk];
+      if (r >= 0)
+        rotate_block_back(m, m.supports.rot + r * m.dim * m.dim, a * m.dpn + blk * m.dim, fe, ke);
+    }
 }
 
 bool has_rotation(const Model& m, int el) {
-  return m.supports.rot_of_node[el] >= 0 || m.supports.rot_of_node[el + 1] >= 0;
+  for (int i = 0; i < 4; ++i)
+    if (m.supports.rot_of_node[2 * el + i] >= 0) return true;
+  return false;
 }
 
+namespace {
+constexpr double kPi = 3.14159265358979323846;
 }  // namespace
 
 void assemble(const Model& m, const double* y, double* f, const BandView* k, double k_scale) {
@@ -98,10 +105,16 @@ double strain_energy(const Model& m, const double* y) {
   return total;
 }
 
+void element_coordinates(const Model& m, const double* y, int el, double* e) {
+  const int base = el * m.dpn;
+  std::copy(y + base, y + base + m.nde(), e);
+  if (has_rotation(m, el)) rotate_to_q(m, el, e);
+}
+
 void nodal_gradient(const Model& m, const double* y, int node, double* rx) {
   const int d = m.dim;
   const double* g = y + node * m.dpn + d;
-  const std::int64_t r = m.supports.rot_of_node[node];
+  const std::int64_t r = m.supports.rot_of_node[2 * node + 1];
   for (int i = 0; i < d; ++i) rx[i] = g[i];
   if (r < 0) return;
   const double* bas = m.supports.rot + r * d * d;
@@ -127,7 +140,7 @@ void moment_terms(const Model& m, int p, double t, const double* y, bool amplitu
   for (int i = 0; i < 3; ++i) mom[i] = fac * m.loads.moment[3 * p + i];
   nodal_gradient(m, y, node, rx);
   rod_moment_load(m, node, mom, rx, g, kl);
-  const std::int64_t r = m.supports.rot_of_node[node];
+  const std::int64_t r = m.supports.rot_of_node[2 * node + 1];
   if (r < 0) return;
   const double* bas = m.supports.rot + r * 9;  // q = T y on the r_x block: map g and kl back
   double tmp[3] = {0.0, 0.0, 0.0};

@@ -11,6 +11,17 @@
 
 namespace rancf {
 
+/// Element coordinates e (model coordinates y) to full nodal coordinates q: the gradient blocks
+/// of clamped nodes rotated (e <- T e); only needed where has_rotation(m, el).
+void rotate_to_q(const Model& m, int el, double* e);
+
+/// Element force and matrix back to model coordinates: fe <- T^T fe, ke <- T^T ke T (ke may be
+/// null).
+void rotate_back(const Model& m, int el, double* fe, double* ke);
+
+/// True if one of the element's nodes has a clamp rotation.
+bool has_rotation(const Model& m, int el);
+
 /// Internal force f (n) and, if k is not null, the tangent added into *k (scaled by k_scale).
 void assemble(const Model& m, const double* y, double* f, const BandView* k, double k_scale);
 
@@ -28,6 +39,10 @@ void subtract_load_stiffness(const Model& m, double t, const double* y, const Ba
 /// The full nodal gradient r_x (dim values) of `node` from model coordinates y (undoes a clamp
 /// rotation).
 void nodal_gradient(const Model& m, const double* y, int node, double* rx);
+
+/// Element coordinates e (2 dpn values, full nodal coordinates q) of element el from model
+/// coordinates y (clamp rotations undone).
+void element_coordinates(const Model& m, const double* y, int el, double* e);
 
 /// Re-reference the rod's nodal triads at configuration y (no-op for other elements).
 void rereference(const Model& m, const double* y);

@@ -11,6 +11,7 @@
 #include <cmath>
 
 #include "registry.hpp"
+#include "sections.hpp"
 
 namespace rancf {
 namespace {
@@ -74,5 +75,14 @@ double beam_energy(const Model& m, int el, const double* e) {
 }  // namespace
 
 const ElementKernel beam_kernel = {beam_forces, beam_energy};
+
+void beam_section(const Model& m, int el, const double* e, const double* xi, int n, double* out) {
+  const BeamLocal b = beam_local(m, el, e);
+  const double l0 = m.beam.l0[el];
+  for (int q = 0; q < n; ++q) {
+    out[2 * q] = b.eps;
+    out[2 * q + 1] = ((6.0 * xi[q] - 4.0) * b.t1 + (6.0 * xi[q] - 2.0) * b.t2) / l0;
+  }
+}
 
 }  // namespace rancf

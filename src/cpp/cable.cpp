@@ -28,7 +28,7 @@ inline void density_2d(const double* a, const double* b, double s0, double k0, d
   const double inv = 1.0 / aa;
   const double p = inv / std::sqrt(aa);  // |a|^-3
   const double q25 = -3.0 * p * inv;     // dp/da_i = q25 a_i
-  const double eps = (aa - s0) / (2.0 * s0);
+  const double eps = green_lagrange(aa, s0);
   const double fe = st.ea * j0 * eps / s0;
   const double c = a0 * b1 - a1 * b0;
   const double delta = c * p - k0;
@@ -72,7 +72,7 @@ inline void density_3d(const double* a, const double* b, double s0, double k0, d
   const double aa = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
   const double bb = b[0] * b[0] + b[1] * b[1] + b[2] * b[2];
   const double ab = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-  const double eps = (aa - s0) / (2.0 * s0);
+  const double eps = green_lagrange(aa, s0);
   const double fe = st.ea * j0 * eps / s0;
   const double c0 = a[1] * b[2] - a[2] * b[1];
   const double c1 = a[2] * b[0] - a[0] * b[2];
@@ -185,7 +185,7 @@ double cable_energy(const Model& m, int el, const double* e) {
     const double* r = c.n2 + 4 * k;
     gather_ab<D>(p, r, e, a, b);
     const QpGeometry geo = cable_qp_geometry(a, b, D);
-    const double eps = (geo.aa - c.s0[k]) / (2.0 * c.s0[k]);
+    const double eps = green_lagrange(geo.aa, c.s0[k]);
     double bend;
     if constexpr (D == 2) {
       bend = (geo.kappa - c.k0[k]) * (geo.kappa - c.k0[k]);

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "assembly.hpp"
+#include "inertia.hpp"
 
 namespace rancf {
 
@@ -22,7 +23,9 @@ Integrator::Integrator(const Model& m, const Scheme& s)
       yf_(sz(m.n())),
       fi_(sz(m.n())),
       tmp_(sz(m.n())),
-      mv_(sz(m.n())) {}
+      mv_(sz(m.n())),
+      vf_(has_rotary_inertia(m) ? sz(m.n()) : 0),
+      aam_(has_rotary_inertia(m) ? sz(m.n()) : 0) {}
 
 StepOutcome Integrator::step(const double* y0, const double* v0, const double* a0, double t,
                              double h, double* y1, double* v1, double* a1) {
@@ -42,6 +45,10 @@ StepOutcome Integrator::step(const double* y0, const double* v0, const double* a
   const bool moments = m_.loads.n_moment > 0;  // configuration-dependent loads
   if (!moments) external_force(m_, tf, y0, fext_.data());
   const double cm = (1.0 - am) / bh2 + c * (1.0 - af) * gamma / (beta * h);
+  // rods' rotary inertia (inertia.hpp): M_r(y_{1-af}) a_{1-am} + g(y_{1-af}, v_{1-af}) + c M_r v,
+  // with the derivatives of the alpha points with respect to y1 as Jacobian coefficients
+  const bool rotary = has_rotary_inertia(m_);
+  const InertiaTerms in_terms{c, 1.0 - af, (1.0 - af) * gamma / (beta * h), (1.0 - am) / bh2};
   double prev = std::numeric_limits<double>::infinity();
   for (int it = 1; it <= max_iter; ++it) {
     for (int i = 0; i < n; ++i) {
@@ -50,6 +57,11 @@ StepOutcome Integrator::step(const double* y0, const double* v0, const double* a
       yf_[sz(i)] = (1.0 - af) * y1[i] + af * y0[i];
       tmp_[sz(i)] = (1.0 - am) * a1[i] + am * a0[i] + c * ((1.0 - af) * v1[i] + af * v0[i]);
     }
+    if (rotary)
+      for (int i = 0; i < n; ++i) {
+        vf_[sz(i)] = (1.0 - af) * v1[i] + af * v0[i];
+        aam_[sz(i)] = (1.0 - am) * a1[i] + am * a0[i];
+      }
     if (moments) external_force(m_, tf, yf_.data(), fext_.data());
     const bool fresh = !s_.modified || !lu_valid_;
     if (fresh) {
@@ -61,11 +73,15 @@ StepOutcome Integrator::step(const double* y0, const double* v0, const double* a
         for (int i = i0; i < i1; ++i)
           jac.at(i, j) += cm * m_.mass_band[static_cast<std::ptrdiff_t>(ku + i - j) * n + j];
       }
+      if (rotary)  // ---- inertia hook 1: the rotary inertial force and its Jacobian
+        assemble_inertia(m_, yf_.data(), vf_.data(), aam_.data(), in_terms, fi_.data(), &jac);
       ++factorizations_;
       lu_valid_ = lu_.factor(m_.supports.fixed);
       if (!lu_valid_) return {false, it};
     } else {
       assemble(m_, yf_.data(), fi_.data(), nullptr, 0.0);
+      if (rotary)  // ---- inertia hook 1 (reused factors): the force only
+        assemble_inertia(m_, yf_.data(), vf_.data(), aam_.data(), in_terms, fi_.data(), nullptr);
     }
     band_matvec(m_.mass_band, tmp_.data(), n, ku, mv_.data());
     for (int i = 0; i < n; ++i) tmp_[sz(i)] = mv_[sz(i)] + fi_[sz(i)] - fext_[sz(i)];
@@ -118,13 +134,14 @@ RunOutcome Integrator::run(double* y, double* v, double* a, double t0, double h,
     std::copy(y1.begin(), y1.end(), y);
     std::copy(v1.begin(), v1.end(), v);
     std::copy(a1.begin(), a1.end(), a);
+    rereference_rates(m_, y, v, a);  // rods: the twist rates keep the spin (inertia.hpp)
     rereference(m_, y);
     out.steps = s + 1;
     if ((done_before + s + 1) % out_every == 0) {
       const std::ptrdiff_t row = static_cast<std::ptrdiff_t>(out.stored) * n;
       std::copy(y, y + n, out_y + row);
       std::copy(v, v + n, out_v + row);
-      out_e[3 * out.stored] = kinetic_energy(m_, v);
+      out_e[3 * out.stored] = kinetic_energy(m_, y, v);
       out_e[3 * out.stored + 1] = strain_energy(m_, y);
       out_e[3 * out.stored + 2] = gravity_energy(m_, y);
       ++out.stored;
@@ -137,10 +154,6 @@ RunOutcome Integrator::run(double* y, double* v, double* a, double t0, double h,
 
 void Integrator::initial_acceleration(const double* y, const double* v, double t, double* a) {
   const int n = m_.n(), ku = m_.ku();
-  external_force(m_, t, y, a);
-  assemble(m_, y, fi_.data(), nullptr, 0.0);
-  band_matvec(m_.mass_band, v, n, ku, mv_.data());
-  for (int i = 0; i < n; ++i) a[i] -= fi_[sz(i)] + s_.damping * mv_[sz(i)];
   BandLU mass(n, ku);
   BandView mb = mass.matrix();
   for (int j = 0; j < n; ++j) {
@@ -148,6 +161,12 @@ void Integrator::initial_acceleration(const double* y, const double* v, double t
     for (int i = i0; i < i1; ++i)
       mb.at(i, j) = m_.mass_band[static_cast<std::ptrdiff_t>(ku + i - j) * n + j];
   }
+  external_force(m_, t, y, a);
+  assemble(m_, y, fi_.data(), nullptr, 0.0);
+  if (has_rotary_inertia(m_))  // ---- inertia hook 2: g(y, v) + c M_r v, and M_r(y) in the matrix
+    assemble_inertia(m_, y, v, nullptr, {s_.damping, 0.0, 0.0, 1.0}, fi_.data(), &mb);
+  band_matvec(m_.mass_band, v, n, ku, mv_.data());
+  for (int i = 0; i < n; ++i) a[i] -= fi_[sz(i)] + s_.damping * mv_[sz(i)];
   ++factorizations_;
   if (!mass.factor(m_.supports.fixed)) {
     std::fill(a, a + n, std::numeric_limits<double>::quiet_NaN());
@@ -156,32 +175,8 @@ void Integrator::initial_acceleration(const double* y, const double* v, double t
   mass.solve(a, m_.supports.fixed);
 }
 
-NewtonOutcome static_newton(const Model& m, double* y, double load_factor, double tol,
-                            int max_iter) {
-  const int n = m.n();
-  BandLU lu(n, m.ku());
-  std::vector<double> f(sz(n)), fext(sz(n));
-  double norm = std::numeric_limits<double>::infinity();
-  for (int it = 1; it <= max_iter; ++it) {
-    BandView k = lu.matrix();
-    assemble(m, y, f.data(), &k, 1.0);
-    external_force(m, 0.0, y, fext.data(), true);
-    subtract_load_stiffness(m, 0.0, y, k, load_factor, true);
-    for (int i = 0; i < n; ++i) f[sz(i)] -= load_factor * fext[sz(i)];
-    if (!lu.factor(m.supports.fixed)) return {false, it, norm};
-    lu.solve(f.data(), m.supports.fixed);
-    norm = 0.0;
-    for (int i = 0; i < n; ++i) {
-      y[i] -= f[sz(i)];
-      norm = std::max(norm, std::abs(f[sz(i)]));
-    }
-    if (!std::isfinite(norm)) return {false, it, norm};
-    if (norm <= tol) {
-      rereference(m, y);
-      return {true, it, norm};
-    }
-  }
-  return {false, max_iter, norm};
+double kinetic_energy(const Model& m, const double* y, const double* v) {
+  return kinetic_energy(m, v) + rotary_kinetic_energy(m, y, v);
 }
 
 double kinetic_energy(const Model& m, const double* v) {

@@ -1,8 +1,11 @@
-// Generalized-alpha time stepping (Chung & Hulbert 1993) and static Newton iterations.
+// Generalized-alpha time stepping (Chung & Hulbert 1993).
 //
 // For M a + c M v + f_int(y) = f_ext(t):
 //   y1 = y0 + h v0 + h^2 ((1/2 - beta) a0 + beta a1),  v1 = v0 + h ((1 - gamma) a0 + gamma a1)
 //   M a_{1-am} + c M v_{1-af} + f_int(y_{1-af}) = f_ext(t + (1 - af) h)
+// Rods add the configuration-dependent rotary inertia F_in (inertia.hpp) at the same points:
+//   F_in(y_{1-af}, v_{1-af}, a_{1-am}) = M_r(y_{1-af}) a_{1-am} + g(y_{1-af}, v_{1-af}) + c M_r v,
+// and after each step the twist rates are carried to the re-referenced triads (rereference_rates).
 // Newton on y1 with the Jacobian [(1 - am)/(beta h^2) + c (1 - af) gamma/(beta h)] M
 // + (1 - af) K_T(y_{1-af}); the band LU (partial pivoting) is refreshed at every iteration
 // (full Newton) or reused across iterations and steps until the contraction slows (modified).
@@ -63,21 +66,14 @@ class Integrator {
   double lu_h_ = -1.0;
   long factorizations_ = 0;
   std::vector<double> base_, fext_, yf_, fi_, tmp_, mv_;
+  std::vector<double> vf_, aam_;  // rods: v at 1 - alpha_f, a at 1 - alpha_m (rotary inertia)
 };
 
-struct NewtonOutcome {
-  bool converged;
-  int iterations;
-  double increment;  ///< max |increment| of the last iteration
-};
-
-/// Newton iterations for f_int(y) = load_factor f_ext(y) (statics: gravity, point forces and
-/// moments at their amplitudes), y updated in place; converged rod triads are re-referenced.
-NewtonOutcome static_newton(const Model& m, double* y, double load_factor, double tol,
-                            int max_iter);
-
-/// Kinetic energy 1/2 v^T M v.
+/// Kinetic energy of the constant mass, 1/2 v^T M_c v.
 double kinetic_energy(const Model& m, const double* v);
+
+/// Total kinetic energy at (y, v): 1/2 v^T M_c v plus the rods' rotary part (inertia.hpp).
+double kinetic_energy(const Model& m, const double* y, const double* v);
 
 /// Gravitational potential -Q_g^T (y - y_ref) (zero in the reference configuration).
 double gravity_energy(const Model& m, const double* y);

@@ -56,11 +56,18 @@ struct Stiffness {
   double ei3 = 0.0;  ///< bending stiffness about m2 (rod)
 };
 
-/// Supports: fixed model coordinates and the clamp rotations of gradient blocks (q = T y).
+/// Rotary inertia of rod sections per length (configuration dependent: inertia.hpp).
+struct SectionInertia {
+  double polar = 0.0;  ///< rho (I2 + I3): spin about the tangent
+  double bend = 0.0;   ///< rho I of both bending directions ("full"; 0 for "torsion")
+};
+
+/// Supports: fixed model coordinates and the rotated blocks of supported nodes (q = T y): a
+/// roller's position block into (axis, normals), a clamp's gradient block into (t0, normals).
 struct Supports {
   const std::uint8_t* fixed = nullptr;        ///< (n): 1 where the coordinate is held
-  const std::int64_t* rot_of_node = nullptr;  ///< (n_nodes): index into rot, or -1
-  const double* rot = nullptr;                ///< (n_rot, dim, dim): basis columns (t0, n0[, n1])
+  const std::int64_t* rot_of_node = nullptr;  ///< (n_nodes, 2): [position, gradient] -> rot, or -1
+  const double* rot = nullptr;                ///< (n_rot, dim, dim): basis columns
 };
 
 /// External loads: constant gravity forces and nodal point forces F0 [sin(2 pi f t)].
@@ -84,12 +91,14 @@ struct Model {
   int n_el = 0;
   int n_nodes = 0;
   Stiffness stiffness;
+  SectionInertia rotary;  ///< rods: rotary inertia (not in mass_band)
   CableData cable;
   BeamData beam;
   RodData rod;
   Supports supports;
   Loads loads;
-  const double* mass_band = nullptr;  ///< constant mass matrix, band storage (2 ku + 1, n)
+  const double* mass_band = nullptr;  ///< constant mass matrix, band storage (2 ku + 1, n); rods:
+                                      ///< translation only (the rotary part: inertia.hpp)
   const double* y_ref = nullptr;      ///< reference configuration, model coordinates (n)
 
   [[nodiscard]] int n() const { return n_nodes * dpn; }

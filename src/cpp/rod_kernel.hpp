@@ -40,6 +40,7 @@
 //   rod_density.hpp  curvatures and energy density at a quadrature point (sections 3, 4)
 //   rod_element.hpp  element force and tangent, chain rule (sections 0, 5)
 //   rod_moments.hpp  point moments with their load stiffness (section 6)
+// The rotary inertia (section 11) is in rod_inertia.hpp and rod_spin.hpp (included by rod.cpp).
 #ifndef RANCF_ROD_KERNEL_HPP
 #define RANCF_ROD_KERNEL_HPP
 

@@ -32,7 +32,7 @@ _API = {
     "CableMesh": "rancf.model.mesh",
     "mesh_conic": "rancf.model.mesh",
     "mesh_line": "rancf.model.mesh",
-    "mesh_nurbs": "rancf.model.mesh",
+    "mesh_nurbs": "rancf.model.nurbs_mesh",
     "to_ancf": "rancf.model.mesh",
     # models and scenarios
     "Model": "rancf.model.system",

@@ -40,6 +40,7 @@ __all__ = ["main", "COMMAND_MODULES"]
 COMMAND_MODULES: dict[str, tuple[str, ...]] = {
     "rancf.cli_conic": ("conic",),
     "rancf.cli_sim": ("simulate", "static", "modes"),
+    "rancf.cli_equilibrium": ("buckling",),
     "rancf.cli_files": ("example", "report", "schema"),
     "rancf.cli_post": ("export", "plot", "animate", "cad"),
     "rancf.cli_sweep": ("sweep",),

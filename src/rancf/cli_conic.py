@@ -3,15 +3,19 @@
 from __future__ import annotations
 
 import argparse
+import json
+import sys
+from collections.abc import Iterable, Iterator
 from typing import Any
 
 from rancf.cli_io import check_plot_path
 from rancf.errors import InputError
 
-__all__ = ["add_parsers", "MAX_ELEMENTS"]
+__all__ = ["add_parsers", "MAX_TABLE_ELEMENTS", "json_text"]
 
-#: Largest ``--elements`` (the command prints one table row per element).
-MAX_ELEMENTS = 1000
+#: Largest ``--elements`` of the table (one row per element); ``--json`` takes the scenario
+#: limit, :data:`rancf.model.scenario_tables.MAX_ELEMENTS`.
+MAX_TABLE_ELEMENTS = 1000
 
 
 #: Argument names of the geometry functions -> options of ``rancf conic``.
@@ -39,10 +43,18 @@ def _conic(args: argparse.Namespace) -> int:
     from rancf.elements.mapping import K_RANGE, conic_element, kopt
     from rancf.geometry.conic import conic_arc
     from rancf.model.mesh import check_element_count, mesh_conic
+    from rancf.model.scenario_tables import MAX_ELEMENTS
 
     n = check_element_count(args.elements, "--elements")
     if n > MAX_ELEMENTS:
-        raise InputError("--elements", n, f"at most {MAX_ELEMENTS} (one table row per element)")
+        raise InputError("--elements", n, f"at most {MAX_ELEMENTS} (the scenario limit)")
+    if n > MAX_TABLE_ELEMENTS and not args.json:
+        raise InputError(
+            "--elements",
+            n,
+            f"at most {MAX_TABLE_ELEMENTS} for the table (one row per element); "
+            f"up to {MAX_ELEMENTS} with --json",
+        )
     plot = check_plot_path(args.plot) if args.plot else None
     if args.k is not None and not K_RANGE[0] <= args.k <= K_RANGE[1]:  # NaN included
         lo, hi = K_RANGE
@@ -51,18 +63,19 @@ def _conic(args: argparse.Namespace) -> int:
     k_opt = kopt(conic)
     single = conic_element(conic, args.k)
     mesh = mesh_conic(conic, n, "opt" if args.k is None else args.k, args.spacing)
-    ratios = mesh.gradient_ratios()
-    elements = []
-    for j in range(n):
-        elements.append(
-            {
+    ratios = mesh.gradient_ratios(exact=n <= MAX_TABLE_ELEMENTS)  # else sampled, ~1e-10
+    nodal = mesh.element_nodal().reshape(n, -1)
+
+    def elements() -> Iterator[dict[str, Any]]:
+        for j in range(n):
+            yield {
                 "k": float(mesh.k[j]),
                 "weights": mesh.weights[j].tolist(),
                 "scale": float(mesh.scales[j]),
-                "nodal_coordinates": mesh.element_nodal()[j].ravel().tolist(),
+                "nodal_coordinates": nodal[j].tolist(),
                 "gradient_ratio": float(ratios[j]),
             }
-        )
+
     out = {
         "type": conic.kind,
         "circular": conic.is_circular(),
@@ -77,16 +90,14 @@ def _conic(args: argparse.Namespace) -> int:
         "gradient_ratio": single.gradient_ratio,
         "gradient_ratio_kopt": float(conic_element(conic, k_opt).gradient_ratio),
         "spacing": args.spacing,
-        "elements": elements,
     }
     if plot is not None:
         from rancf.post.conic_plots import plot_conic
 
         plot_conic(conic, k_opt, single.k, plot, n)
     if args.json:
-        from rancf.post.results import strict_json
-
-        print(strict_json(out).rstrip())
+        for chunk in json_text(out, "elements", elements()):
+            sys.stdout.write(chunk)
     else:
         circ = " (circular arc)" if out["circular"] else ""
         print(f"conic type      {conic.kind}{circ}")
@@ -97,12 +108,30 @@ def _conic(args: argparse.Namespace) -> int:
         print(f"weights         {np.array2string(single.weights, precision=6)}")
         print(f"{n} element(s), {args.spacing} spacing:")
         print("   #        K   gradient ratio    weights")
-        for j, e in enumerate(elements):
+        for j, e in enumerate(elements()):
             w = ", ".join(f"{x:.5f}" for x in e["weights"])
             print(f"  {j:2d}  {e['k']:.4f}   {e['gradient_ratio']:14.5f}    [{w}]")
-        if args.plot:
-            print(f"plot written to {args.plot}")
+    if plot is not None:  # with --json on standard error: stdout stays one JSON object
+        print(f"plot written to {plot}", file=sys.stderr if args.json else sys.stdout)
     return 0
+
+
+def json_text(head: dict[str, Any], key: str, items: Iterable[Any]) -> Iterator[str]:
+    """JSON of ``{**head, key: [items]}`` in pieces: ``head`` indented, then one compact item a
+    line, so a million elements are printed without holding their list or text in memory."""
+    from rancf.post.results import json_safe  # strict JSON: a non-finite number is null
+
+    text = json.dumps(json_safe({**head, key: []}), indent=2, allow_nan=False)
+    tail = "[]\n}"
+    if not text.endswith(tail):  # pragma: no cover - json.dumps puts the last key last
+        raise ValueError(f"{key!r} must be the last key")
+    yield text[: -len(tail)] + "["
+    first, sep = "\n    ", ",\n    "
+    lead = first
+    for item in items:
+        yield lead + json.dumps(json_safe(item), allow_nan=False)
+        lead = sep
+    yield "]\n}\n" if lead is first else "\n  ]\n}\n"
 
 
 def add_parsers(sub: Any) -> None:
@@ -132,7 +161,11 @@ def add_parsers(sub: Any) -> None:
     )
     c.add_argument("--k", type=float, default=None, help="mapping factor K in (0, 1); default Kopt")
     c.add_argument(
-        "--elements", type=int, default=1, help=f"number of elements, 1..{MAX_ELEMENTS} (default 1)"
+        "--elements",
+        type=int,
+        default=1,
+        help=f"number of elements (default 1): at most {MAX_TABLE_ELEMENTS} for the table, "
+        "the scenario limit (1 000 000) with --json",
     )
     c.add_argument(
         "--spacing",

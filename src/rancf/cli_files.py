@@ -1,7 +1,8 @@
 """Sub-commands around the shipped files: ``example``, ``report`` and ``schema``.
 
-``rancf example list | run NAME --out DIR | copy NAME DIR`` lists, runs (paper studies) or
-copies (any shipped scenario, to edit) the scenario files in ``rancf/examples``; ``rancf report``
+``rancf example list | run NAME --out DIR | copy NAME DIR`` lists, runs (a paper study, or
+another shipped scenario with the analyses it is meant for) or copies (to edit) the scenario
+files in ``rancf/examples``; ``rancf report``
 runs every study into one HTML report; ``rancf schema`` prints the scenario JSON Schema.
 """
 
@@ -44,8 +45,12 @@ def _scenario_name(name: str) -> str:
 
 
 def _cmd_list(args: argparse.Namespace) -> int:
+    from rancf.studies import SCENARIO_ANALYSES
+
     for name, what in shipped_scenarios().items():
-        print(f"{name:18s} {what}  ({name}.toml)")
+        runs = SCENARIO_ANALYSES.get(name)
+        how = f"; run: {', '.join(runs)}" if runs else ""
+        print(f"{name:18s} {what}  ({name}.toml{how})")
     return 0
 
 
@@ -65,18 +70,13 @@ def _cmd_copy(args: argparse.Namespace) -> int:
 
 
 def _cmd_run(args: argparse.Namespace) -> int:
-    from rancf.studies import EXAMPLES
+    from rancf.studies import EXAMPLES, SCENARIO_ANALYSES
 
-    if args.name not in EXAMPLES:
-        _scenario_name(args.name)
-        raise InputError(
-            "NAME",
-            args.name,
-            f"a paper study, one of {', '.join(EXAMPLES)} (run other scenarios with "
-            "`rancf simulate`)",
-        )
+    name = _scenario_name(args.name)
+    if name not in EXAMPLES and name not in SCENARIO_ANALYSES:  # pragma: no cover - tested
+        raise InputError("NAME", name, "a shipped scenario that `rancf example run` knows")
     out = check_out_dir(args.out)
-    return _run_studies([args.name], out, args.quick, args.workers, nested=False)
+    return _run_studies([name], out, args.quick, args.workers, nested=False)
 
 
 def _cmd_report(args: argparse.Namespace) -> int:
@@ -127,7 +127,8 @@ def _run_studies(
             done = []
             for name in (name for name in names if name in results):
                 res, folder = results[name], folders[name]
-                res.write_comparison_csv(folder)
+                if res.comparison:  # the paper studies; other scenarios have no paper to check
+                    res.write_comparison_csv(folder)
                 done.append((res, folder))
                 print(
                     f"  {name}: {len(res.figures)} figures, {res.wall_time_s:.1f} s",
@@ -138,7 +139,7 @@ def _run_studies(
             wall = time.perf_counter() - t0
             unfinished = [name for name in names if name not in results]
             if done or not unfinished:
-                path = write_report(out, done, quick, wall, unfinished)
+                path = write_report(out, done, quick, wall, unfinished, _heading(names))
             if unfinished and done:
                 print(
                     f"partial report ({len(done)} of {len(names)} studies; not finished: "
@@ -148,6 +149,19 @@ def _run_studies(
     print(f"report written to {path}")
     print(f"wall time {wall:.1f} s on {where}", file=sys.stderr)
     return 0
+
+
+def _heading(names: list[str]) -> tuple[str, str] | None:
+    """Title and introduction of the report of a shipped scenario that is not a paper study."""
+    from rancf.studies import EXAMPLES
+
+    if all(name in EXAMPLES for name in names):
+        return None  # the paper studies' own heading
+    return (
+        f"rancf: the shipped scenario {', '.join(names)}",
+        f"The shipped scenario run by <code>rancf example run {' '.join(names)}</code>; "
+        "every file its analyses wrote is in this folder.",
+    )
 
 
 def _cmd_schema(args: argparse.Namespace) -> int:
@@ -169,8 +183,10 @@ def add_parsers(sub: Any) -> None:
     actions = e.add_subparsers(dest="action", required=True)
     lst = actions.add_parser("list", help="list the shipped scenarios")
     lst.set_defaults(func=_cmd_list)
-    run = actions.add_parser("run", help="run one of the paper's studies")
-    run.add_argument("name", metavar="NAME", help="a study (see `rancf example list`)")
+    run = actions.add_parser(
+        "run", help="run a paper study or a shipped scenario, with a report (report.html)"
+    )
+    run.add_argument("name", metavar="NAME", help="a shipped scenario (see `rancf example list`)")
     run.add_argument("--out", required=True, help="output directory (created if needed)")
     run.add_argument("--quick", action="store_true", help="reduced runs (fewer elements)")
     run.add_argument("--workers", type=int, default=None, help=WORKERS_HELP)

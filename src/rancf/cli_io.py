@@ -87,7 +87,10 @@ def check_plot_path(path: str, option: str = "--plot") -> Path:
         raise InputError(option, str(p), f"a file in a directory ({parent} is a file)")
     if not parent.is_dir():
         raise InputError(option, str(p), f"a file in an existing directory ({parent} is missing)")
-    _writable(option, p, "a file in a writable directory")
+    if not os.access(parent, os.W_OK | os.X_OK):  # an existing figure is replaced
+        raise InputError(
+            option, str(p), f"a file in a writable directory ({parent} is not writable)"
+        )
     return p
 
 

@@ -58,34 +58,51 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     limit = _positive("--max-output-gb", args.max_output_gb, "a finite size in GB > 0")
     od = OutputDir(args.out, kind="run", overwrite=args.overwrite)  # checks the path up front
     from rancf.atomic import atomic_write
+    from rancf.model.outputs import DerivedOutputs
     from rancf.model.scenario import load_scenario
+    from rancf.post.checks import run_warnings, section_warnings
     from rancf.post.history import HistoryStore, check_output_size
     from rancf.post.results import run_summary
+    from rancf.solvers.static import start_state
 
     sc = load_scenario(args.scenario)
     opts = sc.dynamic_options()
     model = sc.build_model()
+    y_start, start_info = start_state(sc, model)
     n_cols = sum(len(s.columns(model.dim)) for s in sc.sensors)
     rod_directors = 3 * model.n_nodes if model.element == "rod" else 0
     check_output_size(sc.path, opts.n_outputs, model.q0.size, n_cols, rod_directors, limit)
     copy = _scenario_text(args.scenario)
     out = od.path
     stop = _StopFlag()
+    notes = _warn(section_warnings(model))  # likely unit mistakes: the run goes on
     with stop, od:
         info = {"scenario": str(Path(args.scenario).resolve()), "setup_wall_time_s": None}
-        store = HistoryStore(out, model, sc.sensors, info)
+        info.update(start_info)
+        derived = DerivedOutputs(model, sc.support_labels)
+        store = HistoryStore(out, model, sc.sensors, {**info, "warnings": notes}, derived=derived)
         try:
             atomic_write(out / "scenario.toml", copy)
             store.write_summary(_running(model, 0.0))
-            res = _run(args, model, opts, store, stop, every, od.keep)
+            res = _run(args, model, opts, store, stop, every, od.keep, y_start)
             summary = run_summary(model, res)
+            store.flush()  # every row's derived outputs, the strain among them
+            store.info["warnings"] = run_warnings(model, largest=derived.largest_strain)
             store.finish(summary)
         except BaseException as exc:
             err = _end_broken(store, model, exc, od.kept, out)
             if err is exc:
                 raise
             raise err from None
+    _warn(store.info["warnings"][len(notes) :])
     return _report(args, res, {**summary, **store.info}, out)
+
+
+def _warn(notes: list[str]) -> list[str]:
+    """Print each warning as one line on standard error; returns them."""
+    for note in notes:
+        print(f"rancf: warning: {note}", file=sys.stderr)
+    return notes
 
 
 def _end_broken(store: Any, model: Any, exc: BaseException, kept: bool, out: Path) -> BaseException:
@@ -187,8 +204,10 @@ def _run(
     stop: Any,
     every: float,
     started: Any,
+    y_start: Any = None,
 ) -> Any:
-    """Integrate into ``store``; ``started()`` once the first checkpoint is on disk."""
+    """Integrate into ``store`` from ``y_start`` (default the reference); ``started()`` once
+    the first checkpoint is on disk."""
     from rancf.post.results import run_summary
     from rancf.solvers.dynamic import integrate
 
@@ -215,7 +234,9 @@ def _run(
             pace["next"] = time.monotonic() + max(pace["every"], 4.0 * took)
 
     try:
-        return integrate(model, opts, on_output, stop, sink=store, on_start=on_start)
+        return integrate(
+            model, opts, on_output, stop, sink=store, on_start=on_start, initial=y_start
+        )
     finally:
         if bar:
             bar[0].close()
@@ -241,16 +262,21 @@ def _report(args: argparse.Namespace, res: Any, summary: dict[str, Any], out: Pa
 
 
 def _cmd_static(args: argparse.Namespace) -> int:
+    import numpy as np
+
+    from rancf.cli_equilibrium import reactions_json
     from rancf.model.scenario import load_scenario
+    from rancf.post.checks import run_warnings
     from rancf.post.results import LoadPath, sensor_table, strict_json, write_static_run
     from rancf.solvers.static import solve_static
 
     od = None if args.out is None else OutputDir(args.out, kind="run", overwrite=args.overwrite)
     sc = load_scenario(args.scenario)
     model = sc.build_model()
-    path = LoadPath(model)  # the load path, for --out
+    path = LoadPath(model, sc.support_labels)  # the load path, for --out
+    method = sc.solver["static_method"]
     if od is None:
-        res = solve_static(model, sc.solver["load_steps"])
+        res = solve_static(model, sc.solver["load_steps"], method=method)
     else:
         from rancf.atomic import atomic_write
         from rancf.post.history import check_output_size
@@ -264,8 +290,10 @@ def _cmd_static(args: argparse.Namespace) -> int:
         with od:
             info = {"scenario": str(Path(args.scenario).resolve())}
             try:
-                res = solve_static(model, sc.solver["load_steps"], on_step=path.record)
-                info.update(status="completed", message="reached load factor 1")
+                res = solve_static(
+                    model, sc.solver["load_steps"], on_step=path.record, method=method
+                )
+                info.update(status="completed", message="reached the end of the load path")
             except BaseException as exc:
                 kind = "interrupted" if isinstance(exc, KeyboardInterrupt) else "failed"
                 lam = path.steps[-1][0] if path.steps else 0.0
@@ -277,6 +305,10 @@ def _cmd_static(args: argparse.Namespace) -> int:
                     write_static_run(out_dir, path, sc.sensors, info)
                     atomic_write(out_dir / "scenario.toml", copy)
                     od.keep()
+    if path.steps:  # the load path's outputs tracked the largest strain
+        notes = _warn(run_warnings(model, static=True, largest=path.derived.largest_strain))
+    else:
+        notes = _warn(run_warnings(model, res.load_factors[-1:], res.q[None], static=True))
     pos = model.node_positions(res.q)
     names, vals = sensor_table(model, sc.sensors, res.q)
     out = {
@@ -284,6 +316,10 @@ def _cmd_static(args: argparse.Namespace) -> int:
         "sensors": dict(zip(names, vals[0].tolist(), strict=True)),
         "load_factors": res.load_factors.tolist(),
         "newton_iterations": res.n_newton,
+        "method": res.method,
+        "wall_time_s": res.wall_time,
+        "reactions": reactions_json(sc, model, res.y),
+        "warnings": notes,
     }
     if args.json:
         print(strict_json(out).rstrip())
@@ -294,13 +330,23 @@ def _cmd_static(args: argparse.Namespace) -> int:
         )
         for k, v in out["sensors"].items():
             print(f"  {k:12s} {v: .9g}")
+        # forces below the round-off of the internal forces (100 ε EA) print as 0
+        floor = 100 * np.finfo(float).eps * model.props.ea
+        for r in out["reactions"]:
+            moment = f"  moment {_vec(r['moment'], floor)}" if "moment" in r else ""
+            print(f"  reaction at {r['at']!s:6s} force {_vec(r['force'], floor)}{moment}")
     return 0
+
+
+def _vec(v: list[float], floor: float) -> str:
+    return "[" + ", ".join(f"{x:.9g}" if abs(x) > floor else "0" for x in v) + "]"
 
 
 def _cmd_modes(args: argparse.Namespace) -> int:
     import numpy as np
 
     from rancf.model.scenario import load_scenario
+    from rancf.post.checks import run_warnings
     from rancf.post.results import strict_json
     from rancf.solvers.modal import natural_modes
     from rancf.solvers.static import solve_static
@@ -318,7 +364,9 @@ def _cmd_modes(args: argparse.Namespace) -> int:
         raise InputError(key, count, f"at most {n_free} (the free coordinates of this model)")
     y = None
     if about == "static":
-        y = solve_static(model, sc.solver["load_steps"]).y
+        y = solve_static(model, sc.solver["load_steps"], method=sc.solver["static_method"]).y
+    static = [] if y is None else [model.q_from_y(y)]  # the strain of the equilibrium
+    notes = _warn(run_warnings(model, np.ones(len(static)), np.array(static), static=True))
     res = natural_modes(model, y, count)
     if res.frequencies_hz.size < count:
         raise InputError(
@@ -339,6 +387,7 @@ def _cmd_modes(args: argparse.Namespace) -> int:
         "rigid_body_modes_removed": res.n_rigid,
         "about": about,
         "n_dofs_free": int(np.sum(~model.fixed)),
+        "warnings": notes,
     }
     if args.json:
         print(strict_json(out).rstrip())
@@ -363,6 +412,8 @@ def _cmd_modes(args: argparse.Namespace) -> int:
                 'curvature does not resist: use mesh.element = "rod" (torsion and out-of-plane '
                 "bending stiffness) for curved spatial structures (see README)."
             )
+    if plot is not None:  # after the JSON object, on standard error: stdout stays one object
+        print(f"mode shapes written to {plot}", file=sys.stderr if args.json else sys.stdout)
     return 0
 
 

@@ -7,7 +7,7 @@ Exudyn 1.12.258 renamed the parameters of ``ObjectANCFCable2D`` (``physicsLength
 ``beams.GenerateStraightLineANCFCable2D`` by ``beams.GenerateBeamElementsAlongLine``.  The old
 names still work there but emit a ``DeprecationWarning``.  These helpers use the new names where
 the installed Exudyn has them and the old ones before, with the same values, so the results do not
-depend on which.
+depend on which (:func:`item` for any item whose parameters lost the ``physics`` prefix).
 
 Importing this module imports neither Exudyn nor the rest of rancf (``benchmarks/
 exudyn_pendulum.py`` times its own start-up); the functions import Exudyn when called.
@@ -19,38 +19,39 @@ import inspect
 from collections.abc import Sequence
 from typing import Any
 
-__all__ = ["cable2d", "dynamic_settings", "quiet_settings", "straight_cable2d"]
+__all__ = ["cable2d", "dynamic_settings", "item", "quiet_settings", "straight_cable2d"]
 
 
-def _old_cable_name(name: str) -> str:
+def _old_name(name: str) -> str:
     """``massPerLength`` -> ``physicsMassPerLength`` (the names before Exudyn 1.12.258)."""
     return "physics" + name[0].upper() + name[1:]
 
 
-#: Cable2D parameters that had the ``physics`` prefix before Exudyn 1.12.258.
-_PHYSICS = {
-    "length",
-    "massPerLength",
-    "bendingStiffness",
-    "axialStiffness",
-    "bendingDamping",
-    "axialDamping",
-    "referenceAxialStrain",
-    "referenceCurvature",
-}
+def item(name: str, **params: Any) -> Any:
+    """The Exudyn item ``exudyn.itemInterface.<name>`` from parameters under their current names.
+
+    A parameter the installed Exudyn does not know under its current name (``mass``, ``length``,
+    ``massPerLength``, ...) but under the name with the ``physics`` prefix it had before 1.12.258
+    (``physicsMass``, ...) is passed under the old name; other parameters as given.
+    """
+    from exudyn import itemInterface
+
+    cls = getattr(itemInterface, name)
+    known = inspect.signature(cls).parameters
+    renamed = {
+        (_old_name(k) if k not in known and _old_name(k) in known else k): v
+        for k, v in params.items()
+    }
+    return cls(**renamed)
 
 
 def cable2d(**params: Any) -> Any:
     """Exudyn's ``Cable2D`` (``ObjectANCFCable2D``) from parameters under their current names.
 
     ``length``, ``massPerLength``, ``bendingStiffness``, ... are passed as ``physicsLength``,
-    ``physicsMassPerLength``, ... to an Exudyn older than 1.12.258; other parameters as given.
+    ``physicsMassPerLength``, ... to an Exudyn older than 1.12.258 (:func:`item`).
     """
-    from exudyn.itemInterface import Cable2D
-
-    if "massPerLength" not in inspect.signature(Cable2D).parameters:
-        params = {(_old_cable_name(k) if k in _PHYSICS else k): v for k, v in params.items()}
-    return Cable2D(**params)
+    return item("Cable2D", **params)
 
 
 def _assign(obj: Any, new: str, old: str, value: Any) -> None:

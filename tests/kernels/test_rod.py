@@ -217,7 +217,7 @@ def test_mass_matrix_total_mass_and_torsional_inertia():
         spin[:, 6] = 3.0  # uniform spin rate about the tangents
         ke = m.kinetic_energy(spin.ravel())
         assert ke == pytest.approx(0.5 * rho * sec.polar * length * 9.0, rel=1e-12)
-        mass = m.dense(m.mass_band)
+        mass = m.dense(m.mass_matrix())  # the constant translation plus the rotary M_r(y0)
         assert np.abs(mass - mass.T).max() <= 1e-15 * np.abs(mass).max()
         assert np.linalg.eigvalsh(mass).min() > 0
         # gravity: the weight, on the positions only

@@ -25,6 +25,7 @@ from rancf.errors import InputError, WeightError
 from rancf.geometry.bezier import RationalBezier, bernstein
 
 __all__ = [
+    "axial_strain",
     "rational_basis",
     "cable_shape_functions",
     "ancf_shape_functions",
@@ -35,6 +36,18 @@ __all__ = [
     "ancf_to_bezier_matrix",
     "bezier_to_ancf_matrix",
 ]
+
+
+def axial_strain(d1: ArrayLike, d10: ArrayLike) -> NDArray[np.float64]:
+    """Green–Lagrange axial strain ``ε = (|r'|² − |r0'|²) / (2 |r0'|²)`` of tangents ``d1``
+    against the reference tangents ``d10`` (coordinates on the last axis; broadcast).
+
+    The strain measure of every element (cable and rod centrelines; a beam's chords), as the
+    compiled kernels use it (math note sec. 3).
+    """
+    d1, d10 = np.asarray(d1, dtype=float), np.asarray(d10, dtype=float)
+    g, g0 = np.sum(d1 * d1, axis=-1), np.sum(d10 * d10, axis=-1)
+    return (g - g0) / (2.0 * g0)
 
 
 def _as_weights(weights: ArrayLike) -> NDArray[np.float64]:

@@ -16,8 +16,15 @@ from numpy.typing import ArrayLike, NDArray
 
 from rancf.errors import ChordError, InputError, InteriorPointError, WeightError
 from rancf.geometry.bezier import RationalBezier, blossom
-from rancf.geometry.conic_params import barycentric, check_mapping_factor, cross2, mapping_rho, pad3
+from rancf.geometry.conic_params import (
+    barycentric,
+    check_mapping_factor,
+    cross2,
+    mapping_rho,
+    pad3,
+)
 from rancf.geometry.quadrature import integrate
+from rancf.geometry.tangents import vector_angle
 
 __all__ = ["Conic", "ConicKind"]
 
@@ -93,8 +100,8 @@ class Conic:
     def end_angles(self) -> tuple[float, float]:
         """Angles (radians) between the end tangents and the chord, ``(θ0, θ1)``."""
         c = self.p2 - self.p0
-        a0 = _angle(self.p1 - self.p0, c)
-        a1 = _angle(self.p2 - self.p1, c)
+        a0 = vector_angle(self.p1 - self.p0, c)
+        a1 = vector_angle(self.p2 - self.p1, c)
         return a0, a1
 
     def circularity(self) -> float:
@@ -272,8 +279,3 @@ class Conic:
         q2 = (2.0 * om * (1.0 - k) * self.p1 + k * self.p2) / a2
         w = np.array([1.0, a1 * rho / (3.0 * k), a2 * rho**2 / (3.0 * k), 1.0])
         return RationalBezier(np.array([self.p0, q1, q2, self.p2]), w)
-
-
-def _angle(a: NDArray, b: NDArray) -> float:
-    a3, b3 = pad3(a), pad3(b)
-    return float(np.arctan2(np.linalg.norm(np.cross(a3, b3)), np.dot(a3, b3)))

@@ -13,8 +13,11 @@ Strain energy::
 with the cable's Green–Lagrange ``ε``, the material curvatures ``K1`` (torsion), ``K2 = κ·m1``,
 ``K3 = κ·m2`` and ``K⁰`` evaluated on the reference with the reference triads, so any curved
 reference is stress free.  This module prepares the data the core takes and holds, in NumPy,
-the constant mass (the cable's translational mass plus the torsional inertia
-``½ ∫ ρJ φ̇² |r0'| dξ`` with ``φ̇`` linear between the nodes) and gravity.
+the constant translational mass (the cable's) and gravity.  The rotary inertia depends on the
+configuration and lives in the core (``src/cpp/rod_inertia.hpp``, ``docs/rod-derivation.md``
+§11): kinetic energy ``½ ∫ [ρ I_p s² + ρ I |ṫ|²] |r0'| dξ`` with the exact spin ``s = ω·t`` of the
+material frame (``I_p = I_y + I_z``; the bending part ``ρ I`` only with
+``section.rotary_inertia = "full"``).
 
 Shapes: element coordinates ``(n_el, 14)`` ordered ``[rA, rA_x, φA, rB, rB_x, φB]``.
 """
@@ -86,8 +89,10 @@ class RodKernel:
         As :class:`~rancf.kernels.cable.CableKernel` (``reference``: ``(n_el, 4, 3)``).
     props : CableProperties
         ``EA``, ``EI`` (unused) and ``ρA``.
-    rho_j : float
-        Torsional mass moment per length ``ρJ``.
+    rho_polar : float
+        Rotary inertia per length about the tangent, ``ρ (I_y + I_z)``.
+    rho_bend : float
+        Rotary inertia per length about both bending axes, ``ρ I`` (0: not modelled).
     n_qp : int
         Gauss points per element.
     orientation : array_like, optional
@@ -100,14 +105,16 @@ class RodKernel:
         scales: ArrayLike,
         reference: ArrayLike,
         props: CableProperties,
-        rho_j: float,
+        rho_polar: float,
         n_qp: int,
         orientation: ArrayLike | None = None,
+        rho_bend: float = 0.0,
     ) -> None:
         self.cable = CableKernel(weights, scales, reference, props, n_qp)
         c = self.cable
         self.n_el = c.n_el
-        self.rho_j = float(rho_j)
+        self.rho_polar = float(rho_polar)
+        self.rho_bend = float(rho_bend)
         ref = c.reference
         nodes = np.concatenate([ref[:, 0], ref[-1:, 2]])
         grads = np.concatenate([ref[:, 1], ref[-1:, 3]])
@@ -128,14 +135,18 @@ class RodKernel:
         """Store ``K⁰`` (computed by the core on the reference) in place."""
         self.kref[...] = k
 
+    def core_inertia(self) -> _core.SectionInertia:
+        """The rotary inertia per length as the core's named structure."""
+        return _core.SectionInertia(polar=self.rho_polar, bend=self.rho_bend)
+
     def mass_matrices(self) -> NDArray[np.float64]:
-        """Element mass matrices ``(n_el, 14, 14)``: cable translation plus ``ρJ`` torsion."""
+        """Constant element mass matrices ``(n_el, 14, 14)``: the cable's translation only.
+
+        The rotary inertia depends on the configuration (the core's ``inertia``; the full mass
+        matrix at a configuration is :meth:`rancf.model.system.Model.mass_matrix`).
+        """
         m = np.zeros((self.n_el, 14, 14))
         m[:, _CABLE_IDX[:, None], _CABLE_IDX[None, :]] = self.cable.mass_matrices()
-        xi = self.xi
-        lin = np.stack([1.0 - xi, xi], axis=1)  # (n_qp, 2): φ̇ interpolation
-        mt = self.rho_j * np.einsum("eq,qa,qb->eab", self.cable.wj, lin, lin)
-        m[:, [[6, 6], [13, 13]], [[6, 13], [6, 13]]] = mt
         return m
 
     def gravity_forces(self, g: ArrayLike) -> NDArray[np.float64]:

@@ -4,11 +4,13 @@
 ``curve`` picks a curve by index or name, or a list of them forming a chain.  Curves of a chain
 are oriented so that each starts where the previous one ends (a curve is reversed when needed);
 the chain must be tangent-continuous: a gap or a kink — between two curves or inside one (an
-interior knot of full multiplicity) — is reported with its location.  The curves are planar
+interior knot of full multiplicity) — is reported with its location, and open: a closed curve
+or chain (its ends meet with the same tangent) is refused, since closed curves are not supported
+yet (ends that meet at a kink make an open curve).  The curves are planar
 (2 coordinates) when every control point has ``z = 0``, spatial otherwise.
 
 Every knot span becomes ``mesh.elements`` RANCF elements (exact subdivision, as
-:func:`rancf.model.mesh.mesh_nurbs`), with consistent shared nodes (math note sec. 6).
+:func:`rancf.model.nurbs_mesh.mesh_nurbs`), with consistent shared nodes (math note sec. 6).
 """
 
 from __future__ import annotations
@@ -23,14 +25,11 @@ from rancf.errors import InputError
 from rancf.geometry.bezier import RationalBezier
 from rancf.geometry.conic_params import pad3
 from rancf.geometry.nurbs import NurbsCurve
-from rancf.model.mesh import CableMesh, check_element_count, mesh_from_curves
+from rancf.geometry.tangents import GAP_RTOL, KINK_TOL, is_closed, vector_angle
+from rancf.model.mesh import CableMesh, check_element_count
+from rancf.model.nurbs_mesh import mesh_segments
 
 __all__ = ["select_cad_curves", "chain_segments", "mesh_curve_chain", "reversed_curve"]
-
-#: Largest gap between joined ends, relative to the chain's size.
-GAP_RTOL = 1e-10
-#: Largest angle [rad] between the tangents at a joint.
-KINK_TOL = 1e-8
 
 
 def reversed_curve(c: NurbsCurve) -> NurbsCurve:
@@ -88,11 +87,6 @@ def select_cad_curves(file: Path, selection: Any) -> tuple[list[NurbsCurve], lis
 
 def _where(x: NDArray) -> str:
     return "(" + ", ".join(f"{v:.6g}" for v in x) + ")"
-
-
-def _angle(t0: NDArray, t1: NDArray) -> float:
-    c = float(np.dot(t0, t1) / (np.linalg.norm(t0) * np.linalg.norm(t1)))
-    return float(np.arccos(np.clip(c, -1.0, 1.0)))
 
 
 def _end_tangents(seg: RationalBezier) -> tuple[NDArray, NDArray]:
@@ -153,7 +147,7 @@ def chain_segments(
     for j in range(len(segments) - 1):
         t0 = _end_tangents(segments[j])[1]
         t1 = _end_tangents(segments[j + 1])[0]
-        ang = _angle(t0, t1)
+        ang = vector_angle(t0, t1)
         if ang > KINK_TOL:
             where = segments[j].points[-1]
             between = owner[j] if owner[j] == owner[j + 1] else f"{owner[j]} and {owner[j + 1]}"
@@ -162,6 +156,15 @@ def chain_segments(
                 f"kink of {np.degrees(ang):.4g} deg at {_where(where)} ({between})",
                 "a tangent-continuous curve or chain; split the model at the kink",
             )
+    first, last = segments[0], segments[-1]
+    start, end = first.points[0], last.points[-1]
+    if is_closed(start, _end_tangents(first)[0], end, _end_tangents(last)[1], size):
+        what = "chain" if len(curves) > 1 else "curve"
+        raise InputError(
+            "geometry.curve",
+            f"a closed {what} (its ends meet at {_where(start)} with the same tangent)",
+            "an open curve or chain: closed curves are not supported yet",
+        )
     return segments, np.array(params)
 
 
@@ -169,17 +172,7 @@ def mesh_curve_chain(curves: list[NurbsCurve], labels: list[str], n_per_span: in
     """An exact RANCF mesh of a chain of NURBS curves, ``n_per_span`` elements per knot span."""
     n_per_span = check_element_count(n_per_span, "mesh.elements")
     segments, breaks = chain_segments(curves, labels)
-    pieces, params = [], [breaks[0]]
-    t = np.linspace(0.0, 1.0, n_per_span + 1)
-    for j, seg in enumerate(segments):
-        cub = seg
-        while cub.degree < 3:
-            cub = cub.elevated()
-        for i in range(n_per_span):
-            piece = cub.restricted(t[i], t[i + 1])
-            pieces.append(RationalBezier(piece.points, piece.weights / piece.weights[0]))
-            params.append(breaks[j] + t[i + 1] * (breaks[j + 1] - breaks[j]))
-    return mesh_from_curves(pieces, None, np.array(params), "rancf")
+    return mesh_segments(segments, breaks, n_per_span)
 
 
 def parse_cad_geometry(scenario_path: str, g: dict[str, Any]) -> int:

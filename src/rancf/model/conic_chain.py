@@ -18,7 +18,14 @@ from rancf.errors import ConvergenceError
 from rancf.geometry.conic_curve import Conic
 from rancf.geometry.quadrature import integrate_many
 
-__all__ = ["quadratic_speed", "arc_breakpoints", "sub_arcs", "cubic_forms", "kopt_many"]
+__all__ = [
+    "quadratic_speed",
+    "arc_breakpoints",
+    "sub_arcs",
+    "cubic_forms",
+    "kopt_many",
+    "refined_extreme",
+]
 
 #: Samples of ``u`` for the vectorized Kopt (extrema refined by parabolas): 129 per sub-arc for
 #: up to 16 000 sub-arcs, then fewer (at least 17) so that ~2e6 samples are kept; many sub-arcs
@@ -130,10 +137,10 @@ def cubic_forms(points: NDArray, omega: NDArray, k: NDArray) -> tuple[NDArray, N
 def _log_ratio(log_s: NDArray, u: NDArray, t: NDArray) -> NDArray:
     """``log(max g / min g)`` with ``g(u) = s(u) (ρ (1-u) + u)²``, ``ρ = e^t``, per row."""
     lg = log_s + 2.0 * np.log(np.exp(t)[:, None] * (1.0 - u) + u)
-    return _refined(lg, 1.0) - _refined(lg, -1.0)
+    return refined_extreme(lg, 1.0) - refined_extreme(lg, -1.0)
 
 
-def _refined(y: NDArray, sign: float) -> NDArray:
+def refined_extreme(y: NDArray, sign: float) -> NDArray:
     """Max (``sign = 1``) or min of sampled rows, refined by a parabola at interior extrema."""
     i = np.argmax(sign * y, axis=1)
     rows = np.arange(y.shape[0])

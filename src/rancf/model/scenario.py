@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING, Any
 from rancf.errors import shorten
 from rancf.model.scenario_checks import _REQ, _err, _guard, _number, _place, _table, _vector
 from rancf.model.scenario_parts import (
+    parse_initial_motion,
     parse_material,
     parse_point_loads,
     parse_section,
@@ -56,6 +57,20 @@ class Scenario:
 
         return build_model(self)
 
+    @property
+    def support_labels(self) -> list[int | str]:
+        """Each support's ``at`` as written (``"start"``, ``"end"`` or a node index)."""
+        return [t["label"] for t in self.data["supports"]]
+
+    def installed_support(self) -> str | None:
+        """The key of the first support installed away from its reference (``position`` or
+        ``direction``), or None."""
+        for i, t in enumerate(self.data["supports"]):
+            for k in ("position", "direction"):
+                if t[k] is not None:
+                    return f"supports[{i}].{k}"
+        return None
+
     def dynamic_options(self) -> DynamicOptions:
         """:class:`~rancf.solvers.dynamic.DynamicOptions` of the ``[solver]`` table."""
         return _guard(self.path, "solver", lambda: dynamic_options(self.solver))
@@ -70,6 +85,7 @@ _TOP = (
     "loads",
     "damping",
     "initial_velocity",
+    "initial_motion",
     "solver",
     "sensors",
     "modes",
@@ -120,7 +136,7 @@ def parse_scenario(raw: dict[str, Any], path: str = "<scenario>") -> Scenario:
     d["section"] = parse_section(path, raw["section"], el)
     d["material"] = parse_material(path, raw["material"], el)
 
-    d["supports"] = parse_supports(path, raw.get("supports", []), el)
+    d["supports"] = parse_supports(path, raw.get("supports", []), el, dim)
 
     ld = _table(path, "loads", raw.get("loads", {}), {"gravity": None, "point": []})
     if ld["gravity"] is not None:
@@ -144,9 +160,15 @@ def parse_scenario(raw: dict[str, Any], path: str = "<scenario>") -> Scenario:
         t["value"] = _vector(path, f"initial_velocity[{i}].value", t["value"], (dim,))
         d["initial_velocity"].append(t)
 
+    d["initial_motion"] = parse_initial_motion(path, raw.get("initial_motion"), dim)
+    if d["initial_motion"] is not None and d["initial_velocity"]:
+        raise _err(
+            path, "initial_motion", "give [initial_motion] or [[initial_velocity]], not both"
+        )
+
     d["solver"] = parse_solver(path, raw.get("solver", {}))
 
     d["modes"] = parse_modes(path, raw.get("modes", {}))
 
-    sensors = parse_sensors(path, raw.get("sensors", []), m["element"])
+    sensors = parse_sensors(path, raw.get("sensors", []), m["element"], dim)
     return Scenario(path, d, dim, sensors)

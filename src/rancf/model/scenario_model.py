@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from rancf.errors import ConvergenceError, InputError, ScenarioError
-from rancf.model.system import Material, Model, PointLoad, Section, Support
+from rancf.model.system import Material, Model, PointLoad, RigidMotion, Section, Support
 
 if TYPE_CHECKING:
     from rancf.model.scenario import Scenario
@@ -62,7 +62,8 @@ def _value(v: Any) -> str:
 def _mesh(sc: Scenario) -> Any:
     from rancf.geometry.conic import conic_arc_through
     from rancf.geometry.nurbs import NurbsCurve
-    from rancf.model.mesh import mesh_conic, mesh_line, mesh_nurbs
+    from rancf.model.mesh import mesh_conic, mesh_line
+    from rancf.model.nurbs_mesh import mesh_nurbs
     from rancf.model.scenario_tables import MAX_ELEMENTS
 
     g, m = sc.data["geometry"], sc.data["mesh"]
@@ -133,6 +134,8 @@ def build_model(sc: Scenario) -> Model:
         inertia = s["inertia"] if s["inertia"] is not None else s["inertia_y"]
         orient = None if s["orientation"] is None else tuple(s["orientation"])
         section = Section(s["area"], inertia, s["inertia_z"], s["torsion_constant"], orient)
+    if s["rotary_inertia"] is not None:
+        section = replace(section, rotary_inertia=s["rotary_inertia"])
     loads = [
         PointLoad(
             t["at"],
@@ -150,17 +153,27 @@ def build_model(sc: Scenario) -> Model:
             Material(
                 mat["density"], mat["youngs_modulus"], mat["shear_modulus"], mat["poisson_ratio"]
             ),
-            [Support(t["at"], t["kind"], t["fix_twist"]) for t in d["supports"]],
+            [_support(t) for t in d["supports"]],
             d["loads"]["gravity"],
             loads,
             d["damping"]["mass_proportional"],
             v0,
             d["mesh"]["quadrature_points"],
+            None if d["initial_motion"] is None else RigidMotion(**d["initial_motion"]),
         )
     except InputError as exc:
         raise ScenarioError(
             sc.path, exc.parameter, f"{exc.allowed} (got {_value(exc.value)})"
         ) from None
+
+
+def _support(t: dict[str, Any]) -> Support:
+    def vec(v: list[float] | None) -> tuple[float, ...] | None:
+        return None if v is None else tuple(v)
+
+    return Support(
+        t["at"], t["kind"], t["fix_twist"], vec(t["position"]), vec(t["direction"]), vec(t["axis"])
+    )
 
 
 def _check_node(sc: Scenario, n_nodes: int, key: str, node: int) -> int:

@@ -13,6 +13,10 @@ Rules (each violation names its key, see :func:`rancf.model.scenario.parse_scena
 * ``[[supports]]``: ``fix_twist = true`` (rods) also holds the twist of a pin; a clamp holds it
   anyway.
 * ``[[loads.point]]``: ``force``, ``moment = [mx, my, mz]`` (rods) or both.
+* ``[section] rotary_inertia``: ``"torsion"`` (default) or ``"full"`` (rods).
+* ``[initial_motion]``: ``velocity``, ``angular_velocity`` (3 numbers in 3D, one in 2D) and
+  ``about`` (default the origin), at least one of the first two: a rigid-body velocity field
+  (:mod:`rancf.model.motion`).
 
 Keys that only rods have are refused, naming the key, for other elements.
 """
@@ -25,11 +29,17 @@ from typing import Any
 
 from rancf.model.scenario_checks import _REQ, _choice, _err, _number, _place, _table, _vector
 
-__all__ = ["parse_section", "parse_material", "parse_supports", "parse_point_loads"]
+__all__ = [
+    "parse_section",
+    "parse_material",
+    "parse_supports",
+    "parse_point_loads",
+    "parse_initial_motion",
+]
 
 SECTION_KEYS = ("radius", "area", "inertia", "inertia_y", "inertia_z", "orientation")
-SECTION_KEYS += ("torsion_constant",)
-_ROD_SECTION = ("inertia_y", "inertia_z", "orientation", "torsion_constant")
+SECTION_KEYS += ("torsion_constant", "rotary_inertia")
+_ROD_SECTION = ("inertia_y", "inertia_z", "orientation", "torsion_constant", "rotary_inertia")
 
 
 def _rod_only(path: str, key: str, element: str) -> None:
@@ -48,6 +58,10 @@ def parse_section(path: str, raw: Any, element: str) -> dict[str, Any]:
     for k in ("radius", "area", "inertia", "inertia_y", "inertia_z", "torsion_constant"):
         if s[k] is not None:
             s[k] = _number(path, f"section.{k}", s[k], positive=True)
+    if s["rotary_inertia"] is not None:
+        s["rotary_inertia"] = _choice(
+            path, "section.rotary_inertia", s["rotary_inertia"], ("torsion", "full")
+        )
     principal = [k for k in ("inertia_y", "inertia_z", "orientation") if s[k] is not None]
     if s["radius"] is not None:
         _check_radius(path, s["radius"])
@@ -124,20 +138,40 @@ def parse_material(path: str, raw: Any, element: str) -> dict[str, Any]:
     return mat
 
 
-def parse_supports(path: str, raw: Any, element: str) -> list[dict[str, Any]]:
-    """The ``[[supports]]`` array: ``at``, ``kind`` and (rods) ``fix_twist``."""
+def parse_supports(path: str, raw: Any, element: str, dim: int) -> list[dict[str, Any]]:
+    """The ``[[supports]]`` array: ``at``, ``kind`` (``pin``, ``clamp``, ``roller``), ``axis``
+    (roller), ``position`` and ``direction`` (clamp) of the installed support, and (rods)
+    ``fix_twist``; ``label`` keeps ``at`` as written (reaction columns)."""
     if not isinstance(raw, list):
         raise _err(path, "supports", "must be an array of tables [[supports]]")
     out = []
     for i, sp in enumerate(raw):
         key = f"supports[{i}]"
-        t = _table(path, key, sp, {"at": _REQ, "kind": "pin", "fix_twist": False})
+        t = _table(
+            path, key, sp, {"at": _REQ, "kind": "pin", "fix_twist": False, "position": None,
+                            "direction": None, "axis": None},
+        )  # fmt: skip
+        t["label"] = t["at"]
         t["at"] = _place(path, f"{key}.at", t["at"])
-        t["kind"] = _choice(path, f"{key}.kind", t["kind"], ("pin", "clamp"))
+        t["kind"] = _choice(path, f"{key}.kind", t["kind"], ("pin", "clamp", "roller"))
         if not isinstance(t["fix_twist"], bool):
             raise _err(path, f"{key}.fix_twist", f"must be true or false, got {t['fix_twist']!r}")
         if t["fix_twist"]:
             _rod_only(path, f"{key}.fix_twist", element)
+        for k in ("position", "direction", "axis"):
+            if t[k] is not None:
+                t[k] = _vector(path, f"{key}.{k}", t[k], (dim,))
+        if t["kind"] == "roller" and t["axis"] is None:
+            raise _err(path, f"{key}.axis", "required for a roller (the direction it moves along)")
+        if t["kind"] != "roller" and t["axis"] is not None:
+            raise _err(path, f"{key}.axis", f'applies to kind = "roller" only, not {t["kind"]!r}')
+        if t["kind"] != "clamp" and t["direction"] is not None:
+            raise _err(
+                path, f"{key}.direction", f'applies to kind = "clamp" only, not {t["kind"]!r}'
+            )
+        for k in ("direction", "axis"):
+            if t[k] is not None and not any(x != 0.0 for x in t[k]):
+                raise _err(path, f"{key}.{k}", "must be a nonzero vector")
         out.append(t)
     return out
 
@@ -165,3 +199,27 @@ def parse_point_loads(path: str, raw: Any, dim: int, element: str) -> list[dict[
             )
         pts.append(t)
     return pts
+
+
+def parse_initial_motion(path: str, raw: Any, dim: int) -> dict[str, Any] | None:
+    """The ``[initial_motion]`` table (None when absent): ``v = velocity + ω × (x − about)``."""
+    if raw is None:
+        return None
+    t = _table(
+        path, "initial_motion", raw, {"velocity": None, "angular_velocity": None, "about": None}
+    )
+    if t["velocity"] is None and t["angular_velocity"] is None:
+        raise _err(path, "initial_motion", "needs velocity and/or angular_velocity")
+    for k in ("velocity", "about"):
+        if t[k] is not None:
+            t[k] = _vector(path, f"initial_motion.{k}", t[k], (dim,))
+    w = t["angular_velocity"]
+    if w is not None:
+        key = "initial_motion.angular_velocity"
+        if dim == 2:
+            if isinstance(w, list):
+                raise _err(path, key, f"must be a number in 2D (the rate about z), got {w!r}")
+            t["angular_velocity"] = [_number(path, key, w)]
+        else:
+            t["angular_velocity"] = _vector(path, key, w, (3,))
+    return t

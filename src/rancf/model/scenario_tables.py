@@ -247,6 +247,8 @@ def parse_solver(path: str, raw: Any) -> dict[str, Any]:
             "newton_tol": 1e-10,
             "max_newton": 12,
             "newton": "full",
+            "static_method": "load",
+            "initial_state": "reference",
         },
     )
     sv["t_end"] = _number(path, "solver.t_end", sv["t_end"], positive=True)
@@ -276,6 +278,12 @@ def parse_solver(path: str, raw: Any) -> dict[str, Any]:
             f"must be at most {MAX_NEWTON}, got {_repr(sv['max_newton'])}",
         )
     sv["newton"] = _choice(path, "solver.newton", sv["newton"], ("full", "modified"))
+    sv["static_method"] = _choice(
+        path, "solver.static_method", sv["static_method"], ("load", "arc_length")
+    )
+    sv["initial_state"] = _choice(
+        path, "solver.initial_state", sv["initial_state"], ("reference", "static")
+    )
     _guard(path, "solver", lambda: dynamic_options(sv))
     return sv
 

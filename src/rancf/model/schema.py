@@ -104,6 +104,11 @@ def scenario_schema() -> dict[str, Any]:
                 "description": "rods: the first principal axis at the first node",
             },
             "torsion_constant": {**_POS, "description": "rods; default inertia_y + inertia_z"},
+            "rotary_inertia": {
+                "enum": ["torsion", "full"],
+                "default": "torsion",
+                "description": 'rods: "full" adds rho I of both bending directions',
+            },
         },
         oneOf=[
             {"required": ["radius"]},
@@ -144,6 +149,16 @@ def scenario_schema() -> dict[str, Any]:
                 "default": 12,
             },
             "newton": {"enum": ["full", "modified"], "default": "full"},
+            "static_method": {
+                "enum": ["load", "arc_length"],
+                "default": "load",
+                "description": "statics: adaptive load increments or arc length (limit points)",
+            },
+            "initial_state": {
+                "enum": ["reference", "static"],
+                "default": "reference",
+                "description": "simulate: start from the reference or the static equilibrium",
+            },
         }
     )
     sensor = _table(
@@ -151,10 +166,12 @@ def scenario_schema() -> dict[str, Any]:
             "name": {"type": "string", "pattern": "^[A-Za-z_][A-Za-z0-9_]*$"},
             "kind": {
                 "enum": list(SENSOR_KINDS),
-                "description": '"twist" (rods): the nodal twist angle [rad]',
+                "description": '"twist" (rods): the nodal twist angle [rad]; '
+                '"angular_momentum" (about `about`) and "energy": of the whole model',
             },
             "between": {"type": "array", "items": _PLACE, "minItems": 2, "maxItems": 2},
             "at": _PLACE,
+            "about": {**_vec(), "description": "angular_momentum: the point (default origin)"},
         },
         ("name", "kind"),
     )
@@ -186,12 +203,21 @@ def scenario_schema() -> dict[str, Any]:
                     "items": _table(
                         {
                             "at": _PLACE,
-                            "kind": {"enum": ["pin", "clamp"], "default": "pin"},
+                            "kind": {"enum": ["pin", "clamp", "roller"], "default": "pin"},
                             "fix_twist": {
                                 "type": "boolean",
                                 "default": False,
                                 "description": "rods: also hold the twist (a clamp holds it)",
                             },
+                            "position": {
+                                **_vec(),
+                                "description": "installed position (default: the reference)",
+                            },
+                            "direction": {
+                                **_vec(),
+                                "description": "clamp: installed tangent (default: reference)",
+                            },
+                            "axis": {**_vec(), "description": "roller: the line it moves along"},
                         },
                         ("at",),
                     ),
@@ -204,6 +230,17 @@ def scenario_schema() -> dict[str, Any]:
                     "type": "array",
                     "items": _table({"at": _PLACE, "value": _vec()}, ("at", "value")),
                 },
+                "initial_motion": _table(
+                    {
+                        "velocity": _vec(),
+                        "angular_velocity": {
+                            "oneOf": [{"type": "number"}, _vec((3,))],
+                            "description": "3 components in 3D, the rate about z in 2D [rad/s]",
+                        },
+                        "about": {**_vec(), "description": "default: the origin"},
+                    },
+                    description="a rigid-body velocity v0 + w x (x - about) on every coordinate",
+                ),
                 "solver": solver,
                 "modes": _table(
                     {

@@ -27,24 +27,14 @@ from rancf.kernels.beam import BeamKernel
 from rancf.kernels.cable import CableKernel, CableProperties
 from rancf.kernels.rod import ROD_DOFS, RodKernel
 from rancf.model.mesh import CableMesh, to_ancf
+from rancf.model.motion import RigidMotion, check_supports_at_rest, rigid_velocity
 from rancf.model.parts import Material, PointLoad, Section, Support
+from rancf.model.supports import support_layout
 from rancf.model.system_core import core_model
 
-__all__ = ["Section", "Material", "Support", "PointLoad", "Model", "ElementKind"]
+__all__ = ["Section", "Material", "Support", "PointLoad", "Model", "ElementKind", "RigidMotion"]
 
 ElementKind = Literal["rancf", "ancf", "beam", "rod"]
-
-
-def _orthonormal_basis(t: NDArray) -> NDArray:
-    """Columns ``(t, n0[, n1])``: an orthonormal basis whose first vector is ``t / |t|``."""
-    t = t / np.linalg.norm(t)
-    if t.size == 2:
-        return np.array([[t[0], -t[1]], [t[1], t[0]]])
-    helper = np.eye(3)[int(np.argmin(np.abs(t)))]
-    n0 = np.cross(t, helper)
-    n0 /= np.linalg.norm(n0)
-    n1 = np.cross(t, n0)
-    return np.stack([t, n0, n1], axis=1)
 
 
 class Model:
@@ -63,10 +53,15 @@ class Model:
     damping : float
         Mass-proportional damping coefficient ``c`` in ``C = c M`` [1/s].
     initial_velocities : dict of node -> velocity vector
+        The velocity of single nodes' positions (nothing else moves: its kinetic energy depends
+        on the mesh).
     n_qp : int, optional
         Gauss points per cable element; default 6 for polynomial (ANCF, all weights 1) elements,
         whose axial energy that rule integrates exactly on a straight reference, and 10 for
         rational ones (see the quadrature convergence test).
+    initial_motion : RigidMotion, optional
+        A rigid-body initial velocity field given exactly to every coordinate
+        (:mod:`rancf.model.motion`); not together with ``initial_velocities``.
 
     Notes
     -----
@@ -86,6 +81,7 @@ class Model:
         damping: float = 0.0,
         initial_velocities: dict[int, ArrayLike] | None = None,
         n_qp: int | None = None,
+        initial_motion: RigidMotion | None = None,
     ) -> None:
         self.element = element
         self.section = section
@@ -124,6 +120,7 @@ class Model:
                     rho * section.polar,
                     n_qp,
                     section.orientation,
+                    section.bending_rotary(rho),
                 )
                 self.dpn = ROD_DOFS
                 q0 = np.concatenate(
@@ -135,31 +132,19 @@ class Model:
                 q0 = m.q0
         else:
             raise InputError("mesh.element", element, 'one of "rancf", "ancf", "beam", "rod"')
+        if element != "rod" and section.rotary_inertia != "torsion":
+            raise InputError("section.rotary_inertia", section.rotary_inertia, "rod elements")
         self.n = self.n_nodes * self.dpn
         self.nde = 2 * self.dpn
         self.ku = self.nde - 1
         self._el_idx = np.arange(self.n_el)[:, None] * self.dpn + np.arange(self.nde)[None, :]
 
-        # supports -> rotations of gradient blocks and fixed entries of y
-        self.fixed = np.zeros(self.n, dtype=bool)
-        self._rot: list[tuple[int, NDArray]] = []
-        for sup in supports:
-            node = self.check_node(sup.node, "supports.at")
-            base = node * self.dpn
-            self.fixed[base : base + self.dim] = True
-            if sup.kind == "clamp":
-                if element == "beam":
-                    self.fixed[base + 2] = True
-                else:
-                    basis = _orthonormal_basis(q0[base + self.dim : base + 2 * self.dim])
-                    self._rot.append((base + self.dim, basis))
-                    self.fixed[base + self.dim + 1 : base + 2 * self.dim] = True
-            elif sup.kind != "pin":
-                raise InputError("supports.kind", sup.kind, 'one of "pin", "clamp"')
-            if element == "rod" and (sup.kind == "clamp" or sup.fix_twist):
-                self.fixed[base + 6] = True  # the twist: the cross-section's orientation
-            elif sup.fix_twist:
-                raise InputError("supports.fix_twist", True, "rod elements (they have a twist)")
+        # supports -> held entries of y, rotated blocks, installed values
+        tangents = mesh.nodes[:, 1]
+        layout = support_layout(supports, element, self.dim, self.dpn, q0, tangents,
+                                self.check_node)  # fmt: skip
+        self.fixed = layout.fixed
+        self._rot = list(layout.rotations)
         self.supports = tuple(supports)
         # element-level transformations for elements touching a rotated node
         aff = sorted(
@@ -180,6 +165,10 @@ class Model:
 
         self.q0 = q0
         self.y0 = self.y_from_q(q0)
+        #: ``y0`` with the held entries at the installed supports' values
+        self.y_installed = self.y0.copy()
+        for i, val in layout.installed.items():
+            self.y_installed[i] = val
         self.mass_el = self._to_y_elements(self.kernel.mass_matrices())
         self.mass_band = self.assemble_band(self.mass_el)
         self.gravity = None if gravity is None else np.asarray(gravity, dtype=float)
@@ -209,7 +198,15 @@ class Model:
             if vv.size != self.dim:
                 raise InputError("initial_velocity.value", vv.tolist(), f"{self.dim} components")
             v0[nd * self.dpn : nd * self.dpn + self.dim] = vv
+        if initial_motion is not None:
+            if initial_velocities:
+                raise InputError(
+                    "initial_motion", "with initial_velocity", "one of the two, not both"
+                )
+            v0 = rigid_velocity(self, initial_motion)
         self.v0 = self.to_y(v0)
+        if initial_motion is not None:
+            check_supports_at_rest(self, self.v0)
         self.v0[self.fixed] = 0.0
         self.core = core_model(self)
         if isinstance(self.kernel, RodKernel):  # reference curvatures by the core itself
@@ -228,14 +225,6 @@ class Model:
         if isinstance(self.kernel, RodKernel):
             self.kernel.tref[...] = self._triads0[0]
             self.kernel.m1ref[...] = self._triads0[1]
-
-    def load_arrays(self) -> tuple[NDArray, NDArray, NDArray]:
-        """Point forces as ``(base index, F0, frequency)`` arrays (frequency 0: constant)."""
-        forces = [p for p in self.point_loads if p.force is not None]
-        base = np.array([(p.node % self.n_nodes) * self.dpn for p in forces], dtype=np.int64)
-        f0 = np.array([p.force for p in forces], dtype=float).reshape(-1, self.dim)
-        freq = np.array([p.frequency_hz or 0.0 for p in forces], dtype=float)
-        return base, f0, freq
 
     # ------------------------------------------------------------------ bookkeeping
     def check_node(self, node: int, key: str) -> int:
@@ -320,9 +309,21 @@ class Model:
         """``M v`` (element by element)."""
         return self.assemble_vector(np.einsum("eij,ej->ei", self.mass_el, self.gather(v)))
 
-    def kinetic_energy(self, v: ArrayLike) -> float:
-        """``½ vᵀ M v`` (by the core, as in the time loop's outputs)."""
-        return float(self.core.kinetic_energy(np.asarray(v, dtype=float)))
+    def kinetic_energy(self, v: ArrayLike, y: ArrayLike | None = None) -> float:
+        """``½ vᵀ M(y) v`` (by the core, as in the time loop's outputs; ``y`` default the
+        reference: only a rod's rotary inertia depends on it)."""
+        yy = self.y0 if y is None else np.asarray(y, dtype=float)
+        return float(self.core.kinetic_energy(yy, np.asarray(v, dtype=float)))
+
+    def mass_matrix(self, y: ArrayLike | None = None) -> NDArray[np.float64]:
+        """The mass matrix at ``y`` (default the reference) in band storage: the constant
+        :attr:`mass_band` plus a rod's rotary mass ``M_r(y)`` (the core's ``inertia``)."""
+        if self.element != "rod":
+            return self.mass_band.copy()
+        yy = self.y0 if y is None else np.asarray(y, dtype=float)
+        z, f, ab = np.zeros(self.n), np.empty(self.n), np.empty_like(self.mass_band)
+        self.core.inertia(yy, z, z, 0.0, 0.0, 0.0, 1.0, f, ab)
+        return self.mass_band + ab
 
     def gravity_energy(self, y: ArrayLike) -> float:
         """Gravitational potential ``-Q_gᵀ (y - y0)`` (zero in the reference configuration)."""

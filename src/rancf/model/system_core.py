@@ -19,7 +19,22 @@ from rancf.kernels.rod import RodKernel
 if TYPE_CHECKING:
     from rancf.model.system import Model
 
-__all__ = ["core_model"]
+__all__ = ["core_model", "section_stiffness"]
+
+
+def section_stiffness(model: Model) -> _core.Stiffness:
+    """``EA``, ``EI`` and, for rods, ``GJ``, ``EI2 = E I_y`` (about ``m1``) and ``EI3 = E I_z``."""
+    sec, mat = model.section, model.material
+    if model.element != "rod":
+        return _core.Stiffness(ea=model.props.ea, ei=model.props.ei)
+    e_mod = mat.youngs_modulus
+    return _core.Stiffness(
+        ea=model.props.ea,
+        ei=model.props.ei,
+        gj=mat.shear * sec.torsion,
+        ei2=e_mod * sec.inertia,
+        ei3=e_mod * sec.inertia_2,
+    )
 
 
 def core_model(model: Model) -> _core.Model:
@@ -41,23 +56,13 @@ def core_model(model: Model) -> _core.Model:
     beam = k.core_data() if isinstance(k, BeamKernel) else _empty_beam()
     rod = k.core_data() if isinstance(k, RodKernel) else _empty_rod()
     kind = {CableKernel: 0, BeamKernel: 1, RodKernel: 2}[type(k)]
-    sec, mat = model.section, model.material
-    stiffness = _core.Stiffness(ea=model.props.ea, ei=model.props.ei)
-    if kind == 2:
-        e_mod = mat.youngs_modulus
-        stiffness = _core.Stiffness(
-            ea=model.props.ea,
-            ei=model.props.ei,
-            gj=mat.shear * sec.torsion,
-            ei2=e_mod * sec.inertia,
-            ei3=e_mod * sec.inertia_2,
-        )
-    rot_of_node = np.full(model.n_nodes, -1, dtype=np.int64)
+    stiffness = section_stiffness(model)
+    rot_of_node = np.full((model.n_nodes, 2), -1, dtype=np.int64)
     rot = np.zeros((max(len(model._rot), 1), model.dim, model.dim))
-    for i, (off, basis) in enumerate(model._rot):
-        rot_of_node[off // model.dpn] = i
+    for i, (off, basis) in enumerate(model._rot):  # block 0: position, 1: gradient
+        rot_of_node[off // model.dpn, (off % model.dpn) // model.dim] = i
         rot[i] = basis
-    base, f0, freq = model.load_arrays()
+    base, f0, freq = _point_forces(model)
     moments = [p for p in model.point_loads if p.moment is not None]
     return _core.Model(
         kind=kind,
@@ -82,7 +87,17 @@ def core_model(model: Model) -> _core.Model:
         ),
         mass_band=np.ascontiguousarray(model.mass_band),
         y_ref=np.ascontiguousarray(model.y0),
+        rotary=k.core_inertia() if isinstance(k, RodKernel) else _core.SectionInertia(),
     )
+
+
+def _point_forces(model: Model) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Point forces as ``(base index, F0, frequency)`` arrays (frequency 0: constant)."""
+    forces = [p for p in model.point_loads if p.force is not None]
+    base = np.array([(p.node % model.n_nodes) * model.dpn for p in forces], dtype=np.int64)
+    f0 = np.array([p.force for p in forces], dtype=float).reshape(-1, model.dim)
+    freq = np.array([p.frequency_hz or 0.0 for p in forces], dtype=float)
+    return base, f0, freq
 
 
 def _empty_cable() -> _core.CableData:

@@ -32,6 +32,7 @@ from numpy.typing import NDArray
 
 from rancf.atomic import FileSet, atomic_write
 from rancf.errors import RunTooLargeError
+from rancf.model.outputs import DerivedOutputs
 from rancf.model.scenario_sensors import Sensor
 from rancf.model.system import Model
 from rancf.post.results import strict_json, write_history_files
@@ -39,7 +40,7 @@ from rancf.post.results import strict_json, write_history_files
 __all__ = ["HistoryStore", "estimate_output_bytes", "check_output_size", "HISTORY_FILES"]
 
 #: The files a run directory's history is kept in (replaced together at each checkpoint).
-HISTORY_FILES = ("sensors.csv", "energy.csv", "results.npz")
+HISTORY_FILES = ("sensors.csv", "energy.csv", "reactions.csv", "results.npz")
 
 _FILES = ("t", "q", "v", "e")
 
@@ -108,16 +109,21 @@ class HistoryStore:
         sensors: Sequence[Sensor],
         info: dict[str, Any],
         buffer_bytes: int = 1 << 23,
+        derived: DerivedOutputs | None = None,
     ) -> None:
         self.out = Path(out)
         self.model = model
         self.sensors = sensors
         self.info = {"pid": os.getpid(), "started_at": _now(), **info}
+        self.derived = derived if derived is not None else DerivedOutputs(model)
         self.raw = self.out / ".history"
         self.raw.mkdir(exist_ok=True)
         # rods: the nodal directors too ("m", 3 numbers a node)
         self._keys = _FILES + (("m",) if model.element == "rod" else ())
-        self._fh = {k: open(self.raw / f"{k}.f64", "wb") for k in self._keys}  # noqa: SIM115
+        # derived at every flush from the buffered rows: accelerations "a", reactions "r",
+        # section values "s"
+        files = self._keys + ("a", "r", "s")
+        self._fh = {k: open(self.raw / f"{k}.f64", "wb") for k in files}  # noqa: SIM115
         self._buf: dict[str, list[NDArray]] = {k: [] for k in self._keys}
         self._rows_per_flush = max(1, buffer_bytes // (16 * model.n + 32))
         self.n_rows = 0
@@ -159,20 +165,30 @@ class HistoryStore:
             self.flush()
 
     def flush(self) -> None:
-        """Append the buffered outputs to the raw files."""
-        for key in self._keys:
-            try:
-                if self._buf[key]:
-                    self._fh[key].write(np.concatenate(self._buf[key]).tobytes())
-                    self._buf[key].clear()
+        """Append the buffered outputs, and their reactions and section values, to the raw
+        files (an error of a full disk names the file)."""
+        key = "t"
+        try:
+            if self._pending:
+                rows = {k: np.concatenate(self._buf[k]) for k in self._keys}
+                k = self._pending
+                acc, reac, along = self.derived.rows(
+                    rows["t"], rows["q"].reshape(k, -1), rows["v"].reshape(k, -1),
+                    rows["m"].reshape(k, -1) if "m" in rows else None,
+                )  # fmt: skip
+                rows["a"], rows["r"], rows["s"] = acc.ravel(), reac.ravel(), along.ravel()
+                for key, val in rows.items():
+                    self._fh[key].write(np.ascontiguousarray(val, dtype="<f8").tobytes())
+                    self._buf.get(key, []).clear()
+            for key in self._fh:
                 self._fh[key].flush()
-            except OSError as exc:  # a full disk: name the file
-                where = str(self.raw / f"{key}.f64")
-                raise OSError(exc.errno, exc.strerror or str(exc), where) from None
+        except OSError as exc:  # a full disk: name the file
+            where = str(self.raw / f"{key}.f64")
+            raise OSError(exc.errno, exc.strerror or str(exc), where) from None
         self.n_rows += self._pending
         self._pending = 0
 
-    def _arrays(self) -> tuple[NDArray, NDArray, NDArray, NDArray, NDArray | None]:
+    def _arrays(self) -> tuple[NDArray, ...]:
         n, nq = self.n_rows, self.model.q0.size
 
         def mm(key: str, width: int) -> NDArray:
@@ -180,7 +196,17 @@ class HistoryStore:
             return arr.reshape(n, width) if width > 1 else arr
 
         m1 = mm("m", 3 * self.model.n_nodes) if "m" in self._keys else None
-        return mm("t", 1), mm("q", nq), mm("v", nq), mm("e", 3), m1
+        d = self.derived
+        n_r, n_s = len(d.reaction_names), d.n_points * len(d.section_names)
+        r = mm("r", n_r).reshape(n, n_r) if n_r else np.empty((n, 0))
+        return mm("t", 1), mm("q", nq), mm("v", nq), mm("e", 3), m1, mm("a", nq), r, mm("s", n_s)
+
+    def states(self) -> tuple[NDArray, NDArray]:
+        """Times ``(n,)`` and coordinates ``q (n, n_q)`` of the outputs stored so far (memory
+        maps of the raw files)."""
+        self.flush()
+        t, q, *_ = self._arrays()
+        return t, q
 
     def _summary_text(self, summary: dict[str, Any]) -> str:
         return strict_json({**summary, **self.info, "updated_at": _now()})
@@ -194,11 +220,15 @@ class HistoryStore:
         together."""
         self.flush()
         arrays = self._arrays()
+        t, q, v, e, m1, a, r, along = arrays
         with FileSet() as files:
-            write_history_files(self.out, self.model, self.sensors, *arrays, files=files)
+            write_history_files(
+                self.out, self.model, self.sensors, t, q, v, e, m1, self.derived, (a, r, along),
+                files=files,
+            )  # fmt: skip
             files.write(self.out / "summary.json", self._summary_text(summary))
         self.saved_rows = self.n_rows
-        self.saved_t = float(arrays[0][-1]) if self.n_rows else None
+        self.saved_t = float(t[-1]) if self.n_rows else None
 
     def finish(self, summary: dict[str, Any]) -> None:
         """Last checkpoint, then close and remove the raw files."""

@@ -59,28 +59,45 @@ def centerline(model: Model, q: NDArray, per_element: int = 16) -> NDArray[np.fl
 
 def plot_modes(model: Model, modal: Any, path: str | Path, y: NDArray | None = None) -> Path:
     """Mode shapes over the configuration they linearize about, one panel per mode."""
+    growth = getattr(modal, "growth_rates", None)
+    titles = []
+    for i, f in enumerate(modal.frequencies_hz):
+        title = f"mode {i + 1}: {f:.4f} Hz"
+        if growth is not None and growth[i] > 0:
+            title += f", growth {growth[i]:.3g} 1/s"
+        titles.append(title)
+    return plot_shapes(model, modal.modes, titles, path, y)
+
+
+def plot_buckling(model: Model, res: Any, path: str | Path, y: NDArray | None = None) -> Path:
+    """Buckling mode shapes over the configuration they linearize about, titled by their
+    critical load factor."""
+    titles = [f"mode {i + 1}: λ = {lam:.6g}" for i, lam in enumerate(res.load_factors)]
+    return plot_shapes(model, res.modes, titles, path, y)
+
+
+def plot_shapes(
+    model: Model, shapes: NDArray, titles: list[str], path: str | Path, y: NDArray | None = None
+) -> Path:
+    """Shapes ``(k, n)`` (full coordinates) scaled over the configuration ``y``, one panel each."""
     plt = pyplot()
     path = Path(path)
     base = model.q0 if y is None else model.q_from_y(y)
     ref = centerline(model, base)
     size = float(np.ptp(ref, axis=0).max())
-    n = len(modal.frequencies_hz)
+    n = len(titles)
     cols = min(3, n)
     rows = int(np.ceil(n / cols))
     three = model.dim == 3
     fig = plt.figure(figsize=(4.5 * cols, 3.8 * rows), constrained_layout=True)
     for i in range(n):
         ax = fig.add_subplot(rows, cols, i + 1, projection="3d" if three else None)
-        shape = modal.modes[i]
+        shape = shapes[i]
         amp = 0.15 * size / max(np.abs(model.node_positions(shape)).max(), 1e-300)
         cur = centerline(model, base + amp * shape)
         ax.plot(*ref.T, color="0.6", lw=1, label="configuration")
         ax.plot(*cur.T, color="C3", lw=2, label="mode (scaled)")
-        title = f"mode {i + 1}: {modal.frequencies_hz[i]:.4f} Hz"
-        growth = getattr(modal, "growth_rates", None)
-        if growth is not None and growth[i] > 0:
-            title += f", growth {growth[i]:.3g} 1/s"
-        ax.set_title(title)
+        ax.set_title(titles[i])
         ax.set_xlabel("x [m]")
         ax.set_ylabel("y [m]")
         if three:

@@ -55,6 +55,10 @@ def check_results(npz: Path, data: dict[str, Any]) -> None:
     }
     if "directors" in data:
         shapes["directors"] = (n_t, n_el + 1, 3)
+    if "a" in data:
+        shapes["a"] = (n_t, n)
+    if "along" in data:
+        shapes["along"] = (n_t, *np.shape(data["along"])[1:])  # its columns: checked by its use
     if n_el < 1 or meta.get("n_elements", n_el) != n_el:
         raise bad(f"{n_el} element scales for {meta.get('n_elements')!r} elements")
     for key, shape in shapes.items():

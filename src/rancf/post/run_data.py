@@ -1,10 +1,11 @@
 """A finished run directory read back, and its centreline sampled densely from the elements.
 
 A run directory (written by :func:`rancf.post.results.write_run`) holds ``results.npz`` with the
-full state history; :func:`load_run` reads it together with the scenario that produced it (the
-run's ``scenario.toml`` when present — sweeps write one — else the path recorded in
-``summary.json``), which supplies the section radius and, for beam meshes, the reference nodal
-tangents.
+full state history and, in its metadata, the section radius and (beams) the reference nodal
+tangent angles (:func:`rancf.post.results.reader_metadata`), so :func:`load_run` needs no
+scenario file.  Runs written before those keys existed take them from the scenario that
+produced them (the run's ``scenario.toml`` when present, else the path recorded in
+``summary.json``).
 
 :func:`sample_centerline` evaluates the *exact* element interpolation, not the node polyline:
 for cable elements ``r(ξ) = Σ N_k(ξ) e_k`` with the rational shape functions of
@@ -31,14 +32,14 @@ import json
 import logging
 import math
 import os
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-from rancf.elements.cable import cable_shape_functions
+from rancf.elements.cable import axial_strain, cable_shape_functions
 from rancf.errors import InputError, shorten
 from rancf.post.results import load_results
 from rancf.post.run_checks import check_results, scenario_fits
@@ -78,13 +79,20 @@ class RunData:
     energies : dict of str -> ndarray (n_t,)
         ``kinetic``, ``strain``, ``gravity``.
     radius : float or None
-        Section radius (``sqrt(A / π)`` for a section given by area); None without scenario.
+        Section radius (``sqrt(A / π)`` for a section given by area), from the run's metadata
+        (older runs: from their scenario; None if there is neither).
     tangent_angles : ndarray (n_nodes,) or None
-        Reference tangent angles of beam nodes (None for cables or without scenario).
+        Reference tangent angles of beam nodes (None for cables, or an older run without its
+        scenario).
     directors : ndarray (n_t, n_nodes, 3) or None
         Rods: the first material axis ``m1`` of every node's triad (None for other elements).
     static : bool
         A static load path (``rancf static --out``): ``t`` holds the load factor ``λ``.
+    along : ndarray (n_t, n_points, n_names) or None
+        Section quantities at ``ξ = 0, 1/4, 1/2, 3/4`` of every element and the last node
+        (:mod:`rancf.model.sections`; None for older runs).
+    section_names : list of str
+        Their names.
     """
 
     path: Path
@@ -103,6 +111,8 @@ class RunData:
     tangent_angles: NDArray[np.float64] | None
     directors: NDArray[np.float64] | None = None
     static: bool = False
+    along: NDArray[np.float64] | None = None
+    section_names: list[str] = field(default_factory=list)
 
     @property
     def time_label(self) -> str:
@@ -170,7 +180,10 @@ def load_run(run_dir: str | Path) -> RunData:
     path = Path(run_dir)
     npz = path / "results.npz"
     if not path.is_dir():
-        raise InputError("RUN_DIR", str(path), "a run directory written by `rancf simulate`")
+        why = "it is a file" if path.exists() else "the folder does not exist"
+        raise InputError(
+            "RUN_DIR", str(path), f"a run directory written by `rancf simulate` ({why})"
+        )
     if not npz.is_file():
         raise InputError("RUN_DIR", str(path), "a run directory holding results.npz")
     try:
@@ -182,9 +195,11 @@ def load_run(run_dir: str | Path) -> RunData:
         reason = shorten(" ".join(f"{type(exc).__name__}: {exc}".split()))
         raise InputError("RUN_DIR", str(npz), f"a readable results.npz ({reason})") from None
     meta: dict[str, Any] = data["metadata"]
-    radius = None
-    angles = None
+    radius = meta.get("section_radius")
+    angles = None if meta.get("tangent_angles") is None else np.array(meta["tangent_angles"])
     sc_path, own = _find_scenario(path)
+    if radius is not None and not own:
+        sc_path = None  # the results hold what readers need; the run's own copy is still checked
     sc = None
     if sc_path is not None:
         from rancf.errors import ScenarioError
@@ -204,10 +219,10 @@ def load_run(run_dir: str | Path) -> RunData:
         if why is not None:
             logger.warning("%s: skipping the scenario %s: %s", path, sc_path, why)
             sc = None
-    if sc is not None:
+    if sc is not None and radius is None:  # runs of rancf < 0.3
         s = sc.data["section"]
         radius = s["radius"] if s["radius"] is not None else math.sqrt(s["area"] / math.pi)
-        if meta["element"] == "beam":
+        if meta["element"] == "beam" and angles is None:
             nodes = sc.build_model().mesh.nodes
             if nodes.shape[0] != meta["n_elements"] + 1:
                 raise InputError(
@@ -215,7 +230,7 @@ def load_run(run_dir: str | Path) -> RunData:
                     f"meshes {nodes.shape[0] - 1} elements, the results hold {meta['n_elements']})",
                 )  # fmt: skip
             angles = np.arctan2(nodes[:, 1, 1], nodes[:, 1, 0])
-    else:
+    elif radius is None:
         logger.warning("%s: no scenario found; no radius field, beams drawn with chords", path)
     return RunData(
         path=path,
@@ -234,6 +249,8 @@ def load_run(run_dir: str | Path) -> RunData:
         tangent_angles=angles,
         directors=data.get("directors"),
         static=_summary(path).get("analysis") == "static",
+        along=data.get("along"),
+        section_names=list(meta.get("section_names", [])),
     )
 
 
@@ -303,8 +320,7 @@ def _cable_fields(run: RunData, q: NDArray, v: NDArray, xi: NDArray) -> tuple[ND
     d1, d10 = np.einsum("eqk,ekd->eqd", n1, e), np.einsum("eqk,ekd->eqd", n1, e0)
     d2 = np.einsum("eqk,ekd->eqd", n2, e)
     vel = np.einsum("eqk,ekd->eqd", n, ev)
-    g, g0 = np.sum(d1 * d1, axis=-1), np.sum(d10 * d10, axis=-1)
-    return r, r0, vel, (g - g0) / (2.0 * g0), _curvature(d1, d2)
+    return r, r0, vel, axial_strain(d1, d10), _curvature(d1, d2)
 
 
 def _hermite(xi: NDArray) -> tuple[NDArray, NDArray, NDArray]:
@@ -356,8 +372,7 @@ def _beam_fields(run: RunData, q: NDArray, v: NDArray, xi: NDArray) -> tuple[NDA
         1,
     )
     vel = np.einsum("qk,ekd->eqd", h, ev)
-    l0 = np.linalg.norm(chord0, axis=1)
-    strain = np.repeat(((length**2 - l0**2) / (2 * l0**2))[:, None], xi.size, axis=1)
+    strain = np.repeat(axial_strain(d, chord0)[:, None], xi.size, axis=1)
     return r, r0, vel, strain, _curvature(d1, d2)
 
 

@@ -24,13 +24,42 @@ from rancf.post.run_data import RunData, frame_indices, sample_centerline
 __all__ = ["plot_run", "animate_run"]
 
 
-def _axes_of(run: RunData, pts: NDArray) -> tuple[int, int]:
-    """The two coordinates to draw: x–y for planar runs, the two of largest extent otherwise."""
+def _space_axes(fig: Any, run: RunData, pts: NDArray, position: Any = 111) -> Any:
+    """Axes for centrelines ``pts (..., 3)``: x–y for planar runs; for spatial runs 3D axes
+    (mplot3d) with equal scales and every coordinate labelled, so no coordinate is lost."""
     if run.dim == 2:
-        return 0, 1
-    span = np.ptp(pts.reshape(-1, 3), axis=0)
-    a, b = sorted(np.argsort(span)[-2:])
-    return int(a), int(b)
+        ax = fig.add_subplot(position)
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.set_xlabel("x [m]")
+        ax.set_ylabel("y [m]")
+        return ax
+    ax = fig.add_subplot(position, projection="3d")
+    flat = pts.reshape(-1, 3)
+    lo, hi = flat.min(axis=0), flat.max(axis=0)
+    half = 0.55 * max(float(np.max(hi - lo)), 1e-9)
+    mid = 0.5 * (lo + hi)
+    ax.set_xlim(mid[0] - half, mid[0] + half)
+    ax.set_ylim(mid[1] - half, mid[1] + half)
+    ax.set_zlim(mid[2] - half, mid[2] + half)
+    ax.set_box_aspect((1.0, 1.0, 1.0))
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    ax.set_zlabel("z [m]")
+    return ax
+
+
+def _draw(ax: Any, pts: NDArray, **kw: Any) -> Any:
+    """One centreline on planar or 3D axes; returns the line."""
+    if getattr(ax, "name", "") == "3d":
+        return ax.plot(pts[:, 0], pts[:, 1], pts[:, 2], **kw)[0]
+    return ax.plot(pts[:, 0], pts[:, 1], **kw)[0]
+
+
+def _set_line(line: Any, pts: NDArray) -> None:
+    if hasattr(line, "set_data_3d"):
+        line.set_data_3d(pts[:, 0], pts[:, 1], pts[:, 2])
+    else:
+        line.set_data(pts[:, 0], pts[:, 1])
 
 
 def plot_run(run: RunData, out_dir: str | Path, n_configurations: int = 6) -> list[Path]:
@@ -83,20 +112,13 @@ def _plot_run(run: RunData, out: Path, n_configurations: int, files: FileSet) ->
     save_figure(fig, written[-1], 100, files)
 
     idx = np.unique(np.linspace(0, run.t.size - 1, max(n_configurations, 1)).round().astype(int))
-    lines = [sample_centerline(run, int(i)).points for i in idx]
-    a, b = _axes_of(run, _pad(np.array(lines)))
-    fig, ax = plt.subplots(figsize=(7, 5), constrained_layout=True)
+    lines = _pad(np.array([sample_centerline(run, int(i)).points for i in idx]))
+    fig = plt.figure(figsize=(7, 5), constrained_layout=True)
+    ax = _space_axes(fig, run, lines)
     cmap = plt.get_cmap("viridis")
     for j, (i, pts) in enumerate(zip(idx, lines, strict=True)):
-        ax.plot(
-            pts[:, a],
-            pts[:, b],
-            color=cmap(j / max(len(idx) - 1, 1)),
-            label=run.time_text(run.t[i]),
-        )
-    ax.set_aspect("equal", adjustable="datalim")
-    ax.set_xlabel(f"{'xyz'[a]} [m]")
-    ax.set_ylabel(f"{'xyz'[b]} [m]")
+        color = cmap(j / max(len(idx) - 1, 1))
+        _draw(ax, pts, color=color, label=run.time_text(run.t[i]))
     ax.legend(fontsize=8)
     ax.set_title(f"configurations of {run.name}")
     written.append(out / "configurations.png")
@@ -152,23 +174,22 @@ def animate_run(
         ref = replace(run, q=run.reference[None], v=np.zeros_like(run.reference)[None])
         base = _pad(sample_centerline(ref, 0).points)
         lines = base + magnify * (lines - base)
-    a, b = _axes_of(run, lines)
-    lo, hi = lines[..., [a, b]].min(axis=(0, 1)), lines[..., [a, b]].max(axis=(0, 1))
-    pad = 0.05 * max(float(np.max(hi - lo)), 1e-9)
-    fig, ax = plt.subplots(figsize=(6, 4.5))
-    ax.set_xlim(lo[0] - pad, hi[0] + pad)
-    ax.set_ylim(lo[1] - pad, hi[1] + pad)
-    ax.set_aspect("equal", adjustable="box")
-    ax.set_xlabel(f"{'xyz'[a]} [m]")
-    ax.set_ylabel(f"{'xyz'[b]} [m]")
-    ax.plot(lines[0, :, a], lines[0, :, b], color="0.75", lw=1, label=run.time_text(0.0))
-    (line,) = ax.plot([], [], "C0", lw=2)
+    fig = plt.figure(figsize=(6, 4.5))
+    ax = _space_axes(fig, run, lines)
+    if run.dim == 2:
+        lo, hi = lines[..., :2].min(axis=(0, 1)), lines[..., :2].max(axis=(0, 1))
+        pad = 0.05 * max(float(np.max(hi - lo)), 1e-9)
+        ax.set_xlim(lo[0] - pad, hi[0] + pad)
+        ax.set_ylim(lo[1] - pad, hi[1] + pad)
+        ax.set_aspect("equal", adjustable="box")
+    _draw(ax, lines[0], color="0.75", lw=1, label=run.time_text(0.0))
+    line = _draw(ax, lines[0], color="C0", lw=2)
     title = ax.set_title("")
     label = f" (displacement × {magnify:g})" if magnify != 1.0 else ""
     try:
         with atomic_path(path) as tmp, writer.saving(fig, tmp, dpi):
             for k, i in enumerate(idx):
-                line.set_data(lines[k, :, a], lines[k, :, b])
+                _set_line(line, lines[k])
                 title.set_text(f"{run.name}: {run.time_text(run.t[i], '.4f')}{label}")
                 writer.grab_frame()
     finally:

@@ -4,7 +4,11 @@
 Each ``.vtu`` holds the densely sampled centreline (:func:`rancf.post.run_data.sample_centerline`)
 as a polyline of ``line`` cells with point data ``displacement``, ``velocity`` (3 components; zero
 ``z`` for planar runs), ``axial_strain``, ``curvature``, ``radius`` (for ParaView's Tube filter,
-"Vary Radius: By Scalar" or a constant radius) and ``element``.
+"Vary Radius: By Scalar" or a constant radius), ``element`` and the section quantities of the run
+(:mod:`rancf.model.sections`: ``axial_force``, ``bending_moment``, ...; stored at ``ξ = 0, 1/4,
+1/2, 3/4, 1`` of every element, interpolated linearly in ``ξ`` within the element; their names
+prefixed ``section_``, so the stored ``section_strain`` and ``section_curvature`` stand beside
+the sampled ``axial_strain`` and ``curvature``).
 
 Rod runs also get ``<run>_nodes.pvd`` with one ``.vtu`` per stored time holding the nodes as
 ``vertex`` cells with point data ``twist`` (the nodal ``φ``), ``tangent`` and the material frame
@@ -80,7 +84,26 @@ def centerline_mesh(run: RunData, i: int, per_element: int = 16):  # -> meshio.M
     }
     if run.radius is not None:
         data["radius"] = np.full(n, run.radius)
+    if run.along is not None:
+        data.update(_section_fields(run, i, per_element))
     return meshio.Mesh(pad3(c.points), [("line", cells)], point_data=data)
+
+
+def _section_fields(run: RunData, i: int, per_element: int) -> dict[str, np.ndarray]:
+    """The stored section quantities at the centreline samples (module docstring)."""
+    along = np.asarray(run.along[i])  # (4 n_el + 1, n_names)
+    n_el = (along.shape[0] - 1) // 4
+    idx = np.arange(n_el)[:, None] * 4 + np.arange(5)[None, :]  # element e: rows 4e .. 4e + 4
+    xi = np.linspace(0.0, 1.0, per_element + 1)
+    w = np.clip(xi * 4.0, 0.0, 4.0)
+    lo = np.minimum(np.floor(w).astype(int), 3)
+    frac = w - lo
+    vals = (
+        along[idx[:, lo]] * (1.0 - frac)[None, :, None]
+        + along[idx[:, lo + 1]] * frac[None, :, None]
+    )  # (n_el, per_element + 1, n_names)
+    pts = np.concatenate([vals[:, :-1].reshape(-1, vals.shape[-1]), vals[-1, -1:]])
+    return {f"section_{name}": pts[:, k] for k, name in enumerate(run.section_names)}
 
 
 def nodes_mesh(run: RunData, i: int):  # -> meshio.Mesh

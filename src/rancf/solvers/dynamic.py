@@ -72,6 +72,14 @@ class DynamicResult:
     #: Rods: nodal directors ``m1`` at the output times, ``(n_t, n_nodes, 3)``; else None.
     directors: NDArray[np.float64] | None = None
 
+    def select(self, index: NDArray | slice) -> DynamicResult:
+        """The result restricted to some of its outputs (every per-output array sliced)."""
+        from dataclasses import replace
+
+        per_output = ("t", "q", "v", "kinetic", "strain", "gravity", "directors")
+        cut = {k: getattr(self, k)[index] for k in per_output if getattr(self, k) is not None}
+        return replace(self, **cut)
+
     @property
     def total_energy(self) -> NDArray[np.float64]:
         """Kinetic + strain + gravitational potential."""
@@ -203,8 +211,10 @@ def integrate(
     should_stop: Callable[[], bool] | None = None,
     sink: OutputSink | None = None,
     on_start: Callable[[], None] | None = None,
+    initial: NDArray | None = None,
 ) -> DynamicResult:
-    """Integrate the model from its reference configuration and initial velocities.
+    """Integrate the model from its reference configuration (or ``initial``) and initial
+    velocities.
 
     Parameters
     ----------
@@ -221,6 +231,11 @@ def integrate(
         last one, so memory does not grow with ``t_end``.  Default: kept in memory.
     on_start : callable, optional
         Called once, right before the time loop (after the initial acceleration).
+    initial : ndarray, optional
+        Model coordinates to start from instead of the reference, e.g. a static equilibrium
+        (:func:`rancf.solvers.static.solve_static`'s ``y``; rods: with the nodal triads the
+        static solve left, which are then kept).  The velocities are the model's initial
+        velocities either way.
 
     Returns
     -------
@@ -229,7 +244,8 @@ def integrate(
         time reached.  ``wall_time`` is the time loop alone.
     """
     o = options
-    model.reset_triads()
+    if initial is None:
+        model.reset_triads()
     integ = GeneralizedAlpha(model, o.rho_inf, o.newton_tol, o.max_newton, o.newton)
     out_dt = o.output_step if o.output_step is not None else o.step
     n_out = o.n_outputs - 1
@@ -247,13 +263,12 @@ def integrate(
     rod = model.element == "rod"
     directors = model.nodal_directors  # rods: of the state the triads were last carried to
 
-    def store(tt: float, yy: NDArray, vv: NDArray, e: NDArray | None = None) -> None:
-        if e is None:
-            e = np.array(
-                [model.kinetic_energy(vv), model.strain_energy(yy), model.gravity_energy(yy)]
-            )
+    def store(tt: float, yy: NDArray, vv: NDArray) -> None:
+        e = np.array(
+            [model.kinetic_energy(vv, yy), model.strain_energy(yy), model.gravity_energy(yy)]
+        )
         m1 = directors(yy)
-        row = (tt, model.q_from_y(yy), model.q_from_y(vv), np.asarray(e, dtype=float), m1)
+        row = (tt, model.q_from_y(yy), model.q_from_y(vv), e, m1)
         target_sink.append(*row[:4], directors=m1)
         last[:] = [row]
         result.n_outputs += 1
@@ -268,7 +283,7 @@ def integrate(
         last[:] = [(float(ts[-1]), qs[-1], vs[-1], np.array(oe[-1]), m1)]
         result.n_outputs += len(oy)
 
-    y = model.y0.copy()
+    y = model.y0.copy() if initial is None else np.array(initial, dtype=float)
     v = model.v0.copy()
     t = 0.0
     a = integ.initial_acceleration(y, v, t)
@@ -282,7 +297,7 @@ def integrate(
     def snapshot(status: DynamicStatus, message: str) -> DynamicResult:
         if memory is not None:
             ts, qs, vs, es = memory.arrays()
-            result.directors = memory.directors()
+            result.directors = memory.stream("directors")
         else:
             tt, qq, vv, ee, m1 = last[0]
             ts, qs, vs, es = np.array([tt]), qq[None], vv[None], ee[None]
@@ -356,7 +371,7 @@ def integrate(
                 break
             continue
         y, v, a, t = y1, v1, a1, t + h_try
-        model.core.rereference(y)  # rods: nodal triads follow the accepted step
+        model.core.rereference(y, v, a)  # rods: triads follow the step, twist rates keep the spin
         result.took(h_try)
         if o.adaptive:
             h = min(max_step, h_try * min(2.0, 0.9 * max(err, 1e-10) ** (-1.0 / 3.0)))

@@ -12,12 +12,17 @@ static Newton tangent).  That problem is solved by the general QZ algorithm
 at ``a / 2π`` Hz and one of its roots grows like ``e^{|b| t}`` — reported as ``growth_rates``
 [1/s], never dropped.
 
-Rigid-body modes are identified geometrically: the infinitesimal translations and rotations of the
-configuration that the supports allow span the rigid subspace; an eigenvector lying in it (M-norm
-share above 0.99) is a rigid-body mode and is removed.  Any other zero or near-zero frequency is
-reported as it is — for instance the out-of-plane bending of a curved spatial cable, which the
-magnitude curvature ``|r' × r''|/|r'|³`` does not resist to first order (math note sec. 6); the
-rod element (``"rod"``) has that stiffness.
+Rigid-body modes are the zero-frequency modes of the actual problem that are rigid motions.  The
+infinitesimal translations and rotations of the configuration that the supports allow span a
+candidate subspace ``R``; only its part that the tangent does not resist is rigid: the null space
+of ``Rᵀ K R`` to round-off (an eigenvalue ``λ`` of ``(Rᵀ K R, Rᵀ M R)`` counts as zero when
+``|λ| Rᵀ M R`` is below 10³ ε times ``|R|ᵀ |K| |R|``, the size of the round-off of ``Rᵀ K R``).
+About a loaded state a rigid motion can be resisted by the loads: a pendulum's swing about its
+pin is a real mode (gravity's tension stiffens it, ``K r = W f_ext ≠ 0``), not a rigid-body mode.
+An eigenvector lying in the rigid subspace (M-norm share above 0.99) is removed.  Any other zero
+or near-zero frequency is reported as it is — for instance the out-of-plane bending of a curved
+spatial cable, which the magnitude curvature ``|r' × r''|/|r'|³`` does not resist to first order
+(math note sec. 6); the rod element (``"rod"``) has that stiffness.
 """
 
 from __future__ import annotations
@@ -31,7 +36,13 @@ from numpy.typing import NDArray
 from rancf.errors import RancfError
 from rancf.model.system import Model
 
-__all__ = ["ModalResult", "natural_modes", "rigid_body_modes", "tangent_stiffness"]
+__all__ = [
+    "ModalResult",
+    "natural_modes",
+    "rigid_body_modes",
+    "tangent_stiffness",
+    "unresisted_motions",
+]
 
 
 @dataclass(frozen=True)
@@ -107,7 +118,7 @@ def rigid_body_modes(model: Model, y: NDArray) -> NDArray[np.float64]:
         r = r @ vt[rank:].T
     if r.shape[1] == 0:
         return r
-    m = model.dense(model.mass_band)
+    m = model.dense(model.mass_matrix(y))
     gram = r.T @ m @ r
     w, u = np.linalg.eigh(gram)
     keep = w > 1e-12 * w.max()
@@ -134,7 +145,7 @@ def natural_modes(model: Model, y: NDArray | None = None, count: int | None = No
     y = model.y0 if y is None else np.asarray(y, dtype=float)
     free = ~model.fixed
     k = k_full[np.ix_(free, free)]
-    m = model.dense(model.mass_band)[np.ix_(free, free)]
+    m = model.dense(model.mass_matrix(y))[np.ix_(free, free)]
     try:
         if not (np.all(np.isfinite(k)) and np.all(np.isfinite(m))):
             raise ValueError("non-finite stiffness or mass entries")
@@ -149,7 +160,7 @@ def natural_modes(model: Model, y: NDArray | None = None, count: int | None = No
             "its mass or stiffness is singular or far out of scale; check material.density, "
             "material.youngs_modulus and the section"
         ) from None
-    rigid = rigid_body_modes(model, y)[free]
+    rigid = unresisted_motions(rigid_body_modes(model, y)[free], k, m)
     n_rigid = rigid.shape[1]
     keep = np.ones(lam.size, dtype=bool)
     if n_rigid:
@@ -170,6 +181,18 @@ def natural_modes(model: Model, y: NDArray | None = None, count: int | None = No
         freqs = root.real / (2.0 * np.pi)
         growth = np.abs(root.imag)
     return ModalResult(freqs, modes, int(np.sum(~keep)), lam, growth, symmetric)
+
+
+def unresisted_motions(r: NDArray, k: NDArray, m: NDArray) -> NDArray[np.float64]:
+    """The part of the rigid candidates ``r`` (M-orthonormal columns) that ``k`` does not
+    resist: the null space of ``rᵀ k r`` to round-off (module docstring)."""
+    if r.shape[1] == 0:
+        return r
+    kr = r.T @ k @ r
+    noise = 1e3 * np.finfo(float).eps * (np.abs(r).T @ np.abs(k) @ np.abs(r))
+    w, u = np.linalg.eigh(0.5 * (kr + kr.T))  # r is M-orthonormal: rᵀ m r = I
+    zero = np.abs(w) <= np.abs(np.diag(u.T @ noise @ u)) + 1e-300
+    return r @ u[:, zero]
 
 
 def tangent_stiffness(model: Model, y: NDArray | None = None) -> tuple[NDArray[np.float64], bool]:

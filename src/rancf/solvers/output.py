@@ -1,12 +1,12 @@
 """Where :func:`rancf.solvers.dynamic.integrate` puts the stored states: output sinks.
 
 A sink receives one row per output time: ``t``, nodal coordinates ``q (n_q,)``, velocities
-``v (n_q,)``, the energies ``(kinetic, strain, gravity)`` and, for rods, the nodal directors
-``m1 (n_nodes, 3)`` (the first material axis of each node's triad, which the stored coordinates
-alone do not fix: the triads are carried along the whole path of the run).
+``v (n_q,)``, the energies ``(kinetic, strain, gravity)`` and named streams: for rods, the nodal
+directors ``directors (n_nodes, 3)`` (the first material axis of each node's triad, which the
+stored coordinates alone do not fix: the triads are carried along the whole path of the run).
 :class:`MemorySink` keeps them in memory (the default, for library use); the command line
-streams them to disk with
-:class:`rancf.post.history.HistoryStore`, so memory stays bounded whatever ``t_end``.
+streams them to disk with :class:`rancf.post.history.HistoryStore`, so memory stays bounded
+whatever ``t_end``.
 """
 
 from __future__ import annotations
@@ -16,7 +16,10 @@ from typing import Protocol
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["OutputSink", "MemorySink"]
+__all__ = ["OutputSink", "MemorySink", "STREAMS"]
+
+#: Named streams of a row besides ``t, q, v`` and the energies.
+STREAMS = ("directors",)
 
 
 class OutputSink(Protocol):
@@ -28,10 +31,10 @@ class OutputSink(Protocol):
         q: NDArray[np.float64],
         v: NDArray[np.float64],
         energy: NDArray[np.float64],
-        directors: NDArray[np.float64] | None = None,
+        **streams: NDArray[np.float64] | None,
     ) -> None:
-        """Store one output: time, ``q (n_q,)``, ``v (n_q,)``, energies ``(3,)``, rods' nodal
-        directors ``(n_nodes, 3)``."""
+        """Store one output: time, ``q (n_q,)``, ``v (n_q,)``, energies ``(3,)`` and the
+        :data:`STREAMS` (rods' ``directors (n_nodes, 3)``; None: absent)."""
 
     def append_block(
         self,
@@ -39,21 +42,21 @@ class OutputSink(Protocol):
         q: NDArray[np.float64],
         v: NDArray[np.float64],
         energy: NDArray,
-        directors: NDArray[np.float64] | None = None,
+        **streams: NDArray[np.float64] | None,
     ) -> None:
-        """Store consecutive outputs: ``t (k,)``, ``q, v (k, n_q)``, ``energy (k, 3)``,
-        ``directors (k, n_nodes, 3)``."""
+        """Store consecutive outputs: ``t (k,)``, ``q, v (k, n_q)``, ``energy (k, 3)`` and
+        each stream with a leading axis ``k``."""
 
 
 class MemorySink:
-    """Keeps every output in memory; :meth:`arrays` stacks them."""
+    """Keeps every output in memory; :meth:`arrays` and :meth:`stream` stack them."""
 
     def __init__(self) -> None:
         self.t: list[float] = []
         self.q: list[NDArray[np.float64]] = []
         self.v: list[NDArray[np.float64]] = []
         self.e: list[NDArray[np.float64]] = []
-        self.m: list[NDArray[np.float64]] = []
+        self.streams: dict[str, list[NDArray[np.float64]]] = {k: [] for k in STREAMS}
 
     def append(
         self,
@@ -61,15 +64,16 @@ class MemorySink:
         q: NDArray[np.float64],
         v: NDArray[np.float64],
         energy: NDArray[np.float64],
-        directors: NDArray[np.float64] | None = None,
+        **streams: NDArray[np.float64] | None,
     ) -> None:
         """Store one output (copies of the arrays)."""
-        self.t.append(float(t))
-        self.q.append(np.array(q, dtype=float))
-        self.v.append(np.array(v, dtype=float))
-        self.e.append(np.array(energy, dtype=float))
-        if directors is not None:
-            self.m.append(np.array(directors, dtype=float))
+        self.append_block(
+            np.array([t]),
+            np.asarray(q)[None],
+            np.asarray(v)[None],
+            np.asarray(energy)[None],
+            **{k: None if s is None else np.asarray(s)[None] for k, s in streams.items()},
+        )
 
     def append_block(
         self,
@@ -77,19 +81,21 @@ class MemorySink:
         q: NDArray[np.float64],
         v: NDArray[np.float64],
         energy: NDArray,
-        directors: NDArray[np.float64] | None = None,
+        **streams: NDArray[np.float64] | None,
     ) -> None:
         """Store consecutive outputs (the rows are kept as views of copies of the blocks)."""
         self.t.extend(np.asarray(t, dtype=float).tolist())
         self.q.extend(np.array(q, dtype=float))
         self.v.extend(np.array(v, dtype=float))
         self.e.extend(np.array(energy, dtype=float))
-        if directors is not None:
-            self.m.extend(np.array(directors, dtype=float))
+        for k, s in streams.items():
+            if s is not None:
+                self.streams[k].extend(np.array(s, dtype=float))
 
-    def directors(self) -> NDArray[np.float64] | None:
-        """Rods' nodal directors ``(n, n_nodes, 3)`` (None when none were stored)."""
-        return np.array(self.m) if self.m else None
+    def stream(self, name: str) -> NDArray[np.float64] | None:
+        """A stream stacked over the outputs (None when none was stored)."""
+        rows = self.streams.get(name, [])
+        return np.array(rows) if rows else None
 
     def arrays(self) -> tuple[NDArray, NDArray, NDArray, NDArray]:
         """``t (n,)``, ``q (n, n_q)``, ``v (n, n_q)``, energies ``(n, 3)``."""

@@ -1,19 +1,22 @@
-"""The paper's numerical examples as reproducible studies (``rancf example``, ``rancf report``)."""
+"""The paper's numerical examples as reproducible studies (``rancf example``, ``rancf report``),
+and the other shipped scenarios run the same way (``rancf example run NAME``)."""
 
 from __future__ import annotations
 
 from collections.abc import Callable
+from functools import partial
 
-from rancf.studies.common import EXAMPLES, StudyResult
+from rancf.studies.common import EXAMPLES, SCENARIO_ANALYSES, StudyResult
 
-__all__ = ["EXAMPLES", "study_runner", "runs_a_grid"]
+__all__ = ["EXAMPLES", "SCENARIO_ANALYSES", "study_runner", "runs_a_grid"]
 
 #: Studies whose ``run_study`` takes an executor for its mesh grid.
 _GRID_STUDIES = ("planar-pendulum", "spatial-pendulum", "exact-geometry")
 
 
 def study_runner(name: str) -> Callable[..., StudyResult]:
-    """The ``run_study(out, quick[, executor])`` function of an example."""
+    """The ``run_study(out, quick[, executor])`` function of an example (a paper study or
+    another shipped scenario, :data:`SCENARIO_ANALYSES`)."""
     if name == "planar-pendulum":
         from rancf.studies.planar_pendulum import run_study
     elif name == "spatial-pendulum":
@@ -22,10 +25,15 @@ def study_runner(name: str) -> Callable[..., StudyResult]:
         from rancf.studies.arc_vibration import run_study
     elif name == "exact-geometry":
         from rancf.studies.exact_geometry import run_study
+    elif name in SCENARIO_ANALYSES:
+        from rancf.studies.scenario_example import run_scenario
+
+        return partial(run_scenario, name)
     else:
         from rancf.errors import InputError
 
-        raise InputError("example", name, f"one of {', '.join(EXAMPLES)}")
+        names = [*EXAMPLES, *SCENARIO_ANALYSES]
+        raise InputError("example", name, f"one of {', '.join(names)}")
     return run_study
 
 

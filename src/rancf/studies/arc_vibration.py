@@ -15,7 +15,6 @@ of the same model.
 
 from __future__ import annotations
 
-from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -210,8 +209,7 @@ def run_study(out: str | Path, quick: bool = False) -> StudyResult:
     sc, m = variant(forced, NAME)
     r = run(sc, m)
     tail = r.t >= r.t[-1] - 3.0 / f_exc
-    cut = {k: getattr(r, k)[tail] for k in ("t", "q", "v", "kinetic", "strain", "gravity")}
-    write_run(out / "forced_run", m, sc.sensors, replace(r, **cut))
+    write_run(out / "forced_run", m, sc.sensors, r.select(tail))
     # the scenario beside the run: `rancf plot`/`animate` (and the animation below) read the
     # section radius from it
     atomic_write(out / "forced_run" / "scenario.toml", dumps(forced))

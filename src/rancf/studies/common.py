@@ -23,6 +23,7 @@ from rancf.studies.grid import Executor, GridRun, grid_variant, run_grid, varian
 
 __all__ = [
     "EXAMPLES",
+    "SCENARIO_ANALYSES",
     "example_path",
     "load_example",
     "variant",
@@ -41,6 +42,13 @@ EXAMPLES = {
     "spatial-pendulum": "paper 6.2 spatial pendulum with an elliptical-arc cable",
     "arc-vibration": "paper 6.3 free and forced vibration of a cable arc",
     "exact-geometry": "where exact geometry pays: 6.1 pendulum, E from 2e6 to 2e10 Pa",
+}
+
+#: Shipped scenarios that are not paper studies, and what ``rancf example run`` does with each
+#: (:mod:`rancf.studies.scenario_example`): ``"simulate"``, ``"static"`` and/or ``"modes"``.
+SCENARIO_ANALYSES: dict[str, tuple[str, ...]] = {
+    "cantilever": ("static", "modes"),
+    "installed-hose": ("static", "simulate"),
 }
 
 

@@ -35,19 +35,19 @@ img { max-width: 100%; border: 1px solid #ddd; }
 _LONG_TABLE = 20
 
 #: The works the studies reproduce and build on (HTML), cited in the report's "References".
-#: The conic-section paper is cited by what its text gives: the copy rancf was written from
-#: carries no title page, so its title, full author names, journal, year and DOI are not known
-#: here and are not guessed.
+#: The conic-section paper is described by what the copy rancf was written from gives: its
+#: abstract, keywords, the initials of its author-contributions statement and its funding (that
+#: copy has no title page, so no title, journal or year is cited; none is invented).
 REFERENCES = (
-    "[1] The paper on the direct definition of rational ANCF (RANCF) conic-section cable "
-    "elements, the mapping factor <i>K</i> and the optimal <i>K</i><sub>opt</sub> "
-    "(conic from chord, end-tangent angles and one interior point; degree elevation; "
-    "gradient-ratio criterion, eq. 29; numerical examples in sections 6.1–6.3, which the "
-    "studies of this report reproduce). Authors, by the initials of its author-contributions "
-    "statement: P. L., Y. L., M. S., M. L.; funded by the Henan Provincial R&amp;D Plan Joint "
-    "Fund (No. 225101610072). The text rancf was built from gives neither its title nor the "
-    "authors' full names, the journal, the year or a DOI; they are left out rather than "
-    "guessed.",
+    "[1] P. L., Y. L., M. S., M. L.: the conic-section RANCF paper, which in its abstract "
+    "“propose[s] a direct definition method for RANCF elements that explicitly exploits the "
+    "analytic properties of conic sections” and introduces the mapping factor <i>K</i> and the "
+    "optimal <i>K</i><sub>opt</sub> (conic from chord, end-tangent angles and one interior "
+    "point; degree elevation; gradient-ratio criterion, eq. 29; numerical examples in sections "
+    "6.1–6.3, which rancf's paper studies reproduce). Keywords: rational absolute nodal "
+    "coordinate formulation; conic section element; weights; mapping relationship; "
+    "parameterization. Funded by the Henan Provincial R&amp;D Plan Joint Fund "
+    "(No. 225101610072).",
     "[2] G. G. Sanborn, A. A. Shabana, <i>On the integration of computer aided design and "
     "analysis using the finite element absolute nodal coordinate formulation</i>, Multibody "
     "System Dynamics 22 (2009) 181–197, DOI "
@@ -119,6 +119,7 @@ def write_report(
     quick: bool,
     wall_time_s: float | None = None,
     unfinished: Sequence[str] = (),
+    heading: tuple[str, str] | None = None,
 ) -> Path:
     """Write ``report.html`` (and ``report.json``) for studies whose files are in their folders.
 
@@ -126,18 +127,20 @@ def write_report(
     parallel); without it the sum of the studies' wall times is shown.  Figures (PNG) and
     animations (GIF) are embedded.  ``unfinished`` names studies that did not finish (failed or
     interrupted): the report then says at the top that it is incomplete, and ``report.json``
-    has ``"complete": false``.
+    has ``"complete": false``.  ``heading`` replaces the title and introduction of the paper's
+    studies (``(title, introduction HTML)``, for other shipped scenarios).
     """
+    title, intro = heading or ("RANCF conic-section cable elements: the paper's studies", _INTRO)
     out = Path(out)
     parts = [
         "<!DOCTYPE html><html><head><meta charset='utf-8'>",
-        f"<title>rancf: paper studies</title><style>{_CSS}</style></head><body>",
-        "<h1>RANCF conic-section cable elements: the paper's studies</h1>",
+        f"<title>{html.escape(title)}</title><style>{_CSS}</style></head><body>",
+        f"<h1>{html.escape(title)}</h1>",
         f"<p>Generated {datetime.datetime.now().isoformat(timespec='seconds')} on "
         f"{html.escape(platform.platform())}, Python {platform.python_version()}"
         f"{' — <b>reduced (quick) runs</b>' if quick else ''}. {_timing(studies, wall_time_s)}"
         "</p>",
-        f"<p>{_INTRO}</p>",
+        f"<p>{intro}</p>",
     ]
     if unfinished:
         parts.append(

@@ -40,15 +40,18 @@ def _analyse(sc: Any, analysis: str, folder: Path) -> tuple[str, str, float, dic
     if analysis == "simulate":
         from rancf.post.history import check_output_size
         from rancf.solvers.dynamic import integrate
+        from rancf.solvers.static import start_state
 
         opts = sc.dynamic_options()
         n_cols = sum(len(s.columns(model.dim)) for s in sc.sensors)
         rods = 3 * model.n_nodes if model.element == "rod" else 0
         check_output_size(sc.path, opts.n_outputs, model.q0.size, n_cols, rods, MAX_RUN_GB, LIMIT)
-        res = integrate(model, opts)
-        extra = {"scenario": str(folder / "scenario.toml")}
-        summary = write_run(folder, model, sc.sensors, res, extra)
-        names, vals = sensor_table(model, sc.sensors, res.q[-1:])
+        y0, start = start_state(sc, model)
+        res = integrate(model, opts, initial=y0)
+        extra = {"scenario": str(folder / "scenario.toml"), **start}
+        summary = write_run(folder, model, sc.sensors, res, extra, sc.support_labels)
+        energy = [[res.kinetic[-1], res.strain[-1], res.gravity[-1]]]
+        names, vals = sensor_table(model, sc.sensors, res.q[-1:], res.v[-1:], energy)
         values = {"t_reached": float(res.t_reached), "steps": float(res.n_steps)}
         values.update(zip(names, map(float, vals[0]), strict=True))
         return summary["status"], res.message, float(res.wall_time), values
@@ -56,9 +59,11 @@ def _analyse(sc: Any, analysis: str, folder: Path) -> tuple[str, str, float, dic
         from rancf.post.results import LoadPath, write_static_run
         from rancf.solvers.static import solve_static
 
-        path = LoadPath(model)  # the load path, as `rancf static --out` keeps it
+        path = LoadPath(model, sc.support_labels)  # the load path, as `static --out` keeps it
         t0 = time.perf_counter()
-        res = solve_static(model, sc.solver["load_steps"], on_step=path.record)
+        res = solve_static(
+            model, sc.solver["load_steps"], on_step=path.record, method=sc.solver["static_method"]
+        )
         wall = time.perf_counter() - t0
         names, vals = sensor_table(model, sc.sensors, res.q)
         values = dict(zip(names, map(float, vals[0]), strict=True))

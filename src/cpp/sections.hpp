@@ -1,0 +1,33 @@
+// Strains and curvatures at sample points along every element (section outputs).
+//
+// The values are those the element kernels use in the strain energy, at points given by the
+// caller (shape-function derivatives and reference data at the sample parameters xi):
+//   cable  [eps, kappa]            eps Green-Lagrange, kappa signed (2D) / magnitude (3D)
+//   beam   [eps, kappa(xi)]        co-rotational: kappa = [(6 xi - 4) tb1 + (6 xi - 2) tb2] / L0
+//   rod    [eps, K1, K2, K3]       material curvatures (rod-math section 4) with the live triads
+#pragma once
+
+#include "model.hpp"
+
+namespace rancf {
+
+/// Sample points of every element: n per element; xi (n); n1, n2 (n_el, n, 4) shape-function
+/// derivatives (cable, rod); s0 = |r0'|^2 (cable) or j0 = |r0'| (rod), (n_el, n).
+struct SamplePoints {
+  int n = 0;
+  const double* xi = nullptr;
+  const double* n1 = nullptr;
+  const double* n2 = nullptr;
+  const double* ref = nullptr;
+};
+
+/// Beam element el: [eps, kappa(xi)] at the n points xi into out (n, 2) (beam.cpp).
+void beam_section(const Model& m, int el, const double* e, const double* xi, int n, double* out);
+
+/// Values per point: 2 (cable, beam) or 4 (rod).
+int section_width(const Model& m);
+
+/// out (n_el, n, section_width) at configuration y (model coordinates).
+void section_strains(const Model& m, const SamplePoints& p, const double* y, double* out);
+
+}  // namespace rancf

@@ -1,0 +1,102 @@
+"""Warnings for likely unit mistakes: the run goes on, the warning is one line on standard error
+and an entry of ``summary.json``'s ``"warnings"`` list.
+
+* The largest axial strain over the stored states passes :data:`STRAIN_LIMIT` (10 %): e.g. a
+  Young's modulus of 50 Pa meant as 50 MPa stretches a 1 m hose to several metres.
+* The section's radius (``sqrt(A / π)`` for a section given by its area) exceeds
+  :data:`RADIUS_LIMIT` (a tenth) of the body's reference length: e.g. 10 m meant as 10 mm.
+
+The axial strain is the elements' own Green–Lagrange measure at the section sample points
+(:class:`rancf.model.sections.SectionSampler`: the compiled core's strain, at ``ξ = 0, 1/4, 1/2,
+3/4`` of every element and the last node); a run's outputs track it as they are written
+(:class:`rancf.model.outputs.DerivedOutputs`), so checking it costs nothing extra.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+
+from rancf.model.sections import SectionSampler
+from rancf.model.system import Model
+
+__all__ = [
+    "STRAIN_LIMIT",
+    "RADIUS_LIMIT",
+    "section_warnings",
+    "strain_warning",
+    "largest_strain",
+    "run_warnings",
+    "at_time",
+    "at_load_factor",
+]
+
+#: Largest axial strain (magnitude) that passes without a warning.
+STRAIN_LIMIT = 0.10
+#: Largest section radius, as a fraction of the body's reference length, without a warning.
+RADIUS_LIMIT = 0.1
+
+
+def section_warnings(model: Model) -> list[str]:
+    """A warning if the section's radius exceeds a tenth of the body's reference length."""
+    r = model.section.radius
+    length = float(SectionSampler(model, 1).s[-1])  # the reference arc length
+    if r <= RADIUS_LIMIT * length:
+        return []
+    return [
+        f"the section's radius {r:.4g} m is more than a tenth of the body's length "
+        f"{length:.4g} m: check the units of section.radius or section.area (metres)"
+    ]
+
+
+def strain_warning(strain: float, when: str) -> str | None:
+    """The warning for a largest axial strain ``strain`` reached ``when`` (None below 10 %)."""
+    if not strain > STRAIN_LIMIT:  # NaN (a diverged state) says nothing about units
+        return None
+    return (
+        f"the largest axial strain is {100.0 * strain:.4g} % ({when}), more than "
+        f"{100.0 * STRAIN_LIMIT:g} %: check the units of material.youngs_modulus (Pa), the "
+        "section (m) and the loads (N)"
+    )
+
+
+def at_time(t: float) -> str:
+    """``at t = 0.5 s``."""
+    return f"at t = {t:g} s"
+
+
+def at_load_factor(lam: float) -> str:
+    """``at load factor λ = 1``."""
+    return f"at load factor λ = {lam:g}"
+
+
+def run_warnings(
+    model: Model,
+    t: NDArray | None = None,
+    q: NDArray | None = None,
+    static: bool = False,
+    largest: tuple[float, float] | None = None,
+) -> list[str]:
+    """Every warning of a run: the section's radius, and the largest axial strain — ``largest =
+    (strain, t)`` as a :class:`~rancf.model.outputs.DerivedOutputs` tracked it, or of the states
+    ``q (n_t, n)`` at times (or load factors, ``static``) ``t``."""
+    if largest is None:
+        largest = (
+            largest_strain(model, np.atleast_1d(t), np.atleast_2d(q))
+            if q is not None and np.size(q)
+            else (0.0, 0.0)
+        )
+    strain = strain_warning(largest[0], (at_load_factor if static else at_time)(largest[1]))
+    return section_warnings(model) + ([strain] if strain else [])
+
+
+def largest_strain(model: Model, t: NDArray, q: NDArray) -> tuple[float, float]:
+    """The largest ``|ε|`` of the states ``q (n_t, n)`` at the section sample points (the
+    elements' own strain, :class:`~rancf.model.sections.SectionSampler`) and its ``t``."""
+    sampler = SectionSampler(model)
+    best = (0.0, 0.0)
+    for tt, qq in zip(t, q, strict=True):
+        eps = float(np.max(np.abs(sampler.values(model.y_from_q(qq))[:, 0])))
+        if eps > best[0]:
+            best = (eps, float(tt))
+    return best

@@ -1,0 +1,149 @@
+"""A shipped scenario that is not a paper study, run as ``rancf example run NAME``.
+
+:data:`rancf.studies.common.SCENARIO_ANALYSES` says what each such scenario is for
+(``"simulate"``, ``"static"``, ``"modes"``); each analysis writes the files its own command
+would and adds its figures and a table to a small report:
+
+* ``static`` — the load path as a run directory ``static/`` (as ``rancf static --out``) with
+  its plots, and the sensors at the full load;
+* ``modes`` — ``modes.json`` and ``modes.png`` (as ``rancf modes --json --plot``), the
+  frequencies as a table;
+* ``simulate`` — the run directory ``run/`` (as ``rancf simulate``) with its plots, and the
+  sensors at the end.
+
+The scenario file itself is copied into the output folder first, so the run can be repeated
+and edited.  Warnings for likely unit mistakes (:mod:`rancf.post.checks`) become notes of the
+report.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from rancf.errors import ConvergenceError
+from rancf.model.scenario import load_scenario
+from rancf.post.results import (
+    LoadPath,
+    atomic_write,
+    sensor_table,
+    strict_json,
+    write_run,
+    write_static_run,
+)
+from rancf.post.run_data import load_run
+from rancf.post.run_plots import plot_run
+from rancf.studies.common import SCENARIO_ANALYSES, StudyResult, example_path
+
+__all__ = ["run_scenario"]
+
+
+def _describe(text: str) -> str:
+    """The scenario's opening comment (its description), as one paragraph."""
+    lines = []
+    for line in text.splitlines():
+        if not line.startswith("#"):
+            break
+        lines.append(line.lstrip("# ").strip())
+    return " ".join(lines)
+
+
+def _figures(res: StudyResult, out: Path, run_dir: Path, what: str, skip: str = "") -> None:
+    for path in plot_run(load_run(run_dir), run_dir / "plots"):
+        if path.stem != skip:
+            res.figures.append((f"{what}: {path.stem}", str(path.relative_to(out))))
+
+
+def _notes(res: StudyResult, summary: dict) -> None:
+    for w in summary.get("warnings", []):
+        if f"Warning: {w}" not in res.notes:
+            res.notes.append(f"Warning: {w}")
+
+
+def run_scenario(name: str, out: str | Path, quick: bool = False) -> StudyResult:
+    """Run the analyses of the shipped scenario ``name`` into ``out``.
+
+    ``quick`` changes nothing: these scenarios are small.  A static solve that does not converge
+    raises :class:`~rancf.errors.ConvergenceError` after writing the converged load steps.
+    """
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    text = example_path(name).read_text(encoding="utf-8")
+    scenario = out / f"{name}.toml"
+    atomic_write(scenario, text)
+    res = StudyResult(name, f"Shipped scenario: {name}")
+    res.notes.append(
+        f"{_describe(text)} The scenario file is `{scenario.name}` in this folder; "
+        f"`rancf example run {name}` runs: {', '.join(SCENARIO_ANALYSES[name])}."
+    )
+    sc = load_scenario(scenario)
+    model = sc.build_model()
+    for analysis in SCENARIO_ANALYSES[name]:
+        if analysis == "static":
+            from rancf.solvers.static import solve_static
+
+            path, summary = LoadPath(model, sc.support_labels), {}
+            info = {"scenario": str(scenario.resolve())}
+            try:
+                st = solve_static(
+                    model, sc.solver["load_steps"], on_step=path.record,
+                    method=sc.solver["static_method"],
+                )  # fmt: skip
+                info.update(status="completed", message="reached the end of the load path")
+            except ConvergenceError as exc:
+                info.update(status="failed", message=str(exc))
+                raise
+            finally:
+                if path.steps:
+                    summary = write_static_run(out / "static", path, sc.sensors, info)
+            _notes(res, summary)
+            _figures(res, out, out / "static", "static load path", skip="energy")
+            names, vals = sensor_table(model, sc.sensors, st.q)
+            res.add_table(
+                out,
+                f"Static equilibrium: {len(st.load_factors) - 1} load steps, "
+                f"{st.n_newton} Newton iterations",
+                ["sensor", "value"],
+                [[n, f"{v:.9g}"] for n, v in zip(names, vals[0], strict=True)],
+                "static.csv",
+            )
+        elif analysis == "modes":
+            from rancf.post.plots import plot_modes
+            from rancf.solvers.modal import natural_modes
+
+            count = min(sc.data["modes"]["count"], int((~model.fixed).sum()))
+            modal = natural_modes(model, None, count)
+            doc = {
+                "frequencies_hz": modal.frequencies_hz.tolist(),
+                "rigid_body_modes_removed": modal.n_rigid,
+            }
+            atomic_write(out / "modes.json", strict_json(doc))
+            plot_modes(model, modal, out / "modes.png")
+            res.figures.append(("mode shapes", "modes.png"))
+            res.add_table(
+                out,
+                f"Natural frequencies about the reference configuration ({modal.n_rigid} "
+                "rigid-body mode(s) removed)",
+                ["mode", "frequency [Hz]"],
+                [[i + 1, f"{f:.6f}"] for i, f in enumerate(modal.frequencies_hz)],
+                "modes.csv",
+            )
+        else:  # simulate
+            from rancf.solvers.dynamic import integrate
+            from rancf.solvers.static import start_state
+
+            y0, start = start_state(sc, model)
+            result = integrate(model, sc.dynamic_options(), initial=y0)
+            extra = {"scenario": str(scenario.resolve()), **start}
+            summary = write_run(out / "run", model, sc.sensors, result, extra, sc.support_labels)
+            _notes(res, summary)
+            _figures(res, out, out / "run", "simulation")
+            names, vals = sensor_table(model, sc.sensors, result.q[-1:])
+            res.add_table(
+                out,
+                f"Simulation: {summary['status']}, t = {result.t_reached:g} s, "
+                f"{result.n_steps} steps",
+                ["sensor", "value at the end"],
+                [[n, f"{v:.9g}"] for n, v in zip(names, vals[0], strict=True)],
+                "simulate.csv",
+            )
+    return res.finish()

@@ -1,0 +1,112 @@
+"""Closed curves are refused with one line until they are supported (issue 15, item 6); an open
+curve whose ends merely touch at a kink is still an open curve."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from rancf.cad import write_curve
+from rancf.cad.geomdl_json import curve_dict
+from rancf.geometry.nurbs import NurbsCurve
+
+S = float(np.sqrt(0.5))
+#: The full unit circle as a rational quadratic NURBS (9 control points, 4 spans).
+CIRCLE = (
+    2,
+    [0, 0, 0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1, 1, 1],
+    [[1, 0], [1, 1], [0, 1], [-1, 1], [-1, 0], [-1, -1], [0, -1], [1, -1], [1, 0]],
+    [1, S, 1, S, 1, S, 1, S, 1],
+)
+#: A teardrop: leaves (0, 0) along (2, 1) and comes back along (-2, 1): ends touch at a kink.
+TEARDROP = (2, [0, 0, 0, 0.5, 1, 1, 1], [[0, 0], [2, 1], [2, -1], [0, 0]], [1, 1, 1, 1])
+
+REST = """
+[mesh]
+elements = 2
+
+[section]
+radius = 0.01
+
+[material]
+density = 1000.0
+youngs_modulus = 1.0e7
+
+[[supports]]
+at = "start"
+kind = "pin"
+
+[loads]
+gravity = [0.0, -9.81]
+
+[solver]
+t_end = 0.002
+step = 1.0e-3
+"""
+
+
+def _nurbs_toml(degree, knots, points, weights) -> str:
+    return (
+        f'[geometry]\nkind = "nurbs"\ndegree = {degree}\nknots = {knots}\n'
+        f"control_points = {points}\nweights = {weights}\n" + REST
+    )
+
+
+def _cad_toml(file: str, curve: str) -> str:
+    return f'[geometry]\nkind = "cad"\nfile = "{file}"\ncurve = {curve}\n' + REST
+
+
+def _simulate(tmp_path, text: str):
+    f = tmp_path / "s.toml"
+    f.write_text(text)
+    return subprocess.run(
+        [sys.executable, "-m", "rancf", "simulate", str(f), "--out", str(tmp_path / "run")],
+        capture_output=True,
+        text=True,
+        cwd=tmp_path,
+    )
+
+
+def _refused(p, tmp_path, key: str) -> None:
+    assert p.returncode == 2, p.stderr
+    lines = p.stderr.strip().splitlines()
+    assert len(lines) == 1 and "Traceback" not in p.stderr
+    assert "closed curves are not supported yet" in lines[0] and f"[{key}]" in lines[0]
+    assert not (tmp_path / "run").exists()  # nothing written
+
+
+def test_closed_nurbs_circle_is_refused(tmp_path):
+    _refused(_simulate(tmp_path, _nurbs_toml(*CIRCLE)), tmp_path, "geometry.control_points")
+
+
+def test_cad_chain_whose_ends_meet_is_refused(tmp_path):
+    # the circle as one curve, and as two half circles chained [0, 1] (one geomdl JSON file)
+    d, k, p, w = CIRCLE
+    half = [0, 0, 0, 0.5, 0.5, 1, 1, 1]
+    curves = [
+        curve_dict(NurbsCurve(d, half, p[:5], w[:5]), "upper"),
+        curve_dict(NurbsCurve(d, half, p[4:], w[4:]), "lower"),
+    ]
+    doc = {"shape": {"type": "curve", "count": 2, "data": curves}}
+    (tmp_path / "halves.json").write_text(json.dumps(doc))
+    write_curve(tmp_path / "ring.dxf", NurbsCurve(d, k, p, w))
+    _refused(_simulate(tmp_path, _cad_toml("halves.json", "[0, 1]")), tmp_path, "geometry.curve")
+    _refused(_simulate(tmp_path, _cad_toml("ring.dxf", "0")), tmp_path, "geometry.curve")
+    # one half alone is an open curve
+    assert _simulate(tmp_path, _cad_toml("halves.json", "0")).returncode == 0
+
+
+@pytest.mark.parametrize("where", ["nurbs", "cad"])
+def test_ends_that_touch_at_a_kink_are_an_open_curve(tmp_path, where):
+    if where == "nurbs":
+        text = _nurbs_toml(*TEARDROP)
+    else:
+        write_curve(tmp_path / "drop.dxf", NurbsCurve(*TEARDROP[:2], TEARDROP[2], TEARDROP[3]))
+        text = _cad_toml("drop.dxf", "0")
+    p = _simulate(tmp_path, text)
+    assert p.returncode == 0, p.stderr
+    assert (tmp_path / "run" / "results.npz").is_file()

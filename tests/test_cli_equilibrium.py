@@ -1,0 +1,94 @@
+"""The equilibrium commands through the real CLI process: ``static`` reactions and outputs,
+``buckling``, ``simulate`` from an equilibrium (issue 16)."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+RANCF = [sys.executable, "-m", "rancf"]
+
+
+def _run(args: list[str], cwd, code: int = 0) -> subprocess.CompletedProcess:
+    p = subprocess.run([*RANCF, *args], cwd=cwd, capture_output=True, text=True)
+    assert p.returncode == code, p.stderr
+    return p
+
+
+@pytest.fixture
+def hose(tmp_path):
+    _run(["example", "copy", "installed-hose", "."], tmp_path)
+    return tmp_path
+
+
+def test_static_json_reactions_and_outputs(hose):
+    out = json.loads(_run(["static", "installed-hose.toml", "--json", "--out", "st"], hose).stdout)
+    assert [r["at"] for r in out["reactions"]] == ["start", "end"]
+    assert all(set(r) == {"at", "force", "moment"} for r in out["reactions"])
+    assert out["load_factors"][-1] == 2.0 and out["method"] == "load"
+    weight = sum(r["force"][1] for r in out["reactions"])
+    assert weight == pytest.approx(1200.0 * np.pi * 1e-4 * 9.81, rel=1e-9)
+    head = (hose / "st" / "reactions.csv").read_text().splitlines()[0]
+    assert head == "t,start_fx,start_fy,start_mz,end_fx,end_fy,end_mz"
+    along = np.genfromtxt(hose / "st" / "along.csv", delimiter=",", names=True)
+    assert along.dtype.names == ("s", "x", "y", "strain", "axial_force", "curvature",
+                                 "bending_moment")  # fmt: skip
+    assert along["s"][0] == 0.0 and along["s"][-1] == pytest.approx(1.0, rel=1e-12)
+    assert along["bending_moment"][0] == pytest.approx(-out["reactions"][0]["moment"][0], rel=1e-2)
+    with np.load(hose / "st" / "results.npz") as z:
+        assert z["reactions"].shape == (len(out["load_factors"]), 6)
+        assert z["along"].shape == (len(out["load_factors"]), 65, 4)
+
+
+def test_simulate_from_the_equilibrium_stays_at_rest(hose):
+    _run(["simulate", "installed-hose.toml", "--out", "run", "--quiet"], hose)
+    summary = json.loads((hose / "run" / "summary.json").read_text())
+    assert summary["initial_state"] == "static" and summary["static"]["newton_iterations"] > 0
+    with np.load(hose / "run" / "results.npz") as z:
+        assert np.abs(z["q"] - z["q"][0]).max() <= 1e-9
+        assert np.abs(z["a"]).max() <= 1e-6 * 9.81 * 10  # at rest: 1.5e-6 measured (Newton tol.)
+    r = np.genfromtxt(hose / "run" / "reactions.csv", delimiter=",", names=True)
+    assert np.ptp(r["start_fx"]) <= 1e-9
+
+
+def test_installed_support_needs_the_static_start(hose):
+    text = (hose / "installed-hose.toml").read_text().replace('"static"', '"reference"')
+    (hose / "ref.toml").write_text(text)
+    p = _run(["simulate", "ref.toml", "--out", "run"], hose, code=2)
+    assert len(p.stderr.splitlines()) == 1
+    assert "supports[1].position" in p.stderr and 'initial_state = "static"' in p.stderr
+    assert not (hose / "run").exists()
+
+
+def test_buckling_json_and_plot(tmp_path):
+    _run(["example", "copy", "cantilever", "."], tmp_path)
+    text = (tmp_path / "cantilever.toml").read_text()
+    text = text.replace("elements = 8", "elements = 16")
+    text = text.replace("radius = 0.03", "area = 2.827433e-1\ninertia = 6.361725e-7")
+    (tmp_path / "col.toml").write_text(text.replace("[0.0, -0.001]", "[-1.0, 0.0]"))
+    p = _run(["buckling", "col.toml", "--count", "2", "--json", "--plot", "b.png"], tmp_path)
+    out = json.loads(p.stdout)
+    ei = 2e7 * 6.361725e-7
+    assert out["load_factors"][0] == pytest.approx(np.pi**2 * ei / 1.0, rel=1e-3)  # π²EI/4L²
+    assert out["about"] == "reference" and (tmp_path / "b.png").stat().st_size > 0
+    p = _run(["buckling", "cantilever.toml", "--about", "sideways"], tmp_path, code=2)
+    assert len(p.stderr.splitlines()) == 1 and "--about" in p.stderr
+
+
+def test_vtk_export_carries_the_section_quantities(hose):
+    import meshio
+
+    _run(["static", "installed-hose.toml", "--out", "st"], hose)
+    _run(["export", "st", "--vtk", "vtk"], hose)
+    files = sorted((hose / "vtk").glob("st_*.vtu"))
+    mesh = meshio.read(files[-1])
+    for name in ("section_axial_force", "section_bending_moment", "section_curvature"):
+        assert name in mesh.point_data
+    moment = mesh.point_data["section_bending_moment"]
+    along = np.genfromtxt(hose / "st" / "along.csv", delimiter=",", names=True)
+    assert moment[0] == pytest.approx(along["bending_moment"][0], rel=1e-12)
+    assert moment[-1] == pytest.approx(along["bending_moment"][-1], rel=1e-12)
