@@ -36,6 +36,10 @@ def run_to_nurbs(run: Any, i: int) -> Any:
     from rancf.post.run_data import centerline_nodes
 
     nodes = centerline_nodes(run, run.q[i])
+    if not np.all(np.isfinite(nodes)):
+        raise InputError(
+            "--time", float(run.t[i]), "a stored state with finite coordinates (this one is not)"
+        )
     nodal = np.concatenate([nodes[:-1], nodes[1:]], axis=1)
     breaks = np.concatenate([[0.0], np.cumsum(run.scales)])
     return chain_to_nurbs(ElementChain(nodal, run.weights, run.scales, breaks))

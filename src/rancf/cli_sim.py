@@ -279,12 +279,7 @@ def _cmd_static(args: argparse.Namespace) -> int:
         res = solve_static(model, sc.solver["load_steps"], method=method)
     else:
         from rancf.atomic import atomic_write
-        from rancf.post.history import check_output_size
 
-        n_cols = sum(len(s.columns(model.dim)) for s in sc.sensors)
-        rods = 3 * model.n_nodes if model.element == "rod" else 0
-        steps = sc.solver["load_steps"] + 1
-        check_output_size(sc.path, steps, model.q0.size, n_cols, rods, DEFAULT_MAX_OUTPUT_GB)
         copy = _scenario_text(args.scenario)
         out_dir = od.path
         with od:

@@ -335,17 +335,6 @@ def write_static_run(
         [[0.0, model.strain_energy(y), model.gravity_energy(y)] for y in ys], dtype=float
     )
     m1 = np.array([m for _, _, m in path.steps]) if model.element == "rod" else None
-    doc = {
-        "analysis": "static",
-        "load_factor_reached": float(t[-1]),
-        "load_steps_converged": int(t.size - 1),
-        "n_elements": model.n_el,
-        "element": model.element,
-        "n_dofs": model.n,
-        "outputs": int(t.size),
-        "warnings": run_warnings(model, static=True, largest=path.derived.largest_strain),
-        **summary,
-    }
     with FileSet() as files:  # the files replace an earlier load path's together
         write_history_files(
             out, model, sensors, t, q, np.zeros_like(q), energy, m1, path.derived, static=True,
@@ -353,6 +342,18 @@ def write_static_run(
         )  # fmt: skip
         last = None if m1 is None else m1[-1]
         write_along_csv(out / "along.csv", path, q[-1], last, files)
+        # after the rows: their outputs tracked the largest strain of the warnings
+        doc = {
+            "analysis": "static",
+            "load_factor_reached": float(t[-1]),
+            "load_steps_converged": int(t.size - 1),
+            "n_elements": model.n_el,
+            "element": model.element,
+            "n_dofs": model.n,
+            "outputs": int(t.size),
+            "warnings": run_warnings(model, static=True, largest=path.derived.largest_strain),
+            **summary,
+        }
         files.write(out / "summary.json", strict_json(doc))
     return doc
 

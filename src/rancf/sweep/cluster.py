@@ -50,7 +50,7 @@ def dask_client(
             raise InputError(
                 "--scheduler", scheduler, f"a reachable Dask scheduler ({exc})"
             ) from None
-        with client:
+        with _log_level_kept(), client, _quiet_on_the_way_out():
             yield client
         return
     n = workers if workers is not None else (os.cpu_count() or 1)
@@ -66,7 +66,7 @@ def dask_client(
                 dashboard_address=None,
                 silence_logs=logging.ERROR,
             )
-        with cluster, Client(cluster) as client:
+        with _log_level_kept(), cluster, Client(cluster) as client, _quiet_on_the_way_out():
             yield client
 
 
@@ -103,3 +103,26 @@ def check_scheduler(address: str) -> str:
         schemes = "|".join(SCHEDULER_SCHEMES)
         raise InputError("--scheduler", address, f"an address {schemes}://HOST:PORT")
     return address
+
+
+@contextmanager
+def _quiet_on_the_way_out() -> Iterator[None]:
+    """After an interrupt (or any error) in the block, Dask's own logs are silenced while the
+    cluster is torn down: cancelled tasks and closed connections are expected then, and the
+    command's one line says what happened."""
+    try:
+        yield
+    except BaseException:
+        logging.getLogger("distributed").setLevel(logging.CRITICAL + 1)
+        raise
+
+
+@contextmanager
+def _log_level_kept() -> Iterator[None]:
+    """Dask's log level as it was before the block, restored after it (and its teardown)."""
+    log = logging.getLogger("distributed")
+    level = log.level
+    try:
+        yield
+    finally:
+        log.setLevel(level)
