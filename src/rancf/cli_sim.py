@@ -71,7 +71,11 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     y_start, start_info = start_state(sc, model)
     n_cols = sum(len(s.columns(model.dim)) for s in sc.sensors)
     rod_directors = 3 * model.n_nodes if model.element == "rod" else 0
-    check_output_size(sc.path, opts.n_outputs, model.q0.size, n_cols, rod_directors, limit)
+    derived = DerivedOutputs(model, sc.support_labels)
+    n_derived = len(derived.reaction_names) + derived.n_points * len(derived.section_names)
+    check_output_size(
+        sc.path, opts.n_outputs, model.q0.size, n_cols, rod_directors, limit, n_derived=n_derived
+    )
     copy = _scenario_text(args.scenario)
     out = od.path
     stop = _StopFlag()
@@ -79,7 +83,6 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     with stop, od:
         info = {"scenario": str(Path(args.scenario).resolve()), "setup_wall_time_s": None}
         info.update(start_info)
-        derived = DerivedOutputs(model, sc.support_labels)
         store = HistoryStore(out, model, sc.sensors, {**info, "warnings": notes}, derived=derived)
         try:
             atomic_write(out / "scenario.toml", copy)

@@ -46,14 +46,16 @@ _FILES = ("t", "q", "v", "e")
 
 
 def estimate_output_bytes(
-    n_outputs: int, n_q: int, n_sensor_columns: int, n_directors: int = 0
+    n_outputs: int, n_q: int, n_sensor_columns: int, n_directors: int = 0, n_derived: int = 0
 ) -> int:
-    """Disk space a run needs at its end (raw history + results.npz + the two CSV files).
+    """Disk space a run needs at its end (raw history + results.npz + the CSV files).
 
-    Raw and ``.npz`` copies of ``t, q, v``, energies and ``n_directors`` director components (a
-    rod's 3 per node) at 8 bytes a number each, about 20 bytes a number in the CSV files.
+    Raw and ``.npz`` copies of ``t, q, v, a``, energies, ``n_directors`` director components (a
+    rod's 3 per node) and ``n_derived`` reactions and section values at 8 bytes a number each,
+    about 20 bytes a number in the CSV files.
     """
-    per_row = 2 * 8 * (2 * n_q + 4 + n_sensor_columns + n_directors) + 20 * (n_sensor_columns + 6)
+    binary = 3 * n_q + 4 + n_sensor_columns + n_directors + n_derived
+    per_row = 2 * 8 * binary + 20 * (n_sensor_columns + 6 + n_derived)
     return int(n_outputs) * per_row
 
 
@@ -65,6 +67,7 @@ def check_output_size(
     n_directors: int,
     limit_gb: float,
     limit_name: str = "--max-output-gb",
+    n_derived: int = 0,
 ) -> None:
     """Refuse, before it starts, a run whose files would take more than ``limit_gb`` GB
     (:func:`estimate_output_bytes`).
@@ -74,7 +77,7 @@ def check_output_size(
     RunTooLargeError
         Naming ``where`` (the scenario), the size, the number of stored states and the limit.
     """
-    need = estimate_output_bytes(n_outputs, n_q, n_sensor_columns, n_directors)
+    need = estimate_output_bytes(n_outputs, n_q, n_sensor_columns, n_directors, n_derived)
     if need > limit_gb * 1e9:
         raise RunTooLargeError(
             f"{where}: this run would write about {need / 1e9:.3g} GB ({n_outputs} stored "

@@ -38,6 +38,7 @@ def _analyse(sc: Any, analysis: str, folder: Path) -> tuple[str, str, float, dic
 
     model = sc.build_model()
     if analysis == "simulate":
+        from rancf.model.outputs import DerivedOutputs
         from rancf.post.history import check_output_size
         from rancf.solvers.dynamic import integrate
         from rancf.solvers.static import start_state
@@ -45,7 +46,11 @@ def _analyse(sc: Any, analysis: str, folder: Path) -> tuple[str, str, float, dic
         opts = sc.dynamic_options()
         n_cols = sum(len(s.columns(model.dim)) for s in sc.sensors)
         rods = 3 * model.n_nodes if model.element == "rod" else 0
-        check_output_size(sc.path, opts.n_outputs, model.q0.size, n_cols, rods, MAX_RUN_GB, LIMIT)
+        derived = DerivedOutputs(model, sc.support_labels)
+        n_derived = len(derived.reaction_names) + derived.n_points * len(derived.section_names)
+        check_output_size(
+            sc.path, opts.n_outputs, model.q0.size, n_cols, rods, MAX_RUN_GB, LIMIT, n_derived
+        )
         y0, start = start_state(sc, model)
         res = integrate(model, opts, initial=y0)
         extra = {"scenario": str(folder / "scenario.toml"), **start}
