@@ -64,7 +64,10 @@ def dask_client(
                 processes=processes,
                 **({"protocol": "tcp://", "host": "127.0.0.1"} if processes else {}),
                 dashboard_address=None,
-                silence_logs=logging.ERROR,
+                # its own logs stay silent: a run's failure is its row, and when Ctrl-C or
+                # SIGTERM stop the workers with this process the scheduler's complaints about
+                # them (lost keys, closed connections) would only hide the one line that counts
+                silence_logs=logging.CRITICAL,
             )
         with _log_level_kept(), cluster, Client(cluster) as client, _quiet_on_the_way_out():
             yield client
