@@ -274,25 +274,29 @@ NB_MODULE(_core, mod) {
           "a1"_a.noconvert(), "One step; returns (converged, iterations).")
       .def(
           "run",
-          [](IntegratorHolder& h, Out y, Out v, Out a, double t0, double dt, int n_steps,
-             int out_every, Out out_y, Out out_v, Out out_e) {
+          [](IntegratorHolder& h, Out y, Out v, Out a, double t0, double dt, std::int64_t n_steps,
+             std::int64_t out_every, std::int64_t done_before, double max_seconds, Out out_y,
+             Out out_v, Out out_e) {
             for (const auto* x : {&y, &v, &a}) expect_size(*x, h.n, "state");
-            if (out_every < 1 || n_steps < 0) throw std::invalid_argument("run: bad step counts");
-            const auto n_out = static_cast<std::size_t>(n_steps / out_every);
+            if (out_every < 1 || n_steps < 0 || done_before < 0 || done_before >= out_every)
+              throw std::invalid_argument("run: bad step counts");
+            const auto n_out = static_cast<std::size_t>((done_before + n_steps) / out_every);
             expect_size(out_y, n_out * h.n, "out_y");
             expect_size(out_v, n_out * h.n, "out_v");
             expect_size(out_e, n_out * 3, "out_e");
             rancf::RunOutcome r;
             {
               nb::gil_scoped_release release;
-              r = h.integ.run(y.data(), v.data(), a.data(), t0, dt, n_steps, out_every,
-                              out_y.data(), out_v.data(), out_e.data());
+              r = h.integ.run(y.data(), v.data(), a.data(), t0, dt, n_steps, out_every, done_before,
+                              max_seconds, out_y.data(), out_v.data(), out_e.data());
             }
             return std::make_tuple(r.steps, r.converged, r.iterations, r.stored);
           },
           "y"_a.noconvert(), "v"_a.noconvert(), "a"_a.noconvert(), "t0"_a, "h"_a, "n_steps"_a,
-          "out_every"_a, "out_y"_a.noconvert(), "out_v"_a.noconvert(), "out_e"_a.noconvert(),
-          "Fixed steps; returns (steps, converged, iterations, stored).")
+          "out_every"_a, "done_before"_a, "max_seconds"_a, "out_y"_a.noconvert(),
+          "out_v"_a.noconvert(), "out_e"_a.noconvert(),
+          "Fixed steps (returning after about max_seconds of wall time); returns (steps, "
+          "converged, iterations, stored).")
       .def(
           "initial_acceleration",
           [](IntegratorHolder& h, In y, In v, double t, Out a) {

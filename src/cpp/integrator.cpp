@@ -1,6 +1,7 @@
 #include "integrator.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -115,13 +116,16 @@ StepOutcome Integrator::step(const double* y0, const double* v0, const double* a
   return {false, max_iter};
 }
 
-RunOutcome Integrator::run(double* y, double* v, double* a, double t0, double h, int n_steps,
-                           int out_every, double* out_y, double* out_v, double* out_e) {
+RunOutcome Integrator::run(double* y, double* v, double* a, double t0, double h,
+                           std::int64_t n_steps, std::int64_t out_every, std::int64_t done_before,
+                           double max_seconds, double* out_y, double* out_v, double* out_e) {
   const int n = m_.n();
+  const auto start = std::chrono::steady_clock::now();
   std::vector<double> y1(sz(n)), v1(sz(n)), a1(sz(n));
   RunOutcome out{0, true, 0, 0};
-  for (int s = 0; s < n_steps; ++s) {
-    const StepOutcome st = step(y, v, a, t0 + s * h, h, y1.data(), v1.data(), a1.data());
+  for (std::int64_t s = 0; s < n_steps; ++s) {
+    const double t = t0 + static_cast<double>(s) * h;
+    const StepOutcome st = step(y, v, a, t, h, y1.data(), v1.data(), a1.data());
     out.iterations += st.iterations;
     if (!st.converged) {
       out.converged = false;
@@ -133,14 +137,17 @@ RunOutcome Integrator::run(double* y, double* v, double* a, double t0, double h,
     rereference_rates(m_, y, v, a);  // rods: the twist rates keep the spin (inertia.hpp)
     rereference(m_, y);
     out.steps = s + 1;
-    if ((s + 1) % out_every != 0) continue;
-    const std::ptrdiff_t row = static_cast<std::ptrdiff_t>(out.stored) * n;
-    std::copy(y, y + n, out_y + row);
-    std::copy(v, v + n, out_v + row);
-    out_e[3 * out.stored] = kinetic_energy(m_, y, v);
-    out_e[3 * out.stored + 1] = strain_energy(m_, y);
-    out_e[3 * out.stored + 2] = gravity_energy(m_, y);
-    ++out.stored;
+    if ((done_before + s + 1) % out_every == 0) {
+      const std::ptrdiff_t row = static_cast<std::ptrdiff_t>(out.stored) * n;
+      std::copy(y, y + n, out_y + row);
+      std::copy(v, v + n, out_v + row);
+      out_e[3 * out.stored] = kinetic_energy(m_, y, v);
+      out_e[3 * out.stored + 1] = strain_energy(m_, y);
+      out_e[3 * out.stored + 2] = gravity_energy(m_, y);
+      ++out.stored;
+    }
+    const std::chrono::duration<double> spent = std::chrono::steady_clock::now() - start;
+    if (spent.count() >= max_seconds) return out;
   }
   return out;
 }

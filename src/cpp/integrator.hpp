@@ -11,6 +11,7 @@
 // (full Newton) or reused across iterations and steps until the contraction slows (modified).
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "band.hpp"
@@ -33,10 +34,10 @@ struct StepOutcome {
 };
 
 struct RunOutcome {
-  int steps;        ///< steps taken
-  bool converged;   ///< false: the next step failed (not taken)
-  long iterations;  ///< Newton iterations, failed step included
-  int stored;       ///< outputs stored
+  std::int64_t steps;   ///< steps taken
+  bool converged;       ///< false: the next step failed (not taken)
+  long iterations;      ///< Newton iterations, failed step included
+  std::int64_t stored;  ///< outputs stored
 };
 
 class Integrator {
@@ -45,10 +46,13 @@ class Integrator {
   /// One step of size h from (y0, v0, a0) at time t into (y1, v1, a1).
   StepOutcome step(const double* y0, const double* v0, const double* a0, double t, double h,
                    double* y1, double* v1, double* a1);
-  /// Up to n_steps fixed steps (rod triads re-referenced after each), y, v, a updated in place;
-  /// every out_every steps the state and the energies (kinetic, strain, gravity) go to the next
-  /// rows of out_y, out_v, out_e.
-  RunOutcome run(double* y, double* v, double* a, double t0, double h, int n_steps, int out_every,
+  /// Up to n_steps fixed steps from time t0 (rod triads re-referenced after each), y, v, a
+  /// updated in place; the first output interval already holds done_before steps, and every
+  /// out_every steps of an interval the state and the energies (kinetic, strain, gravity) go to
+  /// the next rows of out_y, out_v, out_e.  Returns early, after a whole step, once max_seconds
+  /// of wall time have passed (the caller polls for interrupts between calls).
+  RunOutcome run(double* y, double* v, double* a, double t0, double h, std::int64_t n_steps,
+                 std::int64_t out_every, std::int64_t done_before, double max_seconds,
                  double* out_y, double* out_v, double* out_e);
   /// a = M^-1 (f_ext(t) - f_int(y) - c M v).
   void initial_acceleration(const double* y, const double* v, double t, double* a);
