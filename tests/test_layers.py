@@ -7,6 +7,7 @@ ROOT = Path(__file__).resolve().parents[1] / "src" / "rancf"
 
 #: Layer of each top-level part of the package, in pipeline order.
 LAYERS = {
+    "atomic": 0,
     "errors": 0,
     "extras": 0,
     "exudyn_compat": 0,

@@ -303,11 +303,13 @@ void bind_system(nb::module_& mod) {
       .def(
           "run",
           [](SystemIntegratorHolder& h, Out y, Out v, Out a, Out lam, double t0, double dt,
-             int n_steps, int out_every, Out out_y, Out out_v, Out out_l, Out out_e) {
+             std::int64_t n_steps, std::int64_t out_every, std::int64_t done_before,
+             double max_seconds, Out out_y, Out out_v, Out out_l, Out out_e) {
             for (const auto* x : {&y, &v, &a}) expect_size(*x, h.n, "state");
             expect_size(lam, h.m, "lambda");
-            if (out_every < 1 || n_steps < 0) throw std::invalid_argument("run: bad step counts");
-            const auto n_out = static_cast<std::size_t>(n_steps / out_every);
+            if (out_every < 1 || n_steps < 0 || done_before < 0)
+              throw std::invalid_argument("run: bad step counts");
+            const auto n_out = static_cast<std::size_t>((done_before + n_steps) / out_every);
             expect_size(out_y, n_out * h.n, "out_y");
             expect_size(out_v, n_out * h.n, "out_v");
             expect_size(out_l, n_out * h.m, "out_l");
@@ -316,13 +318,15 @@ void bind_system(nb::module_& mod) {
             {
               nb::gil_scoped_release release;
               r = h.integ.run(y.data(), v.data(), a.data(), lam.data(), t0, dt, n_steps, out_every,
-                              out_y.data(), out_v.data(), out_l.data(), out_e.data(), nullptr);
+                              done_before, max_seconds, out_y.data(), out_v.data(), out_l.data(),
+                              out_e.data());
             }
             return std::make_tuple(r.steps, r.converged, r.iterations, r.stored);
           },
           "y"_a.noconvert(), "v"_a.noconvert(), "a"_a.noconvert(), "lam"_a.noconvert(), "t0"_a,
-          "h"_a, "n_steps"_a, "out_every"_a, "out_y"_a.noconvert(), "out_v"_a.noconvert(),
-          "out_l"_a.noconvert(), "out_e"_a.noconvert())
+          "h"_a, "n_steps"_a, "out_every"_a, "done_before"_a, "max_seconds"_a,
+          "out_y"_a.noconvert(), "out_v"_a.noconvert(), "out_l"_a.noconvert(),
+          "out_e"_a.noconvert())
       .def(
           "initial_acceleration",
           [](SystemIntegratorHolder& h, In y, In v, double t, Out a, Out lam) {

@@ -1,6 +1,7 @@
 #include "system_integrator.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -120,15 +121,16 @@ StepOutcome SystemIntegrator::step(const double* y0, const double* v0, const dou
 }
 
 RunOutcome SystemIntegrator::run(double* y, double* v, double* a, double* lam, double t0, double h,
-                                 int n_steps, int out_every, double* out_y, double* out_v,
-                                 double* out_l, double* out_e, const volatile int* stop) {
+                                 std::int64_t n_steps, std::int64_t out_every,
+                                 std::int64_t done_before, double max_seconds, double* out_y,
+                                 double* out_v, double* out_l, double* out_e) {
   const int n = s_.n, m = s_.m;
+  const auto start = std::chrono::steady_clock::now();
   std::vector<double> y1(sz(n)), v1(sz(n)), a1(sz(n)), l1(sz(m));
   RunOutcome out{0, true, 0, 0};
-  for (int k = 0; k < n_steps; ++k) {
-    if (stop != nullptr && *stop != 0) return out;
-    const StepOutcome st =
-        step(y, v, a, lam, t0 + k * h, h, y1.data(), v1.data(), a1.data(), l1.data());
+  for (std::int64_t k = 0; k < n_steps; ++k) {
+    const double t = t0 + static_cast<double>(k) * h;
+    const StepOutcome st = step(y, v, a, lam, t, h, y1.data(), v1.data(), a1.data(), l1.data());
     out.iterations += st.iterations;
     if (!st.converged) {
       out.converged = false;
@@ -140,13 +142,16 @@ RunOutcome SystemIntegrator::run(double* y, double* v, double* a, double* lam, d
     std::copy(l1.begin(), l1.end(), lam);
     system_rereference(s_, y, v, a);
     out.steps = k + 1;
-    if ((k + 1) % out_every != 0) continue;
-    const std::ptrdiff_t row = static_cast<std::ptrdiff_t>(out.stored);
-    std::copy(y, y + n, out_y + row * n);
-    std::copy(v, v + n, out_v + row * n);
-    std::copy(lam, lam + m, out_l + row * m);
-    system_energies(s_, y, v, out_e + 3 * row);
-    ++out.stored;
+    if ((done_before + k + 1) % out_every == 0) {
+      const std::ptrdiff_t row = static_cast<std::ptrdiff_t>(out.stored);
+      std::copy(y, y + n, out_y + row * n);
+      std::copy(v, v + n, out_v + row * n);
+      std::copy(lam, lam + m, out_l + row * m);
+      system_energies(s_, y, v, out_e + 3 * row);
+      ++out.stored;
+    }
+    const std::chrono::duration<double> spent = std::chrono::steady_clock::now() - start;
+    if (spent.count() >= max_seconds) return out;
   }
   return out;
 }

@@ -10,6 +10,7 @@
 // iterations; their accelerations and velocities follow from the Newmark relations.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "bordered.hpp"
@@ -23,11 +24,14 @@ class SystemIntegrator {
   SystemIntegrator(const System& s, const Scheme& scheme);
   StepOutcome step(const double* y0, const double* v0, const double* a0, const double* l0, double t,
                    double h, double* y1, double* v1, double* a1, double* l1);
-  /// Fixed steps; every out_every steps y, v, lambda and the energies (kinetic, strain, gravity)
-  /// go to the next rows of the outputs.  should_stop is polled between steps (may be null).
-  RunOutcome run(double* y, double* v, double* a, double* lam, double t0, double h, int n_steps,
-                 int out_every, double* out_y, double* out_v, double* out_l, double* out_e,
-                 const volatile int* stop);
+  /// Up to n_steps fixed steps from t0 (rods' triads re-referenced after each); the output
+  /// interval's first done_before steps were taken by an earlier call, so y, v, lambda and the
+  /// energies (kinetic, strain, gravity) go to the next rows of the outputs whenever
+  /// done_before + steps taken is a multiple of out_every.  Returns after a whole step once
+  /// max_seconds of wall time have passed, so the caller can poll for interrupts.
+  RunOutcome run(double* y, double* v, double* a, double* lam, double t0, double h,
+                 std::int64_t n_steps, std::int64_t out_every, std::int64_t done_before,
+                 double max_seconds, double* out_y, double* out_v, double* out_l, double* out_e);
   /// Consistent initial acceleration and multipliers: [M G^T; G 0] [a; lambda] = [-F; -c].
   bool initial_acceleration(const double* y, const double* v, double t, double* a, double* lam);
   /// One Newton increment of the statics at load factor lf: (dy, dlam) with

@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from rancf.errors import shorten
 from rancf.model.scenario_checks import _REQ, _err, _guard, _number, _place, _table, _vector
 from rancf.model.scenario_parts import (
     parse_initial_motion,
@@ -107,8 +108,12 @@ def load_scenario(path: str | Path) -> Scenario:
         ) from None
     try:
         raw = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise _err(str(p), "file", f"is not valid TOML: {exc}") from None
+    except RecursionError:
+        raise _err(
+            str(p), "file", "is nested too deeply (arrays or tables within each other)"
+        ) from None
+    except ValueError as exc:  # TOMLDecodeError, or an integer of more than 4300 digits
+        raise _err(str(p), "file", f"is not valid TOML: {shorten(str(exc))}") from None
     return parse_scenario(raw, str(p))
 
 

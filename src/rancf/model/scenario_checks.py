@@ -13,7 +13,7 @@ from typing import Any
 
 import numpy as np
 
-from rancf.errors import InputError, ScenarioError
+from rancf.errors import MAX_SHOWN, InputError, ScenarioError, shorten
 
 _REQ = object()  # marker: required key
 
@@ -23,48 +23,66 @@ def _err(path: str, key: str, problem: str) -> ScenarioError:
     return ScenarioError(path, key, problem)
 
 
-def _number(path: str, key: str, v: Any, positive: bool = False, nonneg: bool = False) -> float:
-    """A finite number (not a bool), optionally ``> 0`` or ``>= 0``."""
+def _number(
+    path: str,
+    key: str,
+    v: Any,
+    positive: bool = False,
+    nonneg: bool = False,
+    bound: float | None = None,
+) -> float:
+    """A finite number (not a bool), optionally ``> 0`` or ``>= 0``, and at most ``bound`` in
+    size."""
     if isinstance(v, bool) or not isinstance(v, int | float):
-        raise _err(path, key, f"must be a number, got {v!r}")
-    f = float(v)
+        raise _err(path, key, f"must be a number, got {_repr(v)}")
+    try:
+        f = float(v)
+    except OverflowError:
+        f = float("inf")
     if not np.isfinite(f):
-        raise _err(path, key, f"must be finite, got {v!r}")
+        raise _err(path, key, f"must be finite, got {_repr(v)}")
+    if bound is not None and abs(f) > bound:
+        raise _err(path, key, f"must be at most {bound:g} in size, got {_repr(v)}")
     if positive and not f > 0:
-        raise _err(path, key, f"must be > 0, got {v!r}")
+        raise _err(path, key, f"must be > 0, got {_repr(v)}")
     if nonneg and f < 0:
-        raise _err(path, key, f"must be >= 0, got {v!r}")
+        raise _err(path, key, f"must be >= 0, got {_repr(v)}")
     return f
 
 
 def _integer(path: str, key: str, v: Any, minimum: int | None = None) -> int:
     """An integer (not a bool), optionally ``>= minimum``."""
     if isinstance(v, bool) or not isinstance(v, int):
-        raise _err(path, key, f"must be an integer, got {v!r}")
+        raise _err(path, key, f"must be an integer, got {_repr(v)}")
     if minimum is not None and v < minimum:
-        raise _err(path, key, f"must be >= {minimum}, got {v!r}")
+        raise _err(path, key, f"must be >= {minimum}, got {_repr(v)}")
     return int(v)
 
 
-def _vector(path: str, key: str, v: Any, sizes: tuple[int, ...]) -> list[float]:
-    """A list of finite numbers whose length is one of ``sizes``."""
+def _vector(
+    path: str, key: str, v: Any, sizes: tuple[int, ...], bound: float | None = None
+) -> list[float]:
+    """A list of finite numbers (each at most ``bound`` in size) whose length is one of
+    ``sizes``."""
     if not isinstance(v, list) or len(v) not in sizes:
         want = " or ".join(str(s) for s in sizes)
-        raise _err(path, key, f"must be a list of {want} numbers, got {v!r}")
-    return [_number(path, f"{key}[{i}]", x) for i, x in enumerate(v)]
+        raise _err(path, key, f"must be a list of {want} numbers, got {_repr(v)}")
+    return [_number(path, f"{key}[{i}]", x, bound=bound) for i, x in enumerate(v)]
 
 
 def _choice(path: str, key: str, v: Any, options: tuple[str, ...]) -> str:
     """One of ``options``."""
     if v not in options:
-        raise _err(path, key, f"must be one of {', '.join(repr(o) for o in options)}, got {v!r}")
+        raise _err(
+            path, key, f"must be one of {', '.join(repr(o) for o in options)}, got {_repr(v)}"
+        )
     return v
 
 
 def _table(path: str, key: str, v: Any, schema: dict[str, Any]) -> dict[str, Any]:
     """A table with the keys of ``schema`` only, defaults filled in (``_REQ``: required)."""
     if not isinstance(v, dict):
-        raise _err(path, key, f"must be a table, got {v!r}")
+        raise _err(path, key, f"must be a table, got {_repr(v)}")
     for k in v:
         if k not in schema:
             raise _err(path, f"{key}.{k}", f"unknown key (allowed: {', '.join(schema)})")
@@ -87,7 +105,7 @@ def _place(path: str, key: str, v: Any) -> int:
         return -1
     if isinstance(v, int) and not isinstance(v, bool):
         return v
-    raise _err(path, key, f'must be "start", "end" or a node index, got {v!r}')
+    raise _err(path, key, f'must be "start", "end" or a node index, got {_repr(v)}')
 
 
 def _guard(path: str, key: str, fn: Callable[[], Any]) -> Any:
@@ -100,10 +118,19 @@ def _guard(path: str, key: str, fn: Callable[[], Any]) -> Any:
         raise _err(path, exc.parameter, f"{exc.allowed} (got {_show(exc.value)})") from None
 
 
+def _repr(value: Any) -> str:
+    """``repr(value)`` as an error message shows it: at most :data:`~rancf.errors.MAX_SHOWN`
+    characters, a huge integer by its number of digits."""
+    if isinstance(value, int) and not isinstance(value, bool) and abs(value) >= 10**MAX_SHOWN:
+        return f"an integer of about {int(abs(value).bit_length() * 0.30103) + 1} digits"
+    return shorten(repr(value))
+
+
 def _show(value: Any) -> str:
-    """A value as an error message shows it (floats and arrays to 6 digits)."""
+    """A value as an error message shows it (floats and arrays to 6 digits, at most
+    :data:`~rancf.errors.MAX_SHOWN` characters)."""
     if isinstance(value, float):
         return f"{value:.6g}"
     if isinstance(value, np.ndarray):
-        return np.array2string(value, precision=6, separator=", ").replace("\n", "")
-    return str(value) if isinstance(value, str) else repr(value)
+        return shorten(np.array2string(value, precision=6, separator=", ").replace("\n", ""))
+    return shorten(value) if isinstance(value, str) else _repr(value)

@@ -23,6 +23,8 @@ Keys that only rods have are refused, naming the key, for other elements.
 
 from __future__ import annotations
 
+import math
+import sys
 from typing import Any
 
 from rancf.model.scenario_checks import _REQ, _choice, _err, _number, _place, _table, _vector
@@ -62,6 +64,7 @@ def parse_section(path: str, raw: Any, element: str) -> dict[str, Any]:
         )
     principal = [k for k in ("inertia_y", "inertia_z", "orientation") if s[k] is not None]
     if s["radius"] is not None:
+        _check_radius(path, s["radius"])
         extra = [k for k in ("area", "inertia", *principal) if s[k] is not None]
         if extra:
             raise _err(
@@ -85,6 +88,22 @@ def parse_section(path: str, raw: Any, element: str) -> dict[str, Any]:
     elif s["area"] is None or s["inertia"] is None:
         raise _err(path, "section", "requires radius, or both area and inertia")
     return s
+
+
+def _check_radius(path: str, r: float) -> None:
+    """A radius whose area ``π r²`` and second moment ``π r⁴ / 4`` are normal positive numbers
+    (``1e100`` overflows, ``1e-100`` underflows to zero)."""
+    try:
+        area, inertia = math.pi * r**2, math.pi * r**4 / 4.0
+    except OverflowError:
+        area = inertia = math.inf
+    if not (math.isfinite(inertia) and inertia >= sys.float_info.min and area > 0):
+        raise _err(
+            path,
+            "section.radius",
+            f"must give a finite, nonzero area π r² and second moment π r⁴/4, got {r:g} "
+            f"(second moment {inertia:g})",
+        )
 
 
 def parse_material(path: str, raw: Any, element: str) -> dict[str, Any]:

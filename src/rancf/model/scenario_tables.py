@@ -10,6 +10,8 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 from rancf.elements.mapping import K_RANGE  # the factors a scenario may fix
+from rancf.geometry.conic import LENGTH_RANGE
+from rancf.model.analysis import MAX_LOAD_STEPS, MAX_NEWTON
 from rancf.model.scenario_checks import (
     _REQ,
     _choice,
@@ -17,6 +19,7 @@ from rancf.model.scenario_checks import (
     _guard,
     _integer,
     _number,
+    _repr,
     _table,
     _vector,
 )
@@ -37,6 +40,11 @@ __all__ = [
 ]
 
 
+#: Largest size of a geometry coordinate [m] (``start``, ``end``, ``point``, ``control_points``):
+#: the longest chord a conic may have (:data:`rancf.geometry.conic.LENGTH_RANGE`).
+MAX_COORDINATE = LENGTH_RANGE[1]
+#: Largest ratio of two NURBS weights (a curve's shape depends on the ratios only).
+MAX_WEIGHT_RATIO = 1e12
 #: Largest ``mesh.elements`` (and total number of elements of a NURBS mesh).
 MAX_ELEMENTS = 1_000_000
 #: Element kinds of ``mesh.element``.
@@ -101,22 +109,22 @@ def parse_geometry(path: str, raw: Any) -> tuple[dict[str, Any], int]:
         for k in ("start", "end"):
             if g[k] is None:
                 raise _err(path, f"geometry.{k}", f"required key is missing for kind = {kind!r}")
-        g["start"] = _vector(path, "geometry.start", g["start"], (2, 3))
+        g["start"] = _vector(path, "geometry.start", g["start"], (2, 3), MAX_COORDINATE)
         dim = len(g["start"])
-        g["end"] = _vector(path, "geometry.end", g["end"], (dim,))
+        g["end"] = _vector(path, "geometry.end", g["end"], (dim,), MAX_COORDINATE)
     if kind == "conic":
         for k in ("angles_deg", "point"):
             if g[k] is None:
                 raise _err(path, f"geometry.{k}", "required key is missing for kind = 'conic'")
         g["angles_deg"] = _vector(path, "geometry.angles_deg", g["angles_deg"], (2,))
-        g["point"] = _vector(path, "geometry.point", g["point"], (dim,))
+        g["point"] = _vector(path, "geometry.point", g["point"], (dim,), MAX_COORDINATE)
     if kind == "nurbs":
         for k in ("degree", "knots", "control_points"):
             if g[k] is None:
                 raise _err(path, f"geometry.{k}", "required key is missing for kind = 'nurbs'")
         g["degree"] = _integer(path, "geometry.degree", g["degree"], 2)
         if g["degree"] > 3:
-            raise _err(path, "geometry.degree", f"must be 2 or 3, got {g['degree']!r}")
+            raise _err(path, "geometry.degree", f"must be 2 or 3, got {_repr(g['degree'])}")
         if not isinstance(g["control_points"], list) or not g["control_points"]:
             raise _err(path, "geometry.control_points", "must be a list of points")
         if len(g["control_points"]) < g["degree"] + 1:
@@ -126,10 +134,12 @@ def parse_geometry(path: str, raw: Any) -> tuple[dict[str, Any], int]:
                 f"a NURBS of degree {g['degree']} needs at least {g['degree'] + 1} control "
                 f"points, got {len(g['control_points'])}",
             )
-        first = _vector(path, "geometry.control_points[0]", g["control_points"][0], (2, 3))
+        first = _vector(
+            path, "geometry.control_points[0]", g["control_points"][0], (2, 3), MAX_COORDINATE
+        )
         dim = len(first)
         g["control_points"] = [
-            _vector(path, f"geometry.control_points[{i}]", p, (dim,))
+            _vector(path, f"geometry.control_points[{i}]", p, (dim,), MAX_COORDINATE)
             for i, p in enumerate(g["control_points"])
         ]
         if not isinstance(g["knots"], list):
@@ -141,6 +151,14 @@ def parse_geometry(path: str, raw: Any) -> tuple[dict[str, Any], int]:
             g["weights"] = [
                 _number(path, f"geometry.weights[{i}]", x) for i, x in enumerate(g["weights"])
             ]
+            w = [abs(x) for x in g["weights"] if x != 0.0]
+            if w and max(w) > MAX_WEIGHT_RATIO * min(w):
+                raise _err(
+                    path,
+                    "geometry.weights",
+                    f"the largest weight may be at most {MAX_WEIGHT_RATIO:g} times the smallest, "
+                    f"got {max(w):g} and {min(w):g}",
+                )
     return g, dim
 
 
@@ -175,7 +193,9 @@ def parse_mesh(path: str, raw: Any, dim: int) -> dict[str, Any]:
     )
     m["elements"] = _integer(path, "mesh.elements", m["elements"], 1)
     if m["elements"] > MAX_ELEMENTS:
-        raise _err(path, "mesh.elements", f"must be at most {MAX_ELEMENTS}, got {m['elements']!r}")
+        raise _err(
+            path, "mesh.elements", f"must be at most {MAX_ELEMENTS}, got {_repr(m['elements'])}"
+        )
     m["element"] = _choice(path, "mesh.element", m["element"], ELEMENTS)
     if m["k"] != "opt":
         k = _number(path, "mesh.k", m["k"])
@@ -187,7 +207,7 @@ def parse_mesh(path: str, raw: Any, dim: int) -> dict[str, Any]:
     if m["quadrature_points"] is not None:
         q = _integer(path, "mesh.quadrature_points", m["quadrature_points"], 2)
         if q > 64:
-            raise _err(path, "mesh.quadrature_points", f"must be at most 64, got {q!r}")
+            raise _err(path, "mesh.quadrature_points", f"must be at most 64, got {_repr(q)}")
         m["quadrature_points"] = q
     if m["element"] == "beam" and dim != 2:
         raise _err(path, "mesh.element", "the beam element is planar: use 2-coordinate geometry")
@@ -235,16 +255,28 @@ def parse_solver(path: str, raw: Any) -> dict[str, Any]:
     sv["step"] = _number(path, "solver.step", sv["step"], positive=True)
     sv["rho_inf"] = _number(path, "solver.rho_inf", sv["rho_inf"])
     if not 0 <= sv["rho_inf"] <= 1:
-        raise _err(path, "solver.rho_inf", f"must be in [0, 1], got {sv['rho_inf']!r}")
+        raise _err(path, "solver.rho_inf", f"must be in [0, 1], got {_repr(sv['rho_inf'])}")
     sv["load_steps"] = _integer(path, "solver.load_steps", sv["load_steps"], 1)
+    if sv["load_steps"] > MAX_LOAD_STEPS:
+        raise _err(
+            path,
+            "solver.load_steps",
+            f"must be at most {MAX_LOAD_STEPS}, got {_repr(sv['load_steps'])}",
+        )
     if not isinstance(sv["adaptive"], bool):
-        raise _err(path, "solver.adaptive", f"must be true or false, got {sv['adaptive']!r}")
+        raise _err(path, "solver.adaptive", f"must be true or false, got {_repr(sv['adaptive'])}")
     sv["rtol"] = _number(path, "solver.rtol", sv["rtol"], positive=True)
     for k in ("output_step", "min_step"):
         if sv[k] is not None:
             sv[k] = _number(path, f"solver.{k}", sv[k], positive=True)
     sv["newton_tol"] = _number(path, "solver.newton_tol", sv["newton_tol"], positive=True)
     sv["max_newton"] = _integer(path, "solver.max_newton", sv["max_newton"], 1)
+    if sv["max_newton"] > MAX_NEWTON:
+        raise _err(
+            path,
+            "solver.max_newton",
+            f"must be at most {MAX_NEWTON}, got {_repr(sv['max_newton'])}",
+        )
     sv["newton"] = _choice(path, "solver.newton", sv["newton"], ("full", "modified"))
     sv["static_method"] = _choice(
         path, "solver.static_method", sv["static_method"], ("load", "arc_length")

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from rancf.model.analysis import MAX_LOAD_STEPS, MAX_NEWTON
 from rancf.model.scenario_sensors import SENSOR_KINDS
 from rancf.model.scenario_tables import ELEMENTS, GEOMETRY_KEYS, K_RANGE, MAX_ELEMENTS
 
@@ -130,13 +131,23 @@ def scenario_schema() -> dict[str, Any]:
             "t_end": {**_POS, "default": 1.0},
             "step": {**_POS, "default": 1e-3, "description": "(initial) time step, <= t_end"},
             "rho_inf": {"type": "number", "minimum": 0, "maximum": 1, "default": 0.9},
-            "load_steps": {"type": "integer", "minimum": 1, "default": 10},
+            "load_steps": {
+                "type": "integer",
+                "minimum": 1,
+                "maximum": MAX_LOAD_STEPS,
+                "default": 10,
+            },
             "adaptive": {"type": "boolean", "default": False},
             "rtol": {**_POS, "default": 1e-5},
             "output_step": {**_POS, "description": "default: step; <= t_end"},
             "min_step": {**_POS, "description": "default: step / 1024; <= step"},
             "newton_tol": {**_POS, "default": 1e-10},
-            "max_newton": {"type": "integer", "minimum": 1, "default": 12},
+            "max_newton": {
+                "type": "integer",
+                "minimum": 1,
+                "maximum": MAX_NEWTON,
+                "default": 12,
+            },
             "newton": {"enum": ["full", "modified"], "default": "full"},
             "static_method": {
                 "enum": ["load", "arc_length"],

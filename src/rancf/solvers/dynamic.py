@@ -175,21 +175,35 @@ class GeneralizedAlpha:
         return ok, y1, v1, a1, it
 
     def run_steps(
-        self, y: NDArray, v: NDArray, a: NDArray, t: float, h: float, n_steps: int, per_out: int,
+        self,
+        y: NDArray,
+        v: NDArray,
+        a: NDArray,
+        t: float,
+        h: float,
+        n_steps: int,
+        per_out: int,
+        done_before: int = 0,
+        max_seconds: float = np.inf,
         lam: NDArray | None = None,
-    ) -> tuple:  # fmt: skip
-        """Fixed steps in the core (``y, v, a``, ``lam`` updated in place).
+    ) -> tuple:
+        """Fixed steps in the core from time ``t`` (``y, v, a``, ``lam`` updated in place).
 
+        An output is stored every ``per_out`` steps of an output interval, whose first already
+        holds ``done_before`` steps.  The core returns early, after a whole step, once
+        ``max_seconds`` of wall time have passed (so that the caller can poll for interrupts).
         Returns ``(steps done, status, iterations, outputs stored, out_y, out_v, out_e,
-        out_l)``; status is 1 if every step converged, else 0 (the failing step is not taken).
+        out_l)``; status is 1 if every step taken converged, else 0 (the failing step is not
+        taken).
         """
         n, m = self.system.n, self.system.m
-        n_out = n_steps // per_out
+        n_out = (done_before + n_steps) // per_out
         oy, ov, oe = np.empty((n_out, n)), np.empty((n_out, n)), np.empty((n_out, 3))
         ol = np.empty((n_out, m))
         lam = np.zeros(m) if lam is None else lam
-        done, ok, iters, stored = self._core.run(y, v, a, lam, t, h, n_steps, per_out, oy, ov,
-                                                 ol, oe)  # fmt: skip
+        done, ok, iters, stored = self._core.run(
+            y, v, a, lam, t, h, n_steps, per_out, done_before, max_seconds, oy, ov, ol, oe
+        )
         self.n_newton += iters
         return done, int(ok), iters, stored, oy, ov, oe, ol
 
@@ -204,6 +218,11 @@ def as_system(model: Model | System) -> System:
     if isinstance(model, System):
         return model
     return System({"body": model}, damping=model.damping)
+
+
+#: Wall time [s] after which the compiled fixed-step loop hands back to Python, which polls the
+#: stop flag (Ctrl-C, SIGTERM): a run stops within about this time whatever its step.
+CALL_SECONDS = 0.1
 
 
 def _failure_message(t: float, min_step: float) -> str:
@@ -234,7 +253,8 @@ def integrate(
         Called as ``on_output(t, snapshot)`` after every stored output; ``snapshot()`` builds the
         result so far (call it only now and then: without a sink it copies the history).
     should_stop : callable, optional
-        Polled after every step; returning True ends the run with status ``INTERRUPTED``.
+        Polled after every step (and every :data:`CALL_SECONDS` of the compiled loop); returning
+        True ends the run with status ``INTERRUPTED``.
     sink : OutputSink, optional
         Receives every stored state (e.g. streamed to disk); the result then holds only the
         last one, so memory does not grow with ``t_end``.  Default: kept in memory.
@@ -345,27 +365,32 @@ def integrate(
             msg = f"running, t = {tt:g} s"
             on_output(tt, lambda: snapshot(DynamicStatus.INTERRUPTED, msg))
 
+    within = 0  # fixed steps the compiled loop has taken since the last output time
     while k_out < n_out:
         target = out_time(k_out)
-        on_grid = abs(t - (out_time(k_out - 1) if k_out else 0.0)) <= 1e-12 * max(1.0, t)
+        last_out = out_time(k_out - 1) if k_out else 0.0
+        on_grid = within > 0 or abs(t - last_out) <= 1e-12 * max(1.0, t)
         if fast and h == o.step and k_out < n_grid and on_grid:
             n_chunk = min(chunk_out, n_grid - k_out)
             done, st, iters, stored, oy, ov, oe, ol = integ.run_steps(
-                y, v, a, t, o.step, n_chunk * per_out, per_out, lam
+                y, v, a, t, o.step, n_chunk * per_out - within, per_out, within, CALL_SECONDS,
+                lam,
             )
             result.took(o.step, done)
             if stored:
                 store_block(k_out, oy[:stored], ov[:stored], oe[:stored], ol[:stored])
-            t_chunk = t + done * o.step
             k_out += stored
-            t = float(out_time(k_out - 1)) if (stored and done % per_out == 0) else t_chunk
+            within = within + done - stored * per_out
+            last_out = out_time(k_out - 1) if k_out else 0.0
+            t = float(last_out) + within * o.step if within else float(last_out)
             if stored:
-                notify(t)
+                notify(float(last_out))
             if should_stop is not None and should_stop():
                 status, message = DynamicStatus.INTERRUPTED, f"interrupted at t = {t:.6g} s"
                 break
             if st == 1:
                 continue
+            within = 0  # the steps to the next output are taken below
             h = o.step * 0.25  # the failing step is retried below, smaller
             result.n_rejected += 1
             if h < min_step:
