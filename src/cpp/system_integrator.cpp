@@ -199,7 +199,7 @@ bool SystemIntegrator::initial_acceleration(const double* y, const double* v, do
 bool SystemIntegrator::static_increment(const double* y, const double* lam, double lf,
                                         bool amplitude, double t, double* dy, double* dlam,
                                         double* residual) {
-  const int n = s_.n, m = s_.m;
+  const int n = s_.n;
   AssemblyTerms terms;
   terms.tf = t;
   terms.t1 = t;
