@@ -142,6 +142,7 @@ class HistoryStore:
         v: NDArray,
         energy: NDArray,
         directors: NDArray | None = None,
+        lam: NDArray | None = None,
     ) -> None:
         """Store one output (sink protocol of :func:`~rancf.solvers.dynamic.integrate`)."""
         self._add((np.array([t]), q, v, energy, directors), 1)
@@ -153,9 +154,11 @@ class HistoryStore:
         v: NDArray,
         energy: NDArray,
         directors: NDArray | None = None,
+        lam: NDArray | None = None,
     ) -> None:
         """Store consecutive outputs: ``t (k,)``, ``q, v (k, n_q)``, ``energy (k, 3)``, rods'
-        ``directors (k, n_nodes, 3)``."""
+        ``directors (k, n_nodes, 3)`` (``lam``: multipliers of a system's joints, unused for one
+        body)."""
         self._add((t, q, v, energy, directors), len(t))
 
     def _add(self, values: tuple[NDArray | None, ...], rows: int) -> None:
