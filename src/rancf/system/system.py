@@ -250,8 +250,10 @@ class System:
         t = np.zeros(3) if ld.torque is None else np.asarray(ld.torque, dtype=float)
         if ld.force is not None and f.size != self.dim:
             raise InputError("loads.point.force", list(f), f"{self.dim} components")
-        if ld.torque is not None and not isinstance(self.bodies[p.body], RigidBody):
-            raise InputError("loads.point.moment", list(t), "a rigid body (rods: moments on nodes)")
+        b = self.bodies[p.body]
+        rod = isinstance(b, Model) and b.element == "rod"
+        if ld.torque is not None and not (isinstance(b, RigidBody) or rod):
+            raise InputError("loads.point.moment", list(t), "a rigid body or a rod's node")
         tt = np.r_[np.zeros(2), t] if t.size == 1 else np.r_[t, np.zeros(3 - t.size)]
         if ld.time is not None and ld.time.size != 1:
             raise InputError("loads.point.time", ld.time.size, "a scalar time function (a factor)")
