@@ -289,8 +289,11 @@ class System:
             raise InputError("joints.axis", None, f"required for a {j.kind} joint")
         need = {"fixed": True, "slider": True}.get(j.kind, j.angle is not None)
         if need and (len(fb) < 3 or (j.kind != "slider" and len(fa) < 3 and d == 2)):
-            raise InputError("joints.between", [str(x) for x in j.between],
-                             "places with an orientation for this joint (not a point mass)")  # fmt: skip
+            raise InputError(
+                "joints.between",
+                [str(x) for x in j.between],
+                "places with an orientation for this joint (not a point mass)",
+            )
         if j.angle is not None:
             if j.kind not in ("pin", "revolute"):
                 raise InputError("joints.angle", "set", "a pin or revolute joint")
@@ -315,8 +318,11 @@ class System:
                 n1, n2 = _normals(fa[0])
                 info["normals_b"] = np.r_[fb @ n1, fb @ n2]
                 return info
-            raise InputError("joints.kind", "fixed",
-                             "a frame on at least one side (a 3D cable has only a tangent: use rods)")  # fmt: skip
+            raise InputError(
+                "joints.kind",
+                "fixed",
+                "a frame on at least one side (a 3D cable has only a tangent: use rods)",
+            )
         if j.kind == "slider":
             if len(fb) < 3:
                 raise InputError("joints.between", str(j.between[1]), "a place with a frame")
@@ -325,8 +331,11 @@ class System:
             return info
         if j.kind == "revolute":
             if len(fa) < 3 or len(fb) < 3:
-                raise InputError("joints.between", [str(x) for x in j.between],
-                                 "places with a frame (a 3D cable node has only a tangent: a rod)")  # fmt: skip
+                raise InputError(
+                    "joints.between",
+                    [str(x) for x in j.between],
+                    "places with a frame (a 3D cable node has only a tangent: a rod)",
+                )
             n1, n2 = _normals(axis)
             info["axis_a"], info["normals_b"] = fa @ axis, np.r_[fb @ n1, fb @ n2]
             if j.angle is not None:
