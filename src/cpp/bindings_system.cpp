@@ -337,6 +337,27 @@ void bind_system(nb::module_& mod) {
           },
           "y"_a, "v"_a, "t"_a, "a"_a.noconvert(), "lam"_a.noconvert())
       .def(
+          "factor_static",
+          [](SystemIntegratorHolder& h, In y, In lam, double lf, bool amplitude, double t,
+             Out residual) {
+            expect_size(y, h.n, "y");
+            expect_size(lam, h.m, "lam");
+            expect_size(residual, h.n + h.m, "residual");
+            return h.integ.factor_static(y.data(), lam.data(), lf, amplitude, t, residual.data());
+          },
+          "y"_a, "lam"_a, "load_factor"_a, "amplitude"_a, "t"_a, "residual"_a.noconvert(),
+          "The statics' residual (balance, constraints) and its Jacobian factored; False if not "
+          "finite or singular.")
+      .def(
+          "solve_factored",
+          [](SystemIntegratorHolder& h, Out x, Out z) {
+            expect_size(x, h.n, "x");
+            expect_size(z, h.m, "z");
+            h.integ.solve_factored(x.data(), z.data());
+          },
+          "x"_a.noconvert(), "z"_a.noconvert(),
+          "Solve with the last factorization (right-hand sides in x, z; solutions into them).")
+      .def(
           "prescribe",
           [](SystemIntegratorHolder& h, double t, Out y, Out v) {
             expect_size(y, h.n, "y");

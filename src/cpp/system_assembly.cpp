@@ -224,7 +224,9 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
     gather(map, yf, u);
     gen(q);
     for (int j = 0; j < map.n; ++j) r[map.index[j]] -= q[j];
-    if (lu != nullptr && (p.kind == PlaceKind::rigid2d || p.kind == PlaceKind::rigid3d)) {
+    const bool turns = p.kind == PlaceKind::rigid2d || p.kind == PlaceKind::rigid3d ||
+                       (torque && p.kind == PlaceKind::rod);
+    if (lu != nullptr && turns) {
       std::array<double, kMaxLocal * kMaxLocal> K{};
       jacobian_fd(map.n, u, gen, K.data());
       for (double& v : K) v *= -tm.ck;

@@ -196,10 +196,8 @@ bool SystemIntegrator::initial_acceleration(const double* y, const double* v, do
   return true;
 }
 
-bool SystemIntegrator::static_increment(const double* y, const double* lam, double lf,
-                                        bool amplitude, double t, double* dy, double* dlam,
-                                        double* residual) {
-  const int n = s_.n;
+bool SystemIntegrator::factor_static(const double* y, const double* lam, double lf, bool amplitude,
+                                     double t, double* residual) {
   AssemblyTerms terms;
   terms.tf = t;
   terms.t1 = t;
@@ -209,10 +207,25 @@ bool SystemIntegrator::static_increment(const double* y, const double* lam, doub
   if (!assemble_system(s_, y, nullptr, nullptr, lam, y, terms, r_.data(), &lu_)) return false;
   std::copy(r_.begin(), r_.end(), residual);
   ++factorizations_;
-  if (!lu_.factor()) return false;
-  solve_negative();
-  std::copy(dz_.begin(), dz_.begin() + n, dy);
-  std::copy(dz_.begin() + n, dz_.end(), dlam);
+  return lu_.factor();
+}
+
+void SystemIntegrator::solve_factored(double* x, double* z) {
+  const int m = s_.m;
+  zb_.assign(sz(lu_.border()), 0.0);
+  std::copy(z, z + m, zb_.begin());
+  lu_.solve(x, zb_.data());
+  std::copy(zb_.begin(), zb_.begin() + m, z);
+}
+
+bool SystemIntegrator::static_increment(const double* y, const double* lam, double lf,
+                                        bool amplitude, double t, double* dy, double* dlam,
+                                        double* residual) {
+  const int n = s_.n, m = s_.m;
+  if (!factor_static(y, lam, lf, amplitude, t, residual)) return false;
+  for (int i = 0; i < n; ++i) dy[i] = -residual[i];
+  for (int i = 0; i < m; ++i) dlam[i] = -residual[n + i];
+  solve_factored(dy, dlam);
   return true;
 }
 

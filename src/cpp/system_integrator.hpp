@@ -38,6 +38,12 @@ class SystemIntegrator {
   /// K dy + G^T dlam = -r, G dy = -g.  Returns false if the matrix is singular.
   bool static_increment(const double* y, const double* lam, double lf, bool amplitude, double t,
                         double* dy, double* dlam, double* residual);
+  /// The statics' residual (n + m) and its Jacobian factored (for solve_factored); false if
+  /// not finite or singular.
+  bool factor_static(const double* y, const double* lam, double lf, bool amplitude, double t,
+                     double* residual);
+  /// Solve with the last factorization: x (n) and z (m) hold the right-hand side on entry.
+  void solve_factored(double* x, double* z);
   [[nodiscard]] long factorizations() const { return factorizations_; }
   /// The held coordinates that follow time functions, at time t (any pointer may be null).
   void set_prescribed(double t, double* y, double* v, double* a) const;

@@ -18,7 +18,9 @@ ROD = Material(1000.0, 1e7, poisson_ratio=0.3)
 
 def _rot3(a: float) -> np.ndarray:
     c, s = np.cos(a), np.sin(a)
-    return np.array([[c, 0, s], [0, 1, 0], [-s, 0, c]]) @ np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])
+    return np.array([[c, 0, s], [0, 1, 0], [-s, 0, c]]) @ np.array(
+        [[c, -s, 0], [s, c, 0], [0, 0, 1]]
+    )
 
 
 def planar() -> System:
@@ -54,7 +56,9 @@ def spatial() -> System:
         Joint("fixed", ("cable:start", "rod2:end")),  # a cable's tangent held by a rod's frame
         Joint("pin", ("body:a", "cable:end")),
         Joint("revolute", ("body:b", "rod2:1"), axis=(0.0, 0.0, 1.0)),
-        Joint("revolute", ("body", "ground"), axis=(1.0, 1.0, 0.0), angle=TimeFunction.ramp(1.0, 0.5)),
+        Joint(
+            "revolute", ("body", "ground"), axis=(1.0, 1.0, 0.0), angle=TimeFunction.ramp(1.0, 0.5)
+        ),
         Joint("slider", ("mass", "body:b"), axis=(0.0, 1.0, 1.0)),
         Joint("pin", ("rod:1", "ground")),
     ]

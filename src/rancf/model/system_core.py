@@ -63,7 +63,7 @@ def core_model(model: Model) -> _core.Model:
         rot_of_node[off // model.dpn, (off % model.dpn) // model.dim] = i
         rot[i] = basis
     base, f0, freq = _point_forces(model)
-    moments = [p for p in model.point_loads if p.moment is not None]
+    moments = [p for p in model.point_loads if p.moment is not None and p.time is None]
     return _core.Model(
         kind=kind,
         dim=model.dim,

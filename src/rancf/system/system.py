@@ -250,8 +250,10 @@ class System:
         t = np.zeros(3) if ld.torque is None else np.asarray(ld.torque, dtype=float)
         if ld.force is not None and f.size != self.dim:
             raise InputError("loads.point.force", list(f), f"{self.dim} components")
-        if ld.torque is not None and not isinstance(self.bodies[p.body], RigidBody):
-            raise InputError("loads.point.moment", list(t), "a rigid body (rods: moments on nodes)")
+        b = self.bodies[p.body]
+        rod = isinstance(b, Model) and b.element == "rod"
+        if ld.torque is not None and not (isinstance(b, RigidBody) or rod):
+            raise InputError("loads.point.moment", list(t), "a rigid body or a rod's node")
         tt = np.r_[np.zeros(2), t] if t.size == 1 else np.r_[t, np.zeros(3 - t.size)]
         if ld.time is not None and ld.time.size != 1:
             raise InputError("loads.point.time", ld.time.size, "a scalar time function (a factor)")
@@ -287,8 +289,11 @@ class System:
             raise InputError("joints.axis", None, f"required for a {j.kind} joint")
         need = {"fixed": True, "slider": True}.get(j.kind, j.angle is not None)
         if need and (len(fb) < 3 or (j.kind != "slider" and len(fa) < 3 and d == 2)):
-            raise InputError("joints.between", [str(x) for x in j.between],
-                             "places with an orientation for this joint (not a point mass)")  # fmt: skip
+            raise InputError(
+                "joints.between",
+                [str(x) for x in j.between],
+                "places with an orientation for this joint (not a point mass)",
+            )
         if j.angle is not None:
             if j.kind not in ("pin", "revolute"):
                 raise InputError("joints.angle", "set", "a pin or revolute joint")
@@ -313,8 +318,11 @@ class System:
                 n1, n2 = _normals(fa[0])
                 info["normals_b"] = np.r_[fb @ n1, fb @ n2]
                 return info
-            raise InputError("joints.kind", "fixed",
-                             "a frame on at least one side (a 3D cable has only a tangent: use rods)")  # fmt: skip
+            raise InputError(
+                "joints.kind",
+                "fixed",
+                "a frame on at least one side (a 3D cable has only a tangent: use rods)",
+            )
         if j.kind == "slider":
             if len(fb) < 3:
                 raise InputError("joints.between", str(j.between[1]), "a place with a frame")
@@ -323,8 +331,11 @@ class System:
             return info
         if j.kind == "revolute":
             if len(fa) < 3 or len(fb) < 3:
-                raise InputError("joints.between", [str(x) for x in j.between],
-                                 "places with a frame (a 3D cable node has only a tangent: a rod)")  # fmt: skip
+                raise InputError(
+                    "joints.between",
+                    [str(x) for x in j.between],
+                    "places with a frame (a 3D cable node has only a tangent: a rod)",
+                )
             n1, n2 = _normals(axis)
             info["axis_a"], info["normals_b"] = fa @ axis, np.r_[fb @ n1, fb @ n2]
             if j.angle is not None:
