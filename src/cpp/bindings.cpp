@@ -251,5 +251,6 @@ NB_MODULE(_core, mod) {
   rancf_bind::bind_inertia(model_cls);
 
   rancf_bind::bind_functions(mod);
+  rancf_bind::bind_contact(mod);
   rancf_bind::bind_system(mod);
 }

@@ -31,4 +31,7 @@ void bind_functions(nb::module_& mod);
 /// Systems (bindings_system.cpp).
 void bind_system(nb::module_& mod);
 
+/// Contact (bindings_contact.cpp).
+void bind_contact(nb::module_& mod);
+
 }  // namespace rancf_bind

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "bindings.hpp"
+#include "bindings_contact.hpp"
 #include "bindings_model.hpp"
 #include "system.hpp"
 #include "system_integrator.hpp"
@@ -175,6 +176,14 @@ void bind_system(nb::module_& mod) {
           "tf_kind"_a, "tf_n"_a, "tf_value"_a, "tf_value_start"_a, "tf_params"_a, "tf_breaks"_a,
           "tf_breaks_start"_a, "tf_coef"_a, "tf_coef_start"_a, "pre_coord"_a, "pre_tf"_a,
           "pre_comp"_a, "pre_base"_a, "gravity"_a, "damping"_a, "y_ref"_a)
+      .def(
+          "attach_contact",
+          [](SystemHolder& h, ContactHolder& c) {
+            check(c.c.bodies.size() == h.s.flex.size(), "contact: one entry per flexible body");
+            h.s.contact = &c.c;
+            c.sys = &h.s;
+          },
+          "contact"_a, nb::keep_alive<1, 2>(), "Obstacles and contact pairs (contact.hpp).")
       .def_prop_ro("n", [](const SystemHolder& h) { return h.s.n; })
       .def_prop_ro("m", [](const SystemHolder& h) { return h.s.m; })
       .def_prop_ro("offsets", [](const SystemHolder& h) { return h.s.offset; })

@@ -23,6 +23,8 @@
 
 namespace rancf {
 
+struct ContactSet;  // contact.hpp
+
 /// A place: on a flexible body's node (kind cable/rod/beam), a rigid body or point mass, or the
 /// ground (optionally moving: point + u(t)).
 struct PlaceRef {
@@ -74,6 +76,7 @@ struct System {
   double gravity[3] = {0.0, 0.0, 0.0};  ///< on rigid bodies and point masses
   double damping = 0.0;                 ///< mass-proportional damping of every body
   const double* y_ref = nullptr;        ///< (n) reference coordinates (gravity potential zero)
+  const ContactSet* contact = nullptr;  ///< obstacles and contact pairs (contact.hpp), or none
 
   // derived by setup()
   int n = 0, m = 0;
@@ -123,6 +126,7 @@ struct AssemblyTerms {
   double t1 = 0.0;                      ///< time of the constraints
   double load_factor = 1.0;             ///< statics: the factor on the loads
   bool amplitude = false;               ///< statics: harmonic loads at their amplitude
+  const double* y0 = nullptr;           ///< a time step's start (contact: discrete gradient)
 };
 
 bool assemble_system(const System& s, const double* yf, const double* vf, const double* am,

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "assembly.hpp"
+#include "contact.hpp"
 #include "inertia.hpp"
 #include "system.hpp"
 
@@ -281,6 +282,13 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
       for (std::size_t i = 0; i < K.size(); ++i) K[i] = tm.ck * K[i] + tm.cv * Kv[i];
       add_matrix(*lu, idx, k, K.data(), far);
     }
+  }
+  // ---- contact with obstacles (contact.hpp, issue 20)
+  if (s.contact != nullptr) {
+    const MatrixSink sink = [&](const int* idx, int k, const double* K) {
+      add_matrix(*lu, idx, k, K, far);
+    };
+    assemble_contact(s, *s.contact, yf, vf, y1, tm, r, lu != nullptr ? &sink : nullptr);
   }
   // ---- joints: G(yf)^T lambda, g(y1), and their derivatives
   std::vector<std::array<double, kMaxJointRows * 2 * kMaxLocal>> jac1(s.joints.size());

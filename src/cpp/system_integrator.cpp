@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "assembly.hpp"
+#include "contact.hpp"
 #include "inertia.hpp"
 
 namespace rancf {
@@ -68,6 +69,7 @@ StepOutcome SystemIntegrator::step(const double* y0, const double* v0, const dou
   terms.ca = (1.0 - am) / bh2;
   terms.tf = t + (1.0 - af) * h;
   terms.t1 = t + h;
+  terms.y0 = y0;
   double prev = std::numeric_limits<double>::infinity();
   for (int it = 1; it <= max_iter; ++it) {
     for (int i = 0; i < n; ++i) {
@@ -257,6 +259,7 @@ void system_energies(const System& s, const double* y, const double* v, double* 
     const double dl = std::sqrt(len) - sp.length;
     out[1] += 0.5 * sp.stiffness * dl * dl;
   }
+  if (s.contact != nullptr) out[1] += contact_energy(s, *s.contact, y);
 }
 
 void system_rereference(const System& s, double* y, double* v, double* a) {

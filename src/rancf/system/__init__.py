@@ -1,7 +1,11 @@
 """Systems of bodies: places, joints, springs, loads and their assembly (issue 18)."""
 
+from rancf.system.contact import ContactState, Obstacle, contact_history, contact_outputs
 from rancf.system.parts import Joint, Load, Spring
 from rancf.system.places import GROUND, Place
 from rancf.system.system import System
 
-__all__ = ["System", "Joint", "Spring", "Load", "Place", "GROUND"]
+__all__ = [
+    "System", "Joint", "Spring", "Load", "Place", "GROUND", "Obstacle", "ContactState",
+    "contact_outputs", "contact_history",
+]  # fmt: skip

@@ -25,6 +25,7 @@ from rancf.kernels import _core
 from rancf.model.rigid import PointMass, RigidBody
 from rancf.model.system import Model
 from rancf.model.time_function import TimeFunction, pack
+from rancf.system.contact import CONTACT_POINTS, Obstacle, build_contact
 from rancf.system.parts import JOINT_KINDS, Joint, Load, Spring
 from rancf.system.places import Place
 
@@ -62,6 +63,12 @@ class System:
     damping : float
         Mass-proportional damping ``c`` of every body [1/s] (flexible bodies: their model's is
         ignored).
+    obstacles : sequence of :class:`rancf.system.Obstacle`
+        Contact (:mod:`rancf.system.contact`).
+    contacts : sequence of (flexible body, obstacle) names, optional
+        The pairs in contact; default every flexible body with every obstacle.
+    contact_points : int
+        Gauss points per element at which contact is evaluated.
     """
 
     def __init__(
@@ -72,6 +79,9 @@ class System:
         loads: Sequence[Load] = (),
         gravity: ArrayLike | None = None,
         damping: float = 0.0,
+        obstacles: Sequence[Obstacle] = (),
+        contacts: Sequence[tuple[str, str]] | None = None,
+        contact_points: int = CONTACT_POINTS,
     ) -> None:
         if not bodies:
             raise InputError("bodies", {}, "at least one body")
@@ -126,6 +136,13 @@ class System:
         self.core = self._build(rows, self.joint_data)
         self.m = int(self.core.m)
         self.joint_rows = list(self.core.joint_rows)
+        self.obstacles = tuple(obstacles)  # contact (issue 20): attached to the core
+        self.contact, self.obstacle_names, self.contact_pairs = None, [], []
+        if self.obstacles or contacts:
+            self.contact, self.obstacle_names, self.contact_pairs = build_contact(
+                self, self.obstacles, contacts, contact_points
+            )
+            self.core.attach_contact(self.contact)
 
     # ---------------------------------------------------------------- places
     def resolve(self, spec: Place | str | int) -> Place:

@@ -1,0 +1,575 @@
+// Contact of flexible bodies with obstacles (contact.hpp).
+#include "contact.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "assembly.hpp"
+
+namespace rancf {
+
+namespace {
+
+std::size_t sz(int i) { return static_cast<std::size_t>(i); }
+
+constexpr int kMaxBody = 7;                          // coordinates of a carrying rigid body
+constexpr int kMaxLoc = 3 + kMaxBody;                // a point's position and the body's
+constexpr int kMaxAll = kMaxElementDofs + kMaxBody;  // an element's coordinates and the body's
+constexpr int kTwist = -1, kBody = -2;               // coordinates that are no r block
+
+/// An obstacle in world coordinates.
+struct Pose {
+  ObstacleKind kind = ObstacleKind::plane;
+  double c[3] = {0.0, 0.0, 0.0};
+  double a[3] = {0.0, 0.0, 1.0};
+  double radius = 0.0;
+};
+
+struct Gap {
+  double g = 0.0;
+  double n[3] = {0.0, 0.0, 0.0};
+  double H[3][3] = {};
+};
+
+double dot(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+void cross(const double* a, const double* b, double* out) {
+  out[0] = a[1] * b[2] - a[2] * b[1];
+  out[1] = a[2] * b[0] - a[0] * b[2];
+  out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/// Gap, normal and (if hess) H = d2g/dr2 of a point r of a tube of radius rt (contact.hpp).
+void gap(const Pose& o, const double* r, double rt, Gap& out, bool hess) {
+  double d[3] = {r[0] - o.c[0], r[1] - o.c[1], r[2] - o.c[2]};
+  if (o.kind == ObstacleKind::plane) {
+    out.g = dot(o.a, d) - rt;
+    for (int i = 0; i < 3; ++i) out.n[i] = o.a[i];
+    if (hess)
+      for (auto& row : out.H) row[0] = row[1] = row[2] = 0.0;
+    return;
+  }
+  const bool cyl = o.kind == ObstacleKind::cylinder;
+  const double da = cyl ? dot(o.a, d) : 0.0;
+  for (int i = 0; i < 3; ++i) d[i] -= da * o.a[i];
+  const double rho = std::sqrt(dot(d, d));
+  out.g = rho - o.radius - rt;
+  if (rho == 0.0) {  // on the axis or at the centre: no direction (no force)
+    for (int i = 0; i < 3; ++i) out.n[i] = 0.0;
+    if (hess)
+      for (auto& row : out.H) row[0] = row[1] = row[2] = 0.0;
+    return;
+  }
+  for (int i = 0; i < 3; ++i) out.n[i] = d[i] / rho;
+  if (!hess) return;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const double p = (i == j ? 1.0 : 0.0) - (cyl ? o.a[i] * o.a[j] : 0.0);
+      out.H[i][j] = (p - out.n[i] * out.n[j]) / rho;
+    }
+}
+
+/// The mean of k <-g> over [g0, g1] (the discrete gradient of k <-g>^2 / 2) and its derivative
+/// with respect to g1, case by case (no cancellation).
+void mean_pressure(double k, double g0, double g1, double& p, double& dp1) {
+  p = dp1 = 0.0;
+  if (g0 >= 0.0 && g1 >= 0.0) return;
+  if (g0 < 0.0 && g1 < 0.0) {
+    p = -0.5 * k * (g0 + g1);
+    dp1 = -0.5 * k;
+    return;
+  }
+  if (g1 < 0.0) {  // coming into contact: k g1^2 / (2 (g0 - g1))
+    const double den = g0 - g1;
+    p = 0.5 * k * g1 * g1 / den;
+    dp1 = 0.5 * k * g1 * (2.0 * g0 - g1) / (den * den);
+    return;
+  }
+  const double den = g1 - g0;  // leaving: k g0^2 / (2 (g1 - g0))
+  p = 0.5 * k * g0 * g0 / den;
+  dp1 = -0.5 * k * g0 * g0 / (den * den);
+}
+
+/// The force per reference length on a point and its derivatives.
+struct PointLaw {
+  bool active = false;
+  double p = 0.0;                 ///< pressure
+  double F[3] = {0.0, 0.0, 0.0};  ///< p n + f_t
+  double ft[3] = {0.0, 0.0, 0.0};
+  double A[3][3] = {};             ///< dF/dr (gap from r; the discrete-gradient gaps held)
+  double B[3][3] = {};             ///< dF/du
+  double G1[3] = {0.0, 0.0, 0.0};  ///< dF/dg1 (discrete gradient)
+};
+
+/// The contact law at a point (contact.hpp): gap gf at r (H needed if derivs), relative velocity
+/// u (null: statics), gm = {g0, g1} for the discrete gradient (null: p from gf).
+void point_law(const ContactPair& cp, const Gap& gf, const double* u, const double* gm, bool derivs,
+               PointLaw& out) {
+  out = PointLaw{};
+  const double k = cp.stiffness;
+  double pe = 0.0, dp1 = 0.0, dpr[3] = {0.0, 0.0, 0.0}, dpu[3] = {0.0, 0.0, 0.0};
+  if (gm != nullptr) {
+    mean_pressure(k, gm[0], gm[1], pe, dp1);
+  } else if (gf.g < 0.0) {
+    pe = -k * gf.g;
+    for (int i = 0; i < 3; ++i) dpr[i] = -k * gf.n[i];
+  }
+  double p = pe;
+  if (u != nullptr && cp.damping > 0.0 && pe > 0.0) {
+    p -= cp.damping * dot(gf.n, u);
+    for (int i = 0; i < 3; ++i) {
+      dpr[i] -= cp.damping * dot(gf.H[i], u);  // d(n . u)/dr = H u (H symmetric)
+      dpu[i] = -cp.damping * gf.n[i];
+    }
+  }
+  if (!(p > 0.0)) return;
+  out.active = true;
+  out.p = p;
+  for (int i = 0; i < 3; ++i) out.F[i] = p * gf.n[i];
+  double phi[3] = {0.0, 0.0, 0.0}, s = 1.0, un = 0.0, vt[3] = {0.0, 0.0, 0.0};
+  const bool fr = u != nullptr && cp.friction > 0.0;
+  if (fr) {
+    un = dot(gf.n, u);
+    for (int i = 0; i < 3; ++i) vt[i] = u[i] - gf.n[i] * un;
+    s = std::sqrt(dot(vt, vt) + cp.slip_velocity * cp.slip_velocity);
+    for (int i = 0; i < 3; ++i) {
+      phi[i] = vt[i] / s;
+      out.ft[i] = -cp.friction * p * phi[i];
+      out.F[i] += out.ft[i];
+    }
+  }
+  if (!derivs) return;
+  const double mu = fr ? cp.friction : 0.0;
+  double dir[3];  // F = p dir: dir = n - mu phi
+  for (int i = 0; i < 3; ++i) {
+    dir[i] = gf.n[i] - mu * phi[i];
+    out.G1[i] = dir[i] * dp1;
+  }
+  double Hu[3] = {0.0, 0.0, 0.0};
+  if (u != nullptr)
+    for (int i = 0; i < 3; ++i) Hu[i] = dot(gf.H[i], u);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      out.A[i][j] = dir[i] * dpr[j] + p * gf.H[i][j];
+      out.B[i][j] = dir[i] * dpu[j];
+    }
+  if (!fr) return;
+  // d phi = Pphi d vt, Pphi = (I - phi phi^T) / s; d vt/dr = -H un - n (H u)^T,
+  // d vt/du = I - n n^T
+  double Pphi[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) Pphi[i][j] = ((i == j ? 1.0 : 0.0) - phi[i] * phi[j]) / s;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      double ar = 0.0, au = 0.0;
+      for (int l = 0; l < 3; ++l) {
+        const double dvr = -gf.H[l][j] * un - gf.n[l] * Hu[j];
+        const double dvu = (l == j ? 1.0 : 0.0) - gf.n[l] * gf.n[j];
+        ar += Pphi[i][l] * dvr;
+        au += Pphi[i][l] * dvu;
+      }
+      out.A[i][j] -= mu * p * ar;
+      out.B[i][j] -= mu * p * au;
+    }
+}
+
+/// Where a pair's obstacle is and how its coordinates move it.
+struct Carrier {
+  bool fixed = true;
+  PlaceRef place;
+  PlaceMap map;
+};
+
+Carrier carrier(const System& s, const Obstacle& ob) {
+  Carrier out;
+  if (ob.body < 0) return out;
+  out.fixed = false;
+  out.place.kind = s.dim == 2 ? PlaceKind::rigid2d : PlaceKind::rigid3d;
+  out.place.body = ob.body;
+  for (int i = 0; i < 3; ++i) out.place.point[i] = ob.point[i];
+  out.map = place_map(s, out.place);
+  return out;
+}
+
+/// The body's place at local coordinates ub: the obstacle's pose and, if E is not null, the
+/// place's evaluation (frames and derivatives).
+Pose pose_at(const System& s, const Obstacle& ob, const Carrier& cr, const double* ub,
+             PlaceEval* E) {
+  Pose o;
+  o.kind = ob.kind;
+  o.radius = ob.radius;
+  if (cr.fixed) {
+    for (int i = 0; i < 3; ++i) {
+      o.c[i] = ob.point[i];
+      o.a[i] = ob.dir[i];
+    }
+    return o;
+  }
+  PlaceEval local;
+  PlaceEval& e = E != nullptr ? *E : local;
+  place_local(s, cr.place, cr.map, 0.0, ub, e);
+  for (int i = 0; i < 3; ++i) {
+    o.c[i] = e.x[i];
+    o.a[i] = ob.dir[0] * e.f[0][i] + ob.dir[1] * e.f[1][i] + ob.dir[2] * e.f[2][i];
+  }
+  return o;
+}
+
+/// d(material point at r)/d u_j = dx_j + w_j x (r - c), w_j = 1/2 sum_k f_k x df_k/du_j.
+void point_rates(const PlaceEval& e, const double* r, double (*out)[3]) {
+  const double d[3] = {r[0] - e.x[0], r[1] - e.x[1], r[2] - e.x[2]};
+  for (int j = 0; j < e.n; ++j) {
+    double w[3] = {0.0, 0.0, 0.0};
+    for (int k = 0; k < e.nf; ++k) {
+      const double df[3] = {e.df[k][0][j], e.df[k][1][j], e.df[k][2][j]};
+      double c[3];
+      cross(e.f[k], df, c);
+      for (int i = 0; i < 3; ++i) w[i] += 0.5 * c[i];
+    }
+    double wd[3];
+    cross(w, d, wd);
+    for (int i = 0; i < 3; ++i) out[j][i] = e.dx[i][j] + wd[i];
+  }
+}
+
+/// Gather a body's local coordinates.
+void gather_body(const PlaceMap& map, const double* y, double* ub) {
+  for (int i = 0; i < map.n; ++i) ub[i] = y[map.index[i]];
+}
+
+/// r = sum_k N_k e_k (blocks of the element coordinates; 3 components, zero z in 2D).
+void point_of(const Model& m, const double* N, const double* e, double* r) {
+  const int d = m.dim;
+  r[0] = r[1] = r[2] = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    const double* b = e + (k / 2) * m.dpn + (k % 2) * d;
+    for (int i = 0; i < d; ++i) r[i] += N[k] * b[i];
+  }
+}
+
+int block(const Model& m, int k) { return (k / 2) * m.dpn + (k % 2) * m.dim; }
+
+/// The state of a time step needed at a point: positions at the alpha point, at both ends.
+struct States {
+  const double* yf;
+  const double* vf;
+  const double* y1;
+  const double* y0;  ///< null: no discrete gradient
+};
+
+/// A carried obstacle's point: forces (dim on r, nb on the body) from z = (r, ub) at the alpha
+/// point, their rates zd, and the step's ends z1, z0 (null: no discrete gradient).
+void carried_force(const System& s, const ContactPair& cp, const Obstacle& ob, const Carrier& cr,
+                   double rt, const double* zf, const double* zd, const double* z1,
+                   const double* z0, double* out, PointLaw* law) {
+  const int d = s.dim, nb = cr.map.n;
+  double r[3] = {0.0, 0.0, 0.0};
+  for (int i = 0; i < d; ++i) r[i] = zf[i];
+  PlaceEval e;
+  const Pose o = pose_at(s, ob, cr, zf + d, &e);
+  double rates[kMaxBody][3];
+  point_rates(e, r, rates);
+  Gap gf;
+  gap(o, r, rt, gf, false);
+  double u[3] = {0.0, 0.0, 0.0};
+  if (zd != nullptr) {
+    for (int i = 0; i < d; ++i) u[i] = zd[i];
+    for (int j = 0; j < nb; ++j)
+      for (int i = 0; i < 3; ++i) u[i] -= rates[j][i] * zd[d + j];
+  }
+  double gm[2];
+  if (z0 != nullptr) {
+    const double* zz[2] = {z0, z1};
+    for (int h = 0; h < 2; ++h) {
+      double rr[3] = {0.0, 0.0, 0.0};
+      for (int i = 0; i < d; ++i) rr[i] = zz[h][i];
+      Gap gh;
+      gap(pose_at(s, ob, cr, zz[h] + d, nullptr), rr, rt, gh, false);
+      gm[h] = gh.g;
+    }
+  }
+  PointLaw pl;
+  point_law(cp, gf, zd != nullptr ? u : nullptr, z0 != nullptr ? gm : nullptr, false, pl);
+  for (int i = 0; i < d; ++i) out[i] = pl.F[i];
+  for (int j = 0; j < nb; ++j) out[d + j] = -dot(pl.F, rates[j]);
+  if (law != nullptr) *law = pl;
+}
+
+/// One evaluation per point: everything outputs and energies need.
+struct PointEval {
+  double r[3];
+  Gap gap;
+  PointLaw law;
+};
+
+/// Visit the points of pair cp at state (y, v): fn(el, q, pose, PointEval&).
+template <class Fn>
+void each_point(const System& s, const ContactSet& c, const ContactPair& cp, const double* y,
+                const double* v, Fn fn) {
+  const ContactBody& cb = c.bodies[sz(cp.flex)];
+  if (cb.n_c == 0) return;
+  const Model& m = *s.flex[sz(cp.flex)];
+  const int o = s.offset[sz(cp.flex)];
+  const Obstacle& ob = c.obstacles[sz(cp.obstacle)];
+  const Carrier cr = carrier(s, ob);
+  double ub[kMaxBody] = {}, ubd[kMaxBody] = {};
+  gather_body(cr.map, y, ub);
+  if (v != nullptr) gather_body(cr.map, v, ubd);
+  PlaceEval pe;
+  const Pose pose = pose_at(s, ob, cr, ub, &pe);
+  std::array<double, kMaxElementDofs> e{}, ev{};
+  for (int el = 0; el < m.n_el; ++el) {
+    element_coordinates(m, y + o, el, e.data());
+    if (v != nullptr) element_coordinates(m, v + o, el, ev.data());
+    for (int q = 0; q < cb.n_c; ++q) {
+      const double* N = cb.N.data() + 4 * (el * cb.n_c + q);
+      PointEval pt;
+      point_of(m, N, e.data(), pt.r);
+      gap(pose, pt.r, cb.radius, pt.gap, false);
+      double u[3] = {0.0, 0.0, 0.0};
+      if (v != nullptr) {
+        point_of(m, N, ev.data(), u);
+        if (!cr.fixed) {
+          double rates[kMaxBody][3];
+          point_rates(pe, pt.r, rates);
+          for (int j = 0; j < cr.map.n; ++j)
+            for (int i = 0; i < 3; ++i) u[i] -= rates[j][i] * ubd[j];
+        }
+      }
+      point_law(cp, pt.gap, v != nullptr ? u : nullptr, nullptr, false, pt.law);
+      fn(el, q, pose, pt);
+    }
+  }
+}
+
+}  // namespace
+
+void assemble_contact(const System& s, const ContactSet& c, const double* yf, const double* vf,
+                      const double* y1, const AssemblyTerms& tm, double* r, const MatrixSink* add) {
+  const bool dyn = vf != nullptr && tm.y0 != nullptr;  // discrete gradient over the step
+  for (const ContactPair& cp : c.pairs) {
+    const ContactBody& cb = c.bodies[sz(cp.flex)];
+    if (cb.n_c == 0) continue;
+    const Model& m = *s.flex[sz(cp.flex)];
+    const int o = s.offset[sz(cp.flex)], d = m.dim, nde = m.nde();
+    const Obstacle& ob = c.obstacles[sz(cp.obstacle)];
+    const Carrier cr = carrier(s, ob);
+    const int nb = cr.map.n, nall = nde + nb, nloc = d + nb;
+    double ubf[kMaxBody] = {}, ubd[kMaxBody] = {}, ub1[kMaxBody] = {}, ub0[kMaxBody] = {};
+    gather_body(cr.map, yf, ubf);
+    if (vf != nullptr) gather_body(cr.map, vf, ubd);
+    if (dyn) {
+      gather_body(cr.map, y1, ub1);
+      gather_body(cr.map, tm.y0, ub0);
+    }
+    const Pose pf = pose_at(s, ob, cr, ubf, nullptr);
+    const Pose p1 = dyn ? pose_at(s, ob, cr, ub1, nullptr) : pf;
+    const Pose p0 = dyn ? pose_at(s, ob, cr, ub0, nullptr) : pf;
+    std::array<double, kMaxElementDofs> ef{}, ev{}, e1{}, e0{};
+    std::array<double, kMaxAll> fe{};
+    std::array<double, kMaxAll * kMaxAll> ke{};
+    int idx[kMaxAll], shp[kMaxAll], cmp[kMaxAll];  // shape function and local component
+    for (int a = 0; a < nde; ++a) {
+      const int within = a % m.dpn;  // r, r' blocks; a rod's twist does not move r
+      shp[a] = within < 2 * d ? 2 * (a / m.dpn) + within / d : kTwist;
+      cmp[a] = within % d;
+    }
+    for (int j = 0; j < nb; ++j) {
+      idx[nde + j] = cr.map.index[j];
+      shp[nde + j] = kBody;
+      cmp[nde + j] = d + j;
+    }
+    for (int el = 0; el < m.n_el; ++el) {
+      element_coordinates(m, yf + o, el, ef.data());
+      if (vf != nullptr) element_coordinates(m, vf + o, el, ev.data());
+      if (dyn) {
+        element_coordinates(m, y1 + o, el, e1.data());
+        element_coordinates(m, tm.y0 + o, el, e0.data());
+      }
+      bool any = false;
+      for (int q = 0; q < cb.n_c; ++q) {
+        const double* N = cb.N.data() + 4 * (el * cb.n_c + q);
+        double rf[3], r1[3], r0[3];
+        point_of(m, N, ef.data(), rf);
+        Gap gf, g1, g0;
+        gap(pf, rf, cb.radius, gf, add != nullptr && cr.fixed);
+        if (dyn) {
+          point_of(m, N, e1.data(), r1);
+          point_of(m, N, e0.data(), r0);
+          gap(p1, r1, cb.radius, g1, false);
+          gap(p0, r0, cb.radius, g0, false);
+          if (g0.g >= 0.0 && g1.g >= 0.0) continue;
+        } else if (gf.g >= 0.0) {
+          continue;
+        }
+        double u[3] = {0.0, 0.0, 0.0};
+        if (vf != nullptr) point_of(m, N, ev.data(), u);
+        const double wq = cb.w[sz(el * cb.n_c + q)];
+        double F[kMaxLoc] = {}, K[kMaxLoc * kMaxLoc] = {};
+        if (cr.fixed) {
+          PointLaw pl;
+          const double gm[2] = {g0.g, g1.g};
+          point_law(cp, gf, vf != nullptr ? u : nullptr, dyn ? gm : nullptr, add != nullptr, pl);
+          if (!pl.active) continue;
+          for (int i = 0; i < d; ++i) F[i] = pl.F[i];
+          for (int i = 0; i < d && add != nullptr; ++i)
+            for (int j = 0; j < d; ++j)
+              K[i * nloc + j] = tm.ck * pl.A[i][j] + tm.cv * pl.B[i][j] + pl.G1[i] * g1.n[j];
+        } else {
+          double zf[kMaxLoc] = {}, zd[kMaxLoc] = {}, z1[kMaxLoc] = {}, z0[kMaxLoc] = {};
+          for (int i = 0; i < d; ++i) {
+            zf[i] = rf[i];
+            zd[i] = u[i];
+            z1[i] = r1[i];
+            z0[i] = r0[i];
+          }
+          for (int j = 0; j < nb; ++j) {
+            zf[d + j] = ubf[j];
+            zd[d + j] = ubd[j];
+            z1[d + j] = ub1[j];
+            z0[d + j] = ub0[j];
+          }
+          const double* zdp = vf != nullptr ? zd : nullptr;
+          auto eval = [&](double* out) {
+            carried_force(s, cp, ob, cr, cb.radius, zf, zdp, dyn ? z1 : nullptr, dyn ? z0 : nullptr,
+                          out, nullptr);
+          };
+          PointLaw pl;
+          carried_force(s, cp, ob, cr, cb.radius, zf, zdp, dyn ? z1 : nullptr, dyn ? z0 : nullptr,
+                        F, &pl);
+          if (!pl.active && !dyn) continue;
+          if (add != nullptr) {  // ck d/dzf + cv d/dzd + d/dz1, central differences
+            double* vars[3] = {zf, zd, z1};
+            const double coef[3] = {tm.ck, vf != nullptr ? tm.cv : 0.0, dyn ? 1.0 : 0.0};
+            double fp[kMaxLoc], fm[kMaxLoc];
+            for (int h = 0; h < 3; ++h) {
+              if (coef[h] == 0.0) continue;
+              for (int b = 0; b < nloc; ++b) {
+                double& z = vars[h][b];
+                // velocities: the friction turns over the slip velocity eps, so a step of
+                // 1e-4 eps keeps the differences' error at 1e-8 relative
+                const double unit = h == 1 ? 1e-4 * cp.slip_velocity : 1e-6;
+                const double z00 = z, step = unit * (1.0 + std::abs(z00));
+                z = z00 + step;
+                eval(fp);
+                z = z00 - step;
+                eval(fm);
+                z = z00;
+                for (int a = 0; a < nloc; ++a)
+                  K[a * nloc + b] += coef[h] * (fp[a] - fm[a]) / (2.0 * step);
+              }
+            }
+          }
+        }
+        any = true;
+        // map (r, ub) to (element, ub): dr = sum_k N_k de_k
+        for (int a = 0; a < nall; ++a) {
+          const double sa = shp[a] >= 0 ? N[shp[a]] : (shp[a] == kBody ? 1.0 : 0.0);
+          if (sa == 0.0) continue;
+          fe[sz(a)] += wq * sa * F[cmp[a]];
+          if (add == nullptr) continue;
+          for (int b = 0; b < nall; ++b) {
+            const double sb = shp[b] >= 0 ? N[shp[b]] : (shp[b] == kBody ? 1.0 : 0.0);
+            if (sb != 0.0) ke[sz(a * nall + b)] += wq * sa * sb * K[cmp[a] * nloc + cmp[b]];
+          }
+        }
+      }
+      if (!any) continue;
+      if (has_rotation(m, el)) {  // back to y: T^T on the element's rows and columns
+        std::array<double, kMaxElementDofs * kMaxElementDofs> kee{};
+        for (int a = 0; a < nde; ++a)
+          for (int b = 0; b < nde; ++b) kee[sz(a * nde + b)] = ke[sz(a * nall + b)];
+        rotate_back(m, el, fe.data(), add != nullptr ? kee.data() : nullptr);
+        for (int a = 0; a < nde; ++a)
+          for (int b = 0; b < nde; ++b) ke[sz(a * nall + b)] = kee[sz(a * nde + b)];
+        for (int j = 0; j < nb && add != nullptr; ++j) {
+          std::array<double, kMaxElementDofs> col{}, rw{};
+          for (int a = 0; a < nde; ++a) {
+            col[sz(a)] = ke[sz(a * nall + nde + j)];
+            rw[sz(a)] = ke[sz((nde + j) * nall + a)];
+          }
+          rotate_back(m, el, col.data(), nullptr);
+          rotate_back(m, el, rw.data(), nullptr);
+          for (int a = 0; a < nde; ++a) {
+            ke[sz(a * nall + nde + j)] = col[sz(a)];
+            ke[sz((nde + j) * nall + a)] = rw[sz(a)];
+          }
+        }
+      }
+      const int base = o + el * m.dpn;
+      for (int a = 0; a < nde; ++a) idx[a] = base + a;
+      for (int a = 0; a < nall; ++a) r[idx[a]] -= fe[sz(a)];
+      std::fill(fe.begin(), fe.begin() + nall, 0.0);
+      if (add == nullptr) continue;
+      for (int a = 0; a < nall * nall; ++a) ke[sz(a)] = -ke[sz(a)];
+      (*add)(idx, nall, ke.data());
+      std::fill(ke.begin(), ke.begin() + nall * nall, 0.0);
+    }
+  }
+}
+
+double contact_energy(const System& s, const ContactSet& c, const double* y) {
+  double total = 0.0;
+  for (const ContactPair& cp : c.pairs) {
+    const ContactBody& cb = c.bodies[sz(cp.flex)];
+    each_point(s, c, cp, y, nullptr, [&](int el, int q, const Pose&, const PointEval& pt) {
+      if (pt.gap.g < 0.0)
+        total += cb.w[sz(el * cb.n_c + q)] * 0.5 * cp.stiffness * pt.gap.g * pt.gap.g;
+    });
+  }
+  return total;
+}
+
+void contact_outputs(const System& s, const ContactSet& c, const double* y, const double* v,
+                     double* out) {
+  std::fill(out, out + kContactOutputs * static_cast<std::ptrdiff_t>(c.obstacles.size()), 0.0);
+  for (const ContactPair& cp : c.pairs) {
+    const ContactBody& cb = c.bodies[sz(cp.flex)];
+    const Model& m = *s.flex[sz(cp.flex)];
+    const int o = s.offset[sz(cp.flex)];
+    double* res = out + kContactOutputs * cp.obstacle;
+    std::array<double, kMaxElementDofs> e{};
+    int last = -1;
+    each_point(s, c, cp, y, v, [&](int el, int q, const Pose& pose, const PointEval& pt) {
+      if (pt.gap.g < 0.0) {
+        if (el != last) {
+          element_coordinates(m, y + o, el, e.data());
+          last = el;
+        }
+        double a[3];
+        point_of(m, cb.N1.data() + 4 * (el * cb.n_c + q), e.data(), a);
+        res[9] += cb.gw[sz(q)] * std::sqrt(dot(a, a));
+        res[10] = std::max(res[10], -pt.gap.g);
+      }
+      if (!pt.law.active) return;
+      const double wq = cb.w[sz(el * cb.n_c + q)];
+      const double arm[3] = {pt.r[0] - pose.c[0], pt.r[1] - pose.c[1], pt.r[2] - pose.c[2]};
+      double F[3], M[3];
+      for (int i = 0; i < 3; ++i) {
+        F[i] = wq * pt.law.F[i];
+        res[i] += wq * pt.law.p * pt.gap.n[i];
+        res[3 + i] += wq * pt.law.ft[i];
+      }
+      cross(arm, F, M);
+      for (int i = 0; i < 3; ++i) res[6 + i] += M[i];
+    });
+  }
+}
+
+void contact_points(const System& s, const ContactSet& c, int k, const double* y, const double* v,
+                    double* out) {
+  const ContactPair& cp = c.pairs[sz(k)];
+  const ContactBody& cb = c.bodies[sz(cp.flex)];
+  each_point(s, c, cp, y, v, [&](int el, int q, const Pose&, const PointEval& pt) {
+    double* row = out + 8 * (el * cb.n_c + q);
+    for (int i = 0; i < 3; ++i) {
+      row[i] = pt.r[i];
+      row[5 + i] = pt.law.ft[i];
+    }
+    row[3] = pt.gap.g;
+    row[4] = pt.law.p;
+  });
+}
+
+}  // namespace rancf

@@ -1,0 +1,101 @@
+// Contact of flexible bodies with obstacles: penalty line contact along the curve with regularized
+// Coulomb friction (issue 20; the method in README "Contact").
+//
+// A flexible body is a tube of radius rt about its centre line r(xi) = sum_k N_k(xi) e_k.  At
+// n_c Gauss points per element (weights w = gauss weight x reference |r0'|: the integral over the
+// reference arc length) the gap g to an obstacle is
+//   plane     g = a . (r - c) - rt                          (a: unit normal, c: a point)
+//   cylinder  g = |P (r - c)| - R - rt, P = I - a a^T         (a: unit axis; 2D: a circle, a = e_z)
+//   sphere    g = |r - c| - R - rt
+// with the unit normal n = dg/dr and H = d2g/dr2 = (P - n n^T) / |P (r - c)| (plane: 0).  The
+// force per reference length on the body at a point is F = p n + f_t with the pressure
+//   p = k <-g> - c_n g'   (clipped at 0; g' = n . u)
+// and the Coulomb friction regularized by the slip velocity eps,
+//   f_t = -mu p v_t / sqrt(|v_t|^2 + eps^2),  v_t = (I - n n^T) u,
+// u the velocity of the point relative to the obstacle's material point there.  The potential of
+// the penalty is k <-g>^2 / 2 per reference length.
+//
+// In a time step (AssemblyTerms::y0 set) the elastic pressure is its mean over the step's gap
+// interval, p_e = k (Phi(g1) - Phi(g0)) / (g1 - g0) with Phi(g) = <-g>^2 / 2 (g0, g1 at the step's
+// ends): a discrete gradient, so that with rho_inf = 1 (the midpoint rule) the penalty's energy
+// balance is exact for a plane and to O(dy^3) for curved obstacles (Laursen & Chawla 1997), and
+// the pressure is continuous and C1 when a point comes into contact.  Statics (no velocities): p =
+// k <-g>, no friction, no damping.
+//
+// Tangents: exact for fixed obstacles (2x2 / 3x3 point matrices mapped by N); for an obstacle
+// carried by a rigid body by central differences (step 1e-6 (1 + |z|); velocities 1e-4 eps
+// (1 + |z|)) of the exact point forces over the point's position and the body's coordinates, as
+// system_assembly.cpp does for rigid points.  Couplings between an element and a body go through
+// the sink (add_matrix: the border).
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include "system.hpp"
+
+namespace rancf {
+
+enum class ObstacleKind : int { plane = 0, cylinder = 1, sphere = 2 };
+
+struct Obstacle {
+  ObstacleKind kind = ObstacleKind::plane;
+  int body = -1;                      ///< rigid body carrying it (index), or -1: fixed
+  double point[3] = {0.0, 0.0, 0.0};  ///< plane point / centre (world; body frame if carried)
+  double dir[3] = {0.0, 0.0, 1.0};    ///< plane normal / cylinder axis, unit (same frame)
+  double radius = 0.0;                ///< cylinder, sphere
+};
+
+/// Contact points of one flexible body (n_c == 0: the body has none).
+struct ContactBody {
+  int n_c = 0;
+  std::vector<double> N;   ///< shape functions at the points, (n_el, n_c, 4)
+  std::vector<double> N1;  ///< their xi-derivatives, (n_el, n_c, 4)
+  std::vector<double> gw;  ///< Gauss weights on [0, 1], (n_c)
+  std::vector<double> w;   ///< Gauss weight x reference |r0'|, (n_el, n_c)
+  double radius = 0.0;     ///< tube radius
+};
+
+/// A flexible body against an obstacle.
+struct ContactPair {
+  int flex = 0, obstacle = 0;
+  double stiffness = 0.0;      ///< k: force per reference length per penetration [N/m^2]
+  double damping = 0.0;        ///< c_n [N s/m^2]
+  double friction = 0.0;       ///< Coulomb coefficient mu
+  double slip_velocity = 1.0;  ///< eps of the friction's regularization [m/s]
+};
+
+struct ContactSet {
+  std::vector<ContactBody> bodies;  ///< one per flexible body of the system
+  std::vector<Obstacle> obstacles;
+  std::vector<ContactPair> pairs;
+};
+
+/// Receives a small dense matrix K (k x k, row-major) over global indices idx (add_matrix).
+using MatrixSink = std::function<void(const int* idx, int k, const double* K)>;
+
+/// Contact forces into the balance r (r -= generalized contact forces) at (yf, vf) (vf null:
+/// statics), the discrete-gradient pressure between tm.y0 and y1 when tm.y0 is set, and, if add
+/// is not null, their Jacobian with respect to y1 (ck d/dyf + cv d/dvf + d/dy1) into add.
+void assemble_contact(const System& s, const ContactSet& c, const double* yf, const double* vf,
+                      const double* y1, const AssemblyTerms& tm, double* r, const MatrixSink* add);
+
+/// The penalty's potential energy sum k <-g>^2 / 2 w at y.
+double contact_energy(const System& s, const ContactSet& c, const double* y);
+
+/// Values per obstacle of contact_outputs.
+inline constexpr int kContactOutputs = 11;
+
+/// Per obstacle (kContactOutputs values each): the force of the obstacle on the bodies, normal
+/// (3) and friction (3) parts, its moment about the obstacle's point (3), the contact length
+/// (current arc length of the points in contact, by the points' quadrature) and the largest
+/// penetration, at (y, v) (v null: no friction).
+void contact_outputs(const System& s, const ContactSet& c, const double* y, const double* v,
+                     double* out);
+
+/// The points of pair k at (y, v): position (3), gap, pressure, friction force (3) per point,
+/// 8 values each (n_el n_c points).
+void contact_points(const System& s, const ContactSet& c, int k, const double* y, const double* v,
+                    double* out);
+
+}  // namespace rancf

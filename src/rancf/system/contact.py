@@ -1,0 +1,280 @@
+"""Obstacles and contact of flexible bodies with them (issue 20; ``src/cpp/contact.hpp``).
+
+A flexible body (cable or rod elements) is a tube of its section's radius ``rt = sqrt(A / π)``
+about its centre line.  Contact is a penalty line contact integrated along the curve: at
+``contact_points`` Gauss points per element (default 8) the gap ``g`` to each obstacle gives the
+force per reference length ``p n + f_t`` with the pressure ``p = k <-g> - c ġ`` (clipped at 0)
+and the regularized Coulomb friction ``f_t = -μ p v_t / sqrt(|v_t|² + ε²)`` (``v_t`` the slip
+velocity of the centre line relative to the obstacle's material point there, ``ε`` =
+``slip_velocity``).  In a time step the penalty pressure is the discrete gradient of its
+potential ``k <-g>² / 2`` over the step (energy-consistent with ``rho_inf = 1``); statics are
+frictionless.
+
+Penalty stiffness.  ``k`` [N/m²] (force per reference length per penetration) defaults to the
+body's Young's modulus ``E``: the order of the transverse contact stiffness of a solid elastic
+section pressed against a rigid surface (Hertz line contact: the approach is ``p / E`` times a
+logarithmic factor of order one), so the penetration ``p / E`` is what the real section would
+show: under a pressure ``p`` the penetration relative to the radius is ``p / (E rt)`` — for a
+cable on the ground ``ρ g π rt / E`` (steel, 2 mm: 5e-9 % of the radius), over a pulley of
+radius R at tension T ``T / (R E rt)``.
+
+Geometry: ``"plane"`` (``point``, outward ``normal``), ``"cylinder"`` (``center``, ``radius``;
+3D ``axis``; a circle in 2D), ``"sphere"`` (3D: ``center``, ``radius``).  With ``body`` (a rigid
+body of the system) the obstacle moves with it and ``point``/``center`` and ``normal``/``axis``
+are in the body's frame, relative to its centre of mass (as its named points); otherwise world.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Literal
+
+import numpy as np
+from numpy.typing import NDArray
+
+from rancf.elements.cable import cable_shape_functions
+from rancf.errors import InputError
+from rancf.geometry.quadrature import gauss_legendre
+from rancf.kernels import _core
+from rancf.model.rigid import RigidBody
+from rancf.model.system import Model
+
+if TYPE_CHECKING:
+    from rancf.system.system import System
+
+__all__ = ["Obstacle", "ContactState", "OBSTACLE_KINDS", "contact_outputs", "contact_history"]
+
+OBSTACLE_KINDS = ("plane", "cylinder", "sphere")
+_KIND = {k: i for i, k in enumerate(OBSTACLE_KINDS)}
+#: Gauss points per element at which contact is evaluated (default).
+CONTACT_POINTS = 8
+#: Default regularization velocity ε of the friction [m/s].
+SLIP_VELOCITY = 1e-4
+
+
+@dataclass(frozen=True)
+class Obstacle:
+    """An obstacle (module docstring).
+
+    Parameters
+    ----------
+    kind : {"plane", "cylinder", "sphere"}
+    point, normal : (dim,)
+        Plane: a point of it and its outward normal (need not be unit).
+    center, radius :
+        Cylinder (a circle in 2D) and sphere.
+    axis : (3,)
+        Cylinder in 3D.
+    body : str, optional
+        The rigid body that carries it (geometry then in its frame).
+    friction : float
+        Coulomb coefficient μ.
+    stiffness : float, optional
+        Penalty ``k`` [N/m²]; default each body's Young's modulus.
+    damping : float
+        Normal damping ``c`` [N s/m²] (while in contact, never pulling).
+    slip_velocity : float
+        Regularization ``ε`` of the friction [m/s]: at a slip of 7 ε it reaches 99 % of μ p;
+        below, sticking parts creep at about ε times the used fraction of μ p.
+    name : str
+    """
+
+    kind: Literal["plane", "cylinder", "sphere"]
+    point: Sequence[float] | None = None
+    normal: Sequence[float] | None = None
+    center: Sequence[float] | None = None
+    radius: float | None = None
+    axis: Sequence[float] | None = None
+    body: str | None = None
+    friction: float = 0.0
+    stiffness: float | None = None
+    damping: float = 0.0
+    slip_velocity: float = SLIP_VELOCITY
+    name: str = ""
+
+
+def _vec(key: str, v: Sequence[float] | None, dim: int, unit: bool = False) -> NDArray:
+    a = np.asarray([] if v is None else v, dtype=float)
+    if a.shape != (dim,) or not np.all(np.isfinite(a)) or (unit and not np.linalg.norm(a) > 0):
+        what = "a nonzero vector" if unit else "a point"
+        raise InputError(key, None if v is None else list(v), f"{what} of {dim} finite numbers")
+    a = np.r_[a, np.zeros(3 - dim)]
+    return a / np.linalg.norm(a) if unit else a
+
+
+def _number(key: str, v: float | None, lo: float, strict: bool) -> float:
+    ok = v is not None and np.isfinite(v) and (v > lo if strict else v >= lo)
+    if not ok:
+        raise InputError(key, v, f"a finite number {'>' if strict else '>='} {lo:g}")
+    return float(v)  # type: ignore[arg-type]
+
+
+def _geometry(ob: Obstacle, dim: int) -> tuple[NDArray, NDArray, float]:
+    """(point, direction, radius) of an obstacle, 3 components each."""
+    key = f"obstacles.{ob.name or ob.kind}"
+    if ob.kind not in OBSTACLE_KINDS:
+        raise InputError("obstacles.kind", ob.kind, f"one of {', '.join(OBSTACLE_KINDS)}")
+    if ob.kind == "plane":
+        return _vec(f"{key}.point", ob.point, dim), _vec(f"{key}.normal", ob.normal, dim, True), 0.0
+    if ob.kind == "sphere" and dim == 2:
+        raise InputError(f"{key}.kind", "sphere", 'a 3D system (in 2D a circle is "cylinder")')
+    center = _vec(f"{key}.center", ob.center, dim)
+    radius = _number(f"{key}.radius", ob.radius, 0.0, True)
+    if ob.kind == "sphere":
+        return center, np.array([0.0, 0.0, 1.0]), radius
+    if dim == 2:
+        if ob.axis is not None:
+            raise InputError(f"{key}.axis", list(ob.axis), "none in 2D (a circle in the plane)")
+        return center, np.array([0.0, 0.0, 1.0]), radius
+    return center, _vec(f"{key}.axis", ob.axis, 3, True), radius
+
+
+def _body_points(model: Model, n_c: int) -> tuple[NDArray, NDArray, NDArray, NDArray]:
+    """Shape functions (n_el, n_c, 4), their derivatives, Gauss weights and weights × |r0'|."""
+    mesh = model.mesh
+    xi, gw = gauss_legendre(n_c)
+    n0, n1, _ = cable_shape_functions(mesh.weights, mesh.scales, xi)
+    a0 = np.einsum("eqk,ekd->eqd", n1, mesh.element_nodal())
+    w = gw[None, :] * np.linalg.norm(a0, axis=-1)
+    return np.ascontiguousarray(n0), np.ascontiguousarray(n1), np.ascontiguousarray(gw), w
+
+
+def build_contact(
+    system: System,
+    obstacles: Sequence[Obstacle],
+    contacts: Sequence[tuple[str, str]] | None,
+    n_c: int,
+) -> tuple[_core.Contact, list[str], list[tuple[str, str]]]:
+    """The core's contact data of a system: (Contact, obstacle names, pairs)."""
+    names = [ob.name or f"obstacle{i}" for i, ob in enumerate(obstacles)]
+    if len(set(names)) != len(names):
+        raise InputError("obstacles.name", names, "distinct names")
+    if not (isinstance(n_c, int) and 1 <= n_c <= 64):
+        raise InputError("contact_points", n_c, "an integer in 1 .. 64")
+    dim = system.dim
+    kinds, bodies, points, dirs, radii = [], [], [], [], []
+    for ob, name in zip(obstacles, names, strict=True):
+        p, d, rad = _geometry(ob, dim)
+        body = -1
+        if ob.body is not None:
+            b = system.bodies.get(ob.body)
+            if not isinstance(b, RigidBody):
+                raise InputError(f"obstacles.{name}.body", ob.body, "the name of a rigid body")
+            body = system.rigid.index(b)
+        for key, v in (("friction", ob.friction), ("damping", ob.damping)):
+            _number(f"obstacles.{name}.{key}", v, 0.0, False)
+        _number(f"obstacles.{name}.slip_velocity", ob.slip_velocity, 0.0, True)
+        if ob.stiffness is not None:
+            _number(f"obstacles.{name}.stiffness", ob.stiffness, 0.0, True)
+        kinds.append(_KIND[ob.kind])
+        bodies.append(body)
+        points.append(p)
+        dirs.append(d)
+        radii.append(rad)
+    flex_names = [k for k, b in system.bodies.items() if isinstance(b, Model)]
+    if contacts is None:
+        pairs = [(f, o) for f in flex_names for o in names]
+    else:
+        pairs = []
+        for pair in contacts:
+            if len(pair) != 2 or pair[0] not in flex_names or pair[1] not in names:
+                raise InputError(
+                    "contacts", list(pair), "[FLEXIBLE_BODY, OBSTACLE] pairs of existing names"
+                )
+            pairs.append((pair[0], pair[1]))
+    used = {f for f, _ in pairs}
+    lists: dict[str, list] = {k: [] for k in ("nc", "radius", "n", "n1", "gw", "w")}
+    for name in flex_names:
+        model = system.bodies[name]
+        n0 = n1 = gw = w = np.zeros(0)
+        if name in used:
+            if model.element == "beam":  # type: ignore[union-attr]
+                raise InputError(
+                    "contacts", name, "flexible bodies of cable or rod elements (not beam)"
+                )
+            n0, n1, gw, w = _body_points(model, n_c)  # type: ignore[arg-type]
+        lists["nc"].append(n_c if name in used else 0)
+        lists["radius"].append(model.section.radius)  # type: ignore[union-attr]
+        for key, arr in (("n", n0), ("n1", n1), ("gw", gw), ("w", w)):
+            lists[key].append(np.ascontiguousarray(arr.ravel()))
+    data = []
+    for f, o in pairs:
+        ob = obstacles[names.index(o)]
+        k = ob.stiffness
+        if k is None:
+            k = system.bodies[f].material.youngs_modulus  # type: ignore[union-attr]
+        data.append([k, ob.damping, ob.friction, ob.slip_velocity])
+    i64 = np.int64
+    core = _core.Contact(
+        body_nc=lists["nc"],
+        body_radius=lists["radius"],
+        body_n=lists["n"],
+        body_n1=lists["n1"],
+        body_gw=lists["gw"],
+        body_w=lists["w"],
+        ob_kind=np.array(kinds, dtype=i64),
+        ob_body=np.array(bodies, dtype=i64),
+        ob_point=np.array(points, dtype=float).reshape(-1, 3),
+        ob_dir=np.array(dirs, dtype=float).reshape(-1, 3),
+        ob_radius=np.array(radii, dtype=float),
+        pair_flex=np.array([flex_names.index(f) for f, _ in pairs], dtype=i64),
+        pair_obstacle=np.array([names.index(o) for _, o in pairs], dtype=i64),
+        pair_data=np.array(data, dtype=float).reshape(-1, 4),
+    )
+    return core, names, pairs
+
+
+@dataclass(frozen=True)
+class ContactState:
+    """Contact of one obstacle at a state: the forces the obstacle exerts on the bodies (normal
+    and friction parts, ``dim`` components), their moment about the obstacle's point (2D: a
+    number; 3D: 3 components), the contact length (current arc length of the points in contact,
+    resolved to the points' spacing) and the largest penetration."""
+
+    normal: NDArray[np.float64]
+    friction: NDArray[np.float64]
+    moment: NDArray[np.float64] | float
+    length: float
+    penetration: float
+
+
+def contact_outputs(
+    system: System, y: NDArray, v: NDArray | None = None
+) -> dict[str, ContactState]:
+    """Per obstacle (by name), its contact at model coordinates ``y`` (and velocities ``v``: the
+    friction; without them none).  Stored results hold ``q``: pass ``system.y_from_q(q)``."""
+    names = system.obstacle_names
+    if not names:
+        return {}
+    out = np.empty((len(names), _core.CONTACT_OUTPUTS))
+    y = np.ascontiguousarray(y, dtype=float)
+    vv = None if v is None else np.ascontiguousarray(v, dtype=float)
+    system.contact.outputs(y, vv, out)
+    d = system.dim
+    return {
+        name: ContactState(
+            row[:d].copy(),
+            row[3 : 3 + d].copy(),
+            float(row[8]) if d == 2 else row[6:9].copy(),
+            float(row[9]),
+            float(row[10]),
+        )  # fmt: skip
+        for name, row in zip(names, out, strict=True)
+    }
+
+
+def contact_history(system: System, q: NDArray, v: NDArray | None = None) -> dict[str, dict]:
+    """:func:`contact_outputs` over stored states ``q`` (``(n_t, n)``, full coordinates as in a
+    :class:`rancf.solvers.dynamic.DynamicResult`) and velocities: per obstacle the arrays
+    ``normal`` and ``friction`` ``(n_t, dim)``, ``moment``, ``length`` and ``penetration``."""
+    ys = system.y_from_q(np.atleast_2d(q))
+    vs = None if v is None else system.y_from_q(np.atleast_2d(v))
+    rows = [contact_outputs(system, ys[i], None if vs is None else vs[i]) for i in range(len(ys))]
+    return {
+        name: {
+            key: np.array([getattr(r[name], key) for r in rows])
+            for key in ("normal", "friction", "moment", "length", "penetration")
+        }
+        for name in system.obstacle_names
+    }
