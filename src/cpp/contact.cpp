@@ -111,19 +111,23 @@ void point_law(const ContactPair& cp, const Gap& gf, const double* u, const doub
   double pe = 0.0, dp1 = 0.0, dpr[3] = {0.0, 0.0, 0.0}, dpu[3] = {0.0, 0.0, 0.0};
   if (gm != nullptr) {
     mean_pressure(k, gm[0], gm[1], pe, dp1);
-  } else if (gf.g < 0.0) {
+  } else if (gf.g <= 0.0) {  // touching counts: its stiffness lets statics start at g = 0
     pe = -k * gf.g;
     for (int i = 0; i < 3; ++i) dpr[i] = -k * gf.n[i];
   }
+  // Hunt-Crossley damping while approaching: p = pe (1 + chi <-g'>), never pulling
   double p = pe;
-  if (u != nullptr && cp.damping > 0.0 && pe > 0.0) {
-    p -= cp.damping * dot(gf.n, u);
+  const double rate = u != nullptr ? dot(gf.n, u) : 0.0;
+  if (cp.damping > 0.0 && rate < 0.0 && pe > 0.0) {
+    const double f = 1.0 - cp.damping * rate;
+    p = pe * f;
+    dp1 *= f;
     for (int i = 0; i < 3; ++i) {
-      dpr[i] -= cp.damping * dot(gf.H[i], u);  // d(n . u)/dr = H u (H symmetric)
-      dpu[i] = -cp.damping * gf.n[i];
+      dpr[i] = dpr[i] * f - pe * cp.damping * dot(gf.H[i], u);  // d(n . u)/dr = H u
+      dpu[i] = -pe * cp.damping * gf.n[i];
     }
   }
-  if (!(p > 0.0)) return;
+  if (!(p > 0.0) && !(gm == nullptr && gf.g <= 0.0)) return;
   out.active = true;
   out.p = p;
   for (int i = 0; i < 3; ++i) out.F[i] = p * gf.n[i];
@@ -400,7 +404,7 @@ void assemble_contact(const System& s, const ContactSet& c, const double* yf, co
           gap(p1, r1, cb.radius, g1, false);
           gap(p0, r0, cb.radius, g0, false);
           if (g0.g >= 0.0 && g1.g >= 0.0) continue;
-        } else if (gf.g >= 0.0) {
+        } else if (gf.g > 0.0) {
           continue;
         }
         double u[3] = {0.0, 0.0, 0.0};

@@ -9,7 +9,7 @@
 //   sphere    g = |r - c| - R - rt
 // with the unit normal n = dg/dr and H = d2g/dr2 = (P - n n^T) / |P (r - c)| (plane: 0).  The
 // force per reference length on the body at a point is F = p n + f_t with the pressure
-//   p = k <-g> - c_n g'   (clipped at 0; g' = n . u)
+//   p = k <-g> (1 + chi <-g'>)      (g' = n . u; Hunt & Crossley 1975 damping while approaching)
 // and the Coulomb friction regularized by the slip velocity eps,
 //   f_t = -mu p v_t / sqrt(|v_t|^2 + eps^2),  v_t = (I - n n^T) u,
 // u the velocity of the point relative to the obstacle's material point there.  The potential of
@@ -17,10 +17,10 @@
 //
 // In a time step (AssemblyTerms::y0 set) the elastic pressure is its mean over the step's gap
 // interval, p_e = k (Phi(g1) - Phi(g0)) / (g1 - g0) with Phi(g) = <-g>^2 / 2 (g0, g1 at the step's
-// ends): a discrete gradient, so that with rho_inf = 1 (the midpoint rule) the penalty's energy
-// balance is exact for a plane and to O(dy^3) for curved obstacles (Laursen & Chawla 1997), and
-// the pressure is continuous and C1 when a point comes into contact.  Statics (no velocities): p =
-// k <-g>, no friction, no damping.
+// ends; the damping factor multiplies it): a discrete gradient, so that with rho_inf = 1 (the
+// midpoint rule) the penalty's energy balance is exact for a plane and to O(dy^3) for curved
+// obstacles (Laursen & Chawla 1997), and the pressure is continuous and C1 when a point comes into
+// contact.  Statics (no velocities): p = k <-g>, no friction, no damping.
 //
 // Tangents: exact for fixed obstacles (2x2 / 3x3 point matrices mapped by N); for an obstacle
 // carried by a rigid body by central differences (step 1e-6 (1 + |z|); velocities 1e-4 eps
@@ -60,7 +60,7 @@ struct ContactBody {
 struct ContactPair {
   int flex = 0, obstacle = 0;
   double stiffness = 0.0;      ///< k: force per reference length per penetration [N/m^2]
-  double damping = 0.0;        ///< c_n [N s/m^2]
+  double damping = 0.0;        ///< chi, Hunt-Crossley [s/m]
   double friction = 0.0;       ///< Coulomb coefficient mu
   double slip_velocity = 1.0;  ///< eps of the friction's regularization [m/s]
 };

@@ -3,20 +3,30 @@
 A flexible body (cable or rod elements) is a tube of its section's radius ``rt = sqrt(A / π)``
 about its centre line.  Contact is a penalty line contact integrated along the curve: at
 ``contact_points`` Gauss points per element (default 8) the gap ``g`` to each obstacle gives the
-force per reference length ``p n + f_t`` with the pressure ``p = k <-g> - c ġ`` (clipped at 0)
-and the regularized Coulomb friction ``f_t = -μ p v_t / sqrt(|v_t|² + ε²)`` (``v_t`` the slip
-velocity of the centre line relative to the obstacle's material point there, ``ε`` =
-``slip_velocity``).  In a time step the penalty pressure is the discrete gradient of its
-potential ``k <-g>² / 2`` over the step (energy-consistent with ``rho_inf = 1``); statics are
-frictionless.
+force per reference length ``p n + f_t`` with the pressure ``p = k <-g> (1 + χ <-ġ>)`` (Hunt &
+Crossley damping ``χ`` while approaching, never pulling) and the regularized Coulomb friction
+``f_t = -μ p v_t / sqrt(|v_t|² + ε²)`` (``v_t`` the slip velocity of the centre line relative to
+the obstacle's material point there, ``ε`` = ``slip_velocity``).  In a time step the penalty
+pressure is the discrete gradient of its potential ``k <-g>² / 2`` over the step (energy-exact
+for a plane with ``rho_inf = 1``); statics are frictionless.
 
-Penalty stiffness.  ``k`` [N/m²] (force per reference length per penetration) defaults to the
-body's Young's modulus ``E``: the order of the transverse contact stiffness of a solid elastic
-section pressed against a rigid surface (Hertz line contact: the approach is ``p / E`` times a
-logarithmic factor of order one), so the penetration ``p / E`` is what the real section would
-show: under a pressure ``p`` the penetration relative to the radius is ``p / (E rt)`` — for a
-cable on the ground ``ρ g π rt / E`` (steel, 2 mm: 5e-9 % of the radius), over a pulley of
-radius R at tension T ``T / (R E rt)``.
+Penalty stiffness.  ``k`` [N/m²] (force per reference length per penetration) defaults to
+``E / 10`` of the body's Young's modulus: the order of the transverse stiffness of the section
+itself pressed on a rigid surface.  Hertz's line contact of a solid circular section gives
+``P / δ = π E / (2 (1 - ν²) (ln(4 rt / a) - 1/2))`` with the contact half-width ``a``, i.e.
+``E / 4`` to ``E / 8`` for ``ln(4 rt / a)`` between 5 and 10 (every practical load); stranded
+cables, ropes and hoses are softer across than a solid bar, so ``E / 10``.  The penetration under
+a line load ``p`` is ``p / k``, relative to the radius ``10 p / (E rt)``: a steel cable of radius 2
+mm on the ground (its weight, 0.97 N/m) sinks by 4.9e-11 m (2.4e-8 of its radius); over a pulley
+of radius R at tension T, ``p = T / R``.  Stiffer (``k = E``) works too, but the Newton iterations
+of impacts take longer; much softer makes the pressure along a wrap smoother but lets the body
+sink in.
+
+Friction regularization.  ``ε`` = ``slip_velocity`` defaults to 1 mm/s: at a slip velocity of
+``7 ε`` the friction is 99 % of ``μ p``, at ``20 ε`` 99.9 % (a capstan's ratio ``e^{μφ}`` is then
+0.1 % low); a part that sticks creeps at ``ε f / sqrt(1 - f²)`` where ``f`` is the used fraction
+of ``μ p``.  Smaller ``ε`` sticks better but makes the Newton iterations of slip reversals fail
+(1e-4 m/s does in the capstan example).
 
 Geometry: ``"plane"`` (``point``, outward ``normal``), ``"cylinder"`` (``center``, ``radius``;
 3D ``axis``; a circle in 2D), ``"sphere"`` (3D: ``center``, ``radius``).  With ``body`` (a rigid
@@ -49,8 +59,10 @@ OBSTACLE_KINDS = ("plane", "cylinder", "sphere")
 _KIND = {k: i for i, k in enumerate(OBSTACLE_KINDS)}
 #: Gauss points per element at which contact is evaluated (default).
 CONTACT_POINTS = 8
+#: Default penalty stiffness per Young's modulus (module docstring).
+STIFFNESS_FACTOR = 0.1
 #: Default regularization velocity ε of the friction [m/s].
-SLIP_VELOCITY = 1e-4
+SLIP_VELOCITY = 1e-3
 
 
 @dataclass(frozen=True)
@@ -71,12 +83,12 @@ class Obstacle:
     friction : float
         Coulomb coefficient μ.
     stiffness : float, optional
-        Penalty ``k`` [N/m²]; default each body's Young's modulus.
+        Penalty ``k`` [N/m²]; default a tenth of each body's Young's modulus.
     damping : float
-        Normal damping ``c`` [N s/m²] (while in contact, never pulling).
+        Hunt–Crossley factor ``χ`` [s/m]: the pressure is ``k <-g> (1 + χ <-ġ>)`` while the
+        point approaches the obstacle (``ġ < 0``), so impacts lose energy and nothing pulls.
     slip_velocity : float
-        Regularization ``ε`` of the friction [m/s]: at a slip of 7 ε it reaches 99 % of μ p;
-        below, sticking parts creep at about ε times the used fraction of μ p.
+        Regularization ``ε`` of the friction [m/s] (module docstring).
     name : str
     """
 
@@ -203,7 +215,7 @@ def build_contact(
         ob = obstacles[names.index(o)]
         k = ob.stiffness
         if k is None:
-            k = system.bodies[f].material.youngs_modulus  # type: ignore[union-attr]
+            k = STIFFNESS_FACTOR * system.bodies[f].material.youngs_modulus  # type: ignore[union-attr]
         data.append([k, ob.damping, ob.friction, ob.slip_velocity])
     i64 = np.int64
     core = _core.Contact(
