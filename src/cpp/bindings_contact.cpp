@@ -82,7 +82,7 @@ void bind_contact(nb::module_& mod) {
             }
             const std::size_t np = pair_flex.size();
             expect_size(pair_obstacle, np, "pair_obstacle");
-            expect_size(pair_data, 4 * np, "pair_data");
+            expect_size(pair_data, 5 * np, "pair_data");
             for (std::size_t i = 0; i < np; ++i) {
               rancf::ContactPair cp;
               cp.flex = static_cast<int>(pair_flex.data()[i]);
@@ -91,11 +91,14 @@ void bind_contact(nb::module_& mod) {
                     "pair_flex: no such body");
               check(cp.obstacle >= 0 && static_cast<std::size_t>(cp.obstacle) < no,
                     "pair_obstacle: no such obstacle");
-              const double* d = pair_data.data() + 4 * i;
+              const double* d = pair_data.data() + 5 * i;
               cp.stiffness = d[0];
-              cp.damping = d[1];
-              cp.friction = d[2];
-              cp.slip_velocity = d[3];
+              cp.onset = d[1];
+              cp.damping = d[2];
+              cp.friction = d[3];
+              cp.slip_velocity = d[4];
+              check(cp.stiffness > 0.0 && cp.onset > 0.0 && cp.slip_velocity > 0.0,
+                    "pair_data: stiffness, onset and slip velocity > 0");
               c.pairs.push_back(cp);
             }
           },
@@ -139,8 +142,8 @@ void bind_contact(nb::module_& mod) {
           "Pair k's points: position (3), gap, pressure, friction force (3).")
       .def(
           "assemble",
-          [](const ContactHolder& h, In yf, std::optional<In> vf, In y1, std::optional<In> y0,
-             double ck, double cv, Out r, std::optional<Out> jac) {
+          [](const ContactHolder& h, In yf, std::optional<In> vf, In y1, double ck, double cv,
+             Out r, std::optional<Out> jac) {
             const rancf::System& s = system_of(h);
             const auto n = static_cast<std::size_t>(s.n);
             expect_size(yf, n, "yf");
@@ -150,7 +153,6 @@ void bind_contact(nb::module_& mod) {
             rancf::AssemblyTerms tm;
             tm.ck = ck;
             tm.cv = cv;
-            tm.y0 = opt(y0, n, "y0");
             std::fill(r.data(), r.data() + n, 0.0);
             double* dense = jac ? jac->data() : nullptr;
             if (dense != nullptr) std::fill(dense, dense + n * n, 0.0);
@@ -160,14 +162,17 @@ void bind_contact(nb::module_& mod) {
                   dense[static_cast<std::size_t>(idx[a]) * n + static_cast<std::size_t>(idx[b])] +=
                       K[a * k + b];
             };
-            rancf::assemble_contact(s, h.c, yf.data(), opt(vf, n, "vf"), y1.data(), tm, r.data(),
+            // the same state twice is one array: the pressure at yf
+            const bool same = std::equal(yf.data(), yf.data() + n, y1.data());
+            rancf::assemble_contact(s, h.c, yf.data(), opt(vf, n, "vf"),
+                                    same ? yf.data() : y1.data(), tm, r.data(),
                                     dense != nullptr ? &sink : nullptr);
           },
-          "yf"_a, "vf"_a.none(), "y1"_a, "y0"_a.none(), "ck"_a, "cv"_a, "r"_a.noconvert(),
+          "yf"_a, "vf"_a.none(), "y1"_a, "ck"_a, "cv"_a, "r"_a.noconvert(),
           "jac"_a.none() = nb::none(),
           "The contact terms alone (for checks): r = -(generalized contact forces) at (yf, vf) "
-          "with the discrete gradient between y0 and y1 (if y0), and their Jacobian with respect "
-          "to y1, ck d/dyf + cv d/dvf + d/dy1, dense (n x n).");
+          "with the step's mean pressure up to y1, and their Jacobian with respect to y1, ck "
+          "d/dyf + cv d/dvf + d/dy1, dense (n x n).");
 }
 
 }  // namespace rancf_bind

@@ -70,25 +70,76 @@ void gap(const Pose& o, const double* r, double rt, Gap& out, bool hess) {
     }
 }
 
-/// The mean of k <-g> over [g0, g1] (the discrete gradient of k <-g>^2 / 2) and its derivative
-/// with respect to g1, case by case (no cancellation).
-void mean_pressure(double k, double g0, double g1, double& p, double& dp1) {
-  p = dp1 = 0.0;
-  if (g0 >= 0.0 && g1 >= 0.0) return;
-  if (g0 < 0.0 && g1 < 0.0) {
-    p = -0.5 * k * (g0 + g1);
-    dp1 = -0.5 * k;
+/// The penalty law (contact.hpp): pressure p(g), its slope dp/dg and potential Phi(g) with
+/// p = -dPhi/dg, for stiffness k and onset depth d:
+///   g >= 0       p = 0
+///   -d <= g < 0  p = k g^2 / (2 d)
+///   g < -d       p = k (-g - d/2)
+struct Penalty {
+  double k = 0.0, d = 0.0;
+  [[nodiscard]] double p(double g) const {
+    if (g >= 0.0) return 0.0;
+    if (g >= -d) return k * g * g / (2.0 * d);
+    return k * (-g - 0.5 * d);
+  }
+  [[nodiscard]] double slope(double g) const {
+    if (g >= 0.0) return 0.0;
+    if (g >= -d) return k * g / d;
+    return -k;
+  }
+  [[nodiscard]] double potential(double g) const {
+    if (g >= 0.0) return 0.0;
+    if (g >= -d) return -k * g * g * g / (6.0 * d);
+    return k * (d * d / 6.0 + 0.5 * g * g + 0.5 * d * g);
+  }
+  /// Which piece g is in (0: below the onset, 1: onset, 2: free).
+  [[nodiscard]] int piece(double g) const { return g < -d ? 0 : (g < 0.0 ? 1 : 2); }
+  /// The integral of p over [a, b] (a < b) divided by (b - a), piece by piece (exact, no
+  /// cancellation).
+  [[nodiscard]] double mean(double a, double b) const {
+    double sum = 0.0;
+    if (a < -d) {
+      const double hi = std::min(b, -d);
+      sum += (hi - a) * k * (-0.5 * (a + hi) - 0.5 * d);
+    }
+    const double lo = std::max(a, -d), hi = std::min(b, 0.0);
+    if (lo < hi) sum += (hi - lo) * k * (lo * lo + lo * hi + hi * hi) / (6.0 * d);
+    return sum / (b - a);
+  }
+};
+
+/// The mean of p over [ga, g1] and its derivatives with respect to both ends: closed forms
+/// within one piece; across pieces (p is C1) the integral, or the midpoint's value and half its
+/// slope where the interval is too short for the difference quotients.
+void mean_pressure(const Penalty& law, double ga, double g1, double& p, double& dpa, double& dp1) {
+  const int c0 = law.piece(ga), c1 = law.piece(g1);
+  const double k = law.k, d = law.d;
+  if (c0 == c1) {
+    switch (c0) {
+      case 0:
+        p = k * (-0.5 * (ga + g1) - 0.5 * d);
+        dpa = dp1 = -0.5 * k;
+        return;
+      case 1:
+        p = k * (ga * ga + ga * g1 + g1 * g1) / (6.0 * d);
+        dpa = k * (2.0 * ga + g1) / (6.0 * d);
+        dp1 = k * (ga + 2.0 * g1) / (6.0 * d);
+        return;
+      default:
+        p = dpa = dp1 = 0.0;
+        return;
+    }
+  }
+  const double dg = g1 - ga;
+  if (std::abs(dg) < 1e-9 * (d + std::abs(ga) + std::abs(g1))) {
+    const double gm = 0.5 * (ga + g1);
+    p = law.p(gm);
+    dpa = dp1 = 0.5 * law.slope(gm);
     return;
   }
-  if (g1 < 0.0) {  // coming into contact: k g1^2 / (2 (g0 - g1))
-    const double den = g0 - g1;
-    p = 0.5 * k * g1 * g1 / den;
-    dp1 = 0.5 * k * g1 * (2.0 * g0 - g1) / (den * den);
-    return;
-  }
-  const double den = g1 - g0;  // leaving: k g0^2 / (2 (g1 - g0))
-  p = 0.5 * k * g0 * g0 / den;
-  dp1 = -0.5 * k * g0 * g0 / (den * den);
+  p = dg > 0.0 ? law.mean(ga, g1) : law.mean(g1, ga);
+  dp1 = (law.p(g1) - p) / dg;
+  dpa = (p - law.p(ga)) / dg;
 }
 
 /// The force per reference length on a point and its derivatives.
@@ -99,35 +150,40 @@ struct PointLaw {
   double ft[3] = {0.0, 0.0, 0.0};
   double A[3][3] = {};             ///< dF/dr (gap from r; the discrete-gradient gaps held)
   double B[3][3] = {};             ///< dF/du
-  double G1[3] = {0.0, 0.0, 0.0};  ///< dF/dg1 (discrete gradient)
+  double Ga[3] = {0.0, 0.0, 0.0};  ///< dF/dga (the step's mean pressure)
+  double G1[3] = {0.0, 0.0, 0.0};  ///< dF/dg1
 };
 
 /// The contact law at a point (contact.hpp): gap gf at r (H needed if derivs), relative velocity
-/// u (null: statics), gm = {g0, g1} for the discrete gradient (null: p from gf).
+/// u (null: statics), gm = {ga, g1} for the step's mean pressure (null: p from gf).
 void point_law(const ContactPair& cp, const Gap& gf, const double* u, const double* gm, bool derivs,
                PointLaw& out) {
   out = PointLaw{};
-  const double k = cp.stiffness;
-  double pe = 0.0, dp1 = 0.0, dpr[3] = {0.0, 0.0, 0.0}, dpu[3] = {0.0, 0.0, 0.0};
+  const Penalty law{cp.stiffness, cp.onset};
+  double pe = 0.0, dpa = 0.0, dp1 = 0.0, dpr[3] = {0.0, 0.0, 0.0}, dpu[3] = {0.0, 0.0, 0.0};
   if (gm != nullptr) {
-    mean_pressure(k, gm[0], gm[1], pe, dp1);
-  } else if (gf.g <= 0.0) {  // touching counts: its stiffness lets statics start at g = 0
-    pe = -k * gf.g;
-    for (int i = 0; i < 3; ++i) dpr[i] = -k * gf.n[i];
+    mean_pressure(law, gm[0], gm[1], pe, dpa, dp1);
+  } else {
+    pe = law.p(gf.g);
+    const double sl = law.slope(gf.g);
+    for (int i = 0; i < 3; ++i) dpr[i] = sl * gf.n[i];
   }
-  // Hunt-Crossley damping while approaching: p = pe (1 + chi <-g'>), never pulling
+  // Hunt-Crossley damping: p = pe (1 - chi g'), clipped where a fast separation would pull
   double p = pe;
   const double rate = u != nullptr ? dot(gf.n, u) : 0.0;
-  if (cp.damping > 0.0 && rate < 0.0 && pe > 0.0) {
+  if (u != nullptr && cp.damping > 0.0 && pe > 0.0) {
     const double f = 1.0 - cp.damping * rate;
-    p = pe * f;
-    dp1 *= f;
-    for (int i = 0; i < 3; ++i) {
-      dpr[i] = dpr[i] * f - pe * cp.damping * dot(gf.H[i], u);  // d(n . u)/dr = H u
-      dpu[i] = -pe * cp.damping * gf.n[i];
+    p = pe * std::max(f, 0.0);
+    if (f > 0.0) {
+      dp1 *= f;
+      dpa *= f;
+      for (int i = 0; i < 3; ++i) {
+        dpr[i] = dpr[i] * f - pe * cp.damping * dot(gf.H[i], u);  // d(n . u)/dr = H u
+        dpu[i] = -pe * cp.damping * gf.n[i];
+      }
     }
   }
-  if (!(p > 0.0) && !(gm == nullptr && gf.g <= 0.0)) return;
+  if (!(p > 0.0)) return;
   out.active = true;
   out.p = p;
   for (int i = 0; i < 3; ++i) out.F[i] = p * gf.n[i];
@@ -149,6 +205,7 @@ void point_law(const ContactPair& cp, const Gap& gf, const double* u, const doub
   for (int i = 0; i < 3; ++i) {
     dir[i] = gf.n[i] - mu * phi[i];
     out.G1[i] = dir[i] * dp1;
+    out.Ga[i] = dir[i] * dpa;
   }
   double Hu[3] = {0.0, 0.0, 0.0};
   if (u != nullptr)
@@ -252,21 +309,11 @@ void point_of(const Model& m, const double* N, const double* e, double* r) {
   }
 }
 
-int block(const Model& m, int k) { return (k / 2) * m.dpn + (k % 2) * m.dim; }
-
-/// The state of a time step needed at a point: positions at the alpha point, at both ends.
-struct States {
-  const double* yf;
-  const double* vf;
-  const double* y1;
-  const double* y0;  ///< null: no discrete gradient
-};
-
 /// A carried obstacle's point: forces (dim on r, nb on the body) from z = (r, ub) at the alpha
-/// point, their rates zd, and the step's ends z1, z0 (null: no discrete gradient).
+/// point, their rates zd (null: statics), and at the step's end z1 (null: statics).
 void carried_force(const System& s, const ContactPair& cp, const Obstacle& ob, const Carrier& cr,
-                   double rt, const double* zf, const double* zd, const double* z1,
-                   const double* z0, double* out, PointLaw* law) {
+                   double rt, const double* zf, const double* zd, const double* z1, double* out,
+                   PointLaw* law) {
   const int d = s.dim, nb = cr.map.n;
   double r[3] = {0.0, 0.0, 0.0};
   for (int i = 0; i < d; ++i) r[i] = zf[i];
@@ -282,19 +329,17 @@ void carried_force(const System& s, const ContactPair& cp, const Obstacle& ob, c
     for (int j = 0; j < nb; ++j)
       for (int i = 0; i < 3; ++i) u[i] -= rates[j][i] * zd[d + j];
   }
-  double gm[2];
-  if (z0 != nullptr) {
-    const double* zz[2] = {z0, z1};
-    for (int h = 0; h < 2; ++h) {
-      double rr[3] = {0.0, 0.0, 0.0};
-      for (int i = 0; i < d; ++i) rr[i] = zz[h][i];
-      Gap gh;
-      gap(pose_at(s, ob, cr, zz[h] + d, nullptr), rr, rt, gh, false);
-      gm[h] = gh.g;
-    }
+  double gm[2] = {gf.g, gf.g};
+  if (z1 != nullptr) {
+    double r1[3] = {0.0, 0.0, 0.0};
+    for (int i = 0; i < d; ++i) r1[i] = z1[i];
+    Gap g1;
+    gap(pose_at(s, ob, cr, z1 + d, nullptr), r1, rt, g1, false);
+    gm[0] = 2.0 * gf.g - g1.g;
+    gm[1] = g1.g;
   }
   PointLaw pl;
-  point_law(cp, gf, zd != nullptr ? u : nullptr, z0 != nullptr ? gm : nullptr, false, pl);
+  point_law(cp, gf, zd != nullptr ? u : nullptr, z1 != nullptr ? gm : nullptr, false, pl);
   for (int i = 0; i < d; ++i) out[i] = pl.F[i];
   for (int j = 0; j < nb; ++j) out[d + j] = -dot(pl.F, rates[j]);
   if (law != nullptr) *law = pl;
@@ -351,7 +396,8 @@ void each_point(const System& s, const ContactSet& c, const ContactPair& cp, con
 
 void assemble_contact(const System& s, const ContactSet& c, const double* yf, const double* vf,
                       const double* y1, const AssemblyTerms& tm, double* r, const MatrixSink* add) {
-  const bool dyn = vf != nullptr && tm.y0 != nullptr;  // discrete gradient over the step
+  // a time step: the pressure is the mean over [2 g(yf) - g(y1), g(y1)] (contact.hpp)
+  const bool dyn = vf != nullptr && y1 != yf;
   for (const ContactPair& cp : c.pairs) {
     const ContactBody& cb = c.bodies[sz(cp.flex)];
     if (cb.n_c == 0) continue;
@@ -360,17 +406,13 @@ void assemble_contact(const System& s, const ContactSet& c, const double* yf, co
     const Obstacle& ob = c.obstacles[sz(cp.obstacle)];
     const Carrier cr = carrier(s, ob);
     const int nb = cr.map.n, nall = nde + nb, nloc = d + nb;
-    double ubf[kMaxBody] = {}, ubd[kMaxBody] = {}, ub1[kMaxBody] = {}, ub0[kMaxBody] = {};
+    double ubf[kMaxBody] = {}, ubd[kMaxBody] = {}, ub1[kMaxBody] = {};
     gather_body(cr.map, yf, ubf);
     if (vf != nullptr) gather_body(cr.map, vf, ubd);
-    if (dyn) {
-      gather_body(cr.map, y1, ub1);
-      gather_body(cr.map, tm.y0, ub0);
-    }
+    if (dyn) gather_body(cr.map, y1, ub1);
     const Pose pf = pose_at(s, ob, cr, ubf, nullptr);
     const Pose p1 = dyn ? pose_at(s, ob, cr, ub1, nullptr) : pf;
-    const Pose p0 = dyn ? pose_at(s, ob, cr, ub0, nullptr) : pf;
-    std::array<double, kMaxElementDofs> ef{}, ev{}, e1{}, e0{};
+    std::array<double, kMaxElementDofs> ef{}, ev{}, e1{};
     std::array<double, kMaxAll> fe{};
     std::array<double, kMaxAll * kMaxAll> ke{};
     int idx[kMaxAll], shp[kMaxAll], cmp[kMaxAll];  // shape function and local component
@@ -387,61 +429,57 @@ void assemble_contact(const System& s, const ContactSet& c, const double* yf, co
     for (int el = 0; el < m.n_el; ++el) {
       element_coordinates(m, yf + o, el, ef.data());
       if (vf != nullptr) element_coordinates(m, vf + o, el, ev.data());
-      if (dyn) {
-        element_coordinates(m, y1 + o, el, e1.data());
-        element_coordinates(m, tm.y0 + o, el, e0.data());
-      }
+      if (dyn) element_coordinates(m, y1 + o, el, e1.data());
       bool any = false;
       for (int q = 0; q < cb.n_c; ++q) {
         const double* N = cb.N.data() + 4 * (el * cb.n_c + q);
-        double rf[3], r1[3], r0[3];
+        double rf[3], r1[3] = {0.0, 0.0, 0.0};
         point_of(m, N, ef.data(), rf);
-        Gap gf, g1, g0;
+        Gap gf, g1;
         gap(pf, rf, cb.radius, gf, add != nullptr && cr.fixed);
+        const double* gm = nullptr;
+        double gmv[2] = {gf.g, gf.g};
         if (dyn) {
           point_of(m, N, e1.data(), r1);
-          point_of(m, N, e0.data(), r0);
           gap(p1, r1, cb.radius, g1, false);
-          gap(p0, r0, cb.radius, g0, false);
-          if (g0.g >= 0.0 && g1.g >= 0.0) continue;
-        } else if (gf.g > 0.0) {
-          continue;
+          gmv[0] = 2.0 * gf.g - g1.g;
+          gmv[1] = g1.g;
+          gm = gmv;
         }
+        if (gmv[0] >= 0.0 && gmv[1] >= 0.0) continue;
         double u[3] = {0.0, 0.0, 0.0};
         if (vf != nullptr) point_of(m, N, ev.data(), u);
         const double wq = cb.w[sz(el * cb.n_c + q)];
         double F[kMaxLoc] = {}, K[kMaxLoc * kMaxLoc] = {};
         if (cr.fixed) {
           PointLaw pl;
-          const double gm[2] = {g0.g, g1.g};
-          point_law(cp, gf, vf != nullptr ? u : nullptr, dyn ? gm : nullptr, add != nullptr, pl);
+          point_law(cp, gf, vf != nullptr ? u : nullptr, gm, add != nullptr, pl);
           if (!pl.active) continue;
           for (int i = 0; i < d; ++i) F[i] = pl.F[i];
+          // ga = 2 g(rf) - g(r1): d/dy1 = (2 ck nf - n1) . dr1
           for (int i = 0; i < d && add != nullptr; ++i)
             for (int j = 0; j < d; ++j)
-              K[i * nloc + j] = tm.ck * pl.A[i][j] + tm.cv * pl.B[i][j] + pl.G1[i] * g1.n[j];
+              K[i * nloc + j] = tm.ck * pl.A[i][j] + tm.cv * pl.B[i][j] +
+                                pl.Ga[i] * (2.0 * tm.ck * gf.n[j] - g1.n[j]) + pl.G1[i] * g1.n[j];
         } else {
-          double zf[kMaxLoc] = {}, zd[kMaxLoc] = {}, z1[kMaxLoc] = {}, z0[kMaxLoc] = {};
+          double zf[kMaxLoc] = {}, zd[kMaxLoc] = {}, z1[kMaxLoc] = {};
           for (int i = 0; i < d; ++i) {
             zf[i] = rf[i];
             zd[i] = u[i];
             z1[i] = r1[i];
-            z0[i] = r0[i];
           }
           for (int j = 0; j < nb; ++j) {
             zf[d + j] = ubf[j];
             zd[d + j] = ubd[j];
             z1[d + j] = ub1[j];
-            z0[d + j] = ub0[j];
           }
           const double* zdp = vf != nullptr ? zd : nullptr;
+          const double* z1p = dyn ? z1 : nullptr;
           auto eval = [&](double* out) {
-            carried_force(s, cp, ob, cr, cb.radius, zf, zdp, dyn ? z1 : nullptr, dyn ? z0 : nullptr,
-                          out, nullptr);
+            carried_force(s, cp, ob, cr, cb.radius, zf, zdp, z1p, out, nullptr);
           };
           PointLaw pl;
-          carried_force(s, cp, ob, cr, cb.radius, zf, zdp, dyn ? z1 : nullptr, dyn ? z0 : nullptr,
-                        F, &pl);
+          carried_force(s, cp, ob, cr, cb.radius, zf, zdp, z1p, F, &pl);
           if (!pl.active && !dyn) continue;
           if (add != nullptr) {  // ck d/dzf + cv d/dzd + d/dz1, central differences
             double* vars[3] = {zf, zd, z1};
@@ -518,8 +556,7 @@ double contact_energy(const System& s, const ContactSet& c, const double* y) {
   for (const ContactPair& cp : c.pairs) {
     const ContactBody& cb = c.bodies[sz(cp.flex)];
     each_point(s, c, cp, y, nullptr, [&](int el, int q, const Pose&, const PointEval& pt) {
-      if (pt.gap.g < 0.0)
-        total += cb.w[sz(el * cb.n_c + q)] * 0.5 * cp.stiffness * pt.gap.g * pt.gap.g;
+      total += cb.w[sz(el * cb.n_c + q)] * Penalty{cp.stiffness, cp.onset}.potential(pt.gap.g);
     });
   }
   return total;
@@ -536,7 +573,7 @@ void contact_outputs(const System& s, const ContactSet& c, const double* y, cons
     std::array<double, kMaxElementDofs> e{};
     int last = -1;
     each_point(s, c, cp, y, v, [&](int el, int q, const Pose& pose, const PointEval& pt) {
-      if (pt.gap.g < 0.0) {
+      if (pt.law.active) {
         if (el != last) {
           element_coordinates(m, y + o, el, e.data());
           last = el;

@@ -9,18 +9,24 @@
 //   sphere    g = |r - c| - R - rt
 // with the unit normal n = dg/dr and H = d2g/dr2 = (P - n n^T) / |P (r - c)| (plane: 0).  The
 // force per reference length on the body at a point is F = p n + f_t with the pressure
-//   p = k <-g> (1 + chi <-g'>)      (g' = n . u; Hunt & Crossley 1975 damping while approaching)
-// and the Coulomb friction regularized by the slip velocity eps,
+//   p = p_k(g) <1 - chi g'>      (g' = n . u; Hunt & Crossley 1975 damping, never pulling)
+// of a penalty of stiffness k with a smooth onset over a depth d (C1, convex potential Phi):
+//   p_k = 0 for g >= 0,  k g^2 / (2 d) for -d <= g < 0,  k (-g - d/2) below,
+// so that a point resting under a light load q sinks to sqrt(2 d q / k) with the stiffness
+// sqrt(2 k q / d), growing with the load (as Hertz's contact does), not to q / k with k: its
+// stiffness does not switch on and off under the Newton iterations' round-off; and the
+// Coulomb friction regularized by the slip velocity eps,
 //   f_t = -mu p v_t / sqrt(|v_t|^2 + eps^2),  v_t = (I - n n^T) u,
-// u the velocity of the point relative to the obstacle's material point there.  The potential of
-// the penalty is k <-g>^2 / 2 per reference length.
+// u the velocity of the point relative to the obstacle's material point there.
 //
-// In a time step (AssemblyTerms::y0 set) the elastic pressure is its mean over the step's gap
-// interval, p_e = k (Phi(g1) - Phi(g0)) / (g1 - g0) with Phi(g) = <-g>^2 / 2 (g0, g1 at the step's
-// ends; the damping factor multiplies it): a discrete gradient, so that with rho_inf = 1 (the
-// midpoint rule) the penalty's energy balance is exact for a plane and to O(dy^3) for curved
-// obstacles (Laursen & Chawla 1997), and the pressure is continuous and C1 when a point comes into
-// contact.  Statics (no velocities): p = k <-g>, no friction, no damping.
+// In a time step (velocities given and y1 apart from yf) the elastic pressure is the mean of p_k
+// over [ga, g1], g1 = g(y1), ga = 2 g(yf) - g1, an interval centred on the alpha point's gap
+// (the damping factor multiplies it): on the linear piece exactly p_k(g(yf)), the generalized-
+// alpha force; with rho_inf = 1 (the midpoint rule, ga = g(y0) for a plane) the discrete gradient
+// (Phi(g0) - Phi(g1)) / (g1 - g0), so that the penalty's energy balance is exact for a plane and
+// to O(dy^3) for curved obstacles (Laursen & Chawla 1997); and a point that comes into contact
+// within a step meets a pressure that grows smoothly with g1.  Statics (no velocities): p_k(g),
+// no friction, no damping.
 //
 // Tangents: exact for fixed obstacles (2x2 / 3x3 point matrices mapped by N); for an obstacle
 // carried by a rigid body by central differences (step 1e-6 (1 + |z|); velocities 1e-4 eps
@@ -60,6 +66,7 @@ struct ContactBody {
 struct ContactPair {
   int flex = 0, obstacle = 0;
   double stiffness = 0.0;      ///< k: force per reference length per penetration [N/m^2]
+  double onset = 0.0;          ///< d: depth of the smooth onset of the pressure [m]
   double damping = 0.0;        ///< chi, Hunt-Crossley [s/m]
   double friction = 0.0;       ///< Coulomb coefficient mu
   double slip_velocity = 1.0;  ///< eps of the friction's regularization [m/s]
@@ -75,12 +82,12 @@ struct ContactSet {
 using MatrixSink = std::function<void(const int* idx, int k, const double* K)>;
 
 /// Contact forces into the balance r (r -= generalized contact forces) at (yf, vf) (vf null:
-/// statics), the discrete-gradient pressure between tm.y0 and y1 when tm.y0 is set, and, if add
-/// is not null, their Jacobian with respect to y1 (ck d/dyf + cv d/dvf + d/dy1) into add.
+/// statics) with the step's mean pressure between yf and y1 (y1 == yf: the pressure at yf), and,
+/// if add is not null, their Jacobian with respect to y1 (ck d/dyf + cv d/dvf + d/dy1).
 void assemble_contact(const System& s, const ContactSet& c, const double* yf, const double* vf,
                       const double* y1, const AssemblyTerms& tm, double* r, const MatrixSink* add);
 
-/// The penalty's potential energy sum k <-g>^2 / 2 w at y.
+/// The penalty's potential energy sum Phi(g) w at y.
 double contact_energy(const System& s, const ContactSet& c, const double* y);
 
 /// Values per obstacle of contact_outputs.

@@ -126,7 +126,6 @@ struct AssemblyTerms {
   double t1 = 0.0;                      ///< time of the constraints
   double load_factor = 1.0;             ///< statics: the factor on the loads
   bool amplitude = false;               ///< statics: harmonic loads at their amplitude
-  const double* y0 = nullptr;           ///< a time step's start (contact: discrete gradient)
 };
 
 bool assemble_system(const System& s, const double* yf, const double* vf, const double* am,

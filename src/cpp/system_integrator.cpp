@@ -69,7 +69,6 @@ StepOutcome SystemIntegrator::step(const double* y0, const double* v0, const dou
   terms.ca = (1.0 - am) / bh2;
   terms.tf = t + (1.0 - af) * h;
   terms.t1 = t + h;
-  terms.y0 = y0;
   double prev = std::numeric_limits<double>::infinity();
   for (int it = 1; it <= max_iter; ++it) {
     for (int i = 0; i < n; ++i) {

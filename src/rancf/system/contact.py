@@ -61,6 +61,8 @@ _KIND = {k: i for i, k in enumerate(OBSTACLE_KINDS)}
 CONTACT_POINTS = 8
 #: Default penalty stiffness per Young's modulus (module docstring).
 STIFFNESS_FACTOR = 0.1
+#: Default onset width per tube radius (module docstring).
+ONSET_FACTOR = 1e-3
 #: Default regularization velocity ε of the friction [m/s].
 SLIP_VELOCITY = 1e-3
 
@@ -84,6 +86,8 @@ class Obstacle:
         Coulomb coefficient μ.
     stiffness : float, optional
         Penalty ``k`` [N/m²]; default a tenth of each body's Young's modulus.
+    onset : float, optional
+        Width ``d`` [m] of the pressure's smooth onset; default 1e-3 of each body's radius.
     damping : float
         Hunt–Crossley factor ``χ`` [s/m]: the pressure is ``k <-g> (1 + χ <-ġ>)`` while the
         point approaches the obstacle (``ġ < 0``), so impacts lose energy and nothing pulls.
@@ -101,6 +105,7 @@ class Obstacle:
     body: str | None = None
     friction: float = 0.0
     stiffness: float | None = None
+    onset: float | None = None
     damping: float = 0.0
     slip_velocity: float = SLIP_VELOCITY
     name: str = ""
@@ -177,8 +182,9 @@ def build_contact(
         for key, v in (("friction", ob.friction), ("damping", ob.damping)):
             _number(f"obstacles.{name}.{key}", v, 0.0, False)
         _number(f"obstacles.{name}.slip_velocity", ob.slip_velocity, 0.0, True)
-        if ob.stiffness is not None:
-            _number(f"obstacles.{name}.stiffness", ob.stiffness, 0.0, True)
+        for key, v in (("stiffness", ob.stiffness), ("onset", ob.onset)):
+            if v is not None:
+                _number(f"obstacles.{name}.{key}", v, 0.0, True)
         kinds.append(_KIND[ob.kind])
         bodies.append(body)
         points.append(p)
@@ -216,7 +222,9 @@ def build_contact(
         k = ob.stiffness
         if k is None:
             k = STIFFNESS_FACTOR * system.bodies[f].material.youngs_modulus  # type: ignore[union-attr]
-        data.append([k, ob.damping, ob.friction, ob.slip_velocity])
+        rt = system.bodies[f].section.radius  # type: ignore[union-attr]
+        onset = ONSET_FACTOR * rt if ob.onset is None else ob.onset
+        data.append([k, onset, ob.damping, ob.friction, ob.slip_velocity])
     i64 = np.int64
     core = _core.Contact(
         body_nc=lists["nc"],
@@ -232,7 +240,7 @@ def build_contact(
         ob_radius=np.array(radii, dtype=float),
         pair_flex=np.array([flex_names.index(f) for f, _ in pairs], dtype=i64),
         pair_obstacle=np.array([names.index(o) for _, o in pairs], dtype=i64),
-        pair_data=np.array(data, dtype=float).reshape(-1, 4),
+        pair_data=np.array(data, dtype=float).reshape(-1, 5),
     )
     return core, names, pairs
 
