@@ -18,16 +18,18 @@ ROD = Material(1000.0, 1e7, poisson_ratio=0.3)
 
 
 def planar() -> System:
-    """A clamped cable (rotated blocks) over a plane, a fixed circle and a wheel's circle."""
+    """A clamped cable (rotated blocks) over a plane, a fixed circle and a wheel's circle (the
+    last two with deep onsets: points on both pieces of the penalty)."""
     cable = Model(mesh_line([0, 0], [1, 0], 4), "rancf", SEC, MAT, [Support(0, "clamp")],
                   gravity=[0, -9.81])  # fmt: skip
     wheel = RigidBody(2, 1.0, 0.01, (0.7, -0.1), 0.2)
     obs = [
         Obstacle("plane", point=(0, -0.005), normal=(0.1, 1), friction=0.3, damping=3.0,
                  name="ground"),  # fmt: skip
-        Obstacle("cylinder", center=(0.5, -0.2), radius=0.195, friction=0.5, name="post"),
+        Obstacle("cylinder", center=(0.5, -0.2), radius=0.195, friction=0.5, onset=4e-3,
+                 name="post"),  # fmt: skip
         Obstacle("cylinder", center=(0.0, 0.0), radius=0.095, friction=0.4, body="wheel",
-                 damping=2.0, name="wheel"),  # fmt: skip
+                 damping=2.0, onset=3e-3, name="wheel"),  # fmt: skip
     ]
     return System({"cable": cable, "wheel": wheel}, obstacles=obs, gravity=[0, -9.81])
 
@@ -43,7 +45,7 @@ def spatial() -> System:
         Obstacle("plane", point=(0, 0, -0.005), normal=(0.1, 0.0, 1), friction=0.3, damping=2.0,
                  name="ground"),  # fmt: skip
         Obstacle("cylinder", center=(0.8, 0.0, 0.2), radius=0.195, axis=(0.1, 1.0, 0.0),
-                 friction=0.5, name="bar"),  # fmt: skip
+                 friction=0.5, onset=2e-2, name="bar"),  # fmt: skip
         Obstacle("sphere", center=(0.0, 0.0, 0.01), radius=0.195, friction=0.4, body="ball",
                  damping=1.0, name="ball"),  # fmt: skip
     ]
@@ -204,3 +206,17 @@ def test_rigid_motion_leaves_the_contact_forces_unchanged(rng):
         assert np.allclose(rot @ o0[name].normal, o1[name].normal, rtol=1e-10, atol=1e-9)
         assert o1[name].length == pytest.approx(o0[name].length, rel=1e-10)
         assert o1[name].moment == pytest.approx(o0[name].moment, rel=1e-9, abs=1e-9)
+
+
+def test_points_on_both_pieces_of_the_penalty(rng):
+    """The states of these checks put contact points on the onset and on the linear piece."""
+    s = planar()
+    y, _ = _state(s, rng)
+    gaps = []
+    for k, (_f, o) in enumerate(s.contact_pairs):
+        pts = np.empty(8 * 4 * 8)
+        s.contact.points(k, y, None, pts)
+        onset = s.obstacles[s.obstacle_names.index(o)].onset or 1e-5
+        gaps.append(pts.reshape(-1, 8)[:, 3] / onset)
+    g = np.concatenate(gaps)
+    assert np.any((g < 0) & (g > -1)) and np.any(g < -1)

@@ -3,30 +3,39 @@
 A flexible body (cable or rod elements) is a tube of its section's radius ``rt = sqrt(A / π)``
 about its centre line.  Contact is a penalty line contact integrated along the curve: at
 ``contact_points`` Gauss points per element (default 8) the gap ``g`` to each obstacle gives the
-force per reference length ``p n + f_t`` with the pressure ``p = k <-g> (1 + χ <-ġ>)`` (Hunt &
-Crossley damping ``χ`` while approaching, never pulling) and the regularized Coulomb friction
+force per reference length ``p n + f_t`` with the pressure ``p = p_k(g) <1 - χ ġ>`` (Hunt &
+Crossley damping ``χ``, never pulling) and the regularized Coulomb friction
 ``f_t = -μ p v_t / sqrt(|v_t|² + ε²)`` (``v_t`` the slip velocity of the centre line relative to
-the obstacle's material point there, ``ε`` = ``slip_velocity``).  In a time step the penalty
-pressure is the discrete gradient of its potential ``k <-g>² / 2`` over the step (energy-exact
-for a plane with ``rho_inf = 1``); statics are frictionless.
+the obstacle's material point there, ``ε`` = ``slip_velocity``).  The penalty ``p_k`` has the
+stiffness ``k`` and a smooth onset over the depth ``d``: ``k g² / (2 d)`` for ``-d < g < 0``,
+``k (-g - d / 2)`` deeper.  In a time step the pressure is the mean of ``p_k`` over an interval
+of gaps centred on the generalized-α point's gap and ending at the step's end: on the linear
+piece the generalized-α force itself, and with ``rho_inf = 1`` (the midpoint rule) the discrete
+gradient of the penalty's potential, whose energy balance is then exact for a plane.  Statics
+are frictionless.
 
 Penalty stiffness.  ``k`` [N/m²] (force per reference length per penetration) defaults to
 ``E / 10`` of the body's Young's modulus: the order of the transverse stiffness of the section
 itself pressed on a rigid surface.  Hertz's line contact of a solid circular section gives
 ``P / δ = π E / (2 (1 - ν²) (ln(4 rt / a) - 1/2))`` with the contact half-width ``a``, i.e.
 ``E / 4`` to ``E / 8`` for ``ln(4 rt / a)`` between 5 and 10 (every practical load); stranded
-cables, ropes and hoses are softer across than a solid bar, so ``E / 10``.  The penetration under
-a line load ``p`` is ``p / k``, relative to the radius ``10 p / (E rt)``: a steel cable of radius 2
-mm on the ground (its weight, 0.97 N/m) sinks by 4.9e-11 m (2.4e-8 of its radius); over a pulley
-of radius R at tension T, ``p = T / R``.  Stiffer (``k = E``) works too, but the Newton iterations
-of impacts take longer; much softer makes the pressure along a wrap smoother but lets the body
-sink in.
+cables, ropes and hoses are softer across than a solid bar, so ``E / 10``.  Under a line load
+``p`` the penetration is ``p / k + d / 2`` above ``p = k d / 2`` and ``sqrt(2 d p / k)`` below.
+
+Onset.  ``d`` defaults to ``1e-3 rt``.  Without it a resting point of a stiff section would sink
+by less than the Newton tolerance (a steel cable of radius 2 mm on the ground: 5e-11 m) and its
+stiffness would switch on and off between the iterations; with it the point rests at
+``sqrt(2 d q / k)`` (the same cable: 1.4e-8 m, 7e-6 of its radius) with the stiffness
+``sqrt(2 k q / d)``, growing with the load as a Hertzian contact's does.
 
 Friction regularization.  ``ε`` = ``slip_velocity`` defaults to 1 mm/s: at a slip velocity of
 ``7 ε`` the friction is 99 % of ``μ p``, at ``20 ε`` 99.9 % (a capstan's ratio ``e^{μφ}`` is then
 0.1 % low); a part that sticks creeps at ``ε f / sqrt(1 - f²)`` where ``f`` is the used fraction
 of ``μ p``.  Smaller ``ε`` sticks better but makes the Newton iterations of slip reversals fail
 (1e-4 m/s does in the capstan example).
+
+Time steps.  The penalty's oscillation is far above what any step resolves: use numerical
+damping (``rho_inf`` about 0.5) and allow Newton 25 iterations (``max_newton``) for impacts.
 
 Geometry: ``"plane"`` (``point``, outward ``normal``), ``"cylinder"`` (``center``, ``radius``;
 3D ``axis``; a circle in 2D), ``"sphere"`` (3D: ``center``, ``radius``).  With ``body`` (a rigid
