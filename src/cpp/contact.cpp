@@ -489,9 +489,10 @@ void assemble_contact(const System& s, const ContactSet& c, const double* yf, co
               if (coef[h] == 0.0) continue;
               for (int b = 0; b < nloc; ++b) {
                 double& z = vars[h][b];
-                // velocities: the friction turns over the slip velocity eps, so a step of
-                // 1e-4 eps keeps the differences' error at 1e-8 relative
-                const double unit = h == 1 ? 1e-4 * cp.slip_velocity : 1e-6;
+                // the friction turns over the slip velocity eps, the pressure over the onset
+                // depth d: steps of 1e-4 eps and 1e-4 d keep the differences' error at 1e-8
+                const double unit =
+                    h == 1 ? 1e-4 * cp.slip_velocity : std::min(1e-6, 1e-4 * cp.onset);
                 const double z00 = z, step = unit * (1.0 + std::abs(z00));
                 z = z00 + step;
                 eval(fp);
