@@ -165,7 +165,7 @@ void bind_contact(nb::module_& mod) {
             // the same state twice is one array: the pressure at yf
             const bool same = std::equal(yf.data(), yf.data() + n, y1.data());
             rancf::assemble_contact(s, h.c, yf.data(), opt(vf, n, "vf"),
-                                    same ? yf.data() : y1.data(), tm, r.data(),
+                                    same ? yf.data() : y1.data(), tm, r.data(), nullptr,
                                     dense != nullptr ? &sink : nullptr);
           },
           "yf"_a, "vf"_a.none(), "y1"_a, "ck"_a, "cv"_a, "r"_a.noconvert(),

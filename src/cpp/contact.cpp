@@ -26,10 +26,11 @@ struct Pose {
   double radius = 0.0;
 };
 
+/// (Made per contact point: gap() sets g and n always, H when asked for.)
 struct Gap {
   double g = 0.0;
   double n[3] = {0.0, 0.0, 0.0};
-  double H[3][3] = {};
+  double H[3][3];
 };
 
 double dot(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
@@ -143,22 +144,26 @@ void mean_pressure(const Penalty& law, double ga, double g1, double& p, double& 
 }
 
 /// The force per reference length on a point and its derivatives.
+/// (Not zeroed as a whole on purpose, it is made per contact point: point_law sets active, p,
+/// F and ft always, the derivatives when asked for and active.)
 struct PointLaw {
   bool active = false;
   double p = 0.0;                 ///< pressure
   double F[3] = {0.0, 0.0, 0.0};  ///< p n + f_t
   double ft[3] = {0.0, 0.0, 0.0};
-  double A[3][3] = {};             ///< dF/dr (gap from r; the discrete-gradient gaps held)
-  double B[3][3] = {};             ///< dF/du
-  double Ga[3] = {0.0, 0.0, 0.0};  ///< dF/dga (the step's mean pressure)
-  double G1[3] = {0.0, 0.0, 0.0};  ///< dF/dg1
+  double A[3][3];  ///< dF/dr (gap from r; the step's gaps held)
+  double B[3][3];  ///< dF/du
+  double Ga[3];    ///< dF/dga (the step's mean pressure)
+  double G1[3];    ///< dF/dg1
 };
 
 /// The contact law at a point (contact.hpp): gap gf at r (H needed if derivs), relative velocity
 /// u (null: statics), gm = {ga, g1} for the step's mean pressure (null: p from gf).
 void point_law(const ContactPair& cp, const Gap& gf, const double* u, const double* gm, bool derivs,
                PointLaw& out) {
-  out = PointLaw{};
+  out.active = false;
+  out.p = 0.0;
+  for (int i = 0; i < 3; ++i) out.F[i] = out.ft[i] = 0.0;
   const Penalty law{cp.stiffness, cp.onset};
   double pe = 0.0, dpa = 0.0, dp1 = 0.0, dpr[3] = {0.0, 0.0, 0.0}, dpu[3] = {0.0, 0.0, 0.0};
   if (gm != nullptr) {
@@ -177,7 +182,7 @@ void point_law(const ContactPair& cp, const Gap& gf, const double* u, const doub
     if (f > 0.0) {
       dp1 *= f;
       dpa *= f;
-      for (int i = 0; i < 3; ++i) {
+      for (int i = 0; i < 3 && derivs; ++i) {
         dpr[i] = dpr[i] * f - pe * cp.damping * dot(gf.H[i], u);  // d(n . u)/dr = H u
         dpu[i] = -pe * cp.damping * gf.n[i];
       }
@@ -299,6 +304,14 @@ void gather_body(const PlaceMap& map, const double* y, double* ub) {
   for (int i = 0; i < map.n; ++i) ub[i] = y[map.index[i]];
 }
 
+/// r = sum_k N_k e_k, blocks at off[k] of the element coordinates (z = 0 in 2D).
+template <int D>
+void point_at(const int* off, const double* N, const double* e, double* r) {
+  r[0] = r[1] = r[2] = 0.0;
+  for (int k = 0; k < 4; ++k)
+    for (int i = 0; i < D; ++i) r[i] += N[k] * e[off[k] + i];
+}
+
 /// r = sum_k N_k e_k (blocks of the element coordinates; 3 components, zero z in 2D).
 void point_of(const Model& m, const double* N, const double* e, double* r) {
   const int d = m.dim;
@@ -392,15 +405,13 @@ void each_point(const System& s, const ContactSet& c, const ContactPair& cp, con
   }
 }
 
-}  // namespace
-
-void assemble_contact(const System& s, const ContactSet& c, const double* yf, const double* vf,
-                      const double* y1, const AssemblyTerms& tm, double* r, const MatrixSink* add) {
-  // a time step: the pressure is the mean over [2 g(yf) - g(y1), g(y1)] (contact.hpp)
-  const bool dyn = vf != nullptr && y1 != yf;
-  for (const ContactPair& cp : c.pairs) {
+/// A pair whose obstacle a rigid body carries: point forces and their differences over the point
+/// and the body, mapped to the element's and the body's coordinates (couplings: the sink).
+void carried_pair(const System& s, const ContactSet& c, const ContactPair& cp, const double* yf,
+                  const double* vf, const double* y1, bool dyn, const AssemblyTerms& tm, double* r,
+                  const MatrixSink* add) {
+  {
     const ContactBody& cb = c.bodies[sz(cp.flex)];
-    if (cb.n_c == 0) continue;
     const Model& m = *s.flex[sz(cp.flex)];
     const int o = s.offset[sz(cp.flex)], d = m.dim, nde = m.nde();
     const Obstacle& ob = c.obstacles[sz(cp.obstacle)];
@@ -436,32 +447,20 @@ void assemble_contact(const System& s, const ContactSet& c, const double* yf, co
         double rf[3], r1[3] = {0.0, 0.0, 0.0};
         point_of(m, N, ef.data(), rf);
         Gap gf, g1;
-        gap(pf, rf, cb.radius, gf, add != nullptr && cr.fixed);
-        const double* gm = nullptr;
-        double gmv[2] = {gf.g, gf.g};
+        gap(pf, rf, cb.radius, gf, false);
+        double gmv[2] = {gf.g, gf.g};  // skip points out of contact over the whole step
         if (dyn) {
           point_of(m, N, e1.data(), r1);
           gap(p1, r1, cb.radius, g1, false);
           gmv[0] = 2.0 * gf.g - g1.g;
           gmv[1] = g1.g;
-          gm = gmv;
         }
         if (gmv[0] >= 0.0 && gmv[1] >= 0.0) continue;
         double u[3] = {0.0, 0.0, 0.0};
         if (vf != nullptr) point_of(m, N, ev.data(), u);
         const double wq = cb.w[sz(el * cb.n_c + q)];
         double F[kMaxLoc] = {}, K[kMaxLoc * kMaxLoc] = {};
-        if (cr.fixed) {
-          PointLaw pl;
-          point_law(cp, gf, vf != nullptr ? u : nullptr, gm, add != nullptr, pl);
-          if (!pl.active) continue;
-          for (int i = 0; i < d; ++i) F[i] = pl.F[i];
-          // ga = 2 g(rf) - g(r1): d/dy1 = (2 ck nf - n1) . dr1
-          for (int i = 0; i < d && add != nullptr; ++i)
-            for (int j = 0; j < d; ++j)
-              K[i * nloc + j] = tm.ck * pl.A[i][j] + tm.cv * pl.B[i][j] +
-                                pl.Ga[i] * (2.0 * tm.ck * gf.n[j] - g1.n[j]) + pl.G1[i] * g1.n[j];
-        } else {
+        {
           double zf[kMaxLoc] = {}, zd[kMaxLoc] = {}, z1[kMaxLoc] = {};
           for (int i = 0; i < d; ++i) {
             zf[i] = rf[i];
@@ -549,6 +548,118 @@ void assemble_contact(const System& s, const ContactSet& c, const double* yf, co
       (*add)(idx, nall, ke.data());
       std::fill(ke.begin(), ke.begin() + nall * nall, 0.0);
     }
+  }
+}
+
+/// A pair with a fixed obstacle: exact point tangents, accumulated per element over the shape
+/// functions' products and added straight into the body's band block (or the sink).
+template <int d>
+void fixed_pair(const System& s, const ContactSet& c, const ContactPair& cp, int block,
+                const double* yf, const double* vf, const double* y1, bool dyn,
+                const AssemblyTerms& tm, double* r, BorderedLU* lu, const MatrixSink* add) {
+  const ContactBody& cb = c.bodies[sz(cp.flex)];
+  const Model& m = *s.flex[sz(cp.flex)];
+  const int o = s.offset[sz(cp.flex)], nde = m.nde();
+  const Obstacle& ob = c.obstacles[sz(cp.obstacle)];
+  const Pose pose = pose_at(s, ob, Carrier{}, nullptr, nullptr);
+  const bool rates = vf != nullptr && (cp.friction > 0.0 || cp.damping > 0.0);
+  const bool jac = lu != nullptr || add != nullptr;
+  int off[4];  // the element coordinate of shape function k's block
+  for (int k = 0; k < 4; ++k) off[k] = (k / 2) * m.dpn + (k % 2) * d;
+  std::array<double, kMaxElementDofs> ef{}, ev{}, e1{}, fe{};
+  std::array<double, kMaxElementDofs * kMaxElementDofs> ke{};  // (a rod's twist rows stay 0)
+  double acc[10][d][d] = {};
+  BandView band{nullptr, 0, 0, 0};
+  if (lu != nullptr) band = lu->view(block);
+  for (int el = 0; el < m.n_el; ++el) {
+    element_coordinates(m, yf + o, el, ef.data());
+    if (rates) element_coordinates(m, vf + o, el, ev.data());
+    if (dyn) element_coordinates(m, y1 + o, el, e1.data());
+    bool any = false;
+    for (int q = 0; q < cb.n_c; ++q) {
+      const double* N = cb.N.data() + 4 * (el * cb.n_c + q);
+      double rf[3], r1[3];
+      point_at<d>(off, N, ef.data(), rf);
+      Gap gf, g1;
+      gap(pose, rf, cb.radius, gf, jac);
+      double gm[2] = {gf.g, gf.g};
+      if (dyn) {
+        point_at<d>(off, N, e1.data(), r1);
+        gap(pose, r1, cb.radius, g1, false);
+        gm[0] = 2.0 * gf.g - g1.g;
+        gm[1] = g1.g;
+      }
+      if (gm[0] >= 0.0 && gm[1] >= 0.0) continue;
+      double u[3] = {0.0, 0.0, 0.0};
+      if (rates) point_at<d>(off, N, ev.data(), u);
+      PointLaw pl;
+      point_law(cp, gf, vf != nullptr ? u : nullptr, dyn ? gm : nullptr, jac, pl);
+      if (!pl.active) continue;
+      any = true;
+      const double wq = cb.w[sz(el * cb.n_c + q)];
+      for (int k = 0; k < 4; ++k)
+        for (int i = 0; i < d; ++i) fe[sz(off[k] + i)] += wq * N[k] * pl.F[i];
+      if (!jac) continue;
+      // ga = 2 g(rf) - g(r1): d/dy1 = (2 ck nf - n1) . dr1
+      double K[3][3];
+      for (int i = 0; i < d; ++i)
+        for (int j = 0; j < d; ++j)
+          K[i][j] = tm.ck * pl.A[i][j] + tm.cv * pl.B[i][j] +
+                    (dyn ? pl.Ga[i] * (2.0 * tm.ck * gf.n[j] - g1.n[j]) + pl.G1[i] * g1.n[j] : 0.0);
+      // sum of w N_k N_l K over the points: the (k, l) and (l, k) blocks are equal
+      for (int k = 0, kl = 0; k < 4; ++k)
+        for (int l = k; l < 4; ++l, ++kl) {
+          const double w2 = wq * N[k] * N[l];
+          for (int i = 0; i < d; ++i)
+            for (int j = 0; j < d; ++j) acc[kl][i][j] += w2 * K[i][j];
+        }
+    }
+    if (!any) continue;
+    if (jac)
+      for (int k = 0, kl = 0; k < 4; ++k)
+        for (int l = k; l < 4; ++l, ++kl)
+          for (int i = 0; i < d; ++i)
+            for (int j = 0; j < d; ++j) {
+              ke[sz((off[k] + i) * nde + off[l] + j)] = acc[kl][i][j];
+              ke[sz((off[l] + i) * nde + off[k] + j)] = acc[kl][i][j];
+              acc[kl][i][j] = 0.0;
+            }
+    if (has_rotation(m, el)) rotate_back(m, el, fe.data(), jac ? ke.data() : nullptr);
+    const int base = o + el * m.dpn;
+    for (int a = 0; a < nde; ++a) r[base + a] -= fe[sz(a)];
+    std::fill(fe.begin(), fe.begin() + nde, 0.0);
+    if (!jac) continue;
+    if (lu != nullptr) {  // the element's matrix lies in the band (as the element's own)
+      const int eo = el * m.dpn;
+      for (int j = 0; j < nde; ++j) {
+        double* colj = &band.at(eo, eo + j);
+        for (int i = 0; i < nde; ++i) colj[i * band.rs] -= ke[sz(i * nde + j)];
+      }
+    } else {
+      int idx[kMaxElementDofs];
+      for (int a = 0; a < nde; ++a) idx[a] = base + a;
+      for (int a = 0; a < nde * nde; ++a) ke[sz(a)] = -ke[sz(a)];
+      (*add)(idx, nde, ke.data());
+    }
+    std::fill(ke.begin(), ke.begin() + nde * nde, 0.0);
+  }
+}
+
+}  // namespace
+
+void assemble_contact(const System& s, const ContactSet& c, const double* yf, const double* vf,
+                      const double* y1, const AssemblyTerms& tm, double* r, BorderedLU* lu,
+                      const MatrixSink* add) {
+  // a time step: the pressure is the mean over [2 g(yf) - g(y1), g(y1)] (contact.hpp)
+  const bool dyn = vf != nullptr && y1 != yf;
+  for (const ContactPair& cp : c.pairs) {
+    if (c.bodies[sz(cp.flex)].n_c == 0) continue;
+    if (c.obstacles[sz(cp.obstacle)].body >= 0)
+      carried_pair(s, c, cp, yf, vf, y1, dyn, tm, r, add);
+    else if (s.dim == 2)
+      fixed_pair<2>(s, c, cp, cp.flex, yf, vf, y1, dyn, tm, r, lu, add);
+    else
+      fixed_pair<3>(s, c, cp, cp.flex, yf, vf, y1, dyn, tm, r, lu, add);
   }
 }
 

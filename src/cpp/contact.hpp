@@ -38,6 +38,7 @@
 #include <functional>
 #include <vector>
 
+#include "bordered.hpp"
 #include "system.hpp"
 
 namespace rancf {
@@ -82,10 +83,13 @@ struct ContactSet {
 using MatrixSink = std::function<void(const int* idx, int k, const double* K)>;
 
 /// Contact forces into the balance r (r -= generalized contact forces) at (yf, vf) (vf null:
-/// statics) with the step's mean pressure between yf and y1 (y1 == yf: the pressure at yf), and,
-/// if add is not null, their Jacobian with respect to y1 (ck d/dyf + cv d/dvf + d/dy1).
+/// statics) with the step's mean pressure between yf and y1 (y1 == yf: the pressure at yf), and
+/// their Jacobian with respect to y1 (ck d/dyf + cv d/dvf + d/dy1): fixed obstacles' straight
+/// into the flexible bodies' band blocks of lu (if not null; else into add), carried obstacles'
+/// (couplings with the body) into add.  No Jacobian if both are null.
 void assemble_contact(const System& s, const ContactSet& c, const double* yf, const double* vf,
-                      const double* y1, const AssemblyTerms& tm, double* r, const MatrixSink* add);
+                      const double* y1, const AssemblyTerms& tm, double* r, BorderedLU* lu,
+                      const MatrixSink* add);
 
 /// The penalty's potential energy sum Phi(g) w at y.
 double contact_energy(const System& s, const ContactSet& c, const double* y);

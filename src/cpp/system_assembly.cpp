@@ -288,7 +288,7 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
     const MatrixSink sink = [&](const int* idx, int k, const double* K) {
       add_matrix(*lu, idx, k, K, far);
     };
-    assemble_contact(s, *s.contact, yf, vf, y1, tm, r, lu != nullptr ? &sink : nullptr);
+    assemble_contact(s, *s.contact, yf, vf, y1, tm, r, lu, lu != nullptr ? &sink : nullptr);
   }
   // ---- joints: G(yf)^T lambda, g(y1), and their derivatives
   std::vector<std::array<double, kMaxJointRows * 2 * kMaxLocal>> jac1(s.joints.size());
