@@ -3,10 +3,12 @@
 // named structs of system.hpp; its flexible bodies are Model objects kept alive by the holder.
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
+#include <nanobind/stl/array.h>
 #include <nanobind/stl/tuple.h>
 #include <nanobind/stl/vector.h>
 
 #include <algorithm>
+#include <array>
 #include <stdexcept>
 #include <string>
 #include <tuple>
@@ -265,6 +267,19 @@ void bind_system(nb::module_& mod) {
           "out"_a.noconvert(),
           "The Jacobian of residual() (balance and constraints) with respect to (y, lambda): ck "
           "d/dy + cv d/dv + ca d/da, dense (n + m)^2, held rows and columns as assembled.")
+      .def(
+          "joint_reaction",
+          [](const SystemHolder& h, int k, In y, double t, In lam) {
+            expect_size(y, static_cast<std::size_t>(h.s.n), "y");
+            expect_size(lam, static_cast<std::size_t>(h.s.m), "lam");
+            if (k < 0 || static_cast<std::size_t>(k) >= h.s.joints.size())
+              throw std::invalid_argument("joint_reaction: no such joint");
+            std::array<double, 3> f{}, mo{};
+            rancf::joint_reaction(h.s, k, y.data(), t, lam.data(), f.data(), mo.data());
+            return std::make_tuple(f, mo);
+          },
+          "k"_a, "y"_a, "t"_a, "lam"_a,
+          "(force, moment) joint k exerts on its first place's body (world axes).")
       .def(
           "energies",
           [](const SystemHolder& h, In y, In v) {

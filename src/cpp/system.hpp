@@ -130,3 +130,15 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
                      BorderedLU* lu);
 
 }  // namespace rancf
+
+namespace rancf {
+
+/// The force and moment (about the place, world axes) that joint k exerts on its first place's
+/// body at (y, t) with multipliers lam: the generalized forces Q = -G_A^T lambda on the place's
+/// coordinates matched in the least-squares sense by Q_j = F . dx/du_j + M . w_j, w_j the
+/// rotation rate of the place's frame per coordinate (exact for pins, fixed joints, revolutes
+/// and sliders; the moment is zero at a place without a frame).
+void joint_reaction(const System& s, int k, const double* y, double t, const double* lam,
+                    double* force, double* moment);
+
+}  // namespace rancf
