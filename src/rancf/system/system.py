@@ -25,6 +25,7 @@ from rancf.kernels import _core
 from rancf.model.rigid import PointMass, RigidBody
 from rancf.model.system import Model
 from rancf.model.time_function import TimeFunction, pack
+from rancf.system.joint_data import joint_data
 from rancf.system.parts import JOINT_KINDS, Joint, Load, Spring
 from rancf.system.places import Place
 
@@ -32,7 +33,6 @@ __all__ = ["System", "Body"]
 
 Body = Model | RigidBody | PointMass
 _NODE_KIND = {"rancf": 1, "ancf": 1, "rod": 2, "beam": 3}
-_KIND = {"pin": 0, "fixed": 1, "tangent": 2, "revolute": 3, "slider": 4}
 
 
 @dataclass
@@ -62,6 +62,8 @@ class System:
     damping : float
         Mass-proportional damping ``c`` of every body [1/s] (flexible bodies: their model's is
         ignored).
+    observe : sequence of places
+        Places on bodies whose position and frame outputs read (:meth:`place_state`).
     """
 
     def __init__(
@@ -72,6 +74,7 @@ class System:
         loads: Sequence[Load] = (),
         gravity: ArrayLike | None = None,
         damping: float = 0.0,
+        observe: Sequence[Place | str] = (),
     ) -> None:
         if not bodies:
             raise InputError("bodies", {}, "at least one body")
@@ -120,6 +123,11 @@ class System:
         self._prescribed = self._motions(rows)
         self._spring_rows = [self._spring(s, rows) for s in springs]
         self._load_rows = [self._load(ld, rows) for ld in self._all_loads()]
+        for spec in observe:
+            p = self.resolve(spec)
+            if p.body is None:
+                raise InputError("place", "ground", "a place on a body")
+            self._index(p, rows)
         pre = [self._place(j, rows) for j in joints]  # places first: their reference frames
         self.core = self._build(rows, [])
         self.joint_data = [self._joint(j, ab, rows) for j, ab in zip(joints, pre, strict=True)]
@@ -169,6 +177,18 @@ class System:
         rows.places.append((kind, body, node, point, motion if p.body is None else -1, angle0))
         self._place_index[key] = len(rows.places) - 1
         return len(rows.places) - 1
+
+    def place_state(
+        self, spec: Place | str, y: NDArray, t: float = 0.0
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Position ``(3,)`` and frame rows ``(k, 3)`` (a cable node: its unit tangent; a rod
+        node or rigid body: its frame; a point mass: none) of a joint's, spring's, load's or
+        observed place at ``y``, ``t``."""
+        key = self.resolve(spec)
+        if key not in self._place_index:
+            raise InputError("place", str(key), "a place of a joint, spring, load or sensor")
+        x, f = self.core.place(self._place_index[key], np.asarray(y, dtype=float), float(t))
+        return np.asarray(x), np.asarray(f).reshape(-1, 3)
 
     def reference_position(self, p: Place) -> NDArray[np.float64]:
         """A place's position in the reference configuration (3 components)."""
@@ -270,80 +290,8 @@ class System:
 
     def _joint(self, j: Joint, ab: tuple[int, int], rows: _Rows) -> dict:
         a, b = ab
-        fa, fb = self._frames(a)[1], self._frames(b)[1]
-        d = self.dim
-        info: dict = {"kind": _KIND[j.kind], "a": a, "b": b, "driven": 0, "angle": -1,
-                      "beta0": 0.0, "rel": np.zeros(9), "axis_a": np.zeros(3),
-                      "normals_b": np.zeros(6), "w_a": np.zeros(3), "w_b": np.zeros(3)}  # fmt: skip
-        axis = None
-        if j.axis is not None:
-            axis = np.r_[np.asarray(j.axis, dtype=float), np.zeros(3)][:3]
-            if np.asarray(j.axis).size != d or not np.linalg.norm(axis) > 0:
-                raise InputError("joints.axis", list(j.axis), f"a nonzero vector of {d} numbers")
-            axis = axis / np.linalg.norm(axis)
-        if (
-            j.kind in ("revolute", "slider")
-            and axis is None
-            and not (d == 2 and j.kind == "revolute")
-        ):
-            raise InputError("joints.axis", None, f"required for a {j.kind} joint")
-        need = {"fixed": True, "slider": True}.get(j.kind, j.angle is not None)
-        if need and (len(fb) < 3 or (j.kind != "slider" and len(fa) < 3 and d == 2)):
-            raise InputError(
-                "joints.between",
-                [str(x) for x in j.between],
-                "places with an orientation for this joint (not a point mass)",
-            )
-        if j.angle is not None:
-            if j.kind not in ("pin", "revolute"):
-                raise InputError("joints.angle", "set", "a pin or revolute joint")
-            if j.angle.size != 1:
-                raise InputError("joints.angle", j.angle.size, "a scalar time function [rad]")
-            info["driven"], info["angle"] = 1, rows.tf(j.angle)
-        if d == 2:
-            if j.kind == "revolute":
-                info["kind"] = _KIND["pin"]
-            if j.kind == "fixed" or j.angle is not None:
-                info["beta0"] = float(np.arctan2(fa[0] @ fb[1], fa[0] @ fb[0]))
-            if j.kind == "slider":
-                normal = np.array([-axis[1], axis[0], 0.0])  # type: ignore[index]
-                info["normals_b"][:3] = fb @ normal
-            return info
-        if j.kind == "fixed":
-            if len(fa) == 3 and len(fb) == 3:
-                info["rel"] = (fa @ fb.T).ravel()
-                return info
-            if len(fa) == 1 and len(fb) == 3:
-                info["kind"] = _KIND["tangent"]
-                n1, n2 = _normals(fa[0])
-                info["normals_b"] = np.r_[fb @ n1, fb @ n2]
-                return info
-            raise InputError(
-                "joints.kind",
-                "fixed",
-                "a frame on at least one side (a 3D cable has only a tangent: use rods)",
-            )
-        if j.kind == "slider":
-            if len(fb) < 3:
-                raise InputError("joints.between", str(j.between[1]), "a place with a frame")
-            n1, n2 = _normals(axis)
-            info["normals_b"] = np.r_[fb @ n1, fb @ n2]
-            return info
-        if j.kind == "revolute":
-            if len(fa) < 3 or len(fb) < 3:
-                raise InputError(
-                    "joints.between",
-                    [str(x) for x in j.between],
-                    "places with a frame (a 3D cable node has only a tangent: a rod)",
-                )
-            n1, n2 = _normals(axis)
-            info["axis_a"], info["normals_b"] = fa @ axis, np.r_[fb @ n1, fb @ n2]
-            if j.angle is not None:
-                info["w_a"], info["w_b"] = fa @ n1, fb @ n1
-            return info
-        if j.angle is not None:
-            raise InputError("joints.angle", "pin", "a revolute joint in 3D (it needs an axis)")
-        return info
+        angle = rows.tf(j.angle) if j.angle is not None else -1
+        return joint_data(j, a, b, self._frames(a)[1], self._frames(b)[1], self.dim, angle)
 
     def _build(self, rows: _Rows, joints: list[dict]) -> _core.System:
         i64 = np.int64
@@ -458,12 +406,3 @@ class System:
                 self.bodies.items() if not isinstance(b, Model)]  # fmt: skip
         allp = np.concatenate(pts)
         return float(np.ptp(allp, axis=0).max()) or 1.0
-
-
-def _normals(e: NDArray) -> tuple[NDArray, NDArray]:
-    """Two unit vectors normal to ``e`` and to each other."""
-    e = e / np.linalg.norm(e)
-    helper = np.eye(3)[int(np.argmin(np.abs(e)))]
-    n1 = np.cross(e, helper)
-    n1 /= np.linalg.norm(n1)
-    return n1, np.cross(e, n1)
