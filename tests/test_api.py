@@ -9,8 +9,8 @@ import pytest
 import rancf
 from rancf.cli import main
 from rancf.errors import ScenarioError
-from rancf.model.scenario import parse_scenario
-from rancf.model.schema import scenario_schema
+from rancf.scenario import parse_scenario
+from rancf.scenario.schema import scenario_schema
 from rancf.solvers.dynamic import DynamicOptions
 from tests.model.test_scenario import BASE
 

@@ -15,12 +15,13 @@ LAYERS = {
     "cad": 2,
     "kernels": 3,
     "model": 4,
-    "solvers": 5,
-    "post": 6,
-    "sweep": 7,
-    "studies": 8,
+    "scenario": 5,
+    "solvers": 6,
+    "post": 7,
+    "sweep": 8,
+    "studies": 9,
 }
-CLI = 9  # cli*.py, __main__.py, __init__.py (the lazy public API) may import anything
+CLI = 10  # cli*.py, __main__.py, __init__.py (the lazy public API) may import anything
 
 
 def _part(module: str) -> str:

@@ -13,7 +13,7 @@ from pathlib import Path
 
 import pytest
 
-from rancf.model.scenario import parse_scenario
+from rancf.scenario import parse_scenario
 from tests.numbers import assert_lines_match
 
 README = Path(__file__).resolve().parents[1] / "README.md"

@@ -47,7 +47,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     limit = _positive("--max-output-gb", args.max_output_gb, "a finite size in GB > 0")
     out = check_out_dir(args.out)
     from rancf.model.outputs import DerivedOutputs
-    from rancf.model.scenario import load_scenario
+    from rancf.scenario import load_scenario
     from rancf.post.checks import run_warnings, section_warnings
     from rancf.post.history import HistoryStore, estimate_output_bytes
     from rancf.post.results import run_summary
@@ -228,7 +228,7 @@ def _cmd_static(args: argparse.Namespace) -> int:
     import numpy as np
 
     from rancf.cli_equilibrium import reactions_json
-    from rancf.model.scenario import load_scenario
+    from rancf.scenario import load_scenario
     from rancf.post.checks import run_warnings
     from rancf.post.results import LoadPath, sensor_table, write_static_run
     from rancf.solvers.static import solve_static
@@ -295,7 +295,7 @@ def _vec(v: list[float], floor: float) -> str:
 def _cmd_modes(args: argparse.Namespace) -> int:
     import numpy as np
 
-    from rancf.model.scenario import load_scenario
+    from rancf.scenario import load_scenario
     from rancf.post.checks import run_warnings
     from rancf.solvers.modal import natural_modes
     from rancf.solvers.static import solve_static

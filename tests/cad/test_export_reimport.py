@@ -11,7 +11,7 @@ import pytest
 
 from rancf.cli import main
 from rancf.geometry.tangents import vector_angle
-from rancf.model.scenario import load_scenario
+from rancf.scenario import load_scenario
 from rancf.post.run_data import centerline_nodes, load_run
 from tests.model.test_scenario import BASE
 

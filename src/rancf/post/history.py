@@ -25,7 +25,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rancf.model.outputs import DerivedOutputs
-from rancf.model.scenario_sensors import Sensor
+from rancf.scenario.sensors import Sensor
 from rancf.model.system import Model
 from rancf.post.results import atomic_write, strict_json, write_history_files
 

@@ -33,7 +33,7 @@ from numpy.typing import NDArray
 
 from rancf.model.motion import angular_momentum
 from rancf.model.outputs import DerivedOutputs
-from rancf.model.scenario_sensors import Sensor
+from rancf.scenario.sensors import Sensor
 from rancf.model.system import Model
 from rancf.post.checks import run_warnings
 from rancf.solvers.dynamic import DynamicResult

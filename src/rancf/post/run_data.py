@@ -186,7 +186,7 @@ def load_run(run_dir: str | Path) -> RunData:
     angles = None if meta.get("tangent_angles") is None else np.array(meta["tangent_angles"])
     sc_path = None if radius is not None else _find_scenario(path)  # runs of rancf < 0.3
     if sc_path is not None:
-        from rancf.model.scenario import load_scenario
+        from rancf.scenario import load_scenario
 
         sc = load_scenario(sc_path)
         s = sc.data["section"]

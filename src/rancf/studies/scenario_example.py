@@ -21,7 +21,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from rancf.errors import ConvergenceError
-from rancf.model.scenario import load_scenario
+from rancf.scenario import load_scenario
 from rancf.post.results import (
     LoadPath,
     atomic_write,
