@@ -21,10 +21,11 @@ angle) or vector valued (a support's displacement), every component sharing the 
   join ``Ω`` and ``0`` with continuous rate and acceleration at ``t = T`` (zero before ``t = 0``);
 * ``from_callable(fn)``: any Python function of ``t`` (the Python API).  The function is kept and
   called for the value; the rate and the acceleration are central differences
-  ``(f(t+h) − f(t−h)) / 2h`` with ``h = 6e-6 max(1, |t|)`` (about ``ε^(1/3)``: error ~1e-10
-  relative for smooth functions) and ``(f(t+h) − 2 f(t) + f(t−h)) / h²`` with
-  ``h = 1.2e-4 max(1, |t|)`` (about ``ε^(1/4)``: error ~1e-7 relative).  :meth:`sampled`
-  turns it into a cubic table for code that cannot call Python (the compiled time loop).
+  ``(f(t+h) − f(t−h)) / 2h`` with ``h = 6e-6 s`` (about ``ε^(1/3)``: truncation ``h² f‴ / 6``,
+  round-off ``ε (|f| + |t f′|) / h``: ~1e-10 relative for smooth functions on a time scale of
+  a second) and ``(f(t+h) − 2 f(t) + f(t−h)) / h²`` with ``h = 1.2e-4 s`` (about ``ε^(1/4)``:
+  ~1e-7 relative).  :meth:`sampled` turns it into a cubic table for code that cannot call
+  Python (the compiled time loop).
 
 At a kink (a table's breakpoint, the end of a ramp) the rate is the one of the interval that
 starts there (the right derivative).
@@ -46,7 +47,7 @@ __all__ = ["TimeFunction", "KINDS", "spin_up_angle"]
 #: The kinds of time functions.
 KINDS = ("constant", "table", "ramp", "harmonic", "spin_up", "callable")
 
-_H1, _H2 = 6e-6, 1.2e-4  # central-difference steps of callables (relative to max(1, |t|))
+_H1, _H2 = 6e-6, 1.2e-4  # central-difference steps of callables [s]
 
 
 def _values(key: str, v: ArrayLike) -> tuple[tuple[float, ...], bool]:
@@ -245,11 +246,10 @@ class TimeFunction:
 
         if order == 0:
             return f(t)
-        scale = max(1.0, abs(t))
         if order == 1:
-            h = _H1 * scale
+            h = _H1
             return (f(t + h) - f(t - h)) / (2.0 * h)
-        h = _H2 * scale
+        h = _H2
         return (f(t + h) - 2.0 * f(t) + f(t - h)) / (h * h)
 
     # ------------------------------------------------------------------ other forms
