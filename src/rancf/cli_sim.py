@@ -47,10 +47,10 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     limit = _positive("--max-output-gb", args.max_output_gb, "a finite size in GB > 0")
     out = check_out_dir(args.out)
     from rancf.model.outputs import DerivedOutputs
-    from rancf.scenario import load_scenario
     from rancf.post.checks import run_warnings, section_warnings
     from rancf.post.history import HistoryStore, estimate_output_bytes
     from rancf.post.results import run_summary
+    from rancf.scenario import load_scenario
     from rancf.solvers.static import start_state
 
     sc = load_scenario(args.scenario)
@@ -228,9 +228,9 @@ def _cmd_static(args: argparse.Namespace) -> int:
     import numpy as np
 
     from rancf.cli_equilibrium import reactions_json
-    from rancf.scenario import load_scenario
     from rancf.post.checks import run_warnings
     from rancf.post.results import LoadPath, sensor_table, write_static_run
+    from rancf.scenario import load_scenario
     from rancf.solvers.static import solve_static
 
     out_dir = check_out_dir(args.out) if args.out else None
@@ -295,8 +295,8 @@ def _vec(v: list[float], floor: float) -> str:
 def _cmd_modes(args: argparse.Namespace) -> int:
     import numpy as np
 
-    from rancf.scenario import load_scenario
     from rancf.post.checks import run_warnings
+    from rancf.scenario import load_scenario
     from rancf.solvers.modal import natural_modes
     from rancf.solvers.static import solve_static
 

@@ -119,7 +119,9 @@ points = { hook = [0.0, 0.1, 0.0] }
 [[supports]]
 at = "cable:start"
 kind = "pin"
-motion = { table = [[0.0, 0.0, 0.0, 0.0], [1.0, 0.1, 0.0, 0.0], [2.0, 0.1, 0.1, 0.0]], interpolation = "cubic" }
+[supports.motion]
+table = [[0.0, 0.0, 0.0, 0.0], [1.0, 0.1, 0.0, 0.0], [2.0, 0.1, 0.1, 0.0]]
+interpolation = "cubic"
 
 [[joints]]
 name = "end"

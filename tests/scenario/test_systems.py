@@ -292,6 +292,7 @@ def test_bad_system_file_through_the_cli(tmp_path, capsys):
     assert main(["simulate", str(f), "--out", str(tmp_path / "run")]) == 2
     out, err = capsys.readouterr()
     assert out == "" and err.strip().splitlines() == [
-        f"rancf: error: {f}: [joints[1].between[1]] names no body: 'rood' (bodies: crank, rod, slider)"
+        f"rancf: error: {f}: [joints[1].between[1]] names no body: 'rood' "
+        "(bodies: crank, rod, slider)"
     ]
     assert not (tmp_path / "run").exists()

@@ -25,9 +25,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rancf.model.outputs import DerivedOutputs
-from rancf.scenario.sensors import Sensor
 from rancf.model.system import Model
 from rancf.post.results import atomic_write, strict_json, write_history_files
+from rancf.scenario.sensors import Sensor
 
 __all__ = ["HistoryStore", "estimate_output_bytes"]
 

@@ -48,10 +48,13 @@ def show(value: Any) -> str:
     """A value as an error message shows it: ``repr``, at most :data:`MAX_SHOWN` characters, an
     integer of hundreds of digits by its number of digits."""
     if isinstance(value, int) and not isinstance(value, bool) and abs(value) >= 10**MAX_SHOWN:
-        return f"an integer of about {int(abs(value).bit_length() * 0.30103) + 1} digits"
+        return f"an integer of {math.floor(math.log10(abs(value))) + 1} digits"
     if isinstance(value, np.ndarray):
         value = value.tolist()
-    return shorten(repr(value))
+    try:
+        return shorten(repr(value))
+    except RecursionError:
+        return f"a {type(value).__name__} nested too deeply to show"
 
 
 def shorten(text: str, limit: int = MAX_SHOWN) -> str:
@@ -153,6 +156,14 @@ class Table(BaseModel):
     def unknown_key_message(cls, key: str) -> str:
         """The problem of an unknown ``key``."""
         return f"unknown key (allowed: {', '.join(cls.file_keys())})"
+
+    def __eq__(self, other: object) -> bool:
+        """Equal tables hold equal values (where a scenario came from is not compared)."""
+        if not isinstance(other, BaseModel):
+            return NotImplemented
+        return type(self) is type(other) and self.__dict__ == other.__dict__
+
+    __hash__ = None  # type: ignore[assignment]
 
     def __getitem__(self, key: str) -> Any:
         for name, f in type(self).model_fields.items():

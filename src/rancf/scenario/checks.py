@@ -42,7 +42,7 @@ class _Context:
             self.bodies = {}
             for i, b in enumerate(sc.bodies):
                 if b.name == "ground" or b.name in self.bodies:
-                    raise fail(f"bodies[{i}].name", f"{b.name!r} is used twice or reserved "
+                    raise fail(f"bodies[{i}].name", f"{show(b.name)} is used twice or reserved "
                                '("ground")')  # fmt: skip
                 self.bodies[b.name] = b
         self.dim = self._dim()
@@ -157,7 +157,7 @@ def _joints(c: _Context) -> None:
     for i, j in enumerate(c.sc.joints):
         key = f"joints[{i}]"
         if j.name in names:
-            raise fail(f"{key}.name", f"{j.name!r} is used twice")
+            raise fail(f"{key}.name", f"{show(j.name)} is used twice")
         names.add(j.name)
         ps = [c.place(f"{key}.between[{k}]", v, ground=True) for k, v in enumerate(j.between)]
         if all(p.where == "ground" for p in ps):
@@ -188,7 +188,7 @@ def _sensors(c: _Context, supports: list[Place]) -> None:
     for i, s in enumerate(c.sc.sensor_tables):
         key = f"sensors[{i}]"
         if s.name in names or s.name == "t":
-            raise fail(f"{key}.name", f"{s.name!r} is used twice or reserved")
+            raise fail(f"{key}.name", f"{show(s.name)} is used twice or reserved")
         names.add(s.name)
         _size(f"{key}.about", s.about, c.dim)
         places = []
@@ -204,19 +204,19 @@ def _sensors(c: _Context, supports: list[Place]) -> None:
             raise fail(f"{key}.at", "an axial force is measured at a node of a flexible body")
         if s.kind == "reaction":
             if s.joint is not None and s.joint not in joints:
-                raise fail(f"{key}.joint", f"names no joint: {s.joint!r} (joints: "
+                raise fail(f"{key}.joint", f"names no joint: {show(s.joint)} (joints: "
                            f"{', '.join(sorted(joints)) or 'none'})")  # fmt: skip
             if s.at is not None and places[0] not in supports:
-                raise fail(f"{key}.at", f"must be the place of a support, got {s.at!r}")
+                raise fail(f"{key}.at", f"must be the place of a support, got {show(s.at)}")
         if s.body is not None:
             b = None if c.bodies is None else c.bodies.get(s.body)
             if b is None:
                 known = (
                     "none: a file without [[bodies]]" if c.bodies is None else ", ".join(c.bodies)
                 )
-                raise fail(f"{key}.body", f"names no body: {s.body!r} (bodies: {known})")
+                raise fail(f"{key}.body", f"names no body: {show(s.body)} (bodies: {known})")
             if s.kind == "angle" and not isinstance(b, RigidBody):
-                raise fail(f"{key}.body", f"an angle is of a rigid body, {s.body!r} is not one")
+                raise fail(f"{key}.body", f"an angle is of a rigid body, {show(s.body)} is not one")
         elif s.kind == "angle":
             raise fail(f"{key}.body", "an angle sensor needs body = NAME (a rigid body)")
 

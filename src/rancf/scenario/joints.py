@@ -22,7 +22,7 @@ from typing import Literal
 
 from pydantic import Field, model_validator
 
-from rancf.scenario.base import Name, NonNegative, PlacePair, Positive, Table, fail, vector
+from rancf.scenario.base import Name, NonNegative, PlacePair, Positive, Table, fail, show, vector
 from rancf.scenario.loads import TimeFunctionValue, check_scalar
 
 __all__ = ["JointTable", "SpringTable", "JOINT_KINDS"]
@@ -63,7 +63,7 @@ class JointTable(Table):
         check_scalar("angle", self.angle)
         a, b = self.between
         if a == b:
-            raise fail("between", f"must be two different places, got {a!r} twice")
+            raise fail("between", f"must be two different places, got {show(a)} twice")
         return self
 
 
@@ -84,5 +84,5 @@ class SpringTable(Table):
             raise fail("stiffness", "stiffness and damping are both 0: the spring does nothing")
         a, b = self.between
         if a == b:
-            raise fail("between", f"must be two different places, got {a!r} twice")
+            raise fail("between", f"must be two different places, got {show(a)} twice")
         return self

@@ -82,8 +82,8 @@ class TableFunction(Table):
                 raise fail(f"table[{i}]", f"must be a row [t, v...] of {max(width, 2)} numbers "
                            f"like the first row, got {show(row)}")  # fmt: skip
             if i and not row[0] > self.table[i - 1][0]:
-                raise fail(f"table[{i}][0]", f"times must increase strictly, got {row[0]!r} "
-                           f"after {self.table[i - 1][0]!r}")  # fmt: skip
+                raise fail(f"table[{i}][0]", f"times must increase strictly, got {show(row[0])} "
+                           f"after {show(self.table[i - 1][0])}")  # fmt: skip
         return self
 
     def function(self) -> TimeFunction:
@@ -140,7 +140,7 @@ def _python_function(v: Any) -> TimeFunction:
 
 
 def _serialize_python(f: TimeFunction) -> Any:
-    return f.to_toml()
+    return f if f.kind == "callable" else f.to_toml()  # a callable has no file form
 
 
 _KINDS = ("table", "ramp", "harmonic", "spin_up")

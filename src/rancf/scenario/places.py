@@ -17,7 +17,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from rancf.scenario.base import fail, show
+from rancf.scenario.base import fail, shorten, show
 from rancf.scenario.bodies import FlexibleBody, PointMass, RigidBody
 
 __all__ = ["Place", "resolve_place"]
@@ -85,25 +85,27 @@ def resolve_place(
     names = ", ".join(bodies)
     if isinstance(v, int):
         raise fail(key, f'must be "BODY:start", "BODY:end", "BODY:N", "BODY" or "BODY:POINT" '
-                   f"with [[bodies]] (bodies: {names}), got {v!r}")  # fmt: skip
+                   f"with [[bodies]] (bodies: {shorten(names)}), got {show(v)}")  # fmt: skip
     name, _, sub = v.partition(":")
     body = bodies.get(name)
     if body is None:
-        raise fail(key, f"names no body: {name!r} (bodies: {names})")
+        raise fail(key, f"names no body: {show(name)} (bodies: {shorten(names)})")
     if isinstance(body, FlexibleBody):
         node = _node(sub)
         if node is None:
-            raise fail(key, f'a place of the flexible body {name!r} is "{name}:start", '
-                       f'"{name}:end" or "{name}:N" (a node index), got {v!r}')  # fmt: skip
+            raise fail(key, f'a place of the flexible body {show(name)} is "{name}:start", '
+                       f'"{name}:end" or "{name}:N" (a node index), got {show(v)}')  # fmt: skip
         return Place(v, "node", name, node=node)
     if not sub:
         return Place(v, "center", name)
     if isinstance(body, PointMass):
-        raise fail(key, f'the point mass {name!r} is the place "{name}" itself, got {v!r}')
+        raise fail(key, f'the point mass {show(name)} is the place "{name}" itself, got {show(v)}')
     assert isinstance(body, RigidBody)
     if sub not in body.points:
         known = ", ".join(body.points) or "none"
-        raise fail(key, f"the rigid body {name!r} has no point {sub!r} (its points: {known})")
+        raise fail(
+            key, f"the rigid body {show(name)} has no point {show(sub)} (its points: {known})"
+        )
     return Place(v, "point", name, point=sub)
 
 

@@ -205,11 +205,8 @@ class Scenario(Table):
 
     def save(self, path: str | Path) -> None:
         """Write the scenario to ``path`` as TOML (atomically: a complete file or none)."""
-        from rancf.cad import atomic_file
-
         p = Path(path)
-        text = self.to_toml(p.resolve().parent)
-        atomic_file(p, lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))
+        _write_atomic(p, self.to_toml(p.resolve().parent))
 
     def _time_functions(self) -> list[tuple[str, Any]]:
         out = [(f"supports[{i}].motion", s.motion) for i, s in enumerate(self.supports)]
@@ -236,6 +233,10 @@ def _geometry_data(g: Any) -> dict[str, Any]:
     return out
 
 
+def _tf(v: Any) -> Any:
+    return None if v is None else time_function(v)
+
+
 def _node_or_text(v: int | str, one_body: bool) -> int | str:
     if one_body and v in ("start", "end"):
         return 0 if v == "start" else -1
@@ -255,26 +256,27 @@ def _data(sc: Scenario) -> dict[str, Any]:
         bd = b.model_dump()
         if hasattr(b, "geometry"):
             bd["geometry"] = _geometry_data(b.geometry)
-            bd["initial_motion"] = b.initial_motion and b.initial_motion.as_dict()
+            im = b.initial_motion
+            bd["initial_motion"] = None if im is None else im.as_dict()
         d["bodies"].append(bd)
-    d["joints"] = [{**j.model_dump(), "angle": j.angle and time_function(j.angle)}
+    d["joints"] = [{**j.model_dump(exclude={"angle"}), "angle": _tf(j.angle)}
                    for j in sc.joints]  # fmt: skip
     d["springs"] = [s.model_dump() for s in sc.springs]
     d["supports"] = [
-        {**s.model_dump(), "at": _node_or_text(s.at, one), "label": s.at,
-         "motion": s.motion and time_function(s.motion)}
+        {**s.model_dump(exclude={"motion"}), "at": _node_or_text(s.at, one), "label": s.at,
+         "motion": _tf(s.motion)}
         for s in sc.supports
     ]  # fmt: skip
     d["loads"] = {
         "gravity": sc.loads.gravity,
-        "point": [{**p.model_dump(), "at": _node_or_text(p.at, one),
-                   "time": p.time and time_function(p.time)} for p in sc.loads.point],
+        "point": [{**p.model_dump(exclude={"time"}), "at": _node_or_text(p.at, one),
+                   "time": _tf(p.time)} for p in sc.loads.point],
     }  # fmt: skip
     d["damping"] = sc.damping.model_dump()
     d["initial_velocity"] = [
         {"at": _node_or_text(iv.at, one), "value": iv.value} for iv in sc.initial_velocity
     ]
-    d["initial_motion"] = sc.initial_motion and sc.initial_motion.as_dict()
+    d["initial_motion"] = None if sc.initial_motion is None else sc.initial_motion.as_dict()
     d["solver"] = sc.solver.model_dump()
     d["modes"] = sc.modes.model_dump()
     return d
@@ -304,6 +306,30 @@ def _read_toml(p: Path) -> dict[str, Any]:
                             "other)") from None  # fmt: skip
     except ValueError as exc:  # TOMLDecodeError, or an integer of more than 4300 digits
         raise ScenarioError(str(p), "file", f"is not valid TOML: {shorten(str(exc))}") from None
+
+
+def _write_atomic(path: Path, text: str) -> None:
+    """Write ``text`` through a temporary file beside ``path`` and a rename, with the mode a new
+    file gets under the umask; errors name the file."""
+    import os
+    import tempfile
+
+    mask = os.umask(0)
+    os.umask(mask)
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
+    except OSError as exc:
+        raise ScenarioError(str(path), "file", f"cannot be written: {exc.strerror}") from None
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as fh:
+            fh.write(text)
+        os.chmod(tmp, 0o666 & ~mask)
+        os.replace(tmp, path)
+    except OSError as exc:
+        raise ScenarioError(str(path), "file", f"cannot be written: {exc.strerror}") from None
+    finally:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
 
 
 def load_scenario(path: str | Path) -> Scenario:

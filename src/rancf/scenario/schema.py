@@ -52,7 +52,7 @@ def scenario_schema() -> dict[str, Any]:
         "section, material) or a system ([[bodies]], [[joints]], [[springs]]). See the rancf "
         "README.",
         "anyOf": [
-            {"required": _ONE_BODY},
+            {"required": _ONE_BODY, "not": {"required": ["bodies"]}},
             {"required": ["bodies"], "not": {"anyOf": [{"required": [k]} for k in _ONE_BODY]}},
         ],
     }

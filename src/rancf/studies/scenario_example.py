@@ -21,7 +21,6 @@ from __future__ import annotations
 from pathlib import Path
 
 from rancf.errors import ConvergenceError
-from rancf.scenario import load_scenario
 from rancf.post.results import (
     LoadPath,
     atomic_write,
@@ -32,6 +31,7 @@ from rancf.post.results import (
 )
 from rancf.post.run_data import load_run
 from rancf.post.run_plots import plot_run
+from rancf.scenario import load_scenario
 from rancf.studies.common import SCENARIO_ANALYSES, StudyResult, example_path
 
 __all__ = ["run_scenario"]
