@@ -1,7 +1,8 @@
 """Typed models of the scenario format: one description for TOML files and Python.
 
 ``Scenario`` (:mod:`rancf.scenario.scenario`) holds the tables, one module per family:
-:mod:`~rancf.scenario.geometry` (geometry, mesh, section, material),
+:mod:`~rancf.scenario.geometry` (geometry, mesh), :mod:`~rancf.scenario.section` (section,
+material),
 :mod:`~rancf.scenario.loads` (supports, loads, time functions, damping, initial motion),
 :mod:`~rancf.scenario.bodies` (flexible, rigid and point-mass bodies),
 :mod:`~rancf.scenario.joints` (joints and springs), :mod:`~rancf.scenario.solver` (solver,
@@ -17,10 +18,8 @@ from rancf.scenario.geometry import (
     CadGeometry,
     ConicGeometry,
     LineGeometry,
-    MaterialTable,
     MeshTable,
     NurbsGeometry,
-    SectionTable,
 )
 from rancf.scenario.joints import JointTable, SpringTable
 from rancf.scenario.loads import (
@@ -38,6 +37,7 @@ from rancf.scenario.loads import (
 from rancf.scenario.places import Place
 from rancf.scenario.scenario import Scenario, load_scenario, parse_scenario
 from rancf.scenario.schema import scenario_schema
+from rancf.scenario.section import MaterialTable, SectionTable
 from rancf.scenario.sensors import Sensor, SensorTable
 from rancf.scenario.solver import ModesTable, SolverTable
 

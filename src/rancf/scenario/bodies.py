@@ -34,8 +34,9 @@ from rancf.scenario.base import (
     under,
     vector,
 )
-from rancf.scenario.geometry import Geometry, MaterialTable, MeshTable, SectionTable, check_flexible
+from rancf.scenario.geometry import Geometry, MeshTable
 from rancf.scenario.loads import InitialMotionTable
+from rancf.scenario.section import MaterialTable, SectionTable, check_flexible
 
 __all__ = ["FlexibleBody", "RigidBody", "PointMass", "Body", "ORTHONORMAL_TOL"]
 

@@ -15,9 +15,9 @@ from pydantic_core import PydanticCustomError
 
 from rancf.scenario.base import fail, show, under
 from rancf.scenario.bodies import FlexibleBody, RigidBody
-from rancf.scenario.geometry import check_flexible
 from rancf.scenario.loads import time_size
 from rancf.scenario.places import Place, resolve_place
+from rancf.scenario.section import check_flexible
 
 if TYPE_CHECKING:
     from rancf.scenario.scenario import Scenario

@@ -23,14 +23,7 @@ from rancf.errors import ScenarioError
 from rancf.scenario.base import Table, shorten
 from rancf.scenario.bodies import Body
 from rancf.scenario.checks import check_scenario
-from rancf.scenario.geometry import (
-    GEOMETRY_KEYS,
-    CadGeometry,
-    Geometry,
-    MaterialTable,
-    MeshTable,
-    SectionTable,
-)
+from rancf.scenario.geometry import GEOMETRY_KEYS, CadGeometry, Geometry, MeshTable
 from rancf.scenario.joints import JointTable, SpringTable
 from rancf.scenario.loads import (
     DampingTable,
@@ -41,6 +34,7 @@ from rancf.scenario.loads import (
     time_function,
 )
 from rancf.scenario.messages import scenario_error
+from rancf.scenario.section import MaterialTable, SectionTable
 from rancf.scenario.sensors import Sensor, SensorTable
 from rancf.scenario.solver import ModesTable, SolverTable
 
