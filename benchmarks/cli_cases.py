@@ -9,6 +9,7 @@ and the ratio A/B is taken pair by pair (median quoted), so machine drift cancel
 from __future__ import annotations
 
 import json
+import shutil
 import statistics
 import subprocess
 import sys
@@ -58,6 +59,7 @@ at = "end"
 
 
 def _run_rancf(scenario: Path, out: Path) -> dict[str, Any]:
+    shutil.rmtree(out, ignore_errors=True)  # a new folder each time (untimed), as --out wants
     t0 = time.perf_counter()
     cmd = [sys.executable, "-m", "rancf", "simulate", str(scenario), "--out", str(out), "--quiet"]
     subprocess.run(cmd, check=True, capture_output=True)

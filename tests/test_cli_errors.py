@@ -463,7 +463,7 @@ SCENARIOS = [
         "sensors[0].about",
     ),
     ("t-end-1e6", mutated(solver__t_end=1e6), 2, "GB"),
-    ("t-end-1e12", mutated(solver__t_end=1e12, solver__output_step=1.0), 2, "GB"),
+    ("t-end-1e12", mutated(solver__t_end=1e12, solver__output_step=1.0), 2, "solver.t_end"),
 ]
 
 

@@ -146,6 +146,7 @@ def test_files_honour_the_umask(tmp_path, monkeypatch, umask, file_mode, dir_mod
     run = tmp_path / "run"
     assert run.stat().st_mode & 0o777 == dir_mode
     files = sorted(run.iterdir())
-    names = ["energy.csv", "reactions.csv", "results.npz", "sensors.csv", "summary.json"]
+    names = ["energy.csv", "reactions.csv", "results.npz", "scenario.toml", "sensors.csv"]
+    names += ["summary.json"]
     assert [f.name for f in files] == names
     assert all(f.stat().st_mode & 0o777 == file_mode for f in files)

@@ -7,6 +7,7 @@ ROOT = Path(__file__).resolve().parents[1] / "src" / "rancf"
 
 #: Layer of each top-level part of the package, in pipeline order.
 LAYERS = {
+    "atomic": 0,
     "errors": 0,
     "extras": 0,
     "exudyn_compat": 0,
@@ -15,13 +16,14 @@ LAYERS = {
     "cad": 2,
     "kernels": 3,
     "model": 4,
-    "scenario": 5,
-    "solvers": 6,
-    "post": 7,
-    "sweep": 8,
-    "studies": 9,
+    "system": 5,
+    "scenario": 6,
+    "solvers": 7,
+    "post": 8,
+    "sweep": 9,
+    "studies": 10,
 }
-CLI = 10  # cli*.py, __main__.py, __init__.py (the lazy public API) may import anything
+CLI = 11  # cli*.py, __main__.py, __init__.py (the lazy public API) may import anything
 
 
 def _part(module: str) -> str:

@@ -1,5 +1,6 @@
 """Every shipped example in reduced form: physical sanity, not numbers copied from the paper."""
 
+import os
 import re
 
 import numpy as np
@@ -18,10 +19,35 @@ def test_example_scenarios_are_valid(name):
     assert model.n_el >= 1 and sc.sensors
 
 
+#: The umask the studies run under (files 0640, folders 0750: not the 0600 of a temporary file).
+STUDY_UMASK = 0o027
+
+
 @pytest.fixture(scope="module")
 def studies(tmp_path_factory):
     out = tmp_path_factory.mktemp("studies")
-    return {name: (study_runner(name)(out / name, True), out / name) for name in EXAMPLES}
+    old = os.umask(STUDY_UMASK)
+    try:
+        return {name: (study_runner(name)(out / name, True), out / name) for name in EXAMPLES}
+    finally:
+        os.umask(old)
+
+
+def test_study_files_honour_the_umask(studies, tmp_path):
+    """What `rancf example run` and `rancf report` write (figures, tables, run folders,
+    animations, the report itself) gets the umask's permissions (issue 15, item 3)."""
+    from rancf.studies.report import write_report
+
+    old = os.umask(STUDY_UMASK)
+    try:
+        write_report(tmp_path, [(res, folder) for res, folder in studies.values()], quick=True)
+    finally:
+        os.umask(old)
+    paths = [p for _, folder in studies.values() for p in folder.rglob("*")]
+    paths += list(tmp_path.iterdir())
+    want = {p: (0o777 if p.is_dir() else 0o666) & ~STUDY_UMASK for p in paths}
+    assert {p: p.stat().st_mode & 0o777 for p in paths} == want
+    assert {p.suffix for p in paths} >= {".png", ".gif", ".csv", ".npz", ".json", ".html"}
 
 
 def test_planar_pendulum(studies):

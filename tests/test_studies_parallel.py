@@ -14,7 +14,7 @@ from pathlib import Path
 import pytest
 
 from rancf.studies.parallel import RelayExecutor, _serve
-from rancf.sweep.engine import dask_client
+from rancf.sweep.cluster import dask_client
 
 
 @pytest.fixture

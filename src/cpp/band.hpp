@@ -29,6 +29,8 @@ class BandLU {
   BandLU(int n, int ku);
   /// The matrix to factor, set to zero (fill-in rows included).
   BandView matrix();
+  /// The matrix as it is (to add to it after matrix()).
+  BandView view() { return {ab_.data(), 1, ld_, 2 * ku_}; }
   /// Rows and columns of the held coordinates replaced by the identity, then factored in place.
   /// Returns false for an exactly singular matrix.
   bool factor(const std::uint8_t* fixed);

@@ -38,7 +38,6 @@ using rancf_bind::expect_size;
 using rancf_bind::In;
 using rancf_bind::InB;
 using rancf_bind::InI;
-using rancf_bind::IntegratorHolder;
 using rancf_bind::LoadsHolder;
 using rancf_bind::ModelHolder;
 using rancf_bind::Out;
@@ -251,56 +250,6 @@ NB_MODULE(_core, mod) {
               "Strains and curvatures at sample points of every element (see sections.hpp).");
   rancf_bind::bind_inertia(model_cls);
 
-  nb::class_<IntegratorHolder>(mod, "Integrator", "Generalized-alpha steps on a model.")
-      .def(nb::init<const ModelHolder&, const rancf::Scheme&>(), "model"_a, "scheme"_a,
-           nb::keep_alive<1, 2>())
-      .def_prop_ro("factorizations",
-                   [](const IntegratorHolder& h) { return h.integ.factorizations(); })
-      .def(
-          "step",
-          [](IntegratorHolder& h, In y0, In v0, In a0, double t, double dt, Out y1, Out v1,
-             Out a1) {
-            for (const auto* a : {&y0, &v0, &a0}) expect_size(*a, h.n, "state");
-            for (const auto* a : {&y1, &v1, &a1}) expect_size(*a, h.n, "state");
-            rancf::StepOutcome r;
-            {
-              nb::gil_scoped_release release;
-              r = h.integ.step(y0.data(), v0.data(), a0.data(), t, dt, y1.data(), v1.data(),
-                               a1.data());
-            }
-            return std::make_tuple(r.converged, r.iterations);
-          },
-          "y0"_a, "v0"_a, "a0"_a, "t"_a, "h"_a, "y1"_a.noconvert(), "v1"_a.noconvert(),
-          "a1"_a.noconvert(), "One step; returns (converged, iterations).")
-      .def(
-          "run",
-          [](IntegratorHolder& h, Out y, Out v, Out a, double t0, double dt, int n_steps,
-             int out_every, Out out_y, Out out_v, Out out_e) {
-            for (const auto* x : {&y, &v, &a}) expect_size(*x, h.n, "state");
-            if (out_every < 1 || n_steps < 0) throw std::invalid_argument("run: bad step counts");
-            const auto n_out = static_cast<std::size_t>(n_steps / out_every);
-            expect_size(out_y, n_out * h.n, "out_y");
-            expect_size(out_v, n_out * h.n, "out_v");
-            expect_size(out_e, n_out * 3, "out_e");
-            rancf::RunOutcome r;
-            {
-              nb::gil_scoped_release release;
-              r = h.integ.run(y.data(), v.data(), a.data(), t0, dt, n_steps, out_every,
-                              out_y.data(), out_v.data(), out_e.data());
-            }
-            return std::make_tuple(r.steps, r.converged, r.iterations, r.stored);
-          },
-          "y"_a.noconvert(), "v"_a.noconvert(), "a"_a.noconvert(), "t0"_a, "h"_a, "n_steps"_a,
-          "out_every"_a, "out_y"_a.noconvert(), "out_v"_a.noconvert(), "out_e"_a.noconvert(),
-          "Fixed steps; returns (steps, converged, iterations, stored).")
-      .def(
-          "initial_acceleration",
-          [](IntegratorHolder& h, In y, In v, double t, Out a) {
-            for (const auto* x : {&y, &v}) expect_size(*x, h.n, "state");
-            expect_size(a, h.n, "a");
-            h.integ.initial_acceleration(y.data(), v.data(), t, a.data());
-          },
-          "y"_a, "v"_a, "t"_a, "a"_a.noconvert());
-
   rancf_bind::bind_functions(mod);
+  rancf_bind::bind_system(mod);
 }

@@ -28,4 +28,7 @@ void expect_size(const A& a, std::size_t size, const char* name) {
 /// Module-level functions (bindings_functions.cpp).
 void bind_functions(nb::module_& mod);
 
+/// Systems (bindings_system.cpp).
+void bind_system(nb::module_& mod);
+
 }  // namespace rancf_bind

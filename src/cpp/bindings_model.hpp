@@ -146,12 +146,6 @@ struct ModelHolder {
   }
 };
 
-struct IntegratorHolder {
-  rancf::Integrator integ;
-  std::size_t n;
-  IntegratorHolder(const ModelHolder& mh, const rancf::Scheme& s) : integ(mh.m, s), n(mh.n()) {}
-};
-
 /// Methods of Model for the rotary inertia (bindings_inertia.cpp).
 void bind_inertia(nb::class_<ModelHolder>& cls);
 

@@ -9,17 +9,24 @@ and an interrupt during them reaches the error path below.
 Every expected failure ends here as one line on standard error, ``rancf: error: ...`` naming the
 file, key or option, the value and what is allowed:
 
-* bad input (options, scenario files, geometry), unusable paths, unreadable or non-UTF-8 files,
-  too large a run: exit status 2, and nothing written;
-* a run that started and failed to converge: exit status 3 (results so far are kept);
+* bad input (options, scenario files, geometry), unusable or locked paths, unreadable or
+  non-UTF-8 files, too large a run, an operating-system error before a run started (a full
+  disk): exit status 2, and nothing written;
+* a run that started and failed (no convergence, a full disk): exit status 3; its folder keeps
+  the results of its last complete checkpoint and its ``summary.json`` says ``failed``;
 * Ctrl-C (SIGINT) or SIGTERM at any moment: exit status 130 (a started run keeps its files);
 * standard output closed early by the reader (``rancf conic --json | head``): exit status 141,
-  silently, as a process killed by SIGPIPE.
+  silently, as a process killed by SIGPIPE;
+* standard output closed before the start (``rancf ... >&-``), or failing (``> /dev/full``):
+  exit status 2, with one line naming it.
+
+Names that are not UTF-8 (a run folder given as raw bytes) are printed back as the same bytes.
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import importlib
 import os
 import signal
@@ -76,8 +83,52 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
 
 
 def _fail(message: str, status: int) -> int:
-    print(f"rancf: {message}", file=sys.stderr)
+    with contextlib.suppress(OSError, ValueError, AttributeError):  # stderr may be gone too
+        print(f"rancf: {message}", file=sys.stderr)
     return status
+
+
+class StdoutError(Exception):
+    """Standard output cannot be written (closed, or a full device)."""
+
+
+class _Stdout:
+    """Standard output whose write errors name it (other than a broken pipe: exit 141)."""
+
+    def __init__(self, stream: Any) -> None:
+        self._stream = stream
+
+    def _call(self, name: str, *args: Any) -> Any:
+        try:
+            return getattr(self._stream, name)(*args)
+        except BrokenPipeError:
+            raise
+        except (OSError, ValueError) as exc:
+            reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
+            raise StdoutError(f"standard output: {reason}") from None
+
+    def write(self, text: str) -> int:
+        return self._call("write", text)
+
+    def flush(self) -> None:
+        self._call("flush")
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self._stream, name)
+
+
+def _open_stdout() -> str | None:
+    """Make standard output name itself in errors and print undecodable names back as their
+    bytes; returns why it cannot be used, or None."""
+    stream = sys.stdout
+    if stream is None:
+        return "standard output is closed (redirect it to a file or to /dev/null)"
+    if isinstance(stream, _Stdout):
+        return None
+    with contextlib.suppress(AttributeError, ValueError, OSError):
+        stream.reconfigure(errors="surrogateescape")
+    sys.stdout = _Stdout(stream)  # type: ignore[assignment]
+    return None
 
 
 def _on_sigterm(signum: int, frame: Any) -> None:
@@ -89,7 +140,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     old_term = signal.getsignal(signal.SIGTERM)
     if old_term in (signal.SIG_DFL, None):
         signal.signal(signal.SIGTERM, _on_sigterm)
+    saved = sys.stdout
     try:
+        closed = _open_stdout()
+        if closed is not None:
+            return _fail(f"error: {closed}", 2)
         return _dispatch(argv)
     except KeyboardInterrupt:
         signal.signal(signal.SIGINT, signal.SIG_IGN)  # a second Ctrl-C must not add a traceback
@@ -97,13 +152,23 @@ def main(argv: Sequence[str] | None = None) -> int:
     except BrokenPipeError:
         _silence_stdout()
         return 141
+    except StdoutError as exc:
+        _silence_stdout()
+        return _fail(f"error: {exc}", 2)
     finally:
+        sys.stdout = saved
         if old_term in (signal.SIG_DFL, None):
             signal.signal(signal.SIGTERM, signal.SIG_DFL)
 
 
 def _dispatch(argv: Sequence[str] | None) -> int:
-    from rancf.errors import ConvergenceError, InputError, RancfError, ScenarioError
+    from rancf.errors import (
+        ConvergenceError,
+        InputError,
+        RancfError,
+        RunFailedError,
+        ScenarioError,
+    )
 
     argv = sys.argv[1:] if argv is None else list(argv)
     try:
@@ -120,6 +185,8 @@ def _dispatch(argv: Sequence[str] | None) -> int:
         return _fail(f"error: {_one_line(exc)}", 2)
     except ConvergenceError as exc:
         return _fail(f"did not converge: {_one_line(exc)}", 3)
+    except RunFailedError as exc:
+        return _fail(f"error: {_one_line(exc)}", 3)
     except RancfError as exc:
         return _fail(f"error: {_one_line(exc)}", 2)
     except BrokenPipeError:
@@ -127,8 +194,8 @@ def _dispatch(argv: Sequence[str] | None) -> int:
     except MemoryError:
         return _fail("error: out of memory (make the model or the run smaller)", 2)
     except OSError as exc:
-        where = exc.filename if exc.filename is not None else ""
-        return _fail(f"error: {where}: {exc.strerror or exc}", 2)
+        where = f"{exc.filename}: " if exc.filename is not None else ""
+        return _fail(f"error: {where}{exc.strerror or exc}", 2)
 
 
 def _one_line(exc: BaseException) -> str:
@@ -136,11 +203,12 @@ def _one_line(exc: BaseException) -> str:
 
 
 def _silence_stdout() -> None:
-    """After a broken pipe, point stdout at /dev/null so the interpreter's final flush is quiet."""
+    """After a broken pipe or a failing standard output, point it at /dev/null so the
+    interpreter's final flush is quiet."""
     try:
         devnull = os.open(os.devnull, os.O_WRONLY)
         os.dup2(devnull, sys.stdout.fileno())
-    except (OSError, ValueError):  # pragma: no cover - stdout already gone
+    except (OSError, ValueError, AttributeError):  # pragma: no cover - stdout already gone
         pass
 
 

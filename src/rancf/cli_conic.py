@@ -8,7 +8,7 @@ import sys
 from collections.abc import Iterable, Iterator
 from typing import Any
 
-from rancf.cli_io import atomic_path, check_plot_path
+from rancf.cli_io import check_plot_path
 from rancf.errors import InputError
 
 __all__ = ["add_parsers", "MAX_TABLE_ELEMENTS", "json_text"]
@@ -40,7 +40,7 @@ def _cmd_conic(args: argparse.Namespace) -> int:
 def _conic(args: argparse.Namespace) -> int:
     import numpy as np
 
-    from rancf.elements.mapping import conic_element, kopt
+    from rancf.elements.mapping import K_RANGE, conic_element, kopt
     from rancf.geometry.conic import conic_arc
     from rancf.model.mesh import check_element_count, mesh_conic
     from rancf.scenario.geometry import MAX_ELEMENTS
@@ -56,6 +56,9 @@ def _conic(args: argparse.Namespace) -> int:
             f"up to {MAX_ELEMENTS} with --json",
         )
     plot = check_plot_path(args.plot) if args.plot else None
+    if args.k is not None and not K_RANGE[0] <= args.k <= K_RANGE[1]:  # NaN included
+        lo, hi = K_RANGE
+        raise InputError("--k", args.k, f"a mapping factor in [{lo:g}, {hi:g}] (as mesh.k)")
     conic = conic_arc(args.chord, args.angles, args.point)
     k_opt = kopt(conic)
     single = conic_element(conic, args.k)
@@ -91,8 +94,7 @@ def _conic(args: argparse.Namespace) -> int:
     if plot is not None:
         from rancf.post.conic_plots import plot_conic
 
-        with atomic_path(plot) as tmp:
-            plot_conic(conic, k_opt, single.k, tmp, n)
+        plot_conic(conic, k_opt, single.k, plot, n)
     if args.json:
         for chunk in json_text(out, "elements", elements()):
             sys.stdout.write(chunk)
@@ -117,7 +119,9 @@ def _conic(args: argparse.Namespace) -> int:
 def json_text(head: dict[str, Any], key: str, items: Iterable[Any]) -> Iterator[str]:
     """JSON of ``{**head, key: [items]}`` in pieces: ``head`` indented, then one compact item a
     line, so a million elements are printed without holding their list or text in memory."""
-    text = json.dumps({**head, key: []}, indent=2)
+    from rancf.post.results import json_safe  # strict JSON: a non-finite number is null
+
+    text = json.dumps(json_safe({**head, key: []}), indent=2, allow_nan=False)
     tail = "[]\n}"
     if not text.endswith(tail):  # pragma: no cover - json.dumps puts the last key last
         raise ValueError(f"{key!r} must be the last key")
@@ -125,7 +129,7 @@ def json_text(head: dict[str, Any], key: str, items: Iterable[Any]) -> Iterator[
     first, sep = "\n    ", ",\n    "
     lead = first
     for item in items:
-        yield lead + json.dumps(item, allow_nan=False)
+        yield lead + json.dumps(json_safe(item), allow_nan=False)
         lead = sep
     yield "]\n}\n" if lead is first else "\n  ]\n}\n"
 

@@ -3,11 +3,10 @@
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 from typing import Any
 
-from rancf.cli_io import atomic_path, check_plot_path
+from rancf.cli_io import check_plot_path
 from rancf.errors import InputError
 
 __all__ = ["add_parsers", "reactions_json"]
@@ -47,15 +46,16 @@ def _cmd_buckling(args: argparse.Namespace) -> int:
     if plot is not None:
         from rancf.post.plots import plot_buckling
 
-        with atomic_path(plot) as tmp:
-            plot_buckling(model, res, tmp, y)
+        plot_buckling(model, res, plot, y)
     out = {
         "load_factors": res.load_factors.tolist(),
         "about": res.about,
         "eigenproblem": "symmetric" if res.symmetric else "general",
     }
     if args.json:
-        print(json.dumps(out, indent=2, allow_nan=False))
+        from rancf.post.results import strict_json
+
+        print(strict_json(out).rstrip())
     else:
         print(f"linear buckling about the {res.about} configuration (critical load factors):")
         for i, lam in enumerate(res.load_factors, 1):

@@ -55,7 +55,7 @@ def _cmd_list(args: argparse.Namespace) -> int:
 
 
 def _cmd_copy(args: argparse.Namespace) -> int:
-    from rancf.post.results import atomic_write
+    from rancf.atomic import atomic_write
     from rancf.studies.common import example_path
 
     name = _scenario_name(args.name)

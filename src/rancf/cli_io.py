@@ -1,11 +1,23 @@
-"""Paths the command line writes to: checked before any work, and no partial output on failure.
+"""Paths the command line writes to: checked before any work, locked, and no partial output.
 
 * :func:`check_out_dir` and :func:`check_plot_path` reject unusable paths up front, naming the
-  option (``--out``, ``--plot``), the path and the reason.
-* :class:`OutputDir` creates a directory (and its missing parents) and removes what it created
-  if the command fails before :meth:`OutputDir.keep` is called.
-* :func:`atomic_path` gives a temporary file name next to the target; the target appears only
-  when the block succeeds.
+  option (``--out``, ``--plot``), the path and the reason (an empty name is refused: it would
+  mean the current folder).
+* :class:`OutputDir` creates a folder (and its missing parents), holds the folder's lock while
+  the command writes, applies the output-folder policy of its ``kind``, and removes the folders
+  it created if the command fails before :meth:`OutputDir.keep` is called.
+
+The output-folder policy (README, *Output folders*):
+
+* a run folder (``simulate --out``, ``static --out``) must be new or empty; an earlier run's
+  folder (one holding ``summary.json``) is replaced, wholly, only with ``--overwrite``; any
+  other non-empty folder is refused;
+* a sweep folder must be new, empty, or an earlier sweep's folder (which is resumed);
+* the other commands (``plot``, ``export``, ``example``, ``report``) add their files to the
+  folder, replacing files of the same name;
+* while a command writes, the folder holds ``.rancf.lock`` naming the process; a second rancf
+  process with the same output folder is refused with one line naming that process.  The lock
+  is an advisory ``flock`` on that file, so a process that was killed holds no lock.
 """
 
 from __future__ import annotations
@@ -13,17 +25,26 @@ from __future__ import annotations
 import contextlib
 import os
 import shutil
-import tempfile
-from collections.abc import Iterator
 from pathlib import Path
 from types import TracebackType
+from typing import Literal
 
 from rancf.errors import InputError
 
-__all__ = ["check_out_dir", "check_plot_path", "OutputDir", "atomic_path", "PLOT_FORMATS"]
+try:  # POSIX; elsewhere folders are not locked
+    import fcntl
+except ImportError:  # pragma: no cover - Windows
+    fcntl = None  # type: ignore[assignment]
+
+__all__ = ["check_out_dir", "check_plot_path", "OutputDir", "PLOT_FORMATS", "LOCK_NAME"]
 
 #: File name extensions the figures can be written as (Matplotlib back ends).
 PLOT_FORMATS = ("png", "pdf", "svg", "eps", "ps", "jpg", "jpeg", "tif", "tiff", "webp")
+
+#: The lock file a command holds in its output folder while it writes.
+LOCK_NAME = ".rancf.lock"
+
+Kind = Literal["run", "sweep", "any"]
 
 
 def _existing_parent(path: Path) -> Path:
@@ -41,8 +62,10 @@ def _writable(option: str, path: Path, target: str) -> None:
         raise InputError(option, str(path), f"{target} ({parent} is not writable)")
 
 
-def check_out_dir(path: str, option: str = "--out") -> Path:
+def check_out_dir(path: str | Path, option: str = "--out") -> Path:
     """Validate an output directory: an existing directory, or one that can be created."""
+    if str(path) == "":
+        raise InputError(option, "", "a folder name (an empty name would mean the current folder)")
     out = Path(path)
     if out.exists() and not out.is_dir():
         raise InputError(option, str(out), "an output directory (this path is an existing file)")
@@ -71,55 +94,172 @@ def check_plot_path(path: str, option: str = "--plot") -> Path:
     return p
 
 
-class OutputDir:
-    """Create ``path`` for a command's outputs; undo the creation unless :meth:`keep` was called.
+def _is_run_folder(path: Path) -> bool:
+    return (path / "summary.json").is_file()
 
-    Files written into a directory that already existed are the caller's to clean up (use
-    :func:`atomic_path` or :func:`rancf.post.results.atomic_file`).
+
+def _is_sweep_folder(path: Path) -> bool:
+    return (path / "results.csv").is_file() or (path / "runs").is_dir()
+
+
+class OutputDir:
+    """Create or take ``path`` for a command's outputs under the policy of ``kind`` (module
+    docstring); undo the creation unless :meth:`keep` was called.
+
+    Files written into a folder that already existed are the caller's to clean up (write them
+    through :mod:`rancf.atomic`, so a failure leaves no partial file).
+
+    Parameters
+    ----------
+    path : Path
+        The folder.
+    option : str
+        The option that named it (in error messages).
+    kind : {"run", "sweep", "any"}
+        The policy for a folder that is not empty.
+    overwrite : bool
+        ``kind = "run"``: replace an earlier run's folder.
     """
 
-    def __init__(self, path: Path, option: str = "--out") -> None:
-        self.path = check_out_dir(str(path), option)
+    def __init__(
+        self, path: Path, option: str = "--out", kind: Kind = "any", overwrite: bool = False
+    ) -> None:
+        self.path = check_out_dir(path, option)
         self.option = option
+        self.kind = kind
+        self.overwrite = overwrite
         self.created: Path | None = None
         self.kept = False
+        self._lock: int | None = None
+
+    def _fail(self, allowed: str) -> InputError:
+        return InputError(self.option, str(self.path), allowed)
+
+    def _mkdir(self) -> None:
+        """Create the missing folders one by one; remember the first one this process made."""
+        missing = []
+        p = self.path.absolute()
+        while not p.exists() and p != p.parent:
+            missing.append(p)
+            p = p.parent
+        for p in reversed(missing):
+            try:
+                p.mkdir()
+            except FileExistsError:
+                continue  # made by another process meanwhile: not ours to remove
+            except OSError as exc:
+                raise self._fail(f"a directory that can be created ({exc.strerror})") from None
+            if self.created is None:
+                self.created = p
+        if not self.path.is_dir():
+            raise self._fail("an output directory (this path is an existing file)")
+
+    def _acquire(self) -> None:
+        """Hold ``.rancf.lock`` (an exclusive ``flock``) or refuse naming its holder."""
+        if fcntl is None:  # pragma: no cover - Windows
+            return
+        lock = self.path / LOCK_NAME
+        for _ in range(10):
+            try:
+                fd = os.open(lock, os.O_RDWR | os.O_CREAT, 0o666)
+            except OSError as exc:
+                raise self._fail(f"a writable directory ({exc.strerror})") from None
+            try:
+                fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            except OSError:
+                holder = os.read(fd, 200).decode("ascii", "replace").split()
+                os.close(fd)
+                who = f"process {holder[0]}" if holder else "another process"
+                raise self._fail(
+                    f"a folder no other rancf process is writing to ({who} is; see {lock})"
+                ) from None
+            try:
+                same = os.fstat(fd).st_ino == os.stat(lock).st_ino
+            except OSError:
+                same = False
+            if same:  # not a lock file its last holder removed meanwhile
+                os.ftruncate(fd, 0)
+                os.write(fd, f"{os.getpid()}\n".encode())
+                self._lock = fd
+                return
+            os.close(fd)
+        raise self._fail("a folder whose lock can be taken")  # pragma: no cover
+
+    def _release(self) -> None:
+        if self._lock is None:
+            return
+        with contextlib.suppress(OSError):
+            os.unlink(self.path / LOCK_NAME)
+        os.close(self._lock)
+        self._lock = None
+
+    def _apply_policy(self) -> None:
+        entries = sorted(p.name for p in self.path.iterdir() if p.name != LOCK_NAME)
+        if not entries or self.kind == "any":
+            return
+        shown = ", ".join(entries[:3]) + (", ..." if len(entries) > 3 else "")
+        if self.kind == "sweep":
+            if not _is_sweep_folder(self.path):
+                raise self._fail(
+                    f"a new or empty folder, or an earlier sweep's folder to resume (it holds "
+                    f"{shown}, and no results.csv)"
+                )
+            return
+        if not _is_run_folder(self.path):
+            raise self._fail(
+                f"a new or empty folder (it holds {shown}, and is not a rancf run folder)"
+            )
+        if not self.overwrite:
+            raise self._fail(
+                f"a new or empty folder (it holds an earlier run: {shown}); add --overwrite to "
+                "replace that run"
+            )
+        for name in entries:  # the earlier run, wholly (its plots/ and exports too)
+            p = self.path / name
+            if p.is_dir() and not p.is_symlink():
+                shutil.rmtree(p)
+            else:
+                p.unlink()
 
     def __enter__(self) -> OutputDir:
-        top = _existing_parent(self.path)
+        self._mkdir()
         try:
-            self.path.mkdir(parents=True, exist_ok=True)
-        except OSError as exc:
-            raise InputError(
-                self.option, str(self.path), f"a directory that can be created ({exc.strerror})"
-            ) from None
-        if top != self.path.absolute():
-            rel = self.path.absolute().relative_to(top)
-            self.created = top / rel.parts[0]
+            self._acquire()
+            if any(p.name != LOCK_NAME for p in self.path.iterdir()):
+                self.created = None  # another process wrote here first: not ours to remove
+            self._apply_policy()
+        except BaseException:
+            self._release()
+            self._remove_empty()
+            raise
         return self
+
+    def _remove_empty(self) -> None:
+        """Remove the folders this process created, as far as they are empty (a refused
+        command leaves a folder another process has meanwhile written into alone)."""
+        if self.created is None:
+            return
+        p = self.path.absolute()
+        while True:
+            try:
+                p.rmdir()
+            except OSError:
+                return
+            if p == self.created or p == p.parent:
+                return
+            p = p.parent
 
     def keep(self) -> None:
         """The command's results are in: keep the directory whatever happens next."""
         self.kept = True
 
+    def _undo(self) -> None:
+        if not self.kept and self.created is not None:
+            shutil.rmtree(self.created, ignore_errors=True)
+
     def __exit__(
         self, kind: type | None, exc: BaseException | None, tb: TracebackType | None
     ) -> None:
-        if exc is not None and not self.kept and self.created is not None:
-            shutil.rmtree(self.created, ignore_errors=True)
-
-
-@contextlib.contextmanager
-def atomic_path(path: Path) -> Iterator[Path]:
-    """A temporary file name with the same extension, renamed to ``path`` when the block ends."""
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=path.suffix, dir=path.parent)
-    os.close(fd)
-    try:
-        yield Path(tmp)
-        mask = os.umask(0o022)
-        os.umask(mask)
-        os.chmod(tmp, 0o666 & ~mask)
-        os.replace(tmp, path)
-    except BaseException:
-        with contextlib.suppress(OSError):
-            os.unlink(tmp)
-        raise
+        self._release()
+        if exc is not None:
+            self._undo()

@@ -10,6 +10,7 @@ from typing import Any
 
 import numpy as np
 
+from rancf.cli_io import OutputDir, check_out_dir
 from rancf.errors import InputError
 
 __all__ = ["add_parsers", "run_to_nurbs"]
@@ -35,6 +36,10 @@ def run_to_nurbs(run: Any, i: int) -> Any:
     from rancf.post.run_data import centerline_nodes
 
     nodes = centerline_nodes(run, run.q[i])
+    if not np.all(np.isfinite(nodes)):
+        raise InputError(
+            "--time", float(run.t[i]), "a stored state with finite coordinates (this one is not)"
+        )
     nodal = np.concatenate([nodes[:-1], nodes[1:]], axis=1)
     breaks = np.concatenate([[0.0], np.cumsum(run.scales)])
     return chain_to_nurbs(ElementChain(nodal, run.weights, run.scales, breaks))
@@ -45,13 +50,17 @@ def _cmd_export(args: argparse.Namespace) -> int:
 
     if args.vtk is None and args.nurbs is None:
         raise InputError("--vtk/--nurbs", None, "at least one of --vtk OUT_DIR, --nurbs FILE")
+    out = OutputDir(args.vtk, "--vtk") if args.vtk is not None else None
     run = load_run(args.run_dir)
-    if args.vtk is not None:
+    if out is not None:
         from rancf.post.run_data import frame_indices
-        from rancf.post.vtk import export_vtk
+        from rancf.post.vtk import check_export_size, export_vtk
 
         n = frame_indices(run.t.size, args.every).size
-        pvd = export_vtk(run, args.vtk, args.every, args.samples)
+        check_export_size(run, args.every, args.samples)
+        with out:
+            pvd = export_vtk(run, out.path, args.every, args.samples)
+            out.keep()
         print(f"{n} VTK frame(s) of {run.name} written; open {pvd} in ParaView")
         if run.directors is not None:
             print(f"rod nodes and material frames: {pvd.with_name(f'{run.name}_nodes.pvd')}")
@@ -80,11 +89,23 @@ def _cmd_plot(args: argparse.Namespace) -> int:
     from rancf.post.run_data import load_run
     from rancf.post.run_plots import plot_run
 
+    if args.out is not None:
+        check_out_dir(args.out)
     run = load_run(args.run_dir)
-    out = Path(args.out) if args.out else run.path / "plots"
-    for p in plot_run(run, out, args.configurations):
+    if not 1 <= args.configurations <= MAX_CONFIGURATIONS:
+        raise InputError(
+            "--configurations", args.configurations, f"an integer in [1, {MAX_CONFIGURATIONS}]"
+        )
+    with OutputDir(Path(args.out) if args.out is not None else run.path / "plots") as out:
+        written = plot_run(run, out.path, args.configurations)
+        out.keep()
+    for p in written:
         print(p)
     return 0
+
+
+#: Most configurations ``rancf plot`` draws in one figure.
+MAX_CONFIGURATIONS = 100
 
 
 def _cmd_animate(args: argparse.Namespace) -> int:

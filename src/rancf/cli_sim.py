@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import argparse
-import json
+import contextlib
 import math
 import os
 import signal
@@ -12,8 +12,8 @@ import time
 from pathlib import Path
 from typing import Any
 
-from rancf.cli_io import OutputDir, atomic_path, check_out_dir, check_plot_path
-from rancf.errors import ConvergenceError, InputError, RancfError
+from rancf.cli_io import OutputDir, check_plot_path
+from rancf.errors import InputError, RunFailedError
 
 __all__ = ["add_parsers", "DEFAULT_MAX_OUTPUT_GB"]
 
@@ -42,13 +42,25 @@ def _positive(option: str, value: float, what: str) -> float:
     return value
 
 
+def _scenario_text(path: str) -> str:
+    """What the run folder keeps as ``scenario.toml`` (readers use it, not the original file,
+    which may be edited or moved later)."""
+    import tomllib
+
+    from rancf.sweep.toml_out import scenario_copy
+
+    text = Path(path).read_text(encoding="utf-8")  # load_scenario has read it already
+    return scenario_copy(text, tomllib.loads(text), path)
+
+
 def _cmd_simulate(args: argparse.Namespace) -> int:
     every = _positive("--checkpoint-every", args.checkpoint_every, "a finite number of seconds > 0")
     limit = _positive("--max-output-gb", args.max_output_gb, "a finite size in GB > 0")
-    out = check_out_dir(args.out)
+    od = OutputDir(args.out, kind="run", overwrite=args.overwrite)  # checks the path up front
+    from rancf.atomic import atomic_write
     from rancf.model.outputs import DerivedOutputs
     from rancf.post.checks import run_warnings, section_warnings
-    from rancf.post.history import HistoryStore, estimate_output_bytes
+    from rancf.post.history import HistoryStore, check_output_size
     from rancf.post.results import run_summary
     from rancf.scenario import load_scenario
     from rancf.solvers.static import start_state
@@ -59,31 +71,32 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     y_start, start_info = start_state(sc, model)
     n_cols = sum(len(s.columns(model.dim)) for s in sc.sensors)
     rod_directors = 3 * model.n_nodes if model.element == "rod" else 0
-    need = estimate_output_bytes(opts.n_outputs, model.q0.size, n_cols, rod_directors)
-    if need > limit * 1e9:
-        raise RunTooLargeError(
-            f"{sc.path}: this run would write about {need / 1e9:.3g} GB ({opts.n_outputs} stored "
-            f"states of {model.q0.size} coordinates), more than --max-output-gb = {limit:g}; "
-            "raise solver.output_step, shorten solver.t_end or raise the limit"
-        )
+    derived = DerivedOutputs(model, sc.support_labels)
+    n_derived = len(derived.reaction_names) + derived.n_points * len(derived.section_names)
+    check_output_size(
+        sc.path, opts.n_outputs, model.q0.size, n_cols, rod_directors, limit, n_derived=n_derived
+    )
+    copy = _scenario_text(args.scenario)
+    out = od.path
     stop = _StopFlag()
     notes = _warn(section_warnings(model))  # likely unit mistakes: the run goes on
-    with stop, OutputDir(out) as od:
+    with stop, od:
         info = {"scenario": str(Path(args.scenario).resolve()), "setup_wall_time_s": None}
         info.update(start_info)
-        derived = DerivedOutputs(model, sc.support_labels)
         store = HistoryStore(out, model, sc.sensors, {**info, "warnings": notes}, derived=derived)
         try:
+            atomic_write(out / "scenario.toml", copy)
             store.write_summary(_running(model, 0.0))
-            od.keep()
-            res = _run(args, model, opts, store, stop, every, y_start)
+            res = _run(args, model, opts, store, stop, every, od.keep, y_start)
+            summary = run_summary(model, res)
+            store.flush()  # every row's derived outputs, the strain among them
+            store.info["warnings"] = run_warnings(model, largest=derived.largest_strain)
+            store.finish(summary)
         except BaseException as exc:
-            store.finish(_broken(model, store, exc))
-            raise
-        summary = run_summary(model, res)
-        store.flush()  # every row's derived outputs, the strain among them
-        store.info["warnings"] = run_warnings(model, largest=derived.largest_strain)
-        store.finish(summary)
+            err = _end_broken(store, model, exc, od.kept, out)
+            if err is exc:
+                raise
+            raise err from None
     _warn(store.info["warnings"][len(notes) :])
     return _report(args, res, {**summary, **store.info}, out)
 
@@ -95,8 +108,27 @@ def _warn(notes: list[str]) -> list[str]:
     return notes
 
 
-class RunTooLargeError(RancfError):
-    """A run whose stored output would exceed the ``--max-output-gb`` limit."""
+def _end_broken(store: Any, model: Any, exc: BaseException, kept: bool, out: Path) -> BaseException:
+    """Leave the run folder truthful after ``exc``; returns the exception to raise.
+
+    Before the first checkpoint nothing of the run is kept (its files are removed; the folder
+    too if this command created it).  After it, the folder keeps the last complete checkpoint,
+    its summary says ``failed``, and an operating-system error (a full disk) becomes a
+    :class:`~rancf.errors.RunFailedError` naming the file and the time the files reach.
+    """
+    if not kept:
+        store.discard()
+        with contextlib.suppress(OSError):
+            (out / "scenario.toml").unlink()
+        return exc
+    store.fail(_broken(model, store, exc))
+    if isinstance(exc, OSError):
+        where = f"{exc.filename}: " if exc.filename is not None else ""
+        return RunFailedError(
+            f"{where}{exc.strerror or exc}; the run stopped; {out} keeps its results up to "
+            f"t = {store.saved_t or 0.0:g} s (summary.json says failed)"
+        )
+    return exc
 
 
 class _StopFlag:
@@ -136,10 +168,14 @@ def _running(model: Any, t: float) -> dict[str, Any]:
 def _broken(model: Any, store: Any, exc: BaseException) -> dict[str, Any]:
     """Summary of a run ended by an exception (the error path prints the message)."""
     kind = "interrupted" if isinstance(exc, KeyboardInterrupt) else "failed"
+    text = str(exc)
+    if isinstance(exc, OSError) and exc.strerror:
+        text = f"{exc.filename}: {exc.strerror}" if exc.filename is not None else exc.strerror
     return {
         "status": kind,
-        "message": " ".join(str(exc).split()) or type(exc).__name__,
-        "outputs": store.n_outputs,
+        "message": " ".join(text.split()) or type(exc).__name__,
+        "t_reached": store.saved_t,
+        "outputs": store.n_rows,
         "n_elements": model.n_el,
         "element": model.element,
         "n_dofs": model.n,
@@ -170,8 +206,11 @@ def _run(
     store: Any,
     stop: Any,
     every: float,
+    started: Any,
     y_start: Any = None,
-):
+) -> Any:
+    """Integrate into ``store`` from ``y_start`` (default the reference); ``started()`` once
+    the first checkpoint is on disk."""
     from rancf.post.results import run_summary
     from rancf.solvers.dynamic import integrate
 
@@ -181,6 +220,7 @@ def _run(
     def on_start() -> None:
         store.info["setup_wall_time_s"] = _process_age()
         store.checkpoint(_running(model, 0.0))  # every file exists before the first step
+        started()
         if not args.quiet:
             pace["bar"] = time.monotonic() + PROGRESS_AFTER_S
 
@@ -229,31 +269,39 @@ def _cmd_static(args: argparse.Namespace) -> int:
 
     from rancf.cli_equilibrium import reactions_json
     from rancf.post.checks import run_warnings
-    from rancf.post.results import LoadPath, sensor_table, write_static_run
+    from rancf.post.results import LoadPath, sensor_table, strict_json, write_static_run
     from rancf.scenario import load_scenario
     from rancf.solvers.static import solve_static
 
-    out_dir = check_out_dir(args.out) if args.out else None
+    od = None if args.out is None else OutputDir(args.out, kind="run", overwrite=args.overwrite)
     sc = load_scenario(args.scenario)
     model = sc.build_model()
     path = LoadPath(model, sc.support_labels)  # the load path, for --out
     method = sc.solver["static_method"]
-    if out_dir is None:
+    if od is None:
         res = solve_static(model, sc.solver["load_steps"], method=method)
     else:
-        with OutputDir(out_dir) as od:
+        from rancf.atomic import atomic_write
+
+        copy = _scenario_text(args.scenario)
+        out_dir = od.path
+        with od:
             info = {"scenario": str(Path(args.scenario).resolve())}
             try:
                 res = solve_static(
                     model, sc.solver["load_steps"], on_step=path.record, method=method
                 )
                 info.update(status="completed", message="reached the end of the load path")
-            except ConvergenceError as exc:
-                info.update(status="failed", message=str(exc))
+            except BaseException as exc:
+                kind = "interrupted" if isinstance(exc, KeyboardInterrupt) else "failed"
+                lam = path.steps[-1][0] if path.steps else 0.0
+                text = " ".join(str(exc).split()) or f"{kind} at load factor {lam:g}"
+                info.update(status=kind, message=text)
                 raise
             finally:
                 if path.steps:  # what converged is kept, also when a later increment fails
                     write_static_run(out_dir, path, sc.sensors, info)
+                    atomic_write(out_dir / "scenario.toml", copy)
                     od.keep()
     if path.steps:  # the load path's outputs tracked the largest strain
         notes = _warn(run_warnings(model, static=True, largest=path.derived.largest_strain))
@@ -272,11 +320,11 @@ def _cmd_static(args: argparse.Namespace) -> int:
         "warnings": notes,
     }
     if args.json:
-        print(json.dumps(out, indent=2))
+        print(strict_json(out).rstrip())
     else:
         print(
             f"static equilibrium: {len(res.load_factors) - 1} load steps, "
-            f"{res.n_newton} Newton iterations" + (f" -> {out_dir}" if out_dir is not None else "")
+            f"{res.n_newton} Newton iterations" + (f" -> {od.path}" if od is not None else "")
         )
         for k, v in out["sensors"].items():
             print(f"  {k:12s} {v: .9g}")
@@ -296,6 +344,7 @@ def _cmd_modes(args: argparse.Namespace) -> int:
     import numpy as np
 
     from rancf.post.checks import run_warnings
+    from rancf.post.results import strict_json
     from rancf.scenario import load_scenario
     from rancf.solvers.modal import natural_modes
     from rancf.solvers.static import solve_static
@@ -327,8 +376,7 @@ def _cmd_modes(args: argparse.Namespace) -> int:
     if plot is not None:
         from rancf.post.plots import plot_modes
 
-        with atomic_path(plot) as tmp:
-            plot_modes(model, res, tmp, y)
+        plot_modes(model, res, plot, y)
     growth = res.growth_rates if res.growth_rates is not None else np.zeros_like(res.frequencies_hz)
     out = {
         "frequencies_hz": res.frequencies_hz.tolist(),
@@ -340,7 +388,7 @@ def _cmd_modes(args: argparse.Namespace) -> int:
         "warnings": notes,
     }
     if args.json:
-        print(json.dumps(out, indent=2))
+        print(strict_json(out).rstrip())
     else:
         print(
             f"natural frequencies about the {about} configuration "
@@ -367,12 +415,19 @@ def _cmd_modes(args: argparse.Namespace) -> int:
     return 0
 
 
+OVERWRITE_HELP = (
+    "replace the earlier run in --out (all of that folder's contents); without it --out must "
+    "be a new or empty folder"
+)
+
+
 def add_parsers(sub: Any) -> None:
     """Register ``simulate``, ``static`` and ``modes`` on the ``rancf`` sub-parser set."""
     s = sub.add_parser("simulate", help="run the dynamics of a scenario file")
     s.add_argument("scenario", help="scenario TOML file")
     s.add_argument("--out", required=True, help="output directory (created if needed)")
     s.add_argument("--quiet", action="store_true", help="no progress bar or summary line")
+    s.add_argument("--overwrite", action="store_true", help=OVERWRITE_HELP)
     s.add_argument(
         "--checkpoint-every",
         type=float,
@@ -399,6 +454,7 @@ def add_parsers(sub: Any) -> None:
         help="also write the load path as a run directory (λ in place of t) for export, plot "
         "and animate",
     )
+    st.add_argument("--overwrite", action="store_true", help=OVERWRITE_HELP)
     st.set_defaults(func=_cmd_static)
 
     m = sub.add_parser("modes", help="natural frequencies and mode shapes of a scenario")

@@ -5,15 +5,29 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
+from rancf.errors import InputError
+
 __all__ = ["add_parsers"]
 
 
 def _cmd_sweep(args: argparse.Namespace) -> int:
+    from rancf.cli_io import OutputDir
+    from rancf.sweep.cluster import check_scheduler
     from rancf.sweep.engine import run_sweep
     from rancf.sweep.spec import load_sweep
 
+    if args.scheduler is not None:
+        check_scheduler(args.scheduler)
+    if args.workers is not None and args.workers < 1:
+        raise InputError("--workers", args.workers, "an integer >= 1")
+    od = OutputDir(args.out, kind="sweep")
     spec = load_sweep(args.sweep)
-    rep = run_sweep(spec, args.out, args.scheduler, args.workers, not args.quiet)
+    with od:
+        try:
+            rep = run_sweep(spec, od.path, args.scheduler, args.workers, not args.quiet)
+        finally:
+            if (od.path / "results.csv").is_file():
+                od.keep()  # the runs done so far stay, also after an interrupt
     where = args.scheduler or f"a local cluster of {args.workers or 'all'} worker(s)"
     print(
         f"{rep.total} run(s): {rep.skipped} already finished, {rep.ran} run on {where}, "

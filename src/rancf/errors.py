@@ -35,17 +35,32 @@ class InputError(RancfError, ValueError):
         super().__init__(f"{parameter} = {_fmt(value)} is not allowed: {allowed}")
 
 
+#: Longest value shown in an error message (longer ones are cut in the middle: a message stays
+#: one readable line whatever was given, e.g. a 401-digit integer or a file's content).
+MAX_SHOWN = 80
+
+
+def shorten(text: str, limit: int = MAX_SHOWN) -> str:
+    """``text`` cut to at most ``limit`` characters, the middle replaced by ``...``."""
+    if len(text) <= limit:
+        return text
+    keep = (limit - 3) // 2
+    return f"{text[:keep]}...{text[len(text) - keep :]}"
+
+
 def _fmt(value: Any) -> str:
     try:
         import numpy as np
 
         if isinstance(value, np.ndarray):
-            return np.array2string(value, precision=6, separator=", ").replace("\n", "")
+            return shorten(np.array2string(value, precision=6, separator=", ").replace("\n", ""))
     except ImportError:  # pragma: no cover
         pass
     if isinstance(value, float):
         return f"{value:.6g}"
-    return repr(value)
+    if isinstance(value, int) and not isinstance(value, bool) and abs(value) >= 10**MAX_SHOWN:
+        return f"an integer of about {int(abs(value).bit_length() * 0.30103) + 1} digits"
+    return shorten(repr(value))
 
 
 class AngleError(InputError):
@@ -92,3 +107,13 @@ class ConvergenceError(RancfError):
     def __init__(self, message: str, reached: float | None = None) -> None:
         self.reached = reached
         super().__init__(message)
+
+
+class RunTooLargeError(RancfError):
+    """A run whose stored output would exceed the disk limit (``--max-output-gb``); refused
+    before it starts."""
+
+
+class RunFailedError(RancfError):
+    """A run that started and then failed for a reason outside the model (a full disk, an
+    unwritable file); its run directory keeps the results of its last complete checkpoint."""

@@ -55,9 +55,9 @@ def helix_run(tmp_path_factory):
 
 def _figures(monkeypatch) -> dict:
     saved: dict = {}
-    real = run_plots._save
+    real = run_plots.save_figure
 
-    def keep(fig, path):
+    def keep(fig, path, *args, **kwargs):
         axes = fig.axes[0]
         saved[path.name] = (
             getattr(axes, "name", ""),
@@ -67,9 +67,9 @@ def _figures(monkeypatch) -> dict:
                 for ln in axes.lines
             ],
         )
-        real(fig, path)
+        return real(fig, path, *args, **kwargs)
 
-    monkeypatch.setattr(run_plots, "_save", keep)
+    monkeypatch.setattr(run_plots, "save_figure", keep)
     return saved
 
 

@@ -145,7 +145,8 @@ def test_separate_scheduler_gives_identical_values(local_sweep, tmp_path):
 def test_several_runs_per_task_on_worker_threads(local_sweep, tmp_path):
     # the report's cluster: worker threads, consecutive runs as one task; same rows, and a task
     # none of whose runs is needed any more is cancelled unless it started already (both or none)
-    from rancf.sweep.engine import DaskExecutor, dask_client, run_variants
+    from rancf.sweep.cluster import dask_client
+    from rancf.sweep.engine import DaskExecutor, run_variants
 
     spec = load_sweep(_write(tmp_path))
     variants = spec.variants()

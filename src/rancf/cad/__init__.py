@@ -8,14 +8,11 @@
   that a round trip reproduces the curve to round-off.
 
 Every reader returns :class:`CadCurve` records in file order; every writer writes one curve
-atomically (temporary file + rename).
+atomically, with the umask's permissions (:mod:`rancf.atomic`).
 """
 
 from __future__ import annotations
 
-import os
-import tempfile
-from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -26,7 +23,6 @@ __all__ = [
     "CadCurve",
     "read_curves",
     "write_curve",
-    "atomic_file",
     "READ_SUFFIXES",
     "WRITE_SUFFIXES",
 ]
@@ -52,18 +48,6 @@ class CadCurve:
     index: int
     name: str
     curve: NurbsCurve
-
-
-def atomic_file(path: Path, write: Callable[[str], object]) -> None:
-    """Call ``write(tmp)`` on a temporary file beside ``path``, then rename it to ``path``."""
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=path.suffix, dir=path.parent)
-    os.close(fd)
-    try:
-        write(tmp)
-        os.replace(tmp, path)
-    finally:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
 
 
 def _suffix(path: Path, allowed: tuple[str, ...], what: str) -> str:

@@ -7,8 +7,9 @@ from pathlib import Path
 
 import numpy as np
 
-from rancf.cad import CadCurve, atomic_file
-from rancf.errors import InputError
+from rancf.atomic import atomic_path
+from rancf.cad import CadCurve
+from rancf.errors import InputError, shorten
 from rancf.geometry.nurbs import NurbsCurve
 
 __all__ = ["read_dxf", "write_dxf"]
@@ -21,7 +22,8 @@ def read_dxf(path: Path) -> list[CadCurve]:
     try:
         doc = ezdxf.readfile(str(path))
     except (OSError, ezdxf.DXFError) as exc:
-        raise InputError("file", str(path), f"a readable DXF file ({exc})") from None
+        why = shorten(" ".join(str(exc).split()))
+        raise InputError("file", str(path), f"a readable DXF file ({why})") from None
     out = []
     for e in doc.modelspace().query("SPLINE"):
         pts = np.array([tuple(p) for p in e.control_points], dtype=float)
@@ -50,4 +52,5 @@ def write_dxf(path: Path, curve: NurbsCurve) -> None:
         msp.add_rational_spline(
             pts.tolist(), curve.weights.tolist(), curve.degree, curve.knots.tolist()
         )
-    atomic_file(path, doc.saveas)
+    with atomic_path(path) as tmp:
+        doc.saveas(tmp)

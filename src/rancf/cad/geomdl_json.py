@@ -13,8 +13,9 @@ from typing import Any
 
 import numpy as np
 
-from rancf.cad import CadCurve, atomic_file
-from rancf.errors import InputError
+from rancf.atomic import atomic_write
+from rancf.cad import CadCurve
+from rancf.errors import InputError, shorten
 from rancf.geometry.nurbs import NurbsCurve
 
 __all__ = ["read_json", "write_json", "curve_dict"]
@@ -39,8 +40,8 @@ def curve_dict(curve: NurbsCurve, name: str = "") -> dict[str, Any]:
 def write_json(path: Path, curve: NurbsCurve, name: str = "") -> None:
     """Write one curve in geomdl's JSON exchange format."""
     doc = {"shape": {"type": "curve", "count": 1, "data": [curve_dict(curve, name)]}}
-    text = json.dumps(doc, indent=2) + "\n"
-    atomic_file(path, lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))
+    text = json.dumps(doc, indent=2, allow_nan=False) + "\n"  # a curve is finite
+    atomic_write(path, text)
 
 
 def read_json(path: Path) -> list[CadCurve]:
@@ -62,5 +63,10 @@ def read_json(path: Path) -> list[CadCurve]:
         return out
     except InputError:
         raise
+    except RecursionError:
+        raise InputError(
+            "file", str(path), "a geomdl JSON curve file (nested too deeply)"
+        ) from None
     except (OSError, ValueError, KeyError, TypeError, IndexError) as exc:
-        raise InputError("file", str(path), f"a geomdl JSON curve file ({exc!r})") from None
+        why = shorten(f"{type(exc).__name__}: {' '.join(str(exc).split())}")
+        raise InputError("file", str(path), f"a geomdl JSON curve file ({why})") from None

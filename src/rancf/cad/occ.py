@@ -21,7 +21,8 @@ from typing import Any, Literal
 
 import numpy as np
 
-from rancf.cad import CadCurve, atomic_file
+from rancf.atomic import atomic_write
+from rancf.cad import CadCurve
 from rancf.errors import InputError
 from rancf.extras import require
 from rancf.geometry.nurbs import NurbsCurve
@@ -167,7 +168,7 @@ def write_occ(path: Path, curve: NurbsCurve, kind: Kind, name: str = "") -> None
     if not ok:
         raise InputError("--nurbs", str(path), f"a {kind.upper()} file OpenCASCADE can write")
     data = buf.getvalue()
-    atomic_file(path, lambda tmp: Path(tmp).write_bytes(data))
+    atomic_write(path, data)
 
 
 def _name_iges_entity(ent: Any, name: str) -> None:

@@ -19,7 +19,22 @@ from rancf.errors import AngleError, ChordError, InputError, InteriorPointError
 from rancf.geometry.conic_curve import Conic
 from rancf.geometry.conic_params import barycentric, tangent_intersection, weight_from_point
 
-__all__ = ["Conic", "conic_arc", "conic_arc_through", "circular_arc"]
+__all__ = [
+    "Conic",
+    "conic_arc",
+    "conic_arc_through",
+    "circular_arc",
+    "LENGTH_RANGE",
+    "ANGLE_MARGIN",
+]
+
+#: Chord lengths a conic arc may have [m]: far beyond any cable, and far inside the range where
+#: areas and squared lengths (``L²``, ``L⁴``) of the construction stay normal floating-point
+#: numbers, so an out-of-range value is refused by name instead of ending in a NaN.
+LENGTH_RANGE = (1e-9, 1e9)
+#: Closest an end-tangent angle may come to 0° or 90° [deg] (the tangent triangle's apex then
+#: lies 1.7e-8 to 5.7e7 chords from the chord: still a well-conditioned construction).
+ANGLE_MARGIN = 1e-6
 
 
 def _check_angles(angles_deg: ArrayLike) -> tuple[float, float]:
@@ -36,6 +51,13 @@ def _check_angles(angles_deg: ArrayLike) -> tuple[float, float]:
                 float(val),
                 "tangent-to-chord angles must lie in (0, 90) degrees",
             )
+        if not (ANGLE_MARGIN <= val <= 90.0 - ANGLE_MARGIN):
+            raise AngleError(
+                f"angles ({name})",
+                float(val),
+                f"tangent-to-chord angles must lie in (0, 90) degrees, at least {ANGLE_MARGIN:g}° "
+                "from either end",
+            )
     return float(a[0]), float(a[1])
 
 
@@ -46,6 +68,9 @@ def _check_chord(chord: float) -> float:
         raise ChordError("chord", chord, "a positive number (metres)") from None
     if not (np.isfinite(c) and c > 0.0):
         raise ChordError("chord", chord, "the chord length must be finite and > 0")
+    lo, hi = LENGTH_RANGE
+    if not lo <= c <= hi:
+        raise ChordError("chord", chord, f"the chord length must lie in [{lo:g}, {hi:g}] m")
     return c
 
 
@@ -76,8 +101,9 @@ def conic_arc(chord: float, angles_deg: ArrayLike, point: ArrayLike) -> Conic:
     p0 = np.zeros(2)
     p2 = np.array([length, 0.0])
     p1 = tangent_intersection(length, np.radians(t0), np.radians(t1))
-    lam = barycentric(pu, p0, p1, p2)
-    if np.any(lam <= 1e-12):
+    with np.errstate(all="ignore"):  # a point far outside: refused below, without warnings
+        lam = barycentric(pu, p0, p1, p2)
+    if not np.all(np.isfinite(lam)) or np.any(lam <= 1e-12):
         raise InteriorPointError(
             "point",
             pu,
@@ -125,9 +151,11 @@ def conic_arc_through(
             "three points of equal dimension 2 or 3",
         )
     chord_vec = b - a
-    length = float(np.linalg.norm(chord_vec))
+    scale = float(np.max(np.abs(chord_vec)))  # no overflow or underflow in the squares
+    length = float(np.linalg.norm(chord_vec / scale)) * scale if scale > 0 else 0.0
     if not length > 0.0:
         raise ChordError("chord", length, "start and end must be distinct points (chord > 0)")
+    _check_chord(length)
     e1 = chord_vec / length
     rel = p - a
     x = float(rel @ e1)

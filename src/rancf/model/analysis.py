@@ -12,7 +12,16 @@ import numpy as np
 
 from rancf.errors import InputError
 
-__all__ = ["DynamicOptions"]
+__all__ = ["DynamicOptions", "MAX_STEPS", "MAX_NEWTON", "MAX_LOAD_STEPS"]
+
+#: Most time steps (``t_end / step`` of a fixed-step run) and stored states (``t_end /
+#: output_step``) a run may have: a billion steps take hours even for the smallest model, so a
+#: count beyond it is a unit mistake (``step = 1e-12``), refused before the run starts.
+MAX_STEPS = 10**9
+#: Largest ``max_newton`` (Newton iterations of a step).
+MAX_NEWTON = 1000
+#: Largest ``solver.load_steps`` of a static solve.
+MAX_LOAD_STEPS = 10**6
 
 
 @dataclass(frozen=True)
@@ -85,10 +94,29 @@ class DynamicOptions:
         positive("newton_tol", self.newton_tol)
         if isinstance(self.max_newton, bool) or not isinstance(self.max_newton, int):
             raise InputError("solver.max_newton", self.max_newton, "an integer >= 1")
-        if self.max_newton < 1:
-            raise InputError("solver.max_newton", self.max_newton, "an integer >= 1")
+        if not 1 <= self.max_newton <= MAX_NEWTON:
+            raise InputError(
+                "solver.max_newton", self.max_newton, f"an integer in [1, {MAX_NEWTON}]"
+            )
         if self.newton not in ("full", "modified"):
             raise InputError("solver.newton", self.newton, 'one of "full", "modified"')
+        steps = self.t_end / self.step
+        if not self.adaptive and steps > MAX_STEPS:
+            raise InputError(
+                "solver.t_end / solver.step",
+                steps,
+                f"at most {MAX_STEPS:.0e} time steps (t_end = {self.t_end:g} s, step = "
+                f"{self.step:g} s); raise solver.step or shorten solver.t_end",
+            )
+        out_dt = self.output_step if self.output_step is not None else self.step
+        outputs = self.t_end / out_dt
+        if outputs > MAX_STEPS:
+            raise InputError(
+                "solver.t_end / solver.output_step",
+                outputs,
+                f"at most {MAX_STEPS:.0e} stored states (t_end = {self.t_end:g} s, output "
+                f"step = {out_dt:g} s); raise solver.output_step or shorten solver.t_end",
+            )
 
     @property
     def n_outputs(self) -> int:

@@ -8,6 +8,7 @@ from typing import Literal
 import numpy as np
 
 from rancf.errors import InputError
+from rancf.model.time_function import TimeFunction
 
 __all__ = ["Section", "Material", "Support", "PointLoad"]
 
@@ -133,7 +134,9 @@ class Support:
 
     ``position`` (pin, clamp; a point of the line for a roller) and ``direction`` (clamp: the
     held tangent) install the node away from its reference: the static solution moves it there
-    along the load path (pre-tension by installation); default the reference.
+    along the load path (pre-tension by installation); default the reference.  ``motion``: a
+    time function of the displacement of the held position from there (a moving support; in a
+    system, :class:`rancf.system.System`).
     """
 
     node: int
@@ -142,13 +145,16 @@ class Support:
     position: tuple[float, ...] | None = None
     direction: tuple[float, ...] | None = None
     axis: tuple[float, ...] | None = None
+    motion: TimeFunction | None = None
 
 
 @dataclass(frozen=True)
 class PointLoad:
-    """A force and/or (rods) a moment at a node: constant, or ``× sin(2π f t)`` with a frequency."""
+    """A force and/or (rods) a moment at a node: constant, or ``× sin(2π f t)`` with a frequency,
+    or a force times a time function ``time`` (in a system, :class:`rancf.system.System`)."""
 
     node: int
     force: tuple[float, ...] | None = None
     frequency_hz: float | None = None
     moment: tuple[float, float, float] | None = None
+    time: TimeFunction | None = None

@@ -63,7 +63,7 @@ def core_model(model: Model) -> _core.Model:
         rot_of_node[off // model.dpn, (off % model.dpn) // model.dim] = i
         rot[i] = basis
     base, f0, freq = _point_forces(model)
-    moments = [p for p in model.point_loads if p.moment is not None]
+    moments = [p for p in model.point_loads if p.moment is not None and p.time is None]
     return _core.Model(
         kind=kind,
         dim=model.dim,
@@ -93,7 +93,8 @@ def core_model(model: Model) -> _core.Model:
 
 def _point_forces(model: Model) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Point forces as ``(base index, F0, frequency)`` arrays (frequency 0: constant)."""
-    forces = [p for p in model.point_loads if p.force is not None]
+    # loads times a time function act through the system (rancf.system), not the chain
+    forces = [p for p in model.point_loads if p.force is not None and p.time is None]
     base = np.array([(p.node % model.n_nodes) * model.dpn for p in forces], dtype=np.int64)
     f0 = np.array([p.force for p in forces], dtype=float).reshape(-1, model.dim)
     freq = np.array([p.frequency_hz or 0.0 for p in forces], dtype=float)

@@ -9,6 +9,7 @@ import numpy as np
 from rancf.elements.cable import cable_shape_functions
 from rancf.elements.mapping import gradient_ratio
 from rancf.geometry.conic_curve import Conic
+from rancf.post.plots import save_figure
 
 __all__ = ["plot_conic", "draw_gradient_curves", "draw_parameter_points", "k_study_figure"]
 
@@ -177,6 +178,4 @@ def plot_conic(
         f"Conic arc: chord {conic.chord:.4g} m, {conic.kind}, arc length {length:.5f} m, "
         f"Kopt = {k_opt:.4f}, {n_elements} element(s)"
     )
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return save_figure(fig, path, 110)

@@ -10,10 +10,16 @@ files of :mod:`rancf.post.results` from those files (atomically, chunk by chunk)
 and time of the last update) until the run ends, then ``completed``, ``failed`` or
 ``interrupted``.  A run killed outright (SIGKILL, power loss) keeps ``"running"`` with a process
 id that no longer exists and the files of its last checkpoint.
+
+A checkpoint replaces the three history files and the summary together
+(:class:`rancf.atomic.FileSet`), so they always hold the same rows.  When a run fails for a
+reason outside the model (a full disk), :meth:`HistoryStore.fail` keeps the last complete
+checkpoint and marks its summary ``failed`` with the time that checkpoint reached.
 """
 
 from __future__ import annotations
 
+import contextlib
 import datetime
 import os
 import shutil
@@ -24,26 +30,60 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from rancf.atomic import FileSet, atomic_write
+from rancf.errors import RunTooLargeError
 from rancf.model.outputs import DerivedOutputs
 from rancf.model.system import Model
-from rancf.post.results import atomic_write, strict_json, write_history_files
+from rancf.post.results import strict_json, write_history_files
 from rancf.scenario.sensors import Sensor
 
-__all__ = ["HistoryStore", "estimate_output_bytes"]
+__all__ = ["HistoryStore", "estimate_output_bytes", "check_output_size", "HISTORY_FILES"]
+
+#: The files a run directory's history is kept in (replaced together at each checkpoint).
+HISTORY_FILES = ("sensors.csv", "energy.csv", "reactions.csv", "results.npz")
 
 _FILES = ("t", "q", "v", "e")
 
 
 def estimate_output_bytes(
-    n_outputs: int, n_q: int, n_sensor_columns: int, n_directors: int = 0
+    n_outputs: int, n_q: int, n_sensor_columns: int, n_directors: int = 0, n_derived: int = 0
 ) -> int:
-    """Disk space a run needs at its end (raw history + results.npz + the two CSV files).
+    """Disk space a run needs at its end (raw history + results.npz + the CSV files).
 
-    Raw and ``.npz`` copies of ``t, q, v``, energies and ``n_directors`` director components (a
-    rod's 3 per node) at 8 bytes a number each, about 20 bytes a number in the CSV files.
+    Raw and ``.npz`` copies of ``t, q, v, a``, energies, ``n_directors`` director components (a
+    rod's 3 per node) and ``n_derived`` reactions and section values at 8 bytes a number each,
+    about 20 bytes a number in the CSV files.
     """
-    per_row = 2 * 8 * (2 * n_q + 4 + n_sensor_columns + n_directors) + 20 * (n_sensor_columns + 6)
+    binary = 3 * n_q + 4 + n_sensor_columns + n_directors + n_derived
+    per_row = 2 * 8 * binary + 20 * (n_sensor_columns + 6 + n_derived)
     return int(n_outputs) * per_row
+
+
+def check_output_size(
+    where: str,
+    n_outputs: int,
+    n_q: int,
+    n_sensor_columns: int,
+    n_directors: int,
+    limit_gb: float,
+    limit_name: str = "--max-output-gb",
+    n_derived: int = 0,
+) -> None:
+    """Refuse, before it starts, a run whose files would take more than ``limit_gb`` GB
+    (:func:`estimate_output_bytes`).
+
+    Raises
+    ------
+    RunTooLargeError
+        Naming ``where`` (the scenario), the size, the number of stored states and the limit.
+    """
+    need = estimate_output_bytes(n_outputs, n_q, n_sensor_columns, n_directors, n_derived)
+    if need > limit_gb * 1e9:
+        raise RunTooLargeError(
+            f"{where}: this run would write about {need / 1e9:.3g} GB ({n_outputs} stored "
+            f"states of {n_q} coordinates), more than {limit_name} = {limit_gb:g}; "
+            "raise solver.output_step, shorten solver.t_end or raise the limit"
+        )
 
 
 def _now() -> str:
@@ -91,6 +131,9 @@ class HistoryStore:
         self._rows_per_flush = max(1, buffer_bytes // (16 * model.n + 32))
         self.n_rows = 0
         self._pending = 0
+        #: Rows and last time of the history files on disk (the last complete checkpoint).
+        self.saved_rows = 0
+        self.saved_t: float | None = None
 
     def append(
         self,
@@ -99,6 +142,7 @@ class HistoryStore:
         v: NDArray,
         energy: NDArray,
         directors: NDArray | None = None,
+        lam: NDArray | None = None,
     ) -> None:
         """Store one output (sink protocol of :func:`~rancf.solvers.dynamic.integrate`)."""
         self._add((np.array([t]), q, v, energy, directors), 1)
@@ -110,9 +154,11 @@ class HistoryStore:
         v: NDArray,
         energy: NDArray,
         directors: NDArray | None = None,
+        lam: NDArray | None = None,
     ) -> None:
         """Store consecutive outputs: ``t (k,)``, ``q, v (k, n_q)``, ``energy (k, 3)``, rods'
-        ``directors (k, n_nodes, 3)``."""
+        ``directors (k, n_nodes, 3)`` (``lam``: multipliers of a system's joints, unused for one
+        body)."""
         self._add((t, q, v, energy, directors), len(t))
 
     def _add(self, values: tuple[NDArray | None, ...], rows: int) -> None:
@@ -126,20 +172,25 @@ class HistoryStore:
 
     def flush(self) -> None:
         """Append the buffered outputs, and their reactions and section values, to the raw
-        files."""
-        if self._pending:
-            rows = {k: np.concatenate(self._buf[k]) for k in self._keys}
-            k = self._pending
-            acc, reac, along = self.derived.rows(
-                rows["t"], rows["q"].reshape(k, -1), rows["v"].reshape(k, -1),
-                rows["m"].reshape(k, -1) if "m" in rows else None,
-            )  # fmt: skip
-            rows["a"], rows["r"], rows["s"] = acc.ravel(), reac.ravel(), along.ravel()
-            for key, val in rows.items():
-                self._fh[key].write(np.ascontiguousarray(val, dtype="<f8").tobytes())
-                self._buf.get(key, []).clear()
-        for fh in self._fh.values():
-            fh.flush()
+        files (an error of a full disk names the file)."""
+        key = "t"
+        try:
+            if self._pending:
+                rows = {k: np.concatenate(self._buf[k]) for k in self._keys}
+                k = self._pending
+                acc, reac, along = self.derived.rows(
+                    rows["t"], rows["q"].reshape(k, -1), rows["v"].reshape(k, -1),
+                    rows["m"].reshape(k, -1) if "m" in rows else None,
+                )  # fmt: skip
+                rows["a"], rows["r"], rows["s"] = acc.ravel(), reac.ravel(), along.ravel()
+                for key, val in rows.items():
+                    self._fh[key].write(np.ascontiguousarray(val, dtype="<f8").tobytes())
+                    self._buf.get(key, []).clear()
+            for key in self._fh:
+                self._fh[key].flush()
+        except OSError as exc:  # a full disk: name the file
+            where = str(self.raw / f"{key}.f64")
+            raise OSError(exc.errno, exc.strerror or str(exc), where) from None
         self.n_rows += self._pending
         self._pending = 0
 
@@ -163,19 +214,27 @@ class HistoryStore:
         t, q, *_ = self._arrays()
         return t, q
 
+    def _summary_text(self, summary: dict[str, Any]) -> str:
+        return strict_json({**summary, **self.info, "updated_at": _now()})
+
     def write_summary(self, summary: dict[str, Any]) -> None:
         """Rewrite ``summary.json`` (strict JSON) with the run's fixed keys added."""
-        doc = {**summary, **self.info, "updated_at": _now()}
-        atomic_write(self.out / "summary.json", strict_json(doc))
+        atomic_write(self.out / "summary.json", self._summary_text(summary))
 
     def checkpoint(self, summary: dict[str, Any]) -> None:
-        """Flush, rebuild ``sensors.csv``, ``energy.csv``, ``results.npz``; then the summary."""
+        """Flush; replace ``sensors.csv``, ``energy.csv``, ``results.npz`` and the summary
+        together."""
         self.flush()
-        t, q, v, e, m1, a, r, along = self._arrays()
-        write_history_files(
-            self.out, self.model, self.sensors, t, q, v, e, m1, self.derived, (a, r, along)
-        )
-        self.write_summary(summary)
+        arrays = self._arrays()
+        t, q, v, e, m1, a, r, along = arrays
+        with FileSet() as files:
+            write_history_files(
+                self.out, self.model, self.sensors, t, q, v, e, m1, self.derived, (a, r, along),
+                files=files,
+            )  # fmt: skip
+            files.write(self.out / "summary.json", self._summary_text(summary))
+        self.saved_rows = self.n_rows
+        self.saved_t = float(t[-1]) if self.n_rows else None
 
     def finish(self, summary: dict[str, Any]) -> None:
         """Last checkpoint, then close and remove the raw files."""
@@ -183,7 +242,42 @@ class HistoryStore:
         self.close()
         shutil.rmtree(self.raw, ignore_errors=True)
 
+    def fail(self, summary: dict[str, Any]) -> bool:
+        """End a run that raised: a last checkpoint with ``summary`` if the disk takes it, else
+        the last complete checkpoint kept with its summary marked ``failed`` (``t_reached`` and
+        ``outputs`` of that checkpoint).  Never raises an :class:`OSError`; the raw files are
+        removed.  Returns whether the final checkpoint was written."""
+        try:
+            self.checkpoint(summary)
+            done = True
+        except Exception:  # noqa: BLE001 - a full disk, or raw files cut short by one
+            done = False
+        self.close()
+        shutil.rmtree(self.raw, ignore_errors=True)  # frees the disk for the summary below
+        if not done:
+            kept = {
+                **summary,
+                "t_reached": self.saved_t,
+                "outputs": self.saved_rows,
+                "message": f"{summary.get('message', '')}; the files hold the last complete "
+                f"checkpoint (t = {self.saved_t or 0.0:g} s, {self.saved_rows} stored states)",
+            }
+            try:
+                self.write_summary(kept)
+            except OSError:
+                pass  # the disk takes nothing: the summary of the last checkpoint stays
+        return done
+
+    def discard(self) -> None:
+        """Remove everything the store wrote (a run that failed before its first checkpoint)."""
+        self.close()
+        shutil.rmtree(self.raw, ignore_errors=True)
+        for name in (*HISTORY_FILES, "summary.json"):
+            with contextlib.suppress(OSError):
+                (self.out / name).unlink()
+
     def close(self) -> None:
         """Close the raw files (they stay on disk)."""
         for fh in self._fh.values():
-            fh.close()
+            with contextlib.suppress(OSError):
+                fh.close()

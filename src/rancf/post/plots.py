@@ -8,10 +8,11 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from rancf.atomic import FileSet, atomic_path
 from rancf.elements.cable import cable_shape_functions
 from rancf.model.system import Model
 
-__all__ = ["centerline", "plot_modes", "pyplot"]
+__all__ = ["centerline", "plot_modes", "pyplot", "save_figure"]
 
 
 def pyplot() -> Any:
@@ -22,6 +23,18 @@ def pyplot() -> Any:
     import matplotlib.pyplot as plt
 
     return plt
+
+
+def save_figure(fig: Any, path: str | Path, dpi: int = 100, files: FileSet | None = None) -> Path:
+    """Write ``fig`` to ``path`` atomically (format from the extension, :mod:`rancf.atomic`),
+    or as one file of the set ``files``, and close it."""
+    path = Path(path)
+    try:
+        with atomic_path(path) if files is None else files.path(path) as tmp:
+            fig.savefig(tmp, dpi=dpi)
+    finally:
+        pyplot().close(fig)
+    return path
 
 
 def centerline(model: Model, q: NDArray, per_element: int = 16) -> NDArray[np.float64]:
@@ -93,9 +106,7 @@ def plot_shapes(
             ax.set_aspect("equal", adjustable="datalim")
         if i == 0:
             ax.legend(fontsize=7)
-    fig.savefig(path, dpi=100)
-    plt.close(fig)
-    return path
+    return save_figure(fig, path, 100)
 
 
 def positions_at(model: Model, q: NDArray, sbar: NDArray) -> NDArray[np.float64]:

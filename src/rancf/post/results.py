@@ -9,28 +9,26 @@ A run directory holds
 * ``summary.json`` — status, message, time reached, counters and wall times (strict JSON:
   a non-finite number is written as ``null``).
 
-Each file is written to a temporary file in the same directory, given the permissions the
-process umask allows (like any newly created file, e.g. 0644 under umask 0022) and moved into
-place with :func:`os.replace`, which is atomic on POSIX and Windows.  Histories are written in
-chunks of rows, so a long run's files are built without holding them in memory.
+Every file is written through :mod:`rancf.atomic`: under a temporary name, given the permissions
+the umask allows (0644 under umask 0022) and renamed into place; the files of a run
+(``sensors.csv``, ``energy.csv``, ``reactions.csv``, ``results.npz`` and ``summary.json``) are
+renamed together once all are written, so they always hold the same rows.  Histories are written
+in chunks of rows, so a long run's files are built without holding them in memory.
 """
 
 from __future__ import annotations
 
-import contextlib
 import json
 import math
-import os
-import tempfile
-import threading
 import zipfile
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
-from typing import IO, Any
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
+from rancf.atomic import FileSet
 from rancf.model.motion import angular_momentum
 from rancf.model.outputs import DerivedOutputs
 from rancf.model.system import Model
@@ -39,9 +37,8 @@ from rancf.scenario.sensors import Sensor
 from rancf.solvers.dynamic import DynamicResult
 
 __all__ = [
-    "atomic_file",
-    "atomic_write",
     "strict_json",
+    "json_safe",
     "write_history_files",
     "reader_metadata",
     "write_run",
@@ -54,61 +51,24 @@ __all__ = [
 CHUNK_BYTES = 1 << 24
 
 
-_UMASK_LOCK = threading.Lock()
-
-
-def _umask() -> int:
-    """The process umask.  Reading it means setting it for a moment, which threads (the worker
-    threads of the report's local Dask cluster write run folders) must not do at once."""
-    with _UMASK_LOCK:
-        mask = os.umask(0o022)
-        os.umask(mask)
-    return mask
-
-
-@contextlib.contextmanager
-def atomic_file(path: str | Path) -> Iterator[IO[bytes]]:
-    """A binary file handle whose content replaces ``path`` atomically when the block ends.
-
-    On an exception (or interrupt) inside the block the temporary file is removed and ``path``
-    is left as it was.
-    """
-    path = Path(path)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            yield fh
-            fh.flush()
-            os.fsync(fh.fileno())
-        os.chmod(tmp, 0o666 & ~_umask())
-        os.replace(tmp, path)
-    except BaseException:
-        with contextlib.suppress(OSError):
-            os.unlink(tmp)
-        raise
-
-
-def atomic_write(path: str | Path, data: bytes | str) -> None:
-    """Write ``data`` to ``path`` through a temporary file and an atomic rename."""
-    with atomic_file(path) as fh:
-        fh.write(data.encode("utf-8") if isinstance(data, str) else data)
-
-
-def _finite(value: Any) -> Any:
+def json_safe(value: Any) -> Any:
+    """``value`` with every non-finite float replaced by None (NumPy scalars as Python ones), in
+    nested dictionaries and lists: what strict JSON can hold."""
     if isinstance(value, float | np.floating):
         return float(value) if math.isfinite(value) else None
     if isinstance(value, np.integer):
         return int(value)
     if isinstance(value, dict):
-        return {k: _finite(v) for k, v in value.items()}
+        return {k: json_safe(v) for k, v in value.items()}
     if isinstance(value, list | tuple):
-        return [_finite(v) for v in value]
+        return [json_safe(v) for v in value]
     return value
 
 
-def strict_json(value: Any) -> str:
-    """JSON text with every non-finite number replaced by ``null`` (never ``NaN``)."""
-    return json.dumps(_finite(value), indent=2, allow_nan=False) + "\n"
+def strict_json(value: Any, default: Callable[[Any], Any] | None = None) -> str:
+    """JSON text with every non-finite number replaced by ``null`` (never ``NaN`` or
+    ``Infinity``, which strict JSON readers refuse); ``default`` converts other objects."""
+    return json.dumps(json_safe(value), indent=2, allow_nan=False, default=default) + "\n"
 
 
 def sensor_table(
@@ -193,6 +153,7 @@ def write_history_files(
     derived: DerivedOutputs | None = None,
     precomputed: tuple[NDArray, NDArray, NDArray] | None = None,
     static: bool = False,
+    files: FileSet | None = None,
 ) -> list[str]:
     """``sensors.csv``, ``energy.csv``, ``reactions.csv`` and ``results.npz`` of a history,
     chunk by chunk.
@@ -202,8 +163,14 @@ def write_history_files(
     memory maps.  The accelerations, reactions and section values (:class:`DerivedOutputs`)
     come from ``precomputed = (a (n, n_q), reactions (n, n_r), along (n, n_points * n_names))``
     or are computed from the rows (``static``: rows of a load path, ``t`` the path parameter).
-    Returns the sensor column names.
+    The files replace the old ones together (:mod:`rancf.atomic`): when the call ends, or, with
+    ``files`` given, when that set is committed.  Returns the sensor column names.
     """
+    if files is None:
+        with FileSet() as own:
+            return write_history_files(
+                out, model, sensors, t, q, v, energy, directors, derived, precomputed, static, own
+            )
     n = t.shape[0]
     derived = derived if derived is not None else DerivedOutputs(model)
     m1 = None if directors is None else directors.reshape(n, -1)
@@ -216,12 +183,12 @@ def write_history_files(
         return acc, reac, along.reshape(along.shape[0], -1)
 
     names, _ = sensor_table(model, sensors, q[:1])
-    with atomic_file(out / "sensors.csv") as fh:
+    with files.file(out / "sensors.csv") as fh:
         fh.write((",".join(["t", *names]) + "\n").encode())
         for r in _rows(n, q.shape[1]):
             _, vals = sensor_table(model, sensors, q[r], v[r], energy[r])
             np.savetxt(fh, np.column_stack([t[r], vals]), delimiter=",", fmt="%.12g")
-    with atomic_file(out / "energy.csv") as fh:
+    with files.file(out / "energy.csv") as fh:
         fh.write(b"t,kinetic,strain,gravity,total\n")
         for r in _rows(n, 5):
             e = energy[r]
@@ -229,7 +196,7 @@ def write_history_files(
     width = len(derived.section_names) * derived.n_points
     chunks = [(r, *derived_rows(r)) for r in _rows(n, 2 * q.shape[1] + width)]
     if derived.reaction_names:
-        with atomic_file(out / "reactions.csv") as fh:
+        with files.file(out / "reactions.csv") as fh:
             fh.write((",".join(["t", *derived.reaction_names]) + "\n").encode())
             for r, _, reac, _ in chunks:
                 np.savetxt(fh, np.column_stack([t[r], reac]), delimiter=",", fmt="%.12g")
@@ -253,7 +220,7 @@ def write_history_files(
     }
     n_r = len(derived.reaction_names)
     along_shape = (n, derived.n_points, len(derived.section_names))
-    with atomic_file(out / "results.npz") as fh:
+    with files.file(out / "results.npz") as fh:
         with zipfile.ZipFile(fh, "w", zipfile.ZIP_STORED, allowZip64=True) as z:
             _npy(z, "t", (n,), (t[r] for r in _rows(n, 1)))
             for name, arr in (("q", q), ("v", v)):
@@ -317,16 +284,17 @@ def write_run(
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     energy = np.column_stack([result.kinetic, result.strain, result.gravity])
-    write_history_files(
-        out, model, sensors, result.t, result.q, result.v, energy, result.directors,
-        DerivedOutputs(model, labels),
-    )  # fmt: skip
     summary = {
         **run_summary(model, result),
         "warnings": run_warnings(model, result.t, result.q),
         **(extra or {}),
     }
-    atomic_write(out / "summary.json", strict_json(summary))
+    with FileSet() as files:  # the files replace an earlier run's together
+        write_history_files(
+            out, model, sensors, result.t, result.q, result.v, energy, result.directors,
+            DerivedOutputs(model, labels), files=files,
+        )  # fmt: skip
+        files.write(out / "summary.json", strict_json(summary))
     return summary
 
 
@@ -367,28 +335,38 @@ def write_static_run(
         [[0.0, model.strain_energy(y), model.gravity_energy(y)] for y in ys], dtype=float
     )
     m1 = np.array([m for _, _, m in path.steps]) if model.element == "rod" else None
-    write_history_files(
-        out, model, sensors, t, q, np.zeros_like(q), energy, m1, path.derived, static=True
-    )
-    write_along_csv(out / "along.csv", path, q[-1], None if m1 is None else m1[-1])
-    doc = {
-        "analysis": "static",
-        "load_factor_reached": float(t[-1]),
-        "load_steps_converged": int(t.size - 1),
-        "n_elements": model.n_el,
-        "element": model.element,
-        "n_dofs": model.n,
-        "outputs": int(t.size),
-        "warnings": run_warnings(model, static=True, largest=path.derived.largest_strain),
-        **summary,
-    }
-    atomic_write(out / "summary.json", strict_json(doc))
+    with FileSet() as files:  # the files replace an earlier load path's together
+        write_history_files(
+            out, model, sensors, t, q, np.zeros_like(q), energy, m1, path.derived, static=True,
+            files=files,
+        )  # fmt: skip
+        last = None if m1 is None else m1[-1]
+        write_along_csv(out / "along.csv", path, q[-1], last, files)
+        # after the rows: their outputs tracked the largest strain of the warnings
+        doc = {
+            "analysis": "static",
+            "load_factor_reached": float(t[-1]),
+            "load_steps_converged": int(t.size - 1),
+            "n_elements": model.n_el,
+            "element": model.element,
+            "n_dofs": model.n,
+            "outputs": int(t.size),
+            "warnings": run_warnings(model, static=True, largest=path.derived.largest_strain),
+            **summary,
+        }
+        files.write(out / "summary.json", strict_json(doc))
     return doc
 
 
-def write_along_csv(path: Path, load_path: LoadPath, q: NDArray, m1: NDArray | None) -> None:
+def write_along_csv(
+    path: Path, load_path: LoadPath, q: NDArray, m1: NDArray | None, files: FileSet | None = None
+) -> None:
     """``along.csv`` of the last state of a load path: one row per section sample point with the
-    reference arc length ``s``, the position and the section quantities."""
+    reference arc length ``s``, the position and the section quantities (into the set ``files``,
+    or atomically on its own)."""
+    if files is None:
+        with FileSet() as own:
+            return write_along_csv(path, load_path, q, m1, own)
     d = load_path.derived
     lam = load_path.steps[-1][0]
     _, _, along = d.rows(np.array([lam]), q[None], directors=None if m1 is None else m1[None],
@@ -396,7 +374,7 @@ def write_along_csv(path: Path, load_path: LoadPath, q: NDArray, m1: NDArray | N
     pos = d.sampler.positions(load_path.model.y_from_q(q))
     axes = ["x", "y", "z"][: load_path.model.dim]
     head = ",".join(["s", *axes, *d.section_names]) + "\n"
-    with atomic_file(path) as fh:
+    with files.file(path) as fh:
         fh.write(head.encode())
         np.savetxt(fh, np.column_stack([d.sampler.s, pos, along[0]]), delimiter=",", fmt="%.12g")
 

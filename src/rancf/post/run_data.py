@@ -31,6 +31,7 @@ from __future__ import annotations
 import json
 import logging
 import math
+import os
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -39,8 +40,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rancf.elements.cable import axial_strain, cable_shape_functions
-from rancf.errors import InputError
+from rancf.errors import InputError, shorten
 from rancf.post.results import load_results
+from rancf.post.run_checks import check_results, scenario_fits
 
 __all__ = [
     "RunData",
@@ -123,8 +125,9 @@ class RunData:
 
     @property
     def name(self) -> str:
-        """The run's name (its directory name)."""
-        return self.path.resolve().name
+        """The run's name: its directory name (bytes that are not UTF-8 shown as U+FFFD, so the
+        name can go into file names, XML and figure titles)."""
+        return os.fsencode(self.path.resolve().name).decode("utf-8", "replace")
 
     @property
     def n_nodes(self) -> int:
@@ -150,23 +153,29 @@ def _summary(run_dir: Path) -> dict[str, Any]:
     return doc if isinstance(doc, dict) else {}
 
 
-def _find_scenario(run_dir: Path) -> Path | None:
+def _find_scenario(run_dir: Path) -> tuple[Path | None, bool]:
+    """The run's scenario and whether it is the run's own copy (``scenario.toml``)."""
     own = run_dir / "scenario.toml"
     if own.is_file():
-        return own
+        return own, True
     recorded = _summary(run_dir).get("scenario")
     if isinstance(recorded, str) and recorded and Path(recorded).is_file():
-        return Path(recorded)
-    return None
+        return Path(recorded), False
+    return None, False
 
 
 def load_run(run_dir: str | Path) -> RunData:
     """Read ``RUN_DIR/results.npz`` (and the scenario, if it can be found).
 
+    The run's own ``scenario.toml`` must match the results; a scenario found only through the
+    path ``summary.json`` records (older runs) is skipped, with a warning, when it no longer
+    matches or no longer reads.
+
     Raises
     ------
     InputError
-        If ``run_dir`` is not a directory holding a readable ``results.npz``.
+        If ``run_dir`` is not a directory holding a readable, consistent ``results.npz``, or
+        its own ``scenario.toml`` does not match it.
     """
     path = Path(run_dir)
     npz = path / "results.npz"
@@ -179,20 +188,47 @@ def load_run(run_dir: str | Path) -> RunData:
         raise InputError("RUN_DIR", str(path), "a run directory holding results.npz")
     try:
         data = load_results(npz)
-    except (OSError, ValueError, KeyError) as exc:
-        raise InputError("RUN_DIR", str(npz), f"a readable results.npz ({exc})") from None
+        check_results(npz, data)
+    except InputError:
+        raise
+    except Exception as exc:  # noqa: BLE001 - a damaged file: cut short, empty, not a zip
+        reason = shorten(" ".join(f"{type(exc).__name__}: {exc}".split()))
+        raise InputError("RUN_DIR", str(npz), f"a readable results.npz ({reason})") from None
     meta: dict[str, Any] = data["metadata"]
     radius = meta.get("section_radius")
     angles = None if meta.get("tangent_angles") is None else np.array(meta["tangent_angles"])
-    sc_path = None if radius is not None else _find_scenario(path)  # runs of rancf < 0.3
+    sc_path, own = _find_scenario(path)
+    if radius is not None and not own:
+        sc_path = None  # the results hold what readers need; the run's own copy is still checked
+    sc = None
     if sc_path is not None:
+        from rancf.errors import ScenarioError
         from rancf.scenario import load_scenario
 
-        sc = load_scenario(sc_path)
+        try:
+            sc = load_scenario(sc_path)
+            why = scenario_fits(sc, meta)
+        except ScenarioError as exc:
+            if own:
+                raise
+            sc, why = None, str(exc)
+        if why is not None and own:
+            raise InputError(
+                "RUN_DIR", str(path), f"a run whose scenario.toml fits its results ({why})"
+            )
+        if why is not None:
+            logger.warning("%s: skipping the scenario %s: %s", path, sc_path, why)
+            sc = None
+    if sc is not None and radius is None:  # runs of rancf < 0.3
         s = sc.data["section"]
         radius = s["radius"] if s["radius"] is not None else math.sqrt(s["area"] / math.pi)
-        if meta["element"] == "beam":
+        if meta["element"] == "beam" and angles is None:
             nodes = sc.build_model().mesh.nodes
+            if nodes.shape[0] != meta["n_elements"] + 1:
+                raise InputError(
+                    "RUN_DIR", str(path), f"a run whose scenario fits its results ({sc_path} "
+                    f"meshes {nodes.shape[0] - 1} elements, the results hold {meta['n_elements']})",
+                )  # fmt: skip
             angles = np.arctan2(nodes[:, 1, 1], nodes[:, 1, 0])
     elif radius is None:
         logger.warning("%s: no scenario found; no radius field, beams drawn with chords", path)

@@ -8,8 +8,6 @@ optional ``imageio-ffmpeg`` package ships (``pip install 'rancf[mp4]'``).
 
 from __future__ import annotations
 
-import os
-import tempfile
 from dataclasses import replace
 from pathlib import Path
 from typing import Any
@@ -17,9 +15,10 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from rancf.atomic import FileSet, atomic_path
 from rancf.errors import InputError
 from rancf.extras import require
-from rancf.post.plots import pyplot
+from rancf.post.plots import pyplot, save_figure
 from rancf.post.run_data import RunData, frame_indices, sample_centerline
 
 __all__ = ["plot_run", "animate_run"]
@@ -63,30 +62,23 @@ def _set_line(line: Any, pts: NDArray) -> None:
         line.set_data(pts[:, 0], pts[:, 1])
 
 
-def _save(fig: Any, path: Path) -> None:
-    plt = pyplot()
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".png", dir=path.parent)
-    os.close(fd)
-    try:
-        fig.savefig(tmp, dpi=100, format="png")
-        os.replace(tmp, path)
-    finally:
-        plt.close(fig)
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-
-
 def plot_run(run: RunData, out_dir: str | Path, n_configurations: int = 6) -> list[Path]:
     """Write ``sensors.png`` (every sensor column over time), ``energy.png`` and
     ``configurations.png`` (the centreline at ``n_configurations`` evenly spaced stored times).
 
-    Returns the written paths.
+    The three files replace earlier ones together (:class:`rancf.atomic.FileSet`).  Returns the
+    written paths.
     """
-    plt = pyplot()
     out = Path(out_dir)
     if out.exists() and not out.is_dir():
         raise InputError("--out", str(out), "a directory (it exists and is a file)")
     out.mkdir(parents=True, exist_ok=True)
+    with FileSet() as files:
+        return _plot_run(run, out, n_configurations, files)
+
+
+def _plot_run(run: RunData, out: Path, n_configurations: int, files: FileSet) -> list[Path]:
+    plt = pyplot()
     written = []
 
     cols = run.sensor_names
@@ -105,7 +97,7 @@ def plot_run(run: RunData, out_dir: str | Path, n_configurations: int = 6) -> li
         axes[-1, 0].set_xlabel(run.time_label)
         fig.suptitle(f"sensors of {run.name}")
         written.append(out / "sensors.png")
-        _save(fig, written[-1])
+        save_figure(fig, written[-1], 100, files)
 
     fig, ax = plt.subplots(figsize=(7, 4), constrained_layout=True)
     e = run.energies
@@ -117,7 +109,7 @@ def plot_run(run: RunData, out_dir: str | Path, n_configurations: int = 6) -> li
     ax.legend()
     ax.set_title(f"energies of {run.name}")
     written.append(out / "energy.png")
-    _save(fig, written[-1])
+    save_figure(fig, written[-1], 100, files)
 
     idx = np.unique(np.linspace(0, run.t.size - 1, max(n_configurations, 1)).round().astype(int))
     lines = _pad(np.array([sample_centerline(run, int(i)).points for i in idx]))
@@ -130,7 +122,7 @@ def plot_run(run: RunData, out_dir: str | Path, n_configurations: int = 6) -> li
     ax.legend(fontsize=8)
     ax.set_title(f"configurations of {run.name}")
     written.append(out / "configurations.png")
-    _save(fig, written[-1])
+    save_figure(fig, written[-1], 100, files)
     return written
 
 
@@ -172,7 +164,7 @@ def animate_run(
     if isinstance(fps, bool) or not isinstance(fps, int) or fps < 1:
         raise InputError("--fps", fps, "an integer >= 1")
     path = Path(path)
-    writer, suffix = _writer(path, fps)
+    writer, _ = _writer(path, fps)
     if not path.parent.is_dir():
         raise InputError("--out", str(path), "a file in an existing directory")
     plt = pyplot()
@@ -194,17 +186,12 @@ def animate_run(
     line = _draw(ax, lines[0], color="C0", lw=2)
     title = ax.set_title("")
     label = f" (displacement × {magnify:g})" if magnify != 1.0 else ""
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=suffix, dir=path.parent)
-    os.close(fd)
     try:
-        with writer.saving(fig, tmp, dpi):
+        with atomic_path(path) as tmp, writer.saving(fig, tmp, dpi):
             for k, i in enumerate(idx):
                 _set_line(line, lines[k])
                 title.set_text(f"{run.name}: {run.time_text(run.t[i], '.4f')}{label}")
                 writer.grab_frame()
-        os.replace(tmp, path)
     finally:
         plt.close(fig)
-        if os.path.exists(tmp):
-            os.unlink(tmp)
     return int(idx.size)

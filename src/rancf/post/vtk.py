@@ -14,25 +14,58 @@ Rod runs also get ``<run>_nodes.pvd`` with one ``.vtu`` per stored time holding 
 ``vertex`` cells with point data ``twist`` (the nodal ``φ``), ``tangent`` and the material frame
 ``m1``, ``m2`` (ParaView's Glyph filter draws them as arrows), ``displacement`` and ``velocity``:
 the frames are those the run carried along its path (:func:`rancf.post.run_data.nodal_frames`).
-Every file is written to a temporary name and moved into place, so an interrupted export never
-leaves a corrupt file.
+The files of one export are written under temporary names and renamed into place together once
+all are written (:class:`rancf.atomic.FileSet`): a failing or interrupted export (a full disk,
+Ctrl-C) leaves the folder as it was, never ``.vtu`` files without their ``.pvd``.
 """
 
 from __future__ import annotations
 
 import html
-import os
-import tempfile
+from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
+from rancf.atomic import FileSet
 from rancf.errors import InputError
 from rancf.geometry.conic_params import pad3
-from rancf.post.results import atomic_write
 from rancf.post.run_data import RunData, frame_indices, nodal_frames, sample_centerline
 
-__all__ = ["export_vtk", "centerline_mesh", "nodes_mesh"]
+__all__ = ["export_vtk", "centerline_mesh", "nodes_mesh", "check_export_size"]
+
+#: Most centreline points of one frame (``--samples`` per element times the elements).
+MAX_POINTS_PER_FRAME = 10**6
+#: Most centreline points of one export (all frames): about 2 GB of ``.vtu`` files.
+MAX_POINTS = 2 * 10**7
+
+
+def check_export_size(run: RunData, every: int, per_element: int) -> None:
+    """Refuse, before anything is written, an export of more than :data:`MAX_POINTS_PER_FRAME`
+    points a frame (``--samples``) or :data:`MAX_POINTS` in all (``--every``)."""
+    n_el = run.weights.shape[0]
+    n_frames = frame_indices(run.t.size, every).size
+    if isinstance(per_element, bool) or not isinstance(per_element, int) or per_element < 1:
+        raise InputError("--samples", per_element, "an integer >= 1")
+    if per_element * n_el > MAX_POINTS_PER_FRAME:
+        most = max(1, MAX_POINTS_PER_FRAME // n_el)
+        raise InputError(
+            "--samples",
+            per_element,
+            f"at most {most} points per element for this run of {n_el} elements "
+            f"({MAX_POINTS_PER_FRAME:.0e} points a frame)",
+        )
+    total = per_element * n_el * n_frames
+    if total > MAX_POINTS:
+        raise InputError(
+            "--every",
+            every,
+            f"fewer frames: {n_frames} frames of {per_element * n_el} points would be "
+            f"{total:.3g} points, more than {MAX_POINTS:.0e} (about 2 GB); raise --every or "
+            "lower --samples",
+        )
 
 
 def centerline_mesh(run: RunData, i: int, per_element: int = 16):  # -> meshio.Mesh
@@ -65,9 +98,10 @@ def _section_fields(run: RunData, i: int, per_element: int) -> dict[str, np.ndar
     w = np.clip(xi * 4.0, 0.0, 4.0)
     lo = np.minimum(np.floor(w).astype(int), 3)
     frac = w - lo
-    vals = along[idx[:, lo]] * (1.0 - frac)[None, :, None] + along[idx[:, lo + 1]] * frac[
-        None, :, None
-    ]  # (n_el, per_element + 1, n_names)
+    vals = (
+        along[idx[:, lo]] * (1.0 - frac)[None, :, None]
+        + along[idx[:, lo + 1]] * frac[None, :, None]
+    )  # (n_el, per_element + 1, n_names)
     pts = np.concatenate([vals[:, :-1].reshape(-1, vals.shape[-1]), vals[-1, -1:]])
     return {f"section_{name}": pts[:, k] for k, name in enumerate(run.section_names)}
 
@@ -89,40 +123,43 @@ def nodes_mesh(run: RunData, i: int):  # -> meshio.Mesh
     return meshio.Mesh(f.points, [("vertex", np.arange(n)[:, None])], point_data=data)
 
 
-def _write_vtu(mesh, path: Path) -> None:  # mesh: meshio.Mesh
-    import meshio
-
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".vtu", dir=path.parent)
-    os.close(fd)
-    try:
-        meshio.write(tmp, mesh, file_format="vtu")
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
-
-
 def export_vtk(run: RunData, out_dir: str | Path, every: int = 1, per_element: int = 16) -> Path:
     """Write ``OUT_DIR/<run>_NNNNN.vtu`` for every ``every``-th stored time and ``<run>.pvd``
     (rods: also ``<run>_nodes_NNNNN.vtu`` and ``<run>_nodes.pvd``).
 
     Returns the path of the centreline's ``.pvd`` file.
     """
+    check_export_size(run, every, per_element)
     out = Path(out_dir)
     if out.exists() and not out.is_dir():
         raise InputError("--vtk", str(out), "a directory (it exists and is a file)")
     out.mkdir(parents=True, exist_ok=True)
     idx = frame_indices(run.t.size, every)
+    parts: list[tuple[str, Callable[[int], Any]]]
     parts = [(run.name, lambda i: centerline_mesh(run, i, per_element))]
     if run.element == "rod" and run.directors is not None:
         parts.append((f"{run.name}_nodes", lambda i: nodes_mesh(run, i)))
+    with FileSet() as files:
+        return _export(run, out, idx, parts, files)
+
+
+def _export(
+    run: RunData,
+    out: Path,
+    idx: NDArray[np.int64],
+    parts: list[tuple[str, Callable[[int], Any]]],
+    files: FileSet,
+) -> Path:
+    """Every frame of every part, then each part's ``.pvd``, into the set ``files``."""
+    import meshio
+
     paths = []
     for name, mesh_at in parts:
         entries = []
         for k, i in enumerate(idx):
             fname = f"{name}_{k:05d}.vtu"
-            _write_vtu(mesh_at(int(i)), out / fname)
+            with files.path(out / fname) as tmp:
+                meshio.write(tmp, mesh_at(int(i)), file_format="vtu")
             entries.append(
                 f'    <DataSet timestep="{float(run.t[i])!r}" group="" part="0" '
                 f'file="{html.escape(fname, quote=True)}"/>'
@@ -139,5 +176,5 @@ def export_vtk(run: RunData, out_dir: str | Path, every: int = 1, per_element: i
             ]
         )
         paths.append(out / f"{name}.pvd")
-        atomic_write(paths[-1], pvd)
+        files.write(paths[-1], pvd)
     return paths[0]

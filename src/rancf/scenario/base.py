@@ -17,6 +17,8 @@ import numpy as np
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Discriminator, Field, model_validator
 from pydantic_core import PydanticCustomError
 
+from rancf.errors import MAX_SHOWN, shorten
+
 __all__ = [
     "Table",
     "fail",
@@ -40,9 +42,6 @@ __all__ = [
     "PlacePair",
 ]
 
-#: Longest value shown in an error message (longer ones are cut in the middle).
-MAX_SHOWN = 80
-
 
 def show(value: Any) -> str:
     """A value as an error message shows it: ``repr``, at most :data:`MAX_SHOWN` characters, an
@@ -55,14 +54,6 @@ def show(value: Any) -> str:
         return shorten(repr(value))
     except RecursionError:
         return f"a {type(value).__name__} nested too deeply to show"
-
-
-def shorten(text: str, limit: int = MAX_SHOWN) -> str:
-    """``text`` cut to at most ``limit`` characters, the middle replaced by ``...``."""
-    if len(text) <= limit:
-        return text
-    keep = (limit - 3) // 2
-    return f"{text[:keep]}...{text[len(text) - keep :]}"
 
 
 def fail(key: str, problem: str) -> PydanticCustomError:
@@ -260,11 +251,21 @@ def _sizes(sizes: tuple[int, ...]) -> Any:
     return check
 
 
+def _bounded(bound: float) -> Any:
+    def check(v: Any) -> float:
+        f = _number(v)
+        if abs(f) > bound:
+            raise fail("", f"must be at most {bound:g} in size, got {show(v)}")
+        return f
+
+    return check
+
+
 def vector(*sizes: int, bound: float | None = None) -> Any:
     """The type of a list of ``sizes`` finite numbers (each at most ``bound`` in size)."""
     item: Any = Number
     if bound is not None:
-        item = Annotated[float, Field(ge=-bound, le=bound), BeforeValidator(_number)]
+        item = Annotated[float, Field(ge=-bound, le=bound), BeforeValidator(_bounded(bound))]
     return Annotated[
         list[item],
         Field(min_length=min(sizes), max_length=max(sizes)),

@@ -23,6 +23,7 @@ from pydantic import (
 
 from rancf.elements.mapping import K_RANGE  # the factors a scenario may fix
 from rancf.errors import InputError
+from rancf.geometry.conic import LENGTH_RANGE
 from rancf.scenario.base import (
     JsonSchema,
     KindOf,
@@ -37,6 +38,8 @@ from rancf.scenario.base import (
 
 __all__ = [
     "MAX_ELEMENTS",
+    "MAX_COORDINATE",
+    "MAX_WEIGHT_RATIO",
     "ELEMENTS",
     "GEOMETRY_KEYS",
     "ConicGeometry",
@@ -47,6 +50,11 @@ __all__ = [
     "MeshTable",
 ]
 
+#: Largest size of a geometry coordinate [m] (``start``, ``end``, ``point``, ``control_points``):
+#: the longest chord a conic may have (:data:`rancf.geometry.conic.LENGTH_RANGE`).
+MAX_COORDINATE = LENGTH_RANGE[1]
+#: Largest ratio of two NURBS weights (a curve's shape depends on the ratios only).
+MAX_WEIGHT_RATIO = 1e12
 #: Largest ``mesh.elements`` (and total number of elements of a NURBS mesh).
 MAX_ELEMENTS = 1_000_000
 #: Element kinds of ``mesh.element``.
@@ -59,7 +67,7 @@ GEOMETRY_KEYS = {
     "cad": ("file", "curve"),
 }
 
-Point = vector(2, 3)
+Point = vector(2, 3, bound=MAX_COORDINATE)
 
 
 class _Geometry(Table):
@@ -151,6 +159,10 @@ class NurbsGeometry(_Geometry):
             )
         for i, pt in enumerate(self.control_points):
             _same_dim(self.dim, f"control_points[{i}]", pt)
+        w = [abs(x) for x in self.weights or () if x != 0.0]
+        if w and max(w) > MAX_WEIGHT_RATIO * min(w):
+            raise fail("weights", f"the largest weight may be at most {MAX_WEIGHT_RATIO:g} times "
+                       f"the smallest, got {max(w):g} and {min(w):g}")  # fmt: skip
         return self
 
     @property

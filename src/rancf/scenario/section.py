@@ -15,6 +15,8 @@ Rules besides the types (each violation names its key):
 
 from __future__ import annotations
 
+import math
+import sys
 from typing import Any, Literal
 
 from pydantic import Field, model_validator
@@ -55,6 +57,7 @@ class SectionTable(Table):
     def _one_way(self) -> SectionTable:
         principal = [k for k in ("inertia_y", "inertia_z", "orientation") if self[k] is not None]
         if self.radius is not None:
+            _check_radius(self.radius)
             extra = [k for k in ("area", "inertia", *principal) if self[k] is not None]
             if extra:
                 raise fail("", f"give either radius, or area and inertia, not both ({extra[0]})")
@@ -71,6 +74,18 @@ class SectionTable(Table):
         elif self.area is None or self.inertia is None:
             raise fail("", "requires radius, or both area and inertia")
         return self
+
+
+def _check_radius(r: float) -> None:
+    """A radius whose area ``π r²`` and second moment ``π r⁴ / 4`` are normal positive numbers
+    (``1e100`` overflows, ``1e-100`` underflows to zero)."""
+    try:
+        area, inertia = math.pi * r**2, math.pi * r**4 / 4.0
+    except OverflowError:
+        area = inertia = math.inf
+    if not (math.isfinite(inertia) and inertia >= sys.float_info.min and area > 0):
+        raise fail("radius", f"must give a finite, nonzero area π r² and second moment π r⁴/4, "
+                   f"got {r:g} (second moment {inertia:g})")  # fmt: skip
 
 
 class MaterialTable(Table):

@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING, Literal
 from pydantic import Field, model_validator
 
 from rancf.errors import InputError
+from rancf.model.analysis import MAX_LOAD_STEPS, MAX_NEWTON
 from rancf.scenario.base import Flag, Positive, Table, fail, integer, number, show
 
 if TYPE_CHECKING:
@@ -35,7 +36,7 @@ class SolverTable(Table):
     rho_inf: number(ge=0.0, le=1.0) = Field(
         0.9, description="generalized-alpha spectral radius at infinity, in [0, 1]"
     )
-    load_steps: integer(ge=1) = Field(
+    load_steps: integer(ge=1, le=MAX_LOAD_STEPS) = Field(
         10, description="statics: the first load increment is 1/load_steps"
     )
     adaptive: Flag = Field(False, description="adapt the step to rtol (local error estimate)")
@@ -47,7 +48,7 @@ class SolverTable(Table):
         None, description="below this a failing step stops the run [s] (default: step / 1024)"
     )
     newton_tol: Positive = Field(1e-10, description="Newton: max |increment| / model size")
-    max_newton: integer(ge=1) = Field(12, description="Newton iterations per step")
+    max_newton: integer(ge=1, le=MAX_NEWTON) = Field(12, description="Newton iterations per step")
     newton: Literal["full", "modified"] = Field(
         "full", description='"full" (exact tangent every iteration) | "modified" (reuse it)'
     )

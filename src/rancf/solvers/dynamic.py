@@ -33,6 +33,7 @@ from rancf.kernels import _core
 from rancf.model.analysis import DynamicOptions
 from rancf.model.system import Model
 from rancf.solvers.output import MemorySink, OutputSink
+from rancf.system import System
 
 __all__ = ["DynamicOptions", "DynamicStatus", "DynamicResult", "GeneralizedAlpha", "integrate"]
 
@@ -71,12 +72,14 @@ class DynamicResult:
     n_outputs: int = 0
     #: Rods: nodal directors ``m1`` at the output times, ``(n_t, n_nodes, 3)``; else None.
     directors: NDArray[np.float64] | None = None
+    #: Systems with joints: the multipliers ``λ`` at the output times ``(n_t, m)``; else None.
+    lam: NDArray[np.float64] | None = None
 
     def select(self, index: NDArray | slice) -> DynamicResult:
         """The result restricted to some of its outputs (every per-output array sliced)."""
         from dataclasses import replace
 
-        per_output = ("t", "q", "v", "kinetic", "strain", "gravity", "directors")
+        per_output = ("t", "q", "v", "kinetic", "strain", "gravity", "directors", "lam")
         cut = {k: getattr(self, k)[index] for k in per_output if getattr(self, k) is not None}
         return replace(self, **cut)
 
@@ -100,27 +103,29 @@ class DynamicResult:
 
 
 class GeneralizedAlpha:
-    """One-step generalized-α integrator on a :class:`Model` (state ``y, v, a, t``).
+    """One-step generalized-α integrator on a system (state ``y, v, a, λ, t``).
 
     The Newton iterations of a step and the fixed-step loop run in the compiled core
-    (:class:`rancf.kernels._core.Integrator`); this class holds the constants and counters.
+    (:class:`rancf.kernels._core.SystemIntegrator`: constrained generalized-α, bordered band
+    solves); this class holds the constants and counters.  A :class:`Model` is a one-body
+    system.
     """
 
     def __init__(
         self,
-        model: Model,
+        model: Model | System,
         rho_inf: float,
         newton_tol: float,
         max_newton: int,
         newton: str = "full",
     ) -> None:
-        self.model = model
+        self.system = as_system(model)
         r = rho_inf
         self.am = (2.0 * r - 1.0) / (r + 1.0)
         self.af = r / (r + 1.0)
         self.gamma = 0.5 - self.am + self.af
         self.beta = 0.25 * (1.0 - self.am + self.af) ** 2
-        size = float(np.ptp(model.node_positions(model.q0), axis=0).max()) or 1.0
+        size = self.system.size
         self.tol = newton_tol * size
         self.size = size
         self.max_newton = max_newton
@@ -130,52 +135,94 @@ class GeneralizedAlpha:
             alpha_f=self.af,
             gamma=self.gamma,
             beta=self.beta,
-            damping=float(model.damping),
+            damping=float(self.system.damping),
             tol=self.tol,
             max_iter=int(max_newton),
             modified=newton == "modified",
         )
-        self._core = _core.Integrator(model.core, scheme)
+        self._core = _core.SystemIntegrator(self.system.core, scheme)
 
     @property
     def n_factorizations(self) -> int:
         """Band LU factorizations so far (Jacobians and the mass matrix)."""
         return int(self._core.factorizations)
 
-    def initial_acceleration(self, y: NDArray, v: NDArray, t: float) -> NDArray:
-        """``a0 = M⁻¹ (f_ext - f_int - c M v)``."""
-        a = np.empty(self.model.n)
-        self._core.initial_acceleration(y, v, t, a)
+    def prescribe(self, t: float, y: NDArray, v: NDArray) -> None:
+        """Moving supports: their held coordinates and rates at ``t`` (in place)."""
+        self._core.prescribe(t, y, v)
+
+    def initial_acceleration(
+        self, y: NDArray, v: NDArray, t: float, lam: NDArray | None = None
+    ) -> NDArray:
+        """Consistent ``a0`` (and multipliers into ``lam``): ``[M Gᵀ; G 0] [a; λ] = [-F; -c]``."""
+        a = np.empty(self.system.n)
+        lam = np.zeros(self.system.m) if lam is None else lam
+        self._core.initial_acceleration(y, v, t, a, lam)
         return a
 
     def step(
-        self, y: NDArray, v: NDArray, a: NDArray, t: float, h: float
+        self, y: NDArray, v: NDArray, a: NDArray, t: float, h: float, lam: NDArray | None = None
     ) -> tuple[bool, NDArray, NDArray, NDArray, int]:
-        """Advance by ``h``; returns ``(converged, y1, v1, a1, newton_iterations)``."""
+        """Advance by ``h``; returns ``(converged, y1, v1, a1, newton_iterations)`` (the new
+        multipliers replace ``lam``'s content when it converged)."""
         y1, v1, a1 = np.empty_like(y), np.empty_like(y), np.empty_like(y)
-        ok, it = self._core.step(y, v, a, t, h, y1, v1, a1)
+        l0 = np.zeros(self.system.m) if lam is None else lam
+        l1 = np.empty_like(l0)
+        ok, it = self._core.step(y, v, a, l0, t, h, y1, v1, a1, l1)
+        if ok and lam is not None:
+            lam[:] = l1
         self.n_newton += it
         return ok, y1, v1, a1, it
 
     def run_steps(
-        self, y: NDArray, v: NDArray, a: NDArray, t: float, h: float, n_steps: int, per_out: int
+        self,
+        y: NDArray,
+        v: NDArray,
+        a: NDArray,
+        t: float,
+        h: float,
+        n_steps: int,
+        per_out: int,
+        done_before: int = 0,
+        max_seconds: float = np.inf,
+        lam: NDArray | None = None,
     ) -> tuple:
-        """Fixed steps in the core (``y, v, a`` updated in place).
+        """Fixed steps in the core from time ``t`` (``y, v, a``, ``lam`` updated in place).
 
-        Returns ``(steps done, status, iterations, outputs stored, out_y, out_v, out_e)``;
-        status is 1 if every step converged, else 0 (the failing step is not taken).
+        An output is stored every ``per_out`` steps of an output interval, whose first already
+        holds ``done_before`` steps.  The core returns early, after a whole step, once
+        ``max_seconds`` of wall time have passed (so that the caller can poll for interrupts).
+        Returns ``(steps done, status, iterations, outputs stored, out_y, out_v, out_e,
+        out_l)``; status is 1 if every step taken converged, else 0 (the failing step is not
+        taken).
         """
-        n = self.model.n
-        n_out = n_steps // per_out
+        n, m = self.system.n, self.system.m
+        n_out = (done_before + n_steps) // per_out
         oy, ov, oe = np.empty((n_out, n)), np.empty((n_out, n)), np.empty((n_out, 3))
-        done, ok, iters, stored = self._core.run(y, v, a, t, h, n_steps, per_out, oy, ov, oe)
+        ol = np.empty((n_out, m))
+        lam = np.zeros(m) if lam is None else lam
+        done, ok, iters, stored = self._core.run(
+            y, v, a, lam, t, h, n_steps, per_out, done_before, max_seconds, oy, ov, ol, oe
+        )
         self.n_newton += iters
-        return done, int(ok), iters, stored, oy, ov, oe
+        return done, int(ok), iters, stored, oy, ov, oe, ol
 
     def error_estimate(self, a0: NDArray, a1: NDArray, h: float, rtol: float) -> float:
         """Local displacement error relative to ``rtol * size``."""
         e = h * h * abs(self.beta - 1.0 / 6.0) * float(np.max(np.abs(a1 - a0)))
         return e / (rtol * self.size)
+
+
+def as_system(model: Model | System) -> System:
+    """A model as a one-body system (its damping the system's); a system as it is."""
+    if isinstance(model, System):
+        return model
+    return System({"body": model}, damping=model.damping)
+
+
+#: Wall time [s] after which the compiled fixed-step loop hands back to Python, which polls the
+#: stop flag (Ctrl-C, SIGTERM): a run stops within about this time whatever its step.
+CALL_SECONDS = 0.1
 
 
 def _failure_message(t: float, min_step: float) -> str:
@@ -186,7 +233,7 @@ def _failure_message(t: float, min_step: float) -> str:
 
 
 def integrate(
-    model: Model,
+    model: Model | System,
     options: DynamicOptions,
     on_output: Callable[[float, Callable[[], DynamicResult]], None] | None = None,
     should_stop: Callable[[], bool] | None = None,
@@ -199,13 +246,15 @@ def integrate(
 
     Parameters
     ----------
-    model : Model
+    model : Model or System
+        A model is a one-body system.
     options : DynamicOptions
     on_output : callable, optional
         Called as ``on_output(t, snapshot)`` after every stored output; ``snapshot()`` builds the
         result so far (call it only now and then: without a sink it copies the history).
     should_stop : callable, optional
-        Polled after every step; returning True ends the run with status ``INTERRUPTED``.
+        Polled after every step (and every :data:`CALL_SECONDS` of the compiled loop); returning
+        True ends the run with status ``INTERRUPTED``.
     sink : OutputSink, optional
         Receives every stored state (e.g. streamed to disk); the result then holds only the
         last one, so memory does not grow with ``t_end``.  Default: kept in memory.
@@ -224,9 +273,10 @@ def integrate(
         time reached.  ``wall_time`` is the time loop alone.
     """
     o = options
+    system = as_system(model)
     if initial is None:
-        model.reset_triads()
-    integ = GeneralizedAlpha(model, o.rho_inf, o.newton_tol, o.max_newton, o.newton)
+        system.reset_triads()
+    integ = GeneralizedAlpha(system, o.rho_inf, o.newton_tol, o.max_newton, o.newton)
     out_dt = o.output_step if o.output_step is not None else o.step
     n_out = o.n_outputs - 1
     n_grid = int(np.floor(o.t_end / out_dt + 1e-9))
@@ -240,33 +290,39 @@ def integrate(
     target_sink: OutputSink = memory if memory is not None else sink  # type: ignore[assignment]
     last: list = []
 
-    rod = model.element == "rod"
-    directors = model.nodal_directors  # rods: of the state the triads were last carried to
+    rod = any(b.element == "rod" for b in system.flex)
+    directors = system.nodal_directors  # rods: of the state the triads were last carried to
+    mult = system.m > 0  # store the joints' multipliers
 
     def store(tt: float, yy: NDArray, vv: NDArray) -> None:
-        e = np.array(
-            [model.kinetic_energy(vv, yy), model.strain_energy(yy), model.gravity_energy(yy)]
-        )
+        e = np.array(system.energies(yy, vv))
         m1 = directors(yy)
-        row = (tt, model.q_from_y(yy), model.q_from_y(vv), e, m1)
-        target_sink.append(*row[:4], directors=m1)
+        ll = lam.copy() if mult else None
+        row = (tt, system.q_from_y(yy), system.q_from_y(vv), e, m1, ll)
+        target_sink.append(*row[:4], directors=m1, lam=ll)
         last[:] = [row]
         result.n_outputs += 1
 
-    def store_block(k0: int, oy: NDArray, ov: NDArray, oe: NDArray) -> None:
+    def store_block(k0: int, oy: NDArray, ov: NDArray, oe: NDArray, ol: NDArray) -> None:
         """Outputs ``k0, k0 + 1, ...`` from the core's loop, passed on as one block (rods: one
         output a block, whose state is the one the triads were carried to)."""
         ts = np.array([out_time(k0 + i) for i in range(len(oy))])
-        qs, vs = model.q_from_y(oy), model.q_from_y(ov)
+        qs, vs = system.q_from_y(oy), system.q_from_y(ov)
         m1 = directors(oy[-1])
-        target_sink.append_block(ts, qs, vs, oe, directors=None if m1 is None else m1[None])
-        last[:] = [(float(ts[-1]), qs[-1], vs[-1], np.array(oe[-1]), m1)]
+        ll = ol if mult else None
+        target_sink.append_block(
+            ts, qs, vs, oe, directors=None if m1 is None else m1[None], lam=ll
+        )
+        last[:] = [(float(ts[-1]), qs[-1], vs[-1], np.array(oe[-1]), m1,
+                    None if ll is None else ll[-1])]  # fmt: skip
         result.n_outputs += len(oy)
 
-    y = model.y0.copy() if initial is None else np.array(initial, dtype=float)
-    v = model.v0.copy()
+    y = system.y0.copy() if initial is None else np.array(initial, dtype=float)
+    v = system.v0.copy()
     t = 0.0
-    a = integ.initial_acceleration(y, v, t)
+    integ.prescribe(0.0, y, v)  # moving supports at t = 0
+    lam = np.zeros(system.m)
+    a = integ.initial_acceleration(y, v, t, lam)
     empty = np.empty(0)
     result = DynamicResult(empty, empty, empty, empty, empty, empty, DynamicStatus.COMPLETED, "")
     store(0.0, y, v)
@@ -278,10 +334,12 @@ def integrate(
         if memory is not None:
             ts, qs, vs, es = memory.arrays()
             result.directors = memory.stream("directors")
+            result.lam = memory.stream("lam")
         else:
-            tt, qq, vv, ee, m1 = last[0]
+            tt, qq, vv, ee, m1, ll = last[0]
             ts, qs, vs, es = np.array([tt]), qq[None], vv[None], ee[None]
             result.directors = None if m1 is None else m1[None]
+            result.lam = None if ll is None else ll[None]
         result.t, result.q, result.v = ts, qs, vs
         result.kinetic, result.strain, result.gravity = es[:, 0], es[:, 1], es[:, 2]
         result.status, result.message = status, message
@@ -298,7 +356,7 @@ def integrate(
     per_out = int(round(ratio))
     fast = not o.adaptive and per_out >= 1 and abs(ratio - per_out) < 1e-9
     # outputs per compiled call: ~1 % of the run, at most ~16 MB of stored states per array
-    chunk_out = int(np.clip(n_grid // 100, 1, max(1, (1 << 21) // model.n)))
+    chunk_out = int(np.clip(n_grid // 100, 1, max(1, (1 << 21) // system.n)))
     if rod:  # the triads at a call's end are those of its one stored state
         chunk_out = 1
 
@@ -307,27 +365,32 @@ def integrate(
             msg = f"running, t = {tt:g} s"
             on_output(tt, lambda: snapshot(DynamicStatus.INTERRUPTED, msg))
 
+    within = 0  # fixed steps the compiled loop has taken since the last output time
     while k_out < n_out:
         target = out_time(k_out)
-        on_grid = abs(t - (out_time(k_out - 1) if k_out else 0.0)) <= 1e-12 * max(1.0, t)
+        last_out = out_time(k_out - 1) if k_out else 0.0
+        on_grid = within > 0 or abs(t - last_out) <= 1e-12 * max(1.0, t)
         if fast and h == o.step and k_out < n_grid and on_grid:
             n_chunk = min(chunk_out, n_grid - k_out)
-            done, st, iters, stored, oy, ov, oe = integ.run_steps(
-                y, v, a, t, o.step, n_chunk * per_out, per_out
+            done, st, iters, stored, oy, ov, oe, ol = integ.run_steps(
+                y, v, a, t, o.step, n_chunk * per_out - within, per_out, within, CALL_SECONDS,
+                lam,
             )
             result.took(o.step, done)
             if stored:
-                store_block(k_out, oy[:stored], ov[:stored], oe[:stored])
-            t_chunk = t + done * o.step
+                store_block(k_out, oy[:stored], ov[:stored], oe[:stored], ol[:stored])
             k_out += stored
-            t = float(out_time(k_out - 1)) if (stored and done % per_out == 0) else t_chunk
+            within = within + done - stored * per_out
+            last_out = out_time(k_out - 1) if k_out else 0.0
+            t = float(last_out) + within * o.step if within else float(last_out)
             if stored:
-                notify(t)
+                notify(float(last_out))
             if should_stop is not None and should_stop():
                 status, message = DynamicStatus.INTERRUPTED, f"interrupted at t = {t:.6g} s"
                 break
             if st == 1:
                 continue
+            within = 0  # the steps to the next output are taken below
             h = o.step * 0.25  # the failing step is retried below, smaller
             result.n_rejected += 1
             if h < min_step:
@@ -337,7 +400,8 @@ def integrate(
         h_try = min(h, target - t)
         if target - (t + h_try) < 1e-12 * max(1.0, target):
             h_try = target - t
-        ok, y1, v1, a1, _ = integ.step(y, v, a, t, h_try)
+        lam_try = lam.copy()
+        ok, y1, v1, a1, _ = integ.step(y, v, a, t, h_try, lam_try)
         err = integ.error_estimate(a, a1, h_try, o.rtol) if (ok and o.adaptive) else 0.0
         if not ok or err > 1.0:
             result.n_rejected += 1
@@ -346,8 +410,8 @@ def integrate(
                 status, message = DynamicStatus.FAILED, _failure_message(t, min_step)
                 break
             continue
-        y, v, a, t = y1, v1, a1, t + h_try
-        model.core.rereference(y, v, a)  # rods: triads follow the step, twist rates keep the spin
+        y, v, a, t, lam = y1, v1, a1, t + h_try, lam_try
+        system.rereference(y, v, a)  # rods: triads follow the step, twist rates keep the spin
         result.took(h_try)
         if o.adaptive:
             h = min(max_step, h_try * min(2.0, 0.9 * max(err, 1e-10) ** (-1.0 / 3.0)))

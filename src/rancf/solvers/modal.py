@@ -33,6 +33,7 @@ import numpy as np
 import scipy.linalg
 from numpy.typing import NDArray
 
+from rancf.errors import RancfError
 from rancf.model.system import Model
 
 __all__ = [
@@ -145,11 +146,20 @@ def natural_modes(model: Model, y: NDArray | None = None, count: int | None = No
     free = ~model.fixed
     k = k_full[np.ix_(free, free)]
     m = model.dense(model.mass_matrix(y))[np.ix_(free, free)]
-    if symmetric:
-        k = 0.5 * (k + k.T)
-        lam, phi = scipy.linalg.eigh(k, m)
-    else:
-        lam, phi = _general_modes(k, m)
+    try:
+        if not (np.all(np.isfinite(k)) and np.all(np.isfinite(m))):
+            raise ValueError("non-finite stiffness or mass entries")
+        if symmetric:
+            k = 0.5 * (k + k.T)
+            lam, phi = scipy.linalg.eigh(k, m)
+        else:
+            lam, phi = _general_modes(k, m)
+    except (np.linalg.LinAlgError, ValueError) as exc:
+        raise RancfError(
+            f"the eigenproblem K φ = λ M φ cannot be solved ({' '.join(str(exc).split())}): "
+            "its mass or stiffness is singular or far out of scale; check material.density, "
+            "material.youngs_modulus and the section"
+        ) from None
     rigid = unresisted_motions(rigid_body_modes(model, y)[free], k, m)
     n_rigid = rigid.shape[1]
     keep = np.ones(lam.size, dtype=bool)
@@ -210,7 +220,8 @@ def _general_modes(
 ) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
     """``k φ = λ m φ`` for a non-symmetric ``k`` (QZ): ``λ`` ascending by real, then imaginary
     part; ``φ`` scaled to ``φᴴ m φ = 1`` with its largest component real and positive."""
-    lam, phi = scipy.linalg.eig(k, m)
+    with np.errstate(all="ignore"):  # infinite eigenvalues (a singular m) stay inf, quietly
+        lam, phi = scipy.linalg.eig(k, m)
     lam = lam.astype(np.complex128)
     order = np.lexsort((lam.imag, lam.real))
     lam, phi = lam[order], phi[:, order].astype(np.complex128)

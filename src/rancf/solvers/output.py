@@ -19,7 +19,7 @@ from numpy.typing import NDArray
 __all__ = ["OutputSink", "MemorySink", "STREAMS"]
 
 #: Named streams of a row besides ``t, q, v`` and the energies.
-STREAMS = ("directors",)
+STREAMS = ("directors", "lam")
 
 
 class OutputSink(Protocol):

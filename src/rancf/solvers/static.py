@@ -35,6 +35,7 @@ from rancf.errors import ConvergenceError, InputError, ScenarioError
 from rancf.model.system import Model
 from rancf.solvers.equilibrium import EquilibriumProblem
 from rancf.solvers.newton import newton
+from rancf.system import System
 
 __all__ = ["StaticResult", "solve_static", "StaticMethod", "start_state"]
 
@@ -70,10 +71,12 @@ class StaticResult:
     wall_time: float
     n_residuals: int = 0
     method: str = "load"
+    #: Systems: the joints' multipliers at the end of the path (``-Gᵀ λ``: their reactions).
+    lam: NDArray[np.float64] | None = None
 
 
 def solve_static(
-    model: Model,
+    model: Model | System,
     load_steps: int = 10,
     tol: float = 1e-10,
     max_iter: int = 30,
@@ -102,7 +105,12 @@ def solve_static(
         raise InputError("solver.static_method", method, 'one of "load", "arc_length"')
     start = time.perf_counter()
     model.reset_triads()
-    problem = EquilibriumProblem(model, at_time)
+    if isinstance(model, System):
+        from rancf.solvers.system_equilibrium import SystemEquilibrium
+
+        problem: EquilibriumProblem | SystemEquilibrium = SystemEquilibrium(model, at_time)
+    else:
+        problem = EquilibriumProblem(model, at_time)
     path = _Path(problem, on_step)
     for stage, (_, end) in enumerate(problem.stages):
         problem.stage = stage
@@ -114,6 +122,9 @@ def solve_static(
 
             arc_length_path(problem, path, end, 1.0 / load_steps, tol, max_iter)
     y = path.y
+    lam = None
+    if isinstance(model, System):
+        y, lam = y[: model.n], y[model.n :]
     return StaticResult(
         model.q_from_y(y),
         y,
@@ -123,6 +134,7 @@ def solve_static(
         time.perf_counter() - start,
         path.n_residuals,
         method,
+        lam,
     )
 
 

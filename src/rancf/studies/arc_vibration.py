@@ -20,8 +20,9 @@ from typing import Any
 
 import numpy as np
 
+from rancf.atomic import atomic_write
 from rancf.post.plots import pyplot
-from rancf.post.results import atomic_write, write_run
+from rancf.post.results import write_run
 from rancf.solvers.modal import natural_modes
 from rancf.studies.common import (
     Comparison,

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import csv
+import io
 import time
 import tomllib
 from dataclasses import dataclass, field
@@ -13,6 +14,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from rancf.atomic import atomic_write
 from rancf.errors import ConvergenceError
 from rancf.model.system import Model
 from rancf.scenario import Scenario, parse_scenario
@@ -146,10 +148,11 @@ class StudyResult:
         self, out: Path, title: str, header: list[str], rows: list[list[Any]], filename: str
     ) -> None:
         """Record a table and write it as CSV into ``out``."""
-        with open(out / filename, "w", newline="") as fh:
-            w = csv.writer(fh)
-            w.writerow(header)
-            w.writerows(rows)
+        buf = io.StringIO()
+        w = csv.writer(buf)
+        w.writerow(header)
+        w.writerows(rows)
+        atomic_write(out / filename, buf.getvalue())
         self.tables.append((title, header, rows, filename))
 
     def write_comparison_csv(self, out: Path) -> None:
@@ -184,10 +187,9 @@ def slug(s: str) -> str:
 
 def save_figure(fig: Any, path: Path, res: StudyResult, caption: str) -> None:
     """Write a figure as PNG and record it in the study result."""
-    import matplotlib.pyplot as plt
+    from rancf.post.plots import save_figure
 
-    fig.savefig(path, dpi=100)
-    plt.close(fig)
+    save_figure(fig, path, 100)
     res.figures.append((caption, path.name))
 
 

@@ -123,7 +123,7 @@ def run_studies_parallel(
         for child in ends.values():
             child.close()  # the drivers hold their own copies
         futures = {n: pool.submit(_drive, n, folders[n], quick) for n in names}
-        from rancf.sweep.engine import dask_client
+        from rancf.sweep.cluster import dask_client
 
         with dask_client(None, workers, processes=False) as client:
             servers = [

@@ -6,13 +6,13 @@ import base64
 import csv
 import datetime
 import html
-import json
 import platform
 import re
 from collections.abc import Sequence
 from pathlib import Path
 
-from rancf.post.results import atomic_write
+from rancf.atomic import atomic_write
+from rancf.post.results import strict_json
 from rancf.studies.common import NOT_REACHED, NOT_RUN, StudyResult
 
 __all__ = ["write_report", "study_tables", "REFERENCES"]
@@ -198,7 +198,7 @@ def write_report(
         "wall_time_s": wall_time_s,
         "studies": summary,
     }
-    atomic_write(out / "report.json", json.dumps(doc, indent=2, default=str) + "\n")
+    atomic_write(out / "report.json", strict_json(doc, default=str))
     return path
 
 

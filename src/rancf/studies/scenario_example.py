@@ -20,10 +20,10 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from rancf.atomic import atomic_write
 from rancf.errors import ConvergenceError
 from rancf.post.results import (
     LoadPath,
-    atomic_write,
     sensor_table,
     strict_json,
     write_run,

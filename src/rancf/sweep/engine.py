@@ -17,20 +17,22 @@ import csv
 import io
 import json
 import logging
-import os
+import math
+import shutil
 import sys
 import time
 import uuid
-from collections.abc import Callable, Iterable, Iterator
-from contextlib import contextmanager
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Protocol
 
+from rancf.atomic import atomic_write
 from rancf.errors import InputError
-from rancf.post.results import atomic_write
-from rancf.sweep.runner import ROW_FILE, run_variant, run_variants_in_order
+from rancf.sweep.cluster import dask_client
+from rancf.sweep.runner import ROW_FILE, run_variant, run_variants_in_order, scenario_hash
 from rancf.sweep.spec import SweepSpec, Variant
+from rancf.sweep.toml_out import with_absolute_paths
 
 __all__ = [
     "run_sweep",
@@ -39,7 +41,6 @@ __all__ = [
     "DaskExecutor",
     "SweepExecutor",
     "SweepReport",
-    "dask_client",
     "results_table",
 ]
 
@@ -48,19 +49,6 @@ logger = logging.getLogger(__name__)
 #: Shortest interval between two rewrites of ``results.csv`` while runs finish (seconds): with
 #: hundreds of short runs, rewriting the whole table after each one costs more than the runs.
 CSV_INTERVAL_S = 1.0
-
-#: Dask settings for the clusters and clients rancf starts itself: no statistical profiler
-#: (it samples every worker thread every 10 ms), slower event-loop health ticks and resource
-#: monitors, and no work stealing (runs last tens of ms to seconds, and each worker has one
-#: thread).  Together they cut an idle cluster's CPU use about eightfold; only the dashboard's
-#: profile and health views lose detail.
-QUIET_DASK = {
-    "distributed.worker.profile.enabled": False,
-    "distributed.admin.tick.interval": "1s",
-    "distributed.admin.system-monitor.interval": "5s",
-    "distributed.worker.memory.monitor-interval": "5s",
-    "distributed.scheduler.work-stealing": False,
-}
 
 
 @dataclass(frozen=True)
@@ -72,45 +60,6 @@ class SweepReport:
     ran: int
     failed: int
     csv_path: Path
-
-
-@contextmanager
-def dask_client(
-    scheduler: str | None, workers: int | None, processes: bool = True
-) -> Iterator[Any]:
-    """A Dask client: of the scheduler at ``scheduler``, or of a new local cluster of
-    ``workers`` (default: the number of cores) one-thread worker processes listening on
-    127.0.0.1 only, or, with ``processes=False``, worker threads of this process that talk to
-    the scheduler in memory (no sockets)."""
-    import dask
-    from dask.distributed import Client, LocalCluster  # first: it adds its config defaults
-
-    if scheduler is not None:
-        try:
-            client = Client(scheduler, timeout=30)
-        except (OSError, TimeoutError) as exc:
-            raise InputError(
-                "--scheduler", scheduler, f"a reachable Dask scheduler ({exc})"
-            ) from None
-        with client:
-            yield client
-        return
-    n = workers if workers is not None else (os.cpu_count() or 1)
-    if isinstance(n, bool) or not isinstance(n, int) or n < 1:
-        raise InputError("--workers", workers, "an integer >= 1")
-    with (
-        dask.config.set(QUIET_DASK),
-        LocalCluster(
-            n_workers=n,
-            threads_per_worker=1,
-            processes=processes,
-            **({"protocol": "tcp://", "host": "127.0.0.1"} if processes else {}),
-            dashboard_address=None,
-            silence_logs=logging.ERROR,
-        ) as cluster,
-        Client(cluster) as client,
-    ):
-        yield client
 
 
 def results_table(variants: list[Variant], rows: dict[str, dict[str, Any]]) -> str:
@@ -142,7 +91,8 @@ def results_table(variants: list[Variant], rows: dict[str, dict[str, Any]]) -> s
 
 
 def _num(x: Any) -> str:
-    return "" if x is None else repr(float(x))
+    """A number of the table: empty for none, or for a non-finite one (the row failed)."""
+    return "" if x is None or not math.isfinite(float(x)) else repr(float(x))
 
 
 #: ``on_done(name, row) -> names of later calls that are no longer needed``.
@@ -288,14 +238,10 @@ def run_variants(
         raise InputError("--out", str(out), "a directory (it exists and is a file)")
     runs = out / "runs"
     runs.mkdir(parents=True, exist_ok=True)
-    rows: dict[str, dict[str, Any]] = {}
-    for v in variants:
-        f = runs / v.name / ROW_FILE
-        if f.is_file():
-            try:
-                rows[v.name] = json.loads(f.read_text(encoding="utf-8"))
-            except (OSError, ValueError):
-                pass  # a damaged row: run again
+    rows = finished_rows(variants, base, analysis, out)
+    for v in variants:  # a run of another scenario (the base or the grid changed): run again
+        if v.name not in rows and (runs / v.name).is_dir():
+            shutil.rmtree(runs / v.name)
     skip: set[str] = set()
     for name, row in list(rows.items()):
         if on_row is not None:
@@ -327,7 +273,30 @@ def run_variants(
         executor.execute(calls, done)
     finally:
         bar.close()
+        # runs that finished in a worker but whose row had not reached us (an interrupt)
+        rows.update(finished_rows(variants, base, analysis, out))
         atomic_write(csv_path, results_table(variants, rows))
+    return rows
+
+
+def finished_rows(
+    variants: list[Variant], base: str | Path, analysis: str, out: str | Path
+) -> dict[str, dict[str, Any]]:
+    """The rows of the runs in ``out/runs`` that finished for the scenario they have now: a
+    readable ``row.json`` whose ``scenario_sha256`` is that of the variant's scenario (with
+    its CAD file made absolute) and ``analysis``."""
+    rows: dict[str, dict[str, Any]] = {}
+    for v in variants:
+        f = Path(out) / "runs" / v.name / ROW_FILE
+        if not f.is_file():
+            continue
+        try:
+            row = json.loads(f.read_text(encoding="utf-8"))
+        except (OSError, ValueError):
+            continue  # a damaged row: run again
+        want = scenario_hash(with_absolute_paths(v.raw, base), analysis)
+        if isinstance(row, dict) and row.get("scenario_sha256") == want:
+            rows[v.name] = row
     return rows
 
 
@@ -342,17 +311,20 @@ def run_sweep(
     out = Path(out)
     variants = spec.variants()
     finished = (
-        {v.name for v in variants if (out / "runs" / v.name / ROW_FILE).is_file()}
-        if out.is_dir()
-        else set()
+        set(finished_rows(variants, spec.base, spec.analysis, out)) if out.is_dir() else set()
     )
     if len(finished) == len(variants):
         rows = run_variants(LocalExecutor(), variants, spec.base, spec.analysis, out, progress)
     else:
-        with dask_client(scheduler, workers) as client:
-            rows = run_variants(
-                DaskExecutor(client), variants, spec.base, spec.analysis, out, progress
-            )
+        try:
+            with dask_client(scheduler, workers) as client:
+                rows = run_variants(
+                    DaskExecutor(client), variants, spec.base, spec.analysis, out, progress
+                )
+        finally:  # the workers are stopped now: the table holds every run that finished
+            if (out / "results.csv").is_file():
+                done = finished_rows(variants, spec.base, spec.analysis, out)
+                atomic_write(out / "results.csv", results_table(variants, done))
     skipped = sum(1 for name in finished if name in rows)
     failed = sum(1 for r in rows.values() if r.get("status") != "completed")
     return SweepReport(len(variants), skipped, len(variants) - skipped, failed, out / "results.csv")

@@ -9,19 +9,25 @@ presence marks the run as finished, so an interrupted sweep resumes with the run
 
 from __future__ import annotations
 
-import copy
+import hashlib
 import json
+import math
 import time
 import traceback
 from pathlib import Path
 from typing import Any
 
-from rancf.post.results import atomic_write
-from rancf.sweep.toml_out import dumps
+from rancf.atomic import atomic_write
+from rancf.post.results import strict_json
+from rancf.sweep.toml_out import dumps, with_absolute_paths
 
-__all__ = ["run_variant", "run_variants_in_order", "ROW_FILE", "FREQUENCY_COLUMNS"]
+__all__ = ["run_variant", "run_variants_in_order", "scenario_hash", "ROW_FILE", "FREQUENCY_COLUMNS"]
 
 ROW_FILE = "row.json"
+#: Disk a sweep run's files may take, as ``rancf simulate --max-output-gb``' default: a run
+#: beyond it is refused (before the sweep starts when the grid shows it, else as a failed row).
+MAX_RUN_GB = 2.0
+LIMIT = "the limit of a sweep run (GB)"
 #: Number of natural frequencies reported per ``modes`` run.
 FREQUENCY_COLUMNS = 6
 
@@ -32,11 +38,21 @@ def _analyse(sc: Any, analysis: str, folder: Path) -> tuple[str, str, float, dic
 
     model = sc.build_model()
     if analysis == "simulate":
+        from rancf.model.outputs import DerivedOutputs
+        from rancf.post.history import check_output_size
         from rancf.solvers.dynamic import integrate
         from rancf.solvers.static import start_state
 
+        opts = sc.dynamic_options()
+        n_cols = sum(len(s.columns(model.dim)) for s in sc.sensors)
+        rods = 3 * model.n_nodes if model.element == "rod" else 0
+        derived = DerivedOutputs(model, sc.support_labels)
+        n_derived = len(derived.reaction_names) + derived.n_points * len(derived.section_names)
+        check_output_size(
+            sc.path, opts.n_outputs, model.q0.size, n_cols, rods, MAX_RUN_GB, LIMIT, n_derived
+        )
         y0, start = start_state(sc, model)
-        res = integrate(model, sc.dynamic_options(), initial=y0)
+        res = integrate(model, opts, initial=y0)
         extra = {"scenario": str(folder / "scenario.toml"), **start}
         summary = write_run(folder, model, sc.sensors, res, extra, sc.support_labels)
         energy = [[res.kinetic[-1], res.strain[-1], res.gravity[-1]]]
@@ -57,7 +73,7 @@ def _analyse(sc: Any, analysis: str, folder: Path) -> tuple[str, str, float, dic
         names, vals = sensor_table(model, sc.sensors, res.q)
         values = dict(zip(names, map(float, vals[0]), strict=True))
         out = {"positions": model.node_positions(res.q).tolist(), "sensors": values}
-        atomic_write(folder / "static.json", json.dumps(out, indent=2) + "\n")
+        atomic_write(folder / "static.json", strict_json(out))
         info = {"status": "completed", "message": "", "scenario": str(folder / "scenario.toml")}
         write_static_run(folder, path, sc.sensors, info)
         return "completed", "", wall, values
@@ -68,7 +84,7 @@ def _analyse(sc: Any, analysis: str, folder: Path) -> tuple[str, str, float, dic
     wall = time.perf_counter() - t0
     f = res.frequencies_hz
     out = {"frequencies_hz": f.tolist(), "rigid_body_modes_removed": res.n_rigid}
-    atomic_write(folder / "modes.json", json.dumps(out, indent=2) + "\n")
+    atomic_write(folder / "modes.json", strict_json(out))
     values = {f"f{i + 1}_hz": float(x) for i, x in enumerate(f[:FREQUENCY_COLUMNS])}
     return "completed", "", wall, values
 
@@ -81,11 +97,8 @@ def run_variant(
 
     t0 = time.perf_counter()
     out = Path(folder)
-    out.mkdir(parents=True, exist_ok=True)
-    raw = copy.deepcopy(raw)
-    geo = raw.get("geometry", {})
-    if geo.get("kind") == "cad" and isinstance(geo.get("file"), str):
-        geo["file"] = str((Path(base).parent / geo["file"]).resolve())
+    out.mkdir(exist_ok=True)  # not its parents: a sweep folder removed meanwhile stays removed
+    raw = with_absolute_paths(raw, base)
     atomic_write(out / "scenario.toml", dumps(raw))
     try:
         sc = parse_scenario(raw, base)
@@ -93,6 +106,10 @@ def run_variant(
     except Exception as exc:  # noqa: BLE001 - every failure becomes a row, never a crash
         status, message, solve, values = "failed", _one_line(exc), None, {}
         atomic_write(out / "error.txt", traceback.format_exc())
+    bad = [k for k, x in values.items() if not math.isfinite(x)]
+    if bad and status == "completed":
+        status = "failed"
+        message = f"non-finite result: {', '.join(f'{k} = {values[k]!r}' for k in bad[:3])}"
     row = {
         "run": name,
         "status": status,
@@ -100,9 +117,17 @@ def run_variant(
         "wall_time_s": time.perf_counter() - t0,
         "solve_time_s": solve,
         "values": values,
+        "scenario_sha256": scenario_hash(raw, analysis),
     }
-    atomic_write(out / ROW_FILE, json.dumps(row, indent=2) + "\n")
+    atomic_write(out / ROW_FILE, strict_json(row))  # non-finite values as null
     return row
+
+
+def scenario_hash(raw: dict[str, Any], analysis: str) -> str:
+    """SHA-256 of a variant's scenario dictionary and analysis (key order ignored): a finished
+    run is reused on resume only if this is unchanged."""
+    text = json.dumps({"analysis": analysis, "scenario": raw}, sort_keys=True, default=repr)
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()
 
 
 def run_variants_in_order(calls: list[tuple[Any, ...]]) -> list[dict[str, Any]]:

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from rancf.errors import ScenarioError
+from rancf.errors import RunTooLargeError, ScenarioError, shorten
 
 __all__ = ["SweepSpec", "Variant", "load_sweep", "ANALYSES"]
 
@@ -75,12 +75,7 @@ def load_sweep(path: str | Path) -> SweepSpec:
 
     p = Path(path)
     where = str(p)
-    try:
-        raw = tomllib.loads(p.read_text(encoding="utf-8"))
-    except OSError as exc:
-        raise ScenarioError(where, "file", f"cannot be read: {exc.strerror}") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise ScenarioError(where, "file", f"is not valid TOML: {exc}") from None
+    raw = read_toml(p, where, "file")
     for k in raw:
         if k not in ("base", "analysis", "grid"):
             raise ScenarioError(where, k, "unknown key (allowed: base, analysis, grid)")
@@ -100,16 +95,45 @@ def load_sweep(path: str | Path) -> SweepSpec:
         if isinstance(values, dict) or not isinstance(values, list) or not values:
             raise ScenarioError(where, f"grid.{key}", f"must be a non-empty list, got {values!r}")
     base = (p.parent / raw["base"]).resolve()
-    try:
-        base_raw = tomllib.loads(base.read_text(encoding="utf-8"))
-    except OSError as exc:
-        raise ScenarioError(where, "base", f"{base} cannot be read: {exc.strerror}") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise ScenarioError(where, "base", f"{base} is not valid TOML: {exc}") from None
+    base_raw = read_toml(base, where, "base")
     spec = SweepSpec(p, base, analysis, dict(grid), base_raw)
     for v in spec.variants():
         try:
-            parse_scenario(copy.deepcopy(v.raw), str(base))
-        except ScenarioError as exc:
+            sc = parse_scenario(copy.deepcopy(v.raw), str(base))
+            if analysis == "simulate":
+                _check_size(sc)
+        except (ScenarioError, RunTooLargeError) as exc:
             raise ScenarioError(where, f"grid (run {v.name})", str(exc)) from None
     return spec
+
+
+def _check_size(sc: Any) -> None:
+    """Refuse a variant whose files would exceed a sweep run's disk limit, counting its nodes
+    from ``mesh.elements`` (a lower bound: NURBS and CAD meshes have at least as many), so no
+    model is built."""
+    from rancf.post.history import check_output_size
+    from rancf.sweep.runner import LIMIT, MAX_RUN_GB
+
+    mesh = sc.data["mesh"]
+    per_node = {"beam": 3, "rod": 7}.get(mesh["element"], 2 * sc.dim)
+    n_nodes = mesh["elements"] + 1
+    n_cols = sum(len(s.columns(sc.dim)) for s in sc.sensors)
+    rods = 3 * n_nodes if mesh["element"] == "rod" else 0
+    n_out = sc.dynamic_options().n_outputs
+    check_output_size(sc.path, n_out, n_nodes * per_node, n_cols, rods, MAX_RUN_GB, LIMIT)
+
+
+def read_toml(path: Path, where: str, key: str) -> dict[str, Any]:
+    """A TOML file as a dictionary; errors (unreadable, not UTF-8, not TOML, nested too deeply)
+    name ``where`` and ``key``."""
+    what = "" if key == "file" else f"{path} "
+    try:
+        return tomllib.loads(path.read_text(encoding="utf-8"))
+    except OSError as exc:
+        raise ScenarioError(where, key, f"{what}cannot be read: {exc.strerror}") from None
+    except UnicodeDecodeError:
+        raise ScenarioError(where, key, f"{what}is not UTF-8 text") from None
+    except RecursionError:
+        raise ScenarioError(where, key, f"{what}is nested too deeply") from None
+    except ValueError as exc:  # TOMLDecodeError, or an integer of more than 4300 digits
+        raise ScenarioError(where, key, f"{what}is not valid TOML: {shorten(str(exc))}") from None

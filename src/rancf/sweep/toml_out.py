@@ -1,12 +1,15 @@
-"""A small TOML writer for scenario dictionaries (tables, arrays of tables, scalars, lists)."""
+"""A small TOML writer for scenario dictionaries (tables, arrays of tables, scalars, lists), and
+the copy of a scenario a run folder keeps."""
 
 from __future__ import annotations
 
+import copy
 import json
 import math
+from pathlib import Path
 from typing import Any
 
-__all__ = ["dumps"]
+__all__ = ["dumps", "with_absolute_paths", "scenario_copy"]
 
 
 def _value(v: Any) -> str:
@@ -54,3 +57,21 @@ def dumps(data: dict[str, Any]) -> str:
     out: list[str] = []
     _table("", data, out)
     return "\n".join(out).rstrip() + "\n"
+
+
+def with_absolute_paths(raw: dict[str, Any], base: str | Path) -> dict[str, Any]:
+    """A copy of the scenario dictionary ``raw`` read from ``base`` whose CAD ``file`` (a path
+    relative to ``base``) is absolute, so that the copy can live in another folder."""
+    raw = copy.deepcopy(raw)
+    geo = raw.get("geometry", {})
+    if isinstance(geo, dict) and geo.get("kind") == "cad" and isinstance(geo.get("file"), str):
+        geo["file"] = str((Path(base).parent / geo["file"]).resolve())
+    return raw
+
+
+def scenario_copy(text: str, raw: dict[str, Any], base: str | Path) -> str:
+    """The text of a run folder's ``scenario.toml``: the scenario file's own ``text`` (comments
+    kept), or, when it names a CAD file by a relative path, ``raw`` written with that path made
+    absolute."""
+    fixed = with_absolute_paths(raw, base)
+    return text if fixed == raw else dumps(fixed)

@@ -1,0 +1,386 @@
+// Python bindings of systems (rancf._core.System, SystemIntegrator): conversion and forwarding
+// only.  A system's small data arrive as NumPy arrays (one per field) and are copied into the
+// named structs of system.hpp; its flexible bodies are Model objects kept alive by the holder.
+#include <nanobind/nanobind.h>
+#include <nanobind/ndarray.h>
+#include <nanobind/stl/tuple.h>
+#include <nanobind/stl/vector.h>
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "bindings.hpp"
+#include "bindings_model.hpp"
+#include "system.hpp"
+#include "system_integrator.hpp"
+
+namespace rancf_bind {
+
+using namespace nb::literals;
+
+namespace {
+
+using InD = In;
+
+std::size_t count(const InI& a) { return a.size(); }
+
+struct SystemHolder {
+  std::vector<nb::object> models;  // keeps the flexible bodies' arrays alive
+  std::vector<double> y_ref;
+  rancf::System s;
+};
+
+struct SystemIntegratorHolder {
+  rancf::SystemIntegrator integ;
+  std::size_t n, m;
+  SystemIntegratorHolder(const SystemHolder& h, const rancf::Scheme& sc)
+      : integ(h.s, sc), n(static_cast<std::size_t>(h.s.n)), m(static_cast<std::size_t>(h.s.m)) {}
+};
+
+void check(bool ok, const std::string& what) {
+  if (!ok) throw std::invalid_argument(what);
+}
+
+}  // namespace
+
+void bind_system(nb::module_& mod) {
+  nb::class_<SystemHolder>(mod, "System", "A multibody system (see system.hpp).")
+      .def(
+          "__init__",
+          [](SystemHolder* h, int dim, nb::list models, InI rigid_point_mass, InI rigid_dim,
+             InD rigid_mass, InD rigid_inertia, InI place_kind, InI place_body, InI place_node,
+             InD place_point, InI place_motion, InD place_angle0, InI joint_kind, InI joint_a,
+             InI joint_b, InI joint_driven, InI joint_angle, InD joint_beta0, InD joint_rel,
+             InD joint_axis_a, InD joint_normals_b, InD joint_w_a, InD joint_w_b, InI spring_a,
+             InI spring_b, InD spring_data, InI load_place, InD load_force, InD load_torque,
+             InI load_factor, InI tf_kind, InI tf_n, InD tf_value, InI tf_value_start,
+             InD tf_params, InD tf_breaks, InI tf_breaks_start, InD tf_coef, InI tf_coef_start,
+             InI pre_coord, InI pre_tf, InI pre_comp, InD pre_base, InD gravity, double damping,
+             InD y_ref) {
+            new (h) SystemHolder();
+            rancf::System& s = h->s;
+            check(dim == 2 || dim == 3, "dim: expected 2 or 3");
+            s.dim = dim;
+            for (nb::handle m : models) {
+              h->models.emplace_back(nb::borrow(m));
+              s.flex.push_back(&nb::cast<const ModelHolder&>(m).m);
+            }
+            const std::size_t nr = count(rigid_dim);
+            for (std::size_t i = 0; i < nr; ++i) {
+              rancf::RigidInertia b;
+              b.point_mass = rigid_point_mass.data()[i] != 0;
+              b.dim = static_cast<int>(rigid_dim.data()[i]);
+              b.mass = rigid_mass.data()[i];
+              for (int k = 0; k < 3; ++k) b.inertia[k] = rigid_inertia.data()[3 * i + k];
+              s.rigid.push_back(b);
+            }
+            for (std::size_t i = 0; i < count(place_kind); ++i) {
+              rancf::PlaceRef p;
+              p.kind = static_cast<rancf::PlaceKind>(place_kind.data()[i]);
+              p.body = static_cast<int>(place_body.data()[i]);
+              p.node = static_cast<int>(place_node.data()[i]);
+              for (int k = 0; k < 3; ++k) p.point[k] = place_point.data()[3 * i + k];
+              p.motion = static_cast<int>(place_motion.data()[i]);
+              p.angle0 = place_angle0.data()[i];
+              const bool node = p.kind == rancf::PlaceKind::cable ||
+                                p.kind == rancf::PlaceKind::rod || p.kind == rancf::PlaceKind::beam;
+              if (node) {
+                check(p.body >= 0 && static_cast<std::size_t>(p.body) < s.flex.size(),
+                      "place_body: no such flexible body");
+                check(p.node >= 0 && p.node < s.flex[static_cast<std::size_t>(p.body)]->n_nodes,
+                      "place_node: no such node");
+              } else if (p.kind != rancf::PlaceKind::ground) {
+                check(p.body >= 0 && static_cast<std::size_t>(p.body) < nr,
+                      "place_body: no such rigid body");
+              }
+              s.places.push_back(p);
+            }
+            const auto np = static_cast<std::int64_t>(s.places.size());
+            for (std::size_t i = 0; i < count(joint_kind); ++i) {
+              rancf::JointData j;
+              j.info.kind = static_cast<rancf::JointKind>(joint_kind.data()[i]);
+              j.info.dim = dim;
+              j.info.driven = joint_driven.data()[i] != 0;
+              j.info.beta0 = joint_beta0.data()[i];
+              for (int k = 0; k < 9; ++k) j.info.rel[k / 3][k % 3] = joint_rel.data()[9 * i + k];
+              for (int k = 0; k < 3; ++k) {
+                j.info.axis_a[k] = joint_axis_a.data()[3 * i + k];
+                j.info.w_a[k] = joint_w_a.data()[3 * i + k];
+                j.info.w_b[k] = joint_w_b.data()[3 * i + k];
+                j.info.normals_b[0][k] = joint_normals_b.data()[6 * i + k];
+                j.info.normals_b[1][k] = joint_normals_b.data()[6 * i + 3 + k];
+              }
+              check(joint_a.data()[i] >= 0 && joint_a.data()[i] < np, "joint_a: no such place");
+              check(joint_b.data()[i] >= 0 && joint_b.data()[i] < np, "joint_b: no such place");
+              j.a = static_cast<int>(joint_a.data()[i]);
+              j.b = static_cast<int>(joint_b.data()[i]);
+              j.angle = static_cast<int>(joint_angle.data()[i]);
+              s.joints.push_back(j);
+            }
+            for (std::size_t i = 0; i < count(spring_a); ++i)
+              s.springs.push_back({static_cast<int>(spring_a.data()[i]),
+                                   static_cast<int>(spring_b.data()[i]), spring_data.data()[3 * i],
+                                   spring_data.data()[3 * i + 1], spring_data.data()[3 * i + 2]});
+            for (std::size_t i = 0; i < count(load_place); ++i) {
+              rancf::PlaceLoad l;
+              l.place = static_cast<int>(load_place.data()[i]);
+              for (int k = 0; k < 3; ++k) {
+                l.force[k] = load_force.data()[3 * i + k];
+                l.torque[k] = load_torque.data()[3 * i + k];
+              }
+              l.factor = static_cast<int>(load_factor.data()[i]);
+              s.loads.push_back(l);
+            }
+            for (std::size_t i = 0; i < count(tf_kind); ++i) {
+              rancf::TimeFunction tf;
+              tf.kind = static_cast<rancf::TimeKind>(tf_kind.data()[i]);
+              tf.n = static_cast<int>(tf_n.data()[i]);
+              const auto v0 = static_cast<std::size_t>(tf_value_start.data()[i]);
+              tf.value.assign(tf_value.data() + v0, tf_value.data() + v0 + tf.n);
+              tf.duration = tf_params.data()[3 * i];
+              tf.frequency = tf_params.data()[3 * i + 1];
+              tf.phase = tf_params.data()[3 * i + 2];
+              const auto b0 = static_cast<std::size_t>(tf_breaks_start.data()[i]);
+              const auto b1 = static_cast<std::size_t>(tf_breaks_start.data()[i + 1]);
+              tf.breaks.assign(tf_breaks.data() + b0, tf_breaks.data() + b1);
+              const auto c0 = static_cast<std::size_t>(tf_coef_start.data()[i]);
+              const auto c1 = static_cast<std::size_t>(tf_coef_start.data()[i + 1]);
+              tf.coef.assign(tf_coef.data() + c0, tf_coef.data() + c1);
+              if (tf.kind == rancf::TimeKind::piecewise)
+                check(tf.breaks.size() >= 2 && tf.coef.size() == (tf.breaks.size() - 1) * 4 *
+                                                                     static_cast<std::size_t>(tf.n),
+                      "time function: breaks and coefficients do not match");
+              s.tfs.push_back(std::move(tf));
+            }
+            for (std::size_t i = 0; i < count(pre_coord); ++i)
+              s.prescribed.push_back({static_cast<int>(pre_coord.data()[i]),
+                                      static_cast<int>(pre_tf.data()[i]),
+                                      static_cast<int>(pre_comp.data()[i]), pre_base.data()[i]});
+            for (int k = 0; k < 3; ++k) s.gravity[k] = gravity.data()[k];
+            s.damping = damping;
+            s.setup();
+            expect_size(y_ref, static_cast<std::size_t>(s.n), "y_ref");
+            h->y_ref.assign(y_ref.data(), y_ref.data() + s.n);
+            s.y_ref = h->y_ref.data();
+          },
+          nb::kw_only(), "dim"_a, "models"_a, "rigid_point_mass"_a, "rigid_dim"_a, "rigid_mass"_a,
+          "rigid_inertia"_a, "place_kind"_a, "place_body"_a, "place_node"_a, "place_point"_a,
+          "place_motion"_a, "place_angle0"_a, "joint_kind"_a, "joint_a"_a, "joint_b"_a,
+          "joint_driven"_a, "joint_angle"_a, "joint_beta0"_a, "joint_rel"_a, "joint_axis_a"_a,
+          "joint_normals_b"_a, "joint_w_a"_a, "joint_w_b"_a, "spring_a"_a, "spring_b"_a,
+          "spring_data"_a, "load_place"_a, "load_force"_a, "load_torque"_a, "load_factor"_a,
+          "tf_kind"_a, "tf_n"_a, "tf_value"_a, "tf_value_start"_a, "tf_params"_a, "tf_breaks"_a,
+          "tf_breaks_start"_a, "tf_coef"_a, "tf_coef_start"_a, "pre_coord"_a, "pre_tf"_a,
+          "pre_comp"_a, "pre_base"_a, "gravity"_a, "damping"_a, "y_ref"_a)
+      .def_prop_ro("n", [](const SystemHolder& h) { return h.s.n; })
+      .def_prop_ro("m", [](const SystemHolder& h) { return h.s.m; })
+      .def_prop_ro("offsets", [](const SystemHolder& h) { return h.s.offset; })
+      .def_prop_ro("joint_rows", [](const SystemHolder& h) { return h.s.joint_row; })
+      .def(
+          "constraints",
+          [](const SystemHolder& h, In y, double t, Out g) {
+            expect_size(y, static_cast<std::size_t>(h.s.n), "y");
+            expect_size(g, static_cast<std::size_t>(h.s.m), "g");
+            rancf::constraints(h.s, y.data(), t, g.data());
+          },
+          "y"_a, "t"_a, "g"_a.noconvert(), "Constraint residual g(y, t).")
+      .def(
+          "residual",
+          [](const SystemHolder& h, In y, In v, In a, In lam, double t, double load_factor,
+             bool amplitude, bool dynamic, Out r) {
+            const auto n = static_cast<std::size_t>(h.s.n), m = static_cast<std::size_t>(h.s.m);
+            for (const auto* x : {&y, &v, &a}) expect_size(*x, n, "state");
+            expect_size(lam, m, "lam");
+            expect_size(r, n + m, "r");
+            rancf::AssemblyTerms terms;
+            terms.tf = terms.t1 = t;
+            terms.load_factor = load_factor;
+            terms.amplitude = amplitude;
+            return rancf::assemble_system(h.s, y.data(), dynamic ? v.data() : nullptr,
+                                          dynamic ? a.data() : nullptr, lam.data(), y.data(), terms,
+                                          r.data(), nullptr);
+          },
+          "y"_a, "v"_a, "a"_a, "lam"_a, "t"_a, "load_factor"_a = 1.0, "amplitude"_a = false,
+          "dynamic"_a = true, "r"_a.noconvert(),
+          "The balance residual (n) and the constraints (m) at (y, v, a, lambda, t); dynamic = "
+          "False: statics (no inertia).  Returns False if not finite.")
+      .def(
+          "place",
+          [](const SystemHolder& h, int index, In y, double t) {
+            expect_size(y, static_cast<std::size_t>(h.s.n), "y");
+            if (index < 0 || static_cast<std::size_t>(index) >= h.s.places.size())
+              throw std::invalid_argument("place: no such place");
+            const rancf::PlaceRef& p = h.s.places[static_cast<std::size_t>(index)];
+            rancf::PlaceEval e;
+            rancf::place_at(h.s, p, rancf::place_map(h.s, p), t, y.data(), e);
+            std::vector<double> x(e.x, e.x + 3), f;
+            for (int k = 0; k < e.nf; ++k) f.insert(f.end(), e.f[k], e.f[k] + 3);
+            return std::make_tuple(x, f);
+          },
+          "index"_a, "y"_a, "t"_a,
+          "(position (3), frame vectors (3 per vector, 0, 1 or 3 of them)) of a place.")
+      .def(
+          "place_jacobian",
+          [](const SystemHolder& h, int index, In y, double t) {
+            expect_size(y, static_cast<std::size_t>(h.s.n), "y");
+            if (index < 0 || static_cast<std::size_t>(index) >= h.s.places.size())
+              throw std::invalid_argument("place: no such place");
+            const rancf::PlaceRef& p = h.s.places[static_cast<std::size_t>(index)];
+            const rancf::PlaceMap map = rancf::place_map(h.s, p);
+            rancf::PlaceEval e;
+            rancf::place_at(h.s, p, map, t, y.data(), e);
+            std::vector<int> idx(map.index, map.index + map.n);
+            std::vector<double> dx;
+            for (int i = 0; i < 3; ++i) dx.insert(dx.end(), e.dx[i], e.dx[i] + map.n);
+            return std::make_tuple(idx, dx);
+          },
+          "index"_a, "y"_a, "t"_a,
+          "(global indices of the place's coordinates, d x / d local (3 x n, row-major)).")
+      .def(
+          "dense_jacobian",
+          [](const SystemHolder& h, In y, In v, In a, In lam, double t, double ck, double cv,
+             double ca, bool dynamic, Out out) {
+            const auto n = static_cast<std::size_t>(h.s.n), m = static_cast<std::size_t>(h.s.m);
+            for (const auto* x : {&y, &v, &a}) expect_size(*x, n, "state");
+            expect_size(lam, m, "lam");
+            expect_size(out, (n + m) * (n + m), "out");
+            rancf::BorderedLU lu(h.s.offset, h.s.block_size, h.s.block_ku, h.s.fixed.data());
+            std::vector<double> r(n + m);
+            rancf::AssemblyTerms terms;
+            terms.ck = ck;
+            terms.cv = cv;
+            terms.ca = ca;
+            terms.tf = terms.t1 = t;
+            if (!rancf::assemble_system(h.s, y.data(), dynamic ? v.data() : nullptr,
+                                        dynamic ? a.data() : nullptr, lam.data(), y.data(), terms,
+                                        r.data(), &lu))
+              return false;
+            lu.dense(h.s.m, out.data());
+            return true;
+          },
+          "y"_a, "v"_a, "a"_a, "lam"_a, "t"_a, "ck"_a, "cv"_a, "ca"_a, "dynamic"_a = true,
+          "out"_a.noconvert(),
+          "The Jacobian of residual() (balance and constraints) with respect to (y, lambda): ck "
+          "d/dy + cv d/dv + ca d/da, dense (n + m)^2, held rows and columns as assembled.")
+      .def(
+          "energies",
+          [](const SystemHolder& h, In y, In v) {
+            expect_size(y, static_cast<std::size_t>(h.s.n), "y");
+            expect_size(v, static_cast<std::size_t>(h.s.n), "v");
+            double e[3];
+            rancf::system_energies(h.s, y.data(), v.data(), e);
+            return std::make_tuple(e[0], e[1], e[2]);
+          },
+          "y"_a, "v"_a, "(kinetic, strain, gravity) energies.");
+
+  nb::class_<SystemIntegratorHolder>(mod, "SystemIntegrator",
+                                     "Generalized-alpha with constraints on a system.")
+      .def(nb::init<const SystemHolder&, const rancf::Scheme&>(), "system"_a, "scheme"_a,
+           nb::keep_alive<1, 2>())
+      .def_prop_ro("factorizations",
+                   [](const SystemIntegratorHolder& h) { return h.integ.factorizations(); })
+      .def(
+          "step",
+          [](SystemIntegratorHolder& h, In y0, In v0, In a0, In l0, double t, double dt, Out y1,
+             Out v1, Out a1, Out l1) {
+            for (const auto* x : {&y0, &v0, &a0}) expect_size(*x, h.n, "state");
+            for (const auto* x : {&y1, &v1, &a1}) expect_size(*x, h.n, "state");
+            expect_size(l0, h.m, "lambda");
+            expect_size(l1, h.m, "lambda");
+            rancf::StepOutcome r;
+            {
+              nb::gil_scoped_release release;
+              r = h.integ.step(y0.data(), v0.data(), a0.data(), l0.data(), t, dt, y1.data(),
+                               v1.data(), a1.data(), l1.data());
+            }
+            return std::make_tuple(r.converged, r.iterations);
+          },
+          "y0"_a, "v0"_a, "a0"_a, "l0"_a, "t"_a, "h"_a, "y1"_a.noconvert(), "v1"_a.noconvert(),
+          "a1"_a.noconvert(), "l1"_a.noconvert())
+      .def(
+          "run",
+          [](SystemIntegratorHolder& h, Out y, Out v, Out a, Out lam, double t0, double dt,
+             std::int64_t n_steps, std::int64_t out_every, std::int64_t done_before,
+             double max_seconds, Out out_y, Out out_v, Out out_l, Out out_e) {
+            for (const auto* x : {&y, &v, &a}) expect_size(*x, h.n, "state");
+            expect_size(lam, h.m, "lambda");
+            if (out_every < 1 || n_steps < 0 || done_before < 0)
+              throw std::invalid_argument("run: bad step counts");
+            const auto n_out = static_cast<std::size_t>((done_before + n_steps) / out_every);
+            expect_size(out_y, n_out * h.n, "out_y");
+            expect_size(out_v, n_out * h.n, "out_v");
+            expect_size(out_l, n_out * h.m, "out_l");
+            expect_size(out_e, n_out * 3, "out_e");
+            rancf::RunOutcome r;
+            {
+              nb::gil_scoped_release release;
+              r = h.integ.run(y.data(), v.data(), a.data(), lam.data(), t0, dt, n_steps, out_every,
+                              done_before, max_seconds, out_y.data(), out_v.data(), out_l.data(),
+                              out_e.data());
+            }
+            return std::make_tuple(r.steps, r.converged, r.iterations, r.stored);
+          },
+          "y"_a.noconvert(), "v"_a.noconvert(), "a"_a.noconvert(), "lam"_a.noconvert(), "t0"_a,
+          "h"_a, "n_steps"_a, "out_every"_a, "done_before"_a, "max_seconds"_a,
+          "out_y"_a.noconvert(), "out_v"_a.noconvert(), "out_l"_a.noconvert(),
+          "out_e"_a.noconvert())
+      .def(
+          "initial_acceleration",
+          [](SystemIntegratorHolder& h, In y, In v, double t, Out a, Out lam) {
+            for (const auto* x : {&y, &v}) expect_size(*x, h.n, "state");
+            expect_size(a, h.n, "a");
+            expect_size(lam, h.m, "lambda");
+            return h.integ.initial_acceleration(y.data(), v.data(), t, a.data(), lam.data());
+          },
+          "y"_a, "v"_a, "t"_a, "a"_a.noconvert(), "lam"_a.noconvert())
+      .def(
+          "factor_static",
+          [](SystemIntegratorHolder& h, In y, In lam, double lf, bool amplitude, double t,
+             Out residual) {
+            expect_size(y, h.n, "y");
+            expect_size(lam, h.m, "lam");
+            expect_size(residual, h.n + h.m, "residual");
+            return h.integ.factor_static(y.data(), lam.data(), lf, amplitude, t, residual.data());
+          },
+          "y"_a, "lam"_a, "load_factor"_a, "amplitude"_a, "t"_a, "residual"_a.noconvert(),
+          "The statics' residual (balance, constraints) and its Jacobian factored; False if not "
+          "finite or singular.")
+      .def(
+          "solve_factored",
+          [](SystemIntegratorHolder& h, Out x, Out z) {
+            expect_size(x, h.n, "x");
+            expect_size(z, h.m, "z");
+            h.integ.solve_factored(x.data(), z.data());
+          },
+          "x"_a.noconvert(), "z"_a.noconvert(),
+          "Solve with the last factorization (right-hand sides in x, z; solutions into them).")
+      .def(
+          "prescribe",
+          [](SystemIntegratorHolder& h, double t, Out y, Out v) {
+            expect_size(y, h.n, "y");
+            expect_size(v, h.n, "v");
+            h.integ.set_prescribed(t, y.data(), v.data(), nullptr);
+          },
+          "t"_a, "y"_a.noconvert(), "v"_a.noconvert(),
+          "Set the moving supports' held coordinates and their rates at time t.")
+      .def(
+          "static_increment",
+          [](SystemIntegratorHolder& h, In y, In lam, double lf, bool amplitude, double t, Out dy,
+             Out dlam, Out residual) {
+            expect_size(y, h.n, "y");
+            expect_size(dy, h.n, "dy");
+            expect_size(lam, h.m, "lam");
+            expect_size(dlam, h.m, "dlam");
+            expect_size(residual, h.n + h.m, "residual");
+            return h.integ.static_increment(y.data(), lam.data(), lf, amplitude, t, dy.data(),
+                                            dlam.data(), residual.data());
+          },
+          "y"_a, "lam"_a, "load_factor"_a, "amplitude"_a, "t"_a, "dy"_a.noconvert(),
+          "dlam"_a.noconvert(), "residual"_a.noconvert(),
+          "One static Newton increment (K dy + G^T dlam = -r, G dy = -g); False if singular.");
+}
+
+}  // namespace rancf_bind

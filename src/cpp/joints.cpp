@@ -1,0 +1,151 @@
+#include "joints.hpp"
+
+#include <cmath>
+
+namespace rancf {
+
+namespace {
+
+constexpr int kW = 2 * kMaxLocal;
+
+/// A world vector and its derivatives with respect to [A's locals, B's locals].
+struct Vec {
+  double v[3] = {0.0, 0.0, 0.0};
+  double d[3][kW] = {};
+};
+
+Vec position(const PlaceEval& p, int off) {
+  Vec out;
+  for (int i = 0; i < 3; ++i) {
+    out.v[i] = p.x[i];
+    for (int j = 0; j < p.n; ++j) out.d[i][off + j] = p.dx[i][j];
+  }
+  return out;
+}
+
+Vec combo(const PlaceEval& p, int off, const double* c) {
+  Vec out;
+  for (int k = 0; k < p.nf; ++k) {
+    if (c[k] == 0.0) continue;
+    for (int i = 0; i < 3; ++i) {
+      out.v[i] += c[k] * p.f[k][i];
+      for (int j = 0; j < p.n; ++j) out.d[i][off + j] += c[k] * p.df[k][i][j];
+    }
+  }
+  return out;
+}
+
+Vec frame(const PlaceEval& p, int off, int k) {
+  double c[3] = {0.0, 0.0, 0.0};
+  c[k] = 1.0;
+  return combo(p, off, c);
+}
+
+Vec sub(const Vec& a, const Vec& b) {
+  Vec out;
+  for (int i = 0; i < 3; ++i) {
+    out.v[i] = a.v[i] - b.v[i];
+    for (int j = 0; j < kW; ++j) out.d[i][j] = a.d[i][j] - b.d[i][j];
+  }
+  return out;
+}
+
+/// a . b into g and its gradient into row (width w).
+void dot(const Vec& a, const Vec& b, int w, double* g, double* row, double scale = 1.0) {
+  *g += scale * (a.v[0] * b.v[0] + a.v[1] * b.v[1] + a.v[2] * b.v[2]);
+  for (int j = 0; j < w; ++j)
+    row[j] += scale * (a.d[0][j] * b.v[0] + a.v[0] * b.d[0][j] + a.d[1][j] * b.v[1] +
+                       a.v[1] * b.d[1][j] + a.d[2][j] * b.v[2] + a.v[2] * b.d[2][j]);
+}
+
+/// (a x b) . c into g and its gradient into row.
+void triple(const Vec& a, const Vec& b, const Vec& c, int w, double* g, double* row, double scale) {
+  auto cross = [](const double* x, const double* y, double* z) {
+    z[0] = x[1] * y[2] - x[2] * y[1];
+    z[1] = x[2] * y[0] - x[0] * y[2];
+    z[2] = x[0] * y[1] - x[1] * y[0];
+  };
+  double ab[3];
+  cross(a.v, b.v, ab);
+  *g += scale * (ab[0] * c.v[0] + ab[1] * c.v[1] + ab[2] * c.v[2]);
+  for (int j = 0; j < w; ++j) {
+    const double da[3] = {a.d[0][j], a.d[1][j], a.d[2][j]};
+    const double db[3] = {b.d[0][j], b.d[1][j], b.d[2][j]};
+    double x1[3], x2[3];
+    cross(da, b.v, x1);
+    cross(a.v, db, x2);
+    double s = 0.0;
+    for (int i = 0; i < 3; ++i) s += (x1[i] + x2[i]) * c.v[i] + ab[i] * c.d[i][j];
+    row[j] += scale * s;
+  }
+}
+
+}  // namespace
+
+int joint_rows(const JointInfo& j) {
+  const int d = j.dim, drive = j.driven ? 1 : 0;
+  switch (j.kind) {
+    case JointKind::pin:
+      return d + drive;
+    case JointKind::fixed:
+      return d == 2 ? 3 : 6;
+    case JointKind::tangent:
+      return 5;
+    case JointKind::revolute:
+      return (d == 2 ? 2 : 5) + drive;
+    case JointKind::slider:
+      return d - 1;
+  }
+  return 0;
+}
+
+void eval_joint(const JointInfo& j, const PlaceEval& a, const PlaceEval& b, double theta, double* g,
+                double* jac) {
+  const int rows = joint_rows(j), w = a.n + b.n, d = j.dim;
+  for (int r = 0; r < rows; ++r) {
+    g[r] = 0.0;
+    for (int c = 0; c < w; ++c) jac[r * w + c] = 0.0;
+  }
+  int r = 0;
+  const Vec xa = position(a, 0), xb = position(b, a.n);
+  const Vec rel = sub(xa, xb);
+  if (j.kind == JointKind::slider) {
+    for (int i = 0; i < d - 1; ++i, ++r)
+      dot(rel, combo(b, a.n, j.normals_b[i]), w, g + r, jac + r * w);
+    return;
+  }
+  for (int i = 0; i < d; ++i, ++r) {  // positions
+    g[r] = rel.v[i];
+    for (int c = 0; c < w; ++c) jac[r * w + c] = rel.d[i][c];
+  }
+  const bool planar_angle =
+      d == 2 && (j.kind == JointKind::fixed ||
+                 ((j.kind == JointKind::pin || j.kind == JointKind::revolute) && j.driven));
+  if (planar_angle) {  // sin(psi_A - psi_B - beta): s cos(beta) - c sin(beta)
+    const double beta = j.beta0 + (j.kind == JointKind::fixed ? 0.0 : theta);
+    const Vec fa = frame(a, 0, 0), fb0 = frame(b, a.n, 0), fb1 = frame(b, a.n, 1);
+    dot(fa, fb1, w, g + r, jac + r * w, std::cos(beta));
+    dot(fa, fb0, w, g + r, jac + r * w, -std::sin(beta));
+    return;
+  }
+  if (d == 2) return;
+  if (j.kind == JointKind::fixed) {
+    Vec av[3], cv[3];
+    for (int k = 0; k < 3; ++k) {
+      av[k] = frame(a, 0, k);
+      cv[k] = combo(b, a.n, j.rel[k]);
+    }
+    for (int k = 0; k < 3; ++k, ++r) dot(av[k], cv[(k + 1) % 3], w, g + r, jac + r * w);
+    return;
+  }
+  const Vec e = j.kind == JointKind::tangent ? frame(a, 0, 0) : combo(a, 0, j.axis_a);
+  for (int i = 0; i < 2; ++i, ++r) dot(e, combo(b, a.n, j.normals_b[i]), w, g + r, jac + r * w);
+  if (j.kind == JointKind::revolute && j.driven) {  // sin(angle - beta) about e_A
+    const double beta = j.beta0 + theta;
+    const Vec wa = combo(a, 0, j.w_a), wb = combo(b, a.n, j.w_b);
+    triple(wb, wa, e, w, g + r, jac + r * w, std::cos(beta));  // sin(angle)
+    dot(wa, wb, w, g + r, jac + r * w, -std::sin(beta));       // cos(angle)
+  }
+}
+
+}  // namespace rancf

@@ -1,0 +1,132 @@
+// A multibody system as the compiled core sees it (systems-math sections 1, 3, 4).
+//
+// Coordinates y of all bodies stacked body by body: each flexible body's model coordinates (a
+// Model: its chain, supports held by elimination), then every rigid body (2D: x, y, theta; 3D:
+// x_c, a unit quaternion p) and point mass (x).  Joints are constraint rows g(y, t) = 0 with
+// Lagrange multipliers; a 3D rigid body adds the row (p . p - 1) / 2.  The equations of motion
+//   M a + c M v + F_in + f_int(y) - f_ext(t, y) + f_springs(y, v) + G(y)^T lambda = 0,
+//   g(y, t) = 0
+// are assembled into the blocks of a bordered band matrix (bordered.hpp): a band block per
+// flexible body, a dense (full band) block per rigid body or point mass; joint Jacobians and
+// couplings between bodies (springs, the second derivatives of joints) border it.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "bordered.hpp"
+#include "joints.hpp"
+#include "model.hpp"
+#include "places.hpp"
+#include "rigid.hpp"
+#include "time_function.hpp"
+
+namespace rancf {
+
+/// A place: on a flexible body's node (kind cable/rod/beam), a rigid body or point mass, or the
+/// ground (optionally moving: point + u(t)).
+struct PlaceRef {
+  PlaceKind kind = PlaceKind::ground;
+  int body = -1;  ///< flexible body (node kinds) or rigid body/mass index
+  int node = 0;   ///< node of a flexible body
+  double point[3] = {0.0, 0.0, 0.0};
+  int motion = -1;      ///< ground: time function of the displacement (dim components), or -1
+  double angle0 = 0.0;  ///< beam node: its reference tangent angle
+};
+
+struct JointData {
+  JointInfo info;
+  int a = 0, b = 0;  ///< place indices
+  int angle = -1;    ///< driven: the time function of the angle
+};
+
+struct SpringData {
+  int a = 0, b = 0;
+  double stiffness = 0.0, damping = 0.0, length = 0.0;
+};
+
+/// A force (and, on rigid bodies, a torque) at a place, times a time function (-1: constant).
+struct PlaceLoad {
+  int place = 0;
+  double force[3] = {0.0, 0.0, 0.0};
+  double torque[3] = {0.0, 0.0, 0.0};
+  int factor = -1;
+};
+
+/// A held coordinate that follows a time function: y[coord] = base + u_comp(t).
+struct Prescribed {
+  int coord = 0;
+  int tf = 0;
+  int comp = 0;
+  double base = 0.0;
+};
+
+struct System {
+  int dim = 2;
+  std::vector<const Model*> flex;
+  std::vector<RigidInertia> rigid;
+  std::vector<PlaceRef> places;
+  std::vector<JointData> joints;
+  std::vector<SpringData> springs;
+  std::vector<PlaceLoad> loads;
+  std::vector<TimeFunction> tfs;
+  std::vector<Prescribed> prescribed;
+  double gravity[3] = {0.0, 0.0, 0.0};  ///< on rigid bodies and point masses
+  double damping = 0.0;                 ///< mass-proportional damping of every body
+  const double* y_ref = nullptr;        ///< (n) reference coordinates (gravity potential zero)
+
+  // derived by setup()
+  int n = 0, m = 0;
+  std::vector<int> offset;          ///< flexible bodies, then rigid bodies: first coordinate
+  std::vector<int> joint_row;       ///< first constraint row of each joint
+  std::vector<int> norm_row;        ///< rigid bodies: the quaternion row, or -1
+  std::vector<std::uint8_t> fixed;  ///< (n) held coordinates
+  std::vector<int> block_size, block_ku;
+
+  /// Offsets, sizes, rows, the held mask; call after filling the lists.
+  void setup();
+  [[nodiscard]] int rigid_offset(int r) const {
+    return offset[flex.size() + static_cast<std::size_t>(r)];
+  }
+};
+
+/// A place's local coordinates in y: their global indices (n of them) and the map
+/// local(q) = T local(y) of a flexible node's rotated blocks (identity elsewhere).
+struct PlaceMap {
+  int n = 0;
+  int index[kMaxLocal] = {};
+  double T[kMaxLocal][kMaxLocal] = {};
+};
+
+PlaceMap place_map(const System& s, const PlaceRef& p);
+PlaceInfo place_info(const System& s, const PlaceRef& p, double t);
+/// The place at time t with local coordinates u (y-space, map.n values); derivatives with
+/// respect to them.
+void place_local(const System& s, const PlaceRef& p, const PlaceMap& map, double t, const double* u,
+                 PlaceEval& out);
+/// The same with the local coordinates gathered from the global y.
+void place_at(const System& s, const PlaceRef& p, const PlaceMap& map, double t, const double* y,
+              PlaceEval& out);
+
+/// Constraint residual g (m) at (y, t).
+void constraints(const System& s, const double* y, double t, double* g);
+
+/// The balance at (yf, vf, am), time tf (vf, am null in statics):
+///   r = M (am + c vf) + F_rot + F_rigid + f_int(yf) - f_ext(tf, yf) + f_springs + G(yf)^T lam
+/// and the constraints g(y1, t1) into r[n .. n + m); if lu is not null, the Jacobian with respect
+/// to (y1, lambda): ck d/dy + cv d/dv + ca d/da of the balance into the blocks and the border
+/// (G(yf)^T as columns, G(y1) as rows, couplings between bodies as extra border unknowns).
+/// Returns false if an evaluation is not finite.
+struct AssemblyTerms {
+  double ck = 1.0, cv = 0.0, ca = 0.0;  ///< coefficients of d/dy, d/dv, d/da
+  double tf = 0.0;                      ///< time of the balance
+  double t1 = 0.0;                      ///< time of the constraints
+  double load_factor = 1.0;             ///< statics: the factor on the loads
+  bool amplitude = false;               ///< statics: harmonic loads at their amplitude
+};
+
+bool assemble_system(const System& s, const double* yf, const double* vf, const double* am,
+                     const double* lambda, const double* y1, const AssemblyTerms& terms, double* r,
+                     BorderedLU* lu);
+
+}  // namespace rancf

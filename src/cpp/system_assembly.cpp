@@ -1,0 +1,397 @@
+// Assembly of a system's balance, constraints and Jacobian (system.hpp).
+//
+// Exact derivatives: elements (their kernels), rigid bodies (rigid.hpp), joint Jacobians
+// (joints.hpp).  By central differences of those exact first derivatives (step 1e-6 (1 + |u|)
+// in each local coordinate, error of order its square): the second derivatives of the joint
+// equations contracted with the multipliers, d(G^T lambda)/dy, and the tangents of springs and of
+// loads at rigid-body points (whose direction of action turns with the body) -- small matrices
+// over the local coordinates of one or two places.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <vector>
+
+#include "assembly.hpp"
+#include "inertia.hpp"
+#include "system.hpp"
+
+namespace rancf {
+
+namespace {
+
+std::size_t sz(int i) { return static_cast<std::size_t>(i); }
+
+/// Entries of the Jacobian that do not fit into a block's band: border unknowns z_j = x_j.
+struct Far {
+  std::map<int, std::vector<std::pair<int, double>>> by_column;  // j -> (i, value)
+};
+
+/// K (k x k, row-major) over global indices idx into lu's bands, or into far.
+void add_matrix(BorderedLU& lu, const int* idx, int k, const double* K, Far& far) {
+  for (int a = 0; a < k; ++a) {
+    const int i = idx[a], bi = lu.block_of(i);
+    for (int b = 0; b < k; ++b) {
+      const double v = K[a * k + b];
+      if (v == 0.0) continue;
+      const int j = idx[b], bj = lu.block_of(j);
+      if (bi == bj && std::abs(i - j) <= lu.block_ku(bi)) {
+        const int o = lu.block_offset(bi);
+        lu.view(bi).at(i - o, j - o) += v;
+      } else {
+        far.by_column[j].emplace_back(i, v);
+      }
+    }
+  }
+}
+
+/// Local coordinates (y-space) of a place from y.
+void gather(const PlaceMap& map, const double* y, double* u) {
+  for (int i = 0; i < map.n; ++i) u[i] = y[map.index[i]];
+}
+
+/// Generalized forces of a force F (and torque T) at a place: dx^T F (+ the torque's).
+void place_force(const PlaceEval& p, const double* F, const double* T, int dim, double* g,
+                 bool rigid3d) {
+  for (int j = 0; j < p.n; ++j) {
+    g[j] = 0.0;
+    for (int i = 0; i < dim; ++i) g[j] += p.dx[i][j] * F[i];
+  }
+  if (T == nullptr || p.nf < 3) return;
+  if (dim == 2) {  // the frame turns with psi: d f_0 / d u_j = dpsi/du_j f_1
+    for (int j = 0; j < p.n; ++j) {
+      const double dpsi = p.df[0][0][j] * p.f[1][0] + p.df[0][1][j] * p.f[1][1];
+      g[j] += T[2] * dpsi;
+    }
+    return;
+  }
+  // 3D: the rotation rate w_j with d f_k / d u_j = w_j x f_k: w_j = 1/2 sum_k f_k x df_k/du_j
+  for (int j = 0; j < p.n; ++j) {
+    double w[3] = {0.0, 0.0, 0.0};
+    for (int k = 0; k < 3; ++k) {
+      const double* f = p.f[k];
+      const double d[3] = {p.df[k][0][j], p.df[k][1][j], p.df[k][2][j]};
+      w[0] += 0.5 * (f[1] * d[2] - f[2] * d[1]);
+      w[1] += 0.5 * (f[2] * d[0] - f[0] * d[2]);
+      w[2] += 0.5 * (f[0] * d[1] - f[1] * d[0]);
+    }
+    g[j] += T[0] * w[0] + T[1] * w[1] + T[2] * w[2];
+  }
+  (void)rigid3d;
+}
+
+/// Whether a place's local coordinate j enters its position or frame nonlinearly (a rotation:
+/// a cable's or rod's gradient and twist, a beam's or rigid body's angle, a quaternion); the
+/// derivatives of the other (positions) are constant.
+bool nonlinear_local(PlaceKind kind, int dim, int j) {
+  switch (kind) {
+    case PlaceKind::cable:
+    case PlaceKind::rod:
+      return j >= dim;
+    case PlaceKind::beam:
+    case PlaceKind::rigid2d:
+      return j == 2;
+    case PlaceKind::rigid3d:
+      return j >= 3;
+    default:
+      return false;
+  }
+}
+
+/// Central differences of F(u) (k values) with respect to u (k values): K[a][b] = dF_a/du_b,
+/// only for the columns b with vary[b] (the others are zero).
+template <class Fn>
+void jacobian_fd(int k, double* u, Fn fn, double* K, const bool* vary = nullptr) {
+  double fp[2 * kMaxLocal], fm[2 * kMaxLocal];
+  for (int b = 0; b < k; ++b) {
+    if (vary != nullptr && !vary[b]) {
+      for (int a = 0; a < k; ++a) K[a * k + b] = 0.0;
+      continue;
+    }
+    const double u0 = u[b], h = 1e-6 * (1.0 + std::abs(u0));
+    u[b] = u0 + h;
+    fn(fp);
+    u[b] = u0 - h;
+    fn(fm);
+    u[b] = u0;
+    for (int a = 0; a < k; ++a) K[a * k + b] = (fp[a] - fm[a]) / (2.0 * h);
+  }
+}
+
+}  // namespace
+
+void constraints(const System& s, const double* y, double t, double* g) {
+  for (std::size_t k = 0; k < s.joints.size(); ++k) {
+    const JointData& jd = s.joints[k];
+    const PlaceRef &pa = s.places[sz(jd.a)], &pb = s.places[sz(jd.b)];
+    PlaceEval ea, eb;
+    place_at(s, pa, place_map(s, pa), t, y, ea);
+    place_at(s, pb, place_map(s, pb), t, y, eb);
+    const double th = jd.angle >= 0 ? evaluate(s.tfs[sz(jd.angle)], 0, t).f : 0.0;
+    double jac[kMaxJointRows * 2 * kMaxLocal];
+    eval_joint(jd.info, ea, eb, th, g + s.joint_row[k], jac);
+  }
+  for (std::size_t r = 0; r < s.rigid.size(); ++r) {
+    if (s.norm_row[r] < 0) continue;
+    const double* p = y + s.rigid_offset(static_cast<int>(r)) + 3;
+    g[s.norm_row[r]] = 0.5 * (p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3] - 1.0);
+  }
+}
+
+bool assemble_system(const System& s, const double* yf, const double* vf, const double* am,
+                     const double* lam, const double* y1, const AssemblyTerms& tm, double* r,
+                     BorderedLU* lu) {
+  const int n = s.n, m = s.m;
+  const double c = s.damping;
+  std::fill(r, r + n + m, 0.0);
+  Far far;
+  // ---- flexible bodies: elements, loads, constant mass, rotary inertia
+  thread_local std::vector<double> f, g, acc, mv;  // work arrays, kept between calls
+  for (std::size_t b = 0; b < s.flex.size(); ++b) {
+    const Model& mod = *s.flex[b];
+    const int o = s.offset[b], nb = mod.n(), ku = mod.ku();
+    f.assign(sz(nb), 0.0);
+    g.assign(sz(nb), 0.0);
+    BandView jac{nullptr, 0, 0, 0};
+    if (lu != nullptr) jac = lu->block(static_cast<int>(b));
+    assemble(mod, yf + o, f.data(), lu != nullptr ? &jac : nullptr, tm.ck);
+    external_force(mod, tm.tf, yf + o, g.data(), tm.amplitude);
+    if (lu != nullptr && mod.loads.n_moment > 0)
+      subtract_load_stiffness(mod, tm.tf, yf + o, jac, tm.ck * tm.load_factor, tm.amplitude);
+    for (int i = 0; i < nb; ++i) r[o + i] += f[sz(i)] - tm.load_factor * g[sz(i)];
+    if (am != nullptr) {  // M (am + c vf)
+      acc.resize(sz(nb));
+      mv.resize(sz(nb));
+      for (int i = 0; i < nb; ++i) acc[sz(i)] = am[o + i] + c * vf[o + i];
+      band_matvec(mod.mass_band, acc.data(), nb, ku, mv.data());
+      for (int i = 0; i < nb; ++i) r[o + i] += mv[sz(i)];
+      if (lu != nullptr) {
+        const double cm = tm.ca + c * tm.cv;
+        for (int j = 0; j < nb; ++j)
+          for (int i = std::max(0, j - ku); i < std::min(nb, j + ku + 1); ++i)
+            jac.at(i, j) += cm * mod.mass_band[static_cast<std::ptrdiff_t>(ku + i - j) * nb + j];
+      }
+      if (has_rotary_inertia(mod))
+        assemble_inertia(mod, yf + o, vf + o, am + o, {c, tm.ck, tm.cv, tm.ca}, r + o,
+                         lu != nullptr ? &jac : nullptr);
+    }
+  }
+  // ---- rigid bodies and point masses: inertia, damping, gravity
+  for (std::size_t k = 0; k < s.rigid.size(); ++k) {
+    const RigidInertia& body = s.rigid[k];
+    const int o = s.rigid_offset(static_cast<int>(k)), nb = rigid_size(body);
+    const int bi = static_cast<int>(s.flex.size() + k);
+    std::array<double, 49> kk{};
+    BandView jac{nullptr, 0, 0, 0};
+    if (lu != nullptr) jac = lu->block(bi);
+    if (am != nullptr) {
+      std::array<double, 7> fr{};
+      rigid_inertial_force(body, yf + o, vf + o, am + o, tm.ck, tm.cv, tm.ca, fr.data(),
+                           lu != nullptr ? kk.data() : nullptr);
+      const int nd = body.point_mass ? body.dim : (body.dim == 2 ? 3 : 3);  // damped coordinates
+      for (int i = 0; i < nb; ++i) r[o + i] += fr[sz(i)];
+      for (int i = 0; i < nd; ++i) {
+        const double mi =
+            (body.dim == 2 && !body.point_mass && i == 2) ? body.inertia[0] : body.mass;
+        r[o + i] += c * mi * vf[o + i];
+        kk[sz(i * nb + i)] += tm.cv * c * mi;
+      }
+    }
+    const int nt = body.point_mass ? body.dim : (body.dim == 2 ? 2 : 3);
+    for (int i = 0; i < nt; ++i) r[o + i] -= tm.load_factor * body.mass * s.gravity[i];
+    if (lu != nullptr)
+      for (int i = 0; i < nb; ++i)
+        for (int j = 0; j < nb; ++j)
+          if (std::abs(i - j) <= lu->block_ku(bi)) jac.at(i, j) += kk[sz(i * nb + j)];
+  }
+  // ---- loads at places (forces, and torques on rigid bodies)
+  for (const PlaceLoad& ld : s.loads) {
+    const PlaceRef& p = s.places[sz(ld.place)];
+    const PlaceMap map = place_map(s, p);
+    const double fac =
+        tm.load_factor * (ld.factor >= 0 ? evaluate(s.tfs[sz(ld.factor)], 0, tm.tf).f : 1.0);
+    double F[3], T[3], u[kMaxLocal], q[kMaxLocal];
+    for (int i = 0; i < 3; ++i) {
+      F[i] = fac * ld.force[i];
+      T[i] = fac * ld.torque[i];
+    }
+    const bool torque = T[0] != 0.0 || T[1] != 0.0 || T[2] != 0.0;
+    auto gen = [&](double* out) {
+      PlaceEval e;
+      place_local(s, p, map, tm.tf, u, e);
+      place_force(e, F, torque ? T : nullptr, s.dim, out, p.kind == PlaceKind::rigid3d);
+    };
+    gather(map, yf, u);
+    gen(q);
+    for (int j = 0; j < map.n; ++j) r[map.index[j]] -= q[j];
+    const bool turns = p.kind == PlaceKind::rigid2d || p.kind == PlaceKind::rigid3d ||
+                       (torque && p.kind == PlaceKind::rod);
+    if (lu != nullptr && turns) {
+      std::array<double, kMaxLocal * kMaxLocal> K{};
+      jacobian_fd(map.n, u, gen, K.data());
+      for (double& v : K) v *= -tm.ck;
+      add_matrix(*lu, map.index, map.n, K.data(), far);
+    }
+  }
+  // ---- springs between two places
+  for (const SpringData& sp : s.springs) {
+    const PlaceRef &pa = s.places[sz(sp.a)], &pb = s.places[sz(sp.b)];
+    const PlaceMap ma = place_map(s, pa), mb = place_map(s, pb);
+    const int k = ma.n + mb.n;
+    std::array<double, 2 * kMaxLocal> u{}, w{};
+    gather(ma, yf, u.data());
+    gather(mb, yf, u.data() + ma.n);
+    if (vf != nullptr) {
+      gather(ma, vf, w.data());
+      gather(mb, vf, w.data() + ma.n);
+    }
+    auto force = [&](double* out) {
+      PlaceEval ea, eb;
+      place_local(s, pa, ma, tm.tf, u.data(), ea);
+      place_local(s, pb, mb, tm.tf, u.data() + ma.n, eb);
+      double d[3], len = 0.0, rate = 0.0;
+      for (int i = 0; i < 3; ++i) {
+        d[i] = ea.x[i] - eb.x[i];
+        len += d[i] * d[i];
+      }
+      len = std::sqrt(len);
+      for (int i = 0; i < 3; ++i) {
+        double va = 0.0, vb = 0.0;
+        for (int j = 0; j < ea.n; ++j) va += ea.dx[i][j] * w[sz(j)];
+        for (int j = 0; j < eb.n; ++j) vb += eb.dx[i][j] * w[sz(ma.n + j)];
+        rate += d[i] / len * (va - vb);
+      }
+      const double tension = sp.stiffness * (len - sp.length) + sp.damping * rate;
+      double F[3];
+      for (int i = 0; i < 3; ++i) F[i] = tension * d[i] / len;
+      place_force(ea, F, nullptr, s.dim, out, false);  // on A: +T e (the spring pulls A back)
+      for (int i = 0; i < 3; ++i) F[i] = -F[i];
+      place_force(eb, F, nullptr, s.dim, out + ma.n, false);
+    };
+    std::array<double, 2 * kMaxLocal> fs{};
+    force(fs.data());
+    int idx[2 * kMaxLocal];
+    for (int j = 0; j < ma.n; ++j) idx[j] = ma.index[j];
+    for (int j = 0; j < mb.n; ++j) idx[ma.n + j] = mb.index[j];
+    for (int j = 0; j < k; ++j) r[idx[j]] += fs[sz(j)];
+    if (lu != nullptr) {
+      std::vector<double> K(sz(k * k)), Kv(sz(k * k));
+      jacobian_fd(k, u.data(), force, K.data());
+      if (vf != nullptr) jacobian_fd(k, w.data(), force, Kv.data());
+      for (std::size_t i = 0; i < K.size(); ++i) K[i] = tm.ck * K[i] + tm.cv * Kv[i];
+      add_matrix(*lu, idx, k, K.data(), far);
+    }
+  }
+  // ---- joints: G(yf)^T lambda, g(y1), and their derivatives
+  std::vector<std::array<double, kMaxJointRows * 2 * kMaxLocal>> jac1(s.joints.size());
+  std::vector<std::array<double, kMaxJointRows * 2 * kMaxLocal>> jacf(s.joints.size());
+  for (std::size_t jj = 0; jj < s.joints.size(); ++jj) {
+    const JointData& jd = s.joints[jj];
+    const PlaceRef &pa = s.places[sz(jd.a)], &pb = s.places[sz(jd.b)];
+    const PlaceMap ma = place_map(s, pa), mb = place_map(s, pb);
+    const int rows = joint_rows(jd.info), row0 = s.joint_row[jj], k = ma.n + mb.n;
+    std::array<double, 2 * kMaxLocal> u{};
+    auto eval_at = [&](const double* uu, double t, double* gg, double* jac) {
+      PlaceEval ea, eb;
+      place_local(s, pa, ma, t, uu, ea);
+      place_local(s, pb, mb, t, uu + ma.n, eb);
+      const double th = jd.angle >= 0 ? evaluate(s.tfs[sz(jd.angle)], 0, t).f : 0.0;
+      eval_joint(jd.info, ea, eb, th, gg, jac);
+    };
+    double gtmp[kMaxJointRows];
+    gather(ma, y1, u.data());
+    gather(mb, y1, u.data() + ma.n);
+    eval_at(u.data(), tm.t1, r + n + row0, jac1[jj].data());
+    gather(ma, yf, u.data());
+    gather(mb, yf, u.data() + ma.n);
+    eval_at(u.data(), tm.tf, gtmp, jacf[jj].data());
+    const double* lj = lam + row0;
+    auto gtl = [&](double* out) {  // G(u)^T lambda
+      double gg[kMaxJointRows], jac[kMaxJointRows * 2 * kMaxLocal];
+      eval_at(u.data(), tm.tf, gg, jac);
+      for (int a = 0; a < k; ++a) {
+        out[a] = 0.0;
+        for (int q = 0; q < rows; ++q) out[a] += jac[q * k + a] * lj[q];
+      }
+    };
+    std::array<double, 2 * kMaxLocal> gl{};
+    gtl(gl.data());
+    int idx[2 * kMaxLocal];
+    for (int j = 0; j < ma.n; ++j) idx[j] = ma.index[j];
+    for (int j = 0; j < mb.n; ++j) idx[ma.n + j] = mb.index[j];
+    for (int a = 0; a < k; ++a) r[idx[a]] += gl[sz(a)];
+    if (lu != nullptr) {
+      // d(G^T lambda)/du: only rotation-like coordinates change G (a pin or slider between
+      // places whose positions are linear in their coordinates has none: skipped)
+      bool vary[2 * kMaxLocal], any = false;
+      for (int a = 0; a < k; ++a) {
+        vary[a] = a < ma.n ? nonlinear_local(pa.kind, s.dim, a)
+                           : nonlinear_local(pb.kind, s.dim, a - ma.n);
+        any = any || vary[a];
+      }
+      bool lam_nonzero = false;
+      for (int q = 0; q < rows; ++q) lam_nonzero = lam_nonzero || lj[q] != 0.0;
+      const bool pinlike = jd.info.kind == JointKind::pin && !jd.info.driven;
+      const bool rigid = pa.kind == PlaceKind::rigid2d || pa.kind == PlaceKind::rigid3d ||
+                         pb.kind == PlaceKind::rigid2d || pb.kind == PlaceKind::rigid3d;
+      if (any && lam_nonzero && (!pinlike || rigid)) {
+        double K[4 * kMaxLocal * kMaxLocal];
+        jacobian_fd(k, u.data(), gtl, K, vary);
+        // lambda^T g'' is symmetric: the columns of positions (not differenced) from the rows;
+        // positions enter the joint rows at most linearly, so their block is zero
+        for (int a = 0; a < k; ++a)
+          for (int b = 0; b < k; ++b)
+            if (!vary[b]) K[a * k + b] = vary[a] ? K[b * k + a] : 0.0;
+        for (int i = 0; i < k * k; ++i) K[i] *= tm.ck;
+        add_matrix(*lu, idx, k, K, far);
+      }
+    }
+  }
+  std::vector<double> pf(s.rigid.size() * 4);
+  for (std::size_t b = 0; b < s.rigid.size(); ++b) {  // quaternion normalization
+    if (s.norm_row[b] < 0) continue;
+    const int o = s.rigid_offset(static_cast<int>(b)) + 3, row = s.norm_row[b];
+    const double* p1 = y1 + o;
+    r[n + row] = 0.5 * (p1[0] * p1[0] + p1[1] * p1[1] + p1[2] * p1[2] + p1[3] * p1[3] - 1.0);
+    for (int i = 0; i < 4; ++i) r[o + i] += yf[o + i] * lam[row];
+    if (lu != nullptr) {
+      const int bi = static_cast<int>(s.flex.size() + b);
+      for (int i = 0; i < 4; ++i) lu->view(bi).at(3 + i, 3 + i) += tm.ck * lam[row];
+    }
+  }
+  for (int i = 0; i < n + m; ++i)
+    if (!std::isfinite(r[i])) return false;
+  if (lu == nullptr) return true;
+  // ---- the border: multipliers (m), then one unknown per far column
+  lu->reset_border(m + static_cast<int>(far.by_column.size()));
+  for (std::size_t jj = 0; jj < s.joints.size(); ++jj) {
+    const JointData& jd = s.joints[jj];
+    const PlaceMap ma = place_map(s, s.places[sz(jd.a)]), mb = place_map(s, s.places[sz(jd.b)]);
+    const int rows = joint_rows(jd.info), row0 = s.joint_row[jj], k = ma.n + mb.n;
+    for (int q = 0; q < rows; ++q)
+      for (int a = 0; a < k; ++a) {
+        const int gi = a < ma.n ? ma.index[a] : mb.index[a - ma.n];
+        lu->add_p(row0 + q, gi, jacf[jj][sz(q * k + a)]);
+        lu->add_q(row0 + q, gi, jac1[jj][sz(q * k + a)]);
+      }
+  }
+  for (std::size_t b = 0; b < s.rigid.size(); ++b) {
+    if (s.norm_row[b] < 0) continue;
+    const int o = s.rigid_offset(static_cast<int>(b)) + 3, row = s.norm_row[b];
+    for (int i = 0; i < 4; ++i) {
+      lu->add_p(row, o + i, yf[o + i]);
+      lu->add_q(row, o + i, y1[o + i]);
+    }
+  }
+  int z = m;
+  for (const auto& [col, entries] :
+       far.by_column) {  // z = x_col: P[i][z] = K_i,col, Q[z][col] = 1, D = -1
+    for (const auto& [row, v] : entries) lu->add_p(z, row, v);
+    lu->add_q(z, col, 1.0);
+    lu->add_d(z, z, -1.0);
+    ++z;
+  }
+  return true;
+}
+
+}  // namespace rancf

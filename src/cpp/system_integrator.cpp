@@ -1,0 +1,271 @@
+#include "system_integrator.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "assembly.hpp"
+#include "inertia.hpp"
+
+namespace rancf {
+
+namespace {
+std::size_t sz(int i) { return static_cast<std::size_t>(i); }
+}  // namespace
+
+SystemIntegrator::SystemIntegrator(const System& s, const Scheme& scheme)
+    : s_(s),
+      sc_(scheme),
+      lu_(s.offset, s.block_size, s.block_ku, s.fixed.data()),
+      base_(sz(s.n)),
+      yf_(sz(s.n)),
+      vf_(sz(s.n)),
+      am_(sz(s.n)),
+      r_(sz(s.n + s.m)),
+      dz_(sz(s.n + s.m)) {}
+
+void SystemIntegrator::solve_negative() {
+  // dz = -[A P; Q D]^-1 r: the border holds the multipliers (m) and the couplings' unknowns,
+  // whose right-hand side is zero
+  const int n = s_.n, m = s_.m, p = lu_.border();
+  zb_.assign(sz(p), 0.0);
+  for (int i = 0; i < n; ++i) dz_[sz(i)] = -r_[sz(i)];
+  for (int i = 0; i < m; ++i) zb_[sz(i)] = -r_[sz(n + i)];
+  lu_.solve(dz_.data(), zb_.data());
+  for (int i = 0; i < m; ++i) dz_[sz(n + i)] = zb_[sz(i)];
+}
+
+void SystemIntegrator::set_prescribed(double t, double* y, double* v, double* a) const {
+  for (const Prescribed& p : s_.prescribed) {
+    const TimeValue u = evaluate(s_.tfs[sz(p.tf)], p.comp, t);
+    if (y != nullptr) y[p.coord] = p.base + u.f;
+    if (v != nullptr) v[p.coord] = u.df;
+    if (a != nullptr) a[p.coord] = u.ddf;
+  }
+}
+
+StepOutcome SystemIntegrator::step(const double* y0, const double* v0, const double* a0,
+                                   const double* l0, double t, double h, double* y1, double* v1,
+                                   double* a1, double* l1) {
+  const int n = s_.n, m = s_.m;
+  const double am = sc_.alpha_m, af = sc_.alpha_f, gamma = sc_.gamma, beta = sc_.beta;
+  const double bh2 = beta * h * h;
+  if (h != lu_h_) {  // the factors depend on h
+    lu_valid_ = false;
+    lu_h_ = h;
+  }
+  const int max_iter = sc_.modified ? 3 * sc_.max_iter : sc_.max_iter;  // linear convergence
+  for (int i = 0; i < n; ++i) {
+    base_[sz(i)] = y0[i] + h * v0[i] + h * h * (0.5 - beta) * a0[i];
+    y1[i] = y0[i] + h * v0[i] + 0.5 * h * h * a0[i];
+  }
+  set_prescribed(t + h, y1, nullptr, nullptr);
+  std::copy(l0, l0 + m, l1);
+  AssemblyTerms terms;
+  terms.ck = 1.0 - af;
+  terms.cv = (1.0 - af) * gamma / (beta * h);
+  terms.ca = (1.0 - am) / bh2;
+  terms.tf = t + (1.0 - af) * h;
+  terms.t1 = t + h;
+  double prev = std::numeric_limits<double>::infinity();
+  for (int it = 1; it <= max_iter; ++it) {
+    for (int i = 0; i < n; ++i) {
+      a1[i] = (y1[i] - base_[sz(i)]) / bh2;
+      v1[i] = v0[i] + h * ((1.0 - gamma) * a0[i] + gamma * a1[i]);
+      yf_[sz(i)] = (1.0 - af) * y1[i] + af * y0[i];
+      vf_[sz(i)] = (1.0 - af) * v1[i] + af * v0[i];
+      am_[sz(i)] = (1.0 - am) * a1[i] + am * a0[i];
+    }
+    const bool fresh = !sc_.modified || !lu_valid_;
+    if (!assemble_system(s_, yf_.data(), vf_.data(), am_.data(), l1, y1, terms, r_.data(),
+                         fresh ? &lu_ : nullptr)) {
+      lu_valid_ = false;
+      return {false, it};
+    }
+    if (fresh) {
+      ++factorizations_;
+      lu_valid_ = lu_.factor();
+      if (!lu_valid_) return {false, it};
+    }
+    solve_negative();
+    double norm = 0.0;
+    for (int i = 0; i < n; ++i) {
+      y1[i] += dz_[sz(i)];
+      norm = std::max(norm, std::abs(dz_[sz(i)]));
+    }
+    for (int i = 0; i < m; ++i) l1[i] += dz_[sz(n + i)];
+    if (!std::isfinite(norm)) {
+      lu_valid_ = false;
+      return {false, it};
+    }
+    // with a fresh (exact) tangent convergence is quadratic: a small increment is a small
+    // error; with reused factors the error is about |d| r / (1 - r), r = |d| / |d_prev|
+    bool done = norm <= sc_.tol;
+    if (done && !fresh) {
+      const double r = norm / prev;
+      done = r < 1.0 && norm * r / (1.0 - r) <= sc_.tol;
+    }
+    if (done) {
+      for (int i = 0; i < n; ++i) {
+        a1[i] = (y1[i] - base_[sz(i)]) / bh2;
+        v1[i] = v0[i] + h * ((1.0 - gamma) * a0[i] + gamma * a1[i]);
+      }
+      return {true, it};
+    }
+    if (sc_.modified && !fresh && norm > 0.25 * prev) lu_valid_ = false;  // slow: refresh
+    prev = norm;
+  }
+  lu_valid_ = false;
+  return {false, max_iter};
+}
+
+RunOutcome SystemIntegrator::run(double* y, double* v, double* a, double* lam, double t0, double h,
+                                 std::int64_t n_steps, std::int64_t out_every,
+                                 std::int64_t done_before, double max_seconds, double* out_y,
+                                 double* out_v, double* out_l, double* out_e) {
+  const int n = s_.n, m = s_.m;
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<double> y1(sz(n)), v1(sz(n)), a1(sz(n)), l1(sz(m));
+  RunOutcome out{0, true, 0, 0};
+  for (std::int64_t k = 0; k < n_steps; ++k) {
+    const double t = t0 + static_cast<double>(k) * h;
+    const StepOutcome st = step(y, v, a, lam, t, h, y1.data(), v1.data(), a1.data(), l1.data());
+    out.iterations += st.iterations;
+    if (!st.converged) {
+      out.converged = false;
+      return out;
+    }
+    std::copy(y1.begin(), y1.end(), y);
+    std::copy(v1.begin(), v1.end(), v);
+    std::copy(a1.begin(), a1.end(), a);
+    std::copy(l1.begin(), l1.end(), lam);
+    system_rereference(s_, y, v, a);
+    out.steps = k + 1;
+    if ((done_before + k + 1) % out_every == 0) {
+      const std::ptrdiff_t row = static_cast<std::ptrdiff_t>(out.stored);
+      std::copy(y, y + n, out_y + row * n);
+      std::copy(v, v + n, out_v + row * n);
+      std::copy(lam, lam + m, out_l + row * m);
+      system_energies(s_, y, v, out_e + 3 * row);
+      ++out.stored;
+    }
+    const std::chrono::duration<double> spent = std::chrono::steady_clock::now() - start;
+    if (spent.count() >= max_seconds) return out;
+  }
+  return out;
+}
+
+bool SystemIntegrator::initial_acceleration(const double* y, const double* v, double t, double* a,
+                                            double* lam) {
+  const int n = s_.n, m = s_.m;
+  std::vector<double> known(sz(n), 0.0), zero(sz(m), 0.0);
+  set_prescribed(t, nullptr, nullptr, known.data());
+  AssemblyTerms terms;
+  terms.ck = 0.0;
+  terms.cv = 0.0;
+  terms.ca = 1.0;
+  terms.tf = t;
+  terms.t1 = t;
+  lu_valid_ = false;
+  if (!assemble_system(s_, y, v, known.data(), zero.data(), y, terms, r_.data(), &lu_))
+    return false;
+  ++factorizations_;
+  if (!lu_.factor()) return false;
+  // acceleration-level constraints: d2/ds2 g(y + s v + s^2/2 a_known, t + s) = c + G a_free = 0
+  if (m > 0) {
+    std::vector<double> yp(sz(n)), ym(sz(n)), gp(sz(m)), gm(sz(m)), g0(sz(m));
+    double scale = 1.0;
+    for (int i = 0; i < n; ++i) scale = std::max(scale, std::abs(v[i]));
+    const double e = 1e-4 / scale;
+    for (int i = 0; i < n; ++i) {
+      yp[sz(i)] = y[i] + e * v[i] + 0.5 * e * e * known[sz(i)];
+      ym[sz(i)] = y[i] - e * v[i] + 0.5 * e * e * known[sz(i)];
+    }
+    constraints(s_, yp.data(), t + e, gp.data());
+    constraints(s_, ym.data(), t - e, gm.data());
+    constraints(s_, y, t, g0.data());
+    for (int i = 0; i < m; ++i) r_[sz(n + i)] = (gp[sz(i)] - 2.0 * g0[sz(i)] + gm[sz(i)]) / (e * e);
+  }
+  solve_negative();
+  for (int i = 0; i < n; ++i) a[i] = known[sz(i)] + dz_[sz(i)];
+  for (int i = 0; i < m; ++i) lam[i] = dz_[sz(n + i)];
+  lu_valid_ = false;  // the factors are of the mass matrix
+  for (int i = 0; i < n; ++i)
+    if (!std::isfinite(a[i])) return false;
+  return true;
+}
+
+bool SystemIntegrator::factor_static(const double* y, const double* lam, double lf, bool amplitude,
+                                     double t, double* residual) {
+  AssemblyTerms terms;
+  terms.tf = t;
+  terms.t1 = t;
+  terms.load_factor = lf;
+  terms.amplitude = amplitude;
+  lu_valid_ = false;
+  if (!assemble_system(s_, y, nullptr, nullptr, lam, y, terms, r_.data(), &lu_)) return false;
+  std::copy(r_.begin(), r_.end(), residual);
+  ++factorizations_;
+  return lu_.factor();
+}
+
+void SystemIntegrator::solve_factored(double* x, double* z) {
+  const int m = s_.m;
+  zb_.assign(sz(lu_.border()), 0.0);
+  std::copy(z, z + m, zb_.begin());
+  lu_.solve(x, zb_.data());
+  std::copy(zb_.begin(), zb_.begin() + m, z);
+}
+
+bool SystemIntegrator::static_increment(const double* y, const double* lam, double lf,
+                                        bool amplitude, double t, double* dy, double* dlam,
+                                        double* residual) {
+  const int n = s_.n, m = s_.m;
+  if (!factor_static(y, lam, lf, amplitude, t, residual)) return false;
+  for (int i = 0; i < n; ++i) dy[i] = -residual[i];
+  for (int i = 0; i < m; ++i) dlam[i] = -residual[n + i];
+  solve_factored(dy, dlam);
+  return true;
+}
+
+void system_energies(const System& s, const double* y, const double* v, double* out) {
+  const double* yref = s.y_ref;
+  out[0] = out[1] = out[2] = 0.0;
+  for (std::size_t b = 0; b < s.flex.size(); ++b) {
+    const Model& mod = *s.flex[b];
+    const int o = s.offset[b];
+    out[0] += kinetic_energy(mod, y + o, v + o);
+    out[1] += strain_energy(mod, y + o);
+    out[2] += gravity_energy(mod, y + o);
+  }
+  for (std::size_t k = 0; k < s.rigid.size(); ++k) {
+    const RigidInertia& body = s.rigid[k];
+    const int o = s.rigid_offset(static_cast<int>(k));
+    out[0] += rigid_kinetic_energy(body, y + o, v + o);
+    const int nt = body.point_mass ? body.dim : (body.dim == 2 ? 2 : 3);
+    for (int i = 0; i < nt; ++i)
+      out[2] -= body.mass * s.gravity[i] * (y[o + i] - (yref != nullptr ? yref[o + i] : 0.0));
+  }
+  for (const SpringData& sp : s.springs) {
+    PlaceEval ea, eb;
+    const PlaceRef &pa = s.places[sz(sp.a)], &pb = s.places[sz(sp.b)];
+    place_at(s, pa, place_map(s, pa), 0.0, y, ea);
+    place_at(s, pb, place_map(s, pb), 0.0, y, eb);
+    double len = 0.0;
+    for (int i = 0; i < 3; ++i) len += (ea.x[i] - eb.x[i]) * (ea.x[i] - eb.x[i]);
+    const double dl = std::sqrt(len) - sp.length;
+    out[1] += 0.5 * sp.stiffness * dl * dl;
+  }
+}
+
+void system_rereference(const System& s, double* y, double* v, double* a) {
+  for (std::size_t b = 0; b < s.flex.size(); ++b) {
+    const Model& mod = *s.flex[b];
+    const int o = s.offset[b];
+    rereference_rates(mod, y + o, v + o, a + o);
+    rereference(mod, y + o);
+  }
+}
+
+}  // namespace rancf

@@ -1,0 +1,69 @@
+// Generalized-alpha for constrained systems (Chung & Hulbert 1993 in the form of the one-body
+// integrator, integrator.cpp; index-3 constraints as in Cardona & Geradin 1989):
+//   M a_{1-am} + c M v_{1-af} + F(y_{1-af}, v_{1-af}, a_{1-am}) + G(y_{1-af})^T lambda = 0
+//   g(y_{n+1}, t_{n+1}) = 0
+// Newton on (y_{n+1}, lambda) with the bordered block-band matrix (bordered.hpp); lambda is the
+// multiplier at the alpha point, -G^T lambda the joints' forces on the bodies.  Constraints hold
+// at every step to the Newton tolerance.  With one body and no joints this is the one-body
+// integrator's iteration exactly (same residual, Jacobian and convergence test).  Held
+// coordinates that follow time functions (moving supports) are set at t_{n+1} before the
+// iterations; their accelerations and velocities follow from the Newmark relations.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "bordered.hpp"
+#include "integrator.hpp"
+#include "system.hpp"
+
+namespace rancf {
+
+class SystemIntegrator {
+ public:
+  SystemIntegrator(const System& s, const Scheme& scheme);
+  StepOutcome step(const double* y0, const double* v0, const double* a0, const double* l0, double t,
+                   double h, double* y1, double* v1, double* a1, double* l1);
+  /// Up to n_steps fixed steps from t0 (rods' triads re-referenced after each); the output
+  /// interval's first done_before steps were taken by an earlier call, so y, v, lambda and the
+  /// energies (kinetic, strain, gravity) go to the next rows of the outputs whenever
+  /// done_before + steps taken is a multiple of out_every.  Returns after a whole step once
+  /// max_seconds of wall time have passed, so the caller can poll for interrupts.
+  RunOutcome run(double* y, double* v, double* a, double* lam, double t0, double h,
+                 std::int64_t n_steps, std::int64_t out_every, std::int64_t done_before,
+                 double max_seconds, double* out_y, double* out_v, double* out_l, double* out_e);
+  /// Consistent initial acceleration and multipliers: [M G^T; G 0] [a; lambda] = [-F; -c].
+  bool initial_acceleration(const double* y, const double* v, double t, double* a, double* lam);
+  /// One Newton increment of the statics at load factor lf: (dy, dlam) with
+  /// K dy + G^T dlam = -r, G dy = -g.  Returns false if the matrix is singular.
+  bool static_increment(const double* y, const double* lam, double lf, bool amplitude, double t,
+                        double* dy, double* dlam, double* residual);
+  /// The statics' residual (n + m) and its Jacobian factored (for solve_factored); false if
+  /// not finite or singular.
+  bool factor_static(const double* y, const double* lam, double lf, bool amplitude, double t,
+                     double* residual);
+  /// Solve with the last factorization: x (n) and z (m) hold the right-hand side on entry.
+  void solve_factored(double* x, double* z);
+  [[nodiscard]] long factorizations() const { return factorizations_; }
+  /// The held coordinates that follow time functions, at time t (any pointer may be null).
+  void set_prescribed(double t, double* y, double* v, double* a) const;
+
+ private:
+  void solve_negative();
+  const System& s_;
+  Scheme sc_;
+  BorderedLU lu_;
+  bool lu_valid_ = false;
+  double lu_h_ = -1.0;
+  long factorizations_ = 0;
+  std::vector<double> base_, yf_, vf_, am_, r_, dz_, zb_;
+};
+
+/// Kinetic, strain (elements and springs) and gravitational energy of the system at (y, v)
+/// (the gravity potential is zero at the system's y_ref).
+void system_energies(const System& s, const double* y, const double* v, double* out);
+
+/// Re-reference the rods' nodal triads (keeping their spin rates), body by body.
+void system_rereference(const System& s, double* y, double* v, double* a);
+
+}  // namespace rancf

@@ -1,0 +1,155 @@
+"""The static equilibrium problem of a system along its load path (the path of
+:mod:`rancf.solvers.equilibrium`, stages and all), as :func:`rancf.solvers.static.solve_static`
+sees it.
+
+The unknowns are ``z = (y, μ)``: the coordinates of all bodies and the joints' multipliers.  The
+residual is the compiled core's balance and constraints at zero velocity and acceleration,
+
+    r(z, p) = [ f_int(y) - λ f_ext(y) + f_springs(y) + G(y)ᵀ μ ;  g(y) ],
+
+and its Jacobian the bordered block-band matrix of the time integrator without inertia
+(:class:`rancf.kernels._core.SystemIntegrator`: ``factor_static``, ``solve_factored``).  The
+multipliers take no part in norms and tolerances (scale 0); the reactions of the joints are
+``-Gᵀ μ``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+
+from rancf.kernels import _core
+from rancf.model.system import Model
+from rancf.system import System
+
+__all__ = ["SystemEquilibrium"]
+
+
+class SystemEquilibrium:
+    """Residual, tangent and linear solves of ``r(z, p) = 0`` for a system (module docstring).
+
+    Parameters
+    ----------
+    system : System
+    at_time : float, optional
+        Loads as they act at this time; default their amplitudes.
+    """
+
+    def __init__(self, system: System, at_time: float | None = None) -> None:
+        self.system = system
+        s = system
+        self._t = 0.0 if at_time is None else float(at_time)
+        self._amp = at_time is None
+        self.n, self.m = s.n, s.m
+        fixed = np.zeros(s.n + s.m, dtype=bool)
+        fixed[: s.n] = s.fixed
+        self.fixed, self.free = fixed, ~fixed
+        installed = s.y0.copy()
+        for name, b in zip(s.names, s.flex, strict=False):
+            installed[s.body_slice(name)] = b.y_installed
+        self._y0 = s.y0
+        self.delta = (installed - s.y0)[s.fixed]
+        self.stages = [(0.0, 1.0)] + ([(1.0, 2.0)] if np.any(self.delta) else [])
+        self.stage = 0
+        self.size = s.size
+        scale = np.zeros(s.n + s.m)  # the multipliers: not in norms
+        scale[: s.n] = 1.0
+        for name in s.names:
+            sl = s.body_slice(name)
+            b = s.bodies[name]
+            pos = np.zeros(sl.stop - sl.start, dtype=bool)
+            if isinstance(b, Model):
+                pos.reshape(b.n_nodes, b.dpn)[:, : b.dim] = True
+            else:
+                pos[: s.dim] = True
+            scale[sl][pos] = 1.0 / self.size
+        self.scale = scale
+        scheme = _core.Scheme(alpha_m=0.0, alpha_f=0.0, gamma=0.5, beta=0.25, damping=0.0,
+                              tol=1e-10, max_iter=1, modified=False)  # fmt: skip
+        self._integ = _core.SystemIntegrator(s.core, scheme)
+
+    @property
+    def conservative(self) -> bool:
+        """False: the system's tangent is in general not symmetric (constraints, moments)."""
+        return False
+
+    def start(self) -> NDArray[np.float64]:
+        """The reference configuration with zero multipliers."""
+        return np.r_[self._y0, np.zeros(self.m)]
+
+    def load_factor(self, p: float) -> float:
+        return p if self.stage == 0 else 1.0
+
+    def support_factor(self, p: float) -> float:
+        return 0.0 if self.stage == 0 else p - 1.0
+
+    def place_supports(self, z: NDArray, p: float) -> None:
+        """Held coordinates at their values at ``p`` (in place)."""
+        y = z[: self.n]
+        y[self.system.fixed] = self._y0[self.system.fixed] + self.support_factor(p) * self.delta
+
+    def full_residual(self, z: NDArray, p: float) -> NDArray[np.float64]:
+        """Balance (held rows kept: the reactions) and constraints at ``(z, p)``."""
+        r = np.empty(self.n + self.m)
+        zero = np.zeros(self.n)
+        ok = self.system.core.residual(
+            z[: self.n], zero, zero, z[self.n :], self._t, self.load_factor(p), self._amp,
+            dynamic=False, r=r,
+        )  # fmt: skip
+        return r if ok else np.full_like(r, np.nan)
+
+    def residual(self, z: NDArray, p: float) -> NDArray[np.float64]:
+        r = self.full_residual(z, p)
+        r[self.fixed] = 0.0
+        return r
+
+    def tangent(self, z: NDArray, p: float) -> tuple[NDArray, bool]:
+        """Residual (held rows zero) and the factored Jacobian (a flag: it is usable)."""
+        r = np.empty(self.n + self.m)
+        ok = self._integ.factor_static(
+            np.ascontiguousarray(z[: self.n]), np.ascontiguousarray(z[self.n :]),
+            self.load_factor(p), self._amp, self._t, r,
+        )  # fmt: skip
+        r[self.fixed] = 0.0
+        return r, bool(ok)
+
+    def solve(self, ok: bool, rhs: NDArray) -> NDArray[np.float64] | None:
+        """The last factored Jacobian's solution of ``rhs`` (None if it was singular)."""
+        if not ok:
+            return None
+        x, zz = np.array(rhs[: self.n], dtype=float), np.array(rhs[self.n :], dtype=float)
+        x[self.system.fixed] = 0.0
+        self._integ.solve_factored(x, zz)
+        out = np.r_[x, zz]
+        return out if np.all(np.isfinite(out)) else None
+
+    def load_vector(self, z: NDArray, ok: bool) -> NDArray[np.float64]:
+        """``-∂r/∂p`` in the current stage: ``r(p=0) - r(p=1)`` (the residual is linear in the
+        load factor) while loading, central differences while the supports move."""
+        if self.stage == 0:
+            q = self.full_residual(z, 0.0) - self.full_residual(z, 1.0)
+        else:
+            h, p = 1e-6, self._p_of(z)
+            zp, zm = z.copy(), z.copy()
+            self.place_supports(zp, p + h)
+            self.place_supports(zm, p - h)
+            q = -(self.full_residual(zp, p + h) - self.full_residual(zm, p - h)) / (2 * h)
+        q[self.fixed] = 0.0
+        return q
+
+    def _p_of(self, z: NDArray) -> float:
+        """The path parameter of the held coordinates in ``z`` (installation stage)."""
+        if not np.any(self.delta):
+            return 1.0
+        held = z[: self.n][self.system.fixed] - self._y0[self.system.fixed]
+        k = int(np.argmax(np.abs(self.delta)))
+        return 1.0 + held[k] / self.delta[k]
+
+    def norm(self, dz: NDArray) -> float:
+        return float(np.linalg.norm(dz * self.scale))
+
+    def accept(self, z: NDArray) -> None:
+        """A converged state: rods carry their nodal triads to it."""
+        y = z[: self.n]
+        zero = np.zeros(self.n)
+        self.system.rereference(y, zero.copy(), zero.copy())

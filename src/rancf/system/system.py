@@ -1,0 +1,469 @@
+"""A system: flexible bodies, rigid bodies and point masses, joints, springs and loads, assembled
+into the compiled core's :class:`rancf.kernels._core.System` (``src/cpp/system.hpp``).
+
+Coordinates ``y`` stack the bodies in the order flexible bodies (their model coordinates, held
+supports included), then rigid bodies and point masses (:mod:`rancf.model.rigid`).  A joint's
+orientation data (reference relative rotations, axes in the bodies' frames) are measured in the
+reference configuration, so every joint holds there exactly.  ``"ground"`` in a joint or spring
+is the other place's reference position; a joint to the ground with ``motion`` moves that point
+by the time function (a moving support of a rigid body).  Supports of flexible bodies are the
+models' own (held coordinates); a support's ``motion`` makes its held position follow the time
+function.  Gravity acts on rigid bodies and point masses through ``gravity``; a flexible body's
+gravity is its model's.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from rancf.errors import InputError
+from rancf.kernels import _core
+from rancf.model.rigid import PointMass, RigidBody
+from rancf.model.system import Model
+from rancf.model.time_function import TimeFunction, pack
+from rancf.system.parts import JOINT_KINDS, Joint, Load, Spring
+from rancf.system.places import Place
+
+__all__ = ["System", "Body"]
+
+Body = Model | RigidBody | PointMass
+_NODE_KIND = {"rancf": 1, "ancf": 1, "rod": 2, "beam": 3}
+_KIND = {"pin": 0, "fixed": 1, "tangent": 2, "revolute": 3, "slider": 4}
+
+
+@dataclass
+class _Rows:
+    """Growing arrays of the core's constructor."""
+
+    places: list[tuple] = field(default_factory=list)
+    joints: list[dict] = field(default_factory=list)
+    tfs: list[TimeFunction] = field(default_factory=list)
+
+    def tf(self, f: TimeFunction | None) -> int:
+        if f is None:
+            return -1
+        self.tfs.append(f)
+        return len(self.tfs) - 1
+
+
+class System:
+    """Bodies, joints, springs and loads (module docstring).
+
+    Parameters
+    ----------
+    bodies : mapping name -> Model | RigidBody | PointMass
+    joints, springs, loads : sequences of :class:`Joint`, :class:`Spring`, :class:`Load`
+    gravity : (dim,), optional
+        On rigid bodies and point masses.
+    damping : float
+        Mass-proportional damping ``c`` of every body [1/s] (flexible bodies: their model's is
+        ignored).
+    """
+
+    def __init__(
+        self,
+        bodies: Mapping[str, Body],
+        joints: Sequence[Joint] = (),
+        springs: Sequence[Spring] = (),
+        loads: Sequence[Load] = (),
+        gravity: ArrayLike | None = None,
+        damping: float = 0.0,
+    ) -> None:
+        if not bodies:
+            raise InputError("bodies", {}, "at least one body")
+        for name in bodies:
+            if not isinstance(name, str) or not name or name == "ground" or ":" in name:
+                raise InputError("bodies.name", name, 'a name without ":", not "ground"')
+        flex = [(k, b) for k, b in bodies.items() if isinstance(b, Model)]
+        rigid = [(k, b) for k, b in bodies.items() if isinstance(b, RigidBody | PointMass)]
+        if len(flex) + len(rigid) != len(bodies):
+            raise InputError("bodies", list(bodies), "Model, RigidBody or PointMass objects")
+        dims = {b.dim for _, b in flex + rigid}
+        if len(dims) != 1:
+            raise InputError("bodies", sorted(dims), "bodies of one dimension (all 2D or all 3D)")
+        self.dim = dims.pop()
+        self.bodies = dict(flex + rigid)
+        self.names = [k for k, _ in flex + rigid]
+        self.flex = [b for _, b in flex]
+        self.rigid = [b for _, b in rigid]
+        self.gravity = (
+            np.zeros(3) if gravity is None else np.r_[np.asarray(gravity, float), 0.0][:3]
+        )
+        if gravity is not None and np.asarray(gravity).size != self.dim:
+            raise InputError("loads.gravity", list(np.asarray(gravity)), f"{self.dim} components")
+        if not (np.isfinite(damping) and damping >= 0):
+            raise InputError("damping.mass_proportional", damping, "a finite number >= 0")
+        self.damping = float(damping)
+        self.offsets: dict[str, int] = {}
+        n = 0
+        for name, b in flex + rigid:
+            self.offsets[name] = n
+            n += b.n if isinstance(b, Model) else b.size
+        self.n = n
+        y0, v0 = np.zeros(n), np.zeros(n)
+        for name, b in flex + rigid:
+            o = self.offsets[name]
+            if isinstance(b, Model):
+                y0[o : o + b.n], v0[o : o + b.n] = b.y0, b.v0
+            else:
+                yy, vv = b.initial()
+                y0[o : o + b.size], v0[o : o + b.size] = yy, vv
+        self.y0, self.v0 = y0, v0
+        self.joints, self.springs, self.loads = tuple(joints), tuple(springs), tuple(loads)
+        self.single = self.names[0] if len(self.names) == 1 else None
+        rows = _Rows()
+        self._place_index: dict[Place, int] = {}
+        self._prescribed = self._motions(rows)
+        self._spring_rows = [self._spring(s, rows) for s in springs]
+        self._load_rows = [self._load(ld, rows) for ld in self._all_loads()]
+        pre = [self._place(j, rows) for j in joints]  # places first: their reference frames
+        self.core = self._build(rows, [])
+        self.joint_data = [self._joint(j, ab, rows) for j, ab in zip(joints, pre, strict=True)]
+        self.core = self._build(rows, self.joint_data)
+        self.m = int(self.core.m)
+        self.joint_rows = list(self.core.joint_rows)
+
+    # ---------------------------------------------------------------- places
+    def resolve(self, spec: Place | str | int) -> Place:
+        """A place with its body checked (node indices normalized, points checked)."""
+        p = Place.parse(spec, self.single)
+        if p.body is None:
+            return p
+        if p.body not in self.bodies:
+            raise InputError("place", str(p), f"a body: {', '.join(self.names)} or ground")
+        b = self.bodies[p.body]
+        if isinstance(b, Model):
+            at = {"start": 0, "end": -1}.get(p.at, p.at) if isinstance(p.at, str) else p.at
+            if not isinstance(at, int):
+                raise InputError("place", str(p), f'a node of {p.body}: "start", "end" or an index')
+            return Place(p.body, b.check_node(at, f"place {p}"))
+        if isinstance(b, PointMass) and p.at is not None:
+            raise InputError("place", str(p), f"the point mass itself: {p.body!r}")
+        if isinstance(b, RigidBody):
+            b.point(p.at if isinstance(p.at, str) or p.at is None else str(p.at))
+        return p
+
+    def _index(self, p: Place, rows: _Rows, ground_point: NDArray | None = None,
+               motion: int = -1) -> int:  # fmt: skip
+        key = p if p.body is not None else Place(None, (tuple(ground_point), motion))  # type: ignore[arg-type]
+        if key in self._place_index:
+            return self._place_index[key]
+        point, kind, body, node, angle0 = np.zeros(3), 0, -1, 0, 0.0
+        if p.body is None:
+            point[: self.dim] = ground_point[: self.dim]  # type: ignore[index]
+        else:
+            b = self.bodies[p.body]
+            if isinstance(b, Model):
+                kind, body, node = _NODE_KIND[b.element], self.flex.index(b), int(p.at)  # type: ignore[arg-type]
+                if b.element == "beam":
+                    angle0 = float(b.kernel.psi0[node])
+            elif isinstance(b, PointMass):
+                kind, body = 6, self.rigid.index(b)
+            else:
+                kind, body = (4 if self.dim == 2 else 5), self.rigid.index(b)
+                point = b.point(p.at)  # type: ignore[arg-type]
+        rows.places.append((kind, body, node, point, motion if p.body is None else -1, angle0))
+        self._place_index[key] = len(rows.places) - 1
+        return len(rows.places) - 1
+
+    def reference_position(self, p: Place) -> NDArray[np.float64]:
+        """A place's position in the reference configuration (3 components)."""
+        b = self.bodies[p.body]  # type: ignore[index]
+        if isinstance(b, Model):
+            return np.r_[b.node_positions(b.q0)[int(p.at)], np.zeros(3 - self.dim)]  # type: ignore[arg-type]
+        yy, _ = b.initial()
+        x = np.r_[yy[: self.dim], np.zeros(3 - self.dim)]
+        if isinstance(b, RigidBody) and p.at is not None:
+            r = b.rotation()
+            s = b.point(p.at)[: self.dim]  # type: ignore[arg-type]
+            x[: self.dim] += r @ s
+        return x
+
+    def _pair(self, between: Sequence, rows: _Rows, motion: int = -1) -> tuple[int, int]:
+        if len(between) != 2:
+            raise InputError("between", list(between), "two places")
+        a, b = (self.resolve(x) for x in between)
+        if a.body is None and b.body is None:
+            raise InputError("between", [str(a), str(b)], "at least one place on a body")
+        if a.body is None:  # the body's place first
+            a, b = b, a
+        gp = self.reference_position(a)
+        return self._index(a, rows), self._index(b, rows, gp, motion)
+
+    # ---------------------------------------------------------------- parts
+    def _motions(self, rows: _Rows) -> list[tuple[int, int, int, float]]:
+        """Held positions of flexible bodies that follow their support's motion."""
+        out = []
+        for name, b in zip(self.names, self.flex, strict=False):
+            for sup in b.supports:
+                if sup.motion is None:
+                    continue
+                if sup.kind == "roller":
+                    raise InputError(
+                        "supports.motion", "roller", "a pin or clamp (moving supports)"
+                    )
+                if sup.motion.size != self.dim:
+                    raise InputError("supports.motion", sup.motion.size, f"{self.dim} components")
+                k = rows.tf(sup.motion)
+                base = self.offsets[name] + (sup.node % b.n_nodes) * b.dpn
+                for i in range(self.dim):
+                    out.append(
+                        (base + i, k, i, float(b.y_installed[base - self.offsets[name] + i]))
+                    )
+        return out
+
+    def _spring(self, s: Spring, rows: _Rows) -> tuple[int, int, float, float, float]:
+        a, b = self._pair(s.between, rows)
+        for key, v in (("springs.stiffness", s.stiffness), ("springs.damping", s.damping)):
+            if not (np.isfinite(v) and v >= 0):
+                raise InputError(key, v, "a finite number >= 0")
+        pa, pb = (self.resolve(x) for x in s.between)
+        xa = self.reference_position(pa) if pa.body is not None else None
+        xb = self.reference_position(pb) if pb.body is not None else None
+        ref = 0.0 if xa is None or xb is None else float(np.linalg.norm(xa - xb))
+        length = ref if s.length is None else float(s.length)
+        return a, b, float(s.stiffness), float(s.damping), length
+
+    def _all_loads(self) -> list[Load]:
+        """The loads, and flexible bodies' point forces times a time function."""
+        out = list(self.loads)
+        for name, b in zip(self.names, self.flex, strict=False):
+            for p in b.point_loads:
+                if p.time is None:
+                    continue
+                if p.moment is not None:
+                    raise InputError(
+                        "loads.point.time", "moment", "forces (a moment takes frequency_hz)"
+                    )
+                out.append(Load(Place(name, p.node % b.n_nodes), p.force, None, p.time))
+        return out
+
+    def _load(self, ld: Load, rows: _Rows) -> tuple[int, NDArray, NDArray, int]:
+        p = self.resolve(ld.at)
+        if p.body is None:
+            raise InputError("loads.point.at", "ground", "a place on a body")
+        f = np.zeros(3) if ld.force is None else np.asarray(ld.force, dtype=float)
+        t = np.zeros(3) if ld.torque is None else np.asarray(ld.torque, dtype=float)
+        if ld.force is not None and f.size != self.dim:
+            raise InputError("loads.point.force", list(f), f"{self.dim} components")
+        b = self.bodies[p.body]
+        rod = isinstance(b, Model) and b.element == "rod"
+        if ld.torque is not None and not (isinstance(b, RigidBody) or rod):
+            raise InputError("loads.point.moment", list(t), "a rigid body or a rod's node")
+        tt = np.r_[np.zeros(2), t] if t.size == 1 else np.r_[t, np.zeros(3 - t.size)]
+        if ld.time is not None and ld.time.size != 1:
+            raise InputError("loads.point.time", ld.time.size, "a scalar time function (a factor)")
+        return self._index(p, rows), np.r_[f, np.zeros(3 - f.size)], tt, rows.tf(ld.time)
+
+    def _place(self, j: Joint, rows: _Rows) -> tuple[int, int]:
+        if j.kind not in JOINT_KINDS:
+            raise InputError("joints.kind", j.kind, f"one of {', '.join(JOINT_KINDS)}")
+        return self._pair(j.between, rows, rows.tf(j.motion))
+
+    def _frames(self, index: int) -> tuple[NDArray, NDArray]:
+        x, f = self.core.place(index, self.y0, 0.0)
+        return np.asarray(x), np.asarray(f).reshape(-1, 3)
+
+    def _joint(self, j: Joint, ab: tuple[int, int], rows: _Rows) -> dict:
+        a, b = ab
+        fa, fb = self._frames(a)[1], self._frames(b)[1]
+        d = self.dim
+        info: dict = {"kind": _KIND[j.kind], "a": a, "b": b, "driven": 0, "angle": -1,
+                      "beta0": 0.0, "rel": np.zeros(9), "axis_a": np.zeros(3),
+                      "normals_b": np.zeros(6), "w_a": np.zeros(3), "w_b": np.zeros(3)}  # fmt: skip
+        axis = None
+        if j.axis is not None:
+            axis = np.r_[np.asarray(j.axis, dtype=float), np.zeros(3)][:3]
+            if np.asarray(j.axis).size != d or not np.linalg.norm(axis) > 0:
+                raise InputError("joints.axis", list(j.axis), f"a nonzero vector of {d} numbers")
+            axis = axis / np.linalg.norm(axis)
+        if (
+            j.kind in ("revolute", "slider")
+            and axis is None
+            and not (d == 2 and j.kind == "revolute")
+        ):
+            raise InputError("joints.axis", None, f"required for a {j.kind} joint")
+        need = {"fixed": True, "slider": True}.get(j.kind, j.angle is not None)
+        if need and (len(fb) < 3 or (j.kind != "slider" and len(fa) < 3 and d == 2)):
+            raise InputError(
+                "joints.between",
+                [str(x) for x in j.between],
+                "places with an orientation for this joint (not a point mass)",
+            )
+        if j.angle is not None:
+            if j.kind not in ("pin", "revolute"):
+                raise InputError("joints.angle", "set", "a pin or revolute joint")
+            if j.angle.size != 1:
+                raise InputError("joints.angle", j.angle.size, "a scalar time function [rad]")
+            info["driven"], info["angle"] = 1, rows.tf(j.angle)
+        if d == 2:
+            if j.kind == "revolute":
+                info["kind"] = _KIND["pin"]
+            if j.kind == "fixed" or j.angle is not None:
+                info["beta0"] = float(np.arctan2(fa[0] @ fb[1], fa[0] @ fb[0]))
+            if j.kind == "slider":
+                normal = np.array([-axis[1], axis[0], 0.0])  # type: ignore[index]
+                info["normals_b"][:3] = fb @ normal
+            return info
+        if j.kind == "fixed":
+            if len(fa) == 3 and len(fb) == 3:
+                info["rel"] = (fa @ fb.T).ravel()
+                return info
+            if len(fa) == 1 and len(fb) == 3:
+                info["kind"] = _KIND["tangent"]
+                n1, n2 = _normals(fa[0])
+                info["normals_b"] = np.r_[fb @ n1, fb @ n2]
+                return info
+            raise InputError(
+                "joints.kind",
+                "fixed",
+                "a frame on at least one side (a 3D cable has only a tangent: use rods)",
+            )
+        if j.kind == "slider":
+            if len(fb) < 3:
+                raise InputError("joints.between", str(j.between[1]), "a place with a frame")
+            n1, n2 = _normals(axis)
+            info["normals_b"] = np.r_[fb @ n1, fb @ n2]
+            return info
+        if j.kind == "revolute":
+            if len(fa) < 3 or len(fb) < 3:
+                raise InputError(
+                    "joints.between",
+                    [str(x) for x in j.between],
+                    "places with a frame (a 3D cable node has only a tangent: a rod)",
+                )
+            n1, n2 = _normals(axis)
+            info["axis_a"], info["normals_b"] = fa @ axis, np.r_[fb @ n1, fb @ n2]
+            if j.angle is not None:
+                info["w_a"], info["w_b"] = fa @ n1, fb @ n1
+            return info
+        if j.angle is not None:
+            raise InputError("joints.angle", "pin", "a revolute joint in 3D (it needs an axis)")
+        return info
+
+    def _build(self, rows: _Rows, joints: list[dict]) -> _core.System:
+        i64 = np.int64
+        pl = rows.places
+        rigid = self.rigid
+        spring = self._spring_rows
+        loads = self._load_rows
+        pre = self._prescribed
+        return _core.System(
+            dim=self.dim,
+            models=[b.core for b in self.flex],
+            rigid_point_mass=np.array([isinstance(b, PointMass) for b in rigid], dtype=i64),
+            rigid_dim=np.array([b.dim for b in rigid], dtype=i64),
+            rigid_mass=np.array([b.mass for b in rigid], dtype=float),
+            rigid_inertia=np.array(
+                [b.inertia_vector() if isinstance(b, RigidBody) else np.zeros(3) for b in rigid]
+            ).reshape(-1, 3),
+            place_kind=np.array([p[0] for p in pl], dtype=i64),
+            place_body=np.array([p[1] for p in pl], dtype=i64),
+            place_node=np.array([p[2] for p in pl], dtype=i64),
+            place_point=np.array([p[3] for p in pl], dtype=float).reshape(-1, 3),
+            place_motion=np.array([p[4] for p in pl], dtype=i64),
+            place_angle0=np.array([p[5] for p in pl], dtype=float),
+            joint_kind=np.array([j["kind"] for j in joints], dtype=i64),
+            joint_a=np.array([j["a"] for j in joints], dtype=i64),
+            joint_b=np.array([j["b"] for j in joints], dtype=i64),
+            joint_driven=np.array([j["driven"] for j in joints], dtype=i64),
+            joint_angle=np.array([j["angle"] for j in joints], dtype=i64),
+            joint_beta0=np.array([j["beta0"] for j in joints], dtype=float),
+            joint_rel=np.array([j["rel"] for j in joints], dtype=float).reshape(-1, 9),
+            joint_axis_a=np.array([j["axis_a"] for j in joints], dtype=float).reshape(-1, 3),
+            joint_normals_b=np.array([j["normals_b"] for j in joints], dtype=float).reshape(-1, 6),
+            joint_w_a=np.array([j["w_a"] for j in joints], dtype=float).reshape(-1, 3),
+            joint_w_b=np.array([j["w_b"] for j in joints], dtype=float).reshape(-1, 3),
+            spring_a=np.array([s[0] for s in spring], dtype=i64),
+            spring_b=np.array([s[1] for s in spring], dtype=i64),
+            spring_data=np.array([s[2:] for s in spring], dtype=float).reshape(-1, 3),
+            load_place=np.array([ld[0] for ld in loads], dtype=i64),
+            load_force=np.array([ld[1] for ld in loads], dtype=float).reshape(-1, 3),
+            load_torque=np.array([ld[2] for ld in loads], dtype=float).reshape(-1, 3),
+            load_factor=np.array([ld[3] for ld in loads], dtype=i64),
+            **pack(rows.tfs),
+            pre_coord=np.array([p[0] for p in pre], dtype=i64),
+            pre_tf=np.array([p[1] for p in pre], dtype=i64),
+            pre_comp=np.array([p[2] for p in pre], dtype=i64),
+            pre_base=np.array([p[3] for p in pre], dtype=float),
+            gravity=np.ascontiguousarray(self.gravity),
+            damping=self.damping,
+            y_ref=self.y0,
+        )
+
+    # ---------------------------------------------------------------- coordinates
+    def body_slice(self, name: str) -> slice:
+        """The coordinates of one body in ``y``."""
+        o = self.offsets[name]
+        b = self.bodies[name]
+        return slice(o, o + (b.n if isinstance(b, Model) else b.size))
+
+    @property
+    def fixed(self) -> NDArray[np.bool_]:
+        """Held coordinates (flexible bodies' supports)."""
+        out = np.zeros(self.n, dtype=bool)
+        for name, b in zip(self.names, self.flex, strict=False):
+            out[self.body_slice(name)] = b.fixed
+        return out
+
+    def energies(self, y: NDArray, v: NDArray) -> tuple[float, float, float]:
+        """Kinetic, strain (with springs) and gravitational energy (zero at the reference)."""
+        return self.core.energies(np.asarray(y, float), np.asarray(v, float))
+
+    def reset_triads(self) -> None:
+        """Rods: every flexible body's nodal triads back to their reference."""
+        for b in self.flex:
+            b.reset_triads()
+
+    def _each_flex(self) -> list[tuple[Model, slice]]:
+        return [(b, self.body_slice(name)) for name, b in zip(self.names, self.flex, strict=False)]
+
+    def q_from_y(self, y: ArrayLike) -> NDArray[np.float64]:
+        """Full coordinates (a flexible body's nodal coordinates, clamp rotations undone; rigid
+        bodies' as they are), ``(..., n)``."""
+        q = np.array(y, dtype=float)
+        for b, sl in self._each_flex():
+            q[..., sl] = b.q_from_y(q[..., sl])
+        return q
+
+    def y_from_q(self, q: ArrayLike) -> NDArray[np.float64]:
+        """Inverse of :meth:`q_from_y`."""
+        y = np.array(q, dtype=float)
+        for b, sl in self._each_flex():
+            y[..., sl] = b.y_from_q(y[..., sl])
+        return y
+
+    def nodal_directors(self, y: NDArray) -> NDArray[np.float64] | None:
+        """Rods' nodal directors ``(n_rod_nodes, 3)`` of every rod body (None without rods)."""
+        parts = [b.nodal_directors(y[sl]) for b, sl in self._each_flex() if b.element == "rod"]
+        return np.concatenate(parts) if parts else None
+
+    def rereference(self, y: NDArray, v: NDArray, a: NDArray) -> None:
+        """Rods: carry the nodal triads to ``y`` (their spin rates in ``v``, ``a`` kept)."""
+        for b, sl in self._each_flex():
+            if b.element == "rod":
+                vv, aa = v[sl].copy(), a[sl].copy()
+                b.core.rereference(y[sl], vv, aa)
+                v[sl], a[sl] = vv, aa
+
+    @property
+    def size(self) -> float:
+        """Characteristic length: the largest extent of the reference (Newton tolerances)."""
+        pts = [b.node_positions(b.q0) for b in self.flex]
+        pts += [np.atleast_2d(self.y0[self.body_slice(k)][: self.dim]) for k, b in
+                self.bodies.items() if not isinstance(b, Model)]  # fmt: skip
+        allp = np.concatenate(pts)
+        return float(np.ptp(allp, axis=0).max()) or 1.0
+
+
+def _normals(e: NDArray) -> tuple[NDArray, NDArray]:
+    """Two unit vectors normal to ``e`` and to each other."""
+    e = e / np.linalg.norm(e)
+    helper = np.eye(3)[int(np.argmin(np.abs(e)))]
+    n1 = np.cross(e, helper)
+    n1 /= np.linalg.norm(n1)
+    return n1, np.cross(e, n1)
