@@ -56,6 +56,13 @@ def test_slider_crank_models():
     ]  # fmt: skip
     assert sc.sensors[1].joint == "guide" and sc.sensors[3].places == ("rod:4",)
     assert sc.data["bodies"][1]["geometry"]["kind"] == "line"
+    # places as the system builder takes them
+    ends = [[str(sc.place(p).system_place()) for p in j.between] for j in sc.joints]
+    assert ends == [["crank:pivot", "ground"], ["crank:tip", "rod:0"], ["rod:-1", "slider"],
+                    ["slider", "ground"]]  # fmt: skip
+    assert set(sc.bodies_by_name) == {"crank", "rod", "slider"}
+    with pytest.raises(ScenarioError, match=r"^s\.toml: \[place\] names no body: 'wheel'"):
+        sc.place("wheel:1")
 
 
 def test_spatial_system_models():

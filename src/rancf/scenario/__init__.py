@@ -34,7 +34,7 @@ from rancf.scenario.loads import (
     SupportTable,
     TableFunction,
 )
-from rancf.scenario.places import Place
+from rancf.scenario.places import ResolvedPlace
 from rancf.scenario.scenario import Scenario, load_scenario, parse_scenario
 from rancf.scenario.schema import scenario_schema
 from rancf.scenario.section import MaterialTable, SectionTable
@@ -48,7 +48,7 @@ __all__ = [
     "scenario_schema",
     "TimeFunction",
     "Sensor",
-    "Place",
+    "ResolvedPlace",
     "ConicGeometry",
     "LineGeometry",
     "NurbsGeometry",

@@ -16,7 +16,7 @@ from pydantic_core import PydanticCustomError
 from rancf.scenario.base import fail, show, under
 from rancf.scenario.bodies import FlexibleBody, RigidBody
 from rancf.scenario.loads import time_size
-from rancf.scenario.places import Place, resolve_place
+from rancf.scenario.places import ResolvedPlace, resolve_place
 from rancf.scenario.section import check_flexible
 
 if TYPE_CHECKING:
@@ -70,10 +70,10 @@ class _Context:
                            "bodies are planar or all spatial")  # fmt: skip
         return dims[0]
 
-    def place(self, key: str, v: int | str, ground: bool = False) -> Place:
+    def place(self, key: str, v: int | str, ground: bool = False) -> ResolvedPlace:
         return resolve_place(key, v, self.bodies, ground)
 
-    def element(self, p: Place) -> str | None:
+    def element(self, p: ResolvedPlace) -> str | None:
         """The element kind at a node place; ``"rigid"``, ``"mass"``; None for the ground."""
         if p.where == "ground":
             return None
@@ -90,7 +90,7 @@ def _rod_only(key: str, el: str | None) -> None:
         raise fail(key, f'applies to rod elements only (mesh.element = "rod"), not {el!r}')
 
 
-def _supports(c: _Context) -> list[Place]:
+def _supports(c: _Context) -> list[ResolvedPlace]:
     places = []
     for i, s in enumerate(c.sc.supports):
         key = f"supports[{i}]"
@@ -182,7 +182,7 @@ def _joints(c: _Context) -> None:
             raise fail(f"springs[{i}].between", "joins the ground to itself")
 
 
-def _sensors(c: _Context, supports: list[Place]) -> None:
+def _sensors(c: _Context, supports: list[ResolvedPlace]) -> None:
     names: set[str] = set()
     joints = {j.name for j in c.sc.joints}
     for i, s in enumerate(c.sc.sensor_tables):
@@ -221,7 +221,7 @@ def _sensors(c: _Context, supports: list[Place]) -> None:
             raise fail(f"{key}.body", "an angle sensor needs body = NAME (a rigid body)")
 
 
-def check_scenario(sc: Scenario) -> tuple[int, dict[str, Any] | None, list[Place]]:
+def check_scenario(sc: Scenario) -> tuple[int, dict[str, Any] | None, list[ResolvedPlace]]:
     """Check ``sc`` as a whole; return its dimension, its bodies by name (None: one body) and
     the resolved places of its supports."""
     c = _Context(sc)

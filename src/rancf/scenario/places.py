@@ -19,12 +19,13 @@ from typing import Any
 
 from rancf.scenario.base import fail, shorten, show
 from rancf.scenario.bodies import FlexibleBody, PointMass, RigidBody
+from rancf.system.places import GROUND, Place
 
-__all__ = ["Place", "resolve_place"]
+__all__ = ["ResolvedPlace", "resolve_place"]
 
 
 @dataclass(frozen=True)
-class Place:
+class ResolvedPlace:
     """A place resolved against the scenario's bodies.
 
     Attributes
@@ -48,6 +49,14 @@ class Place:
     node: int | None = None
     point: str | None = None
 
+    def system_place(self, single: str = "body") -> Place:
+        """The :class:`rancf.system.places.Place` of the system builder (``single``: the body's
+        name in a file without ``[[bodies]]``)."""
+        if self.where == "ground":
+            return GROUND
+        body = self.body if self.body is not None else single
+        return Place(body, self.node if self.where == "node" else self.point)
+
 
 def _node(text: str) -> int | None:
     if text == "start":
@@ -62,8 +71,8 @@ def _node(text: str) -> int | None:
 
 def resolve_place(
     key: str, v: int | str, bodies: dict[str, Any] | None, ground: bool = False
-) -> Place:
-    """The :class:`Place` of ``v`` (of the key ``key``, relative to the table validated).
+) -> ResolvedPlace:
+    """The :class:`ResolvedPlace` of ``v`` (of the key ``key``, relative to the table validated).
 
     Parameters
     ----------
@@ -75,12 +84,12 @@ def resolve_place(
     if v == "ground":
         if not ground:
             raise fail(key, 'cannot be "ground" here (the ground does not move)')
-        return Place(v, "ground")
+        return ResolvedPlace(v, "ground")
     if bodies is None:
         if isinstance(v, int):
-            return Place(v, "node", node=v)
+            return ResolvedPlace(v, "node", node=v)
         if v in ("start", "end"):
-            return Place(v, "node", node=0 if v == "start" else -1)
+            return ResolvedPlace(v, "node", node=0 if v == "start" else -1)
         raise fail(key, f'must be "start", "end" or a node index, got {show(v)}')
     names = ", ".join(bodies)
     if isinstance(v, int):
@@ -95,9 +104,9 @@ def resolve_place(
         if node is None:
             raise fail(key, f'a place of the flexible body {show(name)} is "{name}:start", '
                        f'"{name}:end" or "{name}:N" (a node index), got {show(v)}')  # fmt: skip
-        return Place(v, "node", name, node=node)
+        return ResolvedPlace(v, "node", name, node=node)
     if not sub:
-        return Place(v, "center", name)
+        return ResolvedPlace(v, "center", name)
     if isinstance(body, PointMass):
         raise fail(key, f'the point mass {show(name)} is the place "{name}" itself, got {show(v)}')
     assert isinstance(body, RigidBody)
@@ -106,11 +115,4 @@ def resolve_place(
         raise fail(
             key, f"the rigid body {show(name)} has no point {show(sub)} (its points: {known})"
         )
-    return Place(v, "point", name, point=sub)
-
-
-def body_of(place: Place, bodies: dict[str, Any] | None) -> Any:
-    """The body of a place (None for the ground and for a file without ``[[bodies]]``)."""
-    if bodies is None or place.body is None:
-        return None
-    return bodies[place.body]
+    return ResolvedPlace(v, "point", name, point=sub)

@@ -41,7 +41,7 @@ from rancf.scenario.solver import ModesTable, SolverTable
 if TYPE_CHECKING:
     from rancf.model.analysis import DynamicOptions
     from rancf.model.system import Model
-    from rancf.scenario.places import Place
+    from rancf.scenario.places import ResolvedPlace
 
 __all__ = ["Scenario", "load_scenario", "parse_scenario"]
 
@@ -132,9 +132,25 @@ class Scenario(Table):
         """Each support's ``at`` as written (``"start"``, ``"end"``, a node index, a place)."""
         return [s.at for s in self.supports]
 
-    def support_place(self, i: int) -> Place:
+    def support_place(self, i: int) -> ResolvedPlace:
         """The resolved place of ``supports[i]``."""
         return self._support_places[i]
+
+    @property
+    def bodies_by_name(self) -> dict[str, Any]:
+        """The ``[[bodies]]`` by name (empty for a file without them)."""
+        return dict(self._bodies or {})
+
+    def place(self, value: int | str) -> ResolvedPlace:
+        """``value`` (a place as written in this scenario) resolved against its bodies."""
+        from pydantic_core import PydanticCustomError
+
+        from rancf.scenario.places import resolve_place
+
+        try:
+            return resolve_place("", value, self._bodies, ground=True)
+        except PydanticCustomError as exc:
+            raise ScenarioError(self.path, "place", str(exc)) from None
 
     def installed_support(self) -> str | None:
         """The key of the first support installed away from its reference (``position`` or
