@@ -19,12 +19,15 @@ _ONE_BODY = ["geometry", "mesh", "section", "material"]
 
 def _tidy(node: Any) -> Any:
     """The generated schema without what a TOML file cannot hold or need: ``null`` (an absent
-    key is the default ``None``) and pydantic's property titles (``"T End"``)."""
+    key is the default ``None``), tables' defaults (those of their keys) and pydantic's property
+    titles (``"T End"``); a lone ``allOf`` reference as the reference itself."""
     if isinstance(node, list):
         return [_tidy(x) for x in node]
     if not isinstance(node, dict):
         return node
     out = {k: _tidy(v) for k, v in node.items()}
+    if len(out.get("allOf", ())) == 1:  # pydantic < 2.9 wraps a $ref with siblings in allOf
+        out = {**out.pop("allOf")[0], **out}
     if out.get("default", 0) is None or isinstance(out.get("default"), dict):
         del out["default"]  # absent; a table's defaults are those of its keys
     alts = out.get("anyOf")
