@@ -25,8 +25,11 @@ def _rot3(a: float) -> np.ndarray:
 
 def planar() -> System:
     """A cable, a beam, a rigid body and a point mass with every 2D joint kind."""
-    cable = Model(mesh_line([0, 0], [1, 0], 3), "rancf", SEC, MAT, [Support(0, "clamp")],
-                  gravity=[0, -9.81], point_loads=[PointLoad(1, (0.1, 0.2), time=TimeFunction.ramp(1, 1))])  # fmt: skip
+    ramp = TimeFunction.ramp(1, 1)
+    cable = Model(
+        mesh_line([0, 0], [1, 0], 3), "rancf", SEC, MAT, [Support(0, "clamp")],
+        gravity=[0, -9.81], point_loads=[PointLoad(1, (0.1, 0.2), time=ramp)],
+    )  # fmt: skip
     beam = Model(mesh_line([1, 0], [1.5, 0.5], 2), "beam", SEC, MAT, [])
     link = RigidBody(2, 1.5, 0.02, (1.7, 0.5), 0.3, points={"a": (-0.2, 0.0), "b": (0.2, 0.1)})
     mass = PointMass(2, 0.5, (2.0, 0.6))
@@ -48,8 +51,9 @@ def spatial() -> System:
                 gravity=[0, 0, -9.81])  # fmt: skip
     rod2 = Model(mesh_line([1, 0, 0], [1, 0.6, 0.2], 2), "rod", SEC, ROD, [])
     cable = Model(mesh_line([1, 0.6, 0.2], [1.4, 0.9, 0.2], 2), "rancf", SEC, MAT, [])
+    points = {"a": (-0.2, -0.1, -0.1), "b": (0.1, 0.2, 0.0)}
     body = RigidBody(3, 2.0, (0.1, 0.2, 0.3), (1.6, 1.0, 0.3), _rot3(0.4).tolist(),
-                     angular_velocity=(0.3, -0.2, 0.5), points={"a": (-0.2, -0.1, -0.1), "b": (0.1, 0.2, 0.0)})  # fmt: skip
+                     angular_velocity=(0.3, -0.2, 0.5), points=points)  # fmt: skip
     mass = PointMass(3, 0.5, (1.8, 1.3, 0.3))
     joints = [
         Joint("fixed", ("rod:end", "rod2:start")),
