@@ -59,10 +59,10 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     od = OutputDir(args.out, kind="run", overwrite=args.overwrite)  # checks the path up front
     from rancf.atomic import atomic_write
     from rancf.model.outputs import DerivedOutputs
-    from rancf.model.scenario import load_scenario
     from rancf.post.checks import run_warnings, section_warnings
     from rancf.post.history import HistoryStore, check_output_size
     from rancf.post.results import run_summary
+    from rancf.scenario import load_scenario
     from rancf.solvers.static import start_state
 
     sc = load_scenario(args.scenario)
@@ -268,9 +268,9 @@ def _cmd_static(args: argparse.Namespace) -> int:
     import numpy as np
 
     from rancf.cli_equilibrium import reactions_json
-    from rancf.model.scenario import load_scenario
     from rancf.post.checks import run_warnings
     from rancf.post.results import LoadPath, sensor_table, strict_json, write_static_run
+    from rancf.scenario import load_scenario
     from rancf.solvers.static import solve_static
 
     od = None if args.out is None else OutputDir(args.out, kind="run", overwrite=args.overwrite)
@@ -343,9 +343,9 @@ def _vec(v: list[float], floor: float) -> str:
 def _cmd_modes(args: argparse.Namespace) -> int:
     import numpy as np
 
-    from rancf.model.scenario import load_scenario
     from rancf.post.checks import run_warnings
     from rancf.post.results import strict_json
+    from rancf.scenario import load_scenario
     from rancf.solvers.modal import natural_modes
     from rancf.solvers.static import solve_static
 

@@ -12,9 +12,9 @@ from rancf.errors import ConvergenceError
 from rancf.model.mesh import mesh_line
 from rancf.model.outputs import DerivedOutputs
 from rancf.model.reactions import support_reactions
-from rancf.model.scenario import load_scenario
 from rancf.model.sections import SectionSampler
 from rancf.model.system import Material, Model, PointLoad, Section, Support
+from rancf.scenario import load_scenario
 from rancf.solvers.dynamic import DynamicOptions, integrate
 from rancf.solvers.equilibrium import EquilibriumProblem
 from rancf.solvers.static import solve_static

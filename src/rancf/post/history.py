@@ -33,9 +33,9 @@ from numpy.typing import NDArray
 from rancf.atomic import FileSet, atomic_write
 from rancf.errors import RunTooLargeError
 from rancf.model.outputs import DerivedOutputs
-from rancf.model.scenario_sensors import Sensor
 from rancf.model.system import Model
 from rancf.post.results import strict_json, write_history_files
+from rancf.scenario.sensors import Sensor
 
 __all__ = ["HistoryStore", "estimate_output_bytes", "check_output_size", "HISTORY_FILES"]
 

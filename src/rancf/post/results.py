@@ -31,9 +31,9 @@ from numpy.typing import NDArray
 from rancf.atomic import FileSet
 from rancf.model.motion import angular_momentum
 from rancf.model.outputs import DerivedOutputs
-from rancf.model.scenario_sensors import Sensor
 from rancf.model.system import Model
 from rancf.post.checks import run_warnings
+from rancf.scenario.sensors import Sensor
 from rancf.solvers.dynamic import DynamicResult
 
 __all__ = [

@@ -22,7 +22,6 @@ from pathlib import Path
 
 from rancf.atomic import atomic_write
 from rancf.errors import ConvergenceError
-from rancf.model.scenario import load_scenario
 from rancf.post.results import (
     LoadPath,
     sensor_table,
@@ -32,6 +31,7 @@ from rancf.post.results import (
 )
 from rancf.post.run_data import load_run
 from rancf.post.run_plots import plot_run
+from rancf.scenario import load_scenario
 from rancf.studies.common import SCENARIO_ANALYSES, StudyResult, example_path
 
 __all__ = ["run_scenario"]

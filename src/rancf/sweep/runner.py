@@ -93,7 +93,7 @@ def run_variant(
     name: str, raw: dict[str, Any], base: str, analysis: str, folder: str
 ) -> dict[str, Any]:
     """Run one variant into ``folder``; never raises for a failing model (the row says so)."""
-    from rancf.model.scenario import parse_scenario
+    from rancf.scenario import parse_scenario
 
     t0 = time.perf_counter()
     out = Path(folder)
