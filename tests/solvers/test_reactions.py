@@ -10,7 +10,7 @@ import pytest
 
 from rancf.errors import ConvergenceError
 from rancf.model.mesh import mesh_line
-from rancf.model.outputs import DerivedOutputs
+from rancf.post.results import system_outputs
 from rancf.model.reactions import support_reactions
 from rancf.model.sections import SectionSampler
 from rancf.model.system import Material, Model, PointLoad, Section, Support
@@ -78,7 +78,7 @@ def test_pendulum_pin_force_is_the_rate_of_momentum():
     for h in (2e-3, 5e-4):
         m = sc.build_model()
         res = integrate(m, DynamicOptions(t_end=0.4, step=h, rho_inf=0.9, output_step=h))
-        _, reac, _ = DerivedOutputs(m).rows(res.t, res.q, res.v)
+        reac = system_outputs(m).rows(res.t, res.q, res.v)["r"]
         ones = np.zeros((m.dim, m.n))
         for i in range(m.dim):
             ones[i].reshape(m.n_nodes, m.dpn)[:, i] = 1.0

@@ -28,7 +28,7 @@ if TYPE_CHECKING:
     from rancf.scenario.geometry import MeshTable
     from rancf.scenario.scenario import Scenario
 
-__all__ = ["build_model", "mesh_geometry", "scenario_key", "NOT_YET"]
+__all__ = ["build_model", "flexible_model", "mesh_geometry", "scenario_key", "NOT_YET"]
 
 #: The problem of what the one-body solvers cannot run yet.
 NOT_YET = "not yet solved by this command"
@@ -115,7 +115,9 @@ def mesh_geometry(path: str, geometry: Any, mesh: MeshTable, prefix: str = "") -
 
 
 def _not_yet(sc: Scenario) -> None:
-    """Refuse, naming the key, what only the system solver will run."""
+    """Refuse, naming the key, what only the system solver runs (``bodies``, ``joints``,
+    ``springs``; moving supports, time loads and the system sensors in one-body analyses that
+    are not time integrations)."""
     for k in ("bodies", "joints", "springs"):
         if sc[k]:
             raise ScenarioError(sc.path, k, f"multibody systems: {NOT_YET}")
@@ -130,54 +132,76 @@ def _not_yet(sc: Scenario) -> None:
             raise ScenarioError(sc.path, f"sensors[{i}].kind", f"{s.kind} sensors: {NOT_YET}")
 
 
-def build_model(sc: Scenario) -> Model:
-    """Mesh the scenario's geometry and assemble its model (errors name the scenario key)."""
-    _not_yet(sc)
+def build_model(sc: Scenario, system: bool = False) -> Model:
+    """Mesh the scenario's geometry and assemble its model (errors name the scenario key).
+
+    ``system``: for the system solver (:func:`rancf.scenario.system_build.build_system`), which
+    also runs moving supports and time functions of loads; otherwise they are refused."""
+    if not system:
+        _not_yet(sc)
     d = sc.data
-    mesh = mesh_geometry(sc.path, sc.geometry, sc.mesh)
+    return flexible_model(
+        sc, "", (sc.geometry, sc.mesh, sc.section, sc.material),
+        [(f"supports[{i}]", t["at"], t) for i, t in enumerate(d["supports"])],
+        [(f"loads.point[{i}]", t["at"], t) for i, t in enumerate(d["loads"]["point"])],
+        [(f"initial_velocity[{i}]", t["at"], t) for i, t in enumerate(d["initial_velocity"])],
+        d["initial_motion"], [(f"sensors.{sn.name}", nd) for sn in sc.sensors for nd in sn.nodes],
+    )  # fmt: skip
+
+
+def flexible_model(
+    sc: Scenario,
+    prefix: str,
+    tables: tuple[Any, Any, Any, Any],
+    supports: list[tuple[str, int, dict[str, Any]]],
+    loads: list[tuple[str, int, dict[str, Any]]],
+    velocities: list[tuple[str, int, dict[str, Any]]],
+    initial_motion: dict[str, Any] | None,
+    sensor_nodes: list[tuple[str, int]] = (),  # type: ignore[assignment]
+) -> Model:
+    """The model of one flexible body: its ``geometry``, ``mesh``, ``section`` and ``material``
+    tables (keys after ``prefix``, e.g. ``bodies[2].``), and the supports, point loads and
+    initial velocities at its nodes as ``(key, node, table)`` (node indices are checked against
+    the mesh here, naming the key)."""
+    geometry, mesh_table, section, material = tables
+    mesh = mesh_geometry(sc.path, geometry, mesh_table, prefix)
     n_nodes = mesh.n_nodes
-    # node references are checked against the mesh first, naming the scenario key
-    supported = set()
-    for i, t in enumerate(d["supports"]):
-        supported.add(_check_node(sc, n_nodes, f"supports[{i}].at", t["at"]))
-    for i, t in enumerate(d["loads"]["point"]):
-        _check_node(sc, n_nodes, f"loads.point[{i}].at", t["at"])
-    for sn in sc.sensors:
-        for nd in sn.nodes:
-            _check_node(sc, n_nodes, f"sensors.{sn.name}", nd)
+    supported = {_check_node(sc, n_nodes, f"{key}.at", node) for key, node, _ in supports}
+    for key, node, _ in loads:
+        _check_node(sc, n_nodes, f"{key}.at", node)
+    for key, node in sensor_nodes:
+        _check_node(sc, n_nodes, key, node)
     v0 = {}
-    for i, t in enumerate(d["initial_velocity"]):
-        node = _check_node(sc, n_nodes, f"initial_velocity[{i}].at", t["at"])
+    for key, at, t in velocities:
+        node = _check_node(sc, n_nodes, f"{key}.at", at)
         if node in supported and any(x != 0.0 for x in t["value"]):
             raise ScenarioError(
-                sc.path,
-                f"initial_velocity[{i}].at",
-                f"node {t['at']} is supported (its position is fixed), so it cannot start "
-                "with a velocity",
-            )
+                sc.path, f"{key}.at", f"node {at} is supported (its position is fixed), so it "
+                "cannot start with a velocity",
+            )  # fmt: skip
         v0[node] = t["value"]
     try:
         return Model(
             mesh,
-            sc.mesh.element,
-            section_of(sc.section),
+            mesh_table.element,
+            section_of(section),
             Material(
-                sc.material.density,
-                sc.material.youngs_modulus,
-                sc.material.shear_modulus,
-                sc.material.poisson_ratio,
+                material.density,
+                material.youngs_modulus,
+                material.shear_modulus,
+                material.poisson_ratio,
             ),  # fmt: skip
-            [_support(t) for t in d["supports"]],
+            [_support(node, t) for _, node, t in supports],
             sc.loads.gravity,
-            [_load(t) for t in d["loads"]["point"]],
+            [_load(node, t) for _, node, t in loads],
             sc.damping.mass_proportional,
             v0,
-            sc.mesh.quadrature_points,
-            None if d["initial_motion"] is None else RigidMotion(**d["initial_motion"]),
+            mesh_table.quadrature_points,
+            None if initial_motion is None else RigidMotion(**initial_motion),
         )
     except InputError as exc:
         raise ScenarioError(
-            sc.path, exc.parameter, f"{exc.allowed} (got {_value(exc.value)})"
+            sc.path, prefix + exc.parameter, f"{exc.allowed} (got {_value(exc.value)})"
         ) from None
 
 
@@ -199,13 +223,13 @@ def _vec(v: list[float] | None) -> tuple[float, ...] | None:
     return None if v is None else tuple(v)
 
 
-def _support(t: dict[str, Any]) -> Support:
-    return Support(t["at"], t["kind"], t["fix_twist"], _vec(t["position"]), _vec(t["direction"]),
-                   _vec(t["axis"]))  # fmt: skip
+def _support(node: int, t: dict[str, Any]) -> Support:
+    return Support(node, t["kind"], t["fix_twist"], _vec(t["position"]), _vec(t["direction"]),
+                   _vec(t["axis"]), t["motion"])  # fmt: skip
 
 
-def _load(t: dict[str, Any]) -> PointLoad:
-    return PointLoad(t["at"], _vec(t["force"]), t["frequency_hz"], _vec(t["moment"]))
+def _load(node: int, t: dict[str, Any]) -> PointLoad:
+    return PointLoad(node, _vec(t["force"]), t["frequency_hz"], _vec(t["moment"]), t["time"])
 
 
 def _check_node(sc: Scenario, n_nodes: int, key: str, node: int) -> int:

@@ -143,12 +143,14 @@ class SystemOutputs:
         energy: NDArray | None = None,
         lam: NDArray | None = None,
         static: bool = False,
+        per_body: bool = False,
     ) -> dict[str, NDArray[np.float64]]:
         """Derived values of ``k`` rows: ``"a"`` ``(k, n_q)`` (full coordinates), ``"lam"``
         ``(k, m)``, ``"r"`` reactions ``(k, n_reaction_columns)``, ``"s"`` section values
         ``(k, n_along)`` and ``"c"`` sensors ``(k, n_sensor_columns)``.  ``directors``: rods'
         nodal ``m1`` ``(k, n_directors)``; ``energy`` ``(k, 3)`` (for ``energy`` sensors);
-        ``lam``: the multipliers of static rows (their solver's)."""
+        ``lam``: the multipliers of static rows (their solver's); ``per_body``: also ``"eb"``,
+        every flexible body's kinetic, strain and gravitational energy ``(k, 3 n_flexible)``."""
         s = self.system
         t = np.atleast_1d(np.asarray(t, dtype=float))
         k = t.size
@@ -158,6 +160,7 @@ class SystemOutputs:
             "lam": np.zeros((k, s.m)),
             "r": np.empty((k, len(self.reaction_names))),
             "s": np.empty((k, self.n_along)),
+            "eb": np.empty((k, 3 * len(self.flex) if per_body else 0)),
         }
         res = np.empty(s.n + s.m)
         with self._triads() as set_row:
@@ -177,6 +180,8 @@ class SystemOutputs:
                 out["a"][i], out["lam"][i] = s.q_from_y(a), li
                 out["r"][i] = self._reactions(y, res[: s.n], float(t[i]), li)
                 out["s"][i] = self._along(y, float(t[i]))
+                if per_body:
+                    out["eb"][i] = self._body_energies(y, vy)
         out["c"] = self.sensors.values(t, q, v, out, energy)
         return out
 
@@ -192,6 +197,14 @@ class SystemOutputs:
             if _joint_has_moment(s, k):
                 parts.append(np.asarray(moment)[2:] if s.dim == 2 else np.asarray(moment))
         return np.concatenate(parts) if parts else np.empty(0)
+
+    def _body_energies(self, y: NDArray, v: NDArray) -> NDArray:
+        parts = []
+        for name, b in self.flex:
+            sl = self.system.body_slice(name)
+            yb = y[sl]
+            parts += [b.kinetic_energy(v[sl], yb), b.strain_energy(yb), b.gravity_energy(yb)]
+        return np.array(parts)
 
     def _along(self, y: NDArray, t: float) -> NDArray:
         parts = []
