@@ -49,6 +49,10 @@ EXAMPLES = {
 SCENARIO_ANALYSES: dict[str, tuple[str, ...]] = {
     "cantilever": ("static", "modes"),
     "installed-hose": ("static", "simulate"),
+    "robot-cable": ("simulate",),
+    "slider-crank": ("simulate",),
+    "spin-up-beam": ("simulate",),
+    "tether-payload": ("simulate",),
 }
 
 

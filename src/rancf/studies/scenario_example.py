@@ -51,7 +51,13 @@ def _describe(text: str) -> str:
 
 
 def _figures(res: StudyResult, out: Path, run_dir: Path, what: str, skip: str = "") -> None:
-    for path in plot_run(load_run(run_dir), run_dir / "plots"):
+    from rancf.post.system_run import is_system_run, load_system_run, plot_system_run
+
+    if is_system_run(run_dir):
+        paths = plot_system_run(load_system_run(run_dir), run_dir / "plots")
+    else:
+        paths = plot_run(load_run(run_dir), run_dir / "plots")
+    for path in paths:
         if path.stem != skip:
             res.figures.append((f"{what}: {path.stem}", str(path.relative_to(out))))
 
