@@ -249,17 +249,14 @@ class System:
         return a, b, float(s.stiffness), float(s.damping), length
 
     def _all_loads(self) -> list[Load]:
-        """The loads, and flexible bodies' point forces times a time function."""
+        """The loads, and flexible bodies' point forces (and rods' moments) times a time
+        function."""
         out = list(self.loads)
         for name, b in zip(self.names, self.flex, strict=False):
             for p in b.point_loads:
                 if p.time is None:
                     continue
-                if p.moment is not None:
-                    raise InputError(
-                        "loads.point.time", "moment", "forces (a moment takes frequency_hz)"
-                    )
-                out.append(Load(Place(name, p.node % b.n_nodes), p.force, None, p.time))
+                out.append(Load(Place(name, p.node % b.n_nodes), p.force, p.moment, p.time))
         return out
 
     def _load(self, ld: Load, rows: _Rows) -> tuple[int, NDArray, NDArray, int]:
