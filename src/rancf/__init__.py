@@ -51,6 +51,13 @@ _API = {
     "DynamicResult": "rancf.solvers.dynamic",
     "DynamicStatus": "rancf.solvers.dynamic",
     "integrate": "rancf.solvers.dynamic",
+    "simulate": "rancf.post.simulate",
+    "System": "rancf.system",
+    "Joint": "rancf.system",
+    "Spring": "rancf.system",
+    "Load": "rancf.system",
+    "RigidBody": "rancf.model.rigid",
+    "PointMass": "rancf.model.rigid",
     "solve_static": "rancf.solvers.static",
     "natural_modes": "rancf.solvers.modal",
     # results and plots

@@ -10,10 +10,10 @@ import pytest
 
 from rancf.errors import ConvergenceError
 from rancf.model.mesh import mesh_line
-from rancf.post.results import system_outputs
 from rancf.model.reactions import support_reactions
 from rancf.model.sections import SectionSampler
 from rancf.model.system import Material, Model, PointLoad, Section, Support
+from rancf.post.results import system_outputs
 from rancf.scenario import load_scenario
 from rancf.solvers.dynamic import DynamicOptions, integrate
 from rancf.solvers.equilibrium import EquilibriumProblem

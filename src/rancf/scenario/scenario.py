@@ -42,6 +42,7 @@ if TYPE_CHECKING:
     from rancf.model.analysis import DynamicOptions
     from rancf.model.system import Model
     from rancf.scenario.places import ResolvedPlace
+    from rancf.system import System
 
 __all__ = ["Scenario", "load_scenario", "parse_scenario"]
 
@@ -170,6 +171,13 @@ class Scenario(Table):
         from rancf.scenario.build import build_model
 
         return build_model(self)
+
+    def build_system(self) -> System:
+        """The :class:`~rancf.system.System` of the scenario: every body, joint, spring, support
+        and load (a file without ``[[bodies]]`` is one body named ``"body"``)."""
+        from rancf.scenario.system_build import build_system
+
+        return build_system(self)
 
     # ------------------------------------------------------------------ files
     @classmethod
