@@ -68,12 +68,8 @@ void BorderedLU::dense(int keep, double* out) {
 
 void BorderedLU::solve_blocks(double* x, const std::vector<char>* touched) const {
   for (std::size_t b = 0; b < lu_.size(); ++b) {
-    double* xb = x + off_[b];
-    if (touched != nullptr && !(*touched)[b]) {
-      std::fill(xb, xb + size_[b], 0.0);
-      continue;
-    }
-    lu_[b].solve(xb, fixed_[b].data());
+    if (touched != nullptr && !(*touched)[b]) continue;  // zero there already
+    lu_[b].solve(x + off_[b], fixed_[b].data());
   }
 }
 
@@ -81,21 +77,29 @@ bool BorderedLU::factor() {
   for (std::size_t b = 0; b < lu_.size(); ++b)
     if (!lu_[b].factor(fixed_[b].data())) return false;
   if (p_ == 0) return true;
-  w_.assign(sz(n_) * sz(p_), 0.0);
+  w_.resize(sz(n_) * sz(p_));
+  wlo_.assign(sz(p_), n_);
+  whi_.assign(sz(p_), 0);
   std::vector<char> touched(lu_.size());
-  for (int c = 0; c < p_; ++c) {
+  for (int c = 0; c < p_; ++c) {  // only the blocks the column touches: the rest stays zero
     double* col = w_.data() + sz(c) * sz(n_);
     std::fill(touched.begin(), touched.end(), 0);
-    for (const Entry& e : pcol_[sz(c)]) {
-      col[e.index] += e.value;
-      touched[sz(block_of(e.index))] = 1;
-    }
+    for (const Entry& e : pcol_[sz(c)]) touched[sz(block_of(e.index))] = 1;
+    for (std::size_t b = 0; b < lu_.size(); ++b)
+      if (touched[b]) {
+        std::fill(col + off_[b], col + off_[b] + size_[b], 0.0);
+        wlo_[sz(c)] = std::min(wlo_[sz(c)], off_[b]);
+        whi_[sz(c)] = std::max(whi_[sz(c)], off_[b] + size_[b]);
+      }
+    for (const Entry& e : pcol_[sz(c)]) col[e.index] += e.value;
     solve_blocks(col, &touched);
   }
   s_ = d_;  // S = D - Q W
   for (int r = 0; r < p_; ++r)
     for (const Entry& e : qrow_[sz(r)])
-      for (int c = 0; c < p_; ++c) s_[sz(r * p_ + c)] -= e.value * w_[sz(c) * sz(n_) + sz(e.index)];
+      for (int c = 0; c < p_; ++c)
+        if (e.index >= wlo_[sz(c)] && e.index < whi_[sz(c)])
+          s_[sz(r * p_ + c)] -= e.value * w_[sz(c) * sz(n_) + sz(e.index)];
   piv_.resize(sz(p_));  // dense LU with partial pivoting, row-major
   for (int k = 0; k < p_; ++k) {
     int piv = k;
@@ -137,7 +141,7 @@ void BorderedLU::solve(double* x, double* z) const {
     const double zc = z[c];
     if (zc == 0.0) continue;
     const double* col = w_.data() + sz(c) * sz(n_);
-    for (int i = 0; i < n_; ++i) x[i] -= col[i] * zc;
+    for (int i = wlo_[sz(c)]; i < whi_[sz(c)]; ++i) x[i] -= col[i] * zc;
   }
 }
 

@@ -57,6 +57,7 @@ class BorderedLU {
   std::vector<std::vector<std::uint8_t>> fixed_;
   std::vector<std::vector<Entry>> pcol_, qrow_;
   std::vector<double> d_, w_, s_;  // D (p x p), W (n x p, column-major), Schur LU (p x p)
+  std::vector<int> wlo_, whi_;     // rows [lo, hi) of W's column c that can be nonzero
   std::vector<int> piv_;
 };
 

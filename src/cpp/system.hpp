@@ -61,6 +61,15 @@ struct Prescribed {
   double base = 0.0;
 };
 
+/// A place's local coordinates in y: their global indices (n of them) and the map
+/// local(q) = T local(y) of a flexible node's rotated blocks (identity elsewhere).
+struct PlaceMap {
+  int n = 0;
+  bool identity = true;  ///< T is the identity (no rotated block)
+  int index[kMaxLocal] = {};
+  double T[kMaxLocal][kMaxLocal] = {};
+};
+
 struct System {
   int dim = 2;
   std::vector<const Model*> flex;
@@ -82,20 +91,13 @@ struct System {
   std::vector<int> norm_row;        ///< rigid bodies: the quaternion row, or -1
   std::vector<std::uint8_t> fixed;  ///< (n) held coordinates
   std::vector<int> block_size, block_ku;
+  std::vector<PlaceMap> maps;  ///< place_map of every place
 
-  /// Offsets, sizes, rows, the held mask; call after filling the lists.
+  /// Offsets, sizes, rows, the held mask, the places' maps; call after filling the lists.
   void setup();
   [[nodiscard]] int rigid_offset(int r) const {
     return offset[flex.size() + static_cast<std::size_t>(r)];
   }
-};
-
-/// A place's local coordinates in y: their global indices (n of them) and the map
-/// local(q) = T local(y) of a flexible node's rotated blocks (identity elsewhere).
-struct PlaceMap {
-  int n = 0;
-  int index[kMaxLocal] = {};
-  double T[kMaxLocal][kMaxLocal] = {};
 };
 
 PlaceMap place_map(const System& s, const PlaceRef& p);

@@ -125,8 +125,8 @@ void constraints(const System& s, const double* y, double t, double* g) {
     const JointData& jd = s.joints[k];
     const PlaceRef &pa = s.places[sz(jd.a)], &pb = s.places[sz(jd.b)];
     PlaceEval ea, eb;
-    place_at(s, pa, place_map(s, pa), t, y, ea);
-    place_at(s, pb, place_map(s, pb), t, y, eb);
+    place_at(s, pa, s.maps[sz(jd.a)], t, y, ea);
+    place_at(s, pb, s.maps[sz(jd.b)], t, y, eb);
     const double th = jd.angle >= 0 ? evaluate(s.tfs[sz(jd.angle)], 0, t).f : 0.0;
     double jac[kMaxJointRows * 2 * kMaxLocal];
     eval_joint(jd.info, ea, eb, th, g + s.joint_row[k], jac);
@@ -207,7 +207,7 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
   // ---- loads at places (forces, and torques on rigid bodies)
   for (const PlaceLoad& ld : s.loads) {
     const PlaceRef& p = s.places[sz(ld.place)];
-    const PlaceMap map = place_map(s, p);
+    const PlaceMap& map = s.maps[sz(ld.place)];
     const double fac =
         tm.load_factor * (ld.factor >= 0 ? evaluate(s.tfs[sz(ld.factor)], 0, tm.tf).f : 1.0);
     double F[3], T[3], u[kMaxLocal], q[kMaxLocal];
@@ -236,7 +236,7 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
   // ---- springs between two places
   for (const SpringData& sp : s.springs) {
     const PlaceRef &pa = s.places[sz(sp.a)], &pb = s.places[sz(sp.b)];
-    const PlaceMap ma = place_map(s, pa), mb = place_map(s, pb);
+    const PlaceMap &ma = s.maps[sz(sp.a)], &mb = s.maps[sz(sp.b)];
     const int k = ma.n + mb.n;
     std::array<double, 2 * kMaxLocal> u{}, w{};
     gather(ma, yf, u.data());
@@ -283,12 +283,13 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
     }
   }
   // ---- joints: G(yf)^T lambda, g(y1), and their derivatives
-  std::vector<std::array<double, kMaxJointRows * 2 * kMaxLocal>> jac1(s.joints.size());
-  std::vector<std::array<double, kMaxJointRows * 2 * kMaxLocal>> jacf(s.joints.size());
+  thread_local std::vector<std::array<double, kMaxJointRows * 2 * kMaxLocal>> jac1, jacf;
+  jac1.resize(s.joints.size());
+  jacf.resize(s.joints.size());
   for (std::size_t jj = 0; jj < s.joints.size(); ++jj) {
     const JointData& jd = s.joints[jj];
     const PlaceRef &pa = s.places[sz(jd.a)], &pb = s.places[sz(jd.b)];
-    const PlaceMap ma = place_map(s, pa), mb = place_map(s, pb);
+    const PlaceMap &ma = s.maps[sz(jd.a)], &mb = s.maps[sz(jd.b)];
     const int rows = joint_rows(jd.info), row0 = s.joint_row[jj], k = ma.n + mb.n;
     std::array<double, 2 * kMaxLocal> u{};
     auto eval_at = [&](const double* uu, double t, double* gg, double* jac) {
@@ -315,7 +316,8 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
       }
     };
     std::array<double, 2 * kMaxLocal> gl{};
-    gtl(gl.data());
+    for (int a = 0; a < k; ++a)  // G(yf)^T lambda from the evaluation at yf above
+      for (int q = 0; q < rows; ++q) gl[sz(a)] += jacf[jj][sz(q * k + a)] * lj[q];
     int idx[2 * kMaxLocal];
     for (int j = 0; j < ma.n; ++j) idx[j] = ma.index[j];
     for (int j = 0; j < mb.n; ++j) idx[ma.n + j] = mb.index[j];
@@ -347,7 +349,6 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
       }
     }
   }
-  std::vector<double> pf(s.rigid.size() * 4);
   for (std::size_t b = 0; b < s.rigid.size(); ++b) {  // quaternion normalization
     if (s.norm_row[b] < 0) continue;
     const int o = s.rigid_offset(static_cast<int>(b)) + 3, row = s.norm_row[b];
@@ -366,7 +367,7 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
   lu->reset_border(m + static_cast<int>(far.by_column.size()));
   for (std::size_t jj = 0; jj < s.joints.size(); ++jj) {
     const JointData& jd = s.joints[jj];
-    const PlaceMap ma = place_map(s, s.places[sz(jd.a)]), mb = place_map(s, s.places[sz(jd.b)]);
+    const PlaceMap &ma = s.maps[sz(jd.a)], &mb = s.maps[sz(jd.b)];
     const int rows = joint_rows(jd.info), row0 = s.joint_row[jj], k = ma.n + mb.n;
     for (int q = 0; q < rows; ++q)
       for (int a = 0; a < k; ++a) {

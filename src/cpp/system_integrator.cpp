@@ -250,8 +250,8 @@ void system_energies(const System& s, const double* y, const double* v, double* 
   for (const SpringData& sp : s.springs) {
     PlaceEval ea, eb;
     const PlaceRef &pa = s.places[sz(sp.a)], &pb = s.places[sz(sp.b)];
-    place_at(s, pa, place_map(s, pa), 0.0, y, ea);
-    place_at(s, pb, place_map(s, pb), 0.0, y, eb);
+    place_at(s, pa, s.maps[sz(sp.a)], 0.0, y, ea);
+    place_at(s, pb, s.maps[sz(sp.b)], 0.0, y, eb);
     double len = 0.0;
     for (int i = 0; i < 3; ++i) len += (ea.x[i] - eb.x[i]) * (ea.x[i] - eb.x[i]);
     const double dl = std::sqrt(len) - sp.length;

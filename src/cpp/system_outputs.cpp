@@ -44,8 +44,8 @@ void joint_reaction(const System& s, int k, const double* y, double t, const dou
   const JointData& jd = s.joints[sz(k)];
   const PlaceRef &pa = s.places[sz(jd.a)], &pb = s.places[sz(jd.b)];
   PlaceEval ea, eb;
-  place_at(s, pa, place_map(s, pa), t, y, ea);
-  place_at(s, pb, place_map(s, pb), t, y, eb);
+  place_at(s, pa, s.maps[sz(jd.a)], t, y, ea);
+  place_at(s, pb, s.maps[sz(jd.b)], t, y, eb);
   const double th = jd.angle >= 0 ? evaluate(s.tfs[sz(jd.angle)], 0, t).f : 0.0;
   const int rows = joint_rows(jd.info), w = ea.n + eb.n;
   double g[kMaxJointRows], jac[kMaxJointRows * 2 * kMaxLocal];
