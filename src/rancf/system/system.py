@@ -141,6 +141,26 @@ class System:
         self.core = self._build(rows, self.joint_data)
         self.m = int(self.core.m)
         self.joint_rows = list(self.core.joint_rows)
+        self._check_reference()
+
+    def _check_reference(self) -> None:
+        """Every joint holds in the reference configuration at t = 0 (positions to 1e-9 of the
+        system's size; an orientation holds by construction): else one line naming the joint
+        and how far apart its places are."""
+        g = np.empty(self.m)
+        self.core.constraints(self.y0, 0.0, g)
+        for k, j in enumerate(self.joints):
+            rows = g[self.joint_rows[k] : self.joint_rows[k] + (2 if self.dim == 2 else 3)]
+            if j.kind == "slider":
+                rows = g[self.joint_rows[k] : self.joint_rows[k] + self.dim - 1]
+            gap = float(np.linalg.norm(rows))
+            if not gap <= 1e-9 * self.size:
+                name = j.name or f"joints[{k}]"
+                raise InputError(
+                    f"{name}.between", [str(x) for x in j.between],
+                    f"places that coincide in the reference configuration (they are "
+                    f"{gap:.4g} m apart; move the bodies, or the points, so they meet)",
+                )  # fmt: skip
 
     # ---------------------------------------------------------------- places
     def resolve(self, spec: Place | str | int) -> Place:
