@@ -9,8 +9,9 @@ import pytest
 import rancf
 from rancf.cli import main
 from rancf.errors import ScenarioError
-from rancf.model.scenario import parse_scenario
-from rancf.model.schema import scenario_schema
+from rancf.scenario import parse_scenario
+from rancf.scenario.geometry import GEOMETRY_KEYS
+from rancf.scenario.schema import scenario_schema
 from rancf.solvers.dynamic import DynamicOptions
 from tests.model.test_scenario import BASE
 
@@ -65,28 +66,40 @@ TABLES = {
 }
 
 
+def _resolved(schema: dict, node: dict) -> dict:
+    """A schema node with its ``$ref`` followed."""
+    while "$ref" in node:
+        node = schema["$defs"][node["$ref"].rsplit("/", 1)[1]]
+    return node
+
+
 @pytest.mark.parametrize("table", list(TABLES))
 def test_schema_has_the_parsers_keys(table):
-    props = scenario_schema()["properties"][table]["properties"]
+    schema = scenario_schema()
+    props = _resolved(schema, schema["properties"][table])["properties"]
     assert set(props) == _allowed(TABLES[table])
 
 
 def test_schema_geometry_and_arrays():
     schema = scenario_schema()
-    kinds = schema["properties"]["geometry"]["oneOf"]
+    kinds = [_resolved(schema, k) for k in schema["properties"]["geometry"]["oneOf"]]
     keys = set().union(*(k["properties"] for k in kinds))
-    assert keys == _allowed(lambda d: d["geometry"].update(zz=1))
-    sensor = schema["properties"]["sensors"]["items"]["properties"]
-    assert set(sensor) == _allowed(lambda d: d["sensors"][0].update(zz=1))
-    support = schema["properties"]["supports"]["items"]["properties"]
-    assert set(support) == _allowed(lambda d: d["supports"][0].update(zz=1))
+    assert keys == {"kind", *(k for ks in GEOMETRY_KEYS.values() for k in ks)}
+    conic = next(k for k in kinds if k["properties"]["kind"]["const"] == "conic")
+    assert set(conic["properties"]) == _allowed(lambda d: d["geometry"].update(zz=1))
+    for array in ("sensors", "supports"):
+        items = _resolved(schema, schema["properties"][array]["items"])["properties"]
+        assert set(items) == _allowed(lambda d, a=array: d[a][0].update(zz=1))
 
 
 def test_schema_command_prints_json(capsys):
     assert main(["schema"]) == 0
     doc = json.loads(capsys.readouterr().out)
     assert doc["$schema"].startswith("https://json-schema.org/")
-    assert doc["required"] == ["geometry", "mesh", "section", "material"]
+    # one flexible body (the four tables) or a system of bodies
+    assert doc["anyOf"][0]["required"] == ["geometry", "mesh", "section", "material"]
+    assert doc["anyOf"][1]["required"] == ["bodies"]
+    assert doc == scenario_schema()
 
 
 def test_command_table_names_every_command_of_its_module():

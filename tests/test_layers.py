@@ -17,12 +17,13 @@ LAYERS = {
     "kernels": 3,
     "model": 4,
     "system": 5,
-    "solvers": 6,
-    "post": 7,
-    "sweep": 8,
-    "studies": 9,
+    "scenario": 6,
+    "solvers": 7,
+    "post": 8,
+    "sweep": 9,
+    "studies": 10,
 }
-CLI = 9  # cli*.py, __main__.py, __init__.py (the lazy public API) may import anything
+CLI = 11  # cli*.py, __main__.py, __init__.py (the lazy public API) may import anything
 
 
 def _part(module: str) -> str:

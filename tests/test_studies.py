@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from rancf.cli import main
-from rancf.model.scenario import load_scenario
+from rancf.scenario import load_scenario
 from rancf.studies import EXAMPLES, study_runner
 from rancf.studies.common import example_path
 

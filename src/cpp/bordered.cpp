@@ -66,14 +66,32 @@ void BorderedLU::dense(int keep, double* out) {
   }
 }
 
+void BorderedLU::triplets(std::vector<int>& rows, std::vector<int>& cols,
+                          std::vector<double>& vals) {
+  auto put = [&](int i, int j, double v) {
+    if (v == 0.0) return;
+    rows.push_back(i);
+    cols.push_back(j);
+    vals.push_back(v);
+  };
+  for (std::size_t b = 0; b < lu_.size(); ++b) {
+    const BandView v = lu_[b].view();
+    const int o = off_[b], nb = size_[b], ku = lu_[b].ku();
+    for (int i = 0; i < nb; ++i)
+      for (int j = std::max(0, i - ku); j < std::min(nb, i + ku + 1); ++j)
+        put(o + i, o + j, v.at(i, j));
+  }
+  for (int c = 0; c < p_; ++c) {
+    for (const Entry& e : pcol_[sz(c)]) put(e.index, n_ + c, e.value);
+    for (const Entry& e : qrow_[sz(c)]) put(n_ + c, e.index, e.value);
+    for (int d = 0; d < p_; ++d) put(n_ + c, n_ + d, d_[sz(c * p_ + d)]);
+  }
+}
+
 void BorderedLU::solve_blocks(double* x, const std::vector<char>* touched) const {
   for (std::size_t b = 0; b < lu_.size(); ++b) {
-    double* xb = x + off_[b];
-    if (touched != nullptr && !(*touched)[b]) {
-      std::fill(xb, xb + size_[b], 0.0);
-      continue;
-    }
-    lu_[b].solve(xb, fixed_[b].data());
+    if (touched != nullptr && !(*touched)[b]) continue;  // zero there already
+    lu_[b].solve(x + off_[b], fixed_[b].data());
   }
 }
 
@@ -81,21 +99,29 @@ bool BorderedLU::factor() {
   for (std::size_t b = 0; b < lu_.size(); ++b)
     if (!lu_[b].factor(fixed_[b].data())) return false;
   if (p_ == 0) return true;
-  w_.assign(sz(n_) * sz(p_), 0.0);
+  w_.resize(sz(n_) * sz(p_));
+  wlo_.assign(sz(p_), n_);
+  whi_.assign(sz(p_), 0);
   std::vector<char> touched(lu_.size());
-  for (int c = 0; c < p_; ++c) {
+  for (int c = 0; c < p_; ++c) {  // only the blocks the column touches: the rest stays zero
     double* col = w_.data() + sz(c) * sz(n_);
     std::fill(touched.begin(), touched.end(), 0);
-    for (const Entry& e : pcol_[sz(c)]) {
-      col[e.index] += e.value;
-      touched[sz(block_of(e.index))] = 1;
-    }
+    for (const Entry& e : pcol_[sz(c)]) touched[sz(block_of(e.index))] = 1;
+    for (std::size_t b = 0; b < lu_.size(); ++b)
+      if (touched[b]) {
+        std::fill(col + off_[b], col + off_[b] + size_[b], 0.0);
+        wlo_[sz(c)] = std::min(wlo_[sz(c)], off_[b]);
+        whi_[sz(c)] = std::max(whi_[sz(c)], off_[b] + size_[b]);
+      }
+    for (const Entry& e : pcol_[sz(c)]) col[e.index] += e.value;
     solve_blocks(col, &touched);
   }
   s_ = d_;  // S = D - Q W
   for (int r = 0; r < p_; ++r)
     for (const Entry& e : qrow_[sz(r)])
-      for (int c = 0; c < p_; ++c) s_[sz(r * p_ + c)] -= e.value * w_[sz(c) * sz(n_) + sz(e.index)];
+      for (int c = 0; c < p_; ++c)
+        if (e.index >= wlo_[sz(c)] && e.index < whi_[sz(c)])
+          s_[sz(r * p_ + c)] -= e.value * w_[sz(c) * sz(n_) + sz(e.index)];
   piv_.resize(sz(p_));  // dense LU with partial pivoting, row-major
   for (int k = 0; k < p_; ++k) {
     int piv = k;
@@ -137,7 +163,7 @@ void BorderedLU::solve(double* x, double* z) const {
     const double zc = z[c];
     if (zc == 0.0) continue;
     const double* col = w_.data() + sz(c) * sz(n_);
-    for (int i = 0; i < n_; ++i) x[i] -= col[i] * zc;
+    for (int i = wlo_[sz(c)]; i < whi_[sz(c)]; ++i) x[i] -= col[i] * zc;
   }
 }
 

@@ -42,6 +42,8 @@ void System::setup() {
   norm_row.assign(rigid.size(), -1);
   for (std::size_t r = 0; r < rigid.size(); ++r)
     if (rigid[r].dim == 3 && !rigid[r].point_mass) norm_row[r] = m++;
+  maps.clear();
+  for (const PlaceRef& p : places) maps.push_back(place_map(*this, p));
 }
 
 PlaceMap place_map(const System& s, const PlaceRef& p) {
@@ -65,6 +67,7 @@ PlaceMap place_map(const System& s, const PlaceRef& p) {
     const double* bas = m.supports.rot + r * d * d;
     for (int i = 0; i < d; ++i)
       for (int j = 0; j < d; ++j) out.T[blk * d + i][blk * d + j] = bas[i * d + j];
+    out.identity = false;
   }
   return out;
 }
@@ -94,6 +97,10 @@ void place_at(const System& s, const PlaceRef& p, const PlaceMap& map, double t,
 
 void place_local(const System& s, const PlaceRef& p, const PlaceMap& map, double t, const double* u,
                  PlaceEval& out) {
+  if (map.identity) {
+    eval_place(place_info(s, p, t), u, out);
+    return;
+  }
   double q[kMaxLocal] = {};
   for (int i = 0; i < map.n; ++i)
     for (int j = 0; j < map.n; ++j) q[i] += map.T[i][j] * u[j];

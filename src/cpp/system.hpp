@@ -63,6 +63,15 @@ struct Prescribed {
   double base = 0.0;
 };
 
+/// A place's local coordinates in y: their global indices (n of them) and the map
+/// local(q) = T local(y) of a flexible node's rotated blocks (identity elsewhere).
+struct PlaceMap {
+  int n = 0;
+  bool identity = true;  ///< T is the identity (no rotated block)
+  int index[kMaxLocal] = {};
+  double T[kMaxLocal][kMaxLocal] = {};
+};
+
 struct System {
   int dim = 2;
   std::vector<const Model*> flex;
@@ -85,20 +94,13 @@ struct System {
   std::vector<int> norm_row;        ///< rigid bodies: the quaternion row, or -1
   std::vector<std::uint8_t> fixed;  ///< (n) held coordinates
   std::vector<int> block_size, block_ku;
+  std::vector<PlaceMap> maps;  ///< place_map of every place
 
-  /// Offsets, sizes, rows, the held mask; call after filling the lists.
+  /// Offsets, sizes, rows, the held mask, the places' maps; call after filling the lists.
   void setup();
   [[nodiscard]] int rigid_offset(int r) const {
     return offset[flex.size() + static_cast<std::size_t>(r)];
   }
-};
-
-/// A place's local coordinates in y: their global indices (n of them) and the map
-/// local(q) = T local(y) of a flexible node's rotated blocks (identity elsewhere).
-struct PlaceMap {
-  int n = 0;
-  int index[kMaxLocal] = {};
-  double T[kMaxLocal][kMaxLocal] = {};
 };
 
 PlaceMap place_map(const System& s, const PlaceRef& p);
@@ -131,5 +133,17 @@ struct AssemblyTerms {
 bool assemble_system(const System& s, const double* yf, const double* vf, const double* am,
                      const double* lambda, const double* y1, const AssemblyTerms& terms, double* r,
                      BorderedLU* lu);
+
+}  // namespace rancf
+
+namespace rancf {
+
+/// The force and moment (about the place, world axes) that joint k exerts on its first place's
+/// body at (y, t) with multipliers lam: the generalized forces Q = -G_A^T lambda on the place's
+/// coordinates matched in the least-squares sense by Q_j = F . dx/du_j + M . w_j, w_j the
+/// rotation rate of the place's frame per coordinate (exact for pins, fixed joints, revolutes
+/// and sliders; the moment is zero at a place without a frame).
+void joint_reaction(const System& s, int k, const double* y, double t, const double* lam,
+                    double* force, double* moment);
 
 }  // namespace rancf

@@ -126,8 +126,8 @@ void constraints(const System& s, const double* y, double t, double* g) {
     const JointData& jd = s.joints[k];
     const PlaceRef &pa = s.places[sz(jd.a)], &pb = s.places[sz(jd.b)];
     PlaceEval ea, eb;
-    place_at(s, pa, place_map(s, pa), t, y, ea);
-    place_at(s, pb, place_map(s, pb), t, y, eb);
+    place_at(s, pa, s.maps[sz(jd.a)], t, y, ea);
+    place_at(s, pb, s.maps[sz(jd.b)], t, y, eb);
     const double th = jd.angle >= 0 ? evaluate(s.tfs[sz(jd.angle)], 0, t).f : 0.0;
     double jac[kMaxJointRows * 2 * kMaxLocal];
     eval_joint(jd.info, ea, eb, th, g + s.joint_row[k], jac);
@@ -208,7 +208,7 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
   // ---- loads at places (forces, and torques on rigid bodies)
   for (const PlaceLoad& ld : s.loads) {
     const PlaceRef& p = s.places[sz(ld.place)];
-    const PlaceMap map = place_map(s, p);
+    const PlaceMap& map = s.maps[sz(ld.place)];
     const double fac =
         tm.load_factor * (ld.factor >= 0 ? evaluate(s.tfs[sz(ld.factor)], 0, tm.tf).f : 1.0);
     double F[3], T[3], u[kMaxLocal], q[kMaxLocal];
@@ -237,7 +237,7 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
   // ---- springs between two places
   for (const SpringData& sp : s.springs) {
     const PlaceRef &pa = s.places[sz(sp.a)], &pb = s.places[sz(sp.b)];
-    const PlaceMap ma = place_map(s, pa), mb = place_map(s, pb);
+    const PlaceMap &ma = s.maps[sz(sp.a)], &mb = s.maps[sz(sp.b)];
     const int k = ma.n + mb.n;
     std::array<double, 2 * kMaxLocal> u{}, w{};
     gather(ma, yf, u.data());
@@ -276,10 +276,64 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
     for (int j = 0; j < mb.n; ++j) idx[ma.n + j] = mb.index[j];
     for (int j = 0; j < k; ++j) r[idx[j]] += fs[sz(j)];
     if (lu != nullptr) {
-      std::vector<double> K(sz(k * k)), Kv(sz(k * k));
-      jacobian_fd(k, u.data(), force, K.data());
-      if (vf != nullptr) jacobian_fd(k, w.data(), force, Kv.data());
-      for (std::size_t i = 0; i < K.size(); ++i) K[i] = tm.ck * K[i] + tm.cv * Kv[i];
+      // exact where the places' positions are linear in their coordinates:
+      // dF/dx_a = k e e^T + T/l (I - e e^T) + c e (dv_perp)^T / l, dF/dv_a = c e e^T, with
+      // J = [dx_a, -dx_b] the generalized forces' map: K = J^T (ck dF/dx + cv dF/dv) J;
+      // the columns of rotation-like coordinates (the places' curvature) by central differences
+      PlaceEval ea, eb;
+      place_local(s, pa, ma, tm.tf, u.data(), ea);
+      place_local(s, pb, mb, tm.tf, u.data() + ma.n, eb);
+      double J[3][2 * kMaxLocal] = {}, d[3], dv[3] = {0.0, 0.0, 0.0}, len = 0.0;
+      for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < ma.n; ++j) J[i][j] = ea.dx[i][j];
+        for (int j = 0; j < mb.n; ++j) J[i][ma.n + j] = -eb.dx[i][j];
+        d[i] = ea.x[i] - eb.x[i];
+        len += d[i] * d[i];
+        for (int j = 0; j < k; ++j) dv[i] += J[i][j] * w[sz(j)];
+      }
+      len = std::sqrt(len);
+      double e[3], rate = 0.0;
+      for (int i = 0; i < 3; ++i) {
+        e[i] = d[i] / len;
+        rate += e[i] * dv[i];
+      }
+      const double tension = sp.stiffness * (len - sp.length) + sp.damping * rate;
+      double A[3][3];
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+          const double perp = (i == j ? 1.0 : 0.0) - e[i] * e[j];
+          const double dvp = dv[j] - rate * e[j];  // (I - e e^T) dv
+          A[i][j] = tm.ck * (sp.stiffness * e[i] * e[j] + tension / len * perp +
+                             sp.damping * e[i] * dvp / len) +
+                    tm.cv * sp.damping * e[i] * e[j];
+        }
+      std::vector<double> K(sz(k * k), 0.0);
+      for (int a = 0; a < k; ++a)
+        for (int b = 0; b < k; ++b) {
+          double v = 0.0;
+          for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) v += J[i][a] * A[i][j] * J[j][b];
+          K[sz(a * k + b)] = v;
+        }
+      bool vary[2 * kMaxLocal], any = false;
+      for (int a = 0; a < k; ++a) {
+        vary[a] = a < ma.n ? nonlinear_local(pa.kind, s.dim, a)
+                           : nonlinear_local(pb.kind, s.dim, a - ma.n);
+        any = any || vary[a];
+      }
+      if (any) {
+        std::vector<double> Kfd(sz(k * k));
+        jacobian_fd(k, u.data(), force, Kfd.data(), vary);
+        for (int a = 0; a < k; ++a)
+          for (int b = 0; b < k; ++b)
+            if (vary[b]) {
+              double kv = 0.0;  // the velocity part of column b stays exact
+              for (int i = 0; i < 3; ++i)
+                for (int j = 0; j < 3; ++j)
+                  kv += J[i][a] * tm.cv * sp.damping * e[i] * e[j] * J[j][b];
+              K[sz(a * k + b)] = tm.ck * Kfd[sz(a * k + b)] + kv;
+            }
+      }
       add_matrix(*lu, idx, k, K.data(), far);
     }
   }
@@ -291,12 +345,13 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
     assemble_contact(s, *s.contact, yf, vf, y1, tm, r, lu, lu != nullptr ? &sink : nullptr);
   }
   // ---- joints: G(yf)^T lambda, g(y1), and their derivatives
-  std::vector<std::array<double, kMaxJointRows * 2 * kMaxLocal>> jac1(s.joints.size());
-  std::vector<std::array<double, kMaxJointRows * 2 * kMaxLocal>> jacf(s.joints.size());
+  thread_local std::vector<std::array<double, kMaxJointRows * 2 * kMaxLocal>> jac1, jacf;
+  jac1.resize(s.joints.size());
+  jacf.resize(s.joints.size());
   for (std::size_t jj = 0; jj < s.joints.size(); ++jj) {
     const JointData& jd = s.joints[jj];
     const PlaceRef &pa = s.places[sz(jd.a)], &pb = s.places[sz(jd.b)];
-    const PlaceMap ma = place_map(s, pa), mb = place_map(s, pb);
+    const PlaceMap &ma = s.maps[sz(jd.a)], &mb = s.maps[sz(jd.b)];
     const int rows = joint_rows(jd.info), row0 = s.joint_row[jj], k = ma.n + mb.n;
     std::array<double, 2 * kMaxLocal> u{};
     auto eval_at = [&](const double* uu, double t, double* gg, double* jac) {
@@ -323,7 +378,8 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
       }
     };
     std::array<double, 2 * kMaxLocal> gl{};
-    gtl(gl.data());
+    for (int a = 0; a < k; ++a)  // G(yf)^T lambda from the evaluation at yf above
+      for (int q = 0; q < rows; ++q) gl[sz(a)] += jacf[jj][sz(q * k + a)] * lj[q];
     int idx[2 * kMaxLocal];
     for (int j = 0; j < ma.n; ++j) idx[j] = ma.index[j];
     for (int j = 0; j < mb.n; ++j) idx[ma.n + j] = mb.index[j];
@@ -355,7 +411,6 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
       }
     }
   }
-  std::vector<double> pf(s.rigid.size() * 4);
   for (std::size_t b = 0; b < s.rigid.size(); ++b) {  // quaternion normalization
     if (s.norm_row[b] < 0) continue;
     const int o = s.rigid_offset(static_cast<int>(b)) + 3, row = s.norm_row[b];
@@ -374,7 +429,7 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
   lu->reset_border(m + static_cast<int>(far.by_column.size()));
   for (std::size_t jj = 0; jj < s.joints.size(); ++jj) {
     const JointData& jd = s.joints[jj];
-    const PlaceMap ma = place_map(s, s.places[sz(jd.a)]), mb = place_map(s, s.places[sz(jd.b)]);
+    const PlaceMap &ma = s.maps[sz(jd.a)], &mb = s.maps[sz(jd.b)];
     const int rows = joint_rows(jd.info), row0 = s.joint_row[jj], k = ma.n + mb.n;
     for (int q = 0; q < rows; ++q)
       for (int a = 0; a < k; ++a) {

@@ -14,7 +14,7 @@ from rancf.errors import InputError
 __all__ = ["add_parsers", "MAX_TABLE_ELEMENTS", "json_text"]
 
 #: Largest ``--elements`` of the table (one row per element); ``--json`` takes the scenario
-#: limit, :data:`rancf.model.scenario_tables.MAX_ELEMENTS`.
+#: limit, :data:`rancf.scenario.geometry.MAX_ELEMENTS`.
 MAX_TABLE_ELEMENTS = 1000
 
 
@@ -43,7 +43,7 @@ def _conic(args: argparse.Namespace) -> int:
     from rancf.elements.mapping import K_RANGE, conic_element, kopt
     from rancf.geometry.conic import conic_arc
     from rancf.model.mesh import check_element_count, mesh_conic
-    from rancf.model.scenario_tables import MAX_ELEMENTS
+    from rancf.scenario.geometry import MAX_ELEMENTS
 
     n = check_element_count(args.elements, "--elements")
     if n > MAX_ELEMENTS:

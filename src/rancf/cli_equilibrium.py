@@ -30,7 +30,7 @@ def reactions_json(sc: Any, model: Any, y: Any) -> list[dict[str, Any]]:
 
 
 def _cmd_buckling(args: argparse.Namespace) -> int:
-    from rancf.model.scenario import load_scenario
+    from rancf.scenario import load_scenario
     from rancf.solvers.buckling import linear_buckling
     from rancf.solvers.static import solve_static
 

@@ -165,7 +165,7 @@ def _heading(names: list[str]) -> tuple[str, str] | None:
 
 
 def _cmd_schema(args: argparse.Namespace) -> int:
-    from rancf.model.schema import scenario_schema
+    from rancf.scenario.schema import scenario_schema
 
     print(json.dumps(scenario_schema(), indent=2))
     return 0

@@ -16,6 +16,13 @@ from rancf.errors import InputError
 __all__ = ["add_parsers", "run_to_nurbs"]
 
 
+def is_system_run(path: str) -> bool:
+    """Whether ``path`` is a run of several bodies (:mod:`rancf.post.system_run`)."""
+    from rancf.post.system_run import is_system_run as check
+
+    return check(path)
+
+
 def run_to_nurbs(run: Any, i: int) -> Any:
     """The configuration of stored state ``i`` as one exact NURBS curve (cable and rod elements:
     a rod's centreline).
@@ -45,12 +52,28 @@ def run_to_nurbs(run: Any, i: int) -> Any:
     return chain_to_nurbs(ElementChain(nodal, run.weights, run.scales, breaks))
 
 
+def _export_system(args: argparse.Namespace, out: Any) -> int:
+    from rancf.post.system_run import export_system_vtk, load_system_run
+
+    if args.nurbs is not None:
+        raise InputError("--nurbs", args.nurbs, "one body's run: RUN_DIR/bodies/NAME")
+    run = load_system_run(args.run_dir)
+    with out:
+        paths = export_system_vtk(run, out.path, args.every, args.samples)
+        out.keep()
+    for p in paths:
+        print(f"{p.parent.name if p.parent != out.path else 'rigid bodies'}: open {p} in ParaView")
+    return 0
+
+
 def _cmd_export(args: argparse.Namespace) -> int:
     from rancf.post.run_data import load_run
 
     if args.vtk is None and args.nurbs is None:
         raise InputError("--vtk/--nurbs", None, "at least one of --vtk OUT_DIR, --nurbs FILE")
     out = OutputDir(args.vtk, "--vtk") if args.vtk is not None else None
+    if is_system_run(args.run_dir):
+        return _export_system(args, out)
     run = load_run(args.run_dir)
     if out is not None:
         from rancf.post.run_data import frame_indices
@@ -91,13 +114,19 @@ def _cmd_plot(args: argparse.Namespace) -> int:
 
     if args.out is not None:
         check_out_dir(args.out)
-    run = load_run(args.run_dir)
+    if is_system_run(args.run_dir):
+        from rancf.post.system_run import load_system_run, plot_system_run
+
+        run: Any = load_system_run(args.run_dir)
+        plot: Any = plot_system_run
+    else:
+        run, plot = load_run(args.run_dir), plot_run
     if not 1 <= args.configurations <= MAX_CONFIGURATIONS:
         raise InputError(
             "--configurations", args.configurations, f"an integer in [1, {MAX_CONFIGURATIONS}]"
         )
     with OutputDir(Path(args.out) if args.out is not None else run.path / "plots") as out:
-        written = plot_run(run, out.path, args.configurations)
+        written = plot(run, out.path, args.configurations)
         out.keep()
     for p in written:
         print(p)
@@ -112,8 +141,12 @@ def _cmd_animate(args: argparse.Namespace) -> int:
     from rancf.post.run_data import load_run
     from rancf.post.run_plots import animate_run
 
-    run = load_run(args.run_dir)
-    n = animate_run(run, args.out, args.fps, args.every)
+    if is_system_run(args.run_dir):
+        from rancf.post.system_run import animate_system_run, load_system_run
+
+        n = animate_system_run(load_system_run(args.run_dir), args.out, args.fps, args.every)
+    else:
+        n = animate_run(load_run(args.run_dir), args.out, args.fps, args.every)
     print(f"{n} frames at {args.fps} fps -> {args.out}")
     return 0
 

@@ -58,42 +58,34 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     limit = _positive("--max-output-gb", args.max_output_gb, "a finite size in GB > 0")
     od = OutputDir(args.out, kind="run", overwrite=args.overwrite)  # checks the path up front
     from rancf.atomic import atomic_write
-    from rancf.model.outputs import DerivedOutputs
-    from rancf.model.scenario import load_scenario
     from rancf.post.checks import run_warnings, section_warnings
-    from rancf.post.history import HistoryStore, check_output_size
+    from rancf.post.history import HistoryStore, plan_run
     from rancf.post.results import run_summary
+    from rancf.scenario import load_scenario
     from rancf.solvers.static import start_state
 
     sc = load_scenario(args.scenario)
     opts = sc.dynamic_options()
-    model = sc.build_model()
-    y_start, start_info = start_state(sc, model)
-    n_cols = sum(len(s.columns(model.dim)) for s in sc.sensors)
-    rod_directors = 3 * model.n_nodes if model.element == "rod" else 0
-    derived = DerivedOutputs(model, sc.support_labels)
-    n_derived = len(derived.reaction_names) + derived.n_points * len(derived.section_names)
-    check_output_size(
-        sc.path, opts.n_outputs, model.q0.size, n_cols, rod_directors, limit, n_derived=n_derived
-    )
+    system, outputs = plan_run(sc, limit)
+    y_start, start_info = start_state(sc, system)
     copy = _scenario_text(args.scenario)
     out = od.path
     stop = _StopFlag()
-    notes = _warn(section_warnings(model))  # likely unit mistakes: the run goes on
+    notes = _warn(section_warnings(system))  # likely unit mistakes: the run goes on
     with stop, od:
         info = {"scenario": str(Path(args.scenario).resolve()), "setup_wall_time_s": None}
         info.update(start_info)
-        store = HistoryStore(out, model, sc.sensors, {**info, "warnings": notes}, derived=derived)
+        store = HistoryStore(out, outputs, {**info, "warnings": notes})
         try:
             atomic_write(out / "scenario.toml", copy)
-            store.write_summary(_running(model, 0.0))
-            res = _run(args, model, opts, store, stop, every, od.keep, y_start)
-            summary = run_summary(model, res)
+            store.write_summary(_running(system, 0.0))
+            res = _run(args, system, opts, store, stop, every, od.keep, y_start)
+            summary = run_summary(system, res)
             store.flush()  # every row's derived outputs, the strain among them
-            store.info["warnings"] = run_warnings(model, largest=derived.largest_strain)
+            store.info["warnings"] = run_warnings(system, largest=outputs.largest_strain)
             store.finish(summary)
         except BaseException as exc:
-            err = _end_broken(store, model, exc, od.kept, out)
+            err = _end_broken(store, system, exc, od.kept, out)
             if err is exc:
                 raise
             raise err from None
@@ -155,18 +147,20 @@ class _StopFlag:
 
 
 def _running(model: Any, t: float) -> dict[str, Any]:
+    from rancf.post.results import run_sizes
+
     return {
         "status": "running",
         "message": f"running, t = {t:g} s",
         "t_reached": t,
-        "n_elements": model.n_el,
-        "element": model.element,
-        "n_dofs": model.n,
+        **run_sizes(model),
     }
 
 
 def _broken(model: Any, store: Any, exc: BaseException) -> dict[str, Any]:
     """Summary of a run ended by an exception (the error path prints the message)."""
+    from rancf.post.results import run_sizes
+
     kind = "interrupted" if isinstance(exc, KeyboardInterrupt) else "failed"
     text = str(exc)
     if isinstance(exc, OSError) and exc.strerror:
@@ -176,9 +170,7 @@ def _broken(model: Any, store: Any, exc: BaseException) -> dict[str, Any]:
         "message": " ".join(text.split()) or type(exc).__name__,
         "t_reached": store.saved_t,
         "outputs": store.n_rows,
-        "n_elements": model.n_el,
-        "element": model.element,
-        "n_dofs": model.n,
+        **run_sizes(model),
     }
 
 
@@ -268,13 +260,23 @@ def _cmd_static(args: argparse.Namespace) -> int:
     import numpy as np
 
     from rancf.cli_equilibrium import reactions_json
-    from rancf.model.scenario import load_scenario
     from rancf.post.checks import run_warnings
     from rancf.post.results import LoadPath, sensor_table, strict_json, write_static_run
+    from rancf.scenario import load_scenario
     from rancf.solvers.static import solve_static
 
-    od = None if args.out is None else OutputDir(args.out, kind="run", overwrite=args.overwrite)
     sc = load_scenario(args.scenario)
+    if sc.is_system:
+        from rancf.cli_system import print_static, static_system
+
+        copy = None if args.out is None else _scenario_text(args.scenario)
+        doc = static_system(args, sc, copy)
+        if args.json:
+            print(strict_json(doc).rstrip())
+        else:
+            print_static(doc, args.out)
+        return 0
+    od = None if args.out is None else OutputDir(args.out, kind="run", overwrite=args.overwrite)
     model = sc.build_model()
     path = LoadPath(model, sc.support_labels)  # the load path, for --out
     method = sc.solver["static_method"]
@@ -300,15 +302,16 @@ def _cmd_static(args: argparse.Namespace) -> int:
                 raise
             finally:
                 if path.steps:  # what converged is kept, also when a later increment fails
-                    write_static_run(out_dir, path, sc.sensors, info)
+                    doc = write_static_run(out_dir, path, sc.sensors, info)
                     atomic_write(out_dir / "scenario.toml", copy)
                     od.keep()
     if path.steps:  # the load path's outputs tracked the largest strain
-        notes = _warn(run_warnings(model, static=True, largest=path.derived.largest_strain))
+        notes = _warn(doc["warnings"])
     else:
         notes = _warn(run_warnings(model, res.load_factors[-1:], res.q[None], static=True))
     pos = model.node_positions(res.q)
-    names, vals = sensor_table(model, sc.sensors, res.q)
+    lf = res.load_factors[-1:]
+    names, vals = sensor_table(model, sc.sensors, res.q, static=True, t=lf)
     out = {
         "positions": pos.tolist(),
         "sensors": dict(zip(names, vals[0].tolist(), strict=True)),
@@ -343,9 +346,9 @@ def _vec(v: list[float], floor: float) -> str:
 def _cmd_modes(args: argparse.Namespace) -> int:
     import numpy as np
 
-    from rancf.model.scenario import load_scenario
     from rancf.post.checks import run_warnings
     from rancf.post.results import strict_json
+    from rancf.scenario import load_scenario
     from rancf.solvers.modal import natural_modes
     from rancf.solvers.static import solve_static
 
@@ -353,6 +356,15 @@ def _cmd_modes(args: argparse.Namespace) -> int:
     if args.count is not None and args.count < 1:
         raise InputError("--count", args.count, "an integer >= 1")
     sc = load_scenario(args.scenario)
+    if sc.is_system:
+        from rancf.cli_system import modes_system, print_modes
+
+        doc = modes_system(args, sc)
+        if args.json:
+            print(strict_json(doc).rstrip())
+        else:
+            print_modes(doc)
+        return 0
     model = sc.build_model()
     about = args.about or sc.data["modes"]["about"]
     count = args.count if args.count is not None else sc.data["modes"]["count"]

@@ -8,7 +8,7 @@ from rancf.cli import main
 from rancf.elements.cad import bspline_to_ancf, chain_to_nurbs, nurbs_to_rancf
 from rancf.errors import ScenarioError
 from rancf.geometry.nurbs import NurbsCurve
-from rancf.model.scenario import load_scenario
+from rancf.scenario import load_scenario
 from tests.model.test_scenario import BASE
 
 FIG5 = np.array([0, 0, 0, 0, 1, 2, 2, 3, 3, 3, 5, 5, 5, 5], float)

@@ -11,8 +11,8 @@ import pytest
 
 from rancf.cli import main
 from rancf.geometry.tangents import vector_angle
-from rancf.model.scenario import load_scenario
 from rancf.post.run_data import centerline_nodes, load_run
+from rancf.scenario import load_scenario
 from tests.model.test_scenario import BASE
 
 #: Every element count 1..32 is exported as JSON (the cheapest format); the other formats are

@@ -8,7 +8,7 @@ import pytest
 
 from rancf.cli import main
 from rancf.errors import ScenarioError
-from rancf.model.scenario import load_scenario, parse_scenario
+from rancf.scenario import load_scenario, parse_scenario
 
 BASE = """
 [geometry]

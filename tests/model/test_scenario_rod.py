@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from rancf.cli import main
-from rancf.model.scenario import parse_scenario
+from rancf.scenario import parse_scenario
 from rancf.solvers.static import solve_static
 from tests.test_cli_errors import PRINCIPAL, ROD, dump
 

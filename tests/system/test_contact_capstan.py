@@ -52,7 +52,7 @@ def capstan(mu: float, n_arc: int, n_span: int, speed: float, damping: float = 0
     def pull(t: float) -> list[float]:
         return [0.0, -speed * (t * t / (2 * ramp) if t < ramp else t - ramp / 2)]
 
-    motion = TimeFunction.from_callable(pull, 2.0, 401)
+    motion = TimeFunction.from_callable(pull).sampled(2.0, 401)
     end = Support(mesh.n_nodes - 1, "pin", motion=motion)
     rope = Model(mesh, "rancf", SECTION, MATERIAL, [end])
     weight = PointMass(2, MASS, (-RC, -SPAN))

@@ -173,30 +173,3 @@ def mesh_curve_chain(curves: list[NurbsCurve], labels: list[str], n_per_span: in
     n_per_span = check_element_count(n_per_span, "mesh.elements")
     segments, breaks = chain_segments(curves, labels)
     return mesh_segments(segments, breaks, n_per_span)
-
-
-def parse_cad_geometry(scenario_path: str, g: dict[str, Any]) -> int:
-    """Validate ``file``/``curve`` of a ``kind = "cad"`` geometry table, read the curves into
-    ``g["curves"]``/``g["labels"]`` and return the model dimension (2 or 3).
-
-    ``g["file"]`` becomes the absolute path (relative paths are relative to the scenario file).
-    """
-    from rancf.errors import ScenarioError
-
-    if not isinstance(g.get("file"), str) or not g["file"]:
-        raise ScenarioError(scenario_path, "geometry.file", "required: the CAD file to read")
-    base = Path(scenario_path).parent if not scenario_path.startswith("<") else Path.cwd()
-    file = (base / g["file"]).resolve()
-    sel = 0 if g.get("curve") is None else g["curve"]
-    if not isinstance(sel, int | str | list) or isinstance(sel, bool):
-        raise ScenarioError(
-            scenario_path, "geometry.curve", f"must be an index, a name or a list, got {sel!r}"
-        )
-    try:
-        curves, labels = select_cad_curves(file, sel)
-        chain_segments(curves, labels)  # report gaps and kinks now, naming the key
-    except InputError as exc:
-        key = "geometry.file" if exc.parameter == "file" else exc.parameter
-        raise ScenarioError(scenario_path, key, str(exc)) from None
-    g["file"], g["curve"], g["curves"], g["labels"] = str(file), sel, curves, labels
-    return curves[0].dim

@@ -21,7 +21,7 @@ from numpy.typing import NDArray
 
 from rancf.errors import InputError
 
-__all__ = ["RigidBody", "PointMass", "quaternion_from_matrix"]
+__all__ = ["RigidBody", "PointMass", "quaternion_from_matrix", "body_angular_velocity"]
 
 
 def _vector(key: str, v: Sequence[float] | None, dim: int) -> NDArray[np.float64]:
@@ -57,6 +57,12 @@ def _g_matrix(p: NDArray) -> NDArray[np.float64]:
     return np.array(
         [[-p[1], p[0], p[3], -p[2]], [-p[2], -p[3], p[0], p[1]], [-p[3], p[2], -p[1], p[0]]]
     )
+
+
+def body_angular_velocity(p: NDArray, pd: NDArray) -> NDArray[np.float64]:
+    """Angular velocity in the body frame of a unit quaternion ``p`` and its rate ``ṗ``:
+    ``ω = 2 G(p) ṗ`` (the inverse of ``ṗ = ½ G(p)ᵀ ω`` of :meth:`RigidBody.initial`)."""
+    return 2.0 * _g_matrix(np.asarray(p, dtype=float)) @ np.asarray(pd, dtype=float)
 
 
 @dataclass(frozen=True)

@@ -1,139 +1,340 @@
 """Time functions of prescribed motions, driven joints and time-dependent loads.
 
-A :class:`TimeFunction` is scalar or vector valued; the compiled core evaluates it (value, rate,
-acceleration: ``src/cpp/time_function.hpp``), this module only describes and packs it:
+A :class:`TimeFunction` gives a value, its rate and its acceleration at a time ``t`` [s], exact
+for every kind (the closed forms below and their derivatives); scalar (a load factor, a joint
+angle) or vector valued (a support's displacement), every component sharing the kind:
 
-* ``constant(value)``;
-* ``table(rows, interpolation)``: rows ``[t, v...]``, piecewise ``"linear"`` or ``"cubic"`` (the
-  not-a-knot cubic spline of :class:`scipy.interpolate.CubicSpline`: C², exact for cubics), held
-  at the last row's value after the table (and at the first row's before it);
-* ``ramp(duration, value)``: ``value · min(t / duration, 1)``;
-* ``harmonic(frequency_hz, amplitude, phase_deg)``: ``amplitude · sin(2π f t + phase)``;
-* ``spin_up(duration, rate)``: the angle whose rate rises smoothly from 0 to ``rate`` in
-  ``duration`` T (Kane, Ryan & Banerjee 1987):
-  ``(rate/T)[t²/2 + (T/2π)² (cos(2πt/T) − 1)]`` for ``t ≤ T``, ``rate (t − T/2)`` after;
-* ``from_callable(fn, t_end, samples)``: a Python function sampled on a uniform grid and
-  interpolated by the cubic spline (the compiled time loop cannot call Python; the sampling error
-  falls as the fourth power of the grid spacing).
+* ``constant(value)``: ``f(t) = c``                                                      (T.1)
+* ``table(rows, interpolation)``: rows ``[t, v...]`` with strictly increasing ``t``; piecewise
+  linear, or the not-a-knot cubic spline of :class:`scipy.interpolate.CubicSpline` (C², exact
+  for cubic polynomials; "natural" end conditions would not be); held at the first row's value
+  before the table and at the last row's after it (rate and acceleration zero there)      (T.2)
+* ``ramp(duration, value)``: ``f(t) = value · min(max(t, 0) / T, 1)``                     (T.3)
+* ``harmonic(frequency_hz, amplitude, phase_deg)``: ``f(t) = A sin(2π f t + φ)``          (T.4)
+* ``spin_up(duration, rate)``: the angle whose rate rises smoothly from 0 to ``Ω = rate`` in
+  ``T = duration`` (Kane, Ryan & Banerjee 1987)                                             (T.5)
+
+      θ(t) = (Ω/T) [t²/2 + (T/2π)² (cos(2πt/T) − 1)]   for 0 ≤ t ≤ T,
+      θ(t) = Ω (t − T/2)                                for t > T,
+
+  so ``θ̇ = (Ω/T)(t − (T/2π) sin(2πt/T))`` and ``θ̈ = (Ω/T)(1 − cos(2πt/T))`` rise from 0 and
+  join ``Ω`` and ``0`` with continuous rate and acceleration at ``t = T`` (zero before ``t = 0``);
+* ``from_callable(fn)``: any Python function of ``t`` (the Python API).  The function is kept and
+  called for the value; the rate and the acceleration are central differences
+  ``(f(t+h) − f(t−h)) / 2h`` with ``h = 6e-6 s`` (about ``ε^(1/3)``: truncation ``h² f‴ / 6``,
+  round-off ``ε (|f| + |t f′|) / h``: ~1e-10 relative for smooth functions on a time scale of
+  a second) and ``(f(t+h) − 2 f(t) + f(t−h)) / h²`` with ``h = 1.2e-4 s`` (about ``ε^(1/4)``:
+  ~1e-7 relative).  :meth:`sampled` turns it into a cubic table for code that cannot call
+  Python (the compiled time loop).
+
+At a kink (a table's breakpoint, the end of a ramp) the rate is the one of the interval that
+starts there (the right derivative).  The compiled core evaluates the same functions
+(``src/cpp/time_function.hpp``) from the arrays of :func:`pack`.
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from rancf.errors import InputError
 
-__all__ = ["TimeFunction", "KINDS"]
+__all__ = ["TimeFunction", "KINDS", "CORE_KINDS", "spin_up_angle", "pack"]
 
-#: Kind names and their code in the compiled core.
-KINDS = {"constant": 0, "table": 1, "ramp": 2, "harmonic": 3, "spin_up": 4}
+#: The kinds of time functions.
+KINDS = ("constant", "table", "ramp", "harmonic", "spin_up", "callable")
+#: Kind names and their code in the compiled core (a callable is packed as its sampled table).
+CORE_KINDS = {"constant": 0, "table": 1, "ramp": 2, "harmonic": 3, "spin_up": 4}
 
-
-def _vec(key: str, v: ArrayLike) -> tuple[float, ...]:
-    a = np.atleast_1d(np.asarray(v, dtype=float))
-    if a.ndim != 1 or a.size == 0 or not np.all(np.isfinite(a)):
-        raise InputError(key, v, "a finite number or vector")
-    return tuple(float(x) for x in a)
+_H1, _H2 = 6e-6, 1.2e-4  # central-difference steps of callables [s]
 
 
-@dataclass(frozen=True)
+def _values(key: str, v: ArrayLike) -> tuple[tuple[float, ...], bool]:
+    """``v`` as a tuple of finite floats, and whether it was given as a vector."""
+    a = np.asarray(v, dtype=float)
+    if a.ndim > 1 or a.size == 0 or not np.all(np.isfinite(a)):
+        raise InputError(key, v, "a finite number or a vector of finite numbers")
+    return tuple(float(x) for x in a.ravel()), a.ndim == 1
+
+
+def _positive(key: str, v: float) -> float:
+    if isinstance(v, bool) or not (isinstance(v, int | float) and math.isfinite(v) and v > 0):
+        raise InputError(key, v, "a finite number > 0")
+    return float(v)
+
+
+def spin_up_angle(t: ArrayLike, duration: float, rate: float, order: int = 0) -> NDArray:
+    """The spin-up law (T.5) (``order`` 0), its rate (1) or its acceleration (2) at ``t``."""
+    t = np.asarray(t, dtype=float)
+    tt, k = duration, 2.0 * math.pi / duration
+    a = 1.0 / k
+    before, after = t <= 0.0, t >= tt
+    if order == 0:
+        inside = rate / tt * (0.5 * t * t + a * a * (np.cos(k * t) - 1.0))
+        out = np.where(after, rate * (t - 0.5 * tt), inside)
+    elif order == 1:
+        out = np.where(after, rate, rate / tt * (t - a * np.sin(k * t)))
+    else:
+        out = np.where(after, 0.0, rate / tt * (1.0 - np.cos(k * t)))
+    return np.where(before, 0.0, out)
+
+
 class TimeFunction:
-    """A time function (module docstring); build it with the class methods."""
+    """A scalar or vector function of time (module docstring); build it with the class methods.
 
-    kind: str
-    value: tuple[float, ...]
-    duration: float = 0.0
-    frequency: float = 0.0
-    phase: float = 0.0
-    rows: NDArray[np.float64] | None = field(default=None, compare=False)
-    interpolation: str = "linear"
+    Attributes
+    ----------
+    kind : str
+        One of :data:`KINDS`.
+    values : tuple of float
+        The constant, the ramp's end value, the amplitude or the spin-up rate (one per
+        component); a table's first row.
+    vector : bool
+        Whether the values are vectors (then :meth:`value` returns arrays of ``size``).
+    duration, frequency, phase : float
+        ``T`` of a ramp or spin-up [s], the harmonic's frequency [Hz] and phase [rad].
+    rows : ndarray or None
+        A table's rows ``(k, 1 + size)``.
+    interpolation : str
+        ``"linear"`` or ``"cubic"`` (tables).
+    fn : callable or None
+        The Python function of :meth:`from_callable`.
+    """
 
-    @property
-    def size(self) -> int:
-        """Number of components."""
-        return len(self.value)
+    def __init__(
+        self,
+        kind: str,
+        values: tuple[float, ...],
+        vector: bool = False,
+        *,
+        duration: float = 0.0,
+        frequency: float = 0.0,
+        phase: float = 0.0,
+        rows: NDArray[np.float64] | None = None,
+        interpolation: str = "linear",
+        fn: Callable[[float], Any] | None = None,
+    ) -> None:
+        self.kind, self.values, self.vector = kind, values, vector
+        self.duration, self.frequency, self.phase = duration, frequency, phase
+        self.rows, self.interpolation, self.fn = rows, interpolation, fn
+        self._spline: Any = None
+        if kind == "table" and interpolation == "cubic" and rows is not None and len(rows) > 2:
+            from scipy.interpolate import CubicSpline
 
+            self._spline = CubicSpline(rows[:, 0], rows[:, 1:], axis=0, bc_type="not-a-knot")
+
+    # ------------------------------------------------------------------ construction
     @classmethod
     def constant(cls, value: ArrayLike) -> TimeFunction:
-        return cls("constant", _vec("value", value))
+        """``f(t) = value`` (T.1)."""
+        return cls("constant", *_values("value", value))
 
     @classmethod
-    def ramp(cls, duration: float, value: ArrayLike) -> TimeFunction:
-        if not (np.isfinite(duration) and duration > 0):
-            raise InputError("ramp", duration, "a duration > 0 [s]")
-        return cls("ramp", _vec("value", value), duration=float(duration))
+    def ramp(cls, duration: float, value: ArrayLike = 1.0) -> TimeFunction:
+        """``value · min(t / duration, 1)`` (T.3)."""
+        return cls("ramp", *_values("value", value), duration=_positive("ramp", duration))
 
     @classmethod
     def harmonic(
-        cls, frequency_hz: float, amplitude: ArrayLike, phase_deg: float = 0.0
+        cls, frequency_hz: float, amplitude: ArrayLike = 1.0, phase_deg: float = 0.0
     ) -> TimeFunction:
-        if not (np.isfinite(frequency_hz) and frequency_hz >= 0):
-            raise InputError("harmonic", frequency_hz, "a frequency >= 0 [Hz]")
-        if not np.isfinite(phase_deg):
+        """``amplitude · sin(2π f t + phase)`` (T.4)."""
+        f = _positive("harmonic", frequency_hz)
+        if isinstance(phase_deg, bool) or not math.isfinite(phase_deg):
             raise InputError("phase_deg", phase_deg, "a finite angle [deg]")
-        return cls("harmonic", _vec("amplitude", amplitude), frequency=float(frequency_hz),
-                   phase=float(np.radians(phase_deg)))  # fmt: skip
+        return cls("harmonic", *_values("amplitude", amplitude), frequency=f,
+                   phase=math.radians(phase_deg))  # fmt: skip
 
     @classmethod
     def spin_up(cls, duration: float, rate: float) -> TimeFunction:
-        if not (np.isfinite(duration) and duration > 0):
-            raise InputError("spin_up", duration, "a duration > 0 [s]")
-        return cls("spin_up", _vec("rate", rate), duration=float(duration))
+        """The spin-up angle law (T.5) reaching the rate ``rate`` [rad/s] at ``duration``."""
+        values, vector = _values("rate", rate)
+        if vector:
+            raise InputError("rate", rate, "a number (the final angular rate [rad/s])")
+        return cls("spin_up", values, duration=_positive("spin_up", duration))
 
     @classmethod
     def table(cls, rows: ArrayLike, interpolation: str = "linear") -> TimeFunction:
+        """Rows ``[t, v...]`` interpolated linearly or by the not-a-knot cubic spline (T.2).
+
+        One value per row gives a scalar function, several a vector function.
+        """
         a = np.asarray(rows, dtype=float)
         if a.ndim != 2 or a.shape[0] < 2 or a.shape[1] < 2 or not np.all(np.isfinite(a)):
             raise InputError("table", rows, "at least two rows [t, v...] of finite numbers")
         if np.any(np.diff(a[:, 0]) <= 0):
-            raise InputError("table", a[:, 0].tolist(), "strictly increasing times")
+            raise InputError("table", a[:, 0], "rows with strictly increasing times")
         if interpolation not in ("linear", "cubic"):
             raise InputError("interpolation", interpolation, 'one of "linear", "cubic"')
-        if interpolation == "cubic" and a.shape[0] < 3:
-            interpolation = "linear"  # two points: the cubic spline is the line
-        return cls("table", tuple(a[0, 1:]), rows=a, interpolation=interpolation)
+        vector = a.shape[1] > 2
+        return cls("table", tuple(a[0, 1:].tolist()), vector, rows=a, interpolation=interpolation)
 
     @classmethod
-    def from_callable(
-        cls, fn: Callable[[float], ArrayLike], t_end: float, samples: int = 2001
-    ) -> TimeFunction:
-        t = np.linspace(0.0, float(t_end), int(samples))
-        vals = np.array([np.atleast_1d(np.asarray(fn(float(x)), dtype=float)) for x in t])
-        return cls.table(np.column_stack([t, vals]), "cubic")
+    def from_callable(cls, fn: Callable[[float], Any]) -> TimeFunction:
+        """A Python function ``fn(t)`` (a number or a vector); derivatives by central
+        differences (module docstring)."""
+        if not callable(fn):
+            raise InputError("time function", fn, "a callable f(t)")
+        values, vector = _values("f(0)", fn(0.0))
+        return cls("callable", values, vector, fn=fn)
 
-    # ---------------------------------------------------------------- packing for the core
+    # ------------------------------------------------------------------ evaluation
+    @property
+    def size(self) -> int:
+        """Number of components."""
+        return len(self.values)
+
+    def value(self, t: float) -> float | NDArray[np.float64]:
+        """``f(t)``: a float, or an array of ``size`` for vector functions."""
+        return self._eval(t, 0)
+
+    def rate(self, t: float) -> float | NDArray[np.float64]:
+        """``f'(t)``."""
+        return self._eval(t, 1)
+
+    def acceleration(self, t: float) -> float | NDArray[np.float64]:
+        """``f''(t)``."""
+        return self._eval(t, 2)
+
+    def __call__(self, t: float) -> float | NDArray[np.float64]:
+        return self._eval(t, 0)
+
+    def _eval(self, t: float, order: int) -> float | NDArray[np.float64]:
+        t = float(t)
+        if self.kind == "callable":
+            v = self._callable(t, order)
+        else:
+            v = self._exact(t, order)
+        return v if self.vector else float(v[0])
+
+    def _exact(self, t: float, order: int) -> NDArray[np.float64]:
+        c = np.array(self.values)
+        if self.kind == "constant":
+            return c if order == 0 else 0.0 * c
+        if self.kind == "ramp":
+            inside = 0.0 <= t < self.duration
+            if order == 0:
+                return c * min(max(t, 0.0) / self.duration, 1.0)
+            return c / self.duration if order == 1 and inside else 0.0 * c
+        if self.kind == "harmonic":
+            w = 2.0 * math.pi * self.frequency
+            arg = w * t + self.phase
+            return c * (math.sin(arg), w * math.cos(arg), -w * w * math.sin(arg))[order]
+        if self.kind == "spin_up":
+            return c * 0.0 + float(spin_up_angle(t, self.duration, c[0], order))
+        return self._table(t, order)
+
+    def _table(self, t: float, order: int) -> NDArray[np.float64]:
+        rows = self.rows
+        assert rows is not None
+        ts, vs = rows[:, 0], rows[:, 1:]
+        if t < ts[0] or t >= ts[-1]:
+            held = vs[0] if t < ts[0] else vs[-1]
+            return held.copy() if order == 0 else 0.0 * held
+        if self._spline is not None:
+            return np.asarray(self._spline(t, order), dtype=float)
+        i = int(np.searchsorted(ts, t, side="right")) - 1
+        slope = (vs[i + 1] - vs[i]) / (ts[i + 1] - ts[i])
+        return (vs[i] + slope * (t - ts[i]), slope, 0.0 * slope)[order]
+
+    def _callable(self, t: float, order: int) -> NDArray[np.float64]:
+        assert self.fn is not None
+
+        def f(x: float) -> NDArray[np.float64]:
+            return np.atleast_1d(np.asarray(self.fn(x), dtype=float))  # type: ignore[misc]
+
+        if order == 0:
+            return f(t)
+        if order == 1:
+            h = _H1
+            return (f(t + h) - f(t - h)) / (2.0 * h)
+        h = _H2
+        return (f(t + h) - 2.0 * f(t) + f(t - h)) / (h * h)
+
+    # ------------------------------------------------------------------ other forms
+    def sampled(self, t_end: float, samples: int = 2001) -> TimeFunction:
+        """This function sampled on ``samples`` uniform times in ``[0, t_end]`` as a cubic table
+        (for code that cannot call Python; the error falls as the fourth power of the step)."""
+        t = np.linspace(0.0, float(t_end), int(samples))
+        vals = np.array([np.atleast_1d(self._eval(x, 0)) for x in t])
+        out = TimeFunction.table(np.column_stack([t, vals]), "cubic")
+        out.vector = self.vector
+        return out
+
     def coefficients(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-        """Piecewise-cubic breakpoints ``(k + 1,)`` and coefficients ``(k, 4, n)`` (``c0 + c1 s
-        + c2 s² + c3 s³``, ``s = t − t_i``) of a table; empty for the other kinds."""
+        """A table's breakpoints ``(k + 1,)`` and piecewise-cubic coefficients ``(k, 4, n)``
+        (``c0 + c1 s + c2 s² + c3 s³``, ``s = t − t_i``); empty arrays for the other kinds."""
         if self.kind != "table" or self.rows is None:
             return np.zeros(0), np.zeros(0)
         t, v = self.rows[:, 0], self.rows[:, 1:]
-        k, n = t.size - 1, v.shape[1]
-        coef = np.zeros((k, 4, n))
-        if self.interpolation == "linear":
+        coef = np.zeros((t.size - 1, 4, v.shape[1]))
+        if self._spline is None:
             coef[:, 0] = v[:-1]
             coef[:, 1] = np.diff(v, axis=0) / np.diff(t)[:, None]
         else:
-            from scipy.interpolate import CubicSpline
-
-            c = CubicSpline(t, v, axis=0, bc_type="not-a-knot").c  # (4, k, n), highest first
-            coef = np.transpose(c[::-1], (1, 0, 2))
+            coef = np.transpose(self._spline.c[::-1], (1, 0, 2))
         return t.copy(), np.ascontiguousarray(coef)
+
+    def to_toml(self) -> float | list[float] | dict[str, Any]:
+        """The scenario file's form of this function (a callable has none)."""
+
+        def val(v: tuple[float, ...]) -> float | list[float]:
+            return list(v) if self.vector else v[0]
+
+        if self.kind == "constant":
+            return val(self.values)
+        if self.kind == "ramp":
+            return {"ramp": self.duration, "value": val(self.values)}
+        if self.kind == "harmonic":
+            return {"harmonic": self.frequency, "amplitude": val(self.values),
+                    "phase_deg": math.degrees(self.phase)}  # fmt: skip
+        if self.kind == "spin_up":
+            return {"spin_up": self.duration, "rate": self.values[0]}
+        if self.kind == "table":
+            assert self.rows is not None
+            return {"table": self.rows.tolist(), "interpolation": self.interpolation}
+        raise InputError("time function", self.fn, "a function given by its kind (not a callable)")
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, TimeFunction):
+            return NotImplemented
+        if self.kind == "callable" or other.kind == "callable":
+            return self.fn is other.fn
+        rows_equal = (self.rows is None and other.rows is None) or (
+            self.rows is not None and other.rows is not None
+            and np.array_equal(self.rows, other.rows)
+        )  # fmt: skip
+        same = (self.kind, self.values, self.vector, self.duration, self.frequency, self.phase)
+        return rows_equal and same == (other.kind, other.values, other.vector, other.duration,
+                                       other.frequency, other.phase)  # fmt: skip
+
+    __hash__ = None  # type: ignore[assignment]
+
+    def __repr__(self) -> str:
+        if self.kind == "callable":
+            return f"TimeFunction.from_callable({self.fn!r})"
+        return f"TimeFunction({self.to_toml()!r})"
 
 
 def pack(functions: Sequence[TimeFunction]) -> dict[str, NDArray]:
-    """The core's arrays of a list of time functions (``tf_*`` of ``rancf._core.System``)."""
+    """The core's arrays of a list of time functions (``tf_*`` of ``rancf._core.System``).
+
+    A callable cannot be called from the compiled loop: pack ``f.sampled(t_end)`` instead.
+    """
     kinds, sizes, values, vstart, params, breaks, bstart, coef, cstart = ([] for _ in range(9))
     nv = nb = nc = 0
     for f in functions:
-        kinds.append(KINDS[f.kind])
+        if f.kind not in CORE_KINDS:
+            raise InputError("time function", f.fn, "a function the core evaluates (sample a "
+                             "Python callable first: f.sampled(t_end))")  # fmt: skip
+        kinds.append(CORE_KINDS[f.kind])
         sizes.append(f.size)
         vstart.append(nv)
-        values += list(f.value)
+        values += list(f.values)
         nv += f.size
         params += [f.duration, f.frequency, f.phase]
         b, c = f.coefficients()

@@ -9,7 +9,7 @@ and an entry of ``summary.json``'s ``"warnings"`` list.
 The axial strain is the elements' own Green–Lagrange measure at the section sample points
 (:class:`rancf.model.sections.SectionSampler`: the compiled core's strain, at ``ξ = 0, 1/4, 1/2,
 3/4`` of every element and the last node); a run's outputs track it as they are written
-(:class:`rancf.model.outputs.DerivedOutputs`), so checking it costs nothing extra.
+(:class:`rancf.system.outputs.SystemOutputs`), so checking it costs nothing extra.
 """
 
 from __future__ import annotations
@@ -19,6 +19,7 @@ from numpy.typing import NDArray
 
 from rancf.model.sections import SectionSampler
 from rancf.model.system import Model
+from rancf.system import System
 
 __all__ = [
     "STRAIN_LIMIT",
@@ -37,8 +38,16 @@ STRAIN_LIMIT = 0.10
 RADIUS_LIMIT = 0.1
 
 
-def section_warnings(model: Model) -> list[str]:
-    """A warning if the section's radius exceeds a tenth of the body's reference length."""
+def section_warnings(model: Model | System) -> list[str]:
+    """A warning if the section's radius exceeds a tenth of the body's reference length (every
+    flexible body of a system, named)."""
+    if isinstance(model, System):
+        many = len(model.flex) > 1
+        return [
+            (f"{name}: " if many else "") + w
+            for name, b in zip(model.names, model.flex, strict=False)
+            for w in section_warnings(b)
+        ]
     r = model.section.radius
     length = float(SectionSampler(model, 1).s[-1])  # the reference arc length
     if r <= RADIUS_LIMIT * length:
@@ -71,15 +80,17 @@ def at_load_factor(lam: float) -> str:
 
 
 def run_warnings(
-    model: Model,
+    model: Model | System,
     t: NDArray | None = None,
     q: NDArray | None = None,
     static: bool = False,
     largest: tuple[float, float] | None = None,
 ) -> list[str]:
     """Every warning of a run: the section's radius, and the largest axial strain — ``largest =
-    (strain, t)`` as a :class:`~rancf.model.outputs.DerivedOutputs` tracked it, or of the states
-    ``q (n_t, n)`` at times (or load factors, ``static``) ``t``."""
+    (strain, t)`` as a :class:`~rancf.system.outputs.SystemOutputs` tracked it, or of a model's
+    states ``q (n_t, n)`` at times (or load factors, ``static``) ``t``."""
+    if largest is None and isinstance(model, System):
+        largest = (0.0, 0.0)
     if largest is None:
         largest = (
             largest_strain(model, np.atleast_1d(t), np.atleast_2d(q))

@@ -23,7 +23,6 @@ import contextlib
 import datetime
 import os
 import shutil
-from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
@@ -32,12 +31,13 @@ from numpy.typing import NDArray
 
 from rancf.atomic import FileSet, atomic_write
 from rancf.errors import RunTooLargeError
-from rancf.model.outputs import DerivedOutputs
-from rancf.model.scenario_sensors import Sensor
-from rancf.model.system import Model
-from rancf.post.results import strict_json, write_history_files
+from rancf.post.results import strict_json
+from rancf.post.run_files import DERIVED, write_history_files
+from rancf.system.outputs import SystemOutputs
 
-__all__ = ["HistoryStore", "estimate_output_bytes", "check_output_size", "HISTORY_FILES"]
+__all__ = [
+    "HistoryStore", "estimate_output_bytes", "check_output_size", "plan_run", "HISTORY_FILES",
+]  # fmt: skip
 
 #: The files a run directory's history is kept in (replaced together at each checkpoint).
 HISTORY_FILES = ("sensors.csv", "energy.csv", "reactions.csv", "results.npz")
@@ -86,6 +86,26 @@ def check_output_size(
         )
 
 
+def plan_run(
+    sc: Any, limit_gb: float, limit_name: str = "--max-output-gb"
+) -> tuple[Any, SystemOutputs]:
+    """The system of scenario ``sc`` and its outputs, after checking the run's files fit in
+    ``limit_gb`` (:func:`check_output_size`; a system of several bodies also keeps every
+    flexible body's ``q``, ``v``, ``a`` in ``bodies/NAME/``)."""
+    from rancf.scenario.system_build import build_system, support_labels
+
+    system = build_system(sc)
+    outputs = SystemOutputs(system, sc.sensors, support_labels(sc))
+    n_derived = len(outputs.reaction_names) + outputs.n_along + system.m
+    if system.single is None:
+        n_derived += 3 * sum(b.n for b in system.flex)
+    check_output_size(
+        sc.path, sc.dynamic_options().n_outputs, system.n, len(outputs.sensor_names),
+        outputs.n_directors, limit_gb, limit_name, n_derived,
+    )  # fmt: skip
+    return system, outputs
+
+
 def _now() -> str:
     return datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds")
 
@@ -97,8 +117,8 @@ class HistoryStore:
     ----------
     out : Path
         The run directory (must exist).
-    model : Model
-    sensors : sequence of Sensor
+    outputs : SystemOutputs
+        The system, its sensors and what is derived from the stored rows.
     info : dict
         Extra keys of ``summary.json`` (scenario path, wall times, ...).
     buffer_bytes : int
@@ -108,27 +128,24 @@ class HistoryStore:
     def __init__(
         self,
         out: Path,
-        model: Model,
-        sensors: Sequence[Sensor],
+        outputs: SystemOutputs,
         info: dict[str, Any],
         buffer_bytes: int = 1 << 23,
-        derived: DerivedOutputs | None = None,
     ) -> None:
         self.out = Path(out)
-        self.model = model
-        self.sensors = sensors
+        self.outputs = outputs
+        s = outputs.system
+        self.per_body = not (s.single is not None and len(s.flex) == 1)
         self.info = {"pid": os.getpid(), "started_at": _now(), **info}
-        self.derived = derived if derived is not None else DerivedOutputs(model)
         self.raw = self.out / ".history"
         self.raw.mkdir(exist_ok=True)
         # rods: the nodal directors too ("m", 3 numbers a node)
-        self._keys = _FILES + (("m",) if model.element == "rod" else ())
-        # derived at every flush from the buffered rows: accelerations "a", reactions "r",
-        # section values "s"
-        files = self._keys + ("a", "r", "s")
+        self._keys = _FILES + (("m",) if outputs.n_directors else ())
+        # derived at every flush from the buffered rows (rancf.post.run_files.DERIVED)
+        files = self._keys + DERIVED
         self._fh = {k: open(self.raw / f"{k}.f64", "wb") for k in files}  # noqa: SIM115
         self._buf: dict[str, list[NDArray]] = {k: [] for k in self._keys}
-        self._rows_per_flush = max(1, buffer_bytes // (16 * model.n + 32))
+        self._rows_per_flush = max(1, buffer_bytes // (16 * outputs.n_q + 32))
         self.n_rows = 0
         self._pending = 0
         #: Rows and last time of the history files on disk (the last complete checkpoint).
@@ -157,8 +174,8 @@ class HistoryStore:
         lam: NDArray | None = None,
     ) -> None:
         """Store consecutive outputs: ``t (k,)``, ``q, v (k, n_q)``, ``energy (k, 3)``, rods'
-        ``directors (k, n_nodes, 3)`` (``lam``: multipliers of a system's joints, unused for one
-        body)."""
+        ``directors (k, n_rod_nodes, 3)`` (``lam``, the integrator's multipliers, is not kept:
+        the files hold the consistent ones)."""
         self._add((t, q, v, energy, directors), len(t))
 
     def _add(self, values: tuple[NDArray | None, ...], rows: int) -> None:
@@ -171,18 +188,19 @@ class HistoryStore:
             self.flush()
 
     def flush(self) -> None:
-        """Append the buffered outputs, and their reactions and section values, to the raw
-        files (an error of a full disk names the file)."""
+        """Append the buffered outputs, and what is derived from them, to the raw files (an
+        error of a full disk names the file)."""
         key = "t"
         try:
             if self._pending:
                 rows = {k: np.concatenate(self._buf[k]) for k in self._keys}
                 k = self._pending
-                acc, reac, along = self.derived.rows(
+                derived = self.outputs.rows(
                     rows["t"], rows["q"].reshape(k, -1), rows["v"].reshape(k, -1),
-                    rows["m"].reshape(k, -1) if "m" in rows else None,
+                    rows["m"].reshape(k, -1) if "m" in rows else None, rows["e"].reshape(k, 3),
+                    per_body=self.per_body,
                 )  # fmt: skip
-                rows["a"], rows["r"], rows["s"] = acc.ravel(), reac.ravel(), along.ravel()
+                rows.update({d: derived[d].ravel() for d in DERIVED})
                 for key, val in rows.items():
                     self._fh[key].write(np.ascontiguousarray(val, dtype="<f8").tobytes())
                     self._buf.get(key, []).clear()
@@ -194,25 +212,31 @@ class HistoryStore:
         self.n_rows += self._pending
         self._pending = 0
 
-    def _arrays(self) -> tuple[NDArray, ...]:
-        n, nq = self.n_rows, self.model.q0.size
+    def _arrays(self) -> tuple[dict[str, NDArray], NDArray | None]:
+        n, o = self.n_rows, self.outputs
+        s = o.system
+        widths = {
+            "t": 1, "q": o.n_q, "v": o.n_q, "e": 3, "m": o.n_directors, "a": o.n_q, "lam": s.m,
+            "r": len(o.reaction_names), "s": o.n_along, "c": len(o.sensor_names),
+            "eb": 3 * len(s.flex) if self.per_body else 0,
+        }  # fmt: skip
 
-        def mm(key: str, width: int) -> NDArray:
-            arr = np.memmap(self.raw / f"{key}.f64", dtype="<f8", mode="r", shape=(n * width,))
-            return arr.reshape(n, width) if width > 1 else arr
+        def mm(key: str) -> NDArray:
+            w = widths[key]
+            if n * w == 0:
+                return np.empty((n, w)) if key != "t" else np.empty(0)
+            arr = np.memmap(self.raw / f"{key}.f64", dtype="<f8", mode="r", shape=(n * w,))
+            return arr if key == "t" else arr.reshape(n, w)
 
-        m1 = mm("m", 3 * self.model.n_nodes) if "m" in self._keys else None
-        d = self.derived
-        n_r, n_s = len(d.reaction_names), d.n_points * len(d.section_names)
-        r = mm("r", n_r).reshape(n, n_r) if n_r else np.empty((n, 0))
-        return mm("t", 1), mm("q", nq), mm("v", nq), mm("e", 3), m1, mm("a", nq), r, mm("s", n_s)
+        arrays = {k: mm(k) for k in (*_FILES, *DERIVED)}
+        return arrays, (mm("m") if "m" in self._keys else None)
 
     def states(self) -> tuple[NDArray, NDArray]:
         """Times ``(n,)`` and coordinates ``q (n, n_q)`` of the outputs stored so far (memory
         maps of the raw files)."""
         self.flush()
-        t, q, *_ = self._arrays()
-        return t, q
+        arrays, _ = self._arrays()
+        return arrays["t"], arrays["q"]
 
     def _summary_text(self, summary: dict[str, Any]) -> str:
         return strict_json({**summary, **self.info, "updated_at": _now()})
@@ -225,13 +249,11 @@ class HistoryStore:
         """Flush; replace ``sensors.csv``, ``energy.csv``, ``results.npz`` and the summary
         together."""
         self.flush()
-        arrays = self._arrays()
-        t, q, v, e, m1, a, r, along = arrays
+        arr, m1 = self._arrays()
+        t = arr["t"]
         with FileSet() as files:
-            write_history_files(
-                self.out, self.model, self.sensors, t, q, v, e, m1, self.derived, (a, r, along),
-                files=files,
-            )  # fmt: skip
+            write_history_files(self.out, self.outputs, t, arr["q"], arr["v"], arr["e"], m1,
+                                {k: arr[k] for k in DERIVED}, files=files)  # fmt: skip
             files.write(self.out / "summary.json", self._summary_text(summary))
         self.saved_rows = self.n_rows
         self.saved_t = float(t[-1]) if self.n_rows else None
@@ -275,6 +297,8 @@ class HistoryStore:
         for name in (*HISTORY_FILES, "summary.json"):
             with contextlib.suppress(OSError):
                 (self.out / name).unlink()
+        if self.per_body:
+            shutil.rmtree(self.out / "bodies", ignore_errors=True)
 
     def close(self) -> None:
         """Close the raw files (they stay on disk)."""

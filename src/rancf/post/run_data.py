@@ -203,7 +203,7 @@ def load_run(run_dir: str | Path) -> RunData:
     sc = None
     if sc_path is not None:
         from rancf.errors import ScenarioError
-        from rancf.model.scenario import load_scenario
+        from rancf.scenario import load_scenario
 
         try:
             sc = load_scenario(sc_path)

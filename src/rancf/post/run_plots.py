@@ -21,7 +21,7 @@ from rancf.extras import require
 from rancf.post.plots import pyplot, save_figure
 from rancf.post.run_data import RunData, frame_indices, sample_centerline
 
-__all__ = ["plot_run", "animate_run"]
+__all__ = ["plot_run", "animate_run", "plot_series"]
 
 
 def _space_axes(fig: Any, run: RunData, pts: NDArray, position: Any = 111) -> Any:
@@ -77,10 +77,11 @@ def plot_run(run: RunData, out_dir: str | Path, n_configurations: int = 6) -> li
         return _plot_run(run, out, n_configurations, files)
 
 
-def _plot_run(run: RunData, out: Path, n_configurations: int, files: FileSet) -> list[Path]:
+def plot_series(run: Any, out: Path, files: FileSet) -> list[Path]:
+    """``sensors.png`` (every sensor column over time; none without sensors) and ``energy.png``
+    of a run (a :class:`RunData` or a system's run) into the set ``files``."""
     plt = pyplot()
     written = []
-
     cols = run.sensor_names
     if cols:
         fig, axes = plt.subplots(
@@ -93,9 +94,9 @@ def _plot_run(run: RunData, out: Path, n_configurations: int, files: FileSet) ->
         )
         for k, name in enumerate(cols):
             axes[k, 0].plot(run.t, run.sensors[:, k])
-            axes[k, 0].set_ylabel(f"{name} [m]")
+            axes[k, 0].set_ylabel(name)
         axes[-1, 0].set_xlabel(run.time_label)
-        fig.suptitle(f"sensors of {run.name}")
+        fig.suptitle(f"sensors of {run.name} (SI units)")
         written.append(out / "sensors.png")
         save_figure(fig, written[-1], 100, files)
 
@@ -110,6 +111,12 @@ def _plot_run(run: RunData, out: Path, n_configurations: int, files: FileSet) ->
     ax.set_title(f"energies of {run.name}")
     written.append(out / "energy.png")
     save_figure(fig, written[-1], 100, files)
+    return written
+
+
+def _plot_run(run: RunData, out: Path, n_configurations: int, files: FileSet) -> list[Path]:
+    plt = pyplot()
+    written = plot_series(run, out, files)
 
     idx = np.unique(np.linspace(0, run.t.size - 1, max(n_configurations, 1)).round().astype(int))
     lines = _pad(np.array([sample_centerline(run, int(i)).points for i in idx]))

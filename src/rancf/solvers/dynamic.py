@@ -310,9 +310,7 @@ def integrate(
         qs, vs = system.q_from_y(oy), system.q_from_y(ov)
         m1 = directors(oy[-1])
         ll = ol if mult else None
-        target_sink.append_block(
-            ts, qs, vs, oe, directors=None if m1 is None else m1[None], lam=ll
-        )
+        target_sink.append_block(ts, qs, vs, oe, directors=None if m1 is None else m1[None], lam=ll)
         last[:] = [(float(ts[-1]), qs[-1], vs[-1], np.array(oe[-1]), m1,
                     None if ll is None else ll[-1])]  # fmt: skip
         result.n_outputs += len(oy)
@@ -373,7 +371,15 @@ def integrate(
         if fast and h == o.step and k_out < n_grid and on_grid:
             n_chunk = min(chunk_out, n_grid - k_out)
             done, st, iters, stored, oy, ov, oe, ol = integ.run_steps(
-                y, v, a, t, o.step, n_chunk * per_out - within, per_out, within, CALL_SECONDS,
+                y,
+                v,
+                a,
+                t,
+                o.step,
+                n_chunk * per_out - within,
+                per_out,
+                within,
+                CALL_SECONDS,
                 lam,
             )
             result.took(o.step, done)

@@ -138,7 +138,21 @@ def solve_static(
     )
 
 
-def start_state(sc: Any, model: Model) -> tuple[NDArray[np.float64] | None, dict[str, Any]]:
+def _one_model(model: Model | System) -> Model | System:
+    """A system of one flexible body without time functions as its model (the one-body
+    equilibrium path, installation stages included); else the system."""
+    if not isinstance(model, System) or model.single is None or len(model.flex) != 1:
+        return model
+    body = model.flex[0]
+    timed = any(s.motion is not None for s in body.supports) or any(
+        p.time is not None for p in body.point_loads
+    )
+    return model if timed or model.loads else body
+
+
+def start_state(
+    sc: Any, model: Model | System
+) -> tuple[NDArray[np.float64] | None, dict[str, Any]]:
     """Where a scenario's dynamic run starts: ``(None, info)`` from the reference, or the static
     equilibrium's model coordinates (``solver.initial_state = "static"``: loads as they act at
     ``t = 0``, supports installed) and the ``summary.json`` entries describing it.
@@ -159,7 +173,7 @@ def start_state(sc: Any, model: Model) -> tuple[NDArray[np.float64] | None, dict
             )
         return None, {"initial_state": "reference"}
     res = solve_static(
-        model, sc.solver["load_steps"], method=sc.solver["static_method"], at_time=0.0
+        _one_model(model), sc.solver["load_steps"], method=sc.solver["static_method"], at_time=0.0
     )
     info = {
         "initial_state": "static",

@@ -16,8 +16,8 @@ from numpy.typing import NDArray
 
 from rancf.atomic import atomic_write
 from rancf.errors import ConvergenceError
-from rancf.model.scenario import Scenario, parse_scenario
 from rancf.model.system import Model
+from rancf.scenario import Scenario, parse_scenario
 from rancf.solvers.dynamic import DynamicOptions, DynamicResult, DynamicStatus, integrate
 from rancf.studies.grid import Executor, GridRun, grid_variant, run_grid, variant_raw
 
@@ -49,6 +49,10 @@ EXAMPLES = {
 SCENARIO_ANALYSES: dict[str, tuple[str, ...]] = {
     "cantilever": ("static", "modes"),
     "installed-hose": ("static", "simulate"),
+    "robot-cable": ("simulate",),
+    "slider-crank": ("simulate",),
+    "spin-up-beam": ("simulate",),
+    "tether-payload": ("simulate",),
 }
 
 
@@ -71,7 +75,7 @@ def variant(raw: dict[str, Any], name: str, **changes: Any) -> tuple[Scenario, M
 
 def run(sc: Scenario, model: Model, **overrides: Any) -> DynamicResult:
     """Integrate a scenario's model with its ``[solver]`` settings (``overrides`` win)."""
-    s = dict(sc.solver)
+    s = dict(sc.data["solver"])
     s.update(overrides)
     keys = ("t_end", "step", "rho_inf", "adaptive", "rtol", "min_step", "output_step")
     keys += ("newton_tol", "max_newton", "newton")

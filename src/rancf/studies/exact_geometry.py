@@ -166,10 +166,10 @@ def _exudyn_errors(
 
     if not exudyn_cable.AVAILABLE:
         return None
-    from rancf.model.scenario import parse_scenario
+    from rancf.scenario import parse_scenario
 
     sc = parse_scenario(raw, NAME)
-    g, s = sc.data["geometry"], sc.solver
+    g, s = sc.data["geometry"], sc.data["solver"]
     from rancf.geometry.conic import conic_arc_through
     from rancf.model.mesh import mesh_conic, to_ancf
 

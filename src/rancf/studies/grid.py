@@ -42,7 +42,7 @@ class GridRun(dict):  # type: ignore[type-arg]
 
     def __missing__(self, key: str) -> Any:
         if key == "model":
-            from rancf.model.scenario import load_scenario
+            from rancf.scenario import load_scenario
 
             value: Any = load_scenario(self["folder"] / "scenario.toml").build_model()
         elif key == "result":

@@ -22,7 +22,6 @@ from pathlib import Path
 
 from rancf.atomic import atomic_write
 from rancf.errors import ConvergenceError
-from rancf.model.scenario import load_scenario
 from rancf.post.results import (
     LoadPath,
     sensor_table,
@@ -32,9 +31,13 @@ from rancf.post.results import (
 )
 from rancf.post.run_data import load_run
 from rancf.post.run_plots import plot_run
+from rancf.scenario import load_scenario
 from rancf.studies.common import SCENARIO_ANALYSES, StudyResult, example_path
 
 __all__ = ["run_scenario"]
+
+#: The disk an example's dynamic run may take [GB].
+MAX_EXAMPLE_GB = 2.0
 
 
 def _describe(text: str) -> str:
@@ -48,7 +51,13 @@ def _describe(text: str) -> str:
 
 
 def _figures(res: StudyResult, out: Path, run_dir: Path, what: str, skip: str = "") -> None:
-    for path in plot_run(load_run(run_dir), run_dir / "plots"):
+    from rancf.post.system_run import is_system_run, load_system_run, plot_system_run
+
+    if is_system_run(run_dir):
+        paths = plot_system_run(load_system_run(run_dir), run_dir / "plots")
+    else:
+        paths = plot_run(load_run(run_dir), run_dir / "plots")
+    for path in paths:
         if path.stem != skip:
             res.figures.append((f"{what}: {path.stem}", str(path.relative_to(out))))
 
@@ -76,7 +85,7 @@ def run_scenario(name: str, out: str | Path, quick: bool = False) -> StudyResult
         f"`rancf example run {name}` runs: {', '.join(SCENARIO_ANALYSES[name])}."
     )
     sc = load_scenario(scenario)
-    model = sc.build_model()
+    model = None if sc.is_system else sc.build_model()  # systems: simulate only
     for analysis in SCENARIO_ANALYSES[name]:
         if analysis == "static":
             from rancf.solvers.static import solve_static
@@ -97,7 +106,8 @@ def run_scenario(name: str, out: str | Path, quick: bool = False) -> StudyResult
                     summary = write_static_run(out / "static", path, sc.sensors, info)
             _notes(res, summary)
             _figures(res, out, out / "static", "static load path", skip="energy")
-            names, vals = sensor_table(model, sc.sensors, st.q)
+            names, vals = sensor_table(model, sc.sensors, st.q, static=True,
+                                       t=st.load_factors[-1:])  # fmt: skip
             res.add_table(
                 out,
                 f"Static equilibrium: {len(st.load_factors) - 1} load steps, "
@@ -128,16 +138,19 @@ def run_scenario(name: str, out: str | Path, quick: bool = False) -> StudyResult
                 "modes.csv",
             )
         else:  # simulate
+            from rancf.post.history import plan_run
             from rancf.solvers.dynamic import integrate
             from rancf.solvers.static import start_state
 
-            y0, start = start_state(sc, model)
-            result = integrate(model, sc.dynamic_options(), initial=y0)
+            system, outputs = plan_run(sc, MAX_EXAMPLE_GB, "the limit of an example run (GB)")
+            y0, start = start_state(sc, system)
+            result = integrate(system, sc.dynamic_options(), initial=y0)
             extra = {"scenario": str(scenario.resolve()), **start}
-            summary = write_run(out / "run", model, sc.sensors, result, extra, sc.support_labels)
+            summary = write_run(out / "run", system, sc.sensors, result, extra, outputs=outputs)
             _notes(res, summary)
             _figures(res, out, out / "run", "simulation")
-            names, vals = sensor_table(model, sc.sensors, result.q[-1:])
+            names, vals = sensor_table(outputs, sc.sensors, result.q[-1:], result.v[-1:],
+                                       t=result.t[-1:])  # fmt: skip
             res.add_table(
                 out,
                 f"Simulation: {summary['status']}, t = {result.t_reached:g} s, "

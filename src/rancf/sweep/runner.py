@@ -36,30 +36,23 @@ def _analyse(sc: Any, analysis: str, folder: Path) -> tuple[str, str, float, dic
     """Run the analysis; returns status, message, solve time and the row's result values."""
     from rancf.post.results import sensor_table, write_run
 
-    model = sc.build_model()
     if analysis == "simulate":
-        from rancf.model.outputs import DerivedOutputs
-        from rancf.post.history import check_output_size
+        from rancf.post.history import plan_run
         from rancf.solvers.dynamic import integrate
         from rancf.solvers.static import start_state
 
-        opts = sc.dynamic_options()
-        n_cols = sum(len(s.columns(model.dim)) for s in sc.sensors)
-        rods = 3 * model.n_nodes if model.element == "rod" else 0
-        derived = DerivedOutputs(model, sc.support_labels)
-        n_derived = len(derived.reaction_names) + derived.n_points * len(derived.section_names)
-        check_output_size(
-            sc.path, opts.n_outputs, model.q0.size, n_cols, rods, MAX_RUN_GB, LIMIT, n_derived
-        )
-        y0, start = start_state(sc, model)
-        res = integrate(model, opts, initial=y0)
+        system, outputs = plan_run(sc, MAX_RUN_GB, LIMIT)
+        y0, start = start_state(sc, system)
+        res = integrate(system, sc.dynamic_options(), initial=y0)
         extra = {"scenario": str(folder / "scenario.toml"), **start}
-        summary = write_run(folder, model, sc.sensors, res, extra, sc.support_labels)
+        summary = write_run(folder, system, sc.sensors, res, extra, outputs=outputs)
         energy = [[res.kinetic[-1], res.strain[-1], res.gravity[-1]]]
-        names, vals = sensor_table(model, sc.sensors, res.q[-1:], res.v[-1:], energy)
+        names, vals = sensor_table(outputs, sc.sensors, res.q[-1:], res.v[-1:], energy,
+                                   t=res.t[-1:])  # fmt: skip
         values = {"t_reached": float(res.t_reached), "steps": float(res.n_steps)}
         values.update(zip(names, map(float, vals[0]), strict=True))
         return summary["status"], res.message, float(res.wall_time), values
+    model = sc.build_model()
     if analysis == "static":
         from rancf.post.results import LoadPath, write_static_run
         from rancf.solvers.static import solve_static
@@ -70,7 +63,8 @@ def _analyse(sc: Any, analysis: str, folder: Path) -> tuple[str, str, float, dic
             model, sc.solver["load_steps"], on_step=path.record, method=sc.solver["static_method"]
         )
         wall = time.perf_counter() - t0
-        names, vals = sensor_table(model, sc.sensors, res.q)
+        names, vals = sensor_table(model, sc.sensors, res.q, static=True,
+                                   t=res.load_factors[-1:])  # fmt: skip
         values = dict(zip(names, map(float, vals[0]), strict=True))
         out = {"positions": model.node_positions(res.q).tolist(), "sensors": values}
         atomic_write(folder / "static.json", strict_json(out))
@@ -93,7 +87,7 @@ def run_variant(
     name: str, raw: dict[str, Any], base: str, analysis: str, folder: str
 ) -> dict[str, Any]:
     """Run one variant into ``folder``; never raises for a failing model (the row says so)."""
-    from rancf.model.scenario import parse_scenario
+    from rancf.scenario import parse_scenario
 
     t0 = time.perf_counter()
     out = Path(folder)

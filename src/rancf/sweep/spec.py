@@ -71,7 +71,7 @@ def _slug(v: Any) -> str:
 
 def load_sweep(path: str | Path) -> SweepSpec:
     """Read and validate ``SWEEP.toml`` (and every variant of its base scenario)."""
-    from rancf.model.scenario import parse_scenario
+    from rancf.scenario import parse_scenario
 
     p = Path(path)
     where = str(p)

@@ -24,8 +24,10 @@ from rancf.errors import InputError
 from rancf.kernels import _core
 from rancf.model.rigid import PointMass, RigidBody
 from rancf.model.system import Model
-from rancf.model.time_function import TimeFunction, pack
-from rancf.system.contact import CONTACT_POINTS, Obstacle, build_contact
+from rancf.model.time_function import TimeFunction
+from rancf.system.contact import CONTACT_POINTS, Obstacle
+from rancf.system.core_data import attach_contact, build_core
+from rancf.system.joint_data import joint_data
 from rancf.system.parts import JOINT_KINDS, Joint, Load, Spring
 from rancf.system.places import Place
 
@@ -33,7 +35,6 @@ __all__ = ["System", "Body"]
 
 Body = Model | RigidBody | PointMass
 _NODE_KIND = {"rancf": 1, "ancf": 1, "rod": 2, "beam": 3}
-_KIND = {"pin": 0, "fixed": 1, "tangent": 2, "revolute": 3, "slider": 4}
 
 
 @dataclass
@@ -69,6 +70,12 @@ class System:
         The pairs in contact; default every flexible body with every obstacle.
     contact_points : int
         Gauss points per element at which contact is evaluated.
+    observe : sequence of places
+        Places on bodies whose position and frame outputs read (:meth:`place_state`).
+    horizon : float, optional
+        The end of the runs [s]: time functions given as Python callables are sampled on
+        ``[0, horizon]`` (a cubic table of 2001 points, :meth:`TimeFunction.sampled`) for the
+        compiled loop; required when there are such functions.
     """
 
     def __init__(
@@ -79,6 +86,8 @@ class System:
         loads: Sequence[Load] = (),
         gravity: ArrayLike | None = None,
         damping: float = 0.0,
+        observe: Sequence[Place | str] = (),
+        horizon: float | None = None,
         obstacles: Sequence[Obstacle] = (),
         contacts: Sequence[tuple[str, str]] | None = None,
         contact_points: int = CONTACT_POINTS,
@@ -108,6 +117,7 @@ class System:
         if not (np.isfinite(damping) and damping >= 0):
             raise InputError("damping.mass_proportional", damping, "a finite number >= 0")
         self.damping = float(damping)
+        self.horizon = horizon
         self.offsets: dict[str, int] = {}
         n = 0
         for name, b in flex + rigid:
@@ -130,6 +140,11 @@ class System:
         self._prescribed = self._motions(rows)
         self._spring_rows = [self._spring(s, rows) for s in springs]
         self._load_rows = [self._load(ld, rows) for ld in self._all_loads()]
+        for spec in observe:
+            p = self.resolve(spec)
+            if p.body is None:
+                raise InputError("place", "ground", "a place on a body")
+            self._index(p, rows)
         pre = [self._place(j, rows) for j in joints]  # places first: their reference frames
         self.core = self._build(rows, [])
         self.joint_data = [self._joint(j, ab, rows) for j, ab in zip(joints, pre, strict=True)]
@@ -137,12 +152,29 @@ class System:
         self.m = int(self.core.m)
         self.joint_rows = list(self.core.joint_rows)
         self.obstacles = tuple(obstacles)  # contact (issue 20): attached to the core
-        self.contact, self.obstacle_names, self.contact_pairs = None, [], []
-        if self.obstacles or contacts:
-            self.contact, self.obstacle_names, self.contact_pairs = build_contact(
-                self, self.obstacles, contacts, contact_points
-            )
-            self.core.attach_contact(self.contact)
+        self.contact, self.obstacle_names, self.contact_pairs = attach_contact(
+            self, self.obstacles, contacts, contact_points
+        )
+        self._check_reference()
+
+    def _check_reference(self) -> None:
+        """Every joint holds in the reference configuration at t = 0 (positions to 1e-9 of the
+        system's size; an orientation holds by construction): else one line naming the joint
+        and how far apart its places are."""
+        g = np.empty(self.m)
+        self.core.constraints(self.y0, 0.0, g)
+        for k, j in enumerate(self.joints):
+            rows = g[self.joint_rows[k] : self.joint_rows[k] + (2 if self.dim == 2 else 3)]
+            if j.kind == "slider":
+                rows = g[self.joint_rows[k] : self.joint_rows[k] + self.dim - 1]
+            gap = float(np.linalg.norm(rows))
+            if not gap <= 1e-9 * self.size:
+                name = j.name or f"joints[{k}]"
+                raise InputError(
+                    f"{name}.between", [str(x) for x in j.between],
+                    f"places that coincide in the reference configuration (they are "
+                    f"{gap:.4g} m apart; move the bodies, or the points, so they meet)",
+                )  # fmt: skip
 
     # ---------------------------------------------------------------- places
     def resolve(self, spec: Place | str | int) -> Place:
@@ -186,6 +218,18 @@ class System:
         rows.places.append((kind, body, node, point, motion if p.body is None else -1, angle0))
         self._place_index[key] = len(rows.places) - 1
         return len(rows.places) - 1
+
+    def place_state(
+        self, spec: Place | str, y: NDArray, t: float = 0.0
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Position ``(3,)`` and frame rows ``(k, 3)`` (a cable node: its unit tangent; a rod
+        node or rigid body: its frame; a point mass: none) of a joint's, spring's, load's or
+        observed place at ``y``, ``t``."""
+        key = self.resolve(spec)
+        if key not in self._place_index:
+            raise InputError("place", str(key), "a place of a joint, spring, load or sensor")
+        x, f = self.core.place(self._place_index[key], np.asarray(y, dtype=float), float(t))
+        return np.asarray(x), np.asarray(f).reshape(-1, 3)
 
     def reference_position(self, p: Place) -> NDArray[np.float64]:
         """A place's position in the reference configuration (3 components)."""
@@ -246,17 +290,14 @@ class System:
         return a, b, float(s.stiffness), float(s.damping), length
 
     def _all_loads(self) -> list[Load]:
-        """The loads, and flexible bodies' point forces times a time function."""
+        """The loads, and flexible bodies' point forces (and rods' moments) times a time
+        function."""
         out = list(self.loads)
         for name, b in zip(self.names, self.flex, strict=False):
             for p in b.point_loads:
                 if p.time is None:
                     continue
-                if p.moment is not None:
-                    raise InputError(
-                        "loads.point.time", "moment", "forces (a moment takes frequency_hz)"
-                    )
-                out.append(Load(Place(name, p.node % b.n_nodes), p.force, None, p.time))
+                out.append(Load(Place(name, p.node % b.n_nodes), p.force, p.moment, p.time))
         return out
 
     def _load(self, ld: Load, rows: _Rows) -> tuple[int, NDArray, NDArray, int]:
@@ -287,130 +328,20 @@ class System:
 
     def _joint(self, j: Joint, ab: tuple[int, int], rows: _Rows) -> dict:
         a, b = ab
-        fa, fb = self._frames(a)[1], self._frames(b)[1]
-        d = self.dim
-        info: dict = {"kind": _KIND[j.kind], "a": a, "b": b, "driven": 0, "angle": -1,
-                      "beta0": 0.0, "rel": np.zeros(9), "axis_a": np.zeros(3),
-                      "normals_b": np.zeros(6), "w_a": np.zeros(3), "w_b": np.zeros(3)}  # fmt: skip
-        axis = None
-        if j.axis is not None:
-            axis = np.r_[np.asarray(j.axis, dtype=float), np.zeros(3)][:3]
-            if np.asarray(j.axis).size != d or not np.linalg.norm(axis) > 0:
-                raise InputError("joints.axis", list(j.axis), f"a nonzero vector of {d} numbers")
-            axis = axis / np.linalg.norm(axis)
-        if (
-            j.kind in ("revolute", "slider")
-            and axis is None
-            and not (d == 2 and j.kind == "revolute")
-        ):
-            raise InputError("joints.axis", None, f"required for a {j.kind} joint")
-        need = {"fixed": True, "slider": True}.get(j.kind, j.angle is not None)
-        if need and (len(fb) < 3 or (j.kind != "slider" and len(fa) < 3 and d == 2)):
-            raise InputError(
-                "joints.between",
-                [str(x) for x in j.between],
-                "places with an orientation for this joint (not a point mass)",
-            )
-        if j.angle is not None:
-            if j.kind not in ("pin", "revolute"):
-                raise InputError("joints.angle", "set", "a pin or revolute joint")
-            if j.angle.size != 1:
-                raise InputError("joints.angle", j.angle.size, "a scalar time function [rad]")
-            info["driven"], info["angle"] = 1, rows.tf(j.angle)
-        if d == 2:
-            if j.kind == "revolute":
-                info["kind"] = _KIND["pin"]
-            if j.kind == "fixed" or j.angle is not None:
-                info["beta0"] = float(np.arctan2(fa[0] @ fb[1], fa[0] @ fb[0]))
-            if j.kind == "slider":
-                normal = np.array([-axis[1], axis[0], 0.0])  # type: ignore[index]
-                info["normals_b"][:3] = fb @ normal
-            return info
-        if j.kind == "fixed":
-            if len(fa) == 3 and len(fb) == 3:
-                info["rel"] = (fa @ fb.T).ravel()
-                return info
-            if len(fa) == 1 and len(fb) == 3:
-                info["kind"] = _KIND["tangent"]
-                n1, n2 = _normals(fa[0])
-                info["normals_b"] = np.r_[fb @ n1, fb @ n2]
-                return info
-            raise InputError(
-                "joints.kind",
-                "fixed",
-                "a frame on at least one side (a 3D cable has only a tangent: use rods)",
-            )
-        if j.kind == "slider":
-            if len(fb) < 3:
-                raise InputError("joints.between", str(j.between[1]), "a place with a frame")
-            n1, n2 = _normals(axis)
-            info["normals_b"] = np.r_[fb @ n1, fb @ n2]
-            return info
-        if j.kind == "revolute":
-            if len(fa) < 3 or len(fb) < 3:
-                raise InputError(
-                    "joints.between",
-                    [str(x) for x in j.between],
-                    "places with a frame (a 3D cable node has only a tangent: a rod)",
-                )
-            n1, n2 = _normals(axis)
-            info["axis_a"], info["normals_b"] = fa @ axis, np.r_[fb @ n1, fb @ n2]
-            if j.angle is not None:
-                info["w_a"], info["w_b"] = fa @ n1, fb @ n1
-            return info
-        if j.angle is not None:
-            raise InputError("joints.angle", "pin", "a revolute joint in 3D (it needs an axis)")
-        return info
+        angle = rows.tf(j.angle) if j.angle is not None else -1
+        return joint_data(j, a, b, self._frames(a)[1], self._frames(b)[1], self.dim, angle)
 
     def _build(self, rows: _Rows, joints: list[dict]) -> _core.System:
-        i64 = np.int64
-        pl = rows.places
-        rigid = self.rigid
-        spring = self._spring_rows
-        loads = self._load_rows
-        pre = self._prescribed
-        return _core.System(
-            dim=self.dim,
-            models=[b.core for b in self.flex],
-            rigid_point_mass=np.array([isinstance(b, PointMass) for b in rigid], dtype=i64),
-            rigid_dim=np.array([b.dim for b in rigid], dtype=i64),
-            rigid_mass=np.array([b.mass for b in rigid], dtype=float),
-            rigid_inertia=np.array(
-                [b.inertia_vector() if isinstance(b, RigidBody) else np.zeros(3) for b in rigid]
-            ).reshape(-1, 3),
-            place_kind=np.array([p[0] for p in pl], dtype=i64),
-            place_body=np.array([p[1] for p in pl], dtype=i64),
-            place_node=np.array([p[2] for p in pl], dtype=i64),
-            place_point=np.array([p[3] for p in pl], dtype=float).reshape(-1, 3),
-            place_motion=np.array([p[4] for p in pl], dtype=i64),
-            place_angle0=np.array([p[5] for p in pl], dtype=float),
-            joint_kind=np.array([j["kind"] for j in joints], dtype=i64),
-            joint_a=np.array([j["a"] for j in joints], dtype=i64),
-            joint_b=np.array([j["b"] for j in joints], dtype=i64),
-            joint_driven=np.array([j["driven"] for j in joints], dtype=i64),
-            joint_angle=np.array([j["angle"] for j in joints], dtype=i64),
-            joint_beta0=np.array([j["beta0"] for j in joints], dtype=float),
-            joint_rel=np.array([j["rel"] for j in joints], dtype=float).reshape(-1, 9),
-            joint_axis_a=np.array([j["axis_a"] for j in joints], dtype=float).reshape(-1, 3),
-            joint_normals_b=np.array([j["normals_b"] for j in joints], dtype=float).reshape(-1, 6),
-            joint_w_a=np.array([j["w_a"] for j in joints], dtype=float).reshape(-1, 3),
-            joint_w_b=np.array([j["w_b"] for j in joints], dtype=float).reshape(-1, 3),
-            spring_a=np.array([s[0] for s in spring], dtype=i64),
-            spring_b=np.array([s[1] for s in spring], dtype=i64),
-            spring_data=np.array([s[2:] for s in spring], dtype=float).reshape(-1, 3),
-            load_place=np.array([ld[0] for ld in loads], dtype=i64),
-            load_force=np.array([ld[1] for ld in loads], dtype=float).reshape(-1, 3),
-            load_torque=np.array([ld[2] for ld in loads], dtype=float).reshape(-1, 3),
-            load_factor=np.array([ld[3] for ld in loads], dtype=i64),
-            **pack(rows.tfs),
-            pre_coord=np.array([p[0] for p in pre], dtype=i64),
-            pre_tf=np.array([p[1] for p in pre], dtype=i64),
-            pre_comp=np.array([p[2] for p in pre], dtype=i64),
-            pre_base=np.array([p[3] for p in pre], dtype=float),
-            gravity=np.ascontiguousarray(self.gravity),
-            damping=self.damping,
-            y_ref=self.y0,
-        )
+        return build_core(self, rows, joints, [self._compiled(f) for f in rows.tfs])
+
+    def _compiled(self, f: TimeFunction) -> TimeFunction:
+        """A time function the compiled core evaluates (a callable sampled on the horizon)."""
+        if f.kind != "callable":
+            return f
+        if self.horizon is None or not self.horizon > 0:
+            raise InputError("horizon", self.horizon, "the run's end time t_end [s] > 0 (a Python "
+                             "time function is sampled on [0, t_end])")  # fmt: skip
+        return f.sampled(float(self.horizon))
 
     # ---------------------------------------------------------------- coordinates
     def body_slice(self, name: str) -> slice:
@@ -475,12 +406,3 @@ class System:
                 self.bodies.items() if not isinstance(b, Model)]  # fmt: skip
         allp = np.concatenate(pts)
         return float(np.ptp(allp, axis=0).max()) or 1.0
-
-
-def _normals(e: NDArray) -> tuple[NDArray, NDArray]:
-    """Two unit vectors normal to ``e`` and to each other."""
-    e = e / np.linalg.norm(e)
-    helper = np.eye(3)[int(np.argmin(np.abs(e)))]
-    n1 = np.cross(e, helper)
-    n1 /= np.linalg.norm(n1)
-    return n1, np.cross(e, n1)

@@ -1,0 +1,90 @@
+// Joint reactions from the multipliers (system.hpp: joint_reaction).
+#include <algorithm>
+#include <cmath>
+
+#include "system.hpp"
+
+namespace rancf {
+
+namespace {
+std::size_t sz(int i) { return static_cast<std::size_t>(i); }
+
+/// Solve the symmetric k x k system A x = b (k <= 6) by Gaussian elimination with partial
+/// pivoting; rows whose pivot vanishes leave their unknown zero.
+void solve_small(int k, double (*A)[6], double* b, double* x) {
+  int perm[6];
+  for (int i = 0; i < k; ++i) perm[i] = i;
+  double scale = 0.0;
+  for (int i = 0; i < k; ++i) scale = std::max(scale, std::abs(A[i][i]));
+  for (int c = 0; c < k; ++c) {
+    int p = c;
+    for (int r = c + 1; r < k; ++r)
+      if (std::abs(A[r][c]) > std::abs(A[p][c])) p = r;
+    std::swap(A[c], A[p]);
+    std::swap(b[c], b[p]);
+    std::swap(perm[c], perm[p]);
+    if (std::abs(A[c][c]) <= 1e-14 * scale) continue;
+    for (int r = c + 1; r < k; ++r) {
+      const double l = A[r][c] / A[c][c];
+      for (int j = c; j < k; ++j) A[r][j] -= l * A[c][j];
+      b[r] -= l * b[c];
+    }
+  }
+  for (int c = k - 1; c >= 0; --c) {
+    double v = b[c];
+    for (int j = c + 1; j < k; ++j) v -= A[c][j] * x[j];
+    x[c] = std::abs(A[c][c]) <= 1e-14 * scale ? 0.0 : v / A[c][c];
+  }
+  (void)perm;
+}
+}  // namespace
+
+void joint_reaction(const System& s, int k, const double* y, double t, const double* lam,
+                    double* force, double* moment) {
+  const JointData& jd = s.joints[sz(k)];
+  const PlaceRef &pa = s.places[sz(jd.a)], &pb = s.places[sz(jd.b)];
+  PlaceEval ea, eb;
+  place_at(s, pa, s.maps[sz(jd.a)], t, y, ea);
+  place_at(s, pb, s.maps[sz(jd.b)], t, y, eb);
+  const double th = jd.angle >= 0 ? evaluate(s.tfs[sz(jd.angle)], 0, t).f : 0.0;
+  const int rows = joint_rows(jd.info), w = ea.n + eb.n;
+  double g[kMaxJointRows], jac[kMaxJointRows * 2 * kMaxLocal];
+  eval_joint(jd.info, ea, eb, th, g, jac);
+  const double* l = lam + s.joint_row[sz(k)];
+  double q[kMaxLocal] = {};  // Q = -G_A^T lambda
+  for (int j = 0; j < ea.n; ++j)
+    for (int r = 0; r < rows; ++r) q[j] -= jac[r * w + j] * l[r];
+  // basis vectors per coordinate: [dx/du_j ; w_j]
+  double b[kMaxLocal][6] = {};
+  for (int j = 0; j < ea.n; ++j) {
+    for (int i = 0; i < 3; ++i) b[j][i] = ea.dx[i][j];
+    if (ea.nf == 3) {
+      for (int f = 0; f < 3; ++f) {
+        const double* v = ea.f[f];
+        const double d[3] = {ea.df[f][0][j], ea.df[f][1][j], ea.df[f][2][j]};
+        b[j][3] += 0.5 * (v[1] * d[2] - v[2] * d[1]);
+        b[j][4] += 0.5 * (v[2] * d[0] - v[0] * d[2]);
+        b[j][5] += 0.5 * (v[0] * d[1] - v[1] * d[0]);
+      }
+    } else if (ea.nf == 1) {  // a 3D cable: its tangent turns by t x dt
+      const double* v = ea.f[0];
+      const double d0[3] = {ea.df[0][0][j], ea.df[0][1][j], ea.df[0][2][j]};
+      b[j][3] = v[1] * d0[2] - v[2] * d0[1];
+      b[j][4] = v[2] * d0[0] - v[0] * d0[2];
+      b[j][5] = v[0] * d0[1] - v[1] * d0[0];
+    }
+  }
+  double A[6][6] = {}, rhs[6] = {}, x[6] = {};
+  for (int j = 0; j < ea.n; ++j)
+    for (int a = 0; a < 6; ++a) {
+      rhs[a] += b[j][a] * q[j];
+      for (int c = 0; c < 6; ++c) A[a][c] += b[j][a] * b[j][c];
+    }
+  solve_small(6, A, rhs, x);
+  for (int i = 0; i < 3; ++i) {
+    force[i] = x[i];
+    moment[i] = x[3 + i];
+  }
+}
+
+}  // namespace rancf

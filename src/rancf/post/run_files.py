@@ -1,0 +1,251 @@
+"""The history files of a run folder, from stored rows and their derived values.
+
+One writer for every run (a system of one body is a one-body run):
+
+* ``sensors.csv`` (``t`` then one column per sensor scalar), ``energy.csv`` (``t, kinetic,
+  strain, gravity, total`` [J]) and ``reactions.csv`` (supports, then joints; see
+  :mod:`rancf.system.outputs`);
+* ``results.npz``: ``t``, the states ``q``, ``v``, the consistent accelerations ``a``, the
+  energies, ``sensors``, ``reactions``, the multipliers ``lam`` (systems with joints), the
+  ``reference`` and JSON ``metadata``.  A one-body run also holds that body's arrays (``along``
+  and ``along_s``, ``directors`` of rods, ``weights``, ``scales``) and metadata, so readers
+  (:mod:`rancf.post.run_data`) need nothing else;
+* a system of several bodies: the metadata's ``"bodies"`` lists every body (name, kind, its
+  columns ``offset`` and ``size`` in ``q``; a flexible body's ``folder``), and every flexible
+  body has a one-body ``bodies/NAME/results.npz`` (its coordinates, accelerations, energies,
+  support reactions, section values, directors), which ``rancf export``, ``plot`` and
+  ``animate`` read like any run.
+
+Histories are written in chunks of rows (:data:`CHUNK_BYTES`), so a long run's files are built
+without holding them in memory; the files go into a :class:`~rancf.atomic.FileSet` and replace
+the old ones together.
+"""
+
+from __future__ import annotations
+
+import json
+import zipfile
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from rancf.atomic import FileSet
+from rancf.model.rigid import PointMass
+from rancf.model.system import Model
+from rancf.system.outputs import SystemOutputs
+
+__all__ = ["write_history_files", "reader_metadata", "CHUNK_BYTES", "DERIVED"]
+
+#: Bytes of a history handled at once when writing files.
+CHUNK_BYTES = 1 << 24
+
+#: The derived streams of :meth:`SystemOutputs.rows` the files hold.
+DERIVED = ("a", "lam", "r", "s", "c", "eb")
+
+
+def reader_metadata(model: Model) -> dict[str, Any]:
+    """What readers of a body's results need besides the states: ``section_radius``
+    (``sqrt(A / π)``) and, for beams, the reference nodal ``tangent_angles`` [rad]."""
+    meta: dict[str, Any] = {"section_radius": model.section.radius}
+    if model.element == "beam":
+        t = model.mesh.nodes[:, 1]
+        meta["tangent_angles"] = np.arctan2(t[:, 1], t[:, 0]).tolist()
+    return meta
+
+
+def _rows(n: int, width: int) -> Iterator[slice]:
+    step = max(1, CHUNK_BYTES // (8 * max(width, 1)))
+    for i in range(0, n, step):
+        yield slice(i, min(n, i + step))
+
+
+def _npy(zf: zipfile.ZipFile, name: str, shape: tuple[int, ...], chunks: Any) -> None:
+    with zf.open(f"{name}.npy", "w", force_zip64=True) as f:
+        header = {"descr": "<f8", "fortran_order": False, "shape": shape}
+        np.lib.format.write_array_header_2_0(f, header)
+        for c in chunks:
+            f.write(np.ascontiguousarray(c, dtype="<f8").tobytes())
+
+
+def _small(zf: zipfile.ZipFile, arrays: dict[str, Any]) -> None:
+    for name, arr in arrays.items():
+        with zf.open(f"{name}.npy", "w") as f:
+            np.lib.format.write_array(f, np.asarray(arr), allow_pickle=False)
+
+
+def _body_meta(model: Model, out: SystemOutputs, name: str) -> dict[str, Any]:
+    return {
+        "element": model.element,
+        "dim": model.dim,
+        "dofs_per_node": model.dpn,
+        "n_nodes": model.n_nodes,
+        "n_elements": model.n_el,
+        "section_names": list(out.section_names[name]),
+        **reader_metadata(model),
+    }
+
+
+def write_history_files(
+    out_dir: Path,
+    outputs: SystemOutputs,
+    t: NDArray,
+    q: NDArray,
+    v: NDArray,
+    energy: NDArray,
+    directors: NDArray | None = None,
+    derived: dict[str, NDArray] | None = None,
+    static: bool = False,
+    files: FileSet | None = None,
+    lam: NDArray | None = None,
+) -> list[str]:
+    """Write the history files of rows ``t (n,)``, ``q, v (n, n_q)``, ``energy (n, 3)`` and rods'
+    ``directors (n, n_directors)`` (module docstring); any may be memory maps.
+
+    ``derived``: the rows' :meth:`SystemOutputs.rows` arrays (keys :data:`DERIVED`), else they
+    are computed chunk by chunk (``static``: rows of a load path, ``t`` its parameter, ``lam``
+    the solver's multipliers).  Into the set ``files`` (committed by the caller), else
+    atomically on their own.  Returns the sensor column names.
+    """
+    if files is None:
+        with FileSet() as own:
+            return write_history_files(out_dir, outputs, t, q, v, energy, directors, derived,
+                                       static, own, lam)  # fmt: skip
+    s = outputs.system
+    n = t.shape[0]
+    m1 = None if directors is None else np.asarray(directors).reshape(n, -1)
+    single = s.single is not None and len(s.flex) == 1
+
+    def chunk(r: slice) -> dict[str, NDArray]:
+        if derived is not None:
+            return {k: derived[k][r] for k in DERIVED if k in derived}
+        mm, ll = (None if x is None else x[r] for x in (m1, lam))
+        return outputs.rows(t[r], q[r], v[r], mm, energy[r], ll, static, per_body=not single)
+
+    chunks = [(r, chunk(r)) for r in _rows(n, 3 * q.shape[1] + outputs.n_along)]
+    names = outputs.sensor_names
+    with files.file(out_dir / "sensors.csv") as fh:
+        fh.write((",".join(["t", *names]) + "\n").encode())
+        for r, c in chunks:
+            np.savetxt(fh, np.column_stack([t[r], c["c"]]), delimiter=",", fmt="%.12g")
+    with files.file(out_dir / "energy.csv") as fh:
+        fh.write(b"t,kinetic,strain,gravity,total\n")
+        for r in _rows(n, 5):
+            e = energy[r]
+            np.savetxt(fh, np.column_stack([t[r], e, e.sum(axis=1)]), delimiter=",", fmt="%.12g")
+    if outputs.reaction_names:
+        with files.file(out_dir / "reactions.csv") as fh:
+            fh.write((",".join(["t", *outputs.reaction_names]) + "\n").encode())
+            for r, c in chunks:
+                np.savetxt(fh, np.column_stack([t[r], c["r"]]), delimiter=",", fmt="%.12g")
+    meta: dict[str, Any] = {"sensor_columns": names, "reaction_columns": outputs.reaction_names}
+    if single:
+        name, model = s.names[0], s.flex[0]
+        meta.update(_body_meta(model, outputs, name))
+    else:
+        meta.update({"system": True, "dim": s.dim, "bodies": _bodies(outputs)})
+    with (
+        files.file(out_dir / "results.npz") as fh,
+        zipfile.ZipFile(fh, "w", zipfile.ZIP_STORED, allowZip64=True) as z,
+    ):
+        _npy(z, "t", (n,), (t[r] for r, _ in chunks))
+        _npy(z, "q", q.shape, (q[r] for r, _ in chunks))
+        _npy(z, "v", v.shape, (v[r] for r, _ in chunks))
+        _npy(z, "a", q.shape, (c["a"] for _, c in chunks))
+        if s.m:
+            _npy(z, "lam", (n, s.m), (c["lam"] for _, c in chunks))
+        for j, key in enumerate(("kinetic", "strain", "gravity")):
+            _npy(z, key, (n,), (energy[r, j] for r, _ in chunks))
+        _npy(z, "sensors", (n, len(names)), (c["c"] for _, c in chunks))
+        _npy(z, "reactions", (n, len(outputs.reaction_names)), (c["r"] for _, c in chunks))
+        if single:
+            _body_arrays(z, outputs, s.names[0], n, chunks, m1, None)
+        _small(z, {"reference": s.q_from_y(s.y0), "metadata": np.array(json.dumps(meta))})
+    if not single:
+        for k, (name, model) in enumerate(outputs.flex):
+            _body_folder(out_dir, outputs, name, model, k, t, q, v, m1, chunks, files)
+    return names
+
+
+def _bodies(outputs: SystemOutputs) -> list[dict[str, Any]]:
+    s = outputs.system
+    rows = []
+    for name in s.names:
+        b, sl = s.bodies[name], s.body_slice(name)
+        row: dict[str, Any] = {"name": name, "offset": sl.start, "size": sl.stop - sl.start}
+        if isinstance(b, Model):
+            row.update({"kind": "flexible", "element": b.element, "folder": f"bodies/{name}"})
+        else:
+            row["kind"] = "mass" if isinstance(b, PointMass) else "rigid"
+            row["mass"] = b.mass
+            if not isinstance(b, PointMass):
+                row["points"] = {k: list(map(float, p)) for k, p in b.points.items()}
+        rows.append(row)
+    return rows
+
+
+def _director_cut(outputs: SystemOutputs, name: str) -> slice:
+    start = 0
+    for n, b in outputs.flex:
+        if b.element != "rod":
+            continue
+        if n == name:
+            return slice(start, start + 3 * b.n_nodes)
+        start += 3 * b.n_nodes
+    return slice(0, 0)
+
+
+def _body_arrays(
+    z: zipfile.ZipFile, outputs: SystemOutputs, name: str, n: int, chunks: list,
+    m1: NDArray | None, cols: slice | None,
+) -> None:  # fmt: skip
+    """The arrays of one flexible body a reader needs (``cols``: its columns in ``q``, None
+    when the run is that body alone)."""
+    model = outputs.system.bodies[name]
+    assert isinstance(model, Model)
+    along_shape = (n, outputs.samplers[name].n_points, len(outputs.section_names[name]))
+    _npy(z, "along", along_shape, (outputs.body_along(c["s"], name) for _, c in chunks))
+    if model.element == "rod" and m1 is not None:
+        cut = _director_cut(outputs, name)
+        _npy(z, "directors", (n, model.n_nodes, 3), (m1[r, cut] for r, _ in chunks))
+    _small(z, {"weights": model.mesh.weights, "scales": model.mesh.scales,
+               "along_s": outputs.samplers[name].s})  # fmt: skip
+
+
+def _body_folder(
+    out_dir: Path, outputs: SystemOutputs, name: str, model: Model, k: int, t: NDArray,
+    q: NDArray, v: NDArray, m1: NDArray | None, chunks: list, files: FileSet,
+) -> None:  # fmt: skip
+    """``bodies/NAME/results.npz`` of the ``k``-th flexible body: a one-body run's file."""
+    folder = out_dir / "bodies" / name
+    folder.mkdir(parents=True, exist_ok=True)
+    sl = outputs.system.body_slice(name)
+    n = t.shape[0]
+    rcols = _support_columns(outputs, name)
+    meta = {**_body_meta(model, outputs, name), "sensor_columns": [],
+            "reaction_columns": outputs.support_names[name], "body": name}  # fmt: skip
+    with (
+        files.file(folder / "results.npz") as fh,
+        zipfile.ZipFile(fh, "w", zipfile.ZIP_STORED, allowZip64=True) as z,
+    ):
+        _npy(z, "t", (n,), (t[r] for r, _ in chunks))
+        _npy(z, "q", (n, model.n), (q[r, sl] for r, _ in chunks))
+        _npy(z, "v", (n, model.n), (v[r, sl] for r, _ in chunks))
+        _npy(z, "a", (n, model.n), (c["a"][:, sl] for _, c in chunks))
+        for j, key in enumerate(("kinetic", "strain", "gravity")):
+            _npy(z, key, (n,), (c["eb"][:, 3 * k + j] for _, c in chunks))
+        _npy(z, "sensors", (n, 0), (np.empty((r.stop - r.start, 0)) for r, _ in chunks))
+        _npy(z, "reactions", (n, rcols.stop - rcols.start), (c["r"][:, rcols] for _, c in chunks))
+        _body_arrays(z, outputs, name, n, chunks, m1, sl)
+        _small(z, {"reference": model.q0, "metadata": np.array(json.dumps(meta))})
+
+
+def _support_columns(outputs: SystemOutputs, name: str) -> slice:
+    start = 0
+    for n, cols in outputs.support_names.items():
+        if n == name:
+            return slice(start, start + len(cols))
+        start += len(cols)
+    raise KeyError(name)

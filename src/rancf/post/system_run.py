@@ -1,0 +1,224 @@
+"""A finished run of a system of several bodies read back, drawn and exported.
+
+The run folder (:mod:`rancf.post.run_files`) holds the system's history in ``results.npz``
+(metadata ``"system": true`` and the list of bodies) and every flexible body's one-body history
+in ``bodies/NAME/``, which :func:`rancf.post.run_data.load_run` reads like any run.
+
+Drawing: a flexible body is its exact element curve (:func:`rancf.post.run_data.
+sample_centerline`); a rigid body the polyline from its centre of mass through its named points
+(and back), placed by its coordinates ``x + R p`` (2D: ``R(θ)``; 3D: the rotation of its unit
+quaternion ``(p0, p1, p2, p3)``, scalar first); a point mass a dot.  The VTK export writes every
+flexible body's files (:func:`rancf.post.vtk.export_vtk`) into ``OUT/NAME/`` and the rigid
+bodies and point masses as points with their frames (point data ``e1``, ``e2``, ``e3``: the body
+axes) into ``OUT/rigid_NNNNN.vtu`` and ``OUT/rigid.pvd``.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from rancf.atomic import FileSet, atomic_path
+from rancf.errors import InputError
+from rancf.post.plots import pyplot, save_figure
+from rancf.post.results import load_results
+from rancf.post.run_data import RunData, frame_indices, load_run, sample_centerline
+
+__all__ = ["SystemRun", "is_system_run", "load_system_run", "plot_system_run",
+           "export_system_vtk", "animate_system_run"]  # fmt: skip
+
+
+def is_system_run(path: str | Path) -> bool:
+    """Whether ``path`` is the folder of a run of several bodies."""
+    npz = Path(path) / "results.npz"
+    if not npz.is_file():
+        return False
+    try:
+        with np.load(npz, allow_pickle=False) as z:
+            meta = json.loads(str(z["metadata"]))
+    except Exception:  # noqa: BLE001 - damaged: load_run names the problem
+        return False
+    return isinstance(meta, dict) and meta.get("system") is True
+
+
+@dataclass(frozen=True)
+class SystemRun:
+    """A system's run: times, states, sensors, energies, the bodies' metadata and every
+    flexible body's :class:`RunData`."""
+
+    path: Path
+    t: NDArray[np.float64]
+    q: NDArray[np.float64]
+    dim: int
+    sensor_names: list[str]
+    sensors: NDArray[np.float64]
+    energies: dict[str, NDArray[np.float64]]
+    bodies: list[dict[str, Any]]
+    flexible: dict[str, RunData]
+    static: bool = False
+
+    @property
+    def name(self) -> str:
+        """The folder's name."""
+        return os.fsencode(self.path.resolve().name).decode("utf-8", "replace")
+
+    @property
+    def time_label(self) -> str:
+        return "load factor λ [-]" if self.static else "t [s]"
+
+    def time_text(self, value: float, fmt: str = ".4g") -> str:
+        return f"λ = {value:{fmt}}" if self.static else f"t = {value:{fmt}} s"
+
+    def rigid_frame(self, body: dict[str, Any], i: int) -> tuple[NDArray, NDArray]:
+        """Centre ``(3,)`` and axes ``(3, 3)`` (rows ``e1, e2, e3``) of a rigid body or point
+        mass at stored state ``i``."""
+        row = self.q[i, body["offset"] : body["offset"] + body["size"]]
+        x = np.r_[row[: self.dim], np.zeros(3 - self.dim)]
+        if body["kind"] == "mass":
+            return x, np.eye(3)
+        if self.dim == 2:
+            c, s = np.cos(row[2]), np.sin(row[2])
+            return x, np.array([[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]])
+        from scipy.spatial.transform import Rotation
+
+        rot = Rotation.from_quat(row[3:7][[1, 2, 3, 0]]).as_matrix()
+        return x, rot.T
+
+    def shapes(self, i: int) -> list[tuple[str, NDArray[np.float64]]]:
+        """Every body's drawing ``(name, points (k, 3))`` at stored state ``i`` (module
+        docstring)."""
+        out = []
+        for b in self.bodies:
+            if b["kind"] == "flexible":
+                pts = sample_centerline(self.flexible[b["name"]], i).points
+                out.append((b["name"], _pad(pts)))
+                continue
+            x, axes = self.rigid_frame(b, i)
+            pts = [x]
+            for p in b.get("points", {}).values():
+                local = np.r_[np.asarray(p, float), np.zeros(3 - len(p))]
+                pts += [x + local @ axes, x]
+            out.append((b["name"], np.array(pts)))
+        return out
+
+
+def _pad(a: NDArray) -> NDArray:
+    return a if a.shape[-1] == 3 else np.concatenate([a, np.zeros(a.shape[:-1] + (1,))], axis=-1)
+
+
+def load_system_run(path: str | Path) -> SystemRun:
+    """Read a system's run folder (``results.npz`` and every ``bodies/NAME``)."""
+    p = Path(path)
+    data = load_results(p / "results.npz")
+    meta = data["metadata"]
+    flexible = {b["name"]: load_run(p / b["folder"]) for b in meta["bodies"]
+                if b["kind"] == "flexible"}  # fmt: skip
+    t = np.asarray(data["t"])
+    static = any(r.static for r in flexible.values())
+    return SystemRun(
+        path=p, t=t, q=np.asarray(data["q"]), dim=int(meta["dim"]),
+        sensor_names=list(meta["sensor_columns"]),
+        sensors=np.asarray(data["sensors"]).reshape(t.size, -1),
+        energies={k: np.asarray(data[k]) for k in ("kinetic", "strain", "gravity")},
+        bodies=list(meta["bodies"]), flexible=flexible, static=static,
+    )  # fmt: skip
+
+
+def plot_system_run(run: SystemRun, out_dir: str | Path, n_configurations: int = 6) -> list[Path]:
+    """``sensors.png``, ``energy.png`` and ``configurations.png`` (every body at
+    ``n_configurations`` evenly spaced stored times), replaced together."""
+    from rancf.post.run_plots import _draw, _space_axes, plot_series
+
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    plt = pyplot()
+    with FileSet() as files:
+        written = plot_series(run, out, files)
+        idx = np.unique(np.linspace(0, run.t.size - 1, max(n_configurations, 1)).round())
+        frames = [run.shapes(int(i)) for i in idx]
+        allp = np.concatenate([p for f in frames for _, p in f])
+        fig = plt.figure(figsize=(7, 5), constrained_layout=True)
+        ax = _space_axes(fig, run, allp)
+        cmap = plt.get_cmap("viridis")
+        for j, (i, frame) in enumerate(zip(idx, frames, strict=True)):
+            color = cmap(j / max(len(idx) - 1, 1))
+            for k, (_, pts) in enumerate(frame):
+                label = run.time_text(run.t[int(i)]) if k == 0 else None
+                _draw(ax, pts, color=color, label=label, marker="o" if len(pts) < 3 else None)
+        ax.legend(fontsize=8)
+        ax.set_title(f"configurations of {run.name}")
+        written.append(out / "configurations.png")
+        save_figure(fig, written[-1], 100, files)
+    return written
+
+
+def animate_system_run(run: SystemRun, path: str | Path, fps: int = 20, every: int = 1,
+                       dpi: int = 80) -> int:  # fmt: skip
+    """Render every body's motion to ``path`` (``.gif`` or ``.mp4``); returns the frames."""
+    from rancf.post.run_plots import _draw, _set_line, _space_axes, _writer
+
+    if isinstance(fps, bool) or not isinstance(fps, int) or fps < 1:
+        raise InputError("--fps", fps, "an integer >= 1")
+    path = Path(path)
+    writer, _ = _writer(path, fps)
+    if not path.parent.is_dir():
+        raise InputError("--out", str(path), "a file in an existing directory")
+    plt = pyplot()
+    idx = frame_indices(run.t.size, every)
+    frames = [run.shapes(int(i)) for i in idx]
+    allp = np.concatenate([p for f in frames for _, p in f])
+    fig = plt.figure(figsize=(6, 4.5))
+    ax = _space_axes(fig, run, allp)
+    if run.dim == 2:
+        lo, hi = allp[:, :2].min(axis=0), allp[:, :2].max(axis=0)
+        pad = 0.05 * max(float(np.max(hi - lo)), 1e-9)
+        ax.set_xlim(lo[0] - pad, hi[0] + pad)
+        ax.set_ylim(lo[1] - pad, hi[1] + pad)
+        ax.set_aspect("equal", adjustable="box")
+    lines = [_draw(ax, pts, lw=2, marker="o" if len(pts) < 3 else None) for _, pts in frames[0]]
+    title = ax.set_title("")
+    try:
+        with atomic_path(path) as tmp, writer.saving(fig, tmp, dpi):
+            for k, i in enumerate(idx):
+                for line, (_, pts) in zip(lines, frames[k], strict=True):
+                    _set_line(line, pts)
+                title.set_text(f"{run.name}: {run.time_text(run.t[i], '.4f')}")
+                writer.grab_frame()
+    finally:
+        plt.close(fig)
+    return int(idx.size)
+
+
+def export_system_vtk(run: SystemRun, out_dir: str | Path, every: int = 1,
+                      per_element: int = 16) -> list[Path]:  # fmt: skip
+    """Every body's VTK files (module docstring); returns the ``.pvd`` paths."""
+    import meshio
+
+    from rancf.post.vtk import _export, check_export_size, export_vtk
+
+    out = Path(out_dir)
+    for r in run.flexible.values():
+        check_export_size(r, every, per_element)
+    paths = [export_vtk(r, out / name, every, per_element) for name, r in run.flexible.items()]
+    rigid = [b for b in run.bodies if b["kind"] != "flexible"]
+    if not rigid:
+        return paths
+
+    def mesh_at(i: int) -> Any:
+        frames = [run.rigid_frame(b, i) for b in rigid]
+        pts = np.array([x for x, _ in frames])
+        data = {f"e{k + 1}": np.array([ax[k] for _, ax in frames]) for k in range(3)}
+        n = len(pts)
+        return meshio.Mesh(pts, [("vertex", np.arange(n)[:, None])], point_data=data)
+
+    parts: list[tuple[str, Callable[[int], Any]]] = [("rigid", mesh_at)]
+    with FileSet() as files:
+        paths.append(_export(run, out, frame_indices(run.t.size, every), parts, files))  # type: ignore[arg-type]
+    return paths

@@ -1,0 +1,240 @@
+"""A validated scenario turned into a mesh and a model; geometry errors name scenario keys.
+
+Errors of the geometry and meshing functions name their own arguments (``angles (theta1)``,
+``knots``, ``k``); here they are re-raised as :class:`~rancf.errors.ScenarioError` naming the
+scenario key the user wrote (``geometry.angles_deg[1]``, ``geometry.knots``, ``mesh.k``; with a
+prefix such as ``bodies[2].`` for a body of a system), and a geometry whose arc length cannot be
+integrated is a geometry error, not a solver failure.  Node indices are checked against the mesh
+here.
+
+Systems (``[[bodies]]``, ``[[joints]]``, ``[[springs]]``), prescribed support motion
+(``supports.motion``), time functions of point loads (``loads.point.time``) and the sensors the
+system solver computes are refused with one line until the system solver takes them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from rancf.errors import ConvergenceError, InputError, ScenarioError
+from rancf.model.system import Material, Model, PointLoad, RigidMotion, Section, Support
+from rancf.scenario.geometry import MAX_ELEMENTS, CadGeometry, ConicGeometry, NurbsGeometry
+from rancf.scenario.sensors import SYSTEM_SENSOR_KINDS
+
+if TYPE_CHECKING:
+    from rancf.scenario.geometry import MeshTable
+    from rancf.scenario.scenario import Scenario
+
+__all__ = ["build_model", "flexible_model", "mesh_geometry", "scenario_key", "NOT_YET"]
+
+#: The problem of what the one-body solvers cannot run yet.
+NOT_YET = "not yet solved by this command"
+
+#: Argument names of the geometry functions -> scenario keys.
+_KEYS = {
+    "angles (theta0)": "geometry.angles_deg[0]",
+    "angles (theta1)": "geometry.angles_deg[1]",
+    "angles": "geometry.angles_deg",
+    "point": "geometry.point",
+    "chord": "geometry.end",
+    "end": "geometry.end",
+    "start/end": "geometry.end",
+    "start/end/point": "geometry.point",
+    "knots": "geometry.knots",
+    "weights": "geometry.weights",
+    "points": "geometry.control_points",
+    "degree": "geometry.degree",
+    "k": "mesh.k",
+    "elements": "mesh.elements",
+    "elements per span": "mesh.elements",
+}
+
+
+def scenario_key(parameter: str, geometry: Any, mesh: MeshTable) -> str:
+    """The scenario key behind a geometry function's argument name."""
+    if parameter == "geometry":  # a joint or a degenerate element of the chain
+        if isinstance(geometry, ConicGeometry) and mesh.k != "opt":
+            return "mesh.k"
+        return "geometry.control_points" if isinstance(geometry, NurbsGeometry) else "geometry"
+    return _KEYS.get(parameter, parameter)
+
+
+def _value(v: Any) -> str:
+    if isinstance(v, float):
+        return f"{v:.6g}"
+    if isinstance(v, np.ndarray):
+        return np.array2string(v, precision=6, separator=", ").replace("\n", "")
+    return v if isinstance(v, str) else repr(v)
+
+
+def _mesh(path: str, g: Any, m: MeshTable, prefix: str) -> Any:
+    from rancf.geometry.conic import conic_arc_through
+    from rancf.geometry.nurbs import NurbsCurve
+    from rancf.model.mesh import mesh_conic, mesh_line
+    from rancf.model.nurbs_mesh import mesh_nurbs
+
+    if g.kind == "conic":
+        conic = conic_arc_through(g.start, g.end, g.angles_deg, g.point)
+        return mesh_conic(conic, m.elements, m.k, m.spacing)
+    if g.kind == "line":
+        return mesh_line(g.start, g.end, m.elements)
+    if isinstance(g, CadGeometry):
+        from rancf.model.cad_geometry import mesh_curve_chain
+
+        return mesh_curve_chain(g.curves, g.labels, m.elements)
+    pts = np.array(g.control_points)
+    w = np.ones(len(pts)) if g.weights is None else np.array(g.weights)
+    curve = NurbsCurve(g.degree, np.array(g.knots), pts, w)
+    spans = len(curve.bezier_segments()[0]) - 1
+    if spans * m.elements > MAX_ELEMENTS:
+        raise ScenarioError(
+            path,
+            f"{prefix}mesh.elements",
+            f"{m.elements} per knot span x {spans} spans is more than {MAX_ELEMENTS} elements",
+        )
+    return mesh_nurbs(curve, m.elements)
+
+
+def mesh_geometry(path: str, geometry: Any, mesh: MeshTable, prefix: str = "") -> Any:
+    """The mesh of a flexible body's ``geometry`` and ``mesh`` tables; errors name the keys
+    (after ``prefix``, e.g. ``"bodies[2]."``)."""
+    try:
+        return _mesh(path, geometry, mesh, prefix)
+    except InputError as exc:
+        key = scenario_key(exc.parameter, geometry, mesh)
+        raise ScenarioError(
+            path, prefix + key, f"{exc.allowed} (got {_value(exc.value)})"
+        ) from None
+    except ConvergenceError as exc:
+        raise ScenarioError(
+            path, f"{prefix}geometry", f"is too extreme to measure its arc length ({exc})"
+        ) from None
+
+
+def _not_yet(sc: Scenario) -> None:
+    """Refuse, naming the key, what only the system solver runs (``bodies``, ``joints``,
+    ``springs``; moving supports, time loads and the system sensors in one-body analyses that
+    are not time integrations)."""
+    for k in ("bodies", "joints", "springs"):
+        if sc[k]:
+            raise ScenarioError(sc.path, k, f"multibody systems: {NOT_YET}")
+    for i, s in enumerate(sc.supports):
+        if s.motion is not None:
+            raise ScenarioError(sc.path, f"supports[{i}].motion", f"prescribed motion: {NOT_YET}")
+    for i, p in enumerate(sc.loads.point):
+        if p.time is not None:
+            raise ScenarioError(sc.path, f"loads.point[{i}].time", f"time functions: {NOT_YET}")
+    for i, s in enumerate(sc.sensor_tables):
+        if s.kind in SYSTEM_SENSOR_KINDS:
+            raise ScenarioError(sc.path, f"sensors[{i}].kind", f"{s.kind} sensors: {NOT_YET}")
+
+
+def build_model(sc: Scenario, system: bool = False) -> Model:
+    """Mesh the scenario's geometry and assemble its model (errors name the scenario key).
+
+    ``system``: for the system solver (:func:`rancf.scenario.system_build.build_system`), which
+    also runs moving supports and time functions of loads; otherwise they are refused."""
+    if not system:
+        _not_yet(sc)
+    d = sc.data
+    return flexible_model(
+        sc, "", (sc.geometry, sc.mesh, sc.section, sc.material),
+        [(f"supports[{i}]", t["at"], t) for i, t in enumerate(d["supports"])],
+        [(f"loads.point[{i}]", t["at"], t) for i, t in enumerate(d["loads"]["point"])],
+        [(f"initial_velocity[{i}]", t["at"], t) for i, t in enumerate(d["initial_velocity"])],
+        d["initial_motion"], [(f"sensors.{sn.name}", nd) for sn in sc.sensors for nd in sn.nodes],
+    )  # fmt: skip
+
+
+def flexible_model(
+    sc: Scenario,
+    prefix: str,
+    tables: tuple[Any, Any, Any, Any],
+    supports: list[tuple[str, int, dict[str, Any]]],
+    loads: list[tuple[str, int, dict[str, Any]]],
+    velocities: list[tuple[str, int, dict[str, Any]]],
+    initial_motion: dict[str, Any] | None,
+    sensor_nodes: list[tuple[str, int]] = (),  # type: ignore[assignment]
+) -> Model:
+    """The model of one flexible body: its ``geometry``, ``mesh``, ``section`` and ``material``
+    tables (keys after ``prefix``, e.g. ``bodies[2].``), and the supports, point loads and
+    initial velocities at its nodes as ``(key, node, table)`` (node indices are checked against
+    the mesh here, naming the key)."""
+    geometry, mesh_table, section, material = tables
+    mesh = mesh_geometry(sc.path, geometry, mesh_table, prefix)
+    n_nodes = mesh.n_nodes
+    supported = {_check_node(sc, n_nodes, f"{key}.at", node) for key, node, _ in supports}
+    for key, node, _ in loads:
+        _check_node(sc, n_nodes, f"{key}.at", node)
+    for key, node in sensor_nodes:
+        _check_node(sc, n_nodes, key, node)
+    v0 = {}
+    for key, at, t in velocities:
+        node = _check_node(sc, n_nodes, f"{key}.at", at)
+        if node in supported and any(x != 0.0 for x in t["value"]):
+            raise ScenarioError(
+                sc.path, f"{key}.at", f"node {at} is supported (its position is fixed), so it "
+                "cannot start with a velocity",
+            )  # fmt: skip
+        v0[node] = t["value"]
+    try:
+        return Model(
+            mesh,
+            mesh_table.element,
+            section_of(section),
+            Material(
+                material.density,
+                material.youngs_modulus,
+                material.shear_modulus,
+                material.poisson_ratio,
+            ),  # fmt: skip
+            [_support(node, t) for _, node, t in supports],
+            sc.loads.gravity,
+            [_load(node, t) for _, node, t in loads],
+            sc.damping.mass_proportional,
+            v0,
+            mesh_table.quadrature_points,
+            None if initial_motion is None else RigidMotion(**initial_motion),
+        )
+    except InputError as exc:
+        raise ScenarioError(
+            sc.path, prefix + exc.parameter, f"{exc.allowed} (got {_value(exc.value)})"
+        ) from None
+
+
+def section_of(s: Any) -> Section:
+    """The :class:`~rancf.model.system.Section` of a ``[section]`` table."""
+    if s.radius is not None:
+        section = Section.circular(s.radius)
+        section = replace(section, torsion_constant=s.torsion_constant)
+    else:
+        inertia = s.inertia if s.inertia is not None else s.inertia_y
+        orient = None if s.orientation is None else tuple(s.orientation)
+        section = Section(s.area, inertia, s.inertia_z, s.torsion_constant, orient)
+    if s.rotary_inertia is not None:
+        section = replace(section, rotary_inertia=s.rotary_inertia)
+    return section
+
+
+def _vec(v: list[float] | None) -> tuple[float, ...] | None:
+    return None if v is None else tuple(v)
+
+
+def _support(node: int, t: dict[str, Any]) -> Support:
+    return Support(node, t["kind"], t["fix_twist"], _vec(t["position"]), _vec(t["direction"]),
+                   _vec(t["axis"]), t["motion"])  # fmt: skip
+
+
+def _load(node: int, t: dict[str, Any]) -> PointLoad:
+    return PointLoad(node, _vec(t["force"]), t["frequency_hz"], _vec(t["moment"]), t["time"])
+
+
+def _check_node(sc: Scenario, n_nodes: int, key: str, node: int) -> int:
+    if not -n_nodes <= node < n_nodes:
+        raise ScenarioError(
+            sc.path, key, f"node {node} does not exist (the mesh has nodes 0..{n_nodes - 1})"
+        )
+    return node % n_nodes

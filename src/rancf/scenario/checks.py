@@ -1,0 +1,233 @@
+"""The checks of a scenario that need several of its tables: one body or ``[[bodies]]``, the
+dimension shared by all bodies and vectors, places against the bodies, names, and which keys
+apply to which bodies (rod-only keys, moments, twist sensors, fixed joints).
+
+Each check raises :func:`~rancf.scenario.base.fail` with the full key (``supports[1].position``,
+``joints[0].between[1]``).  Node indices are checked against the mesh later, when the model is
+built (:mod:`rancf.scenario.build`).
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+from pydantic_core import PydanticCustomError
+
+from rancf.scenario.base import fail, show, under
+from rancf.scenario.bodies import FlexibleBody, RigidBody
+from rancf.scenario.loads import time_size
+from rancf.scenario.places import ResolvedPlace, resolve_place
+from rancf.scenario.section import check_flexible
+
+if TYPE_CHECKING:
+    from rancf.scenario.scenario import Scenario
+
+__all__ = ["check_scenario"]
+
+_FLEX_TABLES = ("geometry", "mesh", "section", "material")
+
+
+def _size(key: str, v: Any, dim: int) -> None:
+    if v is not None and len(v) != dim:
+        raise fail(key, f"must be a list of {dim} numbers, got {show(v)}")
+
+
+class _Context:
+    """The scenario's bodies by name (None: one body) and its dimension."""
+
+    def __init__(self, sc: Scenario) -> None:
+        self.sc = sc
+        self.bodies: dict[str, Any] | None = None
+        if sc.bodies:
+            self.bodies = {}
+            for i, b in enumerate(sc.bodies):
+                if b.name == "ground" or b.name in self.bodies:
+                    raise fail(f"bodies[{i}].name", f"{show(b.name)} is used twice or reserved "
+                               '("ground")')  # fmt: skip
+                self.bodies[b.name] = b
+        self.dim = self._dim()
+
+    def _dim(self) -> int:
+        sc = self.sc
+        if self.bodies is None:
+            for k in _FLEX_TABLES:
+                if sc[k] is None:
+                    raise fail(k, "required table is missing")
+            try:
+                check_flexible(sc.geometry, sc.mesh, sc.section, sc.material)
+            except PydanticCustomError as exc:
+                raise under("", exc) from None
+            return int(sc.geometry.dim)
+        for k in _FLEX_TABLES:
+            if sc[k] is not None:
+                raise fail(k, f"does not apply with [[bodies]]: give it in each flexible body "
+                           f"([bodies.{k}])")  # fmt: skip
+        dims = [b.dim for b in sc.bodies]
+        for i, d in enumerate(dims):
+            if d != dims[0]:
+                what = "geometry" if isinstance(sc.bodies[i], FlexibleBody) else "position"
+                raise fail(f"bodies[{i}].{what}", f"is {d}D but bodies[0] is {dims[0]}D: all "
+                           "bodies are planar or all spatial")  # fmt: skip
+        return dims[0]
+
+    def place(self, key: str, v: int | str, ground: bool = False) -> ResolvedPlace:
+        return resolve_place(key, v, self.bodies, ground)
+
+    def element(self, p: ResolvedPlace) -> str | None:
+        """The element kind at a node place; ``"rigid"``, ``"mass"``; None for the ground."""
+        if p.where == "ground":
+            return None
+        if self.bodies is None:
+            return self.sc.mesh.element
+        b = self.bodies[p.body]
+        if isinstance(b, FlexibleBody):
+            return b.mesh.element
+        return "rigid" if isinstance(b, RigidBody) else "mass"
+
+
+def _rod_only(key: str, el: str | None) -> None:
+    if el != "rod":
+        raise fail(key, f'applies to rod elements only (mesh.element = "rod"), not {el!r}')
+
+
+def _supports(c: _Context) -> list[ResolvedPlace]:
+    places = []
+    for i, s in enumerate(c.sc.supports):
+        key = f"supports[{i}]"
+        p = c.place(f"{key}.at", s.at)
+        places.append(p)
+        el = c.element(p)
+        if el == "mass" and s.kind != "pin":
+            raise fail(f"{key}.kind", f"a point mass has no orientation: use a pin, not {s.kind!r}")
+        if s.fix_twist:
+            _rod_only(f"{key}.fix_twist", el)
+        for k in ("position", "direction", "axis"):
+            _size(f"{key}.{k}", s[k], c.dim)
+        if s.motion is not None and time_size(s.motion) != c.dim:
+            raise fail(f"{key}.motion", f"must be a displacement of {c.dim} components, got "
+                       f"{time_size(s.motion)}")  # fmt: skip
+    return places
+
+
+def _loads(c: _Context) -> None:
+    ld = c.sc.loads
+    _size("loads.gravity", ld.gravity, c.dim)
+    for i, pl in enumerate(ld.point):
+        key = f"loads.point[{i}]"
+        el = c.element(c.place(f"{key}.at", pl.at))
+        _size(f"{key}.force", pl.force, c.dim)
+        m = pl.moment
+        if m is None:
+            continue
+        if el == "rigid":
+            if c.dim == 2 and isinstance(m, list):
+                raise fail(f"{key}.moment", f"must be a number in 2D (the torque about z), got "
+                           f"{show(m)}")  # fmt: skip
+            if c.dim == 3 and not isinstance(m, list):
+                raise fail(f"{key}.moment", f"must be a list of 3 numbers, got {show(m)}")
+        else:
+            _rod_only(f"{key}.moment", el)
+            if not isinstance(m, list):
+                raise fail(f"{key}.moment", f"must be a list of 3 numbers, got {show(m)}")
+
+
+def _motion(c: _Context) -> None:
+    sc = c.sc
+    for i, iv in enumerate(sc.initial_velocity):
+        p = c.place(f"initial_velocity[{i}].at", iv.at)
+        if p.where != "node":
+            raise fail(f"initial_velocity[{i}].at", "must be a node of a flexible body (rigid "
+                       "bodies and point masses take velocity)")  # fmt: skip
+        _size(f"initial_velocity[{i}].value", iv.value, c.dim)
+    per_body = [i for i, b in enumerate(sc.bodies) if getattr(b, "initial_motion", None)]
+    if sc.initial_motion is not None:
+        try:
+            sc.initial_motion.check_dim(c.dim)
+        except PydanticCustomError as exc:
+            raise under("initial_motion", exc) from None
+        if sc.initial_velocity:
+            raise fail("initial_motion", "give [initial_motion] or [[initial_velocity]], not both")
+        if per_body:
+            raise fail("initial_motion", f"give [initial_motion] for the whole system or "
+                       f"bodies[{per_body[0]}].initial_motion, not both")  # fmt: skip
+
+
+def _joints(c: _Context) -> None:
+    names: set[str] = set()
+    for i, j in enumerate(c.sc.joints):
+        key = f"joints[{i}]"
+        if j.name in names:
+            raise fail(f"{key}.name", f"{show(j.name)} is used twice")
+        names.add(j.name)
+        ps = [c.place(f"{key}.between[{k}]", v, ground=True) for k, v in enumerate(j.between)]
+        if all(p.where == "ground" for p in ps):
+            raise fail(f"{key}.between", "joins the ground to itself")
+        els = [c.element(p) for p in ps]
+        _size(f"{key}.axis", j.axis, c.dim)
+        if j.kind == "revolute" and c.dim == 2:
+            raise fail(f"{key}.kind", 'revolute joints are spatial: in 2D a "pin" is a revolute '
+                       "joint")  # fmt: skip
+        if j.kind == "fixed" and "mass" in els:
+            raise fail(f"{key}.kind", "a point mass has no orientation: a fixed joint needs "
+                       "bodies with orientation (use a pin)")  # fmt: skip
+        if j.angle is not None:
+            if j.kind == "pin" and c.dim == 3:
+                raise fail(f"{key}.angle", "a pin is spherical in 3D: drive a revolute joint")
+            if "rigid" not in els:
+                raise fail(f"{key}.angle", "a driven joint needs a rigid body on one side")
+    for i, s in enumerate(c.sc.springs):
+        ps = [c.place(f"springs[{i}].between[{k}]", v, ground=True)
+              for k, v in enumerate(s.between)]  # fmt: skip
+        if all(p.where == "ground" for p in ps):
+            raise fail(f"springs[{i}].between", "joins the ground to itself")
+
+
+def _sensors(c: _Context, supports: list[ResolvedPlace]) -> None:
+    names: set[str] = set()
+    joints = {j.name for j in c.sc.joints}
+    for i, s in enumerate(c.sc.sensor_tables):
+        key = f"sensors[{i}]"
+        if s.name in names or s.name == "t":
+            raise fail(f"{key}.name", f"{show(s.name)} is used twice or reserved")
+        names.add(s.name)
+        _size(f"{key}.about", s.about, c.dim)
+        places = []
+        if s.between is not None:
+            places = [c.place(f"{key}.between[{k}]", v) for k, v in enumerate(s.between)]
+        elif s.at is not None:
+            places = [c.place(f"{key}.at", s.at)]
+        els = [c.element(p) for p in places]
+        if s.kind == "twist" and els[0] != "rod":
+            raise fail(f"{key}.kind", f"'twist' needs rod elements (mesh.element = \"rod\"), not "
+                       f"{els[0]!r}")  # fmt: skip
+        if s.kind == "axial_force" and places[0].where != "node":
+            raise fail(f"{key}.at", "an axial force is measured at a node of a flexible body")
+        if s.kind == "reaction":
+            if s.joint is not None and s.joint not in joints:
+                raise fail(f"{key}.joint", f"names no joint: {show(s.joint)} (joints: "
+                           f"{', '.join(sorted(joints)) or 'none'})")  # fmt: skip
+            if s.at is not None and places[0] not in supports:
+                raise fail(f"{key}.at", f"must be the place of a support, got {show(s.at)}")
+        if s.body is not None:
+            b = None if c.bodies is None else c.bodies.get(s.body)
+            if b is None:
+                known = (
+                    "none: a file without [[bodies]]" if c.bodies is None else ", ".join(c.bodies)
+                )
+                raise fail(f"{key}.body", f"names no body: {show(s.body)} (bodies: {known})")
+            if s.kind == "angle" and not isinstance(b, RigidBody):
+                raise fail(f"{key}.body", f"an angle is of a rigid body, {show(s.body)} is not one")
+        elif s.kind == "angle":
+            raise fail(f"{key}.body", "an angle sensor needs body = NAME (a rigid body)")
+
+
+def check_scenario(sc: Scenario) -> tuple[int, dict[str, Any] | None, list[ResolvedPlace]]:
+    """Check ``sc`` as a whole; return its dimension, its bodies by name (None: one body) and
+    the resolved places of its supports."""
+    c = _Context(sc)
+    supports = _supports(c)
+    _loads(c)
+    _motion(c)
+    _joints(c)
+    _sensors(c, supports)
+    return c.dim, c.bodies, supports

@@ -1,0 +1,305 @@
+"""A flexible body's ``[geometry]`` (conic, line, NURBS, CAD) and ``[mesh]``.
+
+Rules besides the types (each violation names its key): the keys of the geometry's ``kind``
+only; all points of one dimension (2: planar, 3: spatial); a NURBS of degree ``p`` has at least
+``p + 1`` control points; ``kind = "cad"`` reads the file (relative to the scenario file) and
+checks the chain of curves.  The section, the material and the checks across tables are in
+:mod:`rancf.scenario.section`.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated, Any, ClassVar, Literal
+
+from pydantic import (
+    BeforeValidator,
+    Field,
+    PrivateAttr,
+    Tag,
+    ValidationInfo,
+    model_validator,
+)
+
+from rancf.elements.mapping import K_RANGE  # the factors a scenario may fix
+from rancf.errors import InputError
+from rancf.geometry.conic import LENGTH_RANGE
+from rancf.scenario.base import (
+    JsonSchema,
+    KindOf,
+    Number,
+    Table,
+    fail,
+    integer,
+    show,
+    to_number,
+    vector,
+)
+
+__all__ = [
+    "MAX_ELEMENTS",
+    "MAX_COORDINATE",
+    "MAX_WEIGHT_RATIO",
+    "ELEMENTS",
+    "GEOMETRY_KEYS",
+    "ConicGeometry",
+    "LineGeometry",
+    "NurbsGeometry",
+    "CadGeometry",
+    "Geometry",
+    "MeshTable",
+]
+
+#: Largest size of a geometry coordinate [m] (``start``, ``end``, ``point``, ``control_points``):
+#: the longest chord a conic may have (:data:`rancf.geometry.conic.LENGTH_RANGE`).
+MAX_COORDINATE = LENGTH_RANGE[1]
+#: Largest ratio of two NURBS weights (a curve's shape depends on the ratios only).
+MAX_WEIGHT_RATIO = 1e12
+#: Largest ``mesh.elements`` (and total number of elements of a NURBS mesh).
+MAX_ELEMENTS = 1_000_000
+#: Element kinds of ``mesh.element``.
+ELEMENTS = ("rancf", "ancf", "beam", "rod")
+#: Keys of ``[geometry]`` for each kind.
+GEOMETRY_KEYS = {
+    "conic": ("start", "end", "angles_deg", "point"),
+    "line": ("start", "end"),
+    "nurbs": ("degree", "knots", "control_points", "weights"),
+    "cad": ("file", "curve"),
+}
+
+Point = vector(2, 3, bound=MAX_COORDINATE)
+
+
+class _Geometry(Table):
+    """Keys of another kind are refused as not applying to this one."""
+
+    KIND: ClassVar[str] = ""
+
+    @classmethod
+    def unknown_key_message(cls, key: str) -> str:
+        if any(key in keys for keys in GEOMETRY_KEYS.values()):
+            own = ", ".join(GEOMETRY_KEYS[cls.KIND])
+            return f"does not apply to kind = {cls.KIND!r} (its keys: {own})"
+        return super().unknown_key_message(key)
+
+    @property
+    def dim(self) -> int:
+        """Dimension of the geometry: 2 (planar) or 3 (spatial)."""
+        raise NotImplementedError
+
+
+def _same_dim(dim: int, key: str, v: list[float]) -> None:
+    if len(v) != dim:
+        raise fail(key, f"must be a list of {dim} numbers, got {show(v)}")
+
+
+class LineGeometry(_Geometry):
+    """A straight line from ``start`` to ``end``."""
+
+    KIND: ClassVar[str] = "line"
+    kind: Literal["line"] = Field(description="a straight line")
+    start: Point = Field(description="start point [m]; 2 coordinates: planar, 3: spatial")
+    end: Point = Field(description="end point [m], as many coordinates as start")
+
+    @model_validator(mode="after")
+    def _dims(self) -> LineGeometry:
+        _same_dim(len(self.start), "end", self.end)
+        return self
+
+    @property
+    def dim(self) -> int:
+        return len(self.start)
+
+
+class ConicGeometry(_Geometry):
+    """A conic arc (ellipse, parabola or hyperbola) from its end points, end angles and one
+    interior point."""
+
+    KIND: ClassVar[str] = "conic"
+    kind: Literal["conic"] = Field(description="a conic arc")
+    start: Point = Field(description="start point [m]; 2 coordinates: planar, 3: spatial")
+    end: Point = Field(description="end point [m], as many coordinates as start")
+    angles_deg: vector(2) = Field(
+        description="tangent-to-chord angles at start and end, each in (0, 90) [deg]"
+    )
+    point: Point = Field(description="an interior point of the arc, global coordinates [m]")
+
+    @model_validator(mode="after")
+    def _dims(self) -> ConicGeometry:
+        _same_dim(len(self.start), "end", self.end)
+        _same_dim(len(self.start), "point", self.point)
+        return self
+
+    @property
+    def dim(self) -> int:
+        return len(self.start)
+
+
+class NurbsGeometry(_Geometry):
+    """A NURBS curve of degree 2 or 3."""
+
+    KIND: ClassVar[str] = "nurbs"
+    kind: Literal["nurbs"] = Field(description="a NURBS curve")
+    degree: integer(ge=2, le=3) = Field(description="polynomial degree, 2 or 3")
+    knots: list[Number] = Field(description="knot vector, non-decreasing")
+    control_points: list[Point] = Field(
+        min_length=1, description="control points [m], all with 2 or all with 3 coordinates"
+    )
+    weights: list[Number] | None = Field(
+        None, description="rational weights, > 0, one per control point (default: all 1)"
+    )
+
+    @model_validator(mode="after")
+    def _points(self) -> NurbsGeometry:
+        n, p = len(self.control_points), self.degree
+        if n < p + 1:
+            raise fail(
+                "control_points",
+                f"a NURBS of degree {p} needs at least {p + 1} control points, got {n}",
+            )
+        for i, pt in enumerate(self.control_points):
+            _same_dim(self.dim, f"control_points[{i}]", pt)
+        w = [abs(x) for x in self.weights or () if x != 0.0]
+        if w and max(w) > MAX_WEIGHT_RATIO * min(w):
+            raise fail("weights", f"the largest weight may be at most {MAX_WEIGHT_RATIO:g} times "
+                       f"the smallest, got {max(w):g} and {min(w):g}")  # fmt: skip
+        return self
+
+    @property
+    def dim(self) -> int:
+        return len(self.control_points[0])
+
+
+Curve = Annotated[int | str, BeforeValidator(lambda v: _curve_item(v))]
+
+
+def _curve_item(v: Any) -> Any:
+    if isinstance(v, bool) or not isinstance(v, int | str):
+        raise fail("", f"must be an index, a name or a list, got {show(v)}")
+    return v
+
+
+class CadGeometry(_Geometry):
+    """Curves of a CAD file (STEP, IGES, DXF, geomdl JSON) joined into one tangent-continuous
+    chain (:mod:`rancf.model.cad_geometry`)."""
+
+    KIND: ClassVar[str] = "cad"
+    kind: Literal["cad"] = Field(description="curves of a CAD file")
+    file: Annotated[str, Field(min_length=1)] = Field(
+        description="CAD file (STEP, IGES, DXF, geomdl JSON), relative to the scenario file"
+    )
+    curve: Curve | list[Curve] | None = Field(
+        None,
+        description="curve index or name in the file, or a list of them forming a chain "
+        "(default: the first curve)",
+    )
+    _curves: list[Any] = PrivateAttr(default_factory=list)
+    _labels: list[str] = PrivateAttr(default_factory=list)
+    _resolved: str = PrivateAttr("")
+
+    @model_validator(mode="after")
+    def _read(self, info: ValidationInfo) -> CadGeometry:
+        from rancf.model.cad_geometry import chain_segments, select_cad_curves
+
+        path = str((info.context or {}).get("path", "<scenario>"))
+        base = Path(path).parent if not path.startswith("<") else Path.cwd()
+        file = (base / self.file).resolve()
+        sel = 0 if self.curve is None else self.curve
+        if isinstance(sel, list) and not sel:
+            raise fail("curve", "must be an index, a name or a non-empty list, got []")
+        try:
+            curves, labels = select_cad_curves(file, sel)
+            chain_segments(curves, labels)  # report gaps and kinks now, naming the key
+        except InputError as exc:
+            key = "file" if exc.parameter == "file" else exc.parameter.removeprefix("geometry.")
+            raise fail(key, str(exc)) from None
+        self._curves, self._labels, self._resolved = curves, labels, str(file)
+        return self
+
+    @property
+    def dim(self) -> int:
+        return int(self._curves[0].dim)
+
+    @property
+    def curves(self) -> list[Any]:
+        """The selected curves (:class:`~rancf.geometry.nurbs.NurbsCurve`), in chain order."""
+        return list(self._curves)
+
+    @property
+    def labels(self) -> list[str]:
+        """The curves' labels (``curve 3 (name)``) for errors."""
+        return list(self._labels)
+
+    @property
+    def resolved_file(self) -> str:
+        """The CAD file's absolute path."""
+        return self._resolved
+
+
+def _geometry_kind(v: Any) -> str | None:
+    k = v.get("kind") if isinstance(v, dict) else getattr(v, "kind", None)
+    return f"[{k}]" if isinstance(k, str) and k in GEOMETRY_KEYS else None
+
+
+#: ``[geometry]``: one of the kinds, chosen by ``kind``.
+Geometry = Annotated[
+    Annotated[ConicGeometry, Tag("[conic]")]
+    | Annotated[LineGeometry, Tag("[line]")]
+    | Annotated[NurbsGeometry, Tag("[nurbs]")]
+    | Annotated[CadGeometry, Tag("[cad]")],
+    KindOf(
+        _geometry_kind,
+        custom_error_type="choice",
+        custom_error_message="must be one of the geometry kinds",
+        custom_error_context={"key": "kind", "allowed": "'conic', 'line', 'nurbs', 'cad'"},
+    ),
+    Field(description="the reference geometry (its kind selects its keys)"),
+]
+
+
+def _k(v: Any) -> Any:
+    lo, hi = K_RANGE
+    bad = f'must be "opt" or a number in [{lo:g}, {hi:g}], got {show(v)}'
+    if v == "opt" and isinstance(v, str):
+        return v
+    try:
+        k = to_number(v)
+    except Exception:  # noqa: BLE001 - any non-number is the same mistake
+        raise fail("", bad) from None
+    if not lo <= k <= hi:
+        raise fail("", bad)
+    return k
+
+
+class MeshTable(Table):
+    """``[mesh]``: how the geometry is divided into elements."""
+
+    elements: integer(ge=1, le=MAX_ELEMENTS) = Field(
+        description="number of elements (NURBS and CAD curves: per knot span)"
+    )
+    element: Literal["rancf", "ancf", "beam", "rod"] = Field(
+        "rancf",
+        description='"rancf" (rational, exact conics) | "ancf" (polynomial cable) | "beam" '
+        '(planar co-rotational Euler-Bernoulli, 2D only) | "rod" (spatial rod with torsion, '
+        "3D only)",
+    )
+    k: Annotated[
+        Literal["opt"] | float,
+        BeforeValidator(_k),
+        JsonSchema(
+            {
+                "oneOf": [
+                    {"const": "opt"},
+                    {"type": "number", "minimum": K_RANGE[0], "maximum": K_RANGE[1]},
+                ]
+            }
+        ),
+    ] = Field("opt", description='mapping factor: "opt" (Kopt per element) or a number')
+    spacing: Literal["arc", "parameter"] = Field(
+        "arc", description='"arc" (equal arc length) | "parameter" (equal parameter steps)'
+    )
+    quadrature_points: integer(ge=2, le=64) | None = Field(
+        None,
+        description="Gauss points per element (default: 6 for polynomial (ANCF) elements, 10 "
+        "for rational ones)",
+    )

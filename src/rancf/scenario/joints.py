@@ -1,0 +1,88 @@
+"""``[[joints]]`` and ``[[springs]]``: connections between two places.
+
+Joints (``between = [A, B]``, places of :mod:`rancf.scenario.places`, ``"ground"`` included):
+
+* ``pin``: the positions coincide (a revolute joint in 2D, a spherical one in 3D);
+* ``revolute`` (3D): positions coincide, the bodies turn about ``axis`` only;
+* ``fixed``: positions and orientations coincide (a cable end's tangent, a rod end's material
+  frame, a rigid body's frame);
+* ``slider``: ``A`` moves along ``axis`` through ``B``, orientation free.
+
+``axis`` (global components in the reference configuration) is required for ``revolute`` and
+``slider`` and refused otherwise; ``angle`` (a scalar TIME_FUNCTION, the relative rotation from
+the reference [rad]) drives a ``pin`` (2D) or ``revolute`` joint with a rigid body on one side.
+
+Springs: a spring-damper along the line between two places, force ``stiffness (d − length) +
+damping ḋ`` (``d`` the distance; ``length`` defaults to the reference distance).
+"""
+
+from __future__ import annotations
+
+from typing import Literal
+
+from pydantic import Field, model_validator
+
+from rancf.scenario.base import Name, NonNegative, PlacePair, Positive, Table, fail, show, vector
+from rancf.scenario.loads import TimeFunctionValue, check_scalar
+
+__all__ = ["JointTable", "SpringTable", "JOINT_KINDS"]
+
+#: Joint kinds.
+JOINT_KINDS = ("pin", "revolute", "fixed", "slider")
+
+
+class JointTable(Table):
+    """One joint between two places."""
+
+    name: Name = Field(description="the joint's name (reaction columns and sensors), unique")
+    kind: Literal["pin", "revolute", "fixed", "slider"] = Field(
+        description='"pin" (positions coincide) | "revolute" (3D, about axis) | "fixed" '
+        '(positions and orientations coincide) | "slider" (A moves along axis through B)'
+    )
+    between: PlacePair = Field(description="the two places joined [A, B]")
+    axis: vector(2, 3) | None = Field(
+        None, description="revolute: the rotation axis; slider: the line of motion (global)"
+    )
+    angle: TimeFunctionValue | None = Field(
+        None,
+        description="a driven pin (2D) or revolute joint: the relative rotation from the "
+        "reference [rad], a scalar TIME_FUNCTION",
+    )
+
+    @model_validator(mode="after")
+    def _kind_keys(self) -> JointTable:
+        needs_axis = self.kind in ("revolute", "slider")
+        if needs_axis and self.axis is None:
+            raise fail("axis", f"required for a {self.kind} joint")
+        if not needs_axis and self.axis is not None:
+            raise fail("axis", f"applies to revolute and slider joints only, not {self.kind!r}")
+        if self.axis is not None and not any(x != 0.0 for x in self.axis):
+            raise fail("axis", "must be a nonzero vector")
+        if self.angle is not None and self.kind not in ("pin", "revolute"):
+            raise fail("angle", f"drives pin and revolute joints only, not {self.kind!r}")
+        check_scalar("angle", self.angle)
+        a, b = self.between
+        if a == b:
+            raise fail("between", f"must be two different places, got {show(a)} twice")
+        return self
+
+
+class SpringTable(Table):
+    """A spring-damper between two places."""
+
+    name: Name | None = Field(None, description="optional name")
+    between: PlacePair = Field(description="the two places [A, B]")
+    stiffness: NonNegative = Field(description="axial stiffness [N/m]")
+    damping: NonNegative = Field(0.0, description="axial damping [N s/m]")
+    length: Positive | None = Field(
+        None, description="rest length [m] (default: the reference distance)"
+    )
+
+    @model_validator(mode="after")
+    def _something(self) -> SpringTable:
+        if self.stiffness == 0.0 and self.damping == 0.0:
+            raise fail("stiffness", "stiffness and damping are both 0: the spring does nothing")
+        a, b = self.between
+        if a == b:
+            raise fail("between", f"must be two different places, got {show(a)} twice")
+        return self

@@ -1,0 +1,355 @@
+"""Time functions, ``[[supports]]``, ``[loads]`` (gravity, ``[[loads.point]]``), ``[damping]``,
+``[[initial_velocity]]`` and ``[initial_motion]``.
+
+A TIME_FUNCTION (:class:`~rancf.model.time_function.TimeFunction`, equations T.1–T.5) is written
+as a number (or a vector where the key is a vector: a support's ``motion``), or as a table with
+one of the keys ``table``, ``ramp``, ``harmonic`` or ``spin_up``; in Python also a
+``TimeFunction`` or any callable ``f(t)``.
+
+Rules besides the types (each violation names its key):
+
+* ``[[supports]]``: ``axis`` for rollers only (and required there), ``direction`` for clamps
+  only, both nonzero; ``fix_twist = true`` (rods) also holds the twist of a pin; ``motion`` is a
+  displacement vector from the reference position (not with ``position``).
+* ``[[loads.point]]``: ``force``, ``moment`` or both; ``time`` (a factor on both) or the older
+  ``frequency_hz`` (``sin(2π f t)``), not both.
+* ``[initial_motion]``: ``velocity`` and/or ``angular_velocity`` (3 numbers in 3D, one in 2D)
+  and ``about`` (default the origin): the rigid-body velocity field ``v = velocity + ω × (x −
+  about)`` (:mod:`rancf.model.motion`).
+"""
+
+from __future__ import annotations
+
+from typing import Annotated, Any, Literal
+
+from pydantic import Field, PlainSerializer, PlainValidator, Tag, model_validator
+from pydantic.json_schema import SkipJsonSchema
+
+from rancf.errors import InputError
+from rancf.model.time_function import TimeFunction
+from rancf.scenario.base import (
+    Flag,
+    KindOf,
+    NonNegative,
+    Number,
+    PlaceValue,
+    Positive,
+    Table,
+    fail,
+    number_or_vector,
+    show,
+    to_number,
+    vector,
+)
+
+__all__ = [
+    "TableFunction",
+    "RampFunction",
+    "HarmonicFunction",
+    "SpinUpFunction",
+    "TimeFunctionValue",
+    "time_function",
+    "time_size",
+    "SupportTable",
+    "PointLoadTable",
+    "LoadsTable",
+    "DampingTable",
+    "InitialVelocityTable",
+    "InitialMotionTable",
+]
+
+Amount = number_or_vector(1, 2, 3)
+
+
+class TableFunction(Table):
+    """``{ table = [[t, v...], ...], interpolation = ... }`` (T.2)."""
+
+    table: list[list[Number]] = Field(
+        min_length=2,
+        description="rows [t, v...]: times [s] strictly increasing, one value per component; "
+        "held at the first row before it and at the last row after it",
+    )
+    interpolation: Literal["linear", "cubic"] = Field(
+        "linear",
+        description='"linear" | "cubic" (the not-a-knot cubic spline: C2, exact for cubics)',
+    )
+
+    @model_validator(mode="after")
+    def _rows(self) -> TableFunction:
+        width = len(self.table[0])
+        for i, row in enumerate(self.table):
+            if len(row) < 2 or len(row) != width:
+                raise fail(f"table[{i}]", f"must be a row [t, v...] of {max(width, 2)} numbers "
+                           f"like the first row, got {show(row)}")  # fmt: skip
+            if i and not row[0] > self.table[i - 1][0]:
+                raise fail(f"table[{i}][0]", f"times must increase strictly, got {show(row[0])} "
+                           f"after {show(self.table[i - 1][0])}")  # fmt: skip
+        return self
+
+    def function(self) -> TimeFunction:
+        """The time function."""
+        return TimeFunction.table(self.table, self.interpolation)
+
+
+class RampFunction(Table):
+    """``{ ramp = DURATION, value = ... }``: ``value · min(t / DURATION, 1)`` (T.3)."""
+
+    ramp: Positive = Field(description="duration T of the ramp [s]")
+    value: Amount = Field(1.0, description="the value reached at t = T (a number or a vector)")
+
+    def function(self) -> TimeFunction:
+        """The time function."""
+        return TimeFunction.ramp(self.ramp, self.value)
+
+
+class HarmonicFunction(Table):
+    """``{ harmonic = FREQUENCY_HZ, amplitude = ..., phase_deg = ... }``:
+    ``amplitude · sin(2π f t + phase)`` (T.4)."""
+
+    harmonic: Positive = Field(description="frequency f [Hz]")
+    amplitude: Amount = Field(1.0, description="amplitude (a number or a vector)")
+    phase_deg: Number = Field(0.0, description="phase [deg]")
+
+    def function(self) -> TimeFunction:
+        """The time function."""
+        return TimeFunction.harmonic(self.harmonic, self.amplitude, self.phase_deg)
+
+
+class SpinUpFunction(Table):
+    """``{ spin_up = DURATION, rate = OMEGA }``: an angle whose rate rises smoothly from 0 to
+    OMEGA in DURATION T, ``(Ω/T)[t²/2 + (T/2π)²(cos(2πt/T) − 1)]`` for ``t ≤ T`` and
+    ``Ω (t − T/2)`` after (T.5; Kane, Ryan & Banerjee 1987)."""
+
+    spin_up: Positive = Field(description="duration T of the spin-up [s]")
+    rate: Number = Field(description="the final angular rate Omega [rad/s]")
+
+    def function(self) -> TimeFunction:
+        """The time function."""
+        return TimeFunction.spin_up(self.spin_up, self.rate)
+
+
+def _python_function(v: Any) -> TimeFunction:
+    if isinstance(v, TimeFunction):
+        return v
+    if callable(v):
+        try:
+            return TimeFunction.from_callable(v)
+        except InputError as exc:
+            raise fail("", f"must return a number or a vector at t = 0 ({exc.allowed})") from None
+    raise fail("", f"must be a time function, got {show(v)}")
+
+
+def _serialize_python(f: TimeFunction) -> Any:
+    return f if f.kind == "callable" else f.to_toml()  # a callable has no file form
+
+
+_KINDS = ("table", "ramp", "harmonic", "spin_up")
+
+
+_TAGS: dict[type, str] = {
+    TableFunction: "[table]",
+    RampFunction: "[ramp]",
+    HarmonicFunction: "[harmonic]",
+    SpinUpFunction: "[spin_up]",
+}
+
+
+def _time_kind(v: Any) -> str | None:
+    if isinstance(v, bool):
+        return None
+    if isinstance(v, int | float):
+        return "[number]"
+    if isinstance(v, list | tuple):
+        return "[vector]"
+    if isinstance(v, dict):
+        found = [k for k in _KINDS if k in v]
+        return f"[{found[0]}]" if len(found) == 1 else None
+    if type(v) in _TAGS:
+        return _TAGS[type(v)]
+    if isinstance(v, TimeFunction) or callable(v):
+        return "[python]"
+    return None
+
+
+#: A TIME_FUNCTION value: a number, a vector, one of the function tables, or (Python) a
+#: :class:`~rancf.model.time_function.TimeFunction` or a callable.
+TimeFunctionValue = Annotated[
+    Annotated[Number, Tag("[number]")]
+    | Annotated[vector(1, 2, 3), Tag("[vector]")]
+    | Annotated[TableFunction, Tag("[table]")]
+    | Annotated[RampFunction, Tag("[ramp]")]
+    | Annotated[HarmonicFunction, Tag("[harmonic]")]
+    | Annotated[SpinUpFunction, Tag("[spin_up]")]
+    | SkipJsonSchema[
+        Annotated[
+            TimeFunction,
+            PlainValidator(_python_function),
+            PlainSerializer(_serialize_python),
+            Tag("[python]"),
+        ]
+    ],
+    KindOf(
+        _time_kind,
+        custom_error_type="time_function",
+        custom_error_message="must be a time function",
+    ),  # fmt: skip
+]
+
+
+def time_function(v: Any) -> TimeFunction:
+    """The :class:`~rancf.model.time_function.TimeFunction` of a validated TIME_FUNCTION."""
+    if isinstance(v, TimeFunction):
+        return v
+    if isinstance(v, int | float | list):
+        return TimeFunction.constant(v)
+    return v.function()
+
+
+def time_size(v: Any) -> int | None:
+    """Number of components of a validated TIME_FUNCTION (None: a scalar)."""
+    if isinstance(v, TimeFunction):
+        return v.size if v.vector else None
+    if isinstance(v, list):
+        return len(v)
+    if isinstance(v, TableFunction):
+        return len(v.table[0]) - 1 if len(v.table[0]) > 2 else None
+    for attr in ("value", "amplitude"):
+        if isinstance(getattr(v, attr, None), list):
+            return len(getattr(v, attr))
+    return None
+
+
+def check_scalar(key: str, v: Any) -> None:
+    """Raise unless the TIME_FUNCTION ``v`` (of ``key``) is scalar valued."""
+    if v is not None and time_size(v) is not None:
+        raise fail(key, "must be a scalar time function (numbers, not vectors)")
+
+
+class SupportTable(Table):
+    """``[[supports]]``: a place held fixed, or moved along a prescribed path."""
+
+    at: PlaceValue = Field(description="the supported place")
+    kind: Literal["pin", "clamp", "roller"] = Field(
+        "pin",
+        description='"pin" (position fixed) | "clamp" (position and direction) | "roller" '
+        "(moves along axis only)",
+    )
+    fix_twist: Flag = Field(
+        False, description="rods: also hold the twist (a clamp holds it anyway)"
+    )
+    position: vector(2, 3) | None = Field(
+        None, description="installed position [m] (default: the reference; see Equilibrium)"
+    )
+    direction: vector(2, 3) | None = Field(
+        None, description="clamps: the installed tangent direction (default: the reference)"
+    )
+    axis: vector(2, 3) | None = Field(None, description="rollers: the line it moves along")
+    motion: TimeFunctionValue | None = Field(
+        None,
+        description="prescribed displacement from the reference position [m]: a vector "
+        "TIME_FUNCTION",
+    )
+
+    @model_validator(mode="after")
+    def _kinds(self) -> SupportTable:
+        if self.kind == "roller" and self.axis is None:
+            raise fail("axis", "required for a roller (the direction it moves along)")
+        if self.kind != "roller" and self.axis is not None:
+            raise fail("axis", f'applies to kind = "roller" only, not {self.kind!r}')
+        if self.kind != "clamp" and self.direction is not None:
+            raise fail("direction", f'applies to kind = "clamp" only, not {self.kind!r}')
+        for k in ("direction", "axis"):
+            if self[k] is not None and not any(x != 0.0 for x in self[k]):
+                raise fail(k, "must be a nonzero vector")
+        if self.motion is not None:
+            if time_size(self.motion) is None:
+                raise fail("motion", "must be a vector time function (a displacement [m])")
+            if self.position is not None:
+                raise fail("motion", "give position (installed) or motion (prescribed), not both")
+        return self
+
+
+class PointLoadTable(Table):
+    """``[[loads.point]]``: a force and/or a moment at a place."""
+
+    at: PlaceValue = Field(description="where the load acts")
+    force: vector(2, 3) | None = Field(None, description="force [N]")
+    moment: number_or_vector(3) | None = Field(
+        None, description="moment [N m]: [mx, my, mz] (rods, 3D rigid bodies); a number (the "
+        "torque about z) on a 2D rigid body",
+    )  # fmt: skip
+    frequency_hz: Positive | None = Field(
+        None, description="a harmonic load F sin(2 pi f t) [Hz] (or time)"
+    )
+    time: TimeFunctionValue | None = Field(
+        None, description="a scalar TIME_FUNCTION multiplying force and moment"
+    )
+
+    @model_validator(mode="after")
+    def _given(self) -> PointLoadTable:
+        if self.force is None and self.moment is None:
+            raise fail("force", "required key is missing (give force, moment or both)")
+        if self.time is not None and self.frequency_hz is not None:
+            raise fail("time", "give time or frequency_hz, not both")
+        check_scalar("time", self.time)
+        return self
+
+
+class LoadsTable(Table):
+    """``[loads]``: gravity on every body, and point loads."""
+
+    gravity: vector(2, 3) | None = Field(None, description="gravitational acceleration [m/s^2]")
+    point: list[PointLoadTable] = Field([], description="point forces and moments")
+
+
+class DampingTable(Table):
+    """``[damping]``: mass-proportional damping of the flexible bodies."""
+
+    mass_proportional: NonNegative = Field(0.0, description="c in C = c M [1/s]")
+
+
+class InitialVelocityTable(Table):
+    """``[[initial_velocity]]``: the velocity of one node's position (nothing else moves)."""
+
+    at: PlaceValue = Field(description="the node")
+    value: vector(2, 3) = Field(description="velocity [m/s]")
+
+
+class InitialMotionTable(Table):
+    """``[initial_motion]``: a rigid-body velocity field ``v = velocity + ω × (x − about)``."""
+
+    velocity: vector(2, 3) | None = Field(None, description="translation velocity [m/s]")
+    angular_velocity: number_or_vector(3) | None = Field(
+        None, description="[rad/s]: 3 components in 3D, the rate about z in 2D"
+    )
+    about: vector(2, 3) | None = Field(None, description="the point omega turns about [m] "
+                                       "(default: the origin)")  # fmt: skip
+
+    @model_validator(mode="after")
+    def _some(self) -> InitialMotionTable:
+        if self.velocity is None and self.angular_velocity is None:
+            raise fail("", "needs velocity and/or angular_velocity")
+        return self
+
+    def check_dim(self, dim: int) -> None:
+        """Raise unless the vectors have ``dim`` components (keys relative to the table)."""
+        for k in ("velocity", "about"):
+            v = self[k]
+            if v is not None and len(v) != dim:
+                raise fail(k, f"must be a list of {dim} numbers, got {show(v)}")
+        w = self.angular_velocity
+        if dim == 2 and isinstance(w, list):
+            raise fail(
+                "angular_velocity", f"must be a number in 2D (the rate about z), got {show(w)}"
+            )
+        if dim == 3 and w is not None and not isinstance(w, list):
+            raise fail("angular_velocity", f"must be a list of 3 numbers, got {show(w)}")
+
+    def as_dict(self) -> dict[str, Any]:
+        """The table with ``angular_velocity`` as a list (one number in 2D)."""
+        w = self.angular_velocity
+        return {
+            "velocity": self.velocity,
+            "angular_velocity": w if w is None or isinstance(w, list) else [to_number(w)],
+            "about": self.about,
+        }

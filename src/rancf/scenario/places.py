@@ -1,0 +1,118 @@
+"""Places: where supports, loads, joints, springs and sensors attach.
+
+In a file with ``[[bodies]]``:
+
+* ``"BODY:start"``, ``"BODY:end"``, ``"BODY:N"``: a node of a flexible body (``N`` counts from
+  0, negative from the end; checked against the mesh when the model is built);
+* ``"BODY"``: a rigid body's centre of mass, or a point mass;
+* ``"BODY:POINT"``: a named point of a rigid body (its ``points`` table);
+* ``"ground"``: the fixed frame (joints and springs).
+
+In a file without ``[[bodies]]`` (one flexible body) a place is ``"start"``, ``"end"`` or a node
+index, as always (and ``"ground"`` for joints and springs).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+from rancf.scenario.base import fail, shorten, show
+from rancf.scenario.bodies import FlexibleBody, PointMass, RigidBody
+from rancf.system.places import GROUND, Place
+
+__all__ = ["ResolvedPlace", "resolve_place"]
+
+
+@dataclass(frozen=True)
+class ResolvedPlace:
+    """A place resolved against the scenario's bodies.
+
+    Attributes
+    ----------
+    text : int or str
+        The place as written.
+    where : str
+        ``"node"`` (of a flexible body), ``"center"`` (a rigid body's centre of mass or a point
+        mass), ``"point"`` (a named point of a rigid body) or ``"ground"``.
+    body : str or None
+        The body's name (None: the one body of a file without ``[[bodies]]``, or the ground).
+    node : int or None
+        The node index (``"start"``: 0, ``"end"``: -1) of a ``"node"`` place.
+    point : str or None
+        The point's name of a ``"point"`` place.
+    """
+
+    text: int | str
+    where: str
+    body: str | None = None
+    node: int | None = None
+    point: str | None = None
+
+    def system_place(self, single: str = "body") -> Place:
+        """The :class:`rancf.system.places.Place` of the system builder (``single``: the body's
+        name in a file without ``[[bodies]]``)."""
+        if self.where == "ground":
+            return GROUND
+        body = self.body if self.body is not None else single
+        return Place(body, self.node if self.where == "node" else self.point)
+
+
+def _node(text: str) -> int | None:
+    if text == "start":
+        return 0
+    if text == "end":
+        return -1
+    try:
+        return int(text)
+    except ValueError:
+        return None
+
+
+def resolve_place(
+    key: str, v: int | str, bodies: dict[str, Any] | None, ground: bool = False
+) -> ResolvedPlace:
+    """The :class:`ResolvedPlace` of ``v`` (of the key ``key``, relative to the table validated).
+
+    Parameters
+    ----------
+    bodies : dict or None
+        The bodies by name; None for a file without ``[[bodies]]``.
+    ground : bool
+        Whether ``"ground"`` is allowed (joints and springs).
+    """
+    if v == "ground":
+        if not ground:
+            raise fail(key, 'cannot be "ground" here (the ground does not move)')
+        return ResolvedPlace(v, "ground")
+    if bodies is None:
+        if isinstance(v, int):
+            return ResolvedPlace(v, "node", node=v)
+        if v in ("start", "end"):
+            return ResolvedPlace(v, "node", node=0 if v == "start" else -1)
+        raise fail(key, f'must be "start", "end" or a node index, got {show(v)}')
+    names = ", ".join(bodies)
+    if isinstance(v, int):
+        raise fail(key, f'must be "BODY:start", "BODY:end", "BODY:N", "BODY" or "BODY:POINT" '
+                   f"with [[bodies]] (bodies: {shorten(names)}), got {show(v)}")  # fmt: skip
+    name, _, sub = v.partition(":")
+    body = bodies.get(name)
+    if body is None:
+        raise fail(key, f"names no body: {show(name)} (bodies: {shorten(names)})")
+    if isinstance(body, FlexibleBody):
+        node = _node(sub)
+        if node is None:
+            raise fail(key, f'a place of the flexible body {show(name)} is "{name}:start", '
+                       f'"{name}:end" or "{name}:N" (a node index), got {show(v)}')  # fmt: skip
+        return ResolvedPlace(v, "node", name, node=node)
+    if not sub:
+        return ResolvedPlace(v, "center", name)
+    if isinstance(body, PointMass):
+        raise fail(key, f'the point mass {show(name)} is the place "{name}" itself, got {show(v)}')
+    assert isinstance(body, RigidBody)
+    if sub not in body.points:
+        known = ", ".join(body.points) or "none"
+        raise fail(
+            key, f"the rigid body {show(name)} has no point {show(sub)} (its points: {known})"
+        )
+    return ResolvedPlace(v, "point", name, point=sub)

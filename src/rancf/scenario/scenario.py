@@ -1,0 +1,360 @@
+"""The scenario: a model (one flexible body, or ``[[bodies]]`` with joints and springs) and its
+analysis, as a TOML file or built in Python — one typed description for both.
+
+    >>> sc = Scenario(geometry={"kind": "line", "start": [0, 0], "end": [1, 0]},
+    ...               mesh={"elements": 4}, section={"radius": 0.01},
+    ...               material={"density": 7800, "youngs_modulus": 2e11})
+
+Every table has a fixed set of keys: an unknown key, a missing required key, a value of the wrong
+type or out of range, or a meaningless combination raises :class:`~rancf.errors.ScenarioError`
+naming the file (``<scenario>`` for one built in Python) and the key
+(``geometry.angles_deg[1]``), so a typo never passes silently.
+"""
+
+from __future__ import annotations
+
+import tomllib
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from pydantic import Field, PrivateAttr, ValidationError, ValidationInfo, model_validator
+
+from rancf.errors import ScenarioError
+from rancf.scenario.base import Table, shorten
+from rancf.scenario.bodies import Body
+from rancf.scenario.checks import check_scenario
+from rancf.scenario.geometry import GEOMETRY_KEYS, CadGeometry, Geometry, MeshTable
+from rancf.scenario.joints import JointTable, SpringTable
+from rancf.scenario.loads import (
+    DampingTable,
+    InitialMotionTable,
+    InitialVelocityTable,
+    LoadsTable,
+    SupportTable,
+    time_function,
+)
+from rancf.scenario.messages import scenario_error
+from rancf.scenario.section import MaterialTable, SectionTable
+from rancf.scenario.sensors import Sensor, SensorTable
+from rancf.scenario.solver import ModesTable, SolverTable
+
+if TYPE_CHECKING:
+    from rancf.model.analysis import DynamicOptions
+    from rancf.model.system import Model
+    from rancf.scenario.places import ResolvedPlace
+    from rancf.system import System
+
+__all__ = ["Scenario", "load_scenario", "parse_scenario"]
+
+_PYTHON = "<scenario>"
+
+
+class Scenario(Table):
+    """A validated scenario (module docstring); the keys of the file are its fields.
+
+    Attributes besides the tables: :attr:`path` (the file, or ``<scenario>``), :attr:`dim`
+    (2 or 3), :attr:`data` (every table as plain dictionaries, defaults filled in),
+    :attr:`sensors` (the :class:`~rancf.scenario.sensors.Sensor` records of ``[[sensors]]``).
+    """
+
+    geometry: Geometry | None = None
+    mesh: MeshTable | None = Field(None, description="one-body file: the elements")
+    section: SectionTable | None = Field(None, description="one-body file: the cross-section")
+    material: MaterialTable | None = Field(None, description="one-body file: the material")
+    bodies: list[Body] = Field([], description="a system: flexible, rigid and point-mass bodies")
+    joints: list[JointTable] = Field([], description="joints between two places")
+    springs: list[SpringTable] = Field([], description="spring-dampers between two places")
+    supports: list[SupportTable] = Field([], description="places held fixed or moved")
+    loads: LoadsTable = Field(LoadsTable(), description="gravity and point loads")
+    damping: DampingTable = Field(DampingTable(), description="mass-proportional damping")
+    initial_velocity: list[InitialVelocityTable] = Field(
+        [], description="velocities of single nodes (their energy depends on the mesh)"
+    )
+    initial_motion: InitialMotionTable | None = Field(
+        None, description="a rigid-body velocity field of the whole model"
+    )
+    solver: SolverTable = Field(SolverTable(), description="analysis settings")
+    modes: ModesTable = Field(ModesTable(), description="defaults of rancf modes")
+    sensor_tables: list[SensorTable] = Field([], alias="sensors", description="monitored values")
+
+    _path: str = PrivateAttr(_PYTHON)
+    _dim: int = PrivateAttr(0)
+    _bodies: dict[str, Any] | None = PrivateAttr(None)
+    _support_places: list[Any] = PrivateAttr(default_factory=list)
+    _data: dict[str, Any] = PrivateAttr(default_factory=dict)
+    _sensors: tuple[Sensor, ...] = PrivateAttr(())
+
+    @classmethod
+    def error_path(cls) -> str:
+        return _PYTHON
+
+    @classmethod
+    def unknown_key_message(cls, key: str) -> str:
+        return f"unknown table (allowed: {', '.join(cls.file_keys())})"
+
+    @model_validator(mode="after")
+    def _whole(self, info: ValidationInfo) -> Scenario:
+        self._path = str((info.context or {}).get("path", _PYTHON))
+        self._dim, self._bodies, self._support_places = check_scenario(self)
+        self._data = _data(self)
+        self._sensors = tuple(_record(s, self._bodies) for s in self.sensor_tables)
+        return self
+
+    # ------------------------------------------------------------------ the facade
+    @property
+    def path(self) -> str:
+        """The scenario file (``<scenario>`` for one built in Python)."""
+        return self._path
+
+    @property
+    def dim(self) -> int:
+        """2 (planar) or 3 (spatial)."""
+        return self._dim
+
+    @property
+    def data(self) -> dict[str, Any]:
+        """Every table as plain dictionaries with defaults filled in (places of a one-body
+        file as node indices; ``supports[i]["label"]`` keeps ``at`` as written)."""
+        return self._data
+
+    @property
+    def sensors(self) -> tuple[Sensor, ...]:
+        """The sensors in file order."""
+        return self._sensors
+
+    @property
+    def is_system(self) -> bool:
+        """Whether the file describes a system (``[[bodies]]``, ``[[joints]]`` or
+        ``[[springs]]``) rather than one flexible body on supports."""
+        return bool(self.bodies or self.joints or self.springs)
+
+    @property
+    def support_labels(self) -> list[int | str]:
+        """Each support's ``at`` as written (``"start"``, ``"end"``, a node index, a place)."""
+        return [s.at for s in self.supports]
+
+    def support_place(self, i: int) -> ResolvedPlace:
+        """The resolved place of ``supports[i]``."""
+        return self._support_places[i]
+
+    @property
+    def bodies_by_name(self) -> dict[str, Any]:
+        """The ``[[bodies]]`` by name (empty for a file without them)."""
+        return dict(self._bodies or {})
+
+    def place(self, value: int | str) -> ResolvedPlace:
+        """``value`` (a place as written in this scenario) resolved against its bodies."""
+        from pydantic_core import PydanticCustomError
+
+        from rancf.scenario.places import resolve_place
+
+        try:
+            return resolve_place("", value, self._bodies, ground=True)
+        except PydanticCustomError as exc:
+            raise ScenarioError(self.path, "place", str(exc)) from None
+
+    def installed_support(self) -> str | None:
+        """The key of the first support installed away from its reference (``position`` or
+        ``direction``), or None."""
+        for i, s in enumerate(self.supports):
+            for k in ("position", "direction"):
+                if s[k] is not None:
+                    return f"supports[{i}].{k}"
+        return None
+
+    def dynamic_options(self) -> DynamicOptions:
+        """:class:`~rancf.model.analysis.DynamicOptions` of the ``[solver]`` table."""
+        return self.solver.dynamic_options()
+
+    def build_model(self) -> Model:
+        """Mesh the geometry and assemble the model (errors name the scenario key)."""
+        from rancf.scenario.build import build_model
+
+        return build_model(self)
+
+    def build_system(self) -> System:
+        """The :class:`~rancf.system.System` of the scenario: every body, joint, spring, support
+        and load (a file without ``[[bodies]]`` is one body named ``"body"``)."""
+        from rancf.scenario.system_build import build_system
+
+        return build_system(self)
+
+    # ------------------------------------------------------------------ files
+    @classmethod
+    def from_dict(cls, raw: Any, path: str = _PYTHON) -> Scenario:
+        """Validate a scenario given as a dictionary (the parsed TOML); ``path`` names it in
+        errors and is where relative CAD files are found."""
+        try:
+            return cls.model_validate(raw, context={"path": path})
+        except ValidationError as exc:
+            raise scenario_error(exc, path) from None
+
+    @classmethod
+    def from_toml(cls, path: str | Path) -> Scenario:
+        """Read and validate a TOML scenario file."""
+        return cls.from_dict(_read_toml(Path(path)), str(path))
+
+    def to_dict(self) -> dict[str, Any]:
+        """The scenario as a file holds it: the keys given (defaults left out), TIME_FUNCTIONs
+        in their table form."""
+        for key, f in self._time_functions():
+            if getattr(f, "kind", None) == "callable":
+                raise ScenarioError(self.path, key, "is a Python function: it cannot be saved "
+                                    "(give it as a table, ramp, harmonic or spin_up)")  # fmt: skip
+        return self.model_dump(by_alias=True, exclude_unset=True, exclude_none=True)
+
+    def to_toml(self, relative_to: str | Path | None = None) -> str:
+        """The scenario as TOML text (:mod:`tomli_w`).  CAD files given relative to this
+        scenario's file are rewritten relative to ``relative_to`` (a directory), absolute when
+        there is none."""
+        import tomli_w
+
+        d = self.to_dict()
+        for g, where in self._cad_tables(d):
+            own = Path(where.resolved_file)
+            if relative_to is not None and not Path(g["file"]).is_absolute():
+                try:
+                    g["file"] = str(own.relative_to(Path(relative_to).resolve()))
+                    continue
+                except ValueError:
+                    pass
+            g["file"] = str(own)
+        return tomli_w.dumps(d)
+
+    def save(self, path: str | Path) -> None:
+        """Write the scenario to ``path`` as TOML (atomically: a complete file or none)."""
+        p = Path(path)
+        _write_atomic(p, self.to_toml(p.resolve().parent))
+
+    def _time_functions(self) -> list[tuple[str, Any]]:
+        out = [(f"supports[{i}].motion", s.motion) for i, s in enumerate(self.supports)]
+        out += [(f"loads.point[{i}].time", p.time) for i, p in enumerate(self.loads.point)]
+        out += [(f"joints[{i}].angle", j.angle) for i, j in enumerate(self.joints)]
+        return [(k, f) for k, f in out if f is not None]
+
+    def _cad_tables(self, d: dict[str, Any]) -> list[tuple[dict[str, Any], CadGeometry]]:
+        out = []
+        if isinstance(self.geometry, CadGeometry):
+            out.append((d["geometry"], self.geometry))
+        for b, raw in zip(self.bodies, d.get("bodies", []), strict=False):
+            if isinstance(getattr(b, "geometry", None), CadGeometry):
+                out.append((raw["geometry"], b.geometry))
+        return out
+
+
+def _geometry_data(g: Any) -> dict[str, Any]:
+    out: dict[str, Any] = dict.fromkeys(k for keys in GEOMETRY_KEYS.values() for k in keys)
+    out.update(g.model_dump())
+    if isinstance(g, CadGeometry):
+        out["file"], out["curves"], out["labels"] = g.resolved_file, g.curves, g.labels
+        out["curve"] = 0 if g.curve is None else g.curve
+    return out
+
+
+def _tf(v: Any) -> Any:
+    return None if v is None else time_function(v)
+
+
+def _node_or_text(v: int | str, one_body: bool) -> int | str:
+    if one_body and v in ("start", "end"):
+        return 0 if v == "start" else -1
+    return v
+
+
+def _data(sc: Scenario) -> dict[str, Any]:
+    """The tables as plain dictionaries (:attr:`Scenario.data`)."""
+    one = not sc.bodies
+    d: dict[str, Any] = {}
+    if one:
+        d["geometry"] = _geometry_data(sc.geometry)
+        for k in ("mesh", "section", "material"):
+            d[k] = sc[k].model_dump()
+    d["bodies"] = []
+    for b in sc.bodies:
+        bd = b.model_dump()
+        if hasattr(b, "geometry"):
+            bd["geometry"] = _geometry_data(b.geometry)
+            im = b.initial_motion
+            bd["initial_motion"] = None if im is None else im.as_dict()
+        d["bodies"].append(bd)
+    d["joints"] = [{**j.model_dump(exclude={"angle"}), "angle": _tf(j.angle)}
+                   for j in sc.joints]  # fmt: skip
+    d["springs"] = [s.model_dump() for s in sc.springs]
+    d["supports"] = [
+        {**s.model_dump(exclude={"motion"}), "at": _node_or_text(s.at, one), "label": s.at,
+         "motion": _tf(s.motion)}
+        for s in sc.supports
+    ]  # fmt: skip
+    d["loads"] = {
+        "gravity": sc.loads.gravity,
+        "point": [{**p.model_dump(exclude={"time"}), "at": _node_or_text(p.at, one),
+                   "time": _tf(p.time)} for p in sc.loads.point],
+    }  # fmt: skip
+    d["damping"] = sc.damping.model_dump()
+    d["initial_velocity"] = [
+        {"at": _node_or_text(iv.at, one), "value": iv.value} for iv in sc.initial_velocity
+    ]
+    d["initial_motion"] = None if sc.initial_motion is None else sc.initial_motion.as_dict()
+    d["solver"] = sc.solver.model_dump()
+    d["modes"] = sc.modes.model_dump()
+    return d
+
+
+def _record(s: SensorTable, bodies: dict[str, Any] | None) -> Sensor:
+    if bodies is not None:
+        return s.record()
+    return s.record(tuple(int(_node_or_text(p, True)) for p in s.places()))
+
+
+def _read_toml(p: Path) -> dict[str, Any]:
+    try:
+        data = p.read_bytes()
+    except OSError as exc:
+        raise ScenarioError(str(p), "file", f"cannot be read: {exc.strerror}") from None
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        line = data[: exc.start].count(b"\n") + 1
+        raise ScenarioError(str(p), "file", f"is not UTF-8 text (byte {exc.start}, line {line}); "
+                            "save it as UTF-8") from None  # fmt: skip
+    try:
+        return tomllib.loads(text)
+    except RecursionError:
+        raise ScenarioError(str(p), "file", "is nested too deeply (arrays or tables within each "
+                            "other)") from None  # fmt: skip
+    except ValueError as exc:  # TOMLDecodeError, or an integer of more than 4300 digits
+        raise ScenarioError(str(p), "file", f"is not valid TOML: {shorten(str(exc))}") from None
+
+
+def _write_atomic(path: Path, text: str) -> None:
+    """Write ``text`` through a temporary file beside ``path`` and a rename, with the mode a new
+    file gets under the umask; errors name the file."""
+    import os
+    import tempfile
+
+    mask = os.umask(0)
+    os.umask(mask)
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
+    except OSError as exc:
+        raise ScenarioError(str(path), "file", f"cannot be written: {exc.strerror}") from None
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as fh:
+            fh.write(text)
+        os.chmod(tmp, 0o666 & ~mask)
+        os.replace(tmp, path)
+    except OSError as exc:
+        raise ScenarioError(str(path), "file", f"cannot be written: {exc.strerror}") from None
+    finally:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+
+
+def load_scenario(path: str | Path) -> Scenario:
+    """Read and validate a TOML scenario file (:meth:`Scenario.from_toml`)."""
+    return Scenario.from_toml(path)
+
+
+def parse_scenario(raw: dict[str, Any], path: str = _PYTHON) -> Scenario:
+    """Validate a scenario given as a dictionary (:meth:`Scenario.from_dict`)."""
+    return Scenario.from_dict(raw, path)

@@ -1,0 +1,142 @@
+"""A flexible body's ``[section]`` and ``[material]``, and the checks that need several of its
+tables (:func:`check_flexible`).
+
+Rules besides the types (each violation names its key):
+
+* ``[section]``: ``radius``; or ``area`` + ``inertia``; or (rods) ``area`` + ``inertia_y`` +
+  ``inertia_z`` + ``orientation`` (the first principal axis ``m1`` at the first node, bending
+  stiffness ``E inertia_y`` about it); optional ``torsion_constant`` (rods; default the polar
+  moment ``I_y + I_z``, exact for a circle) and ``rotary_inertia`` (rods).
+* ``[material]``: rods need exactly one of ``shear_modulus`` and ``poisson_ratio``
+  (``G = E / (2 (1 + ν))``); cables and beams refuse both (they have no torsion, so a value
+  there would be silently meaningless).
+* ``[mesh]``: beams need 2D geometry, rods 3D.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+from typing import Any, Literal
+
+from pydantic import Field, model_validator
+
+from rancf.scenario.base import Positive, Table, fail, number, show, vector
+from rancf.scenario.geometry import MeshTable
+
+__all__ = ["SectionTable", "MaterialTable", "check_flexible"]
+
+_ROD_SECTION = ("inertia_y", "inertia_z", "orientation", "torsion_constant", "rotary_inertia")
+
+
+class SectionTable(Table):
+    """``[section]``: a circular section by its radius, or area and second moments."""
+
+    radius: Positive | None = Field(None, description="circular section: radius [m]")
+    area: Positive | None = Field(None, description="cross-section area [m^2]")
+    inertia: Positive | None = Field(None, description="second moment of area [m^4]")
+    inertia_y: Positive | None = Field(
+        None, description="rods: second moment about the first principal axis [m^4]"
+    )
+    inertia_z: Positive | None = Field(
+        None, description="rods: second moment about the second principal axis [m^4]"
+    )
+    orientation: vector(3) | None = Field(
+        None, description="rods: the first principal axis at the first node"
+    )
+    torsion_constant: Positive | None = Field(
+        None, description="rods: torsion constant J [m^4] (default inertia_y + inertia_z)"
+    )
+    rotary_inertia: Literal["torsion", "full"] | None = Field(
+        None,
+        description='rods: "torsion" (default: rho I_p about the tangent) | "full" (adds rho I '
+        "of both bending directions)",
+    )
+
+    @model_validator(mode="after")
+    def _one_way(self) -> SectionTable:
+        principal = [k for k in ("inertia_y", "inertia_z", "orientation") if self[k] is not None]
+        if self.radius is not None:
+            _check_radius(self.radius)
+            extra = [k for k in ("area", "inertia", *principal) if self[k] is not None]
+            if extra:
+                raise fail("", f"give either radius, or area and inertia, not both ({extra[0]})")
+        elif principal:
+            if self.inertia is not None:
+                raise fail("inertia", "give inertia (equal bending stiffnesses) or inertia_y + "
+                           "inertia_z + orientation, not both")  # fmt: skip
+            for k in ("area", "inertia_y", "inertia_z", "orientation"):
+                if self[k] is None:
+                    raise fail(k, "required with principal inertias (area + inertia_y + "
+                               "inertia_z + orientation)")  # fmt: skip
+            if not any(x != 0.0 for x in self.orientation or ()):
+                raise fail("orientation", "must be a nonzero vector, got [0, 0, 0]")
+        elif self.area is None or self.inertia is None:
+            raise fail("", "requires radius, or both area and inertia")
+        return self
+
+
+def _check_radius(r: float) -> None:
+    """A radius whose area ``π r²`` and second moment ``π r⁴ / 4`` are normal positive numbers
+    (``1e100`` overflows, ``1e-100`` underflows to zero)."""
+    try:
+        area, inertia = math.pi * r**2, math.pi * r**4 / 4.0
+    except OverflowError:
+        area = inertia = math.inf
+    if not (math.isfinite(inertia) and inertia >= sys.float_info.min and area > 0):
+        raise fail("radius", f"must give a finite, nonzero area π r² and second moment π r⁴/4, "
+                   f"got {r:g} (second moment {inertia:g})")  # fmt: skip
+
+
+class MaterialTable(Table):
+    """``[material]``: density and elastic moduli."""
+
+    density: Positive = Field(description="mass density rho [kg/m^3]")
+    youngs_modulus: Positive = Field(description="Young's modulus E [Pa]")
+    shear_modulus: Positive | None = Field(
+        None, description="rods: shear modulus G [Pa] (or poisson_ratio)"
+    )
+    poisson_ratio: number(gt=-1.0, lt=0.5) | None = Field(
+        None,
+        description="rods (or shear_modulus): G = E / (2 (1 + nu)), in (-1, 0.5)",
+    )
+
+    @model_validator(mode="before")
+    @classmethod
+    def _nu_range(cls, data: Any) -> Any:
+        nu = data.get("poisson_ratio") if isinstance(data, dict) else None
+        if isinstance(nu, int | float) and not isinstance(nu, bool) and not -1.0 < nu < 0.5:
+            raise fail("poisson_ratio", f"must be in (-1, 0.5), got {show(nu)}")
+        return data
+
+    @model_validator(mode="after")
+    def _one_modulus(self) -> MaterialTable:
+        if self.shear_modulus is not None and self.poisson_ratio is not None:
+            raise fail("poisson_ratio", "give shear_modulus or poisson_ratio, not both")
+        return self
+
+
+def _rod_only(key: str, element: str) -> None:
+    if element != "rod":
+        raise fail(key, f'applies to rod elements only (mesh.element = "rod"), not {element!r}')
+
+
+def check_flexible(
+    geometry: Any, mesh: MeshTable, section: SectionTable, material: MaterialTable
+) -> None:
+    """The checks of a flexible body that need several of its tables (keys relative to the
+    body: ``mesh.element``, ``section.inertia_y``, ``material.shear_modulus``)."""
+    el, dim = mesh.element, geometry.dim
+    if el == "beam" and dim != 2:
+        raise fail("mesh.element", "the beam element is planar: use 2-coordinate geometry")
+    if el == "rod" and dim != 3:
+        raise fail("mesh.element", "the rod element is spatial: use 3-coordinate geometry")
+    for k in _ROD_SECTION:
+        if section[k] is not None:
+            _rod_only(f"section.{k}", el)
+    for k in ("shear_modulus", "poisson_ratio"):
+        if material[k] is not None:
+            _rod_only(f"material.{k}", el)
+    if el == "rod" and material.shear_modulus is None and material.poisson_ratio is None:
+        raise fail("material.shear_modulus", "required for rod elements: give shear_modulus or "
+                   "poisson_ratio (the torsional stiffness is G J)")  # fmt: skip

@@ -1,0 +1,139 @@
+"""Sensors (``[[sensors]]``): the :class:`SensorTable` of a file and the :class:`Sensor` record
+the solvers and post-processing use.
+
+A sensor names one monitored quantity.  Kinds and their keys:
+
+* ``position`` (``at``), ``distance`` (``between``), ``twist`` (``at``, rods: the nodal twist
+  angle [rad], cumulative);
+* of the whole model: ``angular_momentum`` (about ``about``, default the origin; 3 columns in 3D,
+  the ``z`` component in 2D) and ``energy`` (kinetic + strain + gravitational [J]);
+* of systems (issue 18): ``reaction`` (the force of the joint ``joint = NAME``, or of the
+  support at ``at``) [N], ``axial_force`` (at a place of a flexible body) [N], ``angle`` (of the
+  rigid body ``body``: [rad] in 2D, the rotation vector in 3D), ``center_of_mass`` [m] and
+  ``momentum`` (linear momentum [kg m/s]) of the body ``body`` or, without it, of the whole
+  system.
+
+Column names: ``NAME`` for one number, ``NAME_x``, ``NAME_y`` (, ``NAME_z``) for vectors.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Literal
+
+import numpy as np
+from numpy.typing import NDArray
+from pydantic import Field, model_validator
+
+from rancf.errors import InputError
+from rancf.scenario.base import Name, PlacePair, PlaceValue, Table, fail, vector
+
+__all__ = ["Sensor", "SensorTable", "SENSOR_KINDS", "SYSTEM_SENSOR_KINDS"]
+
+#: Sensor kinds.
+SENSOR_KINDS = ("distance", "position", "twist", "angular_momentum", "energy", "reaction",
+                "axial_force", "angle", "center_of_mass", "momentum")  # fmt: skip
+#: The kinds the system solver computes (not from node positions).
+SYSTEM_SENSOR_KINDS = ("reaction", "axial_force", "angle", "center_of_mass", "momentum")
+_SCALAR = ("distance", "twist", "energy", "axial_force")
+
+
+@dataclass(frozen=True)
+class Sensor:
+    """A monitored quantity (module docstring) as the solvers and result files use it.
+
+    ``nodes``: the node indices of ``at``/``between`` in a one-body model; ``places``: the places
+    as written (systems); ``about``: the point of an angular momentum; ``joint``, ``body``: what
+    a reaction, angle, centre of mass or momentum is of.
+    """
+
+    name: str
+    kind: str
+    nodes: tuple[int, ...] = ()
+    about: tuple[float, ...] | None = None
+    places: tuple[int | str, ...] = ()
+    joint: str | None = None
+    body: str | None = None
+
+    def columns(self, dim: int) -> list[str]:
+        """CSV column names of the sensor's scalars."""
+        one = self.kind in _SCALAR or (self.kind in ("angular_momentum", "angle") and dim == 2)
+        return [self.name] if one else [f"{self.name}_{c}" for c in "xyz"[:dim]]
+
+    def evaluate(self, positions: NDArray, twists: NDArray | None = None) -> NDArray[np.float64]:
+        """Values ``(n_t, n_columns)`` from node positions ``(n_t, n_nodes, dim)`` and, for
+        ``twist``, the nodal twists ``(n_t, n_nodes)``."""
+        if self.kind in SYSTEM_SENSOR_KINDS:
+            raise InputError(f"sensors.{self.name}", self.kind, "computed by the system solver")
+        if self.kind == "distance":
+            d = positions[:, self.nodes[1]] - positions[:, self.nodes[0]]
+            return np.linalg.norm(d, axis=1)[:, None]
+        if self.kind == "twist":
+            if twists is None:
+                raise InputError(f"sensors.{self.name}", "twist", "a rod model (nodal twists)")
+            return twists[:, self.nodes[0], None]
+        return positions[:, self.nodes[0]]
+
+
+class SensorTable(Table):
+    """One ``[[sensors]]`` table."""
+
+    name: Name = Field(description="column name (letters, digits, _), unique, not t")
+    kind: Literal[
+        "distance", "position", "twist", "angular_momentum", "energy", "reaction",
+        "axial_force", "angle", "center_of_mass", "momentum",
+    ] = Field(description="what is measured (see the README's sensor kinds)")  # fmt: skip
+    between: PlacePair | None = Field(None, description="distance: the two places")
+    at: PlaceValue | None = Field(
+        None,
+        description="position, twist (rods), axial_force: the place; reaction: a support's place",
+    )
+    about: vector(2, 3) | None = Field(
+        None, description="angular_momentum: the point [m] (default the origin)"
+    )
+    joint: Name | None = Field(None, description="reaction: the joint's name")
+    body: Name | None = Field(
+        None,
+        description="angle: the rigid body; center_of_mass, momentum: the body (default: the "
+        "whole system)",
+    )
+
+    @model_validator(mode="after")
+    def _kind_keys(self) -> SensorTable:
+        kd = self.kind
+        if self.about is not None and kd != "angular_momentum":
+            raise fail("about", "applies to angular_momentum sensors only")
+        if self.joint is not None and kd != "reaction":
+            raise fail("joint", "applies to reaction sensors only")
+        if self.body is not None and kd not in ("angle", "center_of_mass", "momentum"):
+            raise fail("body", "applies to angle, center_of_mass and momentum sensors only")
+        if kd in ("angular_momentum", "energy", "angle", "center_of_mass", "momentum"):
+            for k in ("at", "between"):
+                if self[k] is not None:
+                    what = "whole model" if kd in ("angular_momentum", "energy") else "a body"
+                    raise fail(k, f"not for a {kd} sensor ({what})")
+            if kd == "angle" and self.body is None:
+                raise fail("body", "an angle sensor needs body = NAME (a rigid body)")
+        elif kd == "distance":
+            if self.at is not None or self.between is None:
+                raise fail("between", "a distance sensor needs between = [A, B]")
+        elif kd == "reaction":
+            if self.between is not None:
+                raise fail("between", "not for a reaction sensor")
+            if (self.joint is None) == (self.at is None):
+                raise fail("joint", "a reaction sensor needs joint = NAME or at = a support's "
+                           "place (one of them)")  # fmt: skip
+        elif self.between is not None or self.at is None:
+            raise fail("at", f"a {kd} sensor needs at = PLACE")
+        return self
+
+    def places(self) -> tuple[int | str, ...]:
+        """The places the sensor reads (``between`` or ``at``)."""
+        if self.between is not None:
+            return tuple(self.between)
+        return () if self.at is None else (self.at,)
+
+    def record(self, nodes: tuple[int, ...] = ()) -> Sensor:
+        """The :class:`Sensor` of this table (``nodes``: its places as node indices)."""
+        about = None if self.about is None else tuple(self.about)
+        return Sensor(self.name, self.kind, nodes, about, self.places(), self.joint, self.body)

@@ -1,0 +1,87 @@
+"""``[solver]`` and ``[modes]``: the analyses' settings.
+
+The ``[solver]`` table is also checked as :class:`~rancf.model.analysis.DynamicOptions` (whose
+own rules, e.g. ``step <= t_end`` and ``min_step <= step``, name the key); its defaults are the
+Python API's (a test compares them).
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Literal
+
+from pydantic import Field, model_validator
+
+from rancf.errors import InputError
+from rancf.model.analysis import MAX_LOAD_STEPS, MAX_NEWTON
+from rancf.scenario.base import Flag, Positive, Table, fail, integer, number, show
+
+if TYPE_CHECKING:
+    from rancf.model.analysis import DynamicOptions
+
+__all__ = ["SolverTable", "ModesTable"]
+
+_DYNAMIC_KEYS = ("t_end", "step", "rho_inf", "adaptive", "rtol", "min_step", "output_step",
+                 "newton_tol", "max_newton", "newton")  # fmt: skip
+
+
+def _shown(value: object) -> str:
+    return f"{value:.6g}" if isinstance(value, float) else show(value)
+
+
+class SolverTable(Table):
+    """``[solver]``: time integration (generalized-alpha), Newton and statics settings."""
+
+    t_end: Positive = Field(1.0, description="end time [s]")
+    step: Positive = Field(1e-3, description="(initial) time step [s], <= t_end")
+    rho_inf: number(ge=0.0, le=1.0) = Field(
+        0.9, description="generalized-alpha spectral radius at infinity, in [0, 1]"
+    )
+    load_steps: integer(ge=1, le=MAX_LOAD_STEPS) = Field(
+        10, description="statics: the first load increment is 1/load_steps"
+    )
+    adaptive: Flag = Field(False, description="adapt the step to rtol (local error estimate)")
+    rtol: Positive = Field(1e-5, description="adaptive steps: local error / model size")
+    output_step: Positive | None = Field(
+        None, description="interval of stored states [s] (default: step), <= t_end"
+    )
+    min_step: Positive | None = Field(
+        None, description="below this a failing step stops the run [s] (default: step / 1024)"
+    )
+    newton_tol: Positive = Field(1e-10, description="Newton: max |increment| / model size")
+    max_newton: integer(ge=1, le=MAX_NEWTON) = Field(12, description="Newton iterations per step")
+    newton: Literal["full", "modified"] = Field(
+        "full", description='"full" (exact tangent every iteration) | "modified" (reuse it)'
+    )
+    static_method: Literal["load", "arc_length"] = Field(
+        "load",
+        description='statics: "load" (adaptive load increments) | "arc_length" (limit points)',
+    )
+    initial_state: Literal["reference", "static"] = Field(
+        "reference",
+        description='simulate: start from the "reference" or the "static" equilibrium',
+    )
+
+    @model_validator(mode="after")
+    def _as_options(self) -> SolverTable:
+        try:
+            self.dynamic_options()
+        except InputError as exc:
+            key = exc.parameter.removeprefix("solver.")
+            raise fail(key, f"{exc.allowed} (got {_shown(exc.value)})") from None
+        return self
+
+    def dynamic_options(self) -> DynamicOptions:
+        """The :class:`~rancf.model.analysis.DynamicOptions` of this table."""
+        from rancf.model.analysis import DynamicOptions
+
+        return DynamicOptions(**{k: getattr(self, k) for k in _DYNAMIC_KEYS})
+
+
+class ModesTable(Table):
+    """``[modes]``: defaults of ``rancf modes``."""
+
+    count: integer(ge=1) = Field(6, description="number of modes")
+    about: Literal["reference", "static"] = Field(
+        "reference",
+        description='linearize about the "reference" or the "static" equilibrium',
+    )

@@ -1,0 +1,163 @@
+"""A validated scenario turned into a :class:`rancf.system.System` (the system solver's input).
+
+Every scenario is a system: a file without ``[[bodies]]`` is one flexible body named ``body``
+(its supports, loads and sensors written as today); with ``[[bodies]]``:
+
+* a flexible body becomes a :class:`~rancf.model.system.Model` (keys ``bodies[i].…``) carrying
+  the supports, point loads and initial velocities at its nodes, ``[loads] gravity`` and the
+  ``[damping]``;
+* a rigid body a :class:`~rancf.model.rigid.RigidBody` (``orientation_deg`` in degrees in 2D;
+  the rotation matrix's rows in 3D), a point mass a :class:`~rancf.model.rigid.PointMass`;
+* a support at a rigid body's place or a point mass is a joint to the ground: a ``pin`` a pin,
+  a ``clamp`` a fixed joint, a ``roller`` a slider along its ``axis``; its ``motion`` moves the
+  ground point;
+* a point load at a rigid place is a system load (``moment``: a torque; ``time``: its factor);
+  ``frequency_hz`` belongs to flexible bodies (on a rigid body give ``time = { harmonic }``);
+* joints and springs as written; sensor places on rigid bodies are observed by the system.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from rancf.errors import InputError, ScenarioError
+from rancf.model.rigid import PointMass, RigidBody
+from rancf.scenario.build import build_model, flexible_model
+from rancf.system import Joint, Load, Place, Spring, System
+
+if TYPE_CHECKING:
+    from rancf.scenario.scenario import Scenario
+
+__all__ = ["build_system", "support_labels", "ONE_BODY"]
+
+#: The name of the one body of a file without ``[[bodies]]``.
+ONE_BODY = "body"
+
+_SUPPORT_JOINT = {"pin": "pin", "clamp": "fixed", "roller": "slider"}
+
+
+def _rigid(b: Any, dim: int) -> RigidBody | PointMass:
+    if b.kind == "mass":
+        return PointMass(dim, b.mass, tuple(b.position), _tuple(b.velocity))
+    if dim == 2:
+        orient: Any = math.radians(b.orientation_deg or 0.0)
+    else:
+        orient = tuple(tuple(r) for r in b.orientation) if b.orientation is not None else 0.0
+    return RigidBody(
+        dim, b.mass, b.inertia if dim == 2 else tuple(b.inertia), tuple(b.position), orient,
+        _tuple(b.velocity), b.angular_velocity if not isinstance(b.angular_velocity, list)
+        else tuple(b.angular_velocity), {k: tuple(v) for k, v in b.points.items()},
+    )  # fmt: skip
+
+
+def _tuple(v: Any) -> tuple[float, ...] | None:
+    return None if v is None else tuple(v)
+
+
+def support_labels(sc: Scenario) -> dict[str, list[int | str]]:
+    """The supports' ``at`` as written, per flexible body (reaction column names)."""
+    if not sc.bodies:
+        return {ONE_BODY: list(sc.support_labels)}
+    out: dict[str, list[int | str]] = {}
+    for i, s in enumerate(sc.supports):
+        p = sc.support_place(i)
+        if p.where == "node":
+            out.setdefault(p.body, []).append(s.at)  # type: ignore[arg-type]
+    return out
+
+
+def build_system(sc: Scenario) -> System:
+    """The system of a scenario (module docstring); errors name the scenario key."""
+    try:
+        return _build(sc)
+    except InputError as exc:
+        raise ScenarioError(sc.path, exc.parameter, f"{exc.allowed} (got {exc.value!r})") from None
+
+
+def _observed(sc: Scenario) -> list[Place]:
+    out = []
+    for sen in sc.sensors:
+        for text in sen.places:
+            p = sc.place(text)
+            if p.where == "point":
+                out.append(p.system_place(ONE_BODY))
+    return out
+
+
+def _build(sc: Scenario) -> System:
+    gravity, damping = sc.loads.gravity, sc.damping.mass_proportional
+    if not sc.bodies:
+        model = build_model(sc, system=True)
+        return System({ONE_BODY: model}, gravity=gravity, damping=damping,
+                      horizon=sc.solver.t_end, **_parts(sc, {ONE_BODY: model}))  # fmt: skip
+    d = sc.data
+    bodies: dict[str, Any] = {}
+    for i, b in enumerate(sc.bodies):
+        if b.kind != "flexible":
+            bodies[b.name] = _rigid(b, sc.dim)
+            continue
+
+        def at(rows: list[dict[str, Any]], key: str, name: str = b.name) -> list:
+            out = []
+            for k, t in enumerate(rows):
+                p = sc.place(t["at"])
+                if p.where == "node" and p.body == name:
+                    out.append((f"{key}[{k}]", p.node, t))
+            return out
+
+        nodes = [
+            (f"sensors.{sn.name}", p.node)
+            for sn in sc.sensors
+            for p in map(sc.place, sn.places)
+            if p.where == "node" and p.body == b.name
+        ]
+        bodies[b.name] = flexible_model(
+            sc, f"bodies[{i}].", (b.geometry, b.mesh, b.section, b.material),
+            at(d["supports"], "supports"), at(d["loads"]["point"], "loads.point"),
+            at(d["initial_velocity"], "initial_velocity"), d["bodies"][i]["initial_motion"], nodes,
+        )  # fmt: skip
+    return System(bodies, gravity=gravity, damping=damping, horizon=sc.solver.t_end,
+                  **_parts(sc, bodies))  # fmt: skip
+
+
+def _parts(sc: Scenario, bodies: dict[str, Any]) -> dict[str, Any]:
+    """Joints (with supports of rigid places), springs, loads on rigid places, observed places."""
+
+    def place(text: Any) -> Place:
+        return sc.place(text).system_place(ONE_BODY)
+
+    joints = []
+    for i, s in enumerate(sc.supports):
+        p = sc.support_place(i)
+        if p.where in ("node", "ground"):
+            continue
+        kind = _SUPPORT_JOINT[s.kind]
+        axis = None if s.axis is None else tuple(s.axis)
+        joints.append(Joint(kind, (place(s.at), Place(None)), axis, None, f"support{i}",
+                            sc.data["supports"][i]["motion"]))  # fmt: skip
+    for j, jd in zip(sc.joints, sc.data["joints"], strict=True):
+        axis = None if j.axis is None else tuple(j.axis)
+        joints.append(Joint(j.kind, (place(j.between[0]), place(j.between[1])), axis,
+                            jd["angle"], j.name))  # fmt: skip
+    springs = [
+        Spring((place(s.between[0]), place(s.between[1])), s.stiffness, s.damping, s.length,
+               s.name or f"spring{k}")
+        for k, s in enumerate(sc.springs)
+    ]  # fmt: skip
+    loads = []
+    for k, (ld, t) in enumerate(zip(sc.loads.point, sc.data["loads"]["point"], strict=True)):
+        p = sc.place(ld.at)
+        if p.where == "node":
+            continue
+        if ld.frequency_hz is not None:
+            raise ScenarioError(
+                sc.path, f"loads.point[{k}].frequency_hz",
+                "applies to flexible bodies; on a rigid body give time = { harmonic = F }",
+            )  # fmt: skip
+        moment = ld.moment
+        torque = None if moment is None else tuple(np.atleast_1d(moment).tolist())
+        loads.append(Load(place(ld.at), _tuple(ld.force), torque, t["time"]))
+    return {"joints": joints, "springs": springs, "loads": loads, "observe": _observed(sc)}

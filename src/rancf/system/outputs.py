@@ -1,0 +1,256 @@
+"""Quantities derived from a system's stored states: accelerations, multipliers, reactions of
+supports and joints, section values and sensors.
+
+A run stores its states ``(t, q, v)`` (rods also the nodal directors ``m1``, which the
+coordinates alone do not fix).  :class:`SystemOutputs` turns rows of them into
+
+* the consistent accelerations and multipliers, the solution of
+  ``[M Gᵀ; G 0] [a; λ] = [f_ext - f_int - g - c M v; -γ]`` with the prescribed coordinates'
+  accelerations given (the compiled core's ``initial_acceleration``: the same assembly the
+  integrator uses, so supports moving by a time function are included);
+* the reactions of the supports (:mod:`rancf.model.reactions`): the held rows of the residual
+  ``M a + g + c M v + f_int - f_ext + Gᵀ λ``;
+* the reactions of the joints: the resultant force and moment the joint exerts on its first
+  place, the least-squares resultant of the generalized forces ``-G_Aᵀ λ`` on that place's
+  coordinates (``src/cpp/system_outputs.cpp``);
+* the section values of every flexible body (:mod:`rancf.model.sections`);
+* the sensors (:mod:`rancf.system.sensors`).
+
+Static rows (a load path, ``t`` the path parameter) have ``a = v = 0``, the residual
+``f_int - p f_ext + Gᵀ λ`` at the load factor ``p = min(t, 1)`` and the solver's multipliers.
+
+Why not the integrator's own acceleration: in generalized-α ``a_{n+1}`` approximates the
+acceleration at ``t_{n+1} + (α_m - α_f) h`` (Arnold & Brüls 2007), a first-order shift for
+``ρ∞ < 1``; the consistent acceleration of the stored ``(y, v)`` has only their error, so the
+reactions converge at second order.
+
+Column names: a support's ``LABEL_fx, LABEL_fy[, LABEL_fz]`` then its moment (``LABEL_mz`` or
+``LABEL_mx, _my, _mz``) as :func:`rancf.model.reactions.reaction_columns` (in a system of
+several bodies the label is ``BODY:AT``); a joint's ``NAME_fx ...`` and, for joints that
+transmit a moment (``fixed``, a 3D ``revolute``, a driven joint), ``NAME_mz`` or
+``NAME_mx, _my, _mz``.
+"""
+
+from __future__ import annotations
+
+import contextlib
+from collections.abc import Iterator, Mapping, Sequence
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from rancf.kernels import _core
+from rancf.model.reactions import reaction_columns, reaction_row, support_reactions
+from rancf.model.sections import SectionSampler, section_names
+from rancf.system.sensors import SensorReader
+from rancf.system.system import System
+
+__all__ = ["SystemOutputs"]
+
+
+def _joint_has_moment(system: System, k: int) -> bool:
+    j = system.joints[k]
+    return j.kind == "fixed" or j.angle is not None or (j.kind == "revolute" and system.dim == 3)
+
+
+class SystemOutputs:
+    """Accelerations, multipliers, reactions, section values and sensors of rows of states.
+
+    Parameters
+    ----------
+    system : System
+    sensors : sequence of sensor records
+        Each with ``name``, ``kind``, ``places``, ``joint``, ``body``, ``about`` and
+        ``columns(dim)`` (:mod:`rancf.system.sensors`).
+    labels : mapping body name -> list, optional
+        The supports' ``at`` as the user wrote it, per flexible body.
+    per_element : int
+        Section sample points per element.
+    """
+
+    def __init__(
+        self,
+        system: System,
+        sensors: Sequence[Any] = (),
+        labels: Mapping[str, Sequence[int | str]] | None = None,
+        per_element: int = 4,
+    ) -> None:
+        self.system = s = system
+        self.flex = [(name, b) for name, b in zip(s.names, s.flex, strict=False)]
+        labels = dict(labels or {})
+        self.labels: dict[str, list[int | str]] = {}
+        for name, b in self.flex:
+            raw = list(labels.get(name, [sup.node for sup in b.supports]))
+            if s.single is None:  # several bodies: BODY:AT
+                raw = [x if isinstance(x, str) and ":" in x else f"{name}:{_at(x)}" for x in raw]
+            self.labels[name] = raw
+        self.samplers = {name: SectionSampler(b, per_element) for name, b in self.flex}
+        self.section_names = {name: section_names(b) for name, b in self.flex}
+        self.support_names = {name: reaction_columns(b, self.labels[name]) for name, b in self.flex}
+        self.joint_names: list[list[str]] = []
+        axes = "xyz"[: s.dim]
+        for k, j in enumerate(s.joints):
+            lab = j.name or f"joint{k}"
+            cols = [f"{lab}_f{a}" for a in axes]
+            if _joint_has_moment(s, k):
+                cols += [f"{lab}_mz"] if s.dim == 2 else [f"{lab}_m{a}" for a in "xyz"]
+            self.joint_names.append(cols)
+        self.reaction_names = [c for cols in self.support_names.values() for c in cols]
+        self.reaction_names += [c for cols in self.joint_names for c in cols]
+        self.along_widths = {n: sp.n_points * len(self.section_names[n])
+                             for n, sp in self.samplers.items()}  # fmt: skip
+        self.sensors = SensorReader(self, sensors)
+        self.sensor_names = self.sensors.names
+        scheme = _core.Scheme(alpha_m=0.0, alpha_f=0.0, gamma=0.5, beta=0.25, damping=s.damping,
+                              tol=1e-10, max_iter=1, modified=False)  # fmt: skip
+        self._integ = _core.SystemIntegrator(s.core, scheme)  # for its consistent acceleration
+        #: The largest |axial strain| of the rows seen so far, and the ``t`` of its row.
+        self.largest_strain: tuple[float, float] = (0.0, 0.0)
+
+    # ------------------------------------------------------------------ sizes
+    @property
+    def n_q(self) -> int:
+        """Coordinates of a state."""
+        return self.system.n
+
+    @property
+    def n_directors(self) -> int:
+        """Numbers of a row's rod directors (3 a rod node)."""
+        return 3 * sum(b.n_nodes for _, b in self.flex if b.element == "rod")
+
+    @property
+    def n_along(self) -> int:
+        """Section values of a row (every flexible body's, flattened)."""
+        return sum(self.along_widths.values())
+
+    def joint_columns(self, name: str) -> slice:
+        """The reaction columns of the joint called ``name``."""
+        start = sum(len(c) for c in self.support_names.values())
+        for k, j in enumerate(self.system.joints):
+            if (j.name or f"joint{k}") == name:
+                return slice(start, start + len(self.joint_names[k]))
+            start += len(self.joint_names[k])
+        raise KeyError(name)
+
+    # ------------------------------------------------------------------ rows
+    def rows(
+        self,
+        t: NDArray,
+        q: NDArray,
+        v: NDArray | None = None,
+        directors: NDArray | None = None,
+        energy: NDArray | None = None,
+        lam: NDArray | None = None,
+        static: bool = False,
+        per_body: bool = False,
+    ) -> dict[str, NDArray[np.float64]]:
+        """Derived values of ``k`` rows: ``"a"`` ``(k, n_q)`` (full coordinates), ``"lam"``
+        ``(k, m)``, ``"r"`` reactions ``(k, n_reaction_columns)``, ``"s"`` section values
+        ``(k, n_along)`` and ``"c"`` sensors ``(k, n_sensor_columns)``.  ``directors``: rods'
+        nodal ``m1`` ``(k, n_directors)``; ``energy`` ``(k, 3)`` (for ``energy`` sensors);
+        ``lam``: the multipliers of static rows (their solver's); ``per_body``: also ``"eb"``,
+        every flexible body's kinetic, strain and gravitational energy ``(k, 3 n_flexible)``."""
+        s = self.system
+        t = np.atleast_1d(np.asarray(t, dtype=float))
+        k = t.size
+        q = np.asarray(q, dtype=float).reshape(k, -1)
+        out = {
+            "a": np.zeros((k, s.n)),
+            "lam": np.zeros((k, s.m)),
+            "r": np.empty((k, len(self.reaction_names))),
+            "s": np.empty((k, self.n_along)),
+            "eb": np.empty((k, 3 * len(self.flex) if per_body else 0)),
+        }
+        res = np.empty(s.n + s.m)
+        with self._triads() as set_row:
+            for i in range(k):
+                y = s.y_from_q(q[i])
+                if directors is not None:
+                    set_row(y, np.asarray(directors[i]).ravel())
+                vy = np.zeros(s.n) if v is None or static else s.y_from_q(v[i])
+                a, li = np.zeros(s.n), np.zeros(s.m)
+                if static:
+                    if lam is not None:
+                        li[:] = lam[i]
+                    s.core.residual(y, vy, a, li, 0.0, min(float(t[i]), 1.0), False, False, res)
+                else:
+                    self._integ.initial_acceleration(y, vy, float(t[i]), a, li)
+                    s.core.residual(y, vy, a, li, float(t[i]), 1.0, False, True, res)
+                out["a"][i], out["lam"][i] = s.q_from_y(a), li
+                out["r"][i] = self._reactions(y, res[: s.n], float(t[i]), li)
+                out["s"][i] = self._along(y, float(t[i]))
+                if per_body:
+                    out["eb"][i] = self._body_energies(y, vy)
+        out["c"] = self.sensors.values(t, q, v, out, energy)
+        return out
+
+    def _reactions(self, y: NDArray, res: NDArray, t: float, lam: NDArray) -> NDArray:
+        s = self.system
+        parts = []
+        for name, b in self.flex:
+            sl = s.body_slice(name)
+            parts.append(reaction_row(support_reactions(b, y[sl], res[sl], self.labels[name])))
+        for k in range(len(s.joints)):
+            force, moment = s.core.joint_reaction(k, y, t, lam)
+            parts.append(np.asarray(force)[: s.dim])
+            if _joint_has_moment(s, k):
+                parts.append(np.asarray(moment)[2:] if s.dim == 2 else np.asarray(moment))
+        return np.concatenate(parts) if parts else np.empty(0)
+
+    def _body_energies(self, y: NDArray, v: NDArray) -> NDArray:
+        parts = []
+        for name, b in self.flex:
+            sl = self.system.body_slice(name)
+            yb = y[sl]
+            parts += [b.kinetic_energy(v[sl], yb), b.strain_energy(yb), b.gravity_energy(yb)]
+        return np.array(parts)
+
+    def _along(self, y: NDArray, t: float) -> NDArray:
+        parts = []
+        for name, _ in self.flex:
+            vals = self.samplers[name].values(y[self.system.body_slice(name)])
+            strain = float(np.max(np.abs(vals[:, 0])))
+            if strain > self.largest_strain[0]:  # NaN (a diverged state) is never larger
+                self.largest_strain = (strain, t)
+            parts.append(vals.ravel())
+        return np.concatenate(parts) if parts else np.empty(0)
+
+    def body_along(self, along: NDArray, name: str) -> NDArray[np.float64]:
+        """One flexible body's section values ``(k, n_points, n_names)`` of rows ``along``."""
+        start = 0
+        for n, w in self.along_widths.items():
+            if n == name:
+                cut = np.asarray(along)[:, start : start + w]
+                return cut.reshape(cut.shape[0], -1, len(self.section_names[name]))
+            start += w
+        raise KeyError(name)
+
+    @contextlib.contextmanager
+    def _triads(self) -> Iterator:
+        """Rods: a setter of the triads of a row from its directors; restored at the end."""
+        rods = [(b, self.system.body_slice(name)) for name, b in self.flex if b.element == "rod"]
+        saved = [(b.kernel.tref.copy(), b.kernel.m1ref.copy()) for b, _ in rods]
+
+        def set_row(y: NDArray, m1: NDArray) -> None:
+            start = 0
+            for b, sl in rods:
+                kern = b.kernel
+                g = b.q_from_y(y[sl]).reshape(b.n_nodes, b.dpn)[:, 3:6]
+                kern.tref[...] = (g / np.linalg.norm(g, axis=1, keepdims=True)).reshape(
+                    kern.tref.shape
+                )
+                kern.m1ref[...] = m1[start : start + 3 * b.n_nodes].reshape(kern.m1ref.shape)
+                y[sl].reshape(b.n_nodes, b.dpn)[:, 6] = 0.0
+                start += 3 * b.n_nodes
+
+        try:
+            yield set_row
+        finally:
+            for (b, _), (tr, m1) in zip(rods, saved, strict=True):
+                b.kernel.tref[...] = tr
+                b.kernel.m1ref[...] = m1
+
+
+def _at(x: int | str) -> str:
+    return x if isinstance(x, str) else str(x)

@@ -1,0 +1,258 @@
+"""Sensors of a system, evaluated from stored rows and their derived values.
+
+Kinds (column names ``NAME`` for one number, ``NAME_x``, ``NAME_y`` (, ``NAME_z``) for vectors):
+
+* ``position`` (``at``) and ``distance`` (``between``) of places; ``twist`` (``at``, a rod node:
+  its twist coordinate ``φ`` [rad]);
+* ``angular_momentum`` about ``about`` (default the origin; 2D: the ``z`` component) and
+  ``energy`` (kinetic + strain + gravitational [J]) of the whole system;
+* ``reaction``: the force of the joint ``joint`` or of the support at ``at``
+  (:mod:`rancf.system.outputs`);
+* ``axial_force`` at a node of a flexible body (the section value ``N``,
+  :mod:`rancf.model.sections`);
+* ``angle`` of a rigid body: its angle [rad] in 2D (continuous, as integrated), its rotation
+  vector in 3D;
+* ``center_of_mass`` [m] and ``momentum`` (linear, [kg m/s]) of the body ``body`` or, without
+  it, of the whole system.
+
+Mass, centre of mass and momentum of a flexible body: a rigid translation ``e_i`` moves every
+node's position by ``e_i`` and no gradient, and the shape functions' position parts sum to one,
+so with the mass matrix ``M`` and ``w_i = M T_i`` (``T_i``: the coordinates of that
+translation) ``m = T_iᵀ M T_i``, ``∫ ρA r_i ds = w_i · y`` and ``p_i = w_i · v`` (beams: their
+consistent translational mass, the same identity).  Rigid bodies and point masses contribute
+``m x`` and ``m ẋ``; angular momentum adds ``R J ω`` (3D, ``ω = 2 G(p) ṗ`` in the body frame).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from rancf.errors import InputError
+from rancf.model.motion import angular_momentum
+from rancf.model.reactions import has_moment
+from rancf.model.rigid import PointMass, RigidBody, body_angular_velocity
+from rancf.model.system import Model
+from rancf.system.places import Place
+
+if TYPE_CHECKING:
+    from rancf.system.outputs import SystemOutputs
+
+__all__ = ["SensorReader"]
+
+Block = tuple[NDArray, NDArray, NDArray, dict[str, NDArray], NDArray]
+Reader = Callable[[Block], NDArray]
+
+
+class SensorReader:
+    """The sensors' columns of blocks of rows (module docstring)."""
+
+    def __init__(self, outputs: SystemOutputs, sensors: Sequence[Any]) -> None:
+        self.out = outputs
+        self.system = outputs.system
+        self.names: list[str] = []
+        self._readers: list[Reader] = []
+        self._mass: dict[str, tuple[float, NDArray]] = {}
+        for sen in sensors:
+            self.names += sen.columns(self.system.dim)
+            self._readers.append(self._reader(sen))
+
+    def values(
+        self, t: NDArray, q: NDArray, v: NDArray | None, derived: dict[str, NDArray],
+        energy: NDArray | None,
+    ) -> NDArray[np.float64]:  # fmt: skip
+        """Columns ``(k, n_columns)`` of rows ``q``, ``v`` with their ``derived`` values."""
+        vv = np.zeros_like(q) if v is None else np.asarray(v, dtype=float).reshape(q.shape)
+        if energy is None and any(s == "energy" for s in self._kinds):
+            sy = self.system
+            energy = np.array([sy.energies(sy.y_from_q(a), sy.y_from_q(b))
+                               for a, b in zip(q, vv, strict=True)])  # fmt: skip
+        block = (t, q, vv, derived, energy if energy is not None else np.zeros((len(t), 3)))
+        cols = [np.asarray(r(block), dtype=float).reshape(len(t), -1) for r in self._readers]
+        return np.concatenate(cols, axis=1) if cols else np.empty((len(t), 0))
+
+    @property
+    def _kinds(self) -> list[str]:
+        return [getattr(r, "kind", "") for r in self._readers]
+
+    # ------------------------------------------------------------------ places
+    def _place(self, sen: Any, spec: Any) -> Place:
+        try:
+            p = self.system.resolve(spec)
+        except InputError as exc:
+            raise InputError(f"sensors.{sen.name}", spec, exc.allowed) from None
+        if p.body is None:
+            raise InputError(f"sensors.{sen.name}", "ground", "a place on a body")
+        return p
+
+    def _position(self, sen: Any, spec: Any) -> Reader:
+        s = self.system
+        p = self._place(sen, spec)
+        b = s.bodies[p.body]  # type: ignore[index]
+        if isinstance(b, Model):
+            base = s.offsets[p.body] + int(p.at) * b.dpn  # type: ignore[arg-type, index]
+            return lambda blk: blk[1][:, base : base + s.dim]
+        if isinstance(b, PointMass) or p.at is None:
+            o = s.offsets[p.body]  # type: ignore[index]
+            return lambda blk: blk[1][:, o : o + s.dim]
+        s.place_state(p, s.y0)  # raises unless the place is observed
+
+        def read(blk: Block) -> NDArray:
+            return np.array([s.place_state(p, s.y_from_q(row), tt)[0][: s.dim]
+                             for tt, row in zip(blk[0], blk[1], strict=True)])  # fmt: skip
+
+        return read
+
+    # ------------------------------------------------------------------ kinds
+    def _reader(self, sen: Any) -> Reader:
+        kind = sen.kind
+        places = tuple(getattr(sen, "places", ()) or getattr(sen, "nodes", ()))
+        reader: Reader
+        if kind == "position":
+            reader = self._position(sen, places[0])
+        elif kind == "distance":
+            a, b = (self._position(sen, x) for x in places[:2])
+            reader = lambda blk: np.linalg.norm(b(blk) - a(blk), axis=1)  # noqa: E731
+        elif kind == "twist":
+            reader = self._twist(sen, places[0])
+        elif kind == "energy":
+            reader = lambda blk: blk[4].sum(axis=1)  # noqa: E731
+        elif kind == "angular_momentum":
+            reader = self._angular_momentum(sen)
+        elif kind == "reaction":
+            reader = self._reaction(sen, places)
+        elif kind == "axial_force":
+            reader = self._axial_force(sen, places[0])
+        elif kind == "angle":
+            reader = self._angle(sen)
+        elif kind in ("center_of_mass", "momentum"):
+            reader = self._mass_moment(sen, kind == "momentum")
+        else:
+            raise InputError(f"sensors.{sen.name}.kind", kind, "a sensor kind")
+        reader.kind = kind  # type: ignore[attr-defined]
+        return reader
+
+    def _twist(self, sen: Any, spec: Any) -> Reader:
+        p = self._place(sen, spec)
+        b = self.system.bodies[p.body]  # type: ignore[index]
+        if not (isinstance(b, Model) and b.element == "rod"):
+            raise InputError(f"sensors.{sen.name}.at", str(p), "a node of a rod")
+        i = self.system.offsets[p.body] + int(p.at) * b.dpn + 6  # type: ignore[arg-type, index]
+        return lambda blk: blk[1][:, i]
+
+    def _reaction(self, sen: Any, places: tuple) -> Reader:
+        out, d = self.out, self.system.dim
+        if getattr(sen, "joint", None) is not None:
+            try:
+                cols = out.joint_columns(sen.joint)
+            except KeyError:
+                names = [j.name for j in self.system.joints if j.name]
+                allowed = f"a joint: {', '.join(names) or 'none named'}"
+                raise InputError(f"sensors.{sen.name}.joint", sen.joint, allowed) from None
+            first = cols.start
+            return lambda blk: blk[3]["r"][:, first : first + d]
+        p = self._place(sen, places[0])
+        start = 0
+        for name, b in out.flex:
+            for sup in b.supports:
+                if name == p.body and sup.node % b.n_nodes == p.at:
+                    return lambda blk, c=start: blk[3]["r"][:, c : c + d]
+                start += d + (0 if not has_moment(b, sup.kind) else (1 if d == 2 else 3))
+        raise InputError(f"sensors.{sen.name}.at", str(p), "the place of a support")
+
+    def _axial_force(self, sen: Any, spec: Any) -> Reader:
+        p = self._place(sen, spec)
+        b = self.system.bodies[p.body]  # type: ignore[index]
+        if not isinstance(b, Model):
+            raise InputError(f"sensors.{sen.name}.at", str(p), "a node of a flexible body")
+        sp = self.out.samplers[p.body]  # type: ignore[index]
+        point = min(int(p.at) * sp.per_element, sp.n_points - 1)  # type: ignore[arg-type]
+        name = p.body
+        return lambda blk: self.out.body_along(blk[3]["s"], name)[:, point, 1]  # type: ignore[arg-type]
+
+    def _angle(self, sen: Any) -> Reader:
+        s = self.system
+        b = s.bodies.get(sen.body)
+        if not isinstance(b, RigidBody):
+            rigid = [n for n, x in s.bodies.items() if isinstance(x, RigidBody)]
+            raise InputError(f"sensors.{sen.name}.body", sen.body,
+                             f"a rigid body: {', '.join(rigid) or 'none'}")  # fmt: skip
+        o = s.offsets[sen.body]
+        if s.dim == 2:
+            return lambda blk: blk[1][:, o + 2]
+        from scipy.spatial.transform import Rotation
+
+        return lambda blk: Rotation.from_quat(blk[1][:, o + 3 : o + 7][:, [1, 2, 3, 0]]).as_rotvec()
+
+    def _translation(self, name: str) -> tuple[float, NDArray]:
+        """Mass and ``w_i = M T_i`` ``(dim, n_body)`` of a flexible body (module docstring)."""
+        if name not in self._mass:
+            b = self.system.bodies[name]
+            assert isinstance(b, Model)
+            d = self.system.dim
+            w = np.empty((d, b.n))
+            for i in range(d):
+                ti = np.zeros((b.n_nodes, b.dpn))
+                ti[:, i] = 1.0
+                w[i] = b.mass_times(ti.ravel())
+                if i == 0:
+                    mass = float(w[0] @ ti.ravel())
+            self._mass[name] = (mass, w)
+        return self._mass[name]
+
+    def _mass_moment(self, sen: Any, momentum: bool) -> Reader:
+        s = self.system
+        names = s.names if sen.body is None else [sen.body]
+        if sen.body is not None and sen.body not in s.bodies:
+            raise InputError(f"sensors.{sen.name}.body", sen.body, f"a body: {', '.join(s.names)}")
+
+        def read(blk: Block) -> NDArray:
+            total, acc = 0.0, np.zeros((len(blk[0]), s.dim))
+            for name in names:
+                b, sl = s.bodies[name], s.body_slice(name)
+                x = blk[2][:, sl] if momentum else blk[1][:, sl]
+                if isinstance(b, Model):
+                    m, w = self._translation(name)
+                    acc += s.y_from_q(blk[2] if momentum else blk[1])[:, sl] @ w.T
+                else:
+                    m = b.mass
+                    acc += m * x[:, : s.dim]
+                total += m
+            return acc if momentum else acc / total
+
+        return read
+
+    def _angular_momentum(self, sen: Any) -> Reader:
+        s = self.system
+        about = getattr(sen, "about", None)
+        c = np.zeros(3) if about is None else np.r_[np.asarray(about, float), 0.0][:3]
+
+        def read(blk: Block) -> NDArray:
+            k = len(blk[0])
+            total = np.zeros((k, 3 if s.dim == 3 else 1))
+            for name in s.names:
+                b, sl = s.bodies[name], s.body_slice(name)
+                q, v = blk[1][:, sl], blk[2][:, sl]
+                if isinstance(b, Model):
+                    total += angular_momentum(b, q, v, c[: s.dim])
+                    continue
+                r, p = q[:, : s.dim] - c[: s.dim], b.mass * v[:, : s.dim]
+                if s.dim == 2:
+                    total[:, 0] += r[:, 0] * p[:, 1] - r[:, 1] * p[:, 0]
+                    if isinstance(b, RigidBody):
+                        total[:, 0] += b.inertia_vector()[0] * v[:, 2]
+                    continue
+                total += np.cross(r, p)
+                if isinstance(b, RigidBody):
+                    from scipy.spatial.transform import Rotation
+
+                    rot = Rotation.from_quat(q[:, 3:7][:, [1, 2, 3, 0]]).as_matrix()
+                    for i in range(k):
+                        w = body_angular_velocity(q[i, 3:7], v[i, 3:7])
+                        total[i] += rot[i] @ (b.inertia_vector() * w)
+            return total
+
+        return read
