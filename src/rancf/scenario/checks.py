@@ -221,6 +221,40 @@ def _sensors(c: _Context, supports: list[ResolvedPlace]) -> None:
             raise fail(f"{key}.body", "an angle sensor needs body = NAME (a rigid body)")
 
 
+def _obstacles(c: _Context) -> set[str]:
+    names: set[str] = set()
+    for i, o in enumerate(c.sc.obstacles):
+        key = f"obstacles[{i}]"
+        if o.name in names:
+            raise fail(f"{key}.name", f"{show(o.name)} is used twice")
+        names.add(o.name)
+        for k in ("point", "normal", "center"):
+            _size(f"{key}.{k}", o[k], c.dim)
+        if o.kind == "sphere" and c.dim == 2:
+            raise fail(f"{key}.kind", 'a sphere is spatial: in 2D a circle is kind = "cylinder"')
+        if o.kind == "cylinder" and c.dim == 3 and o.axis is None:
+            raise fail(f"{key}.axis", "required for a cylinder in 3D")
+        if o.kind == "cylinder" and c.dim == 2 and o.axis is not None:
+            raise fail(f"{key}.axis", "does not apply in 2D (the cylinder is a circle)")
+        if o.body is not None:
+            b = None if c.bodies is None else c.bodies.get(o.body)
+            if not isinstance(b, RigidBody):
+                raise fail(f"{key}.body", f"must name a rigid body, got {show(o.body)}")
+    flex = ["body"] if c.bodies is None else [
+        n for n, b in c.bodies.items() if isinstance(b, FlexibleBody)
+    ]  # fmt: skip
+    for i, pair in enumerate(c.sc.contacts or []):
+        if len(pair) != 2 or pair[0] not in flex or pair[1] not in names:
+            raise fail(f"contacts[{i}]", f"must be [FLEXIBLE_BODY, OBSTACLE] (bodies: "
+                       f"{', '.join(flex)}; obstacles: {', '.join(sorted(names)) or 'none'}), "
+                       f"got {show(pair)}")  # fmt: skip
+    for i, s in enumerate(c.sc.sensor_tables):
+        if s.obstacle is not None and s.obstacle not in names:
+            raise fail(f"sensors[{i}].obstacle", f"names no obstacle: {show(s.obstacle)} "
+                       f"(obstacles: {', '.join(sorted(names)) or 'none'})")  # fmt: skip
+    return names
+
+
 def check_scenario(sc: Scenario) -> tuple[int, dict[str, Any] | None, list[ResolvedPlace]]:
     """Check ``sc`` as a whole; return its dimension, its bodies by name (None: one body) and
     the resolved places of its supports."""
@@ -230,4 +264,5 @@ def check_scenario(sc: Scenario) -> tuple[int, dict[str, Any] | None, list[Resol
     _motion(c)
     _joints(c)
     _sensors(c, supports)
+    _obstacles(c)
     return c.dim, c.bodies, supports

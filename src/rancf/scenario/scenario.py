@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING, Any
 from pydantic import Field, PrivateAttr, ValidationError, ValidationInfo, model_validator
 
 from rancf.errors import ScenarioError
-from rancf.scenario.base import Table, shorten
+from rancf.scenario.base import Name, Table, shorten
 from rancf.scenario.bodies import Body
 from rancf.scenario.checks import check_scenario
 from rancf.scenario.geometry import GEOMETRY_KEYS, CadGeometry, Geometry, MeshTable
@@ -34,6 +34,7 @@ from rancf.scenario.loads import (
     time_function,
 )
 from rancf.scenario.messages import scenario_error
+from rancf.scenario.obstacles import ObstacleTable
 from rancf.scenario.section import MaterialTable, SectionTable
 from rancf.scenario.sensors import Sensor, SensorTable
 from rancf.scenario.solver import ModesTable, SolverTable
@@ -64,6 +65,12 @@ class Scenario(Table):
     bodies: list[Body] = Field([], description="a system: flexible, rigid and point-mass bodies")
     joints: list[JointTable] = Field([], description="joints between two places")
     springs: list[SpringTable] = Field([], description="spring-dampers between two places")
+    obstacles: list[ObstacleTable] = Field([], description="rigid obstacles the bodies touch")
+    contacts: list[list[Name]] | None = Field(
+        None,
+        description="the pairs [BODY, OBSTACLE] in contact (default: every flexible body "
+        "with every obstacle)",
+    )
     supports: list[SupportTable] = Field([], description="places held fixed or moved")
     loads: LoadsTable = Field(LoadsTable(), description="gravity and point loads")
     damping: DampingTable = Field(DampingTable(), description="mass-proportional damping")
@@ -124,9 +131,9 @@ class Scenario(Table):
 
     @property
     def is_system(self) -> bool:
-        """Whether the file describes a system (``[[bodies]]``, ``[[joints]]`` or
-        ``[[springs]]``) rather than one flexible body on supports."""
-        return bool(self.bodies or self.joints or self.springs)
+        """Whether the file describes a system (``[[bodies]]``, ``[[joints]]``, ``[[springs]]``
+        or ``[[obstacles]]``) rather than one flexible body on supports."""
+        return bool(self.bodies or self.joints or self.springs or self.obstacles)
 
     @property
     def support_labels(self) -> list[int | str]:
@@ -280,6 +287,7 @@ def _data(sc: Scenario) -> dict[str, Any]:
     d["joints"] = [{**j.model_dump(exclude={"angle"}), "angle": _tf(j.angle)}
                    for j in sc.joints]  # fmt: skip
     d["springs"] = [s.model_dump() for s in sc.springs]
+    d["obstacles"] = [o.model_dump() for o in sc.obstacles]
     d["supports"] = [
         {**s.model_dump(exclude={"motion"}), "at": _node_or_text(s.at, one), "label": s.at,
          "motion": _tf(s.motion)}

@@ -11,7 +11,9 @@ A sensor names one monitored quantity.  Kinds and their keys:
   support at ``at``) [N], ``axial_force`` (at a place of a flexible body) [N], ``angle`` (of the
   rigid body ``body``: [rad] in 2D, the rotation vector in 3D), ``center_of_mass`` [m] and
   ``momentum`` (linear momentum [kg m/s]) of the body ``body`` or, without it, of the whole
-  system.
+  system;
+* of contact (issue 20): ``contact_force`` (the force of the obstacle ``obstacle = NAME`` on
+  the bodies, normal and friction parts together) [N].
 
 Column names: ``NAME`` for one number, ``NAME_x``, ``NAME_y`` (, ``NAME_z``) for vectors.
 """
@@ -32,9 +34,10 @@ __all__ = ["Sensor", "SensorTable", "SENSOR_KINDS", "SYSTEM_SENSOR_KINDS"]
 
 #: Sensor kinds.
 SENSOR_KINDS = ("distance", "position", "twist", "angular_momentum", "energy", "reaction",
-                "axial_force", "angle", "center_of_mass", "momentum")  # fmt: skip
+                "axial_force", "angle", "center_of_mass", "momentum", "contact_force")  # fmt: skip
 #: The kinds the system solver computes (not from node positions).
-SYSTEM_SENSOR_KINDS = ("reaction", "axial_force", "angle", "center_of_mass", "momentum")
+SYSTEM_SENSOR_KINDS = ("reaction", "axial_force", "angle", "center_of_mass", "momentum",
+                       "contact_force")  # fmt: skip
 _SCALAR = ("distance", "twist", "energy", "axial_force")
 
 
@@ -54,6 +57,7 @@ class Sensor:
     places: tuple[int | str, ...] = ()
     joint: str | None = None
     body: str | None = None
+    obstacle: str | None = None
 
     def columns(self, dim: int) -> list[str]:
         """CSV column names of the sensor's scalars."""
@@ -81,7 +85,7 @@ class SensorTable(Table):
     name: Name = Field(description="column name (letters, digits, _), unique, not t")
     kind: Literal[
         "distance", "position", "twist", "angular_momentum", "energy", "reaction",
-        "axial_force", "angle", "center_of_mass", "momentum",
+        "axial_force", "angle", "center_of_mass", "momentum", "contact_force",
     ] = Field(description="what is measured (see the README's sensor kinds)")  # fmt: skip
     between: PlacePair | None = Field(None, description="distance: the two places")
     at: PlaceValue | None = Field(
@@ -92,6 +96,7 @@ class SensorTable(Table):
         None, description="angular_momentum: the point [m] (default the origin)"
     )
     joint: Name | None = Field(None, description="reaction: the joint's name")
+    obstacle: Name | None = Field(None, description="contact_force: the obstacle's name")
     body: Name | None = Field(
         None,
         description="angle: the rigid body; center_of_mass, momentum: the body (default: the "
@@ -105,6 +110,15 @@ class SensorTable(Table):
             raise fail("about", "applies to angular_momentum sensors only")
         if self.joint is not None and kd != "reaction":
             raise fail("joint", "applies to reaction sensors only")
+        if self.obstacle is not None and kd != "contact_force":
+            raise fail("obstacle", "applies to contact_force sensors only")
+        if kd == "contact_force":
+            if self.obstacle is None:
+                raise fail("obstacle", "a contact_force sensor needs obstacle = NAME")
+            for k in ("at", "between"):
+                if self[k] is not None:
+                    raise fail(k, "not for a contact_force sensor (the obstacle's total force)")
+            return self
         if self.body is not None and kd not in ("angle", "center_of_mass", "momentum"):
             raise fail("body", "applies to angle, center_of_mass and momentum sensors only")
         if kd in ("angular_momentum", "energy", "angle", "center_of_mass", "momentum"):
@@ -136,4 +150,5 @@ class SensorTable(Table):
     def record(self, nodes: tuple[int, ...] = ()) -> Sensor:
         """The :class:`Sensor` of this table (``nodes``: its places as node indices)."""
         about = None if self.about is None else tuple(self.about)
-        return Sensor(self.name, self.kind, nodes, about, self.places(), self.joint, self.body)
+        return Sensor(self.name, self.kind, nodes, about, self.places(), self.joint, self.body,
+                      self.obstacle)  # fmt: skip

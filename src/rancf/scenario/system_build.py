@@ -13,7 +13,8 @@ Every scenario is a system: a file without ``[[bodies]]`` is one flexible body n
   ground point;
 * a point load at a rigid place is a system load (``moment``: a torque; ``time``: its factor);
   ``frequency_hz`` belongs to flexible bodies (on a rigid body give ``time = { harmonic }``);
-* joints and springs as written; sensor places on rigid bodies are observed by the system.
+* joints and springs as written; sensor places on rigid bodies are observed by the system;
+* ``[[obstacles]]`` become :class:`~rancf.system.Obstacle` (``contacts`` the pairs).
 """
 
 from __future__ import annotations
@@ -26,7 +27,7 @@ import numpy as np
 from rancf.errors import InputError, ScenarioError
 from rancf.model.rigid import PointMass, RigidBody
 from rancf.scenario.build import build_model, flexible_model
-from rancf.system import Joint, Load, Place, Spring, System
+from rancf.system import Joint, Load, Obstacle, Place, Spring, System
 
 if TYPE_CHECKING:
     from rancf.scenario.scenario import Scenario
@@ -160,4 +161,10 @@ def _parts(sc: Scenario, bodies: dict[str, Any]) -> dict[str, Any]:
         moment = ld.moment
         torque = None if moment is None else tuple(np.atleast_1d(moment).tolist())
         loads.append(Load(place(ld.at), _tuple(ld.force), torque, t["time"]))
-    return {"joints": joints, "springs": springs, "loads": loads, "observe": _observed(sc)}
+    obstacles = [
+        Obstacle(**{k: tuple(v) if isinstance(v, list) else v for k, v in o.model_dump().items()})
+        for o in sc.obstacles
+    ]
+    contacts = None if sc.contacts is None else [(a, b) for a, b in sc.contacts]
+    return {"joints": joints, "springs": springs, "loads": loads, "observe": _observed(sc),
+            "obstacles": obstacles, "contacts": contacts}  # fmt: skip

@@ -28,7 +28,10 @@ Column names: a support's ``LABEL_fx, LABEL_fy[, LABEL_fz]`` then its moment (``
 ``LABEL_mx, _my, _mz``) as :func:`rancf.model.reactions.reaction_columns` (in a system of
 several bodies the label is ``BODY:AT``); a joint's ``NAME_fx ...`` and, for joints that
 transmit a moment (``fixed``, a 3D ``revolute``, a driven joint), ``NAME_mz`` or
-``NAME_mx, _my, _mz``.
+``NAME_mx, _my, _mz``; then every obstacle's (issue 20, :func:`rancf.system.contact.
+contact_outputs`): the force it exerts on the bodies, ``NAME_normal_x, _y[, _z]`` and
+``NAME_friction_x, _y[, _z]`` [N], the contact length ``NAME_length`` [m] and the largest
+penetration ``NAME_penetration`` [m].
 """
 
 from __future__ import annotations
@@ -43,6 +46,7 @@ from numpy.typing import NDArray
 from rancf.kernels import _core
 from rancf.model.reactions import reaction_columns, reaction_row, support_reactions
 from rancf.model.sections import SectionSampler, section_names
+from rancf.system.contact import contact_outputs
 from rancf.system.sensors import SensorReader
 from rancf.system.system import System
 
@@ -98,6 +102,10 @@ class SystemOutputs:
             self.joint_names.append(cols)
         self.reaction_names = [c for cols in self.support_names.values() for c in cols]
         self.reaction_names += [c for cols in self.joint_names for c in cols]
+        self.contact_start = len(self.reaction_names)
+        for ob in s.obstacle_names:
+            cols = [f"{ob}_{part}_{a}" for part in ("normal", "friction") for a in axes]
+            self.reaction_names += [*cols, f"{ob}_length", f"{ob}_penetration"]
         self.along_widths = {n: sp.n_points * len(self.section_names[n])
                              for n, sp in self.samplers.items()}  # fmt: skip
         self.sensors = SensorReader(self, sensors)
@@ -178,14 +186,23 @@ class SystemOutputs:
                     self._integ.initial_acceleration(y, vy, float(t[i]), a, li)
                     s.core.residual(y, vy, a, li, float(t[i]), 1.0, False, True, res)
                 out["a"][i], out["lam"][i] = s.q_from_y(a), li
-                out["r"][i] = self._reactions(y, res[: s.n], float(t[i]), li)
+                vc = None if static else vy  # friction from the velocities
+                out["r"][i] = self._reactions(y, res[: s.n], float(t[i]), li, vc)
                 out["s"][i] = self._along(y, float(t[i]))
                 if per_body:
                     out["eb"][i] = self._body_energies(y, vy)
         out["c"] = self.sensors.values(t, q, v, out, energy)
         return out
 
-    def _reactions(self, y: NDArray, res: NDArray, t: float, lam: NDArray) -> NDArray:
+    def contact_columns(self, name: str) -> slice:
+        """The columns of the obstacle called ``name`` (normal, friction, length,
+        penetration)."""
+        k = self.system.obstacle_names.index(name)
+        w = 2 * self.system.dim + 2
+        return slice(self.contact_start + k * w, self.contact_start + (k + 1) * w)
+
+    def _reactions(self, y: NDArray, res: NDArray, t: float, lam: NDArray,
+                   v: NDArray | None = None) -> NDArray:  # fmt: skip
         s = self.system
         parts = []
         for name, b in self.flex:
@@ -196,6 +213,8 @@ class SystemOutputs:
             parts.append(np.asarray(force)[: s.dim])
             if _joint_has_moment(s, k):
                 parts.append(np.asarray(moment)[2:] if s.dim == 2 else np.asarray(moment))
+        for c in contact_outputs(s, y, v).values():
+            parts += [c.normal, c.friction, np.array([c.length, c.penetration])]
         return np.concatenate(parts) if parts else np.empty(0)
 
     def _body_energies(self, y: NDArray, v: NDArray) -> NDArray:

@@ -130,6 +130,8 @@ class SensorReader:
             reader = self._angle(sen)
         elif kind in ("center_of_mass", "momentum"):
             reader = self._mass_moment(sen, kind == "momentum")
+        elif kind == "contact_force":
+            reader = self._contact_force(sen)
         else:
             raise InputError(f"sensors.{sen.name}.kind", kind, "a sensor kind")
         reader.kind = kind  # type: ignore[attr-defined]
@@ -162,6 +164,14 @@ class SensorReader:
                     return lambda blk, c=start: blk[3]["r"][:, c : c + d]
                 start += d + (0 if not has_moment(b, sup.kind) else (1 if d == 2 else 3))
         raise InputError(f"sensors.{sen.name}.at", str(p), "the place of a support")
+
+    def _contact_force(self, sen: Any) -> Reader:
+        names = self.system.obstacle_names
+        if sen.obstacle not in names:
+            raise InputError(f"sensors.{sen.name}.obstacle", sen.obstacle,
+                             f"an obstacle: {', '.join(names) or 'none'}")  # fmt: skip
+        c, d = self.out.contact_columns(sen.obstacle).start, self.system.dim
+        return lambda blk: blk[3]["r"][:, c : c + d] + blk[3]["r"][:, c + d : c + 2 * d]
 
     def _axial_force(self, sen: Any, spec: Any) -> Reader:
         p = self._place(sen, spec)

@@ -1,0 +1,72 @@
+"""``[[obstacles]]`` and ``contacts``: rigid obstacles the flexible bodies touch (issue 20).
+
+An obstacle is a ``plane`` (``point``, outward ``normal``), a ``cylinder`` (``center``,
+``radius``; in 3D also ``axis``; in 2D a circle) or a ``sphere`` (3D: ``center``, ``radius``),
+fixed, or carried by a rigid body (``body = NAME``: its geometry then in the body's frame,
+relative to its centre of mass, like the body's ``points``).  ``friction`` is the Coulomb
+coefficient; ``stiffness`` [N/m²], ``onset`` [m], ``damping`` [s/m] and ``slip_velocity``
+[m/s] tune the penalty contact (:mod:`rancf.system.contact`; defaults from each body's section
+and material).  Every flexible body touches every obstacle, as a tube of its section's radius,
+unless the top-level ``contacts = [[BODY, OBSTACLE], ...]`` lists the pairs.
+"""
+
+from __future__ import annotations
+
+from typing import Literal
+
+from pydantic import Field, model_validator
+
+from rancf.scenario.base import Name, NonNegative, Positive, Table, fail, vector
+
+__all__ = ["ObstacleTable", "OBSTACLE_KEYS"]
+
+#: The geometry keys of each kind.
+OBSTACLE_KEYS = {
+    "plane": ("point", "normal"),
+    "cylinder": ("center", "radius", "axis"),
+    "sphere": ("center", "radius"),
+}
+
+
+class ObstacleTable(Table):
+    """One ``[[obstacles]]`` table (module docstring)."""
+
+    name: Name = Field(description="the obstacle's name (reaction columns, sensors), unique")
+    kind: Literal["plane", "cylinder", "sphere"] = Field(
+        description='"plane" | "cylinder" (a circle in 2D) | "sphere" (3D)'
+    )
+    point: vector(2, 3) | None = Field(None, description="plane: a point of it [m]")
+    normal: vector(2, 3) | None = Field(None, description="plane: its outward normal")
+    center: vector(2, 3) | None = Field(None, description="cylinder, sphere: the centre [m]")
+    radius: Positive | None = Field(None, description="cylinder, sphere: the radius [m]")
+    axis: vector(3) | None = Field(None, description="cylinder in 3D: its axis")
+    body: Name | None = Field(
+        None, description="the rigid body carrying it (geometry in the body's frame)"
+    )
+    friction: NonNegative = Field(0.0, description="Coulomb friction coefficient mu")
+    stiffness: Positive | None = Field(
+        None, description="penalty stiffness [N/m^2] (default: a tenth of Young's modulus)"
+    )
+    onset: Positive | None = Field(
+        None, description="depth of the pressure's smooth onset [m] (default: 1e-3 r)"
+    )
+    damping: NonNegative = Field(0.0, description="Hunt-Crossley damping factor [s/m]")
+    slip_velocity: Positive = Field(
+        1e-3, description="regularization velocity of the friction [m/s]"
+    )
+
+    @model_validator(mode="after")
+    def _kind_keys(self) -> ObstacleTable:
+        own = OBSTACLE_KEYS[self.kind]
+        for keys in OBSTACLE_KEYS.values():
+            for k in keys:
+                if k not in own and self[k] is not None:
+                    raise fail(k, f"does not apply to kind = {self.kind!r} (its keys: "
+                               f"{', '.join(own)})")  # fmt: skip
+        for k in own:
+            if k != "axis" and self[k] is None:
+                raise fail(k, f"required for a {self.kind}")
+        for k in ("normal", "axis"):
+            if self[k] is not None and not any(x != 0.0 for x in self[k]):
+                raise fail(k, "must be a nonzero vector")
+        return self
