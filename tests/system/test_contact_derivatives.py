@@ -24,12 +24,22 @@ def planar() -> System:
                   gravity=[0, -9.81])  # fmt: skip
     wheel = RigidBody(2, 1.0, 0.01, (0.7, -0.1), 0.2)
     obs = [
-        Obstacle("plane", point=(0, -0.005), normal=(0.1, 1), friction=0.3, damping=3.0,
-                 name="ground"),  # fmt: skip
-        Obstacle("cylinder", center=(0.5, -0.2), radius=0.195, friction=0.5, onset=4e-3,
-                 name="post"),  # fmt: skip
-        Obstacle("cylinder", center=(0.0, 0.0), radius=0.095, friction=0.4, body="wheel",
-                 damping=2.0, onset=3e-3, name="wheel"),  # fmt: skip
+        Obstacle(
+            "plane", point=(0, -0.005), normal=(0.1, 1), friction=0.3, damping=3.0, name="ground"
+        ),  # fmt: skip
+        Obstacle(
+            "cylinder", center=(0.5, -0.2), radius=0.195, friction=0.5, onset=4e-3, name="post"
+        ),  # fmt: skip
+        Obstacle(
+            "cylinder",
+            center=(0.0, 0.0),
+            radius=0.095,
+            friction=0.4,
+            body="wheel",
+            damping=2.0,
+            onset=3e-3,
+            name="wheel",
+        ),  # fmt: skip
     ]
     return System({"cable": cable, "wheel": wheel}, obstacles=obs, gravity=[0, -9.81])
 
@@ -42,12 +52,32 @@ def spatial() -> System:
     ball = RigidBody(3, 2.0, (0.1, 0.2, 0.3), (0.5, 0.15, -0.1), rot.tolist(),
                      angular_velocity=(0.3, -0.2, 0.5))  # fmt: skip
     obs = [
-        Obstacle("plane", point=(0, 0, -0.005), normal=(0.1, 0.0, 1), friction=0.3, damping=2.0,
-                 name="ground"),  # fmt: skip
-        Obstacle("cylinder", center=(0.8, 0.0, 0.2), radius=0.195, axis=(0.1, 1.0, 0.0),
-                 friction=0.5, onset=2e-2, name="bar"),  # fmt: skip
-        Obstacle("sphere", center=(0.0, 0.0, 0.01), radius=0.195, friction=0.4, body="ball",
-                 damping=1.0, name="ball"),  # fmt: skip
+        Obstacle(
+            "plane",
+            point=(0, 0, -0.005),
+            normal=(0.1, 0.0, 1),
+            friction=0.3,
+            damping=2.0,
+            name="ground",
+        ),  # fmt: skip
+        Obstacle(
+            "cylinder",
+            center=(0.8, 0.0, 0.2),
+            radius=0.195,
+            axis=(0.1, 1.0, 0.0),
+            friction=0.5,
+            onset=2e-2,
+            name="bar",
+        ),  # fmt: skip
+        Obstacle(
+            "sphere",
+            center=(0.0, 0.0, 0.01),
+            radius=0.195,
+            friction=0.4,
+            body="ball",
+            damping=1.0,
+            name="ball",
+        ),  # fmt: skip
     ]
     return System({"rod": rod, "cable": cable, "ball": ball}, obstacles=obs)
 
