@@ -54,15 +54,19 @@ def run_to_nurbs(run: Any, i: int) -> Any:
 
 def _export_system(args: argparse.Namespace, out: Any) -> int:
     from rancf.post.system_run import export_system_vtk, load_system_run
+    from rancf.post.vtk_contact import export_contact_vtk
 
     if args.nurbs is not None:
         raise InputError("--nurbs", args.nurbs, "one body's run: RUN_DIR/bodies/NAME")
     run = load_system_run(args.run_dir)
     with out:
         paths = export_system_vtk(run, out.path, args.every, args.samples)
+        contact = export_contact_vtk(run.path, out.path, args.every, run.rigid_frame)
         out.keep()
     for p in paths:
         print(f"{p.parent.name if p.parent != out.path else 'rigid bodies'}: open {p} in ParaView")
+    if contact is not None:
+        print(f"contact forces: open {contact} in ParaView")
     return 0
 
 
@@ -78,13 +82,17 @@ def _cmd_export(args: argparse.Namespace) -> int:
     if out is not None:
         from rancf.post.run_data import frame_indices
         from rancf.post.vtk import check_export_size, export_vtk
+        from rancf.post.vtk_contact import export_contact_vtk
 
         n = frame_indices(run.t.size, args.every).size
         check_export_size(run, args.every, args.samples)
         with out:
             pvd = export_vtk(run, out.path, args.every, args.samples)
+            contact = export_contact_vtk(run.path, out.path, args.every)
             out.keep()
         print(f"{n} VTK frame(s) of {run.name} written; open {pvd} in ParaView")
+        if contact is not None:
+            print(f"contact forces: open {contact} in ParaView")
         if run.directors is not None:
             print(f"rod nodes and material frames: {pvd.with_name(f'{run.name}_nodes.pvd')}")
         elif run.element == "rod":

@@ -35,6 +35,7 @@ from numpy.typing import NDArray
 from rancf.atomic import FileSet
 from rancf.model.rigid import PointMass
 from rancf.model.system import Model
+from rancf.system.contact import obstacle_records
 from rancf.system.outputs import SystemOutputs
 
 __all__ = ["write_history_files", "reader_metadata", "CHUNK_BYTES", "DERIVED"]
@@ -141,6 +142,8 @@ def write_history_files(
             for r, c in chunks:
                 np.savetxt(fh, np.column_stack([t[r], c["r"]]), delimiter=",", fmt="%.12g")
     meta: dict[str, Any] = {"sensor_columns": names, "reaction_columns": outputs.reaction_names}
+    if s.obstacle_names:
+        meta["obstacles"] = obstacle_records(s)
     if single:
         name, model = s.names[0], s.flex[0]
         meta.update(_body_meta(model, outputs, name))

@@ -62,7 +62,8 @@ from rancf.model.system import Model
 if TYPE_CHECKING:
     from rancf.system.system import System
 
-__all__ = ["Obstacle", "ContactState", "OBSTACLE_KINDS", "contact_outputs", "contact_history"]
+__all__ = ["Obstacle", "ContactState", "OBSTACLE_KINDS", "contact_outputs", "contact_history",
+           "obstacle_records"]  # fmt: skip
 
 OBSTACLE_KINDS = ("plane", "cylinder", "sphere")
 _KIND = {k: i for i, k in enumerate(OBSTACLE_KINDS)}
@@ -252,6 +253,18 @@ def build_contact(
         pair_data=np.array(data, dtype=float).reshape(-1, 5),
     )
     return core, names, pairs
+
+
+def obstacle_records(system: System) -> list[dict]:
+    """Every obstacle of ``system`` as plain data (run metadata): ``name``, ``kind``, ``point``
+    (plane point or centre) and ``direction`` (unit normal or axis; 3 components each, in the
+    carrying body's frame if any), ``radius`` and ``body`` (the carrying body's name or None)."""
+    out = []
+    for ob, name in zip(system.obstacles, system.obstacle_names, strict=True):
+        p, d, rad = _geometry(ob, system.dim)
+        out.append({"name": name, "kind": ob.kind, "point": p.tolist(), "direction": d.tolist(),
+                    "radius": rad, "body": ob.body})  # fmt: skip
+    return out
 
 
 @dataclass(frozen=True)
