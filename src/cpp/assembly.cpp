@@ -205,6 +205,13 @@ void rereference(const Model& m, const double* y) {
       mr[i] = u[i];
     }
   }
+  if (m.closed) {  // the last node is the first: the same reference triad to the last bit
+    const int last = m.n_nodes - 1;
+    for (int i = 0; i < 3; ++i) {
+      m.rod.tref[3 * last + i] = m.rod.tref[i];
+      m.rod.m1ref[3 * last + i] = m.rod.m1ref[i];
+    }
+  }
 }
 
 }  // namespace rancf

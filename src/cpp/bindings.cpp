@@ -106,10 +106,10 @@ NB_MODULE(_core, mod) {
                               "An assembled model (named parts, arrays by reference).")
           .def(nb::init<int, int, int, int, const rancf::Stiffness&, CableHolder, BeamHolder,
                         RodHolder, SupportsHolder, LoadsHolder, In, In,
-                        const rancf::SectionInertia&>(),
+                        const rancf::SectionInertia&, bool>(),
                nb::kw_only(), "kind"_a, "dim"_a, "dpn"_a, "n_el"_a, "stiffness"_a, "cable"_a,
                "beam"_a, "rod"_a, "supports"_a, "loads"_a, "mass_band"_a, "y_ref"_a,
-               "rotary"_a = rancf::SectionInertia{})
+               "rotary"_a = rancf::SectionInertia{}, "closed"_a = false)
           .def_prop_ro("n", [](const ModelHolder& h) { return h.n(); })
           .def(
               "internal_force",

@@ -50,7 +50,7 @@ struct ModelHolder {
 
   ModelHolder(int kind, int dim, int dpn, int n_el, const rancf::Stiffness& st, CableHolder c,
               BeamHolder b, RodHolder r, SupportsHolder s, LoadsHolder l, In mass, In yref,
-              const rancf::SectionInertia& rotary)
+              const rancf::SectionInertia& rotary, bool closed)
       : cable(std::move(c)),
         beam(std::move(b)),
         rod(std::move(r)),
@@ -69,6 +69,7 @@ struct ModelHolder {
     m.dpn = dpn;
     m.n_el = n_el;
     m.n_nodes = n_el + 1;
+    m.closed = closed;
     m.stiffness = st;
     const auto n = static_cast<std::size_t>(m.n()), ne = static_cast<std::size_t>(n_el);
     if (m.kind == rancf::ElementKind::cable) {

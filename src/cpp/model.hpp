@@ -90,6 +90,7 @@ struct Model {
   int dpn = 4;  ///< coordinates per node
   int n_el = 0;
   int n_nodes = 0;
+  bool closed = false;  ///< a ring: the last node is the first (rereference keeps them equal)
   Stiffness stiffness;
   SectionInertia rotary;  ///< rods: rotary inertia (not in mass_band)
   CableData cable;

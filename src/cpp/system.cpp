@@ -42,6 +42,8 @@ void System::setup() {
   norm_row.assign(rigid.size(), -1);
   for (std::size_t r = 0; r < rigid.size(); ++r)
     if (rigid[r].dim == 3 && !rigid[r].point_mass) norm_row[r] = m++;
+  linear_row = m;
+  m += n_linear;
   maps.clear();
   for (const PlaceRef& p : places) maps.push_back(place_map(*this, p));
 }
