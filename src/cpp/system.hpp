@@ -62,10 +62,13 @@ struct Prescribed {
 };
 
 /// A place's local coordinates in y: their global indices (n of them) and the map
-/// local(q) = T local(y) of a flexible node's rotated blocks (identity elsewhere).
+/// local(q) = T local(y) (nq x n) of a flexible node's rotated blocks, or of a reduced model's
+/// node (model.hpp: Reduction); identity elsewhere.
 struct PlaceMap {
   int n = 0;
+  int nq = 0;            ///< the place's own coordinates (place_size)
   bool identity = true;  ///< T is the identity (no rotated block)
+  bool reduced = false;  ///< a reduced model's node: every local may turn its frame
   int index[kMaxLocal] = {};
   double T[kMaxLocal][kMaxLocal] = {};
 };

@@ -329,8 +329,8 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
       // places whose positions are linear in their coordinates has none: skipped)
       bool vary[2 * kMaxLocal], any = false;
       for (int a = 0; a < k; ++a) {
-        vary[a] = a < ma.n ? nonlinear_local(pa.kind, s.dim, a)
-                           : nonlinear_local(pb.kind, s.dim, a - ma.n);
+        vary[a] = a < ma.n ? ma.reduced || nonlinear_local(pa.kind, s.dim, a)
+                           : mb.reduced || nonlinear_local(pb.kind, s.dim, a - ma.n);
         any = any || vary[a];
       }
       bool lam_nonzero = false;

@@ -92,6 +92,8 @@ class Model:
         #: A ring (:attr:`CableMesh.closed`): node ``n_nodes - 1`` is node 0 again, tied to it by
         #: the rows of :func:`rancf.model.closure.closure_rows` in a system.
         self.closed = bool(mesh.closed)
+        #: C² reduced coordinates (:class:`rancf.model.continuity.Reduction`), or None (C¹).
+        self.reduction = None
         self.n_el = mesh.n_elements
         rho, e_mod = material.density, material.youngs_modulus
         props = CableProperties(e_mod * section.area, e_mod * section.inertia, rho * section.area)

@@ -91,7 +91,22 @@ def core_model(model: Model) -> _core.Model:
         y_ref=np.ascontiguousarray(model.y0),
         rotary=k.core_inertia() if isinstance(k, RodKernel) else _core.SectionInertia(),
         closed=model.closed,
+        reduction=_reduction(model),
     )
+
+
+def _reduction(model: Model) -> _core.Reduction:
+    """A C² model's element and node maps (:mod:`rancf.model.continuity`); none for C¹."""
+    red = model.reduction
+    if red is None:
+        zi, z = np.zeros(0, dtype=np.int64), np.zeros(0)
+        return _core.Reduction(n_y=0, ku=0, width=0, node_width=0, el_start=zi, el_map=z,
+                               node_start=zi, node_map=z, twist=zi)  # fmt: skip
+    return _core.Reduction(
+        n_y=red.n_y, ku=red.ku, width=red.width, node_width=red.node_width,
+        el_start=red.el_start, el_map=red.el_map, node_start=red.node_start,
+        node_map=red.node_map, twist=red.twist,
+    )  # fmt: skip
 
 
 def _point_forces(model: Model) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
