@@ -71,7 +71,16 @@ def _simulate(tmp_path, text: str):
     f = tmp_path / "s.toml"
     f.write_text(text)
     return subprocess.run(
-        [sys.executable, "-m", "rancf", "simulate", str(f), "--out", str(tmp_path / "run"), "--overwrite"],
+        [
+            sys.executable,
+            "-m",
+            "rancf",
+            "simulate",
+            str(f),
+            "--out",
+            str(tmp_path / "run"),
+            "--overwrite",
+        ],
         capture_output=True,
         text=True,
         cwd=tmp_path,

@@ -281,6 +281,33 @@ void bind_system(nb::module_& mod) {
           "The Jacobian of residual() (balance and constraints) with respect to (y, lambda): ck "
           "d/dy + cv d/dv + ca d/da, dense (n + m)^2, held rows and columns as assembled.")
       .def(
+          "sparse_jacobian",
+          [](const SystemHolder& h, In y, In v, In a, In lam, double t, double ck, double cv,
+             double ca, bool dynamic) {
+            const auto n = static_cast<std::size_t>(h.s.n), m = static_cast<std::size_t>(h.s.m);
+            for (const auto* x : {&y, &v, &a}) expect_size(*x, n, "state");
+            expect_size(lam, m, "lam");
+            rancf::BorderedLU lu(h.s.offset, h.s.block_size, h.s.block_ku, h.s.fixed.data());
+            std::vector<double> r(n + m);
+            rancf::AssemblyTerms terms;
+            terms.ck = ck;
+            terms.cv = cv;
+            terms.ca = ca;
+            terms.tf = terms.t1 = t;
+            std::vector<int> rows, cols;
+            std::vector<double> vals;
+            const bool ok = rancf::assemble_system(h.s, y.data(), dynamic ? v.data() : nullptr,
+                                                   dynamic ? a.data() : nullptr, lam.data(),
+                                                   y.data(), terms, r.data(), &lu);
+            if (ok) lu.triplets(rows, cols, vals);
+            return std::make_tuple(ok, h.s.n + lu.border(), rows, cols, vals);
+          },
+          "y"_a, "v"_a, "a"_a, "lam"_a, "t"_a, "ck"_a, "cv"_a, "ca"_a, "dynamic"_a = true,
+          "(ok, size, rows, cols, values): the Jacobian of residual() as the bordered solver "
+          "holds it, [A P; Q D] over (y, lambda, coupling unknowns z = x_j with D = -1), held "
+          "rows and columns as assembled (identity on the diagonal only after factoring: here "
+          "as assembled).")
+      .def(
           "joint_reaction",
           [](const SystemHolder& h, int k, In y, double t, In lam) {
             expect_size(y, static_cast<std::size_t>(h.s.n), "y");
@@ -367,15 +394,17 @@ void bind_system(nb::module_& mod) {
       .def(
           "factor_static",
           [](SystemIntegratorHolder& h, In y, In lam, double lf, bool amplitude, double t,
-             Out residual) {
+             Out residual, double stab) {
             expect_size(y, h.n, "y");
             expect_size(lam, h.m, "lam");
             expect_size(residual, h.n + h.m, "residual");
-            return h.integ.factor_static(y.data(), lam.data(), lf, amplitude, t, residual.data());
+            return h.integ.factor_static(y.data(), lam.data(), lf, amplitude, t, residual.data(),
+                                         stab);
           },
           "y"_a, "lam"_a, "load_factor"_a, "amplitude"_a, "t"_a, "residual"_a.noconvert(),
-          "The statics' residual (balance, constraints) and its Jacobian factored; False if not "
-          "finite or singular.")
+          "stab"_a = 0.0,
+          "The statics' residual (balance, constraints) and its Jacobian factored (stab > 0: plus "
+          "stab M, the residual unchanged); False if not finite or singular.")
       .def(
           "solve_factored",
           [](SystemIntegratorHolder& h, Out x, Out z) {

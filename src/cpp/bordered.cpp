@@ -66,6 +66,28 @@ void BorderedLU::dense(int keep, double* out) {
   }
 }
 
+void BorderedLU::triplets(std::vector<int>& rows, std::vector<int>& cols,
+                          std::vector<double>& vals) {
+  auto put = [&](int i, int j, double v) {
+    if (v == 0.0) return;
+    rows.push_back(i);
+    cols.push_back(j);
+    vals.push_back(v);
+  };
+  for (std::size_t b = 0; b < lu_.size(); ++b) {
+    const BandView v = lu_[b].view();
+    const int o = off_[b], nb = size_[b], ku = lu_[b].ku();
+    for (int i = 0; i < nb; ++i)
+      for (int j = std::max(0, i - ku); j < std::min(nb, i + ku + 1); ++j)
+        put(o + i, o + j, v.at(i, j));
+  }
+  for (int c = 0; c < p_; ++c) {
+    for (const Entry& e : pcol_[sz(c)]) put(e.index, n_ + c, e.value);
+    for (const Entry& e : qrow_[sz(c)]) put(n_ + c, e.index, e.value);
+    for (int d = 0; d < p_; ++d) put(n_ + c, n_ + d, d_[sz(c * p_ + d)]);
+  }
+}
+
 void BorderedLU::solve_blocks(double* x, const std::vector<char>* touched) const {
   for (std::size_t b = 0; b < lu_.size(); ++b) {
     if (touched != nullptr && !(*touched)[b]) continue;  // zero there already

@@ -44,6 +44,9 @@ class BorderedLU {
   /// (coupling unknowns with D = -I) eliminated: [A + P_z Q_z, P_k; Q_k, D_kk], row-major
   /// (n + keep)^2.  For checks and small eigenproblems.
   void dense(int keep, double* out);
+  /// Before factor(): the nonzeros of [A P; Q D] (size n + p) as triplets (row, column, value),
+  /// band entries of every block and the border's; for sparse eigenproblems.
+  void triplets(std::vector<int>& rows, std::vector<int>& cols, std::vector<double>& vals);
 
  private:
   struct Entry {

@@ -277,10 +277,64 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
     for (int j = 0; j < mb.n; ++j) idx[ma.n + j] = mb.index[j];
     for (int j = 0; j < k; ++j) r[idx[j]] += fs[sz(j)];
     if (lu != nullptr) {
-      std::vector<double> K(sz(k * k)), Kv(sz(k * k));
-      jacobian_fd(k, u.data(), force, K.data());
-      if (vf != nullptr) jacobian_fd(k, w.data(), force, Kv.data());
-      for (std::size_t i = 0; i < K.size(); ++i) K[i] = tm.ck * K[i] + tm.cv * Kv[i];
+      // exact where the places' positions are linear in their coordinates:
+      // dF/dx_a = k e e^T + T/l (I - e e^T) + c e (dv_perp)^T / l, dF/dv_a = c e e^T, with
+      // J = [dx_a, -dx_b] the generalized forces' map: K = J^T (ck dF/dx + cv dF/dv) J;
+      // the columns of rotation-like coordinates (the places' curvature) by central differences
+      PlaceEval ea, eb;
+      place_local(s, pa, ma, tm.tf, u.data(), ea);
+      place_local(s, pb, mb, tm.tf, u.data() + ma.n, eb);
+      double J[3][2 * kMaxLocal] = {}, d[3], dv[3] = {0.0, 0.0, 0.0}, len = 0.0;
+      for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < ma.n; ++j) J[i][j] = ea.dx[i][j];
+        for (int j = 0; j < mb.n; ++j) J[i][ma.n + j] = -eb.dx[i][j];
+        d[i] = ea.x[i] - eb.x[i];
+        len += d[i] * d[i];
+        for (int j = 0; j < k; ++j) dv[i] += J[i][j] * w[sz(j)];
+      }
+      len = std::sqrt(len);
+      double e[3], rate = 0.0;
+      for (int i = 0; i < 3; ++i) {
+        e[i] = d[i] / len;
+        rate += e[i] * dv[i];
+      }
+      const double tension = sp.stiffness * (len - sp.length) + sp.damping * rate;
+      double A[3][3];
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+          const double perp = (i == j ? 1.0 : 0.0) - e[i] * e[j];
+          const double dvp = dv[j] - rate * e[j];  // (I - e e^T) dv
+          A[i][j] = tm.ck * (sp.stiffness * e[i] * e[j] + tension / len * perp +
+                             sp.damping * e[i] * dvp / len) +
+                    tm.cv * sp.damping * e[i] * e[j];
+        }
+      std::vector<double> K(sz(k * k), 0.0);
+      for (int a = 0; a < k; ++a)
+        for (int b = 0; b < k; ++b) {
+          double v = 0.0;
+          for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) v += J[i][a] * A[i][j] * J[j][b];
+          K[sz(a * k + b)] = v;
+        }
+      bool vary[2 * kMaxLocal], any = false;
+      for (int a = 0; a < k; ++a) {
+        vary[a] = a < ma.n ? nonlinear_local(pa.kind, s.dim, a)
+                           : nonlinear_local(pb.kind, s.dim, a - ma.n);
+        any = any || vary[a];
+      }
+      if (any) {
+        std::vector<double> Kfd(sz(k * k));
+        jacobian_fd(k, u.data(), force, Kfd.data(), vary);
+        for (int a = 0; a < k; ++a)
+          for (int b = 0; b < k; ++b)
+            if (vary[b]) {
+              double kv = 0.0;  // the velocity part of column b stays exact
+              for (int i = 0; i < 3; ++i)
+                for (int j = 0; j < 3; ++j)
+                  kv += J[i][a] * tm.cv * sp.damping * e[i] * e[j] * J[j][b];
+              K[sz(a * k + b)] = tm.ck * Kfd[sz(a * k + b)] + kv;
+            }
+      }
       add_matrix(*lu, idx, k, K.data(), far);
     }
   }

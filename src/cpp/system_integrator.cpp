@@ -197,14 +197,20 @@ bool SystemIntegrator::initial_acceleration(const double* y, const double* v, do
 }
 
 bool SystemIntegrator::factor_static(const double* y, const double* lam, double lf, bool amplitude,
-                                     double t, double* residual) {
+                                     double t, double* residual, double stab) {
   AssemblyTerms terms;
   terms.tf = t;
   terms.t1 = t;
   terms.load_factor = lf;
   terms.amplitude = amplitude;
   lu_valid_ = false;
-  if (!assemble_system(s_, y, nullptr, nullptr, lam, y, terms, r_.data(), &lu_)) return false;
+  const double* zero = nullptr;
+  if (stab > 0.0) {  // M (0 + c 0) = 0 in the residual; stab M in the Jacobian
+    zero_.assign(sz(s_.n), 0.0);
+    zero = zero_.data();
+    terms.ca = stab;
+  }
+  if (!assemble_system(s_, y, zero, zero, lam, y, terms, r_.data(), &lu_)) return false;
   std::copy(r_.begin(), r_.end(), residual);
   ++factorizations_;
   return lu_.factor();

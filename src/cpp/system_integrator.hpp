@@ -40,8 +40,10 @@ class SystemIntegrator {
                         double* dy, double* dlam, double* residual);
   /// The statics' residual (n + m) and its Jacobian factored (for solve_factored); false if
   /// not finite or singular.
+  /// stab > 0 adds stab M to the Jacobian only (not to the residual): Newton on a tangent
+  /// that is singular at zero load (a pendulum's swing before its tension builds up).
   bool factor_static(const double* y, const double* lam, double lf, bool amplitude, double t,
-                     double* residual);
+                     double* residual, double stab = 0.0);
   /// Solve with the last factorization: x (n) and z (m) hold the right-hand side on entry.
   void solve_factored(double* x, double* z);
   [[nodiscard]] long factorizations() const { return factorizations_; }
@@ -56,7 +58,7 @@ class SystemIntegrator {
   bool lu_valid_ = false;
   double lu_h_ = -1.0;
   long factorizations_ = 0;
-  std::vector<double> base_, yf_, vf_, am_, r_, dz_, zb_;
+  std::vector<double> base_, yf_, vf_, am_, r_, dz_, zb_, zero_;
 };
 
 /// Kinetic, strain (elements and springs) and gravitational energy of the system at (y, v)

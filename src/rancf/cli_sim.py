@@ -265,8 +265,18 @@ def _cmd_static(args: argparse.Namespace) -> int:
     from rancf.scenario import load_scenario
     from rancf.solvers.static import solve_static
 
-    od = None if args.out is None else OutputDir(args.out, kind="run", overwrite=args.overwrite)
     sc = load_scenario(args.scenario)
+    if sc.is_system:
+        from rancf.cli_system import print_static, static_system
+
+        copy = None if args.out is None else _scenario_text(args.scenario)
+        doc = static_system(args, sc, copy)
+        if args.json:
+            print(strict_json(doc).rstrip())
+        else:
+            print_static(doc, args.out)
+        return 0
+    od = None if args.out is None else OutputDir(args.out, kind="run", overwrite=args.overwrite)
     model = sc.build_model()
     path = LoadPath(model, sc.support_labels)  # the load path, for --out
     method = sc.solver["static_method"]
@@ -346,6 +356,15 @@ def _cmd_modes(args: argparse.Namespace) -> int:
     if args.count is not None and args.count < 1:
         raise InputError("--count", args.count, "an integer >= 1")
     sc = load_scenario(args.scenario)
+    if sc.is_system:
+        from rancf.cli_system import modes_system, print_modes
+
+        doc = modes_system(args, sc)
+        if args.json:
+            print(strict_json(doc).rstrip())
+        else:
+            print_modes(doc)
+        return 0
     model = sc.build_model()
     about = args.about or sc.data["modes"]["about"]
     count = args.count if args.count is not None else sc.data["modes"]["count"]

@@ -8,6 +8,7 @@ refuse systems, prescribed motion and time functions of loads with one line (exi
 from __future__ import annotations
 
 import copy
+import json
 import tomllib
 
 import pytest
@@ -79,14 +80,16 @@ def test_spatial_system_models():
     assert sc.springs[0].damping == 0.5 and sc.springs[0].length is None
 
 
-@pytest.mark.parametrize("text", [SLIDER_CRANK, TETHER_3D], ids=["slider-crank", "tether"])
-def test_systems_refused_by_static(tmp_path, capsys, text):
+def test_static_of_a_system_file(tmp_path, capsys):
+    """``rancf static`` takes a system file: the slider-crank without loads rests in its
+    reference (zero reactions)."""
     f = tmp_path / "s.toml"
-    f.write_text(text)
-    assert main(["static", str(f)]) == 2
-    out, err = capsys.readouterr()
-    assert out == "" and len(err.strip().splitlines()) == 1
-    assert f"{f}: [bodies] multibody systems: not yet solved by this command" in err
+    f.write_text(SLIDER_CRANK)
+    assert main(["static", str(f), "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert doc["load_factors"][-1] == 1.0
+    assert max(abs(v) for v in doc["reactions"].values()) <= 1e-9
+    assert doc["positions"]["slider"] == pytest.approx([0.45, 0.0], abs=1e-12)
 
 
 ONE_BODY_NOT_YET = [

@@ -11,11 +11,11 @@ from rancf.errors import InputError
 from rancf.geometry.ellipse import Ellipse, ellipse_axes
 from rancf.geometry.nurbs import NurbsCurve
 from rancf.kernels import _core
+from rancf.model.analysis import DynamicOptions
 from rancf.model.closure import closure_rows
 from rancf.model.ellipse_mesh import mesh_ellipse
 from rancf.model.nurbs_mesh import mesh_nurbs
 from rancf.model.system import Material, Model, PointLoad, RigidMotion, Section, Support
-from rancf.model.analysis import DynamicOptions
 from rancf.solvers.dynamic import integrate
 from rancf.solvers.static import solve_static
 from rancf.system import System
@@ -92,9 +92,13 @@ def test_seam_rows_hold_and_their_jacobian_is_exact(element, rng):
     a = np.zeros((mod.dpn, mod.n))
     a[r, c] = v
     q = mod.q_from_y(y)
-    want = q[-mod.dpn :] - q[: mod.dpn] * np.r_[
-        np.ones(mod.dim), np.full(mod.dpn - mod.dim, mod.mesh.seam_ratio)
-    ][: mod.dpn] if element != "beam" else q[-3:] - q[:3]
+    want = (
+        q[-mod.dpn :]
+        - q[: mod.dpn]
+        * np.r_[np.ones(mod.dim), np.full(mod.dpn - mod.dim, mod.mesh.seam_ratio)][: mod.dpn]
+        if element != "beam"
+        else q[-3:] - q[:3]
+    )
     if element == "rod":
         want[6] = q[-1] - q[6]
     assert np.allclose(a @ y, want, rtol=0, atol=1e-14)
@@ -152,9 +156,10 @@ def test_spatial_ring_closes_its_material_frame():
     assert np.abs(d[-1] - d[0]).max() < 1e-15
     shapes = []
     for shift in (0, 3):
+        load = PointLoad((21 - 3 * shift) % 24, (0.0, 300.0, -400.0))
+        clamp = Support((9 - 3 * shift) % 24, "clamp")
         mod = Model(mesh_nurbs(_loop(shift), 3), "rod", SEC, STEEL,
-                    supports=[Support((9 - 3 * shift) % 24, "clamp")],
-                    point_loads=[PointLoad((21 - 3 * shift) % 24, (0.0, 300.0, -400.0))])  # fmt: skip
+                    supports=[clamp], point_loads=[load])  # fmt: skip
         pos = mod.node_positions(solve_static(mod).q)[:-1]
         shapes.append(np.roll(pos, 3 * shift, axis=0))
     assert np.abs(shapes[0][21] - mesh.nodes[21, 0]).max() > 1e-3  # it moved

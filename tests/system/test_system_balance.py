@@ -72,11 +72,22 @@ def _frame(load: float, rot: np.ndarray) -> Scenario:
     )  # fmt: skip
 
 
-def _tip(sc: Scenario) -> np.ndarray:
+def _solved(sc: Scenario) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The tip, the corner joint's force on leg a and the clamp's force."""
+    from rancf.post.results import system_outputs
+
     s = build_system(sc)
     res = solve_static(s, sc.solver["load_steps"])
     b = s.bodies["b"]
-    return b.node_positions(res.q[s.body_slice("b")])[-1]
+    tip = b.node_positions(res.q[s.body_slice("b")])[-1]
+    out = system_outputs(s)
+    row = out.rows(np.ones(1), res.q[None], lam=res.lam[None], static=True)["r"][0]
+    corner = row[out.joint_columns("corner")][:3]
+    return tip, corner, row[:3]
+
+
+def _tip(sc: Scenario) -> np.ndarray:
+    return _solved(sc)[0]
 
 
 def test_l_frame_linear_solution_and_objectivity():
@@ -92,7 +103,32 @@ def test_l_frame_linear_solution_and_objectivity():
     assert tip[2] == pytest.approx(2 * p / (3 * ei) + p / gj, rel=5e-3)
     big = 50.0
     rot = Rotation.from_rotvec([0.3, -0.5, 0.8]).as_matrix()
-    plain = _tip(_frame(big, np.eye(3)))
-    turned = rot.T @ _tip(_frame(big, rot))
+    plain, corner, clamp = _solved(_frame(big, np.eye(3)))
+    turned, corner_r, clamp_r = _solved(_frame(big, rot))
     assert abs(plain[2]) > 0.05  # a large deflection
-    assert np.abs(turned - plain).max() <= 1e-9
+    assert np.abs(rot.T @ turned - plain).max() <= 1e-9
+    # the reactions turn with it: the clamp's force balances the load, the corner carries it
+    assert np.allclose(clamp, [0.0, 0.0, -big], atol=1e-9 * big)  # the force on the body
+    assert np.allclose(rot.T @ clamp_r, clamp, atol=1e-9 * big)
+    assert np.allclose(rot.T @ corner_r, corner, atol=1e-9 * big)
+    assert np.linalg.norm(corner) == pytest.approx(big, rel=1e-9)
+
+
+def test_a_python_callable_moves_a_support():
+    """The Python API takes any callable as a TIME_FUNCTION: sampled on [0, t_end] as a cubic
+    table for the compiled loop, the pinned end follows 0.01 sin(3t) to 1e-9 m (the table's
+    interpolation error, 2001 points)."""
+    import rancf
+
+    sc = Scenario(
+        geometry={"kind": "line", "start": [0.0, 0.0], "end": [1.0, 0.0]},
+        mesh={"elements": 4}, section={"radius": 0.002},
+        material={"density": 7800.0, "youngs_modulus": 2.0e11},
+        supports=[{"at": "start", "kind": "clamp"},
+                  {"at": "end", "kind": "pin", "motion": lambda t: [0.01 * np.sin(3 * t), 0.0]}],
+        solver={"t_end": 0.5, "step": 1e-3, "output_step": 0.01},
+        sensors=[{"name": "tip", "kind": "position", "at": "end"}],
+    )  # fmt: skip
+    res, names, vals = rancf.simulate(sc)
+    assert names == ["tip_x", "tip_y"]
+    assert np.abs(vals[:, 0] - (1.0 + 0.01 * np.sin(3 * res.t))).max() <= 1e-9

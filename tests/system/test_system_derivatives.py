@@ -31,8 +31,11 @@ def planar() -> System:
         gravity=[0, -9.81], point_loads=[PointLoad(1, (0.1, 0.2), time=ramp)],
     )  # fmt: skip
     beam = Model(mesh_line([1, 0], [1.5, 0.5], 2), "beam", SEC, MAT, [])
-    link = RigidBody(2, 1.5, 0.02, (1.7, 0.5), 0.3, points={"a": (-0.2, 0.0), "b": (0.2, 0.1)})
-    mass = PointMass(2, 0.5, (2.0, 0.6))
+    rot = np.array([[np.cos(0.3), -np.sin(0.3)], [np.sin(0.3), np.cos(0.3)]])
+    pos = np.array([1.5, 0.5]) - rot @ [-0.2, 0.0]  # link:a at the beam's end
+    link = RigidBody(2, 1.5, 0.02, tuple(pos), 0.3, points={"a": (-0.2, 0.0), "b": (0.2, 0.1)})
+    axis = np.array([1.0, 0.3])
+    mass = PointMass(2, 0.5, tuple(pos + rot @ [0.2, 0.1] + 0.3 * axis / np.linalg.norm(axis)))
     joints = [
         Joint("fixed", ("cable:end", "beam:start")),
         Joint("pin", ("beam:end", "link:a"), angle=TimeFunction.harmonic(1.0, 0.2)),
@@ -51,10 +54,14 @@ def spatial() -> System:
                 gravity=[0, 0, -9.81])  # fmt: skip
     rod2 = Model(mesh_line([1, 0, 0], [1, 0.6, 0.2], 2), "rod", SEC, ROD, [])
     cable = Model(mesh_line([1, 0.6, 0.2], [1.4, 0.9, 0.2], 2), "rancf", SEC, MAT, [])
-    points = {"a": (-0.2, -0.1, -0.1), "b": (0.1, 0.2, 0.0)}
-    body = RigidBody(3, 2.0, (0.1, 0.2, 0.3), (1.6, 1.0, 0.3), _rot3(0.4).tolist(),
+    # the body's points meet the cable's end (a) and the rod's middle node (b)
+    r0, a = _rot3(0.4), np.array([-0.2, -0.1, -0.1])
+    pos = np.array([1.4, 0.9, 0.2]) - r0 @ a
+    b = r0.T @ (np.array([1.0, 0.3, 0.1]) - pos)
+    points = {"a": tuple(a), "b": tuple(b)}
+    body = RigidBody(3, 2.0, (0.1, 0.2, 0.3), tuple(pos), r0.tolist(),
                      angular_velocity=(0.3, -0.2, 0.5), points=points)  # fmt: skip
-    mass = PointMass(3, 0.5, (1.8, 1.3, 0.3))
+    mass = PointMass(3, 0.5, tuple(pos + r0 @ b + 0.3 * np.array([0.0, 1.0, 1.0]) / np.sqrt(2)))
     joints = [
         Joint("fixed", ("rod:end", "rod2:start")),
         Joint("fixed", ("cable:start", "rod2:end")),  # a cable's tangent held by a rod's frame

@@ -87,16 +87,17 @@ def sensor_table(
     energy: NDArray | None = None,
     static: bool = False,
     t: NDArray | None = None,
+    lam: NDArray | None = None,
 ) -> tuple[list[str], NDArray[np.float64]]:
     """Column names and values ``(n_t, n_columns)`` of the sensors for states ``q``, ``v`` (full
     coordinates; ``v`` default zero) at times ``t`` (default zero; ``static``: load factors, the
-    reactions those of a static state)."""
+    reactions those of a static state with multipliers ``lam``)."""
     out = model if isinstance(model, SystemOutputs) else system_outputs(model, sensors)
     qq = np.atleast_2d(np.asarray(q, dtype=float))
     tt = np.zeros(qq.shape[0]) if t is None else np.atleast_1d(np.asarray(t, dtype=float))
     vv = None if v is None else np.atleast_2d(v)
     rows = out.rows(tt, qq, vv, None, None if energy is None else np.atleast_2d(energy),
-                    static=static)  # fmt: skip
+                    None if lam is None else np.atleast_2d(lam), static)  # fmt: skip
     return out.sensor_names, rows["c"]
 
 
@@ -183,8 +184,11 @@ class LoadPath:
 
     def record(self, load_factor: float, y: NDArray, lam: NDArray | None = None) -> None:
         """Keep one converged step (rods: with the nodal directors the triads were carried to;
-        systems: with the multipliers ``lam``)."""
+        systems: with the multipliers ``lam``, or ``y`` holding them after the coordinates)."""
         y = np.array(y, dtype=float)
+        n = self.system.n
+        if lam is None and y.size == n + self.system.m and self.system.m:
+            y, lam = y[:n], y[n:]
         self.steps.append((load_factor, y, self.system.nodal_directors(y),
                            None if lam is None else np.array(lam, dtype=float)))  # fmt: skip
 

@@ -92,7 +92,7 @@ def _build(sc: Scenario) -> System:
     if not sc.bodies:
         model = build_model(sc, system=True)
         return System({ONE_BODY: model}, gravity=gravity, damping=damping,
-                      **_parts(sc, {ONE_BODY: model}))  # fmt: skip
+                      horizon=sc.solver.t_end, **_parts(sc, {ONE_BODY: model}))  # fmt: skip
     d = sc.data
     bodies: dict[str, Any] = {}
     for i, b in enumerate(sc.bodies):
@@ -119,7 +119,8 @@ def _build(sc: Scenario) -> System:
             at(d["supports"], "supports"), at(d["loads"]["point"], "loads.point"),
             at(d["initial_velocity"], "initial_velocity"), d["bodies"][i]["initial_motion"], nodes,
         )  # fmt: skip
-    return System(bodies, gravity=gravity, damping=damping, **_parts(sc, bodies))
+    return System(bodies, gravity=gravity, damping=damping, horizon=sc.solver.t_end,
+                  **_parts(sc, bodies))  # fmt: skip
 
 
 def _parts(sc: Scenario, bodies: dict[str, Any]) -> dict[str, Any]:

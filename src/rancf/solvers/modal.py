@@ -35,11 +35,13 @@ from numpy.typing import NDArray
 
 from rancf.errors import RancfError
 from rancf.model.system import Model
+from rancf.system import System
 
 __all__ = [
     "ModalResult",
     "natural_modes",
     "rigid_body_modes",
+    "rigid_candidates",
     "tangent_stiffness",
     "unresisted_motions",
 ]
@@ -76,11 +78,10 @@ class ModalResult:
     symmetric: bool = True
 
 
-def rigid_body_modes(model: Model, y: NDArray) -> NDArray[np.float64]:
-    """Infinitesimal rigid motions of configuration ``y`` allowed by the supports, ``(n, n_r)``.
-
-    Columns are M-orthonormal and vanish on the fixed coordinates.
-    """
+def rigid_candidates(model: Model, y: NDArray) -> NDArray[np.float64]:
+    """Infinitesimal rigid motions (translations, rotations about the centre of the nodes) of
+    configuration ``y`` that the supports allow, ``(n, n_r)`` (model coordinates; combinations
+    with zero held components)."""
     q = model.q_from_y(y)
     dim, dpn = model.dim, model.dpn
     nodes = q.reshape(model.n_nodes, dpn)
@@ -116,6 +117,15 @@ def rigid_body_modes(model: Model, y: NDArray) -> NDArray[np.float64]:
         _, s, vt = np.linalg.svd(r[fixed], full_matrices=True)
         rank = int(np.sum(s > 1e-10 * max(s.max(initial=0.0), 1.0)))
         r = r @ vt[rank:].T
+    return r
+
+
+def rigid_body_modes(model: Model, y: NDArray) -> NDArray[np.float64]:
+    """Infinitesimal rigid motions of configuration ``y`` allowed by the supports, ``(n, n_r)``.
+
+    Columns are M-orthonormal and vanish on the fixed coordinates.
+    """
+    r = rigid_candidates(model, y)
     if r.shape[1] == 0:
         return r
     m = model.dense(model.mass_matrix(y))
@@ -125,8 +135,17 @@ def rigid_body_modes(model: Model, y: NDArray) -> NDArray[np.float64]:
     return r @ (u[:, keep] / np.sqrt(w[keep]))
 
 
-def natural_modes(model: Model, y: NDArray | None = None, count: int | None = None) -> ModalResult:
+def natural_modes(
+    model: Model | System,
+    y: NDArray | None = None,
+    count: int | None = None,
+    lam: NDArray | None = None,
+) -> ModalResult:
     """Natural frequencies about ``y`` (default: the reference configuration).
+
+    A :class:`~rancf.system.System` is solved on the null space of its constraints, sparse
+    (:func:`rancf.solvers.system_modal.system_modes`; ``lam``: the multipliers at ``y``, as the
+    static solution gives them; ``count`` default 6).
 
     Parameters
     ----------
@@ -139,6 +158,10 @@ def natural_modes(model: Model, y: NDArray | None = None, count: int | None = No
     count : int, optional
         Number of (non-rigid) modes to return; default all.
     """
+    if isinstance(model, System):
+        from rancf.solvers.system_modal import system_modes
+
+        return system_modes(model, y, 6 if count is None else count, lam)
     if y is None:
         model.reset_triads()
     k_full, symmetric = tangent_stiffness(model, y)  # the reference: no loads
@@ -183,13 +206,16 @@ def natural_modes(model: Model, y: NDArray | None = None, count: int | None = No
     return ModalResult(freqs, modes, int(np.sum(~keep)), lam, growth, symmetric)
 
 
-def unresisted_motions(r: NDArray, k: NDArray, m: NDArray) -> NDArray[np.float64]:
+def unresisted_motions(
+    r: NDArray, k: NDArray, m: NDArray, rtol: float = 0.0
+) -> NDArray[np.float64]:
     """The part of the rigid candidates ``r`` (M-orthonormal columns) that ``k`` does not
-    resist: the null space of ``rᵀ k r`` to round-off (module docstring)."""
+    resist: the null space of ``rᵀ k r`` to round-off (module docstring), or to ``rtol`` of
+    ``|r|ᵀ |k| |r|`` when larger (a tangent with finite-difference parts)."""
     if r.shape[1] == 0:
         return r
-    kr = r.T @ k @ r
-    noise = 1e3 * np.finfo(float).eps * (np.abs(r).T @ np.abs(k) @ np.abs(r))
+    kr = r.T @ (k @ r)
+    noise = max(1e3 * np.finfo(float).eps, rtol) * (np.abs(r).T @ (abs(k) @ np.abs(r)))
     w, u = np.linalg.eigh(0.5 * (kr + kr.T))  # r is M-orthonormal: rᵀ m r = I
     zero = np.abs(w) <= np.abs(np.diag(u.T @ noise @ u)) + 1e-300
     return r @ u[:, zero]

@@ -22,7 +22,10 @@ from rancf.kernels import _core
 from rancf.model.system import Model
 from rancf.system import System
 
-__all__ = ["SystemEquilibrium"]
+__all__ = ["SystemEquilibrium", "STABILIZER"]
+
+#: The mass-proportional term of a singular tangent, relative to the stiffness-to-mass scale.
+STABILIZER = 1e-6
 
 
 class SystemEquilibrium:
@@ -104,14 +107,37 @@ class SystemEquilibrium:
         return r
 
     def tangent(self, z: NDArray, p: float) -> tuple[NDArray, bool]:
-        """Residual (held rows zero) and the factored Jacobian (a flag: it is usable)."""
+        """Residual (held rows zero) and the factored Jacobian (a flag: it is usable).
+
+        A tangent that is singular (a hanging pendulum or spring before its tension builds up:
+        its swing has no stiffness at zero load) is factored again with ``s M`` added, ``s``
+        :data:`STABILIZER` times the largest stiffness-to-mass ratio of the diagonals: a
+        quasi-Newton step, the residual (and so the equilibrium found) unchanged."""
         r = np.empty(self.n + self.m)
-        ok = self._integ.factor_static(
-            np.ascontiguousarray(z[: self.n]), np.ascontiguousarray(z[self.n :]),
-            self.load_factor(p), self._amp, self._t, r,
-        )  # fmt: skip
+        args = (np.ascontiguousarray(z[: self.n]), np.ascontiguousarray(z[self.n :]),
+                self.load_factor(p), self._amp, self._t, r)  # fmt: skip
+        ok = self._integ.factor_static(*args)
+        if not ok and np.all(np.isfinite(r)):
+            ok = self._integ.factor_static(*args, stab=STABILIZER * self._stiffness_scale(z))
         r[self.fixed] = 0.0
         return r, bool(ok)
+
+    def _stiffness_scale(self, z: NDArray) -> float:
+        """The largest ratio of the diagonals of the tangent and the mass (free coordinates)."""
+        y, lam, free = z[: self.n], z[self.n :], ~self.system.fixed
+        diag = []
+        for ck, ca in ((1.0, 0.0), (0.0, 1.0)):
+            zero = np.zeros(self.n)
+            _, _, rows, cols, vals = self.system.core.sparse_jacobian(
+                y, zero, zero, lam, self._t, ck, 0.0, ca, ca != 0.0
+            )
+            d = np.zeros(self.n)
+            rows, cols, vals = np.asarray(rows), np.asarray(cols), np.asarray(vals)
+            on = (rows == cols) & (rows < self.n)
+            np.add.at(d, rows[on], vals[on])
+            diag.append(np.abs(d[free]))
+        k, m = diag
+        return float(np.max(k[m > 0] / m[m > 0])) if np.any(m > 0) else 1.0
 
     def solve(self, ok: bool, rhs: NDArray) -> NDArray[np.float64] | None:
         """The last factored Jacobian's solution of ``rhs`` (None if it was singular)."""

@@ -25,7 +25,8 @@ from rancf.kernels import _core
 from rancf.model.closure import closure_rows
 from rancf.model.rigid import PointMass, RigidBody
 from rancf.model.system import Model
-from rancf.model.time_function import TimeFunction, pack
+from rancf.model.time_function import TimeFunction
+from rancf.system.core_data import build_core
 from rancf.system.joint_data import joint_data
 from rancf.system.parts import JOINT_KINDS, Joint, Load, Spring
 from rancf.system.places import Place
@@ -65,6 +66,10 @@ class System:
         ignored).
     observe : sequence of places
         Places on bodies whose position and frame outputs read (:meth:`place_state`).
+    horizon : float, optional
+        The end of the runs [s]: time functions given as Python callables are sampled on
+        ``[0, horizon]`` (a cubic table of 2001 points, :meth:`TimeFunction.sampled`) for the
+        compiled loop; required when there are such functions.
     """
 
     def __init__(
@@ -76,6 +81,7 @@ class System:
         gravity: ArrayLike | None = None,
         damping: float = 0.0,
         observe: Sequence[Place | str] = (),
+        horizon: float | None = None,
     ) -> None:
         if not bodies:
             raise InputError("bodies", {}, "at least one body")
@@ -102,6 +108,7 @@ class System:
         if not (np.isfinite(damping) and damping >= 0):
             raise InputError("damping.mass_proportional", damping, "a finite number >= 0")
         self.damping = float(damping)
+        self.horizon = horizon
         self.offsets: dict[str, int] = {}
         n = 0
         for name, b in flex + rigid:
@@ -136,6 +143,26 @@ class System:
         self.core = self._build(rows, self.joint_data)
         self.m = int(self.core.m)
         self.joint_rows = list(self.core.joint_rows)
+        self._check_reference()
+
+    def _check_reference(self) -> None:
+        """Every joint holds in the reference configuration at t = 0 (positions to 1e-9 of the
+        system's size; an orientation holds by construction): else one line naming the joint
+        and how far apart its places are."""
+        g = np.empty(self.m)
+        self.core.constraints(self.y0, 0.0, g)
+        for k, j in enumerate(self.joints):
+            rows = g[self.joint_rows[k] : self.joint_rows[k] + (2 if self.dim == 2 else 3)]
+            if j.kind == "slider":
+                rows = g[self.joint_rows[k] : self.joint_rows[k] + self.dim - 1]
+            gap = float(np.linalg.norm(rows))
+            if not gap <= 1e-9 * self.size:
+                name = j.name or f"joints[{k}]"
+                raise InputError(
+                    f"{name}.between", [str(x) for x in j.between],
+                    f"places that coincide in the reference configuration (they are "
+                    f"{gap:.4g} m apart; move the bodies, or the points, so they meet)",
+                )  # fmt: skip
 
     # ---------------------------------------------------------------- places
     def resolve(self, spec: Place | str | int) -> Place:
@@ -312,57 +339,16 @@ class System:
         return joint_data(j, a, b, self._frames(a)[1], self._frames(b)[1], self.dim, angle)
 
     def _build(self, rows: _Rows, joints: list[dict]) -> _core.System:
-        i64 = np.int64
-        pl = rows.places
-        rigid = self.rigid
-        spring = self._spring_rows
-        loads = self._load_rows
-        pre = self._prescribed
-        return _core.System(
-            dim=self.dim,
-            models=[b.core for b in self.flex],
-            rigid_point_mass=np.array([isinstance(b, PointMass) for b in rigid], dtype=i64),
-            rigid_dim=np.array([b.dim for b in rigid], dtype=i64),
-            rigid_mass=np.array([b.mass for b in rigid], dtype=float),
-            rigid_inertia=np.array(
-                [b.inertia_vector() if isinstance(b, RigidBody) else np.zeros(3) for b in rigid]
-            ).reshape(-1, 3),
-            place_kind=np.array([p[0] for p in pl], dtype=i64),
-            place_body=np.array([p[1] for p in pl], dtype=i64),
-            place_node=np.array([p[2] for p in pl], dtype=i64),
-            place_point=np.array([p[3] for p in pl], dtype=float).reshape(-1, 3),
-            place_motion=np.array([p[4] for p in pl], dtype=i64),
-            place_angle0=np.array([p[5] for p in pl], dtype=float),
-            joint_kind=np.array([j["kind"] for j in joints], dtype=i64),
-            joint_a=np.array([j["a"] for j in joints], dtype=i64),
-            joint_b=np.array([j["b"] for j in joints], dtype=i64),
-            joint_driven=np.array([j["driven"] for j in joints], dtype=i64),
-            joint_angle=np.array([j["angle"] for j in joints], dtype=i64),
-            joint_beta0=np.array([j["beta0"] for j in joints], dtype=float),
-            joint_rel=np.array([j["rel"] for j in joints], dtype=float).reshape(-1, 9),
-            joint_axis_a=np.array([j["axis_a"] for j in joints], dtype=float).reshape(-1, 3),
-            joint_normals_b=np.array([j["normals_b"] for j in joints], dtype=float).reshape(-1, 6),
-            joint_w_a=np.array([j["w_a"] for j in joints], dtype=float).reshape(-1, 3),
-            joint_w_b=np.array([j["w_b"] for j in joints], dtype=float).reshape(-1, 3),
-            spring_a=np.array([s[0] for s in spring], dtype=i64),
-            spring_b=np.array([s[1] for s in spring], dtype=i64),
-            spring_data=np.array([s[2:] for s in spring], dtype=float).reshape(-1, 3),
-            load_place=np.array([ld[0] for ld in loads], dtype=i64),
-            load_force=np.array([ld[1] for ld in loads], dtype=float).reshape(-1, 3),
-            load_torque=np.array([ld[2] for ld in loads], dtype=float).reshape(-1, 3),
-            load_factor=np.array([ld[3] for ld in loads], dtype=i64),
-            **pack(rows.tfs),
-            pre_coord=np.array([p[0] for p in pre], dtype=i64),
-            pre_tf=np.array([p[1] for p in pre], dtype=i64),
-            pre_comp=np.array([p[2] for p in pre], dtype=i64),
-            pre_base=np.array([p[3] for p in pre], dtype=float),
-            lin_row=self._linear[0],
-            lin_col=self._linear[1],
-            lin_coef=self._linear[2],
-            gravity=np.ascontiguousarray(self.gravity),
-            damping=self.damping,
-            y_ref=self.y0,
-        )
+        return build_core(self, rows, joints, [self._compiled(f) for f in rows.tfs])
+
+    def _compiled(self, f: TimeFunction) -> TimeFunction:
+        """A time function the compiled core evaluates (a callable sampled on the horizon)."""
+        if f.kind != "callable":
+            return f
+        if self.horizon is None or not self.horizon > 0:
+            raise InputError("horizon", self.horizon, "the run's end time t_end [s] > 0 (a Python "
+                             "time function is sampled on [0, t_end])")  # fmt: skip
+        return f.sampled(float(self.horizon))
 
     # ---------------------------------------------------------------- coordinates
     def body_slice(self, name: str) -> slice:
