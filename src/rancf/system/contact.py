@@ -221,6 +221,11 @@ def build_contact(
                 raise InputError(
                     "contacts", name, "flexible bodies of cable or rod elements (not beam)"
                 )
+            if model.reduction is not None:  # type: ignore[union-attr]
+                raise InputError(
+                    "contacts", name, "flexible bodies of C1 meshes (contact of a C2-reduced "
+                    "mesh is not implemented)",
+                )  # fmt: skip
             n0, n1, gw, w = _body_points(model, n_c)  # type: ignore[arg-type]
         lists["nc"].append(n_c if name in used else 0)
         lists["radius"].append(model.section.radius)  # type: ignore[union-attr]
