@@ -11,6 +11,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "body_contact.hpp"
+
 namespace rancf_bind {
 
 using namespace nb::literals;
@@ -41,7 +43,9 @@ void bind_contact(nb::module_& mod) {
           "__init__",
           [](ContactHolder* h, nb::list body_nc, nb::list body_radius, nb::list body_n,
              nb::list body_n1, nb::list body_gw, nb::list body_w, InI ob_kind, InI ob_body,
-             In ob_point, In ob_dir, In ob_radius, InI pair_flex, InI pair_obstacle, In pair_data) {
+             In ob_point, In ob_dir, In ob_radius, InI pair_flex, InI pair_obstacle, In pair_data,
+             nb::list body_weights, nb::list body_scales, nb::list body_arc0, InI bpair_a,
+             InI bpair_b, In bpair_data) {
             new (h) ContactHolder();
             rancf::ContactSet& c = h->c;
             const std::size_t nbody = body_nc.size();
@@ -61,6 +65,15 @@ void bind_contact(nb::module_& mod) {
               cb.N1.assign(n1.data(), n1.data() + n1.size());
               cb.gw.assign(gw.data(), gw.data() + gw.size());
               cb.w.assign(w.data(), w.data() + w.size());
+              if (body_weights.size() == nbody) {  // curves for contact between bodies
+                const In wt = nb::cast<In>(body_weights[b]), sc = nb::cast<In>(body_scales[b]);
+                const In a0 = nb::cast<In>(body_arc0[b]);
+                check(wt.size() == 4 * sc.size() && (sc.size() == 0 || a0.size() == sc.size() + 1),
+                      "contact bodies: weights (n_el, 4), scales (n_el), arc0 (n_el + 1)");
+                cb.weights.assign(wt.data(), wt.data() + wt.size());
+                cb.scales.assign(sc.data(), sc.data() + sc.size());
+                cb.arc0.assign(a0.data(), a0.data() + a0.size());
+              }
               c.bodies.push_back(std::move(cb));
             }
             const std::size_t no = ob_kind.size();
@@ -101,10 +114,37 @@ void bind_contact(nb::module_& mod) {
                     "pair_data: stiffness, onset and slip velocity > 0");
               c.pairs.push_back(cp);
             }
+            const std::size_t nbp = bpair_a.size();
+            expect_size(bpair_b, nbp, "bpair_b");
+            expect_size(bpair_data, 2 * nbp, "bpair_data");
+            for (std::size_t i = 0; i < nbp; ++i) {
+              rancf::BodyPair bp;
+              bp.a = static_cast<int>(bpair_a.data()[i]);
+              bp.b = static_cast<int>(bpair_b.data()[i]);
+              for (int x : {bp.a, bp.b})
+                check(x >= 0 && static_cast<std::size_t>(x) < nbody &&
+                          !c.bodies[static_cast<std::size_t>(x)].scales.empty(),
+                      "bpair: a body with contact curves");
+              bp.stiffness = bpair_data.data()[2 * i];
+              bp.onset = bpair_data.data()[2 * i + 1];
+              check(bp.stiffness > 0.0 && bp.onset > 0.0, "bpair_data: stiffness, onset > 0");
+              c.body_pairs.push_back(bp);
+            }
           },
           nb::kw_only(), "body_nc"_a, "body_radius"_a, "body_n"_a, "body_n1"_a, "body_gw"_a,
           "body_w"_a, "ob_kind"_a, "ob_body"_a, "ob_point"_a, "ob_dir"_a, "ob_radius"_a,
-          "pair_flex"_a, "pair_obstacle"_a, "pair_data"_a)
+          "pair_flex"_a, "pair_obstacle"_a, "pair_data"_a, "body_weights"_a, "body_scales"_a,
+          "body_arc0"_a, "bpair_a"_a, "bpair_b"_a, "bpair_data"_a)
+      .def(
+          "body_outputs",
+          [](const ContactHolder& h, In y, Out out) {
+            const rancf::System& s = system_of(h);
+            expect_size(y, static_cast<std::size_t>(s.n), "y");
+            expect_size(out, rancf::kBodyOutputs * h.c.body_pairs.size(), "out");
+            rancf::body_contact_outputs(s, h.c, y.data(), out.data());
+          },
+          "y"_a, "out"_a.noconvert(),
+          "Per body pair: smallest gap of the candidates, points in contact, total normal force.")
       .def(
           "energy",
           [](const ContactHolder& h, In y) {

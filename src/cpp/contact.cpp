@@ -6,6 +6,8 @@
 #include <cmath>
 
 #include "assembly.hpp"
+#include "body_contact.hpp"
+#include "contact_law.hpp"
 
 namespace rancf {
 
@@ -70,44 +72,6 @@ void gap(const Pose& o, const double* r, double rt, Gap& out, bool hess) {
       out.H[i][j] = (p - out.n[i] * out.n[j]) / rho;
     }
 }
-
-/// The penalty law (contact.hpp): pressure p(g), its slope dp/dg and potential Phi(g) with
-/// p = -dPhi/dg, for stiffness k and onset depth d:
-///   g >= 0       p = 0
-///   -d <= g < 0  p = k g^2 / (2 d)
-///   g < -d       p = k (-g - d/2)
-struct Penalty {
-  double k = 0.0, d = 0.0;
-  [[nodiscard]] double p(double g) const {
-    if (g >= 0.0) return 0.0;
-    if (g >= -d) return k * g * g / (2.0 * d);
-    return k * (-g - 0.5 * d);
-  }
-  [[nodiscard]] double slope(double g) const {
-    if (g >= 0.0) return 0.0;
-    if (g >= -d) return k * g / d;
-    return -k;
-  }
-  [[nodiscard]] double potential(double g) const {
-    if (g >= 0.0) return 0.0;
-    if (g >= -d) return -k * g * g * g / (6.0 * d);
-    return k * (d * d / 6.0 + 0.5 * g * g + 0.5 * d * g);
-  }
-  /// Which piece g is in (0: below the onset, 1: onset, 2: free).
-  [[nodiscard]] int piece(double g) const { return g < -d ? 0 : (g < 0.0 ? 1 : 2); }
-  /// The integral of p over [a, b] (a < b) divided by (b - a), piece by piece (exact, no
-  /// cancellation).
-  [[nodiscard]] double mean(double a, double b) const {
-    double sum = 0.0;
-    if (a < -d) {
-      const double hi = std::min(b, -d);
-      sum += (hi - a) * k * (-0.5 * (a + hi) - 0.5 * d);
-    }
-    const double lo = std::max(a, -d), hi = std::min(b, 0.0);
-    if (lo < hi) sum += (hi - lo) * k * (lo * lo + lo * hi + hi * hi) / (6.0 * d);
-    return sum / (b - a);
-  }
-};
 
 /// The mean of p over [ga, g1] and its derivatives with respect to both ends: closed forms
 /// within one piece; across pieces (p is C1) the integral, or the midpoint's value and half its
@@ -661,6 +625,8 @@ void assemble_contact(const System& s, const ContactSet& c, const double* yf, co
     else
       fixed_pair<3>(s, c, cp, cp.flex, yf, vf, y1, dyn, tm, r, lu, add);
   }
+  assemble_body_contact(s, c, yf, dyn ? y1 : nullptr, tm, r,
+                        add);  // between flexible bodies (body_contact.hpp)
 }
 
 double contact_energy(const System& s, const ContactSet& c, const double* y) {
@@ -671,7 +637,7 @@ double contact_energy(const System& s, const ContactSet& c, const double* y) {
       total += cb.w[sz(el * cb.n_c + q)] * Penalty{cp.stiffness, cp.onset}.potential(pt.gap.g);
     });
   }
-  return total;
+  return total + body_contact_energy(s, c, y);
 }
 
 void contact_outputs(const System& s, const ContactSet& c, const double* y, const double* v,

@@ -61,6 +61,10 @@ struct ContactBody {
   std::vector<double> gw;  ///< Gauss weights on [0, 1], (n_c)
   std::vector<double> w;   ///< Gauss weight x reference |r0'|, (n_el, n_c)
   double radius = 0.0;     ///< tube radius
+  // contact between flexible bodies (body_contact.hpp): the element curves anywhere
+  std::vector<double> weights;  ///< rational weights of the elements, (n_el, 4)
+  std::vector<double> scales;   ///< gradient scales of the elements, (n_el)
+  std::vector<double> arc0;     ///< reference arc length at each element's start, (n_el + 1)
 };
 
 /// A flexible body against an obstacle.
@@ -73,10 +77,18 @@ struct ContactPair {
   double slip_velocity = 1.0;  ///< eps of the friction's regularization [m/s]
 };
 
+/// Two flexible bodies in contact (a == b: self-contact), frictionless (body_contact.hpp).
+struct BodyPair {
+  int a = 0, b = 0;
+  double stiffness = 0.0;  ///< k [N/m^2]
+  double onset = 0.0;      ///< d [m]
+};
+
 struct ContactSet {
   std::vector<ContactBody> bodies;  ///< one per flexible body of the system
   std::vector<Obstacle> obstacles;
   std::vector<ContactPair> pairs;
+  std::vector<BodyPair> body_pairs;
 };
 
 /// Receives a small dense matrix K (k x k, row-major) over global indices idx (add_matrix).

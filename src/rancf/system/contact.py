@@ -172,8 +172,12 @@ def build_contact(
     obstacles: Sequence[Obstacle],
     contacts: Sequence[tuple[str, str]] | None,
     n_c: int,
+    body_contacts: Sequence[tuple[str, str]] = (),
 ) -> tuple[_core.Contact, list[str], list[tuple[str, str]]]:
-    """The core's contact data of a system: (Contact, obstacle names, pairs)."""
+    """The core's contact data of a system: (Contact, obstacle names, pairs).  ``body_contacts``:
+    pairs of flexible bodies in contact with each other (a body twice: self-contact;
+    ``src/cpp/body_contact.hpp``), frictionless, with the stiffness ``E / 20`` of the softer
+    (two sections in series, each ``E / 10``) and the onset ``1e-3`` of the thinner radius."""
     names = [ob.name or f"obstacle{i}" for i, ob in enumerate(obstacles)]
     if len(set(names)) != len(names):
         raise InputError("obstacles.name", names, "distinct names")
@@ -211,8 +215,15 @@ def build_contact(
                     "contacts", list(pair), "[FLEXIBLE_BODY, OBSTACLE] pairs of existing names"
                 )
             pairs.append((pair[0], pair[1]))
-    used = {f for f, _ in pairs}
-    lists: dict[str, list] = {k: [] for k in ("nc", "radius", "n", "n1", "gw", "w")}
+    bpairs = []
+    for pair in body_contacts:
+        if len(pair) != 2 or not all(x in flex_names for x in pair):
+            raise InputError("body_contacts", list(pair), "[FLEXIBLE_BODY, FLEXIBLE_BODY] pairs")
+        bpairs.append((pair[0], pair[1]))
+    used = {f for f, _ in pairs} | {x for p in bpairs for x in p}
+    curves = {x for p in bpairs for x in p}
+    keys = ("nc", "radius", "n", "n1", "gw", "w", "weights", "scales", "arc0")
+    lists: dict[str, list] = {k: [] for k in keys}
     for name in flex_names:
         model = system.bodies[name]
         n0 = n1 = gw = w = np.zeros(0)
@@ -231,6 +242,12 @@ def build_contact(
         lists["radius"].append(model.section.radius)  # type: ignore[union-attr]
         for key, arr in (("n", n0), ("n1", n1), ("gw", gw), ("w", w)):
             lists[key].append(np.ascontiguousarray(arr.ravel()))
+        mesh = model.mesh  # type: ignore[union-attr]
+        on = name in curves
+        lists["weights"].append(np.ascontiguousarray(mesh.weights, float).ravel() if on
+                                else np.zeros(0))  # fmt: skip
+        lists["scales"].append(np.ascontiguousarray(mesh.scales, float) if on else np.zeros(0))
+        lists["arc0"].append(np.r_[0.0, np.cumsum(w.sum(axis=1))] if on else np.zeros(0))
     data = []
     for f, o in pairs:
         ob = obstacles[names.index(o)]
@@ -256,6 +273,14 @@ def build_contact(
         pair_flex=np.array([flex_names.index(f) for f, _ in pairs], dtype=i64),
         pair_obstacle=np.array([names.index(o) for _, o in pairs], dtype=i64),
         pair_data=np.array(data, dtype=float).reshape(-1, 5),
+        body_weights=lists["weights"],
+        body_scales=lists["scales"],
+        body_arc0=lists["arc0"],
+        bpair_a=np.array([flex_names.index(a) for a, _ in bpairs], dtype=i64),
+        bpair_b=np.array([flex_names.index(b) for _, b in bpairs], dtype=i64),
+        bpair_data=np.array(
+            [_body_pair_data(system, a, b) for a, b in bpairs], dtype=float
+        ).reshape(-1, 2),  # fmt: skip
     )
     return core, names, pairs
 
@@ -270,6 +295,13 @@ def obstacle_records(system: System) -> list[dict]:
         out.append({"name": name, "kind": ob.kind, "point": p.tolist(), "direction": d.tolist(),
                     "radius": rad, "body": ob.body})  # fmt: skip
     return out
+
+
+def _body_pair_data(system: System, a: str, b: str) -> list[float]:
+    """Stiffness and onset of two flexible bodies in contact (:func:`build_contact`)."""
+    ma, mb = system.bodies[a], system.bodies[b]
+    k = 0.5 * STIFFNESS_FACTOR * min(ma.material.youngs_modulus, mb.material.youngs_modulus)  # type: ignore[union-attr]
+    return [k, ONSET_FACTOR * min(ma.section.radius, mb.section.radius)]  # type: ignore[union-attr]
 
 
 @dataclass(frozen=True)

@@ -71,6 +71,8 @@ class System:
         The pairs in contact; default every flexible body with every obstacle.
     contact_points : int
         Gauss points per element at which contact is evaluated.
+    body_contacts : sequence of (flexible body, flexible body) names
+        Contact between flexible bodies; a body twice: self-contact (frictionless).
     observe : sequence of places
         Places on bodies whose position and frame outputs read (:meth:`place_state`).
     horizon : float, optional
@@ -92,6 +94,7 @@ class System:
         obstacles: Sequence[Obstacle] = (),
         contacts: Sequence[tuple[str, str]] | None = None,
         contact_points: int = CONTACT_POINTS,
+        body_contacts: Sequence[tuple[str, str]] = (),
     ) -> None:
         if not bodies:
             raise InputError("bodies", {}, "at least one body")
@@ -155,7 +158,7 @@ class System:
         self.joint_rows = list(self.core.joint_rows)
         self.obstacles = tuple(obstacles)  # contact (issue 20): attached to the core
         self.contact, self.obstacle_names, self.contact_pairs = attach_contact(
-            self, self.obstacles, contacts, contact_points
+            self, self.obstacles, contacts, contact_points, body_contacts
         )
         self._check_reference()
 

@@ -1,0 +1,409 @@
+// Contact between flexible bodies and self-contact (body_contact.hpp).
+#include "body_contact.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include "assembly.hpp"
+#include "contact_law.hpp"
+
+namespace rancf {
+
+namespace {
+
+std::size_t sz(int i) { return static_cast<std::size_t>(i); }
+
+using Coords = std::array<double, kMaxElementDofs>;
+
+/// The cable shape functions of element el of cb at xi (elements/cable.py
+/// cable_shape_functions: the rational cubic Bernstein basis R of the element's weights,
+/// N = [R0 + R1, c1 R1, R2 + R3, c3 R2], c1 = l w0 / (3 w1), c3 = -l w3 / (3 w2)), and their
+/// first and second xi-derivatives.
+void shape(const ContactBody& cb, int el, double xi, double* N, double* N1, double* N2) {
+  const double* w = cb.weights.data() + 4 * el;
+  const double l = cb.scales[sz(el)], u = 1.0 - xi;
+  const double B[4] = {u * u * u, 3.0 * u * u * xi, 3.0 * u * xi * xi, xi * xi * xi};
+  const double B1[4] = {-3.0 * u * u, 3.0 * u * (u - 2.0 * xi), 3.0 * xi * (2.0 * u - xi),
+                        3.0 * xi * xi};
+  const double B2[4] = {6.0 * u, 6.0 * (3.0 * xi - 2.0), 6.0 * (1.0 - 3.0 * xi), 6.0 * xi};
+  double W = 0.0, W1 = 0.0, W2 = 0.0, A[4], A1[4], A2[4];
+  for (int i = 0; i < 4; ++i) {
+    A[i] = w[i] * B[i];
+    A1[i] = w[i] * B1[i];
+    A2[i] = w[i] * B2[i];
+    W += A[i];
+    W1 += A1[i];
+    W2 += A2[i];
+  }
+  double R[4], R1[4], R2[4];
+  for (int i = 0; i < 4; ++i) {
+    R[i] = A[i] / W;
+    R1[i] = (A1[i] * W - A[i] * W1) / (W * W);
+    R2[i] = (A2[i] * W - A[i] * W2) / (W * W) - 2.0 * W1 * R1[i] / W;
+  }
+  const double c1 = l * w[0] / (3.0 * w[1]), c3 = -l * w[3] / (3.0 * w[2]);
+  const double* src[3] = {R, R1, R2};
+  double* dst[3] = {N, N1, N2};
+  for (int j = 0; j < 3; ++j) {
+    if (dst[j] == nullptr) continue;
+    dst[j][0] = src[j][0] + src[j][1];
+    dst[j][1] = c1 * src[j][1];
+    dst[j][2] = src[j][2] + src[j][3];
+    dst[j][3] = c3 * src[j][2];
+  }
+}
+
+/// r = sum_k N_k e_k over the blocks of element coordinates e (3 components, zero z in 2D).
+void curve(const Model& m, const double* N, const double* e, double* r) {
+  r[0] = r[1] = r[2] = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    const double* b = e + (k / 2) * m.dpn + (k % 2) * m.dim;
+    for (int i = 0; i < m.dim; ++i) r[i] += N[k] * b[i];
+  }
+}
+
+double dot3(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+/// The closest point of element f (coordinates e) to x: xi in [0, 1], the shape functions there.
+double project(const Model& m, const ContactBody& cb, int f, const double* e, const double* x,
+               double* N) {
+  double best = 0.0, dmin = 1e300, y[3], N1[4], N2[4];
+  for (int s = 0; s <= 4; ++s) {
+    const double xi = 0.25 * s;
+    shape(cb, f, xi, N, nullptr, nullptr);
+    curve(m, N, e, y);
+    const double dd[3] = {y[0] - x[0], y[1] - x[1], y[2] - x[2]};
+    if (dot3(dd, dd) < dmin) {
+      dmin = dot3(dd, dd);
+      best = xi;
+    }
+  }
+  double xi = best;
+  for (int it = 0; it < 30; ++it) {
+    double y1[3], y2[3];
+    shape(cb, f, xi, N, N1, N2);
+    curve(m, N, e, y);
+    curve(m, N1, e, y1);
+    curve(m, N2, e, y2);
+    const double dd[3] = {y[0] - x[0], y[1] - x[1], y[2] - x[2]};
+    const double h = dot3(dd, y1), dh = dot3(y1, y1) + dot3(dd, y2);
+    const double step = dh > 0.0 ? -h / dh : -h / dot3(y1, y1);
+    const double next = std::clamp(xi + step, 0.0, 1.0);
+    const bool done = std::abs(next - xi) < 1e-15;
+    xi = next;
+    if (done) break;
+  }
+  shape(cb, f, xi, N, nullptr, nullptr);
+  return xi;
+}
+
+/// One body pair's geometry: bodies, radii, the element coordinates at a state.
+struct Side {
+  const Model* m = nullptr;
+  const ContactBody* cb = nullptr;
+  int body = 0, offset = 0;
+};
+
+/// The force of point q of element e (side A, coordinates ea) against element f (side B,
+/// coordinates eb): fe (2 nde: on e, then on f); returns the gap (1e300: not kept).
+double point_force(const BodyPair& bp, const Side& A, const Side& B, int e, int q, int f,
+                   const double* ea, const double* eb, const double* ea1, const double* eb1,
+                   double* fe, double* pw) {
+  const Model& ma = *A.m;
+  const Model& mb = *B.m;
+  const int nde = ma.nde();
+  const double* Na = A.cb->N.data() + 4 * (e * A.cb->n_c + q);
+  double x[3], y[3], Nb[4];
+  curve(ma, Na, ea, x);
+  const double xi = project(mb, *B.cb, f, eb, x, Nb);
+  const bool end_ok = (xi == 0.0 && f == 0) || (xi == 1.0 && f == mb.n_el - 1);
+  if ((xi == 0.0 || xi == 1.0) && !end_ok) return 1e300;
+  if (A.body == B.body) {  // self-contact: not near along the body
+    double s_pt = A.cb->arc0[sz(e)];
+    for (int k = 0; k <= q; ++k) s_pt += A.cb->w[sz(e * A.cb->n_c + k)] * (k == q ? 0.5 : 1.0);
+    const double s_y = B.cb->arc0[sz(f)] + xi * (B.cb->arc0[sz(f + 1)] - B.cb->arc0[sz(f)]);
+    if (std::abs(s_pt - s_y) < M_PI * (A.cb->radius + B.cb->radius)) return 1e300;
+  }
+  curve(mb, Nb, eb, y);
+  const double d[3] = {x[0] - y[0], x[1] - y[1], x[2] - y[2]};
+  const double dist = std::sqrt(dot3(d, d));
+  const double rr = A.cb->radius + B.cb->radius, g = dist - rr;
+  std::fill(fe, fe + 2 * nde, 0.0);
+  *pw = 0.0;
+  const Penalty law{0.5 * bp.stiffness, bp.onset};
+  double pm = 0.0;
+  if (ea1 == nullptr) {
+    pm = law.p(g);
+  } else {  // the step's mean pressure over [2 g - g1, g1] (contact.hpp)
+    double x1[3], y1[3], Nb1[4];
+    curve(ma, Na, ea1, x1);
+    project(mb, *B.cb, f, eb1, x1, Nb1);
+    curve(mb, Nb1, eb1, y1);
+    const double d1[3] = {x1[0] - y1[0], x1[1] - y1[1], x1[2] - y1[2]};
+    const double g1 = std::sqrt(dot3(d1, d1)) - rr, ga = 2.0 * g - g1;
+    const double lo = std::min(ga, g1), hi = std::max(ga, g1);
+    pm = hi - lo < 1e-9 * (bp.onset + std::abs(lo) + std::abs(hi)) ? law.p(0.5 * (lo + hi))
+                                                                   : law.mean(lo, hi);
+  }
+  if (pm == 0.0 || dist == 0.0) return g;
+  const double w = A.cb->w[sz(e * A.cb->n_c + q)];
+  const double p = pm * w;
+  *pw = p;
+  for (int k = 0; k < 4; ++k) {
+    const int oa = (k / 2) * ma.dpn + (k % 2) * ma.dim, ob = (k / 2) * mb.dpn + (k % 2) * mb.dim;
+    for (int i = 0; i < ma.dim; ++i) {
+      fe[oa + i] += Na[k] * p * d[i] / dist;
+      fe[nde + ob + i] -= Nb[k] * p * d[i] / dist;
+    }
+  }
+  return g;
+}
+
+/// A bounding sphere of every element of the bodies in body pairs, and the candidate element
+/// pairs of each body pair (broad phase, body_contact.hpp).
+struct Broad {
+  std::vector<std::array<double, 4>> sphere;  ///< centre (3), radius incl. the tube
+  std::vector<int> start;                     ///< first sphere of each flexible body
+};
+
+Broad spheres(const System& s, const ContactSet& c, const double* y, const double* y1) {
+  Broad b;
+  Coords e{}, e1{};
+  for (std::size_t k = 0; k < c.bodies.size(); ++k) {
+    b.start.push_back(static_cast<int>(b.sphere.size()));
+    const ContactBody& cb = c.bodies[k];
+    if (cb.weights.empty()) continue;
+    const Model& m = *s.flex[k];
+    for (int el = 0; el < m.n_el; ++el) {
+      element_coordinates(m, y + s.offset[k], el, e.data());
+      std::vector<std::array<double, 3>> pts;
+      for (int a = 0; a < 2; ++a) {
+        std::array<double, 3> p{};
+        for (int i = 0; i < m.dim; ++i) p[sz(i)] = e[sz(a * m.dpn + i)];
+        pts.push_back(p);
+      }
+      for (int q = 0; q < cb.n_c; ++q) {
+        std::array<double, 3> p{};
+        curve(m, cb.N.data() + 4 * (el * cb.n_c + q), e.data(), p.data());
+        pts.push_back(p);
+      }
+      std::array<double, 4> sp{};
+      for (const auto& p : pts)
+        for (int i = 0; i < 3; ++i) sp[sz(i)] += p[sz(i)] / static_cast<double>(pts.size());
+      double rad = 0.0;
+      for (const auto& p : pts) {
+        const double dd[3] = {p[0] - sp[0], p[1] - sp[1], p[2] - sp[2]};
+        rad = std::max(rad, std::sqrt(dot3(dd, dd)));
+      }
+      const double chord[3] = {pts[1][0] - pts[0][0], pts[1][1] - pts[0][1], pts[1][2] - pts[0][2]};
+      double moved = 0.0;  // a step's motion: the spheres of its end too
+      if (y1 != nullptr) {
+        element_coordinates(m, y1 + s.offset[k], el, e1.data());
+        for (int a = 0; a < 2; ++a) {
+          double dd[3] = {0.0, 0.0, 0.0};
+          for (int i = 0; i < m.dim; ++i) dd[i] = e1[sz(a * m.dpn + i)] - e[sz(a * m.dpn + i)];
+          moved = std::max(moved, std::sqrt(dot3(dd, dd)));
+        }
+      }
+      sp[3] = rad + 0.1 * std::sqrt(dot3(chord, chord)) + cb.radius + 2.0 * moved;
+      b.sphere.push_back(sp);
+    }
+  }
+  b.start.push_back(static_cast<int>(b.sphere.size()));
+  return b;
+}
+
+/// Candidate (element of a, element of b) pairs of one body pair whose spheres overlap (with the
+/// onset), found through a uniform grid.
+std::vector<std::pair<int, int>> candidates(const Broad& br, const BodyPair& bp) {
+  std::vector<std::pair<int, int>> out;
+  const int a0 = br.start[sz(bp.a)], a1 = br.start[sz(bp.a + 1)];
+  const int b0 = br.start[sz(bp.b)], b1 = br.start[sz(bp.b + 1)];
+  if (a0 == a1 || b0 == b1) return out;
+  double h = 0.0;
+  for (int i = a0; i < a1; ++i) h = std::max(h, 2.0 * br.sphere[sz(i)][3]);
+  for (int i = b0; i < b1; ++i) h = std::max(h, 2.0 * br.sphere[sz(i)][3]);
+  h += bp.onset;
+  auto cell = [&](const std::array<double, 4>& sp, int k) {
+    return static_cast<std::int64_t>(std::floor(sp[sz(k)] / h));
+  };
+  auto key = [](std::int64_t i, std::int64_t j, std::int64_t k) {
+    return (i * 73856093) ^ (j * 19349663) ^ (k * 83492791);
+  };
+  std::unordered_map<std::int64_t, std::vector<int>> grid;
+  for (int i = b0; i < b1; ++i) {
+    const auto& sp = br.sphere[sz(i)];
+    grid[key(cell(sp, 0), cell(sp, 1), cell(sp, 2))].push_back(i - b0);
+  }
+  for (int i = a0; i < a1; ++i) {
+    const auto& sp = br.sphere[sz(i)];
+    const std::int64_t ci = cell(sp, 0), cj = cell(sp, 1), ck = cell(sp, 2);
+    for (std::int64_t di = -1; di <= 1; ++di)
+      for (std::int64_t dj = -1; dj <= 1; ++dj)
+        for (std::int64_t dk = -1; dk <= 1; ++dk) {
+          auto it = grid.find(key(ci + di, cj + dj, ck + dk));
+          if (it == grid.end()) continue;
+          for (int f : it->second) {
+            const auto& sq = br.sphere[sz(b0 + f)];
+            if (cell(sq, 0) != ci + di || cell(sq, 1) != cj + dj || cell(sq, 2) != ck + dk)
+              continue;  // a hash collision
+            const double dd[3] = {sp[0] - sq[0], sp[1] - sq[1], sp[2] - sq[2]};
+            if (std::sqrt(dot3(dd, dd)) <= sp[3] + sq[3] + bp.onset) out.emplace_back(i - a0, f);
+          }
+        }
+  }
+  return out;
+}
+
+Side side(const System& s, const ContactSet& c, int body) {
+  return Side{s.flex[sz(body)], &c.bodies[sz(body)], body, s.offset[sz(body)]};
+}
+
+/// Visit every kept (point, element) pair of every body pair in both directions at y:
+/// fn(bp, A, B, e, q, f, ea, eb, fe, g, pw).
+template <class Fn>
+void each_pair(const System& s, const ContactSet& c, const double* y, const double* y1, Fn fn) {
+  if (c.body_pairs.empty()) return;
+  const Broad br = spheres(s, c, y, y1);
+  Coords ea{}, eb{}, ea1{}, eb1{};
+  std::array<double, 2 * kMaxElementDofs> fe{};
+  for (const BodyPair& bp : c.body_pairs) {
+    for (const auto& [ei, fi] : candidates(br, bp)) {
+      for (int dir = 0; dir < 2; ++dir) {
+        if (bp.a == bp.b && dir == 1) continue;  // self: both orders come as candidates
+        const Side A = side(s, c, dir == 0 ? bp.a : bp.b), B = side(s, c, dir == 0 ? bp.b : bp.a);
+        const int e = dir == 0 ? ei : fi, f = dir == 0 ? fi : ei;
+        element_coordinates(*A.m, y + A.offset, e, ea.data());
+        element_coordinates(*B.m, y + B.offset, f, eb.data());
+        if (y1 != nullptr) {
+          element_coordinates(*A.m, y1 + A.offset, e, ea1.data());
+          element_coordinates(*B.m, y1 + B.offset, f, eb1.data());
+        }
+        const double* pa1 = y1 != nullptr ? ea1.data() : nullptr;
+        const double* pb1 = y1 != nullptr ? eb1.data() : nullptr;
+        for (int q = 0; q < A.cb->n_c; ++q) {
+          double pw = 0.0;
+          const double g =
+              point_force(bp, A, B, e, q, f, ea.data(), eb.data(), pa1, pb1, fe.data(), &pw);
+          fn(bp, A, B, e, q, f, ea.data(), eb.data(), pa1, pb1, fe.data(), g, pw);
+        }
+      }
+    }
+  }
+}
+
+/// T^T on the rows (and, for a matrix, the columns) of element blocks with a rotated clamp.
+void rotate_pair(const Side& A, const Side& B, int e, int f, double* fe, double* K) {
+  const int na = A.m->nde(), nb = B.m->nde(), n = na + nb;
+  const bool ra = has_rotation(*A.m, e), rb = has_rotation(*B.m, f);
+  if (!ra && !rb) return;
+  auto vec = [&](double* v, int stride) {
+    std::array<double, kMaxElementDofs> t{};
+    if (ra) {
+      for (int a = 0; a < na; ++a) t[sz(a)] = v[a * stride];
+      rotate_back(*A.m, e, t.data(), nullptr);
+      for (int a = 0; a < na; ++a) v[a * stride] = t[sz(a)];
+    }
+    if (rb) {
+      for (int a = 0; a < nb; ++a) t[sz(a)] = v[(na + a) * stride];
+      rotate_back(*B.m, f, t.data(), nullptr);
+      for (int a = 0; a < nb; ++a) v[(na + a) * stride] = t[sz(a)];
+    }
+  };
+  vec(fe, 1);
+  if (K == nullptr) return;
+  for (int j = 0; j < n; ++j) vec(K + j, n);      // columns: T^T K
+  for (int i = 0; i < n; ++i) vec(K + i * n, 1);  // rows: (T^T K) T
+}
+
+}  // namespace
+
+void assemble_body_contact(const System& s, const ContactSet& c, const double* yf, const double* y1,
+                           const AssemblyTerms& tm, double* r, const MatrixSink* add) {
+  std::array<double, 2 * kMaxElementDofs> fp{}, fm{};
+  std::vector<double> K;
+  each_pair(s, c, yf, y1,
+            [&](const BodyPair& bp, const Side& A, const Side& B, int e, int q, int f,
+                const double* ea, const double* eb, const double* ea1, const double* eb1,
+                const double* fe, double, double pw0) {
+              if (pw0 == 0.0) return;
+              const int na = A.m->nde(), nb = B.m->nde(), n = na + nb;
+              std::array<double, 2 * kMaxElementDofs> f0{};
+              std::copy(fe, fe + n, f0.begin());
+              std::array<int, 2 * kMaxElementDofs> idx{};
+              for (int a = 0; a < na; ++a) idx[sz(a)] = A.offset + e * A.m->dpn + a;
+              for (int a = 0; a < nb; ++a) idx[sz(na + a)] = B.offset + f * B.m->dpn + a;
+              if (add != nullptr) {
+                K.assign(sz(n * n), 0.0);
+                Coords za{}, zb{}, za1{}, zb1{};
+                std::copy(ea, ea + na, za.begin());
+                std::copy(eb, eb + nb, zb.begin());
+                const bool dyn = ea1 != nullptr;
+                if (dyn) {
+                  std::copy(ea1, ea1 + na, za1.begin());
+                  std::copy(eb1, eb1 + nb, zb1.begin());
+                }
+                const double* p1a = dyn ? za1.data() : nullptr;
+                const double* p1b = dyn ? zb1.data() : nullptr;
+                // d/dy1 = ck d/dyf + d/dy1 (the step's end, dynamics only)
+                for (int set = 0; set < (dyn ? 2 : 1); ++set) {
+                  const double coef = set == 0 ? tm.ck : 1.0;
+                  Coords& za_ = set == 0 ? za : za1;
+                  Coords& zb_ = set == 0 ? zb : zb1;
+                  for (int j = 0; j < n; ++j) {
+                    double& z = j < na ? za_[sz(j)] : zb_[sz(j - na)];
+                    const double z0 = z;
+                    const double h = std::min(1e-7 * (1.0 + std::abs(z0)), 1e-3 * bp.onset);
+                    double pw = 0.0;
+                    z = z0 + h;
+                    point_force(bp, A, B, e, q, f, za.data(), zb.data(), p1a, p1b, fp.data(), &pw);
+                    z = z0 - h;
+                    point_force(bp, A, B, e, q, f, za.data(), zb.data(), p1a, p1b, fm.data(), &pw);
+                    z = z0;
+                    for (int i = 0; i < n; ++i)
+                      K[sz(i * n + j)] -= coef * (fp[sz(i)] - fm[sz(i)]) / (2.0 * h);
+                  }
+                }
+              }
+              rotate_pair(A, B, e, f, f0.data(), add != nullptr ? K.data() : nullptr);
+              for (int a = 0; a < n; ++a) r[idx[sz(a)]] -= f0[sz(a)];
+              if (add != nullptr) (*add)(idx.data(), n, K.data());
+            });
+}
+
+double body_contact_energy(const System& s, const ContactSet& c, const double* y) {
+  double total = 0.0;
+  each_pair(s, c, y, nullptr,
+            [&](const BodyPair& bp, const Side& A, const Side&, int e, int q, int, const double*,
+                const double*, const double*, const double*, const double*, double g, double) {
+              if (g < 0.0)
+                total += A.cb->w[sz(e * A.cb->n_c + q)] *
+                         Penalty{0.5 * bp.stiffness, bp.onset}.potential(g);
+            });
+  return total;
+}
+
+void body_contact_outputs(const System& s, const ContactSet& c, const double* y, double* out) {
+  const std::size_t np = c.body_pairs.size();
+  for (std::size_t k = 0; k < np; ++k) {
+    out[kBodyOutputs * k] = 1e300;
+    out[kBodyOutputs * k + 1] = out[kBodyOutputs * k + 2] = 0.0;
+  }
+  each_pair(s, c, y, nullptr,
+            [&](const BodyPair& bp, const Side&, const Side&, int, int, int, const double*,
+                const double*, const double*, const double*, const double*, double g, double pw) {
+              const auto k = static_cast<std::size_t>(&bp - c.body_pairs.data());
+              double* o = out + kBodyOutputs * k;
+              if (g < 1e299) o[0] = std::min(o[0], g);
+              if (g < 0.0) {
+                o[1] += 1.0;
+                o[2] += pw;
+              }
+            });
+}
+
+}  // namespace rancf
