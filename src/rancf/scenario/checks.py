@@ -248,6 +248,10 @@ def _obstacles(c: _Context) -> set[str]:
             raise fail(f"contacts[{i}]", f"must be [FLEXIBLE_BODY, OBSTACLE] (bodies: "
                        f"{', '.join(flex)}; obstacles: {', '.join(sorted(names)) or 'none'}), "
                        f"got {show(pair)}")  # fmt: skip
+    for i, pair in enumerate(c.sc.body_contacts):
+        if len(pair) != 2 or not all(x in flex for x in pair):
+            raise fail(f"body_contacts[{i}]", f"must be [FLEXIBLE_BODY, FLEXIBLE_BODY] (bodies: "
+                       f"{', '.join(flex)}), got {show(pair)}")  # fmt: skip
     for i, s in enumerate(c.sc.sensor_tables):
         if s.obstacle is not None and s.obstacle not in names:
             raise fail(f"sensors[{i}].obstacle", f"names no obstacle: {show(s.obstacle)} "

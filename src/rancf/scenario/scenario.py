@@ -66,6 +66,11 @@ class Scenario(Table):
     joints: list[JointTable] = Field([], description="joints between two places")
     springs: list[SpringTable] = Field([], description="spring-dampers between two places")
     obstacles: list[ObstacleTable] = Field([], description="rigid obstacles the bodies touch")
+    body_contacts: list[list[Name]] = Field(
+        [],
+        description="pairs [BODY, BODY] of flexible bodies in contact with each other (a body "
+        "twice: self-contact; frictionless)",
+    )
     contacts: list[list[Name]] | None = Field(
         None,
         description="the pairs [BODY, OBSTACLE] in contact (default: every flexible body "
@@ -131,9 +136,10 @@ class Scenario(Table):
 
     @property
     def is_system(self) -> bool:
-        """Whether the file describes a system (``[[bodies]]``, ``[[joints]]``, ``[[springs]]``
-        or ``[[obstacles]]``) rather than one flexible body on supports."""
-        return bool(self.bodies or self.joints or self.springs or self.obstacles)
+        """Whether the file describes a system (``[[bodies]]``, ``[[joints]]``, ``[[springs]]``,
+        ``[[obstacles]]`` or ``body_contacts``) rather than one flexible body on supports."""
+        return bool(self.bodies or self.joints or self.springs or self.obstacles
+                    or self.body_contacts)  # fmt: skip
 
     @property
     def support_labels(self) -> list[int | str]:

@@ -31,7 +31,10 @@ transmit a moment (``fixed``, a 3D ``revolute``, a driven joint), ``NAME_mz`` or
 ``NAME_mx, _my, _mz``; then every obstacle's (issue 20, :func:`rancf.system.contact.
 contact_outputs`): the force it exerts on the bodies, ``NAME_normal_x, _y[, _z]`` and
 ``NAME_friction_x, _y[, _z]`` [N], the contact length ``NAME_length`` [m] and the largest
-penetration ``NAME_penetration`` [m].
+penetration ``NAME_penetration`` [m]; then every pair of flexible bodies in contact
+(``body_contacts``, ``A_B_...``; ``A_A_...`` self-contact): the total contact force
+``A_B_contact_force`` [N] (the sum of the pressures' magnitudes) and the largest penetration
+``A_B_penetration`` [m].
 """
 
 from __future__ import annotations
@@ -106,6 +109,8 @@ class SystemOutputs:
         for ob in s.obstacle_names:
             cols = [f"{ob}_{part}_{a}" for part in ("normal", "friction") for a in axes]
             self.reaction_names += [*cols, f"{ob}_length", f"{ob}_penetration"]
+        for a, b in s.body_contacts:
+            self.reaction_names += [f"{a}_{b}_contact_force", f"{a}_{b}_penetration"]
         self.along_widths = {n: sp.n_points * len(self.section_names[n])
                              for n, sp in self.samplers.items()}  # fmt: skip
         self.sensors = SensorReader(self, sensors)
@@ -215,6 +220,11 @@ class SystemOutputs:
                 parts.append(np.asarray(moment)[2:] if s.dim == 2 else np.asarray(moment))
         for c in contact_outputs(s, y, v).values():
             parts += [c.normal, c.friction, np.array([c.length, c.penetration])]
+        if s.body_contacts:
+            bo = np.empty(3 * len(s.body_contacts))
+            s.contact.body_outputs(y, bo)
+            for k in range(len(s.body_contacts)):
+                parts.append(np.array([bo[3 * k + 2], max(0.0, -bo[3 * k])]))
         return np.concatenate(parts) if parts else np.empty(0)
 
     def _body_energies(self, y: NDArray, v: NDArray) -> NDArray:
