@@ -15,6 +15,10 @@
   per-step solve time and set-up time (process start to the first step) of each, and the
   tips' final positions.
 
+* ``broad phase``: self-contact detection (broad and narrow phase, ``Contact.body_outputs``) of
+  a straight cable of 500 to 4000 elements (1 cm each): time per evaluation, to show it grows
+  near linearly with the elements (Python API, median of 5).
+
 Pairs run in turn (A B A B ...), ratios taken pair by pair, medians quoted.  Writes
 ``contact_bench.json`` to ``--out`` (default ``benchmarks/results``) and prints a table.
 """
@@ -104,13 +108,48 @@ def _tip(run: Path) -> list[float]:
     return [float(q[-dpn]), float(q[-dpn + 1])]
 
 
+def broad_phase() -> dict[str, float]:
+    """Milliseconds per self-contact evaluation of a straight cable by its element count."""
+    import statistics
+    import time
+
+    from rancf.model.mesh import mesh_line
+    from rancf.model.system import Material, Model, Section
+    from rancf.system import System
+
+    out: dict[str, float] = {}
+    for n in (500, 1000, 2000, 4000):
+        m = Model(mesh_line([0, 0], [0.01 * n, 0], n), "rancf", Section.circular(0.002),
+                  Material(7850.0, 2e11))  # fmt: skip
+        s = System({"c": m}, body_contacts=[("c", "c")])
+        vals = np.empty(3)
+        times = []
+        for _ in range(5):
+            t0 = time.perf_counter()
+            s.contact.body_outputs(s.y0, vals)
+            times.append(time.perf_counter() - t0)
+        out[str(n)] = 1e3 * statistics.median(times)
+    return out
+
+
 def main() -> None:
     p = argparse.ArgumentParser()
     p.add_argument("--repeats", type=int, default=5)
     p.add_argument("--out", default=str(HERE / "results"))
     p.add_argument("--no-exudyn", action="store_true")
+    p.add_argument("--broad-only", action="store_true", help="only the broad phase's scaling")
     a = p.parse_args()
-    rows: dict[str, Any] = {}
+    out = Path(a.out)
+    out.mkdir(parents=True, exist_ok=True)
+    broad = broad_phase()
+    print("self-contact evaluation, ms by elements:", broad)
+    if a.broad_only:
+        old = out / "contact_bench.json"
+        rows0 = json.loads(old.read_text()) if old.is_file() else {}
+        rows0["broad phase ms by elements"] = broad
+        old.write_text(json.dumps(rows0, indent=2, allow_nan=False) + "\n")
+        return
+    rows: dict[str, Any] = {"broad phase ms by elements": broad}
     with tempfile.TemporaryDirectory() as tmp:
         tmpd = Path(tmp)
         lying, hanging = ground_files(tmpd, 1000)
@@ -140,12 +179,12 @@ def main() -> None:
             row.update({"exudyn_solver": solver, "exudyn_version": ex.VERSION,
                         "rancf_tip": _tip(tmpd / "circle"), "exudyn_tip": last["tip"]})  # fmt: skip
             rows["circle 40 el vs Exudyn"] = row
-    out = Path(a.out)
-    out.mkdir(parents=True, exist_ok=True)
     (out / "contact_bench.json").write_text(json.dumps(rows, indent=2, allow_nan=False) + "\n")
     print(f"{'case':34s} {'A us/step':>10s} {'B us/step':>10s} {'ratio':>7s} "
           f"{'setup A/B s':>14s}")  # fmt: skip
     for name, r in rows.items():
+        if "a_us_per_step" not in r:
+            continue
         print(f"{name:34s} {r['a_us_per_step']:10.1f} {r['b_us_per_step']:10.1f} "
               f"{r['ratio']:7.3f} {r['a_setup_s']:7.3f}/{r['b_setup_s']:.3f}")  # fmt: skip
 
