@@ -113,3 +113,70 @@ def test_bad_obstacles_are_one_line(tmp_path, capsys, change, message):
     assert main(["simulate", str(f), "--out", str(tmp_path / "run"), "--quiet"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and message in err[0], err
+
+
+TWO = """
+contacts = [["low", "ground"]]
+body_contacts = [["low", "high"]]
+[[bodies]]
+name = "low"
+[bodies.geometry]
+kind = "line"
+start = [0.0, 0.002]
+end = [1.0, 0.002]
+[bodies.mesh]
+elements = 8
+[bodies.section]
+radius = 0.002
+[bodies.material]
+density = 7850.0
+youngs_modulus = 2.0e11
+[[bodies]]
+name = "high"
+[bodies.geometry]
+kind = "line"
+start = [0.2, 0.008]
+end = [0.8, 0.008]
+[bodies.mesh]
+elements = 4
+[bodies.section]
+radius = 0.002
+[bodies.material]
+density = 7850.0
+youngs_modulus = 2.0e11
+[loads]
+gravity = [0.0, -9.81]
+[damping]
+mass_proportional = 20.0
+[[obstacles]]
+name = "ground"
+kind = "plane"
+point = [0.0, 0.0]
+normal = [0.0, 1.0]
+[solver]
+t_end = 0.3
+step = 1.0e-3
+output_step = 0.01
+rho_inf = 0.5
+max_newton = 25
+"""
+
+
+def test_body_contacts_from_a_file(tmp_path, capsys):
+    """``body_contacts`` in a file: the upper cable falls 2 mm onto the lower one on the ground;
+    reactions.csv has the pair's force (at rest: the upper cable's weight, 1e-3) and its
+    penetration (below 1 % of r); a pair naming no flexible body is one line."""
+    f = tmp_path / "two.toml"
+    f.write_text(TWO)
+    assert main(["simulate", str(f), "--out", str(tmp_path / "run"), "--quiet"]) == 0
+    r = _table(tmp_path / "run" / "reactions.csv")
+    w_high = RHO * np.pi * R**2 * 0.6 * G
+    assert r["low_high_contact_force"][0] == 0.0
+    assert r["low_high_contact_force"][-1] == pytest.approx(w_high, rel=1e-3)
+    assert np.max(r["low_high_penetration"]) < 0.01 * R
+    assert r["ground_normal_y"][-1] == pytest.approx(w_high / 0.6 * 1.6, rel=1e-3)
+    f.write_text(TWO.replace('body_contacts = [["low", "high"]]', 'body_contacts = [["low", "x"]]'))
+    capsys.readouterr()
+    assert main(["simulate", str(f), "--out", str(tmp_path / "bad"), "--quiet"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "body_contacts[0]" in err[0], err
