@@ -47,6 +47,7 @@ EXAMPLES = {
 #: Shipped scenarios that are not paper studies, and what ``rancf example run`` does with each
 #: (:mod:`rancf.studies.scenario_example`): ``"simulate"``, ``"static"`` and/or ``"modes"``.
 SCENARIO_ANALYSES: dict[str, tuple[str, ...]] = {
+    "belt-drive": ("simulate",),
     "capstan": ("simulate",),
     "cantilever": ("static", "modes"),
     "installed-hose": ("static", "simulate"),
