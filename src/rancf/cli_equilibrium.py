@@ -240,21 +240,6 @@ def _cmd_modes(args: argparse.Namespace) -> int:
 
 def add_parsers(sub: Any) -> None:
     """Register ``static``, ``modes`` and ``buckling`` on the ``rancf`` sub-parser set."""
-    b = sub.add_parser(
-        "buckling", help="linear buckling load factors of a scenario's loads (K0 + λ Kσ) φ = 0"
-    )
-    b.add_argument("scenario")
-    b.add_argument("--count", type=int, default=3, help="number of load factors (default 3)")
-    b.add_argument(
-        "--about",
-        choices=["reference", "static"],
-        default="reference",
-        help="linearize about the reference (default) or the static equilibrium (pre-loaded)",
-    )
-    b.add_argument("--json", action="store_true", help="print one JSON object")
-    b.add_argument("--plot", metavar="FILE.png", default=None, help="write mode-shape plots")
-    b.set_defaults(func=_cmd_buckling)
-
     st = sub.add_parser("static", help="static equilibrium of a scenario (Newton, load steps)")
     st.add_argument("scenario")
     st.add_argument("--json", action="store_true", help="print one JSON object")
@@ -281,3 +266,18 @@ def add_parsers(sub: Any) -> None:
     m.add_argument("--json", action="store_true", help="print one JSON object")
     m.add_argument("--plot", metavar="FILE.png", default=None, help="write mode-shape plots")
     m.set_defaults(func=_cmd_modes)
+
+    b = sub.add_parser(
+        "buckling", help="linear buckling load factors of a scenario's loads (K0 + λ Kσ) φ = 0"
+    )
+    b.add_argument("scenario")
+    b.add_argument("--count", type=int, default=3, help="number of load factors (default 3)")
+    b.add_argument(
+        "--about",
+        choices=["reference", "static"],
+        default="reference",
+        help="linearize about the reference (default) or the static equilibrium (pre-loaded)",
+    )
+    b.add_argument("--json", action="store_true", help="print one JSON object")
+    b.add_argument("--plot", metavar="FILE.png", default=None, help="write mode-shape plots")
+    b.set_defaults(func=_cmd_buckling)
