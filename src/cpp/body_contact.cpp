@@ -108,59 +108,128 @@ struct Side {
   int body = 0, offset = 0;
 };
 
-/// The force of point q of element e (side A, coordinates ea) against element f (side B,
-/// coordinates eb): fe (2 nde: on e, then on f); returns the gap (1e300: not kept).
-double point_force(const BodyPair& bp, const Side& A, const Side& B, int e, int q, int f,
-                   const double* ea, const double* eb, const double* ea1, const double* eb1,
-                   double* fe, double* pw) {
+/// A contact point x of side A against its closest point y(eta) on element f of side B
+/// (body_contact.hpp): the gap, the normal, and (Jacobian wanted) the gap's gradient G and
+/// Hessian Hg over the coordinates of both elements (n = na + nb):
+///   J dq = N_A de - N_B(eta) df  (the relative displacement at fixed eta),  G = J^T n,
+///   Hg = (J^T P J - c b b^T) / rho,  P = I - n n^T,  c = |y'|^2 - rho n . y'',
+///   b = (J^T y' + rho T^T n) / c (d eta = b . dq),  T dq = N_B'(eta) df,
+/// from differentiating the projection (y - x) . y' = 0 (n . y' = 0 there); at a free end
+/// eta is fixed (no b term).
+struct Pair {
+  bool kept = false;  ///< a valid projection (inside the element or at a free end)
+  double g = 0.0, rho = 0.0, n[3] = {0.0, 0.0, 0.0};
+  std::array<double, 2 * kMaxElementDofs> G{};
+  std::vector<double> Hg;  ///< (n x n), if asked for
+};
+
+void pair_geometry(const Side& A, const Side& B, int e, int q, int f, const double* ea,
+                   const double* eb, bool hess, Pair& out) {
   const Model& ma = *A.m;
   const Model& mb = *B.m;
-  const int nde = ma.nde();
+  const int na = ma.nde(), n = na + mb.nde();
   const double* Na = A.cb->N.data() + 4 * (e * A.cb->n_c + q);
-  double x[3], y[3], Nb[4];
+  double x[3], y[3], Nb[4], Nb1[4], Nb2[4], y1[3], y2[3];
   curve(ma, Na, ea, x);
   const double xi = project(mb, *B.cb, f, eb, x, Nb);
-  const bool end_ok = (xi == 0.0 && f == 0) || (xi == 1.0 && f == mb.n_el - 1);
-  if ((xi == 0.0 || xi == 1.0) && !end_ok) return 1e300;
+  const bool at_end = xi == 0.0 || xi == 1.0;
+  out.kept = false;
+  if (at_end && !((xi == 0.0 && f == 0) || (xi == 1.0 && f == mb.n_el - 1))) return;
   if (A.body == B.body) {  // self-contact: not near along the body
     double s_pt = A.cb->arc0[sz(e)];
     for (int k = 0; k <= q; ++k) s_pt += A.cb->w[sz(e * A.cb->n_c + k)] * (k == q ? 0.5 : 1.0);
     const double s_y = B.cb->arc0[sz(f)] + xi * (B.cb->arc0[sz(f + 1)] - B.cb->arc0[sz(f)]);
-    if (std::abs(s_pt - s_y) < M_PI * (A.cb->radius + B.cb->radius)) return 1e300;
+    if (std::abs(s_pt - s_y) < M_PI * (A.cb->radius + B.cb->radius)) return;
   }
+  shape(*B.cb, f, xi, Nb, Nb1, Nb2);
   curve(mb, Nb, eb, y);
   const double d[3] = {x[0] - y[0], x[1] - y[1], x[2] - y[2]};
-  const double dist = std::sqrt(dot3(d, d));
-  const double rr = A.cb->radius + B.cb->radius, g = dist - rr;
-  std::fill(fe, fe + 2 * nde, 0.0);
-  *pw = 0.0;
-  const Penalty law{0.5 * bp.stiffness, bp.onset};
-  double pm = 0.0;
-  if (ea1 == nullptr) {
-    pm = law.p(g);
-  } else {  // the step's mean pressure over [2 g - g1, g1] (contact.hpp)
-    double x1[3], y1[3], Nb1[4];
-    curve(ma, Na, ea1, x1);
-    project(mb, *B.cb, f, eb1, x1, Nb1);
-    curve(mb, Nb1, eb1, y1);
-    const double d1[3] = {x1[0] - y1[0], x1[1] - y1[1], x1[2] - y1[2]};
-    const double g1 = std::sqrt(dot3(d1, d1)) - rr, ga = 2.0 * g - g1;
-    const double lo = std::min(ga, g1), hi = std::max(ga, g1);
-    pm = hi - lo < 1e-9 * (bp.onset + std::abs(lo) + std::abs(hi)) ? law.p(0.5 * (lo + hi))
-                                                                   : law.mean(lo, hi);
-  }
-  if (pm == 0.0 || dist == 0.0) return g;
-  const double w = A.cb->w[sz(e * A.cb->n_c + q)];
-  const double p = pm * w;
-  *pw = p;
+  out.rho = std::sqrt(dot3(d, d));
+  out.g = out.rho - A.cb->radius - B.cb->radius;
+  out.kept = out.rho > 0.0;
+  if (!out.kept) return;
+  for (int i = 0; i < 3; ++i) out.n[i] = d[i] / out.rho;
+  // J (3 x n) and T (3 x n), row-major
+  std::array<double, 3 * 2 * kMaxElementDofs> J{}, T{};
   for (int k = 0; k < 4; ++k) {
-    const int oa = (k / 2) * ma.dpn + (k % 2) * ma.dim, ob = (k / 2) * mb.dpn + (k % 2) * mb.dim;
+    const int oa = (k / 2) * ma.dpn + (k % 2) * ma.dim,
+              ob = na + (k / 2) * mb.dpn + (k % 2) * mb.dim;
     for (int i = 0; i < ma.dim; ++i) {
-      fe[oa + i] += Na[k] * p * d[i] / dist;
-      fe[nde + ob + i] -= Nb[k] * p * d[i] / dist;
+      J[sz(i * n + oa + i)] += Na[k];
+      J[sz(i * n + ob + i)] -= Nb[k];
+      T[sz(i * n + ob + i)] += Nb1[k];
     }
   }
-  return g;
+  for (int a = 0; a < n; ++a) {
+    double v = 0.0;
+    for (int i = 0; i < 3; ++i) v += J[sz(i * n + a)] * out.n[i];
+    out.G[sz(a)] = v;
+  }
+  if (!hess) return;
+  curve(mb, Nb1, eb, y1);
+  curve(mb, Nb2, eb, y2);
+  out.Hg.assign(sz(n * n), 0.0);
+  // J^T P J = J^T J - G G^T
+  for (int a = 0; a < n; ++a)
+    for (int c = 0; c < n; ++c) {
+      double v = -out.G[sz(a)] * out.G[sz(c)];
+      for (int i = 0; i < 3; ++i) v += J[sz(i * n + a)] * J[sz(i * n + c)];
+      out.Hg[sz(a * n + c)] = v / out.rho;
+    }
+  if (at_end) return;
+  const double cc = dot3(y1, y1) - out.rho * dot3(out.n, y2);
+  if (!(cc > 0.0)) return;  // a projection that is no minimum: the first order terms only
+  std::array<double, 2 * kMaxElementDofs> bb{};
+  for (int a = 0; a < n; ++a) {
+    double v = 0.0;
+    for (int i = 0; i < 3; ++i)
+      v += J[sz(i * n + a)] * y1[i] + out.rho * T[sz(i * n + a)] * out.n[i];
+    bb[sz(a)] = v / cc;
+  }
+  for (int a = 0; a < n; ++a)
+    for (int c = 0; c < n; ++c) out.Hg[sz(a * n + c)] -= cc * bb[sz(a)] * bb[sz(c)] / out.rho;
+}
+
+/// The force of point q of element e (side A, coordinates ea) against element f (side B,
+/// coordinates eb): fe (n = na + nb: on e, then on f), with the step's mean pressure up to
+/// (ea1, eb1) (null: statics); K (if not null, n x n): minus its Jacobian with respect to the
+/// step's end, ck d/d(ea, eb) + d/d(ea1, eb1).  Returns the gap (1e300: not kept); pw: the
+/// point's normal force.
+double point_force(const BodyPair& bp, const Side& A, const Side& B, int e, int q, int f,
+                   const double* ea, const double* eb, const double* ea1, const double* eb1,
+                   double* fe, double* pw, double ck = 1.0, double* K = nullptr) {
+  const int n = A.m->nde() + B.m->nde();
+  Pair pf;
+  pair_geometry(A, B, e, q, f, ea, eb, K != nullptr, pf);
+  std::fill(fe, fe + n, 0.0);
+  *pw = 0.0;
+  if (!pf.kept) return 1e300;
+  const Penalty law{0.5 * bp.stiffness, bp.onset};
+  double pm = 0.0, dpf = 0.0, dp1 = 0.0;  // the pressure and its slopes over gf and g1
+  Pair p1;
+  if (ea1 == nullptr) {
+    pm = law.p(pf.g);
+    dpf = law.slope(pf.g);
+  } else {  // the step's mean pressure over [2 gf - g1, g1] (contact.hpp)
+    pair_geometry(A, B, e, q, f, ea1, eb1, false, p1);
+    if (!p1.kept) p1 = pf;
+    const double ga = 2.0 * pf.g - p1.g;
+    double dpa = 0.0;
+    mean_pressure(law, ga, p1.g, pm, dpa, dp1);
+    dpf = 2.0 * dpa;
+    dp1 -= dpa;
+  }
+  if (pm == 0.0 && dpf == 0.0 && dp1 == 0.0) return pf.g;
+  const double w = A.cb->w[sz(e * A.cb->n_c + q)];
+  *pw = w * pm;
+  for (int a = 0; a < n; ++a) fe[a] = w * pm * pf.G[sz(a)];
+  if (K == nullptr) return pf.g;
+  const double* G1 = ea1 != nullptr ? p1.G.data() : pf.G.data();
+  for (int a = 0; a < n; ++a)
+    for (int c = 0; c < n; ++c)
+      K[a * n + c] = -w * (ck * (dpf * pf.G[sz(a)] * pf.G[sz(c)] + pm * pf.Hg[sz(a * n + c)]) +
+                           (ea1 != nullptr ? dp1 * pf.G[sz(a)] * G1[c] : 0.0));
+  return pf.g;
 }
 
 /// A bounding sphere of every element of the bodies in body pairs, and the candidate element
@@ -324,7 +393,6 @@ void rotate_pair(const Side& A, const Side& B, int e, int f, double* fe, double*
 
 void assemble_body_contact(const System& s, const ContactSet& c, const double* yf, const double* y1,
                            const AssemblyTerms& tm, double* r, const MatrixSink* add) {
-  std::array<double, 2 * kMaxElementDofs> fp{}, fm{};
   std::vector<double> K;
   each_pair(s, c, yf, y1,
             [&](const BodyPair& bp, const Side& A, const Side& B, int e, int q, int f,
@@ -339,35 +407,8 @@ void assemble_body_contact(const System& s, const ContactSet& c, const double* y
               for (int a = 0; a < nb; ++a) idx[sz(na + a)] = B.offset + f * B.m->dpn + a;
               if (add != nullptr) {
                 K.assign(sz(n * n), 0.0);
-                Coords za{}, zb{}, za1{}, zb1{};
-                std::copy(ea, ea + na, za.begin());
-                std::copy(eb, eb + nb, zb.begin());
-                const bool dyn = ea1 != nullptr;
-                if (dyn) {
-                  std::copy(ea1, ea1 + na, za1.begin());
-                  std::copy(eb1, eb1 + nb, zb1.begin());
-                }
-                const double* p1a = dyn ? za1.data() : nullptr;
-                const double* p1b = dyn ? zb1.data() : nullptr;
-                // d/dy1 = ck d/dyf + d/dy1 (the step's end, dynamics only)
-                for (int set = 0; set < (dyn ? 2 : 1); ++set) {
-                  const double coef = set == 0 ? tm.ck : 1.0;
-                  Coords& za_ = set == 0 ? za : za1;
-                  Coords& zb_ = set == 0 ? zb : zb1;
-                  for (int j = 0; j < n; ++j) {
-                    double& z = j < na ? za_[sz(j)] : zb_[sz(j - na)];
-                    const double z0 = z;
-                    const double h = std::min(1e-7 * (1.0 + std::abs(z0)), 1e-3 * bp.onset);
-                    double pw = 0.0;
-                    z = z0 + h;
-                    point_force(bp, A, B, e, q, f, za.data(), zb.data(), p1a, p1b, fp.data(), &pw);
-                    z = z0 - h;
-                    point_force(bp, A, B, e, q, f, za.data(), zb.data(), p1a, p1b, fm.data(), &pw);
-                    z = z0;
-                    for (int i = 0; i < n; ++i)
-                      K[sz(i * n + j)] -= coef * (fp[sz(i)] - fm[sz(i)]) / (2.0 * h);
-                  }
-                }
+                double pw = 0.0;
+                point_force(bp, A, B, e, q, f, ea, eb, ea1, eb1, f0.data(), &pw, tm.ck, K.data());
               }
               rotate_pair(A, B, e, f, f0.data(), add != nullptr ? K.data() : nullptr);
               for (int a = 0; a < n; ++a) r[idx[sz(a)]] -= f0[sz(a)];

@@ -21,9 +21,9 @@
 // cells as large as the largest sphere (hash map of cells): pairs of elements in the same or
 // neighbouring cells whose spheres overlap; cost near linear in the number of elements.
 //
-// Tangent: central differences of the exact forces of each (point, element) pair over the
-// coordinates of both elements (steps 1e-7 (1 + |e|), 1e-3 of the onset at most); couplings of
-// distant elements go through the sink (the bordered solve's far columns).
+// Tangent: exact, from the gap's Hessian including the projection's variation (body_contact.cpp
+// pair_geometry); couplings of distant elements go through the sink (the bordered solve's far
+// columns).
 #pragma once
 
 #include "bordered.hpp"

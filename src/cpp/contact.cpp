@@ -73,40 +73,6 @@ void gap(const Pose& o, const double* r, double rt, Gap& out, bool hess) {
     }
 }
 
-/// The mean of p over [ga, g1] and its derivatives with respect to both ends: closed forms
-/// within one piece; across pieces (p is C1) the integral, or the midpoint's value and half its
-/// slope where the interval is too short for the difference quotients.
-void mean_pressure(const Penalty& law, double ga, double g1, double& p, double& dpa, double& dp1) {
-  const int c0 = law.piece(ga), c1 = law.piece(g1);
-  const double k = law.k, d = law.d;
-  if (c0 == c1) {
-    switch (c0) {
-      case 0:
-        p = k * (-0.5 * (ga + g1) - 0.5 * d);
-        dpa = dp1 = -0.5 * k;
-        return;
-      case 1:
-        p = k * (ga * ga + ga * g1 + g1 * g1) / (6.0 * d);
-        dpa = k * (2.0 * ga + g1) / (6.0 * d);
-        dp1 = k * (ga + 2.0 * g1) / (6.0 * d);
-        return;
-      default:
-        p = dpa = dp1 = 0.0;
-        return;
-    }
-  }
-  const double dg = g1 - ga;
-  if (std::abs(dg) < 1e-9 * (d + std::abs(ga) + std::abs(g1))) {
-    const double gm = 0.5 * (ga + g1);
-    p = law.p(gm);
-    dpa = dp1 = 0.5 * law.slope(gm);
-    return;
-  }
-  p = dg > 0.0 ? law.mean(ga, g1) : law.mean(g1, ga);
-  dp1 = (law.p(g1) - p) / dg;
-  dpa = (p - law.p(ga)) / dg;
-}
-
 /// The force per reference length on a point and its derivatives.
 /// (Not zeroed as a whole on purpose, it is made per contact point: point_law sets active, p,
 /// F and ft always, the derivatives when asked for and active.)
