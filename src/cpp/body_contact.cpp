@@ -10,6 +10,7 @@
 
 #include "assembly.hpp"
 #include "contact_law.hpp"
+#include "contact_point.hpp"
 
 namespace rancf {
 
@@ -57,15 +58,6 @@ void shape(const ContactBody& cb, int el, double xi, double* N, double* N1, doub
   }
 }
 
-/// r = sum_k N_k e_k over the blocks of element coordinates e (3 components, zero z in 2D).
-void curve(const Model& m, const double* N, const double* e, double* r) {
-  r[0] = r[1] = r[2] = 0.0;
-  for (int k = 0; k < 4; ++k) {
-    const double* b = e + (k / 2) * m.dpn + (k % 2) * m.dim;
-    for (int i = 0; i < m.dim; ++i) r[i] += N[k] * b[i];
-  }
-}
-
 double dot3(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 /// The closest point of element f (coordinates e) to x: xi in [0, 1], the shape functions there.
@@ -75,7 +67,7 @@ double project(const Model& m, const ContactBody& cb, int f, const double* e, co
   for (int s = 0; s <= 4; ++s) {
     const double xi = 0.25 * s;
     shape(cb, f, xi, N, nullptr, nullptr);
-    curve(m, N, e, y);
+    contact_point::point_of(m, N, e, y);
     const double dd[3] = {y[0] - x[0], y[1] - x[1], y[2] - x[2]};
     if (dot3(dd, dd) < dmin) {
       dmin = dot3(dd, dd);
@@ -86,9 +78,9 @@ double project(const Model& m, const ContactBody& cb, int f, const double* e, co
   for (int it = 0; it < 30; ++it) {
     double y1[3], y2[3];
     shape(cb, f, xi, N, N1, N2);
-    curve(m, N, e, y);
-    curve(m, N1, e, y1);
-    curve(m, N2, e, y2);
+    contact_point::point_of(m, N, e, y);
+    contact_point::point_of(m, N1, e, y1);
+    contact_point::point_of(m, N2, e, y2);
     const double dd[3] = {y[0] - x[0], y[1] - x[1], y[2] - x[2]};
     const double h = dot3(dd, y1), dh = dot3(y1, y1) + dot3(dd, y2);
     const double step = dh > 0.0 ? -h / dh : -h / dot3(y1, y1);
@@ -130,7 +122,7 @@ void pair_geometry(const Side& A, const Side& B, int e, int q, int f, const doub
   const int na = ma.nde(), n = na + mb.nde();
   const double* Na = A.cb->N.data() + 4 * (e * A.cb->n_c + q);
   double x[3], y[3], Nb[4], Nb1[4], Nb2[4], y1[3], y2[3];
-  curve(ma, Na, ea, x);
+  contact_point::point_of(ma, Na, ea, x);
   const double xi = project(mb, *B.cb, f, eb, x, Nb);
   const bool at_end = xi == 0.0 || xi == 1.0;
   out.kept = false;
@@ -142,7 +134,7 @@ void pair_geometry(const Side& A, const Side& B, int e, int q, int f, const doub
     if (std::abs(s_pt - s_y) < M_PI * (A.cb->radius + B.cb->radius)) return;
   }
   shape(*B.cb, f, xi, Nb, Nb1, Nb2);
-  curve(mb, Nb, eb, y);
+  contact_point::point_of(mb, Nb, eb, y);
   const double d[3] = {x[0] - y[0], x[1] - y[1], x[2] - y[2]};
   out.rho = std::sqrt(dot3(d, d));
   out.g = out.rho - A.cb->radius - B.cb->radius;
@@ -166,8 +158,8 @@ void pair_geometry(const Side& A, const Side& B, int e, int q, int f, const doub
     out.G[sz(a)] = v;
   }
   if (!hess) return;
-  curve(mb, Nb1, eb, y1);
-  curve(mb, Nb2, eb, y2);
+  contact_point::point_of(mb, Nb1, eb, y1);
+  contact_point::point_of(mb, Nb2, eb, y2);
   out.Hg.assign(sz(n * n), 0.0);
   // J^T P J = J^T J - G G^T
   for (int a = 0; a < n; ++a)
@@ -257,7 +249,7 @@ Broad spheres(const System& s, const ContactSet& c, const double* y, const doubl
       }
       for (int q = 0; q < cb.n_c; ++q) {
         std::array<double, 3> p{};
-        curve(m, cb.N.data() + 4 * (el * cb.n_c + q), e.data(), p.data());
+        contact_point::point_of(m, cb.N.data() + 4 * (el * cb.n_c + q), e.data(), p.data());
         pts.push_back(p);
       }
       std::array<double, 4> sp{};
