@@ -95,9 +95,9 @@ def ground_files(tmp: Path, n: int) -> tuple[Path, Path]:
     return lying, hanging
 
 
-def circle_file(tmp: Path, n: int) -> Path:
+def circle_file(tmp: Path, n: int, t_end: float = 1.0) -> Path:
     f = tmp / "circle.toml"
-    f.write_text(CABLE.format(x0=0, y0=0, x1=2.0, y1=0, n=n, t_end=1.0, rho=0.6) + PIN + CIRCLE)
+    f.write_text(CABLE.format(x0=0, y0=0, x1=2.0, y1=0, n=n, t_end=t_end, rho=0.6) + PIN + CIRCLE)
     return f
 
 
@@ -132,6 +132,60 @@ def broad_phase() -> dict[str, float]:
     return out
 
 
+def cases(repeats: int, n_ground: int, n_circle: int, t_circle: float,
+          exudyn: bool) -> dict[str, Any]:  # fmt: skip
+    """The ground and circle cases (module docstring), keyed by their names."""
+    rows: dict[str, Any] = {}
+    with tempfile.TemporaryDirectory() as tmp:
+        tmpd = Path(tmp)
+        lying, hanging = ground_files(tmpd, n_ground)
+        key = f"ground {n_ground} el: lying vs hanging"
+        rows[key] = _pairs(
+            lambda: run_rancf(lying, tmpd / "lying"), lambda: run_rancf(hanging, tmpd / "hang"),
+            repeats,
+        )  # fmt: skip
+        for side, run in (("lying", "lying"), ("hanging", "hang")):
+            s = json.loads((tmpd / run / "summary.json").read_text())
+            rows[key][f"{side}_newton_per_step"] = s["newton_iterations"] / s["steps"]
+        if exudyn:
+            circle = circle_file(tmpd, n_circle, t_circle)
+            args = ["--elements", str(n_circle), "--t-end", str(t_circle)]
+            trial = {v: run_exudyn("exudyn_contact_circle.py",
+                                   [*args[:2], "--t-end", "0.2", "--solver", v])["solve_s"]
+                     for v in ("dense", "sparse")}  # fmt: skip
+            solver = min(trial, key=trial.get)  # Exudyn's faster linear solver for the case
+            last: dict[str, Any] = {}
+
+            def exu_run() -> dict[str, Any]:
+                last.update(run_exudyn("exudyn_contact_circle.py", [*args, "--solver", solver]))
+                return last
+
+            row = _pairs(lambda: run_rancf(circle, tmpd / "circle"), exu_run, repeats)
+            row.update({"exudyn_solver": solver, "exudyn_version": ex.VERSION,
+                        "rancf_tip": _tip(tmpd / "circle"), "exudyn_tip": last["tip"]})  # fmt: skip
+            rows[f"circle {n_circle} el vs Exudyn"] = row
+    return rows
+
+
+def measure(repeats: int, quick: bool, exudyn: bool) -> list[dict[str, Any]]:
+    """Rows of benchmarks/run.py: the ground case (A lying, B hanging) and the circle case
+    (A rancf, B Exudyn), per-step times through whole processes."""
+    got = cases(repeats, 100 if quick else 1000, 10 if quick else 40, 0.1 if quick else 1.0,
+                exudyn)  # fmt: skip
+    rows = []
+    for name, r in got.items():
+        ground = name.startswith("ground")
+        row = {"case": f"contact: {name}" + (" (B: hanging)" if ground else ""),
+               "rancf_us_per_step": r["a_us_per_step"], "ratio": r["ratio"],
+               "rancf_setup_s": r["a_setup_s"], "steps": r["steps"][0]}  # fmt: skip
+        row["hanging_us_per_step" if ground else "exudyn_us_per_step"] = r["b_us_per_step"]
+        if not ground:
+            row.update({"exudyn_setup_s": r["b_setup_s"], "rancf_tip": r["rancf_tip"],
+                        "exudyn_tip": r["exudyn_tip"]})  # fmt: skip
+        rows.append(row)
+    return rows
+
+
 def main() -> None:
     p = argparse.ArgumentParser()
     p.add_argument("--repeats", type=int, default=5)
@@ -150,35 +204,7 @@ def main() -> None:
         old.write_text(json.dumps(rows0, indent=2, allow_nan=False) + "\n")
         return
     rows: dict[str, Any] = {"broad phase ms by elements": broad}
-    with tempfile.TemporaryDirectory() as tmp:
-        tmpd = Path(tmp)
-        lying, hanging = ground_files(tmpd, 1000)
-        rows["ground 1000 el: lying vs hanging"] = _pairs(
-            lambda: run_rancf(lying, tmpd / "lying"), lambda: run_rancf(hanging, tmpd / "hang"),
-            a.repeats,
-        )  # fmt: skip
-        for key, run in (("lying", "lying"), ("hanging", "hang")):
-            s = json.loads((tmpd / run / "summary.json").read_text())
-            rows["ground 1000 el: lying vs hanging"][f"{key}_newton_per_step"] = (
-                s["newton_iterations"] / s["steps"]
-            )
-        if ex.AVAILABLE and not a.no_exudyn:
-            circle = circle_file(tmpd, 40)
-            args = ["--elements", "40", "--t-end", "1.0"]
-            trial = {v: run_exudyn("exudyn_contact_circle.py",
-                                   [*args[:2], "--t-end", "0.2", "--solver", v])["solve_s"]
-                     for v in ("dense", "sparse")}  # fmt: skip
-            solver = min(trial, key=trial.get)  # Exudyn's faster linear solver for the case
-            last: dict[str, Any] = {}
-
-            def exu_run() -> dict[str, Any]:
-                last.update(run_exudyn("exudyn_contact_circle.py", [*args, "--solver", solver]))
-                return last
-
-            row = _pairs(lambda: run_rancf(circle, tmpd / "circle"), exu_run, a.repeats)
-            row.update({"exudyn_solver": solver, "exudyn_version": ex.VERSION,
-                        "rancf_tip": _tip(tmpd / "circle"), "exudyn_tip": last["tip"]})  # fmt: skip
-            rows["circle 40 el vs Exudyn"] = row
+    rows.update(cases(a.repeats, 1000, 40, 1.0, ex.AVAILABLE and not a.no_exudyn))
     (out / "contact_bench.json").write_text(json.dumps(rows, indent=2, allow_nan=False) + "\n")
     print(f"{'case':34s} {'A us/step':>10s} {'B us/step':>10s} {'ratio':>7s} "
           f"{'setup A/B s':>14s}")  # fmt: skip

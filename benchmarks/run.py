@@ -14,6 +14,9 @@ below 1 means rancf is faster.
   in this process against Exudyn's ``SolveStatic``/``SolveDynamic``.
 * ``static ... catenary``: issue 16's catenaries through ``rancf static --json`` as whole
   processes (``catenary_cases.py``): solve time, Newton iterations, process wall time.
+* ``contact: ...``: issue 20's contact cases through ``rancf simulate`` (``contact_cost.py``):
+  a cable lying on the ground against the same cable hanging free, and a cable falling onto a
+  circle against Exudyn's ``ObjectContactFrictionCircleCable2D``.
 * ``--install``: the wall time of ``pip wheel`` of this checkout (the C++ core's build).
 """
 
@@ -36,6 +39,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import catenary_cases  # noqa: E402
 import cli_cases  # noqa: E402
+import contact_cost  # noqa: E402
 import exudyn_cases as ex  # noqa: E402
 import rod_cost  # noqa: E402
 
@@ -230,6 +234,7 @@ def main(argv: list[str] | None = None) -> int:
     rows.append(static_case(args.repeats))
     rows += catenary_cases.measure(1 if quick else args.repeats)
     rows += rod_cost.measure(8, 5, 5) if quick else rod_cost.measure(64, 300, 500)
+    rows += contact_cost.measure(1 if quick else args.repeats, quick, ex.AVAILABLE)
     if not quick:
         rows += time_to_accuracy(args.repeats)
     if args.install:

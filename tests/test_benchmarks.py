@@ -35,6 +35,9 @@ def test_benchmark_runner_quick(tmp_path):
     full = full_row["rancf_tip"]
     mod = rows["simulate pendulum 8 el (modified Newton)"]["rancf_tip"]
     assert abs(full[0] - mod[0]) < 1e-8 and abs(full[1] - mod[1]) < 1e-8
+    # contact (issue 20): the cable on the ground against the same cable hanging free
+    ground = rows["contact: ground 100 el: lying vs hanging (B: hanging)"]
+    assert ground["rancf_us_per_step"] > 0 and ground["hanging_us_per_step"] > 0
 
 
 def test_rod_dynamics_benchmark_quick(tmp_path):
