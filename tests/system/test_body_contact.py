@@ -162,3 +162,23 @@ def test_a_twisted_rod_coils_on_the_ground_without_passing_through_itself():
     assert min(gaps) > -0.2 * R
     assert min(_closest_far(s, rod, q) for q in res.q) > 1.8 * R
     assert np.max(np.abs(res.q[:, 1 : rod.n : rod.dpn])) > 0.05  # it left the line: it coiled
+
+
+def test_energy_never_grows_with_rho_inf_one():
+    """B dropped 2 mm onto A (on the ground), rho_inf = 1, no damping or friction: it bounces;
+    the total energy (penalty energies included) never exceeds its start by more than 1e-9 of
+    the drop's energy (the step's mean pressure; measured 8e-11)."""
+    a, b = _cable(R, 8), _cable(3 * R + 0.002, 4, 0.2, 0.8)
+    ground = Obstacle("plane", point=(0, 0), normal=(0, 1), name="ground")
+    s = System({"a": a, "b": b}, obstacles=[ground], contacts=[("a", "ground")],
+               body_contacts=[("a", "b")], gravity=[0, -G])  # fmt: skip
+    res = integrate(s, DynamicOptions(t_end=0.2, step=1e-3, rho_inf=1.0, max_newton=25,
+                                      output_step=1e-3))  # fmt: skip
+    assert res.status.value == "completed", res.message
+    scale = 7850 * np.pi * R**2 * 0.6 * G * 0.002
+    out, hit = np.empty(3), False
+    for q in res.q:
+        s.contact.body_outputs(s.y_from_q(q), out)
+        hit |= out[1] > 0
+    assert hit and res.kinetic.max() > 0.5 * scale
+    assert np.max(res.total_energy - res.total_energy[0]) < 1e-9 * scale
