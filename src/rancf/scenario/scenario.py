@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING, Any
 from pydantic import Field, PrivateAttr, ValidationError, ValidationInfo, model_validator
 
 from rancf.errors import ScenarioError
-from rancf.scenario.base import Name, Table, shorten
+from rancf.scenario.base import Name, Table, integer, shorten
 from rancf.scenario.bodies import Body
 from rancf.scenario.checks import check_scenario
 from rancf.scenario.geometry import GEOMETRY_KEYS, CadGeometry, Geometry, MeshTable
@@ -70,6 +70,11 @@ class Scenario(Table):
         [],
         description="pairs [BODY, BODY] of flexible bodies in contact with each other (a body "
         "twice: self-contact; frictionless)",
+    )
+    contact_points: integer(ge=1, le=64) = Field(
+        8,
+        description="Gauss points per element where contact is evaluated (at most a tube "
+        "radius apart resolves crossings of tubes)",
     )
     contacts: list[list[Name]] | None = Field(
         None,

@@ -168,4 +168,5 @@ def _parts(sc: Scenario, bodies: dict[str, Any]) -> dict[str, Any]:
     contacts = None if sc.contacts is None else [(a, b) for a, b in sc.contacts]
     return {"joints": joints, "springs": springs, "loads": loads, "observe": _observed(sc),
             "obstacles": obstacles, "contacts": contacts,
-            "body_contacts": [(a, b) for a, b in sc.body_contacts]}  # fmt: skip
+            "body_contacts": [(a, b) for a, b in sc.body_contacts],
+            "contact_points": sc.contact_points}  # fmt: skip
