@@ -30,7 +30,7 @@ extensions = [
 ]
 
 source_suffix = {".md": "markdown", ".rst": "restructuredtext"}
-exclude_patterns = ["_build", "examples/*", "gallery/*.ipynb", "gallery/*.py", "gallery/*.zip", "**.codeobj.json"]
+exclude_patterns = ["_build", "examples"]  # examples: the gallery's sources
 root_doc = "index"
 
 myst_enable_extensions = ["colon_fence", "deflist", "dollarmath"]
@@ -66,4 +66,3 @@ sphinx_gallery_conf = {
     "reset_modules": ("matplotlib",),
     "min_reported_time": 0,
 }
-

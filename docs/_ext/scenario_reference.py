@@ -78,8 +78,10 @@ def allowed_text(p: dict[str, Any]) -> str:
         out.append(" | ".join(f'"{v}"' for v in p["enum"]))
     if "const" in p:
         out.append(f'"{p["const"]}"' if isinstance(p["const"], str) else str(p["const"]))
-    lo = [(f"≥ {_number(p['minimum'])}") if "minimum" in p else None,
-          (f"> {_number(p['exclusiveMinimum'])}") if "exclusiveMinimum" in p else None]
+    lo = [
+        (f"≥ {_number(p['minimum'])}") if "minimum" in p else None,
+        (f"> {_number(p['exclusiveMinimum'])}") if "exclusiveMinimum" in p else None,
+    ]
     hi = [(f"≤ {_number(p['maximum'])}") if "maximum" in p else None,
           (f"< {_number(p['exclusiveMaximum'])}") if "exclusiveMaximum" in p else None]  # fmt: skip
     bounds = [b for b in lo + hi if b]
