@@ -32,6 +32,7 @@ extensions = [
 source_suffix = {".md": "markdown", ".rst": "restructuredtext"}
 exclude_patterns = ["_build", "examples"]  # examples: the gallery's sources
 root_doc = "index"
+smartquotes = False  # keys and values are quoted as TOML writes them: "pin", not “pin”
 
 myst_enable_extensions = ["colon_fence", "deflist", "dollarmath"]
 myst_heading_anchors = 4

@@ -13,10 +13,16 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import rancf
+from rancf.cli import main
 from rancf.post.plots import centerline
 
-scenario = rancf.load_scenario(files("rancf.examples") / "cantilever.toml")
-model = scenario.build_model()
+path = files("rancf.examples") / "cantilever.toml"
+main(["static", str(path)])
+main(["modes", str(path), "--count", "4"])
+
+# %%
+# The same from Python: the model of the scenario, its natural modes.
+model = rancf.load_scenario(path).build_model()
 modes = rancf.natural_modes(model, count=4)
 print(np.round(modes.frequencies_hz, 6))
 
