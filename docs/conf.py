@@ -58,7 +58,7 @@ sphinx_gallery_conf = {
     "filename_pattern": r"/plot_",  # every script is executed
     "download_all_examples": False,
     "remove_config_comments": True,
-    "within_subsection_order": "FileNameSortKey",
+    "within_subsection_order": "gallery_order.GalleryOrder",
     "abort_on_example_error": False,  # every failing example is reported; -W fails the build
     "only_warn_on_example_error": False,
     "show_memory": False,

@@ -100,3 +100,12 @@ def test_every_shipped_example_runs_in_the_gallery(built):
         assert page.exists(), name
         text = _html(built, f"gallery/{page.name}")
         assert re.search(r'<img [^>]*src="\.\./_images/sphx_glr_plot_', text), name
+
+
+def test_gallery_scripts_run_cleanly(built):
+    """No script of the gallery prints a warning (a deprecation, a unit warning of rancf)."""
+    pages = sorted((built / "gallery").glob("plot_*.html"))
+    assert len(pages) > len(shipped_scenarios())
+    for page in pages:
+        text = page.read_text(encoding="utf-8")
+        assert not re.search(r"Warning\b|rancf: warning", text), page.name

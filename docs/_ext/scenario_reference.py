@@ -211,7 +211,6 @@ class ScenarioReference(SphinxDirective):
         out: list[nodes.Node] = []
         top = nodes.section(ids=[section_id("scenario")], names=[section_id("scenario")])
         top += nodes.title(text="Top-level keys")
-        top += _para(nodes.Text(schema["description"]))
         top += _para(nodes.Text(
             "A file holds either one flexible body (geometry, mesh, section and material, all "
             "required) or a system ([[bodies]]), never both."

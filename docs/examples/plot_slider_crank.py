@@ -15,7 +15,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from rancf.cli import main
-from rancf.post.run_data import load_run
+from rancf.post.run_data import load_run, sample_centerline
 
 scenario = files("rancf.examples") / "slider-crank.toml"
 out = f"{tempfile.mkdtemp()}/run"
@@ -26,11 +26,19 @@ names = open(f"{out}/sensors.csv").readline().strip().split(",")
 col = names.index
 
 # %%
-# The slider's position, and the rod's midpoint deflection from its chord.
+# The connecting rod (its exact element curves) at a few times, the slider's position, and the
+# rod's midpoint deflection from its chord.
+fig, (cx, ax, bx) = plt.subplots(1, 3, figsize=(12, 3.5))
+for i in np.linspace(100, len(run.t) - 1, 5).astype(int):
+    pts = sample_centerline(run, int(i)).points
+    cx.plot(pts[:, 0], pts[:, 1], label=f"t = {run.t[i]:.2f} s")
+cx.set_xlabel("x [m]")
+cx.set_ylabel("y [m]")
+cx.legend(fontsize=7)
 start, mid, end = (s[:, [col(f"rod_{p}_x"), col(f"rod_{p}_y")]] for p in ("start", "mid", "end"))
-chord = end - start
-deflection = np.cross(chord, mid - start) / np.linalg.norm(chord, axis=1)
-fig, (ax, bx) = plt.subplots(1, 2, figsize=(10, 3.5))
+chord, arm = end - start, mid - start
+cross = chord[:, 0] * arm[:, 1] - chord[:, 1] * arm[:, 0]
+deflection = cross / np.linalg.norm(chord, axis=1)
 ax.plot(s[:, 0], s[:, col("slider_x")])
 ax.set_xlabel("t [s]")
 ax.set_ylabel("slider x [m]")
@@ -38,4 +46,3 @@ bx.plot(s[:, 0], 1e3 * deflection)
 bx.set_xlabel("t [s]")
 bx.set_ylabel("rod midpoint deflection [mm]")
 fig.tight_layout()
-print(f"{len(run.t)} stored states of the rod, {run.q.shape[1]} coordinates each")
