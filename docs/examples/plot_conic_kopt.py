@@ -16,6 +16,8 @@ arc = rancf.conic_arc(0.5, [30, 40], [0.315, 0.077])
 k_opt = rancf.kopt(arc)
 print(f"{arc.kind}, omega = {arc.omega:.5f}, Kopt = {k_opt:.4f}")
 
+# %%
+# The arc, and the speed ``|r_ξ|`` of its cubic form for three values of K.
 xi = np.linspace(0.0, 1.0, 201)
 fig, (ax, bx) = plt.subplots(1, 2, figsize=(10, 3.5))
 pts = arc.cubic(k_opt)(xi)

@@ -21,12 +21,14 @@ base = rancf.load_scenario(files("rancf.examples") / "exact-geometry.toml").to_d
 
 
 def tip(element, elements):
-    sc = rancf.Scenario(**{**base, "mesh": {**base["mesh"], "element": element,
-                                            "elements": elements}})  # fmt: skip
-    result, names, values = rancf.simulate(sc)
+    """The tip's path for a mesh of ``elements`` elements of kind ``element``."""
+    mesh = {**base["mesh"], "element": element, "elements": elements}
+    result, names, values = rancf.simulate(rancf.Scenario(**{**base, "mesh": mesh}))
     return result.t, values[:, [names.index("tip_x"), names.index("tip_y")]]
 
 
+# %%
+# The reference, then three elements of each kind: the tip's distance to the reference.
 t, ref = tip("rancf", 24)
 fig, ax = plt.subplots(figsize=(7, 3.5))
 for element in ("rancf", "ancf"):
