@@ -1,5 +1,7 @@
-"""Closed curves are refused with one line until they are supported (issue 15, item 6); an open
-curve whose ends merely touch at a kink is still an open curve."""
+"""Closed curves (issue 19): a closed NURBS circle, a CAD circle and a chain of two half circles
+are rings (the silent cut-open case of the issue: the seam holds, a start-end distance stays
+zero); an open curve whose ends merely touch at a kink is an open curve, and one warning line says
+why."""
 
 from __future__ import annotations
 
@@ -40,6 +42,11 @@ youngs_modulus = 1.0e7
 at = "start"
 kind = "pin"
 
+[[sensors]]
+name = "gap"
+kind = "distance"
+between = ["start", "end"]
+
 [loads]
 gravity = [0.0, -9.81]
 
@@ -64,26 +71,42 @@ def _simulate(tmp_path, text: str):
     f = tmp_path / "s.toml"
     f.write_text(text)
     return subprocess.run(
-        [sys.executable, "-m", "rancf", "simulate", str(f), "--out", str(tmp_path / "run")],
+        [
+            sys.executable,
+            "-m",
+            "rancf",
+            "simulate",
+            str(f),
+            "--out",
+            str(tmp_path / "run"),
+            "--overwrite",
+        ],
         capture_output=True,
         text=True,
         cwd=tmp_path,
     )
 
 
-def _refused(p, tmp_path, key: str) -> None:
-    assert p.returncode == 2, p.stderr
-    lines = p.stderr.strip().splitlines()
-    assert len(lines) == 1 and "Traceback" not in p.stderr
-    assert "closed curves are not supported yet" in lines[0] and f"[{key}]" in lines[0]
-    assert not (tmp_path / "run").exists()  # nothing written
+def _ring_run(p, tmp_path) -> None:
+    """The run succeeded and its body is a ring: the stored repeat of the first node stays on it
+    (positions and gradient directions) while the ring swings and deforms, and the start-end
+    distance sensor reads zero."""
+    assert p.returncode == 0, p.stderr
+    assert "warning" not in p.stderr
+    d = np.load(tmp_path / "run" / "results.npz")
+    q = d["q"].reshape(len(d["t"]), -1, 4)
+    assert np.abs(q[:, -1, :2] - q[:, 0, :2]).max() < 1e-12
+    g0, g1 = q[:, 0, 2:], q[:, -1, 2:]
+    assert np.abs(g0[:, 0] * g1[:, 1] - g0[:, 1] * g1[:, 0]).max() < 1e-12 * np.abs(g0).max() ** 2
+    assert np.abs(q[-1, :, :2] - q[0, :, :2]).max() > 1e-6  # it moved
+    assert np.abs(d["sensors"]).max() == 0.0
 
 
-def test_closed_nurbs_circle_is_refused(tmp_path):
-    _refused(_simulate(tmp_path, _nurbs_toml(*CIRCLE)), tmp_path, "geometry.control_points")
+def test_closed_nurbs_circle_is_a_ring(tmp_path):
+    _ring_run(_simulate(tmp_path, _nurbs_toml(*CIRCLE)), tmp_path)
 
 
-def test_cad_chain_whose_ends_meet_is_refused(tmp_path):
+def test_cad_chain_whose_ends_meet_is_a_ring(tmp_path):
     # the circle as one curve, and as two half circles chained [0, 1] (one geomdl JSON file)
     d, k, p, w = CIRCLE
     half = [0, 0, 0, 0.5, 0.5, 1, 1, 1]
@@ -94,10 +117,8 @@ def test_cad_chain_whose_ends_meet_is_refused(tmp_path):
     doc = {"shape": {"type": "curve", "count": 2, "data": curves}}
     (tmp_path / "halves.json").write_text(json.dumps(doc))
     write_curve(tmp_path / "ring.dxf", NurbsCurve(d, k, p, w))
-    _refused(_simulate(tmp_path, _cad_toml("halves.json", "[0, 1]")), tmp_path, "geometry.curve")
-    _refused(_simulate(tmp_path, _cad_toml("ring.dxf", "0")), tmp_path, "geometry.curve")
-    # one half alone is an open curve
-    assert _simulate(tmp_path, _cad_toml("halves.json", "0")).returncode == 0
+    _ring_run(_simulate(tmp_path, _cad_toml("halves.json", "[0, 1]")), tmp_path)
+    _ring_run(_simulate(tmp_path, _cad_toml("ring.dxf", "0")), tmp_path)
 
 
 @pytest.mark.parametrize("where", ["nurbs", "cad"])
@@ -109,4 +130,10 @@ def test_ends_that_touch_at_a_kink_are_an_open_curve(tmp_path, where):
         text = _cad_toml("drop.dxf", "0")
     p = _simulate(tmp_path, text)
     assert p.returncode == 0, p.stderr
-    assert (tmp_path / "run" / "results.npz").is_file()
+    lines = p.stderr.strip().splitlines()
+    assert len(lines) == 1, p.stderr
+    assert lines[0].startswith("rancf: warning: geometry: the curve's ends meet at (0, 0)")
+    assert "126.9 deg" in lines[0] and "open curve" in lines[0] and "same tangent" in lines[0]
+    d = np.load(tmp_path / "run" / "results.npz")
+    q = d["q"].reshape(len(d["t"]), -1, 4)
+    assert np.abs(q[-1, -1, :2] - q[-1, 0, :2]).max() > 1e-6  # the free end fell away

@@ -68,51 +68,131 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 }  // namespace
 
+void gather_element(const Model& m, int el, const double* x, double* e) {
+  const int nde = m.nde();
+  if (x == nullptr) {
+    std::fill(e, e + nde, 0.0);
+    return;
+  }
+  if (m.reduced()) {
+    const Reduction& r = m.reduction;
+    const double* xs = x + r.el_start[el];
+    const double* E = r.el_map + static_cast<std::ptrdiff_t>(el) * nde * r.width;
+    for (int i = 0; i < nde; ++i) {
+      double v = 0.0;
+      for (int j = 0; j < r.width; ++j) v += E[i * r.width + j] * xs[j];
+      e[i] = v;
+    }
+    return;
+  }
+  const int base = el * m.dpn;
+  std::copy(x + base, x + base + nde, e);
+  if (has_rotation(m, el)) rotate_to_q(m, el, e);
+}
+
+void scatter_element(const Model& m, int el, const double* fe, const double* ke, double* f,
+                     const BandView* k, double k_scale) {
+  const int nde = m.nde();
+  const bool matrix = k != nullptr && ke != nullptr;
+  if (m.reduced()) {
+    const Reduction& r = m.reduction;
+    const int s = static_cast<int>(r.el_start[el]), w = r.width;
+    const double* E = r.el_map + static_cast<std::ptrdiff_t>(el) * nde * w;
+    for (int j = 0; j < w; ++j) {
+      double v = 0.0;
+      for (int i = 0; i < nde; ++i) v += E[i * w + j] * fe[i];
+      f[s + j] += v;
+    }
+    if (!matrix) return;
+    std::array<double, kMaxElementDofs * kMaxWindow> kt{};  // ke E (nde x w)
+    for (int i = 0; i < nde; ++i)
+      for (int j = 0; j < w; ++j) {
+        double v = 0.0;
+        for (int a = 0; a < nde; ++a) v += ke[i * nde + a] * E[a * w + j];
+        kt[static_cast<std::size_t>(i * w + j)] = v;
+      }
+    for (int j = 0; j < w; ++j) {
+      double* colj = &k->at(s, s + j);
+      for (int i = 0; i < w; ++i) {
+        double v = 0.0;
+        for (int a = 0; a < nde; ++a) v += E[a * w + i] * kt[static_cast<std::size_t>(a * w + j)];
+        colj[i * k->rs] += k_scale * v;
+      }
+    }
+    return;
+  }
+  const int base = el * m.dpn;
+  std::array<double, kMaxElementDofs> g{};
+  std::array<double, kMaxElementDofs * kMaxElementDofs> kk{};
+  std::copy(fe, fe + nde, g.begin());
+  if (matrix) std::copy(ke, ke + nde * nde, kk.begin());
+  if (has_rotation(m, el)) rotate_back(m, el, g.data(), matrix ? kk.data() : nullptr);
+  for (int i = 0; i < nde; ++i) f[base + i] += g[static_cast<std::size_t>(i)];
+  if (!matrix) return;
+  for (int j = 0; j < nde; ++j) {
+    double* colj = &k->at(base, base + j);  // A(base + i, base + j) = colj[(i) * rs]
+    for (int i = 0; i < nde; ++i)
+      colj[i * k->rs] += k_scale * kk[static_cast<std::size_t>(i * nde + j)];
+  }
+}
+
+void scatter_node(const Model& m, int node, const double* g, double* f) {
+  const Reduction& r = m.reduction;
+  const int s = static_cast<int>(r.node_start[node]), w = r.node_width;
+  const double* N = r.node_map + static_cast<std::ptrdiff_t>(node) * m.dpn * w;
+  for (int j = 0; j < w; ++j) {
+    double v = 0.0;
+    for (int i = 0; i < m.dpn; ++i) v += N[i * w + j] * g[i];
+    f[s + j] += v;
+  }
+}
+
+int twist_index(const Model& m, int node) {
+  return m.reduced() ? static_cast<int>(m.reduction.twist[node]) : node * m.dpn + 6;
+}
+
 void assemble(const Model& m, const double* y, double* f, const BandView* k, double k_scale) {
   const ElementKernel& kern = kernel_for(m);
-  const int nde = m.nde(), n = m.n();
+  const int n = m.n();
   std::fill(f, f + n, 0.0);
   std::array<double, kMaxElementDofs> e{}, fe{};
   std::array<double, kMaxElementDofs * kMaxElementDofs> ke{};
   double* kep = k != nullptr ? ke.data() : nullptr;
   for (int el = 0; el < m.n_el; ++el) {
-    const int base = el * m.dpn;
-    std::copy(y + base, y + base + nde, e.begin());
-    const bool rotated = has_rotation(m, el);
-    if (rotated) rotate_to_q(m, el, e.data());
+    gather_element(m, el, y, e.data());
     kern.forces(m, el, e.data(), fe.data(), kep);
-    if (rotated) rotate_back(m, el, fe.data(), kep);
-    for (int i = 0; i < nde; ++i) f[base + i] += fe[static_cast<std::size_t>(i)];
-    if (k == nullptr) continue;
-    for (int j = 0; j < nde; ++j) {
-      double* colj = &k->at(base, base + j);  // A(base + i, base + j) = colj[(i) * rs]
-      for (int i = 0; i < nde; ++i) colj[i * k->rs] += k_scale * kep[i * nde + j];
-    }
+    scatter_element(m, el, fe.data(), kep, f, k, k_scale);
   }
 }
 
 double strain_energy(const Model& m, const double* y) {
   const ElementKernel& kern = kernel_for(m);
-  const int nde = m.nde();
   std::array<double, kMaxElementDofs> e{};
   double total = 0.0;
   for (int el = 0; el < m.n_el; ++el) {
-    const int base = el * m.dpn;
-    std::copy(y + base, y + base + nde, e.begin());
-    if (has_rotation(m, el)) rotate_to_q(m, el, e.data());
+    gather_element(m, el, y, e.data());
     total += kern.energy(m, el, e.data());
   }
   return total;
 }
 
 void element_coordinates(const Model& m, const double* y, int el, double* e) {
-  const int base = el * m.dpn;
-  std::copy(y + base, y + base + m.nde(), e);
-  if (has_rotation(m, el)) rotate_to_q(m, el, e);
+  gather_element(m, el, y, e);
 }
 
 void nodal_gradient(const Model& m, const double* y, int node, double* rx) {
   const int d = m.dim;
+  if (m.reduced()) {
+    const Reduction& r = m.reduction;
+    const double* ys = y + r.node_start[node];
+    const double* N = r.node_map + static_cast<std::ptrdiff_t>(node) * m.dpn * r.node_width;
+    for (int i = 0; i < d; ++i) {
+      double v = 0.0;
+      for (int j = 0; j < r.node_width; ++j) v += N[(d + i) * r.node_width + j] * ys[j];
+      rx[i] = v;
+    }
+    return;
+  }
   const double* g = y + node * m.dpn + d;
   const std::int64_t r = m.supports.rot_of_node[2 * node + 1];
   for (int i = 0; i < d; ++i) rx[i] = g[i];
@@ -170,12 +250,25 @@ void external_force(const Model& m, double t, const double* y, double* f, bool a
   std::copy(m.loads.f_gravity, m.loads.f_gravity + n, f);
   for (int p = 0; p < m.loads.n_point; ++p) {
     const double fac = load_factor(m.loads.freq[p], t, amplitude);
+    if (m.reduced()) {  // base = node dpn: the node's force through its map
+      double g[kMaxElementDofs] = {};
+      for (int i = 0; i < m.dim; ++i) g[i] = m.loads.f0[p * m.dim + i] * fac;
+      scatter_node(m, static_cast<int>(m.loads.base[p]) / m.dpn, g, f);
+      continue;
+    }
     for (int i = 0; i < m.dim; ++i) f[m.loads.base[p] + i] += m.loads.f0[p * m.dim + i] * fac;
   }
   for (int p = 0; p < m.loads.n_moment; ++p) {
     double g[4];
     moment_terms(m, p, t, y, amplitude, g, nullptr);
-    const int o = static_cast<int>(m.loads.moment_node[p]) * m.dpn + 3;
+    const int node = static_cast<int>(m.loads.moment_node[p]);
+    if (m.reduced()) {  // g on (r_x, phi) = q entries 3..6 of the node
+      double gq[kMaxElementDofs] = {};
+      for (int i = 0; i < 4; ++i) gq[3 + i] = g[i];
+      scatter_node(m, node, gq, f);
+      continue;
+    }
+    const int o = node * m.dpn + 3;
     for (int i = 0; i < 4; ++i) f[o + i] += g[i];
   }
 }
@@ -185,7 +278,21 @@ void subtract_load_stiffness(const Model& m, double t, const double* y, const Ba
   for (int p = 0; p < m.loads.n_moment; ++p) {
     double g[4], kl[16];
     moment_terms(m, p, t, y, amplitude, g, kl);
-    const int o = static_cast<int>(m.loads.moment_node[p]) * m.dpn + 3;
+    const int node = static_cast<int>(m.loads.moment_node[p]);
+    if (m.reduced()) {  // N_s^T kl N_s over the node's window (N_s: rows 3..6 of its map)
+      const Reduction& r = m.reduction;
+      const int s = static_cast<int>(r.node_start[node]), w = r.node_width;
+      const double* N = r.node_map + static_cast<std::ptrdiff_t>(node) * m.dpn * w + 3 * w;
+      for (int i = 0; i < w; ++i)
+        for (int j = 0; j < w; ++j) {
+          double v = 0.0;
+          for (int a = 0; a < 4; ++a)
+            for (int b = 0; b < 4; ++b) v += N[a * w + i] * kl[a * 4 + b] * N[b * w + j];
+          if (v != 0.0) k.at(s + i, s + j) -= scale * v;
+        }
+      continue;
+    }
+    const int o = node * m.dpn + 3;
     for (int i = 0; i < 4; ++i)
       for (int j = 0; j < 4; ++j) k.at(o + i, o + j) -= scale * kl[i * 4 + j];
   }
@@ -203,6 +310,13 @@ void rereference(const Model& m, const double* y) {
     for (int i = 0; i < 3; ++i) {
       tr[i] = t3[i];
       mr[i] = u[i];
+    }
+  }
+  if (m.closed) {  // the last node is the first: the same reference triad to the last bit
+    const int last = m.n_nodes - 1;
+    for (int i = 0; i < 3; ++i) {
+      m.rod.tref[3 * last + i] = m.rod.tref[i];
+      m.rod.m1ref[3 * last + i] = m.rod.m1ref[i];
     }
   }
 }

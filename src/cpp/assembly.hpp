@@ -22,6 +22,23 @@ void rotate_back(const Model& m, int el, double* fe, double* ke);
 /// True if one of the element's nodes has a clamp rotation.
 bool has_rotation(const Model& m, int el);
 
+/// Element coordinates e (2 dpn values, full nodal coordinates q) of element el from a vector x
+/// in model coordinates (y, v or a): the rotated blocks undone, or the reduction's map applied;
+/// zeros if x is null.
+void gather_element(const Model& m, int el, const double* x, double* e);
+
+/// Add an element's force fe (q) into f (model coordinates) and, if k and ke are not null,
+/// k_scale times its matrix ke (q, nde x nde) into the band k: f += T^T fe, K += T^T ke T.
+void scatter_element(const Model& m, int el, const double* fe, const double* ke, double* f,
+                     const BandView* k, double k_scale);
+
+/// Reduced models: f += N^T g, a generalized force g on one node's full coordinates (dpn values)
+/// into the model coordinates through the node's map.
+void scatter_node(const Model& m, int node, const double* g, double* f);
+
+/// Index in y of a rod node's twist.
+int twist_index(const Model& m, int node);
+
 /// Internal force f (n) and, if k is not null, the tangent added into *k (scaled by k_scale).
 void assemble(const Model& m, const double* y, double* f, const BandView* k, double k_scale);
 

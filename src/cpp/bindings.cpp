@@ -41,6 +41,7 @@ using rancf_bind::InI;
 using rancf_bind::LoadsHolder;
 using rancf_bind::ModelHolder;
 using rancf_bind::Out;
+using rancf_bind::ReductionHolder;
 using rancf_bind::RodHolder;
 using rancf_bind::SupportsHolder;
 
@@ -83,6 +84,17 @@ NB_MODULE(_core, mod) {
       .def_ro("bend", &rancf::SectionInertia::bend);
   nb::class_<SupportsHolder>(mod, "Supports", "Held coordinates and clamp rotations.")
       .def(nb::init<InB, InI, In>(), nb::kw_only(), "fixed"_a, "rot_of_node"_a, "rot"_a);
+  nb::class_<ReductionHolder>(mod, "Reduction",
+                              "Reduced coordinates: element and node maps (n_y = 0: none).")
+      .def(
+          "__init__",
+          [](ReductionHolder* r, int n_y, int ku, int width, int node_width, InI el_start,
+             In el_map, InI node_start, In node_map, InI twist) {
+            new (r) ReductionHolder{n_y,    ku,         width,    node_width, el_start,
+                                    el_map, node_start, node_map, twist};
+          },
+          nb::kw_only(), "n_y"_a, "ku"_a, "width"_a, "node_width"_a, "el_start"_a, "el_map"_a,
+          "node_start"_a, "node_map"_a, "twist"_a);
   nb::class_<LoadsHolder>(mod, "Loads", "Gravity forces and point loads.")
       .def(nb::init<In, InI, In, In, InI, In, In>(), nb::kw_only(), "f_gravity"_a, "base"_a, "f0"_a,
            "freq"_a, "moment_node"_a, "moment"_a, "moment_freq"_a);
@@ -106,10 +118,10 @@ NB_MODULE(_core, mod) {
                               "An assembled model (named parts, arrays by reference).")
           .def(nb::init<int, int, int, int, const rancf::Stiffness&, CableHolder, BeamHolder,
                         RodHolder, SupportsHolder, LoadsHolder, In, In,
-                        const rancf::SectionInertia&>(),
+                        const rancf::SectionInertia&, bool, ReductionHolder>(),
                nb::kw_only(), "kind"_a, "dim"_a, "dpn"_a, "n_el"_a, "stiffness"_a, "cable"_a,
                "beam"_a, "rod"_a, "supports"_a, "loads"_a, "mass_band"_a, "y_ref"_a,
-               "rotary"_a = rancf::SectionInertia{})
+               "rotary"_a = rancf::SectionInertia{}, "closed"_a = false, "reduction"_a)
           .def_prop_ro("n", [](const ModelHolder& h) { return h.n(); })
           .def(
               "internal_force",
@@ -203,8 +215,8 @@ NB_MODULE(_core, mod) {
                   double rx[3];
                   rancf::nodal_gradient(h.m, y.data(), node, rx);
                   rancf::rod_nodal_triad(h.m.rod.tref + 3 * node, h.m.rod.m1ref + 3 * node, rx,
-                                         y.data()[node * h.m.dpn + 6], t.data() + 3 * node,
-                                         m1.data() + 3 * node);
+                                         y.data()[rancf::twist_index(h.m, node)],
+                                         t.data() + 3 * node, m1.data() + 3 * node);
                 }
               },
               "y"_a, "t"_a.noconvert(), "m1"_a.noconvert(),
@@ -220,9 +232,7 @@ NB_MODULE(_core, mod) {
                 expect_size(eps, npts, "eps");
                 double e[rancf::kMaxElementDofs];
                 for (int el = 0; el < h.m.n_el; ++el) {
-                  for (int i = 0; i < 14; ++i) e[i] = y.data()[el * 7 + i];
-                  for (int a = 0; a < 2; ++a)
-                    rancf::nodal_gradient(h.m, y.data(), el + a, e + 7 * a + 3);
+                  rancf::element_coordinates(h.m, y.data(), el, e);
                   const int o = el * h.m.rod.n_qp;
                   rancf::rod_curvatures(h.m, el, e, k.data() + 3 * o, eps.data() + o);
                 }

@@ -30,6 +30,14 @@ struct SupportsHolder {
   InI rot_of_node;
   In rot;
 };
+struct ReductionHolder {
+  int n_y = 0, ku = 0, width = 0, node_width = 0;
+  InI el_start;
+  In el_map;
+  InI node_start;
+  In node_map;
+  InI twist;
+};
 struct LoadsHolder {
   In f_gravity;
   InI base;
@@ -44,17 +52,19 @@ struct ModelHolder {
   BeamHolder beam;
   RodHolder rod;
   SupportsHolder supports;
+  ReductionHolder reduction;
   LoadsHolder loads;
   In mass_band, y_ref;
   rancf::Model m;
 
   ModelHolder(int kind, int dim, int dpn, int n_el, const rancf::Stiffness& st, CableHolder c,
               BeamHolder b, RodHolder r, SupportsHolder s, LoadsHolder l, In mass, In yref,
-              const rancf::SectionInertia& rotary)
+              const rancf::SectionInertia& rotary, bool closed, ReductionHolder red)
       : cable(std::move(c)),
         beam(std::move(b)),
         rod(std::move(r)),
         supports(std::move(s)),
+        reduction(std::move(red)),
         loads(std::move(l)),
         mass_band(std::move(mass)),
         y_ref(std::move(yref)) {
@@ -69,7 +79,9 @@ struct ModelHolder {
     m.dpn = dpn;
     m.n_el = n_el;
     m.n_nodes = n_el + 1;
+    m.closed = closed;
     m.stiffness = st;
+    set_reduction();
     const auto n = static_cast<std::size_t>(m.n()), ne = static_cast<std::size_t>(n_el);
     if (m.kind == rancf::ElementKind::cable) {
       if (dpn != 2 * dim)
@@ -111,9 +123,11 @@ struct ModelHolder {
     const std::size_t np = loads.base.size();
     expect_size(loads.f0, np * static_cast<std::size_t>(dim), "loads.f0");
     expect_size(loads.freq, np, "loads.freq");
-    for (std::size_t i = 0; i < np; ++i) {
+    const auto nq = static_cast<std::int64_t>((ne + 1) * static_cast<std::size_t>(dpn));
+    for (std::size_t i = 0; i < np; ++i) {  // node dpn (reduced: of the full coordinates)
       const std::int64_t b0 = loads.base.data()[i];
-      if (b0 < 0 || b0 + dim > static_cast<std::int64_t>(n))
+      if (b0 < 0 || b0 + dim > (m.reduced() ? nq : static_cast<std::int64_t>(n)) ||
+          (m.reduced() && b0 % dpn != 0))
         throw std::invalid_argument("loads.base: index out of range");
     }
     const std::size_t nm = loads.moment_node.size();
@@ -138,6 +152,48 @@ struct ModelHolder {
     if ((rotary.polar > 0.0 || rotary.bend > 0.0) && m.kind != rancf::ElementKind::rod)
       throw std::invalid_argument("rotary: a rotary inertia needs rod elements");
     m.rotary = rotary;
+  }
+
+  /// The reduction's view (sizes and index ranges checked); none if n_y == 0.
+  void set_reduction() {
+    const ReductionHolder& r = reduction;
+    if (r.n_y == 0) return;
+    const int ne = m.n_el, nn = m.n_nodes, nde = 2 * m.dpn;
+    if (r.n_y < 0 || r.width < 1 || r.width > rancf::kMaxWindow || r.node_width < 1 ||
+        r.node_width > rancf::kMaxWindow || r.ku < r.width - 1 || r.ku >= r.n_y)
+      throw std::invalid_argument("reduction: inconsistent sizes");
+    const auto sz = [](int k) { return static_cast<std::size_t>(k); };
+    expect_size(r.el_start, sz(ne), "reduction.el_start");
+    expect_size(r.el_map, sz(ne * nde * r.width), "reduction.el_map");
+    expect_size(r.node_start, sz(nn), "reduction.node_start");
+    expect_size(r.node_map, sz(nn * m.dpn * r.node_width), "reduction.node_map");
+    for (int e = 0; e < ne; ++e) {
+      const std::int64_t s0 = r.el_start.data()[e];
+      if (s0 < 0 || s0 + r.width > r.n_y)
+        throw std::invalid_argument("reduction.el_start: window out of range");
+    }
+    for (int k = 0; k < nn; ++k) {
+      const std::int64_t s0 = r.node_start.data()[k];
+      if (s0 < 0 || s0 + r.node_width > r.n_y)
+        throw std::invalid_argument("reduction.node_start: window out of range");
+    }
+    const std::int64_t* tw = nullptr;
+    if (m.kind == rancf::ElementKind::rod) {
+      expect_size(r.twist, sz(nn), "reduction.twist");
+      for (int k = 0; k < nn; ++k)
+        if (r.twist.data()[k] < 0 || r.twist.data()[k] >= r.n_y)
+          throw std::invalid_argument("reduction.twist: index out of range");
+      tw = r.twist.data();
+    }
+    m.reduction = {r.n_y,
+                   r.ku,
+                   r.width,
+                   r.el_start.data(),
+                   r.el_map.data(),
+                   r.node_width,
+                   r.node_start.data(),
+                   r.node_map.data(),
+                   tw};
   }
 
   [[nodiscard]] std::size_t n() const { return static_cast<std::size_t>(m.n()); }

@@ -60,8 +60,8 @@ void bind_system(nb::module_& mod) {
              InI spring_b, InD spring_data, InI load_place, InD load_force, InD load_torque,
              InI load_factor, InI tf_kind, InI tf_n, InD tf_value, InI tf_value_start,
              InD tf_params, InD tf_breaks, InI tf_breaks_start, InD tf_coef, InI tf_coef_start,
-             InI pre_coord, InI pre_tf, InI pre_comp, InD pre_base, InD gravity, double damping,
-             InD y_ref) {
+             InI pre_coord, InI pre_tf, InI pre_comp, InD pre_base, InI lin_row, InI lin_col,
+             InD lin_coef, InD gravity, double damping, InD y_ref) {
             new (h) SystemHolder();
             rancf::System& s = h->s;
             check(dim == 2 || dim == 3, "dim: expected 2 or 3");
@@ -161,9 +161,20 @@ void bind_system(nb::module_& mod) {
               s.prescribed.push_back({static_cast<int>(pre_coord.data()[i]),
                                       static_cast<int>(pre_tf.data()[i]),
                                       static_cast<int>(pre_comp.data()[i]), pre_base.data()[i]});
+            check(count(lin_col) == count(lin_row) && lin_coef.size() == count(lin_row),
+                  "lin_row, lin_col, lin_coef: the same length");
+            for (std::size_t i = 0; i < count(lin_row); ++i) {
+              const rancf::LinearTerm t{static_cast<int>(lin_row.data()[i]),
+                                        static_cast<int>(lin_col.data()[i]), lin_coef.data()[i]};
+              check(t.row >= 0, "lin_row: a row >= 0");
+              s.n_linear = std::max(s.n_linear, t.row + 1);
+              s.linear.push_back(t);
+            }
             for (int k = 0; k < 3; ++k) s.gravity[k] = gravity.data()[k];
             s.damping = damping;
             s.setup();
+            for (const rancf::LinearTerm& t : s.linear)
+              check(t.col >= 0 && t.col < s.n, "lin_col: no such coordinate");
             expect_size(y_ref, static_cast<std::size_t>(s.n), "y_ref");
             h->y_ref.assign(y_ref.data(), y_ref.data() + s.n);
             s.y_ref = h->y_ref.data();
@@ -176,11 +187,13 @@ void bind_system(nb::module_& mod) {
           "spring_data"_a, "load_place"_a, "load_force"_a, "load_torque"_a, "load_factor"_a,
           "tf_kind"_a, "tf_n"_a, "tf_value"_a, "tf_value_start"_a, "tf_params"_a, "tf_breaks"_a,
           "tf_breaks_start"_a, "tf_coef"_a, "tf_coef_start"_a, "pre_coord"_a, "pre_tf"_a,
-          "pre_comp"_a, "pre_base"_a, "gravity"_a, "damping"_a, "y_ref"_a)
+          "pre_comp"_a, "pre_base"_a, "lin_row"_a, "lin_col"_a, "lin_coef"_a, "gravity"_a,
+          "damping"_a, "y_ref"_a)
       .def_prop_ro("n", [](const SystemHolder& h) { return h.s.n; })
       .def_prop_ro("m", [](const SystemHolder& h) { return h.s.m; })
       .def_prop_ro("offsets", [](const SystemHolder& h) { return h.s.offset; })
       .def_prop_ro("joint_rows", [](const SystemHolder& h) { return h.s.joint_row; })
+      .def_prop_ro("linear_row", [](const SystemHolder& h) { return h.s.linear_row; })
       .def(
           "constraints",
           [](const SystemHolder& h, In y, double t, Out g) {

@@ -83,6 +83,27 @@ struct Loads {
   const double* moment_freq = nullptr;        ///< (n_moment): Hz, 0 for a constant moment
 };
 
+/// Largest window of model coordinates that one element's (or node's) coordinates depend on
+/// (reduced coordinates: continuity.py).
+inline constexpr int kMaxWindow = 24;
+
+/// Reduced coordinates (C2 meshes, rancf.model.continuity): the model coordinates y (n_y of
+/// them: spline control points, the nodal vectors of supported nodes, rod twists) map linearly
+/// to the nodal coordinates q.  Element el's coordinates are E_el y[el_start .. + width), node
+/// k's (dpn of them) N_k y[node_start .. + node_width), with E and N dense row-major.  n_y == 0:
+/// none (y holds the nodal coordinates node by node, clamp blocks rotated: Supports).
+struct Reduction {
+  int n_y = 0;
+  int ku = 0;                              ///< half bandwidth of the assembled matrices
+  int width = 0;                           ///< element window
+  const std::int64_t* el_start = nullptr;  ///< (n_el)
+  const double* el_map = nullptr;          ///< (n_el, nde, width)
+  int node_width = 0;
+  const std::int64_t* node_start = nullptr;  ///< (n_nodes)
+  const double* node_map = nullptr;          ///< (n_nodes, dpn, node_width)
+  const std::int64_t* twist = nullptr;       ///< rods: (n_nodes) index of each node's twist in y
+};
+
 /// An assembled model as the compiled core sees it.
 struct Model {
   ElementKind kind = ElementKind::cable;
@@ -90,20 +111,23 @@ struct Model {
   int dpn = 4;  ///< coordinates per node
   int n_el = 0;
   int n_nodes = 0;
+  bool closed = false;  ///< a ring: the last node is the first (rereference keeps them equal)
   Stiffness stiffness;
   SectionInertia rotary;  ///< rods: rotary inertia (not in mass_band)
   CableData cable;
   BeamData beam;
   RodData rod;
   Supports supports;
+  Reduction reduction;
   Loads loads;
   const double* mass_band = nullptr;  ///< constant mass matrix, band storage (2 ku + 1, n); rods:
                                       ///< translation only (the rotary part: inertia.hpp)
   const double* y_ref = nullptr;      ///< reference configuration, model coordinates (n)
 
-  [[nodiscard]] int n() const { return n_nodes * dpn; }
+  [[nodiscard]] bool reduced() const { return reduction.n_y > 0; }
+  [[nodiscard]] int n() const { return reduced() ? reduction.n_y : n_nodes * dpn; }
   [[nodiscard]] int nde() const { return 2 * dpn; }
-  [[nodiscard]] int ku() const { return 2 * dpn - 1; }
+  [[nodiscard]] int ku() const { return reduced() ? reduction.ku : 2 * dpn - 1; }
 };
 
 }  // namespace rancf

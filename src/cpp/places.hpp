@@ -26,7 +26,9 @@ enum class PlaceKind : int {
   mass = 6
 };
 
-inline constexpr int kMaxLocal = 7;
+/// Largest number of local coordinates of a place: 7 for a rod node; a node of a reduced model
+/// (model.hpp: Reduction) depends on a window of up to 16 model coordinates.
+inline constexpr int kMaxLocal = 16;
 
 /// What a place needs besides the local coordinates.
 struct PlaceInfo {

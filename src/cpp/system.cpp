@@ -42,6 +42,8 @@ void System::setup() {
   norm_row.assign(rigid.size(), -1);
   for (std::size_t r = 0; r < rigid.size(); ++r)
     if (rigid[r].dim == 3 && !rigid[r].point_mass) norm_row[r] = m++;
+  linear_row = m;
+  m += n_linear;
   maps.clear();
   for (const PlaceRef& p : places) maps.push_back(place_map(*this, p));
 }
@@ -51,7 +53,21 @@ PlaceMap place_map(const System& s, const PlaceRef& p) {
   if (p.kind == PlaceKind::ground) return out;
   const bool node =
       p.kind == PlaceKind::cable || p.kind == PlaceKind::rod || p.kind == PlaceKind::beam;
-  out.n = place_size(p.kind, s.dim);
+  out.n = out.nq = place_size(p.kind, s.dim);
+  if (node && s.flex[sz(p.body)]->reduced()) {  // the node's map over its window of y
+    const Model& m = *s.flex[sz(p.body)];
+    const Reduction& r = m.reduction;
+    const int w = r.node_width,
+              base = s.offset[sz(p.body)] + static_cast<int>(r.node_start[p.node]);
+    const double* N = r.node_map + static_cast<std::ptrdiff_t>(p.node) * m.dpn * w;
+    out.n = w;
+    out.identity = false;
+    out.reduced = true;
+    for (int j = 0; j < w; ++j) out.index[j] = base + j;
+    for (int i = 0; i < out.nq; ++i)
+      for (int j = 0; j < w; ++j) out.T[i][j] = N[i * w + j];
+    return out;
+  }
   const int base =
       node ? s.offset[sz(p.body)] + p.node * s.flex[sz(p.body)]->dpn : s.rigid_offset(p.body);
   for (int i = 0; i < out.n; ++i) {
@@ -102,7 +118,7 @@ void place_local(const System& s, const PlaceRef& p, const PlaceMap& map, double
     return;
   }
   double q[kMaxLocal] = {};
-  for (int i = 0; i < map.n; ++i)
+  for (int i = 0; i < map.nq; ++i)
     for (int j = 0; j < map.n; ++j) q[i] += map.T[i][j] * u[j];
   eval_place(place_info(s, p, t), q, out);
   if (map.n == 0) return;
@@ -111,17 +127,18 @@ void place_local(const System& s, const PlaceRef& p, const PlaceMap& map, double
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < map.n; ++j) {
       tmp[j] = 0.0;
-      for (int k = 0; k < map.n; ++k) tmp[j] += out.dx[i][k] * map.T[k][j];
+      for (int k = 0; k < map.nq; ++k) tmp[j] += out.dx[i][k] * map.T[k][j];
     }
     for (int j = 0; j < map.n; ++j) out.dx[i][j] = tmp[j];
     for (int f = 0; f < out.nf; ++f) {
       for (int j = 0; j < map.n; ++j) {
         tmp[j] = 0.0;
-        for (int k = 0; k < map.n; ++k) tmp[j] += out.df[f][i][k] * map.T[k][j];
+        for (int k = 0; k < map.nq; ++k) tmp[j] += out.df[f][i][k] * map.T[k][j];
       }
       for (int j = 0; j < map.n; ++j) out.df[f][i][j] = tmp[j];
     }
   }
+  out.n = map.n;
 }
 
 }  // namespace rancf

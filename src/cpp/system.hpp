@@ -62,12 +62,24 @@ struct Prescribed {
 };
 
 /// A place's local coordinates in y: their global indices (n of them) and the map
-/// local(q) = T local(y) of a flexible node's rotated blocks (identity elsewhere).
+/// local(q) = T local(y) (nq x n) of a flexible node's rotated blocks, or of a reduced model's
+/// node (model.hpp: Reduction); identity elsewhere.
 struct PlaceMap {
   int n = 0;
+  int nq = 0;            ///< the place's own coordinates (place_size)
   bool identity = true;  ///< T is the identity (no rotated block)
+  bool reduced = false;  ///< a reduced model's node: every local may turn its frame
   int index[kMaxLocal] = {};
   double T[kMaxLocal][kMaxLocal] = {};
+};
+
+/// A term of a linear constraint row: row (0-based among the linear rows) gets coef * y[col].
+/// Linear rows close a closed flexible body (its last stored node is its first: the seam's
+/// coordinates are tied), with a constant Jacobian.
+struct LinearTerm {
+  int row = 0;
+  int col = 0;
+  double coef = 0.0;
 };
 
 struct System {
@@ -80,6 +92,8 @@ struct System {
   std::vector<PlaceLoad> loads;
   std::vector<TimeFunction> tfs;
   std::vector<Prescribed> prescribed;
+  std::vector<LinearTerm> linear;  ///< linear constraint rows (after the joints and quaternions)
+  int n_linear = 0;                ///< number of linear rows
   double gravity[3] = {0.0, 0.0, 0.0};  ///< on rigid bodies and point masses
   double damping = 0.0;                 ///< mass-proportional damping of every body
   const double* y_ref = nullptr;        ///< (n) reference coordinates (gravity potential zero)
@@ -89,6 +103,7 @@ struct System {
   std::vector<int> offset;          ///< flexible bodies, then rigid bodies: first coordinate
   std::vector<int> joint_row;       ///< first constraint row of each joint
   std::vector<int> norm_row;        ///< rigid bodies: the quaternion row, or -1
+  int linear_row = 0;               ///< first linear row
   std::vector<std::uint8_t> fixed;  ///< (n) held coordinates
   std::vector<int> block_size, block_ku;
   std::vector<PlaceMap> maps;  ///< place_map of every place

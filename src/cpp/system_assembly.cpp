@@ -136,6 +136,8 @@ void constraints(const System& s, const double* y, double t, double* g) {
     const double* p = y + s.rigid_offset(static_cast<int>(r)) + 3;
     g[s.norm_row[r]] = 0.5 * (p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3] - 1.0);
   }
+  std::fill(g + s.linear_row, g + s.linear_row + s.n_linear, 0.0);
+  for (const LinearTerm& lt : s.linear) g[s.linear_row + lt.row] += lt.coef * y[lt.col];
 }
 
 bool assemble_system(const System& s, const double* yf, const double* vf, const double* am,
@@ -381,8 +383,8 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
       // places whose positions are linear in their coordinates has none: skipped)
       bool vary[2 * kMaxLocal], any = false;
       for (int a = 0; a < k; ++a) {
-        vary[a] = a < ma.n ? nonlinear_local(pa.kind, s.dim, a)
-                           : nonlinear_local(pb.kind, s.dim, a - ma.n);
+        vary[a] = a < ma.n ? ma.reduced || nonlinear_local(pa.kind, s.dim, a)
+                           : mb.reduced || nonlinear_local(pb.kind, s.dim, a - ma.n);
         any = any || vary[a];
       }
       bool lam_nonzero = false;
@@ -414,6 +416,10 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
       for (int i = 0; i < 4; ++i) lu->view(bi).at(3 + i, 3 + i) += tm.ck * lam[row];
     }
   }
+  for (const LinearTerm& t : s.linear) {  // linear rows: g = A y1, A^T lambda
+    r[n + s.linear_row + t.row] += t.coef * y1[t.col];
+    r[t.col] += t.coef * lam[s.linear_row + t.row];
+  }
   for (int i = 0; i < n + m; ++i)
     if (!std::isfinite(r[i])) return false;
   if (lu == nullptr) return true;
@@ -437,6 +443,10 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
       lu->add_p(row, o + i, yf[o + i]);
       lu->add_q(row, o + i, y1[o + i]);
     }
+  }
+  for (const LinearTerm& t : s.linear) {
+    lu->add_p(s.linear_row + t.row, t.col, t.coef);
+    lu->add_q(s.linear_row + t.row, t.col, t.coef);
   }
   int z = m;
   for (const auto& [col, entries] :

@@ -11,7 +11,7 @@ from numpy.typing import ArrayLike
 
 from rancf.geometry.conic_params import pad3
 
-__all__ = ["GAP_RTOL", "KINK_TOL", "vector_angle", "is_closed"]
+__all__ = ["GAP_RTOL", "KINK_TOL", "vector_angle", "is_closed", "touching_ends_note"]
 
 #: Largest gap between two ends that meet, relative to the size of the curve(s).
 GAP_RTOL = 1e-10
@@ -39,3 +39,18 @@ def is_closed(
     """
     gap = float(np.linalg.norm(np.asarray(end, float) - np.asarray(start, float)))
     return gap <= GAP_RTOL * size and vector_angle(end_tangent, start_tangent) <= KINK_TOL
+
+
+def touching_ends_note(start: ArrayLike, start_tangent: ArrayLike, end: ArrayLike,
+                       end_tangent: ArrayLike, size: float) -> tuple[str, ...]:  # fmt: skip
+    """The remark for a curve whose ends meet at an angle (a kink): it stays an open curve, since
+    one shared node cannot carry two tangents; empty if the ends do not meet."""
+    if float(np.linalg.norm(np.asarray(end) - np.asarray(start))) > GAP_RTOL * size:
+        return ()
+    where = ", ".join(f"{x:.6g}" for x in np.asarray(start))
+    angle = np.degrees(vector_angle(end_tangent, start_tangent))
+    return (
+        f"geometry: the curve's ends meet at ({where}) at an angle of {angle:.4g} deg: it is "
+        "meshed as an open curve, its ends not joined (a closed curve needs the same tangent "
+        "at both ends)",
+    )

@@ -50,7 +50,10 @@ def _plane_normal(points: NDArray) -> NDArray | None:
 
 
 def initial_triads(
-    nodes: NDArray, tangents: NDArray, orientation: ArrayLike | None = None
+    nodes: NDArray,
+    tangents: NDArray,
+    orientation: ArrayLike | None = None,
+    closed_arc: NDArray | None = None,
 ) -> NDArray[np.float64]:
     """Reference directors ``m1`` of every node, ``(n_nodes, 3)`` (rod-math §2).
 
@@ -58,6 +61,14 @@ def initial_triads(
     it a planar centerline gets ``m1 = e × t`` with ``e`` the plane normal (so ``m2 = e``, the
     in-plane bending axis), and a straight one the global axis least aligned with it.  The
     director is carried from node to node by smallest rotations of the tangent.
+
+    Closed centrelines (``closed_arc``: the nodes' arc-length fractions, 0 to 1; the last node is
+    the first): carried once around, the director comes back turned about the tangent by the
+    holonomy ``h`` of the curve (zero for a planar one, not for a spatial one).  The section
+    cannot jump at the seam, so each node's director is turned by ``h s_k`` (``s_k`` its
+    arc-length fraction): a uniform twist of the reference that closes the material frame
+    exactly (``m1`` of the last node is that of the first).  The reference is stress free
+    whatever its twist (its curvatures are the reference values).
     """
     t = tangents / np.linalg.norm(tangents, axis=1, keepdims=True)
     if orientation is not None:
@@ -77,6 +88,12 @@ def initial_triads(
     out[0] = m1 / np.linalg.norm(m1)
     for k in range(1, len(t)):
         _, out[k] = _core.rod_nodal_triad(t[k - 1], out[k - 1], t[k], 0.0)
+    if closed_arc is not None:
+        a, b = out[-1], out[0]
+        h = np.arctan2(np.cross(a, b) @ t[0], a @ b)  # the turn from the carried m1 to the first
+        beta = h * np.asarray(closed_arc, dtype=float)[:, None]
+        out = np.cos(beta) * out + np.sin(beta) * np.cross(t, out)
+        out[-1] = out[0]
     return out
 
 
@@ -97,6 +114,9 @@ class RodKernel:
         Gauss points per element.
     orientation : array_like, optional
         First principal axis at the first node (see :func:`initial_triads`).
+    rho_bend : float
+    closed_arc : ndarray, optional
+        A closed centreline: the nodes' arc-length fractions (see :func:`initial_triads`).
     """
 
     def __init__(
@@ -109,6 +129,7 @@ class RodKernel:
         n_qp: int,
         orientation: ArrayLike | None = None,
         rho_bend: float = 0.0,
+        closed_arc: NDArray | None = None,
     ) -> None:
         self.cable = CableKernel(weights, scales, reference, props, n_qp)
         c = self.cable
@@ -119,7 +140,7 @@ class RodKernel:
         nodes = np.concatenate([ref[:, 0], ref[-1:, 2]])
         grads = np.concatenate([ref[:, 1], ref[-1:, 3]])
         self.tref = np.ascontiguousarray(grads / np.linalg.norm(grads, axis=1, keepdims=True))
-        self.m1ref = np.ascontiguousarray(initial_triads(nodes, grads, orientation))
+        self.m1ref = np.ascontiguousarray(initial_triads(nodes, grads, orientation, closed_arc))
         self.kref = np.zeros((self.n_el, c.n1.shape[1], 3))
         self.xi = np.ascontiguousarray(c.xi)
 

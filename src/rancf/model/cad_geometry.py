@@ -4,9 +4,9 @@
 ``curve`` picks a curve by index or name, or a list of them forming a chain.  Curves of a chain
 are oriented so that each starts where the previous one ends (a curve is reversed when needed);
 the chain must be tangent-continuous: a gap or a kink — between two curves or inside one (an
-interior knot of full multiplicity) — is reported with its location, and open: a closed curve
-or chain (its ends meet with the same tangent) is refused, since closed curves are not supported
-yet (ends that meet at a kink make an open curve).  The curves are planar
+interior knot of full multiplicity) — is reported with its location.  A curve or chain whose
+ends meet with the same tangent is closed: a ring (:attr:`CableMesh.closed`); ends that meet
+at a kink make an open curve (with a remark, :attr:`CableMesh.notes`).  The curves are planar
 (2 coordinates) when every control point has ``z = 0``, spatial otherwise.
 
 Every knot span becomes ``mesh.elements`` RANCF elements (exact subdivision, as
@@ -25,7 +25,7 @@ from rancf.errors import InputError
 from rancf.geometry.bezier import RationalBezier
 from rancf.geometry.conic_params import pad3
 from rancf.geometry.nurbs import NurbsCurve
-from rancf.geometry.tangents import GAP_RTOL, KINK_TOL, is_closed, vector_angle
+from rancf.geometry.tangents import GAP_RTOL, KINK_TOL, vector_angle
 from rancf.model.mesh import CableMesh, check_element_count
 from rancf.model.nurbs_mesh import mesh_segments
 
@@ -156,15 +156,6 @@ def chain_segments(
                 f"kink of {np.degrees(ang):.4g} deg at {_where(where)} ({between})",
                 "a tangent-continuous curve or chain; split the model at the kink",
             )
-    first, last = segments[0], segments[-1]
-    start, end = first.points[0], last.points[-1]
-    if is_closed(start, _end_tangents(first)[0], end, _end_tangents(last)[1], size):
-        what = "chain" if len(curves) > 1 else "curve"
-        raise InputError(
-            "geometry.curve",
-            f"a closed {what} (its ends meet at {_where(start)} with the same tangent)",
-            "an open curve or chain: closed curves are not supported yet",
-        )
     return segments, np.array(params)
 
 

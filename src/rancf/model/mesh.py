@@ -32,7 +32,7 @@ from rancf.geometry.bezier import RationalBezier
 from rancf.geometry.conic_curve import Conic
 from rancf.geometry.conic_params import check_mapping_factor
 from rancf.geometry.quadrature import integrate_many
-from rancf.geometry.tangents import GAP_RTOL, KINK_TOL, is_closed
+from rancf.geometry.tangents import GAP_RTOL, KINK_TOL, is_closed, touching_ends_note
 from rancf.model.conic_chain import (
     arc_breakpoints,
     cubic_forms,
@@ -88,6 +88,13 @@ class CableMesh:
         Mapping factor per element (NaN where not a conic element).
     parameters : ndarray, shape (n_el + 1,)
         Parameter of the source geometry at each node.
+    closed : bool
+        A closed curve (a ring): the last node is the first one.  It is stored twice (node
+        ``n_el`` repeats node 0's position, and its gradient is node 0's times
+        :attr:`seam_ratio`), so the chain stays a band; a model ties the two by linear
+        constraint rows (:mod:`rancf.model.closure`).
+    notes : tuple of str
+        Remarks on the geometry for the user (e.g. ends that touch at a kink: an open curve).
     """
 
     nodes: NDArray[np.float64]
@@ -96,6 +103,8 @@ class CableMesh:
     kind: Literal["rancf", "ancf"] = "rancf"
     k: NDArray[np.float64] = field(default_factory=lambda: np.empty(0))
     parameters: NDArray[np.float64] = field(default_factory=lambda: np.empty(0))
+    closed: bool = False
+    notes: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         n_el = self.weights.shape[0]
@@ -117,8 +126,21 @@ class CableMesh:
 
     @property
     def n_nodes(self) -> int:
-        """Number of nodes."""
+        """Number of stored nodes (a closed mesh stores its first node again at the end)."""
         return self.nodes.shape[0]
+
+    @property
+    def n_distinct_nodes(self) -> int:
+        """Number of distinct nodes: ``n_nodes``, or ``n_el`` for a closed mesh."""
+        return self.nodes.shape[0] - int(self.closed)
+
+    @property
+    def seam_ratio(self) -> float:
+        """Closed meshes: ``|r_x|`` of the last stored node over that of the first (the gradient
+        scales of a consistent chain need not return to their start value); 1 if open."""
+        if not self.closed:
+            return 1.0
+        return float(np.linalg.norm(self.nodes[-1, 1]) / np.linalg.norm(self.nodes[0, 1]))
 
     @property
     def dim(self) -> int:
@@ -292,13 +314,8 @@ def mesh_from_arrays(
             f"joint {j + 1}: gap {gap[j]:.3g}, tangent jump {jump[j]:.3g}",
             "a tangent-continuous chain of curves (shared end points, parallel end tangents)",
         )
-    if is_closed(points[0, 0], d0[0], points[-1, 3], d1[-1], size):
-        where = ", ".join(f"{x:.6g}" for x in points[0, 0])
-        raise InputError(
-            "geometry",
-            f"a closed curve (its ends meet at ({where}) with the same tangent)",
-            "an open curve: closed curves are not supported yet",
-        )
+    closed = is_closed(points[0, 0], d0[0], points[-1, 3], d1[-1], size)
+    notes = () if closed else touching_ends_note(points[0, 0], d0[0], points[-1, 3], d1[-1], size)
     log_m = np.concatenate([[0.0], np.cumsum(np.log(g1[:-1]) - np.log(g0[:-1]))])
     scales = g0 * np.exp(-log_m)
     if total_length is None:
@@ -311,6 +328,9 @@ def mesh_from_arrays(
     nodes[:-1, 1] = a[:, None] * (points[:, 1] - points[:, 0])
     nodes[-1, 0] = points[-1, 3]
     nodes[-1, 1] = b[-1] * (points[-1, 3] - points[-1, 2])
+    if closed:  # the last node is the first: exactly its position, its gradient direction
+        ratio = np.linalg.norm(nodes[-1, 1]) / np.linalg.norm(nodes[0, 1])
+        nodes[-1, 0], nodes[-1, 1] = nodes[0, 0], ratio * nodes[0, 1]
     mags = np.linalg.norm(nodes[:, 1], axis=1)
     span = float(mags.max() / mags.min())
     kk = np.full(n_el, np.nan) if k is None else np.asarray(k, dtype=float)
@@ -324,7 +344,7 @@ def mesh_from_arrays(
             "use k='opt' or fewer elements" if fixed else "use fewer elements",
         )
     par = np.linspace(0.0, 1.0, n_el + 1) if parameters is None else np.asarray(parameters, float)
-    return CableMesh(nodes, weights, scales, kind, kk, par)
+    return CableMesh(nodes, weights, scales, kind, kk, par, closed, notes)
 
 
 def conic_breakpoints(conic: Conic, n: int, spacing: Spacing = "arc") -> NDArray[np.float64]:
@@ -393,6 +413,8 @@ def to_ancf(mesh: CableMesh) -> CableMesh:
     nodes = np.array(mesh.nodes)
     t = nodes[:, 1]
     nodes[:, 1] = t / np.linalg.norm(t, axis=1, keepdims=True)
+    if mesh.closed:
+        nodes[-1] = nodes[0]
     return CableMesh(
         nodes,
         np.ones((mesh.n_elements, 4)),
@@ -400,4 +422,6 @@ def to_ancf(mesh: CableMesh) -> CableMesh:
         "ancf",
         np.full(mesh.n_elements, np.nan),
         mesh.parameters,
+        mesh.closed,
+        mesh.notes,
     )

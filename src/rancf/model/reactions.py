@@ -85,7 +85,7 @@ def support_reactions(
     dim, dpn = model.dim, model.dpn
     out = []
     for i, sup in enumerate(model.supports):
-        node = sup.node % model.n_nodes
+        node = model.check_node(sup.node, "supports.at")
         base = node * dpn
         force = rq[base : base + dim].copy()
         moment = None

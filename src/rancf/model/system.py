@@ -26,6 +26,7 @@ from rancf.errors import InputError
 from rancf.kernels.beam import BeamKernel
 from rancf.kernels.cable import CableKernel, CableProperties
 from rancf.kernels.rod import ROD_DOFS, RodKernel
+from rancf.model.closure import arc_fractions
 from rancf.model.mesh import CableMesh, to_ancf
 from rancf.model.motion import RigidMotion, check_supports_at_rest, rigid_velocity
 from rancf.model.parts import Material, PointLoad, Section, Support
@@ -88,6 +89,11 @@ class Model:
         self.material = material
         self.dim = mesh.dim
         self.n_nodes = mesh.n_nodes
+        #: A ring (:attr:`CableMesh.closed`): node ``n_nodes - 1`` is node 0 again, tied to it by
+        #: the rows of :func:`rancf.model.closure.closure_rows` in a system.
+        self.closed = bool(mesh.closed)
+        #: C² reduced coordinates (:class:`rancf.model.continuity.Reduction`), or None (C¹).
+        self.reduction = None
         self.n_el = mesh.n_elements
         rho, e_mod = material.density, material.youngs_modulus
         props = CableProperties(e_mod * section.area, e_mod * section.inertia, rho * section.area)
@@ -121,6 +127,7 @@ class Model:
                     n_qp,
                     section.orientation,
                     section.bending_rotary(rho),
+                    arc_fractions(m) if m.closed else None,
                 )
                 self.dpn = ROD_DOFS
                 q0 = np.concatenate(
@@ -198,6 +205,8 @@ class Model:
             if vv.size != self.dim:
                 raise InputError("initial_velocity.value", vv.tolist(), f"{self.dim} components")
             v0[nd * self.dpn : nd * self.dpn + self.dim] = vv
+            if self.closed and nd == 0:  # the stored repeat of node 0 moves with it
+                v0[self.n - self.dpn : self.n - self.dpn + self.dim] = vv
         if initial_motion is not None:
             if initial_velocities:
                 raise InputError(
@@ -227,17 +236,25 @@ class Model:
             self.kernel.m1ref[...] = self._triads0[1]
 
     # ------------------------------------------------------------------ bookkeeping
+    @property
+    def n_distinct_nodes(self) -> int:
+        """Distinct nodes: all, or (a ring) all but the stored repeat of node 0."""
+        return self.n_nodes - int(self.closed)
+
     def check_node(self, node: int, key: str) -> int:
-        """Resolve a node index (negative counts from the end) or raise naming ``key``."""
+        """Resolve a node index (negative counts from the end) or raise naming ``key``.
+
+        A ring's last stored node is its first: that index (``-1``, the end) resolves to 0.
+        """
+        n = self.n_nodes
         try:
             i = int(node)
         except (TypeError, ValueError):
-            raise InputError(
-                key, node, f"a node index in [-{self.n_nodes}, {self.n_nodes - 1}]"
-            ) from None
-        if not -self.n_nodes <= i < self.n_nodes or i != node:
-            raise InputError(key, node, f"a node index in [-{self.n_nodes}, {self.n_nodes - 1}]")
-        return i % self.n_nodes
+            raise InputError(key, node, f"a node index in [-{n}, {n - 1}]") from None
+        if not -n <= i < n or i != node:
+            raise InputError(key, node, f"a node index in [-{n}, {n - 1}]")
+        i %= n
+        return 0 if self.closed and i == n - 1 else i
 
     def q_from_y(self, y: ArrayLike) -> NDArray[np.float64]:
         """Full nodal coordinates from model coordinates (``q = T y``; works on ``(..., n)``)."""

@@ -81,21 +81,41 @@ def core_model(model: Model) -> _core.Model:
             base=base,
             f0=f0,
             freq=freq,
-            moment_node=np.array([p.node % model.n_nodes for p in moments], dtype=np.int64),
+            moment_node=np.array(
+                [model.check_node(p.node, "loads.point.at") for p in moments], dtype=np.int64
+            ),
             moment=np.array([p.moment for p in moments], dtype=float).reshape(-1, 3),
             moment_freq=np.array([p.frequency_hz or 0.0 for p in moments], dtype=float),
         ),
         mass_band=np.ascontiguousarray(model.mass_band),
         y_ref=np.ascontiguousarray(model.y0),
         rotary=k.core_inertia() if isinstance(k, RodKernel) else _core.SectionInertia(),
+        closed=model.closed,
+        reduction=_reduction(model),
     )
+
+
+def _reduction(model: Model) -> _core.Reduction:
+    """A C² model's element and node maps (:mod:`rancf.model.continuity`); none for C¹."""
+    red = model.reduction
+    if red is None:
+        zi, z = np.zeros(0, dtype=np.int64), np.zeros(0)
+        return _core.Reduction(n_y=0, ku=0, width=0, node_width=0, el_start=zi, el_map=z,
+                               node_start=zi, node_map=z, twist=zi)  # fmt: skip
+    return _core.Reduction(
+        n_y=red.n_y, ku=red.ku, width=red.width, node_width=red.node_width,
+        el_start=red.el_start, el_map=red.el_map, node_start=red.node_start,
+        node_map=red.node_map, twist=red.twist,
+    )  # fmt: skip
 
 
 def _point_forces(model: Model) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Point forces as ``(base index, F0, frequency)`` arrays (frequency 0: constant)."""
     # loads times a time function act through the system (rancf.system), not the chain
     forces = [p for p in model.point_loads if p.force is not None and p.time is None]
-    base = np.array([(p.node % model.n_nodes) * model.dpn for p in forces], dtype=np.int64)
+    base = np.array(
+        [model.check_node(p.node, "loads.point.at") * model.dpn for p in forces], dtype=np.int64
+    )
     f0 = np.array([p.force for p in forces], dtype=float).reshape(-1, model.dim)
     freq = np.array([p.frequency_hz or 0.0 for p in forces], dtype=float)
     return base, f0, freq

@@ -5,6 +5,8 @@ and an entry of ``summary.json``'s ``"warnings"`` list.
   Young's modulus of 50 Pa meant as 50 MPa stretches a 1 m hose to several metres.
 * The section's radius (``sqrt(A / π)`` for a section given by its area) exceeds
   :data:`RADIUS_LIMIT` (a tenth) of the body's reference length: e.g. 10 m meant as 10 mm.
+* A curve whose ends touch at a kink: it is an open curve (its ends are not joined), which a
+  user who meant a ring should know (:attr:`rancf.model.mesh.CableMesh.notes`).
 
 The axial strain is the elements' own Green–Lagrange measure at the section sample points
 (:class:`rancf.model.sections.SectionSampler`: the compiled core's strain, at ``ξ = 0, 1/4, 1/2,
@@ -39,8 +41,9 @@ RADIUS_LIMIT = 0.1
 
 
 def section_warnings(model: Model | System) -> list[str]:
-    """A warning if the section's radius exceeds a tenth of the body's reference length (every
-    flexible body of a system, named)."""
+    """The geometry's remarks (:attr:`rancf.model.mesh.CableMesh.notes`, e.g. ends that touch at
+    a kink: an open curve) and a warning if the section's radius exceeds a tenth of the body's
+    reference length (every flexible body of a system, named)."""
     if isinstance(model, System):
         many = len(model.flex) > 1
         return [
@@ -48,11 +51,12 @@ def section_warnings(model: Model | System) -> list[str]:
             for name, b in zip(model.names, model.flex, strict=False)
             for w in section_warnings(b)
         ]
+    notes = list(model.mesh.notes)  # remarks on the geometry (ends that touch at a kink)
     r = model.section.radius
     length = float(SectionSampler(model, 1).s[-1])  # the reference arc length
     if r <= RADIUS_LIMIT * length:
-        return []
-    return [
+        return notes
+    return notes + [
         f"the section's radius {r:.4g} m is more than a tenth of the body's length "
         f"{length:.4g} m: check the units of section.radius or section.area (metres)"
     ]

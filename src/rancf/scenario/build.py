@@ -81,6 +81,10 @@ def _mesh(path: str, g: Any, m: MeshTable, prefix: str) -> Any:
         return mesh_conic(conic, m.elements, m.k, m.spacing)
     if g.kind == "line":
         return mesh_line(g.start, g.end, m.elements)
+    if g.kind == "ellipse":
+        from rancf.model.ellipse_mesh import mesh_ellipse
+
+        return mesh_ellipse(g.ellipse(), m.elements, m.k, m.spacing, g.start_deg)
     if isinstance(g, CadGeometry):
         from rancf.model.cad_geometry import mesh_curve_chain
 

@@ -46,6 +46,7 @@ __all__ = [
     "LineGeometry",
     "NurbsGeometry",
     "CadGeometry",
+    "EllipseGeometry",
     "Geometry",
     "MeshTable",
 ]
@@ -65,6 +66,7 @@ GEOMETRY_KEYS = {
     "line": ("start", "end"),
     "nurbs": ("degree", "knots", "control_points", "weights"),
     "cad": ("file", "curve"),
+    "ellipse": ("center", "semi_axes", "rotation_deg", "axes", "start_deg"),
 }
 
 Point = vector(2, 3, bound=MAX_COORDINATE)
@@ -170,6 +172,64 @@ class NurbsGeometry(_Geometry):
         return len(self.control_points[0])
 
 
+class EllipseGeometry(_Geometry):
+    """A full ellipse (a circle when ``a = b``): a closed curve, meshed exactly with conic-section
+    elements (:func:`rancf.model.ellipse_mesh.mesh_ellipse`)."""
+
+    KIND: ClassVar[str] = "ellipse"
+    kind: Literal["ellipse"] = Field(description="a full ellipse (closed: a ring)")
+    center: Point = Field(description="center [m]; 2 coordinates: planar, 3: spatial")
+    semi_axes: vector(2, bound=MAX_COORDINATE) = Field(
+        description="semi-axes [a, b] along the first and second axis [m], each > 0"
+    )
+    rotation_deg: Number | None = Field(
+        None, description="planar: angle of the first axis from x [deg] (default 0)"
+    )
+    axes: list[vector(3)] | None = Field(
+        None,
+        description="spatial: the first and second axis directions, perpendicular (default x "
+        "and y)",
+    )
+    start_deg: Number = Field(
+        0.0,
+        description="parameter t of the first node (the seam) on r(t) = center + a cos t e1 + "
+        "b sin t e2 [deg]",
+    )
+
+    @model_validator(mode="after")
+    def _check(self) -> EllipseGeometry:
+        for i, v in enumerate(self.semi_axes):
+            if not v > 0.0:
+                raise fail(f"semi_axes[{i}]", f"must be > 0, got {show(v)}")
+        if self.dim == 2 and self.axes is not None:
+            raise fail("axes", "applies to a spatial ellipse (3 center coordinates); a planar "
+                       "one turns by rotation_deg")  # fmt: skip
+        if self.dim == 3 and self.rotation_deg is not None:
+            raise fail("rotation_deg", "applies to a planar ellipse (2 center coordinates); a "
+                       "spatial one has axes")  # fmt: skip
+        if self.axes is not None:
+            from rancf.geometry.ellipse import ellipse_axes
+
+            if len(self.axes) != 2:
+                raise fail("axes", f"must be two directions, got {show(self.axes)}")
+            try:
+                ellipse_axes(3, axes=self.axes)
+            except InputError as exc:
+                raise fail("axes", f"must be {exc.allowed}, got {show(self.axes)}") from None
+        return self
+
+    @property
+    def dim(self) -> int:
+        return len(self.center)
+
+    def ellipse(self) -> Any:
+        """The :class:`~rancf.geometry.ellipse.Ellipse`."""
+        from rancf.geometry.ellipse import Ellipse, ellipse_axes
+
+        e1, e2 = ellipse_axes(self.dim, self.rotation_deg or 0.0, self.axes)
+        return Ellipse(self.center, self.semi_axes[0], self.semi_axes[1], e1, e2)
+
+
 Curve = Annotated[int | str, BeforeValidator(lambda v: _curve_item(v))]
 
 
@@ -246,12 +306,16 @@ Geometry = Annotated[
     Annotated[ConicGeometry, Tag("[conic]")]
     | Annotated[LineGeometry, Tag("[line]")]
     | Annotated[NurbsGeometry, Tag("[nurbs]")]
-    | Annotated[CadGeometry, Tag("[cad]")],
+    | Annotated[CadGeometry, Tag("[cad]")]
+    | Annotated[EllipseGeometry, Tag("[ellipse]")],
     KindOf(
         _geometry_kind,
         custom_error_type="choice",
         custom_error_message="must be one of the geometry kinds",
-        custom_error_context={"key": "kind", "allowed": "'conic', 'line', 'nurbs', 'cad'"},
+        custom_error_context={
+            "key": "kind",
+            "allowed": "'conic', 'line', 'nurbs', 'cad', 'ellipse'",
+        },
     ),
     Field(description="the reference geometry (its kind selects its keys)"),
 ]

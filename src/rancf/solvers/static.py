@@ -104,6 +104,8 @@ def solve_static(
     if method not in ("load", "arc_length"):
         raise InputError("solver.static_method", method, 'one of "load", "arc_length"')
     start = time.perf_counter()
+    if isinstance(model, Model) and model.closed:  # the seam is a constraint: a system
+        model = System({"body": model})
     model.reset_triads()
     if isinstance(model, System):
         from rancf.solvers.system_equilibrium import SystemEquilibrium
@@ -140,8 +142,11 @@ def solve_static(
 
 def _one_model(model: Model | System) -> Model | System:
     """A system of one flexible body without time functions as its model (the one-body
-    equilibrium path, installation stages included); else the system."""
+    equilibrium path, installation stages included); else the system (a ring's seam is a
+    constraint of the system)."""
     if not isinstance(model, System) or model.single is None or len(model.flex) != 1:
+        return model
+    if model.m:
         return model
     body = model.flex[0]
     timed = any(s.motion is not None for s in body.supports) or any(

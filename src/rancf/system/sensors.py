@@ -158,7 +158,7 @@ class SensorReader:
         start = 0
         for name, b in out.flex:
             for sup in b.supports:
-                if name == p.body and sup.node % b.n_nodes == p.at:
+                if name == p.body and b.check_node(sup.node, "supports.at") == p.at:
                     return lambda blk, c=start: blk[3]["r"][:, c : c + d]
                 start += d + (0 if not has_moment(b, sup.kind) else (1 if d == 2 else 3))
         raise InputError(f"sensors.{sen.name}.at", str(p), "the place of a support")

@@ -22,6 +22,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from rancf.errors import InputError
 from rancf.kernels import _core
+from rancf.model.closure import closure_rows
 from rancf.model.rigid import PointMass, RigidBody
 from rancf.model.system import Model
 from rancf.model.time_function import TimeFunction
@@ -125,6 +126,7 @@ class System:
         self.y0, self.v0 = y0, v0
         self.joints, self.springs, self.loads = tuple(joints), tuple(springs), tuple(loads)
         self.single = self.names[0] if len(self.names) == 1 else None
+        self._linear = self._closures()
         rows = _Rows()
         self._place_index: dict[Place, int] = {}
         self._prescribed = self._motions(rows)
@@ -256,12 +258,24 @@ class System:
                 if sup.motion.size != self.dim:
                     raise InputError("supports.motion", sup.motion.size, f"{self.dim} components")
                 k = rows.tf(sup.motion)
-                base = self.offsets[name] + (sup.node % b.n_nodes) * b.dpn
+                base = self.offsets[name] + b.check_node(sup.node, "supports.at") * b.dpn
                 for i in range(self.dim):
                     out.append(
                         (base + i, k, i, float(b.y_installed[base - self.offsets[name] + i]))
                     )
         return out
+
+    def _closures(self) -> tuple[NDArray, NDArray, NDArray]:
+        """The seams of closed flexible bodies as linear rows ``(row, column, coefficient)``
+        (:func:`rancf.model.closure.closure_rows`), in system coordinates."""
+        parts, m = [], 0
+        for name, b in zip(self.names, self.flex, strict=False):
+            r, c, v = closure_rows(b)
+            parts.append((r + m, c + self.offsets[name], v))
+            m += b.dpn if b.closed else 0
+        if not parts:
+            return np.zeros(0, np.int64), np.zeros(0, np.int64), np.zeros(0)
+        return tuple(np.concatenate(x) for x in zip(*parts, strict=True))  # type: ignore[return-value]
 
     def _spring(self, s: Spring, rows: _Rows) -> tuple[int, int, float, float, float]:
         a, b = self._pair(s.between, rows)
@@ -283,7 +297,14 @@ class System:
             for p in b.point_loads:
                 if p.time is None:
                     continue
-                out.append(Load(Place(name, p.node % b.n_nodes), p.force, p.moment, p.time))
+                out.append(
+                    Load(
+                        Place(name, b.check_node(p.node, "loads.point.at")),
+                        p.force,
+                        p.moment,
+                        p.time,
+                    )
+                )
         return out
 
     def _load(self, ld: Load, rows: _Rows) -> tuple[int, NDArray, NDArray, int]:
