@@ -48,7 +48,7 @@ def test_example_run_of_the_cantilever_writes_a_small_report(tmp_path):
     assert static["status"] == "completed" and static["analysis"] == "static"
     modes = json.loads((out / "modes.json").read_text())
     assert len(modes["frequencies_hz"]) == 6
-    assert modes["frequencies_hz"][0] == pytest.approx(1.9385, rel=1e-3)  # README: 1.938485 Hz
+    assert modes["frequencies_hz"][0] == pytest.approx(1.9385, rel=1e-3)  # docs: 1.938485 Hz
     html = (out / "report.html").read_text()
     assert "the shipped scenario cantilever" in html and "Paper says" not in html
     assert html.count("data:image/png;base64,") == 3  # load path: sensors, configurations; modes

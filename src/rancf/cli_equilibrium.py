@@ -231,7 +231,7 @@ def _cmd_modes(args: argparse.Namespace) -> int:
                 "  note: zero-frequency modes that are not rigid-body motions are kept; for a "
                 "curved spatial cable they are the out-of-plane bending the magnitude "
                 'curvature does not resist: use mesh.element = "rod" (torsion and out-of-plane '
-                "bending stiffness) for curved spatial structures (see README)."
+                "bending stiffness) for curved spatial structures (docs/guide/rods.md)."
             )
     if plot is not None:  # after the JSON object, on standard error: stdout stays one object
         print(f"mode shapes written to {plot}", file=sys.stderr if args.json else sys.stdout)
