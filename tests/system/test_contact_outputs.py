@@ -169,6 +169,16 @@ def test_body_contacts_from_a_file(tmp_path, capsys):
     f = tmp_path / "two.toml"
     f.write_text(TWO)
     assert main(["simulate", str(f), "--out", str(tmp_path / "run"), "--quiet"]) == 0
+    # elements of 12.5 and 15 cm, 8 contact points each: crossings could pass through
+    warn = capsys.readouterr().err.strip().splitlines()
+    assert warn == [
+        "rancf: warning: high: contact points up to 9.38 tube radii apart: tubes crossing at a "
+        "large angle can pass through each other between them; give contact_points = 64 (an "
+        "element's length over the radius) and shorter elements",
+        "rancf: warning: low: contact points up to 7.81 tube radii apart: tubes crossing at a "
+        "large angle can pass through each other between them; give contact_points = 63 (an "
+        "element's length over the radius)",
+    ]
     r = _table(tmp_path / "run" / "reactions.csv")
     w_high = RHO * np.pi * R**2 * 0.6 * G
     assert r["low_high_contact_force"][0] == 0.0

@@ -50,7 +50,7 @@ def section_warnings(model: Model | System) -> list[str]:
             (f"{name}: " if many else "") + w
             for name, b in zip(model.names, model.flex, strict=False)
             for w in section_warnings(b)
-        ]
+        ] + _crossing_warnings(model)
     notes = list(model.mesh.notes)  # remarks on the geometry (ends that touch at a kink)
     r = model.section.radius
     length = float(SectionSampler(model, 1).s[-1])  # the reference arc length
@@ -60,6 +60,27 @@ def section_warnings(model: Model | System) -> list[str]:
         f"the section's radius {r:.4g} m is more than a tenth of the body's length "
         f"{length:.4g} m: check the units of section.radius or section.area (metres)"
     ]
+
+
+def _crossing_warnings(system: System) -> list[str]:
+    """Bodies in contact with each other whose contact points lie more than 4 tube radii apart:
+    two tubes crossing at a large angle can pass through each other between them
+    (docs/guide/contact.md)."""
+    out = []
+    for name in sorted({x for pair in system.body_contacts for x in pair}):
+        b = system.bodies[name]
+        r = b.section.radius  # type: ignore[union-attr]
+        longest = float(np.max(b.mesh.arc_lengths()))  # type: ignore[union-attr]
+        apart = longest / system.contact_points
+        if apart > 4.0 * r:
+            need = int(np.ceil(longest / r))
+            out.append(
+                f"{name}: contact points up to {apart / r:.3g} tube radii apart: tubes crossing "
+                f"at a large angle can pass through each other between them; give "
+                f"contact_points = {min(need, 64)} (an element's length over the radius)"
+                + ("" if need <= 64 else " and shorter elements")
+            )
+    return out
 
 
 def strain_warning(strain: float, when: str) -> str | None:

@@ -157,7 +157,7 @@ class System:
         self.m = int(self.core.m)
         self.joint_rows = list(self.core.joint_rows)
         self.obstacles = tuple(obstacles)  # contact (issue 20): attached to the core
-        self.body_contacts = [(a, b) for a, b in body_contacts]
+        self.body_contacts, self.contact_points = [(a, b) for a, b in body_contacts], contact_points
         self.contact, self.obstacle_names, self.contact_pairs = attach_contact(
             self, self.obstacles, contacts, contact_points, body_contacts
         )
