@@ -182,3 +182,35 @@ def test_energy_never_grows_with_rho_inf_one():
         hit |= out[1] > 0
     assert hit and res.kinetic.max() > 0.5 * scale
     assert np.max(res.total_energy - res.total_energy[0]) < 1e-9 * scale
+
+
+def _arc_mesh(radius: float, n: int):
+    """A quarter circle of ``radius`` about the origin as ``n`` exact rational elements."""
+    from rancf.model.mesh import mesh_from_arrays
+
+    els = []
+    for t0, t1 in zip(np.linspace(0, np.pi / 2, n + 1)[:-1], np.linspace(0, np.pi / 2, n + 1)[1:],
+                      strict=True):  # fmt: skip
+        c = np.cos((t1 - t0) / 2)
+        p0, p2 = (radius * np.array([np.cos(t), np.sin(t)]) for t in (t0, t1))
+        p1 = radius / c * np.array([np.cos((t0 + t1) / 2), np.sin((t0 + t1) / 2)])
+        w = (1 + 2 * c) / 3
+        els.append(([p0, (p0 + 2 * c * p1) / (1 + 2 * c), (2 * c * p1 + p2) / (1 + 2 * c), p2],
+                    [1, w, w, 1]))  # fmt: skip
+    return mesh_from_arrays(np.array([e[0] for e in els]), np.array([e[1] for e in els], float))
+
+
+def test_concentric_arcs_touch_at_their_exact_distance():
+    """Two concentric quarter circles of exact rational elements (4 and 3 of them, so the points
+    of one fall anywhere on the other's elements), their tubes overlapping by 1 um: every
+    contact point's gap is -1 um to 1e-12 m (the closest points on the rational curves)."""
+    r0 = 0.2
+    inner = Model(_arc_mesh(r0, 4), "rancf", Section.circular(R), Material(7850.0, 2e11))
+    outer = Model(_arc_mesh(r0 + 2 * R - 1e-6, 3), "rancf", Section.circular(R),
+                  Material(7850.0, 2e11))  # fmt: skip
+    s = System({"a": inner, "b": outer}, body_contacts=[("a", "b")])
+    out = np.empty(3)
+    s.contact.body_outputs(s.y0, out)
+    assert out[0] == pytest.approx(-1e-6, abs=1e-12)
+    n_points = 8 * (4 + 3)
+    assert out[1] >= n_points - 4  # all but the points whose closest point is past an end
