@@ -116,7 +116,7 @@ void bind_contact(nb::module_& mod) {
             }
             const std::size_t nbp = bpair_a.size();
             expect_size(bpair_b, nbp, "bpair_b");
-            expect_size(bpair_data, 2 * nbp, "bpair_data");
+            expect_size(bpair_data, 4 * nbp, "bpair_data");
             for (std::size_t i = 0; i < nbp; ++i) {
               rancf::BodyPair bp;
               bp.a = static_cast<int>(bpair_a.data()[i]);
@@ -125,9 +125,14 @@ void bind_contact(nb::module_& mod) {
                 check(x >= 0 && static_cast<std::size_t>(x) < nbody &&
                           !c.bodies[static_cast<std::size_t>(x)].scales.empty(),
                       "bpair: a body with contact curves");
-              bp.stiffness = bpair_data.data()[2 * i];
-              bp.onset = bpair_data.data()[2 * i + 1];
-              check(bp.stiffness > 0.0 && bp.onset > 0.0, "bpair_data: stiffness, onset > 0");
+              const double* d = bpair_data.data() + 4 * i;
+              bp.stiffness = d[0];
+              bp.onset = d[1];
+              bp.friction = d[2];
+              bp.slip_velocity = d[3];
+              check(bp.stiffness > 0.0 && bp.onset > 0.0 && bp.friction >= 0.0 &&
+                        bp.slip_velocity > 0.0,
+                    "bpair_data: stiffness, onset, slip velocity > 0, friction >= 0");
               c.body_pairs.push_back(bp);
             }
           },

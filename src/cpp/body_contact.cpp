@@ -111,6 +111,7 @@ struct Side {
 struct Pair {
   bool kept = false;  ///< a valid projection (inside the element or at a free end)
   double g = 0.0, rho = 0.0, n[3] = {0.0, 0.0, 0.0};
+  double Nb[4] = {0.0, 0.0, 0.0, 0.0};  ///< B's shape functions at the closest point
   std::array<double, 2 * kMaxElementDofs> G{};
   std::vector<double> Hg;  ///< (n x n), if asked for
 };
@@ -134,6 +135,7 @@ void pair_geometry(const Side& A, const Side& B, int e, int q, int f, const doub
     if (std::abs(s_pt - s_y) < M_PI * (A.cb->radius + B.cb->radius)) return;
   }
   shape(*B.cb, f, xi, Nb, Nb1, Nb2);
+  for (int k = 0; k < 4; ++k) out.Nb[k] = Nb[k];
   contact_point::point_of(mb, Nb, eb, y);
   const double d[3] = {x[0] - y[0], x[1] - y[1], x[2] - y[2]};
   out.rho = std::sqrt(dot3(d, d));
@@ -189,7 +191,8 @@ void pair_geometry(const Side& A, const Side& B, int e, int q, int f, const doub
 /// point's normal force.
 double point_force(const BodyPair& bp, const Side& A, const Side& B, int e, int q, int f,
                    const double* ea, const double* eb, const double* ea1, const double* eb1,
-                   double* fe, double* pw, double ck = 1.0, double* K = nullptr) {
+                   const double* va, const double* vb, double* fe, double* pw, double ck = 1.0,
+                   double* K = nullptr) {
   const int n = A.m->nde() + B.m->nde();
   Pair pf;
   pair_geometry(A, B, e, q, f, ea, eb, K != nullptr, pf);
@@ -215,6 +218,30 @@ double point_force(const BodyPair& bp, const Side& A, const Side& B, int e, int 
   const double w = A.cb->w[sz(e * A.cb->n_c + q)];
   *pw = w * pm;
   for (int a = 0; a < n; ++a) fe[a] = w * pm * pf.G[sz(a)];
+  if (bp.friction > 0.0 && va != nullptr && pm > 0.0) {
+    // regularized Coulomb friction on the slip of x relative to B's material point y(eta):
+    // f_t = -mu p v_t / sqrt(|v_t|^2 + eps^2), v_t = (I - n n^T)(v_x - v_y) (contact.hpp)
+    const Model& ma = *A.m;
+    const Model& mb = *B.m;
+    const int na = ma.nde();
+    const double* Na = A.cb->N.data() + 4 * (e * A.cb->n_c + q);
+    double ux[3], uy[3], vt[3];
+    contact_point::point_of(ma, Na, va, ux);
+    contact_point::point_of(mb, pf.Nb, vb, uy);
+    double un = 0.0;
+    for (int i = 0; i < 3; ++i) un += pf.n[i] * (ux[i] - uy[i]);
+    for (int i = 0; i < 3; ++i) vt[i] = ux[i] - uy[i] - un * pf.n[i];
+    const double sl = std::sqrt(dot3(vt, vt) + bp.slip_velocity * bp.slip_velocity);
+    for (int k = 0; k < 4; ++k) {
+      const int oa = (k / 2) * ma.dpn + (k % 2) * ma.dim;
+      const int ob = na + (k / 2) * mb.dpn + (k % 2) * mb.dim;
+      for (int i = 0; i < ma.dim; ++i) {
+        const double ft = -bp.friction * w * pm * vt[i] / sl;
+        fe[oa + i] += Na[k] * ft;
+        fe[ob + i] -= pf.Nb[k] * ft;
+      }
+    }
+  }
   if (K == nullptr) return pf.g;
   const double* G1 = ea1 != nullptr ? p1.G.data() : pf.G.data();
   for (int a = 0; a < n; ++a)
@@ -327,10 +354,11 @@ Side side(const System& s, const ContactSet& c, int body) {
 /// Visit every kept (point, element) pair of every body pair in both directions at y:
 /// fn(bp, A, B, e, q, f, ea, eb, fe, g, pw).
 template <class Fn>
-void each_pair(const System& s, const ContactSet& c, const double* y, const double* y1, Fn fn) {
+void each_pair(const System& s, const ContactSet& c, const double* y, const double* y1,
+               const double* v, Fn fn) {
   if (c.body_pairs.empty()) return;
   const Broad br = spheres(s, c, y, y1);
-  Coords ea{}, eb{}, ea1{}, eb1{};
+  Coords ea{}, eb{}, ea1{}, eb1{}, va{}, vb{};
   std::array<double, 2 * kMaxElementDofs> fe{};
   for (const BodyPair& bp : c.body_pairs) {
     for (const auto& [ei, fi] : candidates(br, bp)) {
@@ -346,13 +374,62 @@ void each_pair(const System& s, const ContactSet& c, const double* y, const doub
         }
         const double* pa1 = y1 != nullptr ? ea1.data() : nullptr;
         const double* pb1 = y1 != nullptr ? eb1.data() : nullptr;
+        const bool rub = v != nullptr && bp.friction > 0.0;
+        if (rub) {
+          element_coordinates(*A.m, v + A.offset, e, va.data());
+          element_coordinates(*B.m, v + B.offset, f, vb.data());
+        }
+        const double* pva = rub ? va.data() : nullptr;
+        const double* pvb = rub ? vb.data() : nullptr;
         for (int q = 0; q < A.cb->n_c; ++q) {
           double pw = 0.0;
-          const double g =
-              point_force(bp, A, B, e, q, f, ea.data(), eb.data(), pa1, pb1, fe.data(), &pw);
-          fn(bp, A, B, e, q, f, ea.data(), eb.data(), pa1, pb1, fe.data(), g, pw);
+          const double g = point_force(bp, A, B, e, q, f, ea.data(), eb.data(), pa1, pb1, pva, pvb,
+                                       fe.data(), &pw);
+          fn(bp, A, B, e, q, f, ea.data(), eb.data(), pa1, pb1, pva, pvb, fe.data(), g, pw);
         }
       }
+    }
+  }
+}
+
+/// Minus the Jacobian of a point's forces with friction (n x n into K) with respect to the
+/// step's end: ck d/dyf + cv d/dvf + d/dy1, by central differences of point_force (steps
+/// 1e-7 (1 + |z|) and at most 1e-3 of the onset for positions, 1e-4 eps (1 + |z|) for
+/// velocities, as contact.hpp's carried obstacles).
+void friction_tangent(const BodyPair& bp, const Side& A, const Side& B, int e, int q, int f,
+                      const double* ea, const double* eb, const double* ea1, const double* eb1,
+                      const double* va, const double* vb, const AssemblyTerms& tm,
+                      std::vector<double>& K) {
+  const int na = A.m->nde(), n = na + B.m->nde();
+  K.assign(sz(n * n), 0.0);
+  const bool dyn = ea1 != nullptr;
+  std::array<Coords, 6> z{};  // ea, eb, ea1, eb1, va, vb
+  const double* src[6] = {ea, eb, ea1, eb1, va, vb};
+  for (int k = 0; k < 6; ++k)
+    if (src[k] != nullptr)
+      std::copy(src[sz(k)], src[sz(k)] + (k % 2 == 0 ? na : n - na), z[sz(k)].begin());
+  std::array<double, 2 * kMaxElementDofs> fp{}, fm{};
+  const double coef[3] = {tm.ck, 1.0, tm.cv};
+  for (int set = 0; set < 3; ++set) {
+    if ((set == 1 && !dyn) || coef[set] == 0.0) continue;
+    for (int j = 0; j < n; ++j) {
+      Coords& zz = z[sz(2 * set + (j < na ? 0 : 1))];
+      double& x = zz[sz(j < na ? j : j - na)];
+      const double x0 = x;
+      const double h = set == 2 ? 1e-4 * bp.slip_velocity * (1.0 + std::abs(x0))
+                                : std::min(1e-7 * (1.0 + std::abs(x0)), 1e-3 * bp.onset);
+      double pw = 0.0;
+      const double* z1a = dyn ? z[2].data() : nullptr;
+      const double* z1b = dyn ? z[3].data() : nullptr;
+      x = x0 + h;
+      point_force(bp, A, B, e, q, f, z[0].data(), z[1].data(), z1a, z1b, z[4].data(), z[5].data(),
+                  fp.data(), &pw);
+      x = x0 - h;
+      point_force(bp, A, B, e, q, f, z[0].data(), z[1].data(), z1a, z1b, z[4].data(), z[5].data(),
+                  fm.data(), &pw);
+      x = x0;
+      for (int i = 0; i < n; ++i)
+        K[sz(i * n + j)] -= coef[set] * (fp[sz(i)] - fm[sz(i)]) / (2.0 * h);
     }
   }
 }
@@ -383,13 +460,14 @@ void rotate_pair(const Side& A, const Side& B, int e, int f, double* fe, double*
 
 }  // namespace
 
-void assemble_body_contact(const System& s, const ContactSet& c, const double* yf, const double* y1,
-                           const AssemblyTerms& tm, double* r, const MatrixSink* add) {
+void assemble_body_contact(const System& s, const ContactSet& c, const double* yf, const double* vf,
+                           const double* y1, const AssemblyTerms& tm, double* r,
+                           const MatrixSink* add) {
   std::vector<double> K;
-  each_pair(s, c, yf, y1,
+  each_pair(s, c, yf, y1, vf,
             [&](const BodyPair& bp, const Side& A, const Side& B, int e, int q, int f,
                 const double* ea, const double* eb, const double* ea1, const double* eb1,
-                const double* fe, double, double pw0) {
+                const double* va, const double* vb, const double* fe, double, double pw0) {
               if (pw0 == 0.0) return;
               const int na = A.m->nde(), nb = B.m->nde(), n = na + nb;
               std::array<double, 2 * kMaxElementDofs> f0{};
@@ -397,10 +475,13 @@ void assemble_body_contact(const System& s, const ContactSet& c, const double* y
               std::array<int, 2 * kMaxElementDofs> idx{};
               for (int a = 0; a < na; ++a) idx[sz(a)] = A.offset + e * A.m->dpn + a;
               for (int a = 0; a < nb; ++a) idx[sz(na + a)] = B.offset + f * B.m->dpn + a;
-              if (add != nullptr) {
+              if (add != nullptr && va == nullptr) {  // frictionless: exact
                 K.assign(sz(n * n), 0.0);
                 double pw = 0.0;
-                point_force(bp, A, B, e, q, f, ea, eb, ea1, eb1, f0.data(), &pw, tm.ck, K.data());
+                point_force(bp, A, B, e, q, f, ea, eb, ea1, eb1, nullptr, nullptr, f0.data(), &pw,
+                            tm.ck, K.data());
+              } else if (add != nullptr) {  // friction: central differences of the point forces
+                friction_tangent(bp, A, B, e, q, f, ea, eb, ea1, eb1, va, vb, tm, K);
               }
               rotate_pair(A, B, e, f, f0.data(), add != nullptr ? K.data() : nullptr);
               for (int a = 0; a < n; ++a) r[idx[sz(a)]] -= f0[sz(a)];
@@ -410,9 +491,10 @@ void assemble_body_contact(const System& s, const ContactSet& c, const double* y
 
 double body_contact_energy(const System& s, const ContactSet& c, const double* y) {
   double total = 0.0;
-  each_pair(s, c, y, nullptr,
+  each_pair(s, c, y, nullptr, nullptr,
             [&](const BodyPair& bp, const Side& A, const Side&, int e, int q, int, const double*,
-                const double*, const double*, const double*, const double*, double g, double) {
+                const double*, const double*, const double*, const double*, const double*,
+                const double*, double g, double) {
               if (g < 0.0)
                 total += A.cb->w[sz(e * A.cb->n_c + q)] *
                          Penalty{0.5 * bp.stiffness, bp.onset}.potential(g);
@@ -426,9 +508,10 @@ void body_contact_outputs(const System& s, const ContactSet& c, const double* y,
     out[kBodyOutputs * k] = 1e300;
     out[kBodyOutputs * k + 1] = out[kBodyOutputs * k + 2] = 0.0;
   }
-  each_pair(s, c, y, nullptr,
+  each_pair(s, c, y, nullptr, nullptr,
             [&](const BodyPair& bp, const Side&, const Side&, int, int, int, const double*,
-                const double*, const double*, const double*, const double*, double g, double pw) {
+                const double*, const double*, const double*, const double*, const double*,
+                const double*, double g, double pw) {
               const auto k = static_cast<std::size_t>(&bp - c.body_pairs.data());
               double* o = out + kBodyOutputs * k;
               if (g < 1e299) o[0] = std::min(o[0], g);

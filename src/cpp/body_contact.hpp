@@ -1,5 +1,5 @@
-// Contact between flexible bodies and self-contact (issue 20): frictionless penalty contact of
-// tubes, segment against segment.
+// Contact between flexible bodies and self-contact (issue 20): penalty contact of tubes, segment
+// against segment, with regularized Coulomb friction (as contact.hpp's) where the pair has it.
 //
 // Every contact point x_i (the Gauss points of contact.hpp, weight w_i: the integral over the
 // reference arc length) of body A is projected on every element f of body B that the broad
@@ -21,8 +21,9 @@
 // cells as large as the largest sphere (hash map of cells): pairs of elements in the same or
 // neighbouring cells whose spheres overlap; cost near linear in the number of elements.
 //
-// Tangent: exact, from the gap's Hessian including the projection's variation (body_contact.cpp
-// pair_geometry); couplings of distant elements go through the sink (the bordered solve's far
+// Tangent: exact without friction, from the gap's Hessian including the projection's variation
+// (body_contact.cpp pair_geometry); with friction, central differences of the point forces;
+// couplings of distant elements go through the sink (the bordered solve's far
 // columns).
 #pragma once
 
@@ -32,11 +33,14 @@
 
 namespace rancf {
 
-/// Forces of the body pairs at yf into r (r -= generalized forces) with the step's mean
-/// pressure up to y1 (null: statics, the pressure at yf; contact.hpp), their Jacobian with
-/// respect to y1 (ck d/dyf + d/dy1) into add (if not null).
-void assemble_body_contact(const System& s, const ContactSet& c, const double* yf, const double* y1,
-                           const AssemblyTerms& tm, double* r, const MatrixSink* add);
+/// Forces of the body pairs at (yf, vf) into r (r -= generalized forces) with the step's mean
+/// pressure up to y1 (null: statics, the pressure at yf; contact.hpp) and, where the pair has
+/// friction and vf is given, the regularized Coulomb friction of contact.hpp on the slip
+/// velocity relative to the other body's material point; their Jacobian with respect to y1
+/// (ck d/dyf + cv d/dvf + d/dy1) into add (if not null).
+void assemble_body_contact(const System& s, const ContactSet& c, const double* yf, const double* vf,
+                           const double* y1, const AssemblyTerms& tm, double* r,
+                           const MatrixSink* add);
 
 /// The penalty energy of the body pairs at y.
 double body_contact_energy(const System& s, const ContactSet& c, const double* y);

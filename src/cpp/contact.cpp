@@ -319,8 +319,8 @@ void assemble_contact(const System& s, const ContactSet& c, const double* yf, co
     else
       fixed_pair<3>(s, c, cp, cp.flex, yf, vf, y1, dyn, tm, r, lu, add);
   }
-  assemble_body_contact(s, c, yf, dyn ? y1 : nullptr, tm, r,
-                        add);  // between flexible bodies (body_contact.hpp)
+  // between flexible bodies (body_contact.hpp)
+  assemble_body_contact(s, c, yf, vf, dyn ? y1 : nullptr, tm, r, add);
 }
 
 double contact_energy(const System& s, const ContactSet& c, const double* y) {

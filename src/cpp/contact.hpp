@@ -77,11 +77,13 @@ struct ContactPair {
   double slip_velocity = 1.0;  ///< eps of the friction's regularization [m/s]
 };
 
-/// Two flexible bodies in contact (a == b: self-contact), frictionless (body_contact.hpp).
+/// Two flexible bodies in contact (a == b: self-contact; body_contact.hpp).
 struct BodyPair {
   int a = 0, b = 0;
-  double stiffness = 0.0;  ///< k [N/m^2]
-  double onset = 0.0;      ///< d [m]
+  double stiffness = 0.0;      ///< k [N/m^2]
+  double onset = 0.0;          ///< d [m]
+  double friction = 0.0;       ///< Coulomb coefficient mu
+  double slip_velocity = 1.0;  ///< eps of the friction's regularization [m/s]
 };
 
 struct ContactSet {

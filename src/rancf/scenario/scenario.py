@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING, Any
 from pydantic import Field, PrivateAttr, ValidationError, ValidationInfo, model_validator
 
 from rancf.errors import ScenarioError
-from rancf.scenario.base import Name, Table, integer, shorten
+from rancf.scenario.base import Name, NonNegative, Table, integer, shorten
 from rancf.scenario.bodies import Body
 from rancf.scenario.checks import check_scenario
 from rancf.scenario.geometry import GEOMETRY_KEYS, CadGeometry, Geometry, MeshTable
@@ -69,7 +69,10 @@ class Scenario(Table):
     body_contacts: list[list[Name]] = Field(
         [],
         description="pairs [BODY, BODY] of flexible bodies in contact with each other (a body "
-        "twice: self-contact; frictionless)",
+        "twice: self-contact; friction: body_friction)",
+    )
+    body_friction: NonNegative = Field(
+        0.0, description="Coulomb coefficient of the contact between flexible bodies"
     )
     contact_points: integer(ge=1, le=64) = Field(
         8,

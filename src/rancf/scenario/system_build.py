@@ -169,4 +169,4 @@ def _parts(sc: Scenario, bodies: dict[str, Any]) -> dict[str, Any]:
     return {"joints": joints, "springs": springs, "loads": loads, "observe": _observed(sc),
             "obstacles": obstacles, "contacts": contacts,
             "body_contacts": [(a, b) for a, b in sc.body_contacts],
-            "contact_points": sc.contact_points}  # fmt: skip
+            "contact_points": sc.contact_points, "body_friction": sc.body_friction}  # fmt: skip

@@ -173,11 +173,13 @@ def build_contact(
     contacts: Sequence[tuple[str, str]] | None,
     n_c: int,
     body_contacts: Sequence[tuple[str, str]] = (),
+    body_friction: float = 0.0,
 ) -> tuple[_core.Contact, list[str], list[tuple[str, str]]]:
     """The core's contact data of a system: (Contact, obstacle names, pairs).  ``body_contacts``:
     pairs of flexible bodies in contact with each other (a body twice: self-contact;
-    ``src/cpp/body_contact.hpp``), frictionless, with the stiffness ``E / 20`` of the softer
-    (two sections in series, each ``E / 10``) and the onset ``1e-3`` of the thinner radius."""
+    ``src/cpp/body_contact.hpp``) with the Coulomb coefficient ``body_friction`` (regularized by
+    :data:`SLIP_VELOCITY`), the stiffness ``E / 20`` of the softer (two sections in series, each
+    ``E / 10``) and the onset ``1e-3`` of the thinner radius."""
     names = [ob.name or f"obstacle{i}" for i, ob in enumerate(obstacles)]
     if len(set(names)) != len(names):
         raise InputError("obstacles.name", names, "distinct names")
@@ -215,6 +217,7 @@ def build_contact(
                     "contacts", list(pair), "[FLEXIBLE_BODY, OBSTACLE] pairs of existing names"
                 )
             pairs.append((pair[0], pair[1]))
+    _number("body_friction", body_friction, 0.0, False)
     bpairs = []
     for pair in body_contacts:
         if len(pair) != 2 or not all(x in flex_names for x in pair):
@@ -279,8 +282,8 @@ def build_contact(
         bpair_a=np.array([flex_names.index(a) for a, _ in bpairs], dtype=i64),
         bpair_b=np.array([flex_names.index(b) for _, b in bpairs], dtype=i64),
         bpair_data=np.array(
-            [_body_pair_data(system, a, b) for a, b in bpairs], dtype=float
-        ).reshape(-1, 2),  # fmt: skip
+            [_body_pair_data(system, a, b, body_friction) for a, b in bpairs], dtype=float
+        ).reshape(-1, 4),
     )
     return core, names, pairs
 
@@ -297,11 +300,13 @@ def obstacle_records(system: System) -> list[dict]:
     return out
 
 
-def _body_pair_data(system: System, a: str, b: str) -> list[float]:
-    """Stiffness and onset of two flexible bodies in contact (:func:`build_contact`)."""
+def _body_pair_data(system: System, a: str, b: str, friction: float) -> list[float]:
+    """Stiffness, onset, friction and slip velocity of two flexible bodies in contact
+    (:func:`build_contact`)."""
     ma, mb = system.bodies[a], system.bodies[b]
     k = 0.5 * STIFFNESS_FACTOR * min(ma.material.youngs_modulus, mb.material.youngs_modulus)  # type: ignore[union-attr]
-    return [k, ONSET_FACTOR * min(ma.section.radius, mb.section.radius)]  # type: ignore[union-attr]
+    onset = ONSET_FACTOR * min(ma.section.radius, mb.section.radius)  # type: ignore[union-attr]
+    return [k, onset, friction, SLIP_VELOCITY]
 
 
 @dataclass(frozen=True)

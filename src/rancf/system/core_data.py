@@ -84,12 +84,15 @@ def attach_contact(
     contacts: Sequence[tuple[str, str]] | None,
     n_c: int,
     body_contacts: Sequence[tuple[str, str]] = (),
+    body_friction: float = 0.0,
 ) -> tuple[_core.Contact | None, list[str], list[tuple[str, str]]]:
     """The contact data of ``system`` (:func:`rancf.system.contact.build_contact`: the core's
     :class:`rancf.kernels._core.Contact`, obstacle names, pairs) attached to its core; ``(None,
     [], [])`` without obstacles."""
     if not obstacles and not contacts and not body_contacts:
         return None, [], []
-    contact, names, pairs = build_contact(system, obstacles, contacts, n_c, body_contacts)
+    contact, names, pairs = build_contact(
+        system, obstacles, contacts, n_c, body_contacts, body_friction
+    )
     system.core.attach_contact(contact)
     return contact, names, pairs

@@ -72,7 +72,9 @@ class System:
     contact_points : int
         Gauss points per element at which contact is evaluated.
     body_contacts : sequence of (flexible body, flexible body) names
-        Contact between flexible bodies; a body twice: self-contact (frictionless).
+        Contact between flexible bodies; a body twice: self-contact.
+    body_friction : float
+        Coulomb coefficient of the contact between flexible bodies.
     observe : sequence of places
         Places on bodies whose position and frame outputs read (:meth:`place_state`).
     horizon : float, optional
@@ -95,6 +97,7 @@ class System:
         contacts: Sequence[tuple[str, str]] | None = None,
         contact_points: int = CONTACT_POINTS,
         body_contacts: Sequence[tuple[str, str]] = (),
+        body_friction: float = 0.0,
     ) -> None:
         if not bodies:
             raise InputError("bodies", {}, "at least one body")
@@ -159,7 +162,7 @@ class System:
         self.obstacles = tuple(obstacles)  # contact (issue 20): attached to the core
         self.body_contacts, self.contact_points = [(a, b) for a, b in body_contacts], contact_points
         self.contact, self.obstacle_names, self.contact_pairs = attach_contact(
-            self, self.obstacles, contacts, contact_points, body_contacts
+            self, self.obstacles, contacts, contact_points, body_contacts, body_friction
         )
         self._check_reference()
 
