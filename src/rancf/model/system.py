@@ -27,6 +27,7 @@ from rancf.kernels.beam import BeamKernel
 from rancf.kernels.cable import CableKernel, CableProperties
 from rancf.kernels.rod import ROD_DOFS, RodKernel
 from rancf.model.closure import arc_fractions
+from rancf.model.continuity import Continuity, Reduction, reduced_band, reduction, rotated
 from rancf.model.mesh import CableMesh, to_ancf
 from rancf.model.motion import RigidMotion, check_supports_at_rest, rigid_velocity
 from rancf.model.parts import Material, PointLoad, Section, Support
@@ -63,6 +64,11 @@ class Model:
     initial_motion : RigidMotion, optional
         A rigid-body initial velocity field given exactly to every coordinate
         (:mod:`rancf.model.motion`); not together with ``initial_velocities``.
+    continuity : {"C1", "C2"}
+        ``"C1"``: the nodal coordinates are the model coordinates (shared nodes).  ``"C2"``:
+        the control points of the mesh's cubic (rational) B-spline are
+        (:mod:`rancf.model.continuity`; cables and rods): ``q = T y``, ``y`` padded with held
+        zeros to the size of ``q``; supported nodes keep their own coordinates.
 
     Notes
     -----
@@ -83,6 +89,7 @@ class Model:
         initial_velocities: dict[int, ArrayLike] | None = None,
         n_qp: int | None = None,
         initial_motion: RigidMotion | None = None,
+        continuity: Continuity = "C1",
     ) -> None:
         self.element = element
         self.section = section
@@ -93,7 +100,12 @@ class Model:
         #: the rows of :func:`rancf.model.closure.closure_rows` in a system.
         self.closed = bool(mesh.closed)
         #: C² reduced coordinates (:class:`rancf.model.continuity.Reduction`), or None (C¹).
-        self.reduction = None
+        self.reduction: Reduction | None = None
+        if continuity not in ("C1", "C2"):
+            raise InputError("mesh.continuity", continuity, 'one of "C1", "C2"')
+        if continuity == "C2" and element not in ("rancf", "ancf", "rod"):
+            raise InputError("mesh.continuity", "C2", 'cable and rod elements (mesh.element = '
+                             f'"rancf", "ancf" or "rod"), not "{element}"')  # fmt: skip
         self.n_el = mesh.n_elements
         rho, e_mod = material.density, material.youngs_modulus
         props = CableProperties(e_mod * section.area, e_mod * section.inertia, rho * section.area)
@@ -148,11 +160,21 @@ class Model:
 
         # supports -> held entries of y, rotated blocks, installed values
         tangents = mesh.nodes[:, 1]
-        layout = support_layout(supports, element, self.dim, self.dpn, q0, tangents,
-                                self.check_node)  # fmt: skip
+        base_q, node_base = q0, None
+        if continuity == "C2":
+            held = {self.check_node(sup.node, "supports.at") for sup in supports}
+            self.reduction, base_q = reduction(self.mesh, self.dpn, element == "rod", held, q0)
+            node_base = self._node_base
+        layout = support_layout(supports, element, self.dim, self.dpn, base_q, tangents,
+                                self.check_node, node_base)  # fmt: skip
         self.fixed = layout.fixed
         self._rot = list(layout.rotations)
         self.supports = tuple(supports)
+        if self.reduction is not None:  # the rotations go into the maps; the padding is held
+            self.reduction = rotated(self.reduction, self._rot, self.dim)
+            self._rot = []
+            self.fixed[self.reduction.n_real :] = True
+            self.ku = self.reduction.ku
         # element-level transformations for elements touching a rotated node
         aff = sorted(
             {
@@ -177,7 +199,11 @@ class Model:
         for i, val in layout.installed.items():
             self.y_installed[i] = val
         self.mass_el = self._to_y_elements(self.kernel.mass_matrices())
-        self.mass_band = self.assemble_band(self.mass_el)
+        self.mass_band = (
+            self.assemble_band(self.mass_el)
+            if self.reduction is None
+            else reduced_band(self.reduction, self.mass_el)
+        )
         self.gravity = None if gravity is None else np.asarray(gravity, dtype=float)
         if self.gravity is not None and self.gravity.size != self.dim:
             raise InputError("loads.gravity", self.gravity.tolist(), f"{self.dim} components")
@@ -213,7 +239,7 @@ class Model:
                     "initial_motion", "with initial_velocity", "one of the two, not both"
                 )
             v0 = rigid_velocity(self, initial_motion)
-        self.v0 = self.to_y(v0)
+        self.v0 = self.y_from_q(v0)
         if initial_motion is not None:
             check_supports_at_rest(self, self.v0)
         self.v0[self.fixed] = 0.0
@@ -256,21 +282,49 @@ class Model:
         i %= n
         return 0 if self.closed and i == n - 1 else i
 
+    def _node_base(self, node: int) -> int:
+        """First index in ``y`` of a node's own coordinates (C² models: its C¹ block)."""
+        if self.reduction is None:
+            return node * self.dpn
+        return int(self.reduction.node_base[node])
+
     def q_from_y(self, y: ArrayLike) -> NDArray[np.float64]:
         """Full nodal coordinates from model coordinates (``q = T y``; works on ``(..., n)``)."""
+        if self.reduction is not None:
+            return self.reduction.q_from_y(np.asarray(y, dtype=float))
         q = np.array(y, dtype=float)
         for off, basis in self._rot:
             q[..., off : off + self.dim] = q[..., off : off + self.dim] @ basis.T
         return q
 
     def y_from_q(self, q: ArrayLike) -> NDArray[np.float64]:
-        """Inverse of :meth:`q_from_y` (``y = Tᵀ q``)."""
+        """Inverse of :meth:`q_from_y` (``y = Tᵀ q``; C²: least squares, exact for ``q`` in the
+        C² space)."""
+        if self.reduction is not None:
+            return self.reduction.y_from_q(np.asarray(q, dtype=float))
         y = np.array(q, dtype=float)
         for off, basis in self._rot:
             y[..., off : off + self.dim] = y[..., off : off + self.dim] @ basis
         return y
 
-    to_y = y_from_q  # forces transform like coordinates (T orthogonal)
+    def to_y(self, f: ArrayLike) -> NDArray[np.float64]:
+        """Generalized forces (or constraint rows) from full to model coordinates: ``Tᵀ f``."""
+        if self.reduction is not None:
+            return self.reduction.forces_to_y(np.asarray(f, dtype=float))
+        return self.y_from_q(f)  # T orthogonal
+
+    def forces_at_nodes(self, f: ArrayLike) -> NDArray[np.float64]:
+        """A generalized force on the model coordinates as forces on the nodal coordinates of
+        the nodes that own theirs (every node; C²: the supported ones), ``(n_nodes dpn,)``."""
+        f = np.asarray(f, dtype=float)
+        if self.reduction is None:
+            return self.q_from_y(f)
+        out = np.zeros(self.n_nodes * self.dpn)
+        for k, b in enumerate(self.reduction.node_base):
+            if b >= 0:
+                blk = self.reduction.t[k * self.dpn : (k + 1) * self.dpn, b : b + self.dpn]
+                out[k * self.dpn : (k + 1) * self.dpn] = blk.toarray() @ f[b : b + self.dpn]
+        return out
 
     def node_positions(self, q: ArrayLike) -> NDArray[np.float64]:
         """Node positions ``(..., n_nodes, dim)`` from full coordinates."""
@@ -324,6 +378,8 @@ class Model:
 
     def mass_times(self, v: NDArray) -> NDArray[np.float64]:
         """``M v`` (element by element)."""
+        if self.reduction is not None:
+            return self.dense(self.mass_band) @ v
         return self.assemble_vector(np.einsum("eij,ej->ei", self.mass_el, self.gather(v)))
 
     def kinetic_energy(self, v: ArrayLike, y: ArrayLike | None = None) -> float:
@@ -384,8 +440,10 @@ class Model:
     @property
     def total_mass(self) -> float:
         """Mass of the model: ``Σ_ij M_ij`` over the x components."""
-        ones = np.zeros(self.n)
+        ones = np.zeros(self.n_nodes * self.dpn)
         ones.reshape(self.n_nodes, self.dpn)[:, 0] = 1.0
+        if self.reduction is not None:  # the constant function is in the C² space
+            ones = self.y_from_q(ones)
         return float(ones @ self.mass_times(ones))
 
     def dense(self, ab: NDArray) -> NDArray[np.float64]:
