@@ -34,8 +34,9 @@ per C¹ node plus ``m - 1`` per segment: ``n + 3`` for an open chain.
 ``[r, r_x]``, and ``φ`` for rods; an inner function's block is ``d`` coordinates, followed for
 rods by the twist of the node it is centred on), then zeros held fixed up to the size of the
 full coordinates, so that a model keeps one size for ``y`` and ``q``.  Element ``e``'s
-coordinates ``E_e y[s_e : s_e + w]`` depend on a window of ``w`` (at most 15) consecutive
-coordinates, so assembled matrices are banded with half bandwidth ``w - 1``.
+coordinates ``E_e y[s_e : s_e + w]`` depend on a window of ``w`` consecutive coordinates
+(at most 22: four functions of a rod, two of them a C¹ node's block), so assembled matrices
+are banded with half bandwidth ``w - 1``.
 """
 
 from __future__ import annotations
@@ -159,11 +160,17 @@ def _conditions(mesh: CableMesh) -> tuple[NDArray, NDArray]:
 
 
 def _solve(
-    lo: int, hi: int, given: dict[int, tuple[float, float]], cond: list[tuple[int, NDArray]]
+    lo: int,
+    hi: int,
+    given: dict[int, tuple[float, float]],
+    cond: list[tuple[int, NDArray]],
+    slope: NDArray,
 ) -> NDArray:
     """Nodal ``(u, u')`` of nodes ``lo … hi`` ``(hi - lo + 1, 2)``: nodes in ``given`` take their
-    values, the others are unknowns in the null space (or the solution) of ``cond`` (each a
-    first node and coefficients over ``(u, u')`` of consecutive nodes)."""
+    values, the others are unknowns in the null space (or, when a given value is not zero, the
+    solution) of ``cond`` (each a first node and coefficients over ``(u, u')`` of consecutive
+    nodes).  Unknowns ``(u, slope_k u')`` and rows of unit length keep the small systems well
+    conditioned."""
     nn = hi - lo + 1
     free = [k for k in range(lo, hi + 1) if k not in given]
     col = {k: i for i, k in enumerate(free)}
@@ -173,20 +180,24 @@ def _solve(
         for j in range(c.size // 2):
             k = first + j
             if k in col:
-                a[r, 2 * col[k] : 2 * col[k] + 2] += c[2 * j : 2 * j + 2]
+                a[r, 2 * col[k]] += c[2 * j]
+                a[r, 2 * col[k] + 1] += c[2 * j + 1] / slope[k]
             elif k in given:
                 b[r] -= c[2 * j] * given[k][0] + c[2 * j + 1] * given[k][1]
+    norm = np.linalg.norm(a, axis=1)
+    norm[norm == 0.0] = 1.0
+    a, b = a / norm[:, None], b / norm
     out = np.zeros((nn, 2))
     for k, v in given.items():
         out[k - lo] = v
     if not free:
         return out
-    if np.any(b):  # a Hermite function: unique solution
+    if any(v != (0.0, 0.0) for v in given.values()):  # a Hermite function: unique solution
         x = np.linalg.lstsq(a, b, rcond=None)[0]
     else:
         x = np.linalg.svd(a)[2][-1] if a.shape[0] else np.ones(a.shape[1])
     for k, i in col.items():
-        out[k - lo] = x[2 * i : 2 * i + 2]
+        out[k - lo] = x[2 * i], x[2 * i + 1] / slope[k]
     return out
 
 
@@ -202,6 +213,8 @@ def _scalar_basis(
     sdd1 = _ends(mesh)[1]
     sdd0 = _ends(mesh)[0]
     c2 = {k: rows[k - 1] for k in range(1, n_el) if k not in c1_nodes}
+    l_el = np.asarray(mesh.scales, dtype=float)
+    slope = np.concatenate([l_el[:1], 0.5 * (l_el[:-1] + l_el[1:]), l_el[-1:]])
     ends = sorted(c1_nodes)
 
     def cond_at(k: int) -> list[tuple[int, NDArray]]:
@@ -224,13 +237,13 @@ def _scalar_basis(
                 cond = [c for k in range(lo + 1, a) for c in cond_at(k)]
                 if a - lo == 2:
                     cond.append(zero_second_from_right(lo))
-                parts.append((lo, _solve(lo, a, {a: val, lo: (0.0, 0.0)}, cond)))
+                parts.append((lo, _solve(lo, a, {a: val, lo: (0.0, 0.0)}, cond, slope)))
             if si + 1 < len(ends):  # the segment on the right, [a, b]
                 hi = min(ends[si + 1], a + 2)
                 cond = [c for k in range(a + 1, hi) for c in cond_at(k)]
                 if hi - a == 2:
                     cond.append(zero_second_from_left(hi))
-                parts.append((a, _solve(a, hi, {a: val, hi: (0.0, 0.0)}, cond)))
+                parts.append((a, _solve(a, hi, {a: val, hi: (0.0, 0.0)}, cond, slope)))
             u = np.zeros((hi - lo + 1, 2))
             for start, part in parts:
                 u[start - lo : start - lo + part.shape[0]] = part
@@ -247,7 +260,7 @@ def _scalar_basis(
                 cond.append(zero_second_from_right(lo))
             if hi < b or j == m - 1:
                 cond.append(zero_second_from_left(hi))
-            u = _solve(lo, hi, {lo: (0.0, 0.0), hi: (0.0, 0.0)}, cond)
+            u = _solve(lo, hi, {lo: (0.0, 0.0), hi: (0.0, 0.0)}, cond, slope)
             funcs.append(("inner", a + j - 1, lo, u))
     return funcs, ends
 
@@ -366,12 +379,18 @@ def _windows_of(t: sp.csr_matrix, n_el: int, nn: int, dpn: int, n_real: int, twi
     el_map = np.zeros((n_el, nde, width))
     for e, blk in enumerate(dense_rows):
         el_map[e] = blk[:, starts[e] : starts[e] + width].toarray()
-    node_start = np.concatenate([starts, starts[-1:]])
-    node_map = np.zeros((nn, dpn, width))
+    node_start = np.zeros(nn, dtype=np.int64)
+    node_width = 1
+    for k in range(nn):
+        nz = t[k * dpn : (k + 1) * dpn].indices
+        node_start[k] = nz.min()
+        node_width = max(node_width, int(nz.max() - nz.min() + 1))
+    node_start = np.minimum(node_start, n_y - node_width)
+    node_map = np.zeros((nn, dpn, node_width))
     for k in range(nn):
         s = node_start[k]
-        node_map[k] = t[k * dpn : (k + 1) * dpn, s : s + width].toarray()
-    return Reduction(n_y, n_real, width - 1, width, starts, el_map, width, node_start,
+        node_map[k] = t[k * dpn : (k + 1) * dpn, s : s + node_width].toarray()
+    return Reduction(n_y, n_real, width - 1, width, starts, el_map, node_width, node_start,
                      node_map, twist, node_base, t)  # fmt: skip
 
 
