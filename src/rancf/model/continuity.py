@@ -354,6 +354,8 @@ def reduction(
     red = _windows_of(t, n_el, nn, dpn, n_real, twist if rod else np.zeros(0, np.int64),
                       node_base)  # fmt: skip
     y0 = red.y_from_q(q0)
+    for k in np.flatnonzero(node_base >= 0):  # a C¹ node's block is its own coordinates
+        y0[node_base[k] : node_base[k] + dpn] = q0[k * dpn : (k + 1) * dpn]
     err = np.abs(red.q_from_y(y0) - q0).max()
     if not err <= 1e-10 * max(np.abs(q0).max(), 1.0):
         raise InputError("mesh.continuity", "C2", f"a reference in the C² space (it misses by "

@@ -172,6 +172,8 @@ class Model:
         self.supports = tuple(supports)
         if self.reduction is not None:  # the rotations go into the maps; the padding is held
             self.reduction = rotated(self.reduction, self._rot, self.dim)
+            for off, basis in self._rot:  # y0 exactly: z = basis y on a rotated block
+                base_q[off : off + self.dim] = basis.T @ base_q[off : off + self.dim]
             self._rot = []
             self.fixed[self.reduction.n_real :] = True
             self.ku = self.reduction.ku
@@ -193,7 +195,7 @@ class Model:
         self._te = te
 
         self.q0 = q0
-        self.y0 = self.y_from_q(q0)
+        self.y0 = self.y_from_q(q0) if self.reduction is None else base_q
         #: ``y0`` with the held entries at the installed supports' values
         self.y_installed = self.y0.copy()
         for i, val in layout.installed.items():
