@@ -104,8 +104,10 @@ class Model:
         if continuity not in ("C1", "C2"):
             raise InputError("mesh.continuity", continuity, 'one of "C1", "C2"')
         if continuity == "C2" and element not in ("rancf", "ancf", "rod"):
-            raise InputError("mesh.continuity", "C2", 'cable and rod elements (mesh.element = '
-                             f'"rancf", "ancf" or "rod"), not "{element}"')  # fmt: skip
+            raise InputError(
+                "mesh.continuity", "C2", f'"C1" with {element} elements (C2 needs cable or rod '
+                'elements: mesh.element = "rancf", "ancf" or "rod")',
+            )  # fmt: skip
         self.n_el = mesh.n_elements
         rho, e_mod = material.density, material.youngs_modulus
         props = CableProperties(e_mod * section.area, e_mod * section.inertia, rho * section.area)

@@ -49,6 +49,7 @@ EXAMPLES = {
 SCENARIO_ANALYSES: dict[str, tuple[str, ...]] = {
     "cantilever": ("static", "modes"),
     "installed-hose": ("static", "simulate"),
+    "ring": ("modes", "simulate"),
     "robot-cable": ("simulate",),
     "slider-crank": ("simulate",),
     "spin-up-beam": ("simulate",),
