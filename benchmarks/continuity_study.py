@@ -18,8 +18,9 @@ from rancf.post.results import strict_json
 from rancf.studies.continuity import continuity_study
 
 
-def _e(x: float) -> str:
-    return "—" if math.isnan(x) else f"{x:.1e}"
+def _e(x: float | None) -> str:
+    """A magnitude to 2 digits; a dash for a mode the mesh does not have (null in the JSON)."""
+    return "—" if x is None or math.isnan(x) else f"{abs(x):.1e}"
 
 
 def tables(doc: dict) -> str:
@@ -29,7 +30,7 @@ def tables(doc: dict) -> str:
         "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |",
     ]
     for r in doc["cantilever"]:
-        errs = " | ".join(_e(abs(x)) for x in r["errors"])
+        errs = " | ".join(_e(x) for x in r["errors"])
         out.append(f"| {r['continuity']} | {r['elements']} | {r['unknowns']} | {errs} | "
                    f"{r['highest_hz']:.0f} |")  # fmt: skip
     out += [

@@ -26,6 +26,7 @@ from rancf.solvers.dynamic import DynamicOptions, integrate
 from rancf.solvers.equilibrium import EquilibriumProblem
 from rancf.solvers.modal import natural_modes
 from rancf.solvers.static import solve_static
+from rancf.system import System
 
 #: Euler-Bernoulli first frequency of the cantilever (L = 0.5 m, radius 0.03 m, ρ = 6000,
 #: E = 2e7): (1.8751² / 2π) sqrt(EI / ρA L⁴); the shipped cantilever (8 C¹ elements) gives
@@ -225,4 +226,12 @@ def test_closed_c2_ring(element):
         res = natural_modes(m, count=4)
         assert res.n_rigid == (6 if dim == 3 else 3)
         freqs[c] = res.frequencies_hz
+        s = System({"ring": m})
+        seam = m.dpn + (dim if c == "C2" else 0)  # C²: the (C2) condition across the seam too
+        assert s.m == seam
+        g = np.zeros(s.m)
+        s.core.constraints(s.y0, 0.0, g)
+        assert np.abs(g).max() < 1e-12  # the reference satisfies every seam row
+        if c == "C2":  # 32 control points per coordinate (and 32 twists): a periodic spline
+            assert int(np.sum(~m.fixed)) - s.m == (dim + (element == "rod")) * 32
     assert np.all(freqs["C2"] > freqs["C1"]) and np.all(freqs["C2"] < 1.02 * freqs["C1"])
