@@ -48,6 +48,11 @@ step = 1.0e-3
 
 [modes]
 count = 2
+
+[[sensors]]
+name = "tip"
+kind = "position"
+at = "end"
 """
 
 
@@ -79,6 +84,8 @@ def test_export_nurbs_of_a_run_is_its_curve(tmp_path, continuity, n_ctrl):
     assert np.abs(nodes[-1] - [1.0, 0.05]).max() > 1e-3  # it moved
     knots = np.unique(cad.curve.knots)
     assert np.abs(cad.curve(knots)[:, :2] - nodes).max() < 1e-12
+    rows = np.loadtxt(tmp_path / "run" / "sensors.csv", delimiter=",", skiprows=1)
+    assert np.abs(rows[-1, 1:3] - nodes[-1]).max() < 1e-9  # the sensor reads the same tip
 
 
 def test_c1_and_c2_runs_approach_each_other(tmp_path):
