@@ -28,6 +28,7 @@ from rancf.kernels.cable import CableKernel, CableProperties
 from rancf.kernels.rod import ROD_DOFS, RodKernel
 from rancf.model.closure import arc_fractions
 from rancf.model.continuity import Continuity, Reduction, reduced_band, reduction, rotated
+from rancf.model.coordinates import Coordinates
 from rancf.model.mesh import CableMesh, to_ancf
 from rancf.model.motion import RigidMotion, check_supports_at_rest, rigid_velocity
 from rancf.model.parts import Material, PointLoad, Section, Support
@@ -39,7 +40,7 @@ __all__ = ["Section", "Material", "Support", "PointLoad", "Model", "ElementKind"
 ElementKind = Literal["rancf", "ancf", "beam", "rod"]
 
 
-class Model:
+class Model(Coordinates):
     """An assembled model: constant matrices precomputed, forces and tangents on demand.
 
     Parameters
@@ -271,70 +272,6 @@ class Model:
         """Distinct nodes: all, or (a ring) all but the stored repeat of node 0."""
         return self.n_nodes - int(self.closed)
 
-    def check_node(self, node: int, key: str) -> int:
-        """Resolve a node index (negative counts from the end) or raise naming ``key``.
-
-        A ring's last stored node is its first: that index (``-1``, the end) resolves to 0.
-        """
-        n = self.n_nodes
-        try:
-            i = int(node)
-        except (TypeError, ValueError):
-            raise InputError(key, node, f"a node index in [-{n}, {n - 1}]") from None
-        if not -n <= i < n or i != node:
-            raise InputError(key, node, f"a node index in [-{n}, {n - 1}]")
-        i %= n
-        return 0 if self.closed and i == n - 1 else i
-
-    def _node_base(self, node: int) -> int:
-        """First index in ``y`` of a node's own coordinates (C² models: its C¹ block)."""
-        if self.reduction is None:
-            return node * self.dpn
-        return int(self.reduction.node_base[node])
-
-    def q_from_y(self, y: ArrayLike) -> NDArray[np.float64]:
-        """Full nodal coordinates from model coordinates (``q = T y``; works on ``(..., n)``)."""
-        if self.reduction is not None:
-            return self.reduction.q_from_y(np.asarray(y, dtype=float))
-        q = np.array(y, dtype=float)
-        for off, basis in self._rot:
-            q[..., off : off + self.dim] = q[..., off : off + self.dim] @ basis.T
-        return q
-
-    def y_from_q(self, q: ArrayLike) -> NDArray[np.float64]:
-        """Inverse of :meth:`q_from_y` (``y = Tᵀ q``; C²: least squares, exact for ``q`` in the
-        C² space)."""
-        if self.reduction is not None:
-            return self.reduction.y_from_q(np.asarray(q, dtype=float))
-        y = np.array(q, dtype=float)
-        for off, basis in self._rot:
-            y[..., off : off + self.dim] = y[..., off : off + self.dim] @ basis
-        return y
-
-    def to_y(self, f: ArrayLike) -> NDArray[np.float64]:
-        """Generalized forces (or constraint rows) from full to model coordinates: ``Tᵀ f``."""
-        if self.reduction is not None:
-            return self.reduction.forces_to_y(np.asarray(f, dtype=float))
-        return self.y_from_q(f)  # T orthogonal
-
-    def forces_at_nodes(self, f: ArrayLike) -> NDArray[np.float64]:
-        """A generalized force on the model coordinates as forces on the nodal coordinates of
-        the nodes that own theirs (every node; C²: the supported ones), ``(n_nodes dpn,)``."""
-        f = np.asarray(f, dtype=float)
-        if self.reduction is None:
-            return self.q_from_y(f)
-        out = np.zeros(self.n_nodes * self.dpn)
-        for k, b in enumerate(self.reduction.node_base):
-            if b >= 0:
-                blk = self.reduction.t[k * self.dpn : (k + 1) * self.dpn, b : b + self.dpn]
-                out[k * self.dpn : (k + 1) * self.dpn] = blk.toarray() @ f[b : b + self.dpn]
-        return out
-
-    def node_positions(self, q: ArrayLike) -> NDArray[np.float64]:
-        """Node positions ``(..., n_nodes, dim)`` from full coordinates."""
-        q = np.asarray(q, dtype=float)
-        return q.reshape(q.shape[:-1] + (self.n_nodes, self.dpn))[..., : self.dim]
-
     def gather(self, q: NDArray) -> NDArray[np.float64]:
         """Element coordinates ``(n_el, nde)`` from a global vector."""
         return q[self._el_idx]
@@ -449,12 +386,3 @@ class Model:
         if self.reduction is not None:  # the constant function is in the C² space
             ones = self.y_from_q(ones)
         return float(ones @ self.mass_times(ones))
-
-    def dense(self, ab: NDArray) -> NDArray[np.float64]:
-        """A band-stored matrix as a dense ``(n, n)`` array."""
-        out = np.zeros((self.n, self.n))
-        for k in range(2 * self.ku + 1):
-            off = self.ku - k  # column - row
-            i = np.arange(max(0, -off), min(self.n, self.n - off))
-            out[i, i + off] = ab[k, i + off]
-        return out

@@ -1,0 +1,113 @@
+"""The coordinates of a model: nodes, and the map between model and nodal coordinates.
+
+A model's coordinates ``y`` map to the full nodal coordinates ``q`` (``dpn`` per node, node by
+node) linearly, ``q = T y``: for C¹ models ``T`` is block diagonal and orthogonal (the rotated
+blocks of clamps and rollers, :mod:`rancf.model.supports`), for C² models the spline map of
+:mod:`rancf.model.continuity` (with the supports' rotations folded in).  :class:`Coordinates`
+is the part of :class:`~rancf.model.system.Model` that applies ``T``, its transpose (forces)
+and its inverse (least squares for C²), and resolves node indices.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from rancf.errors import InputError
+
+if TYPE_CHECKING:
+    from rancf.model.continuity import Reduction
+
+__all__ = ["Coordinates"]
+
+
+class Coordinates:
+    """Node indices and the map ``q = T y`` of a model (module docstring).
+
+    The model sets ``n``, ``n_nodes``, ``dim``, ``dpn``, ``ku``, ``closed``, ``reduction`` and
+    the rotated blocks ``_rot``.
+    """
+
+    n: int
+    n_nodes: int
+    dim: int
+    dpn: int
+    ku: int
+    closed: bool
+    reduction: Reduction | None
+    _rot: list[tuple[int, NDArray[np.float64]]]
+
+    def check_node(self, node: int, key: str) -> int:
+        """Resolve a node index (negative counts from the end) or raise naming ``key``.
+
+        A ring's last stored node is its first: that index (``-1``, the end) resolves to 0.
+        """
+        n = self.n_nodes
+        try:
+            i = int(node)
+        except (TypeError, ValueError):
+            raise InputError(key, node, f"a node index in [-{n}, {n - 1}]") from None
+        if not -n <= i < n or i != node:
+            raise InputError(key, node, f"a node index in [-{n}, {n - 1}]")
+        i %= n
+        return 0 if self.closed and i == n - 1 else i
+
+    def _node_base(self, node: int) -> int:
+        """First index in ``y`` of a node's own coordinates (C² models: its C¹ block)."""
+        if self.reduction is None:
+            return node * self.dpn
+        return int(self.reduction.node_base[node])
+
+    def q_from_y(self, y: ArrayLike) -> NDArray[np.float64]:
+        """Full nodal coordinates from model coordinates (``q = T y``; works on ``(..., n)``)."""
+        if self.reduction is not None:
+            return self.reduction.q_from_y(np.asarray(y, dtype=float))
+        q = np.array(y, dtype=float)
+        for off, basis in self._rot:
+            q[..., off : off + self.dim] = q[..., off : off + self.dim] @ basis.T
+        return q
+
+    def y_from_q(self, q: ArrayLike) -> NDArray[np.float64]:
+        """Inverse of :meth:`q_from_y` (``y = Tᵀ q``; C²: least squares, exact for ``q`` in the
+        C² space)."""
+        if self.reduction is not None:
+            return self.reduction.y_from_q(np.asarray(q, dtype=float))
+        y = np.array(q, dtype=float)
+        for off, basis in self._rot:
+            y[..., off : off + self.dim] = y[..., off : off + self.dim] @ basis
+        return y
+
+    def to_y(self, f: ArrayLike) -> NDArray[np.float64]:
+        """Generalized forces (or constraint rows) from full to model coordinates: ``Tᵀ f``."""
+        if self.reduction is not None:
+            return self.reduction.forces_to_y(np.asarray(f, dtype=float))
+        return self.y_from_q(f)  # T orthogonal
+
+    def forces_at_nodes(self, f: ArrayLike) -> NDArray[np.float64]:
+        """A generalized force on the model coordinates as forces on the nodal coordinates of
+        the nodes that own theirs (every node; C²: the supported ones), ``(n_nodes dpn,)``."""
+        f = np.asarray(f, dtype=float)
+        if self.reduction is None:
+            return self.q_from_y(f)
+        out = np.zeros(self.n_nodes * self.dpn)
+        for k, b in enumerate(self.reduction.node_base):
+            if b >= 0:
+                blk = self.reduction.t[k * self.dpn : (k + 1) * self.dpn, b : b + self.dpn]
+                out[k * self.dpn : (k + 1) * self.dpn] = blk.toarray() @ f[b : b + self.dpn]
+        return out
+
+    def node_positions(self, q: ArrayLike) -> NDArray[np.float64]:
+        """Node positions ``(..., n_nodes, dim)`` from full coordinates."""
+        q = np.asarray(q, dtype=float)
+        return q.reshape(q.shape[:-1] + (self.n_nodes, self.dpn))[..., : self.dim]
+
+    def dense(self, ab: NDArray) -> NDArray[np.float64]:
+        """A band-stored matrix as a dense ``(n, n)`` array."""
+        out = np.zeros((self.n, self.n))
+        for k in range(2 * self.ku + 1):
+            off = self.ku - k  # column - row
+            i = np.arange(max(0, -off), min(self.n, self.n - off))
+            out[i, i + off] = ab[k, i + off]
+        return out
