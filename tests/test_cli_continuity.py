@@ -118,7 +118,7 @@ def test_modes_count_fewer_free_coordinates(tmp_path):
 
 @pytest.mark.parametrize(("value", "element", "says"), [
     ('"C3"', "rancf", "mesh.continuity"),
-    ('"C2"', "beam", "cable and rod elements"),
+    ('"C2"', "beam", "C2 needs cable or rod elements"),
 ])  # fmt: skip
 def test_bad_continuity_is_one_line(tmp_path, value, element, says):
     text = SPLINE.format(per_span=1, element=element, continuity="X").replace('"X"', value)
