@@ -111,3 +111,25 @@ class Coordinates:
             i = np.arange(max(0, -off), min(self.n, self.n - off))
             out[i, i + off] = ab[k, i + off]
         return out
+
+    def position_mask(self) -> NDArray[np.bool_]:
+        """Model coordinates that are positions (lengths): ``r`` of every node (C¹), or the
+        control points and the C¹ nodes' ``r`` (C²); for the scaling of Newton's norms."""
+        if self.reduction is None:
+            mask = np.zeros((self.n_nodes, self.dpn), dtype=bool)
+            mask[:, : self.dim] = True
+            return mask.ravel()
+        t = self.reduction.t.tocsc()
+        mask = np.zeros(self.n, dtype=bool)
+        for j in range(self.reduction.n_real):
+            rows = t.indices[t.indptr[j] : t.indptr[j + 1]]
+            vals = np.abs(t.data[t.indptr[j] : t.indptr[j + 1]])
+            mask[j] = rows.size > 0 and rows[np.argmax(vals)] % self.dpn < self.dim
+        return mask
+
+    def twist_indices(self) -> NDArray[np.int64]:
+        """Rods: the index of each node's twist ``φ`` in ``y`` ``(n_nodes,)``."""
+        if self.reduction is None:
+            return np.arange(self.n_nodes) * self.dpn + 6
+        return np.asarray(self.reduction.twist, dtype=np.int64)
+

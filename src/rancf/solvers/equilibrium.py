@@ -58,9 +58,7 @@ class EquilibriumProblem:
         #: it in norms and tolerances).
         self.size = float(np.ptp(model.node_positions(model.q0), axis=0).max()) or 1.0
         scale = np.ones(model.n)
-        pos = np.zeros((model.n_nodes, model.dpn), dtype=bool)
-        pos[:, : model.dim] = True
-        scale[pos.ravel()] = 1.0 / self.size
+        scale[model.position_mask()] = 1.0 / self.size
         self.scale = scale  # per coordinate: 1/size on positions, 1 elsewhere
 
     @property

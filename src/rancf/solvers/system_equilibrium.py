@@ -62,7 +62,7 @@ class SystemEquilibrium:
             b = s.bodies[name]
             pos = np.zeros(sl.stop - sl.start, dtype=bool)
             if isinstance(b, Model):
-                pos.reshape(b.n_nodes, b.dpn)[:, : b.dim] = True
+                pos = b.position_mask()
             else:
                 pos[: s.dim] = True
             scale[sl][pos] = 1.0 / self.size
