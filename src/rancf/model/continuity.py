@@ -158,11 +158,18 @@ def reduction(
         if kind == "value":
             ones[lo : lo + u.shape[0]] -= u
     if inner:
-        a = np.zeros((2 * nn, len(inner)))
+        rows, cols, vals = [], [], []
         for c, i in enumerate(inner):
             _, _, lo, u = funcs[i]
-            a[2 * lo : 2 * lo + u.size, c] = u.ravel()
-        scale = np.linalg.lstsq(a, ones.ravel(), rcond=None)[0]
+            rows.append(np.arange(2 * lo, 2 * lo + u.size))
+            cols.append(np.full(u.size, c))
+            vals.append(u.ravel())
+        a = sp.csc_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+                          shape=(2 * nn, len(inner)))  # fmt: skip
+        lu = spla.splu((a.T @ a).tocsc())  # banded normal equations: linear in the mesh
+        b = ones.ravel()
+        scale = lu.solve(np.asarray(a.T @ b))
+        scale += lu.solve(np.asarray(a.T @ (b - a @ scale)))  # one refinement
         for c, i in enumerate(inner):
             kind, node, lo, u = funcs[i]
             funcs[i] = (kind, node, lo, u * scale[c])

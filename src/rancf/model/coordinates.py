@@ -133,3 +133,13 @@ class Coordinates:
             return np.arange(self.n_nodes) * self.dpn + 6
         return np.asarray(self.reduction.twist, dtype=np.int64)
 
+    def band_times(self, ab: NDArray, v: NDArray) -> NDArray[np.float64]:
+        """``A v`` of a band-stored matrix (``ab[ku + i - j, j] = A[i, j]``), diagonal by
+        diagonal."""
+        out = np.zeros(self.n)
+        for k in range(2 * self.ku + 1):
+            off = self.ku - k  # column - row
+            i = np.arange(max(0, -off), min(self.n, self.n - off))
+            out[i] += ab[k, i + off] * v[i + off]
+        return out
+

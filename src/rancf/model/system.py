@@ -320,7 +320,7 @@ class Model(Coordinates):
     def mass_times(self, v: NDArray) -> NDArray[np.float64]:
         """``M v`` (element by element)."""
         if self.reduction is not None:
-            return self.dense(self.mass_band) @ v
+            return self.band_times(self.mass_band, np.asarray(v, dtype=float))
         return self.assemble_vector(np.einsum("eij,ej->ei", self.mass_el, self.gather(v)))
 
     def kinetic_energy(self, v: ArrayLike, y: ArrayLike | None = None) -> float:
