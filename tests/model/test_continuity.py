@@ -257,3 +257,49 @@ def test_rod_dynamics_with_a_point_moment_converge_to_the_same_values():
     coarse = np.linalg.norm(tips["C1", 4] - tips["C2", 4])
     fine = np.linalg.norm(tips["C1", 16] - tips["C2", 16])
     assert fine < coarse / 100 and fine < 1e-5  # 1.9e-2 m with 4 elements, 6e-6 m with 16
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_closed_c2_curves_have_continuous_curvature_across_the_seam(dim, rng):
+    """Any C² state of a ring that keeps its seam rows (random coordinates projected onto their
+    null space) is a closed curve whose curvature vector is continuous at every node, the seam
+    included (G²: r_R' = α r_L', r_R'' = α² r_L'' + β r_L' leave κ unchanged); a C¹ state is
+    not.  The seam rows' Jacobian is their constant matrix (against central differences)."""
+    ring = Ellipse(np.zeros(dim), 0.5, 0.3, *ellipse_axes(dim))
+    for c in ("C2", "C1"):
+        m = _cable(mesh_ellipse(ring, 9, start_deg=37.0), supports=[Support(0, "clamp")],
+                   continuity=c)  # fmt: skip
+        s = System({"ring": m})
+        assert s.m == m.dpn + (dim if c == "C2" else 0)  # positions, gradients (, curvature)
+        dense = np.empty((s.n + s.m) ** 2)
+        z = np.zeros(s.n)
+        assert s.core.dense_jacobian(s.y0, z, z, np.zeros(s.m), 0.0, 1.0, 0.0, 0.0, out=dense)
+        a = dense.reshape(s.n + s.m, -1)[s.n :, : s.n]
+        free = ~s.fixed
+        for j in rng.choice(np.flatnonzero(free), 6, replace=False):
+            gp, gm, e = np.empty(s.m), np.empty(s.m), np.zeros(s.n)
+            e[j] = 1e-3
+            s.core.constraints(s.y0 + e, 0.0, gp)
+            s.core.constraints(s.y0 - e, 0.0, gm)
+            assert np.abs((gp - gm) / 2e-3 - a[:, j]).max() < 1e-9 * np.abs(a).max()
+        null = np.linalg.svd(a[:, free])[2][np.linalg.matrix_rank(a[:, free]) :].T
+        y = s.y0.copy()
+        y[free] += 0.05 * null @ rng.normal(size=null.shape[1])
+        q = m.q_from_y(y)
+        d1 = m.mesh.evaluate([0.0, 1.0], q, 1)
+        d2 = m.mesh.evaluate([0.0, 1.0], q, 2)
+
+        def kappa(a1, a2):
+            c3 = np.cross(np.r_[a1, 0][:3], np.r_[a2, 0][:3])
+            return c3 / np.linalg.norm(a1) ** 3
+
+        left = [kappa(d1[e, 1], d2[e, 1]) for e in range(m.n_el)]  # end of element e
+        right = [kappa(d1[(e + 1) % m.n_el, 0], d2[(e + 1) % m.n_el, 0]) for e in range(m.n_el)]
+        jumps = np.abs(np.array(left) - np.array(right)).reshape(m.n_el, -1).max(axis=1)
+        jump = jumps.max() / np.abs(left).max()
+        pos = m.node_positions(q)
+        assert np.abs(pos[-1] - pos[0]).max() < 1e-13
+        if c == "C2":
+            assert jump < 1e-9
+        else:
+            assert jump > 1e-3

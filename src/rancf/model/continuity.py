@@ -265,7 +265,7 @@ def seam_curvature_rows(mesh: CableMesh, dpn: int) -> NDArray[np.float64]:
     d, n_el = mesh.dim, mesh.n_elements
     sdd0, sdd1, d1, d2 = element_ends(mesh)
     ratio = mesh.seam_ratio
-    alpha = mesh.scales[0] / mesh.scales[-1] * ratio  # r'_0(0) = l_0 r_x,0 = l_0 r_x,n / ratio
+    alpha = mesh.scales[0] / (mesh.scales[-1] * ratio)  # r_0'(0) = l_0 r_x,0 = l_0 r_x,n / ratio
     t = d1[-1, 1]
     diff = d2[0, 0] - alpha**2 * d2[-1, 1]
     beta = float(diff @ t / (t @ t))
