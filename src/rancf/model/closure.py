@@ -55,7 +55,8 @@ def closure_matrix(model: Model) -> NDArray[np.float64]:
     for an open one.
 
     ``dpn`` rows, one per coordinate of the seam node (module docstring); a C² model
-    (:mod:`rancf.model.continuity`) adds ``dim`` rows: its (C2) condition across the seam.
+    (:mod:`rancf.model.continuity`) adds ``dim`` rows: its (C2) condition across the seam, unless
+    a support holds the seam node (a supported node is a C¹ node).
     """
     if not model.closed:
         return np.zeros((0, model.n))
@@ -64,7 +65,8 @@ def closure_matrix(model: Model) -> NDArray[np.float64]:
     a = np.zeros((dpn, nq))
     a[np.arange(dpn), last + np.arange(dpn)] = 1.0
     a[np.arange(dpn), np.arange(dpn)] = -seam_scales(model)
-    if model.reduction is not None:
+    held = any(model.check_node(sup.node, "supports.at") == 0 for sup in model.supports)
+    if model.reduction is not None and not held:  # a supported node stays C¹, the seam too
         from rancf.model.continuity import seam_curvature_rows
 
         a = np.concatenate([a, seam_curvature_rows(model.mesh, dpn)])
