@@ -264,7 +264,8 @@ def test_closed_c2_curves_have_continuous_curvature_across_the_seam(dim, rng):
     """Any C² state of a ring that keeps its seam rows (random coordinates projected onto their
     null space) is a closed curve whose curvature vector is continuous at every node but the
     supported one, the seam included (G²: r_R' = α r_L', r_R'' = α² r_L'' + β r_L' leave κ
-    unchanged); a C¹ state is not.  The seam rows' Jacobian is their constant matrix (against central differences)."""
+    unchanged); a C¹ state is not.  The seam rows' Jacobian is their constant matrix (against
+    central differences)."""
     ring = Ellipse(np.zeros(dim), 0.5, 0.3, *ellipse_axes(dim))
     for c in ("C2", "C1"):
         m = _cable(mesh_ellipse(ring, 9, start_deg=37.0), supports=[Support(3, "clamp")],
