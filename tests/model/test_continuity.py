@@ -304,3 +304,16 @@ def test_closed_c2_curves_have_continuous_curvature_across_the_seam(dim, rng):
             assert jump < 1e-9
         else:
             assert jump > 1e-3
+
+
+def test_a_curvature_jump_keeps_its_node_c1():
+    """A cubic B-spline with a double knot (C¹ there, its curvature jumps): the node is a C¹ node,
+    one more control point per coordinate (n + 4), and the reference is reproduced."""
+    knots = [0, 0, 0, 0, 1, 2, 2, 3, 4, 4, 4, 4]
+    pts = [[0, 0], [1, 1], [2, 0.5], [3, 1.5], [4, -1], [5, 0], [6, 1], [7, 0]]
+    curve = NurbsCurve(3, knots, pts, np.ones(8))
+    mesh = mesh_nurbs(curve)
+    assert mesh.n_elements == 4
+    mod = _cable(mesh, continuity="C2")
+    assert mod.reduction.n_real == 2 * (4 + 4) and mod.reduction.node_base[2] >= 0
+    assert np.abs(mod.q_from_y(mod.y0) - mesh.q0).max() < 1e-13 * np.abs(mesh.q0).max()
