@@ -317,3 +317,19 @@ def test_a_curvature_jump_keeps_its_node_c1():
     mod = _cable(mesh, continuity="C2")
     assert mod.reduction.n_real == 2 * (4 + 4) and mod.reduction.node_base[2] >= 0
     assert np.abs(mod.q_from_y(mod.y0) - mesh.q0).max() < 1e-13 * np.abs(mesh.q0).max()
+
+
+def test_rigid_motions_are_in_the_c2_space_and_strain_free():
+    """Objectivity: the reference moved rigidly (turned and shifted) is a C² state with zero
+    elastic force; a free C² cable has exactly 3 rigid-body modes."""
+    mesh = mesh_nurbs(_bspline(2, 6, rational=True), 2)
+    mod = _cable(mesh, continuity="C2")
+    c, s = np.cos(0.7), np.sin(0.7)
+    rot = np.array([[c, -s], [s, c]])
+    nodes = mesh.nodes @ rot.T
+    nodes[:, 0] += [0.3, -1.2]
+    y = mod.y_from_q(nodes.ravel())
+    assert np.abs(mod.q_from_y(y) - nodes.ravel()).max() < 1e-13
+    scale = np.abs(mod.internal_force(mod.y0 + 1e-3 * mod.y0)).max()  # a 0.1 % stretch
+    assert np.abs(mod.internal_force(y)).max() < 1e-9 * scale
+    assert natural_modes(mod, count=3).n_rigid == 3
