@@ -127,3 +127,24 @@ def test_bad_continuity_is_one_line(tmp_path, value, element, says):
     assert p.returncode == 2
     assert len(p.stderr.strip().splitlines()) == 1, p.stderr
     assert says in p.stderr and "continuity" in p.stderr
+
+
+def test_c2_where_the_reference_curvature_jumps_says_so(tmp_path):
+    """A Hermite (ANCF) reference of a conic has a curvature jump at every node: C2 cannot hold
+    there, the nodes stay C1, and one warning line says so."""
+    text = (
+        '[geometry]\nkind = "conic"\nstart = [0.0, 0.0]\nend = [0.5, 0.0]\n'
+        "angles_deg = [30.0, 40.0]\npoint = [0.315, 0.077]\n"
+        '[mesh]\nelements = 3\nelement = "ancf"\ncontinuity = "C2"\n'
+        "[section]\nradius = 0.02\n[material]\ndensity = 6000.0\nyoungs_modulus = 2.0e6\n"
+        '[[supports]]\nat = "start"\nkind = "pin"\n[loads]\ngravity = [0.0, -9.81]\n'
+        "[solver]\nt_end = 0.01\nstep = 1.0e-3\n"
+    )
+    (tmp_path / "h.toml").write_text(text)
+    p = _rancf(tmp_path, "simulate", "h.toml", "--out", "run")
+    assert p.returncode == 0, p.stderr
+    (line,) = p.stderr.strip().splitlines()
+    assert line.startswith("rancf: warning: mesh.continuity: C2 holds at 0 of 2 inner nodes")
+    assert "node(s) 1, 2, which stay C1" in line
+    doc = json.loads((tmp_path / "run" / "summary.json").read_text())
+    assert any("C2 holds at 0 of 2" in w for w in doc["warnings"])

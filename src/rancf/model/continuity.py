@@ -41,6 +41,7 @@ are banded with half bandwidth ``w - 1``.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 from typing import Literal
 
@@ -53,7 +54,15 @@ from rancf.errors import InputError
 from rancf.model.mesh import CableMesh
 from rancf.model.spline_basis import G2_RTOL, conditions, element_ends, scalar_basis
 
-__all__ = ["Continuity", "Reduction", "reduction", "rotated", "reduced_band", "seam_curvature_rows"]
+__all__ = [
+    "Continuity",
+    "Reduction",
+    "jump_note",
+    "reduction",
+    "rotated",
+    "reduced_band",
+    "seam_curvature_rows",
+]
 
 Continuity = Literal["C1", "C2"]
 
@@ -93,6 +102,8 @@ class Reduction:
     twist: NDArray[np.int64]
     node_base: NDArray[np.int64]
     t: sp.csr_matrix
+    #: Inner nodes kept C¹ because the reference curvature jumps there.
+    jumps: tuple[int, ...] = ()
 
     def q_from_y(self, y: NDArray) -> NDArray[np.float64]:
         """``T y`` on ``(..., n_y)``."""
@@ -216,6 +227,7 @@ def reduction(
     t = sp.csr_matrix((vv, (rr, cc)), shape=(n_q, n_q))
     red = _windows_of(t, n_el, nn, dpn, n_real, twist if rod else np.zeros(0, np.int64),
                       node_base)  # fmt: skip
+    red = dataclasses.replace(red, jumps=tuple(int(k) + 1 for k in np.flatnonzero(~smooth)))
     y0 = red.y_from_q(q0)
     for k in np.flatnonzero(node_base >= 0):  # a C¹ node's block is its own coordinates
         y0[node_base[k] : node_base[k] + dpn] = q0[k * dpn : (k + 1) * dpn]
@@ -298,7 +310,7 @@ def rotated(red: Reduction, rotations: list[tuple[int, NDArray]], dim: int) -> R
     nn = red.node_base.size
     dpn = red.t.shape[0] // nn
     out = _windows_of(t, red.el_start.size, nn, dpn, red.n_real, red.twist, red.node_base)
-    return out
+    return dataclasses.replace(out, jumps=red.jumps)
 
 
 def reduced_band(red: Reduction, ke: NDArray) -> NDArray[np.float64]:
@@ -312,3 +324,16 @@ def reduced_band(red: Reduction, ke: NDArray) -> NDArray[np.float64]:
             for j in range(w):
                 ab[ku + i - j, s + j] += loc[e, i, j]
     return ab
+
+
+def jump_note(red: Reduction, n_el: int) -> tuple[str, ...]:
+    """A remark for the user when inner nodes stay C¹ (the reference curvature jumps there)."""
+    if not red.jumps:
+        return ()
+    nodes = ", ".join(str(k) for k in red.jumps[:5]) + (", ..." if len(red.jumps) > 5 else "")
+    return (
+        f"mesh.continuity: C2 holds at {n_el - 1 - len(red.jumps)} of {n_el - 1} inner nodes; "
+        f"the reference curvature jumps at node(s) {nodes}, which stay C1 (a Hermite reference "
+        '(element = "ancf") of a curved geometry has such jumps at every node; "rancf" keeps '
+        "conics and NURBS exact)",
+    )

@@ -27,7 +27,14 @@ from rancf.kernels.beam import BeamKernel
 from rancf.kernels.cable import CableKernel, CableProperties
 from rancf.kernels.rod import ROD_DOFS, RodKernel
 from rancf.model.closure import arc_fractions
-from rancf.model.continuity import Continuity, Reduction, reduced_band, reduction, rotated
+from rancf.model.continuity import (
+    Continuity,
+    Reduction,
+    jump_note,
+    reduced_band,
+    reduction,
+    rotated,
+)
 from rancf.model.coordinates import Coordinates
 from rancf.model.mesh import CableMesh, to_ancf
 from rancf.model.motion import RigidMotion, check_supports_at_rest, rigid_velocity
@@ -102,6 +109,8 @@ class Model(Coordinates):
         self.closed = bool(mesh.closed)
         #: C² reduced coordinates (:class:`rancf.model.continuity.Reduction`), or None (C¹).
         self.reduction: Reduction | None = None
+        #: Remarks for the user: the mesh's (:attr:`CableMesh.notes`) and C² nodes kept C¹.
+        self.notes: tuple[str, ...] = tuple(mesh.notes)
         if continuity not in ("C1", "C2"):
             raise InputError("mesh.continuity", continuity, 'one of "C1", "C2"')
         if continuity == "C2" and element not in ("rancf", "ancf", "rod"):
@@ -167,6 +176,7 @@ class Model(Coordinates):
         if continuity == "C2":
             held = {self.check_node(sup.node, "supports.at") for sup in supports}
             self.reduction, base_q = reduction(self.mesh, self.dpn, element == "rod", held, q0)
+            self.notes += jump_note(self.reduction, self.n_el)
             node_base = self._node_base
         layout = support_layout(supports, element, self.dim, self.dpn, base_q, tangents,
                                 self.check_node, node_base)  # fmt: skip
