@@ -333,3 +333,13 @@ def test_rigid_motions_are_in_the_c2_space_and_strain_free():
     scale = np.abs(mod.internal_force(mod.y0 + 1e-3 * mod.y0)).max()  # a 0.1 % stretch
     assert np.abs(mod.internal_force(y)).max() < 1e-9 * scale
     assert natural_modes(mod, count=3).n_rigid == 3
+
+
+def test_initial_velocity_of_a_node_is_exact():
+    """A node given an initial velocity keeps its own coordinates (a C¹ node): its velocity is
+    the given one exactly (the C² space has no field moving one node alone)."""
+    mod = _cable(mesh_line([0, 0], [1, 0], 10), supports=[Support(0, "clamp")],
+                 initial_velocities={4: (0.0, 0.3)}, continuity="C2")  # fmt: skip
+    v = mod.q_from_y(mod.v0).reshape(mod.n_nodes, mod.dpn)
+    assert np.array_equal(v[4, :2], [0.0, 0.3]) and mod.reduction.node_base[4] >= 0
+    assert np.abs(v[0]).max() == 0.0

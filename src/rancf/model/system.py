@@ -76,7 +76,8 @@ class Model(Coordinates):
         ``"C1"``: the nodal coordinates are the model coordinates (shared nodes).  ``"C2"``:
         the control points of the mesh's cubic (rational) B-spline are
         (:mod:`rancf.model.continuity`; cables and rods): ``q = T y``, ``y`` padded with held
-        zeros to the size of ``q``; supported nodes keep their own coordinates.
+        zeros to the size of ``q``; supported nodes and nodes given an initial velocity keep
+        their own coordinates (C¹ there).
 
     Notes
     -----
@@ -175,6 +176,8 @@ class Model(Coordinates):
         base_q, node_base = q0, None
         if continuity == "C2":
             held = {self.check_node(sup.node, "supports.at") for sup in supports}
+            # a node started alone keeps its own coordinates too: its velocity exactly as given
+            held |= {self.check_node(k, "initial_velocity.at") for k in initial_velocities or {}}
             self.reduction, base_q = reduction(self.mesh, self.dpn, element == "rod", held, q0)
             self.notes += jump_note(self.reduction, self.n_el)
             node_base = self._node_base
