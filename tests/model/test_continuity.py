@@ -342,4 +342,5 @@ def test_initial_velocity_of_a_node_is_exact():
                  initial_velocities={4: (0.0, 0.3)}, continuity="C2")  # fmt: skip
     v = mod.q_from_y(mod.v0).reshape(mod.n_nodes, mod.dpn)
     assert np.array_equal(v[4, :2], [0.0, 0.3]) and mod.reduction.node_base[4] >= 0
-    assert np.abs(v[0]).max() == 0.0
+    assert np.abs(v[0]).max() == 0.0 and np.abs(v[7:]).max() == 0.0  # only near node 4
+    assert np.count_nonzero(mod.v0) == 1

@@ -143,3 +143,12 @@ class Coordinates:
             out[i] += ab[k, i + off] * v[i + off]
         return out
 
+    def _own_blocks(self, q: NDArray) -> NDArray[np.float64]:
+        """C²: ``y`` with the C¹ nodes' blocks of full coordinates ``q``, zero elsewhere."""
+        red = self.reduction
+        assert red is not None
+        y = np.zeros(self.n)
+        for k in np.flatnonzero(red.node_base >= 0):
+            b, rows = red.node_base[k], slice(k * self.dpn, (k + 1) * self.dpn)
+            y[b : b + self.dpn] = np.linalg.solve(red.t[rows, b : b + self.dpn].toarray(), q[rows])
+        return y

@@ -257,7 +257,10 @@ class Model(Coordinates):
                     "initial_motion", "with initial_velocity", "one of the two, not both"
                 )
             v0 = rigid_velocity(self, initial_motion)
-        self.v0 = self.y_from_q(v0)
+        if self.reduction is None or initial_motion is not None:  # C²: rigid motions are exact
+            self.v0 = self.y_from_q(v0)
+        else:  # single nodes: their own blocks, nothing else moves
+            self.v0 = self._own_blocks(v0)
         if initial_motion is not None:
             check_supports_at_rest(self, self.v0)
         self.v0[self.fixed] = 0.0
