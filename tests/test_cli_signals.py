@@ -53,6 +53,28 @@ def _boot_time() -> float:
     return max(times)
 
 
+def _interrupt(tmp_path: Path, name: str, delay: float) -> str:
+    """Ctrl-C ``delay`` s after the start of ``simulate``; checks the outcome and returns what
+    it met: ``"before the run"`` or the run's status."""
+    run = tmp_path / name
+    p = _start(["simulate", "s.toml", "--out", run.name, "--quiet"], tmp_path)
+    time.sleep(delay)
+    p.send_signal(signal.SIGINT)
+    _, err = p.communicate(timeout=120)
+    text = err.decode()
+    assert "Traceback" not in text, text
+    assert p.returncode in (0, 130), (delay, p.returncode, text)
+    assert len(text.strip().splitlines()) == (p.returncode == 130), text
+    if not run.exists():
+        assert p.returncode == 130
+        return "before the run"
+    summary = _check_run_dir(run)
+    assert not (run / ".history").exists()
+    expected = "completed" if p.returncode == 0 else "interrupted"
+    assert summary["status"] in (expected, "completed"), (summary, text)
+    return summary["status"]
+
+
 def test_sigint_at_random_moments(tmp_path):
     """Ctrl-C during imports, meshing, assembly, stepping and writing: one line, status 130,
     either no output at all or a complete, truthful run directory."""
@@ -61,26 +83,12 @@ def test_sigint_at_random_moments(tmp_path):
     boot = _boot_time()
     delays = [boot + d for d in (0.02, 0.2, 0.5, 1.0)]
     delays += [boot + rng.uniform(0.0, 3.0) for _ in range(4)]
-    seen = set()
-    for i, delay in enumerate(delays):
-        run = tmp_path / f"run{i}"
-        p = _start(["simulate", "s.toml", "--out", run.name, "--quiet"], tmp_path)
-        time.sleep(delay)
-        p.send_signal(signal.SIGINT)
-        _, err = p.communicate(timeout=120)
-        text = err.decode()
-        assert "Traceback" not in text, text
-        assert p.returncode in (0, 130), (delay, p.returncode, text)
-        assert len(text.strip().splitlines()) == (p.returncode == 130), text
-        if not run.exists():
-            seen.add("before the run")
-            assert p.returncode == 130
-            continue
-        summary = _check_run_dir(run)
-        assert not (run / ".history").exists()
-        seen.add(summary["status"])
-        expected = "completed" if p.returncode == 0 else "interrupted"
-        assert summary["status"] in (expected, "completed"), (summary, text)
+    seen = {_interrupt(tmp_path, f"run{i}", delay) for i, delay in enumerate(delays)}
+    # on a loaded machine the start-up time varies: a few more tries just after it
+    for i in range(6):
+        if "before the run" in seen:
+            break
+        seen.add(_interrupt(tmp_path, f"early{i}", boot + 0.002))
     assert "before the run" in seen and "interrupted" in seen
 
 

@@ -1,5 +1,6 @@
-"""The README tells the truth: its console transcripts and Python examples are run and compared
-(text exactly, numbers within :data:`tests.numbers.RTOL`: round-off differs between machines)."""
+"""The README and the documentation tell the truth: the console transcripts and Python examples
+of every page of :data:`tests.pages.PAGES` are run and compared (text exactly, numbers within
+:data:`tests.numbers.RTOL`: round-off differs between machines)."""
 
 from __future__ import annotations
 
@@ -9,30 +10,12 @@ import stat
 import subprocess
 import sys
 import tomllib
-from pathlib import Path
 
 import pytest
 
 from rancf.scenario import parse_scenario
 from tests.numbers import assert_lines_match
-
-README = Path(__file__).resolve().parents[1] / "README.md"
-TEXT = README.read_text(encoding="utf-8")
-
-
-def _blocks(lang: str) -> list[str]:
-    return re.findall(rf"```{lang}\n(.*?)```", TEXT, flags=re.S)
-
-
-def _transcript(block: str) -> list[tuple[str, list[str]]]:
-    """``(command, expected output lines)`` for every ``$ `` line of a console block."""
-    steps: list[tuple[str, list[str]]] = []
-    for line in block.splitlines():
-        if line.startswith("$ "):
-            steps.append((line[2:], []))
-        else:
-            steps[-1][1].append(line)
-    return steps
+from tests.pages import DOCS, PAGES, README, blocks, name, section, text, transcript
 
 
 def _normalize(line: str) -> str:
@@ -50,62 +33,76 @@ def shell_env(tmp_path_factory):
     return {**os.environ, "PATH": f"{bin_dir}{os.pathsep}{os.environ['PATH']}"}
 
 
-def _own_console_blocks() -> list[str]:
-    """Console blocks, except those of the sections ``test_readme_post`` runs with its files."""
-    from tests.test_readme_post import SECTIONS, _section
+def _own_console_blocks() -> list[tuple[str, str]]:
+    """``(page, block)`` for every console block, except those of the sections
+    ``test_readme_post`` runs in order with its files."""
+    from tests.test_readme_post import SECTIONS
 
-    skip = {
-        b for title in SECTIONS for b in re.findall(r"```console\n(.*?)```", _section(title), re.S)
-    }
-    return [b for b in _blocks("console") if b not in skip]
+    skip = {(where[0], b) for where in SECTIONS for b in blocks(section(*where), "console")}
+    return [(p, b) for p in PAGES for b in blocks(text(p), "console") if (p, b) not in skip]
 
 
 CONSOLE = _own_console_blocks()
+_IDS: list[str] = []
+for _page, _ in CONSOLE:
+    _IDS.append(f"{name(_page)}-{sum(1 for i in _IDS if i.startswith(name(_page) + '-'))}")
 
 
-def test_readme_has_console_examples():
+def test_pages_have_console_examples():
     assert len(CONSOLE) >= 4
+    assert any(p == README for p, _ in CONSOLE)
 
 
-@pytest.mark.parametrize("block", CONSOLE, ids=[f"console{i}" for i in range(len(CONSOLE))])
-def test_console_block(block, shell_env, tmp_path):
-    for command, expected in _transcript(block):
+@pytest.mark.parametrize(("page", "block"), CONSOLE, ids=_IDS)
+def test_console_block(page, block, shell_env, tmp_path):
+    for command, expected in transcript(block):
         p = subprocess.run(
             ["sh", "-c", command], cwd=tmp_path, env=shell_env, capture_output=True, text=True
         )
-        assert p.returncode == 0, (command, p.stderr)
+        assert p.returncode == 0, (name(page), command, p.stderr)
         got = [_normalize(x) for x in p.stdout.splitlines()]
         assert_lines_match(got, [_normalize(x) for x in expected], what=command)
 
 
-def test_python_examples(tmp_path, monkeypatch, capsys):
+PYTHON = [p for p in PAGES if blocks(text(p), "python")]
+
+
+@pytest.mark.parametrize("page", PYTHON, ids=[name(p) for p in PYTHON])
+def test_python_examples(page, tmp_path, monkeypatch, capsys):
+    """A page's Python blocks run in order in one folder; ``print(...)  # expected`` lines
+    are compared with what they print."""
     monkeypatch.chdir(tmp_path)
-    blocks = _blocks("python")
-    assert blocks
-    for code in blocks:
-        exec(compile(code, str(README), "exec"), {})  # noqa: S102
+    for code in blocks(text(page), "python"):
+        exec(compile(code, str(page), "exec"), {})  # noqa: S102
         out = capsys.readouterr().out.splitlines()
         expected = [
             ln.split("  # ", 1)[1]
             for ln in code.splitlines()
             if ln.startswith("print(") and "  # " in ln
         ]
-        assert_lines_match(out, expected, what="python example")
+        assert_lines_match(out, expected, what=f"python example of {name(page)}")
+
+
+def test_python_examples_exist():
+    assert README in PYTHON and len(PYTHON) >= 3
+
+
+SCENARIOS = DOCS / "guide" / "scenarios.md"
 
 
 def test_scenario_example_is_valid():
-    toml = _blocks("toml")[0]  # the complete scenario example (the others are sweep files)
+    toml = blocks(text(SCENARIOS), "toml")[0]  # the complete scenario example
     assert "[geometry]" in toml
-    sc = parse_scenario(tomllib.loads(toml), "README")
+    sc = parse_scenario(tomllib.loads(toml), "scenarios.md")
     assert sc.build_model().n_el == 5
 
 
 def test_system_example_is_valid():
-    """The README's system example: the keys of issue 18, read into the models; the one-body
-    commands stop on it with one line until the system solver takes it."""
+    """The system example of the guide: the keys of issue 18, read into the models; the
+    one-body commands stop on it with one line (simulate, static and modes take systems)."""
     from rancf.errors import ScenarioError
 
-    toml = next(b for b in _blocks("toml") if "[[bodies]]" in b)
+    toml = next(b for b in blocks(text(DOCS / "guide" / "systems.md"), "toml") if "[[bodies]]" in b)
     sc = parse_scenario(tomllib.loads(toml), "s.toml")
     assert [b.name for b in sc.bodies] == ["rod", "crank", "slider"]
     assert [j.kind for j in sc.joints] == ["pin", "pin", "pin", "slider"]

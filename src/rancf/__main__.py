@@ -5,22 +5,40 @@ the same one line and exit status 130 as any later interrupt.
 """
 
 import os
+import signal
 import sys
+
+#: Set by the first Ctrl-C: an import that an interrupt breaks can end in another exception
+#: (NumPy's C modules turn it into an ``ImportError``), which is then the same interrupt.
+_INTERRUPTED: list[int] = []
+
+
+def _on_sigint(signum: int, frame: object) -> None:
+    _INTERRUPTED.append(signum)
+    raise KeyboardInterrupt
 
 
 def run() -> int:
-    """Import the command line and run it; Ctrl-C during the import exits 130 quietly.
+    """Import the command line and run it; Ctrl-C during the import exits 130 quietly, also
+    when the interrupted import ends in another exception.
 
     After an interrupt the process ends with ``os._exit(130)`` once the output is flushed: an
     interrupt that passed through C-level code run by an extension's import can leave CPython
     set to re-raise SIGINT at exit, which would turn status 130 into "killed by SIGINT".
     """
+    if signal.getsignal(signal.SIGINT) is signal.default_int_handler:
+        signal.signal(signal.SIGINT, _on_sigint)
     try:
         from rancf.cli import main
 
         status = main()
     except KeyboardInterrupt:
         print("rancf: interrupted", file=sys.stderr)
+        status = 130
+    except Exception:
+        if not _INTERRUPTED:
+            raise
+        print("rancf: interrupted", file=sys.stderr)  # an import broken by the interrupt
         status = 130
     if status == 130:
         for stream in (sys.stdout, sys.stderr):

@@ -39,8 +39,8 @@ __all__ = ["main", "COMMAND_MODULES"]
 #: Modules that register sub-commands, and their commands, in the order of ``rancf --help``.
 COMMAND_MODULES: dict[str, tuple[str, ...]] = {
     "rancf.cli_conic": ("conic",),
-    "rancf.cli_sim": ("simulate", "static", "modes"),
-    "rancf.cli_equilibrium": ("buckling",),
+    "rancf.cli_sim": ("simulate",),
+    "rancf.cli_equilibrium": ("static", "modes", "buckling"),
     "rancf.cli_files": ("example", "report", "schema"),
     "rancf.cli_post": ("export", "plot", "animate", "cad"),
     "rancf.cli_sweep": ("sweep",),

@@ -7,7 +7,7 @@
   the command writes, applies the output-folder policy of its ``kind``, and removes the folders
   it created if the command fails before :meth:`OutputDir.keep` is called.
 
-The output-folder policy (README, *Output folders*):
+The output-folder policy (docs/guide/outputs.md, *Output folders and files*):
 
 * a run folder (``simulate --out``, ``static --out``) must be new or empty; an earlier run's
   folder (one holding ``summary.json``) is replaced, wholly, only with ``--overwrite``; any

@@ -29,7 +29,7 @@ def _quiet(argv: list[str]) -> None:
 
 @pytest.fixture(scope="module")
 def runs(tmp_path_factory):
-    """A 0.02 s pendulum run (the README's short scenario) for every element count."""
+    """A 0.02 s pendulum run (the short scenario of the docs) for every element count."""
     root = tmp_path_factory.mktemp("reimport")
     out = {}
     for n in ALL_COUNTS:

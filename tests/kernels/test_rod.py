@@ -4,7 +4,7 @@ Everything goes through the public :class:`~rancf.model.system.Model` and its co
 black box: forces against central differences of the strain energy, tangents against central
 differences of the forces, the load stiffness of point moments against central differences of
 the external force, rigid motions, and the closed forms of ``docs/rod-derivation.md`` (rod-math §7)
-(restated in the README).
+(restated in docs/guide/rods.md).
 """
 
 from __future__ import annotations
@@ -290,7 +290,7 @@ def test_quarter_circle_out_of_plane_tip_converges_to_castigliano():
 def test_end_moment_rolls_a_cantilever_into_a_circle(radius, gap):
     """M = 2π EI / L rolls the cantilever up: the tip returns to the clamp.  The curvature is per
     current arc length and the strain Green–Lagrange, so pure bending also stretches the rod by
-    about (κ r)² / 4 (README); the gap is then about that stretch times L."""
+    about (κ r)² / 4 (docs/guide/rods.md); the gap is then about that stretch times L."""
     sec = Section.circular(radius)
     length = 1.0
     moment = 2 * np.pi * E * sec.inertia / length

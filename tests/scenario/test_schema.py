@@ -8,17 +8,16 @@ import re
 import tomllib
 import typing
 from importlib.resources import files
-from pathlib import Path
 
 import pytest
 
 from rancf.scenario import Scenario, scenario_schema
 from rancf.scenario.base import Table
+from tests import pages
 from tests.model.test_scenario import BASE
 from tests.scenario.systems import SLIDER_CRANK, TETHER_3D
 
 SCHEMA = scenario_schema()
-README = Path(__file__).resolve().parents[2] / "README.md"
 
 
 def _tables() -> list[type[Table]]:
@@ -123,11 +122,11 @@ def _problems(value, node: dict, where: str = "$") -> list[str]:
 def _shipped() -> dict[str, dict]:
     docs = {p.name: tomllib.loads(p.read_text()) for p in files("rancf.examples").iterdir()
             if p.name.endswith(".toml")}  # fmt: skip
-    readme = re.findall(r"```toml\n(.*?)```", README.read_text(encoding="utf-8"), flags=re.S)
-    for i, block in enumerate(readme):
-        d = tomllib.loads(block)
-        if "mesh" in d or "bodies" in d:  # complete scenarios (not the snippets of one table)
-            docs[f"README[{i}]"] = d
+    for page in pages.PAGES:  # the README and the documentation pages
+        for i, block in enumerate(pages.blocks(pages.text(page), "toml")):
+            d = tomllib.loads(block)
+            if "mesh" in d or "bodies" in d:  # complete scenarios (not snippets of one table)
+                docs[f"{pages.name(page)}[{i}]"] = d
     docs["slider-crank"] = tomllib.loads(SLIDER_CRANK)
     docs["tether"] = tomllib.loads(TETHER_3D)
     return docs

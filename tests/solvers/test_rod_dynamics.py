@@ -4,7 +4,7 @@ Lagrange top; angular momentum and energy with ρ∞ = 1.
 
 Coarse meshes and steps keep each run near 0.2 s; the tolerances still assert the physics (the
 gyroscopic precession is 8-20 mm, a rod without it stays in its plane).  The converged
-comparison, side by side with Exudyn, is ``benchmarks/rod_dynamics.py`` (README).
+comparison, side by side with Exudyn, is ``benchmarks/rod_dynamics.py`` (docs/guide/rods.md).
 """
 
 from __future__ import annotations

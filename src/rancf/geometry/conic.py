@@ -134,11 +134,11 @@ def conic_arc_through(
 
     Parameters
     ----------
-    start, end : array_like, shape (dim,)
+    start, end : array_like, shape ``(dim,)``
         End points, ``dim`` 2 or 3.
     angles_deg : (float, float)
         Tangent-to-chord angles at start and end, degrees in ``(0, 90)``.
-    point : array_like, shape (dim,)
+    point : array_like, shape ``(dim,)``
         Any interior point of the arc.
     """
     a = np.asarray(start, dtype=float).ravel()

@@ -37,7 +37,7 @@ class Conic:
 
     Attributes
     ----------
-    p0, p1, p2 : ndarray, shape (dim,)
+    p0, p1, p2 : ndarray, shape ``(dim,)``
         Start point, tangent intersection, end point; ``dim`` is 2 or 3.
     omega : float
         Interior weight ``ω > 0``: ``ω < 1`` ellipse, ``ω = 1`` parabola, ``ω > 1`` hyperbola.

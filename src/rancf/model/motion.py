@@ -15,7 +15,7 @@ is (M.1) at every point of every element and the kinetic energy of a rigid rotat
 node's position and nothing else (not its neighbours, gradients or twist): a localized velocity
 whose kinetic energy depends on the mesh.
 
-Angular momentum about a point ``c`` (M.2):
+Angular momentum about a point ``c`` (M.2)::
 
     L = ∫ ρA (r − c) × ṙ |r0'| dξ  [+ rods: ∫ (ρ I_p s t + ρ I t × ṫ) |r0'| dξ]
 

@@ -75,13 +75,13 @@ class RigidBody:
     mass : float
     inertia : float or (3,)
         2D: about the centre of mass; 3D: principal moments in the body frame.
-    position : (dim,)
+    position : ``(dim,)``
         Centre of mass.
     orientation : float or (3, 3)
         2D: the angle [rad]; 3D: the rotation matrix (body frame to world).
     velocity, angular_velocity :
         Initial velocity of the centre of mass; angular velocity (2D: a number; 3D: world).
-    points : mapping name -> (dim,)
+    points : mapping name -> ``(dim,)``
         Named points in the body frame.
     """
 

@@ -58,7 +58,7 @@ class Model(Coordinates):
     section : Section
     material : Material
     supports : sequence of Support
-    gravity : array_like, shape (dim,), optional
+    gravity : array_like, shape ``(dim,)``, optional
     point_loads : sequence of PointLoad
     damping : float
         Mass-proportional damping coefficient ``c`` in ``C = c M`` [1/s].

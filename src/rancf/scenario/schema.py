@@ -53,7 +53,7 @@ def scenario_schema() -> dict[str, Any]:
         **schema,
         "description": "A model and its analysis (TOML): one flexible body (geometry, mesh, "
         "section, material) or a system ([[bodies]], [[joints]], [[springs]]). See the rancf "
-        "README.",
+        "documentation (docs/reference/scenario.md).",
         "anyOf": [
             {"required": _ONE_BODY, "not": {"required": ["bodies"]}},
             {"required": ["bodies"], "not": {"anyOf": [{"required": [k]} for k in _ONE_BODY]}},

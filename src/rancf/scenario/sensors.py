@@ -82,7 +82,7 @@ class SensorTable(Table):
     kind: Literal[
         "distance", "position", "twist", "angular_momentum", "energy", "reaction",
         "axial_force", "angle", "center_of_mass", "momentum",
-    ] = Field(description="what is measured (see the README's sensor kinds)")  # fmt: skip
+    ] = Field(description="what is measured (the sensor kinds: docs/guide/outputs.md)")  # fmt: skip
     between: PlacePair | None = Field(None, description="distance: the two places")
     at: PlaceValue | None = Field(
         None,

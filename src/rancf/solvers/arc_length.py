@@ -2,7 +2,7 @@
 
 Crisfield, "A fast incremental/iterative solution procedure that handles snap-through",
 Computers & Structures 13 (1981) 55–62.  The unknowns are the configuration ``y`` and the load
-factor ``λ``; each step keeps the scaled displacement increment on a cylinder of radius ``Δs``:
+factor ``λ``; each step keeps the scaled displacement increment on a cylinder of radius ``Δs``::
 
     |Δy|² = Δs²        (norm: positions relative to the model size, the held entries excluded)
 

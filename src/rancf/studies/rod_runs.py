@@ -3,7 +3,7 @@
 The paper's spatial cable bends with the magnitude curvature, which gives a curved reference no
 linear out-of-plane bending stiffness.  The rod element keeps the same exact RANCF centerline
 (Kopt meshing unchanged) and adds one twist per node and the energy
-``½ GJ (K1 − K1⁰)² + ½ EI (K2 − K2⁰)² + ½ EI (K3 − K3⁰)²`` of material curvatures (README,
+``½ GJ (K1 − K1⁰)² + ½ EI (K2 − K2⁰)² + ½ EI (K3 − K3⁰)²`` of material curvatures (the guide,
 "Rods"), so the arc resists out-of-plane bending and torsion.  The paper gives no shear modulus:
 ν = 0.3 (``G = E / 2.6``) is assumed here.
 """

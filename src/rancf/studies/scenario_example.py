@@ -85,8 +85,10 @@ def run_scenario(name: str, out: str | Path, quick: bool = False) -> StudyResult
         f"`rancf example run {name}` runs: {', '.join(SCENARIO_ANALYSES[name])}."
     )
     sc = load_scenario(scenario)
-    model = None if sc.is_system else sc.build_model()  # systems: simulate only
-    for analysis in SCENARIO_ANALYSES[name]:
+    analyses = SCENARIO_ANALYSES[name]
+    # static and modes of a one-body scenario use its model; a run is always a system's
+    model = sc.build_model() if {"static", "modes"} & set(analyses) else None
+    for analysis in analyses:
         if analysis == "static":
             from rancf.solvers.static import solve_static
 

@@ -59,7 +59,7 @@ class System:
     ----------
     bodies : mapping name -> Model | RigidBody | PointMass
     joints, springs, loads : sequences of :class:`Joint`, :class:`Spring`, :class:`Load`
-    gravity : (dim,), optional
+    gravity : ``(dim,)``, optional
         On rigid bodies and point masses.
     damping : float
         Mass-proportional damping ``c`` of every body [1/s] (flexible bodies: their model's is
