@@ -1,19 +1,13 @@
-"""docs/guide/closed-curves.md tells the truth: its console transcripts are run and compared
-(text exactly, numbers within tests.numbers.RTOL), with the machinery of test_readme, and its
-study tables are those of benchmarks/results/continuity_study.json."""
+"""docs/guide/closed-curves.md holds a ring and a C² example (their console transcripts are run
+by tests/test_readme.py, as every page's) and its study tables are those of
+benchmarks/results/continuity_study.json."""
 
 from __future__ import annotations
 
 import importlib.util
 import json
 import re
-import subprocess
 from pathlib import Path
-
-import pytest
-
-from tests.numbers import assert_lines_match
-from tests.test_readme import _normalize, _transcript, shell_env  # noqa: F401 (a fixture)
 
 ROOT = Path(__file__).resolve().parents[1]
 PAGE = ROOT / "docs" / "guide" / "closed-curves.md"
@@ -25,17 +19,6 @@ def test_page_has_ring_and_c2_examples():
     assert len(CONSOLE) >= 4
     assert any("ring.toml" in b for b in CONSOLE)
     assert any('continuity = "C2"' in b for b in CONSOLE)
-
-
-@pytest.mark.parametrize("block", CONSOLE, ids=[f"console{i}" for i in range(len(CONSOLE))])
-def test_console_block(block, shell_env, tmp_path):  # noqa: F811
-    for command, expected in _transcript(block):
-        p = subprocess.run(
-            ["sh", "-c", command], cwd=tmp_path, env=shell_env, capture_output=True, text=True
-        )
-        assert p.returncode == 0, (command, p.stderr)
-        got = [_normalize(x) for x in p.stdout.splitlines()]
-        assert_lines_match(got, [_normalize(x) for x in expected], what=command)
 
 
 def test_study_tables_are_the_results_file():
