@@ -137,3 +137,20 @@ def test_ends_that_touch_at_a_kink_are_an_open_curve(tmp_path, where):
     d = np.load(tmp_path / "run" / "results.npz")
     q = d["q"].reshape(len(d["t"]), -1, 4)
     assert np.abs(q[-1, -1, :2] - q[-1, 0, :2]).max() > 1e-6  # the free end fell away
+
+
+def test_rancf_modes_of_a_closed_nurbs_circle_are_a_rings(tmp_path):
+    """The issue's silent case, `rancf modes` of the closed NURBS circle: 3 rigid-body modes
+    removed and the free ring's frequencies (thin ring, n = 2, 3: ω² = (EI/ρA R⁴) n²(n²-1)²/
+    (n²+1) with EI/ρA = E r²/4ρ = 0.25 m⁴/s²), not those of an open arc."""
+    text = _nurbs_toml(*CIRCLE).replace("elements = 2", "elements = 12")
+    text = text.replace('[[supports]]\nat = "start"\nkind = "pin"\n', "")  # a free ring
+    (tmp_path / "c.toml").write_text(text + "\n[modes]\ncount = 4\n")
+    p = subprocess.run([sys.executable, "-m", "rancf", "modes", "c.toml", "--json"],
+                       capture_output=True, text=True, cwd=tmp_path)  # fmt: skip
+    assert p.returncode == 0, p.stderr
+    doc = json.loads(p.stdout)
+    assert doc["rigid_body_modes_removed"] == 3
+    n = np.array([2, 2, 3, 3])
+    want = np.sqrt(0.25 * n**2 * (n**2 - 1) ** 2 / (n**2 + 1)) / (2 * np.pi)
+    assert np.abs(np.array(doc["frequencies_hz"]) / want - 1).max() < 3e-3

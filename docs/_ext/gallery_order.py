@@ -17,6 +17,7 @@ ORDER = [
     "plot_slider_crank.py",
     "plot_spin_up_beam.py",
     "plot_tether_payload.py",
+    "plot_ring.py",
 ]
 
 

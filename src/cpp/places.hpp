@@ -27,8 +27,9 @@ enum class PlaceKind : int {
 };
 
 /// Largest number of local coordinates of a place: 7 for a rod node; a node of a reduced model
-/// (model.hpp: Reduction) depends on a window of up to 16 model coordinates.
-inline constexpr int kMaxLocal = 16;
+/// (model.hpp: Reduction) depends on a window of up to 24 model coordinates
+/// (rancf.model.continuity).
+inline constexpr int kMaxLocal = 24;
 
 /// What a place needs besides the local coordinates.
 struct PlaceInfo {

@@ -8,6 +8,8 @@
 
 namespace rancf {
 
+static_assert(kMaxLocal >= kMaxWindow, "a reduced node's window must fit a place map");
+
 namespace {
 std::size_t sz(int i) { return static_cast<std::size_t>(i); }
 }  // namespace

@@ -125,7 +125,7 @@ def _shipped() -> dict[str, dict]:
     for page in pages.PAGES:  # the README and the documentation pages
         for i, block in enumerate(pages.blocks(pages.text(page), "toml")):
             d = tomllib.loads(block)
-            if "mesh" in d or "bodies" in d:  # complete scenarios (not snippets of one table)
+            if {"geometry", "mesh"} <= set(d) or "bodies" in d:  # complete scenarios, not snippets
                 docs[f"{pages.name(page)}[{i}]"] = d
     docs["slider-crank"] = tomllib.loads(SLIDER_CRANK)
     docs["tether"] = tomllib.loads(TETHER_3D)

@@ -212,3 +212,17 @@ def test_a_free_body_under_dead_tension_keeps_only_its_translations_rigid():
     assert res.n_rigid == 2
     omega = np.sqrt(12.0 * force / (m.total_mass * length * stretch))
     assert 2 * np.pi * res.frequencies_hz[0] == pytest.approx(omega, rel=1e-2)
+
+
+def test_an_installed_place_equal_to_the_reference_up_to_round_off_is_no_installation():
+    """A support given its reference point through a computation (off by round-off) needs no
+    installation stage; a real installation (1 µm) still has one."""
+    mesh = mesh_line(np.zeros(2), np.array([0.1 + 0.2, 0.0]), 4)  # end x = 0.30000000000000004
+    mat, sec = Material(7850.0, 2e11), Section.circular(0.01)
+    for shift, stages in ((0.0, 1), (1e-16, 1), (1e-6, 2)):
+        end = (0.3 + shift, 0.0)
+        model = Model(mesh, "rancf", sec, mat, gravity=(0.0, -9.81),
+                      supports=[Support(0, "pin"), Support(-1, "pin", position=end)])  # fmt: skip
+        assert len(EquilibriumProblem(model).stages) == stages, shift
+        res = solve_static(model)
+        assert np.abs(model.node_positions(res.q)[-1] - end).max() <= 1e-15 + 1e-12 * 0.3

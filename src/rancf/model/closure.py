@@ -15,9 +15,10 @@ Lagrange multipliers like its joints (systems-math sec. 4: a closed ring is "one
   last node), so equal twists mean one material frame;
 * a beam's rotation ``θ_n - θ_0 = 0`` (both measured from the same reference tangent).
 
-A clamp or roller at node 0 rotates its blocks of ``y`` (``q = T y``): the rows act on ``q`` and
-are mapped by ``T`` (``A_y = A_q T``).  The rows are linear, so their Jacobian is exact and
-constant.
+A clamp or roller at node 0 rotates its blocks of ``y`` (``q = T y``), and a C² model's
+coordinates are spline coefficients (:mod:`rancf.model.continuity`; it adds the (C2) condition
+across the seam): the rows act on ``q`` and are mapped by ``T`` (``A_y = A_q T``).  The rows are
+linear, so their Jacobian is exact and constant.
 """
 
 from __future__ import annotations
@@ -31,7 +32,7 @@ if TYPE_CHECKING:
     from rancf.model.mesh import CableMesh
     from rancf.model.system import Model
 
-__all__ = ["arc_fractions", "closure_rows", "seam_scales"]
+__all__ = ["arc_fractions", "closure_matrix", "closure_rows", "seam_scales"]
 
 
 def arc_fractions(mesh: CableMesh) -> NDArray[np.float64]:
@@ -49,19 +50,32 @@ def seam_scales(model: Model) -> NDArray[np.float64]:
     return s
 
 
-def closure_rows(model: Model) -> tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.float64]]:
-    """The seam's rows ``A y = 0`` of a closed model as terms ``(row, column, coefficient)``.
+def closure_matrix(model: Model) -> NDArray[np.float64]:
+    """The seam's rows ``A`` of a closed model over its model coordinates ``(m, n)``; ``(0, n)``
+    for an open one.
 
-    ``dpn`` rows, one per coordinate of the seam node (module docstring); empty for an open
-    model.
+    ``dpn`` rows, one per coordinate of the seam node (module docstring); a C² model
+    (:mod:`rancf.model.continuity`) adds ``dim`` rows: its (C2) condition across the seam, unless
+    a support holds the seam node (a supported node is a C¹ node).
     """
     if not model.closed:
-        z = np.zeros(0, dtype=np.int64)
-        return z, z, np.zeros(0)
-    dpn, last = model.dpn, model.n - model.dpn
-    a = np.zeros((dpn, model.n))
+        return np.zeros((0, model.n))
+    dpn, nq = model.dpn, model.n_nodes * model.dpn
+    last = nq - dpn
+    a = np.zeros((dpn, nq))
     a[np.arange(dpn), last + np.arange(dpn)] = 1.0
     a[np.arange(dpn), np.arange(dpn)] = -seam_scales(model)
-    a = model.y_from_q(a)  # A_y = A_q T: each row a becomes Tᵀ a
+    held = any(model.check_node(sup.node, "supports.at") == 0 for sup in model.supports)
+    if model.reduction is not None and not held:  # a supported node stays C¹, the seam too
+        from rancf.model.continuity import seam_curvature_rows
+
+        a = np.concatenate([a, seam_curvature_rows(model.mesh, dpn)])
+    return model.to_y(a)  # A_y = A_q T: each row a becomes Tᵀ a
+
+
+def closure_rows(model: Model) -> tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.float64]]:
+    """The rows of :func:`closure_matrix` as terms ``(row, column, coefficient)``."""
+    a = closure_matrix(model)
+    a[np.abs(a) <= 1e-15 * np.abs(a).max(initial=0.0)] = 0.0
     rows, cols = np.nonzero(a)
     return rows.astype(np.int64), cols.astype(np.int64), a[rows, cols]

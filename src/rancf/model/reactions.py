@@ -80,7 +80,7 @@ def support_reactions(
     labels : list, optional
         The supports' ``at`` as written in the scenario.
     """
-    rq = model.q_from_y(residual)
+    rq = model.forces_at_nodes(residual)
     q = model.q_from_y(y)
     dim, dpn = model.dim, model.dpn
     out = []

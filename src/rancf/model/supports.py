@@ -70,9 +70,12 @@ def support_layout(
     q0: NDArray,
     tangents: NDArray,
     check_node: Callable[[int, str], int],
+    node_base: Callable[[int], int] | None = None,
 ) -> SupportLayout:
     """The :class:`SupportLayout` of ``supports`` on a chain with reference coordinates ``q0``
-    and reference nodal tangents ``tangents (n_nodes, dim)``.
+    and reference nodal tangents ``tangents (n_nodes, dim)``.  ``node_base``: the first index of
+    a node's own coordinates in ``q0`` and ``y`` (default ``node dpn``; C² models: the node's
+    block among the spline coordinates, :mod:`rancf.model.continuity`).
 
     Raises
     ------
@@ -85,7 +88,7 @@ def support_layout(
     installed: dict[int, float] = {}
     for sup in supports:
         node = check_node(sup.node, "supports.at")
-        base = node * dpn
+        base = node * dpn if node_base is None else node_base(node)
         if sup.kind not in ("pin", "clamp", "roller"):
             raise InputError("supports.kind", sup.kind, 'one of "pin", "clamp", "roller"')
         pos = _vector("supports.position", sup.position, dim)

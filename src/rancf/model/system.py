@@ -27,6 +27,15 @@ from rancf.kernels.beam import BeamKernel
 from rancf.kernels.cable import CableKernel, CableProperties
 from rancf.kernels.rod import ROD_DOFS, RodKernel
 from rancf.model.closure import arc_fractions
+from rancf.model.continuity import (
+    Continuity,
+    Reduction,
+    jump_note,
+    reduced_band,
+    reduction,
+    rotated,
+)
+from rancf.model.coordinates import Coordinates
 from rancf.model.mesh import CableMesh, to_ancf
 from rancf.model.motion import RigidMotion, check_supports_at_rest, rigid_velocity
 from rancf.model.parts import Material, PointLoad, Section, Support
@@ -38,7 +47,7 @@ __all__ = ["Section", "Material", "Support", "PointLoad", "Model", "ElementKind"
 ElementKind = Literal["rancf", "ancf", "beam", "rod"]
 
 
-class Model:
+class Model(Coordinates):
     """An assembled model: constant matrices precomputed, forces and tangents on demand.
 
     Parameters
@@ -63,6 +72,12 @@ class Model:
     initial_motion : RigidMotion, optional
         A rigid-body initial velocity field given exactly to every coordinate
         (:mod:`rancf.model.motion`); not together with ``initial_velocities``.
+    continuity : {"C1", "C2"}
+        ``"C1"``: the nodal coordinates are the model coordinates (shared nodes).  ``"C2"``:
+        the control points of the mesh's cubic (rational) B-spline are
+        (:mod:`rancf.model.continuity`; cables and rods): ``q = T y``, ``y`` padded with held
+        zeros to the size of ``q``; supported nodes and nodes given an initial velocity keep
+        their own coordinates (C¹ there).
 
     Notes
     -----
@@ -83,6 +98,7 @@ class Model:
         initial_velocities: dict[int, ArrayLike] | None = None,
         n_qp: int | None = None,
         initial_motion: RigidMotion | None = None,
+        continuity: Continuity = "C1",
     ) -> None:
         self.element = element
         self.section = section
@@ -93,7 +109,16 @@ class Model:
         #: the rows of :func:`rancf.model.closure.closure_rows` in a system.
         self.closed = bool(mesh.closed)
         #: C² reduced coordinates (:class:`rancf.model.continuity.Reduction`), or None (C¹).
-        self.reduction = None
+        self.reduction: Reduction | None = None
+        #: Remarks for the user: the mesh's (:attr:`CableMesh.notes`) and C² nodes kept C¹.
+        self.notes: tuple[str, ...] = tuple(mesh.notes)
+        if continuity not in ("C1", "C2"):
+            raise InputError("mesh.continuity", continuity, 'one of "C1", "C2"')
+        if continuity == "C2" and element not in ("rancf", "ancf", "rod"):
+            raise InputError(
+                "mesh.continuity", "C2", f'"C1" with {element} elements (C2 needs cable or rod '
+                'elements: mesh.element = "rancf", "ancf" or "rod")',
+            )  # fmt: skip
         self.n_el = mesh.n_elements
         rho, e_mod = material.density, material.youngs_modulus
         props = CableProperties(e_mod * section.area, e_mod * section.inertia, rho * section.area)
@@ -148,11 +173,26 @@ class Model:
 
         # supports -> held entries of y, rotated blocks, installed values
         tangents = mesh.nodes[:, 1]
-        layout = support_layout(supports, element, self.dim, self.dpn, q0, tangents,
-                                self.check_node)  # fmt: skip
+        base_q, node_base = q0, None
+        if continuity == "C2":
+            held = {self.check_node(sup.node, "supports.at") for sup in supports}
+            # a node started alone keeps its own coordinates too: its velocity exactly as given
+            held |= {self.check_node(k, "initial_velocity.at") for k in initial_velocities or {}}
+            self.reduction, base_q = reduction(self.mesh, self.dpn, element == "rod", held, q0)
+            self.notes += jump_note(self.reduction, self.n_el)
+            node_base = self._node_base
+        layout = support_layout(supports, element, self.dim, self.dpn, base_q, tangents,
+                                self.check_node, node_base)  # fmt: skip
         self.fixed = layout.fixed
         self._rot = list(layout.rotations)
         self.supports = tuple(supports)
+        if self.reduction is not None:  # the rotations go into the maps; the padding is held
+            self.reduction = rotated(self.reduction, self._rot, self.dim)
+            for off, basis in self._rot:  # y0 exactly: z = basis y on a rotated block
+                base_q[off : off + self.dim] = basis.T @ base_q[off : off + self.dim]
+            self._rot = []
+            self.fixed[self.reduction.n_real :] = True
+            self.ku = self.reduction.ku
         # element-level transformations for elements touching a rotated node
         aff = sorted(
             {
@@ -171,13 +211,17 @@ class Model:
         self._te = te
 
         self.q0 = q0
-        self.y0 = self.y_from_q(q0)
+        self.y0 = self.y_from_q(q0) if self.reduction is None else base_q
         #: ``y0`` with the held entries at the installed supports' values
         self.y_installed = self.y0.copy()
         for i, val in layout.installed.items():
             self.y_installed[i] = val
         self.mass_el = self._to_y_elements(self.kernel.mass_matrices())
-        self.mass_band = self.assemble_band(self.mass_el)
+        self.mass_band = (
+            self.assemble_band(self.mass_el)
+            if self.reduction is None
+            else reduced_band(self.reduction, self.mass_el)
+        )
         self.gravity = None if gravity is None else np.asarray(gravity, dtype=float)
         if self.gravity is not None and self.gravity.size != self.dim:
             raise InputError("loads.gravity", self.gravity.tolist(), f"{self.dim} components")
@@ -213,7 +257,10 @@ class Model:
                     "initial_motion", "with initial_velocity", "one of the two, not both"
                 )
             v0 = rigid_velocity(self, initial_motion)
-        self.v0 = self.to_y(v0)
+        if self.reduction is None or initial_motion is not None:  # C²: rigid motions are exact
+            self.v0 = self.y_from_q(v0)
+        else:  # single nodes: their own blocks, nothing else moves
+            self.v0 = self._own_blocks(v0)
         if initial_motion is not None:
             check_supports_at_rest(self, self.v0)
         self.v0[self.fixed] = 0.0
@@ -240,42 +287,6 @@ class Model:
     def n_distinct_nodes(self) -> int:
         """Distinct nodes: all, or (a ring) all but the stored repeat of node 0."""
         return self.n_nodes - int(self.closed)
-
-    def check_node(self, node: int, key: str) -> int:
-        """Resolve a node index (negative counts from the end) or raise naming ``key``.
-
-        A ring's last stored node is its first: that index (``-1``, the end) resolves to 0.
-        """
-        n = self.n_nodes
-        try:
-            i = int(node)
-        except (TypeError, ValueError):
-            raise InputError(key, node, f"a node index in [-{n}, {n - 1}]") from None
-        if not -n <= i < n or i != node:
-            raise InputError(key, node, f"a node index in [-{n}, {n - 1}]")
-        i %= n
-        return 0 if self.closed and i == n - 1 else i
-
-    def q_from_y(self, y: ArrayLike) -> NDArray[np.float64]:
-        """Full nodal coordinates from model coordinates (``q = T y``; works on ``(..., n)``)."""
-        q = np.array(y, dtype=float)
-        for off, basis in self._rot:
-            q[..., off : off + self.dim] = q[..., off : off + self.dim] @ basis.T
-        return q
-
-    def y_from_q(self, q: ArrayLike) -> NDArray[np.float64]:
-        """Inverse of :meth:`q_from_y` (``y = Tᵀ q``)."""
-        y = np.array(q, dtype=float)
-        for off, basis in self._rot:
-            y[..., off : off + self.dim] = y[..., off : off + self.dim] @ basis
-        return y
-
-    to_y = y_from_q  # forces transform like coordinates (T orthogonal)
-
-    def node_positions(self, q: ArrayLike) -> NDArray[np.float64]:
-        """Node positions ``(..., n_nodes, dim)`` from full coordinates."""
-        q = np.asarray(q, dtype=float)
-        return q.reshape(q.shape[:-1] + (self.n_nodes, self.dpn))[..., : self.dim]
 
     def gather(self, q: NDArray) -> NDArray[np.float64]:
         """Element coordinates ``(n_el, nde)`` from a global vector."""
@@ -324,6 +335,8 @@ class Model:
 
     def mass_times(self, v: NDArray) -> NDArray[np.float64]:
         """``M v`` (element by element)."""
+        if self.reduction is not None:
+            return self.band_times(self.mass_band, np.asarray(v, dtype=float))
         return self.assemble_vector(np.einsum("eij,ej->ei", self.mass_el, self.gather(v)))
 
     def kinetic_energy(self, v: ArrayLike, y: ArrayLike | None = None) -> float:
@@ -384,15 +397,8 @@ class Model:
     @property
     def total_mass(self) -> float:
         """Mass of the model: ``Σ_ij M_ij`` over the x components."""
-        ones = np.zeros(self.n)
+        ones = np.zeros(self.n_nodes * self.dpn)
         ones.reshape(self.n_nodes, self.dpn)[:, 0] = 1.0
+        if self.reduction is not None:  # the constant function is in the C² space
+            ones = self.y_from_q(ones)
         return float(ones @ self.mass_times(ones))
-
-    def dense(self, ab: NDArray) -> NDArray[np.float64]:
-        """A band-stored matrix as a dense ``(n, n)`` array."""
-        out = np.zeros((self.n, self.n))
-        for k in range(2 * self.ku + 1):
-            off = self.ku - k  # column - row
-            i = np.arange(max(0, -off), min(self.n, self.n - off))
-            out[i, i + off] = ab[k, i + off]
-        return out

@@ -51,7 +51,9 @@ def section_warnings(model: Model | System) -> list[str]:
             for name, b in zip(model.names, model.flex, strict=False)
             for w in section_warnings(b)
         ] + _crossing_warnings(model)
-    notes = list(model.mesh.notes)  # remarks on the geometry (ends that touch at a kink)
+    notes = list(
+        model.notes
+    )  # remarks on the geometry (ends that touch at a kink; C² nodes kept C¹)
     r = model.section.radius
     length = float(SectionSampler(model, 1).s[-1])  # the reference arc length
     if r <= RADIUS_LIMIT * length:

@@ -202,6 +202,7 @@ def flexible_model(
             v0,
             mesh_table.quadrature_points,
             None if initial_motion is None else RigidMotion(**initial_motion),
+            mesh_table.continuity,
         )
     except InputError as exc:
         raise ScenarioError(

@@ -362,6 +362,12 @@ class MeshTable(Table):
     spacing: Literal["arc", "parameter"] = Field(
         "arc", description='"arc" (equal arc length) | "parameter" (equal parameter steps)'
     )
+    continuity: Literal["C1", "C2"] = Field(
+        "C1",
+        description='"C1" (shared nodes: the nodal coordinates are the unknowns) | "C2" (the '
+        "control points of the cubic (rational) B-spline through the mesh are the unknowns: "
+        "curvature continuous, fewer unknowns; cables and rods)",
+    )
     quadrature_points: integer(ge=2, le=64) | None = Field(
         None,
         description="Gauss points per element (default: 6 for polynomial (ANCF) elements, 10 "

@@ -31,6 +31,19 @@ from rancf.model.system import Model
 __all__ = ["EquilibriumProblem"]
 
 
+#: Installed values closer to the reference than this (relative to the size) are the reference:
+#: round-off, not an installation.
+INSTALL_RTOL = 1e-12
+
+
+def path_stages(delta: NDArray[np.float64], size: float) -> list[tuple[float, float]]:
+    """The stages of the load path ``(p_start, p_end)``: the loads (``[0, 1]``), then the
+    installation (``[1, 2]``) when a held coordinate moves by more than round-off (``delta``:
+    installed minus reference values of the held coordinates; ``size`` the model's length)."""
+    moves = delta.size and np.abs(delta).max() > INSTALL_RTOL * max(size, 1.0)
+    return [(0.0, 1.0)] + ([(1.0, 2.0)] if moves else [])
+
+
 class EquilibriumProblem:
     """Residual, tangent and linear solves of ``r(y, λ) = 0`` (module docstring).
 
@@ -50,17 +63,15 @@ class EquilibriumProblem:
         self.free = ~model.fixed
         self._fixed_u8 = model.fixed.astype(np.uint8)
         self.delta = (model.y_installed - model.y0)[model.fixed]
-        #: The stages of the path, ``(p_start, p_end)``.
-        self.stages = [(0.0, 1.0)] + ([(1.0, 2.0)] if np.any(self.delta) else [])
-        #: The stage the path is in (:meth:`load_factor`, :meth:`support_factor`).
-        self.stage = 0
         #: Characteristic length: the largest extent of the reference (positions are scaled by
         #: it in norms and tolerances).
         self.size = float(np.ptp(model.node_positions(model.q0), axis=0).max()) or 1.0
+        #: The stages of the path, ``(p_start, p_end)``.
+        self.stages = path_stages(self.delta, self.size)
+        #: The stage the path is in (:meth:`load_factor`, :meth:`support_factor`).
+        self.stage = 0
         scale = np.ones(model.n)
-        pos = np.zeros((model.n_nodes, model.dpn), dtype=bool)
-        pos[:, : model.dim] = True
-        scale[pos.ravel()] = 1.0 / self.size
+        scale[model.position_mask()] = 1.0 / self.size
         self.scale = scale  # per coordinate: 1/size on positions, 1 elsewhere
 
     @property

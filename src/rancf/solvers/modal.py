@@ -145,7 +145,8 @@ def natural_modes(
 
     A :class:`~rancf.system.System` is solved on the null space of its constraints, sparse
     (:func:`rancf.solvers.system_modal.system_modes`; ``lam``: the multipliers at ``y``, as the
-    static solution gives them; ``count`` default 6).
+    static solution gives them; ``count`` default 6), and so is a closed model (a ring: the seam
+    is a constraint of a one-body system).
 
     Parameters
     ----------
@@ -158,6 +159,8 @@ def natural_modes(
     count : int, optional
         Number of (non-rigid) modes to return; default all.
     """
+    if isinstance(model, Model) and model.closed:  # a ring: its seam rows make it a system
+        model = System({"body": model})
     if isinstance(model, System):
         from rancf.solvers.system_modal import system_modes
 

@@ -20,6 +20,7 @@ from numpy.typing import NDArray
 
 from rancf.kernels import _core
 from rancf.model.system import Model
+from rancf.solvers.equilibrium import path_stages
 from rancf.system import System
 
 __all__ = ["SystemEquilibrium", "STABILIZER"]
@@ -52,9 +53,9 @@ class SystemEquilibrium:
             installed[s.body_slice(name)] = b.y_installed
         self._y0 = s.y0
         self.delta = (installed - s.y0)[s.fixed]
-        self.stages = [(0.0, 1.0)] + ([(1.0, 2.0)] if np.any(self.delta) else [])
-        self.stage = 0
         self.size = s.size
+        self.stages = path_stages(self.delta, self.size)
+        self.stage = 0
         scale = np.zeros(s.n + s.m)  # the multipliers: not in norms
         scale[: s.n] = 1.0
         for name in s.names:
@@ -62,7 +63,7 @@ class SystemEquilibrium:
             b = s.bodies[name]
             pos = np.zeros(sl.stop - sl.start, dtype=bool)
             if isinstance(b, Model):
-                pos.reshape(b.n_nodes, b.dpn)[:, : b.dim] = True
+                pos = b.position_mask()
             else:
                 pos[: s.dim] = True
             scale[sl][pos] = 1.0 / self.size

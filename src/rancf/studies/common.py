@@ -51,6 +51,7 @@ SCENARIO_ANALYSES: dict[str, tuple[str, ...]] = {
     "capstan": ("simulate",),
     "cantilever": ("static", "modes"),
     "installed-hose": ("static", "simulate"),
+    "ring": ("modes", "simulate"),
     "robot-cable": ("simulate",),
     "slider-crank": ("simulate",),
     "spin-up-beam": ("simulate",),

@@ -270,7 +270,7 @@ class SystemOutputs:
                     kern.tref.shape
                 )
                 kern.m1ref[...] = m1[start : start + 3 * b.n_nodes].reshape(kern.m1ref.shape)
-                y[sl].reshape(b.n_nodes, b.dpn)[:, 6] = 0.0
+                y[sl][b.twist_indices()] = 0.0
                 start += 3 * b.n_nodes
 
         try:

@@ -22,7 +22,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from rancf.errors import InputError
 from rancf.kernels import _core
-from rancf.model.closure import closure_rows
+from rancf.model.closure import closure_matrix, closure_rows
 from rancf.model.rigid import PointMass, RigidBody
 from rancf.model.system import Model
 from rancf.model.time_function import TimeFunction
@@ -279,7 +279,7 @@ class System:
                 if sup.motion.size != self.dim:
                     raise InputError("supports.motion", sup.motion.size, f"{self.dim} components")
                 k = rows.tf(sup.motion)
-                base = self.offsets[name] + b.check_node(sup.node, "supports.at") * b.dpn
+                base = self.offsets[name] + b._node_base(b.check_node(sup.node, "supports.at"))
                 for i in range(self.dim):
                     out.append(
                         (base + i, k, i, float(b.y_installed[base - self.offsets[name] + i]))
@@ -293,7 +293,7 @@ class System:
         for name, b in zip(self.names, self.flex, strict=False):
             r, c, v = closure_rows(b)
             parts.append((r + m, c + self.offsets[name], v))
-            m += b.dpn if b.closed else 0
+            m += closure_matrix(b).shape[0]
         if not parts:
             return np.zeros(0, np.int64), np.zeros(0, np.int64), np.zeros(0)
         return tuple(np.concatenate(x) for x in zip(*parts, strict=True))  # type: ignore[return-value]
