@@ -137,21 +137,25 @@ def _pad(a: NDArray) -> NDArray:
     return a if a.shape[-1] == 3 else np.concatenate([a, np.zeros(a.shape[:-1] + (1,))], axis=-1)
 
 
-def _writer(path: Path, fps: int) -> tuple[Any, str]:
+def animation_writer(path: Path, fps: int) -> Any:
+    """The Matplotlib writer of an animation file ``path`` (``.gif`` or ``.mp4``) at ``fps``
+    frames per second, after checking both and that ``path``'s folder exists."""
     from matplotlib import animation
 
+    if isinstance(fps, bool) or not isinstance(fps, int) or fps < 1:
+        raise InputError("--fps", fps, "an integer >= 1")
     suffix = path.suffix.lower()
+    if suffix not in (".gif", ".mp4"):
+        raise InputError("--out", str(path), "a file name ending in .gif or .mp4")
+    if not path.parent.is_dir():
+        raise InputError("--out", str(path), "a file in an existing directory")
     if suffix == ".gif":
-        return animation.PillowWriter(fps=fps), ".gif"
-    if suffix == ".mp4":
-        imageio_ffmpeg = require("imageio_ffmpeg", "mp4", "MP4 animations")
-        import matplotlib
+        return animation.PillowWriter(fps=fps)
+    imageio_ffmpeg = require("imageio_ffmpeg", "mp4", "MP4 animations")
+    import matplotlib
 
-        matplotlib.rcParams["animation.ffmpeg_path"] = imageio_ffmpeg.get_ffmpeg_exe()
-        return animation.FFMpegWriter(
-            fps=fps, codec="libx264", extra_args=["-pix_fmt", "yuv420p"]
-        ), ".mp4"
-    raise InputError("--out", str(path), "a file name ending in .gif or .mp4")
+    matplotlib.rcParams["animation.ffmpeg_path"] = imageio_ffmpeg.get_ffmpeg_exe()
+    return animation.FFMpegWriter(fps=fps, codec="libx264", extra_args=["-pix_fmt", "yuv420p"])
 
 
 def animate_run(
@@ -168,12 +172,8 @@ def animate_run(
     the displacement from the reference configuration (small vibrations; the title says so).
     Returns the number of frames written.
     """
-    if isinstance(fps, bool) or not isinstance(fps, int) or fps < 1:
-        raise InputError("--fps", fps, "an integer >= 1")
     path = Path(path)
-    writer, _ = _writer(path, fps)
-    if not path.parent.is_dir():
-        raise InputError("--out", str(path), "a file in an existing directory")
+    writer = animation_writer(path, fps)
     plt = pyplot()
     idx = frame_indices(run.t.size, every)
     lines = np.array([_pad(sample_centerline(run, int(i)).points) for i in idx])

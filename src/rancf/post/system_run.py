@@ -26,7 +26,6 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rancf.atomic import FileSet, atomic_path
-from rancf.errors import InputError
 from rancf.post.plots import pyplot, save_figure
 from rancf.post.results import load_results
 from rancf.post.run_data import RunData, frame_indices, load_run, sample_centerline
@@ -162,14 +161,10 @@ def plot_system_run(run: SystemRun, out_dir: str | Path, n_configurations: int =
 def animate_system_run(run: SystemRun, path: str | Path, fps: int = 20, every: int = 1,
                        dpi: int = 80) -> int:  # fmt: skip
     """Render every body's motion to ``path`` (``.gif`` or ``.mp4``); returns the frames."""
-    from rancf.post.run_plots import _draw, _set_line, _space_axes, _writer
+    from rancf.post.run_plots import _draw, _set_line, _space_axes, animation_writer
 
-    if isinstance(fps, bool) or not isinstance(fps, int) or fps < 1:
-        raise InputError("--fps", fps, "an integer >= 1")
     path = Path(path)
-    writer, _ = _writer(path, fps)
-    if not path.parent.is_dir():
-        raise InputError("--out", str(path), "a file in an existing directory")
+    writer = animation_writer(path, fps)
     plt = pyplot()
     idx = frame_indices(run.t.size, every)
     frames = [run.shapes(int(i)) for i in idx]
