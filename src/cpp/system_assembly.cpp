@@ -241,6 +241,9 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
     const PlaceRef &pa = s.places[sz(sp.a)], &pb = s.places[sz(sp.b)];
     const PlaceMap &ma = s.maps[sz(sp.a)], &mb = s.maps[sz(sp.b)];
     const int k = ma.n + mb.n;
+    // a spring of zero rest length is the linear spring-damper F = k (x_a - x_b) + c (v_a - v_b),
+    // whose axial form k l e has no direction where the places meet (a spring to ground)
+    const bool linear = sp.length == 0.0;
     std::array<double, 2 * kMaxLocal> u{}, w{};
     gather(ma, yf, u.data());
     gather(mb, yf, u.data() + ma.n);
@@ -258,15 +261,18 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
         len += d[i] * d[i];
       }
       len = std::sqrt(len);
+      double dvel[3];
       for (int i = 0; i < 3; ++i) {
         double va = 0.0, vb = 0.0;
         for (int j = 0; j < ea.n; ++j) va += ea.dx[i][j] * w[sz(j)];
         for (int j = 0; j < eb.n; ++j) vb += eb.dx[i][j] * w[sz(ma.n + j)];
-        rate += d[i] / len * (va - vb);
+        dvel[i] = va - vb;
+        if (!linear) rate += d[i] / len * dvel[i];
       }
-      const double tension = sp.stiffness * (len - sp.length) + sp.damping * rate;
+      const double tension = linear ? 0.0 : sp.stiffness * (len - sp.length) + sp.damping * rate;
       double F[3];
-      for (int i = 0; i < 3; ++i) F[i] = tension * d[i] / len;
+      for (int i = 0; i < 3; ++i)  // zero rest length: F = k d + c dv (no direction needed)
+        F[i] = linear ? sp.stiffness * d[i] + sp.damping * dvel[i] : tension * d[i] / len;
       place_force(ea, F, nullptr, s.dim, out, false);  // on A: +T e (the spring pulls A back)
       for (int i = 0; i < 3; ++i) F[i] = -F[i];
       place_force(eb, F, nullptr, s.dim, out + ma.n, false);
@@ -294,16 +300,21 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
         for (int j = 0; j < k; ++j) dv[i] += J[i][j] * w[sz(j)];
       }
       len = std::sqrt(len);
-      double e[3], rate = 0.0;
-      for (int i = 0; i < 3; ++i) {
+      double e[3] = {0.0, 0.0, 0.0}, rate = 0.0;
+      for (int i = 0; i < 3 && !linear; ++i) {
         e[i] = d[i] / len;
         rate += e[i] * dv[i];
       }
-      const double tension = sp.stiffness * (len - sp.length) + sp.damping * rate;
+      const double tension = linear ? 0.0 : sp.stiffness * (len - sp.length) + sp.damping * rate;
       double A[3][3];
       for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) {
-          const double perp = (i == j ? 1.0 : 0.0) - e[i] * e[j];
+          const double id = i == j ? 1.0 : 0.0;
+          if (linear) {
+            A[i][j] = (tm.ck * sp.stiffness + tm.cv * sp.damping) * id;
+            continue;
+          }
+          const double perp = id - e[i] * e[j];
           const double dvp = dv[j] - rate * e[j];  // (I - e e^T) dv
           A[i][j] = tm.ck * (sp.stiffness * e[i] * e[j] + tension / len * perp +
                              sp.damping * e[i] * dvp / len) +
@@ -332,7 +343,8 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
               double kv = 0.0;  // the velocity part of column b stays exact
               for (int i = 0; i < 3; ++i)
                 for (int j = 0; j < 3; ++j)
-                  kv += J[i][a] * tm.cv * sp.damping * e[i] * e[j] * J[j][b];
+                  kv += J[i][a] * tm.cv * sp.damping *
+                        (linear ? (i == j ? 1.0 : 0.0) : e[i] * e[j]) * J[j][b];
               K[sz(a * k + b)] = tm.ck * Kfd[sz(a * k + b)] + kv;
             }
       }

@@ -42,7 +42,10 @@ def planar() -> System:
         Joint("slider", ("mass", "link:b"), axis=(1.0, 0.3)),
         Joint("pin", ("link", "ground"), motion=TimeFunction.ramp(1.0, [0.1, 0.0])),
     ]
-    springs = [Spring(("cable:1", "mass"), 50.0, 2.0)]
+    springs = [
+        Spring(("cable:1", "mass"), 50.0, 2.0),
+        Spring(("mass", "ground"), 20.0, 0.5),
+    ]  # ground: l0 = 0
     loads = [Load("link:b", (1.0, -2.0), torque=(0.5,), time=TimeFunction.harmonic(2.0, 1.0))]
     return System({"cable": cable, "beam": beam, "link": link, "mass": mass}, joints, springs,
                   loads, gravity=[0, -9.81], damping=0.3)  # fmt: skip
@@ -73,7 +76,7 @@ def spatial() -> System:
         Joint("slider", ("mass", "body:b"), axis=(0.0, 1.0, 1.0)),
         Joint("pin", ("rod:1", "ground")),
     ]
-    springs = [Spring(("rod:1", "body:b"), 30.0, 1.0)]
+    springs = [Spring(("rod:1", "body:b"), 30.0, 1.0), Spring(("rod2:2", "ground"), 20.0, 0.5)]
     loads = [Load("body:a", (0.0, 1.0, 0.0), torque=(0.1, 0.2, 0.3))]
     return System({"rod": rod, "rod2": rod2, "cable": cable, "body": body, "mass": mass}, joints,
                   springs, loads, gravity=[0, 0, -9.81], damping=0.2)  # fmt: skip
@@ -151,3 +154,33 @@ def test_tangent_against_differences(build, which, rng):
     scale = max(1.0, np.abs(fd[np.ix_(rows, cols)]).max())
     err = np.abs(jac[np.ix_(rows, cols)] - fd[np.ix_(rows, cols)]).max()
     assert err <= 2e-6 * scale, err
+
+
+def test_a_spring_to_ground_is_the_linear_spring_at_zero_length():
+    """A spring to ``ground`` sits at its place's reference: zero rest length, where the axial
+    law has no direction. It is F = k (x_a - x_b) + c (v_a - v_b): finite at the reference
+    (the residual and tangent there were NaN), and exactly that force elsewhere."""
+    from rancf.model.rigid import PointMass
+
+    k, c = 20.0, 0.5
+    s = System({"mass": PointMass(2, 2.0, (0.3, 0.1))}, springs=[Spring(("mass", "ground"), k, c)])
+    z = np.zeros(s.n)
+    r = _residual(s, s.y0, z, z, np.zeros(s.m), 0.0)
+    dense = np.empty((s.n + s.m) ** 2)
+    assert s.core.dense_jacobian(s.y0, z, z, np.zeros(s.m), 0.0, 1.0, 1.0, 0.0, out=dense)
+    assert np.all(np.isfinite(r)) and np.all(np.isfinite(dense))
+    assert np.abs(r).max() == 0.0
+    y, v = s.y0 + np.array([0.01, -0.02]), np.array([0.4, 0.3])
+    r = _residual(s, y, v, z, np.zeros(s.m), 0.0)
+    assert np.allclose(r, k * (y - s.y0) + c * v, rtol=1e-14, atol=0.0)
+
+
+def test_a_rest_length_where_the_places_meet_is_refused():
+    """A spring with a rest length > 0 whose places meet at the reference (any spring to
+    ``ground``) has no direction at the start: one line names it and says what is allowed."""
+    from rancf.errors import InputError
+    from rancf.model.rigid import PointMass
+
+    with pytest.raises(InputError, match=r"springs\.tie\.length = 0\.3 .*0 where its places meet"):
+        System({"mass": PointMass(2, 2.0, (0.3, 0.1))},
+               springs=[Spring(("mass", "ground"), 20.0, length=0.3, name="tie")])  # fmt: skip

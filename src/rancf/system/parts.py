@@ -38,7 +38,11 @@ class Joint:
 @dataclass(frozen=True)
 class Spring:
     """A spring-damper between two places: tension ``k (ℓ - ℓ0) + c dℓ/dt`` along the line
-    between them; ``length`` ℓ0 defaults to their distance in the reference configuration."""
+    between them; ``length`` ℓ0 defaults to their distance in the reference configuration.
+
+    With ``ℓ0 = 0`` (a spring to ``ground``, which sits at the other place's reference) it is
+    the linear spring-damper ``F = k (x_a - x_b) + c (v_a - v_b)``: the same stiffness, with a
+    direction also where the places meet; ``ℓ0 > 0`` needs the places apart at the reference."""
 
     between: tuple[Place | str, Place | str]
     stiffness: float

@@ -308,6 +308,11 @@ class System:
         xb = self.reference_position(pb) if pb.body is not None else None
         ref = 0.0 if xa is None or xb is None else float(np.linalg.norm(xa - xb))
         length = ref if s.length is None else float(s.length)
+        if length != 0.0 and ref <= 1e-12 * self.size:  # no direction where the places meet
+            raise InputError(f"springs.{s.name or '/'.join(map(str, s.between))}.length",
+                             length, "0 where its places meet at the reference (ground sits at "
+                             "the other place's reference): the linear spring-damper "
+                             "k (x_a - x_b) + c (v_a - v_b)")  # fmt: skip
         return a, b, float(s.stiffness), float(s.damping), length
 
     def _all_loads(self) -> list[Load]:
