@@ -54,7 +54,7 @@ def capstan(mu: float, n_arc: int, n_span: int, speed: float, damping: float = 0
 
     motion = TimeFunction.from_callable(pull).sampled(2.0, 401)
     end = Support(mesh.n_nodes - 1, "pin", motion=motion)
-    rope = Model(mesh, "rancf", SECTION, MATERIAL, [end])
+    rope = Model(mesh, "rancf", SECTION, MATERIAL, [end], gravity=(0.0, 0.0))  # weightless
     weight = PointMass(2, MASS, (-RC, -SPAN))
     pulley = Obstacle("cylinder", center=(0, 0), radius=RP, friction=mu, name="pulley")
     return System({"rope": rope, "weight": weight}, [Joint("pin", ("rope:start", "weight"))],
@@ -154,7 +154,7 @@ def test_atwood_machine_on_a_turning_pulley():
     els += [_arc(th[i], th[i + 1]) for i in range(n_arc)]
     els += [_line((RC, ys[::-1][i]), (RC, ys[::-1][i + 1])) for i in range(n_span)]
     mesh = mesh_from_arrays(np.array([e[0] for e in els]), np.array([e[1] for e in els], float))
-    rope = Model(mesh, "rancf", SECTION, Material(100.0, 1e10))
+    rope = Model(mesh, "rancf", SECTION, Material(100.0, 1e10), gravity=(0.0, 0.0))  # weightless
     disc, j = 2.0, 0.5 * 2.0 * RP**2
     bodies = {
         "rope": rope,

@@ -3,6 +3,8 @@ central differences, for each joint kind and each kind of place, in 2D and 3D.""
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 import pytest
 
@@ -30,7 +32,7 @@ def planar() -> System:
         mesh_line([0, 0], [1, 0], 3), "rancf", SEC, MAT, [Support(0, "clamp")],
         gravity=[0, -9.81], point_loads=[PointLoad(1, (0.1, 0.2), time=ramp)],
     )  # fmt: skip
-    beam = Model(mesh_line([1, 0], [1.5, 0.5], 2), "beam", SEC, MAT, [])
+    beam = Model(mesh_line([1, 0], [1.5, 0.5], 2), "beam", SEC, MAT, [], gravity=[0, -9.81])
     rot = np.array([[np.cos(0.3), -np.sin(0.3)], [np.sin(0.3), np.cos(0.3)]])
     pos = np.array([1.5, 0.5]) - rot @ [-0.2, 0.0]  # link:a at the beam's end
     link = RigidBody(2, 1.5, 0.02, tuple(pos), 0.3, points={"a": (-0.2, 0.0), "b": (0.2, 0.1)})
@@ -55,8 +57,9 @@ def spatial() -> System:
     """A rod, a 3D cable, a rigid body and a point mass with every 3D joint kind."""
     rod = Model(mesh_line([0, 0, 0], [1, 0, 0], 3), "rod", SEC, ROD, [Support(0, "clamp")],
                 gravity=[0, 0, -9.81])  # fmt: skip
-    rod2 = Model(mesh_line([1, 0, 0], [1, 0.6, 0.2], 2), "rod", SEC, ROD, [])
-    cable = Model(mesh_line([1, 0.6, 0.2], [1.4, 0.9, 0.2], 2), "rancf", SEC, MAT, [])
+    g = [0, 0, -9.81]
+    rod2 = Model(mesh_line([1, 0, 0], [1, 0.6, 0.2], 2), "rod", SEC, ROD, [], gravity=g)
+    cable = Model(mesh_line([1, 0.6, 0.2], [1.4, 0.9, 0.2], 2), "rancf", SEC, MAT, [], gravity=g)
     # the body's points meet the cable's end (a) and the rod's middle node (b)
     r0, a = _rot3(0.4), np.array([-0.2, -0.1, -0.1])
     pos = np.array([1.4, 0.9, 0.2]) - r0 @ a
@@ -184,3 +187,17 @@ def test_a_rest_length_where_the_places_meet_is_refused():
     with pytest.raises(InputError, match=r"springs\.tie\.length = 0\.3 .*0 where its places meet"):
         System({"mass": PointMass(2, 2.0, (0.3, 0.1))},
                springs=[Spring(("mass", "ground"), 20.0, length=0.3, name="tie")])  # fmt: skip
+
+
+def test_a_flexible_body_without_gravity_in_a_system_with_gravity_is_warned():
+    """A flexible body's weight comes from its Model's gravity: leaving it out while the
+    System has gravity is said in one warning line (an explicit gravity is taken as meant)."""
+    mesh = mesh_line([0, 0], [1, 0], 2)
+    for gravity, warned in ((None, True), ((0.0, 0.0), False), ((0.0, -9.81), False)):
+        cable = Model(mesh, "rancf", SEC, MAT, [Support(0, "pin")], gravity=gravity)
+        with warnings.catch_warnings(record=True) as seen:
+            warnings.simplefilter("always")
+            System({"cable": cable}, gravity=[0.0, -9.81])
+        lines = [str(w.message) for w in seen]
+        assert (len(lines) == 1 and "'cable' has no gravity of its own" in lines[0]) == warned
+        assert warned or not lines

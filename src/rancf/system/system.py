@@ -14,6 +14,7 @@ gravity is its model's.
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 
@@ -121,6 +122,7 @@ class System:
         )
         if gravity is not None and np.asarray(gravity).size != self.dim:
             raise InputError("loads.gravity", list(np.asarray(gravity)), f"{self.dim} components")
+        self._check_gravity(flex)
         if not (np.isfinite(damping) and damping >= 0):
             raise InputError("damping.mass_proportional", damping, "a finite number >= 0")
         self.damping = float(damping)
@@ -165,6 +167,19 @@ class System:
             self, self.obstacles, contacts, contact_points, body_contacts, body_friction
         )
         self._check_reference()
+
+    def _check_gravity(self, flex: list[tuple[str, Model]]) -> None:
+        """A flexible body's weight comes from its model's ``gravity``, a rigid body's from the
+        system's: a model with no gravity of its own in a system with gravity gets one warning
+        line (its weight is left out); an explicit model gravity is taken as meant."""
+        if not self.gravity.any():
+            return
+        for name, b in flex:
+            if b.gravity is None:
+                warnings.warn(f"rancf: body {name!r} has no gravity of its own, so its weight "
+                              f"is left out of the system's gravity "
+                              f"{self.gravity[: self.dim].tolist()}: give its Model the same "
+                              "gravity (or gravity=[0, ...] to mean it)", stacklevel=3)  # fmt: skip
 
     def _check_reference(self) -> None:
         """Every joint holds in the reference configuration at t = 0 (positions to 1e-9 of the
