@@ -92,3 +92,28 @@ def test_vtk_export_carries_the_section_quantities(hose):
     along = np.genfromtxt(hose / "st" / "along.csv", delimiter=",", names=True)
     assert moment[0] == pytest.approx(along["bending_moment"][0], rel=1e-12)
     assert moment[-1] == pytest.approx(along["bending_moment"][-1], rel=1e-12)
+
+
+def test_static_and_modes_of_one_body_with_system_keys(tmp_path, capsys):
+    """One body with what only the system solver runs (a reaction or axial-force sensor, a
+    moving support, a time load) was refused by `static` and `modes` ("not yet solved by this
+    command") while `simulate` ran it: both now go through its one-body system and give the
+    answers of the plain file."""
+    from rancf.cli import main
+    from tests.test_cli_sim import CANTILEVER
+
+    plain, extra = tmp_path / "plain.toml", tmp_path / "extra.toml"
+    plain.write_text(CANTILEVER)
+    extra.write_text(CANTILEVER + '\n[[sensors]]\nname = "root"\nkind = "reaction"\nat = "start"\n'
+                     '\n[[sensors]]\nname = "N"\nkind = "axial_force"\nat = 4\n')  # fmt: skip
+    docs = []
+    for f in (plain, extra):
+        assert main(["modes", str(f), "--count", "3", "--json"]) == 0
+        docs.append(json.loads(capsys.readouterr().out))
+    assert np.allclose(docs[1]["frequencies_hz"], docs[0]["frequencies_hz"], rtol=1e-9)
+    assert main(["static", str(extra), "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert doc["sensors"]["root_y"] == pytest.approx(0.001, rel=1e-9)  # holds the tip load
+    assert main(["static", str(plain), "--json"]) == 0
+    tip = json.loads(capsys.readouterr().out)["sensors"]["tip_y"]
+    assert doc["sensors"]["tip_y"] == pytest.approx(tip, rel=1e-9)

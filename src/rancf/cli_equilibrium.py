@@ -77,7 +77,7 @@ def _cmd_static(args: argparse.Namespace) -> int:
     from rancf.solvers.static import solve_static
 
     sc = load_scenario(args.scenario)
-    if sc.is_system:
+    if sc.needs_system:
         from rancf.cli_system import print_static, static_system
 
         copy = None if args.out is None else _scenario_text(args.scenario)
@@ -167,7 +167,7 @@ def _cmd_modes(args: argparse.Namespace) -> int:
     if args.count is not None and args.count < 1:
         raise InputError("--count", args.count, "an integer >= 1")
     sc = load_scenario(args.scenario)
-    if sc.is_system:
+    if sc.needs_system:
         from rancf.cli_system import modes_system, print_modes
 
         doc = modes_system(args, sc)

@@ -28,7 +28,14 @@ if TYPE_CHECKING:
     from rancf.scenario.geometry import MeshTable
     from rancf.scenario.scenario import Scenario
 
-__all__ = ["build_model", "flexible_model", "mesh_geometry", "scenario_key", "NOT_YET"]
+__all__ = [
+    "build_model",
+    "flexible_model",
+    "mesh_geometry",
+    "scenario_key",
+    "system_only",
+    "NOT_YET",
+]
 
 #: The problem of what the one-body solvers cannot run yet.
 NOT_YET = "not yet solved by this command"
@@ -118,22 +125,30 @@ def mesh_geometry(path: str, geometry: Any, mesh: MeshTable, prefix: str = "") -
         ) from None
 
 
-def _not_yet(sc: Scenario) -> None:
-    """Refuse, naming the key, what only the system solver runs (``bodies``, ``joints``,
-    ``springs``; moving supports, time loads and the system sensors in one-body analyses that
-    are not time integrations)."""
+def system_only(sc: Scenario) -> tuple[str, str] | None:
+    """The first key (and what it is) that only the system solver runs: ``bodies``,
+    ``joints``, ``springs``, moving supports, time loads and the system sensors; None when the
+    one-body model takes the whole scenario."""
     for k in ("bodies", "joints", "springs"):
         if sc[k]:
-            raise ScenarioError(sc.path, k, f"multibody systems: {NOT_YET}")
+            return k, "multibody systems"
     for i, s in enumerate(sc.supports):
         if s.motion is not None:
-            raise ScenarioError(sc.path, f"supports[{i}].motion", f"prescribed motion: {NOT_YET}")
+            return f"supports[{i}].motion", "prescribed motion"
     for i, p in enumerate(sc.loads.point):
         if p.time is not None:
-            raise ScenarioError(sc.path, f"loads.point[{i}].time", f"time functions: {NOT_YET}")
+            return f"loads.point[{i}].time", "time functions"
     for i, s in enumerate(sc.sensor_tables):
         if s.kind in SYSTEM_SENSOR_KINDS:
-            raise ScenarioError(sc.path, f"sensors[{i}].kind", f"{s.kind} sensors: {NOT_YET}")
+            return f"sensors[{i}].kind", f"{s.kind} sensors"
+    return None
+
+
+def _not_yet(sc: Scenario) -> None:
+    """Refuse, naming the key, what only the system solver runs (:func:`system_only`)."""
+    found = system_only(sc)
+    if found is not None:
+        raise ScenarioError(sc.path, found[0], f"{found[1]}: {NOT_YET}")
 
 
 def build_model(sc: Scenario, system: bool = False) -> Model:
