@@ -1,5 +1,7 @@
 """CAD files in and out: round trips at 1e-12, files written by other tools, chains and kinks."""
 
+import json
+
 import numpy as np
 import pytest
 
@@ -207,3 +209,68 @@ def test_missing_ocp_message(monkeypatch, tmp_path, capsys):
         "rancf: error: STEP and IGES files need the optional package 'OCP': "
         "pip install 'rancf[cad]'\n"
     )
+
+
+def test_periodic_step_curve_opens_exactly(tmp_path):
+    """A periodic B-spline of another tool (seam knot of multiplicity 1: the seam is no pole)
+    is read as the clamped curve OpenCASCADE's own reader gives, on the same parameters."""
+    pytest.importorskip("OCP")
+    from OCP.BRep import BRep_Tool
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
+    from OCP.Geom import Geom_BSplineCurve
+    from OCP.gp import gp_Pnt
+    from OCP.STEPControl import STEPControl_AsIs, STEPControl_Reader, STEPControl_Writer
+    from OCP.TopAbs import TopAbs_EDGE
+    from OCP.TopExp import TopExp_Explorer
+    from OCP.TopoDS import TopoDS
+
+    from rancf.cad.occ import _arrays
+
+    arr_pnt, arr_real, arr_int = _arrays()
+    n = 7
+    ang = 2 * np.pi * np.arange(n) / n
+    pts = np.column_stack([0.3 * np.cos(ang), 0.2 * np.sin(ang), 0.01 * np.sin(3 * ang)])
+    poles, weights = arr_pnt(1, n), arr_real(1, n)
+    knots, mults = arr_real(1, n + 1), arr_int(1, n + 1)
+    for i in range(n):
+        poles.SetValue(i + 1, gp_Pnt(*(float(x) for x in pts[i])))
+        weights.SetValue(i + 1, 1.0 + 0.3 * np.sin(ang[i]))
+    for i, k in enumerate([0.0, 0.2, 0.6, 0.9, 1.2, 1.4, 1.7, 2.0]):
+        knots.SetValue(i + 1, k)
+        mults.SetValue(i + 1, 1)
+    periodic = Geom_BSplineCurve(poles, weights, knots, mults, 3, True, False)
+    w = STEPControl_Writer()  # OpenCASCADE's defaults: millimetres, 12 digits
+    w.Transfer(BRepBuilderAPI_MakeEdge(periodic).Edge(), STEPControl_AsIs)
+    w.Write(str(tmp_path / "loop.step"))
+    r = STEPControl_Reader()  # what OpenCASCADE reads: a periodic curve (in millimetres)
+    r.ReadFile(str(tmp_path / "loop.step"))
+    r.TransferRoots()
+    edge = (getattr(TopoDS, "Edge_s", None) or TopoDS.Edge)(
+        TopExp_Explorer(r.Shape(1), TopAbs_EDGE).Current()
+    )
+    ref = BRep_Tool.Curve_s(edge, 0.0, 0.0)
+    assert ref.IsPeriodic() and ref.NbPoles() == n
+    (c,) = read_curves(tmp_path / "loop.step")  # was: 8 knots for 7 control points
+    curve = c.curve
+    assert curve.domain == (ref.FirstParameter(), ref.LastParameter())
+    assert np.array_equal(curve.points[0], curve.points[-1])
+    u = np.linspace(*curve.domain, 41)
+    want = np.array([[ref.Value(x).X(), ref.Value(x).Y(), ref.Value(x).Z()] for x in u]) / 1e3
+    assert np.abs(curve(u) - want).max() <= 1e-12 * 0.3
+
+
+def test_invalid_curve_error_names_the_file(tmp_path, capsys):
+    bad = tmp_path / "bad.json"
+    curve = {
+        "type": "spline",
+        "degree": 2,
+        "knotvector": [0, 0, 0, 1, 1],  # one knot short for 3 control points of degree 2
+        "control_points": {"points": [[0, 0], [1, 1], [2, 0]]},
+    }
+    bad.write_text(json.dumps({"shape": {"type": "curve", "data": [curve]}}))
+    assert main(["cad", "list", str(bad)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1
+    head = f"rancf: error: {bad}: curve 0: knots = [0., 0., 0., 1., 1.] is not allowed"
+    assert err.startswith(head)
+    assert err.endswith("6 knots for 3 control points of degree 2\n")

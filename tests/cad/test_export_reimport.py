@@ -84,3 +84,88 @@ def test_vector_angle_is_accurate_near_zero():
     # one unit of round-off in a tangent's direction is no kink
     t = np.array([0.6, 0.8])
     assert vector_angle(t, np.nextafter(t, 1.0)) < 1e-15
+
+
+#: A free ring (the shipped example ``ring``, 8 elements, a short run): a closed curve, whose
+#: first control point is its last.  STEP readers make a periodic B-spline of it (seam pole
+#: stored once, knots cyclic), which was read back as 148 knots for 144 control points.
+RING = """
+[geometry]
+kind = "ellipse"
+center = [0.0, 0.0]
+semi_axes = [1.0, 1.0]
+
+[mesh]
+elements = 8
+element = "rancf"
+
+[section]
+radius = 0.01
+
+[material]
+density = 7850.0
+youngs_modulus = 2.0e11
+
+[[initial_velocity]]
+at = 0
+value = [5.0, 0.0]
+
+[[initial_velocity]]
+at = 4
+value = [-5.0, 0.0]
+
+[solver]
+t_end = 0.004
+step = 5.0e-4
+"""
+
+
+@pytest.fixture(scope="module")
+def ring(tmp_path_factory):
+    d = tmp_path_factory.mktemp("ring")
+    (d / "ring.toml").write_text(RING)
+    _quiet(["simulate", str(d / "ring.toml"), "--out", str(d / "run"), "--quiet"])
+    return d
+
+
+def _close(a, b, scale: float) -> bool:
+    return bool(np.abs(np.asarray(a) - np.asarray(b)).max() <= 1e-12 * scale)
+
+
+@pytest.mark.parametrize("time", ["0", None], ids=["reference", "deformed"])
+@pytest.mark.parametrize("suffix", ["json", "dxf", "step", "igs"])
+def test_closed_ring_round_trips(ring, suffix, time):
+    """A ring's shape written in every format reads back as the exported curve (control points,
+    weights, knots to 1e-12) and meshes again as a closed ring on the run's nodes."""
+    from rancf.cad import read_curves
+    from rancf.cli_post import run_to_nurbs
+
+    if suffix in ("step", "igs"):
+        pytest.importorskip("OCP")
+    name = f"ring_{time or 'last'}.{suffix}"
+    cmd = ["export", str(ring / "run"), "--nurbs", str(ring / name)]
+    _quiet(cmd + (["--time", time] if time else []))
+    run = load_run(ring / "run")
+    i = run.time_index(None if time is None else 0.0)
+    exported = run_to_nurbs(run, i)
+    (back,) = read_curves(ring / name)
+    got = back.curve
+    assert np.array_equal(got.points[0], got.points[-1])  # closed, seam pole at both ends
+    assert got.degree == exported.degree and got.n_ctrl == exported.n_ctrl
+    scale = np.abs(exported.points).max()
+    assert _close(got.points[:, :2], exported.points, scale)
+    if got.dim == 3:
+        assert np.abs(got.points[:, 2]).max() <= 1e-12 * scale
+    assert _close(got.weights, exported.weights, 1.0)
+    assert _close(got.knots, exported.knots, exported.knots[-1])
+    # the file as the geometry of a new scenario: one element per knot span, a closed mesh on
+    # the run's nodes (positions and slopes)
+    sc = ring / f"cad_{name}.toml"
+    rest = RING.split("[mesh]", 1)[1].replace("elements = 8", "elements = 1")
+    sc.write_text(f'[geometry]\nkind = "cad"\nfile = "{name}"\n\n[mesh]{rest}')
+    mesh = load_scenario(sc).build_model().mesh
+    nodes = centerline_nodes(run, run.q[i])
+    assert mesh.closed and mesh.n_elements == 8
+    assert _close(mesh.nodes[:, 0, :2], nodes[:, 0], scale)
+    for k in range(nodes.shape[0]):
+        assert vector_angle(mesh.nodes[k, 1, :2], nodes[k, 1]) <= 1e-12

@@ -114,6 +114,10 @@ def test_robot_cable_follows_the_gripper_table(runs):
     got = np.column_stack([s["gripper_x"], s["gripper_y"]])
     assert np.abs(got - want).max() <= 1e-10
     assert np.ptp(s["gripper_force_x"]) > 0.5  # the reaction changes along the path
+    # the clamp's moment too, as in reactions.csv
+    r = np.genfromtxt(run / "reactions.csv", delimiter=",", names=True)
+    np.testing.assert_allclose(s["gripper_force_mz"], r["end_mz"], rtol=1e-12, atol=0.0)
+    assert np.ptp(r["end_mz"]) > 0.0
     assert main(["plot", str(run)]) == 0
     assert (run / "plots" / "sensors.png").stat().st_size > 0
     summary = json.loads((run / "summary.json").read_text())

@@ -16,11 +16,14 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
+from numpy.typing import ArrayLike
+
 from rancf.errors import InputError
 from rancf.geometry.nurbs import NurbsCurve
 
 __all__ = [
     "CadCurve",
+    "file_curve",
     "read_curves",
     "write_curve",
     "READ_SUFFIXES",
@@ -48,6 +51,18 @@ class CadCurve:
     index: int
     name: str
     curve: NurbsCurve
+
+
+def file_curve(
+    path: Path, index: int, degree: int, knots: ArrayLike, points: ArrayLike, weights: ArrayLike
+) -> NurbsCurve:
+    """The NURBS curve ``index`` of the file ``path``; a curve the file stores wrongly (knots,
+    weights) raises the error of :class:`NurbsCurve` with the file and the curve named."""
+    try:
+        return NurbsCurve(degree, knots, points, weights)
+    except InputError as exc:  # every InputError subclass takes (parameter, value, allowed)
+        where = f"{path}: curve {index}: {exc.parameter}"
+        raise type(exc)(where, exc.value, exc.allowed) from None
 
 
 def _suffix(path: Path, allowed: tuple[str, ...], what: str) -> str:

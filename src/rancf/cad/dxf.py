@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from rancf.atomic import atomic_path
-from rancf.cad import CadCurve
+from rancf.cad import CadCurve, file_curve
 from rancf.errors import InputError, shorten
 from rancf.geometry.nurbs import NurbsCurve
 
@@ -32,7 +32,8 @@ def read_dxf(path: Path) -> list[CadCurve]:
         w = np.asarray(list(e.weights), dtype=float)
         if w.size == 0:
             w = np.ones(pts.shape[0])
-        curve = NurbsCurve(int(e.dxf.degree), np.asarray(list(e.knots), dtype=float), pts, w)
+        knots = np.asarray(list(e.knots), dtype=float)
+        curve = file_curve(path, len(out), int(e.dxf.degree), knots, pts, w)
         out.append(CadCurve(len(out), f"#{e.dxf.handle}", curve))
     return out
 

@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 
 from rancf.atomic import atomic_write
-from rancf.cad import CadCurve
+from rancf.cad import CadCurve, file_curve
 from rancf.errors import InputError, shorten
 from rancf.geometry.nurbs import NurbsCurve
 
@@ -59,7 +59,8 @@ def read_json(path: Path) -> list[CadCurve]:
             deg = d["degree"][0] if isinstance(d["degree"], list) else d["degree"]
             kv = d["knotvector"]
             kv = kv[0] if kv and isinstance(kv[0], list) else kv
-            out.append(CadCurve(i, str(d.get("name", "")), NurbsCurve(int(deg), kv, pts, w)))
+            curve = file_curve(path, i, int(deg), kv, pts, w)
+            out.append(CadCurve(i, str(d.get("name", "")), curve))
         return out
     except InputError:
         raise

@@ -2,9 +2,10 @@
 
 Reading: every edge of the file's shapes, in file order, becomes a NURBS curve —
 ``Geom_BSplineCurve`` as stored (cut to the edge's parameter range by exact knot insertion when
-the edge uses only part of it); lines, circles, ellipses and other conics are converted exactly
-by ``GeomConvert`` (rational quadratic B-splines); degree-1 curves are raised to degree 2.
-Lengths are converted to metres (``xstep.cascade.unit = M``).
+the edge uses only part of it, or when the curve is periodic: a closed curve opens at its seam
+into a clamped one, the seam pole stored at both ends); lines, circles, ellipses and other
+conics are converted exactly by ``GeomConvert`` (rational quadratic B-splines); degree-1
+curves are raised to degree 2.  Lengths are converted to metres (``xstep.cascade.unit = M``).
 
 Writing: one ``Geom_BSplineCurve`` edge, length unit metre, reals printed with ``%.17G`` instead
 of OpenCASCADE's default 12 digits (``StepData_StepWriter``/``IGESData_IGESWriter`` float
@@ -22,7 +23,7 @@ from typing import Any, Literal
 import numpy as np
 
 from rancf.atomic import atomic_write
-from rancf.cad import CadCurve
+from rancf.cad import CadCurve, file_curve
 from rancf.errors import InputError
 from rancf.extras import require
 from rancf.geometry.nurbs import NurbsCurve
@@ -75,13 +76,13 @@ def _to_geom(curve: NurbsCurve) -> Any:
     return Geom_BSplineCurve(poles, weights, knots, mults, curve.degree, False, False)
 
 
-def _from_geom(b: Any) -> NurbsCurve:
+def _from_geom(b: Any, path: Path, index: int) -> NurbsCurve:
     n = b.NbPoles()
     pts = np.array([[b.Pole(i).X(), b.Pole(i).Y(), b.Pole(i).Z()] for i in range(1, n + 1)])
     w = np.array([b.Weight(i) for i in range(1, n + 1)])
     kn = [b.Knot(i) for i in range(1, b.NbKnots() + 1)]
     mu = [b.Multiplicity(i) for i in range(1, b.NbKnots() + 1)]
-    return NurbsCurve(int(b.Degree()), np.repeat(kn, mu), pts, w)
+    return file_curve(path, index, int(b.Degree()), np.repeat(kn, mu), pts, w)
 
 
 @contextmanager
@@ -215,7 +216,10 @@ def _edge_curve(edge: Any) -> Any:
     if isinstance(crv, Geom_BSplineCurve):
         b = Geom_BSplineCurve(crv)  # copy
         tol = 1e-12 * max(1.0, abs(b.LastParameter() - b.FirstParameter()))
-        if f > b.FirstParameter() + tol or last < b.LastParameter() - tol:
+        # A periodic curve (STEP readers make one of every closed B-spline, our own exported
+        # rings included) stores its seam pole once and its knots cyclically: ``Segment`` opens
+        # it by exact knot insertion into the clamped curve of the edge's range.
+        if b.IsPeriodic() or f > b.FirstParameter() + tol or last < b.LastParameter() - tol:
             b.Segment(f, last)
     else:
         b = GeomConvert.CurveToBSplineCurve_s(Geom_TrimmedCurve(crv, f, last))
@@ -255,6 +259,6 @@ def read_occ(path: Path, kind: Kind) -> list[CadCurve]:
             while ex.More():
                 edge = ex.Current()
                 name = _entity_name(transfer.EntityFromShapeResult(edge, 1))
-                out.append(CadCurve(len(out), name, _from_geom(_edge_curve(edge))))
+                out.append(CadCurve(len(out), name, _from_geom(_edge_curve(edge), path, len(out))))
                 ex.Next()
     return out

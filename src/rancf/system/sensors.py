@@ -6,8 +6,10 @@ Kinds (column names ``NAME`` for one number, ``NAME_x``, ``NAME_y`` (, ``NAME_z`
   its twist coordinate ``φ`` [rad]);
 * ``angular_momentum`` about ``about`` (default the origin; 2D: the ``z`` component) and
   ``energy`` (kinetic + strain + gravitational [J]) of the whole system;
-* ``reaction``: the force of the joint ``joint`` or of the support at ``at``
-  (:mod:`rancf.system.outputs`);
+* ``reaction``: the force of the joint ``joint`` or of the support at ``at`` and, where it
+  carries one (a clamp, a rod's support, a ``fixed`` or driven joint, a 3D ``revolute``), its
+  moment ``NAME_mz`` (planar) or ``NAME_mx, NAME_my, NAME_mz``: the columns of
+  ``reactions.csv`` (:mod:`rancf.system.outputs`);
 * ``axial_force`` at a node of a flexible body (the section value ``N``,
   :mod:`rancf.model.sections`);
 * ``angle`` of a rigid body: its angle [rad] in 2D (continuous, as integrated), its rotation
@@ -57,8 +59,9 @@ class SensorReader:
         self._readers: list[Reader] = []
         self._mass: dict[str, tuple[float, NDArray]] = {}
         for sen in sensors:
-            self.names += sen.columns(self.system.dim)
-            self._readers.append(self._reader(sen))
+            reader = self._reader(sen)
+            self.names += getattr(reader, "columns", None) or sen.columns(self.system.dim)
+            self._readers.append(reader)
 
     def values(
         self, t: NDArray, q: NDArray, v: NDArray | None, derived: dict[str, NDArray],
@@ -146,6 +149,9 @@ class SensorReader:
         return lambda blk: blk[1][:, i]
 
     def _reaction(self, sen: Any, places: tuple) -> Reader:
+        """The reaction columns of the joint or support: its force, then its moment where it
+        carries one (the same columns as ``reactions.csv``), named ``NAME_x, NAME_y[, NAME_z]``
+        and ``NAME_mz`` (planar) or ``NAME_mx, NAME_my, NAME_mz``."""
         out, d = self.out, self.system.dim
         if getattr(sen, "joint", None) is not None:
             try:
@@ -154,15 +160,15 @@ class SensorReader:
                 names = [j.name for j in self.system.joints if j.name]
                 allowed = f"a joint: {', '.join(names) or 'none named'}"
                 raise InputError(f"sensors.{sen.name}.joint", sen.joint, allowed) from None
-            first = cols.start
-            return lambda blk: blk[3]["r"][:, first : first + d]
+            return _columns_reader(sen.name, d, cols)
         p = self._place(sen, places[0])
         start = 0
         for name, b in out.flex:
             for sup in b.supports:
+                width = d + (0 if not has_moment(b, sup.kind) else (1 if d == 2 else 3))
                 if name == p.body and b.check_node(sup.node, "supports.at") == p.at:
-                    return lambda blk, c=start: blk[3]["r"][:, c : c + d]
-                start += d + (0 if not has_moment(b, sup.kind) else (1 if d == 2 else 3))
+                    return _columns_reader(sen.name, d, slice(start, start + width))
+                start += width
         raise InputError(f"sensors.{sen.name}.at", str(p), "the place of a support")
 
     def _contact_force(self, sen: Any) -> Reader:
@@ -266,3 +272,17 @@ class SensorReader:
             return total
 
         return read
+
+
+def _columns_reader(name: str, dim: int, cols: slice) -> Reader:
+    """A reader of the reaction columns ``cols`` (force, then a moment when wider than ``dim``),
+    its column names as its ``columns`` attribute."""
+    moment = cols.stop - cols.start - dim
+    names = [f"{name}_{a}" for a in "xyz"[:dim]]
+    names += [f"{name}_m{a}" for a in ("z" if moment == 1 else "xyz")] if moment else []
+
+    def read(blk: Block) -> NDArray:
+        return blk[3]["r"][:, cols]
+
+    read.columns = names  # type: ignore[attr-defined]
+    return read
