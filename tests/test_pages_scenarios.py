@@ -4,6 +4,7 @@ page's example once failed at t = 0 on a spring to ground, and its roller fought
 
 from __future__ import annotations
 
+import copy
 import tomllib
 
 import pytest
@@ -32,7 +33,7 @@ def test_the_pages_show_complete_scenarios():
 
 @pytest.mark.parametrize("name", list(SCENARIOS))
 def test_a_page_scenario_runs(name):
-    d = SCENARIOS[name]
+    d = copy.deepcopy(SCENARIOS[name])
     solver = d.setdefault("solver", {})
     step = float(solver.get("step", 1e-3))
     solver.update(t_end=20 * step, adaptive=False)
@@ -40,3 +41,13 @@ def test_a_page_scenario_runs(name):
     result, names, values = rancf.simulate(parse_scenario(d, name))
     assert result.status.value == "completed", (name, result.message)
     assert result.n_steps == 20 and values.shape[1] == len(names)
+
+
+def test_a_failed_run_is_said_in_one_warning_line():
+    """``rancf.simulate`` of a run that cannot converge returns what it computed (status
+    ``failed``) and says so in one warning line (it was silent)."""
+    d = copy.deepcopy(SCENARIOS[next(iter(SCENARIOS))])
+    d["solver"].update(t_end=0.01, step=1e-3, max_newton=1, newton_tol=1e-300)
+    with pytest.warns(UserWarning, match=r"^rancf: the run failed at t = 0 s: ") as seen:
+        result, names, values = rancf.simulate(parse_scenario(d, "x"))
+    assert len(seen) == 1 and result.status.value == "failed" and values.shape[0] >= 1

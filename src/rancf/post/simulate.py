@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import warnings
 from pathlib import Path
 from typing import Any
 
@@ -27,7 +28,8 @@ def simulate(
     With ``out``, the run folder is written as by ``rancf simulate`` (the files of
     :mod:`rancf.post.run_files` and ``summary.json``; no ``scenario.toml``: a scenario built in
     Python has no file).  Returns the result, the sensor column names and their values at every
-    stored time ``(n_t, n_columns)``.
+    stored time ``(n_t, n_columns)``. A run that fails (no convergence) returns what it
+    computed, with ``result.status`` ``failed`` and one warning line saying where and why.
     """
     system, outputs = plan_run(scenario, limit_gb, "limit_gb")
     y0, start = start_state(scenario, system)
@@ -35,4 +37,8 @@ def simulate(
     if out is not None:
         write_run(out, system, scenario.sensors, result, {**start}, outputs=outputs)
     names, values = sensor_table(outputs, scenario.sensors, result.q, result.v, t=result.t)
+    if result.status.value != "completed":  # said, not raised: what was computed is returned
+        warnings.warn(f"rancf: the run {result.status.value} at t = {result.t_reached:g} s: "
+                      f"{result.message} (the states up to there are returned)",
+                      stacklevel=2)  # fmt: skip
     return result, names, values
