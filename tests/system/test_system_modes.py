@@ -125,6 +125,10 @@ def test_static_and_modes_commands_on_a_system(tmp_path, capsys):
     crank = json.loads(capsys.readouterr().out)
     assert crank["rigid_body_modes_removed"] == 0 and crank["constraints"] == 8
     assert 100.0 < crank["frequencies_hz"][0] < 200.0  # the rod pinned at both ends
+    with resources.as_file(examples / "slider-crank.toml") as p:  # unloaded: the same state
+        assert main(["modes", str(p), "--json", "--count", "3", "--about", "static"]) == 0
+    static = json.loads(capsys.readouterr().out)  # (the solve's multipliers of 1e-27 once
+    assert np.allclose(static["frequencies_hz"], crank["frequencies_hz"], rtol=1e-9)  # broke it)
     with resources.as_file(examples / "tether-payload.toml") as p:
         assert main(["modes", str(p), "--json", "--count", "2"]) == 0
     assert json.loads(capsys.readouterr().out)["rigid_body_modes_removed"] == 1

@@ -150,14 +150,14 @@ def system_modes(
     kc, mc = k[:n_free, :n_free], mass[:n_free, :n_free]
     rigid = _rigid(system, y, k[n_free : n_free + system.m, :n_free].tocsr(), kc, mc)
     dk, dm = np.abs(kc.diagonal()), np.abs(mc.diagonal())
-    both = (dk > 0) & (dm > 0)
+    # stiff coordinates: round-off (a static solve's multipliers of 1e-27) is no stiffness
+    stiff = dk > 1e-12 * dk.max(initial=0.0)
+    both = stiff & (dm > 0)
     sigma = SHIFT * (float(np.median(dk[both] / dm[both])) if np.any(both) else 1.0)
     # balance: coordinates by their stiffness, the border (multipliers, couplings) to match,
     # so the constraint rows (entries ~ 1) and the elastic ones (~ EA / l) are alike
-    kbar = float(np.mean(dk[dk > 0])) if np.any(dk > 0) else 1.0
-    d = np.r_[
-        1.0 / np.sqrt(np.where(dk > 0, dk, kbar)), np.full(k.shape[0] - n_free, np.sqrt(kbar))
-    ]
+    kbar = float(np.mean(dk[stiff])) if np.any(stiff) else 1.0
+    d = np.r_[1.0 / np.sqrt(np.where(stiff, dk, kbar)), np.full(k.shape[0] - n_free, np.sqrt(kbar))]
     bal = sp.diags(d)
     lam_w, vec = _eigenpairs((bal @ k @ bal).tocsc(), (bal @ mass @ bal).tocsc(), sigma,
                              count + rigid.shape[1] + 12)  # fmt: skip
