@@ -1,4 +1,4 @@
-"""``[[obstacles]]`` and ``contacts``: rigid obstacles the flexible bodies touch (issue 20).
+"""``[[obstacles]]`` and ``contacts``: rigid obstacles the flexible bodies touch.
 
 An obstacle is a ``plane`` (``point``, outward ``normal``), a ``cylinder`` (``center``,
 ``radius``; in 3D also ``axis``; in 2D a circle) or a ``sphere`` (3D: ``center``, ``radius``),
