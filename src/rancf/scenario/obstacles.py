@@ -29,7 +29,9 @@ OBSTACLE_KEYS = {
 
 
 class ObstacleTable(Table):
-    """One ``[[obstacles]]`` table (module docstring)."""
+    """One ``[[obstacles]]`` table: a rigid ``plane``, ``cylinder`` (in 2D a circle) or
+    ``sphere``, fixed or carried by a rigid body (``body = NAME``), that the flexible bodies touch
+    with friction."""
 
     name: Name = Field(description="the obstacle's name (reaction columns, sensors), unique")
     kind: Literal["plane", "cylinder", "sphere"] = Field(
