@@ -38,6 +38,20 @@ def units(description: str) -> str:
     return ""
 
 
+#: A cross-reference role of a docstring (``:mod:`rancf.x```, ``:func:`~rancf.x.f```).
+_ROLE = r":(?:py:)?(?:mod|func|class|meth|attr|data|obj):`(~?)([^`]+)`"
+
+
+def plain(text: str) -> str:
+    """A model's or key's description as the reference shows it: the docstrings' cross-reference
+    roles (pointers into the code, in parentheses of their own) and equation labels of the design
+    notes (``(T.2)``, ``(T.5; Kane ...)``) dropped, any other role as plain code."""
+    text = re.sub(rf"\s*\(\s*{_ROLE}\s*\)", "", text)
+    text = re.sub(_ROLE, lambda m: f"``{m[2].rsplit('.', 1)[-1] if m[1] else m[2]}``", text)
+    text = re.sub(r"\s*\(T\.\d+\)", "", text)
+    return re.sub(r"\(T\.\d+; ", "(", text)
+
+
 def _number(x: Any) -> str:
     return f"{x:g}" if isinstance(x, float) else str(x)
 
@@ -170,7 +184,7 @@ def _targets(document: Any, node: nodes.Node) -> None:
 def key_rows(model: str, props: dict[str, Any], required: list[str]) -> list[list[nodes.Node]]:
     rows = []
     for key, p in props.items():
-        desc = p.get("description", "")
+        desc = plain(p.get("description", ""))
         name = _para(nodes.literal(text=key))
         name["ids"] = [key_id(model, key)]
         name["names"] = [key_id(model, key)]
@@ -178,7 +192,7 @@ def key_rows(model: str, props: dict[str, Any], required: list[str]) -> list[lis
             name += nodes.Text(" (required)")
         items = p.get("items") if isinstance(p.get("items"), dict) else {}
         if items.get("description"):
-            desc = f"{desc}. Each: {items['description']}"
+            desc = f"{desc}. Each: {plain(items['description'])}"
         rows.append([
             name,
             _type_para(p),
@@ -220,7 +234,7 @@ class ScenarioReference(SphinxDirective):
         for name, model in sorted(schema["$defs"].items()):
             sec = nodes.section(ids=[section_id(name)], names=[section_id(name)])
             sec += nodes.title(text=name)
-            sec.extend(self._rst(model.get("description", "")))
+            sec.extend(self._rst(plain(model.get("description", ""))))
             props = model.get("properties", {})
             sec += _table(HEADERS, key_rows(name, props, model.get("required", [])), WIDTHS)
             out.append(sec)

@@ -33,7 +33,8 @@ class DynamicOptions:
     t_end : float
         End time [s], finite and > 0.
     step : float
-        (Initial) time step [s], in (0, t_end].
+        Time step [s] (adaptive: the first), in (0, t_end]; a step that would pass an output
+        time is shortened to end on it.
     rho_inf : float
         Spectral radius at infinity in [0, 1].
     adaptive : bool
@@ -43,7 +44,8 @@ class DynamicOptions:
         Step bounds (defaults ``step / 1024`` and ``max(output_step, step)``);
         ``min_step <= step`` and ``min_step <= max_step``.
     output_step : float, optional
-        Interval of stored states (default: every ``step``), in (0, t_end].
+        Interval of stored states (default: every ``step``), in (0, t_end]; the steps end on
+        every output time and on ``t_end``, which is stored too.
     newton_tol : float
         Newton stops when ``max |Δy| <= newton_tol * size`` (size = model extent).
     max_newton : int

@@ -1,4 +1,4 @@
-"""``[[obstacles]]`` and ``contacts``: rigid obstacles the flexible bodies touch (issue 20).
+"""``[[obstacles]]`` and ``contacts``: rigid obstacles the flexible bodies touch.
 
 An obstacle is a ``plane`` (``point``, outward ``normal``), a ``cylinder`` (``center``,
 ``radius``; in 3D also ``axis``; in 2D a circle) or a ``sphere`` (3D: ``center``, ``radius``),
@@ -29,7 +29,9 @@ OBSTACLE_KEYS = {
 
 
 class ObstacleTable(Table):
-    """One ``[[obstacles]]`` table (module docstring)."""
+    """One ``[[obstacles]]`` table: a rigid ``plane``, ``cylinder`` (in 2D a circle) or
+    ``sphere``, fixed or carried by a rigid body (``body = NAME``), that the flexible bodies touch
+    with friction."""
 
     name: Name = Field(description="the obstacle's name (reaction columns, sensors), unique")
     kind: Literal["plane", "cylinder", "sphere"] = Field(

@@ -7,12 +7,12 @@ A sensor names one monitored quantity.  Kinds and their keys:
   angle [rad], cumulative);
 * of the whole model: ``angular_momentum`` (about ``about``, default the origin; 3 columns in 3D,
   the ``z`` component in 2D) and ``energy`` (kinetic + strain + gravitational [J]);
-* of systems (issue 18): ``reaction`` (the force of the joint ``joint = NAME``, or of the
+* of systems: ``reaction`` (the force of the joint ``joint = NAME``, or of the
   support at ``at``) [N], ``axial_force`` (at a place of a flexible body) [N], ``angle`` (of the
   rigid body ``body``: [rad] in 2D, the rotation vector in 3D), ``center_of_mass`` [m] and
   ``momentum`` (linear momentum [kg m/s]) of the body ``body`` or, without it, of the whole
   system;
-* of contact (issue 20): ``contact_force`` (the force of the obstacle ``obstacle = NAME`` on
+* of contact: ``contact_force`` (the force of the obstacle ``obstacle = NAME`` on
   the bodies, normal and friction parts together) [N].
 
 Column names: ``NAME`` for one number, ``NAME_x``, ``NAME_y`` (, ``NAME_z``) for vectors.

@@ -32,7 +32,11 @@ class SolverTable(Table):
     """``[solver]``: time integration (generalized-alpha), Newton and statics settings."""
 
     t_end: Positive = Field(1.0, description="end time [s]")
-    step: Positive = Field(1e-3, description="(initial) time step [s], <= t_end")
+    step: Positive = Field(
+        1e-3,
+        description="time step [s] (adaptive: the first), <= t_end; a step that would pass an "
+        "output time is shortened to end on it",
+    )
     rho_inf: number(ge=0.0, le=1.0) = Field(
         0.9, description="generalized-alpha spectral radius at infinity, in [0, 1]"
     )
@@ -42,7 +46,9 @@ class SolverTable(Table):
     adaptive: Flag = Field(False, description="adapt the step to rtol (local error estimate)")
     rtol: Positive = Field(1e-5, description="adaptive steps: local error / model size")
     output_step: Positive | None = Field(
-        None, description="interval of stored states [s] (default: step), <= t_end"
+        None,
+        description="interval of stored states [s] (default: step), <= t_end; the steps end on "
+        "every output time and on t_end, which is stored too",
     )
     min_step: Positive | None = Field(
         None, description="below this a failing step stops the run [s] (default: step / 1024)"
