@@ -74,7 +74,9 @@ def _cmd_export(args: argparse.Namespace) -> int:
     from rancf.post.run_data import load_run
 
     if args.vtk is None and args.nurbs is None:
-        raise InputError("--vtk/--nurbs", None, "at least one of --vtk OUT_DIR, --nurbs FILE")
+        from rancf.cli import UsageError
+
+        raise UsageError("export needs at least one of --vtk OUT_DIR, --nurbs FILE")
     out = OutputDir(args.vtk, "--vtk") if args.vtk is not None else None
     if is_system_run(args.run_dir):
         return _export_system(args, out)

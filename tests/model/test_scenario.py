@@ -152,9 +152,15 @@ def test_cli_bad_scenario_exit_2_without_output(tmp_path, capsys, mutate, key, n
     assert not out.exists()
 
 
-def test_missing_file_and_invalid_toml(tmp_path, capsys):
+def test_missing_file_and_invalid_toml(tmp_path, capsys, monkeypatch):
     assert main(["static", str(tmp_path / "nope.toml")]) == 2
-    assert "cannot be read" in capsys.readouterr().err
+    err = capsys.readouterr().err
+    assert "cannot be read" in err and "rancf example copy" not in err
+    monkeypatch.chdir(tmp_path)  # an example's name for a file: where to get the file
+    assert main(["simulate", "tether-payload", "--out", "run"]) == 2
+    err = capsys.readouterr().err
+    assert err.strip().endswith("(a shipped scenario: `rancf example copy tether-payload .` "
+                                "writes tether-payload.toml)")  # fmt: skip
     bad = tmp_path / "x.toml"
     bad.write_text("[geometry\nkind=")
     assert main(["static", str(bad)]) == 2

@@ -226,3 +226,20 @@ def test_an_installed_place_equal_to_the_reference_up_to_round_off_is_no_install
         assert len(EquilibriumProblem(model).stages) == stages, shift
         res = solve_static(model)
         assert np.abs(model.node_positions(res.q)[-1] - end).max() <= 1e-15 + 1e-12 * 0.3
+
+
+def test_a_failed_path_advises_what_its_method_lacks():
+    """A pinned arc under gravity has no nearby equilibrium: load control points to the
+    arc-length method, and the arc-length method does not point to itself."""
+    from rancf.errors import ConvergenceError
+
+    arc = conic_arc_through([0.0, 0.0], [0.5, 0.0], [30.0, 40.0], [0.315, 0.077])
+    m = Model(mesh_conic(arc, 4), "rancf", Section.circular(0.02), Material(6000.0, 2e6),
+              [Support(0, "pin")], gravity=[0.0, -9.81])  # fmt: skip
+    messages = []
+    for method in ("load", "arc_length"):
+        with pytest.raises(ConvergenceError) as info:
+            solve_static(m, 4, method=method)
+        messages.append(str(info.value))
+    assert 'solver.static_method = "arc_length"' in messages[0]
+    assert "arc_length" not in messages[1] and "solver.load_steps" in messages[1]

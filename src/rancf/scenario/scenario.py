@@ -337,11 +337,21 @@ def _record(s: SensorTable, bodies: dict[str, Any] | None) -> Sensor:
     return s.record(tuple(int(_node_or_text(p, True)) for p in s.places()))
 
 
+def _shipped(name: str) -> bool:
+    """Whether ``name`` is a shipped example scenario (``rancf example list``)."""
+    from importlib import resources
+
+    return resources.files("rancf.examples").joinpath(f"{name}.toml").is_file()
+
+
 def _read_toml(p: Path) -> dict[str, Any]:
     try:
         data = p.read_bytes()
     except OSError as exc:
-        raise ScenarioError(str(p), "file", f"cannot be read: {exc.strerror}") from None
+        hint = ""
+        if not p.exists() and p.suffix == "" and _shipped(p.name):
+            hint = f" (a shipped scenario: `rancf example copy {p.name} .` writes {p.name}.toml)"
+        raise ScenarioError(str(p), "file", f"cannot be read: {exc.strerror}{hint}") from None
     try:
         text = data.decode("utf-8")
     except UnicodeDecodeError as exc:

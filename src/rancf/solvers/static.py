@@ -223,10 +223,14 @@ class _Path:
             self.on_step(lam, y)
 
     def fail(self, what: str) -> ConvergenceError:
+        hint = (
+            "is the model a mechanism, or the first arc too long? more solver.load_steps shorten it"
+            if what.startswith("arc-length")
+            else "is the model a mechanism, or the load beyond a limit point? solver.static_method"
+            ' = "arc_length" passes limit points'
+        )
         return ConvergenceError(
-            f"static {what} did not converge beyond load factor {self.lam:.4g} (is the model a "
-            "mechanism, or the load beyond a limit point? solver.static_method = "
-            '"arc_length" passes limit points)',
+            f"static {what} did not converge beyond load factor {self.lam:.4g} ({hint})",
             reached=self.lam,
         )
 
