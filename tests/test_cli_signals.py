@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import argparse
 import json
 import os
 import random
@@ -164,3 +165,28 @@ def test_files_honour_the_umask(tmp_path, monkeypatch, umask, file_mode, dir_mod
     names += ["summary.json"]
     assert [f.name for f in files] == names
     assert all(f.stat().st_mode & 0o777 == file_mode for f in files)
+
+
+def test_an_interrupted_command_in_python_leaves_ctrl_c_to_the_caller(tmp_path, monkeypatch):
+    """``main()`` called from Python (a notebook, a test) that ends by an interrupt gives the
+    caller its Ctrl-C handler back: it set Ctrl-C to "ignore" for the rest of the process (and
+    every process started from it, which then ignored Ctrl-C until their run began)."""
+    before = signal.getsignal(signal.SIGINT)
+
+    def interrupted(args):
+        raise KeyboardInterrupt
+
+    args = argparse.Namespace(func=interrupted)
+    monkeypatch.setattr("rancf.cli.build_parser", lambda command=None: _Fixed(args))
+    assert main(["conic"]) == 130
+    assert signal.getsignal(signal.SIGINT) is before
+
+
+class _Fixed:
+    """A parser that returns fixed arguments."""
+
+    def __init__(self, args):
+        self.args = args
+
+    def parse_args(self, argv):
+        return self.args

@@ -41,6 +41,7 @@ def run() -> int:
         print("rancf: interrupted", file=sys.stderr)  # an import broken by the interrupt
         status = 130
     if status == 130:
+        signal.signal(signal.SIGINT, signal.SIG_IGN)  # a second Ctrl-C must not add a traceback
         for stream in (sys.stdout, sys.stderr):
             try:
                 stream.flush()

@@ -140,6 +140,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     old_term = signal.getsignal(signal.SIGTERM)
     if old_term in (signal.SIG_DFL, None):
         signal.signal(signal.SIGTERM, _on_sigterm)
+    old_int = signal.getsignal(signal.SIGINT)
     saved = sys.stdout
     try:
         closed = _open_stdout()
@@ -159,6 +160,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         sys.stdout = saved
         if old_term in (signal.SIG_DFL, None):
             signal.signal(signal.SIGTERM, signal.SIG_DFL)
+        if old_int is not None:  # a caller in Python keeps its Ctrl-C after an interrupt
+            signal.signal(signal.SIGINT, old_int)
 
 
 def _dispatch(argv: Sequence[str] | None) -> int:
