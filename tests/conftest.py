@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import signal
 
 import numpy as np
 import pytest
@@ -12,6 +13,12 @@ settings.register_profile(
     "rancf", max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow]
 )
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "rancf"))
+
+# A suite started as a background job (`.ci/run &` in a script) inherits Ctrl-C ignored
+# (POSIX), and so would every command it starts: the signal tests, which interrupt commands,
+# then saw runs that ignored Ctrl-C until their own handler was set. Ctrl-C is restored here.
+if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
+    signal.signal(signal.SIGINT, signal.default_int_handler)
 
 #: Paper Example 1 (planar pendulum): chord, angles (deg), interior point.
 EXAMPLE1 = (0.5, (30.0, 40.0), (0.315, 0.077))
