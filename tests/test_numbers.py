@@ -16,12 +16,18 @@ def test_round_off_in_the_last_digit_passes():
     assert text_matches("  phi          1e-19", "  phi          0")  # zero at round-off level
 
 
+def test_iteration_counts_follow_round_off():
+    """Another BLAS kernel (OpenBLAS's Sandybridge) takes 65 Newton iterations where this
+    machine takes 63: counts of iterations and load steps are not compared; the rest is."""
+    assert text_matches("static equilibrium: 11 load steps, 65 Newton iterations",
+                        "static equilibrium: 11 load steps, 63 Newton iterations")  # fmt: skip
+    assert not text_matches("11 load steps, 65 Newton iterations", "11 load steps, 65 iterations")
+
+
 def test_a_real_change_fails():
     assert not text_matches("0.01,0.50000063346,0.500000393517,-0.000489849441738", HERE)
     assert not text_matches("  mode  1      1.938585 Hz", "  mode  1      1.938485 Hz")
-    assert not text_matches(
-        "1000 steps, 2199 Newton iterations", "1000 steps, 2198 Newton iterations"
-    )
+    assert not text_matches("1000 steps, 2198 Newton iterations", "1000 steps, 2198 iterations")
     assert not text_matches("rancf 0.2.1", "rancf 0.2.0")  # versions are text
     assert not text_matches("run_00001.vtu", "run_00000.vtu")  # so are names
     assert not text_matches("completed: t = 1 s", "completed: t = 1 ms")
