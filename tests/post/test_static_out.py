@@ -1,6 +1,7 @@
 """`rancf static --out`: the load path as a run directory that export, plot and animate read."""
 
 import json
+import re
 
 import numpy as np
 import pytest
@@ -62,10 +63,13 @@ def test_static_out_of_a_rod_has_its_frames(tmp_path, capsys):
 
 
 def test_a_failed_static_run_keeps_the_converged_steps(tmp_path, capsys):
-    # a pendulum is a mechanism: no static equilibrium near the reference
+    # the pendulum without its pin: a free body under gravity has no static equilibrium (with
+    # the pin, whether Newton finds the hanging state from the reference is round-off's luck)
     assert main(["example", "copy", "planar-pendulum", str(tmp_path)]) == 0
+    f = tmp_path / "planar-pendulum.toml"
+    f.write_text(re.sub(r"\[\[supports\]\]\n(?:[^\[\n].*\n)*", "", f.read_text()))
     out = tmp_path / "st"
-    assert main(["static", str(tmp_path / "planar-pendulum.toml"), "--out", str(out)]) == 3
+    assert main(["static", str(f), "--out", str(out)]) == 3
     assert "did not converge" in capsys.readouterr().err
     summary = json.loads((out / "summary.json").read_text())
     assert summary["status"] == "failed" and summary["load_factor_reached"] < 1.0
