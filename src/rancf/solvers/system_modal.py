@@ -182,5 +182,6 @@ def system_modes(
     symmetric = bool(np.all(np.abs(lam_w.imag) <= 1e-9 * np.abs(lam_w.real)))
     root = np.sqrt(lam_w.astype(complex))
     eig = lam_w.real if symmetric else lam_w
-    return ModalResult(root.real / (2 * np.pi), modes, int(np.sum(~keep)), eig,
+    # the zero-frequency motions found (their eigenpairs may be dropped by the residual filter)
+    return ModalResult(root.real / (2 * np.pi), modes, n_rigid, eig,
                        np.abs(root.imag), symmetric)  # fmt: skip
