@@ -15,21 +15,29 @@ from rancf.errors import InputError
 __all__ = ["add_parsers", "reactions_json"]
 
 
-def reactions_json(sc: Any, model: Any, y: Any) -> list[dict[str, Any]]:
-    """``static --json``'s ``"reactions"``: one object per support, in file order:
-    ``{"at", "force", "moment"}`` (moment for clamps and rods)."""
-    from rancf.model.reactions import support_reactions
-    from rancf.solvers.equilibrium import EquilibriumProblem
-
-    labels = sc.support_labels
-    res = EquilibriumProblem(model).full_residual(y, 1.0)  # the full loads
+def reactions_json(outputs: Any, y: Any, lam: Any) -> list[dict[str, Any]]:
+    """``static --json``'s ``"reactions"`` at the full loads: one object per support (in file
+    order, flexible body by body) and per joint, ``{"at", "force", "moment"}`` (``moment`` for
+    clamps, rods and joints that transmit one), whatever the sensors
+    (:meth:`rancf.system.outputs.SystemOutputs.static_reactions`)."""
     out = []
-    for r in support_reactions(model, y, res, labels):
+    for r in outputs.static_reactions(y, lam):
         item: dict[str, Any] = {"at": r.at, "force": r.force.tolist()}
         if r.moment is not None:
             item["moment"] = r.moment.tolist()
         out.append(item)
     return out
+
+
+def positions_json(system: Any, q: Any) -> Any:
+    """``static --json``'s ``"positions"``: the nodes of the one flexible body ``[[x, y(, z)],
+    ...]``, or per body (a rigid body's or point mass's centre)."""
+    out: dict[str, Any] = {}
+    for name in system.names:
+        b, qb = system.bodies[name], q[system.body_slice(name)]
+        out[name] = (b.node_positions(qb).tolist() if hasattr(b, "node_positions")
+                     else qb[: system.dim].tolist())  # fmt: skip
+    return next(iter(out.values())) if len(out) == 1 and system.flex else out
 
 
 def _cmd_buckling(args: argparse.Namespace) -> int:
@@ -74,37 +82,29 @@ def _cmd_static(args: argparse.Namespace) -> int:
     from rancf.post.checks import run_warnings
     from rancf.post.results import LoadPath, sensor_table, strict_json, write_static_run
     from rancf.scenario import load_scenario
+    from rancf.scenario.system_build import support_labels
     from rancf.solvers.static import solve_static
+    from rancf.system.outputs import SystemOutputs
 
     sc = load_scenario(args.scenario)
-    if sc.needs_system:
-        from rancf.cli_system import print_static, static_system
-
-        copy = None if args.out is None else _scenario_text(args.scenario)
-        doc = static_system(args, sc, copy)
-        if args.json:
-            print(strict_json(doc).rstrip())
-        else:
-            print_static(doc, args.out)
-        return 0
     od = None if args.out is None else OutputDir(args.out, kind="run", overwrite=args.overwrite)
-    model = sc.build_model()
-    path = LoadPath(model, sc.support_labels)  # the load path, for --out
-    method = sc.solver["static_method"]
+    system = sc.build_system()
+    labels = support_labels(sc)
+    path = LoadPath(system, labels)  # the load path, for --out
+    opts = {"load_steps": sc.solver["load_steps"], "method": sc.solver["static_method"]}
+    doc = None
     if od is None:
-        res = solve_static(model, sc.solver["load_steps"], method=method)
+        res = solve_static(system, **opts)
     else:
         from rancf.atomic import atomic_write
 
         copy = _scenario_text(args.scenario)
-        out_dir = od.path
         with od:
-            info = {"scenario": str(Path(args.scenario).resolve())}
+            info: dict[str, Any] = {"scenario": str(Path(args.scenario).resolve())}
             try:
-                res = solve_static(
-                    model, sc.solver["load_steps"], on_step=path.record, method=method
-                )
-                info.update(status="completed", message="reached the end of the load path")
+                res = solve_static(system, on_step=path.record, **opts)
+                info.update(status="completed", message="reached the end of the load path",
+                            method=res.method, relaxation_steps=res.relaxation_steps)  # fmt: skip
             except BaseException as exc:
                 kind = "interrupted" if isinstance(exc, KeyboardInterrupt) else "failed"
                 lam = path.steps[-1][0] if path.steps else 0.0
@@ -113,40 +113,43 @@ def _cmd_static(args: argparse.Namespace) -> int:
                 raise
             finally:
                 if path.steps:  # what converged is kept, also when a later increment fails
-                    doc = write_static_run(out_dir, path, sc.sensors, info)
-                    atomic_write(out_dir / "scenario.toml", copy)
+                    doc = write_static_run(od.path, path, sc.sensors, info)
+                    atomic_write(od.path / "scenario.toml", copy)
                     od.keep()
-    if path.steps:  # the load path's outputs tracked the largest strain
-        notes = _warn(doc["warnings"])
-    else:
-        notes = _warn(run_warnings(model, res.load_factors[-1:], res.q[None], static=True))
-    pos = model.node_positions(res.q)
+    outputs = SystemOutputs(system, sc.sensors, labels)
     lf = res.load_factors[-1:]
-    names, vals = sensor_table(model, sc.sensors, res.q, static=True, t=lf)
+    names, vals = sensor_table(outputs, sc.sensors, res.q, static=True, t=lf, lam=res.lam[None])
+    # the load path's outputs tracked the largest strain (--out), else the last state's
+    largest = outputs.largest_strain
+    notes = _warn(doc["warnings"] if doc is not None
+                  else run_warnings(system, static=True, largest=largest))  # fmt: skip
     out = {
-        "positions": pos.tolist(),
+        "positions": positions_json(system, res.q),
         "sensors": dict(zip(names, vals[0].tolist(), strict=True)),
         "load_factors": res.load_factors.tolist(),
         "newton_iterations": res.n_newton,
+        "relaxation_steps": res.relaxation_steps,
         "method": res.method,
         "wall_time_s": res.wall_time,
-        "reactions": reactions_json(sc, model, res.y),
+        "reactions": reactions_json(outputs, res.y, res.lam),
         "warnings": notes,
     }
     if args.json:
         print(strict_json(out).rstrip())
-    else:
-        print(
-            f"static equilibrium: {len(res.load_factors) - 1} load steps, "
-            f"{res.n_newton} Newton iterations" + (f" -> {od.path}" if od is not None else "")
-        )
-        for k, v in out["sensors"].items():
-            print(f"  {k:12s} {v: .9g}")
-        # forces below the round-off of the internal forces (100 ε EA) print as 0
-        floor = 100 * np.finfo(float).eps * model.props.ea
-        for r in out["reactions"]:
-            moment = f"  moment {_vec(r['moment'], floor)}" if "moment" in r else ""
-            print(f"  reaction at {r['at']!s:6s} force {_vec(r['force'], floor)}{moment}")
+        return 0
+    relaxed = f", {res.relaxation_steps} relaxation steps" if res.relaxation_steps else ""
+    where = f" -> {od.path}" if od is not None else ""
+    print(
+        f"static equilibrium ({res.method}): {len(res.load_factors) - 1} load steps, "
+        f"{res.n_newton} Newton iterations{relaxed}{where}"
+    )
+    for k, v in out["sensors"].items():
+        print(f"  {k:12s} {v: .9g}")
+    # forces below the round-off of the internal forces (100 ε EA) print as 0
+    floor = 100 * np.finfo(float).eps * max((b.props.ea for b in system.flex), default=0.0)
+    for r in out["reactions"]:
+        moment = f"  moment {_vec(r['moment'], floor)}" if "moment" in r else ""
+        print(f"  reaction at {r['at']!s:6s} force {_vec(r['force'], floor)}{moment}")
     return 0
 
 

@@ -2,8 +2,8 @@
 
 Linearized pre-buckling analysis (e.g. Bathe, *Finite Element Procedures*, 2014, sec. 6.8.2;
 Wriggers, *Nonlinear Finite Element Methods*, 2008, sec. 7.2).  Along the load path of
-:class:`~rancf.solvers.equilibrium.EquilibriumProblem` the tangent is ``K_T(y(λ), λ)``.  About a
-state ``(y*, λ*)``:
+:class:`~rancf.solvers.system_equilibrium.SystemEquilibrium` the tangent is ``K_T(y(λ), λ)``.
+About a state ``(y*, λ*)``:
 
 * ``about = "reference"``: ``λ* = 0``, ``y* = y0``; the path is linearized, ``dy/dλ = K₀⁻¹ q``;
 * ``about = "static"``: ``(y*, λ*)`` the static equilibrium at ``λ* = 1`` (pre-loaded state).
@@ -31,8 +31,9 @@ from numpy.typing import NDArray
 
 from rancf.errors import ConvergenceError, InputError
 from rancf.model.system import Model
-from rancf.solvers.equilibrium import EquilibriumProblem
+from rancf.solvers.dynamic import as_system
 from rancf.solvers.modal import rigid_body_modes, unresisted_motions
+from rancf.solvers.system_equilibrium import SystemEquilibrium
 
 __all__ = ["BucklingResult", "linear_buckling"]
 
@@ -78,7 +79,7 @@ def linear_buckling(
         raise InputError("--count", count, "an integer >= 1")
     if about not in ("reference", "static"):
         raise InputError("--about", about, 'one of "reference", "static"')
-    problem = EquilibriumProblem(model)
+    problem = SystemEquilibrium(as_system(model))
     if about == "reference":
         model.reset_triads()
         ys, lam0 = model.y0.copy(), 0.0
@@ -88,25 +89,28 @@ def linear_buckling(
         # the end of the path: loads on, supports installed
         ys, lam0 = np.asarray(y, dtype=float), problem.stages[-1][1]
         problem.stage = len(problem.stages) - 1
-    _, k0 = problem.tangent(ys, lam0)
-    free = problem.free
-    kd = _dense_tangent(problem, ys, lam0)
+    z = np.r_[ys, np.zeros(problem.m)]
+    _, k0 = problem.tangent(z, lam0)
+    free = problem.free[: model.n]
+    kd = _dense_tangent(model, problem, ys, lam0)
     mass = model.dense(model.mass_band)[np.ix_(free, free)]
     rigid = unresisted_motions(rigid_body_modes(model, ys)[free], kd[np.ix_(free, free)], mass)
-    u = problem.solve(k0, _loads(problem, ys, k0)) if rigid.shape[1] == 0 else None
+    u = problem.solve(k0, _loads(problem, z, k0)) if rigid.shape[1] == 0 else None
     if u is None:
         raise ConvergenceError(
             "the tangent stiffness is singular: the structure is a mechanism (add supports)"
         )
-    umax = float(np.max(np.abs(u * problem.scale)))
+    u = u[: model.n]
+    umax = float(np.max(np.abs(u * problem.scale[: model.n])))
     if not umax > 0.0:
         raise ConvergenceError("the loads do not deform the structure: nothing can buckle")
     h = 1e-6 / umax
-    kp = _dense_tangent(problem, ys + h * u, lam0, h)
-    km = _dense_tangent(problem, ys - h * u, lam0, -h)
+    kp = _dense_tangent(model, problem, ys + h * u, lam0, h)
+    km = _dense_tangent(model, problem, ys - h * u, lam0, -h)
     ks = (kp - km) / (2.0 * h)
     a, b = -ks[np.ix_(free, free)], kd[np.ix_(free, free)]
-    symmetric = problem.conservative and np.allclose(b, b.T, rtol=0, atol=1e-9 * np.abs(b).max())
+    conservative = not any(p.moment is not None for p in model.point_loads)
+    symmetric = conservative and np.allclose(b, b.T, rtol=0, atol=1e-9 * np.abs(b).max())
     inv_mu = None
     if symmetric:
         try:
@@ -130,24 +134,26 @@ def linear_buckling(
     return BucklingResult(base + mu[order], model.q_from_y(modes), about, bool(symmetric))
 
 
-def _loads(problem: EquilibriumProblem, y: NDArray, ab: NDArray) -> NDArray[np.float64]:
+def _loads(problem: SystemEquilibrium, z: NDArray, k: bool) -> NDArray[np.float64]:
     """The loads' direction of the path (``f_ext`` on the free rows), whatever the stage."""
     stage, problem.stage = problem.stage, 0
     try:
-        return problem.load_vector(y, ab)
+        return problem.load_vector(z, k)
     finally:
         problem.stage = stage
 
 
 def _dense_tangent(
-    problem: EquilibriumProblem, y: NDArray, p: float, dlam: float = 0.0
+    model: Model, problem: SystemEquilibrium, y: NDArray, p: float, dlam: float = 0.0
 ) -> NDArray[np.float64]:
-    """The dense tangent at ``y`` with the supports of ``p`` and the loads ``dlam`` more than
-    at ``p`` (only point moments make the tangent depend on the load level)."""
-    y = np.array(y, dtype=float)
-    problem.place_supports(y, p)
-    _, ab = problem.tangent(y, p)
-    if dlam and not problem.conservative:
-        m = problem.model
-        ab = ab - dlam * m.load_stiffness(problem._t, y, problem._amp)
-    return problem.model.dense(ab)
+    """The dense tangent ``∂(f_int - λ f_ext)/∂y`` at ``y`` with the supports of ``p`` and the
+    loads ``dlam`` more than at ``p`` (only point moments make the tangent depend on the load
+    level: their load stiffness), loads at their amplitude."""
+    z = np.r_[np.asarray(y, dtype=float), np.zeros(problem.m)]
+    problem.place_supports(z, p)
+    y = z[: model.n]
+    _, ab = model.internal_force_and_tangent(y)
+    lam = problem.load_factor(p) + dlam
+    if lam and any(pl.moment is not None for pl in model.point_loads):
+        ab = ab - lam * model.load_stiffness(0.0, y, True)
+    return model.dense(ab)

@@ -1,6 +1,21 @@
-"""The static equilibrium problem of a system along its load path (the path of
-:mod:`rancf.solvers.equilibrium`, stages and all), as :func:`rancf.solvers.static.solve_static`
-sees it.
+"""The static equilibrium problem of a system along its load path, as
+:func:`rancf.solvers.static.solve_static` sees it (the one problem of the static solvers: a
+one-body :class:`~rancf.model.system.Model` is solved as the system of that one body).
+
+The path parameter ``p`` runs through one or two stages:
+
+1. ``p ∈ [0, 1]``: the loads act with ``p`` times their amplitude, the supports at their
+   reference values;
+2. with installed supports (``position``/``direction`` away from the reference,
+   :attr:`Model.y_installed <rancf.model.system.Model.y_installed>`), ``p ∈ [1, 2]``: the
+   loads at full amplitude, the supports moved ``p - 1`` of the way to their installed values.
+
+With ``λ(p) = p``, ``μ = 0`` in the first stage and ``λ = 1``, ``μ(p) = p - 1`` in the second
+(each linear in ``p`` also past its stage's end, as an arc-length step may go), the held
+coordinates are ``y[held] = y0[held] + μ Δ`` with ``Δ = y_installed[held] - y0[held]``.
+Loading first, then installing, keeps the path clear of bifurcations: a straight hose whose ends
+are pushed together while it is still straight meets a perfect bifurcation (it may buckle up,
+down or into an S), while the same hose already sagging under gravity just sags further.
 
 The unknowns are ``z = (y, μ)``: the coordinates of all bodies and the joints' multipliers.  The
 residual is the compiled core's balance and constraints at zero velocity and acceleration,
@@ -20,13 +35,24 @@ from numpy.typing import NDArray
 
 from rancf.kernels import _core
 from rancf.model.system import Model
-from rancf.solvers.equilibrium import path_stages
 from rancf.system import System
 
-__all__ = ["SystemEquilibrium", "STABILIZER"]
+__all__ = ["SystemEquilibrium", "STABILIZER", "INSTALL_RTOL", "path_stages"]
+
+#: Installed values closer to the reference than this (relative to the size) are the reference:
+#: round-off, not an installation.
+INSTALL_RTOL = 1e-12
 
 #: The mass-proportional term of a singular tangent, relative to the stiffness-to-mass scale.
 STABILIZER = 1e-6
+
+
+def path_stages(delta: NDArray[np.float64], size: float) -> list[tuple[float, float]]:
+    """The stages of the load path ``(p_start, p_end)``: the loads (``[0, 1]``), then the
+    installation (``[1, 2]``) when a held coordinate moves by more than round-off (``delta``:
+    installed minus reference values of the held coordinates; ``size`` the model's length)."""
+    moves = delta.size and np.abs(delta).max() > INSTALL_RTOL * max(size, 1.0)
+    return [(0.0, 1.0)] + ([(1.0, 2.0)] if moves else [])
 
 
 class SystemEquilibrium:
@@ -122,6 +148,22 @@ class SystemEquilibrium:
             ok = self._integ.factor_static(*args, stab=STABILIZER * self._stiffness_scale(z))
         r[self.fixed] = 0.0
         return r, bool(ok)
+
+    def damped_tangent(self, z: NDArray, p: float, rate: float) -> tuple[NDArray, bool]:
+        """Residual (held rows zero) and the Jacobian with ``rate M`` added, factored: the step
+        ``(M/Δτ + K) Δz = -r`` of pseudo-transient continuation, ``rate = 1/Δτ``
+        (:mod:`rancf.solvers.relaxation`)."""
+        r = np.empty(self.n + self.m)
+        ok = self._integ.factor_static(np.ascontiguousarray(z[: self.n]),
+                                       np.ascontiguousarray(z[self.n :]), self.load_factor(p),
+                                       self._amp, self._t, r, stab=float(rate))  # fmt: skip
+        r[self.fixed] = 0.0
+        return r, bool(ok)
+
+    def stiffness_scale(self, z: NDArray) -> float:
+        """The largest ratio of the diagonals of the tangent and the mass on the free
+        coordinates at ``z`` [1/s²] (the square of the highest frequency's order)."""
+        return self._stiffness_scale(z)
 
     def _stiffness_scale(self, z: NDArray) -> float:
         """The largest ratio of the diagonals of the tangent and the mass (free coordinates)."""

@@ -17,7 +17,8 @@ coordinates alone do not fix).  :class:`SystemOutputs` turns rows of them into
 * the sensors (:mod:`rancf.system.sensors`).
 
 Static rows (a load path, ``t`` the path parameter) have ``a = v = 0``, the residual
-``f_int - p f_ext + Gᵀ λ`` at the load factor ``p = min(t, 1)`` and the solver's multipliers.
+``f_int - p f_ext + Gᵀ λ`` at the load factor ``p = min(t, 1)`` (loads at their amplitude, as
+:func:`rancf.solvers.static.solve_static` takes them) and the solver's multipliers.
 
 Why not the integrator's own acceleration: in generalized-α ``a_{n+1}`` approximates the
 acceleration at ``t_{n+1} + (α_m - α_f) h`` (Arnold & Brüls 2007), a first-order shift for
@@ -47,7 +48,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rancf.kernels import _core
-from rancf.model.reactions import reaction_columns, reaction_row, support_reactions
+from rancf.model.reactions import Reaction, reaction_columns, reaction_row, support_reactions
 from rancf.model.sections import SectionSampler, section_names
 from rancf.system.contact import contact_outputs
 from rancf.system.sensors import SensorReader
@@ -186,7 +187,7 @@ class SystemOutputs:
                 if static:
                     if lam is not None:
                         li[:] = lam[i]
-                    s.core.residual(y, vy, a, li, 0.0, min(float(t[i]), 1.0), False, False, res)
+                    s.core.residual(y, vy, a, li, 0.0, min(float(t[i]), 1.0), True, False, res)
                 else:
                     self._integ.initial_acceleration(y, vy, float(t[i]), a, li)
                     s.core.residual(y, vy, a, li, float(t[i]), 1.0, False, True, res)
@@ -206,18 +207,40 @@ class SystemOutputs:
         w = 2 * self.system.dim + 2
         return slice(self.contact_start + k * w, self.contact_start + (k + 1) * w)
 
+    def static_reactions(
+        self, y: NDArray, lam: NDArray, load_factor: float = 1.0
+    ) -> list[Reaction]:
+        """The reactions of every support and joint at a static state (model coordinates ``y``,
+        the solver's multipliers ``lam``, the loads at ``load_factor`` times their amplitude):
+        the supports of each flexible body in file order, then the joints (``at`` their name);
+        a moment where the support or joint transmits one."""
+        s = self.system
+        y = np.asarray(y, dtype=float)
+        lam = np.asarray(lam, dtype=float)
+        res, zero = np.empty(s.n + s.m), np.zeros(s.n)
+        s.core.residual(y, zero, zero, lam, 0.0, float(load_factor), True, False, res)
+        return self.reactions(y, res[: s.n], 0.0, lam)
+
+    def reactions(self, y: NDArray, res: NDArray, t: float, lam: NDArray) -> list[Reaction]:
+        """The reactions of the supports (the held rows of the balance residual ``res``) and of
+        the joints (their multipliers ``lam``) at ``y``, ``t``: :meth:`static_reactions`."""
+        s = self.system
+        out: list[Reaction] = []
+        for name, b in self.flex:
+            sl = s.body_slice(name)
+            out += support_reactions(b, y[sl], res[sl], self.labels[name])
+        for k, j in enumerate(s.joints):
+            force, moment = s.core.joint_reaction(k, y, t, lam)
+            mom = None
+            if _joint_has_moment(s, k):
+                mom = np.asarray(moment)[2:] if s.dim == 2 else np.asarray(moment)
+            out.append(Reaction(j.name or f"joint{k}", np.asarray(force)[: s.dim], mom))
+        return out
+
     def _reactions(self, y: NDArray, res: NDArray, t: float, lam: NDArray,
                    v: NDArray | None = None) -> NDArray:  # fmt: skip
         s = self.system
-        parts = []
-        for name, b in self.flex:
-            sl = s.body_slice(name)
-            parts.append(reaction_row(support_reactions(b, y[sl], res[sl], self.labels[name])))
-        for k in range(len(s.joints)):
-            force, moment = s.core.joint_reaction(k, y, t, lam)
-            parts.append(np.asarray(force)[: s.dim])
-            if _joint_has_moment(s, k):
-                parts.append(np.asarray(moment)[2:] if s.dim == 2 else np.asarray(moment))
+        parts = [reaction_row(self.reactions(y, res, t, lam))]
         for c in contact_outputs(s, y, v).values():
             parts += [c.normal, c.friction, np.array([c.length, c.penetration])]
         if s.body_contacts:
