@@ -29,8 +29,8 @@ import numpy as np
 import scipy.linalg
 from numpy.typing import NDArray
 
+from rancf.bodies.flexible import Model
 from rancf.errors import ConvergenceError, InputError
-from rancf.model.system import Model
 from rancf.solvers.dynamic import as_system
 from rancf.solvers.modal import rigid_body_modes, unresisted_motions
 from rancf.solvers.system_equilibrium import SystemEquilibrium

@@ -2,7 +2,7 @@
 relaxation where the path cannot go on.
 
 The problem is :class:`~rancf.solvers.system_equilibrium.SystemEquilibrium` (a one-body
-:class:`~rancf.model.system.Model` is solved as the system of that one body): the path parameter
+:class:`~rancf.bodies.flexible.Model` is solved as the system of that one body): the path parameter
 ``p`` runs from 0 to 1 with the loads at ``p`` times their amplitude (harmonic loads count with
 their amplitude), then, with installed supports, from 1 to 2 while the supports move to their
 installed places.  Each stage is followed by one of two methods (``method``):
@@ -38,8 +38,8 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import NDArray
 
+from rancf.bodies.flexible import Model
 from rancf.errors import ConvergenceError, InputError, ScenarioError
-from rancf.model.system import Model
 from rancf.solvers.dynamic import as_system
 from rancf.solvers.newton import newton
 from rancf.solvers.relaxation import relax
