@@ -22,10 +22,10 @@ from rancf.geometry.nurbs import NurbsCurve
 from rancf.mesh.ellipse_mesh import mesh_ellipse
 from rancf.mesh.mesh import mesh_line
 from rancf.mesh.nurbs_mesh import mesh_nurbs
-from rancf.solvers.dynamic import DynamicOptions, integrate
-from rancf.solvers.equilibrium import EquilibriumProblem
+from rancf.solvers.dynamic import DynamicOptions, as_system, integrate
 from rancf.solvers.modal import natural_modes
 from rancf.solvers.static import solve_static
+from rancf.solvers.system_equilibrium import SystemEquilibrium
 from rancf.system import System
 
 #: Euler-Bernoulli first frequency of the cantilever (L = 0.5 m, radius 0.03 m, ρ = 6000,
@@ -205,7 +205,7 @@ def test_inner_support_and_point_load_match_c1():
             pos = m.node_positions(res.q)
             assert np.abs(pos[n // 2] - [0.5, 0.0]).max() < 1e-14
             out[c] = pos[n // 4]
-            full = EquilibriumProblem(m).full_residual(res.y, 1.0)
+            full = SystemEquilibrium(as_system(m)).full_residual(res.y, 1.0)
             total = sum(r.force for r in support_reactions(m, res.y, full))
             assert np.abs(total + [0.0, -0.5]).max() < 1e-9
         assert out["C1"][1] < -0.008  # it sags
