@@ -107,10 +107,13 @@ def test_a_pinned_pendulum_drawn_horizontal_comes_to_rest_hanging(tmp_path, caps
     (pin,) = doc["reactions"]
     assert pin["at"] == "start"
     assert np.abs(np.array(pin["force"]) - [0.0, weight]).max() <= 1e-9 * weight
-    assert main(["static", str(f)]) == 0
+    assert main(["static", str(f), "--out", str(tmp_path / "run")]) == 0
     first = capsys.readouterr().out.splitlines()[0]
     assert first.startswith("static equilibrium (relaxation+newton): ")
     assert "relaxation steps" in first
+    summary = json.loads((tmp_path / "run" / "summary.json").read_text())
+    assert summary["method"] == "relaxation+newton" and summary["status"] == "completed"
+    assert summary["relaxation_steps"] == doc["relaxation_steps"]
 
 
 def test_an_l_shaped_rope_pinned_at_both_ends_sags(tmp_path, capsys):
