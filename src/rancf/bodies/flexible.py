@@ -40,7 +40,8 @@ from rancf.mesh.continuity import (
     rotated,
 )
 from rancf.mesh.coordinates import Coordinates
-from rancf.mesh.mesh import CableMesh, to_ancf
+from rancf.mesh.factories import to_ancf
+from rancf.mesh.mesh import CableMesh
 
 __all__ = ["Section", "Material", "Support", "PointLoad", "Model", "ElementKind", "RigidMotion"]
 
@@ -184,27 +185,27 @@ class Model(Coordinates):
         layout = support_layout(supports, element, self.dim, self.dpn, base_q, tangents,
                                 self.check_node, node_base)  # fmt: skip
         self.fixed = layout.fixed
-        self._rot = list(layout.rotations)
+        self.rotations = list(layout.rotations)
         self.supports = tuple(supports)
         if self.reduction is not None:  # the rotations go into the maps; the padding is held
-            self.reduction = rotated(self.reduction, self._rot, self.dim)
-            for off, basis in self._rot:  # y0 exactly: z = basis y on a rotated block
+            self.reduction = rotated(self.reduction, self.rotations, self.dim)
+            for off, basis in self.rotations:  # y0 exactly: z = basis y on a rotated block
                 base_q[off : off + self.dim] = basis.T @ base_q[off : off + self.dim]
-            self._rot = []
+            self.rotations = []
             self.fixed[self.reduction.n_real :] = True
             self.ku = self.reduction.ku
         # element-level transformations for elements touching a rotated node
         aff = sorted(
             {
                 min(max(off // self.dpn - j, 0), self.n_el - 1)
-                for off, _ in self._rot
+                for off, _ in self.rotations
                 for j in (0, 1)
             }
         )
         self._aff = np.array(aff, dtype=int)
         te = np.repeat(np.eye(self.nde)[None], len(aff), axis=0)
         for i, e in enumerate(aff):
-            for off, basis in self._rot:
+            for off, basis in self.rotations:
                 loc = off - e * self.dpn
                 if 0 <= loc < self.nde:
                     te[i, loc : loc + self.dim, loc : loc + self.dim] = basis
