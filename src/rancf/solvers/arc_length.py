@@ -24,10 +24,10 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import NDArray
 
+from rancf.solvers.load_path import MIN_INCREMENT, PathState
 from rancf.solvers.newton import newton
 
 if TYPE_CHECKING:
-    from rancf.solvers.static import _Path
     from rancf.solvers.system_equilibrium import SystemEquilibrium
 
 __all__ = ["arc_length_path"]
@@ -40,7 +40,7 @@ DESIRED_ITERATIONS = 6
 
 def arc_length_path(
     problem: SystemEquilibrium,
-    path: _Path,
+    path: PathState,
     end: float,
     first: float,
     tol: float,
@@ -48,8 +48,6 @@ def arc_length_path(
 ) -> None:
     """Follow one stage of the path from ``path.lam`` to ``end`` (module docstring), accepting
     into ``path``."""
-    from rancf.solvers.static import MIN_INCREMENT
-
     dlam = min(first, end - path.lam)
     while True:  # a first load-controlled increment sets the arc length
         p1 = path.lam + dlam
@@ -113,7 +111,7 @@ def _step(
     ds: float,
     tol: float,
     max_iter: int,
-    path: _Path,
+    path: PathState,
 ) -> tuple[NDArray, float, int] | None:
     """One arc-length step from ``(y, λ)``: ``(Δy, Δλ, iterations)`` or None if it failed."""
     _, k = problem.tangent(y, lam)

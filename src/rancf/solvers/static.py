@@ -40,7 +40,9 @@ from numpy.typing import NDArray
 
 from rancf.bodies.flexible import Model
 from rancf.errors import ConvergenceError, InputError, ScenarioError
+from rancf.solvers.arc_length import arc_length_path
 from rancf.solvers.dynamic import as_system
+from rancf.solvers.load_path import MIN_INCREMENT, PathState
 from rancf.solvers.newton import newton
 from rancf.solvers.relaxation import relax
 from rancf.solvers.system_equilibrium import SystemEquilibrium
@@ -52,9 +54,6 @@ StaticMethod = Literal["load", "arc_length"]
 
 #: ``StaticResult.method`` when a stage was finished by relaxation.
 RELAXED = "relaxation+newton"
-
-#: Smallest load increment, relative to the first one, before a load-controlled solve gives up.
-MIN_INCREMENT = 1e-4
 
 
 @dataclass(frozen=True)
@@ -127,7 +126,7 @@ def solve_static(
     system = as_system(model)
     system.reset_triads()
     problem = SystemEquilibrium(system, at_time)
-    path = _Path(problem, on_step)
+    path = PathState(problem, on_step)
     used = method
     for stage, (_, end) in enumerate(problem.stages):
         problem.stage = stage
@@ -136,8 +135,6 @@ def solve_static(
             if method == "load":
                 _load_control(problem, path, end, 1.0 / load_steps, tol, max_iter)
             else:
-                from rancf.solvers.arc_length import arc_length_path
-
                 arc_length_path(problem, path, end, 1.0 / load_steps, tol, max_iter)
         except ConvergenceError as exc:
             _relax(problem, path, end, tol, max_iter, exc)
@@ -158,7 +155,7 @@ def solve_static(
 
 
 def _relax(
-    problem: SystemEquilibrium, path: _Path, end: float, tol: float, max_iter: int,
+    problem: SystemEquilibrium, path: PathState, end: float, tol: float, max_iter: int,
     failed: ConvergenceError,
 ) -> None:  # fmt: skip
     """Finish a stage the path method gave up on by relaxation at its end (module docstring)."""
@@ -213,54 +210,9 @@ def start_state(
     return res.y, info
 
 
-class _Path:
-    """The converged states so far, with the counters and the ``on_step`` callback."""
-
-    def __init__(
-        self, problem: SystemEquilibrium, on_step: Callable[[float, NDArray], None] | None
-    ) -> None:
-        self.problem = problem
-        self.y = problem.start()
-        self.prev: NDArray | None = None  # the state before the last accepted one
-        self.lam = 0.0
-        self.prev_lam = 0.0
-        self.factors = [0.0]
-        self.n_newton = 0
-        self.n_residuals = 0
-        self.n_relax = 0
-        self.n_relax_factorizations = 0
-        self.on_step = on_step
-        if on_step is not None:
-            on_step(0.0, self.y)
-
-    def count(self, iterations: int, residuals: int) -> None:
-        self.n_newton += iterations
-        self.n_residuals += residuals
-
-    def accept(self, y: NDArray, lam: float) -> None:
-        self.problem.accept(y)
-        self.prev, self.prev_lam = self.y, self.lam
-        self.y, self.lam = y, lam
-        self.factors.append(lam)
-        if self.on_step is not None:
-            self.on_step(lam, y)
-
-    def fail(self, what: str) -> ConvergenceError:
-        hint = (
-            "is the model a mechanism, or the first arc too long? more solver.load_steps shorten it"
-            if what.startswith("arc-length")
-            else "is the model a mechanism, or the load beyond a limit point? solver.static_method"
-            ' = "arc_length" passes limit points'
-        )
-        return ConvergenceError(
-            f"static {what} did not converge beyond load factor {self.lam:.4g} ({hint})",
-            reached=self.lam,
-        )
-
-
 def _load_control(
     problem: SystemEquilibrium,
-    path: _Path,
+    path: PathState,
     end: float,
     first: float,
     tol: float,
