@@ -71,8 +71,10 @@ class SystemEquilibrium:
         self._t = 0.0 if at_time is None else float(at_time)
         self._amp = at_time is None
         self.n, self.m = s.n, s.m
+        self._held = s.fixed  # the held coordinates of y
+        self._zero = np.zeros(s.n)  # zero velocities and accelerations (never written)
         fixed = np.zeros(s.n + s.m, dtype=bool)
-        fixed[: s.n] = s.fixed
+        fixed[: s.n] = self._held
         self.fixed, self.free = fixed, ~fixed
         installed = s.y0.copy()
         for name, b in zip(s.names, s.flex, strict=False):
@@ -116,12 +118,12 @@ class SystemEquilibrium:
     def place_supports(self, z: NDArray, p: float) -> None:
         """Held coordinates at their values at ``p`` (in place)."""
         y = z[: self.n]
-        y[self.system.fixed] = self._y0[self.system.fixed] + self.support_factor(p) * self.delta
+        y[self._held] = self._y0[self._held] + self.support_factor(p) * self.delta
 
     def full_residual(self, z: NDArray, p: float) -> NDArray[np.float64]:
         """Balance (held rows kept: the reactions) and constraints at ``(z, p)``."""
         r = np.empty(self.n + self.m)
-        zero = np.zeros(self.n)
+        zero = self._zero
         ok = self.system.core.residual(
             z[: self.n], zero, zero, z[self.n :], self._t, self.load_factor(p), self._amp,
             dynamic=False, r=r,
@@ -186,11 +188,11 @@ class SystemEquilibrium:
         """The last factored Jacobian's solution of ``rhs`` (None if it was singular)."""
         if not ok:
             return None
-        x, zz = np.array(rhs[: self.n], dtype=float), np.array(rhs[self.n :], dtype=float)
-        x[self.system.fixed] = 0.0
-        self._integ.solve_factored(x, zz)
-        out = np.r_[x, zz]
-        return out if np.all(np.isfinite(out)) else None
+        out = np.array(rhs, dtype=float)
+        x = out[: self.n]
+        x[self._held] = 0.0
+        self._integ.solve_factored(x, out[self.n :])
+        return out if np.isfinite(out).all() else None
 
     def load_vector(self, z: NDArray, ok: bool) -> NDArray[np.float64]:
         """``-∂r/∂p`` in the current stage: ``r(p=0) - r(p=1)`` (the residual is linear in the
@@ -210,7 +212,7 @@ class SystemEquilibrium:
         """The path parameter of the held coordinates in ``z`` (installation stage)."""
         if not np.any(self.delta):
             return 1.0
-        held = z[: self.n][self.system.fixed] - self._y0[self.system.fixed]
+        held = z[: self.n][self._held] - self._y0[self._held]
         k = int(np.argmax(np.abs(self.delta)))
         return 1.0 + held[k] / self.delta[k]
 
