@@ -1,7 +1,7 @@
 """``rancf static`` and ``rancf modes`` on scenarios of several bodies (``[[bodies]]``,
 ``[[joints]]``, ``[[springs]]``): the system's equilibrium (:func:`rancf.solvers.static.
 solve_static` on a :class:`~rancf.system.System`) and its modes on the null space of its
-constraints (:mod:`rancf.solvers.system_modal`)."""
+constraints (:mod:`rancf.solvers.modal`)."""
 
 from __future__ import annotations
 
