@@ -47,7 +47,7 @@ import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 
 from rancf.errors import ConvergenceError, InputError
-from rancf.model.system import Model
+from rancf.bodies.flexible import Model
 from rancf.solvers.linearized import as_system, linearize
 from rancf.solvers.modal import is_symmetric, rigid_motions
 from rancf.solvers.system_equilibrium import SystemEquilibrium

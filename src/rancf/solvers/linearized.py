@@ -26,7 +26,7 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from rancf.errors import RancfError
-from rancf.model.system import Model
+from rancf.bodies.flexible import Model
 from rancf.system import System
 
 __all__ = ["Linearized", "as_system", "linearize"]

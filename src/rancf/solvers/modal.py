@@ -1,6 +1,6 @@
 """Natural frequencies and mode shapes of a system linearized about a configuration.
 
-One implementation for every scenario: a one-body :class:`~rancf.model.system.Model` is solved
+One implementation for every scenario: a one-body :class:`~rancf.bodies.flexible.Model` is solved
 as the :class:`~rancf.system.System` of that one body (:func:`rancf.solvers.linearized.
 as_system`).  Linearized about a configuration ``y*`` with multipliers ``λ`` (an equilibrium;
 the unloaded reference with ``λ = 0`` by default), free vibrations ``y = y* + φ e^{iωt}`` of the
@@ -54,7 +54,7 @@ import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 
 from rancf.errors import InputError, RancfError
-from rancf.model.system import Model
+from rancf.bodies.flexible import Model
 from rancf.solvers.linearized import Linearized, as_system, linearize
 from rancf.system import System
 
