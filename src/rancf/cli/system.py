@@ -1,19 +1,16 @@
-"""``rancf static`` and ``rancf modes`` on scenarios of several bodies (``[[bodies]]``,
-``[[joints]]``, ``[[springs]]``): the system's equilibrium (:func:`rancf.solvers.static.
-solve_static` on a :class:`~rancf.system.System`) and its modes on the null space of its
-constraints (:mod:`rancf.solvers.modal`)."""
+"""``rancf static`` on scenarios of several bodies (``[[bodies]]``, ``[[joints]]``,
+``[[springs]]``): the system's equilibrium (:func:`rancf.solvers.static.solve_static` on a
+:class:`~rancf.system.System`)."""
 
 from __future__ import annotations
 
 import argparse
-import sys
 from pathlib import Path
 from typing import Any
 
 from rancf.cli.io import OutputDir
-from rancf.errors import InputError
 
-__all__ = ["static_system", "modes_system", "print_static", "print_modes"]
+__all__ = ["static_system", "print_static"]
 
 
 def _static(sc: Any, system: Any, on_step: Any = None) -> Any:
@@ -76,39 +73,6 @@ def static_system(args: argparse.Namespace, sc: Any, copy: str | None) -> dict[s
     }
 
 
-def modes_system(args: argparse.Namespace, sc: Any) -> dict[str, Any]:
-    """The modes of a system about its reference or its equilibrium (``--about static``)."""
-    import numpy as np
-
-    from rancf.solvers.modal import natural_modes
-
-    if args.plot:
-        raise InputError("--plot", args.plot, "a one-body scenario (mode plots of systems: "
-                         "export the modes' shapes from Python, rancf.natural_modes)")  # fmt: skip
-    system = sc.build_system()
-    about = args.about or sc.data["modes"]["about"]
-    count = args.count if args.count is not None else sc.data["modes"]["count"]
-    n_free = int(np.sum(~system.fixed))
-    if count >= n_free:
-        key = "--count" if args.count is not None else f"{sc.path}: modes.count"
-        raise InputError(key, count, f"at most {n_free - 1} (the free coordinates - 1)")
-    y = lam = None
-    if about == "static":
-        res = _static(sc, system)
-        y, lam = res.y, res.lam
-    out = natural_modes(system, y, count, lam)
-    return {
-        "frequencies_hz": out.frequencies_hz.tolist(),
-        "growth_rates_per_s": out.growth_rates.tolist(),
-        "eigenproblem": "symmetric" if out.symmetric else "general",
-        "rigid_body_modes_removed": out.n_rigid,
-        "about": about,
-        "n_dofs_free": n_free,
-        "constraints": system.m,
-        "warnings": [],
-    }
-
-
 def print_static(doc: dict[str, Any], out: Any) -> None:
     """The text summary of ``static`` on a system."""
     where = f" -> {out}" if out else ""
@@ -121,15 +85,3 @@ def print_static(doc: dict[str, Any], out: Any) -> None:
         print(f"  {k:12s} {v: .9g}")
     for k, v in doc["reactions"].items():
         print(f"  reaction {k:16s} {v: .9g}")
-
-
-def print_modes(doc: dict[str, Any]) -> None:
-    """The text summary of ``modes`` on a system."""
-    print(f"natural frequencies about the {doc['about']} configuration "
-          f"({doc['rigid_body_modes_removed']} zero-frequency mode(s) removed: rigid-body "
-          f"motions and mechanisms; {doc['constraints']} constraint equations):")  # fmt: skip
-    for i, (f, g) in enumerate(zip(doc["frequencies_hz"], doc["growth_rates_per_s"],
-                                   strict=True), 1):  # fmt: skip
-        extra = "" if g == 0 else f"  growth rate {g:.6g} 1/s"
-        print(f"  mode {i:2d}  {f:12.6f} Hz{extra}")
-    sys.stdout.flush()

@@ -46,8 +46,8 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 
-from rancf.errors import ConvergenceError, InputError
 from rancf.bodies.flexible import Model
+from rancf.errors import ConvergenceError, InputError
 from rancf.solvers.linearized import as_system, linearize
 from rancf.solvers.modal import is_symmetric, rigid_motions
 from rancf.solvers.system_equilibrium import SystemEquilibrium

@@ -2,8 +2,8 @@
 
 About a configuration ``y`` with multipliers ``λ`` and the loads at ``load_factor`` times their
 amplitude, the balance ``f_int(y) - p f_ext(y) + f_springs(y) + G(y)ᵀ λ = 0`` and the constraints
-``g(y) = 0`` (Géradin & Cardona, *Flexible Multibody Dynamics*, 2001,
-sec. 11.3) have the bordered Jacobian
+``g(y) = 0`` (docs/derivations/systems.md,
+sec. 1 and 4) have the bordered Jacobian
 
     J = [ K   Gᵀ ]        K = ∂(f_int - p f_ext + f_springs + Gᵀλ)/∂y
         [ G   0  ]
@@ -25,8 +25,8 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from rancf.errors import RancfError
 from rancf.bodies.flexible import Model
+from rancf.errors import RancfError
 from rancf.system import System
 
 __all__ = ["Linearized", "as_system", "linearize"]

@@ -53,8 +53,8 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 
-from rancf.errors import InputError, RancfError
 from rancf.bodies.flexible import Model
+from rancf.errors import InputError, RancfError
 from rancf.solvers.linearized import Linearized, as_system, linearize
 from rancf.system import System
 
