@@ -20,8 +20,8 @@ are) — the loads grow as ``p = p* + μ``.
    ``R K Rᵀ``, whose first-order part ``K + θ[W, K]`` is singular at ``θ ~ √(k_soft/k_stiff)``;
    very short elements (a small corner fillet meshed like the long spans) give spurious factors
    that fall with the element length, and pollute the true ones.  So the factors only guide a
-   search on the static path itself: at each factor (ascending; factors within :data:`THIN`
-   of the last one checked skipped) the equilibrium ``z(p* + μ)`` is found by Newton from the
+   search on the static path itself: at factors (ascending; each at least :data:`THIN` above
+   the last one checked) the equilibrium ``z(p* + μ)`` is found by Newton from the
    previous one, and the number of negative eigenvalues of its tangent on the constraints'
    null space is counted (Sylvester's law of inertia on the bordered ``J``, dense ``LDLᵀ``: its
    negative count minus ``m``; a non-symmetric or large tangent: the parity of ``det J``).  Where
@@ -59,8 +59,9 @@ __all__ = ["BucklingResult", "linear_buckling"]
 STEP = 1e-4
 #: Relative width of the bracket at which the bisection of a critical load stops.
 REFINE_TOL = 1e-5
-#: Linearized factors closer than this (relative) are checked together.
-THIN = 0.02
+#: After a check at ``μ``, the next check is at the first factor above ``(1 + THIN) μ``: the
+#: inertia counts every critical load below a check, so none is missed between checks.
+THIN = 1.0
 #: Factors checked along the path before giving up.
 MAX_CHECKED = 60
 #: Newton on the path: scaled increments at most this (round-off of very short elements leaves
