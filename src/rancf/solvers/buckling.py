@@ -30,9 +30,10 @@ are) — the loads grow as ``p = p* + μ``.
    factors leave the count unchanged.  For a straight pre-buckling path (an Euler column) the
    load found is the linear one; otherwise it is the bifurcation load of the path.
 
-A mechanism (rigid motions the tangent does not resist), loads that never buckle the structure
-and factors none of which the path confirms (with the range of element lengths) are refused in
-one line.
+A mechanism (rigid motions the tangent does not resist), loads that never buckle the structure,
+factors none of which the path confirms, and a tangent whose round-off hides its softest
+stiffness (:data:`RESOLUTION`; very short stiff elements beside long ones: the range of element
+lengths is given) are refused in one line.
 """
 
 from __future__ import annotations
@@ -67,6 +68,9 @@ MAX_CHECKED = 60
 #: Newton on the path: scaled increments at most this (round-off of very short elements leaves
 #: increments of 1e-10 in their stiffness).
 NEWTON_TOL = 1e-9
+#: The largest round-off of the softest stiffness of the tangent, relative to it, that is
+#: accepted (the bound is pessimistic: the loads found are then within about 1e-2 of it).
+RESOLUTION = 0.5
 #: Pencils up to this size are solved densely; larger ones by Arnoldi.
 DENSE = 2000
 
@@ -165,6 +169,7 @@ def linear_buckling(
             "the tangent stiffness is singular: the structure is a mechanism (add supports)"
         )
     j0 = lin0.bordered()
+    _check_resolution(system, lin0, j0)
     rows = np.r_[np.flatnonzero(free), n + np.arange(system.m)]
     q = problem.load_vector(z0, True)[rows]
     u = np.zeros(n + system.m)
@@ -185,6 +190,26 @@ def linear_buckling(
         modes[i, free] = x
         modes[i] /= modes[i, np.argmax(np.abs(modes[i]))]
     return BucklingResult(np.array(factors), system.q_from_y(modes), about, symmetric)
+
+
+def _check_resolution(system: System, lin0, j0: sp.spmatrix) -> None:  # noqa: ANN001
+    """Refuse a tangent whose round-off hides its softest stiffness: for the softest mode ``x``
+    of ``K₀`` on the constraints' null space (inverse iteration), the bound
+    ``ε |x|ᵀ |K₀| |x|`` of the round-off of ``xᵀ K₀ x`` above :data:`RESOLUTION` of it (very
+    short, stiff elements beside long ones)."""
+    n_free, m = lin0.k.shape[0], lin0.g.shape[0]
+    lu = spla.splu(j0)
+    x = np.random.default_rng(0).standard_normal(n_free)
+    for _ in range(30):
+        x = lu.solve(np.r_[x, np.zeros(m)])[:n_free]
+        x /= np.abs(x).max()
+    bound = np.finfo(float).eps * float(np.abs(x) @ (abs(lin0.k) @ np.abs(x)))
+    ratio = bound / abs(float(x @ (lin0.k @ x)))
+    if not ratio <= RESOLUTION:
+        raise ConvergenceError(
+            f"the tangent's round-off is {ratio:.2g} times its softest stiffness, so no buckling "
+            f"load is resolved in double precision: {_mesh_hint(system)}"
+        )
 
 
 def _lin(system: System, z: NDArray, p: float):  # noqa: ANN202
@@ -236,7 +261,11 @@ def _negative(lin) -> int:  # noqa: ANN001
     is symmetric and small; else the parity of ``det J`` (sparse LU: 0 or 1)."""
     j, m = lin.bordered(), lin.g.shape[0]
     if j.shape[0] <= DENSE and is_symmetric(lin.k):
-        _, d, _ = scipy.linalg.ldl(j.toarray(), lower=True)
+        dk = np.abs(lin.k.diagonal())
+        kbar = float(np.mean(dk[dk > 0])) if np.any(dk > 0) else 1.0
+        bal = np.r_[1.0 / np.sqrt(np.where(dk > 0, dk, kbar)), np.full(m, np.sqrt(kbar))]
+        jb = bal[:, None] * j.toarray() * bal[None, :]  # a congruence: the inertia is kept
+        _, d, _ = scipy.linalg.ldl(0.5 * (jb + jb.T), lower=True)
         neg, i = 0, 0
         while i < d.shape[0]:
             if i + 1 < d.shape[0] and d[i + 1, i] != 0.0:
@@ -342,5 +371,5 @@ def _mesh_hint(system: System) -> str:
     if not lengths:
         return "check the loads and supports"
     ell = np.concatenate(lengths)
-    return (f"elements from {ell.min():.3g} m to {ell.max():.3g} m long; use fewer elements "
-            "where the spans are short (mesh.elements)")  # fmt: skip
+    return (f"elements from {ell.min():.3g} m to {ell.max():.3g} m long; use fewer, longer "
+            "elements where the spans are short (mesh.elements)")  # fmt: skip

@@ -27,7 +27,9 @@ amplitude), the constraint Jacobian ``G`` and the mass ``M`` on the free coordin
 The eigenvalues ``λ = ω²`` may be negative (divergence: about a state past a buckling load) or
 complex (flutter, a non-symmetric load stiffness): a motion ``e^{st}`` with ``s² = -λ``,
 ``√λ = a + ib`` (principal root) oscillates at ``a / 2π`` Hz and one of its roots grows like
-``e^{|b| t}``: reported as ``growth_rates`` [1/s], never dropped.
+``e^{|b| t}``: reported as ``growth_rates`` [1/s], never dropped.  Eigenvalues within
+:data:`ZERO_RTOL` of the median stiffness-to-mass ratio of the diagonals of zero are round-off
+(either sign): frequency and growth rate 0.
 
 Rigid-body modes are the zero-frequency modes of the actual problem that are rigid motions:
 every body's infinitesimal rigid motions (a flexible body's translations and rotations its
@@ -74,6 +76,9 @@ SHIFT = -1e-8
 #: Zero stiffness of a rigid candidate, relative to its size: above the error of the central
 #: differences of the tangent's spring, load and constraint-curvature parts (step 1e-6).
 FD_RTOL = 1e-9
+#: Eigenvalues ``|λ|`` below this share of the median stiffness-to-mass ratio of the diagonals
+#: are round-off: frequency and growth rate 0.
+ZERO_RTOL = 1e-12
 #: A tangent is symmetric when ``|K_ij - K_ji| <= SYM_RTOL √(|K_ii K_jj|)``.
 SYM_RTOL = 1e-8
 
@@ -322,7 +327,12 @@ def natural_modes(
         lam_w, phi = lam_w[:count], phi[:, :count]
     modes = np.zeros((lam_w.size, system.n))
     modes[:, lin.free] = phi.real.T
-    root = np.sqrt(np.asarray(lam_w, dtype=complex))
+    # eigenvalues within round-off of zero (of either sign) are zero frequencies, not growth
+    dk, dm = np.abs(lin.k.diagonal()), np.abs(mc.diagonal())
+    both = (dm > 0) & (dk > 0)
+    floor = ZERO_RTOL * (float(np.median(dk[both] / dm[both])) if np.any(both) else 0.0)
+    lam_c = np.where(np.abs(lam_w) <= floor, 0.0, np.asarray(lam_w, dtype=complex))
+    root = np.sqrt(lam_c)
     freqs = root.real / (2.0 * np.pi)
     growth = np.abs(root.imag)
     return ModalResult(freqs, system.q_from_y(modes), rigid.shape[1], lam_w, growth, symmetric)
