@@ -7,6 +7,7 @@ the static state at zero load equal modes about the reference."""
 from __future__ import annotations
 
 import copy
+import json
 import math
 import tomllib
 from importlib import resources
@@ -162,3 +163,17 @@ def test_modes_about_static_at_zero_load_equal_modes_about_the_reference(name):
     scale = float(np.median(dk[dm > 0] / dm[dm > 0]))
     err = np.abs(about_static - about_reference)
     assert np.all(err <= 1e-6 * np.abs(about_reference) + 1e-12 * scale), (err, about_reference)
+
+
+def test_mode_plots_of_a_system_whatever_its_sensors(tmp_path, capsys):
+    """``modes --plot`` draws every body of a system; a reaction sensor (once refused with a
+    message that contradicted itself) changes neither the plot's existence nor the numbers."""
+    text = example_path("argyris-frame").read_text(encoding="utf-8")
+    docs = []
+    for extra in ("", '\n[[sensors]]\nname = "root"\nkind = "reaction"\nat = "leg1:start"\n'):
+        path, png = tmp_path / f"frame{len(extra)}.toml", tmp_path / f"modes{len(extra)}.png"
+        path.write_text(text + extra, encoding="utf-8")
+        assert main(["modes", str(path), "--json", "--plot", str(png)]) == 0
+        docs.append(json.loads(capsys.readouterr().out))
+        assert png.stat().st_size > 0
+    assert docs[0] == docs[1] and docs[0]["constraints"] == 6
