@@ -262,8 +262,8 @@ def add_parsers(sub: Any) -> None:
     m.set_defaults(func=_cmd_modes)
 
     b = sub.add_parser(
-        "buckling", help="buckling load factors of a scenario's loads (linearized, located on the "
-        "static path)"
+        "buckling",
+        help="buckling load factors of a scenario's loads (linearized, located on the static path)",
     )
     b.add_argument("scenario")
     b.add_argument("--count", type=int, default=3, help="number of load factors (default 3)")

@@ -49,7 +49,7 @@ from numpy.typing import NDArray
 
 from rancf.bodies.flexible import Model
 from rancf.errors import ConvergenceError, InputError
-from rancf.solvers.linearized import as_system, linearize
+from rancf.solvers.linearized import Linearized, as_system, linearize
 from rancf.solvers.modal import is_symmetric, rigid_motions
 from rancf.solvers.system_equilibrium import SystemEquilibrium
 from rancf.system import System
@@ -94,7 +94,7 @@ class _Path:
         self.system, self.problem, self.u = system, problem, u
         self.z, self.p = z.copy(), p
 
-    def lin(self, z: NDArray, p: float):  # noqa: ANN201 - a Linearized
+    def lin(self, z: NDArray, p: float) -> Linearized:
         n = self.system.n
         return linearize(self.system, z[:n], z[n:], p)
 
@@ -192,7 +192,7 @@ def linear_buckling(
     return BucklingResult(np.array(factors), system.q_from_y(modes), about, symmetric)
 
 
-def _check_resolution(system: System, lin0, j0: sp.spmatrix) -> None:  # noqa: ANN001
+def _check_resolution(system: System, lin0: Linearized, j0: sp.spmatrix) -> None:
     """Refuse a tangent whose round-off hides its softest stiffness: for the softest mode ``x``
     of ``K₀`` on the constraints' null space (inverse iteration), the bound
     ``ε |x|ᵀ |K₀| |x|`` of the round-off of ``xᵀ K₀ x`` above :data:`RESOLUTION` of it (very
@@ -212,7 +212,7 @@ def _check_resolution(system: System, lin0, j0: sp.spmatrix) -> None:  # noqa: A
         )
 
 
-def _lin(system: System, z: NDArray, p: float):  # noqa: ANN202
+def _lin(system: System, z: NDArray, p: float) -> Linearized:
     return linearize(system, z[: system.n], z[system.n :], p)
 
 
@@ -255,7 +255,7 @@ def _pencil(
     return mu[order], vec[:, order], bool(symmetric)
 
 
-def _negative(lin) -> int:  # noqa: ANN001
+def _negative(lin: Linearized) -> int:
     """The number of negative eigenvalues of ``K`` on the null space of ``G``: the inertia of
     the bordered ``J`` (Sylvester: ``neg(J) = neg(K|ker G) + m``, dense ``LDLᵀ``) when ``K``
     is symmetric and small; else the parity of ``det J`` (sparse LU: 0 or 1)."""
@@ -292,8 +292,8 @@ def _perm_sign(p: NDArray) -> int:
 
 
 def _confirm(
-    path: _Path, lin0, mu: NDArray, phi: NDArray, count: int, p0: float,  # noqa: ANN001
-) -> tuple[list[float], list[NDArray]]:  # fmt: skip
+    path: _Path, lin0: Linearized, mu: NDArray, phi: NDArray, count: int, p0: float
+) -> tuple[list[float], list[NDArray]]:
     """The critical loads on the static path, bracketed by the inertia of its tangent at the
     linearized factors and refined by bisection (module docstring, step 2)."""
     n0 = _negative(lin0)
@@ -324,8 +324,8 @@ def _confirm(
     return [f for f, _ in found[:count]], [x for _, x in found[:count]]
 
 
-def _bisect(path: _Path, a: float, na: int, b: float, nb: int,  # noqa: PLR0913
-            found: list, count: int, x: NDArray | None, lin0) -> None:  # noqa: ANN001
+def _bisect(path: _Path, a: float, na: int, b: float, nb: int, found: list, count: int,
+            x: NDArray | None, lin0: Linearized) -> None:  # fmt: skip
     """Critical loads in ``(a, b]`` where the negative count goes from ``na`` to ``nb``."""
     if len(found) >= count or nb <= na:
         return
@@ -340,7 +340,7 @@ def _bisect(path: _Path, a: float, na: int, b: float, nb: int,  # noqa: PLR0913
     _bisect(path, mid, nm, b, nb, found, count, x, lin0)
 
 
-def _mode(path: _Path, lin0, p: float, x: NDArray | None) -> NDArray:  # noqa: ANN001
+def _mode(path: _Path, lin0: Linearized, p: float, x: NDArray | None) -> NDArray:
     """The mode of the tangent at the critical load ``p``: inverse iteration ``K(p) x' = K₀ x``
     on the null space of ``G`` (bordered solves)."""
     path.go(p)

@@ -330,7 +330,9 @@ def natural_modes(
     # eigenvalues within round-off of zero (of either sign) are zero frequencies, not growth
     dk, dm = np.abs(lin.k.diagonal()), np.abs(mc.diagonal())
     both = (dm > 0) & (dk > 0)
-    floor = ZERO_RTOL * (float(np.median(dk[both] / dm[both])) if np.any(both) else 0.0)
+    with np.errstate(all="ignore"):  # a vanishing mass: no floor (eigenvalues overflow)
+        floor = ZERO_RTOL * (float(np.median(dk[both] / dm[both])) if np.any(both) else 0.0)
+    floor = floor if np.isfinite(floor) else 0.0
     lam_c = np.where(np.abs(lam_w) <= floor, 0.0, np.asarray(lam_w, dtype=complex))
     root = np.sqrt(lam_c)
     freqs = root.real / (2.0 * np.pi)
@@ -357,12 +359,12 @@ def tangent_stiffness(
 def _general_modes(
     k: NDArray[np.float64], m: NDArray[np.float64]
 ) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
-    """``k φ = λ m φ`` for a non-symmetric ``k`` (QZ): finite ``λ`` ascending by real, then
+    """``k φ = λ m φ`` for a non-symmetric ``k`` (QZ): ``λ`` (not NaN) ascending by real, then
     imaginary part; ``φ`` scaled to ``φᴴ m φ = 1`` with its largest component real and
     positive."""
     with np.errstate(all="ignore"):  # infinite eigenvalues (a singular m) stay inf, quietly
         lam, phi = scipy.linalg.eig(k, m)
-    ok = np.isfinite(lam)
+    ok = ~np.isnan(lam)  # an overflowing eigenvalue stays (infinite), last
     lam, phi = lam[ok].astype(np.complex128), phi[:, ok].astype(np.complex128)
     order = np.lexsort((lam.imag, lam.real))
     lam, phi = lam[order], phi[:, order]
