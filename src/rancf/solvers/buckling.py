@@ -24,7 +24,8 @@ are) — the loads grow as ``p = p* + μ``.
    the last one checked) the equilibrium ``z(p* + μ)`` is found by Newton from the
    previous one, and the number of negative eigenvalues of its tangent on the constraints'
    null space is counted (Sylvester's law of inertia on the bordered ``J``, dense ``LDLᵀ``: its
-   negative count minus ``m``; a non-symmetric or large tangent: the parity of ``det J``).  Where
+   negative count minus ``m``; a non-symmetric or large tangent: the parity of ``det J``, which
+   finds the first critical load only).  Where
    the count rises, the critical loads are bracketed and bisected to :data:`REFINE_TOL`; the
    mode is the tangent's null vector there (inverse iteration ``K(p) φ' = K₀ φ``).  Spurious
    factors leave the count unchanged.  For a straight pre-buckling path (an Euler column) the
