@@ -216,8 +216,8 @@ def _cmd_modes(args: argparse.Namespace) -> int:
             print(f"  mode {i:2d}  {f:12.6f} Hz{extra}")
         if not res.symmetric:
             print(
-                "  note: general eigenproblem (the point moments' load stiffness is not "
-                "symmetric);\n  a growth rate > 0 is an unstable mode: flutter (frequency > 0) "
+                "  note: general eigenproblem (the tangent is not symmetric: point moments, "
+                "friction);\n  a growth rate > 0 is an unstable mode: flutter (frequency > 0) "
                 "or divergence (frequency 0)."
             )
         if np.any(res.frequencies_hz < 1e-6) and not np.any(res.growth_rates > 0):
