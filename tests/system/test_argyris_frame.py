@@ -177,3 +177,60 @@ def test_mode_plots_of_a_system_whatever_its_sensors(tmp_path, capsys):
         docs.append(json.loads(capsys.readouterr().out))
         assert png.stat().st_size > 0
     assert docs[0] == docs[1] and docs[0]["constraints"] == 6
+
+
+ONE_BODY = """
+[geometry]
+kind = "line"
+start = [0.0, 0.0]
+end = [0.5, 0.0]
+[mesh]
+elements = 8
+[section]
+radius = 0.03
+[material]
+density = 6000.0
+youngs_modulus = 2.0e7
+[[supports]]
+at = "start"
+kind = "clamp"
+[[loads.point]]
+at = "end"
+force = [-1.0, 0.0]
+"""
+
+BODIES = """
+[[bodies]]
+name = "col"
+[bodies.geometry]
+kind = "line"
+start = [0.0, 0.0]
+end = [0.5, 0.0]
+[bodies.mesh]
+elements = 8
+[bodies.section]
+radius = 0.03
+[bodies.material]
+density = 6000.0
+youngs_modulus = 2.0e7
+[[supports]]
+at = "col:start"
+kind = "clamp"
+[[loads.point]]
+at = "col:end"
+force = [-1.0, 0.0]
+"""
+
+
+def test_modes_and_buckling_of_a_one_bodies_file_equal_the_one_body_file(tmp_path, capsys):
+    """The same column written without and with ``[[bodies]]``: one system, the same numbers."""
+    docs: dict[str, list] = {}
+    for name, text in (("one", ONE_BODY), ("bodies", BODIES)):
+        (tmp_path / f"{name}.toml").write_text(text, encoding="utf-8")
+        for cmd in (["modes", "--about", "static"], ["buckling", "--count", "2"]):
+            assert main([cmd[0], str(tmp_path / f"{name}.toml"), *cmd[1:], "--json"]) == 0
+            docs.setdefault(name, []).append(json.loads(capsys.readouterr().out))
+    one, bodies = docs["one"], docs["bodies"]
+    np.testing.assert_allclose(bodies[0]["frequencies_hz"], one[0]["frequencies_hz"], rtol=1e-9)
+    np.testing.assert_allclose(bodies[1]["load_factors"], one[1]["load_factors"], rtol=1e-9)
+    assert one[1]["load_factors"][0] == pytest.approx(126.42, rel=1e-3)  # statics guide
