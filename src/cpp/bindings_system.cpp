@@ -292,7 +292,7 @@ void bind_system(nb::module_& mod) {
       .def(
           "sparse_jacobian",
           [](const SystemHolder& h, In y, In v, In a, In lam, double t, double ck, double cv,
-             double ca, bool dynamic) {
+             double ca, bool dynamic, double load_factor, bool amplitude) {
             const auto n = static_cast<std::size_t>(h.s.n), m = static_cast<std::size_t>(h.s.m);
             for (const auto* x : {&y, &v, &a}) expect_size(*x, n, "state");
             expect_size(lam, m, "lam");
@@ -303,6 +303,8 @@ void bind_system(nb::module_& mod) {
             terms.cv = cv;
             terms.ca = ca;
             terms.tf = terms.t1 = t;
+            terms.load_factor = load_factor;
+            terms.amplitude = amplitude;
             std::vector<int> rows, cols;
             std::vector<double> vals;
             const bool ok = rancf::assemble_system(h.s, y.data(), dynamic ? v.data() : nullptr,
@@ -312,10 +314,12 @@ void bind_system(nb::module_& mod) {
             return std::make_tuple(ok, h.s.n + lu.border(), rows, cols, vals);
           },
           "y"_a, "v"_a, "a"_a, "lam"_a, "t"_a, "ck"_a, "cv"_a, "ca"_a, "dynamic"_a = true,
+          "load_factor"_a = 1.0, "amplitude"_a = false,
           "(ok, size, rows, cols, values): the Jacobian of residual() as the bordered solver "
           "holds it, [A P; Q D] over (y, lambda, coupling unknowns z = x_j with D = -1), held "
           "rows and columns as assembled (identity on the diagonal only after factoring: here "
-          "as assembled).")
+          "as assembled); statics: the loads times load_factor, at their amplitude if "
+          "amplitude.")
       .def(
           "joint_reaction",
           [](const SystemHolder& h, int k, In y, double t, In lam) {

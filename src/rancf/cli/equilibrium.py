@@ -40,24 +40,31 @@ def positions_json(system: Any, q: Any) -> Any:
     return next(iter(out.values())) if len(out) == 1 and system.flex else out
 
 
+def _static_state(sc: Any, system: Any) -> tuple[Any, Any]:
+    """The equilibrium under the full loads (coordinates and multipliers)."""
+    from rancf.solvers.static import solve_static
+
+    res = solve_static(system, sc.solver["load_steps"], method=sc.solver["static_method"])
+    return res.y, res.lam
+
+
 def _cmd_buckling(args: argparse.Namespace) -> int:
     from rancf.scenario import load_scenario
     from rancf.solvers.buckling import linear_buckling
-    from rancf.solvers.static import solve_static
 
     plot = check_plot_path(args.plot) if args.plot else None
     if args.count < 1:
         raise InputError("--count", args.count, "an integer >= 1")
     sc = load_scenario(args.scenario)
-    model = sc.build_model()
-    y = None
+    system = sc.build_system()
+    y = lam = None
     if args.about == "static":
-        y = solve_static(model, sc.solver["load_steps"], method=sc.solver["static_method"]).y
-    res = linear_buckling(model, args.count, args.about, y)
+        y, lam = _static_state(sc, system)
+    res = linear_buckling(system, args.count, args.about, y, lam)
     if plot is not None:
         from rancf.post.plots import plot_buckling
 
-        plot_buckling(model, res, plot, y)
+        plot_buckling(system, res, plot, y)
     out = {
         "load_factors": res.load_factors.tolist(),
         "about": res.about,
@@ -68,9 +75,9 @@ def _cmd_buckling(args: argparse.Namespace) -> int:
 
         print(strict_json(out).rstrip())
     else:
-        print(f"linear buckling about the {res.about} configuration (critical load factors):")
-        for i, lam in enumerate(res.load_factors, 1):
-            print(f"  mode {i:2d}  {lam:14.8g}")
+        print(f"buckling about the {res.about} configuration (critical load factors):")
+        for i, lam_i in enumerate(res.load_factors, 1):
+            print(f"  mode {i:2d}  {lam_i:14.8g}")
         if plot is not None:
             print(f"mode shapes -> {plot}", file=sys.stderr)
     return 0
@@ -160,57 +167,44 @@ def _vec(v: list[float], floor: float) -> str:
 def _cmd_modes(args: argparse.Namespace) -> int:
     import numpy as np
 
-    from rancf.post.checks import run_warnings
+    from rancf.post.checks import largest_strain, run_warnings
     from rancf.post.results import strict_json
     from rancf.scenario import load_scenario
     from rancf.solvers.modal import natural_modes
-    from rancf.solvers.static import solve_static
 
     plot = check_plot_path(args.plot) if args.plot else None
     if args.count is not None and args.count < 1:
         raise InputError("--count", args.count, "an integer >= 1")
     sc = load_scenario(args.scenario)
-    if sc.needs_system:
-        from rancf.cli.system import modes_system, print_modes
-
-        doc = modes_system(args, sc)
-        if args.json:
-            print(strict_json(doc).rstrip())
-        else:
-            print_modes(doc)
-        return 0
-    model = sc.build_model()
+    system = sc.build_system()
     about = args.about or sc.data["modes"]["about"]
     count = args.count if args.count is not None else sc.data["modes"]["count"]
     key = "--count" if args.count is not None else f"{sc.path}: modes.count"
-    n_free = int(np.sum(~model.fixed))
-    if count > n_free:
-        raise InputError(key, count, f"at most {n_free} (the free coordinates of this model)")
-    y = None
+    n_free = int(np.sum(~system.fixed))
+    if count >= n_free:
+        raise InputError(key, count, f"at most {n_free - 1} (the free coordinates - 1)")
+    y = lam = None
+    largest = (0.0, 1.0)
     if about == "static":
-        y = solve_static(model, sc.solver["load_steps"], method=sc.solver["static_method"]).y
-    static = [] if y is None else [model.q_from_y(y)]  # the strain of the equilibrium
-    notes = _warn(run_warnings(model, np.ones(len(static)), np.array(static), static=True))
-    res = natural_modes(model, y, count)
-    if res.frequencies_hz.size < count:
-        raise InputError(
-            key,
-            count,
-            f"at most {res.frequencies_hz.size}: this model has {n_free} free coordinates and "
-            f"{res.n_rigid} rigid-body mode(s), which are removed",
-        )
+        y, lam = _static_state(sc, system)
+        q = system.q_from_y(y)
+        for name, b in zip(system.names, system.flex, strict=False):  # the equilibrium's strain
+            eps = largest_strain(b, np.ones(1), q[None, system.body_slice(name)])
+            largest = max(largest, eps)
+    notes = _warn(run_warnings(system, static=True, largest=largest))
+    res = natural_modes(system, y, count, lam)
     if plot is not None:
         from rancf.post.plots import plot_modes
 
-        plot_modes(model, res, plot, y)
-    growth = res.growth_rates if res.growth_rates is not None else np.zeros_like(res.frequencies_hz)
+        plot_modes(system, res, plot, y)
     out = {
         "frequencies_hz": res.frequencies_hz.tolist(),
-        "growth_rates_per_s": growth.tolist(),
+        "growth_rates_per_s": res.growth_rates.tolist(),
         "eigenproblem": "symmetric" if res.symmetric else "general",
         "rigid_body_modes_removed": res.n_rigid,
         "about": about,
-        "n_dofs_free": int(np.sum(~model.fixed)),
+        "n_dofs_free": n_free,
+        "constraints": system.m,
         "warnings": notes,
     }
     if args.json:
@@ -220,16 +214,16 @@ def _cmd_modes(args: argparse.Namespace) -> int:
             f"natural frequencies about the {about} configuration "
             f"({res.n_rigid} rigid-body mode(s) removed):"
         )
-        for i, (f, g) in enumerate(zip(res.frequencies_hz, growth, strict=True), 1):
-            extra = "" if res.symmetric else f"  growth rate {g:.6g} 1/s"
+        for i, (f, g) in enumerate(zip(res.frequencies_hz, res.growth_rates, strict=True), 1):
+            extra = "" if res.symmetric and g == 0 else f"  growth rate {g:.6g} 1/s"
             print(f"  mode {i:2d}  {f:12.6f} Hz{extra}")
         if not res.symmetric:
             print(
-                "  note: general eigenproblem (the point moments' load stiffness is not "
-                "symmetric);\n  a growth rate > 0 is an unstable mode: flutter (frequency > 0) "
+                "  note: general eigenproblem (the tangent is not symmetric: point moments, "
+                "friction);\n  a growth rate > 0 is an unstable mode: flutter (frequency > 0) "
                 "or divergence (frequency 0)."
             )
-        if np.any(res.frequencies_hz < 1e-6):
+        if np.any(res.frequencies_hz < 1e-6) and not np.any(res.growth_rates > 0):
             print(
                 "  note: zero-frequency modes that are not rigid-body motions are kept; for a "
                 "curved spatial cable they are the out-of-plane bending the magnitude "
@@ -271,7 +265,8 @@ def add_parsers(sub: Any) -> None:
     m.set_defaults(func=_cmd_modes)
 
     b = sub.add_parser(
-        "buckling", help="linear buckling load factors of a scenario's loads (K0 + λ Kσ) φ = 0"
+        "buckling",
+        help="buckling load factors of a scenario's loads (linearized, located on the static path)",
     )
     b.add_argument("scenario")
     b.add_argument("--count", type=int, default=3, help="number of load factors (default 3)")

@@ -45,8 +45,10 @@ EXAMPLES = {
 }
 
 #: Shipped scenarios that are not paper studies, and what ``rancf example run`` does with each
-#: (:mod:`rancf.studies.scenario_example`): ``"simulate"``, ``"static"`` and/or ``"modes"``.
+#: (:mod:`rancf.studies.scenario_example`): ``"simulate"``, ``"static"``, ``"modes"`` and/or
+#: ``"buckling"``.
 SCENARIO_ANALYSES: dict[str, tuple[str, ...]] = {
+    "argyris-frame": ("modes", "buckling"),
     "belt-drive": ("simulate",),
     "capstan": ("simulate",),
     "cantilever": ("static", "modes"),
