@@ -54,7 +54,7 @@ class Coordinates:
         i %= n
         return 0 if self.closed and i == n - 1 else i
 
-    def _node_base(self, node: int) -> int:
+    def node_base(self, node: int) -> int:
         """First index in ``y`` of a node's own coordinates (C² models: its C¹ block)."""
         if self.reduction is None:
             return node * self.dpn

@@ -180,7 +180,7 @@ class Model(Coordinates):
             held |= {self.check_node(k, "initial_velocity.at") for k in initial_velocities or {}}
             self.reduction, base_q = reduction(self.mesh, self.dpn, element == "rod", held, q0)
             self.notes += jump_note(self.reduction, self.n_el)
-            node_base = self._node_base
+            node_base = self.node_base
         layout = support_layout(supports, element, self.dim, self.dpn, base_q, tangents,
                                 self.check_node, node_base)  # fmt: skip
         self.fixed = layout.fixed

@@ -15,20 +15,28 @@ gravity is its model's.
 from __future__ import annotations
 
 import warnings
-from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
+from collections.abc import Callable, Mapping, Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from rancf.errors import InputError
-from rancf.kernels import _core
+from rancf.kernels.records import (
+    JointRecord,
+    LinearTerm,
+    LoadRecord,
+    PlaceRecord,
+    PrescribedRecord,
+    SpringRecord,
+    TimeFunctionRecord,
+    floats,
+)
 from rancf.model.closure import closure_matrix, closure_rows
 from rancf.model.rigid import PointMass, RigidBody
 from rancf.model.system import Model
-from rancf.model.time_function import TimeFunction
+from rancf.model.time_function import TimeFunction, core_record
 from rancf.system.contact import CONTACT_POINTS, Obstacle
-from rancf.system.core_data import attach_contact, build_core
+from rancf.system.core_data import SystemRecords, attach_contact, build_core
 from rancf.system.joint_data import joint_data
 from rancf.system.parts import JOINT_KINDS, Joint, Load, Spring
 from rancf.system.places import Place
@@ -36,22 +44,42 @@ from rancf.system.places import Place
 __all__ = ["System", "Body"]
 
 Body = Model | RigidBody | PointMass
-_NODE_KIND = {"rancf": 1, "ancf": 1, "rod": 2, "beam": 3}
+_NODE_KIND = {"rancf": "cable", "ancf": "cable", "rod": "rod", "beam": "beam"}
 
 
-@dataclass
 class _Rows:
-    """Growing arrays of the core's constructor."""
+    """The place and time function records as they are made (numbered by position); a place
+    made twice (the same key) is one record."""
 
-    places: list[tuple] = field(default_factory=list)
-    joints: list[dict] = field(default_factory=list)
-    tfs: list[TimeFunction] = field(default_factory=list)
+    def __init__(self, horizon: float | None) -> None:
+        self.places: list[PlaceRecord] = []
+        self.tfs: list[TimeFunctionRecord] = []
+        self.horizon = horizon
+        self._known: dict[Place | PlaceRecord, int] = {}
+
+    def place(self, key: Place | PlaceRecord, make: Callable[[], PlaceRecord]) -> int:
+        if key not in self._known:
+            self.places.append(make())
+            self._known[key] = len(self.places) - 1
+        return self._known[key]
 
     def tf(self, f: TimeFunction | None) -> int:
+        """The index of the core's record of ``f`` (a callable sampled on the horizon); -1 for
+        None."""
         if f is None:
             return -1
-        self.tfs.append(f)
+        if f.kind == "callable":
+            if self.horizon is None or not self.horizon > 0:
+                raise InputError("horizon", self.horizon, "the run's end time t_end [s] > 0 (a "
+                                 "Python time function is sampled on [0, t_end])")  # fmt: skip
+            f = f.sampled(float(self.horizon))
+        self.tfs.append(core_record(f))
         return len(self.tfs) - 1
+
+    def records(self, **parts: Sequence) -> SystemRecords:
+        """The records so far with ``parts`` (joints, springs, loads, prescribed, linear)."""
+        return SystemRecords(tuple(self.places), time_functions=tuple(self.tfs),
+                             **{k: tuple(v) for k, v in parts.items()})  # fmt: skip
 
 
 class System:
@@ -82,6 +110,11 @@ class System:
         The end of the runs [s]: time functions given as Python callables are sampled on
         ``[0, horizon]`` (a cubic table of 2001 points, :meth:`TimeFunction.sampled`) for the
         compiled loop; required when there are such functions.
+
+    Attributes
+    ----------
+    records : :class:`rancf.system.core_data.SystemRecords`
+        The parts as the compiled core ``core`` took them (:mod:`rancf.kernels.records`).
     """
 
     def __init__(
@@ -144,21 +177,25 @@ class System:
         self.y0, self.v0 = y0, v0
         self.joints, self.springs, self.loads = tuple(joints), tuple(springs), tuple(loads)
         self.single = self.names[0] if len(self.names) == 1 else None
-        self._linear = self._closures()
-        rows = _Rows()
+        linear = self._closures()
+        rows = _Rows(horizon)
         self._place_index: dict[Place, int] = {}
-        self._prescribed = self._motions(rows)
-        self._spring_rows = [self._spring(s, rows) for s in springs]
-        self._load_rows = [self._load(ld, rows) for ld in self._all_loads()]
+        parts = {
+            "prescribed": self._motions(rows),
+            "springs": [self._spring(s, rows) for s in springs],
+            "loads": [self._load(ld, rows) for ld in self._all_loads()],
+            "linear": linear,
+        }
         for spec in observe:
             p = self.resolve(spec)
             if p.body is None:
                 raise InputError("place", "ground", "a place on a body")
             self._index(p, rows)
         pre = [self._place(j, rows) for j in joints]  # places first: their reference frames
-        self.core = self._build(rows, [])
-        self.joint_data = [self._joint(j, ab, rows) for j, ab in zip(joints, pre, strict=True)]
-        self.core = self._build(rows, self.joint_data)
+        self.core = build_core(self, rows.records(**parts))
+        parts["joints"] = [self._joint(j, ab, rows) for j, ab in zip(joints, pre, strict=True)]
+        self.records = rows.records(**parts)
+        self.core = build_core(self, self.records)
         self.m = int(self.core.m)
         self.joint_rows = list(self.core.joint_rows)
         self.obstacles = tuple(obstacles)  # contact (issue 20): attached to the core
@@ -222,26 +259,26 @@ class System:
 
     def _index(self, p: Place, rows: _Rows, ground_point: NDArray | None = None,
                motion: int = -1) -> int:  # fmt: skip
-        key = p if p.body is not None else Place(None, (tuple(ground_point), motion))  # type: ignore[arg-type]
-        if key in self._place_index:
-            return self._place_index[key]
-        point, kind, body, node, angle0 = np.zeros(3), 0, -1, 0, 0.0
+        """The index of the record of the place ``p`` (resolved); the ground: at
+        ``ground_point``, moved by the time function ``motion``."""
         if p.body is None:
+            point = np.zeros(3)
             point[: self.dim] = ground_point[: self.dim]  # type: ignore[index]
-        else:
-            b = self.bodies[p.body]
-            if isinstance(b, Model):
-                kind, body, node = _NODE_KIND[b.element], self.flex.index(b), int(p.at)  # type: ignore[arg-type]
-                if b.element == "beam":
-                    angle0 = float(b.kernel.psi0[node])
-            elif isinstance(b, PointMass):
-                kind, body = 6, self.rigid.index(b)
-            else:
-                kind, body = (4 if self.dim == 2 else 5), self.rigid.index(b)
-                point = b.point(p.at)  # type: ignore[arg-type]
-        rows.places.append((kind, body, node, point, motion if p.body is None else -1, angle0))
-        self._place_index[key] = len(rows.places) - 1
-        return len(rows.places) - 1
+            ground = PlaceRecord("ground", point=floats(point), motion=motion)  # type: ignore[arg-type]
+            return rows.place(ground, lambda: ground)
+        self._place_index[p] = rows.place(p, lambda: self._place_record(p))
+        return self._place_index[p]
+
+    def _place_record(self, p: Place) -> PlaceRecord:
+        b = self.bodies[p.body]  # type: ignore[index]
+        if isinstance(b, Model):
+            node = int(p.at)  # type: ignore[arg-type]
+            angle0 = float(b.kernel.psi0[node]) if b.element == "beam" else 0.0
+            return PlaceRecord(_NODE_KIND[b.element], self.flex.index(b), node, angle0=angle0)
+        if isinstance(b, PointMass):
+            return PlaceRecord("mass", self.rigid.index(b))
+        kind = "rigid2d" if self.dim == 2 else "rigid3d"
+        return PlaceRecord(kind, self.rigid.index(b), point=floats(b.point(p.at)))  # type: ignore[arg-type]
 
     def place_state(
         self, spec: Place | str, y: NDArray, t: float = 0.0
@@ -280,7 +317,7 @@ class System:
         return self._index(a, rows), self._index(b, rows, gp, motion)
 
     # ---------------------------------------------------------------- parts
-    def _motions(self, rows: _Rows) -> list[tuple[int, int, int, float]]:
+    def _motions(self, rows: _Rows) -> list[PrescribedRecord]:
         """Held positions of flexible bodies that follow their support's motion."""
         out = []
         for name, b in zip(self.names, self.flex, strict=False):
@@ -294,26 +331,26 @@ class System:
                 if sup.motion.size != self.dim:
                     raise InputError("supports.motion", sup.motion.size, f"{self.dim} components")
                 k = rows.tf(sup.motion)
-                base = self.offsets[name] + b._node_base(b.check_node(sup.node, "supports.at"))
+                base = b.node_base(b.check_node(sup.node, "supports.at"))
                 for i in range(self.dim):
-                    out.append(
-                        (base + i, k, i, float(b.y_installed[base - self.offsets[name] + i]))
-                    )
+                    coord = self.offsets[name] + base + i
+                    out.append(PrescribedRecord(coord, k, i, float(b.y_installed[base + i])))
         return out
 
-    def _closures(self) -> tuple[NDArray, NDArray, NDArray]:
-        """The seams of closed flexible bodies as linear rows ``(row, column, coefficient)``
+    def _closures(self) -> list[LinearTerm]:
+        """The seams of closed flexible bodies as the terms of linear rows
         (:func:`rancf.model.closure.closure_rows`), in system coordinates."""
-        parts, m = [], 0
+        out: list[LinearTerm] = []
+        m = 0
         for name, b in zip(self.names, self.flex, strict=False):
             r, c, v = closure_rows(b)
-            parts.append((r + m, c + self.offsets[name], v))
+            o = self.offsets[name]
+            out += [LinearTerm(int(i) + m, int(j) + o, float(x))
+                    for i, j, x in zip(r, c, v, strict=True)]  # fmt: skip
             m += closure_matrix(b).shape[0]
-        if not parts:
-            return np.zeros(0, np.int64), np.zeros(0, np.int64), np.zeros(0)
-        return tuple(np.concatenate(x) for x in zip(*parts, strict=True))  # type: ignore[return-value]
+        return out
 
-    def _spring(self, s: Spring, rows: _Rows) -> tuple[int, int, float, float, float]:
+    def _spring(self, s: Spring, rows: _Rows) -> SpringRecord:
         a, b = self._pair(s.between, rows)
         for key, v in (("springs.stiffness", s.stiffness), ("springs.damping", s.damping)):
             if not (np.isfinite(v) and v >= 0):
@@ -328,7 +365,7 @@ class System:
                              length, "0 where its places meet at the reference (ground sits at "
                              "the other place's reference): the linear spring-damper "
                              "k (x_a - x_b) + c (v_a - v_b)")  # fmt: skip
-        return a, b, float(s.stiffness), float(s.damping), length
+        return SpringRecord(a, b, float(s.stiffness), float(s.damping), length)
 
     def _all_loads(self) -> list[Load]:
         """The loads, and flexible bodies' point forces (and rods' moments) times a time
@@ -348,7 +385,7 @@ class System:
                 )
         return out
 
-    def _load(self, ld: Load, rows: _Rows) -> tuple[int, NDArray, NDArray, int]:
+    def _load(self, ld: Load, rows: _Rows) -> LoadRecord:
         p = self.resolve(ld.at)
         if p.body is None:
             raise InputError("loads.point.at", "ground", "a place on a body")
@@ -363,7 +400,9 @@ class System:
         tt = np.r_[np.zeros(2), t] if t.size == 1 else np.r_[t, np.zeros(3 - t.size)]
         if ld.time is not None and ld.time.size != 1:
             raise InputError("loads.point.time", ld.time.size, "a scalar time function (a factor)")
-        return self._index(p, rows), np.r_[f, np.zeros(3 - f.size)], tt, rows.tf(ld.time)
+        place = self._index(p, rows)
+        force = floats(np.r_[f, np.zeros(3 - f.size)])
+        return LoadRecord(place, force, floats(tt), rows.tf(ld.time))  # type: ignore[arg-type]
 
     def _place(self, j: Joint, rows: _Rows) -> tuple[int, int]:
         if j.kind not in JOINT_KINDS:
@@ -374,22 +413,10 @@ class System:
         x, f = self.core.place(index, self.y0, 0.0)
         return np.asarray(x), np.asarray(f).reshape(-1, 3)
 
-    def _joint(self, j: Joint, ab: tuple[int, int], rows: _Rows) -> dict:
+    def _joint(self, j: Joint, ab: tuple[int, int], rows: _Rows) -> JointRecord:
         a, b = ab
         angle = rows.tf(j.angle) if j.angle is not None else -1
         return joint_data(j, a, b, self._frames(a)[1], self._frames(b)[1], self.dim, angle)
-
-    def _build(self, rows: _Rows, joints: list[dict]) -> _core.System:
-        return build_core(self, rows, joints, [self._compiled(f) for f in rows.tfs])
-
-    def _compiled(self, f: TimeFunction) -> TimeFunction:
-        """A time function the compiled core evaluates (a callable sampled on the horizon)."""
-        if f.kind != "callable":
-            return f
-        if self.horizon is None or not self.horizon > 0:
-            raise InputError("horizon", self.horizon, "the run's end time t_end [s] > 0 (a Python "
-                             "time function is sampled on [0, t_end])")  # fmt: skip
-        return f.sampled(float(self.horizon))
 
     # ---------------------------------------------------------------- coordinates
     def body_slice(self, name: str) -> slice:
