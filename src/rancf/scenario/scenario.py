@@ -40,8 +40,8 @@ from rancf.scenario.sensors import Sensor, SensorTable
 from rancf.scenario.solver import ModesTable, SolverTable
 
 if TYPE_CHECKING:
-    from rancf.model.analysis import DynamicOptions
-    from rancf.model.system import Model
+    from rancf.bodies.flexible import Model
+    from rancf.options import DynamicOptions
     from rancf.scenario.places import ResolvedPlace
     from rancf.system import System
 
@@ -193,7 +193,7 @@ class Scenario(Table):
         return None
 
     def dynamic_options(self) -> DynamicOptions:
-        """:class:`~rancf.model.analysis.DynamicOptions` of the ``[solver]`` table."""
+        """:class:`~rancf.options.DynamicOptions` of the ``[solver]`` table."""
         return self.solver.dynamic_options()
 
     def build_model(self) -> Model:

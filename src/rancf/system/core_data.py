@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from rancf.bodies.rigid import PointMass, RigidBody
 from rancf.kernels import _core
 from rancf.kernels.records import (
     JointRecord,
@@ -22,7 +23,6 @@ from rancf.kernels.records import (
     TimeFunctionRecord,
     floats,
 )
-from rancf.model.rigid import PointMass, RigidBody
 from rancf.system.contact import Obstacle, build_contact
 
 if TYPE_CHECKING:
