@@ -1,15 +1,16 @@
-"""The compiled core's :class:`rancf.kernels._core.System` of a :class:`rancf.system.System`:
-its bodies and the named records of its parts (:mod:`rancf.kernels.records`), which the
-constructor (``src/cpp/bindings_system.cpp``) reads field by field."""
+"""The compiled core's :class:`rancf.kernels._core.System` of a system's bodies and the named
+records of its parts (:mod:`rancf.kernels.records`), which the constructor
+(``src/cpp/bindings_system.cpp``) reads field by field."""
 
 from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import NDArray
 
+from rancf.bodies.flexible import Model
 from rancf.bodies.rigid import PointMass, RigidBody
 from rancf.kernels import _core
 from rancf.kernels.records import (
@@ -23,12 +24,8 @@ from rancf.kernels.records import (
     TimeFunctionRecord,
     floats,
 )
-from rancf.system.contact import Obstacle, build_contact
 
-if TYPE_CHECKING:
-    from rancf.system.system import System
-
-__all__ = ["SystemRecords", "build_core", "rigid_record", "attach_contact"]
+__all__ = ["SystemRecords", "build_core", "rigid_record"]
 
 
 @dataclass(frozen=True)
@@ -52,13 +49,22 @@ def rigid_record(b: RigidBody | PointMass) -> RigidRecord:
     return RigidRecord(b.dim, isinstance(b, PointMass), float(b.mass), floats(inertia))  # type: ignore[arg-type]
 
 
-def build_core(system: System, records: SystemRecords) -> _core.System:
-    """The core system of ``system``'s bodies (its public ``dim``, ``flex``, ``rigid``,
-    ``gravity``, ``damping`` and reference ``y0``) with the parts ``records``."""
+def build_core(
+    dim: int,
+    flex: Sequence[Model],
+    rigid: Sequence[RigidBody | PointMass],
+    records: SystemRecords,
+    gravity: NDArray,
+    damping: float,
+    y_ref: NDArray,
+) -> _core.System:
+    """The core system of the bodies ``flex`` (their models' cores) and ``rigid`` in dimension
+    ``dim`` with the parts ``records``; ``gravity`` ``(3,)`` on rigid bodies and point masses,
+    mass-proportional ``damping`` [1/s] of every body, ``y_ref`` the reference coordinates."""
     return _core.System(
-        dim=system.dim,
-        models=[b.core for b in system.flex],
-        rigid=[rigid_record(b) for b in system.rigid],
+        dim=dim,
+        models=[b.core for b in flex],
+        rigid=[rigid_record(b) for b in rigid],
         places=list(records.places),
         joints=list(records.joints),
         springs=list(records.springs),
@@ -66,27 +72,7 @@ def build_core(system: System, records: SystemRecords) -> _core.System:
         time_functions=list(records.time_functions),
         prescribed=list(records.prescribed),
         linear=list(records.linear),
-        gravity=floats(system.gravity),
-        damping=system.damping,
-        y_ref=system.y0,
+        gravity=floats(gravity),
+        damping=damping,
+        y_ref=y_ref,
     )
-
-
-def attach_contact(
-    system: System,
-    obstacles: Sequence[Obstacle],
-    contacts: Sequence[tuple[str, str]] | None,
-    n_c: int,
-    body_contacts: Sequence[tuple[str, str]] = (),
-    body_friction: float = 0.0,
-) -> tuple[_core.Contact | None, list[str], list[tuple[str, str]]]:
-    """The contact data of ``system`` (:func:`rancf.system.contact.build_contact`: the core's
-    :class:`rancf.kernels._core.Contact`, obstacle names, pairs) attached to its core; ``(None,
-    [], [])`` without obstacles."""
-    if not obstacles and not contacts and not body_contacts:
-        return None, [], []
-    contact, names, pairs = build_contact(
-        system, obstacles, contacts, n_c, body_contacts, body_friction
-    )
-    system.core.attach_contact(contact)
-    return contact, names, pairs

@@ -22,9 +22,10 @@ from numpy.typing import ArrayLike, NDArray
 
 from rancf.bodies.closure import closure_matrix, closure_rows
 from rancf.bodies.flexible import Model
-from rancf.bodies.rigid import PointMass, RigidBody
+from rancf.bodies.rigid import RigidBody
 from rancf.bodies.time_function import TimeFunction, core_record
 from rancf.errors import InputError
+from rancf.kernels import _core
 from rancf.kernels.records import (
     JointRecord,
     LinearTerm,
@@ -36,15 +37,13 @@ from rancf.kernels.records import (
     floats,
 )
 from rancf.system.connections import JOINT_KINDS, Joint, Load, Spring
-from rancf.system.contact import CONTACT_POINTS, Obstacle
-from rancf.system.core_data import SystemRecords, attach_contact, build_core
+from rancf.system.contact import CONTACT_POINTS, Obstacle, build_contact
+from rancf.system.core_data import SystemRecords, build_core
 from rancf.system.joint_data import joint_data
 from rancf.system.places import Place
+from rancf.system.stack import Body, BodyStack
 
 __all__ = ["System", "Body"]
-
-Body = Model | RigidBody | PointMass
-_NODE_KIND = {"rancf": "cable", "ancf": "cable", "rod": "rod", "beam": "beam"}
 
 
 class _Rows:
@@ -82,8 +81,9 @@ class _Rows:
                              **{k: tuple(v) for k, v in parts.items()})  # fmt: skip
 
 
-class System:
-    """Bodies, joints, springs and loads (module docstring).
+class System(BodyStack):
+    """Bodies, joints, springs and loads (module docstring); the bodies' coordinates and places
+    as in :class:`rancf.system.stack.BodyStack`.
 
     Parameters
     ----------
@@ -133,50 +133,18 @@ class System:
         body_contacts: Sequence[tuple[str, str]] = (),
         body_friction: float = 0.0,
     ) -> None:
-        if not bodies:
-            raise InputError("bodies", {}, "at least one body")
-        for name in bodies:
-            if not isinstance(name, str) or not name or name == "ground" or ":" in name:
-                raise InputError("bodies.name", name, 'a name without ":", not "ground"')
-        flex = [(k, b) for k, b in bodies.items() if isinstance(b, Model)]
-        rigid = [(k, b) for k, b in bodies.items() if isinstance(b, RigidBody | PointMass)]
-        if len(flex) + len(rigid) != len(bodies):
-            raise InputError("bodies", list(bodies), "Model, RigidBody or PointMass objects")
-        dims = {b.dim for _, b in flex + rigid}
-        if len(dims) != 1:
-            raise InputError("bodies", sorted(dims), "bodies of one dimension (all 2D or all 3D)")
-        self.dim = dims.pop()
-        self.bodies = dict(flex + rigid)
-        self.names = [k for k, _ in flex + rigid]
-        self.flex = [b for _, b in flex]
-        self.rigid = [b for _, b in rigid]
+        super().__init__(bodies)
         self.gravity = (
             np.zeros(3) if gravity is None else np.r_[np.asarray(gravity, float), 0.0][:3]
         )
         if gravity is not None and np.asarray(gravity).size != self.dim:
             raise InputError("loads.gravity", list(np.asarray(gravity)), f"{self.dim} components")
-        self._check_gravity(flex)
+        self._check_gravity()
         if not (np.isfinite(damping) and damping >= 0):
             raise InputError("damping.mass_proportional", damping, "a finite number >= 0")
         self.damping = float(damping)
         self.horizon = horizon
-        self.offsets: dict[str, int] = {}
-        n = 0
-        for name, b in flex + rigid:
-            self.offsets[name] = n
-            n += b.n if isinstance(b, Model) else b.size
-        self.n = n
-        y0, v0 = np.zeros(n), np.zeros(n)
-        for name, b in flex + rigid:
-            o = self.offsets[name]
-            if isinstance(b, Model):
-                y0[o : o + b.n], v0[o : o + b.n] = b.y0, b.v0
-            else:
-                yy, vv = b.initial()
-                y0[o : o + b.size], v0[o : o + b.size] = yy, vv
-        self.y0, self.v0 = y0, v0
         self.joints, self.springs, self.loads = tuple(joints), tuple(springs), tuple(loads)
-        self.single = self.names[0] if len(self.names) == 1 else None
         linear = self._closures()
         rows = _Rows(horizon)
         self._place_index: dict[Place, int] = {}
@@ -192,26 +160,29 @@ class System:
                 raise InputError("place", "ground", "a place on a body")
             self._index(p, rows)
         pre = [self._place(j, rows) for j in joints]  # places first: their reference frames
-        self.core = build_core(self, rows.records(**parts))
+        self.core = self._build(rows.records(**parts))
         parts["joints"] = [self._joint(j, ab, rows) for j, ab in zip(joints, pre, strict=True)]
         self.records = rows.records(**parts)
-        self.core = build_core(self, self.records)
+        self.core = self._build(self.records)
         self.m = int(self.core.m)
         self.joint_rows = list(self.core.joint_rows)
         self.obstacles = tuple(obstacles)  # contact: attached to the core
         self.body_contacts, self.contact_points = [(a, b) for a, b in body_contacts], contact_points
-        self.contact, self.obstacle_names, self.contact_pairs = attach_contact(
-            self, self.obstacles, contacts, contact_points, body_contacts, body_friction
-        )
+        self.contact, self.obstacle_names, self.contact_pairs = None, [], []
+        if self.obstacles or contacts or body_contacts:  # build_contact: the core's Contact
+            self.contact, self.obstacle_names, self.contact_pairs = build_contact(
+                self, self.obstacles, contacts, contact_points, body_contacts, body_friction
+            )
+            self.core.attach_contact(self.contact)
         self._check_reference()
 
-    def _check_gravity(self, flex: list[tuple[str, Model]]) -> None:
+    def _check_gravity(self) -> None:
         """A flexible body's weight comes from its model's ``gravity``, a rigid body's from the
         system's: a model with no gravity of its own in a system with gravity gets one warning
         line (its weight is left out); an explicit model gravity is taken as meant."""
         if not self.gravity.any():
             return
-        for name, b in flex:
+        for name, b in zip(self.names, self.flex, strict=False):
             if b.gravity is None:
                 warnings.warn(f"rancf: body {name!r} has no gravity of its own, so its weight "
                               f"is left out of the system's gravity "
@@ -238,25 +209,6 @@ class System:
                 )  # fmt: skip
 
     # ---------------------------------------------------------------- places
-    def resolve(self, spec: Place | str | int) -> Place:
-        """A place with its body checked (node indices normalized, points checked)."""
-        p = Place.parse(spec, self.single)
-        if p.body is None:
-            return p
-        if p.body not in self.bodies:
-            raise InputError("place", str(p), f"a body: {', '.join(self.names)} or ground")
-        b = self.bodies[p.body]
-        if isinstance(b, Model):
-            at = {"start": 0, "end": -1}.get(p.at, p.at) if isinstance(p.at, str) else p.at
-            if not isinstance(at, int):
-                raise InputError("place", str(p), f'a node of {p.body}: "start", "end" or an index')
-            return Place(p.body, b.check_node(at, f"place {p}"))
-        if isinstance(b, PointMass) and p.at is not None:
-            raise InputError("place", str(p), f"the point mass itself: {p.body!r}")
-        if isinstance(b, RigidBody):
-            b.point(p.at if isinstance(p.at, str) or p.at is None else str(p.at))
-        return p
-
     def _index(self, p: Place, rows: _Rows, ground_point: NDArray | None = None,
                motion: int = -1) -> int:  # fmt: skip
         """The index of the record of the place ``p`` (resolved); the ground: at
@@ -266,19 +218,8 @@ class System:
             point[: self.dim] = ground_point[: self.dim]  # type: ignore[index]
             ground = PlaceRecord("ground", point=floats(point), motion=motion)  # type: ignore[arg-type]
             return rows.place(ground, lambda: ground)
-        self._place_index[p] = rows.place(p, lambda: self._place_record(p))
+        self._place_index[p] = rows.place(p, lambda: self.place_record(p))
         return self._place_index[p]
-
-    def _place_record(self, p: Place) -> PlaceRecord:
-        b = self.bodies[p.body]  # type: ignore[index]
-        if isinstance(b, Model):
-            node = int(p.at)  # type: ignore[arg-type]
-            angle0 = float(b.kernel.psi0[node]) if b.element == "beam" else 0.0
-            return PlaceRecord(_NODE_KIND[b.element], self.flex.index(b), node, angle0=angle0)
-        if isinstance(b, PointMass):
-            return PlaceRecord("mass", self.rigid.index(b))
-        kind = "rigid2d" if self.dim == 2 else "rigid3d"
-        return PlaceRecord(kind, self.rigid.index(b), point=floats(b.point(p.at)))  # type: ignore[arg-type]
 
     def place_state(
         self, spec: Place | str, y: NDArray, t: float = 0.0
@@ -291,19 +232,6 @@ class System:
             raise InputError("place", str(key), "a place of a joint, spring, load or sensor")
         x, f = self.core.place(self._place_index[key], np.asarray(y, dtype=float), float(t))
         return np.asarray(x), np.asarray(f).reshape(-1, 3)
-
-    def reference_position(self, p: Place) -> NDArray[np.float64]:
-        """A place's position in the reference configuration (3 components)."""
-        b = self.bodies[p.body]  # type: ignore[index]
-        if isinstance(b, Model):
-            return np.r_[b.node_positions(b.q0)[int(p.at)], np.zeros(3 - self.dim)]  # type: ignore[arg-type]
-        yy, _ = b.initial()
-        x = np.r_[yy[: self.dim], np.zeros(3 - self.dim)]
-        if isinstance(b, RigidBody) and p.at is not None:
-            r = b.rotation()
-            s = b.point(p.at)[: self.dim]  # type: ignore[arg-type]
-            x[: self.dim] += r @ s
-        return x
 
     def _pair(self, between: Sequence, rows: _Rows, motion: int = -1) -> tuple[int, int]:
         if len(between) != 2:
@@ -409,6 +337,10 @@ class System:
             raise InputError("joints.kind", j.kind, f"one of {', '.join(JOINT_KINDS)}")
         return self._pair(j.between, rows, rows.tf(j.motion))
 
+    def _build(self, records: SystemRecords) -> _core.System:
+        return build_core(self.dim, self.flex, self.rigid, records, self.gravity, self.damping,
+                          self.y0)  # fmt: skip
+
     def _frames(self, index: int) -> tuple[NDArray, NDArray]:
         x, f = self.core.place(index, self.y0, 0.0)
         return np.asarray(x), np.asarray(f).reshape(-1, 3)
@@ -419,65 +351,6 @@ class System:
         return joint_data(j, a, b, self._frames(a)[1], self._frames(b)[1], self.dim, angle)
 
     # ---------------------------------------------------------------- coordinates
-    def body_slice(self, name: str) -> slice:
-        """The coordinates of one body in ``y``."""
-        o = self.offsets[name]
-        b = self.bodies[name]
-        return slice(o, o + (b.n if isinstance(b, Model) else b.size))
-
-    @property
-    def fixed(self) -> NDArray[np.bool_]:
-        """Held coordinates (flexible bodies' supports)."""
-        out = np.zeros(self.n, dtype=bool)
-        for name, b in zip(self.names, self.flex, strict=False):
-            out[self.body_slice(name)] = b.fixed
-        return out
-
     def energies(self, y: NDArray, v: NDArray) -> tuple[float, float, float]:
         """Kinetic, strain (with springs) and gravitational energy (zero at the reference)."""
         return self.core.energies(np.asarray(y, float), np.asarray(v, float))
-
-    def reset_triads(self) -> None:
-        """Rods: every flexible body's nodal triads back to their reference."""
-        for b in self.flex:
-            b.reset_triads()
-
-    def _each_flex(self) -> list[tuple[Model, slice]]:
-        return [(b, self.body_slice(name)) for name, b in zip(self.names, self.flex, strict=False)]
-
-    def q_from_y(self, y: ArrayLike) -> NDArray[np.float64]:
-        """Full coordinates (a flexible body's nodal coordinates, clamp rotations undone; rigid
-        bodies' as they are), ``(..., n)``."""
-        q = np.array(y, dtype=float)
-        for b, sl in self._each_flex():
-            q[..., sl] = b.q_from_y(q[..., sl])
-        return q
-
-    def y_from_q(self, q: ArrayLike) -> NDArray[np.float64]:
-        """Inverse of :meth:`q_from_y`."""
-        y = np.array(q, dtype=float)
-        for b, sl in self._each_flex():
-            y[..., sl] = b.y_from_q(y[..., sl])
-        return y
-
-    def nodal_directors(self, y: NDArray) -> NDArray[np.float64] | None:
-        """Rods' nodal directors ``(n_rod_nodes, 3)`` of every rod body (None without rods)."""
-        parts = [b.nodal_directors(y[sl]) for b, sl in self._each_flex() if b.element == "rod"]
-        return np.concatenate(parts) if parts else None
-
-    def rereference(self, y: NDArray, v: NDArray, a: NDArray) -> None:
-        """Rods: carry the nodal triads to ``y`` (their spin rates in ``v``, ``a`` kept)."""
-        for b, sl in self._each_flex():
-            if b.element == "rod":
-                vv, aa = v[sl].copy(), a[sl].copy()
-                b.core.rereference(y[sl], vv, aa)
-                v[sl], a[sl] = vv, aa
-
-    @property
-    def size(self) -> float:
-        """Characteristic length: the largest extent of the reference (Newton tolerances)."""
-        pts = [b.node_positions(b.q0) for b in self.flex]
-        pts += [np.atleast_2d(self.y0[self.body_slice(k)][: self.dim]) for k, b in
-                self.bodies.items() if not isinstance(b, Model)]  # fmt: skip
-        allp = np.concatenate(pts)
-        return float(np.ptp(allp, axis=0).max()) or 1.0
