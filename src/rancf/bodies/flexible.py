@@ -169,7 +169,8 @@ class Model(Coordinates):
         self.n = self.n_nodes * self.dpn
         self.nde = 2 * self.dpn
         self.ku = self.nde - 1
-        self._el_idx = np.arange(self.n_el)[:, None] * self.dpn + np.arange(self.nde)[None, :]
+        #: The indices in ``q`` of every element's coordinates ``(n_el, nde)``.
+        self.element_dofs = np.arange(self.n_el)[:, None] * self.dpn + np.arange(self.nde)[None, :]
 
         # supports -> held entries of y, rotated blocks, installed values
         tangents = mesh.nodes[:, 1]
@@ -184,27 +185,27 @@ class Model(Coordinates):
         layout = support_layout(supports, element, self.dim, self.dpn, base_q, tangents,
                                 self.check_node, node_base)  # fmt: skip
         self.fixed = layout.fixed
-        self._rot = list(layout.rotations)
+        self.rotations = list(layout.rotations)
         self.supports = tuple(supports)
         if self.reduction is not None:  # the rotations go into the maps; the padding is held
-            self.reduction = rotated(self.reduction, self._rot, self.dim)
-            for off, basis in self._rot:  # y0 exactly: z = basis y on a rotated block
+            self.reduction = rotated(self.reduction, self.rotations, self.dim)
+            for off, basis in self.rotations:  # y0 exactly: z = basis y on a rotated block
                 base_q[off : off + self.dim] = basis.T @ base_q[off : off + self.dim]
-            self._rot = []
+            self.rotations = []
             self.fixed[self.reduction.n_real :] = True
             self.ku = self.reduction.ku
         # element-level transformations for elements touching a rotated node
         aff = sorted(
             {
                 min(max(off // self.dpn - j, 0), self.n_el - 1)
-                for off, _ in self._rot
+                for off, _ in self.rotations
                 for j in (0, 1)
             }
         )
         self._aff = np.array(aff, dtype=int)
         te = np.repeat(np.eye(self.nde)[None], len(aff), axis=0)
         for i, e in enumerate(aff):
-            for off, basis in self._rot:
+            for off, basis in self.rotations:
                 loc = off - e * self.dpn
                 if 0 <= loc < self.nde:
                     te[i, loc : loc + self.dim, loc : loc + self.dim] = basis
@@ -290,7 +291,7 @@ class Model(Coordinates):
 
     def gather(self, q: NDArray) -> NDArray[np.float64]:
         """Element coordinates ``(n_el, nde)`` from a global vector."""
-        return q[self._el_idx]
+        return q[self.element_dofs]
 
     def assemble_vector(self, fe: NDArray) -> NDArray[np.float64]:
         """Sum element vectors ``(n_el, nde)`` into a global vector ``(n,)``."""

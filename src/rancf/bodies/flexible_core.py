@@ -58,8 +58,8 @@ def core_model(model: Model) -> _core.Model:
     kind = {CableKernel: 0, BeamKernel: 1, RodKernel: 2}[type(k)]
     stiffness = section_stiffness(model)
     rot_of_node = np.full((model.n_nodes, 2), -1, dtype=np.int64)
-    rot = np.zeros((max(len(model._rot), 1), model.dim, model.dim))
-    for i, (off, basis) in enumerate(model._rot):  # block 0: position, 1: gradient
+    rot = np.zeros((max(len(model.rotations), 1), model.dim, model.dim))
+    for i, (off, basis) in enumerate(model.rotations):  # block 0: position, 1: gradient
         rot_of_node[off // model.dpn, (off % model.dpn) // model.dim] = i
         rot[i] = basis
     base, f0, freq = _point_forces(model)

@@ -27,7 +27,8 @@ class Coordinates:
     """Node indices and the map ``q = T y`` of a model (module docstring).
 
     The model sets ``n``, ``n_nodes``, ``dim``, ``dpn``, ``ku``, ``closed``, ``reduction`` and
-    the rotated blocks ``_rot``.
+    ``rotations``: the rotated blocks of clamped nodes, ``(first index in y, basis (dim, dim))``
+    each, whose coordinates are ``z = basis y``.
     """
 
     n: int
@@ -37,7 +38,7 @@ class Coordinates:
     ku: int
     closed: bool
     reduction: Reduction | None
-    _rot: list[tuple[int, NDArray[np.float64]]]
+    rotations: list[tuple[int, NDArray[np.float64]]]
 
     def check_node(self, node: int, key: str) -> int:
         """Resolve a node index (negative counts from the end) or raise naming ``key``.
@@ -65,7 +66,7 @@ class Coordinates:
         if self.reduction is not None:
             return self.reduction.q_from_y(np.asarray(y, dtype=float))
         q = np.array(y, dtype=float)
-        for off, basis in self._rot:
+        for off, basis in self.rotations:
             q[..., off : off + self.dim] = q[..., off : off + self.dim] @ basis.T
         return q
 
@@ -75,7 +76,7 @@ class Coordinates:
         if self.reduction is not None:
             return self.reduction.y_from_q(np.asarray(q, dtype=float))
         y = np.array(q, dtype=float)
-        for off, basis in self._rot:
+        for off, basis in self.rotations:
             y[..., off : off + self.dim] = y[..., off : off + self.dim] @ basis
         return y
 
