@@ -114,7 +114,7 @@ def broad_phase() -> dict[str, float]:
     import time
 
     from rancf.bodies.flexible import Material, Model, Section
-    from rancf.mesh.mesh import mesh_line
+    from rancf.mesh.factories import mesh_line
     from rancf.system import System
 
     out: dict[str, float] = {}

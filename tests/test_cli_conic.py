@@ -142,7 +142,7 @@ def test_json_takes_more_elements_than_the_table(capsys):
     # the table stops at 1000 rows; --json takes the scenario limit (issue 15, item 5)
     from rancf.elements.mapping import gradient_ratio
     from rancf.geometry.conic import conic_arc
-    from rancf.mesh.mesh import mesh_conic
+    from rancf.mesh.factories import mesh_conic
 
     code, out, _ = run(capsys, *EX1, "--elements", "1500", "--json")
     assert code == 0

@@ -30,10 +30,10 @@ _API = {
     "chain_to_nurbs": "rancf.elements.cad",
     # meshes
     "CableMesh": "rancf.mesh.mesh",
-    "mesh_conic": "rancf.mesh.mesh",
-    "mesh_line": "rancf.mesh.mesh",
+    "mesh_conic": "rancf.mesh.factories",
+    "mesh_line": "rancf.mesh.factories",
     "mesh_nurbs": "rancf.mesh.nurbs_mesh",
-    "to_ancf": "rancf.mesh.mesh",
+    "to_ancf": "rancf.mesh.factories",
     # models and scenarios
     "Model": "rancf.bodies.flexible",
     "Section": "rancf.bodies.flexible",

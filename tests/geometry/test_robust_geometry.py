@@ -10,7 +10,8 @@ from rancf.errors import InputError
 from rancf.geometry.conic import conic_arc
 from rancf.geometry.nurbs import NurbsCurve
 from rancf.geometry.quadrature import integrate
-from rancf.mesh.mesh import mesh_conic, mesh_from_arrays
+from rancf.mesh.factories import mesh_conic
+from rancf.mesh.mesh import mesh_from_arrays
 from rancf.mesh.nurbs_mesh import mesh_nurbs
 from tests.conftest import EXAMPLE1
 

@@ -12,7 +12,7 @@ import pytest
 from rancf.bodies.flexible import Material, Model, PointLoad, Section, Support
 from rancf.geometry.conic import conic_arc
 from rancf.kernels import _core
-from rancf.mesh.mesh import mesh_conic, mesh_line
+from rancf.mesh.factories import mesh_conic, mesh_line
 from rancf.solvers.dynamic import DynamicOptions, GeneralizedAlpha, integrate
 from tests.conftest import EXAMPLE1
 

@@ -16,7 +16,7 @@ import pytest
 from rancf.bodies.flexible import Model
 from rancf.bodies.properties import Material, PointLoad, Section, Support
 from rancf.geometry.conic import conic_arc_through
-from rancf.mesh.mesh import mesh_conic, mesh_line
+from rancf.mesh.factories import mesh_conic, mesh_line
 from rancf.solvers.static import solve_static
 
 MAT = Material(6000.0, 2.0e6, poisson_ratio=0.3)

@@ -16,7 +16,7 @@ from rancf.bodies.flexible import Model, RigidMotion
 from rancf.bodies.motion import angular_momentum
 from rancf.bodies.properties import Material, Section, Support
 from rancf.geometry.conic import conic_arc, conic_arc_through
-from rancf.mesh.mesh import mesh_conic, mesh_line
+from rancf.mesh.factories import mesh_conic, mesh_line
 from tests.kernels.test_rod import ARC, deformed, rigid, rotation
 
 MAT = Material(6000.0, 2.0e6, poisson_ratio=0.3)

@@ -20,7 +20,7 @@ from rancf.bodies.reactions import support_reactions
 from rancf.geometry.ellipse import Ellipse, ellipse_axes
 from rancf.geometry.nurbs import NurbsCurve
 from rancf.mesh.ellipse_mesh import mesh_ellipse
-from rancf.mesh.mesh import mesh_line
+from rancf.mesh.factories import mesh_line
 from rancf.mesh.nurbs_mesh import mesh_nurbs
 from rancf.solvers.dynamic import DynamicOptions, integrate
 from rancf.solvers.equilibrium import EquilibriumProblem

@@ -6,7 +6,7 @@ from hypothesis import strategies as st
 from rancf.elements.mapping import kopt
 from rancf.errors import ElementCountError, InputError, MappingFactorError
 from rancf.geometry.conic import conic_arc, conic_arc_through
-from rancf.mesh.mesh import conic_breakpoints, mesh_conic, mesh_line, to_ancf
+from rancf.mesh.factories import conic_breakpoints, mesh_conic, mesh_line, to_ancf
 from tests.conftest import EXAMPLE1, EXAMPLE2
 
 XI = np.linspace(0.0, 1.0, 101)

@@ -7,7 +7,7 @@ import pytest
 
 from rancf.bodies.flexible import Material, Model, PointLoad, Section, Support
 from rancf.errors import ConvergenceError
-from rancf.mesh.mesh import mesh_line
+from rancf.mesh.factories import mesh_line
 from rancf.solvers.buckling import linear_buckling
 from rancf.solvers.static import solve_static
 

@@ -2,7 +2,7 @@ import numpy as np
 import pytest
 
 from rancf.bodies.flexible import Material, Model, PointLoad, Section, Support
-from rancf.mesh.mesh import mesh_line
+from rancf.mesh.factories import mesh_line
 from rancf.solvers.dynamic import DynamicOptions, DynamicStatus, integrate
 
 

@@ -12,7 +12,7 @@ import pytest
 from rancf.bodies.flexible import Material, Model, Section, Support
 from rancf.bodies.reactions import support_reactions
 from rancf.geometry.conic import conic_arc_through
-from rancf.mesh.mesh import mesh_conic, mesh_line
+from rancf.mesh.factories import mesh_conic, mesh_line
 from rancf.solvers.dynamic import DynamicOptions, integrate
 from rancf.solvers.equilibrium import EquilibriumProblem
 from rancf.solvers.modal import natural_modes

@@ -13,7 +13,7 @@ from rancf.bodies.flexible import Model
 from rancf.bodies.properties import Material, PointLoad, Section, Support
 from rancf.cli import main
 from rancf.geometry.conic import conic_arc_through
-from rancf.mesh.mesh import mesh_conic, mesh_line
+from rancf.mesh.factories import mesh_conic, mesh_line
 from rancf.solvers.dynamic import GeneralizedAlpha
 from rancf.solvers.modal import natural_modes, tangent_stiffness
 from rancf.solvers.static import solve_static

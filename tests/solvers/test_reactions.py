@@ -12,7 +12,7 @@ from rancf.bodies.flexible import Material, Model, PointLoad, Section, Support
 from rancf.bodies.reactions import support_reactions
 from rancf.bodies.section_outputs import SectionSampler
 from rancf.errors import ConvergenceError
-from rancf.mesh.mesh import mesh_line
+from rancf.mesh.factories import mesh_line
 from rancf.post.results import system_outputs
 from rancf.scenario import load_scenario
 from rancf.solvers.dynamic import DynamicOptions, integrate

@@ -17,7 +17,7 @@ from rancf.bodies.flexible import Model, RigidMotion
 from rancf.bodies.motion import angular_momentum
 from rancf.bodies.properties import Material, Section, Support
 from rancf.geometry.conic import conic_arc_through
-from rancf.mesh.mesh import mesh_conic, mesh_line
+from rancf.mesh.factories import mesh_conic, mesh_line
 from rancf.solvers.dynamic import DynamicOptions, integrate
 
 SEC = Section.circular(0.02)

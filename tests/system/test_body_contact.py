@@ -12,7 +12,7 @@ import pytest
 from rancf.bodies.flexible import Material, Model, PointLoad, Section, Support
 from rancf.bodies.section_outputs import SectionSampler
 from rancf.bodies.time_function import TimeFunction
-from rancf.mesh.mesh import mesh_line
+from rancf.mesh.factories import mesh_line
 from rancf.solvers.dynamic import DynamicOptions, integrate
 from rancf.system import Obstacle, System, contact_outputs
 

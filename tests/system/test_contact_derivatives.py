@@ -10,7 +10,7 @@ import pytest
 
 from rancf.bodies.flexible import Material, Model, Section, Support
 from rancf.bodies.rigid import RigidBody
-from rancf.mesh.mesh import mesh_line
+from rancf.mesh.factories import mesh_line
 from rancf.system import Obstacle, System, contact_outputs
 
 SEC, MAT = Section.circular(0.01), Material(1000.0, 1e7)

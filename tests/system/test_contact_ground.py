@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from rancf.bodies.flexible import Material, Model, Section, Support
-from rancf.mesh.mesh import mesh_line
+from rancf.mesh.factories import mesh_line
 from rancf.solvers.dynamic import DynamicOptions, integrate
 from rancf.solvers.static import solve_static
 from rancf.system import Obstacle, System, contact_history, contact_outputs

@@ -11,7 +11,7 @@ import pytest
 from rancf.bodies.flexible import Material, Model, PointLoad, Section, Support
 from rancf.bodies.rigid import PointMass, RigidBody
 from rancf.bodies.time_function import TimeFunction
-from rancf.mesh.mesh import mesh_line
+from rancf.mesh.factories import mesh_line
 from rancf.system import Joint, Load, Spring, System
 
 SEC, MAT = Section.circular(0.01), Material(1000.0, 1e7)

@@ -13,7 +13,7 @@ import pytest
 from rancf.bodies.flexible import Material, Model, Section, Support
 from rancf.bodies.rigid import PointMass, RigidBody
 from rancf.cli import main
-from rancf.mesh.mesh import mesh_line
+from rancf.mesh.factories import mesh_line
 from rancf.scenario import Scenario
 from rancf.solvers.modal import natural_modes
 from rancf.solvers.static import solve_static

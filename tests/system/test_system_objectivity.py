@@ -11,7 +11,7 @@ from scipy.spatial.transform import Rotation
 
 from rancf.bodies.flexible import Material, Model, Section
 from rancf.bodies.rigid import PointMass, RigidBody, quaternion_from_matrix
-from rancf.mesh.mesh import mesh_line
+from rancf.mesh.factories import mesh_line
 from rancf.system import Joint, System
 
 SEC, MAT = Section.circular(0.01), Material(1000.0, 1e7)

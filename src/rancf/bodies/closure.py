@@ -24,16 +24,35 @@ linear, so their Jacobian is exact and constant.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
-if TYPE_CHECKING:
-    from rancf.bodies.flexible import Model
+if TYPE_CHECKING:  # lower layers, for annotations only
+    from rancf.mesh.continuity import Reduction
     from rancf.mesh.mesh import CableMesh
 
 __all__ = ["arc_fractions", "closure_matrix", "closure_rows", "seam_scales"]
+
+
+class Model(Protocol):
+    """What the seam rows read of a flexible body (:class:`rancf.bodies.flexible.Model`)."""
+
+    n: int
+    n_nodes: int
+    dim: int
+    dpn: int
+    element: str
+    closed: bool
+    mesh: CableMesh
+    supports: Sequence[Any]
+    reduction: Reduction | None
+
+    def check_node(self, node: int, key: str) -> int: ...
+
+    def to_y(self, f: ArrayLike) -> NDArray[np.float64]: ...
 
 
 def arc_fractions(mesh: CableMesh) -> NDArray[np.float64]:

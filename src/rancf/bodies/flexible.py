@@ -40,7 +40,8 @@ from rancf.mesh.continuity import (
     rotated,
 )
 from rancf.mesh.coordinates import Coordinates
-from rancf.mesh.mesh import CableMesh, to_ancf
+from rancf.mesh.factories import to_ancf
+from rancf.mesh.mesh import CableMesh
 
 __all__ = ["Section", "Material", "Support", "PointLoad", "Model", "ElementKind", "RigidMotion"]
 

@@ -7,7 +7,8 @@ forces, tangents and energies.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from collections.abc import Sequence
+from typing import Any, Protocol
 
 import numpy as np
 
@@ -16,10 +17,31 @@ from rancf.kernels.beam import BeamKernel
 from rancf.kernels.cable import CableKernel
 from rancf.kernels.rod import RodKernel
 
-if TYPE_CHECKING:
-    from rancf.bodies.flexible import Model
-
 __all__ = ["core_model", "section_stiffness"]
+
+
+class Model(Protocol):
+    """What the core's structure is made of (:class:`rancf.bodies.flexible.Model`)."""
+
+    dim: int
+    dpn: int
+    n_el: int
+    n_nodes: int
+    element: str
+    closed: bool
+    kernel: CableKernel | BeamKernel | RodKernel
+    section: Any
+    material: Any
+    props: Any
+    reduction: Any
+    point_loads: Sequence[Any]
+    rotations: list[tuple[int, np.ndarray]]
+    fixed: np.ndarray
+    f_gravity: np.ndarray
+    mass_band: np.ndarray
+    y0: np.ndarray
+
+    def check_node(self, node: int, key: str) -> int: ...
 
 
 def section_stiffness(model: Model) -> _core.Stiffness:

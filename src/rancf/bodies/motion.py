@@ -11,10 +11,9 @@ beam's rotation ``θ̇ = ω``; a rod's twist rate is the spin about its tangent,
 interpolation is linear in the coordinates and reproduces rigid motions exactly, so the velocity
 is (M.1) at every point of every element and the kinetic energy of a rigid rotation is
 ``½ ωᵀ I ω`` of the modelled body for any mesh (``I`` with the rod's rotary inertia;
-``docs/derivations/rod-kernel.md`` §11).  The per-node ``[[initial_velocity]]``, by contrast, moves
-one
-node's position and nothing else (not its neighbours, gradients or twist): a localized velocity
-whose kinetic energy depends on the mesh.
+``docs/derivations/rod-kernel.md`` §11).  The per-node ``[[initial_velocity]]``, by contrast,
+moves one node's position and nothing else (not its neighbours, gradients or twist): a localized
+velocity whose kinetic energy depends on the mesh.
 
 Angular momentum about a point ``c`` (M.2)::
 
@@ -29,17 +28,30 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import Any, Protocol
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from rancf.errors import InputError
 
-if TYPE_CHECKING:
-    from rancf.bodies.flexible import Model
-
 __all__ = ["RigidMotion", "rigid_velocity", "check_supports_at_rest", "angular_momentum"]
+
+
+class Model(Protocol):
+    """What rigid motions read of a flexible body (:class:`rancf.bodies.flexible.Model`)."""
+
+    dim: int
+    dpn: int
+    n_el: int
+    n_nodes: int
+    element: str
+    fixed: NDArray[np.bool_]
+    q0: NDArray[np.float64]
+    kernel: Any
+    core: Any
+
+    def y_from_q(self, q: ArrayLike) -> NDArray[np.float64]: ...
 
 
 @dataclass(frozen=True)

@@ -42,7 +42,8 @@ def _conic(args: argparse.Namespace) -> int:
 
     from rancf.elements.mapping import K_RANGE, conic_element, kopt
     from rancf.geometry.conic import conic_arc
-    from rancf.mesh.mesh import check_element_count, mesh_conic
+    from rancf.mesh.factories import mesh_conic
+    from rancf.mesh.mesh import check_element_count
     from rancf.scenario.geometry import MAX_ELEMENTS
 
     n = check_element_count(args.elements, "--elements")

@@ -80,7 +80,7 @@ def _value(v: Any) -> str:
 def _mesh(path: str, g: Any, m: MeshTable, prefix: str) -> Any:
     from rancf.geometry.conic import conic_arc_through
     from rancf.geometry.nurbs import NurbsCurve
-    from rancf.mesh.mesh import mesh_conic, mesh_line
+    from rancf.mesh.factories import mesh_conic, mesh_line
     from rancf.mesh.nurbs_mesh import mesh_nurbs
 
     if g.kind == "conic":
