@@ -56,7 +56,7 @@ class Fields {
     return static_cast<int>(x);
   }
 
-  /// An integer in [first, end).
+  /// An index in [0, end), or -1 (none) if first is -1.
   [[nodiscard]] int index(const char* field, int first, std::size_t end, const char* what) const {
     const int i = integer(field);
     if (i < first || (i >= 0 && static_cast<std::size_t>(i) >= end))
