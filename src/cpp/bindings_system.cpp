@@ -1,6 +1,6 @@
 // Python bindings of systems (rancf._core.System, SystemIntegrator): conversion and forwarding
-// only.  A system's small data arrive as NumPy arrays (one per field) and are copied into the
-// named structs of system.hpp; its flexible bodies are Model objects kept alive by the holder.
+// only.  A system's parts arrive as lists of named records read into the structs of system.hpp
+// (bindings_records.hpp); its flexible bodies are Model objects kept alive by the holder.
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
 #include <nanobind/stl/array.h>
@@ -17,6 +17,7 @@
 #include "bindings.hpp"
 #include "bindings_contact.hpp"
 #include "bindings_model.hpp"
+#include "bindings_records.hpp"
 #include "system.hpp"
 #include "system_integrator.hpp"
 
@@ -25,10 +26,6 @@ namespace rancf_bind {
 using namespace nb::literals;
 
 namespace {
-
-using InD = In;
-
-std::size_t count(const InI& a) { return a.size(); }
 
 struct SystemHolder {
   std::vector<nb::object> models;  // keeps the flexible bodies' arrays alive
@@ -53,143 +50,35 @@ void bind_system(nb::module_& mod) {
   nb::class_<SystemHolder>(mod, "System", "A multibody system (see system.hpp).")
       .def(
           "__init__",
-          [](SystemHolder* h, int dim, nb::list models, InI rigid_point_mass, InI rigid_dim,
-             InD rigid_mass, InD rigid_inertia, InI place_kind, InI place_body, InI place_node,
-             InD place_point, InI place_motion, InD place_angle0, InI joint_kind, InI joint_a,
-             InI joint_b, InI joint_driven, InI joint_angle, InD joint_beta0, InD joint_rel,
-             InD joint_axis_a, InD joint_normals_b, InD joint_w_a, InD joint_w_b, InI spring_a,
-             InI spring_b, InD spring_data, InI load_place, InD load_force, InD load_torque,
-             InI load_factor, InI tf_kind, InI tf_n, InD tf_value, InI tf_value_start,
-             InD tf_params, InD tf_breaks, InI tf_breaks_start, InD tf_coef, InI tf_coef_start,
-             InI pre_coord, InI pre_tf, InI pre_comp, InD pre_base, InI lin_row, InI lin_col,
-             InD lin_coef, InD gravity, double damping, InD y_ref) {
+          [](SystemHolder* h, int dim, nb::list models, nb::handle rigid, nb::handle places,
+             nb::handle joints, nb::handle springs, nb::handle loads, nb::handle time_functions,
+             nb::handle prescribed, nb::handle linear, nb::handle gravity, double damping,
+             In y_ref) {
             new (h) SystemHolder();
             rancf::System& s = h->s;
-            check(dim == 2 || dim == 3, "dim: expected 2 or 3");
+            check(dim == 2 || dim == 3, "dim: expected 2 or 3, got " + std::to_string(dim));
             s.dim = dim;
             for (nb::handle m : models) {
               h->models.emplace_back(nb::borrow(m));
               s.flex.push_back(&nb::cast<const ModelHolder&>(m).m);
             }
-            const std::size_t nr = count(rigid_dim);
-            for (std::size_t i = 0; i < nr; ++i) {
-              rancf::RigidInertia b;
-              b.point_mass = rigid_point_mass.data()[i] != 0;
-              b.dim = static_cast<int>(rigid_dim.data()[i]);
-              b.mass = rigid_mass.data()[i];
-              for (int k = 0; k < 3; ++k) b.inertia[k] = rigid_inertia.data()[3 * i + k];
-              s.rigid.push_back(b);
-            }
-            for (std::size_t i = 0; i < count(place_kind); ++i) {
-              rancf::PlaceRef p;
-              p.kind = static_cast<rancf::PlaceKind>(place_kind.data()[i]);
-              p.body = static_cast<int>(place_body.data()[i]);
-              p.node = static_cast<int>(place_node.data()[i]);
-              for (int k = 0; k < 3; ++k) p.point[k] = place_point.data()[3 * i + k];
-              p.motion = static_cast<int>(place_motion.data()[i]);
-              p.angle0 = place_angle0.data()[i];
-              const bool node = p.kind == rancf::PlaceKind::cable ||
-                                p.kind == rancf::PlaceKind::rod || p.kind == rancf::PlaceKind::beam;
-              if (node) {
-                check(p.body >= 0 && static_cast<std::size_t>(p.body) < s.flex.size(),
-                      "place_body: no such flexible body");
-                check(p.node >= 0 && p.node < s.flex[static_cast<std::size_t>(p.body)]->n_nodes,
-                      "place_node: no such node");
-              } else if (p.kind != rancf::PlaceKind::ground) {
-                check(p.body >= 0 && static_cast<std::size_t>(p.body) < nr,
-                      "place_body: no such rigid body");
-              }
-              s.places.push_back(p);
-            }
-            const auto np = static_cast<std::int64_t>(s.places.size());
-            for (std::size_t i = 0; i < count(joint_kind); ++i) {
-              rancf::JointData j;
-              j.info.kind = static_cast<rancf::JointKind>(joint_kind.data()[i]);
-              j.info.dim = dim;
-              j.info.driven = joint_driven.data()[i] != 0;
-              j.info.beta0 = joint_beta0.data()[i];
-              for (int k = 0; k < 9; ++k) j.info.rel[k / 3][k % 3] = joint_rel.data()[9 * i + k];
-              for (int k = 0; k < 3; ++k) {
-                j.info.axis_a[k] = joint_axis_a.data()[3 * i + k];
-                j.info.w_a[k] = joint_w_a.data()[3 * i + k];
-                j.info.w_b[k] = joint_w_b.data()[3 * i + k];
-                j.info.normals_b[0][k] = joint_normals_b.data()[6 * i + k];
-                j.info.normals_b[1][k] = joint_normals_b.data()[6 * i + 3 + k];
-              }
-              check(joint_a.data()[i] >= 0 && joint_a.data()[i] < np, "joint_a: no such place");
-              check(joint_b.data()[i] >= 0 && joint_b.data()[i] < np, "joint_b: no such place");
-              j.a = static_cast<int>(joint_a.data()[i]);
-              j.b = static_cast<int>(joint_b.data()[i]);
-              j.angle = static_cast<int>(joint_angle.data()[i]);
-              s.joints.push_back(j);
-            }
-            for (std::size_t i = 0; i < count(spring_a); ++i)
-              s.springs.push_back({static_cast<int>(spring_a.data()[i]),
-                                   static_cast<int>(spring_b.data()[i]), spring_data.data()[3 * i],
-                                   spring_data.data()[3 * i + 1], spring_data.data()[3 * i + 2]});
-            for (std::size_t i = 0; i < count(load_place); ++i) {
-              rancf::PlaceLoad l;
-              l.place = static_cast<int>(load_place.data()[i]);
-              for (int k = 0; k < 3; ++k) {
-                l.force[k] = load_force.data()[3 * i + k];
-                l.torque[k] = load_torque.data()[3 * i + k];
-              }
-              l.factor = static_cast<int>(load_factor.data()[i]);
-              s.loads.push_back(l);
-            }
-            for (std::size_t i = 0; i < count(tf_kind); ++i) {
-              rancf::TimeFunction tf;
-              tf.kind = static_cast<rancf::TimeKind>(tf_kind.data()[i]);
-              tf.n = static_cast<int>(tf_n.data()[i]);
-              const auto v0 = static_cast<std::size_t>(tf_value_start.data()[i]);
-              tf.value.assign(tf_value.data() + v0, tf_value.data() + v0 + tf.n);
-              tf.duration = tf_params.data()[3 * i];
-              tf.frequency = tf_params.data()[3 * i + 1];
-              tf.phase = tf_params.data()[3 * i + 2];
-              const auto b0 = static_cast<std::size_t>(tf_breaks_start.data()[i]);
-              const auto b1 = static_cast<std::size_t>(tf_breaks_start.data()[i + 1]);
-              tf.breaks.assign(tf_breaks.data() + b0, tf_breaks.data() + b1);
-              const auto c0 = static_cast<std::size_t>(tf_coef_start.data()[i]);
-              const auto c1 = static_cast<std::size_t>(tf_coef_start.data()[i + 1]);
-              tf.coef.assign(tf_coef.data() + c0, tf_coef.data() + c1);
-              if (tf.kind == rancf::TimeKind::piecewise)
-                check(tf.breaks.size() >= 2 && tf.coef.size() == (tf.breaks.size() - 1) * 4 *
-                                                                     static_cast<std::size_t>(tf.n),
-                      "time function: breaks and coefficients do not match");
-              s.tfs.push_back(std::move(tf));
-            }
-            for (std::size_t i = 0; i < count(pre_coord); ++i)
-              s.prescribed.push_back({static_cast<int>(pre_coord.data()[i]),
-                                      static_cast<int>(pre_tf.data()[i]),
-                                      static_cast<int>(pre_comp.data()[i]), pre_base.data()[i]});
-            check(count(lin_col) == count(lin_row) && lin_coef.size() == count(lin_row),
-                  "lin_row, lin_col, lin_coef: the same length");
-            for (std::size_t i = 0; i < count(lin_row); ++i) {
-              const rancf::LinearTerm t{static_cast<int>(lin_row.data()[i]),
-                                        static_cast<int>(lin_col.data()[i]), lin_coef.data()[i]};
-              check(t.row >= 0, "lin_row: a row >= 0");
-              s.n_linear = std::max(s.n_linear, t.row + 1);
-              s.linear.push_back(t);
-            }
-            for (int k = 0; k < 3; ++k) s.gravity[k] = gravity.data()[k];
+            read_records(
+                {rigid, places, joints, springs, loads, time_functions, prescribed, linear}, s);
+            const std::vector<double> g = read_vector(gravity, "gravity", 3);
+            std::copy(g.begin(), g.end(), s.gravity);
             s.damping = damping;
             s.setup();
-            for (const rancf::LinearTerm& t : s.linear)
-              check(t.col >= 0 && t.col < s.n, "lin_col: no such coordinate");
+            check_coordinates(s);
             expect_size(y_ref, static_cast<std::size_t>(s.n), "y_ref");
             h->y_ref.assign(y_ref.data(), y_ref.data() + s.n);
             s.y_ref = h->y_ref.data();
           },
-          nb::kw_only(), "dim"_a, "models"_a, "rigid_point_mass"_a, "rigid_dim"_a, "rigid_mass"_a,
-          "rigid_inertia"_a, "place_kind"_a, "place_body"_a, "place_node"_a, "place_point"_a,
-          "place_motion"_a, "place_angle0"_a, "joint_kind"_a, "joint_a"_a, "joint_b"_a,
-          "joint_driven"_a, "joint_angle"_a, "joint_beta0"_a, "joint_rel"_a, "joint_axis_a"_a,
-          "joint_normals_b"_a, "joint_w_a"_a, "joint_w_b"_a, "spring_a"_a, "spring_b"_a,
-          "spring_data"_a, "load_place"_a, "load_force"_a, "load_torque"_a, "load_factor"_a,
-          "tf_kind"_a, "tf_n"_a, "tf_value"_a, "tf_value_start"_a, "tf_params"_a, "tf_breaks"_a,
-          "tf_breaks_start"_a, "tf_coef"_a, "tf_coef_start"_a, "pre_coord"_a, "pre_tf"_a,
-          "pre_comp"_a, "pre_base"_a, "lin_row"_a, "lin_col"_a, "lin_coef"_a, "gravity"_a,
-          "damping"_a, "y_ref"_a)
+          nb::kw_only(), "dim"_a, "models"_a, "rigid"_a, "places"_a, "joints"_a, "springs"_a,
+          "loads"_a, "time_functions"_a, "prescribed"_a, "linear"_a, "gravity"_a, "damping"_a,
+          "y_ref"_a,
+          "A system from its flexible bodies' Models and the lists of its records "
+          "(rancf.kernels.records: rigid bodies, places, joints, springs, loads, time functions, "
+          "prescribed motions, linear terms), read by field name.")
       .def(
           "attach_contact",
           [](SystemHolder& h, ContactHolder& c) {

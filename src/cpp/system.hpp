@@ -9,6 +9,10 @@
 // are assembled into the blocks of a bordered band matrix (bordered.hpp): a band block per
 // flexible body, a dense (full band) block per rigid body or point mass; joint Jacobians and
 // couplings between bodies (springs, the second derivatives of joints) border it.
+//
+// The parts' structs (RigidInertia, PlaceRef, JointData, SpringData, PlaceLoad, TimeFunction,
+// Prescribed, LinearTerm) are filled field by field from the Python records of the same names in
+// rancf.kernels.records (bindings_records.cpp).
 #pragma once
 
 #include <cstdint>

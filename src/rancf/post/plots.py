@@ -174,6 +174,6 @@ def positions_at(model: Model, q: NDArray, sbar: NDArray) -> NDArray[np.float64]
         n = cable_shape_functions(
             model.mesh.weights[e : e + 1], model.mesh.scales[e : e + 1], xis[sel]
         )[0][0]
-        nodal = hist[:, model._el_idx[e]].reshape(hist.shape[0], 4, model.dim)
+        nodal = hist[:, model.element_dofs[e]].reshape(hist.shape[0], 4, model.dim)
         out[:, sel] = np.einsum("sk,tkd->tsd", n, nodal)
     return out[0] if q.ndim == 1 else out
