@@ -145,6 +145,7 @@ class HistoryStore:
         files = self._keys + DERIVED
         self._fh = {k: open(self.raw / f"{k}.f64", "wb") for k in files}  # noqa: SIM115
         self._buf: dict[str, list[NDArray]] = {k: [] for k in self._keys}
+        self._alpha: list[NDArray] = []  # the buffered rows' steps' alpha points (contact)
         self._rows_per_flush = max(1, buffer_bytes // (16 * outputs.n_q + 32))
         self.n_rows = 0
         self._pending = 0
@@ -160,9 +161,10 @@ class HistoryStore:
         energy: NDArray,
         directors: NDArray | None = None,
         lam: NDArray | None = None,
+        alpha: NDArray | None = None,
     ) -> None:
         """Store one output (sink protocol of :func:`~rancf.solvers.dynamic.integrate`)."""
-        self._add((np.array([t]), q, v, energy, directors), 1)
+        self._add((np.array([t]), q, v, energy, directors), 1, alpha)
 
     def append_block(
         self,
@@ -172,17 +174,22 @@ class HistoryStore:
         energy: NDArray,
         directors: NDArray | None = None,
         lam: NDArray | None = None,
+        alpha: NDArray | None = None,
     ) -> None:
         """Store consecutive outputs: ``t (k,)``, ``q, v (k, n_q)``, ``energy (k, 3)``, rods'
         ``directors (k, n_rod_nodes, 3)`` (``lam``, the integrator's multipliers, is not kept:
-        the files hold the consistent ones)."""
-        self._add((t, q, v, energy, directors), len(t))
+        the files hold the consistent ones; ``alpha``, the steps' generalized-α points of a
+        system with contact, only until the rows' outputs are derived)."""
+        self._add((t, q, v, energy, directors), len(t), alpha)
 
-    def _add(self, values: tuple[NDArray | None, ...], rows: int) -> None:
+    def _add(self, values: tuple[NDArray | None, ...], rows: int,
+             alpha: NDArray | None = None) -> None:  # fmt: skip
         for key, val in zip(self._keys, values, strict=False):
             if val is None:
                 raise ValueError(f"output stream {key!r} missing")
             self._buf[key].append(np.asarray(val, dtype="<f8").ravel())
+        if alpha is not None:
+            self._alpha.append(np.asarray(alpha, dtype=float).reshape(rows, -1))
         self._pending += rows
         if self._pending >= self._rows_per_flush:
             self.flush()
@@ -199,7 +206,9 @@ class HistoryStore:
                     rows["t"], rows["q"].reshape(k, -1), rows["v"].reshape(k, -1),
                     rows["m"].reshape(k, -1) if "m" in rows else None, rows["e"].reshape(k, 3),
                     per_body=self.per_body,
+                    alpha=np.concatenate(self._alpha) if self._alpha else None,
                 )  # fmt: skip
+                self._alpha.clear()
                 rows.update({d: derived[d].ravel() for d in DERIVED})
                 for key, val in rows.items():
                     self._fh[key].write(np.ascontiguousarray(val, dtype="<f8").tobytes())

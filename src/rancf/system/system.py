@@ -399,6 +399,11 @@ class System:
         return slice(o, o + (b.n if isinstance(b, Model) else b.size))
 
     @property
+    def has_contact(self) -> bool:
+        """Whether the system has contact (obstacles or flexible bodies touching each other)."""
+        return self.contact is not None
+
+    @property
     def fixed(self) -> NDArray[np.bool_]:
         """Held coordinates (flexible bodies' supports)."""
         out = np.zeros(self.n, dtype=bool)
