@@ -225,8 +225,10 @@ class SystemOutputs:
         row = np.ascontiguousarray(alpha[i], dtype=float)
         return (row[: s.n], row[s.n :], y)
 
-    def _reactions(self, y: NDArray, res: NDArray, t: float, lam: NDArray,
-                   v: NDArray | None = None, step: tuple[NDArray, ...] = ()) -> NDArray:  # fmt: skip
+    def _reactions(
+        self, y: NDArray, res: NDArray, t: float, lam: NDArray, v: NDArray | None = None,
+        step: tuple[NDArray, ...] = (),
+    ) -> NDArray:  # fmt: skip
         s = self.system
         parts = []
         for name, b in self.flex:
@@ -239,7 +241,8 @@ class SystemOutputs:
                 parts.append(np.asarray(moment)[2:] if s.dim == 2 else np.asarray(moment))
         yc, vc, y1 = step if step else (y, v, None)
         for c in contact_outputs(s, yc, vc, y1).values():
-            parts += [c.normal, c.friction, np.atleast_1d(c.moment), np.array([c.length, c.penetration])]
+            moment = np.atleast_1d(c.moment)
+            parts += [c.normal, c.friction, moment, np.array([c.length, c.penetration])]
         if s.body_contacts:
             bo = np.empty(3 * len(s.body_contacts))
             s.contact.body_outputs(yc, bo)
