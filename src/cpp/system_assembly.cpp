@@ -351,7 +351,7 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
       add_matrix(*lu, idx, k, K.data(), far);
     }
   }
-  // ---- contact with obstacles (contact.hpp, issue 20)
+  // ---- contact with obstacles (contact.hpp)
   if (s.contact != nullptr && tm.contact_yf != nullptr) {  // forces of another state
     assemble_contact(s, *s.contact, tm.contact_yf, tm.contact_vf, tm.contact_y1, tm, r, nullptr,
                      nullptr);
