@@ -134,8 +134,6 @@ class HistoryStore:
     ) -> None:
         self.out = Path(out)
         self.outputs = outputs
-        s = outputs.system
-        self.per_body = not (s.single is not None and len(s.flex) == 1)
         self.info = {"pid": os.getpid(), "started_at": _now(), **info}
         self.raw = self.out / ".history"
         self.raw.mkdir(exist_ok=True)
@@ -205,7 +203,7 @@ class HistoryStore:
                 derived = self.outputs.rows(
                     rows["t"], rows["q"].reshape(k, -1), rows["v"].reshape(k, -1),
                     rows["m"].reshape(k, -1) if "m" in rows else None, rows["e"].reshape(k, 3),
-                    per_body=self.per_body,
+                    per_body=True,
                     alpha=np.concatenate(self._alpha) if self._alpha else None,
                 )  # fmt: skip
                 self._alpha.clear()
@@ -227,7 +225,7 @@ class HistoryStore:
         widths = {
             "t": 1, "q": o.n_q, "v": o.n_q, "e": 3, "m": o.n_directors, "a": o.n_q, "lam": s.m,
             "r": len(o.reaction_names), "s": o.n_along, "c": len(o.sensor_names),
-            "eb": 3 * len(s.flex) if self.per_body else 0,
+            "eb": 3 * len(s.flex),
         }  # fmt: skip
 
         def mm(key: str) -> NDArray:
@@ -306,8 +304,7 @@ class HistoryStore:
         for name in (*HISTORY_FILES, "summary.json"):
             with contextlib.suppress(OSError):
                 (self.out / name).unlink()
-        if self.per_body:
-            shutil.rmtree(self.out / "bodies", ignore_errors=True)
+        shutil.rmtree(self.out / "bodies", ignore_errors=True)
 
     def close(self) -> None:
         """Close the raw files (they stay on disk)."""
