@@ -17,14 +17,14 @@ import numpy as np
 
 import rancf
 from rancf.cli import main
-from rancf.post.run_data import load_run
+from rancf.post.system_run import load_run
 
 scenario = files("rancf.examples") / "arc-vibration.toml"
 modes = rancf.natural_modes(rancf.load_scenario(scenario).build_model(), count=2)
 print("natural frequencies [Hz]:", np.round(modes.frequencies_hz, 4))
 out = f"{tempfile.mkdtemp()}/run"
 main(["simulate", str(scenario), "--out", out, "--quiet"])
-run = load_run(out)
+run = load_run(out).body()
 
 # %%
 # The tip's displacement normal to the chord, and its spectrum.

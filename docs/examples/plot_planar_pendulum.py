@@ -16,12 +16,13 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from rancf.cli import main
-from rancf.post.run_data import load_run, sample_centerline
+from rancf.post.run_data import sample_centerline
+from rancf.post.system_run import load_run
 
 scenario = files("rancf.examples") / "planar-pendulum.toml"
 out = f"{tempfile.mkdtemp()}/run"
 main(["simulate", str(scenario), "--out", out, "--quiet"])
-run = load_run(out)
+run = load_run(out).body()
 
 # %%
 # The exact element curves at six times, and the distance AB the paper monitors.

@@ -15,12 +15,13 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from rancf.cli import main
-from rancf.post.run_data import load_run, sample_centerline
+from rancf.post.run_data import sample_centerline
+from rancf.post.system_run import load_run
 
 scenario = files("rancf.examples") / "robot-cable.toml"
 out = f"{tempfile.mkdtemp()}/run"
 main(["simulate", str(scenario), "--out", out, "--quiet"])
-run = load_run(out)
+run = load_run(out).body()
 col = run.sensor_names.index
 
 # %%
