@@ -166,13 +166,18 @@ def load_run(path: str | Path) -> SystemRun:
     t = np.asarray(data["t"])
     names = meta.get("sensor_columns")
     q = np.asarray(data.get("q", np.empty((0, 0))))
-    if q.ndim != 2 or q.shape[0] != t.size or not isinstance(names, list):
+    width = sum(b["size"] for b in meta["bodies"])
+    if q.ndim != 2 or q.shape != (t.size, width) or not isinstance(names, list):
         raise InputError("RUN_DIR", str(p / "results.npz"), "a consistent results.npz (its "
                          "states, times and sensor columns do not fit together)")  # fmt: skip
-    for name, r in flexible.items():
-        if r.t.size != t.size:
-            raise InputError("RUN_DIR", str(p / "bodies" / name), f"a body folder of the run's "
-                             f"{t.size} stored times (it holds {r.t.size})")  # fmt: skip
+    sizes = {b["name"]: b["size"] for b in meta["bodies"]}
+    for name, r in flexible.items():  # the run's folders are of one run (not mixed)
+        if r.t.shape != t.shape or not np.array_equal(r.t, t) or r.q.shape[1] != sizes[name]:
+            raise InputError(
+                "RUN_DIR", str(p / "bodies" / name), f"a body folder of the run in {p} (it holds "
+                f"{r.t.size} times of {r.q.shape[1]} coordinates, the run's results.npz "
+                f"{t.size} times and {sizes[name]} coordinates for it)",
+            )  # fmt: skip
     return SystemRun(
         path=p, t=t, q=q, dim=int(meta["dim"]),
         sensor_names=list(names),
