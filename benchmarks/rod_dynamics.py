@@ -41,8 +41,10 @@ from rancf.bodies.flexible import Model, RigidMotion  # noqa: E402
 from rancf.bodies.motion import angular_momentum  # noqa: E402
 from rancf.bodies.properties import Material, PointLoad, Section, Support  # noqa: E402
 from rancf.geometry.conic import conic_arc_through  # noqa: E402
-from rancf.mesh.factories import mesh_conic
-from rancf.mesh.mesh import mesh_line  # noqa: E402
+from rancf.mesh.factories import (
+    mesh_conic,
+    mesh_line,  # noqa: E402
+)
 from rancf.solvers.dynamic import DynamicOptions, integrate  # noqa: E402
 
 R, RHO, E, NU = 0.02, 6000.0, 2e8, 0.3

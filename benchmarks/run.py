@@ -46,8 +46,11 @@ import rod_cost  # noqa: E402
 import rancf  # noqa: E402
 from rancf.bodies.flexible import Material, Model, PointLoad, Section, Support  # noqa: E402
 from rancf.geometry.conic import conic_arc  # noqa: E402
-from rancf.mesh.factories import mesh_conic, mesh_line
-from rancf.mesh.mesh import to_ancf  # noqa: E402
+from rancf.mesh.factories import (
+    mesh_conic,
+    mesh_line,
+    to_ancf,  # noqa: E402
+)
 from rancf.solvers.dynamic import DynamicOptions, integrate  # noqa: E402
 from rancf.solvers.static import solve_static  # noqa: E402
 
