@@ -21,7 +21,8 @@ from rancf.post.system_run import load_run
 scenario = files("rancf.examples") / "spatial-pendulum.toml"
 out = f"{tempfile.mkdtemp()}/run"
 main(["simulate", str(scenario), "--out", out, "--quiet"])
-run = load_run(out).body()
+whole = load_run(out)  # the run: times, sensors, every body
+run = whole.body()  # its one flexible body
 
 # %%
 # Configurations in 3D, and how far the tip leaves the plane of the arc.
@@ -35,7 +36,7 @@ ax.set_ylabel("y [m]")
 ax.set_zlabel("z [m]")
 ax.legend(fontsize=7)
 bx = fig.add_subplot(1, 2, 2)
-bx.plot(run.t, run.sensors[:, run.sensor_names.index("tip_y")])
+bx.plot(run.t, whole.sensors[:, whole.sensor_names.index("tip_y")])
 bx.set_xlabel("t [s]")
 bx.set_ylabel("tip y (out of plane) [m]")
 fig.tight_layout()
