@@ -30,7 +30,8 @@ fig, (ax, bx) = plt.subplots(1, 2, figsize=(10, 4))
 for i in np.linspace(0, len(run.t) - 1, 8).astype(int):
     pts = sample_centerline(run, int(i)).points
     ax.plot(pts[:, 0], pts[:, 1], lw=1, label=f"t = {run.t[i]:.2f} s")
-ax.plot(whole.sensors[:, col("gripper_x")], whole.sensors[:, col("gripper_y")], "k:", label="gripper")
+gripper = whole.sensors[:, [col("gripper_x"), col("gripper_y")]]
+ax.plot(gripper[:, 0], gripper[:, 1], "k:", label="gripper")
 ax.set_aspect("equal")
 ax.set_xlabel("x [m]")
 ax.set_ylabel("y [m]")
