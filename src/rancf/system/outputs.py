@@ -24,6 +24,15 @@ acceleration at ``t_{n+1} + (α_m - α_f) h`` (Arnold & Brüls 2007), a first-or
 ``ρ∞ < 1``; the consistent acceleration of the stored ``(y, v)`` has only their error, so the
 reactions converge at second order.
 
+Contact is the exception: a penalty vibrates far faster than any step resolves, the integrator
+damps that vibration, and the state at a step's end samples it (the unbraked belt drive's pulley,
+pushed by 20 N, read 16.4 to 18.5 N there).  A dynamic row's contact forces are therefore those
+of the step that ended at it, as the dynamics applied them: at the step's generalized-α point
+``(y_f, v_f)`` with the step's mean pressure (``alpha`` of :meth:`SystemOutputs.rows`, the
+stream the integrator stores), and the row's accelerations, multipliers and reactions are the
+consistent ones with those contact forces, so every body's forces balance ``M a``.  Contact
+between flexible bodies is reported at ``y_f`` with the pressure there.
+
 Column names: a support's ``LABEL_fx, LABEL_fy[, LABEL_fz]`` then its moment (``LABEL_mz`` or
 ``LABEL_mx, _my, _mz``) as :func:`rancf.bodies.reactions.reaction_columns` (in a system of
 several bodies the label is ``BODY:AT``); a joint's ``NAME_fx ...`` and, for joints that
