@@ -4,11 +4,13 @@
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
 #include <nanobind/stl/array.h>
+#include <nanobind/stl/optional.h>
 #include <nanobind/stl/tuple.h>
 #include <nanobind/stl/vector.h>
 
 #include <algorithm>
 #include <array>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <tuple>
@@ -26,6 +28,20 @@ namespace rancf_bind {
 using namespace nb::literals;
 
 namespace {
+
+/// The contact state of a time step (all three or none): into terms.contact_*.
+void step_contact(const std::optional<In>& yf, const std::optional<In>& vf,
+                  const std::optional<In>& y1, std::size_t n, rancf::AssemblyTerms& terms) {
+  if (!yf && !vf && !y1) return;
+  if (!(yf && vf && y1))
+    throw std::invalid_argument("contact_yf, contact_vf and contact_y1 go together");
+  expect_size(*yf, n, "contact_yf");
+  expect_size(*vf, n, "contact_vf");
+  expect_size(*y1, n, "contact_y1");
+  terms.contact_yf = yf->data();
+  terms.contact_vf = vf->data();
+  terms.contact_y1 = y1->data();
+}
 
 struct SystemHolder {
   std::vector<nb::object> models;  // keeps the flexible bodies' arrays alive
@@ -103,7 +119,8 @@ void bind_system(nb::module_& mod) {
       .def(
           "residual",
           [](const SystemHolder& h, In y, In v, In a, In lam, double t, double load_factor,
-             bool amplitude, bool dynamic, Out r) {
+             bool amplitude, bool dynamic, Out r, std::optional<In> contact_yf,
+             std::optional<In> contact_vf, std::optional<In> contact_y1) {
             const auto n = static_cast<std::size_t>(h.s.n), m = static_cast<std::size_t>(h.s.m);
             for (const auto* x : {&y, &v, &a}) expect_size(*x, n, "state");
             expect_size(lam, m, "lam");
@@ -112,14 +129,18 @@ void bind_system(nb::module_& mod) {
             terms.tf = terms.t1 = t;
             terms.load_factor = load_factor;
             terms.amplitude = amplitude;
+            step_contact(contact_yf, contact_vf, contact_y1, n, terms);
             return rancf::assemble_system(h.s, y.data(), dynamic ? v.data() : nullptr,
                                           dynamic ? a.data() : nullptr, lam.data(), y.data(), terms,
                                           r.data(), nullptr);
           },
           "y"_a, "v"_a, "a"_a, "lam"_a, "t"_a, "load_factor"_a = 1.0, "amplitude"_a = false,
-          "dynamic"_a = true, "r"_a.noconvert(),
+          "dynamic"_a = true, "r"_a.noconvert(), "contact_yf"_a.none() = nb::none(),
+          "contact_vf"_a.none() = nb::none(), "contact_y1"_a.none() = nb::none(),
           "The balance residual (n) and the constraints (m) at (y, v, a, lambda, t); dynamic = "
-          "False: statics (no inertia).  Returns False if not finite.")
+          "False: statics (no inertia); contact_yf, contact_vf, contact_y1: the contact forces "
+          "of a time step (its alpha point and end) instead of those at (y, v).  Returns False "
+          "if not finite.")
       .def(
           "place",
           [](const SystemHolder& h, int index, In y, double t) {
@@ -261,7 +282,8 @@ void bind_system(nb::module_& mod) {
           "run",
           [](SystemIntegratorHolder& h, Out y, Out v, Out a, Out lam, double t0, double dt,
              std::int64_t n_steps, std::int64_t out_every, std::int64_t done_before,
-             double max_seconds, Out out_y, Out out_v, Out out_l, Out out_e) {
+             double max_seconds, Out out_y, Out out_v, Out out_l, Out out_e,
+             std::optional<Out> out_yf, std::optional<Out> out_vf) {
             for (const auto* x : {&y, &v, &a}) expect_size(*x, h.n, "state");
             expect_size(lam, h.m, "lambda");
             if (out_every < 1 || n_steps < 0 || done_before < 0)
@@ -271,28 +293,46 @@ void bind_system(nb::module_& mod) {
             expect_size(out_v, n_out * h.n, "out_v");
             expect_size(out_l, n_out * h.m, "out_l");
             expect_size(out_e, n_out * 3, "out_e");
+            if (out_yf.has_value() != out_vf.has_value())
+              throw std::invalid_argument("run: out_yf and out_vf go together");
+            if (out_yf) {
+              expect_size(*out_yf, n_out * h.n, "out_yf");
+              expect_size(*out_vf, n_out * h.n, "out_vf");
+            }
+            double* yf = out_yf ? out_yf->data() : nullptr;
+            double* vf = out_vf ? out_vf->data() : nullptr;
             rancf::RunOutcome r;
             {
               nb::gil_scoped_release release;
               r = h.integ.run(y.data(), v.data(), a.data(), lam.data(), t0, dt, n_steps, out_every,
                               done_before, max_seconds, out_y.data(), out_v.data(), out_l.data(),
-                              out_e.data());
+                              out_e.data(), yf, vf);
             }
             return std::make_tuple(r.steps, r.converged, r.iterations, r.stored);
           },
           "y"_a.noconvert(), "v"_a.noconvert(), "a"_a.noconvert(), "lam"_a.noconvert(), "t0"_a,
           "h"_a, "n_steps"_a, "out_every"_a, "done_before"_a, "max_seconds"_a,
           "out_y"_a.noconvert(), "out_v"_a.noconvert(), "out_l"_a.noconvert(),
-          "out_e"_a.noconvert())
+          "out_e"_a.noconvert(), "out_yf"_a.noconvert().none() = nb::none(),
+          "out_vf"_a.noconvert().none() = nb::none())
       .def(
           "initial_acceleration",
-          [](SystemIntegratorHolder& h, In y, In v, double t, Out a, Out lam) {
+          [](SystemIntegratorHolder& h, In y, In v, double t, Out a, Out lam,
+             std::optional<In> contact_yf, std::optional<In> contact_vf,
+             std::optional<In> contact_y1) {
             for (const auto* x : {&y, &v}) expect_size(*x, h.n, "state");
             expect_size(a, h.n, "a");
             expect_size(lam, h.m, "lambda");
-            return h.integ.initial_acceleration(y.data(), v.data(), t, a.data(), lam.data());
+            rancf::AssemblyTerms contact;
+            step_contact(contact_yf, contact_vf, contact_y1, h.n, contact);
+            return h.integ.initial_acceleration(y.data(), v.data(), t, a.data(), lam.data(),
+                                                contact.contact_yf != nullptr ? &contact : nullptr);
           },
-          "y"_a, "v"_a, "t"_a, "a"_a.noconvert(), "lam"_a.noconvert())
+          "y"_a, "v"_a, "t"_a, "a"_a.noconvert(), "lam"_a.noconvert(),
+          "contact_yf"_a.none() = nb::none(), "contact_vf"_a.none() = nb::none(),
+          "contact_y1"_a.none() = nb::none(),
+          "Consistent accelerations and multipliers at (y, v, t); contact_yf, contact_vf, "
+          "contact_y1: with the contact forces of a time step (its alpha point and end).")
       .def(
           "factor_static",
           [](SystemIntegratorHolder& h, In y, In lam, double lf, bool amplitude, double t,

@@ -1,9 +1,11 @@
-"""A finished run directory read back, and its centreline sampled densely from the elements.
+"""A flexible body's history read back, and its centreline sampled densely from the elements.
 
-A run directory (written by :func:`rancf.post.results.write_run`) holds ``results.npz`` with the
-full state history and, in its metadata, the section radius and (beams) the reference nodal
-tangent angles (:func:`rancf.post.results.reader_metadata`), so :func:`load_run` needs no
-scenario file.  Runs written before those keys existed take them from the scenario that
+Every flexible body of a run has its folder ``RUN_DIR/bodies/NAME`` (:mod:`rancf.post.run_files`)
+whose ``results.npz`` holds the body's state history and, in its metadata, the section radius
+and (beams) the reference nodal tangent angles (:func:`rancf.post.run_files.reader_metadata`),
+so :func:`load_body` needs no scenario file; runs are read with
+:func:`rancf.post.system_run.load_run`.  Runs written by rancf < 0.3 (one body, its arrays in
+the run folder's own ``results.npz``, without those keys) take them from the scenario that
 produced them (the run's ``scenario.toml`` when present, else the path recorded in
 ``summary.json``).
 
@@ -48,7 +50,7 @@ __all__ = [
     "RunData",
     "Centerline",
     "NodalFrames",
-    "load_run",
+    "load_body",
     "sample_centerline",
     "centerline_nodes",
     "nodal_frames",
@@ -164,20 +166,9 @@ def _find_scenario(run_dir: Path) -> tuple[Path | None, bool]:
     return None, False
 
 
-def load_run(run_dir: str | Path) -> RunData:
-    """Read ``RUN_DIR/results.npz`` (and the scenario, if it can be found).
-
-    The run's own ``scenario.toml`` must match the results; a scenario found only through the
-    path ``summary.json`` records (older runs) is skipped, with a warning, when it no longer
-    matches or no longer reads.
-
-    Raises
-    ------
-    InputError
-        If ``run_dir`` is not a directory holding a readable, consistent ``results.npz``, or
-        its own ``scenario.toml`` does not match it.
-    """
-    path = Path(run_dir)
+def read_results(path: Path) -> dict[str, Any]:
+    """``path/results.npz`` read (:func:`rancf.post.results.load_results`), or one line naming
+    the folder or the file and what is wrong with it."""
     npz = path / "results.npz"
     if not path.is_dir():
         why = "it is a file" if path.exists() else "the folder does not exist"
@@ -188,10 +179,36 @@ def load_run(run_dir: str | Path) -> RunData:
         raise InputError("RUN_DIR", str(path), "a run directory holding results.npz")
     try:
         data = load_results(npz)
+        if not isinstance(data["metadata"], dict):
+            raise ValueError("its metadata is not a table")
+    except Exception as exc:  # noqa: BLE001 - a damaged file: cut short, empty, not a zip
+        reason = shorten(" ".join(f"{type(exc).__name__}: {exc}".split()))
+        raise InputError("RUN_DIR", str(npz), f"a readable results.npz ({reason})") from None
+    return data
+
+
+def load_body(folder: str | Path, static: bool = False) -> RunData:
+    """Read a flexible body's ``FOLDER/results.npz`` (``static``: of a static load path).
+
+    A run of rancf < 0.3 (its one body's arrays in the run folder itself) takes what its
+    results lack from its scenario: its own ``scenario.toml`` must match the results; a
+    scenario found only through the path ``summary.json`` records is skipped, with a warning,
+    when it no longer matches or no longer reads.
+
+    Raises
+    ------
+    InputError
+        If ``folder`` is not a directory holding a readable, consistent ``results.npz``, or
+        its own ``scenario.toml`` does not match it.
+    """
+    path = Path(folder)
+    data = read_results(path)
+    npz = path / "results.npz"
+    try:
         check_results(npz, data)
     except InputError:
         raise
-    except Exception as exc:  # noqa: BLE001 - a damaged file: cut short, empty, not a zip
+    except Exception as exc:  # noqa: BLE001 - arrays missing
         reason = shorten(" ".join(f"{type(exc).__name__}: {exc}".split()))
         raise InputError("RUN_DIR", str(npz), f"a readable results.npz ({reason})") from None
     meta: dict[str, Any] = data["metadata"]
@@ -248,7 +265,7 @@ def load_run(run_dir: str | Path) -> RunData:
         radius=radius,
         tangent_angles=angles,
         directors=data.get("directors"),
-        static=_summary(path).get("analysis") == "static",
+        static=static,
         along=data.get("along"),
         section_names=list(meta.get("section_names", [])),
     )

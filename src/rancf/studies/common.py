@@ -212,12 +212,11 @@ def add_animation(
 ) -> None:
     """Animate the run in ``run_dir`` (about ``frames`` frames) into the GIF ``path`` and record
     it for the report."""
-    from rancf.post.run_data import load_run
-    from rancf.post.run_plots import animate_run
+    from rancf.post.system_run import animate_system_run, load_run
 
     data = load_run(run_dir)
     every = max(1, -(-data.t.size // frames))
-    animate_run(data, path, fps=10, every=every, dpi=60, magnify=magnify)
+    animate_system_run(data, path, fps=10, every=every, dpi=60, magnify=magnify)
     res.animations.append((caption, path.name))
 
 

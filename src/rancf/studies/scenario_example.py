@@ -29,8 +29,6 @@ from rancf.post.results import (
     write_run,
     write_static_run,
 )
-from rancf.post.run_data import load_run
-from rancf.post.run_plots import plot_run
 from rancf.scenario import load_scenario
 from rancf.studies.common import SCENARIO_ANALYSES, StudyResult, example_path
 
@@ -51,12 +49,9 @@ def _describe(text: str) -> str:
 
 
 def _figures(res: StudyResult, out: Path, run_dir: Path, what: str, skip: str = "") -> None:
-    from rancf.post.system_run import is_system_run, load_system_run, plot_system_run
+    from rancf.post.system_run import load_run, plot_system_run
 
-    if is_system_run(run_dir):
-        paths = plot_system_run(load_system_run(run_dir), run_dir / "plots")
-    else:
-        paths = plot_run(load_run(run_dir), run_dir / "plots")
+    paths = plot_system_run(load_run(run_dir), run_dir / "plots")
     for path in paths:
         if path.stem != skip:
             res.figures.append((f"{what}: {path.stem}", str(path.relative_to(out))))

@@ -351,6 +351,11 @@ class System(BodyStack):
         return joint_data(j, a, b, self._frames(a)[1], self._frames(b)[1], self.dim, angle)
 
     # ---------------------------------------------------------------- coordinates
+    @property
+    def has_contact(self) -> bool:
+        """Whether the system has contact (obstacles or flexible bodies touching each other)."""
+        return self.contact is not None
+
     def energies(self, y: NDArray, v: NDArray) -> tuple[float, float, float]:
         """Kinetic, strain (with springs) and gravitational energy (zero at the reference)."""
         return self.core.energies(np.asarray(y, float), np.asarray(v, float))
