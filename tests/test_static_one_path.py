@@ -72,7 +72,7 @@ def test_rods_with_point_moments_keep_their_equilibrium(name):
     geo, moment = RODS[name]
     m = cantilever(moment, geo=geo)
     res = solve_static(m, 10)
-    from rancf.solvers.dynamic import as_system
+    from rancf.system import as_system
 
     _compare(name, res.q, SystemOutputs(as_system(m)).static_reactions(res.y, res.lam))
 

@@ -22,11 +22,11 @@ from rancf.geometry.nurbs import NurbsCurve
 from rancf.mesh.ellipse_mesh import mesh_ellipse
 from rancf.mesh.factories import mesh_line
 from rancf.mesh.nurbs_mesh import mesh_nurbs
-from rancf.solvers.dynamic import DynamicOptions, as_system, integrate
+from rancf.solvers.dynamic import DynamicOptions, integrate
 from rancf.solvers.modal import natural_modes
 from rancf.solvers.static import solve_static
 from rancf.solvers.system_equilibrium import SystemEquilibrium
-from rancf.system import System
+from rancf.system import System, as_system
 
 #: Euler-Bernoulli first frequency of the cantilever (L = 0.5 m, radius 0.03 m, ρ = 6000,
 #: E = 2e7): (1.8751² / 2π) sqrt(EI / ρA L⁴); the shipped cantilever (8 C¹ elements) gives

@@ -13,10 +13,11 @@ from rancf.bodies.flexible import Material, Model, Section, Support
 from rancf.bodies.reactions import support_reactions
 from rancf.geometry.conic import conic_arc_through
 from rancf.mesh.factories import mesh_conic, mesh_line
-from rancf.solvers.dynamic import DynamicOptions, as_system, integrate
+from rancf.solvers.dynamic import DynamicOptions, integrate
 from rancf.solvers.modal import natural_modes
 from rancf.solvers.static import solve_static
 from rancf.solvers.system_equilibrium import SystemEquilibrium
+from rancf.system import as_system
 from tests.references.catenary import SSNL114, chain_frequencies, elastic_catenary, ssnl114
 from tests.references.elastica import HOSE, installed_hose
 

@@ -14,9 +14,10 @@ from rancf.bodies.section_outputs import SectionSampler
 from rancf.mesh.factories import mesh_line
 from rancf.post.results import system_outputs
 from rancf.scenario import load_scenario
-from rancf.solvers.dynamic import DynamicOptions, as_system, integrate
+from rancf.solvers.dynamic import DynamicOptions, integrate
 from rancf.solvers.static import solve_static
 from rancf.solvers.system_equilibrium import SystemEquilibrium
+from rancf.system import as_system
 from rancf.system.outputs import SystemOutputs
 
 

@@ -90,7 +90,7 @@ def plot_shapes(
 ) -> Path:
     """Shapes ``(k, n)`` (full coordinates) scaled over the configuration ``y``, one panel
     each: every flexible body's centreline, every rigid body's or point mass's position."""
-    from rancf.solvers.linearized import as_system
+    from rancf.system import as_system
 
     system = as_system(model)
     plt = pyplot()

@@ -27,8 +27,8 @@ from rancf.atomic import FileSet
 from rancf.bodies.flexible import Model
 from rancf.post.checks import run_warnings
 from rancf.post.run_files import reader_metadata, write_history_files
-from rancf.solvers.dynamic import DynamicResult, as_system
-from rancf.system import System
+from rancf.solvers.dynamic import DynamicResult
+from rancf.system import System, as_system
 from rancf.system.outputs import SystemOutputs
 
 __all__ = [

@@ -50,10 +50,10 @@ from numpy.typing import NDArray
 
 from rancf.bodies.flexible import Model
 from rancf.errors import ConvergenceError, InputError
-from rancf.solvers.linearized import Linearized, as_system, linearize
+from rancf.solvers.linearized import Linearized, linearize
 from rancf.solvers.modal import is_symmetric, rigid_motions
 from rancf.solvers.system_equilibrium import SystemEquilibrium
-from rancf.system import System
+from rancf.system import System, as_system
 
 __all__ = ["BucklingResult", "linear_buckling"]
 

@@ -33,7 +33,7 @@ from rancf.bodies.flexible import Model
 from rancf.kernels import _core
 from rancf.options import DynamicOptions
 from rancf.solvers.output import MemorySink, OutputSink
-from rancf.system import System
+from rancf.system import System, as_system
 
 __all__ = ["DynamicOptions", "DynamicStatus", "DynamicResult", "GeneralizedAlpha", "integrate"]
 
@@ -225,13 +225,6 @@ class GeneralizedAlpha:
         """Local displacement error relative to ``rtol * size``."""
         e = h * h * abs(self.beta - 1.0 / 6.0) * float(np.max(np.abs(a1 - a0)))
         return e / (rtol * self.size)
-
-
-def as_system(model: Model | System) -> System:
-    """A model as a one-body system (its damping the system's); a system as it is."""
-    if isinstance(model, System):
-        return model
-    return System({"body": model}, damping=model.damping)
 
 
 #: Wall time [s] after which the compiled fixed-step loop hands back to Python, which polls the

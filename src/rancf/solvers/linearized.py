@@ -25,11 +25,10 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from rancf.bodies.flexible import Model
 from rancf.errors import RancfError
 from rancf.system import System
 
-__all__ = ["Linearized", "as_system", "linearize"]
+__all__ = ["Linearized", "linearize"]
 
 
 @dataclass(frozen=True)
@@ -112,9 +111,3 @@ def linearize(
     g = j[n : n + m][:, idx].tocsr()
     gt = j[idx][:, n : n + m].tocsr()
     return Linearized(k, g, gt, mass[idx][:, idx].tocsr(), free)
-
-
-def as_system(model: Model | System) -> System:
-    """The system an analysis solves: a one-body model becomes the system of that one body
-    (named ``"body"``, as a scenario file without ``[[bodies]]``); a system is itself."""
-    return model if isinstance(model, System) else System({"body": model})

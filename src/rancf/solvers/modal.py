@@ -57,8 +57,8 @@ from numpy.typing import NDArray
 
 from rancf.bodies.flexible import Model
 from rancf.errors import InputError, RancfError
-from rancf.solvers.linearized import Linearized, as_system, linearize
-from rancf.system import System
+from rancf.solvers.linearized import Linearized, linearize
+from rancf.system import System, as_system
 
 __all__ = [
     "ModalResult",

@@ -41,12 +41,11 @@ from numpy.typing import NDArray
 from rancf.bodies.flexible import Model
 from rancf.errors import ConvergenceError, InputError, ScenarioError
 from rancf.solvers.arc_length import arc_length_path
-from rancf.solvers.dynamic import as_system
 from rancf.solvers.load_path import MIN_INCREMENT, PathState
 from rancf.solvers.newton import newton
 from rancf.solvers.relaxation import relax
 from rancf.solvers.system_equilibrium import SystemEquilibrium
-from rancf.system import System
+from rancf.system import System, as_system
 
 __all__ = ["StaticResult", "solve_static", "StaticMethod", "start_state"]
 
@@ -103,7 +102,7 @@ def solve_static(
     at_time: float | None = None,
 ) -> StaticResult:
     """Static equilibrium under the model's loads and installed supports (a model: of the
-    system of that one body, :func:`rancf.solvers.dynamic.as_system`).
+    system of that one body, :func:`rancf.system.as_system`).
 
     ``at_time``: loads as they act at that time (the start of a dynamic run, ``0``) instead of
     their amplitudes.

@@ -43,7 +43,7 @@ from rancf.system.joint_data import joint_data
 from rancf.system.places import Place
 from rancf.system.stack import Body, BodyStack
 
-__all__ = ["System", "Body"]
+__all__ = ["System", "Body", "as_system"]
 
 
 class _Rows:
@@ -359,3 +359,12 @@ class System(BodyStack):
     def energies(self, y: NDArray, v: NDArray) -> tuple[float, float, float]:
         """Kinetic, strain (with springs) and gravitational energy (zero at the reference)."""
         return self.core.energies(np.asarray(y, float), np.asarray(v, float))
+
+
+def as_system(model: Model | System) -> System:
+    """The system every analysis solves: a flexible body (:class:`~rancf.bodies.flexible.Model`)
+    becomes the system of that one body, named ``"body"`` as in a scenario file without
+    ``[[bodies]]``, with its damping; a system is itself.  The one front of the one-body API."""
+    if isinstance(model, System):
+        return model
+    return System({"body": model}, damping=model.damping)
