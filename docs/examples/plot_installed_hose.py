@@ -14,7 +14,7 @@ from importlib.resources import files
 import matplotlib.pyplot as plt
 
 from rancf.cli import main
-from rancf.post.run_data import sample_centerline
+from rancf.post.centerline import sample_centerline
 from rancf.post.system_run import load_run
 
 scenario = files("rancf.examples") / "installed-hose.toml"

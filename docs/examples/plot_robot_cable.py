@@ -15,7 +15,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from rancf.cli import main
-from rancf.post.run_data import sample_centerline
+from rancf.post.centerline import sample_centerline
 from rancf.post.system_run import load_run
 
 scenario = files("rancf.examples") / "robot-cable.toml"

@@ -11,7 +11,7 @@ import pytest
 
 from rancf.cli import main
 from rancf.geometry.tangents import vector_angle
-from rancf.post.run_data import centerline_nodes
+from rancf.post.centerline import centerline_nodes
 from rancf.post.system_run import load_run
 from rancf.scenario import load_scenario
 from tests.scenario.test_scenario import BASE

@@ -8,7 +8,8 @@ import pytest
 
 from rancf.cli import main
 from rancf.geometry.conic import conic_arc_through
-from rancf.post.run_data import frame_indices, sample_centerline
+from rancf.post.centerline import sample_centerline
+from rancf.post.run_data import frame_indices
 from rancf.post.system_run import load_run
 from tests.scenario.test_scenario import BASE
 

@@ -8,7 +8,7 @@ import pytest
 import rancf.post.run_plots as run_plots
 import rancf.post.system_run as system_run
 from rancf.cli import main
-from rancf.post.run_data import sample_centerline
+from rancf.post.centerline import sample_centerline
 from rancf.post.system_run import animate_system_run, load_run
 
 #: One turn of a helix (radius 0.2 m, rise 0.1 m: wider than tall, so an x-y view loses its

@@ -10,7 +10,7 @@ import pytest
 from rancf import DynamicOptions, integrate, parse_scenario
 from rancf.cli import main
 from rancf.kernels import _core
-from rancf.post.run_data import nodal_frames, sample_centerline
+from rancf.post.centerline import nodal_frames, sample_centerline
 from rancf.post.system_run import load_run
 
 ROD = """

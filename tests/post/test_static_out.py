@@ -9,7 +9,7 @@ import pytest
 from rancf import load_scenario
 from rancf.cad import read_curves
 from rancf.cli import main
-from rancf.post.run_data import sample_centerline
+from rancf.post.centerline import sample_centerline
 from rancf.post.system_run import load_run
 from rancf.solvers.static import solve_static
 from tests.post.test_rod_output import ROD

@@ -374,19 +374,6 @@ class Model(Coordinates):
         self.core.external_force(float(t), yy, f, amplitude)
         return f
 
-    def load_stiffness(
-        self, t: float, y: ArrayLike | None = None, amplitude: bool = False
-    ) -> NDArray[np.float64]:
-        """``∂f_ext/∂y`` at ``t`` and ``y`` (band storage ``(2 ku + 1, n)``).
-
-        Only point moments (rods) depend on the configuration; the core evaluates their load
-        stiffness as in Newton's tangent.  Zero for every other model.
-        """
-        ab = np.empty((2 * self.ku + 1, self.n))
-        yy = self.y0 if y is None else np.asarray(y, dtype=float)
-        self.core.load_stiffness(float(t), yy, ab, amplitude)
-        return ab
-
     def nodal_directors(self, y: ArrayLike) -> NDArray[np.float64] | None:
         """Rods: each node's director ``m1`` ``(n_nodes, 3)`` at ``y``, from the nodal triads as
         the solvers last carried them (exact for the state they were carried to); else None."""

@@ -39,7 +39,7 @@ def run_to_nurbs(run: Any, i: int) -> Any:
             str(run.path),
             "a run of cable or rod elements: beam elements have no exact curve to export",
         )
-    from rancf.post.run_data import centerline_nodes
+    from rancf.post.centerline import centerline_nodes
 
     nodes = centerline_nodes(run, run.q[i])
     if not np.all(np.isfinite(nodes)):

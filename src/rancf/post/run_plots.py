@@ -2,7 +2,7 @@
 :mod:`rancf.post.system_run`).
 
 The configurations are the densely sampled exact element curves
-(:func:`rancf.post.run_data.sample_centerline`), never the node polyline.  Animations use
+(:func:`rancf.post.centerline.sample_centerline`), never the node polyline.  Animations use
 Matplotlib's ``FuncAnimation``: GIF through Pillow, MP4 through the ``ffmpeg`` executable that the
 optional ``imageio-ffmpeg`` package ships (``pip install 'rancf[mp4]'``).
 """

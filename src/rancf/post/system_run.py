@@ -29,8 +29,9 @@ from numpy.typing import NDArray
 
 from rancf.atomic import FileSet, atomic_path
 from rancf.errors import InputError
+from rancf.post.centerline import sample_centerline
 from rancf.post.plots import pyplot, save_figure
-from rancf.post.run_data import RunData, frame_indices, load_body, read_results, sample_centerline
+from rancf.post.run_data import RunData, frame_indices, load_body, read_results
 
 __all__ = ["SystemRun", "load_run", "plot_system_run", "export_system_vtk",
            "animate_system_run"]  # fmt: skip

@@ -47,7 +47,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Literal
+from typing import Any, Literal, Protocol
 
 import numpy as np
 from numpy.typing import NDArray
@@ -59,11 +59,23 @@ from rancf.errors import InputError
 from rancf.geometry.quadrature import gauss_legendre
 from rancf.kernels import _core
 
-if TYPE_CHECKING:
-    from rancf.system.system import System
-
 __all__ = ["Obstacle", "ContactState", "OBSTACLE_KINDS", "contact_outputs", "contact_history",
            "obstacle_records"]  # fmt: skip
+
+
+class System(Protocol):
+    """What contact reads of a system (:class:`rancf.system.system.System`): it is built by the
+    system, so it sees the system through this protocol rather than importing it."""
+
+    dim: int
+    bodies: dict[str, Any]
+    rigid: list[Any]
+    obstacles: tuple[Any, ...]
+    obstacle_names: list[str]
+    contact: Any
+
+    def y_from_q(self, q: Any) -> NDArray[np.float64]: ...
+
 
 OBSTACLE_KINDS = ("plane", "cylinder", "sphere")
 _KIND = {k: i for i, k in enumerate(OBSTACLE_KINDS)}
