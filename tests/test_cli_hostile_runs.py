@@ -178,6 +178,30 @@ def test_a_full_disk(tmp_path, tmpfs):
     assert "No space left on device" in p.stderr and not (tmpfs / "run2").exists()
 
 
+def test_a_run_failing_on_a_full_disk_still_says_so(tmpfs):
+    """A disk that fills to the last byte while a run goes on: the raw history's reserve is
+    freed, so the last ``summary.json`` says ``failed`` (not the ``running`` of before)."""
+    import tomllib
+
+    from rancf.post.history import HistoryStore
+    from rancf.scenario import parse_scenario
+    from rancf.scenario.system_build import support_labels
+    from rancf.system.outputs import SystemOutputs
+
+    sc = parse_scenario(tomllib.loads(mutated()), "s.toml")
+    system = sc.build_system()
+    out = tmpfs / "run"
+    out.mkdir()
+    store = HistoryStore(out, SystemOutputs(system, sc.sensors, support_labels(sc)), {})
+    store.write_summary({"status": "running", "t_reached": 0.0})
+    with open(tmpfs / "filler", "wb", buffering=0) as fh, pytest.raises(OSError):
+        while True:  # every byte the disk has left
+            fh.write(b"x" * 4096)
+    assert not store.fail({"status": "failed", "message": "disk full", "t_reached": None})
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["status"] == "failed" and "disk full" in summary["message"]
+
+
 def test_two_processes_on_one_output_folder(tmp_path):
     """The second process is refused with one line naming the first, which goes on unharmed."""
     (tmp_path / "s.toml").write_text(LONG)

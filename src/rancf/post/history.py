@@ -44,6 +44,23 @@ HISTORY_FILES = ("sensors.csv", "energy.csv", "reactions.csv", "results.npz")
 
 _FILES = ("t", "q", "v", "e")
 
+#: Bytes kept free for the last ``summary.json`` of a run that fails on a full disk: a file of
+#: this size in the raw folder, which :meth:`HistoryStore.fail` removes before writing it.
+RESERVE_BYTES = 1 << 15
+
+
+def _reserve(path: Path) -> None:
+    """Write :data:`RESERVE_BYTES` at ``path`` if the disk takes them (else nothing is kept: the
+    run's first write reports the full disk)."""
+    try:
+        with open(path, "wb") as fh:
+            fh.write(b"\0" * RESERVE_BYTES)
+            fh.flush()
+            os.fsync(fh.fileno())
+    except OSError:
+        with contextlib.suppress(OSError):
+            path.unlink()
+
 
 def estimate_output_bytes(
     n_outputs: int, n_q: int, n_sensor_columns: int, n_directors: int = 0, n_derived: int = 0
@@ -137,6 +154,7 @@ class HistoryStore:
         self.info = {"pid": os.getpid(), "started_at": _now(), **info}
         self.raw = self.out / ".history"
         self.raw.mkdir(exist_ok=True)
+        _reserve(self.raw / "reserve")
         # rods: the nodal directors too ("m", 3 numbers a node)
         self._keys = _FILES + (("m",) if outputs.n_directors else ())
         # derived at every flush from the buffered rows (rancf.post.run_files.DERIVED)
@@ -282,7 +300,7 @@ class HistoryStore:
         except Exception:  # noqa: BLE001 - a full disk, or raw files cut short by one
             done = False
         self.close()
-        shutil.rmtree(self.raw, ignore_errors=True)  # frees the disk for the summary below
+        shutil.rmtree(self.raw, ignore_errors=True)  # frees the reserve for the summary below
         if not done:
             kept = {
                 **summary,
