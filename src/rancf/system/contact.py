@@ -63,7 +63,7 @@ __all__ = ["Obstacle", "ContactState", "OBSTACLE_KINDS", "contact_outputs", "con
            "obstacle_records"]  # fmt: skip
 
 
-class System(Protocol):
+class ContactSystem(Protocol):
     """What contact reads of a system (:class:`rancf.system.system.System`): it is built by the
     system, so it sees the system through this protocol rather than importing it."""
 
@@ -180,7 +180,7 @@ def _body_points(model: Model, n_c: int) -> tuple[NDArray, NDArray, NDArray, NDA
 
 
 def build_contact(
-    system: System,
+    system: ContactSystem,
     obstacles: Sequence[Obstacle],
     contacts: Sequence[tuple[str, str]] | None,
     n_c: int,
@@ -300,7 +300,7 @@ def build_contact(
     return core, names, pairs
 
 
-def obstacle_records(system: System) -> list[dict]:
+def obstacle_records(system: ContactSystem) -> list[dict]:
     """Every obstacle of ``system`` as plain data (run metadata): ``name``, ``kind``, ``point``
     (plane point or centre) and ``direction`` (unit normal or axis; 3 components each, in the
     carrying body's frame if any), ``radius`` and ``body`` (the carrying body's name or None)."""
@@ -312,7 +312,7 @@ def obstacle_records(system: System) -> list[dict]:
     return out
 
 
-def _body_pair_data(system: System, a: str, b: str, friction: float) -> list[float]:
+def _body_pair_data(system: ContactSystem, a: str, b: str, friction: float) -> list[float]:
     """Stiffness, onset, friction and slip velocity of two flexible bodies in contact
     (:func:`build_contact`)."""
     ma, mb = system.bodies[a], system.bodies[b]
@@ -336,7 +336,7 @@ class ContactState:
 
 
 def contact_outputs(
-    system: System, y: NDArray, v: NDArray | None = None, y1: NDArray | None = None
+    system: ContactSystem, y: NDArray, v: NDArray | None = None, y1: NDArray | None = None
 ) -> dict[str, ContactState]:
     """Per obstacle (by name), its contact at model coordinates ``y`` (and velocities ``v``: the
     friction; without them none).  Stored results hold ``q``: pass ``system.y_from_q(q)``.
@@ -366,7 +366,7 @@ def contact_outputs(
     }
 
 
-def contact_history(system: System, q: NDArray, v: NDArray | None = None) -> dict[str, dict]:
+def contact_history(system: ContactSystem, q: NDArray, v: NDArray | None = None) -> dict[str, dict]:
     """:func:`contact_outputs` over stored states ``q`` (``(n_t, n)``, full coordinates as in a
     :class:`rancf.solvers.dynamic.DynamicResult`) and velocities: per obstacle the arrays
     ``normal`` and ``friction`` ``(n_t, dim)``, ``moment``, ``length`` and ``penetration``."""

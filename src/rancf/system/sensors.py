@@ -43,7 +43,7 @@ from rancf.system.places import Place
 __all__ = ["SensorReader"]
 
 
-class SystemOutputs(Protocol):
+class OutputsView(Protocol):
     """What the sensors read of a run's derived outputs
     (:class:`rancf.system.outputs.SystemOutputs`, which holds the sensors)."""
 
@@ -65,7 +65,7 @@ Reader = Callable[[Block], NDArray]
 class SensorReader:
     """The sensors' columns of blocks of rows (module docstring)."""
 
-    def __init__(self, outputs: SystemOutputs, sensors: Sequence[Any]) -> None:
+    def __init__(self, outputs: OutputsView, sensors: Sequence[Any]) -> None:
         self.out = outputs
         self.system = outputs.system
         self.names: list[str] = []
