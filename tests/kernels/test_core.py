@@ -46,6 +46,31 @@ def test_band_solve_pivots_and_holds_fixed_entries(seed):
     assert np.abs(x - ref).max() <= 1e-11 * np.abs(ref).max()
 
 
+@pytest.mark.parametrize("ku", [3, 7, 11, 13])
+@pytest.mark.parametrize("shift", [4.0, -1.5, 0.0])
+def test_band_solve_symmetric_definite_and_indefinite(ku, shift):
+    # symmetric band matrices take the L D L^T path while their pivots are positive (shift 4:
+    # positive definite) and go to the pivoted LU at the first that is not (-1.5: indefinite;
+    # 0: a zero diagonal, where L D L^T fails at once); the answer is the same either way
+    rng = np.random.default_rng(ku)
+    n = 60
+    b = rng.normal(size=(n, n))
+    a = 0.5 * (b + b.T)
+    a[np.abs(np.subtract.outer(np.arange(n), np.arange(n))) > ku] = 0.0
+    a[np.arange(n), np.arange(n)] = 0.0
+    a += shift * np.eye(n) * (np.abs(a).sum(axis=1).max() if shift > 0 else 1.0)
+    fixed = np.zeros(n, dtype=np.uint8)
+    fixed[[0, 1, 30]] = 1
+    rhs = rng.normal(size=n)
+    x = rhs.copy()
+    assert _core.band_solve(_band(a, ku), x, fixed)
+    free = fixed == 0
+    ref = np.zeros(n)
+    ref[free] = np.linalg.solve(a[np.ix_(free, free)], rhs[free])
+    assert np.abs(x - ref).max() <= 1e-10 * np.abs(ref).max()
+    assert np.all(x[fixed == 1] == 0.0)
+
+
 def test_band_solve_reports_a_singular_matrix():
     ab = _band(np.zeros((6, 6)), 1)
     assert not _core.band_solve(ab, np.ones(6), np.zeros(6, dtype=np.uint8))
