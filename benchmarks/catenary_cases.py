@@ -1,4 +1,4 @@
-"""Static catenaries of issue 16 through ``rancf static --json`` as whole processes.
+"""The static catenaries through ``rancf static --json`` as whole processes.
 
     python benchmarks/catenary_cases.py [--repeats N]
 

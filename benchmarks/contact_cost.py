@@ -1,4 +1,4 @@
-"""Issue 20's benchmarks: contact through `rancf simulate`, side by side with Exudyn.
+"""Contact benchmarks: contact through `rancf simulate`, side by side with Exudyn.
 
     python benchmarks/contact_cost.py [--repeats N] [--out DIR] [--no-exudyn]
 
@@ -113,8 +113,8 @@ def broad_phase() -> dict[str, float]:
     import statistics
     import time
 
-    from rancf.model.mesh import mesh_line
-    from rancf.model.system import Material, Model, Section
+    from rancf.bodies.flexible import Material, Model, Section
+    from rancf.mesh.factories import mesh_line
     from rancf.system import System
 
     out: dict[str, float] = {}

@@ -1,4 +1,4 @@
-"""What C² buys (issue 19): error against unknowns for C¹ and C² meshes.
+"""What C² buys: error against unknowns for C¹ and C² meshes.
 
 Runs :func:`rancf.studies.continuity.continuity_study` (the shipped cantilever's first five
 bending frequencies and highest frequency; the 6.1 pendulum's tip error), writes

@@ -1,4 +1,4 @@
-"""The flexible slider-crank of issue 18 in Exudyn (the peer of rancf's).
+"""The flexible slider-crank in Exudyn (the peer of rancf's).
 
     python benchmarks/exudyn_slider_crank.py --elements N [--step H] [--t-end T]
         [--element ancf|beam] [--rho-inf R] [--crank-mass M] [--crank-inertia J]

@@ -16,10 +16,10 @@ import time
 
 import numpy as np
 
+from rancf.bodies.flexible import Model
+from rancf.bodies.properties import Material, Section, Support
 from rancf.geometry.conic import conic_arc_through
-from rancf.model.mesh import mesh_conic, mesh_line
-from rancf.model.parts import Material, Section, Support
-from rancf.model.system import Model
+from rancf.mesh.factories import mesh_conic, mesh_line
 from rancf.solvers.dynamic import DynamicOptions, integrate
 
 SEC = Section.circular(0.02)

@@ -1,4 +1,4 @@
-"""Rod dynamics with the rotary inertia of issue 17 against Exudyn, side by side in one run.
+"""Rod dynamics with rotary inertia against Exudyn, side by side in one run.
 
     python benchmarks/rod_dynamics.py [--quick] [--no-exudyn] [--out DIR]
 
@@ -37,11 +37,14 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import exudyn_rod as exr  # noqa: E402
 
+from rancf.bodies.flexible import Model, RigidMotion  # noqa: E402
+from rancf.bodies.motion import angular_momentum  # noqa: E402
+from rancf.bodies.properties import Material, PointLoad, Section, Support  # noqa: E402
 from rancf.geometry.conic import conic_arc_through  # noqa: E402
-from rancf.model.mesh import mesh_conic, mesh_line  # noqa: E402
-from rancf.model.motion import angular_momentum  # noqa: E402
-from rancf.model.parts import Material, PointLoad, Section, Support  # noqa: E402
-from rancf.model.system import Model, RigidMotion  # noqa: E402
+from rancf.mesh.factories import (
+    mesh_conic,
+    mesh_line,  # noqa: E402
+)
 from rancf.solvers.dynamic import DynamicOptions, integrate  # noqa: E402
 
 R, RHO, E, NU = 0.02, 6000.0, 2e8, 0.3

@@ -12,9 +12,9 @@ below 1 means rancf is faster.
   report, set-up time (process start to the first step), whole-process wall time.
 * ``static cantilever`` and ``time to 1e-3 m``: the Python API (``solve_static``/``integrate``)
   in this process against Exudyn's ``SolveStatic``/``SolveDynamic``.
-* ``static ... catenary``: issue 16's catenaries through ``rancf static --json`` as whole
+* ``static ... catenary``: the static catenaries through ``rancf static --json`` as whole
   processes (``catenary_cases.py``): solve time, Newton iterations, process wall time.
-* ``contact: ...``: issue 20's contact cases through ``rancf simulate`` (``contact_cost.py``):
+* ``contact: ...``: the contact cases through ``rancf simulate`` (``contact_cost.py``):
   a cable lying on the ground against the same cable hanging free, and a cable falling onto a
   circle against Exudyn's ``ObjectContactFrictionCircleCable2D``.
 * ``--install``: the wall time of ``pip wheel`` of this checkout (the C++ core's build).
@@ -44,9 +44,13 @@ import exudyn_cases as ex  # noqa: E402
 import rod_cost  # noqa: E402
 
 import rancf  # noqa: E402
+from rancf.bodies.flexible import Material, Model, PointLoad, Section, Support  # noqa: E402
 from rancf.geometry.conic import conic_arc  # noqa: E402
-from rancf.model.mesh import mesh_conic, mesh_line, to_ancf  # noqa: E402
-from rancf.model.system import Material, Model, PointLoad, Section, Support  # noqa: E402
+from rancf.mesh.factories import (
+    mesh_conic,
+    mesh_line,
+    to_ancf,  # noqa: E402
+)
 from rancf.solvers.dynamic import DynamicOptions, integrate  # noqa: E402
 from rancf.solvers.static import solve_static  # noqa: E402
 

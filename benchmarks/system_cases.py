@@ -1,4 +1,4 @@
-"""Issue 18's benchmarks: systems through `rancf simulate`, side by side with Exudyn.
+"""System benchmarks: systems through `rancf simulate`, side by side with Exudyn.
 
     python benchmarks/system_cases.py [--repeats N] [--out DIR]
 

@@ -22,7 +22,7 @@ if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
 
 #: Paper Example 1 (planar pendulum): chord, angles (deg), interior point.
 EXAMPLE1 = (0.5, (30.0, 40.0), (0.315, 0.077))
-#: Paper Example 2 (spatial pendulum), angles restored in the math note.
+#: Paper Example 2 (spatial pendulum), angles restored in the docs/derivations/cable.md.
 EXAMPLE2 = (0.5, (60.0, 30.0), (0.264, 0.069))
 #: Paper Example 3 (vibration).
 EXAMPLE3 = (0.5, (30.0, 30.0), (0.25, 0.067))

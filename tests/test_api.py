@@ -13,7 +13,7 @@ from rancf.scenario import parse_scenario
 from rancf.scenario.geometry import GEOMETRY_KEYS
 from rancf.scenario.schema import scenario_schema
 from rancf.solvers.dynamic import DynamicOptions
-from tests.model.test_scenario import BASE
+from tests.scenario.test_scenario import BASE
 
 
 @pytest.mark.parametrize("name", [n for n in rancf.__all__ if n != "__version__"])

@@ -142,7 +142,7 @@ def test_json_takes_more_elements_than_the_table(capsys):
     # the table stops at 1000 rows; --json takes the scenario limit (issue 15, item 5)
     from rancf.elements.mapping import gradient_ratio
     from rancf.geometry.conic import conic_arc
-    from rancf.model.mesh import mesh_conic
+    from rancf.mesh.factories import mesh_conic
 
     code, out, _ = run(capsys, *EX1, "--elements", "1500", "--json")
     assert code == 0
@@ -169,7 +169,7 @@ def test_table_stops_at_1000_elements_and_says_json_goes_further(capsys):
 
 
 def test_json_text_is_the_json_of_the_whole_object():
-    from rancf.cli_conic import json_text
+    from rancf.cli.conic import json_text
 
     head = {"a": 1, "b": [1.5, 2.0], "c": {"d": "e"}}
     for items in ([], [{"x": 0.1, "y": [1, 2]}], [{"x": i / 7} for i in range(5)]):

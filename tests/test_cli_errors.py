@@ -15,7 +15,7 @@ from pathlib import Path
 import pytest
 
 from rancf.cli import main
-from tests.model.test_scenario import BASE
+from tests.scenario.test_scenario import BASE
 
 CONIC = ["conic", "--chord", "0.5", "--angles", "30", "40", "--point", "0.315", "0.077"]
 

@@ -336,7 +336,7 @@ def test_a_sweep_stopped_by_sigterm_is_quiet_and_truthful(tmp_path):
 def test_a_refused_process_never_removes_what_another_wrote(tmp_path):
     """A process that made the folder but lost the lock to another (a race of two starts)
     leaves the folder and the other's files alone."""
-    from rancf.cli_io import OutputDir
+    from rancf.cli.io import OutputDir
     from rancf.errors import InputError
 
     with OutputDir(tmp_path / "new", kind="run") as first:

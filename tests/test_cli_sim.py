@@ -5,7 +5,7 @@ import pytest
 
 from rancf.cli import main
 from rancf.post.results import load_results
-from tests.model.test_scenario import BASE
+from tests.scenario.test_scenario import BASE
 
 CANTILEVER = """
 [geometry]

@@ -14,7 +14,7 @@ import pytest
 import rancf
 from rancf.cli import main
 from rancf.post.checks import STRAIN_LIMIT, largest_strain, run_warnings
-from tests.model.test_scenario import BASE
+from tests.scenario.test_scenario import BASE
 from tests.test_cli_sim import CANTILEVER
 
 #: A 1 m hose hanging from a pin, E = 50 Pa where 50 MPa was meant: it stretches by metres.

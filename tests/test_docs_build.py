@@ -22,7 +22,7 @@ import pytest
 
 from rancf import _API, scenario_schema
 from rancf.cli import COMMAND_MODULES
-from rancf.cli_files import shipped_scenarios
+from rancf.cli.files import shipped_scenarios
 from tests.pages import DOCS
 
 

@@ -11,19 +11,22 @@ LAYERS = {
     "errors": 0,
     "extras": 0,
     "exudyn_compat": 0,
+    "options": 0,
     "geometry": 1,
     "elements": 2,
     "cad": 2,
     "kernels": 3,
-    "model": 4,
-    "system": 5,
-    "scenario": 6,
-    "solvers": 7,
-    "post": 8,
-    "sweep": 9,
-    "studies": 10,
+    "mesh": 4,
+    "bodies": 5,
+    "system": 6,
+    "scenario": 7,
+    "solvers": 8,
+    "post": 9,
+    "sweep": 10,
+    "studies": 11,
+    "cli": 12,
 }
-CLI = 11  # cli*.py, __main__.py, __init__.py (the lazy public API) may import anything
+CLI = 12  # cli/, __main__.py, __init__.py (the lazy public API) may import anything
 
 
 def _part(module: str) -> str:

@@ -11,9 +11,9 @@ import numpy as np
 import pytest
 
 from rancf.cli import main
-from tests.model.test_scenario import BASE
 from tests.numbers import assert_lines_match
 from tests.pages import DOCS, blocks, section, transcript
+from tests.scenario.test_scenario import BASE
 
 #: (page, heading) of the sections run here, in the order they run.
 SECTIONS = (

@@ -15,8 +15,8 @@ from importlib.resources import files
 import matplotlib.pyplot as plt
 import numpy as np
 
+from rancf.bodies.section_outputs import SectionSampler
 from rancf.cli import main
-from rancf.model.sections import SectionSampler
 from rancf.scenario import load_scenario
 
 scenario = files("rancf.examples") / "belt-drive.toml"

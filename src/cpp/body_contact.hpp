@@ -1,4 +1,4 @@
-// Contact between flexible bodies and self-contact (issue 20): penalty contact of tubes, segment
+// Contact between flexible bodies and self-contact: penalty contact of tubes, segment
 // against segment, with regularized Coulomb friction (as contact.hpp's) where the pair has it.
 //
 // Every contact point x_i (the Gauss points of contact.hpp, weight w_i: the integral over the

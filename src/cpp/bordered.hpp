@@ -1,4 +1,5 @@
-// A block-diagonal band matrix bordered by a few sparse rows and columns (systems-math section 4):
+// A block-diagonal band matrix bordered by a few sparse rows and columns
+// (docs/derivations/systems.md section 4):
 //
 //   [ A  P ] [x]   [r]        A = diag(A_1, ..., A_k), band blocks (LU with partial pivoting)
 //   [ Q  D ] [z] = [s]        P (n x p), Q (p x n) sparse; D (p x p) dense

@@ -1,4 +1,4 @@
-// ANCF / RANCF cable elements, planar and spatial (rancf-math §3, §6).
+// ANCF / RANCF cable elements, planar and spatial (docs/derivations/cable.md §3, §6).
 //
 // With a = r'(xi), b = r''(xi) at a Gauss point and the reference a0 (J0 = |a0|, s0 = J0^2):
 //   eps   = (a.a - s0) / (2 s0)                     Green-Lagrange axial strain

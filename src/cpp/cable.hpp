@@ -17,7 +17,8 @@ struct QpGeometry {
 QpGeometry cable_qp_geometry(const double* a, const double* b, int dim);
 
 /// Green-Lagrange axial strain relative to the reference, eps = (|r'|^2 - s0) / (2 s0), with
-/// s0 = |r0'|^2 (rancf-math section 6); the one definition used by kernels and outputs.
+/// s0 = |r0'|^2 (docs/derivations/cable.md section 6); the one definition used by kernels and
+/// outputs.
 inline double green_lagrange(double aa, double s0) { return (aa - s0) / (2.0 * s0); }
 
 }  // namespace rancf

@@ -1,5 +1,5 @@
 // Contact of flexible bodies with obstacles: penalty line contact along the curve with regularized
-// Coulomb friction (issue 20; the method in README "Contact").
+// Coulomb friction (the method: docs/guide/contact.md).
 //
 // A flexible body is a tube of radius rt about its centre line r(xi) = sum_k N_k(xi) e_k.  At
 // n_c Gauss points per element (weights w = gauss weight x reference |r0'|: the integral over the

@@ -1,5 +1,6 @@
 // Configuration-dependent inertia: the rotary inertia of rod sections (rod_inertia.hpp; derivation
-// in docs/rod-derivation.md section 11), assembled over the element chain in model coordinates.
+// in docs/derivations/rod-kernel.md section 11), assembled over the element chain in model
+// coordinates.
 //
 // With it the equations of motion read
 //   M_c a + c M_c v + F_in(y, v, a) + f_int(y) = f_ext(t, y),
@@ -47,7 +48,8 @@ void rotary_angular_momentum(const Model& m, const double* y, const double* v, b
 
 /// Before the rods' triads are re-referenced at y: the twist rates v and accelerations a (model
 /// coordinates) of nodes with a free twist are changed so that the spin and spin rate stay the
-/// same under the new references (docs/rod-derivation.md 11.6). Then call rereference(m, y).
+/// same under the new references (docs/derivations/rod-kernel.md 11.6). Then call rereference(m,
+/// y).
 void rereference_rates(const Model& m, const double* y, double* v, double* a);
 
 }  // namespace rancf

@@ -1,6 +1,7 @@
-// Joint equations g(q_A, q_B, t) = 0 between two places and their Jacobians (systems-math
-// section 3).  Every row is a dot product of positions and frame vectors of the two places
-// (places.hpp), so its Jacobian follows by the product rule from the places' derivatives:
+// Joint equations g(q_A, q_B, t) = 0 between two places and their Jacobians
+// (docs/derivations/systems.md section 3).  Every row is a dot product of positions and frame
+// vectors of the two places (places.hpp), so its Jacobian follows by the product rule from the
+// places' derivatives:
 //
 //   pin        x_A - x_B                                        (dim rows)
 //   fixed      pin, and 2D: sin(psi_A - psi_B - beta_0)          (+1: 3 rows)

@@ -16,7 +16,7 @@ inline constexpr int kMaxElementDofs = 14;
 /// Element families; each has one kernel file and one entry in the registry (registry.cpp).
 enum class ElementKind : int { cable = 0, beam = 1, rod = 2 };
 
-/// Quadrature data of cable elements (rancf-math §3, §6).
+/// Quadrature data of cable elements (docs/derivations/cable.md §3, §6).
 struct CableData {
   int n_qp = 0;
   const double* n1 = nullptr;  ///< dS/dxi   at the Gauss points, (n_el, n_qp, 4)
@@ -34,7 +34,8 @@ struct BeamData {
   const double* d0 = nullptr;  ///< reference chord vector, (n_el, 2)
 };
 
-/// Quadrature data and nodal reference triads of spatial rod elements (rod-math §2-§5).
+/// Quadrature data and nodal reference triads of spatial rod elements (docs/derivations/rod.md
+/// §2-§5).
 struct RodData {
   int n_qp = 0;
   const double* n1 = nullptr;    ///< dS/dxi   at the Gauss points, (n_el, n_qp, 4)
@@ -87,7 +88,7 @@ struct Loads {
 /// (reduced coordinates: continuity.py).
 inline constexpr int kMaxWindow = 24;
 
-/// Reduced coordinates (C2 meshes, rancf.model.continuity): the model coordinates y (n_y of
+/// Reduced coordinates (C2 meshes, rancf.mesh.continuity): the model coordinates y (n_y of
 /// them: spline control points, the nodal vectors of supported nodes, rod twists) map linearly
 /// to the nodal coordinates q.  Element el's coordinates are E_el y[el_start .. + width), node
 /// k's (dpn of them) N_k y[node_start .. + node_width), with E and N dense row-major.  n_y == 0:

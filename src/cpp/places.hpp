@@ -1,5 +1,5 @@
 // Places of a system: where joints, springs and loads attach, as functions of the coordinates of
-// the body that carries them (systems-math section 3).
+// the body that carries them (docs/derivations/systems.md section 3).
 //
 // A place has a position x (world, 3 components; z = 0 in 2D) and up to three frame vectors f_k
 // (unit, world), each with its derivatives with respect to the place's local coordinates:
@@ -7,7 +7,7 @@
 //   cable      a cable node (r, r_x): x = r; f_0 = t = r_x / |r_x|; in 2D also f_1 = e_z x t, f_2 =
 //   e_z rod        a rod node (r, r_x, phi): x = r; (t, m1, m2), the nodal triad by smallest
 //   rotation
-//              from the node's reference triad (rod-math section 2)
+//              from the node's reference triad (docs/derivations/rod.md section 2)
 //   beam       a beam node (x, y, theta): psi = theta + psi_0; f_0 = (cos psi, sin psi), f_1, e_z
 //   rigid2d    (x_c, y_c, theta): x = x_c + R(theta) s, f = columns of R(theta) and e_z
 //   rigid3d    (x_c, p) with a unit quaternion p = (p0, p1, p2, p3): x = x_c + R(p) s, f = R(p) e_k
@@ -28,7 +28,7 @@ enum class PlaceKind : int {
 
 /// Largest number of local coordinates of a place: 7 for a rod node; a node of a reduced model
 /// (model.hpp: Reduction) depends on a window of up to 24 model coordinates
-/// (rancf.model.continuity).
+/// (rancf.mesh.continuity).
 inline constexpr int kMaxLocal = 24;
 
 /// What a place needs besides the local coordinates.

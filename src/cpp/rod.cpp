@@ -1,9 +1,10 @@
-// Spatial Kirchhoff rod with torsion on the RANCF centerline (rod-math.md; Meier, Popp & Wall
-// 2014).
+// Spatial Kirchhoff rod with torsion on the RANCF centerline (docs/derivations/rod.md; Meier, Popp
+// & Wall 2014).
 //
 // The element math is in rod_kernel.hpp and the rod_*.hpp headers it includes (derivation:
-// docs/rod-derivation.md); this file connects it to the model: element inputs from RodData, the
-// registry entry, point moments and the re-referencing of the nodal triads after converged steps.
+// docs/derivations/rod-kernel.md); this file connects it to the model: element inputs from RodData,
+// the registry entry, point moments and the re-referencing of the nodal triads after converged
+// steps.
 //
 // Re-referencing keeps the nodal twist phi as a degree of freedom that accumulates: the reference
 // director becomes u = SR(t_ref -> t) m1_ref (the untwisted transported director) and t_ref <- t.

@@ -23,9 +23,9 @@ void rod_nodal_triad(const double* tref, const double* m1ref, const double* rx, 
 void rod_moment_load(const Model& m, int node, const double* moment, const double* rx, double* g,
                      double* kl);
 
-/// Rotary inertia of element el (rod_inertia.hpp, docs/rod-derivation.md §11): inertial force fe
-/// (14) at e, ed, edd (q coordinates) and, if ke, ck dF/de + cv dF/ded + ca dF/dedd (14 x 14);
-/// damping: mass-proportional coefficient c (force c dT/ded).
+/// Rotary inertia of element el (rod_inertia.hpp, docs/derivations/rod-kernel.md §11): inertial
+/// force fe (14) at e, ed, edd (q coordinates) and, if ke, ck dF/de + cv dF/ded + ca dF/dedd (14 x
+/// 14); damping: mass-proportional coefficient c (force c dT/ded).
 void rod_inertia(const Model& m, int el, const double* e, const double* ed, const double* edd,
                  double damping, double ck, double cv, double ca, double* fe, double* ke);
 

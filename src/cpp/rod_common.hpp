@@ -1,6 +1,6 @@
 // rod_common.hpp -- the rod kernel's inputs (stiffness, element data), its alignment threshold and
 // the small vector helpers every part of it shares. Part of the rod kernel: see rod_kernel.hpp for
-// the formulation and the order of the computation (docs/rod-derivation.md).
+// the formulation and the order of the computation (docs/derivations/rod-kernel.md).
 #ifndef RANCF_ROD_COMMON_HPP
 #define RANCF_ROD_COMMON_HPP
 

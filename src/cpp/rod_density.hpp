@@ -1,6 +1,6 @@
 // rod_density.hpp -- material curvatures and the strain-energy density at one quadrature point,
-// written in node A's frame, with its gradient and 8x8 Hessian (docs/rod-derivation.md sections 3
-// and 4). Part of the rod kernel (rod_kernel.hpp).
+// written in node A's frame, with its gradient and 8x8 Hessian (docs/derivations/rod-kernel.md
+// sections 3 and 4). Part of the rod kernel (rod_kernel.hpp).
 #ifndef RANCF_ROD_DENSITY_HPP
 #define RANCF_ROD_DENSITY_HPP
 
@@ -11,9 +11,9 @@
 namespace rancf::rod::detail {
 
 // ---------------------------------------------------------------------------------------------------------
-// Material curvatures at a quadrature point (docs/rod-derivation.md 3). Local frame: node A's triad
-// at phiA = 0, (tA, uA, vA); a = r', b = r'' in that frame; the twist angle of the material triad
-// at xi about the transported frame is theta = phiA + xi alpha_B:
+// Material curvatures at a quadrature point (docs/derivations/rod-kernel.md 3). Local frame: node
+// A's triad at phiA = 0, (tA, uA, vA); a = r', b = r'' in that frame; the twist angle of the
+// material triad at xi about the transported frame is theta = phiA + xi alpha_B:
 //   n = |a|, d = n + a0 (= n (1 + tA.t)), rho = 1/n^2, B = n b0 + a.b, sigma = B/(n^3 d), h = a2 b1
 //   - a1 b2, P = a2 sigma - b2 rho (= kappa.SR(uA)), Q = b1 rho - a1 sigma (= kappa.SR(vA)), tau =
 //   h/(n^2 d), K1 = alpha_B/n + tau, K2 = cos(theta) P + sin(theta) Q, K3 = cos(theta) Q -
@@ -36,8 +36,8 @@ inline bool qcurv(const double* a, const double* b, double aB, double th, double
 }
 
 // Energy density f (times W = gw j0), its gradient g[8] and (if WithH) Hessian H[8][8] (upper
-// triangle) in the variables (a0, a1, a2, b0, b1, b2, phiA, alpha_B) (docs/rod-derivation.md 4). th
-// = phiA + xi alpha_B.
+// triangle) in the variables (a0, a1, a2, b0, b1, b2, phiA, alpha_B)
+// (docs/derivations/rod-kernel.md 4). th = phiA + xi alpha_B.
 template <bool WithH>
 inline bool qdensity(const double* ain, const double* bin, double aB, double th, double xi,
                      double W, double j0, const double* k0, const Stiffness& s, double& f,

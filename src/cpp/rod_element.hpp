@@ -1,7 +1,7 @@
 // rod_element.hpp -- one element: nodal values, the position blocks rotated into node A's frame,
 // and the element force and exact tangent (the per-point density mapped by the shape functions,
-// then the chain rule back to the element coordinates; docs/rod-derivation.md sections 0 and 5).
-// Part of the rod kernel (rod_kernel.hpp).
+// then the chain rule back to the element coordinates; docs/derivations/rod-kernel.md sections 0
+// and 5). Part of the rod kernel (rod_kernel.hpp).
 #ifndef RANCF_ROD_ELEMENT_HPP
 #define RANCF_ROD_ELEMENT_HPP
 
@@ -124,8 +124,8 @@ inline bool element_forces(const ElementInput& in, const Stiffness& s, const dou
     }
   }
 
-  // ---- chain rule back to e (docs/rod-derivation.md 5): p_k = R0 p~_k with R0 = R0(rA_x); alpha_B
-  // = alpha_B(e)
+  // ---- chain rule back to e (docs/derivations/rod-kernel.md 5): p_k = R0 p~_k with R0 = R0(rA_x);
+  // alpha_B = alpha_B(e)
   constexpr int pmap[12] = {0, 1, 2, 3, 4, 5, 7, 8, 9, 10, 11, 12};
   double G[3][3];  // G_i = sum_k gt_{k,i} p_k
   for (int i = 0; i < 3; ++i)

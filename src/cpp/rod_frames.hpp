@@ -1,7 +1,7 @@
 // rod_frames.hpp -- nodal triads by smallest rotations (values, and node A's transported frame with
 // its derivatives) and the relative twist alpha_B = wrap(phiB - phiA + beta) with the closed-form
-// gradient and Hessian of beta (docs/rod-derivation.md sections 1 and 2). Part of the rod kernel
-// (rod_kernel.hpp).
+// gradient and Hessian of beta (docs/derivations/rod-kernel.md sections 1 and 2). Part of the rod
+// kernel (rod_kernel.hpp).
 #ifndef RANCF_ROD_FRAMES_HPP
 #define RANCF_ROD_FRAMES_HPP
 
@@ -12,8 +12,8 @@
 namespace rancf::rod::detail {
 
 // ---------------------------------------------------------------------------------------------------------
-// Nodal triad, values only (rod-math section 2, docs/rod-derivation.md 1). Returns 1 + tref.t (the
-// SR alignment).
+// Nodal triad, values only (docs/derivations/rod.md section 2, docs/derivations/rod-kernel.md 1).
+// Returns 1 + tref.t (the SR alignment).
 //   t = x/|x|,  u = SR(tr -> t) mr = mr - (t.mr)/(1 + tr.t) (t + tr),  v = SR(tr -> t)(tr x mr) (=
 //   t x u), m1 = cos(phi) u + sin(phi) v,  m2 = t x m1 = cos(phi) v - sin(phi) u.
 inline double triad_value(const double* tr, const double* mr, const double* x, double phi,
@@ -36,7 +36,8 @@ inline double triad_value(const double* tr, const double* mr, const double* x, d
 }
 
 // Node A's transported frame (t, u, v) with first derivatives with respect to x = r_x, and the
-// scalar ingredients of the second derivatives (docs/rod-derivation.md 1). dt[i][j] = d t_i / d x_j
+// scalar ingredients of the second derivatives (docs/derivations/rod-kernel.md 1). dt[i][j] = d t_i
+// / d x_j
 // (= Pt, symmetric), du, dv likewise. u = mr - ku (t + tr), v = m2r - kv (t + tr), ku = t.mr/p, kv
 // = t.m2r/p, p = 1 + tr.t. Second derivatives are never stored as tensors: only their contractions
 // with vectors are needed, via
@@ -104,12 +105,13 @@ inline void frame_jet(const double* tr, const double* mr, const double* x, Frame
 }
 
 // ---------------------------------------------------------------------------------------------------------
-// Relative twist (rod-math 3, docs/rod-derivation.md 2). With m1_N = R_{t_N}(phi_N) u_N (rotation
-// about t_N) and SR(tA -> tB) R_{tA}(phiA) = R_{tB}(phiA) SR(tA -> tB):
+// Relative twist (docs/derivations/rod.md 3, docs/derivations/rod-kernel.md 2). With m1_N =
+// R_{t_N}(phi_N) u_N (rotation about t_N) and SR(tA -> tB) R_{tA}(phiA) = R_{tB}(phiA) SR(tA ->
+// tB):
 //   alpha_B = wrap(phiB - phiA + beta),  beta = atan2(Y, X) = angle about tB from SR(tA -> tB) uA
 //   to uB, X = uB.uA - (tB.uA)(uB.tA)/(1 + tA.tB),  Y = uB.vA - (tB.vA)(uB.tA)/(1 + tA.tB),
-// wrap() maps to [-pi, pi) (the atan2 branch of rod-math 3). beta depends on (rA_x, rB_x) only, so
-// the Hessian of alpha_B is the 6x6 Hessian of beta.
+// wrap() maps to [-pi, pi) (the atan2 branch of docs/derivations/rod.md 3). beta depends on (rA_x,
+// rB_x) only, so the Hessian of alpha_B is the 6x6 Hessian of beta.
 inline double wrap_pi(double a) {
   constexpr double pi = 3.14159265358979323846;
   return a - 2.0 * pi * std::floor((a + pi) / (2.0 * pi));
@@ -122,8 +124,9 @@ inline double beta_value(const double* tA, const double* uA, const double* vA, c
   return std::atan2(dot3(uB, vA) - dot3(tB, vA) * g, dot3(uB, uA) - dot3(tB, uA) * g);
 }
 
-// Gradient and Hessian of beta (docs/rod-derivation.md 2). beta depends on the nodal tangents only.
-// With the twist vector of a smallest rotation, V(t, r) = (t x r)/(1 + r.t), the first variation is
+// Gradient and Hessian of beta (docs/derivations/rod-kernel.md 2). beta depends on the nodal
+// tangents only. With the twist vector of a smallest rotation, V(t, r) = (t x r)/(1 + r.t), the
+// first variation is
 //   d beta = (V(tB, trB) + V(tA, tB)) . dtB + (V(tA, tB) - V(tA, trA)) . dtA =: WB . dtB + WA .
 //   dtA,
 // (axial spin of node B's transported frame, minus that of node A's, minus the twist of SR(tA ->

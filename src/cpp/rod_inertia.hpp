@@ -1,7 +1,7 @@
-// rod_inertia.hpp -- the rod's rotary inertia (docs/rod-derivation.md section 11): the kinetic
-// energy of the cross-sections' rotation with the exact spin s = omega . t of the material frame,
-// the configuration-dependent mass matrix, the gyroscopic forces and their exact tangents. Part of
-// the rod kernel (rod.cpp includes it beside rod_kernel.hpp).
+// rod_inertia.hpp -- the rod's rotary inertia (docs/derivations/rod-kernel.md section 11): the
+// kinetic energy of the cross-sections' rotation with the exact spin s = omega . t of the material
+// frame, the configuration-dependent mass matrix, the gyroscopic forces and their exact tangents.
+// Part of the rod kernel (rod.cpp includes it beside rod_kernel.hpp).
 //
 // Spin at xi (11.2): nu_N is the spin of node N's smallest rotation from its reference tangent,
 // sigma(1, 2) that of SR(t1 -> t2) about t2 (both linear in the velocities, c . xdot):

@@ -1,16 +1,17 @@
 // rod_kernel.hpp -- spatial Kirchhoff rod with torsion on a rational ANCF (RANCF) cable centerline.
 //
-// Formulation: docs/rod-derivation.md (smallest-rotation triads plus an interpolated relative
-// twist, after Meier, Popp & Wall 2014, CMAME 278). Centerline interpolation: rancf-math.md
-// sections 3 and 6. Derivation of every formula below, in the order of the code:
-// docs/rod-derivation.md.
+// Formulation: docs/derivations/rod-kernel.md (smallest-rotation triads plus an interpolated
+// relative twist, after Meier, Popp & Wall 2014, CMAME 278). Centerline interpolation:
+// docs/derivations/cable.md sections 3 and 6. Derivation of every formula below, in the order of
+// the code: docs/derivations/rod-kernel.md.
 //
 // Header-only, dependency-free C++17. Plain pointers, row-major matrices.
 //
 // Element coordinates e[14]: node A = e[0..6] = (rA, rA_x, phiA), node B = e[7..13] = (rB, rB_x,
 // phiB).
 //
-// Structure of the computation (docs/rod-derivation.md section 0), all derivatives hand-derived:
+// Structure of the computation (docs/derivations/rod-kernel.md section 0), all derivatives
+// hand-derived:
 //   * per element: node A's transported frame R0 = (tA, uA, vA), uA = SR(tref_A -> tA) m1ref_A, vA
 //   = tA x uA,
 //     with first derivatives with respect to rA_x and the few scalars that give its second
@@ -112,7 +113,7 @@ inline void forces(const ElementInput& in, const Stiffness& s, const double* e, 
   }
 }
 
-// Nodal triad for the current nodal gradient rx and twist phi (rod-math 2).
+// Nodal triad for the current nodal gradient rx and twist phi (docs/derivations/rod.md 2).
 inline void nodal_triad(const double* tref, const double* m1ref, const double* rx, double phi,
                         double* t_out, double* m1_out) {
   double u[3], v[3], m2[3];

@@ -1,6 +1,6 @@
 // rod_moments.hpp -- point moments at a rod node: the generalized force and, by forward-mode
-// derivatives with respect to r_x, its exact load stiffness (docs/rod-derivation.md section 6).
-// Part of the rod kernel (rod_kernel.hpp).
+// derivatives with respect to r_x, its exact load stiffness (docs/derivations/rod-kernel.md section
+// 6). Part of the rod kernel (rod_kernel.hpp).
 #ifndef RANCF_ROD_MOMENTS_HPP
 #define RANCF_ROD_MOMENTS_HPP
 
@@ -11,7 +11,7 @@ namespace rancf::rod {
 namespace detail {
 
 // A value with its derivatives with respect to the three components of r_x (forward mode);
-// used only for the load stiffness of point moments (docs/rod-derivation.md 6).
+// used only for the load stiffness of point moments (docs/derivations/rod-kernel.md 6).
 struct D3 {
   double v = 0.0;
   double d[3] = {0.0, 0.0, 0.0};
@@ -47,7 +47,8 @@ inline D3 lift(double x, const D3&) { return {x, {0.0, 0.0, 0.0}}; }
 
 // Generalized force of a moment m at a node with gradient rx and reference triad (tr, mr):
 // virtual work m . dtheta with dtheta = t x dt + t (dphi + w . dt), the spin of the nodal triad
-// about t including that of the smallest rotation, w . dt = du . v (docs/rod-derivation.md 6):
+// about t including that of the smallest rotation, w . dt = du . v (docs/derivations/rod-kernel.md
+// 6):
 //   w = -(tr.v)/(1+c) mr + (t.mr)(tr.v)/(1+c)^2 tr - (t.mr)/(1+c) v,  c = tr.t,
 //   g_rx = P [(m x t) + (m.t) w] / |rx|,  g_phi = m.t,  P = I - t t^T.
 template <class T>

@@ -1,8 +1,8 @@
-// rod_spin.hpp -- the spin pieces of the rod's rotary inertia (docs/rod-derivation.md 11.2-11.3):
-// the spin of a node's smallest rotation from its reference tangent and that of the smallest
-// rotation between two tangents, each linear in the velocities (c . xdot), with their gradients,
-// evaluated with a value-and-time-derivative number (Dual). Part of the rod kernel
-// (rod_inertia.hpp includes it).
+// rod_spin.hpp -- the spin pieces of the rod's rotary inertia
+// (docs/derivations/rod-kernel.md 11.2-11.3): the spin of a node's smallest rotation from its
+// reference tangent and that of the smallest rotation between two tangents, each linear in the
+// velocities (c . xdot), with their gradients, evaluated with a value-and-time-derivative number
+// (Dual). Part of the rod kernel (rod_inertia.hpp includes it).
 #ifndef RANCF_ROD_SPIN_HPP
 #define RANCF_ROD_SPIN_HPP
 

@@ -4,7 +4,8 @@
 // caller (shape-function derivatives and reference data at the sample parameters xi):
 //   cable  [eps, kappa]            eps Green-Lagrange, kappa signed (2D) / magnitude (3D)
 //   beam   [eps, kappa(xi)]        co-rotational: kappa = [(6 xi - 4) tb1 + (6 xi - 2) tb2] / L0
-//   rod    [eps, K1, K2, K3]       material curvatures (rod-math section 4) with the live triads
+//   rod    [eps, K1, K2, K3]       material curvatures (docs/derivations/rod.md section 4) with the
+//   live triads
 #pragma once
 
 #include "model.hpp"

@@ -1,4 +1,4 @@
-// A multibody system as the compiled core sees it (systems-math sections 1, 3, 4).
+// A multibody system as the compiled core sees it (docs/derivations/systems.md sections 1, 3, 4).
 //
 // Coordinates y of all bodies stacked body by body: each flexible body's model coordinates (a
 // Model: its chain, supports held by elimination), then every rigid body (2D: x, y, theta; 3D:

@@ -351,7 +351,7 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
       add_matrix(*lu, idx, k, K.data(), far);
     }
   }
-  // ---- contact with obstacles (contact.hpp, issue 20)
+  // ---- contact with obstacles (contact.hpp)
   if (s.contact != nullptr) {
     const MatrixSink sink = [&](const int* idx, int k, const double* K) {
       add_matrix(*lu, idx, k, K, far);

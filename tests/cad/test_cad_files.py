@@ -11,7 +11,7 @@ from rancf.elements.cad import bspline_to_ancf, chain_to_nurbs, nurbs_to_rancf
 from rancf.errors import ScenarioError
 from rancf.geometry.nurbs import NurbsCurve
 from rancf.scenario import load_scenario
-from tests.model.test_scenario import BASE
+from tests.scenario.test_scenario import BASE
 
 FIG5 = np.array([0, 0, 0, 0, 1, 2, 2, 3, 3, 3, 5, 5, 5, 5], float)
 

@@ -13,7 +13,7 @@ from rancf.cli import main
 from rancf.geometry.tangents import vector_angle
 from rancf.post.run_data import centerline_nodes, load_run
 from rancf.scenario import load_scenario
-from tests.model.test_scenario import BASE
+from tests.scenario.test_scenario import BASE
 
 #: Every element count 1..32 is exported as JSON (the cheapest format); the other formats are
 #: written for the counts that failed before (8, 16: a false kink of 8.5e-7 deg from arccos of a
@@ -138,7 +138,7 @@ def test_closed_ring_round_trips(ring, suffix, time):
     """A ring's shape written in every format reads back as the exported curve (control points,
     weights, knots to 1e-12) and meshes again as a closed ring on the run's nodes."""
     from rancf.cad import read_curves
-    from rancf.cli_post import run_to_nurbs
+    from rancf.cli.post import run_to_nurbs
 
     if suffix in ("step", "igs"):
         pytest.importorskip("OCP")

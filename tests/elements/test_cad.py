@@ -12,7 +12,7 @@ from rancf.elements.cad import (
 )
 from rancf.errors import InputError, KnotVectorError, WeightError
 from rancf.geometry.nurbs import NurbsCurve
-from rancf.model.nurbs_mesh import mesh_nurbs
+from rancf.mesh.nurbs_mesh import mesh_nurbs
 
 
 @st.composite

@@ -10,8 +10,9 @@ from rancf.errors import InputError
 from rancf.geometry.conic import conic_arc
 from rancf.geometry.nurbs import NurbsCurve
 from rancf.geometry.quadrature import integrate
-from rancf.model.mesh import mesh_conic, mesh_from_arrays
-from rancf.model.nurbs_mesh import mesh_nurbs
+from rancf.mesh.factories import mesh_conic
+from rancf.mesh.mesh import mesh_from_arrays
+from rancf.mesh.nurbs_mesh import mesh_nurbs
 from tests.conftest import EXAMPLE1
 
 EXTREME = (1.0, (1.5, 87.5), (0.97, 0.01))

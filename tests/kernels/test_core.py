@@ -9,10 +9,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from rancf.bodies.flexible import Material, Model, PointLoad, Section, Support
 from rancf.geometry.conic import conic_arc
 from rancf.kernels import _core
-from rancf.model.mesh import mesh_conic, mesh_line
-from rancf.model.system import Material, Model, PointLoad, Section, Support
+from rancf.mesh.factories import mesh_conic, mesh_line
 from rancf.solvers.dynamic import DynamicOptions, GeneralizedAlpha, integrate
 from tests.conftest import EXAMPLE1
 

@@ -3,11 +3,12 @@
 import numpy as np
 import pytest
 
+from rancf.bodies.flexible import Material, Model, Section
 from rancf.geometry.conic import conic_arc, conic_arc_through
 from rancf.geometry.quadrature import integrate
 from rancf.kernels.cable import CableKernel, CableProperties
-from rancf.model.mesh import CableMesh, mesh_conic, mesh_line, to_ancf
-from rancf.model.system import Material, Model, Section
+from rancf.mesh.factories import mesh_conic, mesh_line, to_ancf
+from rancf.mesh.mesh import CableMesh
 from tests.conftest import EXAMPLE1, EXAMPLE2
 
 PROPS = CableProperties(ea=1.0e3, ei=2.0, rho_a=3.0)

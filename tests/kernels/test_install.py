@@ -18,7 +18,7 @@ from importlib import metadata
 from pathlib import Path
 
 import rancf
-from tests.model.test_scenario import BASE as SCENARIO  # a short planar pendulum
+from tests.scenario.test_scenario import BASE as SCENARIO  # a short planar pendulum
 
 
 def _tree(root: Path) -> dict[str, float]:

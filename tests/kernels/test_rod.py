@@ -1,9 +1,10 @@
 """The rod element (issue 9): derivatives, objectivity, closed forms, mass.
 
-Everything goes through the public :class:`~rancf.model.system.Model` and its compiled core as a
+Everything goes through the public :class:`~rancf.bodies.flexible.Model` and its compiled core as a
 black box: forces against central differences of the strain energy, tangents against central
 differences of the forces, the load stiffness of point moments against central differences of
-the external force, rigid motions, and the closed forms of ``docs/rod-derivation.md`` (rod-math §7)
+the external force, rigid motions, and the closed forms of ``docs/derivations/rod-kernel.md``
+(docs/derivations/rod.md §7)
 (restated in docs/guide/rods.md).
 """
 
@@ -12,10 +13,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from rancf.bodies.flexible import Model
+from rancf.bodies.properties import Material, PointLoad, Section, Support
 from rancf.geometry.conic import conic_arc_through
-from rancf.model.mesh import mesh_conic, mesh_line
-from rancf.model.parts import Material, PointLoad, Section, Support
-from rancf.model.system import Model
+from rancf.mesh.factories import mesh_conic, mesh_line
 from rancf.solvers.static import solve_static
 
 MAT = Material(6000.0, 2.0e6, poisson_ratio=0.3)
@@ -104,7 +105,8 @@ def test_load_stiffness_of_point_moments_against_finite_differences(geo):
 
 def test_point_moment_is_conjugate_to_the_rotation_at_a_rereferenced_state():
     """At a re-referenced node (φ = 0) the generalized force of M is M·t on φ and M × t / |r_x|
-    on r_x (rod-math §5): a tiny rotation of the tip section by ``δθ`` does work ``M·δθ``."""
+    on r_x (docs/derivations/rod.md §5): a tiny rotation of the tip section by ``δθ`` does work
+    ``M·δθ``."""
     m = Model(mesh_of("straight"), "rod", SEC, MAT, point_loads=[PointLoad(-1, moment=(1, 2, 3))])
     f = m.external_force(0.0, m.y0)
     tip = f.reshape(m.n_nodes, 7)[-1]

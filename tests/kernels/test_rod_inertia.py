@@ -2,7 +2,7 @@
 kinetic energy and of the forces, objectivity, the exact spin of rigid motions, re-referencing,
 and the kinetic energy of a rigid rotation against the body's ½ ωᵀ I ω for any mesh.
 
-Through the public :class:`~rancf.model.system.Model` and its compiled core only
+Through the public :class:`~rancf.bodies.flexible.Model` and its compiled core only
 (``core.inertia``, ``core.rotary_kinetic_energy``, ``core.rotary_angular_momentum``).
 """
 
@@ -12,11 +12,11 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
+from rancf.bodies.flexible import Model, RigidMotion
+from rancf.bodies.motion import angular_momentum
+from rancf.bodies.properties import Material, Section, Support
 from rancf.geometry.conic import conic_arc, conic_arc_through
-from rancf.model.mesh import mesh_conic, mesh_line
-from rancf.model.motion import angular_momentum
-from rancf.model.parts import Material, Section, Support
-from rancf.model.system import Model, RigidMotion
+from rancf.mesh.factories import mesh_conic, mesh_line
 from tests.kernels.test_rod import ARC, deformed, rigid, rotation
 
 MAT = Material(6000.0, 2.0e6, poisson_ratio=0.3)

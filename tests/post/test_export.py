@@ -9,7 +9,7 @@ import pytest
 from rancf.cli import main
 from rancf.geometry.conic import conic_arc_through
 from rancf.post.run_data import frame_indices, load_run, sample_centerline
-from tests.model.test_scenario import BASE
+from tests.scenario.test_scenario import BASE
 
 
 @pytest.fixture(scope="module")
@@ -101,7 +101,7 @@ def test_bad_input_one_line(run_dir, tmp_path, capsys, argv, needle):
 
 def test_nurbs_export_is_the_deformed_chain(run_dir, tmp_path):
     from rancf.cad import read_curves
-    from rancf.cli_post import run_to_nurbs
+    from rancf.cli.post import run_to_nurbs
 
     run = load_run(run_dir)
     curve = run_to_nurbs(run, 10)

@@ -87,7 +87,7 @@ def test_configurations_of_a_helix_are_drawn_in_3d(helix_run, tmp_path, monkeypa
 
 
 def test_planar_runs_stay_planar(tmp_path, monkeypatch, capsys):
-    from tests.model.test_scenario import BASE
+    from tests.scenario.test_scenario import BASE
 
     (tmp_path / "p.toml").write_text(BASE)
     assert (

@@ -1,6 +1,7 @@
 """The planar extensible elastica with rancf's cable law, solved independently of rancf.
 
-**The law** (``rancf-math.md`` section 6): the strain energy per unit reference length is
+**The law** (``docs/derivations/cable.md`` section 6): the strain energy per unit reference length
+is
 
     W(lambda, kappa) = EA eps^2 / 2 + EI kappa^2 / 2,    eps = (lambda^2 - 1) / 2,
 

@@ -12,8 +12,8 @@ import numpy as np
 import pytest
 from pydantic import ValidationError
 
+from rancf.bodies.time_function import TimeFunction
 from rancf.errors import ScenarioError
-from rancf.model.time_function import TimeFunction
 from rancf.scenario import (
     ConicGeometry,
     MaterialTable,
@@ -25,8 +25,8 @@ from rancf.scenario import (
     load_scenario,
     parse_scenario,
 )
-from tests.model.test_scenario import BASE
 from tests.scenario.systems import SLIDER_CRANK, TETHER_3D
+from tests.scenario.test_scenario import BASE
 
 
 def _python_base(**overrides) -> Scenario:

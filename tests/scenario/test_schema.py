@@ -14,8 +14,8 @@ import pytest
 from rancf.scenario import Scenario, scenario_schema
 from rancf.scenario.base import Table
 from tests import pages
-from tests.model.test_scenario import BASE
 from tests.scenario.systems import SLIDER_CRANK, TETHER_3D
+from tests.scenario.test_scenario import BASE
 
 SCHEMA = scenario_schema()
 

@@ -16,8 +16,8 @@ import pytest
 from rancf.cli import main
 from rancf.errors import ScenarioError
 from rancf.scenario import FlexibleBody, PointMass, RigidBody, parse_scenario
-from tests.model.test_scenario import BASE
 from tests.scenario.systems import SLIDER_CRANK, TETHER_3D
+from tests.scenario.test_scenario import BASE
 
 
 def _sc(text: str, **changes):

@@ -5,9 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from rancf.bodies.flexible import Material, Model, PointLoad, Section, Support
 from rancf.errors import ConvergenceError
-from rancf.model.mesh import mesh_line
-from rancf.model.system import Material, Model, PointLoad, Section, Support
+from rancf.mesh.factories import mesh_line
 from rancf.solvers.buckling import linear_buckling
 from rancf.solvers.static import solve_static
 

@@ -1,8 +1,8 @@
 import numpy as np
 import pytest
 
-from rancf.model.mesh import mesh_line
-from rancf.model.system import Material, Model, PointLoad, Section, Support
+from rancf.bodies.flexible import Material, Model, PointLoad, Section, Support
+from rancf.mesh.factories import mesh_line
 from rancf.solvers.dynamic import DynamicOptions, DynamicStatus, integrate
 
 

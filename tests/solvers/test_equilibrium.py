@@ -9,10 +9,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from rancf.bodies.flexible import Material, Model, Section, Support
+from rancf.bodies.reactions import support_reactions
 from rancf.geometry.conic import conic_arc_through
-from rancf.model.mesh import mesh_conic, mesh_line
-from rancf.model.reactions import support_reactions
-from rancf.model.system import Material, Model, Section, Support
+from rancf.mesh.factories import mesh_conic, mesh_line
 from rancf.solvers.dynamic import DynamicOptions, integrate
 from rancf.solvers.equilibrium import EquilibriumProblem
 from rancf.solvers.modal import natural_modes
@@ -193,7 +193,7 @@ def test_a_free_body_under_dead_tension_keeps_only_its_translations_rigid():
     (2 rigid modes removed), but turning it is resisted like a compass needle — the rotation is
     a real mode with ω² = 12 N / (m L) (rigid-body estimate: the lowest flexural mode is ten
     times higher)."""
-    from rancf.model.system import PointLoad
+    from rancf.bodies.flexible import PointLoad
 
     length, stretch = 1.0, 1.0 + 1e-6
     sec, mat = Section.circular(0.01), Material(1000.0, 1e11)

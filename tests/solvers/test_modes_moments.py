@@ -9,11 +9,11 @@ import numpy as np
 import pytest
 import scipy.linalg
 
+from rancf.bodies.flexible import Model
+from rancf.bodies.properties import Material, PointLoad, Section, Support
 from rancf.cli import main
 from rancf.geometry.conic import conic_arc_through
-from rancf.model.mesh import mesh_conic, mesh_line
-from rancf.model.parts import Material, PointLoad, Section, Support
-from rancf.model.system import Model
+from rancf.mesh.factories import mesh_conic, mesh_line
 from rancf.solvers.dynamic import GeneralizedAlpha
 from rancf.solvers.modal import natural_modes, tangent_stiffness
 from rancf.solvers.static import solve_static

@@ -8,11 +8,11 @@ from importlib import resources
 import numpy as np
 import pytest
 
+from rancf.bodies.flexible import Material, Model, PointLoad, Section, Support
+from rancf.bodies.reactions import support_reactions
+from rancf.bodies.section_outputs import SectionSampler
 from rancf.errors import ConvergenceError
-from rancf.model.mesh import mesh_line
-from rancf.model.reactions import support_reactions
-from rancf.model.sections import SectionSampler
-from rancf.model.system import Material, Model, PointLoad, Section, Support
+from rancf.mesh.factories import mesh_line
 from rancf.post.results import system_outputs
 from rancf.scenario import load_scenario
 from rancf.solvers.dynamic import DynamicOptions, integrate

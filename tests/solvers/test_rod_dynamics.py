@@ -13,11 +13,11 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
+from rancf.bodies.flexible import Model, RigidMotion
+from rancf.bodies.motion import angular_momentum
+from rancf.bodies.properties import Material, Section, Support
 from rancf.geometry.conic import conic_arc_through
-from rancf.model.mesh import mesh_conic, mesh_line
-from rancf.model.motion import angular_momentum
-from rancf.model.parts import Material, Section, Support
-from rancf.model.system import Model, RigidMotion
+from rancf.mesh.factories import mesh_conic, mesh_line
 from rancf.solvers.dynamic import DynamicOptions, integrate
 
 SEC = Section.circular(0.02)

@@ -6,10 +6,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from rancf.bodies.flexible import Model
+from rancf.bodies.properties import Material, PointLoad, Section, Support
 from rancf.geometry.conic import conic_arc, conic_arc_through
-from rancf.model.mesh import mesh_conic, mesh_line
-from rancf.model.parts import Material, PointLoad, Section, Support
-from rancf.model.system import Model
+from rancf.mesh.factories import mesh_conic, mesh_line
 from rancf.solvers.dynamic import DynamicOptions, integrate
 from rancf.solvers.modal import natural_modes
 from rancf.solvers.static import solve_static

@@ -1,10 +1,10 @@
 import numpy as np
 import pytest
 
+from rancf.bodies.flexible import Material, Model, PointLoad, Section, Support
 from rancf.errors import ConvergenceError
 from rancf.geometry.conic import conic_arc, conic_arc_through
-from rancf.model.mesh import mesh_conic, mesh_line
-from rancf.model.system import Material, Model, PointLoad, Section, Support
+from rancf.mesh.factories import mesh_conic, mesh_line
 from rancf.solvers.modal import natural_modes
 from rancf.solvers.static import solve_static
 from tests.conftest import EXAMPLE1, EXAMPLE3

@@ -12,8 +12,8 @@ import pytest
 from rancf.cli import main
 from rancf.errors import ScenarioError
 from rancf.sweep.spec import load_sweep
-from tests.model.test_scenario import BASE
 from tests.numbers import assert_rows_match
+from tests.scenario.test_scenario import BASE
 
 SWEEP = """
 base = "pend.toml"

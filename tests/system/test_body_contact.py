@@ -9,10 +9,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from rancf.model.mesh import mesh_line
-from rancf.model.sections import SectionSampler
-from rancf.model.system import Material, Model, PointLoad, Section, Support
-from rancf.model.time_function import TimeFunction
+from rancf.bodies.flexible import Material, Model, PointLoad, Section, Support
+from rancf.bodies.section_outputs import SectionSampler
+from rancf.bodies.time_function import TimeFunction
+from rancf.mesh.factories import mesh_line
 from rancf.solvers.dynamic import DynamicOptions, integrate
 from rancf.system import Obstacle, System, contact_outputs
 
@@ -186,7 +186,7 @@ def test_energy_never_grows_with_rho_inf_one():
 
 def _arc_mesh(radius: float, n: int):
     """A quarter circle of ``radius`` about the origin as ``n`` exact rational elements."""
-    from rancf.model.mesh import mesh_from_arrays
+    from rancf.mesh.mesh import mesh_from_arrays
 
     els = []
     for t0, t1 in zip(np.linspace(0, np.pi / 2, n + 1)[:-1], np.linspace(0, np.pi / 2, n + 1)[1:],
@@ -253,7 +253,7 @@ def test_a_cable_sliding_on_another_decelerates_at_mu_g():
     0.3 between them: B decelerates at mu g (1 %; measured 2.9422 against 2.943 m/s^2) and
     stops after v0 / (mu g)."""
     mu, v0 = 0.3, 0.1
-    from rancf.model.motion import RigidMotion
+    from rancf.bodies.motion import RigidMotion
 
     a = Model(mesh_line([0, R], [1, R], 8), "rancf", Section.circular(R), Material(7850.0, 2e11),
               [Support(0, "pin")], gravity=[0, -G])  # fmt: skip

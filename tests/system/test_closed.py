@@ -7,15 +7,15 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from rancf.bodies.closure import closure_rows
+from rancf.bodies.flexible import Material, Model, PointLoad, RigidMotion, Section, Support
 from rancf.errors import InputError
 from rancf.geometry.ellipse import Ellipse, ellipse_axes
 from rancf.geometry.nurbs import NurbsCurve
 from rancf.kernels import _core
-from rancf.model.analysis import DynamicOptions
-from rancf.model.closure import closure_rows
-from rancf.model.ellipse_mesh import mesh_ellipse
-from rancf.model.nurbs_mesh import mesh_nurbs
-from rancf.model.system import Material, Model, PointLoad, RigidMotion, Section, Support
+from rancf.mesh.ellipse_mesh import mesh_ellipse
+from rancf.mesh.nurbs_mesh import mesh_nurbs
+from rancf.options import DynamicOptions
 from rancf.solvers.dynamic import integrate
 from rancf.solvers.static import solve_static
 from rancf.system import System

@@ -12,8 +12,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from rancf.bodies.section_outputs import SectionSampler
 from rancf.cli import main
-from rancf.model.sections import SectionSampler
 from rancf.scenario import load_scenario
 from rancf.studies.common import example_path
 

@@ -9,11 +9,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from rancf.model.mesh import mesh_from_arrays
-from rancf.model.rigid import PointMass
-from rancf.model.sections import SectionSampler
-from rancf.model.system import Material, Model, Section, Support
-from rancf.model.time_function import TimeFunction
+from rancf.bodies.flexible import Material, Model, Section, Support
+from rancf.bodies.rigid import PointMass
+from rancf.bodies.section_outputs import SectionSampler
+from rancf.bodies.time_function import TimeFunction
+from rancf.mesh.mesh import mesh_from_arrays
 from rancf.solvers.dynamic import DynamicOptions, integrate
 from rancf.system import Joint, Obstacle, System, contact_outputs
 
@@ -145,7 +145,7 @@ def test_atwood_machine_on_a_turning_pulley():
     accelerate at a = (m1 - m2) g / (m1 + m2 + J / R_c^2 + m_rope) within 1 %, and the pulley
     turns with the rope: R_c omega = v.  (Straight elements bend onto the pulley as it turns:
     with 8 elements on the wrap the acceleration is 6 % low, with 16 1.5 %, with 32 0.3 %.)"""
-    from rancf.model.rigid import RigidBody
+    from rancf.bodies.rigid import RigidBody
 
     n_span, n_arc = 12, 32
     ys = np.linspace(-SPAN, 0.0, n_span + 1)

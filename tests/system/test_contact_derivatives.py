@@ -8,9 +8,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from rancf.model.mesh import mesh_line
-from rancf.model.rigid import RigidBody
-from rancf.model.system import Material, Model, Section, Support
+from rancf.bodies.flexible import Material, Model, Section, Support
+from rancf.bodies.rigid import RigidBody
+from rancf.mesh.factories import mesh_line
 from rancf.system import Obstacle, System, contact_outputs
 
 SEC, MAT = Section.circular(0.01), Material(1000.0, 1e7)

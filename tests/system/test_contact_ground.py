@@ -7,8 +7,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from rancf.model.mesh import mesh_line
-from rancf.model.system import Material, Model, Section, Support
+from rancf.bodies.flexible import Material, Model, Section, Support
+from rancf.mesh.factories import mesh_line
 from rancf.solvers.dynamic import DynamicOptions, integrate
 from rancf.solvers.static import solve_static
 from rancf.system import Obstacle, System, contact_history, contact_outputs

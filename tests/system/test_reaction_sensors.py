@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 
 from rancf.cli import main
-from tests.model.test_scenario import BASE
 from tests.scenario.systems import SLIDER_CRANK
+from tests.scenario.test_scenario import BASE
 from tests.test_cli_errors import ROD
 
 

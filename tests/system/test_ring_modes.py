@@ -21,9 +21,9 @@ import sys
 import numpy as np
 import pytest
 
+from rancf.bodies.flexible import Material, Model, Section
 from rancf.geometry.ellipse import Ellipse, ellipse_axes
-from rancf.model.ellipse_mesh import mesh_ellipse
-from rancf.model.system import Material, Model, Section
+from rancf.mesh.ellipse_mesh import mesh_ellipse
 from rancf.solvers.modal import natural_modes
 
 E, RHO, NU, R, RS = 2e11, 7850.0, 0.3, 1.0, 0.01

@@ -8,10 +8,10 @@ import warnings
 import numpy as np
 import pytest
 
-from rancf.model.mesh import mesh_line
-from rancf.model.rigid import PointMass, RigidBody
-from rancf.model.system import Material, Model, PointLoad, Section, Support
-from rancf.model.time_function import TimeFunction
+from rancf.bodies.flexible import Material, Model, PointLoad, Section, Support
+from rancf.bodies.rigid import PointMass, RigidBody
+from rancf.bodies.time_function import TimeFunction
+from rancf.mesh.factories import mesh_line
 from rancf.system import Joint, Load, Spring, System
 
 SEC, MAT = Section.circular(0.01), Material(1000.0, 1e7)
@@ -163,7 +163,7 @@ def test_a_spring_to_ground_is_the_linear_spring_at_zero_length():
     """A spring to ``ground`` sits at its place's reference: zero rest length, where the axial
     law has no direction. It is F = k (x_a - x_b) + c (v_a - v_b): finite at the reference
     (the residual and tangent there were NaN), and exactly that force elsewhere."""
-    from rancf.model.rigid import PointMass
+    from rancf.bodies.rigid import PointMass
 
     k, c = 20.0, 0.5
     s = System({"mass": PointMass(2, 2.0, (0.3, 0.1))}, springs=[Spring(("mass", "ground"), k, c)])
@@ -181,8 +181,8 @@ def test_a_spring_to_ground_is_the_linear_spring_at_zero_length():
 def test_a_rest_length_where_the_places_meet_is_refused():
     """A spring with a rest length > 0 whose places meet at the reference (any spring to
     ``ground``) has no direction at the start: one line names it and says what is allowed."""
+    from rancf.bodies.rigid import PointMass
     from rancf.errors import InputError
-    from rancf.model.rigid import PointMass
 
     with pytest.raises(InputError, match=r"springs\.tie\.length = 0\.3 .*0 where its places meet"):
         System({"mass": PointMass(2, 2.0, (0.3, 0.1))},

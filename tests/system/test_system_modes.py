@@ -10,10 +10,10 @@ from importlib import resources
 import numpy as np
 import pytest
 
+from rancf.bodies.flexible import Material, Model, Section, Support
+from rancf.bodies.rigid import PointMass, RigidBody
 from rancf.cli import main
-from rancf.model.mesh import mesh_line
-from rancf.model.rigid import PointMass, RigidBody
-from rancf.model.system import Material, Model, Section, Support
+from rancf.mesh.factories import mesh_line
 from rancf.scenario import Scenario
 from rancf.solvers.modal import natural_modes
 from rancf.solvers.static import solve_static

@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from rancf.model.mesh import mesh_line
-from rancf.model.rigid import PointMass, RigidBody, quaternion_from_matrix
-from rancf.model.system import Material, Model, Section
+from rancf.bodies.flexible import Material, Model, Section
+from rancf.bodies.rigid import PointMass, RigidBody, quaternion_from_matrix
+from rancf.mesh.factories import mesh_line
 from rancf.system import Joint, System
 
 SEC, MAT = Section.circular(0.01), Material(1000.0, 1e7)

@@ -13,11 +13,9 @@ atomically, with the umask's permissions (:mod:`rancf.atomic`).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from pathlib import Path
 
-from numpy.typing import ArrayLike
-
+from rancf.cad.curve import CadCurve, file_curve
 from rancf.errors import InputError
 from rancf.geometry.nurbs import NurbsCurve
 
@@ -32,37 +30,6 @@ __all__ = [
 
 READ_SUFFIXES = (".json", ".dxf", ".step", ".stp", ".igs", ".iges")
 WRITE_SUFFIXES = READ_SUFFIXES
-
-
-@dataclass(frozen=True)
-class CadCurve:
-    """One curve of a CAD file.
-
-    Attributes
-    ----------
-    index : int
-        Position in the file (0-based, file order).
-    name : str
-        Its name in the file ("" when the format or the file gives none).
-    curve : NurbsCurve
-        Control points as stored (3 coordinates for DXF, STEP and IGES).
-    """
-
-    index: int
-    name: str
-    curve: NurbsCurve
-
-
-def file_curve(
-    path: Path, index: int, degree: int, knots: ArrayLike, points: ArrayLike, weights: ArrayLike
-) -> NurbsCurve:
-    """The NURBS curve ``index`` of the file ``path``; a curve the file stores wrongly (knots,
-    weights) raises the error of :class:`NurbsCurve` with the file and the curve named."""
-    try:
-        return NurbsCurve(degree, knots, points, weights)
-    except InputError as exc:  # every InputError subclass takes (parameter, value, allowed)
-        where = f"{path}: curve {index}: {exc.parameter}"
-        raise type(exc)(where, exc.value, exc.allowed) from None
 
 
 def _suffix(path: Path, allowed: tuple[str, ...], what: str) -> str:

@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from rancf.atomic import atomic_path
-from rancf.cad import CadCurve, file_curve
+from rancf.cad.curve import CadCurve, file_curve
 from rancf.errors import InputError, shorten
 from rancf.geometry.nurbs import NurbsCurve
 

@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 
 from rancf.atomic import atomic_write
-from rancf.cad import CadCurve, file_curve
+from rancf.cad.curve import CadCurve, file_curve
 from rancf.errors import InputError, shorten
 from rancf.geometry.nurbs import NurbsCurve
 

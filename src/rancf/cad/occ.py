@@ -23,7 +23,7 @@ from typing import Any, Literal
 import numpy as np
 
 from rancf.atomic import atomic_write
-from rancf.cad import CadCurve, file_curve
+from rancf.cad.curve import CadCurve, file_curve
 from rancf.errors import InputError
 from rancf.extras import require
 from rancf.geometry.nurbs import NurbsCurve

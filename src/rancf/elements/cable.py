@@ -2,7 +2,7 @@
 
 The cable element interpolates ``r(ξ) = S(ξ) e`` with nodal coordinates
 ``e = [rA, rA_x, rB, rB_x]`` (each a ``dim``-vector) and ``S = [N0 I, N1 I, N2 I, N3 I]``.
-For the rational element (conic-section paper eqs. 17–22; math note sec. 3)
+For the rational element (conic-section paper eqs. 17–22; docs/derivations/cable.md sec. 3)
 
     N0 = R0 + R1,  N1 = (l w0 / (3 w1)) R1,  N2 = R2 + R3,  N3 = -(l w3 / (3 w2)) R2
 
@@ -43,7 +43,7 @@ def axial_strain(d1: ArrayLike, d10: ArrayLike) -> NDArray[np.float64]:
     against the reference tangents ``d10`` (coordinates on the last axis; broadcast).
 
     The strain measure of every element (cable and rod centrelines; a beam's chords), as the
-    compiled kernels use it (math note sec. 3).
+    compiled kernels use it (docs/derivations/cable.md sec. 3).
     """
     d1, d10 = np.asarray(d1, dtype=float), np.asarray(d10, dtype=float)
     g, g0 = np.sum(d1 * d1, axis=-1), np.sum(d10 * d10, axis=-1)
@@ -60,7 +60,8 @@ def _as_weights(weights: ArrayLike) -> NDArray[np.float64]:
 
 
 def rational_basis(weights: ArrayLike, xi: ArrayLike) -> list[NDArray[np.float64]]:
-    """Rational cubic basis ``R_i`` and its first two derivatives (math note sec. 3).
+    """Rational cubic basis ``R_i`` and its first two derivatives (docs/derivations/cable.md sec.
+    3).
 
     ``R = w B / D``, ``R' = (w B' - R D') / D``, ``R'' = (w B'' - 2 R' D' - R D'') / D``,
     ``D = Σ w_j B_j``.
@@ -136,7 +137,8 @@ def ancf_shape_functions(scale: float, xi: ArrayLike) -> NDArray[np.float64]:
 
 
 def control_to_nodal_matrix(weights: ArrayLike, scale: float) -> NDArray[np.float64]:
-    """4×4 matrix ``T`` with ``e = T Q`` (rows ``rA, rA_x, rB, rB_x``; math note sec. 3).
+    """4×4 matrix ``T`` with ``e = T Q`` (rows ``rA, rA_x, rB, rB_x``; docs/derivations/cable.md
+    sec. 3).
 
     ``rA = Q0``, ``rA_x = 3 (w1/w0)(Q1 - Q0)/l``, ``rB = Q3``, ``rB_x = 3 (w2/w3)(Q3 - Q2)/l``.
     Acts on each coordinate; use ``np.kron(T, I_dim)`` for flattened nodal vectors.

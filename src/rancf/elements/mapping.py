@@ -1,6 +1,6 @@
 """The mapping factor K: standard RANCF conic-section elements, gradient ratio and Kopt.
 
-Conic-section paper sec. 4 (eqs. 27–29); math note sec. 2 and 4.
+Conic-section paper sec. 4 (eqs. 27–29); docs/derivations/cable.md sec. 2 and 4.
 """
 
 from __future__ import annotations

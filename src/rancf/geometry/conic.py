@@ -1,10 +1,12 @@
 """Conic arcs in standard quadratic rational form, built from intuitive parameters.
 
 A conic arc is ``r(u) = [(1-u)^2 P0 + 2u(1-u) ω P1 + u^2 P2] / [(1-u)^2 + 2u(1-u) ω + u^2]``,
-``u ∈ [0, 1]`` (conic-section paper, eq. 13 / 23; math note sec. 1), with ``P0``, ``P2`` the end
+``u ∈ [0, 1]`` (conic-section paper, eq. 13 / 23; docs/derivations/cable.md sec. 1), with ``P0``,
+``P2`` the end
 points, ``P1`` the intersection of the end tangents and ``ω > 0`` the single interior weight.
 
-The cubic forms with mapping factor ``K`` (paper sec. 2.2 and 4.2, eq. 15; math note sec. 2) are
+The cubic forms with mapping factor ``K`` (paper sec. 2.2 and 4.2, eq. 15;
+docs/derivations/cable.md sec. 2) are
 produced by :meth:`Conic.cubic`. This module holds the constructors from intuitive parameters;
 the class is defined in :mod:`rancf.geometry.conic_curve` (and importable from here), the
 tangent intersection, weight and mapping-factor helpers in :mod:`rancf.geometry.conic_params`.
@@ -126,7 +128,7 @@ def circular_arc(chord: float, angle_deg: float) -> Conic:
 def conic_arc_through(
     start: ArrayLike, end: ArrayLike, angles_deg: ArrayLike, point: ArrayLike
 ) -> Conic:
-    """Conic arc in global 2D or 3D coordinates (math note sec. 1, rigid placement).
+    """Conic arc in global 2D or 3D coordinates (docs/derivations/cable.md sec. 1, rigid placement).
 
     The start, end and interior point fix the plane and the side of the chord the arc lies on;
     the local frame has ``x`` along the chord and ``y`` towards the interior point.  In 2D this

@@ -231,7 +231,7 @@ class Conic:
 
     # ----------------------------------------------------------------- derived arcs
     def sub_arc(self, ua: float, ub: float) -> Conic:
-        """The part ``u ∈ [ua, ub]`` as a conic in standard form (math note sec. 6).
+        """The part ``u ∈ [ua, ub]`` as a conic in standard form (docs/derivations/cable.md sec. 6).
 
         Homogeneous control points ``b(ua,ua), b(ua,ub), b(ub,ub)`` by blossoming, then
         ``ω' = ω_mid / sqrt(ω_a ω_b)``.
@@ -263,7 +263,8 @@ class Conic:
         return Conic(rot @ self.p0 + c, rot @ self.p1 + c, rot @ self.p2 + c, self.omega)
 
     def cubic(self, k: float) -> RationalBezier:
-        """Standard cubic rational Bézier form with mapping factor ``K`` (math note sec. 2).
+        """Standard cubic rational Bézier form with mapping factor ``K`` (docs/derivations/cable.md
+        sec. 2).
 
         ``Q1 = ((1-K) P0 + 2ωK P1) / ((1-K) + 2ωK)``,
         ``Q2 = (2ω(1-K) P1 + K P2) / (2ω(1-K) + K)``, ``ρ = (K / (1-K))^(1/3)``,

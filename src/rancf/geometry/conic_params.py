@@ -2,7 +2,8 @@
 the interior weight, and the mapping factor ``K`` with its parameter maps.
 
 The standard quadratic rational form and its cubic forms are described in
-:mod:`rancf.geometry.conic` (paper eq. 6, 12 and 15; math note sec. 1 and 2). These functions
+:mod:`rancf.geometry.conic` (paper eq. 6, 12 and 15; docs/derivations/cable.md sec. 1 and 2). These
+functions
 serve the :class:`~rancf.geometry.conic_curve.Conic` class, the arc constructors in
 :mod:`rancf.geometry.conic`, the element mapping and the meshes.
 """
@@ -51,7 +52,8 @@ def cross2(a: NDArray, b: NDArray) -> NDArray:
 
 
 def tangent_intersection(chord: float, theta0: float, theta1: float) -> NDArray[np.float64]:
-    """``P1``, the meeting point of the end tangents in the local frame (math note sec. 1).
+    """``P1``, the meeting point of the end tangents in the local frame (docs/derivations/cable.md
+    sec. 1).
 
     ``P1 = (L tanθ1 / (tanθ0 + tanθ1), L tanθ0 tanθ1 / (tanθ0 + tanθ1))`` with angles in
     radians.
@@ -99,13 +101,15 @@ def check_mapping_factor(k: float, name: str = "k") -> float:
 
 
 def mapping_rho(k: float) -> float:
-    """Möbius factor ``ρ = (K / (1 - K))^(1/3)`` of the mapping factor (math note sec. 2)."""
+    """Möbius factor ``ρ = (K / (1 - K))^(1/3)`` of the mapping factor (docs/derivations/cable.md
+    sec. 2)."""
     k = check_mapping_factor(k)
     return float(np.cbrt(k / (1.0 - k)))
 
 
 def quadratic_parameter(xi: ArrayLike, k: float) -> NDArray[np.float64]:
-    """``u(ξ) = ρ ξ / (1 - ξ + ρ ξ)`` for mapping factor ``K`` (math note sec. 2)."""
+    """``u(ξ) = ρ ξ / (1 - ξ + ρ ξ)`` for mapping factor ``K`` (docs/derivations/cable.md sec.
+    2)."""
     rho = mapping_rho(k)
     xi = np.asarray(xi, dtype=float)
     return rho * xi / (1.0 - xi + rho * xi)

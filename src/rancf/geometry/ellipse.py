@@ -6,7 +6,7 @@ spatial) is the affine image of the unit circle, so its arc between ``t_a`` and 
 (``t_b - t_a < π``) is the image of a circular arc of half angle ``h = (t_b - t_a) / 2``: a conic
 in standard form with end points ``r(t_a)``, ``r(t_b)``, tangent intersection
 ``c + (a cos m e1 + b sin m e2) / cos h`` (``m`` the mid parameter) and weight ``ω = cos h``
-(affine maps keep rational forms; ``rancf-math.md`` sec. 1).  Every sub-arc is exact.
+(affine maps keep rational forms; ``docs/derivations/cable.md`` sec. 1).  Every sub-arc is exact.
 
 Arc length: ``ds = sqrt(a² sin² t + b² cos² t) dt``.  With ``A = max(a, b)`` and
 ``m = 1 - min(a, b)² / A²`` it is ``A sqrt(1 - m cos² t)`` if ``a ≥ b`` and ``A sqrt(1 - m sin² t)``

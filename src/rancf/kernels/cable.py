@@ -1,6 +1,7 @@
 """Cable elements (ANCF and RANCF): quadrature data, constant mass and gravity.
 
-Conic-section paper sec. 5 (eqs. 34–41); math note sec. 6.  The elastic forces, tangent stiffness
+Conic-section paper sec. 5 (eqs. 34–41); docs/derivations/cable.md sec. 6.  The elastic forces,
+tangent stiffness
 and strain energy live once, in the compiled core (``src/cpp/cable.cpp``): with ``a = r_ξ`` and
 ``b = r_ξξ`` at a Gauss point and the reference ``a0`` (``J0 = |a0|``, ``s0 = J0²``),
 

@@ -1,6 +1,6 @@
 """Spatial Kirchhoff rods with torsion on the RANCF centerline: data, triads, mass and gravity.
 
-The element (``src/cpp/rod_kernel.hpp``, derivation in ``docs/rod-derivation.md``) keeps the
+The element (``src/cpp/rod_kernel.hpp``, derivation in ``docs/derivations/rod-kernel.md``) keeps the
 cable's exact centerline — nodal ``r``, ``r_x``, weights and gradient scales — and adds one twist
 ``φ`` per node (7 coordinates per node: ``r, r_x, φ``).  Material triads follow Meier, Popp & Wall
 (2014): node ``N`` has the triad ``m1 = cos φ u + sin φ t × u`` with ``u = SR(t_ref → t) m1_ref``
@@ -14,7 +14,7 @@ with the cable's Green–Lagrange ``ε``, the material curvatures ``K1`` (torsio
 ``K3 = κ·m2`` and ``K⁰`` evaluated on the reference with the reference triads, so any curved
 reference is stress free.  This module prepares the data the core takes and holds, in NumPy,
 the constant translational mass (the cable's) and gravity.  The rotary inertia depends on the
-configuration and lives in the core (``src/cpp/rod_inertia.hpp``, ``docs/rod-derivation.md``
+configuration and lives in the core (``src/cpp/rod_inertia.hpp``, ``docs/derivations/rod-kernel.md``
 §11): kinetic energy ``½ ∫ [ρ I_p s² + ρ I |ṫ|²] |r0'| dξ`` with the exact spin ``s = ω·t`` of the
 material frame (``I_p = I_y + I_z``; the bending part ``ρ I`` only with
 ``section.rotary_inertia = "full"``).
@@ -55,7 +55,7 @@ def initial_triads(
     orientation: ArrayLike | None = None,
     closed_arc: NDArray | None = None,
 ) -> NDArray[np.float64]:
-    """Reference directors ``m1`` of every node, ``(n_nodes, 3)`` (rod-math §2).
+    """Reference directors ``m1`` of every node, ``(n_nodes, 3)`` (docs/derivations/rod.md §2).
 
     ``orientation`` (projected normal to the first tangent) fixes ``m1`` at the first node; without
     it a planar centerline gets ``m1 = e × t`` with ``e`` the plane normal (so ``m2 = e``, the
@@ -164,7 +164,7 @@ class RodKernel:
         """Constant element mass matrices ``(n_el, 14, 14)``: the cable's translation only.
 
         The rotary inertia depends on the configuration (the core's ``inertia``; the full mass
-        matrix at a configuration is :meth:`rancf.model.system.Model.mass_matrix`).
+        matrix at a configuration is :meth:`rancf.bodies.flexible.Model.mass_matrix`).
         """
         m = np.zeros((self.n_el, 14, 14))
         m[:, _CABLE_IDX[:, None], _CABLE_IDX[None, :]] = self.cable.mass_matrices()

@@ -6,12 +6,12 @@ and an entry of ``summary.json``'s ``"warnings"`` list.
 * The section's radius (``sqrt(A / π)`` for a section given by its area) exceeds
   :data:`RADIUS_LIMIT` (a tenth) of the body's reference length: e.g. 10 m meant as 10 mm.
 * A curve whose ends touch at a kink: it is an open curve (its ends are not joined), which a
-  user who meant a ring should know (:attr:`rancf.model.mesh.CableMesh.notes`).
+  user who meant a ring should know (:attr:`rancf.mesh.mesh.CableMesh.notes`).
 
 The axial strain is the elements' own Green–Lagrange measure at the section sample points
-(:class:`rancf.model.sections.SectionSampler`: the compiled core's strain, at ``ξ = 0, 1/4, 1/2,
-3/4`` of every element and the last node); a run's outputs track it as they are written
-(:class:`rancf.system.outputs.SystemOutputs`), so checking it costs nothing extra.
+(:class:`rancf.bodies.section_outputs.SectionSampler`: the compiled core's strain, at
+``ξ = 0, 1/4, 1/2, 3/4`` of every element and the last node); a run's outputs track it as they
+are written (:class:`rancf.system.outputs.SystemOutputs`), so checking it costs nothing extra.
 """
 
 from __future__ import annotations
@@ -19,8 +19,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from rancf.model.sections import SectionSampler
-from rancf.model.system import Model
+from rancf.bodies.flexible import Model
+from rancf.bodies.section_outputs import SectionSampler
 from rancf.system import System
 
 __all__ = [
@@ -41,7 +41,7 @@ RADIUS_LIMIT = 0.1
 
 
 def section_warnings(model: Model | System) -> list[str]:
-    """The geometry's remarks (:attr:`rancf.model.mesh.CableMesh.notes`, e.g. ends that touch at
+    """The geometry's remarks (:attr:`rancf.mesh.mesh.CableMesh.notes`, e.g. ends that touch at
     a kink: an open curve) and a warning if the section's radius exceeds a tenth of the body's
     reference length (every flexible body of a system, named)."""
     if isinstance(model, System):
@@ -130,7 +130,7 @@ def run_warnings(
 
 def largest_strain(model: Model, t: NDArray, q: NDArray) -> tuple[float, float]:
     """The largest ``|ε|`` of the states ``q (n_t, n)`` at the section sample points (the
-    elements' own strain, :class:`~rancf.model.sections.SectionSampler`) and its ``t``."""
+    elements' own strain, :class:`~rancf.bodies.section_outputs.SectionSampler`) and its ``t``."""
     sampler = SectionSampler(model)
     best = (0.0, 0.0)
     for tt, qq in zip(t, q, strict=True):

@@ -9,8 +9,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rancf.atomic import FileSet, atomic_path
+from rancf.bodies.flexible import Model
 from rancf.elements.cable import cable_shape_functions
-from rancf.model.system import Model
 
 __all__ = ["centerline", "plot_modes", "pyplot", "save_figure"]
 

@@ -24,7 +24,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rancf.atomic import FileSet
-from rancf.model.system import Model
+from rancf.bodies.flexible import Model
 from rancf.post.checks import run_warnings
 from rancf.post.run_files import reader_metadata, write_history_files
 from rancf.solvers.dynamic import DynamicResult, as_system

@@ -90,7 +90,7 @@ class RunData:
         A static load path (``rancf static --out``): ``t`` holds the load factor ``λ``.
     along : ndarray (n_t, n_points, n_names) or None
         Section quantities at ``ξ = 0, 1/4, 1/2, 3/4`` of every element and the last node
-        (:mod:`rancf.model.sections`; None for older runs).
+        (:mod:`rancf.bodies.section_outputs`; None for older runs).
     section_names : list of str
         Their names.
     """

@@ -33,8 +33,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rancf.atomic import FileSet
-from rancf.model.rigid import PointMass
-from rancf.model.system import Model
+from rancf.bodies.flexible import Model
+from rancf.bodies.rigid import PointMass
 from rancf.system.contact import obstacle_records
 from rancf.system.outputs import SystemOutputs
 

@@ -5,10 +5,10 @@ Each ``.vtu`` holds the densely sampled centreline (:func:`rancf.post.run_data.s
 as a polyline of ``line`` cells with point data ``displacement``, ``velocity`` (3 components; zero
 ``z`` for planar runs), ``axial_strain``, ``curvature``, ``radius`` (for ParaView's Tube filter,
 "Vary Radius: By Scalar" or a constant radius), ``element`` and the section quantities of the run
-(:mod:`rancf.model.sections`: ``axial_force``, ``bending_moment``, ...; stored at ``ξ = 0, 1/4,
-1/2, 3/4, 1`` of every element, interpolated linearly in ``ξ`` within the element; their names
-prefixed ``section_``, so the stored ``section_strain`` and ``section_curvature`` stand beside
-the sampled ``axial_strain`` and ``curvature``).
+(:mod:`rancf.bodies.section_outputs`: ``axial_force``, ``bending_moment``, ...; stored at
+``ξ = 0, 1/4, 1/2, 3/4, 1`` of every element, interpolated linearly in ``ξ`` within the element;
+their names prefixed ``section_``, so the stored ``section_strain`` and ``section_curvature``
+stand beside the sampled ``axial_strain`` and ``curvature``).
 
 Rod runs also get ``<run>_nodes.pvd`` with one ``.vtu`` per stored time holding the nodes as
 ``vertex`` cells with point data ``twist`` (the nodal ``φ``), ``tangent`` and the material frame

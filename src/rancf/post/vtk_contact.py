@@ -1,4 +1,4 @@
-"""ParaView output of contact (issue 20): ``contact_NNNNN.vtu`` per stored time and
+"""ParaView output of contact: ``contact_NNNNN.vtu`` per stored time and
 ``contact.pvd``, one ``vertex`` per obstacle at its point (a plane's point, a cylinder's or
 sphere's centre; moving with the rigid body that carries it) with point data ``normal_force``
 and ``friction_force`` (3 components: the force the obstacle exerts on the bodies [N]),

@@ -12,7 +12,7 @@ model builder in :mod:`~rancf.scenario.build` and the JSON Schema in
 :mod:`~rancf.scenario.schema`.
 """
 
-from rancf.model.time_function import TimeFunction
+from rancf.bodies.time_function import TimeFunction
 from rancf.scenario.bodies import FlexibleBody, PointMass, RigidBody
 from rancf.scenario.geometry import (
     CadGeometry,

@@ -17,7 +17,8 @@ import numpy as np
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Discriminator, Field, model_validator
 from pydantic_core import PydanticCustomError
 
-from rancf.errors import MAX_SHOWN, shorten
+from rancf.errors import shorten
+from rancf.scenario.messages import scenario_error, show
 
 __all__ = [
     "Table",
@@ -41,19 +42,6 @@ __all__ = [
     "PlaceValue",
     "PlacePair",
 ]
-
-
-def show(value: Any) -> str:
-    """A value as an error message shows it: ``repr``, at most :data:`MAX_SHOWN` characters, an
-    integer of hundreds of digits by its number of digits."""
-    if isinstance(value, int) and not isinstance(value, bool) and abs(value) >= 10**MAX_SHOWN:
-        return f"an integer of {math.floor(math.log10(abs(value))) + 1} digits"
-    if isinstance(value, np.ndarray):
-        value = value.tolist()
-    try:
-        return shorten(repr(value))
-    except RecursionError:
-        return f"a {type(value).__name__} nested too deeply to show"
 
 
 def fail(key: str, problem: str) -> PydanticCustomError:
@@ -109,8 +97,6 @@ class Table(BaseModel):
         """Validate ``data`` (keys as in a file; nested tables as models or dictionaries);
         problems raise :class:`~rancf.errors.ScenarioError` naming ``<ClassName>`` and the key."""
         from pydantic import ValidationError
-
-        from rancf.scenario.messages import scenario_error
 
         try:
             super().__init__(**data)

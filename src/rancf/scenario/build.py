@@ -19,8 +19,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from rancf.bodies.flexible import Material, Model, PointLoad, RigidMotion, Section, Support
 from rancf.errors import ConvergenceError, InputError, ScenarioError
-from rancf.model.system import Material, Model, PointLoad, RigidMotion, Section, Support
 from rancf.scenario.geometry import MAX_ELEMENTS, CadGeometry, ConicGeometry, NurbsGeometry
 from rancf.scenario.sensors import SYSTEM_SENSOR_KINDS
 
@@ -80,8 +80,8 @@ def _value(v: Any) -> str:
 def _mesh(path: str, g: Any, m: MeshTable, prefix: str) -> Any:
     from rancf.geometry.conic import conic_arc_through
     from rancf.geometry.nurbs import NurbsCurve
-    from rancf.model.mesh import mesh_conic, mesh_line
-    from rancf.model.nurbs_mesh import mesh_nurbs
+    from rancf.mesh.factories import mesh_conic, mesh_line
+    from rancf.mesh.nurbs_mesh import mesh_nurbs
 
     if g.kind == "conic":
         conic = conic_arc_through(g.start, g.end, g.angles_deg, g.point)
@@ -89,11 +89,11 @@ def _mesh(path: str, g: Any, m: MeshTable, prefix: str) -> Any:
     if g.kind == "line":
         return mesh_line(g.start, g.end, m.elements)
     if g.kind == "ellipse":
-        from rancf.model.ellipse_mesh import mesh_ellipse
+        from rancf.mesh.ellipse_mesh import mesh_ellipse
 
         return mesh_ellipse(g.ellipse(), m.elements, m.k, m.spacing, g.start_deg)
     if isinstance(g, CadGeometry):
-        from rancf.model.cad_geometry import mesh_curve_chain
+        from rancf.mesh.cad_geometry import mesh_curve_chain
 
         return mesh_curve_chain(g.curves, g.labels, m.elements)
     pts = np.array(g.control_points)
@@ -226,7 +226,7 @@ def flexible_model(
 
 
 def section_of(s: Any) -> Section:
-    """The :class:`~rancf.model.system.Section` of a ``[section]`` table."""
+    """The :class:`~rancf.bodies.flexible.Section` of a ``[section]`` table."""
     if s.radius is not None:
         section = Section.circular(s.radius)
         section = replace(section, torsion_constant=s.torsion_constant)

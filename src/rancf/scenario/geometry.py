@@ -174,7 +174,7 @@ class NurbsGeometry(_Geometry):
 
 class EllipseGeometry(_Geometry):
     """A full ellipse (a circle when ``a = b``): a closed curve, meshed exactly with conic-section
-    elements (:func:`rancf.model.ellipse_mesh.mesh_ellipse`)."""
+    elements (:func:`rancf.mesh.ellipse_mesh.mesh_ellipse`)."""
 
     KIND: ClassVar[str] = "ellipse"
     kind: Literal["ellipse"] = Field(description="a full ellipse (closed: a ring)")
@@ -241,7 +241,7 @@ def _curve_item(v: Any) -> Any:
 
 class CadGeometry(_Geometry):
     """Curves of a CAD file (STEP, IGES, DXF, geomdl JSON) joined into one tangent-continuous
-    chain (:mod:`rancf.model.cad_geometry`)."""
+    chain (:mod:`rancf.mesh.cad_geometry`)."""
 
     KIND: ClassVar[str] = "cad"
     kind: Literal["cad"] = Field(description="curves of a CAD file")
@@ -259,7 +259,7 @@ class CadGeometry(_Geometry):
 
     @model_validator(mode="after")
     def _read(self, info: ValidationInfo) -> CadGeometry:
-        from rancf.model.cad_geometry import chain_segments, select_cad_curves
+        from rancf.mesh.cad_geometry import chain_segments, select_cad_curves
 
         path = str((info.context or {}).get("path", "<scenario>"))
         base = Path(path).parent if not path.startswith("<") else Path.cwd()

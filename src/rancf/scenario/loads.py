@@ -1,7 +1,7 @@
 """Time functions, ``[[supports]]``, ``[loads]`` (gravity, ``[[loads.point]]``), ``[damping]``,
 ``[[initial_velocity]]`` and ``[initial_motion]``.
 
-A TIME_FUNCTION (:class:`~rancf.model.time_function.TimeFunction`, equations T.1–T.5) is written
+A TIME_FUNCTION (:class:`~rancf.bodies.time_function.TimeFunction`, equations T.1–T.5) is written
 as a number (or a vector where the key is a vector: a support's ``motion``), or as a table with
 one of the keys ``table``, ``ramp``, ``harmonic`` or ``spin_up``; in Python also a
 ``TimeFunction`` or any callable ``f(t)``.
@@ -15,7 +15,7 @@ Rules besides the types (each violation names its key):
   ``frequency_hz`` (``sin(2π f t)``), not both.
 * ``[initial_motion]``: ``velocity`` and/or ``angular_velocity`` (3 numbers in 3D, one in 2D)
   and ``about`` (default the origin): the rigid-body velocity field ``v = velocity + ω × (x −
-  about)`` (:mod:`rancf.model.motion`).
+  about)`` (:mod:`rancf.bodies.motion`).
 """
 
 from __future__ import annotations
@@ -25,8 +25,8 @@ from typing import Annotated, Any, Literal
 from pydantic import Field, PlainSerializer, PlainValidator, Tag, model_validator
 from pydantic.json_schema import SkipJsonSchema
 
+from rancf.bodies.time_function import TimeFunction
 from rancf.errors import InputError
-from rancf.model.time_function import TimeFunction
 from rancf.scenario.base import (
     Flag,
     KindOf,
@@ -172,7 +172,7 @@ def _time_kind(v: Any) -> str | None:
 
 
 #: A TIME_FUNCTION value: a number, a vector, one of the function tables, or (Python) a
-#: :class:`~rancf.model.time_function.TimeFunction` or a callable.
+#: :class:`~rancf.bodies.time_function.TimeFunction` or a callable.
 TimeFunctionValue = Annotated[
     Annotated[Number, Tag("[number]")]
     | Annotated[vector(1, 2, 3), Tag("[vector]")]
@@ -197,7 +197,7 @@ TimeFunctionValue = Annotated[
 
 
 def time_function(v: Any) -> TimeFunction:
-    """The :class:`~rancf.model.time_function.TimeFunction` of a validated TIME_FUNCTION."""
+    """The :class:`~rancf.bodies.time_function.TimeFunction` of a validated TIME_FUNCTION."""
     if isinstance(v, TimeFunction):
         return v
     if isinstance(v, int | float | list):

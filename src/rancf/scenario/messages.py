@@ -3,21 +3,36 @@
 A :class:`pydantic.ValidationError` lists every problem with its location, a tuple such as
 ``("geometry", "[conic]", "angles_deg", 1)``: keys, list indices and the tags of the unions
 (``"[conic]"``: which kind of geometry was tried).  The first problem becomes the error: its
-location without the tags, plus the key a table's own check named (:func:`~.base.fail`), spelled
+location without the tags, plus the key a table's own check named
+(:func:`rancf.scenario.base.fail`), spelled
 as the file has it (``geometry.angles_deg[1]``, ``loads.point[0].force``, ``bodies[1].mass``),
 and the problem in words with the value received (``must be > 0, got -1.0``).
 """
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
+import numpy as np
 from pydantic import ValidationError
 
-from rancf.errors import ScenarioError
-from rancf.scenario.base import show
+from rancf.errors import MAX_SHOWN, ScenarioError, shorten
 
-__all__ = ["scenario_error", "key_path"]
+__all__ = ["scenario_error", "key_path", "show"]
+
+def show(value: Any) -> str:
+    """A value as an error message shows it: ``repr``, at most :data:`MAX_SHOWN` characters, an
+    integer of hundreds of digits by its number of digits."""
+    if isinstance(value, int) and not isinstance(value, bool) and abs(value) >= 10**MAX_SHOWN:
+        return f"an integer of {math.floor(math.log10(abs(value))) + 1} digits"
+    if isinstance(value, np.ndarray):
+        value = value.tolist()
+    try:
+        return shorten(repr(value))
+    except RecursionError:
+        return f"a {type(value).__name__} nested too deeply to show"
+
 
 #: Tables that are required at the top of a one-body file (a missing one is a "table").
 _TOP_TABLES = ("geometry", "mesh", "section", "material")

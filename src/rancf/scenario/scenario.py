@@ -40,8 +40,8 @@ from rancf.scenario.sensors import Sensor, SensorTable
 from rancf.scenario.solver import ModesTable, SolverTable
 
 if TYPE_CHECKING:
-    from rancf.model.analysis import DynamicOptions
-    from rancf.model.system import Model
+    from rancf.bodies.flexible import Model
+    from rancf.options import DynamicOptions
     from rancf.scenario.places import ResolvedPlace
     from rancf.system import System
 
@@ -193,7 +193,7 @@ class Scenario(Table):
         return None
 
     def dynamic_options(self) -> DynamicOptions:
-        """:class:`~rancf.model.analysis.DynamicOptions` of the ``[solver]`` table."""
+        """:class:`~rancf.options.DynamicOptions` of the ``[solver]`` table."""
         return self.solver.dynamic_options()
 
     def build_model(self) -> Model:
@@ -368,27 +368,14 @@ def _read_toml(p: Path) -> dict[str, Any]:
 
 
 def _write_atomic(path: Path, text: str) -> None:
-    """Write ``text`` through a temporary file beside ``path`` and a rename, with the mode a new
-    file gets under the umask; errors name the file."""
-    import os
-    import tempfile
+    """Write ``text`` atomically with the umask's mode (:func:`rancf.atomic.atomic_write`);
+    errors name the file."""
+    from rancf.atomic import atomic_write
 
-    mask = os.umask(0)
-    os.umask(mask)
     try:
-        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
+        atomic_write(path, text)
     except OSError as exc:
         raise ScenarioError(str(path), "file", f"cannot be written: {exc.strerror}") from None
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as fh:
-            fh.write(text)
-        os.chmod(tmp, 0o666 & ~mask)
-        os.replace(tmp, path)
-    except OSError as exc:
-        raise ScenarioError(str(path), "file", f"cannot be written: {exc.strerror}") from None
-    finally:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
 
 
 def load_scenario(path: str | Path) -> Scenario:

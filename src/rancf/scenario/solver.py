@@ -1,6 +1,6 @@
 """``[solver]`` and ``[modes]``: the analyses' settings.
 
-The ``[solver]`` table is also checked as :class:`~rancf.model.analysis.DynamicOptions` (whose
+The ``[solver]`` table is also checked as :class:`~rancf.options.DynamicOptions` (whose
 own rules, e.g. ``step <= t_end`` and ``min_step <= step``, name the key); its defaults are the
 Python API's (a test compares them).
 """
@@ -12,11 +12,11 @@ from typing import TYPE_CHECKING, Literal
 from pydantic import Field, model_validator
 
 from rancf.errors import InputError
-from rancf.model.analysis import MAX_LOAD_STEPS, MAX_NEWTON
+from rancf.options import MAX_LOAD_STEPS, MAX_NEWTON
 from rancf.scenario.base import Flag, Positive, Table, fail, integer, number, show
 
 if TYPE_CHECKING:
-    from rancf.model.analysis import DynamicOptions
+    from rancf.options import DynamicOptions
 
 __all__ = ["SolverTable", "ModesTable"]
 
@@ -77,8 +77,8 @@ class SolverTable(Table):
         return self
 
     def dynamic_options(self) -> DynamicOptions:
-        """The :class:`~rancf.model.analysis.DynamicOptions` of this table."""
-        from rancf.model.analysis import DynamicOptions
+        """The :class:`~rancf.options.DynamicOptions` of this table."""
+        from rancf.options import DynamicOptions
 
         return DynamicOptions(**{k: getattr(self, k) for k in _DYNAMIC_KEYS})
 

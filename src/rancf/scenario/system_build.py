@@ -3,11 +3,11 @@
 Every scenario is a system: a file without ``[[bodies]]`` is one flexible body named ``body``
 (its supports, loads and sensors written as today); with ``[[bodies]]``:
 
-* a flexible body becomes a :class:`~rancf.model.system.Model` (keys ``bodies[i].…``) carrying
+* a flexible body becomes a :class:`~rancf.bodies.flexible.Model` (keys ``bodies[i].…``) carrying
   the supports, point loads and initial velocities at its nodes, ``[loads] gravity`` and the
   ``[damping]``;
-* a rigid body a :class:`~rancf.model.rigid.RigidBody` (``orientation_deg`` in degrees in 2D;
-  the rotation matrix's rows in 3D), a point mass a :class:`~rancf.model.rigid.PointMass`;
+* a rigid body a :class:`~rancf.bodies.rigid.RigidBody` (``orientation_deg`` in degrees in 2D;
+  the rotation matrix's rows in 3D), a point mass a :class:`~rancf.bodies.rigid.PointMass`;
 * a support at a rigid body's place or a point mass is a joint to the ground: a ``pin`` a pin,
   a ``clamp`` a fixed joint, a ``roller`` a slider along its ``axis``; its ``motion`` moves the
   ground point;
@@ -24,8 +24,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from rancf.bodies.rigid import PointMass, RigidBody
 from rancf.errors import InputError, ScenarioError
-from rancf.model.rigid import PointMass, RigidBody
 from rancf.scenario.build import build_model, flexible_model
 from rancf.system import Joint, Load, Obstacle, Place, Spring, System
 

@@ -29,8 +29,8 @@ import numpy as np
 import scipy.linalg
 from numpy.typing import NDArray
 
+from rancf.bodies.flexible import Model
 from rancf.errors import ConvergenceError, InputError
-from rancf.model.system import Model
 from rancf.solvers.equilibrium import EquilibriumProblem
 from rancf.solvers.modal import rigid_body_modes, unresisted_motions
 

@@ -29,9 +29,9 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from rancf.bodies.flexible import Model
 from rancf.kernels import _core
-from rancf.model.analysis import DynamicOptions
-from rancf.model.system import Model
+from rancf.options import DynamicOptions
 from rancf.solvers.output import MemorySink, OutputSink
 from rancf.system import System
 

@@ -5,7 +5,7 @@ The path parameter ``p`` runs through one or two stages:
 1. ``p ∈ [0, 1]``: the loads act with ``p`` times their amplitude, the supports at their
    reference values;
 2. with installed supports (``position``/``direction`` away from the reference,
-   :attr:`Model.y_installed <rancf.model.system.Model.y_installed>`), ``p ∈ [1, 2]``: the
+   :attr:`Model.y_installed <rancf.bodies.flexible.Model.y_installed>`), ``p ∈ [1, 2]``: the
    loads at full amplitude, the supports moved ``p - 1`` of the way to their installed values.
 
 With ``λ(p) = p``, ``μ = 0`` in the first stage and ``λ = 1``, ``μ(p) = p - 1`` in the second
@@ -25,8 +25,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
+from rancf.bodies.flexible import Model
 from rancf.kernels import _core
-from rancf.model.system import Model
 
 __all__ = ["EquilibriumProblem"]
 

@@ -22,7 +22,7 @@ pin is a real mode (gravity's tension stiffens it, ``K r = W f_ext ≠ 0``), not
 An eigenvector lying in the rigid subspace (M-norm share above 0.99) is removed.  Any other zero
 or near-zero frequency is reported as it is — for instance the out-of-plane bending of a curved
 spatial cable, which the magnitude curvature ``|r' × r''|/|r'|³`` does not resist to first order
-(math note sec. 6); the rod element (``"rod"``) has that stiffness.
+(docs/derivations/cable.md sec. 6); the rod element (``"rod"``) has that stiffness.
 """
 
 from __future__ import annotations
@@ -33,8 +33,8 @@ import numpy as np
 import scipy.linalg
 from numpy.typing import NDArray
 
+from rancf.bodies.flexible import Model
 from rancf.errors import RancfError
-from rancf.model.system import Model
 from rancf.system import System
 
 __all__ = [

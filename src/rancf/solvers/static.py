@@ -31,8 +31,8 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import NDArray
 
+from rancf.bodies.flexible import Model
 from rancf.errors import ConvergenceError, InputError, ScenarioError
-from rancf.model.system import Model
 from rancf.solvers.equilibrium import EquilibriumProblem
 from rancf.solvers.newton import newton
 from rancf.system import System

@@ -18,8 +18,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
+from rancf.bodies.flexible import Model
 from rancf.kernels import _core
-from rancf.model.system import Model
 from rancf.solvers.equilibrium import path_stages
 from rancf.system import System
 

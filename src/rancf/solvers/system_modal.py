@@ -40,8 +40,8 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 
+from rancf.bodies.flexible import Model
 from rancf.errors import InputError, RancfError
-from rancf.model.system import Model
 from rancf.solvers.modal import ModalResult, rigid_candidates, unresisted_motions
 from rancf.system import System
 

@@ -15,8 +15,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rancf.atomic import atomic_write
+from rancf.bodies.flexible import Model
 from rancf.errors import ConvergenceError
-from rancf.model.system import Model
 from rancf.scenario import Scenario, parse_scenario
 from rancf.solvers.dynamic import DynamicOptions, DynamicResult, DynamicStatus, integrate
 from rancf.studies.grid import Executor, GridRun, grid_variant, run_grid, variant_raw

@@ -1,8 +1,8 @@
-"""What C² buys: error against unknowns for C¹ and C² meshes (issue 19, item 3).
+"""What C² buys: error against unknowns for C¹ and C² meshes.
 
 Two problems, each meshed with ``n`` elements as C¹ (shared nodes: ``[r, r_x]`` per node) and as
 C² (``mesh.continuity = "C2"``: the control points of the cubic B-spline through the mesh,
-:mod:`rancf.model.continuity`); the unknowns are the free coordinates of each model.
+:mod:`rancf.mesh.continuity`); the unknowns are the free coordinates of each model.
 
 * **Cantilever** (the shipped ``cantilever``: L = 0.5 m, radius 0.03 m, ρ = 6000 kg/m³,
   E = 2e7 Pa, clamped): relative error of the first five bending frequencies against the

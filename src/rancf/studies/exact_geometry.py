@@ -171,7 +171,7 @@ def _exudyn_errors(
     sc = parse_scenario(raw, NAME)
     g, s = sc.data["geometry"], sc.data["solver"]
     from rancf.geometry.conic import conic_arc_through
-    from rancf.model.mesh import mesh_conic, to_ancf
+    from rancf.mesh.factories import mesh_conic, to_ancf
 
     arc = conic_arc_through(g["start"], g["end"], g["angles_deg"], g["point"])
     meshes = {n: to_ancf(mesh_conic(arc, n, 0.5)) for n in [*ns, p["n_ref"]]}

@@ -1,4 +1,4 @@
-"""The rod element (issue 9) in the paper's spatial studies: 6.2 and 6.3 rerun with torsion.
+"""The rod element in the paper's spatial studies: 6.2 and 6.3 rerun with torsion.
 
 The paper's spatial cable bends with the magnitude curvature, which gives a curved reference no
 linear out-of-plane bending stiffness.  The rod element keeps the same exact RANCF centerline

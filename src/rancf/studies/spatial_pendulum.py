@@ -69,7 +69,7 @@ def run_study(
             "0.695",
             f"{k_opt:.4f}",
             f"{k_opt - 0.695:+.4f}",
-            "angles restored as θ0 = 60°, θ1 = 30° (math note)",
+            "angles restored as θ0 = 60°, θ1 = 30° (docs/derivations/cable.md)",
         )
     )
     res.comparison.append(

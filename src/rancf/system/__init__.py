@@ -1,7 +1,7 @@
-"""Systems of bodies: places, joints, springs, loads and their assembly (issue 18)."""
+"""Systems of bodies: places, joints, springs, loads and their assembly."""
 
+from rancf.system.connections import Joint, Load, Spring
 from rancf.system.contact import ContactState, Obstacle, contact_history, contact_outputs
-from rancf.system.parts import Joint, Load, Spring
 from rancf.system.places import GROUND, Place
 from rancf.system.system import System
 

@@ -1,4 +1,4 @@
-"""Obstacles and contact of flexible bodies with them (issue 20; ``src/cpp/contact.hpp``).
+"""Obstacles and contact of flexible bodies with them (``src/cpp/contact.hpp``).
 
 A flexible body (cable or rod elements) is a tube of its section's radius ``rt = sqrt(A / π)``
 about its centre line.  Contact is a penalty line contact integrated along the curve: at
@@ -52,12 +52,12 @@ from typing import TYPE_CHECKING, Literal
 import numpy as np
 from numpy.typing import NDArray
 
+from rancf.bodies.flexible import Model
+from rancf.bodies.rigid import RigidBody
 from rancf.elements.cable import cable_shape_functions
 from rancf.errors import InputError
 from rancf.geometry.quadrature import gauss_legendre
 from rancf.kernels import _core
-from rancf.model.rigid import RigidBody
-from rancf.model.system import Model
 
 if TYPE_CHECKING:
     from rancf.system.system import System

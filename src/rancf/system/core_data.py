@@ -8,9 +8,9 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from rancf.bodies.rigid import PointMass, RigidBody
+from rancf.bodies.time_function import TimeFunction, pack
 from rancf.kernels import _core
-from rancf.model.rigid import PointMass, RigidBody
-from rancf.model.time_function import TimeFunction, pack
 from rancf.system.contact import Obstacle, build_contact
 
 if TYPE_CHECKING:

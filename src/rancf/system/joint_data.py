@@ -1,5 +1,5 @@
 """A joint's data for the compiled core: kind, places and the orientation data measured in the
-reference configuration (systems-math section 3).
+reference configuration (docs/derivations/systems.md section 3).
 
 Axes are given in world coordinates in the reference configuration and stored in the frames of
 the places (``fa``, ``fb``: the rows of each place's frame at the reference; one row, the
@@ -20,7 +20,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rancf.errors import InputError
-from rancf.system.parts import Joint
+from rancf.system.connections import Joint
 
 __all__ = ["joint_data", "normals", "KIND_CODE"]
 

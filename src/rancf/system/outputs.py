@@ -8,12 +8,12 @@ coordinates alone do not fix).  :class:`SystemOutputs` turns rows of them into
   ``[M Gᵀ; G 0] [a; λ] = [f_ext - f_int - g - c M v; -γ]`` with the prescribed coordinates'
   accelerations given (the compiled core's ``initial_acceleration``: the same assembly the
   integrator uses, so supports moving by a time function are included);
-* the reactions of the supports (:mod:`rancf.model.reactions`): the held rows of the residual
+* the reactions of the supports (:mod:`rancf.bodies.reactions`): the held rows of the residual
   ``M a + g + c M v + f_int - f_ext + Gᵀ λ``;
 * the reactions of the joints: the resultant force and moment the joint exerts on its first
   place, the least-squares resultant of the generalized forces ``-G_Aᵀ λ`` on that place's
   coordinates (``src/cpp/system_outputs.cpp``);
-* the section values of every flexible body (:mod:`rancf.model.sections`);
+* the section values of every flexible body (:mod:`rancf.bodies.section_outputs`);
 * the sensors (:mod:`rancf.system.sensors`).
 
 Static rows (a load path, ``t`` the path parameter) have ``a = v = 0``, the residual
@@ -25,10 +25,10 @@ acceleration at ``t_{n+1} + (α_m - α_f) h`` (Arnold & Brüls 2007), a first-or
 reactions converge at second order.
 
 Column names: a support's ``LABEL_fx, LABEL_fy[, LABEL_fz]`` then its moment (``LABEL_mz`` or
-``LABEL_mx, _my, _mz``) as :func:`rancf.model.reactions.reaction_columns` (in a system of
+``LABEL_mx, _my, _mz``) as :func:`rancf.bodies.reactions.reaction_columns` (in a system of
 several bodies the label is ``BODY:AT``); a joint's ``NAME_fx ...`` and, for joints that
 transmit a moment (``fixed``, a 3D ``revolute``, a driven joint), ``NAME_mz`` or
-``NAME_mx, _my, _mz``; then every obstacle's (issue 20, :func:`rancf.system.contact.
+``NAME_mx, _my, _mz``; then every obstacle's (:func:`rancf.system.contact.
 contact_outputs`): the force it exerts on the bodies, ``NAME_normal_x, _y[, _z]`` and
 ``NAME_friction_x, _y[, _z]`` [N], the contact length ``NAME_length`` [m] and the largest
 penetration ``NAME_penetration`` [m]; then every pair of flexible bodies in contact
@@ -46,9 +46,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from rancf.bodies.reactions import reaction_columns, reaction_row, support_reactions
+from rancf.bodies.section_outputs import SectionSampler, section_names
 from rancf.kernels import _core
-from rancf.model.reactions import reaction_columns, reaction_row, support_reactions
-from rancf.model.sections import SectionSampler, section_names
 from rancf.system.contact import contact_outputs
 from rancf.system.sensors import SensorReader
 from rancf.system.system import System

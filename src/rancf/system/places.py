@@ -1,6 +1,6 @@
 """Places: where joints, springs, supports and loads attach (``"BODY:end"``, ``"crank:tip"``).
 
-Spelling (issue 18): ``"BODY:start"``, ``"BODY:end"``, ``"BODY:N"`` (node index, negative from the
+Spelling: ``"BODY:start"``, ``"BODY:end"``, ``"BODY:N"`` (node index, negative from the
 end) on a flexible body; ``"BODY"`` (a rigid body's centre of mass or a point mass);
 ``"BODY:POINT"`` (a named point of a rigid body); ``"ground"``.  In a one-body system
 ``"start"``, ``"end"`` and node indices keep working.

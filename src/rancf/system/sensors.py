@@ -11,7 +11,7 @@ Kinds (column names ``NAME`` for one number, ``NAME_x``, ``NAME_y`` (, ``NAME_z`
   moment ``NAME_mz`` (planar) or ``NAME_mx, NAME_my, NAME_mz``: the columns of
   ``reactions.csv`` (:mod:`rancf.system.outputs`);
 * ``axial_force`` at a node of a flexible body (the section value ``N``,
-  :mod:`rancf.model.sections`);
+  :mod:`rancf.bodies.section_outputs`);
 * ``angle`` of a rigid body: its angle [rad] in 2D (continuous, as integrated), its rotation
   vector in 3D;
 * ``center_of_mass`` [m] and ``momentum`` (linear, [kg m/s]) of the body ``body`` or, without
@@ -33,11 +33,11 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from rancf.bodies.flexible import Model
+from rancf.bodies.motion import angular_momentum
+from rancf.bodies.reactions import has_moment
+from rancf.bodies.rigid import PointMass, RigidBody, body_angular_velocity
 from rancf.errors import InputError
-from rancf.model.motion import angular_momentum
-from rancf.model.reactions import has_moment
-from rancf.model.rigid import PointMass, RigidBody, body_angular_velocity
-from rancf.model.system import Model
 from rancf.system.places import Place
 
 if TYPE_CHECKING:

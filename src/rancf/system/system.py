@@ -2,7 +2,7 @@
 into the compiled core's :class:`rancf.kernels._core.System` (``src/cpp/system.hpp``).
 
 Coordinates ``y`` stack the bodies in the order flexible bodies (their model coordinates, held
-supports included), then rigid bodies and point masses (:mod:`rancf.model.rigid`).  A joint's
+supports included), then rigid bodies and point masses (:mod:`rancf.bodies.rigid`).  A joint's
 orientation data (reference relative rotations, axes in the bodies' frames) are measured in the
 reference configuration, so every joint holds there exactly.  ``"ground"`` in a joint or spring
 is the other place's reference position; a joint to the ground with ``motion`` moves that point
@@ -21,16 +21,16 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from rancf.bodies.closure import closure_matrix, closure_rows
+from rancf.bodies.flexible import Model
+from rancf.bodies.rigid import PointMass, RigidBody
+from rancf.bodies.time_function import TimeFunction
 from rancf.errors import InputError
 from rancf.kernels import _core
-from rancf.model.closure import closure_matrix, closure_rows
-from rancf.model.rigid import PointMass, RigidBody
-from rancf.model.system import Model
-from rancf.model.time_function import TimeFunction
+from rancf.system.connections import JOINT_KINDS, Joint, Load, Spring
 from rancf.system.contact import CONTACT_POINTS, Obstacle
 from rancf.system.core_data import attach_contact, build_core
 from rancf.system.joint_data import joint_data
-from rancf.system.parts import JOINT_KINDS, Joint, Load, Spring
 from rancf.system.places import Place
 
 __all__ = ["System", "Body"]
@@ -161,7 +161,7 @@ class System:
         self.core = self._build(rows, self.joint_data)
         self.m = int(self.core.m)
         self.joint_rows = list(self.core.joint_rows)
-        self.obstacles = tuple(obstacles)  # contact (issue 20): attached to the core
+        self.obstacles = tuple(obstacles)  # contact: attached to the core
         self.body_contacts, self.contact_points = [(a, b) for a, b in body_contacts], contact_points
         self.contact, self.obstacle_names, self.contact_pairs = attach_contact(
             self, self.obstacles, contacts, contact_points, body_contacts, body_friction
@@ -303,7 +303,7 @@ class System:
 
     def _closures(self) -> tuple[NDArray, NDArray, NDArray]:
         """The seams of closed flexible bodies as linear rows ``(row, column, coefficient)``
-        (:func:`rancf.model.closure.closure_rows`), in system coordinates."""
+        (:func:`rancf.bodies.closure.closure_rows`), in system coordinates."""
         parts, m = [], 0
         for name, b in zip(self.names, self.flex, strict=False):
             r, c, v = closure_rows(b)

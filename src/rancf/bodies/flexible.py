@@ -1,0 +1,405 @@
+"""Assembled models: element kernels, supports, loads and damping on a chain of nodes.
+
+Coordinates.  The full nodal coordinates ``q`` are ordered node by node (``dpn`` per node: ``[r,
+r_x]`` for cables, ``[x, y, θ]`` for beams).  Supports are linear constraints handled by an
+orthogonal change of coordinates ``q = T y`` plus fixed entries of ``y``:
+
+* pin: the node's position entries are fixed;
+* clamp: position fixed and, for cables, the gradient direction fixed — the node's gradient block
+  is rotated into the basis ``(t0, n0[, n1])`` of its reference tangent and the normal components
+  are fixed, so the gradient may still stretch along ``t0``; for beams ``θ`` is fixed too.
+
+``T`` is block diagonal within node blocks, so every assembled matrix keeps the band structure of
+the chain (half bandwidth ``2 dpn - 1``).  Banded matrices use LAPACK general band storage
+``ab[ku + i - j, j] = A[i, j]`` (``scipy.linalg.solve_banded``).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Literal
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from rancf.bodies.closure import arc_fractions
+from rancf.bodies.flexible_core import core_model
+from rancf.bodies.motion import RigidMotion, check_supports_at_rest, rigid_velocity
+from rancf.bodies.properties import Material, PointLoad, Section, Support
+from rancf.bodies.support_layout import support_layout
+from rancf.errors import InputError
+from rancf.kernels.beam import BeamKernel
+from rancf.kernels.cable import CableKernel, CableProperties
+from rancf.kernels.rod import ROD_DOFS, RodKernel
+from rancf.mesh.continuity import (
+    Continuity,
+    Reduction,
+    jump_note,
+    reduced_band,
+    reduction,
+    rotated,
+)
+from rancf.mesh.coordinates import Coordinates
+from rancf.mesh.factories import to_ancf
+from rancf.mesh.mesh import CableMesh
+
+__all__ = ["Section", "Material", "Support", "PointLoad", "Model", "ElementKind", "RigidMotion"]
+
+ElementKind = Literal["rancf", "ancf", "beam", "rod"]
+
+
+class Model(Coordinates):
+    """An assembled model: constant matrices precomputed, forces and tangents on demand.
+
+    Parameters
+    ----------
+    mesh : CableMesh
+        The geometry mesh (an exact RANCF mesh; converted for ``"ancf"`` and ``"beam"``).
+    element : {"rancf", "ancf", "beam"}
+    section : Section
+    material : Material
+    supports : sequence of Support
+    gravity : array_like, shape ``(dim,)``, optional
+    point_loads : sequence of PointLoad
+    damping : float
+        Mass-proportional damping coefficient ``c`` in ``C = c M`` [1/s].
+    initial_velocities : dict of node -> velocity vector
+        The velocity of single nodes' positions (nothing else moves: its kinetic energy depends
+        on the mesh).
+    n_qp : int, optional
+        Gauss points per cable element; default 6 for polynomial (ANCF, all weights 1) elements,
+        whose axial energy that rule integrates exactly on a straight reference, and 10 for
+        rational ones (see the quadrature convergence test).
+    initial_motion : RigidMotion, optional
+        A rigid-body initial velocity field given exactly to every coordinate
+        (:mod:`rancf.bodies.motion`); not together with ``initial_velocities``.
+    continuity : {"C1", "C2"}
+        ``"C1"``: the nodal coordinates are the model coordinates (shared nodes).  ``"C2"``:
+        the control points of the mesh's cubic (rational) B-spline are
+        (:mod:`rancf.mesh.continuity`; cables and rods): ``q = T y``, ``y`` padded with held
+        zeros to the size of ``q``; supported nodes and nodes given an initial velocity keep
+        their own coordinates (C¹ there).
+
+    Notes
+    -----
+    Forces, tangents and energies are evaluated by the compiled core on :attr:`core`, the model
+    as one named structure (:class:`rancf.kernels._core.Model`).
+    """
+
+    def __init__(
+        self,
+        mesh: CableMesh,
+        element: ElementKind,
+        section: Section,
+        material: Material,
+        supports: Sequence[Support] = (),
+        gravity: ArrayLike | None = None,
+        point_loads: Sequence[PointLoad] = (),
+        damping: float = 0.0,
+        initial_velocities: dict[int, ArrayLike] | None = None,
+        n_qp: int | None = None,
+        initial_motion: RigidMotion | None = None,
+        continuity: Continuity = "C1",
+    ) -> None:
+        self.element = element
+        self.section = section
+        self.material = material
+        self.dim = mesh.dim
+        self.n_nodes = mesh.n_nodes
+        #: A ring (:attr:`CableMesh.closed`): node ``n_nodes - 1`` is node 0 again, tied to it by
+        #: the rows of :func:`rancf.bodies.closure.closure_rows` in a system.
+        self.closed = bool(mesh.closed)
+        #: C² reduced coordinates (:class:`rancf.mesh.continuity.Reduction`), or None (C¹).
+        self.reduction: Reduction | None = None
+        #: Remarks for the user: the mesh's (:attr:`CableMesh.notes`) and C² nodes kept C¹.
+        self.notes: tuple[str, ...] = tuple(mesh.notes)
+        if continuity not in ("C1", "C2"):
+            raise InputError("mesh.continuity", continuity, 'one of "C1", "C2"')
+        if continuity == "C2" and element not in ("rancf", "ancf", "rod"):
+            raise InputError(
+                "mesh.continuity", "C2", f'"C1" with {element} elements (C2 needs cable or rod '
+                'elements: mesh.element = "rancf", "ancf" or "rod")',
+            )  # fmt: skip
+        self.n_el = mesh.n_elements
+        rho, e_mod = material.density, material.youngs_modulus
+        props = CableProperties(e_mod * section.area, e_mod * section.inertia, rho * section.area)
+        self.props = props
+        if element == "beam":
+            if self.dim != 2:
+                raise InputError("mesh.element", "beam", "the beam element is planar (2D geometry)")
+            t = mesh.nodes[:, 1]
+            self.kernel: CableKernel | BeamKernel = BeamKernel(
+                mesh.nodes[:, 0], np.arctan2(t[:, 1], t[:, 0]), props, rho * section.inertia
+            )
+            self.dpn = 3
+            q0 = np.concatenate([mesh.nodes[:, 0], np.zeros((self.n_nodes, 1))], axis=1).ravel()
+            self.mesh = mesh
+        elif element in ("rancf", "ancf", "rod"):
+            m = to_ancf(mesh) if (element == "ancf" and mesh.kind != "ancf") else mesh
+            self.mesh = m
+            if n_qp is None:
+                n_qp = 6 if np.all(m.weights == 1.0) else 10
+            if element == "rod":
+                if self.dim != 3:
+                    raise InputError(
+                        "mesh.element", "rod", "the rod element is spatial (3D geometry)"
+                    )
+                self.kernel = RodKernel(
+                    m.weights,
+                    m.scales,
+                    m.element_nodal(),
+                    props,
+                    rho * section.polar,
+                    n_qp,
+                    section.orientation,
+                    section.bending_rotary(rho),
+                    arc_fractions(m) if m.closed else None,
+                )
+                self.dpn = ROD_DOFS
+                q0 = np.concatenate(
+                    [m.nodes.reshape(self.n_nodes, 6), np.zeros((self.n_nodes, 1))], axis=1
+                ).ravel()
+            else:
+                self.kernel = CableKernel(m.weights, m.scales, m.element_nodal(), props, n_qp)
+                self.dpn = 2 * self.dim
+                q0 = m.q0
+        else:
+            raise InputError("mesh.element", element, 'one of "rancf", "ancf", "beam", "rod"')
+        if element != "rod" and section.rotary_inertia != "torsion":
+            raise InputError("section.rotary_inertia", section.rotary_inertia, "rod elements")
+        self.n = self.n_nodes * self.dpn
+        self.nde = 2 * self.dpn
+        self.ku = self.nde - 1
+        self._el_idx = np.arange(self.n_el)[:, None] * self.dpn + np.arange(self.nde)[None, :]
+
+        # supports -> held entries of y, rotated blocks, installed values
+        tangents = mesh.nodes[:, 1]
+        base_q, node_base = q0, None
+        if continuity == "C2":
+            held = {self.check_node(sup.node, "supports.at") for sup in supports}
+            # a node started alone keeps its own coordinates too: its velocity exactly as given
+            held |= {self.check_node(k, "initial_velocity.at") for k in initial_velocities or {}}
+            self.reduction, base_q = reduction(self.mesh, self.dpn, element == "rod", held, q0)
+            self.notes += jump_note(self.reduction, self.n_el)
+            node_base = self._node_base
+        layout = support_layout(supports, element, self.dim, self.dpn, base_q, tangents,
+                                self.check_node, node_base)  # fmt: skip
+        self.fixed = layout.fixed
+        self.rotations = list(layout.rotations)
+        self.supports = tuple(supports)
+        if self.reduction is not None:  # the rotations go into the maps; the padding is held
+            self.reduction = rotated(self.reduction, self.rotations, self.dim)
+            for off, basis in self.rotations:  # y0 exactly: z = basis y on a rotated block
+                base_q[off : off + self.dim] = basis.T @ base_q[off : off + self.dim]
+            self.rotations = []
+            self.fixed[self.reduction.n_real :] = True
+            self.ku = self.reduction.ku
+        # element-level transformations for elements touching a rotated node
+        aff = sorted(
+            {
+                min(max(off // self.dpn - j, 0), self.n_el - 1)
+                for off, _ in self.rotations
+                for j in (0, 1)
+            }
+        )
+        self._aff = np.array(aff, dtype=int)
+        te = np.repeat(np.eye(self.nde)[None], len(aff), axis=0)
+        for i, e in enumerate(aff):
+            for off, basis in self.rotations:
+                loc = off - e * self.dpn
+                if 0 <= loc < self.nde:
+                    te[i, loc : loc + self.dim, loc : loc + self.dim] = basis
+        self._te = te
+
+        self.q0 = q0
+        self.y0 = self.y_from_q(q0) if self.reduction is None else base_q
+        #: ``y0`` with the held entries at the installed supports' values
+        self.y_installed = self.y0.copy()
+        for i, val in layout.installed.items():
+            self.y_installed[i] = val
+        self.mass_el = self._to_y_elements(self.kernel.mass_matrices())
+        self.mass_band = (
+            self.assemble_band(self.mass_el)
+            if self.reduction is None
+            else reduced_band(self.reduction, self.mass_el)
+        )
+        self.gravity = None if gravity is None else np.asarray(gravity, dtype=float)
+        if self.gravity is not None and self.gravity.size != self.dim:
+            raise InputError("loads.gravity", self.gravity.tolist(), f"{self.dim} components")
+        self.f_gravity = (
+            np.zeros(self.n)
+            if self.gravity is None
+            else self.to_y(self.assemble_vector(self.kernel.gravity_forces(self.gravity)))
+        )
+        self.point_loads = tuple(point_loads)
+        for pl in self.point_loads:
+            self.check_node(pl.node, "loads.point.at")
+            if pl.force is not None and len(pl.force) != self.dim:
+                raise InputError("loads.point.force", list(pl.force), f"{self.dim} components")
+            if pl.moment is not None and element != "rod":
+                raise InputError("loads.point.moment", list(pl.moment), "rod elements only")
+            if pl.moment is not None and len(pl.moment) != 3:
+                raise InputError("loads.point.moment", list(pl.moment), "3 components")
+        if not (np.isfinite(damping) and damping >= 0):
+            raise InputError("damping.mass_proportional", damping, "a finite number >= 0")
+        self.damping = float(damping)
+        v0 = np.zeros(self.n)
+        for node, vel in (initial_velocities or {}).items():
+            nd = self.check_node(node, "initial_velocity.at")
+            vv = np.asarray(vel, dtype=float)
+            if vv.size != self.dim:
+                raise InputError("initial_velocity.value", vv.tolist(), f"{self.dim} components")
+            v0[nd * self.dpn : nd * self.dpn + self.dim] = vv
+            if self.closed and nd == 0:  # the stored repeat of node 0 moves with it
+                v0[self.n - self.dpn : self.n - self.dpn + self.dim] = vv
+        if initial_motion is not None:
+            if initial_velocities:
+                raise InputError(
+                    "initial_motion", "with initial_velocity", "one of the two, not both"
+                )
+            v0 = rigid_velocity(self, initial_motion)
+        if self.reduction is None or initial_motion is not None:  # C²: rigid motions are exact
+            self.v0 = self.y_from_q(v0)
+        else:  # single nodes: their own blocks, nothing else moves
+            self.v0 = self._own_blocks(v0)
+        if initial_motion is not None:
+            check_supports_at_rest(self, self.v0)
+        self.v0[self.fixed] = 0.0
+        self.core = core_model(self)
+        if isinstance(self.kernel, RodKernel):  # reference curvatures by the core itself
+            k, eps = self.kernel.kref.copy(), np.empty(self.kernel.kref.shape[:2])
+            self.core.rod_curvatures(self.y0, k, eps)
+            self.kernel.set_reference_curvatures(k)
+            self._triads0 = (self.kernel.tref.copy(), self.kernel.m1ref.copy())
+
+    def reset_triads(self) -> None:
+        """Rods: put the nodal reference triads back to those of the reference configuration.
+
+        The solvers re-reference the triads after every converged step (the model's only
+        state); :func:`~rancf.solvers.dynamic.integrate` and
+        :func:`~rancf.solvers.static.solve_static` call this first.  No-op for other elements.
+        """
+        if isinstance(self.kernel, RodKernel):
+            self.kernel.tref[...] = self._triads0[0]
+            self.kernel.m1ref[...] = self._triads0[1]
+
+    # ------------------------------------------------------------------ bookkeeping
+    @property
+    def n_distinct_nodes(self) -> int:
+        """Distinct nodes: all, or (a ring) all but the stored repeat of node 0."""
+        return self.n_nodes - int(self.closed)
+
+    def gather(self, q: NDArray) -> NDArray[np.float64]:
+        """Element coordinates ``(n_el, nde)`` from a global vector."""
+        return q[self._el_idx]
+
+    def assemble_vector(self, fe: NDArray) -> NDArray[np.float64]:
+        """Sum element vectors ``(n_el, nde)`` into a global vector ``(n,)``."""
+        out = np.zeros((self.n_nodes, self.dpn))
+        out[:-1] += fe[:, : self.dpn]
+        out[1:] += fe[:, self.dpn :]
+        return out.ravel()
+
+    def assemble_band(self, ke: NDArray) -> NDArray[np.float64]:
+        """Sum element matrices ``(n_el, nde, nde)`` into general band storage ``(2 ku + 1, n)``."""
+        ab = np.zeros((2 * self.ku + 1, self.n))
+        dpn, n_el = self.dpn, self.n_el
+        for i in range(self.nde):
+            for j in range(self.nde):
+                ab[self.ku + i - j, j : j + dpn * n_el : dpn] += ke[:, i, j]
+        return ab
+
+    def _to_y_elements(self, ke: NDArray) -> NDArray:
+        if self._aff.size:
+            ke = np.array(ke)
+            t = self._te
+            ke[self._aff] = np.einsum("eia,eij,ejb->eab", t, ke[self._aff], t)
+        return ke
+
+    # ------------------------------------------------------------------ physics
+    def internal_force(self, y: ArrayLike) -> NDArray[np.float64]:
+        """Elastic force ``∂U/∂y`` ``(n,)``."""
+        f = np.empty(self.n)
+        self.core.internal_force(np.asarray(y, dtype=float), f)
+        return f
+
+    def internal_force_and_tangent(self, y: ArrayLike) -> tuple[NDArray, NDArray]:
+        """Elastic force ``(n,)`` and tangent stiffness in band storage ``(2 ku + 1, n)``."""
+        f = np.empty(self.n)
+        ab = np.empty((2 * self.ku + 1, self.n))
+        self.core.internal_force_and_tangent(np.asarray(y, dtype=float), f, ab)
+        return f, ab
+
+    def strain_energy(self, y: ArrayLike) -> float:
+        """Total strain energy ``U``."""
+        return float(self.core.strain_energy(np.asarray(y, dtype=float)))
+
+    def mass_times(self, v: NDArray) -> NDArray[np.float64]:
+        """``M v`` (element by element)."""
+        if self.reduction is not None:
+            return self.band_times(self.mass_band, np.asarray(v, dtype=float))
+        return self.assemble_vector(np.einsum("eij,ej->ei", self.mass_el, self.gather(v)))
+
+    def kinetic_energy(self, v: ArrayLike, y: ArrayLike | None = None) -> float:
+        """``½ vᵀ M(y) v`` (by the core, as in the time loop's outputs; ``y`` default the
+        reference: only a rod's rotary inertia depends on it)."""
+        yy = self.y0 if y is None else np.asarray(y, dtype=float)
+        return float(self.core.kinetic_energy(yy, np.asarray(v, dtype=float)))
+
+    def mass_matrix(self, y: ArrayLike | None = None) -> NDArray[np.float64]:
+        """The mass matrix at ``y`` (default the reference) in band storage: the constant
+        :attr:`mass_band` plus a rod's rotary mass ``M_r(y)`` (the core's ``inertia``)."""
+        if self.element != "rod":
+            return self.mass_band.copy()
+        yy = self.y0 if y is None else np.asarray(y, dtype=float)
+        z, f, ab = np.zeros(self.n), np.empty(self.n), np.empty_like(self.mass_band)
+        self.core.inertia(yy, z, z, 0.0, 0.0, 0.0, 1.0, f, ab)
+        return self.mass_band + ab
+
+    def gravity_energy(self, y: ArrayLike) -> float:
+        """Gravitational potential ``-Q_gᵀ (y - y0)`` (zero in the reference configuration)."""
+        return float(self.core.gravity_energy(np.asarray(y, dtype=float)))
+
+    def external_force(
+        self, t: float, y: ArrayLike | None = None, amplitude: bool = False
+    ) -> NDArray[np.float64]:
+        """Gravity, point forces and (rods) point moments at time ``t`` and configuration ``y``.
+
+        ``amplitude``: harmonic loads at their amplitude (statics).  Moments depend on ``y``
+        (default: the reference).
+        """
+        f = np.empty(self.n)
+        yy = self.y0 if y is None else np.asarray(y, dtype=float)
+        self.core.external_force(float(t), yy, f, amplitude)
+        return f
+
+    def load_stiffness(
+        self, t: float, y: ArrayLike | None = None, amplitude: bool = False
+    ) -> NDArray[np.float64]:
+        """``∂f_ext/∂y`` at ``t`` and ``y`` (band storage ``(2 ku + 1, n)``).
+
+        Only point moments (rods) depend on the configuration; the core evaluates their load
+        stiffness as in Newton's tangent.  Zero for every other model.
+        """
+        ab = np.empty((2 * self.ku + 1, self.n))
+        yy = self.y0 if y is None else np.asarray(y, dtype=float)
+        self.core.load_stiffness(float(t), yy, ab, amplitude)
+        return ab
+
+    def nodal_directors(self, y: ArrayLike) -> NDArray[np.float64] | None:
+        """Rods: each node's director ``m1`` ``(n_nodes, 3)`` at ``y``, from the nodal triads as
+        the solvers last carried them (exact for the state they were carried to); else None."""
+        if self.element != "rod":
+            return None
+        t, m1 = np.empty(3 * self.n_nodes), np.empty(3 * self.n_nodes)
+        self.core.nodal_triads(np.asarray(y, dtype=float), t, m1)
+        return m1.reshape(self.n_nodes, 3)
+
+    @property
+    def total_mass(self) -> float:
+        """Mass of the model: ``Σ_ij M_ij`` over the x components."""
+        ones = np.zeros(self.n_nodes * self.dpn)
+        ones.reshape(self.n_nodes, self.dpn)[:, 0] = 1.0
+        if self.reduction is not None:  # the constant function is in the C² space
+            ones = self.y_from_q(ones)
+        return float(ones @ self.mass_times(ones))

@@ -1,0 +1,115 @@
+"""Support reactions: the forces and moments the supports exert on the body.
+
+A support holds coordinates that are eliminated from the equations
+(:mod:`rancf.bodies.support_layout`), so its reaction is the residual of the held rows.  With
+the residual of the equations of motion
+
+    R = M a + c M v + f_int(y) - f_ext(t, y)        (statics: R = f_int(y) - λ f_ext(y))
+
+zero on the free rows, ``R`` on a supported node's rows is what the support adds to the
+balance: the reaction.  In full coordinates (``R_q = T R_y``, ``T`` orthogonal):
+
+* force: ``R`` on the node's position;
+* moment of a clamped cable end: the gradient's generalized force ``Q`` does virtual work
+  ``Q · δr_x`` and a rotation ``δθ`` moves ``δr_x = δθ × r_x``, so ``M = r_x × Q``
+  (planar: the ``z`` component);
+* rods add the twist's generalized force ``Q_φ``, the moment about the tangent
+  (docs/derivations/rod.md §5): ``M = r_x × Q + Q_φ t``; a beam's clamp moment is its rotation row.
+
+The sum of the reactions and of the applied loads (weight included) vanishes at a static
+equilibrium; in a dynamic run it equals the rate of change of the body's momentum.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from rancf.bodies.flexible import Model
+
+__all__ = ["Reaction", "support_reactions", "reaction_columns", "has_moment"]
+
+
+@dataclass(frozen=True)
+class Reaction:
+    """The reaction of one support: ``force (dim,)`` and, for clamps and rods, ``moment``
+    (``(1,)``: about ``z`` in a planar model; ``(3,)`` in space)."""
+
+    at: int | str
+    force: NDArray[np.float64]
+    moment: NDArray[np.float64] | None
+
+
+def has_moment(model: Model, kind: str) -> bool:
+    """Whether the reaction of a support of this kind reports a moment."""
+    return model.element == "rod" or kind == "clamp"
+
+
+def _label(at: int | str) -> str:
+    return at if isinstance(at, str) else f"node{at}"
+
+
+def reaction_columns(model: Model, labels: list[int | str] | None = None) -> list[str]:
+    """CSV column names of the reactions, support by support: ``LABEL_fx, LABEL_fy[, LABEL_fz]``
+    then ``LABEL_mz`` (planar) or ``LABEL_mx, LABEL_my, LABEL_mz``.  ``labels``: the supports'
+    ``at`` as the user wrote it (default: their node indices)."""
+    axes = "xyz"[: model.dim]
+    names: list[str] = []
+    for i, sup in enumerate(model.supports):
+        lab = _label(labels[i] if labels is not None else sup.node)
+        names += [f"{lab}_f{a}" for a in axes]
+        if has_moment(model, sup.kind):
+            names += [f"{lab}_mz"] if model.dim == 2 else [f"{lab}_m{a}" for a in "xyz"]
+    return names
+
+
+def support_reactions(
+    model: Model, y: NDArray, residual: NDArray, labels: list[int | str] | None = None
+) -> list[Reaction]:
+    """Reactions of every support, in the order of ``model.supports``.
+
+    Parameters
+    ----------
+    model : Model
+    y : ndarray, shape (n,)
+        Model coordinates (for the nodal gradients).
+    residual : ndarray, shape (n,)
+        ``M a + c M v + f_int - f_ext`` (or the static ``f_int - λ f_ext``) on every model
+        coordinate, held rows included.
+    labels : list, optional
+        The supports' ``at`` as written in the scenario.
+    """
+    rq = model.forces_at_nodes(residual)
+    q = model.q_from_y(y)
+    dim, dpn = model.dim, model.dpn
+    out = []
+    for i, sup in enumerate(model.supports):
+        node = model.check_node(sup.node, "supports.at")
+        base = node * dpn
+        force = rq[base : base + dim].copy()
+        moment = None
+        if has_moment(model, sup.kind):
+            if model.element == "beam":
+                moment = rq[base + 2 : base + 3].copy()
+            else:
+                rx, qg = q[base + dim : base + 2 * dim], rq[base + dim : base + 2 * dim]
+                if dim == 2:
+                    moment = np.array([rx[0] * qg[1] - rx[1] * qg[0]])
+                else:
+                    moment = np.cross(rx, qg)
+                    if model.element == "rod":
+                        moment = moment + rq[base + 6] * rx / np.linalg.norm(rx)
+        out.append(Reaction(labels[i] if labels is not None else sup.node, force, moment))
+    return out
+
+
+def reaction_row(reactions: list[Reaction]) -> NDArray[np.float64]:
+    """The reactions flattened in the order of :func:`reaction_columns`."""
+    parts = []
+    for r in reactions:
+        parts.append(r.force)
+        if r.moment is not None:
+            parts.append(r.moment)
+    return np.concatenate(parts) if parts else np.empty(0)

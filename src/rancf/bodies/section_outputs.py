@@ -1,0 +1,139 @@
+"""Section quantities along the body: strain, axial force, curvatures and moments.
+
+At sample points ``ξ`` of every element the compiled core evaluates the strain and curvatures
+the element's strain energy uses (``src/cpp/sections.cpp``); the section forces are their energy
+conjugates (docs/derivations/cable.md §6, docs/derivations/rod.md §5).  The energy per reference
+length is
+``W = ½ EA ε² + ½ Σ C_i (κ_i - κ_i⁰)²`` with the Green–Lagrange strain ``ε``, the stretch
+``λ = sqrt(1 + 2 ε)`` and curvatures ``κ_i`` per *current* arc length; with the curvatures per
+reference length ``k_i = λ κ_i`` the conjugates of ``k_i`` and ``λ`` are the moments and the
+tension (the forces of a cut section, as equilibrium sees them):
+
+    M_i = ∂W/∂k_i = C_i (κ_i - κ_i⁰) / λ,        N = ∂W/∂λ = EA ε λ - Σ M_i κ_i
+
+* cable: one curvature (planar: signed, about ``z``; spatial: the magnitude), ``C = EI``;
+* beam: ``κ(ξ)`` of the co-rotational cubic per reference length, ``M = EI κ``, ``N = EA ε λ``;
+* rod: the material curvatures ``K1`` (twist rate), ``K2``, ``K3`` (bending about ``m1``, ``m2``)
+  with ``C = GJ, EI2, EI3``: the twisting moment and the two bending moments.
+
+``κ0`` and ``K⁰`` are the values at the sample points of the reference configuration, so all
+moments vanish there.  Sample points: ``per_element`` equally spaced values ``ξ = k /
+per_element`` in every element, and the end of the last one; ``s`` is the reference arc length.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+
+from rancf.bodies.flexible import Model
+from rancf.bodies.flexible_core import section_stiffness
+from rancf.elements.cable import cable_shape_functions
+from rancf.geometry.quadrature import gauss_legendre
+
+__all__ = ["SectionSampler", "section_names"]
+
+
+def section_names(model: Model) -> tuple[str, ...]:
+    """Names of the quantities, in the column order of :meth:`SectionSampler.values`."""
+    if model.element == "rod":
+        return (
+            "strain", "axial_force", "twist_rate", "curvature_m1", "curvature_m2",
+            "twisting_moment", "bending_moment_m1", "bending_moment_m2",
+        )  # fmt: skip
+    return ("strain", "axial_force", "curvature", "bending_moment")
+
+
+class SectionSampler:
+    """Evaluates :func:`section_names` at the sample points of a model.
+
+    Parameters
+    ----------
+    model : Model
+    per_element : int
+        Sample points per element (``ξ = 0, 1/k, ..., (k-1)/k``; plus the last element's end).
+    """
+
+    def __init__(self, model: Model, per_element: int = 4) -> None:
+        self.model = model
+        xi = np.arange(per_element + 1) / per_element
+        self.xi = xi
+        self.per_element = per_element
+        n_el = model.n_el
+        # point k of element e at row e * per_element + k; the last element keeps ξ = 1
+        self._rows = np.r_[
+            (np.arange(n_el)[:, None] * (per_element + 1) + np.arange(per_element)).ravel(),
+            n_el * (per_element + 1) - 1,
+        ]
+        if model.element == "beam":
+            l0 = model.kernel.l0
+            self.n1 = self.n2 = self.ref = np.zeros(0)
+            s_el = l0[:, None] * xi[None, :]
+            starts = np.r_[0.0, np.cumsum(l0)[:-1]]
+        else:
+            mesh = model.mesh
+            _, n1, n2 = cable_shape_functions(mesh.weights, mesh.scales, xi)
+            self.n1, self.n2 = np.ascontiguousarray(n1), np.ascontiguousarray(n2)
+            e0 = mesh.element_nodal()  # (n_el, 4, dim)
+            a0 = np.einsum("eqk,ekd->eqd", n1, e0)
+            j0 = np.linalg.norm(a0, axis=-1)
+            self.ref = np.ascontiguousarray(j0 if model.element == "rod" else j0**2)
+            s_el, starts = _arc_lengths(mesh, xi)
+        self.s = (starts[:, None] + s_el).ravel()[self._rows]
+        ref_vals = self._raw(model.y0)
+        self._k0 = ref_vals[:, 1:]
+
+    @property
+    def n_points(self) -> int:
+        """Number of sample points, ``per_element n_el + 1``."""
+        return int(self._rows.size)
+
+    def positions(self, y: NDArray) -> NDArray[np.float64]:
+        """Positions ``(n_points, dim)`` of the sample points at model coordinates ``y`` (the
+        element's curve; a beam's chord)."""
+        m = self.model
+        nodes = m.q_from_y(np.asarray(y, dtype=float)).reshape(m.n_nodes, m.dpn)
+        if m.element == "beam":
+            x = nodes[:, :2]
+            pts = x[:-1, None, :] + self.xi[None, :, None] * (x[1:] - x[:-1])[:, None, :]
+        else:
+            pts = m.mesh.evaluate(self.xi, nodes[:, : 2 * m.dim])
+        return pts.reshape(-1, m.dim)[self._rows]
+
+    def _raw(self, y: NDArray) -> NDArray[np.float64]:
+        m = self.model
+        width = 4 if m.element == "rod" else 2
+        out = np.empty((m.n_el, self.xi.size, width))
+        m.core.section_strains(self.xi, self.n1, self.n2, self.ref, np.asarray(y, dtype=float), out)
+        return out.reshape(-1, width)[self._rows]
+
+    def values(self, y: NDArray) -> NDArray[np.float64]:
+        """``(n_points, len(section_names))`` at model coordinates ``y`` (rods: with the nodal
+        triads the model holds, i.e. those the solvers carried to ``y``)."""
+        m = self.model
+        raw = self._raw(y)
+        eps, kappa = raw[:, 0], raw[:, 1:]
+        stretch = np.sqrt(np.clip(1.0 + 2.0 * eps, 0.0, None))
+        if m.element == "beam":  # per reference length already
+            moments = kappa * m.props.ei
+            force = m.props.ea * eps * stretch
+        else:
+            st = section_stiffness(m)
+            c = np.array([st.gj, st.ei2, st.ei3]) if m.element == "rod" else np.array([st.ei])
+            moments = c * (kappa - self._k0) / stretch[:, None]
+            force = m.props.ea * eps * stretch - np.sum(moments * kappa, axis=1)
+        return np.column_stack([eps, force, kappa, moments])
+
+
+def _arc_lengths(mesh: object, xi: NDArray, n_gauss: int = 12) -> tuple[NDArray, NDArray]:
+    """Reference arc length from each element's start to ``ξ`` ``(n_el, n_xi)``, and the arc
+    length at each element's start ``(n_el,)``; Gauss–Legendre on ``[0, ξ]``."""
+    gp, gw = gauss_legendre(n_gauss)
+    pts = (xi[:, None] * gp[None, :]).ravel()  # (n_xi * n_gauss)
+    _, n1, _ = cable_shape_functions(mesh.weights, mesh.scales, pts)  # type: ignore[attr-defined]
+    e0 = mesh.element_nodal()  # type: ignore[attr-defined]
+    speed = np.linalg.norm(np.einsum("eqk,ekd->eqd", n1, e0), axis=-1)
+    speed = speed.reshape(speed.shape[0], xi.size, n_gauss)
+    s_el = np.einsum("exg,g->ex", speed, gw) * xi[None, :]
+    total = s_el[:, -1] if xi[-1] == 1.0 else s_el[:, -1] / xi[-1]
+    return s_el, np.r_[0.0, np.cumsum(total)[:-1]]

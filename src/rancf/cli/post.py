@@ -1,0 +1,221 @@
+"""Sub-commands on finished runs: ``export`` (ParaView, CAD), ``plot`` and ``animate``; and
+``cad list``."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from rancf.cli.io import OutputDir, check_out_dir
+from rancf.errors import InputError
+
+__all__ = ["add_parsers", "run_to_nurbs"]
+
+
+def is_system_run(path: str) -> bool:
+    """Whether ``path`` is a run of several bodies (:mod:`rancf.post.system_run`)."""
+    from rancf.post.system_run import is_system_run as check
+
+    return check(path)
+
+
+def run_to_nurbs(run: Any, i: int) -> Any:
+    """The configuration of stored state ``i`` as one exact NURBS curve (cable and rod elements:
+    a rod's centreline).
+
+    The nodal coordinates give an :class:`~rancf.elements.cad.ElementChain` (breakpoints: the
+    cumulative reference gradient scales, i.e. reference arc length) and
+    :func:`~rancf.elements.cad.chain_to_nurbs` turns it into a cubic NURBS with the lowest knot
+    multiplicities that represent it.
+    """
+    from rancf.elements.cad import ElementChain, chain_to_nurbs
+
+    if run.element == "beam":
+        raise InputError(
+            "RUN_DIR",
+            str(run.path),
+            "a run of cable or rod elements: beam elements have no exact curve to export",
+        )
+    from rancf.post.run_data import centerline_nodes
+
+    nodes = centerline_nodes(run, run.q[i])
+    if not np.all(np.isfinite(nodes)):
+        raise InputError(
+            "--time", float(run.t[i]), "a stored state with finite coordinates (this one is not)"
+        )
+    nodal = np.concatenate([nodes[:-1], nodes[1:]], axis=1)
+    breaks = np.concatenate([[0.0], np.cumsum(run.scales)])
+    return chain_to_nurbs(ElementChain(nodal, run.weights, run.scales, breaks))
+
+
+def _export_system(args: argparse.Namespace, out: Any) -> int:
+    from rancf.post.system_run import export_system_vtk, load_system_run
+    from rancf.post.vtk_contact import export_contact_vtk
+
+    if args.nurbs is not None:
+        raise InputError("--nurbs", args.nurbs, "one body's run: RUN_DIR/bodies/NAME")
+    run = load_system_run(args.run_dir)
+    with out:
+        paths = export_system_vtk(run, out.path, args.every, args.samples)
+        contact = export_contact_vtk(run.path, out.path, args.every, run.rigid_frame)
+        out.keep()
+    for p in paths:
+        print(f"{p.parent.name if p.parent != out.path else 'rigid bodies'}: open {p} in ParaView")
+    if contact is not None:
+        print(f"contact forces: open {contact} in ParaView")
+    return 0
+
+
+def _cmd_export(args: argparse.Namespace) -> int:
+    from rancf.post.run_data import load_run
+
+    if args.vtk is None and args.nurbs is None:
+        from rancf.cli import UsageError
+
+        raise UsageError("export needs at least one of --vtk OUT_DIR, --nurbs FILE")
+    out = OutputDir(args.vtk, "--vtk") if args.vtk is not None else None
+    if is_system_run(args.run_dir):
+        return _export_system(args, out)
+    run = load_run(args.run_dir)
+    if out is not None:
+        from rancf.post.run_data import frame_indices
+        from rancf.post.vtk import check_export_size, export_vtk
+        from rancf.post.vtk_contact import export_contact_vtk
+
+        n = frame_indices(run.t.size, args.every).size
+        check_export_size(run, args.every, args.samples)
+        with out:
+            pvd = export_vtk(run, out.path, args.every, args.samples)
+            contact = export_contact_vtk(run.path, out.path, args.every)
+            out.keep()
+        print(f"{n} VTK frame(s) of {run.name} written; open {pvd} in ParaView")
+        if contact is not None:
+            print(f"contact forces: open {contact} in ParaView")
+        if run.directors is not None:
+            print(f"rod nodes and material frames: {pvd.with_name(f'{run.name}_nodes.pvd')}")
+        elif run.element == "rod":
+            print(
+                f"rancf: note: {run.path} holds no rod directors (written by an older rancf): "
+                "no material frames exported; run `rancf simulate` again to get them",
+                file=sys.stderr,
+            )
+    if args.nurbs is not None:
+        from rancf.cad import write_curve
+
+        i = run.time_index(args.time)
+        curve = run_to_nurbs(run, i)
+        label = f"{'lambda' if run.static else 't'}={run.t[i]:g}"  # ASCII: STEP/IGES names
+        path = write_curve(args.nurbs, curve, f"{run.name} {label}")
+        interior = curve.knots[curve.degree + 1 : curve.n_ctrl]
+        print(
+            f"{run.time_text(run.t[i], 'g')}: cubic NURBS, {curve.n_ctrl} control points, "
+            f"{np.unique(interior).size} interior knot value(s) -> {path}"
+        )
+    return 0
+
+
+def _cmd_plot(args: argparse.Namespace) -> int:
+    from rancf.post.run_data import load_run
+    from rancf.post.run_plots import plot_run
+
+    if args.out is not None:
+        check_out_dir(args.out)
+    if is_system_run(args.run_dir):
+        from rancf.post.system_run import load_system_run, plot_system_run
+
+        run: Any = load_system_run(args.run_dir)
+        plot: Any = plot_system_run
+    else:
+        run, plot = load_run(args.run_dir), plot_run
+    if not 1 <= args.configurations <= MAX_CONFIGURATIONS:
+        raise InputError(
+            "--configurations", args.configurations, f"an integer in [1, {MAX_CONFIGURATIONS}]"
+        )
+    with OutputDir(Path(args.out) if args.out is not None else run.path / "plots") as out:
+        written = plot(run, out.path, args.configurations)
+        out.keep()
+    for p in written:
+        print(p)
+    return 0
+
+
+#: Most configurations ``rancf plot`` draws in one figure.
+MAX_CONFIGURATIONS = 100
+
+
+def _cmd_animate(args: argparse.Namespace) -> int:
+    from rancf.post.run_data import load_run
+    from rancf.post.run_plots import animate_run
+
+    if is_system_run(args.run_dir):
+        from rancf.post.system_run import animate_system_run, load_system_run
+
+        n = animate_system_run(load_system_run(args.run_dir), args.out, args.fps, args.every)
+    else:
+        n = animate_run(load_run(args.run_dir), args.out, args.fps, args.every)
+    print(f"{n} frames at {args.fps} fps -> {args.out}")
+    return 0
+
+
+def _cmd_cad(args: argparse.Namespace) -> int:
+    from rancf.cad import read_curves
+
+    curves = read_curves(args.file)
+    print(" #  name              degree  control points  spans  rational  start -> end")
+    for c in curves:
+        cv = c.curve
+        a, b = cv.domain
+        ends = cv(np.array([a, b]))
+        spans = np.unique(cv.knots[(cv.knots >= a) & (cv.knots <= b)]).size - 1
+        rational = "yes" if np.ptp(cv.weights) > 0 else "no"
+        fmt = ", ".join
+        print(
+            f"{c.index:2d}  {c.name or '-':16s}  {cv.degree:6d}  {cv.n_ctrl:14d}  {spans:5d}  "
+            f"{rational:8s}  ({fmt(f'{x:.6g}' for x in ends[0])}) -> "
+            f"({fmt(f'{x:.6g}' for x in ends[1])})"
+        )
+    return 0
+
+
+def add_parsers(sub: Any) -> None:
+    """Register ``export``, ``plot``, ``animate`` and ``cad``."""
+    e = sub.add_parser(
+        "export",
+        help="write a run as ParaView files (--vtk) or a CAD curve (--nurbs)",
+        description="ParaView: one .vtu per stored time (the exact element curves sampled "
+        "densely) and a .pvd collection. CAD: the configuration at one time as one NURBS curve "
+        "(.json geomdl, .step/.stp, .igs/.iges, .dxf).",
+    )
+    e.add_argument("run_dir", metavar="RUN_DIR", help="a directory written by `rancf simulate`")
+    e.add_argument("--vtk", metavar="OUT_DIR", default=None, help="write .pvd + .vtu files here")
+    e.add_argument("--every", type=int, default=1, help="every N-th stored time (default 1)")
+    e.add_argument(
+        "--samples", type=int, default=16, help="points per element along the curve (default 16)"
+    )
+    e.add_argument("--nurbs", metavar="FILE", default=None, help="write the shape as NURBS")
+    e.add_argument(
+        "--time", type=float, default=None, help="time of the --nurbs shape (default: the last)"
+    )
+    e.set_defaults(func=_cmd_export)
+
+    p = sub.add_parser("plot", help="PNG figures of a run: sensors, energies, configurations")
+    p.add_argument("run_dir", metavar="RUN_DIR")
+    p.add_argument("--out", default=None, help="output directory (default RUN_DIR/plots)")
+    p.add_argument("--configurations", type=int, default=6, help="configurations drawn (default 6)")
+    p.set_defaults(func=_cmd_plot)
+
+    a = sub.add_parser("animate", help="render the motion of a run to a GIF or MP4 file")
+    a.add_argument("run_dir", metavar="RUN_DIR")
+    a.add_argument("--out", required=True, metavar="FILE.gif|FILE.mp4")
+    a.add_argument("--fps", type=int, default=20, help="frames per second (default 20)")
+    a.add_argument("--every", type=int, default=1, help="every N-th stored time (default 1)")
+    a.set_defaults(func=_cmd_animate)
+
+    c = sub.add_parser("cad", help="inspect CAD files (STEP, IGES, DXF, geomdl JSON)")
+    c.add_argument("action", choices=["list"], help="list the curves a file holds")
+    c.add_argument("file", metavar="FILE")
+    c.set_defaults(func=_cmd_cad)

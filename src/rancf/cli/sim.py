@@ -1,0 +1,287 @@
+"""The sub-command that runs a scenario's dynamics: ``simulate``."""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import math
+import os
+import signal
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+from rancf.cli.io import OutputDir
+from rancf.errors import InputError, RunFailedError
+
+__all__ = ["add_parsers", "DEFAULT_MAX_OUTPUT_GB"]
+
+#: Default ``--max-output-gb``: the disk a run's stored states may take.
+DEFAULT_MAX_OUTPUT_GB = 2.0
+
+
+def _process_age() -> float:
+    """Seconds since this process started (Linux ``/proc``; else since the CLI was imported)."""
+    try:
+        with open("/proc/self/stat", encoding="ascii") as fh:
+            start_ticks = int(fh.read().rsplit(")", 1)[1].split()[19])
+        with open("/proc/uptime", encoding="ascii") as fh:
+            uptime = float(fh.read().split()[0])
+        return max(0.0, uptime - start_ticks / os.sysconf("SC_CLK_TCK"))
+    except (OSError, ValueError, IndexError):  # pragma: no cover - not Linux
+        return time.monotonic() - _IMPORTED
+
+
+_IMPORTED = time.monotonic()
+
+
+def _positive(option: str, value: float, what: str) -> float:
+    if not (math.isfinite(value) and value > 0):
+        raise InputError(option, value, what)
+    return value
+
+
+def _scenario_text(path: str) -> str:
+    """What the run folder keeps as ``scenario.toml`` (readers use it, not the original file,
+    which may be edited or moved later)."""
+    import tomllib
+
+    from rancf.sweep.toml_out import scenario_copy
+
+    text = Path(path).read_text(encoding="utf-8")  # load_scenario has read it already
+    return scenario_copy(text, tomllib.loads(text), path)
+
+
+def _cmd_simulate(args: argparse.Namespace) -> int:
+    every = _positive("--checkpoint-every", args.checkpoint_every, "a finite number of seconds > 0")
+    limit = _positive("--max-output-gb", args.max_output_gb, "a finite size in GB > 0")
+    od = OutputDir(args.out, kind="run", overwrite=args.overwrite)  # checks the path up front
+    from rancf.atomic import atomic_write
+    from rancf.post.checks import run_warnings, section_warnings
+    from rancf.post.history import HistoryStore, plan_run
+    from rancf.post.results import run_summary
+    from rancf.scenario import load_scenario
+    from rancf.solvers.static import start_state
+
+    sc = load_scenario(args.scenario)
+    opts = sc.dynamic_options()
+    system, outputs = plan_run(sc, limit)
+    y_start, start_info = start_state(sc, system)
+    copy = _scenario_text(args.scenario)
+    out = od.path
+    stop = _StopFlag()
+    notes = _warn(section_warnings(system))  # likely unit mistakes: the run goes on
+    with stop, od:
+        info = {"scenario": str(Path(args.scenario).resolve()), "setup_wall_time_s": None}
+        info.update(start_info)
+        store = HistoryStore(out, outputs, {**info, "warnings": notes})
+        try:
+            atomic_write(out / "scenario.toml", copy)
+            store.write_summary(_running(system, 0.0))
+            res = _run(args, system, opts, store, stop, every, od.keep, y_start)
+            summary = run_summary(system, res)
+            store.flush()  # every row's derived outputs, the strain among them
+            store.info["warnings"] = run_warnings(system, largest=outputs.largest_strain)
+            store.finish(summary)
+        except BaseException as exc:
+            err = _end_broken(store, system, exc, od.kept, out)
+            if err is exc:
+                raise
+            raise err from None
+    _warn(store.info["warnings"][len(notes) :])
+    return _report(args, res, {**summary, **store.info}, out)
+
+
+def _warn(notes: list[str]) -> list[str]:
+    """Print each warning as one line on standard error; returns them."""
+    for note in notes:
+        print(f"rancf: warning: {note}", file=sys.stderr)
+    return notes
+
+
+def _end_broken(store: Any, model: Any, exc: BaseException, kept: bool, out: Path) -> BaseException:
+    """Leave the run folder truthful after ``exc``; returns the exception to raise.
+
+    Before the first checkpoint nothing of the run is kept (its files are removed; the folder
+    too if this command created it).  After it, the folder keeps the last complete checkpoint,
+    its summary says ``failed``, and an operating-system error (a full disk) becomes a
+    :class:`~rancf.errors.RunFailedError` naming the file and the time the files reach.
+    """
+    if not kept:
+        store.discard()
+        with contextlib.suppress(OSError):
+            (out / "scenario.toml").unlink()
+        return exc
+    store.fail(_broken(model, store, exc))
+    if isinstance(exc, OSError):
+        where = f"{exc.filename}: " if exc.filename is not None else ""
+        return RunFailedError(
+            f"{where}{exc.strerror or exc}; the run stopped; {out} keeps its results up to "
+            f"t = {store.saved_t or 0.0:g} s (summary.json says failed)"
+        )
+    return exc
+
+
+class _StopFlag:
+    """While active, SIGINT and SIGTERM set a flag instead of raising (polled between steps)."""
+
+    def __init__(self) -> None:
+        self.flag = False
+        self._old: dict[int, Any] = {}
+
+    def __call__(self) -> bool:
+        return self.flag
+
+    def _set(self, signum: int, frame: Any) -> None:
+        self.flag = True
+
+    def __enter__(self) -> _StopFlag:
+        for sig in (signal.SIGINT, signal.SIGTERM):
+            self._old[sig] = signal.signal(sig, self._set)
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        for sig, old in self._old.items():
+            signal.signal(sig, old)
+
+
+def _running(model: Any, t: float) -> dict[str, Any]:
+    from rancf.post.results import run_sizes
+
+    return {
+        "status": "running",
+        "message": f"running, t = {t:g} s",
+        "t_reached": t,
+        **run_sizes(model),
+    }
+
+
+def _broken(model: Any, store: Any, exc: BaseException) -> dict[str, Any]:
+    """Summary of a run ended by an exception (the error path prints the message)."""
+    from rancf.post.results import run_sizes
+
+    kind = "interrupted" if isinstance(exc, KeyboardInterrupt) else "failed"
+    text = str(exc)
+    if isinstance(exc, OSError) and exc.strerror:
+        text = f"{exc.filename}: {exc.strerror}" if exc.filename is not None else exc.strerror
+    return {
+        "status": kind,
+        "message": " ".join(text.split()) or type(exc).__name__,
+        "t_reached": store.saved_t,
+        "outputs": store.n_rows,
+        **run_sizes(model),
+    }
+
+
+#: A progress bar appears once a run has been stepping this long [s] (short runs stay silent).
+PROGRESS_AFTER_S = 0.5
+
+
+def _progress_bar(t_end: float, t: float) -> Any:
+    from tqdm import tqdm  # imported only for runs long enough to show a bar
+
+    return tqdm(
+        total=t_end,
+        initial=t,
+        unit="s",
+        file=sys.stderr,
+        leave=False,
+        bar_format="{l_bar}{bar}| t = {n:.4g}/{total:.4g} s [{elapsed}<{remaining}]",
+    )
+
+
+def _run(
+    args: argparse.Namespace,
+    model: Any,
+    opts: Any,
+    store: Any,
+    stop: Any,
+    every: float,
+    started: Any,
+    y_start: Any = None,
+) -> Any:
+    """Integrate into ``store`` from ``y_start`` (default the reference); ``started()`` once
+    the first checkpoint is on disk."""
+    from rancf.post.results import run_summary
+    from rancf.solvers.dynamic import integrate
+
+    bar: list[Any] = []
+    pace = {"next": time.monotonic() + every, "every": every, "bar": math.inf}
+
+    def on_start() -> None:
+        store.info["setup_wall_time_s"] = _process_age()
+        store.checkpoint(_running(model, 0.0))  # every file exists before the first step
+        started()
+        if not args.quiet:
+            pace["bar"] = time.monotonic() + PROGRESS_AFTER_S
+
+    def on_output(t: float, snapshot: Any) -> None:
+        if bar:
+            bar[0].update(t - bar[0].n)
+        elif time.monotonic() >= pace["bar"]:
+            bar.append(_progress_bar(opts.t_end, t))
+        now = time.monotonic()
+        if now >= pace["next"]:
+            summary = {**run_summary(model, snapshot()), **_running(model, t)}
+            store.checkpoint(summary)
+            took = time.monotonic() - now
+            pace["next"] = time.monotonic() + max(pace["every"], 4.0 * took)
+
+    try:
+        return integrate(
+            model, opts, on_output, stop, sink=store, on_start=on_start, initial=y_start
+        )
+    finally:
+        if bar:
+            bar[0].close()
+
+
+def _report(args: argparse.Namespace, res: Any, summary: dict[str, Any], out: Path) -> int:
+    from rancf.solvers.dynamic import DynamicStatus
+
+    if res.status is DynamicStatus.FAILED:
+        print(f"rancf: simulation failed: {res.message} (written to {out})", file=sys.stderr)
+        return 3
+    if res.status is DynamicStatus.INTERRUPTED:
+        print(f"rancf: {res.message}; results so far written to {out}", file=sys.stderr)
+        return 130
+    if not args.quiet:
+        per_step = summary["time_per_step_s"] or 0.0
+        print(
+            f"{summary['status']}: t = {summary['t_reached']:g} s, {summary['steps']} steps, "
+            f"{summary['newton_iterations']} Newton iterations, "
+            f"{summary['solve_wall_time_s']:.3f} s ({1e3 * per_step:.3f} ms/step) -> {out}"
+        )
+    return 0
+
+
+OVERWRITE_HELP = (
+    "replace the earlier run in --out (all of that folder's contents); without it --out must "
+    "be a new or empty folder"
+)
+
+
+def add_parsers(sub: Any) -> None:
+    """Register ``simulate`` on the ``rancf`` sub-parser set."""
+    s = sub.add_parser("simulate", help="run the dynamics of a scenario file")
+    s.add_argument("scenario", help="scenario TOML file")
+    s.add_argument("--out", required=True, help="output directory (created if needed)")
+    s.add_argument("--quiet", action="store_true", help="no progress bar or summary line")
+    s.add_argument("--overwrite", action="store_true", help=OVERWRITE_HELP)
+    s.add_argument(
+        "--checkpoint-every",
+        type=float,
+        default=10.0,
+        metavar="SECONDS",
+        help="write the result files every SECONDS of wall time while running (default 10)",
+    )
+    s.add_argument(
+        "--max-output-gb",
+        type=float,
+        default=DEFAULT_MAX_OUTPUT_GB,
+        metavar="GB",
+        help="refuse a run whose stored states would need more disk than this "
+        f"(default {DEFAULT_MAX_OUTPUT_GB:g})",
+    )
+    s.set_defaults(func=_cmd_simulate)

@@ -1,0 +1,63 @@
+"""Joints, springs and loads of a system (frozen values; :class:`rancf.system.System` assembles).
+
+Joint kinds (docs/derivations/systems.md section 3): ``"pin"`` (positions coincide: revolute in 2D,
+spherical in
+3D), ``"revolute"`` (3D: positions, and the ``axis`` of the first place normal to the second's
+frame's normals of it), ``"fixed"`` (positions and orientations: a cable end's tangent direction,
+a rod end's material frame, a rigid body's frame), ``"slider"`` (the first place moves along
+``axis`` through the second, orientation free).  A pin or revolute with ``angle`` is driven: the
+relative rotation from the reference follows the time function [rad].  Axes are given in world
+coordinates in the reference configuration.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+from rancf.bodies.time_function import TimeFunction
+from rancf.system.places import Place
+
+__all__ = ["Joint", "Spring", "Load", "JOINT_KINDS"]
+
+JOINT_KINDS = ("pin", "revolute", "fixed", "slider")
+
+
+@dataclass(frozen=True)
+class Joint:
+    """A joint between two places (module docstring)."""
+
+    kind: str
+    between: tuple[Place | str, Place | str]
+    axis: Sequence[float] | None = None
+    angle: TimeFunction | None = None
+    name: str = ""
+    #: A joint to the ground: the ground point moves by this displacement (a moving support).
+    motion: TimeFunction | None = None
+
+
+@dataclass(frozen=True)
+class Spring:
+    """A spring-damper between two places: tension ``k (ℓ - ℓ0) + c dℓ/dt`` along the line
+    between them; ``length`` ℓ0 defaults to their distance in the reference configuration.
+
+    With ``ℓ0 = 0`` (a spring to ``ground``, which sits at the other place's reference) it is
+    the linear spring-damper ``F = k (x_a - x_b) + c (v_a - v_b)``: the same stiffness, with a
+    direction also where the places meet; ``ℓ0 > 0`` needs the places apart at the reference."""
+
+    between: tuple[Place | str, Place | str]
+    stiffness: float
+    damping: float = 0.0
+    length: float | None = None
+    name: str = ""
+
+
+@dataclass(frozen=True)
+class Load:
+    """A force (and, on a rigid body, a torque) at a place, world axes, times ``time`` (a
+    factor; None: constant)."""
+
+    at: Place | str
+    force: Sequence[float] | None = None
+    torque: Sequence[float] | None = None
+    time: TimeFunction | None = None
