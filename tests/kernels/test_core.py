@@ -88,10 +88,26 @@ def _pendulum(n_el=8, **kw):
     )
 
 
+def test_chord_newton_is_full_newton_to_far_below_the_tolerance():
+    # chord (the default): one exact tangent a step, the step's further iterations on its
+    # factors; the soft pendulum's 20 % strain makes the tangent change within a step
+    m = _pendulum()
+    base = dict(t_end=0.3, step=1e-3, output_step=0.05)
+    full = integrate(m, DynamicOptions(newton="full", **base))
+    chord = integrate(m, DynamicOptions(**base))
+    assert DynamicOptions(**base).newton == "chord"
+    assert full.n_factorizations == full.n_newton + 1  # the mass matrix's at t = 0
+    assert chord.n_factorizations < 0.75 * full.n_factorizations
+    assert chord.n_factorizations >= chord.n_steps
+    assert chord.n_rejected == full.n_rejected == 0
+    tol = 1e-10 * 1.2  # newton_tol times the model size
+    assert np.abs(chord.q - full.q).max() < 1e-3 * tol
+
+
 def test_modified_newton_gives_the_same_answer():
     m = _pendulum()
     base = dict(t_end=0.3, step=1e-3, output_step=0.05)
-    full = integrate(m, DynamicOptions(**base))
+    full = integrate(m, DynamicOptions(newton="full", **base))
     mod = integrate(m, DynamicOptions(newton="modified", **base))
     assert mod.n_factorizations < 0.1 * full.n_factorizations
     assert mod.n_rejected == 0
