@@ -62,7 +62,9 @@ StepOutcome SystemIntegrator::step(const double* y0, const double* v0, const dou
     lu_h_ = h;
   }
   const bool reuse = sc_.modified || sc_.chord;
-  const int max_iter = reuse ? 3 * sc_.max_iter : sc_.max_iter;  // linear convergence
+  // modified: linear convergence (old factors); chord: a fresh tangent at each step's start,
+  // and a slow contraction refreshes it, as many iterations as full Newton
+  const int max_iter = sc_.modified ? 3 * sc_.max_iter : sc_.max_iter;
   for (int i = 0; i < n; ++i) {
     base_[sz(i)] = y0[i] + h * v0[i] + h * h * (0.5 - beta) * a0[i];
     y1[i] = y0[i] + h * v0[i] + 0.5 * h * h * a0[i];
