@@ -7,11 +7,14 @@
 namespace rancf {
 
 void band_matvec(const double* ab, const double* x, int n, int ku, double* out) {
-  for (int i = 0; i < n; ++i) {
-    double s = 0.0;
-    const int j0 = std::max(0, i - ku), j1 = std::min(n, i + ku + 1);
-    for (int j = j0; j < j1; ++j) s += ab[static_cast<std::ptrdiff_t>(ku + i - j) * n + j] * x[j];
-    out[i] = s;
+  // by band rows (contiguous in ab), the diagonals of column offset j - i = ku - k in the order
+  // of increasing j for every i: the same sums as row by row, without the stride n
+  std::fill(out, out + n, 0.0);
+  for (int k = 2 * ku; k >= 0; --k) {
+    const int d = k - ku;  // i - j
+    const double* row = ab + static_cast<std::ptrdiff_t>(k) * n;
+    const int i0 = std::max(0, d), i1 = std::min(n, n + d);
+    for (int i = i0; i < i1; ++i) out[i] += row[i - d] * x[i - d];
   }
 }
 
