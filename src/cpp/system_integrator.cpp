@@ -61,7 +61,7 @@ StepOutcome SystemIntegrator::step(const double* y0, const double* v0, const dou
     lu_valid_ = false;
     lu_h_ = h;
   }
-  const bool reuse = sc_.modified || sc_.chord;
+  bool reuse = sc_.modified || sc_.chord;
   // modified: linear convergence (old factors); chord: a fresh tangent at each step's start,
   // and a slow contraction refreshes it, as many iterations as full Newton
   const int max_iter = sc_.modified ? 3 * sc_.max_iter : sc_.max_iter;
@@ -123,7 +123,15 @@ StepOutcome SystemIntegrator::step(const double* y0, const double* v0, const dou
       }
       return {true, it};
     }
-    if (reuse && !fresh && norm > 0.25 * prev) lu_valid_ = false;  // slow: refresh
+    if (reuse && !fresh && norm > 0.25 * prev) {  // slow: refresh
+      lu_valid_ = false;
+      if (sc_.chord) {  // undo the chord increment, full Newton for the rest of the step: the
+        for (int i = 0; i < n; ++i) y1[i] -= dz_[sz(i)];  // path of full Newton (contact)
+        for (int i = 0; i < m; ++i) l1[i] -= dz_[sz(n + i)];
+        reuse = false;
+        continue;
+      }
+    }
     prev = norm;
   }
   lu_valid_ = false;
