@@ -28,6 +28,9 @@ SystemIntegrator::SystemIntegrator(const System& s, const Scheme& scheme)
   // no constraints, rigid bodies, rotary inertia or contact: [M G^T; G 0] is M, whatever the
   // state (the element tangents count zero times in it)
   mass_constant_ = s.m == 0 && s.rigid.empty() && s.contact == nullptr;
+  // contact switches within a step, where reused factors lead the iteration astray (rejected
+  // steps): chord is full Newton there
+  if (s.contact != nullptr) sc_.chord = false;
   for (const Model* mod : s.flex) mass_constant_ = mass_constant_ && !has_rotary_inertia(*mod);
 }
 

@@ -52,8 +52,9 @@ class DynamicOptions:
     newton : {"chord", "full", "modified"}
         ``"chord"`` (default): the exact tangent is assembled and factored at the first iteration
         of every step and reused for the step's further iterations (which then need the forces
-        only) while the increments shrink fast, else refreshed; the answer is that of
-        ``"full"`` to far below the Newton tolerance.
+        only) while the increments shrink fast, else full Newton for the rest of the step
+        (systems with contact: full Newton); the answer is that of ``"full"`` to far below the
+        Newton tolerance.
         ``"full"``: the exact tangent is assembled and factored at every iteration.
         ``"modified"``: the factored Jacobian is reused across iterations and steps and refreshed
         from the exact tangent when the increments stop shrinking fast (the converged answer is
