@@ -47,6 +47,11 @@ def run_to_nurbs(run: Any, i: int) -> Any:
         raise InputError(
             "--time", float(run.t[i]), "a stored state with finite coordinates (this one is not)"
         )
+    if np.abs(nodes[-1, 0] - nodes[0, 0]).max() <= 1e-12 * np.abs(nodes[:, 0]).max():
+        # a closed ring: its seam holds to round-off (a constraint); the file's curve closes
+        # exactly, the seam pole the same at both ends
+        nodes = nodes.copy()
+        nodes[-1, 0] = nodes[0, 0]
     nodal = np.concatenate([nodes[:-1], nodes[1:]], axis=1)
     breaks = np.concatenate([[0.0], np.cumsum(run.scales)])
     return chain_to_nurbs(ElementChain(nodal, run.weights, run.scales, breaks))
