@@ -23,6 +23,11 @@ def is_system_run(path: str) -> bool:
     return check(path)
 
 
+#: End points of a chain closer than this (relative to the curve's extent) are one point: a
+#: ring's seam, held by its closure rows to round-off.
+SEAM_RTOL = 1e-12
+
+
 def run_to_nurbs(run: Any, i: int) -> Any:
     """The configuration of stored state ``i`` as one exact NURBS curve (cable and rod elements:
     a rod's centreline).
@@ -30,7 +35,8 @@ def run_to_nurbs(run: Any, i: int) -> Any:
     The nodal coordinates give an :class:`~rancf.elements.cad.ElementChain` (breakpoints: the
     cumulative reference gradient scales, i.e. reference arc length) and
     :func:`~rancf.elements.cad.chain_to_nurbs` turns it into a cubic NURBS with the lowest knot
-    multiplicities that represent it.
+    multiplicities that represent it.  Ends that meet to round-off (:data:`SEAM_RTOL`: a ring's
+    seam) are written as one point, so a closed curve stays closed in the CAD file.
     """
     from rancf.elements.cad import ElementChain, chain_to_nurbs
 
@@ -47,9 +53,9 @@ def run_to_nurbs(run: Any, i: int) -> Any:
         raise InputError(
             "--time", float(run.t[i]), "a stored state with finite coordinates (this one is not)"
         )
-    if np.abs(nodes[-1, 0] - nodes[0, 0]).max() <= 1e-12 * np.abs(nodes[:, 0]).max():
-        # a closed ring: its seam holds to round-off (a constraint); the file's curve closes
-        # exactly, the seam pole the same at both ends
+    # a closed curve's seam: its two copies agree to round-off, and CAD wants one point
+    gap = np.abs(nodes[-1, 0] - nodes[0, 0]).max()
+    if gap <= SEAM_RTOL * max(np.abs(nodes[:, 0]).max(), 1e-300):
         nodes = nodes.copy()
         nodes[-1, 0] = nodes[0, 0]
     nodal = np.concatenate([nodes[:-1], nodes[1:]], axis=1)

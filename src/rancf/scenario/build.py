@@ -23,10 +23,10 @@ from rancf.bodies.flexible import Material, Model, PointLoad, RigidMotion, Secti
 from rancf.errors import ConvergenceError, InputError, ScenarioError
 from rancf.scenario.geometry import MAX_ELEMENTS, CadGeometry, ConicGeometry, NurbsGeometry
 from rancf.scenario.sensors import SYSTEM_SENSOR_KINDS
+from rancf.scenario.view import ScenarioView
 
 if TYPE_CHECKING:
     from rancf.scenario.geometry import MeshTable
-    from rancf.scenario.scenario import Scenario
 
 __all__ = [
     "build_model",
@@ -125,7 +125,7 @@ def mesh_geometry(path: str, geometry: Any, mesh: MeshTable, prefix: str = "") -
         ) from None
 
 
-def system_only(sc: Scenario) -> tuple[str, str] | None:
+def system_only(sc: ScenarioView) -> tuple[str, str] | None:
     """The first key (and what it is) that only the system solver runs: ``bodies``,
     ``joints``, ``springs``, moving supports, time loads and the system sensors; None when the
     one-body model takes the whole scenario."""
@@ -144,14 +144,14 @@ def system_only(sc: Scenario) -> tuple[str, str] | None:
     return None
 
 
-def _not_yet(sc: Scenario) -> None:
+def _not_yet(sc: ScenarioView) -> None:
     """Refuse, naming the key, what only the system solver runs (:func:`system_only`)."""
     found = system_only(sc)
     if found is not None:
         raise ScenarioError(sc.path, found[0], f"{found[1]}: {NOT_YET}")
 
 
-def build_model(sc: Scenario, system: bool = False) -> Model:
+def build_model(sc: ScenarioView, system: bool = False) -> Model:
     """Mesh the scenario's geometry and assemble its model (errors name the scenario key).
 
     ``system``: for the system solver (:func:`rancf.scenario.system_build.build_system`), which
@@ -169,7 +169,7 @@ def build_model(sc: Scenario, system: bool = False) -> Model:
 
 
 def flexible_model(
-    sc: Scenario,
+    sc: ScenarioView,
     prefix: str,
     tables: tuple[Any, Any, Any, Any],
     supports: list[tuple[str, int, dict[str, Any]]],
@@ -252,7 +252,7 @@ def _load(node: int, t: dict[str, Any]) -> PointLoad:
     return PointLoad(node, _vec(t["force"]), t["frequency_hz"], _vec(t["moment"]), t["time"])
 
 
-def _check_node(sc: Scenario, n_nodes: int, key: str, node: int) -> int:
+def _check_node(sc: ScenarioView, n_nodes: int, key: str, node: int) -> int:
     if not -n_nodes <= node < n_nodes:
         raise ScenarioError(
             sc.path, key, f"node {node} does not exist (the mesh has nodes 0..{n_nodes - 1})"

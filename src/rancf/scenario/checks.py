@@ -9,7 +9,7 @@ built (:mod:`rancf.scenario.build`).
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from pydantic_core import PydanticCustomError
 
@@ -18,9 +18,7 @@ from rancf.scenario.bodies import FlexibleBody, RigidBody
 from rancf.scenario.loads import time_size
 from rancf.scenario.places import ResolvedPlace, resolve_place
 from rancf.scenario.section import check_flexible
-
-if TYPE_CHECKING:
-    from rancf.scenario.scenario import Scenario
+from rancf.scenario.view import ScenarioView
 
 __all__ = ["check_scenario"]
 
@@ -35,7 +33,7 @@ def _size(key: str, v: Any, dim: int) -> None:
 class _Context:
     """The scenario's bodies by name (None: one body) and its dimension."""
 
-    def __init__(self, sc: Scenario) -> None:
+    def __init__(self, sc: ScenarioView) -> None:
         self.sc = sc
         self.bodies: dict[str, Any] | None = None
         if sc.bodies:
@@ -259,7 +257,7 @@ def _obstacles(c: _Context) -> set[str]:
     return names
 
 
-def check_scenario(sc: Scenario) -> tuple[int, dict[str, Any] | None, list[ResolvedPlace]]:
+def check_scenario(sc: ScenarioView) -> tuple[int, dict[str, Any] | None, list[ResolvedPlace]]:
     """Check ``sc`` as a whole; return its dimension, its bodies by name (None: one body) and
     the resolved places of its supports."""
     c = _Context(sc)

@@ -21,6 +21,7 @@ from rancf.errors import MAX_SHOWN, ScenarioError, shorten
 
 __all__ = ["scenario_error", "key_path", "show"]
 
+
 def show(value: Any) -> str:
     """A value as an error message shows it: ``repr``, at most :data:`MAX_SHOWN` characters, an
     integer of hundreds of digits by its number of digits."""

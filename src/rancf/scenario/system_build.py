@@ -20,17 +20,15 @@ Every scenario is a system: a file without ``[[bodies]]`` is one flexible body n
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 
 from rancf.bodies.rigid import PointMass, RigidBody
 from rancf.errors import InputError, ScenarioError
 from rancf.scenario.build import build_model, flexible_model
+from rancf.scenario.view import ScenarioView
 from rancf.system import Joint, Load, Obstacle, Place, Spring, System
-
-if TYPE_CHECKING:
-    from rancf.scenario.scenario import Scenario
 
 __all__ = ["build_system", "support_labels", "ONE_BODY"]
 
@@ -58,7 +56,7 @@ def _tuple(v: Any) -> tuple[float, ...] | None:
     return None if v is None else tuple(v)
 
 
-def support_labels(sc: Scenario) -> dict[str, list[int | str]]:
+def support_labels(sc: ScenarioView) -> dict[str, list[int | str]]:
     """The supports' ``at`` as written, per flexible body (reaction column names)."""
     if not sc.bodies:
         return {ONE_BODY: list(sc.support_labels)}
@@ -70,7 +68,7 @@ def support_labels(sc: Scenario) -> dict[str, list[int | str]]:
     return out
 
 
-def build_system(sc: Scenario) -> System:
+def build_system(sc: ScenarioView) -> System:
     """The system of a scenario (module docstring); errors name the scenario key."""
     try:
         return _build(sc)
@@ -78,7 +76,7 @@ def build_system(sc: Scenario) -> System:
         raise ScenarioError(sc.path, exc.parameter, f"{exc.allowed} (got {exc.value!r})") from None
 
 
-def _observed(sc: Scenario) -> list[Place]:
+def _observed(sc: ScenarioView) -> list[Place]:
     out = []
     for sen in sc.sensors:
         for text in sen.places:
@@ -88,7 +86,7 @@ def _observed(sc: Scenario) -> list[Place]:
     return out
 
 
-def _build(sc: Scenario) -> System:
+def _build(sc: ScenarioView) -> System:
     gravity, damping = sc.loads.gravity, sc.damping.mass_proportional
     if not sc.bodies:
         model = build_model(sc, system=True)
@@ -124,7 +122,7 @@ def _build(sc: Scenario) -> System:
                   **_parts(sc, bodies))  # fmt: skip
 
 
-def _parts(sc: Scenario, bodies: dict[str, Any]) -> dict[str, Any]:
+def _parts(sc: ScenarioView, bodies: dict[str, Any]) -> dict[str, Any]:
     """Joints (with supports of rigid places), springs, loads on rigid places, observed places."""
 
     def place(text: Any) -> Place:
