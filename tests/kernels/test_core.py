@@ -182,3 +182,22 @@ def test_core_sources_are_formatted():
         text=True,
     )
     assert p.returncode == 0, p.stderr[:2000]
+
+
+def test_consistent_acceleration_with_kept_mass_factors_is_a_fresh_one():
+    # outputs ask for M a = F at state after state: the mass matrix's factors are kept from the
+    # first call (constant M: no joints, rigid bodies, rotary inertia or contact); every later
+    # answer is that of a new integrator, which factors M again
+    m = _pendulum(4)
+    integ = GeneralizedAlpha(m, 0.9, 1e-10, 12)
+    sys_ = integ.system
+    rng = np.random.default_rng(3)
+    first = integ.initial_acceleration(sys_.y0.copy(), np.zeros(sys_.n), 0.0)
+    assert np.all(np.isfinite(first))
+    for k in range(3):
+        y = sys_.y0 + 1e-3 * rng.normal(size=sys_.n)
+        v = rng.normal(size=sys_.n)
+        kept = integ.initial_acceleration(y, v, 0.1 * k)
+        fresh = GeneralizedAlpha(m, 0.9, 1e-10, 12).initial_acceleration(y, v, 0.1 * k)
+        assert np.abs(kept - fresh).max() <= 1e-12 * np.abs(fresh).max()
+    assert integ.n_factorizations == 1
