@@ -41,6 +41,7 @@ def test_static_json_reactions_and_outputs(hose):
     assert along["bending_moment"][0] == pytest.approx(-out["reactions"][0]["moment"][0], rel=1e-2)
     with np.load(hose / "st" / "results.npz") as z:
         assert z["reactions"].shape == (len(out["load_factors"]), 6)
+    with np.load(hose / "st" / "bodies" / "body" / "results.npz") as z:
         assert z["along"].shape == (len(out["load_factors"]), 65, 4)
 
 
@@ -84,7 +85,7 @@ def test_vtk_export_carries_the_section_quantities(hose):
 
     _run(["static", "installed-hose.toml", "--out", "st"], hose)
     _run(["export", "st", "--vtk", "vtk"], hose)
-    files = sorted((hose / "vtk").glob("st_*.vtu"))
+    files = sorted((hose / "vtk" / "body").glob("body_*.vtu"))
     mesh = meshio.read(files[-1])
     for name in ("section_axial_force", "section_bending_moment", "section_curvature"):
         assert name in mesh.point_data

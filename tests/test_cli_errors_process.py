@@ -196,7 +196,7 @@ CASES = [
     Case(
         "animate-npz-of-another-run",
         ["animate", RUN, "--out", "a.gif"],
-        "scenario.toml",
+        "a body folder of the run",
         damage="foreign",
     ),
     Case("export-npz-without-q", ["export", RUN, "--vtk", "v"], "results.npz", damage="no-q"),

@@ -168,7 +168,7 @@ def test_a_full_disk(tmp_path, tmpfs):
     p = subprocess.run([*RANCF, "export", "r", "--vtk", str(tmpfs / "vtk")], cwd=tmp_path,
                        capture_output=True, text=True)  # fmt: skip
     assert p.returncode == 2 and len(p.stderr.splitlines()) == 1, p.stderr
-    assert f"{tmpfs}/vtk/r_" in p.stderr and not (tmpfs / "vtk").exists()
+    assert f"{tmpfs}/vtk/body/body_" in p.stderr and not (tmpfs / "vtk").exists()
     # full before the first checkpoint: status 2 and nothing written
     (tmpfs / "run").rename(tmpfs / "kept")
     free = os.statvfs(tmpfs).f_bavail * os.statvfs(tmpfs).f_frsize
@@ -176,6 +176,30 @@ def test_a_full_disk(tmp_path, tmpfs):
     p = subprocess.run([*cmd, str(tmpfs / "run2")], cwd=tmp_path, capture_output=True, text=True)
     assert p.returncode == 2 and len(p.stderr.splitlines()) == 1, p.stderr
     assert "No space left on device" in p.stderr and not (tmpfs / "run2").exists()
+
+
+def test_a_run_failing_on_a_full_disk_still_says_so(tmpfs):
+    """A disk that fills to the last byte while a run goes on: the raw history's reserve is
+    freed, so the last ``summary.json`` says ``failed`` (not the ``running`` of before)."""
+    import tomllib
+
+    from rancf.post.history import HistoryStore
+    from rancf.scenario import parse_scenario
+    from rancf.scenario.system_build import support_labels
+    from rancf.system.outputs import SystemOutputs
+
+    sc = parse_scenario(tomllib.loads(mutated()), "s.toml")
+    system = sc.build_system()
+    out = tmpfs / "run"
+    out.mkdir()
+    store = HistoryStore(out, SystemOutputs(system, sc.sensors, support_labels(sc)), {})
+    store.write_summary({"status": "running", "t_reached": 0.0})
+    with open(tmpfs / "filler", "wb", buffering=0) as fh, pytest.raises(OSError):
+        while True:  # every byte the disk has left
+            fh.write(b"x" * 4096)
+    assert not store.fail({"status": "failed", "message": "disk full", "t_reached": None})
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["status"] == "failed" and "disk full" in summary["message"]
 
 
 def test_two_processes_on_one_output_folder(tmp_path):
@@ -217,6 +241,7 @@ def test_overwrite_replaces_an_earlier_run_wholly(tmp_path, monkeypatch, capsys)
     assert main(["simulate", "s.toml", "--out", "run", "--quiet", "--overwrite"]) == 0
     names = sorted(p.name for p in (tmp_path / "run").iterdir())
     assert names == [
+        "bodies",
         "energy.csv",
         "reactions.csv",
         "results.npz",
@@ -241,7 +266,7 @@ def test_a_run_folder_outlives_edits_of_its_scenario(tmp_path, monkeypatch):
     assert main(["simulate", "s.toml", "--out", "run", "--quiet"]) == 0
     (tmp_path / "s.toml").write_text(mutated(mesh__elements=7, section__radius=0.5))
     assert main(["export", "run", "--vtk", "vtk"]) == 0
-    radius = meshio.read(tmp_path / "vtk/run_00000.vtu").point_data["radius"]
+    radius = meshio.read(tmp_path / "vtk/body/body_00000.vtu").point_data["radius"]
     assert np.all(radius == 0.02)
     (tmp_path / "s.toml").unlink()
     assert main(["animate", "run", "--out", "run.gif", "--every", "10"]) == 0
@@ -256,13 +281,13 @@ def test_non_utf8_folder_names(tmp_path):
     for args, printed in (
         ([b"simulate", b"s.toml", b"--out", run, b"--quiet"], b""),
         ([b"plot", run], run + b"/plots/energy.png"),
-        ([b"export", run, b"--vtk", vtk, b"--every", b"10"], vtk + b"/run\xef\xbf\xbd.pvd"),
+        ([b"export", run, b"--vtk", vtk, b"--every", b"10"], b"VTK frame(s) of run\xef\xbf\xbd"),
         ([b"export", run, b"--nurbs", b"shape\xfd.json"], b"shape\xfd.json"),
     ):
         p = subprocess.run([*RANCF, *args], cwd=tmp_path, capture_output=True, env=env)
         assert p.returncode == 0 and p.stderr == b"", p.stderr
         assert printed in p.stdout
-    assert (tmp_path / os.fsdecode(vtk) / "run\ufffd.pvd").is_file()
+    assert (tmp_path / os.fsdecode(vtk) / "body" / "body.pvd").is_file()
 
 
 def test_modes_json_is_strict(tmp_path, capsys):

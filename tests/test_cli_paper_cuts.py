@@ -68,7 +68,7 @@ def test_api_run_plots_without_its_scenario(tmp_path, element):
     )
     assert p.returncode == 0 and p.stderr == ""  # was: "no scenario found; no radius field"
     assert len(p.stdout.splitlines()) == 3
-    run = rancf.post.run_data.load_run(tmp_path / "run")
+    run = rancf.post.system_run.load_run(tmp_path / "run").body()
     assert run.radius == pytest.approx(0.02, rel=1e-15)
     if element == "beam":  # the reference tangents, not the chord directions
         t = model.mesh.nodes[:, 1]

@@ -161,10 +161,13 @@ def test_files_honour_the_umask(tmp_path, monkeypatch, umask, file_mode, dir_mod
     run = tmp_path / "run"
     assert run.stat().st_mode & 0o777 == dir_mode
     files = sorted(run.iterdir())
-    names = ["energy.csv", "reactions.csv", "results.npz", "scenario.toml", "sensors.csv"]
-    names += ["summary.json"]
+    names = ["bodies", "energy.csv", "reactions.csv", "results.npz", "scenario.toml"]
+    names += ["sensors.csv", "summary.json"]
     assert [f.name for f in files] == names
-    assert all(f.stat().st_mode & 0o777 == file_mode for f in files)
+    body = run / "bodies" / "body"
+    assert all(d.stat().st_mode & 0o777 == dir_mode for d in (files[0], body))
+    assert (body / "results.npz").stat().st_mode & 0o777 == file_mode
+    assert all(f.stat().st_mode & 0o777 == file_mode for f in files[1:])
 
 
 def test_an_interrupted_command_in_python_leaves_ctrl_c_to_the_caller(tmp_path, monkeypatch):

@@ -67,7 +67,9 @@ def test_simulate_writes_all_files(tmp_path, pendulum_file, capsys):
     assert np.allclose(res["sensors"], data[:, 1:])
     energy = np.loadtxt(out / "energy.csv", delimiter=",", skiprows=1)
     assert np.allclose(energy[:, 1] + energy[:, 2] + energy[:, 3], energy[:, 4])
-    assert res["metadata"]["element"] == "rancf"
+    assert [(b["name"], b["kind"], b["element"]) for b in res["metadata"]["bodies"]] == [
+        ("body", "flexible", "rancf")
+    ]
 
 
 def test_simulate_failure_keeps_results(tmp_path, capsys):

@@ -12,6 +12,6 @@ from tests.pages import DOCS, blocks, text
 def test_contact_page_scenario_is_valid():
     (toml,) = blocks(text(DOCS / "guide" / "contact.md"), "toml")
     sc = parse_scenario(tomllib.loads(toml), "contact.md")
-    assert [o.kind for o in sc.obstacles] == ["plane"] and sc.is_system
+    assert [o.kind for o in sc.obstacles] == ["plane"]
     assert [s.kind for s in sc.sensors] == ["contact_force"]
     assert sc.build_system().obstacle_names == ["ground"]

@@ -98,8 +98,8 @@ def test_scenario_example_is_valid():
 
 
 def test_system_example_is_valid():
-    """The system example of the guide: the keys of issue 18, read into the models; the
-    one-body commands stop on it with one line (simulate, static and modes take systems)."""
+    """The system example of the guide: its keys read into the models; it is a system of parts,
+    so asking it for one flexible body's model stops with one line pointing to its system."""
     from rancf.errors import ScenarioError
 
     toml = next(b for b in blocks(text(DOCS / "guide" / "systems.md"), "toml") if "[[bodies]]" in b)
@@ -108,5 +108,5 @@ def test_system_example_is_valid():
     assert [j.kind for j in sc.joints] == ["pin", "pin", "pin", "slider"]
     assert sc.data["joints"][0]["angle"].kind == "spin_up" and sc.springs[0].stiffness == 10.0
     assert [s.columns(2) for s in sc.sensors][2:] == [["N"], ["p_x", "p_y"]]
-    with pytest.raises(ScenarioError, match=r"^s\.toml: \[bodies\] multibody systems: not yet"):
+    with pytest.raises(ScenarioError, match=r"^s\.toml: \[bodies\] makes this scenario a system"):
         sc.build_model()

@@ -45,7 +45,7 @@ def test_page_console_examples(tmp_path, capsys, monkeypatch):
                 assert_lines_match(got, expected, what=cmd)
                 n += 1
     assert n >= 8
-    assert len(list((tmp_path / "run" / "vtk").glob("*.vtu"))) == 5
+    assert len(list((tmp_path / "run" / "vtk" / "body").glob("*.vtu"))) == 5
     assert os.path.getsize(tmp_path / "run.gif") > 0
     # the heavy top's sensors as the page shows them (numbers across machines: 1e-6)
     shown = blocks(dynamics, "text")[0].splitlines()

@@ -216,7 +216,8 @@ def test_missing_values_in_tables_are_explained():
 
 def test_legends_count_one_element_in_the_singular():
     from rancf.post.plots import pyplot
-    from rancf.studies.common import n_elements, plot_ab
+    from rancf.studies.common import n_elements
+    from rancf.studies.figures import plot_ab
 
     assert (n_elements(1), n_elements(2)) == ("1 element", "2 elements")
     plt = pyplot()

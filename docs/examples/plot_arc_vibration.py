@@ -17,18 +17,19 @@ import numpy as np
 
 import rancf
 from rancf.cli import main
-from rancf.post.run_data import load_run
+from rancf.post.system_run import load_run
 
 scenario = files("rancf.examples") / "arc-vibration.toml"
 modes = rancf.natural_modes(rancf.load_scenario(scenario).build_model(), count=2)
 print("natural frequencies [Hz]:", np.round(modes.frequencies_hz, 4))
 out = f"{tempfile.mkdtemp()}/run"
 main(["simulate", str(scenario), "--out", out, "--quiet"])
-run = load_run(out)
+whole = load_run(out)  # the run: times, sensors, every body
+run = whole.body()  # its one flexible body
 
 # %%
 # The tip's displacement normal to the chord, and its spectrum.
-y = run.sensors[:, run.sensor_names.index("tip_y")]
+y = whole.sensors[:, whole.sensor_names.index("tip_y")]
 y = y - y.mean()
 f = np.fft.rfftfreq(len(y), run.t[1] - run.t[0])
 fig, (ax, bx) = plt.subplots(1, 2, figsize=(10, 3.5))

@@ -14,12 +14,13 @@ from importlib.resources import files
 import matplotlib.pyplot as plt
 
 from rancf.cli import main
-from rancf.post.run_data import load_run, sample_centerline
+from rancf.post.centerline import sample_centerline
+from rancf.post.system_run import load_run
 
 scenario = files("rancf.examples") / "installed-hose.toml"
 out = f"{tempfile.mkdtemp()}/static"
 main(["static", str(scenario), "--out", out])
-path = load_run(out)
+path = load_run(out).body()
 
 # %%
 # The shapes along the load path: the factor λ runs from 0 to 1 while gravity is applied, and

@@ -16,12 +16,14 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from rancf.cli import main
-from rancf.post.run_data import load_run, sample_centerline
+from rancf.post.centerline import sample_centerline
+from rancf.post.system_run import load_run
 
 scenario = files("rancf.examples") / "planar-pendulum.toml"
 out = f"{tempfile.mkdtemp()}/run"
 main(["simulate", str(scenario), "--out", out, "--quiet"])
-run = load_run(out)
+whole = load_run(out)  # the run: times, sensors, every body
+run = whole.body()  # its one flexible body
 
 # %%
 # The exact element curves at six times, and the distance AB the paper monitors.
@@ -33,7 +35,7 @@ ax.set_aspect("equal")
 ax.set_xlabel("x [m]")
 ax.set_ylabel("y [m]")
 ax.legend(fontsize=7)
-bx.plot(run.t, run.sensors[:, run.sensor_names.index("AB")])
+bx.plot(run.t, whole.sensors[:, whole.sensor_names.index("AB")])
 bx.set_xlabel("t [s]")
 bx.set_ylabel("distance AB [m]")
 fig.tight_layout()

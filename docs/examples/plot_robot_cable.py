@@ -15,26 +15,29 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from rancf.cli import main
-from rancf.post.run_data import load_run, sample_centerline
+from rancf.post.centerline import sample_centerline
+from rancf.post.system_run import load_run
 
 scenario = files("rancf.examples") / "robot-cable.toml"
 out = f"{tempfile.mkdtemp()}/run"
 main(["simulate", str(scenario), "--out", out, "--quiet"])
-run = load_run(out)
-col = run.sensor_names.index
+whole = load_run(out)  # the run: times, sensors, every body
+run = whole.body()  # its one flexible body
+col = whole.sensor_names.index
 
 # %%
 fig, (ax, bx) = plt.subplots(1, 2, figsize=(10, 4))
 for i in np.linspace(0, len(run.t) - 1, 8).astype(int):
     pts = sample_centerline(run, int(i)).points
     ax.plot(pts[:, 0], pts[:, 1], lw=1, label=f"t = {run.t[i]:.2f} s")
-ax.plot(run.sensors[:, col("gripper_x")], run.sensors[:, col("gripper_y")], "k:", label="gripper")
+gripper = whole.sensors[:, [col("gripper_x"), col("gripper_y")]]
+ax.plot(gripper[:, 0], gripper[:, 1], "k:", label="gripper")
 ax.set_aspect("equal")
 ax.set_xlabel("x [m]")
 ax.set_ylabel("y [m]")
 ax.legend(fontsize=6)
 for c in ("gripper_force_x", "gripper_force_y"):
-    bx.plot(run.t, run.sensors[:, col(c)], label=c)
+    bx.plot(run.t, whole.sensors[:, col(c)], label=c)
 bx.set_xlabel("t [s]")
 bx.set_ylabel("force on the cable [N]")
 bx.legend()

@@ -15,12 +15,13 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from rancf.cli import main
-from rancf.post.run_data import load_run, sample_centerline
+from rancf.post.centerline import sample_centerline
+from rancf.post.system_run import load_run
 
 scenario = files("rancf.examples") / "slider-crank.toml"
 out = f"{tempfile.mkdtemp()}/run"
 main(["simulate", str(scenario), "--out", out, "--quiet"])
-run = load_run(f"{out}/bodies/rod")
+run = load_run(out).body("rod")
 s = np.loadtxt(f"{out}/sensors.csv", delimiter=",", skiprows=1)
 names = open(f"{out}/sensors.csv").readline().strip().split(",")
 col = names.index

@@ -15,12 +15,14 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from rancf.cli import main
-from rancf.post.run_data import load_run, sample_centerline
+from rancf.post.centerline import sample_centerline
+from rancf.post.system_run import load_run
 
 scenario = files("rancf.examples") / "spatial-pendulum.toml"
 out = f"{tempfile.mkdtemp()}/run"
 main(["simulate", str(scenario), "--out", out, "--quiet"])
-run = load_run(out)
+whole = load_run(out)  # the run: times, sensors, every body
+run = whole.body()  # its one flexible body
 
 # %%
 # Configurations in 3D, and how far the tip leaves the plane of the arc.
@@ -34,7 +36,7 @@ ax.set_ylabel("y [m]")
 ax.set_zlabel("z [m]")
 ax.legend(fontsize=7)
 bx = fig.add_subplot(1, 2, 2)
-bx.plot(run.t, run.sensors[:, run.sensor_names.index("tip_y")])
+bx.plot(run.t, whole.sensors[:, whole.sensor_names.index("tip_y")])
 bx.set_xlabel("t [s]")
 bx.set_ylabel("tip y (out of plane) [m]")
 fig.tight_layout()

@@ -160,16 +160,17 @@ void bind_contact(nb::module_& mod) {
           "y"_a, "The penalty's potential energy at y.")
       .def(
           "outputs",
-          [](const ContactHolder& h, In y, std::optional<In> v, Out out) {
+          [](const ContactHolder& h, In y, std::optional<In> v, Out out, std::optional<In> y1) {
             const rancf::System& s = system_of(h);
             const auto n = static_cast<std::size_t>(s.n);
             expect_size(y, n, "y");
             expect_size(out, rancf::kContactOutputs * h.c.obstacles.size(), "out");
-            rancf::contact_outputs(s, h.c, y.data(), opt(v, n, "v"), out.data());
+            rancf::contact_outputs(s, h.c, y.data(), opt(v, n, "v"), opt(y1, n, "y1"), out.data());
           },
-          "y"_a, "v"_a.none(), "out"_a.noconvert(),
+          "y"_a, "v"_a.none(), "out"_a.noconvert(), "y1"_a.none() = nb::none(),
           "Per obstacle: normal force (3), friction force (3), moment (3), contact length, "
-          "largest penetration.")
+          "largest penetration; with y1: (y, v) a time step's alpha point, y1 its end, the "
+          "forces the step applies.")
       .def(
           "points",
           [](const ContactHolder& h, int k, In y, std::optional<In> v, Out out) {

@@ -1,14 +1,16 @@
 // Python bindings of systems (rancf._core.System, SystemIntegrator): conversion and forwarding
-// only.  A system's small data arrive as NumPy arrays (one per field) and are copied into the
-// named structs of system.hpp; its flexible bodies are Model objects kept alive by the holder.
+// only.  A system's parts arrive as lists of named records read into the structs of system.hpp
+// (bindings_records.hpp); its flexible bodies are Model objects kept alive by the holder.
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
 #include <nanobind/stl/array.h>
+#include <nanobind/stl/optional.h>
 #include <nanobind/stl/tuple.h>
 #include <nanobind/stl/vector.h>
 
 #include <algorithm>
 #include <array>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <tuple>
@@ -17,6 +19,7 @@
 #include "bindings.hpp"
 #include "bindings_contact.hpp"
 #include "bindings_model.hpp"
+#include "bindings_records.hpp"
 #include "system.hpp"
 #include "system_integrator.hpp"
 
@@ -26,9 +29,19 @@ using namespace nb::literals;
 
 namespace {
 
-using InD = In;
-
-std::size_t count(const InI& a) { return a.size(); }
+/// The contact state of a time step (all three or none): into terms.contact_*.
+void step_contact(const std::optional<In>& yf, const std::optional<In>& vf,
+                  const std::optional<In>& y1, std::size_t n, rancf::AssemblyTerms& terms) {
+  if (!yf && !vf && !y1) return;
+  if (!(yf && vf && y1))
+    throw std::invalid_argument("contact_yf, contact_vf and contact_y1 go together");
+  expect_size(*yf, n, "contact_yf");
+  expect_size(*vf, n, "contact_vf");
+  expect_size(*y1, n, "contact_y1");
+  terms.contact_yf = yf->data();
+  terms.contact_vf = vf->data();
+  terms.contact_y1 = y1->data();
+}
 
 struct SystemHolder {
   std::vector<nb::object> models;  // keeps the flexible bodies' arrays alive
@@ -53,143 +66,35 @@ void bind_system(nb::module_& mod) {
   nb::class_<SystemHolder>(mod, "System", "A multibody system (see system.hpp).")
       .def(
           "__init__",
-          [](SystemHolder* h, int dim, nb::list models, InI rigid_point_mass, InI rigid_dim,
-             InD rigid_mass, InD rigid_inertia, InI place_kind, InI place_body, InI place_node,
-             InD place_point, InI place_motion, InD place_angle0, InI joint_kind, InI joint_a,
-             InI joint_b, InI joint_driven, InI joint_angle, InD joint_beta0, InD joint_rel,
-             InD joint_axis_a, InD joint_normals_b, InD joint_w_a, InD joint_w_b, InI spring_a,
-             InI spring_b, InD spring_data, InI load_place, InD load_force, InD load_torque,
-             InI load_factor, InI tf_kind, InI tf_n, InD tf_value, InI tf_value_start,
-             InD tf_params, InD tf_breaks, InI tf_breaks_start, InD tf_coef, InI tf_coef_start,
-             InI pre_coord, InI pre_tf, InI pre_comp, InD pre_base, InI lin_row, InI lin_col,
-             InD lin_coef, InD gravity, double damping, InD y_ref) {
+          [](SystemHolder* h, int dim, nb::list models, nb::handle rigid, nb::handle places,
+             nb::handle joints, nb::handle springs, nb::handle loads, nb::handle time_functions,
+             nb::handle prescribed, nb::handle linear, nb::handle gravity, double damping,
+             In y_ref) {
             new (h) SystemHolder();
             rancf::System& s = h->s;
-            check(dim == 2 || dim == 3, "dim: expected 2 or 3");
+            check(dim == 2 || dim == 3, "dim: expected 2 or 3, got " + std::to_string(dim));
             s.dim = dim;
             for (nb::handle m : models) {
               h->models.emplace_back(nb::borrow(m));
               s.flex.push_back(&nb::cast<const ModelHolder&>(m).m);
             }
-            const std::size_t nr = count(rigid_dim);
-            for (std::size_t i = 0; i < nr; ++i) {
-              rancf::RigidInertia b;
-              b.point_mass = rigid_point_mass.data()[i] != 0;
-              b.dim = static_cast<int>(rigid_dim.data()[i]);
-              b.mass = rigid_mass.data()[i];
-              for (int k = 0; k < 3; ++k) b.inertia[k] = rigid_inertia.data()[3 * i + k];
-              s.rigid.push_back(b);
-            }
-            for (std::size_t i = 0; i < count(place_kind); ++i) {
-              rancf::PlaceRef p;
-              p.kind = static_cast<rancf::PlaceKind>(place_kind.data()[i]);
-              p.body = static_cast<int>(place_body.data()[i]);
-              p.node = static_cast<int>(place_node.data()[i]);
-              for (int k = 0; k < 3; ++k) p.point[k] = place_point.data()[3 * i + k];
-              p.motion = static_cast<int>(place_motion.data()[i]);
-              p.angle0 = place_angle0.data()[i];
-              const bool node = p.kind == rancf::PlaceKind::cable ||
-                                p.kind == rancf::PlaceKind::rod || p.kind == rancf::PlaceKind::beam;
-              if (node) {
-                check(p.body >= 0 && static_cast<std::size_t>(p.body) < s.flex.size(),
-                      "place_body: no such flexible body");
-                check(p.node >= 0 && p.node < s.flex[static_cast<std::size_t>(p.body)]->n_nodes,
-                      "place_node: no such node");
-              } else if (p.kind != rancf::PlaceKind::ground) {
-                check(p.body >= 0 && static_cast<std::size_t>(p.body) < nr,
-                      "place_body: no such rigid body");
-              }
-              s.places.push_back(p);
-            }
-            const auto np = static_cast<std::int64_t>(s.places.size());
-            for (std::size_t i = 0; i < count(joint_kind); ++i) {
-              rancf::JointData j;
-              j.info.kind = static_cast<rancf::JointKind>(joint_kind.data()[i]);
-              j.info.dim = dim;
-              j.info.driven = joint_driven.data()[i] != 0;
-              j.info.beta0 = joint_beta0.data()[i];
-              for (int k = 0; k < 9; ++k) j.info.rel[k / 3][k % 3] = joint_rel.data()[9 * i + k];
-              for (int k = 0; k < 3; ++k) {
-                j.info.axis_a[k] = joint_axis_a.data()[3 * i + k];
-                j.info.w_a[k] = joint_w_a.data()[3 * i + k];
-                j.info.w_b[k] = joint_w_b.data()[3 * i + k];
-                j.info.normals_b[0][k] = joint_normals_b.data()[6 * i + k];
-                j.info.normals_b[1][k] = joint_normals_b.data()[6 * i + 3 + k];
-              }
-              check(joint_a.data()[i] >= 0 && joint_a.data()[i] < np, "joint_a: no such place");
-              check(joint_b.data()[i] >= 0 && joint_b.data()[i] < np, "joint_b: no such place");
-              j.a = static_cast<int>(joint_a.data()[i]);
-              j.b = static_cast<int>(joint_b.data()[i]);
-              j.angle = static_cast<int>(joint_angle.data()[i]);
-              s.joints.push_back(j);
-            }
-            for (std::size_t i = 0; i < count(spring_a); ++i)
-              s.springs.push_back({static_cast<int>(spring_a.data()[i]),
-                                   static_cast<int>(spring_b.data()[i]), spring_data.data()[3 * i],
-                                   spring_data.data()[3 * i + 1], spring_data.data()[3 * i + 2]});
-            for (std::size_t i = 0; i < count(load_place); ++i) {
-              rancf::PlaceLoad l;
-              l.place = static_cast<int>(load_place.data()[i]);
-              for (int k = 0; k < 3; ++k) {
-                l.force[k] = load_force.data()[3 * i + k];
-                l.torque[k] = load_torque.data()[3 * i + k];
-              }
-              l.factor = static_cast<int>(load_factor.data()[i]);
-              s.loads.push_back(l);
-            }
-            for (std::size_t i = 0; i < count(tf_kind); ++i) {
-              rancf::TimeFunction tf;
-              tf.kind = static_cast<rancf::TimeKind>(tf_kind.data()[i]);
-              tf.n = static_cast<int>(tf_n.data()[i]);
-              const auto v0 = static_cast<std::size_t>(tf_value_start.data()[i]);
-              tf.value.assign(tf_value.data() + v0, tf_value.data() + v0 + tf.n);
-              tf.duration = tf_params.data()[3 * i];
-              tf.frequency = tf_params.data()[3 * i + 1];
-              tf.phase = tf_params.data()[3 * i + 2];
-              const auto b0 = static_cast<std::size_t>(tf_breaks_start.data()[i]);
-              const auto b1 = static_cast<std::size_t>(tf_breaks_start.data()[i + 1]);
-              tf.breaks.assign(tf_breaks.data() + b0, tf_breaks.data() + b1);
-              const auto c0 = static_cast<std::size_t>(tf_coef_start.data()[i]);
-              const auto c1 = static_cast<std::size_t>(tf_coef_start.data()[i + 1]);
-              tf.coef.assign(tf_coef.data() + c0, tf_coef.data() + c1);
-              if (tf.kind == rancf::TimeKind::piecewise)
-                check(tf.breaks.size() >= 2 && tf.coef.size() == (tf.breaks.size() - 1) * 4 *
-                                                                     static_cast<std::size_t>(tf.n),
-                      "time function: breaks and coefficients do not match");
-              s.tfs.push_back(std::move(tf));
-            }
-            for (std::size_t i = 0; i < count(pre_coord); ++i)
-              s.prescribed.push_back({static_cast<int>(pre_coord.data()[i]),
-                                      static_cast<int>(pre_tf.data()[i]),
-                                      static_cast<int>(pre_comp.data()[i]), pre_base.data()[i]});
-            check(count(lin_col) == count(lin_row) && lin_coef.size() == count(lin_row),
-                  "lin_row, lin_col, lin_coef: the same length");
-            for (std::size_t i = 0; i < count(lin_row); ++i) {
-              const rancf::LinearTerm t{static_cast<int>(lin_row.data()[i]),
-                                        static_cast<int>(lin_col.data()[i]), lin_coef.data()[i]};
-              check(t.row >= 0, "lin_row: a row >= 0");
-              s.n_linear = std::max(s.n_linear, t.row + 1);
-              s.linear.push_back(t);
-            }
-            for (int k = 0; k < 3; ++k) s.gravity[k] = gravity.data()[k];
+            read_records(
+                {rigid, places, joints, springs, loads, time_functions, prescribed, linear}, s);
+            const std::vector<double> g = read_vector(gravity, "gravity", 3);
+            std::copy(g.begin(), g.end(), s.gravity);
             s.damping = damping;
             s.setup();
-            for (const rancf::LinearTerm& t : s.linear)
-              check(t.col >= 0 && t.col < s.n, "lin_col: no such coordinate");
+            check_coordinates(s);
             expect_size(y_ref, static_cast<std::size_t>(s.n), "y_ref");
             h->y_ref.assign(y_ref.data(), y_ref.data() + s.n);
             s.y_ref = h->y_ref.data();
           },
-          nb::kw_only(), "dim"_a, "models"_a, "rigid_point_mass"_a, "rigid_dim"_a, "rigid_mass"_a,
-          "rigid_inertia"_a, "place_kind"_a, "place_body"_a, "place_node"_a, "place_point"_a,
-          "place_motion"_a, "place_angle0"_a, "joint_kind"_a, "joint_a"_a, "joint_b"_a,
-          "joint_driven"_a, "joint_angle"_a, "joint_beta0"_a, "joint_rel"_a, "joint_axis_a"_a,
-          "joint_normals_b"_a, "joint_w_a"_a, "joint_w_b"_a, "spring_a"_a, "spring_b"_a,
-          "spring_data"_a, "load_place"_a, "load_force"_a, "load_torque"_a, "load_factor"_a,
-          "tf_kind"_a, "tf_n"_a, "tf_value"_a, "tf_value_start"_a, "tf_params"_a, "tf_breaks"_a,
-          "tf_breaks_start"_a, "tf_coef"_a, "tf_coef_start"_a, "pre_coord"_a, "pre_tf"_a,
-          "pre_comp"_a, "pre_base"_a, "lin_row"_a, "lin_col"_a, "lin_coef"_a, "gravity"_a,
-          "damping"_a, "y_ref"_a)
+          nb::kw_only(), "dim"_a, "models"_a, "rigid"_a, "places"_a, "joints"_a, "springs"_a,
+          "loads"_a, "time_functions"_a, "prescribed"_a, "linear"_a, "gravity"_a, "damping"_a,
+          "y_ref"_a,
+          "A system from its flexible bodies' Models and the lists of its records "
+          "(rancf.kernels.records: rigid bodies, places, joints, springs, loads, time functions, "
+          "prescribed motions, linear terms), read by field name.")
       .def(
           "attach_contact",
           [](SystemHolder& h, ContactHolder& c) {
@@ -214,7 +119,8 @@ void bind_system(nb::module_& mod) {
       .def(
           "residual",
           [](const SystemHolder& h, In y, In v, In a, In lam, double t, double load_factor,
-             bool amplitude, bool dynamic, Out r) {
+             bool amplitude, bool dynamic, Out r, std::optional<In> contact_yf,
+             std::optional<In> contact_vf, std::optional<In> contact_y1) {
             const auto n = static_cast<std::size_t>(h.s.n), m = static_cast<std::size_t>(h.s.m);
             for (const auto* x : {&y, &v, &a}) expect_size(*x, n, "state");
             expect_size(lam, m, "lam");
@@ -223,14 +129,18 @@ void bind_system(nb::module_& mod) {
             terms.tf = terms.t1 = t;
             terms.load_factor = load_factor;
             terms.amplitude = amplitude;
+            step_contact(contact_yf, contact_vf, contact_y1, n, terms);
             return rancf::assemble_system(h.s, y.data(), dynamic ? v.data() : nullptr,
                                           dynamic ? a.data() : nullptr, lam.data(), y.data(), terms,
                                           r.data(), nullptr);
           },
           "y"_a, "v"_a, "a"_a, "lam"_a, "t"_a, "load_factor"_a = 1.0, "amplitude"_a = false,
-          "dynamic"_a = true, "r"_a.noconvert(),
+          "dynamic"_a = true, "r"_a.noconvert(), "contact_yf"_a.none() = nb::none(),
+          "contact_vf"_a.none() = nb::none(), "contact_y1"_a.none() = nb::none(),
           "The balance residual (n) and the constraints (m) at (y, v, a, lambda, t); dynamic = "
-          "False: statics (no inertia).  Returns False if not finite.")
+          "False: statics (no inertia); contact_yf, contact_vf, contact_y1: the contact forces "
+          "of a time step (its alpha point and end) instead of those at (y, v).  Returns False "
+          "if not finite.")
       .def(
           "place",
           [](const SystemHolder& h, int index, In y, double t) {
@@ -292,7 +202,7 @@ void bind_system(nb::module_& mod) {
       .def(
           "sparse_jacobian",
           [](const SystemHolder& h, In y, In v, In a, In lam, double t, double ck, double cv,
-             double ca, bool dynamic) {
+             double ca, bool dynamic, double load_factor, bool amplitude) {
             const auto n = static_cast<std::size_t>(h.s.n), m = static_cast<std::size_t>(h.s.m);
             for (const auto* x : {&y, &v, &a}) expect_size(*x, n, "state");
             expect_size(lam, m, "lam");
@@ -303,6 +213,8 @@ void bind_system(nb::module_& mod) {
             terms.cv = cv;
             terms.ca = ca;
             terms.tf = terms.t1 = t;
+            terms.load_factor = load_factor;
+            terms.amplitude = amplitude;
             std::vector<int> rows, cols;
             std::vector<double> vals;
             const bool ok = rancf::assemble_system(h.s, y.data(), dynamic ? v.data() : nullptr,
@@ -312,10 +224,12 @@ void bind_system(nb::module_& mod) {
             return std::make_tuple(ok, h.s.n + lu.border(), rows, cols, vals);
           },
           "y"_a, "v"_a, "a"_a, "lam"_a, "t"_a, "ck"_a, "cv"_a, "ca"_a, "dynamic"_a = true,
+          "load_factor"_a = 1.0, "amplitude"_a = false,
           "(ok, size, rows, cols, values): the Jacobian of residual() as the bordered solver "
           "holds it, [A P; Q D] over (y, lambda, coupling unknowns z = x_j with D = -1), held "
           "rows and columns as assembled (identity on the diagonal only after factoring: here "
-          "as assembled).")
+          "as assembled); statics: the loads times load_factor, at their amplitude if "
+          "amplitude.")
       .def(
           "joint_reaction",
           [](const SystemHolder& h, int k, In y, double t, In lam) {
@@ -368,7 +282,8 @@ void bind_system(nb::module_& mod) {
           "run",
           [](SystemIntegratorHolder& h, Out y, Out v, Out a, Out lam, double t0, double dt,
              std::int64_t n_steps, std::int64_t out_every, std::int64_t done_before,
-             double max_seconds, Out out_y, Out out_v, Out out_l, Out out_e) {
+             double max_seconds, Out out_y, Out out_v, Out out_l, Out out_e,
+             std::optional<Out> out_yf, std::optional<Out> out_vf) {
             for (const auto* x : {&y, &v, &a}) expect_size(*x, h.n, "state");
             expect_size(lam, h.m, "lambda");
             if (out_every < 1 || n_steps < 0 || done_before < 0)
@@ -378,28 +293,46 @@ void bind_system(nb::module_& mod) {
             expect_size(out_v, n_out * h.n, "out_v");
             expect_size(out_l, n_out * h.m, "out_l");
             expect_size(out_e, n_out * 3, "out_e");
+            if (out_yf.has_value() != out_vf.has_value())
+              throw std::invalid_argument("run: out_yf and out_vf go together");
+            if (out_yf) {
+              expect_size(*out_yf, n_out * h.n, "out_yf");
+              expect_size(*out_vf, n_out * h.n, "out_vf");
+            }
+            double* yf = out_yf ? out_yf->data() : nullptr;
+            double* vf = out_vf ? out_vf->data() : nullptr;
             rancf::RunOutcome r;
             {
               nb::gil_scoped_release release;
               r = h.integ.run(y.data(), v.data(), a.data(), lam.data(), t0, dt, n_steps, out_every,
                               done_before, max_seconds, out_y.data(), out_v.data(), out_l.data(),
-                              out_e.data());
+                              out_e.data(), yf, vf);
             }
             return std::make_tuple(r.steps, r.converged, r.iterations, r.stored);
           },
           "y"_a.noconvert(), "v"_a.noconvert(), "a"_a.noconvert(), "lam"_a.noconvert(), "t0"_a,
           "h"_a, "n_steps"_a, "out_every"_a, "done_before"_a, "max_seconds"_a,
           "out_y"_a.noconvert(), "out_v"_a.noconvert(), "out_l"_a.noconvert(),
-          "out_e"_a.noconvert())
+          "out_e"_a.noconvert(), "out_yf"_a.noconvert().none() = nb::none(),
+          "out_vf"_a.noconvert().none() = nb::none())
       .def(
           "initial_acceleration",
-          [](SystemIntegratorHolder& h, In y, In v, double t, Out a, Out lam) {
+          [](SystemIntegratorHolder& h, In y, In v, double t, Out a, Out lam,
+             std::optional<In> contact_yf, std::optional<In> contact_vf,
+             std::optional<In> contact_y1) {
             for (const auto* x : {&y, &v}) expect_size(*x, h.n, "state");
             expect_size(a, h.n, "a");
             expect_size(lam, h.m, "lambda");
-            return h.integ.initial_acceleration(y.data(), v.data(), t, a.data(), lam.data());
+            rancf::AssemblyTerms contact;
+            step_contact(contact_yf, contact_vf, contact_y1, h.n, contact);
+            return h.integ.initial_acceleration(y.data(), v.data(), t, a.data(), lam.data(),
+                                                contact.contact_yf != nullptr ? &contact : nullptr);
           },
-          "y"_a, "v"_a, "t"_a, "a"_a.noconvert(), "lam"_a.noconvert())
+          "y"_a, "v"_a, "t"_a, "a"_a.noconvert(), "lam"_a.noconvert(),
+          "contact_yf"_a.none() = nb::none(), "contact_vf"_a.none() = nb::none(),
+          "contact_y1"_a.none() = nb::none(),
+          "Consistent accelerations and multipliers at (y, v, t); contact_yf, contact_vf, "
+          "contact_y1: with the contact forces of a time step (its alpha point and end).")
       .def(
           "factor_static",
           [](SystemIntegratorHolder& h, In y, In lam, double lf, bool amplitude, double t,

@@ -23,30 +23,43 @@ struct PointEval {
   PointLaw law;
 };
 
-/// Visit the points of pair cp at state (y, v): fn(el, q, pose, PointEval&).
+/// Visit the points of pair cp at state (y, v): fn(el, q, pose, PointEval&).  With y1 (a time
+/// step's end; y, v its alpha point) the pressure is the step's mean, as assemble_contact's.
 template <class Fn>
 void each_point(const System& s, const ContactSet& c, const ContactPair& cp, const double* y,
-                const double* v, Fn fn) {
+                const double* v, const double* y1, Fn fn) {
   const ContactBody& cb = c.bodies[sz(cp.flex)];
   if (cb.n_c == 0) return;
   const Model& m = *s.flex[sz(cp.flex)];
   const int o = s.offset[sz(cp.flex)];
   const Obstacle& ob = c.obstacles[sz(cp.obstacle)];
   const Carrier cr = carrier(s, ob);
-  double ub[kMaxBody] = {}, ubd[kMaxBody] = {};
+  double ub[kMaxBody] = {}, ubd[kMaxBody] = {}, ub1[kMaxBody] = {};
   gather_body(cr.map, y, ub);
   if (v != nullptr) gather_body(cr.map, v, ubd);
+  if (y1 != nullptr) gather_body(cr.map, y1, ub1);
   PlaceEval pe;
   const Pose pose = pose_at(s, ob, cr, ub, &pe);
-  std::array<double, kMaxElementDofs> e{}, ev{};
+  const Pose pose1 = y1 != nullptr ? pose_at(s, ob, cr, ub1, nullptr) : pose;
+  std::array<double, kMaxElementDofs> e{}, ev{}, e1{};
   for (int el = 0; el < m.n_el; ++el) {
     element_coordinates(m, y + o, el, e.data());
     if (v != nullptr) element_coordinates(m, v + o, el, ev.data());
+    if (y1 != nullptr) element_coordinates(m, y1 + o, el, e1.data());
     for (int q = 0; q < cb.n_c; ++q) {
       const double* N = cb.N.data() + 4 * (el * cb.n_c + q);
       PointEval pt;
       point_of(m, N, e.data(), pt.r);
       gap(pose, pt.r, cb.radius, pt.gap, false);
+      double gm[2] = {pt.gap.g, pt.gap.g};  // the step's gaps [2 g(yf) - g(y1), g(y1)]
+      if (y1 != nullptr) {
+        double r1[3];
+        Gap g1;
+        point_of(m, N, e1.data(), r1);
+        gap(pose1, r1, cb.radius, g1, false);
+        gm[0] = 2.0 * pt.gap.g - g1.g;
+        gm[1] = g1.g;
+      }
       double u[3] = {0.0, 0.0, 0.0};
       if (v != nullptr) {
         point_of(m, N, ev.data(), u);
@@ -57,7 +70,8 @@ void each_point(const System& s, const ContactSet& c, const ContactPair& cp, con
             for (int i = 0; i < 3; ++i) u[i] -= rates[j][i] * ubd[j];
         }
       }
-      point_law(cp, pt.gap, v != nullptr ? u : nullptr, nullptr, false, pt.law);
+      point_law(cp, pt.gap, v != nullptr ? u : nullptr, y1 != nullptr ? gm : nullptr, false,
+                pt.law);
       fn(el, q, pose, pt);
     }
   }
@@ -327,7 +341,7 @@ double contact_energy(const System& s, const ContactSet& c, const double* y) {
   double total = 0.0;
   for (const ContactPair& cp : c.pairs) {
     const ContactBody& cb = c.bodies[sz(cp.flex)];
-    each_point(s, c, cp, y, nullptr, [&](int el, int q, const Pose&, const PointEval& pt) {
+    each_point(s, c, cp, y, nullptr, nullptr, [&](int el, int q, const Pose&, const PointEval& pt) {
       total += cb.w[sz(el * cb.n_c + q)] * Penalty{cp.stiffness, cp.onset}.potential(pt.gap.g);
     });
   }
@@ -335,7 +349,7 @@ double contact_energy(const System& s, const ContactSet& c, const double* y) {
 }
 
 void contact_outputs(const System& s, const ContactSet& c, const double* y, const double* v,
-                     double* out) {
+                     const double* y1, double* out) {
   std::fill(out, out + kContactOutputs * static_cast<std::ptrdiff_t>(c.obstacles.size()), 0.0);
   for (const ContactPair& cp : c.pairs) {
     const ContactBody& cb = c.bodies[sz(cp.flex)];
@@ -344,7 +358,7 @@ void contact_outputs(const System& s, const ContactSet& c, const double* y, cons
     double* res = out + kContactOutputs * cp.obstacle;
     std::array<double, kMaxElementDofs> e{};
     int last = -1;
-    each_point(s, c, cp, y, v, [&](int el, int q, const Pose& pose, const PointEval& pt) {
+    each_point(s, c, cp, y, v, y1, [&](int el, int q, const Pose& pose, const PointEval& pt) {
       if (pt.law.active) {
         if (el != last) {
           element_coordinates(m, y + o, el, e.data());
@@ -374,7 +388,7 @@ void contact_points(const System& s, const ContactSet& c, int k, const double* y
                     double* out) {
   const ContactPair& cp = c.pairs[sz(k)];
   const ContactBody& cb = c.bodies[sz(cp.flex)];
-  each_point(s, c, cp, y, v, [&](int el, int q, const Pose&, const PointEval& pt) {
+  each_point(s, c, cp, y, v, nullptr, [&](int el, int q, const Pose&, const PointEval& pt) {
     double* row = out + 8 * (el * cb.n_c + q);
     for (int i = 0; i < 3; ++i) {
       row[i] = pt.r[i];

@@ -114,9 +114,11 @@ inline constexpr int kContactOutputs = 11;
 /// Per obstacle (kContactOutputs values each): the force of the obstacle on the bodies, normal
 /// (3) and friction (3) parts, its moment about the obstacle's point (3), the contact length
 /// (current arc length of the points in contact, by the points' quadrature) and the largest
-/// penetration, at (y, v) (v null: no friction).
+/// penetration, at (y, v) (v null: no friction).  With y1 not null, (y, v) are a time step's
+/// alpha point and y1 its end: the forces are those the step applies (the step's mean
+/// pressure, assemble_contact).
 void contact_outputs(const System& s, const ContactSet& c, const double* y, const double* v,
-                     double* out);
+                     const double* y1, double* out);
 
 /// The points of pair k at (y, v): position (3), gap, pressure, friction force (3) per point,
 /// 8 values each (n_el n_c points).

@@ -9,6 +9,10 @@
 // are assembled into the blocks of a bordered band matrix (bordered.hpp): a band block per
 // flexible body, a dense (full band) block per rigid body or point mass; joint Jacobians and
 // couplings between bodies (springs, the second derivatives of joints) border it.
+//
+// The parts' structs (RigidInertia, PlaceRef, JointData, SpringData, PlaceLoad, TimeFunction,
+// Prescribed, LinearTerm) are filled field by field from the Python records of the same names in
+// rancf.kernels.records (bindings_records.cpp).
 #pragma once
 
 #include <cstdint>
@@ -143,6 +147,11 @@ struct AssemblyTerms {
   double t1 = 0.0;                      ///< time of the constraints
   double load_factor = 1.0;             ///< statics: the factor on the loads
   bool amplitude = false;               ///< statics: harmonic loads at their amplitude
+  /// Outputs: contact forces taken at another state, a time step's alpha point (contact_yf,
+  /// contact_vf) and end (contact_y1), instead of at (yf, vf, y1); no contact Jacobian then.
+  const double* contact_yf = nullptr;
+  const double* contact_vf = nullptr;
+  const double* contact_y1 = nullptr;
 };
 
 bool assemble_system(const System& s, const double* yf, const double* vf, const double* am,

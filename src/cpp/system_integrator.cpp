@@ -144,7 +144,8 @@ StepOutcome SystemIntegrator::step(const double* y0, const double* v0, const dou
 RunOutcome SystemIntegrator::run(double* y, double* v, double* a, double* lam, double t0, double h,
                                  std::int64_t n_steps, std::int64_t out_every,
                                  std::int64_t done_before, double max_seconds, double* out_y,
-                                 double* out_v, double* out_l, double* out_e) {
+                                 double* out_v, double* out_l, double* out_e, double* out_yf,
+                                 double* out_vf) {
   const int n = s_.n, m = s_.m;
   const auto start = std::chrono::steady_clock::now();
   std::vector<double> y1(sz(n)), v1(sz(n)), a1(sz(n)), l1(sz(m));
@@ -157,13 +158,22 @@ RunOutcome SystemIntegrator::run(double* y, double* v, double* a, double* lam, d
       out.converged = false;
       return out;
     }
+    const bool stores = (done_before + k + 1) % out_every == 0;
+    if (stores && out_yf != nullptr) {  // the step's alpha point, before y, v are replaced
+      const std::ptrdiff_t row = static_cast<std::ptrdiff_t>(out.stored);
+      const double af = sc_.alpha_f;
+      for (int i = 0; i < n; ++i) {
+        out_yf[row * n + i] = (1.0 - af) * y1[sz(i)] + af * y[i];
+        out_vf[row * n + i] = (1.0 - af) * v1[sz(i)] + af * v[i];
+      }
+    }
     std::copy(y1.begin(), y1.end(), y);
     std::copy(v1.begin(), v1.end(), v);
     std::copy(a1.begin(), a1.end(), a);
     std::copy(l1.begin(), l1.end(), lam);
     system_rereference(s_, y, v, a);
     out.steps = k + 1;
-    if ((done_before + k + 1) % out_every == 0) {
+    if (stores) {
       const std::ptrdiff_t row = static_cast<std::ptrdiff_t>(out.stored);
       std::copy(y, y + n, out_y + row * n);
       std::copy(v, v + n, out_v + row * n);
@@ -178,7 +188,7 @@ RunOutcome SystemIntegrator::run(double* y, double* v, double* a, double* lam, d
 }
 
 bool SystemIntegrator::initial_acceleration(const double* y, const double* v, double t, double* a,
-                                            double* lam) {
+                                            double* lam, const AssemblyTerms* contact) {
   const int n = s_.n, m = s_.m;
   std::vector<double> known(sz(n), 0.0), zero(sz(m), 0.0);
   set_prescribed(t, nullptr, nullptr, known.data());
@@ -188,6 +198,11 @@ bool SystemIntegrator::initial_acceleration(const double* y, const double* v, do
   terms.ca = 1.0;
   terms.tf = t;
   terms.t1 = t;
+  if (contact != nullptr) {
+    terms.contact_yf = contact->contact_yf;
+    terms.contact_vf = contact->contact_vf;
+    terms.contact_y1 = contact->contact_y1;
+  }
   lu_valid_ = false;
   const bool reuse = mass_constant_ && mass_factored_;  // the factors of M from an earlier call
   if (!assemble_system(s_, y, v, known.data(), zero.data(), y, terms, r_.data(),

@@ -29,11 +29,17 @@ class SystemIntegrator {
   /// energies (kinetic, strain, gravity) go to the next rows of the outputs whenever
   /// done_before + steps taken is a multiple of out_every.  Returns after a whole step once
   /// max_seconds of wall time have passed, so the caller can poll for interrupts.
+  /// out_yf, out_vf (may be null): the alpha point (y_{n+1-af}, v_{n+1-af}) of the step that
+  /// ended at each stored row (before the rods' re-referencing), where its forces act.
   RunOutcome run(double* y, double* v, double* a, double* lam, double t0, double h,
                  std::int64_t n_steps, std::int64_t out_every, std::int64_t done_before,
-                 double max_seconds, double* out_y, double* out_v, double* out_l, double* out_e);
+                 double max_seconds, double* out_y, double* out_v, double* out_l, double* out_e,
+                 double* out_yf = nullptr, double* out_vf = nullptr);
   /// Consistent initial acceleration and multipliers: [M G^T; G 0] [a; lambda] = [-F; -c].
-  bool initial_acceleration(const double* y, const double* v, double t, double* a, double* lam);
+  /// contact (may be null): the contact forces of a step instead of those at (y, v)
+  /// (AssemblyTerms::contact_yf and after).
+  bool initial_acceleration(const double* y, const double* v, double t, double* a, double* lam,
+                            const AssemblyTerms* contact = nullptr);
   /// One Newton increment of the statics at load factor lf: (dy, dlam) with
   /// K dy + G^T dlam = -r, G dy = -g.  Returns false if the matrix is singular.
   bool static_increment(const double* y, const double* lam, double lf, bool amplitude, double t,

@@ -11,7 +11,8 @@ import pytest
 
 from rancf.cli import main
 from rancf.geometry.tangents import vector_angle
-from rancf.post.run_data import centerline_nodes, load_run
+from rancf.post.centerline import centerline_nodes
+from rancf.post.system_run import load_run
 from rancf.scenario import load_scenario
 from tests.scenario.test_scenario import BASE
 
@@ -51,7 +52,7 @@ def _round_trip(d, suffix: str, time: str | None) -> None:
     rest = BASE.split("[mesh]", 1)[1]
     sc.write_text(f'[geometry]\nkind = "cad"\nfile = "{name}"\n\n[mesh]{rest}')
     mesh = load_scenario(sc).build_model().mesh  # refused before as a kink of 8.5e-7 deg
-    run = load_run(d / "run")
+    run = load_run(d / "run").body()
     ends = centerline_nodes(run, run.q[run.time_index(None if time is None else 0.0)])[[0, -1]]
     # the re-imported curve starts and ends where the exported shape does (and has its slopes)
     assert np.abs(mesh.nodes[[0, -1], 0] - ends[:, 0]).max() <= 1e-12
@@ -145,7 +146,7 @@ def test_closed_ring_round_trips(ring, suffix, time):
     name = f"ring_{time or 'last'}.{suffix}"
     cmd = ["export", str(ring / "run"), "--nurbs", str(ring / name)]
     _quiet(cmd + (["--time", time] if time else []))
-    run = load_run(ring / "run")
+    run = load_run(ring / "run").body()
     i = run.time_index(None if time is None else 0.0)
     exported = run_to_nurbs(run, i)
     (back,) = read_curves(ring / name)

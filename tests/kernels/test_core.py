@@ -131,7 +131,7 @@ def test_fixed_step_loop_equals_single_steps():
     a = integ.initial_acceleration(y, v, 0.0)
     ys, vs, as_ = y.copy(), v.copy(), a.copy()
     h = 2e-3
-    done, ok, _, stored, oy, _, oe, _ = integ.run_steps(y, v, a, 0.0, h, 20, 5)
+    done, ok, _, stored, oy, _, oe, _, _ = integ.run_steps(y, v, a, 0.0, h, 20, 5)
     assert (done, ok, stored) == (20, 1, 4)
     for k in range(20):
         conv, ys, vs, as_, _ = integ.step(ys, vs, as_, k * h, h)

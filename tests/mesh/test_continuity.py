@@ -23,10 +23,10 @@ from rancf.mesh.ellipse_mesh import mesh_ellipse
 from rancf.mesh.factories import mesh_line
 from rancf.mesh.nurbs_mesh import mesh_nurbs
 from rancf.solvers.dynamic import DynamicOptions, integrate
-from rancf.solvers.equilibrium import EquilibriumProblem
 from rancf.solvers.modal import natural_modes
 from rancf.solvers.static import solve_static
-from rancf.system import System
+from rancf.solvers.system_equilibrium import SystemEquilibrium
+from rancf.system import System, as_system
 
 #: Euler-Bernoulli first frequency of the cantilever (L = 0.5 m, radius 0.03 m, ρ = 6000,
 #: E = 2e7): (1.8751² / 2π) sqrt(EI / ρA L⁴); the shipped cantilever (8 C¹ elements) gives
@@ -205,7 +205,7 @@ def test_inner_support_and_point_load_match_c1():
             pos = m.node_positions(res.q)
             assert np.abs(pos[n // 2] - [0.5, 0.0]).max() < 1e-14
             out[c] = pos[n // 4]
-            full = EquilibriumProblem(m).full_residual(res.y, 1.0)
+            full = SystemEquilibrium(as_system(m)).full_residual(res.y, 1.0)
             total = sum(r.force for r in support_reactions(m, res.y, full))
             assert np.abs(total + [0.0, -0.5]).max() < 1e-9
         assert out["C1"][1] < -0.008  # it sags

@@ -8,7 +8,9 @@ import pytest
 
 from rancf.cli import main
 from rancf.geometry.conic import conic_arc_through
-from rancf.post.run_data import frame_indices, load_run, sample_centerline
+from rancf.post.centerline import sample_centerline
+from rancf.post.run_data import frame_indices
+from rancf.post.system_run import load_run
 from tests.scenario.test_scenario import BASE
 
 
@@ -22,7 +24,7 @@ def run_dir(tmp_path_factory):
 
 
 def test_dense_centreline_is_the_exact_conic_in_the_reference(run_dir):
-    run = load_run(run_dir)
+    run = load_run(run_dir).body()
     c = sample_centerline(run, 0, per_element=20)
     conic = conic_arc_through([0, 0], [0.5, 0], [30, 40], [0.315, 0.077])
     res = conic.implicit_residual(c.points)
@@ -43,12 +45,13 @@ def test_export_vtk_reads_back_with_meshio(run_dir, tmp_path, capsys):
     out = tmp_path / "vtk"
     assert main(["export", str(run_dir), "--vtk", str(out), "--every", "6"]) == 0
     assert "5 VTK frame(s)" in capsys.readouterr().out  # t index 0, 6, 12, 18 and the last (20)
-    run = load_run(run_dir)
+    run = load_run(run_dir).body()
     idx = frame_indices(run.t.size, 6)
     assert idx.tolist() == [0, 6, 12, 18, 20]
+    out = out / "body"  # the run's one flexible body
     files = sorted(out.glob("*.vtu"))
     assert len(files) == 5
-    pvd = (out / "run.pvd").read_text()
+    pvd = (out / "body.pvd").read_text()
     assert pvd.count("<DataSet") == 5 and 'timestep="0.02"' in pvd
     m = meshio.read(files[-1])
     c = sample_centerline(run, 20)
@@ -103,7 +106,7 @@ def test_nurbs_export_is_the_deformed_chain(run_dir, tmp_path):
     from rancf.cad import read_curves
     from rancf.cli.post import run_to_nurbs
 
-    run = load_run(run_dir)
+    run = load_run(run_dir).body()
     curve = run_to_nurbs(run, 10)
     c = sample_centerline(run, 10, per_element=8)
     # the chain's parameter is the cumulative gradient scale: element e covers a span

@@ -6,8 +6,10 @@ import numpy as np
 import pytest
 
 import rancf.post.run_plots as run_plots
+import rancf.post.system_run as system_run
 from rancf.cli import main
-from rancf.post.run_data import load_run, sample_centerline
+from rancf.post.centerline import sample_centerline
+from rancf.post.system_run import animate_system_run, load_run
 
 #: One turn of a helix (radius 0.2 m, rise 0.1 m: wider than tall, so an x-y view loses its
 #: z), as a cubic B-spline through 9 control points on it.
@@ -70,6 +72,7 @@ def _figures(monkeypatch) -> dict:
         return real(fig, path, *args, **kwargs)
 
     monkeypatch.setattr(run_plots, "save_figure", keep)
+    monkeypatch.setattr(system_run, "save_figure", keep)
     return saved
 
 
@@ -78,7 +81,7 @@ def test_configurations_of_a_helix_are_drawn_in_3d(helix_run, tmp_path, monkeypa
     assert main(["plot", str(helix_run), "--out", str(tmp_path), "--configurations", "2"]) == 0
     name, labels, lines = saved["configurations.png"]
     assert name == "3d" and labels == ["x [m]", "y [m]", "z [m]"]
-    run = load_run(helix_run)
+    run = load_run(helix_run).body()
     first = sample_centerline(run, 0).points
     x, y, z = (np.asarray(c) for c in lines[0])
     assert np.ptp(z) > 0.09  # the helix rises 0.1 m: its z is drawn, not dropped
@@ -107,9 +110,9 @@ def test_animation_of_a_helix_is_3d(helix_run, tmp_path, monkeypatch):
 
     def grab(self, **kw):
         ax = self.fig.axes[0]
-        frames.append((ax.name, np.asarray(ax.lines[1].get_data_3d()[2]).copy()))
+        frames.append((ax.name, np.asarray(ax.lines[0].get_data_3d()[2]).copy()))
         return real(self, **kw)
 
     monkeypatch.setattr(animation.PillowWriter, "grab_frame", grab)
-    assert run_plots.animate_run(load_run(helix_run), tmp_path / "h.gif", fps=5) == 5
+    assert animate_system_run(load_run(helix_run), tmp_path / "h.gif", fps=5) == 5
     assert all(name == "3d" for name, _ in frames) and np.ptp(frames[-1][1]) > 0.09

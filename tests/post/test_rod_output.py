@@ -10,7 +10,8 @@ import pytest
 from rancf import DynamicOptions, integrate, parse_scenario
 from rancf.cli import main
 from rancf.kernels import _core
-from rancf.post.run_data import load_run, nodal_frames, sample_centerline
+from rancf.post.centerline import nodal_frames, sample_centerline
+from rancf.post.system_run import load_run
 
 ROD = """
 [geometry]
@@ -103,7 +104,7 @@ def rod_run(tmp_path_factory):
 
 
 def test_run_directory_holds_the_directors(rod_run):
-    run = load_run(rod_run / "run")
+    run = load_run(rod_run / "run").body()
     _, res = _run(t_end=0.1)
     assert run.directors is not None
     assert np.array_equal(run.directors, res.directors)
@@ -112,11 +113,13 @@ def test_run_directory_holds_the_directors(rod_run):
 def test_vtk_export_has_the_material_frames(rod_run, capsys):
     out = rod_run / "vtk"
     assert main(["export", str(rod_run / "run"), "--vtk", str(out), "--every", "10"]) == 0
-    assert "run_nodes.pvd" in capsys.readouterr().out
-    run = load_run(rod_run / "run")
-    sensors = run.sensors[:, run.sensor_names.index("phi")]
-    files = sorted(out.glob("run_nodes_*.vtu"))
-    assert len(files) == 6 and (out / "run_nodes.pvd").is_file()
+    assert "body_nodes.pvd" in capsys.readouterr().out
+    whole = load_run(rod_run / "run")
+    run = whole.body()
+    sensors = whole.sensors[:, whole.sensor_names.index("phi")]
+    out = out / "body"  # the run's one flexible body
+    files = sorted(out.glob("body_nodes_*.vtu"))
+    assert len(files) == 6 and (out / "body_nodes.pvd").is_file()
     for k, f in enumerate(files):
         m = meshio.read(f)
         t, m1, m2 = (m.point_data[x] for x in ("tangent", "m1", "m2"))
@@ -127,7 +130,7 @@ def test_vtk_export_has_the_material_frames(rod_run, capsys):
         assert m.point_data["twist"][-1] == pytest.approx(sensors[i], abs=1e-12)
         assert np.abs(m.points - nodal_frames(run, i).points).max() < 1e-15
     # the centreline file of a rod is the exact curve as for cables
-    line = meshio.read(out / "run_00005.vtu")
+    line = meshio.read(out / "body_00005.vtu")
     assert np.abs(line.points - sample_centerline(run, run.t.size - 1).points).max() < 1e-15
 
 
@@ -141,7 +144,7 @@ def test_plot_animate_and_nurbs_export_of_a_rod_run(rod_run, capsys):
     from rancf.cad import read_curves
 
     (back,) = read_curves(rod_run / "c.json")
-    run = load_run(run_dir)
+    run = load_run(run_dir).body()
     c = sample_centerline(run, run.t.size - 1)
     breaks = np.concatenate([[0.0], np.cumsum(run.scales)])
     u = np.concatenate(
@@ -159,11 +162,12 @@ def test_a_rod_run_without_directors_exports_its_centreline_and_says_why_no_fram
 
     old = tmp_path / "old"
     shutil.copytree(rod_run / "run", old)
-    data = dict(np.load(old / "results.npz"))
+    body = old / "bodies" / "body" / "results.npz"
+    data = dict(np.load(body))
     del data["directors"]
-    np.savez(old / "results.npz", **data)
+    np.savez(body, **data)
     assert main(["export", str(old), "--vtk", str(tmp_path / "vtk")]) == 0
     err = capsys.readouterr().err
     assert "no rod directors" in err and "no material frames" in err
-    assert (tmp_path / "vtk" / "old.pvd").is_file()
-    assert not list((tmp_path / "vtk").glob("old_nodes*"))
+    assert (tmp_path / "vtk" / "body" / "body.pvd").is_file()
+    assert not list((tmp_path / "vtk" / "body").glob("body_nodes*"))

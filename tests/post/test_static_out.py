@@ -9,7 +9,8 @@ import pytest
 from rancf import load_scenario
 from rancf.cad import read_curves
 from rancf.cli import main
-from rancf.post.run_data import load_run, sample_centerline
+from rancf.post.centerline import sample_centerline
+from rancf.post.system_run import load_run
 from rancf.solvers.static import solve_static
 from tests.post.test_rod_output import ROD
 
@@ -25,7 +26,7 @@ def test_static_out_is_the_load_path(cantilever, tmp_path, capsys):
     out = tmp_path / "st"
     assert main(["static", str(cantilever), "--out", str(out)]) == 0
     assert f"-> {out}" in capsys.readouterr().out
-    run = load_run(out)
+    run = load_run(out).body()
     sc = load_scenario(cantilever)
     model = sc.build_model()
     res = solve_static(model, sc.solver["load_steps"])
@@ -56,10 +57,10 @@ def test_static_out_of_a_rod_has_its_frames(tmp_path, capsys):
     (tmp_path / "rod.toml").write_text(ROD)
     out = tmp_path / "st"
     assert main(["static", str(tmp_path / "rod.toml"), "--out", str(out)]) == 0
-    run = load_run(out)
+    run = load_run(out).body()
     assert run.directors is not None and run.directors.shape == (run.t.size, run.n_nodes, 3)
     assert main(["export", str(out), "--vtk", str(tmp_path / "vtk")]) == 0
-    assert (tmp_path / "vtk" / "st_nodes.pvd").is_file()
+    assert (tmp_path / "vtk" / "body" / "body_nodes.pvd").is_file()
 
 
 def test_a_failed_static_run_keeps_the_converged_steps(tmp_path, capsys):
@@ -73,5 +74,5 @@ def test_a_failed_static_run_keeps_the_converged_steps(tmp_path, capsys):
     assert "did not converge" in capsys.readouterr().err
     summary = json.loads((out / "summary.json").read_text())
     assert summary["status"] == "failed" and summary["load_factor_reached"] < 1.0
-    run = load_run(out)
+    run = load_run(out).body()
     assert run.t[0] == 0.0 and run.t.size == summary["load_steps_converged"] + 1

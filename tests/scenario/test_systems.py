@@ -11,6 +11,7 @@ import copy
 import json
 import tomllib
 
+import numpy as np
 import pytest
 
 from rancf.cli import main
@@ -42,7 +43,7 @@ def _set(d: dict, path: str, value) -> None:
 
 def test_slider_crank_models():
     sc = _sc(SLIDER_CRANK)
-    assert sc.dim == 2 and sc.is_system
+    assert sc.dim == 2 and len(sc.bodies) == 3
     crank, rod, slider = sc.bodies
     assert isinstance(crank, RigidBody) and isinstance(rod, FlexibleBody)
     assert isinstance(slider, PointMass) and rod.kind == "flexible"
@@ -88,30 +89,50 @@ def test_static_of_a_system_file(tmp_path, capsys):
     assert main(["static", str(f), "--json"]) == 0
     doc = json.loads(capsys.readouterr().out)
     assert doc["load_factors"][-1] == 1.0
-    assert max(abs(v) for v in doc["reactions"].values()) <= 1e-9
+    assert doc["method"] == "load" and doc["reactions"]  # one object per joint
+    values = [v for r in doc["reactions"] for v in [*r["force"], *r.get("moment", [])]]
+    assert max(map(abs, values)) <= 1e-9
     assert doc["positions"]["slider"] == pytest.approx([0.45, 0.0], abs=1e-12)
 
 
-ONE_BODY_NOT_YET = [
-    ({"supports": [{"at": "start", "motion": {"ramp": 1.0, "value": [0.0, 0.1]}}]},
-     "supports[0].motion", "prescribed motion"),
-    ({"loads": {"point": [{"at": "end", "force": [0.0, 1.0], "time": 2.0}]}},
-     "loads.point[0].time", "time functions"),
-    ({"sensors": [{"name": "cm", "kind": "center_of_mass"}]}, "sensors[0].kind", "center_of_mass"),
-    ({"joints": [{"name": "j", "kind": "pin", "between": ["end", "ground"]}]}, "joints",
-     "multibody"),
+ONE_BODY_EXTRAS = [
+    {"supports": [{"at": "start", "motion": {"ramp": 1.0, "value": [0.0, 0.1]}}]},
+    {"loads": {"point": [{"at": "end", "force": [0.0, 1.0], "time": 2.0}]}},
+    {"sensors": [{"name": "cm", "kind": "center_of_mass"}]},
 ]  # fmt: skip
 
 
-@pytest.mark.parametrize(("tables", "key", "needle"), ONE_BODY_NOT_YET)
-def test_one_body_keys_not_yet_solved(tables, key, needle):
+@pytest.mark.parametrize("tables", ONE_BODY_EXTRAS)
+def test_one_body_files_build_their_model_whatever_they_hold(tables):
+    """Moving supports, time loads and system sensors are a flexible body's (or the run's):
+    ``build_model`` gives the model, whose system equals the scenario's (the same coordinates
+    and the same residual)."""
     d = tomllib.loads(BASE)
     d.update(tables)
-    sc = parse_scenario(d, "s.toml")  # valid
+    sc = parse_scenario(d, "s.toml")
+    model, system = sc.build_model(), sc.build_system()
+    from rancf.system import as_system
+
+    one = as_system(model)
+    assert one.n == system.n and one.m == system.m
+    r1, r2 = (np.empty(s.n + s.m) for s in (one, system))
+    for s, r in ((one, r1), (system, r2)):
+        z = np.zeros(s.n)
+        s.core.residual(s.y0, z, z, np.zeros(s.m), 0.1, 1.0, False, True, r)
+    assert np.array_equal(r1, r2)
+
+
+def test_a_system_file_has_no_one_model():
+    """A file with joints is a system of parts: ``build_model`` refuses it in one line that
+    points to ``build_system``."""
+    d = tomllib.loads(BASE)
+    d["joints"] = [{"name": "j", "kind": "pin", "between": ["end", "ground"]}]
+    sc = parse_scenario(d, "s.toml")
     with pytest.raises(ScenarioError) as info:
         sc.build_model()
-    assert str(info.value).startswith(f"s.toml: [{key}] {needle}")
-    assert "not yet solved by this command" in str(info.value)
+    text = str(info.value)
+    assert text.startswith("s.toml: [joints] makes this scenario a system") and "\n" not in text
+    assert "build_system()" in text
 
 
 RIGID = {"name": "r", "kind": "rigid", "mass": 1.0, "inertia": 0.1, "position": [0.0, 0.0]}

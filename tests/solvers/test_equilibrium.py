@@ -14,15 +14,16 @@ from rancf.bodies.reactions import support_reactions
 from rancf.geometry.conic import conic_arc_through
 from rancf.mesh.factories import mesh_conic, mesh_line
 from rancf.solvers.dynamic import DynamicOptions, integrate
-from rancf.solvers.equilibrium import EquilibriumProblem
 from rancf.solvers.modal import natural_modes
 from rancf.solvers.static import solve_static
+from rancf.solvers.system_equilibrium import SystemEquilibrium
+from rancf.system import as_system
 from tests.references.catenary import SSNL114, chain_frequencies, elastic_catenary, ssnl114
 from tests.references.elastica import HOSE, installed_hose
 
 
 def _reactions(m: Model, y: np.ndarray):
-    return support_reactions(m, y, EquilibriumProblem(m).full_residual(y, 1.0))
+    return support_reactions(m, y, SystemEquilibrium(as_system(m)).full_residual(y, 1.0))
 
 
 def ssnl114_model(n: int = 40) -> Model:
@@ -87,12 +88,13 @@ def shallow_arch(n: int = 16) -> Model:
 
 
 def test_arc_length_passes_a_snap_through_that_load_control_cannot():
-    """Load control stops at the arch's limit point; arc length traces the path past it (the
-    load factor turns back) to the hanging state."""
-    from rancf.errors import ConvergenceError
-
-    with pytest.raises(ConvergenceError, match=r"beyond load factor 0\.65"):
-        solve_static(shallow_arch())
+    """Load control stops at the arch's limit point (relaxation under the full load then lets
+    it snap through); arc length traces the path past it (the load factor turns back) to the
+    same hanging state."""
+    relaxed = solve_static(shallow_arch())
+    assert relaxed.method == "relaxation+newton" and relaxed.relaxation_steps > 0
+    assert relaxed.load_factors[-2] == pytest.approx(0.657, abs=2e-3)  # where load control stops
+    assert relaxed.load_factors[-1] == 1.0
     path = []
     m = shallow_arch()
     res = solve_static(m, method="arc_length", on_step=lambda lam, y: path.append(lam))
@@ -102,8 +104,10 @@ def test_arc_length_passes_a_snap_through_that_load_control_cannot():
     assert limit > 0 and lam[limit] == pytest.approx(0.657, abs=2e-3)  # measured 0.6566
     mid = m.node_positions(res.q)[8]
     assert mid[1] < 0.0  # snapped through: the arch hangs
-    r = EquilibriumProblem(m).residual(res.y, 1.0)
+    r = SystemEquilibrium(as_system(m)).residual(res.y, 1.0)
     assert np.abs(r).max() <= 1e-6 * np.abs(m.external_force(0.0, res.y, True)).max()
+    assert res.method == "arc_length"
+    assert np.abs(relaxed.q - res.q).max() <= 1e-8 * 10.0  # the same hanging state (10 m span)
 
 
 def hose(n: int = 32, angle: float = 0.0) -> Model:
@@ -149,21 +153,23 @@ def test_reactions_are_objective():
 
 
 def test_installation_load_vector_is_the_path_derivative():
-    """``-∂r/∂p`` while the supports move (stage 2) against central differences of ``r``."""
+    """``-∂r/∂p`` while the supports move (stage 2: central differences of the residual) against
+    the exact tangent's ``-K[:, held] Δ``."""
     m = hose(8)
-    prob = EquilibriumProblem(m)
+    prob = SystemEquilibrium(as_system(m))
     y = solve_static(m).y
     prob.stage = 1
-    p, h = 1.6, 1e-6
+    p = 1.6
     prob.place_supports(y, p)
-    _, ab = prob.tangent(y, p)
-    q = prob.load_vector(y, ab)
-    # the free coordinates held fixed, the supports moved: r(y(p ± h), p ± h)
-    yp, ym = y.copy(), y.copy()
-    prob.place_supports(yp, p + h)
-    prob.place_supports(ym, p - h)
-    fd = -(prob.residual(yp, p + h) - prob.residual(ym, p - h)) / (2 * h)
-    assert np.allclose(q, fd, rtol=0, atol=1e-6 * np.abs(q).max())
+    _, ok = prob.tangent(y, p)
+    q = prob.load_vector(y, ok)
+    _, ab = m.internal_force_and_tangent(y)
+    d = np.zeros(m.n)
+    d[m.fixed] = prob.delta
+    exact = -(m.dense(ab) @ d)
+    exact[m.fixed] = 0.0
+    assert np.abs(q).max() > 0.0
+    assert np.allclose(q, exact, rtol=0, atol=1e-6 * np.abs(exact).max())
 
 
 def test_dynamics_from_the_equilibrium_stays_at_rest():
@@ -207,7 +213,7 @@ def test_a_free_body_under_dead_tension_keeps_only_its_translations_rigid():
     q[:, 0] *= stretch  # uniformly stretched: an exact equilibrium
     q[:, 2] *= stretch
     y = m.y_from_q(q.ravel())
-    assert np.abs(EquilibriumProblem(m).residual(y, 1.0)).max() <= 1e-6 * force
+    assert np.abs(SystemEquilibrium(as_system(m)).residual(y, 1.0)).max() <= 1e-6 * force
     res = natural_modes(m, y, count=2)
     assert res.n_rigid == 2
     omega = np.sqrt(12.0 * force / (m.total_mass * length * stretch))
@@ -223,24 +229,38 @@ def test_an_installed_place_equal_to_the_reference_up_to_round_off_is_no_install
         end = (0.3 + shift, 0.0)
         model = Model(mesh, "rancf", sec, mat, gravity=(0.0, -9.81),
                       supports=[Support(0, "pin"), Support(-1, "pin", position=end)])  # fmt: skip
-        assert len(EquilibriumProblem(model).stages) == stages, shift
+        assert len(SystemEquilibrium(as_system(model)).stages) == stages, shift
         res = solve_static(model)
         assert np.abs(model.node_positions(res.q)[-1] - end).max() <= 1e-15 + 1e-12 * 0.3
 
 
-def test_a_failed_path_advises_what_its_method_lacks():
-    """An arc under gravity without supports has no equilibrium (pinned, whether Newton finds
-    the hanging state from the reference is round-off's luck): load control points to the
-    arc-length method, and the arc-length method does not point to itself."""
+def test_a_pinned_arc_under_gravity_comes_to_rest_hanging_and_without_its_pin_says_why():
+    """The elliptic arc of paper example 6.1 pinned at its start is a pendulum: neither method
+    can leave its reference (no stiffness against the swing there), relaxation takes it to the
+    hanging state, where it balances its weight (the pin's reaction is the weight to 1e-9 and the
+    centre of mass is straight below the pin).  Without the pin there is no equilibrium: one
+    line that says so."""
     from rancf.errors import ConvergenceError
 
     arc = conic_arc_through([0.0, 0.0], [0.5, 0.0], [30.0, 40.0], [0.315, 0.077])
-    m = Model(mesh_conic(arc, 4), "rancf", Section.circular(0.02), Material(6000.0, 2e6),
-              [], gravity=[0.0, -9.81])  # fmt: skip
-    messages = []
+
+    def pendulum(supports):
+        return Model(mesh_conic(arc, 4), "rancf", Section.circular(0.02), Material(6000.0, 2e6),
+                     supports, gravity=[0.0, -9.81])  # fmt: skip
+
+    weight = pendulum([]).total_mass * 9.81
     for method in ("load", "arc_length"):
+        m = pendulum([Support(0, "pin")])
+        res = solve_static(m, 4, method=method)
+        assert res.method == "relaxation+newton" and res.load_factors[-1] == 1.0
+        (pin,) = _reactions(m, res.y)
+        assert np.abs(pin.force - [0.0, weight]).max() <= 1e-9 * weight
+        # centre of mass: ∫ρA x ds = t_xᵀ M q with t_x the rigid translation along x
+        t_x = np.zeros(m.n)
+        t_x[0 :: m.dpn] = 1.0
+        centre = t_x @ m.dense(m.mass_band) @ res.y / m.total_mass
+        assert abs(centre) <= 1e-9 * 0.5
         with pytest.raises(ConvergenceError) as info:
-            solve_static(m, 4, method=method)
-        messages.append(str(info.value))
-    assert 'solver.static_method = "arc_length"' in messages[0]
-    assert "arc_length" not in messages[1] and "solver.load_steps" in messages[1]
+            solve_static(pendulum([]), 4, method=method)
+        text = str(info.value)
+        assert "\n" not in text and "no equilibrium" in text and "add a support" in text

@@ -197,7 +197,7 @@ def test_static_and_modes_sweeps(tmp_path):
         rows = _rows(out / "results.csv")
         assert [r["status"] for r in rows] == ["completed"] * 2 and rows[1][col] != ""
     # a static run's folder is also a run directory of its load path (export, plot, animate)
-    from rancf.post.run_data import load_run
+    from rancf.post.system_run import load_run
 
     run = load_run(next((tmp_path / "static" / "runs").iterdir()))
     assert run.static and run.t[0] == 0.0 and run.t[-1] == 1.0

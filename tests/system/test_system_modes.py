@@ -114,7 +114,10 @@ def test_static_and_modes_commands_on_a_system(tmp_path, capsys):
     _l_frame().save(f)
     assert main(["static", str(f), "--json", "--out", str(tmp_path / "st")]) == 0
     doc = json.loads(capsys.readouterr().out)
-    assert doc["reactions"]["a:start_fz"] == pytest.approx(10.0, rel=1e-9)
+    reactions = {r["at"]: r for r in doc["reactions"]}  # the documented list, sensors or not
+    assert list(reactions) == ["a:start", "corner"]
+    assert reactions["a:start"]["force"][2] == pytest.approx(10.0, rel=1e-9)
+    assert reactions["corner"]["force"][2] == pytest.approx(-10.0, rel=1e-9)  # on a:end
     assert doc["sensors"]["corner_force_z"] == pytest.approx(-10.0, rel=1e-9)  # on a:end
     assert doc["sensors"]["root_z"] == pytest.approx(10.0, rel=1e-9)
     assert (tmp_path / "st" / "bodies" / "b" / "results.npz").is_file()

@@ -37,7 +37,7 @@ if TYPE_CHECKING:  # lower layers, for annotations only
 __all__ = ["arc_fractions", "closure_matrix", "closure_rows", "seam_scales"]
 
 
-class Model(Protocol):
+class SeamedBody(Protocol):
     """What the seam rows read of a flexible body (:class:`rancf.bodies.flexible.Model`)."""
 
     n: int
@@ -61,7 +61,7 @@ def arc_fractions(mesh: CableMesh) -> NDArray[np.float64]:
     return s / s[-1]
 
 
-def seam_scales(model: Model) -> NDArray[np.float64]:
+def seam_scales(model: SeamedBody) -> NDArray[np.float64]:
     """``s_i`` of the rows ``q_n[i] - s_i q_0[i] = 0`` over one node's coordinates ``(dpn,)``."""
     d = model.dim
     s = np.ones(model.dpn)
@@ -70,7 +70,7 @@ def seam_scales(model: Model) -> NDArray[np.float64]:
     return s
 
 
-def closure_matrix(model: Model) -> NDArray[np.float64]:
+def closure_matrix(model: SeamedBody) -> NDArray[np.float64]:
     """The seam's rows ``A`` of a closed model over its model coordinates ``(m, n)``; ``(0, n)``
     for an open one.
 
@@ -93,7 +93,9 @@ def closure_matrix(model: Model) -> NDArray[np.float64]:
     return model.to_y(a)  # A_y = A_q T: each row a becomes Tᵀ a
 
 
-def closure_rows(model: Model) -> tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.float64]]:
+def closure_rows(
+    model: SeamedBody,
+) -> tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.float64]]:
     """The rows of :func:`closure_matrix` as terms ``(row, column, coefficient)``."""
     a = closure_matrix(model)
     a[np.abs(a) <= 1e-15 * np.abs(a).max(initial=0.0)] = 0.0

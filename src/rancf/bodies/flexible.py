@@ -170,7 +170,8 @@ class Model(Coordinates):
         self.n = self.n_nodes * self.dpn
         self.nde = 2 * self.dpn
         self.ku = self.nde - 1
-        self._el_idx = np.arange(self.n_el)[:, None] * self.dpn + np.arange(self.nde)[None, :]
+        #: The indices in ``q`` of every element's coordinates ``(n_el, nde)``.
+        self.element_dofs = np.arange(self.n_el)[:, None] * self.dpn + np.arange(self.nde)[None, :]
 
         # supports -> held entries of y, rotated blocks, installed values
         tangents = mesh.nodes[:, 1]
@@ -181,7 +182,7 @@ class Model(Coordinates):
             held |= {self.check_node(k, "initial_velocity.at") for k in initial_velocities or {}}
             self.reduction, base_q = reduction(self.mesh, self.dpn, element == "rod", held, q0)
             self.notes += jump_note(self.reduction, self.n_el)
-            node_base = self._node_base
+            node_base = self.node_base
         layout = support_layout(supports, element, self.dim, self.dpn, base_q, tangents,
                                 self.check_node, node_base)  # fmt: skip
         self.fixed = layout.fixed
@@ -291,7 +292,7 @@ class Model(Coordinates):
 
     def gather(self, q: NDArray) -> NDArray[np.float64]:
         """Element coordinates ``(n_el, nde)`` from a global vector."""
-        return q[self._el_idx]
+        return q[self.element_dofs]
 
     def assemble_vector(self, fe: NDArray) -> NDArray[np.float64]:
         """Sum element vectors ``(n_el, nde)`` into a global vector ``(n,)``."""
@@ -372,19 +373,6 @@ class Model(Coordinates):
         yy = self.y0 if y is None else np.asarray(y, dtype=float)
         self.core.external_force(float(t), yy, f, amplitude)
         return f
-
-    def load_stiffness(
-        self, t: float, y: ArrayLike | None = None, amplitude: bool = False
-    ) -> NDArray[np.float64]:
-        """``∂f_ext/∂y`` at ``t`` and ``y`` (band storage ``(2 ku + 1, n)``).
-
-        Only point moments (rods) depend on the configuration; the core evaluates their load
-        stiffness as in Newton's tangent.  Zero for every other model.
-        """
-        ab = np.empty((2 * self.ku + 1, self.n))
-        yy = self.y0 if y is None else np.asarray(y, dtype=float)
-        self.core.load_stiffness(float(t), yy, ab, amplitude)
-        return ab
 
     def nodal_directors(self, y: ArrayLike) -> NDArray[np.float64] | None:
         """Rods: each node's director ``m1`` ``(n_nodes, 3)`` at ``y``, from the nodal triads as

@@ -20,7 +20,7 @@ from rancf.kernels.rod import RodKernel
 __all__ = ["core_model", "section_stiffness"]
 
 
-class Model(Protocol):
+class AssembledBody(Protocol):
     """What the core's structure is made of (:class:`rancf.bodies.flexible.Model`)."""
 
     dim: int
@@ -44,7 +44,7 @@ class Model(Protocol):
     def check_node(self, node: int, key: str) -> int: ...
 
 
-def section_stiffness(model: Model) -> _core.Stiffness:
+def section_stiffness(model: AssembledBody) -> _core.Stiffness:
     """``EA``, ``EI`` and, for rods, ``GJ``, ``EI2 = E I_y`` (about ``m1``) and ``EI3 = E I_z``."""
     sec, mat = model.section, model.material
     if model.element != "rod":
@@ -59,7 +59,7 @@ def section_stiffness(model: Model) -> _core.Stiffness:
     )
 
 
-def core_model(model: Model) -> _core.Model:
+def core_model(model: AssembledBody) -> _core.Model:
     """The model as the compiled core's named structure (arrays shared, not copied).
 
     Parameters
@@ -117,7 +117,7 @@ def core_model(model: Model) -> _core.Model:
     )
 
 
-def _reduction(model: Model) -> _core.Reduction:
+def _reduction(model: AssembledBody) -> _core.Reduction:
     """A C² model's element and node maps (:mod:`rancf.mesh.continuity`); none for C¹."""
     red = model.reduction
     if red is None:
@@ -131,7 +131,7 @@ def _reduction(model: Model) -> _core.Reduction:
     )  # fmt: skip
 
 
-def _point_forces(model: Model) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _point_forces(model: AssembledBody) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Point forces as ``(base index, F0, frequency)`` arrays (frequency 0: constant)."""
     # loads times a time function act through the system (rancf.system), not the chain
     forces = [p for p in model.point_loads if p.force is not None and p.time is None]

@@ -38,7 +38,7 @@ from rancf.errors import InputError
 __all__ = ["RigidMotion", "rigid_velocity", "check_supports_at_rest", "angular_momentum"]
 
 
-class Model(Protocol):
+class MovingBody(Protocol):
     """What rigid motions read of a flexible body (:class:`rancf.bodies.flexible.Model`)."""
 
     dim: int
@@ -80,7 +80,7 @@ def _omega_cross(w: NDArray, r: NDArray) -> NDArray:
     return np.cross(w, r)
 
 
-def rigid_velocity(model: Model, motion: RigidMotion) -> NDArray[np.float64]:
+def rigid_velocity(model: MovingBody, motion: RigidMotion) -> NDArray[np.float64]:
     """Velocities ``q̇`` (full nodal coordinates) of the rigid motion (M.1) at the reference."""
     dim = model.dim
     v0 = _vector("initial_motion.velocity", motion.velocity, dim)
@@ -99,7 +99,7 @@ def rigid_velocity(model: Model, motion: RigidMotion) -> NDArray[np.float64]:
     return out.ravel()
 
 
-def check_supports_at_rest(model: Model, v: NDArray) -> None:
+def check_supports_at_rest(model: MovingBody, v: NDArray) -> None:
     """Raise unless the velocity field ``v`` (model coordinates) leaves held coordinates at rest."""
     scale = max(float(np.abs(v).max(initial=0.0)), 1e-300)
     bad = np.flatnonzero(model.fixed & (np.abs(v) > 1e-12 * scale))
@@ -112,7 +112,7 @@ def check_supports_at_rest(model: Model, v: NDArray) -> None:
         )  # fmt: skip
 
 
-def _scalar_mass_blocks(model: Model) -> NDArray[np.float64]:
+def _scalar_mass_blocks(model: MovingBody) -> NDArray[np.float64]:
     """``m_kl = ρA ∫ S_k S_l |r0'| dξ`` per element ``(n_el, 4, 4)``, blocks rA, r_xA, rB, r_xB."""
     from rancf.kernels.rod import RodKernel
 
@@ -122,7 +122,7 @@ def _scalar_mass_blocks(model: Model) -> NDArray[np.float64]:
 
 
 def angular_momentum(
-    model: Model, q: ArrayLike, v: ArrayLike, about: ArrayLike | None = None
+    model: MovingBody, q: ArrayLike, v: ArrayLike, about: ArrayLike | None = None
 ) -> NDArray[np.float64]:
     """Angular momentum (M.2) about ``about`` of states ``q``, ``v`` ``(n_t, n)`` (full coords).
 

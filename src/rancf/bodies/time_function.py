@@ -29,26 +29,29 @@ angle) or vector valued (a support's displacement), every component sharing the 
 
 At a kink (a table's breakpoint, the end of a ramp) the rate is the one of the interval that
 starts there (the right derivative).  The compiled core evaluates the same functions
-(``src/cpp/time_function.hpp``) from the arrays of :func:`pack`.
+(``src/cpp/time_function.hpp``) from the records of :func:`core_record`.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from rancf.errors import InputError
+from rancf.kernels.records import TimeFunctionRecord, floats
 
-__all__ = ["TimeFunction", "KINDS", "CORE_KINDS", "spin_up_angle", "pack"]
+__all__ = ["TimeFunction", "KINDS", "CORE_KINDS", "spin_up_angle", "core_record"]
 
 #: The kinds of time functions.
 KINDS = ("constant", "table", "ramp", "harmonic", "spin_up", "callable")
-#: Kind names and their code in the compiled core (a callable is packed as its sampled table).
-CORE_KINDS = {"constant": 0, "table": 1, "ramp": 2, "harmonic": 3, "spin_up": 4}
+#: The kinds the compiled core evaluates and its names of them (a callable goes as its sampled
+#: table).
+CORE_KINDS = {"constant": "constant", "table": "piecewise", "ramp": "ramp",
+              "harmonic": "harmonic", "spin_up": "spin_up"}  # fmt: skip
 
 _H1, _H2 = 6e-6, 1.2e-4  # central-difference steps of callables [s]
 
@@ -320,41 +323,18 @@ class TimeFunction:
         return f"TimeFunction({self.to_toml()!r})"
 
 
-def pack(functions: Sequence[TimeFunction]) -> dict[str, NDArray]:
-    """The core's arrays of a list of time functions (``tf_*`` of ``rancf._core.System``).
+def core_record(f: TimeFunction) -> TimeFunctionRecord:
+    """The record of ``f`` the compiled core evaluates
+    (:class:`rancf.kernels.records.TimeFunctionRecord`; a table is the core's ``piecewise``
+    kind with its :meth:`TimeFunction.coefficients`).
 
-    A callable cannot be called from the compiled loop: pack ``f.sampled(t_end)`` instead.
+    A callable cannot be called from the compiled loop: give ``f.sampled(t_end)`` instead.
     """
-    kinds, sizes, values, vstart, params, breaks, bstart, coef, cstart = ([] for _ in range(9))
-    nv = nb = nc = 0
-    for f in functions:
-        if f.kind not in CORE_KINDS:
-            raise InputError("time function", f.fn, "a function the core evaluates (sample a "
-                             "Python callable first: f.sampled(t_end))")  # fmt: skip
-        kinds.append(CORE_KINDS[f.kind])
-        sizes.append(f.size)
-        vstart.append(nv)
-        values += list(f.values)
-        nv += f.size
-        params += [f.duration, f.frequency, f.phase]
-        b, c = f.coefficients()
-        bstart.append(nb)
-        cstart.append(nc)
-        breaks += b.tolist()
-        coef += c.ravel().tolist()
-        nb += b.size
-        nc += c.size
-    bstart.append(nb)
-    cstart.append(nc)
-    i64 = np.int64
-    return {
-        "tf_kind": np.array(kinds, dtype=i64),
-        "tf_n": np.array(sizes, dtype=i64),
-        "tf_value": np.array(values, dtype=float),
-        "tf_value_start": np.array(vstart, dtype=i64),
-        "tf_params": np.array(params, dtype=float),
-        "tf_breaks": np.array(breaks, dtype=float),
-        "tf_breaks_start": np.array(bstart, dtype=i64),
-        "tf_coef": np.array(coef, dtype=float),
-        "tf_coef_start": np.array(cstart, dtype=i64),
-    }
+    if f.kind not in CORE_KINDS:
+        raise InputError("time function", f.fn, "a function the core evaluates (sample a "
+                         "Python callable first: f.sampled(t_end))")  # fmt: skip
+    breaks, coef = f.coefficients()
+    return TimeFunctionRecord(
+        CORE_KINDS[f.kind], floats(f.values), f.duration, f.frequency, f.phase, floats(breaks),
+        floats(coef),
+    )  # fmt: skip

@@ -15,16 +15,13 @@ from rancf.errors import InputError
 __all__ = ["add_parsers", "reactions_json"]
 
 
-def reactions_json(sc: Any, model: Any, y: Any) -> list[dict[str, Any]]:
-    """``static --json``'s ``"reactions"``: one object per support, in file order:
-    ``{"at", "force", "moment"}`` (moment for clamps and rods)."""
-    from rancf.bodies.reactions import support_reactions
-    from rancf.solvers.equilibrium import EquilibriumProblem
-
-    labels = sc.support_labels
-    res = EquilibriumProblem(model).full_residual(y, 1.0)  # the full loads
+def reactions_json(outputs: Any, y: Any, lam: Any) -> list[dict[str, Any]]:
+    """``static --json``'s ``"reactions"`` at the full loads: one object per support (in file
+    order, flexible body by body) and per joint, ``{"at", "force", "moment"}`` (``moment`` for
+    clamps, rods and joints that transmit one), whatever the sensors
+    (:meth:`rancf.system.outputs.SystemOutputs.static_reactions`)."""
     out = []
-    for r in support_reactions(model, y, res, labels):
+    for r in outputs.static_reactions(y, lam):
         item: dict[str, Any] = {"at": r.at, "force": r.force.tolist()}
         if r.moment is not None:
             item["moment"] = r.moment.tolist()
@@ -32,24 +29,42 @@ def reactions_json(sc: Any, model: Any, y: Any) -> list[dict[str, Any]]:
     return out
 
 
+def positions_json(system: Any, q: Any) -> Any:
+    """``static --json``'s ``"positions"``: the nodes of the one flexible body ``[[x, y(, z)],
+    ...]``, or per body (a rigid body's or point mass's centre)."""
+    out: dict[str, Any] = {}
+    for name in system.names:
+        b, qb = system.bodies[name], q[system.body_slice(name)]
+        out[name] = (b.node_positions(qb).tolist() if hasattr(b, "node_positions")
+                     else qb[: system.dim].tolist())  # fmt: skip
+    return next(iter(out.values())) if len(out) == 1 and system.flex else out
+
+
+def _static_state(sc: Any, system: Any) -> tuple[Any, Any]:
+    """The equilibrium under the full loads (coordinates and multipliers)."""
+    from rancf.solvers.static import solve_static
+
+    res = solve_static(system, sc.solver["load_steps"], method=sc.solver["static_method"])
+    return res.y, res.lam
+
+
 def _cmd_buckling(args: argparse.Namespace) -> int:
     from rancf.scenario import load_scenario
     from rancf.solvers.buckling import linear_buckling
-    from rancf.solvers.static import solve_static
 
     plot = check_plot_path(args.plot) if args.plot else None
     if args.count < 1:
         raise InputError("--count", args.count, "an integer >= 1")
     sc = load_scenario(args.scenario)
-    model = sc.build_model()
-    y = None
+    system = sc.build_system()
+    y = lam = None
     if args.about == "static":
-        y = solve_static(model, sc.solver["load_steps"], method=sc.solver["static_method"]).y
-    res = linear_buckling(model, args.count, args.about, y)
+        y, lam = _static_state(sc, system)
+    res = linear_buckling(system, args.count, args.about, y, lam)
     if plot is not None:
         from rancf.post.plots import plot_buckling
 
-        plot_buckling(model, res, plot, y)
+        plot_buckling(system, res, plot, y)
     out = {
         "load_factors": res.load_factors.tolist(),
         "about": res.about,
@@ -60,9 +75,9 @@ def _cmd_buckling(args: argparse.Namespace) -> int:
 
         print(strict_json(out).rstrip())
     else:
-        print(f"linear buckling about the {res.about} configuration (critical load factors):")
-        for i, lam in enumerate(res.load_factors, 1):
-            print(f"  mode {i:2d}  {lam:14.8g}")
+        print(f"buckling about the {res.about} configuration (critical load factors):")
+        for i, lam_i in enumerate(res.load_factors, 1):
+            print(f"  mode {i:2d}  {lam_i:14.8g}")
         if plot is not None:
             print(f"mode shapes -> {plot}", file=sys.stderr)
     return 0
@@ -74,37 +89,29 @@ def _cmd_static(args: argparse.Namespace) -> int:
     from rancf.post.checks import run_warnings
     from rancf.post.results import LoadPath, sensor_table, strict_json, write_static_run
     from rancf.scenario import load_scenario
+    from rancf.scenario.system_build import support_labels
     from rancf.solvers.static import solve_static
+    from rancf.system.outputs import SystemOutputs
 
     sc = load_scenario(args.scenario)
-    if sc.needs_system:
-        from rancf.cli.system import print_static, static_system
-
-        copy = None if args.out is None else _scenario_text(args.scenario)
-        doc = static_system(args, sc, copy)
-        if args.json:
-            print(strict_json(doc).rstrip())
-        else:
-            print_static(doc, args.out)
-        return 0
     od = None if args.out is None else OutputDir(args.out, kind="run", overwrite=args.overwrite)
-    model = sc.build_model()
-    path = LoadPath(model, sc.support_labels)  # the load path, for --out
-    method = sc.solver["static_method"]
+    system = sc.build_system()
+    labels = support_labels(sc)
+    path = LoadPath(system, labels)  # the load path, for --out
+    opts = {"load_steps": sc.solver["load_steps"], "method": sc.solver["static_method"]}
+    doc = None
     if od is None:
-        res = solve_static(model, sc.solver["load_steps"], method=method)
+        res = solve_static(system, **opts)
     else:
         from rancf.atomic import atomic_write
 
         copy = _scenario_text(args.scenario)
-        out_dir = od.path
         with od:
-            info = {"scenario": str(Path(args.scenario).resolve())}
+            info: dict[str, Any] = {"scenario": str(Path(args.scenario).resolve())}
             try:
-                res = solve_static(
-                    model, sc.solver["load_steps"], on_step=path.record, method=method
-                )
-                info.update(status="completed", message="reached the end of the load path")
+                res = solve_static(system, on_step=path.record, **opts)
+                info.update(status="completed", message="reached the end of the load path",
+                            method=res.method, relaxation_steps=res.relaxation_steps)  # fmt: skip
             except BaseException as exc:
                 kind = "interrupted" if isinstance(exc, KeyboardInterrupt) else "failed"
                 lam = path.steps[-1][0] if path.steps else 0.0
@@ -113,40 +120,43 @@ def _cmd_static(args: argparse.Namespace) -> int:
                 raise
             finally:
                 if path.steps:  # what converged is kept, also when a later increment fails
-                    doc = write_static_run(out_dir, path, sc.sensors, info)
-                    atomic_write(out_dir / "scenario.toml", copy)
+                    doc = write_static_run(od.path, path, sc.sensors, info)
+                    atomic_write(od.path / "scenario.toml", copy)
                     od.keep()
-    if path.steps:  # the load path's outputs tracked the largest strain
-        notes = _warn(doc["warnings"])
-    else:
-        notes = _warn(run_warnings(model, res.load_factors[-1:], res.q[None], static=True))
-    pos = model.node_positions(res.q)
+    outputs = SystemOutputs(system, sc.sensors, labels)
     lf = res.load_factors[-1:]
-    names, vals = sensor_table(model, sc.sensors, res.q, static=True, t=lf)
+    names, vals = sensor_table(outputs, sc.sensors, res.q, static=True, t=lf, lam=res.lam[None])
+    # the load path's outputs tracked the largest strain (--out), else the last state's
+    largest = outputs.largest_strain
+    notes = _warn(doc["warnings"] if doc is not None
+                  else run_warnings(system, static=True, largest=largest))  # fmt: skip
     out = {
-        "positions": pos.tolist(),
+        "positions": positions_json(system, res.q),
         "sensors": dict(zip(names, vals[0].tolist(), strict=True)),
         "load_factors": res.load_factors.tolist(),
         "newton_iterations": res.n_newton,
+        "relaxation_steps": res.relaxation_steps,
         "method": res.method,
         "wall_time_s": res.wall_time,
-        "reactions": reactions_json(sc, model, res.y),
+        "reactions": reactions_json(outputs, res.y, res.lam),
         "warnings": notes,
     }
     if args.json:
         print(strict_json(out).rstrip())
-    else:
-        print(
-            f"static equilibrium: {len(res.load_factors) - 1} load steps, "
-            f"{res.n_newton} Newton iterations" + (f" -> {od.path}" if od is not None else "")
-        )
-        for k, v in out["sensors"].items():
-            print(f"  {k:12s} {v: .9g}")
-        # forces below the round-off of the internal forces (100 ε EA) print as 0
-        floor = 100 * np.finfo(float).eps * model.props.ea
-        for r in out["reactions"]:
-            moment = f"  moment {_vec(r['moment'], floor)}" if "moment" in r else ""
-            print(f"  reaction at {r['at']!s:6s} force {_vec(r['force'], floor)}{moment}")
+        return 0
+    relaxed = f", {res.relaxation_steps} relaxation steps" if res.relaxation_steps else ""
+    where = f" -> {od.path}" if od is not None else ""
+    print(
+        f"static equilibrium ({res.method}): {len(res.load_factors) - 1} load steps, "
+        f"{res.n_newton} Newton iterations{relaxed}{where}"
+    )
+    for k, v in out["sensors"].items():
+        print(f"  {k:12s} {v: .9g}")
+    # forces below the round-off of the internal forces (100 ε EA) print as 0
+    floor = 100 * np.finfo(float).eps * max((b.props.ea for b in system.flex), default=0.0)
+    for r in out["reactions"]:
+        moment = f"  moment {_vec(r['moment'], floor)}" if "moment" in r else ""
+        print(f"  reaction at {r['at']!s:6s} force {_vec(r['force'], floor)}{moment}")
     return 0
 
 
@@ -157,57 +167,44 @@ def _vec(v: list[float], floor: float) -> str:
 def _cmd_modes(args: argparse.Namespace) -> int:
     import numpy as np
 
-    from rancf.post.checks import run_warnings
+    from rancf.post.checks import largest_strain, run_warnings
     from rancf.post.results import strict_json
     from rancf.scenario import load_scenario
     from rancf.solvers.modal import natural_modes
-    from rancf.solvers.static import solve_static
 
     plot = check_plot_path(args.plot) if args.plot else None
     if args.count is not None and args.count < 1:
         raise InputError("--count", args.count, "an integer >= 1")
     sc = load_scenario(args.scenario)
-    if sc.needs_system:
-        from rancf.cli.system import modes_system, print_modes
-
-        doc = modes_system(args, sc)
-        if args.json:
-            print(strict_json(doc).rstrip())
-        else:
-            print_modes(doc)
-        return 0
-    model = sc.build_model()
+    system = sc.build_system()
     about = args.about or sc.data["modes"]["about"]
     count = args.count if args.count is not None else sc.data["modes"]["count"]
     key = "--count" if args.count is not None else f"{sc.path}: modes.count"
-    n_free = int(np.sum(~model.fixed))
-    if count > n_free:
-        raise InputError(key, count, f"at most {n_free} (the free coordinates of this model)")
-    y = None
+    n_free = int(np.sum(~system.fixed))
+    if count >= n_free:
+        raise InputError(key, count, f"at most {n_free - 1} (the free coordinates - 1)")
+    y = lam = None
+    largest = (0.0, 1.0)
     if about == "static":
-        y = solve_static(model, sc.solver["load_steps"], method=sc.solver["static_method"]).y
-    static = [] if y is None else [model.q_from_y(y)]  # the strain of the equilibrium
-    notes = _warn(run_warnings(model, np.ones(len(static)), np.array(static), static=True))
-    res = natural_modes(model, y, count)
-    if res.frequencies_hz.size < count:
-        raise InputError(
-            key,
-            count,
-            f"at most {res.frequencies_hz.size}: this model has {n_free} free coordinates and "
-            f"{res.n_rigid} rigid-body mode(s), which are removed",
-        )
+        y, lam = _static_state(sc, system)
+        q = system.q_from_y(y)
+        for name, b in zip(system.names, system.flex, strict=False):  # the equilibrium's strain
+            eps = largest_strain(b, np.ones(1), q[None, system.body_slice(name)])
+            largest = max(largest, eps)
+    notes = _warn(run_warnings(system, static=True, largest=largest))
+    res = natural_modes(system, y, count, lam)
     if plot is not None:
         from rancf.post.plots import plot_modes
 
-        plot_modes(model, res, plot, y)
-    growth = res.growth_rates if res.growth_rates is not None else np.zeros_like(res.frequencies_hz)
+        plot_modes(system, res, plot, y)
     out = {
         "frequencies_hz": res.frequencies_hz.tolist(),
-        "growth_rates_per_s": growth.tolist(),
+        "growth_rates_per_s": res.growth_rates.tolist(),
         "eigenproblem": "symmetric" if res.symmetric else "general",
         "rigid_body_modes_removed": res.n_rigid,
         "about": about,
-        "n_dofs_free": int(np.sum(~model.fixed)),
+        "n_dofs_free": n_free,
+        "constraints": system.m,
         "warnings": notes,
     }
     if args.json:
@@ -217,16 +214,16 @@ def _cmd_modes(args: argparse.Namespace) -> int:
             f"natural frequencies about the {about} configuration "
             f"({res.n_rigid} rigid-body mode(s) removed):"
         )
-        for i, (f, g) in enumerate(zip(res.frequencies_hz, growth, strict=True), 1):
-            extra = "" if res.symmetric else f"  growth rate {g:.6g} 1/s"
+        for i, (f, g) in enumerate(zip(res.frequencies_hz, res.growth_rates, strict=True), 1):
+            extra = "" if res.symmetric and g == 0 else f"  growth rate {g:.6g} 1/s"
             print(f"  mode {i:2d}  {f:12.6f} Hz{extra}")
         if not res.symmetric:
             print(
-                "  note: general eigenproblem (the point moments' load stiffness is not "
-                "symmetric);\n  a growth rate > 0 is an unstable mode: flutter (frequency > 0) "
+                "  note: general eigenproblem (the tangent is not symmetric: point moments, "
+                "friction);\n  a growth rate > 0 is an unstable mode: flutter (frequency > 0) "
                 "or divergence (frequency 0)."
             )
-        if np.any(res.frequencies_hz < 1e-6):
+        if np.any(res.frequencies_hz < 1e-6) and not np.any(res.growth_rates > 0):
             print(
                 "  note: zero-frequency modes that are not rigid-body motions are kept; for a "
                 "curved spatial cable they are the out-of-plane bending the magnitude "
@@ -268,7 +265,8 @@ def add_parsers(sub: Any) -> None:
     m.set_defaults(func=_cmd_modes)
 
     b = sub.add_parser(
-        "buckling", help="linear buckling load factors of a scenario's loads (K0 + λ Kσ) φ = 0"
+        "buckling",
+        help="buckling load factors of a scenario's loads (linearized, located on the static path)",
     )
     b.add_argument("scenario")
     b.add_argument("--count", type=int, default=3, help="number of load factors (default 3)")

@@ -16,13 +16,6 @@ from rancf.errors import InputError
 __all__ = ["add_parsers", "run_to_nurbs"]
 
 
-def is_system_run(path: str) -> bool:
-    """Whether ``path`` is a run of several bodies (:mod:`rancf.post.system_run`)."""
-    from rancf.post.system_run import is_system_run as check
-
-    return check(path)
-
-
 #: End points of a chain closer than this (relative to the curve's extent) are one point: a
 #: ring's seam, held by its closure rows to round-off.
 SEAM_RTOL = 1e-12
@@ -46,7 +39,7 @@ def run_to_nurbs(run: Any, i: int) -> Any:
             str(run.path),
             "a run of cable or rod elements: beam elements have no exact curve to export",
         )
-    from rancf.post.run_data import centerline_nodes
+    from rancf.post.centerline import centerline_nodes
 
     nodes = centerline_nodes(run, run.q[i])
     if not np.all(np.isfinite(nodes)):
@@ -63,62 +56,48 @@ def run_to_nurbs(run: Any, i: int) -> Any:
     return chain_to_nurbs(ElementChain(nodal, run.weights, run.scales, breaks))
 
 
-def _export_system(args: argparse.Namespace, out: Any) -> int:
-    from rancf.post.system_run import export_system_vtk, load_system_run
-    from rancf.post.vtk_contact import export_contact_vtk
-
-    if args.nurbs is not None:
-        raise InputError("--nurbs", args.nurbs, "one body's run: RUN_DIR/bodies/NAME")
-    run = load_system_run(args.run_dir)
-    with out:
-        paths = export_system_vtk(run, out.path, args.every, args.samples)
-        contact = export_contact_vtk(run.path, out.path, args.every, run.rigid_frame)
-        out.keep()
-    for p in paths:
-        print(f"{p.parent.name if p.parent != out.path else 'rigid bodies'}: open {p} in ParaView")
-    if contact is not None:
-        print(f"contact forces: open {contact} in ParaView")
-    return 0
-
-
 def _cmd_export(args: argparse.Namespace) -> int:
-    from rancf.post.run_data import load_run
+    from rancf.post.run_data import frame_indices
+    from rancf.post.system_run import export_system_vtk, load_run
+    from rancf.post.vtk import check_export_size
+    from rancf.post.vtk_contact import export_contact_vtk
 
     if args.vtk is None and args.nurbs is None:
         from rancf.cli import UsageError
 
         raise UsageError("export needs at least one of --vtk OUT_DIR, --nurbs FILE")
     out = OutputDir(args.vtk, "--vtk") if args.vtk is not None else None
-    if is_system_run(args.run_dir):
-        return _export_system(args, out)
     run = load_run(args.run_dir)
     if out is not None:
-        from rancf.post.run_data import frame_indices
-        from rancf.post.vtk import check_export_size, export_vtk
-        from rancf.post.vtk_contact import export_contact_vtk
-
         n = frame_indices(run.t.size, args.every).size
-        check_export_size(run, args.every, args.samples)
+        for r in run.flexible.values():
+            check_export_size(r, args.every, args.samples)
         with out:
-            pvd = export_vtk(run, out.path, args.every, args.samples)
-            contact = export_contact_vtk(run.path, out.path, args.every)
+            paths = export_system_vtk(run, out.path, args.every, args.samples)
+            contact = export_contact_vtk(run.path, out.path, args.every, run.rigid_frame)
             out.keep()
-        print(f"{n} VTK frame(s) of {run.name} written; open {pvd} in ParaView")
+        print(f"{n} VTK frame(s) of {run.name} written")
+        for p in paths:
+            name = p.parent.name if p.parent != out.path else "rigid bodies"
+            print(f"{name}: open {p} in ParaView")
         if contact is not None:
             print(f"contact forces: open {contact} in ParaView")
-        if run.directors is not None:
-            print(f"rod nodes and material frames: {pvd.with_name(f'{run.name}_nodes.pvd')}")
-        elif run.element == "rod":
-            print(
-                f"rancf: note: {run.path} holds no rod directors (written by an older rancf): "
-                "no material frames exported; run `rancf simulate` again to get them",
-                file=sys.stderr,
-            )
+        for name, r in run.flexible.items():
+            if r.directors is not None:
+                nodes = out.path / name / f"{name}_nodes.pvd"
+                print(f"{name}: rod nodes and material frames: {nodes}")
+            elif r.element == "rod":
+                print(
+                    f"rancf: note: {r.path} holds no rod directors (written by an older rancf): "
+                    "no material frames exported; run `rancf simulate` again to get them",
+                    file=sys.stderr,
+                )
     if args.nurbs is not None:
         from rancf.cad import write_curve
 
+        body = run.body(args.body)
         i = run.time_index(args.time)
-        curve = run_to_nurbs(run, i)
+        curve = run_to_nurbs(body, i)
         label = f"{'lambda' if run.static else 't'}={run.t[i]:g}"  # ASCII: STEP/IGES names
         path = write_curve(args.nurbs, curve, f"{run.name} {label}")
         interior = curve.knots[curve.degree + 1 : curve.n_ctrl]
@@ -130,24 +109,17 @@ def _cmd_export(args: argparse.Namespace) -> int:
 
 
 def _cmd_plot(args: argparse.Namespace) -> int:
-    from rancf.post.run_data import load_run
-    from rancf.post.run_plots import plot_run
+    from rancf.post.system_run import load_run, plot_system_run
 
     if args.out is not None:
         check_out_dir(args.out)
-    if is_system_run(args.run_dir):
-        from rancf.post.system_run import load_system_run, plot_system_run
-
-        run: Any = load_system_run(args.run_dir)
-        plot: Any = plot_system_run
-    else:
-        run, plot = load_run(args.run_dir), plot_run
+    run = load_run(args.run_dir)
     if not 1 <= args.configurations <= MAX_CONFIGURATIONS:
         raise InputError(
             "--configurations", args.configurations, f"an integer in [1, {MAX_CONFIGURATIONS}]"
         )
     with OutputDir(Path(args.out) if args.out is not None else run.path / "plots") as out:
-        written = plot(run, out.path, args.configurations)
+        written = plot_system_run(run, out.path, args.configurations)
         out.keep()
     for p in written:
         print(p)
@@ -159,15 +131,9 @@ MAX_CONFIGURATIONS = 100
 
 
 def _cmd_animate(args: argparse.Namespace) -> int:
-    from rancf.post.run_data import load_run
-    from rancf.post.run_plots import animate_run
+    from rancf.post.system_run import animate_system_run, load_run
 
-    if is_system_run(args.run_dir):
-        from rancf.post.system_run import animate_system_run, load_system_run
-
-        n = animate_system_run(load_system_run(args.run_dir), args.out, args.fps, args.every)
-    else:
-        n = animate_run(load_run(args.run_dir), args.out, args.fps, args.every)
+    n = animate_system_run(load_run(args.run_dir), args.out, args.fps, args.every)
     print(f"{n} frames at {args.fps} fps -> {args.out}")
     return 0
 
@@ -210,6 +176,9 @@ def add_parsers(sub: Any) -> None:
     e.add_argument("--nurbs", metavar="FILE", default=None, help="write the shape as NURBS")
     e.add_argument(
         "--time", type=float, default=None, help="time of the --nurbs shape (default: the last)"
+    )
+    e.add_argument(
+        "--body", default=None, help="flexible body of the --nurbs shape (default: the only one)"
     )
     e.set_defaults(func=_cmd_export)
 

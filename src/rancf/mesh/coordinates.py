@@ -27,7 +27,8 @@ class Coordinates:
     """Node indices and the map ``q = T y`` of a model (module docstring).
 
     The model sets ``n``, ``n_nodes``, ``dim``, ``dpn``, ``ku``, ``closed``, ``reduction`` and
-    the rotated blocks ``rotations``.
+    ``rotations``: the rotated blocks of clamped nodes, ``(first index in y, basis (dim, dim))``
+    each, whose coordinates are ``z = basis y``.
     """
 
     n: int
@@ -54,7 +55,7 @@ class Coordinates:
         i %= n
         return 0 if self.closed and i == n - 1 else i
 
-    def _node_base(self, node: int) -> int:
+    def node_base(self, node: int) -> int:
         """First index in ``y`` of a node's own coordinates (C² models: its C¹ block)."""
         if self.reduction is None:
             return node * self.dpn

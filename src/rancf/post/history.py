@@ -44,6 +44,21 @@ HISTORY_FILES = ("sensors.csv", "energy.csv", "reactions.csv", "results.npz")
 
 _FILES = ("t", "q", "v", "e")
 
+#: Bytes kept free for the last ``summary.json`` of a run that fails on a full disk: a file of
+#: this size in the raw folder, which :meth:`HistoryStore.fail` removes before writing it.
+RESERVE_BYTES = 1 << 15
+
+
+def _reserve(path: Path) -> None:
+    """Write :data:`RESERVE_BYTES` at ``path`` if the disk takes them (else nothing is kept: the
+    run's first write reports the full disk)."""
+    try:
+        with open(path, "wb") as fh:  # file systems charge written bytes at write time
+            fh.write(b"\0" * RESERVE_BYTES)
+    except OSError:
+        with contextlib.suppress(OSError):
+            path.unlink()
+
 
 def estimate_output_bytes(
     n_outputs: int, n_q: int, n_sensor_columns: int, n_directors: int = 0, n_derived: int = 0
@@ -134,17 +149,17 @@ class HistoryStore:
     ) -> None:
         self.out = Path(out)
         self.outputs = outputs
-        s = outputs.system
-        self.per_body = not (s.single is not None and len(s.flex) == 1)
         self.info = {"pid": os.getpid(), "started_at": _now(), **info}
         self.raw = self.out / ".history"
         self.raw.mkdir(exist_ok=True)
+        _reserve(self.raw / "reserve")
         # rods: the nodal directors too ("m", 3 numbers a node)
         self._keys = _FILES + (("m",) if outputs.n_directors else ())
         # derived at every flush from the buffered rows (rancf.post.run_files.DERIVED)
         files = self._keys + DERIVED
         self._fh = {k: open(self.raw / f"{k}.f64", "wb") for k in files}  # noqa: SIM115
         self._buf: dict[str, list[NDArray]] = {k: [] for k in self._keys}
+        self._alpha: list[NDArray] = []  # the buffered rows' steps' alpha points (contact)
         self._rows_per_flush = max(1, buffer_bytes // (16 * outputs.n_q + 32))
         self.n_rows = 0
         self._pending = 0
@@ -160,9 +175,10 @@ class HistoryStore:
         energy: NDArray,
         directors: NDArray | None = None,
         lam: NDArray | None = None,
+        alpha: NDArray | None = None,
     ) -> None:
         """Store one output (sink protocol of :func:`~rancf.solvers.dynamic.integrate`)."""
-        self._add((np.array([t]), q, v, energy, directors), 1)
+        self._add((np.array([t]), q, v, energy, directors), 1, alpha)
 
     def append_block(
         self,
@@ -172,17 +188,22 @@ class HistoryStore:
         energy: NDArray,
         directors: NDArray | None = None,
         lam: NDArray | None = None,
+        alpha: NDArray | None = None,
     ) -> None:
         """Store consecutive outputs: ``t (k,)``, ``q, v (k, n_q)``, ``energy (k, 3)``, rods'
         ``directors (k, n_rod_nodes, 3)`` (``lam``, the integrator's multipliers, is not kept:
-        the files hold the consistent ones)."""
-        self._add((t, q, v, energy, directors), len(t))
+        the files hold the consistent ones; ``alpha``, the steps' generalized-α points of a
+        system with contact, only until the rows' outputs are derived)."""
+        self._add((t, q, v, energy, directors), len(t), alpha)
 
-    def _add(self, values: tuple[NDArray | None, ...], rows: int) -> None:
+    def _add(self, values: tuple[NDArray | None, ...], rows: int,
+             alpha: NDArray | None = None) -> None:  # fmt: skip
         for key, val in zip(self._keys, values, strict=False):
             if val is None:
                 raise ValueError(f"output stream {key!r} missing")
             self._buf[key].append(np.asarray(val, dtype="<f8").ravel())
+        if alpha is not None:
+            self._alpha.append(np.asarray(alpha, dtype=float).reshape(rows, -1))
         self._pending += rows
         if self._pending >= self._rows_per_flush:
             self.flush()
@@ -198,8 +219,10 @@ class HistoryStore:
                 derived = self.outputs.rows(
                     rows["t"], rows["q"].reshape(k, -1), rows["v"].reshape(k, -1),
                     rows["m"].reshape(k, -1) if "m" in rows else None, rows["e"].reshape(k, 3),
-                    per_body=self.per_body,
+                    per_body=True,
+                    alpha=np.concatenate(self._alpha) if self._alpha else None,
                 )  # fmt: skip
+                self._alpha.clear()
                 rows.update({d: derived[d].ravel() for d in DERIVED})
                 for key, val in rows.items():
                     self._fh[key].write(np.ascontiguousarray(val, dtype="<f8").tobytes())
@@ -218,7 +241,7 @@ class HistoryStore:
         widths = {
             "t": 1, "q": o.n_q, "v": o.n_q, "e": 3, "m": o.n_directors, "a": o.n_q, "lam": s.m,
             "r": len(o.reaction_names), "s": o.n_along, "c": len(o.sensor_names),
-            "eb": 3 * len(s.flex) if self.per_body else 0,
+            "eb": 3 * len(s.flex),
         }  # fmt: skip
 
         def mm(key: str) -> NDArray:
@@ -275,7 +298,7 @@ class HistoryStore:
         except Exception:  # noqa: BLE001 - a full disk, or raw files cut short by one
             done = False
         self.close()
-        shutil.rmtree(self.raw, ignore_errors=True)  # frees the disk for the summary below
+        shutil.rmtree(self.raw, ignore_errors=True)  # frees the reserve for the summary below
         if not done:
             kept = {
                 **summary,
@@ -297,8 +320,7 @@ class HistoryStore:
         for name in (*HISTORY_FILES, "summary.json"):
             with contextlib.suppress(OSError):
                 (self.out / name).unlink()
-        if self.per_body:
-            shutil.rmtree(self.out / "bodies", ignore_errors=True)
+        shutil.rmtree(self.out / "bodies", ignore_errors=True)
 
     def close(self) -> None:
         """Close the raw files (they stay on disk)."""

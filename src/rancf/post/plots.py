@@ -11,6 +11,7 @@ from numpy.typing import NDArray
 from rancf.atomic import FileSet, atomic_path
 from rancf.bodies.flexible import Model
 from rancf.elements.cable import cable_shape_functions
+from rancf.system import System
 
 __all__ = ["centerline", "plot_modes", "pyplot", "save_figure"]
 
@@ -57,7 +58,9 @@ def centerline(model: Model, q: NDArray, per_element: int = 16) -> NDArray[np.fl
     return np.concatenate([pts[:, :-1].reshape(-1, model.dim), pts[-1:, -1]], axis=0)
 
 
-def plot_modes(model: Model, modal: Any, path: str | Path, y: NDArray | None = None) -> Path:
+def plot_modes(
+    model: Model | System, modal: Any, path: str | Path, y: NDArray | None = None
+) -> Path:
     """Mode shapes over the configuration they linearize about, one panel per mode."""
     growth = getattr(modal, "growth_rates", None)
     titles = []
@@ -69,7 +72,9 @@ def plot_modes(model: Model, modal: Any, path: str | Path, y: NDArray | None = N
     return plot_shapes(model, modal.modes, titles, path, y)
 
 
-def plot_buckling(model: Model, res: Any, path: str | Path, y: NDArray | None = None) -> Path:
+def plot_buckling(
+    model: Model | System, res: Any, path: str | Path, y: NDArray | None = None
+) -> Path:
     """Buckling mode shapes over the configuration they linearize about, titled by their
     critical load factor."""
     titles = [f"mode {i + 1}: λ = {lam:.6g}" for i, lam in enumerate(res.load_factors)]
@@ -77,30 +82,49 @@ def plot_buckling(model: Model, res: Any, path: str | Path, y: NDArray | None = 
 
 
 def plot_shapes(
-    model: Model, shapes: NDArray, titles: list[str], path: str | Path, y: NDArray | None = None
+    model: Model | System,
+    shapes: NDArray,
+    titles: list[str],
+    path: str | Path,
+    y: NDArray | None = None,
 ) -> Path:
-    """Shapes ``(k, n)`` (full coordinates) scaled over the configuration ``y``, one panel each."""
+    """Shapes ``(k, n)`` (full coordinates) scaled over the configuration ``y``, one panel
+    each: every flexible body's centreline, every rigid body's or point mass's position."""
+    from rancf.system import as_system
+
+    system = as_system(model)
     plt = pyplot()
     path = Path(path)
-    base = model.q0 if y is None else model.q_from_y(y)
-    ref = centerline(model, base)
-    size = float(np.ptp(ref, axis=0).max())
+    base = system.q_from_y(system.y0 if y is None else y)
+    flex = [(b, system.body_slice(k)) for k, b in system.bodies.items() if isinstance(b, Model)]
+    other = [system.body_slice(k) for k, b in system.bodies.items() if not isinstance(b, Model)]
+    dim = system.dim
+
+    def points(q: NDArray) -> list[NDArray]:
+        out = [centerline(b, q[sl]) for b, sl in flex]
+        return out + [np.atleast_2d(q[sl][:dim]) for sl in other]
+
+    ref = points(base)
+    size = float(np.ptp(np.concatenate(ref), axis=0).max()) or 1.0
     n = len(titles)
     cols = min(3, n)
     rows = int(np.ceil(n / cols))
-    three = model.dim == 3
     fig = plt.figure(figsize=(4.5 * cols, 3.8 * rows), constrained_layout=True)
     for i in range(n):
-        ax = fig.add_subplot(rows, cols, i + 1, projection="3d" if three else None)
+        ax = fig.add_subplot(rows, cols, i + 1, projection="3d" if dim == 3 else None)
         shape = shapes[i]
-        amp = 0.15 * size / max(np.abs(model.node_positions(shape)).max(), 1e-300)
-        cur = centerline(model, base + amp * shape)
-        ax.plot(*ref.T, color="0.6", lw=1, label="configuration")
-        ax.plot(*cur.T, color="C3", lw=2, label="mode (scaled)")
+        moved = [b.node_positions(shape[sl]) for b, sl in flex]
+        moved += [np.atleast_2d(shape[sl][:dim]) for sl in other]
+        amp = 0.15 * size / max(np.abs(np.concatenate(moved)).max(), 1e-300)
+        for k, (r0, r1) in enumerate(zip(ref, points(base + amp * shape), strict=True)):
+            style = {"lw": 1} if len(r0) > 1 else {"marker": "o", "ls": ""}
+            ax.plot(*r0.T, color="0.6", label="configuration" if k == 0 else None, **style)
+            ax.plot(*r1.T, color="C3", label="mode (scaled)" if k == 0 else None,
+                    **({"lw": 2} if len(r1) > 1 else style))  # fmt: skip
         ax.set_title(titles[i])
         ax.set_xlabel("x [m]")
         ax.set_ylabel("y [m]")
-        if three:
+        if dim == 3:
             ax.set_zlabel("z [m]")
         else:
             ax.set_aspect("equal", adjustable="datalim")
@@ -150,6 +174,6 @@ def positions_at(model: Model, q: NDArray, sbar: NDArray) -> NDArray[np.float64]
         n = cable_shape_functions(
             model.mesh.weights[e : e + 1], model.mesh.scales[e : e + 1], xis[sel]
         )[0][0]
-        nodal = hist[:, model._el_idx[e]].reshape(hist.shape[0], 4, model.dim)
+        nodal = hist[:, model.element_dofs[e]].reshape(hist.shape[0], 4, model.dim)
         out[:, sel] = np.einsum("sk,tkd->tsd", n, nodal)
     return out[0] if q.ndim == 1 else out

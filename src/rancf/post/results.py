@@ -27,8 +27,8 @@ from rancf.atomic import FileSet
 from rancf.bodies.flexible import Model
 from rancf.post.checks import run_warnings
 from rancf.post.run_files import reader_metadata, write_history_files
-from rancf.solvers.dynamic import DynamicResult, as_system
-from rancf.system import System
+from rancf.solvers.dynamic import DynamicResult
+from rancf.system import System, as_system
 from rancf.system.outputs import SystemOutputs
 
 __all__ = [
@@ -159,7 +159,7 @@ def write_run(
     outputs = outputs if outputs is not None else system_outputs(model, sensors, labels)
     with FileSet() as files:  # the files replace an earlier run's together
         write_history_files(out, outputs, result.t, result.q, result.v, energy,
-                            result.directors, files=files)  # fmt: skip
+                            result.directors, files=files, alpha=result.alpha)  # fmt: skip
         summary = {
             **run_summary(model, result),
             "warnings": run_warnings(model, largest=outputs.largest_strain),

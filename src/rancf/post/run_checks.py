@@ -1,6 +1,6 @@
 """Checks of a run folder read back: its ``results.npz`` arrays fit together (not cut short, not
 mixed from two runs) and its scenario is the one of its results, so that
-:func:`rancf.post.run_data.load_run` refuses a damaged folder in one line instead of failing
+:func:`rancf.post.run_data.load_body` refuses a damaged folder in one line instead of failing
 later."""
 
 from __future__ import annotations
@@ -71,6 +71,8 @@ def check_results(npz: Path, data: dict[str, Any]) -> None:
 
 def scenario_fits(sc: Any, meta: dict[str, Any]) -> str | None:
     """Why the scenario ``sc`` is not the one of a run with ``meta`` (None: it fits)."""
+    if "mesh" not in sc.data:
+        return "the scenario is written with [[bodies]]: a system, not one body's results"
     mesh = sc.data["mesh"]
     if mesh["element"] != meta["element"] or sc.dim != meta["dim"]:
         return (

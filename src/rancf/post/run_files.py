@@ -6,15 +6,18 @@ One writer for every run (a system of one body is a one-body run):
   strain, gravity, total`` [J]) and ``reactions.csv`` (supports, then joints; see
   :mod:`rancf.system.outputs`);
 * ``results.npz``: ``t``, the states ``q``, ``v``, the consistent accelerations ``a``, the
-  energies, ``sensors``, ``reactions``, the multipliers ``lam`` (systems with joints), the
-  ``reference`` and JSON ``metadata``.  A one-body run also holds that body's arrays (``along``
-  and ``along_s``, ``directors`` of rods, ``weights``, ``scales``) and metadata, so readers
-  (:mod:`rancf.post.run_data`) need nothing else;
-* a system of several bodies: the metadata's ``"bodies"`` lists every body (name, kind, its
-  columns ``offset`` and ``size`` in ``q``; a flexible body's ``folder``), and every flexible
-  body has a one-body ``bodies/NAME/results.npz`` (its coordinates, accelerations, energies,
-  support reactions, section values, directors), which ``rancf export``, ``plot`` and
-  ``animate`` read like any run.
+  energies, ``sensors``, ``reactions``, the multipliers ``lam`` (``(n_t, 0)`` without
+  constraints), the ``reference`` and JSON ``metadata``: ``dim``, ``sensor_columns``,
+  ``reaction_columns``, ``obstacles`` (a list, empty without contact) and ``"bodies"``, every
+  body (name, kind, its columns ``offset`` and ``size`` in ``q``; a flexible body's
+  ``element`` and ``folder``; a rigid body's ``mass`` and ``points``);
+* every flexible body's ``bodies/NAME/results.npz``: its coordinates, accelerations,
+  energies, support reactions, section values (``along`` and ``along_s``), rods' ``directors``,
+  the mesh's ``weights`` and ``scales`` and the metadata readers need
+  (:mod:`rancf.post.run_data`).
+
+The layout is the same for every run: a run of a one-body file is a system of one body
+(``bodies/body``), read by :func:`rancf.post.system_run.load_run`.
 
 Histories are written in chunks of rows (:data:`CHUNK_BYTES`), so a long run's files are built
 without holding them in memory; the files go into a :class:`~rancf.atomic.FileSet` and replace
@@ -101,29 +104,30 @@ def write_history_files(
     static: bool = False,
     files: FileSet | None = None,
     lam: NDArray | None = None,
+    alpha: NDArray | None = None,
 ) -> list[str]:
     """Write the history files of rows ``t (n,)``, ``q, v (n, n_q)``, ``energy (n, 3)`` and rods'
     ``directors (n, n_directors)`` (module docstring); any may be memory maps.
 
     ``derived``: the rows' :meth:`SystemOutputs.rows` arrays (keys :data:`DERIVED`), else they
     are computed chunk by chunk (``static``: rows of a load path, ``t`` its parameter, ``lam``
-    the solver's multipliers).  Into the set ``files`` (committed by the caller), else
-    atomically on their own.  Returns the sensor column names.
+    the solver's multipliers; ``alpha``: the steps' generalized-α points of a dynamic run with
+    contact, :class:`~rancf.solvers.dynamic.DynamicResult`).  Into the set ``files``
+    (committed by the caller), else atomically on their own.  Returns the sensor column names.
     """
     if files is None:
         with FileSet() as own:
             return write_history_files(out_dir, outputs, t, q, v, energy, directors, derived,
-                                       static, own, lam)  # fmt: skip
+                                       static, own, lam, alpha)  # fmt: skip
     s = outputs.system
     n = t.shape[0]
     m1 = None if directors is None else np.asarray(directors).reshape(n, -1)
-    single = s.single is not None and len(s.flex) == 1
 
     def chunk(r: slice) -> dict[str, NDArray]:
         if derived is not None:
             return {k: derived[k][r] for k in DERIVED if k in derived}
-        mm, ll = (None if x is None else x[r] for x in (m1, lam))
-        return outputs.rows(t[r], q[r], v[r], mm, energy[r], ll, static, per_body=not single)
+        mm, ll, aa = (None if x is None else x[r] for x in (m1, lam, alpha))
+        return outputs.rows(t[r], q[r], v[r], mm, energy[r], ll, static, per_body=True, alpha=aa)
 
     chunks = [(r, chunk(r)) for r in _rows(n, 3 * q.shape[1] + outputs.n_along)]
     names = outputs.sensor_names
@@ -141,14 +145,9 @@ def write_history_files(
             fh.write((",".join(["t", *outputs.reaction_names]) + "\n").encode())
             for r, c in chunks:
                 np.savetxt(fh, np.column_stack([t[r], c["r"]]), delimiter=",", fmt="%.12g")
-    meta: dict[str, Any] = {"sensor_columns": names, "reaction_columns": outputs.reaction_names}
-    if s.obstacle_names:
-        meta["obstacles"] = obstacle_records(s)
-    if single:
-        name, model = s.names[0], s.flex[0]
-        meta.update(_body_meta(model, outputs, name))
-    else:
-        meta.update({"system": True, "dim": s.dim, "bodies": _bodies(outputs)})
+    meta: dict[str, Any] = {"system": True, "dim": s.dim, "bodies": _bodies(outputs),
+                            "sensor_columns": names, "reaction_columns": outputs.reaction_names,
+                            "obstacles": obstacle_records(s)}  # fmt: skip
     with (
         files.file(out_dir / "results.npz") as fh,
         zipfile.ZipFile(fh, "w", zipfile.ZIP_STORED, allowZip64=True) as z,
@@ -157,18 +156,14 @@ def write_history_files(
         _npy(z, "q", q.shape, (q[r] for r, _ in chunks))
         _npy(z, "v", v.shape, (v[r] for r, _ in chunks))
         _npy(z, "a", q.shape, (c["a"] for _, c in chunks))
-        if s.m:
-            _npy(z, "lam", (n, s.m), (c["lam"] for _, c in chunks))
+        _npy(z, "lam", (n, s.m), (c["lam"] for _, c in chunks))
         for j, key in enumerate(("kinetic", "strain", "gravity")):
             _npy(z, key, (n,), (energy[r, j] for r, _ in chunks))
         _npy(z, "sensors", (n, len(names)), (c["c"] for _, c in chunks))
         _npy(z, "reactions", (n, len(outputs.reaction_names)), (c["r"] for _, c in chunks))
-        if single:
-            _body_arrays(z, outputs, s.names[0], n, chunks, m1, None)
         _small(z, {"reference": s.q_from_y(s.y0), "metadata": np.array(json.dumps(meta))})
-    if not single:
-        for k, (name, model) in enumerate(outputs.flex):
-            _body_folder(out_dir, outputs, name, model, k, t, q, v, m1, chunks, files)
+    for k, (name, model) in enumerate(outputs.flex):
+        _body_folder(out_dir, outputs, name, model, k, t, q, v, m1, chunks, files)
     return names
 
 
@@ -202,10 +197,9 @@ def _director_cut(outputs: SystemOutputs, name: str) -> slice:
 
 def _body_arrays(
     z: zipfile.ZipFile, outputs: SystemOutputs, name: str, n: int, chunks: list,
-    m1: NDArray | None, cols: slice | None,
+    m1: NDArray | None,
 ) -> None:  # fmt: skip
-    """The arrays of one flexible body a reader needs (``cols``: its columns in ``q``, None
-    when the run is that body alone)."""
+    """The arrays of one flexible body a reader needs besides its states."""
     model = outputs.system.bodies[name]
     assert isinstance(model, Model)
     along_shape = (n, outputs.samplers[name].n_points, len(outputs.section_names[name]))
@@ -241,7 +235,7 @@ def _body_folder(
             _npy(z, key, (n,), (c["eb"][:, 3 * k + j] for _, c in chunks))
         _npy(z, "sensors", (n, 0), (np.empty((r.stop - r.start, 0)) for r, _ in chunks))
         _npy(z, "reactions", (n, rcols.stop - rcols.start), (c["r"][:, rcols] for _, c in chunks))
-        _body_arrays(z, outputs, name, n, chunks, m1, sl)
+        _body_arrays(z, outputs, name, n, chunks, m1)
         _small(z, {"reference": model.q0, "metadata": np.array(json.dumps(meta))})
 
 

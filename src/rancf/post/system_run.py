@@ -1,8 +1,10 @@
-"""A finished run of a system of several bodies read back, drawn and exported.
+"""A finished run read back, drawn and exported: the one reader of run folders.
 
-The run folder (:mod:`rancf.post.run_files`) holds the system's history in ``results.npz``
-(metadata ``"system": true`` and the list of bodies) and every flexible body's one-body history
-in ``bodies/NAME/``, which :func:`rancf.post.run_data.load_run` reads like any run.
+Every run folder (:mod:`rancf.post.run_files`) is a system's: ``results.npz`` holds the
+system's history (metadata ``"bodies"``: every body's name, kind and columns in ``q``) and every
+flexible body has its folder ``bodies/NAME`` (:func:`rancf.post.run_data.load_body`); a run of
+a one-body file is a system of one body, ``body``.  A run written by rancf < 0.3 (one body's
+arrays in the run folder itself) is read as that system of one body.
 
 Drawing: a flexible body is its exact element curve (:func:`rancf.post.run_data.
 sample_centerline`); a rigid body the polyline from its centre of mass through its named points
@@ -18,7 +20,7 @@ from __future__ import annotations
 import json
 import os
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -26,31 +28,19 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rancf.atomic import FileSet, atomic_path
+from rancf.errors import InputError
+from rancf.post.centerline import sample_centerline
 from rancf.post.plots import pyplot, save_figure
-from rancf.post.results import load_results
-from rancf.post.run_data import RunData, frame_indices, load_run, sample_centerline
+from rancf.post.run_data import RunData, frame_indices, load_body, read_results
 
-__all__ = ["SystemRun", "is_system_run", "load_system_run", "plot_system_run",
-           "export_system_vtk", "animate_system_run"]  # fmt: skip
-
-
-def is_system_run(path: str | Path) -> bool:
-    """Whether ``path`` is the folder of a run of several bodies."""
-    npz = Path(path) / "results.npz"
-    if not npz.is_file():
-        return False
-    try:
-        with np.load(npz, allow_pickle=False) as z:
-            meta = json.loads(str(z["metadata"]))
-    except Exception:  # noqa: BLE001 - damaged: load_run names the problem
-        return False
-    return isinstance(meta, dict) and meta.get("system") is True
+__all__ = ["SystemRun", "load_run", "plot_system_run", "export_system_vtk",
+           "animate_system_run"]  # fmt: skip
 
 
 @dataclass(frozen=True)
 class SystemRun:
-    """A system's run: times, states, sensors, energies, the bodies' metadata and every
-    flexible body's :class:`RunData`."""
+    """A run: times, states, sensors, energies, the bodies' metadata and every flexible body's
+    :class:`RunData`."""
 
     path: Path
     t: NDArray[np.float64]
@@ -65,15 +55,42 @@ class SystemRun:
 
     @property
     def name(self) -> str:
-        """The folder's name."""
+        """The folder's name (bytes that are not UTF-8 shown as U+FFFD, so the name can go into
+        file names, XML and figure titles)."""
         return os.fsencode(self.path.resolve().name).decode("utf-8", "replace")
 
     @property
     def time_label(self) -> str:
+        """Axis label of ``t``: the time, or the load factor of a static load path."""
         return "load factor λ [-]" if self.static else "t [s]"
 
     def time_text(self, value: float, fmt: str = ".4g") -> str:
+        """``t = 0.5 s``, or ``λ = 0.5`` for a static load path."""
         return f"λ = {value:{fmt}}" if self.static else f"t = {value:{fmt}} s"
+
+    def time_index(self, time: float | None) -> int:
+        """Index of the stored time closest to ``time`` (None: the last stored time)."""
+        if time is None:
+            return self.t.size - 1
+        if not (np.isfinite(time) and self.t[0] - 1e-12 <= time <= self.t[-1] + 1e-12):
+            unit = "" if self.static else " s"
+            raise InputError(
+                "--time", time, f"a time within the stored range [{self.t[0]:g}, {self.t[-1]:g}]"
+                f"{unit}",
+            )  # fmt: skip
+        return int(np.argmin(np.abs(self.t - time)))
+
+    def body(self, name: str | None = None) -> RunData:
+        """The flexible body ``name``'s history (None: the run's only flexible body)."""
+        names = list(self.flexible)
+        if name is None and len(names) == 1:
+            return self.flexible[names[0]]
+        if name not in self.flexible:
+            key = "--body" if name is not None else "RUN_DIR"
+            value = name if name is not None else str(self.path)
+            allowed = f"a flexible body of the run: {', '.join(names) or 'none'}"
+            raise InputError(key, value, allowed)
+        return self.flexible[name]
 
     def rigid_frame(self, body: dict[str, Any], i: int) -> tuple[NDArray, NDArray]:
         """Centre ``(3,)`` and axes ``(3, 3)`` (rows ``e1, e2, e3``) of a rigid body or point
@@ -90,14 +107,20 @@ class SystemRun:
         rot = Rotation.from_quat(row[3:7][[1, 2, 3, 0]]).as_matrix()
         return x, rot.T
 
-    def shapes(self, i: int) -> list[tuple[str, NDArray[np.float64]]]:
+    def shapes(self, i: int, magnify: float = 1.0) -> list[tuple[str, NDArray[np.float64]]]:
         """Every body's drawing ``(name, points (k, 3))`` at stored state ``i`` (module
-        docstring)."""
+        docstring); ``magnify`` scales the flexible bodies' displacements from their reference
+        (rigid bodies are drawn as they are)."""
         out = []
         for b in self.bodies:
             if b["kind"] == "flexible":
-                pts = sample_centerline(self.flexible[b["name"]], i).points
-                out.append((b["name"], _pad(pts)))
+                run = self.flexible[b["name"]]
+                pts = _pad(sample_centerline(run, i).points)
+                if magnify != 1.0:
+                    ref = replace(run, q=run.reference[None], v=np.zeros_like(run.reference)[None])
+                    base = _pad(sample_centerline(ref, 0).points)
+                    pts = base + magnify * (pts - base)
+                out.append((b["name"], pts))
                 continue
             x, axes = self.rigid_frame(b, i)
             pts = [x]
@@ -112,18 +135,53 @@ def _pad(a: NDArray) -> NDArray:
     return a if a.shape[-1] == 3 else np.concatenate([a, np.zeros(a.shape[:-1] + (1,))], axis=-1)
 
 
-def load_system_run(path: str | Path) -> SystemRun:
-    """Read a system's run folder (``results.npz`` and every ``bodies/NAME``)."""
+def _analysis(path: Path) -> str | None:
+    try:
+        doc = json.loads((path / "summary.json").read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None
+    return doc.get("analysis") if isinstance(doc, dict) else None
+
+
+def load_run(path: str | Path) -> SystemRun:
+    """Read a run folder (``results.npz`` and every ``bodies/NAME``; module docstring).
+
+    Raises
+    ------
+    InputError
+        If ``path`` is not a run folder with readable, consistent results, naming the folder
+        or file and what is wrong.
+    """
     p = Path(path)
-    data = load_results(p / "results.npz")
+    data = read_results(p)
     meta = data["metadata"]
-    flexible = {b["name"]: load_run(p / b["folder"]) for b in meta["bodies"]
-                if b["kind"] == "flexible"}  # fmt: skip
+    static = _analysis(p) == "static"
+    if "bodies" not in meta:  # rancf < 0.3: one body, its arrays here
+        body = load_body(p, static)
+        meta = {**meta, "bodies": [{"name": "body", "kind": "flexible", "offset": 0,
+                                    "size": body.q.shape[1]}]}  # fmt: skip
+        flexible = {"body": body}
+    else:
+        flexible = {b["name"]: load_body(p / b["folder"], static) for b in meta["bodies"]
+                    if b["kind"] == "flexible"}  # fmt: skip
     t = np.asarray(data["t"])
-    static = any(r.static for r in flexible.values())
+    names = meta.get("sensor_columns")
+    q = np.asarray(data.get("q", np.empty((0, 0))))
+    width = sum(b["size"] for b in meta["bodies"])
+    if q.ndim != 2 or q.shape != (t.size, width) or not isinstance(names, list):
+        raise InputError("RUN_DIR", str(p / "results.npz"), "a consistent results.npz (its "
+                         "states, times and sensor columns do not fit together)")  # fmt: skip
+    sizes = {b["name"]: b["size"] for b in meta["bodies"]}
+    for name, r in flexible.items():  # the run's folders are of one run (not mixed)
+        if r.t.shape != t.shape or not np.array_equal(r.t, t) or r.q.shape[1] != sizes[name]:
+            raise InputError(
+                "RUN_DIR", str(p / "bodies" / name), f"a body folder of the run in {p} (it holds "
+                f"{r.t.size} times of {r.q.shape[1]} coordinates, the run's results.npz "
+                f"{t.size} times and {sizes[name]} coordinates for it)",
+            )  # fmt: skip
     return SystemRun(
-        path=p, t=t, q=np.asarray(data["q"]), dim=int(meta["dim"]),
-        sensor_names=list(meta["sensor_columns"]),
+        path=p, t=t, q=q, dim=int(meta["dim"]),
+        sensor_names=list(names),
         sensors=np.asarray(data["sensors"]).reshape(t.size, -1),
         energies={k: np.asarray(data[k]) for k in ("kinetic", "strain", "gravity")},
         bodies=list(meta["bodies"]), flexible=flexible, static=static,
@@ -159,15 +217,19 @@ def plot_system_run(run: SystemRun, out_dir: str | Path, n_configurations: int =
 
 
 def animate_system_run(run: SystemRun, path: str | Path, fps: int = 20, every: int = 1,
-                       dpi: int = 80) -> int:  # fmt: skip
-    """Render every body's motion to ``path`` (``.gif`` or ``.mp4``); returns the frames."""
+                       dpi: int = 80, magnify: float = 1.0) -> int:  # fmt: skip
+    """Render every body's motion to ``path`` (``.gif`` or ``.mp4``); returns the frames.
+
+    Frames are :func:`~rancf.post.run_data.frame_indices` ``(n_t, every)``; ``magnify`` scales
+    the flexible bodies' displacements from their reference (small vibrations; the title says
+    so)."""
     from rancf.post.run_plots import _draw, _set_line, _space_axes, animation_writer
 
     path = Path(path)
     writer = animation_writer(path, fps)
     plt = pyplot()
     idx = frame_indices(run.t.size, every)
-    frames = [run.shapes(int(i)) for i in idx]
+    frames = [run.shapes(int(i), magnify) for i in idx]
     allp = np.concatenate([p for f in frames for _, p in f])
     fig = plt.figure(figsize=(6, 4.5))
     ax = _space_axes(fig, run, allp)
@@ -179,12 +241,13 @@ def animate_system_run(run: SystemRun, path: str | Path, fps: int = 20, every: i
         ax.set_aspect("equal", adjustable="box")
     lines = [_draw(ax, pts, lw=2, marker="o" if len(pts) < 3 else None) for _, pts in frames[0]]
     title = ax.set_title("")
+    label = f" (displacement × {magnify:g})" if magnify != 1.0 else ""
     try:
         with atomic_path(path) as tmp, writer.saving(fig, tmp, dpi):
             for k, i in enumerate(idx):
                 for line, (_, pts) in zip(lines, frames[k], strict=True):
                     _set_line(line, pts)
-                title.set_text(f"{run.name}: {run.time_text(run.t[i], '.4f')}")
+                title.set_text(f"{run.name}: {run.time_text(run.t[i], '.4f')}{label}")
                 writer.grab_frame()
     finally:
         plt.close(fig)

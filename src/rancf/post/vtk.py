@@ -1,7 +1,7 @@
 """ParaView output: one VTK unstructured grid (``.vtu``, written by meshio) per stored time and a
 ``.pvd`` collection that lists them with their times.
 
-Each ``.vtu`` holds the densely sampled centreline (:func:`rancf.post.run_data.sample_centerline`)
+Each ``.vtu`` holds the densely sampled centreline (:func:`rancf.post.centerline.sample_centerline`)
 as a polyline of ``line`` cells with point data ``displacement``, ``velocity`` (3 components; zero
 ``z`` for planar runs), ``axial_strain``, ``curvature``, ``radius`` (for ParaView's Tube filter,
 "Vary Radius: By Scalar" or a constant radius), ``element`` and the section quantities of the run
@@ -13,7 +13,7 @@ stand beside the sampled ``axial_strain`` and ``curvature``).
 Rod runs also get ``<run>_nodes.pvd`` with one ``.vtu`` per stored time holding the nodes as
 ``vertex`` cells with point data ``twist`` (the nodal ``φ``), ``tangent`` and the material frame
 ``m1``, ``m2`` (ParaView's Glyph filter draws them as arrows), ``displacement`` and ``velocity``:
-the frames are those the run carried along its path (:func:`rancf.post.run_data.nodal_frames`).
+the frames are those the run carried along its path (:func:`rancf.post.centerline.nodal_frames`).
 The files of one export are written under temporary names and renamed into place together once
 all are written (:class:`rancf.atomic.FileSet`): a failing or interrupted export (a full disk,
 Ctrl-C) leaves the folder as it was, never ``.vtu`` files without their ``.pvd``.
@@ -32,7 +32,8 @@ from numpy.typing import NDArray
 from rancf.atomic import FileSet
 from rancf.errors import InputError
 from rancf.geometry.conic_params import pad3
-from rancf.post.run_data import RunData, frame_indices, nodal_frames, sample_centerline
+from rancf.post.centerline import nodal_frames, sample_centerline
+from rancf.post.run_data import RunData, frame_indices
 
 __all__ = ["export_vtk", "centerline_mesh", "nodes_mesh", "check_export_size"]
 

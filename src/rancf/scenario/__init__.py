@@ -8,12 +8,14 @@ material),
 :mod:`~rancf.scenario.joints` (joints and springs), :mod:`~rancf.scenario.solver` (solver,
 modes), :mod:`~rancf.scenario.sensors`; places in :mod:`~rancf.scenario.places`, the checks
 across tables in :mod:`~rancf.scenario.checks`, errors in :mod:`~rancf.scenario.messages`, the
-model builder in :mod:`~rancf.scenario.build` and the JSON Schema in
-:mod:`~rancf.scenario.schema`.
+model builder in :mod:`~rancf.scenario.build`, the JSON Schema in
+:mod:`~rancf.scenario.schema`, and a one-body file written as one ``[[bodies]]`` table in
+:mod:`~rancf.scenario.convert`.
 """
 
 from rancf.bodies.time_function import TimeFunction
 from rancf.scenario.bodies import FlexibleBody, PointMass, RigidBody
+from rancf.scenario.convert import as_bodies
 from rancf.scenario.geometry import (
     CadGeometry,
     ConicGeometry,
@@ -45,6 +47,7 @@ __all__ = [
     "Scenario",
     "load_scenario",
     "parse_scenario",
+    "as_bodies",
     "scenario_schema",
     "TimeFunction",
     "Sensor",

@@ -22,7 +22,6 @@ import numpy as np
 from rancf.bodies.flexible import Material, Model, PointLoad, RigidMotion, Section, Support
 from rancf.errors import ConvergenceError, InputError, ScenarioError
 from rancf.scenario.geometry import MAX_ELEMENTS, CadGeometry, ConicGeometry, NurbsGeometry
-from rancf.scenario.sensors import SYSTEM_SENSOR_KINDS
 from rancf.scenario.view import ScenarioView
 
 if TYPE_CHECKING:
@@ -33,12 +32,9 @@ __all__ = [
     "flexible_model",
     "mesh_geometry",
     "scenario_key",
-    "system_only",
-    "NOT_YET",
+    "body_model",
+    "SYSTEM_KEYS",
 ]
-
-#: The problem of what the one-body solvers cannot run yet.
-NOT_YET = "not yet solved by this command"
 
 #: Argument names of the geometry functions -> scenario keys.
 _KEYS = {
@@ -125,39 +121,23 @@ def mesh_geometry(path: str, geometry: Any, mesh: MeshTable, prefix: str = "") -
         ) from None
 
 
-def system_only(sc: ScenarioView) -> tuple[str, str] | None:
-    """The first key (and what it is) that only the system solver runs: ``bodies``,
-    ``joints``, ``springs``, moving supports, time loads and the system sensors; None when the
-    one-body model takes the whole scenario."""
-    for k in ("bodies", "joints", "springs"):
+#: The tables that make a scenario a system of parts rather than one flexible body.
+SYSTEM_KEYS = ("bodies", "joints", "springs", "obstacles", "body_contacts")
+
+
+def build_model(sc: ScenarioView) -> Model:
+    """The flexible body of a one-body scenario (errors name the scenario key); a scenario with
+    more parts (:data:`SYSTEM_KEYS`) is refused in one line that points to its system."""
+    for k in SYSTEM_KEYS:
         if sc[k]:
-            return k, "multibody systems"
-    for i, s in enumerate(sc.supports):
-        if s.motion is not None:
-            return f"supports[{i}].motion", "prescribed motion"
-    for i, p in enumerate(sc.loads.point):
-        if p.time is not None:
-            return f"loads.point[{i}].time", "time functions"
-    for i, s in enumerate(sc.sensor_tables):
-        if s.kind in SYSTEM_SENSOR_KINDS:
-            return f"sensors[{i}].kind", f"{s.kind} sensors"
-    return None
+            raise ScenarioError(sc.path, k, "makes this scenario a system of parts, not one "
+                                "flexible body: Scenario.build_system() builds it")  # fmt: skip
+    return body_model(sc)
 
 
-def _not_yet(sc: ScenarioView) -> None:
-    """Refuse, naming the key, what only the system solver runs (:func:`system_only`)."""
-    found = system_only(sc)
-    if found is not None:
-        raise ScenarioError(sc.path, found[0], f"{found[1]}: {NOT_YET}")
-
-
-def build_model(sc: ScenarioView, system: bool = False) -> Model:
-    """Mesh the scenario's geometry and assemble its model (errors name the scenario key).
-
-    ``system``: for the system solver (:func:`rancf.scenario.system_build.build_system`), which
-    also runs moving supports and time functions of loads; otherwise they are refused."""
-    if not system:
-        _not_yet(sc)
+def body_model(sc: ScenarioView) -> Model:
+    """The flexible body of a file without ``[[bodies]]`` (its supports, moving ones included,
+    loads, initial motion), as the system of such a file holds it."""
     d = sc.data
     return flexible_model(
         sc, "", (sc.geometry, sc.mesh, sc.section, sc.material),

@@ -143,22 +143,6 @@ class Scenario(Table):
         return self._sensors
 
     @property
-    def is_system(self) -> bool:
-        """Whether the file describes a system (``[[bodies]]``, ``[[joints]]``, ``[[springs]]``,
-        ``[[obstacles]]`` or ``body_contacts``) rather than one flexible body on supports."""
-        return bool(self.bodies or self.joints or self.springs or self.obstacles
-                    or self.body_contacts)  # fmt: skip
-
-    @property
-    def needs_system(self) -> bool:
-        """Whether only the system solver runs this scenario: a system (:attr:`is_system`), or
-        one body with a moving support, time loads or system sensors (static and modes then
-        go through its one-body system, as ``rancf simulate`` always does)."""
-        from rancf.scenario.build import system_only
-
-        return self.is_system or system_only(self) is not None
-
-    @property
     def support_labels(self) -> list[int | str]:
         """Each support's ``at`` as written (``"start"``, ``"end"``, a node index, a place)."""
         return [s.at for s in self.supports]

@@ -26,7 +26,7 @@ import numpy as np
 
 from rancf.bodies.rigid import PointMass, RigidBody
 from rancf.errors import InputError, ScenarioError
-from rancf.scenario.build import build_model, flexible_model
+from rancf.scenario.build import body_model, flexible_model
 from rancf.scenario.view import ScenarioView
 from rancf.system import Joint, Load, Obstacle, Place, Spring, System
 
@@ -89,7 +89,7 @@ def _observed(sc: ScenarioView) -> list[Place]:
 def _build(sc: ScenarioView) -> System:
     gravity, damping = sc.loads.gravity, sc.damping.mass_proportional
     if not sc.bodies:
-        model = build_model(sc, system=True)
+        model = body_model(sc)
         return System({ONE_BODY: model}, gravity=gravity, damping=damping,
                       horizon=sc.solver.t_end, **_parts(sc, {ONE_BODY: model}))  # fmt: skip
     d = sc.data

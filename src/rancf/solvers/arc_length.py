@@ -6,7 +6,7 @@ factor ``λ``; each step keeps the scaled displacement increment on a cylinder o
 
     |Δy|² = Δs²        (norm: positions relative to the model size, the held entries excluded)
 
-With ``q = -∂r/∂λ`` (:meth:`EquilibriumProblem.load_vector`) and the tangent ``K`` at the current
+With ``q = -∂r/∂λ`` (:meth:`SystemEquilibrium.load_vector`) and the tangent ``K`` at the current
 iterate, every corrector iteration solves ``K δy_r = -r`` and ``K δy_t = q`` and takes
 ``δy = δy_r + δλ δy_t`` with the root ``δλ`` of the quadratic constraint whose new increment
 makes the smaller angle with the previous one.  The predictor follows the tangent, its sign set
@@ -24,11 +24,11 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import NDArray
 
+from rancf.solvers.load_path import MIN_INCREMENT, PathState
 from rancf.solvers.newton import newton
 
 if TYPE_CHECKING:
-    from rancf.solvers.equilibrium import EquilibriumProblem
-    from rancf.solvers.static import _Path
+    from rancf.solvers.system_equilibrium import SystemEquilibrium
 
 __all__ = ["arc_length_path"]
 
@@ -39,8 +39,8 @@ DESIRED_ITERATIONS = 6
 
 
 def arc_length_path(
-    problem: EquilibriumProblem,
-    path: _Path,
+    problem: SystemEquilibrium,
+    path: PathState,
     end: float,
     first: float,
     tol: float,
@@ -48,8 +48,6 @@ def arc_length_path(
 ) -> None:
     """Follow one stage of the path from ``path.lam`` to ``end`` (module docstring), accepting
     into ``path``."""
-    from rancf.solvers.static import MIN_INCREMENT
-
     dlam = min(first, end - path.lam)
     while True:  # a first load-controlled increment sets the arc length
         p1 = path.lam + dlam
@@ -96,24 +94,24 @@ def arc_length_path(
     raise path.fail(f"arc-length path (after {MAX_STEPS} steps; largest p {max(path.factors):.4g})")
 
 
-def _norm(problem: EquilibriumProblem, dy: NDArray) -> float:
+def _norm(problem: SystemEquilibrium, dy: NDArray) -> float:
     return float(np.linalg.norm((dy * problem.scale)[problem.free]))
 
 
-def _dot(problem: EquilibriumProblem, a: NDArray, b: NDArray) -> float:
+def _dot(problem: SystemEquilibrium, a: NDArray, b: NDArray) -> float:
     s2 = problem.scale**2
     return float(np.sum((a * b * s2)[problem.free]))
 
 
 def _step(
-    problem: EquilibriumProblem,
+    problem: SystemEquilibrium,
     y: NDArray,
     lam: float,
     prev: NDArray,
     ds: float,
     tol: float,
     max_iter: int,
-    path: _Path,
+    path: PathState,
 ) -> tuple[NDArray, float, int] | None:
     """One arc-length step from ``(y, λ)``: ``(Δy, Δλ, iterations)`` or None if it failed."""
     _, k = problem.tangent(y, lam)

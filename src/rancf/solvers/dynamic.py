@@ -21,10 +21,8 @@ and keeps everything computed up to then.
 
 from __future__ import annotations
 
-import enum
 import time
 from collections.abc import Callable
-from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
@@ -33,73 +31,10 @@ from rancf.bodies.flexible import Model
 from rancf.kernels import _core
 from rancf.options import DynamicOptions
 from rancf.solvers.output import MemorySink, OutputSink
-from rancf.system import System
+from rancf.solvers.result import DynamicResult, DynamicStatus
+from rancf.system import System, as_system
 
 __all__ = ["DynamicOptions", "DynamicStatus", "DynamicResult", "GeneralizedAlpha", "integrate"]
-
-
-class DynamicStatus(enum.Enum):
-    """How a run ended."""
-
-    COMPLETED = "completed"
-    FAILED = "failed"
-    INTERRUPTED = "interrupted"
-
-
-@dataclass
-class DynamicResult:
-    """States at the output times, energies, status and counters.
-
-    With a ``sink`` given to :func:`integrate`, the arrays hold only the last stored state (the
-    history went to the sink); ``n_outputs`` counts all of them.
-    """
-
-    t: NDArray[np.float64]
-    q: NDArray[np.float64]
-    v: NDArray[np.float64]
-    kinetic: NDArray[np.float64]
-    strain: NDArray[np.float64]
-    gravity: NDArray[np.float64]
-    status: DynamicStatus
-    message: str
-    n_steps: int = 0
-    n_newton: int = 0
-    n_factorizations: int = 0
-    n_rejected: int = 0
-    wall_time: float = 0.0
-    min_step_taken: float | None = None
-    max_step_taken: float | None = None
-    n_outputs: int = 0
-    #: Rods: nodal directors ``m1`` at the output times, ``(n_t, n_nodes, 3)``; else None.
-    directors: NDArray[np.float64] | None = None
-    #: Systems with joints: the multipliers ``λ`` at the output times ``(n_t, m)``; else None.
-    lam: NDArray[np.float64] | None = None
-
-    def select(self, index: NDArray | slice) -> DynamicResult:
-        """The result restricted to some of its outputs (every per-output array sliced)."""
-        from dataclasses import replace
-
-        per_output = ("t", "q", "v", "kinetic", "strain", "gravity", "directors", "lam")
-        cut = {k: getattr(self, k)[index] for k in per_output if getattr(self, k) is not None}
-        return replace(self, **cut)
-
-    @property
-    def total_energy(self) -> NDArray[np.float64]:
-        """Kinetic + strain + gravitational potential."""
-        return self.kinetic + self.strain + self.gravity
-
-    @property
-    def t_reached(self) -> float:
-        """Last stored time."""
-        return float(self.t[-1]) if self.t.size else 0.0
-
-    def took(self, h: float, count: int = 1) -> None:
-        """Count ``count`` accepted steps of size ``h``."""
-        if count <= 0:
-            return
-        self.n_steps += count
-        self.min_step_taken = h if self.min_step_taken is None else min(self.min_step_taken, h)
-        self.max_step_taken = h if self.max_step_taken is None else max(self.max_step_taken, h)
 
 
 class GeneralizedAlpha:
@@ -194,31 +129,34 @@ class GeneralizedAlpha:
         holds ``done_before`` steps.  The core returns early, after a whole step, once
         ``max_seconds`` of wall time have passed (so that the caller can poll for interrupts).
         Returns ``(steps done, status, iterations, outputs stored, out_y, out_v, out_e,
-        out_l)``; status is 1 if every step taken converged, else 0 (the failing step is not
-        taken).
+        out_l, out_alpha)``; status is 1 if every step taken converged, else 0 (the failing
+        step is not taken); ``out_alpha`` (systems with contact, else None): each stored row's
+        step's generalized-α point ``(y_f, v_f)`` side by side, ``(n_out, 2 n)``.
         """
         n, m = self.system.n, self.system.m
         n_out = (done_before + n_steps) // per_out
         oy, ov, oe = np.empty((n_out, n)), np.empty((n_out, n)), np.empty((n_out, 3))
         ol = np.empty((n_out, m))
+        contact = self.system.has_contact
+        of = (np.empty((n_out, n)), np.empty((n_out, n))) if contact else (None, None)
         lam = np.zeros(m) if lam is None else lam
         done, ok, iters, stored = self._core.run(
-            y, v, a, lam, t, h, n_steps, per_out, done_before, max_seconds, oy, ov, ol, oe
+            y, v, a, lam, t, h, n_steps, per_out, done_before, max_seconds, oy, ov, ol, oe, *of
         )
+        oa = np.concatenate(of, axis=1) if contact else None  # type: ignore[arg-type]
         self.n_newton += iters
-        return done, int(ok), iters, stored, oy, ov, oe, ol
+        return done, int(ok), iters, stored, oy, ov, oe, ol, oa
+
+    def alpha_point(self, y0: NDArray, v0: NDArray, y1: NDArray, v1: NDArray) -> NDArray:
+        """``(y_{n+1-α_f}, v_{n+1-α_f})`` of a step from ``(y0, v0)`` to ``(y1, v1)``, side by
+        side ``(2 n,)``: where the step's forces act."""
+        af = self.af
+        return np.concatenate([(1.0 - af) * y1 + af * y0, (1.0 - af) * v1 + af * v0])
 
     def error_estimate(self, a0: NDArray, a1: NDArray, h: float, rtol: float) -> float:
         """Local displacement error relative to ``rtol * size``."""
         e = h * h * abs(self.beta - 1.0 / 6.0) * float(np.max(np.abs(a1 - a0)))
         return e / (rtol * self.size)
-
-
-def as_system(model: Model | System) -> System:
-    """A model as a one-body system (its damping the system's); a system as it is."""
-    if isinstance(model, System):
-        return model
-    return System({"body": model}, damping=model.damping)
 
 
 #: Wall time [s] after which the compiled fixed-step loop hands back to Python, which polls the
@@ -295,25 +233,27 @@ def integrate(
     directors = system.nodal_directors  # rods: of the state the triads were last carried to
     mult = system.m > 0  # store the joints' multipliers
 
-    def store(tt: float, yy: NDArray, vv: NDArray) -> None:
+    def store(tt: float, yy: NDArray, vv: NDArray, alpha: NDArray | None) -> None:
         e = np.array(system.energies(yy, vv))
         m1 = directors(yy)
         ll = lam.copy() if mult else None
-        row = (tt, system.q_from_y(yy), system.q_from_y(vv), e, m1, ll)
-        target_sink.append(*row[:4], directors=m1, lam=ll)
+        row = (tt, system.q_from_y(yy), system.q_from_y(vv), e, m1, ll, alpha)
+        target_sink.append(*row[:4], directors=m1, lam=ll, alpha=alpha)
         last[:] = [row]
         result.n_outputs += 1
 
-    def store_block(k0: int, oy: NDArray, ov: NDArray, oe: NDArray, ol: NDArray) -> None:
+    def store_block(k0: int, oy: NDArray, ov: NDArray, oe: NDArray, ol: NDArray,
+                    oa: NDArray | None) -> None:  # fmt: skip
         """Outputs ``k0, k0 + 1, ...`` from the core's loop, passed on as one block (rods: one
         output a block, whose state is the one the triads were carried to)."""
         ts = np.array([out_time(k0 + i) for i in range(len(oy))])
         qs, vs = system.q_from_y(oy), system.q_from_y(ov)
         m1 = directors(oy[-1])
         ll = ol if mult else None
-        target_sink.append_block(ts, qs, vs, oe, directors=None if m1 is None else m1[None], lam=ll)
+        target_sink.append_block(ts, qs, vs, oe, directors=None if m1 is None else m1[None],
+                                 lam=ll, alpha=oa)  # fmt: skip
         last[:] = [(float(ts[-1]), qs[-1], vs[-1], np.array(oe[-1]), m1,
-                    None if ll is None else ll[-1])]  # fmt: skip
+                    None if ll is None else ll[-1], None if oa is None else oa[-1])]  # fmt: skip
         result.n_outputs += len(oy)
 
     y = system.y0.copy() if initial is None else np.array(initial, dtype=float)
@@ -324,7 +264,8 @@ def integrate(
     a = integ.initial_acceleration(y, v, t, lam)
     empty = np.empty(0)
     result = DynamicResult(empty, empty, empty, empty, empty, empty, DynamicStatus.COMPLETED, "")
-    store(0.0, y, v)
+    contact = system.has_contact
+    store(0.0, y, v, np.concatenate([y, v]) if contact else None)
     if on_start is not None:
         on_start()
     start = time.perf_counter()
@@ -334,11 +275,13 @@ def integrate(
             ts, qs, vs, es = memory.arrays()
             result.directors = memory.stream("directors")
             result.lam = memory.stream("lam")
+            result.alpha = memory.stream("alpha")
         else:
-            tt, qq, vv, ee, m1, ll = last[0]
+            tt, qq, vv, ee, m1, ll, aa = last[0]
             ts, qs, vs, es = np.array([tt]), qq[None], vv[None], ee[None]
             result.directors = None if m1 is None else m1[None]
             result.lam = None if ll is None else ll[None]
+            result.alpha = None if aa is None else aa[None]
         result.t, result.q, result.v = ts, qs, vs
         result.kinetic, result.strain, result.gravity = es[:, 0], es[:, 1], es[:, 2]
         result.status, result.message = status, message
@@ -371,7 +314,7 @@ def integrate(
         on_grid = within > 0 or abs(t - last_out) <= 1e-12 * max(1.0, t)
         if fast and h == o.step and k_out < n_grid and on_grid:
             n_chunk = min(chunk_out, n_grid - k_out)
-            done, st, iters, stored, oy, ov, oe, ol = integ.run_steps(
+            done, st, iters, stored, oy, ov, oe, ol, oa = integ.run_steps(
                 y,
                 v,
                 a,
@@ -385,7 +328,8 @@ def integrate(
             )
             result.took(o.step, done)
             if stored:
-                store_block(k_out, oy[:stored], ov[:stored], oe[:stored], ol[:stored])
+                store_block(k_out, oy[:stored], ov[:stored], oe[:stored], ol[:stored],
+                            None if oa is None else oa[:stored])  # fmt: skip
             k_out += stored
             within = within + done - stored * per_out
             last_out = out_time(k_out - 1) if k_out else 0.0
@@ -417,6 +361,7 @@ def integrate(
                 status, message = DynamicStatus.FAILED, _failure_message(t, min_step)
                 break
             continue
+        alpha = integ.alpha_point(y, v, y1, v1) if contact else None  # before re-referencing
         y, v, a, t, lam = y1, v1, a1, t + h_try, lam_try
         system.rereference(y, v, a)  # rods: triads follow the step, twist rates keep the spin
         result.took(h_try)
@@ -426,7 +371,7 @@ def integrate(
             h = o.step
         if abs(t - target) <= 1e-12 * max(1.0, target):
             t = float(target)
-            store(t, y, v)
+            store(t, y, v, alpha)
             k_out += 1
             notify(t)
         if should_stop is not None and should_stop():

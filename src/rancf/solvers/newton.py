@@ -21,11 +21,13 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
 
-from rancf.solvers.equilibrium import EquilibriumProblem
+if TYPE_CHECKING:
+    from rancf.solvers.system_equilibrium import SystemEquilibrium
 
 __all__ = ["NewtonOutcome", "newton", "line_search"]
 
@@ -92,7 +94,7 @@ def line_search(g: Callable[[float], float], g0: float, max_evals: int = 30) -> 
 
 
 def newton(
-    problem: EquilibriumProblem, y: NDArray, lam: float, tol: float, max_iter: int
+    problem: SystemEquilibrium, y: NDArray, lam: float, tol: float, max_iter: int
 ) -> NewtonOutcome:
     """Solve ``r(y, λ) = 0`` from ``y`` (held entries already placed) by Newton with a line
     search; ``y`` is not modified."""

@@ -1,8 +1,10 @@
-"""Static equilibrium along the load path: adaptive load increments or arc length.
+"""Static equilibrium along the load path: adaptive load increments or arc length, and
+relaxation where the path cannot go on.
 
-The problem is :class:`~rancf.solvers.equilibrium.EquilibriumProblem`: the path parameter ``p``
-runs from 0 to 1 with the loads at ``p`` times their amplitude (harmonic loads count with their
-amplitude), then, with installed supports, from 1 to 2 while the supports move to their
+The problem is :class:`~rancf.solvers.system_equilibrium.SystemEquilibrium` (a one-body
+:class:`~rancf.bodies.flexible.Model` is solved as the system of that one body): the path parameter
+``p`` runs from 0 to 1 with the loads at ``p`` times their amplitude (harmonic loads count with
+their amplitude), then, with installed supports, from 1 to 2 while the supports move to their
 installed places.  Each stage is followed by one of two methods (``method``):
 
 * ``"load"`` (default): load increments, each solved by Newton with a line search
@@ -17,8 +19,13 @@ installed places.  Each stage is followed by one of two methods (``method``):
   the iterations of the last step; the last step is corrected back to exactly the end of the
   stage.
 
-When a method still fails, :class:`~rancf.errors.ConvergenceError` carries the load factor
-reached, and every converged step has been passed to ``on_step`` (the command line keeps them).
+When the method cannot start or stalls (a mechanism under gravity: a pinned pendulum released
+from its reference; a slack rope whose reference is far from its sag), the stage is finished by
+pseudo-transient continuation at its end (:func:`rancf.solvers.relaxation.relax`: the state
+follows the physics to rest, then Newton polishes it), from the last converged state; the
+result's ``method`` is then ``"relaxation+newton"``.  When that fails too (a body with no
+equilibrium at all), :class:`~rancf.errors.ConvergenceError` carries the load factor reached,
+and every converged step has been passed to ``on_step`` (the command line keeps them).
 """
 
 from __future__ import annotations
@@ -33,16 +40,19 @@ from numpy.typing import NDArray
 
 from rancf.bodies.flexible import Model
 from rancf.errors import ConvergenceError, InputError, ScenarioError
-from rancf.solvers.equilibrium import EquilibriumProblem
+from rancf.solvers.arc_length import arc_length_path
+from rancf.solvers.load_path import MIN_INCREMENT, PathState
 from rancf.solvers.newton import newton
-from rancf.system import System
+from rancf.solvers.relaxation import relax
+from rancf.solvers.system_equilibrium import SystemEquilibrium
+from rancf.system import System, as_system
 
 __all__ = ["StaticResult", "solve_static", "StaticMethod", "start_state"]
 
 StaticMethod = Literal["load", "arc_length"]
 
-#: Smallest load increment, relative to the first one, before a load-controlled solve gives up.
-MIN_INCREMENT = 1e-6
+#: ``StaticResult.method`` when a stage was finished by relaxation.
+RELAXED = "relaxation+newton"
 
 
 @dataclass(frozen=True)
@@ -57,10 +67,15 @@ class StaticResult:
         The path parameter ``p`` of every converged step, from 0 to 1 (loads), then to 2 with
         installed supports.
     n_newton, n_factorizations, n_residuals : int
-        Newton iterations (one tangent assembly and band LU each) and extra residual
-        evaluations of the line searches.
+        Newton iterations, factorizations (one per Newton iteration and per pseudo-time step of
+        a relaxation) and extra residual evaluations (line searches, relaxation).
     wall_time : float
     method : str
+        ``"load"``, ``"arc_length"``, or ``"relaxation+newton"`` when a stage was finished by
+        relaxation and Newton (its path then ends with the load factor the method reached and
+        the stage's end).
+    relaxation_steps : int
+        Pseudo-time steps of the relaxation (0 without).
     """
 
     q: NDArray[np.float64]
@@ -71,8 +86,10 @@ class StaticResult:
     wall_time: float
     n_residuals: int = 0
     method: str = "load"
-    #: Systems: the joints' multipliers at the end of the path (``-Gᵀ λ``: their reactions).
+    #: The joints' multipliers at the end of the path (``-Gᵀ λ``: their reactions); empty
+    #: without joints.
     lam: NDArray[np.float64] | None = None
+    relaxation_steps: int = 0
 
 
 def solve_static(
@@ -84,7 +101,8 @@ def solve_static(
     method: StaticMethod = "load",
     at_time: float | None = None,
 ) -> StaticResult:
-    """Static equilibrium under the model's loads and installed supports.
+    """Static equilibrium under the model's loads and installed supports (a model: of the
+    system of that one body, :func:`rancf.system.as_system`).
 
     ``at_time``: loads as they act at that time (the start of a dynamic run, ``0``) instead of
     their amplitudes.
@@ -96,63 +114,61 @@ def solve_static(
     Raises
     ------
     ConvergenceError
-        With the load factor reached, if the method fails (for example a mechanism: a pendulum
-        has no static equilibrium near its reference).
+        With the load factor reached, if the method fails and relaxation finds no rest either
+        (a body with no equilibrium: a pendulum without its pin).
     """
     if isinstance(load_steps, bool) or int(load_steps) != load_steps or load_steps < 1:
         raise InputError("solver.load_steps", load_steps, "an integer >= 1")
     if method not in ("load", "arc_length"):
         raise InputError("solver.static_method", method, 'one of "load", "arc_length"')
     start = time.perf_counter()
-    if isinstance(model, Model) and model.closed:  # the seam is a constraint: a system
-        model = System({"body": model})
-    model.reset_triads()
-    if isinstance(model, System):
-        from rancf.solvers.system_equilibrium import SystemEquilibrium
-
-        problem: EquilibriumProblem | SystemEquilibrium = SystemEquilibrium(model, at_time)
-    else:
-        problem = EquilibriumProblem(model, at_time)
-    path = _Path(problem, on_step)
+    system = as_system(model)
+    system.reset_triads()
+    problem = SystemEquilibrium(system, at_time)
+    path = PathState(problem, on_step)
+    used = method
     for stage, (_, end) in enumerate(problem.stages):
         problem.stage = stage
         path.prev = None  # no predictor across the stages' kink
-        if method == "load":
-            _load_control(problem, path, end, 1.0 / load_steps, tol, max_iter)
-        else:
-            from rancf.solvers.arc_length import arc_length_path
-
-            arc_length_path(problem, path, end, 1.0 / load_steps, tol, max_iter)
-    y = path.y
-    lam = None
-    if isinstance(model, System):
-        y, lam = y[: model.n], y[model.n :]
+        try:
+            if method == "load":
+                _load_control(problem, path, end, 1.0 / load_steps, tol, max_iter)
+            else:
+                arc_length_path(problem, path, end, 1.0 / load_steps, tol, max_iter)
+        except ConvergenceError as exc:
+            _relax(problem, path, end, tol, max_iter, exc)
+            used = RELAXED
+    z = path.y
     return StaticResult(
-        model.q_from_y(y),
-        y,
+        system.q_from_y(z[: system.n]),
+        z[: system.n],
         np.array(path.factors),
         path.n_newton,
-        path.n_newton,  # one band LU factorization per Newton iteration
+        path.n_newton + path.n_relax_factorizations,  # one per Newton iteration or Δτ step
         time.perf_counter() - start,
         path.n_residuals,
-        method,
-        lam,
+        used,
+        z[system.n :],
+        path.n_relax,
     )
 
 
-def _one_model(model: Model | System) -> Model | System:
-    """A system of one flexible body without time functions as its model (the one-body
-    equilibrium path, installation stages included); else the system (a ring's seam is a
-    constraint of the system)."""
-    if not isinstance(model, System) or model.single is None or len(model.flex) != 1:
-        return model
-    if model.m:
-        return model
-    body = model.flex[0]
-    timed = any(s.motion is not None for s in body.supports) or any(
-        p.time is not None for p in body.point_loads
-    )
-    return model if timed or model.loads else body
+def _relax(
+    problem: SystemEquilibrium, path: PathState, end: float, tol: float, max_iter: int,
+    failed: ConvergenceError,
+) -> None:  # fmt: skip
+    """Finish a stage the path method gave up on by relaxation at its end (module docstring)."""
+    out = relax(problem, path.y, end, tol, max_iter)
+    path.count(out.newton_iterations, out.residuals)
+    path.n_relax += out.steps
+    path.n_relax_factorizations += out.factorizations - out.newton_iterations
+    if not out.converged:
+        raise ConvergenceError(
+            f"static equilibrium not found: the load path stopped at load factor "
+            f"{path.lam:.4g}, and relaxation under the full load found no rest: {out.reason}",
+            reached=path.lam,
+        ) from failed
+    path.accept(out.z, end)
 
 
 def start_state(
@@ -178,13 +194,14 @@ def start_state(
             )
         return None, {"initial_state": "reference"}
     res = solve_static(
-        _one_model(model), sc.solver["load_steps"], method=sc.solver["static_method"], at_time=0.0
+        model, sc.solver["load_steps"], method=sc.solver["static_method"], at_time=0.0
     )
     info = {
         "initial_state": "static",
         "static": {
             "method": res.method,
             "load_steps": int(len(res.load_factors) - 1),
+            "relaxation_steps": res.relaxation_steps,
             "newton_iterations": res.n_newton,
             "wall_time_s": res.wall_time,
         },
@@ -192,52 +209,9 @@ def start_state(
     return res.y, info
 
 
-class _Path:
-    """The converged states so far, with the counters and the ``on_step`` callback."""
-
-    def __init__(
-        self, problem: EquilibriumProblem, on_step: Callable[[float, NDArray], None] | None
-    ) -> None:
-        self.problem = problem
-        self.y = problem.start()
-        self.prev: NDArray | None = None  # the state before the last accepted one
-        self.lam = 0.0
-        self.prev_lam = 0.0
-        self.factors = [0.0]
-        self.n_newton = 0
-        self.n_residuals = 0
-        self.on_step = on_step
-        if on_step is not None:
-            on_step(0.0, self.y)
-
-    def count(self, iterations: int, residuals: int) -> None:
-        self.n_newton += iterations
-        self.n_residuals += residuals
-
-    def accept(self, y: NDArray, lam: float) -> None:
-        self.problem.accept(y)
-        self.prev, self.prev_lam = self.y, self.lam
-        self.y, self.lam = y, lam
-        self.factors.append(lam)
-        if self.on_step is not None:
-            self.on_step(lam, y)
-
-    def fail(self, what: str) -> ConvergenceError:
-        hint = (
-            "is the model a mechanism, or the first arc too long? more solver.load_steps shorten it"
-            if what.startswith("arc-length")
-            else "is the model a mechanism, or the load beyond a limit point? solver.static_method"
-            ' = "arc_length" passes limit points'
-        )
-        return ConvergenceError(
-            f"static {what} did not converge beyond load factor {self.lam:.4g} ({hint})",
-            reached=self.lam,
-        )
-
-
 def _load_control(
-    problem: EquilibriumProblem,
-    path: _Path,
+    problem: SystemEquilibrium,
+    path: PathState,
     end: float,
     first: float,
     tol: float,
@@ -266,7 +240,7 @@ def _load_control(
                 dlam = min(2.0 * dlam, 1.0)
             elif out.iterations > 12:
                 dlam *= 0.5
-            continue
-        dlam *= 0.25
-        if dlam < MIN_INCREMENT * first:
+        else:
+            dlam *= 0.25
+        if dlam < MIN_INCREMENT * first:  # failed or crawling: the path stalls here
             raise path.fail("Newton iteration")

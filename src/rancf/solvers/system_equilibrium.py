@@ -1,6 +1,21 @@
-"""The static equilibrium problem of a system along its load path (the path of
-:mod:`rancf.solvers.equilibrium`, stages and all), as :func:`rancf.solvers.static.solve_static`
-sees it.
+"""The static equilibrium problem of a system along its load path, as
+:func:`rancf.solvers.static.solve_static` sees it (the one problem of the static solvers: a
+one-body :class:`~rancf.bodies.flexible.Model` is solved as the system of that one body).
+
+The path parameter ``p`` runs through one or two stages:
+
+1. ``p ∈ [0, 1]``: the loads act with ``p`` times their amplitude, the supports at their
+   reference values;
+2. with installed supports (``position``/``direction`` away from the reference,
+   :attr:`Model.y_installed <rancf.bodies.flexible.Model.y_installed>`), ``p ∈ [1, 2]``: the
+   loads at full amplitude, the supports moved ``p - 1`` of the way to their installed values.
+
+With ``λ(p) = p``, ``μ = 0`` in the first stage and ``λ = 1``, ``μ(p) = p - 1`` in the second
+(each linear in ``p`` also past its stage's end, as an arc-length step may go), the held
+coordinates are ``y[held] = y0[held] + μ Δ`` with ``Δ = y_installed[held] - y0[held]``.
+Loading first, then installing, keeps the path clear of bifurcations: a straight hose whose ends
+are pushed together while it is still straight meets a perfect bifurcation (it may buckle up,
+down or into an S), while the same hose already sagging under gravity just sags further.
 
 The unknowns are ``z = (y, μ)``: the coordinates of all bodies and the joints' multipliers.  The
 residual is the compiled core's balance and constraints at zero velocity and acceleration,
@@ -20,13 +35,24 @@ from numpy.typing import NDArray
 
 from rancf.bodies.flexible import Model
 from rancf.kernels import _core
-from rancf.solvers.equilibrium import path_stages
 from rancf.system import System
 
-__all__ = ["SystemEquilibrium", "STABILIZER"]
+__all__ = ["SystemEquilibrium", "STABILIZER", "INSTALL_RTOL", "path_stages"]
+
+#: Installed values closer to the reference than this (relative to the size) are the reference:
+#: round-off, not an installation.
+INSTALL_RTOL = 1e-12
 
 #: The mass-proportional term of a singular tangent, relative to the stiffness-to-mass scale.
 STABILIZER = 1e-6
+
+
+def path_stages(delta: NDArray[np.float64], size: float) -> list[tuple[float, float]]:
+    """The stages of the load path ``(p_start, p_end)``: the loads (``[0, 1]``), then the
+    installation (``[1, 2]``) when a held coordinate moves by more than round-off (``delta``:
+    installed minus reference values of the held coordinates; ``size`` the model's length)."""
+    moves = delta.size and np.abs(delta).max() > INSTALL_RTOL * max(size, 1.0)
+    return [(0.0, 1.0)] + ([(1.0, 2.0)] if moves else [])
 
 
 class SystemEquilibrium:
@@ -45,8 +71,10 @@ class SystemEquilibrium:
         self._t = 0.0 if at_time is None else float(at_time)
         self._amp = at_time is None
         self.n, self.m = s.n, s.m
+        self._held = s.fixed  # the held coordinates of y
+        self._zero = np.zeros(s.n)  # zero velocities and accelerations (never written)
         fixed = np.zeros(s.n + s.m, dtype=bool)
-        fixed[: s.n] = s.fixed
+        fixed[: s.n] = self._held
         self.fixed, self.free = fixed, ~fixed
         installed = s.y0.copy()
         for name, b in zip(s.names, s.flex, strict=False):
@@ -90,12 +118,12 @@ class SystemEquilibrium:
     def place_supports(self, z: NDArray, p: float) -> None:
         """Held coordinates at their values at ``p`` (in place)."""
         y = z[: self.n]
-        y[self.system.fixed] = self._y0[self.system.fixed] + self.support_factor(p) * self.delta
+        y[self._held] = self._y0[self._held] + self.support_factor(p) * self.delta
 
     def full_residual(self, z: NDArray, p: float) -> NDArray[np.float64]:
         """Balance (held rows kept: the reactions) and constraints at ``(z, p)``."""
         r = np.empty(self.n + self.m)
-        zero = np.zeros(self.n)
+        zero = self._zero
         ok = self.system.core.residual(
             z[: self.n], zero, zero, z[self.n :], self._t, self.load_factor(p), self._amp,
             dynamic=False, r=r,
@@ -123,6 +151,22 @@ class SystemEquilibrium:
         r[self.fixed] = 0.0
         return r, bool(ok)
 
+    def damped_tangent(self, z: NDArray, p: float, rate: float) -> tuple[NDArray, bool]:
+        """Residual (held rows zero) and the Jacobian with ``rate M`` added, factored: the step
+        ``(M/Δτ + K) Δz = -r`` of pseudo-transient continuation, ``rate = 1/Δτ``
+        (:mod:`rancf.solvers.relaxation`)."""
+        r = np.empty(self.n + self.m)
+        ok = self._integ.factor_static(np.ascontiguousarray(z[: self.n]),
+                                       np.ascontiguousarray(z[self.n :]), self.load_factor(p),
+                                       self._amp, self._t, r, stab=float(rate))  # fmt: skip
+        r[self.fixed] = 0.0
+        return r, bool(ok)
+
+    def stiffness_scale(self, z: NDArray) -> float:
+        """The largest ratio of the diagonals of the tangent and the mass on the free
+        coordinates at ``z`` [1/s²] (the square of the highest frequency's order)."""
+        return self._stiffness_scale(z)
+
     def _stiffness_scale(self, z: NDArray) -> float:
         """The largest ratio of the diagonals of the tangent and the mass (free coordinates)."""
         y, lam, free = z[: self.n], z[self.n :], ~self.system.fixed
@@ -144,11 +188,11 @@ class SystemEquilibrium:
         """The last factored Jacobian's solution of ``rhs`` (None if it was singular)."""
         if not ok:
             return None
-        x, zz = np.array(rhs[: self.n], dtype=float), np.array(rhs[self.n :], dtype=float)
-        x[self.system.fixed] = 0.0
-        self._integ.solve_factored(x, zz)
-        out = np.r_[x, zz]
-        return out if np.all(np.isfinite(out)) else None
+        out = np.array(rhs, dtype=float)
+        x = out[: self.n]
+        x[self._held] = 0.0
+        self._integ.solve_factored(x, out[self.n :])
+        return out if np.isfinite(out).all() else None
 
     def load_vector(self, z: NDArray, ok: bool) -> NDArray[np.float64]:
         """``-∂r/∂p`` in the current stage: ``r(p=0) - r(p=1)`` (the residual is linear in the
@@ -168,7 +212,7 @@ class SystemEquilibrium:
         """The path parameter of the held coordinates in ``z`` (installation stage)."""
         if not np.any(self.delta):
             return 1.0
-        held = z[: self.n][self.system.fixed] - self._y0[self.system.fixed]
+        held = z[: self.n][self._held] - self._y0[self._held]
         k = int(np.argmax(np.abs(self.delta)))
         return 1.0 + held[k] / self.delta[k]
 

@@ -32,10 +32,10 @@ from rancf.studies.common import (
     begin_study,
     example_path,
     format_error,
-    kind_style,
     n_elements,
     save_figure,
 )
+from rancf.studies.figures import kind_style
 from rancf.studies.grid import Executor, grid_variant, run_grid
 
 NAME = "exact-geometry"

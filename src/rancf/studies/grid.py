@@ -82,15 +82,16 @@ def read_run(folder: Path, row: dict[str, Any]) -> GridRun:
             n_el=0, t=np.zeros(0), tip=np.zeros((0, 2)), ab=np.zeros(0), gradients=np.zeros(0),
             status=row["status"], message=row.get("message", ""), wall=0.0, folder=folder,
         )  # fmt: skip
-    d = load_results(folder / "results.npz")
-    meta = d["metadata"]
-    dim, dpn = int(meta["dim"]), int(meta["dofs_per_node"])
-    pos = d["q"].reshape(d["q"].shape[0], -1, dpn)[..., :dim]
-    ref = d["reference"].reshape(-1, dpn)
+    from rancf.post.system_run import load_run
+
+    b = load_run(folder).body()
+    dim, dpn = b.dim, b.q.shape[1] // b.n_nodes
+    pos = b.q.reshape(b.t.size, -1, dpn)[..., :dim]
+    ref = b.reference.reshape(-1, dpn)
     grads = np.linalg.norm(ref[:, dim:], axis=1) if dpn == 2 * dim else np.zeros(0)
     return GridRun(
-        n_el=int(meta["n_elements"]),
-        t=d["t"],
+        n_el=b.n_nodes - 1,
+        t=b.t,
         tip=pos[:, -1],
         ab=np.linalg.norm(pos[:, -1] - pos[:, 0], axis=1),
         gradients=grads,

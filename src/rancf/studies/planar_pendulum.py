@@ -26,11 +26,10 @@ from rancf.studies.common import (
     convergence_runs,
     format_error,
     n_elements,
-    plot_ab,
-    plot_errors,
     save_figure,
     slug,
 )
+from rancf.studies.figures import plot_ab, plot_errors
 from rancf.studies.grid import Executor
 
 TITLE = "6.1 Planar pendulum with an elliptical-arc cable"

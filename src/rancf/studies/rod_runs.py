@@ -23,11 +23,11 @@ from rancf.studies.common import (
     convergence_runs,
     fft_peak,
     format_error,
-    plot_errors,
     run,
     save_figure,
     variant,
 )
+from rancf.studies.figures import plot_errors
 from rancf.studies.grid import Executor
 
 __all__ = ["spatial_pendulum_rod", "arc_rod_modes", "split_in_out_of_plane", "POISSON"]

@@ -29,8 +29,6 @@ from rancf.post.results import (
     write_run,
     write_static_run,
 )
-from rancf.post.run_data import load_run
-from rancf.post.run_plots import plot_run
 from rancf.scenario import load_scenario
 from rancf.studies.common import SCENARIO_ANALYSES, StudyResult, example_path
 
@@ -51,12 +49,9 @@ def _describe(text: str) -> str:
 
 
 def _figures(res: StudyResult, out: Path, run_dir: Path, what: str, skip: str = "") -> None:
-    from rancf.post.system_run import is_system_run, load_system_run, plot_system_run
+    from rancf.post.system_run import load_run, plot_system_run
 
-    if is_system_run(run_dir):
-        paths = plot_system_run(load_system_run(run_dir), run_dir / "plots")
-    else:
-        paths = plot_run(load_run(run_dir), run_dir / "plots")
+    paths = plot_system_run(load_run(run_dir), run_dir / "plots")
     for path in paths:
         if path.stem != skip:
             res.figures.append((f"{what}: {path.stem}", str(path.relative_to(out))))
@@ -86,8 +81,8 @@ def run_scenario(name: str, out: str | Path, quick: bool = False) -> StudyResult
     )
     sc = load_scenario(scenario)
     analyses = SCENARIO_ANALYSES[name]
-    # static and modes of a one-body scenario use its model; a run is always a system's
-    model = sc.build_model() if {"static", "modes"} & set(analyses) else None
+    # the static path of a one-body scenario uses its model; modes, buckling and runs a system's
+    model = sc.build_model() if "static" in analyses else None
     for analysis in analyses:
         if analysis == "static":
             from rancf.solvers.static import solve_static
@@ -122,14 +117,15 @@ def run_scenario(name: str, out: str | Path, quick: bool = False) -> StudyResult
             from rancf.post.plots import plot_modes
             from rancf.solvers.modal import natural_modes
 
-            count = min(sc.data["modes"]["count"], int((~model.fixed).sum()))
-            modal = natural_modes(model, None, count)
+            system = sc.build_system()
+            count = min(sc.data["modes"]["count"], int((~system.fixed).sum()) - 1)
+            modal = natural_modes(system, None, count)
             doc = {
                 "frequencies_hz": modal.frequencies_hz.tolist(),
                 "rigid_body_modes_removed": modal.n_rigid,
             }
             atomic_write(out / "modes.json", strict_json(doc))
-            plot_modes(model, modal, out / "modes.png")
+            plot_modes(system, modal, out / "modes.png")
             res.figures.append(("mode shapes", "modes.png"))
             res.add_table(
                 out,
@@ -138,6 +134,23 @@ def run_scenario(name: str, out: str | Path, quick: bool = False) -> StudyResult
                 ["mode", "frequency [Hz]"],
                 [[i + 1, f"{f:.6f}"] for i, f in enumerate(modal.frequencies_hz)],
                 "modes.csv",
+            )
+        elif analysis == "buckling":
+            from rancf.post.plots import plot_buckling
+            from rancf.solvers.buckling import linear_buckling
+
+            system = sc.build_system()
+            buck = linear_buckling(system, 2)
+            atomic_write(out / "buckling.json", strict_json(
+                {"load_factors": buck.load_factors.tolist(), "about": buck.about}))  # fmt: skip
+            plot_buckling(system, buck, out / "buckling.png")
+            res.figures.append(("buckling mode shapes", "buckling.png"))
+            res.add_table(
+                out,
+                "Buckling about the reference configuration (critical load factors)",
+                ["mode", "load factor"],
+                [[i + 1, f"{f:.6g}"] for i, f in enumerate(buck.load_factors)],
+                "buckling.csv",
             )
         else:  # simulate
             from rancf.post.history import plan_run

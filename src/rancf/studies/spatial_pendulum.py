@@ -34,10 +34,9 @@ from rancf.studies.common import (
     begin_study,
     convergence_runs,
     format_error,
-    plot_ab,
-    plot_errors,
     save_figure,
 )
+from rancf.studies.figures import plot_ab, plot_errors
 from rancf.studies.grid import Executor
 from rancf.studies.rod_runs import spatial_pendulum_rod
 

@@ -47,7 +47,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Literal
+from typing import Any, Literal, Protocol
 
 import numpy as np
 from numpy.typing import NDArray
@@ -59,11 +59,23 @@ from rancf.errors import InputError
 from rancf.geometry.quadrature import gauss_legendre
 from rancf.kernels import _core
 
-if TYPE_CHECKING:
-    from rancf.system.system import System
-
 __all__ = ["Obstacle", "ContactState", "OBSTACLE_KINDS", "contact_outputs", "contact_history",
            "obstacle_records"]  # fmt: skip
+
+
+class ContactSystem(Protocol):
+    """What contact reads of a system (:class:`rancf.system.system.System`): it is built by the
+    system, so it sees the system through this protocol rather than importing it."""
+
+    dim: int
+    bodies: dict[str, Any]
+    rigid: list[Any]
+    obstacles: tuple[Any, ...]
+    obstacle_names: list[str]
+    contact: Any
+
+    def y_from_q(self, q: Any) -> NDArray[np.float64]: ...
+
 
 OBSTACLE_KINDS = ("plane", "cylinder", "sphere")
 _KIND = {k: i for i, k in enumerate(OBSTACLE_KINDS)}
@@ -168,7 +180,7 @@ def _body_points(model: Model, n_c: int) -> tuple[NDArray, NDArray, NDArray, NDA
 
 
 def build_contact(
-    system: System,
+    system: ContactSystem,
     obstacles: Sequence[Obstacle],
     contacts: Sequence[tuple[str, str]] | None,
     n_c: int,
@@ -288,7 +300,7 @@ def build_contact(
     return core, names, pairs
 
 
-def obstacle_records(system: System) -> list[dict]:
+def obstacle_records(system: ContactSystem) -> list[dict]:
     """Every obstacle of ``system`` as plain data (run metadata): ``name``, ``kind``, ``point``
     (plane point or centre) and ``direction`` (unit normal or axis; 3 components each, in the
     carrying body's frame if any), ``radius`` and ``body`` (the carrying body's name or None)."""
@@ -300,7 +312,7 @@ def obstacle_records(system: System) -> list[dict]:
     return out
 
 
-def _body_pair_data(system: System, a: str, b: str, friction: float) -> list[float]:
+def _body_pair_data(system: ContactSystem, a: str, b: str, friction: float) -> list[float]:
     """Stiffness, onset, friction and slip velocity of two flexible bodies in contact
     (:func:`build_contact`)."""
     ma, mb = system.bodies[a], system.bodies[b]
@@ -324,17 +336,23 @@ class ContactState:
 
 
 def contact_outputs(
-    system: System, y: NDArray, v: NDArray | None = None
+    system: ContactSystem, y: NDArray, v: NDArray | None = None, y1: NDArray | None = None
 ) -> dict[str, ContactState]:
     """Per obstacle (by name), its contact at model coordinates ``y`` (and velocities ``v``: the
-    friction; without them none).  Stored results hold ``q``: pass ``system.y_from_q(q)``."""
+    friction; without them none).  Stored results hold ``q``: pass ``system.y_from_q(q)``.
+
+    With ``y1``, ``(y, v)`` is a time step's generalized-α point ``(y_{n+1-α_f},
+    v_{n+1-α_f})`` and ``y1`` its end: the forces are those the step applied (the pressure the
+    step's mean over its gaps, module docstring), where the state at the step's end alone would
+    sample the penalty's unresolved vibration."""
     names = system.obstacle_names
     if not names:
         return {}
     out = np.empty((len(names), _core.CONTACT_OUTPUTS))
     y = np.ascontiguousarray(y, dtype=float)
     vv = None if v is None else np.ascontiguousarray(v, dtype=float)
-    system.contact.outputs(y, vv, out)
+    yy1 = None if y1 is None else np.ascontiguousarray(y1, dtype=float)
+    system.contact.outputs(y, vv, out, yy1)
     d = system.dim
     return {
         name: ContactState(
@@ -348,7 +366,7 @@ def contact_outputs(
     }
 
 
-def contact_history(system: System, q: NDArray, v: NDArray | None = None) -> dict[str, dict]:
+def contact_history(system: ContactSystem, q: NDArray, v: NDArray | None = None) -> dict[str, dict]:
     """:func:`contact_outputs` over stored states ``q`` (``(n_t, n)``, full coordinates as in a
     :class:`rancf.solvers.dynamic.DynamicResult`) and velocities: per obstacle the arrays
     ``normal`` and ``friction`` ``(n_t, dim)``, ``moment``, ``length`` and ``penetration``."""

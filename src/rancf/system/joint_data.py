@@ -20,12 +20,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rancf.errors import InputError
+from rancf.kernels.records import JointRecord, floats
 from rancf.system.connections import Joint
 
-__all__ = ["joint_data", "normals", "KIND_CODE"]
-
-#: The core's joint kind codes (``src/cpp/joints.hpp``).
-KIND_CODE = {"pin": 0, "fixed": 1, "tangent": 2, "revolute": 3, "slider": 4}
+__all__ = ["joint_data", "normals"]
 
 
 def normals(e: NDArray) -> tuple[NDArray, NDArray]:
@@ -52,11 +50,18 @@ def _between(j: Joint) -> list[str]:
     return [str(x) for x in j.between]
 
 
-def joint_data(j: Joint, a: int, b: int, fa: NDArray, fb: NDArray, d: int, angle: int) -> dict:
-    """The core's record of joint ``j`` between the place rows ``a`` and ``b`` whose reference
-    frames are ``fa``, ``fb`` ``(k, 3)``, in dimension ``d``; ``angle``: the time function row of
-    a driven joint (-1: none)."""
-    info: dict = {"kind": KIND_CODE[j.kind], "a": a, "b": b, "driven": 0, "angle": -1,
+def _record(info: dict) -> JointRecord:
+    vectors = ("rel", "axis_a", "normals_b", "w_a", "w_b")
+    return JointRecord(**{k: floats(v) if k in vectors else v for k, v in info.items()})
+
+
+def joint_data(
+    j: Joint, a: int, b: int, fa: NDArray, fb: NDArray, d: int, angle: int
+) -> JointRecord:
+    """The core's record of joint ``j`` between the places ``a`` and ``b`` (their indices among
+    the system's place records) whose reference frames are ``fa``, ``fb`` ``(k, 3)``, in
+    dimension ``d``; ``angle``: the time function of a driven joint (-1: none)."""
+    info: dict = {"kind": j.kind, "a": a, "b": b, "driven": False, "angle": -1,
                   "beta0": 0.0, "rel": np.zeros(9), "axis_a": np.zeros(3),
                   "normals_b": np.zeros(6), "w_a": np.zeros(3), "w_b": np.zeros(3)}  # fmt: skip
     axis = _axis(j, d)
@@ -71,25 +76,25 @@ def joint_data(j: Joint, a: int, b: int, fa: NDArray, fb: NDArray, d: int, angle
             raise InputError("joints.angle", "set", "a pin or revolute joint")
         if j.angle.size != 1:
             raise InputError("joints.angle", j.angle.size, "a scalar time function [rad]")
-        info["driven"], info["angle"] = 1, angle
+        info["driven"], info["angle"] = True, angle
     if d == 2:
         if j.kind == "revolute":
-            info["kind"] = KIND_CODE["pin"]
+            info["kind"] = "pin"
         if j.kind == "fixed" or j.angle is not None:
             info["beta0"] = float(np.arctan2(fa[0] @ fb[1], fa[0] @ fb[0]))
         if j.kind == "slider":
             normal = np.array([-axis[1], axis[0], 0.0])  # type: ignore[index]
             info["normals_b"][:3] = fb @ normal
-        return info
+        return _record(info)
     if j.kind == "fixed":
         if len(fa) == 3 and len(fb) == 3:
             info["rel"] = (fa @ fb.T).ravel()
-            return info
+            return _record(info)
         if len(fa) == 1 and len(fb) == 3:
-            info["kind"] = KIND_CODE["tangent"]
+            info["kind"] = "tangent"
             n1, n2 = normals(fa[0])
             info["normals_b"] = np.r_[fb @ n1, fb @ n2]
-            return info
+            return _record(info)
         raise InputError(
             "joints.kind", "fixed",
             "a frame on at least one side (a 3D cable has only a tangent: use rods)",
@@ -99,7 +104,7 @@ def joint_data(j: Joint, a: int, b: int, fa: NDArray, fb: NDArray, d: int, angle
             raise InputError("joints.between", str(j.between[1]), "a place with a frame")
         n1, n2 = normals(axis)  # type: ignore[arg-type]
         info["normals_b"] = np.r_[fb @ n1, fb @ n2]
-        return info
+        return _record(info)
     if j.kind == "revolute":
         if len(fa) < 3 or len(fb) < 3:
             raise InputError(
@@ -110,7 +115,7 @@ def joint_data(j: Joint, a: int, b: int, fa: NDArray, fb: NDArray, d: int, angle
         info["axis_a"], info["normals_b"] = fa @ axis, np.r_[fb @ n1, fb @ n2]
         if j.angle is not None:
             info["w_a"], info["w_b"] = fa @ n1, fb @ n1
-        return info
+        return _record(info)
     if j.angle is not None:
         raise InputError("joints.angle", "pin", "a revolute joint in 3D (it needs an axis)")
-    return info
+    return _record(info)

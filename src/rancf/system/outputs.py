@@ -17,12 +17,22 @@ coordinates alone do not fix).  :class:`SystemOutputs` turns rows of them into
 * the sensors (:mod:`rancf.system.sensors`).
 
 Static rows (a load path, ``t`` the path parameter) have ``a = v = 0``, the residual
-``f_int - p f_ext + Gᵀ λ`` at the load factor ``p = min(t, 1)`` and the solver's multipliers.
+``f_int - p f_ext + Gᵀ λ`` at the load factor ``p = min(t, 1)`` (loads at their amplitude, as
+:func:`rancf.solvers.static.solve_static` takes them) and the solver's multipliers.
 
 Why not the integrator's own acceleration: in generalized-α ``a_{n+1}`` approximates the
 acceleration at ``t_{n+1} + (α_m - α_f) h`` (Arnold & Brüls 2007), a first-order shift for
 ``ρ∞ < 1``; the consistent acceleration of the stored ``(y, v)`` has only their error, so the
 reactions converge at second order.
+
+Contact is the exception: a penalty vibrates far faster than any step resolves, the integrator
+damps that vibration, and the state at a step's end samples it (the unbraked belt drive's pulley,
+pushed by 20 N, read 16.4 to 18.5 N there).  A dynamic row's contact forces are therefore those
+of the step that ended at it, as the dynamics applied them: at the step's generalized-α point
+``(y_f, v_f)`` with the step's mean pressure (``alpha`` of :meth:`SystemOutputs.rows`, the
+stream the integrator stores), and the row's accelerations, multipliers and reactions are the
+consistent ones with those contact forces, so every body's forces balance ``M a``.  Contact
+between flexible bodies is reported at ``y_f`` with the pressure there.
 
 Column names: a support's ``LABEL_fx, LABEL_fy[, LABEL_fz]`` then its moment (``LABEL_mz`` or
 ``LABEL_mx, _my, _mz``) as :func:`rancf.bodies.reactions.reaction_columns` (in a system of
@@ -46,7 +56,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from rancf.bodies.reactions import reaction_columns, reaction_row, support_reactions
+from rancf.bodies.reactions import Reaction, reaction_columns, reaction_row, support_reactions
 from rancf.bodies.section_outputs import SectionSampler, section_names
 from rancf.kernels import _core
 from rancf.system.contact import contact_outputs
@@ -106,8 +116,10 @@ class SystemOutputs:
         self.reaction_names = [c for cols in self.support_names.values() for c in cols]
         self.reaction_names += [c for cols in self.joint_names for c in cols]
         self.contact_start = len(self.reaction_names)
+        moments = ["z"] if s.dim == 2 else ["x", "y", "z"]
         for ob in s.obstacle_names:
             cols = [f"{ob}_{part}_{a}" for part in ("normal", "friction") for a in axes]
+            cols += [f"{ob}_m{a}" for a in moments]
             self.reaction_names += [*cols, f"{ob}_length", f"{ob}_penetration"]
         for a, b in s.body_contacts:
             self.reaction_names += [f"{a}_{b}_contact_force", f"{a}_{b}_penetration"]
@@ -157,13 +169,17 @@ class SystemOutputs:
         lam: NDArray | None = None,
         static: bool = False,
         per_body: bool = False,
+        alpha: NDArray | None = None,
     ) -> dict[str, NDArray[np.float64]]:
         """Derived values of ``k`` rows: ``"a"`` ``(k, n_q)`` (full coordinates), ``"lam"``
         ``(k, m)``, ``"r"`` reactions ``(k, n_reaction_columns)``, ``"s"`` section values
         ``(k, n_along)`` and ``"c"`` sensors ``(k, n_sensor_columns)``.  ``directors``: rods'
         nodal ``m1`` ``(k, n_directors)``; ``energy`` ``(k, 3)`` (for ``energy`` sensors);
         ``lam``: the multipliers of static rows (their solver's); ``per_body``: also ``"eb"``,
-        every flexible body's kinetic, strain and gravitational energy ``(k, 3 n_flexible)``."""
+        every flexible body's kinetic, strain and gravitational energy ``(k, 3 n_flexible)``;
+        ``alpha``: the generalized-α point ``(y_f, v_f)`` of the step that ended at each
+        dynamic row ``(k, 2 n)`` (:data:`rancf.solvers.output.STREAMS`): the contact forces are
+        then that step's (module docstring)."""
         s = self.system
         t = np.atleast_1d(np.asarray(t, dtype=float))
         k = t.size
@@ -187,13 +203,15 @@ class SystemOutputs:
                 if static:
                     if lam is not None:
                         li[:] = lam[i]
-                    s.core.residual(y, vy, a, li, 0.0, min(float(t[i]), 1.0), False, False, res)
+                    s.core.residual(y, vy, a, li, 0.0, min(float(t[i]), 1.0), True, False, res)
+                    step: tuple[NDArray, ...] = ()
                 else:
-                    self._integ.initial_acceleration(y, vy, float(t[i]), a, li)
-                    s.core.residual(y, vy, a, li, float(t[i]), 1.0, False, True, res)
+                    step = self._step(alpha, i, y, vy)
+                    self._integ.initial_acceleration(y, vy, float(t[i]), a, li, *step)
+                    s.core.residual(y, vy, a, li, float(t[i]), 1.0, False, True, res, *step)
                 out["a"][i], out["lam"][i] = s.q_from_y(a), li
                 vc = None if static else vy  # friction from the velocities
-                out["r"][i] = self._reactions(y, res[: s.n], float(t[i]), li, vc)
+                out["r"][i] = self._reactions(y, res[: s.n], float(t[i]), li, vc, step)
                 for name, _ in self.flex:  # the sections' numbers for all rows at once below
                     raws[name].append(self.samplers[name].raw(y[s.body_slice(name)]))
                 if per_body:
@@ -204,29 +222,66 @@ class SystemOutputs:
         return out
 
     def contact_columns(self, name: str) -> slice:
-        """The columns of the obstacle called ``name`` (normal, friction, length,
+        """The columns of the obstacle called ``name`` (normal, friction, moment, length,
         penetration)."""
         k = self.system.obstacle_names.index(name)
-        w = 2 * self.system.dim + 2
+        w = 2 * self.system.dim + (1 if self.system.dim == 2 else 3) + 2
         return slice(self.contact_start + k * w, self.contact_start + (k + 1) * w)
 
-    def _reactions(self, y: NDArray, res: NDArray, t: float, lam: NDArray,
-                   v: NDArray | None = None) -> NDArray:  # fmt: skip
+    def static_reactions(
+        self, y: NDArray, lam: NDArray, load_factor: float = 1.0
+    ) -> list[Reaction]:
+        """The reactions of every support and joint at a static state (model coordinates ``y``,
+        the solver's multipliers ``lam``, the loads at ``load_factor`` times their amplitude):
+        the supports of each flexible body in file order, then the joints (``at`` their name);
+        a moment where the support or joint transmits one."""
         s = self.system
-        parts = []
+        y = np.asarray(y, dtype=float)
+        lam = np.asarray(lam, dtype=float)
+        res, zero = np.empty(s.n + s.m), np.zeros(s.n)
+        s.core.residual(y, zero, zero, lam, 0.0, float(load_factor), True, False, res)
+        return self.reactions(y, res[: s.n], 0.0, lam)
+
+    def reactions(self, y: NDArray, res: NDArray, t: float, lam: NDArray) -> list[Reaction]:
+        """The reactions of the supports (the held rows of the balance residual ``res``) and of
+        the joints (their multipliers ``lam``) at ``y``, ``t``: :meth:`static_reactions`."""
+        s = self.system
+        out: list[Reaction] = []
         for name, b in self.flex:
             sl = s.body_slice(name)
-            parts.append(reaction_row(support_reactions(b, y[sl], res[sl], self.labels[name])))
-        for k in range(len(s.joints)):
+            out += support_reactions(b, y[sl], res[sl], self.labels[name])
+        for k, j in enumerate(s.joints):
             force, moment = s.core.joint_reaction(k, y, t, lam)
-            parts.append(np.asarray(force)[: s.dim])
+            mom = None
             if _joint_has_moment(s, k):
-                parts.append(np.asarray(moment)[2:] if s.dim == 2 else np.asarray(moment))
-        for c in contact_outputs(s, y, v).values():
-            parts += [c.normal, c.friction, np.array([c.length, c.penetration])]
+                mom = np.asarray(moment)[2:] if s.dim == 2 else np.asarray(moment)
+            out.append(Reaction(j.name or f"joint{k}", np.asarray(force)[: s.dim], mom))
+        return out
+
+    def _step(self, alpha: NDArray | None, i: int, y: NDArray, v: NDArray) -> tuple[NDArray, ...]:
+        """The contact state ``(y_f, v_f, y_1)`` of dynamic row ``i``'s step (none without
+        contact; the row's own state without ``alpha``: a step of length zero)."""
+        s = self.system
+        if not s.has_contact:
+            return ()
+        if alpha is None:
+            return (y, v, y)
+        row = np.ascontiguousarray(alpha[i], dtype=float)
+        return (row[: s.n], row[s.n :], y)
+
+    def _reactions(
+        self, y: NDArray, res: NDArray, t: float, lam: NDArray, v: NDArray | None = None,
+        step: tuple[NDArray, ...] = (),
+    ) -> NDArray:  # fmt: skip
+        s = self.system
+        parts = [reaction_row(self.reactions(y, res, t, lam))]
+        yc, vc, y1 = step if step else (y, v, None)
+        for c in contact_outputs(s, yc, vc, y1).values():
+            moment = np.atleast_1d(c.moment)
+            parts += [c.normal, c.friction, moment, np.array([c.length, c.penetration])]
         if s.body_contacts:
             bo = np.empty(3 * len(s.body_contacts))
-            s.contact.body_outputs(y, bo)
+            s.contact.body_outputs(yc, bo)
             for k in range(len(s.body_contacts)):
                 parts.append(np.array([bo[3 * k + 2], max(0.0, -bo[3 * k])]))
         return np.concatenate(parts) if parts else np.empty(0)

@@ -28,7 +28,7 @@ consistent translational mass, the same identity).  Rigid bodies and point masse
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from typing import TYPE_CHECKING, Any
+from typing import Any, Protocol
 
 import numpy as np
 from numpy.typing import NDArray
@@ -40,10 +40,23 @@ from rancf.bodies.rigid import PointMass, RigidBody, body_angular_velocity
 from rancf.errors import InputError
 from rancf.system.places import Place
 
-if TYPE_CHECKING:
-    from rancf.system.outputs import SystemOutputs
-
 __all__ = ["SensorReader"]
+
+
+class OutputsView(Protocol):
+    """What the sensors read of a run's derived outputs
+    (:class:`rancf.system.outputs.SystemOutputs`, which holds the sensors)."""
+
+    system: Any
+    flex: list[tuple[str, Model]]
+    samplers: dict[str, Any]
+
+    def joint_columns(self, name: str) -> slice: ...
+
+    def contact_columns(self, name: str) -> slice: ...
+
+    def body_along(self, along: NDArray, name: str) -> NDArray[np.float64]: ...
+
 
 Block = tuple[NDArray, NDArray, NDArray, dict[str, NDArray], NDArray]
 Reader = Callable[[Block], NDArray]
@@ -52,7 +65,7 @@ Reader = Callable[[Block], NDArray]
 class SensorReader:
     """The sensors' columns of blocks of rows (module docstring)."""
 
-    def __init__(self, outputs: SystemOutputs, sensors: Sequence[Any]) -> None:
+    def __init__(self, outputs: OutputsView, sensors: Sequence[Any]) -> None:
         self.out = outputs
         self.system = outputs.system
         self.names: list[str] = []

@@ -15,47 +15,75 @@ gravity is its model's.
 from __future__ import annotations
 
 import warnings
-from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
+from collections.abc import Callable, Mapping, Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from rancf.bodies.closure import closure_matrix, closure_rows
 from rancf.bodies.flexible import Model
-from rancf.bodies.rigid import PointMass, RigidBody
-from rancf.bodies.time_function import TimeFunction
+from rancf.bodies.rigid import RigidBody
+from rancf.bodies.time_function import TimeFunction, core_record
 from rancf.errors import InputError
 from rancf.kernels import _core
+from rancf.kernels.records import (
+    JointRecord,
+    LinearTerm,
+    LoadRecord,
+    PlaceRecord,
+    PrescribedRecord,
+    SpringRecord,
+    TimeFunctionRecord,
+    floats,
+)
 from rancf.system.connections import JOINT_KINDS, Joint, Load, Spring
-from rancf.system.contact import CONTACT_POINTS, Obstacle
-from rancf.system.core_data import attach_contact, build_core
+from rancf.system.contact import CONTACT_POINTS, Obstacle, build_contact
+from rancf.system.core_data import SystemRecords, build_core
 from rancf.system.joint_data import joint_data
 from rancf.system.places import Place
+from rancf.system.stack import Body, BodyStack
 
-__all__ = ["System", "Body"]
-
-Body = Model | RigidBody | PointMass
-_NODE_KIND = {"rancf": 1, "ancf": 1, "rod": 2, "beam": 3}
+__all__ = ["System", "Body", "as_system"]
 
 
-@dataclass
 class _Rows:
-    """Growing arrays of the core's constructor."""
+    """The place and time function records as they are made (numbered by position); a place
+    made twice (the same key) is one record."""
 
-    places: list[tuple] = field(default_factory=list)
-    joints: list[dict] = field(default_factory=list)
-    tfs: list[TimeFunction] = field(default_factory=list)
+    def __init__(self, horizon: float | None) -> None:
+        self.places: list[PlaceRecord] = []
+        self.tfs: list[TimeFunctionRecord] = []
+        self.horizon = horizon
+        self._known: dict[Place | PlaceRecord, int] = {}
+
+    def place(self, key: Place | PlaceRecord, make: Callable[[], PlaceRecord]) -> int:
+        if key not in self._known:
+            self.places.append(make())
+            self._known[key] = len(self.places) - 1
+        return self._known[key]
 
     def tf(self, f: TimeFunction | None) -> int:
+        """The index of the core's record of ``f`` (a callable sampled on the horizon); -1 for
+        None."""
         if f is None:
             return -1
-        self.tfs.append(f)
+        if f.kind == "callable":
+            if self.horizon is None or not self.horizon > 0:
+                raise InputError("horizon", self.horizon, "the run's end time t_end [s] > 0 (a "
+                                 "Python time function is sampled on [0, t_end])")  # fmt: skip
+            f = f.sampled(float(self.horizon))
+        self.tfs.append(core_record(f))
         return len(self.tfs) - 1
 
+    def records(self, **parts: Sequence) -> SystemRecords:
+        """The records so far with ``parts`` (joints, springs, loads, prescribed, linear)."""
+        return SystemRecords(tuple(self.places), time_functions=tuple(self.tfs),
+                             **{k: tuple(v) for k, v in parts.items()})  # fmt: skip
 
-class System:
-    """Bodies, joints, springs and loads (module docstring).
+
+class System(BodyStack):
+    """Bodies, joints, springs and loads (module docstring); the bodies' coordinates and places
+    as in :class:`rancf.system.stack.BodyStack`.
 
     Parameters
     ----------
@@ -82,6 +110,11 @@ class System:
         The end of the runs [s]: time functions given as Python callables are sampled on
         ``[0, horizon]`` (a cubic table of 2001 points, :meth:`TimeFunction.sampled`) for the
         compiled loop; required when there are such functions.
+
+    Attributes
+    ----------
+    records : :class:`rancf.system.core_data.SystemRecords`
+        The parts as the compiled core ``core`` took them (:mod:`rancf.kernels.records`).
     """
 
     def __init__(
@@ -100,81 +133,56 @@ class System:
         body_contacts: Sequence[tuple[str, str]] = (),
         body_friction: float = 0.0,
     ) -> None:
-        if not bodies:
-            raise InputError("bodies", {}, "at least one body")
-        for name in bodies:
-            if not isinstance(name, str) or not name or name == "ground" or ":" in name:
-                raise InputError("bodies.name", name, 'a name without ":", not "ground"')
-        flex = [(k, b) for k, b in bodies.items() if isinstance(b, Model)]
-        rigid = [(k, b) for k, b in bodies.items() if isinstance(b, RigidBody | PointMass)]
-        if len(flex) + len(rigid) != len(bodies):
-            raise InputError("bodies", list(bodies), "Model, RigidBody or PointMass objects")
-        dims = {b.dim for _, b in flex + rigid}
-        if len(dims) != 1:
-            raise InputError("bodies", sorted(dims), "bodies of one dimension (all 2D or all 3D)")
-        self.dim = dims.pop()
-        self.bodies = dict(flex + rigid)
-        self.names = [k for k, _ in flex + rigid]
-        self.flex = [b for _, b in flex]
-        self.rigid = [b for _, b in rigid]
+        super().__init__(bodies)
         self.gravity = (
             np.zeros(3) if gravity is None else np.r_[np.asarray(gravity, float), 0.0][:3]
         )
         if gravity is not None and np.asarray(gravity).size != self.dim:
             raise InputError("loads.gravity", list(np.asarray(gravity)), f"{self.dim} components")
-        self._check_gravity(flex)
+        self._check_gravity()
         if not (np.isfinite(damping) and damping >= 0):
             raise InputError("damping.mass_proportional", damping, "a finite number >= 0")
         self.damping = float(damping)
         self.horizon = horizon
-        self.offsets: dict[str, int] = {}
-        n = 0
-        for name, b in flex + rigid:
-            self.offsets[name] = n
-            n += b.n if isinstance(b, Model) else b.size
-        self.n = n
-        y0, v0 = np.zeros(n), np.zeros(n)
-        for name, b in flex + rigid:
-            o = self.offsets[name]
-            if isinstance(b, Model):
-                y0[o : o + b.n], v0[o : o + b.n] = b.y0, b.v0
-            else:
-                yy, vv = b.initial()
-                y0[o : o + b.size], v0[o : o + b.size] = yy, vv
-        self.y0, self.v0 = y0, v0
         self.joints, self.springs, self.loads = tuple(joints), tuple(springs), tuple(loads)
-        self.single = self.names[0] if len(self.names) == 1 else None
-        self._linear = self._closures()
-        rows = _Rows()
+        linear = self._closures()
+        rows = _Rows(horizon)
         self._place_index: dict[Place, int] = {}
-        self._prescribed = self._motions(rows)
-        self._spring_rows = [self._spring(s, rows) for s in springs]
-        self._load_rows = [self._load(ld, rows) for ld in self._all_loads()]
+        parts = {
+            "prescribed": self._motions(rows),
+            "springs": [self._spring(s, rows) for s in springs],
+            "loads": [self._load(ld, rows) for ld in self._all_loads()],
+            "linear": linear,
+        }
         for spec in observe:
             p = self.resolve(spec)
             if p.body is None:
                 raise InputError("place", "ground", "a place on a body")
             self._index(p, rows)
         pre = [self._place(j, rows) for j in joints]  # places first: their reference frames
-        self.core = self._build(rows, [])
-        self.joint_data = [self._joint(j, ab, rows) for j, ab in zip(joints, pre, strict=True)]
-        self.core = self._build(rows, self.joint_data)
+        self.core = self._build(rows.records(**parts))
+        parts["joints"] = [self._joint(j, ab, rows) for j, ab in zip(joints, pre, strict=True)]
+        self.records = rows.records(**parts)
+        self.core = self._build(self.records)
         self.m = int(self.core.m)
         self.joint_rows = list(self.core.joint_rows)
         self.obstacles = tuple(obstacles)  # contact: attached to the core
         self.body_contacts, self.contact_points = [(a, b) for a, b in body_contacts], contact_points
-        self.contact, self.obstacle_names, self.contact_pairs = attach_contact(
-            self, self.obstacles, contacts, contact_points, body_contacts, body_friction
-        )
+        self.contact, self.obstacle_names, self.contact_pairs = None, [], []
+        if self.obstacles or contacts or body_contacts:  # build_contact: the core's Contact
+            self.contact, self.obstacle_names, self.contact_pairs = build_contact(
+                self, self.obstacles, contacts, contact_points, body_contacts, body_friction
+            )
+            self.core.attach_contact(self.contact)
         self._check_reference()
 
-    def _check_gravity(self, flex: list[tuple[str, Model]]) -> None:
+    def _check_gravity(self) -> None:
         """A flexible body's weight comes from its model's ``gravity``, a rigid body's from the
         system's: a model with no gravity of its own in a system with gravity gets one warning
         line (its weight is left out); an explicit model gravity is taken as meant."""
         if not self.gravity.any():
             return
-        for name, b in flex:
+        for name, b in zip(self.names, self.flex, strict=False):
             if b.gravity is None:
                 warnings.warn(f"rancf: body {name!r} has no gravity of its own, so its weight "
                               f"is left out of the system's gravity "
@@ -201,47 +209,17 @@ class System:
                 )  # fmt: skip
 
     # ---------------------------------------------------------------- places
-    def resolve(self, spec: Place | str | int) -> Place:
-        """A place with its body checked (node indices normalized, points checked)."""
-        p = Place.parse(spec, self.single)
-        if p.body is None:
-            return p
-        if p.body not in self.bodies:
-            raise InputError("place", str(p), f"a body: {', '.join(self.names)} or ground")
-        b = self.bodies[p.body]
-        if isinstance(b, Model):
-            at = {"start": 0, "end": -1}.get(p.at, p.at) if isinstance(p.at, str) else p.at
-            if not isinstance(at, int):
-                raise InputError("place", str(p), f'a node of {p.body}: "start", "end" or an index')
-            return Place(p.body, b.check_node(at, f"place {p}"))
-        if isinstance(b, PointMass) and p.at is not None:
-            raise InputError("place", str(p), f"the point mass itself: {p.body!r}")
-        if isinstance(b, RigidBody):
-            b.point(p.at if isinstance(p.at, str) or p.at is None else str(p.at))
-        return p
-
     def _index(self, p: Place, rows: _Rows, ground_point: NDArray | None = None,
                motion: int = -1) -> int:  # fmt: skip
-        key = p if p.body is not None else Place(None, (tuple(ground_point), motion))  # type: ignore[arg-type]
-        if key in self._place_index:
-            return self._place_index[key]
-        point, kind, body, node, angle0 = np.zeros(3), 0, -1, 0, 0.0
+        """The index of the record of the place ``p`` (resolved); the ground: at
+        ``ground_point``, moved by the time function ``motion``."""
         if p.body is None:
+            point = np.zeros(3)
             point[: self.dim] = ground_point[: self.dim]  # type: ignore[index]
-        else:
-            b = self.bodies[p.body]
-            if isinstance(b, Model):
-                kind, body, node = _NODE_KIND[b.element], self.flex.index(b), int(p.at)  # type: ignore[arg-type]
-                if b.element == "beam":
-                    angle0 = float(b.kernel.psi0[node])
-            elif isinstance(b, PointMass):
-                kind, body = 6, self.rigid.index(b)
-            else:
-                kind, body = (4 if self.dim == 2 else 5), self.rigid.index(b)
-                point = b.point(p.at)  # type: ignore[arg-type]
-        rows.places.append((kind, body, node, point, motion if p.body is None else -1, angle0))
-        self._place_index[key] = len(rows.places) - 1
-        return len(rows.places) - 1
+            ground = PlaceRecord("ground", point=floats(point), motion=motion)  # type: ignore[arg-type]
+            return rows.place(ground, lambda: ground)
+        self._place_index[p] = rows.place(p, lambda: self.place_record(p))
+        return self._place_index[p]
 
     def place_state(
         self, spec: Place | str, y: NDArray, t: float = 0.0
@@ -255,19 +233,6 @@ class System:
         x, f = self.core.place(self._place_index[key], np.asarray(y, dtype=float), float(t))
         return np.asarray(x), np.asarray(f).reshape(-1, 3)
 
-    def reference_position(self, p: Place) -> NDArray[np.float64]:
-        """A place's position in the reference configuration (3 components)."""
-        b = self.bodies[p.body]  # type: ignore[index]
-        if isinstance(b, Model):
-            return np.r_[b.node_positions(b.q0)[int(p.at)], np.zeros(3 - self.dim)]  # type: ignore[arg-type]
-        yy, _ = b.initial()
-        x = np.r_[yy[: self.dim], np.zeros(3 - self.dim)]
-        if isinstance(b, RigidBody) and p.at is not None:
-            r = b.rotation()
-            s = b.point(p.at)[: self.dim]  # type: ignore[arg-type]
-            x[: self.dim] += r @ s
-        return x
-
     def _pair(self, between: Sequence, rows: _Rows, motion: int = -1) -> tuple[int, int]:
         if len(between) != 2:
             raise InputError("between", list(between), "two places")
@@ -280,7 +245,7 @@ class System:
         return self._index(a, rows), self._index(b, rows, gp, motion)
 
     # ---------------------------------------------------------------- parts
-    def _motions(self, rows: _Rows) -> list[tuple[int, int, int, float]]:
+    def _motions(self, rows: _Rows) -> list[PrescribedRecord]:
         """Held positions of flexible bodies that follow their support's motion."""
         out = []
         for name, b in zip(self.names, self.flex, strict=False):
@@ -294,26 +259,26 @@ class System:
                 if sup.motion.size != self.dim:
                     raise InputError("supports.motion", sup.motion.size, f"{self.dim} components")
                 k = rows.tf(sup.motion)
-                base = self.offsets[name] + b._node_base(b.check_node(sup.node, "supports.at"))
+                base = b.node_base(b.check_node(sup.node, "supports.at"))
                 for i in range(self.dim):
-                    out.append(
-                        (base + i, k, i, float(b.y_installed[base - self.offsets[name] + i]))
-                    )
+                    coord = self.offsets[name] + base + i
+                    out.append(PrescribedRecord(coord, k, i, float(b.y_installed[base + i])))
         return out
 
-    def _closures(self) -> tuple[NDArray, NDArray, NDArray]:
-        """The seams of closed flexible bodies as linear rows ``(row, column, coefficient)``
+    def _closures(self) -> list[LinearTerm]:
+        """The seams of closed flexible bodies as the terms of linear rows
         (:func:`rancf.bodies.closure.closure_rows`), in system coordinates."""
-        parts, m = [], 0
+        out: list[LinearTerm] = []
+        m = 0
         for name, b in zip(self.names, self.flex, strict=False):
             r, c, v = closure_rows(b)
-            parts.append((r + m, c + self.offsets[name], v))
+            o = self.offsets[name]
+            out += [LinearTerm(int(i) + m, int(j) + o, float(x))
+                    for i, j, x in zip(r, c, v, strict=True)]  # fmt: skip
             m += closure_matrix(b).shape[0]
-        if not parts:
-            return np.zeros(0, np.int64), np.zeros(0, np.int64), np.zeros(0)
-        return tuple(np.concatenate(x) for x in zip(*parts, strict=True))  # type: ignore[return-value]
+        return out
 
-    def _spring(self, s: Spring, rows: _Rows) -> tuple[int, int, float, float, float]:
+    def _spring(self, s: Spring, rows: _Rows) -> SpringRecord:
         a, b = self._pair(s.between, rows)
         for key, v in (("springs.stiffness", s.stiffness), ("springs.damping", s.damping)):
             if not (np.isfinite(v) and v >= 0):
@@ -328,7 +293,7 @@ class System:
                              length, "0 where its places meet at the reference (ground sits at "
                              "the other place's reference): the linear spring-damper "
                              "k (x_a - x_b) + c (v_a - v_b)")  # fmt: skip
-        return a, b, float(s.stiffness), float(s.damping), length
+        return SpringRecord(a, b, float(s.stiffness), float(s.damping), length)
 
     def _all_loads(self) -> list[Load]:
         """The loads, and flexible bodies' point forces (and rods' moments) times a time
@@ -348,7 +313,7 @@ class System:
                 )
         return out
 
-    def _load(self, ld: Load, rows: _Rows) -> tuple[int, NDArray, NDArray, int]:
+    def _load(self, ld: Load, rows: _Rows) -> LoadRecord:
         p = self.resolve(ld.at)
         if p.body is None:
             raise InputError("loads.point.at", "ground", "a place on a body")
@@ -363,94 +328,43 @@ class System:
         tt = np.r_[np.zeros(2), t] if t.size == 1 else np.r_[t, np.zeros(3 - t.size)]
         if ld.time is not None and ld.time.size != 1:
             raise InputError("loads.point.time", ld.time.size, "a scalar time function (a factor)")
-        return self._index(p, rows), np.r_[f, np.zeros(3 - f.size)], tt, rows.tf(ld.time)
+        place = self._index(p, rows)
+        force = floats(np.r_[f, np.zeros(3 - f.size)])
+        return LoadRecord(place, force, floats(tt), rows.tf(ld.time))  # type: ignore[arg-type]
 
     def _place(self, j: Joint, rows: _Rows) -> tuple[int, int]:
         if j.kind not in JOINT_KINDS:
             raise InputError("joints.kind", j.kind, f"one of {', '.join(JOINT_KINDS)}")
         return self._pair(j.between, rows, rows.tf(j.motion))
 
+    def _build(self, records: SystemRecords) -> _core.System:
+        return build_core(self.dim, self.flex, self.rigid, records, self.gravity, self.damping,
+                          self.y0)  # fmt: skip
+
     def _frames(self, index: int) -> tuple[NDArray, NDArray]:
         x, f = self.core.place(index, self.y0, 0.0)
         return np.asarray(x), np.asarray(f).reshape(-1, 3)
 
-    def _joint(self, j: Joint, ab: tuple[int, int], rows: _Rows) -> dict:
+    def _joint(self, j: Joint, ab: tuple[int, int], rows: _Rows) -> JointRecord:
         a, b = ab
         angle = rows.tf(j.angle) if j.angle is not None else -1
         return joint_data(j, a, b, self._frames(a)[1], self._frames(b)[1], self.dim, angle)
 
-    def _build(self, rows: _Rows, joints: list[dict]) -> _core.System:
-        return build_core(self, rows, joints, [self._compiled(f) for f in rows.tfs])
-
-    def _compiled(self, f: TimeFunction) -> TimeFunction:
-        """A time function the compiled core evaluates (a callable sampled on the horizon)."""
-        if f.kind != "callable":
-            return f
-        if self.horizon is None or not self.horizon > 0:
-            raise InputError("horizon", self.horizon, "the run's end time t_end [s] > 0 (a Python "
-                             "time function is sampled on [0, t_end])")  # fmt: skip
-        return f.sampled(float(self.horizon))
-
     # ---------------------------------------------------------------- coordinates
-    def body_slice(self, name: str) -> slice:
-        """The coordinates of one body in ``y``."""
-        o = self.offsets[name]
-        b = self.bodies[name]
-        return slice(o, o + (b.n if isinstance(b, Model) else b.size))
-
     @property
-    def fixed(self) -> NDArray[np.bool_]:
-        """Held coordinates (flexible bodies' supports)."""
-        out = np.zeros(self.n, dtype=bool)
-        for name, b in zip(self.names, self.flex, strict=False):
-            out[self.body_slice(name)] = b.fixed
-        return out
+    def has_contact(self) -> bool:
+        """Whether the system has contact (obstacles or flexible bodies touching each other)."""
+        return self.contact is not None
 
     def energies(self, y: NDArray, v: NDArray) -> tuple[float, float, float]:
         """Kinetic, strain (with springs) and gravitational energy (zero at the reference)."""
         return self.core.energies(np.asarray(y, float), np.asarray(v, float))
 
-    def reset_triads(self) -> None:
-        """Rods: every flexible body's nodal triads back to their reference."""
-        for b in self.flex:
-            b.reset_triads()
 
-    def _each_flex(self) -> list[tuple[Model, slice]]:
-        return [(b, self.body_slice(name)) for name, b in zip(self.names, self.flex, strict=False)]
-
-    def q_from_y(self, y: ArrayLike) -> NDArray[np.float64]:
-        """Full coordinates (a flexible body's nodal coordinates, clamp rotations undone; rigid
-        bodies' as they are), ``(..., n)``."""
-        q = np.array(y, dtype=float)
-        for b, sl in self._each_flex():
-            q[..., sl] = b.q_from_y(q[..., sl])
-        return q
-
-    def y_from_q(self, q: ArrayLike) -> NDArray[np.float64]:
-        """Inverse of :meth:`q_from_y`."""
-        y = np.array(q, dtype=float)
-        for b, sl in self._each_flex():
-            y[..., sl] = b.y_from_q(y[..., sl])
-        return y
-
-    def nodal_directors(self, y: NDArray) -> NDArray[np.float64] | None:
-        """Rods' nodal directors ``(n_rod_nodes, 3)`` of every rod body (None without rods)."""
-        parts = [b.nodal_directors(y[sl]) for b, sl in self._each_flex() if b.element == "rod"]
-        return np.concatenate(parts) if parts else None
-
-    def rereference(self, y: NDArray, v: NDArray, a: NDArray) -> None:
-        """Rods: carry the nodal triads to ``y`` (their spin rates in ``v``, ``a`` kept)."""
-        for b, sl in self._each_flex():
-            if b.element == "rod":
-                vv, aa = v[sl].copy(), a[sl].copy()
-                b.core.rereference(y[sl], vv, aa)
-                v[sl], a[sl] = vv, aa
-
-    @property
-    def size(self) -> float:
-        """Characteristic length: the largest extent of the reference (Newton tolerances)."""
-        pts = [b.node_positions(b.q0) for b in self.flex]
-        pts += [np.atleast_2d(self.y0[self.body_slice(k)][: self.dim]) for k, b in
-                self.bodies.items() if not isinstance(b, Model)]  # fmt: skip
-        allp = np.concatenate(pts)
-        return float(np.ptp(allp, axis=0).max()) or 1.0
+def as_system(model: Model | System) -> System:
+    """The system every analysis solves: a flexible body (:class:`~rancf.bodies.flexible.Model`)
+    becomes the system of that one body, named ``"body"`` as in a scenario file without
+    ``[[bodies]]``, with its damping; a system is itself.  The one front of the one-body API."""
+    if isinstance(model, System):
+        return model
+    return System({"body": model}, damping=model.damping)

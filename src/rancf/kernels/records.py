@@ -1,0 +1,198 @@
+"""The named records a system crosses into the compiled core as (``src/cpp/system.hpp``).
+
+:class:`rancf.kernels._core.System` takes lists of these records; its binding
+(``src/cpp/bindings_records.cpp``) reads every field by its name into the C++ struct of the same
+name and fields, and refuses a field of the wrong type, size or value in one line that names it
+(``places[2].kind: expected one of ground, cable, ..., got 'bar'``).  Vectors are tuples of floats
+(a matrix row-major), so that every record is immutable and hashable.
+
+Coordinates ``y`` stack the flexible bodies, then the rigid bodies and point masses
+(:mod:`rancf.system.system`); places, time functions and linear rows are numbered by their
+position in their lists.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = [
+    "PLACE_KINDS",
+    "JOINT_KINDS",
+    "TIME_KINDS",
+    "RigidRecord",
+    "PlaceRecord",
+    "JointRecord",
+    "SpringRecord",
+    "LoadRecord",
+    "TimeFunctionRecord",
+    "PrescribedRecord",
+    "LinearTerm",
+    "floats",
+]
+
+#: Kinds of places (``PlaceKind``, ``src/cpp/places.hpp``).
+PLACE_KINDS = ("ground", "cable", "rod", "beam", "rigid2d", "rigid3d", "mass")
+#: Kinds of joint rows (``JointKind``, ``src/cpp/joints.hpp``).
+JOINT_KINDS = ("pin", "fixed", "tangent", "revolute", "slider")
+#: Kinds of time functions (``TimeKind``, ``src/cpp/time_function.hpp``).
+TIME_KINDS = ("constant", "piecewise", "ramp", "harmonic", "spin_up")
+
+
+def floats(values: Iterable[float]) -> tuple[float, ...]:
+    """A record's vector: ``values`` (an array of any shape is taken row-major) as floats."""
+    return tuple(float(x) for x in np.ravel(np.asarray(values, dtype=float)))
+
+
+@dataclass(frozen=True)
+class RigidRecord:
+    """A rigid body or point mass (``RigidInertia``, ``src/cpp/rigid.hpp``): ``inertia`` the
+    principal moments (2D: ``(J, 0, 0)``)."""
+
+    dim: int
+    point_mass: bool
+    mass: float
+    inertia: tuple[float, float, float] = (0.0, 0.0, 0.0)
+
+
+@dataclass(frozen=True)
+class PlaceRecord:
+    """A place (``PlaceRef``, ``src/cpp/system.hpp``).
+
+    Attributes
+    ----------
+    kind : str
+        One of :data:`PLACE_KINDS`: a flexible body's node (``cable``, ``rod``, ``beam``), a rigid
+        body (``rigid2d``, ``rigid3d``), a point mass (``mass``) or the ``ground``.
+    body : int
+        The flexible body (node kinds) or the rigid body or point mass; -1 for the ground.
+    node : int
+        The node of a flexible body.
+    point : (3,) floats
+        The ground's point (world), or a rigid body's point in its frame.
+    motion : int
+        The ground: the time function of the point's displacement (``dim`` components), or -1.
+    angle0 : float
+        A beam node: its reference tangent angle.
+    """
+
+    kind: str
+    body: int = -1
+    node: int = 0
+    point: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    motion: int = -1
+    angle0: float = 0.0
+
+
+@dataclass(frozen=True)
+class JointRecord:
+    """A joint (``JointData``, ``src/cpp/system.hpp``; its rows in ``src/cpp/joints.hpp``).
+
+    Attributes
+    ----------
+    kind : str
+        One of :data:`JOINT_KINDS` (the rows; a 2D revolute is a ``pin``).
+    a, b : int
+        The places joined.
+    driven : bool
+        An angle row follows the time function ``angle``.
+    angle : int
+        A driven joint's time function, or -1.
+    beta0 : float
+        The reference relative angle (2D ``fixed`` and driven rows).
+    rel : (9,) floats
+        3D ``fixed``: the reference relative rotation ``rel[k][j] = a_k . b_j``, row-major.
+    axis_a : (3,) floats
+        ``revolute``: the axis in the first place's frame.
+    normals_b : (6,) floats
+        ``revolute``, ``tangent``, ``slider``: two normals in the second place's frame.
+    w_a, w_b : (3,) floats
+        A driven 3D revolute: the reference normals whose angle is the joint angle.
+    """
+
+    kind: str
+    a: int
+    b: int
+    driven: bool = False
+    angle: int = -1
+    beta0: float = 0.0
+    rel: tuple[float, ...] = (0.0,) * 9
+    axis_a: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    normals_b: tuple[float, ...] = (0.0,) * 6
+    w_a: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    w_b: tuple[float, float, float] = (0.0, 0.0, 0.0)
+
+
+@dataclass(frozen=True)
+class SpringRecord:
+    """A spring-damper between the places ``a`` and ``b`` (``SpringData``): tension
+    ``stiffness (l - length) + damping dl/dt``."""
+
+    a: int
+    b: int
+    stiffness: float
+    damping: float = 0.0
+    length: float = 0.0
+
+
+@dataclass(frozen=True)
+class LoadRecord:
+    """A force (and, on rigid bodies and rod nodes, a torque) at ``place``, world axes, times
+    the time function ``factor`` (-1: constant) (``PlaceLoad``)."""
+
+    place: int
+    force: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    torque: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    factor: int = -1
+
+
+@dataclass(frozen=True)
+class TimeFunctionRecord:
+    """A time function as the core evaluates it (``TimeFunction``,
+    ``src/cpp/time_function.hpp``).
+
+    Attributes
+    ----------
+    kind : str
+        One of :data:`TIME_KINDS`.
+    value : floats
+        One per component: the constant, the ramp's end value, the amplitude, the spin-up rate.
+    duration, frequency, phase : float
+        ``T`` of a ramp or spin-up [s], a harmonic's frequency [Hz] and phase [rad].
+    breaks : floats
+        ``piecewise``: the ``k + 1`` breakpoints.
+    coef : floats
+        ``piecewise``: the ``(k, 4, n)`` coefficients ``c0 + c1 s + c2 s^2 + c3 s^3``,
+        row-major.
+    """
+
+    kind: str
+    value: tuple[float, ...]
+    duration: float = 0.0
+    frequency: float = 0.0
+    phase: float = 0.0
+    breaks: tuple[float, ...] = ()
+    coef: tuple[float, ...] = ()
+
+
+@dataclass(frozen=True)
+class PrescribedRecord:
+    """A held coordinate that follows a time function: ``y[coord] = base + u_comp(t)`` with
+    ``u`` the time function ``tf`` (``Prescribed``)."""
+
+    coord: int
+    tf: int
+    comp: int
+    base: float
+
+
+@dataclass(frozen=True)
+class LinearTerm:
+    """A term ``coef * y[col]`` of the linear constraint row ``row`` (0-based among the linear
+    rows; they close closed flexible bodies) (``LinearTerm``)."""
+
+    row: int
+    col: int
+    coef: float

@@ -1,0 +1,150 @@
+"""Statics that find the equilibrium a user means: where Newton's method along the load path
+cannot start or stalls, relaxation (pseudo-transient continuation,
+``docs/derivations/relaxation.md``) follows the physics to rest and Newton polishes it."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from rancf.cli import main
+from rancf.scenario import load_scenario
+from rancf.solvers.static import solve_static
+from rancf.solvers.system_equilibrium import SystemEquilibrium
+
+G = 9.81
+
+PENDULUM = """
+[geometry]
+kind = "line"
+start = [0.0, 0.0]
+end = [1.0, 0.0]
+
+[mesh]
+elements = 8
+element = "rancf"
+
+[section]
+radius = 0.005
+
+[material]
+density = 7850.0
+youngs_modulus = 2.0e11
+
+[[supports]]
+at = "start"
+kind = "pin"
+
+[loads]
+gravity = [0.0, -9.81]
+
+[[sensors]]
+name = "tip"
+kind = "position"
+at = "end"
+"""
+
+# an L-shaped route, legs of 2 m and 1 m with a 5 cm corner (a degree-2 NURBS whose first and
+# last segments are straight), a rope: EA = 1e5 N, almost no bending stiffness (EI = 2e-3 N m²)
+ROPE = """
+[geometry]
+kind = "nurbs"
+degree = 2
+knots = [0, 0, 0, 0.49, 0.51, 1, 1, 1]
+control_points = [[0.0, 0.0], [1.95, 0.0], [2.0, 0.0], [2.0, -0.05], [2.0, -1.0]]
+
+[mesh]
+elements = 24
+element = "rancf"
+
+[section]
+area = 5.0e-5
+inertia = 1.0e-12
+
+[material]
+density = 1140.0
+youngs_modulus = 2.0e9
+
+[[supports]]
+at = "start"
+kind = "pin"
+
+[[supports]]
+at = "end"
+kind = "pin"
+
+[loads]
+gravity = [0.0, -9.81]
+
+[[sensors]]
+name = "mid"
+kind = "position"
+at = 12
+"""
+
+
+def _static_json(tmp_path, name, text, capsys):
+    f = tmp_path / f"{name}.toml"
+    f.write_text(text)
+    assert main(["static", str(f), "--json"]) == 0
+    return f, json.loads(capsys.readouterr().out)
+
+
+def test_a_pinned_pendulum_drawn_horizontal_comes_to_rest_hanging(tmp_path, capsys):
+    """The reference has no stiffness against the swing: load stepping cannot start, relaxation
+    brings the cable to hang straight below its pin (tip x = 0 to 1e-9 of the length, the tip
+    one stretched length below), and the pin carries the weight to 1e-9."""
+    f, doc = _static_json(tmp_path, "pendulum", PENDULUM, capsys)
+    assert doc["method"] == "relaxation+newton" and doc["relaxation_steps"] > 0
+    assert doc["load_factors"][-1] == 1.0
+    weight = load_scenario(f).build_model().total_mass * G
+    assert weight == pytest.approx(7850.0 * np.pi * 0.005**2 * G, rel=1e-12)
+    tip = doc["positions"][-1]
+    assert abs(tip[0]) <= 1e-9 and -1.0001 < tip[1] < -1.0  # stretched by its own weight
+    assert doc["sensors"]["tip_x"] == tip[0]
+    (pin,) = doc["reactions"]
+    assert pin["at"] == "start"
+    assert np.abs(np.array(pin["force"]) - [0.0, weight]).max() <= 1e-9 * weight
+    assert main(["static", str(f), "--out", str(tmp_path / "run")]) == 0
+    first = capsys.readouterr().out.splitlines()[0]
+    assert first.startswith("static equilibrium (relaxation+newton): ")
+    assert "relaxation steps" in first
+    summary = json.loads((tmp_path / "run" / "summary.json").read_text())
+    assert summary["method"] == "relaxation+newton" and summary["status"] == "completed"
+    assert summary["relaxation_steps"] == doc["relaxation_steps"]
+
+
+def test_an_l_shaped_rope_pinned_at_both_ends_sags(tmp_path, capsys):
+    """From its L reference the slack rope sags below the chord between its pins; the
+    horizontal reactions are equal and opposite (the rope's horizontal tension), the vertical
+    ones carry the weight (1e-9), and the residual of the equilibrium is zero to the solver's
+    tolerance: at most the force ``EA · 1e-10`` of an axial strain at the tolerance (1e-10 of
+    the size; measured 2.9e-6 N = 2.9e-11 EA, the floor further Newton iterations keep)."""
+    f, doc = _static_json(tmp_path, "rope", ROPE, capsys)
+    assert doc["method"] == "relaxation+newton"
+    weight = load_scenario(f).build_model().total_mass * G
+    a, b = (np.array(r["force"]) for r in doc["reactions"])
+    assert a[0] < 0.0 < b[0]  # the pins pull the rope's ends apart: tension
+    assert abs(a[0] + b[0]) <= 1e-9 * weight
+    assert a[1] + b[1] == pytest.approx(weight, rel=1e-9)
+    pos = np.array(doc["positions"])
+    chord = pos[0] + (pos[:, 0:1] / 2.0) * (pos[-1] - pos[0])  # the line between the pins
+    assert np.all(pos[1:-1, 1] < chord[1:-1, 1])  # every inner node hangs below it
+    assert pos[:, 1].min() < -1.2  # 3 m of rope over a 2.24 m chord sags well below the L
+    system = load_scenario(f).build_system()
+    res = solve_static(system)
+    assert res.method == "relaxation+newton"
+    r = SystemEquilibrium(system).residual(np.r_[res.y, res.lam], 1.0)
+    assert np.abs(r).max() <= 1e-10 * 2.0e9 * 5.0e-5
+    assert np.abs(system.flex[0].node_positions(res.q) - pos).max() <= 1e-9
+
+
+def test_a_pendulum_without_its_pin_has_no_equilibrium_and_says_so_in_one_line(tmp_path, capsys):
+    f = tmp_path / "free.toml"
+    f.write_text(PENDULUM.replace('[[supports]]\nat = "start"\nkind = "pin"\n', ""))
+    assert main(["static", str(f)]) == 3
+    err = capsys.readouterr().err.strip()
+    assert "\n" not in err
+    assert "no equilibrium" in err and "add a support" in err and "load factor 0" in err
