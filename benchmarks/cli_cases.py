@@ -6,6 +6,11 @@ every step), Exudyn the tip sensor at the same interval (in memory, no solution 
 per-step times come from each side's own report (rancf: `summary.json`, `solve_wall_time_s /
 steps`; Exudyn: its script's solve time), whole-process wall times are measured from outside,
 and the ratio A/B is taken pair by pair (median quoted), so machine drift cancels.
+
+Run it with a wheel install (``pip install .`` into its own environment), as users have it: an
+editable install with ``editable.rebuild`` runs CMake twice at every start to check the build,
+and without compiled byte code (``PYTHONDONTWRITEBYTECODE``) every module is compiled at every
+start; both are set-up time a user's install does not have.
 """
 
 from __future__ import annotations
