@@ -40,7 +40,8 @@ def test_a_cantilever_s_clamp_moment_envelope_is_the_static_p_l(tmp_path):
 def test_the_envelope_is_the_extremes_of_the_stored_section_values(tmp_path):
     """A short dynamic run of the cantilever: every column of the envelope equals the minimum
     and maximum over the rows of ``along`` in ``bodies/body/results.npz`` (to the 12 digits
-    of the CSV file: 1e-11 relative), and each time is that of the first row reaching it; ``rancf plot`` writes ``envelope_body.png``."""
+    of the CSV file: 1e-11 relative), and each time is that of the first row reaching it
+    (``rancf plot`` draws ``envelope_body.png``: the docs' example, tests/test_readme_post)."""
     raw = tomllib.loads(example_path("cantilever").read_text())
     raw["solver"] = {"t_end": 0.05, "step": 1e-3}
     sc = Scenario.from_dict(raw)
@@ -51,6 +52,7 @@ def test_the_envelope_is_the_extremes_of_the_stored_section_values(tmp_path):
     z = np.load(run / "bodies" / "body" / "results.npz")
     t, along = z["t"], z["along"]
     names = json.loads(str(z["metadata"]))["section_names"]
+
     def same(a: np.ndarray, b: np.ndarray) -> bool:
         return np.allclose(a, b, rtol=1e-11, atol=1e-300)
 
