@@ -216,3 +216,56 @@ def test_modes_json_has_the_campbell_object(tmp_path, capsys):
     assert np.allclose(cam["frequencies_hz"], ref.frequencies_hz, rtol=1e-12, atol=0)
     with pytest.raises(ScenarioError, match="spin_axis"):
         Scenario.from_dict(tomllib.loads(text.replace("[0.0, 0.0, 1.0]", "[0.0, 0.0, 0.0]")))
+
+
+def test_a_point_mass_on_an_isotropic_spring_whirls_at_omega0_plus_minus_the_spin():
+    """A point mass (2 kg) on a zero-length spring (8 N/m, ω0 = 2 rad/s) to its reference on
+    the spin axis: seen from the frame turning at Ω its frequencies are |ω0 - Ω|, ω0 (along
+    the axis) and ω0 + Ω (1e-12), the point-mass path of the frame terms; held on a slider
+    across the axis, ``√(ω0² - Ω²)`` through the constraints' null space, and past Ω = ω0 a
+    divergence growing at ``√(Ω² - ω0²)`` with frequency 0."""
+    from rancf.bodies.rigid import PointMass
+    from rancf.system import Joint, Spring, System
+
+    def system(joints=()):
+        return System({"m": PointMass(3, 2.0, (1.0, 0.0, 0.0))}, joints=joints,
+                      springs=[Spring(("m", "ground"), 8.0, length=0.0)])  # fmt: skip
+
+    free = system()
+    for rate in (0.5, 3.0):
+        out = rotating_modes(free, Spin.of([0, 0, 2.0], [1.0, 0, 0], rate), 3)
+        expected = np.sort([abs(2.0 - rate), 2.0, 2.0 + rate])
+        assert np.allclose(2 * np.pi * out.frequencies_hz, expected, rtol=1e-12, atol=0)
+    slider = system([Joint("slider", ("m", "ground"), axis=(1.0, 0.0, 0.0))])
+    for rate in (1.5, 2.5):
+        out = rotating_modes(slider, Spin.of([0, 0, 1.0], [1.0, 0, 0], rate), 1)
+        if rate < 2.0:
+            assert 2 * np.pi * out.frequencies_hz[0] == pytest.approx(
+                np.sqrt(4 - rate**2), rel=1e-12
+            )
+            assert out.growth_rates[0] == 0
+        else:
+            assert out.frequencies_hz[0] == 0
+            assert out.growth_rates[0] == pytest.approx(np.sqrt(rate**2 - 4), rel=1e-12)
+
+
+def test_the_steady_state_tangent_is_the_derivative_of_its_residual():
+    """The factored tangent of :class:`RotatingEquilibrium` (the core's tangent plus
+    ``-p Ω² Wᵀ M W``) solves the central differences (h = 1e-6) of the residual along a random
+    direction back to that direction (1e-6), about the spinning blade's steady state."""
+    from rancf.solvers.rotating import RotatingEquilibrium
+    from rancf.solvers.static import solve_equilibrium
+
+    system = as_system(blade(4))
+    system.reset_triads()
+    problem = RotatingEquilibrium(system, Spin.of(AXIS, CENTER, 20.0))
+    z = solve_equilibrium(problem, 4).y.copy()
+    z = np.r_[z, np.zeros(system.m)]
+    rng = np.random.default_rng(1)
+    dz = rng.standard_normal(z.size) * problem.free * 1e-2
+    h = 1e-6
+    fd = (problem.residual(z + h * dz, 1.0) - problem.residual(z - h * dz, 1.0)) / (2 * h)
+    _, ok = problem.tangent(z, 1.0)
+    back = problem.solve(ok, fd)
+    assert back is not None
+    assert np.abs(back - dz).max() <= 1e-6 * np.abs(dz).max()

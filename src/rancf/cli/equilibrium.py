@@ -216,7 +216,8 @@ def _cmd_modes(args: argparse.Namespace) -> int:
                        count, loads=about == "static", load_steps=sc.solver["load_steps"],
                        method=sc.solver["static_method"])  # fmt: skip
         out["campbell"] = {"spin_rates": cam.spin_rates.tolist(),
-                           "frequencies_hz": cam.frequencies_hz.tolist()}  # fmt: skip
+                           "frequencies_hz": cam.frequencies_hz.tolist(),
+                           "growth_rates_per_s": cam.growth_rates.tolist()}  # fmt: skip
         if plot is not None:
             from rancf.post.plots import plot_campbell
 

@@ -117,8 +117,8 @@ def rotating_modes(
             f"a system of at most {MAX_FREE} free coordinates (it has {n_free}): the rotating "
             "eigenproblem is dense",
         )  # fmt: skip
-    if isinstance(count, bool) or not 1 <= count < n_free:
-        raise InputError("count", count, f"an integer in [1, {n_free - 1}]")
+    if isinstance(count, bool) or not 1 <= count <= n_free:
+        raise InputError("count", count, f"an integer in [1, {n_free}]")
     idx = np.flatnonzero(lin.free)
     frame = problem.frame
     kc = frame.centrifugal_stiffness(spin.rate)[idx][:, idx]
