@@ -269,3 +269,13 @@ def test_the_steady_state_tangent_is_the_derivative_of_its_residual():
     back = problem.solve(ok, fd)
     assert back is not None
     assert np.abs(back - dz).max() <= 1e-6 * np.abs(dz).max()
+
+
+def test_a_spin_of_a_planar_system_is_refused_in_one_line():
+    """A planar system has no spin axis to turn about: one line naming ``modes.spin_rates``."""
+    from rancf.errors import RancfError
+
+    planar = as_system(Model(mesh_line([0, 0], [1, 0], 2), "ancf", Section.circular(R),
+                             Material(RHO, E), [Support(0, "clamp")]))  # fmt: skip
+    with pytest.raises(RancfError, match=r"modes\.spin_rates: .* this one is planar"):
+        frame_terms(planar, AXIS, CENTER)

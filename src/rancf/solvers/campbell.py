@@ -101,9 +101,9 @@ def rotating_modes(
     Raises
     ------
     InputError
-        ``count`` out of range, or more than :data:`MAX_FREE` free coordinates.
+        ``count`` out of range.
     RancfError
-        Fewer than ``count`` modes found.
+        More than :data:`MAX_FREE` free coordinates, or fewer than ``count`` modes found.
     """
     system.reset_triads()
     problem = RotatingEquilibrium(system, spin, loads)
@@ -112,11 +112,9 @@ def rotating_modes(
     lin = linearize(system, y, lam, 1.0 if loads else 0.0)
     n_free = lin.k.shape[0]
     if n_free > MAX_FREE:
-        raise InputError(
-            "modes.spin_rates", "given",
-            f"a system of at most {MAX_FREE} free coordinates (it has {n_free}): the rotating "
-            "eigenproblem is dense",
-        )  # fmt: skip
+        raise RancfError(f"modes.spin_rates: the rotating eigenproblem is dense, for at most "
+                         f"{MAX_FREE} free coordinates; this system has {n_free} (use fewer "
+                         "elements)")  # fmt: skip
     if isinstance(count, bool) or not 1 <= count <= n_free:
         raise InputError("count", count, f"an integer in [1, {n_free}]")
     idx = np.flatnonzero(lin.free)

@@ -34,7 +34,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from rancf.bodies.flexible import Model
 from rancf.bodies.rigid import PointMass
-from rancf.errors import InputError
+from rancf.errors import InputError, RancfError
 from rancf.solvers.linearized import system_jacobian
 from rancf.solvers.system_equilibrium import STABILIZER, SystemEquilibrium
 from rancf.system import System
@@ -114,13 +114,13 @@ def frame_terms(system: System, axis: ArrayLike, center: ArrayLike) -> FrameTerm
 
     Raises
     ------
-    InputError
+    RancfError
         A planar system or one with rigid bodies (their orientation coordinates are not
         turned by a linear map).
     """
     if system.dim != 3:
-        raise InputError("modes.spin_rates", "given", "a spatial (3D) scenario: a spin needs "
-                         "the axis and the out-of-plane motion")  # fmt: skip
+        raise RancfError("modes.spin_rates: a spin needs a spatial (3D) scenario (its axis and "
+                         "the motion out of the plane); this one is planar")  # fmt: skip
     n_hat = np.asarray(axis, dtype=float)
     n_hat = n_hat / np.linalg.norm(n_hat)
     c = np.asarray(center, dtype=float)
@@ -147,8 +147,8 @@ def frame_terms(system: System, axis: ArrayLike, center: ArrayLike) -> FrameTerm
             blocks_m.append(b.mass * np.eye(3))
             centers.append(c.copy())
         else:
-            raise InputError("modes.spin_rates", "given", f"a system of flexible bodies and "
-                             f"point masses (body {name!r} is a rigid body)")  # fmt: skip
+            raise RancfError(f"modes.spin_rates: a spin needs a system of flexible bodies and "
+                             f"point masses; {name!r} is a rigid body")  # fmt: skip
     w = sp.block_diag(blocks_w, format="csr")
     mass = sp.block_diag(blocks_m, format="csr")
     return FrameTerms(w, np.concatenate(centers), mass)
