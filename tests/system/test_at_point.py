@@ -86,3 +86,25 @@ def test_at_point_refuses_other_kinds_and_at_together():
         text = base + f'[[sensors]]\nname = "bad"\n{extra}\n'
         with pytest.raises(ScenarioError, match="at_point"):
             Scenario.from_dict(tomllib.loads(text))
+
+
+def test_a_rod_s_twist_at_a_fixed_point(tmp_path):
+    """A rod (0.5 m, 8 elements) clamped at its start, twisted by a 0.01 N m tip torque: the
+    ``twist`` at the fixed point (0.3, 0.02, 0), beside the rod, is that of the material at
+    s = 0.3 m, ``T s / GJ`` (1e-5; measured 5e-7) and 0.6 of the tip's (1e-6)."""
+    text = (
+        '[geometry]\nkind = "line"\nstart = [0.0, 0.0, 0.0]\nend = [0.5, 0.0, 0.0]\n'
+        '[mesh]\nelements = 8\nelement = "rod"\n[section]\nradius = 0.01\n'
+        "[material]\ndensity = 1000.0\nyoungs_modulus = 1.0e7\npoisson_ratio = 0.25\n"
+        '[[supports]]\nat = "start"\nkind = "clamp"\n'
+        '[[loads.point]]\nat = "end"\nmoment = [0.01, 0.0, 0.0]\n'
+        '[[sensors]]\nname = "phi"\nkind = "twist"\nat_point = [0.3, 0.02, 0.0]\n'
+        '[[sensors]]\nname = "phi_end"\nkind = "twist"\nat = "end"\n'
+    )
+    (tmp_path / "t.toml").write_text(text)
+    assert main(["static", str(tmp_path / "t.toml"), "--out", str(tmp_path / "run")]) == 0
+    rows = np.loadtxt(tmp_path / "run" / "sensors.csv", delimiter=",", skiprows=1, ndmin=2)
+    phi, phi_end = rows[-1, 1], rows[-1, 2]
+    gj = 1.0e7 / 2.5 * np.pi * 0.01**4 / 2
+    assert phi == pytest.approx(0.01 * 0.3 / gj, rel=1e-5)
+    assert phi == pytest.approx(0.6 * phi_end, rel=1e-6)
