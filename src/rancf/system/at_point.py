@@ -38,6 +38,8 @@ __all__ = ["NearestPoint", "nearest_point", "COARSE"]
 COARSE = 16
 #: Newton iterations of the refinement (converged to round-off well before).
 NEWTON = 12
+#: Rows searched at once.
+CHUNK = 64
 
 
 class NearestPoint:
@@ -48,68 +50,76 @@ class NearestPoint:
             raise InputError("sensors.at_point", "a beam body", "cable or rod elements")
         self.model = model
         self.xi = np.linspace(0.0, 1.0, COARSE + 1)
+        self._n0 = cable_shape_functions(model.mesh.weights, model.mesh.scales, self.xi)[0]
 
-    def _element(self, q: NDArray) -> NDArray[np.float64]:
-        m = self.model
-        nodes = q.reshape(m.n_nodes, m.dpn)[:, : 2 * m.dim]
-        return m.mesh.element_nodal(nodes)  # (n_el, 4, dim)
+    def _basis(self, e: NDArray, xi: NDArray) -> list[NDArray]:
+        """``[N, N_ξ, N_ξξ]`` ``(k, 4)`` of element ``e[i]`` at ``xi[i]`` for every row ``i``."""
+        m, i = self.model, np.arange(e.size)
+        return [f[i, i] for f in cable_shape_functions(m.mesh.weights[e], m.mesh.scales[e], xi)]
 
-    def find(self, q: NDArray, p: NDArray) -> tuple[int, float, NDArray, float]:
-        """``(element, ξ, r(ξ), distance)`` of the point nearest to ``p`` in the body's full
-        coordinates ``q`` (module docstring)."""
+    def find(self, qs: NDArray, p: NDArray) -> tuple[NDArray, NDArray, NDArray, NDArray]:
+        """For every row of the body's full coordinates ``qs`` ``(k, n)``: the element, ``ξ``,
+        the point ``r(ξ)`` ``(k, dim)`` nearest to ``p`` and its distance (module docstring);
+        rows :data:`CHUNK` at a time."""
         m = self.model
-        e_nodal = self._element(q)
-        n0 = cable_shape_functions(m.mesh.weights, m.mesh.scales, self.xi)[0]
-        pts = np.einsum("eqk,ekd->eqd", n0, e_nodal)
-        dist = np.linalg.norm(pts - p, axis=-1)
-        e, k = np.unravel_index(int(np.argmin(dist)), dist.shape)
-        e, xi = int(e), float(self.xi[k])
+        qs = np.atleast_2d(np.asarray(qs, dtype=float))
+        nodes = qs.reshape(len(qs), m.n_nodes, m.dpn)[:, :, : 2 * m.dim]
+        nodes = nodes.reshape(len(qs), m.n_nodes, 2, m.dim)
+        en = np.concatenate([nodes[:, :-1], nodes[:, 1:]], axis=2)  # (k, n_el, 4, dim)
+        parts = [self._find(en[c : c + CHUNK], p) for c in range(0, len(qs), CHUNK)]
+        return tuple(np.concatenate(x) for x in zip(*parts, strict=True))  # type: ignore[return-value]
+
+    def _find(self, en: NDArray, p: NDArray) -> tuple[NDArray, NDArray, NDArray, NDArray]:
+        m, k = self.model, en.shape[0]
+        rows = np.arange(k)
+        pts = np.einsum("eqm,kemd->keqd", self._n0, en)
+        flat = np.argmin(np.linalg.norm(pts - p, axis=-1).reshape(k, -1), axis=1)
+        e, j = np.divmod(flat, self.xi.size)
+        xi = self.xi[j].astype(float)
         for _ in range(NEWTON):
-            w, sc = m.mesh.weights[e : e + 1], m.mesh.scales[e : e + 1]
-            f0, f1, f2 = (f[0, 0] for f in cable_shape_functions(w, sc, np.array([xi])))
-            r, r1, r2 = f0 @ e_nodal[e], f1 @ e_nodal[e], f2 @ e_nodal[e]
-            d = (r - p) @ r1
-            dd = r1 @ r1 + (r - p) @ r2
-            step = -d / dd if dd > 0 else -np.sign(d) * 0.25
-            new = xi + step
-            if new < 0.0 and e > 0:  # on to the neighbour
-                e, xi = e - 1, 1.0
-                continue
-            if new > 1.0 and e < m.n_el - 1:
-                e, xi = e + 1, 0.0
-                continue
-            new = min(max(new, 0.0), 1.0)
-            if abs(new - xi) < 1e-14:
-                xi = new
-                break
+            f0, f1, f2 = self._basis(e, xi)
+            nodal = en[rows, e]  # (k, 4, dim)
+            r, r1, r2 = (np.einsum("km,kmd->kd", f, nodal) for f in (f0, f1, f2))
+            d = np.sum((r - p) * r1, axis=1)
+            dd = np.sum(r1 * r1, axis=1) + np.sum((r - p) * r2, axis=1)
+            new = xi + np.where(dd > 0, -d / np.where(dd > 0, dd, 1.0), -np.sign(d) * 0.25)
+            back, ahead = (new < 0.0) & (e > 0), (new > 1.0) & (e < m.n_el - 1)
+            new = np.clip(new, 0.0, 1.0)
+            new[back], new[ahead] = 1.0, 0.0  # on to the neighbour
+            e = e - back + ahead
+            moved = np.abs(new - xi).max(initial=0.0)
             xi = new
-        w, sc = m.mesh.weights[e : e + 1], m.mesh.scales[e : e + 1]
-        r = cable_shape_functions(w, sc, np.array([xi]))[0][0, 0] @ e_nodal[e]
-        return e, xi, r, float(np.linalg.norm(r - p))
+            if moved < 1e-14 and not (back.any() or ahead.any()):
+                break
+        f0 = self._basis(e, xi)[0]
+        r = np.einsum("km,kmd->kd", f0, en[rows, e])
+        return e, xi, r, np.linalg.norm(r - p, axis=1)
 
 
 def nearest_point(
-    finders: dict[str, NearestPoint], offsets: dict[str, slice], q: NDArray, p: NDArray
-) -> tuple[str, int, float, NDArray]:
-    """``(body, element, ξ, r)`` nearest to ``p`` over the bodies of ``finders`` in the
-    system's full coordinates ``q`` (a row)."""
-    best: tuple[float, str, int, float, NDArray] | None = None
-    for name, f in finders.items():
-        e, xi, r, d = f.find(q[offsets[name]], p)
-        if best is None or d < best[0]:
-            best = (d, name, e, xi, r)
-    assert best is not None
-    return best[1], best[2], best[3], best[4]
+    finders: dict[str, NearestPoint], offsets: dict[str, slice], qs: NDArray, p: NDArray
+) -> tuple[list[str], NDArray, NDArray, NDArray]:
+    """For every row of the system's full coordinates ``qs`` ``(k, n)``: the body, element,
+    ``ξ`` and point ``r`` nearest to ``p`` over the bodies of ``finders``."""
+    found = {name: f.find(qs[:, offsets[name]], p) for name, f in finders.items()}
+    names = list(found)
+    dist = np.array([found[n][3] for n in names])  # (n_bodies, k)
+    best = np.argmin(dist, axis=0)
+    k = np.arange(qs.shape[0])
+    e = np.array([found[n][0] for n in names])[best, k]
+    xi = np.array([found[n][1] for n in names])[best, k]
+    r = np.array([found[n][2] for n in names])[best, k]
+    return [names[b] for b in best], e, xi, r
 
 
-def at_point_reader(out: Any, sen: Any) -> Any:
+def at_point_reader(out_: Any, sen: Any) -> Any:
     """The reader of an ``at_point`` sensor (:class:`rancf.system.sensors.SensorReader`)."""
-    s = out.system
+    s = out_.system
     p = np.asarray(sen.point, dtype=float)
     key = f"sensors.{sen.name}"
     if p.size != s.dim:
         raise InputError(f"{key}.at_point", list(p), f"{s.dim} numbers [m]")
-    flex = {name: b for name, b in out.flex}
+    flex = {name: b for name, b in out_.flex}
     if getattr(sen, "body", None) is not None:
         if sen.body not in flex:
             raise InputError(f"{key}.body", sen.body, f"a flexible body: {', '.join(flex)}")
@@ -122,22 +132,23 @@ def at_point_reader(out: Any, sen: Any) -> Any:
     offsets = {k: s.body_slice(k) for k in flex}
 
     def read(blk: Any) -> NDArray:
-        rows = []
-        for i, q in enumerate(blk[1]):
-            name, e, xi, r = nearest_point(finders, offsets, q, p)
-            if sen.kind == "position":
-                rows.append(r)
-            elif sen.kind == "axial_force":
-                sampler = out.samplers[name]
-                along = out.body_along(blk[3]["s"][i : i + 1], name)[0, :, 1]
-                u = xi * sampler.per_element
+        qs = np.asarray(blk[1], dtype=float)
+        bodies, e, xi, r = nearest_point(finders, offsets, qs, p)
+        if sen.kind == "position":
+            return r
+        out = np.empty(len(qs))
+        for i, name in enumerate(bodies):
+            if sen.kind == "axial_force":
+                sampler = out_.samplers[name]
+                along = out_.body_along(blk[3]["s"][i : i + 1], name)[0, :, 1]
+                u = xi[i] * sampler.per_element
                 k = min(int(np.floor(u)), sampler.per_element - 1)
-                j = e * sampler.per_element + k
-                rows.append([(1 - (u - k)) * along[j] + (u - k) * along[j + 1]])
+                j = e[i] * sampler.per_element + k
+                out[i] = (1 - (u - k)) * along[j] + (u - k) * along[j + 1]
             else:  # twist: the nodal angles, linear in ξ
                 b = flex[name]
-                phi = q[offsets[name]].reshape(b.n_nodes, b.dpn)[:, 6]
-                rows.append([(1 - xi) * phi[e] + xi * phi[e + 1]])
-        return np.array(rows, dtype=float).reshape(len(blk[0]), -1)
+                phi = qs[i, offsets[name]].reshape(b.n_nodes, b.dpn)[:, 6]
+                out[i] = (1 - xi[i]) * phi[e[i]] + xi[i] * phi[e[i] + 1]
+        return out[:, None]
 
     return read
