@@ -67,7 +67,7 @@ def test_api_run_plots_without_its_scenario(tmp_path, element):
         text=True,
     )
     assert p.returncode == 0 and p.stderr == ""  # was: "no scenario found; no radius field"
-    assert len(p.stdout.splitlines()) == 3
+    assert len(p.stdout.splitlines()) == 4  # sensors, energy, envelope, configurations
     run = rancf.post.system_run.load_run(tmp_path / "run").body()
     assert run.radius == pytest.approx(0.02, rel=1e-15)
     if element == "beam":  # the reference tangents, not the chord directions

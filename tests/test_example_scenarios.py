@@ -51,7 +51,8 @@ def test_example_run_of_the_cantilever_writes_a_small_report(tmp_path):
     assert modes["frequencies_hz"][0] == pytest.approx(1.9385, rel=1e-3)  # docs: 1.938485 Hz
     html = (out / "report.html").read_text()
     assert "the shipped scenario cantilever" in html and "Paper says" not in html
-    assert html.count("data:image/png;base64,") == 3  # load path: sensors, configurations; modes
+    # load path: sensors, envelope, configurations; modes
+    assert html.count("data:image/png;base64,") == 4
     assert "Static equilibrium: 4 load steps" in html and "Natural frequencies" in html
     report = json.loads((out / "report.json").read_text())
     assert report["complete"] and list(report["studies"]) == ["cantilever"]

@@ -23,6 +23,7 @@ SECTIONS = (
     (DOCS / "guide" / "rods.md", "Rods with torsion"),
     (DOCS / "guide" / "rods.md", "Rod dynamics"),
     (DOCS / "guide" / "studies.md", "Where exact geometry pays"),
+    (DOCS / "guide" / "statics.md", "Modes about a steady rotation"),
 )
 
 
@@ -33,6 +34,7 @@ def test_page_console_examples(tmp_path, capsys, monkeypatch):
     (tmp_path / "rod.toml").write_text(blocks(section(*SECTIONS[3]), "toml")[0])
     dynamics = section(*SECTIONS[4])
     (tmp_path / "top.toml").write_text(blocks(dynamics, "toml")[0])
+    (tmp_path / "blade.toml").write_text(blocks(section(*SECTIONS[6]), "toml")[0])
     n = 0
     for where in SECTIONS:
         for block in blocks(section(*where), "console"):

@@ -73,7 +73,7 @@ def test_plot_and_animation_frames(run_dir, tmp_path, capsys):
 
     assert main(["plot", str(run_dir), "--out", str(tmp_path / "p")]) == 0
     names = sorted(p.name for p in (tmp_path / "p").glob("*.png"))
-    assert names == ["configurations.png", "energy.png", "sensors.png"]
+    assert names == ["configurations.png", "energy.png", "envelope_body.png", "sensors.png"]
     gif = tmp_path / "m.gif"
     assert main(["animate", str(run_dir), "--out", str(gif), "--fps", "5", "--every", "4"]) == 0
     assert Image.open(gif).n_frames == 6  # 0, 4, ..., 20

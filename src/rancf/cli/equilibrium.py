@@ -152,10 +152,12 @@ def _cmd_modes(args: argparse.Namespace) -> int:
             largest = max(largest, eps)
     notes = _warn(run_warnings(system, static=True, largest=largest))
     res = natural_modes(system, y, count, lam)
+    spin = sc.data["modes"]
+    shapes_plot = plot if plot is None or not spin["spin_rates"] else _shapes_path(plot)
     if plot is not None:
         from rancf.post.plots import plot_modes
 
-        plot_modes(system, res, plot, y)
+        plot_modes(system, res, shapes_plot, y)
     out = {
         "frequencies_hz": res.frequencies_hz.tolist(),
         "growth_rates_per_s": res.growth_rates.tolist(),
@@ -166,6 +168,19 @@ def _cmd_modes(args: argparse.Namespace) -> int:
         "constraints": system.m,
         "warnings": notes,
     }
+    if spin["spin_rates"]:
+        from rancf.solvers.campbell import campbell
+
+        cam = campbell(system, spin["spin_axis"], spin["spin_center"], spin["spin_rates"],
+                       count, loads=about == "static", load_steps=sc.solver["load_steps"],
+                       method=sc.solver["static_method"])  # fmt: skip
+        out["campbell"] = {"spin_rates": cam.spin_rates.tolist(),
+                           "frequencies_hz": cam.frequencies_hz.tolist(),
+                           "growth_rates_per_s": cam.growth_rates.tolist()}  # fmt: skip
+        if plot is not None:
+            from rancf.post.plots import plot_campbell
+
+            plot_campbell(cam, plot)
     if args.json:
         print(strict_json(out).rstrip())
     else:
@@ -189,9 +204,27 @@ def _cmd_modes(args: argparse.Namespace) -> int:
                 'curvature does not resist: use mesh.element = "rod" (torsion and out-of-plane '
                 "bending stiffness) for curved spatial structures (docs/guide/rods.md)."
             )
+        if "campbell" in out:
+            _print_campbell(out["campbell"])
     if plot is not None:  # after the JSON object, on standard error: stdout stays one object
-        print(f"mode shapes written to {plot}", file=sys.stderr if args.json else sys.stdout)
+        stream = sys.stderr if args.json else sys.stdout
+        if "campbell" in out:
+            print(f"Campbell diagram written to {plot}", file=stream)
+        print(f"mode shapes written to {shapes_plot}", file=stream)
     return 0
+
+
+def _shapes_path(plot: Path) -> Path:
+    """Where the mode shapes go when ``--plot`` draws the Campbell diagram: ``NAME-shapes``."""
+    plot = Path(plot)
+    return plot.with_name(f"{plot.stem}-shapes{plot.suffix}")
+
+
+def _print_campbell(cam: dict[str, Any]) -> None:
+    """The Campbell table: one row per spin rate."""
+    print("frequencies about the steady rotation (Hz) against the spin rate (rad/s):")
+    for rate, row in zip(cam["spin_rates"], cam["frequencies_hz"], strict=True):
+        print(f"  {rate:10.4g}  " + " ".join(f"{f:11.6f}" for f in row))
 
 
 def add_parsers(sub: Any) -> None:

@@ -13,7 +13,7 @@ from rancf.bodies.flexible import Model
 from rancf.elements.cable import cable_shape_functions
 from rancf.system import System
 
-__all__ = ["centerline", "plot_modes", "pyplot", "save_figure"]
+__all__ = ["centerline", "plot_campbell", "plot_modes", "pyplot", "save_figure"]
 
 
 def pyplot() -> Any:
@@ -70,6 +70,28 @@ def plot_modes(
             title += f", growth {growth[i]:.3g} 1/s"
         titles.append(title)
     return plot_shapes(model, modal.modes, titles, path, y)
+
+
+def plot_campbell(res: Any, path: str | Path) -> Path:
+    """The Campbell diagram: each frequency index against the spin rate (rows sorted on their
+    own, so crossing modes swap lines), with the lines ``f = k Ω / 2π`` (k = 1, 2) of the
+    once- and twice-per-revolution excitations."""
+    plt = pyplot()
+    fig, ax = plt.subplots(figsize=(6.4, 4.8))
+    rates = np.asarray(res.spin_rates, dtype=float)
+    freqs = np.asarray(res.frequencies_hz, dtype=float)
+    for i in range(freqs.shape[1]):
+        ax.plot(rates, freqs[:, i], "o-", ms=3, label=f"mode {i + 1}")
+    top = float(rates.max(initial=0.0))
+    for k in (1, 2):
+        ax.plot([0.0, top], [0.0, k * top / (2 * np.pi)], "k--", lw=0.7, alpha=0.5)
+    ax.set_xlabel("spin rate Ω [rad/s]")
+    ax.set_ylabel("frequency [Hz]")
+    ax.set_ylim(0.0, 1.05 * float(freqs.max(initial=1.0)))
+    ax.set_title("Campbell diagram (dashed: 1 and 2 per revolution)")
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    return save_figure(fig, path)
 
 
 def plot_buckling(

@@ -14,7 +14,8 @@ One writer for every run (a system of one body is a one-body run):
 * every flexible body's ``bodies/NAME/results.npz``: its coordinates, accelerations,
   energies, support reactions, section values (``along`` and ``along_s``), rods' ``directors``,
   the mesh's ``weights`` and ``scales`` and the metadata readers need
-  (:mod:`rancf.post.run_data`).
+  (:mod:`rancf.post.run_data`), and ``bodies/NAME/envelope.csv``: the extremes of its section
+  values over the run (:mod:`rancf.post.envelope`), gathered while ``along`` is written.
 
 The layout is the same for every run: a run of a one-body file is a system of one body
 (``bodies/body``), read by :func:`rancf.post.system_run.load_run`.
@@ -38,6 +39,7 @@ from numpy.typing import NDArray
 from rancf.atomic import FileSet
 from rancf.bodies.flexible import Model
 from rancf.bodies.rigid import PointMass
+from rancf.post.envelope import Envelope
 from rancf.system.contact import obstacle_records
 from rancf.system.outputs import SystemOutputs
 
@@ -196,14 +198,17 @@ def _director_cut(outputs: SystemOutputs, name: str) -> slice:
 
 
 def _body_arrays(
-    z: zipfile.ZipFile, outputs: SystemOutputs, name: str, n: int, chunks: list,
-    m1: NDArray | None,
+    z: zipfile.ZipFile, outputs: SystemOutputs, name: str, t: NDArray, chunks: list,
+    m1: NDArray | None, envelope: Envelope,
 ) -> None:  # fmt: skip
-    """The arrays of one flexible body a reader needs besides its states."""
+    """The arrays of one flexible body a reader needs besides its states; the section values
+    pass through ``envelope``."""
+    n = t.shape[0]
     model = outputs.system.bodies[name]
     assert isinstance(model, Model)
     along_shape = (n, outputs.samplers[name].n_points, len(outputs.section_names[name]))
-    _npy(z, "along", along_shape, (outputs.body_along(c["s"], name) for _, c in chunks))
+    _npy(z, "along", along_shape,
+         (envelope.update(t[r], outputs.body_along(c["s"], name)) for r, c in chunks))  # fmt: skip
     if model.element == "rod" and m1 is not None:
         cut = _director_cut(outputs, name)
         _npy(z, "directors", (n, model.n_nodes, 3), (m1[r, cut] for r, _ in chunks))
@@ -235,8 +240,11 @@ def _body_folder(
             _npy(z, key, (n,), (c["eb"][:, 3 * k + j] for _, c in chunks))
         _npy(z, "sensors", (n, 0), (np.empty((r.stop - r.start, 0)) for r, _ in chunks))
         _npy(z, "reactions", (n, rcols.stop - rcols.start), (c["r"][:, rcols] for _, c in chunks))
-        _body_arrays(z, outputs, name, n, chunks, m1)
+        envelope = Envelope(outputs.samplers[name].s, outputs.section_names[name])
+        _body_arrays(z, outputs, name, t, chunks, m1, envelope)
         _small(z, {"reference": model.q0, "metadata": np.array(json.dumps(meta))})
+    with files.file(folder / "envelope.csv") as fh:
+        envelope.write(fh)
 
 
 def _support_columns(outputs: SystemOutputs, name: str) -> slice:

@@ -189,8 +189,10 @@ def load_run(path: str | Path) -> SystemRun:
 
 
 def plot_system_run(run: SystemRun, out_dir: str | Path, n_configurations: int = 6) -> list[Path]:
-    """``sensors.png``, ``energy.png`` and ``configurations.png`` (every body at
+    """``sensors.png``, ``energy.png``, every flexible body's ``envelope_NAME.png``
+    (:mod:`rancf.post.envelope`) and ``configurations.png`` (every body at
     ``n_configurations`` evenly spaced stored times), replaced together."""
+    from rancf.post.envelope import plot_envelopes
     from rancf.post.run_plots import _draw, _space_axes, plot_series
 
     out = Path(out_dir)
@@ -198,6 +200,7 @@ def plot_system_run(run: SystemRun, out_dir: str | Path, n_configurations: int =
     plt = pyplot()
     with FileSet() as files:
         written = plot_series(run, out, files)
+        written += plot_envelopes(run.path, list(run.flexible), out, files)
         idx = np.unique(np.linspace(0, run.t.size - 1, max(n_configurations, 1)).round())
         frames = [run.shapes(int(i)) for i in idx]
         allp = np.concatenate([p for f in frames for _, p in f])

@@ -194,11 +194,12 @@ def _sensors(c: _Context, supports: list[ResolvedPlace]) -> None:
             places = [c.place(f"{key}.between[{k}]", v) for k, v in enumerate(s.between)]
         elif s.at is not None:
             places = [c.place(f"{key}.at", s.at)]
+        _size(f"{key}.at_point", s.at_point, c.dim)
         els = [c.element(p) for p in places]
-        if s.kind == "twist" and els[0] != "rod":
+        if s.kind == "twist" and places and els[0] != "rod":
             raise fail(f"{key}.kind", f"'twist' needs rod elements (mesh.element = \"rod\"), not "
                        f"{els[0]!r}")  # fmt: skip
-        if s.kind == "axial_force" and places[0].where != "node":
+        if s.kind == "axial_force" and places and places[0].where != "node":
             raise fail(f"{key}.at", "an axial force is measured at a node of a flexible body")
         if s.kind == "reaction":
             if s.joint is not None and s.joint not in joints:

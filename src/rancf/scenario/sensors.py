@@ -15,6 +15,10 @@ A sensor names one monitored quantity.  Kinds and their keys:
 * of contact: ``contact_force`` (the force of the obstacle ``obstacle = NAME`` on
   the bodies, normal and friction parts together) [N].
 
+``position``, ``twist`` and ``axial_force`` take ``at_point = [x, y(, z)]`` instead of ``at``:
+they read the material point nearest to that fixed point in space, found anew at every output
+(a belt's span, a line running through a guide: :mod:`rancf.system.at_point`).
+
 Column names: ``NAME`` for one number, ``NAME_x``, ``NAME_y`` (, ``NAME_z``) for vectors.
 """
 
@@ -30,7 +34,7 @@ from pydantic import Field, model_validator
 from rancf.errors import InputError
 from rancf.scenario.base import Name, PlacePair, PlaceValue, Table, fail, vector
 
-__all__ = ["Sensor", "SensorTable", "SENSOR_KINDS", "SYSTEM_SENSOR_KINDS"]
+__all__ = ["Sensor", "SensorTable", "SENSOR_KINDS", "SYSTEM_SENSOR_KINDS", "AT_POINT_KINDS"]
 
 #: Sensor kinds.
 SENSOR_KINDS = ("distance", "position", "twist", "angular_momentum", "energy", "reaction",
@@ -39,6 +43,8 @@ SENSOR_KINDS = ("distance", "position", "twist", "angular_momentum", "energy", "
 SYSTEM_SENSOR_KINDS = ("reaction", "axial_force", "angle", "center_of_mass", "momentum",
                        "contact_force")  # fmt: skip
 _SCALAR = ("distance", "twist", "energy", "axial_force")
+#: The kinds that take ``at_point`` (a material point found anew at every output).
+AT_POINT_KINDS = ("position", "twist", "axial_force")
 
 
 @dataclass(frozen=True)
@@ -47,7 +53,8 @@ class Sensor:
 
     ``nodes``: the node indices of ``at``/``between`` in a one-body model; ``places``: the places
     as written (systems); ``about``: the point of an angular momentum; ``joint``, ``body``: what
-    a reaction, angle, centre of mass or momentum is of.
+    a reaction, angle, centre of mass or momentum is of (with ``point``: the flexible body
+    searched); ``point``: ``at_point``, the fixed point whose nearest material point is read.
     """
 
     name: str
@@ -58,6 +65,7 @@ class Sensor:
     joint: str | None = None
     body: str | None = None
     obstacle: str | None = None
+    point: tuple[float, ...] | None = None
 
     def columns(self, dim: int) -> list[str]:
         """CSV column names of the sensor's scalars."""
@@ -95,6 +103,11 @@ class SensorTable(Table):
     about: vector(2, 3) | None = Field(
         None, description="angular_momentum: the point [m] (default the origin)"
     )
+    at_point: vector(2, 3) | None = Field(
+        None,
+        description="position, twist (rods), axial_force: instead of at, the material point "
+        "nearest to this fixed point in space [m], found anew at every output",
+    )
     joint: Name | None = Field(None, description="reaction: the joint's name")
     obstacle: Name | None = Field(None, description="contact_force: the obstacle's name")
     body: Name | None = Field(
@@ -119,6 +132,12 @@ class SensorTable(Table):
                 if self[k] is not None:
                     raise fail(k, "not for a contact_force sensor (the obstacle's total force)")
             return self
+        if self.at_point is not None:
+            if kd not in AT_POINT_KINDS:
+                raise fail("at_point", f"applies to {', '.join(AT_POINT_KINDS)} sensors only")
+            if self.at is not None or self.between is not None:
+                raise fail("at_point", "instead of at (not both)")
+            return self  # body = NAME: the flexible body searched (default all)
         if self.body is not None and kd not in ("angle", "center_of_mass", "momentum"):
             raise fail("body", "applies to angle, center_of_mass and momentum sensors only")
         if kd in ("angular_momentum", "energy", "angle", "center_of_mass", "momentum"):
@@ -150,5 +169,6 @@ class SensorTable(Table):
     def record(self, nodes: tuple[int, ...] = ()) -> Sensor:
         """The :class:`Sensor` of this table (``nodes``: its places as node indices)."""
         about = None if self.about is None else tuple(self.about)
+        point = None if self.at_point is None else tuple(self.at_point)
         return Sensor(self.name, self.kind, nodes, about, self.places(), self.joint, self.body,
-                      self.obstacle)  # fmt: skip
+                      self.obstacle, point)  # fmt: skip

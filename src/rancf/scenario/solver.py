@@ -13,7 +13,17 @@ from pydantic import Field, model_validator
 
 from rancf.errors import InputError
 from rancf.options import MAX_LOAD_STEPS, MAX_NEWTON
-from rancf.scenario.base import Flag, Positive, Table, fail, integer, number, show
+from rancf.scenario.base import (
+    Flag,
+    NonNegative,
+    Positive,
+    Table,
+    fail,
+    integer,
+    number,
+    show,
+    vector,
+)
 
 if TYPE_CHECKING:
     from rancf.options import DynamicOptions
@@ -98,3 +108,16 @@ class ModesTable(Table):
         "reference",
         description='linearize about the "reference" or the "static" equilibrium',
     )
+    spin_axis: vector(3) = Field(
+        [0.0, 0.0, 1.0], description="axis of the steady rotation of spin_rates (3D)"
+    )
+    spin_center: vector(3) = Field([0.0, 0.0, 0.0], description="a point on the spin axis [m]")
+    spin_rates: list[NonNegative] = Field(
+        [], description="steady rotation rates for a Campbell diagram [rad/s]"
+    )
+
+    @model_validator(mode="after")
+    def _axis(self) -> ModesTable:
+        if self.spin_rates and not any(self.spin_axis):
+            raise fail("spin_axis", f"a non-zero vector (got {show(self.spin_axis)})")
+        return self

@@ -28,7 +28,7 @@ from numpy.typing import NDArray
 from rancf.errors import RancfError
 from rancf.system import System
 
-__all__ = ["Linearized", "linearize"]
+__all__ = ["Linearized", "linearize", "system_jacobian"]
 
 
 @dataclass(frozen=True)
@@ -66,7 +66,7 @@ class Linearized:
         return sp.block_diag([self.mass, sp.csr_matrix((m, m))]).tocsc()
 
 
-def _jacobian(
+def system_jacobian(
     system: System, y: NDArray, lam: NDArray, ck: float, ca: float, load_factor: float,
     amplitude: bool, t: float,
 ) -> sp.csr_matrix:  # fmt: skip
@@ -105,8 +105,8 @@ def linearize(
     n, m = system.n, system.m
     free = ~system.fixed
     idx = np.flatnonzero(free)
-    j = _jacobian(system, y, lam, 1.0, 0.0, load_factor, amplitude, t)
-    mass = _jacobian(system, y, lam, 0.0, 1.0, load_factor, amplitude, t)
+    j = system_jacobian(system, y, lam, 1.0, 0.0, load_factor, amplitude, t)
+    mass = system_jacobian(system, y, lam, 0.0, 1.0, load_factor, amplitude, t)
     k = j[idx][:, idx].tocsr()
     g = j[n : n + m][:, idx].tocsr()
     gt = j[idx][:, n : n + m].tocsr()

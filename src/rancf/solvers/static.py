@@ -50,7 +50,7 @@ from rancf.solvers.relaxation import relax
 from rancf.solvers.system_equilibrium import SystemEquilibrium
 from rancf.system import System, as_system
 
-__all__ = ["StaticResult", "solve_static", "StaticMethod", "start_state"]
+__all__ = ["StaticResult", "solve_static", "solve_equilibrium", "StaticMethod", "start_state"]
 
 StaticMethod = Literal["load", "arc_length"]
 
@@ -127,7 +127,24 @@ def solve_static(
     start = time.perf_counter()
     system = as_system(model)
     system.reset_triads()
-    problem = SystemEquilibrium(system, at_time)
+    return solve_equilibrium(
+        SystemEquilibrium(system, at_time), load_steps, tol, max_iter, on_step, method, start
+    )
+
+
+def solve_equilibrium(
+    problem: SystemEquilibrium,
+    load_steps: int = 10,
+    tol: float = 1e-10,
+    max_iter: int = 30,
+    on_step: Callable[[float, NDArray[np.float64]], None] | None = None,
+    method: StaticMethod = "load",
+    start: float | None = None,
+) -> StaticResult:
+    """The path of a static ``problem`` (its system's rod triads reset before it was built),
+    by the method of :func:`solve_static`, timed from ``start`` (default now)."""
+    start = time.perf_counter() if start is None else start
+    system = problem.system
     path = PathState(problem, on_step)
     used = method
     for stage, (_, end) in enumerate(problem.stages):

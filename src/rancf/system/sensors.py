@@ -15,7 +15,9 @@ Kinds (column names ``NAME`` for one number, ``NAME_x``, ``NAME_y`` (, ``NAME_z`
 * ``angle`` of a rigid body: its angle [rad] in 2D (continuous, as integrated), its rotation
   vector in 3D;
 * ``center_of_mass`` [m] and ``momentum`` (linear, [kg m/s]) of the body ``body`` or, without
-  it, of the whole system.
+  it, of the whole system;
+* ``position``, ``twist`` and ``axial_force`` with ``at_point``: at the material point nearest
+  to a fixed point in space (:mod:`rancf.system.at_point`).
 
 Mass, centre of mass and momentum of a flexible body: a rigid translation ``e_i`` moves every
 node's position by ``e_i`` and no gradient, and the shape functions' position parts sum to one,
@@ -38,6 +40,7 @@ from rancf.bodies.motion import angular_momentum
 from rancf.bodies.reactions import has_moment
 from rancf.bodies.rigid import PointMass, RigidBody, body_angular_velocity
 from rancf.errors import InputError
+from rancf.system.at_point import at_point_reader
 from rancf.system.places import Place
 
 __all__ = ["SensorReader"]
@@ -127,7 +130,9 @@ class SensorReader:
         kind = sen.kind
         places = tuple(getattr(sen, "places", ()) or getattr(sen, "nodes", ()))
         reader: Reader
-        if kind == "position":
+        if getattr(sen, "point", None) is not None:
+            reader = at_point_reader(self.out, sen)
+        elif kind == "position":
             reader = self._position(sen, places[0])
         elif kind == "distance":
             a, b = (self._position(sen, x) for x in places[:2])
