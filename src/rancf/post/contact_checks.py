@@ -1,0 +1,79 @@
+"""Warnings for contact set up wrongly, read off the system's initial configuration (``y0``):
+the run goes on, each warning is one line (:mod:`rancf.post.checks`).
+
+* A body that starts inside an obstacle by more than its section radius (its centre line is
+  then past the obstacle's surface): the penalty pushes it out with a force of ``k`` times that
+  depth over the whole length inside, at ``t = 0``.
+* A frictional wrap with too few elements.  An element bent onto a pulley of pitch radius
+  ``R_c`` (the obstacle's radius plus the section's) spans the angle ``α = L_e / R_c``.  The
+  capstan with a turning pulley (``tests/system/test_contact_capstan.py``, the Atwood machine:
+  straight elements bend onto the pulley as it turns) transmits too little friction by about
+  ``0.4 α²``: 6 % at ``α = 22.5°``, 1.5 % at 11.25°, 0.3 % at 5.6° (the tension ratio
+  ``e^{μφ}`` of Euler–Eytelwein is reached as ``α → 0``).  Above :data:`WRAP_ANGLE_LIMIT`
+  (15°, about 3 %) the warning gives the number of elements the wrap needs.
+
+The points of a pair are the contact's own (``Contact.points``: the compiled gap at each of the
+``contact_points`` Gauss points per element); a point touches when its gap is below a tenth of
+the section radius and an element is on the wrap when most of its points touch.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from rancf.system import System, contact_outputs
+
+__all__ = ["contact_warnings", "WRAP_ANGLE_LIMIT", "TOUCH_FACTOR"]
+
+#: Largest angle one element may span on a frictional wrap without a warning [rad].
+WRAP_ANGLE_LIMIT = np.radians(15.0)
+#: A point touches an obstacle when its gap is below this fraction of the section radius.
+TOUCH_FACTOR = 0.1
+
+
+def _gaps(system: System, k: int, n_el: int) -> np.ndarray:
+    """Gap ``(n_el, n_c)`` of pair ``k``'s contact points at ``y0``."""
+    n_c = system.contact_points
+    out = np.empty(8 * n_el * n_c)
+    system.contact.points(k, np.ascontiguousarray(system.y0, float), None, out)
+    return out.reshape(n_el, n_c, 8)[..., 3]
+
+
+def contact_warnings(system: System) -> list[str]:
+    """The module docstring's warnings for every (flexible body, obstacle) pair of ``system``."""
+    if system.contact is None or not system.contact_pairs:
+        return []
+    forces = {k: float(np.linalg.norm(c.normal))
+              for k, c in contact_outputs(system, system.y0).items()}  # fmt: skip
+    obstacles = dict(zip(system.obstacle_names, system.obstacles, strict=True))
+    out = []
+    for k, (name, ob_name) in enumerate(system.contact_pairs):
+        body, ob = system.bodies[name], obstacles[ob_name]
+        rt = float(body.section.radius)
+        g = _gaps(system, k, body.n_el)
+        if -g.min() > rt:
+            out.append(
+                f"{name} starts {-g.min():.4g} m inside obstacle {ob_name!r}, more than its "
+                f"section radius {rt:.4g} m: the contact pushes it out with {forces[ob_name]:.4g}"
+                f" N at t = 0; check the obstacle's position and the body's geometry"
+            )  # fmt: skip
+        if ob.kind == "plane" or ob.friction <= 0.0:
+            continue
+        touch = g < TOUCH_FACTOR * rt  # (n_el, n_c)
+        on = touch.mean(axis=1) > 0.5  # elements on the wrap: most of their points touch
+        if not on.any():
+            continue
+        pitch = float(ob.radius) + rt
+        lengths = body.mesh.arc_lengths()
+        alpha = lengths[on] / pitch
+        if alpha.max() <= WRAP_ANGLE_LIMIT * (1.0 + 1e-9):  # round-off of the arc lengths
+            continue
+        wrap = float(alpha.sum())
+        need = int(np.ceil(wrap / WRAP_ANGLE_LIMIT))
+        out.append(
+            f"{name}: {int(on.sum())} element(s) on its {np.degrees(wrap):.3g}° frictional "
+            f"wrap of {ob_name!r} (up to {np.degrees(alpha.max()):.3g}° each): the friction it "
+            f"transmits is low by about {40 * alpha.max() ** 2:.2g} %; give at least {need} "
+            f"elements on the wrap (at most {np.degrees(WRAP_ANGLE_LIMIT):g}° each)"
+        )
+    return out
