@@ -155,7 +155,8 @@ class _Scene:
                 g = dr["surface"]
                 grey = [[0, OBSTACLE_COLOR], [1, OBSTACLE_COLOR]]
                 out.append(go.Surface(x=g[..., 0], y=g[..., 1], z=g[..., 2], name=ob["name"],
-                                      showscale=False, opacity=0.4, colorscale=grey))  # fmt: skip
+                                      showscale=False, showlegend=True, opacity=0.4,
+                                      colorscale=grey))  # fmt: skip
         top = float(np.max(np.linalg.norm(self.forces, axis=-1), initial=0.0))
         scale = 0.5 * self.size / top if top > 0 else 0.0
         for k, (ob, dr) in enumerate(zip(self.obstacles, self.drawn[f], strict=True)):
@@ -192,7 +193,8 @@ def _layout(run: SystemRun, scene: _Scene, labels: list[str]) -> dict[str, Any]:
              for lab in labels]  # fmt: skip
     return {
         "title": f"{run.name}: {len(labels)} of {run.t.size} stored times",
-        "scene": {**axes, "aspectmode": "manual", "aspectratio": ratio, "camera": camera},
+        "scene": {**axes, "aspectmode": "manual", "aspectratio": ratio, "camera": camera,
+                  "domain": {"x": [0.0, 1.0], "y": [0.14, 1.0]}},  # the controls below it
         "margin": {"l": 0, "r": 0, "t": 40, "b": 0},
         "updatemenus": [{"type": "buttons", "showactive": False, "x": 0.02, "y": 0.02,
                          "xanchor": "left", "yanchor": "bottom", "direction": "left",
