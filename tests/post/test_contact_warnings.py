@@ -50,3 +50,22 @@ def test_too_few_elements_on_a_frictional_wrap():
                  "the wrap (at most 15° each)")  # fmt: skip
     assert contact_warnings(capstan(0.3, 12, 3, 0.0)) == []  # 15° each
     assert contact_warnings(capstan(0.0, 4, 3, 0.0)) == []  # frictionless: nothing to transmit
+
+
+def test_two_bodies_crossing_inside_each_other():
+    """Two cables of radius 1 cm crossing at right angles, their centre lines meeting (the depth
+    the contact points see: between one and two radii) or 15 mm apart (5 mm: less than a
+    radius)."""
+
+    def crossing(dz: float) -> System:
+        mat = Material(1000.0, 1e8)
+        a = Model(mesh_line([-0.5, 0, 0], [0.5, 0, 0], 5), "rancf", SECTION, mat)
+        b = Model(mesh_line([0, -0.5, dz], [0, 0.5, dz], 5), "rancf", SECTION, mat)
+        return System({"a": a, "b": b}, body_contacts=[("a", "b")], contact_points=16)
+
+    (w,) = contact_warnings(crossing(0.0))
+    assert w.startswith("a and b start ") and "\n" not in w
+    assert 0.01 < float(w.split()[4]) <= 0.02
+    rest = "inside each other, more than the section radius 0.01 m: the contact pushes them apart"
+    assert w.split(" m ", 1)[1].startswith(rest)
+    assert contact_warnings(crossing(0.015)) == []

@@ -3,7 +3,8 @@ the run goes on, each warning is one line (:mod:`rancf.post.checks`).
 
 * A body that starts inside an obstacle by more than its section radius (its centre line is
   then past the obstacle's surface): the penalty pushes it out with a force of ``k`` times that
-  depth over the whole length inside, at ``t = 0``.
+  depth over the whole length inside, at ``t = 0``.  Likewise two flexible bodies in contact
+  (``body_contacts``) that start inside each other by more than the thinner radius.
 * A frictional wrap with too few elements.  An element bent onto a pulley of pitch radius
   ``R_c`` (the obstacle's radius plus the section's) spans the angle ``α = L_e / R_c``.  The
   capstan with a turning pulley (``tests/system/test_contact_capstan.py``, the Atwood machine:
@@ -39,10 +40,35 @@ def _gaps(system: System, k: int, n_el: int) -> np.ndarray:
     return out.reshape(n_el, n_c, 8)[..., 3]
 
 
-def contact_warnings(system: System) -> list[str]:
-    """The module docstring's warnings for every (flexible body, obstacle) pair of ``system``."""
-    if system.contact is None or not system.contact_pairs:
+def _body_pairs(system: System) -> list[str]:
+    """Pairs of flexible bodies in contact (``body_contacts``) that start inside each other by
+    more than the thinner section radius (the gap of ``src/cpp/body_contact.hpp``: the centre
+    lines' distance less both radii)."""
+    if not system.body_contacts:
         return []
+    bo = np.empty(3 * len(system.body_contacts))
+    system.contact.body_outputs(np.ascontiguousarray(system.y0, float), bo)
+    out = []
+    for k, (a, b) in enumerate(system.body_contacts):
+        r = min(float(system.bodies[x].section.radius) for x in (a, b))
+        depth = -float(bo[3 * k])
+        if depth > r:
+            who = f"{a} starts {depth:.4g} m inside itself" if a == b else (
+                f"{a} and {b} start {depth:.4g} m inside each other")  # fmt: skip
+            out.append(
+                f"{who}, more than the section radius {r:.4g} m: the contact pushes them apart "
+                f"with {float(bo[3 * k + 2]):.4g} N at t = 0; check the bodies' geometry"
+            )
+    return out
+
+
+def contact_warnings(system: System) -> list[str]:
+    """The module docstring's warnings for every (flexible body, obstacle) pair of ``system``
+    and every pair of flexible bodies in contact."""
+    if system.contact is None:
+        return []
+    if not system.contact_pairs:
+        return _body_pairs(system)
     forces = {k: float(np.linalg.norm(c.normal))
               for k, c in contact_outputs(system, system.y0).items()}  # fmt: skip
     obstacles = dict(zip(system.obstacle_names, system.obstacles, strict=True))
@@ -76,4 +102,4 @@ def contact_warnings(system: System) -> list[str]:
             f"transmits is low by about {40 * alpha.max() ** 2:.2g} %; give at least {need} "
             f"elements on the wrap (at most {np.degrees(WRAP_ANGLE_LIMIT):g}° each)"
         )
-    return out
+    return out + _body_pairs(system)
