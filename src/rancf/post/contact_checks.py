@@ -105,7 +105,7 @@ def contact_warnings(system: System) -> list[str]:
         if alpha.max() <= WRAP_ANGLE_LIMIT * (1.0 + 1e-9):  # round-off of the arc lengths
             continue
         wrap = float(alpha.sum())
-        need = int(np.ceil(wrap / WRAP_ANGLE_LIMIT))
+        need = int(np.ceil(wrap / WRAP_ANGLE_LIMIT - 1e-9))
         out.append(
             f"{name}: {int(on.sum())} element(s) on its {np.degrees(wrap):.3g}° frictional "
             f"wrap of {ob_name!r} (up to {np.degrees(alpha.max()):.3g}° each): the motion it "

@@ -94,11 +94,10 @@ def _obstacle_mesh(ob: dict[str, Any], dim: int, size: float, centre: NDArray,
         return {"surface": grid, "anchor": foot}
     if ob["kind"] == "cylinder" and dim == 2:
         return {"line": _circle(p, np.array([0.0, 0.0, 1.0]), r), "anchor": p}
-    th, s = np.meshgrid(np.linspace(0, 2 * np.pi, 37), np.linspace(-1.0, 1.0, 2))
-    if ob["kind"] == "cylinder":
+    if ob["kind"] == "cylinder":  # a tube as long as the scene is wide (at least a radius)
         ring = _circle(np.zeros(3), d, r, 37) / r  # unit radial directions
-        length = max(r, 0.5 * size)
-        grid = p + r * ring[None, :, :] + (length * s)[..., None] * d
+        along = max(r, 0.5 * size) * np.array([-1.0, 1.0])
+        grid = p + r * ring[None, :, :] + along[:, None, None] * d
         return {"surface": grid, "anchor": p}
     ph, th = np.meshgrid(np.linspace(0, np.pi, 19), np.linspace(0, 2 * np.pi, 37))
     unit = np.stack([np.sin(ph) * np.cos(th), np.sin(ph) * np.sin(th), np.cos(ph)], axis=-1)
