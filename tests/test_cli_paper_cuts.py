@@ -30,7 +30,7 @@ def test_modes_plot_says_which_file_it_wrote(tmp_path, capsys):
 
 
 @pytest.mark.parametrize(
-    "command", [["plot"], ["export", "--vtk", "v"], ["animate", "--out", "a.gif"]]
+    "command", [["plot"], ["export", "--vtk", "v"], ["animate", "--out", "a.gif"], ["view"]]
 )
 def test_a_missing_run_folder_is_called_missing(tmp_path, capsys, command, monkeypatch):
     monkeypatch.chdir(tmp_path)

@@ -62,6 +62,7 @@ def _commands(tmp: Path) -> list[list[str]]:
         ["plot", "run"],
         ["plot", "eq", "--out", "eqplots"],
         ["animate", "run", "--out", "run.gif", "--every", "5"],
+        ["view", "run", "--frames", "2"],
         ["example", "copy", "cantilever", "copies"],
         ["sweep", "sweep.toml", "--out", "sw", "--workers", "1", "--quiet"],
     ]

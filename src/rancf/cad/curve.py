@@ -24,12 +24,15 @@ class CadCurve:
     name : str
         Its name in the file ("" when the format or the file gives none).
     curve : NurbsCurve
-        Control points as stored (3 coordinates for DXF, STEP and IGES).
+        Control points in metres (3 coordinates for DXF, STEP and IGES).
+    notes : tuple of str
+        One-line remarks on how it was read (e.g. a DXF's lengths converted to metres).
     """
 
     index: int
     name: str
     curve: NurbsCurve
+    notes: tuple[str, ...] = ()
 
 
 def file_curve(

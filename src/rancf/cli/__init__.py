@@ -44,6 +44,7 @@ COMMAND_MODULES: dict[str, tuple[str, ...]] = {
     "rancf.cli.files": ("example", "report", "schema"),
     "rancf.cli.post": ("export", "plot", "animate", "cad"),
     "rancf.cli.sweep": ("sweep",),
+    "rancf.cli.view": ("view",),
 }
 
 

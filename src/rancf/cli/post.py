@@ -142,6 +142,8 @@ def _cmd_cad(args: argparse.Namespace) -> int:
     from rancf.cad import read_curves
 
     curves = read_curves(args.file)
+    for note in dict.fromkeys(n for c in curves for n in c.notes):
+        print(f"rancf: note: {note}", file=sys.stderr)
     print(" #  name              degree  control points  spans  rational  start -> end")
     for c in curves:
         cv = c.curve

@@ -16,6 +16,7 @@ sec. 6).
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -39,10 +40,13 @@ def reversed_curve(c: NurbsCurve) -> NurbsCurve:
     return NurbsCurve(c.degree, (a + b) - c.knots[::-1], c.points[::-1], c.weights[::-1])
 
 
-def select_cad_curves(file: Path, selection: Any) -> tuple[list[NurbsCurve], list[str]]:
+def select_cad_curves(
+    file: Path, selection: Any
+) -> tuple[list[NurbsCurve], list[str], tuple[str, ...]]:
     """Read ``file`` and pick the curves named by ``selection`` (index, name or list of them).
 
-    Returns the curves (planar ones reduced to 2 coordinates) and their labels.
+    Returns the curves (planar ones reduced to 2 coordinates), their labels and the reader's
+    notes on them (units converted, control points built from fit points; each once).
     """
     from rancf.cad import read_curves
 
@@ -52,6 +56,7 @@ def select_cad_curves(file: Path, selection: Any) -> tuple[list[NurbsCurve], lis
         raise InputError("geometry.curve", selection, "an index, a name or a non-empty list")
     picked: list[NurbsCurve] = []
     labels: list[str] = []
+    notes: list[str] = []
     names = [c.name for c in curves]
     for it in items:
         if isinstance(it, int) and not isinstance(it, bool):
@@ -77,13 +82,14 @@ def select_cad_curves(file: Path, selection: Any) -> tuple[list[NurbsCurve], lis
                 "geometry.curve", it, f"a curve of degree 2 or 3 (it has degree {c.curve.degree})"
             )
         picked.append(c.curve)
+        notes += [n for n in c.notes if n not in notes]
         labels.append(f"curve {c.index}" + (f" ({c.name})" if c.name else ""))
     planar = all(c.dim == 2 or np.all(c.points[:, 2] == 0.0) for c in picked)
     out = []
     for c in picked:
         pts = c.points[:, :2] if planar else pad3(c.points)
         out.append(NurbsCurve(c.degree, c.knots, pts, c.weights))
-    return out, labels
+    return out, labels, tuple(notes)
 
 
 def _where(x: NDArray) -> str:
@@ -160,8 +166,12 @@ def chain_segments(
     return segments, np.array(params)
 
 
-def mesh_curve_chain(curves: list[NurbsCurve], labels: list[str], n_per_span: int = 1) -> CableMesh:
-    """An exact RANCF mesh of a chain of NURBS curves, ``n_per_span`` elements per knot span."""
+def mesh_curve_chain(
+    curves: list[NurbsCurve], labels: list[str], n_per_span: int = 1, notes: tuple[str, ...] = ()
+) -> CableMesh:
+    """An exact RANCF mesh of a chain of NURBS curves, ``n_per_span`` elements per knot span;
+    ``notes`` (the reader's, :func:`select_cad_curves`) join the mesh's remarks."""
     n_per_span = check_element_count(n_per_span, "mesh.elements")
     segments, breaks = chain_segments(curves, labels)
-    return mesh_segments(segments, breaks, n_per_span)
+    mesh = mesh_segments(segments, breaks, n_per_span)
+    return replace(mesh, notes=tuple(notes) + mesh.notes) if notes else mesh

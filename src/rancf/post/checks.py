@@ -7,6 +7,8 @@ and an entry of ``summary.json``'s ``"warnings"`` list.
   :data:`RADIUS_LIMIT` (a tenth) of the body's reference length: e.g. 10 m meant as 10 mm.
 * A curve whose ends touch at a kink: it is an open curve (its ends are not joined), which a
   user who meant a ring should know (:attr:`rancf.mesh.mesh.CableMesh.notes`).
+* Contact set up wrongly (:mod:`rancf.post.contact_checks`): a body that starts deep inside an
+  obstacle, a frictional wrap with too few elements.
 
 The axial strain is the elements' own Green–Lagrange measure at the section sample points
 (:class:`rancf.bodies.section_outputs.SectionSampler`: the compiled core's strain, at
@@ -21,6 +23,7 @@ from numpy.typing import NDArray
 
 from rancf.bodies.flexible import Model
 from rancf.bodies.section_outputs import SectionSampler
+from rancf.post.contact_checks import contact_warnings
 from rancf.system import System
 
 __all__ = [
@@ -50,7 +53,7 @@ def section_warnings(model: Model | System) -> list[str]:
             (f"{name}: " if many else "") + w
             for name, b in zip(model.names, model.flex, strict=False)
             for w in section_warnings(b)
-        ] + _crossing_warnings(model)
+        ] + _crossing_warnings(model) + contact_warnings(model)
     notes = list(
         model.notes
     )  # remarks on the geometry (ends that touch at a kink; C² nodes kept C¹)

@@ -107,18 +107,20 @@ class SystemRun:
         rot = Rotation.from_quat(row[3:7][[1, 2, 3, 0]]).as_matrix()
         return x, rot.T
 
-    def shapes(self, i: int, magnify: float = 1.0) -> list[tuple[str, NDArray[np.float64]]]:
+    def shapes(self, i: int, magnify: float = 1.0,
+               per_element: int = 16) -> list[tuple[str, NDArray[np.float64]]]:  # fmt: skip
         """Every body's drawing ``(name, points (k, 3))`` at stored state ``i`` (module
-        docstring); ``magnify`` scales the flexible bodies' displacements from their reference
-        (rigid bodies are drawn as they are)."""
+        docstring; a flexible body sampled ``per_element`` times per element); ``magnify``
+        scales the flexible bodies' displacements from their reference (rigid bodies are drawn
+        as they are)."""
         out = []
         for b in self.bodies:
             if b["kind"] == "flexible":
                 run = self.flexible[b["name"]]
-                pts = _pad(sample_centerline(run, i).points)
+                pts = _pad(sample_centerline(run, i, per_element).points)
                 if magnify != 1.0:
                     ref = replace(run, q=run.reference[None], v=np.zeros_like(run.reference)[None])
-                    base = _pad(sample_centerline(ref, 0).points)
+                    base = _pad(sample_centerline(ref, 0, per_element).points)
                     pts = base + magnify * (pts - base)
                 out.append((b["name"], pts))
                 continue

@@ -91,7 +91,7 @@ def _mesh(path: str, g: Any, m: MeshTable, prefix: str) -> Any:
     if isinstance(g, CadGeometry):
         from rancf.mesh.cad_geometry import mesh_curve_chain
 
-        return mesh_curve_chain(g.curves, g.labels, m.elements)
+        return mesh_curve_chain(g.curves, g.labels, m.elements, g.notes)
     pts = np.array(g.control_points)
     w = np.ones(len(pts)) if g.weights is None else np.array(g.weights)
     curve = NurbsCurve(g.degree, np.array(g.knots), pts, w)

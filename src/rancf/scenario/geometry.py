@@ -256,6 +256,7 @@ class CadGeometry(_Geometry):
     _curves: list[Any] = PrivateAttr(default_factory=list)
     _labels: list[str] = PrivateAttr(default_factory=list)
     _resolved: str = PrivateAttr("")
+    _notes: tuple[str, ...] = PrivateAttr(default_factory=tuple)
 
     @model_validator(mode="after")
     def _read(self, info: ValidationInfo) -> CadGeometry:
@@ -268,12 +269,13 @@ class CadGeometry(_Geometry):
         if isinstance(sel, list) and not sel:
             raise fail("curve", "must be an index, a name or a non-empty list, got []")
         try:
-            curves, labels = select_cad_curves(file, sel)
+            curves, labels, notes = select_cad_curves(file, sel)
             chain_segments(curves, labels)  # report gaps and kinks now, naming the key
         except InputError as exc:
             key = "file" if exc.parameter == "file" else exc.parameter.removeprefix("geometry.")
             raise fail(key, str(exc)) from None
         self._curves, self._labels, self._resolved = curves, labels, str(file)
+        self._notes = notes
         return self
 
     @property
@@ -289,6 +291,12 @@ class CadGeometry(_Geometry):
     def labels(self) -> list[str]:
         """The curves' labels (``curve 3 (name)``) for errors."""
         return list(self._labels)
+
+    @property
+    def notes(self) -> tuple[str, ...]:
+        """The reader's one-line notes (a DXF's units converted, a spline built from fit
+        points)."""
+        return self._notes
 
     @property
     def resolved_file(self) -> str:

@@ -1,0 +1,46 @@
+"""The sub-command that writes a run's interactive 3D view: ``view``."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+from typing import Any
+
+from rancf.errors import InputError
+
+__all__ = ["add_parsers"]
+
+
+def _cmd_view(args: argparse.Namespace) -> int:
+    from rancf.post.system_run import load_run
+    from rancf.post.view import write_view
+
+    run = load_run(args.run_dir)
+    out = Path(args.out) if args.out is not None else Path(args.run_dir) / "view.html"
+    if not out.parent.is_dir():
+        raise InputError("--out", str(out), "a file in an existing directory")
+    n = write_view(run, out, args.frames, args.samples)
+    print(f"{n} of {run.t.size} stored times -> {out}")
+    return 0
+
+
+def add_parsers(sub: Any) -> None:
+    """Register ``view``."""
+    from rancf.post.view import DEFAULT_FRAMES
+
+    v = sub.add_parser(
+        "view",
+        help="write a run as one interactive 3D HTML page (works offline)",
+        description="One self-contained HTML file: the bodies, obstacles and contact forces in "
+        "3D, with play, pause and a time slider (Plotly, its library inlined: no network "
+        "needed to open it).",
+    )
+    v.add_argument("run_dir", metavar="RUN_DIR", help="a directory written by `rancf simulate`")
+    v.add_argument("--out", default=None, metavar="FILE.html",
+                   help="the page to write (default RUN_DIR/view.html)")  # fmt: skip
+    v.add_argument("--frames", type=int, default=DEFAULT_FRAMES,
+                   help=f"at most this many stored times, evenly spaced (default "
+                   f"{DEFAULT_FRAMES})")  # fmt: skip
+    v.add_argument("--samples", type=int, default=8,
+                   help="points per element along a flexible body (default 8)")  # fmt: skip
+    v.set_defaults(func=_cmd_view)
