@@ -192,6 +192,6 @@ def _fluid(sc: ScenarioView) -> dict[str, Any]:
     for b in sc.bodies:
         if getattr(b, "hydro", None) is not None:
             hydro[b.name] = hydro_value(b.hydro)
-    dist = [DistributedLoad(tuple(d["force"]), d["body"] if sc.bodies else None, d["time"])
+    dist = [DistributedLoad(tuple(d["force"]), d["body"], d["time"])
             for d in sc.data["loads"]["distributed"]]  # fmt: skip
     return {"fluid": fluid, "hydro": hydro, "distributed": dist}

@@ -151,7 +151,8 @@ def fluid_records(
         if name not in flex_names:
             raise InputError("hydro", name, f"a flexible body (one of {list(flex_names)})")
     if hydro and fluid is None:
-        raise InputError("hydro", sorted(hydro), "a [fluid] for the bodies to be in")
+        raise InputError("hydro", sorted(hydro), "coefficients of bodies in a fluid: give the "
+                         "[fluid] table too")  # fmt: skip
     loads: dict[str, list[DistributedRecord]] = {n: [] for n in flex_names}
     for i, ld in enumerate(distributed):
         if len(ld.force) != dim:
