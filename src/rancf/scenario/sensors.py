@@ -8,7 +8,8 @@ A sensor names one monitored quantity.  Kinds and their keys:
 * of the whole model: ``angular_momentum`` (about ``about``, default the origin; 3 columns in 3D,
   the ``z`` component in 2D) and ``energy`` (kinetic + strain + gravitational [J]);
 * of systems: ``reaction`` (the force of the joint ``joint = NAME``, or of the
-  support at ``at``) [N], ``axial_force`` (at a place of a flexible body) [N], ``angle`` (of the
+  support at ``at``) [N], ``axial_force`` or ``tension`` (the axial force at a place of a
+  flexible body, the line's wall tension) [N], ``angle`` (of the
   rigid body ``body``: [rad] in 2D, the rotation vector in 3D), ``center_of_mass`` [m] and
   ``momentum`` (linear momentum [kg m/s]) of the body ``body`` or, without it, of the whole
   system;
@@ -34,11 +35,12 @@ __all__ = ["Sensor", "SensorTable", "SENSOR_KINDS", "SYSTEM_SENSOR_KINDS"]
 
 #: Sensor kinds.
 SENSOR_KINDS = ("distance", "position", "twist", "angular_momentum", "energy", "reaction",
-                "axial_force", "angle", "center_of_mass", "momentum", "contact_force")  # fmt: skip
+                "axial_force", "tension", "angle", "center_of_mass", "momentum",
+                "contact_force")  # fmt: skip
 #: The kinds the system solver computes (not from node positions).
-SYSTEM_SENSOR_KINDS = ("reaction", "axial_force", "angle", "center_of_mass", "momentum",
-                       "contact_force")  # fmt: skip
-_SCALAR = ("distance", "twist", "energy", "axial_force")
+SYSTEM_SENSOR_KINDS = ("reaction", "axial_force", "tension", "angle", "center_of_mass",
+                       "momentum", "contact_force")  # fmt: skip
+_SCALAR = ("distance", "twist", "energy", "axial_force", "tension")
 
 
 @dataclass(frozen=True)
@@ -85,12 +87,13 @@ class SensorTable(Table):
     name: Name = Field(description="column name (letters, digits, _), unique, not t")
     kind: Literal[
         "distance", "position", "twist", "angular_momentum", "energy", "reaction",
-        "axial_force", "angle", "center_of_mass", "momentum", "contact_force",
+        "axial_force", "tension", "angle", "center_of_mass", "momentum", "contact_force",
     ] = Field(description="what is measured (the sensor kinds: docs/guide/outputs.md)")  # fmt: skip
     between: PlacePair | None = Field(None, description="distance: the two places")
     at: PlaceValue | None = Field(
         None,
-        description="position, twist (rods), axial_force: the place; reaction: a support's place",
+        description="position, twist (rods), axial_force, tension: the place; reaction: a "
+        "support's place",
     )
     about: vector(2, 3) | None = Field(
         None, description="angular_momentum: the point [m] (default the origin)"

@@ -10,7 +10,7 @@ Kinds (column names ``NAME`` for one number, ``NAME_x``, ``NAME_y`` (, ``NAME_z`
   carries one (a clamp, a rod's support, a ``fixed`` or driven joint, a 3D ``revolute``), its
   moment ``NAME_mz`` (planar) or ``NAME_mx, NAME_my, NAME_mz``: the columns of
   ``reactions.csv`` (:mod:`rancf.system.outputs`);
-* ``axial_force`` at a node of a flexible body (the section value ``N``,
+* ``axial_force`` (or ``tension``) at a node of a flexible body (the section value ``N``,
   :mod:`rancf.bodies.section_outputs`);
 * ``angle`` of a rigid body: its angle [rad] in 2D (continuous, as integrated), its rotation
   vector in 3D;
@@ -140,7 +140,7 @@ class SensorReader:
             reader = self._angular_momentum(sen)
         elif kind == "reaction":
             reader = self._reaction(sen, places)
-        elif kind == "axial_force":
+        elif kind in ("axial_force", "tension"):  # a line's tension is its axial force
             reader = self._axial_force(sen, places[0])
         elif kind == "angle":
             reader = self._angle(sen)
