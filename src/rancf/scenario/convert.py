@@ -3,8 +3,9 @@
 A file without ``[[bodies]]`` builds the system of one flexible body named ``body``
 (:mod:`rancf.scenario.system_build`); :func:`as_bodies` writes the same model in the
 ``[[bodies]]`` form (the form self-contact and further bodies need): its ``geometry``, ``mesh``,
-``section``, ``material`` and ``hydro`` become the body's tables, and every place ``P`` of a support, point
-load, initial velocity, joint, spring or sensor becomes ``"NAME:P"`` (``"ground"`` stays).  Both
+``section``, ``material`` and ``hydro`` become the body's tables, and every place ``P`` of a
+support, point load, initial velocity, joint, spring or sensor becomes ``"NAME:P"``
+(``"ground"`` stays).  Both
 files run to the same numbers; the supports' reaction columns are named ``NAME:P_fx ...`` as in
 any system.
 """
