@@ -9,7 +9,7 @@ A sensor names one monitored quantity.  Kinds and their keys:
   the ``z`` component in 2D) and ``energy`` (kinetic + strain + gravitational [J]);
 * of systems: ``reaction`` (the force of the joint ``joint = NAME``, or of the
   support at ``at``) [N], ``axial_force`` or ``tension`` (the axial force at a place of a
-  flexible body, the line's wall tension) [N], ``angle`` (of the
+  flexible body; in a fluid the effective tension) [N], ``angle`` (of the
   rigid body ``body``: [rad] in 2D, the rotation vector in 3D), ``center_of_mass`` [m] and
   ``momentum`` (linear momentum [kg m/s]) of the body ``body`` or, without it, of the whole
   system;
