@@ -29,9 +29,9 @@ def _system(
                   gravity=g)  # fmt: skip
     else:
         g = [0.0, 0.0, -9.81 * weight]
-        kind, mat = ("rod", ROD) if case == "rod" else ("rancf", MAT)
-        m = Model(mesh_line([0, 0, -1], [2, 0.5, -1.6], 3), kind, SEC, mat, [Support(0, "pin")],
-                  gravity=g)  # fmt: skip
+        kind, mat = ("rod", ROD) if case.startswith("rod") else ("rancf", MAT)
+        sup = Support(0, "clamp" if case.endswith("clamp") else "pin")
+        m = Model(mesh_line([0, 0, -1], [2, 0.5, -1.6], 3), kind, SEC, mat, [sup], gravity=g)
     return System({"line": m}, gravity=g, fluid=fluid, hydro={"line": hydro} if hydro else {},
                   distributed=loads, horizon=10.0)  # fmt: skip
 
@@ -74,7 +74,7 @@ def _fluid_jacobian(s: System, bare: System, y, v, a, t, coef) -> np.ndarray:
     return out[0] - out[1]
 
 
-@pytest.mark.parametrize("case", ["2d", "cable", "rod"])
+@pytest.mark.parametrize("case", ["2d", "cable", "rod", "rod-clamp"])
 @pytest.mark.parametrize("which", ["current", "profile", "waves"])
 def test_fluid_tangent_against_differences(case, which, rng):
     """ck d/dy, cv d/dv and ca d/da of the fluid's and distributed loads' part of the residual
