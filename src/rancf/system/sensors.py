@@ -222,7 +222,8 @@ class SensorReader:
         return read
 
     def _touchdown(self, sen: Any) -> Reader:
-        """Where the line leaves a plane obstacle (:func:`rancf.system.touchdown.touchdown_point`)."""
+        """Where the line leaves a plane obstacle
+        (:func:`rancf.system.touchdown.touchdown_point`)."""
         from rancf.system.touchdown import touchdown_point
 
         s = self.system
