@@ -8,16 +8,22 @@ A sensor names one monitored quantity.  Kinds and their keys:
 * of the whole model: ``angular_momentum`` (about ``about``, default the origin; 3 columns in 3D,
   the ``z`` component in 2D) and ``energy`` (kinetic + strain + gravitational [J]);
 * of systems: ``reaction`` (the force of the joint ``joint = NAME``, or of the
-  support at ``at``) [N], ``axial_force`` (at a place of a flexible body) [N], ``angle`` (of the
+  support at ``at``) [N], ``axial_force`` or ``tension`` (the axial force at a place of a
+  flexible body; in a fluid the effective tension) [N], ``angle`` (of the
   rigid body ``body``: [rad] in 2D, the rotation vector in 3D), ``center_of_mass`` [m] and
   ``momentum`` (linear momentum [kg m/s]) of the body ``body`` or, without it, of the whole
   system;
 * of contact: ``contact_force`` (the force of the obstacle ``obstacle = NAME`` on
-  the bodies, normal and friction parts together) [N].
+  the bodies, normal and friction parts together) [N];
+* ``touchdown`` (``obstacle = NAME``, a plane; ``body``, default the only flexible body): where
+  the line, walked from its start, leaves the plane (:mod:`rancf.system.touchdown`) [m];
+* of a fluid: ``fluid_force`` (buoyancy, drag and the waves' Froude-Krylov force on the body
+  ``body``, default every flexible body; the added-mass force, which needs the accelerations,
+  is left out) [N].
 
-``position``, ``twist`` and ``axial_force`` take ``at_point = [x, y(, z)]`` instead of ``at``:
-they read the material point nearest to that fixed point in space, found anew at every output
-(a belt's span, a line running through a guide: :mod:`rancf.system.at_point`).
+``position``, ``twist``, ``axial_force`` and ``tension`` take ``at_point = [x, y(, z)]`` instead
+of ``at``: they read the material point nearest to that fixed point in space, found anew at every
+output (a belt's span, a line running through a guide: :mod:`rancf.system.at_point`).
 
 Column names: ``NAME`` for one number, ``NAME_x``, ``NAME_y`` (, ``NAME_z``) for vectors.
 """
@@ -38,13 +44,14 @@ __all__ = ["Sensor", "SensorTable", "SENSOR_KINDS", "SYSTEM_SENSOR_KINDS", "AT_P
 
 #: Sensor kinds.
 SENSOR_KINDS = ("distance", "position", "twist", "angular_momentum", "energy", "reaction",
-                "axial_force", "angle", "center_of_mass", "momentum", "contact_force")  # fmt: skip
+                "axial_force", "tension", "angle", "center_of_mass", "momentum",
+                "contact_force", "fluid_force", "touchdown")  # fmt: skip
 #: The kinds the system solver computes (not from node positions).
-SYSTEM_SENSOR_KINDS = ("reaction", "axial_force", "angle", "center_of_mass", "momentum",
-                       "contact_force")  # fmt: skip
-_SCALAR = ("distance", "twist", "energy", "axial_force")
+SYSTEM_SENSOR_KINDS = ("reaction", "axial_force", "tension", "angle", "center_of_mass",
+                       "momentum", "contact_force", "fluid_force", "touchdown")  # fmt: skip
+_SCALAR = ("distance", "twist", "energy", "axial_force", "tension")
 #: The kinds that take ``at_point`` (a material point found anew at every output).
-AT_POINT_KINDS = ("position", "twist", "axial_force")
+AT_POINT_KINDS = ("position", "twist", "axial_force", "tension")
 
 
 @dataclass(frozen=True)
@@ -93,12 +100,14 @@ class SensorTable(Table):
     name: Name = Field(description="column name (letters, digits, _), unique, not t")
     kind: Literal[
         "distance", "position", "twist", "angular_momentum", "energy", "reaction",
-        "axial_force", "angle", "center_of_mass", "momentum", "contact_force",
+        "axial_force", "tension", "angle", "center_of_mass", "momentum", "contact_force",
+        "fluid_force", "touchdown",
     ] = Field(description="what is measured (the sensor kinds: docs/guide/outputs.md)")  # fmt: skip
     between: PlacePair | None = Field(None, description="distance: the two places")
     at: PlaceValue | None = Field(
         None,
-        description="position, twist (rods), axial_force: the place; reaction: a support's place",
+        description="position, twist (rods), axial_force, tension: the place; reaction: a "
+        "support's place",
     )
     about: vector(2, 3) | None = Field(
         None, description="angular_momentum: the point [m] (default the origin)"
@@ -109,11 +118,13 @@ class SensorTable(Table):
         "nearest to this fixed point in space [m], found anew at every output",
     )
     joint: Name | None = Field(None, description="reaction: the joint's name")
-    obstacle: Name | None = Field(None, description="contact_force: the obstacle's name")
+    obstacle: Name | None = Field(
+        None, description="contact_force, touchdown: the obstacle's name (touchdown: a plane)"
+    )
     body: Name | None = Field(
         None,
-        description="angle: the rigid body; center_of_mass, momentum: the body (default: the "
-        "whole system)",
+        description="angle: the rigid body; center_of_mass, momentum, fluid_force: the body "
+        "(default: the whole system); touchdown: the line (default: the only flexible body)",
     )
 
     @model_validator(mode="after")
@@ -123,14 +134,16 @@ class SensorTable(Table):
             raise fail("about", "applies to angular_momentum sensors only")
         if self.joint is not None and kd != "reaction":
             raise fail("joint", "applies to reaction sensors only")
-        if self.obstacle is not None and kd != "contact_force":
-            raise fail("obstacle", "applies to contact_force sensors only")
-        if kd == "contact_force":
+        if self.obstacle is not None and kd not in ("contact_force", "touchdown"):
+            raise fail("obstacle", "applies to contact_force and touchdown sensors only")
+        if kd in ("contact_force", "touchdown"):
             if self.obstacle is None:
-                raise fail("obstacle", "a contact_force sensor needs obstacle = NAME")
+                raise fail("obstacle", f"a {kd} sensor needs obstacle = NAME")
             for k in ("at", "between"):
                 if self[k] is not None:
-                    raise fail(k, "not for a contact_force sensor (the obstacle's total force)")
+                    raise fail(k, f"not for a {kd} sensor (of the obstacle)")
+            if kd == "contact_force" and self.body is not None:
+                raise fail("body", "not for a contact_force sensor (the obstacle's total force)")
             return self
         if self.at_point is not None:
             if kd not in AT_POINT_KINDS:
@@ -138,9 +151,13 @@ class SensorTable(Table):
             if self.at is not None or self.between is not None:
                 raise fail("at_point", "instead of at (not both)")
             return self  # body = NAME: the flexible body searched (default all)
-        if self.body is not None and kd not in ("angle", "center_of_mass", "momentum"):
-            raise fail("body", "applies to angle, center_of_mass and momentum sensors only")
-        if kd in ("angular_momentum", "energy", "angle", "center_of_mass", "momentum"):
+        if self.body is not None and kd not in (
+            "angle", "center_of_mass", "momentum", "fluid_force"
+        ):  # fmt: skip
+            raise fail("body", "applies to angle, center_of_mass, momentum, fluid_force and "
+                       "touchdown sensors only")  # fmt: skip
+        if kd in ("angular_momentum", "energy", "angle", "center_of_mass", "momentum",
+                  "fluid_force"):  # fmt: skip
             for k in ("at", "between"):
                 if self[k] is not None:
                     what = "whole model" if kd in ("angular_momentum", "energy") else "a body"

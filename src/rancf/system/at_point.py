@@ -138,7 +138,7 @@ def at_point_reader(out_: Any, sen: Any) -> Any:
             return r
         out = np.empty(len(qs))
         for i, name in enumerate(bodies):
-            if sen.kind == "axial_force":
+            if sen.kind in ("axial_force", "tension"):  # a line's tension is its axial force
                 sampler = out_.samplers[name]
                 along = out_.body_along(blk[3]["s"][i : i + 1], name)[0, :, 1]
                 u = xi[i] * sampler.per_element

@@ -10,14 +10,17 @@ Kinds (column names ``NAME`` for one number, ``NAME_x``, ``NAME_y`` (, ``NAME_z`
   carries one (a clamp, a rod's support, a ``fixed`` or driven joint, a 3D ``revolute``), its
   moment ``NAME_mz`` (planar) or ``NAME_mx, NAME_my, NAME_mz``: the columns of
   ``reactions.csv`` (:mod:`rancf.system.outputs`);
-* ``axial_force`` at a node of a flexible body (the section value ``N``,
+* ``axial_force`` (or ``tension``) at a node of a flexible body (the section value ``N``,
   :mod:`rancf.bodies.section_outputs`);
+* ``touchdown``: where a line leaves a plane obstacle (:mod:`rancf.system.touchdown`);
+* ``fluid_force`` on a flexible body (``body``) or on all of them: buoyancy, drag and the
+  waves' Froude–Krylov force (:mod:`rancf.system.fluid`; the added mass left out);
 * ``angle`` of a rigid body: its angle [rad] in 2D (continuous, as integrated), its rotation
   vector in 3D;
 * ``center_of_mass`` [m] and ``momentum`` (linear, [kg m/s]) of the body ``body`` or, without
   it, of the whole system;
-* ``position``, ``twist`` and ``axial_force`` with ``at_point``: at the material point nearest
-  to a fixed point in space (:mod:`rancf.system.at_point`).
+* ``position``, ``twist``, ``axial_force`` and ``tension`` with ``at_point``: at the material
+  point nearest to a fixed point in space (:mod:`rancf.system.at_point`).
 
 Mass, centre of mass and momentum of a flexible body: a rigid translation ``e_i`` moves every
 node's position by ``e_i`` and no gradient, and the shape functions' position parts sum to one,
@@ -145,7 +148,7 @@ class SensorReader:
             reader = self._angular_momentum(sen)
         elif kind == "reaction":
             reader = self._reaction(sen, places)
-        elif kind == "axial_force":
+        elif kind in ("axial_force", "tension"):  # a line's tension is its axial force
             reader = self._axial_force(sen, places[0])
         elif kind == "angle":
             reader = self._angle(sen)
@@ -153,6 +156,10 @@ class SensorReader:
             reader = self._mass_moment(sen, kind == "momentum")
         elif kind == "contact_force":
             reader = self._contact_force(sen)
+        elif kind == "fluid_force":
+            reader = self._fluid_force(sen)
+        elif kind == "touchdown":
+            reader = self._touchdown(sen)
         else:
             raise InputError(f"sensors.{sen.name}.kind", kind, "a sensor kind")
         reader.kind = kind  # type: ignore[attr-defined]
@@ -196,6 +203,50 @@ class SensorReader:
                              f"an obstacle: {', '.join(names) or 'none'}")  # fmt: skip
         c, d = self.out.contact_columns(sen.obstacle).start, self.system.dim
         return lambda blk: blk[3]["r"][:, c : c + d] + blk[3]["r"][:, c + d : c + 2 * d]
+
+    def _fluid_force(self, sen: Any) -> Reader:
+        """Buoyancy, drag and the waves' Froude-Krylov force on one flexible body or on all of
+        them (docs/derivations/fluid.md section 3; the added mass needs accelerations: left
+        out)."""
+        s, d = self.system, self.system.dim
+        flex = [n for n, _ in self.out.flex]
+        body = getattr(sen, "body", None)
+        if body is not None and body not in flex:
+            raise InputError(f"sensors.{sen.name}.body", body,
+                             f"a flexible body: {', '.join(flex)}")  # fmt: skip
+        pick = [flex.index(body)] if body is not None else list(range(len(flex)))
+
+        def read(blk: Block) -> NDArray:
+            out = np.zeros((len(blk[0]), d))
+            for k, (tt, q, v) in enumerate(zip(blk[0], blk[1], blk[2], strict=True)):
+                y, w = s.y_from_q(q), s.y_from_q(v)
+                f = np.asarray(s.core.fluid_forces(y, w, np.zeros_like(y), float(tt)))
+                out[k] = f.reshape(-1, 3)[pick, :d].sum(axis=0)
+            return out
+
+        return read
+
+    def _touchdown(self, sen: Any) -> Reader:
+        """Where the line leaves a plane obstacle
+        (:func:`rancf.system.touchdown.touchdown_point`)."""
+        from rancf.system.touchdown import touchdown_point
+
+        s = self.system
+        names = list(s.obstacle_names)
+        ob = s.obstacles[names.index(sen.obstacle)] if sen.obstacle in names else None
+        if ob is None or ob.kind != "plane" or ob.body is not None:
+            planes = [n for n, o in zip(names, s.obstacles, strict=False)
+                      if o.kind == "plane" and o.body is None]  # fmt: skip
+            raise InputError(f"sensors.{sen.name}.obstacle", sen.obstacle,
+                             f"a fixed plane: {', '.join(planes) or 'none'}")  # fmt: skip
+        flex = [n for n, b in self.out.flex if b.element != "beam"]
+        body = getattr(sen, "body", None) or (flex[0] if len(flex) == 1 else None)
+        if body not in flex:
+            raise InputError(f"sensors.{sen.name}.body", body,
+                             f"a line (cable or rod elements): {', '.join(flex)}")  # fmt: skip
+        m, sl = s.bodies[body], s.body_slice(body)  # type: ignore[index]
+        point, normal = np.asarray(ob.point, float), np.asarray(ob.normal, float)
+        return lambda blk: np.array([touchdown_point(m, q[sl], point, normal) for q in blk[1]])
 
     def _axial_force(self, sen: Any, spec: Any) -> Reader:
         p = self._place(sen, spec)

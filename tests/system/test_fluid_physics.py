@@ -1,0 +1,135 @@
+"""Lines in water against closed forms (docs/derivations/fluid.md section 5): a horizontal cable
+sinking in still water reaches its terminal speed; a vertical line weightless in water, held up
+by a buoy's pull, leans in a uniform current to the closed-form shape tan(phi) = k (L - s) / B."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from rancf.bodies.flexible import Material, Model, PointLoad, Section, Support
+from rancf.mesh.factories import mesh_line
+from rancf.options import DynamicOptions
+from rancf.solvers.dynamic import integrate
+from rancf.solvers.static import solve_static
+from rancf.system import System
+from rancf.system.fluid import Fluid, Hydro
+
+RHO_W, G = 1000.0, 9.81
+
+
+def test_sinking_cable_reaches_terminal_speed():
+    """v_T = sqrt(2 (rho_c - rho_w) g A / (rho_w C_d d)): the drag balances the weight in water;
+    the whole free cable falls at it within 1 % after ten time constants."""
+    d, rho_c, cd = 0.02, 2000.0, 1.2
+    g = [0.0, -G]
+    cable = Model(mesh_line([0, 0], [4, 0], 2), "rancf", Section.circular(d / 2),
+                  Material(rho_c, 1e9), [], gravity=g)  # fmt: skip
+    s = System({"cable": cable}, gravity=g, fluid=Fluid(RHO_W),
+               hydro={"cable": Hydro(d, cd, 0.0, 1.0, 0.0)})  # fmt: skip
+    res = integrate(s, DynamicOptions(t_end=2.0, step=0.02))
+    area = math.pi * d**2 / 4
+    v_t = math.sqrt(2 * (rho_c - RHO_W) * G * area / (RHO_W * cd * d))
+    v = res.v[-1].reshape(-1, 4)
+    assert np.abs(v[:, 0]).max() < 1e-9  # no sideways motion
+    assert np.allclose(v[:, 1], -v_t, rtol=1e-2, atol=0)
+    assert np.abs(v[:, 1] / -v_t - 1).max() < 1e-2
+
+
+def test_buoyed_line_leans_in_current_to_closed_form():
+    """A line pinned at the seabed, weightless in water (its weight equals its buoyancy),
+    pulled up at its free top by a buoy force B, in a uniform current U (normal drag only):
+    the tension is B all along and tan(phi) = c (L - s), c = rho d Cd U^2 / (2 B), so the anchor
+    leans at atan(c L) and the top sits at ((sqrt(1 + (cL)^2) - 1) / c, asinh(cL) / c)."""
+    length, b_force, u, cd, d = 20.0, 600.0, 1.0, 1.2, 0.05
+    r_sec = 0.002
+    rho_line = RHO_W * (d / (2 * r_sec)) ** 2  # weight = buoyancy
+    g = [0.0, -G]
+    line = Model(mesh_line([0, 0], [0, length], 12), "rancf", Section.circular(r_sec),
+                 Material(rho_line, 2e11), [Support(0, "pin")], gravity=g,
+                 point_loads=[PointLoad(12, force=(0.0, b_force))])  # fmt: skip
+    s = System({"line": line}, gravity=g, fluid=Fluid(RHO_W, current=(u, 0.0)),
+               hydro={"line": Hydro(d, cd, 0.0, 1.0, 0.0)})  # fmt: skip
+    res = solve_static(s, load_steps=5)
+    c = 0.5 * RHO_W * d * cd * u**2 / b_force
+    q = res.q.reshape(-1, 4)
+    tan_anchor = q[0, 2] / q[0, 3]
+    assert abs(tan_anchor / (c * length) - 1) < 1e-2
+    top = q[-1, :2]
+    want = np.array([(math.hypot(1, c * length) - 1) / c, math.asinh(c * length) / c])
+    assert np.allclose(top, want, rtol=5e-3, atol=0)
+
+
+def test_fluid_force_sensor_carries_the_weight_at_terminal_speed():
+    """The scenario path: the sinking cable as a file; at terminal speed the ``fluid_force``
+    sensor (buoyancy and drag) carries the cable's weight rho_c A L g, and its ``tension`` is
+    zero (a free cable under uniform loads)."""
+    import rancf
+    from rancf.scenario import parse_scenario
+
+    d = {
+        "geometry": {"kind": "line", "start": [0.0, 0.0], "end": [4.0, 0.0]},
+        "mesh": {"elements": 2},
+        "section": {"radius": 0.01},
+        "material": {"density": 2000.0, "youngs_modulus": 1e9},
+        "fluid": {"density": RHO_W},
+        "hydro": {"drag_normal": 1.2},
+        "loads": {"gravity": [0.0, -G]},
+        "solver": {"t_end": 2.0, "step": 0.02},
+        "sensors": [{"name": "fluid", "kind": "fluid_force"},
+                    {"name": "mid", "kind": "tension", "at": 1}],
+    }  # fmt: skip
+    result, names, values = rancf.simulate(parse_scenario(d))
+    assert names == ["fluid_x", "fluid_y", "mid"]
+    last = dict(zip(names, values[-1], strict=True))
+    weight = 2000.0 * math.pi * 0.01**2 * 4.0 * G
+    assert abs(last["fluid_x"]) < 1e-9 * weight
+    assert abs(last["fluid_y"] / weight - 1) < 1e-2
+    assert abs(last["mid"]) < 1e-6 * weight
+
+
+def test_touchdown_of_a_mooring_line_against_the_catenary():
+    """A 2D chain from an anchor on the seabed to a fairlead 100 m above it, in water: with the
+    horizontal tension H the model gives and the weight in water w per length, the suspended
+    part is a catenary of length sqrt(h^2 + 2 h H / w) (no friction), so the chain leaves the
+    seabed that far along it from the fairlead; the ``touchdown`` sensor agrees within 0.15 of
+    an element (11 m: the curvature's jump at the touchdown point is spread over the element
+    holding it; measured 0.99 m), and the seabed and the anchor carry the laid length's
+    weight."""
+    import rancf
+    from rancf.post.results import sensor_table
+    from rancf.scenario import parse_scenario
+
+    area, rho_c, ea, d = 0.0366435, 7859.5, 1.2326e9, 0.216
+    d = {
+        "geometry": {"kind": "nurbs", "degree": 2, "knots": [0, 0, 0, 1, 1, 1],
+                     "control_points": [[-300.0, -100.0], [-54.61196092449089, -100.0],
+                                        [0.0, 0.0]]},
+        "mesh": {"elements": 30},
+        "section": {"area": area, "inertia": 3e-8},
+        "material": {"density": rho_c, "youngs_modulus": ea / area},
+        "fluid": {"density": 1025.0, "surface": 0.0},
+        "hydro": {"diameter": 0.216},
+        "obstacles": [{"name": "seabed", "kind": "plane", "point": [0.0, -100.108],
+                       "normal": [0.0, 1.0], "stiffness": 1e8}],
+        "supports": [{"at": "start"}, {"at": "end"}],
+        "loads": {"gravity": [0.0, -G]},
+        "sensors": [{"name": "td", "kind": "touchdown", "obstacle": "seabed"},
+                    {"name": "fair", "kind": "reaction", "at": "end"},
+                    {"name": "bed", "kind": "contact_force", "obstacle": "seabed"}],
+    }  # fmt: skip
+    sc = parse_scenario(d)
+    system = sc.build_system()
+    res = rancf.solve_static(system, 10)
+    names, vals = sensor_table(system, sc.sensors, res.q, static=True, t=np.ones(1),
+                               lam=res.lam)  # fmt: skip
+    v = dict(zip(names, vals[0], strict=True))
+    w = (rho_c * area - 1025.0 * math.pi * 0.216**2 / 4) * G
+    h_force = v["fair_x"]
+    suspended = math.sqrt(100.0**2 + 2 * 100.0 * h_force / w)
+    laid = 330.0 - suspended
+    assert abs(v["td_x"] - (-300.0 + laid)) < 0.15 * 11.0
+    assert abs(v["td_y"] + 100.0) < 0.05 * 0.108
+    anchor = w * 330.0 - v["fair_y"] - v["bed_y"]  # the anchor's share of the weight
+    assert abs((v["bed_y"] + anchor) / (w * laid) - 1) < 2e-3
