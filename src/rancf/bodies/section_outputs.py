@@ -81,7 +81,8 @@ class SectionSampler:
             s_el, starts = _arc_lengths(mesh, xi)
         self.s = (starts[:, None] + s_el).ravel()[self._rows]
         ref_vals = self._raw(model.y0)
-        self._k0 = ref_vals[:, 1:]
+        # the moments are relative to the stress-free curvature (zero for a straight one)
+        self._k0 = ref_vals[:, 1:] * (model.stress_free != "straight")
 
     @property
     def n_points(self) -> int:

@@ -81,6 +81,9 @@ class CableKernel:
     props : CableProperties
     n_qp : int
         Gauss–Legendre points per element (see the quadrature convergence test).
+    stress_free : {"reference", "straight"}
+        The unloaded state: the reference itself, or the straight line of the same arc length
+        (``κ0 = 0`` with the reference metric ``J0``: docs/derivations/variable-length.md §1).
     """
 
     def __init__(
@@ -90,6 +93,7 @@ class CableKernel:
         reference: ArrayLike,
         props: CableProperties,
         n_qp: int,
+        stress_free: str = "reference",
     ) -> None:
         self.weights = np.asarray(weights, dtype=float)
         self.scales = np.asarray(scales, dtype=float)
@@ -103,6 +107,8 @@ class CableKernel:
         self.n1, self.n2 = np.ascontiguousarray(n1), np.ascontiguousarray(n2)
         self.s0, self.kappa0 = qp_geometry(self.n1, self.n2, self.reference)
         self.j0 = np.sqrt(self.s0)
+        if stress_free == "straight":  # same arc length element by element, no curvature
+            self.kappa0 = np.zeros_like(self.s0)
         # spatial: η² κ0² at curved reference points (κ0 J0 above round-off), zero elsewhere
         self.qreg = np.zeros_like(self.s0)
         if self.dim == 3:

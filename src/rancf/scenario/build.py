@@ -198,6 +198,7 @@ def flexible_model(
             mesh_table.quadrature_points,
             None if initial_motion is None else RigidMotion(**initial_motion),
             mesh_table.continuity,
+            mesh_table.stress_free,
         )
     except InputError as exc:
         raise ScenarioError(
