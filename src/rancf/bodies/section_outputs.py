@@ -105,7 +105,9 @@ class SectionSampler:
         m = self.model
         width = 4 if m.element == "rod" else 2
         out = np.empty((m.n_el, self.xi.size, width))
-        m.core.section_strains(self.xi, self.n1, self.n2, self.ref, np.asarray(y, dtype=float), out)
+        lam = _scale(m)  # a body given another unstretched length (rancf.bodies.length)
+        ref = self.ref * (lam if m.element == "rod" else lam * lam)
+        m.core.section_strains(self.xi, self.n1, self.n2, ref, np.asarray(y, dtype=float), out)
         return out.reshape(-1, width)[self._rows]
 
     def values(self, y: NDArray) -> NDArray[np.float64]:
@@ -121,9 +123,15 @@ class SectionSampler:
         else:
             st = section_stiffness(m)
             c = np.array([st.gj, st.ei2, st.ei3]) if m.element == "rod" else np.array([st.ei])
-            moments = c * (kappa - self._k0) / stretch[:, None]
+            moments = c * (kappa - self._k0 / _scale(m)) / stretch[:, None]
             force = m.props.ea * eps * stretch - np.sum(moments * kappa, axis=1)
         return np.column_stack([eps, force, kappa, moments])
+
+
+def _scale(model: Model) -> float:
+    """The unstretched length over the reference's (:mod:`rancf.bodies.length`)."""
+    k = model.kernel
+    return float(getattr(getattr(k, "cable", k), "length_scale", 1.0))
 
 
 def _arc_lengths(mesh: object, xi: NDArray, n_gauss: int = 12) -> tuple[NDArray, NDArray]:

@@ -115,6 +115,23 @@ class CableKernel:
             curved = self.kappa0 * self.j0 > _core.CABLE_STRAIGHT
             self.qreg = np.where(curved, (ETA * self.kappa0) ** 2, 0.0)
         self.wj = gw[None, :] * self.j0  # (n_el, n_qp): dξ weight times reference speed
+        #: The unstretched length over the reference's (:meth:`scale_length`).
+        self.length_scale = 1.0
+        self._unscaled = (self.s0.copy(), self.kappa0.copy(), self.qreg.copy())
+
+    def scale_length(self, scale: float) -> None:
+        """Make the unloaded state the reference stretched uniformly by ``scale`` (an unstretched
+        length ``scale`` times the reference's): ``s0 → scale² s0``, ``J0 → scale J0``,
+        ``κ0 → κ0 / scale`` (docs/derivations/variable-length.md §2.1).  In place: the compiled
+        core reads these arrays; the mass and gravity of a model follow from ``wj``.
+        """
+        s0, k0, qr = self._unscaled
+        self.s0[...] = scale * scale * s0
+        self.j0[...] = scale * np.sqrt(s0)
+        self.kappa0[...] = k0 / scale
+        self.qreg[...] = qr / (scale * scale)
+        self.wj[...] = self.gw[None, :] * self.j0
+        self.length_scale = float(scale)
 
     @property
     def n_dof_el(self) -> int:

@@ -160,6 +160,14 @@ class RodKernel:
         """Store ``K⁰`` (computed by the core on the reference) in place; a straight stress-free
         state keeps ``K⁰ = 0`` (docs/derivations/variable-length.md §1)."""
         self.kref[...] = 0.0 if self.straight else k
+        self._kref = self.kref.copy()
+
+    def scale_length(self, scale: float) -> None:
+        """The unloaded state stretched uniformly by ``scale``: the cable's data
+        (:meth:`CableKernel.scale_length <rancf.kernels.cable.CableKernel.scale_length>`) and
+        ``K⁰ → K⁰ / scale`` (docs/derivations/variable-length.md §2.1)."""
+        self.cable.scale_length(scale)
+        self.kref[...] = self._kref / scale
 
     def core_inertia(self) -> _core.SectionInertia:
         """The rotary inertia per length as the core's named structure."""
