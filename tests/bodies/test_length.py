@@ -52,8 +52,10 @@ def test_scaled_unloaded_state_moved_rigidly_carries_no_force(element, dim):
     """A curved reference given 2.5 times its length about its first node is unloaded in its
     scaled shape, anywhere (reference stress-free), and so is a straight rope (straight)."""
     sec, mat = Section.circular(0.01), Material(1000.0, 1e7, poisson_ratio=0.3)
-    for mesh, sf in ((_arc_mesh(3, dim), "reference"),
-                     (mesh_line(np.zeros(dim), np.r_[1.0, 0.4, 0.3][:dim], 4), "straight")):
+    for mesh, sf in (
+        (_arc_mesh(3, dim), "reference"),
+        (mesh_line(np.zeros(dim), np.r_[1.0, 0.4, 0.3][:dim], 4), "straight"),
+    ):
         m = Model(mesh, element, sec, mat, stress_free=sf)
         set_unstretched_length(m, 2.5 * reference_length(m), anchor=0)
         assert np.max(np.abs(m.internal_force(m.y0))) < 1e-9 * m.props.ea

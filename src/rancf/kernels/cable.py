@@ -134,6 +134,12 @@ class CableKernel:
         self.length_scale = float(scale)
 
     @property
+    def reference_speed(self) -> NDArray[np.float64]:
+        """``|r0'|`` of the reference at the Gauss points ``(n_el, n_qp)``, whatever
+        :meth:`scale_length` did."""
+        return np.sqrt(self._unscaled[0])
+
+    @property
     def n_dof_el(self) -> int:
         """Coordinates per element, ``4 dim``."""
         return 4 * self.dim
