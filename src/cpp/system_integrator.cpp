@@ -8,6 +8,7 @@
 #include "assembly.hpp"
 #include "contact.hpp"
 #include "inertia.hpp"
+#include "winch.hpp"
 
 namespace rancf {
 
@@ -158,7 +159,7 @@ RunOutcome SystemIntegrator::run(double* y, double* v, double* a, double* lam, d
       std::copy(y, y + n, out_y + row * n);
       std::copy(v, v + n, out_v + row * n);
       std::copy(lam, lam + m, out_l + row * m);
-      system_energies(s_, y, v, out_e + 3 * row);
+      system_energies(s_, y, v, out_e + 3 * row, t + h);
       ++out.stored;
     }
     const std::chrono::duration<double> spent = std::chrono::steady_clock::now() - start;
@@ -219,6 +220,7 @@ bool SystemIntegrator::factor_static(const double* y, const double* lam, double 
   terms.t1 = t;
   terms.load_factor = lf;
   terms.amplitude = amplitude;
+  terms.statics = true;
   lu_valid_ = false;
   const double* zero = nullptr;
   if (stab > 0.0) {  // M (0 + c 0) = 0 in the residual; stab M in the Jacobian
@@ -251,12 +253,21 @@ bool SystemIntegrator::static_increment(const double* y, const double* lam, doub
   return true;
 }
 
-void system_energies(const System& s, const double* y, const double* v, double* out) {
+void system_energies(const System& s, const double* y, const double* v, double* out, double t) {
   const double* yref = s.y_ref;
   out[0] = out[1] = out[2] = 0.0;
   for (std::size_t b = 0; b < s.flex.size(); ++b) {
-    const Model& mod = *s.flex[b];
     const int o = s.offset[b];
+    if (const Winch* w = winch_of(s, b)) {  // the material outside the winch at L(t)
+      ScaledBody scaled;
+      const WinchState st = winch_state(s, *w, t);
+      const Model& mod = scaled_model(*s.flex[b], st.ratio, scaled);
+      out[0] += winch_kinetic_energy(mod, *w, st, y + o, v + o);
+      out[1] += strain_energy(mod, y + o);
+      out[2] += winch_gravity_energy(*s.flex[b], winch_state(s, *w, 0.0), st, y + o);
+      continue;
+    }
+    const Model& mod = *s.flex[b];
     out[0] += kinetic_energy(mod, y + o, v + o);
     out[1] += strain_energy(mod, y + o);
     out[2] += gravity_energy(mod, y + o);

@@ -4,8 +4,9 @@ from rancf.system.connections import Joint, Load, Spring
 from rancf.system.contact import ContactState, Obstacle, contact_history, contact_outputs
 from rancf.system.places import GROUND, Place
 from rancf.system.system import System, as_system
+from rancf.system.winches import Winch
 
 __all__ = [
     "System", "Joint", "Spring", "Load", "Place", "GROUND", "Obstacle", "ContactState",
-    "contact_outputs", "contact_history", "as_system",
+    "contact_outputs", "contact_history", "as_system", "Winch",
 ]  # fmt: skip

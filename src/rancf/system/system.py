@@ -42,6 +42,7 @@ from rancf.system.core_data import SystemRecords, build_core
 from rancf.system.joint_data import joint_data
 from rancf.system.places import Place
 from rancf.system.stack import Body, BodyStack
+from rancf.system.winches import Winch, attach_winches, winch_functions
 
 __all__ = ["System", "Body", "as_system"]
 
@@ -104,6 +105,8 @@ class System(BodyStack):
         Contact between flexible bodies; a body twice: self-contact.
     body_friction : float
         Coulomb coefficient of the contact between flexible bodies.
+    winches : sequence of :class:`rancf.system.winches.Winch`
+        Cables paid out or reeled in at an end (:mod:`rancf.system.winches`).
     observe : sequence of places
         Places on bodies whose position and frame outputs read (:meth:`place_state`).
     horizon : float, optional
@@ -132,6 +135,7 @@ class System(BodyStack):
         contact_points: int = CONTACT_POINTS,
         body_contacts: Sequence[tuple[str, str]] = (),
         body_friction: float = 0.0,
+        winches: Sequence[Winch] = (),
     ) -> None:
         super().__init__(bodies)
         self.gravity = (
@@ -162,6 +166,8 @@ class System(BodyStack):
         pre = [self._place(j, rows) for j in joints]  # places first: their reference frames
         self.core = self._build(rows.records(**parts))
         parts["joints"] = [self._joint(j, ab, rows) for j, ab in zip(joints, pre, strict=True)]
+        self.winches = tuple(winches)
+        winch_tfs = winch_functions(self, self.winches, rows.tf)
         self.records = rows.records(**parts)
         self.core = self._build(self.records)
         self.m = int(self.core.m)
@@ -174,6 +180,7 @@ class System(BodyStack):
                 self, self.obstacles, contacts, contact_points, body_contacts, body_friction
             )
             self.core.attach_contact(self.contact)
+        attach_winches(self, self.winches, winch_tfs)
         self._check_reference()
 
     def _check_gravity(self) -> None:
