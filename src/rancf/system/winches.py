@@ -13,9 +13,9 @@ the place where the line leaves the drum.
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Literal
+from typing import Any, Literal, Protocol
 
 import numpy as np
 
@@ -26,13 +26,26 @@ from rancf.bodies.time_function import TimeFunction
 from rancf.bodies.winch_inertia import convective_matrices
 from rancf.errors import InputError
 
-if TYPE_CHECKING:
-    from rancf.system.system import System
-
 __all__ = [
     "Winch", "winch_length", "winch_functions", "attach_winches", "winch_node", "unloaded_at",
     "LENGTH_RTOL",
 ]  # fmt: skip
+
+
+class WinchedSystem(Protocol):
+    """What the winches use of a system (:class:`rancf.system.system.System`)."""
+
+    bodies: Mapping[str, Any]
+    names: list[str]
+    horizon: float | None
+    core: Any
+    y0: np.ndarray
+    joints: Sequence[Any]
+
+    def resolve(self, spec: Any) -> Any: ...
+
+    def body_slice(self, name: str) -> slice: ...
+
 
 #: The body's unstretched length and ``L(0)`` agree to this (relative).
 LENGTH_RTOL = 1e-9
@@ -90,7 +103,7 @@ def winch_length(w: Winch, length0: float, horizon: float | None) -> TimeFunctio
     return TimeFunction.from_callable(length)
 
 
-def winch_functions(system: System, winches: tuple[Winch, ...], tf: Callable) -> list[int]:
+def winch_functions(system: WinchedSystem, winches: tuple[Winch, ...], tf: Callable) -> list[int]:
     """The index of each winch's ``L(t)`` among the core's time functions (``tf`` registers
     one); ``L(0)`` must be the body's unstretched length."""
     out = []
@@ -107,7 +120,7 @@ def winch_functions(system: System, winches: tuple[Winch, ...], tf: Callable) ->
     return out
 
 
-def attach_winches(system: System, winches: tuple[Winch, ...], tfs: list[int]) -> None:
+def attach_winches(system: WinchedSystem, winches: tuple[Winch, ...], tfs: list[int]) -> None:
     """Give the core each winch: its body, the index of its ``L(t)`` and the convective
     matrices."""
     for w, tf in zip(winches, tfs, strict=True):
@@ -118,13 +131,13 @@ def attach_winches(system: System, winches: tuple[Winch, ...], tfs: list[int]) -
         system.core.attach_winch(index, tf, unstretched_length(body), c1, c2, d2)
 
 
-def winch_node(system: System, w: Winch) -> tuple[str, int]:
+def winch_node(system: WinchedSystem, w: Winch) -> tuple[str, int]:
     """The body and the node at the drum."""
     name, end = w.body_and_end()
     return name, 0 if end == "start" else _body(system, w).n_nodes - 1
 
 
-def _body(system: System, w: Winch) -> Model:
+def _body(system: WinchedSystem, w: Winch) -> Model:
     name, end = w.body_and_end()
     body = system.bodies.get(name)
     if not isinstance(body, Model):
@@ -136,7 +149,7 @@ def _body(system: System, w: Winch) -> Model:
     return body
 
 
-def unloaded_at(system: System, t: float) -> np.ndarray:
+def unloaded_at(system: WinchedSystem, t: float) -> np.ndarray:
     """The system's reference coordinates with every winch's body stretched about the winch to
     its length at ``t`` (positions ``a + f (r - a)``, gradients ``f r_x``, ``f = L(t) / L(0)``):
     where statics at ``t`` start."""
