@@ -101,20 +101,21 @@ class SectionSampler:
             pts = m.mesh.evaluate(self.xi, nodes[:, : 2 * m.dim])
         return pts.reshape(-1, m.dim)[self._rows]
 
-    def _raw(self, y: NDArray) -> NDArray[np.float64]:
+    def _raw(self, y: NDArray, factor: float = 1.0) -> NDArray[np.float64]:
         m = self.model
         width = 4 if m.element == "rod" else 2
         out = np.empty((m.n_el, self.xi.size, width))
-        lam = _scale(m)  # a body given another unstretched length (rancf.bodies.length)
+        lam = _scale(m) * factor  # another unstretched length (rancf.bodies.length, winches)
         ref = self.ref * (lam if m.element == "rod" else lam * lam)
         m.core.section_strains(self.xi, self.n1, self.n2, ref, np.asarray(y, dtype=float), out)
         return out.reshape(-1, width)[self._rows]
 
-    def values(self, y: NDArray) -> NDArray[np.float64]:
+    def values(self, y: NDArray, factor: float = 1.0) -> NDArray[np.float64]:
         """``(n_points, len(section_names))`` at model coordinates ``y`` (rods: with the nodal
-        triads the model holds, i.e. those the solvers carried to ``y``)."""
+        triads the model holds, i.e. those the solvers carried to ``y``); ``factor``: the
+        body's unstretched length over the one its arrays hold (a winch's body at a time)."""
         m = self.model
-        raw = self._raw(y)
+        raw = self._raw(y, factor)
         eps, kappa = raw[:, 0], raw[:, 1:]
         stretch = np.sqrt(np.clip(1.0 + 2.0 * eps, 0.0, None))
         if m.element == "beam":  # per reference length already
@@ -123,7 +124,7 @@ class SectionSampler:
         else:
             st = section_stiffness(m)
             c = np.array([st.gj, st.ei2, st.ei3]) if m.element == "rod" else np.array([st.ei])
-            moments = c * (kappa - self._k0 / _scale(m)) / stretch[:, None]
+            moments = c * (kappa - self._k0 / (_scale(m) * factor)) / stretch[:, None]
             force = m.props.ea * eps * stretch - np.sum(moments * kappa, axis=1)
         return np.column_stack([eps, force, kappa, moments])
 

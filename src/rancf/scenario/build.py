@@ -122,7 +122,7 @@ def mesh_geometry(path: str, geometry: Any, mesh: MeshTable, prefix: str = "") -
 
 
 #: The tables that make a scenario a system of parts rather than one flexible body.
-SYSTEM_KEYS = ("bodies", "joints", "springs", "obstacles", "body_contacts")
+SYSTEM_KEYS = ("bodies", "joints", "springs", "obstacles", "body_contacts", "winches")
 
 
 def build_model(sc: ScenarioView) -> Model:

@@ -13,7 +13,10 @@ A sensor names one monitored quantity.  Kinds and their keys:
   ``momentum`` (linear momentum [kg m/s]) of the body ``body`` or, without it, of the whole
   system;
 * of contact: ``contact_force`` (the force of the obstacle ``obstacle = NAME`` on
-  the bodies, normal and friction parts together) [N].
+  the bodies, normal and friction parts together) [N];
+* of a winch (``winch = NAME``): ``winch``, its line's unstretched length outside the drum
+  ``NAME_length`` [m], pay-out rate ``NAME_speed`` [m/s] and tension ``NAME_tension`` [N] (the
+  force of the winch's support on the line).
 
 Column names: ``NAME`` for one number, ``NAME_x``, ``NAME_y`` (, ``NAME_z``) for vectors.
 """
@@ -34,10 +37,11 @@ __all__ = ["Sensor", "SensorTable", "SENSOR_KINDS", "SYSTEM_SENSOR_KINDS"]
 
 #: Sensor kinds.
 SENSOR_KINDS = ("distance", "position", "twist", "angular_momentum", "energy", "reaction",
-                "axial_force", "angle", "center_of_mass", "momentum", "contact_force")  # fmt: skip
+                "axial_force", "angle", "center_of_mass", "momentum", "contact_force",
+                "winch")  # fmt: skip
 #: The kinds the system solver computes (not from node positions).
 SYSTEM_SENSOR_KINDS = ("reaction", "axial_force", "angle", "center_of_mass", "momentum",
-                       "contact_force")  # fmt: skip
+                       "contact_force", "winch")  # fmt: skip
 _SCALAR = ("distance", "twist", "energy", "axial_force")
 
 
@@ -58,9 +62,12 @@ class Sensor:
     joint: str | None = None
     body: str | None = None
     obstacle: str | None = None
+    winch: str | None = None
 
     def columns(self, dim: int) -> list[str]:
         """CSV column names of the sensor's scalars."""
+        if self.kind == "winch":
+            return [f"{self.name}_{c}" for c in ("length", "speed", "tension")]
         one = self.kind in _SCALAR or (self.kind in ("angular_momentum", "angle") and dim == 2)
         return [self.name] if one else [f"{self.name}_{c}" for c in "xyz"[:dim]]
 
@@ -85,7 +92,7 @@ class SensorTable(Table):
     name: Name = Field(description="column name (letters, digits, _), unique, not t")
     kind: Literal[
         "distance", "position", "twist", "angular_momentum", "energy", "reaction",
-        "axial_force", "angle", "center_of_mass", "momentum", "contact_force",
+        "axial_force", "angle", "center_of_mass", "momentum", "contact_force", "winch",
     ] = Field(description="what is measured (the sensor kinds: docs/guide/outputs.md)")  # fmt: skip
     between: PlacePair | None = Field(None, description="distance: the two places")
     at: PlaceValue | None = Field(
@@ -97,6 +104,7 @@ class SensorTable(Table):
     )
     joint: Name | None = Field(None, description="reaction: the joint's name")
     obstacle: Name | None = Field(None, description="contact_force: the obstacle's name")
+    winch: Name | None = Field(None, description="winch: the winch's name")
     body: Name | None = Field(
         None,
         description="angle: the rigid body; center_of_mass, momentum: the body (default: the "
@@ -112,6 +120,13 @@ class SensorTable(Table):
             raise fail("joint", "applies to reaction sensors only")
         if self.obstacle is not None and kd != "contact_force":
             raise fail("obstacle", "applies to contact_force sensors only")
+        if (self.winch is not None) != (kd == "winch"):
+            raise fail("winch", "a winch sensor needs winch = NAME (and only it has one)")
+        if kd == "winch":
+            for k in ("at", "between", "body"):
+                if self[k] is not None:
+                    raise fail(k, "not for a winch sensor (the winch's line)")
+            return self
         if kd == "contact_force":
             if self.obstacle is None:
                 raise fail("obstacle", "a contact_force sensor needs obstacle = NAME")
@@ -151,4 +166,4 @@ class SensorTable(Table):
         """The :class:`Sensor` of this table (``nodes``: its places as node indices)."""
         about = None if self.about is None else tuple(self.about)
         return Sensor(self.name, self.kind, nodes, about, self.places(), self.joint, self.body,
-                      self.obstacle)  # fmt: skip
+                      self.obstacle, self.winch)  # fmt: skip

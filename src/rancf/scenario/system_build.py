@@ -28,6 +28,7 @@ from rancf.bodies.rigid import PointMass, RigidBody
 from rancf.errors import InputError, ScenarioError
 from rancf.scenario.build import body_model, flexible_model
 from rancf.scenario.view import ScenarioView
+from rancf.scenario.winches import system_winches
 from rancf.system import Joint, Load, Obstacle, Place, Spring, System
 
 __all__ = ["build_system", "support_labels", "ONE_BODY"]
@@ -167,4 +168,5 @@ def _parts(sc: ScenarioView, bodies: dict[str, Any]) -> dict[str, Any]:
     return {"joints": joints, "springs": springs, "loads": loads, "observe": _observed(sc),
             "obstacles": obstacles, "contacts": contacts,
             "body_contacts": [(a, b) for a, b in sc.body_contacts],
-            "contact_points": sc.contact_points, "body_friction": sc.body_friction}  # fmt: skip
+            "contact_points": sc.contact_points, "body_friction": sc.body_friction,
+            "winches": system_winches(sc, bodies, ONE_BODY)}  # fmt: skip

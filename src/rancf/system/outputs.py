@@ -62,6 +62,7 @@ from rancf.kernels import _core
 from rancf.system.contact import contact_outputs
 from rancf.system.sensors import SensorReader
 from rancf.system.system import System
+from rancf.system.winches import winch_factor
 
 __all__ = ["SystemOutputs"]
 
@@ -293,7 +294,8 @@ class SystemOutputs:
     def _along(self, y: NDArray, t: float) -> NDArray:
         parts = []
         for name, _ in self.flex:
-            vals = self.samplers[name].values(y[self.system.body_slice(name)])
+            factor = winch_factor(self.system, name, t)  # a winch's body at its length at t
+            vals = self.samplers[name].values(y[self.system.body_slice(name)], factor)
             strain = float(np.max(np.abs(vals[:, 0])))
             if strain > self.largest_strain[0]:  # NaN (a diverged state) is never larger
                 self.largest_strain = (strain, t)

@@ -167,7 +167,7 @@ class System(BodyStack):
         self.core = self._build(rows.records(**parts))
         parts["joints"] = [self._joint(j, ab, rows) for j, ab in zip(joints, pre, strict=True)]
         self.winches = tuple(winches)
-        winch_tfs = winch_functions(self, self.winches, rows.tf)
+        self.winch_lengths, winch_tfs = winch_functions(self, self.winches, rows.tf)
         self.records = rows.records(**parts)
         self.core = self._build(self.records)
         self.m = int(self.core.m)
@@ -363,9 +363,10 @@ class System(BodyStack):
         """Whether the system has contact (obstacles or flexible bodies touching each other)."""
         return self.contact is not None
 
-    def energies(self, y: NDArray, v: NDArray) -> tuple[float, float, float]:
-        """Kinetic, strain (with springs) and gravitational energy (zero at the reference)."""
-        return self.core.energies(np.asarray(y, float), np.asarray(v, float))
+    def energies(self, y: NDArray, v: NDArray, t: float = 0.0) -> tuple[float, float, float]:
+        """Kinetic, strain (with springs) and gravitational energy (zero at the reference) at
+        time ``t`` (winches: their lengths at ``t``)."""
+        return self.core.energies(np.asarray(y, float), np.asarray(v, float), float(t))
 
 
 def as_system(model: Model | System) -> System:

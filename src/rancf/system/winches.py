@@ -21,6 +21,7 @@ import numpy as np
 
 from rancf.bodies.flexible import Model
 from rancf.bodies.length import unstretched_length
+from rancf.bodies.reactions import has_moment
 from rancf.bodies.rigid import PointMass
 from rancf.bodies.time_function import TimeFunction
 from rancf.bodies.winch_inertia import convective_matrices
@@ -28,7 +29,7 @@ from rancf.errors import InputError
 
 __all__ = [
     "Winch", "winch_length", "winch_functions", "attach_winches", "winch_node", "unloaded_at",
-    "LENGTH_RTOL",
+    "winch_reader", "winch_factor", "LENGTH_RTOL",
 ]  # fmt: skip
 
 
@@ -46,6 +47,9 @@ class WinchedSystem(Protocol):
 
     def body_slice(self, name: str) -> slice: ...
 
+
+#: A callable ``L(t)`` is sampled this much past the horizon (its rate is not cut at the end).
+HORIZON_MARGIN = 1.05
 
 #: The body's unstretched length and ``L(0)`` agree to this (relative).
 LENGTH_RTOL = 1e-9
@@ -82,7 +86,7 @@ class Winch:
 def winch_length(w: Winch, length0: float, horizon: float | None) -> TimeFunction:
     """``L(t)`` of a winch whose body is ``length0`` long at ``t = 0``: its ``length``, or
     ``length0`` plus the integral of its ``speed`` (trapezoidal on 20 001 points of
-    ``[0, horizon]``, then a cubic table of the core's)."""
+    ``[0, 1.05 horizon]``, then a cubic table of the core's)."""
     if (w.length is None) == (w.speed is None):
         raise InputError(f"winches.{w.name}", "length and speed" if w.length is not None
                          else "neither", "one of length, speed")  # fmt: skip
@@ -93,7 +97,7 @@ def winch_length(w: Winch, length0: float, horizon: float | None) -> TimeFunctio
     if horizon is None or not horizon > 0:
         raise InputError("horizon", horizon, "the run's end time t_end [s] > 0 (a winch's "
                          "speed is integrated on [0, t_end])")  # fmt: skip
-    t = np.linspace(0.0, float(horizon), 20001)
+    t = np.linspace(0.0, HORIZON_MARGIN * float(horizon), 20001)
     rate = np.array([float(np.ravel(speed.value(x))[0]) for x in t])
     cum = length0 + np.r_[0.0, np.cumsum(0.5 * (rate[1:] + rate[:-1]) * np.diff(t))]
 
@@ -103,10 +107,13 @@ def winch_length(w: Winch, length0: float, horizon: float | None) -> TimeFunctio
     return TimeFunction.from_callable(length)
 
 
-def winch_functions(system: WinchedSystem, winches: tuple[Winch, ...], tf: Callable) -> list[int]:
-    """The index of each winch's ``L(t)`` among the core's time functions (``tf`` registers
-    one); ``L(0)`` must be the body's unstretched length."""
-    out = []
+def winch_functions(
+    system: WinchedSystem, winches: tuple[Winch, ...], tf: Callable
+) -> tuple[dict[str, TimeFunction], list[int]]:
+    """Each winch's ``L(t)`` as the core evaluates it (a callable sampled on the horizon) by
+    name, and its index among the core's time functions (``tf`` registers one); ``L(0)`` must
+    be the body's unstretched length."""
+    out, functions = [], {}
     for w in winches:
         body = _body(system, w)
         length0 = unstretched_length(body)
@@ -116,8 +123,11 @@ def winch_functions(system: WinchedSystem, winches: tuple[Winch, ...], tf: Calla
             raise InputError(f"winches.{w.name}.length", start, f"the body's unstretched "
                              f"length at t = 0, {length0!r} m (rancf.bodies.length."
                              "set_unstretched_length gives the body its start length)")  # fmt: skip
+        if f.kind == "callable":
+            f = f.sampled(HORIZON_MARGIN * float(system.horizon))  # type: ignore[arg-type]
+        functions[w.name] = f
         out.append(tf(f))
-    return out
+    return functions, out
 
 
 def attach_winches(system: WinchedSystem, winches: tuple[Winch, ...], tfs: list[int]) -> None:
@@ -173,3 +183,45 @@ def unloaded_at(system: WinchedSystem, t: float) -> np.ndarray:
                 if p.body == name and isinstance(mass, PointMass) and j.kind == "pin":
                     y[system.body_slice(other.body)][:d] = q[int(p.at), :d]
     return y
+
+
+def winch_reader(outputs: Any, sen: Any) -> Callable[[Any], np.ndarray]:
+    """The columns of a ``winch`` sensor (``NAME_length``, ``NAME_speed``, ``NAME_tension``):
+    ``L(t)``, ``L'(t)`` and the magnitude of the force of the winch's support on the line
+    (:class:`rancf.system.outputs.SystemOutputs`' reaction columns)."""
+    s = outputs.system
+    found = [w for w in getattr(s, "winches", ()) if w.name == sen.winch]
+    if not found:
+        names = ", ".join(w.name for w in getattr(s, "winches", ())) or "none"
+        raise InputError(f"sensors.{sen.name}.winch", sen.winch, f"a winch: {names}")
+    w = found[0]
+    name, node = winch_node(s, w)
+    f = s.winch_lengths[w.name]
+    start, d, cols = 0, s.dim, slice(0, 0)
+    for body_name, b in outputs.flex:
+        for sup in b.supports:
+            width = d + (0 if not has_moment(b, sup.kind) else (1 if d == 2 else 3))
+            if body_name == name and b.check_node(sup.node, "supports.at") == node:
+                cols = slice(start, start + d)
+            start += width
+
+    def read(blk: Any) -> np.ndarray:
+        t = blk[0]
+        length = np.array([float(np.ravel(f.value(x))[0]) for x in t])
+        rate = np.array([float(np.ravel(f.rate(x))[0]) for x in t])
+        tension = np.linalg.norm(blk[3]["r"][:, cols], axis=1)
+        return np.column_stack([length, rate, tension])
+
+    read.columns = sen.columns(d)  # type: ignore[attr-defined]
+    return read
+
+
+def winch_factor(system: Any, name: str, t: float) -> float:
+    """The unstretched length at ``t`` of the body ``name`` over the one its arrays hold (1 for
+    a body without a winch): what its section values are measured against."""
+    for w in getattr(system, "winches", ()):
+        body, _ = winch_node(system, w)
+        if body == name:
+            f = system.winch_lengths[w.name]
+            return float(np.ravel(f.value(t))[0]) / unstretched_length(system.bodies[name])
+    return 1.0
