@@ -51,12 +51,14 @@ SCENARIO_ANALYSES: dict[str, tuple[str, ...]] = {
     "belt-drive": ("simulate",),
     "capstan": ("simulate",),
     "cantilever": ("static", "modes"),
+    "crane-hoist": ("simulate",),
     "installed-hose": ("static", "simulate"),
     "ring": ("modes", "simulate"),
     "robot-cable": ("simulate",),
     "slider-crank": ("simulate",),
     "spin-up-beam": ("simulate",),
     "tether-payload": ("simulate",),
+    "tether-reel-out": ("simulate",),
 }
 
 
