@@ -288,7 +288,18 @@ void bind_system(nb::module_& mod) {
             rancf::system_energies(h.s, y.data(), v.data(), e, t);
             return std::make_tuple(e[0], e[1], e[2]);
           },
-          "y"_a, "v"_a, "t"_a = 0.0, "(kinetic, strain, gravity) energies at time t.");
+          "y"_a, "v"_a, "t"_a = 0.0, "(kinetic, strain, gravity) energies at time t.")
+      .def(
+          "body_energies",
+          [](const SystemHolder& h, In y, In v, double t, Out out) {
+            expect_size(y, static_cast<std::size_t>(h.s.n), "y");
+            expect_size(v, static_cast<std::size_t>(h.s.n), "v");
+            expect_size(out, 3 * h.s.flex.size(), "out");
+            for (std::size_t b = 0; b < h.s.flex.size(); ++b)
+              rancf::flex_energies(h.s, b, y.data(), v.data(), t, out.data() + 3 * b);
+          },
+          "y"_a, "v"_a, "t"_a, "out"_a.noconvert(),
+          "Every flexible body's (kinetic, strain, gravity) energies at time t.");
 
   nb::class_<SystemIntegratorHolder>(mod, "SystemIntegrator",
                                      "Generalized-alpha with constraints on a system.")

@@ -257,20 +257,9 @@ void system_energies(const System& s, const double* y, const double* v, double* 
   const double* yref = s.y_ref;
   out[0] = out[1] = out[2] = 0.0;
   for (std::size_t b = 0; b < s.flex.size(); ++b) {
-    const int o = s.offset[b];
-    if (const Winch* w = winch_of(s, b)) {  // the material outside the winch at L(t)
-      ScaledBody scaled;
-      const WinchState st = winch_state(s, *w, t);
-      const Model& mod = scaled_model(*s.flex[b], st.ratio, scaled);
-      out[0] += winch_kinetic_energy(mod, *w, st, y + o, v + o);
-      out[1] += strain_energy(mod, y + o);
-      out[2] += winch_gravity_energy(*s.flex[b], winch_state(s, *w, 0.0), st, y + o);
-      continue;
-    }
-    const Model& mod = *s.flex[b];
-    out[0] += kinetic_energy(mod, y + o, v + o);
-    out[1] += strain_energy(mod, y + o);
-    out[2] += gravity_energy(mod, y + o);
+    double e[3];
+    flex_energies(s, b, y, v, t, e);
+    for (int i = 0; i < 3; ++i) out[i] += e[i];
   }
   for (std::size_t k = 0; k < s.rigid.size(); ++k) {
     const RigidInertia& body = s.rigid[k];
@@ -291,6 +280,24 @@ void system_energies(const System& s, const double* y, const double* v, double* 
     out[1] += 0.5 * sp.stiffness * dl * dl;
   }
   if (s.contact != nullptr) out[1] += contact_energy(s, *s.contact, y);
+}
+
+void flex_energies(const System& s, std::size_t b, const double* y, const double* v, double t,
+                   double* out) {
+  const int o = s.offset[b];
+  if (const Winch* w = winch_of(s, b)) {  // the material outside the winch at L(t)
+    ScaledBody scaled;
+    const WinchState st = winch_state(s, *w, t);
+    const Model& mod = scaled_model(*s.flex[b], st.ratio, scaled);
+    out[0] = winch_kinetic_energy(mod, *w, st, y + o, v + o);
+    out[1] = strain_energy(mod, y + o);
+    out[2] = winch_gravity_energy(*s.flex[b], winch_state(s, *w, 0.0), st, y + o);
+    return;
+  }
+  const Model& mod = *s.flex[b];
+  out[0] = kinetic_energy(mod, y + o, v + o);
+  out[1] = strain_energy(mod, y + o);
+  out[2] = gravity_energy(mod, y + o);
 }
 
 void system_rereference(const System& s, double* y, double* v, double* a) {

@@ -214,7 +214,7 @@ class SystemOutputs:
                 out["r"][i] = self._reactions(y, res[: s.n], float(t[i]), li, vc, step)
                 out["s"][i] = self._along(y, float(t[i]))
                 if per_body:
-                    out["eb"][i] = self._body_energies(y, vy)
+                    out["eb"][i] = self._body_energies(y, vy, float(t[i]))
         out["c"] = self.sensors.values(t, q, v, out, energy)
         return out
 
@@ -283,13 +283,13 @@ class SystemOutputs:
                 parts.append(np.array([bo[3 * k + 2], max(0.0, -bo[3 * k])]))
         return np.concatenate(parts) if parts else np.empty(0)
 
-    def _body_energies(self, y: NDArray, v: NDArray) -> NDArray:
-        parts = []
-        for name, b in self.flex:
-            sl = self.system.body_slice(name)
-            yb = y[sl]
-            parts += [b.kinetic_energy(v[sl], yb), b.strain_energy(yb), b.gravity_energy(yb)]
-        return np.array(parts)
+    def _body_energies(self, y: NDArray, v: NDArray, t: float) -> NDArray:
+        """Every flexible body's kinetic, strain and gravitational energy at time ``t`` (a
+        winch's body at its length at ``t``), by the core."""
+        out = np.empty(3 * len(self.flex))
+        self.system.core.body_energies(np.ascontiguousarray(y), np.ascontiguousarray(v),
+                                       float(t), out)  # fmt: skip
+        return out
 
     def _along(self, y: NDArray, t: float) -> NDArray:
         parts = []

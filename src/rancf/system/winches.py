@@ -42,6 +42,7 @@ class WinchedSystem(Protocol):
     core: Any
     y0: np.ndarray
     joints: Sequence[Any]
+    winch_lengths: dict[str, TimeFunction]
 
     def resolve(self, spec: Any) -> Any: ...
 
@@ -131,14 +132,15 @@ def winch_functions(
 
 
 def attach_winches(system: WinchedSystem, winches: tuple[Winch, ...], tfs: list[int]) -> None:
-    """Give the core each winch: its body, the index of its ``L(t)`` and the convective
-    matrices."""
+    """Give the core each winch: its body, the index of its ``L(t)``, the length the body's
+    arrays hold (``L(0)``: equal to the body's to ``LENGTH_RTOL``, so the body is exactly at its
+    length at the start) and the convective matrices."""
     for w, tf in zip(winches, tfs, strict=True):
-        body = _body(system, w)
         name, end = w.body_and_end()
-        c1, c2, d2 = convective_matrices(body, end)
+        c1, c2, d2 = convective_matrices(_body(system, w), end)
         index = system.names.index(name)  # flexible bodies come first
-        system.core.attach_winch(index, tf, unstretched_length(body), c1, c2, d2)
+        start = float(np.ravel(system.winch_lengths[w.name].value(0.0))[0])
+        system.core.attach_winch(index, tf, start, c1, c2, d2)
 
 
 def winch_node(system: WinchedSystem, w: Winch) -> tuple[str, int]:
@@ -167,8 +169,8 @@ def unloaded_at(system: WinchedSystem, t: float) -> np.ndarray:
     for w in getattr(system, "winches", ()):
         name, node = winch_node(system, w)
         body = _body(system, w)
-        f = winch_length(w, unstretched_length(body), system.horizon)
-        factor = float(np.ravel(f.value(t))[0]) / unstretched_length(body)
+        f = system.winch_lengths[w.name]
+        factor = float(np.ravel(f.value(t))[0]) / float(np.ravel(f.value(0.0))[0])
         sl = system.body_slice(name)
         q = body.q_from_y(y[sl]).reshape(body.n_nodes, body.dpn)
         d = body.dim
@@ -223,5 +225,5 @@ def winch_factor(system: Any, name: str, t: float) -> float:
         body, _ = winch_node(system, w)
         if body == name:
             f = system.winch_lengths[w.name]
-            return float(np.ravel(f.value(t))[0]) / unstretched_length(system.bodies[name])
+            return float(np.ravel(f.value(t))[0]) / float(np.ravel(f.value(0.0))[0])
     return 1.0
