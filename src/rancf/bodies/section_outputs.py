@@ -114,9 +114,18 @@ class SectionSampler:
         """``(n_points, len(section_names))`` at model coordinates ``y`` (rods: with the nodal
         triads the model holds, i.e. those the solvers carried to ``y``); ``factor``: the
         body's unstretched length over the one its arrays hold (a winch's body at a time)."""
+        return self.from_raw(self.raw(y, factor), factor)
+
+    def raw(self, y: NDArray, factor: float = 1.0) -> NDArray[np.float64]:
+        """Strain and curvatures ``(n_points, 2 or 4)`` at ``y`` (the first columns of
+        :meth:`values`; :meth:`from_raw` makes the rest)."""
+        return self._raw(y, factor)
+
+    def from_raw(self, raw: NDArray, factor: float | NDArray = 1.0) -> NDArray[np.float64]:
+        """:meth:`values` from :meth:`raw`, for one state or a stack ``(..., n_points, w)``
+        (``factor``: as :meth:`values`, or one a state, shaped to broadcast: ``(k, 1, 1)``)."""
         m = self.model
-        raw = self._raw(y, factor)
-        eps, kappa = raw[:, 0], raw[:, 1:]
+        eps, kappa = raw[..., 0], raw[..., 1:]
         stretch = np.sqrt(np.clip(1.0 + 2.0 * eps, 0.0, None))
         if m.element == "beam":  # per reference length already
             moments = kappa * m.props.ei
@@ -124,9 +133,9 @@ class SectionSampler:
         else:
             st = section_stiffness(m)
             c = np.array([st.gj, st.ei2, st.ei3]) if m.element == "rod" else np.array([st.ei])
-            moments = c * (kappa - self._k0 / (_scale(m) * factor)) / stretch[:, None]
-            force = m.props.ea * eps * stretch - np.sum(moments * kappa, axis=1)
-        return np.column_stack([eps, force, kappa, moments])
+            moments = c * (kappa - self._k0 / (_scale(m) * factor)) / stretch[..., None]
+            force = m.props.ea * eps * stretch - np.sum(moments * kappa, axis=-1)
+        return np.concatenate([eps[..., None], force[..., None], kappa, moments], axis=-1)
 
 
 def _scale(model: Model) -> float:

@@ -193,6 +193,7 @@ class SystemOutputs:
             "eb": np.empty((k, 3 * len(self.flex) if per_body else 0)),
         }
         res = np.empty(s.n + s.m)
+        raws: dict[str, list[NDArray]] = {name: [] for name, _ in self.flex}
         with self._triads() as set_row:
             for i in range(k):
                 y = s.y_from_q(q[i])
@@ -212,9 +213,13 @@ class SystemOutputs:
                 out["a"][i], out["lam"][i] = s.q_from_y(a), li
                 vc = None if static else vy  # friction from the velocities
                 out["r"][i] = self._reactions(y, res[: s.n], float(t[i]), li, vc, step)
-                out["s"][i] = self._along(y, float(t[i]))
+                for name, _ in self.flex:  # the sections' numbers for all rows at once below
+                    factor = winch_factor(s, name, float(t[i]))  # a winch's body at its length
+                    raws[name].append(self.samplers[name].raw(y[s.body_slice(name)], factor))
                 if per_body:
                     out["eb"][i] = self._body_energies(y, vy, float(t[i]))
+        if k:
+            out["s"] = self._along(raws, t)
         out["c"] = self.sensors.values(t, q, v, out, energy)
         return out
 
@@ -291,16 +296,19 @@ class SystemOutputs:
                                        float(t), out)  # fmt: skip
         return out
 
-    def _along(self, y: NDArray, t: float) -> NDArray:
+    def _along(self, raws: dict[str, list[NDArray]], t: NDArray) -> NDArray:
+        """Section values ``(k, n_along)`` of k rows from their strains and curvatures."""
         parts = []
         for name, _ in self.flex:
-            factor = winch_factor(self.system, name, t)  # a winch's body at its length at t
-            vals = self.samplers[name].values(y[self.system.body_slice(name)], factor)
-            strain = float(np.max(np.abs(vals[:, 0])))
-            if strain > self.largest_strain[0]:  # NaN (a diverged state) is never larger
-                self.largest_strain = (strain, t)
-            parts.append(vals.ravel())
-        return np.concatenate(parts) if parts else np.empty(0)
+            factors = np.array([winch_factor(self.system, name, float(x)) for x in t])
+            raw = np.stack(raws[name])  # (k, n_points, w)
+            vals = self.samplers[name].from_raw(raw, factors[:, None, None])
+            strain = np.max(np.abs(vals[:, :, 0]), axis=1)
+            for i in range(strain.size):  # NaN (a diverged state) is never larger
+                if strain[i] > self.largest_strain[0]:
+                    self.largest_strain = (float(strain[i]), float(t[i]))
+            parts.append(vals.reshape(vals.shape[0], -1))
+        return np.concatenate(parts, axis=1) if parts else np.empty((t.size, 0))
 
     def body_along(self, along: NDArray, name: str) -> NDArray[np.float64]:
         """One flexible body's section values ``(k, n_points, n_names)`` of rows ``along``."""
