@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "bindings.hpp"
@@ -23,6 +24,7 @@
 #include "fluid.hpp"
 #include "system.hpp"
 #include "system_integrator.hpp"
+#include "winch.hpp"
 
 namespace rancf_bind {
 
@@ -49,6 +51,7 @@ struct SystemHolder {
   std::vector<double> y_ref;
   rancf::System s;
   rancf::FluidSet fluid;
+  rancf::WinchSet winches;  // s.winches points here once one is attached
 };
 
 struct SystemIntegratorHolder {
@@ -129,6 +132,39 @@ void bind_system(nb::module_& mod) {
           "y"_a, "v"_a, "a"_a, "t"_a, "dynamic"_a = true,
           "The fluid's force (drag, inertia, buoyancy) on each flexible body, 3 values per body "
           "(world axes); dynamic = False: statics (no velocity, no inertia, no waves).")
+      .def(
+          "attach_winch",
+          [](SystemHolder& h, int body, int length, double length_set, In c1, In c2, In d2) {
+            check(body >= 0 && static_cast<std::size_t>(body) < h.s.flex.size(),
+                  "winch: body out of range");
+            check(length >= 0 && static_cast<std::size_t>(length) < h.s.tfs.size(),
+                  "winch: time function out of range");
+            const rancf::Model& mod = *h.s.flex[static_cast<std::size_t>(body)];
+            check(mod.kind == rancf::ElementKind::cable, "winch: a body of cable elements");
+            rancf::Winch w;
+            w.body = body;
+            w.length = length;
+            w.length_set = length_set;
+            w.n = mod.n();
+            w.ku = mod.ku();
+            const std::size_t size = static_cast<std::size_t>((2 * w.ku + 1) * w.n);
+            expect_size(c1, size, "c1");
+            expect_size(c2, size, "c2");
+            expect_size(d2, size, "d2");
+            w.c1.assign(c1.data(), c1.data() + size);
+            w.c2.assign(c2.data(), c2.data() + size);
+            w.d2.assign(d2.data(), d2.data() + size);
+            h.winches.of_body.resize(h.s.flex.size(), -1);
+            check(h.winches.of_body[static_cast<std::size_t>(body)] < 0,
+                  "winch: one winch per body");
+            h.winches.of_body[static_cast<std::size_t>(body)] =
+                static_cast<int>(h.winches.winches.size());
+            h.winches.winches.push_back(std::move(w));
+            h.s.winches = &h.winches;
+          },
+          "body"_a, "length"_a, "length_set"_a, "c1"_a, "c2"_a, "d2"_a,
+          "A winch at a cable body's end (winch.hpp): time function `length` of L(t), the "
+          "length the body's arrays hold, and the convective band matrices.")
       .def_prop_ro("n", [](const SystemHolder& h) { return h.s.n; })
       .def_prop_ro("m", [](const SystemHolder& h) { return h.s.m; })
       .def_prop_ro("offsets", [](const SystemHolder& h) { return h.s.offset; })
@@ -271,14 +307,25 @@ void bind_system(nb::module_& mod) {
           "(force, moment) joint k exerts on its first place's body (world axes).")
       .def(
           "energies",
-          [](const SystemHolder& h, In y, In v) {
+          [](const SystemHolder& h, In y, In v, double t) {
             expect_size(y, static_cast<std::size_t>(h.s.n), "y");
             expect_size(v, static_cast<std::size_t>(h.s.n), "v");
             double e[3];
-            rancf::system_energies(h.s, y.data(), v.data(), e);
+            rancf::system_energies(h.s, y.data(), v.data(), e, t);
             return std::make_tuple(e[0], e[1], e[2]);
           },
-          "y"_a, "v"_a, "(kinetic, strain, gravity) energies.");
+          "y"_a, "v"_a, "t"_a = 0.0, "(kinetic, strain, gravity) energies at time t.")
+      .def(
+          "body_energies",
+          [](const SystemHolder& h, In y, In v, double t, Out out) {
+            expect_size(y, static_cast<std::size_t>(h.s.n), "y");
+            expect_size(v, static_cast<std::size_t>(h.s.n), "v");
+            expect_size(out, 3 * h.s.flex.size(), "out");
+            for (std::size_t b = 0; b < h.s.flex.size(); ++b)
+              rancf::flex_energies(h.s, b, y.data(), v.data(), t, out.data() + 3 * b);
+          },
+          "y"_a, "v"_a, "t"_a, "out"_a.noconvert(),
+          "Every flexible body's (kinetic, strain, gravity) energies at time t.");
 
   nb::class_<SystemIntegratorHolder>(mod, "SystemIntegrator",
                                      "Generalized-alpha with constraints on a system.")

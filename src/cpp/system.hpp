@@ -29,6 +29,7 @@ namespace rancf {
 
 struct ContactSet;  // contact.hpp
 struct FluidSet;    // fluid.hpp
+struct WinchSet;    // winch.hpp
 
 /// A place: on a flexible body's node (kind cable/rod/beam), a rigid body or point mass, or the
 /// ground (optionally moving: point + u(t)).
@@ -106,6 +107,7 @@ struct System {
   const double* y_ref = nullptr;        ///< (n) reference coordinates (gravity potential zero)
   const ContactSet* contact = nullptr;  ///< obstacles and contact pairs (contact.hpp), or none
   const FluidSet* fluid = nullptr;      ///< fluid loads and distributed loads (fluid.hpp), or none
+  const WinchSet* winches = nullptr;    ///< winches at ends of cable bodies (winch.hpp), or none
 
   // derived by setup()
   int n = 0, m = 0;
@@ -149,6 +151,7 @@ struct AssemblyTerms {
   double t1 = 0.0;                      ///< time of the constraints
   double load_factor = 1.0;             ///< statics: the factor on the loads
   bool amplitude = false;               ///< statics: harmonic loads at their amplitude
+  bool statics = false;  ///< statics (zero velocities even where am is given): winches at rest
   /// Outputs: contact forces taken at another state, a time step's alpha point (contact_yf,
   /// contact_vf) and end (contact_y1), instead of at (yf, vf, y1); no contact Jacobian then.
   const double* contact_yf = nullptr;

@@ -17,6 +17,7 @@
 #include "fluid.hpp"
 #include "inertia.hpp"
 #include "system.hpp"
+#include "winch.hpp"
 
 namespace rancf {
 
@@ -151,8 +152,11 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
   Far far;
   // ---- flexible bodies: elements, loads, constant mass, rotary inertia
   thread_local std::vector<double> f, g, acc, mv;  // work arrays, kept between calls
+  thread_local ScaledBody scaled;                  // a winch's body at its length L(t)
   for (std::size_t b = 0; b < s.flex.size(); ++b) {
-    const Model& mod = *s.flex[b];
+    const Winch* win = winch_of(s, b);
+    const WinchState ws = win != nullptr ? winch_state(s, *win, tm.tf) : WinchState{};
+    const Model& mod = win != nullptr ? scaled_model(*s.flex[b], ws.ratio, scaled) : *s.flex[b];
     const int o = s.offset[b], nb = mod.n(), ku = mod.ku();
     f.assign(sz(nb), 0.0);
     g.assign(sz(nb), 0.0);
@@ -184,6 +188,9 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
           for (int i = std::max(0, j - ku); i < std::min(nb, j + ku + 1); ++i)
             jac.at(i, j) += cm * mod.mass_band[static_cast<std::ptrdiff_t>(ku + i - j) * nb + j];
       }
+      if (win != nullptr && !tm.statics)  // the material moving through the mesh
+        winch_inertia(*win, ws, yf + o, vf + o, tm.ck, tm.cv, r + o,
+                      lu != nullptr ? &jac : nullptr);
       if (has_rotary_inertia(mod))
         assemble_inertia(mod, yf + o, vf + o, am + o, {c, tm.ck, tm.cv, tm.ca}, r + o,
                          lu != nullptr ? &jac : nullptr);

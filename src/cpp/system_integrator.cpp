@@ -8,6 +8,7 @@
 #include "assembly.hpp"
 #include "contact.hpp"
 #include "inertia.hpp"
+#include "winch.hpp"
 
 namespace rancf {
 
@@ -178,7 +179,7 @@ RunOutcome SystemIntegrator::run(double* y, double* v, double* a, double* lam, d
       std::copy(y, y + n, out_y + row * n);
       std::copy(v, v + n, out_v + row * n);
       std::copy(lam, lam + m, out_l + row * m);
-      system_energies(s_, y, v, out_e + 3 * row);
+      system_energies(s_, y, v, out_e + 3 * row, t + h);
       ++out.stored;
     }
     const std::chrono::duration<double> spent = std::chrono::steady_clock::now() - start;
@@ -244,6 +245,7 @@ bool SystemIntegrator::factor_static(const double* y, const double* lam, double 
   terms.t1 = t;
   terms.load_factor = lf;
   terms.amplitude = amplitude;
+  terms.statics = true;
   lu_valid_ = false;
   const double* zero = nullptr;
   if (stab > 0.0) {  // M (0 + c 0) = 0 in the residual; stab M in the Jacobian
@@ -277,15 +279,13 @@ bool SystemIntegrator::static_increment(const double* y, const double* lam, doub
   return true;
 }
 
-void system_energies(const System& s, const double* y, const double* v, double* out) {
+void system_energies(const System& s, const double* y, const double* v, double* out, double t) {
   const double* yref = s.y_ref;
   out[0] = out[1] = out[2] = 0.0;
   for (std::size_t b = 0; b < s.flex.size(); ++b) {
-    const Model& mod = *s.flex[b];
-    const int o = s.offset[b];
-    out[0] += kinetic_energy(mod, y + o, v + o);
-    out[1] += strain_energy(mod, y + o);
-    out[2] += gravity_energy(mod, y + o);
+    double e[3];
+    flex_energies(s, b, y, v, t, e);
+    for (int i = 0; i < 3; ++i) out[i] += e[i];
   }
   for (std::size_t k = 0; k < s.rigid.size(); ++k) {
     const RigidInertia& body = s.rigid[k];
@@ -306,6 +306,24 @@ void system_energies(const System& s, const double* y, const double* v, double* 
     out[1] += 0.5 * sp.stiffness * dl * dl;
   }
   if (s.contact != nullptr) out[1] += contact_energy(s, *s.contact, y);
+}
+
+void flex_energies(const System& s, std::size_t b, const double* y, const double* v, double t,
+                   double* out) {
+  const int o = s.offset[b];
+  if (const Winch* w = winch_of(s, b)) {  // the material outside the winch at L(t)
+    ScaledBody scaled;
+    const WinchState st = winch_state(s, *w, t);
+    const Model& mod = scaled_model(*s.flex[b], st.ratio, scaled);
+    out[0] = winch_kinetic_energy(mod, *w, st, y + o, v + o);
+    out[1] = strain_energy(mod, y + o);
+    out[2] = winch_gravity_energy(*s.flex[b], winch_state(s, *w, 0.0), st, y + o);
+    return;
+  }
+  const Model& mod = *s.flex[b];
+  out[0] = kinetic_energy(mod, y + o, v + o);
+  out[1] = strain_energy(mod, y + o);
+  out[2] = gravity_energy(mod, y + o);
 }
 
 void system_rereference(const System& s, double* y, double* v, double* a) {

@@ -71,7 +71,13 @@ class SystemIntegrator {
 
 /// Kinetic, strain (elements and springs) and gravitational energy of the system at (y, v)
 /// (the gravity potential is zero at the system's y_ref).
-void system_energies(const System& s, const double* y, const double* v, double* out);
+void system_energies(const System& s, const double* y, const double* v, double* out,
+                     double t = 0.0);
+
+/// Kinetic, strain and gravitational energy of flexible body b at (y, v) and time t (3 values;
+/// a winch's body at its length at t).
+void flex_energies(const System& s, std::size_t b, const double* y, const double* v, double t,
+                   double* out);
 
 /// Re-reference the rods' nodal triads (keeping their spin rates), body by body.
 void system_rereference(const System& s, double* y, double* v, double* a);

@@ -46,6 +46,7 @@ from rancf.mesh.mesh import CableMesh
 __all__ = ["Section", "Material", "Support", "PointLoad", "Model", "ElementKind", "RigidMotion"]
 
 ElementKind = Literal["rancf", "ancf", "beam", "rod"]
+_STRESS_FREE = '"reference" or, for cables and rods, "straight"'
 
 
 class Model(Coordinates):
@@ -79,6 +80,8 @@ class Model(Coordinates):
         (:mod:`rancf.mesh.continuity`; cables and rods): ``q = T y``, ``y`` padded with held
         zeros to the size of ``q``; supported nodes and nodes given an initial velocity keep
         their own coordinates (C¹ there).
+    stress_free : {"reference", "straight"}
+        Unloaded state: the reference, or straight of equal arc length (cables, rods).
 
     Notes
     -----
@@ -100,8 +103,11 @@ class Model(Coordinates):
         n_qp: int | None = None,
         initial_motion: RigidMotion | None = None,
         continuity: Continuity = "C1",
+        stress_free: Literal["reference", "straight"] = "reference",
     ) -> None:
-        self.element = element
+        self.element, self.stress_free = element, stress_free
+        if stress_free != "reference" and (stress_free != "straight" or element == "beam"):
+            raise InputError("mesh.stress_free", stress_free, _STRESS_FREE)
         self.section = section
         self.material = material
         self.dim = mesh.dim
@@ -145,22 +151,17 @@ class Model(Coordinates):
                         "mesh.element", "rod", "the rod element is spatial (3D geometry)"
                     )
                 self.kernel = RodKernel(
-                    m.weights,
-                    m.scales,
-                    m.element_nodal(),
-                    props,
-                    rho * section.polar,
-                    n_qp,
-                    section.orientation,
-                    section.bending_rotary(rho),
-                    arc_fractions(m) if m.closed else None,
-                )
+                    m.weights, m.scales, m.element_nodal(), props, rho * section.polar, n_qp,
+                    section.orientation, section.bending_rotary(rho),
+                    arc_fractions(m) if m.closed else None, stress_free,
+                )  # fmt: skip
                 self.dpn = ROD_DOFS
                 q0 = np.concatenate(
                     [m.nodes.reshape(self.n_nodes, 6), np.zeros((self.n_nodes, 1))], axis=1
                 ).ravel()
             else:
-                self.kernel = CableKernel(m.weights, m.scales, m.element_nodal(), props, n_qp)
+                ref = m.element_nodal()
+                self.kernel = CableKernel(m.weights, m.scales, ref, props, n_qp, stress_free)
                 self.dpn = 2 * self.dim
                 q0 = m.q0
         else:

@@ -81,7 +81,8 @@ class SectionSampler:
             s_el, starts = _arc_lengths(mesh, xi)
         self.s = (starts[:, None] + s_el).ravel()[self._rows]
         ref_vals = self._raw(model.y0)
-        self._k0 = ref_vals[:, 1:]
+        # the moments are relative to the stress-free curvature (zero for a straight one)
+        self._k0 = ref_vals[:, 1:] * (model.stress_free != "straight")
 
     @property
     def n_points(self) -> int:
@@ -100,25 +101,29 @@ class SectionSampler:
             pts = m.mesh.evaluate(self.xi, nodes[:, : 2 * m.dim])
         return pts.reshape(-1, m.dim)[self._rows]
 
-    def _raw(self, y: NDArray) -> NDArray[np.float64]:
+    def _raw(self, y: NDArray, factor: float = 1.0) -> NDArray[np.float64]:
         m = self.model
         width = 4 if m.element == "rod" else 2
         out = np.empty((m.n_el, self.xi.size, width))
-        m.core.section_strains(self.xi, self.n1, self.n2, self.ref, np.asarray(y, dtype=float), out)
+        lam = _scale(m) * factor  # another unstretched length (rancf.bodies.length, winches)
+        ref = self.ref * (lam if m.element == "rod" else lam * lam)
+        m.core.section_strains(self.xi, self.n1, self.n2, ref, np.asarray(y, dtype=float), out)
         return out.reshape(-1, width)[self._rows]
 
-    def values(self, y: NDArray) -> NDArray[np.float64]:
+    def values(self, y: NDArray, factor: float = 1.0) -> NDArray[np.float64]:
         """``(n_points, len(section_names))`` at model coordinates ``y`` (rods: with the nodal
-        triads the model holds, i.e. those the solvers carried to ``y``)."""
-        return self.from_raw(self.raw(y))
+        triads the model holds, i.e. those the solvers carried to ``y``); ``factor``: the
+        body's unstretched length over the one its arrays hold (a winch's body at a time)."""
+        return self.from_raw(self.raw(y, factor), factor)
 
-    def raw(self, y: NDArray) -> NDArray[np.float64]:
+    def raw(self, y: NDArray, factor: float = 1.0) -> NDArray[np.float64]:
         """Strain and curvatures ``(n_points, 2 or 4)`` at ``y`` (the first columns of
         :meth:`values`; :meth:`from_raw` makes the rest)."""
-        return self._raw(y)
+        return self._raw(y, factor)
 
-    def from_raw(self, raw: NDArray) -> NDArray[np.float64]:
-        """:meth:`values` from :meth:`raw`, for one state or a stack ``(..., n_points, w)``."""
+    def from_raw(self, raw: NDArray, factor: float | NDArray = 1.0) -> NDArray[np.float64]:
+        """:meth:`values` from :meth:`raw`, for one state or a stack ``(..., n_points, w)``
+        (``factor``: as :meth:`values`, or one a state, shaped to broadcast: ``(k, 1, 1)``)."""
         m = self.model
         eps, kappa = raw[..., 0], raw[..., 1:]
         stretch = np.sqrt(np.clip(1.0 + 2.0 * eps, 0.0, None))
@@ -128,9 +133,15 @@ class SectionSampler:
         else:
             st = section_stiffness(m)
             c = np.array([st.gj, st.ei2, st.ei3]) if m.element == "rod" else np.array([st.ei])
-            moments = c * (kappa - self._k0) / stretch[..., None]
+            moments = c * (kappa - self._k0 / (_scale(m) * factor)) / stretch[..., None]
             force = m.props.ea * eps * stretch - np.sum(moments * kappa, axis=-1)
         return np.concatenate([eps[..., None], force[..., None], kappa, moments], axis=-1)
+
+
+def _scale(model: Model) -> float:
+    """The unstretched length over the reference's (:mod:`rancf.bodies.length`)."""
+    k = model.kernel
+    return float(getattr(getattr(k, "cable", k), "length_scale", 1.0))
 
 
 def _arc_lengths(mesh: object, xi: NDArray, n_gauss: int = 12) -> tuple[NDArray, NDArray]:

@@ -81,6 +81,9 @@ class CableKernel:
     props : CableProperties
     n_qp : int
         Gauss–Legendre points per element (see the quadrature convergence test).
+    stress_free : {"reference", "straight"}
+        The unloaded state: the reference itself, or the straight line of the same arc length
+        (``κ0 = 0`` with the reference metric ``J0``: docs/derivations/variable-length.md §1).
     """
 
     def __init__(
@@ -90,6 +93,7 @@ class CableKernel:
         reference: ArrayLike,
         props: CableProperties,
         n_qp: int,
+        stress_free: str = "reference",
     ) -> None:
         self.weights = np.asarray(weights, dtype=float)
         self.scales = np.asarray(scales, dtype=float)
@@ -103,12 +107,37 @@ class CableKernel:
         self.n1, self.n2 = np.ascontiguousarray(n1), np.ascontiguousarray(n2)
         self.s0, self.kappa0 = qp_geometry(self.n1, self.n2, self.reference)
         self.j0 = np.sqrt(self.s0)
+        if stress_free == "straight":  # same arc length element by element, no curvature
+            self.kappa0 = np.zeros_like(self.s0)
         # spatial: η² κ0² at curved reference points (κ0 J0 above round-off), zero elsewhere
         self.qreg = np.zeros_like(self.s0)
         if self.dim == 3:
             curved = self.kappa0 * self.j0 > _core.CABLE_STRAIGHT
             self.qreg = np.where(curved, (ETA * self.kappa0) ** 2, 0.0)
         self.wj = gw[None, :] * self.j0  # (n_el, n_qp): dξ weight times reference speed
+        #: The unstretched length over the reference's (:meth:`scale_length`).
+        self.length_scale = 1.0
+        self._unscaled = (self.s0.copy(), self.kappa0.copy(), self.qreg.copy())
+
+    def scale_length(self, scale: float) -> None:
+        """Make the unloaded state the reference stretched uniformly by ``scale`` (an unstretched
+        length ``scale`` times the reference's): ``s0 → scale² s0``, ``J0 → scale J0``,
+        ``κ0 → κ0 / scale`` (docs/derivations/variable-length.md §2.1).  In place: the compiled
+        core reads these arrays; the mass and gravity of a model follow from ``wj``.
+        """
+        s0, k0, qr = self._unscaled
+        self.s0[...] = scale * scale * s0
+        self.j0[...] = scale * np.sqrt(s0)
+        self.kappa0[...] = k0 / scale
+        self.qreg[...] = qr / (scale * scale)
+        self.wj[...] = self.gw[None, :] * self.j0
+        self.length_scale = float(scale)
+
+    @property
+    def reference_speed(self) -> NDArray[np.float64]:
+        """``|r0'|`` of the reference at the Gauss points ``(n_el, n_qp)``, whatever
+        :meth:`scale_length` did."""
+        return np.sqrt(self._unscaled[0])
 
     @property
     def n_dof_el(self) -> int:

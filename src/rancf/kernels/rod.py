@@ -117,6 +117,8 @@ class RodKernel:
     rho_bend : float
     closed_arc : ndarray, optional
         A closed centreline: the nodes' arc-length fractions (see :func:`initial_triads`).
+    stress_free : {"reference", "straight"}
+        As :class:`~rancf.kernels.cable.CableKernel`; ``"straight"`` also sets ``K⁰ = 0``.
     """
 
     def __init__(
@@ -130,8 +132,10 @@ class RodKernel:
         orientation: ArrayLike | None = None,
         rho_bend: float = 0.0,
         closed_arc: NDArray | None = None,
+        stress_free: str = "reference",
     ) -> None:
-        self.cable = CableKernel(weights, scales, reference, props, n_qp)
+        self.cable = CableKernel(weights, scales, reference, props, n_qp, stress_free)
+        self.straight = stress_free == "straight"
         c = self.cable
         self.n_el = c.n_el
         self.rho_polar = float(rho_polar)
@@ -153,8 +157,17 @@ class RodKernel:
         )  # fmt: skip
 
     def set_reference_curvatures(self, k: NDArray) -> None:
-        """Store ``K⁰`` (computed by the core on the reference) in place."""
-        self.kref[...] = k
+        """Store ``K⁰`` (computed by the core on the reference) in place; a straight stress-free
+        state keeps ``K⁰ = 0`` (docs/derivations/variable-length.md §1)."""
+        self.kref[...] = 0.0 if self.straight else k
+        self._kref = self.kref.copy()
+
+    def scale_length(self, scale: float) -> None:
+        """The unloaded state stretched uniformly by ``scale``: the cable's data
+        (:meth:`CableKernel.scale_length <rancf.kernels.cable.CableKernel.scale_length>`) and
+        ``K⁰ → K⁰ / scale`` (docs/derivations/variable-length.md §2.1)."""
+        self.cable.scale_length(scale)
+        self.kref[...] = self._kref / scale
 
     def core_inertia(self) -> _core.SectionInertia:
         """The rotary inertia per length as the core's named structure."""

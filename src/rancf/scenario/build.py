@@ -122,7 +122,8 @@ def mesh_geometry(path: str, geometry: Any, mesh: MeshTable, prefix: str = "") -
 
 
 #: The tables that make a scenario a system of parts rather than one flexible body.
-SYSTEM_KEYS = ("bodies", "joints", "springs", "obstacles", "body_contacts", "fluid", "hydro")
+SYSTEM_KEYS = ("bodies", "joints", "springs", "obstacles", "body_contacts", "fluid", "hydro",
+               "winches")  # fmt: skip
 
 
 def build_model(sc: ScenarioView) -> Model:
@@ -201,6 +202,7 @@ def flexible_model(
             mesh_table.quadrature_points,
             None if initial_motion is None else RigidMotion(**initial_motion),
             mesh_table.continuity,
+            mesh_table.stress_free,
         )
     except InputError as exc:
         raise ScenarioError(

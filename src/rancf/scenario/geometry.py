@@ -376,6 +376,11 @@ class MeshTable(Table):
         "control points of the cubic (rational) B-spline through the mesh are the unknowns: "
         "curvature continuous, fewer unknowns; cables and rods)",
     )
+    stress_free: Literal["reference", "straight"] = Field(
+        "reference",
+        description='"reference" (the start shape is unloaded) | "straight" (unloaded straight, '
+        "same arc length: a rope laid over a pulley carries its bending energy; cables and rods)",
+    )
     quadrature_points: integer(ge=2, le=64) | None = Field(
         None,
         description="Gauss points per element (default: 6 for polynomial (ANCF) elements, 10 "

@@ -39,6 +39,7 @@ from rancf.scenario.obstacles import ObstacleTable
 from rancf.scenario.section import MaterialTable, SectionTable
 from rancf.scenario.sensors import Sensor, SensorTable
 from rancf.scenario.solver import ModesTable, SolverTable
+from rancf.scenario.winches import WinchTable
 
 if TYPE_CHECKING:
     from rancf.bodies.flexible import Model
@@ -67,6 +68,9 @@ class Scenario(Table):
     joints: list[JointTable] = Field([], description="joints between two places")
     springs: list[SpringTable] = Field([], description="spring-dampers between two places")
     obstacles: list[ObstacleTable] = Field([], description="rigid obstacles the bodies touch")
+    winches: list[WinchTable] = Field(
+        [], description="cables paid out or reeled in at an end of a flexible body"
+    )
     body_contacts: list[list[Name]] = Field(
         [],
         description="pairs [BODY, BODY] of flexible bodies in contact with each other (a body "
@@ -255,6 +259,8 @@ class Scenario(Table):
         out += [(f"joints[{i}].angle", j.angle) for i, j in enumerate(self.joints)]
         out += [(f"loads.distributed[{i}].time", p.time)
                 for i, p in enumerate(self.loads.distributed)]  # fmt: skip
+        out += [(f"winches[{i}].{k}", w[k]) for i, w in enumerate(self.winches)
+                for k in ("length", "speed", "torque")]  # fmt: skip
         return [(k, f) for k, f in out if f is not None]
 
     def _cad_tables(self, d: dict[str, Any]) -> list[tuple[dict[str, Any], CadGeometry]]:
@@ -306,6 +312,9 @@ def _data(sc: Scenario) -> dict[str, Any]:
                    for j in sc.joints]  # fmt: skip
     d["springs"] = [s.model_dump() for s in sc.springs]
     d["obstacles"] = [o.model_dump() for o in sc.obstacles]
+    d["winches"] = [{**w.model_dump(exclude={"length", "speed", "torque"}),
+                     **{k: _tf(w[k]) for k in ("length", "speed", "torque")}}
+                    for w in sc.winches]  # fmt: skip
     d["supports"] = [
         {**s.model_dump(exclude={"motion"}), "at": _node_or_text(s.at, one), "label": s.at,
          "motion": _tf(s.motion)}

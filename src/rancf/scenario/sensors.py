@@ -19,7 +19,10 @@ A sensor names one monitored quantity.  Kinds and their keys:
   the line, walked from its start, leaves the plane (:mod:`rancf.system.touchdown`) [m];
 * of a fluid: ``fluid_force`` (buoyancy, drag and the waves' Froude-Krylov force on the body
   ``body``, default every flexible body; the added-mass force, which needs the accelerations,
-  is left out) [N].
+  is left out) [N];
+* of a winch (``winch = NAME``): ``winch``, its line's unstretched length outside the drum
+  ``NAME_length`` [m], pay-out rate ``NAME_speed`` [m/s] and tension ``NAME_tension`` [N] (the
+  force of the winch's support on the line).
 
 ``position``, ``twist``, ``axial_force`` and ``tension`` take ``at_point = [x, y(, z)]`` instead
 of ``at``: they read the material point nearest to that fixed point in space, found anew at every
@@ -45,10 +48,11 @@ __all__ = ["Sensor", "SensorTable", "SENSOR_KINDS", "SYSTEM_SENSOR_KINDS", "AT_P
 #: Sensor kinds.
 SENSOR_KINDS = ("distance", "position", "twist", "angular_momentum", "energy", "reaction",
                 "axial_force", "tension", "angle", "center_of_mass", "momentum",
-                "contact_force", "fluid_force", "touchdown")  # fmt: skip
+                "contact_force", "fluid_force", "touchdown", "winch")  # fmt: skip
 #: The kinds the system solver computes (not from node positions).
 SYSTEM_SENSOR_KINDS = ("reaction", "axial_force", "tension", "angle", "center_of_mass",
-                       "momentum", "contact_force", "fluid_force", "touchdown")  # fmt: skip
+                       "momentum", "contact_force", "fluid_force", "touchdown",
+                       "winch")  # fmt: skip
 _SCALAR = ("distance", "twist", "energy", "axial_force", "tension")
 #: The kinds that take ``at_point`` (a material point found anew at every output).
 AT_POINT_KINDS = ("position", "twist", "axial_force", "tension")
@@ -73,9 +77,12 @@ class Sensor:
     body: str | None = None
     obstacle: str | None = None
     point: tuple[float, ...] | None = None
+    winch: str | None = None
 
     def columns(self, dim: int) -> list[str]:
         """CSV column names of the sensor's scalars."""
+        if self.kind == "winch":
+            return [f"{self.name}_{c}" for c in ("length", "speed", "tension")]
         one = self.kind in _SCALAR or (self.kind in ("angular_momentum", "angle") and dim == 2)
         return [self.name] if one else [f"{self.name}_{c}" for c in "xyz"[:dim]]
 
@@ -101,7 +108,7 @@ class SensorTable(Table):
     kind: Literal[
         "distance", "position", "twist", "angular_momentum", "energy", "reaction",
         "axial_force", "tension", "angle", "center_of_mass", "momentum", "contact_force",
-        "fluid_force", "touchdown",
+        "fluid_force", "touchdown", "winch",
     ] = Field(description="what is measured (the sensor kinds: docs/guide/outputs.md)")  # fmt: skip
     between: PlacePair | None = Field(None, description="distance: the two places")
     at: PlaceValue | None = Field(
@@ -121,6 +128,7 @@ class SensorTable(Table):
     obstacle: Name | None = Field(
         None, description="contact_force, touchdown: the obstacle's name (touchdown: a plane)"
     )
+    winch: Name | None = Field(None, description="winch: the winch's name")
     body: Name | None = Field(
         None,
         description="angle: the rigid body; center_of_mass, momentum, fluid_force: the body "
@@ -136,6 +144,13 @@ class SensorTable(Table):
             raise fail("joint", "applies to reaction sensors only")
         if self.obstacle is not None and kd not in ("contact_force", "touchdown"):
             raise fail("obstacle", "applies to contact_force and touchdown sensors only")
+        if (self.winch is not None) != (kd == "winch"):
+            raise fail("winch", "a winch sensor needs winch = NAME (and only it has one)")
+        if kd == "winch":
+            for k in ("at", "between", "body", "at_point"):
+                if self[k] is not None:
+                    raise fail(k, "not for a winch sensor (the winch's line)")
+            return self
         if kd in ("contact_force", "touchdown"):
             if self.obstacle is None:
                 raise fail("obstacle", f"a {kd} sensor needs obstacle = NAME")
@@ -188,4 +203,4 @@ class SensorTable(Table):
         about = None if self.about is None else tuple(self.about)
         point = None if self.at_point is None else tuple(self.at_point)
         return Sensor(self.name, self.kind, nodes, about, self.places(), self.joint, self.body,
-                      self.obstacle, point)  # fmt: skip
+                      self.obstacle, point, self.winch)  # fmt: skip

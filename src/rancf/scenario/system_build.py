@@ -29,6 +29,7 @@ from rancf.errors import InputError, ScenarioError
 from rancf.scenario.build import body_model, flexible_model
 from rancf.scenario.fluid import fluid_value, hydro_value
 from rancf.scenario.view import ScenarioView
+from rancf.scenario.winches import system_winches
 from rancf.system import Joint, Load, Obstacle, Place, Spring, System
 
 __all__ = ["build_system", "support_labels", "ONE_BODY"]
@@ -169,7 +170,7 @@ def _parts(sc: ScenarioView, bodies: dict[str, Any]) -> dict[str, Any]:
             "obstacles": obstacles, "contacts": contacts,
             "body_contacts": [(a, b) for a, b in sc.body_contacts],
             "contact_points": sc.contact_points, "body_friction": sc.body_friction,
-            **_fluid(sc)}  # fmt: skip
+            "winches": system_winches(sc, bodies, ONE_BODY), **_fluid(sc)}  # fmt: skip
 
 
 def _fluid(sc: ScenarioView) -> dict[str, Any]:

@@ -40,6 +40,7 @@ class ScenarioView(Protocol):
     joints: Sequence[Any]
     springs: Sequence[Any]
     obstacles: Sequence[Any]
+    winches: Sequence[Any]
     contacts: Any
     contact_points: int
     body_contacts: Any

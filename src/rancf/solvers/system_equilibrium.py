@@ -36,6 +36,7 @@ from numpy.typing import NDArray
 from rancf.bodies.flexible import Model
 from rancf.kernels import _core
 from rancf.system import System
+from rancf.system.winches import unloaded_at
 
 __all__ = ["SystemEquilibrium", "STABILIZER", "INSTALL_RTOL", "path_stages"]
 
@@ -79,7 +80,7 @@ class SystemEquilibrium:
         installed = s.y0.copy()
         for name, b in zip(s.names, s.flex, strict=False):
             installed[s.body_slice(name)] = b.y_installed
-        self._y0 = s.y0
+        self._y0 = unloaded_at(s, self._t)  # y0, winches' bodies at their length at t
         self.delta = (installed - s.y0)[s.fixed]
         self.size = s.size
         self.stages = path_stages(self.delta, self.size)

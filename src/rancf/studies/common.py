@@ -51,6 +51,7 @@ SCENARIO_ANALYSES: dict[str, tuple[str, ...]] = {
     "belt-drive": ("simulate",),
     "capstan": ("simulate",),
     "cantilever": ("static", "modes"),
+    "crane-hoist": ("simulate",),
     "installed-hose": ("static", "simulate"),
     "mooring-line": ("static",),
     "power-line-gust": ("simulate",),
@@ -59,6 +60,7 @@ SCENARIO_ANALYSES: dict[str, tuple[str, ...]] = {
     "slider-crank": ("simulate",),
     "spin-up-beam": ("simulate",),
     "tether-payload": ("simulate",),
+    "tether-reel-out": ("simulate",),
 }
 
 

@@ -5,9 +5,10 @@ from rancf.system.contact import ContactState, Obstacle, contact_history, contac
 from rancf.system.fluid import DistributedLoad, Fluid, Hydro, Waves
 from rancf.system.places import GROUND, Place
 from rancf.system.system import System, as_system
+from rancf.system.winches import Winch
 
 __all__ = [
     "System", "Joint", "Spring", "Load", "Place", "GROUND", "Obstacle", "ContactState",
     "contact_outputs", "contact_history", "as_system", "Fluid", "Waves", "Hydro",
-    "DistributedLoad",
+    "DistributedLoad", "Winch",
 ]  # fmt: skip

@@ -62,6 +62,7 @@ from rancf.kernels import _core
 from rancf.system.contact import contact_outputs
 from rancf.system.sensors import SensorReader
 from rancf.system.system import System
+from rancf.system.winches import winch_factor
 
 __all__ = ["SystemOutputs"]
 
@@ -213,9 +214,10 @@ class SystemOutputs:
                 vc = None if static else vy  # friction from the velocities
                 out["r"][i] = self._reactions(y, res[: s.n], float(t[i]), li, vc, step)
                 for name, _ in self.flex:  # the sections' numbers for all rows at once below
-                    raws[name].append(self.samplers[name].raw(y[s.body_slice(name)]))
+                    factor = winch_factor(s, name, float(t[i]))  # a winch's body at its length
+                    raws[name].append(self.samplers[name].raw(y[s.body_slice(name)], factor))
                 if per_body:
-                    out["eb"][i] = self._body_energies(y, vy)
+                    out["eb"][i] = self._body_energies(y, vy, float(t[i]))
         if k:
             out["s"] = self._along(raws, t)
         out["c"] = self.sensors.values(t, q, v, out, energy)
@@ -286,19 +288,21 @@ class SystemOutputs:
                 parts.append(np.array([bo[3 * k + 2], max(0.0, -bo[3 * k])]))
         return np.concatenate(parts) if parts else np.empty(0)
 
-    def _body_energies(self, y: NDArray, v: NDArray) -> NDArray:
-        parts = []
-        for name, b in self.flex:
-            sl = self.system.body_slice(name)
-            yb = y[sl]
-            parts += [b.kinetic_energy(v[sl], yb), b.strain_energy(yb), b.gravity_energy(yb)]
-        return np.array(parts)
+    def _body_energies(self, y: NDArray, v: NDArray, t: float) -> NDArray:
+        """Every flexible body's kinetic, strain and gravitational energy at time ``t`` (a
+        winch's body at its length at ``t``), by the core."""
+        out = np.empty(3 * len(self.flex))
+        self.system.core.body_energies(np.ascontiguousarray(y), np.ascontiguousarray(v),
+                                       float(t), out)  # fmt: skip
+        return out
 
     def _along(self, raws: dict[str, list[NDArray]], t: NDArray) -> NDArray:
         """Section values ``(k, n_along)`` of k rows from their strains and curvatures."""
         parts = []
         for name, _ in self.flex:
-            vals = self.samplers[name].from_raw(np.stack(raws[name]))  # (k, n_points, names)
+            factors = np.array([winch_factor(self.system, name, float(x)) for x in t])
+            raw = np.stack(raws[name])  # (k, n_points, w)
+            vals = self.samplers[name].from_raw(raw, factors[:, None, None])
             strain = np.max(np.abs(vals[:, :, 0]), axis=1)
             for i in range(strain.size):  # NaN (a diverged state) is never larger
                 if strain[i] > self.largest_strain[0]:

@@ -45,6 +45,7 @@ from rancf.bodies.rigid import PointMass, RigidBody, body_angular_velocity
 from rancf.errors import InputError
 from rancf.system.at_point import at_point_reader
 from rancf.system.places import Place
+from rancf.system.winches import winch_reader
 
 __all__ = ["SensorReader"]
 
@@ -90,8 +91,8 @@ class SensorReader:
         vv = np.zeros_like(q) if v is None else np.asarray(v, dtype=float).reshape(q.shape)
         if energy is None and any(s == "energy" for s in self._kinds):
             sy = self.system
-            energy = np.array([sy.energies(sy.y_from_q(a), sy.y_from_q(b))
-                               for a, b in zip(q, vv, strict=True)])  # fmt: skip
+            energy = np.array([sy.energies(sy.y_from_q(a), sy.y_from_q(b), tt)
+                               for a, b, tt in zip(q, vv, t, strict=True)])  # fmt: skip
         block = (t, q, vv, derived, energy if energy is not None else np.zeros((len(t), 3)))
         cols = [np.asarray(r(block), dtype=float).reshape(len(t), -1) for r in self._readers]
         return np.concatenate(cols, axis=1) if cols else np.empty((len(t), 0))
@@ -160,6 +161,8 @@ class SensorReader:
             reader = self._fluid_force(sen)
         elif kind == "touchdown":
             reader = self._touchdown(sen)
+        elif kind == "winch":
+            reader = winch_reader(self.out, sen)
         else:
             raise InputError(f"sensors.{sen.name}.kind", kind, "a sensor kind")
         reader.kind = kind  # type: ignore[attr-defined]

@@ -43,6 +43,7 @@ from rancf.system.fluid import DistributedLoad, Fluid, Hydro, fluid_records
 from rancf.system.joint_data import joint_data
 from rancf.system.places import Place
 from rancf.system.stack import Body, BodyStack
+from rancf.system.winches import Winch, attach_winches, winch_functions
 
 __all__ = ["System", "Body", "as_system"]
 
@@ -105,6 +106,8 @@ class System(BodyStack):
         Contact between flexible bodies; a body twice: self-contact.
     body_friction : float
         Coulomb coefficient of the contact between flexible bodies.
+    winches : sequence of :class:`rancf.system.winches.Winch`
+        Cables paid out or reeled in at an end (:mod:`rancf.system.winches`).
     observe : sequence of places
         Places on bodies whose position and frame outputs read (:meth:`place_state`).
     fluid : :class:`rancf.system.fluid.Fluid`, optional
@@ -141,6 +144,7 @@ class System(BodyStack):
         fluid: Fluid | None = None,
         hydro: Mapping[str, Hydro] | None = None,
         distributed: Sequence[DistributedLoad] = (),
+        winches: Sequence[Winch] = (),
     ) -> None:
         super().__init__(bodies)
         self.gravity = (
@@ -174,6 +178,8 @@ class System(BodyStack):
         pre = [self._place(j, rows) for j in joints]  # places first: their reference frames
         self.core = self._build(rows.records(**parts))
         parts["joints"] = [self._joint(j, ab, rows) for j, ab in zip(joints, pre, strict=True)]
+        self.winches = tuple(winches)
+        self.winch_lengths, winch_tfs = winch_functions(self, self.winches, rows.tf)
         self.records = rows.records(**parts)
         self.core = self._build(self.records)
         if in_fluid is not None:
@@ -188,6 +194,7 @@ class System(BodyStack):
                 self, self.obstacles, contacts, contact_points, body_contacts, body_friction
             )
             self.core.attach_contact(self.contact)
+        attach_winches(self, self.winches, winch_tfs)
         self._check_reference()
 
     def _check_gravity(self) -> None:
@@ -370,9 +377,10 @@ class System(BodyStack):
         """Whether the system has contact (obstacles or flexible bodies touching each other)."""
         return self.contact is not None
 
-    def energies(self, y: NDArray, v: NDArray) -> tuple[float, float, float]:
-        """Kinetic, strain (with springs) and gravitational energy (zero at the reference)."""
-        return self.core.energies(np.asarray(y, float), np.asarray(v, float))
+    def energies(self, y: NDArray, v: NDArray, t: float = 0.0) -> tuple[float, float, float]:
+        """Kinetic, strain (with springs) and gravitational energy (zero at the reference) at
+        time ``t`` (winches: their lengths at ``t``)."""
+        return self.core.energies(np.asarray(y, float), np.asarray(v, float), float(t))
 
 
 def as_system(model: Model | System) -> System:

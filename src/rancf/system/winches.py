@@ -1,0 +1,229 @@
+"""Winches: a cable paid out of (or reeled onto) a drum at one end of a flexible body.
+
+The body outside the winch keeps its mesh and its exact reference geometry; its unstretched
+length follows ``L(t)`` (``length``: any time function; ``speed``: the pay-out rate, ``L`` its
+integral from the body's length at ``t = 0``).  The material is spread uniformly over the mesh
+and moves through it; the compiled core (``src/cpp/winch.hpp``) stretches the body's reference
+by ``L(t)`` and adds the convective inertia of :mod:`rancf.bodies.winch_inertia`, so mass,
+momentum and energy of the material outside the drum are exact: the material leaving the drum
+enters with the drum's speed (docs/derivations/variable-length.md §2).  The winch's end of the
+body must be held by a support (a pin, or a clamp for a line leaving in a fixed direction) at
+the place where the line leaves the drum.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any, Literal, Protocol
+
+import numpy as np
+
+from rancf.bodies.flexible import Model
+from rancf.bodies.length import unstretched_length
+from rancf.bodies.reactions import has_moment
+from rancf.bodies.rigid import PointMass
+from rancf.bodies.time_function import TimeFunction
+from rancf.bodies.winch_inertia import convective_matrices
+from rancf.errors import InputError
+
+__all__ = [
+    "Winch", "winch_length", "winch_functions", "attach_winches", "winch_node", "unloaded_at",
+    "winch_reader", "winch_factor", "LENGTH_RTOL",
+]  # fmt: skip
+
+
+class WinchedSystem(Protocol):
+    """What the winches use of a system (:class:`rancf.system.system.System`)."""
+
+    bodies: Mapping[str, Any]
+    names: list[str]
+    horizon: float | None
+    core: Any
+    y0: np.ndarray
+    joints: Sequence[Any]
+    winch_lengths: dict[str, TimeFunction]
+
+    def resolve(self, spec: Any) -> Any: ...
+
+    def body_slice(self, name: str) -> slice: ...
+
+
+#: A callable ``L(t)`` is sampled this much past the horizon (its rate is not cut at the end).
+HORIZON_MARGIN = 1.05
+
+#: The body's unstretched length and ``L(0)`` agree to this (relative).
+LENGTH_RTOL = 1e-9
+
+
+@dataclass(frozen=True)
+class Winch:
+    """A winch (module docstring).
+
+    Parameters
+    ----------
+    name : str
+    at : str
+        ``"BODY:start"`` or ``"BODY:end"``: the end of a cable body at the drum.
+    length : TimeFunction or float, optional
+        The unstretched length outside the winch [m] as a function of time.
+    speed : TimeFunction or float, optional
+        The pay-out rate [m/s] (reeling in: negative); one of ``length`` and ``speed``.
+    """
+
+    name: str
+    at: str
+    length: TimeFunction | float | None = None
+    speed: TimeFunction | float | None = None
+
+    def body_and_end(self) -> tuple[str, Literal["start", "end"]]:
+        """The body's name and the end at the drum."""
+        body, _, end = self.at.rpartition(":")
+        if not body or end not in ("start", "end"):
+            raise InputError(f"winches.{self.name}.at", self.at, '"BODY:start" or "BODY:end"')
+        return body, end  # type: ignore[return-value]
+
+
+def winch_length(w: Winch, length0: float, horizon: float | None) -> TimeFunction:
+    """``L(t)`` of a winch whose body is ``length0`` long at ``t = 0``: its ``length``, or
+    ``length0`` plus the integral of its ``speed`` (trapezoidal on 20 001 points of
+    ``[0, 1.05 horizon]``, then a cubic table of the core's)."""
+    if (w.length is None) == (w.speed is None):
+        raise InputError(f"winches.{w.name}", "length and speed" if w.length is not None
+                         else "neither", "one of length, speed")  # fmt: skip
+    if w.length is not None:
+        f = w.length if isinstance(w.length, TimeFunction) else TimeFunction.constant(w.length)
+        return f
+    speed = w.speed if isinstance(w.speed, TimeFunction) else TimeFunction.constant(w.speed)
+    if horizon is None or not horizon > 0:
+        raise InputError("horizon", horizon, "the run's end time t_end [s] > 0 (a winch's "
+                         "speed is integrated on [0, t_end])")  # fmt: skip
+    t = np.linspace(0.0, HORIZON_MARGIN * float(horizon), 20001)
+    rate = np.array([float(np.ravel(speed.value(x))[0]) for x in t])
+    cum = length0 + np.r_[0.0, np.cumsum(0.5 * (rate[1:] + rate[:-1]) * np.diff(t))]
+
+    def length(x: float) -> float:
+        return float(np.interp(x, t, cum))
+
+    return TimeFunction.from_callable(length)
+
+
+def winch_functions(
+    system: WinchedSystem, winches: tuple[Winch, ...], tf: Callable
+) -> tuple[dict[str, TimeFunction], list[int]]:
+    """Each winch's ``L(t)`` as the core evaluates it (a callable sampled on the horizon) by
+    name, and its index among the core's time functions (``tf`` registers one); ``L(0)`` must
+    be the body's unstretched length."""
+    out, functions = [], {}
+    for w in winches:
+        body = _body(system, w)
+        length0 = unstretched_length(body)
+        f = winch_length(w, length0, system.horizon)
+        start = float(np.ravel(f.value(0.0))[0])
+        if abs(start - length0) > LENGTH_RTOL * max(length0, 1.0):
+            raise InputError(f"winches.{w.name}.length", start, f"the body's unstretched "
+                             f"length at t = 0, {length0!r} m (rancf.bodies.length."
+                             "set_unstretched_length gives the body its start length)")  # fmt: skip
+        if f.kind == "callable":
+            f = f.sampled(HORIZON_MARGIN * float(system.horizon))  # type: ignore[arg-type]
+        functions[w.name] = f
+        out.append(tf(f))
+    return functions, out
+
+
+def attach_winches(system: WinchedSystem, winches: tuple[Winch, ...], tfs: list[int]) -> None:
+    """Give the core each winch: its body, the index of its ``L(t)``, the length the body's
+    arrays hold (``L(0)``: equal to the body's to ``LENGTH_RTOL``, so the body is exactly at its
+    length at the start) and the convective matrices."""
+    for w, tf in zip(winches, tfs, strict=True):
+        name, end = w.body_and_end()
+        c1, c2, d2 = convective_matrices(_body(system, w), end)
+        index = system.names.index(name)  # flexible bodies come first
+        start = float(np.ravel(system.winch_lengths[w.name].value(0.0))[0])
+        system.core.attach_winch(index, tf, start, c1, c2, d2)
+
+
+def winch_node(system: WinchedSystem, w: Winch) -> tuple[str, int]:
+    """The body and the node at the drum."""
+    name, end = w.body_and_end()
+    return name, 0 if end == "start" else _body(system, w).n_nodes - 1
+
+
+def _body(system: WinchedSystem, w: Winch) -> Model:
+    name, end = w.body_and_end()
+    body = system.bodies.get(name)
+    if not isinstance(body, Model):
+        raise InputError(f"winches.{w.name}.at", w.at, "the end of a flexible (cable) body")
+    node = 0 if end == "start" else body.n_nodes - 1
+    if not any(body.check_node(s.node, "supports.at") == node for s in body.supports):
+        raise InputError(f"winches.{w.name}.at", w.at, "an end held by a support (pin or "
+                         "clamp) where the line leaves the drum")  # fmt: skip
+    return body
+
+
+def unloaded_at(system: WinchedSystem, t: float) -> np.ndarray:
+    """The system's reference coordinates with every winch's body stretched about the winch to
+    its length at ``t`` (positions ``a + f (r - a)``, gradients ``f r_x``, ``f = L(t) / L(0)``):
+    where statics at ``t`` start."""
+    y = system.y0.copy()
+    for w in getattr(system, "winches", ()):
+        name, node = winch_node(system, w)
+        body = _body(system, w)
+        f = system.winch_lengths[w.name]
+        factor = float(np.ravel(f.value(t))[0]) / float(np.ravel(f.value(0.0))[0])
+        sl = system.body_slice(name)
+        q = body.q_from_y(y[sl]).reshape(body.n_nodes, body.dpn)
+        d = body.dim
+        a = q[node, :d].copy()
+        q[:, :d] = a + factor * (q[:, :d] - a)
+        q[:, d : 2 * d] *= factor
+        y[sl] = body.y_from_q(q.ravel())
+        for j in system.joints:  # a point mass pinned to the body goes with its node
+            ends = [system.resolve(p) for p in j.between]
+            for p, other in (ends, ends[::-1]):
+                mass = system.bodies.get(other.body) if other.body else None
+                if p.body == name and isinstance(mass, PointMass) and j.kind == "pin":
+                    y[system.body_slice(other.body)][:d] = q[int(p.at), :d]
+    return y
+
+
+def winch_reader(outputs: Any, sen: Any) -> Callable[[Any], np.ndarray]:
+    """The columns of a ``winch`` sensor (``NAME_length``, ``NAME_speed``, ``NAME_tension``):
+    ``L(t)``, ``L'(t)`` and the magnitude of the force of the winch's support on the line
+    (:class:`rancf.system.outputs.SystemOutputs`' reaction columns)."""
+    s = outputs.system
+    found = [w for w in getattr(s, "winches", ()) if w.name == sen.winch]
+    if not found:
+        names = ", ".join(w.name for w in getattr(s, "winches", ())) or "none"
+        raise InputError(f"sensors.{sen.name}.winch", sen.winch, f"a winch: {names}")
+    w = found[0]
+    name, node = winch_node(s, w)
+    f = s.winch_lengths[w.name]
+    start, d, cols = 0, s.dim, slice(0, 0)
+    for body_name, b in outputs.flex:
+        for sup in b.supports:
+            width = d + (0 if not has_moment(b, sup.kind) else (1 if d == 2 else 3))
+            if body_name == name and b.check_node(sup.node, "supports.at") == node:
+                cols = slice(start, start + d)
+            start += width
+
+    def read(blk: Any) -> np.ndarray:
+        t = blk[0]
+        length = np.array([float(np.ravel(f.value(x))[0]) for x in t])
+        rate = np.array([float(np.ravel(f.rate(x))[0]) for x in t])
+        tension = np.linalg.norm(blk[3]["r"][:, cols], axis=1)
+        return np.column_stack([length, rate, tension])
+
+    read.columns = sen.columns(d)  # type: ignore[attr-defined]
+    return read
+
+
+def winch_factor(system: Any, name: str, t: float) -> float:
+    """The unstretched length at ``t`` of the body ``name`` over the one its arrays hold (1 for
+    a body without a winch): what its section values are measured against."""
+    for w in getattr(system, "winches", ()):
+        body, _ = winch_node(system, w)
+        if body == name:
+            f = system.winch_lengths[w.name]
+            return float(np.ravel(f.value(t))[0]) / float(np.ravel(f.value(0.0))[0])
+    return 1.0
