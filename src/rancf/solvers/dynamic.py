@@ -21,6 +21,7 @@ and keeps everything computed up to then.
 
 from __future__ import annotations
 
+import math
 import time
 from collections.abc import Callable
 
@@ -160,7 +161,9 @@ class GeneralizedAlpha:
 
 
 #: Wall time [s] after which the compiled fixed-step loop hands back to Python, which polls the
-#: stop flag (Ctrl-C, SIGTERM): a run stops within about this time whatever its step.
+#: stop flag (Ctrl-C, SIGTERM): a run stops within about this time whatever its step.  Only with
+#: a stop flag or an output callback: where a call ends shifts the step times by round-off, so a
+#: run without them ends its calls at fixed steps and gives the same answer at any load.
 CALL_SECONDS = 0.1
 
 
@@ -299,8 +302,9 @@ def integrate(
     fast = not o.adaptive and per_out >= 1 and abs(ratio - per_out) < 1e-9
     # outputs per compiled call: ~1 % of the run, at most ~16 MB of stored states per array
     chunk_out = int(np.clip(n_grid // 100, 1, max(1, (1 << 21) // system.n)))
-    if on_output is None and should_stop is None and sink is None:  # nobody to tell: fewer calls
-        chunk_out = max(1, (1 << 21) // system.n)
+    # where a call ends shifts the step times by round-off: calls end after CALL_SECONDS only
+    # when someone polls, so that a run without callbacks gives the same answer at any load
+    poll = CALL_SECONDS if (on_output is not None or should_stop is not None) else math.inf
     if rod:  # the triads at a call's end are those of its one stored state
         chunk_out = 1
 
@@ -325,7 +329,7 @@ def integrate(
                 n_chunk * per_out - within,
                 per_out,
                 within,
-                CALL_SECONDS,
+                poll,
                 lam,
             )
             result.took(o.step, done)
