@@ -58,8 +58,9 @@ def test_belt_drive_euler_eytelwein(tmp_path):
 
 
 def _unbraked(tmp_path, t_end: float) -> tuple:
-    """The shipped belt drive without its brake (the point load with a moment removed): run it; (t, the driven pulley's contact_force, the push, m a + c m v of
-    the pulley along the guide, contact length)."""
+    """The shipped belt drive without its brake (the point load with a moment removed): run it;
+    (t, the driven pulley's contact_force, the push, m a + c m v of the pulley along the guide,
+    contact length)."""
     import tomllib
 
     raw = tomllib.loads(example_path("belt-drive").read_text())
