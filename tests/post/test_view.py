@@ -164,8 +164,13 @@ def test_pages_load_in_headless_chromium(runs, tmp_path):
     for name, run in runs.items():
         assert main(["view", str(run), "--frames", "5"]) == 0
         pages[name] = (_browse(run / "view.html", tmp_path / f"{name}.png"), run)
-    for name, (proc, run) in pages.items():
-        _, log = proc.communicate(timeout=120)
+    try:
+        logs = {name: proc.communicate(timeout=600)[1] for name, (proc, _) in pages.items()}
+    finally:  # a browser that hangs is not left behind
+        for proc, _ in pages.values():
+            proc.kill()
+    for name, (_, run) in pages.items():
+        log = logs[name]
         console = [ln for ln in log.splitlines() if "CONSOLE" in ln]
         assert not [ln for ln in console if "VIEW-ERROR" in ln or "Uncaught" in ln], console
         loaded = [ln for ln in console if "VIEW-LOADED" in ln]
