@@ -261,6 +261,16 @@ void bind_system(nb::module_& mod) {
       .def_prop_ro("factorizations",
                    [](const SystemIntegratorHolder& h) { return h.integ.factorizations(); })
       .def(
+          "memory", [](const SystemIntegratorHolder& h) { return h.integ.memory(); },
+          "What the loop keeps between steps (see system_integrator.hpp); empty if nothing.")
+      .def(
+          "restore",
+          [](SystemIntegratorHolder& h, const std::vector<double>& memory, long factorizations) {
+            return h.integ.restore(memory, factorizations);
+          },
+          "memory"_a, "factorizations"_a,
+          "Take up another integrator's memory() on the same system; False if it does not fit.")
+      .def(
           "step",
           [](SystemIntegratorHolder& h, In y0, In v0, In a0, In l0, double t, double dt, Out y1,
              Out v1, Out a1, Out l1) {

@@ -88,6 +88,7 @@ StepOutcome SystemIntegrator::step(const double* y0, const double* v0, const dou
       ++factorizations_;
       lu_valid_ = lu_.factor();
       if (!lu_valid_) return {false, it};
+      if (sc_.modified) remember(h, terms, l1, y1);
     }
     solve_negative();
     double norm = 0.0;
@@ -119,6 +120,50 @@ StepOutcome SystemIntegrator::step(const double* y0, const double* v0, const dou
   }
   lu_valid_ = false;
   return {false, max_iter};
+}
+
+void SystemIntegrator::remember(double h, const AssemblyTerms& terms, const double* l1,
+                                const double* y1) {
+  const int n = s_.n, m = s_.m;
+  factored_at_.assign({h, terms.ck, terms.cv, terms.ca, terms.tf, terms.t1});
+  factored_at_.insert(factored_at_.end(), yf_.begin(), yf_.end());
+  factored_at_.insert(factored_at_.end(), vf_.begin(), vf_.end());
+  factored_at_.insert(factored_at_.end(), am_.begin(), am_.end());
+  factored_at_.insert(factored_at_.end(), y1, y1 + n);
+  factored_at_.insert(factored_at_.end(), l1, l1 + m);
+}
+
+std::vector<double> SystemIntegrator::memory() const {
+  if (!sc_.modified || !lu_valid_) return {};
+  return factored_at_;
+}
+
+bool SystemIntegrator::restore(const std::vector<double>& memory, long factorizations) {
+  const auto n = sz(s_.n), m = sz(s_.m);
+  factorizations_ = factorizations;
+  lu_valid_ = false;
+  factored_at_.clear();
+  if (memory.empty()) return true;
+  if (!sc_.modified || memory.size() != 6 + 4 * n + m) return false;
+  AssemblyTerms terms;
+  terms.ck = memory[1];
+  terms.cv = memory[2];
+  terms.ca = memory[3];
+  terms.tf = memory[4];
+  terms.t1 = memory[5];
+  const double* p = memory.data() + 6;
+  std::copy(p, p + n, yf_.begin());
+  std::copy(p + n, p + 2 * n, vf_.begin());
+  std::copy(p + 2 * n, p + 3 * n, am_.begin());
+  if (!assemble_system(s_, yf_.data(), vf_.data(), am_.data(), p + 4 * n, p + 3 * n, terms,
+                       r_.data(), &lu_))
+    return false;
+  lu_valid_ = lu_.factor();
+  if (lu_valid_) {
+    lu_h_ = memory[0];
+    factored_at_ = memory;
+  }
+  return lu_valid_;
 }
 
 RunOutcome SystemIntegrator::run(double* y, double* v, double* a, double* lam, double t0, double h,

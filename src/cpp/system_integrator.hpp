@@ -55,9 +55,18 @@ class SystemIntegrator {
   [[nodiscard]] long factorizations() const { return factorizations_; }
   /// The held coordinates that follow time functions, at time t (any pointer may be null).
   void set_prescribed(double t, double* y, double* v, double* a) const;
+  /// What the loop keeps between steps (modified Newton: the factored Jacobian, kept as the
+  /// point it was assembled at): empty if nothing, else [h, ck, cv, ca, tf, t1, yf (n),
+  /// vf (n), am (n), y1 (n), lambda (m)].
+  [[nodiscard]] std::vector<double> memory() const;
+  /// Take up memory() of another integrator on the same system: the Jacobian is assembled at
+  /// the same point and factored again (bit for bit the same factors); factorizations, the
+  /// counter to go on from.  False if the data do not fit or the factorization fails.
+  bool restore(const std::vector<double>& memory, long factorizations);
 
  private:
   void solve_negative();
+  void remember(double h, const AssemblyTerms& terms, const double* l1, const double* y1);
   const System& s_;
   Scheme sc_;
   BorderedLU lu_;
@@ -65,6 +74,7 @@ class SystemIntegrator {
   double lu_h_ = -1.0;
   long factorizations_ = 0;
   std::vector<double> base_, yf_, vf_, am_, r_, dz_, zb_, zero_;
+  std::vector<double> factored_at_;  ///< modified Newton: where the factors were assembled
 };
 
 /// Kinetic, strain (elements and springs) and gravitational energy of the system at (y, v)
