@@ -218,10 +218,10 @@ class Scenario(Table):
         return self.model_dump(by_alias=True, exclude_unset=True, exclude_none=True)
 
     def to_toml(self, relative_to: str | Path | None = None) -> str:
-        """The scenario as TOML text (:mod:`tomli_w`).  CAD files given relative to this
-        scenario's file are rewritten relative to ``relative_to`` (a directory), absolute when
-        there is none."""
-        import tomli_w
+        """The scenario as TOML text (compact arrays: :func:`rancf.scenario.toml_text.dumps`).
+        CAD files given relative to this scenario's file are rewritten relative to
+        ``relative_to`` (a directory), absolute when there is none."""
+        from rancf.scenario.toml_text import dumps
 
         d = self.to_dict()
         for g, where in self._cad_tables(d):
@@ -233,7 +233,7 @@ class Scenario(Table):
                 except ValueError:
                     pass
             g["file"] = str(own)
-        return tomli_w.dumps(d)
+        return dumps(d)
 
     def save(self, path: str | Path) -> None:
         """Write the scenario to ``path`` as TOML (atomically: a complete file or none)."""
