@@ -87,7 +87,10 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
                 print(f"rancf: {resume.killed_note()}; resuming from t = {state.t:g} s",
                       file=sys.stderr)  # fmt: skip
         notes = _warn(section_warnings(system))  # likely unit mistakes: the run goes on
+        for note in sc.notes:  # defaults the file did not state (a harmonic's build-up)
+            print(f"rancf: {note}", file=sys.stderr)
         info = {"scenario": str(Path(args.scenario).resolve()), "setup_wall_time_s": None}
+        info["notes"] = sc.notes
         info.update(start_info)
         store = HistoryStore(out, outputs, {**info, "warnings": notes})
         try:

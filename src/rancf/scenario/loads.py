@@ -61,7 +61,27 @@ __all__ = [
 Amount = number_or_vector(1, 2, 3)
 
 
-class TableFunction(Table):
+class _Function(Table):
+    """What every function table has: an optional build-up (T.6)."""
+
+    build_up: NonNegative | None = Field(
+        None,
+        description="B [s]: the function times a smooth step from 0 to 1 over [0, B] (value, "
+        "rate and acceleration start from 0); 0: none. Default: none, but a harmonic support "
+        "motion or joint angle that would start with a jump of its rate builds up over two "
+        "periods (said in one line)",
+    )
+
+    def function(self) -> TimeFunction:
+        """The time function."""
+        f = self._function()
+        return f if not self.build_up else f.with_build_up(self.build_up)
+
+    def _function(self) -> TimeFunction:
+        raise NotImplementedError
+
+
+class TableFunction(_Function):
     """``{ table = [[t, v...], ...], interpolation = ... }`` (T.2)."""
 
     table: list[list[Number]] = Field(
@@ -86,23 +106,21 @@ class TableFunction(Table):
                            f"after {show(self.table[i - 1][0])}")  # fmt: skip
         return self
 
-    def function(self) -> TimeFunction:
-        """The time function."""
+    def _function(self) -> TimeFunction:
         return TimeFunction.table(self.table, self.interpolation)
 
 
-class RampFunction(Table):
+class RampFunction(_Function):
     """``{ ramp = DURATION, value = ... }``: ``value · min(t / DURATION, 1)`` (T.3)."""
 
     ramp: Positive = Field(description="duration T of the ramp [s]")
     value: Amount = Field(1.0, description="the value reached at t = T (a number or a vector)")
 
-    def function(self) -> TimeFunction:
-        """The time function."""
+    def _function(self) -> TimeFunction:
         return TimeFunction.ramp(self.ramp, self.value)
 
 
-class HarmonicFunction(Table):
+class HarmonicFunction(_Function):
     """``{ harmonic = FREQUENCY_HZ, amplitude = ..., phase_deg = ... }``:
     ``amplitude · sin(2π f t + phase)`` (T.4)."""
 
@@ -110,12 +128,11 @@ class HarmonicFunction(Table):
     amplitude: Amount = Field(1.0, description="amplitude (a number or a vector)")
     phase_deg: Number = Field(0.0, description="phase [deg]")
 
-    def function(self) -> TimeFunction:
-        """The time function."""
+    def _function(self) -> TimeFunction:
         return TimeFunction.harmonic(self.harmonic, self.amplitude, self.phase_deg)
 
 
-class SpinUpFunction(Table):
+class SpinUpFunction(_Function):
     """``{ spin_up = DURATION, rate = OMEGA }``: an angle whose rate rises smoothly from 0 to
     OMEGA in DURATION T, ``(Ω/T)[t²/2 + (T/2π)²(cos(2πt/T) − 1)]`` for ``t ≤ T`` and
     ``Ω (t − T/2)`` after (T.5; Kane, Ryan & Banerjee 1987)."""
@@ -123,8 +140,7 @@ class SpinUpFunction(Table):
     spin_up: Positive = Field(description="duration T of the spin-up [s]")
     rate: Number = Field(description="the final angular rate Omega [rad/s]")
 
-    def function(self) -> TimeFunction:
-        """The time function."""
+    def _function(self) -> TimeFunction:
         return TimeFunction.spin_up(self.spin_up, self.rate)
 
 

@@ -34,6 +34,7 @@ from rancf.scenario.loads import (
     time_function,
 )
 from rancf.scenario.messages import scenario_error
+from rancf.scenario.motions import motion_function
 from rancf.scenario.obstacles import ObstacleTable
 from rancf.scenario.section import MaterialTable, SectionTable
 from rancf.scenario.sensors import Sensor, SensorTable
@@ -130,6 +131,12 @@ class Scenario(Table):
     def dim(self) -> int:
         """2 (planar) or 3 (spatial)."""
         return self._dim
+
+    @property
+    def notes(self) -> list[str]:
+        """One line each on defaults the file did not state but the run uses (a harmonic
+        motion's build-up)."""
+        return list(self._data["notes"])
 
     @property
     def data(self) -> dict[str, Any]:
@@ -291,14 +298,22 @@ def _data(sc: Scenario) -> dict[str, Any]:
             im = b.initial_motion
             bd["initial_motion"] = None if im is None else im.as_dict()
         d["bodies"].append(bd)
-    d["joints"] = [{**j.model_dump(exclude={"angle"}), "angle": _tf(j.angle)}
-                   for j in sc.joints]  # fmt: skip
+    notes: list[str] = []
+
+    def motion(v: Any, key: str) -> Any:
+        f, note = motion_function(v, key)
+        notes.extend([note] if note else [])
+        return f
+
+    d["joints"] = [{**j.model_dump(exclude={"angle"}),
+                    "angle": motion(j.angle, f"joints[{i}].angle")}
+                   for i, j in enumerate(sc.joints)]  # fmt: skip
     d["springs"] = [s.model_dump() for s in sc.springs]
     d["obstacles"] = [o.model_dump() for o in sc.obstacles]
     d["supports"] = [
         {**s.model_dump(exclude={"motion"}), "at": _node_or_text(s.at, one), "label": s.at,
-         "motion": _tf(s.motion)}
-        for s in sc.supports
+         "motion": motion(s.motion, f"supports[{i}].motion")}
+        for i, s in enumerate(sc.supports)
     ]  # fmt: skip
     d["loads"] = {
         "gravity": sc.loads.gravity,
@@ -312,6 +327,7 @@ def _data(sc: Scenario) -> dict[str, Any]:
     d["initial_motion"] = None if sc.initial_motion is None else sc.initial_motion.as_dict()
     d["solver"] = sc.solver.model_dump()
     d["modes"] = sc.modes.model_dump()
+    d["notes"] = notes
     return d
 
 
