@@ -22,13 +22,14 @@ from __future__ import annotations
 
 from typing import Annotated, Any, Literal
 
-from pydantic import Field, PlainSerializer, PlainValidator, Tag, model_validator
+from pydantic import BeforeValidator, Field, PlainSerializer, PlainValidator, Tag, model_validator
 from pydantic.json_schema import SkipJsonSchema
 
 from rancf.bodies.time_function import TimeFunction
 from rancf.errors import InputError
 from rancf.scenario.base import (
     Flag,
+    JsonSchema,
     KindOf,
     NonNegative,
     Number,
@@ -41,6 +42,7 @@ from rancf.scenario.base import (
     to_number,
     vector,
 )
+from rancf.scenario.table_files import ROWS_SCHEMA, table_rows
 
 __all__ = [
     "TableFunction",
@@ -82,12 +84,18 @@ class _Function(Table):
 
 
 class TableFunction(_Function):
-    """``{ table = [[t, v...], ...], interpolation = ... }`` (T.2)."""
+    """``{ table = [[t, v...], ...], interpolation = ... }`` (T.2); or ``table = "file.csv"``,
+    the rows read from a CSV file relative to the scenario file."""
 
-    table: list[list[Number]] = Field(
+    table: Annotated[
+        list[list[Number]],
+        BeforeValidator(table_rows),
+        JsonSchema(ROWS_SCHEMA),
+    ] = Field(
         min_length=2,
         description="rows [t, v...]: times [s] strictly increasing, one value per component; "
-        "held at the first row before it and at the last row after it",
+        "held at the first row before it and at the last row after it; or a CSV file of such "
+        'rows ("path.csv", relative to the scenario file; a header line of names allowed)',
     )
     interpolation: Literal["linear", "cubic"] = Field(
         "linear",

@@ -58,9 +58,12 @@ def dumps(data: dict[str, Any]) -> str:
 
 
 def with_absolute_paths(raw: dict[str, Any], base: str | Path) -> dict[str, Any]:
-    """A copy of the scenario dictionary ``raw`` read from ``base`` whose CAD ``file`` (a path
-    relative to ``base``) is absolute, so that the copy can live in another folder."""
-    raw = copy.deepcopy(raw)
+    """A copy of the scenario dictionary ``raw`` read from ``base`` whose CAD ``file`` and CSV
+    ``table`` files (paths relative to ``base``) are absolute, so that the copy can live in
+    another folder."""
+    from rancf.scenario.table_files import absolute_table_paths
+
+    raw = absolute_table_paths(copy.deepcopy(raw), base)  # table = "file.csv"
     geo = raw.get("geometry", {})
     if isinstance(geo, dict) and geo.get("kind") == "cad" and isinstance(geo.get("file"), str):
         geo["file"] = str((Path(base).parent / geo["file"]).resolve())
