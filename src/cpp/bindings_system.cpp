@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -95,6 +96,14 @@ void bind_system(nb::module_& mod) {
           "A system from its flexible bodies' Models and the lists of its records "
           "(rancf.kernels.records: rigid bodies, places, joints, springs, loads, time functions, "
           "prescribed motions, linear terms), read by field name.")
+      .def_prop_rw(
+          "stiffness_damping", [](const SystemHolder& h) { return h.s.stiffness_damping; },
+          [](SystemHolder& h, double beta) {
+            check(beta >= 0.0 && std::isfinite(beta),
+                  "stiffness_damping: expected a finite number >= 0");
+            h.s.stiffness_damping = beta;
+          },
+          "Stiffness-proportional damping beta [s] of the flexible bodies (force beta K_T v).")
       .def(
           "attach_contact",
           [](SystemHolder& h, ContactHolder& c) {

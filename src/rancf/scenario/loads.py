@@ -327,9 +327,12 @@ class LoadsTable(Table):
 
 
 class DampingTable(Table):
-    """``[damping]``: mass-proportional damping of the flexible bodies."""
+    """``[damping]``: Rayleigh damping of the flexible bodies, ``C = c M + β K_T``."""
 
     mass_proportional: NonNegative = Field(0.0, description="c in C = c M [1/s]")
+    stiffness_proportional: NonNegative = Field(
+        0.0, description="beta in C = beta K_T [s] (K_T the tangent stiffness at the state)"
+    )
 
 
 class InitialVelocityTable(Table):
