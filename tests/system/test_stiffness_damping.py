@@ -90,4 +90,4 @@ def test_modal_damping_ratio_of_the_first_mode():
     t = res.t[peaks]
     rate = -np.polyfit(t[len(t) // 3 :], np.log(amp[len(t) // 3 :]), 1)[0]  # zeta omega
     zeta = rate / omega
-    assert zeta == pytest.approx(beta * omega / 2, rel=0.03), (zeta, beta * omega / 2, omega)
+    assert zeta == pytest.approx(beta * omega / 2, rel=0.01), (zeta, beta * omega / 2, omega)
