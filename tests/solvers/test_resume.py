@@ -1,7 +1,8 @@
 """A run stopped anywhere and taken up again from its state (:class:`DynamicState`, through a
 file) takes the same steps as a run that never stopped: its outputs continue the first part's
 and end in the same state to 1e-12, for a pendulum, a mechanism with joints (modified Newton:
-the compiled loop's factors are rebuilt) and a rope with friction over a capstan."""
+the compiled loop's factors are rebuilt), a rope with friction over a capstan and a rod (whose
+nodal triads go along)."""
 
 from __future__ import annotations
 
@@ -28,10 +29,22 @@ CASES = [
     ("slider-crank", {"t_end": 0.01}),
     ("capstan", {"t_end": 0.06}),
     ("planar-pendulum", {"t_end": 0.3, "adaptive": True}),
+    ("rod", {"t_end": 0.03}),
 ]
+
+#: A clamped spatial rod swinging down under gravity (its nodal triads are carried along).
+ROD = {
+    "geometry": {"kind": "line", "start": [0, 0, 0], "end": [1, 0.2, 0.1]},
+    "mesh": {"elements": 4, "element": "rod"}, "section": {"radius": 0.02},
+    "material": {"density": 7800.0, "youngs_modulus": 2e9, "poisson_ratio": 0.3},
+    "supports": [{"at": "start", "kind": "clamp"}], "loads": {"gravity": [0, 0, -9.81]},
+    "solver": {"t_end": 0.03, "step": 1e-3, "output_step": 2e-3},
+}  # fmt: skip
 
 
 def _scenario(name: str, **solver: object):
+    if name == "rod":
+        return parse_scenario({**ROD, "solver": {**ROD["solver"], **solver}})
     path = EXAMPLES / f"{name}.toml"
     raw = tomllib.loads(path.read_text(encoding="utf-8"))
     raw["solver"].update(solver)
