@@ -162,3 +162,14 @@ def test_a_stale_lock_is_told_by_its_pid_where_flock_fails(tmp_path, monkeypatch
     (tmp_path / LOCK_NAME).write_text(f"{os.getppid()}\n")  # a process that runs
     with pytest.raises(InputError, match=f"process {os.getppid()} is"), OutputDir(tmp_path):
         pass
+
+
+def test_resume_needs_a_checkpoint(tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)
+    assert main(["example", "copy", "cantilever", "."]) == 0
+    assert main(["static", "cantilever.toml", "--out", "eq"]) == 0
+    capsys.readouterr()
+    assert main(["simulate", "cantilever.toml", "--out", "eq", "--resume"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "a checkpoint to go on from" in err, err
+    assert (tmp_path / "eq" / "summary.json").is_file()  # the static solution stays

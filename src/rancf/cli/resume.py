@@ -99,6 +99,12 @@ class Resume:
                 )  # fmt: skip
         self.removed = remove_leftovers(self.out)
         self.state = read_checkpoint(self.out)
+        if self.state is None and self.summary.get("status") != "running":
+            raise InputError(
+                "--resume", str(out), "a run folder with a checkpoint to go on from (it holds "
+                "none: a static solution or a run of an older version; replace it with "
+                "--overwrite instead of --resume)",
+            )  # fmt: skip
 
     def killed_note(self) -> str:
         """Why the earlier run stopped, as one clause."""

@@ -77,7 +77,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         state = None if resume is None else resume.state
         if state is None:
             y_start, start_info = start_state(sc, system)
-            od.clear()  # --resume of a run that wrote no checkpoint: from the start
+            od.clear()  # --resume of a run killed before its first checkpoint: from the start
         else:
             od.keep()  # the earlier run's files stay whatever happens
             y_start, start_info = None, resume.start_info()
