@@ -302,7 +302,8 @@ void bind_system(nb::module_& mod) {
           [](SystemIntegratorHolder& h, Out y, Out v, Out a, Out lam, double t0, double dt,
              std::int64_t n_steps, std::int64_t out_every, std::int64_t done_before,
              double max_seconds, Out out_y, Out out_v, Out out_l, Out out_e,
-             std::optional<Out> out_yf, std::optional<Out> out_vf) {
+             std::optional<Out> out_yf, std::optional<Out> out_vf, double out_dt,
+             std::int64_t k_last) {
             for (const auto* x : {&y, &v, &a}) expect_size(*x, h.n, "state");
             expect_size(lam, h.m, "lambda");
             if (out_every < 1 || n_steps < 0 || done_before < 0)
@@ -325,7 +326,7 @@ void bind_system(nb::module_& mod) {
               nb::gil_scoped_release release;
               r = h.integ.run(y.data(), v.data(), a.data(), lam.data(), t0, dt, n_steps, out_every,
                               done_before, max_seconds, out_y.data(), out_v.data(), out_l.data(),
-                              out_e.data(), yf, vf);
+                              out_e.data(), yf, vf, out_dt, k_last);
             }
             return std::make_tuple(r.steps, r.converged, r.iterations, r.stored);
           },
@@ -333,7 +334,7 @@ void bind_system(nb::module_& mod) {
           "h"_a, "n_steps"_a, "out_every"_a, "done_before"_a, "max_seconds"_a,
           "out_y"_a.noconvert(), "out_v"_a.noconvert(), "out_l"_a.noconvert(),
           "out_e"_a.noconvert(), "out_yf"_a.noconvert().none() = nb::none(),
-          "out_vf"_a.noconvert().none() = nb::none())
+          "out_vf"_a.noconvert().none() = nb::none(), "out_dt"_a = 0.0, "k_last"_a = 0)
       .def(
           "initial_acceleration",
           [](SystemIntegratorHolder& h, In y, In v, double t, Out a, Out lam,

@@ -170,13 +170,17 @@ RunOutcome SystemIntegrator::run(double* y, double* v, double* a, double* lam, d
                                  std::int64_t n_steps, std::int64_t out_every,
                                  std::int64_t done_before, double max_seconds, double* out_y,
                                  double* out_v, double* out_l, double* out_e, double* out_yf,
-                                 double* out_vf) {
+                                 double* out_vf, double out_dt, std::int64_t k_last) {
   const int n = s_.n, m = s_.m;
   const auto start = std::chrono::steady_clock::now();
   std::vector<double> y1(sz(n)), v1(sz(n)), a1(sz(n)), l1(sz(m));
   RunOutcome out{0, true, 0, 0};
+  std::int64_t since = done_before;  // steps since output k_last
   for (std::int64_t k = 0; k < n_steps; ++k) {
-    const double t = t0 + static_cast<double>(k) * h;
+    const double t = out_dt > 0.0
+                         ? out_dt * static_cast<double>(k_last) + static_cast<double>(since) * h
+                         : t0 + static_cast<double>(k) * h;
+    ++since;
     const StepOutcome st = step(y, v, a, lam, t, h, y1.data(), v1.data(), a1.data(), l1.data());
     out.iterations += st.iterations;
     if (!st.converged) {
@@ -199,6 +203,8 @@ RunOutcome SystemIntegrator::run(double* y, double* v, double* a, double* lam, d
     system_rereference(s_, y, v, a);
     out.steps = k + 1;
     if (stores) {
+      ++k_last;
+      since = 0;
       const std::ptrdiff_t row = static_cast<std::ptrdiff_t>(out.stored);
       std::copy(y, y + n, out_y + row * n);
       std::copy(v, v + n, out_v + row * n);

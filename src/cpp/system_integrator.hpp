@@ -31,10 +31,14 @@ class SystemIntegrator {
   /// max_seconds of wall time have passed, so the caller can poll for interrupts.
   /// out_yf, out_vf (may be null): the alpha point (y_{n+1-af}, v_{n+1-af}) of the step that
   /// ended at each stored row (before the rods' re-referencing), where its forces act.
+  /// out_dt > 0: the steps' times are out_dt k + i h, k the index of the last output (k_last
+  /// at the start, t0 its time) and i the steps since it, whatever steps earlier calls took
+  /// (a run's numbers do not depend on where it was cut into calls); else t0 + k h.
   RunOutcome run(double* y, double* v, double* a, double* lam, double t0, double h,
                  std::int64_t n_steps, std::int64_t out_every, std::int64_t done_before,
                  double max_seconds, double* out_y, double* out_v, double* out_l, double* out_e,
-                 double* out_yf = nullptr, double* out_vf = nullptr);
+                 double* out_yf = nullptr, double* out_vf = nullptr, double out_dt = 0.0,
+                 std::int64_t k_last = 0);
   /// Consistent initial acceleration and multipliers: [M G^T; G 0] [a; lambda] = [-F; -c].
   /// contact (may be null): the contact forces of a step instead of those at (y, v)
   /// (AssemblyTerms::contact_yf and after).

@@ -223,6 +223,8 @@ def integrate(
                 within,
                 CALL_SECONDS,
                 lam,
+                out_dt,
+                k_out,
             )
             result.took(o.step, done)
             if stored:

@@ -117,8 +117,14 @@ class GeneralizedAlpha:
         done_before: int = 0,
         max_seconds: float = np.inf,
         lam: NDArray | None = None,
+        out_dt: float = 0.0,
+        k_last: int = 0,
     ) -> tuple:
         """Fixed steps in the core from time ``t`` (``y, v, a``, ``lam`` updated in place).
+
+        ``out_dt > 0``: the steps' times are ``out_dt k + i h``, ``k`` the index of the last
+        output (``k_last`` at the start) and ``i`` the steps since it, so that a run's numbers
+        do not depend on where it was cut into calls (a resumed run's neither).
 
         An output is stored every ``per_out`` steps of an output interval, whose first already
         holds ``done_before`` steps.  The core returns early, after a whole step, once
@@ -136,8 +142,9 @@ class GeneralizedAlpha:
         of = (np.empty((n_out, n)), np.empty((n_out, n))) if contact else (None, None)
         lam = np.zeros(m) if lam is None else lam
         done, ok, iters, stored = self._core.run(
-            y, v, a, lam, t, h, n_steps, per_out, done_before, max_seconds, oy, ov, ol, oe, *of
-        )
+            y, v, a, lam, t, h, n_steps, per_out, done_before, max_seconds, oy, ov, ol, oe, *of,
+            out_dt, k_last,
+        )  # fmt: skip
         oa = np.concatenate(of, axis=1) if contact else None  # type: ignore[arg-type]
         self.n_newton += iters
         return done, int(ok), iters, stored, oy, ov, oe, ol, oa
