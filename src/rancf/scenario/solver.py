@@ -7,7 +7,7 @@ Python API's (a test compares them).
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Literal
+from typing import TYPE_CHECKING, Any, Literal
 
 from pydantic import Field, model_validator
 
@@ -55,8 +55,10 @@ class SolverTable(Table):
     )
     newton_tol: Positive = Field(1e-10, description="Newton: max |increment| / model size")
     max_newton: integer(ge=1, le=MAX_NEWTON) = Field(12, description="Newton iterations per step")
-    newton: Literal["full", "modified"] = Field(
-        "full", description='"full" (exact tangent every iteration) | "modified" (reuse it)'
+    newton: Literal["chord", "full", "modified"] = Field(
+        "chord",
+        description='"chord" (exact tangent at each step\'s first iteration, reused within the '
+        'step) | "full" (exact tangent every iteration) | "modified" (reused across steps)',
     )
     static_method: Literal["load", "arc_length"] = Field(
         "load",
@@ -81,6 +83,11 @@ class SolverTable(Table):
         from rancf.options import DynamicOptions
 
         return DynamicOptions(**{k: getattr(self, k) for k in _DYNAMIC_KEYS})
+
+    def static_options(self) -> dict[str, Any]:
+        """The keywords of :func:`rancf.solvers.static.solve_static` in this table
+        (``load_steps``, ``method``)."""
+        return {"load_steps": self.load_steps, "method": self.static_method}
 
 
 class ModesTable(Table):

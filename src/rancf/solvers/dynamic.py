@@ -198,6 +198,8 @@ def integrate(
     fast = not o.adaptive and per_out >= 1 and abs(ratio - per_out) < 1e-9
     # outputs per compiled call: ~1 % of the run, at most ~16 MB of stored states per array
     chunk_out = int(np.clip(n_grid // 100, 1, max(1, (1 << 21) // system.n)))
+    if on_output is None and should_stop is None and sink is None:  # nobody to tell: fewer calls
+        chunk_out = max(1, (1 << 21) // system.n)
     if rod:  # the triads at a call's end are those of its one stored state
         chunk_out = 1
 

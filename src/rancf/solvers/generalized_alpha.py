@@ -28,7 +28,7 @@ class GeneralizedAlpha:
         rho_inf: float,
         newton_tol: float,
         max_newton: int,
-        newton: str = "full",
+        newton: str = "chord",
     ) -> None:
         self.system = as_system(model)
         r = rho_inf
@@ -50,6 +50,7 @@ class GeneralizedAlpha:
             tol=self.tol,
             max_iter=int(max_newton),
             modified=newton == "modified",
+            chord=newton == "chord",
         )
         self._core = _core.SystemIntegrator(self.system.core, scheme)
 
