@@ -1,5 +1,6 @@
 """Geometry defects of issue 10: extreme conics, sharp arc-length integrands, O(n) meshing."""
 
+
 import numpy as np
 import pytest
 
