@@ -242,6 +242,7 @@ def test_overwrite_replaces_an_earlier_run_wholly(tmp_path, monkeypatch, capsys)
     names = sorted(p.name for p in (tmp_path / "run").iterdir())
     assert names == [
         "bodies",
+        "checkpoint.npz",
         "energy.csv",
         "reactions.csv",
         "results.npz",

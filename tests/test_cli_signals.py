@@ -161,7 +161,8 @@ def test_files_honour_the_umask(tmp_path, monkeypatch, umask, file_mode, dir_mod
     run = tmp_path / "run"
     assert run.stat().st_mode & 0o777 == dir_mode
     files = sorted(run.iterdir())
-    names = ["bodies", "energy.csv", "reactions.csv", "results.npz", "scenario.toml"]
+    names = ["bodies", "checkpoint.npz", "energy.csv", "reactions.csv", "results.npz"]
+    names += ["scenario.toml"]
     names += ["sensors.csv", "summary.json"]
     assert [f.name for f in files] == names
     body = run / "bodies" / "body"

@@ -169,6 +169,8 @@ void read_time_functions(nb::handle list, rancf::System& s) {
     tf.duration = f.number("duration");
     tf.frequency = f.number("frequency");
     tf.phase = f.number("phase");
+    tf.build_up = f.number("build_up");
+    if (!(tf.build_up >= 0.0)) f.fail("build_up", "a duration >= 0", std::to_string(tf.build_up));
     tf.breaks = f.numbers("breaks", kAnySize);
     tf.coef = f.numbers("coef", kAnySize);
     if (tf.kind == rancf::TimeKind::piecewise) {

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -100,6 +101,14 @@ void bind_system(nb::module_& mod) {
           "A system from its flexible bodies' Models and the lists of its records "
           "(rancf.kernels.records: rigid bodies, places, joints, springs, loads, time functions, "
           "prescribed motions, linear terms), read by field name.")
+      .def_prop_rw(
+          "stiffness_damping", [](const SystemHolder& h) { return h.s.stiffness_damping; },
+          [](SystemHolder& h, double beta) {
+            check(beta >= 0.0 && std::isfinite(beta),
+                  "stiffness_damping: expected a finite number >= 0");
+            h.s.stiffness_damping = beta;
+          },
+          "Stiffness-proportional damping beta [s] of the flexible bodies (force beta K_T v).")
       .def(
           "attach_contact",
           [](SystemHolder& h, ContactHolder& c) {
@@ -334,6 +343,16 @@ void bind_system(nb::module_& mod) {
       .def_prop_ro("factorizations",
                    [](const SystemIntegratorHolder& h) { return h.integ.factorizations(); })
       .def(
+          "memory", [](const SystemIntegratorHolder& h) { return h.integ.memory(); },
+          "What the loop keeps between steps (see system_integrator.hpp); empty if nothing.")
+      .def(
+          "restore",
+          [](SystemIntegratorHolder& h, const std::vector<double>& memory, long factorizations) {
+            return h.integ.restore(memory, factorizations);
+          },
+          "memory"_a, "factorizations"_a,
+          "Take up another integrator's memory() on the same system; False if it does not fit.")
+      .def(
           "step",
           [](SystemIntegratorHolder& h, In y0, In v0, In a0, In l0, double t, double dt, Out y1,
              Out v1, Out a1, Out l1) {
@@ -356,7 +375,8 @@ void bind_system(nb::module_& mod) {
           [](SystemIntegratorHolder& h, Out y, Out v, Out a, Out lam, double t0, double dt,
              std::int64_t n_steps, std::int64_t out_every, std::int64_t done_before,
              double max_seconds, Out out_y, Out out_v, Out out_l, Out out_e,
-             std::optional<Out> out_yf, std::optional<Out> out_vf) {
+             std::optional<Out> out_yf, std::optional<Out> out_vf, double out_dt,
+             std::int64_t k_last) {
             for (const auto* x : {&y, &v, &a}) expect_size(*x, h.n, "state");
             expect_size(lam, h.m, "lambda");
             if (out_every < 1 || n_steps < 0 || done_before < 0)
@@ -379,7 +399,7 @@ void bind_system(nb::module_& mod) {
               nb::gil_scoped_release release;
               r = h.integ.run(y.data(), v.data(), a.data(), lam.data(), t0, dt, n_steps, out_every,
                               done_before, max_seconds, out_y.data(), out_v.data(), out_l.data(),
-                              out_e.data(), yf, vf);
+                              out_e.data(), yf, vf, out_dt, k_last);
             }
             return std::make_tuple(r.steps, r.converged, r.iterations, r.stored);
           },
@@ -387,7 +407,7 @@ void bind_system(nb::module_& mod) {
           "h"_a, "n_steps"_a, "out_every"_a, "done_before"_a, "max_seconds"_a,
           "out_y"_a.noconvert(), "out_v"_a.noconvert(), "out_l"_a.noconvert(),
           "out_e"_a.noconvert(), "out_yf"_a.noconvert().none() = nb::none(),
-          "out_vf"_a.noconvert().none() = nb::none())
+          "out_vf"_a.noconvert().none() = nb::none(), "out_dt"_a = 0.0, "k_last"_a = 0)
       .def(
           "initial_acceleration",
           [](SystemIntegratorHolder& h, In y, In v, double t, Out a, Out lam,

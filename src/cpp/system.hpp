@@ -104,6 +104,9 @@ struct System {
   int n_linear = 0;                ///< number of linear rows
   double gravity[3] = {0.0, 0.0, 0.0};  ///< on rigid bodies and point masses
   double damping = 0.0;                 ///< mass-proportional damping of every body
+  /// Stiffness-proportional damping beta of the flexible bodies: the force beta K_T(y) v
+  /// (system_assembly.cpp, stiffness_damping).
+  double stiffness_damping = 0.0;
   const double* y_ref = nullptr;        ///< (n) reference coordinates (gravity potential zero)
   const ContactSet* contact = nullptr;  ///< obstacles and contact pairs (contact.hpp), or none
   const FluidSet* fluid = nullptr;      ///< fluid loads and distributed loads (fluid.hpp), or none

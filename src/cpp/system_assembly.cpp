@@ -5,7 +5,8 @@
 // in each local coordinate, error of order its square): the second derivatives of the joint
 // equations contracted with the multipliers, d(G^T lambda)/dy, and the tangents of springs and of
 // loads at rigid-body points (whose direction of action turns with the body) -- small matrices
-// over the local coordinates of one or two places.
+// over the local coordinates of one or two places; and (step eps^(1/3) (1 + |y|) along v) the
+// derivative along v of a flexible body's tangent, for stiffness-proportional damping.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -123,6 +124,52 @@ void jacobian_fd(int k, double* u, Fn fn, double* K, const bool* vary = nullptr)
 
 }  // namespace
 
+namespace {
+
+void stiffness_damping(const Model& mod, double beta, const double* y, const double* v,
+                       const AssemblyTerms& tm, double* r, const BandView* jac) {
+  // The force beta K_T(y) v of Rayleigh's stiffness-proportional damping, K_T the tangent
+  // stiffness of the elements at y.  Its derivatives: d/dv = beta K_T, and d/dy, whose column
+  // k is beta sum_j d2 f / dy_j dy_k v_j = beta (d/de K_T(y + e v))_{., k} (the second
+  // derivatives of f are symmetric): the tangent's derivative along v, by central differences
+  // of the tangent with the step h |v|_inf = eps^(1/3) (1 + |y|_inf).
+  const int nb = mod.n(), ku = mod.ku();
+  const auto size = static_cast<std::size_t>((2 * ku + 1) * nb);
+  thread_local std::vector<double> kb, kp, f, kv, ys;
+  kb.assign(size, 0.0);
+  f.assign(sz(nb), 0.0);
+  kv.assign(sz(nb), 0.0);
+  const BandView k0 = numpy_band(kb.data(), nb, ku);
+  assemble(mod, y, f.data(), &k0, 1.0);
+  band_matvec(kb.data(), v, nb, ku, kv.data());
+  for (int i = 0; i < nb; ++i) r[i] += beta * kv[sz(i)];
+  if (jac == nullptr) return;
+  for (int j = 0; j < nb; ++j)
+    for (int i = std::max(0, j - ku); i < std::min(nb, j + ku + 1); ++i)
+      jac->at(i, j) += beta * tm.cv * k0.at(i, j);
+  double vmax = 0.0, ymax = 0.0;
+  for (int i = 0; i < nb; ++i) {
+    vmax = std::max(vmax, std::abs(v[i]));
+    ymax = std::max(ymax, std::abs(y[i]));
+  }
+  if (vmax == 0.0 || tm.ck == 0.0) return;
+  const double h = 6e-6 * (1.0 + ymax) / vmax;
+  kb.assign(size, 0.0);
+  kp.assign(size, 0.0);
+  ys.resize(sz(nb));
+  const BandView km = numpy_band(kb.data(), nb, ku), kpv = numpy_band(kp.data(), nb, ku);
+  for (int i = 0; i < nb; ++i) ys[sz(i)] = y[i] + h * v[i];
+  assemble(mod, ys.data(), f.data(), &kpv, 1.0);
+  for (int i = 0; i < nb; ++i) ys[sz(i)] = y[i] - h * v[i];
+  assemble(mod, ys.data(), f.data(), &km, 1.0);
+  const double scale = beta * tm.ck / (2.0 * h);
+  for (int j = 0; j < nb; ++j)
+    for (int i = std::max(0, j - ku); i < std::min(nb, j + ku + 1); ++i)
+      jac->at(i, j) += scale * (kpv.at(i, j) - km.at(i, j));
+}
+
+}  // namespace
+
 void constraints(const System& s, const double* y, double t, double* g) {
   for (std::size_t k = 0; k < s.joints.size(); ++k) {
     const JointData& jd = s.joints[k];
@@ -194,6 +241,9 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
       if (has_rotary_inertia(mod))
         assemble_inertia(mod, yf + o, vf + o, am + o, {c, tm.ck, tm.cv, tm.ca}, r + o,
                          lu != nullptr ? &jac : nullptr);
+      if (s.stiffness_damping > 0.0 && vf != nullptr)
+        stiffness_damping(mod, s.stiffness_damping, yf + o, vf + o, tm, r + o,
+                          lu != nullptr ? &jac : nullptr);
     }
   }
   // ---- rigid bodies and point masses: inertia, damping, gravity

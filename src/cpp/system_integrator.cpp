@@ -101,6 +101,7 @@ StepOutcome SystemIntegrator::step(const double* y0, const double* v0, const dou
       ++factorizations_;
       lu_valid_ = lu_.factor();
       if (!lu_valid_) return {false, it};
+      if (sc_.modified) remember(h, terms, l1, y1);
     }
     solve_negative();
     double norm = 0.0;
@@ -142,17 +143,65 @@ StepOutcome SystemIntegrator::step(const double* y0, const double* v0, const dou
   return {false, max_iter};
 }
 
+void SystemIntegrator::remember(double h, const AssemblyTerms& terms, const double* l1,
+                                const double* y1) {
+  const int n = s_.n, m = s_.m;
+  factored_at_.assign({h, terms.ck, terms.cv, terms.ca, terms.tf, terms.t1});
+  factored_at_.insert(factored_at_.end(), yf_.begin(), yf_.end());
+  factored_at_.insert(factored_at_.end(), vf_.begin(), vf_.end());
+  factored_at_.insert(factored_at_.end(), am_.begin(), am_.end());
+  factored_at_.insert(factored_at_.end(), y1, y1 + n);
+  factored_at_.insert(factored_at_.end(), l1, l1 + m);
+}
+
+std::vector<double> SystemIntegrator::memory() const {
+  if (!sc_.modified || !lu_valid_) return {};
+  return factored_at_;
+}
+
+bool SystemIntegrator::restore(const std::vector<double>& memory, long factorizations) {
+  const auto n = sz(s_.n), m = sz(s_.m);
+  factorizations_ = factorizations;
+  lu_valid_ = false;
+  factored_at_.clear();
+  if (memory.empty()) return true;
+  if (!sc_.modified || memory.size() != 6 + 4 * n + m) return false;
+  AssemblyTerms terms;
+  terms.ck = memory[1];
+  terms.cv = memory[2];
+  terms.ca = memory[3];
+  terms.tf = memory[4];
+  terms.t1 = memory[5];
+  const double* p = memory.data() + 6;
+  std::copy(p, p + n, yf_.begin());
+  std::copy(p + n, p + 2 * n, vf_.begin());
+  std::copy(p + 2 * n, p + 3 * n, am_.begin());
+  if (!assemble_system(s_, yf_.data(), vf_.data(), am_.data(), p + 4 * n, p + 3 * n, terms,
+                       r_.data(), &lu_))
+    return false;
+  lu_valid_ = lu_.factor();
+  if (lu_valid_) {
+    lu_h_ = memory[0];
+    factored_at_ = memory;
+  }
+  return lu_valid_;
+}
+
 RunOutcome SystemIntegrator::run(double* y, double* v, double* a, double* lam, double t0, double h,
                                  std::int64_t n_steps, std::int64_t out_every,
                                  std::int64_t done_before, double max_seconds, double* out_y,
                                  double* out_v, double* out_l, double* out_e, double* out_yf,
-                                 double* out_vf) {
+                                 double* out_vf, double out_dt, std::int64_t k_last) {
   const int n = s_.n, m = s_.m;
   const auto start = std::chrono::steady_clock::now();
   std::vector<double> y1(sz(n)), v1(sz(n)), a1(sz(n)), l1(sz(m));
   RunOutcome out{0, true, 0, 0};
+  std::int64_t since = done_before;  // steps since output k_last
   for (std::int64_t k = 0; k < n_steps; ++k) {
-    const double t = t0 + static_cast<double>(k) * h;
+    const double t = out_dt > 0.0
+                         ? out_dt * static_cast<double>(k_last) + static_cast<double>(since) * h
+                         : t0 + static_cast<double>(k) * h;
+    ++since;
     const StepOutcome st = step(y, v, a, lam, t, h, y1.data(), v1.data(), a1.data(), l1.data());
     out.iterations += st.iterations;
     if (!st.converged) {
@@ -175,6 +224,8 @@ RunOutcome SystemIntegrator::run(double* y, double* v, double* a, double* lam, d
     system_rereference(s_, y, v, a);
     out.steps = k + 1;
     if (stores) {
+      ++k_last;
+      since = 0;
       const std::ptrdiff_t row = static_cast<std::ptrdiff_t>(out.stored);
       std::copy(y, y + n, out_y + row * n);
       std::copy(v, v + n, out_v + row * n);

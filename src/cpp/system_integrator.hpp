@@ -31,10 +31,14 @@ class SystemIntegrator {
   /// max_seconds of wall time have passed, so the caller can poll for interrupts.
   /// out_yf, out_vf (may be null): the alpha point (y_{n+1-af}, v_{n+1-af}) of the step that
   /// ended at each stored row (before the rods' re-referencing), where its forces act.
+  /// out_dt > 0: the steps' times are out_dt k + i h, k the index of the last output (k_last
+  /// at the start, t0 its time) and i the steps since it, whatever steps earlier calls took
+  /// (a run's numbers do not depend on where it was cut into calls); else t0 + k h.
   RunOutcome run(double* y, double* v, double* a, double* lam, double t0, double h,
                  std::int64_t n_steps, std::int64_t out_every, std::int64_t done_before,
                  double max_seconds, double* out_y, double* out_v, double* out_l, double* out_e,
-                 double* out_yf = nullptr, double* out_vf = nullptr);
+                 double* out_yf = nullptr, double* out_vf = nullptr, double out_dt = 0.0,
+                 std::int64_t k_last = 0);
   /// Consistent initial acceleration and multipliers: [M G^T; G 0] [a; lambda] = [-F; -c].
   /// contact (may be null): the contact forces of a step instead of those at (y, v)
   /// (AssemblyTerms::contact_yf and after).
@@ -55,9 +59,18 @@ class SystemIntegrator {
   [[nodiscard]] long factorizations() const { return factorizations_; }
   /// The held coordinates that follow time functions, at time t (any pointer may be null).
   void set_prescribed(double t, double* y, double* v, double* a) const;
+  /// What the loop keeps between steps (modified Newton: the factored Jacobian, kept as the
+  /// point it was assembled at): empty if nothing, else [h, ck, cv, ca, tf, t1, yf (n),
+  /// vf (n), am (n), y1 (n), lambda (m)].
+  [[nodiscard]] std::vector<double> memory() const;
+  /// Take up memory() of another integrator on the same system: the Jacobian is assembled at
+  /// the same point and factored again (bit for bit the same factors); factorizations, the
+  /// counter to go on from.  False if the data do not fit or the factorization fails.
+  bool restore(const std::vector<double>& memory, long factorizations);
 
  private:
   void solve_negative();
+  void remember(double h, const AssemblyTerms& terms, const double* l1, const double* y1);
   const System& s_;
   Scheme sc_;
   BorderedLU lu_;
@@ -67,6 +80,7 @@ class SystemIntegrator {
   double lu_h_ = -1.0;
   long factorizations_ = 0;
   std::vector<double> base_, yf_, vf_, am_, r_, dz_, zb_, zero_;
+  std::vector<double> factored_at_;  ///< modified Newton: where the factors were assembled
 };
 
 /// Kinetic, strain (elements and springs) and gravitational energy of the system at (y, v)

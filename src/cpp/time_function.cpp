@@ -7,9 +7,8 @@ namespace rancf {
 
 namespace {
 constexpr double kTwoPi = 6.28318530717958647692;
-}
 
-TimeValue evaluate(const TimeFunction& tf, int comp, double t) {
+TimeValue plain(const TimeFunction& tf, int comp, double t) {
   const double c = tf.value[static_cast<std::size_t>(comp)];
   switch (tf.kind) {
     case TimeKind::constant:
@@ -50,6 +49,19 @@ TimeValue evaluate(const TimeFunction& tf, int comp, double t) {
     }
   }
   return {0.0, 0.0, 0.0};
+}
+
+}  // namespace
+
+TimeValue evaluate(const TimeFunction& tf, int comp, double t) {
+  const TimeValue f = plain(tf, comp, t);
+  if (!(tf.build_up > 0.0) || t >= tf.build_up) return f;
+  if (t <= 0.0) return {0.0, 0.0, 0.0};
+  const double b = tf.build_up, s = t / b;
+  const double r = s * s * s * (10.0 + s * (-15.0 + 6.0 * s));
+  const double dr = 30.0 * s * s * (1.0 - s) * (1.0 - s) / b;
+  const double ddr = 60.0 * s * (1.0 - s) * (1.0 - 2.0 * s) / (b * b);
+  return {r * f.f, dr * f.f + r * f.df, ddr * f.f + 2.0 * dr * f.df + r * f.ddf};
 }
 
 }  // namespace rancf

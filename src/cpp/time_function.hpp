@@ -9,6 +9,9 @@
 //   harmonic   f(t) = c sin(2 pi f t + phi)
 //   spin_up    f(t) = (w / T) [t^2 / 2 + (T / 2 pi)^2 (cos(2 pi t / T) - 1)] for t <= T,
 //              w (t - T / 2) after (Kane, Ryan & Banerjee 1987: the rate rises smoothly to w)
+// Any kind may be built up over B: g = r f with the quintic smooth step r = 10 s^3 - 15 s^4 +
+// 6 s^5, s = t / B in [0, 1] (r' = r'' = 0 at both ends), so g, g', g'' start from zero
+// (rancf.bodies.time_function, T.6).
 #pragma once
 
 #include <vector>
@@ -24,6 +27,7 @@ struct TimeFunction {
   double duration = 0.0;       ///< T (ramp, spin_up)
   double frequency = 0.0;      ///< Hz (harmonic)
   double phase = 0.0;          ///< rad (harmonic)
+  double build_up = 0.0;       ///< B [s] of the smooth build-up; 0: none
   std::vector<double> breaks;  ///< (k + 1) piecewise breakpoints
   std::vector<double> coef;    ///< (k, 4, n): c0 + c1 s + c2 s^2 + c3 s^3, s = t - t_i
 };

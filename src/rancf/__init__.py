@@ -51,6 +51,7 @@ _API = {
     "DynamicResult": "rancf.solvers.dynamic",
     "DynamicStatus": "rancf.solvers.dynamic",
     "integrate": "rancf.solvers.dynamic",
+    "DynamicState": "rancf.solvers.state",
     "simulate": "rancf.post.simulate",
     "System": "rancf.system",
     "Joint": "rancf.system",

@@ -25,7 +25,7 @@ def _tables() -> list[type[Table]]:
     while todo:
         cls = todo.pop()
         todo += cls.__subclasses__()
-        if cls.model_fields:
+        if cls.model_fields and not cls.__name__.startswith("_"):  # not a shared base
             out.append(cls)
     return out
 

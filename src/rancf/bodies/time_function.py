@@ -27,6 +27,15 @@ angle) or vector valued (a support's displacement), every component sharing the 
   ~1e-7 relative).  :meth:`sampled` turns it into a cubic table for code that cannot call
   Python (the compiled time loop).
 
+Any kind may be built up (:meth:`TimeFunction.with_build_up`, ``build_up = B`` in a scenario
+file): it is multiplied by the quintic smooth step from 0 to 1 over ``[0, B]``           (T.6)
+
+    g(t) = r(t) f(t),  r = 10 s³ − 15 s⁴ + 6 s⁵,  s = min(max(t / B, 0), 1),
+    g′ = r′ f + r f′,  g″ = r″ f + 2 r′ f′ + r f″,
+
+so that ``g``, ``g′`` and ``g″`` start from 0 (``r′ = r″ = 0`` at both ends: no jump of rate or
+acceleration at ``t = 0`` or ``t = B``) and ``g = f`` after ``B``.
+
 At a kink (a table's breakpoint, the end of a ramp) the rate is the one of the interval that
 starts there (the right derivative).  The compiled core evaluates the same functions
 (``src/cpp/time_function.hpp``) from the records of :func:`core_record`.
@@ -44,7 +53,9 @@ from numpy.typing import ArrayLike, NDArray
 from rancf.errors import InputError
 from rancf.kernels.records import TimeFunctionRecord, floats
 
-__all__ = ["TimeFunction", "KINDS", "CORE_KINDS", "spin_up_angle", "core_record"]
+__all__ = [
+    "TimeFunction", "KINDS", "CORE_KINDS", "spin_up_angle", "core_record", "build_up_factor",
+]  # fmt: skip
 
 #: The kinds of time functions.
 KINDS = ("constant", "table", "ramp", "harmonic", "spin_up", "callable")
@@ -54,6 +65,17 @@ CORE_KINDS = {"constant": "constant", "table": "piecewise", "ramp": "ramp",
               "harmonic": "harmonic", "spin_up": "spin_up"}  # fmt: skip
 
 _H1, _H2 = 6e-6, 1.2e-4  # central-difference steps of callables [s]
+
+
+def build_up_factor(t: float, duration: float) -> tuple[float, float, float]:
+    """The smooth step ``r`` of (T.6) and its first two time derivatives at ``t``."""
+    s = min(max(t / duration, 0.0), 1.0)
+    if s <= 0.0 or s >= 1.0:
+        return (0.0 if s <= 0.0 else 1.0), 0.0, 0.0
+    r = s * s * s * (10.0 + s * (-15.0 + 6.0 * s))
+    dr = 30.0 * s * s * (1.0 - s) * (1.0 - s) / duration
+    ddr = 60.0 * s * (1.0 - s) * (1.0 - 2.0 * s) / (duration * duration)
+    return r, dr, ddr
 
 
 def _values(key: str, v: ArrayLike) -> tuple[tuple[float, ...], bool]:
@@ -106,6 +128,8 @@ class TimeFunction:
         ``"linear"`` or ``"cubic"`` (tables).
     fn : callable or None
         The Python function of :meth:`from_callable`.
+    build_up : float
+        ``B`` of the build-up (T.6) [s]; 0: none.
     """
 
     def __init__(
@@ -120,8 +144,10 @@ class TimeFunction:
         rows: NDArray[np.float64] | None = None,
         interpolation: str = "linear",
         fn: Callable[[float], Any] | None = None,
+        build_up: float = 0.0,
     ) -> None:
         self.kind, self.values, self.vector = kind, values, vector
+        self.build_up = build_up
         self.duration, self.frequency, self.phase = duration, frequency, phase
         self.rows, self.interpolation, self.fn = rows, interpolation, fn
         self._spline: Any = None
@@ -185,6 +211,19 @@ class TimeFunction:
         values, vector = _values("f(0)", fn(0.0))
         return cls("callable", values, vector, fn=fn)
 
+    def with_build_up(self, seconds: float) -> TimeFunction:
+        """This function times the smooth step from 0 to 1 over ``seconds`` (T.6); 0: none."""
+        if isinstance(seconds, bool) or not (
+            isinstance(seconds, int | float) and math.isfinite(seconds) and seconds >= 0
+        ):
+            raise InputError("build_up", seconds, "a finite duration >= 0 [s]")
+        out = TimeFunction(
+            self.kind, self.values, self.vector, duration=self.duration,
+            frequency=self.frequency, phase=self.phase, rows=self.rows,
+            interpolation=self.interpolation, fn=self.fn, build_up=float(seconds),
+        )  # fmt: skip
+        return out
+
     # ------------------------------------------------------------------ evaluation
     @property
     def size(self) -> int:
@@ -208,11 +247,20 @@ class TimeFunction:
 
     def _eval(self, t: float, order: int) -> float | NDArray[np.float64]:
         t = float(t)
-        if self.kind == "callable":
-            v = self._callable(t, order)
-        else:
-            v = self._exact(t, order)
+        v = self._plain(t, order)
+        if self.build_up > 0.0 and t < self.build_up:  # (T.6)
+            r, dr, ddr = build_up_factor(t, self.build_up)
+            if order == 0:
+                v = r * v
+            elif order == 1:
+                v = dr * self._plain(t, 0) + r * v
+            else:
+                v = ddr * self._plain(t, 0) + 2.0 * dr * self._plain(t, 1) + r * v
         return v if self.vector else float(v[0])
+
+    def _plain(self, t: float, order: int) -> NDArray[np.float64]:
+        """The function without its build-up."""
+        return self._callable(t, order) if self.kind == "callable" else self._exact(t, order)
 
     def _exact(self, t: float, order: int) -> NDArray[np.float64]:
         c = np.array(self.values)
@@ -288,6 +336,14 @@ class TimeFunction:
         def val(v: tuple[float, ...]) -> float | list[float]:
             return list(v) if self.vector else v[0]
 
+        out = self._toml_plain(val)
+        if self.build_up > 0.0:
+            if not isinstance(out, dict):  # a constant: as a table of two equal rows
+                out = {"table": [[0.0, *self.values], [1.0, *self.values]]}
+            out["build_up"] = self.build_up
+        return out
+
+    def _toml_plain(self, val: Callable) -> float | list[float] | dict[str, Any]:
         if self.kind == "constant":
             return val(self.values)
         if self.kind == "ramp":
@@ -311,9 +367,10 @@ class TimeFunction:
             self.rows is not None and other.rows is not None
             and np.array_equal(self.rows, other.rows)
         )  # fmt: skip
-        same = (self.kind, self.values, self.vector, self.duration, self.frequency, self.phase)
+        same = (self.kind, self.values, self.vector, self.duration, self.frequency, self.phase,
+                self.build_up)  # fmt: skip
         return rows_equal and same == (other.kind, other.values, other.vector, other.duration,
-                                       other.frequency, other.phase)  # fmt: skip
+                                       other.frequency, other.phase, other.build_up)  # fmt: skip
 
     __hash__ = None  # type: ignore[assignment]
 
@@ -336,5 +393,5 @@ def core_record(f: TimeFunction) -> TimeFunctionRecord:
     breaks, coef = f.coefficients()
     return TimeFunctionRecord(
         CORE_KINDS[f.kind], floats(f.values), f.duration, f.frequency, f.phase, floats(breaks),
-        floats(coef),
+        floats(coef), f.build_up,
     )  # fmt: skip

@@ -13,16 +13,20 @@ The output-folder policy (docs/guide/outputs.md, *Output folders and files*):
   folder (one holding ``summary.json``) is replaced, wholly, only with ``--overwrite``; any
   other non-empty folder is refused;
 * a sweep folder must be new, empty, or an earlier sweep's folder (which is resumed);
+* ``simulate --resume`` takes a new or empty folder, or an earlier run's folder (whose run goes
+  on: :mod:`rancf.cli.resume`);
 * the other commands (``plot``, ``export``, ``example``, ``report``) add their files to the
   folder, replacing files of the same name;
 * while a command writes, the folder holds ``.rancf.lock`` naming the process; a second rancf
   process with the same output folder is refused with one line naming that process.  The lock
-  is an advisory ``flock`` on that file, so a process that was killed holds no lock.
+  is an advisory ``flock`` on that file, so a process that was killed holds no lock (where the
+  file system has no ``flock``, a lock file naming a process that no longer runs is stale).
 """
 
 from __future__ import annotations
 
 import contextlib
+import errno
 import os
 import shutil
 from pathlib import Path
@@ -44,7 +48,33 @@ PLOT_FORMATS = ("png", "pdf", "svg", "eps", "ps", "jpg", "jpeg", "tif", "tiff", 
 #: The lock file a command holds in its output folder while it writes.
 LOCK_NAME = ".rancf.lock"
 
-Kind = Literal["run", "sweep", "any"]
+Kind = Literal["run", "resume", "sweep", "any"]
+
+
+#: ``flock`` errors that mean another process holds the lock.
+_HELD = (errno.EWOULDBLOCK, errno.EAGAIN, errno.EACCES)
+
+
+def _stale(holder: list[str]) -> bool:
+    """Whether a lock file naming ``holder`` (its process id) is left by a process that no
+    longer runs (or names none)."""
+    if not holder or not holder[0].isdigit():
+        return True
+    try:
+        os.kill(int(holder[0]), 0)
+    except ProcessLookupError:
+        return True
+    except OSError:
+        return False
+    return int(holder[0]) == os.getpid()
+
+
+def _take(fd: int) -> int:
+    """Write this process's id into the lock file ``fd``; returns ``fd``."""
+    os.ftruncate(fd, 0)
+    os.lseek(fd, 0, os.SEEK_SET)
+    os.write(fd, f"{os.getpid()}\n".encode())
+    return fd
 
 
 def _existing_parent(path: Path) -> Path:
@@ -130,6 +160,8 @@ class OutputDir:
         self.overwrite = overwrite
         self.created: Path | None = None
         self.kept = False
+        #: ``kind = "resume"``: the folder holds an earlier run.
+        self.earlier_run = False
         self._lock: int | None = None
 
     def _fail(self, allowed: str) -> InputError:
@@ -166,8 +198,11 @@ class OutputDir:
                 raise self._fail(f"a writable directory ({exc.strerror})") from None
             try:
                 fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
-            except OSError:
+            except OSError as exc:
                 holder = os.read(fd, 200).decode("ascii", "replace").split()
+                if exc.errno not in _HELD and _stale(holder):  # no flock here: by the pid
+                    self._lock = _take(fd)
+                    return
                 os.close(fd)
                 who = f"process {holder[0]}" if holder else "another process"
                 raise self._fail(
@@ -178,9 +213,7 @@ class OutputDir:
             except OSError:
                 same = False
             if same:  # not a lock file its last holder removed meanwhile
-                os.ftruncate(fd, 0)
-                os.write(fd, f"{os.getpid()}\n".encode())
-                self._lock = fd
+                self._lock = _take(fd)
                 return
             os.close(fd)
         raise self._fail("a folder whose lock can be taken")  # pragma: no cover
@@ -209,17 +242,32 @@ class OutputDir:
             raise self._fail(
                 f"a new or empty folder (it holds {shown}, and is not a rancf run folder)"
             )
+        if self.kind == "resume":
+            self.earlier_run = True
+            return
         if not self.overwrite:
             raise self._fail(
                 f"a new or empty folder (it holds an earlier run: {shown}); add --overwrite to "
                 "replace that run"
             )
-        for name in entries:  # the earlier run, wholly (its plots/ and exports too)
-            p = self.path / name
+        self._empty()
+
+    def _empty(self) -> None:
+        """Remove the earlier run, wholly (its plots/ and exports too)."""
+        for p in self.path.iterdir():
+            if p.name == LOCK_NAME:
+                continue
             if p.is_dir() and not p.is_symlink():
                 shutil.rmtree(p)
             else:
                 p.unlink()
+
+    def clear(self) -> None:
+        """``kind = "resume"``: the earlier run has nothing to go on from (it wrote no
+        checkpoint): remove it, so that the run starts anew."""
+        if self.earlier_run:
+            self._empty()
+            self.earlier_run = False
 
     def __enter__(self) -> OutputDir:
         self._mkdir()

@@ -56,34 +56,54 @@ def _scenario_text(path: str) -> str:
 def _cmd_simulate(args: argparse.Namespace) -> int:
     every = _positive("--checkpoint-every", args.checkpoint_every, "a finite number of seconds > 0")
     limit = _positive("--max-output-gb", args.max_output_gb, "a finite size in GB > 0")
-    od = OutputDir(args.out, kind="run", overwrite=args.overwrite)  # checks the path up front
+    if args.t_end is not None:
+        _positive("--t-end", args.t_end, "a finite time in s > 0")
+    kind = "resume" if args.resume else "run"
+    od = OutputDir(args.out, kind=kind, overwrite=args.overwrite)  # checks the path up front
     from rancf.atomic import atomic_write
+    from rancf.cli.resume import Resume, scenario_for_run
     from rancf.post.checks import run_warnings, section_warnings
     from rancf.post.history import HistoryStore, plan_run
     from rancf.post.results import run_summary
-    from rancf.scenario import load_scenario
     from rancf.solvers.static import start_state
 
-    sc = load_scenario(args.scenario)
+    sc, copy = scenario_for_run(args.scenario, args.t_end)
     opts = sc.dynamic_options()
     system, outputs = plan_run(sc, limit)
-    y_start, start_info = start_state(sc, system)
-    copy = _scenario_text(args.scenario)
     out = od.path
     stop = _StopFlag()
-    notes = _warn(section_warnings(system))  # likely unit mistakes: the run goes on
     with stop, od:
+        resume = Resume(out, copy) if od.earlier_run else None
+        state = None if resume is None else resume.state
+        if state is None:
+            y_start, start_info = start_state(sc, system)
+            od.clear()  # --resume of a run killed before its first checkpoint: from the start
+        else:
+            od.keep()  # the earlier run's files stay whatever happens
+            y_start, start_info = None, resume.start_info()
+            if state.t >= opts.t_end * (1.0 - 1e-12):
+                return _nothing_to_do(args, out, state.t, opts.t_end)
+            if not args.quiet:
+                print(f"rancf: {resume.killed_note()}; resuming from t = {state.t:g} s",
+                      file=sys.stderr)  # fmt: skip
+        notes = _warn(section_warnings(system))  # likely unit mistakes: the run goes on
+        for note in sc.notes:  # defaults the file did not state (a harmonic's build-up)
+            print(f"rancf: {note}", file=sys.stderr)
         info = {"scenario": str(Path(args.scenario).resolve()), "setup_wall_time_s": None}
+        info["notes"] = sc.notes
         info.update(start_info)
         store = HistoryStore(out, outputs, {**info, "warnings": notes})
         try:
+            if state is not None:
+                store.seed(resume.rows(outputs))
             atomic_write(out / "scenario.toml", copy)
-            store.write_summary(_running(system, 0.0))
-            res = _run(args, system, opts, store, stop, every, od.keep, y_start)
+            t0 = 0.0 if state is None else state.t
+            store.write_summary(_running(system, t0))
+            res = _run(args, system, opts, store, stop, every, od.keep, y_start, state)
             summary = run_summary(system, res)
             store.flush()  # every row's derived outputs, the strain among them
             store.info["warnings"] = run_warnings(system, largest=outputs.largest_strain)
-            store.finish(summary)
+            store.finish(summary, res.state)
         except BaseException as exc:
             err = _end_broken(store, system, exc, od.kept, out)
             if err is exc:
@@ -91,6 +111,13 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
             raise err from None
     _warn(store.info["warnings"][len(notes) :])
     return _report(args, res, {**summary, **store.info}, out)
+
+
+def _nothing_to_do(args: argparse.Namespace, out: Path, t: float, t_end: float) -> int:
+    if not args.quiet:
+        print(f"rancf: {out} already reached t = {t:g} s (t_end = {t_end:g} s): nothing to "
+              "do; give --t-end to go further", file=sys.stderr)  # fmt: skip
+    return 0
 
 
 def _warn(notes: list[str]) -> list[str]:
@@ -178,6 +205,14 @@ def _broken(model: Any, store: Any, exc: BaseException) -> dict[str, Any]:
 PROGRESS_AFTER_S = 0.5
 
 
+def _terminal(stream: Any) -> bool:
+    """Whether ``stream`` is a terminal (a progress bar's carriage returns belong only there)."""
+    try:
+        return bool(stream.isatty())
+    except (AttributeError, ValueError):  # closed or not a file
+        return False
+
+
 def _progress_bar(t_end: float, t: float) -> Any:
     from tqdm import tqdm  # imported only for runs long enough to show a bar
 
@@ -200,9 +235,10 @@ def _run(
     every: float,
     started: Any,
     y_start: Any = None,
+    state: Any = None,
 ) -> Any:
-    """Integrate into ``store`` from ``y_start`` (default the reference); ``started()`` once
-    the first checkpoint is on disk."""
+    """Integrate into ``store`` from ``y_start`` (default the reference) or an earlier run's
+    ``state``; ``started()`` once the first checkpoint is on disk."""
     from rancf.post.results import run_summary
     from rancf.solvers.dynamic import integrate
 
@@ -211,9 +247,10 @@ def _run(
 
     def on_start() -> None:
         store.info["setup_wall_time_s"] = _process_age()
-        store.checkpoint(_running(model, 0.0))  # every file exists before the first step
+        t0 = 0.0 if state is None else state.t  # every file exists before the first step
+        store.checkpoint(_running(model, t0), state)
         started()
-        if not args.quiet:
+        if not args.quiet and _terminal(sys.stderr):  # no carriage returns in logs
             pace["bar"] = time.monotonic() + PROGRESS_AFTER_S
 
     def on_output(t: float, snapshot: Any) -> None:
@@ -223,15 +260,14 @@ def _run(
             bar.append(_progress_bar(opts.t_end, t))
         now = time.monotonic()
         if now >= pace["next"]:
-            summary = {**run_summary(model, snapshot()), **_running(model, t)}
-            store.checkpoint(summary)
+            now_at = snapshot()
+            summary = {**run_summary(model, now_at), **_running(model, t)}
+            store.checkpoint(summary, now_at.state)
             took = time.monotonic() - now
             pace["next"] = time.monotonic() + max(pace["every"], 4.0 * took)
 
     try:
-        return integrate(
-            model, opts, on_output, stop, sink=store, on_start=on_start, initial=y_start
-        )
+        return integrate(model, opts, on_output, stop, store, on_start, y_start, state)
     finally:
         if bar:
             bar[0].close()
@@ -269,6 +305,20 @@ def add_parsers(sub: Any) -> None:
     s.add_argument("--out", required=True, help="output directory (created if needed)")
     s.add_argument("--quiet", action="store_true", help="no progress bar or summary line")
     s.add_argument("--overwrite", action="store_true", help=OVERWRITE_HELP)
+    s.add_argument(
+        "--resume",
+        action="store_true",
+        help="go on with the run in --out from its last checkpoint (a killed, failed or "
+        "finished run; a new or empty folder starts a new run)",
+    )
+    s.add_argument(
+        "--t-end",
+        type=float,
+        default=None,
+        metavar="SECONDS",
+        help="end time instead of the scenario's solver.t_end (with --resume: extends a "
+        "finished run)",
+    )
     s.add_argument(
         "--checkpoint-every",
         type=float,

@@ -169,6 +169,8 @@ class TimeFunctionRecord:
     coef : floats
         ``piecewise``: the ``(k, 4, n)`` coefficients ``c0 + c1 s + c2 s^2 + c3 s^3``,
         row-major.
+    build_up : float
+        ``B`` [s] of the smooth build-up the function is multiplied by; 0: none.
     """
 
     kind: str
@@ -178,6 +180,7 @@ class TimeFunctionRecord:
     phase: float = 0.0
     breaks: tuple[float, ...] = ()
     coef: tuple[float, ...] = ()
+    build_up: float = 0.0
 
 
 @dataclass(frozen=True)

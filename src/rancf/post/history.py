@@ -32,6 +32,7 @@ from numpy.typing import NDArray
 from rancf.atomic import FileSet, atomic_write
 from rancf.errors import RunTooLargeError
 from rancf.post.results import strict_json
+from rancf.post.resume import CHECKPOINT
 from rancf.post.run_files import DERIVED, write_history_files
 from rancf.system.outputs import SystemOutputs
 
@@ -208,6 +209,18 @@ class HistoryStore:
         if self._pending >= self._rows_per_flush:
             self.flush()
 
+    def seed(self, rows: dict[str, NDArray]) -> None:
+        """Start from the rows of an earlier part of the run (a resumed run:
+        :func:`rancf.post.resume.stored_rows`), already derived."""
+        self.flush()
+        n = len(rows["t"])
+        for key, fh in self._fh.items():
+            fh.write(np.ascontiguousarray(rows[key], dtype="<f8").tobytes())
+            fh.flush()
+        self.n_rows += n
+        self.saved_rows = self.n_rows
+        self.saved_t = float(rows["t"][-1]) if n else None
+
     def flush(self) -> None:
         """Append the buffered outputs, and what is derived from them, to the raw files (an
         error of a full disk names the file)."""
@@ -268,22 +281,26 @@ class HistoryStore:
         """Rewrite ``summary.json`` (strict JSON) with the run's fixed keys added."""
         atomic_write(self.out / "summary.json", self._summary_text(summary))
 
-    def checkpoint(self, summary: dict[str, Any]) -> None:
-        """Flush; replace ``sensors.csv``, ``energy.csv``, ``results.npz`` and the summary
-        together."""
+    def checkpoint(self, summary: dict[str, Any], state: Any = None) -> None:
+        """Flush; replace ``sensors.csv``, ``energy.csv``, ``results.npz``, the summary and
+        (given the run's :class:`~rancf.solvers.state.DynamicState` after the last row)
+        ``checkpoint.npz`` together."""
         self.flush()
         arr, m1 = self._arrays()
         t = arr["t"]
         with FileSet() as files:
             write_history_files(self.out, self.outputs, t, arr["q"], arr["v"], arr["e"], m1,
                                 {k: arr[k] for k in DERIVED}, files=files)  # fmt: skip
+            if state is not None:  # renamed after the rows it follows, before the summary
+                files.write(self.out / CHECKPOINT, state.to_bytes())
             files.write(self.out / "summary.json", self._summary_text(summary))
         self.saved_rows = self.n_rows
         self.saved_t = float(t[-1]) if self.n_rows else None
 
-    def finish(self, summary: dict[str, Any]) -> None:
-        """Last checkpoint, then close and remove the raw files."""
-        self.checkpoint(summary)
+    def finish(self, summary: dict[str, Any], state: Any = None) -> None:
+        """Last checkpoint (with the run's last ``state``), then close and remove the raw
+        files."""
+        self.checkpoint(summary, state)
         self.close()
         shutil.rmtree(self.raw, ignore_errors=True)
 
@@ -317,7 +334,7 @@ class HistoryStore:
         """Remove everything the store wrote (a run that failed before its first checkpoint)."""
         self.close()
         shutil.rmtree(self.raw, ignore_errors=True)
-        for name in (*HISTORY_FILES, "summary.json"):
+        for name in (*HISTORY_FILES, "summary.json", CHECKPOINT):
             with contextlib.suppress(OSError):
                 (self.out / name).unlink()
         shutil.rmtree(self.out / "bodies", ignore_errors=True)

@@ -22,13 +22,14 @@ from __future__ import annotations
 
 from typing import Annotated, Any, Literal
 
-from pydantic import Field, PlainSerializer, PlainValidator, Tag, model_validator
+from pydantic import BeforeValidator, Field, PlainSerializer, PlainValidator, Tag, model_validator
 from pydantic.json_schema import SkipJsonSchema
 
 from rancf.bodies.time_function import TimeFunction
 from rancf.errors import InputError
 from rancf.scenario.base import (
     Flag,
+    JsonSchema,
     KindOf,
     Name,
     NonNegative,
@@ -42,6 +43,7 @@ from rancf.scenario.base import (
     to_number,
     vector,
 )
+from rancf.scenario.table_files import ROWS_SCHEMA, table_rows
 
 __all__ = [
     "DistributedLoadTable",
@@ -63,13 +65,39 @@ __all__ = [
 Amount = number_or_vector(1, 2, 3)
 
 
-class TableFunction(Table):
-    """``{ table = [[t, v...], ...], interpolation = ... }`` (T.2)."""
+class _Function(Table):
+    """What every function table has: an optional build-up (T.6)."""
 
-    table: list[list[Number]] = Field(
+    build_up: NonNegative | None = Field(
+        None,
+        description="B [s]: the function times a smooth step from 0 to 1 over [0, B] (value, "
+        "rate and acceleration start from 0); 0: none. Default: none, but a harmonic support "
+        "motion or joint angle that would start with a jump of its rate builds up over two "
+        "periods (said in one line)",
+    )
+
+    def function(self) -> TimeFunction:
+        """The time function."""
+        f = self._function()
+        return f if not self.build_up else f.with_build_up(self.build_up)
+
+    def _function(self) -> TimeFunction:
+        raise NotImplementedError
+
+
+class TableFunction(_Function):
+    """``{ table = [[t, v...], ...], interpolation = ... }`` (T.2); or ``table = "file.csv"``,
+    the rows read from a CSV file relative to the scenario file."""
+
+    table: Annotated[
+        list[list[Number]],
+        BeforeValidator(table_rows),
+        JsonSchema(ROWS_SCHEMA),
+    ] = Field(
         min_length=2,
         description="rows [t, v...]: times [s] strictly increasing, one value per component; "
-        "held at the first row before it and at the last row after it",
+        "held at the first row before it and at the last row after it; or a CSV file of such "
+        'rows ("path.csv", relative to the scenario file; a header line of names allowed)',
     )
     interpolation: Literal["linear", "cubic"] = Field(
         "linear",
@@ -88,23 +116,21 @@ class TableFunction(Table):
                            f"after {show(self.table[i - 1][0])}")  # fmt: skip
         return self
 
-    def function(self) -> TimeFunction:
-        """The time function."""
+    def _function(self) -> TimeFunction:
         return TimeFunction.table(self.table, self.interpolation)
 
 
-class RampFunction(Table):
+class RampFunction(_Function):
     """``{ ramp = DURATION, value = ... }``: ``value · min(t / DURATION, 1)`` (T.3)."""
 
     ramp: Positive = Field(description="duration T of the ramp [s]")
     value: Amount = Field(1.0, description="the value reached at t = T (a number or a vector)")
 
-    def function(self) -> TimeFunction:
-        """The time function."""
+    def _function(self) -> TimeFunction:
         return TimeFunction.ramp(self.ramp, self.value)
 
 
-class HarmonicFunction(Table):
+class HarmonicFunction(_Function):
     """``{ harmonic = FREQUENCY_HZ, amplitude = ..., phase_deg = ... }``:
     ``amplitude · sin(2π f t + phase)`` (T.4)."""
 
@@ -112,12 +138,11 @@ class HarmonicFunction(Table):
     amplitude: Amount = Field(1.0, description="amplitude (a number or a vector)")
     phase_deg: Number = Field(0.0, description="phase [deg]")
 
-    def function(self) -> TimeFunction:
-        """The time function."""
+    def _function(self) -> TimeFunction:
         return TimeFunction.harmonic(self.harmonic, self.amplitude, self.phase_deg)
 
 
-class SpinUpFunction(Table):
+class SpinUpFunction(_Function):
     """``{ spin_up = DURATION, rate = OMEGA }``: an angle whose rate rises smoothly from 0 to
     OMEGA in DURATION T, ``(Ω/T)[t²/2 + (T/2π)²(cos(2πt/T) − 1)]`` for ``t ≤ T`` and
     ``Ω (t − T/2)`` after (T.5; Kane, Ryan & Banerjee 1987)."""
@@ -125,8 +150,7 @@ class SpinUpFunction(Table):
     spin_up: Positive = Field(description="duration T of the spin-up [s]")
     rate: Number = Field(description="the final angular rate Omega [rad/s]")
 
-    def function(self) -> TimeFunction:
-        """The time function."""
+    def _function(self) -> TimeFunction:
         return TimeFunction.spin_up(self.spin_up, self.rate)
 
 
@@ -324,9 +348,12 @@ class LoadsTable(Table):
 
 
 class DampingTable(Table):
-    """``[damping]``: mass-proportional damping of the flexible bodies."""
+    """``[damping]``: Rayleigh damping of the flexible bodies, ``C = c M + β K_T``."""
 
     mass_proportional: NonNegative = Field(0.0, description="c in C = c M [1/s]")
+    stiffness_proportional: NonNegative = Field(
+        0.0, description="beta in C = beta K_T [s] (K_T the tangent stiffness at the state)"
+    )
 
 
 class InitialVelocityTable(Table):

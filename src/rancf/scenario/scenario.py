@@ -35,6 +35,7 @@ from rancf.scenario.loads import (
     time_function,
 )
 from rancf.scenario.messages import scenario_error
+from rancf.scenario.motions import motion_function
 from rancf.scenario.obstacles import ObstacleTable
 from rancf.scenario.section import MaterialTable, SectionTable
 from rancf.scenario.sensors import Sensor, SensorTable
@@ -141,6 +142,12 @@ class Scenario(Table):
         return self._dim
 
     @property
+    def notes(self) -> list[str]:
+        """One line each on defaults the file did not state but the run uses (a harmonic
+        motion's build-up)."""
+        return list(self._data["notes"])
+
+    @property
     def data(self) -> dict[str, Any]:
         """Every table as plain dictionaries with defaults filled in (places of a one-body
         file as node indices; ``supports[i]["label"]`` keeps ``at`` as written)."""
@@ -231,10 +238,10 @@ class Scenario(Table):
         return self.model_dump(by_alias=True, exclude_unset=True, exclude_none=True)
 
     def to_toml(self, relative_to: str | Path | None = None) -> str:
-        """The scenario as TOML text (:mod:`tomli_w`).  CAD files given relative to this
-        scenario's file are rewritten relative to ``relative_to`` (a directory), absolute when
-        there is none."""
-        import tomli_w
+        """The scenario as TOML text (compact arrays: :func:`rancf.scenario.toml_text.dumps`).
+        CAD files given relative to this scenario's file are rewritten relative to
+        ``relative_to`` (a directory), absolute when there is none."""
+        from rancf.scenario.toml_text import dumps
 
         d = self.to_dict()
         for g, where in self._cad_tables(d):
@@ -246,7 +253,7 @@ class Scenario(Table):
                 except ValueError:
                     pass
             g["file"] = str(own)
-        return tomli_w.dumps(d)
+        return dumps(d)
 
     def save(self, path: str | Path) -> None:
         """Write the scenario to ``path`` as TOML (atomically: a complete file or none)."""
@@ -308,8 +315,16 @@ def _data(sc: Scenario) -> dict[str, Any]:
             im = b.initial_motion
             bd["initial_motion"] = None if im is None else im.as_dict()
         d["bodies"].append(bd)
-    d["joints"] = [{**j.model_dump(exclude={"angle"}), "angle": _tf(j.angle)}
-                   for j in sc.joints]  # fmt: skip
+    notes: list[str] = []
+
+    def motion(v: Any, key: str) -> Any:
+        f, note = motion_function(v, key)
+        notes.extend([note] if note else [])
+        return f
+
+    d["joints"] = [{**j.model_dump(exclude={"angle"}),
+                    "angle": motion(j.angle, f"joints[{i}].angle")}
+                   for i, j in enumerate(sc.joints)]  # fmt: skip
     d["springs"] = [s.model_dump() for s in sc.springs]
     d["obstacles"] = [o.model_dump() for o in sc.obstacles]
     d["winches"] = [{**w.model_dump(exclude={"length", "speed", "torque"}),
@@ -317,8 +332,8 @@ def _data(sc: Scenario) -> dict[str, Any]:
                     for w in sc.winches]  # fmt: skip
     d["supports"] = [
         {**s.model_dump(exclude={"motion"}), "at": _node_or_text(s.at, one), "label": s.at,
-         "motion": _tf(s.motion)}
-        for s in sc.supports
+         "motion": motion(s.motion, f"supports[{i}].motion")}
+        for i, s in enumerate(sc.supports)
     ]  # fmt: skip
     d["loads"] = {
         "gravity": sc.loads.gravity,
@@ -334,6 +349,7 @@ def _data(sc: Scenario) -> dict[str, Any]:
     d["initial_motion"] = None if sc.initial_motion is None else sc.initial_motion.as_dict()
     d["solver"] = sc.solver.model_dump()
     d["modes"] = sc.modes.model_dump()
+    d["notes"] = notes
     return d
 
 

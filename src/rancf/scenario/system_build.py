@@ -90,9 +90,10 @@ def _observed(sc: ScenarioView) -> list[Place]:
 
 def _build(sc: ScenarioView) -> System:
     gravity, damping = sc.loads.gravity, sc.damping.mass_proportional
+    beta = sc.damping.stiffness_proportional
     if not sc.bodies:
         model = body_model(sc)
-        return System({ONE_BODY: model}, gravity=gravity, damping=damping,
+        return System({ONE_BODY: model}, gravity=gravity, damping=damping, stiffness_damping=beta,
                       horizon=sc.solver.t_end, **_parts(sc, {ONE_BODY: model}))  # fmt: skip
     d = sc.data
     bodies: dict[str, Any] = {}
@@ -120,8 +121,8 @@ def _build(sc: ScenarioView) -> System:
             at(d["supports"], "supports"), at(d["loads"]["point"], "loads.point"),
             at(d["initial_velocity"], "initial_velocity"), d["bodies"][i]["initial_motion"], nodes,
         )  # fmt: skip
-    return System(bodies, gravity=gravity, damping=damping, horizon=sc.solver.t_end,
-                  **_parts(sc, bodies))  # fmt: skip
+    return System(bodies, gravity=gravity, damping=damping, stiffness_damping=beta,
+                  horizon=sc.solver.t_end, **_parts(sc, bodies))  # fmt: skip
 
 
 def _parts(sc: ScenarioView, bodies: dict[str, Any]) -> dict[str, Any]:

@@ -29,135 +29,14 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rancf.bodies.flexible import Model
-from rancf.kernels import _core
 from rancf.options import DynamicOptions
+from rancf.solvers.generalized_alpha import GeneralizedAlpha
 from rancf.solvers.output import MemorySink, OutputSink
 from rancf.solvers.result import DynamicResult, DynamicStatus
+from rancf.solvers.state import COUNTERS, DynamicState, take_up, triads_of
 from rancf.system import System, as_system
 
 __all__ = ["DynamicOptions", "DynamicStatus", "DynamicResult", "GeneralizedAlpha", "integrate"]
-
-
-class GeneralizedAlpha:
-    """One-step generalized-α integrator on a system (state ``y, v, a, λ, t``).
-
-    The Newton iterations of a step and the fixed-step loop run in the compiled core
-    (:class:`rancf.kernels._core.SystemIntegrator`: constrained generalized-α, bordered band
-    solves); this class holds the constants and counters.  A :class:`Model` is a one-body
-    system.
-    """
-
-    def __init__(
-        self,
-        model: Model | System,
-        rho_inf: float,
-        newton_tol: float,
-        max_newton: int,
-        newton: str = "chord",
-    ) -> None:
-        self.system = as_system(model)
-        r = rho_inf
-        self.am = (2.0 * r - 1.0) / (r + 1.0)
-        self.af = r / (r + 1.0)
-        self.gamma = 0.5 - self.am + self.af
-        self.beta = 0.25 * (1.0 - self.am + self.af) ** 2
-        size = self.system.size
-        self.tol = newton_tol * size
-        self.size = size
-        self.max_newton = max_newton
-        self.n_newton = 0
-        scheme = _core.Scheme(
-            alpha_m=self.am,
-            alpha_f=self.af,
-            gamma=self.gamma,
-            beta=self.beta,
-            damping=float(self.system.damping),
-            tol=self.tol,
-            max_iter=int(max_newton),
-            modified=newton == "modified",
-            chord=newton == "chord",
-        )
-        self._core = _core.SystemIntegrator(self.system.core, scheme)
-
-    @property
-    def n_factorizations(self) -> int:
-        """Band LU factorizations so far (Jacobians and the mass matrix)."""
-        return int(self._core.factorizations)
-
-    def prescribe(self, t: float, y: NDArray, v: NDArray) -> None:
-        """Moving supports: their held coordinates and rates at ``t`` (in place)."""
-        self._core.prescribe(t, y, v)
-
-    def initial_acceleration(
-        self, y: NDArray, v: NDArray, t: float, lam: NDArray | None = None
-    ) -> NDArray:
-        """Consistent ``a0`` (and multipliers into ``lam``): ``[M Gᵀ; G 0] [a; λ] = [-F; -c]``."""
-        a = np.empty(self.system.n)
-        lam = np.zeros(self.system.m) if lam is None else lam
-        self._core.initial_acceleration(y, v, t, a, lam)
-        return a
-
-    def step(
-        self, y: NDArray, v: NDArray, a: NDArray, t: float, h: float, lam: NDArray | None = None
-    ) -> tuple[bool, NDArray, NDArray, NDArray, int]:
-        """Advance by ``h``; returns ``(converged, y1, v1, a1, newton_iterations)`` (the new
-        multipliers replace ``lam``'s content when it converged)."""
-        y1, v1, a1 = np.empty_like(y), np.empty_like(y), np.empty_like(y)
-        l0 = np.zeros(self.system.m) if lam is None else lam
-        l1 = np.empty_like(l0)
-        ok, it = self._core.step(y, v, a, l0, t, h, y1, v1, a1, l1)
-        if ok and lam is not None:
-            lam[:] = l1
-        self.n_newton += it
-        return ok, y1, v1, a1, it
-
-    def run_steps(
-        self,
-        y: NDArray,
-        v: NDArray,
-        a: NDArray,
-        t: float,
-        h: float,
-        n_steps: int,
-        per_out: int,
-        done_before: int = 0,
-        max_seconds: float = np.inf,
-        lam: NDArray | None = None,
-    ) -> tuple:
-        """Fixed steps in the core from time ``t`` (``y, v, a``, ``lam`` updated in place).
-
-        An output is stored every ``per_out`` steps of an output interval, whose first already
-        holds ``done_before`` steps.  The core returns early, after a whole step, once
-        ``max_seconds`` of wall time have passed (so that the caller can poll for interrupts).
-        Returns ``(steps done, status, iterations, outputs stored, out_y, out_v, out_e,
-        out_l, out_alpha)``; status is 1 if every step taken converged, else 0 (the failing
-        step is not taken); ``out_alpha`` (systems with contact, else None): each stored row's
-        step's generalized-α point ``(y_f, v_f)`` side by side, ``(n_out, 2 n)``.
-        """
-        n, m = self.system.n, self.system.m
-        n_out = (done_before + n_steps) // per_out
-        oy, ov, oe = np.empty((n_out, n)), np.empty((n_out, n)), np.empty((n_out, 3))
-        ol = np.empty((n_out, m))
-        contact = self.system.has_contact
-        of = (np.empty((n_out, n)), np.empty((n_out, n))) if contact else (None, None)
-        lam = np.zeros(m) if lam is None else lam
-        done, ok, iters, stored = self._core.run(
-            y, v, a, lam, t, h, n_steps, per_out, done_before, max_seconds, oy, ov, ol, oe, *of
-        )
-        oa = np.concatenate(of, axis=1) if contact else None  # type: ignore[arg-type]
-        self.n_newton += iters
-        return done, int(ok), iters, stored, oy, ov, oe, ol, oa
-
-    def alpha_point(self, y0: NDArray, v0: NDArray, y1: NDArray, v1: NDArray) -> NDArray:
-        """``(y_{n+1-α_f}, v_{n+1-α_f})`` of a step from ``(y0, v0)`` to ``(y1, v1)``, side by
-        side ``(2 n,)``: where the step's forces act."""
-        af = self.af
-        return np.concatenate([(1.0 - af) * y1 + af * y0, (1.0 - af) * v1 + af * v0])
-
-    def error_estimate(self, a0: NDArray, a1: NDArray, h: float, rtol: float) -> float:
-        """Local displacement error relative to ``rtol * size``."""
-        e = h * h * abs(self.beta - 1.0 / 6.0) * float(np.max(np.abs(a1 - a0)))
-        return e / (rtol * self.size)
 
 
 #: Wall time [s] after which the compiled fixed-step loop hands back to Python, which polls the
@@ -182,6 +61,7 @@ def integrate(
     sink: OutputSink | None = None,
     on_start: Callable[[], None] | None = None,
     initial: NDArray | None = None,
+    start: DynamicState | None = None,
 ) -> DynamicResult:
     """Integrate the model from its reference configuration (or ``initial``) and initial
     velocities.
@@ -207,16 +87,24 @@ def integrate(
         (:func:`rancf.solvers.static.solve_static`'s ``y``; rods: with the nodal triads the
         static solve left, which are then kept).  The velocities are the model's initial
         velocities either way.
+    start : DynamicState, optional
+        Go on from where an earlier run of the same system stood (its result's ``state``, or a
+        run folder's checkpoint): the same steps as if it had never stopped, to
+        ``options.t_end`` (which may lie beyond the earlier run's).  The result holds the
+        outputs after ``start`` and counts the whole run (steps, iterations, wall time).
 
     Returns
     -------
     DynamicResult
         Never raises on non-convergence: the status says ``FAILED`` and the message names the
-        time reached.  ``wall_time`` is the time loop alone.
+        time reached.  ``wall_time`` is the time loop alone.  ``state`` is where the run
+        stands (also in every ``snapshot()``).
     """
     o = options
     system = as_system(model)
-    if initial is None:
+    if start is not None and initial is not None:
+        raise ValueError("integrate: give initial (coordinates) or start (a state), not both")
+    if initial is None and start is None:
         system.reset_triads()
     integ = GeneralizedAlpha(system, o.rho_inf, o.newton_tol, o.max_newton, o.newton)
     out_dt = o.output_step if o.output_step is not None else o.step
@@ -259,22 +147,30 @@ def integrate(
                     None if ll is None else ll[-1], None if oa is None else oa[-1])]  # fmt: skip
         result.n_outputs += len(oy)
 
-    y = system.y0.copy() if initial is None else np.array(initial, dtype=float)
-    v = system.v0.copy()
-    t = 0.0
-    integ.prescribe(0.0, y, v)  # moving supports at t = 0
-    lam = np.zeros(system.m)
-    a = integ.initial_acceleration(y, v, t, lam)
     empty = np.empty(0)
     result = DynamicResult(empty, empty, empty, empty, empty, empty, DynamicStatus.COMPLETED, "")
     contact = system.has_contact
-    store(0.0, y, v, np.concatenate([y, v]) if contact else None)
+    h, k_out, within, base = o.step, 0, 0, {"n_newton": 0, "wall_time": 0.0}
+    if start is None:
+        y = system.y0.copy() if initial is None else np.array(initial, dtype=float)
+        v = system.v0.copy()
+        t = 0.0
+        integ.prescribe(0.0, y, v)  # moving supports at t = 0
+        lam = np.zeros(system.m)
+        a = integ.initial_acceleration(y, v, t, lam)
+        store(0.0, y, v, np.concatenate([y, v]) if contact else None)
+    else:
+        t, y, v, a, lam, h, k_out, within = take_up(system, integ, start, result, base)
     if on_start is not None:
         on_start()
-    start = time.perf_counter()
+    started = time.perf_counter()
 
     def snapshot(status: DynamicStatus, message: str) -> DynamicResult:
-        if memory is not None:
+        if not last:  # a resumed run with nothing stored yet
+            ts, qs, vs, es = empty, np.empty((0, system.n)), np.empty((0, system.n)), empty
+            es = np.empty((0, 3))
+            result.directors = result.lam = result.alpha = None
+        elif memory is not None:
             ts, qs, vs, es = memory.arrays()
             result.directors = memory.stream("directors")
             result.lam = memory.stream("lam")
@@ -288,13 +184,16 @@ def integrate(
         result.t, result.q, result.v = ts, qs, vs
         result.kinetic, result.strain, result.gravity = es[:, 0], es[:, 1], es[:, 2]
         result.status, result.message = status, message
-        result.n_newton = integ.n_newton
+        result.n_newton = base["n_newton"] + integ.n_newton
         result.n_factorizations = integ.n_factorizations
-        result.wall_time = time.perf_counter() - start
+        result.wall_time = base["wall_time"] + time.perf_counter() - started
+        result.state = DynamicState(
+            t, y.copy(), v.copy(), a.copy(), lam.copy(), h, min(k_out, n_grid), within,
+            triads_of(system), integ.memory(), {k: getattr(result, k) for k in COUNTERS},
+            o.t_end,
+        )  # fmt: skip
         return result
 
-    h = o.step
-    k_out = 0
     status, message = DynamicStatus.COMPLETED, f"reached t_end = {o.t_end:g} s"
     # compiled fixed-step loop: outputs on a grid that is a whole number of steps
     ratio = out_dt / o.step
@@ -313,7 +212,6 @@ def integrate(
             msg = f"running, t = {tt:g} s"
             on_output(tt, lambda: snapshot(DynamicStatus.INTERRUPTED, msg))
 
-    within = 0  # fixed steps the compiled loop has taken since the last output time
     while k_out < n_out:
         target = out_time(k_out)
         last_out = out_time(k_out - 1) if k_out else 0.0
@@ -331,6 +229,8 @@ def integrate(
                 within,
                 poll,
                 lam,
+                out_dt,
+                k_out,
             )
             result.took(o.step, done)
             if stored:

@@ -5,9 +5,13 @@ from __future__ import annotations
 
 import enum
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
+
+if TYPE_CHECKING:
+    from rancf.solvers.state import DynamicState
 
 __all__ = ["DynamicStatus", "DynamicResult"]
 
@@ -52,6 +56,8 @@ class DynamicResult:
     #: that ended at each output time ``(n_t, 2 n)`` (model coordinates; the initial state
     #: itself at ``t = 0``), where that step's contact forces act; else None.
     alpha: NDArray[np.float64] | None = None
+    #: Where the run stands at its end: :func:`integrate` goes on from it (``start=``).
+    state: DynamicState | None = None
 
     def select(self, index: NDArray | slice) -> DynamicResult:
         """The result restricted to some of its outputs (every per-output array sliced)."""

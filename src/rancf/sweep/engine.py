@@ -251,8 +251,9 @@ def run_variants(
     atomic_write(csv_path, results_table(variants, rows))
     if not todo:
         return rows
+    shown = progress and sys.stderr.isatty()  # no carriage returns in logs
     bar = tqdm(
-        total=len(variants), initial=len(rows), unit="run", file=sys.stderr, disable=not progress
+        total=len(variants), initial=len(rows), unit="run", file=sys.stderr, disable=not shown
     )
 
     written = time.monotonic()

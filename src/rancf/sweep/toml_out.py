@@ -32,9 +32,9 @@ def _is_table_array(v: Any) -> bool:
     return isinstance(v, list) and bool(v) and all(isinstance(x, dict) for x in v)
 
 
-def _table(path: str, d: dict[str, Any], out: list[str]) -> None:
+def _table(path: str, d: dict[str, Any], out: list[str], header: bool = True) -> None:
     scalars = [(k, v) for k, v in d.items() if not isinstance(v, dict) and not _is_table_array(v)]
-    if path and (scalars or not d):
+    if header and path and (scalars or not d):
         out.append(f"[{path}]")
     for k, v in scalars:
         out.append(f"{json.dumps(k) if not k.isidentifier() else k} = {_value(v)}")
@@ -45,11 +45,9 @@ def _table(path: str, d: dict[str, Any], out: list[str]) -> None:
         if isinstance(v, dict):
             _table(sub, v, out)
         elif _is_table_array(v):
-            for item in v:
+            for item in v:  # its sub-tables under their full names ([bodies.geometry])
                 out.append(f"[[{sub}]]")
-                inner: list[str] = []
-                _table("", {kk: vv for kk, vv in item.items()}, inner)
-                out.extend(inner)
+                _table(sub, item, out, header=False)
 
 
 def dumps(data: dict[str, Any]) -> str:
@@ -60,9 +58,12 @@ def dumps(data: dict[str, Any]) -> str:
 
 
 def with_absolute_paths(raw: dict[str, Any], base: str | Path) -> dict[str, Any]:
-    """A copy of the scenario dictionary ``raw`` read from ``base`` whose CAD ``file`` (a path
-    relative to ``base``) is absolute, so that the copy can live in another folder."""
-    raw = copy.deepcopy(raw)
+    """A copy of the scenario dictionary ``raw`` read from ``base`` whose CAD ``file`` and CSV
+    ``table`` files (paths relative to ``base``) are absolute, so that the copy can live in
+    another folder."""
+    from rancf.scenario.table_files import absolute_table_paths
+
+    raw = absolute_table_paths(copy.deepcopy(raw), base)  # table = "file.csv"
     geo = raw.get("geometry", {})
     if isinstance(geo, dict) and geo.get("kind") == "cad" and isinstance(geo.get("file"), str):
         geo["file"] = str((Path(base).parent / geo["file"]).resolve())

@@ -57,11 +57,13 @@ def build_core(
     gravity: NDArray,
     damping: float,
     y_ref: NDArray,
+    stiffness_damping: float = 0.0,
 ) -> _core.System:
     """The core system of the bodies ``flex`` (their models' cores) and ``rigid`` in dimension
     ``dim`` with the parts ``records``; ``gravity`` ``(3,)`` on rigid bodies and point masses,
-    mass-proportional ``damping`` [1/s] of every body, ``y_ref`` the reference coordinates."""
-    return _core.System(
+    mass-proportional ``damping`` [1/s] of every body, ``y_ref`` the reference coordinates,
+    ``stiffness_damping`` [s] of the flexible bodies."""
+    core = _core.System(
         dim=dim,
         models=[b.core for b in flex],
         rigid=[rigid_record(b) for b in rigid],
@@ -76,3 +78,5 @@ def build_core(
         damping=damping,
         y_ref=y_ref,
     )
+    core.stiffness_damping = float(stiffness_damping)
+    return core

@@ -96,6 +96,9 @@ class System(BodyStack):
     damping : float
         Mass-proportional damping ``c`` of every body [1/s] (flexible bodies: their model's is
         ignored).
+    stiffness_damping : float
+        Stiffness-proportional damping ``β`` of the flexible bodies [s]: the force ``β K_T(y) v``
+        (Rayleigh: ``C = c M + β K_T``, modal damping ratios ``c / 2ω + β ω / 2``).
     obstacles : sequence of :class:`rancf.system.Obstacle`
         Contact (:mod:`rancf.system.contact`).
     contacts : sequence of (flexible body, obstacle) names, optional
@@ -145,6 +148,7 @@ class System(BodyStack):
         hydro: Mapping[str, Hydro] | None = None,
         distributed: Sequence[DistributedLoad] = (),
         winches: Sequence[Winch] = (),
+        stiffness_damping: float = 0.0,
     ) -> None:
         super().__init__(bodies)
         self.gravity = (
@@ -156,6 +160,10 @@ class System(BodyStack):
         if not (np.isfinite(damping) and damping >= 0):
             raise InputError("damping.mass_proportional", damping, "a finite number >= 0")
         self.damping = float(damping)
+        if not (np.isfinite(stiffness_damping) and stiffness_damping >= 0):
+            raise InputError("damping.stiffness_proportional", stiffness_damping,
+                             "a finite number >= 0")  # fmt: skip
+        self.stiffness_damping = float(stiffness_damping)
         self.horizon = horizon
         self.joints, self.springs, self.loads = tuple(joints), tuple(springs), tuple(loads)
         linear = self._closures()
@@ -360,7 +368,7 @@ class System(BodyStack):
 
     def _build(self, records: SystemRecords) -> _core.System:
         return build_core(self.dim, self.flex, self.rigid, records, self.gravity, self.damping,
-                          self.y0)  # fmt: skip
+                          self.y0, self.stiffness_damping)  # fmt: skip
 
     def _frames(self, index: int) -> tuple[NDArray, NDArray]:
         x, f = self.core.place(index, self.y0, 0.0)

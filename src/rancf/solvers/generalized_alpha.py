@@ -1,0 +1,162 @@
+"""The generalized-α integrator of a system (:mod:`rancf.solvers.dynamic` has the scheme and
+the run loop): its constants, counters and the compiled core's steps."""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+
+from rancf.bodies.flexible import Model
+from rancf.kernels import _core
+from rancf.system import System, as_system
+
+__all__ = ["GeneralizedAlpha"]
+
+
+class GeneralizedAlpha:
+    """One-step generalized-α integrator on a system (state ``y, v, a, λ, t``).
+
+    The Newton iterations of a step and the fixed-step loop run in the compiled core
+    (:class:`rancf.kernels._core.SystemIntegrator`: constrained generalized-α, bordered band
+    solves); this class holds the constants and counters.  A :class:`Model` is a one-body
+    system.
+    """
+
+    def __init__(
+        self,
+        model: Model | System,
+        rho_inf: float,
+        newton_tol: float,
+        max_newton: int,
+        newton: str = "chord",
+    ) -> None:
+        self.system = as_system(model)
+        r = rho_inf
+        self.am = (2.0 * r - 1.0) / (r + 1.0)
+        self.af = r / (r + 1.0)
+        self.gamma = 0.5 - self.am + self.af
+        self.beta = 0.25 * (1.0 - self.am + self.af) ** 2
+        size = self.system.size
+        self.tol = newton_tol * size
+        self.size = size
+        self.max_newton = max_newton
+        self.n_newton = 0
+        scheme = _core.Scheme(
+            alpha_m=self.am,
+            alpha_f=self.af,
+            gamma=self.gamma,
+            beta=self.beta,
+            damping=float(self.system.damping),
+            tol=self.tol,
+            max_iter=int(max_newton),
+            modified=newton == "modified",
+            chord=newton == "chord",
+        )
+        self._core = _core.SystemIntegrator(self.system.core, scheme)
+
+    @property
+    def n_factorizations(self) -> int:
+        """Band LU factorizations so far (Jacobians and the mass matrix)."""
+        return int(self._core.factorizations)
+
+    def memory(self) -> NDArray:
+        """What the compiled loop keeps between steps (modified Newton: where its factored
+        Jacobian was assembled); empty if nothing."""
+        return np.array(self._core.memory(), dtype=float)
+
+    def restore(self, memory: NDArray, factorizations: int) -> None:
+        """Take up :meth:`memory` of an integrator of the same system (the factors are
+        assembled at the same point and factored again: the same numbers).
+
+        Raises
+        ------
+        ValueError
+            If the memory does not fit this system and scheme.
+        """
+        if not self._core.restore([float(x) for x in memory], int(factorizations)):
+            raise ValueError(
+                f"the integrator memory ({len(memory)} numbers) does not fit this system "
+                f"and Newton method"
+            )
+
+    def prescribe(self, t: float, y: NDArray, v: NDArray) -> None:
+        """Moving supports: their held coordinates and rates at ``t`` (in place)."""
+        self._core.prescribe(t, y, v)
+
+    def initial_acceleration(
+        self, y: NDArray, v: NDArray, t: float, lam: NDArray | None = None
+    ) -> NDArray:
+        """Consistent ``a0`` (and multipliers into ``lam``): ``[M Gᵀ; G 0] [a; λ] = [-F; -c]``."""
+        a = np.empty(self.system.n)
+        lam = np.zeros(self.system.m) if lam is None else lam
+        self._core.initial_acceleration(y, v, t, a, lam)
+        return a
+
+    def step(
+        self, y: NDArray, v: NDArray, a: NDArray, t: float, h: float, lam: NDArray | None = None
+    ) -> tuple[bool, NDArray, NDArray, NDArray, int]:
+        """Advance by ``h``; returns ``(converged, y1, v1, a1, newton_iterations)`` (the new
+        multipliers replace ``lam``'s content when it converged)."""
+        y1, v1, a1 = np.empty_like(y), np.empty_like(y), np.empty_like(y)
+        l0 = np.zeros(self.system.m) if lam is None else lam
+        l1 = np.empty_like(l0)
+        ok, it = self._core.step(y, v, a, l0, t, h, y1, v1, a1, l1)
+        if ok and lam is not None:
+            lam[:] = l1
+        self.n_newton += it
+        return ok, y1, v1, a1, it
+
+    def run_steps(
+        self,
+        y: NDArray,
+        v: NDArray,
+        a: NDArray,
+        t: float,
+        h: float,
+        n_steps: int,
+        per_out: int,
+        done_before: int = 0,
+        max_seconds: float = np.inf,
+        lam: NDArray | None = None,
+        out_dt: float = 0.0,
+        k_last: int = 0,
+    ) -> tuple:
+        """Fixed steps in the core from time ``t`` (``y, v, a``, ``lam`` updated in place).
+
+        ``out_dt > 0``: the steps' times are ``out_dt k + i h``, ``k`` the index of the last
+        output (``k_last`` at the start) and ``i`` the steps since it, so that a run's numbers
+        do not depend on where it was cut into calls (a resumed run's neither).
+
+        An output is stored every ``per_out`` steps of an output interval, whose first already
+        holds ``done_before`` steps.  The core returns early, after a whole step, once
+        ``max_seconds`` of wall time have passed (so that the caller can poll for interrupts).
+        Returns ``(steps done, status, iterations, outputs stored, out_y, out_v, out_e,
+        out_l, out_alpha)``; status is 1 if every step taken converged, else 0 (the failing
+        step is not taken); ``out_alpha`` (systems with contact, else None): each stored row's
+        step's generalized-α point ``(y_f, v_f)`` side by side, ``(n_out, 2 n)``.
+        """
+        n, m = self.system.n, self.system.m
+        n_out = (done_before + n_steps) // per_out
+        oy, ov, oe = np.empty((n_out, n)), np.empty((n_out, n)), np.empty((n_out, 3))
+        ol = np.empty((n_out, m))
+        contact = self.system.has_contact
+        of = (np.empty((n_out, n)), np.empty((n_out, n))) if contact else (None, None)
+        lam = np.zeros(m) if lam is None else lam
+        done, ok, iters, stored = self._core.run(
+            y, v, a, lam, t, h, n_steps, per_out, done_before, max_seconds, oy, ov, ol, oe, *of,
+            out_dt, k_last,
+        )  # fmt: skip
+        oa = np.concatenate(of, axis=1) if contact else None  # type: ignore[arg-type]
+        self.n_newton += iters
+        return done, int(ok), iters, stored, oy, ov, oe, ol, oa
+
+    def alpha_point(self, y0: NDArray, v0: NDArray, y1: NDArray, v1: NDArray) -> NDArray:
+        """``(y_{n+1-α_f}, v_{n+1-α_f})`` of a step from ``(y0, v0)`` to ``(y1, v1)``, side by
+        side ``(2 n,)``: where the step's forces act."""
+        af = self.af
+        return np.concatenate([(1.0 - af) * y1 + af * y0, (1.0 - af) * v1 + af * v0])
+
+    def error_estimate(self, a0: NDArray, a1: NDArray, h: float, rtol: float) -> float:
+        """Local displacement error relative to ``rtol * size``."""
+        e = h * h * abs(self.beta - 1.0 / 6.0) * float(np.max(np.abs(a1 - a0)))
+        return e / (rtol * self.size)

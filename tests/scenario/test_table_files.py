@@ -1,0 +1,70 @@
+"""``table = "path.csv"``: a time function's rows from a CSV file relative to the scenario file
+(a header line, comments and blank lines allowed); bad files are refused in one line naming the
+key, the file and the line; a run folder's copy names the file by its absolute path."""
+
+from __future__ import annotations
+
+import tomllib
+from importlib.resources import files
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from rancf.cli import main
+from rancf.scenario import load_scenario
+
+CAPSTAN = (files("rancf.examples") / "capstan.toml").read_text(encoding="utf-8")
+
+
+def _with_table(table: str) -> str:
+    """The capstan example with its support's motion table replaced by ``table``."""
+    i = CAPSTAN.index("table = [[0.0")
+    j = CAPSTAN.index("[2.0, 0.0, -0.035]]") + len("[2.0, 0.0, -0.035]]")
+    return CAPSTAN[:i] + f"table = {table}" + CAPSTAN[j:]
+
+
+def test_a_table_from_a_csv_file_is_the_inline_table(tmp_path, monkeypatch):
+    inline = np.array(tomllib.loads(CAPSTAN)["supports"][0]["motion"]["table"])
+    folder = tmp_path / "case"
+    folder.mkdir()
+    lines = ["# pulled end: t [s], dx, dy [m]", "t, dx, dy", ""]
+    lines += [", ".join(repr(float(x)) for x in row) for row in inline]
+    (folder / "pull.csv").write_text("\n".join(lines) + "\n")
+    (folder / "capstan.toml").write_text(_with_table('"pull.csv"'))
+    monkeypatch.chdir(tmp_path)  # the file is found beside the scenario, not here
+    sc = load_scenario("case/capstan.toml")
+    f = sc.data["supports"][0]["motion"]
+    np.testing.assert_array_equal(f.rows, inline)
+    assert f.interpolation == "cubic"
+    assert main(["simulate", "case/capstan.toml", "--out", "run", "--quiet", "--t-end",
+                 "0.01"]) == 0  # fmt: skip
+    copy = tomllib.loads((tmp_path / "run" / "scenario.toml").read_text())
+    assert copy["supports"][0]["motion"]["table"] == str((folder / "pull.csv").resolve())
+    monkeypatch.chdir(folder)
+    again = load_scenario(tmp_path / "run" / "scenario.toml")  # read from anywhere
+    np.testing.assert_array_equal(again.data["supports"][0]["motion"].rows, inline)
+
+
+@pytest.mark.parametrize(
+    ("content", "needle"),
+    [
+        (None, "pull.csv does not exist"),
+        ("0, 0, 0\n1, 0, oops\n", "pull.csv line 2: 'oops' is not a number"),
+        ("0, 0, 0\n1, 0\n", "pull.csv line 2: 2 numbers, but the first row has 3"),
+        ("t, x, y\n0, 0, 0\n", "holds 1 rows of numbers: at least 2"),
+        ("0, 0, 0\n1, 0, nan\n", "pull.csv line 2: the numbers must be finite"),
+        ("0, 0, 0\n0, 0, 1\n", "supports[0].motion.table[1][0]] times must increase"),
+    ],
+    ids=["missing", "word", "ragged", "one-row", "nan", "times"],
+)
+def test_bad_table_files_are_refused_in_one_line(tmp_path, monkeypatch, capsys, content, needle):
+    monkeypatch.chdir(tmp_path)
+    if content is not None:
+        (tmp_path / "pull.csv").write_text(content)
+    (tmp_path / "s.toml").write_text(_with_table('"pull.csv"'))
+    assert main(["simulate", "s.toml", "--out", "run", "--quiet"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and needle in err, err
+    assert err.startswith("rancf: error: s.toml: [supports[0].motion.table")
+    assert not Path("run").exists()
