@@ -1,9 +1,11 @@
 """MoorDyn's convergence for the surging chain (``moordyn_surge.py``): segments and time step.
 
-    python benchmarks/mooring/moordyn_convergence.py [--segments 20 40 80 160] [--t-end 60]
+    python benchmarks/mooring/moordyn_convergence.py [--segments 20 40 80 160 320]
+        [--step-check 160] [--t-end 60]
 
-Runs MoorDyn at each segment count N with its step 0.04 s / N, and the finest N again with half
-that step; compares every fairlead tension series with the finest run's after the first period
+Runs MoorDyn at each segment count N with its step 0.04 s / N, and N = ``--step-check`` again
+with half that step (its difference to the full step is the time-step error); compares every
+fairlead tension series with the finest N's after the first period
 (t >= 20 s, once a second) and reports the largest relative difference, MoorDyn's set-up and
 solve wall time.  Writes ``results/moordyn_surge.csv`` (the finest run's series) and
 ``results/moordyn_surge.json`` (the study, the command, versions and CPU).
@@ -36,19 +38,23 @@ def seconds(r, t_from: float) -> dict[float, float]:
 
 def main() -> None:
     p = argparse.ArgumentParser()
-    p.add_argument("--segments", type=int, nargs="+", default=[20, 40, 80, 160])
+    p.add_argument("--segments", type=int, nargs="+", default=[20, 40, 80, 160, 320])
+    p.add_argument("--step-check", type=int, default=160, help="N run again at half the step")
     p.add_argument("--t-end", type=float, default=T_END)
     p.add_argument("--out", type=Path, default=RESULTS)
     a = p.parse_args()
-    finest = max(a.segments)
-    plan = [(n, default_step(n)) for n in sorted(a.segments)] + [(finest, default_step(finest) / 2)]
+    plan = [(n, default_step(n)) for n in sorted(a.segments)]
+    plan.append((a.step_check, default_step(a.step_check) / 2))
     runs = []
     for n, dt in plan:
         r = simulate(n, dt, a.t_end)
         runs.append((n, dt, r))
         print(f"MoorDyn {n:4d} segments, dt {dt:.3g} s: set-up {r.init_s:.2f} s, solve "
               f"{r.solve_s:.2f} s", file=sys.stderr, flush=True)  # fmt: skip
-    ref_n, ref_dt, ref = runs[-1]
+    ref_n, ref_dt, ref = next(r for r in runs if r[0] == max(a.segments))
+    half = seconds(runs[-1][2], PERIOD)
+    full = seconds(next(r for r in runs if r[0] == a.step_check)[2], PERIOD)
+    step_error = max(abs(full[t] - half[t]) / half[t] for t in half)
     ref_s = seconds(ref, PERIOD)
     rows = []
     for n, dt, r in runs:
@@ -64,6 +70,7 @@ def main() -> None:
         **provenance("moordyn", "moorpy", "numpy"),
         "reference": {"segments": ref_n, "dt_s": ref_dt},
         "compared": f"fairlead tension once a second for t >= {PERIOD} s",
+        "step_check": {"segments": a.step_check, "max_rel_diff_full_to_half_step": step_error},
         "runs": rows,
     }
     (a.out / "moordyn_surge.json").write_text(json.dumps(study, indent=1) + "\n")
@@ -71,6 +78,8 @@ def main() -> None:
     for r in rows:
         print(f"{r['segments']:8d} {r['dt_s']:9.3g} {r['setup_s']:10.2f} {r['solve_s']:9.2f} "
               f"{r['max_rel_diff_to_reference']:9.2e}")  # fmt: skip
+    print(f"time step: {a.step_check} segments, step {default_step(a.step_check):.3g} s against "
+          f"half of it: {step_error:.2e}")  # fmt: skip
 
 
 if __name__ == "__main__":

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import argparse
 import csv
+import importlib.metadata
 import json
 import math
 import sys
@@ -104,7 +105,7 @@ def main() -> None:
     if a.csv:
         write_csv(a.csv, r)
     ten = r.columns["tension_N"]
-    print(json.dumps({"segments": a.segments, "dt_s": r.dt, "init_s": r.init_s,
+    print(json.dumps({"version": importlib.metadata.version("moordyn"), "segments": a.segments, "dt_s": r.dt, "init_s": r.init_s,
                       "solve_s": r.solve_s, "tension_0_N": ten[0], "tension_max_N": max(ten),
                       "tension_min_N": min(ten)}))  # fmt: skip
 

@@ -19,6 +19,7 @@ Prints one JSON line: for each case the force the line puts on the fairlead [N] 
 from __future__ import annotations
 
 import argparse
+import importlib.metadata
 import json
 import math
 import time
@@ -77,7 +78,7 @@ def main() -> None:
     p.add_argument("--segments", type=int, default=40, help="points MoorPy returns the profile at")
     a = p.parse_args()
     out = {
-        "peer": f"MoorPy {mp.__version__ if hasattr(mp, '__version__') else ''}".strip(),
+        "peer_version": importlib.metadata.version("moorpy"),
         "rho": RHO,
         "g": G,
         "cases": {name: solve(name, a.segments) for name in CASES},
