@@ -67,6 +67,8 @@ class Fields {
     return i;
   }
 
+  [[nodiscard]] nb::object object(const char* field) const { return get(field); }
+
   [[nodiscard]] double number(const char* field) const {
     nb::object v = get(field);
     double x = 0.0;
@@ -280,6 +282,58 @@ void read_linear(nb::handle list, rancf::System& s) {
 }
 
 }  // namespace
+
+void read_fluid(nb::handle fluid, nb::handle lines, const rancf::System& s, rancf::FluidSet& fs) {
+  const Fields f(fluid, "fluid");
+  rancf::FluidField& ff = fs.field;
+  ff.density = f.number("density");
+  if (!(ff.density >= 0.0)) f.fail("density", "a number >= 0", std::to_string(ff.density));
+  f.numbers_into("gravity", fs.gravity, 3);
+  ff.has_surface = f.flag("has_surface");
+  ff.surface = f.number("surface");
+  f.numbers_into("current", ff.current, 3);
+  ff.profile_z = f.numbers("profile_z", kAnySize);
+  ff.profile_u = f.numbers("profile_u", 3 * ff.profile_z.size());
+  for (std::size_t k = 1; k < ff.profile_z.size(); ++k)
+    if (!(ff.profile_z[k] > ff.profile_z[k - 1]))
+      f.fail("profile_z", "increasing heights", std::to_string(ff.profile_z[k]));
+  rancf::Waves& w = ff.waves;
+  w.on = f.flag("waves");
+  w.height = f.number("wave_height");
+  w.omega = f.number("wave_omega");
+  w.k = f.number("wave_k");
+  w.depth = f.number("wave_depth");
+  f.numbers_into("wave_dir", w.dir, 3);
+  if (w.on && !(w.k > 0.0 && w.omega > 0.0 && w.depth > 0.0))
+    f.fail("wave_k", "waves with k, omega and depth > 0", std::to_string(w.k));
+  each(lines, "lines", [&](const Fields& g) {
+    rancf::LineFluid ln;
+    ln.body = g.index("body", 0, s.flex.size(), "a flexible body");
+    const rancf::Model& m = *s.flex[static_cast<std::size_t>(ln.body)];
+    if (m.kind == rancf::ElementKind::beam)
+      g.fail("body", "a body of cable or rod elements", "a beam body");
+    ln.hydro = g.flag("hydro");
+    ln.diameter = g.number("diameter");
+    ln.cdn = g.number("drag_normal");
+    ln.cdt = g.number("drag_axial");
+    ln.can = g.number("added_mass_normal");
+    ln.cat = g.number("added_mass_axial");
+    ln.n_qp = g.integer("n_qp");
+    if (ln.n_qp < 1) g.fail("n_qp", "an integer >= 1", std::to_string(ln.n_qp));
+    const auto nq = static_cast<std::size_t>(ln.n_qp), ne = static_cast<std::size_t>(m.n_el);
+    ln.n0 = g.numbers("n0", ne * nq * 4);
+    ln.n1 = g.numbers("n1", ne * nq * 4);
+    ln.gw = g.numbers("gw", nq);
+    ln.j0 = g.numbers("j0", ne * nq);
+    each(g.object("loads"), "loads", [&](const Fields& h) {
+      rancf::DistributedLoad d;
+      h.numbers_into("force", d.force, 3);
+      d.factor = h.index("factor", -1, s.tfs.size(), "a time function");
+      ln.loads.push_back(d);
+    });
+    fs.lines.push_back(std::move(ln));
+  });
+}
 
 void read_records(const SystemRecords& r, rancf::System& s) {
   read_rigid(r.rigid, s);

@@ -8,6 +8,7 @@
 
 #include <vector>
 
+#include "fluid.hpp"
 #include "system.hpp"
 
 namespace rancf_bind {
@@ -22,6 +23,10 @@ struct SystemRecords {
 /// Fill s.rigid, places, joints, springs, loads, tfs, prescribed, linear and n_linear from the
 /// records (s.dim and s.flex set); indices between the lists and into the bodies are checked.
 void read_records(const SystemRecords& r, rancf::System& s);
+
+/// Fill fs from a FluidRecord and a list of LineRecords (rancf.kernels.records), their bodies'
+/// element and quadrature counts and time functions checked against s.
+void read_fluid(nb::handle fluid, nb::handle lines, const rancf::System& s, rancf::FluidSet& fs);
 
 /// After s.setup(): the coordinates of the prescribed motions and linear terms exist.
 void check_coordinates(const rancf::System& s);

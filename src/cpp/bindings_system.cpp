@@ -20,6 +20,7 @@
 #include "bindings_contact.hpp"
 #include "bindings_model.hpp"
 #include "bindings_records.hpp"
+#include "fluid.hpp"
 #include "system.hpp"
 #include "system_integrator.hpp"
 
@@ -47,6 +48,7 @@ struct SystemHolder {
   std::vector<nb::object> models;  // keeps the flexible bodies' arrays alive
   std::vector<double> y_ref;
   rancf::System s;
+  rancf::FluidSet fluid;
 };
 
 struct SystemIntegratorHolder {
@@ -103,6 +105,30 @@ void bind_system(nb::module_& mod) {
             c.sys = &h.s;
           },
           "contact"_a, nb::keep_alive<1, 2>(), "Obstacles and contact pairs (contact.hpp).")
+      .def(
+          "attach_fluid",
+          [](SystemHolder& h, nb::handle fluid, nb::handle lines) {
+            rancf::FluidSet fs;
+            read_fluid(fluid, lines, h.s, fs);
+            h.fluid = std::move(fs);
+            h.s.fluid = &h.fluid;
+          },
+          "fluid"_a, "lines"_a,
+          "The fluid (a FluidRecord) and the flexible bodies in it with their distributed loads "
+          "(LineRecords), rancf.kernels.records (fluid.hpp).")
+      .def(
+          "fluid_forces",
+          [](const SystemHolder& h, In y, In v, In a, double t, bool dynamic) {
+            const auto n = static_cast<std::size_t>(h.s.n);
+            for (const auto* x : {&y, &v, &a}) expect_size(*x, n, "state");
+            std::vector<double> out(3 * h.s.flex.size());
+            rancf::fluid_forces(h.s, y.data(), dynamic ? v.data() : nullptr,
+                                dynamic ? a.data() : nullptr, t, out.data());
+            return out;
+          },
+          "y"_a, "v"_a, "a"_a, "t"_a, "dynamic"_a = true,
+          "The fluid's force (drag, inertia, buoyancy) on each flexible body, 3 values per body "
+          "(world axes); dynamic = False: statics (no velocity, no inertia, no waves).")
       .def_prop_ro("n", [](const SystemHolder& h) { return h.s.n; })
       .def_prop_ro("m", [](const SystemHolder& h) { return h.s.m; })
       .def_prop_ro("offsets", [](const SystemHolder& h) { return h.s.offset; })

@@ -28,6 +28,7 @@
 namespace rancf {
 
 struct ContactSet;  // contact.hpp
+struct FluidSet;    // fluid.hpp
 
 /// A place: on a flexible body's node (kind cable/rod/beam), a rigid body or point mass, or the
 /// ground (optionally moving: point + u(t)).
@@ -104,6 +105,7 @@ struct System {
   double damping = 0.0;                 ///< mass-proportional damping of every body
   const double* y_ref = nullptr;        ///< (n) reference coordinates (gravity potential zero)
   const ContactSet* contact = nullptr;  ///< obstacles and contact pairs (contact.hpp), or none
+  const FluidSet* fluid = nullptr;      ///< fluid loads and distributed loads (fluid.hpp), or none
 
   // derived by setup()
   int n = 0, m = 0;
@@ -157,6 +159,11 @@ struct AssemblyTerms {
 bool assemble_system(const System& s, const double* yf, const double* vf, const double* am,
                      const double* lambda, const double* y1, const AssemblyTerms& terms, double* r,
                      BorderedLU* lu);
+
+/// The fluid's force (drag, inertia, buoyancy) on each flexible body at (y, v, a, t), world axes,
+/// 3 values per body into out (v, a null: statics).
+void fluid_forces(const System& s, const double* y, const double* v, const double* a, double t,
+                  double* out);
 
 }  // namespace rancf
 

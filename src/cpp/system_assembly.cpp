@@ -14,6 +14,7 @@
 
 #include "assembly.hpp"
 #include "contact.hpp"
+#include "fluid.hpp"
 #include "inertia.hpp"
 #include "system.hpp"
 
@@ -162,6 +163,14 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
     if (lu != nullptr && mod.loads.n_moment > 0)
       subtract_load_stiffness(mod, tm.tf, yf + o, jac, tm.ck * tm.load_factor, tm.amplitude);
     for (int i = 0; i < nb; ++i) r[o + i] += f[sz(i)] - tm.load_factor * g[sz(i)];
+    if (s.fluid != nullptr) {  // buoyancy, Morison loads, distributed loads (fluid.hpp)
+      const LineTerms lt{tm.tf, tm.ck, tm.cv, tm.ca, tm.load_factor, &s.tfs};
+      for (const LineFluid& ln : s.fluid->lines)
+        if (ln.body == static_cast<int>(b))
+          assemble_line(mod, *s.fluid, ln, yf + o, am != nullptr ? vf + o : nullptr,
+                        am != nullptr ? am + o : nullptr, lt, r + o, lu != nullptr ? &jac : nullptr,
+                        nullptr);
+    }
     if (am != nullptr) {  // M (am + c vf)
       acc.resize(sz(nb));
       mv.resize(sz(nb));
@@ -480,6 +489,21 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
     ++z;
   }
   return true;
+}
+
+void fluid_forces(const System& s, const double* y, const double* v, const double* a, double t,
+                  double* out) {
+  std::fill(out, out + 3 * s.flex.size(), 0.0);
+  if (s.fluid == nullptr) return;
+  std::vector<double> r;
+  const LineTerms lt{t, 1.0, 0.0, 0.0, 1.0, &s.tfs};
+  for (const LineFluid& ln : s.fluid->lines) {
+    const std::size_t b = sz(ln.body);
+    const int o = s.offset[b];
+    r.assign(sz(s.flex[b]->n()), 0.0);
+    assemble_line(*s.flex[b], *s.fluid, ln, y + o, a != nullptr ? v + o : nullptr,
+                  a != nullptr ? a + o : nullptr, lt, r.data(), nullptr, out + 3 * b);
+  }
 }
 
 }  // namespace rancf

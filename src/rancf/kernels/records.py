@@ -30,6 +30,9 @@ __all__ = [
     "TimeFunctionRecord",
     "PrescribedRecord",
     "LinearTerm",
+    "FluidRecord",
+    "LineRecord",
+    "DistributedRecord",
     "floats",
 ]
 
@@ -196,3 +199,57 @@ class LinearTerm:
     row: int
     col: int
     coef: float
+
+
+@dataclass(frozen=True)
+class FluidRecord:
+    """The fluid the bodies are in (``FluidField``, ``src/cpp/fluid.hpp``): ``density``
+    [kg/m^3], ``gravity`` (3) for buoyancy, the still ``surface`` height on the last axis (if
+    ``has_surface``), a uniform ``current`` or a profile (``profile_z`` increasing heights,
+    ``profile_u`` their velocities ``(n, 3)`` row-major), and linear waves (``waves``: height
+    ``H``, ``omega = 2 pi / T``, wave number ``k``, ``depth`` and the unit direction)."""
+
+    density: float
+    gravity: tuple[float, float, float]
+    has_surface: bool = False
+    surface: float = 0.0
+    current: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    profile_z: tuple[float, ...] = ()
+    profile_u: tuple[float, ...] = ()
+    waves: bool = False
+    wave_height: float = 0.0
+    wave_omega: float = 0.0
+    wave_k: float = 0.0
+    wave_depth: float = 0.0
+    wave_dir: tuple[float, float, float] = (1.0, 0.0, 0.0)
+
+
+@dataclass(frozen=True)
+class DistributedRecord:
+    """A force per reference length [N/m] (world axes) times the time function ``factor`` (-1:
+    constant) (``DistributedLoad``)."""
+
+    force: tuple[float, float, float]
+    factor: int = -1
+
+
+@dataclass(frozen=True)
+class LineRecord:
+    """A flexible body in the fluid (``LineFluid``): ``hydro`` whether the fluid acts on it
+    (its ``diameter`` and Morison coefficients), its elements' quadrature (``n0``, ``n1`` the
+    shape functions and their ξ-derivatives ``(n_el, n_qp, 4)``, ``gw`` ``(n_qp)``, ``j0`` the
+    reference ``|r0'|`` ``(n_el, n_qp)``) and its distributed ``loads``."""
+
+    body: int
+    hydro: bool
+    diameter: float
+    drag_normal: float
+    drag_axial: float
+    added_mass_normal: float
+    added_mass_axial: float
+    n_qp: int
+    n0: tuple[float, ...]
+    n1: tuple[float, ...]
+    gw: tuple[float, ...]
+    j0: tuple[float, ...]
+    loads: tuple[DistributedRecord, ...] = ()

@@ -34,6 +34,7 @@ from rancf.scenario.base import (
     under,
     vector,
 )
+from rancf.scenario.fluid import HydroTable
 from rancf.scenario.geometry import Geometry, MeshTable
 from rancf.scenario.loads import InitialMotionTable
 from rancf.scenario.section import MaterialTable, SectionTable, check_flexible
@@ -69,6 +70,9 @@ class FlexibleBody(Table):
     material: MaterialTable = Field(description="the material")
     initial_motion: InitialMotionTable | None = Field(
         None, description="this body's initial rigid-body velocity field"
+    )
+    hydro: HydroTable | None = Field(
+        None, description="hydrodynamic coefficients (the body is in the [fluid])"
     )
 
     @model_validator(mode="after")

@@ -30,6 +30,7 @@ from rancf.errors import InputError
 from rancf.scenario.base import (
     Flag,
     KindOf,
+    Name,
     NonNegative,
     Number,
     PlaceValue,
@@ -43,6 +44,7 @@ from rancf.scenario.base import (
 )
 
 __all__ = [
+    "DistributedLoadTable",
     "TableFunction",
     "RampFunction",
     "HarmonicFunction",
@@ -295,11 +297,30 @@ class PointLoadTable(Table):
         return self
 
 
+class DistributedLoadTable(Table):
+    """``[[loads.distributed]]``: a force per reference length on flexible bodies
+    (:mod:`rancf.scenario.fluid`)."""
+
+    force: vector(2, 3) = Field(description="force per reference length, global axes [N/m]")
+    body: Name | None = Field(None, description="the flexible body (default: every one)")
+    time: TimeFunctionValue | None = Field(
+        None, description="a scalar TIME_FUNCTION multiplying the force"
+    )
+
+    @model_validator(mode="after")
+    def _scalar(self) -> DistributedLoadTable:
+        check_scalar("time", self.time)
+        return self
+
+
 class LoadsTable(Table):
-    """``[loads]``: gravity on every body, and point loads."""
+    """``[loads]``: gravity on every body, point loads and distributed loads."""
 
     gravity: vector(2, 3) | None = Field(None, description="gravitational acceleration [m/s^2]")
     point: list[PointLoadTable] = Field([], description="point forces and moments")
+    distributed: list[DistributedLoadTable] = Field(
+        [], description="forces per length on flexible bodies [N/m]"
+    )
 
 
 class DampingTable(Table):

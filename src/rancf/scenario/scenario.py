@@ -23,6 +23,7 @@ from rancf.errors import ScenarioError
 from rancf.scenario.base import Name, NonNegative, Table, integer, shorten
 from rancf.scenario.bodies import Body
 from rancf.scenario.checks import check_scenario
+from rancf.scenario.fluid import FluidTable, HydroTable
 from rancf.scenario.geometry import GEOMETRY_KEYS, CadGeometry, Geometry, MeshTable
 from rancf.scenario.joints import JointTable, SpringTable
 from rancf.scenario.loads import (
@@ -85,7 +86,11 @@ class Scenario(Table):
         "with every obstacle)",
     )
     supports: list[SupportTable] = Field([], description="places held fixed or moved")
-    loads: LoadsTable = Field(LoadsTable(), description="gravity and point loads")
+    loads: LoadsTable = Field(LoadsTable(), description="gravity, point and distributed loads")
+    fluid: FluidTable | None = Field(None, description="the fluid the bodies are in")
+    hydro: HydroTable | None = Field(
+        None, description="one-body file: the body's hydrodynamic coefficients"
+    )
     damping: DampingTable = Field(DampingTable(), description="mass-proportional damping")
     initial_velocity: list[InitialVelocityTable] = Field(
         [], description="velocities of single nodes (their energy depends on the mesh)"
@@ -244,6 +249,8 @@ class Scenario(Table):
         out = [(f"supports[{i}].motion", s.motion) for i, s in enumerate(self.supports)]
         out += [(f"loads.point[{i}].time", p.time) for i, p in enumerate(self.loads.point)]
         out += [(f"joints[{i}].angle", j.angle) for i, j in enumerate(self.joints)]
+        out += [(f"loads.distributed[{i}].time", p.time)
+                for i, p in enumerate(self.loads.distributed)]  # fmt: skip
         return [(k, f) for k, f in out if f is not None]
 
     def _cad_tables(self, d: dict[str, Any]) -> list[tuple[dict[str, Any], CadGeometry]]:
@@ -304,6 +311,8 @@ def _data(sc: Scenario) -> dict[str, Any]:
         "gravity": sc.loads.gravity,
         "point": [{**p.model_dump(exclude={"time"}), "at": _node_or_text(p.at, one),
                    "time": _tf(p.time)} for p in sc.loads.point],
+        "distributed": [{**p.model_dump(exclude={"time"}), "time": _tf(p.time)}
+                        for p in sc.loads.distributed],
     }  # fmt: skip
     d["damping"] = sc.damping.model_dump()
     d["initial_velocity"] = [

@@ -27,6 +27,7 @@ import numpy as np
 from rancf.bodies.rigid import PointMass, RigidBody
 from rancf.errors import InputError, ScenarioError
 from rancf.scenario.build import body_model, flexible_model
+from rancf.scenario.fluid import fluid_value, hydro_value
 from rancf.scenario.view import ScenarioView
 from rancf.system import Joint, Load, Obstacle, Place, Spring, System
 
@@ -167,4 +168,30 @@ def _parts(sc: ScenarioView, bodies: dict[str, Any]) -> dict[str, Any]:
     return {"joints": joints, "springs": springs, "loads": loads, "observe": _observed(sc),
             "obstacles": obstacles, "contacts": contacts,
             "body_contacts": [(a, b) for a, b in sc.body_contacts],
-            "contact_points": sc.contact_points, "body_friction": sc.body_friction}  # fmt: skip
+            "contact_points": sc.contact_points, "body_friction": sc.body_friction,
+            **_fluid(sc)}  # fmt: skip
+
+
+def _fluid(sc: ScenarioView) -> dict[str, Any]:
+    """The fluid, the flexible bodies' coefficients and the distributed loads."""
+    from pydantic_core import PydanticCustomError
+
+    from rancf.system.fluid import DistributedLoad
+
+    try:
+        fluid = fluid_value(sc.fluid, sc.dim)
+    except PydanticCustomError as exc:
+        ctx = exc.context or {}
+        raise ScenarioError(
+            sc.path, f"fluid.{ctx.get('key', '')}", str(ctx.get("problem"))
+        ) from None
+    if sc.bodies and sc.hydro is not None:
+        raise ScenarioError(sc.path, "hydro", "belongs to a body in a file with [[bodies]] "
+                            "(give [bodies.hydro])")  # fmt: skip
+    hydro = {ONE_BODY: hydro_value(sc.hydro)} if sc.hydro is not None else {}
+    for b in sc.bodies:
+        if getattr(b, "hydro", None) is not None:
+            hydro[b.name] = hydro_value(b.hydro)
+    dist = [DistributedLoad(tuple(d["force"]), d["body"], d["time"])
+            for d in sc.data["loads"]["distributed"]]  # fmt: skip
+    return {"fluid": fluid, "hydro": hydro, "distributed": dist}

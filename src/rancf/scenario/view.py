@@ -30,6 +30,8 @@ class ScenarioView(Protocol):
     material: Any
     supports: Sequence[Any]
     loads: Any
+    fluid: Any
+    hydro: Any
     damping: Any
     solver: Any
     initial_velocity: Sequence[Any]

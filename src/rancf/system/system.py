@@ -39,6 +39,7 @@ from rancf.kernels.records import (
 from rancf.system.connections import JOINT_KINDS, Joint, Load, Spring
 from rancf.system.contact import CONTACT_POINTS, Obstacle, build_contact
 from rancf.system.core_data import SystemRecords, build_core
+from rancf.system.fluid import DistributedLoad, Fluid, Hydro, fluid_records
 from rancf.system.joint_data import joint_data
 from rancf.system.places import Place
 from rancf.system.stack import Body, BodyStack
@@ -106,6 +107,11 @@ class System(BodyStack):
         Coulomb coefficient of the contact between flexible bodies.
     observe : sequence of places
         Places on bodies whose position and frame outputs read (:meth:`place_state`).
+    fluid : :class:`rancf.system.fluid.Fluid`, optional
+        The fluid the bodies are in; ``hydro`` maps flexible bodies to their coefficients
+        (:class:`~rancf.system.fluid.Hydro`; bodies without them feel no fluid).
+    distributed : sequence of :class:`~rancf.system.fluid.DistributedLoad`
+        Forces per length on flexible bodies.
     horizon : float, optional
         The end of the runs [s]: time functions given as Python callables are sampled on
         ``[0, horizon]`` (a cubic table of 2001 points, :meth:`TimeFunction.sampled`) for the
@@ -132,6 +138,9 @@ class System(BodyStack):
         contact_points: int = CONTACT_POINTS,
         body_contacts: Sequence[tuple[str, str]] = (),
         body_friction: float = 0.0,
+        fluid: Fluid | None = None,
+        hydro: Mapping[str, Hydro] | None = None,
+        distributed: Sequence[DistributedLoad] = (),
     ) -> None:
         super().__init__(bodies)
         self.gravity = (
@@ -154,6 +163,9 @@ class System(BodyStack):
             "loads": [self._load(ld, rows) for ld in self._all_loads()],
             "linear": linear,
         }
+        self.fluid, self.hydro = fluid, dict(hydro or {})
+        in_fluid = fluid_records(self.names[: len(self.flex)], self.flex, self.dim, self.gravity,
+                                 fluid, self.hydro, distributed, rows.tf)  # fmt: skip
         for spec in observe:
             p = self.resolve(spec)
             if p.body is None:
@@ -164,6 +176,8 @@ class System(BodyStack):
         parts["joints"] = [self._joint(j, ab, rows) for j, ab in zip(joints, pre, strict=True)]
         self.records = rows.records(**parts)
         self.core = self._build(self.records)
+        if in_fluid is not None:
+            self.core.attach_fluid(*in_fluid)
         self.m = int(self.core.m)
         self.joint_rows = list(self.core.joint_rows)
         self.obstacles = tuple(obstacles)  # contact: attached to the core

@@ -1,0 +1,61 @@
+"""Lines in water against closed forms (docs/derivations/fluid.md section 5): a horizontal cable
+sinking in still water reaches its terminal speed; a vertical line weightless in water, held up
+by a buoy's pull, leans in a uniform current to the closed-form shape tan(phi) = k (L - s) / B."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from rancf.bodies.flexible import Material, Model, PointLoad, Section, Support
+from rancf.mesh.factories import mesh_line
+from rancf.options import DynamicOptions
+from rancf.solvers.dynamic import integrate
+from rancf.solvers.static import solve_static
+from rancf.system import System
+from rancf.system.fluid import Fluid, Hydro
+
+RHO_W, G = 1000.0, 9.81
+
+
+def test_sinking_cable_reaches_terminal_speed():
+    """v_T = sqrt(2 (rho_c - rho_w) g A / (rho_w C_d d)): the drag balances the weight in water;
+    the whole free cable falls at it within 1 % after ten time constants."""
+    d, rho_c, cd = 0.02, 2000.0, 1.2
+    g = [0.0, -G]
+    cable = Model(mesh_line([0, 0], [4, 0], 2), "rancf", Section.circular(d / 2),
+                  Material(rho_c, 1e9), [], gravity=g)  # fmt: skip
+    s = System({"cable": cable}, gravity=g, fluid=Fluid(RHO_W),
+               hydro={"cable": Hydro(d, cd, 0.0, 1.0, 0.0)})  # fmt: skip
+    res = integrate(s, DynamicOptions(t_end=2.0, step=0.02))
+    area = math.pi * d**2 / 4
+    v_t = math.sqrt(2 * (rho_c - RHO_W) * G * area / (RHO_W * cd * d))
+    v = res.v[-1].reshape(-1, 4)
+    assert np.abs(v[:, 0]).max() < 1e-9  # no sideways motion
+    assert np.allclose(v[:, 1], -v_t, rtol=1e-2, atol=0)
+    assert np.abs(v[:, 1] / -v_t - 1).max() < 1e-2
+
+
+def test_buoyed_line_leans_in_current_to_closed_form():
+    """A line pinned at the seabed, weightless in water (its weight equals its buoyancy),
+    pulled up at its free top by a buoy force B, in a uniform current U (normal drag only):
+    the tension is B all along and tan(phi) = c (L - s), c = rho d Cd U^2 / (2 B), so the anchor
+    leans at atan(c L) and the top sits at ((sqrt(1 + (cL)^2) - 1) / c, asinh(cL) / c)."""
+    length, b_force, u, cd, d = 20.0, 600.0, 1.0, 1.2, 0.05
+    r_sec = 0.002
+    rho_line = RHO_W * (d / (2 * r_sec)) ** 2  # weight = buoyancy
+    g = [0.0, -G]
+    line = Model(mesh_line([0, 0], [0, length], 12), "rancf", Section.circular(r_sec),
+                 Material(rho_line, 2e11), [Support(0, "pin")], gravity=g,
+                 point_loads=[PointLoad(12, force=(0.0, b_force))])  # fmt: skip
+    s = System({"line": line}, gravity=g, fluid=Fluid(RHO_W, current=(u, 0.0)),
+               hydro={"line": Hydro(d, cd, 0.0, 1.0, 0.0)})  # fmt: skip
+    res = solve_static(s, load_steps=5)
+    c = 0.5 * RHO_W * d * cd * u**2 / b_force
+    q = res.q.reshape(-1, 4)
+    tan_anchor = q[0, 2] / q[0, 3]
+    assert abs(tan_anchor / (c * length) - 1) < 1e-2
+    top = q[-1, :2]
+    want = np.array([(math.hypot(1, c * length) - 1) / c, math.asinh(c * length) / c])
+    assert np.allclose(top, want, rtol=5e-3, atol=0)
