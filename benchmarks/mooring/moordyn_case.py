@@ -56,7 +56,7 @@ class Case:
     segments: int
     a: int = 1
     b: int = 2
-    options: dict[str, float] = field(default_factory=dict)
+    options: dict[str, float | str] = field(default_factory=dict)
 
 
 def input_file(case: Case) -> str:
@@ -84,7 +84,7 @@ def input_file(case: Case) -> str:
         f"1 {lt.name} {case.a} {case.b} {case.length!r} {case.segments} -",
         "---------------------- OPTIONS -----------------------------------------",
     ]
-    rows += [f"{v!r} {k}" for k, v in case.options.items()]
+    rows += [f"{v if isinstance(v, str) else repr(v)} {k}" for k, v in case.options.items()]
     rows += ["------------------------- OUTPUTS --------------------------------", "END",
              "--------------------- need this line ------------------"]  # fmt: skip
     return "\n".join(rows) + "\n"
