@@ -46,7 +46,9 @@ def dry_chain(wet_weight: float, mass: float, folder: Path) -> Path:
     head, rest = text.split("[fluid]", 1)
     text = head + "[[supports]]" + rest.split("[[supports]]", 1)[1]
     text = text.split('[[sensors]]\nname = "tension"')[0]
-    text = text.replace("gravity = [0.0, 0.0, -9.81]", f"gravity = [0.0, 0.0, {-wet_weight / mass!r}]")
+    text = text.replace(
+        "gravity = [0.0, 0.0, -9.81]", f"gravity = [0.0, 0.0, {-wet_weight / mass!r}]"
+    )
     path = folder / "chain-dry.toml"
     path.write_text(text)
     return path
@@ -76,7 +78,8 @@ def main() -> None:
     files = {**{k: HERE / v for k, v in FILES.items()},
              DRY: dry_chain(chain["wet_weight_N_per_m"], chain["mass_kg_per_m"], tmp)}  # fmt: skip
     for name, path in files.items():
-        ref = mp["cases"]["chain" if name == DRY else name]["fairlead_force_N"]
+        peer_case = mp["cases"]["chain" if name == DRY else name]
+        ref = peer_case["fairlead_force_N"]
         elements = tomllib.loads(path.read_text())["mesh"]["elements"]
         proc, wall = rancf("static", str(path), "--json")
         got = rancf_force(json.loads(proc.stdout)) if proc.returncode == 0 else None
@@ -92,7 +95,7 @@ def main() -> None:
         ok &= err <= TOLERANCE or name == DRY
         solve = json.loads(proc.stdout).get("wall_time_s", float("nan"))
         rows.append([name, kn(ref), kn(got), f"{err:.2e}", "yes" if err <= TOLERANCE else "NO",
-                     f"{mp['cases']['chain' if name == DRY else name]['wall_s']:.3f} / {mp_wall:.2f}",
+                     f"{peer_case['wall_s']:.3f} / {mp_wall:.2f}",
                      f"{solve:.3f} / {wall:.2f}", "40", str(elements)])  # fmt: skip
     shutil.rmtree(tmp)
     print(table(rows))

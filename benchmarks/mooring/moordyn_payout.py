@@ -21,8 +21,9 @@ the segments' damping resists the nodes' separation as they lengthen), and its d
 unstable without damping (undamped oscillations grow by (w dt)^4 / 8 a step; RK4 is stable for
 w dt < 2.8).  ``--ba`` and ``--scheme`` choose others.
 
-Runs each segment count with the step 5e-4 s / N and the finest again at half the step; writes ``results/moordyn_payout.csv`` (the finest run: t, L, load z, the winch tension:
-the size of the force the cable puts on the winch point, the tension at the load) and
+Runs each segment count with the step 5e-4 s / N and the finest again at half the step; writes
+``results/moordyn_payout.csv`` (the finest run: t, L, load z, the winch tension: the size of the
+force the cable puts on the winch point, the tension at the load) and
 ``results/moordyn_payout.json`` (the study, the command, versions and CPU) to ``--out``.  With
 ``--single`` only the runs at ``--segments`` (no half step), and the study printed as JSON.
 """
@@ -85,7 +86,8 @@ def _set_length(line: object, value: float, rate: float) -> None:
 
 def case(segments: int, dt: float, ba: float = 0.0, scheme: str = "RK4") -> Case:
     options = {"g": G, "rho": 0.0, "WtrDpth": 1000.0, "dtM": dt, "threshIC": 1e-6,
-               "TmaxIC": 100.0, "disableOutput": 1, "disableOutTime": 1, "tScheme": scheme}  # fmt: skip
+               "TmaxIC": 100.0, "disableOutput": 1, "disableOutTime": 1,
+               "tScheme": scheme}  # fmt: skip
     return Case(
         LineType("steel", diameter=2 * RADIUS, mass=DENSITY * AREA, ea=YOUNGS * AREA, ba=ba),
         [Point("Coupled", (0.0, 0.0, 0.0)), Point("Free", (0.0, 0.0, -L0), mass=LOAD)],

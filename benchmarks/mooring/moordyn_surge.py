@@ -105,8 +105,9 @@ def main() -> None:
     if a.csv:
         write_csv(a.csv, r)
     ten = r.columns["tension_N"]
-    print(json.dumps({"version": importlib.metadata.version("moordyn"), "segments": a.segments, "dt_s": r.dt, "init_s": r.init_s,
-                      "solve_s": r.solve_s, "tension_0_N": ten[0], "tension_max_N": max(ten),
+    print(json.dumps({"version": importlib.metadata.version("moordyn"), "segments": a.segments,
+                      "dt_s": r.dt, "init_s": r.init_s, "solve_s": r.solve_s,
+                      "tension_0_N": ten[0], "tension_max_N": max(ten),
                       "tension_min_N": min(ten)}))  # fmt: skip
 
 

@@ -48,7 +48,9 @@ def solve(name: str, segments: int) -> dict:
     ms = mp.System(depth=DEPTH, rho=RHO, g=G)
     # MoorPy 1.3's setLineType needs a nominal diameter unless a whole dict is given
     ms.setLineType(
-        lineType=dict(name=name, m=mass, d_vol=diameter, EA=ea, w=None, material="peer", d_nom=diameter),
+        lineType=dict(
+            name=name, m=mass, d_vol=diameter, EA=ea, w=None, material="peer", d_nom=diameter
+        ),
         name=name,
     )
     ms.addPoint(1, np.array(ANCHOR))

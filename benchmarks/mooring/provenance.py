@@ -12,7 +12,7 @@ from pathlib import Path
 
 
 def cpu() -> str:
-    """The CPU model of ``/proc/cpuinfo`` (``platform.processor()`` elsewhere) and the core count."""
+    """The CPU model of ``/proc/cpuinfo`` (else ``platform.processor()``) and the core count."""
     name = platform.processor() or platform.machine()
     info = Path("/proc/cpuinfo")
     if info.exists():
