@@ -26,7 +26,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from common import HERE, RESULTS, failed, peer, rancf, read_series, table  # noqa: E402
-from provenance import cpu, version  # noqa: E402
+from provenance import machine, version  # noqa: E402
 
 TOLERANCE, EVERY = 0.03, 0.1
 
@@ -91,7 +91,7 @@ def main() -> None:
                  f"{md_err:.2e}", f"{md_at:g}", f"{1e3 * max(z):.3f}"])  # fmt: skip
     print(table(rows))
     print(f"\nreference: {a.reference.name} (MoorDyn, converged); rancf {version('rancf')}; "
-          f"CPU: {cpu()}")  # fmt: skip
+          f"{machine()}")  # fmt: skip
     sys.exit(0 if ok else 1)
 
 

@@ -30,7 +30,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from common import HERE, failed, peer, rancf, table  # noqa: E402
-from provenance import cpu, version  # noqa: E402
+from provenance import machine, version  # noqa: E402
 
 TOLERANCE = 0.005
 FILES = {"chain": "mooring-chain.toml", "taut buoyant": "taut-buoyant.toml"}
@@ -100,7 +100,7 @@ def main() -> None:
     shutil.rmtree(tmp)
     print(table(rows))
     print(f"\nMoorPy {mp['peer_version']}, rancf {version('rancf')}; rho = {mp['rho']} kg/m^3, "
-          f"g = {mp['g']} m/s^2; CPU: {cpu()}")  # fmt: skip
+          f"g = {mp['g']} m/s^2; {machine()}")  # fmt: skip
     sys.exit(0 if ok else 1)
 
 

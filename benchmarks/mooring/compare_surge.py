@@ -27,7 +27,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from common import HERE, RESULTS, failed, peer, rancf, read_series, table  # noqa: E402
-from provenance import cpu, version  # noqa: E402
+from provenance import machine, version  # noqa: E402
 
 TOLERANCE, FIRST, T_END = 0.03, 20.0, 60.0
 
@@ -101,7 +101,7 @@ def main() -> None:
             break
     print(table(rows))
     print(f"\nreference: {a.reference.name} (MoorDyn, converged); rancf {version('rancf')}; "
-          f"CPU: {cpu()}")  # fmt: skip
+          f"{machine()}")  # fmt: skip
     sys.exit(0 if ok else 1)
 
 

@@ -23,6 +23,13 @@ def cpu() -> str:
     return f"{name} ({os.cpu_count()} logical cores)"
 
 
+def machine() -> str:
+    """``CPU: ...; load average ...``: the line the comparisons end with."""
+    load = os.getloadavg() if hasattr(os, "getloadavg") else None
+    tail = f"; load average {load[0]:.1f} (1 min)" if load else ""
+    return f"CPU: {cpu()}{tail}"
+
+
 def version(package: str) -> str | None:
     try:
         return importlib.metadata.version(package)
@@ -31,7 +38,8 @@ def version(package: str) -> str | None:
 
 
 def provenance(*packages: str) -> dict[str, object]:
-    """The command line, the date, Python, the packages' versions and the CPU."""
+    """The command line, the date, Python, the packages' versions, the CPU and its load (other
+    processes on the machine slow the timings)."""
     return {
         "command": " ".join(shlex.quote(a) for a in [Path(sys.executable).name, *sys.argv]),
         "date_utc": datetime.datetime.now(datetime.UTC).strftime("%Y-%m-%d %H:%M"),
@@ -39,4 +47,5 @@ def provenance(*packages: str) -> dict[str, object]:
         "versions": {p: version(p) for p in packages},
         "cpu": cpu(),
         "platform": platform.platform(),
+        "load_average_1_5_15_min": list(os.getloadavg()) if hasattr(os, "getloadavg") else None,
     }
