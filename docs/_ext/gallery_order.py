@@ -18,6 +18,8 @@ ORDER = [
     "plot_spin_up_beam.py",
     "plot_tether_payload.py",
     "plot_ring.py",
+    "plot_mooring_line.py",
+    "plot_power_line_gust.py",
 ]
 
 

@@ -27,7 +27,7 @@ def _one_body_static(f) -> bool:
     if not f.name.endswith(".toml"):
         return False
     text = f.read_text()
-    return "[[bodies]]" not in text and "motion" not in text
+    return "[[bodies]]" not in text and "motion" not in text and "[fluid]" not in text
 
 
 EXAMPLES = sorted(

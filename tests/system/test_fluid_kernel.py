@@ -29,9 +29,9 @@ def _system(
                   gravity=g)  # fmt: skip
     else:
         g = [0.0, 0.0, -9.81 * weight]
-        kind, mat = ("rod", ROD) if case == "rod" else ("rancf", MAT)
-        m = Model(mesh_line([0, 0, -1], [2, 0.5, -1.6], 3), kind, SEC, mat, [Support(0, "pin")],
-                  gravity=g)  # fmt: skip
+        kind, mat = ("rod", ROD) if case.startswith("rod") else ("rancf", MAT)
+        sup = Support(0, "clamp" if case.endswith("clamp") else "pin")
+        m = Model(mesh_line([0, 0, -1], [2, 0.5, -1.6], 3), kind, SEC, mat, [sup], gravity=g)
     return System({"line": m}, gravity=g, fluid=fluid, hydro={"line": hydro} if hydro else {},
                   distributed=loads, horizon=10.0)  # fmt: skip
 
@@ -74,7 +74,7 @@ def _fluid_jacobian(s: System, bare: System, y, v, a, t, coef) -> np.ndarray:
     return out[0] - out[1]
 
 
-@pytest.mark.parametrize("case", ["2d", "cable", "rod"])
+@pytest.mark.parametrize("case", ["2d", "cable", "rod", "rod-clamp"])
 @pytest.mark.parametrize("which", ["current", "profile", "waves"])
 def test_fluid_tangent_against_differences(case, which, rng):
     """ck d/dy, cv d/dv and ca d/da of the fluid's and distributed loads' part of the residual
@@ -173,3 +173,37 @@ def test_rigid_motion_gives_no_fluid_force(case, rng):
     f = np.asarray(s0.core.fluid_forces(y, v, m.y_from_q(qa.ravel()), 0.3))[:dim]
     want = -1025.0 * np.pi * 0.05**2 / 4 * 0.5 * length * acc
     assert np.allclose(f, want, rtol=1e-12, atol=1e-12)
+
+
+def test_wave_kinematics_against_airy_theory():
+    """A short line across the waves at depth: its fluid force is the Morison force of linear
+    (Airy) wave kinematics written out here (wave number from the dispersion relation by
+    bisection), plus buoyancy; 1e-9 relative."""
+    from scipy.optimize import brentq
+
+    rho, g, h, height, period, beta = 1025.0, 9.81, 30.0, 3.0, 7.0, 25.0
+    d, cd, length = 0.05, 1.1, 1e-3
+    z0, x0, t = -4.0, 3.0, 1.3
+    b = np.radians(beta)
+    e_b = np.array([np.cos(b), np.sin(b), 0.0])
+    along = np.array([-np.sin(b), np.cos(b), 0.0])  # horizontal, across the waves
+    mid = np.array([x0, 0.0, z0])
+    m = Model(mesh_line(mid - along * length / 2, mid + along * length / 2, 1), "rancf", SEC,
+              MAT, [], gravity=[0.0, 0.0, -g])  # fmt: skip
+    fl = Fluid(rho, surface=0.0, waves=Waves(height, period, beta, depth=h))
+    s = System({"line": m}, gravity=[0.0, 0.0, -g], fluid=fl,
+               hydro={"line": Hydro(d, cd, 0.0, 0.0, 0.0)})  # fmt: skip
+    z = np.zeros(s.n)
+    f = np.asarray(s.core.fluid_forces(s.y0, z, z, t))
+    om = 2 * np.pi / period
+    k = brentq(lambda k: g * k * np.tanh(k * h) - om**2, 1e-6, 10.0, xtol=1e-15)
+    th = k * (mid @ e_b) - om * t
+    amp = height / 2 * om / np.sinh(k * h)
+    u = amp * np.cosh(k * (z0 + h)) * np.cos(th) * e_b
+    u[2] = amp * np.sinh(k * (z0 + h)) * np.sin(th)
+    du = amp * om * np.cosh(k * (z0 + h)) * np.sin(th) * e_b
+    du[2] = -amp * om * np.sinh(k * (z0 + h)) * np.cos(th)
+    area = np.pi * d**2 / 4
+    want = length * (0.5 * rho * d * cd * np.linalg.norm(u) * u + rho * area * du
+                     + rho * area * g * np.array([0.0, 0.0, 1.0]))  # fmt: skip
+    assert np.allclose(f, want, rtol=1e-9, atol=1e-12 * np.abs(want).max())

@@ -59,3 +59,31 @@ def test_buoyed_line_leans_in_current_to_closed_form():
     top = q[-1, :2]
     want = np.array([(math.hypot(1, c * length) - 1) / c, math.asinh(c * length) / c])
     assert np.allclose(top, want, rtol=5e-3, atol=0)
+
+
+def test_fluid_force_sensor_carries_the_weight_at_terminal_speed():
+    """The scenario path: the sinking cable as a file; at terminal speed the ``fluid_force``
+    sensor (buoyancy and drag) carries the cable's weight rho_c A L g, and its ``tension`` is
+    zero (a free cable under uniform loads)."""
+    import rancf
+    from rancf.scenario import parse_scenario
+
+    d = {
+        "geometry": {"kind": "line", "start": [0.0, 0.0], "end": [4.0, 0.0]},
+        "mesh": {"elements": 2},
+        "section": {"radius": 0.01},
+        "material": {"density": 2000.0, "youngs_modulus": 1e9},
+        "fluid": {"density": RHO_W},
+        "hydro": {"drag_normal": 1.2},
+        "loads": {"gravity": [0.0, -G]},
+        "solver": {"t_end": 2.0, "step": 0.02},
+        "sensors": [{"name": "fluid", "kind": "fluid_force"},
+                    {"name": "mid", "kind": "tension", "at": 1}],
+    }  # fmt: skip
+    result, names, values = rancf.simulate(parse_scenario(d))
+    assert names == ["fluid_x", "fluid_y", "mid"]
+    last = dict(zip(names, values[-1], strict=True))
+    weight = 2000.0 * math.pi * 0.01**2 * 4.0 * G
+    assert abs(last["fluid_x"]) < 1e-9 * weight
+    assert abs(last["fluid_y"] / weight - 1) < 1e-2
+    assert abs(last["mid"]) < 1e-6 * weight

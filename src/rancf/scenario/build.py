@@ -122,7 +122,7 @@ def mesh_geometry(path: str, geometry: Any, mesh: MeshTable, prefix: str = "") -
 
 
 #: The tables that make a scenario a system of parts rather than one flexible body.
-SYSTEM_KEYS = ("bodies", "joints", "springs", "obstacles", "body_contacts")
+SYSTEM_KEYS = ("bodies", "joints", "springs", "obstacles", "body_contacts", "fluid", "hydro")
 
 
 def build_model(sc: ScenarioView) -> Model:
@@ -132,6 +132,9 @@ def build_model(sc: ScenarioView) -> Model:
         if sc[k]:
             raise ScenarioError(sc.path, k, "makes this scenario a system of parts, not one "
                                 "flexible body: Scenario.build_system() builds it")  # fmt: skip
+    if sc.loads.distributed:
+        raise ScenarioError(sc.path, "loads.distributed", "act on the scenario's system: "
+                            "Scenario.build_system() builds it")  # fmt: skip
     return body_model(sc)
 
 

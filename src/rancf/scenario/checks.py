@@ -198,8 +198,8 @@ def _sensors(c: _Context, supports: list[ResolvedPlace]) -> None:
         if s.kind == "twist" and els[0] != "rod":
             raise fail(f"{key}.kind", f"'twist' needs rod elements (mesh.element = \"rod\"), not "
                        f"{els[0]!r}")  # fmt: skip
-        if s.kind == "axial_force" and places[0].where != "node":
-            raise fail(f"{key}.at", "an axial force is measured at a node of a flexible body")
+        if s.kind in ("axial_force", "tension") and places[0].where != "node":
+            raise fail(f"{key}.at", f"a {s.kind} sensor measures at a node of a flexible body")
         if s.kind == "reaction":
             if s.joint is not None and s.joint not in joints:
                 raise fail(f"{key}.joint", f"names no joint: {show(s.joint)} (joints: "

@@ -3,8 +3,9 @@
 A file without ``[[bodies]]`` builds the system of one flexible body named ``body``
 (:mod:`rancf.scenario.system_build`); :func:`as_bodies` writes the same model in the
 ``[[bodies]]`` form (the form self-contact and further bodies need): its ``geometry``, ``mesh``,
-``section`` and ``material`` become the body's tables, and every place ``P`` of a support, point
-load, initial velocity, joint, spring or sensor becomes ``"NAME:P"`` (``"ground"`` stays).  Both
+``section``, ``material`` and ``hydro`` become the body's tables, and every place ``P`` of a
+support, point load, initial velocity, joint, spring or sensor becomes ``"NAME:P"``
+(``"ground"`` stays).  Both
 files run to the same numbers; the supports' reaction columns are named ``NAME:P_fx ...`` as in
 any system.
 """
@@ -21,7 +22,7 @@ if TYPE_CHECKING:
 __all__ = ["as_bodies"]
 
 #: The tables of a one-body file that describe its flexible body.
-BODY_TABLES = ("geometry", "mesh", "section", "material")
+BODY_TABLES = ("geometry", "mesh", "section", "material", "hydro")
 
 
 def as_bodies(sc: Scenario, name: str = "body") -> Scenario:

@@ -8,12 +8,16 @@ A sensor names one monitored quantity.  Kinds and their keys:
 * of the whole model: ``angular_momentum`` (about ``about``, default the origin; 3 columns in 3D,
   the ``z`` component in 2D) and ``energy`` (kinetic + strain + gravitational [J]);
 * of systems: ``reaction`` (the force of the joint ``joint = NAME``, or of the
-  support at ``at``) [N], ``axial_force`` (at a place of a flexible body) [N], ``angle`` (of the
+  support at ``at``) [N], ``axial_force`` or ``tension`` (the axial force at a place of a
+  flexible body; in a fluid the effective tension) [N], ``angle`` (of the
   rigid body ``body``: [rad] in 2D, the rotation vector in 3D), ``center_of_mass`` [m] and
   ``momentum`` (linear momentum [kg m/s]) of the body ``body`` or, without it, of the whole
   system;
 * of contact: ``contact_force`` (the force of the obstacle ``obstacle = NAME`` on
-  the bodies, normal and friction parts together) [N].
+  the bodies, normal and friction parts together) [N];
+* of a fluid: ``fluid_force`` (buoyancy, drag and the waves' Froude-Krylov force on the body
+  ``body``, default every flexible body; the added-mass force, which needs the accelerations,
+  is left out) [N].
 
 Column names: ``NAME`` for one number, ``NAME_x``, ``NAME_y`` (, ``NAME_z``) for vectors.
 """
@@ -34,11 +38,12 @@ __all__ = ["Sensor", "SensorTable", "SENSOR_KINDS", "SYSTEM_SENSOR_KINDS"]
 
 #: Sensor kinds.
 SENSOR_KINDS = ("distance", "position", "twist", "angular_momentum", "energy", "reaction",
-                "axial_force", "angle", "center_of_mass", "momentum", "contact_force")  # fmt: skip
+                "axial_force", "tension", "angle", "center_of_mass", "momentum",
+                "contact_force", "fluid_force")  # fmt: skip
 #: The kinds the system solver computes (not from node positions).
-SYSTEM_SENSOR_KINDS = ("reaction", "axial_force", "angle", "center_of_mass", "momentum",
-                       "contact_force")  # fmt: skip
-_SCALAR = ("distance", "twist", "energy", "axial_force")
+SYSTEM_SENSOR_KINDS = ("reaction", "axial_force", "tension", "angle", "center_of_mass",
+                       "momentum", "contact_force", "fluid_force")  # fmt: skip
+_SCALAR = ("distance", "twist", "energy", "axial_force", "tension")
 
 
 @dataclass(frozen=True)
@@ -85,12 +90,14 @@ class SensorTable(Table):
     name: Name = Field(description="column name (letters, digits, _), unique, not t")
     kind: Literal[
         "distance", "position", "twist", "angular_momentum", "energy", "reaction",
-        "axial_force", "angle", "center_of_mass", "momentum", "contact_force",
+        "axial_force", "tension", "angle", "center_of_mass", "momentum", "contact_force",
+        "fluid_force",
     ] = Field(description="what is measured (the sensor kinds: docs/guide/outputs.md)")  # fmt: skip
     between: PlacePair | None = Field(None, description="distance: the two places")
     at: PlaceValue | None = Field(
         None,
-        description="position, twist (rods), axial_force: the place; reaction: a support's place",
+        description="position, twist (rods), axial_force, tension: the place; reaction: a "
+        "support's place",
     )
     about: vector(2, 3) | None = Field(
         None, description="angular_momentum: the point [m] (default the origin)"
@@ -99,8 +106,8 @@ class SensorTable(Table):
     obstacle: Name | None = Field(None, description="contact_force: the obstacle's name")
     body: Name | None = Field(
         None,
-        description="angle: the rigid body; center_of_mass, momentum: the body (default: the "
-        "whole system)",
+        description="angle: the rigid body; center_of_mass, momentum, fluid_force: the body "
+        "(default: the whole system)",
     )
 
     @model_validator(mode="after")
@@ -119,9 +126,13 @@ class SensorTable(Table):
                 if self[k] is not None:
                     raise fail(k, "not for a contact_force sensor (the obstacle's total force)")
             return self
-        if self.body is not None and kd not in ("angle", "center_of_mass", "momentum"):
-            raise fail("body", "applies to angle, center_of_mass and momentum sensors only")
-        if kd in ("angular_momentum", "energy", "angle", "center_of_mass", "momentum"):
+        if self.body is not None and kd not in (
+            "angle", "center_of_mass", "momentum", "fluid_force"
+        ):  # fmt: skip
+            raise fail("body", "applies to angle, center_of_mass, momentum and fluid_force "
+                       "sensors only")  # fmt: skip
+        if kd in ("angular_momentum", "energy", "angle", "center_of_mass", "momentum",
+                  "fluid_force"):  # fmt: skip
             for k in ("at", "between"):
                 if self[k] is not None:
                     what = "whole model" if kd in ("angular_momentum", "energy") else "a body"

@@ -52,6 +52,8 @@ SCENARIO_ANALYSES: dict[str, tuple[str, ...]] = {
     "capstan": ("simulate",),
     "cantilever": ("static", "modes"),
     "installed-hose": ("static", "simulate"),
+    "mooring-line": ("static", "simulate"),
+    "power-line-gust": ("simulate",),
     "ring": ("modes", "simulate"),
     "robot-cable": ("simulate",),
     "slider-crank": ("simulate",),

@@ -81,8 +81,8 @@ def run_scenario(name: str, out: str | Path, quick: bool = False) -> StudyResult
     )
     sc = load_scenario(scenario)
     analyses = SCENARIO_ANALYSES[name]
-    # the static path of a one-body scenario uses its model; modes, buckling and runs a system's
-    model = sc.build_model() if "static" in analyses else None
+    # every analysis solves the scenario's system (a one-body file: the system of that body)
+    model = sc.build_system() if "static" in analyses else None
     for analysis in analyses:
         if analysis == "static":
             from rancf.solvers.static import solve_static

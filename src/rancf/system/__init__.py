@@ -1,11 +1,13 @@
-"""Systems of bodies: places, joints, springs, loads and their assembly."""
+"""Systems of bodies: places, joints, springs, loads, the fluid they are in and their assembly."""
 
 from rancf.system.connections import Joint, Load, Spring
 from rancf.system.contact import ContactState, Obstacle, contact_history, contact_outputs
+from rancf.system.fluid import DistributedLoad, Fluid, Hydro, Waves
 from rancf.system.places import GROUND, Place
 from rancf.system.system import System, as_system
 
 __all__ = [
     "System", "Joint", "Spring", "Load", "Place", "GROUND", "Obstacle", "ContactState",
-    "contact_outputs", "contact_history", "as_system",
+    "contact_outputs", "contact_history", "as_system", "Fluid", "Waves", "Hydro",
+    "DistributedLoad",
 ]  # fmt: skip

@@ -10,8 +10,10 @@ Kinds (column names ``NAME`` for one number, ``NAME_x``, ``NAME_y`` (, ``NAME_z`
   carries one (a clamp, a rod's support, a ``fixed`` or driven joint, a 3D ``revolute``), its
   moment ``NAME_mz`` (planar) or ``NAME_mx, NAME_my, NAME_mz``: the columns of
   ``reactions.csv`` (:mod:`rancf.system.outputs`);
-* ``axial_force`` at a node of a flexible body (the section value ``N``,
+* ``axial_force`` (or ``tension``) at a node of a flexible body (the section value ``N``,
   :mod:`rancf.bodies.section_outputs`);
+* ``fluid_force`` on a flexible body (``body``) or on all of them: buoyancy, drag and the
+  waves' Froude–Krylov force (:mod:`rancf.system.fluid`; the added mass left out);
 * ``angle`` of a rigid body: its angle [rad] in 2D (continuous, as integrated), its rotation
   vector in 3D;
 * ``center_of_mass`` [m] and ``momentum`` (linear, [kg m/s]) of the body ``body`` or, without
@@ -140,7 +142,7 @@ class SensorReader:
             reader = self._angular_momentum(sen)
         elif kind == "reaction":
             reader = self._reaction(sen, places)
-        elif kind == "axial_force":
+        elif kind in ("axial_force", "tension"):  # a line's tension is its axial force
             reader = self._axial_force(sen, places[0])
         elif kind == "angle":
             reader = self._angle(sen)
@@ -148,6 +150,8 @@ class SensorReader:
             reader = self._mass_moment(sen, kind == "momentum")
         elif kind == "contact_force":
             reader = self._contact_force(sen)
+        elif kind == "fluid_force":
+            reader = self._fluid_force(sen)
         else:
             raise InputError(f"sensors.{sen.name}.kind", kind, "a sensor kind")
         reader.kind = kind  # type: ignore[attr-defined]
@@ -191,6 +195,28 @@ class SensorReader:
                              f"an obstacle: {', '.join(names) or 'none'}")  # fmt: skip
         c, d = self.out.contact_columns(sen.obstacle).start, self.system.dim
         return lambda blk: blk[3]["r"][:, c : c + d] + blk[3]["r"][:, c + d : c + 2 * d]
+
+    def _fluid_force(self, sen: Any) -> Reader:
+        """Buoyancy, drag and the waves' Froude-Krylov force on one flexible body or on all of
+        them (docs/derivations/fluid.md section 3; the added mass needs accelerations: left
+        out)."""
+        s, d = self.system, self.system.dim
+        flex = [n for n, _ in self.out.flex]
+        body = getattr(sen, "body", None)
+        if body is not None and body not in flex:
+            raise InputError(f"sensors.{sen.name}.body", body,
+                             f"a flexible body: {', '.join(flex)}")  # fmt: skip
+        pick = [flex.index(body)] if body is not None else list(range(len(flex)))
+
+        def read(blk: Block) -> NDArray:
+            out = np.zeros((len(blk[0]), d))
+            for k, (tt, q, v) in enumerate(zip(blk[0], blk[1], blk[2], strict=True)):
+                y, w = s.y_from_q(q), s.y_from_q(v)
+                f = np.asarray(s.core.fluid_forces(y, w, np.zeros_like(y), float(tt)))
+                out[k] = f.reshape(-1, 3)[pick, :d].sum(axis=0)
+            return out
+
+        return read
 
     def _axial_force(self, sen: Any, spec: Any) -> Reader:
         p = self._place(sen, spec)
