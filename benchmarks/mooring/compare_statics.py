@@ -7,13 +7,14 @@ MoorPy (run by ``--peer-python``: an interpreter with ``moorpy==1.3.*``, default
 through ``rancf static FILE --json`` on ``mooring-chain.toml`` and ``taut-buoyant.toml``.  The
 force the line puts on the fairlead is MoorPy's ``Point.getForces(lines_only=True)`` and minus
 rancf's reaction at the fairlead support (the support's force on the line); they agree when
-|F_rancf - F_MoorPy| <= 0.5 % |F_MoorPy|.  Prints a table with the forces, the difference, both
-wall times (rancf: its static solve, ``wall_time_s``, and the whole process), MoorPy's segment
-count (the points it returns the profile at; its catenary is exact) and rancf's elements, and the
-CPU.  A third row checks the chain's model (geometry, seabed, supports) through keys rancf had
-before ``[fluid]``: the chain in air with gravity scaled to w / m (in statics buoyancy is a
-uniform upward load); it does not count for the exit status, which is 1 when a case misses the
-tolerance or rancf fails.
+|F_rancf - F_MoorPy| <= 0.5 % |F_MoorPy|.  Also MoorPy's fairlead tension next to rancf's
+``tension`` sensor at the end (the axial force from the strain there; not compared).  Prints a
+table with the forces, the difference, both wall times (rancf: its static solve,
+``wall_time_s``, and the whole process), MoorPy's segment count (the points it returns the
+profile at; its catenary is exact) and rancf's elements, and the CPU.  A third row checks the
+chain's model (geometry, seabed, supports) through keys rancf had before ``[fluid]``: the chain
+in air with gravity scaled to w / m (in statics buoyancy is a uniform upward load); it does not
+count for the exit status, which is 1 when a case misses the tolerance or rancf fails.
 """
 
 from __future__ import annotations
@@ -70,6 +71,7 @@ def main() -> None:
     a = p.parse_args()
     mp, mp_wall = peer(a.peer_python, "moorpy_statics.py")
     rows = [["case", "MoorPy F [kN]", "rancf F [kN]", "|dF|/|F|", "within 0.5 %",
+             "tension: MoorPy / rancf sensor [kN]",
              "MoorPy solve / process [s]", "rancf solve / process [s]", "MoorPy segments",
              "rancf elements"]]  # fmt: skip
     ok = True
@@ -87,14 +89,20 @@ def main() -> None:
         if got is None:
             ok = False
             why = failed(proc) if proc.returncode else "no fairlead reaction in the output"
-            rows.append([name, kn(ref), f"rancf failed: {why}", "-", "no",
+            rows.append([name, kn(ref), f"rancf failed: {why}", "-", "no", "-",
                          "-", f"- / {wall:.2f}",
                          "40", str(elements)])  # fmt: skip
             continue
         err = math.dist(got, ref) / math.hypot(*ref)
         ok &= err <= TOLERANCE or name == DRY
-        solve = json.loads(proc.stdout).get("wall_time_s", float("nan"))
+        out = json.loads(proc.stdout)
+        solve = out.get("wall_time_s", float("nan"))
+        sensor = out["sensors"].get("tension")
+        tension = f"{peer_case['fairlead_tension_N'] / 1e3:.1f} / " + (
+            "-" if sensor is None else f"{sensor / 1e3:.1f}"
+        )
         rows.append([name, kn(ref), kn(got), f"{err:.2e}", "yes" if err <= TOLERANCE else "NO",
+                     tension,
                      f"{peer_case['wall_s']:.3f} / {mp_wall:.2f}",
                      f"{solve:.3f} / {wall:.2f}", "40", str(elements)])  # fmt: skip
     shutil.rmtree(tmp)

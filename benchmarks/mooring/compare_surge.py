@@ -3,9 +3,10 @@
     python benchmarks/mooring/compare_surge.py [--peer-python PYTHON] [--segments 20 40 80 160]
 
 rancf runs ``mooring-surge.toml`` (``rancf simulate FILE --out DIR --quiet``); its fairlead
-tension is the ``tension`` sensor (the axial force at the fairlead end), or, where that column
-is missing, the size of the ``fairlead`` reaction.  Both are compared once a second from the end
-of the first period (t = 20 s) to 60 s with MoorDyn's converged answer, the stored
+tension is the size of the ``fairlead`` reaction (the force between line and fairlead, what
+MoorDyn's coupled point reports); the ``tension`` sensor at the end (the axial force from the
+strain there) is shown on a row of its own.  They are compared once a second from the end of the
+first period (t = 20 s) to 60 s with MoorDyn's converged answer, the stored
 ``results/moordyn_surge.csv`` (``moordyn_convergence.py``: 160 segments at 1.25e-4 s); the issue
 asks for 3 % at every second.  Then MoorDyn runs (``moordyn_surge.py`` with ``--peer-python``)
 at the segment counts given, coarse to fine, until its own largest difference to the converged
@@ -50,9 +51,9 @@ def worst(got: dict[int, float], ref: dict[int, float]) -> tuple[float, int]:
     return max((abs(got[s] - ref[s]) / ref[s], s) for s in ref)
 
 
-def rancf_tension(series: dict[str, list[float]]) -> list[float]:
-    if "tension" in series:
-        return series["tension"]
+def reaction_size(series: dict[str, list[float]]) -> list[float]:
+    """The size of the ``fairlead`` reaction: the force between line and fairlead, the quantity
+    MoorDyn's coupled point reports."""
     cols = [series[f"fairlead_{c}"] for c in "xyz"]
     return [math.sqrt(x * x + y * y + z * z) for x, y, z in zip(*cols, strict=True)]
 
@@ -77,12 +78,16 @@ def main() -> None:
         if proc.returncode == 0:
             summary = json.loads((out / "summary.json").read_text())
             s = read_series(out / "sensors.csv")
-            err, at = worst(per_second(s["t"], rancf_tension(s)), ref)
+            err, at = worst(per_second(s["t"], reaction_size(s)), ref)
             ok = err <= TOLERANCE
-            rows.append(["rancf", f"{step:g}", str(elements),
+            rows.append(["rancf (|reaction|)", f"{step:g}", str(elements),
                          f"{summary['setup_wall_time_s']:.2f}",
                          f"{summary['solve_wall_time_s']:.2f}", f"{wall:.2f}", f"{err:.2e}",
                          str(at)])  # fmt: skip
+            if "tension" in s:
+                t_err, t_at = worst(per_second(s["t"], s["tension"]), ref)
+                rows.append(["rancf (tension sensor)", "", "", "", "", "", f"{t_err:.2e}",
+                             str(t_at)])  # fmt: skip
         else:
             err = math.inf
             rows.append(["rancf", f"{step:g}", str(elements), "-", "-", f"{wall:.2f}",
