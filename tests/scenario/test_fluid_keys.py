@@ -91,8 +91,18 @@ def test_bodies_hydro_per_body_and_distributed_on_one_body():
     ],
 )  # fmt: skip
 def test_bad_values_are_refused_in_one_line(change, message):
+    """One line naming the key, the value and what is allowed."""
     with pytest.raises(ScenarioError) as err:
         parse_scenario(_with(ONE, **change)).build_system()
     text = str(err.value)
     assert "\n" not in text
     assert message in text, text
+
+
+def test_beam_elements_are_refused_in_a_fluid():
+    d = _with(ONE, fluid={"density": 1025.0}, hydro=HYDRO)
+    d["geometry"] = {"kind": "line", "start": [0.0, -10.0], "end": [2.0, 0.0]}
+    d["mesh"] = {"elements": 3, "element": "beam"}
+    d["loads"] = {"gravity": [0.0, -9.81]}
+    with pytest.raises(ScenarioError, match=r"\[hydro\] a body of cable or rod elements"):
+        parse_scenario(d).build_system()

@@ -1,12 +1,14 @@
 """rancf sweep on a local Dask cluster and on a separately started scheduler + worker."""
 
 import csv
+import json
 import socket
 import subprocess
 import sys
 import time
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from rancf.cli import main
@@ -201,3 +203,23 @@ def test_static_and_modes_sweeps(tmp_path):
 
     run = load_run(next((tmp_path / "static" / "runs").iterdir()))
     assert run.static and run.t[0] == 0.0 and run.t[-1] == 1.0
+
+
+def test_static_sweep_of_a_system_file(tmp_path):
+    """A file of several bodies and a joint sweeps like a one-body file: the Argyris frame's
+    static equilibrium in 4 and in 8 load steps is the same state."""
+    from rancf.studies.common import example_path
+
+    (tmp_path / "frame.toml").write_text(example_path("argyris-frame").read_text())
+    spec = tmp_path / "s.toml"
+    spec.write_text('base = "frame.toml"\nanalysis = "static"\n[grid]\n'
+                    '"solver.load_steps" = [4, 8]\n')  # fmt: skip
+    out = tmp_path / "out"
+    assert main(["sweep", str(spec), "--out", str(out), "--workers", "1", "--quiet"]) == 0
+    rows = _rows(out / "results.csv")
+    assert [r["status"] for r in rows] == ["completed"] * 2, rows
+    runs = sorted((out / "runs").iterdir())
+    docs = [json.loads((r / "static.json").read_text()) for r in runs]
+    assert set(docs[0]["positions"]) == {"leg1", "leg2"}
+    tip = [np.array([d["sensors"][f"tip_{c}"] for c in "xyz"]) for d in docs]
+    assert tip[0][0] > 0.24 and np.linalg.norm(tip[0] - tip[1]) < 1e-8

@@ -87,3 +87,49 @@ def test_fluid_force_sensor_carries_the_weight_at_terminal_speed():
     assert abs(last["fluid_x"]) < 1e-9 * weight
     assert abs(last["fluid_y"] / weight - 1) < 1e-2
     assert abs(last["mid"]) < 1e-6 * weight
+
+
+def test_touchdown_of_a_mooring_line_against_the_catenary():
+    """A 2D chain from an anchor on the seabed to a fairlead 100 m above it, in water: with the
+    horizontal tension H the model gives and the weight in water w per length, the suspended
+    part is a catenary of length sqrt(h^2 + 2 h H / w) (no friction), so the chain leaves the
+    seabed that far along it from the fairlead; the ``touchdown`` sensor agrees within 0.15 of
+    an element (11 m: the curvature's jump at the touchdown point is spread over the element
+    holding it; measured 0.99 m), and the seabed and the anchor carry the laid length's
+    weight."""
+    import rancf
+    from rancf.post.results import sensor_table
+    from rancf.scenario import parse_scenario
+
+    area, rho_c, ea, d = 0.0366435, 7859.5, 1.2326e9, 0.216
+    d = {
+        "geometry": {"kind": "nurbs", "degree": 2, "knots": [0, 0, 0, 1, 1, 1],
+                     "control_points": [[-300.0, -100.0], [-54.61196092449089, -100.0],
+                                        [0.0, 0.0]]},
+        "mesh": {"elements": 30},
+        "section": {"area": area, "inertia": 3e-8},
+        "material": {"density": rho_c, "youngs_modulus": ea / area},
+        "fluid": {"density": 1025.0, "surface": 0.0},
+        "hydro": {"diameter": 0.216},
+        "obstacles": [{"name": "seabed", "kind": "plane", "point": [0.0, -100.108],
+                       "normal": [0.0, 1.0], "stiffness": 1e8}],
+        "supports": [{"at": "start"}, {"at": "end"}],
+        "loads": {"gravity": [0.0, -G]},
+        "sensors": [{"name": "td", "kind": "touchdown", "obstacle": "seabed"},
+                    {"name": "fair", "kind": "reaction", "at": "end"},
+                    {"name": "bed", "kind": "contact_force", "obstacle": "seabed"}],
+    }  # fmt: skip
+    sc = parse_scenario(d)
+    system = sc.build_system()
+    res = rancf.solve_static(system, 10)
+    names, vals = sensor_table(system, sc.sensors, res.q, static=True, t=np.ones(1),
+                               lam=res.lam)  # fmt: skip
+    v = dict(zip(names, vals[0], strict=True))
+    w = (rho_c * area - 1025.0 * math.pi * 0.216**2 / 4) * G
+    h_force = v["fair_x"]
+    suspended = math.sqrt(100.0**2 + 2 * 100.0 * h_force / w)
+    laid = 330.0 - suspended
+    assert abs(v["td_x"] - (-300.0 + laid)) < 0.15 * 11.0
+    assert abs(v["td_y"] + 100.0) < 0.05 * 0.108
+    anchor = w * 330.0 - v["fair_y"] - v["bed_y"]  # the anchor's share of the weight
+    assert abs((v["bed_y"] + anchor) / (w * laid) - 1) < 2e-3

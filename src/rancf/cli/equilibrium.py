@@ -12,39 +12,14 @@ from rancf.cli.io import OutputDir, check_plot_path
 from rancf.cli.sim import OVERWRITE_HELP, _scenario_text, _warn
 from rancf.errors import InputError
 
-__all__ = ["add_parsers", "reactions_json"]
-
-
-def reactions_json(outputs: Any, y: Any, lam: Any) -> list[dict[str, Any]]:
-    """``static --json``'s ``"reactions"`` at the full loads: one object per support (in file
-    order, flexible body by body) and per joint, ``{"at", "force", "moment"}`` (``moment`` for
-    clamps, rods and joints that transmit one), whatever the sensors
-    (:meth:`rancf.system.outputs.SystemOutputs.static_reactions`)."""
-    out = []
-    for r in outputs.static_reactions(y, lam):
-        item: dict[str, Any] = {"at": r.at, "force": r.force.tolist()}
-        if r.moment is not None:
-            item["moment"] = r.moment.tolist()
-        out.append(item)
-    return out
-
-
-def positions_json(system: Any, q: Any) -> Any:
-    """``static --json``'s ``"positions"``: the nodes of the one flexible body ``[[x, y(, z)],
-    ...]``, or per body (a rigid body's or point mass's centre)."""
-    out: dict[str, Any] = {}
-    for name in system.names:
-        b, qb = system.bodies[name], q[system.body_slice(name)]
-        out[name] = (b.node_positions(qb).tolist() if hasattr(b, "node_positions")
-                     else qb[: system.dim].tolist())  # fmt: skip
-    return next(iter(out.values())) if len(out) == 1 and system.flex else out
+__all__ = ["add_parsers"]
 
 
 def _static_state(sc: Any, system: Any) -> tuple[Any, Any]:
     """The equilibrium under the full loads (coordinates and multipliers)."""
     from rancf.solvers.static import solve_static
 
-    res = solve_static(system, sc.solver["load_steps"], method=sc.solver["static_method"])
+    res = solve_static(system, **sc.static_options())
     return res.y, res.lam
 
 
@@ -87,58 +62,42 @@ def _cmd_static(args: argparse.Namespace) -> int:
     import numpy as np
 
     from rancf.post.checks import run_warnings
-    from rancf.post.results import LoadPath, sensor_table, strict_json, write_static_run
+    from rancf.post.results import strict_json
+    from rancf.post.static_run import positions_json, reactions_json, run_static
     from rancf.scenario import load_scenario
-    from rancf.scenario.system_build import support_labels
-    from rancf.solvers.static import solve_static
-    from rancf.system.outputs import SystemOutputs
 
     sc = load_scenario(args.scenario)
     od = None if args.out is None else OutputDir(args.out, kind="run", overwrite=args.overwrite)
-    system = sc.build_system()
-    labels = support_labels(sc)
-    path = LoadPath(system, labels)  # the load path, for --out
-    opts = {"load_steps": sc.solver["load_steps"], "method": sc.solver["static_method"]}
-    doc = None
     if od is None:
-        res = solve_static(system, **opts)
+        run = run_static(sc)
     else:
         from rancf.atomic import atomic_write
 
         copy = _scenario_text(args.scenario)
+
+        def keep(_summary: dict[str, Any]) -> None:  # kept also when a later increment fails
+            atomic_write(od.path / "scenario.toml", copy)
+            od.keep()
+
         with od:
-            info: dict[str, Any] = {"scenario": str(Path(args.scenario).resolve())}
-            try:
-                res = solve_static(system, on_step=path.record, **opts)
-                info.update(status="completed", message="reached the end of the load path",
-                            method=res.method, relaxation_steps=res.relaxation_steps)  # fmt: skip
-            except BaseException as exc:
-                kind = "interrupted" if isinstance(exc, KeyboardInterrupt) else "failed"
-                lam = path.steps[-1][0] if path.steps else 0.0
-                text = " ".join(str(exc).split()) or f"{kind} at load factor {lam:g}"
-                info.update(status=kind, message=text)
-                raise
-            finally:
-                if path.steps:  # what converged is kept, also when a later increment fails
-                    doc = write_static_run(od.path, path, sc.sensors, info)
-                    atomic_write(od.path / "scenario.toml", copy)
-                    od.keep()
-    outputs = SystemOutputs(system, sc.sensors, labels)
-    lf = res.load_factors[-1:]
-    names, vals = sensor_table(outputs, sc.sensors, res.q, static=True, t=lf, lam=res.lam[None])
+            info = {"scenario": str(Path(args.scenario).resolve())}
+            run = run_static(sc, od.path, info, keep)
+    system, res = run.system, run.result
     # the load path's outputs tracked the largest strain (--out), else the last state's
-    largest = outputs.largest_strain
-    notes = _warn(doc["warnings"] if doc is not None
-                  else run_warnings(system, static=True, largest=largest))  # fmt: skip
+    largest = run.outputs.largest_strain
+    if run.summary is not None:
+        notes = _warn(run.summary["warnings"])
+    else:
+        notes = _warn(run_warnings(system, static=True, largest=largest))
     out = {
         "positions": positions_json(system, res.q),
-        "sensors": dict(zip(names, vals[0].tolist(), strict=True)),
+        "sensors": run.sensors,
         "load_factors": res.load_factors.tolist(),
         "newton_iterations": res.n_newton,
         "relaxation_steps": res.relaxation_steps,
         "method": res.method,
         "wall_time_s": res.wall_time,
-        "reactions": reactions_json(outputs, res.y, res.lam),
+        "reactions": reactions_json(run.outputs, res.y, res.lam),
         "warnings": notes,
     }
     if args.json:

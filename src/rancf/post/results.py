@@ -102,15 +102,17 @@ def sensor_table(
 
 
 def run_sizes(model: Model | System) -> dict[str, Any]:
-    """The size keys of ``summary.json``: ``n_elements`` (all flexible bodies), ``element``
-    (the one body's, or ``"system"``), ``n_dofs``; a system of several bodies also ``bodies``
-    and ``constraints`` (multipliers)."""
+    """The size keys of ``summary.json``, the same for every run: ``n_elements`` (all flexible
+    bodies), ``element`` (the flexible bodies' element when they share one, else ``"mixed"``),
+    ``n_dofs``, ``bodies`` and ``constraints`` (multipliers)."""
     s = as_system(model)
+    kinds = {b.element for b in s.flex}
     return {
         "n_elements": sum(b.n_el for b in s.flex),
-        "element": s.flex[0].element if s.single is not None and len(s.flex) == 1 else "system",
+        "element": kinds.pop() if len(kinds) == 1 else "mixed",
         "n_dofs": s.n,
-        **({} if s.single is not None else {"bodies": len(s.names), "constraints": s.m}),
+        "bodies": len(s.names),
+        "constraints": s.m,
     }
 
 

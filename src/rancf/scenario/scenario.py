@@ -185,6 +185,10 @@ class Scenario(Table):
         """:class:`~rancf.options.DynamicOptions` of the ``[solver]`` table."""
         return self.solver.dynamic_options()
 
+    def static_options(self) -> dict[str, Any]:
+        """The ``[solver]`` table's keywords of :func:`rancf.solvers.static.solve_static`."""
+        return self.solver.static_options()
+
     def build_model(self) -> Model:
         """Mesh the geometry and assemble the model (errors name the scenario key)."""
         from rancf.scenario.build import build_model

@@ -15,6 +15,8 @@ A sensor names one monitored quantity.  Kinds and their keys:
   system;
 * of contact: ``contact_force`` (the force of the obstacle ``obstacle = NAME`` on
   the bodies, normal and friction parts together) [N];
+* ``touchdown`` (``obstacle = NAME``, a plane; ``body``, default the only flexible body): where
+  the line, walked from its start, leaves the plane (:mod:`rancf.system.touchdown`) [m];
 * of a fluid: ``fluid_force`` (buoyancy, drag and the waves' Froude-Krylov force on the body
   ``body``, default every flexible body; the added-mass force, which needs the accelerations,
   is left out) [N].
@@ -39,10 +41,10 @@ __all__ = ["Sensor", "SensorTable", "SENSOR_KINDS", "SYSTEM_SENSOR_KINDS"]
 #: Sensor kinds.
 SENSOR_KINDS = ("distance", "position", "twist", "angular_momentum", "energy", "reaction",
                 "axial_force", "tension", "angle", "center_of_mass", "momentum",
-                "contact_force", "fluid_force")  # fmt: skip
+                "contact_force", "fluid_force", "touchdown")  # fmt: skip
 #: The kinds the system solver computes (not from node positions).
 SYSTEM_SENSOR_KINDS = ("reaction", "axial_force", "tension", "angle", "center_of_mass",
-                       "momentum", "contact_force", "fluid_force")  # fmt: skip
+                       "momentum", "contact_force", "fluid_force", "touchdown")  # fmt: skip
 _SCALAR = ("distance", "twist", "energy", "axial_force", "tension")
 
 
@@ -91,7 +93,7 @@ class SensorTable(Table):
     kind: Literal[
         "distance", "position", "twist", "angular_momentum", "energy", "reaction",
         "axial_force", "tension", "angle", "center_of_mass", "momentum", "contact_force",
-        "fluid_force",
+        "fluid_force", "touchdown",
     ] = Field(description="what is measured (the sensor kinds: docs/guide/outputs.md)")  # fmt: skip
     between: PlacePair | None = Field(None, description="distance: the two places")
     at: PlaceValue | None = Field(
@@ -103,11 +105,13 @@ class SensorTable(Table):
         None, description="angular_momentum: the point [m] (default the origin)"
     )
     joint: Name | None = Field(None, description="reaction: the joint's name")
-    obstacle: Name | None = Field(None, description="contact_force: the obstacle's name")
+    obstacle: Name | None = Field(
+        None, description="contact_force, touchdown: the obstacle's name (touchdown: a plane)"
+    )
     body: Name | None = Field(
         None,
         description="angle: the rigid body; center_of_mass, momentum, fluid_force: the body "
-        "(default: the whole system)",
+        "(default: the whole system); touchdown: the line (default: the only flexible body)",
     )
 
     @model_validator(mode="after")
@@ -117,20 +121,22 @@ class SensorTable(Table):
             raise fail("about", "applies to angular_momentum sensors only")
         if self.joint is not None and kd != "reaction":
             raise fail("joint", "applies to reaction sensors only")
-        if self.obstacle is not None and kd != "contact_force":
-            raise fail("obstacle", "applies to contact_force sensors only")
-        if kd == "contact_force":
+        if self.obstacle is not None and kd not in ("contact_force", "touchdown"):
+            raise fail("obstacle", "applies to contact_force and touchdown sensors only")
+        if kd in ("contact_force", "touchdown"):
             if self.obstacle is None:
-                raise fail("obstacle", "a contact_force sensor needs obstacle = NAME")
+                raise fail("obstacle", f"a {kd} sensor needs obstacle = NAME")
             for k in ("at", "between"):
                 if self[k] is not None:
-                    raise fail(k, "not for a contact_force sensor (the obstacle's total force)")
+                    raise fail(k, f"not for a {kd} sensor (of the obstacle)")
+            if kd == "contact_force" and self.body is not None:
+                raise fail("body", "not for a contact_force sensor (the obstacle's total force)")
             return self
         if self.body is not None and kd not in (
             "angle", "center_of_mass", "momentum", "fluid_force"
         ):  # fmt: skip
-            raise fail("body", "applies to angle, center_of_mass, momentum and fluid_force "
-                       "sensors only")  # fmt: skip
+            raise fail("body", "applies to angle, center_of_mass, momentum, fluid_force and "
+                       "touchdown sensors only")  # fmt: skip
         if kd in ("angular_momentum", "energy", "angle", "center_of_mass", "momentum",
                   "fluid_force"):  # fmt: skip
             for k in ("at", "between"):

@@ -7,7 +7,7 @@ Python API's (a test compares them).
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Literal
+from typing import TYPE_CHECKING, Any, Literal
 
 from pydantic import Field, model_validator
 
@@ -81,6 +81,11 @@ class SolverTable(Table):
         from rancf.options import DynamicOptions
 
         return DynamicOptions(**{k: getattr(self, k) for k in _DYNAMIC_KEYS})
+
+    def static_options(self) -> dict[str, Any]:
+        """The keywords of :func:`rancf.solvers.static.solve_static` in this table
+        (``load_steps``, ``method``)."""
+        return {"load_steps": self.load_steps, "method": self.static_method}
 
 
 class ModesTable(Table):

@@ -193,9 +193,7 @@ def start_state(
                 '= "static" (the static solution moves it there before the run)',
             )
         return None, {"initial_state": "reference"}
-    res = solve_static(
-        model, sc.solver["load_steps"], method=sc.solver["static_method"], at_time=0.0
-    )
+    res = solve_static(model, at_time=0.0, **sc.static_options())
     info = {
         "initial_state": "static",
         "static": {

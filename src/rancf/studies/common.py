@@ -52,7 +52,7 @@ SCENARIO_ANALYSES: dict[str, tuple[str, ...]] = {
     "capstan": ("simulate",),
     "cantilever": ("static", "modes"),
     "installed-hose": ("static", "simulate"),
-    "mooring-line": ("static", "simulate"),
+    "mooring-line": ("static",),
     "power-line-gust": ("simulate",),
     "ring": ("modes", "simulate"),
     "robot-cable": ("simulate",),

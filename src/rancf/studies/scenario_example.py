@@ -21,14 +21,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from rancf.atomic import atomic_write
-from rancf.errors import ConvergenceError
-from rancf.post.results import (
-    LoadPath,
-    sensor_table,
-    strict_json,
-    write_run,
-    write_static_run,
-)
+from rancf.post.results import sensor_table, strict_json, write_run
 from rancf.scenario import load_scenario
 from rancf.studies.common import SCENARIO_ANALYSES, StudyResult, example_path
 
@@ -81,36 +74,20 @@ def run_scenario(name: str, out: str | Path, quick: bool = False) -> StudyResult
     )
     sc = load_scenario(scenario)
     analyses = SCENARIO_ANALYSES[name]
-    # every analysis solves the scenario's system (a one-body file: the system of that body)
-    model = sc.build_system() if "static" in analyses else None
     for analysis in analyses:
         if analysis == "static":
-            from rancf.solvers.static import solve_static
+            from rancf.post.static_run import run_static
 
-            path, summary = LoadPath(model, sc.support_labels), {}
             info = {"scenario": str(scenario.resolve())}
-            try:
-                st = solve_static(
-                    model, sc.solver["load_steps"], on_step=path.record,
-                    method=sc.solver["static_method"],
-                )  # fmt: skip
-                info.update(status="completed", message="reached the end of the load path")
-            except ConvergenceError as exc:
-                info.update(status="failed", message=str(exc))
-                raise
-            finally:
-                if path.steps:
-                    summary = write_static_run(out / "static", path, sc.sensors, info)
-            _notes(res, summary)
+            run = run_static(sc, out / "static", info, lambda doc: _notes(res, doc))
+            st = run.result
             _figures(res, out, out / "static", "static load path", skip="energy")
-            names, vals = sensor_table(model, sc.sensors, st.q, static=True,
-                                       t=st.load_factors[-1:])  # fmt: skip
             res.add_table(
                 out,
                 f"Static equilibrium: {len(st.load_factors) - 1} load steps, "
                 f"{st.n_newton} Newton iterations",
                 ["sensor", "value"],
-                [[n, f"{v:.9g}"] for n, v in zip(names, vals[0], strict=True)],
+                [[n, f"{v:.9g}"] for n, v in run.sensors.items()],
                 "static.csv",
             )
         elif analysis == "modes":

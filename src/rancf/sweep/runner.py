@@ -52,29 +52,18 @@ def _analyse(sc: Any, analysis: str, folder: Path) -> tuple[str, str, float, dic
         values = {"t_reached": float(res.t_reached), "steps": float(res.n_steps)}
         values.update(zip(names, map(float, vals[0]), strict=True))
         return summary["status"], res.message, float(res.wall_time), values
-    model = sc.build_model()
     if analysis == "static":
-        from rancf.post.results import LoadPath, write_static_run
-        from rancf.solvers.static import solve_static
+        from rancf.post.static_run import positions_json, run_static
 
-        path = LoadPath(model, sc.support_labels)  # the load path, as `static --out` keeps it
-        t0 = time.perf_counter()
-        res = solve_static(
-            model, sc.solver["load_steps"], on_step=path.record, method=sc.solver["static_method"]
-        )
-        wall = time.perf_counter() - t0
-        names, vals = sensor_table(model, sc.sensors, res.q, static=True,
-                                   t=res.load_factors[-1:])  # fmt: skip
-        values = dict(zip(names, map(float, vals[0]), strict=True))
-        out = {"positions": model.node_positions(res.q).tolist(), "sensors": values}
+        run = run_static(sc, folder, {"scenario": str(folder / "scenario.toml")})
+        out = {"positions": positions_json(run.system, run.result.q), "sensors": run.sensors}
         atomic_write(folder / "static.json", strict_json(out))
-        info = {"status": "completed", "message": "", "scenario": str(folder / "scenario.toml")}
-        write_static_run(folder, path, sc.sensors, info)
-        return "completed", "", wall, values
+        return "completed", "", float(run.result.wall_time), run.sensors
     from rancf.solvers.modal import natural_modes
 
+    system = sc.build_system()
     t0 = time.perf_counter()
-    res = natural_modes(model, None, max(FREQUENCY_COLUMNS, sc.data["modes"]["count"]))
+    res = natural_modes(system, None, max(FREQUENCY_COLUMNS, sc.data["modes"]["count"]))
     wall = time.perf_counter() - t0
     f = res.frequencies_hz
     out = {"frequencies_hz": f.tolist(), "rigid_body_modes_removed": res.n_rigid}

@@ -12,6 +12,7 @@ Kinds (column names ``NAME`` for one number, ``NAME_x``, ``NAME_y`` (, ``NAME_z`
   ``reactions.csv`` (:mod:`rancf.system.outputs`);
 * ``axial_force`` (or ``tension``) at a node of a flexible body (the section value ``N``,
   :mod:`rancf.bodies.section_outputs`);
+* ``touchdown``: where a line leaves a plane obstacle (:mod:`rancf.system.touchdown`);
 * ``fluid_force`` on a flexible body (``body``) or on all of them: buoyancy, drag and the
   waves' Froude–Krylov force (:mod:`rancf.system.fluid`; the added mass left out);
 * ``angle`` of a rigid body: its angle [rad] in 2D (continuous, as integrated), its rotation
@@ -152,6 +153,8 @@ class SensorReader:
             reader = self._contact_force(sen)
         elif kind == "fluid_force":
             reader = self._fluid_force(sen)
+        elif kind == "touchdown":
+            reader = self._touchdown(sen)
         else:
             raise InputError(f"sensors.{sen.name}.kind", kind, "a sensor kind")
         reader.kind = kind  # type: ignore[attr-defined]
@@ -217,6 +220,28 @@ class SensorReader:
             return out
 
         return read
+
+    def _touchdown(self, sen: Any) -> Reader:
+        """Where the line leaves a plane obstacle
+        (:func:`rancf.system.touchdown.touchdown_point`)."""
+        from rancf.system.touchdown import touchdown_point
+
+        s = self.system
+        names = list(s.obstacle_names)
+        ob = s.obstacles[names.index(sen.obstacle)] if sen.obstacle in names else None
+        if ob is None or ob.kind != "plane" or ob.body is not None:
+            planes = [n for n, o in zip(names, s.obstacles, strict=False)
+                      if o.kind == "plane" and o.body is None]  # fmt: skip
+            raise InputError(f"sensors.{sen.name}.obstacle", sen.obstacle,
+                             f"a fixed plane: {', '.join(planes) or 'none'}")  # fmt: skip
+        flex = [n for n, b in self.out.flex if b.element != "beam"]
+        body = getattr(sen, "body", None) or (flex[0] if len(flex) == 1 else None)
+        if body not in flex:
+            raise InputError(f"sensors.{sen.name}.body", body,
+                             f"a line (cable or rod elements): {', '.join(flex)}")  # fmt: skip
+        m, sl = s.bodies[body], s.body_slice(body)  # type: ignore[index]
+        point, normal = np.asarray(ob.point, float), np.asarray(ob.normal, float)
+        return lambda blk: np.array([touchdown_point(m, q[sl], point, normal) for q in blk[1]])
 
     def _axial_force(self, sen: Any, spec: Any) -> Reader:
         p = self._place(sen, spec)

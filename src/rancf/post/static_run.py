@@ -1,0 +1,100 @@
+"""One static analysis of a scenario, as ``rancf static``, static sweeps and the shipped
+examples run it: the equilibrium of the scenario's system along its load path, the load path
+written as a run folder (when one is given) and the sensors and reactions at the full loads."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from rancf.post.results import LoadPath, sensor_table, write_static_run
+from rancf.system.outputs import SystemOutputs
+
+__all__ = ["StaticRun", "positions_json", "reactions_json", "run_static"]
+
+
+@dataclass
+class StaticRun:
+    """A static analysis: the system, the solver's result, the outputs at the full loads and,
+    when a folder was written, its ``summary.json`` contents."""
+
+    system: Any
+    result: Any
+    outputs: SystemOutputs
+    sensors: dict[str, float]
+    summary: dict[str, Any] | None
+
+
+def run_static(
+    sc: Any,
+    folder: str | Path | None = None,
+    info: dict[str, Any] | None = None,
+    on_written: Callable[[dict[str, Any]], None] | None = None,
+) -> StaticRun:
+    """Solve the static equilibrium of scenario ``sc`` (:func:`rancf.solvers.static.solve_static`
+    with the ``[solver]`` table's ``load_steps`` and ``static_method``).
+
+    With a ``folder``, the converged load steps are written there
+    (:func:`~rancf.post.results.write_static_run`) also when a later increment fails or the run
+    is interrupted: the summary's ``status`` then says so and the error propagates. ``info``:
+    more keys of ``summary.json``; ``on_written``: called with the summary once the folder
+    holds the run.
+    """
+    from rancf.scenario.system_build import support_labels
+    from rancf.solvers.static import solve_static
+
+    system = sc.build_system()
+    labels = support_labels(sc)
+    path = LoadPath(system, labels)
+    doc = None
+    keys = dict(info or {})
+    try:
+        res = solve_static(system, on_step=path.record, **sc.static_options())
+        keys.update(status="completed", message="reached the end of the load path",
+                    method=res.method, relaxation_steps=res.relaxation_steps)  # fmt: skip
+    except BaseException as exc:
+        kind = "interrupted" if isinstance(exc, KeyboardInterrupt) else "failed"
+        lam = path.steps[-1][0] if path.steps else 0.0
+        text = " ".join(str(exc).split()) or f"{kind} at load factor {lam:g}"
+        keys.update(status=kind, message=text)
+        raise
+    finally:
+        if folder is not None and path.steps:  # what converged is kept
+            doc = write_static_run(folder, path, sc.sensors, keys)
+            if on_written is not None:
+                on_written(doc)
+    outputs = SystemOutputs(system, sc.sensors, labels)
+    names, vals = sensor_table(outputs, sc.sensors, res.q, static=True,
+                               t=res.load_factors[-1:], lam=res.lam[None])  # fmt: skip
+    sensors = dict(zip(names, map(float, vals[0]), strict=True))
+    return StaticRun(system, res, outputs, sensors, doc)
+
+
+def reactions_json(outputs: SystemOutputs, y: NDArray, lam: NDArray | None) -> list[dict[str, Any]]:
+    """``static --json``'s ``"reactions"`` at the full loads: one object per support (in file
+    order, flexible body by body) and per joint, ``{"at", "force", "moment"}`` (``moment`` for
+    clamps, rods and joints that transmit one), whatever the sensors
+    (:meth:`rancf.system.outputs.SystemOutputs.static_reactions`)."""
+    out = []
+    for r in outputs.static_reactions(y, lam):
+        item: dict[str, Any] = {"at": r.at, "force": r.force.tolist()}
+        if r.moment is not None:
+            item["moment"] = r.moment.tolist()
+        out.append(item)
+    return out
+
+
+def positions_json(system: Any, q: NDArray) -> Any:
+    """``static --json``'s ``"positions"``: the nodes of the one flexible body ``[[x, y(, z)],
+    ...]``, or per body (a rigid body's or point mass's centre)."""
+    out: dict[str, Any] = {}
+    for name in system.names:
+        b, qb = system.bodies[name], np.asarray(q)[system.body_slice(name)]
+        out[name] = (b.node_positions(qb).tolist() if hasattr(b, "node_positions")
+                     else qb[: system.dim].tolist())  # fmt: skip
+    return next(iter(out.values())) if len(out) == 1 and system.flex else out
