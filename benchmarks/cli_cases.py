@@ -1,9 +1,16 @@
 """`rancf simulate` against the equivalent Exudyn script, as whole processes, pairs interleaved.
 
-Each pair runs A (`rancf simulate SCENARIO --out DIR --quiet`) then B (`exudyn_pendulum.py`);
+Each pair runs A (`rancf simulate SCENARIO --out DIR --quiet`) then B (`exudyn_pendulum.py`),
+outputs matched: rancf stores its state and the tip sensor every output interval (by default
+every step), Exudyn the tip sensor at the same interval (in memory, no solution file);
 per-step times come from each side's own report (rancf: `summary.json`, `solve_wall_time_s /
 steps`; Exudyn: its script's solve time), whole-process wall times are measured from outside,
 and the ratio A/B is taken pair by pair (median quoted), so machine drift cancels.
+
+Run it with a wheel install (``pip install .`` into its own environment), as users have it: an
+editable install with ``editable.rebuild`` runs CMake twice at every start to check the build,
+and without compiled byte code (``PYTHONDONTWRITEBYTECODE``) every module is compiled at every
+start; both are set-up time a user's install does not have.
 """
 
 from __future__ import annotations
@@ -48,8 +55,7 @@ gravity = [0.0, -9.81]
 t_end = {t_end}
 step = 1.0e-3
 rho_inf = 0.9
-output_step = {out}
-newton = "{newton}"
+{out}{newton}
 
 [[sensors]]
 name = "tip"
@@ -77,11 +83,13 @@ def _run_rancf(scenario: Path, out: Path) -> dict[str, Any]:
     }
 
 
-def _run_exudyn(n: int, solver: str, t_end: float) -> dict[str, Any]:
-    """One run of the Exudyn script; ``failed`` (with its last message line) if it gave up."""
+def _run_exudyn(n: int, solver: str, t_end: float, out: float | None = None) -> dict[str, Any]:
+    """One run of the Exudyn script (its sensor every ``out`` s, default every step);
+    ``failed`` (with its last message line) if it gave up."""
     t0 = time.perf_counter()
     cmd = [sys.executable, str(HERE / "exudyn_pendulum.py"), "--elements", str(n)]
     cmd += ["--solver", solver, "--t-end", str(t_end)]
+    cmd += [] if out is None else ["--output-step", str(out)]
     p = subprocess.run(cmd, capture_output=True, text=True)
     wall = time.perf_counter() - t0
     if p.returncode != 0:
@@ -93,11 +101,18 @@ def _run_exudyn(n: int, solver: str, t_end: float) -> dict[str, Any]:
 
 
 def simulate_cases(
-    ns: list[int], newtons: list[str], repeats: int, t_end: float, exudyn: bool
+    ns: list[int],
+    newtons: list[str | None],
+    repeats: int,
+    t_end: float,
+    exudyn: bool,
+    outputs: tuple[float | None, ...] = (None,),
 ) -> list[dict[str, Any]]:
     """Per-step and whole-process times of the straight pendulum through `rancf simulate`.
 
-    A size where Exudyn gives up is measured once (its failure is recorded, not a ratio).
+    ``newtons``: ``solver.newton`` (None: the default); ``outputs``: output intervals [s] (None:
+    the default, every step), Exudyn's tip sensor at the same interval.  A size where Exudyn
+    gives up is measured once (its failure is recorded, not a ratio).
     """
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
@@ -110,18 +125,26 @@ def simulate_cases(
                 times = {s: r.get("solve_s", float("inf")) for s, r in trials.items()}
                 solver = min(times, key=times.get)
             for newton in newtons:
-                sc = tmpd / f"p{n}-{newton}.toml"
-                sc.write_text(SCENARIO.format(n=n, t_end=t_end, out=t_end / 10, newton=newton))
-                out = tmpd / f"run{n}-{newton}"
-                a_runs, b_runs = [], []
-                _run_rancf(sc, out)  # warm-up (file-system caches), not counted
-                for _ in range(repeats):
-                    a_runs.append(_run_rancf(sc, out))
-                    if exudyn:
-                        b_runs.append(_run_exudyn(n, solver, t_end))
-                        if "failed" in b_runs[-1]:
-                            break
-                rows.append(_row(n, newton, solver, a_runs, b_runs))
+                for every in outputs:
+                    sc = tmpd / f"p{n}-{newton}-{every}.toml"
+                    sc.write_text(
+                        SCENARIO.format(
+                            n=n,
+                            t_end=t_end,
+                            out="" if every is None else f"output_step = {every}\n",
+                            newton="" if newton is None else f'newton = "{newton}"\n',
+                        )
+                    )
+                    out = tmpd / f"run{n}-{newton}"
+                    a_runs, b_runs = [], []
+                    _run_rancf(sc, out)  # warm-up (file-system caches), not counted
+                    for _ in range(repeats):
+                        a_runs.append(_run_rancf(sc, out))
+                        if exudyn:
+                            b_runs.append(_run_exudyn(n, solver, t_end, every))
+                            if "failed" in b_runs[-1]:
+                                break
+                    rows.append(_row(n, newton, solver, a_runs, b_runs, every))
     return rows
 
 
@@ -130,11 +153,15 @@ def _med(runs: list[dict[str, Any]], key: str) -> float | None:
     return statistics.median(vals) if vals else None
 
 
-def _row(n: int, newton: str, solver: str, a: list[dict], b: list[dict]) -> dict[str, Any]:
+def _row(
+    n: int, newton: str | None, solver: str, a: list[dict], b: list[dict], every: float | None
+) -> dict[str, Any]:
     steps = a[0]["steps"]
+    outs = "output every step" if every is None else f"output every {every:g} s"
     row: dict[str, Any] = {
-        "case": f"simulate pendulum {n} el ({newton} Newton)",
+        "case": f"simulate pendulum {n} el ({newton or 'default'} Newton, {outs})",
         "elements": n,
+        "output_step": every,
         "steps": steps,
         "newton_iterations": a[0]["newton"],
         "rancf_us_per_step": 1e6 * _med([{"x": r["solve_s"] / r["steps"]} for r in a], "x"),

@@ -155,6 +155,7 @@ def main() -> None:
     p.add_argument("--rho-inf", type=float, default=0.9)
     p.add_argument("--shear-stiffness", type=float, default=EA)
     p.add_argument("--solver", choices=["dense", "sparse"], default="dense")
+    p.add_argument("--output-step", type=float, default=None, help="sensor interval (every step)")
     p.add_argument("--newton-tol", type=float, default=None)
     p.add_argument("--user-functions", choices=["symbolic", "python"], default="symbolic")
     a = p.parse_args()
@@ -170,7 +171,8 @@ def main() -> None:
     )
     mbs.Assemble()
     sparse = a.solver == "sparse"
-    ss = dynamic_settings(a.t_end, a.step, a.rho_inf, sparse, sensors_write_period=a.step)
+    every = a.output_step or a.step
+    ss = dynamic_settings(a.t_end, a.step, a.rho_inf, sparse, sensors_write_period=every)
     ss.timeIntegration.newton.absoluteTolerance = a.newton_tol or NEWTON_TOL * EA * a.elements
     ss.timeIntegration.adaptiveStep = False
     t1 = time.perf_counter()

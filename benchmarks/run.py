@@ -230,11 +230,15 @@ def main(argv: list[str] | None = None) -> int:
         "exudyn": ex.VERSION,
     }
     ns = [8] if quick else [8, 32, 128, 512]
+    # the default Newton (chord) at the default output (every step) and every 10 ms; full Newton
     rows = cli_cases.simulate_cases(
-        ns, ["full", "modified"], args.repeats, 0.05 if quick else 1.0, ex.AVAILABLE
+        ns, [None], args.repeats, 0.05 if quick else 1.0, ex.AVAILABLE, (None, 0.01)
+    )
+    rows += cli_cases.simulate_cases(
+        ns, ["full"], args.repeats, 0.05 if quick else 1.0, ex.AVAILABLE, (0.01,)
     )
     if not quick:  # linear in n: full Newton up to 4096 elements, rancf alone, 0.1 s
-        rows += cli_cases.simulate_cases([1024, 2048, 4096], ["full"], 1, 0.1, False)
+        rows += cli_cases.simulate_cases([1024, 2048, 4096], [None], 1, 0.1, False, (0.01,))
     rows.append(static_case(args.repeats))
     rows += catenary_cases.measure(1 if quick else args.repeats)
     rows += rod_cost.measure(8, 5, 5) if quick else rod_cost.measure(64, 300, 500)

@@ -5,7 +5,8 @@
 * ``slider-crank`` and ``spin-up``: the shipped examples as they are (``rancf simulate`` as a
   whole process) against the Exudyn models of the same size, step and ρ∞
   (``exudyn_slider_crank.py``, ``exudyn_spinup.py``: ANCF cables, index-3 constraints, Exudyn's
-  faster linear solver for the size, chosen by a short trial of each).  Per step: each side's
+  faster linear solver for the size, chosen by a short trial of each; Exudyn's sensors stored
+  at the example's output interval, in memory).  Per step: each side's
   own solve time over its steps (rancf: ``summary.json``; Exudyn: ``SolveDynamic``); set-up:
   process start to the first step (rancf: ``setup_wall_time_s``; Exudyn: imports and
   ``Assemble``); pairs interleaved (A B A B ...), the ratio taken pair by pair, median quoted.
@@ -121,11 +122,13 @@ def _pairs(fa: Any, fb: Any, repeats: int) -> dict[str, Any]:
     }
 
 
-EXUDYN = {  # example -> (script, its arguments: the example's size, step, rho_inf, t_end)
+EXUDYN = {  # example -> (script, its arguments: the example's size, step, output, t_end, rho_inf)
     "slider-crank": ("exudyn_slider_crank.py",
-                     ["--elements", "8", "--step", "2e-5", "--t-end", "0.2", "--rho-inf", "0.9"]),
+                     ["--elements", "8", "--step", "2e-5", "--output-step", "1e-3",
+                      "--t-end", "0.2", "--rho-inf", "0.9"]),
     "spin-up-beam": ("exudyn_spinup.py",
-                     ["--elements", "8", "--step", "1e-3", "--t-end", "20", "--rho-inf", "0.0"]),
+                     ["--elements", "8", "--step", "1e-3", "--output-step", "1e-2",
+                      "--t-end", "20", "--rho-inf", "0.0"]),
 }  # fmt: skip
 
 

@@ -27,14 +27,16 @@ def test_benchmark_runner_quick(tmp_path):
     assert "simulate pendulum 8 el" in p.stdout
     data = json.loads((tmp_path / "bench.json").read_text())
     rows = {r["case"]: r for r in data["rows"]}
-    full_row = rows["simulate pendulum 8 el (full Newton)"]
+    full_row = rows["simulate pendulum 8 el (full Newton, output every 0.01 s)"]
     assert full_row["rancf_us_per_step"] > 0
     assert full_row["rancf_process_s"] > full_row["rancf_us_per_step"] * 1e-6 * full_row["steps"]
     assert (tmp_path / "bench.csv").read_text().startswith("case,")
-    # speed never changes the answer: full and modified Newton give the same tip
+    # speed never changes the answer: full and chord (the default) Newton give the same tip
     full = full_row["rancf_tip"]
-    mod = rows["simulate pendulum 8 el (modified Newton)"]["rancf_tip"]
-    assert abs(full[0] - mod[0]) < 1e-8 and abs(full[1] - mod[1]) < 1e-8
+    chord = rows["simulate pendulum 8 el (default Newton, output every 0.01 s)"]["rancf_tip"]
+    assert abs(full[0] - chord[0]) < 1e-8 and abs(full[1] - chord[1]) < 1e-8
+    every = rows["simulate pendulum 8 el (default Newton, output every step)"]
+    assert every["rancf_tip"] == chord  # outputs do not change the run
     # contact (issue 20): the cable on the ground against the same cable hanging free
     ground = rows["contact: ground 100 el: lying vs hanging (B: hanging)"]
     assert ground["rancf_us_per_step"] > 0 and ground["hanging_us_per_step"] > 0

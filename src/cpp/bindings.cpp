@@ -103,11 +103,11 @@ NB_MODULE(_core, mod) {
       .def(
           "__init__",
           [](rancf::Scheme* s, double am, double af, double gamma, double beta, double damping,
-             double tol, int max_iter, bool modified) {
-            new (s) rancf::Scheme{am, af, gamma, beta, damping, tol, max_iter, modified};
+             double tol, int max_iter, bool modified, bool chord) {
+            new (s) rancf::Scheme{am, af, gamma, beta, damping, tol, max_iter, modified, chord};
           },
           nb::kw_only(), "alpha_m"_a, "alpha_f"_a, "gamma"_a, "beta"_a, "damping"_a, "tol"_a,
-          "max_iter"_a, "modified"_a)
+          "max_iter"_a, "modified"_a, "chord"_a = false)
       .def_ro("alpha_m", &rancf::Scheme::alpha_m)
       .def_ro("alpha_f", &rancf::Scheme::alpha_f)
       .def_ro("tol", &rancf::Scheme::tol)

@@ -154,15 +154,20 @@ void cable_forces(const Model& m, int el, const double* e, double* fe, double* k
     for (int kk = 0; kk < 4; ++kk)
       for (int i = 0; i < D; ++i) fe[kk * D + i] += w * (p[kk] * g[i] + r[kk] * g[D + i]);
     if (ke == nullptr) continue;
+    // K(kk i, l j) += X_kk(i, j) p_l + Y_kk(i, j) r_l with X_kk = w (p_kk h_aa + r_kk h_ba),
+    // Y_kk = w (p_kk h_ab + r_kk h_bb): the upper block triangle
     for (int kk = 0; kk < 4; ++kk) {
-      for (int l = kk; l < 4; ++l) {
-        const double c11 = w * p[kk] * p[l], c12 = w * p[kk] * r[l];
-        const double c21 = w * r[kk] * p[l], c22 = w * r[kk] * r[l];
+      const double wp = w * p[kk], wr = w * r[kk];
+      double x[D][D], y[D][D];
+      for (int i = 0; i < D; ++i)
+        for (int j = 0; j < D; ++j) {
+          x[i][j] = wp * h[i][j] + wr * h[D + i][j];
+          y[i][j] = wp * h[i][D + j] + wr * h[D + i][D + j];
+        }
+      for (int l = kk; l < 4; ++l)
         for (int i = 0; i < D; ++i)
           for (int j = 0; j < D; ++j)
-            ke[(kk * D + i) * N + l * D + j] +=
-                c11 * h[i][j] + c12 * h[i][D + j] + c21 * h[D + i][j] + c22 * h[D + i][D + j];
-      }
+            ke[(kk * D + i) * N + l * D + j] += x[i][j] * p[l] + y[i][j] * r[l];
     }
   }
   if (ke == nullptr) return;

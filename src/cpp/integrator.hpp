@@ -9,8 +9,9 @@
 //   F_in(y_{1-af}, v_{1-af}, a_{1-am}) = M_r(y_{1-af}) a_{1-am} + g(y_{1-af}, v_{1-af}) + c M_r v,
 // and after each step the twist rates are carried to the re-referenced triads (rereference_rates).
 // Newton with the Jacobian [(1 - am)/(beta h^2) + c (1 - af) gamma/(beta h)] M
-// + (1 - af) K_T(y_{1-af}) refreshed at every iteration (full Newton) or reused across
-// iterations and steps until the contraction slows (modified).
+// + (1 - af) K_T(y_{1-af}) refreshed at every iteration (full Newton), at the first iteration
+// of every step and reused for the step's further iterations while they contract (chord), or
+// reused across iterations and steps until the contraction slows (modified).
 #pragma once
 
 #include <cstdint>
@@ -28,6 +29,7 @@ struct Scheme {
   double tol = 1e-10;    ///< absolute tolerance on max |increment|
   int max_iter = 12;
   bool modified = false;  ///< modified Newton (reuse the factored Jacobian)
+  bool chord = false;     ///< a fresh Jacobian at each step's start, reused within the step
 };
 
 struct StepOutcome {

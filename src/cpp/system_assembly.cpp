@@ -158,7 +158,8 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
     g.assign(sz(nb), 0.0);
     BandView jac{nullptr, 0, 0, 0};
     if (lu != nullptr) jac = lu->block(static_cast<int>(b));
-    assemble(mod, yf + o, f.data(), lu != nullptr ? &jac : nullptr, tm.ck);
+    // no element tangents where they count zero times (the mass matrix of a = M^-1 F)
+    assemble(mod, yf + o, f.data(), lu != nullptr && tm.ck != 0.0 ? &jac : nullptr, tm.ck);
     external_force(mod, tm.tf, yf + o, g.data(), tm.amplitude);
     if (lu != nullptr && mod.loads.n_moment > 0)
       subtract_load_stiffness(mod, tm.tf, yf + o, jac, tm.ck * tm.load_factor, tm.amplitude);

@@ -24,7 +24,15 @@ SystemIntegrator::SystemIntegrator(const System& s, const Scheme& scheme)
       vf_(sz(s.n)),
       am_(sz(s.n)),
       r_(sz(s.n + s.m)),
-      dz_(sz(s.n + s.m)) {}
+      dz_(sz(s.n + s.m)) {
+  // no constraints, rigid bodies, rotary inertia or contact: [M G^T; G 0] is M, whatever the
+  // state (the element tangents count zero times in it)
+  mass_constant_ = s.m == 0 && s.rigid.empty() && s.contact == nullptr;
+  // contact switches within a step, where reused factors lead the iteration astray (rejected
+  // steps): chord is full Newton there
+  if (s.contact != nullptr) sc_.chord = false;
+  for (const Model* mod : s.flex) mass_constant_ = mass_constant_ && !has_rotary_inertia(*mod);
+}
 
 void SystemIntegrator::solve_negative() {
   // dz = -[A P; Q D]^-1 r: the border holds the multipliers (m) and the couplings' unknowns,
@@ -52,11 +60,14 @@ StepOutcome SystemIntegrator::step(const double* y0, const double* v0, const dou
   const int n = s_.n, m = s_.m;
   const double am = sc_.alpha_m, af = sc_.alpha_f, gamma = sc_.gamma, beta = sc_.beta;
   const double bh2 = beta * h * h;
-  if (h != lu_h_) {  // the factors depend on h
+  if (h != lu_h_ || sc_.chord) {  // the factors depend on h; chord: fresh at each step
     lu_valid_ = false;
     lu_h_ = h;
   }
-  const int max_iter = sc_.modified ? 3 * sc_.max_iter : sc_.max_iter;  // linear convergence
+  bool reuse = sc_.modified || sc_.chord;
+  // modified: linear convergence (old factors); chord: a fresh tangent at each step's start,
+  // and a slow contraction refreshes it, as many iterations as full Newton
+  const int max_iter = sc_.modified ? 3 * sc_.max_iter : sc_.max_iter;
   for (int i = 0; i < n; ++i) {
     base_[sz(i)] = y0[i] + h * v0[i] + h * h * (0.5 - beta) * a0[i];
     y1[i] = y0[i] + h * v0[i] + 0.5 * h * h * a0[i];
@@ -78,7 +89,8 @@ StepOutcome SystemIntegrator::step(const double* y0, const double* v0, const dou
       vf_[sz(i)] = (1.0 - af) * v1[i] + af * v0[i];
       am_[sz(i)] = (1.0 - am) * a1[i] + am * a0[i];
     }
-    const bool fresh = !sc_.modified || !lu_valid_;
+    const bool fresh = !reuse || !lu_valid_;
+    if (fresh) mass_factored_ = false;  // the assembly below writes into lu_
     if (!assemble_system(s_, yf_.data(), vf_.data(), am_.data(), l1, y1, terms, r_.data(),
                          fresh ? &lu_ : nullptr)) {
       lu_valid_ = false;
@@ -114,7 +126,15 @@ StepOutcome SystemIntegrator::step(const double* y0, const double* v0, const dou
       }
       return {true, it};
     }
-    if (sc_.modified && !fresh && norm > 0.25 * prev) lu_valid_ = false;  // slow: refresh
+    if (reuse && !fresh && norm > 0.25 * prev) {  // slow: refresh
+      lu_valid_ = false;
+      if (sc_.chord) {  // undo the chord increment, full Newton for the rest of the step: the
+        for (int i = 0; i < n; ++i) y1[i] -= dz_[sz(i)];  // path of full Newton (contact)
+        for (int i = 0; i < m; ++i) l1[i] -= dz_[sz(n + i)];
+        reuse = false;
+        continue;
+      }
+    }
     prev = norm;
   }
   lu_valid_ = false;
@@ -184,10 +204,15 @@ bool SystemIntegrator::initial_acceleration(const double* y, const double* v, do
     terms.contact_y1 = contact->contact_y1;
   }
   lu_valid_ = false;
-  if (!assemble_system(s_, y, v, known.data(), zero.data(), y, terms, r_.data(), &lu_))
+  const bool reuse = mass_constant_ && mass_factored_;  // the factors of M from an earlier call
+  if (!assemble_system(s_, y, v, known.data(), zero.data(), y, terms, r_.data(),
+                       reuse ? nullptr : &lu_))
     return false;
-  ++factorizations_;
-  if (!lu_.factor()) return false;
+  if (!reuse) {
+    ++factorizations_;
+    mass_factored_ = lu_.factor();
+    if (!mass_factored_) return false;
+  }
   // acceleration-level constraints: d2/ds2 g(y + s v + s^2/2 a_known, t + s) = c + G a_free = 0
   if (m > 0) {
     std::vector<double> yp(sz(n)), ym(sz(n)), gp(sz(m)), gm(sz(m)), g0(sz(m));
@@ -226,6 +251,7 @@ bool SystemIntegrator::factor_static(const double* y, const double* lam, double 
     zero = zero_.data();
     terms.ca = stab;
   }
+  mass_factored_ = false;
   if (!assemble_system(s_, y, zero, zero, lam, y, terms, r_.data(), &lu_)) return false;
   std::copy(r_.begin(), r_.end(), residual);
   ++factorizations_;

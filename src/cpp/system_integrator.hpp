@@ -62,6 +62,8 @@ class SystemIntegrator {
   Scheme sc_;
   BorderedLU lu_;
   bool lu_valid_ = false;
+  bool mass_constant_ = false;  // the matrix of initial_acceleration is M (constant): factored once
+  bool mass_factored_ = false;  // lu_ holds the factors of that matrix
   double lu_h_ = -1.0;
   long factorizations_ = 0;
   std::vector<double> base_, yf_, vf_, am_, r_, dz_, zb_, zero_;

@@ -49,7 +49,12 @@ class DynamicOptions:
     newton_tol : float
         Newton stops when ``max |Δy| <= newton_tol * size`` (size = model extent).
     max_newton : int
-    newton : {"full", "modified"}
+    newton : {"chord", "full", "modified"}
+        ``"chord"`` (default): the exact tangent is assembled and factored at the first iteration
+        of every step and reused for the step's further iterations (which then need the forces
+        only) while the increments shrink fast, else full Newton for the rest of the step
+        (systems with contact: full Newton); the answer is that of ``"full"`` to far below the
+        Newton tolerance.
         ``"full"``: the exact tangent is assembled and factored at every iteration.
         ``"modified"``: the factored Jacobian is reused across iterations and steps and refreshed
         from the exact tangent when the increments stop shrinking fast (the converged answer is
@@ -71,7 +76,7 @@ class DynamicOptions:
     output_step: float | None = None
     newton_tol: float = 1e-10
     max_newton: int = 12
-    newton: str = "full"
+    newton: str = "chord"
 
     def __post_init__(self) -> None:
         def positive(name: str, value: object, upper: float = np.inf, what: str = "") -> None:
@@ -100,8 +105,8 @@ class DynamicOptions:
             raise InputError(
                 "solver.max_newton", self.max_newton, f"an integer in [1, {MAX_NEWTON}]"
             )
-        if self.newton not in ("full", "modified"):
-            raise InputError("solver.newton", self.newton, 'one of "full", "modified"')
+        if self.newton not in ("full", "chord", "modified"):
+            raise InputError("solver.newton", self.newton, 'one of "full", "chord", "modified"')
         steps = self.t_end / self.step
         if not self.adaptive and steps > MAX_STEPS:
             raise InputError(

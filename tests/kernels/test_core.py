@@ -46,6 +46,31 @@ def test_band_solve_pivots_and_holds_fixed_entries(seed):
     assert np.abs(x - ref).max() <= 1e-11 * np.abs(ref).max()
 
 
+@pytest.mark.parametrize("ku", [3, 7, 11, 13])
+@pytest.mark.parametrize("shift", [4.0, -1.5, 0.0])
+def test_band_solve_symmetric_definite_and_indefinite(ku, shift):
+    # symmetric band matrices take the L D L^T path while their pivots are positive (shift 4:
+    # positive definite) and go to the pivoted LU at the first that is not (-1.5: indefinite;
+    # 0: a zero diagonal, where L D L^T fails at once); the answer is the same either way
+    rng = np.random.default_rng(ku)
+    n = 60
+    b = rng.normal(size=(n, n))
+    a = 0.5 * (b + b.T)
+    a[np.abs(np.subtract.outer(np.arange(n), np.arange(n))) > ku] = 0.0
+    a[np.arange(n), np.arange(n)] = 0.0
+    a += shift * np.eye(n) * (np.abs(a).sum(axis=1).max() if shift > 0 else 1.0)
+    fixed = np.zeros(n, dtype=np.uint8)
+    fixed[[0, 1, 30]] = 1
+    rhs = rng.normal(size=n)
+    x = rhs.copy()
+    assert _core.band_solve(_band(a, ku), x, fixed)
+    free = fixed == 0
+    ref = np.zeros(n)
+    ref[free] = np.linalg.solve(a[np.ix_(free, free)], rhs[free])
+    assert np.abs(x - ref).max() <= 1e-10 * np.abs(ref).max()
+    assert np.all(x[fixed == 1] == 0.0)
+
+
 def test_band_solve_reports_a_singular_matrix():
     ab = _band(np.zeros((6, 6)), 1)
     assert not _core.band_solve(ab, np.ones(6), np.zeros(6, dtype=np.uint8))
@@ -63,10 +88,26 @@ def _pendulum(n_el=8, **kw):
     )
 
 
+def test_chord_newton_is_full_newton_to_far_below_the_tolerance():
+    # chord (the default): one exact tangent a step, the step's further iterations on its
+    # factors; the soft pendulum's 20 % strain makes the tangent change within a step
+    m = _pendulum()
+    base = dict(t_end=0.3, step=1e-3, output_step=0.05)
+    full = integrate(m, DynamicOptions(newton="full", **base))
+    chord = integrate(m, DynamicOptions(**base))
+    assert DynamicOptions(**base).newton == "chord"
+    assert full.n_factorizations == full.n_newton + 1  # the mass matrix's at t = 0
+    assert chord.n_factorizations < 0.75 * full.n_factorizations
+    assert chord.n_factorizations >= chord.n_steps
+    assert chord.n_rejected == full.n_rejected == 0
+    tol = 1e-10 * 1.2  # newton_tol times the model size
+    assert np.abs(chord.q - full.q).max() < 1e-3 * tol
+
+
 def test_modified_newton_gives_the_same_answer():
     m = _pendulum()
     base = dict(t_end=0.3, step=1e-3, output_step=0.05)
-    full = integrate(m, DynamicOptions(**base))
+    full = integrate(m, DynamicOptions(newton="full", **base))
     mod = integrate(m, DynamicOptions(newton="modified", **base))
     assert mod.n_factorizations < 0.1 * full.n_factorizations
     assert mod.n_rejected == 0
@@ -141,3 +182,22 @@ def test_core_sources_are_formatted():
         text=True,
     )
     assert p.returncode == 0, p.stderr[:2000]
+
+
+def test_consistent_acceleration_with_kept_mass_factors_is_a_fresh_one():
+    # outputs ask for M a = F at state after state: the mass matrix's factors are kept from the
+    # first call (constant M: no joints, rigid bodies, rotary inertia or contact); every later
+    # answer is that of a new integrator, which factors M again
+    m = _pendulum(4)
+    integ = GeneralizedAlpha(m, 0.9, 1e-10, 12)
+    sys_ = integ.system
+    rng = np.random.default_rng(3)
+    first = integ.initial_acceleration(sys_.y0.copy(), np.zeros(sys_.n), 0.0)
+    assert np.all(np.isfinite(first))
+    for k in range(3):
+        y = sys_.y0 + 1e-3 * rng.normal(size=sys_.n)
+        v = rng.normal(size=sys_.n)
+        kept = integ.initial_acceleration(y, v, 0.1 * k)
+        fresh = GeneralizedAlpha(m, 0.9, 1e-10, 12).initial_acceleration(y, v, 0.1 * k)
+        assert np.abs(kept - fresh).max() <= 1e-12 * np.abs(fresh).max()
+    assert integ.n_factorizations == 1

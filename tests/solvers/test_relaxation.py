@@ -148,3 +148,23 @@ def test_a_pendulum_without_its_pin_has_no_equilibrium_and_says_so_in_one_line(t
     err = capsys.readouterr().err.strip()
     assert "\n" not in err
     assert "no equilibrium" in err and "add a support" in err and "load factor 0" in err
+
+
+def test_a_mechanism_is_recognised_at_its_reference(tmp_path):
+    """The stiffness the loads meet at the reference (the Rayleigh quotient of the linear
+    response) is below round-off for the horizontal pendulum, and above it for a tension-free
+    straight cable (its bending stiffness) and for a clamped cantilever: the pendulum's path
+    goes to relaxation directly (the static answer, hanging, whatever the factorization's
+    round-off), the others follow the load path."""
+    from rancf.system import as_system
+    from tests.solvers.test_equilibrium import ssnl114_model
+
+    f, g = tmp_path / "pendulum.toml", tmp_path / "cantilever.toml"
+    f.write_text(PENDULUM)
+    g.write_text(PENDULUM.replace('kind = "pin"', 'kind = "clamp"'))
+    pendulum = SystemEquilibrium(load_scenario(f).build_system())
+    assert pendulum.mechanism(pendulum.start())
+    for system in (as_system(ssnl114_model(8)), load_scenario(g).build_system()):
+        problem = SystemEquilibrium(system)
+        assert not problem.mechanism(problem.start())
+    assert solve_static(load_scenario(g).build_system()).method == "load"

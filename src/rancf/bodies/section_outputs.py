@@ -110,9 +110,17 @@ class SectionSampler:
     def values(self, y: NDArray) -> NDArray[np.float64]:
         """``(n_points, len(section_names))`` at model coordinates ``y`` (rods: with the nodal
         triads the model holds, i.e. those the solvers carried to ``y``)."""
+        return self.from_raw(self.raw(y))
+
+    def raw(self, y: NDArray) -> NDArray[np.float64]:
+        """Strain and curvatures ``(n_points, 2 or 4)`` at ``y`` (the first columns of
+        :meth:`values`; :meth:`from_raw` makes the rest)."""
+        return self._raw(y)
+
+    def from_raw(self, raw: NDArray) -> NDArray[np.float64]:
+        """:meth:`values` from :meth:`raw`, for one state or a stack ``(..., n_points, w)``."""
         m = self.model
-        raw = self._raw(y)
-        eps, kappa = raw[:, 0], raw[:, 1:]
+        eps, kappa = raw[..., 0], raw[..., 1:]
         stretch = np.sqrt(np.clip(1.0 + 2.0 * eps, 0.0, None))
         if m.element == "beam":  # per reference length already
             moments = kappa * m.props.ei
@@ -120,9 +128,9 @@ class SectionSampler:
         else:
             st = section_stiffness(m)
             c = np.array([st.gj, st.ei2, st.ei3]) if m.element == "rod" else np.array([st.ei])
-            moments = c * (kappa - self._k0) / stretch[:, None]
-            force = m.props.ea * eps * stretch - np.sum(moments * kappa, axis=1)
-        return np.column_stack([eps, force, kappa, moments])
+            moments = c * (kappa - self._k0) / stretch[..., None]
+            force = m.props.ea * eps * stretch - np.sum(moments * kappa, axis=-1)
+        return np.concatenate([eps[..., None], force[..., None], kappa, moments], axis=-1)
 
 
 def _arc_lengths(mesh: object, xi: NDArray, n_gauss: int = 12) -> tuple[NDArray, NDArray]:

@@ -20,15 +20,23 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
         check_scheduler(args.scheduler)
     if args.workers is not None and args.workers < 1:
         raise InputError("--workers", args.workers, "an integer >= 1")
+    if args.threads is not None and args.threads < 1:
+        raise InputError("--threads", args.threads, "an integer >= 1")
+    if args.threads is not None and (args.scheduler or args.workers):
+        raise InputError("--threads", args.threads, "without --scheduler and --workers (Dask's)")
     od = OutputDir(args.out, kind="sweep")
     spec = load_sweep(args.sweep)
     with od:
         try:
-            rep = run_sweep(spec, od.path, args.scheduler, args.workers, not args.quiet)
+            rep = run_sweep(
+                spec, od.path, args.scheduler, args.workers, not args.quiet, args.threads
+            )
         finally:
             if (od.path / "results.csv").is_file():
                 od.keep()  # the runs done so far stay, also after an interrupt
     where = args.scheduler or f"a local cluster of {args.workers or 'all'} worker(s)"
+    if args.threads is not None:
+        where = f"{args.threads} thread(s) of this process"
     print(
         f"{rep.total} run(s): {rep.skipped} already finished, {rep.ran} run on {where}, "
         f"{rep.failed} failed -> {rep.csv_path}"
@@ -52,6 +60,12 @@ def add_parsers(sub: Any) -> None:
     )
     s.add_argument(
         "--workers", type=int, default=None, help="local worker processes (default: cores)"
+    )
+    s.add_argument(
+        "--threads",
+        type=int,
+        default=None,
+        help="run on N threads of this process instead of Dask (one model a run)",
     )
     s.add_argument("--quiet", action="store_true", help="no progress bar")
     s.set_defaults(func=_cmd_sweep)

@@ -19,7 +19,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.special
 from numpy.typing import ArrayLike, NDArray
 
 from rancf.errors import InputError
@@ -121,11 +120,15 @@ class Ellipse:
 
     def perimeter(self) -> float:
         """``4 max(a, b) E(m)`` (module docstring)."""
+        import scipy.special  # here, not at import: 0.1 s of every command's start-up
+
         big, m, _ = self._elliptic()
         return float(4.0 * big * scipy.special.ellipe(m))
 
     def arc_length(self, t: ArrayLike) -> NDArray[np.float64]:
         """Arc length from ``t = 0`` to ``t`` (signed, any real ``t``)."""
+        import scipy.special
+
         big, m, wide = self._elliptic()
         t = np.asarray(t, dtype=float)
         if wide:

@@ -44,16 +44,17 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass
-from typing import Literal
+from typing import TYPE_CHECKING, Literal
 
 import numpy as np
-import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 
 from rancf.errors import InputError
 from rancf.mesh.mesh import CableMesh
 from rancf.mesh.spline_basis import G2_RTOL, conditions, element_ends, scalar_basis
+
+if TYPE_CHECKING:  # scipy.sparse is imported where a C2 mesh needs it (0.1 s at start-up)
+    import scipy.sparse as sp
 
 __all__ = [
     "Continuity",
@@ -119,6 +120,8 @@ class Reduction:
     def y_from_q(self, q: NDArray) -> NDArray[np.float64]:
         """Least-squares ``y`` with ``T y ≈ q`` (exact for ``q`` in the C² space)."""
         if not hasattr(self, "_lu"):
+            import scipy.sparse.linalg as spla
+
             tr = self.t[:, : self.n_real].tocsc()
             object.__setattr__(self, "_lu", spla.splu((tr.T @ tr).tocsc()))
         q = np.asarray(q, dtype=float)
@@ -158,6 +161,9 @@ def reduction(
     InputError
         Naming ``mesh.continuity`` if the reference is not in the C² space.
     """
+    import scipy.sparse as sp
+    import scipy.sparse.linalg as spla
+
     d, n_el, nn = mesh.dim, mesh.n_elements, mesh.n_nodes
     _, smooth = conditions(mesh)
     c1 = {0, n_el} | {int(k) for k in c1_nodes} | {k + 1 for k in np.flatnonzero(~smooth)}
@@ -301,6 +307,8 @@ def rotated(red: Reduction, rotations: list[tuple[int, NDArray]], dim: int) -> R
     ``R`` block diagonal (``z[o : o + dim] = basis y[o : o + dim]``, as for C¹ models)."""
     if not rotations:
         return red
+    import scipy.sparse as sp
+
     n = red.n_y
     r = sp.lil_matrix((n, n))
     r.setdiag(1.0)

@@ -55,8 +55,10 @@ class SolverTable(Table):
     )
     newton_tol: Positive = Field(1e-10, description="Newton: max |increment| / model size")
     max_newton: integer(ge=1, le=MAX_NEWTON) = Field(12, description="Newton iterations per step")
-    newton: Literal["full", "modified"] = Field(
-        "full", description='"full" (exact tangent every iteration) | "modified" (reuse it)'
+    newton: Literal["chord", "full", "modified"] = Field(
+        "chord",
+        description='"chord" (exact tangent at each step\'s first iteration, reused within the '
+        'step) | "full" (exact tangent every iteration) | "modified" (reused across steps)',
     )
     static_method: Literal["load", "arc_length"] = Field(
         "load",

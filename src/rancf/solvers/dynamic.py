@@ -52,7 +52,7 @@ class GeneralizedAlpha:
         rho_inf: float,
         newton_tol: float,
         max_newton: int,
-        newton: str = "full",
+        newton: str = "chord",
     ) -> None:
         self.system = as_system(model)
         r = rho_inf
@@ -74,6 +74,7 @@ class GeneralizedAlpha:
             tol=self.tol,
             max_iter=int(max_newton),
             modified=newton == "modified",
+            chord=newton == "chord",
         )
         self._core = _core.SystemIntegrator(self.system.core, scheme)
 
@@ -298,6 +299,8 @@ def integrate(
     fast = not o.adaptive and per_out >= 1 and abs(ratio - per_out) < 1e-9
     # outputs per compiled call: ~1 % of the run, at most ~16 MB of stored states per array
     chunk_out = int(np.clip(n_grid // 100, 1, max(1, (1 << 21) // system.n)))
+    if on_output is None and should_stop is None and sink is None:  # nobody to tell: fewer calls
+        chunk_out = max(1, (1 << 21) // system.n)
     if rod:  # the triads at a call's end are those of its one stored state
         chunk_out = 1
 

@@ -69,10 +69,16 @@ class RelaxationOutcome:
 
 
 def relax(
-    problem: SystemEquilibrium, z: NDArray, p: float, tol: float, max_iter: int
-) -> RelaxationOutcome:
+    problem: SystemEquilibrium, z: NDArray, p: float, tol: float, max_iter: int,
+    polish_at_start: bool = True,
+) -> RelaxationOutcome:  # fmt: skip
     """Follow ``M dz/dτ = -r(z, p)`` from ``z`` to rest, then polish by Newton (module
-    docstring).  ``z`` is not modified; the supports are placed at ``p``."""
+    docstring).  ``z`` is not modified; the supports are placed at ``p``.
+
+    ``polish_at_start``: Newton's first try is at ``z`` (where a load path stalled: the
+    equilibrium may be near); False: only once the residual has fallen by
+    :data:`POLISH_DROP` (a mechanism's reference, whose tangent is singular: Newton's step
+    there is round-off's)."""
     z = np.array(z, dtype=float)
     problem.place_supports(z, p)
     start = z.copy()
@@ -85,7 +91,7 @@ def relax(
     rate = FIRST_RATE * problem.stiffness_scale(z)  # 1/Δτ
     r = problem.residual(z, p)
     norm = balance(r)
-    tried = np.inf  # the residual at the last Newton try
+    tried = np.inf if polish_at_start else norm  # the residual at the last Newton try
     steps = iterations = factorizations = residuals = 0
     for _ in range(4 * MAX_STEPS):
         if norm <= POLISH_DROP * tried or not norm > 0.0:

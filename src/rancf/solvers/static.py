@@ -19,10 +19,13 @@ installed places.  Each stage is followed by one of two methods (``method``):
   the iterations of the last step; the last step is corrected back to exactly the end of the
   stage.
 
-When the method cannot start or stalls (a mechanism under gravity: a pinned pendulum released
-from its reference; a slack rope whose reference is far from its sag), the stage is finished by
-pseudo-transient continuation at its end (:func:`rancf.solvers.relaxation.relax`: the state
-follows the physics to rest, then Newton polishes it), from the last converged state; the
+A structure that is a mechanism at its reference, where the loads meet no stiffness
+(:meth:`~rancf.solvers.system_equilibrium.SystemEquilibrium.mechanism`: a pinned pendulum drawn
+horizontal under gravity), gives the load path nothing to start from: its loads stage goes to
+relaxation directly.  When the method cannot start or stalls (a slack rope whose reference is
+far from its sag), the stage is finished by pseudo-transient continuation at its end
+(:func:`rancf.solvers.relaxation.relax`: the state follows the physics to rest, then Newton
+polishes it), from the last converged state; the
 result's ``method`` is then ``"relaxation+newton"``.  When that fails too (a body with no
 equilibrium at all), :class:`~rancf.errors.ConvergenceError` carries the load factor reached,
 and every converged step has been passed to ``on_step`` (the command line keeps them).
@@ -130,6 +133,10 @@ def solve_static(
     for stage, (_, end) in enumerate(problem.stages):
         problem.stage = stage
         path.prev = None  # no predictor across the stages' kink
+        if stage == 0 and problem.mechanism(path.y):
+            _relax(problem, path, end, tol, max_iter, None)
+            used = RELAXED
+            continue
         try:
             if method == "load":
                 _load_control(problem, path, end, 1.0 / load_steps, tol, max_iter)
@@ -155,10 +162,11 @@ def solve_static(
 
 def _relax(
     problem: SystemEquilibrium, path: PathState, end: float, tol: float, max_iter: int,
-    failed: ConvergenceError,
+    failed: ConvergenceError | None,
 ) -> None:  # fmt: skip
-    """Finish a stage the path method gave up on by relaxation at its end (module docstring)."""
-    out = relax(problem, path.y, end, tol, max_iter)
+    """Finish a stage the path method gave up on (``failed``; None: a mechanism at its reference,
+    the path not tried) by relaxation at its end (module docstring)."""
+    out = relax(problem, path.y, end, tol, max_iter, polish_at_start=failed is not None)
     path.count(out.newton_iterations, out.residuals)
     path.n_relax += out.steps
     path.n_relax_factorizations += out.factorizations - out.newton_iterations

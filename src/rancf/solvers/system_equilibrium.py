@@ -169,20 +169,45 @@ class SystemEquilibrium:
 
     def _stiffness_scale(self, z: NDArray) -> float:
         """The largest ratio of the diagonals of the tangent and the mass (free coordinates)."""
-        y, lam, free = z[: self.n], z[self.n :], ~self.system.fixed
-        diag = []
-        for ck, ca in ((1.0, 0.0), (0.0, 1.0)):
-            zero = np.zeros(self.n)
-            _, _, rows, cols, vals = self.system.core.sparse_jacobian(
-                y, zero, zero, lam, self._t, ck, 0.0, ca, ca != 0.0
-            )
-            d = np.zeros(self.n)
-            rows, cols, vals = np.asarray(rows), np.asarray(cols), np.asarray(vals)
-            on = (rows == cols) & (rows < self.n)
-            np.add.at(d, rows[on], vals[on])
-            diag.append(np.abs(d[free]))
-        k, m = diag
+        k, m = self._diagonal(z, 1.0, 0.0), self._diagonal(z, 0.0, 1.0)
         return float(np.max(k[m > 0] / m[m > 0])) if np.any(m > 0) else 1.0
+
+    def _diagonal(self, z: NDArray, ck: float, ca: float) -> NDArray[np.float64]:
+        """``|diag(ck K + ca M)|`` on the free coordinates at ``z`` (loads at their full value)."""
+        y, lam, zero = z[: self.n], z[self.n :], np.zeros(self.n)
+        _, _, rows, cols, vals = self.system.core.sparse_jacobian(
+            y, zero, zero, lam, self._t, ck, 0.0, ca, ca != 0.0
+        )
+        d = np.zeros(self.n)
+        rows, cols, vals = np.asarray(rows), np.asarray(cols), np.asarray(vals)
+        on = (rows == cols) & (rows < self.n)
+        np.add.at(d, rows[on], vals[on])
+        return np.abs(d[~self.system.fixed])
+
+    def mechanism(self, z: NDArray) -> bool:
+        """Whether the structure at ``z`` (the reference, no load) is a mechanism the loads move:
+        the stiffness the loads meet there, the Rayleigh quotient ``ρ = xᵀK₀x / xᵀx = fᵀx / xᵀx``
+        of the linear response ``K₀ x = f`` (``K₀`` the tangent at load factor 0 with the
+        joints' constraints, ``f`` the load vector), is below round-off of the stiffest
+        coordinate: ``ρ <= ε max|diag K₀|``, ``ε`` the machine precision.  A pendulum pinned at
+        one end and drawn horizontal meets ``ρ ≈ 1e-20 max|diag K₀|`` (its swing has no
+        stiffness there: ``K₀`` is singular and ``x`` round-off's); a tension-free straight
+        cable, whose transverse stiffness is its bending stiffness alone, ``6e-13``.  A tangent
+        that cannot be factored is a mechanism too; loads that do no work (``f = 0``) are not
+        moved by one."""
+        _, ok = self.tangent(z, 0.0)
+        if not ok:
+            return True
+        f = self.load_vector(z, ok)
+        x = self.solve(ok, f)
+        if x is None:
+            return True
+        fy, xy = f[: self.n], x[: self.n]
+        xx = float(xy @ xy)
+        if xx == 0.0:
+            return False
+        kmax = float(np.max(self._diagonal(z, 1.0, 0.0), initial=0.0))
+        return float(fy @ xy) / xx <= np.finfo(float).eps * kmax
 
     def solve(self, ok: bool, rhs: NDArray) -> NDArray[np.float64] | None:
         """The last factored Jacobian's solution of ``rhs`` (None if it was singular)."""

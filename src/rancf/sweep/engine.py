@@ -306,8 +306,12 @@ def run_sweep(
     scheduler: str | None = None,
     workers: int | None = None,
     progress: bool = True,
+    threads: int | None = None,
 ) -> SweepReport:
-    """Run every variant not finished yet; write ``out/runs/<name>/`` and ``out/results.csv``."""
+    """Run every variant not finished yet; write ``out/runs/<name>/`` and ``out/results.csv``.
+
+    ``threads``: run them on that many threads of this process
+    (:class:`~rancf.sweep.threads.ThreadExecutor`) instead of on Dask."""
     out = Path(out)
     variants = spec.variants()
     finished = (
@@ -315,6 +319,12 @@ def run_sweep(
     )
     if len(finished) == len(variants):
         rows = run_variants(LocalExecutor(), variants, spec.base, spec.analysis, out, progress)
+    elif threads is not None:
+        from rancf.sweep.threads import ThreadExecutor
+
+        rows = run_variants(
+            ThreadExecutor(threads), variants, spec.base, spec.analysis, out, progress
+        )
     else:
         try:
             with dask_client(scheduler, workers) as client:

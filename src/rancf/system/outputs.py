@@ -192,6 +192,7 @@ class SystemOutputs:
             "eb": np.empty((k, 3 * len(self.flex) if per_body else 0)),
         }
         res = np.empty(s.n + s.m)
+        raws: dict[str, list[NDArray]] = {name: [] for name, _ in self.flex}
         with self._triads() as set_row:
             for i in range(k):
                 y = s.y_from_q(q[i])
@@ -211,9 +212,12 @@ class SystemOutputs:
                 out["a"][i], out["lam"][i] = s.q_from_y(a), li
                 vc = None if static else vy  # friction from the velocities
                 out["r"][i] = self._reactions(y, res[: s.n], float(t[i]), li, vc, step)
-                out["s"][i] = self._along(y, float(t[i]))
+                for name, _ in self.flex:  # the sections' numbers for all rows at once below
+                    raws[name].append(self.samplers[name].raw(y[s.body_slice(name)]))
                 if per_body:
                     out["eb"][i] = self._body_energies(y, vy)
+        if k:
+            out["s"] = self._along(raws, t)
         out["c"] = self.sensors.values(t, q, v, out, energy)
         return out
 
@@ -290,15 +294,17 @@ class SystemOutputs:
             parts += [b.kinetic_energy(v[sl], yb), b.strain_energy(yb), b.gravity_energy(yb)]
         return np.array(parts)
 
-    def _along(self, y: NDArray, t: float) -> NDArray:
+    def _along(self, raws: dict[str, list[NDArray]], t: NDArray) -> NDArray:
+        """Section values ``(k, n_along)`` of k rows from their strains and curvatures."""
         parts = []
         for name, _ in self.flex:
-            vals = self.samplers[name].values(y[self.system.body_slice(name)])
-            strain = float(np.max(np.abs(vals[:, 0])))
-            if strain > self.largest_strain[0]:  # NaN (a diverged state) is never larger
-                self.largest_strain = (strain, t)
-            parts.append(vals.ravel())
-        return np.concatenate(parts) if parts else np.empty(0)
+            vals = self.samplers[name].from_raw(np.stack(raws[name]))  # (k, n_points, names)
+            strain = np.max(np.abs(vals[:, :, 0]), axis=1)
+            for i in range(strain.size):  # NaN (a diverged state) is never larger
+                if strain[i] > self.largest_strain[0]:
+                    self.largest_strain = (float(strain[i]), float(t[i]))
+            parts.append(vals.reshape(vals.shape[0], -1))
+        return np.concatenate(parts, axis=1) if parts else np.empty((t.size, 0))
 
     def body_along(self, along: NDArray, name: str) -> NDArray[np.float64]:
         """One flexible body's section values ``(k, n_points, n_names)`` of rows ``along``."""
