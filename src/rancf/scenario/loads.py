@@ -46,21 +46,10 @@ from rancf.scenario.base import (
 from rancf.scenario.table_files import ROWS_SCHEMA, table_rows
 
 __all__ = [
-    "DistributedLoadTable",
-    "TableFunction",
-    "RampFunction",
-    "HarmonicFunction",
-    "SpinUpFunction",
-    "TimeFunctionValue",
-    "time_function",
-    "time_size",
-    "SupportTable",
-    "PointLoadTable",
-    "LoadsTable",
-    "DampingTable",
-    "InitialVelocityTable",
-    "InitialMotionTable",
-]
+    "DistributedLoadTable", "TableFunction", "RampFunction", "HarmonicFunction", "SpinUpFunction",
+    "TimeFunctionValue", "time_function", "time_size", "SupportTable", "PointLoadTable",
+    "LoadsTable", "DampingTable", "InitialVelocityTable", "InitialMotionTable",
+]  # fmt: skip
 
 Amount = number_or_vector(1, 2, 3)
 

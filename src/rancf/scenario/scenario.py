@@ -13,16 +13,16 @@ naming the file (``<scenario>`` for one built in Python) and the key
 
 from __future__ import annotations
 
-import tomllib
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from pydantic import Field, PrivateAttr, ValidationError, ValidationInfo, model_validator
 
 from rancf.errors import ScenarioError
-from rancf.scenario.base import Name, NonNegative, Table, integer, shorten
+from rancf.scenario.base import Name, NonNegative, Table, integer
 from rancf.scenario.bodies import Body
 from rancf.scenario.checks import check_scenario
+from rancf.scenario.files import deferred_interrupts, read_toml, write_atomic
 from rancf.scenario.fluid import FluidTable, HydroTable
 from rancf.scenario.geometry import GEOMETRY_KEYS, CadGeometry, Geometry, MeshTable
 from rancf.scenario.joints import JointTable, SpringTable
@@ -219,14 +219,15 @@ class Scenario(Table):
         """Validate a scenario given as a dictionary (the parsed TOML); ``path`` names it in
         errors and is where relative CAD files are found."""
         try:
-            return cls.model_validate(raw, context={"path": path})
+            with deferred_interrupts():  # Ctrl-C in a validator would be lost in pydantic-core
+                return cls.model_validate(raw, context={"path": path})
         except ValidationError as exc:
             raise scenario_error(exc, path) from None
 
     @classmethod
     def from_toml(cls, path: str | Path) -> Scenario:
         """Read and validate a TOML scenario file."""
-        return cls.from_dict(_read_toml(Path(path)), str(path))
+        return cls.from_dict(read_toml(Path(path)), str(path))
 
     def to_dict(self) -> dict[str, Any]:
         """The scenario as a file holds it: the keys given (defaults left out), TIME_FUNCTIONs
@@ -258,7 +259,7 @@ class Scenario(Table):
     def save(self, path: str | Path) -> None:
         """Write the scenario to ``path`` as TOML (atomically: a complete file or none)."""
         p = Path(path)
-        _write_atomic(p, self.to_toml(p.resolve().parent))
+        write_atomic(p, self.to_toml(p.resolve().parent))
 
     def _time_functions(self) -> list[tuple[str, Any]]:
         out = [(f"supports[{i}].motion", s.motion) for i, s in enumerate(self.supports)]
@@ -357,47 +358,6 @@ def _record(s: SensorTable, bodies: dict[str, Any] | None) -> Sensor:
     if bodies is not None:
         return s.record()
     return s.record(tuple(int(_node_or_text(p, True)) for p in s.places()))
-
-
-def _shipped(name: str) -> bool:
-    """Whether ``name`` is a shipped example scenario (``rancf example list``)."""
-    from importlib import resources
-
-    return resources.files("rancf.examples").joinpath(f"{name}.toml").is_file()
-
-
-def _read_toml(p: Path) -> dict[str, Any]:
-    try:
-        data = p.read_bytes()
-    except OSError as exc:
-        hint = ""
-        if not p.exists() and p.suffix == "" and _shipped(p.name):
-            hint = f" (a shipped scenario: `rancf example copy {p.name} .` writes {p.name}.toml)"
-        raise ScenarioError(str(p), "file", f"cannot be read: {exc.strerror}{hint}") from None
-    try:
-        text = data.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        line = data[: exc.start].count(b"\n") + 1
-        raise ScenarioError(str(p), "file", f"is not UTF-8 text (byte {exc.start}, line {line}); "
-                            "save it as UTF-8") from None  # fmt: skip
-    try:
-        return tomllib.loads(text)
-    except RecursionError:
-        raise ScenarioError(str(p), "file", "is nested too deeply (arrays or tables within each "
-                            "other)") from None  # fmt: skip
-    except ValueError as exc:  # TOMLDecodeError, or an integer of more than 4300 digits
-        raise ScenarioError(str(p), "file", f"is not valid TOML: {shorten(str(exc))}") from None
-
-
-def _write_atomic(path: Path, text: str) -> None:
-    """Write ``text`` atomically with the umask's mode (:func:`rancf.atomic.atomic_write`);
-    errors name the file."""
-    from rancf.atomic import atomic_write
-
-    try:
-        atomic_write(path, text)
-    except OSError as exc:
-        raise ScenarioError(str(path), "file", f"cannot be written: {exc.strerror}") from None
 
 
 def load_scenario(path: str | Path) -> Scenario:
