@@ -196,19 +196,25 @@ class LoadPath:
 
 
 def write_static_run(
-    out: str | Path, path: LoadPath, sensors: Sequence[Any], summary: dict[str, Any]
+    out: str | Path,
+    path: LoadPath,
+    sensors: Sequence[Any],
+    summary: dict[str, Any],
+    outputs: SystemOutputs | None = None,
 ) -> dict[str, Any]:
     """Write a static load path as a run directory (``rancf static --out``, static sweeps).
 
     The files are those of a dynamic run with the load factor ``λ`` in place of the time
     (``t`` of ``results.npz`` and the CSV files; ``summary.json`` has ``"analysis": "static"``),
     zero velocities and kinetic energy, so ``export``, ``plot`` and ``animate`` read it.
+    ``outputs``: the caller's outputs of ``sensors`` on the load path's system, if it has them.
     Returns the summary written.
     """
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     s = path.system
-    outputs = system_outputs(s, sensors, path.labels)
+    if outputs is None:
+        outputs = system_outputs(s, sensors, path.labels)
     t = np.array([st[0] for st in path.steps], dtype=float)
     ys = np.array([st[1] for st in path.steps], dtype=float)
     q = s.q_from_y(ys)

@@ -51,6 +51,7 @@ def run_static(
     system = sc.build_system()
     labels = support_labels(sc)
     path = LoadPath(system, labels)
+    outputs = SystemOutputs(system, sc.sensors, labels)  # the run folder's and the full loads'
     doc = None
     keys = dict(info or {})
     try:
@@ -65,10 +66,9 @@ def run_static(
         raise
     finally:
         if folder is not None and path.steps:  # what converged is kept
-            doc = write_static_run(folder, path, sc.sensors, keys)
+            doc = write_static_run(folder, path, sc.sensors, keys, outputs)
             if on_written is not None:
                 on_written(doc)
-    outputs = SystemOutputs(system, sc.sensors, labels)
     names, vals = sensor_table(outputs, sc.sensors, res.q, static=True,
                                t=res.load_factors[-1:], lam=res.lam[None])  # fmt: skip
     sensors = dict(zip(names, map(float, vals[0]), strict=True))
