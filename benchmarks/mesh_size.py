@@ -10,9 +10,10 @@ time of each (median of ``--repeats``) and the CPU. The exactness of such a mesh
 from __future__ import annotations
 
 import argparse
-import platform
 import statistics
 import time
+
+from mooring.provenance import machine  # benchmarks/ is the script's folder
 
 from rancf.geometry.conic import conic_arc
 from rancf.mesh.factories import mesh_conic
@@ -21,24 +22,12 @@ from rancf.mesh.factories import mesh_conic
 EXAMPLE1 = (0.5, (30.0, 40.0), (0.315, 0.077))
 
 
-def cpu_name() -> str:
-    """The CPU's model name (Linux), else the platform's processor string."""
-    try:
-        with open("/proc/cpuinfo", encoding="utf-8") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or "unknown CPU"
-
-
 def main(argv: list[str] | None = None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--repeats", type=int, default=3)
     args = ap.parse_args(argv)
     c = conic_arc(*EXAMPLE1)
-    print(f"meshing a conic arc on {cpu_name()}")
+    print(f"meshing a conic arc; {machine()}")
     for n in (1_000, 10_000, 100_000):
         times = []
         for _ in range(args.repeats):
