@@ -21,7 +21,6 @@ and keeps everything computed up to then.
 
 from __future__ import annotations
 
-import math
 import time
 from collections.abc import Callable
 
@@ -201,9 +200,6 @@ def integrate(
     fast = not o.adaptive and per_out >= 1 and abs(ratio - per_out) < 1e-9
     # outputs per compiled call: ~1 % of the run, at most ~16 MB of stored states per array
     chunk_out = int(np.clip(n_grid // 100, 1, max(1, (1 << 21) // system.n)))
-    # where a call ends shifts the step times by round-off: calls end after CALL_SECONDS only
-    # when someone polls, so that a run without callbacks gives the same answer at any load
-    poll = CALL_SECONDS if (on_output is not None or should_stop is not None) else math.inf
     if rod:  # the triads at a call's end are those of its one stored state
         chunk_out = 1
 
@@ -227,7 +223,7 @@ def integrate(
                 n_chunk * per_out - within,
                 per_out,
                 within,
-                poll,
+                CALL_SECONDS,  # the step times do not depend on where a call ends
                 lam,
                 out_dt,
                 k_out,
