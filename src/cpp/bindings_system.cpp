@@ -427,6 +427,24 @@ void bind_system(nb::module_& mod) {
           "Consistent accelerations and multipliers at (y, v, t); contact_yf, contact_vf, "
           "contact_y1: with the contact forces of a time step (its alpha point and end).")
       .def(
+          "derived_rows",
+          [](SystemIntegratorHolder& h, In t, In y, In v, Out a, Out lam, Out res, Out joints,
+             std::size_t n_joints) {
+            const std::size_t k = t.size();
+            for (const auto* x : {&y, &v}) expect_size(*x, k * h.n, "states");
+            expect_size(a, k * h.n, "a");
+            expect_size(lam, k * h.m, "lam");
+            expect_size(res, k * (h.n + h.m), "res");
+            expect_size(joints, k * 6 * n_joints, "joints");
+            h.integ.derived_rows(static_cast<int>(k), t.data(), y.data(), v.data(), a.data(),
+                                 lam.data(), res.data(), joints.data());
+          },
+          "t"_a, "y"_a, "v"_a, "a"_a.noconvert(), "lam"_a.noconvert(), "res"_a.noconvert(),
+          "joints"_a.noconvert(), "n_joints"_a,
+          "Derived values of k stored states without contact (rows of y, v at times t): the "
+          "consistent a and lambda, the balance residual and constraints with them, every "
+          "joint's (force, moment) (6 a joint; n_joints, the system's joints).")
+      .def(
           "factor_static",
           [](SystemIntegratorHolder& h, In y, In lam, double lf, bool amplitude, double t,
              Out residual, double stab) {

@@ -1,5 +1,6 @@
 #include "joints.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace rancf {
@@ -8,14 +9,21 @@ namespace {
 
 constexpr int kW = 2 * kMaxLocal;
 
-/// A world vector and its derivatives with respect to [A's locals, B's locals].
+/// A world vector and its derivatives with respect to [A's locals, B's locals]: the first w
+/// columns of d are set (a joint's places have a few of the 2 kMaxLocal; clearing all of them
+/// at every evaluation was most of a joint's cost).
 struct Vec {
+  int w = 0;
   double v[3] = {0.0, 0.0, 0.0};
-  double d[3][kW] = {};
+  double d[3][kW];
+  Vec() = default;
+  explicit Vec(int width) : w(width) {
+    for (auto& row : d) std::fill(row, row + w, 0.0);
+  }
 };
 
-Vec position(const PlaceEval& p, int off) {
-  Vec out;
+Vec position(const PlaceEval& p, int off, int w) {
+  Vec out(w);
   for (int i = 0; i < 3; ++i) {
     out.v[i] = p.x[i];
     for (int j = 0; j < p.n; ++j) out.d[i][off + j] = p.dx[i][j];
@@ -23,8 +31,8 @@ Vec position(const PlaceEval& p, int off) {
   return out;
 }
 
-Vec combo(const PlaceEval& p, int off, const double* c) {
-  Vec out;
+Vec combo(const PlaceEval& p, int off, const double* c, int w) {
+  Vec out(w);
   for (int k = 0; k < p.nf; ++k) {
     if (c[k] == 0.0) continue;
     for (int i = 0; i < 3; ++i) {
@@ -35,17 +43,17 @@ Vec combo(const PlaceEval& p, int off, const double* c) {
   return out;
 }
 
-Vec frame(const PlaceEval& p, int off, int k) {
+Vec frame(const PlaceEval& p, int off, int k, int w) {
   double c[3] = {0.0, 0.0, 0.0};
   c[k] = 1.0;
-  return combo(p, off, c);
+  return combo(p, off, c, w);
 }
 
 Vec sub(const Vec& a, const Vec& b) {
-  Vec out;
+  Vec out(a.w);
   for (int i = 0; i < 3; ++i) {
     out.v[i] = a.v[i] - b.v[i];
-    for (int j = 0; j < kW; ++j) out.d[i][j] = a.d[i][j] - b.d[i][j];
+    for (int j = 0; j < a.w; ++j) out.d[i][j] = a.d[i][j] - b.d[i][j];
   }
   return out;
 }
@@ -107,11 +115,11 @@ void eval_joint(const JointInfo& j, const PlaceEval& a, const PlaceEval& b, doub
     for (int c = 0; c < w; ++c) jac[r * w + c] = 0.0;
   }
   int r = 0;
-  const Vec xa = position(a, 0), xb = position(b, a.n);
+  const Vec xa = position(a, 0, w), xb = position(b, a.n, w);
   const Vec rel = sub(xa, xb);
   if (j.kind == JointKind::slider) {
     for (int i = 0; i < d - 1; ++i, ++r)
-      dot(rel, combo(b, a.n, j.normals_b[i]), w, g + r, jac + r * w);
+      dot(rel, combo(b, a.n, j.normals_b[i], w), w, g + r, jac + r * w);
     return;
   }
   for (int i = 0; i < d; ++i, ++r) {  // positions
@@ -123,7 +131,7 @@ void eval_joint(const JointInfo& j, const PlaceEval& a, const PlaceEval& b, doub
                  ((j.kind == JointKind::pin || j.kind == JointKind::revolute) && j.driven));
   if (planar_angle) {  // sin(psi_A - psi_B - beta): s cos(beta) - c sin(beta)
     const double beta = j.beta0 + (j.kind == JointKind::fixed ? 0.0 : theta);
-    const Vec fa = frame(a, 0, 0), fb0 = frame(b, a.n, 0), fb1 = frame(b, a.n, 1);
+    const Vec fa = frame(a, 0, 0, w), fb0 = frame(b, a.n, 0, w), fb1 = frame(b, a.n, 1, w);
     dot(fa, fb1, w, g + r, jac + r * w, std::cos(beta));
     dot(fa, fb0, w, g + r, jac + r * w, -std::sin(beta));
     return;
@@ -132,17 +140,17 @@ void eval_joint(const JointInfo& j, const PlaceEval& a, const PlaceEval& b, doub
   if (j.kind == JointKind::fixed) {
     Vec av[3], cv[3];
     for (int k = 0; k < 3; ++k) {
-      av[k] = frame(a, 0, k);
-      cv[k] = combo(b, a.n, j.rel[k]);
+      av[k] = frame(a, 0, k, w);
+      cv[k] = combo(b, a.n, j.rel[k], w);
     }
     for (int k = 0; k < 3; ++k, ++r) dot(av[k], cv[(k + 1) % 3], w, g + r, jac + r * w);
     return;
   }
-  const Vec e = j.kind == JointKind::tangent ? frame(a, 0, 0) : combo(a, 0, j.axis_a);
-  for (int i = 0; i < 2; ++i, ++r) dot(e, combo(b, a.n, j.normals_b[i]), w, g + r, jac + r * w);
+  const Vec e = j.kind == JointKind::tangent ? frame(a, 0, 0, w) : combo(a, 0, j.axis_a, w);
+  for (int i = 0; i < 2; ++i, ++r) dot(e, combo(b, a.n, j.normals_b[i], w), w, g + r, jac + r * w);
   if (j.kind == JointKind::revolute && j.driven) {  // sin(angle - beta) about e_A
     const double beta = j.beta0 + theta;
-    const Vec wa = combo(a, 0, j.w_a), wb = combo(b, a.n, j.w_b);
+    const Vec wa = combo(a, 0, j.w_a, w), wb = combo(b, a.n, j.w_b, w);
     triple(wb, wa, e, w, g + r, jac + r * w, std::cos(beta));  // sin(angle)
     dot(wa, wb, w, g + r, jac + r * w, -std::sin(beta));       // cos(angle)
   }

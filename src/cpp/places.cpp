@@ -1,5 +1,6 @@
 #include "places.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "rod_frames.hpp"
@@ -62,9 +63,17 @@ void planar_frame(double psi, int j, PlaceEval& o) {
 }  // namespace
 
 void eval_place(const PlaceInfo& info, const double* q, PlaceEval& o) {
-  o = PlaceEval{};
   const int d = info.dim;
   o.n = place_size(info.kind, d);
+  o.nf = 0;
+  for (int i = 0; i < 3; ++i) {  // zero where the cases below leave entries unset
+    o.x[i] = 0.0;
+    std::fill(o.dx[i], o.dx[i] + o.n, 0.0);
+    for (int k = 0; k < 3; ++k) {
+      o.f[k][i] = 0.0;
+      std::fill(o.df[k][i], o.df[k][i] + o.n, 0.0);
+    }
+  }
   switch (info.kind) {
     case PlaceKind::ground:
       for (int i = 0; i < 3; ++i) o.x[i] = info.point[i];

@@ -41,13 +41,16 @@ struct PlaceInfo {
   double angle0 = 0.0;                ///< beam: the node's reference tangent angle
 };
 
+/// The derivatives are set (eval_place, place_local) for the first n local coordinates only:
+/// a joint's place has a handful of the kMaxLocal, and clearing all of them at every
+/// evaluation cost more than the joint equations themselves.
 struct PlaceEval {
-  int n = 0;                        ///< local coordinates
-  double x[3] = {0.0, 0.0, 0.0};    ///< position
-  double dx[3][kMaxLocal] = {};     ///< d x_i / d local_j
-  int nf = 0;                       ///< frame vectors (0, 1 or 3)
-  double f[3][3] = {};              ///< f[k][i]: component i of frame vector k
-  double df[3][3][kMaxLocal] = {};  ///< d f[k][i] / d local_j
+  int n = 0;                      ///< local coordinates
+  double x[3] = {0.0, 0.0, 0.0};  ///< position
+  double dx[3][kMaxLocal];        ///< d x_i / d local_j (j < n)
+  int nf = 0;                     ///< frame vectors (0, 1 or 3)
+  double f[3][3] = {};            ///< f[k][i]: component i of frame vector k
+  double df[3][3][kMaxLocal];     ///< d f[k][i] / d local_j (j < n)
 };
 
 /// Number of local coordinates of a place kind.

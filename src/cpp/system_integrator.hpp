@@ -44,6 +44,12 @@ class SystemIntegrator {
   /// (AssemblyTerms::contact_yf and after).
   bool initial_acceleration(const double* y, const double* v, double t, double* a, double* lam,
                             const AssemblyTerms* contact = nullptr);
+  /// Derived values of k stored states (rows of y and v, n each, at times t; no contact): the
+  /// consistent accelerations and multipliers (initial_acceleration; zero where it fails),
+  /// the balance residual and constraints with them (n + m a row) and every joint's reaction
+  /// (joint_reaction: force, moment, 6 a joint): one call for a block of outputs.
+  void derived_rows(int k, const double* t, const double* y, const double* v, double* a,
+                    double* lam, double* res, double* joints);
   /// One Newton increment of the statics at load factor lf: (dy, dlam) with
   /// K dy + G^T dlam = -r, G dy = -g.  Returns false if the matrix is singular.
   bool static_increment(const double* y, const double* lam, double lf, bool amplitude, double t,

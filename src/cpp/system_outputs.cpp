@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "system.hpp"
+#include "system_integrator.hpp"
 
 namespace rancf {
 
@@ -84,6 +85,25 @@ void joint_reaction(const System& s, int k, const double* y, double t, const dou
   for (int i = 0; i < 3; ++i) {
     force[i] = x[i];
     moment[i] = x[3 + i];
+  }
+}
+
+void SystemIntegrator::derived_rows(int k, const double* t, const double* y, const double* v,
+                                    double* a, double* lam, double* res, double* joints) {
+  const auto n = sz(s_.n), m = sz(s_.m), nj = s_.joints.size();
+  for (std::size_t i = 0; i < sz(k); ++i) {
+    const double *yi = y + i * n, *vi = v + i * n;
+    double *ai = a + i * n, *li = lam + i * m;
+    std::fill(ai, ai + n, 0.0);
+    std::fill(li, li + m, 0.0);
+    initial_acceleration(yi, vi, t[i], ai, li);
+    AssemblyTerms terms;  // the balance residual at (y, v, a, lambda, t), as System.residual
+    terms.tf = terms.t1 = t[i];
+    assemble_system(s_, yi, vi, ai, li, yi, terms, res + i * (n + m), nullptr);
+    for (std::size_t j = 0; j < nj; ++j) {
+      double* out = joints + (i * nj + j) * 6;
+      joint_reaction(s_, static_cast<int>(j), yi, t[i], li, out, out + 3);
+    }
   }
 }
 

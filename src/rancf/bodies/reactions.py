@@ -73,9 +73,10 @@ def support_reactions(
     Parameters
     ----------
     model : Model
-    y : ndarray, shape (n,)
-        Model coordinates (for the nodal gradients).
-    residual : ndarray, shape (n,)
+    y : ndarray, shape (n,) or (k, n)
+        Model coordinates (for the nodal gradients); ``k`` states give forces and moments
+        ``(k, ...)``.
+    residual : ndarray, shape (n,) or (k, n)
         ``M a + c M v + f_int - f_ext`` (or the static ``f_int - λ f_ext``) on every model
         coordinate, held rows included.
     labels : list, optional
@@ -88,19 +89,21 @@ def support_reactions(
     for i, sup in enumerate(model.supports):
         node = model.check_node(sup.node, "supports.at")
         base = node * dpn
-        force = rq[base : base + dim].copy()
+        force = rq[..., base : base + dim].copy()
         moment = None
         if has_moment(model, sup.kind):
             if model.element == "beam":
-                moment = rq[base + 2 : base + 3].copy()
+                moment = rq[..., base + 2 : base + 3].copy()
             else:
-                rx, qg = q[base + dim : base + 2 * dim], rq[base + dim : base + 2 * dim]
+                rx = q[..., base + dim : base + 2 * dim]
+                qg = rq[..., base + dim : base + 2 * dim]
                 if dim == 2:
-                    moment = np.array([rx[0] * qg[1] - rx[1] * qg[0]])
+                    moment = (rx[..., 0] * qg[..., 1] - rx[..., 1] * qg[..., 0])[..., None]
                 else:
                     moment = np.cross(rx, qg)
                     if model.element == "rod":
-                        moment = moment + rq[base + 6] * rx / np.linalg.norm(rx)
+                        t = rx / np.linalg.norm(rx, axis=-1, keepdims=True)
+                        moment = moment + rq[..., base + 6, None] * t
         out.append(Reaction(labels[i] if labels is not None else sup.node, force, moment))
     return out
 
@@ -112,4 +115,4 @@ def reaction_row(reactions: list[Reaction]) -> NDArray[np.float64]:
         parts.append(r.force)
         if r.moment is not None:
             parts.append(r.moment)
-    return np.concatenate(parts) if parts else np.empty(0)
+    return np.concatenate(parts, axis=-1) if parts else np.empty(0)

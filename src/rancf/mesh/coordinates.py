@@ -88,10 +88,14 @@ class Coordinates:
 
     def forces_at_nodes(self, f: ArrayLike) -> NDArray[np.float64]:
         """A generalized force on the model coordinates as forces on the nodal coordinates of
-        the nodes that own theirs (every node; C²: the supported ones), ``(n_nodes dpn,)``."""
+        the nodes that own theirs (every node; C²: the supported ones), ``(n_nodes dpn,)`` (``(...,
+        n_nodes dpn)`` for ``(..., n)``)."""
         f = np.asarray(f, dtype=float)
         if self.reduction is None:
             return self.q_from_y(f)
+        if f.ndim > 1:  # a stack of forces (..., n), one by one
+            rows = [self.forces_at_nodes(x) for x in f.reshape(-1, f.shape[-1])]
+            return np.reshape(rows, f.shape[:-1] + (-1,))
         out = np.zeros(self.n_nodes * self.dpn)
         for k, b in enumerate(self.reduction.node_base):
             if b >= 0:

@@ -194,11 +194,22 @@ class SystemOutputs:
         }
         res = np.empty(s.n + s.m)
         raws: dict[str, list[NDArray]] = {name: [] for name, _ in self.flex}
+        # without contact or rods' triads, a dynamic block's rows go through the core at once
+        batch = not static and directors is None and not s.has_contact and k > 0
+        ys = s.y_from_q(q) if batch else None
+        if ys is not None:
+            vs = np.zeros_like(ys) if v is None else s.y_from_q(np.reshape(v, (k, -1)))
+            self._batch(t, ys, vs, out)
         with self._triads() as set_row:
             for i in range(k):
-                y = s.y_from_q(q[i])
+                y = s.y_from_q(q[i]) if ys is None else ys[i]
                 if directors is not None:
                     set_row(y, np.asarray(directors[i]).ravel())
+                if ys is not None:  # only the sections and energies are left to do
+                    self._sections(raws, y, float(t[i]))
+                    if per_body:
+                        out["eb"][i] = self._body_energies(y, vs[i], float(t[i]))
+                    continue
                 vy = np.zeros(s.n) if v is None or static else s.y_from_q(v[i])
                 a, li = np.zeros(s.n), np.zeros(s.m)
                 if static:
@@ -213,15 +224,43 @@ class SystemOutputs:
                 out["a"][i], out["lam"][i] = s.q_from_y(a), li
                 vc = None if static else vy  # friction from the velocities
                 out["r"][i] = self._reactions(y, res[: s.n], float(t[i]), li, vc, step)
-                for name, _ in self.flex:  # the sections' numbers for all rows at once below
-                    factor = winch_factor(s, name, float(t[i]))  # a winch's body at its length
-                    raws[name].append(self.samplers[name].raw(y[s.body_slice(name)], factor))
+                self._sections(raws, y, float(t[i]))
                 if per_body:
                     out["eb"][i] = self._body_energies(y, vy, float(t[i]))
         if k:
             out["s"] = self._along(raws, t)
         out["c"] = self.sensors.values(t, q, v, out, energy)
         return out
+
+    def _batch(self, t: NDArray, ys: NDArray, vs: NDArray, out: dict[str, NDArray]) -> None:
+        """Accelerations, multipliers and reactions of dynamic rows without contact (states
+        ``ys``, ``vs`` ``(k, n)``) by one call of the core (what the row loop does one by
+        one): into ``out``."""
+        s = self.system
+        k, nj = ys.shape[0], len(s.joints)
+        a, lam = np.empty((k, s.n)), np.empty((k, s.m))
+        res, jr = np.empty((k, s.n + s.m)), np.empty((k, nj, 6))
+        self._integ.derived_rows(np.ascontiguousarray(t), np.ascontiguousarray(ys),
+                                 np.ascontiguousarray(vs), a, lam, res, jr, nj)  # fmt: skip
+        out["a"], out["lam"] = s.q_from_y(a), lam
+        parts = []
+        for name, b in self.flex:
+            sl = s.body_slice(name)
+            if b.supports:
+                parts.append(reaction_row(support_reactions(b, ys[:, sl], res[:, sl],
+                                                            self.labels[name])))  # fmt: skip
+        for j in range(nj):
+            parts.append(jr[:, j, : s.dim])
+            if _joint_has_moment(s, j):
+                parts.append(jr[:, j, 5:] if s.dim == 2 else jr[:, j, 3:])
+        out["r"] = np.concatenate(parts, axis=1) if parts else np.empty((k, 0))
+
+    def _sections(self, raws: dict[str, list[NDArray]], y: NDArray, t: float) -> None:
+        """A row's strains and curvatures, body by body, into ``raws`` (the section values of
+        all rows follow at once from them)."""
+        for name, _ in self.flex:
+            factor = winch_factor(self.system, name, t)  # a winch's body at its length
+            raws[name].append(self.samplers[name].raw(y[self.system.body_slice(name)], factor))
 
     def contact_columns(self, name: str) -> slice:
         """The columns of the obstacle called ``name`` (normal, friction, moment, length,
