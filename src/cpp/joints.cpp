@@ -11,7 +11,7 @@ constexpr int kW = 2 * kMaxLocal;
 
 /// A world vector and its derivatives with respect to [A's locals, B's locals]: the first w
 /// columns of d are set (a joint's places have a few of the 2 kMaxLocal; clearing all of them
-/// at every evaluation was most of a joint's cost).
+/// at every evaluation was most of a joint's cost); w = 0: the value alone.
 struct Vec {
   int w = 0;
   double v[3] = {0.0, 0.0, 0.0};
@@ -26,7 +26,7 @@ Vec position(const PlaceEval& p, int off, int w) {
   Vec out(w);
   for (int i = 0; i < 3; ++i) {
     out.v[i] = p.x[i];
-    for (int j = 0; j < p.n; ++j) out.d[i][off + j] = p.dx[i][j];
+    for (int j = 0; j < (w > 0 ? p.n : 0); ++j) out.d[i][off + j] = p.dx[i][j];
   }
   return out;
 }
@@ -37,7 +37,7 @@ Vec combo(const PlaceEval& p, int off, const double* c, int w) {
     if (c[k] == 0.0) continue;
     for (int i = 0; i < 3; ++i) {
       out.v[i] += c[k] * p.f[k][i];
-      for (int j = 0; j < p.n; ++j) out.d[i][off + j] += c[k] * p.df[k][i][j];
+      for (int j = 0; j < (w > 0 ? p.n : 0); ++j) out.d[i][off + j] += c[k] * p.df[k][i][j];
     }
   }
   return out;
@@ -109,7 +109,10 @@ int joint_rows(const JointInfo& j) {
 
 void eval_joint(const JointInfo& j, const PlaceEval& a, const PlaceEval& b, double theta, double* g,
                 double* jac) {
-  const int rows = joint_rows(j), w = a.n + b.n, d = j.dim;
+  const int rows = joint_rows(j), d = j.dim;
+  double none[1];  // g alone: no columns (w = 0), the Jacobian's pointer unused
+  const int w = jac != nullptr ? a.n + b.n : 0;
+  if (jac == nullptr) jac = none;
   for (int r = 0; r < rows; ++r) {
     g[r] = 0.0;
     for (int c = 0; c < w; ++c) jac[r * w + c] = 0.0;

@@ -39,7 +39,7 @@ inline constexpr int kMaxJointRows = 7;
 int joint_rows(const JointInfo& j);
 
 /// g (rows) and its Jacobian jac (rows x (n_A + n_B), row-major) at the places' values;
-/// theta: the driven angle at this time (ignored if not driven).
+/// theta: the driven angle at this time (ignored if not driven).  jac null: g alone.
 void eval_joint(const JointInfo& j, const PlaceEval& a, const PlaceEval& b, double theta, double* g,
                 double* jac);
 

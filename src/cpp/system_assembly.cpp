@@ -251,7 +251,8 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
     const RigidInertia& body = s.rigid[k];
     const int o = s.rigid_offset(static_cast<int>(k)), nb = rigid_size(body);
     const int bi = static_cast<int>(s.flex.size() + k);
-    std::array<double, 49> kk{};
+    std::array<double, 49> kk;
+    std::fill(kk.begin(), kk.begin() + nb * nb, 0.0);
     BandView jac{nullptr, 0, 0, 0};
     if (lu != nullptr) jac = lu->block(bi);
     if (am != nullptr) {
@@ -437,8 +438,8 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
     const PlaceRef &pa = s.places[sz(jd.a)], &pb = s.places[sz(jd.b)];
     const PlaceMap &ma = s.maps[sz(jd.a)], &mb = s.maps[sz(jd.b)];
     const int rows = joint_rows(jd.info), row0 = s.joint_row[jj], k = ma.n + mb.n;
-    std::array<double, 2 * kMaxLocal> u{};
-    auto eval_at = [&](const double* uu, double t, double* gg, double* jac) {
+    std::array<double, 2 * kMaxLocal> u;  // the first k set below (no clearing of all 48)
+    auto eval_at = [&](const double* uu, double t, double* gg, double* jac) {  // jac null: g
       PlaceEval ea, eb;
       place_local(s, pa, ma, t, uu, ea);
       place_local(s, pb, mb, t, uu + ma.n, eb);
@@ -448,7 +449,8 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
     double gtmp[kMaxJointRows];
     gather(ma, y1, u.data());
     gather(mb, y1, u.data() + ma.n);
-    eval_at(u.data(), tm.t1, r + n + row0, jac1[jj].data());
+    // g(y1); its Jacobian (the border's Q) only for a matrix
+    eval_at(u.data(), tm.t1, r + n + row0, lu != nullptr ? jac1[jj].data() : nullptr);
     gather(ma, yf, u.data());
     gather(mb, yf, u.data() + ma.n);
     eval_at(u.data(), tm.tf, gtmp, jacf[jj].data());
@@ -461,7 +463,8 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
         for (int q = 0; q < rows; ++q) out[a] += jac[q * k + a] * lj[q];
       }
     };
-    std::array<double, 2 * kMaxLocal> gl{};
+    std::array<double, 2 * kMaxLocal> gl;
+    std::fill(gl.begin(), gl.begin() + k, 0.0);
     for (int a = 0; a < k; ++a)  // G(yf)^T lambda from the evaluation at yf above
       for (int q = 0; q < rows; ++q) gl[sz(a)] += jacf[jj][sz(q * k + a)] * lj[q];
     int idx[2 * kMaxLocal];
