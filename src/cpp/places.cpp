@@ -1,6 +1,5 @@
 #include "places.hpp"
 
-#include <algorithm>
 #include <cmath>
 
 #include "rod_frames.hpp"
@@ -66,12 +65,15 @@ void eval_place(const PlaceInfo& info, const double* q, PlaceEval& o) {
   const int d = info.dim;
   o.n = place_size(info.kind, d);
   o.nf = 0;
-  for (int i = 0; i < 3; ++i) {  // zero where the cases below leave entries unset
+  // zero where the cases below leave entries unset: the first 8 columns (o.n <= 7), a fixed
+  // count the compiler writes out (a call to memset for each row cost more than the rest)
+  static_assert(kMaxLocal >= 8);
+  for (int i = 0; i < 3; ++i) {
     o.x[i] = 0.0;
-    std::fill(o.dx[i], o.dx[i] + o.n, 0.0);
+    for (int j = 0; j < 8; ++j) o.dx[i][j] = 0.0;
     for (int k = 0; k < 3; ++k) {
       o.f[k][i] = 0.0;
-      std::fill(o.df[k][i], o.df[k][i] + o.n, 0.0);
+      for (int j = 0; j < 8; ++j) o.df[k][i][j] = 0.0;
     }
   }
   switch (info.kind) {
