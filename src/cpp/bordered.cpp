@@ -148,7 +148,8 @@ bool BorderedLU::factor() {
 void BorderedLU::solve(double* x, double* z) const {
   solve_blocks(x, nullptr);  // x0 = A^-1 r
   if (p_ == 0) return;
-  std::vector<double> rhs(z, z + p_);  // s - Q x0
+  std::vector<double>& rhs = rhs_;  // s - Q x0 (kept between calls: no allocation a solve)
+  rhs.assign(z, z + p_);
   for (int r = 0; r < p_; ++r)
     for (const Entry& e : qrow_[sz(r)]) rhs[sz(r)] -= e.value * x[e.index];
   for (int k = 0; k < p_; ++k) std::swap(rhs[sz(k)], rhs[sz(piv_[sz(k)])]);

@@ -63,6 +63,7 @@ class BorderedLU {
   std::vector<double> d_, w_, s_;  // D (p x p), W (n x p, column-major), Schur LU (p x p)
   std::vector<int> wlo_, whi_;     // rows [lo, hi) of W's column c that can be nonzero
   std::vector<int> piv_;
+  mutable std::vector<double> rhs_;  // solve's work array
 };
 
 }  // namespace rancf

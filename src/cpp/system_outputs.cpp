@@ -1,9 +1,11 @@
 // Joint reactions from the multipliers (system.hpp: joint_reaction).
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "system.hpp"
 #include "system_integrator.hpp"
+#include "winch.hpp"
 
 namespace rancf {
 
@@ -91,15 +93,31 @@ void joint_reaction(const System& s, int k, const double* y, double t, const dou
 void SystemIntegrator::derived_rows(int k, const double* t, const double* y, const double* v,
                                     double* a, double* lam, double* res, double* joints) {
   const auto n = sz(s_.n), m = sz(s_.m), nj = s_.joints.size();
+  // where the balance is M a + (terms without a), M constant (no constraints, rigid bodies,
+  // rotary inertia, contact, fluid or winches), the residual at the consistent a is that of
+  // initial_acceleration's assembly (at the known a) plus M (a - a_known): no second assembly
+  bool linear = mass_constant_ && s_.fluid == nullptr;
+  for (std::size_t b = 0; b < s_.flex.size(); ++b) linear = linear && winch_of(s_, b) == nullptr;
+  std::vector<double> md;
   for (std::size_t i = 0; i < sz(k); ++i) {
     const double *yi = y + i * n, *vi = v + i * n;
-    double *ai = a + i * n, *li = lam + i * m;
+    double *ai = a + i * n, *li = lam + i * m, *ri = res + i * (n + m);
     std::fill(ai, ai + n, 0.0);
     std::fill(li, li + m, 0.0);
-    initial_acceleration(yi, vi, t[i], ai, li);
-    AssemblyTerms terms;  // the balance residual at (y, v, a, lambda, t), as System.residual
-    terms.tf = terms.t1 = t[i];
-    assemble_system(s_, yi, vi, ai, li, yi, terms, res + i * (n + m), nullptr);
+    if (initial_acceleration(yi, vi, t[i], ai, li) && linear) {
+      std::copy(r_.begin(), r_.begin() + static_cast<std::ptrdiff_t>(n), ri);
+      for (std::size_t b = 0; b < s_.flex.size(); ++b) {  // + M dz, dz = a - a_known
+        const Model& mod = *s_.flex[b];
+        const int o = s_.offset[b], nb = mod.n();
+        md.resize(sz(nb));
+        band_matvec(mod.mass_band, dz_.data() + o, nb, mod.ku(), md.data());
+        for (int j = 0; j < nb; ++j) ri[o + j] += md[sz(j)];
+      }
+    } else {
+      AssemblyTerms terms;  // the balance residual at (y, v, a, lambda, t), as System.residual
+      terms.tf = terms.t1 = t[i];
+      assemble_system(s_, yi, vi, ai, li, yi, terms, ri, nullptr);
+    }
     for (std::size_t j = 0; j < nj; ++j) {
       double* out = joints + (i * nj + j) * 6;
       joint_reaction(s_, static_cast<int>(j), yi, t[i], li, out, out + 3);

@@ -131,6 +131,10 @@ class SystemOutputs:
         scheme = _core.Scheme(alpha_m=0.0, alpha_f=0.0, gamma=0.5, beta=0.25, damping=s.damping,
                               tol=1e-10, max_iter=1, modified=False)  # fmt: skip
         self._integ = _core.SystemIntegrator(s.core, scheme)  # for its consistent acceleration
+        #: One flexible body and nothing else with energy (no rigid bodies, springs, contact or
+        #: winches): its energies are the system's, which the integrator stores with each row.
+        self._body_is_system = len(s.flex) == 1 and not (
+            s.rigid or s.springs or s.has_contact or getattr(s, "winches", ()))
         #: The largest |axial strain| of the rows seen so far, and the ``t`` of its row.
         self.largest_strain: tuple[float, float] = (0.0, 0.0)
 
@@ -200,6 +204,8 @@ class SystemOutputs:
         if ys is not None:
             vs = np.zeros_like(ys) if v is None else s.y_from_q(np.reshape(v, (k, -1)))
             self._batch(t, ys, vs, out)
+        if per_body and energy is not None and self._body_is_system and not static:
+            out["eb"], per_body = np.array(energy, dtype=float).reshape(k, 3), False
         with self._triads() as set_row:
             for i in range(k):
                 y = s.y_from_q(q[i]) if ys is None else ys[i]
