@@ -349,9 +349,10 @@ class SystemOutputs:
             raw = np.stack(raws[name])  # (k, n_points, w)
             vals = self.samplers[name].from_raw(raw, factors[:, None, None])
             strain = np.max(np.abs(vals[:, :, 0]), axis=1)
-            for i in range(strain.size):  # NaN (a diverged state) is never larger
-                if strain[i] > self.largest_strain[0]:
-                    self.largest_strain = (float(strain[i]), float(t[i]))
+            strain[np.isnan(strain)] = -np.inf  # NaN (a diverged state) is never larger
+            i = int(np.argmax(strain)) if strain.size else 0  # the first of equal ones
+            if strain.size and strain[i] > self.largest_strain[0]:
+                self.largest_strain = (float(strain[i]), float(t[i]))
             parts.append(vals.reshape(vals.shape[0], -1))
         return np.concatenate(parts, axis=1) if parts else np.empty((t.size, 0))
 
