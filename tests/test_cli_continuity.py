@@ -1,4 +1,4 @@
-"""`mesh.continuity = "C2"` on the command line (issue 19): runs, exports and `export --nurbs`
+"""`mesh.continuity = "C2"` on the command line: runs, exports and `export --nurbs`
 give the same curves (a C² run of a cubic B-spline of n spans exports as n + 3 control points,
 a C¹ run of the same mesh needs more), `rancf modes` counts fewer free coordinates, and bad
 values get one clear line."""

@@ -1,4 +1,4 @@
-"""The command line as a real process: interrupts, kills, broken pipes, file modes (issue 10)."""
+"""The command line as a real process: interrupts, kills, broken pipes, file modes."""
 
 from __future__ import annotations
 
