@@ -135,6 +135,7 @@ void eval_joint(const JointInfo& j, const PlaceEval& a, const PlaceEval& b, doub
     g[r] = rel.v[i];
     for (int c = 0; c < w; ++c) jac[r * w + c] = rel.d[i][c];
   }
+  if (j.kind == JointKind::pin && !j.driven) return;  // the positions are all its rows
   const bool planar_angle =
       d == 2 && (j.kind == JointKind::fixed ||
                  ((j.kind == JointKind::pin || j.kind == JointKind::revolute) && j.driven));
