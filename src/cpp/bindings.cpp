@@ -244,21 +244,24 @@ NB_MODULE(_core, mod) {
               "section_strains",
               [](const ModelHolder& h, In xi, In n1, In n2, In ref, In y, Out out) {
                 // xi (n); n1, n2 (n_el, n, 4); ref (n_el, n): s0 (cable) or j0 (rod); out
-                // (n_el, n, section_width)
-                expect_size(y, h.n(), "y");
+                // (n_el, n, section_width); k states y (k, n_dofs): out (k, n_el, n, width)
+                const std::size_t nd = h.n(), k = nd > 0 ? y.size() / nd : 0;
+                if (k == 0 || y.size() != k * nd) expect_size(y, nd, "y");
                 const std::size_t np = xi.size(), ne = static_cast<std::size_t>(h.m.n_el);
                 const bool pts = h.m.kind != rancf::ElementKind::beam;
                 expect_size(n1, pts ? ne * np * 4 : n1.size(), "n1");
                 expect_size(n2, pts ? ne * np * 4 : n2.size(), "n2");
                 expect_size(ref, pts ? ne * np : ref.size(), "ref");
                 const auto w = static_cast<std::size_t>(rancf::section_width(h.m));
-                expect_size(out, ne * np * w, "out");
+                expect_size(out, k * ne * np * w, "out");
                 const rancf::SamplePoints p{static_cast<int>(np), xi.data(), n1.data(), n2.data(),
                                             ref.data()};
-                rancf::section_strains(h.m, p, y.data(), out.data());
+                for (std::size_t i = 0; i < k; ++i)
+                  rancf::section_strains(h.m, p, y.data() + i * nd, out.data() + i * ne * np * w);
               },
               "xi"_a, "n1"_a, "n2"_a, "ref"_a, "y"_a, "out"_a.noconvert(),
-              "Strains and curvatures at sample points of every element (see sections.hpp).");
+              "Strains and curvatures at sample points of every element (see sections.hpp), "
+              "of one state or k stacked ones.");
   rancf_bind::bind_inertia(model_cls);
 
   rancf_bind::bind_functions(mod);

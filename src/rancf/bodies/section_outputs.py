@@ -107,11 +107,13 @@ class SectionSampler:
     def _raw(self, y: NDArray, factor: float = 1.0) -> NDArray[np.float64]:
         m = self.model
         width = 4 if m.element == "rod" else 2
-        out = np.empty((m.n_el, self.xi.size, width))
+        y = np.ascontiguousarray(y, dtype=float)
+        lead = y.shape[:-1]  # k states (k, n) at once: (k, n_points, width)
+        out = np.empty((*lead, m.n_el, self.xi.size, width))
         lam = _scale(m) * factor  # another unstretched length (rancf.bodies.length, winches)
         ref = self.ref * (lam if m.element == "rod" else lam * lam)
-        m.core.section_strains(self.xi, self.n1, self.n2, ref, np.asarray(y, dtype=float), out)
-        return out.reshape(-1, width)[self._rows]
+        m.core.section_strains(self.xi, self.n1, self.n2, ref, y, out)
+        return out.reshape(*lead, -1, width)[..., self._rows, :]
 
     def values(self, y: NDArray, factor: float = 1.0) -> NDArray[np.float64]:
         """``(n_points, len(section_names))`` at model coordinates ``y`` (rods: with the nodal
@@ -121,7 +123,8 @@ class SectionSampler:
 
     def raw(self, y: NDArray, factor: float = 1.0) -> NDArray[np.float64]:
         """Strain and curvatures ``(n_points, 2 or 4)`` at ``y`` (the first columns of
-        :meth:`values`; :meth:`from_raw` makes the rest)."""
+        :meth:`values`; :meth:`from_raw` makes the rest); ``(k, n_points, ...)`` for ``k``
+        states ``y`` ``(k, n)``."""
         return self._raw(y, factor)
 
     def from_raw(self, raw: NDArray, factor: float | NDArray = 1.0) -> NDArray[np.float64]:

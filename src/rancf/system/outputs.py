@@ -131,8 +131,7 @@ class SystemOutputs:
         scheme = _core.Scheme(alpha_m=0.0, alpha_f=0.0, gamma=0.5, beta=0.25, damping=s.damping,
                               tol=1e-10, max_iter=1, modified=False)  # fmt: skip
         self._integ = _core.SystemIntegrator(s.core, scheme)  # for its consistent acceleration
-        #: One flexible body and nothing else with energy (no rigid bodies, springs, contact or
-        #: winches): its energies are the system's, which the integrator stores with each row.
+        #: One flexible body, nothing else with energy: its energies are the system's (stored).
         self._body_is_system = len(s.flex) == 1 and not (
             s.rigid or s.springs or s.has_contact or getattr(s, "winches", ()))
         #: The largest |axial strain| of the rows seen so far, and the ``t`` of its row.
@@ -204,17 +203,16 @@ class SystemOutputs:
         if ys is not None:
             vs = np.zeros_like(ys) if v is None else s.y_from_q(np.reshape(v, (k, -1)))
             self._batch(t, ys, vs, out)
+            self._sections(raws, ys, t)
         if per_body and energy is not None and self._body_is_system and not static:
             out["eb"], per_body = np.array(energy, dtype=float).reshape(k, 3), False
         with self._triads() as set_row:
-            for i in range(k):
+            for i in range(k if ys is None or per_body else 0):
                 y = s.y_from_q(q[i]) if ys is None else ys[i]
                 if directors is not None:
                     set_row(y, np.asarray(directors[i]).ravel())
-                if ys is not None:  # only the sections and energies are left to do
-                    self._sections(raws, y, float(t[i]))
-                    if per_body:
-                        out["eb"][i] = self._body_energies(y, vs[i], float(t[i]))
+                if ys is not None:  # only the bodies' energies are left to do
+                    out["eb"][i] = self._body_energies(y, vs[i], float(t[i]))
                     continue
                 vy = np.zeros(s.n) if v is None or static else s.y_from_q(v[i])
                 a, li = np.zeros(s.n), np.zeros(s.m)
@@ -230,7 +228,7 @@ class SystemOutputs:
                 out["a"][i], out["lam"][i] = s.q_from_y(a), li
                 vc = None if static else vy  # friction from the velocities
                 out["r"][i] = self._reactions(y, res[: s.n], float(t[i]), li, vc, step)
-                self._sections(raws, y, float(t[i]))
+                self._sections(raws, y[None], t[i : i + 1])
                 if per_body:
                     out["eb"][i] = self._body_energies(y, vy, float(t[i]))
         if k:
@@ -240,8 +238,7 @@ class SystemOutputs:
 
     def _batch(self, t: NDArray, ys: NDArray, vs: NDArray, out: dict[str, NDArray]) -> None:
         """Accelerations, multipliers and reactions of dynamic rows without contact (states
-        ``ys``, ``vs`` ``(k, n)``) by one call of the core (what the row loop does one by
-        one): into ``out``."""
+        ``ys``, ``vs`` ``(k, n)``) into ``out``, by one call of the core for all rows."""
         s = self.system
         k, nj = ys.shape[0], len(s.joints)
         a, lam = np.empty((k, s.n)), np.empty((k, s.m))
@@ -261,12 +258,17 @@ class SystemOutputs:
                 parts.append(jr[:, j, 5:] if s.dim == 2 else jr[:, j, 3:])
         out["r"] = np.concatenate(parts, axis=1) if parts else np.empty((k, 0))
 
-    def _sections(self, raws: dict[str, list[NDArray]], y: NDArray, t: float) -> None:
-        """A row's strains and curvatures, body by body, into ``raws`` (the section values of
-        all rows follow at once from them)."""
+    def _sections(self, raws: dict[str, list[NDArray]], ys: NDArray, t: NDArray) -> None:
+        """Strains and curvatures of rows ``ys`` ``(k, n)`` into ``raws``, body by body: one call
+        of the core for all rows where the body's length is the same at each (no winch)."""
         for name, _ in self.flex:
-            factor = winch_factor(self.system, name, t)  # a winch's body at its length
-            raws[name].append(self.samplers[name].raw(y[self.system.body_slice(name)], factor))
+            sl = self.system.body_slice(name)
+            factors = [winch_factor(self.system, name, float(x)) for x in t]  # at its length
+            samp = self.samplers[name]
+            if all(f == factors[0] for f in factors):
+                raws[name].append(samp.raw(ys[:, sl], factors[0]))
+                continue
+            raws[name] += [samp.raw(y[None, sl], f) for y, f in zip(ys, factors, strict=True)]
 
     def contact_columns(self, name: str) -> slice:
         """The columns of the obstacle called ``name`` (normal, friction, moment, length,
@@ -346,7 +348,7 @@ class SystemOutputs:
         parts = []
         for name, _ in self.flex:
             factors = np.array([winch_factor(self.system, name, float(x)) for x in t])
-            raw = np.stack(raws[name])  # (k, n_points, w)
+            raw = np.concatenate(raws[name])  # (k, n_points, w)
             vals = self.samplers[name].from_raw(raw, factors[:, None, None])
             strain = np.max(np.abs(vals[:, :, 0]), axis=1)
             strain[np.isnan(strain)] = -np.inf  # NaN (a diverged state) is never larger
