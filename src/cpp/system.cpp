@@ -37,9 +37,11 @@ void System::setup() {
   }
   m = 0;
   joint_row.clear();
+  slots.clear();
   for (const JointData& j : joints) {
     joint_row.push_back(m);
     m += joint_rows(j.info);
+    if (j.info.kind == JointKind::sliding) slots.push_back(m - 1);
   }
   norm_row.assign(rigid.size(), -1);
   for (std::size_t r = 0; r < rigid.size(); ++r)

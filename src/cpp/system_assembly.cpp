@@ -11,12 +11,14 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <stdexcept>
 #include <vector>
 
 #include "assembly.hpp"
 #include "contact.hpp"
 #include "fluid.hpp"
 #include "inertia.hpp"
+#include "sliding.hpp"
 #include "system.hpp"
 #include "winch.hpp"
 
@@ -170,9 +172,16 @@ void stiffness_damping(const Model& mod, double beta, const double* y, const dou
 
 }  // namespace
 
-void constraints(const System& s, const double* y, double t, double* g) {
+void constraints(const System& s, const double* y, double t, double* g, const double* lam) {
   for (std::size_t k = 0; k < s.joints.size(); ++k) {
     const JointData& jd = s.joints[k];
+    if (jd.info.kind == JointKind::sliding) {
+      const int row0 = s.joint_row[k];
+      g[row0 + s.dim] = 0.0;
+      if (lam == nullptr) throw std::invalid_argument("constraints: a sliding joint needs lam");
+      sliding_rows(s, jd, y, t, lam[row0 + s.dim], g + row0);
+      continue;
+    }
     const PlaceRef &pa = s.places[sz(jd.a)], &pb = s.places[sz(jd.b)];
     PlaceEval ea, eb;
     place_at(s, pa, s.maps[sz(jd.a)], t, y, ea);
@@ -432,8 +441,15 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
   thread_local std::vector<std::array<double, kMaxJointRows * 2 * kMaxLocal>> jac1, jacf;
   jac1.resize(s.joints.size());
   jacf.resize(s.joints.size());
+  const MatrixSink joint_sink = [&](const int* idx, int k, const double* K) {
+    add_matrix(*lu, idx, k, K, far);
+  };
   for (std::size_t jj = 0; jj < s.joints.size(); ++jj) {
     const JointData& jd = s.joints[jj];
+    if (jd.info.kind == JointKind::sliding) {
+      sliding_residual(s, jj, yf, lam, y1, tm, r, lu != nullptr ? &joint_sink : nullptr);
+      continue;
+    }
     const PlaceRef &pa = s.places[sz(jd.a)], &pb = s.places[sz(jd.b)];
     const PlaceMap &ma = s.maps[sz(jd.a)], &mb = s.maps[sz(jd.b)];
     const int rows = joint_rows(jd.info), row0 = s.joint_row[jj], k = ma.n + mb.n;
@@ -517,6 +533,10 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
   lu->reset_border(m + static_cast<int>(far.by_column.size()));
   for (std::size_t jj = 0; jj < s.joints.size(); ++jj) {
     const JointData& jd = s.joints[jj];
+    if (jd.info.kind == JointKind::sliding) {
+      sliding_border(s, jj, yf, lam, y1, tm, *lu);
+      continue;
+    }
     const PlaceMap &ma = s.maps[sz(jd.a)], &mb = s.maps[sz(jd.b)];
     const int rows = joint_rows(jd.info), row0 = s.joint_row[jj], k = ma.n + mb.n;
     for (int q = 0; q < rows; ++q)

@@ -243,6 +243,7 @@ bool SystemIntegrator::initial_acceleration(const double* y, const double* v, do
                                             double* lam, const AssemblyTerms* contact) {
   const int n = s_.n, m = s_.m;
   std::vector<double> known(sz(n), 0.0), zero(sz(m), 0.0);
+  for (int k : s_.slots) zero[sz(k)] = lam[k];  // sliding joints' material coordinates
   set_prescribed(t, nullptr, nullptr, known.data());
   AssemblyTerms terms;
   terms.ck = 0.0;
@@ -275,14 +276,16 @@ bool SystemIntegrator::initial_acceleration(const double* y, const double* v, do
       yp[sz(i)] = y[i] + e * v[i] + 0.5 * e * e * known[sz(i)];
       ym[sz(i)] = y[i] - e * v[i] + 0.5 * e * e * known[sz(i)];
     }
-    constraints(s_, yp.data(), t + e, gp.data());
-    constraints(s_, ym.data(), t - e, gm.data());
-    constraints(s_, y, t, g0.data());
+    constraints(s_, yp.data(), t + e, gp.data(), zero.data());
+    constraints(s_, ym.data(), t - e, gm.data(), zero.data());
+    constraints(s_, y, t, g0.data(), zero.data());
     for (int i = 0; i < m; ++i) r_[sz(n + i)] = (gp[sz(i)] - 2.0 * g0[sz(i)] + gm[sz(i)]) / (e * e);
   }
   solve_negative();
   for (int i = 0; i < n; ++i) a[i] = known[sz(i)] + dz_[sz(i)];
-  for (int i = 0; i < m; ++i) lam[i] = dz_[sz(n + i)];
+  for (int i = 0; i < m; ++i) zero[sz(i)] = dz_[sz(n + i)];
+  for (int k : s_.slots) zero[sz(k)] = lam[k];
+  std::copy(zero.begin(), zero.end(), lam);
   lu_valid_ = false;  // the factors are of the mass matrix
   for (int i = 0; i < n; ++i)
     if (!std::isfinite(a[i])) return false;

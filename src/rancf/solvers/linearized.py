@@ -27,6 +27,7 @@ from numpy.typing import NDArray
 
 from rancf.errors import RancfError
 from rancf.system import System
+from rancf.system.sliding import start_multipliers
 
 __all__ = ["Linearized", "linearize", "system_jacobian"]
 
@@ -101,7 +102,7 @@ def linearize(
     """The matrices of ``system`` linearized about ``(y, λ)`` with the loads at ``load_factor``
     times their amplitude (``amplitude=False``: as they act at time ``t``); module docstring."""
     y = np.asarray(y, dtype=float)
-    lam = np.zeros(system.m) if lam is None else np.asarray(lam, dtype=float)
+    lam = start_multipliers(system) if lam is None else np.asarray(lam, dtype=float)
     n, m = system.n, system.m
     free = ~system.fixed
     idx = np.flatnonzero(free)

@@ -38,7 +38,8 @@ Column names: a support's ``LABEL_fx, LABEL_fy[, LABEL_fz]`` then its moment (``
 ``LABEL_mx, _my, _mz``) as :func:`rancf.bodies.reactions.reaction_columns` (in a system of
 several bodies the label is ``BODY:AT``); a joint's ``NAME_fx ...`` and, for joints that
 transmit a moment (``fixed``, a 3D ``revolute``, a driven joint), ``NAME_mz`` or
-``NAME_mx, _my, _mz``; then every obstacle's (:func:`rancf.system.contact.
+``NAME_mx, _my, _mz``, and for a ``sliding`` joint the arc length ``NAME_s`` [m] of the body's
+point at its place (:mod:`rancf.system.sliding`); then every obstacle's (:func:`rancf.system.contact.
 contact_outputs`): the force it exerts on the bodies, ``NAME_normal_x, _y[, _z]`` and
 ``NAME_friction_x, _y[, _z]`` [N], the contact length ``NAME_length`` [m] and the largest
 penetration ``NAME_penetration`` [m]; then every pair of flexible bodies in contact
@@ -61,6 +62,7 @@ from rancf.bodies.section_outputs import SectionSampler, section_names
 from rancf.kernels import _core
 from rancf.system.contact import contact_outputs
 from rancf.system.sensors import SensorReader
+from rancf.system.sliding import sliding_slots, sliding_values
 from rancf.system.system import System
 from rancf.system.winches import winch_factor
 
@@ -113,6 +115,8 @@ class SystemOutputs:
             cols = [f"{lab}_f{a}" for a in axes]
             if _joint_has_moment(s, k):
                 cols += [f"{lab}_mz"] if s.dim == 2 else [f"{lab}_m{a}" for a in "xyz"]
+            if j.kind == "sliding":  # the arc length at the place (rancf.system.sliding)
+                cols.append(f"{lab}_s")
             self.joint_names.append(cols)
         self.reaction_names = [c for cols in self.support_names.values() for c in cols]
         self.reaction_names += [c for cols in self.joint_names for c in cols]
@@ -200,7 +204,7 @@ class SystemOutputs:
                 if directors is not None:
                     set_row(y, np.asarray(directors[i]).ravel())
                 vy = np.zeros(s.n) if v is None or static else s.y_from_q(v[i])
-                a, li = np.zeros(s.n), np.zeros(s.m)
+                a, li = np.zeros(s.n), sliding_slots(s, y, None if lam is None else lam[i])
                 if static:
                     if lam is not None:
                         li[:] = lam[i]
@@ -254,10 +258,12 @@ class SystemOutputs:
             out += support_reactions(b, y[sl], res[sl], self.labels[name])
         for k, j in enumerate(s.joints):
             force, moment = s.core.joint_reaction(k, y, t, lam)
-            mom = None
+            mom, extra = None, None
             if _joint_has_moment(s, k):
                 mom = np.asarray(moment)[2:] if s.dim == 2 else np.asarray(moment)
-            out.append(Reaction(j.name or f"joint{k}", np.asarray(force)[: s.dim], mom))
+            if j.kind == "sliding":
+                extra = np.array([sliding_values(s, k, y, lam)])
+            out.append(Reaction(j.name or f"joint{k}", np.asarray(force)[: s.dim], mom, extra))
         return out
 
     def _step(self, alpha: NDArray | None, i: int, y: NDArray, v: NDArray) -> tuple[NDArray, ...]:
