@@ -96,6 +96,29 @@ void sliding_rows(const System& s, const JointData& jd, const double* y, double 
   for (int i = 0; i < s.dim; ++i) g[i] = p.r[i] - b.x[i];
 }
 
+void sliding_rates(const System& s, const double* y, const double* v, const double* lam,
+                   double t, double* rates) {
+  for (std::size_t k = 0; k < s.joints.size(); ++k) {
+    const JointData& jd = s.joints[k];
+    if (jd.info.kind != JointKind::sliding) continue;
+    const int slot = s.joint_row[k] + s.dim;
+    SlidePoint p;
+    slide_point(s, jd.body, y, lam[slot], p);
+    const PlaceMap& mb = s.maps[sz(jd.b)];
+    PlaceEval b;
+    place_at(s, s.places[sz(jd.b)], mb, t, y, b);
+    double dot = 0.0, rr = 0.0;
+    for (int i = 0; i < s.dim; ++i) {
+      double rel = 0.0;  // the body's point's velocity less the place's, at a fixed sigma
+      for (int j = 0; j < p.n; ++j) rel += p.dr[i][j] * v[p.index[j]];
+      for (int j = 0; j < b.n; ++j) rel -= b.dx[i][j] * v[mb.index[j]];
+      dot += p.rs[i] * rel;
+      rr += p.rs[i] * p.rs[i];
+    }
+    rates[slot] = -dot / rr;
+  }
+}
+
 void sliding_residual(const System& s, std::size_t k, const double* yf, const double* lam,
                       const double* y1, const AssemblyTerms& tm, double* r, const MatrixSink* add) {
   const JointData& jd = s.joints[k];

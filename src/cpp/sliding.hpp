@@ -59,6 +59,12 @@ void slide_point(const System& s, int body, const double* y, double sigma, Slide
 void sliding_rows(const System& s, const JointData& jd, const double* y, double t, double sigma,
                   double* g);
 
+/// The rate of the material coordinate of every sliding joint at (y, v) (into its slot of
+/// rates, m values; others untouched): the body's point moves with the place,
+/// N v_e + r_sigma sigma' = dx_B/du v_B, in the least-squares sense along r_sigma.
+void sliding_rates(const System& s, const double* y, const double* v, const double* lam,
+                   double t, double* rates);
+
 /// The joint's part of the balance r: G(yf)^T lambda on the bodies' rows, g(y1) on its rows,
 /// h(yf) on its slot's; add (may be null): ck d(G^T lambda)/dy of a place on a rigid body.
 void sliding_residual(const System& s, std::size_t k, const double* yf, const double* lam,

@@ -8,6 +8,7 @@
 #include "assembly.hpp"
 #include "contact.hpp"
 #include "inertia.hpp"
+#include "sliding.hpp"
 #include "winch.hpp"
 
 namespace rancf {
@@ -276,8 +277,15 @@ bool SystemIntegrator::initial_acceleration(const double* y, const double* v, do
       yp[sz(i)] = y[i] + e * v[i] + 0.5 * e * e * known[sz(i)];
       ym[sz(i)] = y[i] - e * v[i] + 0.5 * e * e * known[sz(i)];
     }
-    constraints(s_, yp.data(), t + e, gp.data(), zero.data());
-    constraints(s_, ym.data(), t - e, gm.data(), zero.data());
+    // sliding joints' material coordinates move at their rates: sigma(s) = sigma + s sigma'
+    std::vector<double> lp(zero), lm(zero), rate(sz(m), 0.0);
+    sliding_rates(s_, y, v, zero.data(), t, rate.data());
+    for (int k : s_.slots) {
+      lp[sz(k)] += e * rate[sz(k)];
+      lm[sz(k)] -= e * rate[sz(k)];
+    }
+    constraints(s_, yp.data(), t + e, gp.data(), lp.data());
+    constraints(s_, ym.data(), t - e, gm.data(), lm.data());
     constraints(s_, y, t, g0.data(), zero.data());
     for (int i = 0; i < m; ++i) r_[sz(n + i)] = (gp[sz(i)] - 2.0 * g0[sz(i)] + gm[sz(i)]) / (e * e);
   }

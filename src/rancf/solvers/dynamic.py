@@ -156,7 +156,7 @@ def integrate(
         v = system.v0.copy()
         t = 0.0
         integ.prescribe(0.0, y, v)  # moving supports at t = 0
-        lam = start_multipliers(system)
+        lam = start_multipliers(system, None if initial is None else y)
         a = integ.initial_acceleration(y, v, t, lam)
         store(0.0, y, v, np.concatenate([y, v]) if contact else None)
     else:

@@ -180,9 +180,12 @@ def attach_sliding(system: Any) -> None:
         system.sliding_start[k] = sigma
 
 
-def start_multipliers(system: Any) -> NDArray[np.float64]:
-    """The multipliers to start from: zero, and the sliding joints' start ``σ`` in their
-    slots."""
+def start_multipliers(system: Any, y: NDArray | None = None) -> NDArray[np.float64]:
+    """The multipliers to start from: zero, and the sliding joints' ``σ`` in their slots: at
+    the reference, or (``y``: a state to start from) the body's point closest to the place
+    (:func:`sliding_slots`)."""
+    if y is not None:
+        return sliding_slots(system, y)
     lam = np.zeros(system.m)
     for k, sigma in getattr(system, "sliding_start", {}).items():
         lam[system.joint_rows[k] + system.dim] = sigma

@@ -1,0 +1,270 @@
+"""Sliding joints (``kind = "sliding"``): a rope runs through a place without friction
+(docs/derivations/sliding.md).  The Jacobian of the balance and the joint's rows with respect to
+the coordinates, the multipliers and the material coordinate against central differences
+(cables and rods, 2D and 3D, the place on the ground, a point mass, a rigid body); a rigid
+motion of the whole set-up gives zero elastic force, keeps the joint's rows and turns its forces
+with it; and a rope through two frictionless guides with 2 and 3 kg on its ends runs as the
+Atwood machine with the rope's mass."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from rancf.bodies.flexible import Material, Model, Section, Support
+from rancf.bodies.rigid import PointMass, RigidBody
+from rancf.mesh.factories import mesh_line
+from rancf.mesh.mesh import mesh_from_arrays
+from rancf.solvers.dynamic import DynamicOptions, integrate
+from rancf.system import Joint, System
+from rancf.system.outputs import SystemOutputs
+from rancf.system.sliding import start_multipliers
+
+SEC, MAT = Section.circular(0.01), Material(1000.0, 1e7)
+ROD = Material(1000.0, 1e7, poisson_ratio=0.3)
+
+
+def _rot3(a: float) -> np.ndarray:
+    c, s = np.cos(a), np.sin(a)
+    return np.array([[c, 0, s], [0, 1, 0], [-s, 0, c]]) @ np.array(
+        [[c, -s, 0], [s, c, 0], [0, 0, 1]]
+    )
+
+
+def through(place: str, dim: int = 2, element: str = "rancf", supports: bool = True) -> System:
+    """A rope of 4 elements along x through a guide at x = 0.55 on the ground, a point mass or
+    a point of a rigid body (turned, so its point's position depends on its angle)."""
+    end = [1.0, 0.0, 0.0][:dim]
+    sup = [Support(0, "pin")] if supports else []
+    rope = Model(mesh_line([0.0] * dim, end, 4), element, SEC, ROD if element == "rod" else MAT,
+                 sup, gravity=[0.0] * (dim - 1) + [-9.81])  # fmt: skip
+    bodies: dict = {"rope": rope}
+    x = np.array([0.55, 0.0, 0.0][:dim])
+    if place == "ground":
+        joint = Joint("sliding", ("rope", "ground"), position=tuple(x), name="guide")
+    elif place == "mass":
+        bodies["ring"] = PointMass(dim, 0.5, tuple(x))
+        joint = Joint("sliding", ("rope", "ring"), name="guide")
+    else:
+        a = np.array([0.1, 0.1, 0.05][:dim])
+        if dim == 2:
+            rot = np.array([[np.cos(0.3), -np.sin(0.3)], [np.sin(0.3), np.cos(0.3)]])
+            body = RigidBody(2, 1.5, 0.02, tuple(x - rot @ a), 0.3, points={"a": tuple(a)})
+        else:
+            rot = _rot3(0.4)
+            body = RigidBody(3, 1.5, (0.1, 0.2, 0.3), tuple(x - rot @ a), rot.tolist(),
+                             points={"a": tuple(a)})  # fmt: skip
+        bodies["block"] = body
+        joint = Joint("sliding", ("rope", "block:a"), name="guide")
+    return System(bodies, [joint], gravity=[0.0] * (dim - 1) + [-9.81])
+
+
+def _residual(s: System, y: np.ndarray, lam: np.ndarray) -> np.ndarray:
+    r, z = np.empty(s.n + s.m), np.zeros(s.n)
+    assert s.core.residual(y, z, z, lam, 0.0, 1.0, False, False, r)
+    return r
+
+
+CASES = [("ground", 2, "rancf"), ("mass", 2, "ancf"), ("rigid", 2, "rancf"),
+         ("ground", 3, "rancf"), ("rigid", 3, "rancf"), ("mass", 3, "rod"),
+         ("rigid", 3, "rod")]  # fmt: skip
+
+
+@pytest.mark.parametrize(("place", "dim", "element"), CASES)
+def test_jacobian_is_exact(place, dim, element):
+    """The assembled Jacobian over ``(y, λ, σ)`` against central differences of the residual
+    at a perturbed state, with a reaction and the guide moved into the next element: to 1e-7
+    of the largest entry (the differences' own error; the rigid place's second derivatives are
+    differenced in the core too)."""
+    s = through(place, dim, element)
+    rng = np.random.default_rng(7)
+    y = s.y0 + 1e-2 * rng.standard_normal(s.n)
+    y[s.fixed] = s.y0[s.fixed]
+    lam = start_multipliers(s)
+    slot = s.joint_rows[0] + dim
+    assert lam[slot] == pytest.approx(2.2, abs=1e-12)  # 0.55 m of 4 elements of 0.25 m
+    lam[slot - dim : slot] = rng.standard_normal(dim) * 3.0
+    lam[slot] += 0.37  # into element 2
+    size = s.n + s.m
+    jac = np.empty(size * size)
+    z = np.zeros(s.n)
+    assert s.core.dense_jacobian(y, z, z, lam, 0.0, 1.0, 0.0, 0.0, False, jac)
+    jac = jac.reshape(size, size)
+    x0, fd = np.r_[y, lam], np.zeros((size, size))
+    for c in range(size):
+        h = 1e-6 * (1.0 + abs(x0[c]))
+        xp, xm = x0.copy(), x0.copy()
+        xp[c] += h
+        xm[c] -= h
+        fd[:, c] = (_residual(s, xp[: s.n], xp[s.n :]) - _residual(s, xm[: s.n], xm[s.n :])) / (
+            2 * h
+        )
+    free = np.r_[~s.fixed, np.ones(s.m, dtype=bool)]
+    err = np.abs(jac - fd)[np.ix_(free, free)]
+    assert err.max() <= 1e-7 * np.abs(fd).max()
+    # the joint's own blocks (its rows, its slot's row and column) to a tighter bound
+    joint = np.r_[s.n + slot - dim : s.n + slot + 1]
+    rows = np.abs(jac - fd)[joint][:, free]
+    assert rows.max() <= 1e-7 * max(np.abs(fd[joint]).max(), 1.0)
+
+
+def _turn(dim: int) -> np.ndarray:
+    if dim == 2:
+        return np.array([[np.cos(0.7), -np.sin(0.7)], [np.sin(0.7), np.cos(0.7)]])
+    return _rot3(0.7)
+
+
+@pytest.mark.parametrize(("dim", "element"), [(2, "rancf"), (3, "rancf"), (3, "rod")])
+def test_rigid_motion_of_the_whole_set_up(dim, element):
+    """A rope through a ring (a point mass), both turned by ``Q`` and shifted by ``c``: the
+    joint's rows stay zero at the same ``σ``, the elastic forces vanish, and with a reaction
+    ``λ`` the forces on the rope and the ring are ``Q`` times those at the reference with
+    ``Qᵀλ`` (1e-12 of their size)."""
+    s = through("mass", dim, element, supports=False)
+    q, c = _turn(dim), np.array([0.3, -0.2, 0.1][:dim])
+    rope = s.bodies["rope"]
+    nodes = rope.q_from_y(s.y0[s.body_slice("rope")]).reshape(rope.n_nodes, rope.dpn)
+    moved = nodes.copy()
+    moved[:, :dim] = nodes[:, :dim] @ q.T + c
+    moved[:, dim : 2 * dim] = nodes[:, dim : 2 * dim] @ q.T
+    y = s.y0.copy()
+    y[s.body_slice("rope")] = rope.y_from_q(moved.ravel())
+    y[s.body_slice("ring")] = q @ s.y0[s.body_slice("ring")] + c
+    s_nograv = System({"rope": Model(rope.mesh, element, SEC, ROD if element == "rod" else MAT),
+                       "ring": s.bodies["ring"]}, s.joints)  # fmt: skip
+    lam0 = start_multipliers(s_nograv)
+    slot = s_nograv.joint_rows[0] + dim
+    ref = _residual(s_nograv, s_nograv.y0, lam0)
+    now = _residual(s_nograv, y, lam0)
+    scale = MAT.youngs_modulus * SEC.area
+    assert np.abs(ref).max() <= 1e-12 * scale
+    assert np.abs(now).max() <= 1e-9 * scale  # elastic forces of a rigid motion, round-off
+    force = np.array([1.5, -2.0, 0.7][:dim])
+    lam_ref, lam_now = lam0.copy(), lam0.copy()
+    lam_ref[slot - dim : slot] = force
+    lam_now[slot - dim : slot] = q @ force
+    r0 = _residual(s_nograv, s_nograv.y0, lam_ref) - ref
+    r1 = _residual(s_nograv, y, lam_now) - now
+    n = rope.n_nodes
+    g0 = rope.q_from_y(r0[s_nograv.body_slice("rope")]).reshape(n, rope.dpn)
+    g1 = rope.q_from_y(r1[s_nograv.body_slice("rope")]).reshape(n, rope.dpn)
+    tol = 1e-12 * np.abs(g0).max()
+    np.testing.assert_allclose(g1[:, :dim], g0[:, :dim] @ q.T, rtol=0, atol=tol)
+    np.testing.assert_allclose(g1[:, dim : 2 * dim], g0[:, dim : 2 * dim] @ q.T, rtol=0, atol=tol)
+    ring = s_nograv.body_slice("ring")
+    np.testing.assert_allclose(r1[ring], q @ r0[ring], rtol=0, atol=tol)
+    np.testing.assert_allclose(r1[s_nograv.n + slot], r0[s_nograv.n + slot], rtol=0,
+                               atol=1e-12 * np.abs(force).max())  # fmt: skip
+
+
+# ---------------------------------------------------------------- Atwood through two guides
+G, M1, M2 = 9.81, 2.0, 3.0
+SPAN, HALF, RC = 0.5, 0.1, 0.01
+AREA, RHO, E_MOD, EI = 1e-5, 4000.0, 1e10, 2.4e-3
+RHO_A = RHO * AREA
+
+
+def _line(a, b):
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    return [a, a + (b - a) / 3, a + 2 * (b - a) / 3, b], [1.0, 1.0, 1.0, 1.0]
+
+
+def _arc(centre, t0: float, t1: float):
+    c = np.cos((t1 - t0) / 2)
+    p0, p2 = (centre + RC * np.array([np.cos(t), np.sin(t)]) for t in (t0, t1))
+    p1 = centre + RC / c * np.array([np.cos((t0 + t1) / 2), np.sin((t0 + t1) / 2)])
+    w = (1 + 2 * c) / 3
+    return [p0, (p0 + 2 * c * p1) / (1 + 2 * c), (2 * c * p1 + p2) / (1 + 2 * c), p2], [1, w, w, 1]
+
+
+def _points(a: float, b: float, h: float) -> np.ndarray:
+    return np.linspace(a, b, max(1, int(round(abs(b - a) / h))) + 1)
+
+
+def atwood() -> System:
+    """The rope hangs from two guides at the corners of its path (left leg at x = -0.1, a
+    horizontal part, right leg at x = 0.1; corners of radius 1 cm): 5 mm elements where the
+    guides pass, unloaded straight (its bends carry the same energy wherever they are)."""
+    ys = np.r_[_points(-SPAN, -0.3, 0.05)[:-1], _points(-0.3, -RC, 0.005)]
+    els = [_line((-HALF, ys[i]), (-HALF, ys[i + 1])) for i in range(len(ys) - 1)]
+    cl, cr = np.array([-HALF + RC, -RC]), np.array([HALF - RC, -RC])
+    th = np.linspace(np.pi, np.pi / 2, 4)
+    els += [_arc(cl, th[i], th[i + 1]) for i in range(3)]
+    xs = _points(-HALF + RC, HALF - RC, 0.005)
+    els += [_line((xs[i], 0.0), (xs[i + 1], 0.0)) for i in range(len(xs) - 1)]
+    th = np.linspace(np.pi / 2, 0.0, 4)
+    els += [_arc(cr, th[i], th[i + 1]) for i in range(3)]
+    yr = ys[::-1]
+    els += [_line((HALF, yr[i]), (HALF, yr[i + 1])) for i in range(len(ys) - 1)]
+    mesh = mesh_from_arrays(np.array([e[0] for e in els]), np.array([e[1] for e in els], float))
+    rope = Model(mesh, "rancf", Section(AREA, EI / E_MOD), Material(RHO, E_MOD),
+                 gravity=(0.0, -G), stress_free="straight")  # fmt: skip
+    g1 = cl + RC * np.array([-1.0, 1.0]) / np.sqrt(2)
+    g2 = cr + RC * np.array([1.0, 1.0]) / np.sqrt(2)
+    joints = [Joint("pin", ("rope:start", "left")), Joint("pin", ("rope:end", "right")),
+              Joint("sliding", ("rope", "ground"), position=tuple(g1), name="g1"),
+              Joint("sliding", ("rope", "ground"), position=tuple(g2), name="g2")]  # fmt: skip
+    bodies = {"rope": rope, "left": PointMass(2, M1, (-HALF, -SPAN)),
+              "right": PointMass(2, M2, (HALF, -SPAN))}  # fmt: skip
+    return System(bodies, joints, gravity=[0.0, -G])
+
+
+def rigid_rope_drop(t: np.ndarray, length: float) -> np.ndarray:
+    """The drop ``x(t)`` of the 3 kg mass for a rigid rope: with the hanging lengths
+    ``l - x`` and ``l + x``, ``(m1 + m2 + ρ A L) ẍ = g (m2 - m1 + 2 ρ A x)``, so
+    ``x = Δm / (2 ρ A) (cosh ω t - 1)``, ``ω² = 2 ρ A g / (m1 + m2 + ρ A L)``: the Atwood
+    acceleration ``(m2 - m1) g / (m1 + m2 + ρ A L)`` at the start, growing with the rope's
+    weight moved from one side to the other."""
+    omega = np.sqrt(2 * RHO_A * G / (M1 + M2 + RHO_A * length))
+    return (M2 - M1) / (2 * RHO_A) * (np.cosh(omega * t) - 1.0)
+
+
+@pytest.fixture(scope="module")
+def atwood_run():
+    s = atwood()
+    res = integrate(s, DynamicOptions(t_end=0.4, step=2e-3, rho_inf=0.5, max_newton=25,
+                                      output_step=0.01))  # fmt: skip
+    assert res.status.value == "completed", res.message
+    return s, res
+
+
+def test_rope_through_guides_runs_as_atwood_machine(atwood_run):
+    """The mean acceleration of ``x = (y_left - y_right) / 2`` over 0.1 s to 0.4 s (a quadratic
+    fit, after the start's release of the rope's stretch and bends) within 1 % of the rigid
+    rope's from the same fit (measured: +0.6 %)."""
+    s, res = atwood_run
+    ys = np.array([s.y_from_q(q) for q in res.q])
+    x = (ys[:, s.body_slice("left")][:, 1] - ys[:, s.body_slice("right")][:, 1]) / 2
+    length = float(np.sum(s.bodies["rope"].mesh.arc_lengths()))
+    late = res.t >= 0.1 - 1e-9
+    fit = 2 * np.polyfit(res.t[late], x[late], 2)[0]
+    rigid = 2 * np.polyfit(res.t[late], rigid_rope_drop(res.t[late], length), 2)[0]
+    atwood_formula = (M2 - M1) * G / (M1 + M2 + RHO_A * length)
+    assert rigid == pytest.approx(atwood_formula, rel=0.03)  # the rope's weight moved: +1.5 %
+    assert abs(fit / rigid - 1.0) < 0.01
+
+
+def test_guides_report_normal_force_and_material_run_through(atwood_run):
+    """The reactions (``reactions.csv``'s columns): normal to the rope at the guide (the slot's
+    equation, to 1e-9) and so along the corner's bisector, into it (to 3 degrees; the rope
+    turns by 90 degrees at each guide); and the arc length at the guides ``NAME_s`` follows the
+    masses: the left guide's material runs to the right as the right mass drops (``Δs = -x``
+    to 2 mm: the rope's stretch)."""
+    s, res = atwood_run
+    out = SystemOutputs(s)
+    k = -1
+    rows = out.rows(res.t[[0, k]], res.q[[0, k]], res.v[[0, k]], lam=res.lam[[0, k]])
+    r, names = rows["r"], out.reaction_names
+    y = s.y_from_q(res.q[k])
+    for j, name, inward in ((2, "g1", (-1.0, 1.0)), (3, "g2", (1.0, 1.0))):
+        slot = s.joint_rows[j] + 2
+        _, tangent, _ = s.core.sliding_point(0, y, float(res.lam[k][slot]))
+        f = np.array([r[1, names.index(f"{name}_fx")], r[1, names.index(f"{name}_fy")]])
+        tangent = np.asarray(tangent)[:2]
+        assert abs(f @ tangent) <= 1e-9 * np.linalg.norm(f) * np.linalg.norm(tangent)
+        cos = f @ np.asarray(inward) / (np.linalg.norm(f) * np.sqrt(2.0))
+        assert cos > np.cos(np.radians(3.0))
+    ys = s.y_from_q(res.q[k])
+    x = (ys[s.body_slice("left")][1] - ys[s.body_slice("right")][1]) / 2
+    ds = r[1, names.index("g1_s")] - r[0, names.index("g1_s")]
+    assert ds == pytest.approx(-x, abs=2e-3)
