@@ -105,7 +105,9 @@ def closure_rows(
     return rows.astype(np.int64), cols.astype(np.int64), a[rows, cols]
 
 
-def closure_terms(names: Sequence[str], flex: Sequence[Any], offsets: dict[str, int]) -> list[LinearTerm]:
+def closure_terms(
+    names: Sequence[str], flex: Sequence[Any], offsets: dict[str, int]
+) -> list[LinearTerm]:
     """The seams of the closed flexible bodies ``flex`` (named ``names``, their first
     coordinates ``offsets``) as the terms of a system's linear rows
     (:class:`rancf.kernels.records.LinearTerm`, :func:`closure_rows`), in system coordinates."""

@@ -13,7 +13,7 @@ from typing import Any
 
 from pydantic_core import PydanticCustomError
 
-from rancf.scenario.base import fail, show, under
+from rancf.scenario.base import fail, shorten, show, under
 from rancf.scenario.bodies import FlexibleBody, RigidBody
 from rancf.scenario.loads import time_size
 from rancf.scenario.places import ResolvedPlace, resolve_place
@@ -158,8 +158,9 @@ def _sliding(c: _Context, key: str, j: Any) -> None:
     if body is None or (c.bodies is not None and not isinstance(body, FlexibleBody)):
         names = [k for k, v in (c.bodies or {"body": None}).items()
                  if c.bodies is None or isinstance(v, FlexibleBody)]  # fmt: skip
+        known = shorten(", ".join(names)) or "none"
         raise fail(f"{key}.between[0]", f"names the flexible body that slides through the "
-                   f"place (one of {shorten(', '.join(names)) or 'none'}), got {show(a)}")  # fmt: skip
+                   f"place (one of {known}), got {show(a)}")  # fmt: skip
     if body.mesh.element == "beam":
         raise fail(f"{key}.between[0]", "a body of cable or rod elements slides (not beams)")
     p = c.place(f"{key}.between[1]", b, ground=True)

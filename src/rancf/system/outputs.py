@@ -38,9 +38,9 @@ Column names: a support's ``LABEL_fx, LABEL_fy[, LABEL_fz]`` then its moment (``
 ``LABEL_mx, _my, _mz``) as :func:`rancf.bodies.reactions.reaction_columns` (in a system of
 several bodies the label is ``BODY:AT``); a joint's ``NAME_fx ...`` and, for joints that
 transmit a moment (``fixed``, a 3D ``revolute``, a driven joint), ``NAME_mz`` or
-``NAME_mx, _my, _mz``, and for a ``sliding`` joint the arc length ``NAME_s`` [m] of the body's
-point at its place (:mod:`rancf.system.sliding`); then every obstacle's (:func:`rancf.system.contact.
-contact_outputs`): the force it exerts on the bodies, ``NAME_normal_x, _y[, _z]`` and
+``NAME_mx, _my, _mz``, and for a ``sliding`` joint the arc length ``NAME_s`` [m] of the
+body's point at its place (:mod:`rancf.system.sliding`); then every obstacle's
+(:func:`rancf.system.contact.contact_outputs`): the force it exerts on the bodies, ``NAME_normal_x, _y[, _z]`` and
 ``NAME_friction_x, _y[, _z]`` [N], the contact length ``NAME_length`` [m] and the largest
 penetration ``NAME_penetration`` [m]; then every pair of flexible bodies in contact
 (``body_contacts``, ``A_B_...``; ``A_A_...`` self-contact): the total contact force

@@ -47,8 +47,8 @@ def sliding_body(system: Any, j: Joint) -> tuple[str, Model]:
     key = f"{j.name or 'joints'}.between"
     body = system.bodies.get(p.body) if p.body is not None else None
     if not isinstance(body, Model) or body.element == "beam" or body.reduction is not None:
-        raise InputError(key, str(spec), "first the name of a flexible body of cable or rod "
-                         'elements with continuity "C1" (the body that slides, e.g. "rope")')  # fmt: skip
+        raise InputError(key, str(spec), 'first a flexible body of cable or rod elements with '
+                         'continuity "C1" (the body that slides, by name: "rope")')  # fmt: skip
     if p.at is not None and system.single is None:
         raise InputError(key, str(spec), f"the body itself ({p.body!r}), not one of its "
                          "places: it slides through the second place")  # fmt: skip
@@ -101,9 +101,10 @@ def _evaluate(body: Model, nodal: NDArray, sigma: NDArray) -> tuple[NDArray, NDA
     xi = sigma - e
     out = []
     for order in range(3):
-        n = np.stack([cable_shape_functions(m.weights[k : k + 1], m.scales[k : k + 1],
-                                            [x])[order][0, 0] for k, x in zip(e, xi,
-                                                                             strict=True)])  # fmt: skip
+        n = np.stack([
+            cable_shape_functions(m.weights[k : k + 1], m.scales[k : k + 1], [x])[order][0, 0]
+            for k, x in zip(e, xi, strict=True)
+        ])  # fmt: skip
         el = np.concatenate([nodal[e], nodal[e + 1]], axis=1)  # (k, 4, dim)
         out.append(np.einsum("kj,kjd->kd", n, el))
     return out[0], out[1], out[2]
@@ -168,15 +169,19 @@ def attach_sliding(system: Any) -> None:
         name, body = sliding_body(system, j)
         if name not in done:
             m = body.mesh
-            system.core.attach_sliding(system.flex.index(body), np.ascontiguousarray(m.weights),
-                                       np.ascontiguousarray(m.scales), bool(body.closed))  # fmt: skip
+            system.core.attach_sliding(
+                system.flex.index(body), np.ascontiguousarray(m.weights),
+                np.ascontiguousarray(m.scales), bool(body.closed),
+            )  # fmt: skip
             done.add(name)
         x, _ = system.core.place(system.records.joints[k].b, system.y0, 0.0)
         sigma, gap = material_coordinate(body, x)
         if not gap <= ON_BODY_RTOL * system.size:
-            raise InputError(f"{j.name or f'joints[{k}]'}.between", [str(v) for v in j.between],
-                             f"a place on the body {name!r} in the reference configuration "
-                             f"(it is {gap:.4g} m from it; move the place or the body)")  # fmt: skip
+            raise InputError(
+                f"{j.name or f'joints[{k}]'}.between", [str(v) for v in j.between],
+                f"a place on the body {name!r} in the reference configuration (it is "
+                f"{gap:.4g} m from it; move the place or the body)",
+            )  # fmt: skip
         system.sliding_start[k] = sigma
 
 
