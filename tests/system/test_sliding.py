@@ -16,6 +16,8 @@ from rancf.bodies.rigid import PointMass, RigidBody
 from rancf.mesh.factories import mesh_line
 from rancf.mesh.mesh import mesh_from_arrays
 from rancf.solvers.dynamic import DynamicOptions, integrate
+from rancf.solvers.modal import natural_modes
+from rancf.solvers.static import solve_static
 from rancf.system import Joint, System
 from rancf.system.outputs import SystemOutputs
 from rancf.system.sliding import start_multipliers
@@ -268,3 +270,48 @@ def test_guides_report_normal_force_and_material_run_through(atwood_run):
     x = (ys[s.body_slice("left")][1] - ys[s.body_slice("right")][1]) / 2
     ds = r[1, names.index("g1_s")] - r[0, names.index("g1_s")]
     assert ds == pytest.approx(-x, abs=2e-3)
+
+
+# ---------------------------------------------------------------- a beam over a guide
+BEAM_SEC, STEEL = Section.circular(0.01), Material(1000.0, 1e11, poisson_ratio=0.3)
+
+
+def two_spans(dim: int, element: str, at: float, n_el: int = 20) -> System:
+    """A stiff rope (a beam) of 2 m, ``n_el`` elements, pinned at both ends, through a guide on
+    the ground at ``x = at``: a continuous beam of two spans on three simple supports (the
+    guide lets the beam slide along itself, which the pinned ends do not)."""
+    sup = [Support(0, "pin", fix_twist=element == "rod"), Support(n_el, "pin")]
+    beam = Model(mesh_line([0.0] * dim, [2.0, 0.0, 0.0][:dim], n_el), element, BEAM_SEC, STEEL,
+                 sup, gravity=[0.0] * (dim - 1) + [-9.81])  # fmt: skip
+    guide = Joint("sliding", ("beam", "ground"), position=tuple([at, 0.0, 0.0][:dim]),
+                  name="guide")  # fmt: skip
+    return System({"beam": beam}, [guide])
+
+
+@pytest.mark.parametrize(("dim", "element"), [(2, "ancf"), (3, "rod")])
+def test_guide_carries_the_middle_support_of_a_continuous_beam(dim, element):
+    """Statics: under its weight ``w`` the guide at 0.95 m carries the middle reaction of the
+    two-span beam, ``R = w (a + b) / 2 - M_B (1/a + 1/b)`` with the three-moment equation's
+    ``M_B = -w (a³ + b³) / (8 (a + b))`` (measured: 3e-5 relative; the rest is the membrane
+    action of the pinned ends), normal to the beam."""
+    s = two_spans(dim, element, 0.95)
+    res = solve_static(s)
+    react = {r.at: r for r in SystemOutputs(s).static_reactions(res.y, res.lam)}
+    w, a, b = 1000.0 * BEAM_SEC.area * 9.81, 0.95, 1.05
+    mb = -w * (a**3 + b**3) / (8 * (a + b))
+    f = react["guide"].force
+    assert f[-1] == pytest.approx(w * (a + b) / 2 - mb / a - mb / b, rel=2e-4)
+    assert abs(f[0]) < 1e-4 * abs(f[-1])
+    assert react["guide"].extra[0] == pytest.approx(0.95, abs=1e-9)  # s: where it is along
+
+
+def test_guide_as_middle_support_in_modes():
+    """Modes: with the guide in the middle (inside an element) the two spans of 1 m vibrate
+    as simply supported spans, ``ω₁ = (π / ℓ)² √(EI / ρA)``, and next as pinned-clamped ones,
+    ``(3.9266 / ℓ)² √(EI / ρA)`` (Euler-Bernoulli; to 1e-4)."""
+    s = two_spans(2, "ancf", 1.0, n_el=21)
+    res = solve_static(s)
+    modes = natural_modes(s, res.y, count=2, lam=res.lam)
+    c = np.sqrt(STEEL.youngs_modulus * BEAM_SEC.inertia / (1000.0 * BEAM_SEC.area))
+    exact = np.array([np.pi**2, 3.926602312**2]) * c / (2 * np.pi)
+    np.testing.assert_allclose(modes.frequencies_hz[:2], exact, rtol=1e-4)
