@@ -183,10 +183,11 @@ def _points(a: float, b: float, h: float) -> np.ndarray:
     return np.linspace(a, b, max(1, int(round(abs(b - a) / h))) + 1)
 
 
-def atwood() -> System:
+def atwood(dim: int = 2) -> System:
     """The rope hangs from two guides at the corners of its path (left leg at x = -0.1, a
     horizontal part, right leg at x = 0.1; corners of radius 1 cm): 5 mm elements where the
-    guides pass, unloaded straight (its bends carry the same energy wherever they are)."""
+    guides pass, unloaded straight (its bends carry the same energy wherever they are).  In 3D
+    the same in the x-z plane, gravity along -z."""
     ys = np.r_[_points(-SPAN, -0.3, 0.05)[:-1], _points(-0.3, -RC, 0.005)]
     els = [_line((-HALF, ys[i]), (-HALF, ys[i + 1])) for i in range(len(ys) - 1)]
     cl, cr = np.array([-HALF + RC, -RC]), np.array([HALF - RC, -RC])
@@ -198,17 +199,23 @@ def atwood() -> System:
     els += [_arc(cr, th[i], th[i + 1]) for i in range(3)]
     yr = ys[::-1]
     els += [_line((HALF, yr[i]), (HALF, yr[i + 1])) for i in range(len(ys) - 1)]
-    mesh = mesh_from_arrays(np.array([e[0] for e in els]), np.array([e[1] for e in els], float))
+    def space(p: np.ndarray) -> np.ndarray:  # the plane's points in the system's space
+        p = np.asarray(p, dtype=float)
+        return p if dim == 2 else np.stack([p[..., 0], np.zeros(p.shape[:-1]), p[..., 1]], -1)
+
+    points = space(np.array([e[0] for e in els]))
+    mesh = mesh_from_arrays(points, np.array([e[1] for e in els], float))
+    gravity = tuple(space(np.array([0.0, -G])))
     rope = Model(mesh, "rancf", Section(AREA, EI / E_MOD), Material(RHO, E_MOD),
-                 gravity=(0.0, -G), stress_free="straight")  # fmt: skip
-    g1 = cl + RC * np.array([-1.0, 1.0]) / np.sqrt(2)
-    g2 = cr + RC * np.array([1.0, 1.0]) / np.sqrt(2)
+                 gravity=gravity, stress_free="straight")  # fmt: skip
+    g1 = space(cl + RC * np.array([-1.0, 1.0]) / np.sqrt(2))
+    g2 = space(cr + RC * np.array([1.0, 1.0]) / np.sqrt(2))
     joints = [Joint("pin", ("rope:start", "left")), Joint("pin", ("rope:end", "right")),
               Joint("sliding", ("rope", "ground"), position=tuple(g1), name="g1"),
               Joint("sliding", ("rope", "ground"), position=tuple(g2), name="g2")]  # fmt: skip
-    bodies = {"rope": rope, "left": PointMass(2, M1, (-HALF, -SPAN)),
-              "right": PointMass(2, M2, (HALF, -SPAN))}  # fmt: skip
-    return System(bodies, joints, gravity=[0.0, -G])
+    bodies = {"rope": rope, "left": PointMass(dim, M1, tuple(space([-HALF, -SPAN]))),
+              "right": PointMass(dim, M2, tuple(space([HALF, -SPAN])))}  # fmt: skip
+    return System(bodies, joints, gravity=list(gravity))
 
 
 def rigid_rope_drop(t: np.ndarray, length: float) -> np.ndarray:
@@ -221,9 +228,9 @@ def rigid_rope_drop(t: np.ndarray, length: float) -> np.ndarray:
     return (M2 - M1) / (2 * RHO_A) * (np.cosh(omega * t) - 1.0)
 
 
-@pytest.fixture(scope="module")
-def atwood_run():
-    s = atwood()
+@pytest.fixture(scope="module", params=[2, 3])
+def atwood_run(request):
+    s = atwood(request.param)
     res = integrate(s, DynamicOptions(t_end=0.4, step=2e-3, rho_inf=0.5, max_newton=25,
                                       output_step=0.01))  # fmt: skip
     assert res.status.value == "completed", res.message
@@ -236,7 +243,8 @@ def test_rope_through_guides_runs_as_atwood_machine(atwood_run):
     rope's from the same fit (measured: +0.6 %)."""
     s, res = atwood_run
     ys = np.array([s.y_from_q(q) for q in res.q])
-    x = (ys[:, s.body_slice("left")][:, 1] - ys[:, s.body_slice("right")][:, 1]) / 2
+    up = s.dim - 1
+    x = (ys[:, s.body_slice("left")][:, up] - ys[:, s.body_slice("right")][:, up]) / 2
     length = float(np.sum(s.bodies["rope"].mesh.arc_lengths()))
     late = res.t >= 0.1 - 1e-9
     fit = 2 * np.polyfit(res.t[late], x[late], 2)[0]
@@ -257,17 +265,20 @@ def test_guides_report_normal_force_and_material_run_through(atwood_run):
     k = -1
     rows = out.rows(res.t[[0, k]], res.q[[0, k]], res.v[[0, k]], lam=res.lam[[0, k]])
     r, names = rows["r"], out.reaction_names
-    y = s.y_from_q(res.q[k])
+    y, d = s.y_from_q(res.q[k]), s.dim
+    axes = "xy" if d == 2 else "xz"
     for j, name, inward in ((2, "g1", (-1.0, 1.0)), (3, "g2", (1.0, 1.0))):
-        slot = s.joint_rows[j] + 2
+        slot = s.joint_rows[j] + d
         _, tangent, _ = s.core.sliding_point(0, y, float(res.lam[k][slot]))
-        f = np.array([r[1, names.index(f"{name}_fx")], r[1, names.index(f"{name}_fy")]])
-        tangent = np.asarray(tangent)[:2]
+        f = np.array([r[1, names.index(f"{name}_f{a}")] for a in axes])
+        tangent = np.asarray(tangent)[[0, d - 1]]
+        if d == 3:
+            assert abs(r[1, names.index(f"{name}_fy")]) <= 1e-9 * np.linalg.norm(f)
         assert abs(f @ tangent) <= 1e-9 * np.linalg.norm(f) * np.linalg.norm(tangent)
         cos = f @ np.asarray(inward) / (np.linalg.norm(f) * np.sqrt(2.0))
         assert cos > np.cos(np.radians(3.0))
     ys = s.y_from_q(res.q[k])
-    x = (ys[s.body_slice("left")][1] - ys[s.body_slice("right")][1]) / 2
+    x = (ys[s.body_slice("left")][d - 1] - ys[s.body_slice("right")][d - 1]) / 2
     ds = r[1, names.index("g1_s")] - r[0, names.index("g1_s")]
     assert ds == pytest.approx(-x, abs=2e-3)
 
