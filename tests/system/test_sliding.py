@@ -13,8 +13,10 @@ import pytest
 
 from rancf.bodies.flexible import Material, Model, Section, Support
 from rancf.bodies.rigid import PointMass, RigidBody
+from rancf.errors import InputError
 from rancf.mesh.factories import mesh_line
 from rancf.mesh.mesh import mesh_from_arrays
+from rancf.solvers.buckling import linear_buckling
 from rancf.solvers.dynamic import DynamicOptions, integrate
 from rancf.solvers.modal import natural_modes
 from rancf.solvers.static import solve_static
@@ -199,6 +201,7 @@ def atwood(dim: int = 2) -> System:
     els += [_arc(cr, th[i], th[i + 1]) for i in range(3)]
     yr = ys[::-1]
     els += [_line((HALF, yr[i]), (HALF, yr[i + 1])) for i in range(len(ys) - 1)]
+
     def space(p: np.ndarray) -> np.ndarray:  # the plane's points in the system's space
         p = np.asarray(p, dtype=float)
         return p if dim == 2 else np.stack([p[..., 0], np.zeros(p.shape[:-1]), p[..., 1]], -1)
@@ -329,3 +332,25 @@ def test_guide_as_middle_support_in_modes():
     f = modes.frequencies_hz
     assert f[0] == pytest.approx(exact[0], rel=2e-5)
     assert f[1] == pytest.approx(exact[1], rel=5e-4)
+
+
+def test_end_through_the_guide_is_said_in_one_line():
+    """A rope falling freely through a guide near its top end: once the end has passed, the
+    outputs say so in one warning line, once (the joint holds the continued end element)."""
+    rope = Model(mesh_line([0.0, 0.0], [0.0, -0.5], 10), "ancf", SEC, MAT, gravity=[0, -9.81])
+    s = System({"rope": rope, "weight": PointMass(2, 1.0, (0.0, -0.5))},
+               [Joint("pin", ("rope:end", "weight")),
+                Joint("sliding", ("rope", "ground"), position=(0.0, -0.05), name="eye")],
+               gravity=[0, -9.81])  # fmt: skip
+    res = integrate(s, DynamicOptions(t_end=0.2, step=2e-3, output_step=0.05))
+    assert res.status.value == "completed", res.message
+    with pytest.warns(UserWarning, match=r"^rancf: sliding joint 'eye': the start of body "
+                      r"'rope' has passed through its place") as seen:  # fmt: skip
+        SystemOutputs(s).rows(res.t, res.q, res.v)  # without the run's multipliers: found
+    assert len(seen) == 1 and "\n" not in str(seen[0].message)
+
+
+def test_buckling_refuses_sliding_joints_in_one_line():
+    with pytest.raises(InputError, match=r"joints\.kind.*sliding") as err:
+        linear_buckling(two_spans(2, "ancf", 0.95))
+    assert "\n" not in str(err.value)

@@ -154,6 +154,9 @@ def linear_buckling(
     if about not in ("reference", "static"):
         raise InputError("--about", about, 'one of "reference", "static"')
     system = as_system(model)
+    if any(j.kind == "sliding" for j in system.joints):
+        raise InputError("joints.kind", "sliding", "no sliding joint in a buckling analysis "
+                         "(statics, modes and dynamics take them)")  # fmt: skip
     problem = SystemEquilibrium(system)
     if about == "reference":
         system.reset_triads()

@@ -110,11 +110,14 @@ def _evaluate(body: Model, nodal: NDArray, sigma: NDArray) -> tuple[NDArray, NDA
     return out[0], out[1], out[2]
 
 
-def material_coordinate(body: Model, x: ArrayLike, y: NDArray | None = None,
-                        guess: float | None = None) -> tuple[float, float]:  # fmt: skip
+def material_coordinate(
+    body: Model, x: ArrayLike, y: NDArray | None = None, guess: float | None = None,
+    beyond: bool = False,
+) -> tuple[float, float]:  # fmt: skip
     """``σ`` of the body's point closest to ``x`` (its ``dim`` components), and the distance:
     the nearest of ``_SAMPLES`` points per element (or ``guess``), then Newton on
-    ``(r(σ) - x) · r_σ = 0`` kept within the body."""
+    ``(r(σ) - x) · r_σ = 0`` kept within the body (``beyond``: on the end elements continued
+    past the ends, as the joint holds them)."""
     x = np.asarray(x, dtype=float)[: body.dim]
     nodal = _nodal(body, y)
     hi = float(body.n_el)
@@ -130,7 +133,7 @@ def material_coordinate(body: Model, x: ArrayLike, y: NDArray | None = None,
         r, rs, rss = (v[0] for v in _evaluate(body, nodal, np.array([sigma])))
         f, df = (r - x) @ rs, rs @ rs + (r - x) @ rss
         step = -f / df if df > 0 else -f / (rs @ rs)
-        new = min(max(sigma + step, 0.0), hi)
+        new = sigma + step if beyond else min(max(sigma + step, 0.0), hi)
         if abs(new - sigma) <= 1e-14 * max(hi, 1.0):
             sigma = new
             break
@@ -161,7 +164,7 @@ def arc_length(body: Model, sigma: ArrayLike) -> NDArray[np.float64]:
 def attach_sliding(system: Any) -> None:
     """Give the core the element geometry of every body a sliding joint runs along, and keep
     each joint's start ``σ`` (``system.sliding_start``: joint index -> σ)."""
-    system.sliding_start = {}
+    system.sliding_start, system.sliding_passed = {}, set()
     done: set[str] = set()
     for k, j in enumerate(system.joints):
         if j.kind != "sliding":
@@ -201,11 +204,13 @@ def sliding_values(system: Any, k: int, y: NDArray, lam: NDArray,
                    warn: Callable[[str], None] | None = None) -> float:  # fmt: skip
     """The arc length ``s`` [m] of sliding joint ``k`` at the state ``(y, λ)`` (its ``σ`` in
     the slot), with one warning line (``warn``, default :func:`warnings.warn`) when the body's
-    end has passed through the place."""
+    end has passed through the place (once a joint)."""
     j = system.joints[k]
     name, body = sliding_body(system, j)
     sigma = float(lam[system.joint_rows[k] + system.dim])
-    if not body.closed and not (0.0 <= sigma <= body.n_el):
+    passed = getattr(system, "sliding_passed", set())
+    if not body.closed and not (0.0 <= sigma <= body.n_el) and k not in passed:
+        passed.add(k)
         msg = (f"rancf: sliding joint {j.name or k!r}: the {'start' if sigma < 0 else 'end'} "
                f"of body {name!r} has passed through its place (material coordinate "
                f"{sigma:.6g} of 0..{body.n_el} elements): the joint continues the end element "
@@ -231,5 +236,6 @@ def sliding_slots(system: Any, y: NDArray, lam: NDArray | None = None) -> NDArra
             continue
         name, body = sliding_body(system, j)
         x, _ = system.core.place(system.records.joints[k].b, np.ascontiguousarray(y), 0.0)
-        out[slot] = material_coordinate(body, x, np.asarray(y)[system.body_slice(name)])[0]
+        yb = np.asarray(y)[system.body_slice(name)]
+        out[slot] = material_coordinate(body, x, yb, beyond=not body.closed)[0]
     return out
