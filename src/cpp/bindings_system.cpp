@@ -23,9 +23,9 @@
 #include "bindings_model.hpp"
 #include "bindings_records.hpp"
 #include "fluid.hpp"
+#include "sliding.hpp"
 #include "system.hpp"
 #include "system_integrator.hpp"
-#include "sliding.hpp"
 #include "winch.hpp"
 
 namespace rancf_bind {
@@ -53,7 +53,7 @@ struct SystemHolder {
   std::vector<double> y_ref;
   rancf::System s;
   rancf::FluidSet fluid;
-  rancf::WinchSet winches;  // s.winches points here once one is attached
+  rancf::WinchSet winches;    // s.winches points here once one is attached
   rancf::SlidingSet sliding;  // s.sliding points here once a body is attached
 };
 

@@ -20,7 +20,14 @@
 
 namespace rancf {
 
-enum class JointKind : int { pin = 0, fixed = 1, tangent = 2, revolute = 3, slider = 4, sliding = 5 };
+enum class JointKind : int {
+  pin = 0,
+  fixed = 1,
+  tangent = 2,
+  revolute = 3,
+  slider = 4,
+  sliding = 5
+};
 
 struct JointInfo {
   JointKind kind = JointKind::pin;

@@ -96,8 +96,8 @@ void sliding_rows(const System& s, const JointData& jd, const double* y, double 
   for (int i = 0; i < s.dim; ++i) g[i] = p.r[i] - b.x[i];
 }
 
-void sliding_rates(const System& s, const double* y, const double* v, const double* lam,
-                   double t, double* rates) {
+void sliding_rates(const System& s, const double* y, const double* v, const double* lam, double t,
+                   double* rates) {
   for (std::size_t k = 0; k < s.joints.size(); ++k) {
     const JointData& jd = s.joints[k];
     if (jd.info.kind != JointKind::sliding) continue;

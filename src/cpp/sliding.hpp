@@ -41,9 +41,9 @@ struct SlidePoint {
   int index[2 * kMaxLocal] = {};
   int element = 0;
   double xi = 0.0;
-  double r[3] = {0.0, 0.0, 0.0};    ///< position
-  double rs[3] = {0.0, 0.0, 0.0};   ///< d r / d sigma
-  double rss[3] = {0.0, 0.0, 0.0};  ///< d2 r / d sigma2
+  double r[3] = {0.0, 0.0, 0.0};      ///< position
+  double rs[3] = {0.0, 0.0, 0.0};     ///< d r / d sigma
+  double rss[3] = {0.0, 0.0, 0.0};    ///< d2 r / d sigma2
   double dr[3][2 * kMaxLocal] = {};   ///< d r / d u_j
   double drs[3][2 * kMaxLocal] = {};  ///< d r_sigma / d u_j
 };
@@ -62,8 +62,8 @@ void sliding_rows(const System& s, const JointData& jd, const double* y, double 
 /// The rate of the material coordinate of every sliding joint at (y, v) (into its slot of
 /// rates, m values; others untouched): the body's point moves with the place,
 /// N v_e + r_sigma sigma' = dx_B/du v_B, in the least-squares sense along r_sigma.
-void sliding_rates(const System& s, const double* y, const double* v, const double* lam,
-                   double t, double* rates);
+void sliding_rates(const System& s, const double* y, const double* v, const double* lam, double t,
+                   double* rates);
 
 /// The joint's part of the balance r: G(yf)^T lambda on the bodies' rows, g(y1) on its rows,
 /// h(yf) on its slot's; add (may be null): ck d(G^T lambda)/dy of a place on a rigid body.

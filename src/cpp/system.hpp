@@ -117,8 +117,8 @@ struct System {
 
   // derived by setup()
   int n = 0, m = 0;
-  std::vector<int> offset;          ///< flexible bodies, then rigid bodies: first coordinate
-  std::vector<int> joint_row;       ///< first constraint row of each joint
+  std::vector<int> offset;     ///< flexible bodies, then rigid bodies: first coordinate
+  std::vector<int> joint_row;  ///< first constraint row of each joint
   /// The multiplier slots that hold sliding joints' material coordinates (sliding.hpp): not
   /// multipliers (kept by initial_acceleration), and their rows are not constraints.
   std::vector<int> slots;
