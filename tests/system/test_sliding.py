@@ -354,3 +354,21 @@ def test_buckling_refuses_sliding_joints_in_one_line():
     with pytest.raises(InputError, match=r"joints\.kind.*sliding") as err:
         linear_buckling(two_spans(2, "ancf", 0.95))
     assert "\n" not in str(err.value)
+
+
+def test_joint_point_is_the_elements_centre_line():
+    """The core's point of the rope at ``σ`` and its first two ``σ``-derivatives are those of
+    the rational element (:meth:`CableMesh.evaluate`, the elements' own shape functions) at a
+    deformed state, on the rope's rational corner elements and its straight ones (1e-12)."""
+    s = atwood(2)
+    rope = s.bodies["rope"]
+    rng = np.random.default_rng(3)
+    y = s.y0 + 1e-3 * rng.standard_normal(s.n)
+    nodal = rope.q_from_y(y[s.body_slice("rope")]).reshape(rope.n_nodes, 2, 2)
+    curved = int(np.flatnonzero(np.any(rope.mesh.weights != 1.0, axis=1))[0])
+    for e in (curved, curved + 1, 3):
+        xi = 0.37
+        want = [rope.mesh.evaluate([xi], nodal, order)[e, 0] for order in range(3)]
+        got = s.core.sliding_point(0, y, e + xi)
+        for w, g in zip(want, got, strict=True):
+            np.testing.assert_allclose(np.asarray(g)[:2], w, rtol=0, atol=1e-12 * np.abs(w).max())
