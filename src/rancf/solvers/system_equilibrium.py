@@ -108,7 +108,8 @@ class SystemEquilibrium:
         return False
 
     def start(self) -> NDArray[np.float64]:
-        """The reference configuration with zero multipliers."""
+        """The reference configuration with zero multipliers (and the sliding joints' material
+        coordinates in their slots)."""
         return np.r_[self._y0, start_multipliers(self.system)]
 
     def load_factor(self, p: float) -> float:
