@@ -209,10 +209,9 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
   const bool moving = am != nullptr && !tm.statics;  // a drum's rates count
   for (std::size_t b = 0; b < s.flex.size(); ++b) {
     const Winch* win = winch_of(s, b);
-    const WinchState ws =
-        win != nullptr
-            ? winch_state(s, *win, tm.tf, yf, moving ? vf : nullptr, moving ? am : nullptr)
-            : WinchState{};
+    const WinchState ws = win != nullptr ? winch_state(s, *win, tm.tf, yf, moving ? vf : nullptr,
+                                                       moving ? am : nullptr)
+                                         : WinchState{};
     const Model& mod = win != nullptr ? scaled_model(*s.flex[b], ws.ratio, scaled) : *s.flex[b];
     const int o = s.offset[b], nb = mod.n(), ku = mod.ku();
     f.assign(sz(nb), 0.0);

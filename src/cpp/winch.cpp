@@ -53,8 +53,8 @@ const Winch* winch_of(const System& s, std::size_t b) {
   return w < 0 ? nullptr : &s.winches->winches[sz(w)];
 }
 
-WinchState winch_state(const System& s, const Winch& w, double t, const double* y,
-                       const double* v, const double* a) {
+WinchState winch_state(const System& s, const Winch& w, double t, const double* y, const double* v,
+                       const double* a) {
   if (w.drum >= 0) {
     const double length = y != nullptr ? y[w.drum] : w.length_set;
     return {length / w.length_set, length, v != nullptr ? v[w.drum] : 0.0,
@@ -163,7 +163,7 @@ void drum_terms(const Model& base, const Model& scaled, const Winch& w, const Wi
   }
   for (int i = 0; i < base.dim; ++i) xw += w.weight[i] * y[w.exit + i];
   const double du = (u - fy - 2.0 * ub) / rho / ls;  // dU/dL
-  const double mu = w.mass - w.rho_a * (len - ls);     // J(L) / r^2
+  const double mu = w.mass - w.rho_a * (len - ls);   // J(L) / r^2
   double r = du + lf * (xw - qy / ls + torque / w.radius);
   double yd2y = 0.0, yd2v = 0.0;
   if (dynamic) {
@@ -174,8 +174,8 @@ void drum_terms(const Model& base, const Model& scaled, const Winch& w, const Wi
       for (int i = std::max(0, j - ku); i < std::min(n, j + ku + 1); ++i)
         vmv += v[i] * base.mass_band[static_cast<std::ptrdiff_t>(ku + i - j) * n + j] * v[j];
     r += mu * ldd - 0.5 * w.rho_a * ld * ld + band_form(w.c1, a, y, n, ku) +
-         band_form(w.c1, v, v, n, ku) - 0.5 * vmv / ls + ldd / len * yd2y +
-         2.0 * ld / len * yd2v - 0.5 * ld * ld / (len * len) * yd2y;
+         band_form(w.c1, v, v, n, ku) - 0.5 * vmv / ls + ldd / len * yd2y + 2.0 * ld / len * yd2v -
+         0.5 * ld * ld / (len * len) * yd2y;
   }
   out.residual = r;
   if (!jacobian) return;
@@ -199,9 +199,8 @@ void drum_terms(const Model& base, const Model& scaled, const Winch& w, const Wi
     for (int i = 0; i < n; ++i) tmp[sz(i)] = a[i] + c * v[i];
     for (int j = 0; j < n; ++j)
       for (int i = std::max(0, j - ku); i < std::min(n, j + ku + 1); ++i)
-        out.col[sz(i)] += ck *
-                          base.mass_band[static_cast<std::ptrdiff_t>(ku + i - j) * n + j] *
-                          tmp[sz(j)] / ls;
+        out.col[sz(i)] +=
+            ck * base.mass_band[static_cast<std::ptrdiff_t>(ku + i - j) * n + j] * tmp[sz(j)] / ls;
     const double l2 = len * len;
     band_add(w.c1, ck * 2.0 * ld * ld / l2 - cv * 4.0 * ld / len, y, n, ku, out.col.data());
     band_add(w.c2, -ck * ld * ld / l2 + cv * 2.0 * ld / len, y, n, ku, out.col.data());

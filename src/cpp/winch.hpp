@@ -34,13 +34,13 @@ struct Winch {
   std::vector<double> c2;   ///< (2 ku + 1, n)
   std::vector<double> d2;   ///< (2 ku + 1, n)
   // a driven drum: L = y[drum]
-  int drum = -1;            ///< the drum's coordinate in the system's y, or -1 (L(t) given)
-  int torque = -1;          ///< time function of the torque on the drum [N m], reeling in
-  double mass = 0.0;        ///< J / r^2 at the start (the rope then on the drum included) [kg]
-  double radius = 1.0;      ///< the drum's radius [m]
-  double rho_a = 0.0;       ///< the line's mass per unstretched length [kg/m]
-  double weight[3] = {};    ///< rho_a g [N/m]
-  int exit = 0;             ///< the body's coordinate of the exit node's position (x)
+  int drum = -1;          ///< the drum's coordinate in the system's y, or -1 (L(t) given)
+  int torque = -1;        ///< time function of the torque on the drum [N m], reeling in
+  double mass = 0.0;      ///< J / r^2 at the start (the rope then on the drum included) [kg]
+  double radius = 1.0;    ///< the drum's radius [m]
+  double rho_a = 0.0;     ///< the line's mass per unstretched length [kg/m]
+  double weight[3] = {};  ///< rho_a g [N/m]
+  int exit = 0;           ///< the body's coordinate of the exit node's position (x)
 };
 
 struct WinchSet {
