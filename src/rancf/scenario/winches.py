@@ -46,8 +46,9 @@ class WinchTable(Table):
     )
     radius: Positive | None = Field(None, description="a driven drum: its radius [m]")
     inertia: Positive | None = Field(
-        None, description="a driven drum: its moment of inertia with the rope on it at the "
-        "start [kg m^2]"
+        None,
+        description="a driven drum: its moment of inertia with the rope on it at the "
+        "start [kg m^2]",
     )
 
     @model_validator(mode="after")
@@ -58,8 +59,11 @@ class WinchTable(Table):
                        f"{', '.join(given) or 'none'})")  # fmt: skip
         for k in ("radius", "inertia"):
             if self[k] is None and self.torque is not None:
-                raise fail(k, "a driven drum (torque) needs its " + (
-                    "radius [m]" if k == "radius" else "moment of inertia [kg m^2]"))
+                raise fail(
+                    k,
+                    "a driven drum (torque) needs its "
+                    + ("radius [m]" if k == "radius" else "moment of inertia [kg m^2]"),
+                )
             if self[k] is not None and self.torque is None:
                 raise fail(k, "belongs to a driven drum: give torque with radius and inertia "
                            "(or drop it)")  # fmt: skip
