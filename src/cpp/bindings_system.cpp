@@ -205,6 +205,15 @@ void bind_system(nb::module_& mod) {
           "of its torque [N m], J / r^2 [kg], r [m], the line's mass per length, its weight per "
           "length (3), the body's coordinate of the exit's position.  Adds the coordinate L "
           "(returned) after the bodies.")
+      .def(
+          "hold_drums",
+          [](SystemHolder& h, bool hold) {
+            for (const rancf::Winch& w : h.winches.winches)
+              if (w.drum >= 0) h.s.fixed[static_cast<std::size_t>(w.drum)] = hold ? 1 : 0;
+          },
+          "hold"_a,
+          "Hold the driven drums' lengths (held coordinates for the solvers built after) or "
+          "free them.")
       .def_prop_ro("n", [](const SystemHolder& h) { return h.s.n; })
       .def_prop_ro("m", [](const SystemHolder& h) { return h.s.m; })
       .def_prop_ro("offsets", [](const SystemHolder& h) { return h.s.offset; })

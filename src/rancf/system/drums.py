@@ -22,7 +22,9 @@ from rancf.bodies.flexible import Model
 from rancf.bodies.time_function import TimeFunction
 from rancf.errors import InputError
 
-__all__ = ["drum_torque", "attach_drum", "drum_state", "drum_mass"]
+__all__ = [
+    "drum_torque", "attach_drum", "drum_state", "drum_mass", "hold_drums", "refuse_static_drums",
+]  # fmt: skip
 
 
 def drum_torque(w: Any, tf: Callable) -> int:
@@ -73,3 +75,28 @@ def drum_state(index: int, y: Sequence[float], v: Sequence[float] | None = None
                ) -> tuple[float, float]:  # fmt: skip
     """``(L, L̇)`` of the drum whose coordinate is ``index`` in ``y`` (and ``v``)."""
     return float(y[index]), (0.0 if v is None else float(v[index]))
+
+
+def hold_drums(system: Any, hold: bool) -> None:
+    """Hold every driven drum's length (``hold``) or free it: a held length is a held
+    coordinate (``system.fixed``, and the core's for the solvers built after)."""
+    system.held_coordinates = tuple(system.drums.values()) if hold else ()
+    system.core.hold_drums(bool(hold))
+
+
+def refuse_static_drums(
+    system: Any, y: Sequence[float] | None, t: float | None, failed: Exception | None = None
+) -> None:
+    """Statics with a driven drum: a failed solve (``y`` None) or a length ``L <= 0`` is one line
+    naming the first drum's torque (no length at which the line holds it at rest)."""
+    drums = getattr(system, "drums", {})
+    if not drums or (y is not None and all(y[i] > 0 for i in drums.values())):
+        return
+    name = next(iter(drums))
+    w = next(w for w in system.winches if w.name == name)
+    f = w.torque if isinstance(w.torque, TimeFunction) else TimeFunction.constant(w.torque)
+    torque = float(np.ravel(f.value(0.0 if t is None else t))[0])
+    raise InputError(f"winches.{name}.torque", torque, "a torque the line holds at rest at some "
+                     "length L > 0 (statics: r T = torque; none found, the hanging weight "
+                     "cannot balance it): start the run from the reference, or change the "
+                     "torque") from failed  # fmt: skip

@@ -1,0 +1,185 @@
+"""Driven drums (rancf.system.drums; docs/derivations/variable-length.md §3): a 10 kg load on
+a steel wire (radius 5 mm, 5 m) reeled by a drum of radius 0.2 m and inertia 0.5 kg m² at the
+wire's top.
+
+* a torque r (m + ρ A L) g holds the load: statics finds L = L0, and the load stays put;
+* 30 % more torque lifts it as a rigid rope would, (J/r² + m + ρ A L) L̈ = (m + ρ A L) g − τ/r;
+* without damping the torque's work equals the change of kinetic (line, load, drum), strain and
+  gravity energy, and the mass the core integrates is ρ A L at every output;
+* the Jacobian blocks of the drum's coordinate against central differences;
+* statics with a torque the line cannot balance is refused in one line."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+from rancf.bodies.flexible import Material, Model, Section, Support
+from rancf.bodies.rigid import PointMass
+from rancf.bodies.time_function import TimeFunction
+from rancf.errors import InputError
+from rancf.mesh.factories import mesh_line
+from rancf.solvers.dynamic import DynamicOptions, integrate
+from rancf.solvers.static import solve_static
+from rancf.system import Joint, System, Winch
+
+G, LOAD, L0, RADIUS, INERTIA = 9.81, 10.0, 5.0, 0.2, 0.5
+STEEL, WIRE = Material(7850.0, 2.0e11), Section.circular(0.005)
+RHO_A = 7850.0 * WIRE.area
+BALANCE = RADIUS * (LOAD + RHO_A * L0) * G  # [N m]
+
+
+def hoist(torque, n_el: int = 6, horizon: float = 2.0) -> System:
+    """The wire meshed L0 long from the drum at the origin straight down, the load pinned to its
+    lower end; ``torque(t)`` [N m] on the drum (positive reels in)."""
+    g = [0.0, -G]
+    wire = Model(mesh_line([0, 0], [0, -L0], n_el), "ancf", WIRE, STEEL, [Support(0, "pin")],
+                 gravity=g)  # fmt: skip
+    load = PointMass(2, LOAD, (0.0, -L0))
+    f = torque if isinstance(torque, float) else TimeFunction.from_callable(torque)
+    drum = Winch("hoist", "wire:start", torque=f, radius=RADIUS, inertia=INERTIA)
+    return System({"wire": wire, "load": load}, [Joint("pin", ("wire:end", "load"))],
+                  gravity=g, winches=[drum], horizon=horizon)  # fmt: skip
+
+
+def _run(s: System, t_end: float, rho_inf: float, step: float = 0.01):
+    st = solve_static(s, load_steps=1, at_time=0.0)
+    res = integrate(s, DynamicOptions(t_end=t_end, step=step, rho_inf=rho_inf,
+                                      output_step=0.05), initial=st.y)  # fmt: skip
+    assert res.status.value == "completed", res.message
+    return st, res
+
+
+def test_balanced_torque_holds_the_load():
+    """Statics puts L where r T = τ: L0 within 2e-4 m (the line's stretch ε = T / EA = 8e-6
+    changes its pull at the drum by O(ε T) = 5e-4 N, which its weight per length ρ A g = 6 N/m
+    balances over 9e-5 m: measured 8.7e-5 m); from there the load stays put over 1 s (within
+    1e-4 m; measured 1e-5 m: the balance is unstable, a longer line weighs more)."""
+    s = hoist(BALANCE)
+    st, res = _run(s, 1.0, 0.5)
+    drum = s.drums["hoist"]
+    assert drum == s.n - 1
+    assert abs(st.y[drum] - L0) < 2e-4
+    assert np.abs(res.q[:, drum] - L0).max() < 1e-4
+    load = res.q[:, s.body_slice("load")][:, 1]
+    assert np.abs(load - load[0]).max() < 1e-4
+
+
+def test_static_length_where_the_line_balances_the_torque():
+    """1.3 times the torque at L0: statics finds the length whose weight balances it, (m + ρ A
+    L) g = τ / r, L = 11.37 m, within 1e-4 of it (the line's stretch changes its pull at the
+    drum by O(ε) = 1e-5; measured 1.3e-5)."""
+    s = hoist(1.3 * BALANCE)
+    st = solve_static(s, load_steps=1, at_time=0.0)
+    expected = (1.3 * BALANCE / RADIUS / G - LOAD) / RHO_A
+    assert st.y[s.drums["hoist"]] == pytest.approx(expected, rel=1e-4)
+
+
+def _rigid_rope(torque, t: np.ndarray) -> np.ndarray:
+    """L(t) of the rigid rope: (J/r² − ρA (L − L0) + m + ρA L) L̈ = (m + ρA L) g − τ/r."""
+
+    def rhs(x, z):
+        length, rate = z
+        mass = INERTIA / RADIUS**2 - RHO_A * (length - L0) + LOAD + RHO_A * length
+        return [rate, ((LOAD + RHO_A * length) * G - torque(x) / RADIUS) / mass]
+
+    sol = solve_ivp(rhs, (0.0, t[-1]), [L0, 0.0], t_eval=t, rtol=1e-10, atol=1e-12)
+    return sol.y[0]
+
+
+def test_larger_torque_lifts_at_the_rigid_rope_rate():
+    """30 % more torque (ramped over 0.05 s) lifts the load; the lift over 1 s matches the
+    rigid rope's within 0.5 % (the steel line's stretch changes by (m + ρAL) L̈ / (EA/L), a
+    few µm, and the axial waves the ramp starts are damped by rho_inf = 0.5)."""
+
+    def torque(x):
+        return BALANCE * (1.0 + 0.3 * min(x / 0.05, 1.0))
+
+    s = hoist(torque)
+    _, res = _run(s, 1.0, 0.5)
+    length = res.q[:, s.drums["hoist"]]
+    rigid = _rigid_rope(torque, res.t)
+    lift = L0 - rigid[-1]
+    assert lift > 0.7
+    assert np.abs(length - rigid).max() < 5e-3 * lift
+
+
+def test_energy_balance_and_mass():
+    """The torque rises to 1.3 times the balance and back (sin²) over 2 s, no damping
+    (rho_inf = 1): −∫ τ L̇ / r dt equals the change of kinetic (line, load, drum J(L) θ̇²/2),
+    strain and gravity energy (the rope wound off the drum at the exit's height) within 0.5 %;
+    the wire's mass in the core is ρ A L(t) at every output (1e-9)."""
+
+    def torque(x):
+        return BALANCE * (1.0 + 0.3 * np.sin(np.pi * x / 2.0) ** 2)
+
+    s = hoist(torque)
+    _, res = _run(s, 2.0, 1.0, step=0.005)
+    drum = s.drums["hoist"]
+    t, rate = res.t, res.v[:, drum]
+    power = -np.array([torque(x) for x in t]) * rate / RADIUS
+    work = np.sum(0.5 * (power[1:] + power[:-1]) * np.diff(t))
+    energy = res.kinetic + res.strain + res.gravity
+    assert work > 10.0
+    assert abs(energy[-1] - energy[0] - work) < 5e-3 * work
+    sl = s.body_slice("wire")
+    for i in range(len(t)):
+        y = s.y_from_q(res.q[i])
+        z, a = np.zeros(s.n), np.zeros(s.n)
+        a[sl] = np.tile([1.0, 0.0, 0.0, 0.0], s.bodies["wire"].n_nodes)
+        r1, r0 = np.empty(s.n + s.m), np.empty(s.n + s.m)
+        s.core.residual(y, z, a, np.zeros(s.m), t[i], 1.0, False, True, r1)
+        s.core.residual(y, z, z, np.zeros(s.m), t[i], 1.0, False, True, r0)
+        mass = float((r1 - r0)[sl][0::4].sum())
+        assert mass == pytest.approx(RHO_A * y[drum], rel=1e-9)
+
+
+@pytest.mark.parametrize("dynamic", [True, False])
+def test_drum_jacobian_against_central_differences(dynamic):
+    """Every column and row of the Jacobian (ck d/dy + cv d/dv + ca d/da) at a perturbed,
+    moving state against central differences of the residual (balance rows): steps 1e-6 in y,
+    0.1 in v and a (the residual is at most quadratic in them: central differences exact up
+    to round-off, 1e-16 of the 1e6 N residual over the step); within 1e-7 of the largest
+    entry."""
+    s = hoist(BALANCE * 1.2)
+    n, m = s.n, s.m
+    rng = np.random.default_rng(3)
+    free = ~s.fixed
+    y = s.y0 + 1e-3 * rng.standard_normal(n) * free
+    y[s.drums["hoist"]] = 5.3
+    v = 0.3 * rng.standard_normal(n) * free if dynamic else np.zeros(n)
+    a = rng.standard_normal(n) * free if dynamic else np.zeros(n)
+    lam = rng.standard_normal(m)
+
+    def res(state):
+        r = np.empty(n + m)
+        s.core.residual(*state, lam, 0.7, 1.0, False, dynamic, r)
+        return r[:n]
+
+    for k in range(3 if dynamic else 1):
+        coef = [0.0, 0.0, 0.0]
+        coef[k] = 1.0
+        jac = np.empty((n + m) ** 2)
+        s.core.dense_jacobian(y, v, a, lam, 0.7, *coef, dynamic, jac)
+        jac = jac.reshape(n + m, n + m)[:n, :n]
+        fd = np.zeros((n, n))
+        for j in np.flatnonzero(free):
+            plus, minus = [y.copy(), v.copy(), a.copy()], [y.copy(), v.copy(), a.copy()]
+            h = 1e-6 * (1.0 + abs(plus[k][j])) if k == 0 else 0.1
+            plus[k][j] += h
+            minus[k][j] -= h
+            fd[:, j] = (res(plus) - res(minus)) / (2 * h)
+        sub = np.ix_(free, free)
+        err = np.abs(jac[sub] - fd[sub]).max()
+        assert err < 1e-7 * np.abs(fd[sub]).max(), (k, err)
+        drum = s.drums["hoist"]  # the new blocks themselves are not zero
+        assert np.abs(jac[drum, :drum]).max() > 0 and np.abs(jac[:drum, drum]).max() > 0
+
+
+def test_static_torque_the_line_cannot_balance_is_refused():
+    """Below m g r even a line of no length cannot pull the torque back: one line naming the
+    winch."""
+    s = hoist(0.5 * RADIUS * LOAD * G)
+    with pytest.raises(InputError, match=r"winches\.hoist\.torque"):
+        solve_static(s, load_steps=1, at_time=0.0)
