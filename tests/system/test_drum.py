@@ -183,3 +183,27 @@ def test_static_torque_the_line_cannot_balance_is_refused():
     s = hoist(0.5 * RADIUS * LOAD * G)
     with pytest.raises(InputError, match=r"winches\.hoist\.torque"):
         solve_static(s, load_steps=1, at_time=0.0)
+
+
+def test_drum_in_a_scenario_file(tmp_path):
+    """``[[winches]]`` with ``torque``, ``radius`` and ``inertia``: the ``winch`` sensor's
+    ``NAME_length`` and ``NAME_speed`` are the drum's state (the load hangs at L plus its
+    stretch, below 0.2 mm; L grows with the integral of the speed), ``NAME_tension`` the
+    force of the winch's support, at the static start (m + ρ A L0) g (statics' L within 2e-4
+    m of L0: the test above)."""
+    from tests.scenario.test_winch_scenario import HOIST, _sensors
+
+    lift = f"[[0.0, {BALANCE!r}], [0.05, {1.3 * BALANCE!r}], [5.0, {1.3 * BALANCE!r}]]"
+    text = HOIST.replace("speed = { ramp = 2.0, value = 1.0 }",
+                         f"torque = {{ table = {lift} }}\nradius = {RADIUS}\n"
+                         f"inertia = {INERTIA}").replace("t_end = 4.0", "t_end = 1.0")  # fmt: skip
+    text = text.replace("elements = 10", "elements = 6").replace("output_step = 0.5",
+                                                                 "output_step = 0.1")  # fmt: skip
+    s = _sensors(tmp_path, text)
+    t, length, speed = s["t"], s["drum_length"], s["drum_speed"]
+    assert length[0] == pytest.approx(L0, abs=2e-4)
+    assert L0 - length[-1] > 0.5  # lifted
+    assert np.all(np.abs(-s["hook_y"] - length) < 2e-4)
+    mid = 0.5 * (speed[1:] + speed[:-1]) * np.diff(t)
+    np.testing.assert_allclose(np.diff(length), mid, rtol=0, atol=2e-3)
+    assert s["drum_tension"][0] == pytest.approx((LOAD + RHO_A * length[0]) * G, rel=1e-4)
