@@ -6,7 +6,8 @@ wire's top.
 * 30 % more torque lifts it as a rigid rope would, (J/r² + m + ρ A L) L̈ = (m + ρ A L) g − τ/r;
 * without damping the torque's work equals the change of kinetic (line, load, drum), strain and
   gravity energy, and the mass the core integrates is ρ A L at every output;
-* the Jacobian blocks of the drum's coordinate against central differences;
+* the Jacobian blocks of the drum's coordinate against central differences; modes with the
+  drum's length a coordinate (its pay-out the one unstable motion);
 * statics with a torque the line cannot balance is refused in one line."""
 
 from __future__ import annotations
@@ -74,6 +75,20 @@ def test_static_length_where_the_line_balances_the_torque():
     st = solve_static(s, load_steps=1, at_time=0.0)
     expected = (1.3 * BALANCE / RADIUS / G - LOAD) / RHO_A
     assert st.y[s.drums["hoist"]] == pytest.approx(expected, rel=1e-4)
+
+
+def test_modes_take_the_drum_as_a_coordinate():
+    """Modes about the balanced static state: the drum's length is a coordinate, and its
+    pay-out is the one unstable motion (a longer line weighs more), growing at
+    √(ρ A g / (J/r² + m + ρ A L)) = 0.486 /s (within 1e-3: the line's stretch)."""
+    from rancf.solvers.modal import natural_modes
+
+    s = hoist(BALANCE)
+    st = solve_static(s, load_steps=1, at_time=0.0)
+    modes = natural_modes(s, st.y, 4, lam=st.lam)
+    rate = np.sqrt(RHO_A * G / (INERTIA / RADIUS**2 + LOAD + RHO_A * L0))
+    assert modes.growth_rates[0] == pytest.approx(rate, rel=1e-3)
+    assert np.all(modes.growth_rates[1:] == 0.0)
 
 
 def _rigid_rope(torque, t: np.ndarray) -> np.ndarray:
