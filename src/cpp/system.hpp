@@ -115,7 +115,7 @@ struct System {
 
   // derived by setup()
   int n = 0, m = 0;
-  std::vector<int> offset;  ///< flexible bodies, rigid bodies, drums: first coordinate
+  std::vector<int> offset;          ///< flexible bodies, rigid bodies, drums: first coordinate
   std::vector<int> joint_row;       ///< first constraint row of each joint
   std::vector<int> norm_row;        ///< rigid bodies: the quaternion row, or -1
   int linear_row = 0;               ///< first linear row

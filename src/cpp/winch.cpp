@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "assembly.hpp"
 #include "system.hpp"
@@ -142,7 +143,7 @@ void drum_terms(const Model& base, const Model& scaled, const Winch& w, const Wi
   thread_local std::vector<double> f, fb, kb, ky, tmp;
   f.assign(sz(n), 0.0);
   fb.assign(sz(n), 0.0);
-  // the strain energy's derivatives in rho (§3.2): U(y; rho) = rho U_a(y / rho) + U_b(y / rho)
+  // the strain energy's derivatives in rho (§3.3): U(y; rho) = rho U_a(y / rho) + U_b(y / rho)
   // / rho, U_a axial, U_b bending, at the arrays' length
   kb.assign(jacobian ? sz((2 * ku + 1) * n) : 0, 0.0);
   const BandView kv = numpy_band(kb.data(), n, ku);
@@ -177,7 +178,9 @@ void drum_terms(const Model& base, const Model& scaled, const Winch& w, const Wi
          band_form(w.c1, v, v, n, ku) - 0.5 * vmv / ls + ldd / len * yd2y + 2.0 * ld / len * yd2v -
          0.5 * ld * ld / (len * len) * yd2y;
   }
-  out.residual = r;
+  // a drum paid out beyond the rope it held (J(L) <= 0) has no motion: not finite, the step
+  // fails
+  out.residual = !dynamic || mu > 0.0 ? r : std::numeric_limits<double>::quiet_NaN();
   if (!jacobian) return;
   // d f / d rho = -(K y + 2 f_b) / rho, d2U / d rho2 = (y K y + 2 U_b + 4 f_b . y) / rho^2
   ky.assign(sz(n), 0.0);
