@@ -108,7 +108,8 @@ def _rigid_rope(torque, t: np.ndarray) -> np.ndarray:
 def test_larger_torque_lifts_at_the_rigid_rope_rate():
     """30 % more torque (ramped over 0.05 s) lifts the load; the lift over 1 s matches the
     rigid rope's within 0.5 % (the steel line's stretch changes by (m + ρAL) L̈ / (EA/L), a
-    few µm, and the axial waves the ramp starts are damped by rho_inf = 0.5)."""
+    few µm, and the axial waves the ramp starts are damped by rho_inf = 0.5; measured: 1.1e-4
+    m of a 0.73 m lift, 0.016 %)."""
 
     def torque(x):
         return BALANCE * (1.0 + 0.3 * min(x / 0.05, 1.0))
@@ -125,7 +126,8 @@ def test_larger_torque_lifts_at_the_rigid_rope_rate():
 def test_energy_balance_and_mass():
     """The torque rises to 1.3 times the balance and back (sin²) over 2 s, no damping
     (rho_inf = 1): −∫ τ L̇ / r dt equals the change of kinetic (line, load, drum J(L) θ̇²/2),
-    strain and gravity energy (the rope wound off the drum at the exit's height) within 0.5 %;
+    strain and gravity energy (the rope wound off the drum at the exit's height) within 0.5 %
+    (measured 4e-5 of 234 J: the trapezoidal rule on the 0.05 s outputs);
     the wire's mass in the core is ρ A L(t) at every output (1e-9)."""
 
     def torque(x):
