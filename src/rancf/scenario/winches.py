@@ -5,9 +5,10 @@ Keys: ``name``; ``at`` (``"BODY:start"`` or ``"BODY:end"``; in a one-body file `
 direction); ``position`` (where the line leaves the drum [m]; the body's end starts there, the
 default); and one of ``length`` (the unstretched length outside the winch [m], a
 TIME_FUNCTION), ``speed`` (the pay-out rate [m/s], a TIME_FUNCTION) or ``torque`` with the
-drum's ``radius`` and ``inertia`` (a driven drum).  The body is drawn as the line is at
-``t = 0``; with ``length``, a start length other than the drawing's stretches the drawing
-about the winch (:mod:`rancf.system.winches`).
+drum's ``radius`` and ``inertia`` (a driven drum, :mod:`rancf.system.drums`: the torque
+positive reeling in, the inertia the drum's with the rope on it at ``t = 0``).  The body is
+drawn as the line is at ``t = 0``; with ``length``, a start length other than the drawing's
+stretches the drawing about the winch (:mod:`rancf.system.winches`).
 """
 
 from __future__ import annotations
@@ -42,7 +43,9 @@ class WinchTable(Table):
         None, description="the pay-out rate [m/s] (reeling in: negative; a TIME_FUNCTION)"
     )
     torque: TimeFunctionValue | None = Field(
-        None, description="a driven drum: the torque on it [N m] (with radius and inertia)"
+        None,
+        description="a driven drum: the torque on it [N m], positive reeling in (a "
+        "TIME_FUNCTION; with radius and inertia)",
     )
     radius: Positive | None = Field(None, description="a driven drum: its radius [m]")
     inertia: Positive | None = Field(
