@@ -216,6 +216,46 @@ void bind_system(nb::module_& mod) {
           "(r, dr/dsigma, d2r/dsigma2) of a flexible body's centre line at the material "
           "coordinate sigma (element + parameter), 3 values each.")
       .def_prop_ro("slots", [](const SystemHolder& h) { return h.s.slots; })
+      .def(
+          "attach_drum",
+          [](SystemHolder& h, int winch, int torque, double mass, double radius, double rho_a,
+             In weight, int exit) {
+            check(winch >= 0 && static_cast<std::size_t>(winch) < h.winches.winches.size(),
+                  "drum: winch out of range");
+            check(torque >= 0 && static_cast<std::size_t>(torque) < h.s.tfs.size(),
+                  "drum: time function out of range");
+            check(mass > 0.0 && radius > 0.0 && rho_a >= 0.0, "drum: mass, radius > 0");
+            expect_size(weight, 3, "weight");
+            rancf::Winch& w = h.winches.winches[static_cast<std::size_t>(winch)];
+            check(w.drum < 0, "drum: the winch has one");
+            check(exit >= 0 && exit + h.s.dim <= w.n, "drum: exit out of range");
+            w.torque = torque;
+            w.mass = mass;
+            w.radius = radius;
+            w.rho_a = rho_a;
+            std::copy(weight.data(), weight.data() + 3, w.weight);
+            w.exit = exit;
+            w.drum = h.s.n;  // appended after every body and drum so far
+            ++h.winches.drums;
+            h.s.setup();
+            h.y_ref.push_back(w.length_set);
+            h.s.y_ref = h.y_ref.data();
+            return w.drum;
+          },
+          "winch"_a, "torque"_a, "mass"_a, "radius"_a, "rho_a"_a, "weight"_a, "exit"_a,
+          "Make winch (an index, attached before) a driven drum (winch.hpp): the time function "
+          "of its torque [N m], J / r^2 [kg], r [m], the line's mass per length, its weight per "
+          "length (3), the body's coordinate of the exit's position.  Adds the coordinate L "
+          "(returned) after the bodies.")
+      .def(
+          "hold_drums",
+          [](SystemHolder& h, bool hold) {
+            for (const rancf::Winch& w : h.winches.winches)
+              if (w.drum >= 0) h.s.fixed[static_cast<std::size_t>(w.drum)] = hold ? 1 : 0;
+          },
+          "hold"_a,
+          "Hold the driven drums' lengths (held coordinates for the solvers built after) or "
+          "free them.")
       .def_prop_ro("n", [](const SystemHolder& h) { return h.s.n; })
       .def_prop_ro("m", [](const SystemHolder& h) { return h.s.m; })
       .def_prop_ro("offsets", [](const SystemHolder& h) { return h.s.offset; })

@@ -5,6 +5,7 @@
 
 #include "assembly.hpp"
 #include "rod.hpp"
+#include "winch.hpp"
 
 namespace rancf {
 
@@ -34,6 +35,14 @@ void System::setup() {
     block_ku.push_back(b.point_mass ? 0 : k - 1);
     fixed.insert(fixed.end(), sz(k), 0);
     n += k;
+  }
+  const int drums = winches != nullptr ? winches->drums : 0;
+  for (int k = 0; k < drums; ++k) {  // driven drums: their length L (winch.hpp)
+    offset.push_back(n);
+    block_size.push_back(1);
+    block_ku.push_back(0);
+    fixed.push_back(0);
+    ++n;
   }
   m = 0;
   joint_row.clear();

@@ -2,7 +2,8 @@
 //
 // Coordinates y of all bodies stacked body by body: each flexible body's model coordinates (a
 // Model: its chain, supports held by elimination), then every rigid body (2D: x, y, theta; 3D:
-// x_c, a unit quaternion p) and point mass (x).  Joints are constraint rows g(y, t) = 0 with
+// x_c, a unit quaternion p) and point mass (x), then the length of each driven drum (winch.hpp).
+// Joints are constraint rows g(y, t) = 0 with
 // Lagrange multipliers; a 3D rigid body adds the row (p . p - 1) / 2.  The equations of motion
 //   M a + c M v + F_in + f_int(y) - f_ext(t, y) + f_springs(y, v) + G(y)^T lambda = 0,
 //   g(y, t) = 0
@@ -117,7 +118,7 @@ struct System {
 
   // derived by setup()
   int n = 0, m = 0;
-  std::vector<int> offset;     ///< flexible bodies, then rigid bodies: first coordinate
+  std::vector<int> offset;     ///< flexible bodies, rigid bodies, drums: first coordinate
   std::vector<int> joint_row;  ///< first constraint row of each joint
   /// The multiplier slots that hold sliding joints' material coordinates (sliding.hpp): not
   /// multipliers (kept by initial_acceleration), and their rows are not constraints.

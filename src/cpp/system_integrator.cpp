@@ -34,6 +34,7 @@ SystemIntegrator::SystemIntegrator(const System& s, const Scheme& scheme)
   // steps): chord is full Newton there
   if (s.contact != nullptr) sc_.chord = false;
   for (const Model* mod : s.flex) mass_constant_ = mass_constant_ && !has_rotary_inertia(*mod);
+  if (s.winches != nullptr && s.winches->drums > 0) mass_constant_ = false;  // J(L), C1 y
 }
 
 void SystemIntegrator::solve_negative() {
@@ -368,6 +369,12 @@ void system_energies(const System& s, const double* y, const double* v, double* 
     out[1] += 0.5 * sp.stiffness * dl * dl;
   }
   if (s.contact != nullptr) out[1] += contact_energy(s, *s.contact, y);
+  if (s.winches != nullptr)  // driven drums: J(L) L'^2 / (2 r^2), the rope wound off
+    for (const Winch& w : s.winches->winches)
+      if (w.drum >= 0) {
+        out[0] += drum_kinetic_energy(w, y, v);
+        out[2] += drum_gravity_energy(w, s, y);
+      }
 }
 
 void flex_energies(const System& s, std::size_t b, const double* y, const double* v, double t,
@@ -375,7 +382,7 @@ void flex_energies(const System& s, std::size_t b, const double* y, const double
   const int o = s.offset[b];
   if (const Winch* w = winch_of(s, b)) {  // the material outside the winch at L(t)
     ScaledBody scaled;
-    const WinchState st = winch_state(s, *w, t);
+    const WinchState st = winch_state(s, *w, t, y, v);
     const Model& mod = scaled_model(*s.flex[b], st.ratio, scaled);
     out[0] = winch_kinetic_energy(mod, *w, st, y + o, v + o);
     out[1] = strain_energy(mod, y + o);

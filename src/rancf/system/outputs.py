@@ -199,6 +199,7 @@ class SystemOutputs:
         }
         res = np.empty(s.n + s.m)
         raws: dict[str, list[NDArray]] = {name: [] for name, _ in self.flex}
+        factors: dict[str, list[float]] = {name: [] for name, _ in self.flex}
         with self._triads() as set_row:
             for i in range(k):
                 y = s.y_from_q(q[i])
@@ -219,12 +220,13 @@ class SystemOutputs:
                 vc = None if static else vy  # friction from the velocities
                 out["r"][i] = self._reactions(y, res[: s.n], float(t[i]), li, vc, step)
                 for name, _ in self.flex:  # the sections' numbers for all rows at once below
-                    factor = winch_factor(s, name, float(t[i]))  # a winch's body at its length
+                    factor = winch_factor(s, name, float(t[i]), y)  # a winch's body at its length
                     raws[name].append(self.samplers[name].raw(y[s.body_slice(name)], factor))
+                    factors[name].append(factor)
                 if per_body:
                     out["eb"][i] = self._body_energies(y, vy, float(t[i]))
         if k:
-            out["s"] = self._along(raws, t)
+            out["s"] = self._along(raws, factors, t)
         out["c"] = self.sensors.values(t, q, v, out, energy)
         return out
 
@@ -303,11 +305,13 @@ class SystemOutputs:
                                        float(t), out)  # fmt: skip
         return out
 
-    def _along(self, raws: dict[str, list[NDArray]], t: NDArray) -> NDArray:
-        """Section values ``(k, n_along)`` of k rows from their strains and curvatures."""
+    def _along(self, raws: dict[str, list[NDArray]], stretch: dict[str, list[float]],
+               t: NDArray) -> NDArray:  # fmt: skip
+        """Section values ``(k, n_along)`` of k rows from their strains and curvatures and
+        their bodies' length factors (:func:`~rancf.system.winches.winch_factor`)."""
         parts = []
         for name, _ in self.flex:
-            factors = np.array([winch_factor(self.system, name, float(x)) for x in t])
+            factors = np.asarray(stretch[name], dtype=float)
             raw = np.stack(raws[name])  # (k, n_points, w)
             vals = self.samplers[name].from_raw(raw, factors[:, None, None])
             strain = np.max(np.abs(vals[:, :, 0]), axis=1)
