@@ -38,9 +38,11 @@ Column names: a support's ``LABEL_fx, LABEL_fy[, LABEL_fz]`` then its moment (``
 ``LABEL_mx, _my, _mz``) as :func:`rancf.bodies.reactions.reaction_columns` (the label is the
 support's place as the caller wrote it, else ``BODY:AT``); a joint's ``NAME_fx ...`` and, for
 joints that transmit a moment (``fixed``, a 3D ``revolute``, a driven joint), ``NAME_mz`` or
-``NAME_mx, _my, _mz``; then every obstacle's (:func:`rancf.system.contact.
-contact_outputs`): the force it exerts on the bodies, ``NAME_normal_x, _y[, _z]`` and
-``NAME_friction_x, _y[, _z]`` [N], the contact length ``NAME_length`` [m] and the largest
+``NAME_mx, _my, _mz``, and for a ``sliding`` joint the arc length ``NAME_s`` [m] of the
+body's point at its place (:mod:`rancf.system.sliding`); then every obstacle's
+(:func:`rancf.system.contact.contact_outputs`): the force it exerts on the bodies,
+``NAME_normal_x, _y[, _z]`` and ``NAME_friction_x, _y[, _z]`` [N], the contact length
+``NAME_length`` [m] and the largest
 penetration ``NAME_penetration`` [m]; then every pair of flexible bodies in contact
 (``body_contacts``, ``A_B_...``; ``A_A_...`` self-contact): the total contact force
 ``A_B_contact_force`` [N] (the sum of the pressures' magnitudes) and the largest penetration
@@ -60,9 +62,10 @@ from rancf.bodies.reactions import Reaction, reaction_columns, reaction_row, sup
 from rancf.bodies.section_outputs import SectionSampler, section_names
 from rancf.kernels import _core
 from rancf.system.contact import contact_outputs
+from rancf.system.output_block import block_derived, block_sections, takes_block
 from rancf.system.sensors import SensorReader
+from rancf.system.sliding import sliding_slots, sliding_values
 from rancf.system.system import System
-from rancf.system.winches import winch_factor
 
 __all__ = ["SystemOutputs"]
 
@@ -113,6 +116,8 @@ class SystemOutputs:
             cols = [f"{lab}_f{a}" for a in axes]
             if _joint_has_moment(s, k):
                 cols += [f"{lab}_mz"] if s.dim == 2 else [f"{lab}_m{a}" for a in "xyz"]
+            if j.kind == "sliding":  # the arc length at the place (rancf.system.sliding)
+                cols.append(f"{lab}_s")
             self.joint_names.append(cols)
         self.reaction_names = [c for cols in self.support_names.values() for c in cols]
         self.reaction_names += [c for cols in self.joint_names for c in cols]
@@ -131,11 +136,11 @@ class SystemOutputs:
         scheme = _core.Scheme(alpha_m=0.0, alpha_f=0.0, gamma=0.5, beta=0.25, damping=s.damping,
                               tol=1e-10, max_iter=1, modified=False)  # fmt: skip
         self._integ = _core.SystemIntegrator(s.core, scheme)  # for its consistent acceleration
+        #: The largest |axial strain| of the rows seen so far, and the ``t`` of its row.
+        self.largest_strain: tuple[float, float] = (0.0, 0.0)
         #: One flexible body, nothing else with energy: its energies are the system's (stored).
         self._body_is_system = len(s.flex) == 1 and not (
             s.rigid or s.springs or s.has_contact or getattr(s, "winches", ()))
-        #: The largest |axial strain| of the rows seen so far, and the ``t`` of its row.
-        self.largest_strain: tuple[float, float] = (0.0, 0.0)
 
     # ------------------------------------------------------------------ sizes
     @property
@@ -197,13 +202,13 @@ class SystemOutputs:
         }
         res = np.empty(s.n + s.m)
         raws: dict[str, list[NDArray]] = {name: [] for name, _ in self.flex}
-        # without contact or rods' triads, a dynamic block's rows go through the core at once
-        batch = not static and directors is None and not s.has_contact and k > 0
-        ys = s.y_from_q(q) if batch else None
+        factors: dict[str, list[float]] = {name: [] for name, _ in self.flex}
+        # without contact, rods' triads or sliding joints a block's rows go through the core
+        ys = s.y_from_q(q) if takes_block(s, static, directors, k) else None
         if ys is not None:
             vs = np.zeros_like(ys) if v is None else s.y_from_q(np.reshape(v, (k, -1)))
-            self._batch(t, ys, vs, out)
-            self._sections(raws, ys, t)
+            block_derived(self, t, ys, vs, out)
+            block_sections(self, raws, factors, ys, t)
         if per_body and energy is not None and self._body_is_system and not static:
             out["eb"], per_body = np.array(energy, dtype=float).reshape(k, 3), False
         with self._triads() as set_row:
@@ -215,7 +220,7 @@ class SystemOutputs:
                     out["eb"][i] = self._body_energies(y, vs[i], float(t[i]))
                     continue
                 vy = np.zeros(s.n) if v is None or static else s.y_from_q(v[i])
-                a, li = np.zeros(s.n), np.zeros(s.m)
+                a, li = np.zeros(s.n), sliding_slots(s, y, None if lam is None else lam[i])
                 if static:
                     if lam is not None:
                         li[:] = lam[i]
@@ -228,47 +233,13 @@ class SystemOutputs:
                 out["a"][i], out["lam"][i] = s.q_from_y(a), li
                 vc = None if static else vy  # friction from the velocities
                 out["r"][i] = self._reactions(y, res[: s.n], float(t[i]), li, vc, step)
-                self._sections(raws, y[None], t[i : i + 1])
+                block_sections(self, raws, factors, y[None], t[i : i + 1])  # all at once below
                 if per_body:
                     out["eb"][i] = self._body_energies(y, vy, float(t[i]))
         if k:
-            out["s"] = self._along(raws, t)
+            out["s"] = self._along(raws, factors, t)
         out["c"] = self.sensors.values(t, q, v, out, energy)
         return out
-
-    def _batch(self, t: NDArray, ys: NDArray, vs: NDArray, out: dict[str, NDArray]) -> None:
-        """Accelerations, multipliers and reactions of dynamic rows without contact (states
-        ``ys``, ``vs`` ``(k, n)``) into ``out``, by one call of the core for all rows."""
-        s = self.system
-        k, nj = ys.shape[0], len(s.joints)
-        a, lam = np.empty((k, s.n)), np.empty((k, s.m))
-        res, jr = np.empty((k, s.n + s.m)), np.empty((k, nj, 6))
-        self._integ.derived_rows(np.ascontiguousarray(t), np.ascontiguousarray(ys),
-                                 np.ascontiguousarray(vs), a, lam, res, jr, nj)  # fmt: skip
-        out["a"], out["lam"] = s.q_from_y(a), lam
-        parts = []
-        for name, b in self.flex:
-            sl = s.body_slice(name)
-            if b.supports:
-                parts.append(reaction_row(support_reactions(b, ys[:, sl], res[:, sl],
-                                                            self.labels[name])))  # fmt: skip
-        for j in range(nj):
-            parts.append(jr[:, j, : s.dim])
-            if _joint_has_moment(s, j):
-                parts.append(jr[:, j, 5:] if s.dim == 2 else jr[:, j, 3:])
-        out["r"] = np.concatenate(parts, axis=1) if parts else np.empty((k, 0))
-
-    def _sections(self, raws: dict[str, list[NDArray]], ys: NDArray, t: NDArray) -> None:
-        """Strains and curvatures of rows ``ys`` ``(k, n)`` into ``raws``, body by body: one call
-        of the core for all rows where the body's length is the same at each (no winch)."""
-        for name, _ in self.flex:
-            sl = self.system.body_slice(name)
-            factors = [winch_factor(self.system, name, float(x)) for x in t]  # at its length
-            samp = self.samplers[name]
-            if all(f == factors[0] for f in factors):
-                raws[name].append(samp.raw(ys[:, sl], factors[0]))
-                continue
-            raws[name] += [samp.raw(y[None, sl], f) for y, f in zip(ys, factors, strict=True)]
 
     def contact_columns(self, name: str) -> slice:
         """The columns of the obstacle called ``name`` (normal, friction, moment, length,
@@ -301,10 +272,12 @@ class SystemOutputs:
             out += support_reactions(b, y[sl], res[sl], self.labels[name])
         for k, j in enumerate(s.joints):
             force, moment = s.core.joint_reaction(k, y, t, lam)
-            mom = None
+            mom, extra = None, None
             if _joint_has_moment(s, k):
                 mom = np.asarray(moment)[2:] if s.dim == 2 else np.asarray(moment)
-            out.append(Reaction(j.name or f"joint{k}", np.asarray(force)[: s.dim], mom))
+            if j.kind == "sliding":
+                extra = np.array([sliding_values(s, k, y, lam)])
+            out.append(Reaction(j.name or f"joint{k}", np.asarray(force)[: s.dim], mom, extra))
         return out
 
     def _step(self, alpha: NDArray | None, i: int, y: NDArray, v: NDArray) -> tuple[NDArray, ...]:
@@ -343,11 +316,13 @@ class SystemOutputs:
                                        float(t), out)  # fmt: skip
         return out
 
-    def _along(self, raws: dict[str, list[NDArray]], t: NDArray) -> NDArray:
-        """Section values ``(k, n_along)`` of k rows from their strains and curvatures."""
+    def _along(self, raws: dict[str, list[NDArray]], stretch: dict[str, list[float]],
+               t: NDArray) -> NDArray:  # fmt: skip
+        """Section values ``(k, n_along)`` of k rows from their strains and curvatures and
+        their bodies' length factors (:func:`~rancf.system.winches.winch_factor`)."""
         parts = []
         for name, _ in self.flex:
-            factors = np.array([winch_factor(self.system, name, float(x)) for x in t])
+            factors = np.asarray(stretch[name], dtype=float)
             raw = np.concatenate(raws[name])  # (k, n_points, w)
             vals = self.samplers[name].from_raw(raw, factors[:, None, None])
             strain = np.max(np.abs(vals[:, :, 0]), axis=1)

@@ -1,0 +1,70 @@
+"""A block of stored dynamic rows through the compiled core at once, for
+:meth:`rancf.system.outputs.SystemOutputs.rows` (the same values as its row-by-row formulas):
+
+* :func:`block_derived`: the consistent accelerations and multipliers, the balance residual
+  with them and the joints' reactions of every row (``SystemIntegrator.derived_rows``, one
+  call), then the supports' reactions from the held rows of the residuals
+  (:func:`rancf.bodies.reactions.support_reactions` on the stack of rows);
+* :func:`block_sections`: the section strains and curvatures of every row, one call of the
+  core a body where the body's length is the same at every row (no winch).
+
+Only for rows without contact, rods' directors or sliding joints (their multipliers' slots and
+extra columns are the row loop's).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from rancf.bodies.reactions import reaction_row, support_reactions
+from rancf.system.winches import winch_factor
+
+__all__ = ["block_derived", "block_sections", "takes_block"]
+
+
+def takes_block(system: Any, static: bool, directors: NDArray | None, k: int) -> bool:
+    """Whether ``k`` rows of ``system`` go through the core as one block."""
+    sliding = any(j.kind == "sliding" for j in system.joints)
+    return not (static or sliding or system.has_contact) and directors is None and k > 0
+
+
+def block_derived(outputs: Any, t: NDArray, ys: NDArray, vs: NDArray,
+                  out: dict[str, NDArray]) -> None:  # fmt: skip
+    """Accelerations ``out["a"]``, multipliers ``out["lam"]`` and reactions ``out["r"]`` of the
+    states ``ys``, ``vs`` ``(k, n)`` at times ``t``."""
+    s = outputs.system
+    k, nj = ys.shape[0], len(s.joints)
+    a, lam = np.empty((k, s.n)), np.empty((k, s.m))
+    res, jr = np.empty((k, s.n + s.m)), np.empty((k, nj, 6))
+    outputs._integ.derived_rows(np.ascontiguousarray(t), np.ascontiguousarray(ys),
+                                np.ascontiguousarray(vs), a, lam, res, jr, nj)  # fmt: skip
+    out["a"], out["lam"] = s.q_from_y(a), lam
+    parts = []
+    for name, b in outputs.flex:
+        sl = s.body_slice(name)
+        if b.supports:
+            parts.append(reaction_row(support_reactions(b, ys[:, sl], res[:, sl],
+                                                        outputs.labels[name])))  # fmt: skip
+    for j in range(nj):
+        parts.append(jr[:, j, : s.dim])
+        if len(outputs.joint_names[j]) > s.dim:  # the joint reports a moment
+            parts.append(jr[:, j, 5:] if s.dim == 2 else jr[:, j, 3:])
+    out["r"] = np.concatenate(parts, axis=1) if parts else np.empty((k, 0))
+
+
+def block_sections(outputs: Any, raws: dict[str, list[NDArray]],
+                   factors: dict[str, list[float]], ys: NDArray, t: NDArray) -> None:  # fmt: skip
+    """Strains and curvatures ``(k, n_points, w)`` of the rows ``ys`` into ``raws`` and their
+    bodies' length factors (:func:`~rancf.system.winches.winch_factor`) into ``factors``."""
+    s = outputs.system
+    for name, _ in outputs.flex:
+        sl, samp = s.body_slice(name), outputs.samplers[name]
+        fs = [winch_factor(s, name, float(x), y) for x, y in zip(t, ys, strict=True)]
+        factors[name] += fs
+        if all(f == fs[0] for f in fs):
+            raws[name].append(samp.raw(ys[:, sl], fs[0]))
+        else:
+            raws[name] += [samp.raw(y[None, sl], f) for y, f in zip(ys, fs, strict=True)]
