@@ -89,6 +89,16 @@ class SectionSampler:
         """Number of sample points, ``per_element n_el + 1``."""
         return int(self._rows.size)
 
+    def between_nodes(self, nodal: NDArray) -> NDArray[np.float64]:
+        """Nodal values ``(..., n_nodes)`` at the sample points ``(..., n_points)``, linear in
+        ``ξ`` inside every element (the axial force of :mod:`rancf.bodies.nodal_forces`)."""
+        nodal = np.asarray(nodal, dtype=float)
+        xi = self.xi[:-1]
+        inner = (nodal[..., :-1, None] * (1.0 - xi) + nodal[..., 1:, None] * xi).reshape(
+            nodal.shape[:-1] + (-1,)
+        )
+        return np.concatenate([inner, nodal[..., -1:]], axis=-1)
+
     def positions(self, y: NDArray) -> NDArray[np.float64]:
         """Positions ``(n_points, dim)`` of the sample points at model coordinates ``y`` (the
         element's curve; a beam's chord)."""

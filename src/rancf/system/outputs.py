@@ -56,13 +56,14 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from rancf.bodies.nodal_forces import nodal_axial_forces, recovers_axial_force
 from rancf.bodies.reactions import Reaction, reaction_columns, reaction_row, support_reactions
 from rancf.bodies.section_outputs import SectionSampler, section_names
 from rancf.kernels import _core
 from rancf.system.contact import contact_outputs
 from rancf.system.sensors import SensorReader
 from rancf.system.system import System
-from rancf.system.winches import winch_factor
+from rancf.system.winches import winch_factor, winch_node
 
 __all__ = ["SystemOutputs"]
 
@@ -104,6 +105,9 @@ class SystemOutputs:
                 raw = [x if isinstance(x, str) and ":" in x else f"{name}:{_at(x)}" for x in raw]
             self.labels[name] = raw
         self.samplers = {name: SectionSampler(b, per_element) for name, b in self.flex}
+        winched = {winch_node(s, w)[0] for w in getattr(s, "winches", ())}
+        self._recovered = {name for name, b in self.flex
+                           if recovers_axial_force(b) and name not in winched}  # fmt: skip
         self.section_names = {name: section_names(b) for name, b in self.flex}
         self.support_names = {name: reaction_columns(b, self.labels[name]) for name, b in self.flex}
         self.joint_names: list[list[str]] = []
@@ -192,8 +196,9 @@ class SystemOutputs:
             "s": np.empty((k, self.n_along)),
             "eb": np.empty((k, 3 * len(self.flex) if per_body else 0)),
         }
-        res = np.empty(s.n + s.m)
+        res, res0, no_lam = np.empty(s.n + s.m), np.empty(s.n + s.m), np.zeros(s.m)
         raws: dict[str, list[NDArray]] = {name: [] for name, _ in self.flex}
+        nodal: dict[str, list[NDArray]] = {name: [] for name, _ in self.flex}
         with self._triads() as set_row:
             for i in range(k):
                 y = s.y_from_q(q[i])
@@ -205,21 +210,27 @@ class SystemOutputs:
                     if lam is not None:
                         li[:] = lam[i]
                     s.core.residual(y, vy, a, li, 0.0, min(float(t[i]), 1.0), True, False, res)
+                    s.core.residual(y, vy, a, no_lam, 0.0, min(float(t[i]), 1.0), True, False,
+                                    res0)  # fmt: skip
                     step: tuple[NDArray, ...] = ()
                 else:
                     step = self._step(alpha, i, y, vy)
                     self._integ.initial_acceleration(y, vy, float(t[i]), a, li, *step)
                     s.core.residual(y, vy, a, li, float(t[i]), 1.0, False, True, res, *step)
+                    s.core.residual(y, vy, a, no_lam, float(t[i]), 1.0, False, True, res0, *step)
                 out["a"][i], out["lam"][i] = s.q_from_y(a), li
                 vc = None if static else vy  # friction from the velocities
                 out["r"][i] = self._reactions(y, res[: s.n], float(t[i]), li, vc, step)
-                for name, _ in self.flex:  # the sections' numbers for all rows at once below
+                for name, b in self.flex:  # the sections' numbers for all rows at once below
                     factor = winch_factor(s, name, float(t[i]))  # a winch's body at its length
-                    raws[name].append(self.samplers[name].raw(y[s.body_slice(name)], factor))
+                    sl = s.body_slice(name)
+                    raws[name].append(self.samplers[name].raw(y[sl], factor))
+                    if name in self._recovered:  # the axial force from the nodal forces
+                        nodal[name].append(nodal_axial_forces(b, y[sl], res0[sl]))
                 if per_body:
                     out["eb"][i] = self._body_energies(y, vy, float(t[i]))
         if k:
-            out["s"] = self._along(raws, t)
+            out["s"] = self._along(raws, t, nodal)
         out["c"] = self.sensors.values(t, q, v, out, energy)
         return out
 
@@ -296,13 +307,19 @@ class SystemOutputs:
                                        float(t), out)  # fmt: skip
         return out
 
-    def _along(self, raws: dict[str, list[NDArray]], t: NDArray) -> NDArray:
-        """Section values ``(k, n_along)`` of k rows from their strains and curvatures."""
+    def _along(
+        self, raws: dict[str, list[NDArray]], t: NDArray, nodal: dict[str, list[NDArray]]
+    ) -> NDArray:
+        """Section values ``(k, n_along)`` of k rows from their strains and curvatures; the
+        axial force from the nodal forces ``nodal`` where given
+        (:mod:`rancf.bodies.nodal_forces`)."""
         parts = []
         for name, _ in self.flex:
             factors = np.array([winch_factor(self.system, name, float(x)) for x in t])
             raw = np.stack(raws[name])  # (k, n_points, w)
             vals = self.samplers[name].from_raw(raw, factors[:, None, None])
+            if nodal[name]:
+                vals[:, :, 1] = self.samplers[name].between_nodes(np.stack(nodal[name]))
             strain = np.max(np.abs(vals[:, :, 0]), axis=1)
             for i in range(strain.size):  # NaN (a diverged state) is never larger
                 if strain[i] > self.largest_strain[0]:
