@@ -16,6 +16,10 @@ tension (the forces of a cut section, as equilibrium sees them):
 * rod: the material curvatures ``K1`` (twist rate), ``K2``, ``K3`` (bending about ``m1``, ``m2``)
   with ``C = GJ, EI2, EI3``: the twisting moment and the two bending moments.
 
+The rows of a run (:class:`rancf.system.outputs.SystemOutputs`) replace the axial force of
+cables and rods by the one read from the nodal forces (:mod:`rancf.bodies.nodal_forces`): the
+strain oscillates inside elements whose reference is far more curved than their shape.
+
 ``κ0`` and ``K⁰`` are the values at the sample points of the reference configuration, so all
 moments vanish there.  Sample points: ``per_element`` equally spaced values ``ξ = k /
 per_element`` in every element, and the end of the last one; ``s`` is the reference arc length.
