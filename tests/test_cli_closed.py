@@ -132,7 +132,7 @@ def test_ends_that_touch_at_a_kink_are_an_open_curve(tmp_path, where):
     assert p.returncode == 0, p.stderr
     lines = p.stderr.strip().splitlines()
     assert len(lines) == 1, p.stderr
-    assert lines[0].startswith("rancf: warning: geometry: the curve's ends meet at (0, 0)")
+    assert lines[0].startswith("rancf: warning: body: geometry: the curve's ends meet at (0, 0)")
     assert "126.9 deg" in lines[0] and "open curve" in lines[0] and "same tangent" in lines[0]
     d = np.load(tmp_path / "run" / "results.npz")
     q = d["q"].reshape(len(d["t"]), -1, 4)

@@ -34,7 +34,7 @@ def test_static_json_reactions_and_outputs(hose):
     assert weight == pytest.approx(1200.0 * np.pi * 1e-4 * 9.81, rel=1e-9)
     head = (hose / "st" / "reactions.csv").read_text().splitlines()[0]
     assert head == "t,start_fx,start_fy,start_mz,end_fx,end_fy,end_mz"
-    along = np.genfromtxt(hose / "st" / "along.csv", delimiter=",", names=True)
+    along = np.genfromtxt(hose / "st" / "bodies" / "body" / "along.csv", delimiter=",", names=True)
     assert along.dtype.names == ("s", "x", "y", "strain", "axial_force", "curvature",
                                  "bending_moment")  # fmt: skip
     assert along["s"][0] == 0.0 and along["s"][-1] == pytest.approx(1.0, rel=1e-12)
@@ -90,7 +90,7 @@ def test_vtk_export_carries_the_section_quantities(hose):
     for name in ("section_axial_force", "section_bending_moment", "section_curvature"):
         assert name in mesh.point_data
     moment = mesh.point_data["section_bending_moment"]
-    along = np.genfromtxt(hose / "st" / "along.csv", delimiter=",", names=True)
+    along = np.genfromtxt(hose / "st" / "bodies" / "body" / "along.csv", delimiter=",", names=True)
     assert moment[0] == pytest.approx(along["bending_moment"][0], rel=1e-12)
     assert moment[-1] == pytest.approx(along["bending_moment"][-1], rel=1e-12)
 

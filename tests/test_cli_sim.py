@@ -96,11 +96,11 @@ def test_static_json(tmp_path, capsys):
     f.write_text(CANTILEVER)
     assert main(["static", str(f), "--json"]) == 0
     d = json.loads(capsys.readouterr().out)
-    assert len(d["positions"]) == 9
+    assert list(d["positions"]) == ["body"] and len(d["positions"]["body"]) == 9
     r, e, force, length = 0.03, 2e7, 1e-3, 0.5
     expected = force * length**3 / (3 * e * np.pi * r**4 / 4)
     assert -d["sensors"]["tip_y"] == pytest.approx(expected, rel=5e-3)
-    assert d["positions"][-1][1] == d["sensors"]["tip_y"]
+    assert d["positions"]["body"][-1][1] == d["sensors"]["tip_y"]
 
 
 def test_modes_json_and_plot(tmp_path, capsys):

@@ -63,15 +63,16 @@ NB_MODULE(_core, mod) {
   nb::class_<rancf::Stiffness>(mod, "Stiffness", "Section stiffnesses (EA, EI; rod: GJ, EI2, EI3).")
       .def(
           "__init__",
-          [](rancf::Stiffness* st, double ea, double ei, double gj, double ei2, double ei3) {
-            new (st) rancf::Stiffness{ea, ei, gj, ei2, ei3};
-          },
-          nb::kw_only(), "ea"_a, "ei"_a = 0.0, "gj"_a = 0.0, "ei2"_a = 0.0, "ei3"_a = 0.0)
+          [](rancf::Stiffness* st, double ea, double ei, double gj, double ei2, double ei3,
+             bool engineering) { new (st) rancf::Stiffness{ea, ei, gj, ei2, ei3, engineering}; },
+          nb::kw_only(), "ea"_a, "ei"_a = 0.0, "gj"_a = 0.0, "ei2"_a = 0.0, "ei3"_a = 0.0,
+          "engineering"_a = false)
       .def_ro("ea", &rancf::Stiffness::ea)
       .def_ro("ei", &rancf::Stiffness::ei)
       .def_ro("gj", &rancf::Stiffness::gj)
       .def_ro("ei2", &rancf::Stiffness::ei2)
-      .def_ro("ei3", &rancf::Stiffness::ei3);
+      .def_ro("ei3", &rancf::Stiffness::ei3)
+      .def_ro("engineering", &rancf::Stiffness::engineering);
   nb::class_<rancf::SectionInertia>(mod, "SectionInertia",
                                     "Rotary inertia of rod sections per length (rho Ip, rho I).")
       .def(

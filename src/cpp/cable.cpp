@@ -1,7 +1,8 @@
 // ANCF / RANCF cable elements, planar and spatial (docs/derivations/cable.md §3, §6).
 //
 // With a = r'(xi), b = r''(xi) at a Gauss point and the reference a0 (J0 = |a0|, s0 = J0^2):
-//   eps   = (a.a - s0) / (2 s0)                     Green-Lagrange axial strain
+//   eps   = (a.a - s0) / (2 s0)                     Green-Lagrange axial strain (or, with
+//                                                   Stiffness::engineering, |a|/J0 - 1)
 //   kappa = (a x b)_z / |a|^3                       planar, signed
 //   u     = kappa^2 = |a x b|^2 / |a|^6              spatial
 //   W     = 1/2 [EA eps^2 + EI (kappa - kappa0)^2] J0                 planar
@@ -20,6 +21,25 @@
 namespace rancf {
 namespace {
 
+// The axial part of the density at a Gauss point: W_a = 1/2 EA e^2 J0 with e the Green-Lagrange
+// strain (aa - s0) / (2 s0) or, with st.engineering, the engineering strain lambda - 1 (lambda =
+// sqrt(aa / s0)); its gradient is fe a and its Hessian eaj a a^T + fe I in a = r'
+// (docs/derivations/cable.md section 6): Green-Lagrange fe = EA J0 eps / s0, eaj = EA J0 / s0^2;
+// engineering fe = EA J0 (1 - 1/lambda) / s0, eaj = EA J0 / (lambda^3 s0^2).
+struct Axial {
+  double fe, eaj, w;
+};
+
+inline Axial axial_terms(const Stiffness& st, double aa, double s0, double j0) {
+  if (!st.engineering) {
+    const double eps = green_lagrange(aa, s0);
+    return {st.ea * j0 * eps / s0, st.ea * j0 / (s0 * s0), 0.5 * st.ea * eps * eps * j0};
+  }
+  const double lam = std::sqrt(aa / s0), e = lam - 1.0;
+  return {st.ea * j0 * e / (lam * s0), st.ea * j0 / (lam * lam * lam * s0 * s0),
+          0.5 * st.ea * e * e * j0};
+}
+
 // Planar density: gradient g (4) and, if h, Hessian h (4 x 4) in z = (a0, a1, b0, b1).
 inline void density_2d(const double* a, const double* b, double s0, double k0, double j0,
                        const Stiffness& st, double* g, double (*h)[4]) {
@@ -28,8 +48,8 @@ inline void density_2d(const double* a, const double* b, double s0, double k0, d
   const double inv = 1.0 / aa;
   const double p = inv / std::sqrt(aa);  // |a|^-3
   const double q25 = -3.0 * p * inv;     // dp/da_i = q25 a_i
-  const double eps = green_lagrange(aa, s0);
-  const double fe = st.ea * j0 * eps / s0;
+  const Axial ax = axial_terms(st, aa, s0, j0);
+  const double fe = ax.fe;
   const double c = a0 * b1 - a1 * b0;
   const double delta = c * p - k0;
   const double ca0 = b1, ca1 = -b0, cb0 = -a1, cb1 = a0;
@@ -44,7 +64,7 @@ inline void density_2d(const double* a, const double* b, double s0, double k0, d
   if (h == nullptr) return;
   const double s = st.ei * j0;
   const double q35 = 15.0 * p * inv * inv;
-  const double eaj = st.ea * j0 / (s0 * s0);
+  const double eaj = ax.eaj;
   const double sd = s * delta;
   const double paa00 = q25 + q35 * a0 * a0, paa01 = q35 * a0 * a1, paa11 = q25 + q35 * a1 * a1;
   h[0][0] = eaj * a0 * a0 + fe + s * ka0 * ka0 + sd * (2.0 * ca0 * pa0 + c * paa00);
@@ -72,8 +92,8 @@ inline void density_3d(const double* a, const double* b, double s0, double k0, d
   const double aa = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
   const double bb = b[0] * b[0] + b[1] * b[1] + b[2] * b[2];
   const double ab = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-  const double eps = green_lagrange(aa, s0);
-  const double fe = st.ea * j0 * eps / s0;
+  const Axial ax = axial_terms(st, aa, s0, j0);
+  const double fe = ax.fe;
   const double c0 = a[1] * b[2] - a[2] * b[1];
   const double c1 = a[2] * b[0] - a[0] * b[2];
   const double c2 = a[0] * b[1] - a[1] * b[0];
@@ -103,7 +123,7 @@ inline void density_3d(const double* a, const double* b, double s0, double k0, d
   }
   if (h == nullptr) return;
   const double s5 = 48.0 * sx * ia * ia;
-  const double eaj = st.ea * j0 / (s0 * s0);
+  const double eaj = ax.eaj;
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) {
       const double eye = i == j ? 1.0 : 0.0;
@@ -190,7 +210,7 @@ double cable_energy(const Model& m, int el, const double* e) {
     const double* r = c.n2 + 4 * k;
     gather_ab<D>(p, r, e, a, b);
     const QpGeometry geo = cable_qp_geometry(a, b, D);
-    const double eps = green_lagrange(geo.aa, c.s0[k]);
+    const double axial = axial_terms(st, geo.aa, c.s0[k], c.j0[k]).w;
     double bend;
     if constexpr (D == 2) {
       bend = (geo.kappa - c.k0[k]) * (geo.kappa - c.k0[k]);
@@ -201,7 +221,7 @@ double cable_energy(const Model& m, int el, const double* e) {
     } else {
       bend = geo.kappa * geo.kappa;
     }
-    total += c.gw[q] * 0.5 * (st.ea * eps * eps + st.ei * bend) * c.j0[k];
+    total += c.gw[q] * (axial + 0.5 * st.ei * bend * c.j0[k]);
   }
   return total;
 }

@@ -55,6 +55,9 @@ struct Stiffness {
   double gj = 0.0;   ///< torsional stiffness G J (rod)
   double ei2 = 0.0;  ///< bending stiffness about m1 (rod)
   double ei3 = 0.0;  ///< bending stiffness about m2 (rod)
+  /// Cable axial law: false: W = 1/2 EA eps^2 (Green-Lagrange eps); true: W = 1/2 EA (lambda -
+  /// 1)^2, the engineering strain of mooring codes (docs/derivations/cable.md section 6).
+  bool engineering = false;
 };
 
 /// Rotary inertia of rod sections per length (configuration dependent: inertia.hpp).

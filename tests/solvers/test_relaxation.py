@@ -101,7 +101,7 @@ def test_a_pinned_pendulum_drawn_horizontal_comes_to_rest_hanging(tmp_path, caps
     assert doc["load_factors"][-1] == 1.0
     weight = load_scenario(f).build_model().total_mass * G
     assert weight == pytest.approx(7850.0 * np.pi * 0.005**2 * G, rel=1e-12)
-    tip = doc["positions"][-1]
+    tip = doc["positions"]["body"][-1]
     assert abs(tip[0]) <= 1e-9 and -1.0001 < tip[1] < -1.0  # stretched by its own weight
     assert doc["sensors"]["tip_x"] == tip[0]
     (pin,) = doc["reactions"]
@@ -129,7 +129,7 @@ def test_an_l_shaped_rope_pinned_at_both_ends_sags(tmp_path, capsys):
     assert a[0] < 0.0 < b[0]  # the pins pull the rope's ends apart: tension
     assert abs(a[0] + b[0]) <= 1e-9 * weight
     assert a[1] + b[1] == pytest.approx(weight, rel=1e-9)
-    pos = np.array(doc["positions"])
+    pos = np.array(doc["positions"]["body"])
     chord = pos[0] + (pos[:, 0:1] / 2.0) * (pos[-1] - pos[0])  # the line between the pins
     assert np.all(pos[1:-1, 1] < chord[1:-1, 1])  # every inner node hangs below it
     assert pos[:, 1].min() < -1.2  # 3 m of rope over a 2.24 m chord sags well below the L

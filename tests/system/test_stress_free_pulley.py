@@ -17,7 +17,7 @@ import pytest
 
 from rancf.bodies.flexible import Material, Model, Section
 from rancf.bodies.rigid import PointMass
-from rancf.mesh.mesh import mesh_from_arrays
+from rancf.mesh.routes import rope_over_pulley
 from rancf.solvers.dynamic import DynamicOptions, integrate
 from rancf.system import Joint, Obstacle, System
 
@@ -31,26 +31,8 @@ RHO_A = 7800.0 * np.pi * RT**2
 LENGTH = 2 * SPAN + np.pi * RC
 
 
-def _line(a, b):
-    a, b = np.asarray(a, float), np.asarray(b, float)
-    return [a, a + (b - a) / 3, a + 2 * (b - a) / 3, b], [1.0, 1.0, 1.0, 1.0]
-
-
-def _arc(t0: float, t1: float):
-    c = np.cos((t1 - t0) / 2)
-    p0, p2 = (RC * np.array([np.cos(t), np.sin(t)]) for t in (t0, t1))
-    p1 = RC / c * np.array([np.cos((t0 + t1) / 2), np.sin((t0 + t1) / 2)])
-    w = (1 + 2 * c) / 3
-    return [p0, (p0 + 2 * c * p1) / (1 + 2 * c), (2 * c * p1 + p2) / (1 + 2 * c), p2], [1, w, w, 1]
-
-
 def atwood(stress_free: str, n_arc: int = 12, n_span: int = 6) -> System:
-    ys = np.linspace(-SPAN, 0.0, n_span + 1)
-    els = [_line((-RC, ys[i]), (-RC, ys[i + 1])) for i in range(n_span)]
-    th = np.linspace(np.pi, 0.0, n_arc + 1)
-    els += [_arc(th[i], th[i + 1]) for i in range(n_arc)]
-    els += [_line((RC, ys[::-1][i]), (RC, ys[::-1][i + 1])) for i in range(n_span)]
-    mesh = mesh_from_arrays(np.array([e[0] for e in els]), np.array([e[1] for e in els], float))
+    mesh = rope_over_pulley(RC, SPAN, n_arc, n_span)
     rope = Model(mesh, "rancf", SECTION, MATERIAL, gravity=(0.0, -G), stress_free=stress_free)
     left, right = PointMass(2, M1, (-RC, -SPAN)), PointMass(2, M2, (RC, -SPAN))
     pulley = Obstacle("cylinder", center=(0, 0), radius=RP, name="pulley")

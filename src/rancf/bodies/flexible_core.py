@@ -48,7 +48,8 @@ def section_stiffness(model: AssembledBody) -> _core.Stiffness:
     """``EA``, ``EI`` and, for rods, ``GJ``, ``EI2 = E I_y`` (about ``m1``) and ``EI3 = E I_z``."""
     sec, mat = model.section, model.material
     if model.element != "rod":
-        return _core.Stiffness(ea=model.props.ea, ei=model.props.ei)
+        engineering = model.material.axial_strain == "engineering"
+        return _core.Stiffness(ea=model.props.ea, ei=model.props.ei, engineering=engineering)
     e_mod = mat.youngs_modulus
     return _core.Stiffness(
         ea=model.props.ea,

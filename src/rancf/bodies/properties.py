@@ -92,16 +92,28 @@ class Section:
         return self.polar if self.torsion_constant is None else self.torsion_constant
 
 
+#: The axial strain measures of cable elements (:class:`Material`).
+AXIAL_STRAINS = ("green_lagrange", "engineering")
+
+
 @dataclass(frozen=True)
 class Material:
-    """Linear elastic material: density ``ρ``, Young's modulus ``E`` and (rods) ``G`` or ``ν``."""
+    """Linear elastic material: density ``ρ``, Young's modulus ``E`` and (rods) ``G`` or ``ν``.
+
+    ``axial_strain``: the strain of the axial energy ``½ EA e²`` of cable elements:
+    ``"green_lagrange"`` (``e = (λ² − 1)/2``, the default) or ``"engineering"`` (``e = λ − 1``,
+    the tension ``EA (λ − 1)`` of mooring codes); docs/derivations/cable.md §6."""
 
     density: float
     youngs_modulus: float
     shear_modulus: float | None = None
     poisson_ratio: float | None = None
+    axial_strain: str = "green_lagrange"
 
     def __post_init__(self) -> None:
+        if self.axial_strain not in AXIAL_STRAINS:
+            raise InputError("material.axial_strain", self.axial_strain,
+                             " or ".join(f'"{k}"' for k in AXIAL_STRAINS))  # fmt: skip
         for name in ("density", "youngs_modulus", "shear_modulus"):
             _positive(f"material.{name}", getattr(self, name))
         nu = self.poisson_ratio

@@ -11,6 +11,9 @@ tension (the forces of a cut section, as equilibrium sees them):
 
     M_i = ∂W/∂k_i = C_i (κ_i - κ_i⁰) / λ,        N = ∂W/∂λ = EA ε λ - Σ M_i κ_i
 
+(a cable with ``material.axial_strain = "engineering"``: ``W = ½ EA (λ − 1)² + ...`` and
+``N = EA (λ − 1) − Σ M_i κ_i``; the ``strain`` output stays the Green–Lagrange ``ε``);
+
 * cable: one curvature (planar: signed, about ``z``; spatial: the magnitude), ``C = EI``;
 * beam: ``κ(ξ)`` of the co-rotational cubic per reference length, ``M = EI κ``, ``N = EA ε λ``;
 * rod: the material curvatures ``K1`` (twist rate), ``K2``, ``K3`` (bending about ``m1``, ``m2``)
@@ -148,8 +151,13 @@ class SectionSampler:
             st = section_stiffness(m)
             c = np.array([st.gj, st.ei2, st.ei3]) if m.element == "rod" else np.array([st.ei])
             moments = c * (kappa - self._k0 / (_scale(m) * factor)) / stretch[..., None]
-            force = m.props.ea * eps * stretch - np.sum(moments * kappa, axis=-1)
+            conj = stretch - 1.0 if _engineering(m) else eps * stretch  # ∂(e²/2)/∂λ
+            force = m.props.ea * conj - np.sum(moments * kappa, axis=-1)
         return np.concatenate([eps[..., None], force[..., None], kappa, moments], axis=-1)
+
+
+def _engineering(model: Model) -> bool:
+    return model.material.axial_strain == "engineering"
 
 
 def _scale(model: Model) -> float:

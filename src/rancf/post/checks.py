@@ -48,9 +48,8 @@ def section_warnings(model: Model | System) -> list[str]:
     a kink: an open curve) and a warning if the section's radius exceeds a tenth of the body's
     reference length (every flexible body of a system, named)."""
     if isinstance(model, System):
-        many = len(model.flex) > 1
         return [
-            (f"{name}: " if many else "") + w
+            f"{name}: {w}"
             for name, b in zip(model.names, model.flex, strict=False)
             for w in section_warnings(b)
         ] + _crossing_warnings(model) + contact_warnings(model)

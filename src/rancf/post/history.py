@@ -106,15 +106,15 @@ def plan_run(
     sc: Any, limit_gb: float, limit_name: str = "--max-output-gb"
 ) -> tuple[Any, SystemOutputs]:
     """The system of scenario ``sc`` and its outputs, after checking the run's files fit in
-    ``limit_gb`` (:func:`check_output_size`; a system of several bodies also keeps every
-    flexible body's ``q``, ``v``, ``a`` in ``bodies/NAME/``)."""
+    ``limit_gb`` (:func:`check_output_size`; every flexible body's ``q``, ``v``, ``a`` are also
+    kept in ``bodies/NAME/``)."""
     from rancf.scenario.system_build import build_system, support_labels
 
     system = build_system(sc)
     outputs = SystemOutputs(system, sc.sensors, support_labels(sc))
+    # the body folders repeat every flexible body's q, v, a
     n_derived = len(outputs.reaction_names) + outputs.n_along + system.m
-    if system.single is None:
-        n_derived += 3 * sum(b.n for b in system.flex)
+    n_derived += 3 * sum(b.n for b in system.flex)
     check_output_size(
         sc.path, sc.dynamic_options().n_outputs, system.n, len(outputs.sensor_names),
         outputs.n_directors, limit_gb, limit_name, n_derived,

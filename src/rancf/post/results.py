@@ -3,7 +3,8 @@
 A run directory holds
 
 * ``sensors.csv``, ``energy.csv``, ``reactions.csv`` and ``results.npz`` — the history
-  (:mod:`rancf.post.run_files`; a system of several bodies also ``bodies/NAME/results.npz``);
+  (:mod:`rancf.post.run_files`; every flexible body also ``bodies/NAME/results.npz``, and a
+  static run ``bodies/NAME/along.csv``);
 * ``summary.json`` — status, message, time reached, counters and wall times (strict JSON:
   a non-finite number is written as ``null``).
 
@@ -54,6 +55,8 @@ def system_outputs(model: Model | System, sensors: Sequence[Any] = (),
     """The :class:`SystemOutputs` of a model (a one-body system) or system; ``labels``: the
     supports' ``at`` as written (a list for one body, else per body name)."""
     system = as_system(model)
+    if isinstance(model, Model) and labels is None:  # the one-body front: labels as written
+        labels = [sup.node for sup in model.supports]
     if labels is not None and not isinstance(labels, Mapping):
         labels = {system.names[0]: list(labels)}
     return SystemOutputs(system, sensors, labels)
@@ -224,9 +227,8 @@ def write_static_run(
     with FileSet() as files:  # the files replace an earlier load path's together
         write_history_files(out, outputs, t, q, np.zeros_like(q), energy, m1, static=True,
                             files=files, lam=lam)  # fmt: skip
-        if s.single is not None and len(s.flex) == 1:
-            last = None if m1 is None else m1[-1]
-            write_along_csv(out / "along.csv", outputs, t[-1], q[-1], last, files)
+        last = None if m1 is None else m1[-1]
+        write_along_csv(out, outputs, t[-1], q[-1], last, files)
         # after the rows: their outputs tracked the largest strain of the warnings
         doc = {
             "analysis": "static",
@@ -242,27 +244,30 @@ def write_static_run(
 
 
 def write_along_csv(
-    path: Path, outputs: SystemOutputs, lam: float, q: NDArray, m1: NDArray | None,
+    out: Path, outputs: SystemOutputs, lam: float, q: NDArray, m1: NDArray | None,
     files: FileSet | None = None,
 ) -> None:  # fmt: skip
-    """``along.csv`` of a one-body static state: one row per section sample point with the
-    reference arc length ``s``, the position and the section quantities (into the set
-    ``files``, or atomically on its own)."""
+    """``bodies/NAME/along.csv`` of every flexible body in a static state (run folder ``out``,
+    system coordinates ``q``): one row per section sample point with the reference arc length
+    ``s``, the position and the section quantities (into the set ``files``, or atomically on
+    their own)."""
     if files is None:
         with FileSet() as own:
-            return write_along_csv(path, outputs, lam, q, m1, own)
+            return write_along_csv(out, outputs, lam, q, m1, own)
     s = outputs.system
-    name, model = s.names[0], s.flex[0]
     rows = outputs.rows(np.array([lam]), q[None], None, None if m1 is None else m1[None],
                         static=True)  # fmt: skip
-    along = outputs.body_along(rows["s"], name)[0]
-    sampler = outputs.samplers[name]
-    pos = sampler.positions(model.y_from_q(q))
-    axes = ["x", "y", "z"][: model.dim]
-    head = ",".join(["s", *axes, *outputs.section_names[name]]) + "\n"
-    with files.file(path) as fh:
-        fh.write(head.encode())
-        np.savetxt(fh, np.column_stack([sampler.s, pos, along]), delimiter=",", fmt="%.12g")
+    for name, model in outputs.flex:
+        along = outputs.body_along(rows["s"], name)[0]
+        sampler = outputs.samplers[name]
+        pos = sampler.positions(model.y_from_q(q[s.body_slice(name)]))
+        axes = ["x", "y", "z"][: model.dim]
+        head = ",".join(["s", *axes, *outputs.section_names[name]]) + "\n"
+        folder = Path(out) / "bodies" / name
+        folder.mkdir(parents=True, exist_ok=True)
+        with files.file(folder / "along.csv") as fh:
+            fh.write(head.encode())
+            np.savetxt(fh, np.column_stack([sampler.s, pos, along]), delimiter=",", fmt="%.12g")
 
 
 def load_results(path: str | Path) -> dict[str, Any]:

@@ -89,12 +89,12 @@ def reactions_json(outputs: SystemOutputs, y: NDArray, lam: NDArray | None) -> l
     return out
 
 
-def positions_json(system: Any, q: NDArray) -> Any:
-    """``static --json``'s ``"positions"``: the nodes of the one flexible body ``[[x, y(, z)],
-    ...]``, or per body (a rigid body's or point mass's centre)."""
+def positions_json(system: Any, q: NDArray) -> dict[str, Any]:
+    """``static --json``'s ``"positions"``: per body name, a flexible body's nodes ``[[x, y(,
+    z)], ...]``, a rigid body's or point mass's centre ``[x, y(, z)]``."""
     out: dict[str, Any] = {}
     for name in system.names:
         b, qb = system.bodies[name], np.asarray(q)[system.body_slice(name)]
         out[name] = (b.node_positions(qb).tolist() if hasattr(b, "node_positions")
                      else qb[: system.dim].tolist())  # fmt: skip
-    return next(iter(out.values())) if len(out) == 1 and system.flex else out
+    return out

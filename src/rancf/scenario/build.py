@@ -193,6 +193,7 @@ def flexible_model(
                 material.youngs_modulus,
                 material.shear_modulus,
                 material.poisson_ratio,
+                material.axial_strain,
             ),  # fmt: skip
             [_support(node, t) for _, node, t in supports],
             sc.loads.gravity,

@@ -100,6 +100,12 @@ class MaterialTable(Table):
         None,
         description="rods (or shear_modulus): G = E / (2 (1 + nu)), in (-1, 0.5)",
     )
+    axial_strain: Literal["green_lagrange", "engineering"] = Field(
+        "green_lagrange",
+        description="cable elements: the strain of the axial energy EA e^2 / 2: green_lagrange "
+        "e = (lambda^2 - 1) / 2, or engineering e = lambda - 1 (tension EA (lambda - 1), as "
+        "mooring codes)",
+    )
 
     @model_validator(mode="before")
     @classmethod
@@ -137,6 +143,9 @@ def check_flexible(
     for k in ("shear_modulus", "poisson_ratio"):
         if material[k] is not None:
             _rod_only(f"material.{k}", el)
+    if material.axial_strain != "green_lagrange" and el not in ("rancf", "ancf"):
+        raise fail("material.axial_strain", f'"engineering" applies to cable elements '
+                   f'(mesh.element = "rancf" or "ancf"), not {el!r}')  # fmt: skip
     if el == "rod" and material.shear_modulus is None and material.poisson_ratio is None:
         raise fail("material.shear_modulus", "required for rod elements: give shear_modulus or "
                    "poisson_ratio (the torsional stiffness is G J)")  # fmt: skip

@@ -35,9 +35,9 @@ consistent ones with those contact forces, so every body's forces balance ``M a`
 between flexible bodies is reported at ``y_f`` with the pressure there.
 
 Column names: a support's ``LABEL_fx, LABEL_fy[, LABEL_fz]`` then its moment (``LABEL_mz`` or
-``LABEL_mx, _my, _mz``) as :func:`rancf.bodies.reactions.reaction_columns` (in a system of
-several bodies the label is ``BODY:AT``); a joint's ``NAME_fx ...`` and, for joints that
-transmit a moment (``fixed``, a 3D ``revolute``, a driven joint), ``NAME_mz`` or
+``LABEL_mx, _my, _mz``) as :func:`rancf.bodies.reactions.reaction_columns` (the label is the
+support's place as the caller wrote it, else ``BODY:AT``); a joint's ``NAME_fx ...`` and, for
+joints that transmit a moment (``fixed``, a 3D ``revolute``, a driven joint), ``NAME_mz`` or
 ``NAME_mx, _my, _mz``; then every obstacle's (:func:`rancf.system.contact.
 contact_outputs`): the force it exerts on the bodies, ``NAME_normal_x, _y[, _z]`` and
 ``NAME_friction_x, _y[, _z]`` [N], the contact length ``NAME_length`` [m] and the largest
@@ -100,10 +100,10 @@ class SystemOutputs:
         labels = dict(labels or {})
         self.labels: dict[str, list[int | str]] = {}
         for name, b in self.flex:
-            raw = list(labels.get(name, [sup.node for sup in b.supports]))
-            if s.single is None:  # several bodies: BODY:AT
-                raw = [x if isinstance(x, str) and ":" in x else f"{name}:{_at(x)}" for x in raw]
-            self.labels[name] = raw
+            # as the user wrote them, else BODY:AT (unique in every system)
+            given = labels.get(name)
+            default = [f"{name}:{_node_name(b, sup.node)}" for sup in b.supports]
+            self.labels[name] = list(given) if given is not None else default
         self.samplers = {name: SectionSampler(b, per_element) for name, b in self.flex}
         winched = {winch_node(s, w)[0] for w in getattr(s, "winches", ())}
         self._recovered = {name for name, b in self.flex
@@ -363,5 +363,7 @@ class SystemOutputs:
                 b.kernel.m1ref[...] = m1
 
 
-def _at(x: int | str) -> str:
-    return x if isinstance(x, str) else str(x)
+def _node_name(body: Any, node: int) -> str:
+    """A node as a scenario spells it: ``start``, ``end`` or ``nodeK``."""
+    k = node % body.n_nodes
+    return "start" if k == 0 else "end" if k == body.n_nodes - 1 else f"node{k}"
