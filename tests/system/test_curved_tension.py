@@ -73,7 +73,9 @@ def test_tension_of_a_straightened_curved_chain(tmp_path, n, size_tol):
     with contextlib.redirect_stdout(io.StringIO()):
         assert main(["static", str(tmp_path / "c.toml"), "--out", str(tmp_path / "r")]) == 0
     run = tmp_path / "r"
-    sensors, reactions, along = (_csv(run / f"{x}.csv") for x in ("sensors", "reactions", "along"))
+    sensors, reactions = _csv(run / "sensors.csv"), _csv(run / "reactions.csv")
+    (body,) = (run / "bodies").iterdir()  # the one body's section values
+    along = _csv(body / "along.csv")
     q = np.load(run / "results.npz")["q"][-1].reshape(n + 1, 4)
     tangent = q[:, 2:] / np.linalg.norm(q[:, 2:], axis=1, keepdims=True)
     end = np.array([reactions["end_fx"][-1], reactions["end_fy"][-1]])
