@@ -125,6 +125,11 @@ void line_forces(const Model& m, const FluidSet& fs, const LineFluid& line, cons
   for (int k = 0; k < 4; ++k) off[k] = block_offset(m, k);
   std::array<double, kMaxElementDofs> e{}, ev{}, ea{}, fe{};
   std::array<double, kMaxElementDofs * kMaxElementDofs> ke{};
+  // the fluid's kinematics do not depend on the point: set once (fluid_point's values there)
+  const bool uniform = fl.profile_z.empty() && !(dynamic && fl.waves.on);
+  FluidPoint fp;
+  if (uniform)
+    for (int i = 0; i < 3; ++i) fp.u[i] = fl.current[i];
   for (int el = 0; el < m.n_el; ++el) {
     gather_element(m, el, y, e.data());
     gather_element(m, el, v, ev.data());
@@ -145,9 +150,16 @@ void line_forces(const Model& m, const FluidSet& fs, const LineFluid& line, cons
           ac[i] += S[k] * ea[sz(off[k] + i)];
         }
       double f[3] = {load[0], load[1], load[2]};
-      double Fr[3][3] = {}, Fa[3][3] = {}, Fv[3][3] = {}, Fc[3][3] = {};  // df/dr, /da, /dv, /dacc
-      FluidPoint fp;
-      if (line.hydro) fluid_point(fl, dim, x, tm.t, dynamic, fp);
+      double Fr[3][3], Fa[3][3], Fv[3][3], Fc[3][3];  // df/dr, /da, /dv, /dacc
+      if (jac != nullptr)
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) Fr[i][j] = Fa[i][j] = Fv[i][j] = Fc[i][j] = 0.0;
+      if (!line.hydro) {
+      } else if (uniform) {  // a uniform current, no waves: u, no du, no gradients
+        fp.wet = !fl.has_surface || x[dim - 1] < fl.surface;
+      } else {
+        fluid_point(fl, dim, x, tm.t, dynamic, fp);
+      }
       if (line.hydro && fp.wet) {
         double fx[3] = {0.0, 0.0, 0.0};  // the fluid's force (no loads)
         double la = 0.0;
@@ -155,8 +167,9 @@ void line_forces(const Model& m, const FluidSet& fs, const LineFluid& line, cons
         la = std::sqrt(la);
         double t[3] = {0.0, 0.0, 0.0}, wv[3] = {0.0, 0.0, 0.0}, wn[3] = {0.0, 0.0, 0.0};
         double wt = 0.0, nn = 0.0;
+        const double inv_la = 1.0 / la;
         for (int i = 0; i < dim; ++i) {
-          t[i] = a[i] / la;
+          t[i] = a[i] * inv_la;
           wv[i] = fp.u[i] - vel[i];
           wt += wv[i] * t[i];
         }
@@ -183,7 +196,7 @@ void line_forces(const Model& m, const FluidSet& fs, const LineFluid& line, cons
           // d wn / d w = I - t t^T, d wn / d t = -(t w^T + (w.t) I); the axial part
           // 2 |wt| t (d wt) + |wt| wt (d t)
           double dn[3][3] = {}, P[3][3], G[3][3], Ft[3][3];
-          const double inv_nn = nn > 0.0 ? 1.0 / nn : 0.0, inv_la = 1.0 / la;
+          const double inv_nn = nn > 0.0 ? 1.0 / nn : 0.0;
           if (nn > 0.0)
             for (int i = 0; i < dim; ++i)
               for (int l = 0; l < dim; ++l)
