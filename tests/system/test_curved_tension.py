@@ -94,3 +94,42 @@ def test_tension_of_a_straightened_curved_chain(tmp_path, n, size_tol):
     h = nodal * tangent[:, 0]
     inner = slice(0, 3 * n // 4 + 1)
     assert np.abs(h[inner] / -start[0] - 1).max() < 1e-3
+
+
+HANGING = """
+[geometry]
+kind = "line"
+start = [0.0, 0.0]
+end = [0.0, -10.0]
+[mesh]
+elements = 5
+[section]
+radius = 0.01
+[material]
+density = 7850.0
+youngs_modulus = 2.0e11
+[[supports]]
+at = "start"
+kind = "pin"
+[loads]
+gravity = [0.0, -9.81]
+[[sensors]]
+name = "tip"
+kind = "tension"
+at = "end"
+"""
+
+
+def test_tension_of_a_hanging_cable_is_the_weight_below(tmp_path):
+    """A straight cable hanging from a pin: N(s) = w (L - s) at every node (the two elements'
+    shares of the uniform weight cancel in the average) and zero at the free end."""
+    (tmp_path / "h.toml").write_text(HANGING)
+    with contextlib.redirect_stdout(io.StringIO()):
+        assert main(["static", str(tmp_path / "h.toml"), "--out", str(tmp_path / "r")]) == 0
+    (body,) = (tmp_path / "r" / "bodies").iterdir()
+    along = _csv(body / "along.csv")
+    nodal, s = along["axial_force"][::4], along["s"][::4]
+    w = 7850.0 * np.pi * 0.01**2 * 9.81
+    assert abs(nodal[0] / (w * 10.0) - 1) < 1e-9
+    np.testing.assert_allclose(nodal, w * (10.0 - s), rtol=0, atol=1e-9 * w * 10.0)
+    assert _csv(tmp_path / "r" / "sensors.csv")["tip"][-1] == nodal[-1]
