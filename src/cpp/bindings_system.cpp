@@ -191,7 +191,7 @@ void bind_system(nb::module_& mod) {
           "residual",
           [](const SystemHolder& h, In y, In v, In a, In lam, double t, double load_factor,
              bool amplitude, bool dynamic, Out r, std::optional<In> contact_yf,
-             std::optional<In> contact_vf, std::optional<In> contact_y1) {
+             std::optional<In> contact_vf, std::optional<In> contact_y1, bool distributed_only) {
             const auto n = static_cast<std::size_t>(h.s.n), m = static_cast<std::size_t>(h.s.m);
             for (const auto* x : {&y, &v, &a}) expect_size(*x, n, "state");
             expect_size(lam, m, "lam");
@@ -200,6 +200,7 @@ void bind_system(nb::module_& mod) {
             terms.tf = terms.t1 = t;
             terms.load_factor = load_factor;
             terms.amplitude = amplitude;
+            terms.distributed_only = distributed_only;
             step_contact(contact_yf, contact_vf, contact_y1, n, terms);
             return rancf::assemble_system(h.s, y.data(), dynamic ? v.data() : nullptr,
                                           dynamic ? a.data() : nullptr, lam.data(), y.data(), terms,
@@ -208,10 +209,12 @@ void bind_system(nb::module_& mod) {
           "y"_a, "v"_a, "a"_a, "lam"_a, "t"_a, "load_factor"_a = 1.0, "amplitude"_a = false,
           "dynamic"_a = true, "r"_a.noconvert(), "contact_yf"_a.none() = nb::none(),
           "contact_vf"_a.none() = nb::none(), "contact_y1"_a.none() = nb::none(),
+          "distributed_only"_a = false,
           "The balance residual (n) and the constraints (m) at (y, v, a, lambda, t); dynamic = "
           "False: statics (no inertia); contact_yf, contact_vf, contact_y1: the contact forces "
-          "of a time step (its alpha point and end) instead of those at (y, v).  Returns False "
-          "if not finite.")
+          "of a time step (its alpha point and end) instead of those at (y, v); "
+          "distributed_only: the bodies' own terms only (no point loads, loads at places or "
+          "springs).  Returns False if not finite.")
       .def(
           "place",
           [](const SystemHolder& h, int index, In y, double t) {

@@ -16,9 +16,11 @@ section 7):
   ``N_j = ½ (F_L - F_R) · t_j`` (``t_j`` the unit tangent): the section force from the left and
   from the right, averaged (their difference is the two elements' shares of the distributed
   loads at the node, which the average cancels to first order);
-* at an end node, the force the rest of the system exerts on the line there, the balance
-  residual of the node's position rows without the multipliers' forces (a support's reaction, a
-  joint's force, zero at a free end), along the outward tangent.
+* at an end node, the force everything attached there exerts on the line: the node's position
+  rows of the body's own terms of the balance residual (internal force, weight, inertia, fluid
+  and contact loads; not the multipliers' forces, point loads or springs), which the support's
+  reaction, a joint's force, point loads and springs there balance (zero at a free end), along
+  the outward tangent.
 
 ``F_L`` needs no element-by-element assembly: every element's internal force vanishes under a
 rigid translation, so translating the nodes ``j, j+1, ...`` gives ``F_L = Σ_{k ≥ j} f_int[r_k]``
@@ -53,9 +55,10 @@ def nodal_axial_forces(model: Model, y: NDArray, residual: NDArray) -> NDArray[n
     y : ndarray, shape (n,)
         Model coordinates.
     residual : ndarray, shape (n,)
-        The body's rows of the balance residual ``M a + c M v + f_int - f_ext`` (contact and
-        fluid loads included) without the multipliers' forces ``Gᵀ λ``: on an end node's
-        position, the force the rest of the system exerts on the line there.
+        The body's rows of its own terms of the balance residual, ``M a + c M v + f_int -
+        f_gravity`` with the fluid and contact loads (``distributed_only`` of the compiled
+        residual: no multipliers' forces, point loads or springs): on an end node's position,
+        the force everything attached there exerts on the line.
     """
     dim, dpn = model.dim, model.dpn
     q = model.q_from_y(np.asarray(y, dtype=float)).reshape(model.n_nodes, dpn)

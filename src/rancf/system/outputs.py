@@ -211,13 +211,14 @@ class SystemOutputs:
                         li[:] = lam[i]
                     s.core.residual(y, vy, a, li, 0.0, min(float(t[i]), 1.0), True, False, res)
                     s.core.residual(y, vy, a, no_lam, 0.0, min(float(t[i]), 1.0), True, False,
-                                    res0)  # fmt: skip
+                                    res0, distributed_only=True)  # fmt: skip
                     step: tuple[NDArray, ...] = ()
                 else:
                     step = self._step(alpha, i, y, vy)
                     self._integ.initial_acceleration(y, vy, float(t[i]), a, li, *step)
                     s.core.residual(y, vy, a, li, float(t[i]), 1.0, False, True, res, *step)
-                    s.core.residual(y, vy, a, no_lam, float(t[i]), 1.0, False, True, res0, *step)
+                    s.core.residual(y, vy, a, no_lam, float(t[i]), 1.0, False, True, res0, *step,
+                                    distributed_only=True)  # fmt: skip
                 out["a"][i], out["lam"][i] = s.q_from_y(a), li
                 vc = None if static else vy  # friction from the velocities
                 out["r"][i] = self._reactions(y, res[: s.n], float(t[i]), li, vc, step)
