@@ -2,7 +2,7 @@
 stated relative tolerance.
 
 Round-off differs between CPUs, compilers and BLAS kernels (``OPENBLAS_CORETYPE``), so a number
-printed to 12 significant digits may differ in its last digit on another machine (issue 15).
+printed to 12 significant digits may differ in its last digit on another machine.
 Integers (counts: steps, Newton iterations, elements, frames) are compared exactly; every other
 number (it has a decimal point or an exponent) within :data:`RTOL` of the expected value, or
 :data:`ATOL` for values printed as zero.

@@ -37,7 +37,7 @@ def test_benchmark_runner_quick(tmp_path):
     assert abs(full[0] - chord[0]) < 1e-8 and abs(full[1] - chord[1]) < 1e-8
     every = rows["simulate pendulum 8 el (default Newton, output every step)"]
     assert every["rancf_tip"] == chord  # outputs do not change the run
-    # contact (issue 20): the cable on the ground against the same cable hanging free
+    # contact: the cable on the ground against the same cable hanging free
     ground = rows["contact: ground 100 el: lying vs hanging (B: hanging)"]
     assert ground["rancf_us_per_step"] > 0 and ground["hanging_us_per_step"] > 0
 

@@ -1,4 +1,4 @@
-"""Closed curves (issue 19): a closed NURBS circle, a CAD circle and a chain of two half circles
+"""Closed curves: a closed NURBS circle, a CAD circle and a chain of two half circles
 are rings (the silent cut-open case of the issue: the seam holds, a start-end distance stays
 zero); an open curve whose ends merely touch at a kink is an open curve, and one warning line says
 why."""

@@ -139,7 +139,7 @@ EX1 = ("conic", "--chord", "0.5", "--angles", "30", "40", "--point", "0.315", "0
 
 
 def test_json_takes_more_elements_than_the_table(capsys):
-    # the table stops at 1000 rows; --json takes the scenario limit (issue 15, item 5)
+    # the table stops at 1000 rows; --json takes the scenario limit
     from rancf.elements.mapping import gradient_ratio
     from rancf.geometry.conic import conic_arc
     from rancf.mesh.factories import mesh_conic

@@ -1,4 +1,4 @@
-"""`mesh.continuity = "C2"` on the command line (issue 19): runs, exports and `export --nurbs`
+"""`mesh.continuity = "C2"` on the command line: runs, exports and `export --nurbs`
 give the same curves (a C² run of a cubic B-spline of n spans exports as n + 3 control points,
 a C¹ run of the same mesh needs more), `rancf modes` counts fewer free coordinates, and bad
 values get one clear line."""
@@ -144,7 +144,7 @@ def test_c2_where_the_reference_curvature_jumps_says_so(tmp_path):
     p = _rancf(tmp_path, "simulate", "h.toml", "--out", "run")
     assert p.returncode == 0, p.stderr
     (line,) = p.stderr.strip().splitlines()
-    assert line.startswith("rancf: warning: mesh.continuity: C2 holds at 0 of 2 inner nodes")
+    assert line.startswith("rancf: warning: body: mesh.continuity: C2 holds at 0 of 2 inner nodes")
     assert "node(s) 1, 2, which stay C1" in line
     doc = json.loads((tmp_path / "run" / "summary.json").read_text())
     assert any("C2 holds at 0 of 2" in w for w in doc["warnings"])

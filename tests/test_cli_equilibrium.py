@@ -1,5 +1,5 @@
 """The equilibrium commands through the real CLI process: ``static`` reactions and outputs,
-``buckling``, ``simulate`` from an equilibrium (issue 16)."""
+``buckling``, ``simulate`` from an equilibrium."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""A corpus of bad inputs through the command line (issue 10).
+"""A corpus of bad inputs through the command line.
 
 Every case must end with the expected exit status, exactly one line on standard error that names
 the key, option or path, no traceback, and nothing left behind in the working directory.  Cases

@@ -1,4 +1,4 @@
-"""The bad-input corpus, part 2 (issue 15, item 10): hostile input through the real ``rancf``
+"""The bad-input corpus, part 2: hostile input through the real ``rancf``
 process.
 
 Each case runs ``python -m rancf`` in a folder of its own and must end with the expected exit

@@ -1,4 +1,4 @@
-"""Runs under hostile conditions (issue 15, item 10): interrupts however small the step, a full
+"""Runs under hostile conditions: interrupts however small the step, a full
 disk, shared and earlier output folders, damaged or edited run folders, non-UTF-8 names, strict
 JSON, sweeps resumed or stopped."""
 

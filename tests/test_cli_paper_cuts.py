@@ -1,4 +1,4 @@
-"""Small things a new user tripped over (issue 15, item 9): what `modes --plot` wrote, a missing
+"""Small things a new user tripped over: what `modes --plot` wrote, a missing
 run folder, runs written by the Python API read back without their scenario."""
 
 from __future__ import annotations

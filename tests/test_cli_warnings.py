@@ -1,5 +1,5 @@
 """Likely unit mistakes are warned about in one line, the run goes on and summary.json keeps the
-warning (issue 15, item 8): an axial strain past 10 %, a section radius past a tenth of the
+warning: an axial strain past 10 %, a section radius past a tenth of the
 body's length."""
 
 from __future__ import annotations

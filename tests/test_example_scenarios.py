@@ -1,4 +1,4 @@
-"""`rancf example run` runs every shipped scenario `rancf example list` shows (issue 15, item 4):
+"""`rancf example run` runs every shipped scenario `rancf example list` shows:
 the paper studies, and the other scenarios with the analyses they are meant for."""
 
 from __future__ import annotations

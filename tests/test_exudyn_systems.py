@@ -1,4 +1,4 @@
-"""Exudyn's peers of issue 18's systems run and reproduce the issue's numbers on coarse settings.
+"""Exudyn's peers of the shipped systems run and reproduce the issue's numbers on coarse settings.
 
 ``benchmarks/exudyn_spinup.py`` and ``benchmarks/exudyn_slider_crank.py`` as a user runs them (one
 JSON line each); skipped without Exudyn (``pip install .[bench]``).  Coarse: 8 elements and
@@ -38,7 +38,7 @@ def test_spin_up_first_five_seconds():
     out = run("exudyn_spinup.py", *args)
     assert out["converged"] and out["steps"] == 500 and out["t_end"] == pytest.approx(5.0)
     assert out["setup_s"] > 0 and out["solve_s"] > 0 and out["user_functions"] == "symbolic"
-    # issue 18 (converged): v(5 s) = -0.46844 m; 8 elements and h = 0.01 s are 5e-5 m off
+    # converged reference: v(5 s) = -0.46844 m; 8 elements and h = 0.01 s are 5e-5 m off
     assert out["v_5"] == pytest.approx(-0.46844, rel=2e-4)
     assert out["v_10"] is None
     # the hub driven by Python callbacks instead of Exudyn's symbolic functions: the same run
@@ -49,7 +49,7 @@ def test_spin_up_first_five_seconds():
 def test_slider_crank_first_revolutions():
     out = run("exudyn_slider_crank.py", "--elements", "4", "--step", "1e-4", "--t-end", "0.05")
     assert out["converged"] and out["steps"] == 500 and out["times"] == [0.05]
-    # issue 18 (converged): slider x = 0.164394 m, midpoint deflection -4.779e-4 m at 0.05 s
+    # converged reference: slider x = 0.164394 m, midpoint deflection -4.779e-4 m at 0.05 s
     assert out["slider_x"][0] == pytest.approx(0.164394, abs=1e-6)
     assert out["deflection"][0] == pytest.approx(-4.779e-4, rel=2e-3)
 

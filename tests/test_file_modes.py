@@ -1,5 +1,5 @@
-"""Every file and folder a command writes gets the permissions the umask allows (issue 15, item
-3): ``0666 & ~umask`` for files, ``0777 & ~umask`` for folders, as a plain ``open`` and ``mkdir``
+"""Every file and folder a command writes gets the permissions the umask allows:
+``0666 & ~umask`` for files, ``0777 & ~umask`` for folders, as a plain ``open`` and ``mkdir``
 would give.  Files are written under a temporary name (created ``0600``) and renamed: under
 umask 0022 a forgotten ``chmod`` shows as ``0600`` instead of ``0644``."""
 

@@ -1,4 +1,4 @@
-"""The comparison of printed output used by the README and CLI tests (issue 15, item 1): a last
+"""The comparison of printed output used by the README and CLI tests: a last
 digit of round-off passes, a real change of a number or of the text does not."""
 
 from tests.numbers import assert_lines_match, assert_rows_match, text_matches

@@ -35,7 +35,7 @@ def studies(tmp_path_factory):
 
 def test_study_files_honour_the_umask(studies, tmp_path):
     """What `rancf example run` and `rancf report` write (figures, tables, run folders,
-    animations, the report itself) gets the umask's permissions (issue 15, item 3)."""
+    animations, the report itself) gets the umask's permissions."""
     from rancf.studies.report import write_report
 
     old = os.umask(STUDY_UMASK)

@@ -1,4 +1,4 @@
-"""What C² buys (issue 19, item 3), the reduced study: the shipped cantilever's bending
+"""What C² buys, the reduced study: the shipped cantilever's bending
 frequencies and the 6.1 pendulum's tip, C¹ against C² (rancf.studies.continuity; the full
 study's table is in docs/guide/closed-curves.md and benchmarks/results/continuity_study.json)."""
 

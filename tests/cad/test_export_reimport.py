@@ -1,5 +1,5 @@
 """Our own CAD export read back as ``kind = "cad"``: reference and deformed shapes of runs with
-1 to 32 elements, in every format, mesh again without a false kink (issue 15, item 2)."""
+1 to 32 elements, in every format, mesh again without a false kink."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Geometry defects of issue 10: extreme conics, sharp arc-length integrands, O(n) meshing."""
+"""Geometry defects: extreme conics, sharp arc-length integrands, O(n) meshing."""
 
 
 import numpy as np

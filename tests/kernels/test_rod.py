@@ -1,4 +1,4 @@
-"""The rod element (issue 9): derivatives, objectivity, closed forms, mass.
+"""The rod element: derivatives, objectivity, closed forms, mass.
 
 Everything goes through the public :class:`~rancf.bodies.flexible.Model` and its compiled core as a
 black box: forces against central differences of the strain energy, tangents against central

@@ -1,4 +1,4 @@
-"""The rod's rotary inertia (issue 17): forces and tangents against finite differences of the
+"""The rod's rotary inertia: forces and tangents against finite differences of the
 kinetic energy and of the forces, objectivity, the exact spin of rigid motions, re-referencing,
 and the kinetic energy of a rigid rotation against the body's ½ ωᵀ I ω for any mesh.
 

@@ -1,4 +1,4 @@
-"""C² reduced coordinates (issue 19): the control points of the cubic (rational) B-spline of a
+"""C² reduced coordinates: the control points of the cubic (rational) B-spline of a
 mesh as its generalized coordinates (Sanborn & Shabana 2009, sec. 6; rancf.mesh.continuity).
 
 * a cubic B-spline of n spans is reproduced exactly by n + 3 control points per coordinate, and

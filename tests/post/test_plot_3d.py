@@ -1,4 +1,4 @@
-"""A spatial run is drawn in 3D: a helix keeps its z (issue 15, item 7)."""
+"""A spatial run is drawn in 3D: a helix keeps its z."""
 
 from __future__ import annotations
 

@@ -28,7 +28,7 @@ Given ``m`` and ``n.t``, (1)–(2) give ``kappa = m lambda / EI`` and the cubic
 ``EA/2 lambda^3 - (EA/2 + m^2/EI) lambda - n.t = 0`` for ``lambda`` (its largest root; Newton).
 
 :func:`clamped_elastica` shoots (3)–(4) (DOP853, tight tolerances) with both ends clamped
-horizontally at the same height (:func:`installed_hose`: issue 16's case);
+horizontally at the same height (:func:`installed_hose`: the installed hose);
 :func:`conjugate_points` tests its stability; :func:`clamped_elastica_inextensible` is the
 classical closed form of the weightless inextensible clamped–clamped elastica (elliptic
 integrals).  The cable without bending (catenary) is in :mod:`tests.references.catenary`.
@@ -197,7 +197,7 @@ def clamped_elastica(
 
     ``branch="up"``: the arch, the other symmetric first-mode equilibrium: the weightless
     solution mirrored (``y -> -y``), then the weight raised from 0 (a RuntimeError if the arch
-    stops existing on the way: it snaps through).  For the installed hose of issue 16 both
+    stops existing on the way: it snaps through).  For the installed hose both
     exist and neither has a conjugate point (:func:`conjugate_points`): both are stable, so
     which one a solver finds depends on its load path.
     """
@@ -357,12 +357,12 @@ def clamped_elastica_inextensible(length: float, span: float, ei: float) -> dict
     }
 
 
-#: Issue 16's installed hose: length [m], span [m], radius [m], E [Pa], rho [kg/m^3], g [m/s^2].
+#: The installed hose: length [m], span [m], radius [m], E [Pa], rho [kg/m^3], g [m/s^2].
 HOSE = {"length": 1.0, "span": 0.8, "radius": 0.01, "youngs": 1e7, "density": 1200.0, "g": 9.81}
 
 
 def installed_hose(law: Law = "energy", **options: float) -> Elastica:
-    """Issue 16's hose: 1 m, radius 0.01 m, E = 1e7 Pa, rho = 1200 kg/m^3, under gravity, both
+    """The installed hose: 1 m, radius 0.01 m, E = 1e7 Pa, rho = 1200 kg/m^3, under gravity, both
     ends clamped horizontally at the same height 0.8 m apart (:func:`clamped_elastica`)."""
     h = HOSE
     area, inertia = np.pi * h["radius"] ** 2, np.pi * h["radius"] ** 4 / 4.0

@@ -1,4 +1,4 @@
-"""Scenario files of systems (issue 18) for the scenario tests."""
+"""Scenario files of systems for the scenario tests."""
 
 SLIDER_CRANK = """
 [[bodies]]

@@ -1,4 +1,4 @@
-"""The system keys of issue 18: bodies, places, joints, springs, time functions, new sensors.
+"""The system keys: bodies, places, joints, springs, time functions, new sensors.
 
 Valid files parse into the typed models (what a builder reads); every bad one stops with one
 line naming the file and the key; until the system solver takes them, the one-body commands

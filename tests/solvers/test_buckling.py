@@ -1,4 +1,4 @@
-"""Linear buckling (issue 16): Euler columns and the lateral–torsional buckling of a strip."""
+"""Linear buckling: Euler columns and the lateral–torsional buckling of a strip."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Equilibrium analysis (issue 16): slender cables from a tension-free start, installation,
+"""Equilibrium analysis: slender cables from a tension-free start, installation,
 reactions, dynamics from an equilibrium, modes about loaded states.
 
 The references are independent solutions in ``tests/references`` (elastic catenary with rancf's
@@ -111,7 +111,7 @@ def test_arc_length_passes_a_snap_through_that_load_control_cannot():
 
 
 def hose(n: int = 32, angle: float = 0.0) -> Model:
-    """The installed hose of issue 16, the whole problem turned by ``angle`` (radians)."""
+    """The installed hose, the whole problem turned by ``angle`` (radians)."""
     h = HOSE
     c, s = np.cos(angle), np.sin(angle)
     rot = np.array([[c, -s], [s, c]])

@@ -1,4 +1,4 @@
-"""Reactions and section quantities (issue 16): balance laws, the pendulum's pin force over
+"""Reactions and section quantities: balance laws, the pendulum's pin force over
 time, moment and tension lines along the body."""
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Spatial rod dynamics with the full rotary inertia (issue 17): the spinning heavy top and the
+"""Spatial rod dynamics with the full rotary inertia: the spinning heavy top and the
 6.2 arc swung about a vertical axis, against Exudyn's geometrically exact beam and a rigid
 Lagrange top; angular momentum and energy with ρ∞ = 1.
 

@@ -1,4 +1,4 @@
-"""Closed curves (issue 19): the exact ellipse, the seam's constraint rows, statics independent of
+"""Closed curves: the exact ellipse, the seam's constraint rows, statics independent of
 where the seam lies (planar and spatial rings, the holonomy of a spatial centreline), free rings
 in dynamics."""
 

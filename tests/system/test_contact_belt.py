@@ -1,4 +1,4 @@
-"""The shipped example ``belt-drive`` through ``rancf simulate`` (issue 20): a closed belt over
+"""The shipped example ``belt-drive`` through ``rancf simulate``: a closed belt over
 two pulleys carried by rigid bodies, the left one driven, the right one braked by a torque rising
 past the most the belt can transmit.  Euler-Eytelwein: while the belt slips the span tensions'
 ratio is e^(mu pi) = 2.5663 and the transmitted torque R_c (T_tight - T_slack) is

@@ -1,4 +1,4 @@
-"""Contact (issue 20): the capstan (Euler-Eytelwein).  A rope over a fixed cylinder, wrap angle
+"""Contact: the capstan (Euler-Eytelwein).  A rope over a fixed cylinder, wrap angle
 pi, a 1 kg weight pinned to one end, the other end pulled down slowly by a moving support: while
 the rope slips, the tension ratio of the two free spans is e^(mu phi) within 1 % (mu = 0.3:
 2.5663, mu = 0.5: 4.8105); frictionless, the tensions are equal and the pressure is T / R

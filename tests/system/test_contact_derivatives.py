@@ -1,4 +1,4 @@
-"""Contact (issue 20): the tangent of the contact forces against central differences of the
+"""Contact: the tangent of the contact forces against central differences of the
 residual, for fixed obstacles and obstacles carried by rigid bodies, with friction and damping,
 in 2D and 3D, in statics, in dynamics at one state, and with the discrete gradient over a step;
 the potential energy against the forces; objectivity of the law."""

@@ -1,4 +1,4 @@
-"""The shipped example ``capstan`` through ``rancf simulate`` (issue 20): while the rope slips
+"""The shipped example ``capstan`` through ``rancf simulate``: while the rope slips
 the ``tight`` / ``slack`` sensors' ratio is e^(mu pi) within 1 % (mu = 0.3 as shipped, 0.5 and 0
 by changing the obstacle's ``friction``); the contact columns of reactions.csv and the
 ``contact_force`` sensor hold the pulley's force, which balances the span tensions."""

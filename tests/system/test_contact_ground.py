@@ -1,4 +1,4 @@
-"""Contact (issue 20): a steel cable dropped on the ground comes to rest on it (reaction = weight,
+"""Contact: a steel cable dropped on the ground comes to rest on it (reaction = weight,
 penetration far below 1 % of the radius); with ``rho_inf = 1`` and no friction the energy never
 grows; statics on the ground."""
 

@@ -1,4 +1,4 @@
-"""Contact outputs through the command line (issue 20): a one-body file with a ground plane
+"""Contact outputs through the command line: a one-body file with a ground plane
 (``[[obstacles]]``), the ground's columns in reactions.csv (normal, friction, contact length,
 penetration), the ``contact_force`` sensor, the contact files of ``rancf export --vtk``, and
 bad obstacle input as one line naming the key."""

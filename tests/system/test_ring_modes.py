@@ -1,4 +1,4 @@
-"""Free rings (issue 19): the natural frequencies of a free circular ring against the thin-ring
+"""Free rings: the natural frequencies of a free circular ring against the thin-ring
 formulas, with exactly 3 (planar) or 6 (spatial) rigid-body modes removed, from the Python API and
 from ``rancf modes`` on a closed scenario.
 

@@ -1,4 +1,4 @@
-"""Balance laws and joints of rods through scenarios built in Python (issue 18): a free rod
+"""Balance laws and joints of rods through scenarios built in Python: a free rod
 under a force and moment pulse (momentum = impulse, a straight centre-of-mass path), and an
 L-shaped frame of two rods joined by a fixed joint (linear frame solution; objectivity of the
 joint and the rods under a rigid rotation of the whole system)."""

@@ -1,4 +1,4 @@
-"""Systems (issue 18): every constraint Jacobian and the assembled tangent of the balance against
+"""Systems: every constraint Jacobian and the assembled tangent of the balance against
 central differences, for each joint kind and each kind of place, in 2D and 3D."""
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""The shipped system examples through ``rancf simulate`` against their references (issue 18):
+"""The shipped system examples through ``rancf simulate`` against their references:
 the spin-up beam (Kane, Ryan & Banerjee 1987; Exudyn's converged answer), the flexible
 slider-crank (Exudyn, converged to 1e-7 m), the tether with a payload (the large-amplitude
 compound pendulum), the robot cable (the gripper follows its motion table), and the position

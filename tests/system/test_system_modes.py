@@ -1,4 +1,4 @@
-"""Modes and statics of systems (issue 18, item 6): natural modes on the null space of the
+"""Modes and statics of systems: natural modes on the null space of the
 constraints (sparse), zero-frequency modes (rigid-body motions, mechanisms) recognised, and
 ``rancf static`` / ``rancf modes`` on scenarios of several bodies."""
 

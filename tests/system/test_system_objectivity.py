@@ -1,4 +1,4 @@
-"""Objectivity of joints (issue 18, standards): a rigid motion of a whole system (every body
+"""Objectivity of joints: a rigid motion of a whole system (every body
 turned by the same rotation Q and moved by c) keeps every joint between bodies satisfied and
 gives no elastic force.  That the reactions turn with the system (F -> Q F) is shown on a
 loaded frame of rods solved in two orientations (tests/system/test_system_balance.py)."""

@@ -24,6 +24,7 @@ from numpy.typing import NDArray
 from rancf.bodies.flexible import Model
 from rancf.bodies.section_outputs import SectionSampler
 from rancf.post.contact_checks import contact_warnings
+from rancf.post.winch_checks import winch_warnings
 from rancf.system import System
 
 __all__ = [
@@ -52,7 +53,7 @@ def section_warnings(model: Model | System) -> list[str]:
             f"{name}: {w}"
             for name, b in zip(model.names, model.flex, strict=False)
             for w in section_warnings(b)
-        ] + _crossing_warnings(model) + contact_warnings(model)
+        ] + _crossing_warnings(model) + contact_warnings(model) + winch_warnings(model)
     notes = list(
         model.notes
     )  # remarks on the geometry (ends that touch at a kink; C² nodes kept C¹)
