@@ -20,8 +20,8 @@ namespace {
 
 constexpr std::array<const char*, 7> kPlaceKinds = {"ground",  "cable",   "rod", "beam",
                                                     "rigid2d", "rigid3d", "mass"};
-constexpr std::array<const char*, 5> kJointKinds = {"pin", "fixed", "tangent", "revolute",
-                                                    "slider"};
+constexpr std::array<const char*, 6> kJointKinds = {"pin",      "fixed",  "tangent",
+                                                    "revolute", "slider", "sliding"};
 constexpr std::array<const char*, 5> kTimeKinds = {"constant", "piecewise", "ramp", "harmonic",
                                                    "spin_up"};
 constexpr std::size_t kAnySize = static_cast<std::size_t>(-1);
@@ -230,6 +230,9 @@ void read_joints(nb::handle list, rancf::System& s) {
     }
     f.numbers_into("w_a", j.info.w_a, 3);
     f.numbers_into("w_b", j.info.w_b, 3);
+    j.body = j.info.kind == rancf::JointKind::sliding
+                 ? f.index("body", 0, s.flex.size(), "a flexible body")
+                 : f.index("body", -1, s.flex.size(), "a flexible body");
     s.joints.push_back(j);
   });
 }

@@ -23,6 +23,7 @@
 #include "bindings_model.hpp"
 #include "bindings_records.hpp"
 #include "fluid.hpp"
+#include "sliding.hpp"
 #include "system.hpp"
 #include "system_integrator.hpp"
 #include "winch.hpp"
@@ -52,7 +53,8 @@ struct SystemHolder {
   std::vector<double> y_ref;
   rancf::System s;
   rancf::FluidSet fluid;
-  rancf::WinchSet winches;  // s.winches points here once one is attached
+  rancf::WinchSet winches;    // s.winches points here once one is attached
+  rancf::SlidingSet sliding;  // s.sliding points here once a body is attached
 };
 
 struct SystemIntegratorHolder {
@@ -174,6 +176,86 @@ void bind_system(nb::module_& mod) {
           "body"_a, "length"_a, "length_set"_a, "c1"_a, "c2"_a, "d2"_a,
           "A winch at a cable body's end (winch.hpp): time function `length` of L(t), the "
           "length the body's arrays hold, and the convective band matrices.")
+      .def(
+          "attach_sliding",
+          [](SystemHolder& h, int body, In weights, In scales, bool closed) {
+            check(body >= 0 && static_cast<std::size_t>(body) < h.s.flex.size(),
+                  "sliding: body out of range");
+            const rancf::Model& mod = *h.s.flex[static_cast<std::size_t>(body)];
+            check(mod.kind != rancf::ElementKind::beam && !mod.reduced(),
+                  "sliding: a body of cable or rod elements with C1 continuity");
+            const auto ne = static_cast<std::size_t>(mod.n_el);
+            expect_size(weights, 4 * ne, "weights");
+            expect_size(scales, ne, "scales");
+            rancf::SlidingBody b;
+            b.weights.assign(weights.data(), weights.data() + 4 * ne);
+            b.scales.assign(scales.data(), scales.data() + ne);
+            b.closed = closed;
+            h.sliding.of_body.resize(h.s.flex.size());
+            h.sliding.of_body[static_cast<std::size_t>(body)] = std::move(b);
+            h.s.sliding = &h.sliding;
+          },
+          "body"_a, "weights"_a, "scales"_a, "closed"_a,
+          "The element geometry (rational weights (n_el, 4), gradient scales (n_el)) of a "
+          "flexible body that sliding joints run along (sliding.hpp).")
+      .def(
+          "sliding_point",
+          [](const SystemHolder& h, int body, In y, double sigma) {
+            expect_size(y, static_cast<std::size_t>(h.s.n), "y");
+            check(h.s.sliding != nullptr && body >= 0 &&
+                      static_cast<std::size_t>(body) < h.s.sliding->of_body.size() &&
+                      !h.s.sliding->of_body[static_cast<std::size_t>(body)].weights.empty(),
+                  "sliding_point: a body attached with attach_sliding");
+            rancf::SlidePoint p;
+            rancf::slide_point(h.s, body, y.data(), sigma, p);
+            return std::make_tuple(std::vector<double>(p.r, p.r + 3),
+                                   std::vector<double>(p.rs, p.rs + 3),
+                                   std::vector<double>(p.rss, p.rss + 3));
+          },
+          "body"_a, "y"_a, "sigma"_a,
+          "(r, dr/dsigma, d2r/dsigma2) of a flexible body's centre line at the material "
+          "coordinate sigma (element + parameter), 3 values each.")
+      .def_prop_ro("slots", [](const SystemHolder& h) { return h.s.slots; })
+      .def(
+          "attach_drum",
+          [](SystemHolder& h, int winch, int torque, double mass, double radius, double rho_a,
+             In weight, int exit) {
+            check(winch >= 0 && static_cast<std::size_t>(winch) < h.winches.winches.size(),
+                  "drum: winch out of range");
+            check(torque >= 0 && static_cast<std::size_t>(torque) < h.s.tfs.size(),
+                  "drum: time function out of range");
+            check(mass > 0.0 && radius > 0.0 && rho_a >= 0.0, "drum: mass, radius > 0");
+            expect_size(weight, 3, "weight");
+            rancf::Winch& w = h.winches.winches[static_cast<std::size_t>(winch)];
+            check(w.drum < 0, "drum: the winch has one");
+            check(exit >= 0 && exit + h.s.dim <= w.n, "drum: exit out of range");
+            w.torque = torque;
+            w.mass = mass;
+            w.radius = radius;
+            w.rho_a = rho_a;
+            std::copy(weight.data(), weight.data() + 3, w.weight);
+            w.exit = exit;
+            w.drum = h.s.n;  // appended after every body and drum so far
+            ++h.winches.drums;
+            h.s.setup();
+            h.y_ref.push_back(w.length_set);
+            h.s.y_ref = h.y_ref.data();
+            return w.drum;
+          },
+          "winch"_a, "torque"_a, "mass"_a, "radius"_a, "rho_a"_a, "weight"_a, "exit"_a,
+          "Make winch (an index, attached before) a driven drum (winch.hpp): the time function "
+          "of its torque [N m], J / r^2 [kg], r [m], the line's mass per length, its weight per "
+          "length (3), the body's coordinate of the exit's position.  Adds the coordinate L "
+          "(returned) after the bodies.")
+      .def(
+          "hold_drums",
+          [](SystemHolder& h, bool hold) {
+            for (const rancf::Winch& w : h.winches.winches)
+              if (w.drum >= 0) h.s.fixed[static_cast<std::size_t>(w.drum)] = hold ? 1 : 0;
+          },
+          "hold"_a,
+          "Hold the driven drums' lengths (held coordinates for the solvers built after) or "
+          "free them.")
       .def_prop_ro("n", [](const SystemHolder& h) { return h.s.n; })
       .def_prop_ro("m", [](const SystemHolder& h) { return h.s.m; })
       .def_prop_ro("offsets", [](const SystemHolder& h) { return h.s.offset; })
@@ -181,12 +263,15 @@ void bind_system(nb::module_& mod) {
       .def_prop_ro("linear_row", [](const SystemHolder& h) { return h.s.linear_row; })
       .def(
           "constraints",
-          [](const SystemHolder& h, In y, double t, Out g) {
+          [](const SystemHolder& h, In y, double t, Out g, std::optional<In> lam) {
             expect_size(y, static_cast<std::size_t>(h.s.n), "y");
             expect_size(g, static_cast<std::size_t>(h.s.m), "g");
-            rancf::constraints(h.s, y.data(), t, g.data());
+            if (lam) expect_size(*lam, static_cast<std::size_t>(h.s.m), "lam");
+            rancf::constraints(h.s, y.data(), t, g.data(), lam ? lam->data() : nullptr);
           },
-          "y"_a, "t"_a, "g"_a.noconvert(), "Constraint residual g(y, t).")
+          "y"_a, "t"_a, "g"_a.noconvert(), "lam"_a.none() = nb::none(),
+          "Constraint residual g(y, t); lam: the multipliers, whose slots hold the sliding "
+          "joints' material coordinates (needed with sliding joints).")
       .def(
           "residual",
           [](const SystemHolder& h, In y, In v, In a, In lam, double t, double load_factor,

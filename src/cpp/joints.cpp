@@ -95,6 +95,8 @@ int joint_rows(const JointInfo& j) {
       return (d == 2 ? 2 : 5) + drive;
     case JointKind::slider:
       return d - 1;
+    case JointKind::sliding:
+      return d + 1;
   }
   return 0;
 }
@@ -106,6 +108,7 @@ void eval_joint(const JointInfo& j, const PlaceEval& a, const PlaceEval& b, doub
     g[r] = 0.0;
     for (int c = 0; c < w; ++c) jac[r * w + c] = 0.0;
   }
+  if (j.kind == JointKind::sliding) return;  // sliding.hpp
   int r = 0;
   const Vec xa = position(a, 0), xb = position(b, a.n);
   const Vec rel = sub(xa, xb);

@@ -10,6 +10,7 @@
 //   tangent    pin, and t_A . n_1, t_A . n_2 (3D: a cable end's tangent held by a frame; 5 rows)
 //   revolute   pin, and e_A . n_1, e_A . n_2 (3D: the axis e_A of A normal to B's n_1, n_2)
 //   slider     (x_A - x_B) . n_i for B's normals n_i of the line (2D: 1 row, 3D: 2 rows)
+//   sliding    a flexible body through B (sliding.hpp: dim rows and its material coordinate)
 //   driven     an extra row: sin(angle - beta_0 - theta(t)); 2D the angle psi_A - psi_B, 3D the
 //              angle about e_A from w_B to w_A (w normal to the axis, equal in the reference)
 // Coefficient vectors (e_A, n_i, w) are given in the frames of their places, fixed at assembly.
@@ -19,7 +20,14 @@
 
 namespace rancf {
 
-enum class JointKind : int { pin = 0, fixed = 1, tangent = 2, revolute = 3, slider = 4 };
+enum class JointKind : int {
+  pin = 0,
+  fixed = 1,
+  tangent = 2,
+  revolute = 3,
+  slider = 4,
+  sliding = 5
+};
 
 struct JointInfo {
   JointKind kind = JointKind::pin;

@@ -5,6 +5,7 @@
 
 #include "assembly.hpp"
 #include "rod.hpp"
+#include "winch.hpp"
 
 namespace rancf {
 
@@ -35,11 +36,21 @@ void System::setup() {
     fixed.insert(fixed.end(), sz(k), 0);
     n += k;
   }
+  const int drums = winches != nullptr ? winches->drums : 0;
+  for (int k = 0; k < drums; ++k) {  // driven drums: their length L (winch.hpp)
+    offset.push_back(n);
+    block_size.push_back(1);
+    block_ku.push_back(0);
+    fixed.push_back(0);
+    ++n;
+  }
   m = 0;
   joint_row.clear();
+  slots.clear();
   for (const JointData& j : joints) {
     joint_row.push_back(m);
     m += joint_rows(j.info);
+    if (j.info.kind == JointKind::sliding) slots.push_back(m - 1);
   }
   norm_row.assign(rigid.size(), -1);
   for (std::size_t r = 0; r < rigid.size(); ++r)

@@ -2,7 +2,8 @@
 //
 // Coordinates y of all bodies stacked body by body: each flexible body's model coordinates (a
 // Model: its chain, supports held by elimination), then every rigid body (2D: x, y, theta; 3D:
-// x_c, a unit quaternion p) and point mass (x).  Joints are constraint rows g(y, t) = 0 with
+// x_c, a unit quaternion p) and point mass (x), then the length of each driven drum (winch.hpp).
+// Joints are constraint rows g(y, t) = 0 with
 // Lagrange multipliers; a 3D rigid body adds the row (p . p - 1) / 2.  The equations of motion
 //   M a + c M v + F_in + f_int(y) - f_ext(t, y) + f_springs(y, v) + G(y)^T lambda = 0,
 //   g(y, t) = 0
@@ -30,6 +31,7 @@ namespace rancf {
 struct ContactSet;  // contact.hpp
 struct FluidSet;    // fluid.hpp
 struct WinchSet;    // winch.hpp
+struct SlidingSet;  // sliding.hpp
 
 /// A place: on a flexible body's node (kind cable/rod/beam), a rigid body or point mass, or the
 /// ground (optionally moving: point + u(t)).
@@ -46,6 +48,7 @@ struct JointData {
   JointInfo info;
   int a = 0, b = 0;  ///< place indices
   int angle = -1;    ///< driven: the time function of the angle
+  int body = -1;     ///< sliding: the flexible body through place b (place a: its node 0)
 };
 
 struct SpringData {
@@ -111,11 +114,15 @@ struct System {
   const ContactSet* contact = nullptr;  ///< obstacles and contact pairs (contact.hpp), or none
   const FluidSet* fluid = nullptr;      ///< fluid loads and distributed loads (fluid.hpp), or none
   const WinchSet* winches = nullptr;    ///< winches at ends of cable bodies (winch.hpp), or none
+  const SlidingSet* sliding = nullptr;  ///< element geometry of bodies with sliding joints
 
   // derived by setup()
   int n = 0, m = 0;
-  std::vector<int> offset;          ///< flexible bodies, then rigid bodies: first coordinate
-  std::vector<int> joint_row;       ///< first constraint row of each joint
+  std::vector<int> offset;     ///< flexible bodies, rigid bodies, drums: first coordinate
+  std::vector<int> joint_row;  ///< first constraint row of each joint
+  /// The multiplier slots that hold sliding joints' material coordinates (sliding.hpp): not
+  /// multipliers (kept by initial_acceleration), and their rows are not constraints.
+  std::vector<int> slots;
   std::vector<int> norm_row;        ///< rigid bodies: the quaternion row, or -1
   int linear_row = 0;               ///< first linear row
   std::vector<std::uint8_t> fixed;  ///< (n) held coordinates
@@ -139,8 +146,10 @@ void place_local(const System& s, const PlaceRef& p, const PlaceMap& map, double
 void place_at(const System& s, const PlaceRef& p, const PlaceMap& map, double t, const double* y,
               PlaceEval& out);
 
-/// Constraint residual g (m) at (y, t).
-void constraints(const System& s, const double* y, double t, double* g);
+/// Constraint residual g (m) at (y, t); lam: the multipliers, whose slots hold the sliding
+/// joints' material coordinates (null: no sliding joint); the slots' rows are zero.
+void constraints(const System& s, const double* y, double t, double* g,
+                 const double* lam = nullptr);
 
 /// The balance at (yf, vf, am), time tf (vf, am null in statics):
 ///   r = M (am + c vf) + F_rot + F_rigid + f_int(yf) - f_ext(tf, yf) + f_springs + G(yf)^T lam
@@ -156,7 +165,7 @@ struct AssemblyTerms {
   bool amplitude = false;               ///< statics: harmonic loads at their amplitude
   bool statics = false;  ///< statics (zero velocities even where am is given): winches at rest
   /// Outputs: the bodies' own terms only (elements, weight, inertia, fluid, contact), without
-  /// the forces at places (point loads, loads at places, springs; the multipliers are given)
+  /// the forces at places (point loads, loads at places, springs, joints)
   bool distributed_only = false;
   /// Outputs: contact forces taken at another state, a time step's alpha point (contact_yf,
   /// contact_vf) and end (contact_y1), instead of at (yf, vf, y1); no contact Jacobian then.

@@ -11,12 +11,14 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <stdexcept>
 #include <vector>
 
 #include "assembly.hpp"
 #include "contact.hpp"
 #include "fluid.hpp"
 #include "inertia.hpp"
+#include "sliding.hpp"
 #include "system.hpp"
 #include "winch.hpp"
 
@@ -170,9 +172,16 @@ void stiffness_damping(const Model& mod, double beta, const double* y, const dou
 
 }  // namespace
 
-void constraints(const System& s, const double* y, double t, double* g) {
+void constraints(const System& s, const double* y, double t, double* g, const double* lam) {
   for (std::size_t k = 0; k < s.joints.size(); ++k) {
     const JointData& jd = s.joints[k];
+    if (jd.info.kind == JointKind::sliding) {
+      const int row0 = s.joint_row[k];
+      g[row0 + s.dim] = 0.0;
+      if (lam == nullptr) throw std::invalid_argument("constraints: a sliding joint needs lam");
+      sliding_rows(s, jd, y, t, lam[row0 + s.dim], g + row0);
+      continue;
+    }
     const PlaceRef &pa = s.places[sz(jd.a)], &pb = s.places[sz(jd.b)];
     PlaceEval ea, eb;
     place_at(s, pa, s.maps[sz(jd.a)], t, y, ea);
@@ -200,9 +209,18 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
   // ---- flexible bodies: elements, loads, constant mass, rotary inertia
   thread_local std::vector<double> f, g, acc, mv;  // work arrays, kept between calls
   thread_local ScaledBody scaled;                  // a winch's body at its length L(t)
+  struct DrumRow {
+    int offset, drum;  // the line's first coordinate, the drum's
+    DrumTerms terms;
+  };
+  thread_local std::vector<DrumRow> drums;
+  drums.clear();
+  const bool moving = am != nullptr && !tm.statics;  // a drum's rates count
   for (std::size_t b = 0; b < s.flex.size(); ++b) {
     const Winch* win = winch_of(s, b);
-    const WinchState ws = win != nullptr ? winch_state(s, *win, tm.tf) : WinchState{};
+    const WinchState ws = win != nullptr ? winch_state(s, *win, tm.tf, yf, moving ? vf : nullptr,
+                                                       moving ? am : nullptr)
+                                         : WinchState{};
     const Model& mod = win != nullptr ? scaled_model(*s.flex[b], ws.ratio, scaled) : *s.flex[b];
     const int o = s.offset[b], nb = mod.n(), ku = mod.ku();
     f.assign(sz(nb), 0.0);
@@ -247,6 +265,20 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
       if (s.stiffness_damping > 0.0 && vf != nullptr)
         stiffness_damping(mod, s.stiffness_damping, yf + o, vf + o, tm, r + o,
                           lu != nullptr ? &jac : nullptr);
+    }
+    if (win != nullptr && win->drum >= 0) {  // a driven drum: its row, its coupling
+      DrumTerms dt;
+      const double torque = evaluate(s.tfs[sz(win->torque)], 0, tm.tf).f;
+      drum_terms(*s.flex[b], mod, *win, ws, yf + o, moving ? vf + o : nullptr,
+                 moving ? am + o : nullptr, torque, tm.load_factor, c, tm.ck, tm.cv, tm.ca,
+                 lu != nullptr, dt);
+      r[win->drum] += dt.residual;
+      if (lu != nullptr) {
+        for (int i = 0; i < nb; ++i)
+          if (dt.col[sz(i)] != 0.0) far.by_column[win->drum].emplace_back(o + i, dt.col[sz(i)]);
+        lu->block(lu->block_of(win->drum)).at(0, 0) = dt.diag;  // the drum's own block
+        drums.push_back({o, win->drum, std::move(dt)});
+      }
     }
   }
   // ---- rigid bodies and point masses: inertia, damping, gravity
@@ -437,8 +469,16 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
   thread_local std::vector<std::array<double, kMaxJointRows * 2 * kMaxLocal>> jac1, jacf;
   jac1.resize(s.joints.size());
   jacf.resize(s.joints.size());
+  const MatrixSink joint_sink = [&](const int* idx, int k, const double* K) {
+    add_matrix(*lu, idx, k, K, far);
+  };
   for (std::size_t jj = 0; jj < s.joints.size(); ++jj) {
+    if (tm.distributed_only) break;  // no joint forces (nor their rows)
     const JointData& jd = s.joints[jj];
+    if (jd.info.kind == JointKind::sliding) {
+      sliding_residual(s, jj, yf, lam, y1, tm, r, lu != nullptr ? &joint_sink : nullptr);
+      continue;
+    }
     const PlaceRef &pa = s.places[sz(jd.a)], &pb = s.places[sz(jd.b)];
     const PlaceMap &ma = s.maps[sz(jd.a)], &mb = s.maps[sz(jd.b)];
     const int rows = joint_rows(jd.info), row0 = s.joint_row[jj], k = ma.n + mb.n;
@@ -519,9 +559,13 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
     if (!std::isfinite(r[i])) return false;
   if (lu == nullptr) return true;
   // ---- the border: multipliers (m), then one unknown per far column
-  lu->reset_border(m + static_cast<int>(far.by_column.size()));
+  lu->reset_border(m + static_cast<int>(far.by_column.size() + drums.size()));
   for (std::size_t jj = 0; jj < s.joints.size(); ++jj) {
     const JointData& jd = s.joints[jj];
+    if (jd.info.kind == JointKind::sliding) {
+      sliding_border(s, jj, yf, lam, y1, tm, *lu);
+      continue;
+    }
     const PlaceMap &ma = s.maps[sz(jd.a)], &mb = s.maps[sz(jd.b)];
     const int rows = joint_rows(jd.info), row0 = s.joint_row[jj], k = ma.n + mb.n;
     for (int q = 0; q < rows; ++q)
@@ -548,6 +592,14 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
        far.by_column) {  // z = x_col: P[i][z] = K_i,col, Q[z][col] = 1, D = -1
     for (const auto& [row, v] : entries) lu->add_p(z, row, v);
     lu->add_q(z, col, 1.0);
+    lu->add_d(z, z, -1.0);
+    ++z;
+  }
+  // a drum's row by the line's coordinates: w = row . x, Q[w] = row, D = -1, P[drum][w] = 1
+  for (const DrumRow& d : drums) {
+    for (std::size_t i = 0; i < d.terms.row.size(); ++i)
+      lu->add_q(z, d.offset + static_cast<int>(i), d.terms.row[i]);
+    lu->add_p(z, d.drum, 1.0);
     lu->add_d(z, z, -1.0);
     ++z;
   }

@@ -8,6 +8,7 @@
 #include "assembly.hpp"
 #include "contact.hpp"
 #include "inertia.hpp"
+#include "sliding.hpp"
 #include "winch.hpp"
 
 namespace rancf {
@@ -33,6 +34,7 @@ SystemIntegrator::SystemIntegrator(const System& s, const Scheme& scheme)
   // steps): chord is full Newton there
   if (s.contact != nullptr) sc_.chord = false;
   for (const Model* mod : s.flex) mass_constant_ = mass_constant_ && !has_rotary_inertia(*mod);
+  if (s.winches != nullptr && s.winches->drums > 0) mass_constant_ = false;  // J(L), C1 y
 }
 
 void SystemIntegrator::solve_negative() {
@@ -243,6 +245,7 @@ bool SystemIntegrator::initial_acceleration(const double* y, const double* v, do
                                             double* lam, const AssemblyTerms* contact) {
   const int n = s_.n, m = s_.m;
   std::vector<double> known(sz(n), 0.0), zero(sz(m), 0.0);
+  for (int k : s_.slots) zero[sz(k)] = lam[k];  // sliding joints' material coordinates
   set_prescribed(t, nullptr, nullptr, known.data());
   AssemblyTerms terms;
   terms.ck = 0.0;
@@ -275,14 +278,23 @@ bool SystemIntegrator::initial_acceleration(const double* y, const double* v, do
       yp[sz(i)] = y[i] + e * v[i] + 0.5 * e * e * known[sz(i)];
       ym[sz(i)] = y[i] - e * v[i] + 0.5 * e * e * known[sz(i)];
     }
-    constraints(s_, yp.data(), t + e, gp.data());
-    constraints(s_, ym.data(), t - e, gm.data());
-    constraints(s_, y, t, g0.data());
+    // sliding joints' material coordinates move at their rates: sigma(s) = sigma + s sigma'
+    std::vector<double> lp(zero), lm(zero), rate(sz(m), 0.0);
+    sliding_rates(s_, y, v, zero.data(), t, rate.data());
+    for (int k : s_.slots) {
+      lp[sz(k)] += e * rate[sz(k)];
+      lm[sz(k)] -= e * rate[sz(k)];
+    }
+    constraints(s_, yp.data(), t + e, gp.data(), lp.data());
+    constraints(s_, ym.data(), t - e, gm.data(), lm.data());
+    constraints(s_, y, t, g0.data(), zero.data());
     for (int i = 0; i < m; ++i) r_[sz(n + i)] = (gp[sz(i)] - 2.0 * g0[sz(i)] + gm[sz(i)]) / (e * e);
   }
   solve_negative();
   for (int i = 0; i < n; ++i) a[i] = known[sz(i)] + dz_[sz(i)];
-  for (int i = 0; i < m; ++i) lam[i] = dz_[sz(n + i)];
+  for (int i = 0; i < m; ++i) zero[sz(i)] = dz_[sz(n + i)];
+  for (int k : s_.slots) zero[sz(k)] = lam[k];
+  std::copy(zero.begin(), zero.end(), lam);
   lu_valid_ = false;  // the factors are of the mass matrix
   for (int i = 0; i < n; ++i)
     if (!std::isfinite(a[i])) return false;
@@ -357,6 +369,12 @@ void system_energies(const System& s, const double* y, const double* v, double* 
     out[1] += 0.5 * sp.stiffness * dl * dl;
   }
   if (s.contact != nullptr) out[1] += contact_energy(s, *s.contact, y);
+  if (s.winches != nullptr)  // driven drums: J(L) L'^2 / (2 r^2), the rope wound off
+    for (const Winch& w : s.winches->winches)
+      if (w.drum >= 0) {
+        out[0] += drum_kinetic_energy(w, y, v);
+        out[2] += drum_gravity_energy(w, s, y);
+      }
 }
 
 void flex_energies(const System& s, std::size_t b, const double* y, const double* v, double t,
@@ -364,7 +382,7 @@ void flex_energies(const System& s, std::size_t b, const double* y, const double
   const int o = s.offset[b];
   if (const Winch* w = winch_of(s, b)) {  // the material outside the winch at L(t)
     ScaledBody scaled;
-    const WinchState st = winch_state(s, *w, t);
+    const WinchState st = winch_state(s, *w, t, y, v);
     const Model& mod = scaled_model(*s.flex[b], st.ratio, scaled);
     out[0] = winch_kinetic_energy(mod, *w, st, y + o, v + o);
     out[1] = strain_energy(mod, y + o);

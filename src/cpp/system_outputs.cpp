@@ -42,6 +42,13 @@ void solve_small(int k, double (*A)[6], double* b, double* x) {
 void joint_reaction(const System& s, int k, const double* y, double t, const double* lam,
                     double* force, double* moment) {
   const JointData& jd = s.joints[sz(k)];
+  if (jd.info.kind == JointKind::sliding) {  // on the body's point: -lambda, no moment
+    for (int i = 0; i < 3; ++i) {
+      force[i] = i < s.dim ? -lam[s.joint_row[sz(k)] + i] : 0.0;
+      moment[i] = 0.0;
+    }
+    return;
+  }
   const PlaceRef &pa = s.places[sz(jd.a)], &pb = s.places[sz(jd.b)];
   PlaceEval ea, eb;
   place_at(s, pa, s.maps[sz(jd.a)], t, y, ea);

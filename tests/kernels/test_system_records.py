@@ -79,7 +79,7 @@ CASES = [
     (_bad("places", 2, motion=4), ValueError,
      "places[2].motion: expected a time function in [0, 1) or -1, got 4"),
     (_bad("joints", 0, kind="hinge"), ValueError,
-     "joints[0].kind: expected one of pin, fixed, tangent, revolute, slider, got 'hinge'"),
+     "joints[0].kind: expected one of pin, fixed, tangent, revolute, slider, sliding, got 'hinge'"),
     (_bad("joints", 0, b=3), ValueError, "joints[0].b: expected a place in [0, 3), got 3"),
     (_bad("joints", 0, rel=(1.0,) * 4), ValueError, "joints[0].rel: expected 9 numbers, got 4"),
     (_bad("joints", 0, driven="yes"), TypeError,

@@ -30,11 +30,13 @@ from typing import TYPE_CHECKING, Any, Protocol
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from rancf.kernels.records import LinearTerm
+
 if TYPE_CHECKING:  # lower layers, for annotations only
     from rancf.mesh.continuity import Reduction
     from rancf.mesh.mesh import CableMesh
 
-__all__ = ["arc_fractions", "closure_matrix", "closure_rows", "seam_scales"]
+__all__ = ["arc_fractions", "closure_matrix", "closure_rows", "closure_terms", "seam_scales"]
 
 
 class SeamedBody(Protocol):
@@ -101,3 +103,20 @@ def closure_rows(
     a[np.abs(a) <= 1e-15 * np.abs(a).max(initial=0.0)] = 0.0
     rows, cols = np.nonzero(a)
     return rows.astype(np.int64), cols.astype(np.int64), a[rows, cols]
+
+
+def closure_terms(
+    names: Sequence[str], flex: Sequence[Any], offsets: dict[str, int]
+) -> list[LinearTerm]:
+    """The seams of the closed flexible bodies ``flex`` (named ``names``, their first
+    coordinates ``offsets``) as the terms of a system's linear rows
+    (:class:`rancf.kernels.records.LinearTerm`, :func:`closure_rows`), in system coordinates."""
+    out: list[LinearTerm] = []
+    m = 0
+    for name, b in zip(names, flex, strict=False):
+        r, c, v = closure_rows(b)
+        o = offsets[name]
+        out += [LinearTerm(int(i) + m, int(j) + o, float(x))
+                for i, j, x in zip(r, c, v, strict=True)]  # fmt: skip
+        m += closure_matrix(b).shape[0]
+    return out

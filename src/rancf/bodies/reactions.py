@@ -35,11 +35,13 @@ __all__ = ["Reaction", "support_reactions", "reaction_columns", "has_moment"]
 @dataclass(frozen=True)
 class Reaction:
     """The reaction of one support: ``force (dim,)`` and, for clamps and rods, ``moment``
-    (``(1,)``: about ``z`` in a planar model; ``(3,)`` in space)."""
+    (``(1,)``: about ``z`` in a planar model; ``(3,)`` in space); ``extra``: values reported
+    after them (a sliding joint's arc length ``s``)."""
 
     at: int | str
     force: NDArray[np.float64]
     moment: NDArray[np.float64] | None
+    extra: NDArray[np.float64] | None = None
 
 
 def has_moment(model: Model, kind: str) -> bool:
@@ -112,4 +114,6 @@ def reaction_row(reactions: list[Reaction]) -> NDArray[np.float64]:
         parts.append(r.force)
         if r.moment is not None:
             parts.append(r.moment)
+        if r.extra is not None:
+            parts.append(r.extra)
     return np.concatenate(parts) if parts else np.empty(0)

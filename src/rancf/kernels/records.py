@@ -39,7 +39,7 @@ __all__ = [
 #: Kinds of places (``PlaceKind``, ``src/cpp/places.hpp``).
 PLACE_KINDS = ("ground", "cable", "rod", "beam", "rigid2d", "rigid3d", "mass")
 #: Kinds of joint rows (``JointKind``, ``src/cpp/joints.hpp``).
-JOINT_KINDS = ("pin", "fixed", "tangent", "revolute", "slider")
+JOINT_KINDS = ("pin", "fixed", "tangent", "revolute", "slider", "sliding")
 #: Kinds of time functions (``TimeKind``, ``src/cpp/time_function.hpp``).
 TIME_KINDS = ("constant", "piecewise", "ramp", "harmonic", "spin_up")
 
@@ -113,6 +113,9 @@ class JointRecord:
         ``revolute``, ``tangent``, ``slider``: two normals in the second place's frame.
     w_a, w_b : (3,) floats
         A driven 3D revolute: the reference normals whose angle is the joint angle.
+    body : int
+        ``sliding``: the flexible body that runs through place ``b`` (``a``: its node 0, not
+        evaluated); -1 otherwise.
     """
 
     kind: str
@@ -126,6 +129,7 @@ class JointRecord:
     normals_b: tuple[float, ...] = (0.0,) * 6
     w_a: tuple[float, float, float] = (0.0, 0.0, 0.0)
     w_b: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    body: int = -1
 
 
 @dataclass(frozen=True)

@@ -13,7 +13,7 @@ from typing import Any
 
 from pydantic_core import PydanticCustomError
 
-from rancf.scenario.base import fail, show, under
+from rancf.scenario.base import fail, shorten, show, under
 from rancf.scenario.bodies import FlexibleBody, RigidBody
 from rancf.scenario.loads import time_size
 from rancf.scenario.places import ResolvedPlace, resolve_place
@@ -150,6 +150,29 @@ def _motion(c: _Context) -> None:
                        f"bodies[{per_body[0]}].initial_motion, not both")  # fmt: skip
 
 
+def _sliding(c: _Context, key: str, j: Any) -> None:
+    """A sliding joint: a flexible body of cable or rod elements, and a place (the ground at
+    ``position``)."""
+    a, b = j.between
+    body = c.bodies.get(str(a)) if c.bodies is not None else (c.sc if a == "body" else None)
+    if body is None or (c.bodies is not None and not isinstance(body, FlexibleBody)):
+        names = [k for k, v in (c.bodies or {"body": None}).items()
+                 if c.bodies is None or isinstance(v, FlexibleBody)]  # fmt: skip
+        known = shorten(", ".join(names)) or "none"
+        raise fail(f"{key}.between[0]", f"names the flexible body that slides through the "
+                   f"place (one of {known}), got {show(a)}")  # fmt: skip
+    if body.mesh.element == "beam":
+        raise fail(f"{key}.between[0]", "a body of cable or rod elements slides (not beams)")
+    p = c.place(f"{key}.between[1]", b, ground=True)
+    if p.where == "ground" and j.position is None:
+        raise fail(f"{key}.position", "required for a sliding joint to the ground: where the "
+                   "guide is")  # fmt: skip
+    if p.where != "ground" and j.position is not None:
+        raise fail(f"{key}.position", "only for a sliding joint to the ground (a place on a "
+                   "body is where it is)")  # fmt: skip
+    _size(f"{key}.position", j.position, c.dim)
+
+
 def _joints(c: _Context) -> None:
     names: set[str] = set()
     for i, j in enumerate(c.sc.joints):
@@ -157,6 +180,9 @@ def _joints(c: _Context) -> None:
         if j.name in names:
             raise fail(f"{key}.name", f"{show(j.name)} is used twice")
         names.add(j.name)
+        if j.kind == "sliding":
+            _sliding(c, key, j)
+            continue
         ps = [c.place(f"{key}.between[{k}]", v, ground=True) for k, v in enumerate(j.between)]
         if all(p.where == "ground" for p in ps):
             raise fail(f"{key}.between", "joins the ground to itself")

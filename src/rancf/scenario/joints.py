@@ -6,7 +6,10 @@ Joints (``between = [A, B]``, places of :mod:`rancf.scenario.places`, ``"ground"
 * ``revolute`` (3D): positions coincide, the bodies turn about ``axis`` only;
 * ``fixed``: positions and orientations coincide (a cable end's tangent, a rod end's material
   frame, a rigid body's frame);
-* ``slider``: ``A`` moves along ``axis`` through ``B``, orientation free.
+* ``slider``: ``A`` moves along ``axis`` through ``B``, orientation free;
+* ``sliding``: the flexible body ``A`` (its name: ``"rope"``; ``"body"`` in a file without
+  ``[[bodies]]``) runs through the place ``B`` without friction (a guide, fairlead, sheave point;
+  to the ground at ``position``): :mod:`rancf.system.sliding`.
 
 ``axis`` (global components in the reference configuration) is required for ``revolute`` and
 ``slider`` and refused otherwise; ``angle`` (a scalar TIME_FUNCTION, the relative rotation from
@@ -28,20 +31,24 @@ from rancf.scenario.loads import TimeFunctionValue, check_scalar
 __all__ = ["JointTable", "SpringTable", "JOINT_KINDS"]
 
 #: Joint kinds.
-JOINT_KINDS = ("pin", "revolute", "fixed", "slider")
+JOINT_KINDS = ("pin", "revolute", "fixed", "slider", "sliding")
 
 
 class JointTable(Table):
     """One joint between two places."""
 
     name: Name = Field(description="the joint's name (reaction columns and sensors), unique")
-    kind: Literal["pin", "revolute", "fixed", "slider"] = Field(
+    kind: Literal["pin", "revolute", "fixed", "slider", "sliding"] = Field(
         description='"pin" (positions coincide) | "revolute" (3D, about axis) | "fixed" '
-        '(positions and orientations coincide) | "slider" (A moves along axis through B)'
+        '(positions and orientations coincide) | "slider" (A moves along axis through B) | '
+        '"sliding" (the flexible body A runs through B without friction)'
     )
     between: PlacePair = Field(description="the two places joined [A, B]")
     axis: vector(2, 3) | None = Field(
         None, description="revolute: the rotation axis; slider: the line of motion (global)"
+    )
+    position: vector(2, 3) | None = Field(
+        None, description="sliding to the ground: the guide's position (global) [m]"
     )
     angle: TimeFunctionValue | None = Field(
         None,
@@ -61,6 +68,8 @@ class JointTable(Table):
         if self.angle is not None and self.kind not in ("pin", "revolute"):
             raise fail("angle", f"drives pin and revolute joints only, not {self.kind!r}")
         check_scalar("angle", self.angle)
+        if self.position is not None and self.kind != "sliding":
+            raise fail("position", f"applies to sliding joints only, not {self.kind!r}")
         a, b = self.between
         if a == b:
             raise fail("between", f"must be two different places, got {show(a)} twice")

@@ -141,6 +141,11 @@ def _parts(sc: ScenarioView, bodies: dict[str, Any]) -> dict[str, Any]:
         joints.append(Joint(kind, (place(s.at), Place(None)), axis, None, f"support{i}",
                             sc.data["supports"][i]["motion"]))  # fmt: skip
     for j, jd in zip(sc.joints, sc.data["joints"], strict=True):
+        if j.kind == "sliding":  # a flexible body (by name) through a place
+            body = Place(str(j.between[0]) if sc.bodies else ONE_BODY)
+            pos = None if j.position is None else tuple(j.position)
+            joints.append(Joint("sliding", (body, place(j.between[1])), name=j.name, position=pos))
+            continue
         axis = None if j.axis is None else tuple(j.axis)
         joints.append(Joint(j.kind, (place(j.between[0]), place(j.between[1])), axis,
                             jd["angle"], j.name))  # fmt: skip

@@ -5,9 +5,10 @@ Keys: ``name``; ``at`` (``"BODY:start"`` or ``"BODY:end"``; in a one-body file `
 direction); ``position`` (where the line leaves the drum [m]; the body's end starts there, the
 default); and one of ``length`` (the unstretched length outside the winch [m], a
 TIME_FUNCTION), ``speed`` (the pay-out rate [m/s], a TIME_FUNCTION) or ``torque`` with the
-drum's ``radius`` and ``inertia`` (a driven drum).  The body is drawn as the line is at
-``t = 0``; with ``length``, a start length other than the drawing's stretches the drawing
-about the winch (:mod:`rancf.system.winches`).
+drum's ``radius`` and ``inertia`` (a driven drum, :mod:`rancf.system.drums`: the torque
+positive reeling in, the inertia the drum's with the rope on it at ``t = 0``).  The body is
+drawn as the line is at ``t = 0``; with ``length``, a start length other than the drawing's
+stretches the drawing about the winch (:mod:`rancf.system.winches`).
 """
 
 from __future__ import annotations
@@ -20,7 +21,7 @@ from pydantic import Field, model_validator
 from rancf.bodies.flexible import Model
 from rancf.bodies.length import set_unstretched_length, unstretched_length
 from rancf.errors import ScenarioError
-from rancf.scenario.base import Name, NonNegative, Positive, Table, fail, vector
+from rancf.scenario.base import Name, Positive, Table, fail, vector
 from rancf.scenario.loads import TimeFunctionValue
 from rancf.system.winches import LENGTH_RTOL, Winch
 
@@ -42,11 +43,15 @@ class WinchTable(Table):
         None, description="the pay-out rate [m/s] (reeling in: negative; a TIME_FUNCTION)"
     )
     torque: TimeFunctionValue | None = Field(
-        None, description="a driven drum: the torque on it [N m] (with radius and inertia)"
+        None,
+        description="a driven drum: the torque on it [N m], positive reeling in (a "
+        "TIME_FUNCTION; with radius and inertia)",
     )
     radius: Positive | None = Field(None, description="a driven drum: its radius [m]")
-    inertia: NonNegative | None = Field(
-        None, description="a driven drum: its moment of inertia [kg m^2]"
+    inertia: Positive | None = Field(
+        None,
+        description="a driven drum: its moment of inertia with the rope on it at the "
+        "start [kg m^2]",
     )
 
     @model_validator(mode="after")
@@ -56,8 +61,15 @@ class WinchTable(Table):
             raise fail("length", "give one of length, speed or torque (got "
                        f"{', '.join(given) or 'none'})")  # fmt: skip
         for k in ("radius", "inertia"):
-            if (self[k] is not None) != (self.torque is not None):
-                raise fail(k, "belongs to a driven drum: torque, radius and inertia together")
+            if self[k] is None and self.torque is not None:
+                raise fail(
+                    k,
+                    "a driven drum (torque) needs its "
+                    + ("radius [m]" if k == "radius" else "moment of inertia [kg m^2]"),
+                )
+            if self[k] is not None and self.torque is None:
+                raise fail(k, "belongs to a driven drum: give torque with radius and inertia "
+                           "(or drop it)")  # fmt: skip
         return self
 
 
@@ -73,9 +85,6 @@ def system_winches(sc: Any, bodies: dict[str, Any], one_body: str) -> list[Winch
         if not isinstance(body, Model) or p.node not in (0, -1, body.n_nodes - 1):
             raise ScenarioError(sc.path, f"{key}.at", f'"BODY:start" or "BODY:end" of a cable '
                                 f"body (got {w.at!r})")  # fmt: skip
-        if w.torque is not None:
-            raise ScenarioError(sc.path, f"{key}.torque", "a driven drum is not available yet: "
-                                "give the winch's length or speed")  # fmt: skip
         node = 0 if p.node == 0 else body.n_nodes - 1
         end = "start" if node == 0 else "end"
         at = f"{p.body or one_body}:{end}"
@@ -90,5 +99,6 @@ def system_winches(sc: Any, bodies: dict[str, Any], one_body: str) -> list[Winch
             start = float(np.ravel(length.value(0.0))[0])
             if abs(start - unstretched_length(body)) > LENGTH_RTOL * max(start, 1.0):
                 set_unstretched_length(body, start, anchor=node)
-        out.append(Winch(w.name, at, length=length, speed=wd["speed"]))
+        out.append(Winch(w.name, at, length=length, speed=wd["speed"], torque=wd["torque"],
+                         radius=w.radius, inertia=w.inertia))  # fmt: skip
     return out

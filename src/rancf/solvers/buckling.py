@@ -54,6 +54,7 @@ from rancf.solvers.linearized import Linearized, linearize
 from rancf.solvers.modal import is_symmetric, rigid_motions
 from rancf.solvers.system_equilibrium import SystemEquilibrium
 from rancf.system import System, as_system
+from rancf.system.sliding import start_multipliers
 
 __all__ = ["BucklingResult", "linear_buckling"]
 
@@ -153,6 +154,9 @@ def linear_buckling(
     if about not in ("reference", "static"):
         raise InputError("--about", about, 'one of "reference", "static"')
     system = as_system(model)
+    if any(j.kind == "sliding" for j in system.joints):
+        raise InputError("joints.kind", "sliding", "no sliding joint in a buckling analysis "
+                         "(statics, modes and dynamics take them)")  # fmt: skip
     problem = SystemEquilibrium(system)
     if about == "reference":
         system.reset_triads()
@@ -160,7 +164,7 @@ def linear_buckling(
     else:
         if y is None:
             raise InputError("y", None, "the static equilibrium when about = 'static'")
-        mult = np.zeros(system.m) if lam is None else np.asarray(lam, dtype=float)
+        mult = start_multipliers(system) if lam is None else np.asarray(lam, dtype=float)
         z0, p0 = np.r_[np.asarray(y, dtype=float), mult], 1.0
     problem.stage = 0  # the loads grow with p; held coordinates stay where they are in z
     n, free = system.n, ~system.fixed

@@ -34,6 +34,7 @@ from rancf.solvers.output import MemorySink, OutputSink
 from rancf.solvers.result import DynamicResult, DynamicStatus
 from rancf.solvers.state import COUNTERS, DynamicState, take_up, triads_of
 from rancf.system import System, as_system
+from rancf.system.sliding import start_multipliers
 
 __all__ = ["DynamicOptions", "DynamicStatus", "DynamicResult", "GeneralizedAlpha", "integrate"]
 
@@ -155,7 +156,7 @@ def integrate(
         v = system.v0.copy()
         t = 0.0
         integ.prescribe(0.0, y, v)  # moving supports at t = 0
-        lam = np.zeros(system.m)
+        lam = start_multipliers(system, None if initial is None else y)
         a = integ.initial_acceleration(y, v, t, lam)
         store(0.0, y, v, np.concatenate([y, v]) if contact else None)
     else:

@@ -9,6 +9,7 @@ from numpy.typing import NDArray
 from rancf.bodies.flexible import Model
 from rancf.kernels import _core
 from rancf.system import System, as_system
+from rancf.system.sliding import start_multipliers
 
 __all__ = ["GeneralizedAlpha"]
 
@@ -88,7 +89,7 @@ class GeneralizedAlpha:
     ) -> NDArray:
         """Consistent ``a0`` (and multipliers into ``lam``): ``[M Gᵀ; G 0] [a; λ] = [-F; -c]``."""
         a = np.empty(self.system.n)
-        lam = np.zeros(self.system.m) if lam is None else lam
+        lam = start_multipliers(self.system) if lam is None else lam
         self._core.initial_acceleration(y, v, t, a, lam)
         return a
 
@@ -98,7 +99,7 @@ class GeneralizedAlpha:
         """Advance by ``h``; returns ``(converged, y1, v1, a1, newton_iterations)`` (the new
         multipliers replace ``lam``'s content when it converged)."""
         y1, v1, a1 = np.empty_like(y), np.empty_like(y), np.empty_like(y)
-        l0 = np.zeros(self.system.m) if lam is None else lam
+        l0 = start_multipliers(self.system) if lam is None else lam
         l1 = np.empty_like(l0)
         ok, it = self._core.step(y, v, a, l0, t, h, y1, v1, a1, l1)
         if ok and lam is not None:

@@ -27,6 +27,8 @@ from numpy.typing import NDArray
 
 from rancf.errors import RancfError
 from rancf.system import System
+from rancf.system.joint_data import normals as _normals
+from rancf.system.sliding import start_multipliers
 
 __all__ = ["Linearized", "linearize", "system_jacobian"]
 
@@ -101,7 +103,7 @@ def linearize(
     """The matrices of ``system`` linearized about ``(y, λ)`` with the loads at ``load_factor``
     times their amplitude (``amplitude=False``: as they act at time ``t``); module docstring."""
     y = np.asarray(y, dtype=float)
-    lam = np.zeros(system.m) if lam is None else np.asarray(lam, dtype=float)
+    lam = start_multipliers(system) if lam is None else np.asarray(lam, dtype=float)
     n, m = system.n, system.m
     free = ~system.fixed
     idx = np.flatnonzero(free)
@@ -110,4 +112,37 @@ def linearize(
     k = j[idx][:, idx].tocsr()
     g = j[n : n + m][:, idx].tocsr()
     gt = j[idx][:, n : n + m].tocsr()
+    if any(jt.kind == "sliding" for jt in system.joints):
+        k, g, gt = _condense_sliding(system, j, k, g, gt)
     return Linearized(k, g, gt, mass[idx][:, idx].tocsr(), free)
+
+
+def _condense_sliding(
+    system: System, j: sp.csr_matrix, k: sp.csr_matrix, g: sp.csr_matrix, gt: sp.csr_matrix
+) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:  # fmt: skip
+    """The sliding joints' material coordinates ``σ`` eliminated (docs/derivations/sliding.md
+    sec. 4): along the rope, ``G_y dy + r_σ dσ = 0`` gives ``dσ = T dy``,
+    ``T = -r_σᵀ G_y / |r_σ|²``, and the stiffness ``K + k_yσ T + Tᵀ k_σy + Tᵀ k_σσ T``; normal
+    to it the rows ``Nᵀ G_y`` (``N``: the ``dim - 1`` unit normals of ``r_σ``) remain, with the
+    multipliers' columns ``Gᵀ N``."""
+    n, d = system.n, system.dim
+    keep, rows, cols = np.ones(system.m, dtype=bool), [], []
+    for jj, joint in enumerate(system.joints):
+        if joint.kind != "sliding":
+            continue
+        r0 = system.joint_rows[jj]
+        slot = r0 + d
+        keep[r0 : slot + 1] = False
+        rs = j[n + r0 : n + slot, n + slot].toarray().ravel()
+        gy = g[r0:slot].toarray()
+        t = sp.csr_matrix(-(rs @ gy) / (rs @ rs))
+        kys, ksy = gt[:, slot], g[slot]
+        k = k + kys @ t + t.T @ ksy + float(j[n + slot, n + slot]) * (t.T @ t)
+        e = rs / np.linalg.norm(rs)
+        normals = [np.array([-e[1], e[0]])] if d == 2 else list(_normals(e))
+        for nv in normals:
+            rows.append(sp.csr_matrix(nv @ gy))
+            cols.append(sp.csr_matrix(gt[:, r0:slot] @ nv[:, None]))
+    g = sp.vstack([g[keep], *rows]).tocsr()
+    gt = sp.hstack([gt[:, keep], *cols]).tocsr()
+    return k.tocsr(), g, gt

@@ -35,7 +35,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any, Literal
 
 import numpy as np
@@ -44,11 +44,13 @@ from numpy.typing import NDArray
 from rancf.bodies.flexible import Model
 from rancf.errors import ConvergenceError, InputError, ScenarioError
 from rancf.solvers.arc_length import arc_length_path
+from rancf.solvers.drum_statics import free_drums
 from rancf.solvers.load_path import MIN_INCREMENT, PathState
 from rancf.solvers.newton import newton
 from rancf.solvers.relaxation import relax
 from rancf.solvers.system_equilibrium import SystemEquilibrium
 from rancf.system import System, as_system
+from rancf.system.drums import hold_drums, refuse_static_drums
 
 __all__ = ["StaticResult", "solve_static", "solve_equilibrium", "StaticMethod", "start_state"]
 
@@ -127,9 +129,23 @@ def solve_static(
     start = time.perf_counter()
     system = as_system(model)
     system.reset_triads()
-    return solve_equilibrium(
-        SystemEquilibrium(system, at_time), load_steps, tol, max_iter, on_step, method, start
-    )
+    if not getattr(system, "drums", None):
+        return solve_equilibrium(
+            SystemEquilibrium(system, at_time), load_steps, tol, max_iter, on_step, method, start
+        )
+    hold_drums(system, True)  # driven drums: the line loaded at their start lengths first
+    try:
+        held = solve_equilibrium(
+            SystemEquilibrium(system, at_time), load_steps, tol, max_iter, on_step, method, start
+        )
+    finally:
+        hold_drums(system, False)
+    scale = SystemEquilibrium(system, at_time).scale  # then the lengths where r T = torque
+    y, lam, ok, its = free_drums(system, held.y, held.lam, at_time, scale, tol, max_iter)
+    refuse_static_drums(system, y if ok else None, at_time)
+    return replace(held, q=system.q_from_y(y), y=y, lam=lam, n_newton=held.n_newton + its,
+                   n_factorizations=held.n_factorizations + its,
+                   wall_time=time.perf_counter() - start)  # fmt: skip
 
 
 def solve_equilibrium(

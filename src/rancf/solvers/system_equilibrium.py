@@ -36,6 +36,7 @@ from numpy.typing import NDArray
 from rancf.bodies.flexible import Model
 from rancf.kernels import _core
 from rancf.system import System
+from rancf.system.sliding import start_multipliers
 from rancf.system.winches import unloaded_at
 
 __all__ = ["SystemEquilibrium", "STABILIZER", "INSTALL_RTOL", "path_stages"]
@@ -107,8 +108,9 @@ class SystemEquilibrium:
         return False
 
     def start(self) -> NDArray[np.float64]:
-        """The reference configuration with zero multipliers."""
-        return np.r_[self._y0, np.zeros(self.m)]
+        """The reference configuration with zero multipliers (and the sliding joints' material
+        coordinates in their slots)."""
+        return np.r_[self._y0, start_multipliers(self.system)]
 
     def load_factor(self, p: float) -> float:
         return p if self.stage == 0 else 1.0

@@ -5,7 +5,9 @@ spherical in
 3D), ``"revolute"`` (3D: positions, and the ``axis`` of the first place normal to the second's
 frame's normals of it), ``"fixed"`` (positions and orientations: a cable end's tangent direction,
 a rod end's material frame, a rigid body's frame), ``"slider"`` (the first place moves along
-``axis`` through the second, orientation free).  A pin or revolute with ``angle`` is driven: the
+``axis`` through the second, orientation free), ``"sliding"`` (a flexible body, the first entry,
+runs through the second place without friction: :mod:`rancf.system.sliding`; to the ground at
+``position``).  A pin or revolute with ``angle`` is driven: the
 relative rotation from the reference follows the time function [rad].  Axes are given in world
 coordinates in the reference configuration.
 """
@@ -20,7 +22,7 @@ from rancf.system.places import Place
 
 __all__ = ["Joint", "Spring", "Load", "JOINT_KINDS"]
 
-JOINT_KINDS = ("pin", "revolute", "fixed", "slider")
+JOINT_KINDS = ("pin", "revolute", "fixed", "slider", "sliding")
 
 
 @dataclass(frozen=True)
@@ -34,6 +36,8 @@ class Joint:
     name: str = ""
     #: A joint to the ground: the ground point moves by this displacement (a moving support).
     motion: TimeFunction | None = None
+    #: A sliding joint to the ground: the guide's position (world, reference configuration).
+    position: Sequence[float] | None = None
 
 
 @dataclass(frozen=True)

@@ -38,9 +38,11 @@ Column names: a support's ``LABEL_fx, LABEL_fy[, LABEL_fz]`` then its moment (``
 ``LABEL_mx, _my, _mz``) as :func:`rancf.bodies.reactions.reaction_columns` (the label is the
 support's place as the caller wrote it, else ``BODY:AT``); a joint's ``NAME_fx ...`` and, for
 joints that transmit a moment (``fixed``, a 3D ``revolute``, a driven joint), ``NAME_mz`` or
-``NAME_mx, _my, _mz``; then every obstacle's (:func:`rancf.system.contact.
-contact_outputs`): the force it exerts on the bodies, ``NAME_normal_x, _y[, _z]`` and
-``NAME_friction_x, _y[, _z]`` [N], the contact length ``NAME_length`` [m] and the largest
+``NAME_mx, _my, _mz``, and for a ``sliding`` joint the arc length ``NAME_s`` [m] of the
+body's point at its place (:mod:`rancf.system.sliding`); then every obstacle's
+(:func:`rancf.system.contact.contact_outputs`): the force it exerts on the bodies,
+``NAME_normal_x, _y[, _z]`` and ``NAME_friction_x, _y[, _z]`` [N], the contact length
+``NAME_length`` [m] and the largest
 penetration ``NAME_penetration`` [m]; then every pair of flexible bodies in contact
 (``body_contacts``, ``A_B_...``; ``A_A_...`` self-contact): the total contact force
 ``A_B_contact_force`` [N] (the sum of the pressures' magnitudes) and the largest penetration
@@ -62,6 +64,7 @@ from rancf.bodies.section_outputs import SectionSampler, section_names
 from rancf.kernels import _core
 from rancf.system.contact import contact_outputs
 from rancf.system.sensors import SensorReader
+from rancf.system.sliding import sliding_slots, sliding_values
 from rancf.system.system import System
 from rancf.system.winches import winch_factor, winch_node
 
@@ -117,6 +120,8 @@ class SystemOutputs:
             cols = [f"{lab}_f{a}" for a in axes]
             if _joint_has_moment(s, k):
                 cols += [f"{lab}_mz"] if s.dim == 2 else [f"{lab}_m{a}" for a in "xyz"]
+            if j.kind == "sliding":  # the arc length at the place (rancf.system.sliding)
+                cols.append(f"{lab}_s")
             self.joint_names.append(cols)
         self.reaction_names = [c for cols in self.support_names.values() for c in cols]
         self.reaction_names += [c for cols in self.joint_names for c in cols]
@@ -199,13 +204,14 @@ class SystemOutputs:
         res, res0, no_lam = np.empty(s.n + s.m), np.empty(s.n + s.m), np.zeros(s.m)
         raws: dict[str, list[NDArray]] = {name: [] for name, _ in self.flex}
         nodal: dict[str, list[NDArray]] = {name: [] for name, _ in self.flex}
+        factors: dict[str, list[float]] = {name: [] for name, _ in self.flex}
         with self._triads() as set_row:
             for i in range(k):
                 y = s.y_from_q(q[i])
                 if directors is not None:
                     set_row(y, np.asarray(directors[i]).ravel())
                 vy = np.zeros(s.n) if v is None or static else s.y_from_q(v[i])
-                a, li = np.zeros(s.n), np.zeros(s.m)
+                a, li = np.zeros(s.n), sliding_slots(s, y, None if lam is None else lam[i])
                 if static:
                     if lam is not None:
                         li[:] = lam[i]
@@ -223,15 +229,16 @@ class SystemOutputs:
                 vc = None if static else vy  # friction from the velocities
                 out["r"][i] = self._reactions(y, res[: s.n], float(t[i]), li, vc, step)
                 for name, b in self.flex:  # the sections' numbers for all rows at once below
-                    factor = winch_factor(s, name, float(t[i]))  # a winch's body at its length
+                    factor = winch_factor(s, name, float(t[i]), y)  # a winch's body at its length
                     sl = s.body_slice(name)
                     raws[name].append(self.samplers[name].raw(y[sl], factor))
+                    factors[name].append(factor)
                     if name in self._recovered:  # the axial force from the nodal forces
                         nodal[name].append(nodal_axial_forces(b, y[sl], res0[sl]))
                 if per_body:
                     out["eb"][i] = self._body_energies(y, vy, float(t[i]))
         if k:
-            out["s"] = self._along(raws, t, nodal)
+            out["s"] = self._along(raws, factors, t, nodal)
         out["c"] = self.sensors.values(t, q, v, out, energy)
         return out
 
@@ -266,10 +273,12 @@ class SystemOutputs:
             out += support_reactions(b, y[sl], res[sl], self.labels[name])
         for k, j in enumerate(s.joints):
             force, moment = s.core.joint_reaction(k, y, t, lam)
-            mom = None
+            mom, extra = None, None
             if _joint_has_moment(s, k):
                 mom = np.asarray(moment)[2:] if s.dim == 2 else np.asarray(moment)
-            out.append(Reaction(j.name or f"joint{k}", np.asarray(force)[: s.dim], mom))
+            if j.kind == "sliding":
+                extra = np.array([sliding_values(s, k, y, lam)])
+            out.append(Reaction(j.name or f"joint{k}", np.asarray(force)[: s.dim], mom, extra))
         return out
 
     def _step(self, alpha: NDArray | None, i: int, y: NDArray, v: NDArray) -> tuple[NDArray, ...]:
@@ -309,14 +318,18 @@ class SystemOutputs:
         return out
 
     def _along(
-        self, raws: dict[str, list[NDArray]], t: NDArray, nodal: dict[str, list[NDArray]]
+        self,
+        raws: dict[str, list[NDArray]],
+        stretch: dict[str, list[float]],
+        t: NDArray,
+        nodal: dict[str, list[NDArray]],
     ) -> NDArray:
-        """Section values ``(k, n_along)`` of k rows from their strains and curvatures; the
-        axial force from the nodal forces ``nodal`` where given
-        (:mod:`rancf.bodies.nodal_forces`)."""
+        """Section values ``(k, n_along)`` of k rows from their strains and curvatures and
+        their bodies' length factors (:func:`~rancf.system.winches.winch_factor`); the axial
+        force from the nodal forces ``nodal`` where given (:mod:`rancf.bodies.nodal_forces`)."""
         parts = []
         for name, _ in self.flex:
-            factors = np.array([winch_factor(self.system, name, float(x)) for x in t])
+            factors = np.asarray(stretch[name], dtype=float)
             raw = np.stack(raws[name])  # (k, n_points, w)
             vals = self.samplers[name].from_raw(raw, factors[:, None, None])
             if nodal[name]:

@@ -6,7 +6,8 @@ Kinds (column names ``NAME`` for one number, ``NAME_x``, ``NAME_y`` (, ``NAME_z`
   its twist coordinate ``φ`` [rad]);
 * ``angular_momentum`` about ``about`` (default the origin; 2D: the ``z`` component) and
   ``energy`` (kinetic + strain + gravitational [J]) of the whole system;
-* ``reaction``: the force of the joint ``joint`` or of the support at ``at`` and, where it
+* ``reaction``: the force of the joint ``joint`` or of the support at ``at`` (a ``sliding``
+  joint: also the arc length ``NAME_s`` at its place) and, where it
   carries one (a clamp, a rod's support, a ``fixed`` or driven joint, a 3D ``revolute``), its
   moment ``NAME_mz`` (planar) or ``NAME_mx, NAME_my, NAME_mz``: the columns of
   ``reactions.csv`` (:mod:`rancf.system.outputs`);
@@ -189,7 +190,8 @@ class SensorReader:
                 names = [j.name for j in self.system.joints if j.name]
                 allowed = f"a joint: {', '.join(names) or 'none named'}"
                 raise InputError(f"sensors.{sen.name}.joint", sen.joint, allowed) from None
-            return _columns_reader(sen.name, d, cols)
+            sliding = any(j.kind == "sliding" and j.name == sen.joint for j in self.system.joints)
+            return _columns_reader(sen.name, d, cols, ("s",) if sliding else ())
         p = self._place(sen, places[0])
         start = 0
         for name, b in out.flex:
@@ -347,12 +349,13 @@ class SensorReader:
         return read
 
 
-def _columns_reader(name: str, dim: int, cols: slice) -> Reader:
-    """A reader of the reaction columns ``cols`` (force, then a moment when wider than ``dim``),
-    its column names as its ``columns`` attribute."""
-    moment = cols.stop - cols.start - dim
+def _columns_reader(name: str, dim: int, cols: slice, extra: tuple[str, ...] = ()) -> Reader:
+    """A reader of the reaction columns ``cols`` (force, then a moment when wider than ``dim``
+    and the ``extra`` values), its column names as its ``columns`` attribute."""
+    moment = cols.stop - cols.start - dim - len(extra)
     names = [f"{name}_{a}" for a in "xyz"[:dim]]
     names += [f"{name}_m{a}" for a in ("z" if moment == 1 else "xyz")] if moment else []
+    names += [f"{name}_{e}" for e in extra]
 
     def read(blk: Block) -> NDArray:
         return blk[3]["r"][:, cols]

@@ -136,6 +136,7 @@ class BodyStack:
         out = np.zeros(self.n, dtype=bool)
         for name, b in zip(self.names, self.flex, strict=False):
             out[self.body_slice(name)] = b.fixed
+        out[list(getattr(self, "held_coordinates", ()))] = True  # held drums (system.drums)
         return out
 
     def reset_triads(self) -> None:

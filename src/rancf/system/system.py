@@ -20,7 +20,7 @@ from collections.abc import Callable, Mapping, Sequence
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from rancf.bodies.closure import closure_matrix, closure_rows
+from rancf.bodies.closure import closure_terms
 from rancf.bodies.flexible import Model
 from rancf.bodies.rigid import RigidBody
 from rancf.bodies.time_function import TimeFunction, core_record
@@ -28,7 +28,6 @@ from rancf.errors import InputError
 from rancf.kernels import _core
 from rancf.kernels.records import (
     JointRecord,
-    LinearTerm,
     LoadRecord,
     PlaceRecord,
     PrescribedRecord,
@@ -42,6 +41,7 @@ from rancf.system.core_data import SystemRecords, build_core
 from rancf.system.fluid import DistributedLoad, Fluid, Hydro, fluid_records
 from rancf.system.joint_data import joint_data
 from rancf.system.places import Place
+from rancf.system.sliding import attach_sliding, sliding_pair, sliding_record, start_multipliers
 from rancf.system.stack import Body, BodyStack
 from rancf.system.winches import Winch, attach_winches, winch_functions
 
@@ -166,7 +166,7 @@ class System(BodyStack):
         self.stiffness_damping = float(stiffness_damping)
         self.horizon = horizon
         self.joints, self.springs, self.loads = tuple(joints), tuple(springs), tuple(loads)
-        linear = self._closures()
+        linear = closure_terms(self.names, self.flex, self.offsets)
         rows = _Rows(horizon)
         self._place_index: dict[Place, int] = {}
         parts = {
@@ -203,6 +203,7 @@ class System(BodyStack):
             )
             self.core.attach_contact(self.contact)
         attach_winches(self, self.winches, winch_tfs)
+        attach_sliding(self)
         self._check_reference()
 
     def _check_gravity(self) -> None:
@@ -223,12 +224,12 @@ class System(BodyStack):
         system's size; an orientation holds by construction): else one line naming the joint
         and how far apart its places are."""
         g = np.empty(self.m)
-        self.core.constraints(self.y0, 0.0, g)
+        self.core.constraints(self.y0, 0.0, g, start_multipliers(self))
         for k, j in enumerate(self.joints):
             rows = g[self.joint_rows[k] : self.joint_rows[k] + (2 if self.dim == 2 else 3)]
             if j.kind == "slider":
                 rows = g[self.joint_rows[k] : self.joint_rows[k] + self.dim - 1]
-            gap = float(np.linalg.norm(rows))
+            gap = 0.0 if j.kind == "sliding" else float(np.linalg.norm(rows))  # attach_sliding
             if not gap <= 1e-9 * self.size:
                 name = j.name or f"joints[{k}]"
                 raise InputError(
@@ -294,19 +295,6 @@ class System(BodyStack):
                     out.append(PrescribedRecord(coord, k, i, float(b.y_installed[base + i])))
         return out
 
-    def _closures(self) -> list[LinearTerm]:
-        """The seams of closed flexible bodies as the terms of linear rows
-        (:func:`rancf.bodies.closure.closure_rows`), in system coordinates."""
-        out: list[LinearTerm] = []
-        m = 0
-        for name, b in zip(self.names, self.flex, strict=False):
-            r, c, v = closure_rows(b)
-            o = self.offsets[name]
-            out += [LinearTerm(int(i) + m, int(j) + o, float(x))
-                    for i, j, x in zip(r, c, v, strict=True)]  # fmt: skip
-            m += closure_matrix(b).shape[0]
-        return out
-
     def _spring(self, s: Spring, rows: _Rows) -> SpringRecord:
         a, b = self._pair(s.between, rows)
         for key, v in (("springs.stiffness", s.stiffness), ("springs.damping", s.damping)):
@@ -364,6 +352,8 @@ class System(BodyStack):
     def _place(self, j: Joint, rows: _Rows) -> tuple[int, int]:
         if j.kind not in JOINT_KINDS:
             raise InputError("joints.kind", j.kind, f"one of {', '.join(JOINT_KINDS)}")
+        if j.kind == "sliding":  # a body through a place
+            return sliding_pair(self, j, rows)
         return self._pair(j.between, rows, rows.tf(j.motion))
 
     def _build(self, records: SystemRecords) -> _core.System:
@@ -376,6 +366,8 @@ class System(BodyStack):
 
     def _joint(self, j: Joint, ab: tuple[int, int], rows: _Rows) -> JointRecord:
         a, b = ab
+        if j.kind == "sliding":
+            return sliding_record(self, j, a, b)
         angle = rows.tf(j.angle) if j.angle is not None else -1
         return joint_data(j, a, b, self._frames(a)[1], self._frames(b)[1], self.dim, angle)
 

@@ -26,6 +26,7 @@ from rancf.bodies.rigid import PointMass
 from rancf.bodies.time_function import TimeFunction
 from rancf.bodies.winch_inertia import convective_matrices
 from rancf.errors import InputError
+from rancf.system.drums import attach_drum, drum_torque
 
 __all__ = [
     "Winch", "winch_length", "winch_functions", "attach_winches", "winch_node", "unloaded_at",
@@ -43,6 +44,9 @@ class WinchedSystem(Protocol):
     y0: np.ndarray
     joints: Sequence[Any]
     winch_lengths: dict[str, TimeFunction]
+    drums: dict[str, int]
+    n: int
+    v0: np.ndarray
 
     def resolve(self, spec: Any) -> Any: ...
 
@@ -68,13 +72,26 @@ class Winch:
     length : TimeFunction or float, optional
         The unstretched length outside the winch [m] as a function of time.
     speed : TimeFunction or float, optional
-        The pay-out rate [m/s] (reeling in: negative); one of ``length`` and ``speed``.
+        The pay-out rate [m/s] (reeling in: negative); one of ``length``, ``speed`` and
+        ``torque``.
+    torque : TimeFunction or float, optional
+        A driven drum: the torque on it [N m], positive reeling in; with ``radius`` [m] and
+        ``inertia`` [kg m²] (the drum's, with the rope on it at ``t = 0``): the length follows
+        from the drum's balance (:mod:`rancf.system.drums`).
     """
 
     name: str
     at: str
     length: TimeFunction | float | None = None
     speed: TimeFunction | float | None = None
+    torque: TimeFunction | float | None = None
+    radius: float | None = None
+    inertia: float | None = None
+
+    @property
+    def driven(self) -> bool:
+        """Whether the winch is a driven drum (its length a coordinate of the system)."""
+        return self.torque is not None
 
     def body_and_end(self) -> tuple[str, Literal["start", "end"]]:
         """The body's name and the end at the drum."""
@@ -88,9 +105,12 @@ def winch_length(w: Winch, length0: float, horizon: float | None) -> TimeFunctio
     """``L(t)`` of a winch whose body is ``length0`` long at ``t = 0``: its ``length``, or
     ``length0`` plus the integral of its ``speed`` (trapezoidal on 20 001 points of
     ``[0, 1.05 horizon]``, then a cubic table of the core's)."""
-    if (w.length is None) == (w.speed is None):
-        raise InputError(f"winches.{w.name}", "length and speed" if w.length is not None
-                         else "neither", "one of length, speed")  # fmt: skip
+    given = [k for k in ("length", "speed", "torque") if getattr(w, k) is not None]
+    if len(given) != 1:
+        raise InputError(f"winches.{w.name}", " and ".join(given) or "none",
+                         "one of length, speed, torque")  # fmt: skip
+    if w.torque is not None:  # the drum's start: its length at t = 0, a coordinate after
+        return TimeFunction.constant(length0)
     if w.length is not None:
         f = w.length if isinstance(w.length, TimeFunction) else TimeFunction.constant(w.length)
         return f
@@ -110,10 +130,11 @@ def winch_length(w: Winch, length0: float, horizon: float | None) -> TimeFunctio
 
 def winch_functions(
     system: WinchedSystem, winches: tuple[Winch, ...], tf: Callable
-) -> tuple[dict[str, TimeFunction], list[int]]:
-    """Each winch's ``L(t)`` as the core evaluates it (a callable sampled on the horizon) by
-    name, and its index among the core's time functions (``tf`` registers one); ``L(0)`` must
-    be the body's unstretched length."""
+) -> tuple[dict[str, TimeFunction], list[tuple[int, int]]]:
+    """Each winch's ``L(t)`` as the core evaluates it (a callable sampled on the horizon; a
+    driven drum: its start) by name, and its index among the core's time functions (``tf``
+    registers one) with its torque's (a driven drum; else -1); ``L(0)`` must be the body's
+    unstretched length."""
     out, functions = [], {}
     for w in winches:
         body = _body(system, w)
@@ -127,20 +148,27 @@ def winch_functions(
         if f.kind == "callable":
             f = f.sampled(HORIZON_MARGIN * float(system.horizon))  # type: ignore[arg-type]
         functions[w.name] = f
-        out.append(tf(f))
+        out.append((tf(f), drum_torque(w, tf) if w.driven else -1))
     return functions, out
 
 
-def attach_winches(system: WinchedSystem, winches: tuple[Winch, ...], tfs: list[int]) -> None:
+def attach_winches(
+    system: WinchedSystem, winches: tuple[Winch, ...], tfs: list[tuple[int, int]]
+) -> None:
     """Give the core each winch: its body, the index of its ``L(t)``, the length the body's
     arrays hold (``L(0)``: equal to the body's to ``LENGTH_RTOL``, so the body is exactly at its
-    length at the start) and the convective matrices."""
-    for w, tf in zip(winches, tfs, strict=True):
+    length at the start) and the convective matrices; a driven drum its coordinate
+    (:mod:`rancf.system.drums`; ``system.drums``: the coordinate of each by name)."""
+    system.drums = {}
+    for k, (w, (tf, torque)) in enumerate(zip(winches, tfs, strict=True)):
         name, end = w.body_and_end()
         c1, c2, d2 = convective_matrices(_body(system, w), end)
         index = system.names.index(name)  # flexible bodies come first
         start = float(np.ravel(system.winch_lengths[w.name].value(0.0))[0])
         system.core.attach_winch(index, tf, start, c1, c2, d2)
+        if torque >= 0:
+            system.drums[w.name] = attach_drum(system, k, w, _body(system, w),
+                                               winch_node(system, w)[1], torque)  # fmt: skip
 
 
 def winch_node(system: WinchedSystem, w: Winch) -> tuple[str, int]:
@@ -207,10 +235,15 @@ def winch_reader(outputs: Any, sen: Any) -> Callable[[Any], np.ndarray]:
                 cols = slice(start, start + d)
             start += width
 
+    drum = getattr(s, "drums", {}).get(w.name)
+
     def read(blk: Any) -> np.ndarray:
         t = blk[0]
-        length = np.array([float(np.ravel(f.value(x))[0]) for x in t])
-        rate = np.array([float(np.ravel(f.rate(x))[0]) for x in t])
+        if drum is not None:  # a driven drum: L and L' are the state's (rows of y, v)
+            length, rate = blk[1][:, drum], blk[2][:, drum]
+        else:
+            length = np.array([float(np.ravel(f.value(x))[0]) for x in t])
+            rate = np.array([float(np.ravel(f.rate(x))[0]) for x in t])
         tension = np.linalg.norm(blk[3]["r"][:, cols], axis=1)
         return np.column_stack([length, rate, tension])
 
@@ -218,12 +251,16 @@ def winch_reader(outputs: Any, sen: Any) -> Callable[[Any], np.ndarray]:
     return read
 
 
-def winch_factor(system: Any, name: str, t: float) -> float:
-    """The unstretched length at ``t`` of the body ``name`` over the one its arrays hold (1 for
-    a body without a winch): what its section values are measured against."""
+def winch_factor(system: Any, name: str, t: float, y: np.ndarray | None = None) -> float:
+    """The unstretched length at ``t`` (a driven drum: in the state ``y``) of the body ``name``
+    over the one its arrays hold (1 for a body without a winch): what its section values are
+    measured against."""
     for w in getattr(system, "winches", ()):
         body, _ = winch_node(system, w)
         if body == name:
             f = system.winch_lengths[w.name]
+            drum = getattr(system, "drums", {}).get(w.name)
+            if drum is not None and y is not None:
+                return float(y[drum]) / float(np.ravel(f.value(0.0))[0])
             return float(np.ravel(f.value(t))[0]) / float(np.ravel(f.value(0.0))[0])
     return 1.0

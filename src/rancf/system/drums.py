@@ -1,0 +1,102 @@
+"""Driven drums: winches whose length follows from the drum's own balance.
+
+A winch with a ``torque`` (positive reeling in), a drum ``radius`` ``r`` and ``inertia`` ``J``
+(the drum's, with the rope on it at ``t = 0``) makes the unstretched length ``L`` outside the
+winch a coordinate of the system, after every body: the drum's angle is ``θ = (L − L0) / r``
+(paying out: ``θ`` grows).  Its balance is Lagrange's equation of ``L`` for the line's material
+outside the drum (its kinetic energy with the material's flow through the mesh, its strain
+energy at the stretched reference, its weight), the drum's inertia ``J(L) = J − ρA r² (L − L0)``
+(the rope wound off it leaves with it) and the torque; statics: ``L`` where the line's pull on
+the drum balances the torque (docs/derivations/variable-length.md §3).  The compiled core
+assembles it (``src/cpp/winch.cpp``, ``drum_terms``).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from typing import Any
+
+import numpy as np
+
+from rancf.bodies.flexible import Model
+from rancf.bodies.time_function import TimeFunction
+from rancf.errors import InputError
+
+__all__ = [
+    "drum_torque", "attach_drum", "drum_state", "drum_mass", "hold_drums", "refuse_static_drums",
+]  # fmt: skip
+
+
+def drum_torque(w: Any, tf: Callable) -> int:
+    """The index of a driven drum's torque among the core's time functions (``tf`` registers
+    one); its radius and inertia checked."""
+    for key in ("radius", "inertia"):
+        v = getattr(w, key)
+        if v is None or not (np.isfinite(v) and v > 0):
+            raise InputError(f"winches.{w.name}.{key}", v, "a driven drum's " + (
+                "radius [m], > 0" if key == "radius" else "moment of inertia [kg m^2], > 0 "
+                "(the drum's, with the rope on it at t = 0)"))  # fmt: skip
+    f = w.torque if isinstance(w.torque, TimeFunction) else TimeFunction.constant(w.torque)
+    if np.ravel(f.value(0.0)).size != 1:
+        raise InputError(f"winches.{w.name}.torque", np.ravel(f.value(0.0)).tolist(),
+                         "a scalar time function [N m]")  # fmt: skip
+    return tf(f)
+
+
+def drum_mass(w: Any) -> float:
+    """``J / r²`` [kg]: the drum's inertia at ``t = 0`` seen along the line."""
+    return float(w.inertia) / float(w.radius) ** 2
+
+
+def attach_drum(system: Any, k: int, w: Any, body: Model, node: int, torque: int) -> int:
+    """Make the core's winch ``k`` (the winch ``w`` at ``node`` of ``body``) a driven drum and
+    add its coordinate ``L`` to the system (``n``, ``y0`` = its length at the start, ``v0`` = 0);
+    returns the coordinate's index."""
+    if any(s.motion is not None for s in body.supports
+           if body.check_node(s.node, "supports.at") == node):  # fmt: skip
+        raise InputError(f"winches.{w.name}.at", w.at, "a fixed support (a driven drum's "
+                         "line leaves it at a fixed place; no support motion)")  # fmt: skip
+    gravity = np.zeros(3)
+    if body.gravity is not None:
+        gravity[: body.dim] = body.gravity
+    rho_a = float(body.kernel.props.rho_a)
+    start = float(np.sum(body.kernel.wj))  # the body's unstretched length
+    index = int(system.core.attach_drum(k, torque, drum_mass(w), float(w.radius), rho_a,
+                                        rho_a * gravity, int(body.node_base(node))))  # fmt: skip
+    if index != system.n or int(system.core.n) != system.n + 1:
+        raise InputError(f"winches.{w.name}", index, f"the coordinate {system.n}")
+    system.n += 1
+    system.y0 = np.r_[system.y0, start]
+    system.v0 = np.r_[system.v0, 0.0]
+    return index
+
+
+def drum_state(index: int, y: Sequence[float], v: Sequence[float] | None = None
+               ) -> tuple[float, float]:  # fmt: skip
+    """``(L, L̇)`` of the drum whose coordinate is ``index`` in ``y`` (and ``v``)."""
+    return float(y[index]), (0.0 if v is None else float(v[index]))
+
+
+def hold_drums(system: Any, hold: bool) -> None:
+    """Hold every driven drum's length (``hold``) or free it: a held length is a held
+    coordinate (``system.fixed``, and the core's for the solvers built after)."""
+    system.held_coordinates = tuple(system.drums.values()) if hold else ()
+    system.core.hold_drums(bool(hold))
+
+
+def refuse_static_drums(
+    system: Any, y: Sequence[float] | None, t: float | None, failed: Exception | None = None
+) -> None:
+    """Statics with a driven drum: a failed solve (``y`` None) or a length ``L <= 0`` is one line
+    naming the first drum's torque (no length at which the line holds it at rest)."""
+    drums = getattr(system, "drums", {})
+    if not drums or (y is not None and all(y[i] > 0 for i in drums.values())):
+        return
+    name = next(iter(drums))
+    w = next(w for w in system.winches if w.name == name)
+    f = w.torque if isinstance(w.torque, TimeFunction) else TimeFunction.constant(w.torque)
+    torque = float(np.ravel(f.value(0.0 if t is None else t))[0])
+    raise InputError(f"winches.{name}.torque", torque, "a torque the line holds at rest at some "
+                     "length L > 0 (statics: r T = torque; none found, the hanging weight "
+                     "cannot balance it): start the run from the reference, or change the "
+                     "torque") from failed  # fmt: skip
