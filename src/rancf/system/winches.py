@@ -207,10 +207,12 @@ def unloaded_at(system: WinchedSystem, t: float) -> np.ndarray:
         q[:, d : 2 * d] *= factor
         y[sl] = body.y_from_q(q.ravel())
         for j in system.joints:  # a point mass pinned to the body goes with its node
+            if j.kind != "pin":
+                continue
             ends = [system.resolve(p) for p in j.between]
             for p, other in (ends, ends[::-1]):
                 mass = system.bodies.get(other.body) if other.body else None
-                if p.body == name and isinstance(mass, PointMass) and j.kind == "pin":
+                if p.body == name and isinstance(mass, PointMass):
                     y[system.body_slice(other.body)][:d] = q[int(p.at), :d]
     return y
 
