@@ -276,7 +276,7 @@ void bind_system(nb::module_& mod) {
           "residual",
           [](const SystemHolder& h, In y, In v, In a, In lam, double t, double load_factor,
              bool amplitude, bool dynamic, Out r, std::optional<In> contact_yf,
-             std::optional<In> contact_vf, std::optional<In> contact_y1) {
+             std::optional<In> contact_vf, std::optional<In> contact_y1, bool distributed_only) {
             const auto n = static_cast<std::size_t>(h.s.n), m = static_cast<std::size_t>(h.s.m);
             for (const auto* x : {&y, &v, &a}) expect_size(*x, n, "state");
             expect_size(lam, m, "lam");
@@ -285,6 +285,7 @@ void bind_system(nb::module_& mod) {
             terms.tf = terms.t1 = t;
             terms.load_factor = load_factor;
             terms.amplitude = amplitude;
+            terms.distributed_only = distributed_only;
             step_contact(contact_yf, contact_vf, contact_y1, n, terms);
             return rancf::assemble_system(h.s, y.data(), dynamic ? v.data() : nullptr,
                                           dynamic ? a.data() : nullptr, lam.data(), y.data(), terms,
@@ -293,10 +294,12 @@ void bind_system(nb::module_& mod) {
           "y"_a, "v"_a, "a"_a, "lam"_a, "t"_a, "load_factor"_a = 1.0, "amplitude"_a = false,
           "dynamic"_a = true, "r"_a.noconvert(), "contact_yf"_a.none() = nb::none(),
           "contact_vf"_a.none() = nb::none(), "contact_y1"_a.none() = nb::none(),
+          "distributed_only"_a = false,
           "The balance residual (n) and the constraints (m) at (y, v, a, lambda, t); dynamic = "
           "False: statics (no inertia); contact_yf, contact_vf, contact_y1: the contact forces "
-          "of a time step (its alpha point and end) instead of those at (y, v).  Returns False "
-          "if not finite.")
+          "of a time step (its alpha point and end) instead of those at (y, v); "
+          "distributed_only: the bodies' own terms only (no point loads, loads at places or "
+          "springs).  Returns False if not finite.")
       .def(
           "place",
           [](const SystemHolder& h, int index, In y, double t) {
@@ -514,21 +517,24 @@ void bind_system(nb::module_& mod) {
       .def(
           "derived_rows",
           [](SystemIntegratorHolder& h, In t, In y, In v, Out a, Out lam, Out res, Out joints,
-             std::size_t n_joints) {
+             std::size_t n_joints, std::optional<Out> res0) {
             const std::size_t k = t.size();
             for (const auto* x : {&y, &v}) expect_size(*x, k * h.n, "states");
             expect_size(a, k * h.n, "a");
             expect_size(lam, k * h.m, "lam");
             expect_size(res, k * (h.n + h.m), "res");
             expect_size(joints, k * 6 * n_joints, "joints");
+            if (res0) expect_size(*res0, k * (h.n + h.m), "res0");
             h.integ.derived_rows(static_cast<int>(k), t.data(), y.data(), v.data(), a.data(),
-                                 lam.data(), res.data(), joints.data());
+                                 lam.data(), res.data(), joints.data(),
+                                 res0 ? res0->data() : nullptr);
           },
           "t"_a, "y"_a, "v"_a, "a"_a.noconvert(), "lam"_a.noconvert(), "res"_a.noconvert(),
-          "joints"_a.noconvert(), "n_joints"_a,
+          "joints"_a.noconvert(), "n_joints"_a, "res0"_a.noconvert().none() = nb::none(),
           "Derived values of k stored states without contact (rows of y, v at times t): the "
           "consistent a and lambda, the balance residual and constraints with them, every "
-          "joint's (force, moment) (6 a joint; n_joints, the system's joints).")
+          "joint's (force, moment) (6 a joint; n_joints, the system's joints); res0: the "
+          "bodies' own terms alone (distributed_only, no multipliers).")
       .def(
           "factor_static",
           [](SystemIntegratorHolder& h, In y, In lam, double lf, bool amplitude, double t,

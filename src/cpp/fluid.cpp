@@ -103,10 +103,14 @@ void fluid_point(const FluidField& f, int dim, const double* r, double t, bool w
   out.wet = !f.has_surface || z < eta;
 }
 
-void assemble_line(const Model& m, const FluidSet& fs, const LineFluid& line, const double* y,
-                   const double* v, const double* acc, const LineTerms& tm, double* r,
-                   const BandView* jac, double* force) {
-  const int dim = m.dim, nde = m.nde(), nq = line.n_qp;
+namespace {
+
+// assemble_line with the dimension a constant (the small loops unrolled).
+template <int dim>
+void line_forces(const Model& m, const FluidSet& fs, const LineFluid& line, const double* y,
+                 const double* v, const double* acc, const LineTerms& tm, double* r,
+                 const BandView* jac, double* force) {
+  const int nde = m.nde(), nq = line.n_qp;
   const bool dynamic = acc != nullptr;
   const FluidField& fl = fs.field;
   const double rho = fl.density, d = line.diameter, area = 0.25 * kPi * d * d;
@@ -121,6 +125,11 @@ void assemble_line(const Model& m, const FluidSet& fs, const LineFluid& line, co
   for (int k = 0; k < 4; ++k) off[k] = block_offset(m, k);
   std::array<double, kMaxElementDofs> e{}, ev{}, ea{}, fe{};
   std::array<double, kMaxElementDofs * kMaxElementDofs> ke{};
+  // the fluid's kinematics do not depend on the point: set once (fluid_point's values there)
+  const bool uniform = fl.profile_z.empty() && !(dynamic && fl.waves.on);
+  FluidPoint fp;
+  if (uniform)
+    for (int i = 0; i < 3; ++i) fp.u[i] = fl.current[i];
   for (int el = 0; el < m.n_el; ++el) {
     gather_element(m, el, y, e.data());
     gather_element(m, el, v, ev.data());
@@ -141,9 +150,16 @@ void assemble_line(const Model& m, const FluidSet& fs, const LineFluid& line, co
           ac[i] += S[k] * ea[sz(off[k] + i)];
         }
       double f[3] = {load[0], load[1], load[2]};
-      double Fr[3][3] = {}, Fa[3][3] = {}, Fv[3][3] = {}, Fc[3][3] = {};  // df/dr, /da, /dv, /dacc
-      FluidPoint fp;
-      if (line.hydro) fluid_point(fl, dim, x, tm.t, dynamic, fp);
+      double Fr[3][3], Fa[3][3], Fv[3][3], Fc[3][3];  // df/dr, /da, /dv, /dacc
+      if (jac != nullptr)
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) Fr[i][j] = Fa[i][j] = Fv[i][j] = Fc[i][j] = 0.0;
+      if (!line.hydro) {
+      } else if (uniform) {  // a uniform current, no waves: u, no du, no gradients
+        fp.wet = !fl.has_surface || x[dim - 1] < fl.surface;
+      } else {
+        fluid_point(fl, dim, x, tm.t, dynamic, fp);
+      }
       if (line.hydro && fp.wet) {
         double fx[3] = {0.0, 0.0, 0.0};  // the fluid's force (no loads)
         double la = 0.0;
@@ -151,8 +167,9 @@ void assemble_line(const Model& m, const FluidSet& fs, const LineFluid& line, co
         la = std::sqrt(la);
         double t[3] = {0.0, 0.0, 0.0}, wv[3] = {0.0, 0.0, 0.0}, wn[3] = {0.0, 0.0, 0.0};
         double wt = 0.0, nn = 0.0;
+        const double inv_la = 1.0 / la;
         for (int i = 0; i < dim; ++i) {
-          t[i] = a[i] / la;
+          t[i] = a[i] * inv_la;
           wv[i] = fp.u[i] - vel[i];
           wt += wv[i] * t[i];
         }
@@ -162,58 +179,65 @@ void assemble_line(const Model& m, const FluidSet& fs, const LineFluid& line, co
         }
         nn = std::sqrt(nn);
         const double awt = std::abs(wt);
-        double G[3][3], H[3][3];  // d f_D / d w and d f_D / d t (w held)
-        for (int i = 0; i < dim; ++i) {
-          fx[i] += lf * (cn * nn * wn[i] + ct * awt * wt * t[i]) - lf * rho * area * fs.gravity[i];
-          for (int j = 0; j < dim; ++j) {
-            const double id = i == j ? 1.0 : 0.0;
-            // d(|wn| wn)/d wn = |wn| I + wn wn^T / |wn|; d wn / d w = I - t t^T,
-            // d wn / d t = -(t w^T + (w.t) I); the axial part 2 |wt| t (d wt) + |wt| wt (d t)
-            double g = ct * 2.0 * awt * t[i] * t[j];
-            double h = ct * (2.0 * awt * t[i] * wv[j] + awt * wt * id);
-            for (int l = 0; l < dim; ++l) {
-              double dn_il = 0.0;
-              if (nn > 0.0) dn_il = nn * (i == l ? 1.0 : 0.0) + wn[i] * wn[l] / nn;
-              g += cn * dn_il * ((l == j ? 1.0 : 0.0) - t[l] * t[j]);
-              h -= cn * dn_il * (t[l] * wv[j] + wt * (l == j ? 1.0 : 0.0));
-            }
-            G[i][j] = lf * g;
-            H[i][j] = lf * h;
-          }
-        }
-        double Ft[3][3];  // d f / d t
         for (int i = 0; i < dim; ++i)
-          for (int j = 0; j < dim; ++j) {
-            Ft[i][j] = H[i][j];
-            Fv[i][j] = -G[i][j];
-            double gr = 0.0;
-            for (int l = 0; l < dim; ++l) gr += G[i][l] * fp.u_r[l][j];
-            Fr[i][j] = gr;
-          }
+          fx[i] += lf * (cn * nn * wn[i] + ct * awt * wt * t[i]) - lf * rho * area * fs.gravity[i];
+        double hh[3] = {0.0, 0.0, 0.0}, th = 0.0;
+        const double ra = rho * area, dc = line.cat - line.can;
         if (dynamic) {  // Froude-Krylov and added mass
-          const double ra = rho * area, dc = line.cat - line.can;
-          double hh[3] = {0.0, 0.0, 0.0}, th = 0.0;
           for (int i = 0; i < dim; ++i) {
             hh[i] = dc * (fp.du[i] - ac[i]);
             th += t[i] * hh[i];
           }
-          for (int i = 0; i < dim; ++i) {
+          for (int i = 0; i < dim; ++i)
             fx[i] += ra * ((1.0 + line.can) * fp.du[i] - line.can * ac[i] + t[i] * th);
+        }
+        if (jac != nullptr) {
+          // d f_D / d w and d f_D / d t (w held): d(|wn| wn)/d wn = |wn| I + wn wn^T / |wn|;
+          // d wn / d w = I - t t^T, d wn / d t = -(t w^T + (w.t) I); the axial part
+          // 2 |wt| t (d wt) + |wt| wt (d t)
+          double dn[3][3] = {}, P[3][3], G[3][3], Ft[3][3];
+          const double inv_nn = nn > 0.0 ? 1.0 / nn : 0.0;
+          if (nn > 0.0)
+            for (int i = 0; i < dim; ++i)
+              for (int l = 0; l < dim; ++l)
+                dn[i][l] = nn * (i == l ? 1.0 : 0.0) + wn[i] * wn[l] * inv_nn;
+          for (int l = 0; l < dim; ++l)
+            for (int j = 0; j < dim; ++j) P[l][j] = (l == j ? 1.0 : 0.0) - t[l] * t[j];
+          for (int i = 0; i < dim; ++i)
             for (int j = 0; j < dim; ++j) {
               const double id = i == j ? 1.0 : 0.0;
-              Ft[i][j] += ra * (th * id + t[i] * hh[j]);
-              Fc[i][j] = -ra * (line.can * id + dc * t[i] * t[j]);
-              const double fu = ra * ((1.0 + line.can) * id + dc * t[i] * t[j]);
-              for (int l = 0; l < dim; ++l) Fr[i][l] += fu * fp.du_r[j][l];
+              double g = ct * 2.0 * awt * t[i] * t[j];
+              double h = ct * (2.0 * awt * t[i] * wv[j] + awt * wt * id);
+              for (int l = 0; l < dim; ++l) {
+                g += cn * dn[i][l] * P[l][j];
+                h -= cn * dn[i][l] * (t[l] * wv[j] + wt * (l == j ? 1.0 : 0.0));
+              }
+              G[i][j] = lf * g;
+              Ft[i][j] = lf * h;
             }
-          }
+          for (int i = 0; i < dim; ++i)
+            for (int j = 0; j < dim; ++j) {
+              Fv[i][j] = -G[i][j];
+              double gr = 0.0;
+              for (int l = 0; l < dim; ++l) gr += G[i][l] * fp.u_r[l][j];
+              Fr[i][j] = gr;
+            }
+          if (dynamic)
+            for (int i = 0; i < dim; ++i)
+              for (int j = 0; j < dim; ++j) {
+                const double id = i == j ? 1.0 : 0.0;
+                Ft[i][j] += ra * (th * id + t[i] * hh[j]);
+                Fc[i][j] = -ra * (line.can * id + dc * t[i] * t[j]);
+                const double fu = ra * ((1.0 + line.can) * id + dc * t[i] * t[j]);
+                for (int l = 0; l < dim; ++l) Fr[i][l] += fu * fp.du_r[j][l];
+              }
+          for (int i = 0; i < dim; ++i)  // d t / d a = (I - t t^T) / |a|
+            for (int j = 0; j < dim; ++j) {
+              double sum = 0.0;
+              for (int l = 0; l < dim; ++l) sum += Ft[i][l] * P[l][j];
+              Fa[i][j] = sum * inv_la;
+            }
         }
-        for (int i = 0; i < dim; ++i)  // d t / d a = (I - t t^T) / |a|
-          for (int j = 0; j < dim; ++j) {
-            double s = 0.0;
-            for (int l = 0; l < dim; ++l) s += Ft[i][l] * ((l == j ? 1.0 : 0.0) - t[l] * t[j]) / la;
-            Fa[i][j] = s;
-          }
         for (int i = 0; i < dim; ++i) {
           f[i] += fx[i];
           if (force != nullptr) force[i] += w * fx[i];
@@ -222,17 +246,32 @@ void assemble_line(const Model& m, const FluidSet& fs, const LineFluid& line, co
       for (int k = 0; k < 4; ++k)
         for (int i = 0; i < dim; ++i) fe[sz(off[k] + i)] -= w * S[k] * f[i];
       if (jac == nullptr) continue;
-      for (int k = 0; k < 4; ++k)
-        for (int l = 0; l < 4; ++l)
+      for (int l = 0; l < 4; ++l) {
+        double kl[3][3];  // the force's derivative along block l, then spread over the blocks k
+        for (int i = 0; i < dim; ++i)
+          for (int j = 0; j < dim; ++j)
+            kl[i][j] = tm.ck * (Fr[i][j] * S[l] + Fa[i][j] * S1[l]) + tm.cv * Fv[i][j] * S[l] +
+                       tm.ca * Fc[i][j] * S[l];
+        for (int k = 0; k < 4; ++k) {
+          const double wk = w * S[k];
           for (int i = 0; i < dim; ++i)
-            for (int j = 0; j < dim; ++j) {
-              const double kij = tm.ck * (Fr[i][j] * S[l] + Fa[i][j] * S1[l]) +
-                                 tm.cv * Fv[i][j] * S[l] + tm.ca * Fc[i][j] * S[l];
-              ke[sz((off[k] + i) * nde + off[l] + j)] -= w * S[k] * kij;
-            }
+            for (int j = 0; j < dim; ++j) ke[sz((off[k] + i) * nde + off[l] + j)] -= wk * kl[i][j];
+        }
+      }
     }
     scatter_element(m, el, fe.data(), jac != nullptr ? ke.data() : nullptr, r, jac, 1.0);
   }
+}
+
+}  // namespace
+
+void assemble_line(const Model& m, const FluidSet& fs, const LineFluid& line, const double* y,
+                   const double* v, const double* acc, const LineTerms& tm, double* r,
+                   const BandView* jac, double* force) {
+  if (m.dim == 2)
+    line_forces<2>(m, fs, line, y, v, acc, tm, r, jac, force);
+  else
+    line_forces<3>(m, fs, line, y, v, acc, tm, r, jac, force);
 }
 
 }  // namespace rancf

@@ -164,6 +164,9 @@ struct AssemblyTerms {
   double load_factor = 1.0;             ///< statics: the factor on the loads
   bool amplitude = false;               ///< statics: harmonic loads at their amplitude
   bool statics = false;  ///< statics (zero velocities even where am is given): winches at rest
+  /// Outputs: the bodies' own terms only (elements, weight, inertia, fluid, contact), without
+  /// the forces at places (point loads, loads at places, springs, joints)
+  bool distributed_only = false;
   /// Outputs: contact forces taken at another state, a time step's alpha point (contact_yf,
   /// contact_vf) and end (contact_y1), instead of at (yf, vf, y1); no contact Jacobian then.
   const double* contact_yf = nullptr;

@@ -229,7 +229,10 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
     if (lu != nullptr) jac = lu->block(static_cast<int>(b));
     // no element tangents where they count zero times (the mass matrix of a = M^-1 F)
     assemble(mod, yf + o, f.data(), lu != nullptr && tm.ck != 0.0 ? &jac : nullptr, tm.ck);
-    external_force(mod, tm.tf, yf + o, g.data(), tm.amplitude);
+    if (tm.distributed_only)  // the weight only, not the point loads
+      std::copy(mod.loads.f_gravity, mod.loads.f_gravity + nb, g.begin());
+    else
+      external_force(mod, tm.tf, yf + o, g.data(), tm.amplitude);
     if (lu != nullptr && mod.loads.n_moment > 0)
       subtract_load_stiffness(mod, tm.tf, yf + o, jac, tm.ck * tm.load_factor, tm.amplitude);
     for (int i = 0; i < nb; ++i) r[o + i] += f[sz(i)] - tm.load_factor * g[sz(i)];
@@ -309,6 +312,7 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
   }
   // ---- loads at places (forces, and torques on rigid bodies)
   for (const PlaceLoad& ld : s.loads) {
+    if (tm.distributed_only) break;
     const PlaceRef& p = s.places[sz(ld.place)];
     const PlaceMap& map = s.maps[sz(ld.place)];
     const double fac =
@@ -338,6 +342,7 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
   }
   // ---- springs between two places
   for (const SpringData& sp : s.springs) {
+    if (tm.distributed_only) break;
     const PlaceRef &pa = s.places[sz(sp.a)], &pb = s.places[sz(sp.b)];
     const PlaceMap &ma = s.maps[sz(sp.a)], &mb = s.maps[sz(sp.b)];
     const int k = ma.n + mb.n;
@@ -469,6 +474,7 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
     add_matrix(*lu, idx, k, K, far);
   };
   for (std::size_t jj = 0; jj < s.joints.size(); ++jj) {
+    if (tm.distributed_only) break;  // no joint forces (nor their rows)
     const JointData& jd = s.joints[jj];
     if (jd.info.kind == JointKind::sliding) {
       sliding_residual(s, jj, yf, lam, y1, tm, r, lu != nullptr ? &joint_sink : nullptr);

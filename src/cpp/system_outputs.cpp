@@ -98,14 +98,15 @@ void joint_reaction(const System& s, int k, const double* y, double t, const dou
 }
 
 void SystemIntegrator::derived_rows(int k, const double* t, const double* y, const double* v,
-                                    double* a, double* lam, double* res, double* joints) {
+                                    double* a, double* lam, double* res, double* joints,
+                                    double* res0) {
   const auto n = sz(s_.n), m = sz(s_.m), nj = s_.joints.size();
   // where the balance is M a + (terms without a), M constant (no constraints, rigid bodies,
   // rotary inertia, contact, fluid or winches), the residual at the consistent a is that of
   // initial_acceleration's assembly (at the known a) plus M (a - a_known): no second assembly
   bool linear = mass_constant_ && s_.fluid == nullptr;
   for (std::size_t b = 0; b < s_.flex.size(); ++b) linear = linear && winch_of(s_, b) == nullptr;
-  std::vector<double> md;
+  std::vector<double> md, no_lam(m + 1, 0.0);  // (m + 1: never empty)
   for (std::size_t i = 0; i < sz(k); ++i) {
     const double *yi = y + i * n, *vi = v + i * n;
     double *ai = a + i * n, *li = lam + i * m, *ri = res + i * (n + m);
@@ -124,6 +125,12 @@ void SystemIntegrator::derived_rows(int k, const double* t, const double* y, con
       AssemblyTerms terms;  // the balance residual at (y, v, a, lambda, t), as System.residual
       terms.tf = terms.t1 = t[i];
       assemble_system(s_, yi, vi, ai, li, yi, terms, ri, nullptr);
+    }
+    if (res0 != nullptr) {  // as System.residual with distributed_only and no multipliers
+      AssemblyTerms own;
+      own.tf = own.t1 = t[i];
+      own.distributed_only = true;
+      assemble_system(s_, yi, vi, ai, no_lam.data(), yi, own, res0 + i * (n + m), nullptr);
     }
     for (std::size_t j = 0; j < nj; ++j) {
       double* out = joints + (i * nj + j) * 6;

@@ -19,6 +19,10 @@ tension (the forces of a cut section, as equilibrium sees them):
 * rod: the material curvatures ``K1`` (twist rate), ``K2``, ``K3`` (bending about ``m1``, ``m2``)
   with ``C = GJ, EI2, EI3``: the twisting moment and the two bending moments.
 
+The rows of a run (:class:`rancf.system.outputs.SystemOutputs`) replace the axial force of
+cables and rods by the one read from the nodal forces (:mod:`rancf.bodies.nodal_forces`): the
+strain oscillates inside elements whose reference is far more curved than their shape.
+
 ``κ0`` and ``K⁰`` are the values at the sample points of the reference configuration, so all
 moments vanish there.  Sample points: ``per_element`` equally spaced values ``ξ = k /
 per_element`` in every element, and the end of the last one; ``s`` is the reference arc length.
@@ -91,6 +95,16 @@ class SectionSampler:
     def n_points(self) -> int:
         """Number of sample points, ``per_element n_el + 1``."""
         return int(self._rows.size)
+
+    def between_nodes(self, nodal: NDArray) -> NDArray[np.float64]:
+        """Nodal values ``(..., n_nodes)`` at the sample points ``(..., n_points)``, linear in
+        ``ξ`` inside every element (the axial force of :mod:`rancf.bodies.nodal_forces`)."""
+        nodal = np.asarray(nodal, dtype=float)
+        xi = self.xi[:-1]
+        inner = (nodal[..., :-1, None] * (1.0 - xi) + nodal[..., 1:, None] * xi).reshape(
+            nodal.shape[:-1] + (-1,)
+        )
+        return np.concatenate([inner, nodal[..., -1:]], axis=-1)
 
     def positions(self, y: NDArray) -> NDArray[np.float64]:
         """Positions ``(n_points, dim)`` of the sample points at model coordinates ``y`` (the

@@ -58,6 +58,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from rancf.bodies.nodal_forces import recovers_axial_force
 from rancf.bodies.reactions import Reaction, reaction_columns, reaction_row, support_reactions
 from rancf.bodies.section_outputs import SectionSampler, section_names
 from rancf.kernels import _core
@@ -66,6 +67,7 @@ from rancf.system.output_block import block_derived, block_sections, takes_block
 from rancf.system.sensors import SensorReader
 from rancf.system.sliding import sliding_slots, sliding_values
 from rancf.system.system import System
+from rancf.system.winches import winch_node
 
 __all__ = ["SystemOutputs"]
 
@@ -107,6 +109,9 @@ class SystemOutputs:
             default = [f"{name}:{_node_name(b, sup.node)}" for sup in b.supports]
             self.labels[name] = list(given) if given is not None else default
         self.samplers = {name: SectionSampler(b, per_element) for name, b in self.flex}
+        winched = {winch_node(s, w)[0] for w in getattr(s, "winches", ())}
+        self._recovered = {name for name, b in self.flex
+                           if recovers_axial_force(b) and name not in winched}  # fmt: skip
         self.section_names = {name: section_names(b) for name, b in self.flex}
         self.support_names = {name: reaction_columns(b, self.labels[name]) for name, b in self.flex}
         self.joint_names: list[list[str]] = []
@@ -200,15 +205,16 @@ class SystemOutputs:
             "s": np.empty((k, self.n_along)),
             "eb": np.empty((k, 3 * len(self.flex) if per_body else 0)),
         }
-        res = np.empty(s.n + s.m)
+        res, res0, no_lam = np.empty(s.n + s.m), np.empty(s.n + s.m), np.zeros(s.m)
         raws: dict[str, list[NDArray]] = {name: [] for name, _ in self.flex}
+        nodal: dict[str, list[NDArray]] = {name: [] for name, _ in self.flex}
         factors: dict[str, list[float]] = {name: [] for name, _ in self.flex}
         # without contact, rods' triads or sliding joints a block's rows go through the core
         ys = s.y_from_q(q) if takes_block(s, static, directors, k) else None
         if ys is not None:
             vs = np.zeros_like(ys) if v is None else s.y_from_q(np.reshape(v, (k, -1)))
-            block_derived(self, t, ys, vs, out)
-            block_sections(self, raws, factors, ys, t)
+            own = block_derived(self, t, ys, vs, out)
+            block_sections(self, raws, factors, ys, t, nodal, own)
         if per_body and energy is not None and self._body_is_system and not static:
             out["eb"], per_body = np.array(energy, dtype=float).reshape(k, 3), False
         with self._triads() as set_row:
@@ -225,19 +231,23 @@ class SystemOutputs:
                     if lam is not None:
                         li[:] = lam[i]
                     s.core.residual(y, vy, a, li, 0.0, min(float(t[i]), 1.0), True, False, res)
+                    s.core.residual(y, vy, a, no_lam, 0.0, min(float(t[i]), 1.0), True, False,
+                                    res0, distributed_only=True)  # fmt: skip
                     step: tuple[NDArray, ...] = ()
                 else:
                     step = self._step(alpha, i, y, vy)
                     self._integ.initial_acceleration(y, vy, float(t[i]), a, li, *step)
                     s.core.residual(y, vy, a, li, float(t[i]), 1.0, False, True, res, *step)
+                    s.core.residual(y, vy, a, no_lam, float(t[i]), 1.0, False, True, res0, *step,
+                                    distributed_only=True)  # fmt: skip
                 out["a"][i], out["lam"][i] = s.q_from_y(a), li
                 vc = None if static else vy  # friction from the velocities
                 out["r"][i] = self._reactions(y, res[: s.n], float(t[i]), li, vc, step)
-                block_sections(self, raws, factors, y[None], t[i : i + 1])  # all at once below
+                block_sections(self, raws, factors, y[None], t[i : i + 1], nodal, res0[None])
                 if per_body:
                     out["eb"][i] = self._body_energies(y, vy, float(t[i]))
         if k:
-            out["s"] = self._along(raws, factors, t)
+            out["s"] = self._along(raws, factors, t, nodal)
         out["c"] = self.sensors.values(t, q, v, out, energy)
         return out
 
@@ -316,15 +326,23 @@ class SystemOutputs:
                                        float(t), out)  # fmt: skip
         return out
 
-    def _along(self, raws: dict[str, list[NDArray]], stretch: dict[str, list[float]],
-               t: NDArray) -> NDArray:  # fmt: skip
+    def _along(
+        self,
+        raws: dict[str, list[NDArray]],
+        stretch: dict[str, list[float]],
+        t: NDArray,
+        nodal: dict[str, list[NDArray]],
+    ) -> NDArray:
         """Section values ``(k, n_along)`` of k rows from their strains and curvatures and
-        their bodies' length factors (:func:`~rancf.system.winches.winch_factor`)."""
+        their bodies' length factors (:func:`~rancf.system.winches.winch_factor`); the axial
+        force from the nodal forces ``nodal`` where given (:mod:`rancf.bodies.nodal_forces`)."""
         parts = []
         for name, _ in self.flex:
             factors = np.asarray(stretch[name], dtype=float)
             raw = np.concatenate(raws[name])  # (k, n_points, w)
             vals = self.samplers[name].from_raw(raw, factors[:, None, None])
+            if nodal[name]:
+                vals[:, :, 1] = self.samplers[name].between_nodes(np.stack(nodal[name]))
             strain = np.max(np.abs(vals[:, :, 0]), axis=1)
             strain[np.isnan(strain)] = -np.inf  # NaN (a diverged state) is never larger
             i = int(np.argmax(strain)) if strain.size else 0  # the first of equal ones

@@ -12,7 +12,8 @@ Kinds (column names ``NAME`` for one number, ``NAME_x``, ``NAME_y`` (, ``NAME_z`
   moment ``NAME_mz`` (planar) or ``NAME_mx, NAME_my, NAME_mz``: the columns of
   ``reactions.csv`` (:mod:`rancf.system.outputs`);
 * ``axial_force`` (or ``tension``) at a node of a flexible body (the section value ``N``,
-  :mod:`rancf.bodies.section_outputs`);
+  :mod:`rancf.bodies.section_outputs`; of cables and rods from the nodal forces,
+  :mod:`rancf.bodies.nodal_forces`);
 * ``touchdown``: where a line leaves a plane obstacle (:mod:`rancf.system.touchdown`);
 * ``fluid_force`` on a flexible body (``body``) or on all of them: buoyancy, drag and the
   waves' Froude–Krylov force (:mod:`rancf.system.fluid`; the added mass left out);
