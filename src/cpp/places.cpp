@@ -68,6 +68,20 @@ void eval_place(const PlaceInfo& info, const double* q, PlaceEval& o) {
   // zero where the cases below leave entries unset: the first 8 columns (o.n <= 7), a fixed
   // count the compiler writes out (a call to memset for each row cost more than the rest)
   static_assert(kMaxLocal >= 8);
+  const bool translates = info.kind == PlaceKind::mass || info.kind == PlaceKind::cable ||
+                          info.kind == PlaceKind::rod || info.kind == PlaceKind::beam;
+  if (!info.frames && (translates || info.kind == PlaceKind::ground)) {
+    for (int i = 0; i < 3; ++i) {  // the position: the node's (its first coordinates)
+      o.x[i] = info.kind == PlaceKind::ground ? info.point[i] : 0.0;
+      for (int j = 0; j < 8; ++j) o.dx[i][j] = 0.0;
+    }
+    const int nx = info.kind == PlaceKind::ground ? 0 : info.kind == PlaceKind::rod ? 3 : d;
+    for (int i = 0; i < nx; ++i) {
+      o.x[i] = q[i];
+      o.dx[i][i] = 1.0;
+    }
+    return;
+  }
   for (int i = 0; i < 3; ++i) {
     o.x[i] = 0.0;
     for (int j = 0; j < 8; ++j) o.dx[i][j] = 0.0;

@@ -39,6 +39,9 @@ struct PlaceInfo {
   const double* tref = nullptr;       ///< rod: the node's reference tangent
   const double* m1ref = nullptr;      ///< rod: the node's reference director
   double angle0 = 0.0;                ///< beam: the node's reference tangent angle
+  /// false: the position and its derivatives alone (nf = 0; rigid bodies still get frames),
+  /// for joints that use no frame (a pin)
+  bool frames = true;
 };
 
 /// The derivatives are set (eval_place, place_local) for the first n local coordinates only:

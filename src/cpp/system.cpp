@@ -125,15 +125,17 @@ void place_at(const System& s, const PlaceRef& p, const PlaceMap& map, double t,
 }
 
 void place_local(const System& s, const PlaceRef& p, const PlaceMap& map, double t, const double* u,
-                 PlaceEval& out) {
+                 PlaceEval& out, bool frames) {
+  PlaceInfo info = place_info(s, p, t);
+  info.frames = frames;
   if (map.identity) {
-    eval_place(place_info(s, p, t), u, out);
+    eval_place(info, u, out);
     return;
   }
   double q[kMaxLocal] = {};
   for (int i = 0; i < map.nq; ++i)
     for (int j = 0; j < map.n; ++j) q[i] += map.T[i][j] * u[j];
-  eval_place(place_info(s, p, t), q, out);
+  eval_place(info, q, out);
   if (map.n == 0) return;
   // derivatives with respect to y's locals: d/dy = d/dq T
   double tmp[kMaxLocal];

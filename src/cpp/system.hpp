@@ -140,8 +140,10 @@ PlaceMap place_map(const System& s, const PlaceRef& p);
 PlaceInfo place_info(const System& s, const PlaceRef& p, double t);
 /// The place at time t with local coordinates u (y-space, map.n values); derivatives with
 /// respect to them.
+/// frames = false: the position and its derivatives alone where the place has them without a
+/// frame (PlaceInfo::frames).
 void place_local(const System& s, const PlaceRef& p, const PlaceMap& map, double t, const double* u,
-                 PlaceEval& out);
+                 PlaceEval& out, bool frames = true);
 /// The same with the local coordinates gathered from the global y.
 void place_at(const System& s, const PlaceRef& p, const PlaceMap& map, double t, const double* y,
               PlaceEval& out);

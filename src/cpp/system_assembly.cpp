@@ -484,10 +484,11 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
     const PlaceMap &ma = s.maps[sz(jd.a)], &mb = s.maps[sz(jd.b)];
     const int rows = joint_rows(jd.info), row0 = s.joint_row[jj], k = ma.n + mb.n;
     std::array<double, 2 * kMaxLocal> u;  // the first k set below (no clearing of all 48)
+    const bool frames = !(jd.info.kind == JointKind::pin && !jd.info.driven);  // a pin: none
     auto eval_at = [&](const double* uu, double t, double* gg, double* jac) {  // jac null: g
       PlaceEval ea, eb;
-      place_local(s, pa, ma, t, uu, ea);
-      place_local(s, pb, mb, t, uu + ma.n, eb);
+      place_local(s, pa, ma, t, uu, ea, frames);
+      place_local(s, pb, mb, t, uu + ma.n, eb, frames);
       const double th = jd.angle >= 0 ? evaluate(s.tfs[sz(jd.angle)], 0, t).f : 0.0;
       eval_joint(jd.info, ea, eb, th, gg, jac);
     };
