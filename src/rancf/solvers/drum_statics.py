@@ -13,9 +13,7 @@ the drum's direction, whose stiffness is only the line's weight per length.
 from __future__ import annotations
 
 import numpy as np
-import scipy.sparse as sp
 from numpy.typing import NDArray
-from scipy.sparse.linalg import spsolve
 
 from rancf.system import System
 
@@ -30,6 +28,9 @@ def free_drums(
     free, at the loads of time ``t`` (None: their amplitudes); converged when the largest
     increment times ``scale`` (per unknown of ``(y, λ)``) is at most ``tol``.  Returns
     ``(y, λ, converged, iterations)``."""
+    import scipy.sparse as sp  # only here: simulate and static of other systems never load it
+    from scipy.sparse.linalg import spsolve
+
     n, m = system.n, system.m
     held = system.fixed
     zero = np.zeros(n)

@@ -1,0 +1,32 @@
+"""``rancf simulate`` loads only what the command uses: a plain run of a shipped example imports
+neither SciPy (sparse solvers of the static and modal analyses) nor the plotting, viewer or
+cluster libraries, whose imports would be most of its start-up."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+from rancf.studies.common import example_path
+
+HEAVY = ("scipy", "matplotlib", "plotly", "dask", "distributed")
+SCRIPT = """
+import json, sys
+from rancf.cli import main
+code = main(["simulate", sys.argv[1], "--out", sys.argv[2], "--quiet"])
+print(json.dumps([code, sorted(m for m in sys.modules if m.split(".")[0] in {heavy})]))
+"""
+
+
+@pytest.mark.parametrize("name", ["planar-pendulum", "slider-crank"])
+def test_simulate_loads_no_heavy_library(tmp_path, name):
+    p = subprocess.run(
+        [sys.executable, "-c", SCRIPT.format(heavy=set(HEAVY)), str(example_path(name)),
+         str(tmp_path / "run")],
+        capture_output=True, text=True, check=True,
+    )  # fmt: skip
+    code, loaded = json.loads(p.stdout.strip().splitlines()[-1])
+    assert code == 0 and loaded == [], loaded
