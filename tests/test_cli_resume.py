@@ -77,7 +77,8 @@ def _kill_midway(ends: dict[str, float], cwd: Path) -> dict[str, float]:
             except (OSError, ValueError):
                 doc = {}
             reached = doc.get("t_reached") or 0.0
-            if reached >= KILL_AFTER * ends[name] and doc.get("status") == "running":
+            midway = KILL_AFTER * ends[name] <= reached < ends[name]  # not at its very end
+            if midway and doc.get("status") == "running":
                 p.send_signal(signal.SIGKILL)
                 p.communicate(timeout=30)
                 del procs[name]
