@@ -1,79 +1,37 @@
 """A winch's line through a sliding guide: the guide on the straight hanging line takes no
-force, so the drum lifts the load exactly as without it (the winch's start state moves only
+force, so a driven drum lifts the load exactly as without it (the winch's start state moves only
 what is pinned to its body's nodes; the guide is not)."""
 
 from __future__ import annotations
 
+import tomllib
+
 import numpy as np
 
 from rancf.cli import main
+from rancf.scenario import Scenario
+from tests.scenario.test_winch_scenario import HOIST
 
-DRUM = """
-[[bodies]]
-name = "wire"
-[bodies.geometry]
-kind = "line"
-start = [0.0, 0.0]
-end = [0.0, -5.0]
-[bodies.mesh]
-elements = 6
-element = "ancf"
-[bodies.section]
-radius = 0.005
-[bodies.material]
-density = 7850.0
-youngs_modulus = 2.0e11
+#: The hoist of the winch scenario tests, its winch a driven drum lifting the load.
+DRUM = {"name": "hoist", "at": "wire:start", "radius": 0.2, "inertia": 0.5,
+        "torque": {"table": [[0.0, 25.668], [0.05, 33.368], [10.0, 33.368]]}}  # fmt: skip
+GUIDE = {"name": "guide", "kind": "sliding", "between": ["wire", "ground"],
+         "position": [0.0, -1.0]}  # fmt: skip
 
-[[bodies]]
-name = "load"
-kind = "mass"
-mass = 10.0
-position = [0.0, -5.0]
 
-[[joints]]
-name = "hook"
-kind = "pin"
-between = ["wire:end", "load"]
-GUIDE
-[[supports]]
-at = "wire:start"
-kind = "pin"
-
-[[winches]]
-name = "hoist"
-at = "wire:start"
-radius = 0.2
-inertia = 0.5
-torque = { table = [[0.0, 25.668], [0.05, 33.368], [10.0, 33.368]] }
-
-[loads]
-gravity = [0.0, -9.81]
-
-[solver]
-t_end = 0.4
-step = 0.01
-output_step = 0.1
-initial_state = "static"
-
-[[sensors]]
-name = "drum"
-kind = "winch"
-winch = "hoist"
-"""
-
-GUIDE = """
-[[joints]]
-name = "guide"
-kind = "sliding"
-between = ["wire", "ground"]
-position = [0.0, -1.0]
-"""
+def _scenario(guide: bool) -> Scenario:
+    raw = tomllib.loads(HOIST)
+    raw["winches"] = [DRUM]
+    raw["joints"] += [GUIDE] if guide else []
+    raw["solver"] = {"t_end": 0.4, "step": 0.01, "output_step": 0.1, "initial_state": "static"}
+    raw["sensors"] = [{"name": "drum", "kind": "winch", "winch": "hoist"}]
+    return Scenario.from_dict(raw, "hoist.toml")
 
 
 def test_a_guide_on_the_straight_line_changes_nothing(tmp_path):
     runs = {}
-    for name, guide in (("plain", ""), ("guide", GUIDE)):
-        (tmp_path / f"{name}.toml").write_text(DRUM.replace("GUIDE", guide))
+    for name in ("plain", "guide"):
+        _scenario(name == "guide").save(tmp_path / f"{name}.toml")
         out = tmp_path / name
         assert main(["simulate", str(tmp_path / f"{name}.toml"), "--out", str(out), "--quiet"]) == 0
         runs[name] = np.genfromtxt(out / "sensors.csv", delimiter=",", names=True)
