@@ -154,13 +154,9 @@ class SectionSampler:
             st = section_stiffness(m)
             c = np.array([st.gj, st.ei2, st.ei3]) if m.element == "rod" else np.array([st.ei])
             moments = c * (kappa - self._k0 / (_scale(m) * factor)) / stretch[..., None]
-            conj = stretch - 1.0 if _engineering(m) else eps * stretch  # ∂(e²/2)/∂λ
+            conj = stretch - 1.0 if st.engineering else eps * stretch  # ∂(e²/2)/∂λ
             force = m.props.ea * conj - np.sum(moments * kappa, axis=-1)
         return np.concatenate([eps[..., None], force[..., None], kappa, moments], axis=-1)
-
-
-def _engineering(model: Model) -> bool:
-    return model.material.axial_strain == "engineering"
 
 
 def _scale(model: Model) -> float:
