@@ -33,7 +33,7 @@ def _states(system, k: int, seed: int) -> tuple[np.ndarray, np.ndarray, np.ndarr
 def _row_by_row(out: SystemOutputs, t: float, y: np.ndarray, v: np.ndarray):
     s = out.system
     a, lam, res = np.zeros(s.n), np.zeros(s.m), np.empty(s.n + s.m)
-    out._integ.initial_acceleration(y, v, t, a, lam)
+    out.integrator.initial_acceleration(y, v, t, a, lam)
     s.core.residual(y, v, a, lam, t, 1.0, False, True, res)
     return s.q_from_y(a), lam, out._reactions(y, res[: s.n], t, lam, v)
 

@@ -41,9 +41,9 @@ def block_derived(outputs: Any, t: NDArray, ys: NDArray, vs: NDArray,
     k, nj = ys.shape[0], len(s.joints)
     a, lam = np.empty((k, s.n)), np.empty((k, s.m))
     res, res0, jr = np.empty((k, s.n + s.m)), np.empty((k, s.n + s.m)), np.empty((k, nj, 6))
-    outputs._integ.derived_rows(np.ascontiguousarray(t), np.ascontiguousarray(ys),
+    outputs.integrator.derived_rows(np.ascontiguousarray(t), np.ascontiguousarray(ys),
                                 np.ascontiguousarray(vs), a, lam, res, jr, nj,
-                                res0 if outputs._recovered else None)  # fmt: skip
+                                res0 if outputs.recovered else None)  # fmt: skip
     out["a"], out["lam"] = s.q_from_y(a), lam
     parts = []
     for name, b in outputs.flex:
@@ -69,7 +69,7 @@ def block_sections(outputs: Any, raws: dict[str, list[NDArray]],
     s = outputs.system
     for name, b in outputs.flex:
         sl, samp = s.body_slice(name), outputs.samplers[name]
-        if name in outputs._recovered:  # the axial force from the nodal forces
+        if name in outputs.recovered:  # the axial force from the nodal forces
             pairs = zip(ys, res0, strict=True)
             nodal[name] += [nodal_axial_forces(b, y[sl], r[sl]) for y, r in pairs]
         fs = [winch_factor(s, name, float(x), y) for x, y in zip(t, ys, strict=True)]

@@ -110,8 +110,9 @@ class SystemOutputs:
             self.labels[name] = list(given) if given is not None else default
         self.samplers = {name: SectionSampler(b, per_element) for name, b in self.flex}
         winched = {winch_node(s, w)[0] for w in getattr(s, "winches", ())}
-        self._recovered = {name for name, b in self.flex
-                           if recovers_axial_force(b) and name not in winched}  # fmt: skip
+        #: The flexible bodies whose axial force is read from their nodal forces.
+        self.recovered = {name for name, b in self.flex
+                          if recovers_axial_force(b) and name not in winched}  # fmt: skip
         self.section_names = {name: section_names(b) for name, b in self.flex}
         self.support_names = {name: reaction_columns(b, self.labels[name]) for name, b in self.flex}
         self.joint_names: list[list[str]] = []
@@ -140,7 +141,8 @@ class SystemOutputs:
         self.sensor_names = self.sensors.names
         scheme = _core.Scheme(alpha_m=0.0, alpha_f=0.0, gamma=0.5, beta=0.25, damping=s.damping,
                               tol=1e-10, max_iter=1, modified=False)  # fmt: skip
-        self._integ = _core.SystemIntegrator(s.core, scheme)  # for its consistent acceleration
+        #: The core's integrator of the system, for the rows' consistent accelerations.
+        self.integrator = _core.SystemIntegrator(s.core, scheme)
         #: The largest |axial strain| of the rows seen so far, and the ``t`` of its row.
         self.largest_strain: tuple[float, float] = (0.0, 0.0)
         #: One flexible body, nothing else with energy: its energies are the system's (stored).
@@ -236,7 +238,7 @@ class SystemOutputs:
                     step: tuple[NDArray, ...] = ()
                 else:
                     step = self._step(alpha, i, y, vy)
-                    self._integ.initial_acceleration(y, vy, float(t[i]), a, li, *step)
+                    self.integrator.initial_acceleration(y, vy, float(t[i]), a, li, *step)
                     s.core.residual(y, vy, a, li, float(t[i]), 1.0, False, True, res, *step)
                     s.core.residual(y, vy, a, no_lam, float(t[i]), 1.0, False, True, res0, *step,
                                     distributed_only=True)  # fmt: skip
