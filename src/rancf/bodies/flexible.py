@@ -223,7 +223,7 @@ class Model(Coordinates):
         self.y_installed = self.y0.copy()
         for i, val in layout.installed.items():
             self.y_installed[i] = val
-        self.mass_el = self._to_y_elements(self.kernel.mass_matrices())
+        self.mass_el = self.to_y_elements(self.kernel.mass_matrices())
         self.mass_band = (
             self.assemble_band(self.mass_el)
             if self.reduction is None
@@ -315,7 +315,8 @@ class Model(Coordinates):
                 ab[self.ku + i - j, j : j + dpn * n_el : dpn] += ke[:, i, j]
         return ab
 
-    def _to_y_elements(self, ke: NDArray) -> NDArray:
+    def to_y_elements(self, ke: NDArray) -> NDArray:
+        """Element matrices ``(n_el, nde, nde)`` in model coordinates (rotated nodes: Tᵀ K T)."""
         if self._aff.size:
             ke = np.array(ke)
             t = self._te

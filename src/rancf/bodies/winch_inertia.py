@@ -89,5 +89,5 @@ def convective_matrices(model: Model, at: Literal["start", "end"]) -> Convective
     out = []
     for m4 in (c1, c2, d2):
         el = np.einsum("ekl,ij->ekilj", m4, eye).reshape(model.n_el, model.nde, model.nde)
-        out.append(np.ascontiguousarray(model.assemble_band(model._to_y_elements(el))))
+        out.append(np.ascontiguousarray(model.assemble_band(model.to_y_elements(el))))
     return out[0], out[1], out[2]

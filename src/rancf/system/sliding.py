@@ -74,8 +74,8 @@ def sliding_pair(system: Any, j: Joint, rows: Any) -> tuple[int, int]:
     elif j.position is not None:
         raise InputError(f"{key}.position", list(j.position), "only for a sliding joint to the "
                          "ground (a place on a body is where it is)")  # fmt: skip
-    a = system._index(Place(name, 0), rows)
-    return a, system._index(b, rows, point)
+    a = system.place_index(Place(name, 0), rows)
+    return a, system.place_index(b, rows, point)
 
 
 def sliding_record(system: Any, j: Joint, a: int, b: int) -> JointRecord:

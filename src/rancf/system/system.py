@@ -182,7 +182,7 @@ class System(BodyStack):
             p = self.resolve(spec)
             if p.body is None:
                 raise InputError("place", "ground", "a place on a body")
-            self._index(p, rows)
+            self.place_index(p, rows)
         pre = [self._place(j, rows) for j in joints]  # places first: their reference frames
         self.core = self._build(rows.records(**parts))
         parts["joints"] = [self._joint(j, ab, rows) for j, ab in zip(joints, pre, strict=True)]
@@ -239,7 +239,7 @@ class System(BodyStack):
                 )  # fmt: skip
 
     # ---------------------------------------------------------------- places
-    def _index(self, p: Place, rows: _Rows, ground_point: NDArray | None = None,
+    def place_index(self, p: Place, rows: _Rows, ground_point: NDArray | None = None,
                motion: int = -1) -> int:  # fmt: skip
         """The index of the record of the place ``p`` (resolved); the ground: at
         ``ground_point``, moved by the time function ``motion``."""
@@ -272,7 +272,7 @@ class System(BodyStack):
         if a.body is None:  # the body's place first
             a, b = b, a
         gp = self.reference_position(a)
-        return self._index(a, rows), self._index(b, rows, gp, motion)
+        return self.place_index(a, rows), self.place_index(b, rows, gp, motion)
 
     # ---------------------------------------------------------------- parts
     def _motions(self, rows: _Rows) -> list[PrescribedRecord]:
@@ -345,7 +345,7 @@ class System(BodyStack):
         tt = np.r_[np.zeros(2), t] if t.size == 1 else np.r_[t, np.zeros(3 - t.size)]
         if ld.time is not None and ld.time.size != 1:
             raise InputError("loads.point.time", ld.time.size, "a scalar time function (a factor)")
-        place = self._index(p, rows)
+        place = self.place_index(p, rows)
         force = floats(np.r_[f, np.zeros(3 - f.size)])
         return LoadRecord(place, force, floats(tt), rows.tf(ld.time))  # type: ignore[arg-type]
 
