@@ -517,9 +517,10 @@ void bind_system(nb::module_& mod) {
       .def(
           "derived_rows",
           [](SystemIntegratorHolder& h, In t, In y, In v, Out a, Out lam, Out res, Out joints,
-             std::size_t n_joints, std::optional<Out> res0) {
+             std::size_t n_joints, std::optional<Out> res0, std::optional<In> alpha) {
             const std::size_t k = t.size();
             for (const auto* x : {&y, &v}) expect_size(*x, k * h.n, "states");
+            if (alpha) expect_size(*alpha, k * 2 * h.n, "alpha");
             expect_size(a, k * h.n, "a");
             expect_size(lam, k * h.m, "lam");
             expect_size(res, k * (h.n + h.m), "res");
@@ -527,14 +528,17 @@ void bind_system(nb::module_& mod) {
             if (res0) expect_size(*res0, k * (h.n + h.m), "res0");
             h.integ.derived_rows(static_cast<int>(k), t.data(), y.data(), v.data(), a.data(),
                                  lam.data(), res.data(), joints.data(),
-                                 res0 ? res0->data() : nullptr);
+                                 res0 ? res0->data() : nullptr, alpha ? alpha->data() : nullptr);
           },
           "t"_a, "y"_a, "v"_a, "a"_a.noconvert(), "lam"_a.noconvert(), "res"_a.noconvert(),
           "joints"_a.noconvert(), "n_joints"_a, "res0"_a.noconvert().none() = nb::none(),
-          "Derived values of k stored states without contact (rows of y, v at times t): the "
-          "consistent a and lambda, the balance residual and constraints with them, every "
-          "joint's (force, moment) (6 a joint; n_joints, the system's joints); res0: the "
-          "bodies' own terms alone (distributed_only, no multipliers).")
+          "alpha"_a.none() = nb::none(),
+          "Derived values of k stored states (rows of y, v at times t): the consistent a and "
+          "lambda, the balance residual and constraints with them, every joint's (force, "
+          "moment) (6 a joint; n_joints, the system's joints); res0: the bodies' own terms "
+          "alone (distributed_only, no multipliers); alpha (k rows of 2 n, systems with "
+          "contact): each row's step's alpha point (yf, vf), whose contact forces the row takes "
+          "(without it the row's own state's).")
       .def(
           "factor_static",
           [](SystemIntegratorHolder& h, In y, In lam, double lf, bool amplitude, double t,

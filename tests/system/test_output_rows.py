@@ -84,3 +84,29 @@ def test_block_equals_the_row_loop_in_every_output(name, monkeypatch):
     for key in ("a", "lam", "r", "s", "c"):
         scale = max(1.0, np.abs(loop[key]).max(initial=0.0))
         assert np.abs(block[key] - loop[key]).max(initial=0.0) <= 1e-9 * scale, key
+
+
+@pytest.mark.parametrize("name", ["mooring-line", "belt-drive"])
+@pytest.mark.parametrize("with_alpha", [False, True])
+def test_block_with_contact_equals_the_row_loop(name, with_alpha, monkeypatch):
+    """Rows with contact (a chain in water on the seabed; a belt on its pulleys, friction):
+    the block takes each row's contact forces from its step's generalized-α point (``alpha``)
+    or, without it, from the row itself, as the row loop does; every output equals the loop's
+    to 1e-12 of its size, and the obstacles' columns carry a force (the contact is closed)."""
+    system = _system(name)
+    t, y, v = _states(system, 3, 13)
+    q, qv = system.q_from_y(y), system.q_from_y(v)
+    alpha = None
+    if with_alpha:  # a point between the row and a nearby state, as a step's alpha point is
+        rng = np.random.default_rng(3)
+        alpha = np.concatenate([y + 1e-4 * rng.standard_normal(y.shape), 0.9 * v], axis=1)
+        alpha[:, : system.n][:, system.fixed] = y[:, system.fixed]
+    block_out = SystemOutputs(system)
+    block = block_out.rows(t, q, qv, alpha=alpha)
+    contact = block["r"][:, block_out.contact_start :]
+    assert contact.size and np.abs(contact).max() > 0.0
+    monkeypatch.setattr("rancf.system.outputs.takes_block", lambda *args: False)
+    loop = SystemOutputs(system).rows(t, q, qv, alpha=alpha)
+    for key in ("a", "lam", "r", "s", "c"):
+        scale = max(1.0, np.abs(loop[key]).max(initial=0.0))
+        assert np.abs(block[key] - loop[key]).max(initial=0.0) <= 1e-12 * scale, key

@@ -46,28 +46,33 @@ def recovers_axial_force(model: Model) -> bool:
 
 
 def nodal_axial_forces(model: Model, y: NDArray, residual: NDArray) -> NDArray[np.float64]:
-    """The axial force ``(n_nodes,)`` at the nodes (module docstring).
+    """The axial force ``(n_nodes,)`` at the nodes (module docstring); of a stack of ``k``
+    states ``(k, n_nodes)``.
 
     Parameters
     ----------
     model : Model
         A cable or rod body (:func:`recovers_axial_force`).
-    y : ndarray, shape (n,)
+    y : ndarray, shape (n,) or (k, n)
         Model coordinates.
-    residual : ndarray, shape (n,)
+    residual : ndarray, shape (n,) or (k, n)
         The body's rows of its own terms of the balance residual, ``M a + c M v + f_int -
         f_gravity`` with the fluid and contact loads (``distributed_only`` of the compiled
         residual: no multipliers' forces, point loads or springs): on an end node's position,
         the force everything attached there exerts on the line.
     """
-    dim, dpn = model.dim, model.dpn
-    q = model.q_from_y(np.asarray(y, dtype=float)).reshape(model.n_nodes, dpn)
-    f = model.forces_at_nodes(model.internal_force(y)).reshape(model.n_nodes, dpn)[:, :dim]
-    ends = model.forces_at_nodes(residual).reshape(model.n_nodes, dpn)[[0, -1], :dim]
-    tangent = q[:, dim : 2 * dim] / np.linalg.norm(q[:, dim : 2 * dim], axis=1, keepdims=True)
-    left = np.cumsum(f[::-1], axis=0)[::-1]  # F_L[j] = sum over k >= j of f[k]
+    y = np.asarray(y, dtype=float)
+    ys, res = np.atleast_2d(y), np.atleast_2d(np.asarray(residual, dtype=float))
+    k, dim, dpn, nn = ys.shape[0], model.dim, model.dpn, model.n_nodes
+    q = model.q_from_y(ys).reshape(k, nn, dpn)
+    f_int = np.stack([model.internal_force(row) for row in ys])
+    f = model.forces_at_nodes(f_int).reshape(k, nn, dpn)[:, :, :dim]
+    ends = model.forces_at_nodes(res).reshape(k, nn, dpn)[:, [0, -1], :dim]
+    tangent = q[:, :, dim : 2 * dim]
+    tangent = tangent / np.linalg.norm(tangent, axis=2, keepdims=True)
+    left = np.cumsum(f[:, ::-1], axis=1)[:, ::-1]  # F_L[j] = sum over k >= j of f[k]
     right = f - left
-    out = 0.5 * np.einsum("ij,ij->i", left - right, tangent)
-    out[0] = -ends[0] @ tangent[0]
-    out[-1] = ends[1] @ tangent[-1]
-    return out
+    out = 0.5 * np.einsum("kij,kij->ki", left - right, tangent)
+    out[:, 0] = -np.einsum("kj,kj->k", ends[:, 0], tangent[:, 0])
+    out[:, -1] = np.einsum("kj,kj->k", ends[:, 1], tangent[:, -1])
+    return out[0] if y.ndim == 1 else out

@@ -8,8 +8,10 @@
 * :func:`block_sections`: the section strains and curvatures of every row, one call of the
   core a body where the body's length is the same at every row (no winch).
 
-Only for rows without contact, rods' directors or sliding joints (their multipliers' slots and
-extra columns are the row loop's).
+Only for dynamic rows without rods' directors or sliding joints (their multipliers' slots and
+extra columns are the row loop's).  Rows with contact take the forces of the step that ended at
+them (``alpha``, as the row loop does), and their obstacles' columns come from
+:func:`rancf.system.contact.contact_outputs` row by row.
 """
 
 from __future__ import annotations
@@ -21,6 +23,7 @@ from numpy.typing import NDArray
 
 from rancf.bodies.nodal_forces import nodal_axial_forces
 from rancf.bodies.reactions import reaction_row, support_reactions
+from rancf.system.contact import contact_outputs
 from rancf.system.winches import winch_factor
 
 __all__ = ["block_derived", "block_sections", "takes_block"]
@@ -29,21 +32,24 @@ __all__ = ["block_derived", "block_sections", "takes_block"]
 def takes_block(system: Any, static: bool, directors: NDArray | None, k: int) -> bool:
     """Whether ``k`` rows of ``system`` go through the core as one block."""
     sliding = any(j.kind == "sliding" for j in system.joints)
-    return not (static or sliding or system.has_contact) and directors is None and k > 0
+    return not (static or sliding) and directors is None and k > 0
 
 
 def block_derived(outputs: Any, t: NDArray, ys: NDArray, vs: NDArray,
-                  out: dict[str, NDArray]) -> NDArray:  # fmt: skip
+                  out: dict[str, NDArray], alpha: NDArray | None = None) -> NDArray:  # fmt: skip
     """Accelerations ``out["a"]``, multipliers ``out["lam"]`` and reactions ``out["r"]`` of the
     states ``ys``, ``vs`` ``(k, n)`` at times ``t``; returns the bodies' own terms of the
-    balance ``(k, n + m)`` (``distributed_only``, for the nodal axial forces)."""
+    balance ``(k, n + m)`` (``distributed_only``, for the nodal axial forces).  ``alpha``
+    ``(k, 2 n)``: systems with contact, each row's step's generalized-α point ``(y_f, v_f)``,
+    whose contact forces the row takes (without it the row's own state's)."""
     s = outputs.system
     k, nj = ys.shape[0], len(s.joints)
     a, lam = np.empty((k, s.n)), np.empty((k, s.m))
     res, res0, jr = np.empty((k, s.n + s.m)), np.empty((k, s.n + s.m)), np.empty((k, nj, 6))
+    step = np.ascontiguousarray(alpha, dtype=float) if s.has_contact and alpha is not None else None
     outputs.integrator.derived_rows(np.ascontiguousarray(t), np.ascontiguousarray(ys),
                                 np.ascontiguousarray(vs), a, lam, res, jr, nj,
-                                res0 if outputs.recovered else None)  # fmt: skip
+                                res0 if outputs.recovered else None, step)  # fmt: skip
     out["a"], out["lam"] = s.q_from_y(a), lam
     parts = []
     for name, b in outputs.flex:
@@ -55,8 +61,28 @@ def block_derived(outputs: Any, t: NDArray, ys: NDArray, vs: NDArray,
         parts.append(jr[:, j, : s.dim])
         if len(outputs.joint_names[j]) > s.dim:  # the joint reports a moment
             parts.append(jr[:, j, 5:] if s.dim == 2 else jr[:, j, 3:])
+    if s.has_contact:
+        parts.append(_contact_block(s, ys, vs, step))
     out["r"] = np.concatenate(parts, axis=1) if parts else np.empty((k, 0))
     return res0
+
+
+def _contact_block(s: Any, ys: NDArray, vs: NDArray, alpha: NDArray | None) -> NDArray:
+    """The obstacles' and body pairs' columns of the rows (as ``SystemOutputs._reactions``):
+    per obstacle the normal and friction force, moment, contact length and penetration, per
+    pair of bodies the contact force and penetration."""
+    n, rows = s.n, []
+    for i in range(ys.shape[0]):
+        yc, vc = (alpha[i, :n], alpha[i, n:]) if alpha is not None else (ys[i], vs[i])
+        parts = []
+        for c in contact_outputs(s, yc, vc, ys[i]).values():
+            parts += [c.normal, c.friction, np.atleast_1d(c.moment), [c.length, c.penetration]]
+        if s.body_contacts:
+            bo = np.empty(3 * len(s.body_contacts))
+            s.contact.body_outputs(np.ascontiguousarray(yc), bo)
+            parts += [[bo[3 * j + 2], max(0.0, -bo[3 * j])] for j in range(len(s.body_contacts))]
+        rows.append(np.concatenate(parts) if parts else np.empty(0))
+    return np.array(rows).reshape(ys.shape[0], -1)
 
 
 def block_sections(outputs: Any, raws: dict[str, list[NDArray]],
@@ -70,8 +96,7 @@ def block_sections(outputs: Any, raws: dict[str, list[NDArray]],
     for name, b in outputs.flex:
         sl, samp = s.body_slice(name), outputs.samplers[name]
         if name in outputs.recovered:  # the axial force from the nodal forces
-            pairs = zip(ys, res0, strict=True)
-            nodal[name] += [nodal_axial_forces(b, y[sl], r[sl]) for y, r in pairs]
+            nodal[name] += list(nodal_axial_forces(b, ys[:, sl], res0[:, sl]))
         fs = [winch_factor(s, name, float(x), y) for x, y in zip(t, ys, strict=True)]
         factors[name] += fs
         if all(f == fs[0] for f in fs):

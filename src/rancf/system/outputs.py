@@ -211,11 +211,11 @@ class SystemOutputs:
         raws: dict[str, list[NDArray]] = {name: [] for name, _ in self.flex}
         nodal: dict[str, list[NDArray]] = {name: [] for name, _ in self.flex}
         factors: dict[str, list[float]] = {name: [] for name, _ in self.flex}
-        # without contact, rods' triads or sliding joints a block's rows go through the core
+        # without rods' triads or sliding joints a block's dynamic rows go through the core
         ys = s.y_from_q(q) if takes_block(s, static, directors, k) else None
         if ys is not None:
             vs = np.zeros_like(ys) if v is None else s.y_from_q(np.reshape(v, (k, -1)))
-            own = block_derived(self, t, ys, vs, out)
+            own = block_derived(self, t, ys, vs, out, alpha)
             block_sections(self, raws, factors, ys, t, nodal, own)
         if per_body and energy is not None and self._body_is_system and not static:
             out["eb"], per_body = np.array(energy, dtype=float).reshape(k, 3), False
