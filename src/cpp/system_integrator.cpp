@@ -7,6 +7,7 @@
 
 #include "assembly.hpp"
 #include "contact.hpp"
+#include "fluid.hpp"
 #include "inertia.hpp"
 #include "sliding.hpp"
 #include "winch.hpp"
@@ -35,6 +36,9 @@ SystemIntegrator::SystemIntegrator(const System& s, const Scheme& scheme)
   if (s.contact != nullptr) sc_.chord = false;
   for (const Model* mod : s.flex) mass_constant_ = mass_constant_ && !has_rotary_inertia(*mod);
   if (s.winches != nullptr && s.winches->drums > 0) mass_constant_ = false;  // J(L), C1 y
+  if (s.fluid != nullptr)  // added mass along the line's tangent, and only where it is wet
+    for (const LineFluid& ln : s.fluid->lines)
+      if (ln.hydro && (ln.can != 0.0 || ln.cat != 0.0)) mass_constant_ = false;
 }
 
 void SystemIntegrator::solve_negative() {

@@ -110,3 +110,29 @@ def test_block_with_contact_equals_the_row_loop(name, with_alpha, monkeypatch):
     for key in ("a", "lam", "r", "s", "c"):
         scale = max(1.0, np.abs(loop[key]).max(initial=0.0))
         assert np.abs(block[key] - loop[key]).max(initial=0.0) <= 1e-12 * scale, key
+
+
+def test_rows_in_water_take_each_rows_added_mass():
+    """A line in water off the seabed (the mooring line without its obstacle): the added mass
+    turns with the line's tangent, so each row's consistent accelerations need that row's
+    matrix; a row among others gives what it gives alone (1e-12 of its size; the first row's
+    factors reused were 1 % off)."""
+    import tomllib
+
+    from rancf.scenario import parse_scenario
+
+    with resources.as_file(resources.files("rancf.examples") / "mooring-line.toml") as p:
+        raw = tomllib.loads(p.read_text())
+    raw.pop("obstacles")
+    raw["sensors"] = [x for x in raw.get("sensors", []) if "obstacle" not in x]
+    system = parse_scenario(raw).build_system()
+    assert not system.has_contact
+    rng = np.random.default_rng(1)
+    y = system.y0 + rng.standard_normal((2, system.n)) * np.array([[1e-2], [0.5]])
+    y[:, system.fixed] = system.y0[system.fixed]
+    q, qv, t = system.q_from_y(y), np.zeros_like(y), np.zeros(2)
+    both = SystemOutputs(system).rows(t, q, qv)
+    alone = SystemOutputs(system).rows(t[1:], q[1:], qv[1:])
+    for key in ("a", "r"):
+        scale = np.abs(alone[key][0]).max()
+        assert np.abs(both[key][1] - alone[key][0]).max() <= 1e-12 * scale, key
