@@ -116,6 +116,8 @@ void line_forces(const Model& m, const FluidSet& fs, const LineFluid& line, cons
   const double rho = fl.density, d = line.diameter, area = 0.25 * kPi * d * d;
   const double cn = 0.5 * rho * d * line.cdn, ct = 0.5 * rho * kPi * d * line.cdt;
   const double lf = tm.load_factor;
+  // the derivatives along positions and rates count (the mass matrix alone needs neither)
+  const bool moves = tm.ck != 0.0 || tm.cv != 0.0;
   double load[3] = {0.0, 0.0, 0.0};  // the distributed loads at time t
   for (const DistributedLoad& ld : line.loads) {
     const double fac = ld.factor >= 0 ? evaluate((*tm.tfs)[sz(ld.factor)], 0, tm.t).f : 1.0;
@@ -191,7 +193,7 @@ void line_forces(const Model& m, const FluidSet& fs, const LineFluid& line, cons
           for (int i = 0; i < dim; ++i)
             fx[i] += ra * ((1.0 + line.can) * fp.du[i] - line.can * ac[i] + t[i] * th);
         }
-        if (jac != nullptr) {
+        if (jac != nullptr && moves) {
           // d f_D / d w and d f_D / d t (w held): d(|wn| wn)/d wn = |wn| I + wn wn^T / |wn|;
           // d wn / d w = I - t t^T, d wn / d t = -(t w^T + (w.t) I); the axial part
           // 2 |wt| t (d wt) + |wt| wt (d t)
@@ -227,7 +229,6 @@ void line_forces(const Model& m, const FluidSet& fs, const LineFluid& line, cons
               for (int j = 0; j < dim; ++j) {
                 const double id = i == j ? 1.0 : 0.0;
                 Ft[i][j] += ra * (th * id + t[i] * hh[j]);
-                Fc[i][j] = -ra * (line.can * id + dc * t[i] * t[j]);
                 const double fu = ra * ((1.0 + line.can) * id + dc * t[i] * t[j]);
                 for (int l = 0; l < dim; ++l) Fr[i][l] += fu * fp.du_r[j][l];
               }
@@ -238,6 +239,10 @@ void line_forces(const Model& m, const FluidSet& fs, const LineFluid& line, cons
               Fa[i][j] = sum * inv_la;
             }
         }
+        if (jac != nullptr && dynamic)  // the added mass
+          for (int i = 0; i < dim; ++i)
+            for (int j = 0; j < dim; ++j)
+              Fc[i][j] = -ra * (line.can * (i == j ? 1.0 : 0.0) + dc * t[i] * t[j]);
         for (int i = 0; i < dim; ++i) {
           f[i] += fx[i];
           if (force != nullptr) force[i] += w * fx[i];
