@@ -5,7 +5,9 @@ Atwood machine through two guides
 The shipped ``atwood-guides.toml``: a rope with 2 kg and 3 kg on its ends runs through two
 frictionless guides (``kind = "sliding"`` joints) at the top corners of a 0.2 m wide frame, and
 the heavier side drops. One rope, no pulleys: each guide holds the rope's point at its place
-while the material runs through it. The drop ``x`` of the 3 kg mass follows the Atwood machine
+while the material runs through it. The run starts from the static equilibrium with the 3 kg
+mass held by 9.81 N, let go over the first millisecond (the rope, straight when unloaded, is
+then at rest in its corners). The drop ``x`` of the 3 kg mass follows the Atwood machine
 whose rope's weight moves from one side to the other as it runs,
 ``x = Δm / (2 ρA) (cosh ωt − 1)``, ``ω² = 2 ρA g / (m1 + m2 + ρA L)``.
 """
