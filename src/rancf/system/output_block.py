@@ -26,7 +26,7 @@ from rancf.bodies.reactions import reaction_row, support_reactions
 from rancf.system.contact import contact_outputs
 from rancf.system.winches import winch_factor
 
-__all__ = ["block_derived", "block_sections", "takes_block"]
+__all__ = ["block_derived", "block_sections", "contact_row", "takes_block"]
 
 
 def takes_block(system: Any, static: bool, directors: NDArray | None, k: int) -> bool:
@@ -68,21 +68,27 @@ def block_derived(outputs: Any, t: NDArray, ys: NDArray, vs: NDArray,
 
 
 def _contact_block(s: Any, ys: NDArray, vs: NDArray, alpha: NDArray | None) -> NDArray:
-    """The obstacles' and body pairs' columns of the rows (as ``SystemOutputs._reactions``):
-    per obstacle the normal and friction force, moment, contact length and penetration, per
-    pair of bodies the contact force and penetration."""
-    n, rows = s.n, []
-    for i in range(ys.shape[0]):
-        yc, vc = (alpha[i, :n], alpha[i, n:]) if alpha is not None else (ys[i], vs[i])
-        parts = []
-        for c in contact_outputs(s, yc, vc, ys[i]).values():
-            parts += [c.normal, c.friction, np.atleast_1d(c.moment), [c.length, c.penetration]]
-        if s.body_contacts:
-            bo = np.empty(3 * len(s.body_contacts))
-            s.contact.body_outputs(np.ascontiguousarray(yc), bo)
-            parts += [[bo[3 * j + 2], max(0.0, -bo[3 * j])] for j in range(len(s.body_contacts))]
-        rows.append(np.concatenate(parts) if parts else np.empty(0))
+    """:func:`contact_row` of every row, its contact state that of the step that ended at it
+    (``alpha``) or else its own."""
+    n = s.n
+    rows = [contact_row(s, *((alpha[i, :n], alpha[i, n:]) if alpha is not None else
+                             (ys[i], vs[i])), ys[i]) for i in range(ys.shape[0])]  # fmt: skip
     return np.array(rows).reshape(ys.shape[0], -1)
+
+
+def contact_row(s: Any, yc: NDArray, vc: NDArray | None, y1: NDArray | None) -> NDArray:
+    """The contact columns of one row: per obstacle the normal and friction force, moment,
+    contact length and penetration (:func:`rancf.system.contact.contact_outputs` at the contact
+    state ``yc``, ``vc``, ``y1``), per pair of flexible bodies the contact force and
+    penetration (at ``yc``)."""
+    parts: list = []
+    for c in contact_outputs(s, yc, vc, y1).values():
+        parts += [c.normal, c.friction, np.atleast_1d(c.moment), [c.length, c.penetration]]
+    if s.body_contacts:
+        bo = np.empty(3 * len(s.body_contacts))
+        s.contact.body_outputs(np.ascontiguousarray(yc), bo)
+        parts += [[bo[3 * j + 2], max(0.0, -bo[3 * j])] for j in range(len(s.body_contacts))]
+    return np.concatenate(parts) if parts else np.empty(0)
 
 
 def block_sections(outputs: Any, raws: dict[str, list[NDArray]],

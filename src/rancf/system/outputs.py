@@ -62,8 +62,7 @@ from rancf.bodies.nodal_forces import recovers_axial_force
 from rancf.bodies.reactions import Reaction, reaction_columns, reaction_row, support_reactions
 from rancf.bodies.section_outputs import SectionSampler, section_names
 from rancf.kernels import _core
-from rancf.system.contact import contact_outputs
-from rancf.system.output_block import block_derived, block_sections, takes_block
+from rancf.system.output_block import block_derived, block_sections, contact_row, takes_block
 from rancf.system.sensors import SensorReader
 from rancf.system.sliding import sliding_slots, sliding_values
 from rancf.system.system import System
@@ -308,17 +307,9 @@ class SystemOutputs:
         step: tuple[NDArray, ...] = (),
     ) -> NDArray:  # fmt: skip
         s = self.system
-        parts = [reaction_row(self.reactions(y, res, t, lam))]
         yc, vc, y1 = step if step else (y, v, None)
-        for c in contact_outputs(s, yc, vc, y1).values():
-            moment = np.atleast_1d(c.moment)
-            parts += [c.normal, c.friction, moment, np.array([c.length, c.penetration])]
-        if s.body_contacts:
-            bo = np.empty(3 * len(s.body_contacts))
-            s.contact.body_outputs(yc, bo)
-            for k in range(len(s.body_contacts)):
-                parts.append(np.array([bo[3 * k + 2], max(0.0, -bo[3 * k])]))
-        return np.concatenate(parts) if parts else np.empty(0)
+        return np.concatenate([reaction_row(self.reactions(y, res, t, lam)),
+                               contact_row(s, yc, vc, y1)])  # fmt: skip
 
     def _body_energies(self, y: NDArray, v: NDArray, t: float) -> NDArray:
         """Every flexible body's kinetic, strain and gravitational energy at time ``t`` (a
