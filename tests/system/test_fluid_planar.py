@@ -1,8 +1,12 @@
 """A planar problem in water on a seabed is the same in 2D and in 3D: a chain from an anchor on
 the seabed to a fairlead surging in its plane (fluid: buoyancy, Morison drag and added mass;
-the seabed a plane obstacle; a static start), simulated as a 2D line in the x-z plane and as a
-3D line, gives the same motion and the same fairlead reaction, and the 3D line never leaves its
-plane."""
+the seabed a plane obstacle), simulated as a 2D line in the x-z plane and as a 3D line, gives
+the same motion and the same fairlead reaction, and the 3D line never leaves its plane.
+
+The chain has no bending stiffness to speak of (inertia 1e-13 m^4): the 2D cable bends by its
+signed curvature, the 3D cable by its size (src/cpp/cable.cpp), which differ where the curvature
+changes sign against the reference's; with the benchmark chain's EI = 3.4 kN m^2 that moves the
+fairlead reaction by 1e-5 (the same without fluid and seabed), without it by 1e-11."""
 
 from __future__ import annotations
 
@@ -27,7 +31,7 @@ elements = 8
 quadrature_points = 5
 [section]
 area = 0.03668789808917197
-inertia = 1.0e-7
+inertia = 1.0e-13
 [material]
 density = 7850.0
 youngs_modulus = 33596909722.222225
@@ -54,7 +58,7 @@ stiffness = 648000.0
 [loads]
 gravity = {v(0.0, -9.81)}
 [solver]
-initial_state = "static"
+initial_state = "reference"
 newton = "modified"
 rho_inf = 0.5
 t_end = 4.0
@@ -69,10 +73,8 @@ at = "end"
 
 def test_planar_surge_in_water_is_the_same_in_2d_and_3d(tmp_path):
     """The fairlead reaction (x, z) and the nodal coordinates of the 2D run equal the 3D run's
-    to 1e-4 of the reaction and 2e-6 of the coordinates' size (measured 7e-6 and 2e-7: the two
-    static starts agree to 6e-8, their solver's tolerance, and the penalty seabed carries that
-    on; the same without the fluid), the 3D run's out-of-plane reaction and coordinates stay
-    zero (1e-9), and the seabed carries the chain."""
+    to 1e-9 of their size (measured 5e-12), the 3D run's out-of-plane reaction and coordinates
+    stay zero (1e-9), and the seabed carries the chain."""
     runs = {}
     for dim in (2, 3):
         path = tmp_path / f"surge{dim}.toml"
@@ -83,11 +85,12 @@ def test_planar_surge_in_water_is_the_same_in_2d_and_3d(tmp_path):
     np.testing.assert_array_equal(r2["t"], r3["t"])
     f2, f3 = r2["sensors"], r3["sensors"]  # fairlead x, z (2D); x, y, z (3D)
     scale = np.abs(f2).max()
-    assert np.abs(f2 - f3[:, [0, 2]]).max() <= 1e-4 * scale
+    assert np.abs(f2 - f3[:, [0, 2]]).max() <= 1e-9 * scale
     assert np.abs(f3[:, 1]).max() <= 1e-9 * scale
     q2 = r2["q"].reshape(len(r2["t"]), -1, 4)  # (x, z, x', z') a node
     q3 = r3["q"].reshape(len(r3["t"]), -1, 6)
-    assert np.abs(q2 - q3[:, :, [0, 2, 3, 5]]).max() <= 2e-6 * np.abs(q2).max()
-    assert np.abs(q3[:, :, [1, 4]]).max() <= 1e-9
+    size = np.abs(q2).max()
+    assert np.abs(q2 - q3[:, :, [0, 2, 3, 5]]).max() <= 1e-9 * size
+    assert np.abs(q3[:, :, [1, 4]]).max() <= 1e-9 * size
     # reactions: start (x, z), end (x, z), then the seabed's normal force (x, z), ...
-    assert r2["reactions"][:, 5].min() > 0.0
+    assert r2["reactions"][1:, 5].min() > 0.0
