@@ -215,8 +215,8 @@ class SystemOutputs:
         ys = s.y_from_q(q) if takes_block(s, static, directors, k) else None
         if ys is not None:
             vs = np.zeros_like(ys) if v is None else s.y_from_q(np.reshape(v, (k, -1)))
-            own = block_derived(self, t, ys, vs, out)
-            block_sections(self, raws, factors, ys, t, nodal, own)
+            own, internal = block_derived(self, t, ys, vs, out)
+            block_sections(self, raws, factors, ys, t, nodal, own, internal)
         if per_body and energy is not None and self._body_is_system and not static:
             out["eb"], per_body = np.array(energy, dtype=float).reshape(k, 3), False
         with self._triads() as set_row:
@@ -344,7 +344,7 @@ class SystemOutputs:
             raw = np.concatenate(raws[name])  # (k, n_points, w)
             vals = self.samplers[name].from_raw(raw, factors[:, None, None])
             if nodal[name]:
-                vals[:, :, 1] = self.samplers[name].between_nodes(np.stack(nodal[name]))
+                vals[:, :, 1] = self.samplers[name].between_nodes(np.concatenate(nodal[name]))
             strain = np.max(np.abs(vals[:, :, 0]), axis=1)
             strain[np.isnan(strain)] = -np.inf  # NaN (a diverged state) is never larger
             i = int(np.argmax(strain)) if strain.size else 0  # the first of equal ones
