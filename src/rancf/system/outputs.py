@@ -341,7 +341,7 @@ class SystemOutputs:
         parts = []
         for name, _ in self.flex:
             factors = np.asarray(stretch[name], dtype=float)
-            raw = np.concatenate(raws[name])  # (k, n_points, w)
+            raw = raws[name][0] if len(raws[name]) == 1 else np.concatenate(raws[name])
             vals = self.samplers[name].from_raw(raw, factors[:, None, None])
             if nodal[name]:
                 vals[:, :, 1] = self.samplers[name].between_nodes(np.concatenate(nodal[name]))
@@ -351,6 +351,8 @@ class SystemOutputs:
             if strain.size and strain[i] > self.largest_strain[0]:
                 self.largest_strain = (float(strain[i]), float(t[i]))
             parts.append(vals.reshape(vals.shape[0], -1))
+        if len(parts) == 1:  # one body: no copy
+            return parts[0]
         return np.concatenate(parts, axis=1) if parts else np.empty((t.size, 0))
 
     def body_along(self, along: NDArray, name: str) -> NDArray[np.float64]:
