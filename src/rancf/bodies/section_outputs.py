@@ -155,8 +155,8 @@ class SectionSampler:
             k = int(np.prod(raw.shape[:-2]))
             scale = np.broadcast_to(_scale(m) * np.asarray(factor, dtype=float).ravel(), (k,))
             out = np.empty((*raw.shape[:-1], 2 * raw.shape[-1]))
-            _core.section_forces(raw, np.ascontiguousarray(self._k0), c, float(m.props.ea),
-                                 bool(st.engineering), np.ascontiguousarray(scale), out)  # fmt: skip
+            k0, scale = np.ascontiguousarray(self._k0), np.ascontiguousarray(scale)
+            _core.section_forces(raw, k0, c, float(m.props.ea), bool(st.engineering), scale, out)
             return out
         eps, kappa = raw[..., 0], raw[..., 1:]  # a beam: per reference length already
         stretch = np.sqrt(np.clip(1.0 + 2.0 * eps, 0.0, None))
