@@ -42,6 +42,7 @@ void bind_functions(nb::module_& mod) {
         expect_size(raw, k * np * w, "raw");
         expect_size(kappa0, np * nk, "kappa0");
         expect_size(out, k * np * 2 * w, "out");
+        nb::gil_scoped_release release;
         rancf::section_forces(static_cast<int>(k), static_cast<int>(np), static_cast<int>(w),
                               raw.data(), kappa0.data(), c.data(), ea, engineering, scale.data(),
                               out.data());

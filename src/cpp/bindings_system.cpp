@@ -526,6 +526,7 @@ void bind_system(nb::module_& mod) {
             expect_size(joints, k * 6 * n_joints, "joints");
             if (res0) expect_size(*res0, k * h.n, "res0");
             if (internal) expect_size(*internal, k * h.n, "internal");
+            nb::gil_scoped_release release;  // an output worker's rows beside the time loop
             h.integ.derived_rows(static_cast<int>(k), t.data(), y.data(), v.data(), a.data(),
                                  lam.data(), res.data(), joints.data(),
                                  res0 ? res0->data() : nullptr,
