@@ -123,6 +123,11 @@ def plan_run(
     return system, outputs
 
 
+def _raw_bytes(values: NDArray) -> memoryview:
+    """The numbers as little-endian float64 bytes, without a copy where they already are."""
+    return memoryview(np.ascontiguousarray(values, dtype="<f8").reshape(-1)).cast("B")
+
+
 def _now() -> str:
     return datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds")
 
@@ -222,7 +227,7 @@ class HistoryStore:
         self.flush()
         n = len(rows["t"])
         for key, fh in self._fh.items():
-            fh.write(np.ascontiguousarray(rows[key], dtype="<f8").tobytes())
+            fh.write(_raw_bytes(rows[key]))
             fh.flush()
         self.n_rows += n
         self.saved_rows = self.n_rows
@@ -267,7 +272,7 @@ class HistoryStore:
                 )  # fmt: skip
                 rows.update({d: derived[d].ravel() for d in DERIVED})
                 for key, val in rows.items():
-                    self._fh[key].write(np.ascontiguousarray(val, dtype="<f8").tobytes())
+                    self._fh[key].write(_raw_bytes(val))
             for key in self._fh:
                 self._fh[key].flush()
         except OSError as exc:  # a full disk: name the file
