@@ -4,9 +4,12 @@
 * :func:`block_derived`: the consistent accelerations and multipliers, the balance residual
   with them and the joints' reactions of every row (``SystemIntegrator.derived_rows``, one
   call), then the supports' reactions from the held rows of the residuals
-  (:func:`rancf.bodies.reactions.support_reactions` on the stack of rows);
+  (:func:`rancf.bodies.reactions.support_reactions` on the stack of rows); the assembly that
+  gives a row's residual also gives its element forces and the bodies' own terms, which the
+  nodal axial forces need (no second residual, no further force pass);
 * :func:`block_sections`: the section strains and curvatures of every row, one call of the
-  core a body where the body's length is the same at every row (no winch).
+  core a body where the body's length is the same at every row (no winch), and the nodal
+  axial forces of the block at once (:func:`rancf.bodies.nodal_forces.nodal_axial_forces`).
 
 Only for rows without contact, rods' directors or sliding joints (their multipliers' slots and
 extra columns are the row loop's).
