@@ -422,7 +422,23 @@ void bind_system(nb::module_& mod) {
               rancf::flex_energies(h.s, b, y.data(), v.data(), t, out.data() + 3 * b);
           },
           "y"_a, "v"_a, "t"_a, "out"_a.noconvert(),
-          "Every flexible body's (kinetic, strain, gravity) energies at time t.");
+          "Every flexible body's (kinetic, strain, gravity) energies at time t.")
+      .def(
+          "body_energies_rows",
+          [](const SystemHolder& h, In t, In y, In v, Out out) {
+            const std::size_t k = t.size(), n = static_cast<std::size_t>(h.s.n);
+            const std::size_t w = 3 * h.s.flex.size();
+            expect_size(y, k * n, "y");
+            expect_size(v, k * n, "v");
+            expect_size(out, k * w, "out");
+            nb::gil_scoped_release release;
+            for (std::size_t i = 0; i < k; ++i)
+              for (std::size_t b = 0; b < h.s.flex.size(); ++b)
+                rancf::flex_energies(h.s, b, y.data() + i * n, v.data() + i * n, t.data()[i],
+                                     out.data() + i * w + 3 * b);
+          },
+          "t"_a, "y"_a, "v"_a, "out"_a.noconvert(),
+          "body_energies of k states (rows of y, v at times t) into the rows of out.");
 
   nb::class_<SystemIntegratorHolder>(mod, "SystemIntegrator",
                                      "Generalized-alpha with constraints on a system.")

@@ -219,14 +219,15 @@ class SystemOutputs:
             block_sections(self, raws, factors, ys, t, nodal, own, internal)
         if per_body and energy is not None and self._body_is_system and not static:
             out["eb"], per_body = np.array(energy, dtype=float).reshape(k, 3), False
+        elif per_body and ys is not None:  # the block's bodies' energies in one call
+            s.core.body_energies_rows(np.ascontiguousarray(t), np.ascontiguousarray(ys),
+                                      np.ascontiguousarray(vs), out["eb"])  # fmt: skip
+            per_body = False
         with self._triads() as set_row:
-            for i in range(k if ys is None or per_body else 0):
-                y = s.y_from_q(q[i]) if ys is None else ys[i]
+            for i in range(k if ys is None else 0):
+                y = s.y_from_q(q[i])
                 if directors is not None:
                     set_row(y, np.asarray(directors[i]).ravel())
-                if ys is not None:  # only the bodies' energies are left to do
-                    out["eb"][i] = self._body_energies(y, vs[i], float(t[i]))
-                    continue
                 vy = np.zeros(s.n) if v is None or static else s.y_from_q(v[i])
                 a, li = np.zeros(s.n), sliding_slots(s, y, None if lam is None else lam[i])
                 if static:
