@@ -79,7 +79,10 @@ def block_sections(outputs: Any, raws: dict[str, list[NDArray]],
         if name in outputs.recovered:  # the axial force from the nodal forces
             fi = None if internal is None else internal[:, sl]
             nodal[name].append(nodal_axial_forces(b, ys[:, sl], res0[:, sl], fi))
-        fs = [winch_factor(s, name, float(x), y) for x, y in zip(t, ys, strict=True)]
+        if getattr(s, "winches", ()):  # the body's length at each row
+            fs = [winch_factor(s, name, float(x), y) for x, y in zip(t, ys, strict=True)]
+        else:
+            fs = [1.0] * len(t)
         factors[name] += fs
         if all(f == fs[0] for f in fs):
             raws[name].append(samp.raw(ys[:, sl], fs[0]))
