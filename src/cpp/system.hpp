@@ -175,8 +175,8 @@ struct AssemblyTerms {
   const double* contact_vf = nullptr;
   const double* contact_y1 = nullptr;
   /// Outputs (may be null, n values each): the flexible bodies' element forces f_int alone
-  /// (other rows untouched), and the bodies' own terms of r as distributed_only would give
-  /// them without multipliers, taken from the same pass (flexible and rigid rows)
+  /// (a winch's body at its length at tf; other rows untouched), and the bodies' own terms of
+  /// r as distributed_only would give them without multipliers, taken from the same pass
   double* internal = nullptr;
   double* own = nullptr;
 };
