@@ -1,7 +1,8 @@
 """``python -m rancf`` and the ``rancf`` console script.
 
 Kept minimal: an interrupt while the command line's modules are still being imported ends with
-the same one line and exit status 130 as any later interrupt.
+the same one line and exit status 130 as any later interrupt.  A finished command ends its
+process without the interpreter's teardown (:func:`_exit_now`).
 """
 
 import os
@@ -48,7 +49,39 @@ def run() -> int:
             except (OSError, ValueError):
                 pass
         os._exit(130)
+    _exit_now(status)
     return status
+
+
+def _flushed() -> bool:
+    """Flush standard output and error; whether both took it (or are closed)."""
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            if stream is not None:
+                stream.flush()
+        except (OSError, ValueError):
+            return False
+    return True
+
+
+def _exit_now(status: int) -> None:
+    """End the process with ``status`` at once, if nothing is left that the interpreter's own
+    exit would still do; else return (and the interpreter exits as usual).
+
+    That exit frees every module and object one by one before the process ends: after a run,
+    30-50 ms in which nothing is written (the operating system frees the memory at once).  What
+    matters of it is done here first: the standard streams are flushed and the at-exit handlers
+    run.  Not when another thread is alive (the usual exit waits for it) or a stream cannot be
+    flushed (the usual exit then reports it as it always did).
+    """
+    import atexit
+    import threading
+
+    if threading.active_count() > 1 or not _flushed():
+        return
+    atexit._run_exitfuncs()  # each handler once: this empties their list
+    if _flushed():
+        os._exit(status)
 
 
 if __name__ == "__main__":
