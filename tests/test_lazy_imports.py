@@ -34,9 +34,24 @@ print(json.dumps([code, sorted(m for m in sys.modules if m.split(".")[0] in {hea
 @pytest.mark.parametrize("name", ["planar-pendulum", "slider-crank"])
 def test_simulate_loads_no_heavy_library(tmp_path, name):
     p = subprocess.run(
-        [sys.executable, "-c", SCRIPT.format(heavy=set(HEAVY), static=set(STATIC)), str(example_path(name)),
-         str(tmp_path / "run")],
+        [sys.executable, "-c", SCRIPT.format(heavy=set(HEAVY), static=set(STATIC)),
+         str(example_path(name)), str(tmp_path / "run")],
         capture_output=True, text=True, check=True,
     )  # fmt: skip
     code, loaded = json.loads(p.stdout.strip().splitlines()[-1])
     assert code == 0 and loaded == [], loaded
+
+
+#: Prints, after ``rancf ARGS`` in this process, which of NumPy and pydantic were imported.
+LIGHT = """
+import json, sys
+from rancf.cli import main
+main(sys.argv[1:])
+print(json.dumps(sorted({m.split(".")[0] for m in sys.modules} & {"numpy", "pydantic"})))
+"""
+
+
+@pytest.mark.parametrize("args", [["--version"], ["--help"], ["simulate", "--help"]])
+def test_the_command_line_itself_loads_neither_numpy_nor_pydantic(args):
+    p = subprocess.run([sys.executable, "-c", LIGHT, *args], capture_output=True, text=True)
+    assert json.loads(p.stdout.strip().splitlines()[-1]) == []
