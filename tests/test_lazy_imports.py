@@ -51,7 +51,16 @@ print(json.dumps(sorted({m.split(".")[0] for m in sys.modules} & {"numpy", "pyda
 """
 
 
-@pytest.mark.parametrize("args", [["--version"], ["--help"], ["simulate", "--help"]])
-def test_the_command_line_itself_loads_neither_numpy_nor_pydantic(args):
+@pytest.mark.parametrize(
+    "args",
+    [["--version"], ["--help"], ["simulate", "--help"], ["example", "list"], ["example", "copy"]],
+)
+def test_the_command_line_itself_loads_neither_numpy_nor_pydantic(args, tmp_path):
+    if args == ["example", "copy"]:  # a user's first file
+        args = [*args, "planar-pendulum", str(tmp_path)]
     p = subprocess.run([sys.executable, "-c", LIGHT, *args], capture_output=True, text=True)
     assert json.loads(p.stdout.strip().splitlines()[-1]) == []
+    if "copy" in args:
+        assert (tmp_path / "planar-pendulum.toml").read_bytes() == example_path(
+            "planar-pendulum"
+        ).read_bytes()
