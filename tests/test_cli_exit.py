@@ -62,3 +62,14 @@ def test_a_running_thread_keeps_the_usual_exit(tmp_path):
     assert p.returncode == 0 and p.stdout.startswith("rancf ")
     assert marker.read_text() == "done"  # waited for
     assert p.stderr.splitlines() == ["at-exit handler", "teardown"]
+
+
+def test_a_profiler_running_the_command_writes_its_report(tmp_path):
+    """``python -m cProfile -m rancf``: rancf is not the program, the profiler writes after it."""
+    out = tmp_path / "profile.out"
+    p = subprocess.run(
+        [sys.executable, "-m", "cProfile", "-o", str(out), "-m", "rancf", "--version"],
+        capture_output=True, text=True,
+    )  # fmt: skip
+    assert p.returncode == 0 and p.stdout.startswith("rancf ")
+    assert out.stat().st_size > 0

@@ -64,6 +64,28 @@ def _flushed() -> bool:
     return True
 
 
+#: The frames of runpy below a module run by ``python -m``.
+_RUNPY = ("_run_code", "_run_module_as_main")
+
+
+def _the_program() -> bool:
+    """Whether :func:`run` was called by the program itself: the console script, ``python -m
+    rancf`` or ``python -c``, with no tracer or profiler active (not under ``python -m cProfile
+    -m rancf``, a coverage run or a test)."""
+    if sys.gettrace() is not None or sys.getprofile() is not None:
+        return False
+    frame = sys._getframe(3)  # the caller of run() (this function, _exit_now, run, it)
+    if frame.f_code.co_name != "<module>":
+        return False
+    frame = frame.f_back
+    while frame is not None:  # python -m rancf: runpy's two frames, nothing else
+        code = frame.f_code
+        if "runpy" not in code.co_filename or code.co_name not in _RUNPY:
+            return False
+        frame = frame.f_back
+    return True
+
+
 def _exit_now(status: int) -> None:
     """End the process with ``status`` at once, if nothing is left that the interpreter's own
     exit would still do; else return (and the interpreter exits as usual).
@@ -71,13 +93,14 @@ def _exit_now(status: int) -> None:
     That exit frees every module and object one by one before the process ends: after a run,
     30-50 ms in which nothing is written (the operating system frees the memory at once).  What
     matters of it is done here first: the standard streams are flushed and the at-exit handlers
-    run.  Not when another thread is alive (the usual exit waits for it) or a stream cannot be
-    flushed (the usual exit then reports it as it always did).
+    run.  Not when another thread is alive (the usual exit waits for it), a stream cannot be
+    flushed (the usual exit then reports it as it always did), or :func:`run` is not the program
+    itself (a profiler or coverage tool that runs it writes its report after it returns).
     """
     import atexit
     import threading
 
-    if threading.active_count() > 1 or not _flushed():
+    if not _the_program() or threading.active_count() > 1 or not _flushed():
         return
     atexit._run_exitfuncs()  # each handler once: this empties their list
     if _flushed():
