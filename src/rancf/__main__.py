@@ -74,7 +74,10 @@ def _the_program() -> bool:
     -m rancf``, a coverage run or a test)."""
     if sys.gettrace() is not None or sys.getprofile() is not None:
         return False
-    frame = sys._getframe(3)  # the caller of run() (this function, _exit_now, run, it)
+    try:
+        frame = sys._getframe(3)  # the caller of run() (this function, _exit_now, run, it)
+    except ValueError:  # run() called from outside Python (an embedding)
+        return False
     if frame.f_code.co_name != "<module>":
         return False
     frame = frame.f_back
