@@ -105,9 +105,13 @@ def _exit_now(status: int) -> None:
 
     if not _the_program() or threading.active_count() > 1 or not _flushed():
         return
+    # the command is done and its output out: a late Ctrl-C must not break the exit with a
+    # traceback (SIGTERM still ends a handler that hangs)
+    old = signal.signal(signal.SIGINT, signal.SIG_IGN)
     atexit._run_exitfuncs()  # each handler once: this empties their list
     if _flushed():
         os._exit(status)
+    signal.signal(signal.SIGINT, old)
 
 
 if __name__ == "__main__":
