@@ -45,9 +45,11 @@ def recovers_axial_force(model: Model) -> bool:
     return model.element != "beam" and model.reduction is None
 
 
-def nodal_axial_forces(model: Model, y: NDArray, residual: NDArray) -> NDArray[np.float64]:
-    """The axial force ``(n_nodes,)`` at the nodes (module docstring); of a stack of ``k``
-    states ``(k, n_nodes)``.
+def nodal_axial_forces(
+    model: Model, y: NDArray, residual: NDArray, internal: NDArray | None = None
+) -> NDArray[np.float64]:
+    """The axial force ``(n_nodes,)`` at the nodes (module docstring); ``(k, n_nodes)`` for a
+    stack of ``k`` states.
 
     Parameters
     ----------
@@ -60,19 +62,32 @@ def nodal_axial_forces(model: Model, y: NDArray, residual: NDArray) -> NDArray[n
         f_gravity`` with the fluid and contact loads (``distributed_only`` of the compiled
         residual: no multipliers' forces, point loads or springs): on an end node's position,
         the force everything attached there exerts on the line.
+    internal : ndarray, shape like ``y``, optional
+        The elastic force ``f_int(y)`` (:meth:`Model.internal_force`, computed if not given).
     """
+    dim, dpn, nn = model.dim, model.dpn, model.n_nodes
     y = np.asarray(y, dtype=float)
-    ys, res = np.atleast_2d(y), np.atleast_2d(np.asarray(residual, dtype=float))
-    k, dim, dpn, nn = ys.shape[0], model.dim, model.dpn, model.n_nodes
-    q = model.q_from_y(ys).reshape(k, nn, dpn)
-    f_int = np.stack([model.internal_force(row) for row in ys])
-    f = model.forces_at_nodes(f_int).reshape(k, nn, dpn)[:, :, :dim]
-    ends = model.forces_at_nodes(res).reshape(k, nn, dpn)[:, [0, -1], :dim]
-    tangent = q[:, :, dim : 2 * dim]
-    tangent = tangent / np.linalg.norm(tangent, axis=2, keepdims=True)
-    left = np.cumsum(f[:, ::-1], axis=1)[:, ::-1]  # F_L[j] = sum over k >= j of f[k]
+    if internal is None:
+        stack = y.reshape(-1, y.shape[-1])
+        internal = np.array([model.internal_force(x) for x in stack]).reshape(y.shape)
+    lead = y.shape[:-1]
+    q = model.q_from_y(y).reshape(*lead, nn, dpn)
+    f = model.forces_at_nodes(internal).reshape(*lead, nn, dpn)[..., :dim]
+    ends = model.forces_at_nodes(residual).reshape(*lead, nn, dpn)[..., [0, -1], :dim]
+    g = q[..., dim : 2 * dim]
+    tangent = g / np.sqrt(_dot(g, g))[..., None]
+    left = np.flip(np.cumsum(np.flip(f, axis=-2), axis=-2), axis=-2)  # F_L[j] = Σ_{k≥j} f[k]
     right = f - left
-    out = 0.5 * np.einsum("kij,kij->ki", left - right, tangent)
-    out[:, 0] = -np.einsum("kj,kj->k", ends[:, 0], tangent[:, 0])
-    out[:, -1] = np.einsum("kj,kj->k", ends[:, 1], tangent[:, -1])
-    return out[0] if y.ndim == 1 else out
+    out = 0.5 * _dot(left - right, tangent)
+    out[..., 0] = -_dot(ends[..., 0, :], tangent[..., 0, :])
+    out[..., -1] = _dot(ends[..., 1, :], tangent[..., -1, :])
+    return out
+
+
+def _dot(a: NDArray, b: NDArray) -> NDArray[np.float64]:
+    """``Σ_i a_i b_i`` over the last axis (2 or 3 components: a sum of whole-array products,
+    far faster than a reduction over so short an axis)."""
+    out = a[..., 0] * b[..., 0]
+    for i in range(1, a.shape[-1]):
+        out = out + a[..., i] * b[..., i]
+    return out
