@@ -31,6 +31,10 @@ def test_gradients_are_scaled_by_their_elements_length():
     np.testing.assert_allclose(s[:, 2:], 0.3, rtol=1e-14)
     beam = body_scale(pendulum(4, "beam")).reshape(5, 3)  # (x, y, angle)
     np.testing.assert_allclose(beam, np.c_[np.ones((5, 2)), np.full(5, 0.3)], rtol=1e-14)
+    rod = Model(mesh_line([0, 0, 0], [1.2, 0, 0], 4), "rod", SECTION,
+                Material(6000.0, 2.0e8, poisson_ratio=0.3))  # fmt: skip
+    np.testing.assert_allclose(body_scale(rod).reshape(5, 7), np.tile([1, 1, 1, 0.3, 0.3, 0.3, 1],
+                               (5, 1)), rtol=1e-14)  # fmt: skip  # the twist keeps 1
     # a conic arc: the shorter chord of each node's elements over its gradient's length
     arc = Model(mesh_conic(conic_arc(0.5, (30.0, 40.0), (0.315, 0.077)), 6), "rancf", SECTION,
                 MATERIAL, [Support(0, "pin")])  # fmt: skip

@@ -1,8 +1,9 @@
 """The lengths by which the Newton test of a time step measures each coordinate's increment.
 
 A position increment moves the material by itself; an increment ``δr'`` of a node's gradient
-(cables) or ``δθ`` of its angle (beams) moves the material of the elements at the node by at
-most ``(4/27) ℓ |δr'|`` each, ``ℓ`` the element's length (the Hermite shape functions,
+(cables, rods' centre lines) or ``δθ`` of its angle (beams) moves the material of the elements
+at the node by at most ``(4/27) ℓ |δr'|`` each, ``ℓ`` the element's length (the Hermite shape
+functions,
 ``docs/derivations/newton.md``).  The test ``max_i s_i |Δy_i| <= tol`` therefore takes
 ``s_i = 1`` for positions and ``s_i = ℓ_min / |r'_ref|`` for gradients (``ℓ_min`` the shorter
 of the node's elements, ``|r'_ref|`` the gradient's length in the reference, 1 for the
@@ -10,8 +11,8 @@ arc-length gradients of a mesh from exact geometry): the displacements an increm
 not the gradient in units of 1, which at fine meshes held the iteration to a far tighter
 test than the positions (``ℓ = 2.3 mm`` at 512 elements of 1.2 m).
 
-Where the coordinates are not nodal (C² control points), rods, rigid bodies, drums, and cables
-whose length changes (winches), every scale is 1 (the plain test).
+A rod's twist, coordinates that are not nodal (C² control points), rigid bodies, drums, and
+cables whose length changes (winches) keep the scale 1 (the plain test).
 """
 
 from __future__ import annotations
@@ -33,13 +34,14 @@ def _winched(system: System) -> set[str]:
 def body_scale(model: Model) -> NDArray[np.float64] | None:
     """The scales of one body's coordinates (module docstring), or None where they are all 1.
 
-    Cables (``"rancf"``, ``"ancf"``) and beams with nodal coordinates: positions 1, each node's
-    gradient (angle) ``ℓ_min / |r'_ref|`` (beams: ``ℓ_min``).
+    Cables (``"rancf"``, ``"ancf"``), rods and beams with nodal coordinates: positions 1, each
+    node's gradient (beams: angle) ``ℓ_min / |r'_ref|`` (beams: ``ℓ_min``); a rod's twist 1.
     """
-    if model.element not in ("rancf", "ancf", "beam") or model.reduction is not None:
+    if model.element not in ("rancf", "ancf", "beam", "rod") or model.reduction is not None:
         return None
     q = np.asarray(model.q0, dtype=float).reshape(model.n_nodes, model.dpn)
-    x = q[:, : model.dim]
+    d = model.dim
+    x = q[:, :d]
     lengths = np.linalg.norm(np.diff(x, axis=0), axis=1)  # chords: at most the arc lengths
     if lengths.size == 0 or not np.all(lengths > 0.0):
         return None
@@ -47,12 +49,12 @@ def body_scale(model: Model) -> NDArray[np.float64] | None:
     if model.element == "beam":
         grad = near
     else:
-        size = np.linalg.norm(q[:, model.dim :], axis=1)
+        size = np.linalg.norm(q[:, d : 2 * d], axis=1)
         if not np.all(size > 0.0):
             return None
         grad = near / size
     out = np.ones((model.n_nodes, model.dpn))
-    out[:, model.dim :] = grad[:, None]
+    out[:, d : min(2 * d, model.dpn)] = grad[:, None]  # rods: not the twist (the last)
     return np.minimum(out, 1.0).ravel()
 
 
