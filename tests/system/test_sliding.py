@@ -507,3 +507,26 @@ def test_a_ring_runs_round_through_its_place():
             2 * h
         )
     assert np.abs(jac.reshape(size, size) - fd).max() <= 1e-7 * np.abs(fd).max()
+
+
+def test_shipped_atwood_example_is_the_system_tested_here():
+    """``atwood-guides.toml`` (the gallery's Atwood machine, a degree-2 NURBS meshed one element
+    per knot span) builds the rope, masses, joints and gravity of :func:`atwood` in 2D: the same
+    reference coordinates and weights to round-off (1e-12)."""
+    from rancf.scenario import load_scenario
+    from rancf.studies.common import example_path
+
+    shipped = load_scenario(example_path("atwood-guides")).build_system()
+    tested = atwood(2)
+    assert shipped.n == tested.n and shipped.dim == 2
+    a, b = shipped.bodies["rope"], tested.bodies["rope"]
+    np.testing.assert_allclose(a.q0, b.q0, rtol=0, atol=1e-12 * np.abs(b.q0).max())
+    np.testing.assert_allclose(a.mesh.weights, b.mesh.weights, rtol=1e-12, atol=0)
+    for m in ("left", "right"):
+        assert shipped.bodies[m].mass == tested.bodies[m].mass
+        np.testing.assert_allclose(shipped.bodies[m].position, tested.bodies[m].position,
+                                   rtol=0, atol=1e-15)  # fmt: skip
+    np.testing.assert_array_equal(shipped.gravity, tested.gravity)
+    assert [j.kind for j in shipped.joints] == [j.kind for j in tested.joints]
+    for j, k in zip(shipped.joints[2:], tested.joints[2:], strict=True):
+        np.testing.assert_allclose(j.position, k.position, rtol=0, atol=1e-15)

@@ -10,7 +10,8 @@ One writer for every run (a system of one body is a one-body run):
   constraints), the ``reference`` and JSON ``metadata``: ``dim``, ``sensor_columns``,
   ``reaction_columns``, ``obstacles`` (a list, empty without contact) and ``"bodies"``, every
   body (name, kind, its columns ``offset`` and ``size`` in ``q``; a flexible body's
-  ``element`` and ``folder``; a rigid body's ``mass`` and ``points``);
+  ``element`` and ``folder``; a rigid body's ``mass`` and ``points``) and ``"drums"``, the
+  coordinates after the bodies' (a driven drum's length outside it: name, ``offset``, ``size``);
 * every flexible body's ``bodies/NAME/results.npz``: its coordinates, accelerations,
   energies, support reactions, section values (``along`` and ``along_s``), rods' ``directors``,
   the mesh's ``weights`` and ``scales`` and the metadata readers need
@@ -148,7 +149,8 @@ def write_history_files(
             for r, c in chunks:
                 np.savetxt(fh, np.column_stack([t[r], c["r"]]), delimiter=",", fmt="%.12g")
     meta: dict[str, Any] = {"system": True, "dim": s.dim, "bodies": _bodies(outputs),
-                            "sensor_columns": names, "reaction_columns": outputs.reaction_names,
+                            "drums": _drums(outputs), "sensor_columns": names,
+                            "reaction_columns": outputs.reaction_names,
                             "obstacles": obstacle_records(s)}  # fmt: skip
     with (
         files.file(out_dir / "results.npz") as fh,
@@ -184,6 +186,12 @@ def _bodies(outputs: SystemOutputs) -> list[dict[str, Any]]:
                 row["points"] = {k: list(map(float, p)) for k, p in b.points.items()}
         rows.append(row)
     return rows
+
+
+def _drums(outputs: SystemOutputs) -> list[dict[str, Any]]:
+    """The driven drums' coordinates after the bodies' (:mod:`rancf.system.drums`): each
+    drum's unstretched length outside it [m], its column ``offset`` in ``q`` (size 1)."""
+    return [{"name": k, "offset": int(i), "size": 1} for k, i in outputs.system.drums.items()]
 
 
 def _director_cut(outputs: SystemOutputs, name: str) -> slice:

@@ -169,7 +169,7 @@ def load_run(path: str | Path) -> SystemRun:
     t = np.asarray(data["t"])
     names = meta.get("sensor_columns")
     q = np.asarray(data.get("q", np.empty((0, 0))))
-    width = sum(b["size"] for b in meta["bodies"])
+    width = sum(b["size"] for b in [*meta["bodies"], *meta.get("drums", [])])
     if q.ndim != 2 or q.shape != (t.size, width) or not isinstance(names, list):
         raise InputError("RUN_DIR", str(p / "results.npz"), "a consistent results.npz (its "
                          "states, times and sensor columns do not fit together)")  # fmt: skip

@@ -48,10 +48,12 @@ EXAMPLES = {
 #: ``"buckling"``.
 SCENARIO_ANALYSES: dict[str, tuple[str, ...]] = {
     "argyris-frame": ("modes", "buckling"),
+    "atwood-guides": ("simulate",),
     "belt-drive": ("simulate",),
     "capstan": ("simulate",),
     "cantilever": ("static", "modes"),
     "crane-hoist": ("simulate",),
+    "drum-hoist": ("static", "simulate"),
     "installed-hose": ("static", "simulate"),
     "mooring-line": ("static",),
     "power-line-gust": ("simulate",),
