@@ -128,3 +128,59 @@ def test_a_failed_write_names_its_target(tmp_path):
         fail(t)
     assert info.value.filename == str(tmp_path / "r.npz")
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_file_set_is_flushed_whole_before_any_file_is_renamed(tmp_path, monkeypatch):
+    """Every file of a set is flushed to disk (at the same time, on threads) before the first
+    rename: a crash leaves the old set or the new one, never a renamed file not yet on disk."""
+    events: list[tuple[str, str]] = []
+    fsync, replace = os.fsync, os.replace
+
+    def logged_fsync(fd: int) -> None:
+        fsync(fd)
+        events.append(("fsync", os.path.basename(os.readlink(f"/proc/self/fd/{fd}"))))
+
+    def logged_replace(src: str, dst: str) -> None:
+        events.append(("replace", os.path.basename(src)))
+        replace(src, dst)
+
+    if not os.path.isdir("/proc/self/fd"):
+        pytest.skip("needs /proc to name a descriptor's file")
+    monkeypatch.setattr(os, "fsync", logged_fsync)
+    monkeypatch.setattr(os, "replace", logged_replace)
+    names = [f"f{i}.csv" for i in range(11)]  # more files than flushing threads
+    with FileSet() as files:
+        for name in names:
+            files.write(tmp_path / name, name)
+    kinds = [k for k, _ in events]
+    assert kinds == ["fsync"] * len(names) + ["replace"] * len(names)
+    flushed = sorted(n for k, n in events if k == "fsync")
+    assert flushed == sorted(n for k, n in events if k == "replace")  # each temporary file once
+    assert all(n.startswith(".f") for n in flushed)
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(names)
+    assert all((tmp_path / n).read_text() == n for n in names)
+
+
+def test_a_failed_flush_keeps_the_old_set_and_names_a_target(tmp_path, monkeypatch):
+    for name in ("a.csv", "b.npz", "c.json"):
+        (tmp_path / name).write_text("old")
+    fsync = os.fsync
+
+    def fail_on_b(fd: int) -> None:
+        if ".b.npz." in os.readlink(f"/proc/self/fd/{fd}"):
+            raise OSError(5, "Input/output error")  # as the disk reports it: no file name
+        fsync(fd)
+
+    if not os.path.isdir("/proc/self/fd"):
+        pytest.skip("needs /proc to name a descriptor's file")
+    monkeypatch.setattr(os, "fsync", fail_on_b)
+    with pytest.raises(OSError) as info, FileSet() as files:
+        for name in ("a.csv", "b.npz", "c.json"):
+            files.write(tmp_path / name, "new")
+    assert info.value.filename == str(tmp_path / "b.npz")
+    assert info.value.strerror == "Input/output error"
+    assert [(p.name, p.read_text()) for p in sorted(tmp_path.iterdir())] == [
+        ("a.csv", "old"),
+        ("b.npz", "old"),
+        ("c.json", "old"),
+    ]

@@ -1,6 +1,7 @@
 """``rancf simulate`` loads only what the command uses: a plain run of a shipped example imports
 neither SciPy (sparse solvers of the static and modal analyses) nor the plotting, viewer or
-cluster libraries, whose imports would be most of its start-up."""
+cluster libraries, whose imports would be most of its start-up, nor rancf's static solvers (a
+run from the reference needs no equilibrium)."""
 
 from __future__ import annotations
 
@@ -13,20 +14,53 @@ import pytest
 from rancf.studies.common import example_path
 
 HEAVY = ("scipy", "matplotlib", "plotly", "dask", "distributed")
+#: rancf's static solvers: a dynamic run loads them only to start from the static equilibrium.
+STATIC = (
+    "rancf.solvers.static",
+    "rancf.solvers.system_equilibrium",
+    "rancf.solvers.arc_length",
+    "rancf.solvers.relaxation",
+    "rancf.solvers.newton",
+)
 SCRIPT = """
 import json, sys
 from rancf.cli import main
 code = main(["simulate", sys.argv[1], "--out", sys.argv[2], "--quiet"])
-print(json.dumps([code, sorted(m for m in sys.modules if m.split(".")[0] in {heavy})]))
+print(json.dumps([code, sorted(m for m in sys.modules if m.split(".")[0] in {heavy}
+                               or m in {static})]))
 """
 
 
 @pytest.mark.parametrize("name", ["planar-pendulum", "slider-crank"])
 def test_simulate_loads_no_heavy_library(tmp_path, name):
     p = subprocess.run(
-        [sys.executable, "-c", SCRIPT.format(heavy=set(HEAVY)), str(example_path(name)),
-         str(tmp_path / "run")],
+        [sys.executable, "-c", SCRIPT.format(heavy=set(HEAVY), static=set(STATIC)),
+         str(example_path(name)), str(tmp_path / "run")],
         capture_output=True, text=True, check=True,
     )  # fmt: skip
     code, loaded = json.loads(p.stdout.strip().splitlines()[-1])
     assert code == 0 and loaded == [], loaded
+
+
+#: Prints, after ``rancf ARGS`` in this process, which of NumPy and pydantic were imported.
+LIGHT = """
+import json, sys
+from rancf.cli import main
+main(sys.argv[1:])
+print(json.dumps(sorted({m.split(".")[0] for m in sys.modules} & {"numpy", "pydantic"})))
+"""
+
+
+@pytest.mark.parametrize(
+    "args",
+    [["--version"], ["--help"], ["simulate", "--help"], ["example", "list"], ["example", "copy"]],
+)
+def test_the_command_line_itself_loads_neither_numpy_nor_pydantic(args, tmp_path):
+    if args == ["example", "copy"]:  # a user's first file
+        args = [*args, "planar-pendulum", str(tmp_path)]
+    p = subprocess.run([sys.executable, "-c", LIGHT, *args], capture_output=True, text=True)
+    assert json.loads(p.stdout.strip().splitlines()[-1]) == []
+    if "copy" in args:
+        assert (tmp_path / "planar-pendulum.toml").read_bytes() == example_path(
+            "planar-pendulum"
+        ).read_bytes()

@@ -256,6 +256,7 @@ NB_MODULE(_core, mod) {
                 expect_size(out, k * ne * np * w, "out");
                 const rancf::SamplePoints p{static_cast<int>(np), xi.data(), n1.data(), n2.data(),
                                             ref.data()};
+                nb::gil_scoped_release release;
                 for (std::size_t i = 0; i < k; ++i)
                   rancf::section_strains(h.m, p, y.data() + i * nd, out.data() + i * ne * np * w);
               },

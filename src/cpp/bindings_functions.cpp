@@ -11,6 +11,7 @@
 #include "bindings.hpp"
 #include "cable.hpp"
 #include "rod.hpp"
+#include "sections.hpp"
 
 namespace rancf_bind {
 
@@ -29,6 +30,26 @@ void bind_functions(nb::module_& mod) {
       },
       "tref"_a, "m1ref"_a, "rx"_a, "phi"_a,
       "(t, m1): t = rx/|rx|, m1 = cos(phi) u + sin(phi) t x u, u = SR(tref -> t) m1ref.");
+
+  mod.def(
+      "section_forces",
+      [](In raw, In kappa0, In c, double ea, bool engineering, In scale, Out out) {
+        // raw (k, n_points, w); kappa0 (n_points, w - 1); c (w - 1); scale (k); out
+        // (k, n_points, 2 w)
+        const std::size_t k = scale.size(), nk = c.size(), w = nk + 1;
+        if (w != 2 && w != 4) throw std::invalid_argument("c: expected 1 or 3 stiffnesses");
+        const std::size_t np = k > 0 ? raw.size() / (k * w) : 0;
+        expect_size(raw, k * np * w, "raw");
+        expect_size(kappa0, np * nk, "kappa0");
+        expect_size(out, k * np * 2 * w, "out");
+        nb::gil_scoped_release release;
+        rancf::section_forces(static_cast<int>(k), static_cast<int>(np), static_cast<int>(w),
+                              raw.data(), kappa0.data(), c.data(), ea, engineering, scale.data(),
+                              out.data());
+      },
+      "raw"_a, "kappa0"_a, "c"_a, "ea"_a, "engineering"_a, "scale"_a, "out"_a.noconvert(),
+      "Section values [eps, N, kappa, M] of a cable or rod from its strains and curvatures (k "
+      "states; see sections.hpp).");
 
   mod.def(
       "band_solve",

@@ -422,7 +422,23 @@ void bind_system(nb::module_& mod) {
               rancf::flex_energies(h.s, b, y.data(), v.data(), t, out.data() + 3 * b);
           },
           "y"_a, "v"_a, "t"_a, "out"_a.noconvert(),
-          "Every flexible body's (kinetic, strain, gravity) energies at time t.");
+          "Every flexible body's (kinetic, strain, gravity) energies at time t.")
+      .def(
+          "body_energies_rows",
+          [](const SystemHolder& h, In t, In y, In v, Out out) {
+            const std::size_t k = t.size(), n = static_cast<std::size_t>(h.s.n);
+            const std::size_t w = 3 * h.s.flex.size();
+            expect_size(y, k * n, "y");
+            expect_size(v, k * n, "v");
+            expect_size(out, k * w, "out");
+            nb::gil_scoped_release release;
+            for (std::size_t i = 0; i < k; ++i)
+              for (std::size_t b = 0; b < h.s.flex.size(); ++b)
+                rancf::flex_energies(h.s, b, y.data() + i * n, v.data() + i * n, t.data()[i],
+                                     out.data() + i * w + 3 * b);
+          },
+          "t"_a, "y"_a, "v"_a, "out"_a.noconvert(),
+          "body_energies of k states (rows of y, v at times t) into the rows of out.");
 
   nb::class_<SystemIntegratorHolder>(mod, "SystemIntegrator",
                                      "Generalized-alpha with constraints on a system.")
@@ -526,24 +542,29 @@ void bind_system(nb::module_& mod) {
       .def(
           "derived_rows",
           [](SystemIntegratorHolder& h, In t, In y, In v, Out a, Out lam, Out res, Out joints,
-             std::size_t n_joints, std::optional<Out> res0) {
+             std::size_t n_joints, std::optional<Out> res0, std::optional<Out> internal) {
             const std::size_t k = t.size();
             for (const auto* x : {&y, &v}) expect_size(*x, k * h.n, "states");
             expect_size(a, k * h.n, "a");
             expect_size(lam, k * h.m, "lam");
             expect_size(res, k * (h.n + h.m), "res");
             expect_size(joints, k * 6 * n_joints, "joints");
-            if (res0) expect_size(*res0, k * (h.n + h.m), "res0");
+            if (res0) expect_size(*res0, k * h.n, "res0");
+            if (internal) expect_size(*internal, k * h.n, "internal");
+            nb::gil_scoped_release release;  // an output worker's rows beside the time loop
             h.integ.derived_rows(static_cast<int>(k), t.data(), y.data(), v.data(), a.data(),
                                  lam.data(), res.data(), joints.data(),
-                                 res0 ? res0->data() : nullptr);
+                                 res0 ? res0->data() : nullptr,
+                                 internal ? internal->data() : nullptr);
           },
           "t"_a, "y"_a, "v"_a, "a"_a.noconvert(), "lam"_a.noconvert(), "res"_a.noconvert(),
           "joints"_a.noconvert(), "n_joints"_a, "res0"_a.noconvert().none() = nb::none(),
+          "internal"_a.noconvert().none() = nb::none(),
           "Derived values of k stored states without contact (rows of y, v at times t): the "
           "consistent a and lambda, the balance residual and constraints with them, every "
           "joint's (force, moment) (6 a joint; n_joints, the system's joints); res0: the "
-          "bodies' own terms alone (distributed_only, no multipliers).")
+          "bodies' own terms alone (distributed_only, no multipliers), internal: the element "
+          "forces, n a row each, from the same assembly.")
       .def(
           "factor_static",
           [](SystemIntegratorHolder& h, In y, In lam, double lf, bool amplitude, double t,

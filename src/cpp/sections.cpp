@@ -1,6 +1,8 @@
 #include "sections.hpp"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 
 #include "assembly.hpp"
 #include "cable.hpp"
@@ -45,6 +47,31 @@ void section_strains(const Model& m, const SamplePoints& p, const double* y, dou
         rod_point_strains(m, el, e.data(), p.n, p.xi, p.n1 + 4 * el * p.n, p.n2 + 4 * el * p.n,
                           p.ref + el * p.n, out + 4 * el * p.n);
         break;
+    }
+  }
+}
+
+void section_forces(int k, int n_points, int w, const double* raw, const double* kappa0,
+                    const double* c, double ea, bool engineering, const double* scale,
+                    double* out) {
+  const int nk = w - 1;
+  for (int i = 0; i < k; ++i) {
+    const double sc = scale[i];
+    for (int p = 0; p < n_points; ++p) {
+      const std::ptrdiff_t at = static_cast<std::ptrdiff_t>(i) * n_points + p;
+      const double* r = raw + at * w;
+      double* o = out + at * 2 * w;
+      const double eps = r[0], lam = std::sqrt(std::max(1.0 + 2.0 * eps, 0.0));
+      double bend = 0.0;
+      o[0] = eps;
+      for (int j = 0; j < nk; ++j) {
+        const double kap = r[1 + j];
+        const double mom = c[j] * (kap - kappa0[p * nk + j] / sc) / lam;
+        o[2 + j] = kap;
+        o[2 + nk + j] = mom;
+        bend += mom * kap;
+      }
+      o[1] = ea * (engineering ? lam - 1.0 : eps * lam) - bend;
     }
   }
 }

@@ -31,4 +31,13 @@ int section_width(const Model& m);
 /// out (n_el, n, section_width) at configuration y (model coordinates).
 void section_strains(const Model& m, const SamplePoints& p, const double* y, double* out);
 
+/// The section values of a cable (w = 2) or rod (w = 4) from its strains and curvatures
+/// raw (k, n_points, w) (section_outputs.py, docs/derivations/cable.md section 6): per point
+/// [eps, N, kappa (w - 1), M (w - 1)] into out (k, n_points, 2 w), with
+/// lambda = sqrt(max(1 + 2 eps, 0)), M_i = c_i (kappa_i - kappa0_i / scale_k) / lambda and
+/// N = ea (engineering ? lambda - 1 : eps lambda) - sum_i M_i kappa_i; kappa0 (n_points, w - 1)
+/// the stress-free curvatures, scale (k) the unstretched length over the reference's per state.
+void section_forces(int k, int n_points, int w, const double* raw, const double* kappa0,
+                    const double* c, double ea, bool engineering, const double* scale, double* out);
+
 }  // namespace rancf

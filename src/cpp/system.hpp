@@ -174,6 +174,11 @@ struct AssemblyTerms {
   const double* contact_yf = nullptr;
   const double* contact_vf = nullptr;
   const double* contact_y1 = nullptr;
+  /// Outputs (may be null, n values each): the flexible bodies' element forces f_int alone
+  /// (a winch's body at its length at tf; other rows untouched), and the bodies' own terms of
+  /// r as distributed_only would give them without multipliers, taken from the same pass
+  double* internal = nullptr;
+  double* own = nullptr;
 };
 
 bool assemble_system(const System& s, const double* yf, const double* vf, const double* am,

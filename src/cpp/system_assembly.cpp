@@ -205,6 +205,7 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
   const int n = s.n, m = s.m;
   const double c = s.damping;
   std::fill(r, r + n + m, 0.0);
+  if (tm.own != nullptr) std::fill(tm.own, tm.own + n, 0.0);
   Far far;
   // ---- flexible bodies: elements, loads, constant mass, rotary inertia
   thread_local std::vector<double> f, g, acc, mv;  // work arrays, kept between calls
@@ -236,6 +237,11 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
     if (lu != nullptr && mod.loads.n_moment > 0)
       subtract_load_stiffness(mod, tm.tf, yf + o, jac, tm.ck * tm.load_factor, tm.amplitude);
     for (int i = 0; i < nb; ++i) r[o + i] += f[sz(i)] - tm.load_factor * g[sz(i)];
+    if (tm.internal != nullptr) std::copy(f.begin(), f.end(), tm.internal + o);
+    if (tm.own != nullptr)  // the point loads taken back out (added to r below)
+      for (int i = 0; i < nb; ++i)
+        tm.own[o + i] =
+            tm.distributed_only ? 0.0 : tm.load_factor * (g[sz(i)] - mod.loads.f_gravity[i]);
     if (s.fluid != nullptr) {  // buoyancy, Morison loads, distributed loads (fluid.hpp)
       const LineTerms lt{tm.tf, tm.ck, tm.cv, tm.ca, tm.load_factor, &s.tfs};
       for (const LineFluid& ln : s.fluid->lines)
@@ -310,6 +316,8 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
         for (int j = 0; j < nb; ++j)
           if (std::abs(i - j) <= lu->block_ku(bi)) jac.at(i, j) += kk[sz(i * nb + j)];
   }
+  if (tm.own != nullptr)  // the bodies' own terms so far: elements, weight, inertia, fluid
+    for (int i = 0; i < n; ++i) tm.own[i] += r[i];
   // ---- loads at places (forces, and torques on rigid bodies)
   for (const PlaceLoad& ld : s.loads) {
     if (tm.distributed_only) break;
@@ -456,7 +464,9 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
       add_matrix(*lu, idx, k, K.data(), far);
     }
   }
-  // ---- contact with obstacles (contact.hpp)
+  // ---- contact with obstacles (contact.hpp); its forces are the bodies' own terms too
+  thread_local std::vector<double> before;
+  if (tm.own != nullptr && s.contact != nullptr) before.assign(r, r + n);
   if (s.contact != nullptr && tm.contact_yf != nullptr) {  // forces of another state
     assemble_contact(s, *s.contact, tm.contact_yf, tm.contact_vf, tm.contact_y1, tm, r, nullptr,
                      nullptr);
@@ -466,6 +476,8 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
     };
     assemble_contact(s, *s.contact, yf, vf, y1, tm, r, lu, lu != nullptr ? &sink : nullptr);
   }
+  if (tm.own != nullptr && s.contact != nullptr)
+    for (int i = 0; i < n; ++i) tm.own[i] += r[i] - before[sz(i)];
   // ---- joints: G(yf)^T lambda, g(y1), and their derivatives
   thread_local std::vector<std::array<double, kMaxJointRows * 2 * kMaxLocal>> jac1, jacf;
   jac1.resize(s.joints.size());

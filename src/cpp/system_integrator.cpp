@@ -272,6 +272,8 @@ bool SystemIntegrator::initial_acceleration(const double* y, const double* v, do
     terms.contact_yf = contact->contact_yf;
     terms.contact_vf = contact->contact_vf;
     terms.contact_y1 = contact->contact_y1;
+    terms.internal = contact->internal;
+    terms.own = contact->own;
   }
   lu_valid_ = false;
   const bool reuse = mass_constant_ && mass_factored_;  // the factors of M from an earlier call

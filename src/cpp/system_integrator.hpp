@@ -44,17 +44,21 @@ class SystemIntegrator {
                  std::int64_t k_last = 0);
   /// Consistent initial acceleration and multipliers: [M G^T; G 0] [a; lambda] = [-F; -c].
   /// contact (may be null): the contact forces of a step instead of those at (y, v)
-  /// (AssemblyTerms::contact_yf and after).
+  /// (AssemblyTerms::contact_yf and after), and the assembly's outputs internal and own (at
+  /// the known accelerations of the held coordinates, the others zero).
   bool initial_acceleration(const double* y, const double* v, double t, double* a, double* lam,
                             const AssemblyTerms* contact = nullptr);
   /// Derived values of k stored states (rows of y and v, n each, at times t; no contact): the
   /// consistent accelerations and multipliers (initial_acceleration; zero where it fails),
   /// the balance residual and constraints with them (n + m a row) and every joint's reaction
   /// (joint_reaction: force, moment, 6 a joint): one call for a block of outputs; res0 (if not
-  /// null, n + m a row): the bodies' own terms alone at the same a, without the multipliers
-  /// (AssemblyTerms::distributed_only), for the nodal axial forces.
+  /// null, n a row): the bodies' own terms alone at the same a, without the multipliers
+  /// (AssemblyTerms::own), and internal (if not null, n a row): the element forces
+  /// (AssemblyTerms::internal), both from the pass that gives the residual, for the nodal
+  /// axial forces.
   void derived_rows(int k, const double* t, const double* y, const double* v, double* a,
-                    double* lam, double* res, double* joints, double* res0 = nullptr);
+                    double* lam, double* res, double* joints, double* res0 = nullptr,
+                    double* internal = nullptr);
   /// One Newton increment of the statics at load factor lf: (dy, dlam) with
   /// K dy + G^T dlam = -r, G dy = -g.  Returns false if the matrix is singular.
   bool static_increment(const double* y, const double* lam, double lf, bool amplitude, double t,

@@ -99,20 +99,26 @@ void joint_reaction(const System& s, int k, const double* y, double t, const dou
 
 void SystemIntegrator::derived_rows(int k, const double* t, const double* y, const double* v,
                                     double* a, double* lam, double* res, double* joints,
-                                    double* res0) {
+                                    double* res0, double* internal) {
   const auto n = sz(s_.n), m = sz(s_.m), nj = s_.joints.size();
   // where the balance is M a + (terms without a), M constant (no constraints, rigid bodies,
   // rotary inertia, contact, fluid or winches), the residual at the consistent a is that of
-  // initial_acceleration's assembly (at the known a) plus M (a - a_known): no second assembly
+  // initial_acceleration's assembly (at the known a) plus M (a - a_known): no second assembly;
+  // the bodies' own terms and the element forces come from the same assembly
   bool linear = mass_constant_ && s_.fluid == nullptr;
   for (std::size_t b = 0; b < s_.flex.size(); ++b) linear = linear && winch_of(s_, b) == nullptr;
-  std::vector<double> md, no_lam(m + 1, 0.0);  // (m + 1: never empty)
+  std::vector<double> md;
   for (std::size_t i = 0; i < sz(k); ++i) {
     const double *yi = y + i * n, *vi = v + i * n;
     double *ai = a + i * n, *li = lam + i * m, *ri = res + i * (n + m);
+    double* oi = res0 != nullptr ? res0 + i * n : nullptr;
+    double* fi = internal != nullptr ? internal + i * n : nullptr;
     std::fill(ai, ai + n, 0.0);
     std::fill(li, li + m, 0.0);
-    if (initial_acceleration(yi, vi, t[i], ai, li) && linear) {
+    AssemblyTerms outs;  // the same pass's element forces and own terms (linear: at a_known)
+    outs.internal = fi;
+    outs.own = oi;
+    if (initial_acceleration(yi, vi, t[i], ai, li, linear ? &outs : nullptr) && linear) {
       std::copy(r_.begin(), r_.begin() + static_cast<std::ptrdiff_t>(n), ri);
       for (std::size_t b = 0; b < s_.flex.size(); ++b) {  // + M dz, dz = a - a_known
         const Model& mod = *s_.flex[b];
@@ -120,17 +126,15 @@ void SystemIntegrator::derived_rows(int k, const double* t, const double* y, con
         md.resize(sz(nb));
         band_matvec(mod.mass_band, dz_.data() + o, nb, mod.ku(), md.data());
         for (int j = 0; j < nb; ++j) ri[o + j] += md[sz(j)];
+        if (oi != nullptr)
+          for (int j = 0; j < nb; ++j) oi[o + j] += md[sz(j)];
       }
     } else {
       AssemblyTerms terms;  // the balance residual at (y, v, a, lambda, t), as System.residual
       terms.tf = terms.t1 = t[i];
+      terms.internal = fi;
+      terms.own = oi;
       assemble_system(s_, yi, vi, ai, li, yi, terms, ri, nullptr);
-    }
-    if (res0 != nullptr) {  // as System.residual with distributed_only and no multipliers
-      AssemblyTerms own;
-      own.tf = own.t1 = t[i];
-      own.distributed_only = true;
-      assemble_system(s_, yi, vi, ai, no_lam.data(), yi, own, res0 + i * (n + m), nullptr);
     }
     for (std::size_t j = 0; j < nj; ++j) {
       double* out = joints + (i * nj + j) * 6;

@@ -1,12 +1,13 @@
 """Every file rancf writes: atomically, with the permissions the umask allows, errors naming it.
 
-A file is written under a temporary name in its own folder (``.NAME.XXXXXX.EXT``), flushed to
-disk, given the mode ``0666 & ~umask`` that any newly created file gets (``0644`` under umask
-``0022``, ``0600`` under ``0077``; the temporary file itself starts as ``0600``), and renamed over
-the target with :func:`os.replace`, atomic on POSIX and Windows.  If anything fails on the way
-(a full disk, an interrupt, an exception of the writer) the temporary file is removed and the
-target is left as it was; an :class:`OSError` that names no file (``No space left on device``
-raised by a write) is re-raised naming the target.
+A file is written under a temporary name in its own folder (``.NAME.XXXXXX.EXT``), given the mode
+``0666 & ~umask`` that any newly created file gets (``0644`` under umask ``0022``, ``0600`` under
+``0077``; the temporary file itself starts as ``0600``), flushed to disk (the files of a set all
+at the same time, before any is renamed), and renamed over the target with :func:`os.replace`,
+atomic on POSIX and Windows.  If anything fails on the way (a full disk, an interrupt, an
+exception of the writer) the temporary file is removed and the target is left as it was; an
+:class:`OSError` that names no file (``No space left on device`` raised by a write) is re-raised
+naming the target.
 
 * :func:`atomic_path` — a temporary path, for writers that take a file name (Matplotlib,
   meshio, ezdxf, Pillow);
@@ -65,6 +66,50 @@ def _named(exc: OSError, target: Path, tmp: str) -> OSError:
     return new
 
 
+def _flush(tmp: str, target: Path) -> None:
+    """``fsync`` the written file ``tmp`` (its data and mode); an error names ``target``."""
+    try:
+        fd = os.open(tmp, os.O_RDONLY)
+        try:
+            os.fsync(fd)
+        finally:
+            os.close(fd)
+    except OSError as exc:
+        raise _named(exc, target, tmp) from None
+
+
+#: Most threads that flush a set's files at the same time.
+FLUSH_THREADS = 8
+
+
+def _flush_all(ready: list[tuple[str, Path]]) -> None:
+    """Flush the files ``(tmp, target)`` at the same time (up to :data:`FLUSH_THREADS` threads):
+    the file system then commits them together instead of one journal commit after another
+    (the eight files of a run's checkpoint: a quarter to a half of the time on ext4).  Returns
+    once every file is on disk; raises the first error."""
+    if len(ready) < 2:
+        for tmp, target in ready:
+            _flush(tmp, target)
+        return
+    n = min(len(ready), FLUSH_THREADS)
+    errors: list[BaseException] = []
+
+    def share(k: int) -> None:
+        for tmp, target in ready[k::n]:
+            try:
+                _flush(tmp, target)
+            except BaseException as exc:  # noqa: BLE001 - handed to the caller's thread
+                errors.append(exc)
+
+    threads = [threading.Thread(target=share, args=(k,), daemon=True) for k in range(n)]
+    for th in threads:
+        th.start()
+    for th in threads:
+        th.join()
+    if errors:
+        raise errors[0]
+
+
 class FileSet:
     """Files that replace their targets together (see the module docstring).
 
@@ -95,11 +140,6 @@ class FileSet:
         os.close(fd)
         try:
             yield Path(tmp)
-            fd = os.open(tmp, os.O_RDONLY)
-            try:
-                os.fsync(fd)
-            finally:
-                os.close(fd)
             os.chmod(tmp, file_mode())
         except BaseException as exc:
             with contextlib.suppress(OSError):
@@ -121,8 +161,17 @@ class FileSet:
             fh.write(data.encode("utf-8") if isinstance(data, str) else data)
 
     def commit(self) -> None:
-        """Rename every written file over its target (in the order they were written)."""
+        """Flush every written file to disk, then rename each over its target (in the order they
+        were written); if a flush fails, every file is removed and the targets stay as they
+        were."""
         ready, self._ready = self._ready, []
+        try:
+            _flush_all(ready)
+        except BaseException:
+            for t, _ in ready:
+                with contextlib.suppress(OSError):
+                    os.unlink(t)
+            raise
         for i, (tmp, target) in enumerate(ready):
             try:
                 os.replace(tmp, target)

@@ -18,8 +18,8 @@ from rancf.scenario import parse_scenario
 from rancf.scenario.system_build import build_system
 from rancf.solvers import dynamic
 from rancf.solvers.dynamic import integrate
+from rancf.solvers.start import start_state
 from rancf.solvers.state import DynamicState
-from rancf.solvers.static import start_state
 
 EXAMPLES = Path(rancf.examples.__file__).parent
 RTOL = 1e-12

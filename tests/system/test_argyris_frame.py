@@ -136,13 +136,21 @@ def _unloaded(raw: dict) -> dict:
     for sup in raw.get("supports", []):
         sup.pop("position", None)
         sup.pop("direction", None)
+    for w in raw.get("winches", []):  # a driven drum's torque is a load
+        if "torque" in w:
+            w["torque"] = 0.0
     return raw
 
+
+#: Shipped examples whose reference is not at rest without loads: the rope of
+#: ``atwood-guides`` is straight when unloaded but drawn bent round two corners (its run starts
+#: from the static state under its loads).
+PRESTRESSED = {"atwood-guides"}
 
 EXAMPLES = sorted(
     f.name.removesuffix(".toml")
     for f in resources.files("rancf.examples").iterdir()
-    if f.name.endswith(".toml")
+    if f.name.endswith(".toml") and f.name.removesuffix(".toml") not in PRESTRESSED
 )
 
 
@@ -163,6 +171,19 @@ def test_modes_about_static_at_zero_load_equal_modes_about_the_reference(name):
     scale = float(np.median(dk[dm > 0] / dm[dm > 0]))
     err = np.abs(about_static - about_reference)
     assert np.all(err <= 1e-6 * np.abs(about_reference) + 1e-12 * scale), (err, about_reference)
+
+
+@pytest.mark.parametrize("name", sorted(PRESTRESSED))
+def test_prestressed_examples_are_not_at_rest_without_loads(name):
+    """The examples left out above: unloaded, their reference is not a static state (the
+    solve fails, or finds a state 1 mm or more away from the reference)."""
+    raw = _unloaded(load_example(name))
+    s = parse_scenario(raw, str(example_path(name))).build_system()
+    try:
+        st = solve_static(s, 1)
+    except ConvergenceError:
+        return
+    assert np.abs(np.asarray(st.y) - s.y0).max() >= 1e-3
 
 
 def test_mode_plots_of_a_system_whatever_its_sensors(tmp_path, capsys):

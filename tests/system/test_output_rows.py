@@ -73,14 +73,15 @@ def test_one_body_energies_are_the_stored_ones():
 @pytest.mark.parametrize("name", ["slider-crank", "cantilever"])
 def test_block_equals_the_row_loop_in_every_output(name, monkeypatch):
     """Every derived output of a block (accelerations, multipliers, reactions, section values
-    with the nodal axial forces, sensors) equals the row loop's, which the block replaces
-    (1e-9 of each output's size)."""
+    with the nodal axial forces, sensors, every body's energies) equals the row loop's, which
+    the block replaces (1e-9 of each output's size)."""
     system = _system(name)
     t, y, v = _states(system, 3, 5)
     q, qv = system.q_from_y(y), system.q_from_y(v)
-    block = SystemOutputs(system).rows(t, q, qv)
+    block = SystemOutputs(system).rows(t, q, qv, per_body=True)
     monkeypatch.setattr("rancf.system.outputs.takes_block", lambda *args: False)
-    loop = SystemOutputs(system).rows(t, q, qv)
-    for key in ("a", "lam", "r", "s", "c"):
+    loop = SystemOutputs(system).rows(t, q, qv, per_body=True)
+    assert block["eb"].shape == (3, 3 * len(system.flex)) and np.abs(loop["eb"]).max() > 0
+    for key in ("a", "lam", "r", "s", "c", "eb"):
         scale = max(1.0, np.abs(loop[key]).max(initial=0.0))
         assert np.abs(block[key] - loop[key]).max(initial=0.0) <= 1e-9 * scale, key

@@ -77,7 +77,7 @@ def test_modal_damping_ratio_of_the_first_mode():
     sc = parse_scenario({**raw, "damping": {"stiffness_proportional": beta}})
     system = build_system(sc)
     omega = 2 * np.pi * natural_modes(system, count=1).frequencies_hz[0]
-    from rancf.solvers.static import start_state
+    from rancf.solvers.start import start_state
 
     y0, _ = start_state(sc, system)
     free = build_system(parse_scenario({**{k: v for k, v in raw.items() if k != "loads"},

@@ -45,29 +45,49 @@ def recovers_axial_force(model: Model) -> bool:
     return model.element != "beam" and model.reduction is None
 
 
-def nodal_axial_forces(model: Model, y: NDArray, residual: NDArray) -> NDArray[np.float64]:
-    """The axial force ``(n_nodes,)`` at the nodes (module docstring).
+def nodal_axial_forces(
+    model: Model, y: NDArray, residual: NDArray, internal: NDArray | None = None
+) -> NDArray[np.float64]:
+    """The axial force ``(n_nodes,)`` at the nodes (module docstring); ``(k, n_nodes)`` for a
+    stack of ``k`` states.
 
     Parameters
     ----------
     model : Model
         A cable or rod body (:func:`recovers_axial_force`).
-    y : ndarray, shape (n,)
+    y : ndarray, shape (n,) or (k, n)
         Model coordinates.
-    residual : ndarray, shape (n,)
+    residual : ndarray, shape (n,) or (k, n)
         The body's rows of its own terms of the balance residual, ``M a + c M v + f_int -
         f_gravity`` with the fluid and contact loads (``distributed_only`` of the compiled
         residual: no multipliers' forces, point loads or springs): on an end node's position,
         the force everything attached there exerts on the line.
+    internal : ndarray, shape like ``y``, optional
+        The elastic force ``f_int(y)`` (:meth:`Model.internal_force`, computed if not given).
     """
-    dim, dpn = model.dim, model.dpn
-    q = model.q_from_y(np.asarray(y, dtype=float)).reshape(model.n_nodes, dpn)
-    f = model.forces_at_nodes(model.internal_force(y)).reshape(model.n_nodes, dpn)[:, :dim]
-    ends = model.forces_at_nodes(residual).reshape(model.n_nodes, dpn)[[0, -1], :dim]
-    tangent = q[:, dim : 2 * dim] / np.linalg.norm(q[:, dim : 2 * dim], axis=1, keepdims=True)
-    left = np.cumsum(f[::-1], axis=0)[::-1]  # F_L[j] = sum over k >= j of f[k]
+    dim, dpn, nn = model.dim, model.dpn, model.n_nodes
+    y = np.asarray(y, dtype=float)
+    if internal is None:
+        stack = y.reshape(-1, y.shape[-1])
+        internal = np.array([model.internal_force(x) for x in stack]).reshape(y.shape)
+    lead = y.shape[:-1]
+    q = model.q_from_y(y).reshape(*lead, nn, dpn)
+    f = model.forces_at_nodes(internal).reshape(*lead, nn, dpn)[..., :dim]
+    ends = model.forces_at_nodes(residual).reshape(*lead, nn, dpn)[..., [0, -1], :dim]
+    g = q[..., dim : 2 * dim]
+    tangent = g / np.sqrt(_dot(g, g))[..., None]
+    left = np.flip(np.cumsum(np.flip(f, axis=-2), axis=-2), axis=-2)  # F_L[j] = Σ_{k≥j} f[k]
     right = f - left
-    out = 0.5 * np.einsum("ij,ij->i", left - right, tangent)
-    out[0] = -ends[0] @ tangent[0]
-    out[-1] = ends[1] @ tangent[-1]
+    out = 0.5 * _dot(left - right, tangent)
+    out[..., 0] = -_dot(ends[..., 0, :], tangent[..., 0, :])
+    out[..., -1] = _dot(ends[..., 1, :], tangent[..., -1, :])
+    return out
+
+
+def _dot(a: NDArray, b: NDArray) -> NDArray[np.float64]:
+    """``Σ_i a_i b_i`` over the last axis (2 or 3 components: a sum of whole-array products,
+    far faster than a reduction over so short an axis)."""
+    out = a[..., 0] * b[..., 0]
+    for i in range(1, a.shape[-1]):
+        out = out + a[..., i] * b[..., i]
     return out

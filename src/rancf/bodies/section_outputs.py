@@ -37,6 +37,7 @@ from rancf.bodies.flexible import Model
 from rancf.bodies.flexible_core import section_stiffness
 from rancf.elements.cable import cable_shape_functions
 from rancf.geometry.quadrature import gauss_legendre
+from rancf.kernels import _core
 
 __all__ = ["SectionSampler", "section_names"]
 
@@ -143,19 +144,24 @@ class SectionSampler:
 
     def from_raw(self, raw: NDArray, factor: float | NDArray = 1.0) -> NDArray[np.float64]:
         """:meth:`values` from :meth:`raw`, for one state or a stack ``(..., n_points, w)``
-        (``factor``: as :meth:`values`, or one a state, shaped to broadcast: ``(k, 1, 1)``)."""
+        (``factor``: as :meth:`values`, or one a state, shaped to broadcast: ``(k, 1, 1)``);
+        cables and rods by the core's ``section_forces`` (the module docstring's ``M_i`` and
+        ``N``, ``src/cpp/sections.hpp``)."""
         m = self.model
-        eps, kappa = raw[..., 0], raw[..., 1:]
-        stretch = np.sqrt(np.clip(1.0 + 2.0 * eps, 0.0, None))
-        if m.element == "beam":  # per reference length already
-            moments = kappa * m.props.ei
-            force = m.props.ea * eps * stretch
-        else:
+        raw = np.ascontiguousarray(raw, dtype=float)
+        if m.element != "beam":  # the core, every point of every state in one call
             st = section_stiffness(m)
             c = np.array([st.gj, st.ei2, st.ei3]) if m.element == "rod" else np.array([st.ei])
-            moments = c * (kappa - self._k0 / (_scale(m) * factor)) / stretch[..., None]
-            conj = stretch - 1.0 if st.engineering else eps * stretch  # ∂(e²/2)/∂λ
-            force = m.props.ea * conj - np.sum(moments * kappa, axis=-1)
+            k = int(np.prod(raw.shape[:-2]))
+            scale = np.broadcast_to(_scale(m) * np.asarray(factor, dtype=float).ravel(), (k,))
+            out = np.empty((*raw.shape[:-1], 2 * raw.shape[-1]))
+            k0, scale = np.ascontiguousarray(self._k0), np.ascontiguousarray(scale)
+            _core.section_forces(raw, k0, c, float(m.props.ea), bool(st.engineering), scale, out)
+            return out
+        eps, kappa = raw[..., 0], raw[..., 1:]  # a beam: per reference length already
+        stretch = np.sqrt(np.clip(1.0 + 2.0 * eps, 0.0, None))
+        moments = kappa * m.props.ei
+        force = m.props.ea * eps * stretch
         return np.concatenate([eps[..., None], force[..., None], kappa, moments], axis=-1)
 
 

@@ -26,7 +26,7 @@ def shipped_scenarios() -> dict[str, str]:
     """Shipped scenario names -> one-line description (paper studies first)."""
     from importlib import resources
 
-    from rancf.studies.common import EXAMPLES
+    from rancf.studies.catalog import EXAMPLES
 
     out = dict(EXAMPLES)
     for f in sorted(resources.files("rancf.examples").iterdir(), key=lambda p: p.name):
@@ -56,7 +56,7 @@ def _cmd_list(args: argparse.Namespace) -> int:
 
 def _cmd_copy(args: argparse.Namespace) -> int:
     from rancf.atomic import atomic_write
-    from rancf.studies.common import example_path
+    from rancf.studies.catalog import example_path
 
     name = _scenario_name(args.name)
     target = Path(args.dir) / f"{name}.toml"

@@ -8,8 +8,6 @@ import sys
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-
 from rancf.cli.io import OutputDir, check_out_dir
 from rancf.errors import InputError
 
@@ -31,6 +29,8 @@ def run_to_nurbs(run: Any, i: int) -> Any:
     multiplicities that represent it.  Ends that meet to round-off (:data:`SEAM_RTOL`: a ring's
     seam) are written as one point, so a closed curve stays closed in the CAD file.
     """
+    import numpy as np
+
     from rancf.elements.cad import ElementChain, chain_to_nurbs
 
     if run.element == "beam":
@@ -57,6 +57,8 @@ def run_to_nurbs(run: Any, i: int) -> Any:
 
 
 def _cmd_export(args: argparse.Namespace) -> int:
+    import numpy as np
+
     from rancf.post.run_data import frame_indices
     from rancf.post.system_run import export_system_vtk, load_run
     from rancf.post.vtk import check_export_size
@@ -139,6 +141,8 @@ def _cmd_animate(args: argparse.Namespace) -> int:
 
 
 def _cmd_cad(args: argparse.Namespace) -> int:
+    import numpy as np
+
     from rancf.cad import read_curves
 
     curves = read_curves(args.file)

@@ -65,7 +65,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     from rancf.post.checks import run_warnings, section_warnings
     from rancf.post.history import HistoryStore, plan_run
     from rancf.post.results import run_summary
-    from rancf.solvers.static import start_state
+    from rancf.solvers.start import start_state
 
     sc, copy = scenario_for_run(args.scenario, args.t_end)
     opts = sc.dynamic_options()

@@ -26,7 +26,7 @@ def _cmd_view(args: argparse.Namespace) -> int:
 
 def add_parsers(sub: Any) -> None:
     """Register ``view``."""
-    from rancf.post.view import DEFAULT_FRAMES
+    from rancf.post.view_options import DEFAULT_FRAMES
 
     v = sub.add_parser(
         "view",

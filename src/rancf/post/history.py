@@ -31,6 +31,7 @@ from numpy.typing import NDArray
 
 from rancf.atomic import FileSet, atomic_write
 from rancf.errors import RunTooLargeError
+from rancf.post.block_worker import BlockWorker, works_beside
 from rancf.post.results import strict_json
 from rancf.post.resume import CHECKPOINT
 from rancf.post.run_files import DERIVED, write_history_files
@@ -122,6 +123,11 @@ def plan_run(
     return system, outputs
 
 
+def _raw_bytes(values: NDArray) -> memoryview:
+    """The numbers as little-endian float64 bytes, without a copy where they already are."""
+    return memoryview(np.ascontiguousarray(values, dtype="<f8").reshape(-1)).cast("B")
+
+
 def _now() -> str:
     return datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds")
 
@@ -139,6 +145,9 @@ class HistoryStore:
         Extra keys of ``summary.json`` (scenario path, wall times, ...).
     buffer_bytes : int
         Outputs kept in memory before they are appended to the raw files.
+    beside : bool, optional
+        Derive and append each full buffer on a thread of its own while the run goes on
+        (:mod:`rancf.post.block_worker`); default: where the system allows it.
     """
 
     def __init__(
@@ -147,6 +156,7 @@ class HistoryStore:
         outputs: SystemOutputs,
         info: dict[str, Any],
         buffer_bytes: int = 1 << 23,
+        beside: bool | None = None,
     ) -> None:
         self.out = Path(out)
         self.outputs = outputs
@@ -167,6 +177,8 @@ class HistoryStore:
         #: Rows and last time of the history files on disk (the last complete checkpoint).
         self.saved_rows = 0
         self.saved_t: float | None = None
+        beside = works_beside(outputs) if beside is None else beside
+        self._worker = BlockWorker() if beside else None
 
     def append(
         self,
@@ -207,7 +219,7 @@ class HistoryStore:
             self._alpha.append(np.asarray(alpha, dtype=float).reshape(rows, -1))
         self._pending += rows
         if self._pending >= self._rows_per_flush:
-            self.flush()
+            self._hand_over()
 
     def seed(self, rows: dict[str, NDArray]) -> None:
         """Start from the rows of an earlier part of the run (a resumed run:
@@ -215,7 +227,7 @@ class HistoryStore:
         self.flush()
         n = len(rows["t"])
         for key, fh in self._fh.items():
-            fh.write(np.ascontiguousarray(rows[key], dtype="<f8").tobytes())
+            fh.write(_raw_bytes(rows[key]))
             fh.flush()
         self.n_rows += n
         self.saved_rows = self.n_rows
@@ -224,29 +236,49 @@ class HistoryStore:
     def flush(self) -> None:
         """Append the buffered outputs, and what is derived from them, to the raw files (an
         error of a full disk names the file)."""
+        self._hand_over()
+        self.wait()
+
+    def _hand_over(self) -> None:
+        """The buffered outputs to :meth:`_append`: on the worker thread if the store has one
+        (returning at once), else here."""
+        if self._pending:
+            rows = {k: np.concatenate(self._buf[k]) for k in self._keys}
+            alpha = np.concatenate(self._alpha) if self._alpha else None
+            k, self._pending = self._pending, 0
+            for buf in self._buf.values():
+                buf.clear()
+            self._alpha.clear()
+            if self._worker is None:
+                self._append(rows, alpha, k)
+            else:
+                self._worker.submit(self._append, rows, alpha, k)
+
+    def wait(self) -> None:
+        """Wait until the blocks handed to the worker are derived and appended (raising its
+        error); :func:`rancf.solvers.dynamic.integrate` calls it before the run's wall time
+        is taken, so that the outputs derived beside the loop count in it."""
+        if self._worker is not None:
+            self._worker.wait()
+
+    def _append(self, rows: dict[str, NDArray], alpha: NDArray | None, k: int) -> None:
         key = "t"
         try:
-            if self._pending:
-                rows = {k: np.concatenate(self._buf[k]) for k in self._keys}
-                k = self._pending
+            if k:
                 derived = self.outputs.rows(
                     rows["t"], rows["q"].reshape(k, -1), rows["v"].reshape(k, -1),
                     rows["m"].reshape(k, -1) if "m" in rows else None, rows["e"].reshape(k, 3),
-                    per_body=True,
-                    alpha=np.concatenate(self._alpha) if self._alpha else None,
+                    per_body=True, alpha=alpha,
                 )  # fmt: skip
-                self._alpha.clear()
                 rows.update({d: derived[d].ravel() for d in DERIVED})
                 for key, val in rows.items():
-                    self._fh[key].write(np.ascontiguousarray(val, dtype="<f8").tobytes())
-                    self._buf.get(key, []).clear()
+                    self._fh[key].write(_raw_bytes(val))
             for key in self._fh:
                 self._fh[key].flush()
         except OSError as exc:  # a full disk: name the file
             where = str(self.raw / f"{key}.f64")
             raise OSError(exc.errno, exc.strerror or str(exc), where) from None
-        self.n_rows += self._pending
-        self._pending = 0
+        self.n_rows += k
 
     def _arrays(self) -> tuple[dict[str, NDArray], NDArray | None]:
         n, o = self.n_rows, self.outputs
@@ -340,7 +372,10 @@ class HistoryStore:
         shutil.rmtree(self.out / "bodies", ignore_errors=True)
 
     def close(self) -> None:
-        """Close the raw files (they stay on disk)."""
+        """Close the raw files (they stay on disk), once the worker's block is done."""
+        if self._worker is not None:
+            with contextlib.suppress(Exception):  # the run ends anyway; its error was raised
+                self._worker.wait()
         for fh in self._fh.values():
             with contextlib.suppress(OSError):
                 fh.close()

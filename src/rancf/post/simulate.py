@@ -10,7 +10,7 @@ from typing import Any
 from rancf.post.history import plan_run
 from rancf.post.results import sensor_table, write_run
 from rancf.solvers.dynamic import DynamicResult, integrate
-from rancf.solvers.static import start_state
+from rancf.solvers.start import start_state
 
 __all__ = ["simulate", "MAX_OUTPUT_GB"]
 

@@ -32,6 +32,7 @@ from numpy.typing import NDArray
 from rancf.atomic import atomic_write
 from rancf.errors import InputError
 from rancf.post.system_run import SystemRun
+from rancf.post.view_options import DEFAULT_FRAMES
 
 __all__ = ["write_view", "view_figure", "view_frames", "BODY_COLORS", "DEFAULT_FRAMES"]
 
@@ -40,8 +41,6 @@ BODY_COLORS = ("#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b",
                "#17becf", "#bcbd22", "#7f7f7f")  # fmt: skip
 OBSTACLE_COLOR = "#999999"
 FORCE_COLOR = "#000000"
-#: Default largest number of drawn times.
-DEFAULT_FRAMES = 200
 
 
 def view_frames(n_t: int, frames: int) -> NDArray[np.int64]:

@@ -91,6 +91,9 @@ class Table(BaseModel):
         allow_inf_nan=False,
         populate_by_name=True,
         arbitrary_types_allowed=True,
+        # validators are built at first use: importing the models builds none, and a file's
+        # Scenario builds its whole tree once (not one validator per table as well)
+        defer_build=True,
     )
 
     def __init__(self, /, **data: Any) -> None:

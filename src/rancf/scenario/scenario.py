@@ -91,20 +91,24 @@ class Scenario(Table):
         "with every obstacle)",
     )
     supports: list[SupportTable] = Field([], description="places held fixed or moved")
-    loads: LoadsTable = Field(LoadsTable(), description="gravity, point and distributed loads")
+    loads: LoadsTable = Field(
+        default_factory=LoadsTable, description="gravity, point and distributed loads"
+    )
     fluid: FluidTable | None = Field(None, description="the fluid the bodies are in")
     hydro: HydroTable | None = Field(
         None, description="one-body file: the body's hydrodynamic coefficients"
     )
-    damping: DampingTable = Field(DampingTable(), description="mass-proportional damping")
+    damping: DampingTable = Field(
+        default_factory=DampingTable, description="mass-proportional damping"
+    )
     initial_velocity: list[InitialVelocityTable] = Field(
         [], description="velocities of single nodes (their energy depends on the mesh)"
     )
     initial_motion: InitialMotionTable | None = Field(
         None, description="a rigid-body velocity field of the whole model"
     )
-    solver: SolverTable = Field(SolverTable(), description="analysis settings")
-    modes: ModesTable = Field(ModesTable(), description="defaults of rancf modes")
+    solver: SolverTable = Field(default_factory=SolverTable, description="analysis settings")
+    modes: ModesTable = Field(default_factory=ModesTable, description="defaults of rancf modes")
     sensor_tables: list[SensorTable] = Field([], alias="sensors", description="monitored values")
 
     _path: str = PrivateAttr(_PYTHON)

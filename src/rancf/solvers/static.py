@@ -36,13 +36,13 @@ from __future__ import annotations
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, replace
-from typing import Any, Literal
+from typing import Literal
 
 import numpy as np
 from numpy.typing import NDArray
 
 from rancf.bodies.flexible import Model
-from rancf.errors import ConvergenceError, InputError, ScenarioError
+from rancf.errors import ConvergenceError, InputError
 from rancf.solvers.arc_length import arc_length_path
 from rancf.solvers.drum_statics import free_drums
 from rancf.solvers.load_path import MIN_INCREMENT, PathState
@@ -52,7 +52,7 @@ from rancf.solvers.system_equilibrium import SystemEquilibrium
 from rancf.system import System, as_system
 from rancf.system.drums import hold_drums, refuse_static_drums
 
-__all__ = ["StaticResult", "solve_static", "solve_equilibrium", "StaticMethod", "start_state"]
+__all__ = ["StaticResult", "solve_static", "solve_equilibrium", "StaticMethod"]
 
 StaticMethod = Literal["load", "arc_length"]
 
@@ -210,42 +210,6 @@ def _relax(
             reached=path.lam,
         ) from failed
     path.accept(out.z, end)
-
-
-def start_state(
-    sc: Any, model: Model | System
-) -> tuple[NDArray[np.float64] | None, dict[str, Any]]:
-    """Where a scenario's dynamic run starts: ``(None, info)`` from the reference, or the static
-    equilibrium's model coordinates (``solver.initial_state = "static"``: loads as they act at
-    ``t = 0``, supports installed) and the ``summary.json`` entries describing it.
-
-    Raises
-    ------
-    ScenarioError
-        A support installed away from its reference with ``initial_state = "reference"``.
-    """
-    key = sc.installed_support()
-    if sc.solver["initial_state"] == "reference":
-        if key is not None:
-            raise ScenarioError(
-                sc.path,
-                key,
-                "installs a support away from its reference, which needs solver.initial_state "
-                '= "static" (the static solution moves it there before the run)',
-            )
-        return None, {"initial_state": "reference"}
-    res = solve_static(model, at_time=0.0, **sc.static_options())
-    info = {
-        "initial_state": "static",
-        "static": {
-            "method": res.method,
-            "load_steps": int(len(res.load_factors) - 1),
-            "relaxation_steps": res.relaxation_steps,
-            "newton_iterations": res.n_newton,
-            "wall_time_s": res.wall_time,
-        },
-    }
-    return res.y, info
 
 
 def _load_control(

@@ -5,8 +5,12 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from functools import partial
+from typing import TYPE_CHECKING
 
-from rancf.studies.common import EXAMPLES, SCENARIO_ANALYSES, StudyResult
+from rancf.studies.catalog import EXAMPLES, SCENARIO_ANALYSES
+
+if TYPE_CHECKING:
+    from rancf.studies.common import StudyResult
 
 __all__ = ["EXAMPLES", "SCENARIO_ANALYSES", "study_runner", "runs_a_grid"]
 

@@ -7,7 +7,6 @@ import io
 import time
 import tomllib
 from dataclasses import dataclass, field
-from importlib import resources
 from pathlib import Path
 from typing import Any
 
@@ -19,6 +18,7 @@ from rancf.bodies.flexible import Model
 from rancf.errors import ConvergenceError
 from rancf.scenario import Scenario, parse_scenario
 from rancf.solvers.dynamic import DynamicOptions, DynamicResult, DynamicStatus, integrate
+from rancf.studies.catalog import EXAMPLES, SCENARIO_ANALYSES, example_path
 from rancf.studies.grid import Executor, GridRun, grid_variant, run_grid, variant_raw
 
 __all__ = [
@@ -34,42 +34,6 @@ __all__ = [
     "n_elements",
     "format_error",
 ]
-
-#: Shipped example scenarios (name -> what it is).
-EXAMPLES = {
-    "planar-pendulum": "paper 6.1 planar pendulum with an elliptical-arc cable",
-    "spatial-pendulum": "paper 6.2 spatial pendulum with an elliptical-arc cable",
-    "arc-vibration": "paper 6.3 free and forced vibration of a cable arc",
-    "exact-geometry": "where exact geometry pays: 6.1 pendulum, E from 2e6 to 2e10 Pa",
-}
-
-#: Shipped scenarios that are not paper studies, and what ``rancf example run`` does with each
-#: (:mod:`rancf.studies.scenario_example`): ``"simulate"``, ``"static"``, ``"modes"`` and/or
-#: ``"buckling"``.
-SCENARIO_ANALYSES: dict[str, tuple[str, ...]] = {
-    "argyris-frame": ("modes", "buckling"),
-    "atwood-guides": ("simulate",),
-    "belt-drive": ("simulate",),
-    "capstan": ("simulate",),
-    "cantilever": ("static", "modes"),
-    "crane-hoist": ("simulate",),
-    "drum-hoist": ("static", "simulate"),
-    "installed-hose": ("static", "simulate"),
-    "mooring-line": ("static",),
-    "power-line-gust": ("simulate",),
-    "ring": ("modes", "simulate"),
-    "robot-cable": ("simulate",),
-    "slider-crank": ("simulate",),
-    "spin-up-beam": ("simulate",),
-    "tether-payload": ("simulate",),
-    "tether-reel-out": ("simulate",),
-}
-
-
-def example_path(name: str) -> Path:
-    """Path of a shipped example scenario file."""
-    return Path(str(resources.files("rancf.examples").joinpath(f"{name}.toml")))
-
 
 def load_example(name: str) -> dict[str, Any]:
     """The parsed TOML of a shipped example (a plain dictionary to derive variants from)."""

@@ -132,7 +132,7 @@ def run_scenario(name: str, out: str | Path, quick: bool = False) -> StudyResult
         else:  # simulate
             from rancf.post.history import plan_run
             from rancf.solvers.dynamic import integrate
-            from rancf.solvers.static import start_state
+            from rancf.solvers.start import start_state
 
             system, outputs = plan_run(sc, MAX_EXAMPLE_GB, "the limit of an example run (GB)")
             y0, start = start_state(sc, system)

@@ -39,7 +39,7 @@ def _analyse(sc: Any, analysis: str, folder: Path) -> tuple[str, str, float, dic
     if analysis == "simulate":
         from rancf.post.history import plan_run
         from rancf.solvers.dynamic import integrate
-        from rancf.solvers.static import start_state
+        from rancf.solvers.start import start_state
 
         system, outputs = plan_run(sc, MAX_RUN_GB, LIMIT)
         y0, start = start_state(sc, system)

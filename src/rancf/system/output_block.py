@@ -4,9 +4,12 @@
 * :func:`block_derived`: the consistent accelerations and multipliers, the balance residual
   with them and the joints' reactions of every row (``SystemIntegrator.derived_rows``, one
   call), then the supports' reactions from the held rows of the residuals
-  (:func:`rancf.bodies.reactions.support_reactions` on the stack of rows);
+  (:func:`rancf.bodies.reactions.support_reactions` on the stack of rows); the assembly that
+  gives a row's residual also gives its element forces and the bodies' own terms, which the
+  nodal axial forces need (no second residual, no further force pass);
 * :func:`block_sections`: the section strains and curvatures of every row, one call of the
-  core a body where the body's length is the same at every row (no winch).
+  core a body where the body's length is the same at every row (no winch), and the nodal
+  axial forces of the block at once (:func:`rancf.bodies.nodal_forces.nodal_axial_forces`).
 
 Only for rows without contact, rods' directors or sliding joints (their multipliers' slots and
 extra columns are the row loop's).
@@ -33,17 +36,19 @@ def takes_block(system: Any, static: bool, directors: NDArray | None, k: int) ->
 
 
 def block_derived(outputs: Any, t: NDArray, ys: NDArray, vs: NDArray,
-                  out: dict[str, NDArray]) -> NDArray:  # fmt: skip
+                  out: dict[str, NDArray]) -> tuple[NDArray, NDArray]:  # fmt: skip
     """Accelerations ``out["a"]``, multipliers ``out["lam"]`` and reactions ``out["r"]`` of the
     states ``ys``, ``vs`` ``(k, n)`` at times ``t``; returns the bodies' own terms of the
-    balance ``(k, n + m)`` (``distributed_only``, for the nodal axial forces)."""
+    balance and the element forces ``(k, n)`` each, from the assembly that gives the residual
+    (for the nodal axial forces; empty without bodies that need them)."""
     s = outputs.system
     k, nj = ys.shape[0], len(s.joints)
     a, lam = np.empty((k, s.n)), np.empty((k, s.m))
-    res, res0, jr = np.empty((k, s.n + s.m)), np.empty((k, s.n + s.m)), np.empty((k, nj, 6))
+    res, jr = np.empty((k, s.n + s.m)), np.empty((k, nj, 6))
+    res0, fint = (np.empty((k, s.n)), np.empty((k, s.n))) if outputs.recovered else (None, None)
     outputs.integrator.derived_rows(np.ascontiguousarray(t), np.ascontiguousarray(ys),
-                                np.ascontiguousarray(vs), a, lam, res, jr, nj,
-                                res0 if outputs.recovered else None)  # fmt: skip
+                                    np.ascontiguousarray(vs), a, lam, res, jr, nj, res0,
+                                    fint)  # fmt: skip
     out["a"], out["lam"] = s.q_from_y(a), lam
     parts = []
     for name, b in outputs.flex:
@@ -56,23 +61,28 @@ def block_derived(outputs: Any, t: NDArray, ys: NDArray, vs: NDArray,
         if len(outputs.joint_names[j]) > s.dim:  # the joint reports a moment
             parts.append(jr[:, j, 5:] if s.dim == 2 else jr[:, j, 3:])
     out["r"] = np.concatenate(parts, axis=1) if parts else np.empty((k, 0))
-    return res0
+    return (res0, fint) if res0 is not None else (np.empty((k, 0)), np.empty((k, 0)))
 
 
 def block_sections(outputs: Any, raws: dict[str, list[NDArray]],
                    factors: dict[str, list[float]], ys: NDArray, t: NDArray,
-                   nodal: dict[str, list[NDArray]], res0: NDArray) -> None:  # fmt: skip
+                   nodal: dict[str, list[NDArray]], res0: NDArray,
+                   internal: NDArray | None = None) -> None:  # fmt: skip
     """Strains and curvatures ``(k, n_points, w)`` of the rows ``ys`` into ``raws``, their
     bodies' length factors (:func:`~rancf.system.winches.winch_factor`) into ``factors`` and,
     for the bodies whose axial force comes from the nodal forces, those of the bodies' own
-    terms ``res0`` ``(k, n + m)`` into ``nodal``."""
+    terms ``res0`` ``(k, n...)`` and element forces ``internal`` (``(k, n)``; computed if not
+    given) into ``nodal``, ``(k, n_nodes)`` a block."""
     s = outputs.system
     for name, b in outputs.flex:
         sl, samp = s.body_slice(name), outputs.samplers[name]
         if name in outputs.recovered:  # the axial force from the nodal forces
-            pairs = zip(ys, res0, strict=True)
-            nodal[name] += [nodal_axial_forces(b, y[sl], r[sl]) for y, r in pairs]
-        fs = [winch_factor(s, name, float(x), y) for x, y in zip(t, ys, strict=True)]
+            fi = None if internal is None else internal[:, sl]
+            nodal[name].append(nodal_axial_forces(b, ys[:, sl], res0[:, sl], fi))
+        if getattr(s, "winches", ()):  # the body's length at each row
+            fs = [winch_factor(s, name, float(x), y) for x, y in zip(t, ys, strict=True)]
+        else:
+            fs = [1.0] * len(t)
         factors[name] += fs
         if all(f == fs[0] for f in fs):
             raws[name].append(samp.raw(ys[:, sl], fs[0]))

@@ -215,18 +215,19 @@ class SystemOutputs:
         ys = s.y_from_q(q) if takes_block(s, static, directors, k) else None
         if ys is not None:
             vs = np.zeros_like(ys) if v is None else s.y_from_q(np.reshape(v, (k, -1)))
-            own = block_derived(self, t, ys, vs, out)
-            block_sections(self, raws, factors, ys, t, nodal, own)
+            own, internal = block_derived(self, t, ys, vs, out)
+            block_sections(self, raws, factors, ys, t, nodal, own, internal)
         if per_body and energy is not None and self._body_is_system and not static:
             out["eb"], per_body = np.array(energy, dtype=float).reshape(k, 3), False
+        elif per_body and ys is not None:  # the block's bodies' energies in one call
+            s.core.body_energies_rows(np.ascontiguousarray(t), np.ascontiguousarray(ys),
+                                      np.ascontiguousarray(vs), out["eb"])  # fmt: skip
+            per_body = False
         with self._triads() as set_row:
-            for i in range(k if ys is None or per_body else 0):
-                y = s.y_from_q(q[i]) if ys is None else ys[i]
+            for i in range(k if ys is None else 0):
+                y = s.y_from_q(q[i])
                 if directors is not None:
                     set_row(y, np.asarray(directors[i]).ravel())
-                if ys is not None:  # only the bodies' energies are left to do
-                    out["eb"][i] = self._body_energies(y, vs[i], float(t[i]))
-                    continue
                 vy = np.zeros(s.n) if v is None or static else s.y_from_q(v[i])
                 a, li = np.zeros(s.n), sliding_slots(s, y, None if lam is None else lam[i])
                 if static:
@@ -341,16 +342,18 @@ class SystemOutputs:
         parts = []
         for name, _ in self.flex:
             factors = np.asarray(stretch[name], dtype=float)
-            raw = np.concatenate(raws[name])  # (k, n_points, w)
+            raw = raws[name][0] if len(raws[name]) == 1 else np.concatenate(raws[name])
             vals = self.samplers[name].from_raw(raw, factors[:, None, None])
             if nodal[name]:
-                vals[:, :, 1] = self.samplers[name].between_nodes(np.stack(nodal[name]))
+                vals[:, :, 1] = self.samplers[name].between_nodes(np.concatenate(nodal[name]))
             strain = np.max(np.abs(vals[:, :, 0]), axis=1)
             strain[np.isnan(strain)] = -np.inf  # NaN (a diverged state) is never larger
             i = int(np.argmax(strain)) if strain.size else 0  # the first of equal ones
             if strain.size and strain[i] > self.largest_strain[0]:
                 self.largest_strain = (float(strain[i]), float(t[i]))
             parts.append(vals.reshape(vals.shape[0], -1))
+        if len(parts) == 1:  # one body: no copy
+            return parts[0]
         return np.concatenate(parts, axis=1) if parts else np.empty((t.size, 0))
 
     def body_along(self, along: NDArray, name: str) -> NDArray[np.float64]:

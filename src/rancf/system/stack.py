@@ -152,14 +152,16 @@ class BodyStack:
         bodies' as they are), ``(..., n)``."""
         q = np.array(y, dtype=float)
         for b, sl in self._each_flex():
-            q[..., sl] = b.q_from_y(q[..., sl])
+            if b.reduction is not None or b.rotations:  # else q = y on the body's columns
+                q[..., sl] = b.q_from_y(q[..., sl])
         return q
 
     def y_from_q(self, q: ArrayLike) -> NDArray[np.float64]:
         """Inverse of :meth:`q_from_y`."""
         y = np.array(q, dtype=float)
         for b, sl in self._each_flex():
-            y[..., sl] = b.y_from_q(y[..., sl])
+            if b.reduction is not None or b.rotations:  # else y = q on the body's columns
+                y[..., sl] = b.y_from_q(y[..., sl])
         return y
 
     def nodal_directors(self, y: NDArray) -> NDArray[np.float64] | None:

@@ -1,0 +1,99 @@
+"""Rows derived beside the time loop (:mod:`rancf.post.block_worker`): the same files as rows
+derived between the steps, errors handed to the caller, and no worker where the steps change
+what the rows read (rods' triads, contact)."""
+
+from __future__ import annotations
+
+import threading
+from importlib import resources
+
+import numpy as np
+import pytest
+
+from rancf.cli import main
+from rancf.post.block_worker import BlockWorker, works_beside
+from rancf.post.history import HistoryStore
+from rancf.scenario import load_scenario
+from rancf.system.outputs import SystemOutputs
+from tests.test_cli_errors import mutated
+
+
+def _arrays(folder) -> dict[str, np.ndarray]:
+    out = {}
+    for f in ("results.npz", "bodies/body/results.npz"):
+        with np.load(folder / f) as z:
+            out.update({f"{f}:{k}": z[k] for k in z.files})
+    return out
+
+
+def test_a_run_with_the_worker_writes_the_same_files(tmp_path, monkeypatch):
+    """A line stored every step in blocks of 16 rows (many hand-overs while the loop runs):
+    every array of both results files equals, bit for bit, the run that derives each block
+    between the steps; the CSV files are the same text."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "s.toml").write_text(mutated(solver__t_end=0.2, mesh__elements=16))
+    init = HistoryStore.__init__
+    seen = []
+
+    def small(beside: bool):  # noqa: ANN202
+        def wrapped(self, *args, **kwargs):  # noqa: ANN001, ANN002, ANN003, ANN202
+            n_q = args[1].n_q  # HistoryStore(out, outputs, info): 16 rows a buffer
+            kwargs.update(buffer_bytes=16 * (16 * n_q + 32), beside=beside)
+            init(self, *args, **kwargs)
+            seen.append(self._worker is not None)
+
+        return wrapped
+
+    runs = {}
+    for beside in (True, False):
+        monkeypatch.setattr(HistoryStore, "__init__", small(beside))
+        out = tmp_path / f"run-{beside}"
+        assert main(["simulate", "s.toml", "--out", str(out), "--quiet"]) == 0
+        runs[beside] = out
+    assert seen == [True, False]
+    a, b = _arrays(runs[True]), _arrays(runs[False])
+    assert a.keys() == b.keys() and a["results.npz:t"].size > 100
+    for key in a:
+        np.testing.assert_array_equal(a[key], b[key], err_msg=key)
+    for name in ("sensors.csv", "energy.csv", "reactions.csv", "bodies/body/envelope.csv"):
+        assert (runs[True] / name).read_text() == (runs[False] / name).read_text(), name
+
+
+def test_the_worker_runs_jobs_in_order_and_hands_back_errors():
+    """Each job starts after the one before ended (on another thread); an error is raised by
+    the next submit or wait, once."""
+    worker, done, threads = BlockWorker(), [], set()
+
+    def job(i: int) -> None:
+        threads.add(threading.get_ident())
+        done.append(i)
+
+    for i in range(5):
+        worker.submit(job, i)
+    worker.wait()
+    assert done == [0, 1, 2, 3, 4] and threading.get_ident() not in threads
+
+    def fails() -> None:
+        raise OSError(28, "No space left on device", "q.f64")
+
+    worker.submit(fails)
+    with pytest.raises(OSError, match="No space left"):
+        worker.wait()
+    worker.wait()  # raised once
+    worker.submit(fails)
+    with pytest.raises(OSError, match="No space left"):
+        worker.submit(job, 5)  # the error before the next job
+    assert done[-1] == 4
+
+
+@pytest.mark.parametrize(
+    ("name", "beside"),
+    [("cantilever", True), ("slider-crank", True), ("argyris-frame", False),
+     ("belt-drive", False)],
+)  # fmt: skip
+def test_no_worker_where_the_steps_change_what_rows_read(name, beside):
+    """Rods (their triads follow the steps) and contact (its state) keep deriving between the
+    steps."""
+    with resources.as_file(resources.files("rancf.examples") / f"{name}.toml") as p:
+        system = load_scenario(p).build_system()
+    assert works_beside(SystemOutputs(system)) is beside
