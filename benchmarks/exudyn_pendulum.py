@@ -1,6 +1,7 @@
 """The straight pendulum of the issue as a stand-alone Exudyn script (the peer of `rancf simulate`).
 
     python benchmarks/exudyn_pendulum.py --elements N [--solver dense|sparse] [--output-step DT]
+        [--newton-rel-tol TOL]
 
 L = 1.2 m, circular section r = 0.02 m, rho = 6000 kg/m^3, E = 2e8 Pa, pinned at x = 0, released
 horizontal under gravity; generalized-alpha rho_inf = 0.9, h = 1 ms, 1 s.  The outputs are
@@ -37,6 +38,12 @@ def main() -> None:
     p.add_argument("--t-end", type=float, default=1.0)
     p.add_argument("--step", type=float, default=1e-3)
     p.add_argument("--output-step", type=float, default=None, help="sensor period (default: step)")
+    p.add_argument(
+        "--newton-rel-tol",
+        type=float,
+        default=None,
+        help="timeIntegration.newton.relativeTolerance (default: Exudyn's, 1e-8)",
+    )
     a = p.parse_args()
     area, inertia = math.pi * RADIUS**2, math.pi * RADIUS**4 / 4.0
     sc, mbs, nodes = straight_cable(
@@ -61,6 +68,8 @@ def main() -> None:
     ss = dynamic_settings(
         a.t_end, a.step, 0.9, sparse=a.solver == "sparse", sensors_write_period=period
     )
+    if a.newton_rel_tol is not None:
+        ss.timeIntegration.newton.relativeTolerance = a.newton_rel_tol
     t1 = time.perf_counter()
     mbs.SolveDynamic(ss)
     t2 = time.perf_counter()

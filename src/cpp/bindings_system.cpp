@@ -447,6 +447,15 @@ void bind_system(nb::module_& mod) {
       .def_prop_ro("factorizations",
                    [](const SystemIntegratorHolder& h) { return h.integ.factorizations(); })
       .def(
+          "set_increment_scale",
+          [](SystemIntegratorHolder& h, const std::vector<double>& scale) {
+            check(scale.empty() || scale.size() == h.n, "increment scale: n values or none");
+            h.integ.set_increment_scale(scale);
+          },
+          "scale"_a,
+          "The length each coordinate's Newton increment is multiplied by in the convergence "
+          "test (n values; empty: 1 for all).")
+      .def(
           "memory", [](const SystemIntegratorHolder& h) { return h.integ.memory(); },
           "What the loop keeps between steps (see system_integrator.hpp); empty if nothing.")
       .def(

@@ -64,6 +64,18 @@ void SystemIntegrator::set_prescribed(double t, double* y, double* v, double* a)
 StepOutcome SystemIntegrator::step(const double* y0, const double* v0, const double* a0,
                                    const double* l0, double t, double h, double* y1, double* v1,
                                    double* a1, double* l1) {
+  const StepOutcome first = iterate(y0, v0, a0, l0, t, h, y1, v1, a1, l1, false);
+  if (first.converged) return first;
+  // once more from y0: the predictor carries the stiff modes' alternating accelerations into
+  // the positions (docs/derivations/newton.md), where Newton may not converge
+  StepOutcome second = iterate(y0, v0, a0, l0, t, h, y1, v1, a1, l1, true);
+  second.iterations += first.iterations;
+  return second;
+}
+
+StepOutcome SystemIntegrator::iterate(const double* y0, const double* v0, const double* a0,
+                                      const double* l0, double t, double h, double* y1, double* v1,
+                                      double* a1, double* l1, bool from_y0) {
   const int n = s_.n, m = s_.m;
   const double am = sc_.alpha_m, af = sc_.alpha_f, gamma = sc_.gamma, beta = sc_.beta;
   const double bh2 = beta * h * h;
@@ -72,12 +84,13 @@ StepOutcome SystemIntegrator::step(const double* y0, const double* v0, const dou
     lu_h_ = h;
   }
   bool reuse = sc_.modified || sc_.chord;
-  // modified: linear convergence (old factors); chord: a fresh tangent at each step's start,
-  // and a slow contraction refreshes it, as many iterations as full Newton
+  // modified: linear convergence (old factors); chord: a fresh tangent at each step's start;
+  // a slow contraction ends the attempt from the predictor (step() starts again from y0), and
+  // from y0 it goes on with full Newton
   const int max_iter = sc_.modified ? 3 * sc_.max_iter : sc_.max_iter;
   for (int i = 0; i < n; ++i) {
     base_[sz(i)] = y0[i] + h * v0[i] + h * h * (0.5 - beta) * a0[i];
-    y1[i] = y0[i] + h * v0[i] + 0.5 * h * h * a0[i];
+    y1[i] = from_y0 ? y0[i] : y0[i] + h * v0[i] + 0.5 * h * h * a0[i];
   }
   set_prescribed(t + h, y1, nullptr, nullptr);
   std::copy(l0, l0 + m, l1);
@@ -88,6 +101,7 @@ StepOutcome SystemIntegrator::step(const double* y0, const double* v0, const dou
   terms.tf = t + (1.0 - af) * h;
   terms.t1 = t + h;
   double prev = std::numeric_limits<double>::infinity();
+  const double* w = scale_.empty() ? nullptr : scale_.data();
   for (int it = 1; it <= max_iter; ++it) {
     for (int i = 0; i < n; ++i) {
       a1[i] = (y1[i] - base_[sz(i)]) / bh2;
@@ -110,10 +124,10 @@ StepOutcome SystemIntegrator::step(const double* y0, const double* v0, const dou
       if (sc_.modified) remember(h, terms, l1, y1);
     }
     solve_negative();
-    double norm = 0.0;
+    double norm = 0.0;  // increments measured as displacements (docs/derivations/newton.md)
     for (int i = 0; i < n; ++i) {
       y1[i] += dz_[sz(i)];
-      norm = std::max(norm, std::abs(dz_[sz(i)]));
+      norm = std::max(norm, std::abs(dz_[sz(i)]) * (w != nullptr ? w[i] : 1.0));
     }
     for (int i = 0; i < m; ++i) l1[i] += dz_[sz(n + i)];
     if (!std::isfinite(norm)) {
@@ -136,6 +150,7 @@ StepOutcome SystemIntegrator::step(const double* y0, const double* v0, const dou
     }
     if (reuse && !fresh && norm > 0.25 * prev) {  // slow: refresh
       lu_valid_ = false;
+      if (sc_.chord && !from_y0) return {false, it};  // step() starts again from y0
       if (sc_.chord) {  // undo the chord increment, full Newton for the rest of the step: the
         for (int i = 0; i < n; ++i) y1[i] -= dz_[sz(i)];  // path of full Newton (contact)
         for (int i = 0; i < m; ++i) l1[i] -= dz_[sz(n + i)];

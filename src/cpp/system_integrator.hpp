@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "bordered.hpp"
@@ -22,6 +23,8 @@ namespace rancf {
 class SystemIntegrator {
  public:
   SystemIntegrator(const System& s, const Scheme& scheme);
+  /// One step: Newton from the predictor y0 + h v0 + h^2/2 a0; where that fails (chord: where
+  /// the iteration contracts slowly), once more from y0 (the iterations of both counted).
   StepOutcome step(const double* y0, const double* v0, const double* a0, const double* l0, double t,
                    double h, double* y1, double* v1, double* a1, double* l1);
   /// Up to n_steps fixed steps from t0 (rods' triads re-referenced after each); the output
@@ -71,6 +74,10 @@ class SystemIntegrator {
   /// Solve with the last factorization: x (n) and z (m) hold the right-hand side on entry.
   void solve_factored(double* x, double* z);
   [[nodiscard]] long factorizations() const { return factorizations_; }
+  /// The length each coordinate's Newton increment is multiplied by in the convergence test
+  /// (n values; empty: 1 for all): gradient coordinates by their elements' length, so that the
+  /// test measures the displacement of the material (docs/derivations/newton.md).
+  void set_increment_scale(std::vector<double> scale) { scale_ = std::move(scale); }
   /// The held coordinates that follow time functions, at time t (any pointer may be null).
   void set_prescribed(double t, double* y, double* v, double* a) const;
   /// What the loop keeps between steps (modified Newton: the factored Jacobian, kept as the
@@ -83,6 +90,10 @@ class SystemIntegrator {
   bool restore(const std::vector<double>& memory, long factorizations);
 
  private:
+  /// The Newton iterations of step(), from the predictor y0 + h v0 + h^2/2 a0 or from y0.
+  StepOutcome iterate(const double* y0, const double* v0, const double* a0, const double* l0,
+                      double t, double h, double* y1, double* v1, double* a1, double* l1,
+                      bool from_y0);
   void solve_negative();
   void remember(double h, const AssemblyTerms& terms, const double* l1, const double* y1);
   const System& s_;
@@ -95,6 +106,7 @@ class SystemIntegrator {
   long factorizations_ = 0;
   std::vector<double> base_, yf_, vf_, am_, r_, dz_, zb_, zero_;
   std::vector<double> factored_at_;  ///< modified Newton: where the factors were assembled
+  std::vector<double> scale_;        ///< set_increment_scale (empty: none)
 };
 
 /// Kinetic, strain (elements and springs) and gravitational energy of the system at (y, v)

@@ -47,12 +47,16 @@ class DynamicOptions:
         Interval of stored states (default: every ``step``), in (0, t_end]; the steps end on
         every output time and on ``t_end``, which is stored too.
     newton_tol : float
-        Newton stops when ``max |Δy| <= newton_tol * size`` (size = model extent).
+        Newton stops when ``max s_i |Δy_i| <= newton_tol * size`` (size = model extent; ``s_i``
+        1 for positions, the element length for cables' gradients and beams' angles, at most 1:
+        :mod:`rancf.solvers.increment_scale`).  A step whose iteration fails from the predictor
+        ``y + h v + h² a/2`` is tried once more from ``y`` before the step is cut.
     max_newton : int
     newton : {"chord", "full", "modified"}
         ``"chord"`` (default): the exact tangent is assembled and factored at the first iteration
         of every step and reused for the step's further iterations (which then need the forces
-        only) while the increments shrink fast, else full Newton for the rest of the step
+        only) while the increments shrink fast, else the step starts again from ``y`` and,
+        should the increments shrink slowly there too, goes on with full Newton
         (systems with contact: full Newton); the answer is that of ``"full"`` to far below the
         Newton tolerance.
         ``"full"``: the exact tangent is assembled and factored at every iteration.

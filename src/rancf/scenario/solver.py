@@ -63,7 +63,11 @@ class SolverTable(Table):
     min_step: Positive | None = Field(
         None, description="below this a failing step stops the run [s] (default: step / 1024)"
     )
-    newton_tol: Positive = Field(1e-10, description="Newton: max |increment| / model size")
+    newton_tol: Positive = Field(
+        1e-10,
+        description="Newton: max |increment| / model size (gradients times their elements' "
+        "length)",
+    )
     max_newton: integer(ge=1, le=MAX_NEWTON) = Field(12, description="Newton iterations per step")
     newton: Literal["chord", "full", "modified"] = Field(
         "chord",

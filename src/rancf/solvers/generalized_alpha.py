@@ -8,6 +8,7 @@ from numpy.typing import NDArray
 
 from rancf.bodies.flexible import Model
 from rancf.kernels import _core
+from rancf.solvers.increment_scale import increment_scale
 from rancf.system import System, as_system
 from rancf.system.sliding import start_multipliers
 
@@ -54,6 +55,8 @@ class GeneralizedAlpha:
             chord=newton == "chord",
         )
         self._core = _core.SystemIntegrator(self.system.core, scheme)
+        # the test measures increments as displacements (gradients times their elements' length)
+        self._core.set_increment_scale(increment_scale(self.system).tolist())
 
     @property
     def n_factorizations(self) -> int:
