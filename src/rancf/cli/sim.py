@@ -62,7 +62,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     od = OutputDir(args.out, kind=kind, overwrite=args.overwrite)  # checks the path up front
     from rancf.atomic import atomic_write
     from rancf.cli.resume import Resume, scenario_for_run
-    from rancf.post.checks import run_warnings, section_warnings
+    from rancf.post.checks import run_warnings, section_warnings, step_warnings
     from rancf.post.history import HistoryStore, plan_run
     from rancf.post.results import run_summary
     from rancf.solvers.start import start_state
@@ -86,7 +86,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
             if not args.quiet:
                 print(f"rancf: {resume.killed_note()}; resuming from t = {state.t:g} s",
                       file=sys.stderr)  # fmt: skip
-        notes = _warn(section_warnings(system))  # likely unit mistakes: the run goes on
+        notes = _warn(section_warnings(system) + step_warnings(opts))  # the run goes on
         for note in sc.notes:  # defaults the file did not state (a harmonic's build-up)
             print(f"rancf: {note}", file=sys.stderr)
         info = {"scenario": str(Path(args.scenario).resolve()), "setup_wall_time_s": None}
@@ -102,7 +102,8 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
             res = _run(args, system, opts, store, stop, every, od.keep, y_start, state)
             summary = run_summary(system, res)
             store.flush()  # every row's derived outputs, the strain among them
-            store.info["warnings"] = run_warnings(system, largest=outputs.largest_strain)
+            store.info["warnings"] = run_warnings(system, largest=outputs.largest_strain,
+                                                  options=opts)  # fmt: skip
             store.finish(summary, res.state)
         except BaseException as exc:
             err = _end_broken(store, system, exc, od.kept, out)

@@ -9,6 +9,10 @@ and an entry of ``summary.json``'s ``"warnings"`` list.
   user who meant a ring should know (:attr:`rancf.mesh.mesh.CableMesh.notes`).
 * Contact set up wrongly (:mod:`rancf.post.contact_checks`): a body that starts deep inside an
   obstacle, a frictional wrap with too few elements.
+* An output interval that is not a whole number of fixed steps (:func:`step_warnings`): every
+  step that would pass an output time is cut to end on it, so the run takes more steps, and
+  each change of the step refactors the Jacobian (``output_step = 1.5e-3`` with ``step =
+  1e-3``: 1333 steps instead of 1000, 2.3 times the time of ``2e-3``).
 
 The axial strain is the elements' own Green–Lagrange measure at the section sample points
 (:class:`rancf.bodies.section_outputs.SectionSampler`: the compiled core's strain, at
@@ -23,6 +27,7 @@ from numpy.typing import NDArray
 
 from rancf.bodies.flexible import Model
 from rancf.bodies.section_outputs import SectionSampler
+from rancf.options import DynamicOptions
 from rancf.post.contact_checks import contact_warnings
 from rancf.post.winch_checks import winch_warnings
 from rancf.system import System
@@ -31,6 +36,7 @@ __all__ = [
     "STRAIN_LIMIT",
     "RADIUS_LIMIT",
     "section_warnings",
+    "step_warnings",
     "strain_warning",
     "largest_strain",
     "run_warnings",
@@ -109,16 +115,36 @@ def at_load_factor(lam: float) -> str:
     return f"at load factor λ = {lam:g}"
 
 
+def step_warnings(options: DynamicOptions) -> list[str]:
+    """A warning if fixed steps do not fit the output interval: ``output_step / step`` is above
+    1 and not a whole number (within 1e-9), so the steps alternate to end on the output times.
+    (An interval below the step makes every step the interval: constant, no warning.)"""
+    out, h = options.output_step, options.step
+    if options.adaptive or out is None:
+        return []
+    k = out / h
+    if k <= 1.0 + 1e-9 or abs(k - round(k)) <= 1e-9 * k:
+        return []
+    fit = round(k) * h
+    return [
+        f"solver.output_step = {out:g} s is not a whole number of steps (solver.step = {h:g} s): "
+        f"steps are cut to end on every output time, which takes more steps and a new "
+        f"factorization at each change of the step; output_step = {fit:g} s keeps the step"
+    ]
+
+
 def run_warnings(
     model: Model | System,
     t: NDArray | None = None,
     q: NDArray | None = None,
     static: bool = False,
     largest: tuple[float, float] | None = None,
+    options: DynamicOptions | None = None,
 ) -> list[str]:
-    """Every warning of a run: the section's radius, and the largest axial strain — ``largest =
-    (strain, t)`` as a :class:`~rancf.system.outputs.SystemOutputs` tracked it, or of a model's
-    states ``q (n_t, n)`` at times (or load factors, ``static``) ``t``."""
+    """Every warning of a run: the section's radius, the steps against the output interval
+    (``options``, a dynamic run's), and the largest axial strain — ``largest = (strain, t)`` as
+    a :class:`~rancf.system.outputs.SystemOutputs` tracked it, or of a model's states ``q (n_t,
+    n)`` at times (or load factors, ``static``) ``t``."""
     if largest is None and isinstance(model, System):
         largest = (0.0, 0.0)
     if largest is None:
@@ -128,7 +154,8 @@ def run_warnings(
             else (0.0, 0.0)
         )
     strain = strain_warning(largest[0], (at_load_factor if static else at_time)(largest[1]))
-    return section_warnings(model) + ([strain] if strain else [])
+    steps = [] if options is None else step_warnings(options)
+    return section_warnings(model) + steps + ([strain] if strain else [])
 
 
 def largest_strain(model: Model, t: NDArray, q: NDArray) -> tuple[float, float]:

@@ -1,0 +1,67 @@
+"""The warning about fixed steps that do not fit the output interval: ``rancf simulate`` says so
+on standard error and in ``summary.json``, and the steps it warns about are really cut."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from rancf.cli import main
+from rancf.options import DynamicOptions
+from rancf.post.checks import step_warnings
+
+PENDULUM = """\
+[geometry]
+kind = "line"
+start = [0.0, 0.0]
+end = [1.0, 0.0]
+[mesh]
+elements = 4
+[section]
+radius = 0.01
+[material]
+density = 1000.0
+youngs_modulus = 1.0e8
+[[supports]]
+at = "start"
+kind = "pin"
+[loads]
+gravity = [0.0, -9.81]
+[solver]
+t_end = 0.03
+step = 1.0e-3
+output_step = {out}
+"""
+
+
+@pytest.mark.parametrize(
+    ("out", "warned"),
+    [(None, False), (1e-3, False), (2e-3, False), (3e-3, False), (5e-4, False),
+     (1.5e-3, True), (2.5e-3, True), (1.0000001e-3, True)],
+)  # fmt: skip
+def test_only_a_fractional_number_of_steps_above_one_warns(out, warned):
+    w = step_warnings(DynamicOptions(t_end=1.0, step=1e-3, output_step=out))
+    assert bool(w) == warned
+    if warned:
+        assert w[0].startswith(f"solver.output_step = {out:g} s is not a whole number of steps")
+
+
+def test_adaptive_steps_are_not_warned_about():
+    assert step_warnings(DynamicOptions(t_end=1.0, step=1e-3, output_step=1.5e-3,
+                                        adaptive=True)) == []  # fmt: skip
+
+
+@pytest.mark.parametrize(("out", "steps"), [(2e-3, 30), (1.5e-3, 40)])
+def test_simulate_warns_once_and_the_steps_are_cut(tmp_path, capsys, out, steps):
+    f = tmp_path / "p.toml"
+    f.write_text(PENDULUM.format(out=out))
+    assert main(["simulate", str(f), "--out", str(tmp_path / "run"), "--quiet"]) == 0
+    err = capsys.readouterr().err
+    summary = json.loads((tmp_path / "run" / "summary.json").read_text())
+    assert summary["steps"] == steps  # 1.5 ms: steps of 1 and 0.5 ms, 20 outputs, 40 steps
+    warned = [w for w in summary["warnings"] if w.startswith("solver.output_step")]
+    assert len(warned) == (out == 1.5e-3)
+    assert err.count("rancf: warning: solver.output_step") == len(warned)
+    if warned:
+        assert "output_step = 0.002 s keeps the step" in warned[0]
