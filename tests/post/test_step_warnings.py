@@ -10,29 +10,12 @@ import pytest
 from rancf.cli import main
 from rancf.options import DynamicOptions
 from rancf.post.checks import step_warnings
+from tests.test_cli_warnings import HOSE
 
-PENDULUM = """\
-[geometry]
-kind = "line"
-start = [0.0, 0.0]
-end = [1.0, 0.0]
-[mesh]
-elements = 4
-[section]
-radius = 0.01
-[material]
-density = 1000.0
-youngs_modulus = 1.0e8
-[[supports]]
-at = "start"
-kind = "pin"
-[loads]
-gravity = [0.0, -9.81]
-[solver]
-t_end = 0.03
-step = 1.0e-3
-output_step = {out}
-"""
+#: The hose of the unit-mistake warnings with a stiff material, 0.03 s long, and an interval.
+PENDULUM = HOSE.replace("youngs_modulus = 50.0", "youngs_modulus = 1.0e8").replace(
+    "t_end = 0.1", "t_end = 0.03"
+) + "output_step = {out}\n"
 
 
 @pytest.mark.parametrize(
