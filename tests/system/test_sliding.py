@@ -73,6 +73,25 @@ def _residual(s: System, y: np.ndarray, lam: np.ndarray) -> np.ndarray:
     return r
 
 
+def _jacobians(s: System, y: np.ndarray, lam: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The core's static Jacobian of ``(y, λ)`` and its central differences (steps 1e-6 of
+    each unknown's size)."""
+    size = s.n + s.m
+    jac = np.empty(size * size)
+    z = np.zeros(s.n)
+    assert s.core.dense_jacobian(y, z, z, lam, 0.0, 1.0, 0.0, 0.0, False, jac)
+    x0, fd = np.r_[y, lam], np.zeros((size, size))
+    for c in range(size):
+        h = 1e-6 * (1.0 + abs(x0[c]))
+        xp, xm = x0.copy(), x0.copy()
+        xp[c] += h
+        xm[c] -= h
+        fd[:, c] = (_residual(s, xp[: s.n], xp[s.n :]) - _residual(s, xm[: s.n], xm[s.n :])) / (
+            2 * h
+        )
+    return jac.reshape(size, size), fd
+
+
 CASES = [("ground", 2, "rancf"), ("mass", 2, "ancf"), ("rigid", 2, "rancf"),
          ("ground", 3, "rancf"), ("rigid", 3, "rancf"), ("mass", 3, "rod"),
          ("rigid", 3, "rod")]  # fmt: skip
@@ -93,20 +112,7 @@ def test_jacobian_is_exact(place, dim, element):
     assert lam[slot] == pytest.approx(2.2, abs=1e-12)  # 0.55 m of 4 elements of 0.25 m
     lam[slot - dim : slot] = rng.standard_normal(dim) * 3.0
     lam[slot] += 0.37  # into element 2
-    size = s.n + s.m
-    jac = np.empty(size * size)
-    z = np.zeros(s.n)
-    assert s.core.dense_jacobian(y, z, z, lam, 0.0, 1.0, 0.0, 0.0, False, jac)
-    jac = jac.reshape(size, size)
-    x0, fd = np.r_[y, lam], np.zeros((size, size))
-    for c in range(size):
-        h = 1e-6 * (1.0 + abs(x0[c]))
-        xp, xm = x0.copy(), x0.copy()
-        xp[c] += h
-        xm[c] -= h
-        fd[:, c] = (_residual(s, xp[: s.n], xp[s.n :]) - _residual(s, xm[: s.n], xm[s.n :])) / (
-            2 * h
-        )
+    jac, fd = _jacobians(s, y, lam)
     free = np.r_[~s.fixed, np.ones(s.m, dtype=bool)]
     err = np.abs(jac - fd)[np.ix_(free, free)]
     assert err.max() <= 1e-7 * np.abs(fd).max()
@@ -493,20 +499,8 @@ def test_a_ring_runs_round_through_its_place():
     rng = np.random.default_rng(5)
     y = s.y0 + 1e-3 * rng.standard_normal(s.n)
     lam[slot - 2 : slot + 1] = [1.0, -2.0, 7.9]  # the last element, at the seam
-    size = s.n + s.m
-    jac = np.empty(size * size)
-    z = np.zeros(s.n)
-    assert s.core.dense_jacobian(y, z, z, lam, 0.0, 1.0, 0.0, 0.0, False, jac)
-    x0, fd = np.r_[y, lam], np.zeros((size, size))
-    for c in range(size):
-        h = 1e-6 * (1.0 + abs(x0[c]))
-        xp, xm = x0.copy(), x0.copy()
-        xp[c] += h
-        xm[c] -= h
-        fd[:, c] = (_residual(s, xp[: s.n], xp[s.n :]) - _residual(s, xm[: s.n], xm[s.n :])) / (
-            2 * h
-        )
-    assert np.abs(jac.reshape(size, size) - fd).max() <= 1e-7 * np.abs(fd).max()
+    jac, fd = _jacobians(s, y, lam)
+    assert np.abs(jac - fd).max() <= 1e-7 * np.abs(fd).max()
 
 
 def test_shipped_atwood_example_is_the_system_tested_here():
