@@ -12,6 +12,9 @@ from __future__ import annotations
 
 import re
 from collections.abc import Mapping, Sequence
+from pathlib import Path
+
+import numpy as np
 
 #: Relative tolerance of printed floating-point numbers: far above round-off (about 1e-12 after
 #: the README's 1000 time steps), far below any change of the physics or of a printed digit that
@@ -73,3 +76,11 @@ def assert_rows_match(
     for g, e in zip(got, expected, strict=True):
         for key in e:
             assert text_matches(g[key], e[key], rtol), (key, g[key], e[key])
+
+
+def csv_columns(path: str | Path) -> dict[str, np.ndarray]:
+    """A numeric CSV file with one header line (``sensors.csv``, ``reactions.csv``) as columns by
+    name."""
+    head, *rows = Path(path).read_text().splitlines()
+    vals = np.array([[float(x) for x in r.split(",")] for r in rows])
+    return {c: vals[:, i] for i, c in enumerate(head.split(","))}

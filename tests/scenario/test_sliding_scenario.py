@@ -16,6 +16,7 @@ from rancf.cli import main
 from rancf.errors import InputError, ScenarioError
 from rancf.scenario import Scenario
 from rancf.system.outputs import SystemOutputs
+from tests.numbers import csv_columns
 
 BEAM = """
 [[bodies]]
@@ -62,12 +63,6 @@ joint = "guide"
 """
 
 
-def _csv(path) -> dict[str, np.ndarray]:
-    head, *rows = path.read_text().splitlines()
-    vals = np.array([[float(x) for x in r.split(",")] for r in rows])
-    return {c: vals[:, i] for i, c in enumerate(head.split(","))}
-
-
 def test_sliding_joint_from_a_scenario_file(tmp_path):
     """The guide at 0.95 m of the 2 m beam carries the middle support's reaction of the
     continuous beam (statics at the start, ``M_B`` by three moments; 2e-4), at arc length
@@ -76,8 +71,8 @@ def test_sliding_joint_from_a_scenario_file(tmp_path):
     (tmp_path / "s.toml").write_text(BEAM)
     with contextlib.redirect_stdout(io.StringIO()):
         assert main(["simulate", str(tmp_path / "s.toml"), "--out", str(tmp_path / "run")]) == 0
-    r = _csv(tmp_path / "run" / "reactions.csv")
-    s = _csv(tmp_path / "run" / "sensors.csv")
+    r = csv_columns(tmp_path / "run" / "reactions.csv")
+    s = csv_columns(tmp_path / "run" / "sensors.csv")
     w, a, b = 1000.0 * np.pi * 0.01**2 * 9.81, 0.95, 1.05
     mb = -w * (a**3 + b**3) / (8 * (a + b))
     assert r["guide_fy"][0] == pytest.approx(w * (a + b) / 2 - mb / a - mb / b, rel=2e-4)

@@ -26,6 +26,7 @@ import numpy as np
 import pytest
 
 from rancf.cli import main
+from tests.numbers import csv_columns
 
 CHAIN = """
 [geometry]
@@ -61,21 +62,15 @@ at = "start"
 """
 
 
-def _csv(path) -> dict[str, np.ndarray]:
-    head, *rows = path.read_text().splitlines()
-    vals = np.array([[float(x) for x in r.split(",")] for r in rows])
-    return {c: vals[:, i] for i, c in enumerate(head.split(","))}
-
-
 @pytest.mark.parametrize(("n", "size_tol"), [(20, 2e-2), (40, 1e-3)])
 def test_tension_of_a_straightened_curved_chain(tmp_path, n, size_tol):
     (tmp_path / "c.toml").write_text(CHAIN.format(n=n))
     with contextlib.redirect_stdout(io.StringIO()):
         assert main(["static", str(tmp_path / "c.toml"), "--out", str(tmp_path / "r")]) == 0
     run = tmp_path / "r"
-    sensors, reactions = _csv(run / "sensors.csv"), _csv(run / "reactions.csv")
+    sensors, reactions = csv_columns(run / "sensors.csv"), csv_columns(run / "reactions.csv")
     (body,) = (run / "bodies").iterdir()  # the one body's section values
-    along = _csv(body / "along.csv")
+    along = csv_columns(body / "along.csv")
     q = np.load(run / "results.npz")["q"][-1].reshape(n + 1, 4)
     tangent = q[:, 2:] / np.linalg.norm(q[:, 2:], axis=1, keepdims=True)
     end = np.array([reactions["end_fx"][-1], reactions["end_fy"][-1]])
@@ -127,12 +122,12 @@ def test_tension_of_a_hanging_cable_is_the_weight_below(tmp_path):
     with contextlib.redirect_stdout(io.StringIO()):
         assert main(["static", str(tmp_path / "h.toml"), "--out", str(tmp_path / "r")]) == 0
     (body,) = (tmp_path / "r" / "bodies").iterdir()
-    along = _csv(body / "along.csv")
+    along = csv_columns(body / "along.csv")
     nodal, s = along["axial_force"][::4], along["s"][::4]
     w = 7850.0 * np.pi * 0.01**2 * 9.81
     assert abs(nodal[0] / (w * 10.0) - 1) < 1e-9
     np.testing.assert_allclose(nodal, w * (10.0 - s), rtol=0, atol=1e-9 * w * 10.0)
-    assert _csv(tmp_path / "r" / "sensors.csv")["tip"][-1] == nodal[-1]
+    assert csv_columns(tmp_path / "r" / "sensors.csv")["tip"][-1] == nodal[-1]
 
 
 def test_tension_at_a_moving_end_is_the_reaction_along_the_tangent(tmp_path):
@@ -148,7 +143,7 @@ def test_tension_at_a_moving_end_is_the_reaction_along_the_tangent(tmp_path):
     with contextlib.redirect_stdout(io.StringIO()):
         assert main(["simulate", str(tmp_path / "d.toml"), "--out", str(tmp_path / "r")]) == 0
     run = tmp_path / "r"
-    sensors, reactions = _csv(run / "sensors.csv"), _csv(run / "reactions.csv")
+    sensors, reactions = csv_columns(run / "sensors.csv"), csv_columns(run / "reactions.csv")
     q = np.load(run / "results.npz")["q"].reshape(len(sensors["t"]), 11, 4)
     tangent = q[:, -1, 2:] / np.linalg.norm(q[:, -1, 2:], axis=1, keepdims=True)
     end = np.column_stack([reactions["end_fx"], reactions["end_fy"]])

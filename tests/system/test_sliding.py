@@ -27,16 +27,7 @@ from rancf.solvers.static import solve_static
 from rancf.system import Joint, System
 from rancf.system.outputs import SystemOutputs
 from rancf.system.sliding import sliding_values, start_multipliers
-
-SEC, MAT = Section.circular(0.01), Material(1000.0, 1e7)
-ROD = Material(1000.0, 1e7, poisson_ratio=0.3)
-
-
-def _rot3(a: float) -> np.ndarray:
-    c, s = np.cos(a), np.sin(a)
-    return np.array([[c, 0, s], [0, 1, 0], [-s, 0, c]]) @ np.array(
-        [[c, -s, 0], [s, c, 0], [0, 0, 1]]
-    )
+from tests.system.test_system_derivatives import MAT, ROD, SEC, _rot3
 
 
 def through(place: str, dim: int = 2, element: str = "rancf", supports: bool = True) -> System:
