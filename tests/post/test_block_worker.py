@@ -97,3 +97,43 @@ def test_no_worker_where_the_steps_change_what_rows_read(name, beside):
     with resources.as_file(resources.files("rancf.examples") / f"{name}.toml") as p:
         system = load_scenario(p).build_system()
     assert works_beside(SystemOutputs(system)) is beside
+
+
+def test_the_loop_time_counts_every_stored_row(tmp_path, monkeypatch):
+    """``solve_wall_time_s`` is taken after every stored row is derived and appended: when
+    :func:`~rancf.solvers.dynamic.integrate` returns, the store holds them all (none left in
+    its buffer for the last checkpoint), with the worker and without it."""
+    import rancf.solvers.dynamic as dynamic
+
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "s.toml").write_text(mutated(solver__t_end=0.05, mesh__elements=8))
+    integrate, seen = dynamic.integrate, []
+
+    def watched(*args, **kwargs):  # noqa: ANN002, ANN003, ANN202
+        result = integrate(*args, **kwargs)
+        sink = args[4]  # integrate(model, options, on_output, should_stop, sink, ...)
+        seen.append((sink.n_rows, sink._pending, result.n_outputs))
+        return result
+
+    monkeypatch.setattr(dynamic, "integrate", watched)
+    init = HistoryStore.__init__
+    for beside in (True, False):
+
+        def big(self, *a, _beside=beside, **kw):  # noqa: ANN001, ANN002, ANN003, ANN202
+            init(self, *a, **{**kw, "buffer_bytes": 1 << 26, "beside": _beside})
+
+        monkeypatch.setattr(HistoryStore, "__init__", big)
+        out = tmp_path / f"run-{beside}"
+        assert main(["simulate", "s.toml", "--out", str(out), "--quiet"]) == 0
+        monkeypatch.setattr(HistoryStore, "__init__", init)
+    assert len(seen) == 2
+    for rows, pending, stored in seen:
+        assert pending == 0 and rows == stored == 51
+
+
+def test_a_worker_hands_over_small_blocks():
+    """With the worker the buffer is :data:`~rancf.post.history.WORKER_BLOCK_BYTES`, so the
+    last block, which the loop waits for, is short; without it 8 MB."""
+    from rancf.post.history import WORKER_BLOCK_BYTES
+
+    assert WORKER_BLOCK_BYTES <= 1 << 20

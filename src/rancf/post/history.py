@@ -50,6 +50,9 @@ _FILES = ("t", "q", "v", "e")
 #: this size in the raw folder, which :meth:`HistoryStore.fail` removes before writing it.
 RESERVE_BYTES = 1 << 15
 
+#: Stored rows handed to the output worker at a time (bytes of ``q`` and ``v``).
+WORKER_BLOCK_BYTES = 1 << 20
+
 
 def _reserve(path: Path) -> None:
     """Write :data:`RESERVE_BYTES` at ``path`` if the disk takes them (else nothing is kept: the
@@ -155,7 +158,7 @@ class HistoryStore:
         out: Path,
         outputs: SystemOutputs,
         info: dict[str, Any],
-        buffer_bytes: int = 1 << 23,
+        buffer_bytes: int | None = None,
         beside: bool | None = None,
     ) -> None:
         self.out = Path(out)
@@ -171,14 +174,16 @@ class HistoryStore:
         self._fh = {k: open(self.raw / f"{k}.f64", "wb") for k in files}  # noqa: SIM115
         self._buf: dict[str, list[NDArray]] = {k: [] for k in self._keys}
         self._alpha: list[NDArray] = []  # the buffered rows' steps' alpha points (contact)
+        beside = works_beside(outputs) if beside is None else beside
+        self._worker = BlockWorker() if beside else None
+        if buffer_bytes is None:  # beside the loop, small blocks: the last, which the loop
+            buffer_bytes = WORKER_BLOCK_BYTES if beside else 1 << 23  # waits for, is short
         self._rows_per_flush = max(1, buffer_bytes // (16 * outputs.n_q + 32))
         self.n_rows = 0
         self._pending = 0
         #: Rows and last time of the history files on disk (the last complete checkpoint).
         self.saved_rows = 0
         self.saved_t: float | None = None
-        beside = works_beside(outputs) if beside is None else beside
-        self._worker = BlockWorker() if beside else None
 
     def append(
         self,
@@ -254,10 +259,15 @@ class HistoryStore:
             else:
                 self._worker.submit(self._append, rows, alpha, k)
 
+    def settle(self) -> None:
+        """Derive and append every stored row (:meth:`flush`);
+        :func:`rancf.solvers.dynamic.integrate` calls it before the run's wall time is taken,
+        so that the outputs derived beside the loop and those of the last buffer count in it."""
+        self.flush()
+
     def wait(self) -> None:
         """Wait until the blocks handed to the worker are derived and appended (raising its
-        error); :func:`rancf.solvers.dynamic.integrate` calls it before the run's wall time
-        is taken, so that the outputs derived beside the loop count in it."""
+        error)."""
         if self._worker is not None:
             self._worker.wait()
 
