@@ -424,6 +424,20 @@ void bind_system(nb::module_& mod) {
           "y"_a, "v"_a, "t"_a, "out"_a.noconvert(),
           "Every flexible body's (kinetic, strain, gravity) energies at time t.")
       .def(
+          "energies_rows",
+          [](const SystemHolder& h, In t, In y, In v, Out out) {
+            const std::size_t k = t.size(), n = static_cast<std::size_t>(h.s.n);
+            expect_size(y, k * n, "y");
+            expect_size(v, k * n, "v");
+            expect_size(out, k * 3, "out");
+            nb::gil_scoped_release release;
+            for (std::size_t i = 0; i < k; ++i)
+              rancf::system_energies(h.s, y.data() + i * n, v.data() + i * n, out.data() + 3 * i,
+                                     t.data()[i]);
+          },
+          "t"_a, "y"_a, "v"_a, "out"_a.noconvert(),
+          "energies of k states (rows of y, v at times t) into the rows of out (k, 3).")
+      .def(
           "body_energies_rows",
           [](const SystemHolder& h, In t, In y, In v, Out out) {
             const std::size_t k = t.size(), n = static_cast<std::size_t>(h.s.n);
@@ -487,7 +501,7 @@ void bind_system(nb::module_& mod) {
           "run",
           [](SystemIntegratorHolder& h, Out y, Out v, Out a, Out lam, double t0, double dt,
              std::int64_t n_steps, std::int64_t out_every, std::int64_t done_before,
-             double max_seconds, Out out_y, Out out_v, Out out_l, Out out_e,
+             double max_seconds, Out out_y, Out out_v, Out out_l, std::optional<Out> out_e,
              std::optional<Out> out_yf, std::optional<Out> out_vf, double out_dt,
              std::int64_t k_last) {
             for (const auto* x : {&y, &v, &a}) expect_size(*x, h.n, "state");
@@ -498,7 +512,7 @@ void bind_system(nb::module_& mod) {
             expect_size(out_y, n_out * h.n, "out_y");
             expect_size(out_v, n_out * h.n, "out_v");
             expect_size(out_l, n_out * h.m, "out_l");
-            expect_size(out_e, n_out * 3, "out_e");
+            if (out_e) expect_size(*out_e, n_out * 3, "out_e");
             if (out_yf.has_value() != out_vf.has_value())
               throw std::invalid_argument("run: out_yf and out_vf go together");
             if (out_yf) {
@@ -512,14 +526,14 @@ void bind_system(nb::module_& mod) {
               nb::gil_scoped_release release;
               r = h.integ.run(y.data(), v.data(), a.data(), lam.data(), t0, dt, n_steps, out_every,
                               done_before, max_seconds, out_y.data(), out_v.data(), out_l.data(),
-                              out_e.data(), yf, vf, out_dt, k_last);
+                              out_e ? out_e->data() : nullptr, yf, vf, out_dt, k_last);
             }
             return std::make_tuple(r.steps, r.converged, r.iterations, r.stored);
           },
           "y"_a.noconvert(), "v"_a.noconvert(), "a"_a.noconvert(), "lam"_a.noconvert(), "t0"_a,
           "h"_a, "n_steps"_a, "out_every"_a, "done_before"_a, "max_seconds"_a,
           "out_y"_a.noconvert(), "out_v"_a.noconvert(), "out_l"_a.noconvert(),
-          "out_e"_a.noconvert(), "out_yf"_a.noconvert().none() = nb::none(),
+          "out_e"_a.noconvert().none(), "out_yf"_a.noconvert().none() = nb::none(),
           "out_vf"_a.noconvert().none() = nb::none(), "out_dt"_a = 0.0, "k_last"_a = 0)
       .def(
           "initial_acceleration",

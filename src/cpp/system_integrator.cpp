@@ -251,7 +251,7 @@ RunOutcome SystemIntegrator::run(double* y, double* v, double* a, double* lam, d
       std::copy(y, y + n, out_y + row * n);
       std::copy(v, v + n, out_v + row * n);
       std::copy(lam, lam + m, out_l + row * m);
-      system_energies(s_, y, v, out_e + 3 * row, t + h);
+      if (out_e != nullptr) system_energies(s_, y, v, out_e + 3 * row, t + h);
       ++out.stored;
     }
     const std::chrono::duration<double> spent = std::chrono::steady_clock::now() - start;

@@ -29,9 +29,10 @@ class SystemIntegrator {
                    double h, double* y1, double* v1, double* a1, double* l1);
   /// Up to n_steps fixed steps from t0 (rods' triads re-referenced after each); the output
   /// interval's first done_before steps were taken by an earlier call, so y, v, lambda and the
-  /// energies (kinetic, strain, gravity) go to the next rows of the outputs whenever
-  /// done_before + steps taken is a multiple of out_every.  Returns after a whole step once
-  /// max_seconds of wall time have passed, so the caller can poll for interrupts.
+  /// energies (kinetic, strain, gravity; none if out_e is null) go to the next rows of the
+  /// outputs whenever done_before + steps taken is a multiple of out_every.  Returns after a
+  /// whole step once max_seconds of wall time have passed, so the caller can poll for
+  /// interrupts.
   /// out_yf, out_vf (may be null): the alpha point (y_{n+1-af}, v_{n+1-af}) of the step that
   /// ended at each stored row (before the rods' re-referencing), where its forces act.
   /// out_dt > 0: the steps' times are out_dt k + i h, k the index of the last output (k_last

@@ -74,8 +74,9 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     from rancf.atomic import atomic_write
     from rancf.cli.resume import Resume, scenario_for_run
     from rancf.post.checks import run_warnings, section_warnings, step_warnings
-    from rancf.post.history import HistoryStore, plan_run
+    from rancf.post.history import HistoryStore
     from rancf.post.results import run_summary
+    from rancf.post.run_plan import plan_run
     from rancf.solvers.start import start_state
 
     sc, copy = scenario_for_run(args.scenario, args.t_end)

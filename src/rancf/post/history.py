@@ -30,16 +30,12 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rancf.atomic import FileSet, atomic_write
-from rancf.errors import RunTooLargeError
 from rancf.post.block_worker import BlockWorker, works_beside
 from rancf.post.results import strict_json
 from rancf.post.resume import CHECKPOINT
 from rancf.post.run_files import DERIVED, write_history_files
-from rancf.system.outputs import SystemOutputs
 
-__all__ = [
-    "HistoryStore", "estimate_output_bytes", "check_output_size", "plan_run", "HISTORY_FILES",
-]  # fmt: skip
+__all__ = ["HistoryStore", "HISTORY_FILES", "WORKER_BLOCK_BYTES"]
 
 #: The files a run directory's history is kept in (replaced together at each checkpoint).
 HISTORY_FILES = ("sensors.csv", "energy.csv", "reactions.csv", "results.npz")
@@ -63,67 +59,6 @@ def _reserve(path: Path) -> None:
     except OSError:
         with contextlib.suppress(OSError):
             path.unlink()
-
-
-def estimate_output_bytes(
-    n_outputs: int, n_q: int, n_sensor_columns: int, n_directors: int = 0, n_derived: int = 0
-) -> int:
-    """Disk space a run needs at its end (raw history + results.npz + the CSV files).
-
-    Raw and ``.npz`` copies of ``t, q, v, a``, energies, ``n_directors`` director components (a
-    rod's 3 per node) and ``n_derived`` reactions and section values at 8 bytes a number each,
-    about 20 bytes a number in the CSV files.
-    """
-    binary = 3 * n_q + 4 + n_sensor_columns + n_directors + n_derived
-    per_row = 2 * 8 * binary + 20 * (n_sensor_columns + 6 + n_derived)
-    return int(n_outputs) * per_row
-
-
-def check_output_size(
-    where: str,
-    n_outputs: int,
-    n_q: int,
-    n_sensor_columns: int,
-    n_directors: int,
-    limit_gb: float,
-    limit_name: str = "--max-output-gb",
-    n_derived: int = 0,
-) -> None:
-    """Refuse, before it starts, a run whose files would take more than ``limit_gb`` GB
-    (:func:`estimate_output_bytes`).
-
-    Raises
-    ------
-    RunTooLargeError
-        Naming ``where`` (the scenario), the size, the number of stored states and the limit.
-    """
-    need = estimate_output_bytes(n_outputs, n_q, n_sensor_columns, n_directors, n_derived)
-    if need > limit_gb * 1e9:
-        raise RunTooLargeError(
-            f"{where}: this run would write about {need / 1e9:.3g} GB ({n_outputs} stored "
-            f"states of {n_q} coordinates), more than {limit_name} = {limit_gb:g}; "
-            "raise solver.output_step, shorten solver.t_end or raise the limit"
-        )
-
-
-def plan_run(
-    sc: Any, limit_gb: float, limit_name: str = "--max-output-gb"
-) -> tuple[Any, SystemOutputs]:
-    """The system of scenario ``sc`` and its outputs, after checking the run's files fit in
-    ``limit_gb`` (:func:`check_output_size`; every flexible body's ``q``, ``v``, ``a`` are also
-    kept in ``bodies/NAME/``)."""
-    from rancf.scenario.system_build import build_system, support_labels
-
-    system = build_system(sc)
-    outputs = SystemOutputs(system, sc.sensors, support_labels(sc))
-    # the body folders repeat every flexible body's q, v, a
-    n_derived = len(outputs.reaction_names) + outputs.n_along + system.m
-    n_derived += 3 * sum(b.n for b in system.flex)
-    check_output_size(
-        sc.path, sc.dynamic_options().n_outputs, system.n, len(outputs.sensor_names),
-        outputs.n_directors, limit_gb, limit_name, n_derived,
-    )  # fmt: skip
-    return system, outputs
 
 
 def _raw_bytes(values: NDArray) -> memoryview:
@@ -156,7 +91,7 @@ class HistoryStore:
     def __init__(
         self,
         out: Path,
-        outputs: SystemOutputs,
+        outputs: Any,
         info: dict[str, Any],
         buffer_bytes: int | None = None,
         beside: bool | None = None,
@@ -174,7 +109,11 @@ class HistoryStore:
         self._fh = {k: open(self.raw / f"{k}.f64", "wb") for k in files}  # noqa: SIM115
         self._buf: dict[str, list[NDArray]] = {k: [] for k in self._keys}
         self._alpha: list[NDArray] = []  # the buffered rows' steps' alpha points (contact)
-        beside = works_beside(outputs) if beside is None else beside
+        #: The rows' energies come from the stored rows (:meth:`_energies`, beside the loop with
+        #: the worker), not from the time loop, where the rows hold all they depend on (no
+        #: rods' triads, contact or sliding joints): ``integrate`` then passes None.
+        self.derives_energies = works_beside(outputs)
+        beside = self.derives_energies if beside is None else beside
         self._worker = BlockWorker() if beside else None
         if buffer_bytes is None:  # beside the loop, small blocks: the last, which the loop
             buffer_bytes = WORKER_BLOCK_BYTES if beside else 1 << 23  # waits for, is short
@@ -217,6 +156,8 @@ class HistoryStore:
     def _add(self, values: tuple[NDArray | None, ...], rows: int,
              alpha: NDArray | None = None) -> None:  # fmt: skip
         for key, val in zip(self._keys, values, strict=False):
+            if val is None and key == "e":  # derived from the rows (derives_energies)
+                continue
             if val is None:
                 raise ValueError(f"output stream {key!r} missing")
             self._buf[key].append(np.asarray(val, dtype="<f8").ravel())
@@ -248,7 +189,7 @@ class HistoryStore:
         """The buffered outputs to :meth:`_append`: on the worker thread if the store has one
         (returning at once), else here."""
         if self._pending:
-            rows = {k: np.concatenate(self._buf[k]) for k in self._keys}
+            rows = {k: np.concatenate(self._buf[k]) for k in self._keys if self._buf[k]}
             alpha = np.concatenate(self._alpha) if self._alpha else None
             k, self._pending = self._pending, 0
             for buf in self._buf.values():
@@ -274,6 +215,8 @@ class HistoryStore:
     def _append(self, rows: dict[str, NDArray], alpha: NDArray | None, k: int) -> None:
         key = "t"
         try:
+            if k and "e" not in rows:  # the energies of the rows, (k, 3)
+                rows["e"] = self._energies(rows, k)
             if k:
                 derived = self.outputs.rows(
                     rows["t"], rows["q"].reshape(k, -1), rows["v"].reshape(k, -1),
@@ -289,6 +232,15 @@ class HistoryStore:
             where = str(self.raw / f"{key}.f64")
             raise OSError(exc.errno, exc.strerror or str(exc), where) from None
         self.n_rows += k
+
+    def _energies(self, rows: dict[str, NDArray], k: int) -> NDArray:
+        """Kinetic, strain and gravitational energy of ``k`` buffered rows (the time loop's
+        ``system_energies`` at each row's time), as the loop would have stored them."""
+        s, e = self.outputs.system, np.empty((k, 3))
+        ys = s.y_from_q(rows["q"].reshape(k, -1))
+        vs = s.y_from_q(rows["v"].reshape(k, -1))
+        s.core.energies_rows(rows["t"], np.ascontiguousarray(ys), np.ascontiguousarray(vs), e)
+        return e.ravel()
 
     def _arrays(self) -> tuple[dict[str, NDArray], NDArray | None]:
         n, o = self.n_rows, self.outputs

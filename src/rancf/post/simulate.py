@@ -7,8 +7,8 @@ import warnings
 from pathlib import Path
 from typing import Any
 
-from rancf.post.history import plan_run
 from rancf.post.results import sensor_table, write_run
+from rancf.post.run_plan import plan_run
 from rancf.solvers.dynamic import DynamicResult, integrate
 from rancf.solvers.start import start_state
 

@@ -123,9 +123,14 @@ def integrate(
     rod = any(b.element == "rod" for b in system.flex)
     directors = system.nodal_directors  # rods: of the state the triads were last carried to
     mult = system.m > 0  # store the joints' multipliers
+    # a sink that derives the energies from the stored rows (beside the loop): none here
+    loop_energies = not getattr(target_sink, "derives_energies", False)
+
+    last_y: list = []  # the last row's y, v (its energies where the sink derives them)
 
     def store(tt: float, yy: NDArray, vv: NDArray, alpha: NDArray | None) -> None:
-        e = np.array(system.energies(yy, vv))
+        e = np.array(system.energies(yy, vv, tt)) if loop_energies else None
+        last_y[:] = [yy.copy(), vv.copy()]
         m1 = directors(yy)
         ll = lam.copy() if mult else None
         row = (tt, system.q_from_y(yy), system.q_from_y(vv), e, m1, ll, alpha)
@@ -143,7 +148,8 @@ def integrate(
         ll = ol if mult else None
         target_sink.append_block(ts, qs, vs, oe, directors=None if m1 is None else m1[None],
                                  lam=ll, alpha=oa)  # fmt: skip
-        last[:] = [(float(ts[-1]), qs[-1], vs[-1], np.array(oe[-1]), m1,
+        last_y[:] = [oy[-1].copy(), ov[-1].copy()]
+        last[:] = [(float(ts[-1]), qs[-1], vs[-1], None if oe is None else np.array(oe[-1]), m1,
                     None if ll is None else ll[-1], None if oa is None else oa[-1])]  # fmt: skip
         result.n_outputs += len(oy)
 
@@ -177,7 +183,11 @@ def integrate(
             result.alpha = memory.stream("alpha")
         else:
             tt, qq, vv, ee, m1, ll, aa = last[0]
-            ts, qs, vs, es = np.array([tt]), qq[None], vv[None], ee[None]
+            if ee is None:  # derived by the sink: the last row's here, as the sink does
+                ee = np.empty((1, 3))
+                system.core.energies_rows(np.array([tt]), *last_y, ee)
+                last[0] = (tt, qq, vv, ee[0], m1, ll, aa)
+            ts, qs, vs, es = np.array([tt]), qq[None], vv[None], np.reshape(ee, (1, 3))
             result.directors = None if m1 is None else m1[None]
             result.lam = None if ll is None else ll[None]
             result.alpha = None if aa is None else aa[None]
@@ -228,11 +238,12 @@ def integrate(
                 lam,
                 out_dt,
                 k_out,
+                energies=loop_energies,
             )
             result.took(o.step, done)
             if stored:
-                store_block(k_out, oy[:stored], ov[:stored], oe[:stored], ol[:stored],
-                            None if oa is None else oa[:stored])  # fmt: skip
+                store_block(k_out, oy[:stored], ov[:stored], None if oe is None else oe[:stored],
+                            ol[:stored], None if oa is None else oa[:stored])  # fmt: skip
             k_out += stored
             within = within + done - stored * per_out
             last_out = out_time(k_out - 1) if k_out else 0.0

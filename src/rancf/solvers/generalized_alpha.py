@@ -124,6 +124,7 @@ class GeneralizedAlpha:
         lam: NDArray | None = None,
         out_dt: float = 0.0,
         k_last: int = 0,
+        energies: bool = True,
     ) -> tuple:
         """Fixed steps in the core from time ``t`` (``y, v, a``, ``lam`` updated in place).
 
@@ -137,11 +138,13 @@ class GeneralizedAlpha:
         Returns ``(steps done, status, iterations, outputs stored, out_y, out_v, out_e,
         out_l, out_alpha)``; status is 1 if every step taken converged, else 0 (the failing
         step is not taken); ``out_alpha`` (systems with contact, else None): each stored row's
-        step's generalized-α point ``(y_f, v_f)`` side by side, ``(n_out, 2 n)``.
+        step's generalized-α point ``(y_f, v_f)`` side by side, ``(n_out, 2 n)``;
+        ``out_e`` is None without ``energies`` (a sink that derives them from the rows).
         """
         n, m = self.system.n, self.system.m
         n_out = (done_before + n_steps) // per_out
-        oy, ov, oe = np.empty((n_out, n)), np.empty((n_out, n)), np.empty((n_out, 3))
+        oy, ov = np.empty((n_out, n)), np.empty((n_out, n))
+        oe = np.empty((n_out, 3)) if energies else None
         ol = np.empty((n_out, m))
         contact = self.system.has_contact
         of = (np.empty((n_out, n)), np.empty((n_out, n))) if contact else (None, None)

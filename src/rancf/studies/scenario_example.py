@@ -130,7 +130,7 @@ def run_scenario(name: str, out: str | Path, quick: bool = False) -> StudyResult
                 "buckling.csv",
             )
         else:  # simulate
-            from rancf.post.history import plan_run
+            from rancf.post.run_plan import plan_run
             from rancf.solvers.dynamic import integrate
             from rancf.solvers.start import start_state
 

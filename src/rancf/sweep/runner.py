@@ -37,7 +37,7 @@ def _analyse(sc: Any, analysis: str, folder: Path) -> tuple[str, str, float, dic
     from rancf.post.results import sensor_table, write_run
 
     if analysis == "simulate":
-        from rancf.post.history import plan_run
+        from rancf.post.run_plan import plan_run
         from rancf.solvers.dynamic import integrate
         from rancf.solvers.start import start_state
 

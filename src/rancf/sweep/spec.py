@@ -111,7 +111,7 @@ def _check_size(sc: Any) -> None:
     """Refuse a variant whose files would exceed a sweep run's disk limit, counting its nodes
     from ``mesh.elements`` (a lower bound: NURBS and CAD meshes have at least as many), so no
     model is built."""
-    from rancf.post.history import check_output_size
+    from rancf.post.run_plan import check_output_size
     from rancf.sweep.runner import LIMIT, MAX_RUN_GB
 
     mesh = sc.data["mesh"]
