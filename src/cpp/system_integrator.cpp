@@ -64,12 +64,28 @@ void SystemIntegrator::set_prescribed(double t, double* y, double* v, double* a)
 StepOutcome SystemIntegrator::step(const double* y0, const double* v0, const double* a0,
                                    const double* l0, double t, double h, double* y1, double* v1,
                                    double* a1, double* l1) {
+  if (from_y0_ > 0 && from_y0_ < kFromY0Steps) {  // the steps before started again from y0
+    StepOutcome direct = iterate(y0, v0, a0, l0, t, h, y1, v1, a1, l1, true);
+    if (direct.converged) {
+      ++from_y0_;
+      return direct;
+    }
+    from_y0_ = 0;
+    const StepOutcome again = iterate(y0, v0, a0, l0, t, h, y1, v1, a1, l1, false);
+    direct.converged = again.converged;
+    direct.iterations += again.iterations;
+    return direct;
+  }
   const StepOutcome first = iterate(y0, v0, a0, l0, t, h, y1, v1, a1, l1, false);
-  if (first.converged) return first;
+  if (first.converged) {
+    from_y0_ = 0;
+    return first;
+  }
   // once more from y0: the predictor carries the stiff modes' alternating accelerations into
   // the positions (docs/derivations/newton.md), where Newton may not converge
   StepOutcome second = iterate(y0, v0, a0, l0, t, h, y1, v1, a1, l1, true);
   second.iterations += first.iterations;
+  from_y0_ = second.converged ? 1 : 0;
   return second;
 }
 
@@ -176,17 +192,26 @@ void SystemIntegrator::remember(double h, const AssemblyTerms& terms, const doub
 }
 
 std::vector<double> SystemIntegrator::memory() const {
-  if (!sc_.modified || !lu_valid_) return {};
-  return factored_at_;
+  std::vector<double> out{static_cast<double>(from_y0_)};
+  if (sc_.modified && lu_valid_) out.insert(out.end(), factored_at_.begin(), factored_at_.end());
+  return out;
 }
 
-bool SystemIntegrator::restore(const std::vector<double>& memory, long factorizations) {
-  const auto n = sz(s_.n), m = sz(s_.m);
+bool SystemIntegrator::restore(const std::vector<double>& saved, long factorizations) {
+  const auto n = sz(s_.n), m = sz(s_.m), point = 6 + 4 * n + m;
   factorizations_ = factorizations;
   lu_valid_ = false;
   factored_at_.clear();
+  from_y0_ = 0;
+  std::vector<double> memory(saved);
+  if (memory.size() == 1 || memory.size() == point + 1) {  // [s] first (else rancf 0.2)
+    const double s = memory[0];
+    if (!(s >= 0.0 && s <= kFromY0Steps && s == std::floor(s))) return false;
+    from_y0_ = static_cast<int>(s);
+    memory.erase(memory.begin());
+  }
   if (memory.empty()) return true;
-  if (!sc_.modified || memory.size() != 6 + 4 * n + m) return false;
+  if (!sc_.modified || memory.size() != point) return false;
   AssemblyTerms terms;
   terms.ck = memory[1];
   terms.cv = memory[2];

@@ -81,13 +81,14 @@ class SystemIntegrator {
   void set_increment_scale(std::vector<double> scale) { scale_ = std::move(scale); }
   /// The held coordinates that follow time functions, at time t (any pointer may be null).
   void set_prescribed(double t, double* y, double* v, double* a) const;
-  /// What the loop keeps between steps (modified Newton: the factored Jacobian, kept as the
-  /// point it was assembled at): empty if nothing, else [h, ck, cv, ca, tf, t1, yf (n),
-  /// vf (n), am (n), y1 (n), lambda (m)].
+  /// What the loop keeps between steps: [s], the steps since one started again from y0 (0:
+  /// none; step()), then, modified Newton with valid factors, the point the factored Jacobian
+  /// was assembled at: [h, ck, cv, ca, tf, t1, yf (n), vf (n), am (n), y1 (n), lambda (m)].
   [[nodiscard]] std::vector<double> memory() const;
   /// Take up memory() of another integrator on the same system: the Jacobian is assembled at
   /// the same point and factored again (bit for bit the same factors); factorizations, the
-  /// counter to go on from.  False if the data do not fit or the factorization fails.
+  /// counter to go on from.  Memory of rancf 0.2 (without [s]: empty or the modified point
+  /// alone) is taken as s = 0.  False if the data do not fit or the factorization fails.
   bool restore(const std::vector<double>& memory, long factorizations);
 
  private:
@@ -106,6 +107,11 @@ class SystemIntegrator {
   double lu_h_ = -1.0;
   long factorizations_ = 0;
   std::vector<double> base_, yf_, vf_, am_, r_, dz_, zb_, zero_;
+  /// Steps since one had to start again from y0 (0: the last started from the predictor and
+  /// converged); below kFromY0Steps the next step starts from y0 at once, at it from the
+  /// predictor.
+  int from_y0_ = 0;
+  static constexpr int kFromY0Steps = 8;
   std::vector<double> factored_at_;  ///< modified Newton: where the factors were assembled
   std::vector<double> scale_;        ///< set_increment_scale (empty: none)
 };

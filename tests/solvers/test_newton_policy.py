@@ -14,6 +14,7 @@ from rancf.mesh.factories import mesh_conic, mesh_line
 from rancf.solvers.dynamic import DynamicOptions, integrate
 from rancf.solvers.increment_scale import body_scale, increment_scale
 from rancf.system import System
+from rancf.system.system import as_system
 from tests.system.test_winch import hoist, payout
 
 SECTION, MATERIAL = Section.circular(0.02), Material(6000.0, 2.0e8)
@@ -82,3 +83,57 @@ def test_chord_is_tightly_converged_full_newton_within_the_tolerance():
     err = np.abs(pos[1] - pos[0]).max()
     assert err < 1.2e-10, err
     assert res.n_newton / 50 < 3.6, res.n_newton
+
+
+def _stiff_steps(k: int) -> tuple[list[int], list[int]]:
+    """The count of steps since one started again from y0 (the integrator's memory) after each
+    of ``k`` steps of 192 stiff elements (E = 2e11), and the iterations of each step."""
+    from rancf.solvers.generalized_alpha import GeneralizedAlpha
+
+    model = Model(mesh_line([0, 0], [1.2, 0], 192), "ancf", SECTION, Material(6000.0, 2e11),
+                  [Support(0, "pin")], gravity=[0, -9.81])  # fmt: skip
+    s = as_system(model)
+    integ = GeneralizedAlpha(s, 0.9, 1.2e-10, 25, "chord")
+    y, v, lam = s.y0.copy(), s.v0.copy(), np.zeros(s.m)
+    integ.prescribe(0.0, y, v)
+    a = integ.initial_acceleration(y, v, 0.0, lam)
+    counts, iters = [], []
+    for i in range(k):
+        done, ok, it, *_ = integ.run_steps(y, v, a, i * 1e-3, 1e-3, 1, 1, 0)
+        assert done == 1 and ok == 1
+        counts.append(int(integ.memory()[0]))
+        iters.append(it)
+    return counts, iters
+
+
+def test_steps_after_one_that_started_again_start_from_y0():
+    """After a step that had to start again from y0, the next 7 start there at once (the count
+    goes 1 .. 8); the 8th after it tries the predictor, and where that fails the count starts
+    over at 1 (docs/derivations/newton.md)."""
+    counts, iters = _stiff_steps(24)
+    assert counts[:8] == list(range(1, 9))
+    starts = [i for i, c in enumerate(counts) if c == 1]
+    assert len(starts) >= 2
+    for i in starts:  # 8 in a row from each start, unless the next start comes first
+        run = counts[i : i + 8]
+        assert run == list(range(1, len(run) + 1))
+    for i, c in enumerate(counts[1:], 1):  # the count only grows by one, or ends, or restarts
+        assert c in (counts[i - 1] + 1, 0, 1)
+    assert max(iters) <= 8
+
+
+def test_the_count_is_restored_and_checked():
+    """The integrator's memory carries the count; a count out of range is refused, a memory
+    without it (rancf 0.2) is taken as none."""
+    from rancf.solvers.generalized_alpha import GeneralizedAlpha
+
+    s = as_system(pendulum(8))
+    integ = GeneralizedAlpha(s, 0.9, 1.2e-10, 25, "chord")
+    np.testing.assert_array_equal(integ.memory(), [0.0])
+    integ.restore(np.array([5.0]), 3)
+    np.testing.assert_array_equal(integ.memory(), [5.0])
+    integ.restore(np.empty(0), 3)
+    np.testing.assert_array_equal(integ.memory(), [0.0])
+    for bad in ([9.0], [-1.0], [2.5], [1.0, 2.0]):
+        with pytest.raises(ValueError, match="does not fit"):
+            integ.restore(np.array(bad), 3)

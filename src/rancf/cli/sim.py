@@ -313,7 +313,13 @@ OVERWRITE_HELP = (
 
 def add_parsers(sub: Any) -> None:
     """Register ``simulate`` on the ``rancf`` sub-parser set."""
-    s = sub.add_parser("simulate", help="run the dynamics of a scenario file")
+    s = sub.add_parser(
+        "simulate",
+        help="run the dynamics of a scenario file",
+        description="Run the dynamics of a scenario file into a run folder. NumPy's OpenBLAS "
+        "is asked for one thread (OPENBLAS_NUM_THREADS=1) unless the environment sets it: "
+        "the run makes no call its threads would share.",
+    )
     s.add_argument("scenario", help="scenario TOML file")
     s.add_argument("--out", required=True, help="output directory (created if needed)")
     s.add_argument("--quiet", action="store_true", help="no progress bar or summary line")

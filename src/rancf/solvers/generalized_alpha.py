@@ -64,8 +64,9 @@ class GeneralizedAlpha:
         return int(self._core.factorizations)
 
     def memory(self) -> NDArray:
-        """What the compiled loop keeps between steps (modified Newton: where its factored
-        Jacobian was assembled); empty if nothing."""
+        """What the compiled loop keeps between steps: the steps since one had to start again
+        from the last state (the next steps start there at once, ``docs/derivations/newton.md``)
+        and, modified Newton, where its factored Jacobian was assembled."""
         return np.array(self._core.memory(), dtype=float)
 
     def restore(self, memory: NDArray, factorizations: int) -> None:
