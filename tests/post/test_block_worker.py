@@ -131,12 +131,28 @@ def test_the_loop_time_counts_every_stored_row(tmp_path, monkeypatch):
         assert pending == 0 and rows == stored == 51
 
 
-def test_a_worker_hands_over_small_blocks():
-    """With the worker the buffer is :data:`~rancf.post.history.WORKER_BLOCK_BYTES`, so the
-    last block, which the loop waits for, is short; without it 8 MB."""
-    from rancf.post.history import WORKER_BLOCK_BYTES
+def test_a_worker_hands_over_small_blocks(tmp_path, monkeypatch):
+    """With the worker a block is at most :data:`~rancf.post.history.WORKER_BLOCK_BYTES` and
+    :data:`~rancf.post.history.WORKER_BLOCK_ROWS` rows, so that the last block, which the loop
+    waits for, is short and a small model's rows too are derived beside the loop: a run of
+    201 rows of 8 elements is handed over as the first row (the first checkpoint, before the
+    first step), three full blocks of 64 and the rest."""
+    from rancf.post import history
 
-    assert WORKER_BLOCK_BYTES <= 1 << 20
+    assert history.WORKER_BLOCK_BYTES <= 1 << 20 and history.WORKER_BLOCK_ROWS <= 128
+    monkeypatch.setattr(history, "WORKER_BLOCK_ROWS", 64)
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "s.toml").write_text(mutated(solver__t_end=0.2, mesh__elements=8))
+    sizes = []
+    submit = BlockWorker.submit
+
+    def counted(self, job, rows, alpha, k):  # noqa: ANN001, ANN202
+        sizes.append(k)
+        submit(self, job, rows, alpha, k)
+
+    monkeypatch.setattr(BlockWorker, "submit", counted)
+    assert main(["simulate", "s.toml", "--out", "run", "--quiet"]) == 0
+    assert sizes == [1, 64, 64, 64, 8]
 
 
 def test_energies_derived_from_the_rows_equal_the_loops(tmp_path, monkeypatch):
