@@ -132,3 +132,19 @@ def test_a_run_does_not_depend_on_the_load(monkeypatch):
     assert np.array_equal(dyn.integrate(sc.build_system(), opts).q, ref.q)
     polled = dyn.integrate(sc.build_system(), opts, should_stop=lambda: False)
     assert np.array_equal(polled.q, ref.q)
+    # calls sized to the wall clock (CALL_TARGET_SECONDS): the least of 1 % of the outputs, or
+    # grown to the memory bound, give the same numbers
+    sizes = []
+    run_steps = dyn.GeneralizedAlpha.run_steps
+
+    def counted(self, *args, **kwargs):  # noqa: ANN001, ANN002, ANN003, ANN202
+        sizes.append(args[5] // args[6])  # n_steps // per_out: the outputs asked of the call
+        return run_steps(self, *args, **kwargs)
+
+    monkeypatch.setattr(dyn.GeneralizedAlpha, "run_steps", counted)
+    for target in (1e-12, 10.0):
+        monkeypatch.setattr(dyn, "CALL_SECONDS", 10.0)
+        monkeypatch.setattr(dyn, "CALL_TARGET_SECONDS", target)
+        sizes.clear()
+        assert np.array_equal(dyn.integrate(sc.build_system(), opts).q, ref.q), target
+        assert (max(sizes) <= 2) if target < 1 else (max(sizes) >= 16), sizes

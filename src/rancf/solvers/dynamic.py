@@ -45,6 +45,14 @@ __all__ = ["DynamicOptions", "DynamicStatus", "DynamicResult", "GeneralizedAlpha
 #: run without them ends its calls at fixed steps and gives the same answer at any load.
 CALL_SECONDS = 0.1
 
+#: Wall time [s] a call of the compiled loop is sized for, from the calls before (at least 1 % of
+#: the run's outputs, as the first): each call costs about 25 µs in Python, and 100 calls of 10
+#: steps of an 8-element pendulum took 15 % of its run; longer calls hand an output worker its
+#: rows later (the last block, which the loop waits for, grows).  Where calls end does not
+#: change the steps (their times are counted from the outputs), so the sizes may follow the
+#: machine.
+CALL_TARGET_SECONDS = 0.002
+
 
 def _failure_message(t: float, min_step: float) -> str:
     return (
@@ -209,10 +217,12 @@ def integrate(
     ratio = out_dt / o.step
     per_out = int(round(ratio))
     fast = not o.adaptive and per_out >= 1 and abs(ratio - per_out) < 1e-9
-    # outputs per compiled call: ~1 % of the run, at most ~16 MB of stored states per array
-    chunk_out = int(np.clip(n_grid // 100, 1, max(1, (1 << 21) // system.n)))
+    # outputs per compiled call: first ~1 % of the run, then sized to CALL_TARGET_SECONDS; at
+    # most ~16 MB of stored states per array
+    cap = max(1, (1 << 21) // system.n)
+    chunk_out = least = int(np.clip(n_grid // 100, 1, cap))
     if rod:  # the triads at a call's end are those of its one stored state
-        chunk_out = 1
+        chunk_out = least = cap = 1
 
     def notify(tt: float) -> None:
         if on_output is not None:
@@ -225,6 +235,7 @@ def integrate(
         on_grid = within > 0 or abs(t - last_out) <= 1e-12 * max(1.0, t)
         if fast and h == o.step and k_out < n_grid and on_grid:
             n_chunk = min(chunk_out, n_grid - k_out)
+            called = time.perf_counter()
             done, st, iters, stored, oy, ov, oe, ol, oa = integ.run_steps(
                 y,
                 v,
@@ -241,6 +252,10 @@ def integrate(
                 energies=loop_energies,
             )
             result.took(o.step, done)
+            took = time.perf_counter() - called
+            if stored == n_chunk and took > 0.0:  # a whole call: the next sized to the target
+                grown = stored * CALL_TARGET_SECONDS / took
+                chunk_out = int(np.clip(grown, max(least, chunk_out // 4), min(cap, 4 * chunk_out)))
             if stored:
                 store_block(k_out, oy[:stored], ov[:stored], None if oe is None else oe[:stored],
                             ol[:stored], None if oa is None else oa[:stored])  # fmt: skip
