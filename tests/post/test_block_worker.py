@@ -102,7 +102,7 @@ def test_no_worker_where_the_steps_change_what_rows_read(name, beside):
 def test_the_loop_time_counts_every_stored_row(tmp_path, monkeypatch):
     """``solve_wall_time_s`` is taken after every stored row is derived and appended: when
     :func:`~rancf.solvers.dynamic.integrate` returns, the store holds them all (none left in
-    its buffer for the last checkpoint), with the worker and without it."""
+    its buffer for the last checkpoint: the store's ``flush``), with the worker and without it."""
     import rancf.solvers.dynamic as dynamic
 
     monkeypatch.chdir(tmp_path)

@@ -24,7 +24,7 @@ import datetime
 import os
 import shutil
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -34,6 +34,9 @@ from rancf.post.block_worker import BlockWorker, works_beside
 from rancf.post.results import strict_json
 from rancf.post.resume import CHECKPOINT
 from rancf.post.run_files import DERIVED, write_history_files
+
+if TYPE_CHECKING:
+    from rancf.system.outputs import SystemOutputs
 
 __all__ = ["HistoryStore", "HISTORY_FILES", "WORKER_BLOCK_BYTES", "WORKER_BLOCK_ROWS"]
 
@@ -95,7 +98,7 @@ class HistoryStore:
     def __init__(
         self,
         out: Path,
-        outputs: Any,
+        outputs: SystemOutputs,
         info: dict[str, Any],
         buffer_bytes: int | None = None,
         beside: bool | None = None,
@@ -187,7 +190,9 @@ class HistoryStore:
 
     def flush(self) -> None:
         """Append the buffered outputs, and what is derived from them, to the raw files (an
-        error of a full disk names the file)."""
+        error of a full disk names the file); :func:`rancf.solvers.dynamic.integrate` calls it
+        before the run's wall time is taken, so that every stored row's derivation counts in
+        it (the worker's blocks and the last buffer's)."""
         self._hand_over()
         self.wait()
 
@@ -205,12 +210,6 @@ class HistoryStore:
                 self._append(rows, alpha, k)
             else:
                 self._worker.submit(self._append, rows, alpha, k)
-
-    def settle(self) -> None:
-        """Derive and append every stored row (:meth:`flush`);
-        :func:`rancf.solvers.dynamic.integrate` calls it before the run's wall time is taken,
-        so that the outputs derived beside the loop and those of the last buffer count in it."""
-        self.flush()
 
     def wait(self) -> None:
         """Wait until the blocks handed to the worker are derived and appended (raising its

@@ -306,7 +306,7 @@ def integrate(
         if should_stop is not None and should_stop():
             status, message = DynamicStatus.INTERRUPTED, f"interrupted at t = {t:.6g} s"
             break
-    settle = getattr(target_sink, "settle", None)  # rows a sink derives beside the loop or
+    settle = getattr(target_sink, "flush", None)  # rows a sink derives beside the loop or
     if settle is not None:  # holds in a buffer: all of them derived and appended, counted in
         settle()  # the loop's time
     return snapshot(status, message)
