@@ -6,7 +6,8 @@ They sit with the model (a scenario file describes both) and are consumed by
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import math
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -34,7 +35,9 @@ class DynamicOptions:
         End time [s], finite and > 0.
     step : float
         Time step [s] (adaptive: the first), in (0, t_end]; a step that would pass an output
-        time is shortened to end on it.
+        time is shortened to end on it.  Fixed steps whose ``output_step`` is above ``step`` and
+        not a whole number of steps are all ``output_step / ceil(output_step / step)``
+        (:meth:`fitted`).
     rho_inf : float
         Spectral radius at infinity in [0, 1].
     adaptive : bool
@@ -135,3 +138,28 @@ class DynamicOptions:
         out_dt = self.output_step if self.output_step is not None else self.step
         n_grid = int(np.floor(self.t_end / out_dt + 1e-9))
         return 1 + n_grid + (1 if out_dt * n_grid < self.t_end * (1 - 1e-12) else 0)
+
+    @property
+    def steps_per_output(self) -> int | None:
+        """Fixed steps whose ``output_step`` is above ``step`` and not a whole number of steps
+        (within 1e-9): the steps an output interval is split into, ``ceil(output_step /
+        step)``; else None."""
+        out = self.output_step
+        if self.adaptive or out is None:
+            return None
+        k = out / self.step
+        if k <= 1.0 + 1e-9 or abs(k - round(k)) <= 1e-9 * k:
+            return None
+        return math.ceil(k)
+
+    def fitted(self) -> DynamicOptions:
+        """The options of the steps taken: where :attr:`steps_per_output` is not None, every
+        step is ``output_step / steps_per_output`` (the largest step below ``step`` that
+        divides the interval: as many steps as cutting each interval's last step short, all
+        of one size); else these options."""
+        n = self.steps_per_output
+        if n is None:
+            return self
+        h = self.output_step / n  # type: ignore[operator]
+        low = None if self.min_step is None else min(self.min_step, h)
+        return replace(self, step=h, min_step=low)

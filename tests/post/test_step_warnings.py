@@ -1,5 +1,6 @@
 """The warning about fixed steps that do not fit the output interval: ``rancf simulate`` says so
-on standard error and in ``summary.json``, and the steps it warns about are really cut."""
+on standard error and in ``summary.json``, and the steps it warns about are really shortened,
+all to one size that divides the interval (:meth:`rancf.options.DynamicOptions.fitted`)."""
 
 from __future__ import annotations
 
@@ -48,3 +49,25 @@ def test_simulate_warns_once_and_the_steps_are_cut(tmp_path, capsys, out, steps)
     assert err.count("rancf: warning: solver.output_step") == len(warned)
     if warned:
         assert "output_step = 0.002 s keeps the step" in warned[0]
+        assert "steps of 0.00075 s, 2 an output interval" in warned[0]
+    h = 7.5e-4 if warned else 1e-3  # 1.5 ms: two steps of 0.75 ms an interval
+    assert summary["min_step_s"] == pytest.approx(h, rel=1e-15)
+    assert summary["max_step_s"] == pytest.approx(h, rel=1e-15)
+
+
+@pytest.mark.parametrize(
+    ("step", "out", "n", "h"),
+    [(1e-3, 1.5e-3, 2, 7.5e-4), (0.02, 0.05, 3, 0.05 / 3), (1e-3, 2.5e-3, 3, 2.5e-3 / 3),
+     (1e-3, 2e-3, None, 1e-3), (1e-3, 5e-4, None, 1e-3), (1e-3, None, None, 1e-3)],
+)  # fmt: skip
+def test_fitted_steps_divide_the_interval(step, out, n, h):
+    """The steps taken: ``output_step / ceil(output_step / step)`` where the interval is not a
+    whole number of steps (as many steps as cutting each interval's last one, all of one size),
+    else ``step``; a ``min_step`` above the fitted step comes down to it."""
+    o = DynamicOptions(t_end=1.0, step=step, output_step=out, min_step=step)
+    assert o.steps_per_output == n
+    f = o.fitted()
+    assert f.step == h and f.min_step == min(step, h)
+    if n is not None:
+        assert n * f.step == pytest.approx(out, rel=1e-15) and f.step < step
+    assert DynamicOptions(t_end=1.0, step=step, output_step=out, adaptive=True).fitted().step == step

@@ -117,19 +117,18 @@ def at_load_factor(lam: float) -> str:
 
 def step_warnings(options: DynamicOptions) -> list[str]:
     """A warning if fixed steps do not fit the output interval: ``output_step / step`` is above
-    1 and not a whole number (within 1e-9), so the steps alternate to end on the output times.
-    (An interval below the step makes every step the interval: constant, no warning.)"""
+    1 and not a whole number (within 1e-9), so the steps taken are shorter than ``step``
+    (:meth:`~rancf.options.DynamicOptions.fitted`).  (An interval below the step makes every
+    step the interval: constant, no warning.)"""
+    n = options.steps_per_output
+    if n is None:
+        return []
     out, h = options.output_step, options.step
-    if options.adaptive or out is None:
-        return []
-    k = out / h
-    if k <= 1.0 + 1e-9 or abs(k - round(k)) <= 1e-9 * k:
-        return []
-    fit = round(k) * h
+    fit = round(out / h) * h  # type: ignore[operator]
     return [
         f"solver.output_step = {out:g} s is not a whole number of steps (solver.step = {h:g} s): "
-        f"steps are cut to end on every output time, which takes more steps and a new "
-        f"factorization at each change of the step; output_step = {fit:g} s keeps the step"
+        f"the run takes steps of {options.fitted().step:.6g} s, {n} an output interval; "
+        f"output_step = {fit:g} s keeps the step"
     ]
 
 

@@ -108,7 +108,7 @@ def integrate(
         time reached.  ``wall_time`` is the time loop alone.  ``state`` is where the run
         stands (also in every ``snapshot()``).
     """
-    o = options
+    o = options.fitted()  # fixed steps that divide the output interval
     system = as_system(model)
     if start is not None and initial is not None:
         raise ValueError("integrate: give initial (coordinates) or start (a state), not both")
