@@ -70,4 +70,5 @@ def test_fitted_steps_divide_the_interval(step, out, n, h):
     assert f.step == h and f.min_step == min(step, h)
     if n is not None:
         assert n * f.step == pytest.approx(out, rel=1e-15) and f.step < step
-    assert DynamicOptions(t_end=1.0, step=step, output_step=out, adaptive=True).fitted().step == step
+    adaptive = DynamicOptions(t_end=1.0, step=step, output_step=out, adaptive=True)
+    assert adaptive.fitted().step == step
