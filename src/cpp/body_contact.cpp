@@ -10,6 +10,7 @@
 
 #include "assembly.hpp"
 #include "body_broad.hpp"
+#include "cable_shape.hpp"
 #include "contact_law.hpp"
 #include "contact_point.hpp"
 
@@ -21,42 +22,10 @@ std::size_t sz(int i) { return static_cast<std::size_t>(i); }
 
 using Coords = std::array<double, kMaxElementDofs>;
 
-/// The cable shape functions of element el of cb at xi (elements/cable.py
-/// cable_shape_functions: the rational cubic Bernstein basis R of the element's weights,
-/// N = [R0 + R1, c1 R1, R2 + R3, c3 R2], c1 = l w0 / (3 w1), c3 = -l w3 / (3 w2)), and their
-/// first and second xi-derivatives.
+/// The cable shape functions of element el of cb at xi and their first and second
+/// xi-derivatives (cable_shape; N1, N2 may be null).
 void shape(const ContactBody& cb, int el, double xi, double* N, double* N1, double* N2) {
-  const double* w = cb.weights.data() + 4 * el;
-  const double l = cb.scales[sz(el)], u = 1.0 - xi;
-  const double B[4] = {u * u * u, 3.0 * u * u * xi, 3.0 * u * xi * xi, xi * xi * xi};
-  const double B1[4] = {-3.0 * u * u, 3.0 * u * (u - 2.0 * xi), 3.0 * xi * (2.0 * u - xi),
-                        3.0 * xi * xi};
-  const double B2[4] = {6.0 * u, 6.0 * (3.0 * xi - 2.0), 6.0 * (1.0 - 3.0 * xi), 6.0 * xi};
-  double W = 0.0, W1 = 0.0, W2 = 0.0, A[4], A1[4], A2[4];
-  for (int i = 0; i < 4; ++i) {
-    A[i] = w[i] * B[i];
-    A1[i] = w[i] * B1[i];
-    A2[i] = w[i] * B2[i];
-    W += A[i];
-    W1 += A1[i];
-    W2 += A2[i];
-  }
-  double R[4], R1[4], R2[4];
-  for (int i = 0; i < 4; ++i) {
-    R[i] = A[i] / W;
-    R1[i] = (A1[i] * W - A[i] * W1) / (W * W);
-    R2[i] = (A2[i] * W - A[i] * W2) / (W * W) - 2.0 * W1 * R1[i] / W;
-  }
-  const double c1 = l * w[0] / (3.0 * w[1]), c3 = -l * w[3] / (3.0 * w[2]);
-  const double* src[3] = {R, R1, R2};
-  double* dst[3] = {N, N1, N2};
-  for (int j = 0; j < 3; ++j) {
-    if (dst[j] == nullptr) continue;
-    dst[j][0] = src[j][0] + src[j][1];
-    dst[j][1] = c1 * src[j][1];
-    dst[j][2] = src[j][2] + src[j][3];
-    dst[j][3] = c3 * src[j][2];
-  }
+  cable_shape(cb.weights.data() + 4 * el, cb.scales[sz(el)], xi, N, N1, N2);
 }
 
 double dot3(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }

@@ -5,43 +5,13 @@
 #include <array>
 #include <cmath>
 
+#include "cable_shape.hpp"
+
 namespace rancf {
 
 namespace {
 std::size_t sz(int i) { return static_cast<std::size_t>(i); }
 }  // namespace
-
-void slide_shape(const double* w, double l, double x, double* n0, double* n1, double* n2) {
-  // Bernstein basis B_i, the rational R_i = w_i B_i / D and their derivatives
-  // (docs/derivations/cable.md sec. 3); N = [R0 + R1, c1 R1, R2 + R3, c3 R2]
-  const double u = 1.0 - x;
-  const double b0[4] = {u * u * u, 3.0 * x * u * u, 3.0 * x * x * u, x * x * x};
-  const double b1[4] = {-3.0 * u * u, 3.0 * u * u - 6.0 * x * u, 6.0 * x * u - 3.0 * x * x,
-                        3.0 * x * x};
-  const double b2[4] = {6.0 * u, 6.0 * x - 12.0 * u, 6.0 * u - 12.0 * x, 6.0 * x};
-  double d0 = 0.0, d1 = 0.0, d2 = 0.0;
-  for (int i = 0; i < 4; ++i) {
-    d0 += w[i] * b0[i];
-    d1 += w[i] * b1[i];
-    d2 += w[i] * b2[i];
-  }
-  double r0[4], r1[4], r2[4];
-  for (int i = 0; i < 4; ++i) {
-    r0[i] = w[i] * b0[i] / d0;
-    r1[i] = (w[i] * b1[i] - r0[i] * d1) / d0;
-    r2[i] = (w[i] * b2[i] - 2.0 * r1[i] * d1 - r0[i] * d2) / d0;
-  }
-  const double c1 = l * w[0] / (3.0 * w[1]), c3 = -l * w[3] / (3.0 * w[2]);
-  const double* rr[3] = {r0, r1, r2};
-  double* out[3] = {n0, n1, n2};
-  for (int k = 0; k < 3; ++k) {
-    const double* r = rr[k];
-    out[k][0] = r[0] + r[1];
-    out[k][1] = c1 * r[1];
-    out[k][2] = r[2] + r[3];
-    out[k][3] = c3 * r[2];
-  }
-}
 
 void slide_point(const System& s, int body, const double* y, double sigma, SlidePoint& o) {
   o = SlidePoint{};
@@ -57,7 +27,7 @@ void slide_point(const System& s, int body, const double* y, double sigma, Slide
   o.element = e;
   o.xi = sg - e;
   double n0[4], n1[4], n2[4];
-  slide_shape(&g.weights[sz(4 * e)], g.scales[sz(e)], o.xi, n0, n1, n2);
+  cable_shape(&g.weights[sz(4 * e)], g.scales[sz(e)], o.xi, n0, n1, n2);
   double d2[3][2 * kMaxLocal] = {};
   const PlaceKind kind = m.kind == ElementKind::rod ? PlaceKind::rod : PlaceKind::cable;
   for (int k = 0; k < 2; ++k) {  // the element's nodes e, e + 1: positions and gradients

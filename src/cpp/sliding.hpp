@@ -48,10 +48,6 @@ struct SlidePoint {
   double drs[3][2 * kMaxLocal] = {};  ///< d r_sigma / d u_j
 };
 
-/// The rational cubic element's shape functions and their first two xi-derivatives at xi
-/// (rancf.elements.cable.cable_shape_functions): weights w (4), gradient scale l.
-void slide_shape(const double* w, double l, double xi, double* n0, double* n1, double* n2);
-
 /// Flexible body `body`'s point at sigma for the coordinates y.
 void slide_point(const System& s, int body, const double* y, double sigma, SlidePoint& out);
 
