@@ -9,10 +9,10 @@ and an entry of ``summary.json``'s ``"warnings"`` list.
   user who meant a ring should know (:attr:`rancf.mesh.mesh.CableMesh.notes`).
 * Contact set up wrongly (:mod:`rancf.post.contact_checks`): a body that starts deep inside an
   obstacle, a frictional wrap with too few elements.
-* An output interval that is not a whole number of fixed steps (:func:`step_warnings`): every
-  step that would pass an output time is cut to end on it, so the run takes more steps, and
-  each change of the step refactors the Jacobian (``output_step = 1.5e-3`` with ``step =
-  1e-3``: 1333 steps instead of 1000, 2.3 times the time of ``2e-3``).
+* An output interval that is not a whole number of fixed steps (:func:`step_warnings`): the run
+  takes shorter steps of one size that divides the interval
+  (:meth:`~rancf.options.DynamicOptions.fitted`; ``output_step = 1.5e-3`` with ``step =
+  1e-3``: steps of 7.5e-4 s, 1333 a second instead of 1000).
 
 The axial strain is the elements' own Green–Lagrange measure at the section sample points
 (:class:`rancf.bodies.section_outputs.SectionSampler`: the compiled core's strain, at
