@@ -31,3 +31,17 @@ def test_one_blas_thread(pre: str, env: str | None, expected: str) -> None:
     p = subprocess.run([sys.executable, "-c", CODE.format(pre=pre)], env=environ,
                        capture_output=True, text=True, check=True)  # fmt: skip
     assert p.stdout.strip() == expected
+
+
+@pytest.mark.parametrize("command", ["simulate", "sweep"])
+def test_the_run_commands_ask_for_one_blas_thread(command, tmp_path, monkeypatch):
+    """``simulate`` and ``sweep`` call it first (before the scenario is read: here a missing
+    file, refused after)."""
+    import rancf.cli.sim as sim
+    from rancf.cli import main
+
+    calls = []
+    monkeypatch.setattr(sim, "one_blas_thread", lambda: calls.append(command))
+    args = [command, str(tmp_path / "missing.toml"), "--out", str(tmp_path / "out")]
+    assert main(args) == 2
+    assert calls == [command]

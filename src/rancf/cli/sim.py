@@ -55,10 +55,11 @@ def _scenario_text(path: str) -> str:
 
 def one_blas_thread() -> None:
     """Ask OpenBLAS for one thread (``OPENBLAS_NUM_THREADS=1``) unless set, before NumPy is
-    loaded: a run makes no call that its threads would share, and idle, they spin after each
-    small NumPy product (0.1 s of CPU of an 8-element pendulum's 0.45 s, 0.13 s of a
-    512-element run stored every step; ``docs/guide/performance.md``).  Nothing is changed once
-    NumPy is loaded (a caller in Python keeps its own setting)."""
+    loaded (``simulate``; ``sweep``, whose worker processes inherit it): a run makes no call
+    that its threads would share, and idle, they spin after each small NumPy product (0.1 s of
+    CPU of an 8-element pendulum's 0.45 s, 0.13 s of a 512-element run stored every step;
+    ``docs/guide/performance.md``).  Nothing is changed once NumPy is loaded (a caller in
+    Python keeps its own setting)."""
     if "numpy" not in sys.modules:
         os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 

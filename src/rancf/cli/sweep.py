@@ -11,6 +11,9 @@ __all__ = ["add_parsers"]
 
 
 def _cmd_sweep(args: argparse.Namespace) -> int:
+    from rancf.cli.sim import one_blas_thread
+
+    one_blas_thread()  # its runs' processes and threads: one BLAS thread each
     from rancf.cli.io import OutputDir
     from rancf.sweep.cluster import check_scheduler
     from rancf.sweep.engine import run_sweep
@@ -51,7 +54,9 @@ def add_parsers(sub: Any) -> None:
         help="run a grid of scenario variants in parallel on Dask",
         description="Runs the Cartesian product of SWEEP.toml's [grid] on a local Dask cluster "
         "(default) or an existing scheduler; one folder per run under OUT/runs, one row per run "
-        "in OUT/results.csv; finished runs are skipped when the command is repeated.",
+        "in OUT/results.csv; finished runs are skipped when the command is repeated. NumPy's "
+        "OpenBLAS is asked for one thread in every run (OPENBLAS_NUM_THREADS=1) unless the "
+        "environment sets it.",
     )
     s.add_argument("sweep", metavar="SWEEP.toml")
     s.add_argument("--out", required=True, help="output directory")
