@@ -22,13 +22,15 @@ DEFAULT_MAX_OUTPUT_GB = 2.0
 
 
 def _process_age() -> float:
-    """Seconds since this process started (Linux ``/proc``; else since the CLI was imported)."""
+    """Seconds since this process started (Linux ``/proc``, to its clock tick, 0.01 s: rounded
+    to it; else since the CLI was imported)."""
     try:
         with open("/proc/self/stat", encoding="ascii") as fh:
             start_ticks = int(fh.read().rsplit(")", 1)[1].split()[19])
         with open("/proc/uptime", encoding="ascii") as fh:
             uptime = float(fh.read().split()[0])
-        return max(0.0, uptime - start_ticks / os.sysconf("SC_CLK_TCK"))
+        ticks = os.sysconf("SC_CLK_TCK")  # 100: 2 decimals
+        return max(0.0, round(uptime - start_ticks / ticks, len(str(ticks)) - 1))
     except (OSError, ValueError, IndexError):  # pragma: no cover - not Linux
         return time.monotonic() - _IMPORTED
 
