@@ -105,8 +105,9 @@ def integrate(
     -------
     DynamicResult
         Never raises on non-convergence: the status says ``FAILED`` and the message names the
-        time reached.  ``wall_time`` is the time loop alone.  ``state`` is where the run
-        stands (also in every ``snapshot()``).
+        time reached.  ``wall_time`` is the time loop's, with the ``sink``'s ``flush`` (every
+        stored row derived) at its end.  ``state`` is where the run stands (also in every
+        ``snapshot()``).
     """
     o = options.fitted()  # fixed steps that divide the output interval
     system = as_system(model)
