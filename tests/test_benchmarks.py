@@ -53,3 +53,17 @@ def test_rod_dynamics_benchmark_quick(tmp_path):
     data = json.loads((tmp_path / "rod_dynamics_energy.json").read_text())
     assert set(data["energy"]) == {"rancf", "rod torsion", "rod full"}
     assert max(max(v) for v in data["energy"].values()) < 1e-10
+
+
+def test_startup_phases_benchmark_runs():
+    """benchmarks/startup_phases.py runs: every phase timed, the second read of the scenario
+    far below the first (the validator is built once)."""
+    p = subprocess.run(
+        [sys.executable, str(ROOT / "benchmarks" / "startup_phases.py"), "--runs", "1"],
+        capture_output=True, text=True, check=True, timeout=300,
+    )  # fmt: skip
+    med = json.loads(p.stdout.strip().splitlines()[-1])
+    assert set(med) == {"numpy and the core", "pydantic", "scenario modules", "first read",
+                        "second read"}  # fmt: skip
+    assert all(v > 0 for v in med.values())
+    assert med["second read"] < med["first read"]
