@@ -68,6 +68,20 @@ void check(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument(what);
 }
 
+/// f(y_i, v_i, t_i, out_i) for each of the k = t.size() states (rows of y and v, n each) into
+/// rows of out of `width` values, without the interpreter lock (an output worker's rows).
+template <class F>
+void each_row(const SystemHolder& h, const In& t, const In& y, const In& v, Out& out,
+              std::size_t width, F f) {
+  const std::size_t k = t.size(), n = static_cast<std::size_t>(h.s.n);
+  expect_size(y, k * n, "y");
+  expect_size(v, k * n, "v");
+  expect_size(out, k * width, "out");
+  nb::gil_scoped_release release;
+  for (std::size_t i = 0; i < k; ++i)
+    f(y.data() + i * n, v.data() + i * n, t.data()[i], out.data() + i * width);
+}
+
 }  // namespace
 
 void bind_system(nb::module_& mod) {
@@ -426,30 +440,21 @@ void bind_system(nb::module_& mod) {
       .def(
           "energies_rows",
           [](const SystemHolder& h, In t, In y, In v, Out out) {
-            const std::size_t k = t.size(), n = static_cast<std::size_t>(h.s.n);
-            expect_size(y, k * n, "y");
-            expect_size(v, k * n, "v");
-            expect_size(out, k * 3, "out");
-            nb::gil_scoped_release release;
-            for (std::size_t i = 0; i < k; ++i)
-              rancf::system_energies(h.s, y.data() + i * n, v.data() + i * n, out.data() + 3 * i,
-                                     t.data()[i]);
+            each_row(h, t, y, v, out, 3,
+                     [&](const double* yi, const double* vi, double ti, double* oi) {
+                       rancf::system_energies(h.s, yi, vi, oi, ti);
+                     });
           },
           "t"_a, "y"_a, "v"_a, "out"_a.noconvert(),
           "energies of k states (rows of y, v at times t) into the rows of out (k, 3).")
       .def(
           "body_energies_rows",
           [](const SystemHolder& h, In t, In y, In v, Out out) {
-            const std::size_t k = t.size(), n = static_cast<std::size_t>(h.s.n);
-            const std::size_t w = 3 * h.s.flex.size();
-            expect_size(y, k * n, "y");
-            expect_size(v, k * n, "v");
-            expect_size(out, k * w, "out");
-            nb::gil_scoped_release release;
-            for (std::size_t i = 0; i < k; ++i)
-              for (std::size_t b = 0; b < h.s.flex.size(); ++b)
-                rancf::flex_energies(h.s, b, y.data() + i * n, v.data() + i * n, t.data()[i],
-                                     out.data() + i * w + 3 * b);
+            each_row(h, t, y, v, out, 3 * h.s.flex.size(),
+                     [&](const double* yi, const double* vi, double ti, double* oi) {
+                       for (std::size_t b = 0; b < h.s.flex.size(); ++b)
+                         rancf::flex_energies(h.s, b, yi, vi, ti, oi + 3 * b);
+                     });
           },
           "t"_a, "y"_a, "v"_a, "out"_a.noconvert(),
           "body_energies of k states (rows of y, v at times t) into the rows of out.");
