@@ -76,7 +76,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     od = OutputDir(args.out, kind=kind, overwrite=args.overwrite)  # checks the path up front
     from rancf.atomic import atomic_write
     from rancf.cli.resume import Resume, scenario_for_run
-    from rancf.post.checks import run_warnings, section_warnings, step_warnings
+    from rancf.post.checks import error_warnings, run_warnings, section_warnings, step_warnings
     from rancf.post.history import HistoryStore
     from rancf.post.results import run_summary
     from rancf.post.run_plan import plan_run
@@ -118,7 +118,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
             summary = run_summary(system, res)
             store.flush()  # every row's derived outputs, the strain among them
             store.info["warnings"] = run_warnings(system, largest=outputs.largest_strain,
-                                                  options=opts)  # fmt: skip
+                                                  options=opts) + error_warnings(res, opts)  # fmt: skip
             store.finish(summary, res.state)
         except BaseException as exc:
             err = _end_broken(store, system, exc, od.kept, out)

@@ -22,6 +22,8 @@ are written (:class:`rancf.system.outputs.SystemOutputs`), so checking it costs 
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 from numpy.typing import NDArray
 
@@ -37,6 +39,7 @@ __all__ = [
     "RADIUS_LIMIT",
     "section_warnings",
     "step_warnings",
+    "error_warnings",
     "strain_warning",
     "largest_strain",
     "run_warnings",
@@ -129,6 +132,23 @@ def step_warnings(options: DynamicOptions) -> list[str]:
         f"solver.output_step = {out:g} s is not a whole number of steps (solver.step = {h:g} s): "
         f"the run takes steps of {options.fitted().step:.6g} s, {n} an output interval; "
         f"output_step = {fit:g} s keeps the step"
+    ]
+
+
+def error_warnings(result: Any, options: DynamicOptions) -> list[str]:
+    """A warning if a run's largest local error estimate (relative to ``rtol * size``,
+    :class:`~rancf.solvers.result.DynamicResult`) is above 1: where, the step and a step that
+    would meet the tolerance there (TI.10 of ``docs/derivations/time-integration.md``)."""
+    err, h = result.error_estimate, result.error_step
+    if not err > 1.0 or h is None:
+        return []
+    better = h * 0.9 * err ** (-1.0 / 3.0)
+    how = ("adaptive steps could not meet it" if options.adaptive else
+           f"a step of about {better:.3g} s meets it there, or set solver.adaptive = true")
+    return [
+        f"the local error estimate is {err:.3g} times solver.rtol = {options.rtol:g} (of the "
+        f"model's size) at t = {result.error_time:.6g} s with a step of {h:.3g} s: the step does "
+        f"not resolve the motion there (an impulsive start or a fast vibration); {how}"
     ]
 
 

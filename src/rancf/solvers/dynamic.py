@@ -141,17 +141,18 @@ def integrate(
 
     last_y: list = []  # the last row's y, v (its energies where the sink derives them)
 
-    def store(tt: float, yy: NDArray, vv: NDArray) -> None:
+    def store(tt: float, yy: NDArray, vv: NDArray, alpha: NDArray | None) -> None:
         e = np.array(system.energies(yy, vv, tt)) if loop_energies else None
         last_y[:] = [yy.copy(), vv.copy()]
         m1 = directors(yy)
         ll = lam.copy() if mult else None
-        row = (tt, system.q_from_y(yy), system.q_from_y(vv), e, m1, ll)
-        target_sink.append(*row[:4], directors=m1, lam=ll)
+        row = (tt, system.q_from_y(yy), system.q_from_y(vv), e, m1, ll, alpha)
+        target_sink.append(*row[:4], directors=m1, lam=ll, alpha=alpha)
         last[:] = [row]
         result.n_outputs += 1
 
-    def store_block(k0: int, oy: NDArray, ov: NDArray, oe: NDArray, ol: NDArray) -> None:
+    def store_block(k0: int, oy: NDArray, ov: NDArray, oe: NDArray, ol: NDArray,
+                    oa: NDArray | None) -> None:  # fmt: skip
         """Outputs ``k0, k0 + 1, ...`` from the core's loop, passed on as one block (rods: one
         output a block, whose state is the one the triads were carried to)."""
         ts = np.array([out_time(k0 + i) for i in range(len(oy))])
@@ -159,14 +160,15 @@ def integrate(
         m1 = directors(oy[-1])
         ll = ol if mult else None
         target_sink.append_block(ts, qs, vs, oe, directors=None if m1 is None else m1[None],
-                                 lam=ll)  # fmt: skip
+                                 lam=ll, alpha=oa)  # fmt: skip
         last_y[:] = [oy[-1].copy(), ov[-1].copy()]
         last[:] = [(float(ts[-1]), qs[-1], vs[-1], None if oe is None else np.array(oe[-1]), m1,
-                    None if ll is None else ll[-1])]  # fmt: skip
+                    None if ll is None else ll[-1], None if oa is None else oa[-1])]  # fmt: skip
         result.n_outputs += len(oy)
 
     empty = np.empty(0)
     result = DynamicResult(empty, empty, empty, empty, empty, empty, DynamicStatus.COMPLETED, "")
+    contact = system.has_contact
     h, k_out, within, base = o.step, 0, 0, {"n_newton": 0, "wall_time": 0.0}
     if start is None:
         y = system.y0.copy() if initial is None else np.array(initial, dtype=float)
@@ -176,7 +178,7 @@ def integrate(
         lam = start_multipliers(system, None if initial is None else y)
         a = integ.initial_acceleration(y, v, t, lam)
         w = a.copy()  # the algorithmic accelerations start at the consistent ones
-        store(0.0, y, v)
+        store(0.0, y, v, np.concatenate([y, v]) if contact else None)
     else:
         t, y, v, a, w, lam, h, k_out, within = take_up(system, integ, start, result, base)
     if on_start is not None:
@@ -187,20 +189,22 @@ def integrate(
         if not last:  # a resumed run with nothing stored yet
             ts, qs, vs, es = empty, np.empty((0, system.n)), np.empty((0, system.n)), empty
             es = np.empty((0, 3))
-            result.directors = result.lam = None
+            result.directors = result.lam = result.alpha = None
         elif memory is not None:
             ts, qs, vs, es = memory.arrays()
             result.directors = memory.stream("directors")
             result.lam = memory.stream("lam")
+            result.alpha = memory.stream("alpha")
         else:
-            tt, qq, vv, ee, m1, ll = last[0]
+            tt, qq, vv, ee, m1, ll, aa = last[0]
             if ee is None:  # derived by the sink: the last row's here, as the sink does
                 ee = np.empty((1, 3))
                 system.core.energies_rows(np.array([tt]), *last_y, ee)
-                last[0] = (tt, qq, vv, ee[0], m1, ll)
+                last[0] = (tt, qq, vv, ee[0], m1, ll, aa)
             ts, qs, vs, es = np.array([tt]), qq[None], vv[None], np.reshape(ee, (1, 3))
             result.directors = None if m1 is None else m1[None]
             result.lam = None if ll is None else ll[None]
+            result.alpha = None if aa is None else aa[None]
         result.t, result.q, result.v = ts, qs, vs
         result.kinetic, result.strain, result.gravity = es[:, 0], es[:, 1], es[:, 2]
         result.status, result.message = status, message
@@ -238,7 +242,7 @@ def integrate(
         if fast and h == o.step and k_out < n_grid and on_grid:
             n_chunk = min(chunk_out, n_grid - k_out)
             called = time.perf_counter()
-            done, st, iters, stored, oy, ov, oe, ol, err, t_err = integ.run_steps(
+            done, st, iters, stored, oy, ov, oe, ol, oa, err, t_err = integ.run_steps(
                 y,
                 v,
                 a,
@@ -262,7 +266,7 @@ def integrate(
                 chunk_out = int(np.clip(grown, max(least, chunk_out // 4), min(cap, 4 * chunk_out)))
             if stored:
                 store_block(k_out, oy[:stored], ov[:stored], None if oe is None else oe[:stored],
-                            ol[:stored])  # fmt: skip
+                            ol[:stored], None if oa is None else oa[:stored])  # fmt: skip
             k_out += stored
             within = within + done - stored * per_out
             last_out = out_time(k_out - 1) if k_out else 0.0
@@ -294,6 +298,7 @@ def integrate(
                 status, message = DynamicStatus.FAILED, _failure_message(t, min_step)
                 break
             continue
+        alpha = integ.alpha_point(y, v, y1, v1) if contact else None  # before re-referencing
         y, v, a, w, t, lam = y1, v1, a1, w1, t + h_try, lam_try
         system.rereference(y, v, a, w)  # rods: triads follow the step, twist rates the spin
         result.took(h_try)
@@ -304,7 +309,7 @@ def integrate(
             h = o.step
         if abs(t - target) <= 1e-12 * max(1.0, target):
             t = float(target)
-            store(t, y, v)
+            store(t, y, v, alpha)
             k_out += 1
             notify(t)
         if should_stop is not None and should_stop():
