@@ -117,8 +117,8 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
             res = _run(args, system, opts, store, stop, every, od.keep, y_start, state)
             summary = run_summary(system, res)
             store.flush()  # every row's derived outputs, the strain among them
-            store.info["warnings"] = run_warnings(system, largest=outputs.largest_strain,
-                                                  options=opts) + error_warnings(res, opts)  # fmt: skip
+            found = run_warnings(system, largest=outputs.largest_strain, options=opts)
+            store.info["warnings"] = found + error_warnings(res, opts)
             store.finish(summary, res.state)
         except BaseException as exc:
             err = _end_broken(store, system, exc, od.kept, out)
