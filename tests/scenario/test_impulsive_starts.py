@@ -104,7 +104,8 @@ def test_a_crank_turned_at_once_warns(tmp_path, capsys):
     (line,) = warned
     assert line.startswith("joint 'motor' (joints[0].angle): the angular rate jumps from 0 to "
                            "150 rad/s at t = 0")  # fmt: skip
-    assert "give build_up = 0.1" in line and "spin_up" in line
+    assert line.endswith("give build_up = 0.1 to build it up over 0.1 s, or write angle = "
+                         "{ spin_up = 0.1, rate = 150 }")  # fmt: skip
     assert summary["warnings"] == [line]
 
 

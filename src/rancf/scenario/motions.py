@@ -25,7 +25,7 @@ from typing import Any
 import numpy as np
 
 from rancf.bodies.time_function import JUMP_RTOL, TimeFunction
-from rancf.scenario.loads import HarmonicFunction, TableFunction, time_function
+from rancf.scenario.loads import HarmonicFunction, RampFunction, TableFunction, time_function
 
 __all__ = ["motion_function", "BUILD_UP_PERIODS", "Law", "start_warning", "start_warnings"]
 
@@ -88,7 +88,7 @@ def start_warning(
     if not jump > JUMP_RTOL * largest:
         return None
     b = float(f"{_time_scale(f, t_end) / 10.0:.1g}")
-    alt = _alternative(v, law)
+    alt = _alternative(v, law, b)
     return (f"{item}: the {law.what} jumps from 0 to {jump:.4g}{law.unit} at t = 0, an "
             f"impulsive start (an impact: forces and ringing far above a smooth start's); give "
             f"build_up = {b:g} to build it up over {b:g} s{alt}")  # fmt: skip
@@ -104,8 +104,10 @@ def _time_scale(f: TimeFunction, t_end: float) -> float:
     return f.duration if f.duration > 0.0 else t_end
 
 
-def _alternative(v: Any, law: Law) -> str:
+def _alternative(v: Any, law: Law, b: float) -> str:
     start = "at rate 0" if law.order == 1 else "at 0"
+    if isinstance(v, RampFunction) and law.unit == " rad/s":  # a steady rate without overshoot
+        return f", or write angle = {{ spin_up = {b:g}, rate = {v.value / v.ramp:.4g} }}"
     if isinstance(v, TableFunction):
         return f", or start the table {start}"
     if law.static_cures:
