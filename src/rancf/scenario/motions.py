@@ -98,7 +98,8 @@ def _time_scale(f: TimeFunction, t_end: float) -> float:
     """The function's own time scale: a table's span, a ramp's or spin-up's duration, 20
     periods of a harmonic (a build-up of 2), else the run's."""
     if f.rows is not None:
-        return float(f.rows[-1, 0] - max(f.rows[0, 0], 0.0)) or t_end
+        span = float(f.rows[-1, 0] - max(f.rows[0, 0], 0.0))
+        return span if span > 0.0 else t_end
     if f.kind == "harmonic":
         return 20.0 / f.frequency
     return f.duration if f.duration > 0.0 else t_end
