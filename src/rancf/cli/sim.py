@@ -76,7 +76,13 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     od = OutputDir(args.out, kind=kind, overwrite=args.overwrite)  # checks the path up front
     from rancf.atomic import atomic_write
     from rancf.cli.resume import Resume, scenario_for_run
-    from rancf.post.checks import error_warnings, run_warnings, section_warnings, step_warnings
+    from rancf.post.checks import (
+        error_warnings,
+        run_warnings,
+        section_warnings,
+        start_warnings,
+        step_warnings,
+    )
     from rancf.post.history import HistoryStore
     from rancf.post.results import run_summary
     from rancf.post.run_plan import plan_run
@@ -101,7 +107,8 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
             if not args.quiet:
                 print(f"rancf: {resume.killed_note()}; resuming from t = {state.t:g} s",
                       file=sys.stderr)  # fmt: skip
-        notes = _warn(section_warnings(system) + step_warnings(opts))  # the run goes on
+        notes = _warn(start_warnings(system) + section_warnings(system)
+                      + step_warnings(opts))  # the run goes on; in run_warnings' order
         for note in sc.notes:  # defaults the file did not state (a harmonic's build-up)
             print(f"rancf: {note}", file=sys.stderr)
         info = {"scenario": str(Path(args.scenario).resolve()), "setup_wall_time_s": None}

@@ -60,9 +60,10 @@ class _Function(Table):
     build_up: NonNegative | None = Field(
         None,
         description="B [s]: the function times a smooth step from 0 to 1 over [0, B] (value, "
-        "rate and acceleration start from 0); 0: none. Default: none, but a harmonic support "
-        "motion or joint angle that would start with a jump of its rate builds up over two "
-        "periods (said in one line)",
+        "rate and acceleration start from 0; a winch's length: its change from the start); 0: "
+        "none. Default: none, but a harmonic support motion or joint angle that would start "
+        "with a jump of its rate builds up over two periods (said in one line); other jumps at "
+        "t = 0 are warned about unless build_up is given",
     )
 
     def function(self) -> TimeFunction:

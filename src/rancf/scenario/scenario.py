@@ -35,7 +35,7 @@ from rancf.scenario.loads import (
     time_function,
 )
 from rancf.scenario.messages import scenario_error
-from rancf.scenario.motions import motion_function
+from rancf.scenario.motions import motion_function, start_warnings
 from rancf.scenario.obstacles import ObstacleTable
 from rancf.scenario.section import MaterialTable, SectionTable
 from rancf.scenario.sensors import Sensor, SensorTable
@@ -131,6 +131,7 @@ class Scenario(Table):
         self._path = str((info.context or {}).get("path", _PYTHON))
         self._dim, self._bodies, self._support_places = check_scenario(self)
         self._data = _data(self)
+        self._data["warnings"] = start_warnings(self)
         self._sensors = tuple(_record(s, self._bodies) for s in self.sensor_tables)
         return self
 
@@ -150,6 +151,12 @@ class Scenario(Table):
         """One line each on defaults the file did not state but the run uses (a harmonic
         motion's build-up)."""
         return list(self._data["notes"])
+
+    @property
+    def warnings(self) -> list[str]:
+        """One line each on the impulsive starts of the run (a jump at ``t = 0`` of a
+        prescribed rate or value, or of a load: :func:`rancf.scenario.motions.start_warnings`)."""
+        return list(self._data["warnings"])
 
     @property
     def data(self) -> dict[str, Any]:

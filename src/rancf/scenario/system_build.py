@@ -71,11 +71,14 @@ def support_labels(sc: ScenarioView) -> dict[str, list[int | str]]:
 
 
 def build_system(sc: ScenarioView) -> System:
-    """The system of a scenario (module docstring); errors name the scenario key."""
+    """The system of a scenario (module docstring), carrying its warnings of impulsive starts
+    (:attr:`System.start_warnings`); errors name the scenario key."""
     try:
-        return _build(sc)
+        system = _build(sc)
     except InputError as exc:
         raise ScenarioError(sc.path, exc.parameter, f"{exc.allowed} (got {exc.value!r})") from None
+    system.start_warnings = tuple(getattr(sc, "warnings", ()))
+    return system
 
 
 def _observed(sc: ScenarioView) -> list[Place]:

@@ -8,7 +8,8 @@ TIME_FUNCTION), ``speed`` (the pay-out rate [m/s], a TIME_FUNCTION) or ``torque`
 drum's ``radius`` and ``inertia`` (a driven drum, :mod:`rancf.system.drums`: the torque
 positive reeling in, the inertia the drum's with the rope on it at ``t = 0``).  The body is
 drawn as the line is at ``t = 0``; with ``length``, a start length other than the drawing's
-stretches the drawing about the winch (:mod:`rancf.system.winches`).
+stretches the drawing about the winch (:mod:`rancf.system.winches`).  A ``length`` with
+``build_up`` builds up its change from its start (:func:`~rancf.system.winches.length_law`).
 """
 
 from __future__ import annotations
@@ -23,7 +24,7 @@ from rancf.bodies.length import set_unstretched_length, unstretched_length
 from rancf.errors import ScenarioError
 from rancf.scenario.base import Name, Positive, Table, fail, vector
 from rancf.scenario.loads import TimeFunctionValue
-from rancf.system.winches import LENGTH_RTOL, Winch
+from rancf.system.winches import LENGTH_RTOL, Winch, length_law
 
 __all__ = ["WinchTable", "system_winches"]
 
@@ -96,7 +97,7 @@ def system_winches(sc: Any, bodies: dict[str, Any], one_body: str) -> list[Winch
                                     f"{w.position})")  # fmt: skip
         length = wd["length"]
         if length is not None:
-            start = float(np.ravel(length.value(0.0))[0])
+            start = float(np.ravel(length_law(length).value(0.0))[0])
             if abs(start - unstretched_length(body)) > LENGTH_RTOL * max(start, 1.0):
                 set_unstretched_length(body, start, anchor=node)
         out.append(Winch(w.name, at, length=length, speed=wd["speed"], torque=wd["torque"],
