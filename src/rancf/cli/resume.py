@@ -82,7 +82,7 @@ class Resume:
     """
 
     def __init__(self, out: Path, copy: str) -> None:
-        from rancf.post.resume import read_checkpoint, remove_leftovers, summary_of
+        from rancf.post.resume import read_checkpoint, summary_of
 
         self.out = Path(out)
         self.summary = summary_of(out)
@@ -97,7 +97,6 @@ class Resume:
                     "--resume", str(out), f"a run of the same scenario ({key} differs from "
                     f"the run's scenario.toml; only solver.t_end may change)",
                 )  # fmt: skip
-        self.removed = remove_leftovers(self.out)
         self.state = read_checkpoint(self.out)
         if self.state is None and self.summary.get("status") != "running":
             raise InputError(
@@ -105,6 +104,40 @@ class Resume:
                 "none: a static solution or a run of an older version; replace it with "
                 "--overwrite instead of --resume)",
             )  # fmt: skip
+        self.removed: list[str] = []
+
+    def take_up(self, system: Any, outputs: Any) -> dict[str, Any]:
+        """Check that the checkpoint fits ``system`` and read the rows up to it, then remove
+        what the earlier run left besides (nothing in the folder changes before all is read).
+
+        Returns
+        -------
+        dict
+            The rows up to the checkpoint (:func:`rancf.post.resume.stored_rows`).
+
+        Raises
+        ------
+        InputError
+            Naming the checkpoint (or the results file) if it is damaged or of another system.
+        """
+        from rancf.post.resume import CHECKPOINT, remove_leftovers, stored_rows
+
+        state = self.state
+        assert state is not None
+        rods = [b for b in system.flex if b.element == "rod"]
+        sizes = [x.size for b in rods for x in (b.kernel.tref, b.kernel.m1ref)]
+        try:
+            state.check_finite()
+            state.check_fits(system.n, system.m, sizes)
+        except InputError as exc:
+            raise InputError(
+                "--resume", str(self.out / CHECKPOINT), f"a checkpoint this run can go on from "
+                f"(it holds a state with {exc.value}; needed: {exc.allowed}); start the run "
+                "again with --overwrite",
+            ) from None  # fmt: skip
+        rows = stored_rows(self.out, outputs, int(state.counters.get("n_outputs", 0)))
+        self.removed = remove_leftovers(self.out)
+        return rows
 
     def killed_note(self) -> str:
         """Why the earlier run stopped, as one clause."""
@@ -113,13 +146,6 @@ class Resume:
         if s.get("status") == "running" and isinstance(pid, int) and not _alive(pid):
             return f"the run was killed (process {pid} no longer runs)"
         return f"the run {s.get('status', 'stopped')}"
-
-    def rows(self, outputs: Any) -> dict[str, Any]:
-        """The rows up to the checkpoint's state."""
-        from rancf.post.resume import stored_rows
-
-        assert self.state is not None
-        return stored_rows(self.out, outputs, int(self.state.counters["n_outputs"]))
 
     def start_info(self) -> dict[str, Any]:
         """How the run started (``summary.json``'s ``initial_state`` and ``static``) and the

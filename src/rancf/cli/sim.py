@@ -94,6 +94,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
             y_start, start_info = start_state(sc, system)
             od.clear()  # --resume of a run killed before its first checkpoint: from the start
         else:
+            rows = resume.take_up(system, outputs)  # all checked before the folder changes
             od.keep()  # the earlier run's files stay whatever happens
             y_start, start_info = None, resume.start_info()
             if state.t >= opts.t_end * (1.0 - 1e-12):
@@ -110,7 +111,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         store = HistoryStore(out, outputs, {**info, "warnings": notes})
         try:
             if state is not None:
-                store.seed(resume.rows(outputs))
+                store.seed(rows)
             atomic_write(out / "scenario.toml", copy)
             t0 = 0.0 if state is None else state.t
             store.write_summary(_running(system, t0))

@@ -18,6 +18,8 @@ from __future__ import annotations
 
 import io
 import json
+import zipfile
+import zlib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -35,6 +37,9 @@ COUNTERS = ("n_steps", "n_newton", "n_factorizations", "n_rejected", "n_outputs"
             "min_step_taken", "max_step_taken")  # fmt: skip
 
 _VERSION = 1
+
+#: What reading a damaged ``.npz`` file raises (a truncated or edited archive).
+NPZ_ERRORS = (OSError, ValueError, KeyError, TypeError, EOFError, zipfile.BadZipFile, zlib.error)
 
 
 @dataclass
@@ -124,10 +129,34 @@ class DynamicState:
                 float(meta["step"]), int(meta["k_out"]), int(meta["within"]), triads,
                 arrays["memory"], dict(meta["counters"]), float(meta["t_end"]),
             )  # fmt: skip
-        except (OSError, ValueError, KeyError, TypeError) as exc:
+        except NPZ_ERRORS as exc:
             raise InputError(
                 "checkpoint", str(path), f"a state written by a rancf run (reading it: {exc})"
             ) from None
+
+    def check_finite(self, where: str = "state") -> None:
+        """Refuse a state with a number that is not finite, a time < 0, a step <= 0 or a
+        count of outputs that is not a whole number >= 0 (a damaged file).
+
+        Raises
+        ------
+        InputError
+            Naming the first such entry.
+        """
+        arrays = {"y": self.y, "v": self.v, "a": self.a, "lam": self.lam, "memory": self.memory}
+        arrays.update({f"triads_{i}": x for i, x in enumerate(self.triads)})
+        bad = [f"a NaN or infinite number in {k}" for k, x in arrays.items()
+               if not np.all(np.isfinite(x))]  # fmt: skip
+        n_out = self.counters.get("n_outputs", 0)
+        if not (isinstance(n_out, int) and n_out >= 0):
+            bad.insert(0, f"n_outputs = {n_out!r}")
+        if not (np.isfinite(self.step) and self.step > 0.0):
+            bad.insert(0, f"step = {self.step!r}")
+        if not (np.isfinite(self.t) and self.t >= 0.0):
+            bad.insert(0, f"t = {self.t!r}")
+        if bad:
+            raise InputError(where, bad[0], "a state of finite numbers, t >= 0, step > 0 and "
+                             "n_outputs >= 0")  # fmt: skip
 
     def check_fits(self, n: int, m: int, triad_sizes: list[int], where: str = "state") -> None:
         """Refuse a state of another system: ``n`` coordinates, ``m`` multipliers and rods whose
