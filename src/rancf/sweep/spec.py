@@ -109,18 +109,22 @@ def load_sweep(path: str | Path) -> SweepSpec:
 
 def _check_size(sc: Any) -> None:
     """Refuse a variant whose files would exceed a sweep run's disk limit, counting its nodes
-    from ``mesh.elements`` (a lower bound: NURBS and CAD meshes have at least as many), so no
-    model is built."""
+    from the meshes' ``elements`` (a lower bound: NURBS and CAD meshes have at least as many;
+    a system: its flexible bodies'), so no model is built."""
     from rancf.post.run_plan import check_output_size
     from rancf.sweep.runner import LIMIT, MAX_RUN_GB
 
-    mesh = sc.data["mesh"]
-    per_node = {"beam": 3, "rod": 7}.get(mesh["element"], 2 * sc.dim)
-    n_nodes = mesh["elements"] + 1
+    meshes = [sc.data["mesh"]] if sc.data.get("mesh") else [
+        b["mesh"] for b in sc.data.get("bodies") or [] if b.get("mesh")
+    ]  # fmt: skip
+    n_q = n_rods = 0
+    for mesh in meshes:
+        n_nodes = mesh["elements"] + 1
+        n_q += n_nodes * {"beam": 3, "rod": 7}.get(mesh["element"], 2 * sc.dim)
+        n_rods += 3 * n_nodes if mesh["element"] == "rod" else 0
     n_cols = sum(len(s.columns(sc.dim)) for s in sc.sensors)
-    rods = 3 * n_nodes if mesh["element"] == "rod" else 0
     n_out = sc.dynamic_options().n_outputs
-    check_output_size(sc.path, n_out, n_nodes * per_node, n_cols, rods, MAX_RUN_GB, LIMIT)
+    check_output_size(sc.path, n_out, n_q, n_cols, n_rods, MAX_RUN_GB, LIMIT)
 
 
 def read_toml(path: Path, where: str, key: str) -> dict[str, Any]:
