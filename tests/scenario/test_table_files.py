@@ -68,3 +68,45 @@ def test_bad_table_files_are_refused_in_one_line(tmp_path, monkeypatch, capsys, 
     assert len(err.splitlines()) == 1 and needle in err, err
     assert err.startswith("rancf: error: s.toml: [supports[0].motion.table")
     assert not Path("run").exists()
+
+
+def _csv_case(folder: Path, scale: float = 1.0) -> None:
+    """The capstan with its motion table in ``pull.csv`` (scaled by ``scale``), beside it."""
+    inline = np.array(tomllib.loads(CAPSTAN)["supports"][0]["motion"]["table"])
+    inline[:, 1:] *= scale
+    lines = [", ".join(repr(float(x)) for x in row) for row in inline]
+    (folder / "pull.csv").write_text("\n".join(lines) + "\n")
+    (folder / "capstan.toml").write_text(_with_table('"pull.csv"'))
+
+
+def test_a_sweep_runs_again_after_its_table_file_changed(tmp_path, monkeypatch, capsys):
+    """A finished run is reused only while the CSV file it read is as it was (issue 39.2)."""
+    monkeypatch.chdir(tmp_path)
+    _csv_case(tmp_path)
+    Path("sweep.toml").write_text('base = "capstan.toml"\nanalysis = "simulate"\n'
+                                  '[grid]\n"solver.t_end" = [0.01]\n')  # fmt: skip
+    argv = ["sweep", "sweep.toml", "--out", "out", "--threads", "1", "--quiet"]
+    assert main(argv) == 0
+    assert main(argv) == 0
+    assert "1 already finished" in capsys.readouterr().out
+    _csv_case(tmp_path, scale=2.0)  # the same path, other rows
+    assert main(argv) == 0
+    assert "0 already finished, 1 run" in capsys.readouterr().out
+
+
+def test_resume_refuses_a_changed_table_file(tmp_path, monkeypatch, capsys):
+    """A resumed run reads the table its first part read, or is refused (issue 39.2)."""
+    monkeypatch.chdir(tmp_path)
+    _csv_case(tmp_path)
+    args = ["simulate", "capstan.toml", "--out", "run", "--quiet"]
+    assert main([*args, "--t-end", "0.01"]) == 0
+    summary = (tmp_path / "run" / "summary.json").read_bytes()
+    _csv_case(tmp_path, scale=2.0)
+    capsys.readouterr()
+    assert main([*args, "--resume", "--t-end", "0.02"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1, err
+    assert f"{(tmp_path / 'pull.csv').resolve()} changed since the run started" in err, err
+    assert (tmp_path / "run" / "summary.json").read_bytes() == summary
+    _csv_case(tmp_path)  # back as it was: the run goes on
+    assert main([*args, "--resume", "--t-end", "0.02"]) == 0

@@ -74,14 +74,17 @@ class Resume:
         The run folder (locked by the caller).
     copy : str
         The ``scenario.toml`` text of the scenario the run goes on with.
+    files : dict
+        The digests of the files it reads (:func:`rancf.scenario.read_files.file_digests`).
 
     Raises
     ------
     InputError
-        If the folder's run is of another scenario (anything but ``solver.t_end`` differs).
+        If the folder's run is of another scenario (anything but ``solver.t_end`` differs, or
+        a file it reads changed since the run started).
     """
 
-    def __init__(self, out: Path, copy: str) -> None:
+    def __init__(self, out: Path, copy: str, files: dict[str, str]) -> None:
         from rancf.post.resume import read_checkpoint, summary_of
 
         self.out = Path(out)
@@ -97,6 +100,7 @@ class Resume:
                     "--resume", str(out), f"a run of the same scenario ({key} differs from "
                     f"the run's scenario.toml; only solver.t_end may change)",
                 )  # fmt: skip
+        self._check_files(files)
         self.state = read_checkpoint(self.out)
         if self.state is None and self.summary.get("status") != "running":
             raise InputError(
@@ -105,6 +109,22 @@ class Resume:
                 "--overwrite instead of --resume)",
             )  # fmt: skip
         self.removed: list[str] = []
+
+    def _check_files(self, files: dict[str, str]) -> None:
+        """Refuse if a file the scenario reads (a CSV table, a CAD file) changed since the run
+        started (``summary.json``'s ``input_files``; a run of an older version has none)."""
+        from rancf.scenario.read_files import changed_file
+
+        earlier = self.summary.get("input_files")
+        if not isinstance(earlier, dict):
+            return
+        changed = changed_file(earlier, files)
+        if changed is not None:
+            raise InputError(
+                "--resume", str(self.out), f"a run whose input files are as they were ({changed} "
+                "changed since the run started; the run would mix the two; start it again with "
+                "--overwrite)",
+            )  # fmt: skip
 
     def take_up(self, system: Any, outputs: Any) -> dict[str, Any]:
         """Check that the checkpoint fits ``system`` and read the rows up to it, then remove

@@ -9,6 +9,7 @@ import os
 import signal
 import sys
 import time
+import tomllib
 from pathlib import Path
 from typing import Any
 
@@ -80,15 +81,17 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     from rancf.post.history import HistoryStore
     from rancf.post.results import run_summary
     from rancf.post.run_plan import plan_run
+    from rancf.scenario.read_files import file_digests
     from rancf.solvers.start import start_state
 
     sc, copy = scenario_for_run(args.scenario, args.t_end)
+    files = file_digests(tomllib.loads(copy), args.scenario)  # the run's CSV and CAD files
     opts = sc.dynamic_options()
     system, outputs = plan_run(sc, limit)
     out = od.path
     stop = _StopFlag()
     with stop, od:
-        resume = Resume(out, copy) if od.earlier_run else None
+        resume = Resume(out, copy, files) if od.earlier_run else None
         state = None if resume is None else resume.state
         if state is None:
             y_start, start_info = start_state(sc, system)
@@ -107,6 +110,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
             print(f"rancf: {note}", file=sys.stderr)
         info = {"scenario": str(Path(args.scenario).resolve()), "setup_wall_time_s": None}
         info["notes"] = sc.notes
+        info["input_files"] = files
         info.update(start_info)
         store = HistoryStore(out, outputs, {**info, "warnings": notes})
         try:
