@@ -110,3 +110,14 @@ def test_resume_refuses_a_changed_table_file(tmp_path, monkeypatch, capsys):
     assert (tmp_path / "run" / "summary.json").read_bytes() == summary
     _csv_case(tmp_path)  # back as it was: the run goes on
     assert main([*args, "--resume", "--t-end", "0.02"]) == 0
+
+
+def test_a_byte_order_mark_keeps_the_first_row(tmp_path):
+    """A CSV saved with a byte-order mark (spreadsheets do) loses no row to a 'header'
+    (issue 39.3a)."""
+    inline = np.array(tomllib.loads(CAPSTAN)["supports"][0]["motion"]["table"])
+    lines = [", ".join(repr(float(x)) for x in row) for row in inline]
+    (tmp_path / "pull.csv").write_text("\n".join(lines) + "\n", encoding="utf-8-sig")
+    (tmp_path / "s.toml").write_text(_with_table('"pull.csv"'))
+    f = load_scenario(tmp_path / "s.toml").data["supports"][0]["motion"]
+    np.testing.assert_array_equal(f.rows, inline)
