@@ -374,3 +374,65 @@ def test_a_refused_process_never_removes_what_another_wrote(tmp_path):
         assert (tmp_path / "new/summary.json").is_file()
         first.keep()
     assert sorted(p.name for p in (tmp_path / "new").iterdir()) == ["summary.json"]
+
+
+def _example(name: str) -> str:
+    from importlib.resources import files
+
+    return (files("rancf.examples") / f"{name}.toml").read_text(encoding="utf-8")
+
+
+def _tether(law: str, extra: str = "") -> str:
+    """tether-reel-out for 1 s with its winch's law replaced by ``law`` and ``extra`` added."""
+    text = _example("tether-reel-out").replace("t_end = 20.0", "t_end = 1.0")
+    i = text.index("length = { table")
+    j = text.index("\n", i)
+    return text[:i] + law + text[j:] + extra
+
+
+_SECOND_WINCH = '\n[[winches]]\nname = "{name}"\nat = "tether:{end}"\nlength = 10.0\n'
+_SENSORS = ('\n[[sensors]]\nname = "w"\nkind = "position"\nat = "weight"\n'
+            '\n[[sensors]]\nname = "w_x"\nkind = "energy"\n')  # fmt: skip
+
+#: Inputs that ran to a wrong answer with exit 0 (or a traceback), and what refuses them.
+AMBIGUOUS = {
+    "contact-twice": ('contacts = [["rope", "pulley"], ["rope", "pulley"]]\n'
+                      + _example("capstan"),
+                      "[contacts[1]] lists the pair ['rope', 'pulley'] again (contacts[0] has it"),
+    "body-contact-twice": ('body_contacts = [["leg1", "leg2"], ["leg2", "leg1"]]\n'
+                           + _example("argyris-frame"),
+                           "[body_contacts[1]] lists the pair ['leg1', 'leg2'] again"),
+    "same-column": (_example("capstan") + _SENSORS,
+                    "[sensors[4].name] 'w_x' gives the column 'w_x', as sensors[3] ('w', kind "
+                    "'position') does"),
+    "same-winch-name": (_tether("length = 10.0", _SECOND_WINCH.format(name="reel", end="end")),
+                        "[winches[1].name] 'reel' is used twice (winches[0] has it)"),
+    "two-winches-one-end": (_tether("length = 10.0",
+                                    _SECOND_WINCH.format(name="other", end="start")),
+                            "[winches[1].at] 'tether:start': body 'tether' already has a winch "
+                            "(winches[0]): one winch per body"),
+    "vector-length": (_tether("length = [10.0, 3.0]"),
+                      "[winches[0].length] must be a scalar time function (numbers, not "
+                      "vectors), got [10.0, 3.0]"),
+    "length-below-zero": (_tether("length = { table = [[0, 10.0], [0.5, 5.0], [1.0, -1.0]] }"),
+                          "[winches[0].length] the length outside the winch must stay > 0 m "
+                          "over the run (t = 0 to t_end = 1 s), but it is -0.004 m at "
+                          "t = 0.917 s"),
+    "speed-past-zero": (_tether("speed = -30.0"),
+                        "[winches[0].speed] the length outside the winch must stay > 0 m over "
+                        "the run (t = 0 to t_end = 1 s), but it is -0.005 m at t = 0.3335 s"),
+}  # fmt: skip
+
+
+@pytest.mark.parametrize("case", list(AMBIGUOUS))
+def test_ambiguous_inputs_are_refused_in_one_line(tmp_path, monkeypatch, capsys, case):
+    """Issue 39.3 (b–f) and 39.5: each refused on one line naming the file and the key, exit 2,
+    nothing written."""
+    text, needle = AMBIGUOUS[case]
+    monkeypatch.chdir(tmp_path)
+    Path("s.toml").write_text(text)
+    assert main(["simulate", "s.toml", "--out", "run", "--quiet"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and err.startswith("rancf: error: s.toml: ["), err
+    assert needle in err, err
+    assert not Path("run").exists()

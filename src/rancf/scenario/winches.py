@@ -22,8 +22,8 @@ from rancf.bodies.flexible import Model
 from rancf.bodies.length import set_unstretched_length, unstretched_length
 from rancf.errors import ScenarioError
 from rancf.scenario.base import Name, Positive, Table, fail, vector
-from rancf.scenario.loads import TimeFunctionValue
-from rancf.system.winches import LENGTH_RTOL, Winch
+from rancf.scenario.loads import TimeFunctionValue, check_scalar
+from rancf.system.winches import LENGTH_RTOL, Winch, winch_length
 
 __all__ = ["WinchTable", "system_winches"]
 
@@ -60,6 +60,7 @@ class WinchTable(Table):
         if len(given) != 1:
             raise fail("length", "give one of length, speed or torque (got "
                        f"{', '.join(given) or 'none'})")  # fmt: skip
+        check_scalar(given[0], self[given[0]])
         for k in ("radius", "inertia"):
             if self[k] is None and self.torque is not None:
                 raise fail(
@@ -99,6 +100,36 @@ def system_winches(sc: Any, bodies: dict[str, Any], one_body: str) -> list[Winch
             start = float(np.ravel(length.value(0.0))[0])
             if abs(start - unstretched_length(body)) > LENGTH_RTOL * max(start, 1.0):
                 set_unstretched_length(body, start, anchor=node)
-        out.append(Winch(w.name, at, length=length, speed=wd["speed"], torque=wd["torque"],
-                         radius=w.radius, inertia=w.inertia))  # fmt: skip
+        winch = Winch(w.name, at, length=length, speed=wd["speed"], torque=wd["torque"],
+                      radius=w.radius, inertia=w.inertia)  # fmt: skip
+        _check_lengths(sc, key, winch, unstretched_length(body))
+        out.append(winch)
     return out
+
+
+#: Uniform samples of ``[0, t_end]`` a winch's length is checked at (with a table's times).
+LENGTH_SAMPLES = 2001
+
+
+def _check_lengths(sc: Any, key: str, w: Winch, length0: float) -> None:
+    """Refuse a ``length`` or ``speed`` law whose length outside the winch is not > 0 somewhere
+    in ``[0, t_end]`` (a line reeled in past the drum: negative lengths, then NaN tensions).
+    A driven drum's length is a coordinate: the run stops where it leaves its range."""
+    if w.driven:
+        return
+    t_end = float(sc.dynamic_options().t_end)
+    law = w.length if w.length is not None else w.speed
+    f = winch_length(w, length0, t_end)
+    times = np.linspace(0.0, t_end, LENGTH_SAMPLES)
+    rows = getattr(law, "rows", None)
+    if rows is not None:
+        knots = np.asarray(rows)[:, 0]
+        times = np.union1d(times, knots[(knots >= 0.0) & (knots <= t_end)])
+    values = np.array([float(np.ravel(f.value(t))[0]) for t in times])
+    bad = np.flatnonzero(~(values > 0.0))
+    if bad.size:
+        which = "length" if w.length is not None else "speed"
+        t, v = float(times[bad[0]]), float(values[bad[0]])
+        raise ScenarioError(sc.path, f"{key}.{which}", f"the length outside the winch must stay "
+                            f"> 0 m over the run (t = 0 to t_end = {t_end:g} s), but it is "
+                            f"{v:.6g} m at t = {t:.6g} s")  # fmt: skip
