@@ -96,6 +96,8 @@ def load_sweep(path: str | Path) -> SweepSpec:
             raise ScenarioError(where, f"grid.{key}", f"must be a non-empty list, got {values!r}")
     base = (p.parent / raw["base"]).resolve()
     base_raw = read_toml(base, where, "base")
+    for key in grid:
+        _check_table(where, key, base_raw)
     spec = SweepSpec(p, base, analysis, dict(grid), base_raw)
     for v in spec.variants():
         try:
@@ -105,6 +107,19 @@ def load_sweep(path: str | Path) -> SweepSpec:
         except (ScenarioError, RunTooLargeError) as exc:
             raise ScenarioError(where, f"grid (run {v.name})", str(exc)) from None
     return spec
+
+
+def _check_table(where: str, key: str, base_raw: dict[str, Any]) -> None:
+    """Refuse a grid key ``table.key`` whose table is not a table of the base scenario (an
+    array of tables such as ``[[winches]]``, or a value)."""
+    table = key.split(".", 1)[0]
+    have = base_raw.get(table)
+    if have is None or isinstance(have, dict):
+        return
+    what = f"an array of tables ([[{table}]])" if isinstance(have, list) else "a value"
+    raise ScenarioError(where, f"grid.{key}", f"{table!r} is {what} in the base scenario, not "
+                        f"a table: a grid key names a key of a table ([{table}] key = ...); "
+                        "sweep a copy of the base file per value instead")  # fmt: skip
 
 
 def _check_size(sc: Any) -> None:
