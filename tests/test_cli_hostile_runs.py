@@ -394,6 +394,31 @@ _SECOND_WINCH = '\n[[winches]]\nname = "{name}"\nat = "tether:{end}"\nlength = 1
 _SENSORS = ('\n[[sensors]]\nname = "w"\nkind = "position"\nat = "weight"\n'
             '\n[[sensors]]\nname = "w_x"\nkind = "energy"\n')  # fmt: skip
 
+_SHALLOW = """[geometry]
+kind = "line"
+start = [0.0, 0.0, -10.0]
+end = [2.0, 0.0, 0.0]
+[mesh]
+elements = 3
+[section]
+radius = 0.01
+[material]
+density = 2000.0
+youngs_modulus = 1e9
+[[supports]]
+at = "start"
+[loads]
+gravity = [0.0, 0.0, -9.81]
+[fluid]
+density = 1025.0
+surface = 0.0
+waves = { height = 2.0, period = 8.0, depth = 1e-9 }
+[hydro]
+diameter = 0.03
+[solver]
+t_end = 0.1
+"""
+
 #: Inputs that ran to a wrong answer with exit 0 (or a traceback), and what refuses them.
 AMBIGUOUS = {
     "contact-twice": ('contacts = [["rope", "pulley"], ["rope", "pulley"]]\n'
@@ -421,6 +446,9 @@ AMBIGUOUS = {
     "speed-past-zero": (_tether("speed = -30.0"),
                         "[winches[0].speed] the length outside the winch must stay > 0 m over "
                         "the run (t = 0 to t_end = 1 s), but it is -0.005 m at t = 0.3335 s"),
+    "waves-depth": (_SHALLOW, "[fluid.waves.depth] must reach the bodies in the fluid: depth "
+                    "= 1e-09 m puts the floor at -1e-09 m, above body's node at -10 m (give "
+                    "depth >= 10 m)"),
 }  # fmt: skip
 
 
@@ -436,3 +464,17 @@ def test_ambiguous_inputs_are_refused_in_one_line(tmp_path, monkeypatch, capsys,
     assert len(err.splitlines()) == 1 and err.startswith("rancf: error: s.toml: ["), err
     assert needle in err, err
     assert not Path("run").exists()
+
+
+def test_a_sweep_over_an_array_of_tables_is_refused_in_one_line(tmp_path, monkeypatch, capsys):
+    """``"winches.speed"`` (``[[winches]]`` is an array of tables) was a TypeError traceback
+    (issue 39.5)."""
+    monkeypatch.chdir(tmp_path)
+    Path("base.toml").write_text(_tether("speed = 0.5"))
+    Path("sw.toml").write_text('base = "base.toml"\n[grid]\n"winches.speed" = [0.5, 1.0]\n')
+    assert main(["sweep", "sw.toml", "--out", "out", "--threads", "1", "--quiet"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1, err
+    assert err.startswith("rancf: error: sw.toml: [grid.winches.speed] 'winches' is an array of "
+                          "tables ([[winches]]) in the base scenario, not a table"), err
+    assert not Path("out").exists()
