@@ -9,6 +9,7 @@ import io
 import json
 import os
 import random
+import re
 import signal
 import subprocess
 import sys
@@ -478,3 +479,86 @@ def test_a_sweep_over_an_array_of_tables_is_refused_in_one_line(tmp_path, monkey
     assert err.startswith("rancf: error: sw.toml: [grid.winches.speed] 'winches' is an array of "
                           "tables ([[winches]]) in the base scenario, not a table"), err
     assert not Path("out").exists()
+
+
+_GUIDE = """[[bodies]]
+name = "rope"
+[bodies.geometry]
+kind = "line"
+start = [0.0, 0.0]
+end = [0.0, -0.5]
+[bodies.mesh]
+elements = 10
+element = "ancf"
+[bodies.section]
+radius = 0.002
+[bodies.material]
+density = 1000.0
+youngs_modulus = 1.0e9
+
+[[bodies]]
+name = "weight"
+kind = "mass"
+mass = 1.0
+position = [0.0, -0.5]
+
+[[joints]]
+name = "hook"
+kind = "pin"
+between = ["rope:end", "weight"]
+
+[[joints]]
+name = "eye"
+kind = "sliding"
+between = ["rope", "ground"]
+position = [0.0, -0.05]
+
+[loads]
+gravity = [0.0, -9.81]
+
+[solver]
+t_end = 0.2
+step = 2.0e-3
+output_step = 0.01
+
+[[sensors]]
+name = "eye"
+kind = "reaction"
+joint = "eye"
+"""
+
+#: Runs that went past a coordinate's range (issue 39.3g, 39.4): the file, the column that must
+#: stay in range, and the failure's line (a pattern).
+PAST_LIMITS = {
+    "drum-reels-in-the-line": (
+        _example("drum-hoist").replace("[0.05, 33.368], [10.0, 33.368]",
+                                       "[0.05, 80.0], [10.0, 80.0]"),
+        "drum_length",
+        r"rancf: simulation failed: winch 'hoist': the length outside the drum is -0\.0\d+ m "
+        r"at t = 0\.99 s, not > 0 \(the drum has reeled in the whole line\); the run stops at "
+        r"the step before \(written to run\)"),
+    "rope-through-its-guide": (
+        _GUIDE,
+        "eye_s",
+        r"rancf: simulation failed: sliding joint 'eye': the start of body 'rope' passes through "
+        r"its place at t = 0\.102 s \(material coordinate -0\.0\d+ of 0\.\.10 elements\); the "
+        r"run stops at the step before \(make the body longer\) \(written to run\)"),
+}  # fmt: skip
+
+
+@pytest.mark.parametrize("case", list(PAST_LIMITS))
+def test_a_run_stops_where_a_coordinate_leaves_its_range(tmp_path, monkeypatch, capsys, case):
+    """Exit 3 at the step before the length or the guide's place leaves its range, with one
+    line naming the winch or joint, the time and the value; nothing stored past it."""
+    text, column, line = PAST_LIMITS[case]
+    monkeypatch.chdir(tmp_path)
+    Path("s.toml").write_text(text)
+    assert main(["simulate", "s.toml", "--out", "run", "--quiet"]) == 3
+    err = capsys.readouterr().err.strip()
+    assert re.fullmatch(line, err.splitlines()[-1]), err
+    with open("run/sensors.csv") as fh:
+        rows = list(csv.DictReader(fh))
+    assert all(float(r[column]) >= 0.0 for r in rows), [r[column] for r in rows]
+    summary = _strict(Path("run/summary.json").read_text())
+    assert summary["status"] == "failed" and summary["message"] in err
+    assert summary["t_reached"] == float(rows[-1]["t"])
