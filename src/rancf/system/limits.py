@@ -1,5 +1,7 @@
-"""The admissible range of the coordinates a run must not leave: a driven drum's length outside
-the drum (``L > 0``: a torque that reels in the whole line) and the material coordinate of a
+"""The admissible range of the coordinates a run must not leave: a winch's length outside the
+drum (``L > 0``: a driven drum's torque that reels in the whole line, or a length law of a
+system built in Python that reaches 0; a scenario file's laws are refused when it is read,
+:mod:`rancf.scenario.winches`) and the material coordinate of a
 sliding joint on an open body (``0 <= σ <= elements``: past it, the rope's end has passed
 through its guide and the joint would hold the end element continued beyond the body).
 
@@ -26,6 +28,14 @@ def _drums(system: Any) -> list[tuple[str, int]]:
     return sorted(getattr(system, "drums", {}).items(), key=lambda item: item[1])
 
 
+def _laws(system: Any) -> list[tuple[str, Any]]:
+    """``(name, L(t))`` of the winches whose length is given (a ``length`` or ``speed`` law)."""
+    drums = getattr(system, "drums", {})
+    lengths = getattr(system, "winch_lengths", {})
+    return [(w.name, lengths[w.name]) for w in getattr(system, "winches", ())
+            if w.name not in drums and w.name in lengths]  # fmt: skip
+
+
 def _guides(system: Any) -> list[tuple[str, str, int, int]]:
     """``(joint name, body name, slot of σ in λ, elements)`` of the sliding joints on open
     bodies."""
@@ -44,8 +54,8 @@ def _guides(system: Any) -> list[tuple[str, str, int, int]]:
 def state_limits(system: Any) -> LimitCheck | None:
     """The check of ``system``'s bounded coordinates (module docstring), or None if it has
     none."""
-    drums, guides = _drums(system), _guides(system)
-    if not drums and not guides:
+    drums, laws, guides = _drums(system), _laws(system), _guides(system)
+    if not drums and not laws and not guides:
         return None
 
     def check(t: float, y: NDArray[np.float64], lam: NDArray[np.float64]) -> str | None:
@@ -55,6 +65,11 @@ def state_limits(system: Any) -> LimitCheck | None:
                 return (f"winch {name!r}: the length outside the drum is {length:.6g} m at "
                         f"t = {t:.6g} s, not > 0 (the drum has reeled in the whole line); the "
                         "run stops at the step before")  # fmt: skip
+        for name, f in laws:
+            length = float(np.ravel(f.value(t))[0])
+            if not length > 0.0:
+                return (f"winch {name!r}: its length law gives {length:.6g} m at t = {t:.6g} s, "
+                        "not > 0; the run stops at the step before")  # fmt: skip
         for joint, body, slot, n_el in guides:
             sigma = float(lam[slot])
             if not 0.0 <= sigma <= n_el:
