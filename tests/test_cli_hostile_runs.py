@@ -447,6 +447,14 @@ AMBIGUOUS = {
     "speed-past-zero": (_tether("speed = -30.0"),
                         "[winches[0].speed] the length outside the winch must stay > 0 m over "
                         "the run (t = 0 to t_end = 1 s), but it is -0.005 m at t = 0.3335 s"),
+    "length-zero-at-the-start": (_tether("length = { ramp = 0.1, value = -1.0 }"),
+                                 "[winches[0].length] the length outside the winch must stay > 0 "
+                                 "m over the run (t = 0 to t_end = 1 s), but it is 0 m at t = 0 s"),
+    "winch-at-no-body": (_tether("length = 10.0").replace('at = "tether:start"\nlength',
+                                                          'at = "nobody:start"\nlength'),
+                         "[winches[0].at] names no body: 'nobody' (bodies: tether, payload)"),
+    "sensor-of-no-winch": (_tether("length = 10.0").replace('winch = "reel"', 'winch = "nope"'),
+                           "[sensors[0].winch] names no winch: 'nope' (winches: reel)"),
     "waves-depth": (_SHALLOW, "[fluid.waves.depth] must reach the bodies in the fluid: depth "
                     "= 1e-09 m puts the floor at -1e-09 m, above body's node at -10 m (give "
                     "depth >= 10 m)"),

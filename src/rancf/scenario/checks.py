@@ -209,10 +209,14 @@ def _joints(c: _Context) -> None:
 def _sensors(c: _Context, supports: list[ResolvedPlace]) -> None:
     names: set[str] = set()
     joints = {j.name for j in c.sc.joints}
+    winches = [w.name for w in c.sc.winches]
     for i, s in enumerate(c.sc.sensor_tables):
         key = f"sensors[{i}]"
         if s.name in names or s.name == "t":
             raise fail(f"{key}.name", f"{show(s.name)} is used twice or reserved")
+        if s.winch is not None and s.winch not in winches:
+            raise fail(f"{key}.winch", f"names no winch: {show(s.winch)} (winches: "
+                       f"{', '.join(winches) or 'none'})")  # fmt: skip
         names.add(s.name)
         _size(f"{key}.about", s.about, c.dim)
         places = []

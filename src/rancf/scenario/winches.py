@@ -81,7 +81,10 @@ def system_winches(sc: Any, bodies: dict[str, Any], one_body: str) -> list[Winch
     out = []
     for i, (w, wd) in enumerate(zip(sc.winches, sc.data["winches"], strict=True)):
         key = f"winches[{i}]"
-        p = sc.place(w.at)
+        try:
+            p = sc.place(w.at)
+        except ScenarioError as exc:
+            raise ScenarioError(sc.path, f"{key}.at", exc.problem) from None
         body = bodies.get(p.body or one_body) if p.where == "node" else None
         if not isinstance(body, Model) or p.node not in (0, -1, body.n_nodes - 1):
             raise ScenarioError(sc.path, f"{key}.at", f'"BODY:start" or "BODY:end" of a cable '
@@ -96,13 +99,13 @@ def system_winches(sc: Any, bodies: dict[str, Any], one_body: str) -> list[Winch
                                     f"drawn, {x.tolist()} (draw the line from the winch; got "
                                     f"{w.position})")  # fmt: skip
         length = wd["length"]
+        winch = Winch(w.name, at, length=length, speed=wd["speed"], torque=wd["torque"],
+                      radius=w.radius, inertia=w.inertia)  # fmt: skip
+        _check_lengths(sc, key, winch, unstretched_length(body))  # before the body is stretched
         if length is not None:
             start = float(np.ravel(length.value(0.0))[0])
             if abs(start - unstretched_length(body)) > LENGTH_RTOL * max(start, 1.0):
                 set_unstretched_length(body, start, anchor=node)
-        winch = Winch(w.name, at, length=length, speed=wd["speed"], torque=wd["torque"],
-                      radius=w.radius, inertia=w.inertia)  # fmt: skip
-        _check_lengths(sc, key, winch, unstretched_length(body))
         out.append(winch)
     return out
 
@@ -129,7 +132,7 @@ def _check_lengths(sc: Any, key: str, w: Winch, length0: float) -> None:
     bad = np.flatnonzero(~(values > 0.0))
     if bad.size:
         which = "length" if w.length is not None else "speed"
-        t, v = float(times[bad[0]]), float(values[bad[0]])
+        t, v = float(times[bad[0]]), float(values[bad[0]]) + 0.0  # no "-0"
         raise ScenarioError(sc.path, f"{key}.{which}", f"the length outside the winch must stay "
                             f"> 0 m over the run (t = 0 to t_end = {t_end:g} s), but it is "
                             f"{v:.6g} m at t = {t:.6g} s")  # fmt: skip
