@@ -200,6 +200,10 @@ def _damage(run: Path, how: str) -> None:
     state = DynamicState.load(run / "checkpoint.npz")
     if how == "shape":
         state.y = np.zeros(10)
+    elif how == "memory":
+        state.memory = np.zeros(7)
+    elif how == "k_out":
+        state.k_out = -5
     else:
         state.v[3] = np.nan
     state.save(run / "checkpoint.npz")
@@ -209,6 +213,9 @@ def _damage(run: Path, how: str) -> None:
     ("how", "says"),
     [("shape", "coordinates 10; needed: a state of this system (coordinates 24)"),
      ("nan", "a NaN or infinite number in v"),
+     ("memory", "memory of 7 numbers; needed: an integrator memory of this system and its "
+                "Newton method"),
+     ("k_out", "k_out = -5; needed: a state of finite numbers"),
      ("truncated", "a state written by a rancf run (reading it: File is not a zip file)"),
      ("results", "run/results.npz' is not allowed: a run folder's results file")],
 )  # fmt: skip

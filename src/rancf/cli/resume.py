@@ -65,6 +65,20 @@ def _alive(pid: int) -> bool:
     return True
 
 
+def _check_memory(state: Any, system: Any, options: Any) -> None:
+    """Refuse a state whose integrator memory does not fit ``system`` and ``options``' Newton
+    method (restored into an integrator of its own, as the run will)."""
+    from rancf.solvers.generalized_alpha import GeneralizedAlpha
+
+    o = options
+    try:
+        integ = GeneralizedAlpha(system, o.rho_inf, o.newton_tol, o.max_newton, o.newton)
+        integ.restore(state.memory, int(state.counters.get("n_factorizations", 0)))
+    except (ValueError, TypeError):
+        raise InputError("state", f"memory of {state.memory.size} numbers", "an integrator "
+                         "memory of this system and its Newton method") from None  # fmt: skip
+
+
 class Resume:
     """The run of a run folder, to go on with (``rancf simulate --resume``).
 
@@ -126,9 +140,10 @@ class Resume:
                 "--overwrite)",
             )  # fmt: skip
 
-    def take_up(self, system: Any, outputs: Any) -> dict[str, Any]:
-        """Check that the checkpoint fits ``system`` and read the rows up to it, then remove
-        what the earlier run left besides (nothing in the folder changes before all is read).
+    def take_up(self, system: Any, outputs: Any, options: Any) -> dict[str, Any]:
+        """Check that the checkpoint fits ``system`` (and the integrator of ``options``) and
+        read the rows up to it, then remove what the earlier run left besides (nothing in the
+        folder changes before all is read).
 
         Returns
         -------
@@ -149,6 +164,7 @@ class Resume:
         try:
             state.check_finite()
             state.check_fits(system.n, system.m, sizes)
+            _check_memory(state, system, options)
         except InputError as exc:
             raise InputError(
                 "--resume", str(self.out / CHECKPOINT), f"a checkpoint this run can go on from "

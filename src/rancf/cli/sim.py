@@ -97,7 +97,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
             y_start, start_info = start_state(sc, system)
             od.clear()  # --resume of a run killed before its first checkpoint: from the start
         else:
-            rows = resume.take_up(system, outputs)  # all checked before the folder changes
+            rows = resume.take_up(system, outputs, opts)  # all checked before the folder changes
             od.keep()  # the earlier run's files stay whatever happens
             y_start, start_info = None, resume.start_info()
             if state.t >= opts.t_end * (1.0 - 1e-12):

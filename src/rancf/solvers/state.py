@@ -136,7 +136,8 @@ class DynamicState:
 
     def check_finite(self, where: str = "state") -> None:
         """Refuse a state with a number that is not finite, a time < 0, a step <= 0 or a
-        count of outputs that is not a whole number >= 0 (a damaged file).
+        count (``k_out``, ``within``, ``n_outputs``) that is not a whole number >= 0 (a damaged
+        file).
 
         Raises
         ------
@@ -147,16 +148,17 @@ class DynamicState:
         arrays.update({f"triads_{i}": x for i, x in enumerate(self.triads)})
         bad = [f"a NaN or infinite number in {k}" for k, x in arrays.items()
                if not np.all(np.isfinite(x))]  # fmt: skip
-        n_out = self.counters.get("n_outputs", 0)
-        if not (isinstance(n_out, int) and n_out >= 0):
-            bad.insert(0, f"n_outputs = {n_out!r}")
+        counts = {"k_out": self.k_out, "within": self.within,
+                  "n_outputs": self.counters.get("n_outputs", 0)}  # fmt: skip
+        bad[:0] = [f"{k} = {n!r}" for k, n in counts.items()
+                   if not (isinstance(n, int) and n >= 0)]  # fmt: skip
         if not (np.isfinite(self.step) and self.step > 0.0):
             bad.insert(0, f"step = {self.step!r}")
         if not (np.isfinite(self.t) and self.t >= 0.0):
             bad.insert(0, f"t = {self.t!r}")
         if bad:
             raise InputError(where, bad[0], "a state of finite numbers, t >= 0, step > 0 and "
-                             "n_outputs >= 0")  # fmt: skip
+                             "counts k_out, within, n_outputs >= 0")  # fmt: skip
 
     def check_fits(self, n: int, m: int, triad_sizes: list[int], where: str = "state") -> None:
         """Refuse a state of another system: ``n`` coordinates, ``m`` multipliers and rods whose
