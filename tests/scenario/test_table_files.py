@@ -121,3 +121,26 @@ def test_a_byte_order_mark_keeps_the_first_row(tmp_path):
     (tmp_path / "s.toml").write_text(_with_table('"pull.csv"'))
     f = load_scenario(tmp_path / "s.toml").data["supports"][0]["motion"]
     np.testing.assert_array_equal(f.rows, inline)
+
+
+def test_the_files_a_scenario_reads_are_fingerprinted_by_content(tmp_path):
+    """Every CSV table and CAD file, in a one-body file or in [[bodies]], relative to the
+    scenario's folder; a digest changes with the content, not only with the name."""
+    from rancf.scenario.read_files import changed_file, file_digests, read_file_paths
+
+    raw = {
+        "geometry": {"kind": "cad", "file": "top.step"},
+        "bodies": [{"geometry": {"kind": "cad", "file": "/abs/leg.iges"}}],
+        "supports": [{"motion": {"table": "pull.csv"}}],
+        "winches": [{"length": {"table": "sub/reel.csv"}}],
+    }
+    scenario = tmp_path / "s.toml"
+    assert read_file_paths(raw, scenario) == sorted(
+        [tmp_path / "top.step", Path("/abs/leg.iges"), tmp_path / "pull.csv",
+         tmp_path / "sub" / "reel.csv"]
+    )  # fmt: skip
+    (tmp_path / "pull.csv").write_text("0, 0\n1, 1\n")
+    before = file_digests(raw, scenario)
+    assert before[str(tmp_path / "top.step")] == "unreadable"
+    (tmp_path / "pull.csv").write_text("0, 0\n1, 2\n")
+    assert changed_file(before, file_digests(raw, scenario)) == str(tmp_path / "pull.csv")
