@@ -144,3 +144,16 @@ def test_the_files_a_scenario_reads_are_fingerprinted_by_content(tmp_path):
     assert before[str(tmp_path / "top.step")] == "unreadable"
     (tmp_path / "pull.csv").write_text("0, 0\n1, 2\n")
     assert changed_file(before, file_digests(raw, scenario)) == str(tmp_path / "pull.csv")
+
+
+def test_a_run_folders_copy_names_every_cad_file_absolutely(tmp_path):
+    """A body's CAD file ([bodies.geometry]) is made absolute in a run folder's copy as the
+    one-body file's is (it stayed relative, read against the run folder)."""
+    from rancf.sweep.toml_out import with_absolute_paths
+
+    raw = {"bodies": [{"name": "a", "geometry": {"kind": "cad", "file": "leg.step"}}],
+           "geometry": {"kind": "cad", "file": "top.step"}}  # fmt: skip
+    out = with_absolute_paths(raw, tmp_path / "s.toml")
+    assert out["bodies"][0]["geometry"]["file"] == str(tmp_path / "leg.step")
+    assert out["geometry"]["file"] == str(tmp_path / "top.step")
+    assert raw["bodies"][0]["geometry"]["file"] == "leg.step"  # a copy
