@@ -9,6 +9,7 @@ import os
 import signal
 import sys
 import time
+import tomllib
 from pathlib import Path
 from typing import Any
 
@@ -86,20 +87,23 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     from rancf.post.history import HistoryStore
     from rancf.post.results import run_summary
     from rancf.post.run_plan import plan_run
+    from rancf.scenario.read_files import file_digests
     from rancf.solvers.start import start_state
 
     sc, copy = scenario_for_run(args.scenario, args.t_end)
+    files = file_digests(tomllib.loads(copy), args.scenario)  # the run's CSV and CAD files
     opts = sc.dynamic_options()
     system, outputs = plan_run(sc, limit)
     out = od.path
     stop = _StopFlag()
     with stop, od:
-        resume = Resume(out, copy) if od.earlier_run else None
+        resume = Resume(out, copy, files) if od.earlier_run else None
         state = None if resume is None else resume.state
         if state is None:
             y_start, start_info = start_state(sc, system)
             od.clear()  # --resume of a run killed before its first checkpoint: from the start
         else:
+            rows = resume.take_up(system, outputs, opts)  # all checked before the folder changes
             od.keep()  # the earlier run's files stay whatever happens
             y_start, start_info = None, resume.start_info()
             if state.t >= opts.t_end * (1.0 - 1e-12):
@@ -113,11 +117,12 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
             print(f"rancf: {note}", file=sys.stderr)
         info = {"scenario": str(Path(args.scenario).resolve()), "setup_wall_time_s": None}
         info["notes"] = sc.notes
+        info["input_files"] = files
         info.update(start_info)
         store = HistoryStore(out, outputs, {**info, "warnings": notes})
         try:
             if state is not None:
-                store.seed(resume.rows(outputs))
+                store.seed(rows)
             atomic_write(out / "scenario.toml", copy)
             t0 = 0.0 if state is None else state.t
             store.write_summary(_running(system, t0))

@@ -238,7 +238,8 @@ def time_size(v: Any) -> int | None:
 def check_scalar(key: str, v: Any) -> None:
     """Raise unless the TIME_FUNCTION ``v`` (of ``key``) is scalar valued."""
     if v is not None and time_size(v) is not None:
-        raise fail(key, "must be a scalar time function (numbers, not vectors)")
+        got = show(v) if isinstance(v, list) else f"{time_size(v)} components"
+        raise fail(key, f"must be a scalar time function (numbers, not vectors), got {got}")
 
 
 class SupportTable(Table):

@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING, Any
 from pydantic import Field, PrivateAttr, ValidationError, ValidationInfo, model_validator
 
 from rancf.errors import ScenarioError
-from rancf.scenario.base import Name, NonNegative, Table, integer
+from rancf.scenario.base import Name, NonNegative, Table, fail, integer, show
 from rancf.scenario.bodies import Body
 from rancf.scenario.checks import check_scenario
 from rancf.scenario.files import deferred_interrupts, read_toml, write_atomic
@@ -133,6 +133,7 @@ class Scenario(Table):
         self._data = _data(self)
         self._data["warnings"] = start_warnings(self)
         self._sensors = tuple(_record(s, self._bodies) for s in self.sensor_tables)
+        _columns_once(self._sensors, self._dim)
         return self
 
     # ------------------------------------------------------------------ the facade
@@ -363,6 +364,20 @@ def _data(sc: Scenario) -> dict[str, Any]:
     d["modes"] = sc.modes.model_dump()
     d["notes"] = notes
     return d
+
+
+def _columns_once(sensors: tuple[Sensor, ...], dim: int) -> None:
+    """Refuse two sensors that give a column of the same name (a position ``tip`` gives
+    ``tip_x``, as a sensor named ``tip_x`` does): readers would take one for the other."""
+    owner: dict[str, int] = {}
+    for i, s in enumerate(sensors):
+        for col in s.columns(dim):
+            if col in owner:
+                j = owner[col]
+                raise fail(f"sensors[{i}].name", f"{show(s.name)} gives the column {col!r}, as "
+                           f"sensors[{j}] ({show(sensors[j].name)}, kind {sensors[j].kind!r}) "
+                           "does: each column of sensors.csv needs its own name")  # fmt: skip
+            owner[col] = i
 
 
 def _record(s: SensorTable, bodies: dict[str, Any] | None) -> Sensor:

@@ -20,7 +20,10 @@ Step control: fixed steps, or adaptive steps from the local error estimate
 ``e = h² |β - γ/2 + 1/12| max_i s_i |w_{n+1,i} - w_{n,i}|`` (after Zienkiewicz & Xie 1991), which
 fixed-step runs record too (the largest, its time and step: :class:`DynamicResult`).  A step
 whose Newton iteration fails is retried with a quarter of the step; below ``min_step`` the run
-stops with status ``FAILED`` and keeps everything computed up to then.
+stops with status ``FAILED`` and keeps everything computed up to then.  So does a step that
+takes a bounded coordinate out of its range (:mod:`rancf.system.limits`: a driven drum's
+length, a sliding guide's place on the rope): the run stops at the step before, storing
+nothing from it on.
 """
 
 from __future__ import annotations
@@ -38,6 +41,7 @@ from rancf.solvers.output import MemorySink, OutputSink
 from rancf.solvers.result import DynamicResult, DynamicStatus
 from rancf.solvers.state import COUNTERS, DynamicState, take_up, triads_of
 from rancf.system import System, as_system
+from rancf.system.limits import first_outside, state_limits
 from rancf.system.sliding import start_multipliers
 
 __all__ = ["DynamicOptions", "DynamicStatus", "DynamicResult", "GeneralizedAlpha", "integrate"]
@@ -56,6 +60,17 @@ CALL_SECONDS = 0.1
 #: change the steps (their times are counted from the outputs), so the sizes may follow the
 #: machine.
 CALL_TARGET_SECONDS = 0.002
+
+
+def _left_range(check: Callable, k0: int, stored: int, out_time: Callable, oy: NDArray,
+                ol: NDArray | None, t: float, y: NDArray, lam: NDArray) -> bool:  # fmt: skip
+    """Whether a call of the compiled loop left a bounded coordinate's range: at one of its
+    ``stored`` outputs (from the ``k0``-th) or at its end state ``(t, y, λ)`` (a step past the
+    last output)."""
+    ts = np.array([out_time(k0 + i) for i in range(stored)])
+    if first_outside(check, ts, oy[:stored], None if ol is None else ol[:stored]) >= 0:
+        return True
+    return check(t, y, lam) is not None
 
 
 def _failure_message(t: float, min_step: float) -> str:
@@ -230,6 +245,10 @@ def integrate(
     if rod:  # the triads at a call's end are those of its one stored state
         chunk_out = least = cap = 1
 
+    check = state_limits(system)  # bounded coordinates: each step checked
+    fast = fast and not (check is not None and rod)  # (a rod's triads cannot step back)
+    slow_until = -1.0  # the compiled loop left a coordinate's range: steps here until then
+
     def notify(tt: float) -> None:
         if on_output is not None:
             msg = f"running, t = {tt:g} s"
@@ -239,8 +258,10 @@ def integrate(
         target = out_time(k_out)
         last_out = out_time(k_out - 1) if k_out else 0.0
         on_grid = within > 0 or abs(t - last_out) <= 1e-12 * max(1.0, t)
-        if fast and h == o.step and k_out < n_grid and on_grid:
+        if fast and h == o.step and k_out < n_grid and on_grid and t >= slow_until:
             n_chunk = min(chunk_out, n_grid - k_out)
+            before = None if check is None else (y.copy(), v.copy(), a.copy(), w.copy(),
+                                                 lam.copy())  # fmt: skip
             called = time.perf_counter()
             done, st, iters, stored, oy, ov, oe, ol, oa, err, t_err = integ.run_steps(
                 y,
@@ -258,6 +279,12 @@ def integrate(
                 k_out,
                 energies=loop_energies,
             )
+            left = before is not None and _left_range(check, k_out, stored, out_time, oy, ol,
+                                                      t, y, lam)  # fmt: skip
+            if left:
+                y, v, a, w, lam = before  # again step by step, to the step that leaves it
+                slow_until = out_time(min(k_out + n_chunk, n_grid) - 1)
+                continue
             result.took(o.step, done)
             result.note_error(integ.relative_error(err, o.rtol), t_err, o.step)
             took = time.perf_counter() - called
@@ -298,6 +325,10 @@ def integrate(
                 status, message = DynamicStatus.FAILED, _failure_message(t, min_step)
                 break
             continue
+        left = None if check is None else check(t + h_try, y1, lam_try)
+        if left is not None:  # the state stays at the step before
+            status, message = DynamicStatus.FAILED, left
+            break
         alpha = integ.alpha_point(y, v, y1, v1) if contact else None  # before re-referencing
         y, v, a, w, t, lam = y1, v1, a1, w1, t + h_try, lam_try
         system.rereference(y, v, a, w)  # rods: triads follow the step, twist rates the spin
