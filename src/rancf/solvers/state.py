@@ -154,7 +154,8 @@ class DynamicState:
         InputError
             Naming the first such entry.
         """
-        arrays = {"y": self.y, "v": self.v, "a": self.a, "w": self.w, "lam": self.lam, "memory": self.memory}
+        arrays = {"y": self.y, "v": self.v, "a": self.a, "w": self.w, "lam": self.lam,
+                  "memory": self.memory}  # fmt: skip
         arrays.update({f"triads_{i}": x for i, x in enumerate(self.triads)})
         bad = [f"a NaN or infinite number in {k}" for k, x in arrays.items()
                if not np.all(np.isfinite(x))]  # fmt: skip
