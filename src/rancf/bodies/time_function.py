@@ -37,16 +37,8 @@ so that ``g``, ``g′`` and ``g″`` start from 0 (``r′ = r″ = 0`` at both e
 acceleration at ``t = 0`` or ``t = B``) and ``g = f`` after ``B``.
 
 At a kink (a table's breakpoint, the end of a ramp) the rate is the one of the interval that
-starts there (the right derivative).
-
-A start from rest is impulsive when the value (``order`` 0) or the rate (``order`` 1) jumps at
-``t = 0`` from 0 (everything is at rest, and at its reference, before the run): a prescribed
-rate jump ``Δv`` is an impact.  :meth:`TimeFunction.start_jump` gives the jump and the largest
-magnitude of the same over the run; a jump above :data:`JUMP_RTOL` of that largest magnitude
-is reported (:mod:`rancf.scenario.motions`; ``docs/guide/scenarios.md``, "Impulsive starts").
-
-The compiled core evaluates the same functions (``src/cpp/time_function.hpp``) from the
-records of :func:`core_record`.
+starts there (the right derivative).  The compiled core evaluates the same functions
+(``src/cpp/time_function.hpp``) from the records of :func:`core_record`.
 """
 
 from __future__ import annotations
@@ -63,7 +55,6 @@ from rancf.kernels.records import TimeFunctionRecord, floats
 
 __all__ = [
     "TimeFunction", "KINDS", "CORE_KINDS", "spin_up_angle", "core_record", "build_up_factor",
-    "JUMP_RTOL",
 ]  # fmt: skip
 
 #: The kinds of time functions.
@@ -74,13 +65,6 @@ CORE_KINDS = {"constant": "constant", "table": "piecewise", "ramp": "ramp",
               "harmonic": "harmonic", "spin_up": "spin_up"}  # fmt: skip
 
 _H1, _H2 = 6e-6, 1.2e-4  # central-difference steps of callables [s]
-
-#: A jump of a value or rate at ``t = 0`` up to this fraction of the largest magnitude the same
-#: reaches over the run is not reported: the transient a jump excites is linear in it, and an
-#: impulsive start excites some 20-30 times the smooth response (the reported winch and crank
-#: cases), so 1e-3 of it keeps the spurious part within a few per cent; it passes the spline
-#: artefacts of tables that start flat (a not-a-knot spline's end slope, 1e-4 of the peak rate).
-JUMP_RTOL = 1e-3
 
 
 def build_up_factor(t: float, duration: float) -> tuple[float, float, float]:
@@ -321,21 +305,6 @@ class TimeFunction:
             return (f(t + h) - f(t - h)) / (2.0 * h)
         h = _H2
         return (f(t + h) - 2.0 * f(t) + f(t - h)) / (h * h)
-
-    def start_jump(self, order: int, t_end: float) -> tuple[float, float]:
-        """The jump at ``t = 0`` of the value (``order`` 0) or of the rate (1) from rest, the
-        largest magnitude over the components, and the largest magnitude of the same over
-        ``[0, t_end]`` (sampled on 1001 times and every table row; the jump included).
-
-        A table's rate at a row is its right derivative, so a rate jump at ``t = 0`` is the first
-        interval's slope; a function with a build-up (T.6) starts from 0 in value and rate.
-        """
-        times = np.linspace(0.0, max(float(t_end), 0.0), 1001)
-        if self.rows is not None:
-            times = np.union1d(times, self.rows[:, 0][(self.rows[:, 0] >= 0.0)
-                                                     & (self.rows[:, 0] <= t_end)])  # fmt: skip
-        size = [float(np.max(np.abs(self._eval(t, order)))) for t in times]
-        return size[0], max(size)
 
     # ------------------------------------------------------------------ other forms
     def sampled(self, t_end: float, samples: int = 2001) -> TimeFunction:
