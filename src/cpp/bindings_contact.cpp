@@ -95,7 +95,7 @@ void bind_contact(nb::module_& mod) {
             }
             const std::size_t np = pair_flex.size();
             expect_size(pair_obstacle, np, "pair_obstacle");
-            expect_size(pair_data, 5 * np, "pair_data");
+            expect_size(pair_data, 6 * np, "pair_data");
             for (std::size_t i = 0; i < np; ++i) {
               rancf::ContactPair cp;
               cp.flex = static_cast<int>(pair_flex.data()[i]);
@@ -104,12 +104,13 @@ void bind_contact(nb::module_& mod) {
                     "pair_flex: no such body");
               check(cp.obstacle >= 0 && static_cast<std::size_t>(cp.obstacle) < no,
                     "pair_obstacle: no such obstacle");
-              const double* d = pair_data.data() + 5 * i;
+              const double* d = pair_data.data() + 6 * i;
               cp.stiffness = d[0];
               cp.onset = d[1];
               cp.damping = d[2];
               cp.friction = d[3];
               cp.slip_velocity = d[4];
+              cp.damping_normal = d[5];
               check(cp.stiffness > 0.0 && cp.onset > 0.0 && cp.slip_velocity > 0.0,
                     "pair_data: stiffness, onset and slip velocity > 0");
               c.pairs.push_back(cp);

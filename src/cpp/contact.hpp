@@ -9,7 +9,9 @@
 //   sphere    g = |r - c| - R - rt
 // with the unit normal n = dg/dr and H = d2g/dr2 = (P - n n^T) / |P (r - c)| (plane: 0).  The
 // force per reference length on the body at a point is F = p n + f_t with the pressure
-//   p = p_k(g) <1 - chi g'>      (g' = n . u; Hunt & Crossley 1975 damping, never pulling)
+//   p = <p_k(g) <1 - chi g'> - c_n g'>   (g' = n . u; Hunt & Crossley 1975 damping and a
+//                                          linear normal damping c_n while in contact, as
+//                                          MoorDyn's seabed cBot; never pulling)
 // of a penalty of stiffness k with a smooth onset over a depth d (C1, convex potential Phi):
 //   p_k = 0 for g >= 0,  k g^2 / (2 d) for -d <= g < 0,  k (-g - d/2) below,
 // so that a point resting under a light load q sinks to sqrt(2 d q / k) with the stiffness
@@ -70,11 +72,12 @@ struct ContactBody {
 /// A flexible body against an obstacle.
 struct ContactPair {
   int flex = 0, obstacle = 0;
-  double stiffness = 0.0;      ///< k: force per reference length per penetration [N/m^2]
-  double onset = 0.0;          ///< d: depth of the smooth onset of the pressure [m]
-  double damping = 0.0;        ///< chi, Hunt-Crossley [s/m]
-  double friction = 0.0;       ///< Coulomb coefficient mu
-  double slip_velocity = 1.0;  ///< eps of the friction's regularization [m/s]
+  double stiffness = 0.0;       ///< k: force per reference length per penetration [N/m^2]
+  double onset = 0.0;           ///< d: depth of the smooth onset of the pressure [m]
+  double damping = 0.0;         ///< chi, Hunt-Crossley [s/m]
+  double damping_normal = 0.0;  ///< c_n, linear normal damping per length [N s/m^2]
+  double friction = 0.0;        ///< Coulomb coefficient mu
+  double slip_velocity = 1.0;   ///< eps of the friction's regularization [m/s]
 };
 
 /// Two flexible bodies in contact (a == b: self-contact; body_contact.hpp).

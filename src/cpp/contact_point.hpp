@@ -105,7 +105,8 @@ inline void point_law(const ContactPair& cp, const Gap& gf, const double* u, con
     const double sl = law.slope(gf.g);
     for (int i = 0; i < 3; ++i) dpr[i] = sl * gf.n[i];
   }
-  // Hunt-Crossley damping: p = pe (1 - chi g'), clipped where a fast separation would pull
+  // Hunt-Crossley damping: p = pe (1 - chi g'), and the linear normal damping - c_n g' while
+  // in contact (pe > 0); clipped where a fast separation would pull
   double p = pe;
   const double rate = u != nullptr ? dot(gf.n, u) : 0.0;
   if (u != nullptr && cp.damping > 0.0 && pe > 0.0) {
@@ -119,6 +120,19 @@ inline void point_law(const ContactPair& cp, const Gap& gf, const double* u, con
         dpu[i] = -pe * cp.damping * gf.n[i];
       }
     }
+  }
+  if (u != nullptr && cp.damping_normal > 0.0 && pe > 0.0) {
+    const double pd = p - cp.damping_normal * rate;
+    if (pd > 0.0) {
+      for (int i = 0; i < 3 && derivs; ++i) {
+        dpr[i] -= cp.damping_normal * dot(gf.H[i], u);
+        dpu[i] -= cp.damping_normal * gf.n[i];
+      }
+    } else {  // a fast separation: no pressure, nothing pulls
+      dp1 = dpa = 0.0;
+      for (int i = 0; i < 3; ++i) dpr[i] = dpu[i] = 0.0;
+    }
+    p = std::max(pd, 0.0);
   }
   if (!(p > 0.0)) return;
   out.active = true;

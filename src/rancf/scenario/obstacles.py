@@ -53,6 +53,10 @@ class ObstacleTable(Table):
         None, description="depth of the pressure's smooth onset [m] (default: 1e-3 r)"
     )
     damping: NonNegative = Field(0.0, description="Hunt-Crossley damping factor [s/m]")
+    damping_normal: NonNegative = Field(
+        0.0, description="linear normal damping per reference length while in contact "
+        "[N s/m^2] (MoorDyn's cBot [Pa s/m] times the diameter); never pulls"
+    )
     slip_velocity: Positive = Field(
         1e-3, description="regularization velocity of the friction [m/s]"
     )

@@ -113,6 +113,10 @@ class Obstacle:
     damping : float
         Hunt–Crossley factor ``χ`` [s/m]: the pressure is ``k <-g> (1 + χ <-ġ>)`` while the
         point approaches the obstacle (``ġ < 0``), so impacts lose energy and nothing pulls.
+    damping_normal : float
+        Linear normal damping ``c_n`` per reference length [N s/m²] while in contact: the
+        pressure ``p - c_n ġ``, never pulling (MoorDyn's seabed ``cBot`` [Pa s/m] times the
+        line's diameter).
     slip_velocity : float
         Regularization ``ε`` of the friction [m/s] (module docstring).
     name : str
@@ -129,6 +133,7 @@ class Obstacle:
     stiffness: float | None = None
     onset: float | None = None
     damping: float = 0.0
+    damping_normal: float = 0.0
     slip_velocity: float = SLIP_VELOCITY
     name: str = ""
 
@@ -207,7 +212,8 @@ def build_contact(
             if not isinstance(b, RigidBody):
                 raise InputError(f"obstacles.{name}.body", ob.body, "the name of a rigid body")
             body = system.rigid.index(b)
-        for key, v in (("friction", ob.friction), ("damping", ob.damping)):
+        for key, v in (("friction", ob.friction), ("damping", ob.damping),
+                       ("damping_normal", ob.damping_normal)):  # fmt: skip
             _number(f"obstacles.{name}.{key}", v, 0.0, False)
         _number(f"obstacles.{name}.slip_velocity", ob.slip_velocity, 0.0, True)
         for key, v in (("stiffness", ob.stiffness), ("onset", ob.onset)):
@@ -271,7 +277,7 @@ def build_contact(
             k = STIFFNESS_FACTOR * system.bodies[f].material.youngs_modulus  # type: ignore[union-attr]
         rt = system.bodies[f].section.radius  # type: ignore[union-attr]
         onset = ONSET_FACTOR * rt if ob.onset is None else ob.onset
-        data.append([k, onset, ob.damping, ob.friction, ob.slip_velocity])
+        data.append([k, onset, ob.damping, ob.friction, ob.slip_velocity, ob.damping_normal])
     i64 = np.int64
     core = _core.Contact(
         body_nc=lists["nc"],
@@ -287,7 +293,7 @@ def build_contact(
         ob_radius=np.array(radii, dtype=float),
         pair_flex=np.array([flex_names.index(f) for f, _ in pairs], dtype=i64),
         pair_obstacle=np.array([names.index(o) for _, o in pairs], dtype=i64),
-        pair_data=np.array(data, dtype=float).reshape(-1, 5),
+        pair_data=np.array(data, dtype=float).reshape(-1, 6),
         body_weights=lists["weights"],
         body_scales=lists["scales"],
         body_arc0=lists["arc0"],
