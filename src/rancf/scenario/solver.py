@@ -54,7 +54,10 @@ class SolverTable(Table):
         10, description="statics: the first load increment is 1/load_steps"
     )
     adaptive: Flag = Field(False, description="adapt the step to rtol (local error estimate)")
-    rtol: Positive = Field(1e-5, description="adaptive steps: local error / model size")
+    rtol: Positive = Field(
+        1e-5, description="local error / model size: adaptive steps keep below it, fixed "
+        "steps warn at the end of a run above it"
+    )
     output_step: Positive | None = Field(
         None,
         description="interval of stored states [s] (default: step), <= t_end; the steps end on "
