@@ -74,7 +74,7 @@ double beam_energy(const Model& m, int el, const double* e) {
 
 }  // namespace
 
-const ElementKernel beam_kernel = {beam_forces, beam_energy};
+const ElementKernel beam_kernel = {beam_forces, beam_energy, nullptr};
 
 void beam_section(const Model& m, int el, const double* e, const double* xi, int n, double* out) {
   const BeamLocal b = beam_local(m, el, e);

@@ -68,7 +68,7 @@ double rod_energy(const Model& m, int el, const double* e) {
 
 }  // namespace
 
-const ElementKernel rod_kernel = {rod_forces, rod_energy};
+const ElementKernel rod_kernel = {rod_forces, rod_energy, nullptr};
 
 void rod_curvatures(const Model& m, int el, const double* e, double* k, double* eps) {
   rod::curvatures(rod_input(m, el), e, k, eps);
