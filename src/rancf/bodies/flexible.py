@@ -25,7 +25,7 @@ from numpy.typing import ArrayLike, NDArray
 from rancf.bodies.closure import arc_fractions
 from rancf.bodies.flexible_core import core_model
 from rancf.bodies.motion import RigidMotion, check_supports_at_rest, rigid_velocity
-from rancf.bodies.properties import Material, PointLoad, Section, Support
+from rancf.bodies.properties import Material, PointLoad, Section, StrainRateDamping, Support
 from rancf.bodies.support_layout import support_layout
 from rancf.errors import InputError
 from rancf.kernels.beam import BeamKernel
@@ -43,7 +43,10 @@ from rancf.mesh.coordinates import Coordinates
 from rancf.mesh.factories import to_ancf
 from rancf.mesh.mesh import CableMesh
 
-__all__ = ["Section", "Material", "Support", "PointLoad", "Model", "ElementKind", "RigidMotion"]
+__all__ = [
+    "Section", "Material", "Support", "PointLoad", "StrainRateDamping", "Model", "ElementKind",
+    "RigidMotion",
+]  # fmt: skip
 
 ElementKind = Literal["rancf", "ancf", "beam", "rod"]
 _STRESS_FREE = '"reference" or, for cables and rods, "straight"'
@@ -82,6 +85,9 @@ class Model(Coordinates):
         their own coordinates (C¹ there).
     stress_free : {"reference", "straight"}
         Unloaded state: the reference, or straight of equal arc length (cables, rods).
+    strain_rate_damping : StrainRateDamping, optional
+        Kelvin-Voigt damping of the strain rates, ``N = EA ε + c_a ε̇``, ``M = EI κ + c_b κ̇``
+        (cable elements; docs/derivations/strain-rate-damping.md).  Default none.
 
     Notes
     -----
@@ -104,6 +110,7 @@ class Model(Coordinates):
         initial_motion: RigidMotion | None = None,
         continuity: Continuity = "C1",
         stress_free: Literal["reference", "straight"] = "reference",
+        strain_rate_damping: StrainRateDamping | None = None,
     ) -> None:
         self.element, self.stress_free = element, stress_free
         if stress_free != "reference" and (stress_free != "straight" or element == "beam"):
@@ -249,6 +256,9 @@ class Model(Coordinates):
         if not (np.isfinite(damping) and damping >= 0):
             raise InputError("damping.mass_proportional", damping, "a finite number >= 0")
         self.damping = float(damping)
+        #: Kelvin-Voigt strain-rate damping (zero coefficients: none).
+        self.strain_rate_damping = strain_rate_damping or StrainRateDamping()
+        self.strain_rate_damping.check_element(element)
         v0 = np.zeros(self.n)
         for node, vel in (initial_velocities or {}).items():
             nd = self.check_node(node, "initial_velocity.at")
@@ -335,6 +345,21 @@ class Model(Coordinates):
         f = np.empty(self.n)
         ab = np.empty((2 * self.ku + 1, self.n))
         self.core.internal_force_and_tangent(np.asarray(y, dtype=float), f, ab)
+        return f, ab
+
+    def damping_force(
+        self, y: ArrayLike, v: ArrayLike, ck: float | None = None, cv: float = 0.0
+    ) -> NDArray[np.float64] | tuple[NDArray, NDArray]:
+        """Kelvin-Voigt strain-rate damping force ``f_d(y, v)`` ``(n,)``
+        (docs/derivations/strain-rate-damping.md, eq. 3); with ``ck``, also its Jacobian
+        ``ck ∂f_d/∂y + cv ∂f_d/∂v`` in band storage ``(2 ku + 1, n)``."""
+        yy, vv = np.asarray(y, dtype=float), np.asarray(v, dtype=float)
+        f = np.empty(self.n)
+        if ck is None:
+            self.core.damping_force(yy, vv, f)
+            return f
+        ab = np.empty((2 * self.ku + 1, self.n))
+        self.core.damping_force(yy, vv, f, ab, ck=ck, cv=cv)
         return f, ab
 
     def strain_energy(self, y: ArrayLike) -> float:

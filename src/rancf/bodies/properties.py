@@ -10,7 +10,7 @@ import numpy as np
 from rancf.bodies.time_function import TimeFunction
 from rancf.errors import InputError
 
-__all__ = ["Section", "Material", "Support", "PointLoad"]
+__all__ = ["Section", "Material", "Support", "PointLoad", "StrainRateDamping"]
 
 
 def _positive(key: str, v: float | None, what: str = "a finite number > 0") -> None:
@@ -134,6 +134,52 @@ class Material:
                 "material.shear_modulus", None, "shear_modulus or poisson_ratio (rod elements)"
             )
         return self.youngs_modulus / (2.0 * (1.0 + self.poisson_ratio))
+
+
+#: The elements that have Kelvin-Voigt strain-rate damping (:class:`StrainRateDamping`).
+STRAIN_RATE_ELEMENTS = ("rancf", "ancf")
+
+
+@dataclass(frozen=True)
+class StrainRateDamping:
+    """Kelvin-Voigt strain-rate damping of a flexible body (docs/derivations/strain-rate-damping.md).
+
+    The section forces get a part proportional to the strain rates: ``N = EA ε + axial ε̇``
+    [``axial`` in N s], ``M = EI κ + bending κ̇`` [``bending`` in N m² s] and, for rods, the
+    twist moment ``GJ τ + torsion τ̇`` [N m² s].  Rigid motions have zero strain rates: they are
+    not damped.  A mode of frequency ``ω`` dominated by stretching decays with the damping ratio
+    ``ζ = axial ω / (2 EA)``, one dominated by bending with ``ζ = bending ω / (2 EI)``.  Statics
+    ignore it (the velocities are zero).
+    """
+
+    axial: float = 0.0
+    bending: float = 0.0
+    torsion: float = 0.0
+
+    def __post_init__(self) -> None:
+        for name in ("axial", "bending", "torsion"):
+            v = getattr(self, name)
+            if not (np.isfinite(v) and v >= 0):
+                raise InputError(f"damping.{name}", v, "a finite number >= 0")
+
+    @property
+    def active(self) -> bool:
+        """Whether any coefficient is > 0."""
+        return self.axial > 0 or self.bending > 0 or self.torsion > 0
+
+    def check_element(self, element: str) -> None:
+        """Raise :class:`~rancf.errors.InputError` for a coefficient the element cannot take:
+        ``torsion`` needs a rod; every key needs cable elements (``"rancf"``, ``"ancf"``; the
+        co-rotational beam and the rod do not have it yet)."""
+        if self.torsion > 0:
+            raise InputError("damping.torsion", self.torsion, "0: the torsion damping needs rod "
+                             "elements, and rods do not have strain-rate damping yet")  # fmt: skip
+        for name in ("axial", "bending"):
+            v = getattr(self, name)
+            if v > 0 and element not in STRAIN_RATE_ELEMENTS:
+                raise InputError(f"damping.{name}", v, f'0 with {element} elements (strain-rate '
+                                 'damping is built for cable elements: mesh.element = "rancf" '
+                                 'or "ancf")')  # fmt: skip
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,145 @@
+"""Kelvin-Voigt strain-rate damping of cable elements (docs/derivations/strain-rate-damping.md):
+the force against its definition's finite differences, its Jacobians ``∂f/∂y`` and ``∂f/∂v``
+against central differences of the force, zero force under rigid motions of curved references,
+and the coefficients reaching the core by name."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from rancf.bodies.flexible import Material, Model, Section, StrainRateDamping
+from rancf.bodies.flexible_core import section_stiffness
+from rancf.errors import InputError
+from rancf.mesh.factories import mesh_line
+from tests.kernels.test_elements import CASES, _mesh, _rotation
+
+SEC = Section(area=1.0e-4, inertia=2.0e-9)
+E_MOD = 2.0e11
+CA, CB = 3.0e4, 0.7  # N s, N m^2 s
+
+
+def _model(mesh, axial=CA, bending=CB, strain="green_lagrange"):
+    mat = Material(density=7850.0, youngs_modulus=E_MOD, axial_strain=strain)
+    return Model(mesh, "rancf", SEC, mat, strain_rate_damping=StrainRateDamping(axial, bending))
+
+
+def _state(model, seed=3):
+    rng = np.random.default_rng(seed)
+    scale = np.abs(model.y0).max()
+    return model.y0 + 0.02 * scale * rng.normal(size=model.n), rng.normal(size=model.n)
+
+
+def _dissipation(model, y, v):
+    """``D = ½ ∫ (c_a ε̇² + c_b κ̇²) dx`` by the force: ``f_d · v = 2 D`` and ``f_d`` linear in v."""
+    return 0.5 * model.damping_force(y, v) @ v
+
+
+@pytest.mark.parametrize("strain", ["green_lagrange", "engineering"])
+@pytest.mark.parametrize(("dim", "geo", "k"), CASES)
+def test_force_is_the_gradient_of_the_dissipation_in_v(dim, geo, k, strain):
+    # f_d = dD/dv (D quadratic in v): central differences of D are exact up to rounding
+    model = _model(_mesh(dim, geo, k), strain=strain)
+    y, v = _state(model)
+    f = model.damping_force(y, v)
+    h = 1e-3
+    fd = np.array([(_dissipation(model, y, v + h * e) - _dissipation(model, y, v - h * e)) / (2 * h)
+                   for e in np.eye(model.n)])  # fmt: skip
+    assert np.abs(fd - f).max() <= 1e-9 * np.abs(f).max()
+
+
+@pytest.mark.parametrize("strain", ["green_lagrange", "engineering"])
+@pytest.mark.parametrize(("dim", "geo", "k"), CASES)
+def test_jacobians_against_central_differences(dim, geo, k, strain):
+    model = _model(_mesh(dim, geo, k), strain=strain)
+    y, v = _state(model)
+    f, ab_y = model.damping_force(y, v, ck=1.0, cv=0.0)
+    _, ab_v = model.damping_force(y, v, ck=0.0, cv=1.0)
+    _, ab_mix = model.damping_force(y, v, ck=0.3, cv=2.0)
+    jy, jv = model.dense(ab_y), model.dense(ab_v)
+    assert np.abs(model.dense(ab_mix) - (0.3 * jy + 2.0 * jv)).max() <= 1e-12 * np.abs(jy).max()
+    assert np.abs(model.damping_force(y, v) - f).max() == 0.0
+    hy, hv = 1e-6 * np.abs(y).max(), 1e-3
+    fd_y = np.zeros_like(jy)
+    fd_v = np.zeros_like(jv)
+    for i in range(model.n):
+        d = np.zeros(model.n)
+        d[i] = 1.0
+        fd_y[:, i] = (model.damping_force(y + hy * d, v) - model.damping_force(y - hy * d, v)) / (
+            2 * hy
+        )
+        fd_v[:, i] = (model.damping_force(y, v + hv * d) - model.damping_force(y, v - hv * d)) / (
+            2 * hv
+        )
+    err_y = np.abs(fd_y - jy).max() / np.abs(jy).max()
+    err_v = np.abs(fd_v - jv).max() / np.abs(jv).max()
+    assert err_y <= 1e-6, err_y
+    assert err_v <= 1e-9, err_v
+    assert np.abs(jy - jy.T).max() > 1e-3 * np.abs(jy).max()  # not symmetric: a real check
+    assert np.abs(jv - jv.T).max() <= 1e-12 * np.abs(jv).max()  # c B^T B: symmetric
+
+
+def _rigid_velocity(model, y, dim, seed=5):
+    """``v = u + ω × (r − p)`` on positions, ``ω × r_x`` on gradients (nodal layout)."""
+    rng = np.random.default_rng(seed)
+    nodes = y.reshape(model.n_nodes, 2, dim)
+    u, p = rng.normal(size=dim), rng.normal(size=dim)
+    if dim == 2:
+        w = rng.normal()
+        skew = np.array([[0.0, -w], [w, 0.0]])
+    else:
+        w = rng.normal(size=3)
+        skew = np.array([[0, -w[2], w[1]], [w[2], 0, -w[0]], [-w[1], w[0], 0]])
+    v = np.empty_like(nodes)
+    v[:, 0] = u + (nodes[:, 0] - p) @ skew.T
+    v[:, 1] = nodes[:, 1] @ skew.T
+    return v.ravel()
+
+
+@pytest.mark.parametrize("strain", ["green_lagrange", "engineering"])
+@pytest.mark.parametrize(("dim", "geo", "k"), CASES)
+def test_rigid_motion_is_not_damped(dim, geo, k, strain):
+    # a curved reference, moved and turned away from it, in a rigid velocity field
+    model = _model(_mesh(dim, geo, k), strain=strain)
+    nodes = model.y0.reshape(model.n_nodes, 2, dim) @ _rotation(dim, 0.9).T
+    nodes[:, 0] += 0.4
+    y = nodes.ravel()
+    v = _rigid_velocity(model, y, dim)
+    rng = np.random.default_rng(8)
+    deform = rng.normal(size=model.n)  # the same speed in a deforming field: a large force
+    scale = np.abs(model.damping_force(y, deform * np.abs(v).max())).max()
+    assert scale > 0.0
+    assert np.abs(model.damping_force(y, v)).max() <= 1e-10 * scale
+
+
+def test_no_coefficients_no_force_and_the_coefficients_reach_the_core():
+    mesh = mesh_line([0.0, 0.0], [1.0, 0.0], 4)
+    model = _model(mesh, 0.0, 0.0)
+    y, v = _state(model)
+    assert np.all(model.damping_force(y, v) == 0.0)
+    axial, bend = _model(mesh, CA, 0.0), _model(mesh, 0.0, CB)
+    st = section_stiffness(_model(mesh))
+    assert (st.damping_axial, st.damping_bending, st.damping_torsion) == (CA, CB, 0.0)
+    both = _model(mesh).damping_force(y, v)
+    assert np.allclose(both, axial.damping_force(y, v) + bend.damping_force(y, v),
+                       rtol=1e-12, atol=1e-12 * np.abs(both).max())  # fmt: skip
+    twice = _model(mesh, 2 * CA, 2 * CB).damping_force(y, v)
+    assert np.allclose(twice, 2 * both, rtol=1e-12, atol=0.0)
+
+
+@pytest.mark.parametrize(
+    ("element", "kw", "key"),
+    [
+        ("rancf", {"torsion": 1.0}, "damping.torsion"),
+        ("beam", {"axial": 1.0}, "damping.axial"),
+        ("rod", {"bending": 1.0}, "damping.bending"),
+        ("rancf", {"axial": -1.0}, "damping.axial"),
+    ],
+)
+def test_keys_an_element_cannot_take_are_refused(element, kw, key):
+    mesh = mesh_line([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], 2) if element == "rod" else mesh_line(
+        [0.0, 0.0], [1.0, 0.0], 2)  # fmt: skip
+    mat = Material(7850.0, E_MOD, poisson_ratio=0.3)
+    with pytest.raises(InputError) as exc:
+        Model(mesh, element, SEC, mat, strain_rate_damping=StrainRateDamping(**kw))
+    assert exc.value.parameter == key
