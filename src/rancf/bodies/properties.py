@@ -142,14 +142,14 @@ STRAIN_RATE_ELEMENTS = ("rancf", "ancf")
 
 @dataclass(frozen=True)
 class StrainRateDamping:
-    """Kelvin-Voigt strain-rate damping of a flexible body (docs/derivations/strain-rate-damping.md).
+    """Kelvin-Voigt strain-rate damping of a flexible body.
 
     The section forces get a part proportional to the strain rates: ``N = EA ε + axial ε̇``
     [``axial`` in N s], ``M = EI κ + bending κ̇`` [``bending`` in N m² s] and, for rods, the
     twist moment ``GJ τ + torsion τ̇`` [N m² s].  Rigid motions have zero strain rates: they are
     not damped.  A mode of frequency ``ω`` dominated by stretching decays with the damping ratio
     ``ζ = axial ω / (2 EA)``, one dominated by bending with ``ζ = bending ω / (2 EI)``.  Statics
-    ignore it (the velocities are zero).
+    ignore it (the velocities are zero).  Derivation: docs/derivations/strain-rate-damping.md.
     """
 
     axial: float = 0.0
