@@ -169,17 +169,17 @@ class StrainRateDamping:
 
     def check_element(self, element: str) -> None:
         """Raise :class:`~rancf.errors.InputError` for a coefficient the element cannot take:
-        ``torsion`` needs a rod; every key needs cable elements (``"rancf"``, ``"ancf"``; the
-        co-rotational beam and the rod do not have it yet)."""
-        if self.torsion > 0:
-            raise InputError("damping.torsion", self.torsion, "0: the torsion damping needs rod "
-                             "elements, and rods do not have strain-rate damping yet")  # fmt: skip
-        for name in ("axial", "bending"):
+        ``torsion`` needs a rod; every key needs elements that have the damping so far (cables:
+        ``"rancf"``, ``"ancf"``; not yet the co-rotational beam and the rod)."""
+        if self.torsion > 0 and element != "rod":
+            raise InputError("damping.torsion", self.torsion, f'0 with {element} elements (a '
+                             'twist rate needs rod elements: mesh.element = "rod")')  # fmt: skip
+        for name in ("axial", "bending", "torsion"):
             v = getattr(self, name)
             if v > 0 and element not in STRAIN_RATE_ELEMENTS:
-                raise InputError(f"damping.{name}", v, f'0 with {element} elements (strain-rate '
-                                 'damping is built for cable elements: mesh.element = "rancf" '
-                                 'or "ancf")')  # fmt: skip
+                raise InputError(f"damping.{name}", v, f"0 with {element} elements (strain-rate "
+                                 'damping is built for cable elements so far: mesh.element = '
+                                 '"rancf" or "ancf")')  # fmt: skip
 
 
 @dataclass(frozen=True)

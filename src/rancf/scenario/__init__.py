@@ -33,6 +33,7 @@ from rancf.scenario.loads import (
     PointLoadTable,
     RampFunction,
     SpinUpFunction,
+    StrainRateDampingTable,
     SupportTable,
     TableFunction,
 )
@@ -68,6 +69,7 @@ __all__ = [
     "LoadsTable",
     "PointLoadTable",
     "DampingTable",
+    "StrainRateDampingTable",
     "InitialVelocityTable",
     "InitialMotionTable",
     "TableFunction",

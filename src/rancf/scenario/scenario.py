@@ -99,7 +99,9 @@ class Scenario(Table):
         None, description="one-body file: the body's hydrodynamic coefficients"
     )
     damping: DampingTable = Field(
-        default_factory=DampingTable, description="mass-proportional damping"
+        default_factory=DampingTable,
+        description="Rayleigh (mass- and stiffness-proportional) and Kelvin-Voigt strain-rate "
+        "damping of the flexible bodies",
     )
     initial_velocity: list[InitialVelocityTable] = Field(
         [], description="velocities of single nodes (their energy depends on the mesh)"
