@@ -12,6 +12,12 @@
 // curvature: the linearization of |kappa| at the reference, smooth where |kappa| has a cusp).
 // The gradient g = dW/dz and Hessian h = d2W/dz2, z = (a, b), are hand-derived; element forces
 // and tangents follow from da/de_k = N'_k I, db/de_k = N''_k I and the Gauss rule.
+//
+// Kelvin-Voigt strain-rate damping (docs/derivations/strain-rate-damping.md): N = EA eps + c_a
+// deps/dt, M = EI kappa + c_b dkappa/dt: force sum_m c_m m' m_z and its Jacobians (eqs. 3-5).
+// The curvatures and their derivatives in z come from the elastic law's own functions
+// (curvature_2d, curvature_sq_3d); the axial strain's from axial_measure, whose e d1 and d1^2 + e
+// d2 are axial_terms' fe and eaj over EA J0 (written out there to keep the elastic rounding).
 #include "cable.hpp"
 
 #include <cmath>
@@ -24,7 +30,8 @@ namespace {
 // The axial strain e at a Gauss point and its derivatives in a = r': e_a = d1 a and
 // e_aa = d1 I + d2 a a^T (docs/derivations/cable.md section 6): Green-Lagrange e = (aa - s0) /
 // (2 s0), d1 = 1 / s0, d2 = 0; engineering (st.engineering) e = lambda - 1 with lambda =
-// sqrt(aa / s0), d1 = 1 / (lambda s0), d2 = -1 / (lambda^3 s0^2).
+// sqrt(aa / s0), d1 = 1 / (lambda s0), d2 = -1 / (lambda^3 s0^2)
+// (docs/derivations/strain-rate-damping.md eq. 6).
 struct AxialMeasure {
   double e, d1, d2;
 };
