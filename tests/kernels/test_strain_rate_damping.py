@@ -8,8 +8,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from rancf.bodies.flexible import Material, Model, Section, StrainRateDamping
+from rancf.bodies.flexible import Material, Model, Section
 from rancf.bodies.flexible_core import section_stiffness
+from rancf.bodies.properties import StrainRateDamping
+from rancf.bodies.strain_rate import damping_force
 from rancf.errors import InputError
 from rancf.mesh.factories import mesh_line
 from tests.kernels.test_elements import CASES, _mesh, _rotation
@@ -32,7 +34,7 @@ def _state(model, seed=3):
 
 def _dissipation(model, y, v):
     """``D = ½ ∫ (c_a ε̇² + c_b κ̇²) dx`` by the force: ``f_d · v = 2 D`` and ``f_d`` linear in v."""
-    return 0.5 * model.damping_force(y, v) @ v
+    return 0.5 * damping_force(model, y, v) @ v
 
 
 @pytest.mark.parametrize("strain", ["green_lagrange", "engineering"])
@@ -41,7 +43,7 @@ def test_force_is_the_gradient_of_the_dissipation_in_v(dim, geo, k, strain):
     # f_d = dD/dv (D quadratic in v): central differences of D are exact up to rounding
     model = _model(_mesh(dim, geo, k), strain=strain)
     y, v = _state(model)
-    f = model.damping_force(y, v)
+    f = damping_force(model, y, v)
     h = 1e-3
     fd = np.array([(_dissipation(model, y, v + h * e) - _dissipation(model, y, v - h * e)) / (2 * h)
                    for e in np.eye(model.n)])  # fmt: skip
@@ -53,22 +55,22 @@ def test_force_is_the_gradient_of_the_dissipation_in_v(dim, geo, k, strain):
 def test_jacobians_against_central_differences(dim, geo, k, strain):
     model = _model(_mesh(dim, geo, k), strain=strain)
     y, v = _state(model)
-    f, ab_y = model.damping_force(y, v, ck=1.0, cv=0.0)
-    _, ab_v = model.damping_force(y, v, ck=0.0, cv=1.0)
-    _, ab_mix = model.damping_force(y, v, ck=0.3, cv=2.0)
+    f, ab_y = damping_force(model, y, v, ck=1.0, cv=0.0)
+    _, ab_v = damping_force(model, y, v, ck=0.0, cv=1.0)
+    _, ab_mix = damping_force(model, y, v, ck=0.3, cv=2.0)
     jy, jv = model.dense(ab_y), model.dense(ab_v)
     assert np.abs(model.dense(ab_mix) - (0.3 * jy + 2.0 * jv)).max() <= 1e-12 * np.abs(jy).max()
-    assert np.abs(model.damping_force(y, v) - f).max() == 0.0
+    assert np.abs(damping_force(model, y, v) - f).max() == 0.0
     hy, hv = 1e-6 * np.abs(y).max(), 1e-3
     fd_y = np.zeros_like(jy)
     fd_v = np.zeros_like(jv)
     for i in range(model.n):
         d = np.zeros(model.n)
         d[i] = 1.0
-        fd_y[:, i] = (model.damping_force(y + hy * d, v) - model.damping_force(y - hy * d, v)) / (
+        fd_y[:, i] = (damping_force(model, y + hy * d, v) - damping_force(model, y - hy * d, v)) / (
             2 * hy
         )
-        fd_v[:, i] = (model.damping_force(y, v + hv * d) - model.damping_force(y, v - hv * d)) / (
+        fd_v[:, i] = (damping_force(model, y, v + hv * d) - damping_force(model, y, v - hv * d)) / (
             2 * hv
         )
     err_y = np.abs(fd_y - jy).max() / np.abs(jy).max()
@@ -107,23 +109,23 @@ def test_rigid_motion_is_not_damped(dim, geo, k, strain):
     v = _rigid_velocity(model, y, dim)
     rng = np.random.default_rng(8)
     deform = rng.normal(size=model.n)  # the same speed in a deforming field: a large force
-    scale = np.abs(model.damping_force(y, deform * np.abs(v).max())).max()
+    scale = np.abs(damping_force(model, y, deform * np.abs(v).max())).max()
     assert scale > 0.0
-    assert np.abs(model.damping_force(y, v)).max() <= 1e-10 * scale
+    assert np.abs(damping_force(model, y, v)).max() <= 1e-10 * scale
 
 
 def test_no_coefficients_no_force_and_the_coefficients_reach_the_core():
     mesh = mesh_line([0.0, 0.0], [1.0, 0.0], 4)
     model = _model(mesh, 0.0, 0.0)
     y, v = _state(model)
-    assert np.all(model.damping_force(y, v) == 0.0)
+    assert np.all(damping_force(model, y, v) == 0.0)
     axial, bend = _model(mesh, CA, 0.0), _model(mesh, 0.0, CB)
     st = section_stiffness(_model(mesh))
     assert (st.damping_axial, st.damping_bending, st.damping_torsion) == (CA, CB, 0.0)
-    both = _model(mesh).damping_force(y, v)
-    assert np.allclose(both, axial.damping_force(y, v) + bend.damping_force(y, v),
+    both = damping_force(_model(mesh), y, v)
+    assert np.allclose(both, damping_force(axial, y, v) + damping_force(bend, y, v),
                        rtol=1e-12, atol=1e-12 * np.abs(both).max())  # fmt: skip
-    twice = _model(mesh, 2 * CA, 2 * CB).damping_force(y, v)
+    twice = damping_force(_model(mesh, 2 * CA, 2 * CB), y, v)
     assert np.allclose(twice, 2 * both, rtol=1e-12, atol=0.0)
 
 
@@ -156,7 +158,7 @@ def test_velocity_jacobian_at_the_reference_is_the_scaled_elastic_tangent(dim, g
                    strain)  # fmt: skip
     _, kt = model.internal_force_and_tangent(model.y0)
     v = np.random.default_rng(4).normal(size=model.n)
-    f, ab = model.damping_force(model.y0, v, ck=0.0, cv=1.0)
+    f, ab = damping_force(model, model.y0, v, ck=0.0, cv=1.0)
     expect = beta * model.dense(kt)
     assert np.abs(model.dense(ab) - expect).max() <= 1e-9 * np.abs(expect).max()
     assert np.abs(f - expect @ v).max() <= 1e-9 * np.abs(expect @ v).max()

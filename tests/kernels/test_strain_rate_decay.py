@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import rancf
-from rancf.bodies.flexible import StrainRateDamping
+from rancf.bodies.properties import StrainRateDamping
 
 L, N_EL = 1.0, 8
 SECTION = rancf.Section.circular(0.01)  # 10 mm steel bar

@@ -10,7 +10,8 @@ import copy
 import numpy as np
 import pytest
 
-from rancf.bodies.flexible import StrainRateDamping
+from rancf.bodies.properties import StrainRateDamping
+from rancf.bodies.strain_rate import damping_force
 from rancf.errors import ScenarioError
 from rancf.scenario.scenario import parse_scenario
 
@@ -36,7 +37,7 @@ def test_one_body_keys_reach_the_body_and_the_balance():
     s.core.residual(y, v, z, lam, 0.0, r=r1)
     s.core.residual(y, np.zeros(s.n), z, lam, 0.0, r=r0)
     mass_part = 0.1 * body.mass_times(v)
-    f_d = body.damping_force(y, v)
+    f_d = damping_force(body, y, v)
     assert np.abs(f_d).max() > 1e-3 * np.abs(mass_part).max()
     assert np.allclose((r1 - r0)[: s.n], f_d + mass_part, rtol=0, atol=1e-10 * np.abs(f_d).max())
     # statics: no velocities, no damping force
@@ -47,7 +48,7 @@ def test_one_body_keys_reach_the_body_and_the_balance():
     nm = s.n + s.m
     jac = np.empty(nm * nm)
     assert s.core.dense_jacobian(y, v, z, lam, 0.0, 0.0, 1.0, 0.0, out=jac)
-    _, ab = body.damping_force(y, v, ck=0.0, cv=1.0)
+    _, ab = damping_force(body, y, v, ck=0.0, cv=1.0)
     expect = body.dense(ab) + 0.1 * body.dense(body.mass_band)
     free = np.flatnonzero(~body.fixed)
     got = jac.reshape(nm, nm)[: s.n, : s.n]

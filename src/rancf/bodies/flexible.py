@@ -43,10 +43,7 @@ from rancf.mesh.coordinates import Coordinates
 from rancf.mesh.factories import to_ancf
 from rancf.mesh.mesh import CableMesh
 
-__all__ = [
-    "Section", "Material", "Support", "PointLoad", "StrainRateDamping", "Model", "ElementKind",
-    "RigidMotion",
-]  # fmt: skip
+__all__ = ["Section", "Material", "Support", "PointLoad", "Model", "ElementKind", "RigidMotion"]
 
 ElementKind = Literal["rancf", "ancf", "beam", "rod"]
 _STRESS_FREE = '"reference" or, for cables and rods, "straight"'
@@ -86,8 +83,7 @@ class Model(Coordinates):
     stress_free : {"reference", "straight"}
         Unloaded state: the reference, or straight of equal arc length (cables, rods).
     strain_rate_damping : StrainRateDamping, optional
-        Kelvin-Voigt damping of the strain rates, ``N = EA ε + c_a ε̇``, ``M = EI κ + c_b κ̇``
-        (cable elements; docs/derivations/strain-rate-damping.md).  Default none.
+        Kelvin-Voigt damping of the strain rates (cable elements; kept as an attribute).
 
     Notes
     -----
@@ -208,13 +204,8 @@ class Model(Coordinates):
             self.fixed[self.reduction.n_real :] = True
             self.ku = self.reduction.ku
         # element-level transformations for elements touching a rotated node
-        aff = sorted(
-            {
-                min(max(off // self.dpn - j, 0), self.n_el - 1)
-                for off, _ in self.rotations
-                for j in (0, 1)
-            }
-        )
+        aff = sorted({min(max(off // self.dpn - j, 0), self.n_el - 1)
+                      for off, _ in self.rotations for j in (0, 1)})  # fmt: skip
         self._aff = np.array(aff, dtype=int)
         te = np.repeat(np.eye(self.nde)[None], len(aff), axis=0)
         for i, e in enumerate(aff):
@@ -256,9 +247,7 @@ class Model(Coordinates):
         if not (np.isfinite(damping) and damping >= 0):
             raise InputError("damping.mass_proportional", damping, "a finite number >= 0")
         self.damping = float(damping)
-        #: Kelvin-Voigt strain-rate damping (zero coefficients: none).
-        self.strain_rate_damping = strain_rate_damping or StrainRateDamping()
-        self.strain_rate_damping.check_element(element)
+        self.strain_rate_damping = (strain_rate_damping or StrainRateDamping()).checked(element)
         v0 = np.zeros(self.n)
         for node, vel in (initial_velocities or {}).items():
             nd = self.check_node(node, "initial_velocity.at")
@@ -345,21 +334,6 @@ class Model(Coordinates):
         f = np.empty(self.n)
         ab = np.empty((2 * self.ku + 1, self.n))
         self.core.internal_force_and_tangent(np.asarray(y, dtype=float), f, ab)
-        return f, ab
-
-    def damping_force(
-        self, y: ArrayLike, v: ArrayLike, ck: float | None = None, cv: float = 0.0
-    ) -> NDArray[np.float64] | tuple[NDArray, NDArray]:
-        """Kelvin-Voigt strain-rate damping force ``f_d(y, v)`` ``(n,)``
-        (docs/derivations/strain-rate-damping.md, eq. 3); with ``ck``, also its Jacobian
-        ``ck ∂f_d/∂y + cv ∂f_d/∂v`` in band storage ``(2 ku + 1, n)``."""
-        yy, vv = np.asarray(y, dtype=float), np.asarray(v, dtype=float)
-        f = np.empty(self.n)
-        if ck is None:
-            self.core.damping_force(yy, vv, f)
-            return f
-        ab = np.empty((2 * self.ku + 1, self.n))
-        self.core.damping_force(yy, vv, f, ab, ck=ck, cv=cv)
         return f, ab
 
     def strain_energy(self, y: ArrayLike) -> float:

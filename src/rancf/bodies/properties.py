@@ -167,8 +167,8 @@ class StrainRateDamping:
         """Whether any coefficient is > 0."""
         return self.axial > 0 or self.bending > 0 or self.torsion > 0
 
-    def check_element(self, element: str) -> None:
-        """Raise :class:`~rancf.errors.InputError` for a coefficient the element cannot take:
+    def checked(self, element: str) -> StrainRateDamping:
+        """Itself, or :class:`~rancf.errors.InputError` for a coefficient the element cannot take:
         ``torsion`` needs a rod; every key needs elements that have the damping so far (cables:
         ``"rancf"``, ``"ancf"``; not yet the co-rotational beam and the rod)."""
         if self.torsion > 0 and element != "rod":
@@ -180,6 +180,7 @@ class StrainRateDamping:
                 raise InputError(f"damping.{name}", v, f"0 with {element} elements (strain-rate "
                                  'damping is built for cable elements so far: mesh.element = '
                                  '"rancf" or "ancf")')  # fmt: skip
+        return self
 
 
 @dataclass(frozen=True)

@@ -35,9 +35,10 @@ from rancf.scenario.base import (
     under,
     vector,
 )
+from rancf.scenario.damping import StrainRateDampingTable
 from rancf.scenario.fluid import HydroTable
 from rancf.scenario.geometry import Geometry, MeshTable
-from rancf.scenario.loads import InitialMotionTable, StrainRateDampingTable
+from rancf.scenario.loads import InitialMotionTable
 from rancf.scenario.section import MaterialTable, SectionTable, check_flexible
 
 __all__ = ["FlexibleBody", "RigidBody", "PointMass", "Body", "ORTHONORMAL_TOL"]

@@ -19,15 +19,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from rancf.bodies.flexible import (
-    Material,
-    Model,
-    PointLoad,
-    RigidMotion,
-    Section,
-    StrainRateDamping,
-    Support,
-)
+from rancf.bodies.flexible import Material, Model, PointLoad, RigidMotion, Section, Support
+from rancf.bodies.properties import StrainRateDamping
 from rancf.errors import ConvergenceError, InputError, ScenarioError
 from rancf.scenario.geometry import MAX_ELEMENTS, CadGeometry, ConicGeometry, NurbsGeometry
 from rancf.scenario.view import ScenarioView

@@ -1,5 +1,5 @@
-"""Time functions, ``[[supports]]``, ``[loads]`` (gravity, ``[[loads.point]]``), ``[damping]``
-(Rayleigh and strain-rate), ``[[initial_velocity]]`` and ``[initial_motion]``.
+"""Time functions, ``[[supports]]``, ``[loads]`` (gravity, ``[[loads.point]]``),
+``[[initial_velocity]]`` and ``[initial_motion]`` (``[damping]``: :mod:`rancf.scenario.damping`).
 
 A TIME_FUNCTION (:class:`~rancf.bodies.time_function.TimeFunction`, equations T.1–T.5) is written
 as a number (or a vector where the key is a vector: a support's ``motion``), or as a table with
@@ -48,8 +48,7 @@ from rancf.scenario.table_files import ROWS_SCHEMA, table_rows
 __all__ = [
     "DistributedLoadTable", "TableFunction", "RampFunction", "HarmonicFunction", "SpinUpFunction",
     "TimeFunctionValue", "time_function", "time_size", "SupportTable", "PointLoadTable",
-    "LoadsTable", "StrainRateDampingTable", "DampingTable", "InitialVelocityTable",
-    "InitialMotionTable",
+    "LoadsTable", "InitialVelocityTable", "InitialMotionTable",
 ]  # fmt: skip
 
 Amount = number_or_vector(1, 2, 3)
@@ -334,42 +333,6 @@ class LoadsTable(Table):
     point: list[PointLoadTable] = Field([], description="point forces and moments")
     distributed: list[DistributedLoadTable] = Field(
         [], description="forces per length on flexible bodies [N/m]"
-    )
-
-
-class StrainRateDampingTable(Table):
-    """``[bodies.damping]``: Kelvin-Voigt strain-rate damping of one flexible body (the keys of
-    ``[damping]`` that a body may have of its own; docs/derivations/strain-rate-damping.md).
-
-    The section forces get parts proportional to the strain rates; rigid motions are not damped,
-    statics ignore them.  A mode of frequency ``ω`` dominated by stretching (bending) decays with
-    the damping ratio ``ζ = axial ω / (2 EA)`` (``ζ = bending ω / (2 EI)``).  MoorDyn's ``BA`` is
-    ``axial``; its negative form ``BA = −ζ`` is ``axial = ζ (L/N) √(EA m)`` (``m`` the mass per
-    length, ``L/N`` MoorDyn's segment length).  Cable elements (``"rancf"``, ``"ancf"``) so far.
-    """
-
-    axial: NonNegative = Field(
-        0.0, description="c_a in the tension N = EA eps + c_a d(eps)/dt [N s] (MoorDyn's BA): "
-        "a stretching mode of frequency omega decays with zeta = c_a omega / (2 EA)",
-    )  # fmt: skip
-    bending: NonNegative = Field(
-        0.0, description="c_b in the bending moment M = EI kappa + c_b d(kappa)/dt [N m^2 s]: a "
-        "bending mode of frequency omega decays with zeta = c_b omega / (2 EI)",
-    )  # fmt: skip
-    torsion: NonNegative = Field(
-        0.0, description="rod elements: c_t in the twist moment GJ tau + c_t d(tau)/dt [N m^2 s] "
-        "(refused on other elements)",
-    )  # fmt: skip
-
-
-class DampingTable(StrainRateDampingTable):
-    """``[damping]``: Rayleigh damping of the flexible bodies, ``C = c M + β K_T``, and their
-    Kelvin-Voigt strain-rate damping ``axial``, ``bending``, ``torsion``
-    (:class:`StrainRateDampingTable`; a body's own ``[bodies.damping]`` replaces these three)."""
-
-    mass_proportional: NonNegative = Field(0.0, description="c in C = c M [1/s]")
-    stiffness_proportional: NonNegative = Field(
-        0.0, description="beta in C = beta K_T [s] (K_T the tangent stiffness at the state)"
     )
 
 

@@ -22,12 +22,12 @@ from rancf.errors import ScenarioError
 from rancf.scenario.base import Name, NonNegative, Table, integer
 from rancf.scenario.bodies import Body
 from rancf.scenario.checks import check_scenario
+from rancf.scenario.damping import DampingTable
 from rancf.scenario.files import deferred_interrupts, read_toml, write_atomic
 from rancf.scenario.fluid import FluidTable, HydroTable
 from rancf.scenario.geometry import GEOMETRY_KEYS, CadGeometry, Geometry, MeshTable
 from rancf.scenario.joints import JointTable, SpringTable
 from rancf.scenario.loads import (
-    DampingTable,
     InitialMotionTable,
     InitialVelocityTable,
     LoadsTable,
