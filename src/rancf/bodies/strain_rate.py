@@ -1,6 +1,5 @@
-"""Kelvin-Voigt strain-rate damping of a flexible body (:class:`~rancf.bodies.properties.
-StrainRateDamping`): its force and Jacobians from the compiled core
-(docs/derivations/strain-rate-damping.md)."""
+"""Kelvin-Voigt strain-rate damping of a flexible body (:class:`rancf.StrainRateDamping`): its
+force and Jacobians from the compiled core (docs/derivations/strain-rate-damping.md)."""
 
 from __future__ import annotations
 

@@ -1,5 +1,5 @@
 """Time functions, ``[[supports]]``, ``[loads]`` (gravity, ``[[loads.point]]``),
-``[[initial_velocity]]`` and ``[initial_motion]`` (``[damping]``: :mod:`rancf.scenario.damping`).
+``[[initial_velocity]]`` and ``[initial_motion]`` (``[damping]``: ``rancf.scenario.damping``).
 
 A TIME_FUNCTION (:class:`~rancf.bodies.time_function.TimeFunction`, equations T.1–T.5) is written
 as a number (or a vector where the key is a vector: a support's ``motion``), or as a table with
