@@ -221,10 +221,16 @@ NB_MODULE(_core, mod) {
               "d f_ext / dy (point moments) in (2 ku + 1, n) band storage.")
           .def(
               "rereference",
-              [](const ModelHolder& h, In y, std::optional<Out> v, std::optional<Out> a) {
+              [](const ModelHolder& h, In y, std::optional<Out> v, std::optional<Out> a,
+                 std::optional<Out> w) {
                 expect_size(y, h.n(), "y");
-                if (v.has_value() != a.has_value())
-                  throw std::invalid_argument("rereference: give both v and a, or neither");
+                if (v.has_value() != a.has_value() || (w && !v))
+                  throw std::invalid_argument("rereference: give v and a (and w), or neither");
+                if (w) {  // w's twist as a's (its own rates discarded: v is carried below)
+                  expect_size(*w, h.n(), "w");
+                  std::vector<double> vw(v->data(), v->data() + h.n());
+                  rancf::rereference_rates(h.m, y.data(), vw.data(), w->data());
+                }
                 if (v) {
                   expect_size(*v, h.n(), "v");
                   expect_size(*a, h.n(), "a");
@@ -233,9 +239,10 @@ NB_MODULE(_core, mod) {
                 rancf::rereference(h.m, y.data());
               },
               "y"_a, "v"_a.noconvert() = nb::none(), "a"_a.noconvert() = nb::none(),
+              "w"_a.noconvert() = nb::none(),
               "Re-reference the rod's nodal triads at configuration y (no-op otherwise); with v "
-              "and a "
-              "(updated in place) the twist rates keep the spin.")
+              "and a (updated in place) the twist rates keep the spin; w (algorithmic "
+              "accelerations) is carried as a.")
           .def(
               "nodal_triads",
               [](const ModelHolder& h, In y, Out t, Out m1) {

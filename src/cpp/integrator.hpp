@@ -1,17 +1,18 @@
-// Generalized-alpha (Chung & Hulbert 1993): the scheme's constants and Newton settings, the
-// outcomes of steps and runs, and the energies of one body (the integrator of systems, which a
-// single body is one of, is system_integrator.hpp).
+// Generalized-alpha (Chung & Hulbert 1993, in the form of Arnold & Bruls 2007): the scheme's
+// constants and Newton settings, the outcomes of steps and runs, and the energies of one body
+// (the integrator of systems, which a single body is one of, is system_integrator.hpp).
 //
-// For M a + c M v + f_int(y) = f_ext(t):
-//   y1 = y0 + h v0 + h^2 ((1/2 - beta) a0 + beta a1),  v1 = v0 + h ((1 - gamma) a0 + gamma a1)
-//   M a_{1-am} + c M v_{1-af} + f_int(y_{1-af}) = f_ext(t + (1 - af) h)
-// Rods add the configuration-dependent rotary inertia F_in (inertia.hpp) at the same points:
-//   F_in(y_{1-af}, v_{1-af}, a_{1-am}) = M_r(y_{1-af}) a_{1-am} + g(y_{1-af}, v_{1-af}) + c M_r v,
+// For M a + c M v + f_int(y) = f_ext(t), with the algorithmic accelerations w:
+//   y1 = y0 + h v0 + h^2 ((1/2 - beta) w0 + beta w1),  v1 = v0 + h ((1 - gamma) w0 + gamma w1)
+//   (1 - am) w1 + am w0 = (1 - af) a1 + af a0
+//   M a1 + c M v1 + f_int(y1) = f_ext(t + h)
+// Rods add the configuration-dependent rotary inertia F_in (inertia.hpp) at the same state:
+//   F_in(y1, v1, a1) = M_r(y1) a1 + g(y1, v1) + c M_r v1,
 // and after each step the twist rates are carried to the re-referenced triads (rereference_rates).
-// Newton with the Jacobian [(1 - am)/(beta h^2) + c (1 - af) gamma/(beta h)] M
-// + (1 - af) K_T(y_{1-af}) refreshed at every iteration (full Newton), at the first iteration
-// of every step and reused for the step's further iterations while they contract (chord), or
-// reused across iterations and steps until the contraction slows (modified).
+// Newton with the Jacobian [(1 - am)/((1 - af) beta h^2) + c gamma/(beta h)] M + K_T(y1)
+// refreshed at every iteration (full Newton), at the first iteration of every step and reused
+// for the step's further iterations while they contract (chord), or reused across iterations
+// and steps until the contraction slows (modified).
 #pragma once
 
 #include <cstdint>
@@ -33,15 +34,18 @@ struct Scheme {
 };
 
 struct StepOutcome {
-  bool converged;
-  int iterations;
+  bool converged = false;
+  int iterations = 0;
+  double error = 0.0;  ///< local error estimate of a converged step (length)
 };
 
 struct RunOutcome {
-  std::int64_t steps;   ///< steps taken
-  bool converged;       ///< false: the next step failed (not taken)
-  long iterations;      ///< Newton iterations, failed step included
-  std::int64_t stored;  ///< outputs stored
+  std::int64_t steps = 0;   ///< steps taken
+  bool converged = true;    ///< false: the next step failed (not taken)
+  long iterations = 0;      ///< Newton iterations, failed step included
+  std::int64_t stored = 0;  ///< outputs stored
+  double max_error = 0.0;   ///< largest local error estimate of the steps taken
+  double t_max_error = 0.0; ///< the time at the end of that step
 };
 
 /// Kinetic energy of the constant mass, 1/2 v^T M_c v.

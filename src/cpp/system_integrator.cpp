@@ -23,9 +23,6 @@ SystemIntegrator::SystemIntegrator(const System& s, const Scheme& scheme)
       sc_(scheme),
       lu_(s.offset, s.block_size, s.block_ku, s.fixed.data()),
       base_(sz(s.n)),
-      yf_(sz(s.n)),
-      vf_(sz(s.n)),
-      am_(sz(s.n)),
       r_(sz(s.n + s.m)),
       dz_(sz(s.n + s.m)) {
   // no constraints, rigid bodies, rotary inertia or contact: [M G^T; G 0] is M, whatever the
@@ -61,40 +58,53 @@ void SystemIntegrator::set_prescribed(double t, double* y, double* v, double* a)
   }
 }
 
-StepOutcome SystemIntegrator::step(const double* y0, const double* v0, const double* a0,
-                                   const double* l0, double t, double h, double* y1, double* v1,
-                                   double* a1, double* l1) {
-  if (from_y0_ > 0 && from_y0_ < kFromY0Steps) {  // the steps before started again from y0
-    StepOutcome direct = iterate(y0, v0, a0, l0, t, h, y1, v1, a1, l1, true);
-    if (direct.converged) {
-      ++from_y0_;
-      return direct;
-    }
-    from_y0_ = 0;
-    const StepOutcome again = iterate(y0, v0, a0, l0, t, h, y1, v1, a1, l1, false);
-    direct.converged = again.converged;
-    direct.iterations += again.iterations;
-    return direct;
-  }
-  const StepOutcome first = iterate(y0, v0, a0, l0, t, h, y1, v1, a1, l1, false);
-  if (first.converged) {
-    from_y0_ = 0;
-    return first;
-  }
-  // once more from y0: the predictor carries the stiff modes' alternating accelerations into
-  // the positions (docs/derivations/newton.md), where Newton may not converge
-  StepOutcome second = iterate(y0, v0, a0, l0, t, h, y1, v1, a1, l1, true);
-  second.iterations += first.iterations;
-  from_y0_ = second.converged ? 1 : 0;
-  return second;
+void SystemIntegrator::set_increment_scale(std::vector<double> scale) {
+  scale_ = std::move(scale);
+  error_scale_ = scale_.empty() ? std::vector<double>(sz(s_.n), 1.0) : scale_;
+  for (const Prescribed& p : s_.prescribed) error_scale_[sz(p.coord)] = 0.0;  // exact there
 }
 
-StepOutcome SystemIntegrator::iterate(const double* y0, const double* v0, const double* a0,
-                                      const double* l0, double t, double h, double* y1, double* v1,
-                                      double* a1, double* l1, bool from_y0) {
+StepOutcome SystemIntegrator::step(const StepIn& s0, double t, double h, const StepOut& s1) {
+  StepOutcome out;
+  if (from_y0_ > 0 && from_y0_ < kFromY0Steps) {  // the steps before started again from y0
+    out = iterate(s0, t, h, s1, true);
+    if (out.converged) {
+      ++from_y0_;
+    } else {
+      from_y0_ = 0;
+      const StepOutcome again = iterate(s0, t, h, s1, false);
+      out.converged = again.converged;
+      out.iterations += again.iterations;
+    }
+  } else {
+    const StepOutcome first = iterate(s0, t, h, s1, false);
+    out = first;
+    if (!first.converged) {
+      // once more from y0: the predictor carries the stiff modes' alternating accelerations
+      // into the positions (docs/derivations/newton.md), where Newton may not converge
+      out = iterate(s0, t, h, s1, true);
+      out.iterations += first.iterations;
+    }
+    from_y0_ = !out.converged || first.converged ? 0 : 1;
+  }
+  if (out.converged) out.error = local_error(s0.w, s1.w, h);
+  return out;
+}
+
+double SystemIntegrator::local_error(const double* w0, const double* w1, double h) const {
+  if (error_scale_.size() != sz(s_.n)) return 0.0;  // set_increment_scale not called
+  double e = 0.0;
+  for (int i = 0; i < s_.n; ++i) e = std::max(e, std::abs(w1[i] - w0[i]) * error_scale_[sz(i)]);
+  return std::abs(sc_.beta - 0.5 * sc_.gamma + 1.0 / 12.0) * h * h * e;
+}
+
+StepOutcome SystemIntegrator::iterate(const StepIn& s0, double t, double h, const StepOut& s1,
+                                      bool from_y0) {
   const int n = s_.n, m = s_.m;
   const double am = sc_.alpha_m, af = sc_.alpha_f, gamma = sc_.gamma, beta = sc_.beta;
   const double bh2 = beta * h * h;
+  const double *y0 = s0.y, *v0 = s0.v, *a0 = s0.a, *w0 = s0.w;
+  double *y1 = s1.y, *v1 = s1.v, *a1 = s1.a, *w1 = s1.w, *l1 = s1.lam;
   if (h != lu_h_ || sc_.chord) {  // the factors depend on h; chord: fresh at each step
     lu_valid_ = false;
     lu_h_ = h;
@@ -105,31 +115,31 @@ StepOutcome SystemIntegrator::iterate(const double* y0, const double* v0, const 
   // from y0 it goes on with full Newton
   const int max_iter = sc_.modified ? 3 * sc_.max_iter : sc_.max_iter;
   for (int i = 0; i < n; ++i) {
-    base_[sz(i)] = y0[i] + h * v0[i] + h * h * (0.5 - beta) * a0[i];
-    y1[i] = from_y0 ? y0[i] : y0[i] + h * v0[i] + 0.5 * h * h * a0[i];
+    base_[sz(i)] = y0[i] + h * v0[i] + h * h * (0.5 - beta) * w0[i];
+    y1[i] = from_y0 ? y0[i] : y0[i] + h * v0[i] + 0.5 * h * h * w0[i];
   }
   set_prescribed(t + h, y1, nullptr, nullptr);
-  std::copy(l0, l0 + m, l1);
+  std::copy(s0.lam, s0.lam + m, l1);
+  // the balance at t + h (TI.1-TI.4): d a1/d y1 = (1 - am)/((1 - af) beta h^2)
   AssemblyTerms terms;
-  terms.ck = 1.0 - af;
-  terms.cv = (1.0 - af) * gamma / (beta * h);
-  terms.ca = (1.0 - am) / bh2;
-  terms.tf = t + (1.0 - af) * h;
-  terms.t1 = t + h;
+  terms.ck = 1.0;
+  terms.cv = gamma / (beta * h);
+  terms.ca = (1.0 - am) / ((1.0 - af) * bh2);
+  terms.tf = terms.t1 = t + h;
   double prev = std::numeric_limits<double>::infinity();
   const double* w = scale_.empty() ? nullptr : scale_.data();
-  for (int it = 1; it <= max_iter; ++it) {
+  auto rates = [&]() {  // w1, v1 and a1 of y1 (the Newmark relations and the alpha blend)
     for (int i = 0; i < n; ++i) {
-      a1[i] = (y1[i] - base_[sz(i)]) / bh2;
-      v1[i] = v0[i] + h * ((1.0 - gamma) * a0[i] + gamma * a1[i]);
-      yf_[sz(i)] = (1.0 - af) * y1[i] + af * y0[i];
-      vf_[sz(i)] = (1.0 - af) * v1[i] + af * v0[i];
-      am_[sz(i)] = (1.0 - am) * a1[i] + am * a0[i];
+      w1[i] = (y1[i] - base_[sz(i)]) / bh2;
+      v1[i] = v0[i] + h * ((1.0 - gamma) * w0[i] + gamma * w1[i]);
+      a1[i] = ((1.0 - am) * w1[i] + am * w0[i] - af * a0[i]) / (1.0 - af);
     }
+  };
+  for (int it = 1; it <= max_iter; ++it) {
+    rates();
     const bool fresh = !reuse || !lu_valid_;
     if (fresh) mass_factored_ = false;  // the assembly below writes into lu_
-    if (!assemble_system(s_, yf_.data(), vf_.data(), am_.data(), l1, y1, terms, r_.data(),
-                         fresh ? &lu_ : nullptr)) {
+    if (!assemble_system(s_, y1, v1, a1, l1, y1, terms, r_.data(), fresh ? &lu_ : nullptr)) {
       lu_valid_ = false;
       return {false, it};
     }
@@ -137,7 +147,7 @@ StepOutcome SystemIntegrator::iterate(const double* y0, const double* v0, const 
       ++factorizations_;
       lu_valid_ = lu_.factor();
       if (!lu_valid_) return {false, it};
-      if (sc_.modified) remember(h, terms, l1, y1);
+      if (sc_.modified) remember(h, terms, l1, y1, v1, a1);
     }
     solve_negative();
     double norm = 0.0;  // increments measured as displacements (docs/derivations/newton.md)
@@ -158,10 +168,7 @@ StepOutcome SystemIntegrator::iterate(const double* y0, const double* v0, const 
       done = r < 1.0 && norm * r / (1.0 - r) <= sc_.tol;
     }
     if (done) {
-      for (int i = 0; i < n; ++i) {
-        a1[i] = (y1[i] - base_[sz(i)]) / bh2;
-        v1[i] = v0[i] + h * ((1.0 - gamma) * a0[i] + gamma * a1[i]);
-      }
+      rates();
       return {true, it};
     }
     if (reuse && !fresh && norm > 0.25 * prev) {  // slow: refresh
@@ -181,13 +188,10 @@ StepOutcome SystemIntegrator::iterate(const double* y0, const double* v0, const 
 }
 
 void SystemIntegrator::remember(double h, const AssemblyTerms& terms, const double* l1,
-                                const double* y1) {
+                                const double* y1, const double* v1, const double* a1) {
   const int n = s_.n, m = s_.m;
   factored_at_.assign({h, terms.ck, terms.cv, terms.ca, terms.tf, terms.t1});
-  factored_at_.insert(factored_at_.end(), yf_.begin(), yf_.end());
-  factored_at_.insert(factored_at_.end(), vf_.begin(), vf_.end());
-  factored_at_.insert(factored_at_.end(), am_.begin(), am_.end());
-  factored_at_.insert(factored_at_.end(), y1, y1 + n);
+  for (const double* x : {y1, v1, a1}) factored_at_.insert(factored_at_.end(), x, x + n);
   factored_at_.insert(factored_at_.end(), l1, l1 + m);
 }
 
@@ -198,12 +202,16 @@ std::vector<double> SystemIntegrator::memory() const {
 }
 
 bool SystemIntegrator::restore(const std::vector<double>& saved, long factorizations) {
-  const auto n = sz(s_.n), m = sz(s_.m), point = 6 + 4 * n + m;
+  const auto n = sz(s_.n), m = sz(s_.m), point = 6 + 3 * n + m;
   factorizations_ = factorizations;
   lu_valid_ = false;
   factored_at_.clear();
   from_y0_ = 0;
   std::vector<double> memory(saved);
+  // the point of rancf 0.2 (alone) or 0.3 (after [s]) is of the balance at the alpha point: the
+  // next step factors afresh
+  if (memory.size() == 6 + 4 * n + m) memory.assign(1, 0.0);
+  if (memory.size() == 7 + 4 * n + m) memory.resize(1);
   if (memory.size() == 1 || memory.size() == point + 1) {  // [s] first (else rancf 0.2)
     const double s = memory[0];
     if (!(s >= 0.0 && s <= kFromY0Steps && s == std::floor(s))) return false;
@@ -219,11 +227,7 @@ bool SystemIntegrator::restore(const std::vector<double>& saved, long factorizat
   terms.tf = memory[4];
   terms.t1 = memory[5];
   const double* p = memory.data() + 6;
-  std::copy(p, p + n, yf_.begin());
-  std::copy(p + n, p + 2 * n, vf_.begin());
-  std::copy(p + 2 * n, p + 3 * n, am_.begin());
-  if (!assemble_system(s_, yf_.data(), vf_.data(), am_.data(), p + 4 * n, p + 3 * n, terms,
-                       r_.data(), &lu_))
+  if (!assemble_system(s_, p, p + n, p + 2 * n, p + 3 * n, p, terms, r_.data(), &lu_))
     return false;
   lu_valid_ = lu_.factor();
   if (lu_valid_) {
@@ -233,50 +237,47 @@ bool SystemIntegrator::restore(const std::vector<double>& saved, long factorizat
   return lu_valid_;
 }
 
-RunOutcome SystemIntegrator::run(double* y, double* v, double* a, double* lam, double t0, double h,
-                                 std::int64_t n_steps, std::int64_t out_every,
-                                 std::int64_t done_before, double max_seconds, double* out_y,
-                                 double* out_v, double* out_l, double* out_e, double* out_yf,
-                                 double* out_vf, double out_dt, std::int64_t k_last) {
+RunOutcome SystemIntegrator::run(const StepOut& x, double t0, double h, std::int64_t n_steps,
+                                 std::int64_t out_every, std::int64_t done_before,
+                                 double max_seconds, double* out_y, double* out_v, double* out_l,
+                                 double* out_e, double out_dt, std::int64_t k_last) {
   const int n = s_.n, m = s_.m;
   const auto start = std::chrono::steady_clock::now();
-  std::vector<double> y1(sz(n)), v1(sz(n)), a1(sz(n)), l1(sz(m));
-  RunOutcome out{0, true, 0, 0};
+  std::vector<double> y1(sz(n)), v1(sz(n)), a1(sz(n)), w1(sz(n)), l1(sz(m));
+  const StepIn s0{x.y, x.v, x.a, x.w, x.lam};
+  const StepOut s1{y1.data(), v1.data(), a1.data(), w1.data(), l1.data()};
+  RunOutcome out;
   std::int64_t since = done_before;  // steps since output k_last
   for (std::int64_t k = 0; k < n_steps; ++k) {
     const double t = out_dt > 0.0
                          ? out_dt * static_cast<double>(k_last) + static_cast<double>(since) * h
                          : t0 + static_cast<double>(k) * h;
     ++since;
-    const StepOutcome st = step(y, v, a, lam, t, h, y1.data(), v1.data(), a1.data(), l1.data());
+    const StepOutcome st = step(s0, t, h, s1);
     out.iterations += st.iterations;
     if (!st.converged) {
       out.converged = false;
       return out;
     }
-    const bool stores = (done_before + k + 1) % out_every == 0;
-    if (stores && out_yf != nullptr) {  // the step's alpha point, before y, v are replaced
-      const std::ptrdiff_t row = static_cast<std::ptrdiff_t>(out.stored);
-      const double af = sc_.alpha_f;
-      for (int i = 0; i < n; ++i) {
-        out_yf[row * n + i] = (1.0 - af) * y1[sz(i)] + af * y[i];
-        out_vf[row * n + i] = (1.0 - af) * v1[sz(i)] + af * v[i];
-      }
+    if (st.error > out.max_error) {
+      out.max_error = st.error;
+      out.t_max_error = t + h;
     }
-    std::copy(y1.begin(), y1.end(), y);
-    std::copy(v1.begin(), v1.end(), v);
-    std::copy(a1.begin(), a1.end(), a);
-    std::copy(l1.begin(), l1.end(), lam);
-    system_rereference(s_, y, v, a);
+    std::copy(y1.begin(), y1.end(), x.y);
+    std::copy(v1.begin(), v1.end(), x.v);
+    std::copy(a1.begin(), a1.end(), x.a);
+    std::copy(w1.begin(), w1.end(), x.w);
+    std::copy(l1.begin(), l1.end(), x.lam);
+    system_rereference(s_, x.y, x.v, x.a, x.w);
     out.steps = k + 1;
-    if (stores) {
+    if ((done_before + k + 1) % out_every == 0) {
       ++k_last;
       since = 0;
       const std::ptrdiff_t row = static_cast<std::ptrdiff_t>(out.stored);
-      std::copy(y, y + n, out_y + row * n);
-      std::copy(v, v + n, out_v + row * n);
-      std::copy(lam, lam + m, out_l + row * m);
-      if (out_e != nullptr) system_energies(s_, y, v, out_e + 3 * row, t + h);
+      std::copy(x.y, x.y + n, out_y + row * n);
+      std::copy(x.v, x.v + n, out_v + row * n);
+      std::copy(x.lam, x.lam + m, out_l + row * m);
+      if (out_e != nullptr) system_energies(s_, x.y, x.v, out_e + 3 * row, t + h);
       ++out.stored;
     }
     const std::chrono::duration<double> spent = std::chrono::steady_clock::now() - start;
@@ -286,7 +287,7 @@ RunOutcome SystemIntegrator::run(double* y, double* v, double* a, double* lam, d
 }
 
 bool SystemIntegrator::initial_acceleration(const double* y, const double* v, double t, double* a,
-                                            double* lam, const AssemblyTerms* contact) {
+                                            double* lam, const AssemblyTerms* outputs) {
   const int n = s_.n, m = s_.m;
   std::vector<double> known(sz(n), 0.0), zero(sz(m), 0.0);
   for (int k : s_.slots) zero[sz(k)] = lam[k];  // sliding joints' material coordinates
@@ -297,12 +298,9 @@ bool SystemIntegrator::initial_acceleration(const double* y, const double* v, do
   terms.ca = 1.0;
   terms.tf = t;
   terms.t1 = t;
-  if (contact != nullptr) {
-    terms.contact_yf = contact->contact_yf;
-    terms.contact_vf = contact->contact_vf;
-    terms.contact_y1 = contact->contact_y1;
-    terms.internal = contact->internal;
-    terms.own = contact->own;
+  if (outputs != nullptr) {
+    terms.internal = outputs->internal;
+    terms.own = outputs->own;
   }
   lu_valid_ = false;
   const bool reuse = mass_constant_ && mass_factored_;  // the factors of M from an earlier call
@@ -441,10 +439,15 @@ void flex_energies(const System& s, std::size_t b, const double* y, const double
   out[2] = gravity_energy(mod, y + o);
 }
 
-void system_rereference(const System& s, double* y, double* v, double* a) {
+void system_rereference(const System& s, double* y, double* v, double* a, double* w) {
+  thread_local std::vector<double> vw;
   for (std::size_t b = 0; b < s.flex.size(); ++b) {
     const Model& mod = *s.flex[b];
     const int o = s.offset[b];
+    if (w != nullptr && mod.kind == ElementKind::rod) {  // w's twist as a's (its own rates
+      vw.assign(v + o, v + o + mod.n());                 // discarded: v is carried below)
+      rereference_rates(mod, y + o, vw.data(), w + o);
+    }
     rereference_rates(mod, y + o, v + o, a + o);
     rereference(mod, y + o);
   }

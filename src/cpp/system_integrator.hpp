@@ -1,13 +1,18 @@
-// Generalized-alpha for constrained systems (Chung & Hulbert 1993 in the form of the one-body
-// integrator, integrator.cpp; index-3 constraints as in Cardona & Geradin 1989):
-//   M a_{1-am} + c M v_{1-af} + F(y_{1-af}, v_{1-af}, a_{1-am}) + G(y_{1-af})^T lambda = 0
-//   g(y_{n+1}, t_{n+1}) = 0
-// Newton on (y_{n+1}, lambda) with the bordered block-band matrix (bordered.hpp); lambda is the
-// multiplier at the alpha point, -G^T lambda the joints' forces on the bodies.  Constraints hold
-// at every step to the Newton tolerance.  With one body and no joints this is the one-body
-// integrator's iteration exactly (same residual, Jacobian and convergence test).  Held
-// coordinates that follow time functions (moving supports) are set at t_{n+1} before the
-// iterations; their accelerations and velocities follow from the Newmark relations.
+// Generalized-alpha for constrained systems in the form of Arnold & Bruls (2007), with index-3
+// constraints as in Cardona & Geradin (1989): the balance holds at t_{n+1},
+//   M a_{n+1} + c M v_{n+1} + F(y_{n+1}, v_{n+1}, a_{n+1}) + G(y_{n+1})^T lambda_{n+1} = 0,
+//   g(y_{n+1}, t_{n+1}) = 0,
+// and the alpha-blend acts on accelerations only, through the algorithmic accelerations w of
+// the Newmark relations:
+//   (1 - am) w_{n+1} + am w_n = (1 - af) a_{n+1} + af a_n,
+//   y_{n+1} = y_n + h v_n + h^2 ((1/2 - beta) w_n + beta w_{n+1}),
+//   v_{n+1} = v_n + h ((1 - gamma) w_n + gamma w_{n+1})
+// (docs/derivations/time-integration.md).  Forces are evaluated only at real states, never at
+// blends of absolute nodal coordinates (whose chords cut the circles of turning bodies).
+// Newton on (y_{n+1}, lambda_{n+1}) with the bordered block-band matrix (bordered.hpp);
+// -G^T lambda is the joints' force on the bodies.  Constraints hold at every step to the Newton
+// tolerance.  Held coordinates that follow time functions (moving supports) are set at t_{n+1}
+// before the iterations; their accelerations and velocities follow from the Newmark relations.
 #pragma once
 
 #include <cstdint>
@@ -20,35 +25,47 @@
 
 namespace rancf {
 
+/// The state a step starts from: coordinates y, velocities v, accelerations a (of the
+/// balance), algorithmic accelerations w (of the Newmark relations) and multipliers lambda.
+struct StepIn {
+  const double *y, *v, *a, *w, *lam;
+};
+
+/// The state a step ends in (the same quantities, written).
+struct StepOut {
+  double *y, *v, *a, *w, *lam;
+};
+
 class SystemIntegrator {
  public:
   SystemIntegrator(const System& s, const Scheme& scheme);
-  /// One step: Newton from the predictor y0 + h v0 + h^2/2 a0; where that fails (chord: where
-  /// the iteration contracts slowly), once more from y0 (the iterations of both counted).
-  StepOutcome step(const double* y0, const double* v0, const double* a0, const double* l0, double t,
-                   double h, double* y1, double* v1, double* a1, double* l1);
-  /// Up to n_steps fixed steps from t0 (rods' triads re-referenced after each); the output
-  /// interval's first done_before steps were taken by an earlier call, so y, v, lambda and the
-  /// energies (kinetic, strain, gravity; none if out_e is null) go to the next rows of the
-  /// outputs whenever done_before + steps taken is a multiple of out_every.  Returns after a
-  /// whole step once max_seconds of wall time have passed, so the caller can poll for
-  /// interrupts.
-  /// out_yf, out_vf (may be null): the alpha point (y_{n+1-af}, v_{n+1-af}) of the step that
-  /// ended at each stored row (before the rods' re-referencing), where its forces act.
+  /// One step: Newton from the predictor y0 + h v0 + h^2/2 w0; where that fails (chord: where
+  /// the iteration contracts slowly), once more from y0 (the iterations of both counted).  The
+  /// outcome holds the step's local error estimate (local_error) when it converged.
+  StepOutcome step(const StepIn& s0, double t, double h, const StepOut& s1);
+  /// The local error of a step of length h from algorithmic accelerations w0 to w1 (n each):
+  /// h^2 |beta - gamma/2 + 1/12| max_i s_i |w1_i - w0_i|, s_i the increment scale (TI.9 of
+  /// docs/derivations/time-integration.md), over the coordinates that are not held.
+  [[nodiscard]] double local_error(const double* w0, const double* w1, double h) const;
+  /// Up to n_steps fixed steps from t0 (state x, updated in place; rods' triads re-referenced
+  /// after each); the output interval's first done_before steps were taken by an earlier call,
+  /// so y, v, lambda and the energies (kinetic, strain, gravity; none if out_e is null) go to
+  /// the next rows of the outputs whenever done_before + steps taken is a multiple of
+  /// out_every.  Returns after a whole step once max_seconds of wall time have passed, so the
+  /// caller can poll for interrupts.  The outcome holds the largest local error estimate of
+  /// the steps taken and the time at the end of its step.
   /// out_dt > 0: the steps' times are out_dt k + i h, k the index of the last output (k_last
   /// at the start, t0 its time) and i the steps since it, whatever steps earlier calls took
   /// (a run's numbers do not depend on where it was cut into calls); else t0 + k h.
-  RunOutcome run(double* y, double* v, double* a, double* lam, double t0, double h,
-                 std::int64_t n_steps, std::int64_t out_every, std::int64_t done_before,
-                 double max_seconds, double* out_y, double* out_v, double* out_l, double* out_e,
-                 double* out_yf = nullptr, double* out_vf = nullptr, double out_dt = 0.0,
+  RunOutcome run(const StepOut& x, double t0, double h, std::int64_t n_steps,
+                 std::int64_t out_every, std::int64_t done_before, double max_seconds,
+                 double* out_y, double* out_v, double* out_l, double* out_e, double out_dt = 0.0,
                  std::int64_t k_last = 0);
   /// Consistent initial acceleration and multipliers: [M G^T; G 0] [a; lambda] = [-F; -c].
-  /// contact (may be null): the contact forces of a step instead of those at (y, v)
-  /// (AssemblyTerms::contact_yf and after), and the assembly's outputs internal and own (at
-  /// the known accelerations of the held coordinates, the others zero).
+  /// outputs (may be null): the assembly's outputs internal and own (AssemblyTerms; at the
+  /// known accelerations of the held coordinates, the others zero).
   bool initial_acceleration(const double* y, const double* v, double t, double* a, double* lam,
-                            const AssemblyTerms* contact = nullptr);
+                            const AssemblyTerms* outputs = nullptr);
   /// Derived values of k stored states (rows of y and v, n each, at times t): the
   /// consistent accelerations and multipliers (initial_acceleration; zero where it fails),
   /// the balance residual and constraints with them (n + m a row) and every joint's reaction
@@ -56,12 +73,11 @@ class SystemIntegrator {
   /// null, n a row): the bodies' own terms alone at the same a, without the multipliers
   /// (AssemblyTerms::own), and internal (if not null, n a row): the element forces
   /// (AssemblyTerms::internal), both from the pass that gives the residual, for the nodal
-  /// axial forces.  Systems with contact: the contact forces are those of the step that ended
-  /// at each row, alpha (if not null, 2 n a row) its generalized-alpha point (yf, vf), else the
-  /// row's own state (a step of length zero).
+  /// axial forces.  Contact forces are those at the row's state, where the step that ended
+  /// there holds its balance.
   void derived_rows(int k, const double* t, const double* y, const double* v, double* a,
                     double* lam, double* res, double* joints, double* res0 = nullptr,
-                    double* internal = nullptr, const double* alpha = nullptr);
+                    double* internal = nullptr);
   /// One Newton increment of the statics at load factor lf: (dy, dlam) with
   /// K dy + G^T dlam = -r, G dy = -g.  Returns false if the matrix is singular.
   bool static_increment(const double* y, const double* lam, double lf, bool amplitude, double t,
@@ -78,26 +94,27 @@ class SystemIntegrator {
   /// The length each coordinate's Newton increment is multiplied by in the convergence test
   /// (n values; empty: 1 for all): gradient coordinates by their elements' length, so that the
   /// test measures the displacement of the material (docs/derivations/newton.md).
-  void set_increment_scale(std::vector<double> scale) { scale_ = std::move(scale); }
+  void set_increment_scale(std::vector<double> scale);
   /// The held coordinates that follow time functions, at time t (any pointer may be null).
   void set_prescribed(double t, double* y, double* v, double* a) const;
   /// What the loop keeps between steps: [s], the steps since one started again from y0 (0:
   /// none; step()), then, modified Newton with valid factors, the point the factored Jacobian
-  /// was assembled at: [h, ck, cv, ca, tf, t1, yf (n), vf (n), am (n), y1 (n), lambda (m)].
+  /// was assembled at: [h, ck, cv, ca, tf, t1, y (n), v (n), a (n), lambda (m)].
   [[nodiscard]] std::vector<double> memory() const;
   /// Take up memory() of another integrator on the same system: the Jacobian is assembled at
   /// the same point and factored again (bit for bit the same factors); factorizations, the
   /// counter to go on from.  Memory of rancf 0.2 (without [s]: empty or the modified point
-  /// alone) is taken as s = 0.  False if the data do not fit or the factorization fails.
+  /// alone) is taken as s = 0; that of rancf 0.3 (the point of the balance at the alpha point,
+  /// 7 + 4 n + m numbers) as [s] alone (the next step factors afresh).  False if the data do
+  /// not fit or the factorization fails.
   bool restore(const std::vector<double>& memory, long factorizations);
 
  private:
   /// The Newton iterations of step(), from the predictor y0 + h v0 + h^2/2 a0 or from y0.
-  StepOutcome iterate(const double* y0, const double* v0, const double* a0, const double* l0,
-                      double t, double h, double* y1, double* v1, double* a1, double* l1,
-                      bool from_y0);
+  StepOutcome iterate(const StepIn& s0, double t, double h, const StepOut& s1, bool from_y0);
   void solve_negative();
-  void remember(double h, const AssemblyTerms& terms, const double* l1, const double* y1);
+  void remember(double h, const AssemblyTerms& terms, const double* l1, const double* y1,
+                const double* v1, const double* a1);
   const System& s_;
   Scheme sc_;
   BorderedLU lu_;
@@ -106,7 +123,7 @@ class SystemIntegrator {
   bool mass_factored_ = false;  // lu_ holds the factors of that matrix
   double lu_h_ = -1.0;
   long factorizations_ = 0;
-  std::vector<double> base_, yf_, vf_, am_, r_, dz_, zb_, zero_;
+  std::vector<double> base_, r_, dz_, zb_, zero_;
   /// Steps since one had to start again from y0 (0: the last started from the predictor and
   /// converged); below kFromY0Steps the next step starts from y0 at once, at it from the
   /// predictor.
@@ -114,6 +131,7 @@ class SystemIntegrator {
   static constexpr int kFromY0Steps = 8;
   std::vector<double> factored_at_;  ///< modified Newton: where the factors were assembled
   std::vector<double> scale_;        ///< set_increment_scale (empty: none)
+  std::vector<double> error_scale_;  ///< scale_ (1 without) and 0 at the held coordinates
 };
 
 /// Kinetic, strain (elements and springs) and gravitational energy of the system at (y, v)
@@ -126,7 +144,8 @@ void system_energies(const System& s, const double* y, const double* v, double* 
 void flex_energies(const System& s, std::size_t b, const double* y, const double* v, double t,
                    double* out);
 
-/// Re-reference the rods' nodal triads (keeping their spin rates), body by body.
-void system_rereference(const System& s, double* y, double* v, double* a);
+/// Re-reference the rods' nodal triads (keeping their spin rates), body by body; the
+/// algorithmic accelerations w (may be null) are carried as the accelerations a are.
+void system_rereference(const System& s, double* y, double* v, double* a, double* w = nullptr);
 
 }  // namespace rancf

@@ -164,7 +164,7 @@ def write_run(
     outputs = outputs if outputs is not None else system_outputs(model, sensors, labels)
     with FileSet() as files:  # the files replace an earlier run's together
         write_history_files(out, outputs, result.t, result.q, result.v, energy,
-                            result.directors, files=files, alpha=result.alpha)  # fmt: skip
+                            result.directors, files=files)  # fmt: skip
         summary = {
             **run_summary(model, result),
             "warnings": run_warnings(model, largest=outputs.largest_strain),

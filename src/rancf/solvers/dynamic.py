@@ -1,22 +1,26 @@
-"""Implicit generalized-α time integration (Chung & Hulbert 1993) with Newton on the exact tangent.
+"""Implicit generalized-α time integration (Chung & Hulbert 1993) in the form of Arnold & Brüls
+(2007), with Newton on the exact tangent (``docs/derivations/time-integration.md``).
 
 For ``M ÿ + c M ẏ + f_int(y) = f_ext(t)`` and spectral radius at infinity ``ρ∞ ∈ [0, 1]``:
 
     α_m = (2ρ∞ - 1)/(ρ∞ + 1),  α_f = ρ∞/(ρ∞ + 1),  γ = ½ - α_m + α_f,  β = ¼ (1 - α_m + α_f)²
 
-Newmark updates ``y_{n+1} = y_n + h v_n + h² ((½ - β) a_n + β a_{n+1})``,
-``v_{n+1} = v_n + h ((1 - γ) a_n + γ a_{n+1})`` and the balance at the intermediate point
-
-    M a_{n+1-α_m} + c M v_{n+1-α_f} + f_int(y_{n+1-α_f}) = f_ext(t_{n+1-α_f}).
-
-Newton solves for ``y_{n+1}`` with Jacobian
-``[(1-α_m)/(β h²) + c (1-α_f) γ/(β h)] M + (1-α_f) K_T(y_{n+1-α_f})``.  The scheme is second
-order; ``ρ∞ = 1`` is the trapezoidal rule (no numerical dissipation).
+The balance holds at ``t_{n+1}``, ``M a_{n+1} + c M v_{n+1} + f_int(y_{n+1}) = f_ext(t_{n+1})``;
+the α-blend acts on the accelerations alone, through the algorithmic accelerations ``w``,
+``(1 - α_m) w_{n+1} + α_m w_n = (1 - α_f) a_{n+1} + α_f a_n``, and the Newmark updates
+``y_{n+1} = y_n + h v_n + h² ((½ - β) w_n + β w_{n+1})``,
+``v_{n+1} = v_n + h ((1 - γ) w_n + γ w_{n+1})``.  Forces are evaluated at real states only: a
+blend of the absolute nodal coordinates of a turning body lies inside its circle and would
+stretch it (the chord error).  Newton solves for ``y_{n+1}`` with Jacobian
+``[(1-α_m)/((1-α_f) β h²) + c γ/(β h)] M + K_T(y_{n+1})``.  The scheme is second order with
+spectral radius ``ρ∞`` at infinity; ``ρ∞ = 1`` is the trapezoidal rule (no numerical
+dissipation).
 
 Step control: fixed steps, or adaptive steps from the local error estimate
-``e = h² |β - 1/6| |a_{n+1} - a_n|`` (Zienkiewicz & Xie 1991).  A step whose Newton iteration fails
-is retried with a quarter of the step; below ``min_step`` the run stops with status ``FAILED``
-and keeps everything computed up to then.
+``e = h² |β - γ/2 + 1/12| max_i s_i |w_{n+1,i} - w_{n,i}|`` (after Zienkiewicz & Xie 1991), which
+fixed-step runs record too (the largest, its time and step: :class:`DynamicResult`).  A step
+whose Newton iteration fails is retried with a quarter of the step; below ``min_step`` the run
+stops with status ``FAILED`` and keeps everything computed up to then.
 """
 
 from __future__ import annotations
@@ -137,18 +141,17 @@ def integrate(
 
     last_y: list = []  # the last row's y, v (its energies where the sink derives them)
 
-    def store(tt: float, yy: NDArray, vv: NDArray, alpha: NDArray | None) -> None:
+    def store(tt: float, yy: NDArray, vv: NDArray) -> None:
         e = np.array(system.energies(yy, vv, tt)) if loop_energies else None
         last_y[:] = [yy.copy(), vv.copy()]
         m1 = directors(yy)
         ll = lam.copy() if mult else None
-        row = (tt, system.q_from_y(yy), system.q_from_y(vv), e, m1, ll, alpha)
-        target_sink.append(*row[:4], directors=m1, lam=ll, alpha=alpha)
+        row = (tt, system.q_from_y(yy), system.q_from_y(vv), e, m1, ll)
+        target_sink.append(*row[:4], directors=m1, lam=ll)
         last[:] = [row]
         result.n_outputs += 1
 
-    def store_block(k0: int, oy: NDArray, ov: NDArray, oe: NDArray, ol: NDArray,
-                    oa: NDArray | None) -> None:  # fmt: skip
+    def store_block(k0: int, oy: NDArray, ov: NDArray, oe: NDArray, ol: NDArray) -> None:
         """Outputs ``k0, k0 + 1, ...`` from the core's loop, passed on as one block (rods: one
         output a block, whose state is the one the triads were carried to)."""
         ts = np.array([out_time(k0 + i) for i in range(len(oy))])
@@ -156,15 +159,14 @@ def integrate(
         m1 = directors(oy[-1])
         ll = ol if mult else None
         target_sink.append_block(ts, qs, vs, oe, directors=None if m1 is None else m1[None],
-                                 lam=ll, alpha=oa)  # fmt: skip
+                                 lam=ll)  # fmt: skip
         last_y[:] = [oy[-1].copy(), ov[-1].copy()]
         last[:] = [(float(ts[-1]), qs[-1], vs[-1], None if oe is None else np.array(oe[-1]), m1,
-                    None if ll is None else ll[-1], None if oa is None else oa[-1])]  # fmt: skip
+                    None if ll is None else ll[-1])]  # fmt: skip
         result.n_outputs += len(oy)
 
     empty = np.empty(0)
     result = DynamicResult(empty, empty, empty, empty, empty, empty, DynamicStatus.COMPLETED, "")
-    contact = system.has_contact
     h, k_out, within, base = o.step, 0, 0, {"n_newton": 0, "wall_time": 0.0}
     if start is None:
         y = system.y0.copy() if initial is None else np.array(initial, dtype=float)
@@ -173,9 +175,10 @@ def integrate(
         integ.prescribe(0.0, y, v)  # moving supports at t = 0
         lam = start_multipliers(system, None if initial is None else y)
         a = integ.initial_acceleration(y, v, t, lam)
-        store(0.0, y, v, np.concatenate([y, v]) if contact else None)
+        w = a.copy()  # the algorithmic accelerations start at the consistent ones
+        store(0.0, y, v)
     else:
-        t, y, v, a, lam, h, k_out, within = take_up(system, integ, start, result, base)
+        t, y, v, a, w, lam, h, k_out, within = take_up(system, integ, start, result, base)
     if on_start is not None:
         on_start()
     started = time.perf_counter()
@@ -184,22 +187,20 @@ def integrate(
         if not last:  # a resumed run with nothing stored yet
             ts, qs, vs, es = empty, np.empty((0, system.n)), np.empty((0, system.n)), empty
             es = np.empty((0, 3))
-            result.directors = result.lam = result.alpha = None
+            result.directors = result.lam = None
         elif memory is not None:
             ts, qs, vs, es = memory.arrays()
             result.directors = memory.stream("directors")
             result.lam = memory.stream("lam")
-            result.alpha = memory.stream("alpha")
         else:
-            tt, qq, vv, ee, m1, ll, aa = last[0]
+            tt, qq, vv, ee, m1, ll = last[0]
             if ee is None:  # derived by the sink: the last row's here, as the sink does
                 ee = np.empty((1, 3))
                 system.core.energies_rows(np.array([tt]), *last_y, ee)
-                last[0] = (tt, qq, vv, ee[0], m1, ll, aa)
+                last[0] = (tt, qq, vv, ee[0], m1, ll)
             ts, qs, vs, es = np.array([tt]), qq[None], vv[None], np.reshape(ee, (1, 3))
             result.directors = None if m1 is None else m1[None]
             result.lam = None if ll is None else ll[None]
-            result.alpha = None if aa is None else aa[None]
         result.t, result.q, result.v = ts, qs, vs
         result.kinetic, result.strain, result.gravity = es[:, 0], es[:, 1], es[:, 2]
         result.status, result.message = status, message
@@ -207,7 +208,7 @@ def integrate(
         result.n_factorizations = integ.n_factorizations
         result.wall_time = base["wall_time"] + time.perf_counter() - started
         result.state = DynamicState(
-            t, y.copy(), v.copy(), a.copy(), lam.copy(), h, min(k_out, n_grid), within,
+            t, y.copy(), v.copy(), a.copy(), w.copy(), lam.copy(), h, min(k_out, n_grid), within,
             triads_of(system), integ.memory(), {k: getattr(result, k) for k in COUNTERS},
             o.t_end,
         )  # fmt: skip
@@ -237,10 +238,11 @@ def integrate(
         if fast and h == o.step and k_out < n_grid and on_grid:
             n_chunk = min(chunk_out, n_grid - k_out)
             called = time.perf_counter()
-            done, st, iters, stored, oy, ov, oe, ol, oa = integ.run_steps(
+            done, st, iters, stored, oy, ov, oe, ol, err, t_err = integ.run_steps(
                 y,
                 v,
                 a,
+                w,
                 t,
                 o.step,
                 n_chunk * per_out - within,
@@ -253,13 +255,14 @@ def integrate(
                 energies=loop_energies,
             )
             result.took(o.step, done)
+            result.note_error(integ.relative_error(err, o.rtol), t_err, o.step)
             took = time.perf_counter() - called
             if stored == n_chunk and took > 0.0:  # a whole call: the next sized to the target
                 grown = stored * CALL_TARGET_SECONDS / took
                 chunk_out = int(np.clip(grown, max(least, chunk_out // 4), min(cap, 4 * chunk_out)))
             if stored:
                 store_block(k_out, oy[:stored], ov[:stored], None if oe is None else oe[:stored],
-                            ol[:stored], None if oa is None else oa[:stored])  # fmt: skip
+                            ol[:stored])  # fmt: skip
             k_out += stored
             within = within + done - stored * per_out
             last_out = out_time(k_out - 1) if k_out else 0.0
@@ -282,26 +285,26 @@ def integrate(
         if target - (t + h_try) < 1e-12 * max(1.0, target):
             h_try = target - t
         lam_try = lam.copy()
-        ok, y1, v1, a1, _ = integ.step(y, v, a, t, h_try, lam_try)
-        err = integ.error_estimate(a, a1, h_try, o.rtol) if (ok and o.adaptive) else 0.0
-        if not ok or err > 1.0:
+        ok, y1, v1, a1, w1, e1 = integ.step(y, v, a, w, t, h_try, lam_try)
+        err = integ.relative_error(e1, o.rtol)
+        if not ok or (o.adaptive and err > 1.0):
             result.n_rejected += 1
             h = h_try * (0.25 if not ok else max(0.2, 0.9 * err ** (-1.0 / 3.0)))
             if h < min_step:
                 status, message = DynamicStatus.FAILED, _failure_message(t, min_step)
                 break
             continue
-        alpha = integ.alpha_point(y, v, y1, v1) if contact else None  # before re-referencing
-        y, v, a, t, lam = y1, v1, a1, t + h_try, lam_try
-        system.rereference(y, v, a)  # rods: triads follow the step, twist rates keep the spin
+        y, v, a, w, t, lam = y1, v1, a1, w1, t + h_try, lam_try
+        system.rereference(y, v, a, w)  # rods: triads follow the step, twist rates the spin
         result.took(h_try)
+        result.note_error(err, t, h_try)
         if o.adaptive:
             h = min(max_step, h_try * min(2.0, 0.9 * max(err, 1e-10) ** (-1.0 / 3.0)))
         else:
             h = o.step
         if abs(t - target) <= 1e-12 * max(1.0, target):
             t = float(target)
-            store(t, y, v, alpha)
+            store(t, y, v)
             k_out += 1
             notify(t)
         if should_stop is not None and should_stop():

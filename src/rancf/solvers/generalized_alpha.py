@@ -1,5 +1,6 @@
 """The generalized-α integrator of a system (:mod:`rancf.solvers.dynamic` has the scheme and
-the run loop): its constants, counters and the compiled core's steps."""
+the run loop): its constants, counters, the compiled core's steps and their local error
+estimate (``docs/derivations/time-integration.md``)."""
 
 from __future__ import annotations
 
@@ -16,7 +17,8 @@ __all__ = ["GeneralizedAlpha"]
 
 
 class GeneralizedAlpha:
-    """One-step generalized-α integrator on a system (state ``y, v, a, λ, t``).
+    """One-step generalized-α integrator on a system (state ``y, v, a, w, λ, t``; ``w`` the
+    algorithmic accelerations of the Newmark relations, Arnold & Brüls 2007).
 
     The Newton iterations of a step and the fixed-step loop run in the compiled core
     (:class:`rancf.kernels._core.SystemIntegrator`: constrained generalized-α, bordered band
@@ -98,24 +100,28 @@ class GeneralizedAlpha:
         return a
 
     def step(
-        self, y: NDArray, v: NDArray, a: NDArray, t: float, h: float, lam: NDArray | None = None
-    ) -> tuple[bool, NDArray, NDArray, NDArray, int]:
-        """Advance by ``h``; returns ``(converged, y1, v1, a1, newton_iterations)`` (the new
-        multipliers replace ``lam``'s content when it converged)."""
-        y1, v1, a1 = np.empty_like(y), np.empty_like(y), np.empty_like(y)
+        self, y: NDArray, v: NDArray, a: NDArray, w: NDArray, t: float, h: float,
+        lam: NDArray | None = None,
+    ) -> tuple[bool, NDArray, NDArray, NDArray, NDArray, float]:  # fmt: skip
+        """Advance by ``h``; returns ``(converged, y1, v1, a1, w1, error)``, ``error`` the
+        step's local error estimate (:meth:`relative_error`: in units of the tolerance ``rtol *
+        size`` once divided by it; 0 if it did not converge).  The new multipliers replace
+        ``lam``'s content when it converged."""
+        y1, v1, a1, w1 = (np.empty_like(y) for _ in range(4))
         l0 = start_multipliers(self.system) if lam is None else lam
         l1 = np.empty_like(l0)
-        ok, it = self._core.step(y, v, a, l0, t, h, y1, v1, a1, l1)
+        ok, it, err = self._core.step(y, v, a, w, l0, t, h, y1, v1, a1, w1, l1)
         if ok and lam is not None:
             lam[:] = l1
         self.n_newton += it
-        return ok, y1, v1, a1, it
+        return ok, y1, v1, a1, w1, err
 
     def run_steps(
         self,
         y: NDArray,
         v: NDArray,
         a: NDArray,
+        w: NDArray,
         t: float,
         h: float,
         n_steps: int,
@@ -127,7 +133,7 @@ class GeneralizedAlpha:
         k_last: int = 0,
         energies: bool = True,
     ) -> tuple:
-        """Fixed steps in the core from time ``t`` (``y, v, a``, ``lam`` updated in place).
+        """Fixed steps in the core from time ``t`` (``y, v, a, w``, ``lam`` updated in place).
 
         ``out_dt > 0``: the steps' times are ``out_dt k + i h``, ``k`` the index of the last
         output (``k_last`` at the start) and ``i`` the steps since it, so that a run's numbers
@@ -137,34 +143,27 @@ class GeneralizedAlpha:
         holds ``done_before`` steps.  The core returns early, after a whole step, once
         ``max_seconds`` of wall time have passed (so that the caller can poll for interrupts).
         Returns ``(steps done, status, iterations, outputs stored, out_y, out_v, out_e,
-        out_l, out_alpha)``; status is 1 if every step taken converged, else 0 (the failing
-        step is not taken); ``out_alpha`` (systems with contact, else None): each stored row's
-        step's generalized-α point ``(y_f, v_f)`` side by side, ``(n_out, 2 n)``;
-        ``out_e`` is None without ``energies`` (a sink that derives them from the rows).
+        out_l, error, t_error)``; status is 1 if every step taken converged, else 0 (the failing
+        step is not taken); ``error`` the largest local error estimate of the steps taken
+        (length, as :meth:`step`'s) and ``t_error`` the time at the end of that step; ``out_e``
+        is None without ``energies`` (a sink that derives them from the rows).
         """
         n, m = self.system.n, self.system.m
         n_out = (done_before + n_steps) // per_out
         oy, ov = np.empty((n_out, n)), np.empty((n_out, n))
         oe = np.empty((n_out, 3)) if energies else None
         ol = np.empty((n_out, m))
-        contact = self.system.has_contact
-        of = (np.empty((n_out, n)), np.empty((n_out, n))) if contact else (None, None)
         lam = np.zeros(m) if lam is None else lam
-        done, ok, iters, stored = self._core.run(
-            y, v, a, lam, t, h, n_steps, per_out, done_before, max_seconds, oy, ov, ol, oe, *of,
+        done, ok, iters, stored, err, t_err = self._core.run(
+            y, v, a, w, lam, t, h, n_steps, per_out, done_before, max_seconds, oy, ov, ol, oe,
             out_dt, k_last,
         )  # fmt: skip
-        oa = np.concatenate(of, axis=1) if contact else None  # type: ignore[arg-type]
         self.n_newton += iters
-        return done, int(ok), iters, stored, oy, ov, oe, ol, oa
+        return done, int(ok), iters, stored, oy, ov, oe, ol, err, t_err
 
-    def alpha_point(self, y0: NDArray, v0: NDArray, y1: NDArray, v1: NDArray) -> NDArray:
-        """``(y_{n+1-α_f}, v_{n+1-α_f})`` of a step from ``(y0, v0)`` to ``(y1, v1)``, side by
-        side ``(2 n,)``: where the step's forces act."""
-        af = self.af
-        return np.concatenate([(1.0 - af) * y1 + af * y0, (1.0 - af) * v1 + af * v0])
-
-    def error_estimate(self, a0: NDArray, a1: NDArray, h: float, rtol: float) -> float:
-        """Local displacement error relative to ``rtol * size``."""
-        e = h * h * abs(self.beta - 1.0 / 6.0) * float(np.max(np.abs(a1 - a0)))
-        return e / (rtol * self.size)
+    def relative_error(self, error: float, rtol: float) -> float:
+        """A local error estimate of :meth:`step` or :meth:`run_steps` relative to the
+        tolerance ``rtol * size`` (``e = h² |β - γ/2 + 1/12| max_i s_i |w_{n+1,i} - w_{n,i}|``,
+        ``s_i`` the Newton test's increment scale: (TI.9) of
+        ``docs/derivations/time-integration.md``)."""
+        return error / (rtol * self.size)

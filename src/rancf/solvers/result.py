@@ -52,10 +52,13 @@ class DynamicResult:
     directors: NDArray[np.float64] | None = None
     #: Systems with joints: the multipliers ``λ`` at the output times ``(n_t, m)``; else None.
     lam: NDArray[np.float64] | None = None
-    #: Systems with contact: the generalized-α point ``(y_{n+1-α_f}, v_{n+1-α_f})`` of the step
-    #: that ended at each output time ``(n_t, 2 n)`` (model coordinates; the initial state
-    #: itself at ``t = 0``), where that step's contact forces act; else None.
-    alpha: NDArray[np.float64] | None = None
+    #: The largest local error estimate of the steps taken, relative to the tolerance
+    #: ``rtol * size`` (:meth:`~rancf.solvers.generalized_alpha.GeneralizedAlpha.relative_error`;
+    #: above 1: a step was coarser than the tolerance), with the time at the end of that step
+    #: and its size.
+    error_estimate: float = 0.0
+    error_time: float | None = None
+    error_step: float | None = None
     #: Where the run stands at its end: :func:`integrate` goes on from it (``start=``).
     state: DynamicState | None = None
 
@@ -76,6 +79,11 @@ class DynamicResult:
     def t_reached(self) -> float:
         """Last stored time."""
         return float(self.t[-1]) if self.t.size else 0.0
+
+    def note_error(self, error: float, t: float, h: float) -> None:
+        """Keep a step's relative local error estimate if it is the largest so far."""
+        if error > self.error_estimate:
+            self.error_estimate, self.error_time, self.error_step = float(error), t, h
 
     def took(self, h: float, count: int = 1) -> None:
         """Count ``count`` accepted steps of size ``h``."""

@@ -2,8 +2,9 @@
 from there as if it had never stopped.
 
 A :class:`DynamicState` holds the time, the coordinates ``y``, velocities ``v``, accelerations
-``a`` and multipliers ``λ`` of the generalized-α recurrence (:mod:`rancf.solvers.dynamic`: the step
-from ``t_n`` reads ``y_n, v_n, a_n`` and the multipliers as its first guess), the step size
+``a``, algorithmic accelerations ``w`` and multipliers ``λ`` of the generalized-α recurrence
+(:mod:`rancf.solvers.dynamic`: the step from ``t_n`` reads ``y_n, v_n, a_n, w_n`` and the
+multipliers as its first guess), the step size
 the step control chose next, the place on the output grid, the rods' nodal triads (which the
 solver carries along the path of the run and the coordinates alone do not fix) and the memory
 of the compiled loop (modified Newton: the point its factored Jacobian was assembled at, so
@@ -32,9 +33,12 @@ __all__ = ["DynamicState", "COUNTERS"]
 
 #: The run's counters a state carries on (the resumed result counts the whole run).
 COUNTERS = ("n_steps", "n_newton", "n_factorizations", "n_rejected", "n_outputs", "wall_time",
-            "min_step_taken", "max_step_taken")  # fmt: skip
+            "min_step_taken", "max_step_taken", "error_estimate", "error_time",
+            "error_step")  # fmt: skip
 
-_VERSION = 1
+#: Version 2 holds ``w`` (rancf 0.4, the Arnold–Brüls form); version 1's runs go on with
+#: ``w = a`` (the start of a run).
+_VERSION = 2
 
 
 @dataclass
@@ -47,6 +51,8 @@ class DynamicState:
         Time [s] the state is at.
     y, v, a : ndarray
         Model coordinates, velocities and accelerations ``(n,)``.
+    w : ndarray
+        Algorithmic accelerations of the Newmark relations ``(n,)``.
     lam : ndarray
         Multipliers of the constraints ``(m,)``.
     step : float
@@ -69,6 +75,7 @@ class DynamicState:
     y: NDArray[np.float64]
     v: NDArray[np.float64]
     a: NDArray[np.float64]
+    w: NDArray[np.float64]
     lam: NDArray[np.float64]
     step: float
     k_out: int = 0
@@ -81,7 +88,8 @@ class DynamicState:
     def copy(self) -> DynamicState:
         """A deep copy (the arrays of a running integration change in place)."""
         return DynamicState(
-            self.t, self.y.copy(), self.v.copy(), self.a.copy(), self.lam.copy(), self.step,
+            self.t, self.y.copy(), self.v.copy(), self.a.copy(), self.w.copy(), self.lam.copy(),
+            self.step,
             self.k_out, self.within, [x.copy() for x in self.triads], self.memory.copy(),
             dict(self.counters), self.t_end,
         )  # fmt: skip
@@ -93,7 +101,8 @@ class DynamicState:
             "within": self.within, "counters": self.counters, "t_end": self.t_end,
             "n_triads": len(self.triads),
         }  # fmt: skip
-        arrays = {"y": self.y, "v": self.v, "a": self.a, "lam": self.lam, "memory": self.memory}
+        arrays = {"y": self.y, "v": self.v, "a": self.a, "w": self.w, "lam": self.lam,
+                  "memory": self.memory}  # fmt: skip
         arrays.update({f"triads_{i}": x for i, x in enumerate(self.triads)})
         buf = io.BytesIO()
         np.savez(buf, meta=np.array(json.dumps(meta)), **arrays)
@@ -116,11 +125,12 @@ class DynamicState:
             with np.load(path, allow_pickle=False) as z:
                 meta = json.loads(str(z["meta"]))
                 arrays = {k: np.array(z[k], dtype=float) for k in z.files if k != "meta"}
-            if meta.get("version") != _VERSION:
+            if meta.get("version") not in (1, _VERSION):
                 raise ValueError(f"version {meta.get('version')}")
             triads = [arrays[f"triads_{i}"] for i in range(int(meta["n_triads"]))]
+            w = arrays["w"] if meta["version"] == _VERSION else arrays["a"]
             return cls(
-                float(meta["t"]), arrays["y"], arrays["v"], arrays["a"], arrays["lam"],
+                float(meta["t"]), arrays["y"], arrays["v"], arrays["a"], w, arrays["lam"],
                 float(meta["step"]), int(meta["k_out"]), int(meta["within"]), triads,
                 arrays["memory"], dict(meta["counters"]), float(meta["t_end"]),
             )  # fmt: skip
@@ -155,7 +165,8 @@ def take_up(system: Any, integ: Any, state: DynamicState, result: Any, base: dic
     """Put ``system`` (rods' triads), the integrator ``integ`` (its memory) and ``result`` (the
     counters; ``base`` gets the iterations and wall time so far) where ``state`` stands.
 
-    Returns ``(t, y, v, a, lam, step, k_out, within)`` (copies: the run changes them in place).
+    Returns ``(t, y, v, a, w, lam, step, k_out, within)`` (copies: the run changes them in
+    place).
 
     Raises
     ------
@@ -170,10 +181,11 @@ def take_up(system: Any, integ: Any, state: DynamicState, result: Any, base: dic
         b.kernel.m1ref[...] = state.triads[2 * i + 1].reshape(b.kernel.m1ref.shape)
     c = state.counters
     integ.restore(state.memory, int(c.get("n_factorizations", 0)))
-    for key in ("n_steps", "n_rejected", "n_outputs", "min_step_taken", "max_step_taken"):
+    for key in ("n_steps", "n_rejected", "n_outputs", "min_step_taken", "max_step_taken",
+                "error_estimate", "error_time", "error_step"):  # fmt: skip
         if c.get(key) is not None:
             setattr(result, key, c[key])
     base["n_newton"] = int(c.get("n_newton", 0))
     base["wall_time"] = float(c.get("wall_time", 0.0))
-    return (state.t, state.y.copy(), state.v.copy(), state.a.copy(), state.lam.copy(),
-            state.step, state.k_out, state.within)  # fmt: skip
+    return (state.t, state.y.copy(), state.v.copy(), state.a.copy(), state.w.copy(),
+            state.lam.copy(), state.step, state.k_out, state.within)  # fmt: skip

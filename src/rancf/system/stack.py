@@ -169,13 +169,17 @@ class BodyStack:
         parts = [b.nodal_directors(y[sl]) for b, sl in self._each_flex() if b.element == "rod"]
         return np.concatenate(parts) if parts else None
 
-    def rereference(self, y: NDArray, v: NDArray, a: NDArray) -> None:
-        """Rods: carry the nodal triads to ``y`` (their spin rates in ``v``, ``a`` kept)."""
+    def rereference(self, y: NDArray, v: NDArray, a: NDArray, w: NDArray | None = None) -> None:
+        """Rods: carry the nodal triads to ``y`` (their spin rates in ``v``, ``a`` kept; the
+        algorithmic accelerations ``w`` carried as ``a``)."""
         for b, sl in self._each_flex():
             if b.element == "rod":
                 vv, aa = v[sl].copy(), a[sl].copy()
-                b.core.rereference(y[sl], vv, aa)
+                ww = None if w is None else w[sl].copy()
+                b.core.rereference(y[sl], vv, aa, ww)
                 v[sl], a[sl] = vv, aa
+                if w is not None:
+                    w[sl] = ww
 
     @property
     def size(self) -> float:
