@@ -134,7 +134,7 @@ def test_no_coefficients_no_force_and_the_coefficients_reach_the_core():
     [
         ("rancf", {"torsion": 1.0}, "damping.torsion"),
         ("beam", {"axial": 1.0}, "damping.axial"),
-        ("rod", {"bending": 1.0}, "damping.bending"),
+        ("beam", {"bending": 1.0}, "damping.bending"),
         ("rancf", {"axial": -1.0}, "damping.axial"),
     ],
 )
@@ -162,3 +162,73 @@ def test_velocity_jacobian_at_the_reference_is_the_scaled_elastic_tangent(dim, g
     expect = beta * model.dense(kt)
     assert np.abs(model.dense(ab) - expect).max() <= 1e-9 * np.abs(expect).max()
     assert np.abs(f - expect @ v).max() <= 1e-9 * np.abs(expect @ v).max()
+
+
+# ---- rods: axial, torsion (K1) and bending (K2, K3) rates (src/cpp/rod_damping.hpp)
+
+ROD_MAT = Material(6000.0, 2.0e6, poisson_ratio=0.3)
+ROD_SEC = Section(3.0e-4, 1.2e-8, 2.0e-8, 2.5e-8, (0.0, 0.0, 1.0))  # unequal principal inertias
+ROD_KV = StrainRateDamping(axial=40.0, bending=3e-3, torsion=2e-3)
+
+
+def _rod(geo: str, kv: StrainRateDamping = ROD_KV) -> Model:
+    from tests.kernels.test_rod import mesh_of
+
+    return Model(mesh_of(geo), "rod", ROD_SEC, ROD_MAT, strain_rate_damping=kv)
+
+
+@pytest.mark.parametrize("geo", ["straight", "conic"])
+def test_rod_jacobians_against_central_differences(geo):
+    from tests.kernels.test_rod import deformed
+
+    model = _rod(geo)
+    rng = np.random.default_rng(6)
+    y, v = deformed(model, rng), rng.normal(size=model.n)
+    f, ab_y = damping_force(model, y, v, ck=1.0, cv=0.0)
+    _, ab_v = damping_force(model, y, v, ck=0.0, cv=1.0)
+    jy, jv = model.dense(ab_y), model.dense(ab_v)
+    assert np.abs(f - jv @ v).max() <= 1e-12 * np.abs(f).max()  # linear in v
+    fd_y, fd_v = np.zeros_like(jy), np.zeros_like(jv)
+    hy, hv = 1e-6, 1e-3
+    for i in range(model.n):
+        d = np.zeros(model.n)
+        d[i] = 1.0
+        fd_y[:, i] = (damping_force(model, y + hy * d, v) - damping_force(model, y - hy * d, v)) / (
+            2 * hy
+        )
+        fd_v[:, i] = (damping_force(model, y, v + hv * d) - damping_force(model, y, v - hv * d)) / (
+            2 * hv
+        )
+    err_y = np.abs(fd_y - jy).max() / np.abs(jy).max()
+    err_v = np.abs(fd_v - jv).max() / np.abs(jv).max()
+    assert err_y <= 1e-6, err_y
+    assert err_v <= 1e-9, err_v
+
+
+@pytest.mark.parametrize("geo", ["straight", "conic"])
+def test_rod_rigid_motion_is_not_damped(geo):
+    from rancf.bodies.motion import RigidMotion, rigid_velocity
+
+    model = _rod(geo)
+    motion = RigidMotion(velocity=(0.3, -0.2, 0.5), angular_velocity=(1.1, -0.7, 0.4),
+                         about=(0.2, 0.1, -0.3))  # fmt: skip
+    v = model.y_from_q(rigid_velocity(model, motion))
+    deform = np.random.default_rng(9).normal(size=model.n) * np.abs(v).max()
+    scale = np.abs(damping_force(model, model.y0, deform)).max()
+    assert scale > 0.0
+    assert np.abs(damping_force(model, model.y0, v)).max() <= 1e-10 * scale
+
+
+def test_rod_velocity_jacobian_at_the_reference_is_the_scaled_elastic_tangent():
+    # c_a / EA = c_t / GJ = c_b / EI = beta on a section with equal bending stiffnesses
+    sec = Section(3.0e-4, 2.0e-8, 2.0e-8, 2.5e-8, (0.0, 0.0, 1.0))
+    beta, e_mod = 2.0e-3, ROD_MAT.youngs_modulus
+    kv = StrainRateDamping(beta * e_mod * sec.area, beta * e_mod * sec.inertia,
+                           beta * ROD_MAT.shear * sec.torsion)  # fmt: skip
+    from tests.kernels.test_rod import mesh_of
+
+    model = Model(mesh_of("conic"), "rod", sec, ROD_MAT, strain_rate_damping=kv)
+    _, kt = model.internal_force_and_tangent(model.y0)
+    _, ab = damping_force(model, model.y0, np.zeros(model.n), ck=0.0, cv=1.0)
+    expect = beta * model.dense(kt)
+    assert np.abs(model.dense(ab) - expect).max() <= 1e-9 * np.abs(expect).max()

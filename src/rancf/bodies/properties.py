@@ -137,7 +137,7 @@ class Material:
 
 
 #: The elements that have Kelvin-Voigt strain-rate damping (:class:`StrainRateDamping`).
-STRAIN_RATE_ELEMENTS = ("rancf", "ancf")
+STRAIN_RATE_ELEMENTS = ("rancf", "ancf", "rod")
 
 
 @dataclass(frozen=True)
@@ -169,17 +169,16 @@ class StrainRateDamping:
 
     def checked(self, element: str) -> StrainRateDamping:
         """Itself, or :class:`~rancf.errors.InputError` for a coefficient the element cannot take:
-        ``torsion`` needs a rod; every key needs elements that have the damping so far (cables:
-        ``"rancf"``, ``"ancf"``; not yet the co-rotational beam and the rod)."""
+        ``torsion`` needs a rod; the co-rotational beam has none of them yet."""
         if self.torsion > 0 and element != "rod":
             raise InputError("damping.torsion", self.torsion, f'0 with {element} elements (a '
                              'twist rate needs rod elements: mesh.element = "rod")')  # fmt: skip
-        for name in ("axial", "bending", "torsion"):
+        for name in ("axial", "bending"):
             v = getattr(self, name)
             if v > 0 and element not in STRAIN_RATE_ELEMENTS:
                 raise InputError(f"damping.{name}", v, f"0 with {element} elements (strain-rate "
-                                 'damping is built for cable elements so far: mesh.element = '
-                                 '"rancf" or "ancf")')  # fmt: skip
+                                 'damping is built for cable and rod elements: mesh.element = '
+                                 '"rancf", "ancf" or "rod")')  # fmt: skip
         return self
 
 
