@@ -93,3 +93,13 @@ def test_keys_an_element_cannot_take_are_refused_in_one_line(change, message):
     text = str(exc.value)
     assert message in text, text
     assert "\n" not in text.strip()
+
+
+def test_a_rod_takes_torsion():
+    d = {**copy.deepcopy(LINE), "supports": [{"at": "start", "kind": "clamp"}],
+         "damping": {"torsion": 0.01, "bending": 0.02}}  # fmt: skip
+    d["geometry"] = {"kind": "line", "start": [0.0, 0.0, 0.0], "end": [1.0, 0.0, 0.0]}
+    d["mesh"] = {"elements": 3, "element": "rod"}
+    d["material"]["poisson_ratio"] = 0.3
+    body = parse_scenario(d).build_system().bodies["body"]
+    assert body.strain_rate_damping == StrainRateDamping(0.0, 0.02, 0.01)

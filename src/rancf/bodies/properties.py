@@ -148,7 +148,8 @@ class StrainRateDamping:
     [``axial`` in N s], ``M = EI κ + bending κ̇`` [``bending`` in N m² s] and, for rods, the
     twist moment ``GJ τ + torsion τ̇`` [N m² s].  Rigid motions have zero strain rates: they are
     not damped.  A mode of frequency ``ω`` dominated by stretching decays with the damping ratio
-    ``ζ = axial ω / (2 EA)``, one dominated by bending with ``ζ = bending ω / (2 EI)``.  Statics
+    ``ζ = axial ω / (2 EA)``, one dominated by bending with ``ζ = bending ω / (2 EI)``, a rod's
+    torsion mode with ``ζ = torsion ω / (2 GJ)``.  Cable and rod elements.  Statics
     ignore it (the velocities are zero).  Derivation: docs/derivations/strain-rate-damping.md.
     """
 

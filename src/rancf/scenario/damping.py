@@ -20,7 +20,7 @@ class StrainRateDampingTable(Table):
     statics ignore them.  A mode of frequency ``ω`` dominated by stretching (bending) decays with
     the damping ratio ``ζ = axial ω / (2 EA)`` (``ζ = bending ω / (2 EI)``).  MoorDyn's ``BA`` is
     ``axial``; its negative form ``BA = −ζ`` is ``axial = ζ (L/N) √(EA m)`` (``m`` the mass per
-    length, ``L/N`` MoorDyn's segment length).  Cable elements (``"rancf"``, ``"ancf"``) so far.
+    length, ``L/N`` MoorDyn's segment length).  Cable and rod elements (not yet the beam).
     """
 
     axial: NonNegative = Field(
@@ -32,8 +32,8 @@ class StrainRateDampingTable(Table):
         "bending mode of frequency omega decays with zeta = c_b omega / (2 EI)",
     )  # fmt: skip
     torsion: NonNegative = Field(
-        0.0, description="rod elements: c_t in the twist moment GJ tau + c_t d(tau)/dt [N m^2 s] "
-        "(refused on other elements)",
+        0.0, description="rod elements: c_t in the twist moment GJ tau + c_t d(tau)/dt [N m^2 s]: "
+        "a torsion mode of frequency omega decays with zeta = c_t omega / (2 GJ)",
     )  # fmt: skip
 
 
