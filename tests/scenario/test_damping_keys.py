@@ -103,3 +103,28 @@ def test_a_rod_takes_torsion():
     d["material"]["poisson_ratio"] = 0.3
     body = parse_scenario(d).build_system().bodies["body"]
     assert body.strain_rate_damping == StrainRateDamping(0.0, 0.02, 0.01)
+
+
+def test_the_balances_position_jacobian_carries_the_damping():
+    # ck d/dy of the system's balance (elements, damping) against central differences of it
+    s = parse_scenario(copy.deepcopy(ONE)).build_system()
+    rng = np.random.default_rng(5)
+    y, v = s.y0 + 1e-3 * rng.normal(size=s.n), 50.0 * rng.normal(size=s.n)
+    z, lam, nm = np.zeros(s.n), np.zeros(s.m), s.n + s.m
+    jac = np.empty(nm * nm)
+    assert s.core.dense_jacobian(y, v, z, lam, 0.0, 1.0, 0.0, 0.0, out=jac)
+    free = np.flatnonzero(~s.bodies["body"].fixed)
+    got = jac.reshape(nm, nm)[np.ix_(free, free)]
+    h, rp, rm = 1e-7, np.empty(nm), np.empty(nm)
+    fd = np.empty_like(got)
+    for k, j in enumerate(free):
+        d = np.zeros(s.n)
+        d[j] = h
+        s.core.residual(y + d, v, z, lam, 0.0, r=rp)
+        s.core.residual(y - d, v, z, lam, 0.0, r=rm)
+        fd[:, k] = ((rp - rm) / (2 * h))[free]
+    body = s.bodies["body"]
+    _, ab = damping_force(body, y, v, ck=1.0, cv=0.0)
+    part = body.dense(ab)[np.ix_(free, free)]
+    assert np.abs(part).max() > 1e-4 * np.abs(got).max()  # the damping's share is not lost
+    assert np.abs(fd - got).max() <= 1e-6 * np.abs(got).max()
