@@ -23,6 +23,7 @@
 #include <cmath>
 
 #include "registry.hpp"
+#include "strain_rate.hpp"
 
 namespace rancf {
 namespace {
@@ -183,25 +184,6 @@ inline void density_3d(const double* a, const double* b, double s0, double k0, d
 }
 
 // ---- Kelvin-Voigt strain-rate damping (docs/derivations/strain-rate-damping.md)
-
-// One strain measure m(z) with damping coefficient c (times J0) at a Gauss point: with mz = dm/dz,
-// mzz = d2m/dz2 and zd = dz/dt, the rate md = mz . zd (eq. 2), the force c md mz into g (eq. 3)
-// and ck c (mz (mzz zd)^T + md mzz) + cv c mz mz^T into jz (eqs. 4, 5; row: force, column: z).
-template <int NZ>
-inline void kv_measure(double c, const double* mz, const double (*mzz)[NZ], const double* zd,
-                       double ck, double cv, double* g, double (*jz)[NZ]) {
-  double md = 0.0, hz[NZ];
-  for (int i = 0; i < NZ; ++i) md += mz[i] * zd[i];
-  for (int i = 0; i < NZ; ++i) g[i] += c * md * mz[i];
-  if (jz == nullptr) return;
-  for (int i = 0; i < NZ; ++i) {
-    hz[i] = 0.0;
-    for (int j = 0; j < NZ; ++j) hz[i] += mzz[i][j] * zd[j];
-  }
-  for (int i = 0; i < NZ; ++i)
-    for (int j = 0; j < NZ; ++j)
-      jz[i][j] += c * (ck * (mz[i] * hz[j] + md * mzz[i][j]) + cv * mz[i] * mz[j]);
-}
 
 // The axial strain's gradient mz and Hessian mzz in z = (a, b) (2 D values; AxialMeasure).
 template <int D>

@@ -10,11 +10,15 @@ import pytest
 
 from rancf.bodies.flexible import Material, Model, Section
 from rancf.bodies.flexible_core import section_stiffness
+from rancf.bodies.motion import RigidMotion, rigid_velocity
 from rancf.bodies.properties import StrainRateDamping
 from rancf.bodies.strain_rate import damping_force
 from rancf.errors import InputError
-from rancf.mesh.factories import mesh_line
+from rancf.geometry.conic import conic_arc
+from rancf.mesh.factories import mesh_conic, mesh_line
+from tests.conftest import EXAMPLE1
 from tests.kernels.test_elements import CASES, _mesh, _rotation
+from tests.kernels.test_rod import deformed, mesh_of
 
 SEC = Section(area=1.0e-4, inertia=2.0e-9)
 E_MOD = 2.0e11
@@ -133,8 +137,7 @@ def test_no_coefficients_no_force_and_the_coefficients_reach_the_core():
     ("element", "kw", "key"),
     [
         ("rancf", {"torsion": 1.0}, "damping.torsion"),
-        ("beam", {"axial": 1.0}, "damping.axial"),
-        ("beam", {"bending": 1.0}, "damping.bending"),
+        ("beam", {"torsion": 1.0}, "damping.torsion"),
         ("rancf", {"axial": -1.0}, "damping.axial"),
     ],
 )
@@ -172,15 +175,11 @@ ROD_KV = StrainRateDamping(axial=40.0, bending=3e-3, torsion=2e-3)
 
 
 def _rod(geo: str, kv: StrainRateDamping = ROD_KV) -> Model:
-    from tests.kernels.test_rod import mesh_of
-
     return Model(mesh_of(geo), "rod", ROD_SEC, ROD_MAT, strain_rate_damping=kv)
 
 
 @pytest.mark.parametrize("geo", ["straight", "conic"])
 def test_rod_jacobians_against_central_differences(geo):
-    from tests.kernels.test_rod import deformed
-
     model = _rod(geo)
     rng = np.random.default_rng(6)
     y, v = deformed(model, rng), rng.normal(size=model.n)
@@ -207,8 +206,6 @@ def test_rod_jacobians_against_central_differences(geo):
 
 @pytest.mark.parametrize("geo", ["straight", "conic"])
 def test_rod_rigid_motion_is_not_damped(geo):
-    from rancf.bodies.motion import RigidMotion, rigid_velocity
-
     model = _rod(geo)
     motion = RigidMotion(velocity=(0.3, -0.2, 0.5), angular_velocity=(1.1, -0.7, 0.4),
                          about=(0.2, 0.1, -0.3))  # fmt: skip
@@ -225,10 +222,38 @@ def test_rod_velocity_jacobian_at_the_reference_is_the_scaled_elastic_tangent():
     beta, e_mod = 2.0e-3, ROD_MAT.youngs_modulus
     kv = StrainRateDamping(beta * e_mod * sec.area, beta * e_mod * sec.inertia,
                            beta * ROD_MAT.shear * sec.torsion)  # fmt: skip
-    from tests.kernels.test_rod import mesh_of
-
     model = Model(mesh_of("conic"), "rod", sec, ROD_MAT, strain_rate_damping=kv)
     _, kt = model.internal_force_and_tangent(model.y0)
     _, ab = damping_force(model, model.y0, np.zeros(model.n), ck=0.0, cv=1.0)
     expect = beta * model.dense(kt)
     assert np.abs(model.dense(ab) - expect).max() <= 1e-9 * np.abs(expect).max()
+
+
+# ---- the co-rotational beam: axial strain and the rotations relative to the chord (beam.cpp)
+
+BEAM_KV = StrainRateDamping(30.0, 0.4)
+
+
+def _beam(kv: StrainRateDamping = BEAM_KV) -> Model:
+    mat = Material(density=7850.0, youngs_modulus=E_MOD)
+    return Model(mesh_conic(conic_arc(*EXAMPLE1), 4), "beam", SEC, mat, strain_rate_damping=kv)
+
+
+def test_beam_jacobians_against_central_differences_and_rigid_motion():
+    model = _beam()
+    rng = np.random.default_rng(12)
+    y, v = model.y0 + 0.02 * rng.normal(size=model.n), rng.normal(size=model.n)
+    _, ab_y = damping_force(model, y, v, ck=1.0, cv=0.0)
+    _, ab_v = damping_force(model, y, v, ck=0.0, cv=1.0)
+    jy, jv = model.dense(ab_y), model.dense(ab_v)
+    eye, hy, hv = np.eye(model.n), 1e-6, 1e-3
+    fd_y = np.array([damping_force(model, y + hy * d, v) - damping_force(model, y - hy * d, v)
+                     for d in eye]).T / (2 * hy)  # fmt: skip
+    fd_v = np.array([damping_force(model, y, v + hv * d) - damping_force(model, y, v - hv * d)
+                     for d in eye]).T / (2 * hv)  # fmt: skip
+    assert np.abs(fd_y - jy).max() <= 1e-6 * np.abs(jy).max()
+    assert np.abs(fd_v - jv).max() <= 1e-9 * np.abs(jv).max()
+    motion = RigidMotion(velocity=(0.4, -0.3), angular_velocity=1.7, about=(0.1, 0.2))
+    vr = model.y_from_q(rigid_velocity(model, motion))
+    scale = np.abs(damping_force(model, model.y0, rng.normal(size=model.n) * np.abs(vr).max()))
+    assert np.abs(damping_force(model, model.y0, vr)).max() <= 1e-10 * scale.max()

@@ -4,7 +4,8 @@ integrated without numerical damping (``rho_inf = 1``), the mode decays with the
 ``ζ = c ω / (2 k)``: the first axial mode with ``k = EA`` (``[damping] axial``), the first
 bending mode with ``k = EI`` (``bending``), a rod's first torsion mode with ``k = GJ``
 (``torsion``); ``ω`` is the run's own frequency, and the logarithmic decrement of the tip's
-peaks gives ``ζ``.  The bar is a planar cable (``"ancf"``) or a spatial rod."""
+peaks gives ``ζ``.  The bar is a planar cable (``"ancf"``), a planar co-rotational beam or a
+spatial rod."""
 
 from __future__ import annotations
 
@@ -21,7 +22,7 @@ ZETA = 0.02  # the damping ratio the coefficient is chosen for (at the modal fre
 
 
 def _model(element: str, kv: StrainRateDamping | None = None) -> rancf.Model:
-    end = [L, 0.0] if element == "ancf" else [L, 0.0, 0.0]
+    end = [L, 0.0, 0.0] if element == "rod" else [L, 0.0]
     return rancf.Model(rancf.mesh_line([0.0] * len(end), end, N_EL), element, SECTION, STEEL,
                        supports=[rancf.Support(0, "clamp")], strain_rate_damping=kv)  # fmt: skip
 
@@ -80,8 +81,9 @@ def _run(element: str, key: str, kv: StrainRateDamping | None, per_period: int):
 
 @pytest.mark.parametrize(
     ("element", "key", "per_period"),
-    [("ancf", "axial", 100), ("ancf", "bending", 200), ("rod", "axial", 100),
-     ("rod", "bending", 200), ("rod", "torsion", 100)],
+    [("ancf", "axial", 100), ("ancf", "bending", 200), ("beam", "axial", 100),
+     ("beam", "bending", 200), ("rod", "axial", 100), ("rod", "bending", 200),
+     ("rod", "torsion", 100)],
 )  # fmt: skip
 def test_first_mode_decays_with_the_closed_form_damping_ratio(element, key, per_period):
     bare = _model(element)

@@ -73,8 +73,8 @@ def test_a_bodys_own_table_replaces_the_keys_of_damping():
         ({"damping": {"torsion": 2.0}},
          '[damping.torsion] 0 with rancf elements (a twist rate needs rod elements: '
          'mesh.element = "rod") (got 2)'),
-        ({"mesh": {"elements": 2, "element": "beam"}, "damping": {"axial": 5.0}},
-         "[damping.axial] 0 with beam elements"),
+        ({"mesh": {"elements": 2, "element": "beam"}, "damping": {"torsion": 5.0}},
+         "[damping.torsion] 0 with beam elements"),
         ({"bodies": [{"name": "a", **LINE, "damping": {"torsion": 1.5}}],
           "supports": [{"at": "a:start"}]},
          "[bodies[0].damping.torsion] 0 with rancf elements"),

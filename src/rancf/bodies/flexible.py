@@ -83,7 +83,7 @@ class Model(Coordinates):
     stress_free : {"reference", "straight"}
         Unloaded state: the reference, or straight of equal arc length (cables, rods).
     strain_rate_damping : StrainRateDamping, optional
-        Kelvin-Voigt damping of the strain rates (cable, rod elements; kept as an attribute).
+        Kelvin-Voigt damping of the strain rates (kept as an attribute).
 
     Notes
     -----

@@ -136,10 +136,6 @@ class Material:
         return self.youngs_modulus / (2.0 * (1.0 + self.poisson_ratio))
 
 
-#: The elements that have Kelvin-Voigt strain-rate damping (:class:`StrainRateDamping`).
-STRAIN_RATE_ELEMENTS = ("rancf", "ancf", "rod")
-
-
 @dataclass(frozen=True)
 class StrainRateDamping:
     """Kelvin-Voigt strain-rate damping of a flexible body.
@@ -149,7 +145,7 @@ class StrainRateDamping:
     twist moment ``GJ τ + torsion τ̇`` [N m² s].  Rigid motions have zero strain rates: they are
     not damped.  A mode of frequency ``ω`` dominated by stretching decays with the damping ratio
     ``ζ = axial ω / (2 EA)``, one dominated by bending with ``ζ = bending ω / (2 EI)``, a rod's
-    torsion mode with ``ζ = torsion ω / (2 GJ)``.  Cable and rod elements.  Statics
+    torsion mode with ``ζ = torsion ω / (2 GJ)``.  Every element (torsion: rods).  Statics
     ignore it (the velocities are zero).  Derivation: docs/derivations/strain-rate-damping.md.
     """
 
@@ -169,17 +165,11 @@ class StrainRateDamping:
         return self.axial > 0 or self.bending > 0 or self.torsion > 0
 
     def checked(self, element: str) -> StrainRateDamping:
-        """Itself, or :class:`~rancf.errors.InputError` for a coefficient the element cannot take:
-        ``torsion`` needs a rod; the co-rotational beam has none of them yet."""
+        """Itself, or :class:`~rancf.errors.InputError` if ``torsion`` is given to an element
+        without a twist (every element but the rod)."""
         if self.torsion > 0 and element != "rod":
             raise InputError("damping.torsion", self.torsion, f'0 with {element} elements (a '
                              'twist rate needs rod elements: mesh.element = "rod")')  # fmt: skip
-        for name in ("axial", "bending"):
-            v = getattr(self, name)
-            if v > 0 and element not in STRAIN_RATE_ELEMENTS:
-                raise InputError(f"damping.{name}", v, f"0 with {element} elements (strain-rate "
-                                 'damping is built for cable and rod elements: mesh.element = '
-                                 '"rancf", "ancf" or "rod")')  # fmt: skip
         return self
 
 

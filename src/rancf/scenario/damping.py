@@ -20,7 +20,7 @@ class StrainRateDampingTable(Table):
     statics ignore them.  A mode of frequency ``ω`` dominated by stretching (bending) decays with
     the damping ratio ``ζ = axial ω / (2 EA)`` (``ζ = bending ω / (2 EI)``).  MoorDyn's ``BA`` is
     ``axial``; its negative form ``BA = −ζ`` is ``axial = ζ (L/N) √(EA m)`` (``m`` the mass per
-    length, ``L/N`` MoorDyn's segment length).  Cable and rod elements (not yet the beam).
+    length, ``L/N`` MoorDyn's segment length).  Every element; ``torsion`` rods only.
     """
 
     axial: NonNegative = Field(
@@ -33,7 +33,8 @@ class StrainRateDampingTable(Table):
     )  # fmt: skip
     torsion: NonNegative = Field(
         0.0, description="rod elements: c_t in the twist moment GJ tau + c_t d(tau)/dt [N m^2 s]: "
-        "a torsion mode of frequency omega decays with zeta = c_t omega / (2 GJ)",
+        "a torsion mode of frequency omega decays with zeta = c_t omega / (2 GJ); refused on the "
+        "other elements",
     )  # fmt: skip
 
 
