@@ -9,6 +9,7 @@ import io
 import json
 import os
 import random
+import re
 import signal
 import subprocess
 import sys
@@ -374,3 +375,198 @@ def test_a_refused_process_never_removes_what_another_wrote(tmp_path):
         assert (tmp_path / "new/summary.json").is_file()
         first.keep()
     assert sorted(p.name for p in (tmp_path / "new").iterdir()) == ["summary.json"]
+
+
+def _example(name: str) -> str:
+    from importlib.resources import files
+
+    return (files("rancf.examples") / f"{name}.toml").read_text(encoding="utf-8")
+
+
+def _tether(law: str, extra: str = "") -> str:
+    """tether-reel-out for 1 s with its winch's law replaced by ``law`` and ``extra`` added."""
+    text = _example("tether-reel-out").replace("t_end = 20.0", "t_end = 1.0")
+    i = text.index("length = { table")
+    j = text.index("\n", i)
+    return text[:i] + law + text[j:] + extra
+
+
+_SECOND_WINCH = '\n[[winches]]\nname = "{name}"\nat = "tether:{end}"\nlength = 10.0\n'
+_SENSORS = ('\n[[sensors]]\nname = "w"\nkind = "position"\nat = "weight"\n'
+            '\n[[sensors]]\nname = "w_x"\nkind = "energy"\n')  # fmt: skip
+
+_SHALLOW = """[geometry]
+kind = "line"
+start = [0.0, 0.0, -10.0]
+end = [2.0, 0.0, 0.0]
+[mesh]
+elements = 3
+[section]
+radius = 0.01
+[material]
+density = 2000.0
+youngs_modulus = 1e9
+[[supports]]
+at = "start"
+[loads]
+gravity = [0.0, 0.0, -9.81]
+[fluid]
+density = 1025.0
+surface = 0.0
+waves = { height = 2.0, period = 8.0, depth = 1e-9 }
+[hydro]
+diameter = 0.03
+[solver]
+t_end = 0.1
+"""
+
+#: Inputs that ran to a wrong answer with exit 0 (or a traceback), and what refuses them.
+AMBIGUOUS = {
+    "contact-twice": ('contacts = [["rope", "pulley"], ["rope", "pulley"]]\n'
+                      + _example("capstan"),
+                      "[contacts[1]] lists the pair ['rope', 'pulley'] again (contacts[0] has it"),
+    "body-contact-twice": ('body_contacts = [["leg1", "leg2"], ["leg2", "leg1"]]\n'
+                           + _example("argyris-frame"),
+                           "[body_contacts[1]] lists the pair ['leg1', 'leg2'] again"),
+    "same-column": (_example("capstan") + _SENSORS,
+                    "[sensors[4].name] 'w_x' gives the column 'w_x', as sensors[3] ('w', kind "
+                    "'position') does"),
+    "same-winch-name": (_tether("length = 10.0", _SECOND_WINCH.format(name="reel", end="end")),
+                        "[winches[1].name] 'reel' is used twice (winches[0] has it)"),
+    "two-winches-one-end": (_tether("length = 10.0",
+                                    _SECOND_WINCH.format(name="other", end="start")),
+                            "[winches[1].at] 'tether:start': body 'tether' already has a winch "
+                            "(winches[0]): one winch per body"),
+    "vector-length": (_tether("length = [10.0, 3.0]"),
+                      "[winches[0].length] must be a scalar time function (numbers, not "
+                      "vectors), got [10.0, 3.0]"),
+    "length-below-zero": (_tether("length = { table = [[0, 10.0], [0.5, 5.0], [1.0, -1.0]] }"),
+                          "[winches[0].length] the length outside the winch must stay > 0 m "
+                          "over the run (t = 0 to t_end = 1 s), but it is -0.004 m at "
+                          "t = 0.917 s"),
+    "speed-past-zero": (_tether("speed = -30.0"),
+                        "[winches[0].speed] the length outside the winch must stay > 0 m over "
+                        "the run (t = 0 to t_end = 1 s), but it is -0.005 m at t = 0.3335 s"),
+    "length-zero-at-the-start": (_tether("length = { ramp = 0.1, value = -1.0 }"),
+                                 "[winches[0].length] the length outside the winch must stay > 0 "
+                                 "m over the run (t = 0 to t_end = 1 s), but it is 0 m at t = 0 s"),
+    "winch-at-no-body": (_tether("length = 10.0").replace('at = "tether:start"\nlength',
+                                                          'at = "nobody:start"\nlength'),
+                         "[winches[0].at] names no body: 'nobody' (bodies: tether, payload)"),
+    "sensor-of-no-winch": (_tether("length = 10.0").replace('winch = "reel"', 'winch = "nope"'),
+                           "[sensors[0].winch] names no winch: 'nope' (winches: reel)"),
+    "waves-depth": (_SHALLOW, "[fluid.waves.depth] must reach the bodies in the fluid: depth "
+                    "= 1e-09 m puts the floor at -1e-09 m, above body's node at -10 m (give "
+                    "depth >= 10 m)"),
+}  # fmt: skip
+
+
+@pytest.mark.parametrize("case", list(AMBIGUOUS))
+def test_ambiguous_inputs_are_refused_in_one_line(tmp_path, monkeypatch, capsys, case):
+    """Issue 39.3 (b–f) and 39.5: each refused on one line naming the file and the key, exit 2,
+    nothing written."""
+    text, needle = AMBIGUOUS[case]
+    monkeypatch.chdir(tmp_path)
+    Path("s.toml").write_text(text)
+    assert main(["simulate", "s.toml", "--out", "run", "--quiet"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and err.startswith("rancf: error: s.toml: ["), err
+    assert needle in err, err
+    assert not Path("run").exists()
+
+
+def test_a_sweep_over_an_array_of_tables_is_refused_in_one_line(tmp_path, monkeypatch, capsys):
+    """``"winches.speed"`` (``[[winches]]`` is an array of tables) was a TypeError traceback
+    (issue 39.5)."""
+    monkeypatch.chdir(tmp_path)
+    Path("base.toml").write_text(_tether("speed = 0.5"))
+    Path("sw.toml").write_text('base = "base.toml"\n[grid]\n"winches.speed" = [0.5, 1.0]\n')
+    assert main(["sweep", "sw.toml", "--out", "out", "--threads", "1", "--quiet"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1, err
+    assert err.startswith("rancf: error: sw.toml: [grid.winches.speed] 'winches' is an array of "
+                          "tables ([[winches]]) in the base scenario, not a table"), err
+    assert not Path("out").exists()
+
+
+_GUIDE = """[[bodies]]
+name = "rope"
+[bodies.geometry]
+kind = "line"
+start = [0.0, 0.0]
+end = [0.0, -0.5]
+[bodies.mesh]
+elements = 10
+element = "ancf"
+[bodies.section]
+radius = 0.002
+[bodies.material]
+density = 1000.0
+youngs_modulus = 1.0e9
+
+[[bodies]]
+name = "weight"
+kind = "mass"
+mass = 1.0
+position = [0.0, -0.5]
+
+[[joints]]
+name = "hook"
+kind = "pin"
+between = ["rope:end", "weight"]
+
+[[joints]]
+name = "eye"
+kind = "sliding"
+between = ["rope", "ground"]
+position = [0.0, -0.05]
+
+[loads]
+gravity = [0.0, -9.81]
+
+[solver]
+t_end = 0.2
+step = 2.0e-3
+output_step = 0.01
+
+[[sensors]]
+name = "eye"
+kind = "reaction"
+joint = "eye"
+"""
+
+#: Runs that went past a coordinate's range (issue 39.3g, 39.4): the file, the column that must
+#: stay in range, and the failure's line (a pattern).
+PAST_LIMITS = {
+    "drum-reels-in-the-line": (
+        _example("drum-hoist").replace("[0.05, 33.368], [10.0, 33.368]",
+                                       "[0.05, 80.0], [10.0, 80.0]"),
+        "drum_length",
+        r"rancf: simulation failed: winch 'hoist': the length outside the drum is -0\.0\d+ m "
+        r"at t = 0\.99 s, not > 0 \(the drum has reeled in the whole line\); the run stops at "
+        r"the step before \(written to run\)"),
+    "rope-through-its-guide": (
+        _GUIDE,
+        "eye_s",
+        r"rancf: simulation failed: sliding joint 'eye': the start of body 'rope' passes through "
+        r"its place at t = 0\.102 s \(material coordinate -0\.0\d+ of 0\.\.10 elements\); the "
+        r"run stops at the step before \(make the body longer\) \(written to run\)"),
+}  # fmt: skip
+
+
+@pytest.mark.parametrize("case", list(PAST_LIMITS))
+def test_a_run_stops_where_a_coordinate_leaves_its_range(tmp_path, monkeypatch, capsys, case):
+    """Exit 3 at the step before the length or the guide's place leaves its range, with one
+    line naming the winch or joint, the time and the value; nothing stored past it."""
+    text, column, line = PAST_LIMITS[case]
+    monkeypatch.chdir(tmp_path)
+    Path("s.toml").write_text(text)
+    assert main(["simulate", "s.toml", "--out", "run", "--quiet"]) == 3
+    err = capsys.readouterr().err.strip()
+    assert re.fullmatch(line, err.splitlines()[-1]), err
+    with open("run/sensors.csv") as fh:
+        rows = list(csv.DictReader(fh))
+    assert all(float(r[column]) >= 0.0 for r in rows), [r[column] for r in rows]
+    summary = _strict(Path("run/summary.json").read_text())
+    assert summary["status"] == "failed" and summary["message"] in err
+    assert summary["t_reached"] == float(rows[-1]["t"])

@@ -182,3 +182,57 @@ def test_resume_needs_a_checkpoint(tmp_path, monkeypatch, capsys):
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and "a checkpoint to go on from" in err, err
     assert (tmp_path / "eq" / "summary.json").is_file()  # the static solution stays
+
+
+def _hashes(folder: Path) -> dict[str, str]:
+    import hashlib
+
+    return {str(p.relative_to(folder)): hashlib.sha256(p.read_bytes()).hexdigest()
+            for p in sorted(folder.rglob("*")) if p.is_file()}  # fmt: skip
+
+
+def _damage(run: Path, how: str) -> None:
+    if how in ("truncated", "results"):
+        path = run / ("checkpoint.npz" if how == "truncated" else "results.npz")
+        data = path.read_bytes()
+        path.write_bytes(data[: len(data) // 2])
+        return
+    state = DynamicState.load(run / "checkpoint.npz")
+    if how == "shape":
+        state.y = np.zeros(10)
+    elif how == "memory":
+        state.memory = np.zeros(7)
+    elif how == "k_out":
+        state.k_out = -5
+    else:
+        state.v[3] = np.nan
+    state.save(run / "checkpoint.npz")
+
+
+@pytest.mark.parametrize(
+    ("how", "says"),
+    [("shape", "coordinates 10; needed: a state of this system (coordinates 24)"),
+     ("nan", "a NaN or infinite number in v"),
+     ("memory", "memory of 7 numbers; needed: an integrator memory of this system and its "
+                "Newton method"),
+     ("k_out", "k_out = -5; needed: a state of finite numbers"),
+     ("truncated", "a state written by a rancf run (reading it: File is not a zip file)"),
+     ("results", "run/results.npz' is not allowed: a run folder's results file")],
+)  # fmt: skip
+def test_a_refused_resume_leaves_the_run_as_it_was(tmp_path, monkeypatch, capsys, how, says):
+    """A damaged checkpoint (another system's, a NaN, cut short) or results file is refused on
+    one line naming the file, exit 2, before anything in the folder changes (issue 39)."""
+    monkeypatch.chdir(tmp_path)
+    assert main(["example", "copy", "planar-pendulum", "."]) == 0
+    args = ["simulate", "planar-pendulum.toml", "--out", "run", "--quiet"]
+    assert main([*args, "--t-end", "0.05"]) == 0
+    _damage(tmp_path / "run", how)
+    (tmp_path / "run" / ".history").mkdir()  # a killed run's leftover stays too
+    before = _hashes(tmp_path / "run")
+    capsys.readouterr()
+    assert main([*args, "--resume", "--t-end", "0.1"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and says in err, err
+    assert "run/" in err and err.startswith("rancf: error: "), err
+    assert _hashes(tmp_path / "run") == before
+    assert (tmp_path / "run" / ".history").is_dir()

@@ -38,10 +38,18 @@ def _flat(reactions) -> np.ndarray:
     return np.array([[*r.force, *([] if r.moment is None else r.moment)] for r in reactions])
 
 
-def _compare(name: str, q: np.ndarray, reactions) -> None:
+def _compare(name: str, q: np.ndarray, reactions, twist: slice | None = None) -> None:
+    """q and reactions to 1e-9 relative; a rod's nodal twists (``twist``: every 7th from the
+    7th) to 1e-6 rad: they are measured from triads re-referenced along the solver's path,
+    which moves with the round-off of the linear algebra (LAPACK builds differ by 2e-7 on the
+    curved rod), while the rod's shape and reactions stay put."""
     ref = BEFORE[name]
     q0 = np.array(ref["q"])
-    assert np.abs(q - q0).max() <= 1e-9 * np.abs(q0).max()
+    keep = np.ones(q.size, bool)
+    if twist is not None:
+        keep[twist] = False
+        assert np.abs(q - q0)[twist].max() <= 1e-6
+    assert np.abs(q - q0)[keep].max() <= 1e-9 * np.abs(q0).max()
     r0 = np.array(ref["reactions"])
     if r0.size:
         assert np.abs(_flat(reactions) - r0).max() <= 1e-9 * np.abs(r0).max()
@@ -74,7 +82,8 @@ def test_rods_with_point_moments_keep_their_equilibrium(name):
     res = solve_static(m, 10)
     from rancf.system import as_system
 
-    _compare(name, res.q, SystemOutputs(as_system(m)).static_reactions(res.y, res.lam))
+    _compare(name, res.q, SystemOutputs(as_system(m)).static_reactions(res.y, res.lam),
+             slice(6, None, 7))
 
 
 def test_the_second_static_path_stays_removed():

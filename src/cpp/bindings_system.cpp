@@ -34,6 +34,20 @@ using namespace nb::literals;
 
 namespace {
 
+/// The contact state of a time step (all three or none): into terms.contact_*.
+void step_contact(const std::optional<In>& yf, const std::optional<In>& vf,
+                  const std::optional<In>& y1, std::size_t n, rancf::AssemblyTerms& terms) {
+  if (!yf && !vf && !y1) return;
+  if (!(yf && vf && y1))
+    throw std::invalid_argument("contact_yf, contact_vf and contact_y1 go together");
+  expect_size(*yf, n, "contact_yf");
+  expect_size(*vf, n, "contact_vf");
+  expect_size(*y1, n, "contact_y1");
+  terms.contact_yf = yf->data();
+  terms.contact_vf = vf->data();
+  terms.contact_y1 = y1->data();
+}
+
 struct SystemHolder {
   std::vector<nb::object> models;  // keeps the flexible bodies' arrays alive
   std::vector<double> y_ref;
@@ -275,7 +289,8 @@ void bind_system(nb::module_& mod) {
       .def(
           "residual",
           [](const SystemHolder& h, In y, In v, In a, In lam, double t, double load_factor,
-             bool amplitude, bool dynamic, Out r, bool distributed_only) {
+             bool amplitude, bool dynamic, Out r, std::optional<In> contact_yf,
+             std::optional<In> contact_vf, std::optional<In> contact_y1, bool distributed_only) {
             const auto n = static_cast<std::size_t>(h.s.n), m = static_cast<std::size_t>(h.s.m);
             for (const auto* x : {&y, &v, &a}) expect_size(*x, n, "state");
             expect_size(lam, m, "lam");
@@ -285,15 +300,20 @@ void bind_system(nb::module_& mod) {
             terms.load_factor = load_factor;
             terms.amplitude = amplitude;
             terms.distributed_only = distributed_only;
+            step_contact(contact_yf, contact_vf, contact_y1, n, terms);
             return rancf::assemble_system(h.s, y.data(), dynamic ? v.data() : nullptr,
                                           dynamic ? a.data() : nullptr, lam.data(), y.data(), terms,
                                           r.data(), nullptr);
           },
           "y"_a, "v"_a, "a"_a, "lam"_a, "t"_a, "load_factor"_a = 1.0, "amplitude"_a = false,
-          "dynamic"_a = true, "r"_a.noconvert(), "distributed_only"_a = false,
+          "dynamic"_a = true, "r"_a.noconvert(), "contact_yf"_a.none() = nb::none(),
+          "contact_vf"_a.none() = nb::none(), "contact_y1"_a.none() = nb::none(),
+          "distributed_only"_a = false,
           "The balance residual (n) and the constraints (m) at (y, v, a, lambda, t); dynamic = "
-          "False: statics (no inertia); distributed_only: the bodies' own terms only (no point "
-          "loads, loads at places or springs).  Returns False if not finite.")
+          "False: statics (no inertia); contact_yf, contact_vf, contact_y1: the contact forces "
+          "of a time step (its alpha point and end) instead of those at (y, v); "
+          "distributed_only: the bodies' own terms only (no point loads, loads at places or "
+          "springs).  Returns False if not finite.")
       .def(
           "place",
           [](const SystemHolder& h, int index, In y, double t) {
@@ -489,7 +509,8 @@ void bind_system(nb::module_& mod) {
           [](SystemIntegratorHolder& h, Out y, Out v, Out a, Out w, Out lam, double t0, double dt,
              std::int64_t n_steps, std::int64_t out_every, std::int64_t done_before,
              double max_seconds, Out out_y, Out out_v, Out out_l, std::optional<Out> out_e,
-             double out_dt, std::int64_t k_last) {
+             std::optional<Out> out_yf, std::optional<Out> out_vf, double out_dt,
+             std::int64_t k_last) {
             for (const auto* x : {&y, &v, &a, &w}) expect_size(*x, h.n, "state");
             expect_size(lam, h.m, "lambda");
             if (out_every < 1 || n_steps < 0 || done_before < 0)
@@ -499,13 +520,20 @@ void bind_system(nb::module_& mod) {
             expect_size(out_v, n_out * h.n, "out_v");
             expect_size(out_l, n_out * h.m, "out_l");
             if (out_e) expect_size(*out_e, n_out * 3, "out_e");
+            if (out_yf.has_value() != out_vf.has_value())
+              throw std::invalid_argument("run: out_yf and out_vf go together");
+            if (out_yf) {
+              expect_size(*out_yf, n_out * h.n, "out_yf");
+              expect_size(*out_vf, n_out * h.n, "out_vf");
+            }
             rancf::RunOutcome r;
             {
               nb::gil_scoped_release release;
-              r = h.integ.run({y.data(), v.data(), a.data(), w.data(), lam.data()}, t0, dt,
-                              n_steps, out_every, done_before, max_seconds, out_y.data(),
-                              out_v.data(), out_l.data(), out_e ? out_e->data() : nullptr, out_dt,
-                              k_last);
+              r = h.integ.run({y.data(), v.data(), a.data(), w.data(), lam.data()}, t0, dt, n_steps,
+                              out_every, done_before, max_seconds, out_y.data(), out_v.data(),
+                              out_l.data(), out_e ? out_e->data() : nullptr,
+                              out_yf ? out_yf->data() : nullptr, out_vf ? out_vf->data() : nullptr,
+                              out_dt, k_last);
             }
             return std::make_tuple(r.steps, r.converged, r.iterations, r.stored, r.max_error,
                                    r.t_max_error);
@@ -513,25 +541,37 @@ void bind_system(nb::module_& mod) {
           "y"_a.noconvert(), "v"_a.noconvert(), "a"_a.noconvert(), "w"_a.noconvert(),
           "lam"_a.noconvert(), "t0"_a, "h"_a, "n_steps"_a, "out_every"_a, "done_before"_a,
           "max_seconds"_a, "out_y"_a.noconvert(), "out_v"_a.noconvert(), "out_l"_a.noconvert(),
-          "out_e"_a.noconvert().none(), "out_dt"_a = 0.0, "k_last"_a = 0,
+          "out_e"_a.noconvert().none(), "out_yf"_a.noconvert().none() = nb::none(),
+          "out_vf"_a.noconvert().none() = nb::none(), "out_dt"_a = 0.0, "k_last"_a = 0,
           "Fixed steps (state y, v, a, w, lam updated in place); returns (steps, converged, "
-          "Newton iterations, outputs stored, largest local error estimate, its time).")
+          "Newton iterations, outputs stored, largest local error estimate, its time); out_yf, "
+          "out_vf: each stored row's step's alpha point (its contact forces' state).")
       .def(
           "initial_acceleration",
-          [](SystemIntegratorHolder& h, In y, In v, double t, Out a, Out lam) {
+          [](SystemIntegratorHolder& h, In y, In v, double t, Out a, Out lam,
+             std::optional<In> contact_yf, std::optional<In> contact_vf,
+             std::optional<In> contact_y1) {
             for (const auto* x : {&y, &v}) expect_size(*x, h.n, "state");
             expect_size(a, h.n, "a");
             expect_size(lam, h.m, "lambda");
-            return h.integ.initial_acceleration(y.data(), v.data(), t, a.data(), lam.data());
+            rancf::AssemblyTerms contact;
+            step_contact(contact_yf, contact_vf, contact_y1, h.n, contact);
+            return h.integ.initial_acceleration(y.data(), v.data(), t, a.data(), lam.data(),
+                                                contact.contact_yf != nullptr ? &contact : nullptr);
           },
           "y"_a, "v"_a, "t"_a, "a"_a.noconvert(), "lam"_a.noconvert(),
-          "Consistent accelerations and multipliers at (y, v, t).")
+          "contact_yf"_a.none() = nb::none(), "contact_vf"_a.none() = nb::none(),
+          "contact_y1"_a.none() = nb::none(),
+          "Consistent accelerations and multipliers at (y, v, t); contact_yf, contact_vf, "
+          "contact_y1: with the contact forces of a time step (its alpha point and end).")
       .def(
           "derived_rows",
           [](SystemIntegratorHolder& h, In t, In y, In v, Out a, Out lam, Out res, Out joints,
-             std::size_t n_joints, std::optional<Out> res0, std::optional<Out> internal) {
+             std::size_t n_joints, std::optional<Out> res0, std::optional<Out> internal,
+             std::optional<In> alpha) {
             const std::size_t k = t.size();
             for (const auto* x : {&y, &v}) expect_size(*x, k * h.n, "states");
+            if (alpha) expect_size(*alpha, k * 2 * h.n, "alpha");
             expect_size(a, k * h.n, "a");
             expect_size(lam, k * h.m, "lam");
             expect_size(res, k * (h.n + h.m), "res");
@@ -541,16 +581,19 @@ void bind_system(nb::module_& mod) {
             nb::gil_scoped_release release;  // an output worker's rows beside the time loop
             h.integ.derived_rows(
                 static_cast<int>(k), t.data(), y.data(), v.data(), a.data(), lam.data(), res.data(),
-                joints.data(), res0 ? res0->data() : nullptr, internal ? internal->data() : nullptr);
+                joints.data(), res0 ? res0->data() : nullptr, internal ? internal->data() : nullptr,
+                alpha ? alpha->data() : nullptr);
           },
           "t"_a, "y"_a, "v"_a, "a"_a.noconvert(), "lam"_a.noconvert(), "res"_a.noconvert(),
           "joints"_a.noconvert(), "n_joints"_a, "res0"_a.noconvert().none() = nb::none(),
-          "internal"_a.noconvert().none() = nb::none(),
+          "internal"_a.noconvert().none() = nb::none(), "alpha"_a.none() = nb::none(),
           "Derived values of k stored states (rows of y, v at times t): the consistent a and "
           "lambda, the balance residual and constraints with them, every joint's (force, "
           "moment) (6 a joint; n_joints, the system's joints); res0: the bodies' own terms "
           "alone (distributed_only, no multipliers), internal: the element forces, n a row "
-          "each, from the same assembly.")
+          "each, from the same assembly; alpha (k rows of 2 n, systems with contact): each "
+          "row's step's alpha point (yf, vf), whose contact forces the row takes (without it "
+          "the row's own state's).")
       .def(
           "factor_static",
           [](SystemIntegratorHolder& h, In y, In lam, double lf, bool amplitude, double t,

@@ -40,12 +40,12 @@ struct StepOutcome {
 };
 
 struct RunOutcome {
-  std::int64_t steps = 0;   ///< steps taken
-  bool converged = true;    ///< false: the next step failed (not taken)
-  long iterations = 0;      ///< Newton iterations, failed step included
-  std::int64_t stored = 0;  ///< outputs stored
-  double max_error = 0.0;   ///< largest local error estimate of the steps taken
-  double t_max_error = 0.0; ///< the time at the end of that step
+  std::int64_t steps = 0;    ///< steps taken
+  bool converged = true;     ///< false: the next step failed (not taken)
+  long iterations = 0;       ///< Newton iterations, failed step included
+  std::int64_t stored = 0;   ///< outputs stored
+  double max_error = 0.0;    ///< largest local error estimate of the steps taken
+  double t_max_error = 0.0;  ///< the time at the end of that step
 };
 
 /// Kinetic energy of the constant mass, 1/2 v^T M_c v.

@@ -169,6 +169,11 @@ struct AssemblyTerms {
   /// Outputs: the bodies' own terms only (elements, weight, inertia, fluid, contact), without
   /// the forces at places (point loads, loads at places, springs, joints)
   bool distributed_only = false;
+  /// Outputs: contact forces taken at another state, a time step's alpha point (contact_yf,
+  /// contact_vf) and end (contact_y1), instead of at (yf, vf, y1); no contact Jacobian then.
+  const double* contact_yf = nullptr;
+  const double* contact_vf = nullptr;
+  const double* contact_y1 = nullptr;
   /// Outputs (may be null, n values each): the flexible bodies' element forces f_int alone
   /// (a winch's body at its length at tf; other rows untouched), and the bodies' own terms of
   /// r as distributed_only would give them without multipliers, taken from the same pass

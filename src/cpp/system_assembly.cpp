@@ -469,7 +469,10 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
   // ---- contact with obstacles (contact.hpp); its forces are the bodies' own terms too
   thread_local std::vector<double> before;
   if (tm.own != nullptr && s.contact != nullptr) before.assign(r, r + n);
-  if (s.contact != nullptr) {
+  if (s.contact != nullptr && tm.contact_yf != nullptr) {  // forces of another state
+    assemble_contact(s, *s.contact, tm.contact_yf, tm.contact_vf, tm.contact_y1, tm, r, nullptr,
+                     nullptr);
+  } else if (s.contact != nullptr) {
     const MatrixSink sink = [&](const int* idx, int k, const double* K) {
       add_matrix(*lu, idx, k, K, far);
     };

@@ -23,11 +23,15 @@ SystemIntegrator::SystemIntegrator(const System& s, const Scheme& scheme)
       sc_(scheme),
       lu_(s.offset, s.block_size, s.block_ku, s.fixed.data()),
       base_(sz(s.n)),
+      yf_(sz(s.n)),
+      vf_(sz(s.n)),
+      am_(sz(s.n)),
       r_(sz(s.n + s.m)),
       dz_(sz(s.n + s.m)) {
   // no constraints, rigid bodies, rotary inertia or contact: [M G^T; G 0] is M, whatever the
   // state (the element tangents count zero times in it)
   mass_constant_ = s.m == 0 && s.rigid.empty() && s.contact == nullptr;
+  chung_hulbert_ = s.contact != nullptr;
   // contact switches within a step, where reused factors lead the iteration astray (rejected
   // steps): chord is full Newton there
   if (s.contact != nullptr) sc_.chord = false;
@@ -120,26 +124,36 @@ StepOutcome SystemIntegrator::iterate(const StepIn& s0, double t, double h, cons
   }
   set_prescribed(t + h, y1, nullptr, nullptr);
   std::copy(s0.lam, s0.lam + m, l1);
-  // the balance at t + h (TI.1-TI.4): d a1/d y1 = (1 - am)/((1 - af) beta h^2)
+  // the balance at t + h (TI.1-TI.6): d a1/d y1 = (1 - am)/((1 - af) beta h^2); contact: at
+  // the alpha point (TI.0), the derivatives of yf, vf and am by y1
+  const bool ch = chung_hulbert_;
   AssemblyTerms terms;
-  terms.ck = 1.0;
-  terms.cv = gamma / (beta * h);
-  terms.ca = (1.0 - am) / ((1.0 - af) * bh2);
-  terms.tf = terms.t1 = t + h;
+  terms.ck = ch ? 1.0 - af : 1.0;
+  terms.cv = (ch ? 1.0 - af : 1.0) * gamma / (beta * h);
+  terms.ca = ch ? (1.0 - am) / bh2 : (1.0 - am) / ((1.0 - af) * bh2);
+  terms.tf = ch ? t + (1.0 - af) * h : t + h;
+  terms.t1 = t + h;
   double prev = std::numeric_limits<double>::infinity();
   const double* w = scale_.empty() ? nullptr : scale_.data();
   auto rates = [&]() {  // w1, v1 and a1 of y1 (the Newmark relations and the alpha blend)
     for (int i = 0; i < n; ++i) {
       w1[i] = (y1[i] - base_[sz(i)]) / bh2;
       v1[i] = v0[i] + h * ((1.0 - gamma) * w0[i] + gamma * w1[i]);
-      a1[i] = ((1.0 - am) * w1[i] + am * w0[i] - af * a0[i]) / (1.0 - af);
+      a1[i] = ch ? w1[i] : ((1.0 - am) * w1[i] + am * w0[i] - af * a0[i]) / (1.0 - af);
+      if (!ch) continue;
+      yf_[sz(i)] = (1.0 - af) * y1[i] + af * y0[i];
+      vf_[sz(i)] = (1.0 - af) * v1[i] + af * v0[i];
+      am_[sz(i)] = (1.0 - am) * w1[i] + am * w0[i];
     }
   };
+  const double* yb = ch ? yf_.data() : y1;  // the balance's state
+  const double* vb = ch ? vf_.data() : v1;
+  const double* ab = ch ? am_.data() : a1;
   for (int it = 1; it <= max_iter; ++it) {
     rates();
     const bool fresh = !reuse || !lu_valid_;
     if (fresh) mass_factored_ = false;  // the assembly below writes into lu_
-    if (!assemble_system(s_, y1, v1, a1, l1, y1, terms, r_.data(), fresh ? &lu_ : nullptr)) {
+    if (!assemble_system(s_, yb, vb, ab, l1, y1, terms, r_.data(), fresh ? &lu_ : nullptr)) {
       lu_valid_ = false;
       return {false, it};
     }
@@ -147,7 +161,7 @@ StepOutcome SystemIntegrator::iterate(const StepIn& s0, double t, double h, cons
       ++factorizations_;
       lu_valid_ = lu_.factor();
       if (!lu_valid_) return {false, it};
-      if (sc_.modified) remember(h, terms, l1, y1, v1, a1);
+      if (sc_.modified) remember(h, terms, yb, vb, ab, l1, y1);
     }
     solve_negative();
     double norm = 0.0;  // increments measured as displacements (docs/derivations/newton.md)
@@ -187,11 +201,12 @@ StepOutcome SystemIntegrator::iterate(const StepIn& s0, double t, double h, cons
   return {false, max_iter};
 }
 
-void SystemIntegrator::remember(double h, const AssemblyTerms& terms, const double* l1,
-                                const double* y1, const double* v1, const double* a1) {
+void SystemIntegrator::remember(double h, const AssemblyTerms& terms, const double* yf,
+                                const double* vf, const double* am, const double* l1,
+                                const double* y1) {
   const int n = s_.n, m = s_.m;
   factored_at_.assign({h, terms.ck, terms.cv, terms.ca, terms.tf, terms.t1});
-  for (const double* x : {y1, v1, a1}) factored_at_.insert(factored_at_.end(), x, x + n);
+  for (const double* x : {yf, vf, am, y1}) factored_at_.insert(factored_at_.end(), x, x + n);
   factored_at_.insert(factored_at_.end(), l1, l1 + m);
 }
 
@@ -202,16 +217,12 @@ std::vector<double> SystemIntegrator::memory() const {
 }
 
 bool SystemIntegrator::restore(const std::vector<double>& saved, long factorizations) {
-  const auto n = sz(s_.n), m = sz(s_.m), point = 6 + 3 * n + m;
+  const auto n = sz(s_.n), m = sz(s_.m), point = 6 + 4 * n + m;
   factorizations_ = factorizations;
   lu_valid_ = false;
   factored_at_.clear();
   from_y0_ = 0;
   std::vector<double> memory(saved);
-  // the point of rancf 0.2 (alone) or 0.3 (after [s]) is of the balance at the alpha point: the
-  // next step factors afresh
-  if (memory.size() == 6 + 4 * n + m) memory.assign(1, 0.0);
-  if (memory.size() == 7 + 4 * n + m) memory.resize(1);
   if (memory.size() == 1 || memory.size() == point + 1) {  // [s] first (else rancf 0.2)
     const double s = memory[0];
     if (!(s >= 0.0 && s <= kFromY0Steps && s == std::floor(s))) return false;
@@ -227,7 +238,7 @@ bool SystemIntegrator::restore(const std::vector<double>& saved, long factorizat
   terms.tf = memory[4];
   terms.t1 = memory[5];
   const double* p = memory.data() + 6;
-  if (!assemble_system(s_, p, p + n, p + 2 * n, p + 3 * n, p, terms, r_.data(), &lu_))
+  if (!assemble_system(s_, p, p + n, p + 2 * n, p + 4 * n, p + 3 * n, terms, r_.data(), &lu_))
     return false;
   lu_valid_ = lu_.factor();
   if (lu_valid_) {
@@ -240,7 +251,8 @@ bool SystemIntegrator::restore(const std::vector<double>& saved, long factorizat
 RunOutcome SystemIntegrator::run(const StepOut& x, double t0, double h, std::int64_t n_steps,
                                  std::int64_t out_every, std::int64_t done_before,
                                  double max_seconds, double* out_y, double* out_v, double* out_l,
-                                 double* out_e, double out_dt, std::int64_t k_last) {
+                                 double* out_e, double* out_yf, double* out_vf, double out_dt,
+                                 std::int64_t k_last) {
   const int n = s_.n, m = s_.m;
   const auto start = std::chrono::steady_clock::now();
   std::vector<double> y1(sz(n)), v1(sz(n)), a1(sz(n)), w1(sz(n)), l1(sz(m));
@@ -263,6 +275,15 @@ RunOutcome SystemIntegrator::run(const StepOut& x, double t0, double h, std::int
       out.max_error = st.error;
       out.t_max_error = t + h;
     }
+    const bool stores = (done_before + k + 1) % out_every == 0;
+    if (stores && out_yf != nullptr) {  // the step's alpha point, before y, v are replaced
+      const std::ptrdiff_t row = static_cast<std::ptrdiff_t>(out.stored);
+      const double af = sc_.alpha_f;
+      for (int i = 0; i < n; ++i) {
+        out_yf[row * n + i] = (1.0 - af) * y1[sz(i)] + af * x.y[i];
+        out_vf[row * n + i] = (1.0 - af) * v1[sz(i)] + af * x.v[i];
+      }
+    }
     std::copy(y1.begin(), y1.end(), x.y);
     std::copy(v1.begin(), v1.end(), x.v);
     std::copy(a1.begin(), a1.end(), x.a);
@@ -270,7 +291,7 @@ RunOutcome SystemIntegrator::run(const StepOut& x, double t0, double h, std::int
     std::copy(l1.begin(), l1.end(), x.lam);
     system_rereference(s_, x.y, x.v, x.a, x.w);
     out.steps = k + 1;
-    if ((done_before + k + 1) % out_every == 0) {
+    if (stores) {
       ++k_last;
       since = 0;
       const std::ptrdiff_t row = static_cast<std::ptrdiff_t>(out.stored);
@@ -287,7 +308,7 @@ RunOutcome SystemIntegrator::run(const StepOut& x, double t0, double h, std::int
 }
 
 bool SystemIntegrator::initial_acceleration(const double* y, const double* v, double t, double* a,
-                                            double* lam, const AssemblyTerms* outputs) {
+                                            double* lam, const AssemblyTerms* contact) {
   const int n = s_.n, m = s_.m;
   std::vector<double> known(sz(n), 0.0), zero(sz(m), 0.0);
   for (int k : s_.slots) zero[sz(k)] = lam[k];  // sliding joints' material coordinates
@@ -298,9 +319,12 @@ bool SystemIntegrator::initial_acceleration(const double* y, const double* v, do
   terms.ca = 1.0;
   terms.tf = t;
   terms.t1 = t;
-  if (outputs != nullptr) {
-    terms.internal = outputs->internal;
-    terms.own = outputs->own;
+  if (contact != nullptr) {  // the contact state is given: no derivative by y (ck = cv = 0)
+    terms.contact_yf = contact->contact_yf;
+    terms.contact_vf = contact->contact_vf;
+    terms.contact_y1 = contact->contact_y1;
+    terms.internal = contact->internal;
+    terms.own = contact->own;
   }
   lu_valid_ = false;
   const bool reuse = mass_constant_ && mass_factored_;  // the factors of M from an earlier call

@@ -13,6 +13,10 @@
 // -G^T lambda is the joints' force on the bodies.  Constraints hold at every step to the Newton
 // tolerance.  Held coordinates that follow time functions (moving supports) are set at t_{n+1}
 // before the iterations; their accelerations and velocities follow from the Newmark relations.
+// Systems with contact keep the Chung-Hulbert form (the balance at the alpha point, forces at
+// blends of the step's states, with the step's mean pressure: contact.hpp): in the form above
+// the impacts of a stiff penalty gain energy, and a cable dropped on the ground does not come
+// to rest (docs/derivations/time-integration.md sec. 4).  There w = a.
 #pragma once
 
 #include <cstdint>
@@ -57,15 +61,19 @@ class SystemIntegrator {
   /// out_dt > 0: the steps' times are out_dt k + i h, k the index of the last output (k_last
   /// at the start, t0 its time) and i the steps since it, whatever steps earlier calls took
   /// (a run's numbers do not depend on where it was cut into calls); else t0 + k h.
+  /// out_yf, out_vf (may be null): the alpha point (y_{n+1-af}, v_{n+1-af}) of the step that
+  /// ended at each stored row (before the rods' re-referencing), where its contact forces act.
   RunOutcome run(const StepOut& x, double t0, double h, std::int64_t n_steps,
                  std::int64_t out_every, std::int64_t done_before, double max_seconds,
-                 double* out_y, double* out_v, double* out_l, double* out_e, double out_dt = 0.0,
+                 double* out_y, double* out_v, double* out_l, double* out_e,
+                 double* out_yf = nullptr, double* out_vf = nullptr, double out_dt = 0.0,
                  std::int64_t k_last = 0);
   /// Consistent initial acceleration and multipliers: [M G^T; G 0] [a; lambda] = [-F; -c].
-  /// outputs (may be null): the assembly's outputs internal and own (AssemblyTerms; at the
-  /// known accelerations of the held coordinates, the others zero).
+  /// contact (may be null): the contact forces of a step instead of those at (y, v)
+  /// (AssemblyTerms::contact_yf and after), and the assembly's outputs internal and own (at
+  /// the known accelerations of the held coordinates, the others zero).
   bool initial_acceleration(const double* y, const double* v, double t, double* a, double* lam,
-                            const AssemblyTerms* outputs = nullptr);
+                            const AssemblyTerms* contact = nullptr);
   /// Derived values of k stored states (rows of y and v, n each, at times t): the
   /// consistent accelerations and multipliers (initial_acceleration; zero where it fails),
   /// the balance residual and constraints with them (n + m a row) and every joint's reaction
@@ -73,11 +81,12 @@ class SystemIntegrator {
   /// null, n a row): the bodies' own terms alone at the same a, without the multipliers
   /// (AssemblyTerms::own), and internal (if not null, n a row): the element forces
   /// (AssemblyTerms::internal), both from the pass that gives the residual, for the nodal
-  /// axial forces.  Contact forces are those at the row's state, where the step that ended
-  /// there holds its balance.
+  /// axial forces.  Systems with contact: the contact forces are those of the step that ended
+  /// at each row, alpha (if not null, 2 n a row) its generalized-alpha point (yf, vf), else the
+  /// row's own state (a step of length zero).
   void derived_rows(int k, const double* t, const double* y, const double* v, double* a,
                     double* lam, double* res, double* joints, double* res0 = nullptr,
-                    double* internal = nullptr);
+                    double* internal = nullptr, const double* alpha = nullptr);
   /// One Newton increment of the statics at load factor lf: (dy, dlam) with
   /// K dy + G^T dlam = -r, G dy = -g.  Returns false if the matrix is singular.
   bool static_increment(const double* y, const double* lam, double lf, bool amplitude, double t,
@@ -99,22 +108,23 @@ class SystemIntegrator {
   void set_prescribed(double t, double* y, double* v, double* a) const;
   /// What the loop keeps between steps: [s], the steps since one started again from y0 (0:
   /// none; step()), then, modified Newton with valid factors, the point the factored Jacobian
-  /// was assembled at: [h, ck, cv, ca, tf, t1, y (n), v (n), a (n), lambda (m)].
+  /// was assembled at: [h, ck, cv, ca, tf, t1, yf (n), vf (n), am (n), y1 (n), lambda (m)]
+  /// (assemble_system's arguments: the balance's state and the constraints' point).
   [[nodiscard]] std::vector<double> memory() const;
   /// Take up memory() of another integrator on the same system: the Jacobian is assembled at
   /// the same point and factored again (bit for bit the same factors); factorizations, the
   /// counter to go on from.  Memory of rancf 0.2 (without [s]: empty or the modified point
-  /// alone) is taken as s = 0; that of rancf 0.3 (the point of the balance at the alpha point,
-  /// 7 + 4 n + m numbers) as [s] alone (the next step factors afresh).  False if the data do
-  /// not fit or the factorization fails.
+  /// alone) is taken as s = 0.  False if the data do not fit or the factorization fails.
   bool restore(const std::vector<double>& memory, long factorizations);
 
  private:
   /// The Newton iterations of step(), from the predictor y0 + h v0 + h^2/2 a0 or from y0.
   StepOutcome iterate(const StepIn& s0, double t, double h, const StepOut& s1, bool from_y0);
   void solve_negative();
-  void remember(double h, const AssemblyTerms& terms, const double* l1, const double* y1,
-                const double* v1, const double* a1);
+  /// Modified Newton: where the factored Jacobian was assembled (assemble_system's yf, vf,
+  /// am, lambda and y1).
+  void remember(double h, const AssemblyTerms& terms, const double* yf, const double* vf,
+                const double* am, const double* l1, const double* y1);
   const System& s_;
   Scheme sc_;
   BorderedLU lu_;
@@ -123,7 +133,9 @@ class SystemIntegrator {
   bool mass_factored_ = false;  // lu_ holds the factors of that matrix
   double lu_h_ = -1.0;
   long factorizations_ = 0;
-  std::vector<double> base_, r_, dz_, zb_, zero_;
+  std::vector<double> base_, yf_, vf_, am_, r_, dz_, zb_, zero_;
+  /// Contact: the Chung-Hulbert form (module comment)
+  bool chung_hulbert_ = false;
   /// Steps since one had to start again from y0 (0: the last started from the predictor and
   /// converged); below kFromY0Steps the next step starts from y0 at once, at it from the
   /// predictor.

@@ -99,7 +99,7 @@ void joint_reaction(const System& s, int k, const double* y, double t, const dou
 
 void SystemIntegrator::derived_rows(int k, const double* t, const double* y, const double* v,
                                     double* a, double* lam, double* res, double* joints,
-                                    double* res0, double* internal) {
+                                    double* res0, double* internal, const double* alpha) {
   const auto n = sz(s_.n), m = sz(s_.m), nj = s_.joints.size();
   // where the balance is M a + (terms without a), M constant (no constraints, rigid bodies,
   // rotary inertia, contact, fluid or winches), the residual at the consistent a is that of
@@ -115,11 +115,19 @@ void SystemIntegrator::derived_rows(int k, const double* t, const double* y, con
     double* fi = internal != nullptr ? internal + i * n : nullptr;
     std::fill(ai, ai + n, 0.0);
     std::fill(li, li + m, 0.0);
-    // the balance holds at the row's own state (contact included: the step's forces act there)
-    AssemblyTerms outs;  // the same pass's element forces and own terms (linear: at a_known)
-    outs.internal = fi;
+    // contact: the forces of the step that ended at the row, at its alpha point (yf, vf) and
+    // end (the row); without alpha a step of length zero (the row's own state)
+    AssemblyTerms step;
+    if (s_.contact != nullptr) {
+      step.contact_yf = alpha != nullptr ? alpha + i * 2 * n : yi;
+      step.contact_vf = alpha != nullptr ? alpha + i * 2 * n + n : vi;
+      step.contact_y1 = yi;
+    }
+    AssemblyTerms outs = step;  // the same pass's element forces and own terms (linear: at
+    outs.internal = fi;         // a_known)
     outs.own = oi;
-    if (initial_acceleration(yi, vi, t[i], ai, li, linear ? &outs : nullptr) && linear) {
+    const AssemblyTerms* first = linear ? &outs : s_.contact != nullptr ? &step : nullptr;
+    if (initial_acceleration(yi, vi, t[i], ai, li, first) && linear) {
       std::copy(r_.begin(), r_.begin() + static_cast<std::ptrdiff_t>(n), ri);
       for (std::size_t b = 0; b < s_.flex.size(); ++b) {  // + M dz, dz = a - a_known
         const Model& mod = *s_.flex[b];
@@ -131,8 +139,8 @@ void SystemIntegrator::derived_rows(int k, const double* t, const double* y, con
           for (int j = 0; j < nb; ++j) oi[o + j] += md[sz(j)];
       }
     } else {
-      AssemblyTerms terms;  // the balance residual at (y, v, a, lambda, t), as System.residual
-      terms.tf = terms.t1 = t[i];
+      AssemblyTerms terms = step;  // the balance residual at (y, v, a, lambda, t), as
+      terms.tf = terms.t1 = t[i];  // System.residual
       terms.internal = fi;
       terms.own = oi;
       assemble_system(s_, yi, vi, ai, li, yi, terms, ri, nullptr);

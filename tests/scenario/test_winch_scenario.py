@@ -117,7 +117,7 @@ def test_speed_winch_and_its_sensor(tmp_path):
          "inertia = 0.1", "winches[0]"),
         ('at = "wire:start"\nspeed', 'at = "wire:3"\nspeed', "winches[0].at"),
         ('speed = { ramp = 2.0, value = 1.0 }', 'speed = 1.0\nlength = 5.0', "winches[0]"),
-        ('winch = "hoist"', 'winch = "drum"', "sensors.drum.winch"),
+        ('winch = "hoist"', 'winch = "drum"', "[sensors[0].winch] names no winch: 'drum'"),
         ('speed = { ramp = 2.0, value = 1.0 }', 'speed = 1.0\nposition = [0.0, 1.0]',
          "winches[0].position"),
     ],

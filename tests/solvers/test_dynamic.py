@@ -138,7 +138,7 @@ def test_a_run_does_not_depend_on_the_load(monkeypatch):
     run_steps = dyn.GeneralizedAlpha.run_steps
 
     def counted(self, *args, **kwargs):  # noqa: ANN001, ANN002, ANN003, ANN202
-        sizes.append(args[5] // args[6])  # n_steps // per_out: the outputs asked of the call
+        sizes.append(args[6] // args[7])  # n_steps // per_out: the outputs asked of the call
         return run_steps(self, *args, **kwargs)
 
     monkeypatch.setattr(dyn.GeneralizedAlpha, "run_steps", counted)

@@ -148,7 +148,7 @@ def _run(m: Model, y: np.ndarray, v: np.ndarray, h: float, t_end: float) -> np.n
     integ = GeneralizedAlpha(m, 1.0, 1e-12, 20)
     a = integ.initial_acceleration(y, v, 0.0)
     n = round(t_end / h)
-    done, ok, _, _, oy, *_ = integ.run_steps(y.copy(), v.copy(), a, 0.0, h, n, 1)
+    done, ok, _, _, oy, *_ = integ.run_steps(y.copy(), v.copy(), a, a.copy(), 0.0, h, n, 1)
     assert done == n and ok == 1
     return oy
 

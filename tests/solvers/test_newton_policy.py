@@ -82,7 +82,7 @@ def test_chord_is_tightly_converged_full_newton_within_the_tolerance():
     pos = [m.node_positions(x.q) for x in (ref, res)]
     err = np.abs(pos[1] - pos[0]).max()
     assert err < 1.2e-10, err
-    assert res.n_newton / 50 < 3.6, res.n_newton
+    assert res.n_newton / 50 < 3.8, res.n_newton  # measured 3.64 (the balance at t_{n+1})
 
 
 def _stiff_steps(k: int) -> tuple[list[int], list[int]]:
@@ -97,9 +97,10 @@ def _stiff_steps(k: int) -> tuple[list[int], list[int]]:
     y, v, lam = s.y0.copy(), s.v0.copy(), np.zeros(s.m)
     integ.prescribe(0.0, y, v)
     a = integ.initial_acceleration(y, v, 0.0, lam)
+    w = a.copy()
     counts, iters = [], []
     for i in range(k):
-        done, ok, it, *_ = integ.run_steps(y, v, a, i * 1e-3, 1e-3, 1, 1, 0)
+        done, ok, it, *_ = integ.run_steps(y, v, a, w, i * 1e-3, 1e-3, 1, 1, 0)
         assert done == 1 and ok == 1
         counts.append(int(integ.memory()[0]))
         iters.append(it)

@@ -8,6 +8,8 @@ Atwood machine with the rope's mass."""
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 import pytest
 import scipy.linalg
@@ -335,19 +337,34 @@ def test_guide_as_middle_support_in_modes():
     assert f[1] == pytest.approx(exact[1], rel=5e-4)
 
 
-def test_end_through_the_guide_is_said_in_one_line():
-    """A rope falling freely through a guide near its top end: once the end has passed, the
-    outputs say so in one warning line, once (the joint holds the continued end element)."""
+def test_end_through_the_guide_stops_the_run():
+    """A rope falling freely through a guide near its top end: the run stops at the step before
+    its end passes through (issue 39.3g: it completed with the joint on the end element
+    continued beyond the body), on the compiled loop's fixed steps and on adaptive ones; the
+    outputs of a state past it say so in one warning line, once."""
     rope = Model(mesh_line([0.0, 0.0], [0.0, -0.5], 10), "ancf", SEC, MAT, gravity=[0, -9.81])
     s = System({"rope": rope, "weight": PointMass(2, 1.0, (0.0, -0.5))},
                [Joint("pin", ("rope:end", "weight")),
                 Joint("sliding", ("rope", "ground"), position=(0.0, -0.05), name="eye")],
                gravity=[0, -9.81])  # fmt: skip
-    res = integrate(s, DynamicOptions(t_end=0.2, step=2e-3, output_step=0.05))
-    assert res.status.value == "completed", res.message
+    for adaptive in (False, True):
+        res = integrate(s, DynamicOptions(t_end=0.2, step=2e-3, output_step=0.01,
+                                          adaptive=adaptive))  # fmt: skip
+        assert res.status.value == "failed", res.message
+        found = re.match(r"sliding joint 'eye': the start of body 'rope' passes through its "
+                         r"place at t = (\S+) s \(material coordinate -", res.message)
+        assert found, res.message
+        t_out = float(found[1])  # free fall of 0.05 m, the start to the eye: 0.101 s
+        assert 0.1 < t_out < 0.12
+        slot = s.joint_rows[1] + s.dim
+        assert 0.0 <= res.state.lam[slot] and res.state.t < t_out  # the step before
+        assert res.t[-1] <= res.state.t
+    lam = np.zeros(s.m)
+    lam[slot] = -0.5
     with pytest.warns(UserWarning, match=r"^rancf: sliding joint 'eye': the start of body "
                       r"'rope' has passed through its place") as seen:  # fmt: skip
-        SystemOutputs(s).rows(res.t, res.q, res.v)  # without the run's multipliers: found
+        sliding_values(s, 1, s.y0, lam)
+        sliding_values(s, 1, s.y0, lam)
     assert len(seen) == 1 and "\n" not in str(seen[0].message)
 
 

@@ -203,3 +203,16 @@ def test_statics_at_any_winch_length(t):
     res = solve_static(s, load_steps=4, at_time=t)
     drop = -res.y[s.body_slice("load")][1]
     assert drop - payout(t) == pytest.approx(static_stretch(payout(t)), abs=1e-9)
+
+
+def test_a_length_law_reaching_zero_stops_the_run_at_the_step_before():
+    """A system built in Python whose winch reels in 5 m at 10 m/s (no scenario file to refuse
+    it): the run stops at the first step whose length is not > 0, naming the winch, the time
+    and the length, and stores nothing past it (issue 39.4)."""
+    s = hoist(TimeFunction.table([[0.0, 5.0], [1.0, -5.0]]), horizon=1.0)
+    st = solve_static(s, load_steps=1, at_time=0.0)
+    res = integrate(s, DynamicOptions(t_end=1.0, step=0.01, output_step=0.05), initial=st.y)
+    assert res.status.value == "failed"
+    assert res.message == ("winch 'hoist': its length law gives 0 m at t = 0.5 s, not > 0; the "
+                           "run stops at the step before"), res.message
+    assert res.state.t == pytest.approx(0.49) and res.t[-1] == pytest.approx(0.45)

@@ -65,6 +65,20 @@ def _alive(pid: int) -> bool:
     return True
 
 
+def _check_memory(state: Any, system: Any, options: Any) -> None:
+    """Refuse a state whose integrator memory does not fit ``system`` and ``options``' Newton
+    method (restored into an integrator of its own, as the run will)."""
+    from rancf.solvers.generalized_alpha import GeneralizedAlpha
+
+    o = options
+    try:
+        integ = GeneralizedAlpha(system, o.rho_inf, o.newton_tol, o.max_newton, o.newton)
+        integ.restore(state.memory, int(state.counters.get("n_factorizations", 0)))
+    except (ValueError, TypeError):
+        raise InputError("state", f"memory of {state.memory.size} numbers", "an integrator "
+                         "memory of this system and its Newton method") from None  # fmt: skip
+
+
 class Resume:
     """The run of a run folder, to go on with (``rancf simulate --resume``).
 
@@ -74,15 +88,18 @@ class Resume:
         The run folder (locked by the caller).
     copy : str
         The ``scenario.toml`` text of the scenario the run goes on with.
+    files : dict
+        The digests of the files it reads (:func:`rancf.scenario.read_files.file_digests`).
 
     Raises
     ------
     InputError
-        If the folder's run is of another scenario (anything but ``solver.t_end`` differs).
+        If the folder's run is of another scenario (anything but ``solver.t_end`` differs, or
+        a file it reads changed since the run started).
     """
 
-    def __init__(self, out: Path, copy: str) -> None:
-        from rancf.post.resume import read_checkpoint, remove_leftovers, summary_of
+    def __init__(self, out: Path, copy: str, files: dict[str, str]) -> None:
+        from rancf.post.resume import read_checkpoint, summary_of
 
         self.out = Path(out)
         self.summary = summary_of(out)
@@ -97,7 +114,7 @@ class Resume:
                     "--resume", str(out), f"a run of the same scenario ({key} differs from "
                     f"the run's scenario.toml; only solver.t_end may change)",
                 )  # fmt: skip
-        self.removed = remove_leftovers(self.out)
+        self._check_files(files)
         self.state = read_checkpoint(self.out)
         if self.state is None and self.summary.get("status") != "running":
             raise InputError(
@@ -105,6 +122,58 @@ class Resume:
                 "none: a static solution or a run of an older version; replace it with "
                 "--overwrite instead of --resume)",
             )  # fmt: skip
+        self.removed: list[str] = []
+
+    def _check_files(self, files: dict[str, str]) -> None:
+        """Refuse if a file the scenario reads (a CSV table, a CAD file) changed since the run
+        started (``summary.json``'s ``input_files``; a run of an older version has none)."""
+        from rancf.scenario.read_files import changed_file
+
+        earlier = self.summary.get("input_files")
+        if not isinstance(earlier, dict):
+            return
+        changed = changed_file(earlier, files)
+        if changed is not None:
+            raise InputError(
+                "--resume", str(self.out), f"a run whose input files are as they were ({changed} "
+                "changed since the run started; the run would mix the two; start it again with "
+                "--overwrite)",
+            )  # fmt: skip
+
+    def take_up(self, system: Any, outputs: Any, options: Any) -> dict[str, Any]:
+        """Check that the checkpoint fits ``system`` (and the integrator of ``options``) and
+        read the rows up to it, then remove what the earlier run left besides (nothing in the
+        folder changes before all is read).
+
+        Returns
+        -------
+        dict
+            The rows up to the checkpoint (:func:`rancf.post.resume.stored_rows`).
+
+        Raises
+        ------
+        InputError
+            Naming the checkpoint (or the results file) if it is damaged or of another system.
+        """
+        from rancf.post.resume import CHECKPOINT, remove_leftovers, stored_rows
+
+        state = self.state
+        assert state is not None
+        rods = [b for b in system.flex if b.element == "rod"]
+        sizes = [x.size for b in rods for x in (b.kernel.tref, b.kernel.m1ref)]
+        try:
+            state.check_finite()
+            state.check_fits(system.n, system.m, sizes)
+            _check_memory(state, system, options)
+        except InputError as exc:
+            raise InputError(
+                "--resume", str(self.out / CHECKPOINT), f"a checkpoint this run can go on from "
+                f"(it holds a state with {exc.value}; needed: {exc.allowed}); start the run "
+                "again with --overwrite",
+            ) from None  # fmt: skip
+        rows = stored_rows(self.out, outputs, int(state.counters.get("n_outputs", 0)))
+        self.removed = remove_leftovers(self.out)
+        return rows
 
     def killed_note(self) -> str:
         """Why the earlier run stopped, as one clause."""
@@ -113,13 +182,6 @@ class Resume:
         if s.get("status") == "running" and isinstance(pid, int) and not _alive(pid):
             return f"the run was killed (process {pid} no longer runs)"
         return f"the run {s.get('status', 'stopped')}"
-
-    def rows(self, outputs: Any) -> dict[str, Any]:
-        """The rows up to the checkpoint's state."""
-        from rancf.post.resume import stored_rows
-
-        assert self.state is not None
-        return stored_rows(self.out, outputs, int(self.state.counters["n_outputs"]))
 
     def start_info(self) -> dict[str, Any]:
         """How the run started (``summary.json``'s ``initial_state`` and ``static``) and the

@@ -9,6 +9,7 @@ import os
 import signal
 import sys
 import time
+import tomllib
 from pathlib import Path
 from typing import Any
 
@@ -76,24 +77,33 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     od = OutputDir(args.out, kind=kind, overwrite=args.overwrite)  # checks the path up front
     from rancf.atomic import atomic_write
     from rancf.cli.resume import Resume, scenario_for_run
-    from rancf.post.checks import run_warnings, section_warnings, step_warnings
+    from rancf.post.checks import (
+        error_warnings,
+        run_warnings,
+        section_warnings,
+        start_warnings,
+        step_warnings,
+    )
     from rancf.post.history import HistoryStore
     from rancf.post.results import run_summary
     from rancf.post.run_plan import plan_run
+    from rancf.scenario.read_files import file_digests
     from rancf.solvers.start import start_state
 
     sc, copy = scenario_for_run(args.scenario, args.t_end)
+    files = file_digests(tomllib.loads(copy), args.scenario)  # the run's CSV and CAD files
     opts = sc.dynamic_options()
     system, outputs = plan_run(sc, limit)
     out = od.path
     stop = _StopFlag()
     with stop, od:
-        resume = Resume(out, copy) if od.earlier_run else None
+        resume = Resume(out, copy, files) if od.earlier_run else None
         state = None if resume is None else resume.state
         if state is None:
             y_start, start_info = start_state(sc, system)
             od.clear()  # --resume of a run killed before its first checkpoint: from the start
         else:
+            rows = resume.take_up(system, outputs, opts)  # all checked before the folder changes
             od.keep()  # the earlier run's files stay whatever happens
             y_start, start_info = None, resume.start_info()
             if state.t >= opts.t_end * (1.0 - 1e-12):
@@ -101,24 +111,26 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
             if not args.quiet:
                 print(f"rancf: {resume.killed_note()}; resuming from t = {state.t:g} s",
                       file=sys.stderr)  # fmt: skip
-        notes = _warn(section_warnings(system) + step_warnings(opts))  # the run goes on
+        notes = _warn(start_warnings(system) + section_warnings(system)
+                      + step_warnings(opts))  # the run goes on; in run_warnings' order
         for note in sc.notes:  # defaults the file did not state (a harmonic's build-up)
             print(f"rancf: {note}", file=sys.stderr)
         info = {"scenario": str(Path(args.scenario).resolve()), "setup_wall_time_s": None}
         info["notes"] = sc.notes
+        info["input_files"] = files
         info.update(start_info)
         store = HistoryStore(out, outputs, {**info, "warnings": notes})
         try:
             if state is not None:
-                store.seed(resume.rows(outputs))
+                store.seed(rows)
             atomic_write(out / "scenario.toml", copy)
             t0 = 0.0 if state is None else state.t
             store.write_summary(_running(system, t0))
             res = _run(args, system, opts, store, stop, every, od.keep, y_start, state)
             summary = run_summary(system, res)
             store.flush()  # every row's derived outputs, the strain among them
-            store.info["warnings"] = run_warnings(system, largest=outputs.largest_strain,
-                                                  options=opts)  # fmt: skip
+            found = run_warnings(system, largest=outputs.largest_strain, options=opts)
+            store.info["warnings"] = found + error_warnings(res, opts)
             store.finish(summary, res.state)
         except BaseException as exc:
             err = _end_broken(store, system, exc, od.kept, out)

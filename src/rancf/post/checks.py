@@ -13,6 +13,8 @@ and an entry of ``summary.json``'s ``"warnings"`` list.
   takes shorter steps of one size that divides the interval
   (:meth:`~rancf.options.DynamicOptions.fitted`; ``output_step = 1.5e-3`` with ``step =
   1e-3``: steps of 7.5e-4 s, 1333 a second instead of 1000).
+* An impulsive start of a dynamic run (:attr:`System.start_warnings`,
+  :mod:`rancf.scenario.motions`): a prescribed rate, value or load that jumps at ``t = 0``.
 
 The axial strain is the elements' own Green–Lagrange measure at the section sample points
 (:class:`rancf.bodies.section_outputs.SectionSampler`: the compiled core's strain, at
@@ -21,6 +23,8 @@ are written (:class:`rancf.system.outputs.SystemOutputs`), so checking it costs 
 """
 
 from __future__ import annotations
+
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -37,9 +41,11 @@ __all__ = [
     "RADIUS_LIMIT",
     "section_warnings",
     "step_warnings",
+    "error_warnings",
     "strain_warning",
     "largest_strain",
     "run_warnings",
+    "start_warnings",
     "at_time",
     "at_load_factor",
 ]
@@ -132,6 +138,23 @@ def step_warnings(options: DynamicOptions) -> list[str]:
     ]
 
 
+def error_warnings(result: Any, options: DynamicOptions) -> list[str]:
+    """A warning if a run's largest local error estimate (relative to ``rtol * size``,
+    :class:`~rancf.solvers.result.DynamicResult`) is above 1: where, the step and a step that
+    would meet the tolerance there (TI.10 of ``docs/derivations/time-integration.md``)."""
+    err, h = result.error_estimate, result.error_step
+    if not err > 1.0 or h is None:
+        return []
+    better = h * 0.9 * err ** (-1.0 / 3.0)
+    how = ("adaptive steps could not meet it" if options.adaptive else
+           f"a step of about {better:.3g} s meets it there, or set solver.adaptive = true")
+    return [
+        f"the local error estimate is {err:.3g} times solver.rtol = {options.rtol:g} (of the "
+        f"model's size) at t = {result.error_time:.6g} s with a step of {h:.3g} s: the step does "
+        f"not resolve the motion there (an impulsive start or a fast vibration); {how}"
+    ]
+
+
 def run_warnings(
     model: Model | System,
     t: NDArray | None = None,
@@ -140,10 +163,10 @@ def run_warnings(
     largest: tuple[float, float] | None = None,
     options: DynamicOptions | None = None,
 ) -> list[str]:
-    """Every warning of a run: the section's radius, the steps against the output interval
-    (``options``, a dynamic run's), and the largest axial strain — ``largest = (strain, t)`` as
-    a :class:`~rancf.system.outputs.SystemOutputs` tracked it, or of a model's states ``q (n_t,
-    n)`` at times (or load factors, ``static``) ``t``."""
+    """Every warning of a run: its impulsive starts (a dynamic run's), the section's radius, the
+    steps against the output interval (``options``, a dynamic run's), and the largest axial
+    strain — ``largest = (strain, t)`` as a :class:`~rancf.system.outputs.SystemOutputs` tracked
+    it, or of a model's states ``q (n_t, n)`` at times (or load factors, ``static``) ``t``."""
     if largest is None and isinstance(model, System):
         largest = (0.0, 0.0)
     if largest is None:
@@ -154,7 +177,14 @@ def run_warnings(
         )
     strain = strain_warning(largest[0], (at_load_factor if static else at_time)(largest[1]))
     steps = [] if options is None else step_warnings(options)
-    return section_warnings(model) + steps + ([strain] if strain else [])
+    starts = [] if static else start_warnings(model)
+    return starts + section_warnings(model) + steps + ([strain] if strain else [])
+
+
+def start_warnings(model: Model | System) -> list[str]:
+    """The impulsive starts of a system built from a scenario (:attr:`System.start_warnings`;
+    none for a model)."""
+    return list(getattr(model, "start_warnings", ()))
 
 
 def largest_strain(model: Model, t: NDArray, q: NDArray) -> tuple[float, float]:

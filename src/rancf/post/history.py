@@ -115,6 +115,7 @@ class HistoryStore:
         files = self._keys + DERIVED
         self._fh = {k: open(self.raw / f"{k}.f64", "wb") for k in files}  # noqa: SIM115
         self._buf: dict[str, list[NDArray]] = {k: [] for k in self._keys}
+        self._alpha: list[NDArray] = []  # the buffered rows' steps' alpha points (contact)
         #: The rows' energies come from the stored rows (:meth:`_energies`, beside the loop with
         #: the worker), not from the time loop, where the rows hold all they depend on (no
         #: rods' triads, contact or sliding joints): ``integrate`` then passes None.
@@ -140,9 +141,10 @@ class HistoryStore:
         energy: NDArray,
         directors: NDArray | None = None,
         lam: NDArray | None = None,
+        alpha: NDArray | None = None,
     ) -> None:
         """Store one output (sink protocol of :func:`~rancf.solvers.dynamic.integrate`)."""
-        self._add((np.array([t]), q, v, energy, directors), 1)
+        self._add((np.array([t]), q, v, energy, directors), 1, alpha)
 
     def append_block(
         self,
@@ -152,19 +154,24 @@ class HistoryStore:
         energy: NDArray,
         directors: NDArray | None = None,
         lam: NDArray | None = None,
+        alpha: NDArray | None = None,
     ) -> None:
         """Store consecutive outputs: ``t (k,)``, ``q, v (k, n_q)``, ``energy (k, 3)``, rods'
         ``directors (k, n_rod_nodes, 3)`` (``lam``, the integrator's multipliers, is not kept:
-        the files hold the consistent ones)."""
-        self._add((t, q, v, energy, directors), len(t))
+        the files hold the consistent ones; ``alpha``, the steps' generalized-α points of a
+        system with contact, only until the rows' outputs are derived)."""
+        self._add((t, q, v, energy, directors), len(t), alpha)
 
-    def _add(self, values: tuple[NDArray | None, ...], rows: int) -> None:
+    def _add(self, values: tuple[NDArray | None, ...], rows: int,
+             alpha: NDArray | None = None) -> None:  # fmt: skip
         for key, val in zip(self._keys, values, strict=False):
             if val is None and key == "e":  # derived from the rows (derives_energies)
                 continue
             if val is None:
                 raise ValueError(f"output stream {key!r} missing")
             self._buf[key].append(np.asarray(val, dtype="<f8").ravel())
+        if alpha is not None:
+            self._alpha.append(np.asarray(alpha, dtype=float).reshape(rows, -1))
         self._pending += rows
         if self._pending >= self._rows_per_flush:
             self._hand_over()
@@ -194,13 +201,15 @@ class HistoryStore:
         (returning at once), else here."""
         if self._pending:
             rows = {k: np.concatenate(self._buf[k]) for k in self._keys if self._buf[k]}
+            alpha = np.concatenate(self._alpha) if self._alpha else None
             k, self._pending = self._pending, 0
             for buf in self._buf.values():
                 buf.clear()
+            self._alpha.clear()
             if self._worker is None:
-                self._append(rows, k)
+                self._append(rows, alpha, k)
             else:
-                self._worker.submit(self._append, rows, k)
+                self._worker.submit(self._append, rows, alpha, k)
 
     def wait(self) -> None:
         """Wait until the blocks handed to the worker are derived and appended (raising its
@@ -208,7 +217,7 @@ class HistoryStore:
         if self._worker is not None:
             self._worker.wait()
 
-    def _append(self, rows: dict[str, NDArray], k: int) -> None:
+    def _append(self, rows: dict[str, NDArray], alpha: NDArray | None, k: int) -> None:
         key = "t"
         try:
             if k and "e" not in rows:  # the energies of the rows, (k, 3)
@@ -217,7 +226,7 @@ class HistoryStore:
                 derived = self.outputs.rows(
                     rows["t"], rows["q"].reshape(k, -1), rows["v"].reshape(k, -1),
                     rows["m"].reshape(k, -1) if "m" in rows else None, rows["e"].reshape(k, 3),
-                    per_body=True,
+                    per_body=True, alpha=alpha,
                 )  # fmt: skip
                 rows.update({d: derived[d].ravel() for d in DERIVED})
                 for key, val in rows.items():

@@ -134,6 +134,11 @@ def run_summary(model: Model | System, result: DynamicResult) -> dict[str, Any]:
         "time_per_step_s": result.wall_time / result.n_steps if result.n_steps else None,
         "min_step_s": result.min_step_taken,
         "max_step_s": result.max_step_taken,
+        "accepted_steps": result.n_steps,
+        # the largest local error estimate relative to rtol * size (docs/guide/time-integration.md)
+        "error_estimate": result.error_estimate,
+        "error_time_s": result.error_time,
+        "error_step_s": result.error_step,
         **run_sizes(model),
         "outputs": result.n_outputs,
         "final_energy_j": {
@@ -164,7 +169,7 @@ def write_run(
     outputs = outputs if outputs is not None else system_outputs(model, sensors, labels)
     with FileSet() as files:  # the files replace an earlier run's together
         write_history_files(out, outputs, result.t, result.q, result.v, energy,
-                            result.directors, files=files)  # fmt: skip
+                            result.directors, files=files, alpha=result.alpha)  # fmt: skip
         summary = {
             **run_summary(model, result),
             "warnings": run_warnings(model, largest=outputs.largest_strain),

@@ -22,7 +22,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rancf.errors import InputError
-from rancf.solvers.state import DynamicState
+from rancf.solvers.state import NPZ_ERRORS, DynamicState
 from rancf.system.outputs import SystemOutputs
 
 __all__ = ["CHECKPOINT", "stored_rows", "read_checkpoint", "remove_leftovers"]
@@ -63,7 +63,7 @@ def _load(path: Path, keys: tuple[str, ...], n: int) -> dict[str, NDArray]:
     try:
         with np.load(path, allow_pickle=False) as z:
             got = {k: np.asarray(z[k], dtype=float) for k in keys}
-    except (OSError, KeyError, ValueError) as exc:
+    except NPZ_ERRORS as exc:
         raise InputError("--out", str(path), f"a run folder's results file ({exc})") from None
     short = [k for k, a in got.items() if a.shape[0] < n]
     if short:

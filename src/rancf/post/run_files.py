@@ -107,19 +107,21 @@ def write_history_files(
     static: bool = False,
     files: FileSet | None = None,
     lam: NDArray | None = None,
+    alpha: NDArray | None = None,
 ) -> list[str]:
     """Write the history files of rows ``t (n,)``, ``q, v (n, n_q)``, ``energy (n, 3)`` and rods'
     ``directors (n, n_directors)`` (module docstring); any may be memory maps.
 
     ``derived``: the rows' :meth:`SystemOutputs.rows` arrays (keys :data:`DERIVED`), else they
     are computed chunk by chunk (``static``: rows of a load path, ``t`` its parameter, ``lam``
-    the solver's multipliers).  Into the set ``files``
+    the solver's multipliers; ``alpha``: the steps' generalized-α points of a dynamic run with
+    contact, :class:`~rancf.solvers.dynamic.DynamicResult`).  Into the set ``files``
     (committed by the caller), else atomically on their own.  Returns the sensor column names.
     """
     if files is None:
         with FileSet() as own:
             return write_history_files(out_dir, outputs, t, q, v, energy, directors, derived,
-                                       static, own, lam)  # fmt: skip
+                                       static, own, lam, alpha)  # fmt: skip
     s = outputs.system
     n = t.shape[0]
     m1 = None if directors is None else np.asarray(directors).reshape(n, -1)
@@ -127,8 +129,8 @@ def write_history_files(
     def chunk(r: slice) -> dict[str, NDArray]:
         if derived is not None:
             return {k: derived[k][r] for k in DERIVED if k in derived}
-        mm, ll = (None if x is None else x[r] for x in (m1, lam))
-        return outputs.rows(t[r], q[r], v[r], mm, energy[r], ll, static, per_body=True)
+        mm, ll, aa = (None if x is None else x[r] for x in (m1, lam, alpha))
+        return outputs.rows(t[r], q[r], v[r], mm, energy[r], ll, static, per_body=True, alpha=aa)
 
     chunks = [(r, chunk(r)) for r in _rows(n, 3 * q.shape[1] + outputs.n_along)]
     names = outputs.sensor_names

@@ -209,10 +209,14 @@ def _joints(c: _Context) -> None:
 def _sensors(c: _Context, supports: list[ResolvedPlace]) -> None:
     names: set[str] = set()
     joints = {j.name for j in c.sc.joints}
+    winches = [w.name for w in c.sc.winches]
     for i, s in enumerate(c.sc.sensor_tables):
         key = f"sensors[{i}]"
         if s.name in names or s.name == "t":
             raise fail(f"{key}.name", f"{show(s.name)} is used twice or reserved")
+        if s.winch is not None and s.winch not in winches:
+            raise fail(f"{key}.winch", f"names no winch: {show(s.winch)} (winches: "
+                       f"{', '.join(winches) or 'none'})")  # fmt: skip
         names.add(s.name)
         _size(f"{key}.about", s.about, c.dim)
         places = []
@@ -273,15 +277,47 @@ def _obstacles(c: _Context) -> set[str]:
             raise fail(f"contacts[{i}]", f"must be [FLEXIBLE_BODY, OBSTACLE] (bodies: "
                        f"{', '.join(flex)}; obstacles: {', '.join(sorted(names)) or 'none'}), "
                        f"got {show(pair)}")  # fmt: skip
+    _once("contacts", [tuple(p) for p in c.sc.contacts or []])
     for i, pair in enumerate(c.sc.body_contacts):
         if len(pair) != 2 or not all(x in flex for x in pair):
             raise fail(f"body_contacts[{i}]", f"must be [FLEXIBLE_BODY, FLEXIBLE_BODY] (bodies: "
                        f"{', '.join(flex)}), got {show(pair)}")  # fmt: skip
+    _once("body_contacts", [tuple(sorted(p)) for p in c.sc.body_contacts])
     for i, s in enumerate(c.sc.sensor_tables):
         if s.obstacle is not None and s.obstacle not in names:
             raise fail(f"sensors[{i}].obstacle", f"names no obstacle: {show(s.obstacle)} "
                        f"(obstacles: {', '.join(sorted(names)) or 'none'})")  # fmt: skip
     return names
+
+
+def _once(key: str, pairs: list[tuple[str, ...]]) -> None:
+    """Refuse a contact pair listed twice (its contact would count twice); ``pairs`` as
+    compared (a pair of bodies in either order is the same)."""
+    seen: dict[tuple[str, ...], int] = {}
+    for i, pair in enumerate(pairs):
+        if pair in seen:
+            raise fail(f"{key}[{i}]", f"lists the pair {show(list(pair))} again ({key}"
+                       f"[{seen[pair]}] has it; its contact would count twice): give each pair "
+                       "once")  # fmt: skip
+        seen[pair] = i
+
+
+def _winches(c: _Context) -> None:
+    """Winch names once, one winch per body, scalar laws."""
+    names: dict[str, int] = {}
+    bodies: dict[str, int] = {}
+    for i, w in enumerate(c.sc.winches):
+        key = f"winches[{i}]"
+        if w.name in names:
+            raise fail(f"{key}.name", f"{show(w.name)} is used twice (winches[{names[w.name]}] "
+                       "has it): each winch needs its own name")  # fmt: skip
+        names[w.name] = i
+        body = w.at.rpartition(":")[0] if c.bodies is not None else ""
+        if body in bodies:
+            which = f"body {show(body)}" if body else "the body"
+            raise fail(f"{key}.at", f"{show(w.at)}: {which} already has a winch "
+                       f"(winches[{bodies[body]}]): one winch per body")  # fmt: skip
+        bodies[body] = i
 
 
 def check_scenario(sc: ScenarioView) -> tuple[int, dict[str, Any] | None, list[ResolvedPlace]]:
@@ -294,4 +330,5 @@ def check_scenario(sc: ScenarioView) -> tuple[int, dict[str, Any] | None, list[R
     _joints(c)
     _sensors(c, supports)
     _obstacles(c)
+    _winches(c)
     return c.dim, c.bodies, supports

@@ -60,9 +60,10 @@ class _Function(Table):
     build_up: NonNegative | None = Field(
         None,
         description="B [s]: the function times a smooth step from 0 to 1 over [0, B] (value, "
-        "rate and acceleration start from 0); 0: none. Default: none, but a harmonic support "
-        "motion or joint angle that would start with a jump of its rate builds up over two "
-        "periods (said in one line)",
+        "rate and acceleration start from 0; a winch's length: its change from the start); 0: "
+        "none. Default: none, but a harmonic support motion or joint angle that would start "
+        "with a jump of its rate builds up over two periods (said in one line); other jumps at "
+        "t = 0 are warned about unless build_up is given",
     )
 
     def function(self) -> TimeFunction:
@@ -237,7 +238,8 @@ def time_size(v: Any) -> int | None:
 def check_scalar(key: str, v: Any) -> None:
     """Raise unless the TIME_FUNCTION ``v`` (of ``key``) is scalar valued."""
     if v is not None and time_size(v) is not None:
-        raise fail(key, "must be a scalar time function (numbers, not vectors)")
+        got = show(v) if isinstance(v, list) else f"{time_size(v)} components"
+        raise fail(key, f"must be a scalar time function (numbers, not vectors), got {got}")
 
 
 class SupportTable(Table):

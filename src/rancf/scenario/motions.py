@@ -1,17 +1,61 @@
-"""The time functions of prescribed motions (supports' ``motion``, driven joints' ``angle``)
-and their default build-up (:mod:`rancf.bodies.time_function`, T.6): a harmonic motion that
-would start with a jump of its rate builds up smoothly, and says so in one line."""
+"""The time functions of prescribed motions (supports' ``motion``, driven joints' ``angle``),
+their default build-up (:mod:`rancf.bodies.time_function`, T.6), and the warnings of impulsive
+starts (``docs/guide/scenarios.md``, "Impulsive starts").
+
+A harmonic support motion or joint angle that would start with a jump of its rate builds up
+smoothly, and says so in one line (a note): a steady oscillation whose start is not the point.
+Every other time function that drives something is written as its author meant it, so a jump
+at ``t = 0`` is warned about instead (one line naming the item, the jump and the cure):
+
+* prescribed kinematics (a support's ``motion``, a joint's ``angle``, a winch's ``length`` or
+  ``speed``): a rate jump from rest, and a value jump (a displacement or angle other than the
+  reference's) unless the run starts from the static equilibrium at ``t = 0``;
+* loads (a point or distributed load's ``time``, a driven drum's ``torque``): a value jump from
+  0, unless the run starts from the static equilibrium (which carries the loads at ``t = 0``).
+
+A start from rest is impulsive when the value (``order`` 0) or the rate (``order`` 1) jumps at
+``t = 0`` from 0 (everything is at rest, and at its reference, before the run): a prescribed
+rate jump ``Δv`` is an impact.  :func:`start_jump` gives the jump and the largest magnitude of
+the same over the run; a jump up to :data:`JUMP_RTOL` of that largest magnitude passes; a
+function with ``build_up`` stated (0 too) is taken as meant.
+"""
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
 from rancf.bodies.time_function import TimeFunction
-from rancf.scenario.loads import HarmonicFunction, time_function
+from rancf.scenario.loads import HarmonicFunction, RampFunction, TableFunction, time_function
 
-__all__ = ["motion_function", "BUILD_UP_PERIODS"]
+__all__ = ["motion_function", "BUILD_UP_PERIODS", "Law", "start_warning", "start_warnings",
+           "start_jump", "JUMP_RTOL"]  # fmt: skip
+
+#: A jump of a value or rate at ``t = 0`` up to this fraction of the largest magnitude the same
+#: reaches over the run is not reported: the transient a jump excites is linear in it, and an
+#: impulsive start excites some 20-30 times the smooth response (the reported winch and crank
+#: cases), so 1e-3 of it keeps the spurious part within a few per cent; it passes the spline
+#: artefacts of tables that start flat (a not-a-knot spline's end slope, 1e-4 of the peak rate).
+JUMP_RTOL = 1e-3
+
+
+def start_jump(f: TimeFunction, order: int, t_end: float) -> tuple[float, float]:
+    """The jump at ``t = 0`` of ``f``'s value (``order`` 0) or rate (1) from rest, the largest
+    magnitude over the components, and the largest magnitude of the same over ``[0, t_end]``
+    (sampled on 1001 times and every table row; the jump included).
+
+    A table's rate at a row is its right derivative, so a rate jump at ``t = 0`` is the first
+    interval's slope; a function with a build-up (T.6) starts from 0 in value and rate.
+    """
+    times = np.linspace(0.0, max(float(t_end), 0.0), 1001)
+    if f.rows is not None:
+        knots = f.rows[:, 0]
+        times = np.union1d(times, knots[(knots >= 0.0) & (knots <= t_end)])
+    at = f.value if order == 0 else f.rate
+    size = [float(np.max(np.abs(at(t)))) for t in times]
+    return size[0], max(size)
 
 #: The default build-up of a harmonic motion that would start with a jump of its rate, in
 #: periods of the harmonic.
@@ -36,3 +80,102 @@ def motion_function(v: Any, key: str) -> tuple[TimeFunction | None, str | None]:
             f"{float(np.max(np.abs(rate))):.3g}; it builds up over {b:g} s ({BUILD_UP_PERIODS:g} "
             f"periods; give build_up = 0 to start it at once)")  # fmt: skip
     return f.with_build_up(b), note
+
+
+@dataclass(frozen=True)
+class Law:
+    """What a time function drives, for the warning of its impulsive start.
+
+    Attributes
+    ----------
+    what : str
+        The quantity, e.g. ``"angular rate"``.
+    unit : str
+        Its unit after a space (``" m/s"``; empty for a factor).
+    order : int
+        0: the function's value is checked (a load, a winch's speed), 1: its rate.
+    static_cures : bool
+        Whether a start from the static equilibrium removes the jump (value jumps).
+    """
+
+    what: str
+    unit: str
+    order: int
+    static_cures: bool = False
+
+
+def start_warning(
+    v: Any, f: TimeFunction | None, item: str, law: Law, t_end: float, static: bool
+) -> str | None:
+    """The warning line of the impulsive start of ``f`` (written as ``v``; ``item`` names it),
+    or None: no jump above :data:`JUMP_RTOL` of its largest over ``[0, t_end]``, a ``build_up``
+    stated, or a value jump that a ``static`` start removes."""
+    if f is None or getattr(v, "build_up", None) is not None or (static and law.static_cures):
+        return None
+    jump, largest = start_jump(f, law.order, t_end)
+    if not jump > JUMP_RTOL * largest:
+        return None
+    b = float(f"{_time_scale(f, t_end) / 10.0:.1g}")
+    alt = _alternative(v, law, b)
+    return (f"{item}: the {law.what} jumps from 0 to {jump:.4g}{law.unit} at t = 0, an "
+            f"impulsive start (an impact: forces and ringing far above a smooth start's); give "
+            f"build_up = {b:g} to build it up over {b:g} s{alt}")  # fmt: skip
+
+
+def _time_scale(f: TimeFunction, t_end: float) -> float:
+    """The function's own time scale: a table's span, a ramp's or spin-up's duration, 20
+    periods of a harmonic (a build-up of 2), else the run's."""
+    if f.rows is not None:
+        span = float(f.rows[-1, 0] - max(f.rows[0, 0], 0.0))
+        return span if span > 0.0 else t_end
+    if f.kind == "harmonic":
+        return 20.0 / f.frequency
+    return f.duration if f.duration > 0.0 else t_end
+
+
+def _alternative(v: Any, law: Law, b: float) -> str:
+    start = "at rate 0" if law.order == 1 else "at 0"
+    if isinstance(v, RampFunction) and law.unit == " rad/s":  # a steady rate without overshoot
+        return f", or write angle = {{ spin_up = {b:g}, rate = {v.value / v.ramp:.4g} }}"
+    if isinstance(v, TableFunction):
+        return f", or start the table {start}"
+    if law.static_cures:
+        return ', or start from the static equilibrium (solver.initial_state = "static")'
+    spin = " (spin_up for a steady rate)" if law.unit == " rad/s" else ""
+    return f", or write a function that starts {start}{spin}"
+
+
+#: Support motions and joint angles: the rate (here) and the value (:data:`_PLACED`).
+_MOVED = {"motion": Law("velocity", " m/s", 1), "angle": Law("angular rate", " rad/s", 1)}
+_PLACED = {"motion": Law("displacement", " m", 0, True), "angle": Law("angle", " rad", 0, True)}
+_WINCH = {"length": Law("pay-out rate", " m/s", 1), "speed": Law("pay-out rate", " m/s", 0),
+          "torque": Law("torque", " N m", 0, True)}  # fmt: skip
+_LOAD = Law("load factor", "", 0, True)
+
+
+def start_warnings(sc: Any) -> list[str]:
+    """The warning of every impulsive start of a scenario ``sc`` (its tables and
+    :attr:`~rancf.scenario.scenario.Scenario.data`; module docstring)."""
+    t_end, static = sc.solver.t_end, sc.solver.initial_state == "static"
+    d, out = sc.data, []
+
+    def check(v: Any, f: Any, item: str, *laws: Law) -> None:
+        for law in laws:
+            line = start_warning(v, f, item, law, t_end, static)
+            out.extend([line] if line else [])
+
+    for i, s in enumerate(sc.supports):
+        f, item = d["supports"][i]["motion"], f"support at {s.at!r} (supports[{i}].motion)"
+        check(s.motion, f, item, _PLACED["motion"], _MOVED["motion"])
+    for i, j in enumerate(sc.joints):
+        f, item = d["joints"][i]["angle"], f"joint {j.name!r} (joints[{i}].angle)"
+        check(j.angle, f, item, _PLACED["angle"], _MOVED["angle"])
+    for i, w in enumerate(sc.winches):
+        for k, law in _WINCH.items():
+            check(w[k], d["winches"][i][k], f"winch {w.name!r} (winches[{i}].{k})", law)
+    for kind in ("point", "distributed"):
+        for i, p in enumerate(sc.loads[kind]):
+            at = f" at {p.at!r}" if kind == "point" else ""
+            item = f"{kind} load{at} (loads.{kind}[{i}].time)"
+            check(p.time, d["loads"][kind][i]["time"], item, _LOAD)
+    return out

@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING, Any
 from pydantic import Field, PrivateAttr, ValidationError, ValidationInfo, model_validator
 
 from rancf.errors import ScenarioError
-from rancf.scenario.base import Name, NonNegative, Table, integer
+from rancf.scenario.base import Name, NonNegative, Table, fail, integer, show
 from rancf.scenario.bodies import Body
 from rancf.scenario.checks import check_scenario
 from rancf.scenario.damping import DampingTable
@@ -35,7 +35,7 @@ from rancf.scenario.loads import (
     time_function,
 )
 from rancf.scenario.messages import scenario_error
-from rancf.scenario.motions import motion_function
+from rancf.scenario.motions import motion_function, start_warnings
 from rancf.scenario.obstacles import ObstacleTable
 from rancf.scenario.section import MaterialTable, SectionTable
 from rancf.scenario.sensors import Sensor, SensorTable
@@ -133,7 +133,9 @@ class Scenario(Table):
         self._path = str((info.context or {}).get("path", _PYTHON))
         self._dim, self._bodies, self._support_places = check_scenario(self)
         self._data = _data(self)
+        self._data["warnings"] = start_warnings(self)
         self._sensors = tuple(_record(s, self._bodies) for s in self.sensor_tables)
+        _columns_once(self._sensors, self._dim)
         return self
 
     # ------------------------------------------------------------------ the facade
@@ -152,6 +154,12 @@ class Scenario(Table):
         """One line each on defaults the file did not state but the run uses (a harmonic
         motion's build-up)."""
         return list(self._data["notes"])
+
+    @property
+    def warnings(self) -> list[str]:
+        """One line each on the impulsive starts of the run (a jump at ``t = 0`` of a
+        prescribed rate or value, or of a load: :func:`rancf.scenario.motions.start_warnings`)."""
+        return list(self._data["warnings"])
 
     @property
     def data(self) -> dict[str, Any]:
@@ -358,6 +366,20 @@ def _data(sc: Scenario) -> dict[str, Any]:
     d["modes"] = sc.modes.model_dump()
     d["notes"] = notes
     return d
+
+
+def _columns_once(sensors: tuple[Sensor, ...], dim: int) -> None:
+    """Refuse two sensors that give a column of the same name (a position ``tip`` gives
+    ``tip_x``, as a sensor named ``tip_x`` does): readers would take one for the other."""
+    owner: dict[str, int] = {}
+    for i, s in enumerate(sensors):
+        for col in s.columns(dim):
+            if col in owner:
+                j = owner[col]
+                raise fail(f"sensors[{i}].name", f"{show(s.name)} gives the column {col!r}, as "
+                           f"sensors[{j}] ({show(sensors[j].name)}, kind {sensors[j].kind!r}) "
+                           "does: each column of sensors.csv needs its own name")  # fmt: skip
+            owner[col] = i
 
 
 def _record(s: SensorTable, bodies: dict[str, Any] | None) -> Sensor:

@@ -72,11 +72,14 @@ def support_labels(sc: ScenarioView) -> dict[str, list[int | str]]:
 
 
 def build_system(sc: ScenarioView) -> System:
-    """The system of a scenario (module docstring); errors name the scenario key."""
+    """The system of a scenario (module docstring), carrying its warnings of impulsive starts
+    (:attr:`System.start_warnings`); errors name the scenario key."""
     try:
-        return _build(sc)
+        system = _build(sc)
     except InputError as exc:
         raise ScenarioError(sc.path, exc.parameter, f"{exc.allowed} (got {exc.value!r})") from None
+    system.start_warnings = tuple(getattr(sc, "warnings", ()))
+    return system
 
 
 def _observed(sc: ScenarioView) -> list[Place]:
@@ -178,10 +181,10 @@ def _parts(sc: ScenarioView, bodies: dict[str, Any]) -> dict[str, Any]:
             "obstacles": obstacles, "contacts": contacts,
             "body_contacts": [(a, b) for a, b in sc.body_contacts],
             "contact_points": sc.contact_points, "body_friction": sc.body_friction,
-            "winches": system_winches(sc, bodies, ONE_BODY), **_fluid(sc)}  # fmt: skip
+            "winches": system_winches(sc, bodies, ONE_BODY), **_fluid(sc, bodies)}  # fmt: skip
 
 
-def _fluid(sc: ScenarioView) -> dict[str, Any]:
+def _fluid(sc: ScenarioView, bodies: dict[str, Any]) -> dict[str, Any]:
     """The fluid, the flexible bodies' coefficients and the distributed loads."""
     from pydantic_core import PydanticCustomError
 
@@ -203,4 +206,25 @@ def _fluid(sc: ScenarioView) -> dict[str, Any]:
             hydro[b.name] = hydro_value(b.hydro)
     dist = [DistributedLoad(tuple(d["force"]), d["body"], d["time"])
             for d in sc.data["loads"]["distributed"]]  # fmt: skip
+    _check_depth(sc, fluid, {k: bodies.get(k) for k in hydro})
     return {"fluid": fluid, "hydro": hydro, "distributed": dist}
+
+
+def _check_depth(sc: ScenarioView, fluid: Any, wet: dict[str, Any]) -> None:
+    """Refuse waves whose water ``depth`` puts the sea floor above a node of a body in the
+    fluid (``wet``: the bodies with hydrodynamic coefficients): Airy kinematics hold between
+    the floor and the surface only (below it they grow without bound)."""
+    waves = None if fluid is None else fluid.waves
+    if waves is None or fluid.surface is None:
+        return
+    floor = fluid.surface - waves.depth
+    for name, body in wet.items():
+        if body is None:
+            continue
+        z = body.node_positions(body.q0)[:, -1]
+        low = float(z.min())
+        if low < floor - 1e-9 * max(1.0, abs(floor)):
+            raise ScenarioError(sc.path, "fluid.waves.depth", f"must reach the bodies in the "
+                                f"fluid: depth = {waves.depth:g} m puts the floor at "
+                                f"{floor:g} m, above {name}'s node at {low:g} m (give depth "
+                                f">= {fluid.surface - low:g} m)")  # fmt: skip

@@ -58,7 +58,7 @@ def read_table(file: str, scenario_path: str) -> list[list[float]]:
     """
     path = (_base(scenario_path) / file).resolve()
     try:
-        with open(path, encoding="utf-8", newline="") as fh:
+        with open(path, encoding="utf-8-sig", newline="") as fh:  # a byte-order mark: no cell
             lines = list(csv.reader(fh))
     except FileNotFoundError:
         raise fail("", f"the CSV file {path} does not exist") from None

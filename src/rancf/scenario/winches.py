@@ -8,7 +8,8 @@ TIME_FUNCTION), ``speed`` (the pay-out rate [m/s], a TIME_FUNCTION) or ``torque`
 drum's ``radius`` and ``inertia`` (a driven drum, :mod:`rancf.system.drums`: the torque
 positive reeling in, the inertia the drum's with the rope on it at ``t = 0``).  The body is
 drawn as the line is at ``t = 0``; with ``length``, a start length other than the drawing's
-stretches the drawing about the winch (:mod:`rancf.system.winches`).
+stretches the drawing about the winch (:mod:`rancf.system.winches`).  A ``length`` with
+``build_up`` builds up its change from its start (:func:`~rancf.system.winches.length_law`).
 """
 
 from __future__ import annotations
@@ -22,8 +23,8 @@ from rancf.bodies.flexible import Model
 from rancf.bodies.length import set_unstretched_length, unstretched_length
 from rancf.errors import ScenarioError
 from rancf.scenario.base import Name, Positive, Table, fail, vector
-from rancf.scenario.loads import TimeFunctionValue
-from rancf.system.winches import LENGTH_RTOL, Winch
+from rancf.scenario.loads import TimeFunctionValue, check_scalar
+from rancf.system.winches import LENGTH_RTOL, Winch, length_law, winch_length
 
 __all__ = ["WinchTable", "system_winches"]
 
@@ -60,6 +61,7 @@ class WinchTable(Table):
         if len(given) != 1:
             raise fail("length", "give one of length, speed or torque (got "
                        f"{', '.join(given) or 'none'})")  # fmt: skip
+        check_scalar(given[0], self[given[0]])
         for k in ("radius", "inertia"):
             if self[k] is None and self.torque is not None:
                 raise fail(
@@ -80,7 +82,10 @@ def system_winches(sc: Any, bodies: dict[str, Any], one_body: str) -> list[Winch
     out = []
     for i, (w, wd) in enumerate(zip(sc.winches, sc.data["winches"], strict=True)):
         key = f"winches[{i}]"
-        p = sc.place(w.at)
+        try:
+            p = sc.place(w.at)
+        except ScenarioError as exc:
+            raise ScenarioError(sc.path, f"{key}.at", exc.problem) from None
         body = bodies.get(p.body or one_body) if p.where == "node" else None
         if not isinstance(body, Model) or p.node not in (0, -1, body.n_nodes - 1):
             raise ScenarioError(sc.path, f"{key}.at", f'"BODY:start" or "BODY:end" of a cable '
@@ -95,10 +100,40 @@ def system_winches(sc: Any, bodies: dict[str, Any], one_body: str) -> list[Winch
                                     f"drawn, {x.tolist()} (draw the line from the winch; got "
                                     f"{w.position})")  # fmt: skip
         length = wd["length"]
+        winch = Winch(w.name, at, length=length, speed=wd["speed"], torque=wd["torque"],
+                      radius=w.radius, inertia=w.inertia)  # fmt: skip
+        _check_lengths(sc, key, winch, unstretched_length(body))  # before the body is stretched
         if length is not None:
-            start = float(np.ravel(length.value(0.0))[0])
+            start = float(np.ravel(length_law(length).value(0.0))[0])
             if abs(start - unstretched_length(body)) > LENGTH_RTOL * max(start, 1.0):
                 set_unstretched_length(body, start, anchor=node)
-        out.append(Winch(w.name, at, length=length, speed=wd["speed"], torque=wd["torque"],
-                         radius=w.radius, inertia=w.inertia))  # fmt: skip
+        out.append(winch)
     return out
+
+
+#: Uniform samples of ``[0, t_end]`` a winch's length is checked at (with a table's times).
+LENGTH_SAMPLES = 2001
+
+
+def _check_lengths(sc: Any, key: str, w: Winch, length0: float) -> None:
+    """Refuse a ``length`` or ``speed`` law whose length outside the winch is not > 0 somewhere
+    in ``[0, t_end]`` (a line reeled in past the drum: negative lengths, then NaN tensions).
+    A driven drum's length is a coordinate: the run stops where it leaves its range."""
+    if w.driven:
+        return
+    t_end = float(sc.dynamic_options().t_end)
+    law = w.length if w.length is not None else w.speed
+    f = winch_length(w, length0, t_end)
+    times = np.linspace(0.0, t_end, LENGTH_SAMPLES)
+    rows = getattr(law, "rows", None)
+    if rows is not None:
+        knots = np.asarray(rows)[:, 0]
+        times = np.union1d(times, knots[(knots >= 0.0) & (knots <= t_end)])
+    values = np.array([float(np.ravel(f.value(t))[0]) for t in times])
+    bad = np.flatnonzero(~(values > 0.0))
+    if bad.size:
+        which = "length" if w.length is not None else "speed"
+        t, v = float(times[bad[0]]), float(values[bad[0]]) + 0.0  # no "-0"
+        raise ScenarioError(sc.path, f"{key}.{which}", f"the length outside the winch must stay "
+                            f"> 0 m over the run (t = 0 to t_end = {t_end:g} s), but it is "
+                            f"{v:.6g} m at t = {t:.6g} s")  # fmt: skip

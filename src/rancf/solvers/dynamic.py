@@ -20,7 +20,10 @@ Step control: fixed steps, or adaptive steps from the local error estimate
 ``e = h² |β - γ/2 + 1/12| max_i s_i |w_{n+1,i} - w_{n,i}|`` (after Zienkiewicz & Xie 1991), which
 fixed-step runs record too (the largest, its time and step: :class:`DynamicResult`).  A step
 whose Newton iteration fails is retried with a quarter of the step; below ``min_step`` the run
-stops with status ``FAILED`` and keeps everything computed up to then.
+stops with status ``FAILED`` and keeps everything computed up to then.  So does a step that
+takes a bounded coordinate out of its range (:mod:`rancf.system.limits`: a driven drum's
+length, a sliding guide's place on the rope): the run stops at the step before, storing
+nothing from it on.
 """
 
 from __future__ import annotations
@@ -38,6 +41,7 @@ from rancf.solvers.output import MemorySink, OutputSink
 from rancf.solvers.result import DynamicResult, DynamicStatus
 from rancf.solvers.state import COUNTERS, DynamicState, take_up, triads_of
 from rancf.system import System, as_system
+from rancf.system.limits import first_outside, state_limits
 from rancf.system.sliding import start_multipliers
 
 __all__ = ["DynamicOptions", "DynamicStatus", "DynamicResult", "GeneralizedAlpha", "integrate"]
@@ -56,6 +60,17 @@ CALL_SECONDS = 0.1
 #: change the steps (their times are counted from the outputs), so the sizes may follow the
 #: machine.
 CALL_TARGET_SECONDS = 0.002
+
+
+def _left_range(check: Callable, k0: int, stored: int, out_time: Callable, oy: NDArray,
+                ol: NDArray | None, t: float, y: NDArray, lam: NDArray) -> bool:  # fmt: skip
+    """Whether a call of the compiled loop left a bounded coordinate's range: at one of its
+    ``stored`` outputs (from the ``k0``-th) or at its end state ``(t, y, λ)`` (a step past the
+    last output)."""
+    ts = np.array([out_time(k0 + i) for i in range(stored)])
+    if first_outside(check, ts, oy[:stored], None if ol is None else ol[:stored]) >= 0:
+        return True
+    return check(t, y, lam) is not None
 
 
 def _failure_message(t: float, min_step: float) -> str:
@@ -141,17 +156,18 @@ def integrate(
 
     last_y: list = []  # the last row's y, v (its energies where the sink derives them)
 
-    def store(tt: float, yy: NDArray, vv: NDArray) -> None:
+    def store(tt: float, yy: NDArray, vv: NDArray, alpha: NDArray | None) -> None:
         e = np.array(system.energies(yy, vv, tt)) if loop_energies else None
         last_y[:] = [yy.copy(), vv.copy()]
         m1 = directors(yy)
         ll = lam.copy() if mult else None
-        row = (tt, system.q_from_y(yy), system.q_from_y(vv), e, m1, ll)
-        target_sink.append(*row[:4], directors=m1, lam=ll)
+        row = (tt, system.q_from_y(yy), system.q_from_y(vv), e, m1, ll, alpha)
+        target_sink.append(*row[:4], directors=m1, lam=ll, alpha=alpha)
         last[:] = [row]
         result.n_outputs += 1
 
-    def store_block(k0: int, oy: NDArray, ov: NDArray, oe: NDArray, ol: NDArray) -> None:
+    def store_block(k0: int, oy: NDArray, ov: NDArray, oe: NDArray, ol: NDArray,
+                    oa: NDArray | None) -> None:  # fmt: skip
         """Outputs ``k0, k0 + 1, ...`` from the core's loop, passed on as one block (rods: one
         output a block, whose state is the one the triads were carried to)."""
         ts = np.array([out_time(k0 + i) for i in range(len(oy))])
@@ -159,14 +175,15 @@ def integrate(
         m1 = directors(oy[-1])
         ll = ol if mult else None
         target_sink.append_block(ts, qs, vs, oe, directors=None if m1 is None else m1[None],
-                                 lam=ll)  # fmt: skip
+                                 lam=ll, alpha=oa)  # fmt: skip
         last_y[:] = [oy[-1].copy(), ov[-1].copy()]
         last[:] = [(float(ts[-1]), qs[-1], vs[-1], None if oe is None else np.array(oe[-1]), m1,
-                    None if ll is None else ll[-1])]  # fmt: skip
+                    None if ll is None else ll[-1], None if oa is None else oa[-1])]  # fmt: skip
         result.n_outputs += len(oy)
 
     empty = np.empty(0)
     result = DynamicResult(empty, empty, empty, empty, empty, empty, DynamicStatus.COMPLETED, "")
+    contact = system.has_contact
     h, k_out, within, base = o.step, 0, 0, {"n_newton": 0, "wall_time": 0.0}
     if start is None:
         y = system.y0.copy() if initial is None else np.array(initial, dtype=float)
@@ -176,7 +193,7 @@ def integrate(
         lam = start_multipliers(system, None if initial is None else y)
         a = integ.initial_acceleration(y, v, t, lam)
         w = a.copy()  # the algorithmic accelerations start at the consistent ones
-        store(0.0, y, v)
+        store(0.0, y, v, np.concatenate([y, v]) if contact else None)
     else:
         t, y, v, a, w, lam, h, k_out, within = take_up(system, integ, start, result, base)
     if on_start is not None:
@@ -187,20 +204,22 @@ def integrate(
         if not last:  # a resumed run with nothing stored yet
             ts, qs, vs, es = empty, np.empty((0, system.n)), np.empty((0, system.n)), empty
             es = np.empty((0, 3))
-            result.directors = result.lam = None
+            result.directors = result.lam = result.alpha = None
         elif memory is not None:
             ts, qs, vs, es = memory.arrays()
             result.directors = memory.stream("directors")
             result.lam = memory.stream("lam")
+            result.alpha = memory.stream("alpha")
         else:
-            tt, qq, vv, ee, m1, ll = last[0]
+            tt, qq, vv, ee, m1, ll, aa = last[0]
             if ee is None:  # derived by the sink: the last row's here, as the sink does
                 ee = np.empty((1, 3))
                 system.core.energies_rows(np.array([tt]), *last_y, ee)
-                last[0] = (tt, qq, vv, ee[0], m1, ll)
+                last[0] = (tt, qq, vv, ee[0], m1, ll, aa)
             ts, qs, vs, es = np.array([tt]), qq[None], vv[None], np.reshape(ee, (1, 3))
             result.directors = None if m1 is None else m1[None]
             result.lam = None if ll is None else ll[None]
+            result.alpha = None if aa is None else aa[None]
         result.t, result.q, result.v = ts, qs, vs
         result.kinetic, result.strain, result.gravity = es[:, 0], es[:, 1], es[:, 2]
         result.status, result.message = status, message
@@ -226,6 +245,10 @@ def integrate(
     if rod:  # the triads at a call's end are those of its one stored state
         chunk_out = least = cap = 1
 
+    check = state_limits(system)  # bounded coordinates: each step checked
+    fast = fast and not (check is not None and rod)  # (a rod's triads cannot step back)
+    slow_until = -1.0  # the compiled loop left a coordinate's range: steps here until then
+
     def notify(tt: float) -> None:
         if on_output is not None:
             msg = f"running, t = {tt:g} s"
@@ -235,10 +258,12 @@ def integrate(
         target = out_time(k_out)
         last_out = out_time(k_out - 1) if k_out else 0.0
         on_grid = within > 0 or abs(t - last_out) <= 1e-12 * max(1.0, t)
-        if fast and h == o.step and k_out < n_grid and on_grid:
+        if fast and h == o.step and k_out < n_grid and on_grid and t >= slow_until:
             n_chunk = min(chunk_out, n_grid - k_out)
+            before = None if check is None else (y.copy(), v.copy(), a.copy(), w.copy(),
+                                                 lam.copy())  # fmt: skip
             called = time.perf_counter()
-            done, st, iters, stored, oy, ov, oe, ol, err, t_err = integ.run_steps(
+            done, st, iters, stored, oy, ov, oe, ol, oa, err, t_err = integ.run_steps(
                 y,
                 v,
                 a,
@@ -254,6 +279,12 @@ def integrate(
                 k_out,
                 energies=loop_energies,
             )
+            left = before is not None and _left_range(check, k_out, stored, out_time, oy, ol,
+                                                      t, y, lam)  # fmt: skip
+            if left:
+                y, v, a, w, lam = before  # again step by step, to the step that leaves it
+                slow_until = out_time(min(k_out + n_chunk, n_grid) - 1)
+                continue
             result.took(o.step, done)
             result.note_error(integ.relative_error(err, o.rtol), t_err, o.step)
             took = time.perf_counter() - called
@@ -262,7 +293,7 @@ def integrate(
                 chunk_out = int(np.clip(grown, max(least, chunk_out // 4), min(cap, 4 * chunk_out)))
             if stored:
                 store_block(k_out, oy[:stored], ov[:stored], None if oe is None else oe[:stored],
-                            ol[:stored])  # fmt: skip
+                            ol[:stored], None if oa is None else oa[:stored])  # fmt: skip
             k_out += stored
             within = within + done - stored * per_out
             last_out = out_time(k_out - 1) if k_out else 0.0
@@ -294,6 +325,11 @@ def integrate(
                 status, message = DynamicStatus.FAILED, _failure_message(t, min_step)
                 break
             continue
+        left = None if check is None else check(t + h_try, y1, lam_try)
+        if left is not None:  # the state stays at the step before
+            status, message = DynamicStatus.FAILED, left
+            break
+        alpha = integ.alpha_point(y, v, y1, v1) if contact else None  # before re-referencing
         y, v, a, w, t, lam = y1, v1, a1, w1, t + h_try, lam_try
         system.rereference(y, v, a, w)  # rods: triads follow the step, twist rates the spin
         result.took(h_try)
@@ -304,7 +340,7 @@ def integrate(
             h = o.step
         if abs(t - target) <= 1e-12 * max(1.0, target):
             t = float(target)
-            store(t, y, v)
+            store(t, y, v, alpha)
             k_out += 1
             notify(t)
         if should_stop is not None and should_stop():

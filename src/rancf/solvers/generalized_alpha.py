@@ -143,23 +143,34 @@ class GeneralizedAlpha:
         holds ``done_before`` steps.  The core returns early, after a whole step, once
         ``max_seconds`` of wall time have passed (so that the caller can poll for interrupts).
         Returns ``(steps done, status, iterations, outputs stored, out_y, out_v, out_e,
-        out_l, error, t_error)``; status is 1 if every step taken converged, else 0 (the failing
-        step is not taken); ``error`` the largest local error estimate of the steps taken
-        (length, as :meth:`step`'s) and ``t_error`` the time at the end of that step; ``out_e``
-        is None without ``energies`` (a sink that derives them from the rows).
+        out_l, out_alpha, error, t_error)``; status is 1 if every step taken converged, else 0
+        (the failing step is not taken); ``out_alpha`` (systems with contact, else None): each
+        stored row's step's generalized-α point ``(y_f, v_f)`` side by side, ``(n_out, 2 n)``,
+        where its contact forces act; ``error`` the largest local error estimate of the steps
+        taken (length, as :meth:`step`'s) and ``t_error`` the time at the end of that step;
+        ``out_e`` is None without ``energies`` (a sink that derives them from the rows).
         """
         n, m = self.system.n, self.system.m
         n_out = (done_before + n_steps) // per_out
         oy, ov = np.empty((n_out, n)), np.empty((n_out, n))
         oe = np.empty((n_out, 3)) if energies else None
         ol = np.empty((n_out, m))
+        contact = self.system.has_contact
+        of = (np.empty((n_out, n)), np.empty((n_out, n))) if contact else (None, None)
         lam = np.zeros(m) if lam is None else lam
         done, ok, iters, stored, err, t_err = self._core.run(
             y, v, a, w, lam, t, h, n_steps, per_out, done_before, max_seconds, oy, ov, ol, oe,
-            out_dt, k_last,
+            *of, out_dt, k_last,
         )  # fmt: skip
+        oa = np.concatenate(of, axis=1) if contact else None  # type: ignore[arg-type]
         self.n_newton += iters
-        return done, int(ok), iters, stored, oy, ov, oe, ol, err, t_err
+        return done, int(ok), iters, stored, oy, ov, oe, ol, oa, err, t_err
+
+    def alpha_point(self, y0: NDArray, v0: NDArray, y1: NDArray, v1: NDArray) -> NDArray:
+        """``(y_{n+1-α_f}, v_{n+1-α_f})`` of a step from ``(y0, v0)`` to ``(y1, v1)``, side by
+        side ``(2 n,)``: where the step's contact forces act."""
+        af = self.af
+        return np.concatenate([(1.0 - af) * y1 + af * y0, (1.0 - af) * v1 + af * v0])
 
     def relative_error(self, error: float, rtol: float) -> float:
         """A local error estimate of :meth:`step` or :meth:`run_steps` relative to the

@@ -310,7 +310,7 @@ def natural_modes(
         lam_w, phi, symmetric = _dense(lin)
     else:
         lam_w, phi, symmetric = _sparse(lin, count + rigid.shape[1] + 12)
-    order = np.lexsort((np.imag(lam_w), np.real(lam_w)))
+    order = _ascending(lam_w)
     lam_w, phi = lam_w[order], phi[:, order]
     mc = lin.mass
     norms = np.sqrt(np.maximum(np.einsum("ij,ij->j", phi.conj(), mc @ phi).real, 1e-300))
@@ -366,9 +366,20 @@ def _general_modes(
         lam, phi = scipy.linalg.eig(k, m)
     ok = ~np.isnan(lam)  # an overflowing eigenvalue stays (infinite), last
     lam, phi = lam[ok].astype(np.complex128), phi[:, ok].astype(np.complex128)
-    order = np.lexsort((lam.imag, lam.real))
+    order = _ascending(lam)
     lam, phi = lam[order], phi[:, order]
     phi /= np.sqrt(np.einsum("ij,ik,kj->j", phi.conj(), m, phi).real)
     big = phi[np.argmax(np.abs(phi), axis=0), np.arange(phi.shape[1])]
     phi *= big.conj() / np.abs(big)
     return lam, phi
+
+
+def _ascending(lam: NDArray) -> NDArray:
+    """The order of eigenvalues ``lam`` ascending by real, then imaginary part, with real parts
+    equal to 1e-10 of the largest taken as equal: the two of a conjugate pair, whose real parts
+    the eigensolver returns apart by round-off, come in the same order (negative imaginary
+    part first) whatever the LAPACK build."""
+    finite = np.isfinite(lam.real)
+    scale = float(np.abs(lam.real[finite]).max()) if finite.any() else 1.0
+    key = np.where(finite, np.round(lam.real / max(scale, 1e-300), 10), lam.real)
+    return np.lexsort((lam.imag, key))

@@ -18,9 +18,11 @@ from numpy.typing import NDArray
 
 __all__ = ["OutputSink", "MemorySink", "STREAMS"]
 
-#: Named streams of a row besides ``t, q, v`` and the energies: rods' ``directors`` and the
-#: multipliers ``lam``.
-STREAMS = ("directors", "lam")
+#: Named streams of a row besides ``t, q, v`` and the energies: rods' ``directors``, the
+#: multipliers ``lam`` and, in systems with contact, ``alpha``: the generalized-α point
+#: ``(y_{n+1-α_f}, v_{n+1-α_f})`` of the step that ended at the row (model coordinates, ``2 n``
+#: numbers), where that step's contact forces act.
+STREAMS = ("directors", "lam", "alpha")
 
 
 class OutputSink(Protocol):

@@ -52,6 +52,10 @@ class DynamicResult:
     directors: NDArray[np.float64] | None = None
     #: Systems with joints: the multipliers ``λ`` at the output times ``(n_t, m)``; else None.
     lam: NDArray[np.float64] | None = None
+    #: Systems with contact: the generalized-α point ``(y_{n+1-α_f}, v_{n+1-α_f})`` of the step
+    #: that ended at each output time ``(n_t, 2 n)`` (model coordinates; the initial state
+    #: itself at ``t = 0``), where that step's contact forces act; else None.
+    alpha: NDArray[np.float64] | None = None
     #: The largest local error estimate of the steps taken, relative to the tolerance
     #: ``rtol * size`` (:meth:`~rancf.solvers.generalized_alpha.GeneralizedAlpha.relative_error`;
     #: above 1: a step was coarser than the tolerance), with the time at the end of that step

@@ -19,6 +19,8 @@ from __future__ import annotations
 
 import io
 import json
+import zipfile
+import zlib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -39,6 +41,9 @@ COUNTERS = ("n_steps", "n_newton", "n_factorizations", "n_rejected", "n_outputs"
 #: Version 2 holds ``w`` (rancf 0.4, the Arnold–Brüls form); version 1's runs go on with
 #: ``w = a`` (the start of a run).
 _VERSION = 2
+
+#: What reading a damaged ``.npz`` file raises (a truncated or edited archive).
+NPZ_ERRORS = (OSError, ValueError, KeyError, TypeError, EOFError, zipfile.BadZipFile, zlib.error)
 
 
 @dataclass
@@ -134,10 +139,37 @@ class DynamicState:
                 float(meta["step"]), int(meta["k_out"]), int(meta["within"]), triads,
                 arrays["memory"], dict(meta["counters"]), float(meta["t_end"]),
             )  # fmt: skip
-        except (OSError, ValueError, KeyError, TypeError) as exc:
+        except NPZ_ERRORS as exc:
             raise InputError(
                 "checkpoint", str(path), f"a state written by a rancf run (reading it: {exc})"
             ) from None
+
+    def check_finite(self, where: str = "state") -> None:
+        """Refuse a state with a number that is not finite, a time < 0, a step <= 0 or a
+        count (``k_out``, ``within``, ``n_outputs``) that is not a whole number >= 0 (a damaged
+        file).
+
+        Raises
+        ------
+        InputError
+            Naming the first such entry.
+        """
+        arrays = {"y": self.y, "v": self.v, "a": self.a, "w": self.w, "lam": self.lam,
+                  "memory": self.memory}  # fmt: skip
+        arrays.update({f"triads_{i}": x for i, x in enumerate(self.triads)})
+        bad = [f"a NaN or infinite number in {k}" for k, x in arrays.items()
+               if not np.all(np.isfinite(x))]  # fmt: skip
+        counts = {"k_out": self.k_out, "within": self.within,
+                  "n_outputs": self.counters.get("n_outputs", 0)}  # fmt: skip
+        bad[:0] = [f"{k} = {n!r}" for k, n in counts.items()
+                   if not (isinstance(n, int) and n >= 0)]  # fmt: skip
+        if not (np.isfinite(self.step) and self.step > 0.0):
+            bad.insert(0, f"step = {self.step!r}")
+        if not (np.isfinite(self.t) and self.t >= 0.0):
+            bad.insert(0, f"t = {self.t!r}")
+        if bad:
+            raise InputError(where, bad[0], "a state of finite numbers, t >= 0, step > 0 and "
+                             "counts k_out, within, n_outputs >= 0")  # fmt: skip
 
     def check_fits(self, n: int, m: int, triad_sizes: list[int], where: str = "state") -> None:
         """Refuse a state of another system: ``n`` coordinates, ``m`` multipliers and rods whose

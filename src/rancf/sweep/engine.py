@@ -285,7 +285,7 @@ def finished_rows(
 ) -> dict[str, dict[str, Any]]:
     """The rows of the runs in ``out/runs`` that finished for the scenario they have now: a
     readable ``row.json`` whose ``scenario_sha256`` is that of the variant's scenario (with
-    its CAD file made absolute) and ``analysis``."""
+    its CAD file made absolute), ``analysis`` and the contents of the files it reads."""
     rows: dict[str, dict[str, Any]] = {}
     for v in variants:
         f = Path(out) / "runs" / v.name / ROW_FILE
@@ -295,7 +295,7 @@ def finished_rows(
             row = json.loads(f.read_text(encoding="utf-8"))
         except (OSError, ValueError):
             continue  # a damaged row: run again
-        want = scenario_hash(with_absolute_paths(v.raw, base), analysis)
+        want = scenario_hash(with_absolute_paths(v.raw, base), analysis, base)
         if isinstance(row, dict) and row.get("scenario_sha256") == want:
             rows[v.name] = row
     return rows

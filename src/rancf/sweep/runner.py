@@ -82,6 +82,7 @@ def run_variant(
     out = Path(folder)
     out.mkdir(exist_ok=True)  # not its parents: a sweep folder removed meanwhile stays removed
     raw = with_absolute_paths(raw, base)
+    digest = scenario_hash(raw, analysis, base)  # the files it reads as they are before the run
     atomic_write(out / "scenario.toml", dumps(raw))
     try:
         sc = parse_scenario(raw, base)
@@ -100,16 +101,22 @@ def run_variant(
         "wall_time_s": time.perf_counter() - t0,
         "solve_time_s": solve,
         "values": values,
-        "scenario_sha256": scenario_hash(raw, analysis),
+        "scenario_sha256": digest,
     }
     atomic_write(out / ROW_FILE, strict_json(row))  # non-finite values as null
     return row
 
 
-def scenario_hash(raw: dict[str, Any], analysis: str) -> str:
-    """SHA-256 of a variant's scenario dictionary and analysis (key order ignored): a finished
-    run is reused on resume only if this is unchanged."""
-    text = json.dumps({"analysis": analysis, "scenario": raw}, sort_keys=True, default=repr)
+def scenario_hash(raw: dict[str, Any], analysis: str, base: str | Path) -> str:
+    """SHA-256 of a variant's scenario dictionary, analysis (key order ignored) and the
+    contents of the files it reads (CSV tables, CAD files; relative names relative to the
+    folder of the base scenario ``base``): a finished run is reused on resume only if this is
+    unchanged."""
+    from rancf.scenario.read_files import file_digests
+
+    files = file_digests(raw, base)
+    text = json.dumps({"analysis": analysis, "scenario": raw, "files": files}, sort_keys=True,
+                      default=repr)  # fmt: skip
     return hashlib.sha256(text.encode("utf-8")).hexdigest()
 
 

@@ -96,6 +96,8 @@ def load_sweep(path: str | Path) -> SweepSpec:
             raise ScenarioError(where, f"grid.{key}", f"must be a non-empty list, got {values!r}")
     base = (p.parent / raw["base"]).resolve()
     base_raw = read_toml(base, where, "base")
+    for key in grid:
+        _check_table(where, key, base_raw)
     spec = SweepSpec(p, base, analysis, dict(grid), base_raw)
     for v in spec.variants():
         try:
@@ -107,20 +109,37 @@ def load_sweep(path: str | Path) -> SweepSpec:
     return spec
 
 
+def _check_table(where: str, key: str, base_raw: dict[str, Any]) -> None:
+    """Refuse a grid key ``table.key`` whose table is not a table of the base scenario (an
+    array of tables such as ``[[winches]]``, or a value)."""
+    table = key.split(".", 1)[0]
+    have = base_raw.get(table)
+    if have is None or isinstance(have, dict):
+        return
+    what = f"an array of tables ([[{table}]])" if isinstance(have, list) else "a value"
+    raise ScenarioError(where, f"grid.{key}", f"{table!r} is {what} in the base scenario, not "
+                        f"a table: a grid key names a key of a table ([{table}] key = ...); "
+                        "sweep a copy of the base file per value instead")  # fmt: skip
+
+
 def _check_size(sc: Any) -> None:
     """Refuse a variant whose files would exceed a sweep run's disk limit, counting its nodes
-    from ``mesh.elements`` (a lower bound: NURBS and CAD meshes have at least as many), so no
-    model is built."""
+    from the meshes' ``elements`` (a lower bound: NURBS and CAD meshes have at least as many;
+    a system: its flexible bodies'), so no model is built."""
     from rancf.post.run_plan import check_output_size
     from rancf.sweep.runner import LIMIT, MAX_RUN_GB
 
-    mesh = sc.data["mesh"]
-    per_node = {"beam": 3, "rod": 7}.get(mesh["element"], 2 * sc.dim)
-    n_nodes = mesh["elements"] + 1
+    meshes = [sc.data["mesh"]] if sc.data.get("mesh") else [
+        b["mesh"] for b in sc.data.get("bodies") or [] if b.get("mesh")
+    ]  # fmt: skip
+    n_q = n_rods = 0
+    for mesh in meshes:
+        n_nodes = mesh["elements"] + 1
+        n_q += n_nodes * {"beam": 3, "rod": 7}.get(mesh["element"], 2 * sc.dim)
+        n_rods += 3 * n_nodes if mesh["element"] == "rod" else 0
     n_cols = sum(len(s.columns(sc.dim)) for s in sc.sensors)
-    rods = 3 * n_nodes if mesh["element"] == "rod" else 0
     n_out = sc.dynamic_options().n_outputs
-    check_output_size(sc.path, n_out, n_nodes * per_node, n_cols, rods, MAX_RUN_GB, LIMIT)
+    check_output_size(sc.path, n_out, n_q, n_cols, n_rods, MAX_RUN_GB, LIMIT)
 
 
 def read_toml(path: Path, where: str, key: str) -> dict[str, Any]:

@@ -58,16 +58,27 @@ def dumps(data: dict[str, Any]) -> str:
 
 
 def with_absolute_paths(raw: dict[str, Any], base: str | Path) -> dict[str, Any]:
-    """A copy of the scenario dictionary ``raw`` read from ``base`` whose CAD ``file`` and CSV
-    ``table`` files (paths relative to ``base``) are absolute, so that the copy can live in
-    another folder."""
+    """A copy of the scenario dictionary ``raw`` read from ``base`` whose CAD ``file`` (of the
+    geometry and of every body's) and CSV ``table`` files (paths relative to ``base``) are
+    absolute, so that the copy can live in another folder."""
     from rancf.scenario.table_files import absolute_table_paths
 
     raw = absolute_table_paths(copy.deepcopy(raw), base)  # table = "file.csv"
-    geo = raw.get("geometry", {})
-    if isinstance(geo, dict) and geo.get("kind") == "cad" and isinstance(geo.get("file"), str):
-        geo["file"] = str((Path(base).parent / geo["file"]).resolve())
+    _absolute_cad(raw, Path(base).parent)
     return raw
+
+
+def _absolute_cad(node: Any, folder: Path) -> None:
+    """Every ``kind = "cad"`` table's ``file`` in ``node`` (in place) made absolute against
+    ``folder``: ``[geometry]`` and each ``[bodies.geometry]``."""
+    if isinstance(node, dict):
+        if node.get("kind") == "cad" and isinstance(node.get("file"), str):
+            node["file"] = str((folder / node["file"]).resolve())
+        for value in node.values():
+            _absolute_cad(value, folder)
+    elif isinstance(node, list):
+        for item in node:
+            _absolute_cad(item, folder)
 
 
 def scenario_copy(text: str, raw: dict[str, Any], base: str | Path) -> str:

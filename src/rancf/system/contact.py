@@ -336,17 +336,23 @@ class ContactState:
 
 
 def contact_outputs(
-    system: ContactSystem, y: NDArray, v: NDArray | None = None
+    system: ContactSystem, y: NDArray, v: NDArray | None = None, y1: NDArray | None = None
 ) -> dict[str, ContactState]:
     """Per obstacle (by name), its contact at model coordinates ``y`` (and velocities ``v``: the
-    friction; without them none).  Stored results hold ``q``: pass ``system.y_from_q(q)``."""
+    friction; without them none).  Stored results hold ``q``: pass ``system.y_from_q(q)``.
+
+    With ``y1``, ``(y, v)`` is a time step's generalized-α point ``(y_{n+1-α_f},
+    v_{n+1-α_f})`` and ``y1`` its end: the forces are those the step applied (the pressure the
+    step's mean over its gaps, module docstring), where the state at the step's end alone would
+    sample the penalty's unresolved vibration."""
     names = system.obstacle_names
     if not names:
         return {}
     out = np.empty((len(names), _core.CONTACT_OUTPUTS))
     y = np.ascontiguousarray(y, dtype=float)
     vv = None if v is None else np.ascontiguousarray(v, dtype=float)
-    system.contact.outputs(y, vv, out)
+    yy1 = None if y1 is None else np.ascontiguousarray(y1, dtype=float)
+    system.contact.outputs(y, vv, out, yy1)
     d = system.dim
     return {
         name: ContactState(

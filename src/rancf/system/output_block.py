@@ -12,9 +12,9 @@
   axial forces of the block at once (:func:`rancf.bodies.nodal_forces.nodal_axial_forces`).
 
 Only for dynamic rows without rods' directors or sliding joints (their multipliers' slots and
-extra columns are the row loop's).  Rows with contact take the contact forces of their own
-state (where the step that ended there holds its balance), and their obstacles' columns come
-from :func:`contact_row` row by row.
+extra columns are the row loop's).  Rows with contact take the forces of the step that ended at
+them (``alpha``, as the row loop does), and their obstacles' columns come from
+:func:`contact_row` row by row.
 """
 
 from __future__ import annotations
@@ -38,21 +38,23 @@ def takes_block(system: Any, static: bool, directors: NDArray | None, k: int) ->
     return not (static or sliding) and directors is None and k > 0
 
 
-def block_derived(
-    outputs: Any, t: NDArray, ys: NDArray, vs: NDArray, out: dict[str, NDArray]
-) -> tuple[NDArray, NDArray]:
+def block_derived(outputs: Any, t: NDArray, ys: NDArray, vs: NDArray, out: dict[str, NDArray],
+                  alpha: NDArray | None = None) -> tuple[NDArray, NDArray]:  # fmt: skip
     """Accelerations ``out["a"]``, multipliers ``out["lam"]`` and reactions ``out["r"]`` of the
     states ``ys``, ``vs`` ``(k, n)`` at times ``t``; returns the bodies' own terms of the
     balance and the element forces ``(k, n)`` each, from the assembly that gives the residual
-    (for the nodal axial forces; empty without bodies that need them)."""
+    (for the nodal axial forces; empty without bodies that need them).  ``alpha`` ``(k, 2 n)``:
+    systems with contact, each row's step's generalized-α point ``(y_f, v_f)``, whose contact
+    forces the row takes (without it the row's own state's)."""
     s = outputs.system
     k, nj = ys.shape[0], len(s.joints)
     a, lam = np.empty((k, s.n)), np.empty((k, s.m))
     res, jr = np.empty((k, s.n + s.m)), np.empty((k, nj, 6))
     res0, fint = (np.empty((k, s.n)), np.empty((k, s.n))) if outputs.recovered else (None, None)
+    step = np.ascontiguousarray(alpha, dtype=float) if s.has_contact and alpha is not None else None
     outputs.integrator.derived_rows(np.ascontiguousarray(t), np.ascontiguousarray(ys),
                                     np.ascontiguousarray(vs), a, lam, res, jr, nj, res0,
-                                    fint)  # fmt: skip
+                                    fint, step)  # fmt: skip
     out["a"], out["lam"] = s.q_from_y(a), lam
     parts = []
     for name, b in outputs.flex:
@@ -65,18 +67,27 @@ def block_derived(
         if len(outputs.joint_names[j]) > s.dim:  # the joint reports a moment
             parts.append(jr[:, j, 5:] if s.dim == 2 else jr[:, j, 3:])
     if s.has_contact:
-        rows = [contact_row(s, ys[i], vs[i]) for i in range(k)]
-        parts.append(np.array(rows).reshape(k, -1))
+        parts.append(_contact_block(s, ys, vs, step))
     out["r"] = np.concatenate(parts, axis=1) if parts else np.empty((k, 0))
     return (res0, fint) if res0 is not None else (np.empty((k, 0)), np.empty((k, 0)))
 
 
-def contact_row(s: Any, yc: NDArray, vc: NDArray | None) -> NDArray:
+def _contact_block(s: Any, ys: NDArray, vs: NDArray, alpha: NDArray | None) -> NDArray:
+    """:func:`contact_row` of every row, its contact state that of the step that ended at it
+    (``alpha``) or else its own."""
+    n = s.n
+    rows = [contact_row(s, *((alpha[i, :n], alpha[i, n:]) if alpha is not None else
+                             (ys[i], vs[i])), ys[i]) for i in range(ys.shape[0])]  # fmt: skip
+    return np.array(rows).reshape(ys.shape[0], -1)
+
+
+def contact_row(s: Any, yc: NDArray, vc: NDArray | None, y1: NDArray | None) -> NDArray:
     """The contact columns of one row: per obstacle the normal and friction force, moment,
-    contact length and penetration (:func:`rancf.system.contact.contact_outputs` at the state
-    ``yc``, ``vc``), per pair of flexible bodies the contact force and penetration."""
+    contact length and penetration (:func:`rancf.system.contact.contact_outputs` at the contact
+    state ``yc``, ``vc``, ``y1``), per pair of flexible bodies the contact force and
+    penetration (at ``yc``)."""
     parts: list = []
-    for c in contact_outputs(s, yc, vc).values():
+    for c in contact_outputs(s, yc, vc, y1).values():
         parts += [c.normal, c.friction, np.atleast_1d(c.moment), [c.length, c.penetration]]
     if s.body_contacts:
         bo = np.empty(3 * len(s.body_contacts))

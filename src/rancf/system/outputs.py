@@ -25,10 +25,14 @@ acceleration at ``t_{n+1} + (α_m - α_f) h`` (Arnold & Brüls 2007), a first-or
 ``ρ∞ < 1``; the consistent acceleration of the stored ``(y, v)`` has only their error, so the
 reactions converge at second order.
 
-Contact forces are those of the row's own state: the integrator holds the balance at the end of
-each step (:mod:`rancf.solvers.dynamic`), so the contact forces there are the ones the dynamics
-applied, and the row's accelerations, multipliers and reactions are the consistent ones with
-them: every body's forces balance ``M a``.
+Contact is the exception: a penalty vibrates far faster than any step resolves, the integrator
+damps that vibration, and the state at a step's end samples it (the unbraked belt drive's pulley,
+pushed by 20 N, read 16.4 to 18.5 N there).  A dynamic row's contact forces are therefore those
+of the step that ended at it, as the dynamics applied them: at the step's generalized-α point
+``(y_f, v_f)`` with the step's mean pressure (``alpha`` of :meth:`SystemOutputs.rows`, the
+stream the integrator stores), and the row's accelerations, multipliers and reactions are the
+consistent ones with those contact forces, so every body's forces balance ``M a``.  Contact
+between flexible bodies is reported at ``y_f`` with the pressure there.
 
 Column names: a support's ``LABEL_fx, LABEL_fy[, LABEL_fz]`` then its moment (``LABEL_mz`` or
 ``LABEL_mx, _my, _mz``) as :func:`rancf.bodies.reactions.reaction_columns` (the label is the
@@ -180,13 +184,17 @@ class SystemOutputs:
         lam: NDArray | None = None,
         static: bool = False,
         per_body: bool = False,
+        alpha: NDArray | None = None,
     ) -> dict[str, NDArray[np.float64]]:
         """Derived values of ``k`` rows: ``"a"`` ``(k, n_q)`` (full coordinates), ``"lam"``
         ``(k, m)``, ``"r"`` reactions ``(k, n_reaction_columns)``, ``"s"`` section values
         ``(k, n_along)`` and ``"c"`` sensors ``(k, n_sensor_columns)``.  ``directors``: rods'
         nodal ``m1`` ``(k, n_directors)``; ``energy`` ``(k, 3)`` (for ``energy`` sensors);
         ``lam``: the multipliers of static rows (their solver's); ``per_body``: also ``"eb"``,
-        every flexible body's kinetic, strain and gravitational energy ``(k, 3 n_flexible)``."""
+        every flexible body's kinetic, strain and gravitational energy ``(k, 3 n_flexible)``;
+        ``alpha``: the generalized-α point ``(y_f, v_f)`` of the step that ended at each
+        dynamic row ``(k, 2 n)`` (:data:`rancf.solvers.output.STREAMS`): the contact forces are
+        then that step's (module docstring)."""
         s = self.system
         t = np.atleast_1d(np.asarray(t, dtype=float))
         k = t.size
@@ -206,7 +214,7 @@ class SystemOutputs:
         ys = s.y_from_q(q) if takes_block(s, static, directors, k) else None
         if ys is not None:
             vs = np.zeros_like(ys) if v is None else s.y_from_q(np.reshape(v, (k, -1)))
-            own, internal = block_derived(self, t, ys, vs, out)
+            own, internal = block_derived(self, t, ys, vs, out, alpha)
             block_sections(self, raws, factors, ys, t, nodal, own, internal)
         if per_body and energy is not None and self._body_is_system and not static:
             out["eb"], per_body = np.array(energy, dtype=float).reshape(k, 3), False
@@ -227,14 +235,16 @@ class SystemOutputs:
                     s.core.residual(y, vy, a, li, 0.0, min(float(t[i]), 1.0), True, False, res)
                     s.core.residual(y, vy, a, no_lam, 0.0, min(float(t[i]), 1.0), True, False,
                                     res0, distributed_only=True)  # fmt: skip
+                    step: tuple[NDArray, ...] = ()
                 else:
-                    self.integrator.initial_acceleration(y, vy, float(t[i]), a, li)
-                    s.core.residual(y, vy, a, li, float(t[i]), 1.0, False, True, res)
-                    s.core.residual(y, vy, a, no_lam, float(t[i]), 1.0, False, True, res0,
+                    step = self._step(alpha, i, y, vy)
+                    self.integrator.initial_acceleration(y, vy, float(t[i]), a, li, *step)
+                    s.core.residual(y, vy, a, li, float(t[i]), 1.0, False, True, res, *step)
+                    s.core.residual(y, vy, a, no_lam, float(t[i]), 1.0, False, True, res0, *step,
                                     distributed_only=True)  # fmt: skip
                 out["a"][i], out["lam"][i] = s.q_from_y(a), li
                 vc = None if static else vy  # friction from the velocities
-                out["r"][i] = self._reactions(y, res[: s.n], float(t[i]), li, vc)
+                out["r"][i] = self._reactions(y, res[: s.n], float(t[i]), li, vc, step)
                 block_sections(self, raws, factors, y[None], t[i : i + 1], nodal, res0[None])
                 if per_body:
                     out["eb"][i] = self._body_energies(y, vy, float(t[i]))
@@ -282,11 +292,25 @@ class SystemOutputs:
             out.append(Reaction(j.name or f"joint{k}", np.asarray(force)[: s.dim], mom, extra))
         return out
 
+    def _step(self, alpha: NDArray | None, i: int, y: NDArray, v: NDArray) -> tuple[NDArray, ...]:
+        """The contact state ``(y_f, v_f, y_1)`` of dynamic row ``i``'s step (none without
+        contact; the row's own state without ``alpha``: a step of length zero)."""
+        s = self.system
+        if not s.has_contact:
+            return ()
+        if alpha is None:
+            return (y, v, y)
+        row = np.ascontiguousarray(alpha[i], dtype=float)
+        return (row[: s.n], row[s.n :], y)
+
     def _reactions(
-        self, y: NDArray, res: NDArray, t: float, lam: NDArray, v: NDArray | None = None
-    ) -> NDArray:
+        self, y: NDArray, res: NDArray, t: float, lam: NDArray, v: NDArray | None = None,
+        step: tuple[NDArray, ...] = (),
+    ) -> NDArray:  # fmt: skip
+        s = self.system
+        yc, vc, y1 = step if step else (y, v, None)
         return np.concatenate([reaction_row(self.reactions(y, res, t, lam)),
-                               contact_row(self.system, y, v)])  # fmt: skip
+                               contact_row(s, yc, vc, y1)])  # fmt: skip
 
     def _body_energies(self, y: NDArray, v: NDArray, t: float) -> NDArray:
         """Every flexible body's kinetic, strain and gravitational energy at time ``t`` (a

@@ -165,6 +165,8 @@ class System(BodyStack):
                              "a finite number >= 0")  # fmt: skip
         self.stiffness_damping = float(stiffness_damping)
         self.horizon = horizon
+        #: One line each on an impulsive start (a scenario's, :attr:`Scenario.warnings`).
+        self.start_warnings: tuple[str, ...] = ()
         self.joints, self.springs, self.loads = tuple(joints), tuple(springs), tuple(loads)
         linear = closure_terms(self.names, self.flex, self.offsets)
         rows = _Rows(horizon)

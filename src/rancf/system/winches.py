@@ -23,14 +23,14 @@ from rancf.bodies.flexible import Model
 from rancf.bodies.length import unstretched_length
 from rancf.bodies.reactions import has_moment
 from rancf.bodies.rigid import PointMass
-from rancf.bodies.time_function import TimeFunction
+from rancf.bodies.time_function import TimeFunction, build_up_factor
 from rancf.bodies.winch_inertia import convective_matrices
 from rancf.errors import InputError
 from rancf.system.drums import attach_drum, drum_torque
 
 __all__ = [
     "Winch", "winch_length", "winch_functions", "attach_winches", "winch_node", "unloaded_at",
-    "winch_reader", "winch_factor", "LENGTH_RTOL",
+    "winch_reader", "winch_factor", "LENGTH_RTOL", "length_law",
 ]  # fmt: skip
 
 
@@ -113,7 +113,7 @@ def winch_length(w: Winch, length0: float, horizon: float | None) -> TimeFunctio
         return TimeFunction.constant(length0)
     if w.length is not None:
         f = w.length if isinstance(w.length, TimeFunction) else TimeFunction.constant(w.length)
-        return f
+        return length_law(f)
     speed = w.speed if isinstance(w.speed, TimeFunction) else TimeFunction.constant(w.speed)
     if horizon is None or not horizon > 0:
         raise InputError("horizon", horizon, "the run's end time t_end [s] > 0 (a winch's "
@@ -124,6 +124,22 @@ def winch_length(w: Winch, length0: float, horizon: float | None) -> TimeFunctio
 
     def length(x: float) -> float:
         return float(np.interp(x, t, cum))
+
+    return TimeFunction.from_callable(length)
+
+
+def length_law(f: TimeFunction) -> TimeFunction:
+    """A winch's ``length`` as it is paid out: ``f`` itself, or with a build-up ``B`` (T.6) its
+    change from its start built up, ``L(t) = f(0) + r(t) (f(t) − f(0))`` (a length cannot start
+    from 0; its rate starts from 0 and joins ``f′`` at ``B``), a callable then."""
+    if f.build_up <= 0.0:
+        return f
+    plain, b = f.with_build_up(0.0), f.build_up
+    start = float(np.ravel(plain.value(0.0))[0])
+
+    def length(t: float) -> float:
+        change = float(np.ravel(plain.value(t))[0]) - start
+        return start + build_up_factor(t, b)[0] * change
 
     return TimeFunction.from_callable(length)
 
