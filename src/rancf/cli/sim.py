@@ -130,7 +130,8 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
             summary = run_summary(system, res)
             store.flush()  # every row's derived outputs, the strain among them
             found = run_warnings(system, largest=outputs.largest_strain, options=opts)
-            store.info["warnings"] = found + error_warnings(res, opts)
+            done = res.status.value == "completed"  # a failed or stopped run says so instead
+            store.info["warnings"] = found + (error_warnings(res, opts) if done else [])
             store.finish(summary, res.state)
         except BaseException as exc:
             err = _end_broken(store, system, exc, od.kept, out)

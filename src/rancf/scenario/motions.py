@@ -44,15 +44,19 @@ JUMP_RTOL = 1e-3
 def start_jump(f: TimeFunction, order: int, t_end: float) -> tuple[float, float]:
     """The jump at ``t = 0`` of ``f``'s value (``order`` 0) or rate (1) from rest, the largest
     magnitude over the components, and the largest magnitude of the same over ``[0, t_end]``
-    (sampled on 1001 times and every table row; the jump included).
+    and a table's rows (sampled on 1001 times and every row; the jump included): a table is
+    measured against its own scale, whatever part of it a run covers.
 
     A table's rate at a row is its right derivative, so a rate jump at ``t = 0`` is the first
     interval's slope; a function with a build-up (T.6) starts from 0 in value and rate.
     """
-    times = np.linspace(0.0, max(float(t_end), 0.0), 1001)
+    end = max(float(t_end), 0.0)
+    if f.rows is not None:
+        end = max(end, float(f.rows[-1, 0]))
+    times = np.linspace(0.0, end, 1001)
     if f.rows is not None:
         knots = f.rows[:, 0]
-        times = np.union1d(times, knots[(knots >= 0.0) & (knots <= t_end)])
+        times = np.union1d(times, knots[knots >= 0.0])
     at = f.value if order == 0 else f.rate
     size = [float(np.max(np.abs(at(t)))) for t in times]
     return size[0], max(size)

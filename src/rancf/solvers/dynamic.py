@@ -305,6 +305,10 @@ def integrate(
                 break
             if st == 1:
                 continue
+            ahead = None if check is None else check(t + o.step, y, lam)  # the step's end
+            if ahead is not None:  # left a length law's range: no retry, the state stays here
+                status, message = DynamicStatus.FAILED, ahead
+                break
             within = 0  # the steps to the next output are taken below
             h = o.step * 0.25  # the failing step is retried below, smaller
             result.n_rejected += 1
@@ -315,6 +319,10 @@ def integrate(
         h_try = min(h, target - t)
         if target - (t + h_try) < 1e-12 * max(1.0, target):
             h_try = target - t
+        ahead = None if check is None else check(t + h_try, y, lam)  # a law at the step's end
+        if ahead is not None:
+            status, message = DynamicStatus.FAILED, ahead
+            break
         lam_try = lam.copy()
         ok, y1, v1, a1, w1, e1 = integ.step(y, v, a, w, t, h_try, lam_try)
         err = integ.relative_error(e1, o.rtol)
