@@ -165,6 +165,21 @@ void assemble(const Model& m, const double* y, double* f, const BandView* k, dou
   }
 }
 
+void assemble_damping(const Model& m, const double* y, const double* v, double ck, double cv,
+                      double* f, const BandView* k) {
+  const ElementKernel& kern = kernel_for(m);
+  if (!m.stiffness.strain_rate_damping() || kern.damping == nullptr) return;
+  std::array<double, kMaxElementDofs> e{}, ed{}, fe{};
+  std::array<double, kMaxElementDofs * kMaxElementDofs> ke{};
+  double* kep = k != nullptr ? ke.data() : nullptr;
+  for (int el = 0; el < m.n_el; ++el) {
+    gather_element(m, el, y, e.data());
+    gather_element(m, el, v, ed.data());
+    kern.damping(m, el, e.data(), ed.data(), ck, cv, fe.data(), kep);
+    scatter_element(m, el, fe.data(), kep, f, k, 1.0);
+  }
+}
+
 double strain_energy(const Model& m, const double* y) {
   const ElementKernel& kern = kernel_for(m);
   std::array<double, kMaxElementDofs> e{};

@@ -42,6 +42,12 @@ int twist_index(const Model& m, int node);
 /// Internal force f (n) and, if k is not null, the tangent added into *k (scaled by k_scale).
 void assemble(const Model& m, const double* y, double* f, const BandView* k, double k_scale);
 
+/// Kelvin-Voigt strain-rate damping (docs/derivations/strain-rate-damping.md): the force f_d(y, v)
+/// added into f (n) and, if k is not null, its Jacobian ck df_d/dy + cv df_d/dv added into *k.
+/// Nothing for a model without it (Stiffness::strain_rate_damping).
+void assemble_damping(const Model& m, const double* y, const double* v, double ck, double cv,
+                      double* f, const BandView* k);
+
 /// Total strain energy.
 double strain_energy(const Model& m, const double* y);
 

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <stdexcept>
@@ -64,15 +65,26 @@ NB_MODULE(_core, mod) {
       .def(
           "__init__",
           [](rancf::Stiffness* st, double ea, double ei, double gj, double ei2, double ei3,
-             bool engineering) { new (st) rancf::Stiffness{ea, ei, gj, ei2, ei3, engineering}; },
+             bool engineering, double damping_axial, double damping_bending,
+             double damping_torsion) {
+            for (const double c : {damping_axial, damping_bending, damping_torsion})
+              if (!(c >= 0.0 && std::isfinite(c)))
+                throw std::invalid_argument("Stiffness: damping coefficients must be finite >= 0");
+            new (st) rancf::Stiffness{
+                ea, ei, gj, ei2, ei3, engineering, damping_axial, damping_bending, damping_torsion};
+          },
           nb::kw_only(), "ea"_a, "ei"_a = 0.0, "gj"_a = 0.0, "ei2"_a = 0.0, "ei3"_a = 0.0,
-          "engineering"_a = false)
+          "engineering"_a = false, "damping_axial"_a = 0.0, "damping_bending"_a = 0.0,
+          "damping_torsion"_a = 0.0)
       .def_ro("ea", &rancf::Stiffness::ea)
       .def_ro("ei", &rancf::Stiffness::ei)
       .def_ro("gj", &rancf::Stiffness::gj)
       .def_ro("ei2", &rancf::Stiffness::ei2)
       .def_ro("ei3", &rancf::Stiffness::ei3)
-      .def_ro("engineering", &rancf::Stiffness::engineering);
+      .def_ro("engineering", &rancf::Stiffness::engineering)
+      .def_ro("damping_axial", &rancf::Stiffness::damping_axial)
+      .def_ro("damping_bending", &rancf::Stiffness::damping_bending)
+      .def_ro("damping_torsion", &rancf::Stiffness::damping_torsion);
   nb::class_<rancf::SectionInertia>(mod, "SectionInertia",
                                     "Rotary inertia of rod sections per length (rho Ip, rho I).")
       .def(
@@ -144,6 +156,27 @@ NB_MODULE(_core, mod) {
               },
               "y"_a, "f"_a.noconvert(), "ab"_a.noconvert(),
               "Internal force and tangent stiffness in (2 ku + 1, n) band storage.")
+          .def(
+              "damping_force",
+              [](const ModelHolder& h, In y, In v, Out f, std::optional<Out> ab, double ck,
+                 double cv) {
+                expect_size(y, h.n(), "y");
+                expect_size(v, h.n(), "v");
+                expect_size(f, h.n(), "f");
+                std::fill(f.data(), f.data() + f.size(), 0.0);
+                if (!ab)
+                  return rancf::assemble_damping(h.m, y.data(), v.data(), 0.0, 0.0, f.data(),
+                                                 nullptr);
+                expect_size(*ab, h.band_size(), "ab");
+                std::fill(ab->data(), ab->data() + ab->size(), 0.0);
+                const rancf::BandView k = rancf::numpy_band(ab->data(), h.m.n(), h.m.ku());
+                rancf::assemble_damping(h.m, y.data(), v.data(), ck, cv, f.data(), &k);
+              },
+              "y"_a, "v"_a, "f"_a.noconvert(), "ab"_a.noconvert() = nb::none(), "ck"_a = 1.0,
+              "cv"_a = 0.0,
+              "Kelvin-Voigt strain-rate damping force f_d(y, v) (docs/derivations/"
+              "strain-rate-damping.md) into f and, with ab, its Jacobian ck df_d/dy + cv df_d/dv "
+              "in (2 ku + 1, n) band storage.")
           .def(
               "strain_energy",
               [](const ModelHolder& h, In y) {

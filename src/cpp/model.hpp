@@ -58,6 +58,14 @@ struct Stiffness {
   /// Cable axial law: false: W = 1/2 EA eps^2 (Green-Lagrange eps); true: W = 1/2 EA (lambda -
   /// 1)^2, the engineering strain of mooring codes (docs/derivations/cable.md section 6).
   bool engineering = false;
+  /// Kelvin-Voigt strain-rate damping (docs/derivations/strain-rate-damping.md): N = EA eps + c_a
+  /// deps/dt [N s], M = EI kappa + c_b dkappa/dt [N m^2 s], rods' twist c_t [N m^2 s]; 0: none.
+  double damping_axial = 0.0;
+  double damping_bending = 0.0;
+  double damping_torsion = 0.0;
+  [[nodiscard]] bool strain_rate_damping() const {
+    return damping_axial > 0.0 || damping_bending > 0.0 || damping_torsion > 0.0;
+  }
 };
 
 /// Rotary inertia of rod sections per length (configuration dependent: inertia.hpp).

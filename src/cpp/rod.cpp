@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "registry.hpp"
+#include "rod_damping.hpp"
 #include "rod_inertia.hpp"
 #include "rod_kernel.hpp"
 
@@ -66,9 +67,17 @@ double rod_energy(const Model& m, int el, const double* e) {
   return rod::energy(rod_input(m, el), rod_stiffness(m), e);
 }
 
+// Kelvin-Voigt strain-rate damping (rod_damping.hpp).
+void rod_damping(const Model& m, int el, const double* e, const double* ed, double ck, double cv,
+                 double* fe, double* ke) {
+  const Stiffness& st = m.stiffness;
+  rod::damping(rod_input(m, el), {st.damping_axial, st.damping_torsion, st.damping_bending}, e, ed,
+               ck, cv, fe, ke);
+}
+
 }  // namespace
 
-const ElementKernel rod_kernel = {rod_forces, rod_energy};
+const ElementKernel rod_kernel = {rod_forces, rod_energy, rod_damping};
 
 void rod_curvatures(const Model& m, int el, const double* e, double* k, double* eps) {
   rod::curvatures(rod_input(m, el), e, k, eps);

@@ -35,13 +35,21 @@ inline bool qcurv(const double* a, const double* b, double aB, double th, double
   return true;
 }
 
-// Energy density f (times W = gw j0), its gradient g[8] and (if WithH) Hessian H[8][8] (upper
-// triangle) in the variables (a0, a1, a2, b0, b1, b2, phiA, alpha_B)
-// (docs/derivations/rod-kernel.md 4). th = phiA + xi alpha_B.
-template <bool WithH>
-inline bool qdensity(const double* ain, const double* bin, double aB, double th, double xi,
-                     double W, double j0, const double* k0, const Stiffness& s, double& f,
-                     double* g, double (*H)[8]) {
+// The section-force coefficients of a quadrature point's density in the strain measures
+// m = (eps, K1, K2, K3): "stresses" cE, c1, c2, c3 (dDensity/dm) and Gauss-Newton weights wE,
+// w1, w2, w3 (d2Density/dm2), all times W = gw j0.  Elastic: c = W k (m - m0), w = W k
+// (qdensity); one measure alone: c = 1 for it, w = 0 (its gradient and Hessian; rod_damping.hpp).
+struct Coef {
+  double cE, c1, c2, c3, wE, w1, w2, w3;
+};
+
+// Gradient g[8] and (if WithH) Hessian H[8][8] (upper triangle) in the variables (a0, a1, a2, b0,
+// b1, b2, phiA, alpha_B) of sum_m c_m m + 1/2 sum_m w_m (dm)^2, i.e. g = sum c_m grad m and
+// H = sum_m (w_m grad m grad m^T + c_m Hess m) (docs/derivations/rod-kernel.md 4), with the
+// coefficients coef(eps, K) (Coef) of the point's measures. th = phiA + xi alpha_B.
+template <bool WithH, class CoefFn>
+inline bool qterms(const double* ain, const double* bin, double aB, double th, double xi, double j0,
+                   CoefFn&& coef, double* g, double (*H)[8]) {
   const double a[3] = {ain[0], ain[1], ain[2]}, b[3] = {bin[0], bin[1], bin[2]};
   const double n2 = a[0] * a[0] + a[1] * a[1] + a[2] * a[2], n = std::sqrt(n2);
   const double d = n + a[0];
@@ -59,8 +67,8 @@ inline bool qdensity(const double* ain, const double* bin, double aB, double th,
   const double K2 = C * P + S * Q, K3 = C * Q - S * P;
   const double ij2 = 1.0 / (j0 * j0);
   const double eps = 0.5 * (n2 * ij2 - 1.0);
-  const double r1 = K1 - k0[0], r2 = K2 - k0[1], r3 = K3 - k0[2];
-  f = 0.5 * W * (s.ea * eps * eps + s.gj * r1 * r1 + s.ei2 * r2 * r2 + s.ei3 * r3 * r3);
+  const double Km[3] = {K1, K2, K3};
+  const Coef k = coef(eps, Km);
 
   // gradients of the intermediates over x = (a, b); chi, psi, rho depend on a only
   double g3[3], g2[3], gchi[3], gpsi[3], grho[3];
@@ -103,7 +111,7 @@ inline bool qdensity(const double* ain, const double* bin, double aB, double th,
   gK1[4] = psi * gh[4];
   gK1[5] = psi * gh[5];
   // dK1/dalpha = 1/n, dK2/dtheta = K3, dK3/dtheta = -K2
-  const double cE = W * s.ea * eps, c1 = W * s.gj * r1, c2 = W * s.ei2 * r2, c3 = W * s.ei3 * r3;
+  const double cE = k.cE, c1 = k.c1, c2 = k.c2, c3 = k.c3;
   for (int i = 0; i < 6; ++i) g[i] = c1 * gK1[i] + c2 * gK2[i] + c3 * gK3[i];
   for (int i = 0; i < 3; ++i) g[i] += cE * a[i] * ij2;
   const double gth = c2 * K3 - c3 * K2;
@@ -112,7 +120,7 @@ inline bool qdensity(const double* ain, const double* bin, double aB, double th,
   if (!WithH) return true;
 
   // Gauss-Newton part over x: W [EA ge ge^T + GJ gK1 gK1^T + EI2 gK2 gK2^T + EI3 gK3 gK3^T]
-  const double w1 = W * s.gj, w2 = W * s.ei2, w3 = W * s.ei3, wE = W * s.ea * ij2 * ij2;
+  const double w1 = k.w1, w2 = k.w2, w3 = k.w3, wE = k.wE * ij2 * ij2;
   for (int i = 0; i < 6; ++i) {
     const double x1 = w1 * gK1[i], x2 = w2 * gK2[i], x3 = w3 * gK3[i];
     for (int j = i; j < 6; ++j) H[i][j] = x1 * gK1[j] + x2 * gK2[j] + x3 * gK3[j];
@@ -170,6 +178,22 @@ inline bool qdensity(const double* ain, const double* bin, double aB, double th,
   H[2][4] += ltp;
   H[1][5] -= ltp;
   return true;  // upper triangle only
+}
+
+// Energy density f (times W = gw j0), its gradient g[8] and (if WithH) Hessian H[8][8] (upper
+// triangle) in the variables (a0, a1, a2, b0, b1, b2, phiA, alpha_B)
+// (docs/derivations/rod-kernel.md 4). th = phiA + xi alpha_B.
+template <bool WithH>
+inline bool qdensity(const double* a, const double* b, double aB, double th, double xi, double W,
+                     double j0, const double* k0, const Stiffness& s, double& f, double* g,
+                     double (*H)[8]) {
+  const auto elastic = [&](double eps, const double* K) {
+    const double r1 = K[0] - k0[0], r2 = K[1] - k0[1], r3 = K[2] - k0[2];
+    f = 0.5 * W * (s.ea * eps * eps + s.gj * r1 * r1 + s.ei2 * r2 * r2 + s.ei3 * r3 * r3);
+    return Coef{W * s.ea * eps, W * s.gj * r1, W * s.ei2 * r2, W * s.ei3 * r3,
+                W * s.ea,       W * s.gj,      W * s.ei2,      W * s.ei3};
+  };
+  return qterms<WithH>(a, b, aB, th, xi, j0, elastic, g, H);
 }
 
 }  // namespace rancf::rod::detail

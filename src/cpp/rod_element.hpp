@@ -52,9 +52,15 @@ inline void rotate_blocks(const double* e, const double* f0, const double* f1, c
   }
 }
 
-template <bool WithH>
-inline bool element_forces(const ElementInput& in, const Stiffness& s, const double* e, double* fe,
-                           double* ke) {
+// The element gradient fe = dPhi/de and (WithH) Hessian ke of Phi(e) = sum_q phi_q(x_q(e)), the
+// per-point function given in node A's frame by density(q, a, b, alpha_B, theta, xi, g, H)
+// (gradient g[8], Hessian H[8][8] upper triangle, in x = (a~, b~, phiA, alpha_B); false: not
+// evaluable), mapped by the shape functions and the chain rule (docs/derivations/rod-kernel.md 0,
+// 5). The elastic forces are this with the energy density (element_forces); the strain-rate
+// damping uses it with single strain measures (rod_damping.hpp).
+template <bool WithH, class Density>
+inline bool element_chain(const ElementInput& in, const double* e, Density&& density, double* fe,
+                          double* ke) {
   // ---- per element: nodal jets, beta (alpha_B = wrap(phiB - phiA + beta)); local frame R0 = (tA,
   // uA, vA)
   FrameJet JA;
@@ -87,12 +93,10 @@ inline bool element_forces(const ElementInput& in, const Stiffness& s, const dou
     for (int i = 0; i < 14; ++i)
       for (int j = 0; j < 14; ++j) Ht[i][j] = 0.0;
   for (int q = 0; q < in.nq; ++q) {
-    double a[3], b[3], f, g[8], H[8][8];
+    double a[3], b[3], g[8], H[8][8];
     local_ab(in, q, pt, a, b);
     const double xq = in.xi[q];
-    if (!qdensity<WithH>(a, b, aB, e[6] + xq * aB, xq, in.gw[q] * in.j0[q], in.j0[q],
-                         in.kref + 3 * q, s, f, g, H))
-      return false;
+    if (!density(q, a, b, aB, e[6] + xq * aB, xq, g, H)) return false;
     const double n1[4] = {in.n1[4 * q], in.n1[4 * q + 1], in.n1[4 * q + 2], in.n1[4 * q + 3]};
     const double n2[4] = {in.n2[4 * q], in.n2[4 * q + 1], in.n2[4 * q + 2], in.n2[4 * q + 3]};
     for (int k = 0; k < 4; ++k)
@@ -272,6 +276,19 @@ inline bool element_forces(const ElementInput& in, const Stiffness& s, const dou
     for (int n = 0; n < 6; ++n) K[bmap[m]][bmap[n]] += galpha * Hb[m][n];
   std::copy(&K[0][0], &K[0][0] + 196, ke);
   return true;
+}
+
+// Elastic force fe = dU/de and (WithH) tangent ke = d2U/de2 of the element.
+template <bool WithH>
+inline bool element_forces(const ElementInput& in, const Stiffness& s, const double* e, double* fe,
+                           double* ke) {
+  const auto energy = [&](int q, const double* a, const double* b, double aB, double th, double xq,
+                          double* g, double (*H)[8]) {
+    double f;
+    return qdensity<WithH>(a, b, aB, th, xq, in.gw[q] * in.j0[q], in.j0[q], in.kref + 3 * q, s, f,
+                           g, H);
+  };
+  return element_chain<WithH>(in, e, energy, fe, ke);
 }
 
 }  // namespace rancf::rod::detail

@@ -268,6 +268,8 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
       if (has_rotary_inertia(mod))
         assemble_inertia(mod, yf + o, vf + o, am + o, {c, tm.ck, tm.cv, tm.ca}, r + o,
                          lu != nullptr ? &jac : nullptr);
+      if (!tm.statics && vf != nullptr)  // Kelvin-Voigt strain-rate damping, if the body has it
+        assemble_damping(mod, yf + o, vf + o, tm.ck, tm.cv, r + o, lu != nullptr ? &jac : nullptr);
       if (s.stiffness_damping > 0.0 && vf != nullptr)
         stiffness_damping(mod, s.stiffness_damping, yf + o, vf + o, tm, r + o,
                           lu != nullptr ? &jac : nullptr);

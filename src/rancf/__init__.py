@@ -40,6 +40,7 @@ _API = {
     "Material": "rancf.bodies.flexible",
     "Support": "rancf.bodies.flexible",
     "PointLoad": "rancf.bodies.flexible",
+    "StrainRateDamping": "rancf.bodies.properties",
     "Sensor": "rancf.scenario.sensors",
     "Scenario": "rancf.scenario",
     "load_scenario": "rancf.scenario",

@@ -25,7 +25,7 @@ from numpy.typing import ArrayLike, NDArray
 from rancf.bodies.closure import arc_fractions
 from rancf.bodies.flexible_core import core_model
 from rancf.bodies.motion import RigidMotion, check_supports_at_rest, rigid_velocity
-from rancf.bodies.properties import Material, PointLoad, Section, Support
+from rancf.bodies.properties import Material, PointLoad, Section, StrainRateDamping, Support
 from rancf.bodies.support_layout import support_layout
 from rancf.errors import InputError
 from rancf.kernels.beam import BeamKernel
@@ -82,6 +82,8 @@ class Model(Coordinates):
         their own coordinates (C¹ there).
     stress_free : {"reference", "straight"}
         Unloaded state: the reference, or straight of equal arc length (cables, rods).
+    strain_rate_damping : StrainRateDamping, optional
+        Kelvin-Voigt damping of the strain rates (kept as an attribute).
 
     Notes
     -----
@@ -104,6 +106,7 @@ class Model(Coordinates):
         initial_motion: RigidMotion | None = None,
         continuity: Continuity = "C1",
         stress_free: Literal["reference", "straight"] = "reference",
+        strain_rate_damping: StrainRateDamping | None = None,
     ) -> None:
         self.element, self.stress_free = element, stress_free
         if stress_free != "reference" and (stress_free != "straight" or element == "beam"):
@@ -201,13 +204,8 @@ class Model(Coordinates):
             self.fixed[self.reduction.n_real :] = True
             self.ku = self.reduction.ku
         # element-level transformations for elements touching a rotated node
-        aff = sorted(
-            {
-                min(max(off // self.dpn - j, 0), self.n_el - 1)
-                for off, _ in self.rotations
-                for j in (0, 1)
-            }
-        )
+        aff = sorted({min(max(off // self.dpn - j, 0), self.n_el - 1)
+                      for off, _ in self.rotations for j in (0, 1)})  # fmt: skip
         self._aff = np.array(aff, dtype=int)
         te = np.repeat(np.eye(self.nde)[None], len(aff), axis=0)
         for i, e in enumerate(aff):
@@ -249,6 +247,7 @@ class Model(Coordinates):
         if not (np.isfinite(damping) and damping >= 0):
             raise InputError("damping.mass_proportional", damping, "a finite number >= 0")
         self.damping = float(damping)
+        self.strain_rate_damping = (strain_rate_damping or StrainRateDamping()).checked(element)
         v0 = np.zeros(self.n)
         for node, vel in (initial_velocities or {}).items():
             nd = self.check_node(node, "initial_velocity.at")

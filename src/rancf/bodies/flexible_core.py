@@ -35,6 +35,7 @@ class AssembledBody(Protocol):
     props: Any
     reduction: Any
     point_loads: Sequence[Any]
+    strain_rate_damping: Any
     rotations: list[tuple[int, np.ndarray]]
     fixed: np.ndarray
     f_gravity: np.ndarray
@@ -45,11 +46,18 @@ class AssembledBody(Protocol):
 
 
 def section_stiffness(model: AssembledBody) -> _core.Stiffness:
-    """``EA``, ``EI`` and, for rods, ``GJ``, ``EI2 = E I_y`` (about ``m1``) and ``EI3 = E I_z``."""
+    """``EA``, ``EI`` and, for rods, ``GJ``, ``EI2 = E I_y`` (about ``m1``) and ``EI3 = E I_z``;
+    the Kelvin-Voigt coefficients of :attr:`Model.strain_rate_damping
+    <rancf.bodies.flexible.Model.strain_rate_damping>`."""
     sec, mat = model.section, model.material
+    kv = model.strain_rate_damping
+    rates = {"damping_axial": kv.axial, "damping_bending": kv.bending,
+             "damping_torsion": kv.torsion}  # fmt: skip
     if model.element != "rod":
         engineering = model.material.axial_strain == "engineering"
-        return _core.Stiffness(ea=model.props.ea, ei=model.props.ei, engineering=engineering)
+        return _core.Stiffness(
+            ea=model.props.ea, ei=model.props.ei, engineering=engineering, **rates
+        )
     e_mod = mat.youngs_modulus
     return _core.Stiffness(
         ea=model.props.ea,
@@ -57,6 +65,7 @@ def section_stiffness(model: AssembledBody) -> _core.Stiffness:
         gj=mat.shear * sec.torsion,
         ei2=e_mod * sec.inertia,
         ei3=e_mod * sec.inertia_2,
+        **rates,
     )
 
 

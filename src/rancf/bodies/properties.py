@@ -10,7 +10,7 @@ import numpy as np
 from rancf.bodies.time_function import TimeFunction
 from rancf.errors import InputError
 
-__all__ = ["Section", "Material", "Support", "PointLoad"]
+__all__ = ["Section", "Material", "Support", "PointLoad", "StrainRateDamping"]
 
 
 def _positive(key: str, v: float | None, what: str = "a finite number > 0") -> None:
@@ -134,6 +134,43 @@ class Material:
                 "material.shear_modulus", None, "shear_modulus or poisson_ratio (rod elements)"
             )
         return self.youngs_modulus / (2.0 * (1.0 + self.poisson_ratio))
+
+
+@dataclass(frozen=True)
+class StrainRateDamping:
+    """Kelvin-Voigt strain-rate damping of a flexible body.
+
+    The section forces get a part proportional to the strain rates: ``N = EA ε + axial ε̇``
+    [``axial`` in N s], ``M = EI κ + bending κ̇`` [``bending`` in N m² s] and, for rods, the
+    twist moment ``GJ τ + torsion τ̇`` [N m² s].  Rigid motions have zero strain rates: they are
+    not damped.  A mode of frequency ``ω`` dominated by stretching decays with the damping ratio
+    ``ζ = axial ω / (2 EA)``, one dominated by bending with ``ζ = bending ω / (2 EI)``, a rod's
+    torsion mode with ``ζ = torsion ω / (2 GJ)``.  Every element (torsion: rods).  Statics
+    ignore it (the velocities are zero).  Derivation: docs/derivations/strain-rate-damping.md.
+    """
+
+    axial: float = 0.0
+    bending: float = 0.0
+    torsion: float = 0.0
+
+    def __post_init__(self) -> None:
+        for name in ("axial", "bending", "torsion"):
+            v = getattr(self, name)
+            if not (np.isfinite(v) and v >= 0):
+                raise InputError(f"damping.{name}", v, "a finite number >= 0")
+
+    @property
+    def active(self) -> bool:
+        """Whether any coefficient is > 0."""
+        return self.axial > 0 or self.bending > 0 or self.torsion > 0
+
+    def checked(self, element: str) -> StrainRateDamping:
+        """Itself, or :class:`~rancf.errors.InputError` if ``torsion`` is given to an element
+        without a twist (every element but the rod)."""
+        if self.torsion > 0 and element != "rod":
+            raise InputError("damping.torsion", self.torsion, f'0 with {element} elements (a '
+                             'twist rate needs rod elements: mesh.element = "rod")')  # fmt: skip
+        return self
 
 
 @dataclass(frozen=True)

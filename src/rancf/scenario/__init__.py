@@ -16,6 +16,7 @@ model builder in :mod:`~rancf.scenario.build`, the JSON Schema in
 from rancf.bodies.time_function import TimeFunction
 from rancf.scenario.bodies import FlexibleBody, PointMass, RigidBody
 from rancf.scenario.convert import as_bodies
+from rancf.scenario.damping import DampingTable, StrainRateDampingTable
 from rancf.scenario.geometry import (
     CadGeometry,
     ConicGeometry,
@@ -25,7 +26,6 @@ from rancf.scenario.geometry import (
 )
 from rancf.scenario.joints import JointTable, SpringTable
 from rancf.scenario.loads import (
-    DampingTable,
     HarmonicFunction,
     InitialMotionTable,
     InitialVelocityTable,
@@ -68,6 +68,7 @@ __all__ = [
     "LoadsTable",
     "PointLoadTable",
     "DampingTable",
+    "StrainRateDampingTable",
     "InitialVelocityTable",
     "InitialMotionTable",
     "TableFunction",

@@ -2,7 +2,8 @@
 
 * A flexible body (``kind = "flexible"``, the default) has the sub-tables ``geometry``, ``mesh``,
   ``section`` and ``material`` of a one-body file (``[bodies.geometry]``, ...) and optionally its
-  own ``initial_motion``.
+  own ``initial_motion`` and ``damping`` (strain-rate damping: ``axial``, ``bending``,
+  ``torsion``, in place of those keys of ``[damping]``).
 * A rigid body (``kind = "rigid"``): ``mass``, ``inertia`` (2D: a number, about the centre of
   mass; 3D: ``[Ixx, Iyy, Izz]``, principal, in the body frame), ``position`` (the centre of mass),
   ``orientation_deg`` (2D: the angle of the body frame) or ``orientation`` (3D: the rotation
@@ -34,6 +35,7 @@ from rancf.scenario.base import (
     under,
     vector,
 )
+from rancf.scenario.damping import StrainRateDampingTable
 from rancf.scenario.fluid import HydroTable
 from rancf.scenario.geometry import Geometry, MeshTable
 from rancf.scenario.loads import InitialMotionTable
@@ -74,6 +76,10 @@ class FlexibleBody(Table):
     hydro: HydroTable | None = Field(
         None, description="hydrodynamic coefficients (the body is in the [fluid])"
     )
+    damping: StrainRateDampingTable | None = Field(
+        None, description="this body's strain-rate damping (axial, bending, torsion), in place "
+        "of those keys of [damping]",
+    )  # fmt: skip
 
     @model_validator(mode="after")
     def _together(self) -> FlexibleBody:

@@ -20,6 +20,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from rancf.bodies.flexible import Material, Model, PointLoad, RigidMotion, Section, Support
+from rancf.bodies.properties import StrainRateDamping
 from rancf.errors import ConvergenceError, InputError, ScenarioError
 from rancf.scenario.geometry import MAX_ELEMENTS, CadGeometry, ConicGeometry, NurbsGeometry
 from rancf.scenario.view import ScenarioView
@@ -149,6 +150,7 @@ def body_model(sc: ScenarioView) -> Model:
         [(f"loads.point[{i}]", t["at"], t) for i, t in enumerate(d["loads"]["point"])],
         [(f"initial_velocity[{i}]", t["at"], t) for i, t in enumerate(d["initial_velocity"])],
         d["initial_motion"], [(f"sensors.{sn.name}", nd) for sn in sc.sensors for nd in sn.nodes],
+        ("", sc.damping),
     )  # fmt: skip
 
 
@@ -161,12 +163,15 @@ def flexible_model(
     velocities: list[tuple[str, int, dict[str, Any]]],
     initial_motion: dict[str, Any] | None,
     sensor_nodes: list[tuple[str, int]] = (),  # type: ignore[assignment]
+    damping: tuple[str, Any] | None = None,
 ) -> Model:
     """The model of one flexible body: its ``geometry``, ``mesh``, ``section`` and ``material``
     tables (keys after ``prefix``, e.g. ``bodies[2].``), and the supports, point loads and
     initial velocities at its nodes as ``(key, node, table)`` (node indices are checked against
-    the mesh here, naming the key)."""
+    the mesh here, naming the key); ``damping``: the table of its strain-rate damping keys and
+    that table's prefix (``""``: ``[damping]``; ``"bodies[2]."``: the body's own)."""
     geometry, mesh_table, section, material = tables
+    kv_prefix, kv = damping if damping is not None else (prefix, None)
     mesh = mesh_geometry(sc.path, geometry, mesh_table, prefix)
     n_nodes = mesh.n_nodes
     supported = {_check_node(sc, n_nodes, f"{key}.at", node) for key, node, _ in supports}
@@ -204,10 +209,12 @@ def flexible_model(
             None if initial_motion is None else RigidMotion(**initial_motion),
             mesh_table.continuity,
             mesh_table.stress_free,
+            None if kv is None else StrainRateDamping(kv.axial, kv.bending, kv.torsion),
         )
     except InputError as exc:
+        pre = kv_prefix if exc.parameter.startswith("damping.") else prefix
         raise ScenarioError(
-            sc.path, prefix + exc.parameter, f"{exc.allowed} (got {_value(exc.value)})"
+            sc.path, pre + exc.parameter, f"{exc.allowed} (got {_value(exc.value)})"
         ) from None
 
 

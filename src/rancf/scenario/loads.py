@@ -1,5 +1,5 @@
-"""Time functions, ``[[supports]]``, ``[loads]`` (gravity, ``[[loads.point]]``), ``[damping]``,
-``[[initial_velocity]]`` and ``[initial_motion]``.
+"""Time functions, ``[[supports]]``, ``[loads]`` (gravity, ``[[loads.point]]``),
+``[[initial_velocity]]`` and ``[initial_motion]`` (``[damping]``: ``rancf.scenario.damping``).
 
 A TIME_FUNCTION (:class:`~rancf.bodies.time_function.TimeFunction`, equations T.1–T.5) is written
 as a number (or a vector where the key is a vector: a support's ``motion``), or as a table with
@@ -48,7 +48,7 @@ from rancf.scenario.table_files import ROWS_SCHEMA, table_rows
 __all__ = [
     "DistributedLoadTable", "TableFunction", "RampFunction", "HarmonicFunction", "SpinUpFunction",
     "TimeFunctionValue", "time_function", "time_size", "SupportTable", "PointLoadTable",
-    "LoadsTable", "DampingTable", "InitialVelocityTable", "InitialMotionTable",
+    "LoadsTable", "InitialVelocityTable", "InitialMotionTable",
 ]  # fmt: skip
 
 Amount = number_or_vector(1, 2, 3)
@@ -335,15 +335,6 @@ class LoadsTable(Table):
     point: list[PointLoadTable] = Field([], description="point forces and moments")
     distributed: list[DistributedLoadTable] = Field(
         [], description="forces per length on flexible bodies [N/m]"
-    )
-
-
-class DampingTable(Table):
-    """``[damping]``: Rayleigh damping of the flexible bodies, ``C = c M + β K_T``."""
-
-    mass_proportional: NonNegative = Field(0.0, description="c in C = c M [1/s]")
-    stiffness_proportional: NonNegative = Field(
-        0.0, description="beta in C = beta K_T [s] (K_T the tangent stiffness at the state)"
     )
 
 

@@ -22,12 +22,12 @@ from rancf.errors import ScenarioError
 from rancf.scenario.base import Name, NonNegative, Table, fail, integer, show
 from rancf.scenario.bodies import Body
 from rancf.scenario.checks import check_scenario
+from rancf.scenario.damping import DampingTable
 from rancf.scenario.files import deferred_interrupts, read_toml, write_atomic
 from rancf.scenario.fluid import FluidTable, HydroTable
 from rancf.scenario.geometry import GEOMETRY_KEYS, CadGeometry, Geometry, MeshTable
 from rancf.scenario.joints import JointTable, SpringTable
 from rancf.scenario.loads import (
-    DampingTable,
     InitialMotionTable,
     InitialVelocityTable,
     LoadsTable,
@@ -99,7 +99,9 @@ class Scenario(Table):
         None, description="one-body file: the body's hydrodynamic coefficients"
     )
     damping: DampingTable = Field(
-        default_factory=DampingTable, description="mass-proportional damping"
+        default_factory=DampingTable,
+        description="Rayleigh (mass- and stiffness-proportional) and Kelvin-Voigt strain-rate "
+        "damping of the flexible bodies",
     )
     initial_velocity: list[InitialVelocityTable] = Field(
         [], description="velocities of single nodes (their energy depends on the mesh)"

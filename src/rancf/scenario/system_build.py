@@ -5,7 +5,8 @@ Every scenario is a system: a file without ``[[bodies]]`` is one flexible body n
 
 * a flexible body becomes a :class:`~rancf.bodies.flexible.Model` (keys ``bodies[i].…``) carrying
   the supports, point loads and initial velocities at its nodes, ``[loads] gravity`` and the
-  ``[damping]``;
+  ``[damping]`` (its strain-rate keys, or a body's own ``[bodies.damping]``, on each flexible
+  body);
 * a rigid body a :class:`~rancf.bodies.rigid.RigidBody` (``orientation_deg`` in degrees in 2D;
   the rotation matrix's rows in 3D), a point mass a :class:`~rancf.bodies.rigid.PointMass`;
 * a support at a rigid body's place or a point mass is a joint to the ground: a ``pin`` a pin,
@@ -123,6 +124,7 @@ def _build(sc: ScenarioView) -> System:
             sc, f"bodies[{i}].", (b.geometry, b.mesh, b.section, b.material),
             at(d["supports"], "supports"), at(d["loads"]["point"], "loads.point"),
             at(d["initial_velocity"], "initial_velocity"), d["bodies"][i]["initial_motion"], nodes,
+            ("", sc.damping) if b.damping is None else (f"bodies[{i}].", b.damping),
         )  # fmt: skip
     return System(bodies, gravity=gravity, damping=damping, stiffness_damping=beta,
                   horizon=sc.solver.t_end, **_parts(sc, bodies))  # fmt: skip
