@@ -222,3 +222,38 @@ def test_local_error_estimate_follows_the_true_local_error():
             t += h / 64
         true = (np.abs(y1 - y) * increment_scale(system)).max()  # TI.9's norm
         assert 0.3 < est / true < 3.0, (est, true)
+
+
+def _fairlead(tmp_path, name: str, **solver: object) -> tuple[np.ndarray, dict]:
+    """MoorDyn's WD0050 chain heaved 2 m at 0.1 Hz (tests/references/wd0050.toml) with the
+    solver keys changed: the fairlead tension at 10-30 s and the run's summary."""
+    import json
+    from pathlib import Path
+
+    from rancf.cli import main
+
+    text = (Path(__file__).parents[1] / "references" / "wd0050.toml").read_text()
+    for key, value in solver.items():
+        text = text.replace("[solver]\n", f"[solver]\n{key} = {value}\n")
+        text = text.replace("step = 6.25e-3\n", "") if key == "step" else text
+    (tmp_path / f"{name}.toml").write_text(text)
+    out = tmp_path / name
+    assert main(["simulate", str(tmp_path / f"{name}.toml"), "--out", str(out), "--quiet"]) == 0
+    rows = np.genfromtxt(out / "sensors.csv", delimiter=",", names=True)
+    keep = (rows["t"] >= 10.0) & (rows["t"] <= 30.0)
+    return rows["tension"][keep], json.loads((out / "summary.json").read_text())
+
+
+def test_heaved_chain_adaptive_and_coarse_steps_agree_with_fine_ones(tmp_path):
+    # with its axial (strain-rate) damping, MoorDyn's BA = -1, the chain's axial waves are
+    # damped and the tension converges (without it, 264, 393 and 427 kN peak to peak at 50,
+    # 6.25 and 3.1 ms): adaptive steps at the default rtol and fixed 50 ms steps within 1 % of
+    # fixed 6.25 ms steps (measured 0.031 % and 0.026 %), none of them warned
+    fine, s_fine = _fairlead(tmp_path, "fine")
+    for name, keys in (("adaptive", {"adaptive": "true"}), ("coarse", {"step": 0.05})):
+        tension, summary = _fairlead(tmp_path, name, **keys)
+        deviation = np.abs(tension - fine).max() / fine.mean()
+        assert deviation < 0.01, (name, deviation)
+        assert summary["error_estimate"] < 1.0 and summary["accepted_steps"] > 500
+        assert summary["rejected_steps"] >= 0 and summary["error_time_s"] > 0.0
+    assert s_fine["error_estimate"] < 1.0
