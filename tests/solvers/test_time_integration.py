@@ -256,3 +256,18 @@ def test_heaved_chain_adaptive_and_coarse_steps_agree_with_fine_ones(tmp_path):
         assert summary["error_estimate"] < 1.0 and summary["accepted_steps"] > 500
         assert summary["rejected_steps"] >= 0 and summary["error_time_s"] > 0.0
     assert s_fine["error_estimate"] < 1.0
+
+
+def test_rho_inf_one_with_a_driven_joint_is_warned(tmp_path):
+    """The blade at rho_inf = 1 (the trapezoidal rule): its driven joint's errors grow until
+    the run fails (at 5.6 s); the run says why before it starts."""
+    from rancf.post.checks import DRIVEN_RHO_INF, driven_warnings
+
+    for rho, warned in ((1.0, True), (0.97, True), (DRIVEN_RHO_INF, False), (0.9, False)):
+        path = tmp_path / "blade.toml"
+        path.write_text(BLADE.replace("RHO", str(rho)))
+        sc = load_scenario(path)
+        lines = driven_warnings(sc.build_system(), sc.dynamic_options())
+        assert bool(lines) == warned, (rho, lines)
+        if warned:
+            assert "'motor'" in lines[0] and "rho_inf <= 0.95" in lines[0]
