@@ -75,7 +75,7 @@ struct ContactPair {
   double stiffness = 0.0;       ///< k: force per reference length per penetration [N/m^2]
   double onset = 0.0;           ///< d: depth of the smooth onset of the pressure [m]
   double damping = 0.0;         ///< chi, Hunt-Crossley [s/m]
-  double damping_normal = 0.0;  ///< c_n, linear normal damping per length [N s/m^2]
+  double damping_normal = 0.0;  ///< c_n = c D, linear normal damping per length [N s/m^2]
   double friction = 0.0;        ///< Coulomb coefficient mu
   double slip_velocity = 1.0;   ///< eps of the friction's regularization [m/s]
 };

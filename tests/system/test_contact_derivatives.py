@@ -26,7 +26,7 @@ def planar() -> System:
     obs = [
         Obstacle(
             "plane", point=(0, -0.005), normal=(0.1, 1), friction=0.3, damping=3.0,
-            damping_normal=2e3, name="ground",
+            damping_normal=2e5, name="ground",
         ),  # fmt: skip
         Obstacle(
             "cylinder", center=(0.5, -0.2), radius=0.195, friction=0.5, onset=4e-3, name="post"
@@ -68,7 +68,7 @@ def spatial() -> System:
             axis=(0.1, 1.0, 0.0),
             friction=0.5,
             onset=2e-2,
-            damping_normal=5e2,
+            damping_normal=5e4,
             name="bar",
         ),  # fmt: skip
         Obstacle(

@@ -88,11 +88,11 @@ def test_static_cable_on_the_ground():
 
 @pytest.mark.parametrize("rate", [-0.01, 0.002, 0.5])
 def test_linear_normal_damping_adds_to_the_pressure_and_never_pulls(rate):
-    """``damping_normal`` (MoorDyn's seabed cBot times the diameter): a straight cable sunk 1e-4
-    m into the ground everywhere, moving with ``rate`` along the normal, is pressed by
-    ``(k (δ - d/2) - c_n ġ) L`` (the onset d below δ), or not at all where a fast separation
-    would pull."""
-    depth, k, c_n = 1e-4, 1e6, 2e3
+    """``damping_normal`` (MoorDyn's seabed cBot, per unit contact area): a straight cable sunk
+    1e-4 m into the ground everywhere, moving with ``rate`` along the normal, is pressed by
+    ``(k (δ - d/2) - c D ġ) L`` (the onset d below δ, D the diameter), or not at all where a
+    fast separation would pull."""
+    depth, k, c_n = 1e-4, 1e6, 5e5
     cable = Model(mesh_line([0.0, R - depth], [L, R - depth], 10), "rancf", Section.circular(R),
                   Material(RHO, E))  # fmt: skip
     ground = Obstacle("plane", point=(0, 0), normal=(0, 1), stiffness=k, onset=1e-6,
@@ -101,5 +101,5 @@ def test_linear_normal_damping_adds_to_the_pressure_and_never_pulls(rate):
     y, v = s.y0.copy(), np.zeros(s.n)
     v[1::4] = rate  # every node's vertical velocity (the gradients do not move)
     got = contact_outputs(s, y, v)["ground"].normal[1]
-    want = max(k * (depth - 0.5e-6) - c_n * rate, 0.0) * L
+    want = max(k * (depth - 0.5e-6) - c_n * 2.0 * R * rate, 0.0) * L
     assert got == pytest.approx(want, rel=1e-9, abs=1e-9)

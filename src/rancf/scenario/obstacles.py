@@ -54,8 +54,9 @@ class ObstacleTable(Table):
     )
     damping: NonNegative = Field(0.0, description="Hunt-Crossley damping factor [s/m]")
     damping_normal: NonNegative = Field(
-        0.0, description="linear normal damping per reference length while in contact "
-        "[N s/m^2] (MoorDyn's cBot [Pa s/m] times the diameter); never pulls"
+        0.0, description="linear normal damping per unit contact area while in contact "
+        "[Pa s/m] (MoorDyn's cBot): a force per length c D (-g') over the tube's diameter D; "
+        "never pulls"
     )
     slip_velocity: Positive = Field(
         1e-3, description="regularization velocity of the friction [m/s]"

@@ -114,9 +114,9 @@ class Obstacle:
         Hunt–Crossley factor ``χ`` [s/m]: the pressure is ``k <-g> (1 + χ <-ġ>)`` while the
         point approaches the obstacle (``ġ < 0``), so impacts lose energy and nothing pulls.
     damping_normal : float
-        Linear normal damping ``c_n`` per reference length [N s/m²] while in contact: the
-        pressure ``p - c_n ġ``, never pulling (MoorDyn's seabed ``cBot`` [Pa s/m] times the
-        line's diameter).
+        Linear normal damping ``c`` per unit contact area [Pa s/m] while in contact, as
+        MoorDyn's seabed ``cBot``: the force per length ``p - c D ġ`` (``D`` the tube's
+        diameter, the contact width), never pulling.
     slip_velocity : float
         Regularization ``ε`` of the friction [m/s] (module docstring).
     name : str
@@ -277,7 +277,8 @@ def build_contact(
             k = STIFFNESS_FACTOR * system.bodies[f].material.youngs_modulus  # type: ignore[union-attr]
         rt = system.bodies[f].section.radius  # type: ignore[union-attr]
         onset = ONSET_FACTOR * rt if ob.onset is None else ob.onset
-        data.append([k, onset, ob.damping, ob.friction, ob.slip_velocity, ob.damping_normal])
+        cn = ob.damping_normal * 2.0 * rt  # per area to per length: the contact width D
+        data.append([k, onset, ob.damping, ob.friction, ob.slip_velocity, cn])
     i64 = np.int64
     core = _core.Contact(
         body_nc=lists["nc"],
