@@ -65,22 +65,7 @@ def test_jacobians_against_central_differences(dim, geo, k, strain):
     jy, jv = model.dense(ab_y), model.dense(ab_v)
     assert np.abs(model.dense(ab_mix) - (0.3 * jy + 2.0 * jv)).max() <= 1e-12 * np.abs(jy).max()
     assert np.abs(damping_force(model, y, v) - f).max() == 0.0
-    hy, hv = 1e-6 * np.abs(y).max(), 1e-3
-    fd_y = np.zeros_like(jy)
-    fd_v = np.zeros_like(jv)
-    for i in range(model.n):
-        d = np.zeros(model.n)
-        d[i] = 1.0
-        fd_y[:, i] = (damping_force(model, y + hy * d, v) - damping_force(model, y - hy * d, v)) / (
-            2 * hy
-        )
-        fd_v[:, i] = (damping_force(model, y, v + hv * d) - damping_force(model, y, v - hv * d)) / (
-            2 * hv
-        )
-    err_y = np.abs(fd_y - jy).max() / np.abs(jy).max()
-    err_v = np.abs(fd_v - jv).max() / np.abs(jv).max()
-    assert err_y <= 1e-6, err_y
-    assert err_v <= 1e-9, err_v
+    _check_differences(model, y, v, jy, jv, 1e-6 * np.abs(y).max())
     assert np.abs(jy - jy.T).max() > 1e-3 * np.abs(jy).max()  # not symmetric: a real check
     assert np.abs(jv - jv.T).max() <= 1e-12 * np.abs(jv).max()  # c B^T B: symmetric
 
@@ -187,21 +172,7 @@ def test_rod_jacobians_against_central_differences(geo):
     _, ab_v = damping_force(model, y, v, ck=0.0, cv=1.0)
     jy, jv = model.dense(ab_y), model.dense(ab_v)
     assert np.abs(f - jv @ v).max() <= 1e-12 * np.abs(f).max()  # linear in v
-    fd_y, fd_v = np.zeros_like(jy), np.zeros_like(jv)
-    hy, hv = 1e-6, 1e-3
-    for i in range(model.n):
-        d = np.zeros(model.n)
-        d[i] = 1.0
-        fd_y[:, i] = (damping_force(model, y + hy * d, v) - damping_force(model, y - hy * d, v)) / (
-            2 * hy
-        )
-        fd_v[:, i] = (damping_force(model, y, v + hv * d) - damping_force(model, y, v - hv * d)) / (
-            2 * hv
-        )
-    err_y = np.abs(fd_y - jy).max() / np.abs(jy).max()
-    err_v = np.abs(fd_v - jv).max() / np.abs(jv).max()
-    assert err_y <= 1e-6, err_y
-    assert err_v <= 1e-9, err_v
+    _check_differences(model, y, v, jy, jv, 1e-6)
 
 
 @pytest.mark.parametrize("geo", ["straight", "conic"])
@@ -257,3 +228,22 @@ def test_beam_jacobians_against_central_differences_and_rigid_motion():
     vr = model.y_from_q(rigid_velocity(model, motion))
     scale = np.abs(damping_force(model, model.y0, rng.normal(size=model.n) * np.abs(vr).max()))
     assert np.abs(damping_force(model, model.y0, vr)).max() <= 1e-10 * scale.max()
+
+
+def _check_differences(model, y, v, jy, jv, hy: float, hv: float = 1e-3) -> None:
+    """The position and velocity Jacobians ``jy``, ``jv`` of the damping force against central
+    differences (steps ``hy``, ``hv``): within 1e-6 and 1e-9 of their largest entry."""
+    fd_y, fd_v = np.zeros_like(jy), np.zeros_like(jv)
+    for i in range(model.n):
+        d = np.zeros(model.n)
+        d[i] = 1.0
+        fd_y[:, i] = (damping_force(model, y + hy * d, v) - damping_force(model, y - hy * d, v)) / (
+            2 * hy
+        )
+        fd_v[:, i] = (damping_force(model, y, v + hv * d) - damping_force(model, y, v - hv * d)) / (
+            2 * hv
+        )
+    err_y = np.abs(fd_y - jy).max() / np.abs(jy).max()
+    err_v = np.abs(fd_v - jv).max() / np.abs(jv).max()
+    assert err_y <= 1e-6, err_y
+    assert err_v <= 1e-9, err_v
