@@ -13,7 +13,8 @@ import numpy as np
 
 from rancf.errors import InputError
 
-__all__ = ["DynamicOptions", "MAX_STEPS", "MAX_NEWTON", "MAX_LOAD_STEPS"]
+__all__ = ["DynamicOptions", "MAX_STEPS", "MAX_NEWTON", "MAX_LOAD_STEPS", "MAX_SPIN_RATE",
+           "SPIN_RATES"]  # fmt: skip
 
 #: Most time steps (``t_end / step`` of a fixed-step run) and stored states (``t_end /
 #: output_step``) a run may have: a billion steps take hours even for the smallest model, so a
@@ -23,6 +24,13 @@ MAX_STEPS = 10**9
 MAX_NEWTON = 1000
 #: Largest ``solver.load_steps`` of a static solve.
 MAX_LOAD_STEPS = 10**6
+#: Fastest steady rotation of ``modes.spin_rates`` [rad/s] (about 9.5 million rpm, beyond any
+#: rotor of cables or rods): a faster one is a unit mistake whose centrifugal loads overflow.
+MAX_SPIN_RATE = 1e6
+#: What ``modes.spin_rates`` allows, for the messages that refuse a rate.
+SPIN_RATES = (
+    f"at most {MAX_SPIN_RATE:g} rad/s (about 9.5 million rpm; a faster spin is a unit mistake)"
+)
 
 
 @dataclass(frozen=True)

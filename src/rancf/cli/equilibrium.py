@@ -17,9 +17,11 @@ __all__ = ["add_parsers"]
 
 def _static_state(sc: Any, system: Any) -> tuple[Any, Any]:
     """The equilibrium under the full loads (coordinates and multipliers)."""
+    from rancf.scenario.system_build import scenario_keys
     from rancf.solvers.static import solve_static
 
-    res = solve_static(system, **sc.static_options())
+    with scenario_keys(sc):
+        res = solve_static(system, **sc.static_options())
     return res.y, res.lam
 
 

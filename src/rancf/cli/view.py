@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import os
 from pathlib import Path
 from typing import Any
 
@@ -13,15 +14,31 @@ __all__ = ["add_parsers"]
 
 def _cmd_view(args: argparse.Namespace) -> int:
     from rancf.post.system_run import load_run
-    from rancf.post.view import write_view
-
     run = load_run(args.run_dir)
     out = Path(args.out) if args.out is not None else Path(args.run_dir) / "view.html"
-    if not out.parent.is_dir():
-        raise InputError("--out", str(out), "a file in an existing directory")
-    n = write_view(run, out, args.frames, args.samples)
+    n = _write(run, out, args)
     print(f"{n} of {run.t.size} stored times -> {out}")
     return 0
+
+
+def _write(run: Any, out: Path, args: argparse.Namespace) -> int:
+    """Write the view of ``run`` to ``out``; returns the number of frames.  A path that cannot
+    be written is refused on one line naming ``--out`` and the user's path (not the temporary
+    file the page is written through)."""
+    from rancf.post.view import write_view
+
+    if out.is_dir():
+        raise InputError("--out", str(out), "a file name (this path is a directory)")
+    if not out.parent.is_dir():
+        raise InputError("--out", str(out), "a file in an existing directory")
+    if not os.access(out.parent, os.W_OK | os.X_OK):
+        raise InputError("--out", str(out), f"a file in a writable directory ({out.parent} is "
+                         "not writable)")  # fmt: skip
+    try:
+        return write_view(run, out, args.frames, args.samples)
+    except OSError as exc:
+        raise InputError("--out", str(out), "a file that can be written here (writing it "
+                         f"failed: {exc.strerror or exc})") from None  # fmt: skip
 
 
 def add_parsers(sub: Any) -> None:

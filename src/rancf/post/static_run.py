@@ -45,7 +45,7 @@ def run_static(
     more keys of ``summary.json``; ``on_written``: called with the summary once the folder
     holds the run.
     """
-    from rancf.scenario.system_build import support_labels
+    from rancf.scenario.system_build import scenario_keys, support_labels
     from rancf.solvers.static import solve_static
 
     system = sc.build_system()
@@ -55,7 +55,8 @@ def run_static(
     doc = None
     keys = dict(info or {})
     try:
-        res = solve_static(system, on_step=path.record, **sc.static_options())
+        with scenario_keys(sc):
+            res = solve_static(system, on_step=path.record, **sc.static_options())
         keys.update(status="completed", message="reached the end of the load path",
                     method=res.method, relaxation_steps=res.relaxation_steps)  # fmt: skip
     except BaseException as exc:

@@ -7,21 +7,21 @@ Python API's (a test compares them).
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any, Literal
+from typing import TYPE_CHECKING, Annotated, Any, Literal
 
-from pydantic import Field, model_validator
+from pydantic import BeforeValidator, Field, model_validator
 
 from rancf.errors import InputError
-from rancf.options import MAX_LOAD_STEPS, MAX_NEWTON
+from rancf.options import MAX_LOAD_STEPS, MAX_NEWTON, MAX_SPIN_RATE, SPIN_RATES
 from rancf.scenario.base import (
     Flag,
-    NonNegative,
     Positive,
     Table,
     fail,
     integer,
     number,
     show,
+    to_number,
     vector,
 )
 
@@ -107,6 +107,17 @@ class SolverTable(Table):
         return {"load_steps": self.load_steps, "method": self.static_method}
 
 
+def _spin_rate(v: Any) -> float:
+    f = to_number(v)
+    if not 0.0 <= f <= MAX_SPIN_RATE:
+        raise fail("", f"must be >= 0 and {SPIN_RATES}, got {show(v)}")
+    return f
+
+
+#: A steady rotation rate of ``[modes]`` [rad/s].
+SpinRate = Annotated[float, Field(ge=0, le=MAX_SPIN_RATE), BeforeValidator(_spin_rate)]
+
+
 class ModesTable(Table):
     """``[modes]``: defaults of ``rancf modes``."""
 
@@ -119,7 +130,7 @@ class ModesTable(Table):
         [0.0, 0.0, 1.0], description="axis of the steady rotation of spin_rates (3D)"
     )
     spin_center: vector(3) = Field([0.0, 0.0, 0.0], description="a point on the spin axis [m]")
-    spin_rates: list[NonNegative] = Field(
+    spin_rates: list[SpinRate] = Field(
         [], description="steady rotation rates for a Campbell diagram [rad/s]"
     )
 

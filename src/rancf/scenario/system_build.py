@@ -21,6 +21,8 @@ Every scenario is a system: a file without ``[[bodies]]`` is one flexible body n
 from __future__ import annotations
 
 import math
+from collections.abc import Iterator
+from contextlib import contextmanager
 from typing import Any
 
 import numpy as np
@@ -30,10 +32,10 @@ from rancf.errors import InputError, ScenarioError
 from rancf.scenario.build import body_model, flexible_model
 from rancf.scenario.fluid import fluid_value, hydro_value
 from rancf.scenario.view import ScenarioView
-from rancf.scenario.winches import system_winches
+from rancf.scenario.winches import system_winches, winch_key
 from rancf.system import Joint, Load, Obstacle, Place, Spring, System
 
-__all__ = ["build_system", "support_labels", "ONE_BODY"]
+__all__ = ["build_system", "scenario_keys", "support_labels", "ONE_BODY"]
 
 #: The name of the one body of a file without ``[[bodies]]``.
 ONE_BODY = "body"
@@ -71,13 +73,23 @@ def support_labels(sc: ScenarioView) -> dict[str, list[int | str]]:
     return out
 
 
+@contextmanager
+def scenario_keys(sc: ScenarioView) -> Iterator[None]:
+    """Within it, an :class:`~rancf.errors.InputError` (building or solving the system of
+    ``sc``) becomes a :class:`~rancf.errors.ScenarioError` naming the file and the scenario key
+    (a winch by its table, ``winches[i]``)."""
+    try:
+        yield
+    except InputError as exc:
+        raise ScenarioError(sc.path, winch_key(sc.winches, exc.parameter),
+                            f"{exc.allowed} (got {exc.value!r})") from None  # fmt: skip
+
+
 def build_system(sc: ScenarioView) -> System:
     """The system of a scenario (module docstring), carrying its warnings of impulsive starts
     (:attr:`System.start_warnings`); errors name the scenario key."""
-    try:
+    with scenario_keys(sc):
         system = _build(sc)
-    except InputError as exc:
-        raise ScenarioError(sc.path, exc.parameter, f"{exc.allowed} (got {exc.value!r})") from None
     system.start_warnings = tuple(getattr(sc, "warnings", ()))
     return system
 

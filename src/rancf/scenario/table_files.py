@@ -2,9 +2,10 @@
 
 The path is relative to the scenario file (to the current folder for a scenario built in
 Python).  The file holds one row a line, numbers separated by commas; blank lines and lines
-starting with ``#`` are skipped, and a first line that is not numbers is a header (column
-names).  Anything else — a missing or unreadable file, a cell that is not a finite number,
-rows of different lengths — is refused in one line naming the file, the line and the cell.
+starting with ``#`` are skipped, and a first line none of whose cells is a number is a header
+(column names); a first line of numbers is data.  Anything else — a missing or unreadable file
+(a loop of symbolic links), a cell that is not a finite number (in a line with numbers), rows of
+different lengths — is refused in one line naming the file, the line and the cell.
 A run folder's copy of the scenario names the file by its absolute path
 (:func:`absolute_table_paths`), so that the copy reads the same table wherever it lies.
 """
@@ -56,29 +57,30 @@ def read_table(file: str, scenario_path: str) -> list[list[float]]:
         One line naming the file (and line and cell) and the problem, for the key that names
         the file.
     """
-    path = (_base(scenario_path) / file).resolve()
+    path = _absolute(_base(scenario_path) / file)
     try:
         with open(path, encoding="utf-8-sig", newline="") as fh:  # a byte-order mark: no cell
             lines = list(csv.reader(fh))
     except FileNotFoundError:
         raise fail("", f"the CSV file {path} does not exist") from None
     except (OSError, UnicodeDecodeError, csv.Error) as exc:
-        raise fail("", f"the CSV file {path} cannot be read ({exc})") from None
+        why = exc.strerror if isinstance(exc, OSError) and exc.strerror else exc
+        raise fail("", f"the CSV file {path} cannot be read ({why})") from None
     rows: list[list[float]] = []
-    header_allowed = True
+    first = True
     for number, cells in enumerate(lines, start=1):
         cells = [c.strip() for c in cells]
         if not any(cells) or cells[0].startswith("#"):
             continue
-        try:
-            row = [float(c) for c in cells]
-        except ValueError:
-            if header_allowed:  # column names
-                header_allowed = False
-                continue
-            bad = next(c for c in cells if not _is_number(c))
-            raise fail("", f"{path} line {number}: {bad!r} is not a number") from None
-        header_allowed = False
+        if first and not any(_is_number(c) for c in cells):  # column names
+            first = False
+            continue
+        bad = next((c for c in cells if not _is_number(c)), None)
+        if bad is not None:
+            hint = " (a header line holds names only, a data line numbers only)" if first else ""
+            raise fail("", f"{path} line {number}: {bad!r} is not a number{hint}")
+        first = False
+        row = [float(c) for c in cells]
         if not all(math.isfinite(x) for x in row):
             raise fail("", f"{path} line {number}: the numbers must be finite")
         if rows and len(row) != len(rows[0]):
@@ -89,6 +91,15 @@ def read_table(file: str, scenario_path: str) -> list[list[float]]:
         raise fail("", f"{path} holds {len(rows)} rows of numbers: at least 2 rows "
                    "[t, v...] are needed")  # fmt: skip
     return rows
+
+
+def _absolute(path: Path) -> Path:
+    """``path`` absolute, its links resolved where they can be (a loop of symbolic links
+    stays as named: opening it is refused)."""
+    try:
+        return path.resolve()
+    except (OSError, RuntimeError):  # RuntimeError: a symlink loop (Python < 3.13)
+        return path.absolute()
 
 
 def _is_number(text: str) -> bool:
@@ -105,7 +116,7 @@ def absolute_table_paths(raw: Any, scenario_path: str | Path) -> Any:
     if isinstance(raw, dict):
         for key, value in raw.items():
             if key == TABLE_KEY and isinstance(value, str):
-                raw[key] = str((_base(str(scenario_path)) / value).resolve())
+                raw[key] = str(_absolute(_base(str(scenario_path)) / value))
             else:
                 absolute_table_paths(value, scenario_path)
     elif isinstance(raw, list):

@@ -26,7 +26,7 @@ from rancf.scenario.base import Name, Positive, Table, fail, vector
 from rancf.scenario.loads import TimeFunctionValue, check_scalar
 from rancf.system.winches import LENGTH_RTOL, Winch, length_law, winch_length
 
-__all__ = ["WinchTable", "system_winches"]
+__all__ = ["WinchTable", "system_winches", "winch_key"]
 
 
 class WinchTable(Table):
@@ -75,6 +75,17 @@ class WinchTable(Table):
         return self
 
 
+def winch_key(winches: Any, parameter: str) -> str:
+    """``parameter`` with a winch named by the system (``winches.NAME...``) named by its table,
+    ``winches[i]...``; any other parameter as it is."""
+    for i, w in enumerate(winches or ()):
+        for sep in (".", ""):
+            prefix = f"winches.{w.name}{sep}"
+            if parameter.startswith(prefix) and (sep or parameter == prefix):
+                return f"winches[{i}]{sep}{parameter[len(prefix):]}"
+    return parameter
+
+
 def system_winches(sc: Any, bodies: dict[str, Any], one_body: str) -> list[Winch]:
     """The :class:`~rancf.system.winches.Winch` of every ``[[winches]]`` table; a body whose
     length at ``t = 0`` is not its drawing's is stretched about the winch first
@@ -95,6 +106,9 @@ def system_winches(sc: Any, bodies: dict[str, Any], one_body: str) -> list[Winch
         at = f"{p.body or one_body}:{end}"
         if w.position is not None:
             x = body.node_positions(body.q0)[node]
+            if len(w.position) != x.size:
+                raise ScenarioError(sc.path, f"{key}.position", f"{x.size} numbers (the body is "
+                                    f"{x.size}D; got {w.position})")  # fmt: skip
             if np.linalg.norm(np.asarray(w.position) - x) > 1e-9 * max(1.0, np.abs(x).max()):
                 raise ScenarioError(sc.path, f"{key}.position", f"where the body's {end} is "
                                     f"drawn, {x.tolist()} (draw the line from the winch; got "
@@ -105,10 +119,25 @@ def system_winches(sc: Any, bodies: dict[str, Any], one_body: str) -> list[Winch
         _check_lengths(sc, key, winch, unstretched_length(body))  # before the body is stretched
         if length is not None:
             start = float(np.ravel(length_law(length).value(0.0))[0])
+            _check_stretch(sc, key, start, unstretched_length(body))
             if abs(start - unstretched_length(body)) > LENGTH_RTOL * max(start, 1.0):
                 set_unstretched_length(body, start, anchor=node)
         out.append(winch)
     return out
+
+
+#: Largest factor between a winch's start length and its line's drawn length.
+MAX_STRETCH = 1e3
+
+
+def _check_stretch(sc: Any, key: str, start: float, drawn: float) -> None:
+    """Refuse a start length so far from the drawn line's that stretching the drawing about
+    the winch to it would make a line of another scale (a unit mistake, or overflow)."""
+    if not drawn / MAX_STRETCH <= start <= drawn * MAX_STRETCH:
+        raise ScenarioError(sc.path, f"{key}.length", f"a start length within a factor "
+                            f"{MAX_STRETCH:g} of the drawn line's {drawn:.6g} m (the drawing is "
+                            f"stretched about the winch to it; draw the line at about its start "
+                            f"length), got {start:.6g} m at t = 0")  # fmt: skip
 
 
 #: Uniform samples of ``[0, t_end]`` a winch's length is checked at (with a table's times).

@@ -35,6 +35,7 @@ from numpy.typing import ArrayLike, NDArray
 from rancf.bodies.flexible import Model
 from rancf.bodies.rigid import PointMass
 from rancf.errors import InputError, RancfError
+from rancf.options import MAX_SPIN_RATE, SPIN_RATES
 from rancf.solvers.linearized import system_jacobian
 from rancf.solvers.system_equilibrium import STABILIZER, SystemEquilibrium
 from rancf.system import System
@@ -59,8 +60,8 @@ class Spin:
             raise InputError("modes.spin_axis", list(a), "a non-zero vector of 3 numbers")
         if c.size != 3 or not np.all(np.isfinite(c)):
             raise InputError("modes.spin_center", list(c), "3 finite numbers [m]")
-        if not np.isfinite(rate):
-            raise InputError("modes.spin_rates", rate, "finite rates [rad/s]")
+        if not abs(rate) <= MAX_SPIN_RATE:  # NaN too
+            raise InputError("modes.spin_rates", rate, f"rates {SPIN_RATES} in size")
         a = a / np.linalg.norm(a)
         return cls(tuple(a), tuple(c), float(rate))  # type: ignore[arg-type]
 

@@ -42,9 +42,11 @@ def start_state(
                 '= "static" (the static solution moves it there before the run)',
             )
         return None, {"initial_state": "reference"}
+    from rancf.scenario.system_build import scenario_keys
     from rancf.solvers.static import solve_static  # the static solvers, only for this start
 
-    res = solve_static(model, at_time=0.0, **sc.static_options())
+    with scenario_keys(sc):
+        res = solve_static(model, at_time=0.0, **sc.static_options())
     info = {
         "initial_state": "static",
         "static": {

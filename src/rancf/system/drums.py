@@ -36,6 +36,10 @@ def drum_torque(w: Any, tf: Callable) -> int:
             raise InputError(f"winches.{w.name}.{key}", v, "a driven drum's " + (
                 "radius [m], > 0" if key == "radius" else "moment of inertia [kg m^2], > 0 "
                 "(the drum's, with the rope on it at t = 0)"))  # fmt: skip
+    if not np.isfinite(drum_mass(w)) or drum_mass(w) == 0.0:
+        raise InputError(f"winches.{w.name}.radius", w.radius, "a driven drum's radius [m] with "
+                         f"a finite, non-zero mass along the line J / r^2 (J = {w.inertia:g} kg "
+                         "m^2)")  # fmt: skip
     f = w.torque if isinstance(w.torque, TimeFunction) else TimeFunction.constant(w.torque)
     if np.ravel(f.value(0.0)).size != 1:
         raise InputError(f"winches.{w.name}.torque", np.ravel(f.value(0.0)).tolist(),
@@ -45,7 +49,8 @@ def drum_torque(w: Any, tf: Callable) -> int:
 
 def drum_mass(w: Any) -> float:
     """``J / r²`` [kg]: the drum's inertia at ``t = 0`` seen along the line."""
-    return float(w.inertia) / float(w.radius) ** 2
+    with np.errstate(over="ignore", divide="ignore"):
+        return float(np.float64(w.inertia) / np.float64(w.radius) ** 2)
 
 
 def attach_drum(system: Any, k: int, w: Any, body: Model, node: int, torque: int) -> int:
