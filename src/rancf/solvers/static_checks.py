@@ -9,8 +9,8 @@ line).  Criteria (docs/guide/statics.md, "Checked equilibria"):
 
 * **folded**: at a section sample point (:class:`~rancf.bodies.section_outputs.SectionSampler`,
   4 per element) the stretch ``λ = sqrt(1 + 2 ε)`` is below :data:`FOLD_STRETCH`, or two
-  successive quarter-element chords point more than 90° apart (the curve turns back inside an
-  element);
+  successive quarter-element chords point more than 90° apart where the reference's do not
+  (the curve turns back on itself);
 * **compressive loop**: the axial force ``N`` is below ``-N_allowed``,
   ``N_allowed = COMPRESSION_BUCKLING π² EI / ℓ² + COMPRESSION_ROUNDOFF EA`` with ``ℓ`` the
   element's reference length (a multiple of the element's own Euler load: a column below its
@@ -67,7 +67,7 @@ def _body_problems(model: Model, y: NDArray[np.float64]) -> list[str]:
     stretch = np.sqrt(np.clip(1.0 + 2.0 * vals[:, 0], 0.0, None))
     el = np.minimum(np.arange(stretch.size) // k, model.n_el - 1)
     out = []
-    fold = _fold_element(sampler.positions(y), k, model.n_el)
+    fold = _fold_element(sampler.positions(y), sampler.positions(model.y0), k)
     if fold is not None or stretch.min() < FOLD_STRETCH:
         e = fold if fold is not None else int(el[np.argmin(stretch)])
         out.append(f"element {e} is folded (the curve turns back on itself or its stretch "
@@ -85,13 +85,16 @@ def _body_problems(model: Model, y: NDArray[np.float64]) -> list[str]:
     return out
 
 
-def _fold_element(x: NDArray[np.float64], k: int, n_el: int) -> int | None:
-    """The first element whose successive sample chords (``k`` per element, positions ``x``)
-    point more than 90° apart, or None."""
-    chords = np.diff(x, axis=0)[: n_el * k].reshape(n_el, k, -1)
-    dots = np.einsum("eid,eid->ei", chords[:, :-1], chords[:, 1:])
-    bad = np.nonzero((dots < 0.0).any(axis=1))[0]
-    return int(bad[0]) if bad.size else None
+def _fold_element(x: NDArray[np.float64], x0: NDArray[np.float64], k: int) -> int | None:
+    """The first element where two successive sample chords (``k`` per element, positions
+    ``x``; ``x0`` the reference's) point more than 90° apart though they did not in the
+    reference (the curve turns back on itself), or None."""
+    c, c0 = np.diff(x, axis=0), np.diff(x0, axis=0)
+    back = (np.einsum("id,id->i", c[:-1], c[1:]) < 0.0) & (
+        np.einsum("id,id->i", c0[:-1], c0[1:]) >= 0.0
+    )
+    bad = np.nonzero(back)[0]
+    return int((bad[0] + 1) // k) if bad.size else None
 
 
 def _penetration_problems(system: Any, q: NDArray[np.float64]) -> list[str]:

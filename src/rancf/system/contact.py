@@ -14,10 +14,10 @@ piece the generalized-α force itself, and with ``rho_inf = 1`` (the midpoint ru
 gradient of the penalty's potential, whose energy balance is then exact for a plane.  Statics
 are frictionless.
 
-Penalty stiffness.  ``k`` [N/m²] (force per reference length per penetration) of a seabed (a
-fixed plane the body's own wet weight presses on) defaults to the weight over 1 % of the
-diameter (:mod:`rancf.system.seabed`); of every other obstacle to ``E / 10`` of the body's
-Young's modulus: the order of the transverse stiffness of the section
+Penalty stiffness.  ``k`` [N/m²] (force per reference length per penetration) of a seabed
+(a fixed plane in a ``[fluid]`` the body's own wet weight presses on) defaults to the weight
+over 1 % of the diameter (:mod:`rancf.system.seabed`); of every other obstacle to ``E / 10``
+of the body's Young's modulus: the order of the transverse stiffness of the section
 itself pressed on a rigid surface.  Hertz's line contact of a solid circular section gives
 ``P / δ = π E / (2 (1 - ν²) (ln(4 rt / a) - 1/2))`` with the contact half-width ``a``, i.e.
 ``E / 4`` to ``E / 8`` for ``ln(4 rt / a)`` between 5 and 10 (every practical load); stranded
@@ -110,8 +110,8 @@ class Obstacle:
     friction : float
         Coulomb coefficient μ.
     stiffness : float, optional
-        Penalty ``k`` [N/m²]; default: on a seabed (a fixed plane facing up against the body's
-        gravity) the body's wet weight over 1 % of its diameter
+        Penalty ``k`` [N/m²]; default: on a seabed (a fixed plane in a fluid facing up against
+        the body's gravity) the body's wet weight over 1 % of its diameter
         (:func:`rancf.system.seabed.seabed_stiffness`), else a tenth of its Young's modulus.
     onset : float, optional
         Width ``d`` [m] of the pressure's smooth onset; default 1e-3 of each body's radius.
