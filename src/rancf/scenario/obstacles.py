@@ -47,7 +47,9 @@ class ObstacleTable(Table):
     )
     friction: NonNegative = Field(0.0, description="Coulomb friction coefficient mu")
     stiffness: Positive | None = Field(
-        None, description="penalty stiffness [N/m^2] (default: a tenth of Young's modulus)"
+        None, description="penalty stiffness [N/m^2] (default: on a seabed, a fixed plane "
+        "facing up against gravity in a [fluid], k = w_n / (0.01 D): the body's wet weight per "
+        "length w_n presses it in by 1 % of its diameter D; else a tenth of Young's modulus)"
     )
     onset: Positive | None = Field(
         None, description="depth of the pressure's smooth onset [m] (default: 1e-3 r)"

@@ -48,6 +48,7 @@ from rancf.solvers.drum_statics import free_drums
 from rancf.solvers.load_path import MIN_INCREMENT, PathState
 from rancf.solvers.newton import newton
 from rancf.solvers.relaxation import relax
+from rancf.solvers.static_checks import static_state_problems
 from rancf.solvers.system_equilibrium import SystemEquilibrium
 from rancf.system import System, as_system
 from rancf.system.drums import hold_drums, refuse_static_drums
@@ -130,9 +131,9 @@ def solve_static(
     system = as_system(model)
     system.reset_triads()
     if not getattr(system, "drums", None):
-        return solve_equilibrium(
+        return _checked(system, solve_equilibrium(
             SystemEquilibrium(system, at_time), load_steps, tol, max_iter, on_step, method, start
-        )
+        ))  # fmt: skip
     hold_drums(system, True)  # driven drums: the line loaded at their start lengths first
     try:
         held = solve_equilibrium(
@@ -143,9 +144,23 @@ def solve_static(
     scale = SystemEquilibrium(system, at_time).scale  # then the lengths where r T = torque
     y, lam, ok, its = free_drums(system, held.y, held.lam, at_time, scale, tol, max_iter)
     refuse_static_drums(system, y if ok else None, at_time)
-    return replace(held, q=system.q_from_y(y), y=y, lam=lam, n_newton=held.n_newton + its,
+    done = replace(held, q=system.q_from_y(y), y=y, lam=lam, n_newton=held.n_newton + its,
                    n_factorizations=held.n_factorizations + its,
                    wall_time=time.perf_counter() - start)  # fmt: skip
+    return _checked(system, done)
+
+
+def _checked(system: System, res: StaticResult) -> StaticResult:
+    """``res`` if its state passes :func:`~rancf.solvers.static_checks.static_state_problems`;
+    else :class:`~rancf.errors.ConvergenceError` naming the first problem (one line)."""
+    problems = static_state_problems(system, res.q)
+    if problems:
+        lam = float(res.load_factors[-1])
+        raise ConvergenceError(
+            f"static equilibrium not found: the {res.method} path ended at load factor {lam:.4g} "
+            f"in a state that is no equilibrium: {problems[0]}", reached=lam,
+        )  # fmt: skip
+    return res
 
 
 def solve_equilibrium(

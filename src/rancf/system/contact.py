@@ -14,8 +14,10 @@ piece the generalized-α force itself, and with ``rho_inf = 1`` (the midpoint ru
 gradient of the penalty's potential, whose energy balance is then exact for a plane.  Statics
 are frictionless.
 
-Penalty stiffness.  ``k`` [N/m²] (force per reference length per penetration) defaults to
-``E / 10`` of the body's Young's modulus: the order of the transverse stiffness of the section
+Penalty stiffness.  ``k`` [N/m²] (force per reference length per penetration) of a seabed
+(a fixed plane in a ``[fluid]`` the body's own wet weight presses on) defaults to the weight
+over 1 % of the diameter (:mod:`rancf.system.seabed`); of every other obstacle to ``E / 10``
+of the body's Young's modulus: the order of the transverse stiffness of the section
 itself pressed on a rigid surface.  Hertz's line contact of a solid circular section gives
 ``P / δ = π E / (2 (1 - ν²) (ln(4 rt / a) - 1/2))`` with the contact half-width ``a``, i.e.
 ``E / 4`` to ``E / 8`` for ``ln(4 rt / a)`` between 5 and 10 (every practical load); stranded
@@ -58,6 +60,7 @@ from rancf.elements.cable import cable_shape_functions
 from rancf.errors import InputError
 from rancf.geometry.quadrature import gauss_legendre
 from rancf.kernels import _core
+from rancf.system.seabed import seabed_stiffness
 
 __all__ = ["Obstacle", "ContactState", "OBSTACLE_KINDS", "contact_outputs", "contact_history",
            "obstacle_records"]  # fmt: skip
@@ -107,7 +110,9 @@ class Obstacle:
     friction : float
         Coulomb coefficient μ.
     stiffness : float, optional
-        Penalty ``k`` [N/m²]; default a tenth of each body's Young's modulus.
+        Penalty ``k`` [N/m²]; default: on a seabed (a fixed plane in a fluid facing up against
+        the body's gravity) the body's wet weight over 1 % of its diameter
+        (:func:`rancf.system.seabed.seabed_stiffness`), else a tenth of its Young's modulus.
     onset : float, optional
         Width ``d`` [m] of the pressure's smooth onset; default 1e-3 of each body's radius.
     damping : float
@@ -273,6 +278,8 @@ def build_contact(
     for f, o in pairs:
         ob = obstacles[names.index(o)]
         k = ob.stiffness
+        if k is None:
+            k = seabed_stiffness(system, f, ob, dirs[names.index(o)])
         if k is None:
             k = STIFFNESS_FACTOR * system.bodies[f].material.youngs_modulus  # type: ignore[union-attr]
         rt = system.bodies[f].section.radius  # type: ignore[union-attr]

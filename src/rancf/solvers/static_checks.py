@@ -1,0 +1,117 @@
+"""Checks that a converged static state is an equilibrium a user may be given.
+
+Newton's method converges to any root of the residual, and a slender line has roots no real line
+rests in: a cable folded back on itself inside an element, a loop of a cable carrying
+compression, a line pushed through the seabed.  :func:`static_state_problems` names them; the
+static solver refuses such a state (:func:`rancf.solvers.static.solve_static` raises
+:class:`~rancf.errors.ConvergenceError`, ``rancf static`` exits 3 with the first problem in one
+line).  Criteria (docs/guide/statics.md, "Checked equilibria"):
+
+* **folded**: at a section sample point (:class:`~rancf.bodies.section_outputs.SectionSampler`,
+  4 per element) the stretch ``λ = sqrt(1 + 2 ε)`` is below :data:`FOLD_STRETCH`, or two
+  successive quarter-element chords point more than 90° apart where the reference's do not
+  (the curve turns back on itself);
+* **compressive loop**: the axial force ``N`` is below ``-N_allowed``,
+  ``N_allowed = COMPRESSION_BUCKLING π² EI / ℓ² + COMPRESSION_ROUNDOFF EA`` with ``ℓ`` the
+  element's reference length (a multiple of the element's own Euler load: a column below its
+  buckling load passes; a cable, whose ``EI`` is negligible, may carry no compression beyond the
+  round-off of its axial stiffness);
+* **penetration**: an obstacle's largest penetration exceeds :data:`PENETRATION_LIMIT` of the
+  diameter ``2 sqrt(A / π)`` of the thinnest body that touches it.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from rancf.bodies.flexible import Model
+from rancf.bodies.section_outputs import SectionSampler
+
+__all__ = [
+    "FOLD_STRETCH",
+    "COMPRESSION_BUCKLING",
+    "COMPRESSION_ROUNDOFF",
+    "PENETRATION_LIMIT",
+    "static_state_problems",
+]
+
+#: Smallest stretch of a sample point that is not a fold.
+FOLD_STRETCH = 0.5
+#: Allowed compression as a multiple of the element's Euler load ``π² EI / ℓ²``.
+COMPRESSION_BUCKLING = 4.0
+#: Allowed compression as a fraction of ``EA`` (the round-off of a line's axial force).
+COMPRESSION_ROUNDOFF = 1e-6
+#: Largest penetration of an obstacle, as a fraction of the touching body's diameter.
+PENETRATION_LIMIT = 0.25
+
+
+def static_state_problems(system: Any, q: NDArray[np.float64], lam: float = 1.0) -> list[str]:
+    """The problems of the static state ``q`` (full coordinates) of ``system`` (module
+    docstring), one line each; empty when it may be reported as an equilibrium.  ``lam``: the
+    path parameter, named in the lines."""
+    out: list[str] = []
+    for name, model in zip(system.names, system.flex, strict=False):
+        y = model.y_from_q(np.asarray(q)[system.body_slice(name)])
+        out += [f"body {name!r}: {p}" for p in _body_problems(model, y)]
+    return out + _penetration_problems(system, q)
+
+
+def _body_problems(model: Model, y: NDArray[np.float64]) -> list[str]:
+    """Folds and compressive loops of one flexible body at its model coordinates ``y``."""
+    sampler = SectionSampler(model)
+    vals = sampler.values(y)
+    k = sampler.per_element
+    stretch = np.sqrt(np.clip(1.0 + 2.0 * vals[:, 0], 0.0, None))
+    el = np.minimum(np.arange(stretch.size) // k, model.n_el - 1)
+    out = []
+    fold = _fold_element(sampler.positions(y), sampler.positions(model.y0), k)
+    if fold is not None or stretch.min() < FOLD_STRETCH:
+        e = fold if fold is not None else int(el[np.argmin(stretch)])
+        out.append(f"element {e} is folded (the curve turns back on itself or its stretch "
+                   f"falls to {stretch[el == e].min():.3g}, below {FOLD_STRETCH}): not an "
+                   "equilibrium a line rests in")  # fmt: skip
+    ell = np.diff(np.r_[sampler.s[::k], sampler.s[-1]])[el]
+    allowed = (COMPRESSION_BUCKLING * np.pi**2 * model.props.ei / ell**2
+               + COMPRESSION_ROUNDOFF * model.props.ea)  # fmt: skip
+    i = int(np.argmin(vals[:, 1] + allowed))
+    if vals[i, 1] < -allowed[i]:
+        out.append(f"a compressive loop: axial force {vals[i, 1]:.4g} N at s = {sampler.s[i]:.4g}"
+                   f" m (element {el[i]}), beyond the {allowed[i]:.3g} N the element carries "
+                   f"({COMPRESSION_BUCKLING:g} π² EI / ℓ² + {COMPRESSION_ROUNDOFF:g} EA)"
+                   )  # fmt: skip
+    return out
+
+
+def _fold_element(x: NDArray[np.float64], x0: NDArray[np.float64], k: int) -> int | None:
+    """The first element where two successive sample chords (``k`` per element, positions
+    ``x``; ``x0`` the reference's) point more than 90° apart though they did not in the
+    reference (the curve turns back on itself), or None."""
+    c, c0 = np.diff(x, axis=0), np.diff(x0, axis=0)
+    back = (np.einsum("id,id->i", c[:-1], c[1:]) < 0.0) & (
+        np.einsum("id,id->i", c0[:-1], c0[1:]) >= 0.0
+    )
+    bad = np.nonzero(back)[0]
+    return int((bad[0] + 1) // k) if bad.size else None
+
+
+def _penetration_problems(system: Any, q: NDArray[np.float64]) -> list[str]:
+    """Obstacles penetrated deeper than :data:`PENETRATION_LIMIT` of the touching diameter."""
+    if not getattr(system, "obstacle_names", None):
+        return []
+    from rancf.system.contact import contact_outputs
+
+    states = contact_outputs(system, system.y_from_q(q))
+    out = []
+    for name, st in states.items():
+        touching = [f for f, o in system.contact_pairs if o == name]
+        if not touching:
+            continue
+        d = 2.0 * min(system.bodies[f].section.radius for f in touching)
+        if st.penetration > PENETRATION_LIMIT * d:
+            out.append(f"obstacle {name!r} is penetrated {st.penetration:.4g} m deep, more than "
+                       f"{PENETRATION_LIMIT:g} of the diameter {d:.4g} m: raise its stiffness "
+                       "(obstacles.stiffness) or leave it to the default")  # fmt: skip
+    return out

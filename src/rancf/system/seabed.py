@@ -1,0 +1,65 @@
+"""The default penalty stiffness of a seabed: a fixed plane that a line's own weight presses on.
+
+A seabed is a fixed plane in a ``[fluid]`` facing up against the body's gravity.  A line resting
+on it under its wet weight per reference length ``w_n`` (the component of
+its weight in water along the plane's inward normal) sinks by ``δ = w_n / k + d / 2`` (the
+penalty of :mod:`rancf.system.contact` with onset ``d``).  For a seabed (``w_n > 0``) with no
+``stiffness`` of its own, ``k`` is chosen so
+that the weight alone presses the tube in by :data:`SEABED_PENETRATION` of its diameter ``D``:
+
+``k = w_n / (SEABED_PENETRATION D)``, ``w_n = (ρ A − ρ_f A_f) (−g · n̂)``
+
+(``ρ A`` the body's mass per length, ``ρ_f A_f`` that of the fluid it displaces when it has
+``hydro`` coefficients in a ``[fluid]``, ``A_f = π d² / 4`` with the hydrodynamic diameter,
+``g`` the body's gravity, ``n̂`` the plane's unit outward normal; docs/guide/contact.md).
+A chain of 2457 N/m in water and ``D = 0.216`` m gets 1.1e6 N/m² (MoorDyn's seabed
+``kBot D`` is 6.5e5 N/m²); the steel-cable default ``E / 10`` would be 1e4 times stiffer, which a
+static solve from a stress-free line cannot follow.  Every other obstacle (cylinders, spheres,
+planes carried by a rigid body, walls, a ceiling, a weightless body, and dry ground: a cable
+dropped on a floor needs the stiff default to stay within 1 % of its radius through the impact,
+``tests/system/test_contact_ground.py``) keeps ``E / 10``.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+__all__ = ["SEABED_PENETRATION", "seabed_stiffness", "pressing_weight"]
+
+#: The default seabed stiffness lets the line's own wet weight press it in by this fraction of
+#: its diameter.
+SEABED_PENETRATION = 0.01
+
+
+def pressing_weight(system: Any, body: str, normal: np.ndarray) -> float:
+    """The wet weight per reference length [N/m] of flexible body ``body`` of ``system`` along
+    the inward normal ``-normal`` (unit, 3 components) of a plane: ``(ρ A − ρ_f A_f) (−g · n̂)``
+    (module docstring); 0 without gravity, negative when it lifts the body off."""
+    model = system.bodies[body]
+    g = getattr(model, "gravity", None)
+    if g is None:
+        return 0.0
+    g3 = np.r_[np.asarray(g, float), np.zeros(3 - len(g))]
+    mass = model.material.density * model.section.area
+    fluid, hydro = getattr(system, "fluid", None), getattr(system, "hydro", {}) or {}
+    if fluid is not None and body in hydro:
+        h = hydro[body]
+        d = h.diameter if h.diameter is not None else math.sqrt(4.0 * model.section.area / math.pi)
+        mass -= fluid.density * math.pi * d * d / 4.0
+    return float(mass * -(g3 @ normal))
+
+
+def seabed_stiffness(system: Any, body: str, obstacle: Any, normal: np.ndarray) -> float | None:
+    """The default penalty stiffness [N/m²] of ``obstacle`` for flexible body ``body`` when it is
+    a seabed (a fixed plane the body's wet weight presses on; module docstring), else None (the
+    caller's default ``E / 10``)."""
+    if obstacle.kind != "plane" or obstacle.body is not None or system.fluid is None:
+        return None
+    w_n = pressing_weight(system, body, normal)
+    if not w_n > 0.0:
+        return None
+    diameter = 2.0 * system.bodies[body].section.radius
+    return w_n / (SEABED_PENETRATION * diameter)

@@ -1,0 +1,241 @@
+"""Static results that are no equilibrium are refused (issue 38): folded elements, compressive
+loops of a cable, deep penetration; lines on a seabed against MoorPy's elastic catenary.
+
+Reference numbers: MoorPy 1.3.0, ``moorpy.Catenary.catenary`` (a separate venv, not a
+dependency), ``CB = 0``:
+
+* U line, half of it from the seabed's midpoint to one end: ``catenary(50, 20, 65, EA=1e8,
+  W=100)`` gives ``H = 263.1579634`` N (grounded 42.52 m of the half);
+* 500 m chain: ``catenary(400, 200, 500, EA=1.2326e9, W=2456.820077)`` gives
+  ``H = 295264.0633`` N, ``V = 728878.5005`` N at the fairlead.
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import rancf
+from rancf.errors import ConvergenceError
+from rancf.scenario.scenario import load_scenario
+from rancf.solvers.static import solve_static
+from rancf.solvers.static_checks import static_state_problems
+from rancf.system.seabed import SEABED_PENETRATION
+
+H_U = 263.1579634329022
+H_CHAIN, V_CHAIN = 295264.063277252, 728878.5005232067
+#: 100 N/m over a section of radius 0.05 m, EA = 1e8 N, EI = 12.7 N m² (negligible).
+U_LINE = """
+[section]
+area = 7.853981633974483e-3
+inertia = 1.0e-9
+
+[material]
+density = 1297.8996378543961
+youngs_modulus = 1.2732395447351627e10
+axial_strain = "engineering"
+
+[[supports]]
+at = "start"
+kind = "pin"
+
+[[obstacles]]
+name = "seabed"
+kind = "plane"
+point = [0.0, -20.05]
+normal = [0.0, 1.0]
+{stiffness}
+
+[loads]
+gravity = [0.0, -9.81]
+{fluid}"""
+#: A U of 130 m lying on the seabed (20 m below both ends, 100 m apart).
+U_ON_SEABED = """
+[geometry]
+kind = "nurbs"
+degree = 2
+knots = [0.0, 0.0, 0.0, 0.1617063163084801, 0.8382936836915199, 1.0, 1.0, 1.0]
+control_points = [[0.0, 0.0], [0.0, -20.0], [50.0, -20.0], [100.0, -20.0], [100.0, 0.0]]
+
+[mesh]
+elements = 40
+
+[[supports]]
+at = "end"
+kind = "pin"
+"""
+#: A U of 130 m flared past both ends, 0.5 m above the seabed: it falls into a loop.
+U_FLARED = """
+[geometry]
+kind = "nurbs"
+degree = 2
+knots = [0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0]
+control_points = [[0.0, 0.0], [-15.58252989878443, -19.5], [115.58252989878443, -19.5],
+                  [100.0, 0.0]]
+
+[mesh]
+elements = 40
+
+[[supports]]
+at = "end"
+kind = "pin"
+"""
+#: A straight stress-free 130 m line, its end installed 100 m from its start.
+U_INSTALLED = """
+[geometry]
+kind = "line"
+start = [0.0, 0.0]
+end = [130.0, 0.0]
+
+[mesh]
+elements = 40
+
+[[supports]]
+at = "end"
+kind = "pin"
+position = [100.0, 0.0]
+"""
+#: The chain of benchmarks/mooring in 2D (2456.8 N/m wet), 500 m straight on the seabed, its
+#: end installed at the fairlead 447.2 m from the anchor.
+CHAIN = """
+[geometry]
+kind = "line"
+start = [-400.0, -200.0]
+end = [100.0, -200.0]
+
+[mesh]
+elements = 50
+
+[section]
+area = 0.03668789808917197
+inertia = 1.0e-7
+
+[material]
+density = 6826.239384497652
+youngs_modulus = 33596909722.222225
+axial_strain = "engineering"
+
+[[supports]]
+at = "start"
+kind = "pin"
+
+[[supports]]
+at = "end"
+kind = "pin"
+position = [0.0, 0.0]
+
+[[obstacles]]
+name = "seabed"
+kind = "plane"
+point = [0.0, -200.10806535367585]
+normal = [0.0, 1.0]
+stiffness = 1.0e6
+
+[loads]
+gravity = [0.0, -9.81]
+"""
+
+
+def _scenario(tmp_path, text: str):
+    path = tmp_path / "line.toml"
+    path.write_text(text)
+    return load_scenario(path)
+
+
+def _u(tmp_path, shape: str, stiffness: str = "stiffness = 1.0e6"):
+    """The U line; without a stiffness in water (no hydro coefficients: its weight is the
+    100 N/m), so that the seabed default applies."""
+    fluid = "" if stiffness else "[fluid]\ndensity = 1025.0\n"
+    return _scenario(tmp_path, shape + U_LINE.format(stiffness=stiffness, fluid=fluid))
+
+
+def _horizontal(system, res) -> float:
+    from rancf.system.outputs import SystemOutputs
+
+    return abs(SystemOutputs(system, []).static_reactions(res.y, res.lam)[-1].force[0])
+
+
+@pytest.mark.parametrize("stiffness", ["stiffness = 1.0e6", ""])
+def test_u_line_on_seabed_matches_moorpy(tmp_path, stiffness):
+    """Given stiffness 1e6 and the seabed default: H within 0.5 % of MoorPy's."""
+    sc = _u(tmp_path, U_ON_SEABED, stiffness)
+    system = sc.build_system()
+    res = solve_static(system, **sc.static_options())
+    assert _horizontal(system, res) == pytest.approx(H_U, rel=5e-3)
+    assert static_state_problems(system, res.q) == []
+
+
+def test_installed_chain_matches_moorpy(tmp_path):
+    sc = _scenario(tmp_path, CHAIN)
+    system = sc.build_system()
+    res = solve_static(system, **sc.static_options())
+    from rancf.system.outputs import SystemOutputs
+
+    force = SystemOutputs(system, []).static_reactions(res.y, res.lam)[-1].force
+    assert abs(force[0]) == pytest.approx(H_CHAIN, rel=5e-3)
+    assert abs(force[1]) == pytest.approx(V_CHAIN, rel=5e-3)
+
+
+@pytest.mark.parametrize("shape", [U_FLARED, U_INSTALLED], ids=["flared", "installed"])
+def test_compressive_loop_is_refused(tmp_path, shape):
+    """The old solver returned these with exit 0 (a loop carrying kN to 1e7 N of compression)."""
+    sc = _u(tmp_path, shape)
+    with pytest.raises(ConvergenceError, match="compressive loop|is folded"):
+        solve_static(sc.build_system(), **sc.static_options())
+
+
+def test_refused_state_exits_3_in_one_line(tmp_path):
+    text = U_INSTALLED + U_LINE.format(stiffness="stiffness = 1.0e6", fluid="")
+    (tmp_path / "u.toml").write_text(text)
+    src = str(Path(rancf.__file__).resolve().parents[1])
+    p = subprocess.run([sys.executable, "-m", "rancf", "static", "u.toml"], cwd=tmp_path,
+                       capture_output=True, text=True,
+                       env={**os.environ, "PYTHONPATH": src})  # fmt: skip
+    assert p.returncode == 3
+    lines = [x for x in p.stderr.splitlines() if "no equilibrium" in x]
+    assert len(lines) == 1 and "no equilibrium" in lines[0]
+
+
+def test_folded_element_is_named(tmp_path):
+    """A state with one node pushed back past its neighbour: folded, and compressed."""
+    sc = _u(tmp_path, U_INSTALLED)
+    system = sc.build_system()
+    q = system.q_from_y(system.y_from_q(system.q0)).copy() if hasattr(system, "q0") else None
+    q = system.q_from_y(system.y0.copy()) if q is None else q
+    model, sl = system.flex[0], system.body_slice(system.names[0])
+    nodes = q[sl].reshape(model.n_nodes, model.dpn)
+    nodes[20, 0] -= 2.0 * (nodes[21, 0] - nodes[20, 0])  # node 20 behind node 19
+    q[sl] = nodes.ravel()
+    problems = static_state_problems(system, q)
+    assert any("folded" in p for p in problems), problems
+
+
+def test_deep_penetration_is_named(tmp_path):
+    """The U's reference 2 m inside a raised seabed."""
+    text = _u(tmp_path, U_ON_SEABED)  # noqa: F841 (builds the file)
+    raised = (U_ON_SEABED + U_LINE.format(stiffness="stiffness = 1.0e6", fluid="")).replace(
+        "point = [0.0, -20.05]", "point = [0.0, -18.0]"
+    )
+    system = _scenario(tmp_path, raised).build_system()
+    q = system.q_from_y(system.y0.copy())
+    problems = static_state_problems(system, q)
+    assert any("penetrated" in p and "seabed" in p for p in problems), problems
+
+
+def test_seabed_default_stiffness_formula(tmp_path):
+    """k = w_n / (0.01 D) on a seabed; E / 10 where the weight does not press on it."""
+    sc = _u(tmp_path, U_ON_SEABED, "")
+    system = sc.build_system()
+    w, d = 100.0, 0.1
+    k = system.contact_data_stiffness if hasattr(system, "contact_data_stiffness") else None
+    from rancf.system.seabed import seabed_stiffness
+
+    ob = system.obstacles[0]
+    got = seabed_stiffness(system, "body", ob, np.array([0.0, 1.0, 0.0]))
+    assert got == pytest.approx(w / (SEABED_PENETRATION * d), rel=1e-6) and k is None
+    assert seabed_stiffness(system, "body", ob, np.array([0.0, -1.0, 0.0])) is None  # a ceiling
