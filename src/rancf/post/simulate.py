@@ -7,6 +7,7 @@ import warnings
 from pathlib import Path
 from typing import Any
 
+from rancf.post.checks import error_warnings
 from rancf.post.results import sensor_table, write_run
 from rancf.post.run_plan import plan_run
 from rancf.solvers.dynamic import DynamicResult, integrate
@@ -41,4 +42,7 @@ def simulate(
         warnings.warn(f"rancf: the run {result.status.value} at t = {result.t_reached:g} s: "
                       f"{result.message} (the states up to there are returned)",
                       stacklevel=2)  # fmt: skip
+    else:  # as rancf simulate: the steps that did not meet solver.rtol
+        for line in error_warnings(result, scenario.dynamic_options()):
+            warnings.warn(f"rancf: warning: {line}", stacklevel=2)
     return result, names, values
