@@ -23,7 +23,6 @@ if Newton fails.
 from __future__ import annotations
 
 import math
-import time
 from typing import Any
 
 import numpy as np
@@ -184,13 +183,12 @@ def sag_state(problem: SystemEquilibrium) -> NDArray[np.float64] | None:
 
 
 def solve_from_sag(
-    system: Any, at_time: float | None, tol: float, max_iter: int, start: float
-) -> Any | None:
-    """The static result from the sagged start shape (module docstring; ``StaticResult.method``
-    :data:`SAG_START`, its path the two points ``0`` and the last stage's end), or None when no
-    body has a sagged shape or neither Newton nor relaxation converges from it."""
-    from rancf.solvers.static import StaticResult
-
+    system: Any, at_time: float | None, tol: float, max_iter: int
+) -> tuple[NDArray[np.float64], float, int, int, int, int] | None:
+    """The equilibrium ``z`` from the sagged start shape (module docstring) with the last
+    stage's end ``p``, Newton's iterations, the factorizations, the extra residuals and the
+    relaxation's steps; None when no body has a sagged shape or neither Newton nor relaxation
+    converges from it."""
     system.reset_triads()
     problem = SystemEquilibrium(system, at_time)
     z = sag_state(problem)
@@ -200,16 +198,12 @@ def solve_from_sag(
     end = problem.stages[-1][1]
     problem.place_supports(z, end)
     out = newton(problem, z, end, tol, max_iter)
-    iters, fact, resid, steps, zf = out.iterations, out.iterations, out.residuals, 0, out.y
-    if not out.converged:
-        rel = relax(problem, z, end, tol, max_iter, polish_at_start=False)
-        iters += rel.newton_iterations
-        fact += rel.factorizations
-        resid += rel.residuals
-        steps, zf = rel.steps, rel.z
-        if not rel.converged:
-            return None
-    problem.accept(zf)
-    n = system.n
-    return StaticResult(system.q_from_y(zf[:n]), zf[:n], np.array([0.0, end]), iters, fact,
-                        time.perf_counter() - start, resid, SAG_START, zf[n:], steps)  # fmt: skip
+    if out.converged:
+        problem.accept(out.y)
+        return out.y, end, out.iterations, out.iterations, out.residuals, 0
+    rel = relax(problem, z, end, tol, max_iter, polish_at_start=False)
+    if not rel.converged:
+        return None
+    problem.accept(rel.z)
+    return (rel.z, end, out.iterations + rel.newton_iterations,
+            out.iterations + rel.factorizations, out.residuals + rel.residuals, rel.steps)
