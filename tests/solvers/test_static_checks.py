@@ -23,6 +23,7 @@ import pytest
 import rancf
 from rancf.errors import ConvergenceError
 from rancf.scenario.scenario import load_scenario
+from rancf.solvers.sag_start import SAG_START, catenary_shape
 from rancf.solvers.static import solve_static
 from rancf.solvers.static_checks import static_state_problems
 from rancf.system.seabed import SEABED_PENETRATION
@@ -181,12 +182,73 @@ def test_installed_chain_matches_moorpy(tmp_path):
     assert abs(force[1]) == pytest.approx(V_CHAIN, rel=5e-3)
 
 
+def _refined(shape: str, n: int) -> str:
+    return shape.replace("elements = 40", f"elements = {n}")
+
+
+@pytest.mark.parametrize(
+    "shape, stiffness",
+    [(U_FLARED, ""), (_refined(U_INSTALLED, 160), ""), (_refined(U_INSTALLED, 160), None)],
+    ids=["flared", "installed", "installed-stiff"],
+)
+def test_slack_line_finds_moorpy_equilibrium(tmp_path, shape, stiffness):
+    """The line drawn as a flared U or straight and installed (its end 100 m from its start)
+    rests as MoorPy's U: H within 0.5 %.  The installed line: the load path ends folded (the old
+    solver refused it, exit 3); the sagged start shape (rancf.solvers.sag_start) finds it.  160
+    elements: the touchdown bends with radius H / w = 2.6 m, which a straight 40-element mesh
+    (3.25 m elements) cannot follow (H 1 % low at 80 elements, refused at 40)."""
+    sc = _u(tmp_path, shape, "stiffness = 1.0e6" if stiffness is None else stiffness)
+    system = sc.build_system()
+    res = solve_static(system, **sc.static_options())
+    tol = 5e-3 if stiffness == "" else 6e-3  # 1e6 N/m²: -0.53 % (the penalty's sinking)
+    assert _horizontal(system, res) == pytest.approx(H_U, rel=tol)
+    assert static_state_problems(system, res.q) == []
+    if shape != U_FLARED:
+        assert res.method == SAG_START
+
+
+def test_installed_chain_default_stiffness_matches_moorpy(tmp_path):
+    """The chain dry with the default stiffness (E / 10: no fluid, no seabed default): the load
+    path ran away (the old solver: exit 3); from the sagged start H and V within 0.5 %."""
+    sc = _scenario(tmp_path, CHAIN.replace("stiffness = 1.0e6\n", ""))
+    system = sc.build_system()
+    res = solve_static(system, **sc.static_options())
+    from rancf.system.outputs import SystemOutputs
+
+    force = SystemOutputs(system, []).static_reactions(res.y, res.lam)[-1].force
+    assert res.method == SAG_START
+    assert abs(force[0]) == pytest.approx(H_CHAIN, rel=5e-3)
+    assert abs(force[1]) == pytest.approx(V_CHAIN, rel=5e-3)
+
+
 @pytest.mark.parametrize("shape", [U_FLARED, U_INSTALLED], ids=["flared", "installed"])
-def test_compressive_loop_is_refused(tmp_path, shape):
-    """The old solver returned these with exit 0 (a loop carrying kN to 1e7 N of compression)."""
+def test_coarse_touchdown_is_refused(tmp_path, shape):
+    """40 elements on a 1e6 N/m² seabed: neither the load path nor the sagged start gives a
+    state without a compressive loop or fold at the touchdown (elements longer than its bend
+    radius): refused, not reported (the old solver before the checks: a loop carrying kN to
+    1e7 N of compression, exit 0)."""
     sc = _u(tmp_path, shape)
     with pytest.raises(ConvergenceError, match="compressive loop|is folded"):
         solve_static(sc.build_system(), **sc.static_options())
+
+
+def test_sag_start_shape_is_moorpy_catenary():
+    """The grounded start shape of the U (ends 20 m above the bed, 100 m apart, 130 m): its
+    horizontal tension per weight a = H / w is MoorPy's 263.158 / 100 (inextensible), the
+    touchdown tangent to the bed and both ends reached."""
+    s = np.linspace(0.0, 130.0, 1301)
+    pts, tan = catenary_shape(100.0, 0.0, 130.0, s, floor=-20.0)
+    assert pts[0] == pytest.approx([0.0, 0.0], abs=1e-9)
+    assert pts[-1] == pytest.approx([100.0, 0.0], abs=1e-9)
+    assert np.linalg.norm(np.diff(pts, axis=0), axis=1).sum() == pytest.approx(130.0, rel=1e-5)
+    # the catenary z = a (cosh(x/a) - 1) from the touchdown: a from the end's slope and height
+    bed = pts[:, 1] <= -20.0 + 1e-9
+    a = 20.0 / (1.0 / tan[-1, 0] - 1.0)  # h = a (cosh u - 1), cosh u = 1 / t_x
+    assert a == pytest.approx(H_U / 100.0, rel=2e-3)
+    assert pts[:, 1].min() == pytest.approx(-20.0) and np.all(tan[bed, 1] == 0.0)
+    assert bed.sum() * 0.1 == pytest.approx(130.0 - 2 * np.sqrt(400.0 + 40.0 * a), abs=0.2)
+    free, _ = catenary_shape(100.0, 10.0, 130.0, np.array([0.0, 130.0]))
+    assert free[1] == pytest.approx([100.0, 10.0], abs=1e-9)
 
 
 def test_refused_state_exits_3_in_one_line(tmp_path):

@@ -29,6 +29,11 @@ polishes it), from the last converged state; the
 result's ``method`` is then ``"relaxation+newton"``.  When that fails too (a body with no
 equilibrium at all), :class:`~rancf.errors.ConvergenceError` carries the load factor reached,
 and every converged step has been passed to ``on_step`` (the command line keeps them).
+
+Every result is checked (:mod:`rancf.solvers.static_checks`).  Where the path fails, or ends in a
+state that fails the checks, a line longer than the chord between its held ends is started
+again from its sagged shape (:mod:`rancf.solvers.sag_start`; ``method`` ``"sag start+newton"``)
+before the path's failure is raised.
 """
 
 from __future__ import annotations
@@ -48,6 +53,7 @@ from rancf.solvers.drum_statics import free_drums
 from rancf.solvers.load_path import MIN_INCREMENT, PathState
 from rancf.solvers.newton import newton
 from rancf.solvers.relaxation import relax
+from rancf.solvers.sag_start import SAG_START, solve_from_sag
 from rancf.solvers.static_checks import static_state_problems
 from rancf.solvers.system_equilibrium import SystemEquilibrium
 from rancf.system import System, as_system
@@ -131,9 +137,14 @@ def solve_static(
     system = as_system(model)
     system.reset_triads()
     if not getattr(system, "drums", None):
-        return _checked(system, solve_equilibrium(
-            SystemEquilibrium(system, at_time), load_steps, tol, max_iter, on_step, method, start
-        ))  # fmt: skip
+        try:
+            res = solve_equilibrium(SystemEquilibrium(system, at_time), load_steps, tol, max_iter,
+                                    on_step, method, start)  # fmt: skip
+        except ConvergenceError as exc:
+            return _checked(system, _sagged(system, at_time, tol, max_iter, on_step, start, exc))
+        if static_state_problems(system, res.q):
+            res = _sagged(system, at_time, tol, max_iter, on_step, start, None) or res
+        return _checked(system, res)
     hold_drums(system, True)  # driven drums: the line loaded at their start lengths first
     try:
         held = solve_equilibrium(
@@ -148,6 +159,30 @@ def solve_static(
                    n_factorizations=held.n_factorizations + its,
                    wall_time=time.perf_counter() - start)  # fmt: skip
     return _checked(system, done)
+
+
+def _sagged(
+    system: System, at_time: float | None, tol: float, max_iter: int,
+    on_step: Callable[[float, NDArray[np.float64]], None] | None, start: float,
+    failed: ConvergenceError | None,
+) -> StaticResult | None:  # fmt: skip
+    """The equilibrium from a sagged start shape (:mod:`rancf.solvers.sag_start`) where the load
+    path failed (``failed``, raised again if there is none) or ended in a state that is no
+    equilibrium (``failed`` None: None if there is none either)."""
+    found = solve_from_sag(system, at_time, tol, max_iter)
+    res = None
+    if found is not None:
+        z, end, its, facts, resid, steps = found
+        n = system.n
+        res = StaticResult(system.q_from_y(z[:n]), z[:n], np.array([0.0, end]), its, facts,
+                           time.perf_counter() - start, resid, SAG_START, z[n:], steps)  # fmt: skip
+    if res is not None and not static_state_problems(system, res.q):
+        if on_step is not None:
+            on_step(float(res.load_factors[-1]), res.y)
+        return res
+    if failed is not None:
+        raise failed
+    return None
 
 
 def _checked(system: System, res: StaticResult) -> StaticResult:
