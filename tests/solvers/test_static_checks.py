@@ -301,3 +301,19 @@ def test_seabed_default_stiffness_formula(tmp_path):
     got = seabed_stiffness(system, "body", ob, np.array([0.0, 1.0, 0.0]))
     assert got == pytest.approx(w / (SEABED_PENETRATION * d), rel=1e-6) and k is None
     assert seabed_stiffness(system, "body", ob, np.array([0.0, -1.0, 0.0])) is None  # a ceiling
+
+
+def test_a_sagged_start_run_folder_holds_its_solve_only(tmp_path):
+    """``rancf static`` of the installed line: the run folder is the sagged start's solve (one
+    step), not the abandoned load path, whose folded states would warn of a 44 % strain."""
+    import json
+
+    from rancf.cli import main
+
+    water = "[fluid]\ndensity = 1025.0\n"
+    text = _refined(U_INSTALLED, 160) + U_LINE.format(stiffness="", fluid=water)
+    (tmp_path / "s.toml").write_text(text)
+    assert main(["static", str(tmp_path / "s.toml"), "--out", str(tmp_path / "r")]) == 0
+    summary = json.loads((tmp_path / "r" / "summary.json").read_text())
+    assert summary["method"] == SAG_START and summary["warnings"] == []
+    assert len((tmp_path / "r" / "sensors.csv").read_text().splitlines()) == 2

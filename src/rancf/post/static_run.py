@@ -46,6 +46,7 @@ def run_static(
     holds the run.
     """
     from rancf.scenario.system_build import scenario_keys, support_labels
+    from rancf.solvers.sag_start import SAG_START
     from rancf.solvers.static import solve_static
 
     system = sc.build_system()
@@ -57,6 +58,8 @@ def run_static(
     try:
         with scenario_keys(sc):
             res = solve_static(system, on_step=path.record, **sc.static_options())
+        if res.method == SAG_START:  # the load path's states were abandoned (refused): the run
+            path.steps[:] = path.steps[-1:]  # is the sagged start's solve, its last step
         keys.update(status="completed", message="reached the end of the load path",
                     method=res.method, relaxation_steps=res.relaxation_steps)  # fmt: skip
     except BaseException as exc:
