@@ -25,6 +25,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
+from rancf.bodies.nodal_forces import nodal_axial_forces, recovers_axial_force
 from rancf.bodies.section_outputs import SectionSampler
 from rancf.errors import ConvergenceError
 from rancf.solvers.newton import newton
@@ -97,13 +98,21 @@ def seabed_friction(system, y: NDArray) -> NDArray[np.float64]:
         order = np.arange(model.n_nodes)[::-1] if at_start else np.arange(model.n_nodes)
         touch = order[share[order] > 0.0]
         if touch.size:
-            tension = SectionSampler(model, 1).values(y[sl])[:, 1]
-            budget = max(float(tension[touch[0]]), 0.0)
+            budget = max(_tension(model, y[sl], int(touch[0])), 0.0)
             before = np.r_[0.0, np.cumsum(share[touch])[:-1]]
             cut = np.clip((budget - before) / share[touch], 0.0, 1.0)
             fb[touch] *= cut[:, None]
         f[sl] = fb.ravel()
     return f
+
+
+def _tension(model, y: NDArray, node: int) -> float:
+    """The axial force at ``node`` of ``model`` at ``y``: from the nodal forces at an inner node
+    (:func:`rancf.bodies.nodal_forces.nodal_axial_forces`, free of the strain's oscillation
+    inside the elements), from the strain at an end."""
+    if 0 < node < model.n_nodes - 1 and recovers_axial_force(model):
+        return float(nodal_axial_forces(model, y, np.zeros_like(y))[node])
+    return float(SectionSampler(model, 1).values(y)[node, 1])
 
 
 class FrictionEquilibrium(SystemEquilibrium):

@@ -1,0 +1,121 @@
+"""Seabed friction in statics (``[solver] static_friction``, issue 38) against MoorPy.
+
+Reference numbers: MoorPy 1.3.0, ``moorpy.Catenary.catenary`` (a separate venv, not a
+dependency): ``catenary(447, 100, 500, EA=1.2326e9, W=2456.820077, CB=CB)`` gives at the anchor
+``fAH`` and at the fairlead ``(fBH, fBV)``:
+
+* ``CB = 0``: 124397.503 N; (124397.503, 348493.392) N;
+* ``CB = 0.1``: 36503.262 N; (124488.514, 348557.515) N (``L_B`` = 358.13 m);
+* ``CB = 0.5``: 0 N (friction beyond ``H``: the tension is zero at the anchor);
+  (124618.889, 348649.352) N.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from rancf.errors import ScenarioError
+from rancf.scenario.scenario import load_scenario
+from rancf.solvers.static import solve_static
+from rancf.solvers.static_friction import FrictionEquilibrium, seabed_friction
+
+#: MoorPy's (anchor H, fairlead H, fairlead V) by CB (module docstring).
+MOORPY = {
+    0.0: (124397.50300587031, 124397.50300587031, 348493.39177853917),
+    0.1: (36503.262145810775, 124488.5144646459, 348557.51531164884),
+    0.5: (0.0, 124618.8886302105, 348649.3518853202),
+}
+#: A 500 m chain (w = 2456.82 N/m, EA = 1.2326e9 N), anchor pinned on the seabed, the fairlead
+#: installed 447 m away and 100 m up; drawn straight on the seabed.
+CHAIN = """
+[geometry]
+kind = "line"
+start = [-447.0, -100.0]
+end = [53.0, -100.0]
+
+[mesh]
+elements = 100
+
+[section]
+area = 0.03668789808917197
+inertia = 1.0e-7
+
+[material]
+density = 6826.239384497652
+youngs_modulus = 33596909722.222225
+axial_strain = "engineering"
+
+[[supports]]
+at = "start"
+kind = "pin"
+
+[[supports]]
+at = "end"
+kind = "pin"
+position = [0.0, 0.0]
+
+[[obstacles]]
+name = "seabed"
+kind = "plane"
+point = [0.0, -100.10806535367585]
+normal = [0.0, 1.0]
+stiffness = 1.0e6
+friction = {cb}
+
+[loads]
+gravity = [0.0, -9.81]
+{solver}"""
+
+
+def _ends(tmp_path, cb: float, solver: str = "[solver]\nstatic_friction = true\n"):
+    """(anchor force, fairlead force) [N] at the static equilibrium: the supports' reactions
+    (the held rows of the balance with the friction load)."""
+    path = tmp_path / "chain.toml"
+    path.write_text(CHAIN.format(cb=cb, solver=solver))
+    sc = load_scenario(path)
+    system = sc.build_system()
+    res = solve_static(system, **sc.static_options())
+    load = seabed_friction(system, res.y) if sc.solver.static_friction else np.zeros(system.n)
+    problem = FrictionEquilibrium(system, None, load)
+    problem.stage = len(problem.stages) - 1
+    r = problem.full_residual(np.r_[res.y, res.lam], float(res.load_factors[-1]))
+    model = system.bodies["body"]
+    end = (model.n_nodes - 1) * model.dpn
+    return r[0:2], r[end : end + 2]
+
+
+@pytest.mark.parametrize("cb", [0.1, 0.5])
+def test_anchor_and_fairlead_forces_match_moorpy(tmp_path, cb):
+    anchor, fairlead = _ends(tmp_path, cb)
+    ha, hb, vb = MOORPY[cb]
+    assert math.hypot(*fairlead) == pytest.approx(math.hypot(hb, vb), rel=5e-3)
+    assert fairlead[0] == pytest.approx(hb, rel=5e-3)
+    # the anchor's horizontal force: MoorPy's within 0.5 % of the line's tension H
+    assert abs(-anchor[0] - ha) < 5e-3 * hb
+
+
+def test_friction_is_off_by_default(tmp_path):
+    """Without the option the seabed's friction does not act in statics: the anchor holds the
+    whole horizontal tension (MoorPy's CB = 0), far from MoorPy's CB = 0.1."""
+    anchor, fairlead = _ends(tmp_path, 0.1, solver="")
+    ha0, hb0, _ = MOORPY[0.0]
+    assert -anchor[0] == pytest.approx(ha0, rel=5e-3)
+    assert fairlead[0] == pytest.approx(hb0, rel=5e-3)
+    assert abs(-anchor[0] - MOORPY[0.1][0]) > 0.5 * MOORPY[0.1][1]
+
+
+def test_frictionless_seabed_is_unchanged(tmp_path):
+    """``friction = 0``: the option changes nothing."""
+    on = _ends(tmp_path, 0.0)
+    off = _ends(tmp_path, 0.0, solver="")
+    np.testing.assert_allclose(np.r_[on], np.r_[off], rtol=0, atol=1e-6)
+
+
+def test_option_is_a_flag(tmp_path):
+    path = tmp_path / "chain.toml"
+    path.write_text(CHAIN.format(cb=0.1, solver='[solver]\nstatic_friction = "yes"\n'))
+    with pytest.raises(ScenarioError, match="static_friction"):
+        load_scenario(path)
