@@ -64,6 +64,9 @@ __all__ = ["StaticResult", "solve_static", "solve_equilibrium", "StaticMethod"]
 
 StaticMethod = Literal["load", "arc_length"]
 
+#: Appended to ``StaticResult.method`` when the seabeds' friction acted (``static_friction``).
+FRICTION = "+friction"
+
 #: ``StaticResult.method`` when a stage was finished by relaxation.
 RELAXED = "relaxation+newton"
 
@@ -141,6 +144,7 @@ def solve_static(
     start = time.perf_counter()
     system = as_system(model)
     system.reset_triads()
+    system.static_friction = False  # type: ignore[attr-defined]  # the outputs' reactions
     if static_friction:
         if getattr(system, "drums", None):
             raise InputError("solver.static_friction", True, "false with drums")
@@ -181,10 +185,11 @@ def _with_friction(
     z, its = solve_with_friction(system, np.r_[res.y, res.lam], p, at_time, tol, max_iter)
     if its == 0:
         return res
+    system.static_friction = True  # type: ignore[attr-defined]
     n = system.n
     if on_step is not None:
         on_step(p, z[:n])
-    return replace(res, q=system.q_from_y(z[:n]), y=z[:n], lam=z[n:],
+    return replace(res, q=system.q_from_y(z[:n]), y=z[:n], lam=z[n:], method=res.method + FRICTION,
                    n_newton=res.n_newton + its, n_factorizations=res.n_factorizations + its,
                    load_factors=np.r_[res.load_factors, p])  # fmt: skip
 
