@@ -119,3 +119,25 @@ def test_option_is_a_flag(tmp_path):
     path.write_text(CHAIN.format(cb=0.1, solver='[solver]\nstatic_friction = "yes"\n'))
     with pytest.raises(ScenarioError, match="static_friction"):
         load_scenario(path)
+
+
+def test_run_reactions_and_contact_count_the_friction(tmp_path):
+    """``rancf static``'s reactions and the seabed's friction output: the anchor holds what the
+    friction leaves (MoorPy's within 0.5 % of H), and the supports balance the friction."""
+    from rancf.post.static_run import reactions_json, run_static
+
+    path = tmp_path / "chain.toml"
+    path.write_text(CHAIN.format(cb=0.1, solver="[solver]\nstatic_friction = true\n"))
+    sc = load_scenario(path)
+    run = run_static(sc, folder=tmp_path / "out")
+    assert run.result.method.endswith("+friction")
+    anchor, fairlead = (
+        np.array(r["force"]) for r in reactions_json(run.outputs, run.result.y, run.result.lam)
+    )
+    ha, hb, _ = MOORPY[0.1]
+    assert abs(-anchor[0] - ha) < 5e-3 * hb
+    rows = np.genfromtxt(tmp_path / "out" / "reactions.csv", delimiter=",", names=True)
+    assert rows.size == 1  # the path's frictionless states are not kept
+    assert float(rows["seabed_friction_x"]) < -0.5 * MOORPY[0.0][0]
+    total = rows["start_fx"] + rows["end_fx"] + rows["seabed_friction_x"]
+    assert abs(float(total)) < 1e-6 * hb

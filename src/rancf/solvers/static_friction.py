@@ -37,6 +37,8 @@ __all__ = ["seabed_friction", "FrictionEquilibrium", "solve_with_friction",
 FRICTION_RTOL = 1e-8
 #: Fixed-point iterations at most.
 MAX_FRICTION_ITERATIONS = 50
+
+
 class FrictionEquilibrium(SystemEquilibrium):
     """:class:`SystemEquilibrium` with a constant generalized load ``load`` (the friction)."""
 

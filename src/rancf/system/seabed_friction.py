@@ -39,9 +39,10 @@ def _seabed_pairs(system) -> list[tuple[int, str, NDArray, float]]:
     return out
 
 
-def seabed_friction(system, y: NDArray) -> NDArray[np.float64]:
+def seabed_friction(system, y: NDArray, totals: dict | None = None) -> NDArray[np.float64]:
     """The generalized seabed friction force ``(n,)`` at model coordinates ``y`` (module
-    docstring); zeros without frictional seabed contact."""
+    docstring); zeros without frictional seabed contact.  ``totals``: filled with the friction
+    force ``(dim,)`` each seabed (by name) exerts (a body on two seabeds: on its first)."""
     n, dim = system.n, system.dim
     pairs = _seabed_pairs(system)
     f = np.zeros(n)
@@ -50,7 +51,11 @@ def seabed_friction(system, y: NDArray) -> NDArray[np.float64]:
     y = np.ascontiguousarray(y, dtype=float)
     v = np.zeros(n)
     plan = []
+    seen: set[str] = set()
     for k, body, normal, eps in pairs:
+        if body in seen:  # a body's nodes move once (on its first seabed)
+            continue
+        seen.add(body)
         model = system.bodies[body]
         sl = system.body_slice(body)
         nodes = model.q_from_y(y[sl]).reshape(model.n_nodes, model.dpn)
@@ -69,12 +74,12 @@ def seabed_friction(system, y: NDArray) -> NDArray[np.float64]:
         vb = np.zeros((model.n_nodes, model.dpn))
         vb[moving, :dim] = _SLIP * eps * t[moving]
         v[sl] += model.y_from_q(vb.ravel())
-        plan.append((body, model, sl, at_start))
+        plan.append((system.contact_pairs[k][1], model, sl, at_start))
     r0, r1 = np.zeros(n), np.zeros(n)
     system.contact.assemble(y, None, y, 0.0, 0.0, r0)
     system.contact.assemble(y, v, y, 0.0, 0.0, r1)
     full = r0 - r1  # r = -(contact forces): the friction part
-    for _, model, sl, at_start in plan:
+    for name, model, sl, at_start in plan:
         fb = full[sl].reshape(model.n_nodes, model.dpn).copy()
         share = np.linalg.norm(fb[:, :dim], axis=1)
         order = np.arange(model.n_nodes)[::-1] if at_start else np.arange(model.n_nodes)
@@ -85,6 +90,8 @@ def seabed_friction(system, y: NDArray) -> NDArray[np.float64]:
             cut = np.clip((budget - before) / share[touch], 0.0, 1.0)
             fb[touch] *= cut[:, None]
         f[sl] = fb.ravel()
+        if totals is not None:
+            totals[name] = totals.get(name, np.zeros(dim)) + fb[:, :dim].sum(axis=0)
     return f
 
 
