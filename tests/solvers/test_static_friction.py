@@ -8,6 +8,12 @@ dependency): ``catenary(447, 100, 500, EA=1.2326e9, W=2456.820077, CB=CB)`` give
 * ``CB = 0.1``: 36503.262 N; (124488.514, 348557.515) N (``L_B`` = 358.13 m);
 * ``CB = 0.5``: 0 N (friction beyond ``H``: the tension is zero at the anchor);
   (124618.889, 348649.352) N.
+
+The shipped example ``mooring-line`` (3D, in seawater, 330 m, ``w`` = 2456.819 N/m, EA =
+1.23259e9 N, anchor 300 m from the fairlead and 100 m below it, its seabed's friction 0.3):
+``catenary(300, 100, 330, EA=3.36376e10 * 0.036643536711471, W=2456.818868731118, CB=0.3)``
+gives ``fAH = 454105.944`` N and ``(fBH, fBV) = (527762.642, 565227.899)`` N (``CB = 0``:
+``fAH = 527645.423`` N).
 """
 
 from __future__ import annotations
@@ -141,3 +147,22 @@ def test_run_reactions_and_contact_count_the_friction(tmp_path):
     assert float(rows["seabed_friction_x"]) < -0.5 * MOORPY[0.0][0]
     total = rows["start_fx"] + rows["end_fx"] + rows["seabed_friction_x"]
     assert abs(float(total)) < 1e-6 * hb
+
+
+def test_example_mooring_line_in_3d_matches_moorpy(tmp_path):
+    """The shipped 3D example in seawater with its seabed's friction 0.3 (module docstring)."""
+    from importlib.resources import files
+
+    from rancf.post.static_run import reactions_json, run_static
+
+    text = (files("rancf.examples") / "mooring-line.toml").read_text()
+    path = tmp_path / "mooring-line.toml"
+    path.write_text(text.replace("[solver]", "[solver]\nstatic_friction = true", 1))
+    run = run_static(load_scenario(path))
+    anchor, fairlead = (
+        np.array(r["force"]) for r in reactions_json(run.outputs, run.result.y, run.result.lam)
+    )
+    hb, vb = 527762.6421923696, 565227.8989316114
+    assert abs(-anchor[0] - 454105.9438674723) < 5e-3 * hb
+    assert fairlead[0] == pytest.approx(hb, rel=5e-3)
+    assert fairlead[2] == pytest.approx(vb, rel=5e-3)
