@@ -47,7 +47,7 @@ def run_static(
     """
     from rancf.scenario.system_build import scenario_keys, support_labels
     from rancf.solvers.sag_start import SAG_START
-    from rancf.solvers.static import solve_static
+    from rancf.solvers.static import FRICTION, solve_static
 
     system = sc.build_system()
     labels = support_labels(sc)
@@ -58,8 +58,8 @@ def run_static(
     try:
         with scenario_keys(sc):
             res = solve_static(system, on_step=path.record, **sc.static_options())
-        if res.method == SAG_START:  # the load path's states were abandoned (refused): the run
-            path.steps[:] = path.steps[-1:]  # is the sagged start's solve, its last step
+        if res.method.startswith(SAG_START) or res.method.endswith(FRICTION):  # the path's
+            path.steps[:] = path.steps[-1:]  # states were abandoned or are frictionless
         keys.update(status="completed", message="reached the end of the load path",
                     method=res.method, relaxation_steps=res.relaxation_steps)  # fmt: skip
     except BaseException as exc:

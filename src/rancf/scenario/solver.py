@@ -81,6 +81,11 @@ class SolverTable(Table):
         "load",
         description='statics: "load" (adaptive load increments) | "arc_length" (limit points)',
     )
+    static_friction: Flag = Field(
+        False,
+        description="statics: the seabed planes' friction fully mobilized toward the anchor, "
+        "as MoorPy's catenary (default: frictionless statics)",
+    )
     initial_state: Literal["reference", "static"] = Field(
         "reference",
         description='simulate: start from the "reference" or the "static" equilibrium',
@@ -103,8 +108,9 @@ class SolverTable(Table):
 
     def static_options(self) -> dict[str, Any]:
         """The keywords of :func:`rancf.solvers.static.solve_static` in this table
-        (``load_steps``, ``method``)."""
-        return {"load_steps": self.load_steps, "method": self.static_method}
+        (``load_steps``, ``method``, ``static_friction``)."""
+        return {"load_steps": self.load_steps, "method": self.static_method,
+                "static_friction": self.static_friction}  # fmt: skip
 
 
 def _spin_rate(v: Any) -> float:

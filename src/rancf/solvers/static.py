@@ -55,6 +55,7 @@ from rancf.solvers.newton import newton
 from rancf.solvers.relaxation import relax
 from rancf.solvers.sag_start import SAG_START, solve_from_sag
 from rancf.solvers.static_checks import static_state_problems
+from rancf.solvers.static_friction import solve_with_friction
 from rancf.solvers.system_equilibrium import SystemEquilibrium
 from rancf.system import System, as_system
 from rancf.system.drums import hold_drums, refuse_static_drums
@@ -62,6 +63,9 @@ from rancf.system.drums import hold_drums, refuse_static_drums
 __all__ = ["StaticResult", "solve_static", "solve_equilibrium", "StaticMethod"]
 
 StaticMethod = Literal["load", "arc_length"]
+
+#: Appended to ``StaticResult.method`` when the seabeds' friction acted (``static_friction``).
+FRICTION = "+friction"
 
 #: ``StaticResult.method`` when a stage was finished by relaxation.
 RELAXED = "relaxation+newton"
@@ -112,12 +116,16 @@ def solve_static(
     on_step: Callable[[float, NDArray[np.float64]], None] | None = None,
     method: StaticMethod = "load",
     at_time: float | None = None,
+    static_friction: bool = False,
 ) -> StaticResult:
     """Static equilibrium under the model's loads and installed supports (a model: of the
     system of that one body, :func:`rancf.system.as_system`).
 
     ``at_time``: loads as they act at that time (the start of a dynamic run, ``0``) instead of
     their amplitudes.
+
+    ``static_friction``: the seabeds' friction fully mobilized toward the anchors, as MoorPy's
+    (:mod:`rancf.solvers.static_friction`); default frictionless.
 
     ``on_step(λ, y)`` is called with the reference (``λ = 0``) and after every converged step,
     with the model coordinates ``y`` (the load path; rods: the model's triads are those of ``y``
@@ -136,6 +144,12 @@ def solve_static(
     start = time.perf_counter()
     system = as_system(model)
     system.reset_triads()
+    system.static_friction = False  # type: ignore[attr-defined]  # the outputs' reactions
+    if static_friction:
+        if getattr(system, "drums", None):
+            raise InputError("solver.static_friction", True, "false with drums")
+        res = solve_static(system, load_steps, tol, max_iter, on_step, method, at_time)
+        return _checked(system, _with_friction(system, res, at_time, tol, max_iter, on_step))
     if not getattr(system, "drums", None):
         try:
             res = solve_equilibrium(SystemEquilibrium(system, at_time), load_steps, tol, max_iter,
@@ -159,6 +173,25 @@ def solve_static(
                    n_factorizations=held.n_factorizations + its,
                    wall_time=time.perf_counter() - start)  # fmt: skip
     return _checked(system, done)
+
+
+def _with_friction(
+    system: System, res: StaticResult, at_time: float | None, tol: float, max_iter: int,
+    on_step: Callable[[float, NDArray[np.float64]], None] | None,
+) -> StaticResult:  # fmt: skip
+    """``res`` carried to the equilibrium with seabed friction
+    (:func:`rancf.solvers.static_friction.solve_with_friction`)."""
+    p = float(res.load_factors[-1])
+    z, its = solve_with_friction(system, np.r_[res.y, res.lam], p, at_time, tol, max_iter)
+    if its == 0:
+        return res
+    system.static_friction = True  # type: ignore[attr-defined]
+    n = system.n
+    if on_step is not None:
+        on_step(p, z[:n])
+    return replace(res, q=system.q_from_y(z[:n]), y=z[:n], lam=z[n:], method=res.method + FRICTION,
+                   n_newton=res.n_newton + its, n_factorizations=res.n_factorizations + its,
+                   load_factors=np.r_[res.load_factors, p])  # fmt: skip
 
 
 def _sagged(

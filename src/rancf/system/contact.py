@@ -12,7 +12,8 @@ stiffness ``k`` and a smooth onset over the depth ``d``: ``k g² / (2 d)`` for `
 of gaps centred on the generalized-α point's gap and ending at the step's end: on the linear
 piece the generalized-α force itself, and with ``rho_inf = 1`` (the midpoint rule) the discrete
 gradient of the penalty's potential, whose energy balance is then exact for a plane.  Statics
-are frictionless.
+are frictionless (``[solver] static_friction``: the seabeds' friction as MoorPy's,
+:mod:`rancf.solvers.static_friction`).
 
 Penalty stiffness.  ``k`` [N/m²] (force per reference length per penetration) of a seabed
 (a fixed plane in a ``[fluid]`` the body's own wet weight presses on) defaults to the weight

@@ -27,6 +27,7 @@ from numpy.typing import NDArray
 from rancf.bodies.nodal_forces import nodal_axial_forces
 from rancf.bodies.reactions import reaction_row, support_reactions
 from rancf.system.contact import contact_outputs
+from rancf.system.seabed_friction import seabed_friction
 from rancf.system.winches import winch_factor
 
 __all__ = ["block_derived", "block_sections", "contact_row", "takes_block"]
@@ -87,8 +88,12 @@ def contact_row(s: Any, yc: NDArray, vc: NDArray | None, y1: NDArray | None) -> 
     state ``yc``, ``vc``, ``y1``), per pair of flexible bodies the contact force and
     penetration (at ``yc``)."""
     parts: list = []
-    for c in contact_outputs(s, yc, vc, y1).values():
-        parts += [c.normal, c.friction, np.atleast_1d(c.moment), [c.length, c.penetration]]
+    totals: dict = {}  # a static state's seabed friction (static_friction)
+    if vc is None and getattr(s, "static_friction", False):
+        seabed_friction(s, yc, totals)
+    for name, c in contact_outputs(s, yc, vc, y1).items():
+        fr = totals.get(name, c.friction)
+        parts += [c.normal, fr, np.atleast_1d(c.moment), [c.length, c.penetration]]
     if s.body_contacts:
         bo = np.empty(3 * len(s.body_contacts))
         s.contact.body_outputs(np.ascontiguousarray(yc), bo)

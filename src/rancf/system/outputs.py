@@ -63,6 +63,7 @@ from rancf.bodies.reactions import Reaction, reaction_columns, reaction_row, sup
 from rancf.bodies.section_outputs import SectionSampler, section_names
 from rancf.kernels import _core
 from rancf.system.output_block import block_derived, block_sections, contact_row, takes_block
+from rancf.system.seabed_friction import static_friction_load
 from rancf.system.sensors import SensorReader
 from rancf.system.sliding import sliding_slots, sliding_values
 from rancf.system.system import System
@@ -235,6 +236,9 @@ class SystemOutputs:
                     s.core.residual(y, vy, a, li, 0.0, min(float(t[i]), 1.0), True, False, res)
                     s.core.residual(y, vy, a, no_lam, 0.0, min(float(t[i]), 1.0), True, False,
                                     res0, distributed_only=True)  # fmt: skip
+                    if (fr := static_friction_load(s, y)) is not None:  # the seabeds' friction
+                        res[: s.n] -= fr
+                        res0[: s.n] -= fr
                     step: tuple[NDArray, ...] = ()
                 else:
                     step = self._step(alpha, i, y, vy)
@@ -272,6 +276,8 @@ class SystemOutputs:
         lam = np.asarray(lam, dtype=float)
         res, zero = np.empty(s.n + s.m), np.zeros(s.n)
         s.core.residual(y, zero, zero, lam, 0.0, float(load_factor), True, False, res)
+        if (fr := static_friction_load(s, y)) is not None:
+            res[: s.n] -= fr
         return self.reactions(y, res[: s.n], 0.0, lam)
 
     def reactions(self, y: NDArray, res: NDArray, t: float, lam: NDArray) -> list[Reaction]:
