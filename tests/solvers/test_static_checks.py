@@ -101,17 +101,9 @@ at = "end"
 kind = "pin"
 position = [100.0, 0.0]
 """
-#: The chain of benchmarks/mooring in 2D (2456.8 N/m wet), 500 m straight on the seabed, its
-#: end installed at the fairlead 447.2 m from the anchor.
-CHAIN = """
-[geometry]
-kind = "line"
-start = [-400.0, -200.0]
-end = [100.0, -200.0]
-
-[mesh]
-elements = 50
-
+#: The chain of benchmarks/mooring in 2D (2456.8 N/m wet, EA = 1.2326e9 N): its section,
+#: material and supports, the end installed at the fairlead (0, 0).
+CHAIN_LINE = """
 [section]
 area = 0.03668789808917197
 inertia = 1.0e-7
@@ -129,7 +121,18 @@ kind = "pin"
 at = "end"
 kind = "pin"
 position = [0.0, 0.0]
+"""
+#: That chain 500 m straight on the seabed, its end installed at the fairlead 447.2 m from the
+#: anchor.
+CHAIN = """
+[geometry]
+kind = "line"
+start = [-400.0, -200.0]
+end = [100.0, -200.0]
 
+[mesh]
+elements = 50
+""" + CHAIN_LINE + """
 [[obstacles]]
 name = "seabed"
 kind = "plane"

@@ -27,6 +27,7 @@ from rancf.errors import ScenarioError
 from rancf.scenario.scenario import load_scenario
 from rancf.solvers.static import solve_static
 from rancf.solvers.static_friction import FrictionEquilibrium, seabed_friction
+from tests.solvers.test_static_checks import CHAIN_LINE
 
 #: MoorPy's (anchor H, fairlead H, fairlead V) by CB (module docstring).
 MOORPY = {
@@ -44,25 +45,7 @@ end = [53.0, -100.0]
 
 [mesh]
 elements = 100
-
-[section]
-area = 0.03668789808917197
-inertia = 1.0e-7
-
-[material]
-density = 6826.239384497652
-youngs_modulus = 33596909722.222225
-axial_strain = "engineering"
-
-[[supports]]
-at = "start"
-kind = "pin"
-
-[[supports]]
-at = "end"
-kind = "pin"
-position = [0.0, 0.0]
-
+""" + CHAIN_LINE + """
 [[obstacles]]
 name = "seabed"
 kind = "plane"
