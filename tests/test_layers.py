@@ -26,11 +26,12 @@ LAYERS = {
     "scenario": 7,
     "solvers": 8,
     "post": 9,
-    "sweep": 10,
-    "studies": 11,
-    "cli": 12,
+    "runs": 10,
+    "sweep": 11,
+    "studies": 12,
+    "cli": 13,
 }
-CLI = 12  # cli/, __main__.py, __init__.py (the lazy public API) may import anything
+CLI = 13  # cli/, __main__.py, __init__.py (the lazy public API) may import anything
 
 
 def _part(module: str) -> str:

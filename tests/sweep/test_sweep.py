@@ -223,3 +223,45 @@ def test_static_sweep_of_a_system_file(tmp_path):
     assert set(docs[0]["positions"]) == {"leg1", "leg2"}
     tip = [np.array([d["sensors"][f"tip_{c}"] for c in "xyz"]) for d in docs]
     assert tip[0][0] > 0.24 and np.linalg.norm(tip[0] - tip[1]) < 1e-8
+
+
+POWER_LINE = """
+[geometry]
+kind = "line"
+start = [0.0, 0.0]
+end = [325.0, 0.0]
+[mesh]
+elements = 16
+[section]
+area = 2.2783e-4
+inertia = 4.1306e-9
+[material]
+density = 2844.23
+youngs_modulus = 5.7e10
+[[supports]]
+at = "start"
+[[supports]]
+at = "end"
+[loads]
+gravity = [0.0, -9.81]
+[modes]
+about = "static"
+count = 3
+"""
+
+
+def test_modes_sweep_equals_rancf_modes_about_the_static_state(tmp_path, capsys):
+    """A sagging power line's modes about its static state (``[modes] about = "static"``): the
+    sweep's frequencies are those of ``rancf modes``, not the slack reference's near-zero ones."""
+    (tmp_path / "line.toml").write_text(POWER_LINE)
+    assert main(["modes", str(tmp_path / "line.toml"), "--json"]) == 0
+    want = json.loads(capsys.readouterr().out)
+    assert want["about"] == "static" and want["frequencies_hz"][0] > 0.1
+    f = tmp_path / "s.toml"
+    f.write_text('base = "line.toml"\nanalysis = "modes"\n[grid]\n"mesh.elements" = [16]\n')
+    assert main(["sweep", str(f), "--out", str(tmp_path / "o"), "--workers", "1", "--quiet"]) == 0
+    (row,) = _rows(tmp_path / "o" / "results.csv")
+    got = [float(row[f"f{i}_hz"]) for i in (1, 2, 3)]
+    np.testing.assert_allclose(got, want["frequencies_hz"], rtol=1e-6)
+    modes = json.loads(next((tmp_path / "o" / "runs").iterdir()).joinpath("modes.json").read_text())
+    assert modes["about"] == "static"

@@ -15,33 +15,19 @@ from rancf.errors import InputError
 __all__ = ["add_parsers"]
 
 
-def _static_state(sc: Any, system: Any) -> tuple[Any, Any]:
-    """The equilibrium under the full loads (coordinates and multipliers)."""
-    from rancf.scenario.system_build import scenario_keys
-    from rancf.solvers.static import solve_static
-
-    with scenario_keys(sc):
-        res = solve_static(system, **sc.static_options())
-    return res.y, res.lam
-
-
 def _cmd_buckling(args: argparse.Namespace) -> int:
+    from rancf.runs.buckling import run_buckling
     from rancf.scenario import load_scenario
-    from rancf.solvers.buckling import linear_buckling
 
     plot = check_plot_path(args.plot) if args.plot else None
     if args.count < 1:
         raise InputError("--count", args.count, "an integer >= 1")
-    sc = load_scenario(args.scenario)
-    system = sc.build_system()
-    y = lam = None
-    if args.about == "static":
-        y, lam = _static_state(sc, system)
-    res = linear_buckling(system, args.count, args.about, y, lam)
+    run = run_buckling(load_scenario(args.scenario), args.count, args.about)
+    res = run.result
     if plot is not None:
         from rancf.post.plots import plot_buckling
 
-        plot_buckling(system, res, plot, y)
+        plot_buckling(run.system, res, plot, run.y)
     out = {
         "load_factors": res.load_factors.tolist(),
         "about": res.about,
@@ -128,54 +114,34 @@ def _vec(v: list[float], floor: float) -> str:
 def _cmd_modes(args: argparse.Namespace) -> int:
     import numpy as np
 
-    from rancf.post.checks import largest_strain, run_warnings
     from rancf.post.results import strict_json
+    from rancf.runs.modes import run_modes
     from rancf.scenario import load_scenario
-    from rancf.solvers.modal import natural_modes
 
     plot = check_plot_path(args.plot) if args.plot else None
     if args.count is not None and args.count < 1:
         raise InputError("--count", args.count, "an integer >= 1")
     sc = load_scenario(args.scenario)
-    system = sc.build_system()
-    about = args.about or sc.data["modes"]["about"]
-    count = args.count if args.count is not None else sc.data["modes"]["count"]
-    key = "--count" if args.count is not None else f"{sc.path}: modes.count"
-    n_free = int(np.sum(~system.fixed))
-    if count >= n_free:
-        raise InputError(key, count, f"at most {n_free - 1} (the free coordinates - 1)")
-    y = lam = None
-    largest = (0.0, 1.0)
-    if about == "static":
-        y, lam = _static_state(sc, system)
-        q = system.q_from_y(y)
-        for name, b in zip(system.names, system.flex, strict=False):  # the equilibrium's strain
-            eps = largest_strain(b, np.ones(1), q[None, system.body_slice(name)])
-            largest = max(largest, eps)
-    notes = _warn(run_warnings(system, static=True, largest=largest))
-    res = natural_modes(system, y, count, lam)
-    spin = sc.data["modes"]
-    shapes_plot = plot if plot is None or not spin["spin_rates"] else _shapes_path(plot)
+    key = "--count" if args.count is not None else None
+    run = run_modes(sc, args.count, args.about, count_key=key)
+    system, res, cam = run.system, run.result, run.campbell
+    notes = _warn(run.warnings)
+    shapes_plot = plot if plot is None or cam is None else _shapes_path(plot)
     if plot is not None:
         from rancf.post.plots import plot_modes
 
-        plot_modes(system, res, shapes_plot, y)
+        plot_modes(system, res, shapes_plot, run.y)
     out = {
         "frequencies_hz": res.frequencies_hz.tolist(),
         "growth_rates_per_s": res.growth_rates.tolist(),
         "eigenproblem": "symmetric" if res.symmetric else "general",
         "rigid_body_modes_removed": res.n_rigid,
-        "about": about,
-        "n_dofs_free": n_free,
+        "about": run.about,
+        "n_dofs_free": run.n_free,
         "constraints": system.m,
         "warnings": notes,
     }
-    if spin["spin_rates"]:
-        from rancf.solvers.campbell import campbell
-
-        cam = campbell(system, spin["spin_axis"], spin["spin_center"], spin["spin_rates"],
-                       count, loads=about == "static", load_steps=sc.solver["load_steps"],
-                       method=sc.solver["static_method"])  # fmt: skip
+    if cam is not None:
         out["campbell"] = {"spin_rates": cam.spin_rates.tolist(),
                            "frequencies_hz": cam.frequencies_hz.tolist(),
                            "growth_rates_per_s": cam.growth_rates.tolist()}  # fmt: skip
@@ -187,7 +153,7 @@ def _cmd_modes(args: argparse.Namespace) -> int:
         print(strict_json(out).rstrip())
     else:
         print(
-            f"natural frequencies about the {about} configuration "
+            f"natural frequencies about the {run.about} configuration "
             f"({res.n_rigid} rigid-body mode(s) removed):"
         )
         for i, (f, g) in enumerate(zip(res.frequencies_hz, res.growth_rates, strict=True), 1):

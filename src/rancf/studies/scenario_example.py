@@ -92,11 +92,10 @@ def run_scenario(name: str, out: str | Path, quick: bool = False) -> StudyResult
             )
         elif analysis == "modes":
             from rancf.post.plots import plot_modes
-            from rancf.solvers.modal import natural_modes
+            from rancf.runs.modes import run_modes
 
-            system = sc.build_system()
-            count = min(sc.data["modes"]["count"], int((~system.fixed).sum()) - 1)
-            modal = natural_modes(system, None, count)
+            run = run_modes(sc, at_least=1)
+            system, modal = run.system, run.result
             doc = {
                 "frequencies_hz": modal.frequencies_hz.tolist(),
                 "rigid_body_modes_removed": modal.n_rigid,
@@ -114,10 +113,10 @@ def run_scenario(name: str, out: str | Path, quick: bool = False) -> StudyResult
             )
         elif analysis == "buckling":
             from rancf.post.plots import plot_buckling
-            from rancf.solvers.buckling import linear_buckling
+            from rancf.runs.buckling import run_buckling
 
-            system = sc.build_system()
-            buck = linear_buckling(system, 2)
+            brun = run_buckling(sc, 2)
+            system, buck = brun.system, brun.result
             atomic_write(out / "buckling.json", strict_json(
                 {"load_factors": buck.load_factors.tolist(), "about": buck.about}))  # fmt: skip
             plot_buckling(system, buck, out / "buckling.png")

@@ -59,14 +59,15 @@ def _analyse(sc: Any, analysis: str, folder: Path) -> tuple[str, str, float, dic
         out = {"positions": positions_json(run.system, run.result.q), "sensors": run.sensors}
         atomic_write(folder / "static.json", strict_json(out))
         return "completed", "", float(run.result.wall_time), run.sensors
-    from rancf.solvers.modal import natural_modes
+    from rancf.runs.modes import run_modes
 
-    system = sc.build_system()
-    t0 = time.perf_counter()
-    res = natural_modes(system, None, max(FREQUENCY_COLUMNS, sc.data["modes"]["count"]))
+    t0 = time.perf_counter()  # as rancf modes: [modes] about, its static state, spin rates
+    run = run_modes(sc, at_least=FREQUENCY_COLUMNS)
     wall = time.perf_counter() - t0
+    res = run.result
     f = res.frequencies_hz
-    out = {"frequencies_hz": f.tolist(), "rigid_body_modes_removed": res.n_rigid}
+    out = {"frequencies_hz": f.tolist(), "rigid_body_modes_removed": res.n_rigid,
+           "about": run.about}  # fmt: skip
     atomic_write(folder / "modes.json", strict_json(out))
     values = {f"f{i + 1}_hz": float(x) for i, x in enumerate(f[:FREQUENCY_COLUMNS])}
     return "completed", "", wall, values

@@ -1,0 +1,44 @@
+"""The buckling driver: :func:`run_buckling` (``rancf buckling``, the shipped examples)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Literal
+
+from numpy.typing import NDArray
+
+from rancf.errors import InputError
+from rancf.runs.common import static_state
+from rancf.solvers.buckling import BucklingResult, linear_buckling
+
+__all__ = ["BucklingRun", "run_buckling"]
+
+
+@dataclass
+class BucklingRun:
+    """A buckling analysis: the system, the solver's result and the state it is about
+    (``y is None``: the reference)."""
+
+    system: Any
+    result: BucklingResult
+    y: NDArray | None
+
+
+def run_buckling(
+    sc: Any, count: int = 3, about: Literal["reference", "static"] = "reference"
+) -> BucklingRun:
+    """The ``count`` smallest critical load factors of scenario ``sc``'s loads, linearized about
+    the reference or the static equilibrium (:func:`rancf.solvers.buckling.linear_buckling`).
+
+    Raises
+    ------
+    InputError
+        ``count < 1``.
+    """
+    if count < 1:
+        raise InputError("--count", count, "an integer >= 1")
+    system = sc.build_system()
+    y = lam = None
+    if about == "static":
+        y, lam = static_state(sc, system)
+    return BucklingRun(system, linear_buckling(system, count, about, y, lam), y)

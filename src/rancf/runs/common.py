@@ -1,0 +1,20 @@
+"""What the analysis drivers share: the static state an analysis is linearized about."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from numpy.typing import NDArray
+
+__all__ = ["static_state"]
+
+
+def static_state(sc: Any, system: Any) -> tuple[NDArray, NDArray]:
+    """The equilibrium of ``system`` under the full loads of scenario ``sc`` (coordinates and
+    multipliers), solved with the ``[solver]`` table's static options."""
+    from rancf.scenario.system_build import scenario_keys
+    from rancf.solvers.static import solve_static
+
+    with scenario_keys(sc):
+        res = solve_static(system, **sc.static_options())
+    return res.y, res.lam
