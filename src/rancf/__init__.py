@@ -53,7 +53,7 @@ _API = {
     "DynamicStatus": "rancf.solvers.dynamic",
     "integrate": "rancf.solvers.dynamic",
     "DynamicState": "rancf.solvers.state",
-    "simulate": "rancf.post.simulate",
+    "simulate": "rancf.runs.simulate",
     "System": "rancf.system",
     "Joint": "rancf.system",
     "Spring": "rancf.system",

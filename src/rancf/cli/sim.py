@@ -77,14 +77,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     od = OutputDir(args.out, kind=kind, overwrite=args.overwrite)  # checks the path up front
     from rancf.atomic import atomic_write
     from rancf.cli.resume import Resume, scenario_for_run
-    from rancf.post.checks import (
-        driven_warnings,
-        error_warnings,
-        run_warnings,
-        section_warnings,
-        start_warnings,
-        step_warnings,
-    )
+    from rancf.post.checks import before_run_warnings, finished_warnings
     from rancf.post.history import HistoryStore
     from rancf.post.results import run_summary
     from rancf.post.run_plan import plan_run
@@ -112,8 +105,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
             if not args.quiet:
                 print(f"rancf: {resume.killed_note()}; resuming from t = {state.t:g} s",
                       file=sys.stderr)  # fmt: skip
-        notes = _warn(start_warnings(system) + section_warnings(system) + step_warnings(opts)
-                      + driven_warnings(system, opts))  # the run goes on; run_warnings' order
+        notes = _warn(before_run_warnings(system, opts))  # the run goes on
         for note in sc.notes:  # defaults the file did not state (a harmonic's build-up)
             print(f"rancf: {note}", file=sys.stderr)
         info = {"scenario": str(Path(args.scenario).resolve()), "setup_wall_time_s": None}
@@ -130,9 +122,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
             res = _run(args, system, opts, store, stop, every, od.keep, y_start, state)
             summary = run_summary(system, res)
             store.flush()  # every row's derived outputs, the strain among them
-            found = run_warnings(system, largest=outputs.largest_strain, options=opts)
-            done = res.status.value == "completed"  # a failed or stopped run says so instead
-            store.info["warnings"] = found + (error_warnings(res, opts) if done else [])
+            store.info["warnings"] = finished_warnings(system, outputs.largest_strain, res, opts)
             store.finish(summary, res.state)
         except BaseException as exc:
             err = _end_broken(store, system, exc, od.kept, out)

@@ -46,6 +46,8 @@ __all__ = [
     "strain_warning",
     "largest_strain",
     "run_warnings",
+    "before_run_warnings",
+    "finished_warnings",
     "start_warnings",
     "at_time",
     "at_load_factor",
@@ -198,9 +200,30 @@ def run_warnings(
             else (0.0, 0.0)
         )
     strain = strain_warning(largest[0], (at_load_factor if static else at_time)(largest[1]))
-    steps = [] if options is None else step_warnings(options) + driven_warnings(model, options)
-    starts = [] if static else start_warnings(model)
-    return starts + section_warnings(model) + steps + ([strain] if strain else [])
+    if options is not None and not static:
+        first = before_run_warnings(model, options)
+    else:
+        first = ([] if static else start_warnings(model)) + section_warnings(model)
+    return first + ([strain] if strain else [])
+
+
+def before_run_warnings(model: Model | System, options: DynamicOptions) -> list[str]:
+    """The warnings a dynamic run can give before it starts, in :func:`run_warnings`' order:
+    its impulsive starts, the section's radius, the steps against the output interval and the
+    driven joints against ``rho_inf``."""
+    return (start_warnings(model) + section_warnings(model) + step_warnings(options)
+            + driven_warnings(model, options))  # fmt: skip
+
+
+def finished_warnings(
+    model: Model | System, largest: tuple[float, float], result: Any, options: DynamicOptions
+) -> list[str]:
+    """Every warning of a finished dynamic run: :func:`run_warnings` (``largest`` as its outputs
+    tracked it) and, for a completed run, the steps whose error estimate passed the tolerance
+    (:func:`error_warnings`; a failed or stopped run says so instead)."""
+    found = run_warnings(model, largest=largest, options=options)
+    done = result.status.value == "completed"
+    return found + (error_warnings(result, options) if done else [])
 
 
 def start_warnings(model: Model | System) -> list[str]:

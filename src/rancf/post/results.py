@@ -26,7 +26,8 @@ from numpy.typing import NDArray
 
 from rancf.atomic import FileSet
 from rancf.bodies.flexible import Model
-from rancf.post.checks import run_warnings
+from rancf.options import DynamicOptions
+from rancf.post.checks import finished_warnings, run_warnings
 from rancf.post.run_files import reader_metadata, write_history_files
 from rancf.solvers.dynamic import DynamicResult
 from rancf.system import System, as_system
@@ -157,11 +158,14 @@ def write_run(
     extra: dict[str, Any] | None = None,
     labels: Labels = None,
     outputs: SystemOutputs | None = None,
+    options: DynamicOptions | None = None,
 ) -> dict[str, Any]:
     """Write the files of a run directory from an in-memory result; returns the summary.
 
     ``labels``: the supports' ``at`` as written in the scenario (reaction column names);
-    ``outputs``: the run's, when already made (then ``sensors`` and ``labels`` are its own).
+    ``outputs``: the run's, when already made (then ``sensors`` and ``labels`` are its own);
+    ``options``: the run's, to warn as ``rancf simulate`` does (its steps, its error estimate:
+    :func:`~rancf.post.checks.finished_warnings`).
     """
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
@@ -172,7 +176,9 @@ def write_run(
                             result.directors, files=files, alpha=result.alpha)  # fmt: skip
         summary = {
             **run_summary(model, result),
-            "warnings": run_warnings(model, largest=outputs.largest_strain),
+            "warnings": run_warnings(model, largest=outputs.largest_strain)
+            if options is None
+            else finished_warnings(model, outputs.largest_strain, result, options),
             **(extra or {}),
         }
         files.write(out / "summary.json", strict_json(summary))

@@ -21,7 +21,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from rancf.atomic import atomic_write
-from rancf.post.results import sensor_table, strict_json, write_run
+from rancf.post.results import sensor_table, strict_json
 from rancf.scenario import load_scenario
 from rancf.studies.common import SCENARIO_ANALYSES, StudyResult, example_path
 
@@ -129,15 +129,13 @@ def run_scenario(name: str, out: str | Path, quick: bool = False) -> StudyResult
                 "buckling.csv",
             )
         else:  # simulate
-            from rancf.post.run_plan import plan_run
-            from rancf.solvers.dynamic import integrate
-            from rancf.solvers.start import start_state
+            from rancf.runs.simulate import run_simulate
 
-            system, outputs = plan_run(sc, MAX_EXAMPLE_GB, "the limit of an example run (GB)")
-            y0, start = start_state(sc, system)
-            result = integrate(system, sc.dynamic_options(), initial=y0)
-            extra = {"scenario": str(scenario.resolve()), **start}
-            summary = write_run(out / "run", system, sc.sensors, result, extra, outputs=outputs)
+            info = {"scenario": str(scenario.resolve())}
+            run = run_simulate(sc, out / "run", info, MAX_EXAMPLE_GB,
+                               "the limit of an example run (GB)")  # fmt: skip
+            result, outputs, summary = run.result, run.outputs, run.summary
+            assert summary is not None  # a folder was given
             _notes(res, summary)
             _figures(res, out, out / "run", "simulation")
             names, vals = sensor_table(outputs, sc.sensors, result.q[-1:], result.v[-1:],

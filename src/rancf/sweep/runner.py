@@ -34,20 +34,17 @@ FREQUENCY_COLUMNS = 6
 
 def _analyse(sc: Any, analysis: str, folder: Path) -> tuple[str, str, float, dict[str, float]]:
     """Run the analysis; returns status, message, solve time and the row's result values."""
-    from rancf.post.results import sensor_table, write_run
+    from rancf.post.results import sensor_table
 
     if analysis == "simulate":
-        from rancf.post.run_plan import plan_run
-        from rancf.solvers.dynamic import integrate
-        from rancf.solvers.start import start_state
+        from rancf.runs.simulate import run_simulate
 
-        system, outputs = plan_run(sc, MAX_RUN_GB, LIMIT)
-        y0, start = start_state(sc, system)
-        res = integrate(system, sc.dynamic_options(), initial=y0)
-        extra = {"scenario": str(folder / "scenario.toml"), **start}
-        summary = write_run(folder, system, sc.sensors, res, extra, outputs=outputs)
+        info = {"scenario": str(folder / "scenario.toml")}
+        run = run_simulate(sc, folder, info, MAX_RUN_GB, LIMIT)
+        res, summary = run.result, run.summary
+        assert summary is not None  # a folder was given
         energy = [[res.kinetic[-1], res.strain[-1], res.gravity[-1]]]
-        names, vals = sensor_table(outputs, sc.sensors, res.q[-1:], res.v[-1:], energy,
+        names, vals = sensor_table(run.outputs, sc.sensors, res.q[-1:], res.v[-1:], energy,
                                    t=res.t[-1:])  # fmt: skip
         values = {"t_reached": float(res.t_reached), "steps": float(res.n_steps)}
         values.update(zip(names, map(float, vals[0]), strict=True))
