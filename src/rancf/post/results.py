@@ -26,6 +26,7 @@ from numpy.typing import NDArray
 
 from rancf.atomic import FileSet
 from rancf.bodies.flexible import Model
+from rancf.errors import InputError
 from rancf.options import DynamicOptions
 from rancf.post.checks import finished_warnings, run_warnings
 from rancf.post.run_files import reader_metadata, write_history_files
@@ -282,7 +283,22 @@ def write_along_csv(
 
 
 def load_results(path: str | Path) -> dict[str, Any]:
-    """Read a ``results.npz`` into a dictionary (``metadata`` decoded from JSON)."""
+    """Read a run's ``results.npz`` into a dictionary (``metadata`` decoded from JSON).
+
+    ``path``: the ``results.npz`` file or the run folder that holds it (``rancf simulate --out``,
+    ``rancf static --out``, a sweep's run).
+
+    Raises
+    ------
+    InputError
+        A folder without ``results.npz`` (not a run folder, or a run that has not written it).
+    """
+    path = Path(path)
+    if path.is_dir():
+        if not (path / "results.npz").is_file():
+            raise InputError("path", str(path), "a results.npz file or a run folder holding one "
+                             "(rancf simulate --out, rancf static --out)")  # fmt: skip
+        path = path / "results.npz"
     with np.load(path, allow_pickle=False) as z:
         data = {k: z[k] for k in z.files}
     data["metadata"] = json.loads(str(data["metadata"]))
