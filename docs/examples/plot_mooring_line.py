@@ -5,7 +5,9 @@ Mooring line
 The shipped ``mooring-line.toml``: a 330 m chain (288 kg/m in air, EA = 1.2326e9 N, hydrodynamic
 diameter 0.216 m) from an anchor on the seabed at 100 m depth to a fairlead at the surface, in
 seawater.  ``rancf static`` finds the catenary with buoyancy and the seabed; the run starts
-there and surges the fairlead by 5 m over a 20 s period, with Morison drag and added mass.
+there and surges the fairlead by 5 m over a 20 s period, with Morison drag and added mass: the
+surge builds up over its first period (``build_up = 20``) and runs at full amplitude in the
+second.
 MoorPy's quasi-static fairlead force for this line is (-527.6, 0, -565.2) kN.
 """
 
@@ -27,8 +29,8 @@ res = np.load(f"{out}/results.npz")
 
 # %%
 # The line's profile at a few instants (the nodes' positions: 6 coordinates per node, the
-# first three the position), and the tension at the fairlead and the anchor over the period.
-# The fairlead starts moving at 1.57 m/s from rest: its first seconds carry that snap.
+# first three the position), and the tension at the fairlead and the anchor over the two
+# periods: the build-up, then the full 5 m surge.
 q = res["q"].reshape(len(res["t"]), -1, 6)
 fig, (ax, bx) = plt.subplots(1, 2, figsize=(11, 3.8))
 for k in np.linspace(0, len(res["t"]) - 1, 5).astype(int):
