@@ -279,3 +279,41 @@ def test_a_spin_of_a_planar_system_is_refused_in_one_line():
                              Material(RHO, E), [Support(0, "clamp")]))  # fmt: skip
     with pytest.raises(RancfError, match=r"modes\.spin_rates: .* this one is planar"):
         frame_terms(planar, AXIS, CENTER)
+
+
+def _flat_blade(n: int = 6) -> Model:
+    """The benchmark rod with a flat section: stiff in the plane of rotation (lag) at four times
+    the bending stiffness across it (flap), so that at rest lag 1 is twice flap 1's frequency."""
+    from rancf.mesh.factories import mesh_line
+
+    i_flap = np.pi * R**4 / 4
+    sec = Section(area=np.pi * R**2, inertia=4 * i_flap, inertia_z=i_flap,
+                  orientation=(0.0, 0.0, 1.0))  # fmt: skip
+    return Model(mesh_line([0, 0, 0], [L, 0, 0], n), "rod", sec,
+                 Material(RHO, E, poisson_ratio=0.3), [Support(0, "clamp")])  # fmt: skip
+
+
+def test_campbell_lines_follow_their_mode_shapes_through_a_crossing():
+    """Spinning stiffens flap 1 past lag 1 (between 15 and 20 rad/s): the line labelled
+    ``flap 1`` starts below ``lag 1`` and ends above it, rising all the way, where rows sorted on
+    their own would swap the two; neighbouring shapes on a line agree (MAC > 0.9)."""
+    from rancf.solvers.campbell import mac
+
+    rates = [0.0, 5.0, 10.0, 15.0, 20.0, 25.0, 30.0]
+    system = as_system(_flat_blade())
+    out = campbell(system, AXIS, CENTER, rates, 2)
+    assert out.labels == ("flap 1", "lag 1")
+    flap, lag = out.frequencies_hz[:, 0], out.frequencies_hz[:, 1]
+    assert np.all(np.diff(flap) > 0) and flap[0] < lag[0] and flap[-1] > 1.4 * lag[-1]
+    assert not np.array_equal(out.frequencies_hz, np.sort(out.frequencies_hz, axis=1))
+    shapes = [rotating_modes(system, Spin.of(AXIS, CENTER, r), 2).modes for r in (15.0, 20.0)]
+    m = mac(shapes[0], shapes[1])
+    assert m[0, 1] > 0.9 and m[1, 0] > 0.9  # the two swapped places in frequency order
+
+
+def test_mac_is_one_for_the_same_shape_and_zero_for_orthogonal_ones():
+    from rancf.solvers.campbell import mac
+
+    a = np.array([[1.0, 2.0, 0.0], [0.0, 0.0, 1.0]])
+    got = mac(a, (2.0 - 3.0j) * a)
+    assert np.allclose(got, np.eye(2), rtol=0, atol=1e-15)

@@ -143,6 +143,7 @@ def _cmd_modes(args: argparse.Namespace) -> int:
     }
     if cam is not None:
         out["campbell"] = {"spin_rates": cam.spin_rates.tolist(),
+                           "labels": list(cam.labels),
                            "frequencies_hz": cam.frequencies_hz.tolist(),
                            "growth_rates_per_s": cam.growth_rates.tolist()}  # fmt: skip
         if plot is not None:
@@ -190,7 +191,9 @@ def _shapes_path(plot: Path) -> Path:
 
 def _print_campbell(cam: dict[str, Any]) -> None:
     """The Campbell table: one row per spin rate."""
-    print("frequencies about the steady rotation (Hz) against the spin rate (rad/s):")
+    print("frequencies about the steady rotation (Hz) against the spin rate (rad/s), each "
+          "column one mode followed by its shape:")
+    print("  " + " " * 10 + "  " + " ".join(f"{lab:>11s}" for lab in cam["labels"]))
     for rate, row in zip(cam["spin_rates"], cam["frequencies_hz"], strict=True):
         print(f"  {rate:10.4g}  " + " ".join(f"{f:11.6f}" for f in row))
 

@@ -73,15 +73,17 @@ def plot_modes(
 
 
 def plot_campbell(res: Any, path: str | Path) -> Path:
-    """The Campbell diagram: each frequency index against the spin rate (rows sorted on their
-    own, so crossing modes swap lines), with the lines ``f = k Ω / 2π`` (k = 1, 2) of the
-    once- and twice-per-revolution excitations."""
+    """The Campbell diagram: each line one mode followed across the spin rates by its shape and
+    labelled by its dominant motion (:func:`rancf.solvers.campbell.campbell`; crossing lines
+    keep their colours), with the lines ``f = k Ω / 2π`` (k = 1, 2) of the once- and
+    twice-per-revolution excitations."""
     plt = pyplot()
     fig, ax = plt.subplots(figsize=(6.4, 4.8))
     rates = np.asarray(res.spin_rates, dtype=float)
     freqs = np.asarray(res.frequencies_hz, dtype=float)
+    labels = list(getattr(res, "labels", ())) or [f"mode {i + 1}" for i in range(freqs.shape[1])]
     for i in range(freqs.shape[1]):
-        ax.plot(rates, freqs[:, i], "o-", ms=3, label=f"mode {i + 1}")
+        ax.plot(rates, freqs[:, i], "o-", ms=3, color=f"C{i % 10}", label=labels[i])
     top = float(rates.max(initial=0.0))
     for k in (1, 2):
         ax.plot([0.0, top], [0.0, k * top / (2 * np.pi)], "k--", lw=0.7, alpha=0.5)

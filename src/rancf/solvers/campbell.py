@@ -22,7 +22,7 @@ motions of an unsupported system) are dropped.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -36,7 +36,8 @@ from rancf.solvers.rotating import RotatingEquilibrium, Spin
 from rancf.solvers.static import StaticMethod, solve_equilibrium
 from rancf.system import System
 
-__all__ = ["CampbellResult", "RotatingModes", "rotating_modes", "campbell", "MAX_FREE"]
+__all__ = ["CampbellResult", "RotatingModes", "rotating_modes", "campbell", "track", "mac",
+           "motion_shares", "motion_label", "MAX_FREE"]
 
 #: The largest number of free coordinates of the dense companion eigenproblem.
 MAX_FREE = 1500
@@ -66,12 +67,16 @@ class RotatingModes:
 
 @dataclass(frozen=True)
 class CampbellResult:
-    """Frequencies against spin rate: ``frequencies_hz[i]`` at ``spin_rates[i]`` (ascending,
-    each row sorted on its own: no mode tracking)."""
+    """Frequencies against spin rate: ``frequencies_hz[i, j]`` is line ``j`` of the diagram at
+    ``spin_rates[i]``. A line follows one mode across the rates by its shape (:func:`track`),
+    so lines that cross keep their identity; ``labels[j]`` names its dominant motion
+    (:func:`motion_label`: ``"flap 1"``, ``"lag 1"``, ...). Lines are ordered by their
+    frequency at the first rate."""
 
     spin_rates: NDArray[np.float64]
     frequencies_hz: NDArray[np.float64]
     growth_rates: NDArray[np.float64]
+    labels: tuple[str, ...] = ()
 
 
 def _companion(k: NDArray, d: NDArray, m: NDArray) -> tuple[NDArray, NDArray]:
@@ -157,12 +162,99 @@ def campbell(
     method: StaticMethod = "load",
 ) -> CampbellResult:
     """The lowest ``count`` frequencies at each spin rate of ``rates`` [rad/s] about ``axis``
-    through ``center`` (:func:`rotating_modes`)."""
-    freqs, growth = [], []
+    through ``center`` (:func:`rotating_modes`), each line of the diagram tracked across the
+    rates by its mode shape and labelled by its dominant motion."""
+    spin_axis = Spin.of(axis, center, 0.0).axis
+    runs = []
     for rate in rates:
-        out = rotating_modes(system, Spin.of(axis, center, rate), count, loads, load_steps,
-                             method)  # fmt: skip
-        freqs.append(out.frequencies_hz)
-        growth.append(out.growth_rates)
+        runs.append(rotating_modes(system, Spin.of(axis, center, rate), count, loads, load_steps,
+                                   method))  # fmt: skip
     system.reset_triads()
-    return CampbellResult(np.asarray(rates, dtype=float), np.array(freqs), np.array(growth))
+    freqs = np.array([r.frequencies_hz for r in runs])
+    growth = np.array([r.growth_rates for r in runs])
+    order = track([r.modes for r in runs])  # order[i, j]: rate i's mode on line j
+    rows = np.arange(len(runs))[:, None]
+    freqs, growth = freqs[rows, order], growth[rows, order]
+    shares = np.array([[motion_shares(system, r.y, r.modes[k], spin_axis) for k in o]
+                       for r, o in zip(runs, order, strict=True)])  # fmt: skip
+    lines = np.lexsort((freqs[-1], freqs[0]))  # by the first rate's frequency (ties: the last)
+    labels = _number(motion_label(shares[:, j]) for j in lines)
+    return CampbellResult(np.asarray(rates, dtype=float), freqs[:, lines], growth[:, lines],
+                          tuple(labels))  # fmt: skip
+
+
+def mac(a: NDArray, b: NDArray) -> NDArray[np.float64]:
+    """Modal assurance criteria ``|aᵢᴴ bⱼ|² / (|aᵢ|² |bⱼ|²)`` of shapes ``a (k, n)``, ``b (m, n)``:
+    1 for the same shape (any complex factor), 0 for orthogonal ones."""
+    num = np.abs(np.conj(a) @ b.T) ** 2
+    den = np.outer(np.sum(np.abs(a) ** 2, axis=1), np.sum(np.abs(b) ** 2, axis=1))
+    return num / np.maximum(den, np.finfo(float).tiny)
+
+
+def track(shapes: Sequence[NDArray]) -> NDArray[np.intp]:
+    """Lines through the modes ``shapes[i] (count, n)`` of consecutive spin rates: ``order[i, j]``
+    is the mode of rate ``i`` on line ``j``. Neighbouring rates are matched by the assignment
+    that maximizes the summed :func:`mac` (:func:`scipy.optimize.linear_sum_assignment`),
+    walking from the last rate down: at rest flap and lag pairs of a symmetric section share a
+    frequency and their computed shapes are any mix of the two, while spinning splits them."""
+    from scipy.optimize import linear_sum_assignment
+
+    n_rates, count = len(shapes), shapes[0].shape[0]
+    order = np.empty((n_rates, count), dtype=np.intp)
+    order[-1] = np.arange(count)
+    for i in range(n_rates - 2, -1, -1):
+        ahead = shapes[i + 1][order[i + 1]]  # line j's shape at rate i + 1
+        rows, cols = linear_sum_assignment(-mac(ahead, shapes[i]))
+        order[i, rows] = cols
+    return order
+
+
+def motion_shares(system: System, y: NDArray, shape: NDArray, axis: Sequence[float]) -> NDArray:
+    """How a mode ``shape`` (full coordinates) about the steady state ``y`` moves its flexible
+    bodies' nodes: the shares ``[flap, lag, axial, torsion]`` (summing to 1) of the nodes'
+    squared motion along the spin ``axis`` (flap, out of the plane of rotation), in that plane
+    across the body (lag), along its tangent (axial), and of a rod's twist times the section's
+    radius of gyration (torsion)."""
+    from rancf.bodies.flexible import Model
+
+    a = np.asarray(axis, dtype=float)
+    q = system.q_from_y(y)
+    out = np.zeros(4)
+    for name, b in system.bodies.items():
+        if not isinstance(b, Model):
+            continue
+        sl = system.body_slice(name)
+        pos = b.node_positions(q[sl])
+        t = np.gradient(pos, axis=0) if len(pos) > 1 else np.tile(np.eye(3)[0], (1, 1))
+        t = t - np.outer(t @ a, a)  # the tangent in the plane of rotation
+        t /= np.maximum(np.linalg.norm(t, axis=1, keepdims=True), np.finfo(float).tiny)
+        d = b.node_positions(shape[sl].real) + 1j * b.node_positions(shape[sl].imag)
+        ax, fl = np.einsum("nd,nd->n", d, t), d @ a
+        out[0] += np.sum(np.abs(fl) ** 2)
+        out[2] += np.sum(np.abs(ax) ** 2)
+        out[1] += np.sum(np.abs(d) ** 2) - np.sum(np.abs(fl) ** 2) - np.sum(np.abs(ax) ** 2)
+        if b.element == "rod":
+            twist = shape[sl].reshape(b.n_nodes, b.dpn)[:, -1]
+            out[3] += np.sum(np.abs(twist) ** 2) * b.section.radius**2 / 2
+    total = out.sum()
+    return out / total if total > 0 else out
+
+
+MOTIONS = ("flap", "lag", "axial", "torsion")
+
+
+def motion_label(shares: NDArray) -> str:
+    """The dominant motion of a line of the diagram from its :func:`motion_shares` at every
+    rate ``(n_rates, 4)``: the motion with the largest share where one dominates most."""
+    best = np.unravel_index(int(np.argmax(shares)), shares.shape)
+    return MOTIONS[int(best[1])]
+
+
+def _number(labels: Iterable[str]) -> list[str]:
+    """``flap 1``, ``lag 1``, ``flap 2``: each motion's lines counted in order."""
+    seen: dict[str, int] = {}
+    out = []
+    for name in labels:
+        seen[name] = seen.get(name, 0) + 1
+        out.append(f"{name} {seen[name]}")
+    return out
