@@ -1,5 +1,5 @@
 """Closed curves: a closed NURBS circle, a CAD circle and a chain of two half circles
-are rings (the silent cut-open case of the issue: the seam holds, a start-end distance stays
+are rings (not silently cut open: the seam holds, a start-end distance stays
 zero); an open curve whose ends merely touch at a kink is an open curve, and one warning line says
 why."""
 
@@ -140,7 +140,7 @@ def test_ends_that_touch_at_a_kink_are_an_open_curve(tmp_path, where):
 
 
 def test_rancf_modes_of_a_closed_nurbs_circle_are_a_rings(tmp_path):
-    """The issue's silent case, `rancf modes` of the closed NURBS circle: 3 rigid-body modes
+    """`rancf modes` of the closed NURBS circle is a ring's, not an open arc's: 3 rigid-body modes
     removed and the free ring's frequencies (thin ring, n = 2, 3: ω² = (EI/ρA R⁴) n²(n²-1)²/
     (n²+1) with EI/ρA = E r²/4ρ = 0.25 m⁴/s²), not those of an open arc."""
     text = _nurbs_toml(*CIRCLE).replace("elements = 2", "elements = 12")

@@ -1,4 +1,4 @@
-"""A corpus of hostile inputs for the newer features (issue 39): winches and driven drums, CSV
+"""A corpus of hostile inputs for the newer features: winches and driven drums, CSV
 tables, Campbell spins, fluid, the 3D view.  Each case says what a careful user expects; each
 must end with exit status 2, exactly one line on standard error naming the key path (or the
 option) and the value given, no traceback, and nothing written.  In-process, a few seconds."""

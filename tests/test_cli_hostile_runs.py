@@ -463,7 +463,7 @@ AMBIGUOUS = {
 
 @pytest.mark.parametrize("case", list(AMBIGUOUS))
 def test_ambiguous_inputs_are_refused_in_one_line(tmp_path, monkeypatch, capsys, case):
-    """Issue 39.3 (b–f) and 39.5: each refused on one line naming the file and the key, exit 2,
+    """Ambiguous inputs: each refused on one line naming the file and the key, exit 2,
     nothing written."""
     text, needle = AMBIGUOUS[case]
     monkeypatch.chdir(tmp_path)
@@ -476,8 +476,8 @@ def test_ambiguous_inputs_are_refused_in_one_line(tmp_path, monkeypatch, capsys,
 
 
 def test_a_sweep_over_an_array_of_tables_is_refused_in_one_line(tmp_path, monkeypatch, capsys):
-    """``"winches.speed"`` (``[[winches]]`` is an array of tables) was a TypeError traceback
-    (issue 39.5)."""
+    """``"winches.speed"`` (``[[winches]]`` is an array of tables) is one line, not a TypeError
+    traceback."""
     monkeypatch.chdir(tmp_path)
     Path("base.toml").write_text(_tether("speed = 0.5"))
     Path("sw.toml").write_text('base = "base.toml"\n[grid]\n"winches.speed" = [0.5, 1.0]\n')
@@ -535,7 +535,7 @@ kind = "reaction"
 joint = "eye"
 """
 
-#: Runs that went past a coordinate's range (issue 39.3g, 39.4): the file, the column that must
+#: Runs that went past a coordinate's range: the file, the column that must
 #: stay in range, and the failure's line (a pattern).
 PAST_LIMITS = {
     "drum-reels-in-the-line": (

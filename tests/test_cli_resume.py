@@ -221,7 +221,7 @@ def _damage(run: Path, how: str) -> None:
 )  # fmt: skip
 def test_a_refused_resume_leaves_the_run_as_it_was(tmp_path, monkeypatch, capsys, how, says):
     """A damaged checkpoint (another system's, a NaN, cut short) or results file is refused on
-    one line naming the file, exit 2, before anything in the folder changes (issue 39)."""
+    one line naming the file, exit 2, before anything in the folder changes."""
     monkeypatch.chdir(tmp_path)
     assert main(["example", "copy", "planar-pendulum", "."]) == 0
     args = ["simulate", "planar-pendulum.toml", "--out", "run", "--quiet"]

@@ -1,4 +1,4 @@
-"""Exudyn's peers of the shipped systems run and reproduce the issue's numbers on coarse settings.
+"""Exudyn's peers of the shipped systems run and reproduce their numbers on coarse settings.
 
 ``benchmarks/exudyn_spinup.py`` and ``benchmarks/exudyn_slider_crank.py`` as a user runs them (one
 JSON line each); skipped without Exudyn (``pip install .[bench]``).  Coarse: 8 elements and

@@ -80,7 +80,7 @@ def _csv_case(folder: Path, scale: float = 1.0) -> None:
 
 
 def test_a_sweep_runs_again_after_its_table_file_changed(tmp_path, monkeypatch, capsys):
-    """A finished run is reused only while the CSV file it read is as it was (issue 39.2)."""
+    """A finished run is reused only while the CSV file it read is as it was."""
     monkeypatch.chdir(tmp_path)
     _csv_case(tmp_path)
     Path("sweep.toml").write_text('base = "capstan.toml"\nanalysis = "simulate"\n'
@@ -95,7 +95,7 @@ def test_a_sweep_runs_again_after_its_table_file_changed(tmp_path, monkeypatch, 
 
 
 def test_resume_refuses_a_changed_table_file(tmp_path, monkeypatch, capsys):
-    """A resumed run reads the table its first part read, or is refused (issue 39.2)."""
+    """A resumed run reads the table its first part read, or is refused."""
     monkeypatch.chdir(tmp_path)
     _csv_case(tmp_path)
     args = ["simulate", "capstan.toml", "--out", "run", "--quiet"]
@@ -114,7 +114,7 @@ def test_resume_refuses_a_changed_table_file(tmp_path, monkeypatch, capsys):
 
 def test_a_byte_order_mark_keeps_the_first_row(tmp_path):
     """A CSV saved with a byte-order mark (spreadsheets do) loses no row to a 'header'
-    (issue 39.3a)."""
+    as a header."""
     inline = np.array(tomllib.loads(CAPSTAN)["supports"][0]["motion"]["table"])
     lines = [", ".join(repr(float(x)) for x in row) for row in inline]
     (tmp_path / "pull.csv").write_text("\n".join(lines) + "\n", encoding="utf-8-sig")

@@ -57,7 +57,7 @@ def test_ssnl114_elastic_catenary_from_the_straight_tension_free_start():
 def test_slack_steel_cable_from_a_curved_reference():
     """80 m span, circular stress-free reference 82 m long, A = 1e-4 m², E = 2e11 Pa: the sag of
     the elastic catenary of the same length (negligible bending stiffness) in a few dozen
-    iterations (measured 25; the issue met 164,342)."""
+    iterations (measured 25; a load path without a sagged start took 164,342)."""
     th = 21.999218277040956  # the tangent angle of a circular arc 82 m long over 80 m
     arc = conic_arc_through([0.0, 0.0], [80.0, 0.0], [th, th], [40.0, -7.774929182949902])
     m = Model(

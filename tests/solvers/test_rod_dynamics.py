@@ -25,7 +25,7 @@ TIMES = (0.25, 0.5, 0.75, 1.0)
 #: Exudyn 1.13.6, ObjectBeamGeometricallyExact, 64 el., h = 0.25 ms, ρ∞ = 0.9, bending rotary
 #: inertia scaled by 1e-3, shear stiffness x100 (benchmarks/rod_dynamics.py): tip y [mm]
 TOP_EXUDYN = np.array([8.041, 20.377, 18.247, -9.727])
-#: the issue's Exudyn tip positions of the 6.2 arc swung at 2 rad/s, at t = 0.5 and 1 s [m]
+#: Exudyn's tip positions of the 6.2 arc swung at 2 rad/s, at t = 0.5 and 1 s [m]
 ARC_EXUDYN = {0.5: (-0.46378, -0.10247, -0.16032), 1.0: (-0.08607, -0.33606, -0.36346)}
 
 
@@ -76,7 +76,7 @@ def test_spinning_rod_precesses_like_exudyns_beam_and_keeps_its_angular_momentum
 
 
 def test_stiffening_rod_tends_to_the_rigid_lagrange_top():
-    """As E grows the tip tends to that of the rigid top (which the issue puts at 8.1 / 20.0 /
+    """As E grows the tip tends to that of the rigid top (a rigid top has it at 8.1 / 20.0 /
     18.5 / -10.1 mm lateral): the largest distance over the four times falls from 1.2 mm at
     E = 2e8 to 0.14 mm at 2e9 and 0.04 mm at 2e10 (8 el., h = 1 ms)."""
     ref = rigid_top()

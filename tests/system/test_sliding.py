@@ -339,8 +339,8 @@ def test_guide_as_middle_support_in_modes():
 
 def test_end_through_the_guide_stops_the_run():
     """A rope falling freely through a guide near its top end: the run stops at the step before
-    its end passes through (issue 39.3g: it completed with the joint on the end element
-    continued beyond the body), on the compiled loop's fixed steps and on adaptive ones; the
+    its end passes through (the joint never runs on along the end element's continuation
+    beyond the body), on the compiled loop's fixed steps and on adaptive ones; the
     outputs of a state past it say so in one warning line, once."""
     rope = Model(mesh_line([0.0, 0.0], [0.0, -0.5], 10), "ancf", SEC, MAT, gravity=[0, -9.81])
     s = System({"rope": rope, "weight": PointMass(2, 1.0, (0.0, -0.5))},

@@ -208,7 +208,7 @@ def test_statics_at_any_winch_length(t):
 def test_a_length_law_reaching_zero_stops_the_run_at_the_step_before():
     """A system built in Python whose winch reels in 5 m at 10 m/s (no scenario file to refuse
     it): the run stops at the first step whose length is not > 0, naming the winch, the time
-    and the length, and stores nothing past it (issue 39.4)."""
+    and the length, and stores nothing past it."""
     s = hoist(TimeFunction.table([[0.0, 5.0], [1.0, -5.0]]), horizon=1.0)
     st = solve_static(s, load_steps=1, at_time=0.0)
     res = integrate(s, DynamicOptions(t_end=1.0, step=0.01, output_step=0.05), initial=st.y)
