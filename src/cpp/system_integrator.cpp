@@ -91,8 +91,39 @@ StepOutcome SystemIntegrator::step(const StepIn& s0, double t, double h, const S
     }
     from_y0_ = !out.converged || first.converged ? 0 : 1;
   }
-  if (out.converged) out.error = local_error(s0.w, s1.w, h);
+  if (out.converged) {
+    project_rates(s1, t + h);
+    out.error = local_error(s0.w, s1.w, h);
+  }
   return out;
+}
+
+void SystemIntegrator::project_rates(const StepOut& s1, double t1) {
+  // v1 -= S^-1 G^T (G S^-1 G^T)^-1 c, c = G v1 + g_t = d/ds g(y1 + s v1, t1 + s) at s = 0
+  // (TI.11 of docs/derivations/time-integration.md), with the factors of the step's
+  // iteration matrix [S G^T; G 0]
+  const int n = s_.n, m = s_.m;
+  if (m == 0 || !lu_valid_) return;
+  double scale = 1.0;
+  for (int i = 0; i < n; ++i) scale = std::max(scale, std::abs(s1.v[i]));
+  const double e = 1e-3 / scale;
+  // sliding joints' material coordinates move at their rates: sigma(s) = sigma + s sigma'
+  std::vector<double> rate(sz(m), 0.0), lam(sz(m)), g(sz(m)), c(sz(m), 0.0);
+  if (!s_.slots.empty()) sliding_rates(s_, s1.y, s1.v, s1.lam, t1, rate.data());
+  std::vector<double>& y = yf_;
+  // c = (8 (g(e) - g(-e)) - (g(2e) - g(-2e))) / (12 e): fourth order in e
+  for (const auto& [ds, weight] : {std::pair{1.0, 8.0}, {-1.0, -8.0}, {2.0, -1.0}, {-2.0, 1.0}}) {
+    const double d = ds * e;
+    for (int i = 0; i < n; ++i) y[sz(i)] = s1.y[i] + d * s1.v[i];
+    std::copy(s1.lam, s1.lam + m, lam.begin());
+    for (int k : s_.slots) lam[sz(k)] += d * rate[sz(k)];
+    constraints(s_, y.data(), t1 + d, g.data(), lam.data());
+    for (int i = 0; i < m; ++i) c[sz(i)] += weight * g[sz(i)] / (12.0 * e);
+  }
+  std::fill(r_.begin(), r_.begin() + n, 0.0);
+  std::copy(c.begin(), c.end(), r_.begin() + n);
+  solve_negative();
+  for (int i = 0; i < n; ++i) s1.v[i] += dz_[sz(i)];
 }
 
 double SystemIntegrator::local_error(const double* w0, const double* w1, double h) const {

@@ -121,6 +121,11 @@ class SystemIntegrator {
   /// The Newton iterations of step(), from the predictor y0 + h v0 + h^2/2 a0 or from y0.
   StepOutcome iterate(const StepIn& s0, double t, double h, const StepOut& s1, bool from_y0);
   void solve_negative();
+  /// The velocities v1 of a converged step projected onto the constraints' rates at t1,
+  /// G v1 + g_t = 0, in the metric of the step's iteration matrix (TI.11 of
+  /// docs/derivations/time-integration.md): index-3 constraints leave the rate errors of a
+  /// driven constraint undamped at rho_inf = 1.
+  void project_rates(const StepOut& s1, double t1);
   /// Modified Newton: where the factored Jacobian was assembled (assemble_system's yf, vf,
   /// am, lambda and y1).
   void remember(double h, const AssemblyTerms& terms, const double* yf, const double* vf,

@@ -78,7 +78,6 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     from rancf.atomic import atomic_write
     from rancf.cli.resume import Resume, scenario_for_run
     from rancf.post.checks import (
-        driven_warnings,
         error_warnings,
         run_warnings,
         section_warnings,
@@ -112,8 +111,8 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
             if not args.quiet:
                 print(f"rancf: {resume.killed_note()}; resuming from t = {state.t:g} s",
                       file=sys.stderr)  # fmt: skip
-        notes = _warn(start_warnings(system) + section_warnings(system) + step_warnings(opts)
-                      + driven_warnings(system, opts))  # the run goes on; run_warnings' order
+        notes = _warn(start_warnings(system) + section_warnings(system)
+                      + step_warnings(opts))  # the run goes on; run_warnings' order
         for note in sc.notes:  # defaults the file did not state (a harmonic's build-up)
             print(f"rancf: {note}", file=sys.stderr)
         info = {"scenario": str(Path(args.scenario).resolve()), "setup_wall_time_s": None}
