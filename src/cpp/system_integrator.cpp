@@ -103,21 +103,19 @@ void SystemIntegrator::project_rates(const StepOut& s1, double t1) {
   // (TI.11 of docs/derivations/time-integration.md), with the factors of the step's
   // iteration matrix [S G^T; G 0]
   const int n = s_.n, m = s_.m;
-  if (m == 0 || !lu_valid_) return;
+  // sliding joints: their material coordinates' rows are not rates of positions (their
+  // reeving ran its rope out with the projection), so such systems keep index 3
+  if (m == 0 || !lu_valid_ || !s_.slots.empty()) return;
   double scale = 1.0;
   for (int i = 0; i < n; ++i) scale = std::max(scale, std::abs(s1.v[i]));
   const double e = 1e-3 / scale;
-  // sliding joints' material coordinates move at their rates: sigma(s) = sigma + s sigma'
-  std::vector<double> rate(sz(m), 0.0), lam(sz(m)), g(sz(m)), c(sz(m), 0.0);
-  if (!s_.slots.empty()) sliding_rates(s_, s1.y, s1.v, s1.lam, t1, rate.data());
+  std::vector<double> g(sz(m)), c(sz(m), 0.0);
   std::vector<double>& y = yf_;
   // c = (8 (g(e) - g(-e)) - (g(2e) - g(-2e))) / (12 e): fourth order in e
   for (const auto& [ds, weight] : {std::pair{1.0, 8.0}, {-1.0, -8.0}, {2.0, -1.0}, {-2.0, 1.0}}) {
     const double d = ds * e;
     for (int i = 0; i < n; ++i) y[sz(i)] = s1.y[i] + d * s1.v[i];
-    std::copy(s1.lam, s1.lam + m, lam.begin());
-    for (int k : s_.slots) lam[sz(k)] += d * rate[sz(k)];
-    constraints(s_, y.data(), t1 + d, g.data(), lam.data());
+    constraints(s_, y.data(), t1 + d, g.data(), s1.lam);
     for (int i = 0; i < m; ++i) c[sz(i)] += weight * g[sz(i)] / (12.0 * e);
   }
   std::fill(r_.begin(), r_.begin() + n, 0.0);
