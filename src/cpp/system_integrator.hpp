@@ -138,7 +138,7 @@ class SystemIntegrator {
   bool mass_factored_ = false;  // lu_ holds the factors of that matrix
   double lu_h_ = -1.0;
   long factorizations_ = 0;
-  std::vector<double> base_, yf_, vf_, am_, r_, dz_, zb_, zero_;
+  std::vector<double> base_, yf_, vf_, am_, r_, dz_, zb_, zero_, rate_g_;
   /// Contact: the Chung-Hulbert form (module comment)
   bool chung_hulbert_ = false;
   /// Steps since one had to start again from y0 (0: the last started from the predictor and
