@@ -33,6 +33,7 @@ class GeneralizedAlpha:
         newton_tol: float,
         max_newton: int,
         newton: str = "chord",
+        rtol: float = 0.0,
     ) -> None:
         self.system = as_system(model)
         r = rho_inf
@@ -59,6 +60,8 @@ class GeneralizedAlpha:
         self._core = _core.SystemIntegrator(self.system.core, scheme)
         # the test measures increments as displacements (gradients times their elements' length)
         self._core.set_increment_scale(increment_scale(self.system).tolist())
+        # above rtol * size a step's estimate is filtered (TI.12): what the step does not resolve
+        self._core.set_error_tolerance(float(rtol) * size)
 
     @property
     def n_factorizations(self) -> int:
