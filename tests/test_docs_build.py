@@ -106,7 +106,7 @@ def test_every_shipped_example_runs_in_the_gallery(built):
 #: load at t = 0, an impact, undamped vibrations), which ``rancf simulate`` says in its local
 #: error warning (docs/guide/time-integration.md); each is to be looked at and resolved, and
 #: this list only shrinks.
-UNRESOLVED = {"belt_drive", "crane_hoist"}
+UNRESOLVED = {"crane_hoist"}
 
 
 def test_gallery_scripts_run_cleanly(built):
