@@ -106,8 +106,10 @@ def test_every_shipped_example_runs_in_the_gallery(built):
 #: load at t = 0, an impact, undamped vibrations), which ``rancf simulate`` says in its local
 #: error warning (docs/guide/time-integration.md); each is to be looked at and resolved, and
 #: this list only shrinks.
-UNRESOLVED = {"argyris_frame", "atwood_guides", "belt_drive", "capstan", "crane_hoist",
-              "exact_geometry", "ring", "spatial_pendulum", "tether_payload"}  # fmt: skip
+#: crane-hoist: the estimate is right (17 times rtol with its 5 ms steps, 13 with 1.25 ms): the
+#: rope's run over the sheave rings its axial mode, and the tension histories of 5 ms, 1.25 ms,
+#: adaptive and adaptive rtol / 4 runs differ by 1.2-1.4 kN (of 1.8 kN peak to peak).
+UNRESOLVED = {"crane_hoist"}
 
 
 def test_gallery_scripts_run_cleanly(built):
@@ -116,8 +118,11 @@ def test_gallery_scripts_run_cleanly(built):
     pages = sorted((built / "gallery").glob("plot_*.html"))
     assert len(pages) > len(shipped_scenarios())
     error = re.compile(r"[^<\n]*rancf: warning: the local error estimate is [^<\n]*")
+    quiet = []  # listed, but not warned: off the list
     for page in pages:
         text = page.read_text(encoding="utf-8")
         if page.stem.removeprefix("plot_") in UNRESOLVED:
+            quiet += [] if error.search(text) else [page.stem]
             text = error.sub("", text)
         assert not re.search(r"Warning\b|rancf: warning", text), page.name
+    assert quiet == []

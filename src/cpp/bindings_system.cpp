@@ -475,6 +475,11 @@ void bind_system(nb::module_& mod) {
           "The length each coordinate's Newton increment is multiplied by in the convergence "
           "test (n values; empty: 1 for all).")
       .def(
+          "set_error_tolerance",
+          [](SystemIntegratorHolder& h, double tol) { h.integ.set_error_tolerance(tol); }, "tol"_a,
+          "The local error a step may have (rtol times the model's size; 0: none): above it, "
+          "the estimate is filtered through the iteration matrix (TI.12).")
+      .def(
           "memory", [](const SystemIntegratorHolder& h) { return h.integ.memory(); },
           "What the loop keeps between steps (see system_integrator.hpp); empty if nothing.")
       .def(

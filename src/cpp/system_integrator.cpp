@@ -91,8 +91,63 @@ StepOutcome SystemIntegrator::step(const StepIn& s0, double t, double h, const S
     }
     from_y0_ = !out.converged || first.converged ? 0 : 1;
   }
-  if (out.converged) out.error = local_error(s0.w, s1.w, h);
+  if (out.converged) {
+    project_rates(s1, t + h);
+    out.error = local_error(s0.w, s1.w, h);
+    if (error_tol_ > 0.0 && out.error > error_tol_ && lu_valid_)
+      out.error = std::min(out.error, filtered_error(s0, s1, t + h, h));
+  }
   return out;
+}
+
+double SystemIntegrator::filtered_error(const StepIn& s0, const StepOut& s1, double t1, double h) {
+  const int n = s_.n;
+  const double c = std::abs(sc_.beta - 0.5 * sc_.gamma + 1.0 / 12.0) * h * h;
+  const double bh2 = sc_.beta * h * h;
+  const double ca = chung_hulbert_ ? (1.0 - sc_.alpha_m) / bh2
+                                   : (1.0 - sc_.alpha_m) / ((1.0 - sc_.alpha_f) * bh2);
+  std::vector<double>& e = yf_;
+  std::vector<double>& r0 = vf_;
+  for (int i = 0; i < n; ++i) e[sz(i)] = error_scale_[sz(i)] > 0.0 ? c * (s1.w[i] - s0.w[i]) : 0.0;
+  AssemblyTerms terms;  // the residual only: M e = r(a = e) - r(a = 0) at the step's end
+  terms.tf = t1;
+  terms.t1 = t1;
+  std::fill(am_.begin(), am_.end(), 0.0);
+  if (!assemble_system(s_, s1.y, s1.v, am_.data(), s1.lam, s1.y, terms, r_.data(), nullptr))
+    return std::numeric_limits<double>::infinity();
+  std::copy(r_.begin(), r_.begin() + n, r0.begin());
+  if (!assemble_system(s_, s1.y, s1.v, e.data(), s1.lam, s1.y, terms, r_.data(), nullptr))
+    return std::numeric_limits<double>::infinity();
+  for (int i = 0; i < n; ++i) r_[sz(i)] = ca * (r_[sz(i)] - r0[sz(i)]);
+  std::fill(r_.begin() + n, r_.end(), 0.0);
+  solve_negative();  // dz = -S^-1 c_a M e
+  double out = 0.0;
+  for (int i = 0; i < n; ++i) out = std::max(out, std::abs(dz_[sz(i)]) * error_scale_[sz(i)]);
+  return out;
+}
+
+void SystemIntegrator::project_rates(const StepOut& s1, double t1) {
+  // v1 -= S^-1 G^T (G S^-1 G^T)^-1 c, c = G v1 + g_t = d/ds g(y1 + s v1, t1 + s) at s = 0
+  // (TI.11 of docs/derivations/time-integration.md), with the factors of the step's
+  // iteration matrix [S G^T; G 0]
+  const int n = s_.n, m = s_.m;
+  // sliding joints: their material coordinates' rows are not rates of positions (their
+  // reeving ran its rope out with the projection), so such systems keep index 3
+  if (m == 0 || !lu_valid_ || !s_.slots.empty()) return;
+  double scale = 1.0;
+  for (int i = 0; i < n; ++i) scale = std::max(scale, std::abs(s1.v[i]));
+  const double e = 1e-5 / scale;  // central: truncation ~e^2 and rounding ~1e-16/e balanced
+  std::vector<double>& y = yf_;
+  std::vector<double>& gm = rate_g_;
+  gm.resize(sz(m));
+  for (int i = 0; i < n; ++i) y[sz(i)] = s1.y[i] + e * s1.v[i];
+  constraints(s_, y.data(), t1 + e, r_.data() + n, s1.lam);
+  for (int i = 0; i < n; ++i) y[sz(i)] = s1.y[i] - e * s1.v[i];
+  constraints(s_, y.data(), t1 - e, gm.data(), s1.lam);
+  std::fill(r_.begin(), r_.begin() + n, 0.0);
+  for (int i = 0; i < m; ++i) r_[sz(n + i)] = (r_[sz(n + i)] - gm[sz(i)]) / (2.0 * e);
+  solve_negative();
+  for (int i = 0; i < n; ++i) s1.v[i] += dz_[sz(i)];
 }
 
 double SystemIntegrator::local_error(const double* w0, const double* w1, double h) const {

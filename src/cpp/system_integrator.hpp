@@ -104,6 +104,11 @@ class SystemIntegrator {
   /// (n values; empty: 1 for all): gradient coordinates by their elements' length, so that the
   /// test measures the displacement of the material (docs/derivations/newton.md).
   void set_increment_scale(std::vector<double> scale);
+  /// The local error a step may have (rtol times the model's size; 0, the default: none).
+  /// Where local_error is above it, the step's estimate is the filtered one (TI.12 of
+  /// docs/derivations/time-integration.md), which leaves resolved motion alone and divides
+  /// what the step does not resolve by about (omega h)^2.
+  void set_error_tolerance(double tol) { error_tol_ = tol; }
   /// The held coordinates that follow time functions, at time t (any pointer may be null).
   void set_prescribed(double t, double* y, double* v, double* a) const;
   /// What the loop keeps between steps: [s], the steps since one started again from y0 (0:
@@ -121,6 +126,15 @@ class SystemIntegrator {
   /// The Newton iterations of step(), from the predictor y0 + h v0 + h^2/2 a0 or from y0.
   StepOutcome iterate(const StepIn& s0, double t, double h, const StepOut& s1, bool from_y0);
   void solve_negative();
+  /// The velocities v1 of a converged step projected onto the constraints' rates at t1,
+  /// G v1 + g_t = 0, in the metric of the step's iteration matrix (TI.11 of
+  /// docs/derivations/time-integration.md): index-3 constraints leave the rate errors of a
+  /// driven constraint undamped at rho_inf = 1.
+  void project_rates(const StepOut& s1, double t1);
+  /// The local error estimate filtered through the step's iteration matrix,
+  /// e_f = S^-1 c_a M e, e = h^2 |beta - gamma/2 + 1/12| (w1 - w0), in the norm of
+  /// local_error (TI.12); M e from two residuals of the balance at the step's end.
+  double filtered_error(const StepIn& s0, const StepOut& s1, double t1, double h);
   /// Modified Newton: where the factored Jacobian was assembled (assemble_system's yf, vf,
   /// am, lambda and y1).
   void remember(double h, const AssemblyTerms& terms, const double* yf, const double* vf,
@@ -133,7 +147,7 @@ class SystemIntegrator {
   bool mass_factored_ = false;  // lu_ holds the factors of that matrix
   double lu_h_ = -1.0;
   long factorizations_ = 0;
-  std::vector<double> base_, yf_, vf_, am_, r_, dz_, zb_, zero_;
+  std::vector<double> base_, yf_, vf_, am_, r_, dz_, zb_, zero_, rate_g_;
   /// Contact: the Chung-Hulbert form (module comment)
   bool chung_hulbert_ = false;
   /// Steps since one had to start again from y0 (0: the last started from the predictor and
@@ -144,6 +158,7 @@ class SystemIntegrator {
   std::vector<double> factored_at_;  ///< modified Newton: where the factors were assembled
   std::vector<double> scale_;        ///< set_increment_scale (empty: none)
   std::vector<double> error_scale_;  ///< scale_ (1 without) and 0 at the held coordinates
+  double error_tol_ = 0.0;           ///< set_error_tolerance
 };
 
 /// Kinetic, strain (elements and springs) and gravitational energy of the system at (y, v)

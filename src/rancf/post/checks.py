@@ -42,7 +42,6 @@ __all__ = [
     "section_warnings",
     "step_warnings",
     "error_warnings",
-    "driven_warnings",
     "strain_warning",
     "largest_strain",
     "run_warnings",
@@ -141,27 +140,6 @@ def step_warnings(options: DynamicOptions) -> list[str]:
     ]
 
 
-#: Above this ``rho_inf`` a joint driven by a time function is warned about: the blade of
-#: ``docs/guide/time-integration.md`` ran at 0.95 and failed at 0.97, 0.99 and 1.
-DRIVEN_RHO_INF = 0.95
-
-
-def driven_warnings(model: Model | System, options: DynamicOptions) -> list[str]:
-    """A warning for joints driven by a time function (``angle``) when ``rho_inf`` is above
-    :data:`DRIVEN_RHO_INF`: the balance at the new time (Arnold & Brüls) leaves the alternating
-    error of a driven constraint's rates undamped there, and its accelerations grow
-    (``docs/derivations/time-integration.md`` sec. 2)."""
-    driven = [j.name or str(k) for k, j in enumerate(getattr(model, "joints", ()))
-              if getattr(j, "angle", None) is not None]  # fmt: skip
-    if not driven or options.rho_inf <= DRIVEN_RHO_INF or getattr(model, "has_contact", False):
-        return []
-    return [
-        f"solver.rho_inf = {options.rho_inf:g} with the driven joint {driven[0]!r}: so little "
-        "numerical damping leaves the errors of a driven constraint's rates undamped, and its "
-        f"accelerations grow until the run fails; give rho_inf <= {DRIVEN_RHO_INF:g}"
-    ]
-
-
 def error_warnings(result: Any, options: DynamicOptions) -> list[str]:
     """A warning if a run's largest local error estimate (relative to ``rtol * size``,
     :class:`~rancf.solvers.result.DynamicResult`) is above 1: where, the step and a step that
@@ -209,10 +187,8 @@ def run_warnings(
 
 def before_run_warnings(model: Model | System, options: DynamicOptions) -> list[str]:
     """The warnings a dynamic run can give before it starts, in :func:`run_warnings`' order:
-    its impulsive starts, the section's radius, the steps against the output interval and the
-    driven joints against ``rho_inf``."""
-    return (start_warnings(model) + section_warnings(model) + step_warnings(options)
-            + driven_warnings(model, options))  # fmt: skip
+    its impulsive starts, the section's radius and the steps against the output interval."""
+    return start_warnings(model) + section_warnings(model) + step_warnings(options)
 
 
 def finished_warnings(

@@ -134,7 +134,7 @@ def integrate(
         raise ValueError("integrate: give initial (coordinates) or start (a state), not both")
     if initial is None and start is None:
         system.reset_triads()
-    integ = GeneralizedAlpha(system, o.rho_inf, o.newton_tol, o.max_newton, o.newton)
+    integ = GeneralizedAlpha(system, o.rho_inf, o.newton_tol, o.max_newton, o.newton, o.rtol)
     out_dt = o.output_step if o.output_step is not None else o.step
     n_out = o.n_outputs - 1
     n_grid = int(np.floor(o.t_end / out_dt + 1e-9))

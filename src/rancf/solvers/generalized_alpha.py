@@ -23,7 +23,9 @@ class GeneralizedAlpha:
     The Newton iterations of a step and the fixed-step loop run in the compiled core
     (:class:`rancf.kernels._core.SystemIntegrator`: constrained generalized-α, bordered band
     solves); this class holds the constants and counters.  A :class:`Model` is a one-body
-    system.
+    system.  ``rtol`` (> 0): a step whose estimate (TI.9) is above ``rtol * size`` reports it
+    filtered through the iteration matrix (TI.12 of ``docs/derivations/time-integration.md``:
+    what the step does not resolve counts as its amplitude, not ``(ω h)²`` times it); 0: never.
     """
 
     def __init__(
@@ -33,6 +35,7 @@ class GeneralizedAlpha:
         newton_tol: float,
         max_newton: int,
         newton: str = "chord",
+        rtol: float = 0.0,
     ) -> None:
         self.system = as_system(model)
         r = rho_inf
@@ -59,6 +62,8 @@ class GeneralizedAlpha:
         self._core = _core.SystemIntegrator(self.system.core, scheme)
         # the test measures increments as displacements (gradients times their elements' length)
         self._core.set_increment_scale(increment_scale(self.system).tolist())
+        # above rtol * size a step's estimate is filtered (TI.12): what the step does not resolve
+        self._core.set_error_tolerance(float(rtol) * size)
 
     @property
     def n_factorizations(self) -> int:
@@ -176,5 +181,6 @@ class GeneralizedAlpha:
         """A local error estimate of :meth:`step` or :meth:`run_steps` relative to the
         tolerance ``rtol * size`` (``e = h² |β - γ/2 + 1/12| max_i s_i |w_{n+1,i} - w_{n,i}|``,
         ``s_i`` the Newton test's increment scale: (TI.9) of
-        ``docs/derivations/time-integration.md``)."""
+        ``docs/derivations/time-integration.md``; above the tolerance given at construction,
+        the filtered (TI.12))."""
         return error / (rtol * self.size)
