@@ -128,7 +128,7 @@ def _open_stdout() -> str | None:
         return None
     with contextlib.suppress(AttributeError, ValueError, OSError):
         stream.reconfigure(errors="surrogateescape")
-    sys.stdout = _Stdout(stream)  # type: ignore[assignment]
+    sys.stdout = _Stdout(stream)
     return None
 
 

@@ -116,12 +116,12 @@ class SensorReader:
     def _position(self, sen: Any, spec: Any) -> Reader:
         s = self.system
         p = self._place(sen, spec)
-        b = s.bodies[p.body]  # type: ignore[index]
+        b = s.bodies[p.body]
         if isinstance(b, Model):
             base = s.offsets[p.body] + int(p.at) * b.dpn  # type: ignore[arg-type, index]
             return lambda blk: blk[1][:, base : base + s.dim]
         if isinstance(b, PointMass) or p.at is None:
-            o = s.offsets[p.body]  # type: ignore[index]
+            o = s.offsets[p.body]
             return lambda blk: blk[1][:, o : o + s.dim]
         s.place_state(p, s.y0)  # raises unless the place is observed
 
@@ -167,12 +167,12 @@ class SensorReader:
             reader = winch_reader(self.out, sen)
         else:
             raise InputError(f"sensors.{sen.name}.kind", kind, "a sensor kind")
-        reader.kind = kind  # type: ignore[attr-defined]
+        reader.kind = kind
         return reader
 
     def _twist(self, sen: Any, spec: Any) -> Reader:
         p = self._place(sen, spec)
-        b = self.system.bodies[p.body]  # type: ignore[index]
+        b = self.system.bodies[p.body]
         if not (isinstance(b, Model) and b.element == "rod"):
             raise InputError(f"sensors.{sen.name}.at", str(p), "a node of a rod")
         i = self.system.offsets[p.body] + int(p.at) * b.dpn + 6  # type: ignore[arg-type, index]
@@ -250,13 +250,13 @@ class SensorReader:
         if body not in flex:
             raise InputError(f"sensors.{sen.name}.body", body,
                              f"a line (cable or rod elements): {', '.join(flex)}")  # fmt: skip
-        m, sl = s.bodies[body], s.body_slice(body)  # type: ignore[index]
+        m, sl = s.bodies[body], s.body_slice(body)
         point, normal = np.asarray(ob.point, float), np.asarray(ob.normal, float)
         return lambda blk: np.array([touchdown_point(m, q[sl], point, normal) for q in blk[1]])
 
     def _axial_force(self, sen: Any, spec: Any) -> Reader:
         p = self._place(sen, spec)
-        b = self.system.bodies[p.body]  # type: ignore[index]
+        b = self.system.bodies[p.body]
         if not isinstance(b, Model):
             raise InputError(f"sensors.{sen.name}.at", str(p), "a node of a flexible body")
         sp = self.out.samplers[p.body]  # type: ignore[index]
