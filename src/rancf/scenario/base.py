@@ -11,7 +11,7 @@ the error, so :mod:`rancf.scenario.messages` can name the full key path in the o
 from __future__ import annotations
 
 import math
-from typing import Annotated, Any
+from typing import TYPE_CHECKING, Annotated, Any, TypeAlias
 
 import numpy as np
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Discriminator, Field, model_validator
@@ -39,6 +39,12 @@ __all__ = [
     "Name",
     "vector",
     "number_or_vector",
+    "Vector2",
+    "Vector3",
+    "Vector23",
+    "Vector123",
+    "NumberOrVector3",
+    "NumberOrVector123",
     "PlaceValue",
     "PlacePair",
 ]
@@ -201,14 +207,20 @@ def to_number(v: Any) -> float:
     return _number(v)
 
 
-def number(**limits: float) -> Any:
-    """The type of a finite number within ``limits`` (``gt``, ``ge``, ``lt``, ``le``)."""
-    return Annotated[float, Field(**limits), BeforeValidator(_number)]
+def number(
+    *,
+    gt: float | None = None,
+    ge: float | None = None,
+    lt: float | None = None,
+    le: float | None = None,
+) -> Any:
+    """The type of a finite number within the limits given (``gt``, ``ge``, ``lt``, ``le``)."""
+    return Annotated[float, Field(gt=gt, ge=ge, lt=lt, le=le), BeforeValidator(_number)]
 
 
-def integer(**limits: int) -> Any:
-    """The type of an integer within ``limits`` (``ge``, ``le``)."""
-    return Annotated[int, Field(**limits), BeforeValidator(_integer)]
+def integer(*, ge: int | None = None, le: int | None = None) -> Any:
+    """The type of an integer within the limits given (``ge``, ``le``)."""
+    return Annotated[int, Field(ge=ge, le=le), BeforeValidator(_integer)]
 
 
 #: A finite number (an int or a float, not a bool).
@@ -287,6 +299,29 @@ def number_or_vector(*sizes: int) -> Any:
         "oneOf": [{"type": "number"}, {**items, "minItems": min(sizes), "maxItems": max(sizes)}]
     }
     return Annotated[float | list[float], BeforeValidator(convert), JsonSchema(schema)]
+
+
+if TYPE_CHECKING:
+    # what the validated values are; a type checker cannot evaluate the factories above
+    Vector2: TypeAlias = list[float]
+    Vector3: TypeAlias = list[float]
+    Vector23: TypeAlias = list[float]
+    Vector123: TypeAlias = list[float]
+    NumberOrVector3: TypeAlias = float | list[float]
+    NumberOrVector123: TypeAlias = float | list[float]
+else:
+    #: Two finite numbers.
+    Vector2 = vector(2)
+    #: Three finite numbers.
+    Vector3 = vector(3)
+    #: Two (planar) or three (spatial) finite numbers.
+    Vector23 = vector(2, 3)
+    #: One, two or three finite numbers.
+    Vector123 = vector(1, 2, 3)
+    #: A finite number or three finite numbers.
+    NumberOrVector3 = number_or_vector(3)
+    #: A finite number or one, two or three finite numbers.
+    NumberOrVector123 = number_or_vector(1, 2, 3)
 
 
 # ---------------------------------------------------------------------- places

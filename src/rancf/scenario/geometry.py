@@ -10,7 +10,7 @@ checks the chain of curves.  The section, the material and the checks across tab
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Annotated, Any, ClassVar, Literal
+from typing import TYPE_CHECKING, Annotated, Any, ClassVar, Literal, TypeAlias
 
 from pydantic import (
     BeforeValidator,
@@ -29,6 +29,8 @@ from rancf.scenario.base import (
     KindOf,
     Number,
     Table,
+    Vector2,
+    Vector3,
     fail,
     integer,
     show,
@@ -69,7 +71,24 @@ GEOMETRY_KEYS = {
     "ellipse": ("center", "semi_axes", "rotation_deg", "axes", "start_deg"),
 }
 
-Point = vector(2, 3, bound=MAX_COORDINATE)
+if TYPE_CHECKING:
+    # the validated values (a type checker cannot evaluate the factories)
+    Point: TypeAlias = list[float]
+    SemiAxes: TypeAlias = list[float]
+    Degree: TypeAlias = int
+    ElementCount: TypeAlias = int
+    QuadraturePoints: TypeAlias = int
+else:
+    #: A point, 2 (planar) or 3 (spatial) coordinates.
+    Point = vector(2, 3, bound=MAX_COORDINATE)
+    #: The two semi-axes of an ellipse.
+    SemiAxes = vector(2, bound=MAX_COORDINATE)
+    #: The polynomial degree of a NURBS curve.
+    Degree = integer(ge=2, le=3)
+    #: The number of elements of a mesh.
+    ElementCount = integer(ge=1, le=MAX_ELEMENTS)
+    #: The number of Gauss points of an element.
+    QuadraturePoints = integer(ge=2, le=64)
 
 
 class _Geometry(Table):
@@ -121,7 +140,7 @@ class ConicGeometry(_Geometry):
     kind: Literal["conic"] = Field(description="a conic arc")
     start: Point = Field(description="start point [m]; 2 coordinates: planar, 3: spatial")
     end: Point = Field(description="end point [m], as many coordinates as start")
-    angles_deg: vector(2) = Field(
+    angles_deg: Vector2 = Field(
         description="tangent-to-chord angles at start and end, each in (0, 90) [deg]"
     )
     point: Point = Field(description="an interior point of the arc, global coordinates [m]")
@@ -142,7 +161,7 @@ class NurbsGeometry(_Geometry):
 
     KIND: ClassVar[str] = "nurbs"
     kind: Literal["nurbs"] = Field(description="a NURBS curve")
-    degree: integer(ge=2, le=3) = Field(description="polynomial degree, 2 or 3")
+    degree: Degree = Field(description="polynomial degree, 2 or 3")
     knots: list[Number] = Field(description="knot vector, non-decreasing")
     control_points: list[Point] = Field(
         min_length=1, description="control points [m], all with 2 or all with 3 coordinates"
@@ -179,13 +198,13 @@ class EllipseGeometry(_Geometry):
     KIND: ClassVar[str] = "ellipse"
     kind: Literal["ellipse"] = Field(description="a full ellipse (closed: a ring)")
     center: Point = Field(description="center [m]; 2 coordinates: planar, 3: spatial")
-    semi_axes: vector(2, bound=MAX_COORDINATE) = Field(
+    semi_axes: SemiAxes = Field(
         description="semi-axes [a, b] along the first and second axis [m], each > 0"
     )
     rotation_deg: Number | None = Field(
         None, description="planar: angle of the first axis from x [deg] (default 0)"
     )
-    axes: list[vector(3)] | None = Field(
+    axes: list[Vector3] | None = Field(
         None,
         description="spatial: the first and second axis directions, perpendicular (default x "
         "and y)",
@@ -224,10 +243,13 @@ class EllipseGeometry(_Geometry):
 
     def ellipse(self) -> Any:
         """The :class:`~rancf.geometry.ellipse.Ellipse`."""
+        import numpy as np
+
         from rancf.geometry.ellipse import Ellipse, ellipse_axes
 
         e1, e2 = ellipse_axes(self.dim, self.rotation_deg or 0.0, self.axes)
-        return Ellipse(self.center, self.semi_axes[0], self.semi_axes[1], e1, e2)
+        center = np.asarray(self.center, dtype=float)
+        return Ellipse(center, self.semi_axes[0], self.semi_axes[1], e1, e2)
 
 
 Curve = Annotated[int | str, BeforeValidator(lambda v: _curve_item(v))]
@@ -346,7 +368,7 @@ def _k(v: Any) -> Any:
 class MeshTable(Table):
     """``[mesh]``: how the geometry is divided into elements."""
 
-    elements: integer(ge=1, le=MAX_ELEMENTS) = Field(
+    elements: ElementCount = Field(
         description="number of elements (NURBS and CAD curves: per knot span)"
     )
     element: Literal["rancf", "ancf", "beam", "rod"] = Field(
@@ -381,7 +403,7 @@ class MeshTable(Table):
         description='"reference" (the start shape is unloaded) | "straight" (unloaded straight, '
         "same arc length: a rope laid over a pulley carries its bending energy; cables and rods)",
     )
-    quadrature_points: integer(ge=2, le=64) | None = Field(
+    quadrature_points: QuadraturePoints | None = Field(
         None,
         description="Gauss points per element (default: 6 for polynomial (ANCF) elements, 10 "
         "for rational ones)",

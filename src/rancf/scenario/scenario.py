@@ -14,13 +14,13 @@ naming the file (``<scenario>`` for one built in Python) and the key
 from __future__ import annotations
 
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, TypeAlias
 
 from pydantic import Field, PrivateAttr, ValidationError, ValidationInfo, model_validator
 
 from rancf.errors import ScenarioError
 from rancf.scenario.base import Name, NonNegative, Table, fail, integer, show
-from rancf.scenario.bodies import Body
+from rancf.scenario.bodies import Body, FlexibleBody
 from rancf.scenario.checks import check_scenario
 from rancf.scenario.damping import DampingTable
 from rancf.scenario.files import deferred_interrupts, read_toml, write_atomic
@@ -49,6 +49,12 @@ if TYPE_CHECKING:
     from rancf.system import System
 
 __all__ = ["Scenario", "load_scenario", "parse_scenario"]
+
+if TYPE_CHECKING:
+    ContactPoints: TypeAlias = int  # the validated value
+else:
+    #: Contact points per element.
+    ContactPoints = integer(ge=1, le=64)
 
 _PYTHON = "<scenario>"
 
@@ -80,7 +86,7 @@ class Scenario(Table):
     body_friction: NonNegative = Field(
         0.0, description="Coulomb coefficient of the contact between flexible bodies"
     )
-    contact_points: integer(ge=1, le=64) = Field(
+    contact_points: ContactPoints = Field(
         8,
         description="Gauss points per element where contact is evaluated (at most a tube "
         "radius apart resolves crossings of tubes)",
@@ -286,11 +292,11 @@ class Scenario(Table):
         return [(k, f) for k, f in out if f is not None]
 
     def _cad_tables(self, d: dict[str, Any]) -> list[tuple[dict[str, Any], CadGeometry]]:
-        out = []
+        out: list[tuple[dict[str, Any], CadGeometry]] = []
         if isinstance(self.geometry, CadGeometry):
             out.append((d["geometry"], self.geometry))
         for b, raw in zip(self.bodies, d.get("bodies", []), strict=False):
-            if isinstance(getattr(b, "geometry", None), CadGeometry):
+            if isinstance(b, FlexibleBody) and isinstance(b.geometry, CadGeometry):
                 out.append((raw["geometry"], b.geometry))
         return out
 
@@ -325,7 +331,7 @@ def _data(sc: Scenario) -> dict[str, Any]:
     d["bodies"] = []
     for b in sc.bodies:
         bd = b.model_dump()
-        if hasattr(b, "geometry"):
+        if isinstance(b, FlexibleBody):
             bd["geometry"] = _geometry_data(b.geometry)
             im = b.initial_motion
             bd["initial_motion"] = None if im is None else im.as_dict()
