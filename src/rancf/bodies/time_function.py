@@ -293,10 +293,11 @@ class TimeFunction:
         return (vs[i] + slope * (t - ts[i]), slope, 0.0 * slope)[order]
 
     def _callable(self, t: float, order: int) -> NDArray[np.float64]:
-        assert self.fn is not None
+        fn = self.fn
+        assert fn is not None
 
         def f(x: float) -> NDArray[np.float64]:
-            return np.atleast_1d(np.asarray(self.fn(x), dtype=float))  # type: ignore[misc]
+            return np.atleast_1d(np.asarray(fn(x), dtype=np.float64))
 
         if order == 0:
             return f(t)

@@ -18,6 +18,7 @@ from pydantic import BaseModel, BeforeValidator, ConfigDict, Discriminator, Fiel
 from pydantic_core import PydanticCustomError
 
 from rancf.errors import shorten
+from rancf.geometry.conic import LENGTH_RANGE
 from rancf.scenario.messages import scenario_error, show
 
 __all__ = [
@@ -45,6 +46,15 @@ __all__ = [
     "Vector123",
     "NumberOrVector3",
     "NumberOrVector123",
+    "MAX_COORDINATE",
+    "MAX_ELEMENTS",
+    "Point",
+    "SemiAxes",
+    "Degree",
+    "ElementCount",
+    "QuadraturePoints",
+    "ContactPoints",
+    "PoissonRatio",
     "PlaceValue",
     "PlacePair",
 ]
@@ -301,6 +311,12 @@ def number_or_vector(*sizes: int) -> Any:
     return Annotated[float | list[float], BeforeValidator(convert), JsonSchema(schema)]
 
 
+#: Largest size of a geometry coordinate [m] (``start``, ``end``, ``point``, ``control_points``):
+#: the longest chord a conic may have (:data:`rancf.geometry.conic.LENGTH_RANGE`).
+MAX_COORDINATE = LENGTH_RANGE[1]
+#: Largest ``mesh.elements`` (and total number of elements of a NURBS mesh).
+MAX_ELEMENTS = 1_000_000
+
 if TYPE_CHECKING:
     # what the validated values are; a type checker cannot evaluate the factories above
     Vector2: TypeAlias = list[float]
@@ -309,6 +325,13 @@ if TYPE_CHECKING:
     Vector123: TypeAlias = list[float]
     NumberOrVector3: TypeAlias = float | list[float]
     NumberOrVector123: TypeAlias = float | list[float]
+    Point: TypeAlias = list[float]
+    SemiAxes: TypeAlias = list[float]
+    Degree: TypeAlias = int
+    ElementCount: TypeAlias = int
+    QuadraturePoints: TypeAlias = int
+    ContactPoints: TypeAlias = int
+    PoissonRatio: TypeAlias = float
 else:
     #: Two finite numbers.
     Vector2 = vector(2)
@@ -322,6 +345,19 @@ else:
     NumberOrVector3 = number_or_vector(3)
     #: A finite number or one, two or three finite numbers.
     NumberOrVector123 = number_or_vector(1, 2, 3)
+    #: A geometry point, 2 (planar) or 3 (spatial) coordinates.
+    Point = vector(2, 3, bound=MAX_COORDINATE)
+    #: The two semi-axes of an ellipse.
+    SemiAxes = vector(2, bound=MAX_COORDINATE)
+    #: The polynomial degree of a NURBS curve.
+    Degree = integer(ge=2, le=3)
+    #: The number of elements of a mesh.
+    ElementCount = integer(ge=1, le=MAX_ELEMENTS)
+    #: Gauss points per element (of the element forces; of contact).
+    QuadraturePoints = integer(ge=2, le=64)
+    ContactPoints = integer(ge=1, le=64)
+    #: A Poisson ratio, in (-1, 0.5).
+    PoissonRatio = number(gt=-1.0, lt=0.5)
 
 
 # ---------------------------------------------------------------------- places

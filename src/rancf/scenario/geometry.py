@@ -10,7 +10,7 @@ checks the chain of curves.  The section, the material and the checks across tab
 from __future__ import annotations
 
 from pathlib import Path
-from typing import TYPE_CHECKING, Annotated, Any, ClassVar, Literal, TypeAlias
+from typing import Annotated, Any, ClassVar, Literal
 
 from pydantic import (
     BeforeValidator,
@@ -23,19 +23,23 @@ from pydantic import (
 
 from rancf.elements.mapping import K_RANGE  # the factors a scenario may fix
 from rancf.errors import InputError
-from rancf.geometry.conic import LENGTH_RANGE
 from rancf.scenario.base import (
+    MAX_COORDINATE,
+    MAX_ELEMENTS,
+    Degree,
+    ElementCount,
     JsonSchema,
     KindOf,
     Number,
+    Point,
+    QuadraturePoints,
+    SemiAxes,
     Table,
     Vector2,
     Vector3,
     fail,
-    integer,
     show,
     to_number,
-    vector,
 )
 
 __all__ = [
@@ -53,13 +57,8 @@ __all__ = [
     "MeshTable",
 ]
 
-#: Largest size of a geometry coordinate [m] (``start``, ``end``, ``point``, ``control_points``):
-#: the longest chord a conic may have (:data:`rancf.geometry.conic.LENGTH_RANGE`).
-MAX_COORDINATE = LENGTH_RANGE[1]
 #: Largest ratio of two NURBS weights (a curve's shape depends on the ratios only).
 MAX_WEIGHT_RATIO = 1e12
-#: Largest ``mesh.elements`` (and total number of elements of a NURBS mesh).
-MAX_ELEMENTS = 1_000_000
 #: Element kinds of ``mesh.element``.
 ELEMENTS = ("rancf", "ancf", "beam", "rod")
 #: Keys of ``[geometry]`` for each kind.
@@ -70,25 +69,6 @@ GEOMETRY_KEYS = {
     "cad": ("file", "curve"),
     "ellipse": ("center", "semi_axes", "rotation_deg", "axes", "start_deg"),
 }
-
-if TYPE_CHECKING:
-    # the validated values (a type checker cannot evaluate the factories)
-    Point: TypeAlias = list[float]
-    SemiAxes: TypeAlias = list[float]
-    Degree: TypeAlias = int
-    ElementCount: TypeAlias = int
-    QuadraturePoints: TypeAlias = int
-else:
-    #: A point, 2 (planar) or 3 (spatial) coordinates.
-    Point = vector(2, 3, bound=MAX_COORDINATE)
-    #: The two semi-axes of an ellipse.
-    SemiAxes = vector(2, bound=MAX_COORDINATE)
-    #: The polynomial degree of a NURBS curve.
-    Degree = integer(ge=2, le=3)
-    #: The number of elements of a mesh.
-    ElementCount = integer(ge=1, le=MAX_ELEMENTS)
-    #: The number of Gauss points of an element.
-    QuadraturePoints = integer(ge=2, le=64)
 
 
 class _Geometry(Table):

@@ -14,12 +14,12 @@ naming the file (``<scenario>`` for one built in Python) and the key
 from __future__ import annotations
 
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, TypeAlias
+from typing import TYPE_CHECKING, Any
 
 from pydantic import Field, PrivateAttr, ValidationError, ValidationInfo, model_validator
 
 from rancf.errors import ScenarioError
-from rancf.scenario.base import Name, NonNegative, Table, fail, integer, show
+from rancf.scenario.base import ContactPoints, Name, NonNegative, Table, fail, show
 from rancf.scenario.bodies import Body, FlexibleBody
 from rancf.scenario.checks import check_scenario
 from rancf.scenario.damping import DampingTable
@@ -49,12 +49,6 @@ if TYPE_CHECKING:
     from rancf.system import System
 
 __all__ = ["Scenario", "load_scenario", "parse_scenario"]
-
-if TYPE_CHECKING:
-    ContactPoints: TypeAlias = int  # the validated value
-else:
-    #: Contact points per element.
-    ContactPoints = integer(ge=1, le=64)
 
 _PYTHON = "<scenario>"
 

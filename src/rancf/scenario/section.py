@@ -17,20 +17,14 @@ from __future__ import annotations
 
 import math
 import sys
-from typing import TYPE_CHECKING, Any, Literal, TypeAlias
+from typing import Any, Literal
 
 from pydantic import Field, model_validator
 
-from rancf.scenario.base import Positive, Table, Vector3, fail, number, show
+from rancf.scenario.base import PoissonRatio, Positive, Table, Vector3, fail, show
 from rancf.scenario.geometry import MeshTable
 
 __all__ = ["SectionTable", "MaterialTable", "check_flexible"]
-
-if TYPE_CHECKING:
-    PoissonRatio: TypeAlias = float  # the validated value
-else:
-    #: A Poisson ratio, in (-1, 0.5).
-    PoissonRatio = number(gt=-1.0, lt=0.5)
 
 _ROD_SECTION = ("inertia_y", "inertia_z", "orientation", "torsion_constant", "rotary_inertia")
 

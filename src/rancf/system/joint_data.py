@@ -16,6 +16,8 @@ tangent, for a cable node; none for a point mass), so every joint holds exactly 
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 from numpy.typing import NDArray
 
@@ -50,9 +52,10 @@ def _between(j: Joint) -> list[str]:
     return [str(x) for x in j.between]
 
 
-def _record(info: dict) -> JointRecord:
+def _record(info: dict[str, Any]) -> JointRecord:
     vectors = ("rel", "axis_a", "normals_b", "w_a", "w_b")
-    return JointRecord(**{k: floats(v) if k in vectors else v for k, v in info.items()})
+    fields: dict[str, Any] = {k: floats(v) if k in vectors else v for k, v in info.items()}
+    return JointRecord(**fields)
 
 
 def joint_data(
