@@ -373,7 +373,7 @@ class TimeFunction:
         return rows_equal and same == (other.kind, other.values, other.vector, other.duration,
                                        other.frequency, other.phase, other.build_up)  # fmt: skip
 
-    __hash__ = None  # type: ignore[assignment]
+    # unhashable: a class that defines __eq__ and not __hash__ has __hash__ = None
 
     def __repr__(self) -> str:
         if self.kind == "callable":

@@ -68,8 +68,8 @@ def support_labels(sc: ScenarioView) -> dict[str, list[int | str]]:
     out: dict[str, list[int | str]] = {}
     for i, s in enumerate(sc.supports):
         p = sc.support_place(i)
-        if p.where == "node":
-            out.setdefault(p.body, []).append(s.at)  # type: ignore[arg-type]
+        if p.where == "node" and p.body is not None:  # (a node place names its body)
+            out.setdefault(p.body, []).append(s.at)
     return out
 
 

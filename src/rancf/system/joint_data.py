@@ -86,7 +86,8 @@ def joint_data(
         if j.kind == "fixed" or j.angle is not None:
             info["beta0"] = float(np.arctan2(fa[0] @ fb[1], fa[0] @ fb[0]))
         if j.kind == "slider":
-            normal = np.array([-axis[1], axis[0], 0.0])  # type: ignore[index]
+            assert axis is not None  # required (_axis)
+            normal = np.array([-axis[1], axis[0], 0.0])
             info["normals_b"][:3] = fb @ normal
         return _record(info)
     if j.kind == "fixed":
@@ -105,7 +106,8 @@ def joint_data(
     if j.kind == "slider":
         if len(fb) < 3:
             raise InputError("joints.between", str(j.between[1]), "a place with a frame")
-        n1, n2 = normals(axis)  # type: ignore[arg-type]
+        assert axis is not None  # required (_axis)
+        n1, n2 = normals(axis)
         info["normals_b"] = np.r_[fb @ n1, fb @ n2]
         return _record(info)
     if j.kind == "revolute":
@@ -114,7 +116,8 @@ def joint_data(
                 "joints.between", _between(j),
                 "places with a frame (a 3D cable node has only a tangent: a rod)",
             )  # fmt: skip
-        n1, n2 = normals(axis)  # type: ignore[arg-type]
+        assert axis is not None  # required in 3D (_axis)
+        n1, n2 = normals(axis)
         info["axis_a"], info["normals_b"] = fa @ axis, np.r_[fb @ n1, fb @ n2]
         if j.angle is not None:
             info["w_a"], info["w_b"] = fa @ n1, fb @ n1

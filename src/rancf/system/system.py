@@ -252,8 +252,9 @@ class System(BodyStack):
         """The index of the record of the place ``p`` (resolved); the ground: at
         ``ground_point``, moved by the time function ``motion``."""
         if p.body is None:
+            assert ground_point is not None  # the callers give the ground's point
             point = np.zeros(3)
-            point[: self.dim] = ground_point[: self.dim]  # type: ignore[index]
+            point[: self.dim] = ground_point[: self.dim]
             ground = PlaceRecord("ground", point=vec3(point), motion=motion)
             return rows.place(ground, lambda: ground)
         self._place_index[p] = rows.place(p, lambda: self.place_record(p))
