@@ -110,7 +110,7 @@ class ModalResult:
     modes: NDArray[np.float64]
     n_rigid: int
     eigenvalues: NDArray[np.float64] | NDArray[np.complex128]
-    growth_rates: NDArray[np.float64] | None = None
+    growth_rates: NDArray[np.float64]
     symmetric: bool = True
 
 
