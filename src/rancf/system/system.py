@@ -130,8 +130,7 @@ class System(BodyStack):
         The parts as the compiled core ``core`` took them (:mod:`rancf.kernels.records`).
     """
 
-    #: the coordinate of each driven drum by name (:func:`rancf.system.winches.attach_winches`)
-    drums: dict[str, int]
+    drums: dict[str, int]  #: each driven drum's coordinate (rancf.system.winches.attach_winches)
 
     def __init__(
         self,
