@@ -123,7 +123,7 @@ class Table(BaseModel):
             raise scenario_error(exc, self.error_path()) from None
 
     # validation from a dictionary (model_validate) validates directly, without __init__
-    __init__.__pydantic_base_init__ = True  # type: ignore[attr-defined]
+    __init__.__pydantic_base_init__ = True  # type: ignore[attr-defined]  # pydantic reads it
 
     @classmethod
     def error_path(cls) -> str:
@@ -159,7 +159,7 @@ class Table(BaseModel):
             return NotImplemented
         return type(self) is type(other) and self.__dict__ == other.__dict__
 
-    __hash__ = None  # type: ignore[assignment]
+    __hash__ = None  # type: ignore[assignment]  # unhashable (pydantic hashes frozen models)
 
     def __getitem__(self, key: str) -> Any:
         for name, f in type(self).model_fields.items():
