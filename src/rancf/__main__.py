@@ -8,6 +8,7 @@ process without the interpreter's teardown (:func:`_exit_now`).
 import os
 import signal
 import sys
+from types import FrameType
 
 #: Set by the first Ctrl-C: an import that an interrupt breaks can end in another exception
 #: (NumPy's C modules turn it into an ``ImportError``), which is then the same interrupt.
@@ -74,6 +75,7 @@ def _the_program() -> bool:
     -m rancf``, a coverage run or a test)."""
     if sys.gettrace() is not None or sys.getprofile() is not None:
         return False
+    frame: FrameType | None
     try:
         frame = sys._getframe(3)  # the caller of run() (this function, _exit_now, run, it)
     except ValueError:  # run() called from outside Python (an embedding)

@@ -95,8 +95,11 @@ class DynamicOptions:
 
     def __post_init__(self) -> None:
         def positive(name: str, value: object, upper: float = np.inf, what: str = "") -> None:
-            ok = isinstance(value, int | float) and not isinstance(value, bool)
-            if not (ok and np.isfinite(value) and 0 < value <= upper):  # type: ignore[operator]
+            if (
+                isinstance(value, bool)
+                or not isinstance(value, int | float)
+                or not (np.isfinite(value) and 0 < value <= upper)
+            ):
                 raise InputError(f"solver.{name}", value, f"a finite number > 0{what}")
 
         positive("t_end", self.t_end)
@@ -165,9 +168,9 @@ class DynamicOptions:
         step is ``output_step / steps_per_output`` (the largest step below ``step`` that
         divides the interval: as many steps as cutting each interval's last step short, all
         of one size); else these options."""
-        n = self.steps_per_output
-        if n is None:
+        n, out = self.steps_per_output, self.output_step
+        if n is None or out is None:  # (n is None without an output step)
             return self
-        h = self.output_step / n  # type: ignore[operator]
+        h = out / n
         low = None if self.min_step is None else min(self.min_step, h)
         return replace(self, step=h, min_step=low)

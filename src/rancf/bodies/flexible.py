@@ -141,7 +141,7 @@ class Model(Coordinates):
             if self.dim != 2:
                 raise InputError("mesh.element", "beam", "the beam element is planar (2D geometry)")
             t = mesh.nodes[:, 1]
-            self.kernel: CableKernel | BeamKernel = BeamKernel(
+            self.kernel: CableKernel | BeamKernel | RodKernel = BeamKernel(
                 mesh.nodes[:, 0], np.arctan2(t[:, 1], t[:, 0]), props, rho * section.inertia
             )
             self.dpn = 3

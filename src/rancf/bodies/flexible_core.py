@@ -23,24 +23,60 @@ __all__ = ["core_model", "section_stiffness"]
 class AssembledBody(Protocol):
     """What the core's structure is made of (:class:`rancf.bodies.flexible.Model`)."""
 
-    dim: int
-    dpn: int
-    n_el: int
-    n_nodes: int
-    element: str
-    closed: bool
-    kernel: CableKernel | BeamKernel | RodKernel
-    section: Any
-    material: Any
-    props: Any
-    reduction: Any
-    point_loads: Sequence[Any]
-    strain_rate_damping: Any
-    rotations: list[tuple[int, np.ndarray]]
-    fixed: np.ndarray
-    f_gravity: np.ndarray
-    mass_band: np.ndarray
-    y0: np.ndarray
+    # read-only: implementations may narrow a member's type
+    @property
+    def dim(self) -> int: ...
+
+    @property
+    def dpn(self) -> int: ...
+
+    @property
+    def n_el(self) -> int: ...
+
+    @property
+    def n_nodes(self) -> int: ...
+
+    @property
+    def element(self) -> str: ...
+
+    @property
+    def closed(self) -> bool: ...
+
+    @property
+    def kernel(self) -> CableKernel | BeamKernel | RodKernel: ...
+
+    @property
+    def section(self) -> Any: ...
+
+    @property
+    def material(self) -> Any: ...
+
+    @property
+    def props(self) -> Any: ...
+
+    @property
+    def reduction(self) -> Any: ...
+
+    @property
+    def point_loads(self) -> Sequence[Any]: ...
+
+    @property
+    def strain_rate_damping(self) -> Any: ...
+
+    @property
+    def rotations(self) -> list[tuple[int, np.ndarray]]: ...
+
+    @property
+    def fixed(self) -> np.ndarray: ...
+
+    @property
+    def f_gravity(self) -> np.ndarray: ...
+
+    @property
+    def mass_band(self) -> np.ndarray: ...
+
+    @property
+    def y0(self) -> np.ndarray: ...
 
     def check_node(self, node: int, key: str) -> int: ...
 

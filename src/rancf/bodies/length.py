@@ -16,6 +16,7 @@ import numpy as np
 
 from rancf.bodies.flexible import Model
 from rancf.errors import InputError
+from rancf.kernels.beam import BeamKernel
 from rancf.kernels.cable import CableKernel
 from rancf.kernels.rod import RodKernel
 
@@ -69,7 +70,9 @@ def set_unstretched_length(model: Model, length: float, anchor: int | None = Non
     c = _cable(model)
     scale = float(length) / reference_length(model)
     ratio = scale / c.length_scale
-    model.kernel.scale_length(scale)
+    kernel = model.kernel
+    assert not isinstance(kernel, BeamKernel)  # refused by _cable
+    kernel.scale_length(scale)
     model.mass_band *= ratio  # shared with the core: in place
     model.mass_el *= ratio
     model.f_gravity *= ratio

@@ -41,15 +41,33 @@ __all__ = ["RigidMotion", "rigid_velocity", "check_supports_at_rest", "angular_m
 class MovingBody(Protocol):
     """What rigid motions read of a flexible body (:class:`rancf.bodies.flexible.Model`)."""
 
-    dim: int
-    dpn: int
-    n_el: int
-    n_nodes: int
-    element: str
-    fixed: NDArray[np.bool_]
-    q0: NDArray[np.float64]
-    kernel: Any
-    core: Any
+    # read-only: implementations may narrow a member's type
+    @property
+    def dim(self) -> int: ...
+
+    @property
+    def dpn(self) -> int: ...
+
+    @property
+    def n_el(self) -> int: ...
+
+    @property
+    def n_nodes(self) -> int: ...
+
+    @property
+    def element(self) -> str: ...
+
+    @property
+    def fixed(self) -> NDArray[np.bool_]: ...
+
+    @property
+    def q0(self) -> NDArray[np.float64]: ...
+
+    @property
+    def kernel(self) -> Any: ...
+
+    @property
+    def core(self) -> Any: ...
 
     def y_from_q(self, q: ArrayLike) -> NDArray[np.float64]: ...
 

@@ -205,5 +205,5 @@ class PointLoad:
     node: int
     force: tuple[float, ...] | None = None
     frequency_hz: float | None = None
-    moment: tuple[float, float, float] | None = None
+    moment: tuple[float, ...] | None = None
     time: TimeFunction | None = None

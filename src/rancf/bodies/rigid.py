@@ -24,10 +24,10 @@ from rancf.errors import InputError
 __all__ = ["RigidBody", "PointMass", "quaternion_from_matrix", "body_angular_velocity"]
 
 
-def _vector(key: str, v: Sequence[float] | None, dim: int) -> NDArray[np.float64]:
+def _vector(key: str, v: float | Sequence[float] | None, dim: int) -> NDArray[np.float64]:
     a = np.zeros(dim) if v is None else np.asarray(v, dtype=float)
     if a.shape != (dim,) or not np.all(np.isfinite(a)):
-        raise InputError(key, None if v is None else list(v), f"{dim} finite numbers")
+        raise InputError(key, list(v) if isinstance(v, Sequence) else v, f"{dim} finite numbers")
     return a
 
 
@@ -49,8 +49,8 @@ def quaternion_from_matrix(r: NDArray) -> NDArray[np.float64]:
     else:
         s = 2.0 * np.sqrt(1.0 + r[2, 2] - r[0, 0] - r[1, 1])
         q = [(r[1, 0] - r[0, 1]) / s, (r[0, 2] + r[2, 0]) / s, (r[1, 2] + r[2, 1]) / s, 0.25 * s]
-    q = np.array(q)
-    return q / np.linalg.norm(q) * (1.0 if q[0] >= 0 else -1.0)
+    qa = np.array(q)
+    return qa / np.linalg.norm(qa) * (1.0 if qa[0] >= 0 else -1.0)
 
 
 def _g_matrix(p: NDArray) -> NDArray[np.float64]:
@@ -128,7 +128,8 @@ class RigidBody:
     def rotation(self) -> NDArray[np.float64]:
         """Initial rotation matrix (3D) or 2x2 (2D)."""
         if self.dim == 2:
-            c, s = np.cos(float(self.orientation)), np.sin(float(self.orientation))  # type: ignore[arg-type]
+            angle = float(np.asarray(self.orientation, dtype=float))
+            c, s = np.cos(angle), np.sin(angle)
             return np.array([[c, -s], [s, c]])
         return np.asarray(
             self.orientation if not np.isscalar(self.orientation) else np.eye(3), dtype=float
@@ -139,11 +140,12 @@ class RigidBody:
         x = _vector("position", self.position, self.dim)
         v = _vector("velocity", self.velocity, self.dim)
         if self.dim == 2:
-            w = 0.0 if self.angular_velocity is None else float(self.angular_velocity)  # type: ignore[arg-type]
-            return np.r_[x, float(self.orientation)], np.r_[v, w]  # type: ignore[arg-type]
+            w = self.angular_velocity
+            rate = 0.0 if w is None else float(np.asarray(w, dtype=float))
+            return np.r_[x, float(np.asarray(self.orientation, dtype=float))], np.r_[v, rate]
         p = quaternion_from_matrix(self.rotation())
-        w = _vector("angular_velocity", self.angular_velocity, 3)  # type: ignore[arg-type]
-        pd = 0.5 * _g_matrix(p).T @ (self.rotation().T @ w)
+        omega = _vector("angular_velocity", self.angular_velocity, 3)
+        pd = 0.5 * _g_matrix(p).T @ (self.rotation().T @ omega)
         return np.r_[x, p], np.r_[v, pd]
 
     def point(self, name: str | None) -> NDArray[np.float64]:

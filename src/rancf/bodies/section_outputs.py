@@ -38,6 +38,8 @@ from rancf.bodies.flexible_core import section_stiffness
 from rancf.elements.cable import cable_shape_functions
 from rancf.geometry.quadrature import gauss_legendre
 from rancf.kernels import _core
+from rancf.kernels.beam import BeamKernel
+from rancf.mesh.mesh import CableMesh
 
 __all__ = ["SectionSampler", "section_names"]
 
@@ -73,7 +75,7 @@ class SectionSampler:
             (np.arange(n_el)[:, None] * (per_element + 1) + np.arange(per_element)).ravel(),
             n_el * (per_element + 1) - 1,
         ]
-        if model.element == "beam":
+        if isinstance(model.kernel, BeamKernel):
             l0 = model.kernel.l0
             self.n1 = self.n2 = self.ref = np.zeros(0)
             s_el = l0[:, None] * xi[None, :]
@@ -171,13 +173,13 @@ def _scale(model: Model) -> float:
     return float(getattr(getattr(k, "cable", k), "length_scale", 1.0))
 
 
-def _arc_lengths(mesh: object, xi: NDArray, n_gauss: int = 12) -> tuple[NDArray, NDArray]:
+def _arc_lengths(mesh: CableMesh, xi: NDArray, n_gauss: int = 12) -> tuple[NDArray, NDArray]:
     """Reference arc length from each element's start to ``ξ`` ``(n_el, n_xi)``, and the arc
     length at each element's start ``(n_el,)``; Gauss–Legendre on ``[0, ξ]``."""
     gp, gw = gauss_legendre(n_gauss)
     pts = (xi[:, None] * gp[None, :]).ravel()  # (n_xi * n_gauss)
-    _, n1, _ = cable_shape_functions(mesh.weights, mesh.scales, pts)  # type: ignore[attr-defined]
-    e0 = mesh.element_nodal()  # type: ignore[attr-defined]
+    _, n1, _ = cable_shape_functions(mesh.weights, mesh.scales, pts)
+    e0 = mesh.element_nodal()
     speed = np.linalg.norm(np.einsum("eqk,ekd->eqd", n1, e0), axis=-1)
     speed = speed.reshape(speed.shape[0], xi.size, n_gauss)
     s_el = np.einsum("exg,g->ex", speed, gw) * xi[None, :]

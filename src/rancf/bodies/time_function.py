@@ -293,10 +293,11 @@ class TimeFunction:
         return (vs[i] + slope * (t - ts[i]), slope, 0.0 * slope)[order]
 
     def _callable(self, t: float, order: int) -> NDArray[np.float64]:
-        assert self.fn is not None
+        fn = self.fn
+        assert fn is not None
 
         def f(x: float) -> NDArray[np.float64]:
-            return np.atleast_1d(np.asarray(self.fn(x), dtype=float))  # type: ignore[misc]
+            return np.atleast_1d(np.asarray(fn(x), dtype=np.float64))
 
         if order == 0:
             return f(t)
@@ -372,7 +373,7 @@ class TimeFunction:
         return rows_equal and same == (other.kind, other.values, other.vector, other.duration,
                                        other.frequency, other.phase, other.build_up)  # fmt: skip
 
-    __hash__ = None  # type: ignore[assignment]
+    # unhashable: a class that defines __eq__ and not __hash__ has __hash__ = None
 
     def __repr__(self) -> str:
         if self.kind == "callable":

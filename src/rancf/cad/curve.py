@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
+import numpy as np
 from numpy.typing import ArrayLike
 
 from rancf.errors import InputError
@@ -41,7 +42,8 @@ def file_curve(
     """The NURBS curve ``index`` of the file ``path``; a curve the file stores wrongly (knots,
     weights) raises the error of :class:`NurbsCurve` with the file and the curve named."""
     try:
-        return NurbsCurve(degree, knots, points, weights)
+        arrays = (np.asarray(x, dtype=float) for x in (knots, points, weights))
+        return NurbsCurve(degree, *arrays)
     except InputError as exc:  # every InputError subclass takes (parameter, value, allowed)
         where = f"{path}: curve {index}: {exc.parameter}"
         raise type(exc)(where, exc.value, exc.allowed) from None

@@ -35,7 +35,7 @@ def dxf_unit_scale(doc: Any, path: Path) -> tuple[float, str]:
     if not code or code == units.M:
         return 1.0, ""
     try:
-        scale = float(units.conversion_factor(code, units.M))
+        scale = float(units.conversion_factor(units.InsertUnits(code), units.InsertUnits.Meters))
         name = units.unit_name(code).lower()
     except (KeyError, ValueError, TypeError):
         allowed = "a length unit of the DXF standard (0 = none, 1 = inches, 4 = millimetres, ...)"
@@ -62,6 +62,7 @@ def read_dxf(path: Path) -> list[CadCurve]:
     """Every ``SPLINE`` of the model space with control points or fit points, in file order,
     in metres (module docstring)."""
     import ezdxf
+    from ezdxf.entities import Spline
 
     try:
         doc = ezdxf.readfile(str(path))
@@ -69,15 +70,16 @@ def read_dxf(path: Path) -> list[CadCurve]:
         why = shorten(" ".join(str(exc).split()))
         raise InputError("file", str(path), f"a readable DXF file ({why})") from None
     scale, unit_note = dxf_unit_scale(doc, path)
-    out = []
+    out: list[CadCurve] = []
     for e in doc.modelspace().query("SPLINE"):
+        assert isinstance(e, Spline)  # the query's entities
         if not e.control_point_count() and e.fit_point_count() < 2:
             continue
         degree, knots, pts, w, fitted = _spline(e)
         if w.size == 0:
             w = np.ones(pts.shape[0])
         curve = file_curve(path, len(out), degree, knots, scale * pts, w)
-        notes = (unit_note,) if unit_note else ()
+        notes: tuple[str, ...] = (unit_note,) if unit_note else ()
         if fitted:
             notes += (f"{path.name}: spline #{e.dxf.handle} is given by {e.fit_point_count()} "
                       "fit points only: its control points are those of the cubic B-spline "

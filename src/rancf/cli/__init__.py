@@ -126,9 +126,11 @@ def _open_stdout() -> str | None:
         return "standard output is closed (redirect it to a file or to /dev/null)"
     if isinstance(stream, _Stdout):
         return None
-    with contextlib.suppress(AttributeError, ValueError, OSError):
-        stream.reconfigure(errors="surrogateescape")
-    sys.stdout = _Stdout(stream)  # type: ignore[assignment]
+    reconfigure = getattr(stream, "reconfigure", None)  # a text file's (io.TextIOWrapper)
+    if reconfigure is not None:
+        with contextlib.suppress(ValueError, OSError):
+            reconfigure(errors="surrogateescape")
+    sys.stdout = _Stdout(stream)
     return None
 
 

@@ -126,10 +126,11 @@ def _cmd_modes(args: argparse.Namespace) -> int:
     run = run_modes(sc, args.count, args.about, count_key=key)
     system, res, cam = run.system, run.result, run.campbell
     notes = _warn(run.warnings)
-    shapes_plot = plot if plot is None or cam is None else _shapes_path(plot)
+    shapes_plot = None
     if plot is not None:
         from rancf.post.plots import plot_modes
 
+        shapes_plot = plot if cam is None else _shapes_path(plot)
         plot_modes(system, res, shapes_plot, run.y)
     out = {
         "frequencies_hz": res.frequencies_hz.tolist(),

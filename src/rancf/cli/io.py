@@ -29,16 +29,15 @@ import contextlib
 import errno
 import os
 import shutil
+import sys
 from pathlib import Path
 from types import TracebackType
 from typing import Literal
 
 from rancf.errors import InputError
 
-try:  # POSIX; elsewhere folders are not locked
+if sys.platform != "win32":  # POSIX; elsewhere folders are not locked
     import fcntl
-except ImportError:  # pragma: no cover - Windows
-    fcntl = None  # type: ignore[assignment]
 
 __all__ = ["check_out_dir", "check_plot_path", "OutputDir", "PLOT_FORMATS", "LOCK_NAME"]
 
@@ -188,7 +187,7 @@ class OutputDir:
 
     def _acquire(self) -> None:
         """Hold ``.rancf.lock`` (an exclusive ``flock``) or refuse naming its holder."""
-        if fcntl is None:  # pragma: no cover - Windows
+        if sys.platform == "win32":  # pragma: no cover - no flock
             return
         lock = self.path / LOCK_NAME
         for _ in range(10):

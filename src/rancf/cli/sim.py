@@ -11,7 +11,7 @@ import sys
 import time
 import tomllib
 from pathlib import Path
-from typing import Any
+from typing import Any, Literal
 
 from rancf.cli.io import OutputDir
 from rancf.errors import InputError, RunFailedError
@@ -73,7 +73,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     limit = _positive("--max-output-gb", args.max_output_gb, "a finite size in GB > 0")
     if args.t_end is not None:
         _positive("--t-end", args.t_end, "a finite time in s > 0")
-    kind = "resume" if args.resume else "run"
+    kind: Literal["resume", "run"] = "resume" if args.resume else "run"
     od = OutputDir(args.out, kind=kind, overwrite=args.overwrite)  # checks the path up front
     from rancf.atomic import atomic_write
     from rancf.cli.resume import Resume, scenario_for_run
@@ -93,7 +93,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     with stop, od:
         resume = Resume(out, copy, files) if od.earlier_run else None
         state = None if resume is None else resume.state
-        if state is None:
+        if resume is None or state is None:
             y_start, start_info = start_state(sc, system)
             od.clear()  # --resume of a run killed before its first checkpoint: from the start
         else:
@@ -108,7 +108,10 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         notes = _warn(before_run_warnings(system, opts))  # the run goes on
         for note in sc.notes:  # defaults the file did not state (a harmonic's build-up)
             print(f"rancf: {note}", file=sys.stderr)
-        info = {"scenario": str(Path(args.scenario).resolve()), "setup_wall_time_s": None}
+        info: dict[str, Any] = {
+            "scenario": str(Path(args.scenario).resolve()),
+            "setup_wall_time_s": None,
+        }
         info["notes"] = sc.notes
         info["input_files"] = files
         info.update(start_info)

@@ -116,7 +116,8 @@ def kopt(conic: Conic, xatol: float = 1e-10) -> float:
     """
     from scipy.optimize import minimize_scalar  # lazy, as above
 
-    z = np.linspace(*(np.log(k / (1.0 - k)) for k in K_RANGE), 41)
+    lo, hi = (np.log(k / (1.0 - k)) for k in K_RANGE)
+    z = np.linspace(lo, hi, 41)
     ks = 1.0 / (1.0 + np.exp(-z))
     ratios = np.array([gradient_ratio(conic.cubic(k)) for k in ks])
     i = int(np.argmin(ratios))

@@ -28,11 +28,11 @@ __all__ = [
 ]
 
 
-def pad3(a: NDArray) -> NDArray:
+def pad3(a: ArrayLike) -> NDArray:
     """Planar vectors ``(..., 2)`` as spatial ones ``(..., 3)`` with ``z = 0``; spatial ones are
     returned as they are (as float arrays)."""
-    a = np.asarray(a, dtype=float)
-    return a if a.shape[-1] == 3 else np.concatenate([a, np.zeros(a.shape[:-1] + (1,))], axis=-1)
+    v = np.asarray(a, dtype=float)
+    return v if v.shape[-1] == 3 else np.concatenate([v, np.zeros(v.shape[:-1] + (1,))], axis=-1)
 
 
 def cross2(a: NDArray, b: NDArray) -> NDArray:
@@ -85,7 +85,7 @@ def weight_from_point(lam: ArrayLike) -> float:
     return float(l1 / (2.0 * np.sqrt(l0 * l2)))
 
 
-def check_mapping_factor(k: float, name: str = "k") -> float:
+def check_mapping_factor(k: float | str, name: str = "k") -> float:
     """Validate a mapping factor ``K ∈ (0, 1)`` and return it as a float."""
     try:
         kf = float(k)

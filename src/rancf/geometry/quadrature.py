@@ -122,5 +122,11 @@ def integrate(
         If the adaptive bisection does not resolve the integrand.
     """
     return float(
-        integrate_many(lambda _, xs: f(xs.ravel()).reshape(xs.shape), [a], [b], rtol, points)[0]
+        integrate_many(
+            lambda _, xs: f(xs.ravel()).reshape(xs.shape),
+            np.array([a]),
+            np.array([b]),
+            rtol,
+            points,
+        )[0]
     )

@@ -7,6 +7,6 @@ named input structures (:mod:`rancf.kernels.cable`, :mod:`rancf.kernels.beam`) a
 constant mass and gravity integrals.
 """
 
-from rancf.kernels import _core
+import rancf.kernels._core as _core
 
 __all__ = ["_core"]

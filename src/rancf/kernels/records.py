@@ -13,10 +13,10 @@ position in their lists.
 
 from __future__ import annotations
 
-from collections.abc import Iterable
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 __all__ = [
     "PLACE_KINDS",
@@ -34,6 +34,7 @@ __all__ = [
     "LineRecord",
     "DistributedRecord",
     "floats",
+    "vec3",
 ]
 
 #: Kinds of places (``PlaceKind``, ``src/cpp/places.hpp``).
@@ -44,9 +45,15 @@ JOINT_KINDS = ("pin", "fixed", "tangent", "revolute", "slider", "sliding")
 TIME_KINDS = ("constant", "piecewise", "ramp", "harmonic", "spin_up")
 
 
-def floats(values: Iterable[float]) -> tuple[float, ...]:
+def floats(values: ArrayLike) -> tuple[float, ...]:
     """A record's vector: ``values`` (an array of any shape is taken row-major) as floats."""
     return tuple(float(x) for x in np.ravel(np.asarray(values, dtype=float)))
+
+
+def vec3(values: ArrayLike) -> tuple[float, float, float]:
+    """A record's 3-vector: :func:`floats` of exactly three values."""
+    x, y, z = floats(values)
+    return x, y, z
 
 
 @dataclass(frozen=True)

@@ -74,7 +74,7 @@ def initial_triads(
     if orientation is not None:
         o = np.asarray(orientation, dtype=float)
         m1 = o - (o @ t[0]) * t[0]
-        if not np.linalg.norm(m1) > 1e-9 * max(np.linalg.norm(o), 1e-300):
+        if not np.linalg.norm(m1) > 1e-9 * max(float(np.linalg.norm(o)), 1e-300):
             raise InputError(
                 "section.orientation", o.tolist(), "a vector not parallel to the first tangent"
             )

@@ -86,9 +86,9 @@ def select_cad_curves(
         labels.append(f"curve {c.index}" + (f" ({c.name})" if c.name else ""))
     planar = all(c.dim == 2 or np.all(c.points[:, 2] == 0.0) for c in picked)
     out = []
-    for c in picked:
-        pts = c.points[:, :2] if planar else pad3(c.points)
-        out.append(NurbsCurve(c.degree, c.knots, pts, c.weights))
+    for nc in picked:
+        pts = nc.points[:, :2] if planar else pad3(nc.points)
+        out.append(NurbsCurve(nc.degree, nc.knots, pts, nc.weights))
     return out, labels, tuple(notes)
 
 
@@ -139,7 +139,7 @@ def chain_segments(
             )
         oriented.append(c)
     segments: list[RationalBezier] = []
-    params = []
+    params: list[float] = []
     offset = 0.0
     owner: list[str] = []
     for c, label in zip(oriented, labels, strict=True):

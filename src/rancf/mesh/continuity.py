@@ -43,6 +43,7 @@ are banded with half bandwidth ``w - 1``.
 from __future__ import annotations
 
 import dataclasses
+import functools
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Literal
 
@@ -55,6 +56,7 @@ from rancf.mesh.spline_basis import G2_RTOL, conditions, element_ends, scalar_ba
 
 if TYPE_CHECKING:  # scipy.sparse is imported where a C2 mesh needs it (0.1 s at start-up)
     import scipy.sparse as sp
+    from scipy.sparse.linalg import SuperLU
 
 __all__ = [
     "Continuity",
@@ -117,21 +119,24 @@ class Reduction:
         f = np.asarray(f, dtype=float)
         return np.asarray((self.t.T @ f.reshape(-1, f.shape[-1]).T).T).reshape(f.shape)
 
+    @functools.cached_property
+    def _lu(self) -> SuperLU:
+        """The LU factors of the normal equations ``Tᵣᵀ Tᵣ`` of :meth:`y_from_q`."""
+        import scipy.sparse.linalg as spla
+
+        tr = self.t[:, : self.n_real].tocsc()
+        return spla.splu((tr.T @ tr).tocsc())
+
     def y_from_q(self, q: NDArray) -> NDArray[np.float64]:
         """Least-squares ``y`` with ``T y ≈ q`` (exact for ``q`` in the C² space)."""
-        if not hasattr(self, "_lu"):
-            import scipy.sparse.linalg as spla
-
-            tr = self.t[:, : self.n_real].tocsc()
-            object.__setattr__(self, "_lu", spla.splu((tr.T @ tr).tocsc()))
         q = np.asarray(q, dtype=float)
         flat = q.reshape(-1, q.shape[-1])
         rhs = np.asarray(self.t[:, : self.n_real].T @ flat.T)
         out = np.zeros((flat.shape[0], self.n_y))
         tr = self.t[:, : self.n_real]
-        x = self._lu.solve(rhs)  # type: ignore[attr-defined]
+        x = self._lu.solve(rhs)
         for _ in range(2):  # refinement: the normal equations square the condition number
-            x = x + self._lu.solve(np.asarray(tr.T @ (flat.T - tr @ x)))  # type: ignore[attr-defined]
+            x = x + self._lu.solve(np.asarray(tr.T @ (flat.T - tr @ x)))
         out[:, : self.n_real] = x.T
         return out.reshape(q.shape[:-1] + (self.n_y,))
 
@@ -166,7 +171,7 @@ def reduction(
 
     d, n_el, nn = mesh.dim, mesh.n_elements, mesh.n_nodes
     _, smooth = conditions(mesh)
-    c1 = {0, n_el} | {int(k) for k in c1_nodes} | {k + 1 for k in np.flatnonzero(~smooth)}
+    c1 = {0, n_el} | {int(k) for k in c1_nodes} | {int(k) + 1 for k in np.flatnonzero(~smooth)}
     funcs, ends = scalar_basis(mesh, c1)
     # partition of unity: scale the inner functions so that all functions sum to one
     inner = [i for i, f in enumerate(funcs) if f[0] == "inner"]
@@ -236,8 +241,9 @@ def reduction(
                       node_base)  # fmt: skip
     red = dataclasses.replace(red, jumps=tuple(int(k) + 1 for k in np.flatnonzero(~smooth)))
     y0 = red.y_from_q(q0)
-    for k in np.flatnonzero(node_base >= 0):  # a C¹ node's block is its own coordinates
-        y0[node_base[k] : node_base[k] + dpn] = q0[k * dpn : (k + 1) * dpn]
+    for c1_node in np.flatnonzero(node_base >= 0):  # a C¹ node's block is its own coordinates
+        b0 = node_base[c1_node]
+        y0[b0 : b0 + dpn] = q0[c1_node * dpn : (c1_node + 1) * dpn]
     err = np.abs(red.q_from_y(y0) - q0).max()
     if not err <= 1e-10 * max(np.abs(q0).max(), 1.0):
         raise InputError("mesh.continuity", "C2", f"a reference in the C² space (it misses by "

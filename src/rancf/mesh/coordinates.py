@@ -121,9 +121,9 @@ class Coordinates:
         """Model coordinates that are positions (lengths): ``r`` of every node (C¹), or the
         control points and the C¹ nodes' ``r`` (C²); for the scaling of Newton's norms."""
         if self.reduction is None:
-            mask = np.zeros((self.n_nodes, self.dpn), dtype=bool)
-            mask[:, : self.dim] = True
-            return mask.ravel()
+            nodal = np.zeros((self.n_nodes, self.dpn), dtype=bool)
+            nodal[:, : self.dim] = True
+            return nodal.ravel()
         t = self.reduction.t.tocsc()
         mask = np.zeros(self.n, dtype=bool)
         for j in range(self.reduction.n_real):

@@ -72,7 +72,7 @@ def mesh_ellipse(
     if k is None or (isinstance(k, str) and k == "opt"):
         ks = kopt_many(pts, om)
     else:
-        ks = np.full(t.size - 1, check_mapping_factor(k))  # type: ignore[arg-type]
+        ks = np.full(t.size - 1, check_mapping_factor(k))
     pts[-1, 2] = pts[0, 0]  # the same point to the last bit
     cp, w = cubic_forms(pts, om, ks)
     mesh = mesh_from_arrays(cp, w, ks, t, "rancf", total_length=ellipse.perimeter())

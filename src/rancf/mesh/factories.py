@@ -49,7 +49,7 @@ def mesh_conic(
     if k is None or (isinstance(k, str) and k == "opt"):
         ks = kopt_many(pts, om)
     else:
-        ks = np.full(n, check_mapping_factor(k))  # type: ignore[arg-type]
+        ks = np.full(n, check_mapping_factor(k))
     cp, w = cubic_forms(pts, om, ks)
     return mesh_from_arrays(cp, w, ks, u, "rancf", total_length=conic.arc_length())
 

@@ -20,6 +20,7 @@ on the paper's example 2), which ruins the conditioning; a warning is logged abo
 from __future__ import annotations
 
 import logging
+import numbers
 from dataclasses import dataclass, field
 from typing import Literal
 
@@ -51,13 +52,11 @@ GRADIENT_SPAN_WARNING = 1e6
 
 def check_element_count(n: object, name: str = "elements") -> int:
     """Validate a number of elements (an integer >= 1)."""
-    try:
-        ok = int(n) == n and int(n) >= 1  # type: ignore[call-overload]
-    except (TypeError, ValueError):
-        ok = False
-    if not ok or isinstance(n, bool):
-        raise ElementCountError(name, n, "an integer number of elements >= 1")
-    return int(n)  # type: ignore[call-overload]
+    if isinstance(n, numbers.Real) and not isinstance(n, bool):
+        f = float(n)
+        if f.is_integer() and f >= 1:  # not NaN or inf
+            return int(f)
+    raise ElementCountError(name, n, "an integer number of elements >= 1")
 
 
 @dataclass(frozen=True)

@@ -120,7 +120,7 @@ def _beam_fields(run: RunData, q: NDArray, v: NDArray, xi: NDArray) -> tuple[NDA
         length = np.linalg.norm(d, axis=1)
         t = np.stack([np.cos(psi), np.sin(psi)], axis=1)
         e = np.stack([pos[:-1], length[:, None] * t[:-1], pos[1:], length[:, None] * t[1:]], 1)
-        return tuple(np.einsum("qk,ekd->eqd", b, e) for b in (h, h1, h2)) + (e,)  # type: ignore
+        return tuple(np.einsum("qk,ekd->eqd", b, e) for b in (h, h1, h2)) + (e,)
 
     r, d1, d2, _ = curve(x, psi0 + nodes[:, 2])
     r0 = curve(x0, psi0)[0]

@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from rancf.bodies.flexible import Model
 from rancf.system import System, contact_outputs
 
 __all__ = ["contact_warnings", "wrap_error", "WRAP_ANGLE_LIMIT", "TOUCH_FACTOR"]
@@ -60,7 +61,7 @@ def _body_pairs(system: System) -> list[str]:
     system.contact.body_outputs(np.ascontiguousarray(system.y0, float), bo)
     out = []
     for k, (a, b) in enumerate(system.body_contacts):
-        r = min(float(system.bodies[x].section.radius) for x in (a, b))
+        r = min(float(_flexible(system, x).section.radius) for x in (a, b))
         depth = -float(bo[3 * k])
         if depth > r:
             who = f"{a} starts {depth:.4g} m inside itself" if a == b else (
@@ -84,7 +85,7 @@ def contact_warnings(system: System) -> list[str]:
     obstacles = dict(zip(system.obstacle_names, system.obstacles, strict=True))
     out = []
     for k, (name, ob_name) in enumerate(system.contact_pairs):
-        body, ob = system.bodies[name], obstacles[ob_name]
+        body, ob = _flexible(system, name), obstacles[ob_name]
         rt = float(body.section.radius)
         g = _gaps(system, k, body.n_el)
         if -g.min() > rt:
@@ -99,6 +100,7 @@ def contact_warnings(system: System) -> list[str]:
         on = touch.mean(axis=1) > 0.5  # elements on the wrap: most of their points touch
         if not on.any():
             continue
+        assert ob.radius is not None  # a cylinder's or a sphere's
         pitch = float(ob.radius) + rt
         lengths = body.mesh.arc_lengths()
         alpha = lengths[on] / pitch
@@ -114,3 +116,10 @@ def contact_warnings(system: System) -> list[str]:
             f"{np.degrees(WRAP_ANGLE_LIMIT):g}° each)"
         )
     return out + _body_pairs(system)
+
+
+def _flexible(system: System, name: str) -> Model:
+    """The flexible body ``name`` (bodies in contact are flexible)."""
+    body = system.bodies[name]
+    assert isinstance(body, Model)
+    return body

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from pathlib import Path
-from typing import BinaryIO
+from typing import IO
 
 import numpy as np
 from numpy.typing import NDArray
@@ -75,7 +75,7 @@ class Envelope:
             ))  # fmt: skip
         return np.concatenate(parts, axis=1)
 
-    def write(self, fh: BinaryIO) -> None:
+    def write(self, fh: IO[bytes]) -> None:
         """The CSV file (module docstring)."""
         fh.write((",".join(self.columns()) + "\n").encode())
         np.savetxt(fh, self.table(), delimiter=",", fmt="%.12g")

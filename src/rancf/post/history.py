@@ -69,7 +69,7 @@ def _reserve(path: Path) -> None:
 
 def _raw_bytes(values: NDArray) -> memoryview:
     """The numbers as little-endian float64 bytes, without a copy where they already are."""
-    return memoryview(np.ascontiguousarray(values, dtype="<f8").reshape(-1)).cast("B")
+    return np.ascontiguousarray(values, dtype="<f8").reshape(-1).data.cast("B")
 
 
 def _now() -> str:

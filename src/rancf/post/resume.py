@@ -92,7 +92,7 @@ def stored_rows(out: Path, outputs: SystemOutputs, n: int) -> dict[str, NDArray]
     rows["c"], rows["r"] = top["sensors"], top["reactions"]
     along, energies, directors = [], [], []
     for name, model in outputs.flex:
-        keys = ("along", "kinetic", "strain", "gravity")
+        keys: tuple[str, ...] = ("along", "kinetic", "strain", "gravity")
         keys += ("directors",) if model.element == "rod" else ()
         body = _load(out / "bodies" / name / "results.npz", keys, n)
         along.append(body["along"].reshape(n, -1))

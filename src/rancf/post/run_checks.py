@@ -30,7 +30,9 @@ def check_results(npz: Path, data: dict[str, Any]) -> None:
     if not isinstance(meta, dict):
         raise bad("its metadata is not a table")
     element, dim = meta.get("element"), meta.get("dim")
-    dpn = _DOFS_PER_NODE.get(element, {}).get(dim) if isinstance(dim, int) else None
+    dpn = None
+    if isinstance(element, str) and isinstance(dim, int):
+        dpn = _DOFS_PER_NODE.get(element, {}).get(dim)
     if dpn is None:
         raise bad(f"element {element!r} in {dim!r} dimensions is not a known kind")
     names = meta.get("sensor_columns")

@@ -74,7 +74,7 @@ def _npy(zf: zipfile.ZipFile, name: str, shape: tuple[int, ...], chunks: Any) ->
         header = {"descr": "<f8", "fortran_order": False, "shape": shape}
         np.lib.format.write_array_header_2_0(f, header)
         for c in chunks:
-            f.write(memoryview(np.ascontiguousarray(c, dtype="<f8").reshape(-1)).cast("B"))
+            f.write(np.ascontiguousarray(c, dtype="<f8").reshape(-1).data.cast("B"))
 
 
 def _small(zf: zipfile.ZipFile, arrays: dict[str, Any]) -> None:

@@ -19,15 +19,14 @@ from rancf.atomic import FileSet
 from rancf.errors import InputError
 from rancf.extras import require
 from rancf.post.plots import pyplot, save_figure
-from rancf.post.run_data import RunData
 
 __all__ = ["plot_series", "animation_writer"]
 
 
-def _space_axes(fig: Any, run: RunData, pts: NDArray, position: Any = 111) -> Any:
+def _space_axes(fig: Any, dim: int, pts: NDArray, position: Any = 111) -> Any:
     """Axes for centrelines ``pts (..., 3)``: x–y for planar runs; for spatial runs 3D axes
     (mplot3d) with equal scales and every coordinate labelled, so no coordinate is lost."""
-    if run.dim == 2:
+    if dim == 2:
         ax = fig.add_subplot(position)
         ax.set_aspect("equal", adjustable="datalim")
         ax.set_xlabel("x [m]")

@@ -73,6 +73,7 @@ def run_static(
             doc = write_static_run(folder, path, sc.sensors, keys, outputs)
             if on_written is not None:
                 on_written(doc)
+    assert res.lam is not None  # a system's solution has its multipliers (empty: no joints)
     names, vals = sensor_table(outputs, sc.sensors, res.q, static=True,
                                t=res.load_factors[-1:], lam=res.lam[None])  # fmt: skip
     sensors = dict(zip(names, map(float, vals[0]), strict=True))
@@ -84,6 +85,7 @@ def reactions_json(outputs: SystemOutputs, y: NDArray, lam: NDArray | None) -> l
     order, flexible body by body) and per joint, ``{"at", "force", "moment"}`` (``moment`` for
     clamps, rods and joints that transmit one), whatever the sensors
     (:meth:`rancf.system.outputs.SystemOutputs.static_reactions`)."""
+    assert lam is not None  # a system's solution has its multipliers (empty: no joints)
     out = []
     for r in outputs.static_reactions(y, lam):
         item: dict[str, Any] = {"at": r.at, "force": r.force.tolist()}

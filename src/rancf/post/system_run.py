@@ -125,11 +125,11 @@ class SystemRun:
                 out.append((b["name"], pts))
                 continue
             x, axes = self.rigid_frame(b, i)
-            pts = [x]
+            star = [x]  # the centre, then out to each named point and back
             for p in b.get("points", {}).values():
                 local = np.r_[np.asarray(p, float), np.zeros(3 - len(p))]
-                pts += [x + local @ axes, x]
-            out.append((b["name"], np.array(pts)))
+                star += [x + local @ axes, x]
+            out.append((b["name"], np.array(star)))
         return out
 
 
@@ -207,7 +207,7 @@ def plot_system_run(run: SystemRun, out_dir: str | Path, n_configurations: int =
         frames = [run.shapes(int(i)) for i in idx]
         allp = np.concatenate([p for f in frames for _, p in f])
         fig = plt.figure(figsize=(7, 5), constrained_layout=True)
-        ax = _space_axes(fig, run, allp)
+        ax = _space_axes(fig, run.dim, allp)
         cmap = plt.get_cmap("viridis")
         for j, (i, frame) in enumerate(zip(idx, frames, strict=True)):
             color = cmap(j / max(len(idx) - 1, 1))
@@ -237,7 +237,7 @@ def animate_system_run(run: SystemRun, path: str | Path, fps: int = 20, every: i
     frames = [run.shapes(int(i), magnify) for i in idx]
     allp = np.concatenate([p for f in frames for _, p in f])
     fig = plt.figure(figsize=(6, 4.5))
-    ax = _space_axes(fig, run, allp)
+    ax = _space_axes(fig, run.dim, allp)
     if run.dim == 2:
         lo, hi = allp[:, :2].min(axis=0), allp[:, :2].max(axis=0)
         pad = 0.05 * max(float(np.max(hi - lo)), 1e-9)
@@ -283,5 +283,5 @@ def export_system_vtk(run: SystemRun, out_dir: str | Path, every: int = 1,
 
     parts: list[tuple[str, Callable[[int], Any]]] = [("rigid", mesh_at)]
     with FileSet() as files:
-        paths.append(_export(run, out, frame_indices(run.t.size, every), parts, files))  # type: ignore[arg-type]
+        paths.append(_export(run.t, out, frame_indices(run.t.size, every), parts, files))
     return paths

@@ -173,8 +173,10 @@ class _Scene:
 def _layout(run: SystemRun, scene: _Scene, labels: list[str]) -> dict[str, Any]:
     pad = 0.6 * scene.size
     lo, hi = scene.lo - pad, scene.hi + pad
-    axes = {f"{a}axis": {"range": [float(lo[k]), float(hi[k])], "title": f"{a} [m]"}
-            for k, a in enumerate("xyz")}  # fmt: skip
+    axes: dict[str, dict[str, Any]] = {
+        f"{a}axis": {"range": [float(lo[k]), float(hi[k])], "title": f"{a} [m]"}
+        for k, a in enumerate("xyz")
+    }
     if run.dim == 2:
         lo[2], hi[2] = -0.1 * scene.size, 0.1 * scene.size
         axes["zaxis"] = {"range": [float(lo[2]), float(hi[2])], "visible": False}

@@ -86,13 +86,14 @@ def centerline_mesh(run: RunData, i: int, per_element: int = 16):  # -> meshio.M
     if run.radius is not None:
         data["radius"] = np.full(n, run.radius)
     if run.along is not None:
-        data.update(_section_fields(run, i, per_element))
+        data.update(_section_fields(run, run.along[i], per_element))
     return meshio.Mesh(pad3(c.points), [("line", cells)], point_data=data)
 
 
-def _section_fields(run: RunData, i: int, per_element: int) -> dict[str, np.ndarray]:
-    """The stored section quantities at the centreline samples (module docstring)."""
-    along = np.asarray(run.along[i])  # (4 n_el + 1, n_names)
+def _section_fields(run: RunData, stored: NDArray, per_element: int) -> dict[str, np.ndarray]:
+    """The section quantities ``stored`` at a state (``run.along[i]``) at the centreline samples
+    (module docstring)."""
+    along = np.asarray(stored)  # (4 n_el + 1, n_names)
     n_el = (along.shape[0] - 1) // 4
     idx = np.arange(n_el)[:, None] * 4 + np.arange(5)[None, :]  # element e: rows 4e .. 4e + 4
     xi = np.linspace(0.0, 1.0, per_element + 1)
@@ -141,17 +142,18 @@ def export_vtk(run: RunData, out_dir: str | Path, every: int = 1, per_element: i
     if run.element == "rod" and run.directors is not None:
         parts.append((f"{run.name}_nodes", lambda i: nodes_mesh(run, i)))
     with FileSet() as files:
-        return _export(run, out, idx, parts, files)
+        return _export(run.t, out, idx, parts, files)
 
 
 def _export(
-    run: RunData,
+    times: NDArray[np.float64],
     out: Path,
     idx: NDArray[np.int64],
     parts: list[tuple[str, Callable[[int], Any]]],
     files: FileSet,
 ) -> Path:
-    """Every frame of every part, then each part's ``.pvd``, into the set ``files``."""
+    """Every frame ``idx`` (of the stored ``times``) of every part, then each part's ``.pvd``,
+    into the set ``files``."""
     import meshio
 
     paths = []
@@ -162,7 +164,7 @@ def _export(
             with files.path(out / fname) as tmp:
                 meshio.write(tmp, mesh_at(int(i)), file_format="vtu")
             entries.append(
-                f'    <DataSet timestep="{float(run.t[i])!r}" group="" part="0" '
+                f'    <DataSet timestep="{float(times[i])!r}" group="" part="0" '
                 f'file="{html.escape(fname, quote=True)}"/>'
             )
         pvd = "\n".join(

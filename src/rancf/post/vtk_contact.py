@@ -11,7 +11,6 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from pathlib import Path
-from types import SimpleNamespace
 from typing import Any
 
 import numpy as np
@@ -81,8 +80,7 @@ def export_contact_vtk(
         cells = [("vertex", np.arange(n)[:, None])]
         return meshio.Mesh(np.array(pts), cells, point_data=point_data)
 
-    times = SimpleNamespace(t=t)  # what _export reads of a run: its times
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     with FileSet() as files:
-        return _export(times, out, frame_indices(t.size, every), [("contact", mesh_at)], files)  # type: ignore[arg-type]
+        return _export(t, out, frame_indices(t.size, every), [("contact", mesh_at)], files)

@@ -18,7 +18,7 @@ __all__ = ["winch_warnings"]
 def winch_warnings(system: System) -> list[str]:
     """One warning per winch whose body touches a frictional obstacle or has axial fluid
     coefficients (module docstring)."""
-    friction = {}
+    friction: dict[str, list[str]] = {}
     if system.contact is not None:
         obstacles = dict(zip(system.obstacle_names, system.obstacles, strict=True))
         for body, ob in system.contact_pairs:

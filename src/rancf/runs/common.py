@@ -17,4 +17,5 @@ def static_state(sc: Any, system: Any) -> tuple[NDArray, NDArray]:
 
     with scenario_keys(sc):
         res = solve_static(system, **sc.static_options())
+    assert res.lam is not None  # a system's solution has its multipliers (empty: no joints)
     return res.y, res.lam

@@ -11,13 +11,14 @@ the error, so :mod:`rancf.scenario.messages` can name the full key path in the o
 from __future__ import annotations
 
 import math
-from typing import Annotated, Any
+from typing import TYPE_CHECKING, Annotated, Any, TypeAlias
 
 import numpy as np
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Discriminator, Field, model_validator
 from pydantic_core import PydanticCustomError
 
 from rancf.errors import shorten
+from rancf.geometry.conic import LENGTH_RANGE
 from rancf.scenario.messages import scenario_error, show
 
 __all__ = [
@@ -39,6 +40,21 @@ __all__ = [
     "Name",
     "vector",
     "number_or_vector",
+    "Vector2",
+    "Vector3",
+    "Vector23",
+    "Vector123",
+    "NumberOrVector3",
+    "NumberOrVector123",
+    "MAX_COORDINATE",
+    "MAX_ELEMENTS",
+    "Point",
+    "SemiAxes",
+    "Degree",
+    "ElementCount",
+    "QuadraturePoints",
+    "ContactPoints",
+    "PoissonRatio",
     "PlaceValue",
     "PlacePair",
 ]
@@ -107,7 +123,7 @@ class Table(BaseModel):
             raise scenario_error(exc, self.error_path()) from None
 
     # validation from a dictionary (model_validate) validates directly, without __init__
-    __init__.__pydantic_base_init__ = True  # type: ignore[attr-defined]
+    __init__.__pydantic_base_init__ = True  # type: ignore[attr-defined]  # pydantic reads it
 
     @classmethod
     def error_path(cls) -> str:
@@ -143,7 +159,7 @@ class Table(BaseModel):
             return NotImplemented
         return type(self) is type(other) and self.__dict__ == other.__dict__
 
-    __hash__ = None  # type: ignore[assignment]
+    __hash__ = None  # type: ignore[assignment]  # unhashable (pydantic hashes frozen models)
 
     def __getitem__(self, key: str) -> Any:
         for name, f in type(self).model_fields.items():
@@ -201,14 +217,20 @@ def to_number(v: Any) -> float:
     return _number(v)
 
 
-def number(**limits: float) -> Any:
-    """The type of a finite number within ``limits`` (``gt``, ``ge``, ``lt``, ``le``)."""
-    return Annotated[float, Field(**limits), BeforeValidator(_number)]
+def number(
+    *,
+    gt: float | None = None,
+    ge: float | None = None,
+    lt: float | None = None,
+    le: float | None = None,
+) -> Any:
+    """The type of a finite number within the limits given (``gt``, ``ge``, ``lt``, ``le``)."""
+    return Annotated[float, Field(gt=gt, ge=ge, lt=lt, le=le), BeforeValidator(_number)]
 
 
-def integer(**limits: int) -> Any:
-    """The type of an integer within ``limits`` (``ge``, ``le``)."""
-    return Annotated[int, Field(**limits), BeforeValidator(_integer)]
+def integer(*, ge: int | None = None, le: int | None = None) -> Any:
+    """The type of an integer within the limits given (``ge``, ``le``)."""
+    return Annotated[int, Field(ge=ge, le=le), BeforeValidator(_integer)]
 
 
 #: A finite number (an int or a float, not a bool).
@@ -287,6 +309,55 @@ def number_or_vector(*sizes: int) -> Any:
         "oneOf": [{"type": "number"}, {**items, "minItems": min(sizes), "maxItems": max(sizes)}]
     }
     return Annotated[float | list[float], BeforeValidator(convert), JsonSchema(schema)]
+
+
+#: Largest size of a geometry coordinate [m] (``start``, ``end``, ``point``, ``control_points``):
+#: the longest chord a conic may have (:data:`rancf.geometry.conic.LENGTH_RANGE`).
+MAX_COORDINATE = LENGTH_RANGE[1]
+#: Largest ``mesh.elements`` (and total number of elements of a NURBS mesh).
+MAX_ELEMENTS = 1_000_000
+
+if TYPE_CHECKING:
+    # what the validated values are; a type checker cannot evaluate the factories above
+    Vector2: TypeAlias = list[float]
+    Vector3: TypeAlias = list[float]
+    Vector23: TypeAlias = list[float]
+    Vector123: TypeAlias = list[float]
+    NumberOrVector3: TypeAlias = float | list[float]
+    NumberOrVector123: TypeAlias = float | list[float]
+    Point: TypeAlias = list[float]
+    SemiAxes: TypeAlias = list[float]
+    Degree: TypeAlias = int
+    ElementCount: TypeAlias = int
+    QuadraturePoints: TypeAlias = int
+    ContactPoints: TypeAlias = int
+    PoissonRatio: TypeAlias = float
+else:
+    #: Two finite numbers.
+    Vector2 = vector(2)
+    #: Three finite numbers.
+    Vector3 = vector(3)
+    #: Two (planar) or three (spatial) finite numbers.
+    Vector23 = vector(2, 3)
+    #: One, two or three finite numbers.
+    Vector123 = vector(1, 2, 3)
+    #: A finite number or three finite numbers.
+    NumberOrVector3 = number_or_vector(3)
+    #: A finite number or one, two or three finite numbers.
+    NumberOrVector123 = number_or_vector(1, 2, 3)
+    #: A geometry point, 2 (planar) or 3 (spatial) coordinates.
+    Point = vector(2, 3, bound=MAX_COORDINATE)
+    #: The two semi-axes of an ellipse.
+    SemiAxes = vector(2, bound=MAX_COORDINATE)
+    #: The polynomial degree of a NURBS curve.
+    Degree = integer(ge=2, le=3)
+    #: The number of elements of a mesh.
+    ElementCount = integer(ge=1, le=MAX_ELEMENTS)
+    #: Gauss points per element (of the element forces; of contact).
+    QuadraturePoints = integer(ge=2, le=64)
+    ContactPoints = integer(ge=1, le=64)
+    #: A Poisson ratio, in (-1, 0.5).
+    PoissonRatio = number(gt=-1.0, lt=0.5)
 
 
 # ---------------------------------------------------------------------- places

@@ -27,13 +27,14 @@ from rancf.scenario.base import (
     KindOf,
     Name,
     Number,
+    NumberOrVector3,
     Positive,
     Table,
+    Vector3,
+    Vector23,
     fail,
-    number_or_vector,
     show,
     under,
-    vector,
 )
 from rancf.scenario.damping import StrainRateDampingTable
 from rancf.scenario.fluid import HydroTable
@@ -103,23 +104,23 @@ class RigidBody(Table):
     name: Name = Field(description=_NAME)
     kind: Literal["rigid"] = Field(description="a rigid body")
     mass: Positive = Field(description="mass [kg]")
-    inertia: number_or_vector(3) = Field(
+    inertia: NumberOrVector3 = Field(
         description="2D: moment of inertia about the centre of mass [kg m^2]; 3D: principal "
         "[Ixx, Iyy, Izz] in the body frame"
     )
-    position: vector(2, 3) = Field(description="centre of mass [m]; 2 coordinates: planar")
+    position: Vector23 = Field(description="centre of mass [m]; 2 coordinates: planar")
     orientation_deg: Number | None = Field(
         None, description="2D: angle of the body frame [deg] (default 0)"
     )
-    orientation: list[vector(3)] | None = Field(
+    orientation: list[Vector3] | None = Field(
         None,
         description="3D: the rotation matrix's rows (body frame to global; default identity)",
     )
-    velocity: vector(2, 3) | None = Field(None, description="velocity of the centre [m/s]")
-    angular_velocity: number_or_vector(3) | None = Field(
+    velocity: Vector23 | None = Field(None, description="velocity of the centre [m/s]")
+    angular_velocity: NumberOrVector3 | None = Field(
         None, description="[rad/s]: a number in 2D, global components in 3D"
     )
-    points: dict[Name, vector(2, 3)] = Field(
+    points: dict[Name, Vector23] = Field(
         {}, description="named points in the body frame [m] (places BODY:POINT)"
     )
 
@@ -175,8 +176,8 @@ class PointMass(Table):
     name: Name = Field(description=_NAME)
     kind: Literal["mass"] = Field(description="a point mass")
     mass: Positive = Field(description="mass [kg]")
-    position: vector(2, 3) = Field(description="position [m]; 2 coordinates: planar")
-    velocity: vector(2, 3) | None = Field(None, description="initial velocity [m/s]")
+    position: Vector23 = Field(description="position [m]; 2 coordinates: planar")
+    velocity: Vector23 | None = Field(None, description="initial velocity [m/s]")
 
     @model_validator(mode="after")
     def _consistent(self) -> PointMass:

@@ -14,6 +14,7 @@ system solver computes are refused with one line until the system solver takes t
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
@@ -162,7 +163,7 @@ def flexible_model(
     loads: list[tuple[str, int, dict[str, Any]]],
     velocities: list[tuple[str, int, dict[str, Any]]],
     initial_motion: dict[str, Any] | None,
-    sensor_nodes: list[tuple[str, int]] = (),  # type: ignore[assignment]
+    sensor_nodes: Sequence[tuple[str, int]] = (),
     damping: tuple[str, Any] | None = None,
 ) -> Model:
     """The model of one flexible body: its ``geometry``, ``mesh``, ``section`` and ``material``

@@ -77,6 +77,7 @@ class _Context:
             return None
         if self.bodies is None:
             return self.sc.mesh.element
+        assert p.body is not None  # a place of a body with [[bodies]] names it
         b = self.bodies[p.body]
         if isinstance(b, FlexibleBody):
             return b.mesh.element

@@ -19,7 +19,7 @@ from typing import Any
 
 from pydantic import Field, model_validator
 
-from rancf.scenario.base import NonNegative, Number, Positive, Table, fail, vector
+from rancf.scenario.base import NonNegative, Number, Positive, Table, Vector23, fail
 
 __all__ = ["FluidTable", "WavesTable", "HydroTable", "hydro_value", "fluid_value"]
 
@@ -41,7 +41,7 @@ class FluidTable(Table):
         None, description="height of the still free surface on the vertical (last) axis [m]; "
         "absent: every point submerged",
     )  # fmt: skip
-    current: vector(2, 3) | None = Field(None, description="uniform current velocity [m/s]")
+    current: Vector23 | None = Field(None, description="uniform current velocity [m/s]")
     current_profile: list[list[Number]] | None = Field(
         None, description="rows [height, u...]: the current, linear in height [m, m/s]"
     )

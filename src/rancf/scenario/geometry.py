@@ -23,17 +23,23 @@ from pydantic import (
 
 from rancf.elements.mapping import K_RANGE  # the factors a scenario may fix
 from rancf.errors import InputError
-from rancf.geometry.conic import LENGTH_RANGE
 from rancf.scenario.base import (
+    MAX_COORDINATE,
+    MAX_ELEMENTS,
+    Degree,
+    ElementCount,
     JsonSchema,
     KindOf,
     Number,
+    Point,
+    QuadraturePoints,
+    SemiAxes,
     Table,
+    Vector2,
+    Vector3,
     fail,
-    integer,
     show,
     to_number,
-    vector,
 )
 
 __all__ = [
@@ -51,13 +57,8 @@ __all__ = [
     "MeshTable",
 ]
 
-#: Largest size of a geometry coordinate [m] (``start``, ``end``, ``point``, ``control_points``):
-#: the longest chord a conic may have (:data:`rancf.geometry.conic.LENGTH_RANGE`).
-MAX_COORDINATE = LENGTH_RANGE[1]
 #: Largest ratio of two NURBS weights (a curve's shape depends on the ratios only).
 MAX_WEIGHT_RATIO = 1e12
-#: Largest ``mesh.elements`` (and total number of elements of a NURBS mesh).
-MAX_ELEMENTS = 1_000_000
 #: Element kinds of ``mesh.element``.
 ELEMENTS = ("rancf", "ancf", "beam", "rod")
 #: Keys of ``[geometry]`` for each kind.
@@ -68,8 +69,6 @@ GEOMETRY_KEYS = {
     "cad": ("file", "curve"),
     "ellipse": ("center", "semi_axes", "rotation_deg", "axes", "start_deg"),
 }
-
-Point = vector(2, 3, bound=MAX_COORDINATE)
 
 
 class _Geometry(Table):
@@ -121,7 +120,7 @@ class ConicGeometry(_Geometry):
     kind: Literal["conic"] = Field(description="a conic arc")
     start: Point = Field(description="start point [m]; 2 coordinates: planar, 3: spatial")
     end: Point = Field(description="end point [m], as many coordinates as start")
-    angles_deg: vector(2) = Field(
+    angles_deg: Vector2 = Field(
         description="tangent-to-chord angles at start and end, each in (0, 90) [deg]"
     )
     point: Point = Field(description="an interior point of the arc, global coordinates [m]")
@@ -142,7 +141,7 @@ class NurbsGeometry(_Geometry):
 
     KIND: ClassVar[str] = "nurbs"
     kind: Literal["nurbs"] = Field(description="a NURBS curve")
-    degree: integer(ge=2, le=3) = Field(description="polynomial degree, 2 or 3")
+    degree: Degree = Field(description="polynomial degree, 2 or 3")
     knots: list[Number] = Field(description="knot vector, non-decreasing")
     control_points: list[Point] = Field(
         min_length=1, description="control points [m], all with 2 or all with 3 coordinates"
@@ -179,13 +178,13 @@ class EllipseGeometry(_Geometry):
     KIND: ClassVar[str] = "ellipse"
     kind: Literal["ellipse"] = Field(description="a full ellipse (closed: a ring)")
     center: Point = Field(description="center [m]; 2 coordinates: planar, 3: spatial")
-    semi_axes: vector(2, bound=MAX_COORDINATE) = Field(
+    semi_axes: SemiAxes = Field(
         description="semi-axes [a, b] along the first and second axis [m], each > 0"
     )
     rotation_deg: Number | None = Field(
         None, description="planar: angle of the first axis from x [deg] (default 0)"
     )
-    axes: list[vector(3)] | None = Field(
+    axes: list[Vector3] | None = Field(
         None,
         description="spatial: the first and second axis directions, perpendicular (default x "
         "and y)",
@@ -224,10 +223,13 @@ class EllipseGeometry(_Geometry):
 
     def ellipse(self) -> Any:
         """The :class:`~rancf.geometry.ellipse.Ellipse`."""
+        import numpy as np
+
         from rancf.geometry.ellipse import Ellipse, ellipse_axes
 
         e1, e2 = ellipse_axes(self.dim, self.rotation_deg or 0.0, self.axes)
-        return Ellipse(self.center, self.semi_axes[0], self.semi_axes[1], e1, e2)
+        center = np.asarray(self.center, dtype=float)
+        return Ellipse(center, self.semi_axes[0], self.semi_axes[1], e1, e2)
 
 
 Curve = Annotated[int | str, BeforeValidator(lambda v: _curve_item(v))]
@@ -346,7 +348,7 @@ def _k(v: Any) -> Any:
 class MeshTable(Table):
     """``[mesh]``: how the geometry is divided into elements."""
 
-    elements: integer(ge=1, le=MAX_ELEMENTS) = Field(
+    elements: ElementCount = Field(
         description="number of elements (NURBS and CAD curves: per knot span)"
     )
     element: Literal["rancf", "ancf", "beam", "rod"] = Field(
@@ -381,7 +383,7 @@ class MeshTable(Table):
         description='"reference" (the start shape is unloaded) | "straight" (unloaded straight, '
         "same arc length: a rope laid over a pulley carries its bending energy; cables and rods)",
     )
-    quadrature_points: integer(ge=2, le=64) | None = Field(
+    quadrature_points: QuadraturePoints | None = Field(
         None,
         description="Gauss points per element (default: 6 for polynomial (ANCF) elements, 10 "
         "for rational ones)",

@@ -25,7 +25,16 @@ from typing import Literal
 
 from pydantic import Field, model_validator
 
-from rancf.scenario.base import Name, NonNegative, PlacePair, Positive, Table, fail, show, vector
+from rancf.scenario.base import (
+    Name,
+    NonNegative,
+    PlacePair,
+    Positive,
+    Table,
+    Vector23,
+    fail,
+    show,
+)
 from rancf.scenario.loads import TimeFunctionValue, check_scalar
 
 __all__ = ["JointTable", "SpringTable", "JOINT_KINDS"]
@@ -44,10 +53,10 @@ class JointTable(Table):
         '"sliding" (the flexible body A runs through B without friction)'
     )
     between: PlacePair = Field(description="the two places joined [A, B]")
-    axis: vector(2, 3) | None = Field(
+    axis: Vector23 | None = Field(
         None, description="revolute: the rotation axis; slider: the line of motion (global)"
     )
-    position: vector(2, 3) | None = Field(
+    position: Vector23 | None = Field(
         None, description="sliding to the ground: the guide's position (global) [m]"
     )
     angle: TimeFunctionValue | None = Field(

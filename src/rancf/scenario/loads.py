@@ -34,14 +34,16 @@ from rancf.scenario.base import (
     Name,
     NonNegative,
     Number,
+    NumberOrVector3,
+    NumberOrVector123,
     PlaceValue,
     Positive,
     Table,
+    Vector23,
+    Vector123,
     fail,
-    number_or_vector,
     show,
     to_number,
-    vector,
 )
 from rancf.scenario.table_files import ROWS_SCHEMA, table_rows
 
@@ -51,7 +53,7 @@ __all__ = [
     "LoadsTable", "InitialVelocityTable", "InitialMotionTable",
 ]  # fmt: skip
 
-Amount = number_or_vector(1, 2, 3)
+Amount = NumberOrVector123
 
 
 class _Function(Table):
@@ -191,7 +193,7 @@ def _time_kind(v: Any) -> str | None:
 #: :class:`~rancf.bodies.time_function.TimeFunction` or a callable.
 TimeFunctionValue = Annotated[
     Annotated[Number, Tag("[number]")]
-    | Annotated[vector(1, 2, 3), Tag("[vector]")]
+    | Annotated[Vector123, Tag("[vector]")]
     | Annotated[TableFunction, Tag("[table]")]
     | Annotated[RampFunction, Tag("[ramp]")]
     | Annotated[HarmonicFunction, Tag("[harmonic]")]
@@ -254,13 +256,13 @@ class SupportTable(Table):
     fix_twist: Flag = Field(
         False, description="rods: also hold the twist (a clamp holds it anyway)"
     )
-    position: vector(2, 3) | None = Field(
+    position: Vector23 | None = Field(
         None, description="installed position [m] (default: the reference; see Equilibrium)"
     )
-    direction: vector(2, 3) | None = Field(
+    direction: Vector23 | None = Field(
         None, description="clamps: the installed tangent direction (default: the reference)"
     )
-    axis: vector(2, 3) | None = Field(None, description="rollers: the line it moves along")
+    axis: Vector23 | None = Field(None, description="rollers: the line it moves along")
     motion: TimeFunctionValue | None = Field(
         None,
         description="prescribed displacement from the reference position [m]: a vector "
@@ -290,8 +292,8 @@ class PointLoadTable(Table):
     """``[[loads.point]]``: a force and/or a moment at a place."""
 
     at: PlaceValue = Field(description="where the load acts")
-    force: vector(2, 3) | None = Field(None, description="force [N]")
-    moment: number_or_vector(3) | None = Field(
+    force: Vector23 | None = Field(None, description="force [N]")
+    moment: NumberOrVector3 | None = Field(
         None, description="moment [N m]: [mx, my, mz] (rods, 3D rigid bodies); a number (the "
         "torque about z) on a 2D rigid body",
     )  # fmt: skip
@@ -316,7 +318,7 @@ class DistributedLoadTable(Table):
     """``[[loads.distributed]]``: a force per reference length on flexible bodies
     (:mod:`rancf.scenario.fluid`)."""
 
-    force: vector(2, 3) = Field(description="force per reference length, global axes [N/m]")
+    force: Vector23 = Field(description="force per reference length, global axes [N/m]")
     body: Name | None = Field(None, description="the flexible body (default: every one)")
     time: TimeFunctionValue | None = Field(
         None, description="a scalar TIME_FUNCTION multiplying the force"
@@ -331,7 +333,7 @@ class DistributedLoadTable(Table):
 class LoadsTable(Table):
     """``[loads]``: gravity on every body, point loads and distributed loads."""
 
-    gravity: vector(2, 3) | None = Field(None, description="gravitational acceleration [m/s^2]")
+    gravity: Vector23 | None = Field(None, description="gravitational acceleration [m/s^2]")
     point: list[PointLoadTable] = Field([], description="point forces and moments")
     distributed: list[DistributedLoadTable] = Field(
         [], description="forces per length on flexible bodies [N/m]"
@@ -342,17 +344,17 @@ class InitialVelocityTable(Table):
     """``[[initial_velocity]]``: the velocity of one node's position (nothing else moves)."""
 
     at: PlaceValue = Field(description="the node")
-    value: vector(2, 3) = Field(description="velocity [m/s]")
+    value: Vector23 = Field(description="velocity [m/s]")
 
 
 class InitialMotionTable(Table):
     """``[initial_motion]``: a rigid-body velocity field ``v = velocity + ω × (x − about)``."""
 
-    velocity: vector(2, 3) | None = Field(None, description="translation velocity [m/s]")
-    angular_velocity: number_or_vector(3) | None = Field(
+    velocity: Vector23 | None = Field(None, description="translation velocity [m/s]")
+    angular_velocity: NumberOrVector3 | None = Field(
         None, description="[rad/s]: 3 components in 3D, the rate about z in 2D"
     )
-    about: vector(2, 3) | None = Field(None, description="the point omega turns about [m] "
+    about: Vector23 | None = Field(None, description="the point omega turns about [m] "
                                        "(default: the origin)")  # fmt: skip
 
     @model_validator(mode="after")

@@ -16,6 +16,7 @@ from typing import Any
 
 import numpy as np
 from pydantic import ValidationError
+from pydantic_core import ErrorDetails
 
 from rancf.errors import MAX_SHOWN, ScenarioError, shorten
 
@@ -59,7 +60,7 @@ def _bound(v: Any) -> str:
     return f"{v:g}" if isinstance(v, float) else str(v)
 
 
-def problem_of(err: dict[str, Any]) -> str:
+def problem_of(err: ErrorDetails) -> str:
     """The problem of one pydantic error, in the words of the scenario errors."""
     kind, ctx, value = err["type"], err.get("ctx") or {}, err.get("input")
     got = show(value)

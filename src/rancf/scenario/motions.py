@@ -139,7 +139,8 @@ def _time_scale(f: TimeFunction, t_end: float) -> float:
 
 def _alternative(v: Any, law: Law, b: float) -> str:
     start = "at rate 0" if law.order == 1 else "at 0"
-    if isinstance(v, RampFunction) and law.unit == " rad/s":  # a steady rate without overshoot
+    steady = isinstance(v, RampFunction) and not isinstance(v.value, list)
+    if steady and law.unit == " rad/s":  # a steady rate without overshoot
         return f", or write angle = {{ spin_up = {b:g}, rate = {v.value / v.ramp:.4g} }}"
     if isinstance(v, TableFunction):
         return f", or start the table {start}"

@@ -19,8 +19,8 @@ from typing import TYPE_CHECKING, Any
 from pydantic import Field, PrivateAttr, ValidationError, ValidationInfo, model_validator
 
 from rancf.errors import ScenarioError
-from rancf.scenario.base import Name, NonNegative, Table, fail, integer, show
-from rancf.scenario.bodies import Body
+from rancf.scenario.base import ContactPoints, Name, NonNegative, Table, fail, show
+from rancf.scenario.bodies import Body, FlexibleBody
 from rancf.scenario.checks import check_scenario
 from rancf.scenario.damping import DampingTable
 from rancf.scenario.files import deferred_interrupts, read_toml, write_atomic
@@ -80,7 +80,7 @@ class Scenario(Table):
     body_friction: NonNegative = Field(
         0.0, description="Coulomb coefficient of the contact between flexible bodies"
     )
-    contact_points: integer(ge=1, le=64) = Field(
+    contact_points: ContactPoints = Field(
         8,
         description="Gauss points per element where contact is evaluated (at most a tube "
         "radius apart resolves crossings of tubes)",
@@ -286,11 +286,11 @@ class Scenario(Table):
         return [(k, f) for k, f in out if f is not None]
 
     def _cad_tables(self, d: dict[str, Any]) -> list[tuple[dict[str, Any], CadGeometry]]:
-        out = []
+        out: list[tuple[dict[str, Any], CadGeometry]] = []
         if isinstance(self.geometry, CadGeometry):
             out.append((d["geometry"], self.geometry))
         for b, raw in zip(self.bodies, d.get("bodies", []), strict=False):
-            if isinstance(getattr(b, "geometry", None), CadGeometry):
+            if isinstance(b, FlexibleBody) and isinstance(b.geometry, CadGeometry):
                 out.append((raw["geometry"], b.geometry))
         return out
 
@@ -325,7 +325,7 @@ def _data(sc: Scenario) -> dict[str, Any]:
     d["bodies"] = []
     for b in sc.bodies:
         bd = b.model_dump()
-        if hasattr(b, "geometry"):
+        if isinstance(b, FlexibleBody):
             bd["geometry"] = _geometry_data(b.geometry)
             im = b.initial_motion
             bd["initial_motion"] = None if im is None else im.as_dict()

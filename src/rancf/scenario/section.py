@@ -21,7 +21,7 @@ from typing import Any, Literal
 
 from pydantic import Field, model_validator
 
-from rancf.scenario.base import Positive, Table, fail, number, show, vector
+from rancf.scenario.base import PoissonRatio, Positive, Table, Vector3, fail, show
 from rancf.scenario.geometry import MeshTable
 
 __all__ = ["SectionTable", "MaterialTable", "check_flexible"]
@@ -41,7 +41,7 @@ class SectionTable(Table):
     inertia_z: Positive | None = Field(
         None, description="rods: second moment about the second principal axis [m^4]"
     )
-    orientation: vector(3) | None = Field(
+    orientation: Vector3 | None = Field(
         None, description="rods: the first principal axis at the first node"
     )
     torsion_constant: Positive | None = Field(
@@ -96,7 +96,7 @@ class MaterialTable(Table):
     shear_modulus: Positive | None = Field(
         None, description="rods: shear modulus G [Pa] (or poisson_ratio)"
     )
-    poisson_ratio: number(gt=-1.0, lt=0.5) | None = Field(
+    poisson_ratio: PoissonRatio | None = Field(
         None,
         description="rods (or shear_modulus): G = E / (2 (1 + nu)), in (-1, 0.5)",
     )

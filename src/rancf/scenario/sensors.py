@@ -41,7 +41,7 @@ from numpy.typing import NDArray
 from pydantic import Field, model_validator
 
 from rancf.errors import InputError
-from rancf.scenario.base import Name, PlacePair, PlaceValue, Table, fail, vector
+from rancf.scenario.base import Name, PlacePair, PlaceValue, Table, Vector23, fail
 
 __all__ = ["Sensor", "SensorTable", "SENSOR_KINDS", "SYSTEM_SENSOR_KINDS", "AT_POINT_KINDS"]
 
@@ -116,10 +116,10 @@ class SensorTable(Table):
         description="position, twist (rods), axial_force, tension: the place; reaction: a "
         "support's place",
     )
-    about: vector(2, 3) | None = Field(
+    about: Vector23 | None = Field(
         None, description="angular_momentum: the point [m] (default the origin)"
     )
-    at_point: vector(2, 3) | None = Field(
+    at_point: Vector23 | None = Field(
         None,
         description="position, twist (rods), axial_force: instead of at, the material point "
         "nearest to this fixed point in space [m], found anew at every output",

@@ -68,8 +68,8 @@ def support_labels(sc: ScenarioView) -> dict[str, list[int | str]]:
     out: dict[str, list[int | str]] = {}
     for i, s in enumerate(sc.supports):
         p = sc.support_place(i)
-        if p.where == "node":
-            out.setdefault(p.body, []).append(s.at)  # type: ignore[arg-type]
+        if p.where == "node" and p.body is not None:  # (a node place names its body)
+            out.setdefault(p.body, []).append(s.at)
     return out
 
 
@@ -130,7 +130,7 @@ def _build(sc: ScenarioView) -> System:
             (f"sensors.{sn.name}", p.node)
             for sn in sc.sensors
             for p in map(sc.place, sn.places)
-            if p.where == "node" and p.body == b.name
+            if p.where == "node" and p.body == b.name and p.node is not None
         ]
         bodies[b.name] = flexible_model(
             sc, f"bodies[{i}].", (b.geometry, b.mesh, b.section, b.material),
@@ -184,10 +184,7 @@ def _parts(sc: ScenarioView, bodies: dict[str, Any]) -> dict[str, Any]:
         moment = ld.moment
         torque = None if moment is None else tuple(np.atleast_1d(moment).tolist())
         loads.append(Load(place(ld.at), _tuple(ld.force), torque, t["time"]))
-    obstacles = [
-        Obstacle(**{k: tuple(v) if isinstance(v, list) else v for k, v in o.model_dump().items()})
-        for o in sc.obstacles
-    ]
+    obstacles = [Obstacle(**_record_fields(o.model_dump())) for o in sc.obstacles]
     contacts = None if sc.contacts is None else [(a, b) for a, b in sc.contacts]
     return {"joints": joints, "springs": springs, "loads": loads, "observe": _observed(sc),
             "obstacles": obstacles, "contacts": contacts,
@@ -240,3 +237,8 @@ def _check_depth(sc: ScenarioView, fluid: Any, wet: dict[str, Any]) -> None:
                                 f"fluid: depth = {waves.depth:g} m puts the floor at "
                                 f"{floor:g} m, above {name}'s node at {low:g} m (give depth "
                                 f">= {fluid.surface - low:g} m)")  # fmt: skip
+
+
+def _record_fields(table: dict[str, Any]) -> dict[str, Any]:
+    """A table's values as fields of a frozen record (lists as tuples)."""
+    return {k: tuple(v) if isinstance(v, list) else v for k, v in table.items()}

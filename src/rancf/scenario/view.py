@@ -21,33 +21,87 @@ class ScenarioView(Protocol):
     :mod:`~rancf.scenario.checks`, :mod:`~rancf.scenario.build` and
     :mod:`~rancf.scenario.system_build`."""
 
-    path: str
-    dim: int
-    data: dict[str, Any]
-    geometry: Any
-    mesh: Any
-    section: Any
-    material: Any
-    supports: Sequence[Any]
-    loads: Any
-    fluid: Any
-    hydro: Any
-    damping: Any
-    solver: Any
-    initial_velocity: Sequence[Any]
-    initial_motion: Any
-    bodies: Sequence[Any]
-    joints: Sequence[Any]
-    springs: Sequence[Any]
-    obstacles: Sequence[Any]
-    winches: Sequence[Any]
-    contacts: Any
-    contact_points: int
-    body_contacts: Any
-    body_friction: float
-    sensor_tables: Sequence[Any]
-    sensors: tuple[Sensor, ...]
-    support_labels: list[int | str]
+    # read-only members: the scenario is immutable once validated
+    @property
+    def path(self) -> str: ...
+
+    @property
+    def dim(self) -> int: ...
+
+    @property
+    def data(self) -> dict[str, Any]: ...
+
+    @property
+    def geometry(self) -> Any: ...
+
+    @property
+    def mesh(self) -> Any: ...
+
+    @property
+    def section(self) -> Any: ...
+
+    @property
+    def material(self) -> Any: ...
+
+    @property
+    def supports(self) -> Sequence[Any]: ...
+
+    @property
+    def loads(self) -> Any: ...
+
+    @property
+    def fluid(self) -> Any: ...
+
+    @property
+    def hydro(self) -> Any: ...
+
+    @property
+    def damping(self) -> Any: ...
+
+    @property
+    def solver(self) -> Any: ...
+
+    @property
+    def initial_velocity(self) -> Sequence[Any]: ...
+
+    @property
+    def initial_motion(self) -> Any: ...
+
+    @property
+    def bodies(self) -> Sequence[Any]: ...
+
+    @property
+    def joints(self) -> Sequence[Any]: ...
+
+    @property
+    def springs(self) -> Sequence[Any]: ...
+
+    @property
+    def obstacles(self) -> Sequence[Any]: ...
+
+    @property
+    def winches(self) -> Sequence[Any]: ...
+
+    @property
+    def contacts(self) -> Any: ...
+
+    @property
+    def contact_points(self) -> int: ...
+
+    @property
+    def body_contacts(self) -> Any: ...
+
+    @property
+    def body_friction(self) -> float: ...
+
+    @property
+    def sensor_tables(self) -> Sequence[Any]: ...
+
+    @property
+    def sensors(self) -> tuple[Sensor, ...]: ...
+
+    @property
+    def support_labels(self) -> list[int | str]: ...
 
     def __getitem__(self, key: str) -> Any: ...
 

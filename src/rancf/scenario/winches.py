@@ -22,7 +22,7 @@ from pydantic import Field, model_validator
 from rancf.bodies.flexible import Model
 from rancf.bodies.length import set_unstretched_length, unstretched_length
 from rancf.errors import ScenarioError
-from rancf.scenario.base import Name, Positive, Table, fail, vector
+from rancf.scenario.base import Name, Positive, Table, Vector23, fail
 from rancf.scenario.loads import TimeFunctionValue, check_scalar
 from rancf.system.winches import LENGTH_RTOL, Winch, length_law, winch_length
 
@@ -34,7 +34,7 @@ class WinchTable(Table):
 
     name: Name = Field(description="the winch's name (sensors), unique")
     at: str = Field(description='the end of a cable body at the drum: "BODY:start" | "BODY:end"')
-    position: vector(2, 3) | None = Field(
+    position: Vector23 | None = Field(
         None, description="where the line leaves the drum [m] (default: the body's end)"
     )
     length: TimeFunctionValue | None = Field(

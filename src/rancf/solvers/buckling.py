@@ -233,22 +233,22 @@ def _pencil(
     bal = sp.diags(d)
     a, b = (bal @ (-js) @ bal).tocsc(), (bal @ j0 @ bal).tocsc()
     symmetric = size == n_free and is_symmetric(j0) and is_symmetric(js)
-    inv_mu = vec = None
+    pairs = None
     if size <= DENSE:
         ad, bd = a.toarray(), b.toarray()
         if symmetric:
             try:
-                inv_mu, vec = scipy.linalg.eigh(0.5 * (ad + ad.T), 0.5 * (bd + bd.T))
+                pairs = scipy.linalg.eigh(0.5 * (ad + ad.T), 0.5 * (bd + bd.T))
             except np.linalg.LinAlgError:
                 symmetric = False
-        if not symmetric:
-            w, vec = scipy.linalg.eig(ad, bd)
-            inv_mu = w
+        if pairs is None:
+            pairs = scipy.linalg.eig(ad, bd)
     else:
         lu = spla.splu(b)
         op = spla.LinearOperator(a.shape, matvec=lambda x: lu.solve(a @ x), dtype=float)
-        inv_mu, vec = spla.eigs(op, k=min(count + MAX_CHECKED, size - 2), which="LR", tol=1e-10)
+        pairs = spla.eigs(op, k=min(count + MAX_CHECKED, size - 2), which="LR", tol=1e-10)
         symmetric = False
+    inv_mu, vec = pairs
     inv_mu = np.asarray(inv_mu)
     real = np.isfinite(inv_mu) & (np.abs(np.imag(inv_mu)) <= 1e-8 * np.abs(inv_mu))
     pos = real & (np.real(inv_mu) > 0.0)
@@ -305,7 +305,7 @@ def _confirm(
     found: list[tuple[float, NDArray]] = []
     checked = []
     prev, n_prev = p0, n0
-    targets = []
+    targets: list[float] = []
     for m_i in mu:  # ascending; candidates closer than THIN are checked together
         if not targets or m_i > (targets[-1] - p0) * (1.0 + THIN):
             targets.append(p0 + m_i)

@@ -110,7 +110,7 @@ class ModalResult:
     modes: NDArray[np.float64]
     n_rigid: int
     eigenvalues: NDArray[np.float64] | NDArray[np.complex128]
-    growth_rates: NDArray[np.float64] | None = None
+    growth_rates: NDArray[np.float64]
     symmetric: bool = True
 
 
@@ -216,21 +216,20 @@ def _dense(lin: Linearized) -> tuple[NDArray, NDArray, bool]:
     try:
         if not (np.all(np.isfinite(k)) and np.all(np.isfinite(mass))):
             raise ValueError("non-finite stiffness or mass entries")
-        lam = phi = None
+        pairs = None
         if symmetric:
             try:
-                lam, phi = scipy.linalg.eigh(0.5 * (k + k.T), 0.5 * (mass + mass.T))
+                pairs = scipy.linalg.eigh(0.5 * (k + k.T), 0.5 * (mass + mass.T))
             except np.linalg.LinAlgError:
                 symmetric = False
-        if not symmetric:
-            lam, phi = _general_modes(k, mass)
+        lam, phi = pairs if pairs is not None else _general_modes(k, mass)
     except (np.linalg.LinAlgError, ValueError) as exc:
         raise RancfError(
             f"the eigenproblem K φ = λ M φ cannot be solved ({' '.join(str(exc).split())}): "
             "its mass or stiffness is singular or far out of scale; check material.density, "
             "material.youngs_modulus and the section"
         ) from None
-    return lam, (phi if basis is None else basis @ phi), symmetric  # type: ignore[return-value]
+    return lam, (phi if basis is None else basis @ phi), symmetric
 
 
 def _sparse(lin: Linearized, want: int) -> tuple[NDArray, NDArray, bool]:

@@ -63,7 +63,7 @@ class Spin:
         if not abs(rate) <= MAX_SPIN_RATE:  # NaN too
             raise InputError("modes.spin_rates", rate, f"rates {SPIN_RATES} in size")
         a = a / np.linalg.norm(a)
-        return cls(tuple(a), tuple(c), float(rate))  # type: ignore[arg-type]
+        return cls(tuple(a), tuple(c), float(rate))
 
 
 @dataclass(frozen=True)

@@ -106,8 +106,8 @@ class DynamicState:
             "within": self.within, "counters": self.counters, "t_end": self.t_end,
             "n_triads": len(self.triads),
         }  # fmt: skip
-        arrays = {"y": self.y, "v": self.v, "a": self.a, "w": self.w, "lam": self.lam,
-                  "memory": self.memory}  # fmt: skip
+        arrays: dict[str, Any] = {"y": self.y, "v": self.v, "a": self.a, "w": self.w,
+                                  "lam": self.lam, "memory": self.memory}  # fmt: skip
         arrays.update({f"triads_{i}": x for i, x in enumerate(self.triads)})
         buf = io.BytesIO()
         np.savez(buf, meta=np.array(json.dumps(meta)), **arrays)

@@ -90,10 +90,10 @@ class SystemEquilibrium:
         scale[: s.n] = 1.0
         for name in s.names:
             sl = s.body_slice(name)
-            b = s.bodies[name]
+            body = s.bodies[name]
             pos = np.zeros(sl.stop - sl.start, dtype=bool)
-            if isinstance(b, Model):
-                pos = b.position_mask()
+            if isinstance(body, Model):
+                pos = body.position_mask()
             else:
                 pos[: s.dim] = True
             scale[sl][pos] = 1.0 / self.size
@@ -210,7 +210,7 @@ class SystemEquilibrium:
         if xx == 0.0:
             return False
         kmax = float(np.max(self._diagonal(z, 1.0, 0.0), initial=0.0))
-        return float(fy @ xy) / xx <= np.finfo(float).eps * kmax
+        return bool(float(fy @ xy) / xx <= np.finfo(float).eps * kmax)
 
     def solve(self, ok: bool, rhs: NDArray) -> NDArray[np.float64] | None:
         """The last factored Jacobian's solution of ``rhs`` (None if it was singular)."""

@@ -21,14 +21,23 @@ _GRID_STUDIES = ("planar-pendulum", "spatial-pendulum", "exact-geometry")
 def study_runner(name: str) -> Callable[..., StudyResult]:
     """The ``run_study(out, quick[, executor])`` function of an example (a paper study or
     another shipped scenario, :data:`SCENARIO_ANALYSES`)."""
+    run_study: Callable[..., StudyResult]
     if name == "planar-pendulum":
-        from rancf.studies.planar_pendulum import run_study
+        from rancf.studies import planar_pendulum
+
+        run_study = planar_pendulum.run_study
     elif name == "spatial-pendulum":
-        from rancf.studies.spatial_pendulum import run_study
+        from rancf.studies import spatial_pendulum
+
+        run_study = spatial_pendulum.run_study
     elif name == "arc-vibration":
-        from rancf.studies.arc_vibration import run_study
+        from rancf.studies import arc_vibration
+
+        run_study = arc_vibration.run_study
     elif name == "exact-geometry":
-        from rancf.studies.exact_geometry import run_study
+        from rancf.studies import exact_geometry
+
+        run_study = exact_geometry.run_study
     elif name in SCENARIO_ANALYSES:
         from rancf.studies.scenario_example import run_scenario
 

@@ -51,7 +51,8 @@ def run(sc: Scenario, model: Model, **overrides: Any) -> DynamicResult:
     """Integrate a scenario's model with its ``[solver]`` settings (``overrides`` win)."""
     s = dict(sc.data["solver"])
     s.update(overrides)
-    keys = ("t_end", "step", "rho_inf", "adaptive", "rtol", "min_step", "output_step")
+    keys: tuple[str, ...] = ("t_end", "step", "rho_inf", "adaptive", "rtol", "min_step",
+                             "output_step")  # fmt: skip
     keys += ("newton_tol", "max_newton", "newton")
     opts = DynamicOptions(**{k: s[k] for k in keys})
     return integrate(model, opts)
@@ -265,9 +266,10 @@ def convergence_runs(
             run = by_n[(kind, n)]
             run["err"] = _error(run, ref)
             runs[kind][n] = run
-            if found[kind] is None and run["err"] <= tol:
-                found[kind] = n
-            if found[kind] is not None and n >= found[kind] + extra_after:
+            first = found[kind]
+            if first is None and run["err"] <= tol:
+                found[kind] = first = n
+            if first is not None and n >= first + extra_after:
                 break
     for label in extra or {}:
         runs[label] = {0: done[by_kind_n[(label, 0)]]}

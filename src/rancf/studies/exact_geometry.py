@@ -40,7 +40,7 @@ from rancf.studies.grid import Executor, grid_variant, run_grid
 
 NAME = "exact-geometry"
 TITLE = "Where exact geometry pays: the 6.1 pendulum from E = 2e6 to 2e10 Pa"
-KINDS = {
+KINDS: dict[str, dict[str, Any]] = {
     "Kopt": dict(mesh__element="rancf", mesh__k="opt"),
     "K = 0.2": dict(mesh__element="rancf", mesh__k=0.2),
     "K = 0.6": dict(mesh__element="rancf", mesh__k=0.6),

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
@@ -35,7 +36,11 @@ def kind_style(i: int, kind: str) -> dict[str, Any]:
 
 
 def plot_ab(
-    plt: Any, runs: dict[int, dict[str, Any]], ref: dict[str, Any], show: list[int], title: str
+    plt: Any,
+    runs: Mapping[int, Mapping[str, Any]],
+    ref: Mapping[str, Any],
+    show: Sequence[int],
+    title: str,
 ) -> Any:
     """AB(t) for several numbers of elements and the reference (paper Figs. 15–17, 21, 24, 26)."""
     fig, ax = plt.subplots(figsize=(7, 4.2), constrained_layout=True)
@@ -51,7 +56,7 @@ def plot_ab(
 
 
 def plot_errors(
-    plt: Any, runs: dict[str, dict[int, dict[str, Any]]], tol: float, title: str
+    plt: Any, runs: Mapping[str, Mapping[int, Mapping[str, Any]]], tol: float, title: str
 ) -> Any:
     """Tip error against the number of elements, one curve per element kind (:func:`kind_style`)."""
     from matplotlib.ticker import MaxNLocator

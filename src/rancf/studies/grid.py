@@ -30,7 +30,7 @@ __all__ = ["GridRun", "grid_variant", "variant_raw", "run_grid", "Executor"]
 Executor = SweepExecutor
 
 
-class GridRun(dict):  # type: ignore[type-arg]
+class GridRun(dict[str, Any]):
     """One finished run of a study grid, read back from its folder.
 
     Keys: ``n_el``, ``t``, ``tip`` (last node), ``ab`` (distance first–last node),

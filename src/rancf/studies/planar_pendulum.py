@@ -35,7 +35,7 @@ from rancf.studies.grid import Executor
 TITLE = "6.1 Planar pendulum with an elliptical-arc cable"
 NAME = "planar-pendulum"
 TOL = 1e-3
-KINDS = {
+KINDS: dict[str, dict[str, Any]] = {
     "Kopt": dict(mesh__element="rancf", mesh__k="opt"),
     "K = 0.2": dict(mesh__element="rancf", mesh__k=0.2),
     "K = 0.6": dict(mesh__element="rancf", mesh__k=0.6),

@@ -171,6 +171,7 @@ def arc_rod_modes(
         table.append(fo[:4])
         if n == 8:
             inplane, n_zero = fi, int(np.sum(np.concatenate([fi, fo]) < 1e-3))
+    assert inplane is not None  # from n = 8, in every list ns
     rows = [[n, *(f"{f:.5f}" for f in row)] for n, row in zip(ns, table, strict=True)]
     res.add_table(
         out,

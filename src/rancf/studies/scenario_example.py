@@ -79,23 +79,23 @@ def run_scenario(name: str, out: str | Path, quick: bool = False) -> StudyResult
             from rancf.post.static_run import run_static
 
             info = {"scenario": str(scenario.resolve())}
-            run = run_static(sc, out / "static", info, lambda doc: _notes(res, doc))
-            st = run.result
+            static = run_static(sc, out / "static", info, lambda doc: _notes(res, doc))
+            st = static.result
             _figures(res, out, out / "static", "static load path", skip="energy")
             res.add_table(
                 out,
                 f"Static equilibrium: {len(st.load_factors) - 1} load steps, "
                 f"{st.n_newton} Newton iterations",
                 ["sensor", "value"],
-                [[n, f"{v:.9g}"] for n, v in run.sensors.items()],
+                [[n, f"{v:.9g}"] for n, v in static.sensors.items()],
                 "static.csv",
             )
         elif analysis == "modes":
             from rancf.post.plots import plot_modes
             from rancf.runs.modes import run_modes
 
-            run = run_modes(sc, at_least=1)
-            system, modal = run.system, run.result
+            modal_run = run_modes(sc, at_least=1)
+            system, modal = modal_run.system, modal_run.result
             doc = {
                 "frequencies_hz": modal.frequencies_hz.tolist(),
                 "rigid_body_modes_removed": modal.n_rigid,
@@ -132,9 +132,9 @@ def run_scenario(name: str, out: str | Path, quick: bool = False) -> StudyResult
             from rancf.runs.simulate import run_simulate
 
             info = {"scenario": str(scenario.resolve())}
-            run = run_simulate(sc, out / "run", info, MAX_EXAMPLE_GB,
+            dynamic = run_simulate(sc, out / "run", info, MAX_EXAMPLE_GB,
                                "the limit of an example run (GB)")  # fmt: skip
-            result, outputs, summary = run.result, run.outputs, run.summary
+            result, outputs, summary = dynamic.result, dynamic.outputs, dynamic.summary
             assert summary is not None  # a folder was given
             _notes(res, summary)
             _figures(res, out, out / "run", "simulation")

@@ -20,6 +20,7 @@ are reported as failed, never hidden.
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -43,7 +44,7 @@ from rancf.studies.rod_runs import spatial_pendulum_rod
 TITLE = "6.2 Spatial pendulum with an elliptical-arc cable"
 NAME = "spatial-pendulum"
 TOL = 1e-3
-KINDS = {
+KINDS: dict[str, dict[str, Any]] = {
     "Kopt": dict(mesh__element="rancf", mesh__k="opt"),
     "K = 0.1": dict(mesh__element="rancf", mesh__k=0.1),
 }

@@ -32,30 +32,47 @@ LIMIT = "the limit of a sweep run (GB)"
 FREQUENCY_COLUMNS = 6
 
 
-def _analyse(sc: Any, analysis: str, folder: Path) -> tuple[str, str, float, dict[str, float]]:
-    """Run the analysis; returns status, message, solve time and the row's result values."""
-    from rancf.post.results import sensor_table
+#: What an analysis returns: status, message, solve time and the row's result values.
+Outcome = tuple[str, str, float, dict[str, float]]
 
+
+def _analyse(sc: Any, analysis: str, folder: Path) -> Outcome:
+    """Run the analysis (``simulate``, ``static`` or ``modes``)."""
     if analysis == "simulate":
-        from rancf.runs.simulate import run_simulate
-
-        info = {"scenario": str(folder / "scenario.toml")}
-        run = run_simulate(sc, folder, info, MAX_RUN_GB, LIMIT)
-        res, summary = run.result, run.summary
-        assert summary is not None  # a folder was given
-        energy = [[res.kinetic[-1], res.strain[-1], res.gravity[-1]]]
-        names, vals = sensor_table(run.outputs, sc.sensors, res.q[-1:], res.v[-1:], energy,
-                                   t=res.t[-1:])  # fmt: skip
-        values = {"t_reached": float(res.t_reached), "steps": float(res.n_steps)}
-        values.update(zip(names, map(float, vals[0]), strict=True))
-        return summary["status"], res.message, float(res.wall_time), values
+        return _simulate(sc, folder)
     if analysis == "static":
-        from rancf.post.static_run import positions_json, run_static
+        return _static(sc, folder)
+    return _modes(sc, folder)
 
-        run = run_static(sc, folder, {"scenario": str(folder / "scenario.toml")})
-        out = {"positions": positions_json(run.system, run.result.q), "sensors": run.sensors}
-        atomic_write(folder / "static.json", strict_json(out))
-        return "completed", "", float(run.result.wall_time), run.sensors
+
+def _simulate(sc: Any, folder: Path) -> Outcome:
+    import numpy as np
+
+    from rancf.post.results import sensor_table
+    from rancf.runs.simulate import run_simulate
+
+    info = {"scenario": str(folder / "scenario.toml")}
+    run = run_simulate(sc, folder, info, MAX_RUN_GB, LIMIT)
+    res, summary = run.result, run.summary
+    assert summary is not None  # a folder was given
+    energy = np.array([[res.kinetic[-1], res.strain[-1], res.gravity[-1]]])
+    names, vals = sensor_table(run.outputs, sc.sensors, res.q[-1:], res.v[-1:], energy,
+                               t=res.t[-1:])  # fmt: skip
+    values = {"t_reached": float(res.t_reached), "steps": float(res.n_steps)}
+    values.update(zip(names, map(float, vals[0]), strict=True))
+    return summary["status"], res.message, float(res.wall_time), values
+
+
+def _static(sc: Any, folder: Path) -> Outcome:
+    from rancf.post.static_run import positions_json, run_static
+
+    run = run_static(sc, folder, {"scenario": str(folder / "scenario.toml")})
+    out = {"positions": positions_json(run.system, run.result.q), "sensors": run.sensors}
+    atomic_write(folder / "static.json", strict_json(out))
+    return "completed", "", float(run.result.wall_time), run.sensors
+
+
+def _modes(sc: Any, folder: Path) -> Outcome:
     from rancf.runs.modes import run_modes
 
     t0 = time.perf_counter()  # as rancf modes: [modes] about, its static state, spin rates

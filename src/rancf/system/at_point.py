@@ -67,7 +67,8 @@ class NearestPoint:
         nodes = nodes.reshape(len(qs), m.n_nodes, 2, m.dim)
         en = np.concatenate([nodes[:, :-1], nodes[:, 1:]], axis=2)  # (k, n_el, 4, dim)
         parts = [self._find(en[c : c + CHUNK], p) for c in range(0, len(qs), CHUNK)]
-        return tuple(np.concatenate(x) for x in zip(*parts, strict=True))  # type: ignore[return-value]
+        element, xi, point, distance = (np.concatenate(x) for x in zip(*parts, strict=True))
+        return element, xi, point, distance
 
     def _find(self, en: NDArray, p: NDArray) -> tuple[NDArray, NDArray, NDArray, NDArray]:
         m, k = self.model, en.shape[0]

@@ -23,6 +23,7 @@ from rancf.kernels.records import (
     SpringRecord,
     TimeFunctionRecord,
     floats,
+    vec3,
 )
 
 __all__ = ["SystemRecords", "build_core", "rigid_record"]
@@ -46,7 +47,7 @@ class SystemRecords:
 def rigid_record(b: RigidBody | PointMass) -> RigidRecord:
     """The core's record of a rigid body or point mass."""
     inertia = b.inertia_vector() if isinstance(b, RigidBody) else np.zeros(3)
-    return RigidRecord(b.dim, isinstance(b, PointMass), float(b.mass), floats(inertia))  # type: ignore[arg-type]
+    return RigidRecord(b.dim, isinstance(b, PointMass), float(b.mass), vec3(inertia))
 
 
 def build_core(

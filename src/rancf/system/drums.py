@@ -21,6 +21,7 @@ import numpy as np
 from rancf.bodies.flexible import Model
 from rancf.bodies.time_function import TimeFunction
 from rancf.errors import InputError
+from rancf.kernels.cable import CableKernel
 
 __all__ = [
     "drum_torque", "attach_drum", "drum_state", "drum_mass", "hold_drums", "refuse_static_drums",
@@ -64,8 +65,11 @@ def attach_drum(system: Any, k: int, w: Any, body: Model, node: int, torque: int
     gravity = np.zeros(3)
     if body.gravity is not None:
         gravity[: body.dim] = body.gravity
-    rho_a = float(body.kernel.props.rho_a)
-    start = float(np.sum(body.kernel.wj))  # the body's unstretched length
+    kernel = body.kernel
+    if not isinstance(kernel, CableKernel):
+        raise InputError(f"winches.{w.name}.at", w.at, "a place on a cable body")
+    rho_a = float(kernel.props.rho_a)
+    start = float(np.sum(kernel.wj))  # the body's unstretched length
     index = int(system.core.attach_drum(k, torque, drum_mass(w), float(w.radius), rho_a,
                                         rho_a * gravity, int(body.node_base(node))))  # fmt: skip
     if index != system.n or int(system.core.n) != system.n + 1:

@@ -20,7 +20,7 @@ from typing import Any
 import numpy as np
 
 from rancf.errors import InputError
-from rancf.kernels.records import DistributedRecord, FluidRecord, LineRecord, floats
+from rancf.kernels.records import DistributedRecord, FluidRecord, LineRecord, floats, vec3
 from rancf.kernels.rod import RodKernel
 
 __all__ = ["Fluid", "Waves", "Hydro", "DistributedLoad", "wave_number", "fluid_records"]
@@ -112,9 +112,9 @@ def _fluid_record(fl: Fluid, gravity: np.ndarray, dim: int) -> FluidRecord:
                 (math.copysign(1.0, math.cos(b)), 0.0, 0.0)}  # fmt: skip
     cur = [0.0, 0.0, 0.0] if fl.current is None else list(fl.current) + [0.0] * (3 - dim)
     return FluidRecord(
-        density=float(fl.density), gravity=floats(gravity[:3]),  # type: ignore[arg-type]
+        density=float(fl.density), gravity=vec3(gravity[:3]),
         has_surface=fl.surface is not None, surface=float(fl.surface or 0.0),
-        current=floats(cur), profile_z=prof_z, profile_u=prof_u, **wave,  # type: ignore[arg-type]
+        current=vec3(cur), profile_z=prof_z, profile_u=prof_u, **wave,
     )  # fmt: skip
 
 
@@ -160,7 +160,7 @@ def fluid_records(
         if ld.body is not None and ld.body not in loads:
             raise InputError(f"loads.distributed[{i}].body", ld.body,
                              f"a flexible body (one of {list(flex_names)})")  # fmt: skip
-        rec = DistributedRecord(floats(list(ld.force) + [0.0] * (3 - dim)), tf(ld.time))  # type: ignore[arg-type]
+        rec = DistributedRecord(vec3(list(ld.force) + [0.0] * (3 - dim)), tf(ld.time))
         for n in [ld.body] if ld.body is not None else flex_names:
             loads[n].append(rec)
     lines = [

@@ -16,6 +16,8 @@ tangent, for a cable node; none for a point mass), so every joint holds exactly 
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 from numpy.typing import NDArray
 
@@ -50,9 +52,10 @@ def _between(j: Joint) -> list[str]:
     return [str(x) for x in j.between]
 
 
-def _record(info: dict) -> JointRecord:
+def _record(info: dict[str, Any]) -> JointRecord:
     vectors = ("rel", "axis_a", "normals_b", "w_a", "w_b")
-    return JointRecord(**{k: floats(v) if k in vectors else v for k, v in info.items()})
+    fields: dict[str, Any] = {k: floats(v) if k in vectors else v for k, v in info.items()}
+    return JointRecord(**fields)
 
 
 def joint_data(
@@ -83,7 +86,8 @@ def joint_data(
         if j.kind == "fixed" or j.angle is not None:
             info["beta0"] = float(np.arctan2(fa[0] @ fb[1], fa[0] @ fb[0]))
         if j.kind == "slider":
-            normal = np.array([-axis[1], axis[0], 0.0])  # type: ignore[index]
+            assert axis is not None  # required (_axis)
+            normal = np.array([-axis[1], axis[0], 0.0])
             info["normals_b"][:3] = fb @ normal
         return _record(info)
     if j.kind == "fixed":
@@ -102,7 +106,8 @@ def joint_data(
     if j.kind == "slider":
         if len(fb) < 3:
             raise InputError("joints.between", str(j.between[1]), "a place with a frame")
-        n1, n2 = normals(axis)  # type: ignore[arg-type]
+        assert axis is not None  # required (_axis)
+        n1, n2 = normals(axis)
         info["normals_b"] = np.r_[fb @ n1, fb @ n2]
         return _record(info)
     if j.kind == "revolute":
@@ -111,7 +116,8 @@ def joint_data(
                 "joints.between", _between(j),
                 "places with a frame (a 3D cable node has only a tangent: a rod)",
             )  # fmt: skip
-        n1, n2 = normals(axis)  # type: ignore[arg-type]
+        assert axis is not None  # required in 3D (_axis)
+        n1, n2 = normals(axis)
         info["axis_a"], info["normals_b"] = fa @ axis, np.r_[fb @ n1, fb @ n2]
         if j.angle is not None:
             info["w_a"], info["w_b"] = fa @ n1, fb @ n1

@@ -70,15 +70,19 @@ def block_derived(outputs: Any, t: NDArray, ys: NDArray, vs: NDArray, out: dict[
     if s.has_contact:
         parts.append(_contact_block(s, ys, vs, step))
     out["r"] = np.concatenate(parts, axis=1) if parts else np.empty((k, 0))
-    return (res0, fint) if res0 is not None else (np.empty((k, 0)), np.empty((k, 0)))
+    if res0 is None or fint is None:
+        return np.empty((k, 0)), np.empty((k, 0))
+    return res0, fint
 
 
 def _contact_block(s: Any, ys: NDArray, vs: NDArray, alpha: NDArray | None) -> NDArray:
     """:func:`contact_row` of every row, its contact state that of the step that ended at it
     (``alpha``) or else its own."""
     n = s.n
-    rows = [contact_row(s, *((alpha[i, :n], alpha[i, n:]) if alpha is not None else
-                             (ys[i], vs[i])), ys[i]) for i in range(ys.shape[0])]  # fmt: skip
+    rows = []
+    for i in range(ys.shape[0]):
+        yc, vc = (alpha[i, :n], alpha[i, n:]) if alpha is not None else (ys[i], vs[i])
+        rows.append(contact_row(s, yc, vc, ys[i]))
     return np.array(rows).reshape(ys.shape[0], -1)
 
 

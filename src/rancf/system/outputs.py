@@ -62,6 +62,7 @@ from rancf.bodies.nodal_forces import recovers_axial_force
 from rancf.bodies.reactions import Reaction, reaction_columns, reaction_row, support_reactions
 from rancf.bodies.section_outputs import SectionSampler, section_names
 from rancf.kernels import _core
+from rancf.kernels.rod import RodKernel
 from rancf.system.output_block import block_derived, block_sections, contact_row, takes_block
 from rancf.system.seabed_friction import static_friction_load
 from rancf.system.sensors import SensorReader
@@ -106,7 +107,7 @@ class SystemOutputs:
         for name, b in self.flex:
             # as the user wrote them, else BODY:AT (unique in every system)
             given = labels.get(name)
-            default = [f"{name}:{_node_name(b, sup.node)}" for sup in b.supports]
+            default: list[int | str] = [f"{name}:{_node_name(b, sup.node)}" for sup in b.supports]
             self.labels[name] = list(given) if given is not None else default
         self.samplers = {name: SectionSampler(b, per_element) for name, b in self.flex}
         winched = {winch_node(s, w)[0] for w in getattr(s, "winches", ())}
@@ -133,8 +134,9 @@ class SystemOutputs:
             cols = [f"{ob}_{part}_{a}" for part in ("normal", "friction") for a in axes]
             cols += [f"{ob}_m{a}" for a in moments]
             self.reaction_names += [*cols, f"{ob}_length", f"{ob}_penetration"]
-        for a, b in s.body_contacts:
-            self.reaction_names += [f"{a}_{b}_contact_force", f"{a}_{b}_penetration"]
+        for first, second in s.body_contacts:
+            pair = f"{first}_{second}"
+            self.reaction_names += [f"{pair}_contact_force", f"{pair}_penetration"]
         self.along_widths = {n: sp.n_points * len(self.section_names[n])
                              for n, sp in self.samplers.items()}  # fmt: skip
         self.sensors = SensorReader(self, sensors)
@@ -366,13 +368,16 @@ class SystemOutputs:
     @contextlib.contextmanager
     def _triads(self) -> Iterator:
         """Rods: a setter of the triads of a row from its directors; restored at the end."""
-        rods = [(b, self.system.body_slice(name)) for name, b in self.flex if b.element == "rod"]
-        saved = [(b.kernel.tref.copy(), b.kernel.m1ref.copy()) for b, _ in rods]
+        rods = [
+            (b, b.kernel, self.system.body_slice(name))
+            for name, b in self.flex
+            if isinstance(b.kernel, RodKernel)
+        ]
+        saved = [(kern.tref.copy(), kern.m1ref.copy()) for _, kern, _ in rods]
 
         def set_row(y: NDArray, m1: NDArray) -> None:
             start = 0
-            for b, sl in rods:
-                kern = b.kernel
+            for b, kern, sl in rods:
                 g = b.q_from_y(y[sl]).reshape(b.n_nodes, b.dpn)[:, 3:6]
                 kern.tref[...] = (g / np.linalg.norm(g, axis=1, keepdims=True)).reshape(
                     kern.tref.shape
@@ -384,9 +389,9 @@ class SystemOutputs:
         try:
             yield set_row
         finally:
-            for (b, _), (tr, m1) in zip(rods, saved, strict=True):
-                b.kernel.tref[...] = tr
-                b.kernel.m1ref[...] = m1
+            for (_, kern, _), (tr, m1) in zip(rods, saved, strict=True):
+                kern.tref[...] = tr
+                kern.m1ref[...] = m1
 
 
 def _node_name(body: Any, node: int) -> str:

@@ -49,6 +49,24 @@ class Place:
         except ValueError:
             return cls(body, at)
 
+    def body_name(self) -> str:
+        """The body of a place on a body (the ground has none)."""
+        if self.body is None:
+            raise InputError("place", "ground", "a place on a body")
+        return self.body
+
+    def node(self) -> int:
+        """The node index of a resolved place on a flexible body."""
+        if not isinstance(self.at, int):
+            raise InputError("place", str(self), "a node of a flexible body")
+        return self.at
+
+    def point_name(self) -> str | None:
+        """The point (None: the centre of mass) of a place on a rigid body."""
+        if isinstance(self.at, int):
+            raise InputError("place", str(self), "a point of a rigid body")
+        return self.at
+
     def __str__(self) -> str:
         if self.body is None:
             return "ground"

@@ -34,7 +34,7 @@ consistent translational mass, the same identity).  Rigid bodies and point masse
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from typing import Any, Protocol
 
 import numpy as np
@@ -47,6 +47,7 @@ from rancf.bodies.rigid import PointMass, RigidBody, body_angular_velocity
 from rancf.errors import InputError
 from rancf.system.at_point import at_point_reader
 from rancf.system.places import Place
+from rancf.system.readers import Block, NamedReader, Reader
 from rancf.system.winches import winch_reader
 
 __all__ = ["SensorReader"]
@@ -67,8 +68,6 @@ class OutputsView(Protocol):
     def body_along(self, along: NDArray, name: str) -> NDArray[np.float64]: ...
 
 
-Block = tuple[NDArray, NDArray, NDArray, dict[str, NDArray], NDArray]
-Reader = Callable[[Block], NDArray]
 
 
 class SensorReader:
@@ -80,10 +79,13 @@ class SensorReader:
         self.names: list[str] = []
         self._readers: list[Reader] = []
         self._mass: dict[str, tuple[float, NDArray]] = {}
+        self._kinds: list[str] = []
         for sen in sensors:
             reader = self._reader(sen)
-            self.names += getattr(reader, "columns", None) or sen.columns(self.system.dim)
+            columns = reader.columns if isinstance(reader, NamedReader) else []
+            self.names += columns or sen.columns(self.system.dim)
             self._readers.append(reader)
+            self._kinds.append(sen.kind)
 
     def values(
         self, t: NDArray, q: NDArray, v: NDArray | None, derived: dict[str, NDArray],
@@ -99,10 +101,6 @@ class SensorReader:
         cols = [np.asarray(r(block), dtype=float).reshape(len(t), -1) for r in self._readers]
         return np.concatenate(cols, axis=1) if cols else np.empty((len(t), 0))
 
-    @property
-    def _kinds(self) -> list[str]:
-        return [getattr(r, "kind", "") for r in self._readers]
-
     # ------------------------------------------------------------------ places
     def _place(self, sen: Any, spec: Any) -> Place:
         try:
@@ -116,12 +114,13 @@ class SensorReader:
     def _position(self, sen: Any, spec: Any) -> Reader:
         s = self.system
         p = self._place(sen, spec)
-        b = s.bodies[p.body]  # type: ignore[index]
+        body = p.body_name()
+        b = s.bodies[body]
         if isinstance(b, Model):
-            base = s.offsets[p.body] + int(p.at) * b.dpn  # type: ignore[arg-type, index]
+            base = s.offsets[body] + p.node() * b.dpn
             return lambda blk: blk[1][:, base : base + s.dim]
         if isinstance(b, PointMass) or p.at is None:
-            o = s.offsets[p.body]  # type: ignore[index]
+            o = s.offsets[body]
             return lambda blk: blk[1][:, o : o + s.dim]
         s.place_state(p, s.y0)  # raises unless the place is observed
 
@@ -167,15 +166,15 @@ class SensorReader:
             reader = winch_reader(self.out, sen)
         else:
             raise InputError(f"sensors.{sen.name}.kind", kind, "a sensor kind")
-        reader.kind = kind  # type: ignore[attr-defined]
         return reader
 
     def _twist(self, sen: Any, spec: Any) -> Reader:
         p = self._place(sen, spec)
-        b = self.system.bodies[p.body]  # type: ignore[index]
+        body = p.body_name()
+        b = self.system.bodies[body]
         if not (isinstance(b, Model) and b.element == "rod"):
             raise InputError(f"sensors.{sen.name}.at", str(p), "a node of a rod")
-        i = self.system.offsets[p.body] + int(p.at) * b.dpn + 6  # type: ignore[arg-type, index]
+        i = self.system.offsets[body] + p.node() * b.dpn + 6
         return lambda blk: blk[1][:, i]
 
     def _reaction(self, sen: Any, places: tuple) -> Reader:
@@ -250,19 +249,19 @@ class SensorReader:
         if body not in flex:
             raise InputError(f"sensors.{sen.name}.body", body,
                              f"a line (cable or rod elements): {', '.join(flex)}")  # fmt: skip
-        m, sl = s.bodies[body], s.body_slice(body)  # type: ignore[index]
+        m, sl = s.bodies[body], s.body_slice(body)
         point, normal = np.asarray(ob.point, float), np.asarray(ob.normal, float)
         return lambda blk: np.array([touchdown_point(m, q[sl], point, normal) for q in blk[1]])
 
     def _axial_force(self, sen: Any, spec: Any) -> Reader:
         p = self._place(sen, spec)
-        b = self.system.bodies[p.body]  # type: ignore[index]
+        name = p.body_name()
+        b = self.system.bodies[name]
         if not isinstance(b, Model):
             raise InputError(f"sensors.{sen.name}.at", str(p), "a node of a flexible body")
-        sp = self.out.samplers[p.body]  # type: ignore[index]
-        point = min(int(p.at) * sp.per_element, sp.n_points - 1)  # type: ignore[arg-type]
-        name = p.body
-        return lambda blk: self.out.body_along(blk[3]["s"], name)[:, point, 1]  # type: ignore[arg-type]
+        sp = self.out.samplers[name]
+        point = min(p.node() * sp.per_element, sp.n_points - 1)
+        return lambda blk: self.out.body_along(blk[3]["s"], name)[:, point, 1]
 
     def _angle(self, sen: Any) -> Reader:
         s = self.system
@@ -360,5 +359,4 @@ def _columns_reader(name: str, dim: int, cols: slice, extra: tuple[str, ...] = (
     def read(blk: Block) -> NDArray:
         return blk[3]["r"][:, cols]
 
-    read.columns = names  # type: ignore[attr-defined]
-    return read
+    return NamedReader(read, names)

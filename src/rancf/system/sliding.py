@@ -208,7 +208,7 @@ def sliding_values(system: Any, k: int, y: NDArray, lam: NDArray,
     j = system.joints[k]
     name, body = sliding_body(system, j)
     sigma = float(lam[system.joint_rows[k] + system.dim])
-    passed = getattr(system, "sliding_passed", set())
+    passed: set[int] = getattr(system, "sliding_passed", set())
     if not body.closed and not (0.0 <= sigma <= body.n_el) and k not in passed:
         passed.add(k)
         msg = (f"rancf: sliding joint {j.name or k!r}: the {'start' if sigma < 0 else 'end'} "

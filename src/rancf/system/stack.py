@@ -13,7 +13,8 @@ from numpy.typing import ArrayLike, NDArray
 from rancf.bodies.flexible import Model
 from rancf.bodies.rigid import PointMass, RigidBody
 from rancf.errors import InputError
-from rancf.kernels.records import PlaceRecord, floats
+from rancf.kernels.beam import BeamKernel
+from rancf.kernels.records import PlaceRecord, vec3
 from rancf.system.places import Place
 
 __all__ = ["BodyStack", "Body"]
@@ -51,24 +52,25 @@ class BodyStack:
                 raise InputError("bodies.name", name, 'a name without ":", not "ground"')
         flex = [(k, b) for k, b in bodies.items() if isinstance(b, Model)]
         rigid = [(k, b) for k, b in bodies.items() if isinstance(b, RigidBody | PointMass)]
+        both: list[tuple[str, Body]] = [*flex, *rigid]
         if len(flex) + len(rigid) != len(bodies):
             raise InputError("bodies", list(bodies), "Model, RigidBody or PointMass objects")
-        dims = {b.dim for _, b in flex + rigid}
+        dims = {b.dim for _, b in both}
         if len(dims) != 1:
             raise InputError("bodies", sorted(dims), "bodies of one dimension (all 2D or all 3D)")
         self.dim = dims.pop()
-        self.bodies = dict(flex + rigid)
-        self.names = [k for k, _ in flex + rigid]
+        self.bodies = dict(both)
+        self.names = [k for k, _ in both]
         self.flex = [b for _, b in flex]
         self.rigid = [b for _, b in rigid]
         self.offsets: dict[str, int] = {}
         n = 0
-        for name, b in flex + rigid:
+        for name, b in both:
             self.offsets[name] = n
             n += b.n if isinstance(b, Model) else b.size
         self.n = n
         y0, v0 = np.zeros(n), np.zeros(n)
-        for name, b in flex + rigid:
+        for name, b in both:
             o = self.offsets[name]
             if isinstance(b, Model):
                 y0[o : o + b.n], v0[o : o + b.n] = b.y0, b.v0
@@ -100,28 +102,28 @@ class BodyStack:
 
     def reference_position(self, p: Place) -> NDArray[np.float64]:
         """A place's position in the reference configuration (3 components)."""
-        b = self.bodies[p.body]  # type: ignore[index]
+        b = self.bodies[p.body_name()]
         if isinstance(b, Model):
-            return np.r_[b.node_positions(b.q0)[int(p.at)], np.zeros(3 - self.dim)]  # type: ignore[arg-type]
+            return np.r_[b.node_positions(b.q0)[p.node()], np.zeros(3 - self.dim)]
         yy, _ = b.initial()
         x = np.r_[yy[: self.dim], np.zeros(3 - self.dim)]
         if isinstance(b, RigidBody) and p.at is not None:
             r = b.rotation()
-            s = b.point(p.at)[: self.dim]  # type: ignore[arg-type]
+            s = b.point(p.point_name())[: self.dim]
             x[: self.dim] += r @ s
         return x
 
     def place_record(self, p: Place) -> PlaceRecord:
         """The core's record of the resolved place ``p`` on a body (:meth:`resolve`)."""
-        b = self.bodies[p.body]  # type: ignore[index]
+        b = self.bodies[p.body_name()]
         if isinstance(b, Model):
-            node = int(p.at)  # type: ignore[arg-type]
-            angle0 = float(b.kernel.psi0[node]) if b.element == "beam" else 0.0
+            node = p.node()
+            angle0 = float(b.kernel.psi0[node]) if isinstance(b.kernel, BeamKernel) else 0.0
             return PlaceRecord(_NODE_KIND[b.element], self.flex.index(b), node, angle0=angle0)
         if isinstance(b, PointMass):
             return PlaceRecord("mass", self.rigid.index(b))
         kind = "rigid2d" if self.dim == 2 else "rigid3d"
-        return PlaceRecord(kind, self.rigid.index(b), point=floats(b.point(p.at)))  # type: ignore[arg-type]
+        return PlaceRecord(kind, self.rigid.index(b), point=vec3(b.point(p.point_name())))
 
     # ---------------------------------------------------------------- coordinates
     def body_slice(self, name: str) -> slice:
@@ -167,7 +169,8 @@ class BodyStack:
     def nodal_directors(self, y: NDArray) -> NDArray[np.float64] | None:
         """Rods' nodal directors ``(n_rod_nodes, 3)`` of every rod body (None without rods)."""
         parts = [b.nodal_directors(y[sl]) for b, sl in self._each_flex() if b.element == "rod"]
-        return np.concatenate(parts) if parts else None
+        rods = [d for d in parts if d is not None]  # a rod has directors
+        return np.concatenate(rods) if rods else None
 
     def rereference(self, y: NDArray, v: NDArray, a: NDArray, w: NDArray | None = None) -> None:
         """Rods: carry the nodal triads to ``y`` (their spin rates in ``v``, ``a`` kept; the

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import warnings
 from collections.abc import Callable, Mapping, Sequence
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -33,7 +34,7 @@ from rancf.kernels.records import (
     PrescribedRecord,
     SpringRecord,
     TimeFunctionRecord,
-    floats,
+    vec3,
 )
 from rancf.system.connections import JOINT_KINDS, Joint, Load, Spring
 from rancf.system.contact import CONTACT_POINTS, Obstacle, build_contact
@@ -129,6 +130,8 @@ class System(BodyStack):
         The parts as the compiled core ``core`` took them (:mod:`rancf.kernels.records`).
     """
 
+    drums: dict[str, int]  #: each driven drum's coordinate (rancf.system.winches.attach_winches)
+
     def __init__(
         self,
         bodies: Mapping[str, Body],
@@ -171,7 +174,7 @@ class System(BodyStack):
         linear = closure_terms(self.names, self.flex, self.offsets)
         rows = _Rows(horizon)
         self._place_index: dict[Place, int] = {}
-        parts = {
+        parts: dict[str, Sequence[Any]] = {
             "prescribed": self._motions(rows),
             "springs": [self._spring(s, rows) for s in springs],
             "loads": [self._load(ld, rows) for ld in self._all_loads()],
@@ -198,7 +201,9 @@ class System(BodyStack):
         self.joint_rows = list(self.core.joint_rows)
         self.obstacles = tuple(obstacles)  # contact: attached to the core
         self.body_contacts, self.contact_points = [(a, b) for a, b in body_contacts], contact_points
-        self.contact, self.obstacle_names, self.contact_pairs = None, [], []
+        self.contact: Any = None  # the core's Contact
+        self.obstacle_names: list[str] = []
+        self.contact_pairs: list[tuple[str, str]] = []
         if self.obstacles or contacts or body_contacts:  # build_contact: the core's Contact
             self.contact, self.obstacle_names, self.contact_pairs = build_contact(
                 self, self.obstacles, contacts, contact_points, body_contacts, body_friction
@@ -246,9 +251,10 @@ class System(BodyStack):
         """The index of the record of the place ``p`` (resolved); the ground: at
         ``ground_point``, moved by the time function ``motion``."""
         if p.body is None:
+            assert ground_point is not None  # the callers give the ground's point
             point = np.zeros(3)
-            point[: self.dim] = ground_point[: self.dim]  # type: ignore[index]
-            ground = PlaceRecord("ground", point=floats(point), motion=motion)  # type: ignore[arg-type]
+            point[: self.dim] = ground_point[: self.dim]
+            ground = PlaceRecord("ground", point=vec3(point), motion=motion)
             return rows.place(ground, lambda: ground)
         self._place_index[p] = rows.place(p, lambda: self.place_record(p))
         return self._place_index[p]
@@ -348,8 +354,8 @@ class System(BodyStack):
         if ld.time is not None and ld.time.size != 1:
             raise InputError("loads.point.time", ld.time.size, "a scalar time function (a factor)")
         place = self.place_index(p, rows)
-        force = floats(np.r_[f, np.zeros(3 - f.size)])
-        return LoadRecord(place, force, floats(tt), rows.tf(ld.time))  # type: ignore[arg-type]
+        force = vec3(np.r_[f, np.zeros(3 - f.size)])
+        return LoadRecord(place, force, vec3(tt), rows.tf(ld.time))
 
     def _place(self, j: Joint, rows: _Rows) -> tuple[int, int]:
         if j.kind not in JOINT_KINDS:

@@ -37,16 +37,36 @@ __all__ = [
 class WinchedSystem(Protocol):
     """What the winches use of a system (:class:`rancf.system.system.System`)."""
 
-    bodies: Mapping[str, Any]
-    names: list[str]
-    horizon: float | None
-    core: Any
-    y0: np.ndarray
-    joints: Sequence[Any]
-    winch_lengths: dict[str, TimeFunction]
+    #: the coordinate of each driven drum by name (set by :func:`attach_winches`)
     drums: dict[str, int]
-    n: int
-    v0: np.ndarray
+
+    # read-only: implementations may narrow a member's type
+    @property
+    def bodies(self) -> Mapping[str, Any]: ...
+
+    @property
+    def names(self) -> list[str]: ...
+
+    @property
+    def horizon(self) -> float | None: ...
+
+    @property
+    def core(self) -> Any: ...
+
+    @property
+    def y0(self) -> np.ndarray: ...
+
+    @property
+    def joints(self) -> Sequence[Any]: ...
+
+    @property
+    def winch_lengths(self) -> dict[str, TimeFunction]: ...
+
+    @property
+    def n(self) -> int: ...
+
+    @property
+    def v0(self) -> np.ndarray: ...
 
     def resolve(self, spec: Any) -> Any: ...
 
@@ -96,9 +116,11 @@ class Winch:
     def body_and_end(self) -> tuple[str, Literal["start", "end"]]:
         """The body's name and the end at the drum."""
         body, _, end = self.at.rpartition(":")
-        if not body or end not in ("start", "end"):
-            raise InputError(f"winches.{self.name}.at", self.at, '"BODY:start" or "BODY:end"')
-        return body, end  # type: ignore[return-value]
+        if body and end == "start":
+            return body, "start"
+        if body and end == "end":
+            return body, "end"
+        raise InputError(f"winches.{self.name}.at", self.at, '"BODY:start" or "BODY:end"')
 
 
 def winch_length(w: Winch, length0: float, horizon: float | None) -> TimeFunction:
@@ -114,6 +136,7 @@ def winch_length(w: Winch, length0: float, horizon: float | None) -> TimeFunctio
     if w.length is not None:
         f = w.length if isinstance(w.length, TimeFunction) else TimeFunction.constant(w.length)
         return length_law(f)
+    assert w.speed is not None  # the one given
     speed = w.speed if isinstance(w.speed, TimeFunction) else TimeFunction.constant(w.speed)
     if horizon is None or not horizon > 0:
         raise InputError("horizon", horizon, "the run's end time t_end [s] > 0 (a winch's "
@@ -162,7 +185,10 @@ def winch_functions(
                              f"length at t = 0, {length0!r} m (rancf.bodies.length."
                              "set_unstretched_length gives the body its start length)")  # fmt: skip
         if f.kind == "callable":
-            f = f.sampled(HORIZON_MARGIN * float(system.horizon))  # type: ignore[arg-type]
+            if system.horizon is None:
+                raise InputError("horizon", None, "the run's end time t_end [s] (a winch's "
+                                 "length function is sampled on [0, t_end])")  # fmt: skip
+            f = f.sampled(HORIZON_MARGIN * float(system.horizon))
         functions[w.name] = f
         out.append((tf(f), drum_torque(w, tf) if w.driven else -1))
     return functions, out
@@ -265,7 +291,6 @@ def winch_reader(outputs: Any, sen: Any) -> Callable[[Any], np.ndarray]:
         tension = np.linalg.norm(blk[3]["r"][:, cols], axis=1)
         return np.column_stack([length, rate, tension])
 
-    read.columns = sen.columns(d)  # type: ignore[attr-defined]
     return read
 
 
