@@ -169,14 +169,12 @@ def run_warnings(
     steps against the output interval (``options``, a dynamic run's), and the largest axial
     strain — ``largest = (strain, t)`` as a :class:`~rancf.system.outputs.SystemOutputs` tracked
     it, or of a model's states ``q (n_t, n)`` at times (or load factors, ``static``) ``t``."""
-    if largest is None and isinstance(model, System):
-        largest = (0.0, 0.0)
     if largest is None:
-        largest = (
-            largest_strain(model, np.atleast_1d(t), np.atleast_2d(q))
-            if q is not None and np.size(q)
-            else (0.0, 0.0)
-        )
+        largest = (0.0, 0.0)
+        if not isinstance(model, System) and q is not None and np.size(q):
+            qq = np.atleast_2d(q)
+            tt = np.zeros(len(qq)) if t is None else np.atleast_1d(t)
+            largest = largest_strain(model, tt, qq)
     strain = strain_warning(largest[0], (at_load_factor if static else at_time)(largest[1]))
     if options is not None and not static:
         first = before_run_warnings(model, options)

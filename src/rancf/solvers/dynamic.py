@@ -162,11 +162,11 @@ def integrate(
         m1 = directors(yy)
         ll = lam.copy() if mult else None
         row = (tt, system.q_from_y(yy), system.q_from_y(vv), e, m1, ll, alpha)
-        target_sink.append(*row[:4], directors=m1, lam=ll, alpha=alpha)
+        target_sink.append(tt, row[1], row[2], e, directors=m1, lam=ll, alpha=alpha)
         last[:] = [row]
         result.n_outputs += 1
 
-    def store_block(k0: int, oy: NDArray, ov: NDArray, oe: NDArray, ol: NDArray,
+    def store_block(k0: int, oy: NDArray, ov: NDArray, oe: NDArray | None, ol: NDArray,
                     oa: NDArray | None) -> None:  # fmt: skip
         """Outputs ``k0, k0 + 1, ...`` from the core's loop, passed on as one block (rods: one
         output a block, whose state is the one the triads were carried to)."""
@@ -223,7 +223,7 @@ def integrate(
         result.t, result.q, result.v = ts, qs, vs
         result.kinetic, result.strain, result.gravity = es[:, 0], es[:, 1], es[:, 2]
         result.status, result.message = status, message
-        result.n_newton = base["n_newton"] + integ.n_newton
+        result.n_newton = int(base["n_newton"]) + integ.n_newton
         result.n_factorizations = integ.n_factorizations
         result.wall_time = base["wall_time"] + time.perf_counter() - started
         result.state = DynamicState(
@@ -279,9 +279,9 @@ def integrate(
                 k_out,
                 energies=loop_energies,
             )
-            left = before is not None and _left_range(check, k_out, stored, out_time, oy, ol,
-                                                      t, y, lam)  # fmt: skip
-            if left:
+            left = check is not None and _left_range(check, k_out, stored, out_time, oy, ol,
+                                                     t, y, lam)  # fmt: skip
+            if left and before is not None:
                 y, v, a, w, lam = before  # again step by step, to the step that leaves it
                 slow_until = out_time(min(k_out + n_chunk, n_grid) - 1)
                 continue
@@ -333,9 +333,9 @@ def integrate(
                 status, message = DynamicStatus.FAILED, _failure_message(t, min_step)
                 break
             continue
-        left = None if check is None else check(t + h_try, y1, lam_try)
-        if left is not None:  # the state stays at the step before
-            status, message = DynamicStatus.FAILED, left
+        outside = None if check is None else check(t + h_try, y1, lam_try)
+        if outside is not None:  # the state stays at the step before
+            status, message = DynamicStatus.FAILED, outside
             break
         alpha = integ.alpha_point(y, v, y1, v1) if contact else None  # before re-referencing
         y, v, a, w, t, lam = y1, v1, a1, w1, t + h_try, lam_try

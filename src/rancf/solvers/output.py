@@ -33,22 +33,23 @@ class OutputSink(Protocol):
         t: float,
         q: NDArray[np.float64],
         v: NDArray[np.float64],
-        energy: NDArray[np.float64],
+        energy: NDArray[np.float64] | None,
         **streams: NDArray[np.float64] | None,
     ) -> None:
-        """Store one output: time, ``q (n_q,)``, ``v (n_q,)``, energies ``(3,)`` and the
-        :data:`STREAMS` (rods' ``directors (n_nodes, 3)``; None: absent)."""
+        """Store one output: time, ``q (n_q,)``, ``v (n_q,)``, energies ``(3,)`` (None where the
+        sink derives them itself, ``derives_energies``) and the :data:`STREAMS` (rods'
+        ``directors (n_nodes, 3)``; None: absent)."""
 
     def append_block(
         self,
         t: NDArray[np.float64],
         q: NDArray[np.float64],
         v: NDArray[np.float64],
-        energy: NDArray,
+        energy: NDArray | None,
         **streams: NDArray[np.float64] | None,
     ) -> None:
-        """Store consecutive outputs: ``t (k,)``, ``q, v (k, n_q)``, ``energy (k, 3)`` and
-        each stream with a leading axis ``k``."""
+        """Store consecutive outputs: ``t (k,)``, ``q, v (k, n_q)``, ``energy (k, 3)`` (None
+        where the sink derives them) and each stream with a leading axis ``k``."""
 
 
 class MemorySink:
