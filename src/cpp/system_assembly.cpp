@@ -28,10 +28,42 @@ namespace {
 
 std::size_t sz(int i) { return static_cast<std::size_t>(i); }
 
-/// Entries of the Jacobian that do not fit into a block's band: border unknowns z_j = x_j.
-struct Far {
-  std::map<int, std::vector<std::pair<int, double>>> by_column;  // j -> (i, value)
+/// Entries of the Jacobian that do not fit into a block's band, (row, column, value).
+struct FarEntry {
+  int i, j;
+  double v;
 };
+struct Far {
+  std::vector<FarEntry> entries;
+  void add(int i, int j, double v) { entries.push_back({i, j, v}); }
+};
+
+/// The far entries as border unknowns (docs/derivations/systems.md section 4): an entry whose
+/// row has more far entries than its column goes to the row's unknown w_i = sum_j K_ij x_j
+/// (Q[w] = K_i., P[i][w] = 1, D = -1), the others to their column's z_j = x_j (P[.][z] = K_.j,
+/// Q[z][j] = 1, D = -1): a rigid body coupled to many coordinates of a line (a carried
+/// obstacle's contact) adds a few unknowns, not one per coordinate.  Groups: columns, then
+/// rows, each ascending, entries in the order they came.
+struct FarGroups {
+  std::map<int, std::vector<std::pair<int, double>>> by_column;  // j -> (i, value)
+  std::map<int, std::vector<std::pair<int, double>>> by_row;     // i -> (j, value)
+};
+
+FarGroups group_far(const Far& far) {
+  std::map<int, int> rows, cols;  // far entries per row and per column
+  for (const FarEntry& e : far.entries) {
+    ++rows[e.i];
+    ++cols[e.j];
+  }
+  FarGroups out;
+  for (const FarEntry& e : far.entries) {
+    if (rows[e.i] > cols[e.j])
+      out.by_row[e.i].emplace_back(e.j, e.v);
+    else
+      out.by_column[e.j].emplace_back(e.i, e.v);
+  }
+  return out;
+}
 
 /// K (k x k, row-major) over global indices idx into lu's bands, or into far.
 void add_matrix(BorderedLU& lu, const int* idx, int k, const double* K, Far& far) {
@@ -45,7 +77,7 @@ void add_matrix(BorderedLU& lu, const int* idx, int k, const double* K, Far& far
         const int o = lu.block_offset(bi);
         lu.view(bi).at(i - o, j - o) += v;
       } else {
-        far.by_column[j].emplace_back(i, v);
+        far.add(i, j, v);
       }
     }
   }
@@ -283,7 +315,7 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
       r[win->drum] += dt.residual;
       if (lu != nullptr) {
         for (int i = 0; i < nb; ++i)
-          if (dt.col[sz(i)] != 0.0) far.by_column[win->drum].emplace_back(o + i, dt.col[sz(i)]);
+          if (dt.col[sz(i)] != 0.0) far.add(o + i, win->drum, dt.col[sz(i)]);
         lu->block(lu->block_of(win->drum)).at(0, 0) = dt.diag;  // the drum's own block
         drums.push_back({o, win->drum, std::move(dt)});
       }
@@ -576,8 +608,10 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
   for (int i = 0; i < n + m; ++i)
     if (!std::isfinite(r[i])) return false;
   if (lu == nullptr) return true;
-  // ---- the border: multipliers (m), then one unknown per far column
-  lu->reset_border(m + static_cast<int>(far.by_column.size() + drums.size()));
+  // ---- the border: multipliers (m), then the far entries' unknowns (group_far), the drums'
+  const FarGroups groups = group_far(far);
+  lu->reset_border(m + static_cast<int>(groups.by_column.size() + groups.by_row.size() +
+                                        drums.size()));
   for (std::size_t jj = 0; jj < s.joints.size(); ++jj) {
     const JointData& jd = s.joints[jj];
     if (jd.info.kind == JointKind::sliding) {
@@ -607,9 +641,16 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
   }
   int z = m;
   for (const auto& [col, entries] :
-       far.by_column) {  // z = x_col: P[i][z] = K_i,col, Q[z][col] = 1, D = -1
+       groups.by_column) {  // z = x_col: P[i][z] = K_i,col, Q[z][col] = 1, D = -1
     for (const auto& [row, v] : entries) lu->add_p(z, row, v);
     lu->add_q(z, col, 1.0);
+    lu->add_d(z, z, -1.0);
+    ++z;
+  }
+  for (const auto& [row, entries] :
+       groups.by_row) {  // w = K_row,. x: Q[w][j] = K_row,j, P[row][w] = 1, D = -1
+    for (const auto& [col, v] : entries) lu->add_q(z, col, v);
+    lu->add_p(z, row, 1.0);
     lu->add_d(z, z, -1.0);
     ++z;
   }
