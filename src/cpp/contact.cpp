@@ -143,9 +143,9 @@ void rates_of(const Field& f, const double* r, double (*out)[3]) {
 /// with rho = R^T (r - c), rho' = R^T u in the body's frame, so that a turn dw of the body adds
 /// dw x F and moves the point relative to it by -rates_j du_j (docs/guide/contact.md).
 struct CarriedPoint {
-  const double* r;   ///< the point at the alpha state
-  const double* ur;  ///< its velocity (null: statics)
-  const double* r1;  ///< at the step's end (null: no step)
+  const double* r;    ///< the point at the alpha state
+  const double* ur;   ///< its velocity (null: statics)
+  const double* r1;   ///< at the step's end (null: no step)
   const double* ubd;  ///< the body's velocities
 };
 

@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <map>
 #include <stdexcept>
 #include <vector>
 
@@ -42,27 +41,36 @@ struct Far {
 /// row has more far entries than its column goes to the row's unknown w_i = sum_j K_ij x_j
 /// (Q[w] = K_i., P[i][w] = 1, D = -1), the others to their column's z_j = x_j (P[.][z] = K_.j,
 /// Q[z][j] = 1, D = -1): a rigid body coupled to many coordinates of a line (a carried
-/// obstacle's contact) adds a few unknowns, not one per coordinate.  Groups: columns, then
-/// rows, each ascending, entries in the order they came.
-struct FarGroups {
-  std::map<int, std::vector<std::pair<int, double>>> by_column;  // j -> (i, value)
-  std::map<int, std::vector<std::pair<int, double>>> by_row;     // i -> (j, value)
+/// obstacle's contact) adds a few unknowns, not one per coordinate.  Sorted: columns, then
+/// rows, each ascending (key), entries in the order they came; `unknowns` counts the groups.
+struct FarGroup {
+  bool by_row;
+  int key, other, seq;
+  double v;
 };
 
-FarGroups group_far(const Far& far) {
-  std::map<int, int> rows, cols;  // far entries per row and per column
+int group_far(const Far& far, int n, std::vector<FarGroup>& out) {
+  thread_local std::vector<int> rows, cols;  // far entries per row and per column
+  rows.assign(sz(n), 0);
+  cols.assign(sz(n), 0);
   for (const FarEntry& e : far.entries) {
-    ++rows[e.i];
-    ++cols[e.j];
+    ++rows[sz(e.i)];
+    ++cols[sz(e.j)];
   }
-  FarGroups out;
+  out.clear();
+  int seq = 0;
   for (const FarEntry& e : far.entries) {
-    if (rows[e.i] > cols[e.j])
-      out.by_row[e.i].emplace_back(e.j, e.v);
-    else
-      out.by_column[e.j].emplace_back(e.i, e.v);
+    const bool by_row = rows[sz(e.i)] > cols[sz(e.j)];
+    out.push_back({by_row, by_row ? e.i : e.j, by_row ? e.j : e.i, seq++, e.v});
   }
-  return out;
+  std::sort(out.begin(), out.end(), [](const FarGroup& a, const FarGroup& b) {
+    if (a.by_row != b.by_row) return !a.by_row;
+    return a.key != b.key ? a.key < b.key : a.seq < b.seq;
+  });
+  int unknowns = 0;
+  for (std::size_t k = 0; k < out.size(); ++k)
+    if (k == 0 || out[k].by_row != out[k - 1].by_row || out[k].key != out[k - 1].key) ++unknowns;
+  return unknowns;
 }
 
 /// K (k x k, row-major) over global indices idx into lu's bands, or into far.
@@ -609,9 +617,9 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
     if (!std::isfinite(r[i])) return false;
   if (lu == nullptr) return true;
   // ---- the border: multipliers (m), then the far entries' unknowns (group_far), the drums'
-  const FarGroups groups = group_far(far);
-  lu->reset_border(m + static_cast<int>(groups.by_column.size() + groups.by_row.size() +
-                                        drums.size()));
+  thread_local std::vector<FarGroup> groups;
+  const int nfar = group_far(far, n, groups);
+  lu->reset_border(m + nfar + static_cast<int>(drums.size()));
   for (std::size_t jj = 0; jj < s.joints.size(); ++jj) {
     const JointData& jd = s.joints[jj];
     if (jd.info.kind == JointKind::sliding) {
@@ -640,20 +648,24 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
     lu->add_q(s.linear_row + t.row, t.col, t.coef);
   }
   int z = m;
-  for (const auto& [col, entries] :
-       groups.by_column) {  // z = x_col: P[i][z] = K_i,col, Q[z][col] = 1, D = -1
-    for (const auto& [row, v] : entries) lu->add_p(z, row, v);
-    lu->add_q(z, col, 1.0);
+  for (std::size_t k = 0; k < groups.size(); ++k) {
+    const FarGroup& fg = groups[k];
+    if (k > 0 && (fg.by_row != groups[k - 1].by_row || fg.key != groups[k - 1].key)) ++z;
+    if (fg.by_row) {  // w = K_key,. x: Q[w][j] = K_key,j, P[key][w] = 1, D = -1
+      lu->add_q(z, fg.other, fg.v);
+    } else {  // z = x_key: P[i][z] = K_i,key, Q[z][key] = 1, D = -1
+      lu->add_p(z, fg.other, fg.v);
+    }
+    const bool last =
+        k + 1 == groups.size() || groups[k + 1].by_row != fg.by_row || groups[k + 1].key != fg.key;
+    if (!last) continue;
+    if (fg.by_row)
+      lu->add_p(z, fg.key, 1.0);
+    else
+      lu->add_q(z, fg.key, 1.0);
     lu->add_d(z, z, -1.0);
-    ++z;
   }
-  for (const auto& [row, entries] :
-       groups.by_row) {  // w = K_row,. x: Q[w][j] = K_row,j, P[row][w] = 1, D = -1
-    for (const auto& [col, v] : entries) lu->add_q(z, col, v);
-    lu->add_p(z, row, 1.0);
-    lu->add_d(z, z, -1.0);
-    ++z;
-  }
+  if (!groups.empty()) ++z;
   // a drum's row by the line's coordinates: w = row . x, Q[w] = row, D = -1, P[drum][w] = 1
   for (const DrumRow& d : drums) {
     for (std::size_t i = 0; i < d.terms.row.size(); ++i)
