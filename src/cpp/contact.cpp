@@ -356,15 +356,17 @@ void carried_pair(const System& s, const ContactSet& c, const ContactPair& cp, c
         }
         any = true;
         // map (r, ub) to (element, ub): dr = sum_k N_k de_k
+        double sw[kMaxAll];  // the factor of each coordinate at the point
+        for (int a = 0; a < nall; ++a)
+          sw[a] = shp[a] >= 0 ? N[shp[a]] : (shp[a] == kBody ? 1.0 : 0.0);
         for (int a = 0; a < nall; ++a) {
-          const double sa = shp[a] >= 0 ? N[shp[a]] : (shp[a] == kBody ? 1.0 : 0.0);
-          if (sa == 0.0) continue;
-          fe[sz(a)] += wq * sa * F[cmp[a]];
+          if (sw[a] == 0.0) continue;
+          const double wa = wq * sw[a];
+          fe[sz(a)] += wa * F[cmp[a]];
           if (add == nullptr) continue;
-          for (int b = 0; b < nall; ++b) {
-            const double sb = shp[b] >= 0 ? N[shp[b]] : (shp[b] == kBody ? 1.0 : 0.0);
-            if (sb != 0.0) ke[sz(a * nall + b)] += wq * sa * sb * K[cmp[a] * nloc + cmp[b]];
-          }
+          const double* Ka = K + cmp[a] * nloc;
+          double* row = ke.data() + sz(a * nall);
+          for (int b = 0; b < nall; ++b) row[b] += wa * sw[b] * Ka[cmp[b]];
         }
       }
       if (!any) continue;

@@ -50,26 +50,30 @@ struct FarGroup {
 };
 
 int group_far(const Far& far, int n, std::vector<FarGroup>& out) {
-  thread_local std::vector<int> rows, cols;  // far entries per row and per column
+  thread_local std::vector<int> rows, cols, at;  // far entries per row, per column; placement
   rows.assign(sz(n), 0);
   cols.assign(sz(n), 0);
   for (const FarEntry& e : far.entries) {
     ++rows[sz(e.i)];
     ++cols[sz(e.j)];
   }
-  out.clear();
+  // entries per group: columns' at [0, n), rows' at [n, 2 n); then each group's first place
+  at.assign(sz(2 * n), 0);
+  for (const FarEntry& e : far.entries) ++at[rows[sz(e.i)] > cols[sz(e.j)] ? sz(n + e.i) : sz(e.j)];
+  int unknowns = 0, next = 0;
+  for (int& c : at) {
+    const int count = c;
+    c = next;
+    next += count;
+    unknowns += count > 0 ? 1 : 0;
+  }
+  out.resize(far.entries.size());
   int seq = 0;
   for (const FarEntry& e : far.entries) {
     const bool by_row = rows[sz(e.i)] > cols[sz(e.j)];
-    out.push_back({by_row, by_row ? e.i : e.j, by_row ? e.j : e.i, seq++, e.v});
+    const int key = by_row ? e.i : e.j;
+    out[sz(at[sz(by_row ? n + key : key)]++)] = {by_row, key, by_row ? e.j : e.i, seq++, e.v};
   }
-  std::sort(out.begin(), out.end(), [](const FarGroup& a, const FarGroup& b) {
-    if (a.by_row != b.by_row) return !a.by_row;
-    return a.key != b.key ? a.key < b.key : a.seq < b.seq;
-  });
-  int unknowns = 0;
-  for (std::size_t k = 0; k < out.size(); ++k)
-    if (k == 0 || out[k].by_row != out[k - 1].by_row || out[k].key != out[k - 1].key) ++unknowns;
   return unknowns;
 }
 
