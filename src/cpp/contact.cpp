@@ -245,6 +245,45 @@ bool carried_tangent(const ContactPair& cp, const Pose& pf, const Pose& p1, cons
   return true;
 }
 
+/// Whether no point of element el (coordinates ef; e1 at the step's end, null: statics) can
+/// touch the obstacle (poses pf, p1): the gap is 1-Lipschitz in r (a plane's, a projection's
+/// length), and a point r_q = sum_k N_qk b_k with N_q0 + N_q2 = 1 lies within
+/// B = max|N_q2| |b_2 - b_0| + max|N_q1| |b_1| + max|N_q3| |b_3| of the node b_0, so that
+/// g(r_q) is within B of g(b_0); the step's gaps [2 gf - g1, g1] are then all non-negative when
+/// gf - Bf >= 0, g1 - B1 >= 0 and 2 (gf - Bf) - (g1 + B1) >= 0 (the points are skipped anyway).
+bool out_of_reach(const Model& m, const ContactBody& cb, int el, const double* ef, const double* e1,
+                  const Pose& pf, const Pose& p1) {
+  double mx[4] = {0.0, 0.0, 0.0, 0.0};
+  for (int q = 0; q < cb.n_c; ++q) {
+    const double* N = cb.N.data() + 4 * (el * cb.n_c + q);
+    if (std::abs(N[0] + N[2] - 1.0) > 1e-12) return false;  // no partition of unity
+    for (int k = 1; k < 4; ++k) mx[k] = std::max(mx[k], std::abs(N[k]));
+  }
+  const int d = m.dim;
+  auto lower = [&](const double* e, const Pose& pose, double& g0, double& bound) {
+    const double* b[4];
+    for (int k = 0; k < 4; ++k) b[k] = e + (k / 2) * m.dpn + (k % 2) * d;
+    double chord = 0.0, t0 = 0.0, t1 = 0.0, r0[3] = {0.0, 0.0, 0.0};
+    for (int i = 0; i < d; ++i) {
+      chord += (b[2][i] - b[0][i]) * (b[2][i] - b[0][i]);
+      t0 += b[1][i] * b[1][i];
+      t1 += b[3][i] * b[3][i];
+      r0[i] = b[0][i];
+    }
+    bound = mx[2] * std::sqrt(chord) + mx[1] * std::sqrt(t0) + mx[3] * std::sqrt(t1);
+    Gap g;
+    gap(pose, r0, cb.radius, g, false);
+    g0 = g.g;
+  };
+  double gf = 0.0, bf = 0.0;
+  lower(ef, pf, gf, bf);
+  if (gf - bf < 0.0) return false;
+  if (e1 == nullptr) return true;
+  double g1 = 0.0, b1 = 0.0;
+  lower(e1, p1, g1, b1);
+  return g1 - b1 >= 0.0 && 2.0 * (gf - bf) - (g1 + b1) >= 0.0;
+}
+
 /// A pair whose obstacle a rigid body carries: point forces and their differences over the point
 /// and the body, mapped to the element's and the body's coordinates (couplings: the sink).
 void carried_pair(const System& s, const ContactSet& c, const ContactPair& cp, const double* yf,
@@ -288,6 +327,7 @@ void carried_pair(const System& s, const ContactSet& c, const ContactPair& cp, c
       element_coordinates(m, yf + o, el, ef.data());
       if (vf != nullptr) element_coordinates(m, vf + o, el, ev.data());
       if (dyn) element_coordinates(m, y1 + o, el, e1.data());
+      if (out_of_reach(m, cb, el, ef.data(), dyn ? e1.data() : nullptr, pf, p1)) continue;
       bool any = false;
       for (int q = 0; q < cb.n_c; ++q) {
         const double* N = cb.N.data() + 4 * (el * cb.n_c + q);
@@ -427,6 +467,7 @@ void fixed_pair(const System& s, const ContactSet& c, const ContactPair& cp, int
     element_coordinates(m, yf + o, el, ef.data());
     if (rates) element_coordinates(m, vf + o, el, ev.data());
     if (dyn) element_coordinates(m, y1 + o, el, e1.data());
+    if (out_of_reach(m, cb, el, ef.data(), dyn ? e1.data() : nullptr, pose, pose)) continue;
     bool any = false;
     for (int q = 0; q < cb.n_c; ++q) {
       const double* N = cb.N.data() + 4 * (el * cb.n_c + q);
