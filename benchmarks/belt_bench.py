@@ -25,7 +25,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import platform
 import statistics
 import sys
 import tempfile
@@ -37,20 +36,10 @@ HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
 import exudyn_cases as ex  # noqa: E402
+from example_times import cpu_name  # noqa: E402
 from system_cases import run_exudyn, run_rancf  # noqa: E402
 
 EXUDYN_T_END = 0.1  # the test's own length
-
-
-def cpu_name() -> str:
-    """The processor's model name (/proc/cpuinfo), else the platform's."""
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or platform.machine()
 
 
 def _sim_time(scenario: Path) -> float:
