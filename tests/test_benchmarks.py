@@ -67,3 +67,21 @@ def test_startup_phases_benchmark_runs():
                         "second read"}  # fmt: skip
     assert all(v > 0 for v in med.values())
     assert med["second read"] < med["first read"]
+
+
+def test_belt_benchmark_scenarios_run(tmp_path):
+    """benchmarks/scenarios/belt-exudyn.toml (Exudyn's belt test in rancf) and rope-coil.toml
+    are valid scenarios, and the matched belt's first 5 ms run to their end."""
+    from rancf.scenario import load_scenario
+
+    for name in ("belt-exudyn.toml", "rope-coil.toml"):
+        load_scenario(ROOT / "benchmarks" / "scenarios" / name)
+    text = (ROOT / "benchmarks" / "scenarios" / "belt-exudyn.toml").read_text()
+    short = tmp_path / "belt.toml"
+    short.write_text(text.replace("t_end = 0.1", "t_end = 0.005").replace(
+        "output_step = 0.01", "output_step = 0.005"))  # fmt: skip
+    subprocess.run([sys.executable, "-m", "rancf", "simulate", str(short), "--out",
+                    str(tmp_path / "run"), "--quiet"], check=True, capture_output=True,
+                   timeout=300)  # fmt: skip
+    summary = json.loads((tmp_path / "run" / "summary.json").read_text())
+    assert summary["status"] == "completed" and summary["t_reached"] == 0.005

@@ -21,6 +21,15 @@ double dot3(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1]
 
 }  // namespace
 
+double to_segment(const double* seg, const double* x) {
+  const double ab[3] = {seg[3] - seg[0], seg[4] - seg[1], seg[5] - seg[2]};
+  const double ax[3] = {x[0] - seg[0], x[1] - seg[1], x[2] - seg[2]};
+  const double ll = dot3(ab, ab);
+  const double t = ll > 0.0 ? std::clamp(dot3(ax, ab) / ll, 0.0, 1.0) : 0.0;
+  const double d[3] = {ax[0] - t * ab[0], ax[1] - t * ab[1], ax[2] - t * ab[2]};
+  return std::sqrt(dot3(d, d));
+}
+
 Broad spheres(const System& s, const ContactSet& c, const double* y, const double* y1) {
   Broad b;
   Coords e{}, e1{};
@@ -60,8 +69,19 @@ Broad spheres(const System& s, const ContactSet& c, const double* y, const doubl
           moved = std::max(moved, std::sqrt(dot3(dd, dd)));
         }
       }
-      sp[3] = rad + 0.1 * std::sqrt(dot3(chord, chord)) + cb.radius + 2.0 * moved;
+      const double slack = 0.1 * std::sqrt(dot3(chord, chord)) + cb.radius + 2.0 * moved;
+      sp[3] = rad + slack;
       b.sphere.push_back(sp);
+      b.moved.push_back(2.0 * moved);
+      std::array<double, 7> cap{};
+      for (int i = 0; i < 3; ++i) {
+        cap[sz(i)] = pts[0][sz(i)];
+        cap[sz(3 + i)] = pts[1][sz(i)];
+      }
+      double off = 0.0;
+      for (const auto& p : pts) off = std::max(off, to_segment(cap.data(), p.data()));
+      cap[6] = off + slack;
+      b.capsule.push_back(cap);
     }
   }
   b.start.push_back(static_cast<int>(b.sphere.size()));

@@ -225,17 +225,28 @@ Side side(const System& s, const ContactSet& c, int body) {
   return Side{s.flex[sz(body)], &c.bodies[sz(body)], body, s.offset[sz(body)]};
 }
 
+/// Whether point x of side A (its element ea) can touch element fb of side B within a step: x
+/// no farther from fb's capsule than A's tube radius, the onset and twice a step's motion of
+/// A's element (the broad phase's margins, body_broad.hpp).
+bool near(const Broad& br, int ea, int fb, const double* x, double ra, double onset) {
+  const auto& cap = br.capsule[sz(fb)];
+  return to_segment(cap.data(), x) <= cap[6] + ra + onset + br.moved[sz(ea)];
+}
+
 /// Visit every kept (point, element) pair of every body pair in both directions at y:
-/// fn(bp, A, B, e, q, f, ea, eb, fe, g, pw).
+/// fn(bp, A, B, e, q, f, ea, eb, fe, g, pw).  An element and itself are no pair (a point's
+/// closest point on its own element is itself, within the arc excluded along the body);
+/// with near_only (the forces) points out of reach of the element (near) are not projected.
 template <class Fn>
 void each_pair(const System& s, const ContactSet& c, const double* y, const double* y1,
-               const double* v, Fn fn) {
+               const double* v, bool near_only, Fn fn) {
   if (c.body_pairs.empty()) return;
   const Broad br = spheres(s, c, y, y1);
   Coords ea{}, eb{}, ea1{}, eb1{}, va{}, vb{};
   std::array<double, 2 * kMaxElementDofs> fe{};
   for (const BodyPair& bp : c.body_pairs) {
     for (const auto& [ei, fi] : candidates(br, bp)) {
+      if (bp.a == bp.b && ei == fi) continue;
       for (int dir = 0; dir < 2; ++dir) {
         if (bp.a == bp.b && dir == 1) continue;  // self: both orders come as candidates
         const Side A = side(s, c, dir == 0 ? bp.a : bp.b), B = side(s, c, dir == 0 ? bp.b : bp.a);
@@ -255,7 +266,13 @@ void each_pair(const System& s, const ContactSet& c, const double* y, const doub
         }
         const double* pva = rub ? va.data() : nullptr;
         const double* pvb = rub ? vb.data() : nullptr;
+        const int sa = br.start[sz(A.body)] + e, sb = br.start[sz(B.body)] + f;
         for (int q = 0; q < A.cb->n_c; ++q) {
+          if (near_only) {
+            double x[3];
+            contact_point::point_of(*A.m, A.cb->N.data() + 4 * (e * A.cb->n_c + q), ea.data(), x);
+            if (!near(br, sa, sb, x, A.cb->radius, bp.onset)) continue;
+          }
           double pw = 0.0;
           const double g = point_force(bp, A, B, e, q, f, ea.data(), eb.data(), pa1, pb1, pva, pvb,
                                        fe.data(), &pw);
@@ -338,7 +355,7 @@ void assemble_body_contact(const System& s, const ContactSet& c, const double* y
                            const double* y1, const AssemblyTerms& tm, double* r,
                            const MatrixSink* add) {
   std::vector<double> K;
-  each_pair(s, c, yf, y1, vf,
+  each_pair(s, c, yf, y1, vf, true,
             [&](const BodyPair& bp, const Side& A, const Side& B, int e, int q, int f,
                 const double* ea, const double* eb, const double* ea1, const double* eb1,
                 const double* va, const double* vb, const double* fe, double, double pw0) {
@@ -365,7 +382,7 @@ void assemble_body_contact(const System& s, const ContactSet& c, const double* y
 
 double body_contact_energy(const System& s, const ContactSet& c, const double* y) {
   double total = 0.0;
-  each_pair(s, c, y, nullptr, nullptr,
+  each_pair(s, c, y, nullptr, nullptr, false,
             [&](const BodyPair& bp, const Side& A, const Side&, int e, int q, int, const double*,
                 const double*, const double*, const double*, const double*, const double*,
                 const double*, double g, double) {
@@ -382,7 +399,7 @@ void body_contact_outputs(const System& s, const ContactSet& c, const double* y,
     out[kBodyOutputs * k] = 1e300;
     out[kBodyOutputs * k + 1] = out[kBodyOutputs * k + 2] = 0.0;
   }
-  each_pair(s, c, y, nullptr, nullptr,
+  each_pair(s, c, y, nullptr, nullptr, false,
             [&](const BodyPair& bp, const Side&, const Side&, int, int, int, const double*,
                 const double*, const double*, const double*, const double*, const double*,
                 const double*, double g, double pw) {

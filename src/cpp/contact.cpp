@@ -77,6 +77,213 @@ void each_point(const System& s, const ContactSet& c, const ContactPair& cp, con
   }
 }
 
+/// The velocity field of a carrying body: the material point at r moves with
+/// sum_j rates_j(r) du_j, rates_j(r) = a_j + w_j x r (point_rates), and the fields' derivatives
+/// over the body's coordinates (central differences of those exact first derivatives, step
+/// 1e-6 (1 + |u_k|), as system_assembly.cpp does for rigid points).
+struct Field {
+  int n = 0;
+  double a[kMaxBody][3], w[kMaxBody][3];
+  double da[kMaxBody][kMaxBody][3], dw[kMaxBody][kMaxBody][3];  ///< [j][k]: d/du_k
+};
+
+void field_at(const System& s, const Obstacle& ob, const Carrier& cr, const double* ub,
+              double (*a)[3], double (*w)[3]) {
+  PlaceEval e;
+  pose_at(s, ob, cr, ub, &e);
+  for (int j = 0; j < cr.map.n; ++j) {  // w_j = 1/2 sum_k f_k x df_k/du_j, a_j = dx_j - w_j x x
+    for (int i = 0; i < 3; ++i) w[j][i] = 0.0;
+    for (int k = 0; k < e.nf; ++k) {
+      const double df[3] = {e.df[k][0][j], e.df[k][1][j], e.df[k][2][j]};
+      double c[3];
+      cross(e.f[k], df, c);
+      for (int i = 0; i < 3; ++i) w[j][i] += 0.5 * c[i];
+    }
+    double wx[3];
+    cross(w[j], e.x, wx);
+    for (int i = 0; i < 3; ++i) a[j][i] = e.dx[i][j] - wx[i];
+  }
+}
+
+Field field_of(const System& s, const Obstacle& ob, const Carrier& cr, const double* ub) {
+  Field f;
+  f.n = cr.map.n;
+  field_at(s, ob, cr, ub, f.a, f.w);
+  double u[kMaxBody];
+  for (int k = 0; k < f.n; ++k) u[k] = ub[k];
+  for (int k = 0; k < f.n; ++k) {
+    const double step = 1e-6 * (1.0 + std::abs(ub[k]));
+    double ap[kMaxBody][3], wp[kMaxBody][3], am[kMaxBody][3], wm[kMaxBody][3];
+    u[k] = ub[k] + step;
+    field_at(s, ob, cr, u, ap, wp);
+    u[k] = ub[k] - step;
+    field_at(s, ob, cr, u, am, wm);
+    u[k] = ub[k];
+    for (int j = 0; j < f.n; ++j)
+      for (int i = 0; i < 3; ++i) {
+        f.da[j][k][i] = (ap[j][i] - am[j][i]) / (2.0 * step);
+        f.dw[j][k][i] = (wp[j][i] - wm[j][i]) / (2.0 * step);
+      }
+  }
+  return f;
+}
+
+/// rates_j(r) = a_j + w_j x r.
+void rates_of(const Field& f, const double* r, double (*out)[3]) {
+  for (int j = 0; j < f.n; ++j) {
+    double c[3];
+    cross(f.w[j], r, c);
+    for (int i = 0; i < 3; ++i) out[j][i] = f.a[j][i] + c[i];
+  }
+}
+
+/// A planar carried obstacle's point: the force F (d) and the body's (-F . rates_j), and their
+/// Jacobian over z = (r, u_body) K = ck d/dzf + cv d/dzd + d/dz1 (nloc x nloc) from the exact
+/// point law (point_law's A, B, Ga, G1) and the law's objectivity: F = R F_loc(rho, rho', gm)
+/// with rho = R^T (r - c), rho' = R^T u in the body's frame, so that a turn dw of the body adds
+/// dw x F and moves the point relative to it by -rates_j du_j (docs/guide/contact.md).
+struct CarriedPoint {
+  const double* r;    ///< the point at the alpha state
+  const double* ur;   ///< its velocity (null: statics)
+  const double* r1;   ///< at the step's end (null: no step)
+  const double* ubd;  ///< the body's velocities
+};
+
+bool carried_tangent(const ContactPair& cp, const Pose& pf, const Pose& p1, const Field& ff,
+                     const Field& f1, double rt, const CarriedPoint& pt, const AssemblyTerms& tm,
+                     int d, double* F, double* K) {
+  const int nb = ff.n, nloc = d + nb;
+  Gap gf, g1;
+  gap(pf, pt.r, rt, gf, true);
+  double rates[kMaxBody][3], rates1[kMaxBody][3], om[3] = {0.0, 0.0, 0.0}, u[3] = {0.0, 0.0, 0.0};
+  rates_of(ff, pt.r, rates);
+  if (pt.ur != nullptr) {
+    for (int i = 0; i < d; ++i) u[i] = pt.ur[i];
+    for (int j = 0; j < nb; ++j)
+      for (int i = 0; i < 3; ++i) {
+        u[i] -= rates[j][i] * pt.ubd[j];
+        om[i] += ff.w[j][i] * pt.ubd[j];
+      }
+  }
+  double gm[2] = {gf.g, gf.g};
+  if (pt.r1 != nullptr) {
+    gap(p1, pt.r1, rt, g1, false);
+    rates_of(f1, pt.r1, rates1);
+    gm[0] = 2.0 * gf.g - g1.g;
+    gm[1] = g1.g;
+  }
+  PointLaw pl;
+  point_law(cp, gf, pt.ur != nullptr ? u : nullptr, pt.r1 != nullptr ? gm : nullptr, true, pl);
+  if (!pl.active) return false;
+  for (int i = 0; i < d; ++i) F[i] = pl.F[i];
+  for (int j = 0; j < nb; ++j) F[d + j] = -dot(pl.F, rates[j]);
+  std::fill(K, K + nloc * nloc, 0.0);
+  // column b of group h: dF (3) and the extra part of the body's rows (beyond -dF . rates_j)
+  auto put = [&](int b, double coef, const double* dF, const double* extra) {
+    for (int i = 0; i < d; ++i) K[i * nloc + b] += coef * dF[i];
+    for (int j = 0; j < nb; ++j)
+      K[(d + j) * nloc + b] -= coef * (dot(dF, rates[j]) + (extra != nullptr ? extra[j] : 0.0));
+  };
+  auto mul = [](const double (*M)[3], const double* x, double* out) {
+    for (int i = 0; i < 3; ++i) out[i] = M[i][0] * x[0] + M[i][1] * x[1] + M[i][2] * x[2];
+  };
+  const bool dyn = pt.r1 != nullptr;
+  double extra[kMaxBody];
+  for (int m = 0; m < d; ++m) {  // the point: r (alpha), its velocity, its end
+    const double em[3] = {m == 0 ? 1.0 : 0.0, m == 1 ? 1.0 : 0.0, m == 2 ? 1.0 : 0.0};
+    double oe[3], Boe[3], dF[3];
+    cross(om, em, oe);  // du/dr = -[om]x
+    mul(pl.B, oe, Boe);
+    for (int i = 0; i < 3; ++i) dF[i] = pl.A[i][m] - Boe[i] + 2.0 * pl.Ga[i] * gf.n[m];
+    double Fw[3];
+    for (int j = 0; j < nb; ++j) {  // d rates_j / dr = [w_j]x: F . (w_j x e_m)
+      cross(pl.F, ff.w[j], Fw);
+      extra[j] = Fw[m];
+    }
+    put(m, tm.ck, dF, extra);
+    if (pt.ur != nullptr) {
+      for (int i = 0; i < 3; ++i) dF[i] = pl.B[i][m];
+      put(m, tm.cv, dF, nullptr);
+    }
+    if (dyn) {
+      for (int i = 0; i < 3; ++i) dF[i] = (pl.G1[i] - pl.Ga[i]) * g1.n[m];
+      put(m, 1.0, dF, nullptr);
+    }
+  }
+  for (int k = 0; k < nb; ++k) {  // the body: u (alpha), its velocity, its end
+    double wF[3], wu[3], dV[3] = {0.0, 0.0, 0.0}, Ar[3], BV[3], dF[3];
+    cross(ff.w[k], pl.F, wF);
+    cross(ff.w[k], u, wu);
+    for (int j = 0; j < nb && pt.ur != nullptr; ++j) {
+      double c[3];
+      cross(ff.dw[j][k], pt.r, c);
+      for (int i = 0; i < 3; ++i) dV[i] += (ff.da[j][k][i] + c[i]) * pt.ubd[j];
+    }
+    for (int i = 0; i < 3; ++i) dV[i] += wu[i];
+    mul(pl.A, rates[k], Ar);
+    mul(pl.B, dV, BV);
+    const double dg = dot(gf.n, rates[k]);
+    for (int i = 0; i < 3; ++i) dF[i] = wF[i] - Ar[i] - BV[i] - 2.0 * pl.Ga[i] * dg;
+    for (int j = 0; j < nb; ++j) {  // d rates_j / du_k at r
+      double c[3], dr[3];
+      cross(ff.dw[j][k], pt.r, c);
+      for (int i = 0; i < 3; ++i) dr[i] = ff.da[j][k][i] + c[i];
+      extra[j] = dot(pl.F, dr);
+    }
+    put(d + k, tm.ck, dF, extra);
+    if (pt.ur != nullptr) {
+      mul(pl.B, rates[k], BV);
+      for (int i = 0; i < 3; ++i) dF[i] = -BV[i];
+      put(d + k, tm.cv, dF, nullptr);
+    }
+    if (dyn) {
+      const double dg1 = dot(g1.n, rates1[k]);
+      for (int i = 0; i < 3; ++i) dF[i] = -(pl.G1[i] - pl.Ga[i]) * dg1;
+      put(d + k, 1.0, dF, nullptr);
+    }
+  }
+  return true;
+}
+
+/// Whether no point of element el (coordinates ef; e1 at the step's end, null: statics) can
+/// touch the obstacle (poses pf, p1): the gap is 1-Lipschitz in r (a plane's, a projection's
+/// length), and a point r_q = sum_k N_qk b_k with N_q0 + N_q2 = 1 lies within
+/// B = max|N_q2| |b_2 - b_0| + max|N_q1| |b_1| + max|N_q3| |b_3| of the node b_0, so that
+/// g(r_q) is within B of g(b_0); the step's gaps [2 gf - g1, g1] are then all non-negative when
+/// gf - Bf >= 0, g1 - B1 >= 0 and 2 (gf - Bf) - (g1 + B1) >= 0 (the points are skipped anyway).
+bool out_of_reach(const Model& m, const ContactBody& cb, int el, const double* ef, const double* e1,
+                  const Pose& pf, const Pose& p1) {
+  double mx[4] = {0.0, 0.0, 0.0, 0.0};
+  for (int q = 0; q < cb.n_c; ++q) {
+    const double* N = cb.N.data() + 4 * (el * cb.n_c + q);
+    if (std::abs(N[0] + N[2] - 1.0) > 1e-12) return false;  // no partition of unity
+    for (int k = 1; k < 4; ++k) mx[k] = std::max(mx[k], std::abs(N[k]));
+  }
+  const int d = m.dim;
+  auto lower = [&](const double* e, const Pose& pose, double& g0, double& bound) {
+    const double* b[4];
+    for (int k = 0; k < 4; ++k) b[k] = e + (k / 2) * m.dpn + (k % 2) * d;
+    double chord = 0.0, t0 = 0.0, t1 = 0.0, r0[3] = {0.0, 0.0, 0.0};
+    for (int i = 0; i < d; ++i) {
+      chord += (b[2][i] - b[0][i]) * (b[2][i] - b[0][i]);
+      t0 += b[1][i] * b[1][i];
+      t1 += b[3][i] * b[3][i];
+      r0[i] = b[0][i];
+    }
+    bound = mx[2] * std::sqrt(chord) + mx[1] * std::sqrt(t0) + mx[3] * std::sqrt(t1);
+    Gap g;
+    gap(pose, r0, cb.radius, g, false);
+    g0 = g.g;
+  };
+  double gf = 0.0, bf = 0.0;
+  lower(ef, pf, gf, bf);
+  if (gf - bf < 0.0) return false;
+  if (e1 == nullptr) return true;
+  double g1 = 0.0, b1 = 0.0;
+  lower(e1, p1, g1, b1);
+  return g1 - b1 >= 0.0 && 2.0 * (gf - bf) - (g1 + b1) >= 0.0;
+}
+
 /// A pair whose obstacle a rigid body carries: point forces and their differences over the point
 /// and the body, mapped to the element's and the body's coordinates (couplings: the sink).
 void carried_pair(const System& s, const ContactSet& c, const ContactPair& cp, const double* yf,
@@ -95,6 +302,13 @@ void carried_pair(const System& s, const ContactSet& c, const ContactPair& cp, c
     if (dyn) gather_body(cr.map, y1, ub1);
     const Pose pf = pose_at(s, ob, cr, ubf, nullptr);
     const Pose p1 = dyn ? pose_at(s, ob, cr, ub1, nullptr) : pf;
+    // planar bodies: the exact tangent (carried_tangent); in 3D central differences
+    const bool planar = d == 2;
+    Field ff, f1;
+    if (planar) {
+      ff = field_of(s, ob, cr, ubf);
+      f1 = dyn ? field_of(s, ob, cr, ub1) : ff;
+    }
     std::array<double, kMaxElementDofs> ef{}, ev{}, e1{};
     std::array<double, kMaxAll> fe{};
     std::array<double, kMaxAll * kMaxAll> ke{};
@@ -113,6 +327,7 @@ void carried_pair(const System& s, const ContactSet& c, const ContactPair& cp, c
       element_coordinates(m, yf + o, el, ef.data());
       if (vf != nullptr) element_coordinates(m, vf + o, el, ev.data());
       if (dyn) element_coordinates(m, y1 + o, el, e1.data());
+      if (out_of_reach(m, cb, el, ef.data(), dyn ? e1.data() : nullptr, pf, p1)) continue;
       bool any = false;
       for (int q = 0; q < cb.n_c; ++q) {
         const double* N = cb.N.data() + 4 * (el * cb.n_c + q);
@@ -132,7 +347,10 @@ void carried_pair(const System& s, const ContactSet& c, const ContactPair& cp, c
         if (vf != nullptr) point_of(m, N, ev.data(), u);
         const double wq = cb.w[sz(el * cb.n_c + q)];
         double F[kMaxLoc] = {}, K[kMaxLoc * kMaxLoc] = {};
-        {
+        if (planar) {
+          const CarriedPoint pt{rf, vf != nullptr ? u : nullptr, dyn ? r1 : nullptr, ubd};
+          if (!carried_tangent(cp, pf, p1, ff, f1, cb.radius, pt, tm, d, F, K)) continue;
+        } else {
           double zf[kMaxLoc] = {}, zd[kMaxLoc] = {}, z1[kMaxLoc] = {};
           for (int i = 0; i < d; ++i) {
             zf[i] = rf[i];
@@ -178,15 +396,17 @@ void carried_pair(const System& s, const ContactSet& c, const ContactPair& cp, c
         }
         any = true;
         // map (r, ub) to (element, ub): dr = sum_k N_k de_k
+        double sw[kMaxAll];  // the factor of each coordinate at the point
+        for (int a = 0; a < nall; ++a)
+          sw[a] = shp[a] >= 0 ? N[shp[a]] : (shp[a] == kBody ? 1.0 : 0.0);
         for (int a = 0; a < nall; ++a) {
-          const double sa = shp[a] >= 0 ? N[shp[a]] : (shp[a] == kBody ? 1.0 : 0.0);
-          if (sa == 0.0) continue;
-          fe[sz(a)] += wq * sa * F[cmp[a]];
+          if (sw[a] == 0.0) continue;
+          const double wa = wq * sw[a];
+          fe[sz(a)] += wa * F[cmp[a]];
           if (add == nullptr) continue;
-          for (int b = 0; b < nall; ++b) {
-            const double sb = shp[b] >= 0 ? N[shp[b]] : (shp[b] == kBody ? 1.0 : 0.0);
-            if (sb != 0.0) ke[sz(a * nall + b)] += wq * sa * sb * K[cmp[a] * nloc + cmp[b]];
-          }
+          const double* Ka = K + cmp[a] * nloc;
+          double* row = ke.data() + sz(a * nall);
+          for (int b = 0; b < nall; ++b) row[b] += wa * sw[b] * Ka[cmp[b]];
         }
       }
       if (!any) continue;
@@ -247,6 +467,7 @@ void fixed_pair(const System& s, const ContactSet& c, const ContactPair& cp, int
     element_coordinates(m, yf + o, el, ef.data());
     if (rates) element_coordinates(m, vf + o, el, ev.data());
     if (dyn) element_coordinates(m, y1 + o, el, e1.data());
+    if (out_of_reach(m, cb, el, ef.data(), dyn ? e1.data() : nullptr, pose, pose)) continue;
     bool any = false;
     for (int q = 0; q < cb.n_c; ++q) {
       const double* N = cb.N.data() + 4 * (el * cb.n_c + q);

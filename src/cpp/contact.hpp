@@ -30,11 +30,13 @@
 // within a step meets a pressure that grows smoothly with g1.  Statics (no velocities): p_k(g),
 // no friction, no damping.
 //
-// Tangents: exact for fixed obstacles (2x2 / 3x3 point matrices mapped by N); for an obstacle
-// carried by a rigid body by central differences (steps min(1e-6, 1e-4 d) (1 + |z|), velocities
-// 1e-4 eps (1 + |z|)) of the exact point forces over the point's position and the body's
-// coordinates, as system_assembly.cpp does for rigid points.  Couplings between an element and a
-// body go through the sink (add_matrix: the border).
+// Tangents: exact for fixed obstacles (2x2 / 3x3 point matrices mapped by N) and for obstacles
+// carried by planar rigid bodies (the law's objectivity, contact.cpp carried_tangent; the body's
+// velocity field differentiated over its coordinates by central differences once per pair);
+// for an obstacle carried by a 3D rigid body by central differences (steps min(1e-6, 1e-4 d)
+// (1 + |z|), velocities 1e-4 eps (1 + |z|)) of the exact point forces over the point's
+// position and the body's coordinates, as system_assembly.cpp does for rigid points.
+// Couplings between an element and a body go through the sink (add_matrix: the border).
 #pragma once
 
 #include <functional>

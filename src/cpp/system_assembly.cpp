@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <map>
 #include <stdexcept>
 #include <vector>
 
@@ -28,10 +27,55 @@ namespace {
 
 std::size_t sz(int i) { return static_cast<std::size_t>(i); }
 
-/// Entries of the Jacobian that do not fit into a block's band: border unknowns z_j = x_j.
-struct Far {
-  std::map<int, std::vector<std::pair<int, double>>> by_column;  // j -> (i, value)
+/// Entries of the Jacobian that do not fit into a block's band, (row, column, value).
+struct FarEntry {
+  int i, j;
+  double v;
 };
+struct Far {
+  std::vector<FarEntry> entries;
+  void add(int i, int j, double v) { entries.push_back({i, j, v}); }
+};
+
+/// The far entries as border unknowns (docs/derivations/systems.md section 4): an entry whose
+/// row has more far entries than its column goes to the row's unknown w_i = sum_j K_ij x_j
+/// (Q[w] = K_i., P[i][w] = 1, D = -1), the others to their column's z_j = x_j (P[.][z] = K_.j,
+/// Q[z][j] = 1, D = -1): a rigid body coupled to many coordinates of a line (a carried
+/// obstacle's contact) adds a few unknowns, not one per coordinate.  Sorted: columns, then
+/// rows, each ascending (key), entries in the order they came; `unknowns` counts the groups.
+struct FarGroup {
+  bool by_row;
+  int key, other, seq;
+  double v;
+};
+
+int group_far(const Far& far, int n, std::vector<FarGroup>& out) {
+  thread_local std::vector<int> rows, cols, at;  // far entries per row, per column; placement
+  rows.assign(sz(n), 0);
+  cols.assign(sz(n), 0);
+  for (const FarEntry& e : far.entries) {
+    ++rows[sz(e.i)];
+    ++cols[sz(e.j)];
+  }
+  // entries per group: columns' at [0, n), rows' at [n, 2 n); then each group's first place
+  at.assign(sz(2 * n), 0);
+  for (const FarEntry& e : far.entries) ++at[rows[sz(e.i)] > cols[sz(e.j)] ? sz(n + e.i) : sz(e.j)];
+  int unknowns = 0, next = 0;
+  for (int& c : at) {
+    const int count = c;
+    c = next;
+    next += count;
+    unknowns += count > 0 ? 1 : 0;
+  }
+  out.resize(far.entries.size());
+  int seq = 0;
+  for (const FarEntry& e : far.entries) {
+    const bool by_row = rows[sz(e.i)] > cols[sz(e.j)];
+    const int key = by_row ? e.i : e.j;
+    out[sz(at[sz(by_row ? n + key : key)]++)] = {by_row, key, by_row ? e.j : e.i, seq++, e.v};
+  }
+  return unknowns;
+}
 
 /// K (k x k, row-major) over global indices idx into lu's bands, or into far.
 void add_matrix(BorderedLU& lu, const int* idx, int k, const double* K, Far& far) {
@@ -45,7 +89,7 @@ void add_matrix(BorderedLU& lu, const int* idx, int k, const double* K, Far& far
         const int o = lu.block_offset(bi);
         lu.view(bi).at(i - o, j - o) += v;
       } else {
-        far.by_column[j].emplace_back(i, v);
+        far.add(i, j, v);
       }
     }
   }
@@ -283,7 +327,7 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
       r[win->drum] += dt.residual;
       if (lu != nullptr) {
         for (int i = 0; i < nb; ++i)
-          if (dt.col[sz(i)] != 0.0) far.by_column[win->drum].emplace_back(o + i, dt.col[sz(i)]);
+          if (dt.col[sz(i)] != 0.0) far.add(o + i, win->drum, dt.col[sz(i)]);
         lu->block(lu->block_of(win->drum)).at(0, 0) = dt.diag;  // the drum's own block
         drums.push_back({o, win->drum, std::move(dt)});
       }
@@ -576,8 +620,10 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
   for (int i = 0; i < n + m; ++i)
     if (!std::isfinite(r[i])) return false;
   if (lu == nullptr) return true;
-  // ---- the border: multipliers (m), then one unknown per far column
-  lu->reset_border(m + static_cast<int>(far.by_column.size() + drums.size()));
+  // ---- the border: multipliers (m), then the far entries' unknowns (group_far), the drums'
+  thread_local std::vector<FarGroup> groups;
+  const int nfar = group_far(far, n, groups);
+  lu->reset_border(m + nfar + static_cast<int>(drums.size()));
   for (std::size_t jj = 0; jj < s.joints.size(); ++jj) {
     const JointData& jd = s.joints[jj];
     if (jd.info.kind == JointKind::sliding) {
@@ -606,13 +652,24 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
     lu->add_q(s.linear_row + t.row, t.col, t.coef);
   }
   int z = m;
-  for (const auto& [col, entries] :
-       far.by_column) {  // z = x_col: P[i][z] = K_i,col, Q[z][col] = 1, D = -1
-    for (const auto& [row, v] : entries) lu->add_p(z, row, v);
-    lu->add_q(z, col, 1.0);
+  for (std::size_t k = 0; k < groups.size(); ++k) {
+    const FarGroup& fg = groups[k];
+    if (k > 0 && (fg.by_row != groups[k - 1].by_row || fg.key != groups[k - 1].key)) ++z;
+    if (fg.by_row) {  // w = K_key,. x: Q[w][j] = K_key,j, P[key][w] = 1, D = -1
+      lu->add_q(z, fg.other, fg.v);
+    } else {  // z = x_key: P[i][z] = K_i,key, Q[z][key] = 1, D = -1
+      lu->add_p(z, fg.other, fg.v);
+    }
+    const bool last =
+        k + 1 == groups.size() || groups[k + 1].by_row != fg.by_row || groups[k + 1].key != fg.key;
+    if (!last) continue;
+    if (fg.by_row)
+      lu->add_p(z, fg.key, 1.0);
+    else
+      lu->add_q(z, fg.key, 1.0);
     lu->add_d(z, z, -1.0);
-    ++z;
   }
+  if (!groups.empty()) ++z;
   // a drum's row by the line's coordinates: w = row . x, Q[w] = row, D = -1, P[drum][w] = 1
   for (const DrumRow& d : drums) {
     for (std::size_t i = 0; i < d.terms.row.size(); ++i)
