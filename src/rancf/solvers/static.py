@@ -151,6 +151,9 @@ def solve_static(
         res = solve_static(system, load_steps, tol, max_iter, on_step, method, at_time)
         return _checked(system, _with_friction(system, res, at_time, tol, max_iter, on_step))
     if not getattr(system, "drums", None):
+        first = _sagged(system, at_time, tol, max_iter, on_step, start, None)
+        if first is not None:
+            return _checked(system, first)
         try:
             res = solve_equilibrium(SystemEquilibrium(system, at_time), load_steps, tol, max_iter,
                                     on_step, method, start)  # fmt: skip
