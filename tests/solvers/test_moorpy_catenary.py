@@ -24,9 +24,9 @@ TOL = 5e-3
 #: Cases not yet solved at 40 elements, with what rancf gives (not counted as passes).
 OPEN = {
     "seabed-cb5": "anchor H 7.2 % of T: the friction cut at the nodes leaves 18 kN at the anchor",
-    "u-shape": "no equilibrium found (EA 1e12 with the touchdowns: Newton wanders, exit 3)",
+    "u-shape": "no equilibrium found (two touchdowns, EA 1e12: exit 3, also at 80 and 160)",
     "u-half": "H 2.0 % low: 1.6 m elements at a touchdown bending with radius H / w = 2.6 m",
-    "sloped-down": "no equilibrium found (EA 1e12, sloped seabed: exit 3)",
+    "sloped-down": "fairlead V 5.4 % of T (the fairlead node rests on the sloped bed; 2.8 % at 80)",
 }
 
 
@@ -84,3 +84,13 @@ def test_moorpy_touchdown_at_160_elements(tmp_path, name):
     want = expected(case)
     assert np.abs(got - want).max() <= TOL * np.hypot(*want[2:]), (got, want)
     assert method == "sag start+newton"
+
+
+def test_moorpy_friction_holding_the_whole_tension_at_80_elements(tmp_path):
+    """CB = 5: the friction on the grounded length takes the whole tension (MoorPy: no force on
+    the anchor); 80 elements from the catenary start and relaxation through the touchdown."""
+    case = next(c for c in CASES if c.name == "seabed-cb5")
+    got, method = solved_forces(tmp_path, case, 80)
+    want = expected(case)
+    assert np.abs(got - want).max() <= TOL * np.hypot(*want[2:]), (got, want)
+    assert method == "sag start+newton+friction"

@@ -16,8 +16,8 @@ one tube radius ``sqrt(A / π)`` above the plane.  Each node is placed at the po
 at its reference arc length, its gradient ``r_x`` along the shape's tangent with the length
 of its reference gradient (the element's gradient scale: a node's ``|r_x|`` is unchanged).
 Other bodies keep their reference.  From there Newton's method at the full load with the
-supports installed (the last stage's end), and relaxation (:func:`rancf.solvers.relaxation.relax`)
-if Newton fails.
+supports installed (the last stage's end), and relaxation (:func:`rancf.solvers.relaxation.relax`,
+at most :data:`RELAX_STEPS` steps) if Newton fails.
 """
 
 from __future__ import annotations
@@ -37,6 +37,10 @@ __all__ = ["SAG_START", "catenary_shape", "sag_state", "solve_from_sag"]
 
 #: ``StaticResult.method`` of an equilibrium found from the sagged start shape.
 SAG_START = "sag start+newton"
+#: Pseudo-time steps of the relaxation from the sagged start (a line coming to rest on a seabed
+#: through its touchdowns, e.g. 625 steps for a 500 m line of 80 elements; the load path's
+#: relaxation keeps :data:`rancf.solvers.relaxation.MAX_STEPS`).
+RELAX_STEPS = 2000
 #: A line at most this much (relative) longer than its chord is taut: no sagged start.
 SLACK_RTOL = 1e-9
 
@@ -201,7 +205,7 @@ def solve_from_sag(
     if out.converged:
         problem.accept(out.y)
         return out.y, end, out.iterations, out.iterations, out.residuals, 0
-    rel = relax(problem, z, end, tol, max_iter, polish_at_start=False)
+    rel = relax(problem, z, end, tol, max_iter, polish_at_start=False, max_steps=RELAX_STEPS)
     if not rel.converged:
         return None
     problem.accept(rel.z)
