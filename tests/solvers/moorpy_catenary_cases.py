@@ -19,6 +19,10 @@ from dataclasses import dataclass
 #: k = w / (0.01 D) and the contact offset D / 2).
 DIAMETER = 0.1
 G = 9.81
+#: A line on the seabed with its default stiffness sinks in by this fraction of its diameter
+#: (``rancf.system.seabed.SEABED_PENETRATION``): the plane is that much higher than a tube
+#: touching it at the bed's depth, so that the resting line lies at MoorPy's seabed depth.
+SINK = 0.01
 
 
 @dataclass(frozen=True)
@@ -76,9 +80,12 @@ CASES = [
 def scenario_text(case: Case, elements: int) -> str:
     """The case as a 2D ``rancf static`` scenario: a cable (round section of DIAMETER, EI
     negligible) drawn straight from the anchor at the origin toward the fairlead with its
-    unstretched length, its end pinned at the fairlead; the seabed (if any) a plane through
-    the anchor's depth (``CB >= 0``) or ``|CB|`` below it, sloped by ``alpha``, its friction
-    ``CB`` in statics.  A buoyant line (``w < 0``) has gravity upward."""
+    unstretched length, its end pinned at the fairlead; the seabed (if any) a plane on which
+    the resting line lies at the anchor's depth (``CB >= 0``) or ``|CB|`` below it
+    (:data:`SINK`), sloped by ``alpha``, its friction ``CB`` in statics.  A buoyant line
+    (``w < 0``) has gravity upward.  The line is in seawater without hydrodynamic
+    coefficients: its weight stays ``w`` (MoorPy's wet weight) and the seabed's default
+    stiffness is that of a seabed, ``w / (0.01 D)``."""
     area = math.pi * DIAMETER**2 / 4.0
     chord = math.hypot(case.x, case.z)
     ux, uz = case.x / chord, case.z / chord
@@ -92,12 +99,13 @@ def scenario_text(case: Case, elements: int) -> str:
         "[[supports]]", 'at = "start"', 'kind = "pin"', "",
         "[[supports]]", 'at = "end"', 'kind = "pin"', f"position = [{case.x!r}, {case.z!r}]", "",
         "[loads]", f"gravity = [0.0, {math.copysign(G, -case.w)!r}]", "",
+        "[fluid]", "density = 1025.0", "",
     ]  # fmt: skip
     if case.cb is not None:
         depth = 0.0 if case.cb >= 0.0 else -case.cb
         a = math.radians(case.alpha)
         normal = (-math.sin(a), math.cos(a))
-        r = DIAMETER / 2.0
+        r = DIAMETER / 2.0 - SINK * DIAMETER  # the resting line's centre at the bed's depth
         point = (-r * normal[0], -depth - r * normal[1])
         lines += [
             "[[obstacles]]", 'name = "seabed"', 'kind = "plane"',
