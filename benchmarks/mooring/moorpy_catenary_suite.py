@@ -102,6 +102,27 @@ def main() -> None:
             rows.append(row)
     Path(a.out).write_text(json.dumps({"cases": rows}, indent=1) + "\n")
     print(f"wrote {a.out}")
+    print(markdown(rows, a.elements))
+
+
+def markdown(rows: list[dict], elements: list[int]) -> str:
+    """The docs' table: per case the expected fairlead force, rancf's at the first mesh, the
+    largest error per mesh and the solve times (rancf's at the first mesh, MoorPy's)."""
+    meshes = " / ".join(str(n) for n in elements)
+    out = [f"| case | expected fairlead (H, V) | rancf, {elements[0]} el. | error, {meshes} el. "
+           f"| rancf time | MoorPy time |", "|---|---|---|---|---|---|"]  # fmt: skip
+    for row in rows:
+        first = row[f"rancf_{elements[0]}"]
+        runs = [row[f"rancf_{n}"] for n in elements]
+        errs = " / ".join(f"{100 * r['error']:.2f} %" if r["converged"] else "exit 3" for r in runs)
+        want = row["expected"]
+        got = (f"{-first['forces'][2]:.1f}, {-first['forces'][3]:.1f} N" if first["converged"]
+               else "exit 3")  # fmt: skip
+        rt = f"{1e3 * first['time_s']:.1f} ms" if first["converged"] else ""
+        mt = f"{1e3 * row['moorpy']['time_s']:.2f} ms" if "time_s" in row["moorpy"] else ""
+        out.append(f"| {row['case']} | {-want[2]:.1f}, {-want[3]:.1f} N | {got} | {errs} "
+                   f"| {rt} | {mt} |")  # fmt: skip
+    return "\n".join(out)
 
 
 if __name__ == "__main__":
