@@ -15,7 +15,8 @@ from rancf.geometry.conic import conic_arc_through
 from rancf.mesh.factories import mesh_conic, mesh_line
 from rancf.solvers.dynamic import DynamicOptions, integrate
 from rancf.solvers.modal import natural_modes
-from rancf.solvers.static import solve_static
+from rancf.solvers.sag_start import SAG_START
+from rancf.solvers.static import solve_equilibrium, solve_static
 from rancf.solvers.system_equilibrium import SystemEquilibrium
 from rancf.system import as_system
 from tests.references.catenary import SSNL114, chain_frequencies, elastic_catenary, ssnl114
@@ -90,8 +91,9 @@ def shallow_arch(n: int = 16) -> Model:
 def test_arc_length_passes_a_snap_through_that_load_control_cannot():
     """Load control stops at the arch's limit point (relaxation under the full load then lets
     it snap through); arc length traces the path past it (the load factor turns back) to the
-    same hanging state."""
-    relaxed = solve_static(shallow_arch())
+    same hanging state, which the default solve finds from the sagged start."""
+    relaxed = solve_equilibrium(SystemEquilibrium(as_system(shallow_arch())), 10, 1e-10, 30,
+                                None, "load", 0.0)  # fmt: skip
     assert relaxed.method == "relaxation+newton" and relaxed.relaxation_steps > 0
     assert relaxed.load_factors[-2] == pytest.approx(0.657, abs=2e-3)  # where load control stops
     assert relaxed.load_factors[-1] == 1.0
@@ -108,6 +110,9 @@ def test_arc_length_passes_a_snap_through_that_load_control_cannot():
     assert np.abs(r).max() <= 1e-6 * np.abs(m.external_force(0.0, res.y, True)).max()
     assert res.method == "arc_length"
     assert np.abs(relaxed.q - res.q).max() <= 1e-8 * 10.0  # the same hanging state (10 m span)
+    sagged = solve_static(shallow_arch())
+    assert sagged.method == SAG_START
+    assert np.abs(sagged.q - res.q).max() <= 1e-8 * 10.0
 
 
 def hose(n: int = 32, angle: float = 0.0) -> Model:

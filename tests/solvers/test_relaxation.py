@@ -117,13 +117,14 @@ def test_a_pinned_pendulum_drawn_horizontal_comes_to_rest_hanging(tmp_path, caps
 
 
 def test_an_l_shaped_rope_pinned_at_both_ends_sags(tmp_path, capsys):
-    """From its L reference the slack rope sags below the chord between its pins; the
+    """The slack rope drawn as an L (solved from its catenary start shape, no longer by
+    relaxation from the L) sags below the chord between its pins; the
     horizontal reactions are equal and opposite (the rope's horizontal tension), the vertical
     ones carry the weight (1e-9), and the residual of the equilibrium is zero to the solver's
     tolerance: at most the force ``EA · 1e-10`` of an axial strain at the tolerance (1e-10 of
     the size; measured 2.9e-6 N = 2.9e-11 EA, the floor further Newton iterations keep)."""
     f, doc = _static_json(tmp_path, "rope", ROPE, capsys)
-    assert doc["method"] == "relaxation+newton"
+    assert doc["method"] == "sag start+newton"
     weight = load_scenario(f).build_model().total_mass * G
     a, b = (np.array(r["force"]) for r in doc["reactions"])
     assert a[0] < 0.0 < b[0]  # the pins pull the rope's ends apart: tension
@@ -135,7 +136,7 @@ def test_an_l_shaped_rope_pinned_at_both_ends_sags(tmp_path, capsys):
     assert pos[:, 1].min() < -1.2  # 3 m of rope over a 2.24 m chord sags well below the L
     system = load_scenario(f).build_system()
     res = solve_static(system)
-    assert res.method == "relaxation+newton"
+    assert res.method == "sag start+newton"
     r = SystemEquilibrium(system).residual(np.r_[res.y, res.lam], 1.0)
     assert np.abs(r).max() <= 1e-10 * 2.0e9 * 5.0e-5
     assert np.abs(system.flex[0].node_positions(res.q) - pos).max() <= 1e-9

@@ -70,7 +70,7 @@ class RelaxationOutcome:
 
 def relax(
     problem: SystemEquilibrium, z: NDArray, p: float, tol: float, max_iter: int,
-    polish_at_start: bool = True,
+    polish_at_start: bool = True, max_steps: int = MAX_STEPS,
 ) -> RelaxationOutcome:  # fmt: skip
     """Follow ``M dz/dτ = -r(z, p)`` from ``z`` to rest, then polish by Newton (module
     docstring).  ``z`` is not modified; the supports are placed at ``p``.
@@ -78,7 +78,7 @@ def relax(
     ``polish_at_start``: Newton's first try is at ``z`` (where a load path stalled: the
     equilibrium may be near); False: only once the residual has fallen by
     :data:`POLISH_DROP` (a mechanism's reference, whose tangent is singular: Newton's step
-    there is round-off's)."""
+    there is round-off's).  ``max_steps``: the pseudo-time steps before giving up."""
     z = np.array(z, dtype=float)
     problem.place_supports(z, p)
     start = z.copy()
@@ -93,7 +93,7 @@ def relax(
     norm = balance(r)
     tried = np.inf if polish_at_start else norm  # the residual at the last Newton try
     steps = iterations = factorizations = residuals = 0
-    for _ in range(4 * MAX_STEPS):
+    for _ in range(4 * max_steps):
         if norm <= POLISH_DROP * tried or not norm > 0.0:
             out = newton(problem, z, p, tol, max_iter)
             iterations += out.iterations
@@ -102,7 +102,7 @@ def relax(
             if out.converged:
                 return RelaxationOutcome(True, out.y, steps, iterations, factorizations, residuals)
             tried = norm
-        if steps >= MAX_STEPS:
+        if steps >= max_steps:
             break
         r, ok = problem.damped_tangent(z, p, rate)
         factorizations += 1
@@ -127,5 +127,5 @@ def relax(
         if move < 0.25 * MAX_MOVE:
             rate *= 0.5  # a short step: the pseudo-time step may grow
         norm = new
-    why = f"it did not come to rest in {MAX_STEPS} pseudo-time steps"
+    why = f"it did not come to rest in {max_steps} pseudo-time steps"
     return RelaxationOutcome(False, z, steps, iterations, factorizations, residuals, why)

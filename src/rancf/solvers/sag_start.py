@@ -15,9 +15,10 @@ between them (no friction: one horizontal tension ``H = w a`` throughout); the c
 one tube radius ``sqrt(A / π)`` above the plane.  Each node is placed at the point of the shape
 at its reference arc length, its gradient ``r_x`` along the shape's tangent with the length
 of its reference gradient (the element's gradient scale: a node's ``|r_x|`` is unchanged).
-Other bodies keep their reference.  From there Newton's method at the full load with the
-supports installed (the last stage's end), and relaxation (:func:`rancf.solvers.relaxation.relax`)
-if Newton fails.
+A line shorter than that chord (installed stretched) starts straight between its held ends,
+stretched evenly (its gradients too).  Other bodies keep their reference.  From there Newton's
+method at the full load with the supports installed (the last stage's end), and relaxation
+(:func:`rancf.solvers.relaxation.relax`, at most :data:`RELAX_STEPS` steps) if Newton fails.
 """
 
 from __future__ import annotations
@@ -33,11 +34,15 @@ from rancf.solvers.newton import newton
 from rancf.solvers.relaxation import relax
 from rancf.solvers.system_equilibrium import SystemEquilibrium
 
-__all__ = ["SAG_START", "catenary_shape", "sag_state", "solve_from_sag"]
+__all__ = ["SAG_START", "catenary_shape", "sag_state", "solve_from_sag", "clamped_lines"]
 
 #: ``StaticResult.method`` of an equilibrium found from the sagged start shape.
 SAG_START = "sag start+newton"
-#: A line at most this much (relative) longer than its chord is taut: no sagged start.
+#: Pseudo-time steps of the relaxation from the sagged start (a line coming to rest on a seabed
+#: through its touchdowns, e.g. 625 steps for a 500 m line of 80 elements; the load path's
+#: relaxation keeps :data:`rancf.solvers.relaxation.MAX_STEPS`).
+RELAX_STEPS = 2000
+#: A line within this (relative) of its chord keeps its reference: no start shape.
 SLACK_RTOL = 1e-9
 
 
@@ -136,11 +141,22 @@ def _floor(system: Any, name: str, model: Model, up: NDArray, p1: NDArray) -> fl
     return best
 
 
-def _body_sag(system: Any, name: str, model: Model) -> NDArray[np.float64] | None:
-    """The sagged start of one body's model coordinates (module docstring), or None."""
+def _clamped(model: Model, node: int) -> bool:
+    b = model.node_base(node) + model.dim
+    return bool(np.any(model.fixed[b : b + model.dim]))
+
+
+def _body_sag(
+    system: Any, name: str, model: Model, pinned: bool = False
+) -> NDArray[np.float64] | None:
+    """The sagged start of one body's model coordinates (module docstring), or None;
+    ``pinned``: None also where an end holds its direction (a clamp)."""
     if model.element not in ("rancf", "ancf") or model.closed or model.gravity is None:
         return None
-    if not (_held_position(model, 0) and _held_position(model, model.n_nodes - 1)):
+    ends = (0, model.n_nodes - 1)
+    if not all(_held_position(model, k) for k in ends):
+        return None
+    if pinned and any(_clamped(model, k) for k in ends):
         return None
     g = np.asarray(model.gravity, dtype=float)
     if not np.linalg.norm(g) > 0.0:
@@ -155,27 +171,42 @@ def _body_sag(system: Any, name: str, model: Model) -> NDArray[np.float64] | Non
     rise = float(chord @ up)
     horiz = chord - rise * up
     span = float(np.linalg.norm(horiz))
-    if length <= (1.0 + SLACK_RTOL) * float(np.linalg.norm(chord)) or span <= 1e-9 * length:
-        return None
-    ex = horiz / span
-    pts, tan = catenary_shape(span, rise, length, s_nodes, _floor(system, name, model, up, p1))
     grad = np.linalg.norm(model.q0.reshape(model.n_nodes, model.dpn)[:, dim:], axis=1)
     out = q.copy()
-    out[:, :dim] = p1 + pts[:, :1] * ex + pts[:, 1:] * up
-    out[:, dim:] = grad[:, None] * (tan[:, :1] * ex + tan[:, 1:] * up)
+    stretch = float(np.linalg.norm(chord)) / length
+    if stretch > 1.0 + SLACK_RTOL:  # taut: straight, stretched evenly
+        out[:, :dim] = p1 + np.outer(s_nodes / length, chord)
+        out[:, dim:] = np.outer(grad * stretch, chord / np.linalg.norm(chord))
+    elif stretch * (1.0 + SLACK_RTOL) >= 1.0 or span <= 1e-9 * length:
+        return None
+    else:
+        ex = horiz / span
+        floor = _floor(system, name, model, up, p1)
+        pts, tan = catenary_shape(span, rise, length, s_nodes, floor)
+        out[:, :dim] = p1 + pts[:, :1] * ex + pts[:, 1:] * up
+        out[:, dim:] = grad[:, None] * (tan[:, :1] * ex + tan[:, 1:] * up)
     y = model.y_from_q(out.ravel())
     y[model.fixed] = model.y_installed[model.fixed]
     return y
 
 
-def sag_state(problem: SystemEquilibrium) -> NDArray[np.float64] | None:
+def clamped_lines(system: Any) -> bool:
+    """Whether a line with a sagged shape has a clamped end (left out of the first try)."""
+    return any(
+        _body_sag(system, name, model) is not None and _body_sag(system, name, model, True) is None
+        for name, model in zip(system.names, system.flex, strict=False)
+    )
+
+
+def sag_state(problem: SystemEquilibrium, pinned: bool = False) -> NDArray[np.float64] | None:
     """The start ``z`` of :func:`solve_from_sag` (the problem's start with every line that has
-    a sagged shape in it), or None when no body has one."""
+    a sagged shape in it; ``pinned``: lines without a clamped end only), or None when no body
+    has one."""
     system = problem.system
     z = problem.start()
     changed = False
     for name, model in zip(system.names, system.flex, strict=False):
-        y = _body_sag(system, name, model)
+        y = _body_sag(system, name, model, pinned)
         if y is not None:
             z[system.body_slice(name)] = y
             changed = True
@@ -183,15 +214,15 @@ def sag_state(problem: SystemEquilibrium) -> NDArray[np.float64] | None:
 
 
 def solve_from_sag(
-    system: Any, at_time: float | None, tol: float, max_iter: int
+    system: Any, at_time: float | None, tol: float, max_iter: int, pinned: bool = False
 ) -> tuple[NDArray[np.float64], float, int, int, int, int] | None:
-    """The equilibrium ``z`` from the sagged start shape (module docstring) with the last
-    stage's end ``p``, Newton's iterations, the factorizations, the extra residuals and the
-    relaxation's steps; None when no body has a sagged shape or neither Newton nor relaxation
-    converges from it."""
+    """The equilibrium ``z`` from the sagged start shape (module docstring; ``pinned``: of the
+    lines without a clamped end only) with the last stage's end ``p``, Newton's iterations, the
+    factorizations, the extra residuals and the relaxation's steps; None when no body has a
+    sagged shape or neither Newton nor relaxation converges from it."""
     system.reset_triads()
     problem = SystemEquilibrium(system, at_time)
-    z = sag_state(problem)
+    z = sag_state(problem, pinned)
     if z is None:
         return None
     problem.stage = len(problem.stages) - 1
@@ -201,7 +232,7 @@ def solve_from_sag(
     if out.converged:
         problem.accept(out.y)
         return out.y, end, out.iterations, out.iterations, out.residuals, 0
-    rel = relax(problem, z, end, tol, max_iter, polish_at_start=False)
+    rel = relax(problem, z, end, tol, max_iter, polish_at_start=False, max_steps=RELAX_STEPS)
     if not rel.converged:
         return None
     problem.accept(rel.z)

@@ -30,10 +30,15 @@ result's ``method`` is then ``"relaxation+newton"``.  When that fails too (a bod
 equilibrium at all), :class:`~rancf.errors.ConvergenceError` carries the load factor reached,
 and every converged step has been passed to ``on_step`` (the command line keeps them).
 
-Every result is checked (:mod:`rancf.solvers.static_checks`).  Where the path fails, or ends in a
-state that fails the checks, a line longer than the chord between its held ends is started
-again from its sagged shape (:mod:`rancf.solvers.sag_start`; ``method`` ``"sag start+newton"``)
-before the path's failure is raised.
+Every result is checked (:mod:`rancf.solvers.static_checks`).  With ``"load"`` (``"arc_length"``
+traces the path), a line longer than the chord between its pinned ends starts from its sagged
+shape (:mod:`rancf.solvers.sag_start`; ``method`` ``"sag start+newton"``): the catenary it hangs
+in, lying on a seabed where it touches one, is far closer to its equilibrium than its reference
+(a straight or flared line), whose load path needed relaxation or ended in a compressive loop.
+Where that start fails (Newton and relaxation find no equilibrium, or one that fails the
+checks) the load path is followed.  Where the path fails or ends in a state that fails the
+checks, lines with a clamped end (and, after an arc-length path, all lines) are started again
+from their sagged shape before the path's failure is raised.
 """
 
 from __future__ import annotations
@@ -53,7 +58,7 @@ from rancf.solvers.drum_statics import free_drums
 from rancf.solvers.load_path import MIN_INCREMENT, PathState
 from rancf.solvers.newton import newton
 from rancf.solvers.relaxation import relax
-from rancf.solvers.sag_start import SAG_START, solve_from_sag
+from rancf.solvers.sag_start import SAG_START, clamped_lines, solve_from_sag
 from rancf.solvers.static_checks import static_state_problems
 from rancf.solvers.static_friction import solve_with_friction
 from rancf.solvers.system_equilibrium import SystemEquilibrium
@@ -151,13 +156,22 @@ def solve_static(
         res = solve_static(system, load_steps, tol, max_iter, on_step, method, at_time)
         return _checked(system, _with_friction(system, res, at_time, tol, max_iter, on_step))
     if not getattr(system, "drums", None):
+        first = None
+        if method == "load":
+            first = _sagged(system, at_time, tol, max_iter, on_step, start, pinned=True)
+        if first is not None:
+            return _checked(system, first)
+        again = method != "load" or clamped_lines(system)  # a start not tried yet
         try:
             res = solve_equilibrium(SystemEquilibrium(system, at_time), load_steps, tol, max_iter,
                                     on_step, method, start)  # fmt: skip
-        except ConvergenceError as exc:
-            return _checked(system, _sagged(system, at_time, tol, max_iter, on_step, start, exc))
-        if static_state_problems(system, res.q):
-            res = _sagged(system, at_time, tol, max_iter, on_step, start, None) or res
+        except ConvergenceError:
+            late = _sagged(system, at_time, tol, max_iter, on_step, start) if again else None
+            if late is None:
+                raise
+            return _checked(system, late)
+        if again and static_state_problems(system, res.q):
+            res = _sagged(system, at_time, tol, max_iter, on_step, start) or res
         return _checked(system, res)
     hold_drums(system, True)  # driven drums: the line loaded at their start lengths first
     try:
@@ -197,25 +211,23 @@ def _with_friction(
 def _sagged(
     system: System, at_time: float | None, tol: float, max_iter: int,
     on_step: Callable[[float, NDArray[np.float64]], None] | None, start: float,
-    failed: ConvergenceError | None,
+    pinned: bool = False,
 ) -> StaticResult | None:  # fmt: skip
-    """The equilibrium from a sagged start shape (:mod:`rancf.solvers.sag_start`) where the load
-    path failed (``failed``, raised again if there is none) or ended in a state that is no
-    equilibrium (``failed`` None: None if there is none either)."""
-    found = solve_from_sag(system, at_time, tol, max_iter)
-    res = None
-    if found is not None:
-        z, end, its, facts, resid, steps = found
-        n = system.n
-        res = StaticResult(system.q_from_y(z[:n]), z[:n], np.array([0.0, end]), its, facts,
-                           time.perf_counter() - start, resid, SAG_START, z[n:], steps)  # fmt: skip
-    if res is not None and not static_state_problems(system, res.q):
-        if on_step is not None:
-            on_step(float(res.load_factors[-1]), res.y)
-        return res
-    if failed is not None:
-        raise failed
-    return None
+    """The equilibrium from a sagged start shape (:mod:`rancf.solvers.sag_start`; ``pinned``:
+    of the lines without a clamped end only), or None when no line has one or none is found
+    from it that passes the checks."""
+    found = solve_from_sag(system, at_time, tol, max_iter, pinned)
+    if found is None:
+        return None
+    z, end, its, facts, resid, steps = found
+    n = system.n
+    res = StaticResult(system.q_from_y(z[:n]), z[:n], np.array([0.0, end]), its, facts,
+                       time.perf_counter() - start, resid, SAG_START, z[n:], steps)  # fmt: skip
+    if static_state_problems(system, res.q):
+        return None
+    if on_step is not None:
+        on_step(float(res.load_factors[-1]), res.y)
+    return res
 
 
 def _checked(system: System, res: StaticResult) -> StaticResult:

@@ -16,7 +16,10 @@ the contact's own friction at a slip velocity ``10⁶ ε`` along ``t̂`` (``Cont
 cut once their sum reaches the axial force at the touchdown (the cap of ``T ≥ 0``).  The force is
 a constant load of a fixed point: solve, evaluate the friction at the equilibrium, solve again
 with it (Newton from the last state at the end of the load path), until it changes by less than
-:data:`FRICTION_RTOL` of itself; :data:`MAX_FRICTION_ITERATIONS` at most, else
+:data:`FRICTION_RTOL` of itself, or stalls below :data:`FRICTION_FLOOR` of itself (the change no
+smaller than the last: where the friction takes the whole tension, the cut at the nodes follows
+the touchdown's axial force, which the Newton tolerance leaves uncertain by ~1e-7 of it, e.g. a
+500 m line with ``μ = 5``); :data:`MAX_FRICTION_ITERATIONS` at most, else
 :class:`~rancf.errors.ConvergenceError`.
 """
 
@@ -31,10 +34,12 @@ from rancf.solvers.system_equilibrium import SystemEquilibrium
 from rancf.system.seabed_friction import seabed_friction
 
 __all__ = ["seabed_friction", "FrictionEquilibrium", "solve_with_friction",
-           "FRICTION_RTOL", "MAX_FRICTION_ITERATIONS"]  # fmt: skip
+           "FRICTION_RTOL", "FRICTION_FLOOR", "MAX_FRICTION_ITERATIONS"]  # fmt: skip
 
 #: The fixed point stops when the friction force changes by less than this (relative).
 FRICTION_RTOL = 1e-8
+#: ... or stalls (changes no less than at the last iteration) below this (module docstring).
+FRICTION_FLOOR = 1e-6
 #: Fixed-point iterations at most.
 MAX_FRICTION_ITERATIONS = 50
 
@@ -64,12 +69,14 @@ def solve_with_friction(system, z: NDArray, p: float, at_time: float | None, tol
     stage = len(probe.stages) - 1
     load = np.zeros(system.n)
     its = 0
+    last = np.inf
     for _ in range(MAX_FRICTION_ITERATIONS):
         new = seabed_friction(system, z[: system.n])
-        change = float(np.linalg.norm(new - load))
-        if change <= FRICTION_RTOL * float(np.linalg.norm(new)) or not np.any(new):
+        change, size = float(np.linalg.norm(new - load)), float(np.linalg.norm(new))
+        stalled = last <= change <= FRICTION_FLOOR * size
+        if change <= FRICTION_RTOL * size or stalled or not np.any(new):
             return z, its
-        load = new
+        load, last = new, change
         problem = FrictionEquilibrium(system, at_time, load)
         problem.stage = stage
         out = newton(problem, z, p, tol, max_iter)

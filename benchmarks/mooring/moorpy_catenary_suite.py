@@ -1,0 +1,129 @@
+"""MoorPy's catenary test suite (``tests/test_catenary.py``) through ``rancf static --json``,
+side by side with MoorPy's ``catenary`` on the same inputs.
+
+    python benchmarks/mooring/moorpy_catenary_suite.py [--elements 40 80 160]
+        [--moorpy-python PATH] [--repeats N] [--out FILE]
+
+The cases, their scenarios and expected values are those of the tests
+(:mod:`tests.solvers.moorpy_catenary_cases`; the hardest near-taut case against the exact elastic
+catenary, see :mod:`tests.solvers.test_moorpy_catenary`).  Per case and mesh: the end forces'
+largest error relative to the fairlead tension, the method, Newton iterations, relaxation steps
+and the solve time ``rancf static`` reports (``wall_time_s``, median over the repeats); MoorPy's
+time is that of its ``catenary`` call (median over the repeats) in the interpreter given by
+``--moorpy-python`` (a venv with ``moorpy==1.3.*``: a benchmark dependency, not one of rancf's),
+run in the same session, case by case after rancf's.  Writes
+``benchmarks/results/moorpy_catenary_suite.json``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import statistics
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT))
+
+from tests.solvers.moorpy_catenary_cases import CASES, scenario_text  # noqa: E402
+from tests.solvers.test_moorpy_catenary import expected  # noqa: E402
+
+#: MoorPy's side: one case's forces and the median time of ``repeats`` calls.
+MOORPY = """
+import json, statistics, sys, time
+from moorpy.Catenary import catenary
+x, z, L, ea, w, cb, alpha, repeats = json.loads(sys.argv[1])
+times = []
+for _ in range(repeats):
+    t = time.perf_counter()
+    out = catenary(x, z, L, ea, w, CB=cb, alpha=alpha, Tol=1e-5, MaxIter=50)
+    times.append(time.perf_counter() - t)
+print(json.dumps({"forces": [float(f) for f in out[:4]], "time_s": statistics.median(times)}))
+"""
+
+
+def run_rancf(case, elements: int, repeats: int, folder: Path) -> dict:
+    """``rancf static --json`` of the case: forces (MoorPy's signs), error, method, times."""
+    path = folder / f"{case.name}-{elements}.toml"
+    path.write_text(scenario_text(case, elements))
+    times, out = [], None
+    for _ in range(repeats):
+        p = subprocess.run([sys.executable, "-m", "rancf", "static", str(path), "--json"],
+                           capture_output=True, text=True)  # fmt: skip
+        if p.returncode:
+            return {"converged": False, "exit": p.returncode,
+                    "message": p.stderr.strip().splitlines()[-1]}  # fmt: skip
+        out = json.loads(p.stdout)
+        times.append(out["wall_time_s"])
+    ends = out["reactions"]
+    got = -np.r_[ends[0]["force"][:2], ends[-1]["force"][:2]]
+    want = expected(case)
+    return {
+        "converged": True,
+        "forces": got.tolist(),
+        "error": float(np.abs(got - want).max() / np.hypot(*want[2:])),
+        "method": out["method"],
+        "newton_iterations": out["newton_iterations"],
+        "relaxation_steps": out["relaxation_steps"],
+        "time_s": statistics.median(times),
+    }
+
+
+def run_moorpy(case, python: str, repeats: int) -> dict:
+    args = [case.x, case.z, case.length, case.ea, case.w, case.cb, case.alpha, repeats]
+    p = subprocess.run([python, "-c", MOORPY, json.dumps(args)], capture_output=True, text=True)
+    if p.returncode:
+        return {"error": p.stderr.strip().splitlines()[-1]}
+    return json.loads(p.stdout)
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--elements", type=int, nargs="+", default=[40, 80, 160])
+    ap.add_argument("--moorpy-python", default="/work/venv-moorpy/bin/python")
+    ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--out", default=str(ROOT / "benchmarks/results/moorpy_catenary_suite.json"))
+    a = ap.parse_args()
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for case in CASES:
+            row = {"case": case.name, "expected": expected(case).tolist(),
+                   "moorpy": run_moorpy(case, a.moorpy_python, a.repeats)}  # fmt: skip
+            for n in a.elements:
+                row[f"rancf_{n}"] = r = run_rancf(case, n, a.repeats, Path(tmp))
+                err = f"{100 * r['error']:.3f} %" if r["converged"] else f"exit {r['exit']}"
+                how = f"{r['method']}, {1e3 * r['time_s']:.1f} ms" if r["converged"] else ""
+                print(f"{case.name:16s} {n:4d}  {err:>10s}  {how}", flush=True)
+            rows.append(row)
+    Path(a.out).write_text(json.dumps({"cases": rows}, indent=1) + "\n")
+    print(f"wrote {a.out}")
+    print(markdown(rows, a.elements))
+
+
+def markdown(rows: list[dict], elements: list[int]) -> str:
+    """The docs' table: per case the expected fairlead force, rancf's at the first mesh, the
+    largest error per mesh and the solve times (rancf's at the first mesh, MoorPy's)."""
+    meshes = " / ".join(str(n) for n in elements)
+    out = [f"| case | expected fairlead (H, V) | rancf, {elements[0]} el. | error, {meshes} el. "
+           f"| rancf time | MoorPy time |", "|---|---|---|---|---|---|"]  # fmt: skip
+    for row in rows:
+        first = row[f"rancf_{elements[0]}"]
+        runs = [row[f"rancf_{n}"] for n in elements]
+        errs = " / ".join(f"{100 * r['error']:.2f} %" if r["converged"] else "exit 3" for r in runs)
+        want = row["expected"]
+        got = (f"{-first['forces'][2]:.1f}, {-first['forces'][3]:.1f} N" if first["converged"]
+               else "exit 3")  # fmt: skip
+        rt = f"{1e3 * first['time_s']:.1f} ms" if first["converged"] else ""
+        mt = f"{1e3 * row['moorpy']['time_s']:.2f} ms" if "time_s" in row["moorpy"] else ""
+        out.append(f"| {row['case']} | {-want[2]:.1f}, {-want[3]:.1f} N | {got} | {errs} "
+                   f"| {rt} | {mt} |")  # fmt: skip
+    return "\n".join(out)
+
+
+if __name__ == "__main__":
+    main()
