@@ -1,7 +1,7 @@
 """MoorDyn's chains WD0050 and WD0200 heaved as its ``QuasiStatic/ZZP1_A1`` input, beside rancf.
 
     python benchmarks/mooring/wd_heave.py [--case wd0050 wd0200] [--dt 1e-3] [--rancf-step H]
-        [--json results/wd_heave.json]
+        [--json results/wd_heave.json] [--reference tests/references]
 
 MoorDyn's ``tests/Mooring/WD0050_Chain.txt`` and ``WD0200_Chain.txt``: a chain (d = 0.252 m,
 390 kg/m, EA = 1.674e9 N, BA = -1, Cd 1.37, Ca 1.0, CdAx 0.64, CaAx 0) of 410 m from an anchor at
@@ -50,8 +50,9 @@ def fairlead(t: float) -> tuple[list[float], list[float]]:
     return [0.0, 0.0, AMPLITUDE * math.sin(w * t)], [0.0, 0.0, AMPLITUDE * w * math.cos(w * t)]
 
 
-def moordyn_run(case: str, dt: float) -> tuple[np.ndarray, np.ndarray, float]:
-    """MoorDyn's fairlead tension of ``case`` at its step ``dt``: times, tensions, solve time."""
+def moordyn_run(case: str, dt: float) -> tuple[np.ndarray, np.ndarray, float, float]:
+    """MoorDyn's fairlead tension of ``case`` at its step ``dt``: times, tensions, the solve's
+    and the initial state's (its ``Init``) wall times."""
     span, depth, length, segments = CASES[case]
     options = {"g": 9.81, "rho": 1025.0, "WtrDpth": depth, "kBot": 1.0e5, "cBot": 1.0e4,
                "FrictionCoefficient": 0.5, "dtM": dt, "dtIC": 1.0, "TmaxIC": 200.0,
@@ -65,7 +66,7 @@ def moordyn_run(case: str, dt: float) -> tuple[np.ndarray, np.ndarray, float]:
         return {"tension": math.sqrt(sum(x * x for x in f))}
 
     r = run(case, fairlead, record, T_END)
-    return np.array(r.times), np.array(r.columns["tension"]), r.solve_s
+    return np.array(r.times), np.array(r.columns["tension"]), r.solve_s, r.init_s
 
 
 def rancf_run(case: str, step: float | None) -> tuple[np.ndarray, np.ndarray, float, float]:
@@ -90,9 +91,20 @@ def rancf_run(case: str, step: float | None) -> tuple[np.ndarray, np.ndarray, fl
     return rows["t"], force, solve, wall
 
 
-def compare(case: str, dt: float, step: float | None) -> dict[str, object]:
-    """Both codes' fairlead tensions of ``case`` over t = 10-30 s, side by side."""
-    tm, fm, solve_m = moordyn_run(case, dt)
+def write_reference(path: Path, t: np.ndarray, force: np.ndarray) -> None:
+    """MoorDyn's fairlead tension to t = 12 s every 0.05 s as CSV (the regression test's peer
+    numbers: tests/solvers/test_moordyn_heave.py)."""
+    keep = (t <= 12.0 + 1e-9) & (np.abs(t / 0.05 - np.round(t / 0.05)) < 1e-6)
+    rows = np.column_stack([t[keep], force[keep]])
+    np.savetxt(path, rows, fmt=("%.2f", "%.1f"), delimiter=",", header="t,tension", comments="")
+
+
+def compare(case: str, dt: float, step: float | None, reference: Path | None) -> dict[str, object]:
+    """Both codes' fairlead tensions of ``case`` over t = 10-30 s, side by side; MoorDyn's
+    series to 12 s written to ``reference/CASE_moordyn.csv`` if given."""
+    tm, fm, solve_m, init_m = moordyn_run(case, dt)
+    if reference is not None:
+        write_reference(reference / f"{case}_moordyn.csv", tm, fm)
     tr, fr, solve_r, wall_r = rancf_run(case, step)
     text = (HERE / f"{case}.toml").read_text()
     window = (tm >= 10.0) & (tm <= 30.0)
@@ -103,7 +115,8 @@ def compare(case: str, dt: float, step: float | None) -> dict[str, object]:
         "moordyn_mean_N": float(theirs.mean()), "rancf_mean_N": float(ours.mean()),
         "moordyn_p2p_N": float(np.ptp(theirs)), "rancf_p2p_N": float(np.ptp(ours)),
         "max_diff_rel_mean": float(np.abs(ours - theirs).max() / theirs.mean()),
-        "moordyn_solve_s": solve_m, "rancf_solve_s": solve_r, "rancf_process_s": wall_r,
+        "moordyn_solve_s": solve_m, "moordyn_init_s": init_m, "rancf_solve_s": solve_r,
+        "rancf_process_s": wall_r,
     }  # fmt: skip
 
 
@@ -113,10 +126,12 @@ def main() -> None:
     p.add_argument("--dt", type=float, default=1e-3, help="MoorDyn's step dtM [s]")
     p.add_argument("--rancf-step", type=float, default=None, help="rancf's step [s]")
     p.add_argument("--json", type=Path, default=None, help="also write the results here")
+    p.add_argument("--reference", type=Path, default=None,
+                   help="a folder: write MoorDyn's series to 12 s there (tests/references)")
     a = p.parse_args()
     results = {}
     for case in a.case:
-        results[case] = compare(case, a.dt, a.rancf_step)
+        results[case] = compare(case, a.dt, a.rancf_step, a.reference)
         print(json.dumps(results[case]))
     if a.json is not None:
         from provenance import machine, provenance
