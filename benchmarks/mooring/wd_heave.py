@@ -15,8 +15,9 @@ comments say) with the same motion, at the files' fixed steps or at ``--rancf-st
 
 Prints one JSON line per case: each side's fairlead tension (the size of the force between line
 and fairlead, what MoorDyn's coupled point reports) mean and peak to peak over t = 10-30 s, the
-largest difference relative to MoorDyn's mean, and the wall times (MoorDyn's solve, rancf's
-solve and process); ``--json`` also writes them, keyed by case, with their provenance.
+largest difference relative to MoorDyn's mean, and the wall times (MoorDyn's initial state and
+solve, rancf's solve and process); ``--json`` also writes them, keyed by case, with their
+provenance.
 """
 
 from __future__ import annotations
