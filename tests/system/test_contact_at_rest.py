@@ -16,8 +16,8 @@ from rancf.cli import main
 TESTS = Path(__file__).parent
 
 
-def _steady(run: Path, column: str) -> None:
-    rows = np.genfromtxt(run / "reactions.csv", delimiter=",", names=True)
+def _steady(run: Path, column: str, table: str = "reactions.csv") -> None:
+    rows = np.genfromtxt(run / table, delimiter=",", names=True)
     energy = np.genfromtxt(run / "energy.csv", delimiter=",", names=True)
     potential = np.abs(energy["gravity"] + energy["strain"])
     settled = energy["kinetic"] < 1e-6 * potential
@@ -48,3 +48,4 @@ def test_a_mooring_line_on_the_seabed_reports_a_steady_force(tmp_path):
     assert main(["simulate", str(tmp_path / "m.toml"), "--out", str(tmp_path / "r"),
                  "--quiet"]) == 0  # fmt: skip
     _steady(tmp_path / "r", "seabed_normal_z")
+    _steady(tmp_path / "r", "seabed_z", "sensors.csv")  # its contact_force sensor
