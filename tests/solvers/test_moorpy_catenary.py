@@ -23,8 +23,8 @@ from tests.solvers.moorpy_catenary_cases import CASES, Case, scenario_text, susp
 TOL = 5e-3
 #: Cases not yet solved at 40 elements, with what rancf gives (not counted as passes).
 OPEN = {
-    "u-shape": "H 9.0 % off: 3.25 m elements at touchdowns bending with radius H / w = 2.6 m "
-               "(1.9 % at 80 elements, 0.34 % at 160)",
+    "u-shape": "refused (exit 3): 3.25 m elements at touchdowns bending with radius H / w = "
+               "2.6 m settle into H 4.5 times too small (1.9 % at 80 elements, 0.34 % at 160)",
     "u-half": "H 1.9 % off: 1.6 m elements at a touchdown bending with radius H / w = 2.6 m "
               "(0.31 % at 80 elements)",
 }
@@ -94,3 +94,16 @@ def test_moorpy_friction_holding_the_whole_tension_at_80_elements(tmp_path):
     want = expected(case)
     assert np.abs(got - want).max() <= TOL * np.hypot(*want[2:]), (got, want)
     assert method == "sag start+newton+friction"
+
+
+def test_an_unresolved_touchdown_is_refused_not_reported(tmp_path):
+    """The full U at 40 elements: its stiff line (EA = 1e12) cannot bend within one 3.25 m
+    element where it meets the seabed, and settles into a state whose fairlead force is 4.5
+    times too small; the static solve refuses it, naming the bend radius ``T / w`` and the
+    element's length, instead of reporting it."""
+    from rancf.errors import ConvergenceError
+
+    case = next(c for c in CASES if c.name == "u-shape")
+    with pytest.raises(ConvergenceError, match=r"radius T/w = .* shorter than its element "
+                       r"\(3.25 m\): the touchdown is not resolved"):  # fmt: skip
+        solved_forces(tmp_path, case, 40)

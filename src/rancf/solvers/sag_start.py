@@ -102,7 +102,7 @@ def catenary_shape(
     if floor is not None:
         h1, h2 = max(-floor, 0.0), max(rise - floor, 0.0)
         a = _grounded(span, h1, h2, length)
-    if a is None:
+    if a is None or floor is None:
         a, xv = _free(span, rise, length)
         u1 = -xv / a
         u = np.arcsinh(math.sinh(u1) + s / a)

@@ -157,17 +157,20 @@ def solve_static(
         return _checked(system, _with_friction(system, res, at_time, tol, max_iter, on_step))
     if not getattr(system, "drums", None):
         first = None
+        rejected: list[str] = []  # what the sagged start found, said if nothing else converges
         if method == "load":
-            first = _sagged(system, at_time, tol, max_iter, on_step, start, pinned=True)
+            first = _sagged(system, at_time, tol, max_iter, on_step, start, True, rejected)
         if first is not None:
             return _checked(system, first)
         again = method != "load" or clamped_lines(system)  # a start not tried yet
         try:
             res = solve_equilibrium(SystemEquilibrium(system, at_time), load_steps, tol, max_iter,
                                     on_step, method, start)  # fmt: skip
-        except ConvergenceError:
+        except ConvergenceError as exc:
             late = _sagged(system, at_time, tol, max_iter, on_step, start) if again else None
             if late is None:
+                if rejected:
+                    raise ConvergenceError(f"{exc}; {rejected[0]}", exc.reached) from exc
                 raise
             return _checked(system, late)
         if again and static_state_problems(system, res.q):
@@ -181,7 +184,8 @@ def solve_static(
     finally:
         hold_drums(system, False)
     scale = SystemEquilibrium(system, at_time).scale  # then the lengths where r T = torque
-    y, lam, ok, its = free_drums(system, held.y, held.lam, at_time, scale, tol, max_iter)
+    held_lam = np.zeros(0) if held.lam is None else held.lam  # no constraints: none
+    y, lam, ok, its = free_drums(system, held.y, held_lam, at_time, scale, tol, max_iter)
     refuse_static_drums(system, y if ok else None, at_time)
     done = replace(held, q=system.q_from_y(y), y=y, lam=lam, n_newton=held.n_newton + its,
                    n_factorizations=held.n_factorizations + its,
@@ -211,11 +215,12 @@ def _with_friction(
 def _sagged(
     system: System, at_time: float | None, tol: float, max_iter: int,
     on_step: Callable[[float, NDArray[np.float64]], None] | None, start: float,
-    pinned: bool = False,
+    pinned: bool = False, rejected: list[str] | None = None,
 ) -> StaticResult | None:  # fmt: skip
     """The equilibrium from a sagged start shape (:mod:`rancf.solvers.sag_start`; ``pinned``:
     of the lines without a clamped end only), or None when no line has one or none is found
-    from it that passes the checks."""
+    from it that passes the checks (the first problem of a state it found then goes to
+    ``rejected``)."""
     found = solve_from_sag(system, at_time, tol, max_iter, pinned)
     if found is None:
         return None
@@ -223,7 +228,11 @@ def _sagged(
     n = system.n
     res = StaticResult(system.q_from_y(z[:n]), z[:n], np.array([0.0, end]), its, facts,
                        time.perf_counter() - start, resid, SAG_START, z[n:], steps)  # fmt: skip
-    if static_state_problems(system, res.q):
+    problems = static_state_problems(system, res.q)
+    if problems:
+        if rejected is not None:
+            rejected.append(f"from its sagged start shape it came to a state that is no "
+                            f"equilibrium: {problems[0]}")  # fmt: skip
         return None
     if on_step is not None:
         on_step(float(res.load_factors[-1]), res.y)
@@ -257,7 +266,7 @@ def solve_equilibrium(
     start = time.perf_counter() if start is None else start
     system = problem.system
     path = PathState(problem, on_step)
-    used = method
+    used: str = method
     for stage, (_, end) in enumerate(problem.stages):
         problem.stage = stage
         path.prev = None  # no predictor across the stages' kink

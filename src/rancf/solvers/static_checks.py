@@ -17,7 +17,10 @@ line).  Criteria (docs/guide/statics.md, "Checked equilibria"):
   buckling load passes; a cable, whose ``EI`` is negligible, may carry no compression beyond the
   round-off of its axial stiffness);
 * **penetration**: an obstacle's largest penetration exceeds :data:`PENETRATION_LIMIT` of the
-  diameter ``2 sqrt(A / π)`` of the thinnest body that touches it.
+  diameter ``2 sqrt(A / π)`` of the thinnest body that touches it;
+* **unresolved touchdown**: where a line meets or leaves a seabed (a fixed plane its wet weight
+  ``w`` presses on), its bend radius ``T / w`` under the axial force ``T`` there is shorter than
+  the element holding it.
 """
 
 from __future__ import annotations
@@ -58,7 +61,7 @@ def static_state_problems(system: Any, q: NDArray[np.float64], lam: float = 1.0)
     for name, model in zip(system.names, system.flex, strict=False):
         y = model.y_from_q(np.asarray(q)[system.body_slice(name)])
         out += [f"body {name!r}: {p}" for p in _body_problems(model, y)]
-    return out + _penetration_problems(system, q)
+    return out + _penetration_problems(system, q) + _touchdown_problems(system, q)
 
 
 def _body_problems(model: Model, y: NDArray[np.float64]) -> list[str]:
@@ -102,6 +105,62 @@ def _fold_element(x: NDArray[np.float64], x0: NDArray[np.float64], k: int) -> in
     )
     bad = np.nonzero(back)[0]
     return int((bad[0] + 1) // k) if bad.size else None
+
+
+def _touchdown_problems(system: Any, q: NDArray[np.float64]) -> list[str]:
+    """Lines whose bend where they leave a seabed is shorter than one of their elements: a
+    line leaving a fixed plane its wet weight ``w`` presses on under the axial force ``T``
+    bends there with the catenary's radius ``T / w``; an element longer than that cannot take
+    the bend, and the stiff line settles into a state whose forces are far off (an inextensible
+    U-shaped line of 40 elements: a fairlead force 4.5 times too small)."""
+    from rancf.system.seabed import pressing_weight
+
+    out = []
+    pairs = set(getattr(system, "contact_pairs", ()) or ())
+    for ob, ob_name in zip(system.obstacles, getattr(system, "obstacle_names", ()), strict=False):
+        if ob.kind != "plane" or ob.body is not None:
+            continue
+        n = np.asarray(ob.normal, dtype=float)
+        n = n / np.linalg.norm(n)
+        for name, model in zip(system.names, system.flex, strict=False):
+            w = pressing_weight(system, name, np.r_[n, np.zeros(3 - n.size)])
+            if model.element == "beam" or (name, ob_name) not in pairs or not w > 0.0:
+                continue
+            line = _unresolved_bend(model, model.y_from_q(np.asarray(q)[system.body_slice(name)]),
+                                    np.asarray(ob.point, dtype=float), n, w)  # fmt: skip
+            if line:
+                out.append(f"body {name!r}: {line} {ob_name!r}")
+    return out
+
+
+def _unresolved_bend(model: Model, y: NDArray, point: NDArray, n: NDArray, w: float) -> str:
+    """The first place where ``model`` at ``y`` leaves or meets the plane through ``point``
+    (unit normal ``n``) with a bend radius ``T / w`` below its element's length, as the start of
+    a line naming the plane (empty when every such bend is resolved).  ``T`` is read from the
+    nodal forces at the element's inner nodes
+    (:func:`~rancf.bodies.nodal_forces.nodal_axial_forces`: a stiff line's strain oscillates
+    inside coarse elements by far more than its tension)."""
+    from rancf.bodies.nodal_forces import nodal_axial_forces, recovers_axial_force
+
+    if not recovers_axial_force(model) or model.n_el < 2:
+        return ""
+    sampler = SectionSampler(model)
+    k, radius = sampler.per_element, model.section.radius
+    gap = (sampler.positions(y) - point) @ n - radius
+    touch = gap <= 5e-2 * radius  # the touchdown sensor's tolerance
+    axial = nodal_axial_forces(model, y, np.zeros_like(y))  # inner nodes only are used
+    starts = sampler.s[::k][: model.n_el]
+    ell = np.diff(np.r_[starts, sampler.s[-1]])
+    for i in np.flatnonzero(touch[1:] != touch[:-1]):
+        e = min(int(i) // k, model.n_el - 1)
+        inner = [j for j in (e, e + 1) if 0 < j < model.n_nodes - 1]
+        bend = max(max(float(axial[j]) for j in inner), 0.0) / w
+        if bend < ell[e]:
+            return (f"its bend at s = {sampler.s[i]:.4g} m has the radius T/w = {bend:.3g} m, "
+                    f"shorter than its element ({ell[e]:.3g} m): the touchdown is not resolved "
+                    "and the line's forces, T among them, may be far off; refine the mesh "
+                    "until its elements there are shorter than T/w, where it leaves")  # fmt: skip
+    return ""
 
 
 def _penetration_problems(system: Any, q: NDArray[np.float64]) -> list[str]:

@@ -17,6 +17,7 @@ from collections.abc import Callable, Sequence
 from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from rancf.bodies.flexible import Model
 from rancf.bodies.time_function import TimeFunction
@@ -94,7 +95,8 @@ def hold_drums(system: Any, hold: bool) -> None:
 
 
 def refuse_static_drums(
-    system: Any, y: Sequence[float] | None, t: float | None, failed: Exception | None = None
+    system: Any, y: NDArray | Sequence[float] | None, t: float | None,
+    failed: Exception | None = None,
 ) -> None:
     """Statics with a driven drum: a failed solve (``y`` None) or a length ``L <= 0`` is one line
     naming the first drum's torque (no length at which the line holds it at rest)."""
