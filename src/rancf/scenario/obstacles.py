@@ -16,7 +16,7 @@ from typing import Literal
 
 from pydantic import Field, model_validator
 
-from rancf.scenario.base import Name, NonNegative, Positive, Table, fail, vector
+from rancf.scenario.base import Name, NonNegative, Positive, Table, Vector3, Vector23, fail
 
 __all__ = ["ObstacleTable", "OBSTACLE_KEYS"]
 
@@ -37,11 +37,11 @@ class ObstacleTable(Table):
     kind: Literal["plane", "cylinder", "sphere"] = Field(
         description='"plane" | "cylinder" (a circle in 2D) | "sphere" (3D)'
     )
-    point: vector(2, 3) | None = Field(None, description="plane: a point of it [m]")
-    normal: vector(2, 3) | None = Field(None, description="plane: its outward normal")
-    center: vector(2, 3) | None = Field(None, description="cylinder, sphere: the centre [m]")
+    point: Vector23 | None = Field(None, description="plane: a point of it [m]")
+    normal: Vector23 | None = Field(None, description="plane: its outward normal")
+    center: Vector23 | None = Field(None, description="cylinder, sphere: the centre [m]")
     radius: Positive | None = Field(None, description="cylinder, sphere: the radius [m]")
-    axis: vector(3) | None = Field(None, description="cylinder in 3D: its axis")
+    axis: Vector3 | None = Field(None, description="cylinder in 3D: its axis")
     body: Name | None = Field(
         None, description="the rigid body carrying it (geometry in the body's frame)"
     )

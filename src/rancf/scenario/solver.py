@@ -17,16 +17,32 @@ from rancf.scenario.base import (
     Flag,
     Positive,
     Table,
+    Vector3,
     fail,
     integer,
     number,
     show,
     to_number,
-    vector,
 )
 
 if TYPE_CHECKING:
+    from typing import TypeAlias
+
     from rancf.options import DynamicOptions
+
+    UnitInterval: TypeAlias = float
+    LoadSteps: TypeAlias = int
+    NewtonIterations: TypeAlias = int
+    Count: TypeAlias = int
+else:
+    #: A number in [0, 1] (``rho_inf``).
+    UnitInterval = number(ge=0.0, le=1.0)
+    #: Load steps of a static solve.
+    LoadSteps = integer(ge=1, le=MAX_LOAD_STEPS)
+    #: Newton iterations per step.
+    NewtonIterations = integer(ge=1, le=MAX_NEWTON)
+    #: A count of at least one (modes).
+    Count = integer(ge=1)
 
 __all__ = ["SolverTable", "ModesTable"]
 
@@ -47,10 +63,10 @@ class SolverTable(Table):
         description="time step [s] (adaptive: the first), <= t_end; a step that would pass an "
         "output time is shortened to end on it",
     )
-    rho_inf: number(ge=0.0, le=1.0) = Field(
+    rho_inf: UnitInterval = Field(
         0.9, description="generalized-alpha spectral radius at infinity, in [0, 1]"
     )
-    load_steps: integer(ge=1, le=MAX_LOAD_STEPS) = Field(
+    load_steps: LoadSteps = Field(
         10, description="statics: the first load increment is 1/load_steps"
     )
     adaptive: Flag = Field(False, description="adapt the step to rtol (local error estimate)")
@@ -71,7 +87,7 @@ class SolverTable(Table):
         description="Newton: max |increment| / model size (gradients times their elements' "
         "length)",
     )
-    max_newton: integer(ge=1, le=MAX_NEWTON) = Field(12, description="Newton iterations per step")
+    max_newton: NewtonIterations = Field(12, description="Newton iterations per step")
     newton: Literal["chord", "full", "modified"] = Field(
         "chord",
         description='"chord" (exact tangent at each step\'s first iteration, reused within the '
@@ -127,15 +143,15 @@ SpinRate = Annotated[float, Field(ge=0, le=MAX_SPIN_RATE), BeforeValidator(_spin
 class ModesTable(Table):
     """``[modes]``: defaults of ``rancf modes``."""
 
-    count: integer(ge=1) = Field(6, description="number of modes")
+    count: Count = Field(6, description="number of modes")
     about: Literal["reference", "static"] = Field(
         "reference",
         description='linearize about the "reference" or the "static" equilibrium',
     )
-    spin_axis: vector(3) = Field(
+    spin_axis: Vector3 = Field(
         [0.0, 0.0, 1.0], description="axis of the steady rotation of spin_rates (3D)"
     )
-    spin_center: vector(3) = Field([0.0, 0.0, 0.0], description="a point on the spin axis [m]")
+    spin_center: Vector3 = Field([0.0, 0.0, 0.0], description="a point on the spin axis [m]")
     spin_rates: list[SpinRate] = Field(
         [], description="steady rotation rates for a Campbell diagram [rad/s]"
     )

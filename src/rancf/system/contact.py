@@ -222,9 +222,9 @@ def build_contact(
                        ("damping_normal", ob.damping_normal)):  # fmt: skip
             _number(f"obstacles.{name}.{key}", v, 0.0, False)
         _number(f"obstacles.{name}.slip_velocity", ob.slip_velocity, 0.0, True)
-        for key, v in (("stiffness", ob.stiffness), ("onset", ob.onset)):
-            if v is not None:
-                _number(f"obstacles.{name}.{key}", v, 0.0, True)
+        for key, given in (("stiffness", ob.stiffness), ("onset", ob.onset)):
+            if given is not None:
+                _number(f"obstacles.{name}.{key}", given, 0.0, True)
         kinds.append(_KIND[ob.kind])
         bodies.append(body)
         points.append(p)
@@ -255,21 +255,21 @@ def build_contact(
         model = system.bodies[name]
         n0 = n1 = gw = w = np.zeros(0)
         if name in used:
-            if model.element == "beam":  # type: ignore[union-attr]
+            if model.element == "beam":
                 raise InputError(
                     "contacts", name, "flexible bodies of cable or rod elements (not beam)"
                 )
-            if model.reduction is not None:  # type: ignore[union-attr]
+            if model.reduction is not None:
                 raise InputError(
                     "contacts", name, "flexible bodies of C1 meshes (contact of a C2-reduced "
                     "mesh is not implemented)",
                 )  # fmt: skip
-            n0, n1, gw, w = _body_points(model, n_c)  # type: ignore[arg-type]
+            n0, n1, gw, w = _body_points(model, n_c)
         lists["nc"].append(n_c if name in used else 0)
-        lists["radius"].append(model.section.radius)  # type: ignore[union-attr]
+        lists["radius"].append(model.section.radius)
         for key, arr in (("n", n0), ("n1", n1), ("gw", gw), ("w", w)):
             lists[key].append(np.ascontiguousarray(arr.ravel()))
-        mesh = model.mesh  # type: ignore[union-attr]
+        mesh = model.mesh
         on = name in curves
         lists["weights"].append(np.ascontiguousarray(mesh.weights, float).ravel() if on
                                 else np.zeros(0))  # fmt: skip
@@ -282,8 +282,8 @@ def build_contact(
         if k is None:
             k = seabed_stiffness(system, f, ob, dirs[names.index(o)])
         if k is None:
-            k = STIFFNESS_FACTOR * system.bodies[f].material.youngs_modulus  # type: ignore[union-attr]
-        rt = system.bodies[f].section.radius  # type: ignore[union-attr]
+            k = STIFFNESS_FACTOR * system.bodies[f].material.youngs_modulus
+        rt = system.bodies[f].section.radius
         onset = ONSET_FACTOR * rt if ob.onset is None else ob.onset
         cn = ob.damping_normal * 2.0 * rt  # per area to per length: the contact width D
         data.append([k, onset, ob.damping, ob.friction, ob.slip_velocity, cn])
@@ -331,8 +331,8 @@ def _body_pair_data(system: ContactSystem, a: str, b: str, friction: float) -> l
     """Stiffness, onset, friction and slip velocity of two flexible bodies in contact
     (:func:`build_contact`)."""
     ma, mb = system.bodies[a], system.bodies[b]
-    k = 0.5 * STIFFNESS_FACTOR * min(ma.material.youngs_modulus, mb.material.youngs_modulus)  # type: ignore[union-attr]
-    onset = ONSET_FACTOR * min(ma.section.radius, mb.section.radius)  # type: ignore[union-attr]
+    k = 0.5 * STIFFNESS_FACTOR * min(ma.material.youngs_modulus, mb.material.youngs_modulus)
+    onset = ONSET_FACTOR * min(ma.section.radius, mb.section.radius)
     return [k, onset, friction, SLIP_VELOCITY]
 
 
