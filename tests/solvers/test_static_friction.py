@@ -113,7 +113,8 @@ def test_option_is_a_flag(tmp_path):
 def test_run_reactions_and_contact_count_the_friction(tmp_path):
     """``rancf static``'s reactions and the seabed's friction output: the anchor holds what the
     friction leaves (MoorPy's within 0.5 % of H), and the supports balance the friction."""
-    from rancf.post.static_run import reactions_json, run_static
+    from rancf.post.static_run import reactions_json
+    from rancf.runs.static import run_static
 
     path = tmp_path / "chain.toml"
     path.write_text(CHAIN.format(cb=0.1, solver="[solver]\nstatic_friction = true\n"))
@@ -136,7 +137,8 @@ def test_example_mooring_line_in_3d_matches_moorpy(tmp_path):
     """The shipped 3D example in seawater with its seabed's friction 0.3 (module docstring)."""
     from importlib.resources import files
 
-    from rancf.post.static_run import reactions_json, run_static
+    from rancf.post.static_run import reactions_json
+    from rancf.runs.static import run_static
 
     text = (files("rancf.examples") / "mooring-line.toml").read_text()
     path = tmp_path / "mooring-line.toml"

@@ -51,7 +51,8 @@ def _cmd_static(args: argparse.Namespace) -> int:
 
     from rancf.post.checks import run_warnings
     from rancf.post.results import strict_json
-    from rancf.post.static_run import positions_json, reactions_json, run_static
+    from rancf.post.static_run import positions_json, reactions_json
+    from rancf.runs.static import run_static
     from rancf.scenario import load_scenario
 
     sc = load_scenario(args.scenario)

@@ -76,7 +76,7 @@ def run_scenario(name: str, out: str | Path, quick: bool = False) -> StudyResult
     analyses = SCENARIO_ANALYSES[name]
     for analysis in analyses:
         if analysis == "static":
-            from rancf.post.static_run import run_static
+            from rancf.runs.static import run_static
 
             info = {"scenario": str(scenario.resolve())}
             static = run_static(sc, out / "static", info, lambda doc: _notes(res, doc))

@@ -64,7 +64,8 @@ def _simulate(sc: Any, folder: Path) -> Outcome:
 
 
 def _static(sc: Any, folder: Path) -> Outcome:
-    from rancf.post.static_run import positions_json, run_static
+    from rancf.post.static_run import positions_json
+    from rancf.runs.static import run_static
 
     run = run_static(sc, folder, {"scenario": str(folder / "scenario.toml")})
     out = {"positions": positions_json(run.system, run.result.q), "sensors": run.sensors}
