@@ -12,6 +12,7 @@ from typing import Any, Protocol
 
 import numpy as np
 
+from rancf.bodies.layout import BodyLayout
 from rancf.kernels import _core
 from rancf.kernels.beam import BeamKernel
 from rancf.kernels.cable import CableKernel
@@ -20,24 +21,8 @@ from rancf.kernels.rod import RodKernel
 __all__ = ["core_model", "section_stiffness"]
 
 
-class AssembledBody(Protocol):
+class AssembledBody(BodyLayout, Protocol):
     """What the core's structure is made of (:class:`rancf.bodies.flexible.Model`)."""
-
-    # read-only: implementations may narrow a member's type
-    @property
-    def dim(self) -> int: ...
-
-    @property
-    def dpn(self) -> int: ...
-
-    @property
-    def n_el(self) -> int: ...
-
-    @property
-    def n_nodes(self) -> int: ...
-
-    @property
-    def element(self) -> str: ...
 
     @property
     def closed(self) -> bool: ...

@@ -33,29 +33,14 @@ from typing import Any, Protocol
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from rancf.bodies.layout import BodyLayout
 from rancf.errors import InputError
 
 __all__ = ["RigidMotion", "rigid_velocity", "check_supports_at_rest", "angular_momentum"]
 
 
-class MovingBody(Protocol):
+class MovingBody(BodyLayout, Protocol):
     """What rigid motions read of a flexible body (:class:`rancf.bodies.flexible.Model`)."""
-
-    # read-only: implementations may narrow a member's type
-    @property
-    def dim(self) -> int: ...
-
-    @property
-    def dpn(self) -> int: ...
-
-    @property
-    def n_el(self) -> int: ...
-
-    @property
-    def n_nodes(self) -> int: ...
-
-    @property
-    def element(self) -> str: ...
 
     @property
     def fixed(self) -> NDArray[np.bool_]: ...
