@@ -91,8 +91,9 @@ def main(argv: list[str] | None = None) -> dict[str, Any]:
         every, ten = runs[(label, "every step")], runs[(label, "every 10 ms")]
         ratios = {key: [e[key] / t[key] for e, t in zip(every, ten, strict=True)]
                   for key in ("step_us", "wall_s", "cpu_s")}  # fmt: skip
-        extra = [(e["cpu_s"] - t["cpu_s"]) / e["steps"] * 1e6 for e, t in zip(every, ten,
-                                                                              strict=True)]
+        extra = [
+            (e["cpu_s"] - t["cpu_s"]) / e["steps"] * 1e6 for e, t in zip(every, ten, strict=True)
+        ]
         report[label] = {
             **{f"median {k} every step": statistics.median(r[k] for r in every)
                for k in ("step_us", "wall_s", "cpu_s")},

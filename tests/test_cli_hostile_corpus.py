@@ -97,29 +97,44 @@ SPEED = _winch(CRANE, "length", None)  # the crane's winch without its length la
 #: says what a careful user expects.
 CASES = [
     # a Campbell diagram up to 1e300 rad/s is a unit mistake: refused, not an OverflowError
-    ("spin-1e300", BLADE + "spin_rates = [0.0, 1e300]\n", ["modes"],
-     ["[modes.spin_rates[1]]", "1e+300", "at most 1e+06 rad/s"]),
+    (
+        "spin-1e300",
+        BLADE + "spin_rates = [0.0, 1e300]\n",
+        ["modes"],
+        ["[modes.spin_rates[1]]", "1e+300", "at most 1e+06 rad/s"],
+    ),
     ("spin-1e7", BLADE + "spin_rates = [1e7]\n", ["modes"], ["[modes.spin_rates[0]]", "1e+06"]),
     ("spin-negative", BLADE + "spin_rates = [-3.0]\n", ["modes"], ["[modes.spin_rates[0]]"]),
     ("spin-planar", BASE + "[modes]\nspin_rates = [1.0]\n", ["modes"], ["modes.spin_rates"]),
     # every winch key with a bad value names winches[0].key
     ("winch-length-nan", _winch(CRANE, "length", "nan"), [], ["[winches[0].length]", "nan"]),
-    ("winch-length-tiny", _winch(CRANE, "length", "1e-300"), [],  # not a joint's fault
-     ["[winches[0].length]", "1e-300", "within a factor 1000"]),
+    (
+        "winch-length-tiny",
+        _winch(CRANE, "length", "1e-300"),
+        [],  # not a joint's fault
+        ["[winches[0].length]", "1e-300", "within a factor 1000"],
+    ),
     ("winch-length-huge", _winch(CRANE, "length", "1e300"), [], ["[winches[0].length]"]),
     ("winch-speed-inf", _winch(SPEED, "speed", "1e999"), [], ["[winches[0].speed]", "inf"]),
     ("winch-speed-vector", _winch(SPEED, "speed", "[1.0, 2.0]"), [], ["[winches[0].speed]"]),
     ("winch-speed-and-length", _winch(CRANE, "speed", "1.0"), [], ["[winches[0].length]"]),
     ("winch-torque-text", _winch(DRUM, "torque", '"x"'), [], ["[winches[0].torque]", "'x'"]),
     # a torque no hanging weight can hold: statics names the winch's table and the file
-    ("winch-torque-static", _winch(DRUM, "torque", "1e12"), ["static"],
-     ["s.toml: [winches[0].torque]", "1000000000000.0"]),
-    ("winch-torque-start", _winch(DRUM, "torque", "1e12"), [],
-     ["s.toml: [winches[0].torque]"]),
+    (
+        "winch-torque-static",
+        _winch(DRUM, "torque", "1e12"),
+        ["static"],
+        ["s.toml: [winches[0].torque]", "1000000000000.0"],
+    ),
+    ("winch-torque-start", _winch(DRUM, "torque", "1e12"), [], ["s.toml: [winches[0].torque]"]),
     ("winch-radius-negative", _winch(DRUM, "radius", "-1"), [], ["[winches[0].radius]", "-1"]),
     # a radius whose J / r^2 overflows: not a ZeroDivisionError
-    ("winch-radius-tiny", _winch(DRUM, "radius", "1e-300"), [],
-     ["[winches[0].radius]", "1e-300", "J / r^2"]),
+    (
+        "winch-radius-tiny",
+        _winch(DRUM, "radius", "1e-300"),
+        [],
+        ["[winches[0].radius]", "1e-300", "J / r^2"],
+    ),
     ("winch-radius-no-torque", _winch(CRANE, "radius", "0.2"), [], ["[winches[0].radius]"]),
     ("winch-inertia-zero", _winch(DRUM, "inertia", "0"), [], ["[winches[0].inertia]"]),
     ("winch-inertia-missing", _winch(DRUM, "inertia", None), [], ["[winches[0].inertia]"]),
@@ -127,10 +142,13 @@ CASES = [
     ("winch-at-middle", _winch(DRUM, "at", '"wire:middle"'), [], ["[winches[0].at]"]),
     ("winch-at-number", _winch(DRUM, "at", "3"), [], ["[winches[0].at]"]),
     # a 3D point for a planar line: not a broadcast traceback
-    ("winch-position-3d", _winch(CRANE, "position", "[0.0, 1.0, 2.0]"), [],
-     ["[winches[0].position]", "2 numbers"]),
-    ("winch-position-far", _winch(DRUM, "position", "[1.0, 2.0]"), [],
-     ["[winches[0].position]"]),
+    (
+        "winch-position-3d",
+        _winch(CRANE, "position", "[0.0, 1.0, 2.0]"),
+        [],
+        ["[winches[0].position]", "2 numbers"],
+    ),
+    ("winch-position-far", _winch(DRUM, "position", "[1.0, 2.0]"), [], ["[winches[0].position]"]),
     ("winch-name", _winch(DRUM, "name", '"1x"'), [], ["[winches[0].name]", "'1x'"]),
     ("winch-unknown-key", _winch(DRUM, "reel", "1"), [], ["[winches[0].reel]"]),
     # fluid: waves need a water depth > 0 and a surface
@@ -140,8 +158,12 @@ CASES = [
     # a CSV table's first line with a typo among its numbers is not a header to drop
     ("csv-typo-first-line", _with_table('"t.csv"'), [], ["t.csv line 1: 'oops'"]),
     # a CSV table that is a loop of symbolic links: one line, not a RuntimeError
-    ("csv-symlink-loop", _with_table('"loop.csv"'), [],
-     ["[supports[0].motion.table]", "loop.csv", "cannot be read"]),
+    (
+        "csv-symlink-loop",
+        _with_table('"loop.csv"'),
+        [],
+        ["[supports[0].motion.table]", "loop.csv", "cannot be read"],
+    ),
 ]
 
 

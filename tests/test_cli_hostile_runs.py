@@ -484,8 +484,10 @@ def test_a_sweep_over_an_array_of_tables_is_refused_in_one_line(tmp_path, monkey
     assert main(["sweep", "sw.toml", "--out", "out", "--threads", "1", "--quiet"]) == 2
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1, err
-    assert err.startswith("rancf: error: sw.toml: [grid.winches.speed] 'winches' is an array of "
-                          "tables ([[winches]]) in the base scenario, not a table"), err
+    assert err.startswith(
+        "rancf: error: sw.toml: [grid.winches.speed] 'winches' is an array of "
+        "tables ([[winches]]) in the base scenario, not a table"
+    ), err
     assert not Path("out").exists()
 
 

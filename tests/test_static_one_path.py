@@ -82,8 +82,9 @@ def test_rods_with_point_moments_keep_their_equilibrium(name):
     res = solve_static(m, 10)
     from rancf.system import as_system
 
-    _compare(name, res.q, SystemOutputs(as_system(m)).static_reactions(res.y, res.lam),
-             slice(6, None, 7))
+    _compare(
+        name, res.q, SystemOutputs(as_system(m)).static_reactions(res.y, res.lam), slice(6, None, 7)
+    )
 
 
 def test_the_second_static_path_stays_removed():

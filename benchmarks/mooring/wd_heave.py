@@ -74,8 +74,10 @@ def rancf_run(case: str, step: float | None) -> tuple[np.ndarray, np.ndarray, fl
     """rancf's fairlead tension of ``case`` (the size of the fairlead reaction): times, tensions,
     solve and process times; at the file's step, or ``step``."""
     text = (HERE / f"{case}.toml").read_text()
-    text = text.replace("motion = { harmonic = 0.1, amplitude = [0.0, 2.0] }",
-                        "motion = { harmonic = 0.1, amplitude = [0.0, 2.0], build_up = 0.0 }")
+    text = text.replace(
+        "motion = { harmonic = 0.1, amplitude = [0.0, 2.0] }",
+        "motion = { harmonic = 0.1, amplitude = [0.0, 2.0], build_up = 0.0 }",
+    )
     if step is not None:  # the files take fixed steps
         text = re.sub(r"(?m)^step = .*$", f"step = {step!r}", text)
     with tempfile.TemporaryDirectory() as tmp:
@@ -127,8 +129,12 @@ def main() -> None:
     p.add_argument("--dt", type=float, default=1e-3, help="MoorDyn's step dtM [s]")
     p.add_argument("--rancf-step", type=float, default=None, help="rancf's step [s]")
     p.add_argument("--json", type=Path, default=None, help="also write the results here")
-    p.add_argument("--reference", type=Path, default=None,
-                   help="a folder: write MoorDyn's series to 12 s there (tests/references)")
+    p.add_argument(
+        "--reference",
+        type=Path,
+        default=None,
+        help="a folder: write MoorDyn's series to 12 s there (tests/references)",
+    )
     a = p.parse_args()
     results = {}
     for case in a.case:

@@ -30,8 +30,10 @@ length = 2 * 0.49 + 0.18 + np.pi * 0.01  # legs, top, two quarter circles [m]
 omega = np.sqrt(2 * rho_a * g / (m1 + m2 + rho_a * length))
 rigid = (m2 - m1) / (2 * rho_a) * (np.cosh(omega * s["t"]) - 1)
 run = s["guide_left_s"][0] - s["guide_left_s"][-1]
-print(f"drop at {s['t'][-1]:.1f} s: {x[-1]:.4f} m (rigid rope: {rigid[-1]:.4f} m); "
-      f"rope run through the left guide: {run:.4f} m")
+print(
+    f"drop at {s['t'][-1]:.1f} s: {x[-1]:.4f} m (rigid rope: {rigid[-1]:.4f} m); "
+    f"rope run through the left guide: {run:.4f} m"
+)
 
 # %%
 # The drop follows the rigid rope once the rope's start stretch has settled; the guide's force

@@ -39,8 +39,10 @@ def rigid(t: float, z: np.ndarray) -> list[float]:
 
 
 ref = solve_ivp(rigid, (0.0, 2.0), [l0, 0.0], t_eval=s["t"], rtol=1e-10, atol=1e-12)
-print(f"length at 2 s: {s['drum_length'][-1]:.4f} m (rigid rope: {ref.y[0][-1]:.4f} m); "
-      f"tension at the drum {s['drum_tension'][-1]:.1f} N")
+print(
+    f"length at 2 s: {s['drum_length'][-1]:.4f} m (rigid rope: {ref.y[0][-1]:.4f} m); "
+    f"tension at the drum {s['drum_tension'][-1]:.1f} N"
+)
 
 # %%
 # The length the drum holds and the load's height, against the rigid rope; the pull at the

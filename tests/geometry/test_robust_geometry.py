@@ -1,6 +1,5 @@
 """Geometry defects: extreme conics, sharp arc-length integrands, O(n) meshing."""
 
-
 import numpy as np
 import pytest
 

@@ -62,9 +62,10 @@ def test_every_analysis_gives_the_same_answer_in_both_forms(tmp_path, capsys, na
         assert sorted(na) == sorted(nb), cmd  # the same format
         scale = max((abs(v) for v in na.values()), default=1.0)
         for key, val in na.items():
-            assert abs(val - nb[key]) <= 1e-9 * max(abs(val), 1e-300) or abs(
-                val - nb[key]
-            ) <= 1e-12 * scale, (cmd, key, val, nb[key])
+            assert (
+                abs(val - nb[key]) <= 1e-9 * max(abs(val), 1e-300)
+                or abs(val - nb[key]) <= 1e-12 * scale
+            ), (cmd, key, val, nb[key])
         labels_a = [s for s in _strings(a.get("reactions", []))]
         labels_b = [s.removeprefix("body:") for s in _strings(b.get("reactions", []))]
         assert labels_a == labels_b, cmd

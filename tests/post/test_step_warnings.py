@@ -14,9 +14,12 @@ from rancf.post.checks import step_warnings
 from tests.test_cli_warnings import HOSE
 
 #: The hose of the unit-mistake warnings with a stiff material, 0.03 s long, and an interval.
-PENDULUM = HOSE.replace("youngs_modulus = 50.0", "youngs_modulus = 1.0e8").replace(
-    "t_end = 0.1", "t_end = 0.03"
-) + "output_step = {out}\n"
+PENDULUM = (
+    HOSE.replace("youngs_modulus = 50.0", "youngs_modulus = 1.0e8").replace(
+        "t_end = 0.1", "t_end = 0.03"
+    )
+    + "output_step = {out}\n"
+)
 
 
 @pytest.mark.parametrize(

@@ -24,9 +24,9 @@ TOL = 5e-3
 #: Cases not yet solved at 40 elements, with what rancf gives (not counted as passes).
 OPEN = {
     "u-shape": "refused (exit 3): 3.25 m elements at touchdowns bending with radius H / w = "
-               "2.6 m settle into H 4.5 times too small (1.9 % at 80 elements, 0.34 % at 160)",
+    "2.6 m settle into H 4.5 times too small (1.9 % at 80 elements, 0.34 % at 160)",
     "u-half": "H 1.9 % off: 1.6 m elements at a touchdown bending with radius H / w = 2.6 m "
-              "(0.31 % at 80 elements)",
+    "(0.31 % at 80 elements)",
 }
 
 

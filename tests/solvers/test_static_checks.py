@@ -124,7 +124,8 @@ position = [0.0, 0.0]
 """
 #: That chain 500 m straight on the seabed, its end installed at the fairlead 447.2 m from the
 #: anchor.
-CHAIN = """
+CHAIN = (
+    """
 [geometry]
 kind = "line"
 start = [-400.0, -200.0]
@@ -132,7 +133,9 @@ end = [100.0, -200.0]
 
 [mesh]
 elements = 50
-""" + CHAIN_LINE + """
+"""
+    + CHAIN_LINE
+    + """
 [[obstacles]]
 name = "seabed"
 kind = "plane"
@@ -143,6 +146,7 @@ stiffness = 1.0e6
 [loads]
 gravity = [0.0, -9.81]
 """
+)
 
 
 def _scenario(tmp_path, text: str):

@@ -37,7 +37,8 @@ MOORPY = {
 }
 #: A 500 m chain (w = 2456.82 N/m, EA = 1.2326e9 N), anchor pinned on the seabed, the fairlead
 #: installed 447 m away and 100 m up; drawn straight on the seabed.
-CHAIN = """
+CHAIN = (
+    """
 [geometry]
 kind = "line"
 start = [-447.0, -100.0]
@@ -45,7 +46,9 @@ end = [53.0, -100.0]
 
 [mesh]
 elements = 100
-""" + CHAIN_LINE + """
+"""
+    + CHAIN_LINE
+    + """
 [[obstacles]]
 name = "seabed"
 kind = "plane"
@@ -57,6 +60,7 @@ friction = {cb}
 [loads]
 gravity = [0.0, -9.81]
 {solver}"""
+)
 
 
 def _ends(tmp_path, cb: float, solver: str = "[solver]\nstatic_friction = true\n"):

@@ -25,8 +25,13 @@ def planar() -> System:
     wheel = RigidBody(2, 1.0, 0.01, (0.7, -0.1), 0.2)
     obs = [
         Obstacle(
-            "plane", point=(0, -0.005), normal=(0.1, 1), friction=0.3, damping=3.0,
-            damping_normal=2e5, name="ground",
+            "plane",
+            point=(0, -0.005),
+            normal=(0.1, 1),
+            friction=0.3,
+            damping=3.0,
+            damping_normal=2e5,
+            name="ground",
         ),  # fmt: skip
         Obstacle(
             "cylinder", center=(0.5, -0.2), radius=0.195, friction=0.5, onset=4e-3, name="post"

@@ -351,8 +351,11 @@ def test_end_through_the_guide_stops_the_run():
         res = integrate(s, DynamicOptions(t_end=0.2, step=2e-3, output_step=0.01,
                                           adaptive=adaptive))  # fmt: skip
         assert res.status.value == "failed", res.message
-        found = re.match(r"sliding joint 'eye': the start of body 'rope' passes through its "
-                         r"place at t = (\S+) s \(material coordinate -", res.message)
+        found = re.match(
+            r"sliding joint 'eye': the start of body 'rope' passes through its "
+            r"place at t = (\S+) s \(material coordinate -",
+            res.message,
+        )
         assert found, res.message
         t_out = float(found[1])  # free fall of 0.05 m, the start to the eye: 0.101 s
         assert 0.1 < t_out < 0.12

@@ -213,6 +213,8 @@ def test_a_length_law_reaching_zero_stops_the_run_at_the_step_before():
     st = solve_static(s, load_steps=1, at_time=0.0)
     res = integrate(s, DynamicOptions(t_end=1.0, step=0.01, output_step=0.05), initial=st.y)
     assert res.status.value == "failed"
-    assert res.message == ("winch 'hoist': its length law gives 0 m at t = 0.5 s, not > 0; the "
-                           "run stops at the step before"), res.message
+    assert res.message == (
+        "winch 'hoist': its length law gives 0 m at t = 0.5 s, not > 0; the "
+        "run stops at the step before"
+    ), res.message
     assert res.state.t == pytest.approx(0.49) and res.t[-1] == pytest.approx(0.45)

@@ -131,9 +131,9 @@ class Model(Coordinates):
             )  # fmt: skip
         self.n_el = mesh.n_elements
         if material.axial_strain != "green_lagrange" and element not in ("rancf", "ancf"):
-            raise InputError("material.axial_strain", material.axial_strain,
-                             f'"green_lagrange" with {element} elements (the engineering strain '
-                             'is built for cable elements: mesh.element = "rancf" or "ancf")')
+            allowed = (f'"green_lagrange" with {element} elements (the engineering strain is '
+                       'built for cable elements: mesh.element = "rancf" or "ancf")')  # fmt: skip
+            raise InputError("material.axial_strain", material.axial_strain, allowed)
         rho, e_mod = material.density, material.youngs_modulus
         props = CableProperties(e_mod * section.area, e_mod * section.inertia, rho * section.area)
         self.props = props

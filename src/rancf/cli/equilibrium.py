@@ -193,8 +193,10 @@ def _shapes_path(plot: Path) -> Path:
 
 def _print_campbell(cam: dict[str, Any]) -> None:
     """The Campbell table: one row per spin rate."""
-    print("frequencies about the steady rotation (Hz) against the spin rate (rad/s), each "
-          "column one mode followed by its shape:")
+    print(
+        "frequencies about the steady rotation (Hz) against the spin rate (rad/s), each "
+        "column one mode followed by its shape:"
+    )
     print("  " + " " * 10 + "  " + " ".join(f"{lab:>11s}" for lab in cam["labels"]))
     for rate, row in zip(cam["spin_rates"], cam["frequencies_hz"], strict=True):
         print(f"  {rate:10.4g}  " + " ".join(f"{f:11.6f}" for f in row))

@@ -14,6 +14,7 @@ __all__ = ["add_parsers"]
 
 def _cmd_view(args: argparse.Namespace) -> int:
     from rancf.post.system_run import load_run
+
     run = load_run(args.run_dir)
     out = Path(args.out) if args.out is not None else Path(args.run_dir) / "view.html"
     n = _write(run, out, args)

@@ -63,11 +63,16 @@ def section_warnings(model: Model | System) -> list[str]:
     a kink: an open curve) and a warning if the section's radius exceeds a tenth of the body's
     reference length (every flexible body of a system, named)."""
     if isinstance(model, System):
-        return [
-            f"{name}: {w}"
-            for name, b in zip(model.names, model.flex, strict=False)
-            for w in section_warnings(b)
-        ] + _crossing_warnings(model) + contact_warnings(model) + winch_warnings(model)
+        return (
+            [
+                f"{name}: {w}"
+                for name, b in zip(model.names, model.flex, strict=False)
+                for w in section_warnings(b)
+            ]
+            + _crossing_warnings(model)
+            + contact_warnings(model)
+            + winch_warnings(model)
+        )
     notes = list(
         model.notes
     )  # remarks on the geometry (ends that touch at a kink; C² nodes kept C¹)
@@ -148,8 +153,11 @@ def error_warnings(result: Any, options: DynamicOptions) -> list[str]:
     if not err > 1.0 or h is None:
         return []
     better = h * 0.9 * err ** (-1.0 / 3.0)
-    how = ("adaptive steps could not meet it" if options.adaptive else
-           f"a step of about {better:.3g} s meets it there, or set solver.adaptive = true")
+    how = (
+        "adaptive steps could not meet it"
+        if options.adaptive
+        else f"a step of about {better:.3g} s meets it there, or set solver.adaptive = true"
+    )
     return [
         f"the local error estimate is {err:.3g} times solver.rtol = {options.rtol:g} (of the "
         f"model's size) at t = {result.error_time:.6g} s with a step of {h:.3g} s: the step does "

@@ -59,8 +59,10 @@ def _contact(run: SystemRun) -> tuple[list[dict[str, Any]], NDArray, list[str]]:
         obstacles = meta.get("obstacles") or []
         if not obstacles:
             return [], np.zeros((run.t.size, 0)), []
-        return obstacles, np.asarray(z["reactions"]).reshape(run.t.size, -1), list(
-            meta["reaction_columns"]
+        return (
+            obstacles,
+            np.asarray(z["reactions"]).reshape(run.t.size, -1),
+            list(meta["reaction_columns"]),
         )
 
 
@@ -193,16 +195,40 @@ def _layout(run: SystemRun, scene: _Scene, labels: list[str]) -> dict[str, Any]:
              for lab in labels]  # fmt: skip
     return {
         "title": f"{run.name}: {len(labels)} of {run.t.size} stored times",
-        "scene": {**axes, "aspectmode": "manual", "aspectratio": ratio, "camera": camera,
-                  "domain": {"x": [0.0, 1.0], "y": [0.14, 1.0]}},  # the controls below it
+        "scene": {
+            **axes,
+            "aspectmode": "manual",
+            "aspectratio": ratio,
+            "camera": camera,
+            "domain": {"x": [0.0, 1.0], "y": [0.14, 1.0]},
+        },  # the controls below it
         "margin": {"l": 0, "r": 0, "t": 40, "b": 0},
-        "updatemenus": [{"type": "buttons", "showactive": False, "x": 0.02, "y": 0.02,
-                         "xanchor": "left", "yanchor": "bottom", "direction": "left",
-                         "buttons": [{"label": "Play", "method": "animate", "args": [None, play]},
-                                     {"label": "Pause", "method": "animate",
-                                      "args": [[None], pause]}]}],  # fmt: skip
-        "sliders": [{"active": 0, "x": 0.2, "len": 0.78, "y": 0.02, "yanchor": "bottom",
-                     "currentvalue": {"prefix": ""}, "steps": steps}],  # fmt: skip
+        "updatemenus": [
+            {
+                "type": "buttons",
+                "showactive": False,
+                "x": 0.02,
+                "y": 0.02,
+                "xanchor": "left",
+                "yanchor": "bottom",
+                "direction": "left",
+                "buttons": [
+                    {"label": "Play", "method": "animate", "args": [None, play]},
+                    {"label": "Pause", "method": "animate", "args": [[None], pause]},
+                ],
+            }
+        ],  # fmt: skip
+        "sliders": [
+            {
+                "active": 0,
+                "x": 0.2,
+                "len": 0.78,
+                "y": 0.02,
+                "yanchor": "bottom",
+                "currentvalue": {"prefix": ""},
+                "steps": steps,
+            }
+        ],  # fmt: skip
     }
 
 

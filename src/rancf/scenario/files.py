@@ -80,5 +80,3 @@ def write_atomic(path: Path, text: str) -> None:
         atomic_write(path, text)
     except OSError as exc:
         raise ScenarioError(str(path), "file", f"cannot be written: {exc.strerror}") from None
-
-

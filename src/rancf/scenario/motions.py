@@ -61,6 +61,7 @@ def start_jump(f: TimeFunction, order: int, t_end: float) -> tuple[float, float]
     size = [float(np.max(np.abs(at(t)))) for t in times]
     return size[0], max(size)
 
+
 #: The default build-up of a harmonic motion that would start with a jump of its rate, in
 #: periods of the harmonic.
 BUILD_UP_PERIODS = 2.0

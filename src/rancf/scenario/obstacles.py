@@ -47,18 +47,20 @@ class ObstacleTable(Table):
     )
     friction: NonNegative = Field(0.0, description="Coulomb friction coefficient mu")
     stiffness: Positive | None = Field(
-        None, description="penalty stiffness [N/m^2] (default: on a seabed, a fixed plane "
+        None,
+        description="penalty stiffness [N/m^2] (default: on a seabed, a fixed plane "
         "facing up against gravity in a [fluid], k = w_n / (0.01 D): the body's wet weight per "
-        "length w_n presses it in by 1 % of its diameter D; else a tenth of Young's modulus)"
+        "length w_n presses it in by 1 % of its diameter D; else a tenth of Young's modulus)",
     )
     onset: Positive | None = Field(
         None, description="depth of the pressure's smooth onset [m] (default: 1e-3 r)"
     )
     damping: NonNegative = Field(0.0, description="Hunt-Crossley damping factor [s/m]")
     damping_normal: NonNegative = Field(
-        0.0, description="linear normal damping per unit contact area while in contact "
+        0.0,
+        description="linear normal damping per unit contact area while in contact "
         "[Pa s/m] (MoorDyn's cBot): a force per length c D (-g') over the tube's diameter D; "
-        "never pulls"
+        "never pulls",
     )
     slip_velocity: Positive = Field(
         1e-3, description="regularization velocity of the friction [m/s]"

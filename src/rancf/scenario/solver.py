@@ -71,8 +71,9 @@ class SolverTable(Table):
     )
     adaptive: Flag = Field(False, description="adapt the step to rtol (local error estimate)")
     rtol: Positive = Field(
-        1e-5, description="local error / model size: adaptive steps keep below it, fixed "
-        "steps warn at the end of a run above it"
+        1e-5,
+        description="local error / model size: adaptive steps keep below it, fixed "
+        "steps warn at the end of a run above it",
     )
     output_step: Positive | None = Field(
         None,
@@ -84,8 +85,7 @@ class SolverTable(Table):
     )
     newton_tol: Positive = Field(
         1e-10,
-        description="Newton: max |increment| / model size (gradients times their elements' "
-        "length)",
+        description="Newton: max |increment| / model size (gradients times their elements' length)",
     )
     max_newton: NewtonIterations = Field(12, description="Newton iterations per step")
     newton: Literal["chord", "full", "modified"] = Field(

@@ -82,7 +82,7 @@ def winch_key(winches: Any, parameter: str) -> str:
         for sep in (".", ""):
             prefix = f"winches.{w.name}{sep}"
             if parameter.startswith(prefix) and (sep or parameter == prefix):
-                return f"winches[{i}]{sep}{parameter[len(prefix):]}"
+                return f"winches[{i}]{sep}{parameter[len(prefix) :]}"
     return parameter
 
 

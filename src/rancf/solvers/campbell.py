@@ -36,8 +36,17 @@ from rancf.solvers.rotating import RotatingEquilibrium, Spin
 from rancf.solvers.static import StaticMethod, solve_equilibrium
 from rancf.system import System
 
-__all__ = ["CampbellResult", "RotatingModes", "rotating_modes", "campbell", "track", "mac",
-           "motion_shares", "motion_label", "MAX_FREE"]
+__all__ = [
+    "CampbellResult",
+    "RotatingModes",
+    "rotating_modes",
+    "campbell",
+    "track",
+    "mac",
+    "motion_shares",
+    "motion_label",
+    "MAX_FREE",
+]
 
 #: The largest number of free coordinates of the dense companion eigenproblem.
 MAX_FREE = 1500

@@ -236,5 +236,11 @@ def solve_from_sag(
     if not rel.converged:
         return None
     problem.accept(rel.z)
-    return (rel.z, end, out.iterations + rel.newton_iterations,
-            out.iterations + rel.factorizations, out.residuals + rel.residuals, rel.steps)
+    return (
+        rel.z,
+        end,
+        out.iterations + rel.newton_iterations,
+        out.iterations + rel.factorizations,
+        out.residuals + rel.residuals,
+        rel.steps,
+    )

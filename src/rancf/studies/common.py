@@ -35,6 +35,7 @@ __all__ = [
     "format_error",
 ]
 
+
 def load_example(name: str) -> dict[str, Any]:
     """The parsed TOML of a shipped example (a plain dictionary to derive variants from)."""
     return tomllib.loads(example_path(name).read_text(encoding="utf-8"))

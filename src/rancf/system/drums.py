@@ -95,7 +95,9 @@ def hold_drums(system: Any, hold: bool) -> None:
 
 
 def refuse_static_drums(
-    system: Any, y: NDArray | Sequence[float] | None, t: float | None,
+    system: Any,
+    y: NDArray | Sequence[float] | None,
+    t: float | None,
     failed: Exception | None = None,
 ) -> None:
     """Statics with a driven drum: a failed solve (``y`` None) or a length ``L <= 0`` is one line

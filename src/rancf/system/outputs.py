@@ -148,8 +148,8 @@ class SystemOutputs:
         #: The largest |axial strain| of the rows seen so far, and the ``t`` of its row.
         self.largest_strain: tuple[float, float] = (0.0, 0.0)
         #: One flexible body, nothing else with energy: its energies are the system's (stored).
-        self._body_is_system = len(s.flex) == 1 and not (
-            s.rigid or s.springs or s.has_contact or getattr(s, "winches", ()))
+        others = s.rigid or s.springs or s.has_contact or getattr(s, "winches", ())
+        self._body_is_system = len(s.flex) == 1 and not others
 
     # ------------------------------------------------------------------ sizes
     @property

@@ -68,8 +68,6 @@ class OutputsView(Protocol):
     def body_along(self, along: NDArray, name: str) -> NDArray[np.float64]: ...
 
 
-
-
 class SensorReader:
     """The sensors' columns of blocks of rows (module docstring)."""
 
