@@ -34,9 +34,10 @@ from typing import Any
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
+sys.path.insert(0, str(HERE / "mooring"))
 
 import exudyn_cases as ex  # noqa: E402
-from example_times import cpu_name  # noqa: E402
+from provenance import cpu_model  # noqa: E402
 from system_cases import run_exudyn, run_rancf  # noqa: E402
 
 EXUDYN_T_END = 0.1  # the test's own length
@@ -129,7 +130,7 @@ def main() -> None:
     a = p.parse_args()
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
-    rows: dict[str, Any] = {"cpu": cpu_name(), "exudyn_version": ex.VERSION}
+    rows: dict[str, Any] = {"cpu": cpu_model(), "exudyn_version": ex.VERSION}
     rows.update(cases(a.repeats, a.coil_repeats, not a.no_coil))
     (out / "belt_bench.json").write_text(json.dumps(rows, indent=2, allow_nan=False) + "\n")
     print(f"CPU: {rows['cpu']}")

@@ -24,17 +24,9 @@ from pathlib import Path
 from typing import Any
 
 HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE / "mooring"))
 
-
-def cpu_name() -> str:
-    """The CPU's model name (``/proc/cpuinfo``), else the platform's processor string."""
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or "unknown"
+from provenance import cpu_model  # noqa: E402
 
 
 def example_names() -> list[str]:
@@ -65,7 +57,7 @@ def main() -> None:
     p.add_argument("--only", nargs="*", default=None)
     args = p.parse_args()
     rows = [time_example(n, args.repeats) for n in (args.only or example_names())]
-    doc = {"cpu": cpu_name(), "cores": __import__("os").cpu_count(),
+    doc = {"cpu": cpu_model(), "cores": __import__("os").cpu_count(),
            "python": platform.python_version(), "date": time.strftime("%Y-%m-%d"),
            "rows": rows}  # fmt: skip
     out = Path(args.out)

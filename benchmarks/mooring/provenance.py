@@ -11,16 +11,19 @@ import sys
 from pathlib import Path
 
 
-def cpu() -> str:
-    """The CPU model of ``/proc/cpuinfo`` (else ``platform.processor()``) and the core count."""
-    name = platform.processor() or platform.machine()
+def cpu_model() -> str:
+    """The CPU model of ``/proc/cpuinfo`` (else ``platform.processor()``)."""
     info = Path("/proc/cpuinfo")
     if info.exists():
         for line in info.read_text().splitlines():
             if line.startswith("model name"):
-                name = line.split(":", 1)[1].strip()
-                break
-    return f"{name} ({os.cpu_count()} logical cores)"
+                return line.split(":", 1)[1].strip()
+    return platform.processor() or platform.machine()
+
+
+def cpu() -> str:
+    """The CPU model (:func:`cpu_model`) and the core count."""
+    return f"{cpu_model()} ({os.cpu_count()} logical cores)"
 
 
 def machine() -> str:
