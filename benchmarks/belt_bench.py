@@ -57,8 +57,9 @@ def _rancf(scenario: Path, out: Path) -> dict[str, Any]:
 
 
 def _exudyn(output_step: float) -> dict[str, Any]:
-    got = run_exudyn("exudyn_belt.py", ["--t-end", str(EXUDYN_T_END),
-                                        "--output-step", str(output_step)])  # fmt: skip
+    got = run_exudyn(
+        "exudyn_belt.py", ["--t-end", str(EXUDYN_T_END), "--output-step", str(output_step)]
+    )
     got["t_end"] = EXUDYN_T_END
     return got
 
@@ -88,9 +89,10 @@ def _pairs(fa: Any, fb: Any, repeats: int, per: str, warm: bool = True) -> dict[
         "ratio": med([cost(x) / cost(y) for x, y in zip(a, b, strict=True)]),
         "ratios": [cost(x) / cost(y) for x, y in zip(a, b, strict=True)],
         "a_last": {k: a[-1][k] for k in ("sensors", "angles", "rates") if k in a[-1]},
-        "b_last": {k: b[-1][k] for k in ("sensors", "angles", "rates", "node0_x_plus_y")
-                   if k in b[-1]},
-    }  # fmt: skip
+        "b_last": {
+            k: b[-1][k] for k in ("sensors", "angles", "rates", "node0_x_plus_y") if k in b[-1]
+        },
+    }
 
 
 def cases(repeats: int, coil_repeats: int, coil: bool) -> dict[str, Any]:
@@ -102,22 +104,29 @@ def cases(repeats: int, coil_repeats: int, coil: bool) -> dict[str, Any]:
         tmpd = Path(tmp)
         if ex.AVAILABLE:
             rows["shipped belt vs Exudyn"] = _pairs(
-                lambda: _rancf(shipped, tmpd / "shipped"), lambda: _exudyn(0.02), repeats,
+                lambda: _rancf(shipped, tmpd / "shipped"),
+                lambda: _exudyn(0.02),
+                repeats,
                 "second",
-            )  # fmt: skip
+            )
             rows["matched belt vs Exudyn"] = _pairs(
-                lambda: _rancf(matched, tmpd / "matched"), lambda: _exudyn(0.01), repeats,
+                lambda: _rancf(matched, tmpd / "matched"),
+                lambda: _exudyn(0.01),
+                repeats,
                 "second",
-            )  # fmt: skip
+            )
         if coil:
             with_self = HERE / "scenarios" / "rope-coil.toml"
             without = tmpd / "rope-fall.toml"
             text = with_self.read_text()
             without.write_text(text.replace('body_contacts = [["body", "body"]]\n', ""))
             rows["rope coil: self-contact vs none"] = _pairs(
-                lambda: _rancf(with_self, tmpd / "coil"), lambda: _rancf(without, tmpd / "fall"),
-                coil_repeats, "step", warm=False,
-            )  # fmt: skip
+                lambda: _rancf(with_self, tmpd / "coil"),
+                lambda: _rancf(without, tmpd / "fall"),
+                coil_repeats,
+                "step",
+                warm=False,
+            )
     return rows
 
 
@@ -142,8 +151,10 @@ def main() -> None:
         unit = "s/sim-s" if per == "second" else "ms/step"
         scale = 1.0 if per == "second" else 1e3
         ca, cb = scale * r[f"a_s_per_{per}"], scale * r[f"b_s_per_{per}"]
-        print(f"{name:34s} {ca:10.4g} {cb:10.4g} {r['ratio']:7.3f} "
-              f"{r['a_setup_s']:7.3f}/{r['b_setup_s']:.3f}  ({unit})")  # fmt: skip
+        print(
+            f"{name:34s} {ca:10.4g} {cb:10.4g} {r['ratio']:7.3f} "
+            f"{r['a_setup_s']:7.3f}/{r['b_setup_s']:.3f}  ({unit})"
+        )
 
 
 if __name__ == "__main__":

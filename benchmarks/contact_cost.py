@@ -89,8 +89,9 @@ stiffness = 1.0e7
 def ground_files(tmp: Path, n: int) -> tuple[Path, Path]:
     """The cable lying on the ground and the same cable hanging from a pin."""
     lying, hanging = tmp / "lying.toml", tmp / "hanging.toml"
-    lying.write_text(CABLE.format(x0=0, y0=0.002, x1=10.0, y1=0.002, n=n, t_end=0.2, rho=0.5)
-                     + GROUND)  # fmt: skip
+    lying.write_text(
+        CABLE.format(x0=0, y0=0.002, x1=10.0, y1=0.002, n=n, t_end=0.2, rho=0.5) + GROUND
+    )
     hanging.write_text(CABLE.format(x0=0, y0=0, x1=0, y1=-10.0, n=n, t_end=0.2, rho=0.5) + PIN)
     return lying, hanging
 
@@ -119,8 +120,12 @@ def broad_phase() -> dict[str, float]:
 
     out: dict[str, float] = {}
     for n in (500, 1000, 2000, 4000):
-        m = Model(mesh_line([0, 0], [0.01 * n, 0], n), "rancf", Section.circular(0.002),
-                  Material(7850.0, 2e11))  # fmt: skip
+        m = Model(
+            mesh_line([0, 0], [0.01 * n, 0], n),
+            "rancf",
+            Section.circular(0.002),
+            Material(7850.0, 2e11),
+        )
         s = System({"c": m}, body_contacts=[("c", "c")])
         vals = np.empty(3)
         times = []
@@ -132,8 +137,9 @@ def broad_phase() -> dict[str, float]:
     return out
 
 
-def cases(repeats: int, n_ground: int, n_circle: int, t_circle: float,
-          exudyn: bool) -> dict[str, Any]:  # fmt: skip
+def cases(
+    repeats: int, n_ground: int, n_circle: int, t_circle: float, exudyn: bool
+) -> dict[str, Any]:
     """The ground and circle cases (module docstring), keyed by their names."""
     rows: dict[str, Any] = {}
     with tempfile.TemporaryDirectory() as tmp:
@@ -141,18 +147,22 @@ def cases(repeats: int, n_ground: int, n_circle: int, t_circle: float,
         lying, hanging = ground_files(tmpd, n_ground)
         key = f"ground {n_ground} el: lying vs hanging"
         rows[key] = _pairs(
-            lambda: run_rancf(lying, tmpd / "lying"), lambda: run_rancf(hanging, tmpd / "hang"),
+            lambda: run_rancf(lying, tmpd / "lying"),
+            lambda: run_rancf(hanging, tmpd / "hang"),
             repeats,
-        )  # fmt: skip
+        )
         for side, run in (("lying", "lying"), ("hanging", "hang")):
             s = json.loads((tmpd / run / "summary.json").read_text())
             rows[key][f"{side}_newton_per_step"] = s["newton_iterations"] / s["steps"]
         if exudyn:
             circle = circle_file(tmpd, n_circle, t_circle)
             args = ["--elements", str(n_circle), "--t-end", str(t_circle)]
-            trial = {v: run_exudyn("exudyn_contact_circle.py",
-                                   [*args[:2], "--t-end", "0.2", "--solver", v])["solve_s"]
-                     for v in ("dense", "sparse")}  # fmt: skip
+            trial = {
+                v: run_exudyn(
+                    "exudyn_contact_circle.py", [*args[:2], "--t-end", "0.2", "--solver", v]
+                )["solve_s"]
+                for v in ("dense", "sparse")
+            }
             solver = min(trial, key=trial.get)  # Exudyn's faster linear solver for the case
             last: dict[str, Any] = {}
 
@@ -161,8 +171,14 @@ def cases(repeats: int, n_ground: int, n_circle: int, t_circle: float,
                 return last
 
             row = _pairs(lambda: run_rancf(circle, tmpd / "circle"), exu_run, repeats)
-            row.update({"exudyn_solver": solver, "exudyn_version": ex.VERSION,
-                        "rancf_tip": _tip(tmpd / "circle"), "exudyn_tip": last["tip"]})  # fmt: skip
+            row.update(
+                {
+                    "exudyn_solver": solver,
+                    "exudyn_version": ex.VERSION,
+                    "rancf_tip": _tip(tmpd / "circle"),
+                    "exudyn_tip": last["tip"],
+                }
+            )
             rows[f"circle {n_circle} el vs Exudyn"] = row
     return rows
 
@@ -170,18 +186,26 @@ def cases(repeats: int, n_ground: int, n_circle: int, t_circle: float,
 def measure(repeats: int, quick: bool, exudyn: bool) -> list[dict[str, Any]]:
     """Rows of benchmarks/run.py: the ground case (A lying, B hanging) and the circle case
     (A rancf, B Exudyn), per-step times through whole processes."""
-    got = cases(repeats, 100 if quick else 1000, 10 if quick else 40, 0.1 if quick else 1.0,
-                exudyn)  # fmt: skip
+    got = cases(repeats, 100 if quick else 1000, 10 if quick else 40, 0.1 if quick else 1.0, exudyn)
     rows = []
     for name, r in got.items():
         ground = name.startswith("ground")
-        row = {"case": f"contact: {name}" + (" (B: hanging)" if ground else ""),
-               "rancf_us_per_step": r["a_us_per_step"], "ratio": r["ratio"],
-               "rancf_setup_s": r["a_setup_s"], "steps": r["steps"][0]}  # fmt: skip
+        row = {
+            "case": f"contact: {name}" + (" (B: hanging)" if ground else ""),
+            "rancf_us_per_step": r["a_us_per_step"],
+            "ratio": r["ratio"],
+            "rancf_setup_s": r["a_setup_s"],
+            "steps": r["steps"][0],
+        }
         row["hanging_us_per_step" if ground else "exudyn_us_per_step"] = r["b_us_per_step"]
         if not ground:
-            row.update({"exudyn_setup_s": r["b_setup_s"], "rancf_tip": r["rancf_tip"],
-                        "exudyn_tip": r["exudyn_tip"]})  # fmt: skip
+            row.update(
+                {
+                    "exudyn_setup_s": r["b_setup_s"],
+                    "rancf_tip": r["rancf_tip"],
+                    "exudyn_tip": r["exudyn_tip"],
+                }
+            )
         rows.append(row)
     return rows
 
@@ -206,13 +230,14 @@ def main() -> None:
     rows: dict[str, Any] = {"broad phase ms by elements": broad}
     rows.update(cases(a.repeats, 1000, 40, 1.0, ex.AVAILABLE and not a.no_exudyn))
     (out / "contact_bench.json").write_text(json.dumps(rows, indent=2, allow_nan=False) + "\n")
-    print(f"{'case':34s} {'A us/step':>10s} {'B us/step':>10s} {'ratio':>7s} "
-          f"{'setup A/B s':>14s}")  # fmt: skip
+    print(f"{'case':34s} {'A us/step':>10s} {'B us/step':>10s} {'ratio':>7s} {'setup A/B s':>14s}")
     for name, r in rows.items():
         if "a_us_per_step" not in r:
             continue
-        print(f"{name:34s} {r['a_us_per_step']:10.1f} {r['b_us_per_step']:10.1f} "
-              f"{r['ratio']:7.3f} {r['a_setup_s']:7.3f}/{r['b_setup_s']:.3f}")  # fmt: skip
+        print(
+            f"{name:34s} {r['a_us_per_step']:10.1f} {r['b_us_per_step']:10.1f} "
+            f"{r['ratio']:7.3f} {r['a_setup_s']:7.3f}/{r['b_setup_s']:.3f}"
+        )
 
 
 if __name__ == "__main__":

@@ -31,16 +31,19 @@ def tables(doc: dict) -> str:
     ]
     for r in doc["cantilever"]:
         errs = " | ".join(_e(x) for x in r["errors"])
-        out.append(f"| {r['continuity']} | {r['elements']} | {r['unknowns']} | {errs} | "
-                   f"{r['highest_hz']:.0f} |")  # fmt: skip
+        out.append(
+            f"| {r['continuity']} | {r['elements']} | {r['unknowns']} | {errs} | "
+            f"{r['highest_hz']:.0f} |"
+        )
     out += [
         "",
         "| continuity | elements | unknowns | tip error [m] |",
         "| --- | ---: | ---: | ---: |",
     ]
     for r in doc["pendulum"]:
-        out.append(f"| {r['continuity']} | {r['elements']} | {r['unknowns']} | "
-                   f"{_e(r['tip_error'])} |")  # fmt: skip
+        out.append(
+            f"| {r['continuity']} | {r['elements']} | {r['unknowns']} | {_e(r['tip_error'])} |"
+        )
     out.append(
         f"\nreference check (C¹, 16 against 24 elements): {doc['pendulum_reference_check']:.1e} m"
     )

@@ -30,8 +30,14 @@ LENGTH = 1.2
 
 def pendulum(youngs: float, n: int):
     """The straight pendulum of the benchmark runner with Young's modulus ``youngs``."""
-    model = Model(mesh_line([0.0, 0.0], [LENGTH, 0.0], n), "ancf", Section.circular(0.02),
-                  Material(6000.0, youngs), [Support(0, "pin")], gravity=[0.0, -9.81])  # fmt: skip
+    model = Model(
+        mesh_line([0.0, 0.0], [LENGTH, 0.0], n),
+        "ancf",
+        Section.circular(0.02),
+        Material(6000.0, youngs),
+        [Support(0, "pin")],
+        gravity=[0.0, -9.81],
+    )
     return as_system(model)
 
 

@@ -41,13 +41,28 @@ def time_example(name: str, repeats: int) -> dict[str, Any]:
     walls = []
     for _ in range(repeats):
         with tempfile.TemporaryDirectory() as tmp:
-            cmd = [sys.executable, "-m", "rancf", "example", "run", name, "--out", tmp,
-                   "--workers", "1"]  # fmt: skip
+            cmd = [
+                sys.executable,
+                "-m",
+                "rancf",
+                "example",
+                "run",
+                name,
+                "--out",
+                tmp,
+                "--workers",
+                "1",
+            ]
             t0 = time.perf_counter()
             subprocess.run(cmd, check=True, capture_output=True)
             walls.append(time.perf_counter() - t0)
-    return {"example": name, "median_s": statistics.median(walls), "min_s": min(walls),
-            "max_s": max(walls), "repeats": repeats}  # fmt: skip
+    return {
+        "example": name,
+        "median_s": statistics.median(walls),
+        "min_s": min(walls),
+        "max_s": max(walls),
+        "repeats": repeats,
+    }
 
 
 def main() -> None:
@@ -57,9 +72,13 @@ def main() -> None:
     p.add_argument("--only", nargs="*", default=None)
     args = p.parse_args()
     rows = [time_example(n, args.repeats) for n in (args.only or example_names())]
-    doc = {"cpu": cpu_model(), "cores": __import__("os").cpu_count(),
-           "python": platform.python_version(), "date": time.strftime("%Y-%m-%d"),
-           "rows": rows}  # fmt: skip
+    doc = {
+        "cpu": cpu_model(),
+        "cores": __import__("os").cpu_count(),
+        "python": platform.python_version(),
+        "date": time.strftime("%Y-%m-%d"),
+        "rows": rows,
+    }
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     (out / "example_times.json").write_text(json.dumps(doc, indent=2) + "\n")

@@ -64,35 +64,82 @@ def build(mbs) -> tuple[list[int], int]:  # noqa: ANN001
     contact.SetSearchTreeCellSize(numberOfCells=[16, 8, 1])
     n_el, e_mod, rho, b, h = 8, 1e10, 1000.0, 0.002, 0.002
     area, inertia = b * h, b * h**3 / 12
-    template = Cable2D(physicsMassPerLength=rho * area, physicsBendingStiffness=e_mod * inertia,
-                       physicsAxialStiffness=e_mod * area, physicsBendingDamping=0.0,
-                       physicsAxialDamping=1e-2 * e_mod * area,
-                       physicsReferenceAxialStrain=-0.002)  # fmt: skip
+    template = Cable2D(
+        physicsMassPerLength=rho * area,
+        physicsBendingStiffness=e_mod * inertia,
+        physicsAxialStiffness=e_mod * area,
+        physicsBendingDamping=0.0,
+        physicsAxialDamping=1e-2 * e_mod * area,
+        physicsReferenceAxialStrain=-0.002,
+    )
     c0, c1, r0 = np.array([0.0, 0, 0]), np.array([2.0, 0, 0]), 0.5
     y = np.array([0, 1.0, 0])
     g = [0, -9.81, 0]
-    parts = [GenerateCircularArcANCFCable2D(mbs, c0 - r0 * y, r0, -np.pi, -np.pi, n_el, template,
-                                            massProportionalLoad=g,
-                                            setCurvedReferenceConfiguration=False)]  # fmt: skip
-    parts.append(GenerateStraightLineANCFCable2D(mbs, parts[-1][3][-1], c1 + r0 * y, n_el,
-                                                 template, massProportionalLoad=g,
-                                                 nodeNumber0=parts[-1][0][-1]))  # fmt: skip
-    parts.append(GenerateCircularArcANCFCable2D(mbs, parts[-1][3][-1], r0, 0, -np.pi, n_el,
-                                                template, massProportionalLoad=g,
-                                                setCurvedReferenceConfiguration=False,
-                                                nodeNumber0=parts[-1][0][-1]))  # fmt: skip
-    parts.append(GenerateStraightLineANCFCable2D(mbs, parts[-1][3][-1], parts[0][3][0], n_el,
-                                                 template, massProportionalLoad=g,
-                                                 nodeNumber0=parts[-1][0][-1],
-                                                 nodeNumber1=parts[0][0][0]))  # fmt: skip
+    parts = [
+        GenerateCircularArcANCFCable2D(
+            mbs,
+            c0 - r0 * y,
+            r0,
+            -np.pi,
+            -np.pi,
+            n_el,
+            template,
+            massProportionalLoad=g,
+            setCurvedReferenceConfiguration=False,
+        )
+    ]
+    parts.append(
+        GenerateStraightLineANCFCable2D(
+            mbs,
+            parts[-1][3][-1],
+            c1 + r0 * y,
+            n_el,
+            template,
+            massProportionalLoad=g,
+            nodeNumber0=parts[-1][0][-1],
+        )
+    )
+    parts.append(
+        GenerateCircularArcANCFCable2D(
+            mbs,
+            parts[-1][3][-1],
+            r0,
+            0,
+            -np.pi,
+            n_el,
+            template,
+            massProportionalLoad=g,
+            setCurvedReferenceConfiguration=False,
+            nodeNumber0=parts[-1][0][-1],
+        )
+    )
+    parts.append(
+        GenerateStraightLineANCFCable2D(
+            mbs,
+            parts[-1][3][-1],
+            parts[0][3][0],
+            n_el,
+            template,
+            massProportionalLoad=g,
+            nodeNumber0=parts[-1][0][-1],
+            nodeNumber1=parts[0][0][0],
+        )
+    )
     sensors = []
     for i, centre in enumerate((c0, c1)):
         inertia_w = InertiaCylinder(2.0 / (r0**2 * np.pi * b), b, r0, axis=2)
-        node = mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[centre[0], centre[1], 0],
-                                           initialVelocities=[0, 0, 0]))  # fmt: skip
-        mbs.AddObject(ObjectRigidBody2D(physicsMass=inertia_w.mass,
-                                        physicsInertia=inertia_w.GetInertia6D()[2],
-                                        nodeNumber=node))  # fmt: skip
+        node = mbs.AddNode(
+            NodeRigidBody2D(
+                referenceCoordinates=[centre[0], centre[1], 0], initialVelocities=[0, 0, 0]
+            )
+        )
+        mbs.AddObject(
+            ObjectRigidBody2D(
+                physicsMass=inertia_w.mass,
+                physicsInertia=inertia_w.GetInertia6D()[2],
+                nodeNumber=node,
+            )
+        )
         m_node = mbs.AddMarker(MarkerNodeRigid(nodeNumber=node))
         m_ground = mbs.AddMarker(MarkerBodyRigid(bodyNumber=ground, localPosition=centre))
         mbs.AddObject(RevoluteJoint2D(markerNumbers=[m_ground, m_node]))
@@ -100,17 +147,27 @@ def build(mbs) -> tuple[list[int], int]:  # noqa: ANN001
             mbs.AddLoad(LoadTorqueVector(markerNumber=m_node, loadVector=[0, 0, -20]))
         else:
             m_coord = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=node, coordinate=2))
-            mbs.AddObject(CoordinateSpringDamper(markerNumbers=[m_coord_ground, m_coord],
-                                                 damping=1.0))  # fmt: skip
-        contact.AddSphereWithMarker(m_node, radius=r0, contactStiffness=k, contactDamping=d,
-                                    frictionMaterialIndex=0)  # fmt: skip
+            mbs.AddObject(
+                CoordinateSpringDamper(markerNumbers=[m_coord_ground, m_coord], damping=1.0)
+            )
+        contact.AddSphereWithMarker(
+            m_node, radius=r0, contactStiffness=k, contactDamping=d, frictionMaterialIndex=0
+        )
         for kind in (exu.OutputVariableType.Rotation, exu.OutputVariableType.AngularVelocity):
-            sensors.append(mbs.AddSensor(SensorNode(nodeNumber=node, storeInternal=True,
-                                                    outputVariableType=kind)))  # fmt: skip
+            sensors.append(
+                mbs.AddSensor(
+                    SensorNode(nodeNumber=node, storeInternal=True, outputVariableType=kind)
+                )
+            )
     for part in parts:
         for obj in part[1]:
-            contact.AddANCFCable(objectIndex=obj, halfHeight=0.0, contactStiffness=k,
-                                 contactDamping=d, frictionMaterialIndex=0)  # fmt: skip
+            contact.AddANCFCable(
+                objectIndex=obj,
+                halfHeight=0.0,
+                contactStiffness=k,
+                contactDamping=d,
+                frictionMaterialIndex=0,
+            )
     contact.SetFrictionPairings(np.array([[mu]]))
     return sensors, parts[0][0][0]
 
@@ -141,10 +198,18 @@ def main() -> None:
     t2 = time.perf_counter()
     pos = mbs.GetNodeOutput(node0, variableType=exu.OutputVariableType.Position)
     last = [float(mbs.GetSensorStoredData(s)[-1, -1]) for s in sensors]
-    print(json.dumps({"setup_s": t1 - T0, "solve_s": t2 - t1,
-                      "steps": ss.timeIntegration.numberOfSteps,
-                      "node0_x_plus_y": float(pos[0] + pos[1]),
-                      "angles": [last[0], last[2]], "rates": [last[1], last[3]]}))  # fmt: skip
+    print(
+        json.dumps(
+            {
+                "setup_s": t1 - T0,
+                "solve_s": t2 - t1,
+                "steps": ss.timeIntegration.numberOfSteps,
+                "node0_x_plus_y": float(pos[0] + pos[1]),
+                "angles": [last[0], last[2]],
+                "rates": [last[1], last[3]],
+            }
+        )
+    )
 
 
 if __name__ == "__main__":

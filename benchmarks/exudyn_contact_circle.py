@@ -35,8 +35,18 @@ from exudyn.itemInterface import (  # noqa: E402
 
 from rancf.exudyn_compat import cable2d, dynamic_settings  # noqa: E402
 
-CASE = dict(length=2.0, r=0.002, center=(1.0, -0.3), radius=0.2, k=1e7, h=1e-3, rho_inf=0.6,
-            density=7850.0, youngs=2e11, g=9.81)  # fmt: skip
+CASE = dict(
+    length=2.0,
+    r=0.002,
+    center=(1.0, -0.3),
+    radius=0.2,
+    k=1e7,
+    h=1e-3,
+    rho_inf=0.6,
+    density=7850.0,
+    youngs=2e11,
+    g=9.81,
+)
 
 
 def main() -> None:
@@ -49,12 +59,22 @@ def main() -> None:
     area, inertia = math.pi * c["r"] ** 2, math.pi * c["r"] ** 4 / 4
     sc = exu.SystemContainer()
     mbs = sc.AddSystem()
-    template = cable2d(massPerLength=c["density"] * area, bendingStiffness=c["youngs"] * inertia,
-                       axialStiffness=c["youngs"] * area)  # fmt: skip
+    template = cable2d(
+        massPerLength=c["density"] * area,
+        bendingStiffness=c["youngs"] * inertia,
+        axialStiffness=c["youngs"] * area,
+    )
     made = beams.GenerateBeamElementsAlongLine(
-        mbs, [0, 0, 0], [c["length"], 0, 0], a.elements, template, gravity=[0, -c["g"], 0],
-        groundConstraintsStart=[1, 1, 0, 0], nodeNumberStart=-1, nodeNumberEnd=-1,
-    )  # fmt: skip
+        mbs,
+        [0, 0, 0],
+        [c["length"], 0, 0],
+        a.elements,
+        template,
+        gravity=[0, -c["g"], 0],
+        groundConstraintsStart=[1, 1, 0, 0],
+        nodeNumberStart=-1,
+        nodeNumberEnd=-1,
+    )
     ground = mbs.AddObject(ObjectGround(referencePosition=[0, 0, 0]))
     centre = mbs.AddMarker(
         MarkerBodyRigid(bodyNumber=ground, localPosition=[c["center"][0], c["center"][1], 0])
@@ -62,13 +82,23 @@ def main() -> None:
     segments = 8
     for el in made["elements"]:
         shape = mbs.AddMarker(MarkerBodyCable2DShape(bodyNumber=el, numberOfSegments=segments))
-        data = mbs.AddNode(NodeGenericData(
-            initialCoordinates=[0.1] * segments + [-2] * segments + [0.0] * segments,
-            numberOfDataCoordinates=3 * segments))  # fmt: skip
-        mbs.AddObject(ObjectContactFrictionCircleCable2D(
-            markerNumbers=[centre, shape], nodeNumber=data, numberOfContactSegments=segments,
-            contactStiffness=c["k"], contactDamping=0.0, frictionCoefficient=0.0,
-            circleRadius=c["radius"] + c["r"]))  # fmt: skip
+        data = mbs.AddNode(
+            NodeGenericData(
+                initialCoordinates=[0.1] * segments + [-2] * segments + [0.0] * segments,
+                numberOfDataCoordinates=3 * segments,
+            )
+        )
+        mbs.AddObject(
+            ObjectContactFrictionCircleCable2D(
+                markerNumbers=[centre, shape],
+                nodeNumber=data,
+                numberOfContactSegments=segments,
+                contactStiffness=c["k"],
+                contactDamping=0.0,
+                frictionCoefficient=0.0,
+                circleRadius=c["radius"] + c["r"],
+            )
+        )
     mbs.Assemble()
     ss = dynamic_settings(a.t_end, c["h"], c["rho_inf"], sparse=a.solver == "sparse")
     # above the residual's round-off (Exudyn's default 1e-10 N is not reached on a steel cable:
@@ -78,9 +108,16 @@ def main() -> None:
     mbs.SolveDynamic(ss)
     t2 = time.perf_counter()
     tip = mbs.GetNodeOutput(made["nodes"][-1], exu.OutputVariableType.Position)
-    print(json.dumps({"setup_s": t1 - T0, "solve_s": t2 - t1,
-                      "steps": ss.timeIntegration.numberOfSteps,
-                      "tip": [float(tip[0]), float(tip[1])]}))  # fmt: skip
+    print(
+        json.dumps(
+            {
+                "setup_s": t1 - T0,
+                "solve_s": t2 - t1,
+                "steps": ss.timeIntegration.numberOfSteps,
+                "tip": [float(tip[0]), float(tip[1])],
+            }
+        )
+    )
 
 
 if __name__ == "__main__":

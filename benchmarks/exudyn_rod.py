@@ -71,9 +71,15 @@ def beam_chain(
     g_mod = youngs / (2 * (1 + poisson))
     sec = exu.BeamSection()
     sec.stiffnessMatrix = np.diag(
-        [youngs * area, shear * g_mod * area, shear * g_mod * area, g_mod * 2 * inertia,
-         youngs * inertia, youngs * inertia]
-    )  # fmt: skip
+        [
+            youngs * area,
+            shear * g_mod * area,
+            shear * g_mod * area,
+            g_mod * 2 * inertia,
+            youngs * inertia,
+            youngs * inertia,
+        ]
+    )
     sec.inertia = density * np.diag([2 * inertia, rot_scale * inertia, rot_scale * inertia])
     sec.massPerLength = density * area
     w, c = np.asarray(omega, dtype=float), np.asarray(about, dtype=float)
@@ -98,25 +104,30 @@ def beam_chain(
         mk = mbs.AddMarker(MarkerNodePosition(nodeNumber=nodes[-1]))
         mbs.AddLoad(
             LoadForceVector(
-                markerNumber=mk, loadVector=[0, 0, 0],
+                markerNumber=mk,
+                loadVector=[0, 0, 0],
                 loadVectorUserFunction=lambda _mbs, t, _load: tip_force(t),
             )
-        )  # fmt: skip
+        )
     ground = mbs.AddNode(NodePointGround(referenceCoordinates=[0, 0, 0]))
     mg = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=ground, coordinate=0))
     for i in range(3):
         mn = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=nodes[0], coordinate=i))
         mbs.AddObject(CoordinateConstraint(markerNumbers=[mg, mn]))
     sensor = mbs.AddSensor(
-        SensorNode(nodeNumber=nodes[-1], outputVariableType=exu.OutputVariableType.Position,
-                   storeInternal=True)
-    )  # fmt: skip
+        SensorNode(
+            nodeNumber=nodes[-1],
+            outputVariableType=exu.OutputVariableType.Position,
+            storeInternal=True,
+        )
+    )
     mbs.Assemble()
     return sc, mbs, nodes, sensor
 
 
-def solve(mbs: object, sensor: int, t_end: float, step: float, rho_inf: float,
-          out_step: float) -> tuple[float, np.ndarray]:  # fmt: skip
+def solve(
+    mbs: object, sensor: int, t_end: float, step: float, rho_inf: float, out_step: float
+) -> tuple[float, np.ndarray]:
     """Generalized-α (EigenSparse); returns the solve wall time and the sensor's ``(t, x, y, z)``
     rows at the output times."""
     ss = dynamic_settings(t_end, step, rho_inf, sparse=True, sensors_write_period=out_step)

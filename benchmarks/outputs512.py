@@ -47,8 +47,12 @@ def _run(cmd: list[str], env: dict[str, str], scenario: Path, out: Path) -> dict
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
     s = json.loads((out / "summary.json").read_text())
-    return {"step_us": 1e6 * s["solve_wall_time_s"] / s["steps"], "wall_s": wall,
-            "cpu_s": cpu, "steps": s["steps"]}  # fmt: skip
+    return {
+        "step_us": 1e6 * s["solve_wall_time_s"] / s["steps"],
+        "wall_s": wall,
+        "cpu_s": cpu,
+        "steps": s["steps"],
+    }
 
 
 def main(argv: list[str] | None = None) -> dict[str, Any]:
@@ -83,26 +87,35 @@ def main(argv: list[str] | None = None) -> dict[str, Any]:
                     r = _run(cmd, env, files[case], tmpd / "run")
                     r["load"] = os.getloadavg()[0]
                     runs.setdefault((label, case), []).append(r)
-                    print(f"pair {i + 1} {label:8s} {case:12s} {r['step_us']:8.1f} µs/step  "
-                          f"wall {r['wall_s']:6.2f} s  CPU {r['cpu_s']:6.2f} s  "
-                          f"load {r['load']:.1f}", flush=True)  # fmt: skip
+                    print(
+                        f"pair {i + 1} {label:8s} {case:12s} {r['step_us']:8.1f} µs/step  "
+                        f"wall {r['wall_s']:6.2f} s  CPU {r['cpu_s']:6.2f} s  "
+                        f"load {r['load']:.1f}",
+                        flush=True,
+                    )
     report: dict[str, Any] = {}
     for label, _, _ in installs:
         every, ten = runs[(label, "every step")], runs[(label, "every 10 ms")]
-        ratios = {key: [e[key] / t[key] for e, t in zip(every, ten, strict=True)]
-                  for key in ("step_us", "wall_s", "cpu_s")}  # fmt: skip
+        ratios = {
+            key: [e[key] / t[key] for e, t in zip(every, ten, strict=True)]
+            for key in ("step_us", "wall_s", "cpu_s")
+        }
         extra = [
             (e["cpu_s"] - t["cpu_s"]) / e["steps"] * 1e6 for e, t in zip(every, ten, strict=True)
         ]
         report[label] = {
-            **{f"median {k} every step": statistics.median(r[k] for r in every)
-               for k in ("step_us", "wall_s", "cpu_s")},
-            **{f"median {k} every 10 ms": statistics.median(r[k] for r in ten)
-               for k in ("step_us", "wall_s", "cpu_s")},
+            **{
+                f"median {k} every step": statistics.median(r[k] for r in every)
+                for k in ("step_us", "wall_s", "cpu_s")
+            },
+            **{
+                f"median {k} every 10 ms": statistics.median(r[k] for r in ten)
+                for k in ("step_us", "wall_s", "cpu_s")
+            },
             **{f"ratio {k}": statistics.median(v) for k, v in ratios.items()},
             **{f"ratio {k} range": (min(v), max(v)) for k, v in ratios.items()},
             "extra CPU a step stored [µs]": statistics.median(extra),
-        }  # fmt: skip
+        }
         print(label, json.dumps(report[label], indent=1))
     return report
 

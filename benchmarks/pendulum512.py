@@ -60,8 +60,10 @@ def _cpu() -> str:
             info.setdefault(k.strip(), v.strip())
         flags = info.get("flags", "").split()
         simd = ", ".join(f for f in ("avx2", "avx512f") if f in flags) or "no AVX2"
-        return (f"{info.get('model name', '?')} (family {info.get('cpu family', '?')} model "
-                f"{info.get('model', '?')}; {simd})")  # fmt: skip
+        return (
+            f"{info.get('model name', '?')} (family {info.get('cpu family', '?')} model "
+            f"{info.get('model', '?')}; {simd})"
+        )
     except OSError:
         return platform.processor() or "?"
 

@@ -65,11 +65,18 @@ def measure(n: int, reps: int, steps: int) -> list[dict[str, object]]:
                 asm[el].append(assembly_time(m, ys[el], reps))
         t_a = {el: min(v) / n * 1e6 for el, v in asm.items()}
         t_n = {el: newton_time(m, steps) / n * 1e6 for el, m in models.items()}
-        for label, t in (("force+tangent per element", t_a),
-                         ("whole Newton iteration per element", t_n)):  # fmt: skip
-            rows.append({"case": f"rod vs 3D cable, {name}, {n} el: {label}",
-                         "cable_us": t["rancf"], "rod_us": t["rod"],
-                         "ratio": t["rod"] / t["rancf"]})  # fmt: skip
+        for label, t in (
+            ("force+tangent per element", t_a),
+            ("whole Newton iteration per element", t_n),
+        ):
+            rows.append(
+                {
+                    "case": f"rod vs 3D cable, {name}, {n} el: {label}",
+                    "cable_us": t["rancf"],
+                    "rod_us": t["rod"],
+                    "ratio": t["rod"] / t["rancf"],
+                }
+            )
     return rows
 
 

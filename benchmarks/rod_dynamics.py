@@ -61,8 +61,15 @@ def section(rotary: str) -> Section:
 
 def rancf_run(mesh, rotary: str, youngs: float, h: float, rho_inf: float, **kw) -> tuple:
     """A pinned rod under gravity; returns (model, result, solve wall time)."""
-    m = Model(mesh, "rod", section(rotary), Material(RHO, youngs, poisson_ratio=NU), [Support(0)],
-              gravity=[0, 0, -9.81], **kw)  # fmt: skip
+    m = Model(
+        mesh,
+        "rod",
+        section(rotary),
+        Material(RHO, youngs, poisson_ratio=NU),
+        [Support(0)],
+        gravity=[0, 0, -9.81],
+        **kw,
+    )
     r = integrate(m, DynamicOptions(t_end=1.0, step=h, rho_inf=rho_inf, output_step=0.05))
     return m, r, r.wall_time
 
@@ -95,9 +102,17 @@ def rigid_top(rotary: str) -> np.ndarray:
 def exudyn_line(n: int, h: float, rho_inf: float, rot_scale: float) -> tuple[float, np.ndarray]:
     pts = np.outer(np.linspace(0, 0.5, n + 1), [1.0, 0, 0])
     _, mbs, _, sensor = exr.beam_chain(
-        pts, np.tile([1.0, 0, 0], (n + 1, 1)), [0, 1.0, 0], RHO, E, NU, R, [0, 0, -9.81],
-        omega=[100.0, 0, 0], rot_scale=rot_scale,
-    )  # fmt: skip
+        pts,
+        np.tile([1.0, 0, 0], (n + 1, 1)),
+        [0, 1.0, 0],
+        RHO,
+        E,
+        NU,
+        R,
+        [0, 0, -9.81],
+        omega=[100.0, 0, 0],
+        rot_scale=rot_scale,
+    )
     return exr.solve(mbs, sensor, 1.0, h, rho_inf, 0.05)
 
 
@@ -122,24 +137,29 @@ def top_case(quick: bool, exudyn: bool) -> list[dict[str, Any]]:
         m2, r2, _ = rancf_run(mesh, rotary, 2e10, h, 1.0, initial_motion=motion)
         stiff = np.array([at(r2.t, m2.node_positions(r2.q)[:, -1], t) for t in TIMES])
         row = {
-            "case": f"heavy top, {rotary}", "rancf": f"{n} el, h = {h:g} s, rho_inf = 1",
-            "rancf_tip_y_mm": (tip[:, 1] * 1e3).tolist(), "rancf_wall_s": wall,
+            "case": f"heavy top, {rotary}",
+            "rancf": f"{n} el, h = {h:g} s, rho_inf = 1",
+            "rancf_tip_y_mm": (tip[:, 1] * 1e3).tolist(),
+            "rancf_wall_s": wall,
             "rigid_top_tip_y_mm": (rigid_top(rotary)[:, 1] * 1e3).tolist(),
             "rancf_E2e10_tip_y_mm": (stiff[:, 1] * 1e3).tolist(),
-            "rancf_E2e10_to_rigid_mm": float(np.linalg.norm(stiff - rigid_top(rotary), axis=1).max()
-                                             * 1e3),
+            "rancf_E2e10_to_rigid_mm": float(
+                np.linalg.norm(stiff - rigid_top(rotary), axis=1).max() * 1e3
+            ),
             "Lz_drift_rel": float(np.abs(mom[:, 2]).max() / np.linalg.norm(mom, axis=1).max()),
-            "energy_drift_rel": float(np.abs(r.total_energy - r.total_energy[0]).max()
-                                      / r.total_energy[0]),
-        }  # fmt: skip
+            "energy_drift_rel": float(
+                np.abs(r.total_energy - r.total_energy[0]).max() / r.total_energy[0]
+            ),
+        }
         if exudyn:
             wall_e, d = exudyn_line(ne, he, 0.9, scale)
             ex = np.array([at(d[:, 0], d[:, 1:], t) for t in TIMES])
             row.update(
                 exudyn=f"{ne} el, h = {he:g} s, rho_inf = 0.9, bending rotary x {scale:g}",
-                exudyn_tip_y_mm=(ex[:, 1] * 1e3).tolist(), exudyn_wall_s=wall_e,
+                exudyn_tip_y_mm=(ex[:, 1] * 1e3).tolist(),
+                exudyn_wall_s=wall_e,
                 distance_mm=(np.linalg.norm(ex - tip, axis=1) * 1e3).tolist(),
-            )  # fmt: skip
+            )
         rows.append(row)
     return rows
 
@@ -152,11 +172,13 @@ def arc_case(quick: bool, exudyn: bool, ne: int = 16, he: float = 1e-3) -> list[
     m, r, wall = rancf_run(mesh_conic(ARC, n), "torsion", E, h, 1.0, initial_motion=motion)
     tip = {t: at(r.t, m.node_positions(r.q)[:, -1], t) for t in (0.5, 1.0)}
     row: dict[str, Any] = {
-        "case": "swung arc (2 rad/s)", "rancf": f"{n} el, h = {h:g} s, rho_inf = 1",
-        "rancf_tip": {t: v.tolist() for t, v in tip.items()}, "rancf_wall_s": wall,
+        "case": "swung arc (2 rad/s)",
+        "rancf": f"{n} el, h = {h:g} s, rho_inf = 1",
+        "rancf_tip": {t: v.tolist() for t, v in tip.items()},
+        "rancf_wall_s": wall,
         "issue_exudyn_tip": ARC_ISSUE,
         "to_issue_mm": {t: float(np.linalg.norm(tip[t] - ARC_ISSUE[t]) * 1e3) for t in tip},
-    }  # fmt: skip
+    }
     for rho_inf in (1.0, 0.9, 0.5):
         mm, rr, _ = rancf_run(
             mesh_conic(ARC, 8), "torsion", E, 1e-3, rho_inf, initial_motion=motion
@@ -167,22 +189,30 @@ def arc_case(quick: bool, exudyn: bool, ne: int = 16, he: float = 1e-3) -> list[
         wall_e, d = exudyn_arc(ne, he, 0.9, omega=[0, 0, 2.0])
         ex = {t: at(d[:, 0], d[:, 1:], t) for t in (0.5, 1.0)}
         row.update(
-            exudyn=f"{ne} el, h = {he:g} s, rho_inf = 0.9", exudyn_wall_s=wall_e,
+            exudyn=f"{ne} el, h = {he:g} s, rho_inf = 0.9",
+            exudyn_wall_s=wall_e,
             exudyn_tip={t: v.tolist() for t, v in ex.items()},
             distance_mm={t: float(np.linalg.norm(ex[t] - tip[t]) * 1e3) for t in tip},
-        )  # fmt: skip
+        )
     rows.append(row)
     # from rest, F = 4 sin(2 pi t) N along +y at B
     force = [PointLoad(-1, (0.0, 4.0, 0.0), 1.0)]
     m, r, wall = rancf_run(mesh_conic(ARC, n), "torsion", E, h, 1.0, point_loads=force)
     tip_f = np.array([at(r.t, m.node_positions(r.q)[:, -1], t) for t in TIMES])
-    row = {"case": "forced arc (4 sin 2 pi t N, +y at B)", "rancf": f"{n} el, h = {h:g} s",
-           "rancf_tip": tip_f.tolist(), "rancf_wall_s": wall}  # fmt: skip
+    row = {
+        "case": "forced arc (4 sin 2 pi t N, +y at B)",
+        "rancf": f"{n} el, h = {h:g} s",
+        "rancf_tip": tip_f.tolist(),
+        "rancf_wall_s": wall,
+    }
     if exudyn:
         wall_e, d = exudyn_arc(ne, he, 0.9, tip_force=lambda t: [0.0, 4 * np.sin(2 * np.pi * t), 0])
         ex = np.array([at(d[:, 0], d[:, 1:], t) for t in TIMES])
-        row.update(exudyn=f"{ne} el, h = {he:g} s", exudyn_wall_s=wall_e,
-                   distance_mm=(np.linalg.norm(ex - tip_f, axis=1) * 1e3).tolist())  # fmt: skip
+        row.update(
+            exudyn=f"{ne} el, h = {he:g} s",
+            exudyn_wall_s=wall_e,
+            distance_mm=(np.linalg.norm(ex - tip_f, axis=1) * 1e3).tolist(),
+        )
     rows.append(row)
     return rows
 
@@ -198,8 +228,13 @@ def energy_case() -> dict[str, Any]:
         exact = _exact_energy(ARC, sec, RHO, W, C, rotary)
         errs = []
         for n in (4, 8, 16, 32, 64):
-            m = Model(mesh_conic(ARC, n), element, sec, Material(RHO, E, poisson_ratio=NU),
-                      initial_motion=RigidMotion(angular_velocity=W, about=C))  # fmt: skip
+            m = Model(
+                mesh_conic(ARC, n),
+                element,
+                sec,
+                Material(RHO, E, poisson_ratio=NU),
+                initial_motion=RigidMotion(angular_velocity=W, about=C),
+            )
             errs.append(abs(m.kinetic_energy(m.v0) / exact - 1))
         out[f"{element} {rotary or ''}".strip()] = errs
     return out
@@ -209,8 +244,10 @@ def cost_case(quick: bool) -> list[dict[str, Any]]:
     """µs per element: elastic force + tangent, inertia force + tangent (best of 5 x reps)."""
     n, reps = (16, 20) if quick else (64, 300)
     rows = []
-    meshes = {"straight (6 qp)": mesh_line([0, 0, 0], [0.5, 0.1, 0.2], n),
-              "conic arc (10 qp)": mesh_conic(ARC, n)}  # fmt: skip
+    meshes = {
+        "straight (6 qp)": mesh_line([0, 0, 0], [0.5, 0.1, 0.2], n),
+        "conic arc (10 qp)": mesh_conic(ARC, n),
+    }
     rng = np.random.default_rng(0)
     for name, mesh in meshes.items():
         for rotary in ("torsion", "full"):
@@ -234,8 +271,15 @@ def cost_case(quick: bool) -> list[dict[str, Any]]:
                     y, v, a, 0.0, 0.5, 100.0, 1e5, f, ab
                 )
             )
-            rows.append({"mesh": f"{name}, {n} el", "rotary": rotary, "elastic_us": el,
-                         "inertia_us": ine, "ratio": (el + ine) / el})  # fmt: skip
+            rows.append(
+                {
+                    "mesh": f"{name}, {n} el",
+                    "rotary": rotary,
+                    "elastic_us": el,
+                    "inertia_us": ine,
+                    "ratio": (el + ine) / el,
+                }
+            )
     return rows
 
 
@@ -250,8 +294,10 @@ def main() -> None:
     cases = set(a.cases.split(","))
     ne, he = a.exudyn_arc.split(",")
     exudyn = exr.AVAILABLE and not a.no_exudyn
-    print(f"{platform.processor() or platform.machine()}, Exudyn: "
-          f"{__import__('exudyn').__version__ if exudyn else 'not used'}")  # fmt: skip
+    print(
+        f"{platform.processor() or platform.machine()}, Exudyn: "
+        f"{__import__('exudyn').__version__ if exudyn else 'not used'}"
+    )
     res: dict[str, Any] = {}
     if "top" in cases:
         res["top"] = top_case(a.quick, exudyn)
@@ -270,8 +316,10 @@ def main() -> None:
         print(f"  {k:14s} " + " ".join(f"{e:.1e}" for e in v))
     print("\ncost per element [us]: elastic force+tangent, inertia force+tangent, ratio")
     for r in res.get("cost", []):
-        print(f"  {r['mesh']:28s} {r['rotary']:8s} {r['elastic_us']:7.3f} {r['inertia_us']:7.3f}"
-              f" {r['ratio']:6.2f}")  # fmt: skip
+        print(
+            f"  {r['mesh']:28s} {r['rotary']:8s} {r['elastic_us']:7.3f} {r['inertia_us']:7.3f}"
+            f" {r['ratio']:6.2f}"
+        )
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
     name = (

@@ -54,8 +54,13 @@ def main(argv: list[str] | None = None) -> dict[str, float]:
         sc = Path(tmp) / "p8.toml"
         sc.write_text(SCENARIO.format(n=8, t_end=1.0, out="output_step = 0.01\n", newton=""))
         for _ in range(a.runs):
-            out = subprocess.run([sys.executable, "-c", CODE, str(sc)], env=env, check=True,
-                                 capture_output=True, text=True).stdout  # fmt: skip
+            out = subprocess.run(
+                [sys.executable, "-c", CODE, str(sc)],
+                env=env,
+                check=True,
+                capture_output=True,
+                text=True,
+            ).stdout
             runs.append(json.loads(out.strip().splitlines()[-1]))
     med = {k: statistics.median(r[k] for r in runs) for k in runs[0]}
     print(json.dumps({k: round(v, 4) for k, v in med.items()}))

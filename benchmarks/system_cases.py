@@ -83,14 +83,20 @@ def run_rancf(scenario: Path, out: Path) -> dict[str, Any]:
     subprocess.run(cmd, check=True, capture_output=True)
     wall = time.perf_counter() - t0
     s = json.loads((out / "summary.json").read_text())
-    return {"wall_s": wall, "solve_s": s["solve_wall_time_s"], "steps": s["steps"],
-            "setup_s": s["setup_wall_time_s"], "newton": s["newton_iterations"]}  # fmt: skip
+    return {
+        "wall_s": wall,
+        "solve_s": s["solve_wall_time_s"],
+        "steps": s["steps"],
+        "setup_s": s["setup_wall_time_s"],
+        "newton": s["newton_iterations"],
+    }
 
 
 def run_exudyn(script: str, args: list[str]) -> dict[str, Any]:
     t0 = time.perf_counter()
-    p = subprocess.run([sys.executable, str(HERE / script), *args], capture_output=True,
-                       text=True, check=True)  # fmt: skip
+    p = subprocess.run(
+        [sys.executable, str(HERE / script), *args], capture_output=True, text=True, check=True
+    )
     out = json.loads(p.stdout.strip().splitlines()[-1])
     out["wall_s"] = time.perf_counter() - t0
     return out
@@ -123,13 +129,37 @@ def _pairs(fa: Any, fb: Any, repeats: int) -> dict[str, Any]:
 
 
 EXUDYN = {  # example -> (script, its arguments: the example's size, step, output, t_end, rho_inf)
-    "slider-crank": ("exudyn_slider_crank.py",
-                     ["--elements", "8", "--step", "2e-5", "--output-step", "1e-3",
-                      "--t-end", "0.2", "--rho-inf", "0.9"]),
-    "spin-up-beam": ("exudyn_spinup.py",
-                     ["--elements", "8", "--step", "1e-3", "--output-step", "1e-2",
-                      "--t-end", "20", "--rho-inf", "0.0"]),
-}  # fmt: skip
+    "slider-crank": (
+        "exudyn_slider_crank.py",
+        [
+            "--elements",
+            "8",
+            "--step",
+            "2e-5",
+            "--output-step",
+            "1e-3",
+            "--t-end",
+            "0.2",
+            "--rho-inf",
+            "0.9",
+        ],
+    ),
+    "spin-up-beam": (
+        "exudyn_spinup.py",
+        [
+            "--elements",
+            "8",
+            "--step",
+            "1e-3",
+            "--output-step",
+            "1e-2",
+            "--t-end",
+            "20",
+            "--rho-inf",
+            "0.0",
+        ],
+    ),
+}
 
 
 def _solver(script: str, args: list[str]) -> str:
@@ -151,25 +181,32 @@ def main() -> None:
         for name, (script, args) in EXUDYN.items() if not a.chain_only else ():
             scenario = Path(str(resources.files("rancf.examples") / f"{name}.toml"))
             solver = _solver(script, args)
-            row = _pairs(lambda sc=scenario, n=name: run_rancf(sc, tmpd / n),
-                         lambda s=script, x=args, v=solver: run_exudyn(s, [*x, "--solver", v]),
-                         a.repeats)  # fmt: skip
+            row = _pairs(
+                lambda sc=scenario, n=name: run_rancf(sc, tmpd / n),
+                lambda s=script, x=args, v=solver: run_exudyn(s, [*x, "--solver", v]),
+                a.repeats,
+            )
             rows[name] = {"exudyn_solver": solver, **row}
         chain, one = tmpd / "chain.toml", tmpd / "one.toml"
         chain.write_text(chain_scenario(10, 100))
         one.write_text(chain_scenario(1, 1000))
         rows["chain 10 x 100 vs 1 x 1000"] = _pairs(
-            lambda: run_rancf(chain, tmpd / "chain"), lambda: run_rancf(one, tmpd / "one"),
+            lambda: run_rancf(chain, tmpd / "chain"),
+            lambda: run_rancf(one, tmpd / "one"),
             a.repeats,
-        )  # fmt: skip
+        )
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
     (out / "system_bench.json").write_text(json.dumps(rows, indent=2) + "\n")
-    print(f"{'case':30s} {'rancf us/step':>14s} {'other us/step':>14s} {'ratio':>7s} "
-          f"{'setup rancf/other s':>20s}")  # fmt: skip
+    print(
+        f"{'case':30s} {'rancf us/step':>14s} {'other us/step':>14s} {'ratio':>7s} "
+        f"{'setup rancf/other s':>20s}"
+    )
     for name, r in rows.items():
-        print(f"{name:30s} {r['a_us_per_step']:14.1f} {r['b_us_per_step']:14.1f} "
-              f"{r['ratio']:7.3f} {r['a_setup_s']:9.3f}/{r['b_setup_s']:.3f}")  # fmt: skip
+        print(
+            f"{name:30s} {r['a_us_per_step']:14.1f} {r['b_us_per_step']:14.1f} "
+            f"{r['ratio']:7.3f} {r['a_setup_s']:9.3f}/{r['b_setup_s']:.3f}"
+        )
 
 
 if __name__ == "__main__":

@@ -33,11 +33,17 @@ def atwood(n_arc: int, t_end: float, n_span: int = 12) -> tuple[float, float]:
     mesh = rope_over_pulley(RC, SPAN, n_arc, n_span)
     rope = Model(mesh, "rancf", SECTION, Material(100.0, 1e10), gravity=(0.0, 0.0))
     j = 0.5 * 2.0 * RP**2
-    bodies = {"rope": rope, "heavy": PointMass(2, 1.2, (-RC, -SPAN)),
-              "light": PointMass(2, 1.0, (RC, -SPAN)),
-              "pulley": RigidBody(2, 2.0, j, (0.0, 0.0), 0.0)}  # fmt: skip
-    joints = [Joint("pin", ("rope:start", "heavy")), Joint("pin", ("rope:end", "light")),
-              Joint("pin", ("pulley", "ground"))]  # fmt: skip
+    bodies = {
+        "rope": rope,
+        "heavy": PointMass(2, 1.2, (-RC, -SPAN)),
+        "light": PointMass(2, 1.0, (RC, -SPAN)),
+        "pulley": RigidBody(2, 2.0, j, (0.0, 0.0), 0.0),
+    }
+    joints = [
+        Joint("pin", ("rope:start", "heavy")),
+        Joint("pin", ("rope:end", "light")),
+        Joint("pin", ("pulley", "ground")),
+    ]
     wheel = Obstacle("cylinder", center=(0, 0), radius=RP, friction=0.5, body="pulley")
     s = System(bodies, joints, gravity=[0, -G], obstacles=[wheel])
     opts = DynamicOptions(t_end=t_end, step=1e-3, rho_inf=0.5, max_newton=25, output_step=0.01)

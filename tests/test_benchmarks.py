@@ -46,10 +46,21 @@ def test_rod_dynamics_benchmark_quick(tmp_path):
     """benchmarks/rod_dynamics.py runs (quick, without Exudyn; its energy case): a rigid
     rotation's energy is exact for every mesh."""
     subprocess.run(
-        [sys.executable, str(ROOT / "benchmarks" / "rod_dynamics.py"), "--quick", "--no-exudyn",
-         "--cases", "energy", "--out", str(tmp_path)],
-        capture_output=True, text=True, check=True, timeout=600,
-    )  # fmt: skip
+        [
+            sys.executable,
+            str(ROOT / "benchmarks" / "rod_dynamics.py"),
+            "--quick",
+            "--no-exudyn",
+            "--cases",
+            "energy",
+            "--out",
+            str(tmp_path),
+        ],
+        capture_output=True,
+        text=True,
+        check=True,
+        timeout=600,
+    )
     data = json.loads((tmp_path / "rod_dynamics_energy.json").read_text())
     assert set(data["energy"]) == {"rancf", "rod torsion", "rod full"}
     assert max(max(v) for v in data["energy"].values()) < 1e-10
@@ -60,11 +71,19 @@ def test_startup_phases_benchmark_runs():
     far below the first (the validator is built once)."""
     p = subprocess.run(
         [sys.executable, str(ROOT / "benchmarks" / "startup_phases.py"), "--runs", "1"],
-        capture_output=True, text=True, check=True, timeout=300,
-    )  # fmt: skip
+        capture_output=True,
+        text=True,
+        check=True,
+        timeout=300,
+    )
     med = json.loads(p.stdout.strip().splitlines()[-1])
-    assert set(med) == {"numpy and the core", "pydantic", "scenario modules", "first read",
-                        "second read"}  # fmt: skip
+    assert set(med) == {
+        "numpy and the core",
+        "pydantic",
+        "scenario modules",
+        "first read",
+        "second read",
+    }
     assert all(v > 0 for v in med.values())
     assert med["second read"] < med["first read"]
 
@@ -78,10 +97,25 @@ def test_belt_benchmark_scenarios_run(tmp_path):
         load_scenario(ROOT / "benchmarks" / "scenarios" / name)
     text = (ROOT / "benchmarks" / "scenarios" / "belt-exudyn.toml").read_text()
     short = tmp_path / "belt.toml"
-    short.write_text(text.replace("t_end = 0.1", "t_end = 0.005").replace(
-        "output_step = 0.01", "output_step = 0.005"))  # fmt: skip
-    subprocess.run([sys.executable, "-m", "rancf", "simulate", str(short), "--out",
-                    str(tmp_path / "run"), "--quiet"], check=True, capture_output=True,
-                   timeout=300)  # fmt: skip
+    short.write_text(
+        text.replace("t_end = 0.1", "t_end = 0.005").replace(
+            "output_step = 0.01", "output_step = 0.005"
+        )
+    )
+    subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "rancf",
+            "simulate",
+            str(short),
+            "--out",
+            str(tmp_path / "run"),
+            "--quiet",
+        ],
+        check=True,
+        capture_output=True,
+        timeout=300,
+    )
     summary = json.loads((tmp_path / "run" / "summary.json").read_text())
     assert summary["status"] == "completed" and summary["t_reached"] == 0.005

@@ -28,8 +28,13 @@ def test_one_blas_thread(pre: str, env: str | None, expected: str) -> None:
     environ = {k: v for k, v in os.environ.items() if k != "OPENBLAS_NUM_THREADS"}
     if env is not None:
         environ["OPENBLAS_NUM_THREADS"] = env
-    p = subprocess.run([sys.executable, "-c", CODE.format(pre=pre)], env=environ,
-                       capture_output=True, text=True, check=True)  # fmt: skip
+    p = subprocess.run(
+        [sys.executable, "-c", CODE.format(pre=pre)],
+        env=environ,
+        capture_output=True,
+        text=True,
+        check=True,
+    )
     assert p.stdout.strip() == expected
 
 

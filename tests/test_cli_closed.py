@@ -146,8 +146,12 @@ def test_rancf_modes_of_a_closed_nurbs_circle_are_a_rings(tmp_path):
     text = _nurbs_toml(*CIRCLE).replace("elements = 2", "elements = 12")
     text = text.replace('[[supports]]\nat = "start"\nkind = "pin"\n', "")  # a free ring
     (tmp_path / "c.toml").write_text(text + "\n[modes]\ncount = 4\n")
-    p = subprocess.run([sys.executable, "-m", "rancf", "modes", "c.toml", "--json"],
-                       capture_output=True, text=True, cwd=tmp_path)  # fmt: skip
+    p = subprocess.run(
+        [sys.executable, "-m", "rancf", "modes", "c.toml", "--json"],
+        capture_output=True,
+        text=True,
+        cwd=tmp_path,
+    )
     assert p.returncode == 0, p.stderr
     doc = json.loads(p.stdout)
     assert doc["rigid_body_modes_removed"] == 3

@@ -57,8 +57,9 @@ at = "end"
 
 
 def _rancf(tmp_path, *args: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "rancf", *args], capture_output=True,
-                          text=True, cwd=tmp_path)  # fmt: skip
+    return subprocess.run(
+        [sys.executable, "-m", "rancf", *args], capture_output=True, text=True, cwd=tmp_path
+    )
 
 
 def _write(tmp_path, name: str, **kw) -> str:
@@ -106,8 +107,9 @@ def test_c1_and_c2_runs_approach_each_other(tmp_path):
 def test_modes_count_fewer_free_coordinates(tmp_path):
     out = {}
     for c in ("C1", "C2"):
-        p = _rancf(tmp_path, "modes", _write(tmp_path, f"{c}.toml", continuity=c, per_span=4),
-                   "--json")  # fmt: skip
+        p = _rancf(
+            tmp_path, "modes", _write(tmp_path, f"{c}.toml", continuity=c, per_span=4), "--json"
+        )
         assert p.returncode == 0, p.stderr
         out[c] = json.loads(p.stdout)
     # 20 elements: C¹ 2 (21) nodes x 2 coordinates - 3 held; C² 2 (20 + 3) - 3
@@ -116,10 +118,13 @@ def test_modes_count_fewer_free_coordinates(tmp_path):
     assert np.all(f2 >= f1) and np.all(f2 < 1.001 * f1)
 
 
-@pytest.mark.parametrize(("value", "element", "says"), [
-    ('"C3"', "rancf", "mesh.continuity"),
-    ('"C2"', "beam", "C2 needs cable or rod elements"),
-])  # fmt: skip
+@pytest.mark.parametrize(
+    ("value", "element", "says"),
+    [
+        ('"C3"', "rancf", "mesh.continuity"),
+        ('"C2"', "beam", "C2 needs cable or rod elements"),
+    ],
+)
 def test_bad_continuity_is_one_line(tmp_path, value, element, says):
     text = SPLINE.format(per_span=1, element=element, continuity="X").replace('"X"', value)
     (tmp_path / "bad.toml").write_text(text)

@@ -35,8 +35,15 @@ def test_static_json_reactions_and_outputs(hose):
     head = (hose / "st" / "reactions.csv").read_text().splitlines()[0]
     assert head == "t,start_fx,start_fy,start_mz,end_fx,end_fy,end_mz"
     along = np.genfromtxt(hose / "st" / "bodies" / "body" / "along.csv", delimiter=",", names=True)
-    assert along.dtype.names == ("s", "x", "y", "strain", "axial_force", "curvature",
-                                 "bending_moment")  # fmt: skip
+    assert along.dtype.names == (
+        "s",
+        "x",
+        "y",
+        "strain",
+        "axial_force",
+        "curvature",
+        "bending_moment",
+    )
     assert along["s"][0] == 0.0 and along["s"][-1] == pytest.approx(1.0, rel=1e-12)
     assert along["bending_moment"][0] == pytest.approx(-out["reactions"][0]["moment"][0], rel=1e-2)
     with np.load(hose / "st" / "results.npz") as z:
@@ -105,8 +112,10 @@ def test_static_and_modes_of_one_body_with_system_keys(tmp_path, capsys):
 
     plain, extra = tmp_path / "plain.toml", tmp_path / "extra.toml"
     plain.write_text(CANTILEVER)
-    extra.write_text(CANTILEVER + '\n[[sensors]]\nname = "root"\nkind = "reaction"\nat = "start"\n'
-                     '\n[[sensors]]\nname = "N"\nkind = "axial_force"\nat = 4\n')  # fmt: skip
+    extra.write_text(
+        CANTILEVER + '\n[[sensors]]\nname = "root"\nkind = "reaction"\nat = "start"\n'
+        '\n[[sensors]]\nname = "N"\nkind = "axial_force"\nat = 4\n'
+    )
     docs = []
     for f in (plain, extra):
         assert main(["modes", str(f), "--count", "3", "--json"]) == 0

@@ -318,7 +318,7 @@ SCENARIOS = [
         rod(material__poisson_ratio=None, material__shear_modulus=0.0),
         2,
         "material.shear_modulus",
-    ),  # fmt: skip
+    ),
     ("cable-shear", mutated(material__shear_modulus=1e6), 2, "material.shear_modulus"),
     ("cable-nu", mutated(material__poisson_ratio=0.3), 2, "material.poisson_ratio"),
     ("cable-inertia-y", mutated(section={**PRINCIPAL}), 2, "section.inertia_y"),
@@ -329,7 +329,7 @@ SCENARIOS = [
         rod(section=_without(PRINCIPAL, "orientation")),
         2,
         "section.orientation",
-    ),  # fmt: skip
+    ),
     ("rod-no-inertia-z", rod(section=_without(PRINCIPAL, "inertia_z")), 2, "section.inertia_z"),
     ("rod-inertia-and-y", rod(section={**PRINCIPAL, "inertia": 1e-7}), 2, "section.inertia"),
     ("rod-radius-and-y", rod(section__inertia_y=1e-7), 2, "section"),
@@ -338,62 +338,62 @@ SCENARIOS = [
         rod(section={**PRINCIPAL, "orientation": [1.0, 0.0]}),
         2,
         "section.orientation",
-    ),  # fmt: skip
+    ),
     (
         "rod-orientation-zero",
         rod(section={**PRINCIPAL, "orientation": [0.0, 0.0, 0.0]}),
         2,
         "section.orientation",
-    ),  # fmt: skip
+    ),
     (
         "rod-orientation-tangent",
         rod(section={**PRINCIPAL, "orientation": [3**0.5 / 2, 0.5, 0.0]}),
         2,
         "section.orientation",
-    ),  # fmt: skip
+    ),
     (
         "rod-moment-2",
         rod(loads={"point": [{"at": "end", "moment": [0.0, 1.0]}]}),
         2,
         "loads.point[0].moment",
-    ),  # fmt: skip
+    ),
     (
         "rod-moment-nan",
         rod(loads={"point": [{"at": "end", "moment": [0.0, float("nan"), 1.0]}]}),
         2,
         "loads.point[0].moment[1]",
-    ),  # fmt: skip
+    ),
     ("load-neither", rod(loads={"point": [{"at": "end"}]}), 2, "loads.point[0].force"),
     (
         "cable-moment",
         mutated(loads={"point": [{"at": "end", "moment": [0.0, 0.0, 1.0]}]}),
         2,
         "loads.point[0].moment",
-    ),  # fmt: skip
+    ),
     (
         "cable-fix-twist",
         mutated(supports=[{"at": "start", "fix_twist": True}]),
         2,
         "supports[0].fix_twist",
-    ),  # fmt: skip
+    ),
     (
         "rod-fix-twist-string",
         rod(supports=[{"at": "start", "fix_twist": "yes"}]),
         2,
         "supports[0].fix_twist",
-    ),  # fmt: skip
+    ),
     (
         "cable-twist-sensor",
         mutated(sensors=[{"name": "a", "kind": "twist", "at": "end"}]),
         2,
         "sensors[0].kind",
-    ),  # fmt: skip
+    ),
     (
         "rod-twist-between",
         rod(sensors=[{"name": "a", "kind": "twist", "between": [0, 1]}]),
         2,
         "sensors[0].at",
-    ),  # fmt: skip
+    ),
     ("rod-twist-node", rod(sensors=[{"name": "a", "kind": "twist", "at": 9}]), 2, "sensors.a"),
     ("rotary-on-cable", mutated(section__rotary_inertia="full"), 2, "section.rotary_inertia"),
     ("rotary-bad", rod(section__rotary_inertia="bending"), 2, "section.rotary_inertia"),

@@ -69,7 +69,8 @@ def test_a_profiler_running_the_command_writes_its_report(tmp_path):
     out = tmp_path / "profile.out"
     p = subprocess.run(
         [sys.executable, "-m", "cProfile", "-o", str(out), "-m", "rancf", "--version"],
-        capture_output=True, text=True,
-    )  # fmt: skip
+        capture_output=True,
+        text=True,
+    )
     assert p.returncode == 0 and p.stdout.startswith("rancf ")
     assert out.stat().st_size > 0

@@ -172,8 +172,9 @@ def _files(root: Path) -> None:
     os.symlink("loop.csv", root / "loop.csv")
 
 
-@pytest.mark.parametrize(("text", "command", "needles"), [c[1:] for c in CASES],
-                         ids=[c[0] for c in CASES])  # fmt: skip
+@pytest.mark.parametrize(
+    ("text", "command", "needles"), [c[1:] for c in CASES], ids=[c[0] for c in CASES]
+)
 def test_hostile_input(tmp_path, monkeypatch, capsys, text, command, needles):
     monkeypatch.chdir(tmp_path)
     _files(tmp_path)
@@ -189,8 +190,7 @@ def run_dir(tmp_path_factory):
     """A short run of the test scenario, for ``rancf view``."""
     folder = tmp_path_factory.mktemp("view")
     (folder / "s.toml").write_text(BASE)
-    assert main(["simulate", str(folder / "s.toml"), "--out", str(folder / "run"),
-                 "--quiet"]) == 0  # fmt: skip
+    assert main(["simulate", str(folder / "s.toml"), "--out", str(folder / "run"), "--quiet"]) == 0
     return folder / "run"
 
 
@@ -214,8 +214,9 @@ def test_view_out_names_the_users_path(tmp_path, monkeypatch, capsys, run_dir, o
 def test_view_out_in_a_read_only_folder(tmp_path, monkeypatch, capsys, run_dir):
     monkeypatch.chdir(tmp_path)
     (tmp_path / "ro").mkdir(mode=0o555)
-    line = check_one_line(capsys, ["view", str(run_dir), "--out", "ro/v.html"], 2, "--out",
-                          tmp_path)  # fmt: skip
+    line = check_one_line(
+        capsys, ["view", str(run_dir), "--out", "ro/v.html"], 2, "--out", tmp_path
+    )
     assert "'ro/v.html'" in line and "not writable" in line
 
 

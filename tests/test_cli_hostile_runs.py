@@ -50,8 +50,11 @@ def test_a_stop_ends_within_a_second_however_small_the_step(tmp_path):
     rng = random.Random(15)
     for i, sig in enumerate((signal.SIGINT, signal.SIGTERM, signal.SIGINT)):
         run = tmp_path / f"run{i}"
-        p = subprocess.Popen([*RANCF, "simulate", "s.toml", "--out", run.name, "--quiet"],
-                             cwd=tmp_path, stderr=subprocess.PIPE)  # fmt: skip
+        p = subprocess.Popen(
+            [*RANCF, "simulate", "s.toml", "--out", run.name, "--quiet"],
+            cwd=tmp_path,
+            stderr=subprocess.PIPE,
+        )
         deadline = time.monotonic() + 60
         while not (run / "summary.json").exists() and time.monotonic() < deadline:
             time.sleep(0.01)  # the run has started (stops before that: test_cli_signals)
@@ -81,8 +84,12 @@ def test_a_static_run_stopped_by_sigterm_says_so(tmp_path):
     delay = max(_boot_times()) + 2.0  # meshing and assembly, then some 2 s of load steps
     for attempt in range(4):
         out = tmp_path / f"eq{attempt}"
-        p = subprocess.Popen([*RANCF, "static", "st.toml", "--out", out.name], cwd=tmp_path,
-                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)  # fmt: skip
+        p = subprocess.Popen(
+            [*RANCF, "static", "st.toml", "--out", out.name],
+            cwd=tmp_path,
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.PIPE,
+        )
         time.sleep(delay)
         p.send_signal(signal.SIGTERM)
         _, err = p.communicate(timeout=60)
@@ -123,8 +130,10 @@ def test_the_error_path_of_a_run_keeps_its_last_checkpoint(tmp_path, monkeypatch
     assert "q.f64: No space left on device" in err[0] and "summary.json says failed" in err[0]
     summary = _check_run_dir(tmp_path / "run")
     assert summary["status"] == "failed" and "No space left" in summary["message"]
-    assert summary["outputs"] == np.loadtxt(tmp_path / "run/sensors.csv", delimiter=",",
-                                            skiprows=1, ndmin=2).shape[0]  # fmt: skip
+    assert (
+        summary["outputs"]
+        == np.loadtxt(tmp_path / "run/sensors.csv", delimiter=",", skiprows=1, ndmin=2).shape[0]
+    )
     assert 0 < summary["t_reached"] < 0.5
     _no_leftovers(tmp_path / "run")
 
@@ -142,8 +151,9 @@ def tmpfs(tmp_path):
     """A 300 KB file system (skipped where mounting is not allowed)."""
     where = tmp_path / "small"
     where.mkdir()
-    p = subprocess.run(["mount", "-t", "tmpfs", "-o", "size=300k", "tmpfs", str(where)],
-                       capture_output=True)  # fmt: skip
+    p = subprocess.run(
+        ["mount", "-t", "tmpfs", "-o", "size=300k", "tmpfs", str(where)], capture_output=True
+    )
     if p.returncode != 0:
         pytest.skip("mounting a tmpfs is not allowed here")
     yield where
@@ -151,8 +161,9 @@ def tmpfs(tmp_path):
 
 
 def test_a_full_disk(tmp_path, tmpfs):
-    (tmp_path / "s.toml").write_text(mutated(mesh__elements=20, solver__t_end=0.3,
-                                             solver__output_step=1e-3))  # fmt: skip
+    (tmp_path / "s.toml").write_text(
+        mutated(mesh__elements=20, solver__t_end=0.3, solver__output_step=1e-3)
+    )
     cmd = [*RANCF, "simulate", "s.toml", "--quiet", "--checkpoint-every", "0.01", "--out"]
     # full while the run goes on: status 3, the file named, the last checkpoint kept
     p = subprocess.run([*cmd, str(tmpfs / "run")], cwd=tmp_path, capture_output=True, text=True)
@@ -166,8 +177,12 @@ def test_a_full_disk(tmp_path, tmpfs):
     assert (
         main(["simulate", str(tmp_path / "s.toml"), "--out", str(tmp_path / "r"), "--quiet"]) == 0
     )
-    p = subprocess.run([*RANCF, "export", "r", "--vtk", str(tmpfs / "vtk")], cwd=tmp_path,
-                       capture_output=True, text=True)  # fmt: skip
+    p = subprocess.run(
+        [*RANCF, "export", "r", "--vtk", str(tmpfs / "vtk")],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+    )
     assert p.returncode == 2 and len(p.stderr.splitlines()) == 1, p.stderr
     assert f"{tmpfs}/vtk/body/body_" in p.stderr and not (tmpfs / "vtk").exists()
     # full before the first checkpoint: status 2 and nothing written
@@ -222,8 +237,12 @@ def test_two_processes_on_one_output_folder(tmp_path):
     _no_leftovers(tmp_path / "run")
     # two started at once on a new folder: exactly one runs
     short = [*RANCF, "simulate", "short.toml"]
-    both = [subprocess.Popen([*short, "--out", "new", "--quiet"], cwd=tmp_path,
-                             stderr=subprocess.PIPE, text=True) for _ in range(2)]  # fmt: skip
+    both = [
+        subprocess.Popen(
+            [*short, "--out", "new", "--quiet"], cwd=tmp_path, stderr=subprocess.PIPE, text=True
+        )
+        for _ in range(2)
+    ]
     ends = sorted((p.wait(timeout=120), p.stderr.read()) for p in both)
     assert [code for code, _ in ends] == [0, 2], ends
     assert len(ends[1][1].splitlines()) == 1 and "--out = 'new'" in ends[1][1]
@@ -307,8 +326,9 @@ def test_sweep_rows_with_non_finite_values_fail(tmp_path, monkeypatch):
     from rancf.sweep.engine import results_table
     from rancf.sweep.spec import Variant
 
-    monkeypatch.setattr(runner, "_analyse", lambda sc, a, f: ("completed", "", 0.1,
-                                                              {"f1_hz": float("inf")}))  # fmt: skip
+    monkeypatch.setattr(
+        runner, "_analyse", lambda sc, a, f: ("completed", "", 0.1, {"f1_hz": float("inf")})
+    )
     raw = __import__("tomllib").loads(ROD)
     row = runner.run_variant("r", raw, str(tmp_path / "b.toml"), "modes", str(tmp_path / "r"))
     assert row["status"] == "failed" and "f1_hz" in row["message"]
@@ -325,8 +345,9 @@ def test_a_sweep_resumes_only_unchanged_variants(tmp_path):
     base = {"geometry": LINE, "supports": [{"at": 0, "kind": "clamp"}]}
     loads = {"point": [{"at": -1, "force": [0.0, -1e-3]}]}
     (tmp_path / "c.toml").write_text(mutated(**base, loads=loads))
-    (tmp_path / "w.toml").write_text('base = "c.toml"\nanalysis = "static"\n[grid]\n'
-                                     '"mesh.elements" = [2, 3]\n')  # fmt: skip
+    (tmp_path / "w.toml").write_text(
+        'base = "c.toml"\nanalysis = "static"\n[grid]\n"mesh.elements" = [2, 3]\n'
+    )
 
     def sweep() -> dict:
         spec = load_sweep(tmp_path / "w.toml")
@@ -345,9 +366,13 @@ def test_a_sweep_stopped_by_sigterm_is_quiet_and_truthful(tmp_path):
     (tmp_path / "s.toml").write_text(LONG.replace("t_end = 100.0", "t_end = 4.0"))
     grid = ", ".join(str(n) for n in range(10, 22))
     (tmp_path / "w.toml").write_text(f'base = "s.toml"\n[grid]\n"mesh.elements" = [{grid}]\n')
-    p = subprocess.Popen([*RANCF, "sweep", "w.toml", "--out", "sw", "--workers", "2", "--quiet"],
-                         cwd=tmp_path, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-                         start_new_session=True)  # fmt: skip
+    p = subprocess.Popen(
+        [*RANCF, "sweep", "w.toml", "--out", "sw", "--workers", "2", "--quiet"],
+        cwd=tmp_path,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+        start_new_session=True,
+    )
     deadline = time.monotonic() + 60
     while not list(tmp_path.glob("sw/runs/*/row.json")) and time.monotonic() < deadline:
         time.sleep(0.05)
@@ -392,8 +417,10 @@ def _tether(law: str, extra: str = "") -> str:
 
 
 _SECOND_WINCH = '\n[[winches]]\nname = "{name}"\nat = "tether:{end}"\nlength = 10.0\n'
-_SENSORS = ('\n[[sensors]]\nname = "w"\nkind = "position"\nat = "weight"\n'
-            '\n[[sensors]]\nname = "w_x"\nkind = "energy"\n')  # fmt: skip
+_SENSORS = (
+    '\n[[sensors]]\nname = "w"\nkind = "position"\nat = "weight"\n'
+    '\n[[sensors]]\nname = "w_x"\nkind = "energy"\n'
+)
 
 _SHALLOW = """[geometry]
 kind = "line"
@@ -422,43 +449,65 @@ t_end = 0.1
 
 #: Inputs that ran to a wrong answer with exit 0 (or a traceback), and what refuses them.
 AMBIGUOUS = {
-    "contact-twice": ('contacts = [["rope", "pulley"], ["rope", "pulley"]]\n'
-                      + _example("capstan"),
-                      "[contacts[1]] lists the pair ['rope', 'pulley'] again (contacts[0] has it"),
-    "body-contact-twice": ('body_contacts = [["leg1", "leg2"], ["leg2", "leg1"]]\n'
-                           + _example("argyris-frame"),
-                           "[body_contacts[1]] lists the pair ['leg1', 'leg2'] again"),
-    "same-column": (_example("capstan") + _SENSORS,
-                    "[sensors[4].name] 'w_x' gives the column 'w_x', as sensors[3] ('w', kind "
-                    "'position') does"),
-    "same-winch-name": (_tether("length = 10.0", _SECOND_WINCH.format(name="reel", end="end")),
-                        "[winches[1].name] 'reel' is used twice (winches[0] has it)"),
-    "two-winches-one-end": (_tether("length = 10.0",
-                                    _SECOND_WINCH.format(name="other", end="start")),
-                            "[winches[1].at] 'tether:start': body 'tether' already has a winch "
-                            "(winches[0]): one winch per body"),
-    "vector-length": (_tether("length = [10.0, 3.0]"),
-                      "[winches[0].length] must be a scalar time function (numbers, not "
-                      "vectors), got [10.0, 3.0]"),
-    "length-below-zero": (_tether("length = { table = [[0, 10.0], [0.5, 5.0], [1.0, -1.0]] }"),
-                          "[winches[0].length] the length outside the winch must stay > 0 m "
-                          "over the run (t = 0 to t_end = 1 s), but it is -0.004 m at "
-                          "t = 0.917 s"),
-    "speed-past-zero": (_tether("speed = -30.0"),
-                        "[winches[0].speed] the length outside the winch must stay > 0 m over "
-                        "the run (t = 0 to t_end = 1 s), but it is -0.005 m at t = 0.3335 s"),
-    "length-zero-at-the-start": (_tether("length = { ramp = 0.1, value = -1.0 }"),
-                                 "[winches[0].length] the length outside the winch must stay > 0 "
-                                 "m over the run (t = 0 to t_end = 1 s), but it is 0 m at t = 0 s"),
-    "winch-at-no-body": (_tether("length = 10.0").replace('at = "tether:start"\nlength',
-                                                          'at = "nobody:start"\nlength'),
-                         "[winches[0].at] names no body: 'nobody' (bodies: tether, payload)"),
-    "sensor-of-no-winch": (_tether("length = 10.0").replace('winch = "reel"', 'winch = "nope"'),
-                           "[sensors[0].winch] names no winch: 'nope' (winches: reel)"),
-    "waves-depth": (_SHALLOW, "[fluid.waves.depth] must reach the bodies in the fluid: depth "
-                    "= 1e-09 m puts the floor at -1e-09 m, above body's node at -10 m (give "
-                    "depth >= 10 m)"),
-}  # fmt: skip
+    "contact-twice": (
+        'contacts = [["rope", "pulley"], ["rope", "pulley"]]\n' + _example("capstan"),
+        "[contacts[1]] lists the pair ['rope', 'pulley'] again (contacts[0] has it",
+    ),
+    "body-contact-twice": (
+        'body_contacts = [["leg1", "leg2"], ["leg2", "leg1"]]\n' + _example("argyris-frame"),
+        "[body_contacts[1]] lists the pair ['leg1', 'leg2'] again",
+    ),
+    "same-column": (
+        _example("capstan") + _SENSORS,
+        "[sensors[4].name] 'w_x' gives the column 'w_x', as sensors[3] ('w', kind 'position') does",
+    ),
+    "same-winch-name": (
+        _tether("length = 10.0", _SECOND_WINCH.format(name="reel", end="end")),
+        "[winches[1].name] 'reel' is used twice (winches[0] has it)",
+    ),
+    "two-winches-one-end": (
+        _tether("length = 10.0", _SECOND_WINCH.format(name="other", end="start")),
+        "[winches[1].at] 'tether:start': body 'tether' already has a winch "
+        "(winches[0]): one winch per body",
+    ),
+    "vector-length": (
+        _tether("length = [10.0, 3.0]"),
+        "[winches[0].length] must be a scalar time function (numbers, not "
+        "vectors), got [10.0, 3.0]",
+    ),
+    "length-below-zero": (
+        _tether("length = { table = [[0, 10.0], [0.5, 5.0], [1.0, -1.0]] }"),
+        "[winches[0].length] the length outside the winch must stay > 0 m "
+        "over the run (t = 0 to t_end = 1 s), but it is -0.004 m at "
+        "t = 0.917 s",
+    ),
+    "speed-past-zero": (
+        _tether("speed = -30.0"),
+        "[winches[0].speed] the length outside the winch must stay > 0 m over "
+        "the run (t = 0 to t_end = 1 s), but it is -0.005 m at t = 0.3335 s",
+    ),
+    "length-zero-at-the-start": (
+        _tether("length = { ramp = 0.1, value = -1.0 }"),
+        "[winches[0].length] the length outside the winch must stay > 0 "
+        "m over the run (t = 0 to t_end = 1 s), but it is 0 m at t = 0 s",
+    ),
+    "winch-at-no-body": (
+        _tether("length = 10.0").replace(
+            'at = "tether:start"\nlength', 'at = "nobody:start"\nlength'
+        ),
+        "[winches[0].at] names no body: 'nobody' (bodies: tether, payload)",
+    ),
+    "sensor-of-no-winch": (
+        _tether("length = 10.0").replace('winch = "reel"', 'winch = "nope"'),
+        "[sensors[0].winch] names no winch: 'nope' (winches: reel)",
+    ),
+    "waves-depth": (
+        _SHALLOW,
+        "[fluid.waves.depth] must reach the bodies in the fluid: depth "
+        "= 1e-09 m puts the floor at -1e-09 m, above body's node at -10 m (give "
+        "depth >= 10 m)",
+    ),
+}
 
 
 @pytest.mark.parametrize("case", list(AMBIGUOUS))
@@ -541,19 +590,22 @@ joint = "eye"
 #: stay in range, and the failure's line (a pattern).
 PAST_LIMITS = {
     "drum-reels-in-the-line": (
-        _example("drum-hoist").replace("[0.05, 33.368], [10.0, 33.368]",
-                                       "[0.05, 80.0], [10.0, 80.0]"),
+        _example("drum-hoist").replace(
+            "[0.05, 33.368], [10.0, 33.368]", "[0.05, 80.0], [10.0, 80.0]"
+        ),
         "drum_length",
         r"rancf: simulation failed: winch 'hoist': the length outside the drum is -0\.0\d+ m "
         r"at t = 0\.99 s, not > 0 \(the drum has reeled in the whole line\); the run stops at "
-        r"the step before \(written to run\)"),
+        r"the step before \(written to run\)",
+    ),
     "rope-through-its-guide": (
         _GUIDE,
         "eye_s",
         r"rancf: simulation failed: sliding joint 'eye': the start of body 'rope' passes through "
         r"its place at t = 0\.102 s \(material coordinate -0\.0\d+ of 0\.\.10 elements\); the "
-        r"run stops at the step before \(make the body longer\) \(written to run\)"),
-}  # fmt: skip
+        r"run stops at the step before \(make the body longer\) \(written to run\)",
+    ),
+}
 
 
 @pytest.mark.parametrize("case", list(PAST_LIMITS))

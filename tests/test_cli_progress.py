@@ -47,8 +47,7 @@ def test_saved_scenarios_have_compact_arrays(tmp_path):
 
 
 def test_long_arrays_wrap_and_strings_stay():
-    data = {"a": {"values": [float(x) for x in np.linspace(0, 1, 101)],
-                  "names": ["x, [y]", "z"]}}  # fmt: skip
+    data = {"a": {"values": [float(x) for x in np.linspace(0, 1, 101)], "names": ["x, [y]", "z"]}}
     text = dumps(data)
     assert tomllib.loads(text) == data
     assert all(len(line) <= WIDTH for line in text.splitlines())

@@ -57,10 +57,23 @@ def _same_run(got: Path, want: Path) -> None:
 
 def _start(name: str, t_end: float, cwd: Path) -> subprocess.Popen:
     return subprocess.Popen(
-        [*RANCF, "simulate", f"{name}.toml", "--out", f"killed-{name}", "--quiet",
-         "--t-end", repr(t_end), "--checkpoint-every", "0.01", "--overwrite"],
-        cwd=cwd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-    )  # fmt: skip
+        [
+            *RANCF,
+            "simulate",
+            f"{name}.toml",
+            "--out",
+            f"killed-{name}",
+            "--quiet",
+            "--t-end",
+            repr(t_end),
+            "--checkpoint-every",
+            "0.01",
+            "--overwrite",
+        ],
+        cwd=cwd,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+    )
 
 
 def _kill_midway(ends: dict[str, float], cwd: Path) -> dict[str, float]:
@@ -141,8 +154,10 @@ def test_t_end_extends_a_finished_run(tmp_path, monkeypatch, capsys):
 def test_resume_refuses_another_scenario(tmp_path, monkeypatch, capsys):
     monkeypatch.chdir(tmp_path)
     assert main(["example", "copy", "planar-pendulum", "."]) == 0
-    assert main(["simulate", "planar-pendulum.toml", "--out", "run", "--quiet",
-                 "--t-end", "0.05"]) == 0  # fmt: skip
+    assert (
+        main(["simulate", "planar-pendulum.toml", "--out", "run", "--quiet", "--t-end", "0.05"])
+        == 0
+    )
     text = (tmp_path / "planar-pendulum.toml").read_text().replace("rho_inf = 0.9", "rho_inf = 0.8")
     (tmp_path / "other.toml").write_text(text)
     capsys.readouterr()
@@ -150,8 +165,21 @@ def test_resume_refuses_another_scenario(tmp_path, monkeypatch, capsys):
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and "solver.rho_inf differs" in err, err
     # a new or empty folder: --resume starts a new run
-    assert main(["simulate", "planar-pendulum.toml", "--out", "new", "--resume", "--quiet",
-                 "--t-end", "0.05"]) == 0  # fmt: skip
+    assert (
+        main(
+            [
+                "simulate",
+                "planar-pendulum.toml",
+                "--out",
+                "new",
+                "--resume",
+                "--quiet",
+                "--t-end",
+                "0.05",
+            ]
+        )
+        == 0
+    )
     assert json.loads((tmp_path / "new" / "summary.json").read_text())["status"] == "completed"
 
 
@@ -187,8 +215,11 @@ def test_resume_needs_a_checkpoint(tmp_path, monkeypatch, capsys):
 def _hashes(folder: Path) -> dict[str, str]:
     import hashlib
 
-    return {str(p.relative_to(folder)): hashlib.sha256(p.read_bytes()).hexdigest()
-            for p in sorted(folder.rglob("*")) if p.is_file()}  # fmt: skip
+    return {
+        str(p.relative_to(folder)): hashlib.sha256(p.read_bytes()).hexdigest()
+        for p in sorted(folder.rglob("*"))
+        if p.is_file()
+    }
 
 
 def _damage(run: Path, how: str) -> None:
@@ -211,14 +242,19 @@ def _damage(run: Path, how: str) -> None:
 
 @pytest.mark.parametrize(
     ("how", "says"),
-    [("shape", "coordinates 10; needed: a state of this system (coordinates 24)"),
-     ("nan", "a NaN or infinite number in v"),
-     ("memory", "memory of 7 numbers; needed: an integrator memory of this system and its "
-                "Newton method"),
-     ("k_out", "k_out = -5; needed: a state of finite numbers"),
-     ("truncated", "a state written by a rancf run (reading it: File is not a zip file)"),
-     ("results", "run/results.npz' is not allowed: a run folder's results file")],
-)  # fmt: skip
+    [
+        ("shape", "coordinates 10; needed: a state of this system (coordinates 24)"),
+        ("nan", "a NaN or infinite number in v"),
+        (
+            "memory",
+            "memory of 7 numbers; needed: an integrator memory of this system and its "
+            "Newton method",
+        ),
+        ("k_out", "k_out = -5; needed: a state of finite numbers"),
+        ("truncated", "a state written by a rancf run (reading it: File is not a zip file)"),
+        ("results", "run/results.npz' is not allowed: a run folder's results file"),
+    ],
+)
 def test_a_refused_resume_leaves_the_run_as_it_was(tmp_path, monkeypatch, capsys, how, says):
     """A damaged checkpoint (another system's, a NaN, cut short) or results file is refused on
     one line naming the file, exit 2, before anything in the folder changes."""

@@ -24,8 +24,7 @@ RANCF = [sys.executable, "-m", "rancf"]
 # meshing and assembly take a noticeable moment, then ~2 s of time stepping
 # (rtol: the pendulum's release is not resolved in its first step, and a completed run must
 # print nothing here)
-SLOW = mutated(mesh__elements=3000, solver__t_end=0.15, solver__output_step=1e-3,
-               solver__rtol=1e-3)  # fmt: skip
+SLOW = mutated(mesh__elements=3000, solver__t_end=0.15, solver__output_step=1e-3, solver__rtol=1e-3)
 LONG = mutated(mesh__elements=40, solver__t_end=100.0, solver__output_step=1e-2)
 
 

@@ -33,10 +33,21 @@ def built(tmp_path_factory) -> Path:
     out = src.parent / "html"
     start = time.perf_counter()
     p = subprocess.run(
-        [sys.executable, "-m", "sphinx", "-W", "--keep-going", "-q", "-b", "html", str(src),
-         str(out)],
-        capture_output=True, text=True,
-    )  # fmt: skip
+        [
+            sys.executable,
+            "-m",
+            "sphinx",
+            "-W",
+            "--keep-going",
+            "-q",
+            "-b",
+            "html",
+            str(src),
+            str(out),
+        ],
+        capture_output=True,
+        text=True,
+    )
     print(f"docs built in {time.perf_counter() - start:.1f} s")
     assert p.returncode == 0, p.stderr[-5000:]
     assert "WARNING" not in p.stderr and "ERROR" not in p.stderr, p.stderr[-5000:]
@@ -64,8 +75,11 @@ def test_every_scenario_key_is_documented(built):
     assert len(KEYS) > 100
     missing = []
     for model, key, node in KEYS:
-        row = re.search(rf'<tr[^>]*>\s*<td[^>]*><p id="key-{model.lower()}-{key.lower()}".*?</tr>',
-                        page, flags=re.S)  # fmt: skip
+        row = re.search(
+            rf'<tr[^>]*>\s*<td[^>]*><p id="key-{model.lower()}-{key.lower()}".*?</tr>',
+            page,
+            flags=re.S,
+        )
         text = html.unescape(re.sub(r"<[^>]+>", "", row.group(0))) if row else ""
         if not row or node["description"] not in text or "default" in node and not text:
             missing.append(f"{model}.{key}")
@@ -75,8 +89,10 @@ def test_every_scenario_key_is_documented(built):
 def test_scenario_rows_show_defaults_and_units(built):
     page = _html(built, "reference/scenario.html")
     row = re.search(r'<p id="key-solvertable-t_end".*?</tr>', page, flags=re.S).group(0)
-    cells = [html.unescape(re.sub(r"<[^>]+>", "", c)).strip()
-             for c in re.findall(r"<td.*?</td>", row, re.S)]  # fmt: skip
+    cells = [
+        html.unescape(re.sub(r"<[^>]+>", "", c)).strip()
+        for c in re.findall(r"<td.*?</td>", row, re.S)
+    ]
     assert cells == ["number", "1", "> 0", "s", "end time [s]"]
 
 

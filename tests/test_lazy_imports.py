@@ -34,10 +34,17 @@ print(json.dumps([code, sorted(m for m in sys.modules if m.split(".")[0] in {hea
 @pytest.mark.parametrize("name", ["planar-pendulum", "slider-crank"])
 def test_simulate_loads_no_heavy_library(tmp_path, name):
     p = subprocess.run(
-        [sys.executable, "-c", SCRIPT.format(heavy=set(HEAVY), static=set(STATIC)),
-         str(example_path(name)), str(tmp_path / "run")],
-        capture_output=True, text=True, check=True,
-    )  # fmt: skip
+        [
+            sys.executable,
+            "-c",
+            SCRIPT.format(heavy=set(HEAVY), static=set(STATIC)),
+            str(example_path(name)),
+            str(tmp_path / "run"),
+        ],
+        capture_output=True,
+        text=True,
+        check=True,
+    )
     code, loaded = json.loads(p.stdout.strip().splitlines()[-1])
     assert code == 0 and loaded == [], loaded
 

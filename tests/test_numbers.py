@@ -29,8 +29,10 @@ def test_a_value_rounded_across_a_printed_digit_passes():
 def test_iteration_counts_follow_round_off():
     """Another BLAS kernel (OpenBLAS's Sandybridge) takes 65 Newton iterations where this
     machine takes 63: counts of iterations and load steps are not compared; the rest is."""
-    assert text_matches("static equilibrium: 11 load steps, 65 Newton iterations",
-                        "static equilibrium: 11 load steps, 63 Newton iterations")  # fmt: skip
+    assert text_matches(
+        "static equilibrium: 11 load steps, 65 Newton iterations",
+        "static equilibrium: 11 load steps, 63 Newton iterations",
+    )
     assert not text_matches("11 load steps, 65 Newton iterations", "11 load steps, 65 iterations")
 
 

@@ -27,11 +27,14 @@ from rancf.solvers.static import solve_static
 from rancf.system.outputs import SystemOutputs
 from tests.solvers.test_modes_moments import cantilever
 
-BEFORE = json.loads((Path(__file__).parent / "references" / "static_before_one_path.json")
-                    .read_text())["cases"]  # fmt: skip
+BEFORE = json.loads(
+    (Path(__file__).parent / "references" / "static_before_one_path.json").read_text()
+)["cases"]
 EXAMPLES = ["arc-vibration", "cantilever", "installed-hose", "ring", "robot-cable"]
-RODS = {"rod-moment-straight": ("straight", (3.0, -2.0, 20.0)),
-        "rod-moment-curved": ("curved", (0.5, 0.3, 2.0))}  # fmt: skip
+RODS = {
+    "rod-moment-straight": ("straight", (3.0, -2.0, 20.0)),
+    "rod-moment-curved": ("curved", (0.5, 0.3, 2.0)),
+}
 
 
 def _flat(reactions) -> np.ndarray:

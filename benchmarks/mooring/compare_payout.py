@@ -59,8 +59,19 @@ def main() -> None:
     scenario = tomllib.loads((HERE / "payout.toml").read_text())
     elements = scenario["bodies"][0]["mesh"]["elements"]
     step = scenario["solver"]["step"]
-    rows = [["code", "step [s]", "elements / segments", "set-up [s]", "solve [s]", "process [s]",
-             "max |dT|/T", "at t [s]", "max |z + L| [mm]"]]  # fmt: skip
+    rows = [
+        [
+            "code",
+            "step [s]",
+            "elements / segments",
+            "set-up [s]",
+            "solve [s]",
+            "process [s]",
+            "max |dT|/T",
+            "at t [s]",
+            "max |z + L| [mm]",
+        ]
+    ]
     ok = False
     with tempfile.TemporaryDirectory() as tmp:
         out = Path(tmp) / "run"
@@ -72,26 +83,65 @@ def main() -> None:
             err, at = worst(got, ref_t, grid)
             ok = err <= TOLERANCE
             z = [abs(y + ln) for y, ln in zip(s["load_y"], s["drum_length"], strict=True)]
-            rows.append(["rancf", f"{step:g}", str(elements),
-                         f"{summary['setup_wall_time_s']:.2f}",
-                         f"{summary['solve_wall_time_s']:.2f}", f"{wall:.2f}", f"{err:.2e}",
-                         f"{at:g}", f"{1e3 * max(z):.3f}"])  # fmt: skip
+            rows.append(
+                [
+                    "rancf",
+                    f"{step:g}",
+                    str(elements),
+                    f"{summary['setup_wall_time_s']:.2f}",
+                    f"{summary['solve_wall_time_s']:.2f}",
+                    f"{wall:.2f}",
+                    f"{err:.2e}",
+                    f"{at:g}",
+                    f"{1e3 * max(z):.3f}",
+                ]
+            )
         else:
-            rows.append(["rancf", f"{step:g}", str(elements), "-", "-", f"{wall:.2f}",
-                         f"failed: {failed(proc)}", "-", "-"])  # fmt: skip
+            rows.append(
+                [
+                    "rancf",
+                    f"{step:g}",
+                    str(elements),
+                    "-",
+                    "-",
+                    f"{wall:.2f}",
+                    f"failed: {failed(proc)}",
+                    "-",
+                    "-",
+                ]
+            )
         csv_path = Path(tmp) / "md"
-        md, md_wall = peer(a.peer_python, "moordyn_payout.py", "--segments", str(a.segments),
-                           "--single", "--out", str(csv_path))  # fmt: skip
+        md, md_wall = peer(
+            a.peer_python,
+            "moordyn_payout.py",
+            "--segments",
+            str(a.segments),
+            "--single",
+            "--out",
+            str(csv_path),
+        )
         s = read_series(csv_path / "moordyn_payout.csv")
     md_err, md_at = worst(on_grid(s["t_s"], s["winch_tension_N"], grid), ref_t, grid)
     z = [abs(zz + ln) for zz, ln in zip(s["load_z_m"], s["length_m"], strict=True)]
     run = md["runs"][0]
-    rows.append([f"MoorDyn {md['versions']['moordyn']}", f"{run['dt_s']:g}", str(a.segments),
-                 f"{run['setup_s']:.2f}", f"{run['solve_s']:.2f}", f"{md_wall:.2f}",
-                 f"{md_err:.2e}", f"{md_at:g}", f"{1e3 * max(z):.3f}"])  # fmt: skip
+    rows.append(
+        [
+            f"MoorDyn {md['versions']['moordyn']}",
+            f"{run['dt_s']:g}",
+            str(a.segments),
+            f"{run['setup_s']:.2f}",
+            f"{run['solve_s']:.2f}",
+            f"{md_wall:.2f}",
+            f"{md_err:.2e}",
+            f"{md_at:g}",
+            f"{1e3 * max(z):.3f}",
+        ]
+    )
     print(table(rows))
-    print(f"\nreference: {a.reference.name} (MoorDyn, converged); rancf {version('rancf')}; "
-          f"{machine()}")  # fmt: skip
+    print(
+        f"\nreference: {a.reference.name} (MoorDyn, converged); rancf {version('rancf')}; "
+        f"{machine()}"
+    )
     sys.exit(0 if ok else 1)
 
 

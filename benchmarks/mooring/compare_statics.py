@@ -70,15 +70,27 @@ def main() -> None:
     p.add_argument("--peer-python", default=sys.executable)
     a = p.parse_args()
     mp, mp_wall = peer(a.peer_python, "moorpy_statics.py")
-    rows = [["case", "MoorPy F [kN]", "rancf F [kN]", "|dF|/|F|", "within 0.5 %",
-             "tension: MoorPy / rancf sensor [kN]",
-             "MoorPy solve / process [s]", "rancf solve / process [s]", "MoorPy segments",
-             "rancf elements"]]  # fmt: skip
+    rows = [
+        [
+            "case",
+            "MoorPy F [kN]",
+            "rancf F [kN]",
+            "|dF|/|F|",
+            "within 0.5 %",
+            "tension: MoorPy / rancf sensor [kN]",
+            "MoorPy solve / process [s]",
+            "rancf solve / process [s]",
+            "MoorPy segments",
+            "rancf elements",
+        ]
+    ]
     ok = True
     tmp = Path(tempfile.mkdtemp())
     chain = mp["cases"]["chain"]
-    files = {**{k: HERE / v for k, v in FILES.items()},
-             DRY: dry_chain(chain["wet_weight_N_per_m"], chain["mass_kg_per_m"], tmp)}  # fmt: skip
+    files = {
+        **{k: HERE / v for k, v in FILES.items()},
+        DRY: dry_chain(chain["wet_weight_N_per_m"], chain["mass_kg_per_m"], tmp),
+    }
     for name, path in files.items():
         peer_case = mp["cases"]["chain" if name == DRY else name]
         ref = peer_case["fairlead_force_N"]
@@ -89,9 +101,20 @@ def main() -> None:
         if got is None:
             ok = False
             why = failed(proc) if proc.returncode else "no fairlead reaction in the output"
-            rows.append([name, kn(ref), f"rancf failed: {why}", "-", "no", "-",
-                         "-", f"- / {wall:.2f}",
-                         "40", str(elements)])  # fmt: skip
+            rows.append(
+                [
+                    name,
+                    kn(ref),
+                    f"rancf failed: {why}",
+                    "-",
+                    "no",
+                    "-",
+                    "-",
+                    f"- / {wall:.2f}",
+                    "40",
+                    str(elements),
+                ]
+            )
             continue
         err = math.dist(got, ref) / math.hypot(*ref)
         ok &= err <= TOLERANCE or name == DRY
@@ -101,14 +124,26 @@ def main() -> None:
         tension = f"{peer_case['fairlead_tension_N'] / 1e3:.1f} / " + (
             "-" if sensor is None else f"{sensor / 1e3:.1f}"
         )
-        rows.append([name, kn(ref), kn(got), f"{err:.2e}", "yes" if err <= TOLERANCE else "NO",
-                     tension,
-                     f"{peer_case['wall_s']:.3f} / {mp_wall:.2f}",
-                     f"{solve:.3f} / {wall:.2f}", "40", str(elements)])  # fmt: skip
+        rows.append(
+            [
+                name,
+                kn(ref),
+                kn(got),
+                f"{err:.2e}",
+                "yes" if err <= TOLERANCE else "NO",
+                tension,
+                f"{peer_case['wall_s']:.3f} / {mp_wall:.2f}",
+                f"{solve:.3f} / {wall:.2f}",
+                "40",
+                str(elements),
+            ]
+        )
     shutil.rmtree(tmp)
     print(table(rows))
-    print(f"\nMoorPy {mp['peer_version']}, rancf {version('rancf')}; rho = {mp['rho']} kg/m^3, "
-          f"g = {mp['g']} m/s^2; {machine()}")  # fmt: skip
+    print(
+        f"\nMoorPy {mp['peer_version']}, rancf {version('rancf')}; rho = {mp['rho']} kg/m^3, "
+        f"g = {mp['g']} m/s^2; {machine()}"
+    )
     sys.exit(0 if ok else 1)
 
 

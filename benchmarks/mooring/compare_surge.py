@@ -66,8 +66,9 @@ def reaction_size(series: dict[str, list[float]]) -> list[float]:
     return [math.sqrt(sum(c * c for c in row)) for row in zip(*cols, strict=True)]
 
 
-def run_rancf(text: str, step: float, tmp: Path, ref: dict[int, float],
-              label: str = "rancf") -> tuple[list, float, float, float]:  # fmt: skip
+def run_rancf(
+    text: str, step: float, tmp: Path, ref: dict[int, float], label: str = "rancf"
+) -> tuple[list, float, float, float]:
     """``rancf simulate`` on the scenario ``text`` with ``solver.step = step``: its table rows
     (the reaction's size; the ``tension`` sensor), its largest difference to ``ref``, its solve
     and its process wall time."""
@@ -77,20 +78,47 @@ def run_rancf(text: str, step: float, tmp: Path, ref: dict[int, float],
     scenario.write_text(re.sub(r"(?m)^step = .*$", f"step = {step!r}", text, count=1))
     proc, wall = rancf("simulate", str(scenario), "--out", str(folder / "run"), "--quiet")
     if proc.returncode != 0:
-        return [[label, f"{step:g}", "-", "-", "-", "-", f"{wall:.2f}",
-                 f"failed: {failed(proc)}", "-"]], math.inf, math.inf, wall  # fmt: skip
+        return (
+            [
+                [
+                    label,
+                    f"{step:g}",
+                    "-",
+                    "-",
+                    "-",
+                    "-",
+                    f"{wall:.2f}",
+                    f"failed: {failed(proc)}",
+                    "-",
+                ]
+            ],
+            math.inf,
+            math.inf,
+            wall,
+        )
     summary = json.loads((folder / "run" / "summary.json").read_text())
     s = read_series(folder / "run" / "sensors.csv")
     err, at = worst(per_second(s["t"], reaction_size(s)), ref)
     per_step = summary["newton_iterations"] / summary["steps"]
     solve = summary["solve_wall_time_s"]
-    rows = [[f"{label} (|reaction|)", f"{step:g}", str(summary["n_elements"]), f"{per_step:.2f}",
-             f"{summary['setup_wall_time_s']:.2f}", f"{solve:.3f}", f"{wall:.2f}", f"{err:.2e}",
-             str(at)]]  # fmt: skip
+    rows = [
+        [
+            f"{label} (|reaction|)",
+            f"{step:g}",
+            str(summary["n_elements"]),
+            f"{per_step:.2f}",
+            f"{summary['setup_wall_time_s']:.2f}",
+            f"{solve:.3f}",
+            f"{wall:.2f}",
+            f"{err:.2e}",
+            str(at),
+        ]
+    ]
     if "tension" in s:
         t_err, t_at = worst(per_second(s["t"], s["tension"]), ref)
-        rows.append([f"{label} (tension sensor)", "", "", "", "", "", "", f"{t_err:.2e}",
-                     str(t_at)])  # fmt: skip
+        rows.append(
+            [f"{label} (tension sensor)", "", "", "", "", "", "", f"{t_err:.2e}", str(t_at)]
+        )
     return rows, err, solve, wall
 
 
@@ -99,10 +127,19 @@ def main() -> None:
     p.add_argument("--peer-python", default=sys.executable)
     p.add_argument("--segments", type=int, nargs="+", default=[20, 40, 80, 160])
     p.add_argument("--steps", type=float, nargs="*", default=[0.05])
-    p.add_argument("--elements", type=int, nargs="*", default=[20],
-                   help="also the file with these element counts, at its step")  # fmt: skip
-    p.add_argument("--also", nargs="*", default=["mooring-surge-3d.toml"],
-                   help="further scenario files of this folder, each at its own step")  # fmt: skip
+    p.add_argument(
+        "--elements",
+        type=int,
+        nargs="*",
+        default=[20],
+        help="also the file with these element counts, at its step",
+    )
+    p.add_argument(
+        "--also",
+        nargs="*",
+        default=["mooring-surge-3d.toml"],
+        help="further scenario files of this folder, each at its own step",
+    )
     p.add_argument("--reference", type=Path, default=RESULTS / "moordyn_surge.csv")
     a = p.parse_args()
     load0 = os.getloadavg()[0] if hasattr(os, "getloadavg") else math.nan
@@ -110,8 +147,19 @@ def main() -> None:
     ref = per_second(ref_series["t_s"], ref_series["tension_N"])
     text = (HERE / "mooring-surge.toml").read_text()
     step = tomllib.loads(text)["solver"]["step"]
-    rows = [["code", "step [s]", "elements / segments", "Newton it. / step", "set-up [s]",
-             "solve [s]", "process [s]", "max |dT|/T, t >= 20 s", "at t [s]"]]  # fmt: skip
+    rows = [
+        [
+            "code",
+            "step [s]",
+            "elements / segments",
+            "Newton it. / step",
+            "set-up [s]",
+            "solve [s]",
+            "process [s]",
+            "max |dT|/T, t >= 20 s",
+            "at t [s]",
+        ]
+    ]
     with tempfile.TemporaryDirectory() as tmp:
         got, err, solve, wall = run_rancf(text, step, Path(tmp), ref, "rancf 2D")
         rows += got
@@ -123,35 +171,53 @@ def main() -> None:
         for name in a.also:
             other = (HERE / name).read_text()
             label = "rancf 3D" if "3d" in name else f"rancf {name}"
-            rows += run_rancf(other, tomllib.loads(other)["solver"]["step"], Path(tmp), ref,
-                              label)[0]  # fmt: skip
+            rows += run_rancf(other, tomllib.loads(other)["solver"]["step"], Path(tmp), ref, label)[
+                0
+            ]
     ok = err <= TOLERANCE
     same = None  # MoorDyn's run at rancf's accuracy: (segments, solve, process)
     for n in sorted(a.segments):
         with tempfile.TemporaryDirectory() as tmp:
             csv_path = Path(tmp) / "md.csv"
-            md, md_wall = peer(a.peer_python, "moordyn_surge.py", "--segments", str(n),
-                               "--csv", str(csv_path))  # fmt: skip
+            md, md_wall = peer(
+                a.peer_python, "moordyn_surge.py", "--segments", str(n), "--csv", str(csv_path)
+            )
             s = read_series(csv_path)
         md_err, md_at = worst(per_second(s["t_s"], s["tension_N"]), ref)
-        rows.append([f"MoorDyn {md['version']}", f"{md['dt_s']:g}", str(n), "-",
-                     f"{md['init_s']:.2f}", f"{md['solve_s']:.3f}", f"{md_wall:.2f}",
-                     f"{md_err:.2e}", str(md_at)])  # fmt: skip
+        rows.append(
+            [
+                f"MoorDyn {md['version']}",
+                f"{md['dt_s']:g}",
+                str(n),
+                "-",
+                f"{md['init_s']:.2f}",
+                f"{md['solve_s']:.3f}",
+                f"{md_wall:.2f}",
+                f"{md_err:.2e}",
+                str(md_at),
+            ]
+        )
         if md_err <= err:
             same = (n, md["solve_s"], md_wall)
             break
     print(table(rows))
     if same is None:
-        print(f"\nMoorDyn at {max(a.segments)} segments is not yet as close as rancf at its step "
-              f"({err:.2e}): no ratio")  # fmt: skip
+        print(
+            f"\nMoorDyn at {max(a.segments)} segments is not yet as close as rancf at its step "
+            f"({err:.2e}): no ratio"
+        )
     else:
         n, md_solve, md_wall = same
-        print(f"\nat the same accuracy (rancf {err:.2e} at {step:g} s; MoorDyn {n} segments): "
-              f"solve {solve:.3f} s against {md_solve:.3f} s, rancf / MoorDyn = "
-              f"{solve / md_solve:.3f}; process {wall:.2f} s against {md_wall:.2f} s, "
-              f"{wall / md_wall:.2f}")  # fmt: skip
-    print(f"reference: {a.reference.name} (MoorDyn, converged); rancf {version('rancf')}; "
-          f"{machine()}, {load0:.1f} at the start")  # fmt: skip
+        print(
+            f"\nat the same accuracy (rancf {err:.2e} at {step:g} s; MoorDyn {n} segments): "
+            f"solve {solve:.3f} s against {md_solve:.3f} s, rancf / MoorDyn = "
+            f"{solve / md_solve:.3f}; process {wall:.2f} s against {md_wall:.2f} s, "
+            f"{wall / md_wall:.2f}"
+        )
+    print(
+        f"reference: {a.reference.name} (MoorDyn, converged); rancf {version('rancf')}; "
+        f"{machine()}, {load0:.1f} at the start"
+    )
     sys.exit(0 if ok else 1)
 
 

@@ -85,8 +85,11 @@ def input_file(case: Case) -> str:
         "---------------------- OPTIONS -----------------------------------------",
     ]
     rows += [f"{v if isinstance(v, str) else repr(v)} {k}" for k, v in case.options.items()]
-    rows += ["------------------------- OUTPUTS --------------------------------", "END",
-             "--------------------- need this line ------------------"]  # fmt: skip
+    rows += [
+        "------------------------- OUTPUTS --------------------------------",
+        "END",
+        "--------------------- need this line ------------------",
+    ]
     return "\n".join(rows) + "\n"
 
 

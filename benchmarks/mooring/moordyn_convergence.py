@@ -49,8 +49,12 @@ def main() -> None:
     for n, dt in plan:
         r = simulate(n, dt, a.t_end)
         runs.append((n, dt, r))
-        print(f"MoorDyn {n:4d} segments, dt {dt:.3g} s: set-up {r.init_s:.2f} s, solve "
-              f"{r.solve_s:.2f} s", file=sys.stderr, flush=True)  # fmt: skip
+        print(
+            f"MoorDyn {n:4d} segments, dt {dt:.3g} s: set-up {r.init_s:.2f} s, solve "
+            f"{r.solve_s:.2f} s",
+            file=sys.stderr,
+            flush=True,
+        )
     ref_n, ref_dt, ref = next(r for r in runs if r[0] == max(a.segments))
     half = seconds(runs[-1][2], PERIOD)
     full = seconds(next(r for r in runs if r[0] == a.step_check)[2], PERIOD)
@@ -60,10 +64,17 @@ def main() -> None:
     for n, dt, r in runs:
         s = seconds(r, PERIOD)
         err = max(abs(s[t] - ref_s[t]) / ref_s[t] for t in ref_s)
-        rows.append({"segments": n, "dt_s": dt, "setup_s": r.init_s, "solve_s": r.solve_s,
-                     "max_rel_diff_to_reference": err,
-                     "tension_max_N": max(r.columns["tension_N"]),
-                     "tension_min_N": min(r.columns["tension_N"])})  # fmt: skip
+        rows.append(
+            {
+                "segments": n,
+                "dt_s": dt,
+                "setup_s": r.init_s,
+                "solve_s": r.solve_s,
+                "max_rel_diff_to_reference": err,
+                "tension_max_N": max(r.columns["tension_N"]),
+                "tension_min_N": min(r.columns["tension_N"]),
+            }
+        )
     a.out.mkdir(parents=True, exist_ok=True)
     write_csv(a.out / "moordyn_surge.csv", ref)
     study = {
@@ -76,10 +87,14 @@ def main() -> None:
     (a.out / "moordyn_surge.json").write_text(json.dumps(study, indent=1) + "\n")
     print(f"{'segments':>8} {'dt [s]':>9} {'set-up [s]':>10} {'solve [s]':>9} {'max diff':>9}")
     for r in rows:
-        print(f"{r['segments']:8d} {r['dt_s']:9.3g} {r['setup_s']:10.2f} {r['solve_s']:9.2f} "
-              f"{r['max_rel_diff_to_reference']:9.2e}")  # fmt: skip
-    print(f"time step: {a.step_check} segments, step {default_step(a.step_check):.3g} s against "
-          f"half of it: {step_error:.2e}")  # fmt: skip
+        print(
+            f"{r['segments']:8d} {r['dt_s']:9.3g} {r['setup_s']:10.2f} {r['solve_s']:9.2f} "
+            f"{r['max_rel_diff_to_reference']:9.2e}"
+        )
+    print(
+        f"time step: {a.step_check} segments, step {default_step(a.step_check):.3g} s against "
+        f"half of it: {step_error:.2e}"
+    )
 
 
 if __name__ == "__main__":

@@ -85,9 +85,17 @@ def _set_length(line: object, value: float, rate: float) -> None:
 
 
 def case(segments: int, dt: float, ba: float = 0.0, scheme: str = "RK4") -> Case:
-    options = {"g": G, "rho": 0.0, "WtrDpth": 1000.0, "dtM": dt, "threshIC": 1e-6,
-               "TmaxIC": 100.0, "disableOutput": 1, "disableOutTime": 1,
-               "tScheme": scheme}  # fmt: skip
+    options = {
+        "g": G,
+        "rho": 0.0,
+        "WtrDpth": 1000.0,
+        "dtM": dt,
+        "threshIC": 1e-6,
+        "TmaxIC": 100.0,
+        "disableOutput": 1,
+        "disableOutTime": 1,
+        "tScheme": scheme,
+    }
     return Case(
         LineType("steel", diameter=2 * RADIUS, mass=DENSITY * AREA, ea=YOUNGS * AREA, ba=ba),
         [Point("Coupled", (0.0, 0.0, 0.0)), Point("Free", (0.0, 0.0, -L0), mass=LOAD)],
@@ -97,8 +105,7 @@ def case(segments: int, dt: float, ba: float = 0.0, scheme: str = "RK4") -> Case
     )
 
 
-def simulate(segments: int, dt: float, t_end: float = T_END, ba: float = 0.0,
-             scheme: str = "RK4"):  # fmt: skip
+def simulate(segments: int, dt: float, t_end: float = T_END, ba: float = 0.0, scheme: str = "RK4"):
     def winch(t: float) -> tuple[list[float], list[float]]:
         return [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]
 
@@ -150,19 +157,35 @@ def main() -> None:
     for n, dt in plan:
         r = simulate(n, dt, a.t_end, a.ba, a.scheme)
         runs.append((n, dt, r))
-        print(f"MoorDyn {n:3d} segments, dt {dt:.3g} s: set-up {r.init_s:.2f} s, solve "
-              f"{r.solve_s:.2f} s", file=sys.stderr, flush=True)  # fmt: skip
+        print(
+            f"MoorDyn {n:3d} segments, dt {dt:.3g} s: set-up {r.init_s:.2f} s, solve "
+            f"{r.solve_s:.2f} s",
+            file=sys.stderr,
+            flush=True,
+        )
     ref = runs[-1][2]
     every = round(0.1 / COUPLING)
     rows = []
     for n, dt, r in runs:
-        diff = max(abs(a_ - b_) / b_ for a_, b_ in zip(r.columns["winch_tension_N"][::every],
-                                                        ref.columns["winch_tension_N"][::every],
-                                                        strict=True))  # fmt: skip
-        rows.append({"segments": n, "dt_s": dt, "setup_s": r.init_s, "solve_s": r.solve_s,
-                     "max_rel_diff_to_reference": diff,
-                     "winch_tension_0_N": r.columns["winch_tension_N"][0],
-                     "winch_tension_end_N": r.columns["winch_tension_N"][-1]})  # fmt: skip
+        diff = max(
+            abs(a_ - b_) / b_
+            for a_, b_ in zip(
+                r.columns["winch_tension_N"][::every],
+                ref.columns["winch_tension_N"][::every],
+                strict=True,
+            )
+        )
+        rows.append(
+            {
+                "segments": n,
+                "dt_s": dt,
+                "setup_s": r.init_s,
+                "solve_s": r.solve_s,
+                "max_rel_diff_to_reference": diff,
+                "winch_tension_0_N": r.columns["winch_tension_N"][0],
+                "winch_tension_end_N": r.columns["winch_tension_N"][-1],
+            }
+        )
     a.out.mkdir(parents=True, exist_ok=True)
     write_csv(a.out / "moordyn_payout.csv", ref, every)
     study = {
@@ -178,12 +201,16 @@ def main() -> None:
     if a.single:
         print(json.dumps(study))
         return
-    print(f"{'segments':>8} {'dt [s]':>9} {'set-up [s]':>10} {'solve [s]':>9} {'max diff':>9} "
-          f"{'T(0) [N]':>9} {'T(end) [N]':>10}")  # fmt: skip
+    print(
+        f"{'segments':>8} {'dt [s]':>9} {'set-up [s]':>10} {'solve [s]':>9} {'max diff':>9} "
+        f"{'T(0) [N]':>9} {'T(end) [N]':>10}"
+    )
     for r in rows:
-        print(f"{r['segments']:8d} {r['dt_s']:9.3g} {r['setup_s']:10.2f} {r['solve_s']:9.2f} "
-              f"{r['max_rel_diff_to_reference']:9.2e} {r['winch_tension_0_N']:9.2f} "
-              f"{r['winch_tension_end_N']:10.2f}")  # fmt: skip
+        print(
+            f"{r['segments']:8d} {r['dt_s']:9.3g} {r['setup_s']:10.2f} {r['solve_s']:9.2f} "
+            f"{r['max_rel_diff_to_reference']:9.2e} {r['winch_tension_0_N']:9.2f} "
+            f"{r['winch_tension_end_N']:10.2f}"
+        )
 
 
 if __name__ == "__main__":

@@ -37,9 +37,17 @@ CHAIN = dict(diameter=0.216, mass=288.0, ea=1.2326e9, cd=1.333, ca=1.0, cd_ax=0.
 
 
 def case(segments: int, dt: float | None, thresh_ic: float = 1e-3) -> Case:
-    options = {"g": 9.81, "rho": 1025.0, "WtrDpth": 100.0, "kBot": 3.0e6, "cBot": 3.0e5,
-               "threshIC": thresh_ic, "TmaxIC": 300.0, "disableOutput": 1,
-               "disableOutTime": 1}  # fmt: skip
+    options = {
+        "g": 9.81,
+        "rho": 1025.0,
+        "WtrDpth": 100.0,
+        "kBot": 3.0e6,
+        "cBot": 3.0e5,
+        "threshIC": thresh_ic,
+        "TmaxIC": 300.0,
+        "disableOutput": 1,
+        "disableOutTime": 1,
+    }
     if dt is not None:
         options["dtM"] = dt
     return Case(
@@ -75,8 +83,7 @@ def default_step(segments: int) -> float:
     return 0.04 / segments
 
 
-def simulate(segments: int, dt: float | None = None, t_end: float = T_END,
-             thresh_ic: float = 1e-3):  # fmt: skip
+def simulate(segments: int, dt: float | None = None, t_end: float = T_END, thresh_ic: float = 1e-3):
     """One MoorDyn run: :class:`moordyn_case.Run` with the fairlead x added."""
     dt = default_step(segments) if dt is None else dt
     r = run(case(segments, dt, thresh_ic), fairlead, record, t_end)
@@ -105,10 +112,20 @@ def main() -> None:
     if a.csv:
         write_csv(a.csv, r)
     ten = r.columns["tension_N"]
-    print(json.dumps({"version": importlib.metadata.version("moordyn"), "segments": a.segments,
-                      "dt_s": r.dt, "init_s": r.init_s, "solve_s": r.solve_s,
-                      "tension_0_N": ten[0], "tension_max_N": max(ten),
-                      "tension_min_N": min(ten)}))  # fmt: skip
+    print(
+        json.dumps(
+            {
+                "version": importlib.metadata.version("moordyn"),
+                "segments": a.segments,
+                "dt_s": r.dt,
+                "init_s": r.init_s,
+                "solve_s": r.solve_s,
+                "tension_0_N": ten[0],
+                "tension_max_N": max(ten),
+                "tension_min_N": min(ten),
+            }
+        )
+    )
 
 
 if __name__ == "__main__":

@@ -53,11 +53,17 @@ def run_rancf(case, elements: int, repeats: int, folder: Path) -> dict:
     path.write_text(scenario_text(case, elements))
     times, out = [], None
     for _ in range(repeats):
-        p = subprocess.run([sys.executable, "-m", "rancf", "static", str(path), "--json"],
-                           capture_output=True, text=True)  # fmt: skip
+        p = subprocess.run(
+            [sys.executable, "-m", "rancf", "static", str(path), "--json"],
+            capture_output=True,
+            text=True,
+        )
         if p.returncode:
-            return {"converged": False, "exit": p.returncode,
-                    "message": p.stderr.strip().splitlines()[-1]}  # fmt: skip
+            return {
+                "converged": False,
+                "exit": p.returncode,
+                "message": p.stderr.strip().splitlines()[-1],
+            }
         out = json.loads(p.stdout)
         times.append(out["wall_time_s"])
     ends = out["reactions"]
@@ -92,8 +98,11 @@ def main() -> None:
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         for case in CASES:
-            row = {"case": case.name, "expected": expected(case).tolist(),
-                   "moorpy": run_moorpy(case, a.moorpy_python, a.repeats)}  # fmt: skip
+            row = {
+                "case": case.name,
+                "expected": expected(case).tolist(),
+                "moorpy": run_moorpy(case, a.moorpy_python, a.repeats),
+            }
             for n in a.elements:
                 row[f"rancf_{n}"] = r = run_rancf(case, n, a.repeats, Path(tmp))
                 err = f"{100 * r['error']:.3f} %" if r["converged"] else f"exit {r['exit']}"
@@ -109,19 +118,26 @@ def markdown(rows: list[dict], elements: list[int]) -> str:
     """The docs' table: per case the expected fairlead force, rancf's at the first mesh, the
     largest error per mesh and the solve times (rancf's at the first mesh, MoorPy's)."""
     meshes = " / ".join(str(n) for n in elements)
-    out = [f"| case | expected fairlead (H, V) | rancf, {elements[0]} el. | error, {meshes} el. "
-           f"| rancf time | MoorPy time |", "|---|---|---|---|---|---|"]  # fmt: skip
+    out = [
+        f"| case | expected fairlead (H, V) | rancf, {elements[0]} el. | error, {meshes} el. "
+        f"| rancf time | MoorPy time |",
+        "|---|---|---|---|---|---|",
+    ]
     for row in rows:
         first = row[f"rancf_{elements[0]}"]
         runs = [row[f"rancf_{n}"] for n in elements]
         errs = " / ".join(f"{100 * r['error']:.2f} %" if r["converged"] else "exit 3" for r in runs)
         want = row["expected"]
-        got = (f"{-first['forces'][2]:.1f}, {-first['forces'][3]:.1f} N" if first["converged"]
-               else "exit 3")  # fmt: skip
+        got = (
+            f"{-first['forces'][2]:.1f}, {-first['forces'][3]:.1f} N"
+            if first["converged"]
+            else "exit 3"
+        )
         rt = f"{1e3 * first['time_s']:.1f} ms" if first["converged"] else ""
         mt = f"{1e3 * row['moorpy']['time_s']:.2f} ms" if "time_s" in row["moorpy"] else ""
-        out.append(f"| {row['case']} | {-want[2]:.1f}, {-want[3]:.1f} N | {got} | {errs} "
-                   f"| {rt} | {mt} |")  # fmt: skip
+        out.append(
+            f"| {row['case']} | {-want[2]:.1f}, {-want[3]:.1f} N | {got} | {errs} | {rt} | {mt} |"
+        )
     return "\n".join(out)
 
 

@@ -55,13 +55,28 @@ def moordyn_run(case: str, dt: float) -> tuple[np.ndarray, np.ndarray, float, fl
     """MoorDyn's fairlead tension of ``case`` at its step ``dt``: times, tensions, the solve's
     and the initial state's (its ``Init``) wall times."""
     span, depth, length, segments = CASES[case]
-    options = {"g": 9.81, "rho": 1025.0, "WtrDpth": depth, "kBot": 1.0e5, "cBot": 1.0e4,
-               "FrictionCoefficient": 0.5, "dtM": dt, "dtIC": 1.0, "TmaxIC": 200.0,
-               "CdScaleIC": 4.0, "threshIC": 1e-3, "disableOutput": 1,
-               "disableOutTime": 1}  # fmt: skip
-    case = Case(LineType("chain", ba=-1.0, **CHAIN),
-                [Point("Fixed", (span, 0.0, -depth)), Point("Coupled", (0.0, 0.0, 0.0))],
-                length, segments, options=options)  # fmt: skip
+    options = {
+        "g": 9.81,
+        "rho": 1025.0,
+        "WtrDpth": depth,
+        "kBot": 1.0e5,
+        "cBot": 1.0e4,
+        "FrictionCoefficient": 0.5,
+        "dtM": dt,
+        "dtIC": 1.0,
+        "TmaxIC": 200.0,
+        "CdScaleIC": 4.0,
+        "threshIC": 1e-3,
+        "disableOutput": 1,
+        "disableOutTime": 1,
+    }
+    case = Case(
+        LineType("chain", ba=-1.0, **CHAIN),
+        [Point("Fixed", (span, 0.0, -depth)), Point("Coupled", (0.0, 0.0, 0.0))],
+        length,
+        segments,
+        options=options,
+    )
 
     def record(system: object, line: object, f: list[float]) -> dict[str, float]:
         return {"tension": math.sqrt(sum(x * x for x in f))}
@@ -84,8 +99,11 @@ def rancf_run(case: str, step: float | None) -> tuple[np.ndarray, np.ndarray, fl
         path, out = Path(tmp) / "wd.toml", Path(tmp) / "run"
         path.write_text(text)
         t0 = time.perf_counter()
-        subprocess.run([sys.executable, "-m", "rancf", "simulate", str(path), "--out", str(out),
-                        "--quiet"], check=True, capture_output=True)  # fmt: skip
+        subprocess.run(
+            [sys.executable, "-m", "rancf", "simulate", str(path), "--out", str(out), "--quiet"],
+            check=True,
+            capture_output=True,
+        )
         wall = time.perf_counter() - t0
         rows = np.genfromtxt(out / "reactions.csv", delimiter=",", names=True)
         solve = json.loads((out / "summary.json").read_text())["solve_wall_time_s"]
@@ -113,14 +131,20 @@ def compare(case: str, dt: float, step: float | None, reference: Path | None) ->
     window = (tm >= 10.0) & (tm <= 30.0)
     ours, theirs = np.interp(tm[window], tr, fr), fm[window]
     return {
-        "case": case, "moordyn_segments": CASES[case][3], "moordyn_dt_s": dt,
+        "case": case,
+        "moordyn_segments": CASES[case][3],
+        "moordyn_dt_s": dt,
         "rancf_step_s": step or float(re.search(r"(?m)^step = (.*)$", text).group(1)),
-        "moordyn_mean_N": float(theirs.mean()), "rancf_mean_N": float(ours.mean()),
-        "moordyn_p2p_N": float(np.ptp(theirs)), "rancf_p2p_N": float(np.ptp(ours)),
+        "moordyn_mean_N": float(theirs.mean()),
+        "rancf_mean_N": float(ours.mean()),
+        "moordyn_p2p_N": float(np.ptp(theirs)),
+        "rancf_p2p_N": float(np.ptp(ours)),
         "max_diff_rel_mean": float(np.abs(ours - theirs).max() / theirs.mean()),
-        "moordyn_solve_s": solve_m, "moordyn_init_s": init_m, "rancf_solve_s": solve_r,
+        "moordyn_solve_s": solve_m,
+        "moordyn_init_s": init_m,
+        "rancf_solve_s": solve_r,
         "rancf_process_s": wall_r,
-    }  # fmt: skip
+    }
 
 
 def main() -> None:

@@ -73,10 +73,14 @@ def type_text(p: dict[str, Any]) -> list[tuple[str, str | None]]:
     if t == "array":
         n = (p.get("minItems"), p.get("maxItems"))
         size = (
-            f"{n[0]}" if n[0] is not None and n[0] == n[1]
-            else f"{n[0]}–{n[1]}" if None not in n
-            else f"≥ {n[0]}" if n[0] is not None else ""
-        )  # fmt: skip
+            f"{n[0]}"
+            if n[0] is not None and n[0] == n[1]
+            else f"{n[0]}–{n[1]}"
+            if None not in n
+            else f"≥ {n[0]}"
+            if n[0] is not None
+            else ""
+        )
         head = f"array ({size}) of " if size else "array of "
         return [(head, None), *type_text(p.get("items", {}))]
     if t == "object" and "patternProperties" in p:
@@ -96,8 +100,10 @@ def allowed_text(p: dict[str, Any]) -> str:
         (f"≥ {_number(p['minimum'])}") if "minimum" in p else None,
         (f"> {_number(p['exclusiveMinimum'])}") if "exclusiveMinimum" in p else None,
     ]
-    hi = [(f"≤ {_number(p['maximum'])}") if "maximum" in p else None,
-          (f"< {_number(p['exclusiveMaximum'])}") if "exclusiveMaximum" in p else None]  # fmt: skip
+    hi = [
+        (f"≤ {_number(p['maximum'])}") if "maximum" in p else None,
+        (f"< {_number(p['exclusiveMaximum'])}") if "exclusiveMaximum" in p else None,
+    ]
     bounds = [b for b in lo + hi if b]
     if bounds:
         out.append(", ".join(bounds))
@@ -193,14 +199,16 @@ def key_rows(model: str, props: dict[str, Any], required: list[str]) -> list[lis
         items = p.get("items") if isinstance(p.get("items"), dict) else {}
         if items.get("description"):
             desc = f"{desc}. Each: {plain(items['description'])}"
-        rows.append([
-            name,
-            _type_para(p),
-            _para(nodes.Text(default_text(p))),
-            _para(nodes.Text(allowed_text(p))),
-            _para(nodes.Text(units(desc))),
-            _para(nodes.Text(desc)),
-        ])  # fmt: skip
+        rows.append(
+            [
+                name,
+                _type_para(p),
+                _para(nodes.Text(default_text(p))),
+                _para(nodes.Text(allowed_text(p))),
+                _para(nodes.Text(units(desc))),
+                _para(nodes.Text(desc)),
+            ]
+        )
     return rows
 
 
@@ -225,10 +233,12 @@ class ScenarioReference(SphinxDirective):
         out: list[nodes.Node] = []
         top = nodes.section(ids=[section_id("scenario")], names=[section_id("scenario")])
         top += nodes.title(text="Top-level keys")
-        top += _para(nodes.Text(
-            "A file holds either one flexible body (geometry, mesh, section and material, all "
-            "required) or a system ([[bodies]]), never both."
-        ))  # fmt: skip
+        top += _para(
+            nodes.Text(
+                "A file holds either one flexible body (geometry, mesh, section and material, all "
+                "required) or a system ([[bodies]]), never both."
+            )
+        )
         top += _table(HEADERS, key_rows("scenario", schema["properties"], []), WIDTHS)
         out.append(top)
         for name, model in sorted(schema["$defs"].items()):

@@ -35,9 +35,11 @@ for row in q:
     slack.append(force[mid & (pos[:, 1] < 0)].mean())
 tight, slack = np.array(tight), np.array(slack)
 slips = t >= 3.4
-print(f"while slipping: tight/slack {np.mean(tight[slips] / slack[slips]):.4f} "
-      f"(e^(0.3 pi) = {np.exp(0.3 * np.pi):.4f}), torque "
-      f"{np.mean(0.102 * (tight[slips] - slack[slips])):.4f} N m (0.8960)")  # fmt: skip
+print(
+    f"while slipping: tight/slack {np.mean(tight[slips] / slack[slips]):.4f} "
+    f"(e^(0.3 pi) = {np.exp(0.3 * np.pi):.4f}), torque "
+    f"{np.mean(0.102 * (tight[slips] - slack[slips])):.4f} N m (0.8960)"
+)
 
 # %%
 # The torque the belt transmits follows the brake until it reaches the limit; then the belt

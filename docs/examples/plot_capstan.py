@@ -24,8 +24,10 @@ s = np.loadtxt(f"{out}/sensors.csv", delimiter=",", skiprows=1)
 col = open(f"{out}/sensors.csv").readline().strip().split(",").index
 t, tight, slack = s[:, 0], s[:, col("tight")], s[:, col("slack")]
 late = t >= 0.6
-print(f"tight/slack while slipping: {np.mean(tight[late] / slack[late]):.4f} "
-      f"(e^(0.3 pi) = {np.exp(0.3 * np.pi):.4f})")  # fmt: skip
+print(
+    f"tight/slack while slipping: {np.mean(tight[late] / slack[late]):.4f} "
+    f"(e^(0.3 pi) = {np.exp(0.3 * np.pi):.4f})"
+)
 
 # %%
 # The spans' tensions and their ratio: the pulled end starts smoothly over 0.5 s; once the rope

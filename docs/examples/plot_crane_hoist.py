@@ -20,8 +20,10 @@ scenario = files("rancf.examples") / "crane-hoist.toml"
 out = f"{tempfile.mkdtemp()}/run"
 main(["simulate", str(scenario), "--out", out, "--quiet"])
 s = np.genfromtxt(f"{out}/sensors.csv", delimiter=",", names=True)
-print(f"load lifted {s['hook_y'][-1] - s['hook_y'][0]:.4f} m "
-      f"(rope reeled in: {s['hoist_length'][0] - s['hoist_length'][-1]:.4f} m)")  # fmt: skip
+print(
+    f"load lifted {s['hook_y'][-1] - s['hook_y'][0]:.4f} m "
+    f"(rope reeled in: {s['hoist_length'][0] - s['hoist_length'][-1]:.4f} m)"
+)
 
 # %%
 # The load's height follows the rope taken in; the tension at the drum carries the wire's

@@ -20,8 +20,10 @@ out = f"{tempfile.mkdtemp()}/run"
 main(["simulate", str(scenario), "--out", out, "--quiet"])
 s = np.loadtxt(f"{out}/sensors.csv", delimiter=",", skiprows=1)
 col = open(f"{out}/sensors.csv").readline().strip().split(",").index
-print(f"tower tension: {s[0, col('tower_tension')] / 1e3:.1f} kN at rest, "
-      f"{s[:, col('tower_tension')].max() / 1e3:.1f} kN at most")  # fmt: skip
+print(
+    f"tower tension: {s[0, col('tower_tension')] / 1e3:.1f} kN at rest, "
+    f"{s[:, col('tower_tension')].max() / 1e3:.1f} kN at most"
+)
 
 # %%
 # The mid-span point seen along the span (it swings out and up), and the tension at a tower.

@@ -13,8 +13,14 @@ import numpy as np
 
 from rancf.errors import InputError
 
-__all__ = ["DynamicOptions", "MAX_STEPS", "MAX_NEWTON", "MAX_LOAD_STEPS", "MAX_SPIN_RATE",
-           "SPIN_RATES"]  # fmt: skip
+__all__ = [
+    "DynamicOptions",
+    "MAX_STEPS",
+    "MAX_NEWTON",
+    "MAX_LOAD_STEPS",
+    "MAX_SPIN_RATE",
+    "SPIN_RATES",
+]
 
 #: Most time steps (``t_end / step`` of a fixed-step run) and stored states (``t_end /
 #: output_step``) a run may have: a billion steps take hours even for the smallest model, so a

@@ -52,25 +52,39 @@ def test_build_up_law(f):
         np.testing.assert_allclose(np.atleast_1d(g.acceleration(t)), acc, rtol=1e-4, atol=1e-4)
     # smooth at both ends: rate and acceleration continuous
     for t in (1e-9, b - 1e-9):
-        np.testing.assert_allclose(g.rate(t), f.rate(t) if t > b / 2 else 0 * f.rate(t),
-                                   atol=1e-6)  # fmt: skip
+        np.testing.assert_allclose(g.rate(t), f.rate(t) if t > b / 2 else 0 * f.rate(t), atol=1e-6)
     # the file form carries it (a constant as a table of two equal rows)
     if f.vector:
         back = time_function(SupportTable(at="end", motion=g.to_toml()).motion)
     else:
-        back = time_function(JointTable(name="j", kind="pin", between=["a", "b"],
-                                        angle=g.to_toml()).angle)  # fmt: skip
+        back = time_function(
+            JointTable(name="j", kind="pin", between=["a", "b"], angle=g.to_toml()).angle
+        )
     assert back.build_up == b
     np.testing.assert_allclose(back.value(0.2), g.value(0.2), rtol=1e-13)
 
 
 def test_the_core_evaluates_the_same_build_up():
     sc = parse_scenario(
-        {"geometry": {"kind": "line", "start": [0, 0], "end": [1, 0]}, "mesh": {"elements": 2},
-         "section": {"radius": 0.01}, "material": {"density": 1000.0, "youngs_modulus": 1e9},
-         "supports": [{"at": "start", "kind": "pin", "motion": {
-             "harmonic": 2.0, "amplitude": [0.03, 0.1], "phase_deg": 30.0, "build_up": 0.4}}]}
-    )  # fmt: skip
+        {
+            "geometry": {"kind": "line", "start": [0, 0], "end": [1, 0]},
+            "mesh": {"elements": 2},
+            "section": {"radius": 0.01},
+            "material": {"density": 1000.0, "youngs_modulus": 1e9},
+            "supports": [
+                {
+                    "at": "start",
+                    "kind": "pin",
+                    "motion": {
+                        "harmonic": 2.0,
+                        "amplitude": [0.03, 0.1],
+                        "phase_deg": 30.0,
+                        "build_up": 0.4,
+                    },
+                }
+            ],
+        }
+    )
     f = sc.data["supports"][0]["motion"]
     assert f.build_up == 0.4 and sc.notes == []  # stated: no default, no note
     system = build_system(sc)
@@ -86,8 +100,9 @@ def test_the_core_evaluates_the_same_build_up():
 def _tether(motion: str) -> str:
     text = (files("rancf.examples") / "tether-payload.toml").read_text(encoding="utf-8")
     text = text.replace("[0.5, -0.8660254037844386]", "[0.0, -1.0]")  # hung straight down
-    text = text.replace('kind = "pin"\n\n[[joints]]', f'kind = "pin"\nmotion = {motion}\n\n'
-                        "[[joints]]")  # fmt: skip
+    text = text.replace(
+        'kind = "pin"\n\n[[joints]]', f'kind = "pin"\nmotion = {motion}\n\n[[joints]]'
+    )
     text = text.replace("rho_inf = 1.0", 'rho_inf = 1.0\ninitial_state = "static"')
     return text + '\n[[sensors]]\nname = "top_tension"\nkind = "axial_force"\nat = "tether:start"\n'
 
@@ -111,9 +126,11 @@ def test_a_heaving_tether_builds_up_without_compression(tmp_path, monkeypatch, c
     assert main(["simulate", "heave.toml", "--out", "heave", "--quiet"]) == 0
     err = capsys.readouterr().err.splitlines()
     note = [x for x in err if "build" in x]
-    assert note == ["rancf: supports[0].motion: the harmonic would start with a jump of its "
-                    "rate to 0.628; it builds up over 2 s (2 periods; give build_up = 0 to "
-                    "start it at once)"]  # fmt: skip
+    assert note == [
+        "rancf: supports[0].motion: the harmonic would start with a jump of its "
+        "rate to 0.628; it builds up over 2 s (2 periods; give build_up = 0 to "
+        "start it at once)"
+    ]
     tension = _top_tension(tmp_path / "heave")
     assert tension.min() > 10.0 and tension.max() < 31.0, (tension.min(), tension.max())
     assert main(["simulate", "jump.toml", "--out", "jump", "--quiet"]) == 0

@@ -27,8 +27,13 @@ RHO_A, EA = 7850.0 * WIRE.area, 2.0e11 * WIRE.area
 
 @pytest.mark.parametrize(("element", "dim"), [("rancf", 2), ("rancf", 3), ("rod", 3)])
 def test_mass_is_rho_a_l_and_forces_match_central_differences(element, dim):
-    m = Model(_arc_mesh(3, dim), element, Section.circular(0.01),
-              Material(1000.0, 1e7, poisson_ratio=0.3), stress_free="straight")  # fmt: skip
+    m = Model(
+        _arc_mesh(3, dim),
+        element,
+        Section.circular(0.01),
+        Material(1000.0, 1e7, poisson_ratio=0.3),
+        stress_free="straight",
+    )
     l_ref = reference_length(m)
     for length in (0.3 * l_ref, 2.7 * l_ref):
         set_unstretched_length(m, length)
@@ -38,12 +43,14 @@ def test_mass_is_rho_a_l_and_forces_match_central_differences(element, dim):
     y = m.y0 + 1e-3 * rng.standard_normal(m.n)
     f, ab = m.internal_force_and_tangent(y)
     h = 1e-6
-    f_fd = np.array([(m.strain_energy(y + h * e) - m.strain_energy(y - h * e)) / (2 * h)
-                     for e in np.eye(m.n)])  # fmt: skip
+    f_fd = np.array(
+        [(m.strain_energy(y + h * e) - m.strain_energy(y - h * e)) / (2 * h) for e in np.eye(m.n)]
+    )
     assert np.max(np.abs(f - f_fd)) < 1e-6 * np.max(np.abs(f))
     k = m.dense(ab)
-    k_fd = np.column_stack([(m.internal_force(y + h * e) - m.internal_force(y - h * e)) / (2 * h)
-                            for e in np.eye(m.n)])  # fmt: skip
+    k_fd = np.column_stack(
+        [(m.internal_force(y + h * e) - m.internal_force(y - h * e)) / (2 * h) for e in np.eye(m.n)]
+    )
     assert np.max(np.abs(k - k_fd)) < 1e-6 * np.max(np.abs(k))
 
 
@@ -69,13 +76,20 @@ def test_scaled_unloaded_state_moved_rigidly_carries_no_force(element, dim):
 def hoist(length: float, n_el: int = 10) -> System:
     """A 10 kg load on a steel wire (radius 5 mm) hanging from a pin at the origin, the wire
     meshed 5 m long and given ``length``."""
-    wire = Model(mesh_line([0.0, 0.0], [0.0, -5.0], n_el), "ancf", WIRE, STEEL,
-                 [Support(0, "pin")], gravity=[0.0, -G])  # fmt: skip
+    wire = Model(
+        mesh_line([0.0, 0.0], [0.0, -5.0], n_el),
+        "ancf",
+        WIRE,
+        STEEL,
+        [Support(0, "pin")],
+        gravity=[0.0, -G],
+    )
     set_unstretched_length(wire, length, anchor=0)
     end = wire.q0[-4:-2]
     load = PointMass(2, LOAD, tuple(end))
-    return System({"wire": wire, "load": load}, [Joint("pin", ("wire:end", "load"))],
-                  gravity=[0.0, -G])  # fmt: skip
+    return System(
+        {"wire": wire, "load": load}, [Joint("pin", ("wire:end", "load"))], gravity=[0.0, -G]
+    )
 
 
 def static_stretch(length: float) -> float:
@@ -84,8 +98,10 @@ def static_stretch(length: float) -> float:
     ``EA λ (λ² - 1) / 2 = T`` (Green–Lagrange strain); elongation ``∫ (λ - 1) ds``."""
     s, w = np.polynomial.legendre.leggauss(40)
     s = 0.5 * length * (s + 1)
-    lam = [brentq(lambda x, t=t: EA * x * (x * x - 1) / 2 - t, 1.0, 1.1)
-           for t in (LOAD + RHO_A * s) * G]  # fmt: skip
+    lam = [
+        brentq(lambda x, t=t: EA * x * (x * x - 1) / 2 - t, 1.0, 1.1)
+        for t in (LOAD + RHO_A * s) * G
+    ]
     return float(0.5 * length * np.sum(w * (np.array(lam) - 1.0)))
 
 

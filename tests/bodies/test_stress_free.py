@@ -71,15 +71,17 @@ def test_force_and_tangent_against_central_differences(element, dim):
     y = m.y0 + 1e-3 * rng.standard_normal(m.n)
     f, ab = m.internal_force_and_tangent(y)
     h = 1e-6
-    f_fd = np.array([(m.strain_energy(y + h * e) - m.strain_energy(y - h * e)) / (2 * h)
-                     for e in np.eye(m.n)])  # fmt: skip
+    f_fd = np.array(
+        [(m.strain_energy(y + h * e) - m.strain_energy(y - h * e)) / (2 * h) for e in np.eye(m.n)]
+    )
     assert np.max(np.abs(f - f_fd)) < 1e-6 * np.max(np.abs(f))
     k = np.zeros((m.n, m.n))
     for j in range(m.n):
         for i in range(max(0, j - m.ku), min(m.n, j + m.ku + 1)):
             k[i, j] = ab[m.ku + i - j, j]
-    k_fd = np.column_stack([(m.internal_force(y + h * e) - m.internal_force(y - h * e)) / (2 * h)
-                            for e in np.eye(m.n)])  # fmt: skip
+    k_fd = np.column_stack(
+        [(m.internal_force(y + h * e) - m.internal_force(y - h * e)) / (2 * h) for e in np.eye(m.n)]
+    )
     assert np.max(np.abs(k - k_fd)) < 1e-6 * np.max(np.abs(k))
 
 

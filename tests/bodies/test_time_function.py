@@ -52,8 +52,14 @@ def test_spin_up_law_of_kane_ryan_banerjee():
     f = TimeFunction.spin_up(big_t, w)
     for t in [0.0, 1.0, 5.0, 7.5, 14.999, 15.0, 20.0]:
         if t <= big_t:
-            th = w / big_t * (t**2 / 2 + (big_t / (2 * math.pi)) ** 2
-                              * (math.cos(2 * math.pi * t / big_t) - 1))  # fmt: skip
+            th = (
+                w
+                / big_t
+                * (
+                    t**2 / 2
+                    + (big_t / (2 * math.pi)) ** 2 * (math.cos(2 * math.pi * t / big_t) - 1)
+                )
+            )
         else:
             th = w * (t - big_t / 2)
         assert f.value(t) == pytest.approx(th, rel=1e-13, abs=1e-14)
@@ -154,9 +160,12 @@ def _from_toml(v):
 
 
 def test_bad_arguments():
-    for bad in (lambda: TimeFunction.ramp(0.0), lambda: TimeFunction.harmonic(-1.0),
-                lambda: TimeFunction.spin_up(1.0, [1.0, 2.0]),
-                lambda: TimeFunction.constant(float("nan")),
-                lambda: TimeFunction.from_callable(3.0)):  # fmt: skip
+    for bad in (
+        lambda: TimeFunction.ramp(0.0),
+        lambda: TimeFunction.harmonic(-1.0),
+        lambda: TimeFunction.spin_up(1.0, [1.0, 2.0]),
+        lambda: TimeFunction.constant(float("nan")),
+        lambda: TimeFunction.from_callable(3.0),
+    ):
         with pytest.raises(InputError):
             bad()

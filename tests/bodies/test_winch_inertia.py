@@ -45,14 +45,19 @@ def test_rigid_payout_has_the_material_acceleration_and_energy(element, at):
         y = shape(lam)
         v = shape(rate / l_ref) - shape(0.0)  # d/dt of w + λ (r - w): λ̇ (r - w)
         a = shape(acc / l_ref) - shape(0.0)
-        force = (m.mass_times(a) + 2 * rate * _band_times(m, c1, v)
-                 + _band_times(m, (acc - 2 * rate**2 / length) * c1
-                               + rate**2 / length * c2, y))  # fmt: skip
+        force = (
+            m.mass_times(a)
+            + 2 * rate * _band_times(m, c1, v)
+            + _band_times(m, (acc - 2 * rate**2 / length) * c1 + rate**2 / length * c2, y)
+        )
         sign = 1.0 if at == "start" else -1.0  # material moves away from the winch
         expected = m.to_y(m.assemble_vector(m.kernel.gravity_forces(sign * acc * e)))
         assert np.max(np.abs(force - expected)) < 1e-10 * np.max(np.abs(expected))
-        kinetic = (0.5 * v @ m.mass_times(v) + rate * v @ _band_times(m, c1, y)
-                   + 0.5 * rate**2 / length * y @ _band_times(m, d2, y))  # fmt: skip
+        kinetic = (
+            0.5 * v @ m.mass_times(v)
+            + rate * v @ _band_times(m, c1, y)
+            + 0.5 * rate**2 / length * y @ _band_times(m, d2, y)
+        )
         assert kinetic == pytest.approx(0.5 * m.props.rho_a * length * rate**2, rel=1e-12)
 
 
@@ -107,9 +112,15 @@ def test_curved_motion_against_material_time_differences(at):
         kinetic_fd += 0.5 * w * vel @ vel
     ll, rate, acc2 = length_of(t0), 0.7 + 0.8 * t0, 0.8
     y, v, a = q_of(t0), q1 + 2 * t0 * q2, 2 * q2
-    force = (m.mass_times(a) + 2 * rate * _band_times(m, c1, v)
-             + _band_times(m, (acc2 - 2 * rate**2 / ll) * c1 + rate**2 / ll * c2, y))  # fmt: skip
+    force = (
+        m.mass_times(a)
+        + 2 * rate * _band_times(m, c1, v)
+        + _band_times(m, (acc2 - 2 * rate**2 / ll) * c1 + rate**2 / ll * c2, y)
+    )
     assert np.max(np.abs(force - force_fd)) < 1e-5 * np.max(np.abs(force))
-    kinetic = (0.5 * v @ m.mass_times(v) + rate * v @ _band_times(m, c1, y)
-               + 0.5 * rate**2 / ll * y @ _band_times(m, d2, y))  # fmt: skip
+    kinetic = (
+        0.5 * v @ m.mass_times(v)
+        + rate * v @ _band_times(m, c1, y)
+        + 0.5 * rate**2 / ll * y @ _band_times(m, d2, y)
+    )
     assert kinetic == pytest.approx(kinetic_fd, rel=1e-6)

@@ -31,8 +31,9 @@ def test_millimetres_are_converted_to_metres_with_a_note(tmp_path, capsys):
     m = _quarter_circle(tmp_path / "arc_m.dxf", 1.0, 6)
     (a,), (b,) = read_curves(mm), read_curves(m)
     assert np.abs(a.curve.points - b.curve.points).max() < 1e-15  # 500 mm -> 0.5 m
-    assert a.notes == ("arc_mm.dxf: $INSUNITS = 4 (millimeters): lengths converted to metres "
-                       "(× 0.001)",)  # fmt: skip
+    assert a.notes == (
+        "arc_mm.dxf: $INSUNITS = 4 (millimeters): lengths converted to metres (× 0.001)",
+    )
     assert b.notes == ()
     model = load_scenario(_scenario(tmp_path, "arc_mm.dxf", "0")).build_model()
     assert model.mesh.arc_lengths().sum() == pytest.approx(0.25 * np.pi, rel=1e-12)
@@ -65,9 +66,12 @@ def test_fit_point_spline_is_the_cubic_through_its_points(tmp_path):
     for p in 0.01 * np.array(fit[1:-1]):  # every inner fit point (in metres) lies on the curve
         u = np.linspace(lo, hi, 2001)
         k = int(np.argmin(np.linalg.norm(c.curve(u) - p, axis=1)))
-        res = minimize_scalar(lambda x, p=p: np.linalg.norm(c.curve(np.array([x]))[0] - p),
-                              bounds=(u[max(k - 1, 0)], u[min(k + 1, 2000)]), method="bounded",
-                              options={"xatol": 1e-14})  # fmt: skip
+        res = minimize_scalar(
+            lambda x, p=p: np.linalg.norm(c.curve(np.array([x]))[0] - p),
+            bounds=(u[max(k - 1, 0)], u[min(k + 1, 2000)]),
+            method="bounded",
+            options={"xatol": 1e-14},
+        )
         assert res.fun < 1e-10
     ends = c.curve(np.array([lo, hi]))
     assert np.abs(ends - 0.01 * np.array([fit[0], fit[-1]])).max() < 1e-15

@@ -46,9 +46,12 @@ def test_a_uniform_stretch_carries_ea_times_the_stretch_minus_one(dim):
     ½ EA (λ − 1)² L, and the end forces ±EA (λ − 1) (the Green–Lagrange law: EA ε λ)."""
     length, lam = 0.8, 1.25
     end = [length] + [0.0] * (dim - 1)
-    models = {law: Model(mesh_line([0.0] * dim, end, 4), "rancf", SEC,
-                         Material(3.0, 1.0e3, axial_strain=law))
-              for law in ("engineering", "green_lagrange")}  # fmt: skip
+    models = {
+        law: Model(
+            mesh_line([0.0] * dim, end, 4), "rancf", SEC, Material(3.0, 1.0e3, axial_strain=law)
+        )
+        for law in ("engineering", "green_lagrange")
+    }
     expected = {"engineering": EA * (lam - 1.0), "green_lagrange": EA * 0.5 * (lam**2 - 1) * lam}
     for law, model in models.items():
         y = model.y0.reshape(model.n_nodes, 2, dim).copy()

@@ -241,8 +241,14 @@ def test_straight_rod_twists_by_tl_over_gj():
     length = float(np.linalg.norm(b - a))
     t = (b - a) / length
     torque = 1e-3 * gj / length  # a twist of 1e-3 rad
-    m = Model(mesh_line(a, b, 6), "rod", sec, STEEL, [Support(0, "clamp")],
-              point_loads=[PointLoad(-1, moment=tuple(torque * t))])  # fmt: skip
+    m = Model(
+        mesh_line(a, b, 6),
+        "rod",
+        sec,
+        STEEL,
+        [Support(0, "clamp")],
+        point_loads=[PointLoad(-1, moment=tuple(torque * t))],
+    )
     res = solve_static(m, load_steps=1)
     phi = res.q.reshape(m.n_nodes, 7)[:, 6]
     s = np.linspace(0.0, length, m.n_nodes)
@@ -258,8 +264,14 @@ def test_straight_cantilever_tip_deflection(direction):
     ei = E * sec.inertia
     length, n = 1.0, 8
     force = 1e-5 * 3 * ei / length**3  # tip deflection 1e-5 L
-    m = Model(mesh_line([0, 0, 0], [length, 0, 0], n), "rod", sec, STEEL, [Support(0, "clamp")],
-              point_loads=[PointLoad(-1, tuple(force * np.array(direction)))])  # fmt: skip
+    m = Model(
+        mesh_line([0, 0, 0], [length, 0, 0], n),
+        "rod",
+        sec,
+        STEEL,
+        [Support(0, "clamp")],
+        point_loads=[PointLoad(-1, tuple(force * np.array(direction)))],
+    )
     tip = m.node_positions(solve_static(m, load_steps=1).q)[-1]
     want = force * length**3 / (3 * ei)
     assert tip @ np.array(direction) == pytest.approx(want, rel=1e-4)
@@ -272,8 +284,14 @@ def quarter_circle_tip(n: int) -> tuple[float, float]:
     ei, gj = E * sec.inertia, STEEL.shear * sec.torsion
     p = 1e-6 * ei / r**2
     arc = conic_arc_through([0, 0, 0], [r, r, 0], [45, 45], [r - r / np.sqrt(2), r / np.sqrt(2), 0])
-    m = Model(mesh_conic(arc, n), "rod", sec, STEEL, [Support(0, "clamp")],
-              point_loads=[PointLoad(-1, (0.0, 0.0, p))])  # fmt: skip
+    m = Model(
+        mesh_conic(arc, n),
+        "rod",
+        sec,
+        STEEL,
+        [Support(0, "clamp")],
+        point_loads=[PointLoad(-1, (0.0, 0.0, p))],
+    )
     tip = m.node_positions(solve_static(m, load_steps=1).q)[-1, 2]
     return tip, p * r**3 * (np.pi / (4 * ei) + (3 * np.pi / 4 - 2) / gj)
 
@@ -296,8 +314,14 @@ def test_end_moment_rolls_a_cantilever_into_a_circle(radius, gap):
     sec = Section.circular(radius)
     length = 1.0
     moment = 2 * np.pi * E * sec.inertia / length
-    m = Model(mesh_line([0, 0, 0], [length, 0, 0], 16), "rod", sec, STEEL, [Support(0, "clamp")],
-              point_loads=[PointLoad(-1, moment=(0.0, 0.0, moment))])  # fmt: skip
+    m = Model(
+        mesh_line([0, 0, 0], [length, 0, 0], 16),
+        "rod",
+        sec,
+        STEEL,
+        [Support(0, "clamp")],
+        point_loads=[PointLoad(-1, moment=(0.0, 0.0, moment))],
+    )
     res = solve_static(m, load_steps=20)
     pos = m.node_positions(res.q)
     assert np.linalg.norm(pos[-1]) < gap * length

@@ -54,11 +54,13 @@ def test_inertia_tangents_against_finite_differences_of_the_force(geo, rotary):
     y, v, a = state(m, rng)
     c = 0.7
     free = ~m.fixed
-    for k, (coef, fun, x) in enumerate((
-        ((1, 0, 0), lambda z: inertia(m, z, v, a, c)[0], y),
-        ((0, 1, 0), lambda z: inertia(m, y, z, a, c)[0], v),
-        ((0, 0, 1), lambda z: inertia(m, y, v, z, c)[0], a),
-    )):  # fmt: skip
+    for k, (coef, fun, x) in enumerate(
+        (
+            ((1, 0, 0), lambda z: inertia(m, z, v, a, c)[0], y),
+            ((0, 1, 0), lambda z: inertia(m, y, z, a, c)[0], v),
+            ((0, 0, 1), lambda z: inertia(m, y, v, z, c)[0], a),
+        )
+    ):
         jac = inertia(m, y, v, a, c, *coef)[1][np.ix_(free, free)]
         fd = fd_jacobian(fun, x)[np.ix_(free, free)]
         assert np.abs(jac).max() > 0
@@ -212,8 +214,13 @@ def test_kinetic_energy_of_a_rigid_rotation_is_exact_for_any_mesh(kind):
     exact = _exact_energy(arc, sec, MAT.density, w, c, rotary)
     tip = []
     for n in (4, 8, 16, 32, 64):
-        m = Model(mesh_conic(arc, n), element, sec, MAT,
-                  initial_motion=RigidMotion(angular_velocity=w, about=c))  # fmt: skip
+        m = Model(
+            mesh_conic(arc, n),
+            element,
+            sec,
+            MAT,
+            initial_motion=RigidMotion(angular_velocity=w, about=c),
+        )
         assert m.kinetic_energy(m.v0) == pytest.approx(exact, rel=1e-10)
         # angular momentum of a rigid rotation: L · ω = 2 T
         lmom = angular_momentum(m, m.q0, m.q_from_y(m.v0), c)[0]

@@ -49,8 +49,12 @@ def test_force_is_the_gradient_of_the_dissipation_in_v(dim, geo, k, strain):
     y, v = _state(model)
     f = damping_force(model, y, v)
     h = 1e-3
-    fd = np.array([(_dissipation(model, y, v + h * e) - _dissipation(model, y, v - h * e)) / (2 * h)
-                   for e in np.eye(model.n)])  # fmt: skip
+    fd = np.array(
+        [
+            (_dissipation(model, y, v + h * e) - _dissipation(model, y, v - h * e)) / (2 * h)
+            for e in np.eye(model.n)
+        ]
+    )
     assert np.abs(fd - f).max() <= 1e-9 * np.abs(f).max()
 
 
@@ -112,8 +116,12 @@ def test_no_coefficients_no_force_and_the_coefficients_reach_the_core():
     st = section_stiffness(_model(mesh))
     assert (st.damping_axial, st.damping_bending, st.damping_torsion) == (CA, CB, 0.0)
     both = damping_force(_model(mesh), y, v)
-    assert np.allclose(both, damping_force(axial, y, v) + damping_force(bend, y, v),
-                       rtol=1e-12, atol=1e-12 * np.abs(both).max())  # fmt: skip
+    assert np.allclose(
+        both,
+        damping_force(axial, y, v) + damping_force(bend, y, v),
+        rtol=1e-12,
+        atol=1e-12 * np.abs(both).max(),
+    )
     twice = damping_force(_model(mesh, 2 * CA, 2 * CB), y, v)
     assert np.allclose(twice, 2 * both, rtol=1e-12, atol=0.0)
 
@@ -127,8 +135,11 @@ def test_no_coefficients_no_force_and_the_coefficients_reach_the_core():
     ],
 )
 def test_keys_an_element_cannot_take_are_refused(element, kw, key):
-    mesh = mesh_line([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], 2) if element == "rod" else mesh_line(
-        [0.0, 0.0], [1.0, 0.0], 2)  # fmt: skip
+    mesh = (
+        mesh_line([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], 2)
+        if element == "rod"
+        else mesh_line([0.0, 0.0], [1.0, 0.0], 2)
+    )
     mat = Material(7850.0, E_MOD, poisson_ratio=0.3)
     with pytest.raises(InputError) as exc:
         Model(mesh, element, SEC, mat, strain_rate_damping=StrainRateDamping(**kw))
@@ -142,8 +153,7 @@ def test_velocity_jacobian_at_the_reference_is_the_scaled_elastic_tangent(dim, g
     # c_b / EI = β the damping's (4) is β K_T, which ties ε_q, κ_q to the elastic law's (a
     # spatial straight reference's K_T is the Hessian of κ², which has no rate: left out)
     beta = 1.3e-4
-    model = _model(_mesh(dim, geo, k), beta * E_MOD * SEC.area, beta * E_MOD * SEC.inertia,
-                   strain)  # fmt: skip
+    model = _model(_mesh(dim, geo, k), beta * E_MOD * SEC.area, beta * E_MOD * SEC.inertia, strain)
     _, kt = model.internal_force_and_tangent(model.y0)
     v = np.random.default_rng(4).normal(size=model.n)
     f, ab = damping_force(model, model.y0, v, ck=0.0, cv=1.0)
@@ -178,8 +188,9 @@ def test_rod_jacobians_against_central_differences(geo):
 @pytest.mark.parametrize("geo", ["straight", "conic"])
 def test_rod_rigid_motion_is_not_damped(geo):
     model = _rod(geo)
-    motion = RigidMotion(velocity=(0.3, -0.2, 0.5), angular_velocity=(1.1, -0.7, 0.4),
-                         about=(0.2, 0.1, -0.3))  # fmt: skip
+    motion = RigidMotion(
+        velocity=(0.3, -0.2, 0.5), angular_velocity=(1.1, -0.7, 0.4), about=(0.2, 0.1, -0.3)
+    )
     v = model.y_from_q(rigid_velocity(model, motion))
     deform = np.random.default_rng(9).normal(size=model.n) * np.abs(v).max()
     scale = np.abs(damping_force(model, model.y0, deform)).max()
@@ -191,8 +202,9 @@ def test_rod_velocity_jacobian_at_the_reference_is_the_scaled_elastic_tangent():
     # c_a / EA = c_t / GJ = c_b / EI = beta on a section with equal bending stiffnesses
     sec = Section(3.0e-4, 2.0e-8, 2.0e-8, 2.5e-8, (0.0, 0.0, 1.0))
     beta, e_mod = 2.0e-3, ROD_MAT.youngs_modulus
-    kv = StrainRateDamping(beta * e_mod * sec.area, beta * e_mod * sec.inertia,
-                           beta * ROD_MAT.shear * sec.torsion)  # fmt: skip
+    kv = StrainRateDamping(
+        beta * e_mod * sec.area, beta * e_mod * sec.inertia, beta * ROD_MAT.shear * sec.torsion
+    )
     model = Model(mesh_of("conic"), "rod", sec, ROD_MAT, strain_rate_damping=kv)
     _, kt = model.internal_force_and_tangent(model.y0)
     _, ab = damping_force(model, model.y0, np.zeros(model.n), ck=0.0, cv=1.0)
@@ -218,10 +230,12 @@ def test_beam_jacobians_against_central_differences_and_rigid_motion():
     _, ab_v = damping_force(model, y, v, ck=0.0, cv=1.0)
     jy, jv = model.dense(ab_y), model.dense(ab_v)
     eye, hy, hv = np.eye(model.n), 1e-6, 1e-3
-    fd_y = np.array([damping_force(model, y + hy * d, v) - damping_force(model, y - hy * d, v)
-                     for d in eye]).T / (2 * hy)  # fmt: skip
-    fd_v = np.array([damping_force(model, y, v + hv * d) - damping_force(model, y, v - hv * d)
-                     for d in eye]).T / (2 * hv)  # fmt: skip
+    fd_y = np.array(
+        [damping_force(model, y + hy * d, v) - damping_force(model, y - hy * d, v) for d in eye]
+    ).T / (2 * hy)
+    fd_v = np.array(
+        [damping_force(model, y, v + hv * d) - damping_force(model, y, v - hv * d) for d in eye]
+    ).T / (2 * hv)
     assert np.abs(fd_y - jy).max() <= 1e-6 * np.abs(jy).max()
     assert np.abs(fd_v - jv).max() <= 1e-9 * np.abs(jv).max()
     motion = RigidMotion(velocity=(0.4, -0.3), angular_velocity=1.7, about=(0.1, 0.2))

@@ -24,14 +24,22 @@ ZETA = 0.02  # the damping ratio the coefficient is chosen for (at the modal fre
 def _model(element: str, kv: StrainRateDamping | None = None) -> rancf.Model:
     """``element`` as ``mesh.element``; ``"ancf3d"``: an ANCF cable in space."""
     end = [L, 0.0, 0.0] if element in ("rod", "ancf3d") else [L, 0.0]
-    return rancf.Model(rancf.mesh_line([0.0] * len(end), end, N_EL), element.removesuffix("3d"),
-                       SECTION, STEEL, supports=[rancf.Support(0, "clamp")],
-                       strain_rate_damping=kv)  # fmt: skip
+    return rancf.Model(
+        rancf.mesh_line([0.0] * len(end), end, N_EL),
+        element.removesuffix("3d"),
+        SECTION,
+        STEEL,
+        supports=[rancf.Support(0, "clamp")],
+        strain_rate_damping=kv,
+    )
 
 
 def _stiffness(model: rancf.Model, key: str) -> float:
-    return {"axial": model.props.ea, "bending": model.props.ei,
-            "torsion": STEEL.shear * SECTION.torsion}[key]  # fmt: skip
+    return {
+        "axial": model.props.ea,
+        "bending": model.props.ei,
+        "torsion": STEEL.shear * SECTION.torsion,
+    }[key]
 
 
 def _first_mode(model: rancf.Model, key: str) -> tuple[float, np.ndarray, np.ndarray]:
@@ -75,21 +83,29 @@ def _run(element: str, key: str, kv: StrainRateDamping | None, per_period: int):
     omega, phi, sel = _first_mode(model, key)
     model.v0 = 1e-3 * phi / np.abs(phi @ sel)
     step = 2.0 * np.pi / omega / per_period
-    res = rancf.integrate(model, rancf.DynamicOptions(
-        t_end=8 * per_period * step, step=step, output_step=step, rho_inf=1.0))  # fmt: skip
+    res = rancf.integrate(
+        model,
+        rancf.DynamicOptions(t_end=8 * per_period * step, step=step, output_step=step, rho_inf=1.0),
+    )
     assert res.status.value == "completed"
     return _decay((res.q - model.y0) @ sel, res.t)
 
 
 @pytest.mark.parametrize(
     ("element", "key", "per_period"),
-    [("ancf", "axial", 100), ("ancf", "bending", 200), ("beam", "axial", 100),
-     ("beam", "bending", 200), ("rod", "axial", 100), ("rod", "bending", 200),
-     ("rod", "torsion", 100),
-     # a straight spatial cable damps the rate of its curvature's magnitude, which has a kink
-     # where the curvature passes zero (docs/derivations/strain-rate-damping.md §6): 1.9 % low
-     ("ancf3d", "bending", 200)],
-)  # fmt: skip
+    [
+        ("ancf", "axial", 100),
+        ("ancf", "bending", 200),
+        ("beam", "axial", 100),
+        ("beam", "bending", 200),
+        ("rod", "axial", 100),
+        ("rod", "bending", 200),
+        ("rod", "torsion", 100),
+        # a straight spatial cable damps the rate of its curvature's magnitude, which has a kink
+        # where the curvature passes zero (docs/derivations/strain-rate-damping.md §6): 1.9 % low
+        ("ancf3d", "bending", 200),
+    ],
+)
 def test_first_mode_decays_with_the_closed_form_damping_ratio(element, key, per_period):
     bare = _model(element)
     stiffness = _stiffness(bare, key)

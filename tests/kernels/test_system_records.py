@@ -42,8 +42,9 @@ def _parts() -> dict:
 
 def _system(gravity=(0.0, -9.81, 0.0), **parts) -> _core.System:
     kw = _parts() | parts
-    return _core.System(dim=2, models=[], gravity=gravity, damping=0.0,
-                        y_ref=np.array([1.0, 0.0, 1.0, 0.0]), **kw)  # fmt: skip
+    return _core.System(
+        dim=2, models=[], gravity=gravity, damping=0.0, y_ref=np.array([1.0, 0.0, 1.0, 0.0]), **kw
+    )
 
 
 def test_a_system_of_records():
@@ -68,50 +69,98 @@ def _bad(name: str, i: int, **fields) -> dict:
 
 
 CASES = [
-    (_bad("places", 0, kind="bar"), ValueError,
-     "places[0].kind: expected one of ground, cable, rod, beam, rigid2d, rigid3d, mass, "
-     "got 'bar'"),
+    (
+        _bad("places", 0, kind="bar"),
+        ValueError,
+        "places[0].kind: expected one of ground, cable, rod, beam, rigid2d, rigid3d, mass, "
+        "got 'bar'",
+    ),
     (_bad("places", 1, body="x"), TypeError, "places[1].body: expected an integer, got 'x'"),
-    (_bad("places", 1, body=2), ValueError,
-     "places[1].body: expected a rigid body or point mass in [0, 2), got 2"),
-    (_bad("places", 2, point=(1.0, 0.0)), ValueError,
-     "places[2].point: expected 3 numbers, got 2"),
-    (_bad("places", 2, motion=4), ValueError,
-     "places[2].motion: expected a time function in [0, 1) or -1, got 4"),
-    (_bad("joints", 0, kind="hinge"), ValueError,
-     "joints[0].kind: expected one of pin, fixed, tangent, revolute, slider, sliding, got 'hinge'"),
+    (
+        _bad("places", 1, body=2),
+        ValueError,
+        "places[1].body: expected a rigid body or point mass in [0, 2), got 2",
+    ),
+    (_bad("places", 2, point=(1.0, 0.0)), ValueError, "places[2].point: expected 3 numbers, got 2"),
+    (
+        _bad("places", 2, motion=4),
+        ValueError,
+        "places[2].motion: expected a time function in [0, 1) or -1, got 4",
+    ),
+    (
+        _bad("joints", 0, kind="hinge"),
+        ValueError,
+        "joints[0].kind: expected one of pin, fixed, tangent, revolute, slider, sliding, "
+        "got 'hinge'",
+    ),
     (_bad("joints", 0, b=3), ValueError, "joints[0].b: expected a place in [0, 3), got 3"),
     (_bad("joints", 0, rel=(1.0,) * 4), ValueError, "joints[0].rel: expected 9 numbers, got 4"),
-    (_bad("joints", 0, driven="yes"), TypeError,
-     "joints[0].driven: expected True or False, got 'yes'"),
-    (_bad("joints", 0, driven=True), ValueError,
-     "joints[0].angle: expected a time function in [0, 1), got -1"),
-    (_bad("springs", 0, stiffness="stiff"), TypeError,
-     "springs[0].stiffness: expected a number, got 'stiff'"),
-    (_bad("springs", 0, damping=None), TypeError,
-     "springs[0].damping: expected a number, got None"),
-    (_bad("loads", 0, factor=1), ValueError,
-     "loads[0].factor: expected a time function in [0, 1) or -1, got 1"),
-    (_bad("loads", 0, force="down"), TypeError,
-     "loads[0].force: expected a sequence of numbers, got 'down'"),
-    (_bad("time_functions", 0, kind="sine"), ValueError,
-     "time_functions[0].kind: expected one of constant, piecewise, ramp, harmonic, spin_up, "
-     "got 'sine'"),
-    (_bad("time_functions", 0, kind="piecewise", breaks=(0.0, 1.0), coef=(0.0,) * 3), ValueError,
-     "time_functions[0].coef: expected 4 numbers (breaks - 1, 4, components), got 3"),
+    (
+        _bad("joints", 0, driven="yes"),
+        TypeError,
+        "joints[0].driven: expected True or False, got 'yes'",
+    ),
+    (
+        _bad("joints", 0, driven=True),
+        ValueError,
+        "joints[0].angle: expected a time function in [0, 1), got -1",
+    ),
+    (
+        _bad("springs", 0, stiffness="stiff"),
+        TypeError,
+        "springs[0].stiffness: expected a number, got 'stiff'",
+    ),
+    (
+        _bad("springs", 0, damping=None),
+        TypeError,
+        "springs[0].damping: expected a number, got None",
+    ),
+    (
+        _bad("loads", 0, factor=1),
+        ValueError,
+        "loads[0].factor: expected a time function in [0, 1) or -1, got 1",
+    ),
+    (
+        _bad("loads", 0, force="down"),
+        TypeError,
+        "loads[0].force: expected a sequence of numbers, got 'down'",
+    ),
+    (
+        _bad("time_functions", 0, kind="sine"),
+        ValueError,
+        "time_functions[0].kind: expected one of constant, piecewise, ramp, harmonic, spin_up, "
+        "got 'sine'",
+    ),
+    (
+        _bad("time_functions", 0, kind="piecewise", breaks=(0.0, 1.0), coef=(0.0,) * 3),
+        ValueError,
+        "time_functions[0].coef: expected 4 numbers (breaks - 1, 4, components), got 3",
+    ),
     (_bad("rigid", 1, dim=3), ValueError, "rigid[1].dim: expected 2 (the system's), got 3"),
     (_bad("rigid", 0, mass=True), TypeError, "rigid[0].mass: expected a number, got True"),
-    (_parts() | {"prescribed": [PrescribedRecord(9, 0, 0, 0.0)]}, ValueError,
-     "prescribed[0].coord: expected a coordinate in [0, 4), got 9"),
-    (_parts() | {"prescribed": [PrescribedRecord(1, 0, 1, 0.0)]}, ValueError,
-     "prescribed[0].comp: expected a component of its time function in [0, 1), got 1"),
-    (_parts() | {"linear": [LinearTerm(-1, 0, 1.0)]}, ValueError,
-     "linear[0].row: expected a row >= 0, got -1"),
-    (_parts() | {"linear": [LinearTerm(0, 4, 1.0)]}, ValueError,
-     "linear[0].col: expected a coordinate in [0, 4), got 4"),
+    (
+        _parts() | {"prescribed": [PrescribedRecord(9, 0, 0, 0.0)]},
+        ValueError,
+        "prescribed[0].coord: expected a coordinate in [0, 4), got 9",
+    ),
+    (
+        _parts() | {"prescribed": [PrescribedRecord(1, 0, 1, 0.0)]},
+        ValueError,
+        "prescribed[0].comp: expected a component of its time function in [0, 1), got 1",
+    ),
+    (
+        _parts() | {"linear": [LinearTerm(-1, 0, 1.0)]},
+        ValueError,
+        "linear[0].row: expected a row >= 0, got -1",
+    ),
+    (
+        _parts() | {"linear": [LinearTerm(0, 4, 1.0)]},
+        ValueError,
+        "linear[0].col: expected a coordinate in [0, 4), got 4",
+    ),
     (_parts() | {"springs": [object()]}, TypeError, "springs[0].a: missing"),
     (_parts() | {"loads": "loads"}, TypeError, "loads: expected a list of records, got 'loads'"),
-]  # fmt: skip
+]
 
 
 @pytest.mark.parametrize(("parts", "error", "message"), CASES)
@@ -127,5 +176,6 @@ def test_bad_gravity_and_dimension_are_named():
     with pytest.raises(ValueError, match=r"^gravity: expected 3 numbers, got 2$"):
         _system(gravity=(0.0, -9.81))
     with pytest.raises(ValueError, match=r"^dim: expected 2 or 3, got 4$"):
-        _core.System(dim=4, models=[], gravity=(0.0, 0.0, 0.0), damping=0.0,
-                     y_ref=np.zeros(0), **_parts())  # fmt: skip
+        _core.System(
+            dim=4, models=[], gravity=(0.0, 0.0, 0.0), damping=0.0, y_ref=np.zeros(0), **_parts()
+        )

@@ -103,8 +103,14 @@ def test_rational_bspline_and_conics_are_in_the_c2_space(dim):
 
 def test_maps_are_banded_and_the_matrices_are_their_projections(rng):
     mesh = mesh_nurbs(_bspline(3, 6), 2)
-    mod = Model(mesh, "rod", Section.circular(0.01), Material(1000.0, 1e7, poisson_ratio=0.3),
-                supports=[Support(0, "clamp"), Support(5, "pin")], continuity="C2")  # fmt: skip
+    mod = Model(
+        mesh,
+        "rod",
+        Section.circular(0.01),
+        Material(1000.0, 1e7, poisson_ratio=0.3),
+        supports=[Support(0, "clamp"), Support(5, "pin")],
+        continuity="C2",
+    )
     red = mod.reduction
     assert red.width <= 22 and red.node_width <= 15 and mod.ku == red.width - 1
     t = red.t.toarray() @ np.eye(mod.n)
@@ -131,16 +137,23 @@ def test_maps_are_banded_and_the_matrices_are_their_projections(rng):
 
 
 def _cantilever(n: int, continuity: str) -> Model:
-    return Model(mesh_line([0, 0], [0.5, 0], n), "ancf", Section.circular(0.03),
-                 Material(6000.0, 2e7), supports=[Support(0, "clamp")],
-                 continuity=continuity)  # fmt: skip
+    return Model(
+        mesh_line([0, 0], [0.5, 0], n),
+        "ancf",
+        Section.circular(0.03),
+        Material(6000.0, 2e7),
+        supports=[Support(0, "clamp")],
+        continuity=continuity,
+    )
 
 
 def test_cantilever_frequency_from_above_with_fewer_unknowns():
     runs = {}
     for c in ("C1", "C2"):
-        runs[c] = [(int(np.sum(~m.fixed)), natural_modes(m, count=1).frequencies_hz[0])
-                   for m in (_cantilever(n, c) for n in (2, 4, 8, 16))]  # fmt: skip
+        runs[c] = [
+            (int(np.sum(~m.fixed)), natural_modes(m, count=1).frequencies_hz[0])
+            for m in (_cantilever(n, c) for n in (2, 4, 8, 16))
+        ]
         f = np.array([x[1] for x in runs[c]])
         assert np.all(f > F1) and np.all(np.diff(f) < 0)  # from above, monotonically
     # C² with 19 unknowns is as accurate as C¹ with 33 (8 elements each): 2.1e-6
@@ -157,8 +170,12 @@ def test_static_answers_converge_to_the_same_values():
         tips[c] = []
         for n in (4, 8, 16, 32):
             mesh = mesh_nurbs(_quarter(), n)
-            m = _cable(mesh, supports=[Support(0, "clamp")],
-                       point_loads=[PointLoad(-1, (0.0, -0.1))], continuity=c)  # fmt: skip
+            m = _cable(
+                mesh,
+                supports=[Support(0, "clamp")],
+                point_loads=[PointLoad(-1, (0.0, -0.1))],
+                continuity=c,
+            )
             tips[c].append(m.node_positions(solve_static(m).q)[-1])
     d1 = np.linalg.norm(np.diff(tips["C1"], axis=0), axis=1)
     d2 = np.linalg.norm(np.diff(tips["C2"], axis=0), axis=1)
@@ -178,9 +195,15 @@ def test_dynamic_answers_converge_to_the_same_values():
     for c in ("C1", "C2"):
         tips[c] = []
         for n in (4, 8, 16):
-            m = Model(mesh_nurbs(_quarter(), n), "rancf", Section.circular(0.02),
-                      Material(6000.0, 2e6), supports=[Support(0, "pin")],
-                      gravity=(0.0, -9.81), continuity=c)  # fmt: skip
+            m = Model(
+                mesh_nurbs(_quarter(), n),
+                "rancf",
+                Section.circular(0.02),
+                Material(6000.0, 2e6),
+                supports=[Support(0, "pin")],
+                gravity=(0.0, -9.81),
+                continuity=c,
+            )
             res = integrate(m, DynamicOptions(t_end=0.2, step=1e-3, rho_inf=0.9))
             tips[c].append(m.node_positions(res.q[-1])[-1])
     assert np.linalg.norm(tips["C1"][-1] - tips["C1"][0]) > 1e-4  # the meshes differ
@@ -198,9 +221,12 @@ def test_inner_support_and_point_load_match_c1():
     for n in (12, 48):
         out = {}
         for c in ("C1", "C2"):
-            m = _cable(mesh_line([0, 0], [1, 0], n), supports=[Support(0, "pin"),
-                       Support(n // 2, "pin"), Support(-1, "pin")],
-                       point_loads=[PointLoad(n // 4, (0.0, -0.5))], continuity=c)  # fmt: skip
+            m = _cable(
+                mesh_line([0, 0], [1, 0], n),
+                supports=[Support(0, "pin"), Support(n // 2, "pin"), Support(-1, "pin")],
+                point_loads=[PointLoad(n // 4, (0.0, -0.5))],
+                continuity=c,
+            )
             res = solve_static(m)
             pos = m.node_positions(res.q)
             assert np.abs(pos[n // 2] - [0.5, 0.0]).max() < 1e-14
@@ -221,8 +247,13 @@ def test_closed_c2_ring(element):
     ring = Ellipse(np.zeros(dim), 1.0, 1.0, *ellipse_axes(dim))
     freqs = {}
     for c in ("C1", "C2"):
-        m = Model(mesh_ellipse(ring, 32, start_deg=37.0), element, Section.circular(0.01),
-                  Material(7850.0, 2e11, poisson_ratio=0.3), continuity=c)  # fmt: skip
+        m = Model(
+            mesh_ellipse(ring, 32, start_deg=37.0),
+            element,
+            Section.circular(0.01),
+            Material(7850.0, 2e11, poisson_ratio=0.3),
+            continuity=c,
+        )
         res = natural_modes(m, count=4)
         assert res.n_rigid == (6 if dim == 3 else 3)
         freqs[c] = res.frequencies_hz
@@ -241,15 +272,22 @@ def test_rod_dynamics_with_a_point_moment_converge_to_the_same_values():
     """A clamped spatial rod arc (rational quadratic, lifted out of its plane) under gravity and
     a point moment at its tip: C¹ and C² tips after 0.2 s meet as the mesh is refined."""
     s = np.sqrt(0.5)
-    arc = NurbsCurve(2, [0, 0, 0, 1, 1, 1], [[0.5, 0, 0], [0.5, 0.5, 0.1], [0, 0.5, 0.2]],
-                     [1, s, 1])  # fmt: skip
+    arc = NurbsCurve(
+        2, [0, 0, 0, 1, 1, 1], [[0.5, 0, 0], [0.5, 0.5, 0.1], [0, 0.5, 0.2]], [1, s, 1]
+    )
     tips = {}
     for c in ("C1", "C2"):
         for n in (4, 16):
-            m = Model(mesh_nurbs(arc, n), "rod", Section.circular(0.02),
-                      Material(6000.0, 2e6, poisson_ratio=0.3), supports=[Support(0, "clamp")],
-                      gravity=(0, 0, -9.81), point_loads=[PointLoad(-1, None, (0.0, 0.0, 0.01))],
-                      continuity=c)  # fmt: skip
+            m = Model(
+                mesh_nurbs(arc, n),
+                "rod",
+                Section.circular(0.02),
+                Material(6000.0, 2e6, poisson_ratio=0.3),
+                supports=[Support(0, "clamp")],
+                gravity=(0, 0, -9.81),
+                point_loads=[PointLoad(-1, None, (0.0, 0.0, 0.01))],
+                continuity=c,
+            )
             res = integrate(m, DynamicOptions(t_end=0.2, step=1e-3, rho_inf=0.9))
             tips[c, n] = m.node_positions(res.q[-1])[-1]
     moved = np.linalg.norm(tips["C1", 16] - [0.0, 0.5, 0.2])
@@ -268,8 +306,9 @@ def test_closed_c2_curves_have_continuous_curvature_across_the_seam(dim, rng):
     central differences)."""
     ring = Ellipse(np.zeros(dim), 0.5, 0.3, *ellipse_axes(dim))
     for c in ("C2", "C1"):
-        m = _cable(mesh_ellipse(ring, 9, start_deg=37.0), supports=[Support(3, "clamp")],
-                   continuity=c)  # fmt: skip
+        m = _cable(
+            mesh_ellipse(ring, 9, start_deg=37.0), supports=[Support(3, "clamp")], continuity=c
+        )
         s = System({"ring": m})
         assert s.m == m.dpn + (dim if c == "C2" else 0)  # positions, gradients (, curvature)
         dense = np.empty((s.n + s.m) ** 2)
@@ -338,8 +377,12 @@ def test_rigid_motions_are_in_the_c2_space_and_strain_free():
 def test_initial_velocity_of_a_node_is_exact():
     """A node given an initial velocity keeps its own coordinates (a C¹ node): its velocity is
     the given one exactly (the C² space has no field moving one node alone)."""
-    mod = _cable(mesh_line([0, 0], [1, 0], 10), supports=[Support(0, "clamp")],
-                 initial_velocities={4: (0.0, 0.3)}, continuity="C2")  # fmt: skip
+    mod = _cable(
+        mesh_line([0, 0], [1, 0], 10),
+        supports=[Support(0, "clamp")],
+        initial_velocities={4: (0.0, 0.3)},
+        continuity="C2",
+    )
     v = mod.q_from_y(mod.v0).reshape(mod.n_nodes, mod.dpn)
     assert np.array_equal(v[4, :2], [0.0, 0.3]) and mod.reduction.node_base[4] >= 0
     assert np.abs(v[0]).max() == 0.0 and np.abs(v[7:]).max() == 0.0  # only near node 4

@@ -32,8 +32,9 @@ def test_the_route_is_exact_to_round_off():
     assert mesh.arc_lengths().sum() == pytest.approx(2 * SPAN + np.pi * R, rel=1e-12)
 
 
-@pytest.mark.parametrize(("key", "args"), [("radius", (0.0, SPAN, 4, 2)),
-                                           ("span", (R, -1.0, 4, 2))])  # fmt: skip
+@pytest.mark.parametrize(
+    ("key", "args"), [("radius", (0.0, SPAN, 4, 2)), ("span", (R, -1.0, 4, 2))]
+)
 def test_bad_lengths_are_refused(key, args):
     with pytest.raises(InputError) as err:
         rope_over_pulley(*args)

@@ -88,9 +88,8 @@ def test_the_worker_runs_jobs_in_order_and_hands_back_errors():
 
 @pytest.mark.parametrize(
     ("name", "beside"),
-    [("cantilever", True), ("slider-crank", True), ("argyris-frame", False),
-     ("belt-drive", False)],
-)  # fmt: skip
+    [("cantilever", True), ("slider-crank", True), ("argyris-frame", False), ("belt-drive", False)],
+)
 def test_no_worker_where_the_steps_change_what_rows_read(name, beside):
     """Rods (their triads follow the steps) and contact (its state) keep deriving between the
     steps."""

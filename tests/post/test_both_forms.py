@@ -21,8 +21,19 @@ SHIPPED = sorted(set(EXAMPLES) | set(SCENARIO_ANALYSES))
 
 #: Arrays of a run's and of its body's results.npz compared between the two forms.
 RUN_KEYS = ("t", "q", "v", "a", "lam", "kinetic", "strain", "gravity", "sensors", "reactions")
-BODY_KEYS = ("t", "q", "v", "a", "reactions", "along", "along_s", "weights", "scales",
-             "reference", "directors")  # fmt: skip
+BODY_KEYS = (
+    "t",
+    "q",
+    "v",
+    "a",
+    "reactions",
+    "along",
+    "along_s",
+    "weights",
+    "scales",
+    "reference",
+    "directors",
+)
 
 
 def _short(name: str) -> Scenario:

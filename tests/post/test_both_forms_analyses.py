@@ -15,8 +15,11 @@ from rancf.cli import main
 from rancf.scenario import as_bodies, load_scenario
 from rancf.studies.common import EXAMPLES, SCENARIO_ANALYSES, example_path
 
-ONE_BODY = [n for n in sorted(set(EXAMPLES) | set(SCENARIO_ANALYSES))
-            if not load_scenario(example_path(n)).bodies]  # fmt: skip
+ONE_BODY = [
+    n
+    for n in sorted(set(EXAMPLES) | set(SCENARIO_ANALYSES))
+    if not load_scenario(example_path(n)).bodies
+]
 COMMANDS = (["static"], ["modes", "--count", "3"], ["buckling", "--count", "2"])
 
 
@@ -48,8 +51,15 @@ def test_every_analysis_gives_the_same_answer_in_both_forms(tmp_path, capsys, na
         results = []
         for form in ("one", "bodies"):
             out = tmp_path / f"{form}-{cmd[0]}"
-            code = main([cmd[0], str(tmp_path / f"{form}.toml"), *cmd[1:], "--json",
-                         *(["--out", str(out)] if cmd[0] == "static" else [])])  # fmt: skip
+            code = main(
+                [
+                    cmd[0],
+                    str(tmp_path / f"{form}.toml"),
+                    *cmd[1:],
+                    "--json",
+                    *(["--out", str(out)] if cmd[0] == "static" else []),
+                ]
+            )
             captured = capsys.readouterr()
             results.append((code, captured.out, captured.err, out))
         (ca, oa, ea, da), (cb, ob, eb, db) = results
@@ -71,8 +81,9 @@ def test_every_analysis_gives_the_same_answer_in_both_forms(tmp_path, capsys, na
         assert labels_a == labels_b, cmd
         if cmd[0] == "static":  # the same run folder, file by file
             files = sorted(p.relative_to(da).as_posix() for p in da.rglob("*") if p.is_file())
-            assert files == sorted(p.relative_to(db).as_posix() for p in db.rglob("*")
-                                   if p.is_file())  # fmt: skip
+            assert files == sorted(
+                p.relative_to(db).as_posix() for p in db.rglob("*") if p.is_file()
+            )
             assert "bodies/body/along.csv" in files
             ta = np.genfromtxt(da / "bodies/body/along.csv", delimiter=",", names=True)
             tb = np.genfromtxt(db / "bodies/body/along.csv", delimiter=",", names=True)

@@ -16,8 +16,9 @@ SECTION = Section(np.pi * RT**2, np.pi * RT**4 / 4)
 
 
 def _cable_on(plane_y: float, kind: str = "plane") -> System:
-    cable = Model(mesh_line([0, 0], [1, 0], 4), "rancf", SECTION, Material(1000.0, 1e8),
-                  gravity=(0.0, -9.81))  # fmt: skip
+    cable = Model(
+        mesh_line([0, 0], [1, 0], 4), "rancf", SECTION, Material(1000.0, 1e8), gravity=(0.0, -9.81)
+    )
     if kind == "plane":
         ob = Obstacle("plane", point=(0.0, plane_y), normal=(0.0, 1.0), name="ground")
     else:
@@ -45,9 +46,11 @@ def test_a_body_deep_inside_an_obstacle_is_named(kind):
 def test_too_few_elements_on_a_frictional_wrap():
     """The capstan: half a turn of rope over a pulley with friction 0.3."""
     (w,) = contact_warnings(capstan(0.3, 4, 3, 0.0))
-    assert w == ("rope: 4 element(s) on its 180° frictional wrap of 'pulley' (up to 45° each): "
-                 "the motion it transmits errs by about 7.4 % (measured on an Atwood machine); "
-                 "give at least 12 elements on the wrap (at most 15° each)")  # fmt: skip
+    assert w == (
+        "rope: 4 element(s) on its 180° frictional wrap of 'pulley' (up to 45° each): "
+        "the motion it transmits errs by about 7.4 % (measured on an Atwood machine); "
+        "give at least 12 elements on the wrap (at most 15° each)"
+    )
     assert wrap_error(np.radians(22.5)) == pytest.approx(1.06, abs=0.01)  # measured: 1.0 %
     assert contact_warnings(capstan(0.3, 12, 3, 0.0)) == []  # 15° each
     assert contact_warnings(capstan(0.0, 4, 3, 0.0)) == []  # frictionless: nothing to transmit

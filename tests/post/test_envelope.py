@@ -28,8 +28,11 @@ def test_a_cantilever_s_clamp_moment_envelope_is_the_static_p_l(tmp_path):
     assert env["s"][0] == 0.0 and env["s"][-1] == pytest.approx(0.5, rel=1e-12)
     p_l = 1e-3 * 0.5
     low, high = env["bending_moment_min"][0], env["bending_moment_max"][0]
-    extreme, t_ext = (low, env["bending_moment_min_t"][0]) if abs(low) > abs(high) else (
-        high, env["bending_moment_max_t"][0])  # fmt: skip
+    extreme, t_ext = (
+        (low, env["bending_moment_min_t"][0])
+        if abs(low) > abs(high)
+        else (high, env["bending_moment_max_t"][0])
+    )
     assert abs(extreme) == pytest.approx(p_l, rel=1e-6)
     assert t_ext == 1.0
     # the other end of the band is the unloaded reference (0 at load factor 0)

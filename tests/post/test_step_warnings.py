@@ -24,9 +24,17 @@ PENDULUM = (
 
 @pytest.mark.parametrize(
     ("out", "warned"),
-    [(None, False), (1e-3, False), (2e-3, False), (3e-3, False), (5e-4, False),
-     (1.5e-3, True), (2.5e-3, True), (1.0000001e-3, True)],
-)  # fmt: skip
+    [
+        (None, False),
+        (1e-3, False),
+        (2e-3, False),
+        (3e-3, False),
+        (5e-4, False),
+        (1.5e-3, True),
+        (2.5e-3, True),
+        (1.0000001e-3, True),
+    ],
+)
 def test_only_a_fractional_number_of_steps_above_one_warns(out, warned):
     w = step_warnings(DynamicOptions(t_end=1.0, step=1e-3, output_step=out))
     assert bool(w) == warned
@@ -35,8 +43,9 @@ def test_only_a_fractional_number_of_steps_above_one_warns(out, warned):
 
 
 def test_adaptive_steps_are_not_warned_about():
-    assert step_warnings(DynamicOptions(t_end=1.0, step=1e-3, output_step=1.5e-3,
-                                        adaptive=True)) == []  # fmt: skip
+    assert (
+        step_warnings(DynamicOptions(t_end=1.0, step=1e-3, output_step=1.5e-3, adaptive=True)) == []
+    )
 
 
 @pytest.mark.parametrize(("out", "steps"), [(2e-3, 30), (1.5e-3, 40)])
@@ -60,9 +69,15 @@ def test_simulate_warns_once_and_the_steps_are_cut(tmp_path, capsys, out, steps)
 
 @pytest.mark.parametrize(
     ("step", "out", "n", "h"),
-    [(1e-3, 1.5e-3, 2, 7.5e-4), (0.02, 0.05, 3, 0.05 / 3), (1e-3, 2.5e-3, 3, 2.5e-3 / 3),
-     (1e-3, 2e-3, None, 1e-3), (1e-3, 5e-4, None, 1e-3), (1e-3, None, None, 1e-3)],
-)  # fmt: skip
+    [
+        (1e-3, 1.5e-3, 2, 7.5e-4),
+        (0.02, 0.05, 3, 0.05 / 3),
+        (1e-3, 2.5e-3, 3, 2.5e-3 / 3),
+        (1e-3, 2e-3, None, 1e-3),
+        (1e-3, 5e-4, None, 1e-3),
+        (1e-3, None, None, 1e-3),
+    ],
+)
 def test_fitted_steps_divide_the_interval(step, out, n, h):
     """The steps taken: ``output_step / ceil(output_step / step)`` where the interval is not a
     whole number of steps (as many steps as cutting each interval's last one, all of one size),

@@ -29,12 +29,18 @@ CHROMIUM = next((p for p in map(shutil.which, ("chromium", "chromium-browser")) 
 
 def _spatial_run(folder: Path) -> None:
     """A spatial cable above a floor, a ball and a bar (the three kinds of obstacle), 10 ms."""
-    cable = Model(mesh_line([-0.5, 0.0, 0.3], [0.5, 0.0, 0.3], 4), "rancf", Section.circular(0.01),
-                  Material(1000.0, 1e7), gravity=(0.0, 0.0, -9.81))  # fmt: skip
-    obstacles = [Obstacle("plane", point=(0, 0, 0), normal=(0, 0, 2), name="floor"),
-                 Obstacle("sphere", center=(0, 0, 0.1), radius=0.19, name="ball"),
-                 Obstacle("cylinder", center=(0.3, 0, 0.2), radius=0.06, axis=(0, 1, 1),
-                          name="bar")]  # fmt: skip
+    cable = Model(
+        mesh_line([-0.5, 0.0, 0.3], [0.5, 0.0, 0.3], 4),
+        "rancf",
+        Section.circular(0.01),
+        Material(1000.0, 1e7),
+        gravity=(0.0, 0.0, -9.81),
+    )
+    obstacles = [
+        Obstacle("plane", point=(0, 0, 0), normal=(0, 0, 2), name="floor"),
+        Obstacle("sphere", center=(0, 0, 0.1), radius=0.19, name="ball"),
+        Obstacle("cylinder", center=(0.3, 0, 0.2), radius=0.06, axis=(0, 1, 1), name="bar"),
+    ]
     system = System({"cable": cable}, obstacles=obstacles)
     write_run(folder, system, [], integrate(system, DynamicOptions(t_end=0.01, step=1e-3)))
 
@@ -61,8 +67,10 @@ def test_page_holds_the_run(runs, capsys):
     idx = np.unique(np.linspace(0, run.t.size - 1, 4).round().astype(int))
     assert [f.name for f in fig.frames] == [run.time_text(run.t[i]) for i in idx]
     react = np.genfromtxt(runs["belt-drive"] / "reactions.csv", delimiter=",", names=True)
-    forces = {ob: np.column_stack([react[f"{ob}_normal_{a}"] + react[f"{ob}_friction_{a}"]
-                                   for a in "xy"]) for ob in ("pulley_a", "pulley_b")}  # fmt: skip
+    forces = {
+        ob: np.column_stack([react[f"{ob}_normal_{a}"] + react[f"{ob}_friction_{a}"] for a in "xy"])
+        for ob in ("pulley_a", "pulley_b")
+    }
     top = max(np.linalg.norm(f[idx], axis=1).max() for f in forces.values())
     allp = np.concatenate([p for i in idx for _, p in run.shapes(int(i), per_element=8)])
     size = 0.5 * np.ptp(allp, axis=0).max()  # half the bodies' extent
@@ -78,8 +86,9 @@ def test_page_holds_the_run(runs, capsys):
             arrow = tr[f"force on {ob}"]
             d = np.array([arrow.x[1] - arrow.x[0], arrow.y[1] - arrow.y[0]])
             # arrows of one scale: the largest force of the drawn times is half the scene's size
-            assert np.linalg.norm(d) * top == pytest.approx(np.linalg.norm(f[i]) * 0.5 * size,
-                                                            rel=1e-6, abs=1e-12)  # fmt: skip
+            assert np.linalg.norm(d) * top == pytest.approx(
+                np.linalg.norm(f[i]) * 0.5 * size, rel=1e-6, abs=1e-12
+            )
             assert d @ f[i] >= 0.0
     assert main(["view", str(runs["belt-drive"]), "--frames", "3"]) == 0
     page = runs["belt-drive"] / "view.html"
@@ -97,8 +106,10 @@ def test_spatial_obstacles_are_drawn_where_they_are(runs):
     run = load_run(runs["spatial"])
     fig = view_figure(run, frames=3)
     tr = {t.name: t for t in fig.frames[-1].data}
-    pts = {k: np.stack([np.asarray(tr[k][a], float) for a in "xyz"], axis=-1).reshape(-1, 3)
-           for k in ("ball", "bar", "floor")}  # fmt: skip
+    pts = {
+        k: np.stack([np.asarray(tr[k][a], float) for a in "xyz"], axis=-1).reshape(-1, 3)
+        for k in ("ball", "bar", "floor")
+    }
     assert np.abs(np.linalg.norm(pts["ball"] - [0, 0, 0.1], axis=1) - 0.19).max() < 1e-12
     axis = np.array([0, 1, 1]) / np.sqrt(2)
     rel = pts["bar"] - [0.3, 0, 0.2]
@@ -110,8 +121,9 @@ def test_spatial_obstacles_are_drawn_where_they_are(runs):
     assert pts["floor"][:, :2].mean(axis=0) == pytest.approx(centre[:2], abs=1e-12)
     react = np.genfromtxt(runs["spatial"] / "reactions.csv", delimiter=",", names=True)
     for ob in ("ball", "bar", "floor"):
-        f = np.array([react[f"{ob}_normal_{a}"][-1] + react[f"{ob}_friction_{a}"][-1]
-                      for a in "xyz"])  # fmt: skip
+        f = np.array(
+            [react[f"{ob}_normal_{a}"][-1] + react[f"{ob}_friction_{a}"][-1] for a in "xyz"]
+        )
         a = tr[f"force on {ob}"]
         d = np.array([a.x[1] - a.x[0], a.y[1] - a.y[0], a.z[1] - a.z[0]])
         if np.linalg.norm(f) > 0:
@@ -147,16 +159,30 @@ window.addEventListener("load", () => setTimeout(() => {
 
 def _browse(page: Path, shot: Path) -> subprocess.Popen:
     harnessed = page.with_name("harnessed.html")
-    harnessed.write_text(page.read_text(encoding="utf-8").replace("<head>", "<head>" + HARNESS,
-                                                                  1), encoding="utf-8")  # fmt: skip
-    cmd = [CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--enable-unsafe-swiftshader",
-           "--enable-logging=stderr", "--v=0", "--window-size=900,700",
-           "--virtual-time-budget=3000", f"--screenshot={shot}", harnessed.as_uri()]  # fmt: skip
+    harnessed.write_text(
+        page.read_text(encoding="utf-8").replace("<head>", "<head>" + HARNESS, 1), encoding="utf-8"
+    )
+    cmd = [
+        CHROMIUM,
+        "--headless",
+        "--no-sandbox",
+        "--disable-gpu",
+        "--enable-unsafe-swiftshader",
+        "--enable-logging=stderr",
+        "--v=0",
+        "--window-size=900,700",
+        "--virtual-time-budget=3000",
+        f"--screenshot={shot}",
+        harnessed.as_uri(),
+    ]
     return subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
 
 
-@pytest.mark.skipif(CHROMIUM is None, reason="no chromium binary on PATH (Debian: apt-get "
-                    "install chromium): the page is not loaded in a browser")  # fmt: skip
+@pytest.mark.skipif(
+    CHROMIUM is None,
+    reason="no chromium binary on PATH (Debian: apt-get "
+    "install chromium): the page is not loaded in a browser",
+)
 def test_pages_load_in_headless_chromium(runs, tmp_path):
     from PIL import Image
 

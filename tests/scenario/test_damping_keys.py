@@ -21,8 +21,11 @@ LINE = {
     "section": {"radius": 0.005},
     "material": {"density": 7850.0, "youngs_modulus": 2.1e11},
 }
-ONE = {**LINE, "supports": [{"at": "start", "kind": "clamp"}],
-       "damping": {"axial": 300.0, "bending": 0.7, "mass_proportional": 0.1}}  # fmt: skip
+ONE = {
+    **LINE,
+    "supports": [{"at": "start", "kind": "clamp"}],
+    "damping": {"axial": 300.0, "bending": 0.7, "mass_proportional": 0.1},
+}
 
 
 def test_one_body_keys_reach_the_body_and_the_balance():
@@ -52,8 +55,12 @@ def test_one_body_keys_reach_the_body_and_the_balance():
     expect = body.dense(ab) + 0.1 * body.dense(body.mass_band)
     free = np.flatnonzero(~body.fixed)
     got = jac.reshape(nm, nm)[: s.n, : s.n]
-    assert np.allclose(got[np.ix_(free, free)], expect[np.ix_(free, free)], rtol=0,
-                       atol=1e-10 * np.abs(expect).max())  # fmt: skip
+    assert np.allclose(
+        got[np.ix_(free, free)],
+        expect[np.ix_(free, free)],
+        rtol=0,
+        atol=1e-10 * np.abs(expect).max(),
+    )
 
 
 def test_a_bodys_own_table_replaces_the_keys_of_damping():
@@ -70,19 +77,32 @@ def test_a_bodys_own_table_replaces_the_keys_of_damping():
 @pytest.mark.parametrize(
     ("change", "message"),
     [
-        ({"damping": {"torsion": 2.0}},
-         '[damping.torsion] 0 with rancf elements (a twist rate needs rod elements: '
-         'mesh.element = "rod") (got 2)'),
-        ({"mesh": {"elements": 2, "element": "beam"}, "damping": {"torsion": 5.0}},
-         "[damping.torsion] 0 with beam elements"),
-        ({"bodies": [{"name": "a", **LINE, "damping": {"torsion": 1.5}}],
-          "supports": [{"at": "a:start"}]},
-         "[bodies[0].damping.torsion] 0 with rancf elements"),
+        (
+            {"damping": {"torsion": 2.0}},
+            "[damping.torsion] 0 with rancf elements (a twist rate needs rod elements: "
+            'mesh.element = "rod") (got 2)',
+        ),
+        (
+            {"mesh": {"elements": 2, "element": "beam"}, "damping": {"torsion": 5.0}},
+            "[damping.torsion] 0 with beam elements",
+        ),
+        (
+            {
+                "bodies": [{"name": "a", **LINE, "damping": {"torsion": 1.5}}],
+                "supports": [{"at": "a:start"}],
+            },
+            "[bodies[0].damping.torsion] 0 with rancf elements",
+        ),
         ({"damping": {"bending": -1.0}}, "damping.bending"),
-        ({"bodies": [{"name": "a", **LINE, "damping": {"mass_proportional": 1.0}}],
-          "supports": [{"at": "a:start"}]}, "mass_proportional"),
+        (
+            {
+                "bodies": [{"name": "a", **LINE, "damping": {"mass_proportional": 1.0}}],
+                "supports": [{"at": "a:start"}],
+            },
+            "mass_proportional",
+        ),
     ],
-)  # fmt: skip
+)
 def test_keys_an_element_cannot_take_are_refused_in_one_line(change, message):
     d = {**copy.deepcopy(LINE), "supports": [{"at": "start"}], **copy.deepcopy(change)}
     if "bodies" in change:
@@ -96,8 +116,11 @@ def test_keys_an_element_cannot_take_are_refused_in_one_line(change, message):
 
 
 def test_a_rod_takes_torsion():
-    d = {**copy.deepcopy(LINE), "supports": [{"at": "start", "kind": "clamp"}],
-         "damping": {"torsion": 0.01, "bending": 0.02}}  # fmt: skip
+    d = {
+        **copy.deepcopy(LINE),
+        "supports": [{"at": "start", "kind": "clamp"}],
+        "damping": {"torsion": 0.01, "bending": 0.02},
+    }
     d["geometry"] = {"kind": "line", "start": [0.0, 0.0, 0.0], "end": [1.0, 0.0, 0.0]}
     d["mesh"] = {"elements": 3, "element": "rod"}
     d["material"]["poisson_ratio"] = 0.3

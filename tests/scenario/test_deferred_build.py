@@ -36,8 +36,10 @@ print(json.dumps([built, scenario_schema(), sc.model_dump(mode="json")]))
 def _run(mode: str) -> list:
     p = subprocess.run(
         [sys.executable, "-c", SCRIPT, mode, str(example_path("planar-pendulum"))],
-        capture_output=True, text=True, check=True,
-    )  # fmt: skip
+        capture_output=True,
+        text=True,
+        check=True,
+    )
     return json.loads(p.stdout.strip().splitlines()[-1])
 
 

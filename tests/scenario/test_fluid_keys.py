@@ -26,8 +26,13 @@ FLUID = {
     "current_profile": [[-10.0, 0.2, 0.0, 0.0], [0.0, 1.0, 0.1, 0.0]],
     "waves": {"height": 2.0, "period": 8.0, "direction_deg": 30.0, "depth": 50.0},
 }
-HYDRO = {"diameter": 0.03, "drag_normal": 1.2, "drag_axial": 0.1, "added_mass_normal": 1.0,
-         "added_mass_axial": 0.2}  # fmt: skip
+HYDRO = {
+    "diameter": 0.03,
+    "drag_normal": 1.2,
+    "drag_axial": 0.1,
+    "added_mass_normal": 1.0,
+    "added_mass_axial": 0.2,
+}
 
 
 def _with(base: dict, **tables) -> dict:
@@ -40,8 +45,13 @@ def test_one_body_keys_reach_the_system():
     d = _with(ONE, fluid=FLUID, hydro=HYDRO)
     d["loads"]["distributed"] = [{"force": [0.0, 5.0, 0.0], "time": {"ramp": 2.0}}]
     s = parse_scenario(d).build_system()
-    assert s.fluid == Fluid(1025.0, 0.0, None, ((-10.0, 0.2, 0.0, 0.0), (0.0, 1.0, 0.1, 0.0)),
-                            Waves(2.0, 8.0, 30.0, 50.0))  # fmt: skip
+    assert s.fluid == Fluid(
+        1025.0,
+        0.0,
+        None,
+        ((-10.0, 0.2, 0.0, 0.0), (0.0, 1.0, 0.1, 0.0)),
+        Waves(2.0, 8.0, 30.0, 50.0),
+    )
     assert s.hydro == {"body": Hydro(0.03, 1.2, 0.1, 1.0, 0.2)}
     # the fluid and the load act: the residual differs from the same body without them
     bare = parse_scenario(ONE).build_system()
@@ -56,10 +66,12 @@ def test_bodies_hydro_per_body_and_distributed_on_one_body():
     d = {
         "bodies": [{"name": "a", **LINE, "hydro": HYDRO}, {"name": "b", **LINE}],
         "supports": [{"at": "a:start"}, {"at": "b:start"}],
-        "loads": {"gravity": [0.0, 0.0, -9.81],
-                  "distributed": [{"force": [1.0, 0.0, 0.0], "body": "b"}]},
+        "loads": {
+            "gravity": [0.0, 0.0, -9.81],
+            "distributed": [{"force": [1.0, 0.0, 0.0], "body": "b"}],
+        },
         "fluid": {"density": 1.225, "current": [3.0, 0.0, 0.0]},
-    }  # fmt: skip
+    }
     s = parse_scenario(d).build_system()
     assert set(s.hydro) == {"a"}
     f = np.asarray(s.core.fluid_forces(s.y0, np.zeros(s.n), np.zeros(s.n), 0.0, False))
@@ -70,26 +82,42 @@ def test_bodies_hydro_per_body_and_distributed_on_one_body():
     ("change", "message"),
     [
         ({"fluid": {"density": -1.0}}, "[fluid.density] must be > 0, got -1.0"),
-        ({"fluid": {"density": 1025.0, "current_profile": [[0.0, 1, 0, 0], [-1.0, 0, 0, 0]]}},
-         "[fluid.current_profile] heights must increase, got [0.0, -1.0]"),
-        ({"fluid": {"density": 1025.0, "waves": {"height": 1, "period": 5, "depth": 20}}},
-         "[fluid.waves] need a free surface (give fluid.surface)"),
-        ({"fluid": {"density": 1025.0, "current": [1.0, 0.0]}},
-         "[fluid.current] must be a list of 3 numbers, got [1.0, 0.0]"),
-        ({"fluid": {"density": 1025.0, "current": [1.0, 0.0, 0.0], "current_profile": [[0, 1]]}},
-         "[fluid.current_profile] give current or current_profile, not both"),
-        ({"fluid": {"density": 1025.0}, "hydro": {"drag_normal": -1.0}},
-         "[hydro.drag_normal] must be >= 0, got -1.0"),
+        (
+            {"fluid": {"density": 1025.0, "current_profile": [[0.0, 1, 0, 0], [-1.0, 0, 0, 0]]}},
+            "[fluid.current_profile] heights must increase, got [0.0, -1.0]",
+        ),
+        (
+            {"fluid": {"density": 1025.0, "waves": {"height": 1, "period": 5, "depth": 20}}},
+            "[fluid.waves] need a free surface (give fluid.surface)",
+        ),
+        (
+            {"fluid": {"density": 1025.0, "current": [1.0, 0.0]}},
+            "[fluid.current] must be a list of 3 numbers, got [1.0, 0.0]",
+        ),
+        (
+            {"fluid": {"density": 1025.0, "current": [1.0, 0.0, 0.0], "current_profile": [[0, 1]]}},
+            "[fluid.current_profile] give current or current_profile, not both",
+        ),
+        (
+            {"fluid": {"density": 1025.0}, "hydro": {"drag_normal": -1.0}},
+            "[hydro.drag_normal] must be >= 0, got -1.0",
+        ),
         ({"fluid": {"density": 1025.0}, "hydro": {"drag": 1.0}}, "[hydro.drag] unknown key"),
         ({"hydro": {"drag_normal": 1.0}}, "[hydro] coefficients of bodies in a fluid"),
-        ({"loads": {"distributed": [{"force": [1.0, 0.0]}]}},
-         "[loads.distributed[0].force] 3 components (got [1.0, 0.0])"),
-        ({"loads": {"distributed": [{"force": [1.0, 0.0, 0.0], "body": "x"}]}},
-         "[loads.distributed[0].body] a flexible body (one of ['body']) (got 'x')"),
-        ({"loads": {"distributed": [{"force": [1.0, 0.0, 0.0], "time": [1.0, 2.0]}]}},
-         "[loads.distributed[0].time] must be a scalar time function"),
+        (
+            {"loads": {"distributed": [{"force": [1.0, 0.0]}]}},
+            "[loads.distributed[0].force] 3 components (got [1.0, 0.0])",
+        ),
+        (
+            {"loads": {"distributed": [{"force": [1.0, 0.0, 0.0], "body": "x"}]}},
+            "[loads.distributed[0].body] a flexible body (one of ['body']) (got 'x')",
+        ),
+        (
+            {"loads": {"distributed": [{"force": [1.0, 0.0, 0.0], "time": [1.0, 2.0]}]}},
+            "[loads.distributed[0].time] must be a scalar time function",
+        ),
     ],
-)  # fmt: skip
+)
 def test_bad_values_are_refused_in_one_line(change, message):
     """One line naming the key, the value and what is allowed."""
     with pytest.raises(ScenarioError) as err:

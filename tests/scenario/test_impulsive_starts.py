@@ -23,8 +23,9 @@ from tests.scenario.test_winch_scenario import HOIST
 
 GUIDE = Path(__file__).parents[2] / "docs" / "guide" / "scenarios.md"
 #: The reported winch: paid out at 1 m/s from t = 0.
-PAY_OUT = HOIST.replace("speed = { ramp = 2.0, value = 1.0 }",
-                        "length = { table = [[0, 5], [10, 15]] }")  # fmt: skip
+PAY_OUT = HOIST.replace(
+    "speed = { ramp = 2.0, value = 1.0 }", "length = { table = [[0, 5], [10, 15]] }"
+)
 #: A pin-supported line whose support moves (MOTION) and carries a point load (TIME).
 LINE = """
 [geometry]
@@ -75,8 +76,9 @@ def test_a_winch_paying_out_at_once_warns(tmp_path, capsys):
     warned, summary = _simulate(tmp_path, PAY_OUT, capsys, "--t-end", "0.5")
     (line, error) = warned  # the jump, then the steps that do not resolve it
     assert error.startswith("the local error estimate is ")
-    assert line.startswith("winch 'hoist' (winches[0].length): the pay-out rate jumps from 0 to "
-                           "1 m/s at t = 0")  # fmt: skip
+    assert line.startswith(
+        "winch 'hoist' (winches[0].length): the pay-out rate jumps from 0 to 1 m/s at t = 0"
+    )
     assert "give build_up = 1 to build it up over 1 s, or start the table at rate 0" in line
     assert summary["warnings"] == [line, error]
     assert f"rancf: warning: {line}\n" in GUIDE.read_text()  # the guide shows it as it is
@@ -88,8 +90,13 @@ def test_a_built_up_winch_length_starts_at_rate_0_and_keeps_its_start(tmp_path, 
     warned, summary = _simulate(tmp_path, text, capsys, "--t-end", "1.5")
     assert warned == [] and summary["warnings"] == []
     head, *rows = (tmp_path / "run" / "sensors.csv").read_text().splitlines()
-    s = dict(zip(head.split(","), np.array([[float(x) for x in r.split(",")] for r in rows]).T,
-                 strict=True))  # fmt: skip
+    s = dict(
+        zip(
+            head.split(","),
+            np.array([[float(x) for x in r.split(",")] for r in rows]).T,
+            strict=True,
+        )
+    )
     t = s["t"]
     x = np.minimum(t, 1.0)
     r = 10 * x**3 - 15 * x**4 + 6 * x**5
@@ -100,15 +107,19 @@ def test_a_built_up_winch_length_starts_at_rate_0_and_keeps_its_start(tmp_path, 
 
 def test_a_crank_turned_at_once_warns(tmp_path, capsys):
     text = (files("rancf.examples") / "slider-crank.toml").read_text(encoding="utf-8")
-    text = text.replace("angle = { spin_up = 0.05, rate = 150.0 }",
-                        "angle = { ramp = 1, value = 150 }")  # fmt: skip
+    text = text.replace(
+        "angle = { spin_up = 0.05, rate = 150.0 }", "angle = { ramp = 1, value = 150 }"
+    )
     warned, summary = _simulate(tmp_path, text, capsys, "--t-end", "0.001")
     (line, error) = warned
     assert error.startswith("the local error estimate is ")
-    assert line.startswith("joint 'motor' (joints[0].angle): the angular rate jumps from 0 to "
-                           "150 rad/s at t = 0")  # fmt: skip
-    assert line.endswith("give build_up = 0.1 to build it up over 0.1 s, or write angle = "
-                         "{ spin_up = 0.1, rate = 150 }")  # fmt: skip
+    assert line.startswith(
+        "joint 'motor' (joints[0].angle): the angular rate jumps from 0 to 150 rad/s at t = 0"
+    )
+    assert line.endswith(
+        "give build_up = 0.1 to build it up over 0.1 s, or write angle = "
+        "{ spin_up = 0.1, rate = 150 }"
+    )
     assert summary["warnings"] == [line, error]
 
 
@@ -142,8 +153,9 @@ def test_a_table_that_starts_flat_passes():
 
 def test_support_motions_warn_of_rate_and_value_jumps():
     (line,) = _line("motion = { table = [[0, 0, 0], [1, 0, 0.1]] }")
-    assert line.startswith("support at 'start' (supports[0].motion): the velocity jumps from 0 "
-                           "to 0.1 m/s at t = 0")  # fmt: skip
+    assert line.startswith(
+        "support at 'start' (supports[0].motion): the velocity jumps from 0 to 0.1 m/s at t = 0"
+    )
     (line,) = _line("motion = { table = [[0, 0, 0.02], [1, 0, 0.02]] }")
     assert "the displacement jumps from 0 to 0.02 m at t = 0" in line
     assert 'solver.initial_state = "static"' not in line and "start the table at 0" in line
@@ -153,21 +165,31 @@ def test_support_motions_warn_of_rate_and_value_jumps():
 
 
 def test_a_harmonic_motion_still_builds_up_by_itself():
-    sc = parse_scenario(tomllib.loads(LINE.format(
-        motion="motion = { harmonic = 1.0, amplitude = [0.0, 0.05] }", time="", dtime="",
-        start="reference")))  # fmt: skip
+    sc = parse_scenario(
+        tomllib.loads(
+            LINE.format(
+                motion="motion = { harmonic = 1.0, amplitude = [0.0, 0.05] }",
+                time="",
+                dtime="",
+                start="reference",
+            )
+        )
+    )
     assert sc.warnings == [] and "builds up over 2 s" in sc.notes[0]
 
 
 def test_loads_switched_on_warn_unless_the_start_is_static():
     (line,) = _line(time="time = 1.0")
-    assert line == ("point load at 'end' (loads.point[0].time): the load factor jumps from 0 to 1 "
-                    "at t = 0, an impulsive start (an impact: forces and ringing far above a "
-                    "smooth start's); give build_up = 0.2 to build it up over 0.2 s, or start "
-                    'from the static equilibrium (solver.initial_state = "static")')  # fmt: skip
+    assert line == (
+        "point load at 'end' (loads.point[0].time): the load factor jumps from 0 to 1 "
+        "at t = 0, an impulsive start (an impact: forces and ringing far above a "
+        "smooth start's); give build_up = 0.2 to build it up over 0.2 s, or start "
+        'from the static equilibrium (solver.initial_state = "static")'
+    )
     (line,) = _line(dtime="time = { harmonic = 2.0, phase_deg = 90.0 }")
-    assert line.startswith("distributed load (loads.distributed[0].time): the load factor jumps "
-                           "from 0 to 1 at t = 0")  # fmt: skip
+    assert line.startswith(
+        "distributed load (loads.distributed[0].time): the load factor jumps from 0 to 1 at t = 0"
+    )
     assert "give build_up = 1 " in line  # two periods
     assert _line(time="time = 1.0", start="static") == []
     assert _line(time="time = { ramp = 0.5 }") == []  # starts at 0
@@ -175,15 +197,19 @@ def test_loads_switched_on_warn_unless_the_start_is_static():
 
 
 def test_winch_speed_and_torque():
-    (line,) = parse_scenario(tomllib.loads(HOIST.replace("{ ramp = 2.0, value = 1.0 }",
-                                                         "1.5"))).warnings  # fmt: skip
-    assert line.startswith("winch 'hoist' (winches[0].speed): the pay-out rate jumps from 0 to "
-                           "1.5 m/s at t = 0")  # fmt: skip
-    torque = HOIST.replace("speed = { ramp = 2.0, value = 1.0 }",
-                           "torque = 30.0\nradius = 0.1\ninertia = 0.5")  # fmt: skip
+    (line,) = parse_scenario(
+        tomllib.loads(HOIST.replace("{ ramp = 2.0, value = 1.0 }", "1.5"))
+    ).warnings
+    assert line.startswith(
+        "winch 'hoist' (winches[0].speed): the pay-out rate jumps from 0 to 1.5 m/s at t = 0"
+    )
+    torque = HOIST.replace(
+        "speed = { ramp = 2.0, value = 1.0 }", "torque = 30.0\nradius = 0.1\ninertia = 0.5"
+    )
     assert parse_scenario(tomllib.loads(torque)).warnings == []  # static start: in balance
-    (line,) = parse_scenario(tomllib.loads(torque.replace(
-        'initial_state = "static"\n', ""))).warnings  # fmt: skip
+    (line,) = parse_scenario(
+        tomllib.loads(torque.replace('initial_state = "static"\n', ""))
+    ).warnings
     assert "winch 'hoist' (winches[0].torque): the torque jumps from 0 to 30 N m" in line
 
 
@@ -193,8 +219,12 @@ def test_a_stated_build_up_cures_and_silences(tmp_path):
     assert _line(time="time = { table = [[0, 1], [1, 1]], build_up = 0.3 }") == []
     (tmp_path / "up.csv").write_text("t, dx, dy\n0, 0, 0\n1, 0, 0.1\n")
     for build_up, count in (("", 1), (", build_up = 0.5", 0)):
-        text = LINE.format(motion=f'motion = {{ table = "up.csv"{build_up} }}', time="",
-                           dtime="", start="reference")  # fmt: skip
+        text = LINE.format(
+            motion=f'motion = {{ table = "up.csv"{build_up} }}',
+            time="",
+            dtime="",
+            start="reference",
+        )
         (tmp_path / "s.toml").write_text(text)
         from rancf.scenario import load_scenario
 

@@ -31,17 +31,24 @@ from tests.scenario.test_scenario import BASE
 
 def _python_base(**overrides) -> Scenario:
     tables = dict(
-        geometry=ConicGeometry(kind="conic", start=[0.0, 0.0], end=[0.5, 0.0],
-                               angles_deg=[30.0, 40.0], point=[0.315, 0.077]),
+        geometry=ConicGeometry(
+            kind="conic",
+            start=[0.0, 0.0],
+            end=[0.5, 0.0],
+            angles_deg=[30.0, 40.0],
+            point=[0.315, 0.077],
+        ),
         mesh=MeshTable(elements=3, element="rancf", k="opt"),
         section=SectionTable(radius=0.02),
         material=MaterialTable(density=6000.0, youngs_modulus=2.0e6),
         supports=[SupportTable(at="start", kind="pin")],
         loads={"gravity": [0.0, -9.81]},
         solver={"t_end": 0.02, "step": 1.0e-3},
-        sensors=[SensorTable(name="AB", kind="distance", between=["start", "end"]),
-                 {"name": "tip", "kind": "position", "at": "end"}],
-    )  # fmt: skip
+        sensors=[
+            SensorTable(name="AB", kind="distance", between=["start", "end"]),
+            {"name": "tip", "kind": "position", "at": "end"},
+        ],
+    )
     return Scenario(**{**tables, **overrides})
 
 
@@ -95,14 +102,19 @@ def test_time_functions_in_python():
     assert f.kind == "callable" and f.rate(0.0)[0] == pytest.approx(0.2, rel=1e-9)
     with pytest.raises(ScenarioError, match=r"^<scenario>: \[supports\[1\]\.motion\] is a Python"):
         sc2.to_toml()
-    with pytest.raises(ScenarioError, match=r"\[supports\[0\]\.motion\] must be a displacement "
-                       "of 2 components, got 3"):  # fmt: skip
+    with pytest.raises(
+        ScenarioError,
+        match=r"\[supports\[0\]\.motion\] must be a displacement "
+        "of 2 components, got 3",
+    ):
         _python_base(supports=[{"at": "end", "motion": lambda t: [t, t, t]}])
 
 
 def test_numpy_values_are_accepted():
-    sc = _python_base(geometry={"kind": "line", "start": np.zeros(2), "end": (np.float64(0.5), 0)},
-                      mesh={"elements": np.int64(4)})  # fmt: skip
+    sc = _python_base(
+        geometry={"kind": "line", "start": np.zeros(2), "end": (np.float64(0.5), 0)},
+        mesh={"elements": np.int64(4)},
+    )
     assert sc.geometry.end == [0.5, 0.0] and type(sc.geometry.end[0]) is float
     assert sc.mesh.elements == 4 and type(sc.mesh.elements) is int
 
@@ -118,25 +130,39 @@ def _deep(n: int) -> list:
     ("overrides", "message"),
     [
         ({"mesh": {"elements": 0}}, "<scenario>: [mesh.elements] must be >= 1, got 0"),
-        ({"section": {"radius": 10**401}},
-         "<scenario>: [section.radius] must be finite, got an integer of 402 digits"),
-        ({"mesh": {"elements": -(10**500)}},
-         "<scenario>: [mesh.elements] must be >= 1, got an integer of 501 digits"),
+        (
+            {"section": {"radius": 10**401}},
+            "<scenario>: [section.radius] must be finite, got an integer of 402 digits",
+        ),
+        (
+            {"mesh": {"elements": -(10**500)}},
+            "<scenario>: [mesh.elements] must be >= 1, got an integer of 501 digits",
+        ),
         ({"solver": {"t_end": float("nan")}}, "<scenario>: [solver.t_end] must be finite, got nan"),
-        ({"solver": {"step": 1e308}}, "<scenario>: [solver.step] a finite number > 0 and <= "
-         "t_end = 1 (got 1e+308)"),
-        ({"geometry": {"kind": "line", "start": _deep(3000), "end": [1.0, 0.0]}},
-         "<scenario>: [geometry.start] must be a list of 2 or 3 numbers, got a list nested too "
-         "deeply to show"),
-        ({"material": {"density": "7800", "youngs_modulus": 1.0}},
-         "<scenario>: [material.density] must be a number, got '7800'"),
-        ({"sensors": [{"name": "x" * 500, "kind": "energy"}] * 2},
-         f"<scenario>: [sensors[1].name] '{'x' * 37}...{'x' * 37}' is used twice or reserved"),
-        ({"supports": [{"at": True}]},
-         '<scenario>: [supports[0].at] must be a place ("start", "end", a node index or '
-         '"BODY:..."), got True'),
+        (
+            {"solver": {"step": 1e308}},
+            "<scenario>: [solver.step] a finite number > 0 and <= t_end = 1 (got 1e+308)",
+        ),
+        (
+            {"geometry": {"kind": "line", "start": _deep(3000), "end": [1.0, 0.0]}},
+            "<scenario>: [geometry.start] must be a list of 2 or 3 numbers, got a list nested too "
+            "deeply to show",
+        ),
+        (
+            {"material": {"density": "7800", "youngs_modulus": 1.0}},
+            "<scenario>: [material.density] must be a number, got '7800'",
+        ),
+        (
+            {"sensors": [{"name": "x" * 500, "kind": "energy"}] * 2},
+            f"<scenario>: [sensors[1].name] '{'x' * 37}...{'x' * 37}' is used twice or reserved",
+        ),
+        (
+            {"supports": [{"at": True}]},
+            '<scenario>: [supports[0].at] must be a place ("start", "end", a node index or '
+            '"BODY:..."), got True',
+        ),
     ],
-)  # fmt: skip
+)
 def test_bad_values_in_python_are_one_line(overrides, message):
     with pytest.raises(ScenarioError) as info:
         _python_base(**overrides)

@@ -159,8 +159,9 @@ def test_missing_file_and_invalid_toml(tmp_path, capsys, monkeypatch):
     monkeypatch.chdir(tmp_path)  # an example's name for a file: where to get the file
     assert main(["simulate", "tether-payload", "--out", "run"]) == 2
     err = capsys.readouterr().err
-    assert err.strip().endswith("(a shipped scenario: `rancf example copy tether-payload .` "
-                                "writes tether-payload.toml)")  # fmt: skip
+    assert err.strip().endswith(
+        "(a shipped scenario: `rancf example copy tether-payload .` writes tether-payload.toml)"
+    )
     bad = tmp_path / "x.toml"
     bad.write_text("[geometry\nkind=")
     assert main(["static", str(bad)]) == 2

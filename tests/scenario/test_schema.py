@@ -83,8 +83,12 @@ def _problems(value, node: dict, where: str = "$") -> list[str]:
         out.append(f"{where}: not {node['const']!r}")
     if "enum" in node and value not in node["enum"]:
         out.append(f"{where}: not one of {node['enum']}")
-    bounds = (("minimum", float.__ge__), ("maximum", float.__le__),
-              ("exclusiveMinimum", float.__gt__), ("exclusiveMaximum", float.__lt__))  # fmt: skip
+    bounds = (
+        ("minimum", float.__ge__),
+        ("maximum", float.__le__),
+        ("exclusiveMinimum", float.__gt__),
+        ("exclusiveMaximum", float.__lt__),
+    )
     for k, op in bounds:
         if k in node and not op(float(value), float(node[k])):
             out.append(f"{where}: {k} {node[k]}")
@@ -120,8 +124,11 @@ def _problems(value, node: dict, where: str = "$") -> list[str]:
 
 
 def _shipped() -> dict[str, dict]:
-    docs = {p.name: tomllib.loads(p.read_text()) for p in files("rancf.examples").iterdir()
-            if p.name.endswith(".toml")}  # fmt: skip
+    docs = {
+        p.name: tomllib.loads(p.read_text())
+        for p in files("rancf.examples").iterdir()
+        if p.name.endswith(".toml")
+    }
     for page in pages.PAGES:  # the README and the documentation pages
         for i, block in enumerate(pages.blocks(pages.text(page), "toml")):
             d = tomllib.loads(block)
@@ -150,11 +157,15 @@ def test_shipped_scenarios_are_valid_against_the_schema(name):
         (lambda d: d["supports"][0].update(kind="weld"), "$.supports[0].kind: not one of"),
         (lambda d: d["material"].pop("density"), "$.material.density: missing"),
         (lambda d: d.pop("geometry"), "$: matches none of anyOf"),
-        (lambda d: d.update(bodies=[{"name": "m", "kind": "mass", "mass": 1.0,
-                                     "position": [0.0, 0.0]}]), "$: matches none of anyOf"),
+        (
+            lambda d: d.update(
+                bodies=[{"name": "m", "kind": "mass", "mass": 1.0, "position": [0.0, 0.0]}]
+            ),
+            "$: matches none of anyOf",
+        ),
         (lambda d: d["sensors"][0].update(name="1x"), "$.sensors[0].name: does not match"),
     ],
-)  # fmt: skip
+)
 def test_the_validator_finds_problems(change, problem):
     """The structural validator can fail: the schema refuses what the models refuse."""
     d = tomllib.loads(BASE)

@@ -84,15 +84,14 @@ def test_sliding_joint_from_a_scenario_file(tmp_path):
 @pytest.mark.parametrize(
     ("old", "new", "key"),
     [
-        ('between = ["beam", "ground"]', 'between = ["beam:3", "ground"]',
-         "joints[0].between[0]"),
+        ('between = ["beam", "ground"]', 'between = ["beam:3", "ground"]', "joints[0].between[0]"),
         ('between = ["beam", "ground"]', 'between = ["rope", "ground"]', "joints[0].between[0]"),
         ("position = [0.95, 0.0]\n", "", "joints[0].position"),
         ("position = [0.95, 0.0]", "position = [0.95, 0.0, 0.0]", "joints[0].position"),
         ("position = [0.95, 0.0]", "position = [0.95, 0.2]", "guide.between"),
         ('kind = "sliding"', 'kind = "pin"', "joints[0].position"),
     ],
-)  # fmt: skip
+)
 def test_bad_sliding_joint_is_one_line_naming_the_key(old, new, key):
     text = BEAM.replace(old, new, 1)
     assert text != BEAM

@@ -37,8 +37,9 @@ def test_a_table_from_a_csv_file_is_the_inline_table(tmp_path, monkeypatch):
     f = sc.data["supports"][0]["motion"]
     np.testing.assert_array_equal(f.rows, inline)
     assert f.interpolation == "cubic"
-    assert main(["simulate", "case/capstan.toml", "--out", "run", "--quiet", "--t-end",
-                 "0.01"]) == 0  # fmt: skip
+    assert (
+        main(["simulate", "case/capstan.toml", "--out", "run", "--quiet", "--t-end", "0.01"]) == 0
+    )
     copy = tomllib.loads((tmp_path / "run" / "scenario.toml").read_text())
     assert copy["supports"][0]["motion"]["table"] == str((folder / "pull.csv").resolve())
     monkeypatch.chdir(folder)
@@ -83,8 +84,9 @@ def test_a_sweep_runs_again_after_its_table_file_changed(tmp_path, monkeypatch, 
     """A finished run is reused only while the CSV file it read is as it was."""
     monkeypatch.chdir(tmp_path)
     _csv_case(tmp_path)
-    Path("sweep.toml").write_text('base = "capstan.toml"\nanalysis = "simulate"\n'
-                                  '[grid]\n"solver.t_end" = [0.01]\n')  # fmt: skip
+    Path("sweep.toml").write_text(
+        'base = "capstan.toml"\nanalysis = "simulate"\n[grid]\n"solver.t_end" = [0.01]\n'
+    )
     argv = ["sweep", "sweep.toml", "--out", "out", "--threads", "1", "--quiet"]
     assert main(argv) == 0
     assert main(argv) == 0
@@ -136,9 +138,13 @@ def test_the_files_a_scenario_reads_are_fingerprinted_by_content(tmp_path):
     }
     scenario = tmp_path / "s.toml"
     assert read_file_paths(raw, scenario) == sorted(
-        [tmp_path / "top.step", Path("/abs/leg.iges"), tmp_path / "pull.csv",
-         tmp_path / "sub" / "reel.csv"]
-    )  # fmt: skip
+        [
+            tmp_path / "top.step",
+            Path("/abs/leg.iges"),
+            tmp_path / "pull.csv",
+            tmp_path / "sub" / "reel.csv",
+        ]
+    )
     (tmp_path / "pull.csv").write_text("0, 0\n1, 1\n")
     before = file_digests(raw, scenario)
     assert before[str(tmp_path / "top.step")] == "unreadable"
@@ -151,8 +157,10 @@ def test_a_run_folders_copy_names_every_cad_file_absolutely(tmp_path):
     one-body file's is (it stayed relative, read against the run folder)."""
     from rancf.sweep.toml_out import with_absolute_paths
 
-    raw = {"bodies": [{"name": "a", "geometry": {"kind": "cad", "file": "leg.step"}}],
-           "geometry": {"kind": "cad", "file": "top.step"}}  # fmt: skip
+    raw = {
+        "bodies": [{"name": "a", "geometry": {"kind": "cad", "file": "leg.step"}}],
+        "geometry": {"kind": "cad", "file": "top.step"},
+    }
     out = with_absolute_paths(raw, tmp_path / "s.toml")
     assert out["bodies"][0]["geometry"]["file"] == str(tmp_path / "leg.step")
     assert out["geometry"]["file"] == str(tmp_path / "top.step")

@@ -105,23 +105,33 @@ def test_speed_winch_and_its_sensor(tmp_path):
 @pytest.mark.parametrize(
     ("old", "new", "key"),
     [
-        ('speed = { ramp = 2.0, value = 1.0 }', "torque = 5.0\ninertia = 0.1",
-         "winches[0].radius"),
-        ('speed = { ramp = 2.0, value = 1.0 }', "torque = 5.0\nradius = 0.2",
-         "winches[0].inertia"),
-        ('speed = { ramp = 2.0, value = 1.0 }', "speed = 1.0\nradius = 0.2\ninertia = 0.1",
-         "winches[0].radius"),
-        ('speed = { ramp = 2.0, value = 1.0 }', "torque = 5.0\nradius = -0.2\ninertia = 0.1",
-         "winches[0].radius"),
-        ('speed = { ramp = 2.0, value = 1.0 }', "torque = 5.0\nspeed = 1.0\nradius = 0.2\n"
-         "inertia = 0.1", "winches[0]"),
+        ("speed = { ramp = 2.0, value = 1.0 }", "torque = 5.0\ninertia = 0.1", "winches[0].radius"),
+        ("speed = { ramp = 2.0, value = 1.0 }", "torque = 5.0\nradius = 0.2", "winches[0].inertia"),
+        (
+            "speed = { ramp = 2.0, value = 1.0 }",
+            "speed = 1.0\nradius = 0.2\ninertia = 0.1",
+            "winches[0].radius",
+        ),
+        (
+            "speed = { ramp = 2.0, value = 1.0 }",
+            "torque = 5.0\nradius = -0.2\ninertia = 0.1",
+            "winches[0].radius",
+        ),
+        (
+            "speed = { ramp = 2.0, value = 1.0 }",
+            "torque = 5.0\nspeed = 1.0\nradius = 0.2\ninertia = 0.1",
+            "winches[0]",
+        ),
         ('at = "wire:start"\nspeed', 'at = "wire:3"\nspeed', "winches[0].at"),
-        ('speed = { ramp = 2.0, value = 1.0 }', 'speed = 1.0\nlength = 5.0', "winches[0]"),
+        ("speed = { ramp = 2.0, value = 1.0 }", "speed = 1.0\nlength = 5.0", "winches[0]"),
         ('winch = "hoist"', 'winch = "drum"', "[sensors[0].winch] names no winch: 'drum'"),
-        ('speed = { ramp = 2.0, value = 1.0 }', 'speed = 1.0\nposition = [0.0, 1.0]',
-         "winches[0].position"),
+        (
+            "speed = { ramp = 2.0, value = 1.0 }",
+            "speed = 1.0\nposition = [0.0, 1.0]",
+            "winches[0].position",
+        ),
     ],
-)  # fmt: skip
+)
 def test_bad_winch_is_one_line_naming_the_key(tmp_path, old, new, key):
     text = HOIST.replace(old, new, 1)
     assert text != HOIST

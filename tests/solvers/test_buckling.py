@@ -18,9 +18,13 @@ EI = 2e11 * np.pi * 0.01**4 / 4.0
 def column(supports: list[Support], n: int = 16, element: str = "rancf") -> Model:
     """A 1 m column along x, a unit compressive force at its end."""
     return Model(
-        mesh_line([0.0, 0.0], [1.0, 0.0], n), element, SEC, MAT, supports,
+        mesh_line([0.0, 0.0], [1.0, 0.0], n),
+        element,
+        SEC,
+        MAT,
+        supports,
         point_loads=[PointLoad(-1, (-1.0, 0.0))],
-    )  # fmt: skip
+    )
 
 
 @pytest.mark.parametrize(("element", "rtol"), [("rancf", 1e-3), ("ancf", 1e-3), ("beam", 5e-3)])
@@ -48,9 +52,13 @@ def test_about_a_preloaded_state():
     m = column([Support(0, "clamp")])
     pcr = np.pi**2 * EI / 4.0
     m2 = Model(
-        mesh_line([0.0, 0.0], [1.0, 0.0], 16), "rancf", SEC, MAT, [Support(0, "clamp")],
+        mesh_line([0.0, 0.0], [1.0, 0.0], 16),
+        "rancf",
+        SEC,
+        MAT,
+        [Support(0, "clamp")],
         point_loads=[PointLoad(-1, (-0.25 * pcr, 0.0))],
-    )  # fmt: skip
+    )
     res = linear_buckling(m2, 1, "static", solve_static(m2).y)
     assert res.load_factors[0] == pytest.approx(4.0, rel=2e-3)  # 4 x 0.25 P_cr
     del m
@@ -63,9 +71,13 @@ def test_a_mechanism_is_refused():
 
 def test_tension_never_buckles():
     m = Model(
-        mesh_line([0.0, 0.0], [1.0, 0.0], 4), "rancf", SEC, MAT, [Support(0, "clamp")],
+        mesh_line([0.0, 0.0], [1.0, 0.0], 4),
+        "rancf",
+        SEC,
+        MAT,
+        [Support(0, "clamp")],
         point_loads=[PointLoad(-1, (1.0, 0.0))],
-    )  # fmt: skip
+    )
     with pytest.raises(ConvergenceError, match="never buckle"):
         linear_buckling(m, 1)
 
@@ -79,9 +91,13 @@ def test_lateral_torsional_buckling_of_a_strip():
     sec = Section(b * t, i_weak, i_stiff, j, (0.0, 0.0, 1.0))
     mat = Material(2700.0, e_mod, poisson_ratio=nu)
     m = Model(
-        mesh_line([0.0, 0.0, 0.0], [length, 0.0, 0.0], 16), "rod", sec, mat,
-        [Support(0, "clamp")], point_loads=[PointLoad(-1, (0.0, 0.0, -1.0))],
-    )  # fmt: skip
+        mesh_line([0.0, 0.0, 0.0], [length, 0.0, 0.0], 16),
+        "rod",
+        sec,
+        mat,
+        [Support(0, "clamp")],
+        point_loads=[PointLoad(-1, (0.0, 0.0, -1.0))],
+    )
     g = e_mod / (2.0 * (1.0 + nu))
     pcr = 4.013 * np.sqrt(e_mod * i_weak * g * j) / length**2
     assert pcr == pytest.approx(3.312, abs=1e-3)

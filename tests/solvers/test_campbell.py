@@ -26,9 +26,13 @@ AXIS, CENTER = np.array([0.0, 0.0, 1.0]), np.zeros(3)
 
 def blade(n: int = 12, clamp: bool = True) -> Model:
     """The uniform rod of the rotating-beam benchmark along x, clamped at the spin axis."""
-    return Model(mesh_line([0, 0, 0], [L, 0, 0], n), "rod", Section.circular(R),
-                 Material(RHO, E, poisson_ratio=0.3),
-                 [Support(0, "clamp")] if clamp else [])  # fmt: skip
+    return Model(
+        mesh_line([0, 0, 0], [L, 0, 0], n),
+        "rod",
+        Section.circular(R),
+        Material(RHO, E, poisson_ratio=0.3),
+        [Support(0, "clamp")] if clamp else [],
+    )
 
 
 def _end_values(tau2: float, mu2: float, terms: int = 100) -> np.ndarray:
@@ -110,13 +114,18 @@ def test_frame_terms_are_the_derivatives_of_the_kinetic_energy_seen_from_the_tur
     fc = frame.centrifugal_force(y, rate)
     assert np.abs(grad - fc).max() <= 1e-8 * np.abs(fc).max()
     e_y = np.array([energy(y + eye[i], zero) for i in range(n)])
-    hyy = np.array([[energy(y + eye[i] + eye[j], zero) - e_y[i] - e_y[j] + base
-                     for j in range(n)] for i in range(n)])  # fmt: skip
+    hyy = np.array(
+        [
+            [energy(y + eye[i] + eye[j], zero) - e_y[i] - e_y[j] + base for j in range(n)]
+            for i in range(n)
+        ]
+    )
     kc = frame.centrifugal_stiffness(rate).toarray()
     assert np.abs(-hyy - kc).max() <= 1e-8 * np.abs(kc).max()
     e_v = np.array([energy(y, eye[i]) for i in range(n)])
-    hvy = np.array([[energy(y + eye[j], eye[i]) - e_v[i] - e_y[j] + base
-                     for j in range(n)] for i in range(n)])  # fmt: skip
+    hvy = np.array(
+        [[energy(y + eye[j], eye[i]) - e_v[i] - e_y[j] + base for j in range(n)] for i in range(n)]
+    )
     gyro = frame.gyroscopic(rate).toarray()
     assert np.abs(gyro).max() > 0
     assert np.abs((hvy - hvy.T) - gyro).max() <= 1e-8 * np.abs(gyro).max()
@@ -176,8 +185,9 @@ def test_the_lead_lag_softening_is_exact_and_coriolis_lowers_it(monkeypatch):
 
     system, rate = as_system(blade(8)), 30.0
     full = rotating_modes(system, Spin.of(AXIS, CENTER, rate), 4)
-    monkeypatch.setattr(rotating.FrameTerms, "gyroscopic",
-                        lambda self, r: sp.csr_matrix(self.mass.shape))  # fmt: skip
+    monkeypatch.setattr(
+        rotating.FrameTerms, "gyroscopic", lambda self, r: sp.csr_matrix(self.mass.shape)
+    )
     bare = rotating_modes(system, Spin.of(AXIS, CENTER, rate), 4)
     flap, lag = _split(system, bare)
     w_flap, w_lag = (2 * np.pi * bare.frequencies_hz[i[0]] for i in (flap, lag))
@@ -205,8 +215,9 @@ def test_modes_json_has_the_campbell_object(tmp_path, capsys):
     from rancf.scenario import Scenario
     from tests.pages import DOCS, blocks, section
 
-    text = blocks(section(DOCS / "guide" / "statics.md", "Modes about a steady rotation"),
-                  "toml")[0].replace("elements = 8", "elements = 4")  # fmt: skip
+    text = blocks(section(DOCS / "guide" / "statics.md", "Modes about a steady rotation"), "toml")[
+        0
+    ].replace("elements = 8", "elements = 4")
     (tmp_path / "b.toml").write_text(text)
     assert main(["modes", str(tmp_path / "b.toml"), "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
@@ -228,8 +239,11 @@ def test_a_point_mass_on_an_isotropic_spring_whirls_at_omega0_plus_minus_the_spi
     from rancf.system import Joint, Spring, System
 
     def system(joints=()):
-        return System({"m": PointMass(3, 2.0, (1.0, 0.0, 0.0))}, joints=joints,
-                      springs=[Spring(("m", "ground"), 8.0, length=0.0)])  # fmt: skip
+        return System(
+            {"m": PointMass(3, 2.0, (1.0, 0.0, 0.0))},
+            joints=joints,
+            springs=[Spring(("m", "ground"), 8.0, length=0.0)],
+        )
 
     free = system()
     for rate in (0.5, 3.0):
@@ -275,8 +289,15 @@ def test_a_spin_of_a_planar_system_is_refused_in_one_line():
     """A planar system has no spin axis to turn about: one line naming ``modes.spin_rates``."""
     from rancf.errors import RancfError
 
-    planar = as_system(Model(mesh_line([0, 0], [1, 0], 2), "ancf", Section.circular(R),
-                             Material(RHO, E), [Support(0, "clamp")]))  # fmt: skip
+    planar = as_system(
+        Model(
+            mesh_line([0, 0], [1, 0], 2),
+            "ancf",
+            Section.circular(R),
+            Material(RHO, E),
+            [Support(0, "clamp")],
+        )
+    )
     with pytest.raises(RancfError, match=r"modes\.spin_rates: .* this one is planar"):
         frame_terms(planar, AXIS, CENTER)
 
@@ -287,10 +308,16 @@ def _flat_blade(n: int = 6) -> Model:
     from rancf.mesh.factories import mesh_line
 
     i_flap = np.pi * R**4 / 4
-    sec = Section(area=np.pi * R**2, inertia=4 * i_flap, inertia_z=i_flap,
-                  orientation=(0.0, 0.0, 1.0))  # fmt: skip
-    return Model(mesh_line([0, 0, 0], [L, 0, 0], n), "rod", sec,
-                 Material(RHO, E, poisson_ratio=0.3), [Support(0, "clamp")])  # fmt: skip
+    sec = Section(
+        area=np.pi * R**2, inertia=4 * i_flap, inertia_z=i_flap, orientation=(0.0, 0.0, 1.0)
+    )
+    return Model(
+        mesh_line([0, 0, 0], [L, 0, 0], n),
+        "rod",
+        sec,
+        Material(RHO, E, poisson_ratio=0.3),
+        [Support(0, "clamp")],
+    )
 
 
 def test_campbell_lines_follow_their_mode_shapes_through_a_crossing():

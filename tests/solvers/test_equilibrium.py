@@ -32,9 +32,13 @@ def ssnl114_model(n: int = 40) -> Model:
     area = c["area"]
     sec = Section(area, area**2 / (4.0 * np.pi))  # a solid round wire
     return Model(
-        mesh_line([0.0, 0.0], [c["span"], 0.0], n), "rancf", sec,
-        Material(c["density"], c["youngs"]), [Support(0), Support(-1)], gravity=[0.0, -9.81],
-    )  # fmt: skip
+        mesh_line([0.0, 0.0], [c["span"], 0.0], n),
+        "rancf",
+        sec,
+        Material(c["density"], c["youngs"]),
+        [Support(0), Support(-1)],
+        gravity=[0.0, -9.81],
+    )
 
 
 def test_ssnl114_elastic_catenary_from_the_straight_tension_free_start():
@@ -62,9 +66,13 @@ def test_slack_steel_cable_from_a_curved_reference():
     th = 21.999218277040956  # the tangent angle of a circular arc 82 m long over 80 m
     arc = conic_arc_through([0.0, 0.0], [80.0, 0.0], [th, th], [40.0, -7.774929182949902])
     m = Model(
-        mesh_conic(arc, 32), "rancf", Section(1e-4, 1e-13), Material(7850.0, 2e11),
-        [Support(0), Support(-1)], gravity=[0.0, -9.81],
-    )  # fmt: skip
+        mesh_conic(arc, 32),
+        "rancf",
+        Section(1e-4, 1e-13),
+        Material(7850.0, 2e11),
+        [Support(0), Support(-1)],
+        gravity=[0.0, -9.81],
+    )
     res = solve_static(m)
     ref = elastic_catenary(80.0, 82.0, 2e11 * 1e-4, 7850.0 * 1e-4 * 9.81)
     assert -m.node_positions(res.q)[16, 1] == pytest.approx(ref.mid_sag, rel=1e-6)
@@ -83,17 +91,22 @@ def shallow_arch(n: int = 16) -> Model:
     at 0.657 of it the arch snaps through to hang below its supports."""
     arc = conic_arc_through([0.0, 0.0], [10.0, 0.0], [11.0, 11.0], [5.0, 0.4811])
     return Model(
-        mesh_conic(arc, n), "rancf", Section(1e-4, 8e-10), Material(7850.0, 2e11),
-        [Support(0), Support(-1)], gravity=[0.0, -9.81],
-    )  # fmt: skip
+        mesh_conic(arc, n),
+        "rancf",
+        Section(1e-4, 8e-10),
+        Material(7850.0, 2e11),
+        [Support(0), Support(-1)],
+        gravity=[0.0, -9.81],
+    )
 
 
 def test_arc_length_passes_a_snap_through_that_load_control_cannot():
     """Load control stops at the arch's limit point (relaxation under the full load then lets
     it snap through); arc length traces the path past it (the load factor turns back) to the
     same hanging state, which the default solve finds from the sagged start."""
-    relaxed = solve_equilibrium(SystemEquilibrium(as_system(shallow_arch())), 10, 1e-10, 30,
-                                None, "load", 0.0)  # fmt: skip
+    relaxed = solve_equilibrium(
+        SystemEquilibrium(as_system(shallow_arch())), 10, 1e-10, 30, None, "load", 0.0
+    )
     assert relaxed.method == "relaxation+newton" and relaxed.relaxation_steps > 0
     assert relaxed.load_factors[-2] == pytest.approx(0.657, abs=2e-3)  # where load control stops
     assert relaxed.load_factors[-1] == 1.0
@@ -123,11 +136,13 @@ def hose(n: int = 32, angle: float = 0.0) -> Model:
     end = rot @ [h["length"], 0.0]
     pos, d = rot @ [h["span"], 0.0], rot @ [1.0, 0.0]
     return Model(
-        mesh_line([0.0, 0.0], end, n), "rancf", Section.circular(h["radius"]),
+        mesh_line([0.0, 0.0], end, n),
+        "rancf",
+        Section.circular(h["radius"]),
         Material(h["density"], h["youngs"]),
         [Support(0, "clamp"), Support(-1, "clamp", position=tuple(pos), direction=tuple(d))],
         gravity=rot @ [0.0, -h["g"]],
-    )  # fmt: skip
+    )
 
 
 def test_installed_hose_matches_the_elastica():
@@ -190,9 +205,13 @@ def test_hanging_chain_keeps_its_pendulum_mode():
     real mode (the former modes removed it as rigid)."""
     area = np.pi * 1e-6
     m = Model(
-        mesh_line([0.0, 0.0], [0.0, -1.0], 48), "rancf", Section(area, 1e-20),
-        Material(7850.0, 2e11), [Support(0)], gravity=[0.0, -9.81],
-    )  # fmt: skip
+        mesh_line([0.0, 0.0], [0.0, -1.0], 48),
+        "rancf",
+        Section(area, 1e-20),
+        Material(7850.0, 2e11),
+        [Support(0)],
+        gravity=[0.0, -9.81],
+    )
     res = natural_modes(m, solve_static(m).y, count=3)
     assert res.n_rigid == 0
     assert np.allclose(res.frequencies_hz, chain_frequencies(1.0), rtol=3e-3)
@@ -211,9 +230,13 @@ def test_a_free_body_under_dead_tension_keeps_only_its_translations_rigid():
     ea = mat.youngs_modulus * sec.area
     force = ea * 0.5 * (stretch**2 - 1.0) * stretch  # N = EA ε λ
     m = Model(
-        mesh_line([0.0, 0.0], [length, 0.0], 8), "rancf", sec, mat, [],
+        mesh_line([0.0, 0.0], [length, 0.0], 8),
+        "rancf",
+        sec,
+        mat,
+        [],
         point_loads=[PointLoad(0, (-force, 0.0)), PointLoad(-1, (force, 0.0))],
-    )  # fmt: skip
+    )
     q = m.q0.reshape(-1, 4).copy()
     q[:, 0] *= stretch  # uniformly stretched: an exact equilibrium
     q[:, 2] *= stretch
@@ -232,8 +255,14 @@ def test_an_installed_place_equal_to_the_reference_up_to_round_off_is_no_install
     mat, sec = Material(7850.0, 2e11), Section.circular(0.01)
     for shift, stages in ((0.0, 1), (1e-16, 1), (1e-6, 2)):
         end = (0.3 + shift, 0.0)
-        model = Model(mesh, "rancf", sec, mat, gravity=(0.0, -9.81),
-                      supports=[Support(0, "pin"), Support(-1, "pin", position=end)])  # fmt: skip
+        model = Model(
+            mesh,
+            "rancf",
+            sec,
+            mat,
+            gravity=(0.0, -9.81),
+            supports=[Support(0, "pin"), Support(-1, "pin", position=end)],
+        )
         assert len(SystemEquilibrium(as_system(model)).stages) == stages, shift
         res = solve_static(model)
         assert np.abs(model.node_positions(res.q)[-1] - end).max() <= 1e-15 + 1e-12 * 0.3
@@ -250,8 +279,14 @@ def test_a_pinned_arc_under_gravity_comes_to_rest_hanging_and_without_its_pin_sa
     arc = conic_arc_through([0.0, 0.0], [0.5, 0.0], [30.0, 40.0], [0.315, 0.077])
 
     def pendulum(supports):
-        return Model(mesh_conic(arc, 4), "rancf", Section.circular(0.02), Material(6000.0, 2e6),
-                     supports, gravity=[0.0, -9.81])  # fmt: skip
+        return Model(
+            mesh_conic(arc, 4),
+            "rancf",
+            Section.circular(0.02),
+            Material(6000.0, 2e6),
+            supports,
+            gravity=[0.0, -9.81],
+        )
 
     weight = pendulum([]).total_mass * 9.81
     for method in ("load", "arc_length"):

@@ -30,8 +30,9 @@ def _deviation(tmp_path: Path, case: str = "wd0050", slip_velocity: float | None
     out = tmp_path / "run"
     assert main(["simulate", str(tmp_path / "wd.toml"), "--out", str(out), "--quiet"]) == 0
     rows = np.genfromtxt(out / "reactions.csv", delimiter=",", names=True)
-    ref = np.genfromtxt(ROOT / "tests" / "references" / f"{case}_moordyn.csv", delimiter=",",
-                        names=True)  # fmt: skip
+    ref = np.genfromtxt(
+        ROOT / "tests" / "references" / f"{case}_moordyn.csv", delimiter=",", names=True
+    )
     keep = ref["t"] >= 5.0
     ours = np.interp(ref["t"][keep], rows["t"], np.hypot(rows["end_fx"], rows["end_fy"]))
     theirs = ref["tension"][keep]

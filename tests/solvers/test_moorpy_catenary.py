@@ -53,9 +53,10 @@ def solved_forces(tmp_path, case: Case, elements: int) -> tuple[np.ndarray, str]
 def _marked(elements: int) -> list:
     return [
         pytest.param(c, marks=pytest.mark.xfail(reason=OPEN[c.name], strict=True))
-        if c.name in OPEN and elements == 40 else c
+        if c.name in OPEN and elements == 40
+        else c
         for c in CASES
-    ]  # fmt: skip
+    ]
 
 
 @pytest.mark.parametrize("case", _marked(40), ids=[c.name for c in CASES])
@@ -104,6 +105,9 @@ def test_an_unresolved_touchdown_is_refused_not_reported(tmp_path):
     from rancf.errors import ConvergenceError
 
     case = next(c for c in CASES if c.name == "u-shape")
-    with pytest.raises(ConvergenceError, match=r"radius T/w = .* shorter than its element "
-                       r"\(3.25 m\): the touchdown is not resolved"):  # fmt: skip
+    with pytest.raises(
+        ConvergenceError,
+        match=r"radius T/w = .* shorter than its element "
+        r"\(3.25 m\): the touchdown is not resolved",
+    ):
         solved_forces(tmp_path, case, 40)

@@ -22,8 +22,15 @@ SECTION, MATERIAL = Section.circular(0.02), Material(6000.0, 2.0e8)
 
 def pendulum(n: int, element: str = "ancf", **kw) -> Model:
     """The straight pendulum of the benchmarks (L = 1.2 m, E = 2e8 Pa), released horizontal."""
-    return Model(mesh_line([0, 0], [1.2, 0], n), element, SECTION, MATERIAL,
-                 [Support(0, "pin")], gravity=[0, -9.81], **kw)  # fmt: skip
+    return Model(
+        mesh_line([0, 0], [1.2, 0], n),
+        element,
+        SECTION,
+        MATERIAL,
+        [Support(0, "pin")],
+        gravity=[0, -9.81],
+        **kw,
+    )
 
 
 def test_gradients_are_scaled_by_their_elements_length():
@@ -32,13 +39,23 @@ def test_gradients_are_scaled_by_their_elements_length():
     np.testing.assert_allclose(s[:, 2:], 0.3, rtol=1e-14)
     beam = body_scale(pendulum(4, "beam")).reshape(5, 3)  # (x, y, angle)
     np.testing.assert_allclose(beam, np.c_[np.ones((5, 2)), np.full(5, 0.3)], rtol=1e-14)
-    rod = Model(mesh_line([0, 0, 0], [1.2, 0, 0], 4), "rod", SECTION,
-                Material(6000.0, 2.0e8, poisson_ratio=0.3))  # fmt: skip
-    np.testing.assert_allclose(body_scale(rod).reshape(5, 7), np.tile([1, 1, 1, 0.3, 0.3, 0.3, 1],
-                               (5, 1)), rtol=1e-14)  # fmt: skip  # the twist keeps 1
+    rod = Model(
+        mesh_line([0, 0, 0], [1.2, 0, 0], 4),
+        "rod",
+        SECTION,
+        Material(6000.0, 2.0e8, poisson_ratio=0.3),
+    )
+    np.testing.assert_allclose(
+        body_scale(rod).reshape(5, 7), np.tile([1, 1, 1, 0.3, 0.3, 0.3, 1], (5, 1)), rtol=1e-14
+    )  # the twist keeps 1
     # a conic arc: the shorter chord of each node's elements over its gradient's length
-    arc = Model(mesh_conic(conic_arc(0.5, (30.0, 40.0), (0.315, 0.077)), 6), "rancf", SECTION,
-                MATERIAL, [Support(0, "pin")])  # fmt: skip
+    arc = Model(
+        mesh_conic(conic_arc(0.5, (30.0, 40.0), (0.315, 0.077)), 6),
+        "rancf",
+        SECTION,
+        MATERIAL,
+        [Support(0, "pin")],
+    )
     q = arc.q0.reshape(7, 4)
     chords = np.linalg.norm(np.diff(q[:, :2], axis=0), axis=1)
     near = np.minimum(np.r_[chords[0], chords], np.r_[chords, chords[-1]])
@@ -47,8 +64,9 @@ def test_gradients_are_scaled_by_their_elements_length():
         body_scale(arc).reshape(7, 4)[:, 2:], np.c_[expect, expect], rtol=1e-14
     )
     # elements longer than 1 m keep the plain test (never stricter than before)
-    assert np.all(body_scale(Model(mesh_line([0, 0], [30.0, 0], 3), "ancf", SECTION,
-                                   MATERIAL)) == 1.0)  # fmt: skip
+    assert np.all(
+        body_scale(Model(mesh_line([0, 0], [30.0, 0], 3), "ancf", SECTION, MATERIAL)) == 1.0
+    )
 
 
 def test_where_the_scale_is_one():
@@ -90,8 +108,14 @@ def _stiff_steps(k: int) -> tuple[list[int], list[int]]:
     of ``k`` steps of 192 stiff elements (E = 2e11), and the iterations of each step."""
     from rancf.solvers.generalized_alpha import GeneralizedAlpha
 
-    model = Model(mesh_line([0, 0], [1.2, 0], 192), "ancf", SECTION, Material(6000.0, 2e11),
-                  [Support(0, "pin")], gravity=[0, -9.81])  # fmt: skip
+    model = Model(
+        mesh_line([0, 0], [1.2, 0], 192),
+        "ancf",
+        SECTION,
+        Material(6000.0, 2e11),
+        [Support(0, "pin")],
+        gravity=[0, -9.81],
+    )
     s = as_system(model)
     integ = GeneralizedAlpha(s, 0.9, 1.2e-10, 25, "chord")
     y, v, lam = s.y0.copy(), s.v0.copy(), np.zeros(s.m)

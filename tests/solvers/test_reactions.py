@@ -102,9 +102,13 @@ def test_pendulum_pin_force_is_the_rate_of_momentum():
 
 def cantilever(n: int = 8, force: float = -1e-3) -> Model:
     return Model(
-        mesh_line([0.0, 0.0], [0.5, 0.0], n), "rancf", Section.circular(0.03),
-        Material(6000.0, 2e7), [Support(0, "clamp")], point_loads=[PointLoad(-1, (0.0, force))],
-    )  # fmt: skip
+        mesh_line([0.0, 0.0], [0.5, 0.0], n),
+        "rancf",
+        Section.circular(0.03),
+        Material(6000.0, 2e7),
+        [Support(0, "clamp")],
+        point_loads=[PointLoad(-1, (0.0, force))],
+    )
 
 
 def test_cantilever_moment_line_and_clamp_moment():
@@ -146,9 +150,13 @@ def test_rod_moments_against_the_reactions():
     sec = Section.circular(0.01)
     mat = Material(7850.0, 2e11, poisson_ratio=0.3)
     m = Model(
-        mesh_line([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], 8), "rod", sec, mat, [Support(0, "clamp")],
+        mesh_line([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], 8),
+        "rod",
+        sec,
+        mat,
+        [Support(0, "clamp")],
         point_loads=[PointLoad(-1, (0.0, 0.0, -1.0), moment=(2.0, 0.0, 0.0))],
-    )  # fmt: skip
+    )
     res = solve_static(m)
     vals = SectionSampler(m).values(res.y)
     assert np.allclose(vals[:, 5], 2.0, rtol=2e-3)  # twisting moment = the torque

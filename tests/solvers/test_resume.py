@@ -38,20 +38,24 @@ CASES = [
 #: a count the state carries.
 STIFF = {
     "geometry": {"kind": "line", "start": [0, 0], "end": [1.2, 0]},
-    "mesh": {"elements": 192, "element": "ancf"}, "section": {"radius": 0.02},
+    "mesh": {"elements": 192, "element": "ancf"},
+    "section": {"radius": 0.02},
     "material": {"density": 6000.0, "youngs_modulus": 2e11},
-    "supports": [{"at": "start", "kind": "pin"}], "loads": {"gravity": [0, -9.81]},
+    "supports": [{"at": "start", "kind": "pin"}],
+    "loads": {"gravity": [0, -9.81]},
     "solver": {"t_end": 0.03, "step": 1e-3, "output_step": 5e-3, "rho_inf": 0.9},
-}  # fmt: skip
+}
 
 #: A clamped spatial rod swinging down under gravity (its nodal triads are carried along).
 ROD = {
     "geometry": {"kind": "line", "start": [0, 0, 0], "end": [1, 0.2, 0.1]},
-    "mesh": {"elements": 4, "element": "rod"}, "section": {"radius": 0.02},
+    "mesh": {"elements": 4, "element": "rod"},
+    "section": {"radius": 0.02},
     "material": {"density": 7800.0, "youngs_modulus": 2e9, "poisson_ratio": 0.3},
-    "supports": [{"at": "start", "kind": "clamp"}], "loads": {"gravity": [0, 0, -9.81]},
+    "supports": [{"at": "start", "kind": "clamp"}],
+    "loads": {"gravity": [0, 0, -9.81]},
     "solver": {"t_end": 0.03, "step": 1e-3, "output_step": 2e-3},
-}  # fmt: skip
+}
 
 
 def _scenario(name: str, **solver: object):

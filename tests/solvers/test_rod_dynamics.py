@@ -32,9 +32,15 @@ ARC_EXUDYN = {0.5: (-0.46378, -0.10247, -0.16032), 1.0: (-0.08607, -0.33606, -0.
 def top(youngs: float, rho_inf: float = 1.0, n: int = 8):
     """The straight rod (L = 0.5 m) pinned at x = 0, spinning at 100 rad/s about its axis,
     released horizontally under gravity -z; returns the model and the result."""
-    m = Model(mesh_line([0, 0, 0], [0.5, 0, 0], n), "rod", SEC,
-              Material(6000.0, youngs, poisson_ratio=0.3), [Support(0)], gravity=[0, 0, -9.81],
-              initial_motion=RigidMotion(angular_velocity=(100.0, 0.0, 0.0)))  # fmt: skip
+    m = Model(
+        mesh_line([0, 0, 0], [0.5, 0, 0], n),
+        "rod",
+        SEC,
+        Material(6000.0, youngs, poisson_ratio=0.3),
+        [Support(0)],
+        gravity=[0, 0, -9.81],
+        initial_motion=RigidMotion(angular_velocity=(100.0, 0.0, 0.0)),
+    )
     opts = DynamicOptions(t_end=1.0, step=1e-3, rho_inf=rho_inf, output_step=0.25)
     return m, integrate(m, opts)
 
@@ -92,9 +98,15 @@ def test_stiffening_rod_tends_to_the_rigid_lagrange_top():
 def arc(rho_inf: float, n: int = 8, h: float = 1e-3):
     """The 6.2 arc as a rod (E = 2e8), pinned at A, swung at 2 rad/s about the vertical at A."""
     geo = conic_arc_through([0, 0, 0], [0.5, 0, 0], [60, 30], [0.264, 0, 0.069])
-    m = Model(mesh_conic(geo, n), "rod", SEC, Material(6000.0, 2e8, poisson_ratio=0.3),
-              [Support(0)], gravity=[0, 0, -9.81],
-              initial_motion=RigidMotion(angular_velocity=(0.0, 0.0, 2.0)))  # fmt: skip
+    m = Model(
+        mesh_conic(geo, n),
+        "rod",
+        SEC,
+        Material(6000.0, 2e8, poisson_ratio=0.3),
+        [Support(0)],
+        gravity=[0, 0, -9.81],
+        initial_motion=RigidMotion(angular_velocity=(0.0, 0.0, 2.0)),
+    )
     return m, integrate(m, DynamicOptions(t_end=1.0, step=h, rho_inf=rho_inf, output_step=0.05))
 
 

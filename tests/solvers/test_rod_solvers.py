@@ -25,8 +25,13 @@ def clamped_arc(n: int, element: str) -> Model:
     if element == "rod":
         arc = conic_arc_through([0, 0, 0], [0.5, 0, 0], [30, 30], [0.25, SAG, 0])
         return Model(mesh_conic(arc, n), "rod", SEC, ROD, [Support(0, "clamp")])
-    return Model(mesh_conic(conic_arc(0.5, [30, 30], [0.25, SAG]), n), "rancf", SEC, CABLE,
-                 [Support(0, "clamp")])  # fmt: skip
+    return Model(
+        mesh_conic(conic_arc(0.5, [30, 30], [0.25, SAG]), n),
+        "rancf",
+        SEC,
+        CABLE,
+        [Support(0, "clamp")],
+    )
 
 
 def split_modes(model: Model, res) -> tuple[np.ndarray, np.ndarray]:
@@ -75,10 +80,24 @@ def test_straight_rod_reports_torsional_modes():
 def test_planar_rod_equals_planar_cable_statics_and_dynamics():
     arc2 = conic_arc(0.5, [30, 40], [0.315, 0.077])
     arc3 = conic_arc_through([0, 0, 0], [0.5, 0, 0], [30, 40], [0.315, 0.077, 0])
-    cable = Model(mesh_conic(arc2, 4), "rancf", SEC, CABLE, [Support(0, "clamp")],
-                  gravity=[0, -9.81], point_loads=[PointLoad(-1, (0.3, -0.2))])  # fmt: skip
-    rod = Model(mesh_conic(arc3, 4), "rod", SEC, ROD, [Support(0, "clamp")],
-                gravity=[0, -9.81, 0], point_loads=[PointLoad(-1, (0.3, -0.2, 0))])  # fmt: skip
+    cable = Model(
+        mesh_conic(arc2, 4),
+        "rancf",
+        SEC,
+        CABLE,
+        [Support(0, "clamp")],
+        gravity=[0, -9.81],
+        point_loads=[PointLoad(-1, (0.3, -0.2))],
+    )
+    rod = Model(
+        mesh_conic(arc3, 4),
+        "rod",
+        SEC,
+        ROD,
+        [Support(0, "clamp")],
+        gravity=[0, -9.81, 0],
+        point_loads=[PointLoad(-1, (0.3, -0.2, 0))],
+    )
     xs_c = cable.node_positions(solve_static(cable, load_steps=4).q)
     xs_r = rod.node_positions(solve_static(rod, load_steps=4).q)
     assert np.abs(xs_c - xs_c[0]).max() > 1e-3  # a real deflection
@@ -102,8 +121,15 @@ def test_rod_pendulum_turns_its_tangents_through_several_revolutions():
     mesh = mesh_line([0, 0, 0], [length, 0, 0], n)
     omega = np.array([0.0, 3.0, 10.0])  # rad/s, mostly about z (gravity along -y), tilted
     v0 = {i: np.cross(omega, mesh.nodes[i, 0]) for i in range(1, n + 1)}
-    m = Model(mesh, "rod", Section.circular(0.01), Material(1000.0, 1e8, poisson_ratio=0.3),
-              [Support(0)], gravity=[0, -9.81, 0], initial_velocities=v0)  # fmt: skip
+    m = Model(
+        mesh,
+        "rod",
+        Section.circular(0.01),
+        Material(1000.0, 1e8, poisson_ratio=0.3),
+        [Support(0)],
+        gravity=[0, -9.81, 0],
+        initial_velocities=v0,
+    )
     r = integrate(m, DynamicOptions(t_end=1.5, step=1e-3, rho_inf=0.9, output_step=1e-2))
     assert r.status.value == "completed", r.message
     tip = r.q.reshape(len(r.t), m.n_nodes, 7)[:, -1]

@@ -262,9 +262,13 @@ def test_refused_state_exits_3_in_one_line(tmp_path):
     text = U_INSTALLED + U_LINE.format(stiffness="stiffness = 1.0e6", fluid="")
     (tmp_path / "u.toml").write_text(text)
     src = str(Path(rancf.__file__).resolve().parents[1])
-    p = subprocess.run([sys.executable, "-m", "rancf", "static", "u.toml"], cwd=tmp_path,
-                       capture_output=True, text=True,
-                       env={**os.environ, "PYTHONPATH": src})  # fmt: skip
+    p = subprocess.run(
+        [sys.executable, "-m", "rancf", "static", "u.toml"],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        env={**os.environ, "PYTHONPATH": src},
+    )
     assert p.returncode == 3
     lines = [x for x in p.stderr.splitlines() if "no equilibrium" in x]
     assert len(lines) == 1 and "no equilibrium" in lines[0]

@@ -77,8 +77,9 @@ def _blade_exact() -> tuple[float, float]:
         return np.vstack([y[1] / ea, -rho * area * omega**2 * (x + y[0])])
 
     x = np.linspace(0.0, 1.0, 101)
-    sol = solve_bvp(rhs, lambda ya, yb: np.array([ya[0], yb[1]]), x, np.zeros((2, x.size)),
-                    tol=1e-10)  # fmt: skip
+    sol = solve_bvp(
+        rhs, lambda ya, yb: np.array([ya[0], yb[1]]), x, np.zeros((2, x.size)), tol=1e-10
+    )
     return float(sol.sol(0.0)[1]), float(sol.sol(1.0)[0])
 
 
@@ -105,10 +106,13 @@ def test_spinning_blade_tension_has_no_chord_error(tmp_path, rho):
 def _pendulum() -> rancf.Model:
     arc = rancf.conic_arc(0.5, [30, 40], [0.315, 0.077])
     return rancf.Model(
-        rancf.mesh_conic(arc, 5), "rancf", rancf.Section.circular(0.02),
+        rancf.mesh_conic(arc, 5),
+        "rancf",
+        rancf.Section.circular(0.02),
         rancf.Material(density=6000.0, youngs_modulus=2.0e6),
-        supports=[rancf.Support(0, "pin")], gravity=[0.0, -9.81],
-    )  # fmt: skip
+        supports=[rancf.Support(0, "pin")],
+        gravity=[0.0, -9.81],
+    )
 
 
 RIGID_PENDULUM = """
@@ -142,8 +146,7 @@ def test_second_order_on_a_swinging_pendulum(tmp_path, rho):
     system = load_scenario(path).build_system()
 
     def state(h: float) -> np.ndarray:  # the bar's path, every 0.1 s
-        o = rancf.DynamicOptions(t_end=2.0, step=h, output_step=0.1, rho_inf=rho,
-                                 newton_tol=1e-14)  # fmt: skip
+        o = rancf.DynamicOptions(t_end=2.0, step=h, output_step=0.1, rho_inf=rho, newton_tol=1e-14)
         return rancf.integrate(system, o).q
 
     ref = state(6.25e-5)
@@ -185,7 +188,7 @@ stiffness = 50.0
 t_end = 10.0
 step = 0.1
 rho_inf = {rho}
-""")  # fmt: skip
+""")
     system = load_scenario(path).build_system()
     res = rancf.integrate(system, rancf.DynamicOptions(t_end=10.0, step=0.1, rho_inf=rho))
     x = res.q[:, 0] - 1.0
@@ -278,10 +281,13 @@ def test_estimate_of_an_unresolved_start_is_filtered():
     # local error (against 64 sub-steps), the filtered one (TI.12) is within 3 times of it
     arc = rancf.conic_arc(0.5, [30, 40], [0.315, 0.077])
     model = rancf.Model(
-        rancf.mesh_conic(arc, 3), "rancf", rancf.Section.circular(0.02),
+        rancf.mesh_conic(arc, 3),
+        "rancf",
+        rancf.Section.circular(0.02),
         rancf.Material(density=6000.0, youngs_modulus=2.0e9),
-        supports=[rancf.Support(0, "pin")], gravity=[0.0, -9.81],
-    )  # fmt: skip
+        supports=[rancf.Support(0, "pin")],
+        gravity=[0.0, -9.81],
+    )
     system = as_system(model)
     h, rtol = 1e-3, 1e-5
 

@@ -212,8 +212,9 @@ def test_static_sweep_of_a_system_file(tmp_path):
 
     (tmp_path / "frame.toml").write_text(example_path("argyris-frame").read_text())
     spec = tmp_path / "s.toml"
-    spec.write_text('base = "frame.toml"\nanalysis = "static"\n[grid]\n'
-                    '"solver.load_steps" = [4, 8]\n')  # fmt: skip
+    spec.write_text(
+        'base = "frame.toml"\nanalysis = "static"\n[grid]\n"solver.load_steps" = [4, 8]\n'
+    )
     out = tmp_path / "out"
     assert main(["sweep", str(spec), "--out", str(out), "--workers", "1", "--quiet"]) == 0
     rows = _rows(out / "results.csv")

@@ -16,8 +16,14 @@ from tests.sweep.test_sweep import _rows, _write
 
 
 def _pendulum(youngs: float):
-    model = Model(mesh_line([0.0, 0.0], [1.2, 0.0], 8), "ancf", Section.circular(0.02),
-                  Material(6000.0, youngs), [Support(0, "pin")], gravity=[0.0, -9.81])  # fmt: skip
+    model = Model(
+        mesh_line([0.0, 0.0], [1.2, 0.0], 8),
+        "ancf",
+        Section.circular(0.02),
+        Material(6000.0, youngs),
+        [Support(0, "pin")],
+        gravity=[0.0, -9.81],
+    )
     return as_system(model)
 
 

@@ -43,8 +43,9 @@ def test_modes_about_the_unloaded_static_state_equal_those_about_the_reference()
     about_static = natural_modes(s, st.y, 4, st.lam)
     about_reference = natural_modes(s, None, 4)
     assert about_reference.frequencies_hz[0] == pytest.approx(3.1012, rel=1e-4)
-    np.testing.assert_allclose(about_static.frequencies_hz, about_reference.frequencies_hz,
-                               rtol=1e-6)  # fmt: skip
+    np.testing.assert_allclose(
+        about_static.frequencies_hz, about_reference.frequencies_hz, rtol=1e-6
+    )
 
 
 @pytest.mark.parametrize(("share", "stable"), [(0.96, True), (1.04, False)])
@@ -86,17 +87,26 @@ def fillet(per_span: int, radius: float = 5e-4):
     body = raw["bodies"][0]
     doc = {
         "geometry": {
-            "kind": "nurbs", "degree": 2, "knots": [0, 0, 0, 1, 1, 2, 2, 3, 3, 3],
-            "control_points": [[0, 0, 0], [(leg - radius) / 2, 0, 0], [leg - radius, 0, 0],
-                               [leg, 0, 0], [leg, radius, 0], [leg, (leg + radius) / 2, 0],
-                               [leg, leg, 0]],
+            "kind": "nurbs",
+            "degree": 2,
+            "knots": [0, 0, 0, 1, 1, 2, 2, 3, 3, 3],
+            "control_points": [
+                [0, 0, 0],
+                [(leg - radius) / 2, 0, 0],
+                [leg - radius, 0, 0],
+                [leg, 0, 0],
+                [leg, radius, 0],
+                [leg, (leg + radius) / 2, 0],
+                [leg, leg, 0],
+            ],
             "weights": [1, 1, 1, w, 1, 1, 1],
         },
         "mesh": {"elements": per_span, "element": "rod"},
-        "section": body["section"], "material": body["material"],
+        "section": body["section"],
+        "material": body["material"],
         "supports": [{"at": "start", "kind": "clamp"}],
         "loads": {"point": [{"at": "end", "force": [1.0, 0.0, 0.0]}]},
-    }  # fmt: skip
+    }
     return parse_scenario(doc, "fillet.toml").build_system()
 
 
@@ -116,9 +126,12 @@ def test_a_mesh_whose_round_off_hides_the_load_is_refused(tmp_path, capsys):
     of the tangent (its entries up to 1e18) exceeds the softest mode's stiffness (measured 1.4
     times it), and the loads found scattered by 1-3 % from run to run: refused in one line that
     says why and what to change."""
-    with pytest.raises(ConvergenceError, match=r"round-off is .* times its softest stiffness.*"
-                                               r"elements from 1\.1\de-05 m to 0\.00374 m long; "
-                                               r"use fewer, longer elements"):  # fmt: skip
+    with pytest.raises(
+        ConvergenceError,
+        match=r"round-off is .* times its softest stiffness.*"
+        r"elements from 1\.1\de-05 m to 0\.00374 m long; "
+        r"use fewer, longer elements",
+    ):
         linear_buckling(fillet(64), 1)
 
 

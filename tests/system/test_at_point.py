@@ -64,8 +64,9 @@ def test_a_hanging_bar_s_tension_at_a_fixed_height(tmp_path):
 
     def stretch(s: float) -> float:
         n = w * (L - s)
-        return scipy.optimize.brentq(lambda lam: ea * 0.5 * (lam**2 - 1) * lam - n, 1.0, 2.0,
-                                     xtol=1e-15)  # fmt: skip
+        return scipy.optimize.brentq(
+            lambda lam: ea * 0.5 * (lam**2 - 1) * lam - n, 1.0, 2.0, xtol=1e-15
+        )
 
     def depth(s: float) -> float:
         return scipy.integrate.quad(stretch, 0.0, s, epsabs=1e-14, epsrel=1e-13)[0]
@@ -80,8 +81,10 @@ def test_a_hanging_bar_s_tension_at_a_fixed_height(tmp_path):
 def test_at_point_refuses_other_kinds_and_at_together():
     """``at_point`` on a kind without a place, or beside ``at``, is refused naming the key."""
     base = HANGING.split("[[sensors]]")[0]
-    bad = ('kind = "energy"\nat_point = [0.0, 0.0]',
-           'kind = "position"\nat = "end"\nat_point = [0.0, 0.0]')  # fmt: skip
+    bad = (
+        'kind = "energy"\nat_point = [0.0, 0.0]',
+        'kind = "position"\nat = "end"\nat_point = [0.0, 0.0]',
+    )
     for extra in bad:
         text = base + f'[[sensors]]\nname = "bad"\n{extra}\n'
         with pytest.raises(ScenarioError, match="at_point"):

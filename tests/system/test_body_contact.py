@@ -23,8 +23,14 @@ def _cable(y: float, n: int, x0: float = 0.0, x1: float = 1.0, angle: float = 0.
     c, s = np.cos(angle), np.sin(angle)
     a, b = np.array([x0, y]), np.array([x1, y])
     rot = np.array([[c, -s], [s, c]])
-    return Model(mesh_line(rot @ a, rot @ b, n), "rancf", Section.circular(R),
-                 Material(7850.0, 2e11), [], gravity=[0, -G])  # fmt: skip
+    return Model(
+        mesh_line(rot @ a, rot @ b, n),
+        "rancf",
+        Section.circular(R),
+        Material(7850.0, 2e11),
+        [],
+        gravity=[0, -G],
+    )
 
 
 def _crossing(angle: float = 0.0) -> System:
@@ -45,8 +51,12 @@ def _rods_crossing() -> System:
     contact (segment against segment)."""
 
     def rod(a, b):
-        return Model(mesh_line(a, b, 4), "rod", Section.circular(R),
-                     Material(7850.0, 2e11, poisson_ratio=0.3))  # fmt: skip
+        return Model(
+            mesh_line(a, b, 4),
+            "rod",
+            Section.circular(R),
+            Material(7850.0, 2e11, poisson_ratio=0.3),
+        )
 
     from rancf.geometry.quadrature import gauss_legendre
 
@@ -54,8 +64,10 @@ def _rods_crossing() -> System:
     # contact points only: the report and docs/guide/contact.md say so)
     x = 0.25 + 0.25 * gauss_legendre(8)[0][5]
     z = 2 * R - 1e-6
-    return System({"a": rod([0, 0, 0], [1, 0, 0]), "b": rod([x, -0.5, z], [x, 0.5, z])},
-                  body_contacts=[("a", "b")])  # fmt: skip
+    return System(
+        {"a": rod([0, 0, 0], [1, 0, 0]), "b": rod([x, -0.5, z], [x, 0.5, z])},
+        body_contacts=[("a", "b")],
+    )
 
 
 @pytest.mark.parametrize("build", [_crossing, _rods_crossing], ids=["cables 2D", "rods 3D"])
@@ -94,10 +106,17 @@ def test_a_cable_dropped_on_another_rests_on_it():
     weight and the ground both weights (1e-3), the tubes overlap by less than 1 % of r."""
     a, b = _cable(R, 8), _cable(3 * R + 0.002, 4, 0.2, 0.8)
     ground = Obstacle("plane", point=(0, 0), normal=(0, 1), name="ground")
-    s = System({"a": a, "b": b}, obstacles=[ground], contacts=[("a", "ground")],
-               body_contacts=[("a", "b")], gravity=[0, -G], damping=20.0)  # fmt: skip
-    res = integrate(s, DynamicOptions(t_end=0.3, step=1e-3, rho_inf=0.5, max_newton=25,
-                                      output_step=0.005))  # fmt: skip
+    s = System(
+        {"a": a, "b": b},
+        obstacles=[ground],
+        contacts=[("a", "ground")],
+        body_contacts=[("a", "b")],
+        gravity=[0, -G],
+        damping=20.0,
+    )
+    res = integrate(
+        s, DynamicOptions(t_end=0.3, step=1e-3, rho_inf=0.5, max_newton=25, output_step=0.005)
+    )
     assert res.status.value == "completed", res.message
     wa, wb = (7850 * np.pi * R**2 * length * G for length in (1.0, 0.6))
     out = np.empty(3)
@@ -122,11 +141,23 @@ def _twisted_rod(self_contact: bool, n: int = 20) -> tuple[System, Model]:
     ei = e_mod * np.pi * R**4 / 4
     sup = [Support(0, "clamp"), Support(n, "pin", motion=TimeFunction.ramp(3.0, (-0.6, 0.0, 0.0)))]
     load = PointLoad(n, moment=(20 * 8.99 * ei, 0.0, 0.0), time=TimeFunction.ramp(1.5, 1.0))
-    rod = Model(mesh, "rod", Section.circular(R), Material(1000.0, e_mod, poisson_ratio=0.45),
-                sup, gravity=[0, 0, -G], point_loads=[load])  # fmt: skip
+    rod = Model(
+        mesh,
+        "rod",
+        Section.circular(R),
+        Material(1000.0, e_mod, poisson_ratio=0.45),
+        sup,
+        gravity=[0, 0, -G],
+        point_loads=[load],
+    )
     ground = Obstacle("plane", point=(0, 0, 0), normal=(0, 0, 1), friction=0.3, name="ground")
-    s = System({"rod": rod}, obstacles=[ground], gravity=[0, 0, -G], damping=10.0,
-               body_contacts=[("rod", "rod")] if self_contact else ())  # fmt: skip
+    s = System(
+        {"rod": rod},
+        obstacles=[ground],
+        gravity=[0, 0, -G],
+        damping=10.0,
+        body_contacts=[("rod", "rod")] if self_contact else (),
+    )
     return s, rod
 
 
@@ -170,10 +201,16 @@ def test_energy_never_grows_with_rho_inf_one():
     the drop's energy (the step's mean pressure; measured 8e-11)."""
     a, b = _cable(R, 8), _cable(3 * R + 0.002, 4, 0.2, 0.8)
     ground = Obstacle("plane", point=(0, 0), normal=(0, 1), name="ground")
-    s = System({"a": a, "b": b}, obstacles=[ground], contacts=[("a", "ground")],
-               body_contacts=[("a", "b")], gravity=[0, -G])  # fmt: skip
-    res = integrate(s, DynamicOptions(t_end=0.2, step=1e-3, rho_inf=1.0, max_newton=25,
-                                      output_step=1e-3))  # fmt: skip
+    s = System(
+        {"a": a, "b": b},
+        obstacles=[ground],
+        contacts=[("a", "ground")],
+        body_contacts=[("a", "b")],
+        gravity=[0, -G],
+    )
+    res = integrate(
+        s, DynamicOptions(t_end=0.2, step=1e-3, rho_inf=1.0, max_newton=25, output_step=1e-3)
+    )
     assert res.status.value == "completed", res.message
     scale = 7850 * np.pi * R**2 * 0.6 * G * 0.002
     out, hit = np.empty(3), False
@@ -189,14 +226,19 @@ def _arc_mesh(radius: float, n: int):
     from rancf.mesh.mesh import mesh_from_arrays
 
     els = []
-    for t0, t1 in zip(np.linspace(0, np.pi / 2, n + 1)[:-1], np.linspace(0, np.pi / 2, n + 1)[1:],
-                      strict=True):  # fmt: skip
+    for t0, t1 in zip(
+        np.linspace(0, np.pi / 2, n + 1)[:-1], np.linspace(0, np.pi / 2, n + 1)[1:], strict=True
+    ):
         c = np.cos((t1 - t0) / 2)
         p0, p2 = (radius * np.array([np.cos(t), np.sin(t)]) for t in (t0, t1))
         p1 = radius / c * np.array([np.cos((t0 + t1) / 2), np.sin((t0 + t1) / 2)])
         w = (1 + 2 * c) / 3
-        els.append(([p0, (p0 + 2 * c * p1) / (1 + 2 * c), (2 * c * p1 + p2) / (1 + 2 * c), p2],
-                    [1, w, w, 1]))  # fmt: skip
+        els.append(
+            (
+                [p0, (p0 + 2 * c * p1) / (1 + 2 * c), (2 * c * p1 + p2) / (1 + 2 * c), p2],
+                [1, w, w, 1],
+            )
+        )
     return mesh_from_arrays(np.array([e[0] for e in els]), np.array([e[1] for e in els], float))
 
 
@@ -206,8 +248,9 @@ def test_concentric_arcs_touch_at_their_exact_distance():
     contact point's gap is -1 um to 1e-12 m (the closest points on the rational curves)."""
     r0 = 0.2
     inner = Model(_arc_mesh(r0, 4), "rancf", Section.circular(R), Material(7850.0, 2e11))
-    outer = Model(_arc_mesh(r0 + 2 * R - 1e-6, 3), "rancf", Section.circular(R),
-                  Material(7850.0, 2e11))  # fmt: skip
+    outer = Model(
+        _arc_mesh(r0 + 2 * R - 1e-6, 3), "rancf", Section.circular(R), Material(7850.0, 2e11)
+    )
     s = System({"a": inner, "b": outer}, body_contacts=[("a", "b")])
     out = np.empty(3)
     s.contact.body_outputs(s.y0, out)
@@ -255,16 +298,34 @@ def test_a_cable_sliding_on_another_decelerates_at_mu_g():
     mu, v0 = 0.3, 0.1
     from rancf.bodies.motion import RigidMotion
 
-    a = Model(mesh_line([0, R], [1, R], 8), "rancf", Section.circular(R), Material(7850.0, 2e11),
-              [Support(0, "pin")], gravity=[0, -G])  # fmt: skip
-    b = Model(mesh_line([0.3, 3 * R], [0.5, 3 * R], 4), "rancf", Section.circular(R),
-              Material(7850.0, 2e11), gravity=[0, -G],
-              initial_motion=RigidMotion(velocity=(v0, 0.0)))  # fmt: skip
+    a = Model(
+        mesh_line([0, R], [1, R], 8),
+        "rancf",
+        Section.circular(R),
+        Material(7850.0, 2e11),
+        [Support(0, "pin")],
+        gravity=[0, -G],
+    )
+    b = Model(
+        mesh_line([0.3, 3 * R], [0.5, 3 * R], 4),
+        "rancf",
+        Section.circular(R),
+        Material(7850.0, 2e11),
+        gravity=[0, -G],
+        initial_motion=RigidMotion(velocity=(v0, 0.0)),
+    )
     ground = Obstacle("plane", point=(0, 0), normal=(0, 1), name="ground")
-    s = System({"a": a, "b": b}, obstacles=[ground], contacts=[("a", "ground")],
-               body_contacts=[("a", "b")], body_friction=mu, gravity=[0, -G])  # fmt: skip
-    res = integrate(s, DynamicOptions(t_end=0.05, step=2e-4, rho_inf=0.5, max_newton=25,
-                                      output_step=1e-3))  # fmt: skip
+    s = System(
+        {"a": a, "b": b},
+        obstacles=[ground],
+        contacts=[("a", "ground")],
+        body_contacts=[("a", "b")],
+        body_friction=mu,
+        gravity=[0, -G],
+    )
+    res = integrate(
+        s, DynamicOptions(t_end=0.05, step=2e-4, rho_inf=0.5, max_newton=25, output_step=1e-3)
+    )
     assert res.status.value == "completed", res.message
     sb = s.body_slice("b")
     vx = np.array([s.y_from_q(v)[sb].reshape(-1, 4)[:, 0].mean() for v in res.v])

@@ -59,8 +59,13 @@ def test_ellipse_needs_three_elements_and_perpendicular_axes():
 
 def _ring(n: int, element: str, start: float = 0.0, **kw) -> Model:
     dim = 3 if element == "rod" else 2
-    return Model(mesh_ellipse(Ellipse(np.zeros(dim), 1.0, 1.0, *ellipse_axes(dim)), n,
-                              start_deg=start), element, SEC, STEEL, **kw)  # fmt: skip
+    return Model(
+        mesh_ellipse(Ellipse(np.zeros(dim), 1.0, 1.0, *ellipse_axes(dim)), n, start_deg=start),
+        element,
+        SEC,
+        STEEL,
+        **kw,
+    )
 
 
 @pytest.mark.parametrize("element", ["rancf", "ancf", "beam", "rod"])
@@ -113,9 +118,14 @@ def _opposite_forces(
     step = 360 // n
     k0, k180 = ((0 - int(seam)) % 360) // step, ((180 - int(seam)) % 360) // step
     f = (-2000.0, 0.0, 1000.0)
-    mod = _ring(n, element, seam, supports=[Support(k0, "clamp")],
-                point_loads=[PointLoad(k180, f), PointLoad(k0, tuple(-x for x in f))],
-                continuity=continuity)  # fmt: skip
+    mod = _ring(
+        n,
+        element,
+        seam,
+        supports=[Support(k0, "clamp")],
+        point_loads=[PointLoad(k180, f), PointLoad(k0, tuple(-x for x in f))],
+        continuity=continuity,
+    )
     res = solve_static(mod)
     pos = mod.node_positions(res.q)
     assert np.abs(pos[-1] - pos[0]).max() < 1e-14  # the seam holds (linear rows)
@@ -162,8 +172,9 @@ def test_spatial_ring_closes_its_material_frame():
     for shift in (0, 3):
         load = PointLoad((21 - 3 * shift) % 24, (0.0, 300.0, -400.0))
         clamp = Support((9 - 3 * shift) % 24, "clamp")
-        mod = Model(mesh_nurbs(_loop(shift), 3), "rod", SEC, STEEL,
-                    supports=[clamp], point_loads=[load])  # fmt: skip
+        mod = Model(
+            mesh_nurbs(_loop(shift), 3), "rod", SEC, STEEL, supports=[clamp], point_loads=[load]
+        )
         pos = mod.node_positions(solve_static(mod).q)[:-1]
         shapes.append(np.roll(pos, 3 * shift, axis=0))
     assert np.abs(shapes[0][21] - mesh.nodes[21, 0]).max() > 1e-3  # it moved

@@ -34,8 +34,9 @@ def test_two_draped_cables_report_steady_forces(tmp_path):
     text = (TESTS / "test_contact_outputs.py").read_text()
     two = re.search(r'TWO = """(.*?)"""', text, re.S).group(1).replace("t_end = 0.3", "t_end = 1.0")
     (tmp_path / "two.toml").write_text(two)
-    assert main(["simulate", str(tmp_path / "two.toml"), "--out", str(tmp_path / "r"),
-                 "--quiet"]) == 0  # fmt: skip
+    assert (
+        main(["simulate", str(tmp_path / "two.toml"), "--out", str(tmp_path / "r"), "--quiet"]) == 0
+    )
     _steady(tmp_path / "r", "ground_normal_y")
     _steady(tmp_path / "r", "low_high_contact_force")
 
@@ -45,7 +46,8 @@ def test_a_mooring_line_on_the_seabed_reports_a_steady_force(tmp_path):
     text = (resources.files("rancf.examples") / "mooring-line.toml").read_text()
     still = re.sub(r"(?m)^motion = .*\n", "", text).replace("t_end = 20.0", "t_end = 5.0")
     (tmp_path / "m.toml").write_text(still)
-    assert main(["simulate", str(tmp_path / "m.toml"), "--out", str(tmp_path / "r"),
-                 "--quiet"]) == 0  # fmt: skip
+    assert (
+        main(["simulate", str(tmp_path / "m.toml"), "--out", str(tmp_path / "r"), "--quiet"]) == 0
+    )
     _steady(tmp_path / "r", "seabed_normal_z")
     _steady(tmp_path / "r", "seabed_z", "sensors.csv")  # its contact_force sensor

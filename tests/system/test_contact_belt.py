@@ -89,8 +89,12 @@ def _unbraked(tmp_path, t_end: float) -> tuple:
     raw["solver"]["t_end"] = t_end
     sc = Scenario.from_dict(raw)
     sc.save(tmp_path / "unbraked.toml")
-    assert main(["simulate", str(tmp_path / "unbraked.toml"), "--out", str(tmp_path / "run"),
-                 "--quiet"]) == 0  # fmt: skip
+    assert (
+        main(
+            ["simulate", str(tmp_path / "unbraked.toml"), "--out", str(tmp_path / "run"), "--quiet"]
+        )
+        == 0
+    )
     s = sc.build_system()
     z = load_results(tmp_path / "run" / "results.npz")
     names = z["metadata"]["sensor_columns"]

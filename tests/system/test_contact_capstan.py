@@ -38,8 +38,13 @@ def capstan(mu: float, n_arc: int, n_span: int, speed: float, damping: float = 0
     rope = Model(mesh, "rancf", SECTION, MATERIAL, [end], gravity=(0.0, 0.0))  # weightless
     weight = PointMass(2, MASS, (-RC, -SPAN))
     pulley = Obstacle("cylinder", center=(0, 0), radius=RP, friction=mu, name="pulley")
-    return System({"rope": rope, "weight": weight}, [Joint("pin", ("rope:start", "weight"))],
-                  gravity=[0, -G], obstacles=[pulley], damping=damping)  # fmt: skip
+    return System(
+        {"rope": rope, "weight": weight},
+        [Joint("pin", ("rope:start", "weight"))],
+        gravity=[0, -G],
+        obstacles=[pulley],
+        damping=damping,
+    )
 
 
 def span_tensions(s: System, y: np.ndarray, sampler: SectionSampler) -> tuple[float, float]:
@@ -138,8 +143,11 @@ def test_atwood_machine_on_a_turning_pulley():
         "light": PointMass(2, 1.0, (RC, -SPAN)),
         "pulley": RigidBody(2, disc, j, (0.0, 0.0), 0.0),
     }
-    joints = [Joint("pin", ("rope:start", "heavy")), Joint("pin", ("rope:end", "light")),
-              Joint("pin", ("pulley", "ground"))]  # fmt: skip
+    joints = [
+        Joint("pin", ("rope:start", "heavy")),
+        Joint("pin", ("rope:end", "light")),
+        Joint("pin", ("pulley", "ground")),
+    ]
     wheel = Obstacle("cylinder", center=(0, 0), radius=RP, friction=0.5, body="pulley")
     s = System(bodies, joints, gravity=[0, -G], obstacles=[wheel])
     res = _run(s, 0.15)

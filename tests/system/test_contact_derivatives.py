@@ -20,8 +20,9 @@ ROD = Material(1000.0, 1e7, poisson_ratio=0.3)
 def planar() -> System:
     """A clamped cable (rotated blocks) over a plane, a fixed circle and a wheel's circle (the
     last two with deep onsets: points on both pieces of the penalty)."""
-    cable = Model(mesh_line([0, 0], [1, 0], 4), "rancf", SEC, MAT, [Support(0, "clamp")],
-                  gravity=[0, -9.81])  # fmt: skip
+    cable = Model(
+        mesh_line([0, 0], [1, 0], 4), "rancf", SEC, MAT, [Support(0, "clamp")], gravity=[0, -9.81]
+    )
     wheel = RigidBody(2, 1.0, 0.01, (0.7, -0.1), 0.2)
     obs = [
         Obstacle(
@@ -32,10 +33,10 @@ def planar() -> System:
             damping=3.0,
             damping_normal=2e5,
             name="ground",
-        ),  # fmt: skip
+        ),
         Obstacle(
             "cylinder", center=(0.5, -0.2), radius=0.195, friction=0.5, onset=4e-3, name="post"
-        ),  # fmt: skip
+        ),
         Obstacle(
             "cylinder",
             center=(0.0, 0.0),
@@ -45,7 +46,7 @@ def planar() -> System:
             damping=2.0,
             onset=3e-3,
             name="wheel",
-        ),  # fmt: skip
+        ),
     ]
     return System({"cable": cable, "wheel": wheel}, obstacles=obs, gravity=[0, -9.81])
 
@@ -55,8 +56,9 @@ def spatial() -> System:
     rod = Model(mesh_line([0, 0, 0], [1, 0, 0], 3), "rod", SEC, ROD, [Support(0, "clamp")])
     cable = Model(mesh_line([0, 0.3, 0], [1, 0.3, 0.05], 3), "rancf", SEC, MAT, [])
     rot = np.array([[0.8, -0.6, 0.0], [0.6, 0.8, 0.0], [0.0, 0.0, 1.0]])
-    ball = RigidBody(3, 2.0, (0.1, 0.2, 0.3), (0.5, 0.15, -0.1), rot.tolist(),
-                     angular_velocity=(0.3, -0.2, 0.5))  # fmt: skip
+    ball = RigidBody(
+        3, 2.0, (0.1, 0.2, 0.3), (0.5, 0.15, -0.1), rot.tolist(), angular_velocity=(0.3, -0.2, 0.5)
+    )
     obs = [
         Obstacle(
             "plane",
@@ -65,7 +67,7 @@ def spatial() -> System:
             friction=0.3,
             damping=2.0,
             name="ground",
-        ),  # fmt: skip
+        ),
         Obstacle(
             "cylinder",
             center=(0.8, 0.0, 0.2),
@@ -75,7 +77,7 @@ def spatial() -> System:
             onset=2e-2,
             damping_normal=5e4,
             name="bar",
-        ),  # fmt: skip
+        ),
         Obstacle(
             "sphere",
             center=(0.0, 0.0, 0.01),
@@ -84,7 +86,7 @@ def spatial() -> System:
             body="ball",
             damping=1.0,
             name="ball",
-        ),  # fmt: skip
+        ),
     ]
     return System({"rod": rod, "cable": cable, "ball": ball}, obstacles=obs)
 

@@ -19,8 +19,9 @@ R, L, RHO, E, G = 0.002, 1.0, 7850.0, 2e11, 9.81  # steel, radius 2 mm
 def _cable(height: float, tilt: float, supports=()) -> tuple[System, float]:
     """A 1 m cable of 20 elements at ``height`` above the ground (one end ``tilt`` higher)."""
     mesh = mesh_line([0.0, R + height], [L, R + height + tilt], 20)
-    cable = Model(mesh, "rancf", Section.circular(R), Material(RHO, E), list(supports),
-                  gravity=[0, -G])  # fmt: skip
+    cable = Model(
+        mesh, "rancf", Section.circular(R), Material(RHO, E), list(supports), gravity=[0, -G]
+    )
     ground = Obstacle("plane", point=(0, 0), normal=(0, 1), name="ground")
     s = System({"cable": cable}, obstacles=[ground], gravity=[0, -G])
     weight = RHO * np.pi * R**2 * np.hypot(L, tilt) * G
@@ -93,10 +94,21 @@ def test_linear_normal_damping_adds_to_the_pressure_and_never_pulls(rate):
     ``(k (δ - d/2) - c D ġ) L`` (the onset d below δ, D the diameter), or not at all where a
     fast separation would pull."""
     depth, k, c_n = 1e-4, 1e6, 5e5
-    cable = Model(mesh_line([0.0, R - depth], [L, R - depth], 10), "rancf", Section.circular(R),
-                  Material(RHO, E))  # fmt: skip
-    ground = Obstacle("plane", point=(0, 0), normal=(0, 1), stiffness=k, onset=1e-6,
-                      damping_normal=c_n, name="ground")  # fmt: skip
+    cable = Model(
+        mesh_line([0.0, R - depth], [L, R - depth], 10),
+        "rancf",
+        Section.circular(R),
+        Material(RHO, E),
+    )
+    ground = Obstacle(
+        "plane",
+        point=(0, 0),
+        normal=(0, 1),
+        stiffness=k,
+        onset=1e-6,
+        damping_normal=c_n,
+        name="ground",
+    )
     s = System({"cable": cable}, obstacles=[ground])
     y, v = s.y0.copy(), np.zeros(s.n)
     v[1::4] = rate  # every node's vertical velocity (the gradients do not move)

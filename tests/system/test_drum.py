@@ -40,19 +40,31 @@ def hoist(
     strain of the wire's energy."""
     g = [0.0, -G]
     steel = Material(7850.0, 2.0e11, axial_strain=strain)
-    wire = Model(mesh_line([0, top], [0, top - L0], n_el), "ancf", WIRE, steel,
-                 [Support(0, "pin")], gravity=g)  # fmt: skip
+    wire = Model(
+        mesh_line([0, top], [0, top - L0], n_el),
+        "ancf",
+        WIRE,
+        steel,
+        [Support(0, "pin")],
+        gravity=g,
+    )
     load = PointMass(2, LOAD, (0.0, top - L0))
     f = torque if isinstance(torque, float) else TimeFunction.from_callable(torque)
     drum = Winch("hoist", "wire:start", torque=f, radius=RADIUS, inertia=INERTIA)
-    return System({"wire": wire, "load": load}, [Joint("pin", ("wire:end", "load"))],
-                  gravity=g, winches=[drum], horizon=horizon)  # fmt: skip
+    return System(
+        {"wire": wire, "load": load},
+        [Joint("pin", ("wire:end", "load"))],
+        gravity=g,
+        winches=[drum],
+        horizon=horizon,
+    )
 
 
 def _run(s: System, t_end: float, rho_inf: float, step: float = 0.01):
     st = solve_static(s, load_steps=1, at_time=0.0)
-    res = integrate(s, DynamicOptions(t_end=t_end, step=step, rho_inf=rho_inf,
-                                      output_step=0.05), initial=st.y)  # fmt: skip
+    res = integrate(
+        s, DynamicOptions(t_end=t_end, step=step, rho_inf=rho_inf, output_step=0.05), initial=st.y
+    )
     assert res.status.value == "completed", res.message
     return st, res
 
@@ -223,11 +235,13 @@ def test_drum_in_a_scenario_file(tmp_path):
     from tests.scenario.test_winch_scenario import HOIST, _sensors
 
     lift = f"[[0.0, {BALANCE!r}], [0.05, {1.3 * BALANCE!r}], [5.0, {1.3 * BALANCE!r}]]"
-    text = HOIST.replace("speed = { ramp = 2.0, value = 1.0 }",
-                         f"torque = {{ table = {lift} }}\nradius = {RADIUS}\n"
-                         f"inertia = {INERTIA}").replace("t_end = 4.0", "t_end = 1.0")  # fmt: skip
-    text = text.replace("elements = 10", "elements = 6").replace("output_step = 0.5",
-                                                                 "output_step = 0.1")  # fmt: skip
+    text = HOIST.replace(
+        "speed = { ramp = 2.0, value = 1.0 }",
+        f"torque = {{ table = {lift} }}\nradius = {RADIUS}\ninertia = {INERTIA}",
+    ).replace("t_end = 4.0", "t_end = 1.0")
+    text = text.replace("elements = 10", "elements = 6").replace(
+        "output_step = 0.5", "output_step = 0.1"
+    )
     s = _sensors(tmp_path, text)
     t, length, speed = s["t"], s["drum_length"], s["drum_speed"]
     assert length[0] == pytest.approx(L0, abs=2e-4)

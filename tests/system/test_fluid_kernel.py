@@ -16,8 +16,9 @@ from rancf.system.fluid import DistributedLoad, Fluid, Hydro, Waves
 
 SEC, MAT = Section.circular(0.02), Material(3000.0, 1e7)
 ROD = Material(3000.0, 1e7, poisson_ratio=0.3)
-HYDRO = Hydro(diameter=0.05, drag_normal=1.2, drag_axial=0.4, added_mass_normal=1.0,
-              added_mass_axial=0.3)  # fmt: skip
+HYDRO = Hydro(
+    diameter=0.05, drag_normal=1.2, drag_axial=0.4, added_mass_normal=1.0, added_mass_axial=0.3
+)
 
 
 def _system(
@@ -25,27 +26,35 @@ def _system(
 ) -> System:
     if case == "2d":
         g = [0.0, -9.81 * weight]
-        m = Model(mesh_line([0, -1], [2, -1.5], 3), "rancf", SEC, MAT, [Support(0, "pin")],
-                  gravity=g)  # fmt: skip
+        m = Model(
+            mesh_line([0, -1], [2, -1.5], 3), "rancf", SEC, MAT, [Support(0, "pin")], gravity=g
+        )
     else:
         g = [0.0, 0.0, -9.81 * weight]
         kind, mat = ("rod", ROD) if case.startswith("rod") else ("rancf", MAT)
         sup = Support(0, "clamp" if case.endswith("clamp") else "pin")
         m = Model(mesh_line([0, 0, -1], [2, 0.5, -1.6], 3), kind, SEC, mat, [sup], gravity=g)
-    return System({"line": m}, gravity=g, fluid=fluid, hydro={"line": hydro} if hydro else {},
-                  distributed=loads, horizon=10.0)  # fmt: skip
+    return System(
+        {"line": m},
+        gravity=g,
+        fluid=fluid,
+        hydro={"line": hydro} if hydro else {},
+        distributed=loads,
+        horizon=10.0,
+    )
 
 
 def _fluids(dim: int) -> dict[str, Fluid]:
     cur = (0.4, 0.3, -0.1)[:dim]
-    prof = ((-3.0, *(0.1, 0.2, 0.0)[:dim]), (-1.2, *(0.5, -0.1, 0.05)[:dim]),
-            (0.0, *(0.8, 0.0, 0.0)[:dim]))  # fmt: skip
+    prof = (
+        (-3.0, *(0.1, 0.2, 0.0)[:dim]),
+        (-1.2, *(0.5, -0.1, 0.05)[:dim]),
+        (0.0, *(0.8, 0.0, 0.0)[:dim]),
+    )
     return {
         "current": Fluid(1025.0, surface=-1.3, current=cur),
         "profile": Fluid(1025.0, current_profile=prof),
-        "waves": Fluid(
-            1025.0, surface=0.0, current=cur, waves=Waves(1.5, 4.0, 30.0, depth=6.0)
-        ),  # fmt: skip
+        "waves": Fluid(1025.0, surface=0.0, current=cur, waves=Waves(1.5, 4.0, 30.0, depth=6.0)),
     }
 
 
@@ -81,8 +90,7 @@ def test_fluid_tangent_against_differences(case, which, rng):
     against central differences (error below 1e-6 of the largest entry)."""
     dim = 2 if case == "2d" else 3
     tf = TimeFunction.harmonic(0.5, 1.0)
-    s = _system(case, _fluids(dim)[which],
-                loads=[DistributedLoad((3.0, -2.0, 1.0)[:dim], time=tf)])  # fmt: skip
+    s = _system(case, _fluids(dim)[which], loads=[DistributedLoad((3.0, -2.0, 1.0)[:dim], time=tf)])
     bare = _system(case, None, None)
     y, v, a = _state(s, rng)
     t = 0.7
@@ -160,8 +168,9 @@ def test_rigid_motion_gives_no_fluid_force(case, rng):
     f = np.asarray(s0.core.fluid_forces(y, v, z, 0.3))
     assert np.abs(f).max() == 0.0
     # drag, with a current equal to the line's velocity
-    s1 = _system(case, Fluid(1025.0, current=tuple(vel)), Hydro(0.05, 1.2, 0.5, 1.0, 0.5),
-                 weight=False)  # fmt: skip
+    s1 = _system(
+        case, Fluid(1025.0, current=tuple(vel)), Hydro(0.05, 1.2, 0.5, 1.0, 0.5), weight=False
+    )
     f = np.asarray(s1.core.fluid_forces(y, v, z, 0.3))
     assert np.abs(f).max() <= 1e-12
     # a uniform acceleration along the line: the axial added mass rho A Cat L acc
@@ -188,11 +197,18 @@ def test_wave_kinematics_against_airy_theory():
     e_b = np.array([np.cos(b), np.sin(b), 0.0])
     along = np.array([-np.sin(b), np.cos(b), 0.0])  # horizontal, across the waves
     mid = np.array([x0, 0.0, z0])
-    m = Model(mesh_line(mid - along * length / 2, mid + along * length / 2, 1), "rancf", SEC,
-              MAT, [], gravity=[0.0, 0.0, -g])  # fmt: skip
+    m = Model(
+        mesh_line(mid - along * length / 2, mid + along * length / 2, 1),
+        "rancf",
+        SEC,
+        MAT,
+        [],
+        gravity=[0.0, 0.0, -g],
+    )
     fl = Fluid(rho, surface=0.0, waves=Waves(height, period, beta, depth=h))
-    s = System({"line": m}, gravity=[0.0, 0.0, -g], fluid=fl,
-               hydro={"line": Hydro(d, cd, 0.0, 0.0, 0.0)})  # fmt: skip
+    s = System(
+        {"line": m}, gravity=[0.0, 0.0, -g], fluid=fl, hydro={"line": Hydro(d, cd, 0.0, 0.0, 0.0)}
+    )
     z = np.zeros(s.n)
     f = np.asarray(s.core.fluid_forces(s.y0, z, z, t))
     om = 2 * np.pi / period
@@ -204,6 +220,9 @@ def test_wave_kinematics_against_airy_theory():
     du = amp * om * np.cosh(k * (z0 + h)) * np.sin(th) * e_b
     du[2] = -amp * om * np.sinh(k * (z0 + h)) * np.cos(th)
     area = np.pi * d**2 / 4
-    want = length * (0.5 * rho * d * cd * np.linalg.norm(u) * u + rho * area * du
-                     + rho * area * g * np.array([0.0, 0.0, 1.0]))  # fmt: skip
+    want = length * (
+        0.5 * rho * d * cd * np.linalg.norm(u) * u
+        + rho * area * du
+        + rho * area * g * np.array([0.0, 0.0, 1.0])
+    )
     assert np.allclose(f, want, rtol=1e-9, atol=1e-12 * np.abs(want).max())

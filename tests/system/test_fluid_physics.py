@@ -24,10 +24,20 @@ def test_sinking_cable_reaches_terminal_speed():
     the whole free cable falls at it within 1 % after ten time constants."""
     d, rho_c, cd = 0.02, 2000.0, 1.2
     g = [0.0, -G]
-    cable = Model(mesh_line([0, 0], [4, 0], 2), "rancf", Section.circular(d / 2),
-                  Material(rho_c, 1e9), [], gravity=g)  # fmt: skip
-    s = System({"cable": cable}, gravity=g, fluid=Fluid(RHO_W),
-               hydro={"cable": Hydro(d, cd, 0.0, 1.0, 0.0)})  # fmt: skip
+    cable = Model(
+        mesh_line([0, 0], [4, 0], 2),
+        "rancf",
+        Section.circular(d / 2),
+        Material(rho_c, 1e9),
+        [],
+        gravity=g,
+    )
+    s = System(
+        {"cable": cable},
+        gravity=g,
+        fluid=Fluid(RHO_W),
+        hydro={"cable": Hydro(d, cd, 0.0, 1.0, 0.0)},
+    )
     res = integrate(s, DynamicOptions(t_end=2.0, step=0.02))
     area = math.pi * d**2 / 4
     v_t = math.sqrt(2 * (rho_c - RHO_W) * G * area / (RHO_W * cd * d))
@@ -46,11 +56,21 @@ def test_buoyed_line_leans_in_current_to_closed_form():
     r_sec = 0.002
     rho_line = RHO_W * (d / (2 * r_sec)) ** 2  # weight = buoyancy
     g = [0.0, -G]
-    line = Model(mesh_line([0, 0], [0, length], 12), "rancf", Section.circular(r_sec),
-                 Material(rho_line, 2e11), [Support(0, "pin")], gravity=g,
-                 point_loads=[PointLoad(12, force=(0.0, b_force))])  # fmt: skip
-    s = System({"line": line}, gravity=g, fluid=Fluid(RHO_W, current=(u, 0.0)),
-               hydro={"line": Hydro(d, cd, 0.0, 1.0, 0.0)})  # fmt: skip
+    line = Model(
+        mesh_line([0, 0], [0, length], 12),
+        "rancf",
+        Section.circular(r_sec),
+        Material(rho_line, 2e11),
+        [Support(0, "pin")],
+        gravity=g,
+        point_loads=[PointLoad(12, force=(0.0, b_force))],
+    )
+    s = System(
+        {"line": line},
+        gravity=g,
+        fluid=Fluid(RHO_W, current=(u, 0.0)),
+        hydro={"line": Hydro(d, cd, 0.0, 1.0, 0.0)},
+    )
     res = solve_static(s, load_steps=5)
     c = 0.5 * RHO_W * d * cd * u**2 / b_force
     q = res.q.reshape(-1, 4)
@@ -77,9 +97,11 @@ def test_fluid_force_sensor_carries_the_weight_at_terminal_speed():
         "hydro": {"drag_normal": 1.2},
         "loads": {"gravity": [0.0, -G]},
         "solver": {"t_end": 2.0, "step": 0.02},
-        "sensors": [{"name": "fluid", "kind": "fluid_force"},
-                    {"name": "mid", "kind": "tension", "at": 1}],
-    }  # fmt: skip
+        "sensors": [
+            {"name": "fluid", "kind": "fluid_force"},
+            {"name": "mid", "kind": "tension", "at": 1},
+        ],
+    }
     result, names, values = rancf.simulate(parse_scenario(d))
     assert names == ["fluid_x", "fluid_y", "mid"]
     last = dict(zip(names, values[-1], strict=True))
@@ -103,27 +125,38 @@ def test_touchdown_of_a_mooring_line_against_the_catenary():
 
     area, rho_c, ea, d = 0.0366435, 7859.5, 1.2326e9, 0.216
     d = {
-        "geometry": {"kind": "nurbs", "degree": 2, "knots": [0, 0, 0, 1, 1, 1],
-                     "control_points": [[-300.0, -100.0], [-54.61196092449089, -100.0],
-                                        [0.0, 0.0]]},
+        "geometry": {
+            "kind": "nurbs",
+            "degree": 2,
+            "knots": [0, 0, 0, 1, 1, 1],
+            "control_points": [[-300.0, -100.0], [-54.61196092449089, -100.0], [0.0, 0.0]],
+        },
         "mesh": {"elements": 30},
         "section": {"area": area, "inertia": 3e-8},
         "material": {"density": rho_c, "youngs_modulus": ea / area},
         "fluid": {"density": 1025.0, "surface": 0.0},
         "hydro": {"diameter": 0.216},
-        "obstacles": [{"name": "seabed", "kind": "plane", "point": [0.0, -100.108],
-                       "normal": [0.0, 1.0], "stiffness": 1e8}],
+        "obstacles": [
+            {
+                "name": "seabed",
+                "kind": "plane",
+                "point": [0.0, -100.108],
+                "normal": [0.0, 1.0],
+                "stiffness": 1e8,
+            }
+        ],
         "supports": [{"at": "start"}, {"at": "end"}],
         "loads": {"gravity": [0.0, -G]},
-        "sensors": [{"name": "td", "kind": "touchdown", "obstacle": "seabed"},
-                    {"name": "fair", "kind": "reaction", "at": "end"},
-                    {"name": "bed", "kind": "contact_force", "obstacle": "seabed"}],
-    }  # fmt: skip
+        "sensors": [
+            {"name": "td", "kind": "touchdown", "obstacle": "seabed"},
+            {"name": "fair", "kind": "reaction", "at": "end"},
+            {"name": "bed", "kind": "contact_force", "obstacle": "seabed"},
+        ],
+    }
     sc = parse_scenario(d)
     system = sc.build_system()
     res = rancf.solve_static(system, 10)
-    names, vals = sensor_table(system, sc.sensors, res.q, static=True, t=np.ones(1),
-                               lam=res.lam)  # fmt: skip
+    names, vals = sensor_table(system, sc.sensors, res.q, static=True, t=np.ones(1), lam=res.lam)
     v = dict(zip(names, vals[0], strict=True))
     w = (rho_c * area - 1025.0 * math.pi * 0.216**2 / 4) * G
     h_force = v["fair_x"]

@@ -84,8 +84,12 @@ def _balances(s, z) -> tuple[list[tuple[str, np.ndarray, np.ndarray]], float]:
         if ob.body is None:
             continue
         name = ob.name
-        f = np.column_stack([col(f"{name}_normal_x") + col(f"{name}_friction_x"),
-                             col(f"{name}_normal_y") + col(f"{name}_friction_y")])  # fmt: skip
+        f = np.column_stack(
+            [
+                col(f"{name}_normal_x") + col(f"{name}_friction_x"),
+                col(f"{name}_normal_y") + col(f"{name}_friction_y"),
+            ]
+        )
         m = col(f"{name}_mz")
         local = np.asarray(ob.center if ob.kind != "plane" else ob.point, float)
         o = s.offsets[ob.body]

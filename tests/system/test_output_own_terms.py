@@ -59,8 +59,18 @@ def test_own_terms_and_element_forces_of_the_block(name):
     assert np.abs(own).max() > 0.0
     for i in range(k):
         want = np.empty(s.n + s.m)
-        s.core.residual(y[i], v[i], a[i], np.zeros(s.m), float(t[i]), 1.0, False, True, want,
-                        distributed_only=True)  # fmt: skip
+        s.core.residual(
+            y[i],
+            v[i],
+            a[i],
+            np.zeros(s.m),
+            float(t[i]),
+            1.0,
+            False,
+            True,
+            want,
+            distributed_only=True,
+        )
         scale = max(1.0, np.abs(want[: s.n]).max())
         assert np.abs(own[i] - want[: s.n]).max() <= 1e-12 * scale, i
         for body, b in zip(s.names, s.flex, strict=False):

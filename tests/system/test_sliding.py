@@ -37,8 +37,14 @@ def through(place: str, dim: int = 2, element: str = "rancf", supports: bool = T
     a point of a rigid body (turned, so its point's position depends on its angle)."""
     end = [1.0, 0.0, 0.0][:dim]
     sup = [Support(0, "pin")] if supports else []
-    rope = Model(mesh_line([0.0] * dim, end, 4), element, SEC, ROD if element == "rod" else MAT,
-                 sup, gravity=[0.0] * (dim - 1) + [-9.81])  # fmt: skip
+    rope = Model(
+        mesh_line([0.0] * dim, end, 4),
+        element,
+        SEC,
+        ROD if element == "rod" else MAT,
+        sup,
+        gravity=[0.0] * (dim - 1) + [-9.81],
+    )
     bodies: dict = {"rope": rope}
     x = np.array([0.55, 0.0, 0.0][:dim])
     if place == "ground":
@@ -53,8 +59,9 @@ def through(place: str, dim: int = 2, element: str = "rancf", supports: bool = T
             body = RigidBody(2, 1.5, 0.02, tuple(x - rot @ a), 0.3, points={"a": tuple(a)})
         else:
             rot = _rot3(0.4)
-            body = RigidBody(3, 1.5, (0.1, 0.2, 0.3), tuple(x - rot @ a), rot.tolist(),
-                             points={"a": tuple(a)})  # fmt: skip
+            body = RigidBody(
+                3, 1.5, (0.1, 0.2, 0.3), tuple(x - rot @ a), rot.tolist(), points={"a": tuple(a)}
+            )
         bodies["block"] = body
         joint = Joint("sliding", ("rope", "block:a"), name="guide")
     return System(bodies, [joint], gravity=[0.0] * (dim - 1) + [-9.81])
@@ -85,9 +92,15 @@ def _jacobians(s: System, y: np.ndarray, lam: np.ndarray) -> tuple[np.ndarray, n
     return jac.reshape(size, size), fd
 
 
-CASES = [("ground", 2, "rancf"), ("mass", 2, "ancf"), ("rigid", 2, "rancf"),
-         ("ground", 3, "rancf"), ("rigid", 3, "rancf"), ("mass", 3, "rod"),
-         ("rigid", 3, "rod")]  # fmt: skip
+CASES = [
+    ("ground", 2, "rancf"),
+    ("mass", 2, "ancf"),
+    ("rigid", 2, "rancf"),
+    ("ground", 3, "rancf"),
+    ("rigid", 3, "rancf"),
+    ("mass", 3, "rod"),
+    ("rigid", 3, "rod"),
+]
 
 
 @pytest.mark.parametrize(("place", "dim", "element"), CASES)
@@ -137,8 +150,13 @@ def test_rigid_motion_of_the_whole_set_up(dim, element):
     y = s.y0.copy()
     y[s.body_slice("rope")] = rope.y_from_q(moved.ravel())
     y[s.body_slice("ring")] = q @ s.y0[s.body_slice("ring")] + c
-    s_nograv = System({"rope": Model(rope.mesh, element, SEC, ROD if element == "rod" else MAT),
-                       "ring": s.bodies["ring"]}, s.joints)  # fmt: skip
+    s_nograv = System(
+        {
+            "rope": Model(rope.mesh, element, SEC, ROD if element == "rod" else MAT),
+            "ring": s.bodies["ring"],
+        },
+        s.joints,
+    )
     lam0 = start_multipliers(s_nograv)
     slot = s_nograv.joint_rows[0] + dim
     ref = _residual(s_nograv, s_nograv.y0, lam0)
@@ -160,8 +178,9 @@ def test_rigid_motion_of_the_whole_set_up(dim, element):
     np.testing.assert_allclose(g1[:, dim : 2 * dim], g0[:, dim : 2 * dim] @ q.T, rtol=0, atol=tol)
     ring = s_nograv.body_slice("ring")
     np.testing.assert_allclose(r1[ring], q @ r0[ring], rtol=0, atol=tol)
-    np.testing.assert_allclose(r1[s_nograv.n + slot], r0[s_nograv.n + slot], rtol=0,
-                               atol=1e-12 * np.abs(force).max())  # fmt: skip
+    np.testing.assert_allclose(
+        r1[s_nograv.n + slot], r0[s_nograv.n + slot], rtol=0, atol=1e-12 * np.abs(force).max()
+    )
 
 
 # ---------------------------------------------------------------- Atwood through two guides
@@ -212,15 +231,27 @@ def atwood(dim: int = 2) -> System:
     points = space(np.array([e[0] for e in els]))
     mesh = mesh_from_arrays(points, np.array([e[1] for e in els], float))
     gravity = tuple(space(np.array([0.0, -G])))
-    rope = Model(mesh, "rancf", Section(AREA, EI / E_MOD), Material(RHO, E_MOD),
-                 gravity=gravity, stress_free="straight")  # fmt: skip
+    rope = Model(
+        mesh,
+        "rancf",
+        Section(AREA, EI / E_MOD),
+        Material(RHO, E_MOD),
+        gravity=gravity,
+        stress_free="straight",
+    )
     g1 = space(cl + RC * np.array([-1.0, 1.0]) / np.sqrt(2))
     g2 = space(cr + RC * np.array([1.0, 1.0]) / np.sqrt(2))
-    joints = [Joint("pin", ("rope:start", "left")), Joint("pin", ("rope:end", "right")),
-              Joint("sliding", ("rope", "ground"), position=tuple(g1), name="g1"),
-              Joint("sliding", ("rope", "ground"), position=tuple(g2), name="g2")]  # fmt: skip
-    bodies = {"rope": rope, "left": PointMass(dim, M1, tuple(space([-HALF, -SPAN]))),
-              "right": PointMass(dim, M2, tuple(space([HALF, -SPAN])))}  # fmt: skip
+    joints = [
+        Joint("pin", ("rope:start", "left")),
+        Joint("pin", ("rope:end", "right")),
+        Joint("sliding", ("rope", "ground"), position=tuple(g1), name="g1"),
+        Joint("sliding", ("rope", "ground"), position=tuple(g2), name="g2"),
+    ]
+    bodies = {
+        "rope": rope,
+        "left": PointMass(dim, M1, tuple(space([-HALF, -SPAN]))),
+        "right": PointMass(dim, M2, tuple(space([HALF, -SPAN]))),
+    }
     return System(bodies, joints, gravity=list(gravity))
 
 
@@ -237,8 +268,9 @@ def rigid_rope_drop(t: np.ndarray, length: float) -> np.ndarray:
 @pytest.fixture(scope="module", params=[2, 3])
 def atwood_run(request):
     s = atwood(request.param)
-    res = integrate(s, DynamicOptions(t_end=0.4, step=2e-3, rho_inf=0.5, max_newton=25,
-                                      output_step=0.01))  # fmt: skip
+    res = integrate(
+        s, DynamicOptions(t_end=0.4, step=2e-3, rho_inf=0.5, max_newton=25, output_step=0.01)
+    )
     assert res.status.value == "completed", res.message
     return s, res
 
@@ -298,10 +330,15 @@ def two_spans(dim: int, element: str, at: float, n_el: int = 20) -> System:
     the ground at ``x = at``: a continuous beam of two spans on three simple supports (the
     guide lets the beam slide along itself, which the pinned ends do not)."""
     sup = [Support(0, "pin", fix_twist=element == "rod"), Support(n_el, "pin")]
-    beam = Model(mesh_line([0.0] * dim, [2.0, 0.0, 0.0][:dim], n_el), element, BEAM_SEC, STEEL,
-                 sup, gravity=[0.0] * (dim - 1) + [-9.81])  # fmt: skip
-    guide = Joint("sliding", ("beam", "ground"), position=tuple([at, 0.0, 0.0][:dim]),
-                  name="guide")  # fmt: skip
+    beam = Model(
+        mesh_line([0.0] * dim, [2.0, 0.0, 0.0][:dim], n_el),
+        element,
+        BEAM_SEC,
+        STEEL,
+        sup,
+        gravity=[0.0] * (dim - 1) + [-9.81],
+    )
+    guide = Joint("sliding", ("beam", "ground"), position=tuple([at, 0.0, 0.0][:dim]), name="guide")
     return System({"beam": beam}, [guide])
 
 
@@ -343,13 +380,18 @@ def test_end_through_the_guide_stops_the_run():
     beyond the body), on the compiled loop's fixed steps and on adaptive ones; the
     outputs of a state past it say so in one warning line, once."""
     rope = Model(mesh_line([0.0, 0.0], [0.0, -0.5], 10), "ancf", SEC, MAT, gravity=[0, -9.81])
-    s = System({"rope": rope, "weight": PointMass(2, 1.0, (0.0, -0.5))},
-               [Joint("pin", ("rope:end", "weight")),
-                Joint("sliding", ("rope", "ground"), position=(0.0, -0.05), name="eye")],
-               gravity=[0, -9.81])  # fmt: skip
+    s = System(
+        {"rope": rope, "weight": PointMass(2, 1.0, (0.0, -0.5))},
+        [
+            Joint("pin", ("rope:end", "weight")),
+            Joint("sliding", ("rope", "ground"), position=(0.0, -0.05), name="eye"),
+        ],
+        gravity=[0, -9.81],
+    )
     for adaptive in (False, True):
-        res = integrate(s, DynamicOptions(t_end=0.2, step=2e-3, output_step=0.01,
-                                          adaptive=adaptive))  # fmt: skip
+        res = integrate(
+            s, DynamicOptions(t_end=0.2, step=2e-3, output_step=0.01, adaptive=adaptive)
+        )
         assert res.status.value == "failed", res.message
         found = re.match(
             r"sliding joint 'eye': the start of body 'rope' passes through its "
@@ -364,8 +406,11 @@ def test_end_through_the_guide_stops_the_run():
         assert res.t[-1] <= res.state.t
     lam = np.zeros(s.m)
     lam[slot] = -0.5
-    with pytest.warns(UserWarning, match=r"^rancf: sliding joint 'eye': the start of body "
-                      r"'rope' has passed through its place") as seen:  # fmt: skip
+    with pytest.warns(
+        UserWarning,
+        match=r"^rancf: sliding joint 'eye': the start of body "
+        r"'rope' has passed through its place",
+    ) as seen:
         sliding_values(s, 1, s.y0, lam)
         sliding_values(s, 1, s.y0, lam)
     assert len(seen) == 1 and "\n" not in str(seen[0].message)
@@ -453,18 +498,29 @@ def reeving() -> System:
     seg((3 * w, -RC), (3 * w, ym + 0.1), 0.005)
     seg((3 * w, ym + 0.1), (3 * w, ym), 0.05)
     mesh = mesh_from_arrays(np.array([e[0] for e in els]), np.array([e[1] for e in els], float))
-    rope = Model(mesh, "rancf", Section(AREA, EI / E_MOD), Material(400.0, E_MOD),
-                 [Support(0, "pin")], gravity=(0.0, -G), stress_free="straight")  # fmt: skip
+    rope = Model(
+        mesh,
+        "rancf",
+        Section(AREA, EI / E_MOD),
+        Material(400.0, E_MOD),
+        [Support(0, "pin")],
+        gravity=(0.0, -G),
+        stress_free="straight",
+    )
     gl = np.array(cl) + RC * np.array([-q, -q])
     gr = np.array(cr) + RC * np.array([q, -q])
     points = {"l": tuple(gl - [0.0, yb]), "r": tuple(gr - [0.0, yb])}
     block = RigidBody(2, MB, MB * (2 * w) ** 2 / 12, (0.0, yb), 0.0, points=points)
     top = [np.array(ct1) + RC * np.array([-q, q]), np.array(ct2) + RC * np.array([q, q])]
-    joints = [Joint("pin", ("rope:end", "weight")),
-              Joint("sliding", ("rope", "block:l"), name="sheave_l"),
-              Joint("sliding", ("rope", "block:r"), name="sheave_r")]  # fmt: skip
-    joints += [Joint("sliding", ("rope", "ground"), position=tuple(p), name=f"top_{side}")
-               for p, side in zip(top, "lr", strict=True)]  # fmt: skip
+    joints = [
+        Joint("pin", ("rope:end", "weight")),
+        Joint("sliding", ("rope", "block:l"), name="sheave_l"),
+        Joint("sliding", ("rope", "block:r"), name="sheave_r"),
+    ]
+    joints += [
+        Joint("sliding", ("rope", "ground"), position=tuple(p), name=f"top_{side}")
+        for p, side in zip(top, "lr", strict=True)
+    ]
     bodies = {"rope": rope, "block": block, "weight": PointMass(2, MF, (3 * w, ym))}
     return System(bodies, joints, gravity=[0.0, -G])
 
@@ -475,8 +531,9 @@ def test_two_to_one_reeving_with_a_movable_block():
     of it (measured: block +0.8 %, weight -0.4 %; the rope is 0.1 % of the mass, the rest the
     rope's axial bounce from the start and the block's rocking)."""
     s = reeving()
-    res = integrate(s, DynamicOptions(t_end=0.4, step=2e-3, rho_inf=0.5, max_newton=25,
-                                      output_step=0.01))  # fmt: skip
+    res = integrate(
+        s, DynamicOptions(t_end=0.4, step=2e-3, rho_inf=0.5, max_newton=25, output_step=0.01)
+    )
     assert res.status.value == "completed", res.message
     ys = np.array([s.y_from_q(q) for q in res.q])
     late = res.t >= 0.1 - 1e-9
@@ -493,10 +550,13 @@ def test_a_ring_runs_round_through_its_place():
     """A closed body (a ring of 8 elements, radius 1 m) through a bead: the material
     coordinate is taken modulo the elements (the rows hold a lap later), the arc length counts
     the laps, and the Jacobian is exact across the seam (central differences, 1e-7)."""
-    ring = Model(mesh_ellipse(Ellipse(np.zeros(2), 1.0, 1.0, *ellipse_axes(2)), 8), "rancf",
-                 SEC, MAT)  # fmt: skip
-    s = System({"ring": ring, "bead": PointMass(2, 0.5, (0.0, -1.0))},
-               [Joint("sliding", ("ring", "bead"), name="bead")])  # fmt: skip
+    ring = Model(
+        mesh_ellipse(Ellipse(np.zeros(2), 1.0, 1.0, *ellipse_axes(2)), 8), "rancf", SEC, MAT
+    )
+    s = System(
+        {"ring": ring, "bead": PointMass(2, 0.5, (0.0, -1.0))},
+        [Joint("sliding", ("ring", "bead"), name="bead")],
+    )
     lam, slot = start_multipliers(s), s.joint_rows[0] + 2
     assert lam[slot] == pytest.approx(6.0, abs=1e-12)  # three quarters round
     g = np.empty(s.m)
@@ -529,8 +589,9 @@ def test_shipped_atwood_example_is_the_system_tested_here():
     np.testing.assert_allclose(a.mesh.weights, b.mesh.weights, rtol=1e-12, atol=0)
     for m in ("left", "right"):
         assert shipped.bodies[m].mass == tested.bodies[m].mass
-        np.testing.assert_allclose(shipped.bodies[m].position, tested.bodies[m].position,
-                                   rtol=0, atol=1e-15)  # fmt: skip
+        np.testing.assert_allclose(
+            shipped.bodies[m].position, tested.bodies[m].position, rtol=0, atol=1e-15
+        )
     np.testing.assert_array_equal(shipped.gravity, tested.gravity)
     assert [j.kind for j in shipped.joints] == [j.kind for j in tested.joints]
     for j, k in zip(shipped.joints[2:], tested.joints[2:], strict=True):

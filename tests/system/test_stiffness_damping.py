@@ -19,10 +19,11 @@ from rancf.solvers.modal import natural_modes
 CANTILEVER = tomllib.loads((files("rancf.examples") / "cantilever.toml").read_text())
 ROD = {
     "geometry": {"kind": "line", "start": [0, 0, 0], "end": [1, 0.2, 0.1]},
-    "mesh": {"elements": 4, "element": "rod"}, "section": {"radius": 0.02},
+    "mesh": {"elements": 4, "element": "rod"},
+    "section": {"radius": 0.02},
     "material": {"density": 7800.0, "youngs_modulus": 2e9, "poisson_ratio": 0.3},
     "supports": [{"at": "start", "kind": "clamp"}],
-}  # fmt: skip
+}
 
 
 def _system(raw: dict, beta: float):
@@ -48,8 +49,9 @@ def test_force_and_tangent(raw, rng):
     assert s0.core.dense_jacobian(y, v, a, np.zeros(s.m), 0.1, 1.0, 0.0, 0.0, False, out=dense)
     k = dense.reshape(s.n + s.m, -1)[: s.n, : s.n]
     extra = _residual(s, y, v, a) - _residual(s0, y, v, a)
-    np.testing.assert_allclose(extra[free], beta * (k @ v)[free], rtol=1e-10,
-                               atol=1e-12 * np.abs(beta * k @ v).max())  # fmt: skip
+    np.testing.assert_allclose(
+        extra[free], beta * (k @ v)[free], rtol=1e-10, atol=1e-12 * np.abs(beta * k @ v).max()
+    )
     for ck, cv in ((1.0, 0.0), (0.0, 1.0)):  # d/dy and d/dv against differences
         assert s.core.dense_jacobian(y, v, a, np.zeros(s.m), 0.1, ck, cv, 0.0, out=dense)
         jac = dense.reshape(s.n + s.m, -1)[: s.n, : s.n]
@@ -72,20 +74,31 @@ def test_modal_damping_ratio_of_the_first_mode():
     its first mode; the decay of the tip's swings gives the damping ratio, beta omega_1 / 2
     (the higher modes, damped in proportion to their frequency, are gone after a period)."""
     beta = 4e-3
-    raw = {**CANTILEVER, "solver": {"t_end": 1.0, "step": 1e-3, "rho_inf": 1.0,
-                                    "initial_state": "static"}}  # fmt: skip
+    raw = {
+        **CANTILEVER,
+        "solver": {"t_end": 1.0, "step": 1e-3, "rho_inf": 1.0, "initial_state": "static"},
+    }
     sc = parse_scenario({**raw, "damping": {"stiffness_proportional": beta}})
     system = build_system(sc)
     omega = 2 * np.pi * natural_modes(system, count=1).frequencies_hz[0]
     from rancf.solvers.start import start_state
 
     y0, _ = start_state(sc, system)
-    free = build_system(parse_scenario({**{k: v for k, v in raw.items() if k != "loads"},
-                                        "damping": {"stiffness_proportional": beta}}))  # fmt: skip
+    free = build_system(
+        parse_scenario(
+            {
+                **{k: v for k, v in raw.items() if k != "loads"},
+                "damping": {"stiffness_proportional": beta},
+            }
+        )
+    )
     res = integrate(free, sc.dynamic_options(), initial=y0)
     tip = res.q[:, free.body_slice("body")][:, -4 + 1]  # the end node's y
-    peaks = [i for i in range(1, tip.size - 1) if abs(tip[i]) >= abs(tip[i - 1])
-             and abs(tip[i]) > abs(tip[i + 1])]  # fmt: skip
+    peaks = [
+        i
+        for i in range(1, tip.size - 1)
+        if abs(tip[i]) >= abs(tip[i - 1]) and abs(tip[i]) > abs(tip[i + 1])
+    ]
     amp = np.abs(tip[peaks])
     t = res.t[peaks]
     rate = -np.polyfit(t[len(t) // 3 :], np.log(amp[len(t) // 3 :]), 1)[0]  # zeta omega

@@ -37,8 +37,9 @@ def atwood(stress_free: str, n_arc: int = 12, n_span: int = 6) -> System:
     left, right = PointMass(2, M1, (-RC, -SPAN)), PointMass(2, M2, (RC, -SPAN))
     pulley = Obstacle("cylinder", center=(0, 0), radius=RP, name="pulley")
     joints = [Joint("pin", ("rope:start", "left")), Joint("pin", ("rope:end", "right"))]
-    return System({"rope": rope, "left": left, "right": right}, joints, gravity=[0, -G],
-                  obstacles=[pulley])  # fmt: skip
+    return System(
+        {"rope": rope, "left": left, "right": right}, joints, gravity=[0, -G], obstacles=[pulley]
+    )
 
 
 def rigid_rope_drop(t: float) -> float:
@@ -53,8 +54,9 @@ def acceleration(stress_free: str) -> tuple[float, float]:
     over 0.25 s to 0.5 s, once the start's release of those boundary layers has died out, and
     the rigid rope's from the same fit of ``x(t)``."""
     s = atwood(stress_free)
-    res = integrate(s, DynamicOptions(t_end=0.5, step=2e-3, rho_inf=0.5, max_newton=25,
-                                      output_step=0.01))  # fmt: skip
+    res = integrate(
+        s, DynamicOptions(t_end=0.5, step=2e-3, rho_inf=0.5, max_newton=25, output_step=0.01)
+    )
     assert res.status.value == "completed", res.message
     ys = np.array([s.y_from_q(q) for q in res.q])
     x = (ys[:, s.body_slice("left")][:, 1] - ys[:, s.body_slice("right")][:, 1]) / 2

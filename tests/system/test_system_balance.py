@@ -15,8 +15,11 @@ from rancf.scenario import Scenario
 from rancf.scenario.system_build import build_system
 from rancf.solvers.static import solve_static
 
-ROD = {"mesh": {"elements": 8, "element": "rod"}, "section": {"radius": 0.01},
-       "material": {"density": 7850.0, "youngs_modulus": 2.0e11, "poisson_ratio": 0.3}}  # fmt: skip
+ROD = {
+    "mesh": {"elements": 8, "element": "rod"},
+    "section": {"radius": 0.01},
+    "material": {"density": 7850.0, "youngs_modulus": 2.0e11, "poisson_ratio": 0.3},
+}
 
 
 def test_free_rod_pulse_momentum_and_center_of_mass(tmp_path):
@@ -30,11 +33,19 @@ def test_free_rod_pulse_momentum_and_center_of_mass(tmp_path):
     sc = Scenario(
         geometry={"kind": "line", "start": [0.0, 0.0, 0.0], "end": [1.0, 0.0, 0.0]},
         **ROD,
-        loads={"point": [{"at": "end", "force": [0.0, 1.0, 0.0], "moment": [0.0, 0.0, 0.1],
-                          "time": {"table": [[0.0, 0.0], [0.01, 1.0], [0.02, 0.0]]}}]},
+        loads={
+            "point": [
+                {
+                    "at": "end",
+                    "force": [0.0, 1.0, 0.0],
+                    "moment": [0.0, 0.0, 0.1],
+                    "time": {"table": [[0.0, 0.0], [0.01, 1.0], [0.02, 0.0]]},
+                }
+            ]
+        },
         solver={"t_end": 0.1, "step": 1e-4, "output_step": 1e-3, "rho_inf": 1.0},
         sensors=[{"name": "p", "kind": "momentum"}, {"name": "c", "kind": "center_of_mass"}],
-    )  # fmt: skip
+    )
     path = tmp_path / "free.toml"
     sc.save(path)
     assert main(["simulate", str(path), "--out", str(tmp_path / "run"), "--quiet"]) == 0
@@ -61,15 +72,18 @@ def test_free_rod_pulse_momentum_and_center_of_mass(tmp_path):
 
 def _frame(load: float, rot: np.ndarray) -> Scenario:
     def leg(name: str, a: list[float], b: list[float]) -> dict:
-        return {"name": name, "geometry": {"kind": "line", "start": list(rot @ a),
-                "end": list(rot @ b)}, **ROD}  # fmt: skip
+        return {
+            "name": name,
+            "geometry": {"kind": "line", "start": list(rot @ a), "end": list(rot @ b)},
+            **ROD,
+        }
 
     return Scenario(
         bodies=[leg("a", [0, 0, 0], [1, 0, 0]), leg("b", [1, 0, 0], [1, 1, 0])],
         joints=[{"name": "corner", "kind": "fixed", "between": ["a:end", "b:start"]}],
         supports=[{"at": "a:start", "kind": "clamp"}],
         loads={"point": [{"at": "b:end", "force": list(rot @ [0.0, 0.0, load])}]},
-    )  # fmt: skip
+    )
 
 
 def _solved(sc: Scenario) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -122,13 +136,16 @@ def test_a_python_callable_moves_a_support():
 
     sc = Scenario(
         geometry={"kind": "line", "start": [0.0, 0.0], "end": [1.0, 0.0]},
-        mesh={"elements": 4}, section={"radius": 0.002},
+        mesh={"elements": 4},
+        section={"radius": 0.002},
         material={"density": 7800.0, "youngs_modulus": 2.0e11},
-        supports=[{"at": "start", "kind": "clamp"},
-                  {"at": "end", "kind": "pin", "motion": lambda t: [0.01 * np.sin(3 * t), 0.0]}],
+        supports=[
+            {"at": "start", "kind": "clamp"},
+            {"at": "end", "kind": "pin", "motion": lambda t: [0.01 * np.sin(3 * t), 0.0]},
+        ],
         solver={"t_end": 0.5, "step": 1e-3, "output_step": 0.01},
         sensors=[{"name": "tip", "kind": "position", "at": "end"}],
-    )  # fmt: skip
+    )
     res, names, vals = rancf.simulate(sc)
     assert names == ["tip_x", "tip_y"]
     assert np.abs(vals[:, 0] - (1.0 + 0.01 * np.sin(3 * res.t))).max() <= 1e-9

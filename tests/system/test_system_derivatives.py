@@ -29,9 +29,14 @@ def planar() -> System:
     """A cable, a beam, a rigid body and a point mass with every 2D joint kind."""
     ramp = TimeFunction.ramp(1, 1)
     cable = Model(
-        mesh_line([0, 0], [1, 0], 3), "rancf", SEC, MAT, [Support(0, "clamp")],
-        gravity=[0, -9.81], point_loads=[PointLoad(1, (0.1, 0.2), time=ramp)],
-    )  # fmt: skip
+        mesh_line([0, 0], [1, 0], 3),
+        "rancf",
+        SEC,
+        MAT,
+        [Support(0, "clamp")],
+        gravity=[0, -9.81],
+        point_loads=[PointLoad(1, (0.1, 0.2), time=ramp)],
+    )
     beam = Model(mesh_line([1, 0], [1.5, 0.5], 2), "beam", SEC, MAT, [], gravity=[0, -9.81])
     rot = np.array([[np.cos(0.3), -np.sin(0.3)], [np.sin(0.3), np.cos(0.3)]])
     pos = np.array([1.5, 0.5]) - rot @ [-0.2, 0.0]  # link:a at the beam's end
@@ -49,14 +54,26 @@ def planar() -> System:
         Spring(("mass", "ground"), 20.0, 0.5),
     ]  # ground: l0 = 0
     loads = [Load("link:b", (1.0, -2.0), torque=(0.5,), time=TimeFunction.harmonic(2.0, 1.0))]
-    return System({"cable": cable, "beam": beam, "link": link, "mass": mass}, joints, springs,
-                  loads, gravity=[0, -9.81], damping=0.3)  # fmt: skip
+    return System(
+        {"cable": cable, "beam": beam, "link": link, "mass": mass},
+        joints,
+        springs,
+        loads,
+        gravity=[0, -9.81],
+        damping=0.3,
+    )
 
 
 def spatial() -> System:
     """A rod, a 3D cable, a rigid body and a point mass with every 3D joint kind."""
-    rod = Model(mesh_line([0, 0, 0], [1, 0, 0], 3), "rod", SEC, ROD, [Support(0, "clamp")],
-                gravity=[0, 0, -9.81])  # fmt: skip
+    rod = Model(
+        mesh_line([0, 0, 0], [1, 0, 0], 3),
+        "rod",
+        SEC,
+        ROD,
+        [Support(0, "clamp")],
+        gravity=[0, 0, -9.81],
+    )
     g = [0, 0, -9.81]
     rod2 = Model(mesh_line([1, 0, 0], [1, 0.6, 0.2], 2), "rod", SEC, ROD, [], gravity=g)
     cable = Model(mesh_line([1, 0.6, 0.2], [1.4, 0.9, 0.2], 2), "rancf", SEC, MAT, [], gravity=g)
@@ -65,8 +82,15 @@ def spatial() -> System:
     pos = np.array([1.4, 0.9, 0.2]) - r0 @ a
     b = r0.T @ (np.array([1.0, 0.3, 0.1]) - pos)
     points = {"a": tuple(a), "b": tuple(b)}
-    body = RigidBody(3, 2.0, (0.1, 0.2, 0.3), tuple(pos), r0.tolist(),
-                     angular_velocity=(0.3, -0.2, 0.5), points=points)  # fmt: skip
+    body = RigidBody(
+        3,
+        2.0,
+        (0.1, 0.2, 0.3),
+        tuple(pos),
+        r0.tolist(),
+        angular_velocity=(0.3, -0.2, 0.5),
+        points=points,
+    )
     mass = PointMass(3, 0.5, tuple(pos + r0 @ b + 0.3 * np.array([0.0, 1.0, 1.0]) / np.sqrt(2)))
     joints = [
         Joint("fixed", ("rod:end", "rod2:start")),
@@ -81,8 +105,14 @@ def spatial() -> System:
     ]
     springs = [Spring(("rod:1", "body:b"), 30.0, 1.0), Spring(("rod2:2", "ground"), 20.0, 0.5)]
     loads = [Load("body:a", (0.0, 1.0, 0.0), torque=(0.1, 0.2, 0.3))]
-    return System({"rod": rod, "rod2": rod2, "cable": cable, "body": body, "mass": mass}, joints,
-                  springs, loads, gravity=[0, 0, -9.81], damping=0.2)  # fmt: skip
+    return System(
+        {"rod": rod, "rod2": rod2, "cable": cable, "body": body, "mass": mass},
+        joints,
+        springs,
+        loads,
+        gravity=[0, 0, -9.81],
+        damping=0.2,
+    )
 
 
 def _perturbed(s: System, rng: np.random.Generator, scale: float = 1e-2) -> np.ndarray:
@@ -185,8 +215,10 @@ def test_a_rest_length_where_the_places_meet_is_refused():
     from rancf.errors import InputError
 
     with pytest.raises(InputError, match=r"springs\.tie\.length = 0\.3 .*0 where its places meet"):
-        System({"mass": PointMass(2, 2.0, (0.3, 0.1))},
-               springs=[Spring(("mass", "ground"), 20.0, length=0.3, name="tie")])  # fmt: skip
+        System(
+            {"mass": PointMass(2, 2.0, (0.3, 0.1))},
+            springs=[Spring(("mass", "ground"), 20.0, length=0.3, name="tie")],
+        )
 
 
 def test_a_flexible_body_without_gravity_in_a_system_with_gravity_is_warned():

@@ -66,8 +66,12 @@ def test_slider_crank_matches_exudyn(runs):
     1 % of Exudyn's converged values at t = 0.05, 0.1, 0.15, 0.2 s.  Measured: slider within
     4.6e-7 m, deflection within 2.1e-4 relative."""
     s = _sensors(runs["slider-crank"])
-    ref = [(0.05, 0.164394, -4.779e-4), (0.1, 0.300216, -2.7307e-3),
-           (0.15, 0.448900, -5.930e-4), (0.2, 0.333606, 3.4486e-3)]  # fmt: skip
+    ref = [
+        (0.05, 0.164394, -4.779e-4),
+        (0.1, 0.300216, -2.7307e-3),
+        (0.15, 0.448900, -5.930e-4),
+        (0.2, 0.333606, 3.4486e-3),
+    ]
     for t, x, dev in ref:
         i = int(np.argmin(np.abs(s["t"] - t)))
         assert abs(s["t"][i] - t) < 1e-9

@@ -30,9 +30,10 @@ def test_two_cables_fixed_together_vibrate_as_one():
     tangent direction; a straight cable at rest: the gradient's length is not excited in
     bending): the first five frequencies agree to 1e-8 (the dense QZ path)."""
     one = natural_modes(_cable([0, 0], [1, 0], 16, [Support(0, "clamp")]), count=5)
-    two = System({"a": _cable([0, 0], [0.5, 0], 8, [Support(0, "clamp")]),
-                  "b": _cable([0.5, 0], [1, 0], 8)},
-                 joints=[Joint("fixed", ("a:end", "b:start"))])  # fmt: skip
+    two = System(
+        {"a": _cable([0, 0], [0.5, 0], 8, [Support(0, "clamp")]), "b": _cable([0.5, 0], [1, 0], 8)},
+        joints=[Joint("fixed", ("a:end", "b:start"))],
+    )
     res = natural_modes(two, count=5)
     assert res.n_rigid == 0
     assert np.allclose(res.frequencies_hz, one.frequencies_hz, rtol=1e-8)
@@ -46,9 +47,13 @@ def test_sparse_path_on_a_large_system():
     of this ill-conditioned fine mesh, the same size in the dense solver; 7.7e-6 on the first
     mode with OpenBLAS's Sandybridge kernels)."""
     one = natural_modes(_cable([0, 0], [1, 0], 400, [Support(0, "clamp")]), count=6)
-    two = System({"a": _cable([0, 0], [0.5, 0], 200, [Support(0, "clamp")]),
-                  "b": _cable([0.5, 0], [1, 0], 200)},
-                 joints=[Joint("fixed", ("a:end", "b:start"))])  # fmt: skip
+    two = System(
+        {
+            "a": _cable([0, 0], [0.5, 0], 200, [Support(0, "clamp")]),
+            "b": _cable([0.5, 0], [1, 0], 200),
+        },
+        joints=[Joint("fixed", ("a:end", "b:start"))],
+    )
     res = natural_modes(two, count=6)
     assert res.n_rigid == 0
     assert np.allclose(res.frequencies_hz, one.frequencies_hz, rtol=2e-5)
@@ -60,8 +65,9 @@ def test_free_bodies_have_their_rigid_body_modes(dim, rigid):
     removed, the rest as for the body with the mass."""
     end = [1.0, 0.0] if dim == 2 else [1.0, 0.0, 0.0]
     body = _cable([0.0] * dim, end, 8, element="ancf" if dim == 2 else "rod")
-    s = System({"c": body, "m": PointMass(dim, 0.1, tuple(end))},
-               joints=[Joint("pin", ("c:end", "m"))])  # fmt: skip
+    s = System(
+        {"c": body, "m": PointMass(dim, 0.1, tuple(end))}, joints=[Joint("pin", ("c:end", "m"))]
+    )
     res = natural_modes(s, count=4)
     assert res.n_rigid == rigid
     assert np.all(res.frequencies_hz > 1.0)
@@ -74,9 +80,12 @@ def test_spring_pendulum_about_its_equilibrium():
     the pendulum's √(g / L) and the spring's √(k / m) (the load stiffness of the constraints
     and spring included), to 1e-9."""
     g, k, m = 9.81, 100.0, 1.0
-    s = System({"mass": PointMass(2, m, (0.0, -1.0)), "anchor": RigidBody(2, 1.0, 1.0, (0.0, 0.0))},
-               joints=[Joint("fixed", ("anchor", "ground"))],
-               springs=[Spring(("mass", "anchor"), k)], gravity=[0.0, -g])  # fmt: skip
+    s = System(
+        {"mass": PointMass(2, m, (0.0, -1.0)), "anchor": RigidBody(2, 1.0, 1.0, (0.0, 0.0))},
+        joints=[Joint("fixed", ("anchor", "ground"))],
+        springs=[Spring(("mass", "anchor"), k)],
+        gravity=[0.0, -g],
+    )
     st = solve_static(s)
     length = 1.0 + m * g / k
     assert st.y[1] == pytest.approx(-length, rel=1e-12)
@@ -100,9 +109,11 @@ def _l_frame() -> Scenario:
         joints=[{"name": "corner", "kind": "fixed", "between": ["a:end", "b:start"]}],
         supports=[{"at": "a:start", "kind": "clamp"}],
         loads={"point": [{"at": "b:end", "force": [0.0, 0.0, -10.0]}]},
-        sensors=[{"name": "corner_force", "kind": "reaction", "joint": "corner"},
-                 {"name": "root", "kind": "reaction", "at": "a:start"}],
-    )  # fmt: skip
+        sensors=[
+            {"name": "corner_force", "kind": "reaction", "joint": "corner"},
+            {"name": "root", "kind": "reaction", "at": "a:start"},
+        ],
+    )
 
 
 def test_static_and_modes_commands_on_a_system(tmp_path, capsys):

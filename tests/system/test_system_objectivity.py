@@ -25,8 +25,11 @@ def planar() -> System:
     link = RigidBody(2, 1.5, 0.02, tuple(pos), 0.3, points={"a": (-0.2, 0.0), "b": (0.2, 0.1)})
     axis = np.array([1.0, 0.3])
     mass = PointMass(2, 0.5, tuple(pos + rot @ [0.2, 0.1] + 0.3 * axis / np.linalg.norm(axis)))
-    joints = [Joint("fixed", ("cable:end", "beam:start")), Joint("pin", ("beam:end", "link:a")),
-              Joint("slider", ("mass", "link:b"), axis=(1.0, 0.3))]  # fmt: skip
+    joints = [
+        Joint("fixed", ("cable:end", "beam:start")),
+        Joint("pin", ("beam:end", "link:a")),
+        Joint("slider", ("mass", "link:b"), axis=(1.0, 0.3)),
+    ]
     return System({"cable": cable, "beam": beam, "link": link, "mass": mass}, joints)
 
 
@@ -37,15 +40,24 @@ def spatial() -> System:
     pos = np.array([1.0, 0.2, 0.1]) - r0 @ a  # body:a at the cable's end
     link_pos = np.array([1.6, 0.9, 0.4])
     c = pos + r0 @ b - link_pos  # link:c at body:b
-    body = RigidBody(3, 2.0, (0.1, 0.2, 0.3), tuple(pos), r0.tolist(),
-                     points={"a": tuple(a), "b": tuple(b)})  # fmt: skip
-    link = RigidBody(3, 1.0, (0.05, 0.1, 0.1), tuple(link_pos), 0.0,
-                     points={"c": tuple(c), "d": tuple(-link_pos)})  # fmt: skip
+    body = RigidBody(
+        3, 2.0, (0.1, 0.2, 0.3), tuple(pos), r0.tolist(), points={"a": tuple(a), "b": tuple(b)}
+    )
+    link = RigidBody(
+        3,
+        1.0,
+        (0.05, 0.1, 0.1),
+        tuple(link_pos),
+        0.0,
+        points={"c": tuple(c), "d": tuple(-link_pos)},
+    )
     mass = PointMass(3, 0.5, tuple(link_pos + 0.3 * np.array([0.0, 1.0, 1.0]) / np.sqrt(2)))
-    joints = [Joint("pin", ("cable:end", "body:a")),
-              Joint("fixed", ("cable:start", "link:d")),  # a cable's tangent held by a frame
-              Joint("revolute", ("body:b", "link:c"), axis=(0.0, 0.0, 1.0)),
-              Joint("slider", ("mass", "link"), axis=(0.0, 1.0, 1.0))]  # fmt: skip
+    joints = [
+        Joint("pin", ("cable:end", "body:a")),
+        Joint("fixed", ("cable:start", "link:d")),  # a cable's tangent held by a frame
+        Joint("revolute", ("body:b", "link:c"), axis=(0.0, 0.0, 1.0)),
+        Joint("slider", ("mass", "link"), axis=(0.0, 1.0, 1.0)),
+    ]
     return System({"cable": cable, "body": body, "link": link, "mass": mass}, joints)
 
 

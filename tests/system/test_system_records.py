@@ -26,10 +26,14 @@ def test_records_of_the_slider_crank():
     r = s.records
     places = [(p.kind, p.body, p.node, p.point[:2]) for p in r.places]
     assert places == [
-        ("rigid2d", 0, 0, (-0.075, 0.0)), ("ground", -1, 0, (0.0, 0.0)),
-        ("rigid2d", 0, 0, (0.075, 0.0)), ("cable", 0, 0, (0.0, 0.0)), ("cable", 0, 8, (0.0, 0.0)),
-        ("mass", 1, 0, (0.0, 0.0)), ("ground", -1, 0, (0.45, 0.0)),
-    ]  # fmt: skip
+        ("rigid2d", 0, 0, (-0.075, 0.0)),
+        ("ground", -1, 0, (0.0, 0.0)),
+        ("rigid2d", 0, 0, (0.075, 0.0)),
+        ("cable", 0, 0, (0.0, 0.0)),
+        ("cable", 0, 8, (0.0, 0.0)),
+        ("mass", 1, 0, (0.0, 0.0)),
+        ("ground", -1, 0, (0.45, 0.0)),
+    ]
     assert [(j.kind, j.driven) for j in r.joints] == [
         ("pin", True),
         ("pin", False),

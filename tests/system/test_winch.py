@@ -34,13 +34,19 @@ def hoist(law, horizon: float, n_el: int = 10, gravity: float = G) -> System:
     its lower end; the winch sets the unstretched length ``law(t)`` (``law(0) = 5``; a
     callable or a TimeFunction)."""
     g = [0.0, -gravity]
-    wire = Model(mesh_line([0, 0], [0, -5.0], n_el), "ancf", WIRE, STEEL, [Support(0, "pin")],
-                 gravity=g)  # fmt: skip
+    wire = Model(
+        mesh_line([0, 0], [0, -5.0], n_el), "ancf", WIRE, STEEL, [Support(0, "pin")], gravity=g
+    )
     load = PointMass(2, LOAD, (0.0, -5.0))
     f = law if isinstance(law, TimeFunction) else TimeFunction.from_callable(law)
     winch = Winch("hoist", "wire:start", length=f)
-    return System({"wire": wire, "load": load}, [Joint("pin", ("wire:end", "load"))],
-                  gravity=g, winches=[winch], horizon=horizon)  # fmt: skip
+    return System(
+        {"wire": wire, "load": load},
+        [Joint("pin", ("wire:end", "load"))],
+        gravity=g,
+        winches=[winch],
+        horizon=horizon,
+    )
 
 
 def payout(t: float, duration: float = 10.0) -> float:
@@ -56,8 +62,9 @@ def cycle(t: float, duration: float = 20.0) -> float:
 
 def _run(s: System, t_end: float, step: float, rho_inf: float = 0.5, output: float = 0.5):
     st = solve_static(s, load_steps=1, at_time=0.0)  # the wire loaded at its start length
-    res = integrate(s, DynamicOptions(t_end=t_end, step=step, rho_inf=rho_inf,
-                                      output_step=output), initial=st.y)  # fmt: skip
+    res = integrate(
+        s, DynamicOptions(t_end=t_end, step=step, rho_inf=rho_inf, output_step=output), initial=st.y
+    )
     assert res.status.value == "completed", res.message
     return res
 
@@ -88,7 +95,7 @@ def test_payout_follows_the_length_and_keeps_the_mass():
         abs(-s.y_from_q(q)[s.body_slice("load")][1] - payout(t) - static_stretch(payout(t)))
         for t, q in zip(res.t, res.q, strict=True)
     )
-    assert worst < 5e-5  # fmt: skip
+    assert worst < 5e-5
 
 
 def test_slow_payout_tension_is_the_weight_outside_the_winch():
@@ -127,8 +134,9 @@ def test_energy_balance_over_a_payout_and_reel_in_cycle():
     velocities alone would give the wire a third of it)."""
     s = hoist(cycle, 20.0)
     res = _run(s, 20.0, 0.004, rho_inf=1.0, output=0.004)
-    power = np.array([_exit_power(s, s.y_from_q(q), cycle, t) for t, q in
-                      zip(res.t, res.q, strict=True)])  # fmt: skip
+    power = np.array(
+        [_exit_power(s, s.y_from_q(q), cycle, t) for t, q in zip(res.t, res.q, strict=True)]
+    )
     work = np.r_[0.0, np.cumsum(0.5 * (power[1:] + power[:-1]) * np.diff(res.t))]
     energy = res.kinetic + res.strain + res.gravity
     change = energy - energy[0]

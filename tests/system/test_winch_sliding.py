@@ -13,10 +13,14 @@ from rancf.scenario import Scenario
 from tests.scenario.test_winch_scenario import HOIST
 
 #: The hoist of the winch scenario tests, its winch a driven drum lifting the load.
-DRUM = {"name": "hoist", "at": "wire:start", "radius": 0.2, "inertia": 0.5,
-        "torque": {"table": [[0.0, 25.668], [0.05, 33.368], [10.0, 33.368]]}}  # fmt: skip
-GUIDE = {"name": "guide", "kind": "sliding", "between": ["wire", "ground"],
-         "position": [0.0, -1.0]}  # fmt: skip
+DRUM = {
+    "name": "hoist",
+    "at": "wire:start",
+    "radius": 0.2,
+    "inertia": 0.5,
+    "torque": {"table": [[0.0, 25.668], [0.05, 33.368], [10.0, 33.368]]},
+}
+GUIDE = {"name": "guide", "kind": "sliding", "between": ["wire", "ground"], "position": [0.0, -1.0]}
 
 
 def _scenario(guide: bool) -> Scenario:

@@ -116,7 +116,8 @@ def closure_terms(
     for name, b in zip(names, flex, strict=False):
         r, c, v = closure_rows(b)
         o = offsets[name]
-        out += [LinearTerm(int(i) + m, int(j) + o, float(x))
-                for i, j, x in zip(r, c, v, strict=True)]  # fmt: skip
+        out += [
+            LinearTerm(int(i) + m, int(j) + o, float(x)) for i, j, x in zip(r, c, v, strict=True)
+        ]
         m += closure_matrix(b).shape[0]
     return out

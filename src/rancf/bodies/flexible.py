@@ -126,13 +126,17 @@ class Model(Coordinates):
             raise InputError("mesh.continuity", continuity, 'one of "C1", "C2"')
         if continuity == "C2" and element not in ("rancf", "ancf", "rod"):
             raise InputError(
-                "mesh.continuity", "C2", f'"C1" with {element} elements (C2 needs cable or rod '
+                "mesh.continuity",
+                "C2",
+                f'"C1" with {element} elements (C2 needs cable or rod '
                 'elements: mesh.element = "rancf", "ancf" or "rod")',
-            )  # fmt: skip
+            )
         self.n_el = mesh.n_elements
         if material.axial_strain != "green_lagrange" and element not in ("rancf", "ancf"):
-            allowed = (f'"green_lagrange" with {element} elements (the engineering strain is '
-                       'built for cable elements: mesh.element = "rancf" or "ancf")')  # fmt: skip
+            allowed = (
+                f'"green_lagrange" with {element} elements (the engineering strain is '
+                'built for cable elements: mesh.element = "rancf" or "ancf")'
+            )
             raise InputError("material.axial_strain", material.axial_strain, allowed)
         rho, e_mod = material.density, material.youngs_modulus
         props = CableProperties(e_mod * section.area, e_mod * section.inertia, rho * section.area)
@@ -158,10 +162,17 @@ class Model(Coordinates):
                         "mesh.element", "rod", "the rod element is spatial (3D geometry)"
                     )
                 self.kernel = RodKernel(
-                    m.weights, m.scales, m.element_nodal(), props, rho * section.polar, n_qp,
-                    section.orientation, section.bending_rotary(rho),
-                    arc_fractions(m) if m.closed else None, stress_free,
-                )  # fmt: skip
+                    m.weights,
+                    m.scales,
+                    m.element_nodal(),
+                    props,
+                    rho * section.polar,
+                    n_qp,
+                    section.orientation,
+                    section.bending_rotary(rho),
+                    arc_fractions(m) if m.closed else None,
+                    stress_free,
+                )
                 self.dpn = ROD_DOFS
                 q0 = np.concatenate(
                     [m.nodes.reshape(self.n_nodes, 6), np.zeros((self.n_nodes, 1))], axis=1
@@ -191,8 +202,9 @@ class Model(Coordinates):
             self.reduction, base_q = reduction(self.mesh, self.dpn, element == "rod", held, q0)
             self.notes += jump_note(self.reduction, self.n_el)
             node_base = self.node_base
-        layout = support_layout(supports, element, self.dim, self.dpn, base_q, tangents,
-                                self.check_node, node_base)  # fmt: skip
+        layout = support_layout(
+            supports, element, self.dim, self.dpn, base_q, tangents, self.check_node, node_base
+        )
         self.fixed = layout.fixed
         self.rotations = list(layout.rotations)
         self.supports = tuple(supports)
@@ -204,8 +216,13 @@ class Model(Coordinates):
             self.fixed[self.reduction.n_real :] = True
             self.ku = self.reduction.ku
         # element-level transformations for elements touching a rotated node
-        aff = sorted({min(max(off // self.dpn - j, 0), self.n_el - 1)
-                      for off, _ in self.rotations for j in (0, 1)})  # fmt: skip
+        aff = sorted(
+            {
+                min(max(off // self.dpn - j, 0), self.n_el - 1)
+                for off, _ in self.rotations
+                for j in (0, 1)
+            }
+        )
         self._aff = np.array(aff, dtype=int)
         te = np.repeat(np.eye(self.nde)[None], len(aff), axis=0)
         for i, e in enumerate(aff):

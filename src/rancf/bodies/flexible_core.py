@@ -72,8 +72,11 @@ def section_stiffness(model: AssembledBody) -> _core.Stiffness:
     <rancf.bodies.flexible.Model.strain_rate_damping>`."""
     sec, mat = model.section, model.material
     kv = model.strain_rate_damping
-    rates = {"damping_axial": kv.axial, "damping_bending": kv.bending,
-             "damping_torsion": kv.torsion}  # fmt: skip
+    rates = {
+        "damping_axial": kv.axial,
+        "damping_bending": kv.bending,
+        "damping_torsion": kv.torsion,
+    }
     if model.element != "rod":
         engineering = model.material.axial_strain == "engineering"
         return _core.Stiffness(
@@ -153,13 +156,28 @@ def _reduction(model: AssembledBody) -> _core.Reduction:
     red = model.reduction
     if red is None:
         zi, z = np.zeros(0, dtype=np.int64), np.zeros(0)
-        return _core.Reduction(n_y=0, ku=0, width=0, node_width=0, el_start=zi, el_map=z,
-                               node_start=zi, node_map=z, twist=zi)  # fmt: skip
+        return _core.Reduction(
+            n_y=0,
+            ku=0,
+            width=0,
+            node_width=0,
+            el_start=zi,
+            el_map=z,
+            node_start=zi,
+            node_map=z,
+            twist=zi,
+        )
     return _core.Reduction(
-        n_y=red.n_y, ku=red.ku, width=red.width, node_width=red.node_width,
-        el_start=red.el_start, el_map=red.el_map, node_start=red.node_start,
-        node_map=red.node_map, twist=red.twist,
-    )  # fmt: skip
+        n_y=red.n_y,
+        ku=red.ku,
+        width=red.width,
+        node_width=red.node_width,
+        el_start=red.el_start,
+        el_map=red.el_map,
+        node_start=red.node_start,
+        node_map=red.node_map,
+        twist=red.twist,
+    )
 
 
 def _point_forces(model: AssembledBody) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -186,6 +204,4 @@ def _empty_beam() -> _core.BeamData:
 
 def _empty_rod() -> _core.RodData:
     z = np.zeros(0)
-    return _core.RodData(
-        n1=z, n2=z, xi=z, gw=z, j0=z, kref=z, tref=np.zeros(0), m1ref=np.zeros(0)
-    )  # fmt: skip
+    return _core.RodData(n1=z, n2=z, xi=z, gw=z, j0=z, kref=z, tref=np.zeros(0), m1ref=np.zeros(0))

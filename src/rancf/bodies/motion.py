@@ -109,10 +109,11 @@ def check_supports_at_rest(model: MovingBody, v: NDArray) -> None:
     if bad.size:
         node = int(bad[0] // model.dpn)
         raise InputError(
-            "initial_motion", f"supported node {node} moving",
+            "initial_motion",
+            f"supported node {node} moving",
             "a rigid motion that leaves the supports at rest (about = a pinned point; a clamp "
             "cannot turn)",
-        )  # fmt: skip
+        )
 
 
 def _scalar_mass_blocks(model: MovingBody) -> NDArray[np.float64]:
@@ -150,8 +151,12 @@ def angular_momentum(
         return lz[:, None]
     m4 = _scalar_mass_blocks(model)
     g = slice(dim, 2 * dim)
-    pos = [nodes_q[:, :-1, :dim] - c, nodes_q[:, :-1, g], nodes_q[:, 1:, :dim] - c,
-           nodes_q[:, 1:, g]]  # fmt: skip
+    pos = [
+        nodes_q[:, :-1, :dim] - c,
+        nodes_q[:, :-1, g],
+        nodes_q[:, 1:, :dim] - c,
+        nodes_q[:, 1:, g],
+    ]
     vel = [nodes_v[:, :-1, :dim], nodes_v[:, :-1, g], nodes_v[:, 1:, :dim], nodes_v[:, 1:, g]]
     out = np.zeros((n_t, 3 if dim == 3 else 1))
     for k in range(4):

@@ -112,8 +112,11 @@ class Material:
 
     def __post_init__(self) -> None:
         if self.axial_strain not in AXIAL_STRAINS:
-            raise InputError("material.axial_strain", self.axial_strain,
-                             " or ".join(f'"{k}"' for k in AXIAL_STRAINS))  # fmt: skip
+            raise InputError(
+                "material.axial_strain",
+                self.axial_strain,
+                " or ".join(f'"{k}"' for k in AXIAL_STRAINS),
+            )
         for name in ("density", "youngs_modulus", "shear_modulus"):
             _positive(f"material.{name}", getattr(self, name))
         nu = self.poisson_ratio
@@ -168,8 +171,12 @@ class StrainRateDamping:
         """Itself, or :class:`~rancf.errors.InputError` if ``torsion`` is given to an element
         without a twist (every element but the rod)."""
         if self.torsion > 0 and element != "rod":
-            raise InputError("damping.torsion", self.torsion, f'0 with {element} elements (a '
-                             'twist rate needs rod elements: mesh.element = "rod")')  # fmt: skip
+            raise InputError(
+                "damping.torsion",
+                self.torsion,
+                f"0 with {element} elements (a "
+                'twist rate needs rod elements: mesh.element = "rod")',
+            )
         return self
 
 

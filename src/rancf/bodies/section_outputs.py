@@ -48,9 +48,15 @@ def section_names(model: Model) -> tuple[str, ...]:
     """Names of the quantities, in the column order of :meth:`SectionSampler.values`."""
     if model.element == "rod":
         return (
-            "strain", "axial_force", "twist_rate", "curvature_m1", "curvature_m2",
-            "twisting_moment", "bending_moment_m1", "bending_moment_m2",
-        )  # fmt: skip
+            "strain",
+            "axial_force",
+            "twist_rate",
+            "curvature_m1",
+            "curvature_m2",
+            "twisting_moment",
+            "bending_moment_m1",
+            "bending_moment_m2",
+        )
     return ("strain", "axial_force", "curvature", "bending_moment")
 
 

@@ -54,15 +54,25 @@ from rancf.errors import InputError
 from rancf.kernels.records import TimeFunctionRecord, floats
 
 __all__ = [
-    "TimeFunction", "KINDS", "CORE_KINDS", "spin_up_angle", "core_record", "build_up_factor",
-]  # fmt: skip
+    "TimeFunction",
+    "KINDS",
+    "CORE_KINDS",
+    "spin_up_angle",
+    "core_record",
+    "build_up_factor",
+]
 
 #: The kinds of time functions.
 KINDS = ("constant", "table", "ramp", "harmonic", "spin_up", "callable")
 #: The kinds the compiled core evaluates and its names of them (a callable goes as its sampled
 #: table).
-CORE_KINDS = {"constant": "constant", "table": "piecewise", "ramp": "ramp",
-              "harmonic": "harmonic", "spin_up": "spin_up"}  # fmt: skip
+CORE_KINDS = {
+    "constant": "constant",
+    "table": "piecewise",
+    "ramp": "ramp",
+    "harmonic": "harmonic",
+    "spin_up": "spin_up",
+}
 
 _H1, _H2 = 6e-6, 1.2e-4  # central-difference steps of callables [s]
 
@@ -175,8 +185,9 @@ class TimeFunction:
         f = _positive("harmonic", frequency_hz)
         if isinstance(phase_deg, bool) or not math.isfinite(phase_deg):
             raise InputError("phase_deg", phase_deg, "a finite angle [deg]")
-        return cls("harmonic", *_values("amplitude", amplitude), frequency=f,
-                   phase=math.radians(phase_deg))  # fmt: skip
+        return cls(
+            "harmonic", *_values("amplitude", amplitude), frequency=f, phase=math.radians(phase_deg)
+        )
 
     @classmethod
     def spin_up(cls, duration: float, rate: float) -> TimeFunction:
@@ -218,10 +229,17 @@ class TimeFunction:
         ):
             raise InputError("build_up", seconds, "a finite duration >= 0 [s]")
         out = TimeFunction(
-            self.kind, self.values, self.vector, duration=self.duration,
-            frequency=self.frequency, phase=self.phase, rows=self.rows,
-            interpolation=self.interpolation, fn=self.fn, build_up=float(seconds),
-        )  # fmt: skip
+            self.kind,
+            self.values,
+            self.vector,
+            duration=self.duration,
+            frequency=self.frequency,
+            phase=self.phase,
+            rows=self.rows,
+            interpolation=self.interpolation,
+            fn=self.fn,
+            build_up=float(seconds),
+        )
         return out
 
     # ------------------------------------------------------------------ evaluation
@@ -350,8 +368,11 @@ class TimeFunction:
         if self.kind == "ramp":
             return {"ramp": self.duration, "value": val(self.values)}
         if self.kind == "harmonic":
-            return {"harmonic": self.frequency, "amplitude": val(self.values),
-                    "phase_deg": math.degrees(self.phase)}  # fmt: skip
+            return {
+                "harmonic": self.frequency,
+                "amplitude": val(self.values),
+                "phase_deg": math.degrees(self.phase),
+            }
         if self.kind == "spin_up":
             return {"spin_up": self.duration, "rate": self.values[0]}
         if self.kind == "table":
@@ -365,13 +386,28 @@ class TimeFunction:
         if self.kind == "callable" or other.kind == "callable":
             return self.fn is other.fn
         rows_equal = (self.rows is None and other.rows is None) or (
-            self.rows is not None and other.rows is not None
+            self.rows is not None
+            and other.rows is not None
             and np.array_equal(self.rows, other.rows)
-        )  # fmt: skip
-        same = (self.kind, self.values, self.vector, self.duration, self.frequency, self.phase,
-                self.build_up)  # fmt: skip
-        return rows_equal and same == (other.kind, other.values, other.vector, other.duration,
-                                       other.frequency, other.phase, other.build_up)  # fmt: skip
+        )
+        same = (
+            self.kind,
+            self.values,
+            self.vector,
+            self.duration,
+            self.frequency,
+            self.phase,
+            self.build_up,
+        )
+        return rows_equal and same == (
+            other.kind,
+            other.values,
+            other.vector,
+            other.duration,
+            other.frequency,
+            other.phase,
+            other.build_up,
+        )
 
     # unhashable: a class that defines __eq__ and not __hash__ has __hash__ = None
 
@@ -389,10 +425,19 @@ def core_record(f: TimeFunction) -> TimeFunctionRecord:
     A callable cannot be called from the compiled loop: give ``f.sampled(t_end)`` instead.
     """
     if f.kind not in CORE_KINDS:
-        raise InputError("time function", f.fn, "a function the core evaluates (sample a "
-                         "Python callable first: f.sampled(t_end))")  # fmt: skip
+        raise InputError(
+            "time function",
+            f.fn,
+            "a function the core evaluates (sample a Python callable first: f.sampled(t_end))",
+        )
     breaks, coef = f.coefficients()
     return TimeFunctionRecord(
-        CORE_KINDS[f.kind], floats(f.values), f.duration, f.frequency, f.phase, floats(breaks),
-        floats(coef), f.build_up,
-    )  # fmt: skip
+        CORE_KINDS[f.kind],
+        floats(f.values),
+        f.duration,
+        f.frequency,
+        f.phase,
+        floats(breaks),
+        floats(coef),
+        f.build_up,
+    )

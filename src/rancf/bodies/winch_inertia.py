@@ -70,8 +70,11 @@ def convective_matrices(model: Model, at: Literal["start", "end"]) -> Convective
     """
     k = model.kernel
     if not isinstance(k, CableKernel) or model.reduction is not None:
-        raise InputError("winches.at", model.element, 'a body of cable elements ("rancf" or '
-                         '"ancf") with mesh.continuity = "C1"')  # fmt: skip
+        raise InputError(
+            "winches.at",
+            model.element,
+            'a body of cable elements ("rancf" or "ancf") with mesh.continuity = "C1"',
+        )
     if at not in ("start", "end"):
         raise InputError("winches.at", at, '"BODY:start" or "BODY:end"')
     sigma, l_ref = arc_fractions_at_gauss_points(k)

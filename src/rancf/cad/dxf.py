@@ -81,9 +81,11 @@ def read_dxf(path: Path) -> list[CadCurve]:
         curve = file_curve(path, len(out), degree, knots, scale * pts, w)
         notes: tuple[str, ...] = (unit_note,) if unit_note else ()
         if fitted:
-            notes += (f"{path.name}: spline #{e.dxf.handle} is given by {e.fit_point_count()} "
-                      "fit points only: its control points are those of the cubic B-spline "
-                      "through them, as CAD programs construct it",)  # fmt: skip
+            notes += (
+                f"{path.name}: spline #{e.dxf.handle} is given by {e.fit_point_count()} "
+                "fit points only: its control points are those of the cubic B-spline "
+                "through them, as CAD programs construct it",
+            )
         out.append(CadCurve(len(out), f"#{e.dxf.handle}", curve, notes))
     return out
 

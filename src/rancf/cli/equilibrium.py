@@ -144,10 +144,12 @@ def _cmd_modes(args: argparse.Namespace) -> int:
         "warnings": notes,
     }
     if cam is not None:
-        out["campbell"] = {"spin_rates": cam.spin_rates.tolist(),
-                           "labels": list(cam.labels),
-                           "frequencies_hz": cam.frequencies_hz.tolist(),
-                           "growth_rates_per_s": cam.growth_rates.tolist()}  # fmt: skip
+        out["campbell"] = {
+            "spin_rates": cam.spin_rates.tolist(),
+            "labels": list(cam.labels),
+            "frequencies_hz": cam.frequencies_hz.tolist(),
+            "growth_rates_per_s": cam.growth_rates.tolist(),
+        }
         if plot is not None:
             from rancf.post.plots import plot_campbell
 

@@ -75,8 +75,11 @@ def _check_memory(state: Any, system: Any, options: Any) -> None:
         integ = GeneralizedAlpha(system, o.rho_inf, o.newton_tol, o.max_newton, o.newton, o.rtol)
         integ.restore(state.memory, int(state.counters.get("n_factorizations", 0)))
     except (ValueError, TypeError):
-        raise InputError("state", f"memory of {state.memory.size} numbers", "an integrator "
-                         "memory of this system and its Newton method") from None  # fmt: skip
+        raise InputError(
+            "state",
+            f"memory of {state.memory.size} numbers",
+            "an integrator memory of this system and its Newton method",
+        ) from None
 
 
 class Resume:
@@ -111,17 +114,21 @@ class Resume:
             key = _first_difference(_without_t_end(earlier), _without_t_end(copy))
             if key is not None:
                 raise InputError(
-                    "--resume", str(out), f"a run of the same scenario ({key} differs from "
+                    "--resume",
+                    str(out),
+                    f"a run of the same scenario ({key} differs from "
                     f"the run's scenario.toml; only solver.t_end may change)",
-                )  # fmt: skip
+                )
         self._check_files(files)
         self.state = read_checkpoint(self.out)
         if self.state is None and self.summary.get("status") != "running":
             raise InputError(
-                "--resume", str(out), "a run folder with a checkpoint to go on from (it holds "
+                "--resume",
+                str(out),
+                "a run folder with a checkpoint to go on from (it holds "
                 "none: a static solution or a run of an older version; replace it with "
                 "--overwrite instead of --resume)",
-            )  # fmt: skip
+            )
         self.removed: list[str] = []
 
     def _check_files(self, files: dict[str, str]) -> None:
@@ -135,10 +142,12 @@ class Resume:
         changed = changed_file(earlier, files)
         if changed is not None:
             raise InputError(
-                "--resume", str(self.out), f"a run whose input files are as they were ({changed} "
+                "--resume",
+                str(self.out),
+                f"a run whose input files are as they were ({changed} "
                 "changed since the run started; the run would mix the two; start it again with "
                 "--overwrite)",
-            )  # fmt: skip
+            )
 
     def take_up(self, system: Any, outputs: Any, options: Any) -> dict[str, Any]:
         """Check that the checkpoint fits ``system`` (and the integrator of ``options``) and
@@ -167,10 +176,12 @@ class Resume:
             _check_memory(state, system, options)
         except InputError as exc:
             raise InputError(
-                "--resume", str(self.out / CHECKPOINT), f"a checkpoint this run can go on from "
+                "--resume",
+                str(self.out / CHECKPOINT),
+                f"a checkpoint this run can go on from "
                 f"(it holds a state with {exc.value}; needed: {exc.allowed}); start the run "
                 "again with --overwrite",
-            ) from None  # fmt: skip
+            ) from None
         rows = stored_rows(self.out, outputs, int(state.counters.get("n_outputs", 0)))
         self.removed = remove_leftovers(self.out)
         return rows

@@ -103,8 +103,10 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
             if state.t >= opts.t_end * (1.0 - 1e-12):
                 return _nothing_to_do(args, out, state.t, opts.t_end)
             if not args.quiet:
-                print(f"rancf: {resume.killed_note()}; resuming from t = {state.t:g} s",
-                      file=sys.stderr)  # fmt: skip
+                print(
+                    f"rancf: {resume.killed_note()}; resuming from t = {state.t:g} s",
+                    file=sys.stderr,
+                )
         notes = _warn(before_run_warnings(system, opts))  # the run goes on
         for note in sc.notes:  # defaults the file did not state (a harmonic's build-up)
             print(f"rancf: {note}", file=sys.stderr)
@@ -138,8 +140,11 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
 
 def _nothing_to_do(args: argparse.Namespace, out: Path, t: float, t_end: float) -> int:
     if not args.quiet:
-        print(f"rancf: {out} already reached t = {t:g} s (t_end = {t_end:g} s): nothing to "
-              "do; give --t-end to go further", file=sys.stderr)  # fmt: skip
+        print(
+            f"rancf: {out} already reached t = {t:g} s (t_end = {t_end:g} s): nothing to "
+            "do; give --t-end to go further",
+            file=sys.stderr,
+        )
     return 0
 
 

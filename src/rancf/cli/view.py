@@ -33,13 +33,17 @@ def _write(run: Any, out: Path, args: argparse.Namespace) -> int:
     if not out.parent.is_dir():
         raise InputError("--out", str(out), "a file in an existing directory")
     if not os.access(out.parent, os.W_OK | os.X_OK):
-        raise InputError("--out", str(out), f"a file in a writable directory ({out.parent} is "
-                         "not writable)")  # fmt: skip
+        raise InputError(
+            "--out", str(out), f"a file in a writable directory ({out.parent} is not writable)"
+        )
     try:
         return write_view(run, out, args.frames, args.samples)
     except OSError as exc:
-        raise InputError("--out", str(out), "a file that can be written here (writing it "
-                         f"failed: {exc.strerror or exc})") from None  # fmt: skip
+        raise InputError(
+            "--out",
+            str(out),
+            f"a file that can be written here (writing it failed: {exc.strerror or exc})",
+        ) from None
 
 
 def add_parsers(sub: Any) -> None:
@@ -54,11 +58,22 @@ def add_parsers(sub: Any) -> None:
         "needed to open it).",
     )
     v.add_argument("run_dir", metavar="RUN_DIR", help="a directory written by `rancf simulate`")
-    v.add_argument("--out", default=None, metavar="FILE.html",
-                   help="the page to write (default RUN_DIR/view.html)")  # fmt: skip
-    v.add_argument("--frames", type=int, default=DEFAULT_FRAMES,
-                   help=f"at most this many stored times, evenly spaced (default "
-                   f"{DEFAULT_FRAMES})")  # fmt: skip
-    v.add_argument("--samples", type=int, default=8,
-                   help="points per element along a flexible body (default 8)")  # fmt: skip
+    v.add_argument(
+        "--out",
+        default=None,
+        metavar="FILE.html",
+        help="the page to write (default RUN_DIR/view.html)",
+    )
+    v.add_argument(
+        "--frames",
+        type=int,
+        default=DEFAULT_FRAMES,
+        help=f"at most this many stored times, evenly spaced (default {DEFAULT_FRAMES})",
+    )
+    v.add_argument(
+        "--samples",
+        type=int,
+        default=8,
+        help="points per element along a flexible body (default 8)",
+    )
     v.set_defaults(func=_cmd_view)

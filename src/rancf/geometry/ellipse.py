@@ -26,8 +26,9 @@ from rancf.errors import InputError
 __all__ = ["Ellipse", "ellipse_axes"]
 
 
-def ellipse_axes(dim: int, rotation_deg: float = 0.0,
-                 axes: ArrayLike | None = None) -> tuple[NDArray, NDArray]:  # fmt: skip
+def ellipse_axes(
+    dim: int, rotation_deg: float = 0.0, axes: ArrayLike | None = None
+) -> tuple[NDArray, NDArray]:
     """Orthonormal axis directions ``(e1, e2)``: planar from ``rotation_deg``, spatial from
     ``axes`` (two perpendicular non-zero vectors; default x and y).
 
@@ -50,9 +51,11 @@ def ellipse_axes(dim: int, rotation_deg: float = 0.0,
     e1, e2 = v[0] / n1, v[1] / n2
     if abs(float(e1 @ e2)) > 1e-9:
         raise InputError(
-            "axes", v.tolist(), f"two perpendicular vectors (the angle between them is "
+            "axes",
+            v.tolist(),
+            f"two perpendicular vectors (the angle between them is "
             f"{np.degrees(np.arccos(np.clip(e1 @ e2, -1, 1))):.6g} deg)",
-        )  # fmt: skip
+        )
     e2 = e2 - (e1 @ e2) * e1  # exactly perpendicular
     return e1, e2 / np.linalg.norm(e2)
 
@@ -100,8 +103,11 @@ class Ellipse:
     def __call__(self, t: ArrayLike) -> NDArray[np.float64]:
         """Points ``(n_t, dim)`` at parameters ``t``."""
         t = np.atleast_1d(np.asarray(t, dtype=float))
-        return (self.center + self.a * np.cos(t)[:, None] * self.e1
-                + self.b * np.sin(t)[:, None] * self.e2)  # fmt: skip
+        return (
+            self.center
+            + self.a * np.cos(t)[:, None] * self.e1
+            + self.b * np.sin(t)[:, None] * self.e2
+        )
 
     def implicit_residual(self, points: ArrayLike) -> NDArray[np.float64]:
         """``(x/a)² + (y/b)² - 1`` of points in the ellipse's axes (and the distance from its
@@ -164,7 +170,10 @@ class Ellipse:
                 "elements", t.size - 1, "arcs of less than half a turn each (at least 3 elements)"
             )
         mid = 0.5 * (ta + tb)
-        p1 = (self.center + (self.a * np.cos(mid) / np.cos(h))[:, None] * self.e1
-              + (self.b * np.sin(mid) / np.cos(h))[:, None] * self.e2)  # fmt: skip
+        p1 = (
+            self.center
+            + (self.a * np.cos(mid) / np.cos(h))[:, None] * self.e1
+            + (self.b * np.sin(mid) / np.cos(h))[:, None] * self.e2
+        )
         pts = np.stack([self(ta), p1, self(tb)], axis=1)
         return pts, np.cos(h)

@@ -41,8 +41,9 @@ def is_closed(
     return gap <= GAP_RTOL * size and vector_angle(end_tangent, start_tangent) <= KINK_TOL
 
 
-def touching_ends_note(start: ArrayLike, start_tangent: ArrayLike, end: ArrayLike,
-                       end_tangent: ArrayLike, size: float) -> tuple[str, ...]:  # fmt: skip
+def touching_ends_note(
+    start: ArrayLike, start_tangent: ArrayLike, end: ArrayLike, end_tangent: ArrayLike, size: float
+) -> tuple[str, ...]:
     """The remark for a curve whose ends meet at an angle (a kink): it stays an open curve, since
     one shared node cannot carry two tangents; empty if the ends do not meet."""
     if float(np.linalg.norm(np.asarray(end) - np.asarray(start))) > GAP_RTOL * size:

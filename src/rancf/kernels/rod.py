@@ -152,9 +152,15 @@ class RodKernel:
         """The data as the core's named structure (``tref``/``m1ref`` are updated in place)."""
         c = self.cable
         return _core.RodData(
-            n1=c.n1, n2=c.n2, xi=self.xi, gw=c.gw, j0=c.j0, kref=self.kref,
-            tref=self.tref, m1ref=self.m1ref,
-        )  # fmt: skip
+            n1=c.n1,
+            n2=c.n2,
+            xi=self.xi,
+            gw=c.gw,
+            j0=c.j0,
+            kref=self.kref,
+            tref=self.tref,
+            m1ref=self.m1ref,
+        )
 
     def set_reference_curvatures(self, k: NDArray) -> None:
         """Store ``K⁰`` (computed by the core on the reference) in place; a straight stress-free

@@ -187,8 +187,10 @@ def reduction(
             rows.append(np.arange(2 * lo, 2 * lo + u.size))
             cols.append(np.full(u.size, c))
             vals.append(u.ravel())
-        a = sp.csc_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
-                          shape=(2 * nn, len(inner)))  # fmt: skip
+        a = sp.csc_matrix(
+            (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+            shape=(2 * nn, len(inner)),
+        )
         lu = spla.splu((a.T @ a).tocsc())  # banded normal equations: linear in the mesh
         b = ones.ravel()
         scale = lu.solve(np.asarray(a.T @ b))
@@ -237,8 +239,7 @@ def reduction(
             cc.append(int(twist[k]))
             vv.append(1.0)
     t = sp.csr_matrix((vv, (rr, cc)), shape=(n_q, n_q))
-    red = _windows_of(t, n_el, nn, dpn, n_real, twist if rod else np.zeros(0, np.int64),
-                      node_base)  # fmt: skip
+    red = _windows_of(t, n_el, nn, dpn, n_real, twist if rod else np.zeros(0, np.int64), node_base)
     red = dataclasses.replace(red, jumps=tuple(int(k) + 1 for k in np.flatnonzero(~smooth)))
     y0 = red.y_from_q(q0)
     for c1_node in np.flatnonzero(node_base >= 0):  # a C¹ node's block is its own coordinates
@@ -246,13 +247,15 @@ def reduction(
         y0[b0 : b0 + dpn] = q0[c1_node * dpn : (c1_node + 1) * dpn]
     err = np.abs(red.q_from_y(y0) - q0).max()
     if not err <= 1e-10 * max(np.abs(q0).max(), 1.0):
-        raise InputError("mesh.continuity", "C2", f"a reference in the C² space (it misses by "
-                         f"{err:.3g})")  # fmt: skip
+        raise InputError(
+            "mesh.continuity", "C2", f"a reference in the C² space (it misses by {err:.3g})"
+        )
     return red, y0
 
 
-def _windows_of(t: sp.csr_matrix, n_el: int, nn: int, dpn: int, n_real: int, twist: NDArray,
-                node_base: NDArray) -> Reduction:  # fmt: skip
+def _windows_of(
+    t: sp.csr_matrix, n_el: int, nn: int, dpn: int, n_real: int, twist: NDArray, node_base: NDArray
+) -> Reduction:
     """Element and node windows of ``T`` (module docstring)."""
     n_y = t.shape[1]
     nde = 2 * dpn
@@ -280,8 +283,20 @@ def _windows_of(t: sp.csr_matrix, n_el: int, nn: int, dpn: int, n_real: int, twi
     for k in range(nn):
         s = node_start[k]
         node_map[k] = t[k * dpn : (k + 1) * dpn, s : s + node_width].toarray()
-    return Reduction(n_y, n_real, width - 1, width, starts, el_map, node_width, node_start,
-                     node_map, twist, node_base, t)  # fmt: skip
+    return Reduction(
+        n_y,
+        n_real,
+        width - 1,
+        width,
+        starts,
+        el_map,
+        node_width,
+        node_start,
+        node_map,
+        twist,
+        node_base,
+        t,
+    )
 
 
 def seam_curvature_rows(mesh: CableMesh, dpn: int) -> NDArray[np.float64]:

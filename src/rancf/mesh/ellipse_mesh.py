@@ -30,8 +30,12 @@ def ellipse_breakpoints(
     """
     n = check_element_count(n)
     if n < 3:
-        raise InputError("elements", n, "at least 3 elements for a closed ellipse (each element "
-                         "is a conic arc of less than half a turn)")  # fmt: skip
+        raise InputError(
+            "elements",
+            n,
+            "at least 3 elements for a closed ellipse (each element "
+            "is a conic arc of less than half a turn)",
+        )
     t0 = np.radians(float(start_deg))
     if spacing == "parameter":
         t = t0 + np.linspace(0.0, 2.0 * np.pi, n + 1)

@@ -64,8 +64,11 @@ def _body_pairs(system: System) -> list[str]:
         r = min(float(_flexible(system, x).section.radius) for x in (a, b))
         depth = -float(bo[3 * k])
         if depth > r:
-            who = f"{a} starts {depth:.4g} m inside itself" if a == b else (
-                f"{a} and {b} start {depth:.4g} m inside each other")  # fmt: skip
+            who = (
+                f"{a} starts {depth:.4g} m inside itself"
+                if a == b
+                else (f"{a} and {b} start {depth:.4g} m inside each other")
+            )
             out.append(
                 f"{who}, more than the section radius {r:.4g} m: the contact pushes them apart "
                 f"with {float(bo[3 * k + 2]):.4g} N at t = 0; check the bodies' geometry"
@@ -80,8 +83,9 @@ def contact_warnings(system: System) -> list[str]:
         return []
     if not system.contact_pairs:
         return _body_pairs(system)
-    forces = {k: float(np.linalg.norm(c.normal))
-              for k, c in contact_outputs(system, system.y0).items()}  # fmt: skip
+    forces = {
+        k: float(np.linalg.norm(c.normal)) for k, c in contact_outputs(system, system.y0).items()
+    }
     obstacles = dict(zip(system.obstacle_names, system.obstacles, strict=True))
     out = []
     for k, (name, ob_name) in enumerate(system.contact_pairs):
@@ -93,7 +97,7 @@ def contact_warnings(system: System) -> list[str]:
                 f"{name} starts {-g.min():.4g} m inside obstacle {ob_name!r}, more than its "
                 f"section radius {rt:.4g} m: the contact pushes it out with {forces[ob_name]:.4g}"
                 f" N at t = 0; check the obstacle's position and the body's geometry"
-            )  # fmt: skip
+            )
         if ob.kind == "plane" or ob.friction <= 0.0:
             continue
         touch = g < TOUCH_FACTOR * rt  # (n_el, n_c)

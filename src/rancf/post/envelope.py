@@ -70,9 +70,11 @@ class Envelope:
         """``(n_points, 1 + 4 n_names)`` in the order of :meth:`columns`."""
         parts = [self.s[:, None]]
         for j in range(len(self.names)):
-            parts.append(np.column_stack(
-                [self.low[:, j], self.t_low[:, j], self.high[:, j], self.t_high[:, j]]
-            ))  # fmt: skip
+            parts.append(
+                np.column_stack(
+                    [self.low[:, j], self.t_low[:, j], self.high[:, j], self.t_high[:, j]]
+                )
+            )
         return np.concatenate(parts, axis=1)
 
     def write(self, fh: IO[bytes]) -> None:
@@ -102,8 +104,14 @@ def plot_envelopes(run_path: Path, names: Sequence[str], out: Path, files: FileS
             continue
         env = read_envelope(str(path))
         quantities = [k[: -len("_min")] for k in env if k.endswith("_min")]
-        fig, axes = plt.subplots(len(quantities), 1, figsize=(7, 1.7 * len(quantities) + 0.6),
-                                 sharex=True, squeeze=False, constrained_layout=True)  # fmt: skip
+        fig, axes = plt.subplots(
+            len(quantities),
+            1,
+            figsize=(7, 1.7 * len(quantities) + 0.6),
+            sharex=True,
+            squeeze=False,
+            constrained_layout=True,
+        )
         for ax, q in zip(axes[:, 0], quantities, strict=True):
             ax.fill_between(env["s"], env[f"{q}_min"], env[f"{q}_max"], alpha=0.4)
             ax.plot(env["s"], env[f"{q}_min"], lw=0.8)

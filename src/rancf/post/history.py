@@ -162,8 +162,9 @@ class HistoryStore:
         system with contact, only until the rows' outputs are derived)."""
         self._add((t, q, v, energy, directors), len(t), alpha)
 
-    def _add(self, values: tuple[NDArray | None, ...], rows: int,
-             alpha: NDArray | None = None) -> None:  # fmt: skip
+    def _add(
+        self, values: tuple[NDArray | None, ...], rows: int, alpha: NDArray | None = None
+    ) -> None:
         for key, val in zip(self._keys, values, strict=False):
             if val is None and key == "e":  # derived from the rows (derives_energies)
                 continue
@@ -224,10 +225,14 @@ class HistoryStore:
                 rows["e"] = self._energies(rows, k)
             if k:
                 derived = self.outputs.rows(
-                    rows["t"], rows["q"].reshape(k, -1), rows["v"].reshape(k, -1),
-                    rows["m"].reshape(k, -1) if "m" in rows else None, rows["e"].reshape(k, 3),
-                    per_body=True, alpha=alpha,
-                )  # fmt: skip
+                    rows["t"],
+                    rows["q"].reshape(k, -1),
+                    rows["v"].reshape(k, -1),
+                    rows["m"].reshape(k, -1) if "m" in rows else None,
+                    rows["e"].reshape(k, 3),
+                    per_body=True,
+                    alpha=alpha,
+                )
                 rows.update({d: derived[d].ravel() for d in DERIVED})
                 for key, val in rows.items():
                     self._fh[key].write(_raw_bytes(val))
@@ -251,10 +256,18 @@ class HistoryStore:
         n, o = self.n_rows, self.outputs
         s = o.system
         widths = {
-            "t": 1, "q": o.n_q, "v": o.n_q, "e": 3, "m": o.n_directors, "a": o.n_q, "lam": s.m,
-            "r": len(o.reaction_names), "s": o.n_along, "c": len(o.sensor_names),
+            "t": 1,
+            "q": o.n_q,
+            "v": o.n_q,
+            "e": 3,
+            "m": o.n_directors,
+            "a": o.n_q,
+            "lam": s.m,
+            "r": len(o.reaction_names),
+            "s": o.n_along,
+            "c": len(o.sensor_names),
             "eb": 3 * len(s.flex),
-        }  # fmt: skip
+        }
 
         def mm(key: str) -> NDArray:
             w = widths[key]
@@ -288,8 +301,17 @@ class HistoryStore:
         arr, m1 = self._arrays()
         t = arr["t"]
         with FileSet() as files:
-            write_history_files(self.out, self.outputs, t, arr["q"], arr["v"], arr["e"], m1,
-                                {k: arr[k] for k in DERIVED}, files=files)  # fmt: skip
+            write_history_files(
+                self.out,
+                self.outputs,
+                t,
+                arr["q"],
+                arr["v"],
+                arr["e"],
+                m1,
+                {k: arr[k] for k in DERIVED},
+                files=files,
+            )
             if state is not None:  # renamed after the rows it follows, before the summary
                 files.write(self.out / CHECKPOINT, state.to_bytes())
             files.write(self.out / "summary.json", self._summary_text(summary))

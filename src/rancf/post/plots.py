@@ -143,8 +143,12 @@ def plot_shapes(
         for k, (r0, r1) in enumerate(zip(ref, points(base + amp * shape), strict=True)):
             style = {"lw": 1} if len(r0) > 1 else {"marker": "o", "ls": ""}
             ax.plot(*r0.T, color="0.6", label="configuration" if k == 0 else None, **style)
-            ax.plot(*r1.T, color="C3", label="mode (scaled)" if k == 0 else None,
-                    **({"lw": 2} if len(r1) > 1 else style))  # fmt: skip
+            ax.plot(
+                *r1.T,
+                color="C3",
+                label="mode (scaled)" if k == 0 else None,
+                **({"lw": 2} if len(r1) > 1 else style),
+            )
         ax.set_title(titles[i])
         ax.set_xlabel("x [m]")
         ax.set_ylabel("y [m]")

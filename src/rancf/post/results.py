@@ -52,8 +52,9 @@ __all__ = [
 Labels = Sequence[int | str] | Mapping[str, Sequence[int | str]] | None
 
 
-def system_outputs(model: Model | System, sensors: Sequence[Any] = (),
-                   labels: Labels = None) -> SystemOutputs:  # fmt: skip
+def system_outputs(
+    model: Model | System, sensors: Sequence[Any] = (), labels: Labels = None
+) -> SystemOutputs:
     """The :class:`SystemOutputs` of a model (a one-body system) or system; ``labels``: the
     supports' ``at`` as written (a list for one body, else per body name)."""
     system = as_system(model)
@@ -101,8 +102,15 @@ def sensor_table(
     qq = np.atleast_2d(np.asarray(q, dtype=float))
     tt = np.zeros(qq.shape[0]) if t is None else np.atleast_1d(np.asarray(t, dtype=float))
     vv = None if v is None else np.atleast_2d(v)
-    rows = out.rows(tt, qq, vv, None, None if energy is None else np.atleast_2d(energy),
-                    None if lam is None else np.atleast_2d(lam), static)  # fmt: skip
+    rows = out.rows(
+        tt,
+        qq,
+        vv,
+        None,
+        None if energy is None else np.atleast_2d(energy),
+        None if lam is None else np.atleast_2d(lam),
+        static,
+    )
     return out.sensor_names, rows["c"]
 
 
@@ -173,8 +181,17 @@ def write_run(
     energy = np.column_stack([result.kinetic, result.strain, result.gravity])
     outputs = outputs if outputs is not None else system_outputs(model, sensors, labels)
     with FileSet() as files:  # the files replace an earlier run's together
-        write_history_files(out, outputs, result.t, result.q, result.v, energy,
-                            result.directors, files=files, alpha=result.alpha)  # fmt: skip
+        write_history_files(
+            out,
+            outputs,
+            result.t,
+            result.q,
+            result.v,
+            energy,
+            result.directors,
+            files=files,
+            alpha=result.alpha,
+        )
         summary = {
             **run_summary(model, result),
             "warnings": run_warnings(model, largest=outputs.largest_strain)
@@ -206,8 +223,14 @@ class LoadPath:
         n = self.system.n
         if lam is None and y.size == n + self.system.m and self.system.m:
             y, lam = y[:n], y[n:]
-        self.steps.append((load_factor, y, self.system.nodal_directors(y),
-                           None if lam is None else np.array(lam, dtype=float)))  # fmt: skip
+        self.steps.append(
+            (
+                load_factor,
+                y,
+                self.system.nodal_directors(y),
+                None if lam is None else np.array(lam, dtype=float),
+            )
+        )
 
 
 def write_static_run(
@@ -237,8 +260,9 @@ def write_static_run(
     m1 = np.array([st[2] for st in path.steps]) if outputs.n_directors else None
     lam = np.array([st[3] for st in path.steps]) if s.m else None
     with FileSet() as files:  # the files replace an earlier load path's together
-        write_history_files(out, outputs, t, q, np.zeros_like(q), energy, m1, static=True,
-                            files=files, lam=lam)  # fmt: skip
+        write_history_files(
+            out, outputs, t, q, np.zeros_like(q), energy, m1, static=True, files=files, lam=lam
+        )
         last = None if m1 is None else m1[-1]
         write_along_csv(out, outputs, t[-1], q[-1], last, files)
         # after the rows: their outputs tracked the largest strain of the warnings
@@ -256,9 +280,13 @@ def write_static_run(
 
 
 def write_along_csv(
-    out: Path, outputs: SystemOutputs, lam: float, q: NDArray, m1: NDArray | None,
+    out: Path,
+    outputs: SystemOutputs,
+    lam: float,
+    q: NDArray,
+    m1: NDArray | None,
     files: FileSet | None = None,
-) -> None:  # fmt: skip
+) -> None:
     """``bodies/NAME/along.csv`` of every flexible body in a static state (run folder ``out``,
     system coordinates ``q``): one row per section sample point with the reference arc length
     ``s``, the position and the section quantities (into the set ``files``, or atomically on
@@ -267,8 +295,9 @@ def write_along_csv(
         with FileSet() as own:
             return write_along_csv(out, outputs, lam, q, m1, own)
     s = outputs.system
-    rows = outputs.rows(np.array([lam]), q[None], None, None if m1 is None else m1[None],
-                        static=True)  # fmt: skip
+    rows = outputs.rows(
+        np.array([lam]), q[None], None, None if m1 is None else m1[None], static=True
+    )
     for name, model in outputs.flex:
         along = outputs.body_along(rows["s"], name)[0]
         sampler = outputs.samplers[name]
@@ -296,8 +325,12 @@ def load_results(path: str | Path) -> dict[str, Any]:
     path = Path(path)
     if path.is_dir():
         if not (path / "results.npz").is_file():
-            raise InputError("path", str(path), "a results.npz file or a run folder holding one "
-                             "(rancf simulate --out, rancf static --out)")  # fmt: skip
+            raise InputError(
+                "path",
+                str(path),
+                "a results.npz file or a run folder holding one "
+                "(rancf simulate --out, rancf static --out)",
+            )
         path = path / "results.npz"
     with np.load(path, allow_pickle=False) as z:
         data = {k: z[k] for k in z.files}

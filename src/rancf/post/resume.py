@@ -68,9 +68,11 @@ def _load(path: Path, keys: tuple[str, ...], n: int) -> dict[str, NDArray]:
     short = [k for k, a in got.items() if a.shape[0] < n]
     if short:
         raise InputError(
-            "--out", str(path), f"a results file with the {n} stored states of the checkpoint "
+            "--out",
+            str(path),
+            f"a results file with the {n} stored states of the checkpoint "
             f"({short[0]} has {got[short[0]].shape[0]})",
-        )  # fmt: skip
+        )
     return {k: a[:n] for k, a in got.items()}
 
 
@@ -85,8 +87,11 @@ def stored_rows(out: Path, outputs: SystemOutputs, n: int) -> dict[str, NDArray]
         If a file is missing, unreadable or shorter than ``n`` rows.
     """
     out = Path(out)
-    top = _load(out / "results.npz", ("t", "q", "v", "a", "lam", "kinetic", "strain",
-                                      "gravity", "sensors", "reactions"), n)  # fmt: skip
+    top = _load(
+        out / "results.npz",
+        ("t", "q", "v", "a", "lam", "kinetic", "strain", "gravity", "sensors", "reactions"),
+        n,
+    )
     rows = {k: top[k] for k in ("t", "q", "v", "a", "lam")}
     rows["e"] = np.column_stack([top["kinetic"], top["strain"], top["gravity"]])
     rows["c"], rows["r"] = top["sensors"], top["reactions"]

@@ -215,9 +215,11 @@ def load_body(folder: str | Path, static: bool = False) -> RunData:
             nodes = sc.build_model().mesh.nodes
             if nodes.shape[0] != meta["n_elements"] + 1:
                 raise InputError(
-                    "RUN_DIR", str(path), f"a run whose scenario fits its results ({sc_path} "
+                    "RUN_DIR",
+                    str(path),
+                    f"a run whose scenario fits its results ({sc_path} "
                     f"meshes {nodes.shape[0] - 1} elements, the results hold {meta['n_elements']})",
-                )  # fmt: skip
+                )
             angles = np.arctan2(nodes[:, 1, 1], nodes[:, 1, 0])
     elif radius is None:
         logger.warning("%s: no scenario found; no radius field, beams drawn with chords", path)

@@ -120,8 +120,9 @@ def write_history_files(
     """
     if files is None:
         with FileSet() as own:
-            return write_history_files(out_dir, outputs, t, q, v, energy, directors, derived,
-                                       static, own, lam, alpha)  # fmt: skip
+            return write_history_files(
+                out_dir, outputs, t, q, v, energy, directors, derived, static, own, lam, alpha
+            )
     s = outputs.system
     n = t.shape[0]
     m1 = None if directors is None else np.asarray(directors).reshape(n, -1)
@@ -148,10 +149,15 @@ def write_history_files(
             fh.write((",".join(["t", *outputs.reaction_names]) + "\n").encode())
             for r, c in chunks:
                 np.savetxt(fh, np.column_stack([t[r], c["r"]]), delimiter=",", fmt="%.12g")
-    meta: dict[str, Any] = {"system": True, "dim": s.dim, "bodies": _bodies(outputs),
-                            "drums": _drums(outputs), "sensor_columns": names,
-                            "reaction_columns": outputs.reaction_names,
-                            "obstacles": obstacle_records(s)}  # fmt: skip
+    meta: dict[str, Any] = {
+        "system": True,
+        "dim": s.dim,
+        "bodies": _bodies(outputs),
+        "drums": _drums(outputs),
+        "sensor_columns": names,
+        "reaction_columns": outputs.reaction_names,
+        "obstacles": obstacle_records(s),
+    }
     with (
         files.file(out_dir / "results.npz") as fh,
         zipfile.ZipFile(fh, "w", zipfile.ZIP_STORED, allowZip64=True) as z,
@@ -206,36 +212,64 @@ def _director_cut(outputs: SystemOutputs, name: str) -> slice:
 
 
 def _body_arrays(
-    z: zipfile.ZipFile, outputs: SystemOutputs, name: str, t: NDArray, chunks: list,
-    m1: NDArray | None, envelope: Envelope,
-) -> None:  # fmt: skip
+    z: zipfile.ZipFile,
+    outputs: SystemOutputs,
+    name: str,
+    t: NDArray,
+    chunks: list,
+    m1: NDArray | None,
+    envelope: Envelope,
+) -> None:
     """The arrays of one flexible body a reader needs besides its states; the section values
     pass through ``envelope``."""
     n = t.shape[0]
     model = outputs.system.bodies[name]
     assert isinstance(model, Model)
     along_shape = (n, outputs.samplers[name].n_points, len(outputs.section_names[name]))
-    _npy(z, "along", along_shape,
-         (envelope.update(t[r], outputs.body_along(c["s"], name)) for r, c in chunks))  # fmt: skip
+    _npy(
+        z,
+        "along",
+        along_shape,
+        (envelope.update(t[r], outputs.body_along(c["s"], name)) for r, c in chunks),
+    )
     if model.element == "rod" and m1 is not None:
         cut = _director_cut(outputs, name)
         _npy(z, "directors", (n, model.n_nodes, 3), (m1[r, cut] for r, _ in chunks))
-    _small(z, {"weights": model.mesh.weights, "scales": model.mesh.scales,
-               "along_s": outputs.samplers[name].s})  # fmt: skip
+    _small(
+        z,
+        {
+            "weights": model.mesh.weights,
+            "scales": model.mesh.scales,
+            "along_s": outputs.samplers[name].s,
+        },
+    )
 
 
 def _body_folder(
-    out_dir: Path, outputs: SystemOutputs, name: str, model: Model, k: int, t: NDArray,
-    q: NDArray, v: NDArray, m1: NDArray | None, chunks: list, files: FileSet,
-) -> None:  # fmt: skip
+    out_dir: Path,
+    outputs: SystemOutputs,
+    name: str,
+    model: Model,
+    k: int,
+    t: NDArray,
+    q: NDArray,
+    v: NDArray,
+    m1: NDArray | None,
+    chunks: list,
+    files: FileSet,
+) -> None:
     """``bodies/NAME/results.npz`` of the ``k``-th flexible body: a one-body run's file."""
     folder = out_dir / "bodies" / name
     folder.mkdir(parents=True, exist_ok=True)
     sl = outputs.system.body_slice(name)
     n = t.shape[0]
     rcols = _support_columns(outputs, name)
-    meta = {**_body_meta(model, outputs, name), "sensor_columns": [],
-            "reaction_columns": outputs.support_names[name], "body": name}  # fmt: skip
+    meta = {
+        **_body_meta(model, outputs, name),
+        "sensor_columns": [],
+        "reaction_columns": outputs.support_names[name],
+        "body": name,
+    }
     with (
         files.file(folder / "results.npz") as fh,
         zipfile.ZipFile(fh, "w", zipfile.ZIP_STORED, allowZip64=True) as z,

@@ -67,7 +67,13 @@ def plan_run(
     n_derived = len(outputs.reaction_names) + outputs.n_along + system.m
     n_derived += 3 * sum(b.n for b in system.flex)
     check_output_size(
-        sc.path, sc.dynamic_options().n_outputs, system.n, len(outputs.sensor_names),
-        outputs.n_directors, limit_gb, limit_name, n_derived,
-    )  # fmt: skip
+        sc.path,
+        sc.dynamic_options().n_outputs,
+        system.n,
+        len(outputs.sensor_names),
+        outputs.n_directors,
+        limit_gb,
+        limit_name,
+        n_derived,
+    )
     return system, outputs

@@ -35,6 +35,9 @@ def positions_json(system: Any, q: NDArray) -> dict[str, Any]:
     out: dict[str, Any] = {}
     for name in system.names:
         b, qb = system.bodies[name], np.asarray(q)[system.body_slice(name)]
-        out[name] = (b.node_positions(qb).tolist() if hasattr(b, "node_positions")
-                     else qb[: system.dim].tolist())  # fmt: skip
+        out[name] = (
+            b.node_positions(qb).tolist()
+            if hasattr(b, "node_positions")
+            else qb[: system.dim].tolist()
+        )
     return out

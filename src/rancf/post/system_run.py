@@ -33,8 +33,7 @@ from rancf.post.centerline import sample_centerline
 from rancf.post.plots import pyplot, save_figure
 from rancf.post.run_data import RunData, frame_indices, load_body, read_results
 
-__all__ = ["SystemRun", "load_run", "plot_system_run", "export_system_vtk",
-           "animate_system_run"]  # fmt: skip
+__all__ = ["SystemRun", "load_run", "plot_system_run", "export_system_vtk", "animate_system_run"]
 
 
 @dataclass(frozen=True)
@@ -75,9 +74,10 @@ class SystemRun:
         if not (np.isfinite(time) and self.t[0] - 1e-12 <= time <= self.t[-1] + 1e-12):
             unit = "" if self.static else " s"
             raise InputError(
-                "--time", time, f"a time within the stored range [{self.t[0]:g}, {self.t[-1]:g}]"
-                f"{unit}",
-            )  # fmt: skip
+                "--time",
+                time,
+                f"a time within the stored range [{self.t[0]:g}, {self.t[-1]:g}]{unit}",
+            )
         return int(np.argmin(np.abs(self.t - time)))
 
     def body(self, name: str | None = None) -> RunData:
@@ -107,8 +107,9 @@ class SystemRun:
         rot = Rotation.from_quat(row[3:7][[1, 2, 3, 0]]).as_matrix()
         return x, rot.T
 
-    def shapes(self, i: int, magnify: float = 1.0,
-               per_element: int = 16) -> list[tuple[str, NDArray[np.float64]]]:  # fmt: skip
+    def shapes(
+        self, i: int, magnify: float = 1.0, per_element: int = 16
+    ) -> list[tuple[str, NDArray[np.float64]]]:
         """Every body's drawing ``(name, points (k, 3))`` at stored state ``i`` (module
         docstring; a flexible body sampled ``per_element`` times per element); ``magnify``
         scales the flexible bodies' displacements from their reference (rigid bodies are drawn
@@ -160,34 +161,49 @@ def load_run(path: str | Path) -> SystemRun:
     static = _analysis(p) == "static"
     if "bodies" not in meta:  # rancf < 0.3: one body, its arrays here
         body = load_body(p, static)
-        meta = {**meta, "bodies": [{"name": "body", "kind": "flexible", "offset": 0,
-                                    "size": body.q.shape[1]}]}  # fmt: skip
+        meta = {
+            **meta,
+            "bodies": [{"name": "body", "kind": "flexible", "offset": 0, "size": body.q.shape[1]}],
+        }
         flexible = {"body": body}
     else:
-        flexible = {b["name"]: load_body(p / b["folder"], static) for b in meta["bodies"]
-                    if b["kind"] == "flexible"}  # fmt: skip
+        flexible = {
+            b["name"]: load_body(p / b["folder"], static)
+            for b in meta["bodies"]
+            if b["kind"] == "flexible"
+        }
     t = np.asarray(data["t"])
     names = meta.get("sensor_columns")
     q = np.asarray(data.get("q", np.empty((0, 0))))
     width = sum(b["size"] for b in [*meta["bodies"], *meta.get("drums", [])])
     if q.ndim != 2 or q.shape != (t.size, width) or not isinstance(names, list):
-        raise InputError("RUN_DIR", str(p / "results.npz"), "a consistent results.npz (its "
-                         "states, times and sensor columns do not fit together)")  # fmt: skip
+        raise InputError(
+            "RUN_DIR",
+            str(p / "results.npz"),
+            "a consistent results.npz (its states, times and sensor columns do not fit together)",
+        )
     sizes = {b["name"]: b["size"] for b in meta["bodies"]}
     for name, r in flexible.items():  # the run's folders are of one run (not mixed)
         if r.t.shape != t.shape or not np.array_equal(r.t, t) or r.q.shape[1] != sizes[name]:
             raise InputError(
-                "RUN_DIR", str(p / "bodies" / name), f"a body folder of the run in {p} (it holds "
+                "RUN_DIR",
+                str(p / "bodies" / name),
+                f"a body folder of the run in {p} (it holds "
                 f"{r.t.size} times of {r.q.shape[1]} coordinates, the run's results.npz "
                 f"{t.size} times and {sizes[name]} coordinates for it)",
-            )  # fmt: skip
+            )
     return SystemRun(
-        path=p, t=t, q=q, dim=int(meta["dim"]),
+        path=p,
+        t=t,
+        q=q,
+        dim=int(meta["dim"]),
         sensor_names=list(names),
         sensors=np.asarray(data["sensors"]).reshape(t.size, -1),
         energies={k: np.asarray(data[k]) for k in ("kinetic", "strain", "gravity")},
-        bodies=list(meta["bodies"]), flexible=flexible, static=static,
-    )  # fmt: skip
+        bodies=list(meta["bodies"]),
+        flexible=flexible,
+        static=static,
+    )
 
 
 def plot_system_run(run: SystemRun, out_dir: str | Path, n_configurations: int = 6) -> list[Path]:
@@ -221,8 +237,14 @@ def plot_system_run(run: SystemRun, out_dir: str | Path, n_configurations: int =
     return written
 
 
-def animate_system_run(run: SystemRun, path: str | Path, fps: int = 20, every: int = 1,
-                       dpi: int = 80, magnify: float = 1.0) -> int:  # fmt: skip
+def animate_system_run(
+    run: SystemRun,
+    path: str | Path,
+    fps: int = 20,
+    every: int = 1,
+    dpi: int = 80,
+    magnify: float = 1.0,
+) -> int:
     """Render every body's motion to ``path`` (``.gif`` or ``.mp4``); returns the frames.
 
     Frames are :func:`~rancf.post.run_data.frame_indices` ``(n_t, every)``; ``magnify`` scales
@@ -259,8 +281,9 @@ def animate_system_run(run: SystemRun, path: str | Path, fps: int = 20, every: i
     return int(idx.size)
 
 
-def export_system_vtk(run: SystemRun, out_dir: str | Path, every: int = 1,
-                      per_element: int = 16) -> list[Path]:  # fmt: skip
+def export_system_vtk(
+    run: SystemRun, out_dir: str | Path, every: int = 1, per_element: int = 16
+) -> list[Path]:
     """Every body's VTK files (module docstring); returns the ``.pvd`` paths."""
     import meshio
 

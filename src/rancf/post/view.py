@@ -37,8 +37,18 @@ from rancf.post.view_options import DEFAULT_FRAMES
 __all__ = ["write_view", "view_figure", "view_frames", "BODY_COLORS", "DEFAULT_FRAMES"]
 
 #: Colours of the bodies, in the run's body order (repeated past the tenth body).
-BODY_COLORS = ("#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#e377c2",
-               "#17becf", "#bcbd22", "#7f7f7f")  # fmt: skip
+BODY_COLORS = (
+    "#d62728",
+    "#1f77b4",
+    "#2ca02c",
+    "#9467bd",
+    "#ff7f0e",
+    "#8c564b",
+    "#e377c2",
+    "#17becf",
+    "#bcbd22",
+    "#7f7f7f",
+)
 OBSTACLE_COLOR = "#999999"
 FORCE_COLOR = "#000000"
 
@@ -75,8 +85,9 @@ def _circle(center: NDArray, axis: NDArray, radius: float, n: int = 73) -> NDArr
     return center + radius * (np.cos(th)[:, None] * u + np.sin(th)[:, None] * v)
 
 
-def _obstacle_mesh(ob: dict[str, Any], dim: int, size: float, centre: NDArray,
-                   x: NDArray, axes: NDArray) -> dict[str, Any]:  # fmt: skip
+def _obstacle_mesh(
+    ob: dict[str, Any], dim: int, size: float, centre: NDArray, x: NDArray, axes: NDArray
+) -> dict[str, Any]:
     """An obstacle's drawing at a carrying frame ``x + p @ axes`` (module docstring): ``line``
     points ``(k, 3)`` (2D) or a surface ``(x, y, z)`` grid (3D)."""
     p = x + np.asarray(ob["point"], float) @ axes
@@ -142,33 +153,64 @@ class _Scene:
             color = BODY_COLORS[k % len(BODY_COLORS)]
             mode = "markers" if len(pts) == 1 else "lines+markers" if len(pts) < 8 else "lines"
             pts = pts.astype(np.float32)  # a screen's precision, half the page's size
-            out.append(go.Scatter3d(x=pts[:, 0], y=pts[:, 1], z=pts[:, 2], mode=mode, name=name,
-                                    line={"color": color, "width": 8},
-                                    marker={"color": color, "size": 4}))  # fmt: skip
+            out.append(
+                go.Scatter3d(
+                    x=pts[:, 0],
+                    y=pts[:, 1],
+                    z=pts[:, 2],
+                    mode=mode,
+                    name=name,
+                    line={"color": color, "width": 8},
+                    marker={"color": color, "size": 4},
+                )
+            )
         for ob, dr in zip(self.obstacles, self.drawn[f], strict=True):
             if "line" in dr:
                 q = dr["line"]
-                out.append(go.Scatter3d(x=q[:, 0], y=q[:, 1], z=q[:, 2], mode="lines",
-                                        name=ob["name"], line={"color": OBSTACLE_COLOR,
-                                                               "width": 5}))  # fmt: skip
+                out.append(
+                    go.Scatter3d(
+                        x=q[:, 0],
+                        y=q[:, 1],
+                        z=q[:, 2],
+                        mode="lines",
+                        name=ob["name"],
+                        line={"color": OBSTACLE_COLOR, "width": 5},
+                    )
+                )
             else:
                 g = dr["surface"]
                 grey = [[0, OBSTACLE_COLOR], [1, OBSTACLE_COLOR]]
-                out.append(go.Surface(x=g[..., 0], y=g[..., 1], z=g[..., 2], name=ob["name"],
-                                      showscale=False, showlegend=True, opacity=0.4,
-                                      colorscale=grey))  # fmt: skip
+                out.append(
+                    go.Surface(
+                        x=g[..., 0],
+                        y=g[..., 1],
+                        z=g[..., 2],
+                        name=ob["name"],
+                        showscale=False,
+                        showlegend=True,
+                        opacity=0.4,
+                        colorscale=grey,
+                    )
+                )
         top = float(np.max(np.linalg.norm(self.forces, axis=-1), initial=0.0))
         scale = 0.5 * self.size / top if top > 0 else 0.0
         for k, (ob, dr) in enumerate(zip(self.obstacles, self.drawn[f], strict=True)):
             a = dr["anchor"]
             b = a + scale * self.forces[f, k]
             text = f"{ob['name']}: {np.linalg.norm(self.forces[f, k]):.4g} N"
-            out.append(go.Scatter3d(x=[a[0], b[0]], y=[a[1], b[1]], z=[a[2], b[2]],
-                                    mode="lines+markers", name=f"force on {ob['name']}",
-                                    hovertext=[text, text], hoverinfo="text",
-                                    line={"color": FORCE_COLOR, "width": 6},
-                                    marker={"size": [0, 5], "color": FORCE_COLOR,
-                                            "symbol": "diamond"}))  # fmt: skip
+            out.append(
+                go.Scatter3d(
+                    x=[a[0], b[0]],
+                    y=[a[1], b[1]],
+                    z=[a[2], b[2]],
+                    mode="lines+markers",
+                    name=f"force on {ob['name']}",
+                    hovertext=[text, text],
+                    hoverinfo="text",
+                    line={"color": FORCE_COLOR, "width": 6},
+                    marker={"size": [0, 5], "color": FORCE_COLOR, "symbol": "diamond"},
+                )
+            )
         return out
 
 
@@ -184,15 +226,29 @@ def _layout(run: SystemRun, scene: _Scene, labels: list[str]) -> dict[str, Any]:
         axes["zaxis"] = {"range": [float(lo[2]), float(hi[2])], "visible": False}
     span = 1.8 * (hi - lo) / float(np.max(hi - lo))  # equal scales, the widest fills the view
     ratio = {a: float(span[k]) for k, a in enumerate("xyz")}
-    camera = ({"eye": {"x": 0.0, "y": 0.0, "z": 1.0}, "up": {"x": 0.0, "y": 1.0, "z": 0.0},
-               "projection": {"type": "orthographic"}}
-              if run.dim == 2 else {"eye": {"x": 1.4, "y": -1.4, "z": 1.0}})  # fmt: skip
-    play = {"frame": {"duration": 50, "redraw": True}, "fromcurrent": True,
-            "transition": {"duration": 0}}  # fmt: skip
+    camera = (
+        {
+            "eye": {"x": 0.0, "y": 0.0, "z": 1.0},
+            "up": {"x": 0.0, "y": 1.0, "z": 0.0},
+            "projection": {"type": "orthographic"},
+        }
+        if run.dim == 2
+        else {"eye": {"x": 1.4, "y": -1.4, "z": 1.0}}
+    )
+    play = {
+        "frame": {"duration": 50, "redraw": True},
+        "fromcurrent": True,
+        "transition": {"duration": 0},
+    }
     pause = {"frame": {"duration": 0, "redraw": False}, "mode": "immediate"}
-    steps = [{"label": lab, "method": "animate",
-              "args": [[lab], {"mode": "immediate", "frame": {"duration": 0, "redraw": True}}]}
-             for lab in labels]  # fmt: skip
+    steps = [
+        {
+            "label": lab,
+            "method": "animate",
+            "args": [[lab], {"mode": "immediate", "frame": {"duration": 0, "redraw": True}}],
+        }
+        for lab in labels
+    ]
     return {
         "title": f"{run.name}: {len(labels)} of {run.t.size} stored times",
         "scene": {
@@ -217,7 +273,7 @@ def _layout(run: SystemRun, scene: _Scene, labels: list[str]) -> dict[str, Any]:
                     {"label": "Pause", "method": "animate", "args": [[None], pause]},
                 ],
             }
-        ],  # fmt: skip
+        ],
         "sliders": [
             {
                 "active": 0,
@@ -228,7 +284,7 @@ def _layout(run: SystemRun, scene: _Scene, labels: list[str]) -> dict[str, Any]:
                 "currentvalue": {"prefix": ""},
                 "steps": steps,
             }
-        ],  # fmt: skip
+        ],
     }
 
 
@@ -249,8 +305,9 @@ def view_figure(run: SystemRun, frames: int = DEFAULT_FRAMES, per_element: int =
     )
 
 
-def write_view(run: SystemRun, path: str | Path, frames: int = DEFAULT_FRAMES,
-               per_element: int = 8) -> int:  # fmt: skip
+def write_view(
+    run: SystemRun, path: str | Path, frames: int = DEFAULT_FRAMES, per_element: int = 8
+) -> int:
     """Write the page of ``run`` to ``path`` (atomically; the plotting library inlined);
     returns the number of drawn times."""
     figure = view_figure(run, frames, per_element)

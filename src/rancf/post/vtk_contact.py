@@ -52,9 +52,12 @@ def export_contact_vtk(
             return [columns.index(f"{name}_{part}")]
         return [columns.index(f"{name}_{part}_{a}") for a in "xyz"[:dim]]
 
-    index = {ob["name"]: {p: cols(ob["name"], p)
-                          for p in ("normal", "friction", "length", "penetration")}
-             for ob in obstacles}  # fmt: skip
+    index = {
+        ob["name"]: {
+            p: cols(ob["name"], p) for p in ("normal", "friction", "length", "penetration")
+        }
+        for ob in obstacles
+    }
 
     def mesh_at(i: int) -> Any:
         pts: list[NDArray] = []

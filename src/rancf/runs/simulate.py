@@ -76,8 +76,9 @@ def run_simulate(
     summary = None
     if folder is not None:  # the rows are derived here: the largest strain is tracked
         extra = {**(info or {}), **start}
-        summary = write_run(folder, system, sc.sensors, result, extra, outputs=outputs,
-                            options=opts)  # fmt: skip
+        summary = write_run(
+            folder, system, sc.sensors, result, extra, outputs=outputs, options=opts
+        )
     names: list[str] = list(outputs.sensor_names)
     values = None
     if table:
@@ -105,8 +106,10 @@ def simulate(
     for line in run.warnings:
         _warnings.warn(f"rancf: warning: {line}", stacklevel=2)
     if result.status.value != "completed":  # said, not raised: what was computed is returned
-        _warnings.warn(f"rancf: the run {result.status.value} at t = {result.t_reached:g} s: "
-                       f"{result.message} (the states up to there are returned)",
-                       stacklevel=2)  # fmt: skip
+        _warnings.warn(
+            f"rancf: the run {result.status.value} at t = {result.t_reached:g} s: "
+            f"{result.message} (the states up to there are returned)",
+            stacklevel=2,
+        )
     assert run.values is not None  # table=True
     return result, run.names, run.values

@@ -58,8 +58,12 @@ def run_static(
             res = solve_static(system, on_step=path.record, **sc.static_options())
         if res.method.startswith(SAG_START) or res.method.endswith(FRICTION):  # the path's
             path.steps[:] = path.steps[-1:]  # states were abandoned or are frictionless
-        keys.update(status="completed", message="reached the end of the load path",
-                    method=res.method, relaxation_steps=res.relaxation_steps)  # fmt: skip
+        keys.update(
+            status="completed",
+            message="reached the end of the load path",
+            method=res.method,
+            relaxation_steps=res.relaxation_steps,
+        )
     except BaseException as exc:
         kind = "interrupted" if isinstance(exc, KeyboardInterrupt) else "failed"
         lam = path.steps[-1][0] if path.steps else 0.0
@@ -72,7 +76,8 @@ def run_static(
             if on_written is not None:
                 on_written(doc)
     assert res.lam is not None  # a system's solution has its multipliers (empty: no joints)
-    names, vals = sensor_table(outputs, sc.sensors, res.q, static=True,
-                               t=res.load_factors[-1:], lam=res.lam[None])  # fmt: skip
+    names, vals = sensor_table(
+        outputs, sc.sensors, res.q, static=True, t=res.load_factors[-1:], lam=res.lam[None]
+    )
     sensors = dict(zip(names, map(float, vals[0]), strict=True))
     return StaticRun(system, res, outputs, sensors, doc)

@@ -78,9 +78,10 @@ class FlexibleBody(Table):
         None, description="hydrodynamic coefficients (the body is in the [fluid])"
     )
     damping: StrainRateDampingTable | None = Field(
-        None, description="this body's strain-rate damping (axial, bending, torsion), in place "
+        None,
+        description="this body's strain-rate damping (axial, bending, torsion), in place "
         "of those keys of [damping]",
-    )  # fmt: skip
+    )
 
     @model_validator(mode="after")
     def _together(self) -> FlexibleBody:
@@ -142,8 +143,10 @@ class RigidBody(Table):
                 raise fail("inertia", f"must be > 0 each, got {show(i)}")
             a, b, c = sorted(i)
             if c > a + b:
-                raise fail("inertia", f"principal moments must satisfy Ixx <= Iyy + Izz (and "
-                           f"cyclic), got {show(i)}")  # fmt: skip
+                raise fail(
+                    "inertia",
+                    f"principal moments must satisfy Ixx <= Iyy + Izz (and cyclic), got {show(i)}",
+                )
             if self.orientation_deg is not None:
                 raise fail("orientation_deg", "is 2D: give orientation (3 rows) in 3D")
             if self.orientation is not None:
@@ -166,8 +169,11 @@ def _rotation(rows: list[list[float]]) -> None:
         raise fail("orientation", f"must be 3 rows of 3 numbers, got {show(rows)}")
     dev = max(float(np.abs(r @ r.T - np.eye(3)).max()), abs(float(np.linalg.det(r)) - 1.0))
     if dev > ORTHONORMAL_TOL:
-        raise fail("orientation", f"must be a rotation matrix (orthonormal rows, det = +1; "
-                   f"deviation {dev:.3g} > {ORTHONORMAL_TOL:g}), got {show(rows)}")  # fmt: skip
+        raise fail(
+            "orientation",
+            f"must be a rotation matrix (orthonormal rows, det = +1; "
+            f"deviation {dev:.3g} > {ORTHONORMAL_TOL:g}), got {show(rows)}",
+        )
 
 
 class PointMass(Table):

@@ -124,8 +124,16 @@ def mesh_geometry(path: str, geometry: Any, mesh: MeshTable, prefix: str = "") -
 
 
 #: The tables that make a scenario a system of parts rather than one flexible body.
-SYSTEM_KEYS = ("bodies", "joints", "springs", "obstacles", "body_contacts", "fluid", "hydro",
-               "winches")  # fmt: skip
+SYSTEM_KEYS = (
+    "bodies",
+    "joints",
+    "springs",
+    "obstacles",
+    "body_contacts",
+    "fluid",
+    "hydro",
+    "winches",
+)
 
 
 def build_model(sc: ScenarioView) -> Model:
@@ -133,11 +141,18 @@ def build_model(sc: ScenarioView) -> Model:
     more parts (:data:`SYSTEM_KEYS`) is refused in one line that points to its system."""
     for k in SYSTEM_KEYS:
         if sc[k]:
-            raise ScenarioError(sc.path, k, "makes this scenario a system of parts, not one "
-                                "flexible body: Scenario.build_system() builds it")  # fmt: skip
+            raise ScenarioError(
+                sc.path,
+                k,
+                "makes this scenario a system of parts, not one "
+                "flexible body: Scenario.build_system() builds it",
+            )
     if sc.loads.distributed:
-        raise ScenarioError(sc.path, "loads.distributed", "act on the scenario's system: "
-                            "Scenario.build_system() builds it")  # fmt: skip
+        raise ScenarioError(
+            sc.path,
+            "loads.distributed",
+            "act on the scenario's system: Scenario.build_system() builds it",
+        )
     return body_model(sc)
 
 
@@ -146,13 +161,16 @@ def body_model(sc: ScenarioView) -> Model:
     loads, initial motion), as the system of such a file holds it."""
     d = sc.data
     return flexible_model(
-        sc, "", (sc.geometry, sc.mesh, sc.section, sc.material),
+        sc,
+        "",
+        (sc.geometry, sc.mesh, sc.section, sc.material),
         [(f"supports[{i}]", t["at"], t) for i, t in enumerate(d["supports"])],
         [(f"loads.point[{i}]", t["at"], t) for i, t in enumerate(d["loads"]["point"])],
         [(f"initial_velocity[{i}]", t["at"], t) for i, t in enumerate(d["initial_velocity"])],
-        d["initial_motion"], [(f"sensors.{sn.name}", nd) for sn in sc.sensors for nd in sn.nodes],
+        d["initial_motion"],
+        [(f"sensors.{sn.name}", nd) for sn in sc.sensors for nd in sn.nodes],
         ("", sc.damping),
-    )  # fmt: skip
+    )
 
 
 def flexible_model(
@@ -185,9 +203,11 @@ def flexible_model(
         node = _check_node(sc, n_nodes, f"{key}.at", at)
         if node in supported and any(x != 0.0 for x in t["value"]):
             raise ScenarioError(
-                sc.path, f"{key}.at", f"node {at} is supported (its position is fixed), so it "
+                sc.path,
+                f"{key}.at",
+                f"node {at} is supported (its position is fixed), so it "
                 "cannot start with a velocity",
-            )  # fmt: skip
+            )
         v0[node] = t["value"]
     try:
         return Model(
@@ -200,7 +220,7 @@ def flexible_model(
                 material.shear_modulus,
                 material.poisson_ratio,
                 material.axial_strain,
-            ),  # fmt: skip
+            ),
             [_support(node, t) for _, node, t in supports],
             sc.loads.gravity,
             [_load(node, t) for _, node, t in loads],
@@ -238,8 +258,15 @@ def _vec(v: list[float] | None) -> tuple[float, ...] | None:
 
 
 def _support(node: int, t: dict[str, Any]) -> Support:
-    return Support(node, t["kind"], t["fix_twist"], _vec(t["position"]), _vec(t["direction"]),
-                   _vec(t["axis"]), t["motion"])  # fmt: skip
+    return Support(
+        node,
+        t["kind"],
+        t["fix_twist"],
+        _vec(t["position"]),
+        _vec(t["direction"]),
+        _vec(t["axis"]),
+        t["motion"],
+    )
 
 
 def _load(node: int, t: dict[str, Any]) -> PointLoad:

@@ -40,8 +40,9 @@ class _Context:
             self.bodies = {}
             for i, b in enumerate(sc.bodies):
                 if b.name == "ground" or b.name in self.bodies:
-                    raise fail(f"bodies[{i}].name", f"{show(b.name)} is used twice or reserved "
-                               '("ground")')  # fmt: skip
+                    raise fail(
+                        f"bodies[{i}].name", f'{show(b.name)} is used twice or reserved ("ground")'
+                    )
                 self.bodies[b.name] = b
         self.dim = self._dim()
 
@@ -58,14 +59,18 @@ class _Context:
             return int(sc.geometry.dim)
         for k in _FLEX_TABLES:
             if sc[k] is not None:
-                raise fail(k, f"does not apply with [[bodies]]: give it in each flexible body "
-                           f"([bodies.{k}])")  # fmt: skip
+                raise fail(
+                    k,
+                    f"does not apply with [[bodies]]: give it in each flexible body ([bodies.{k}])",
+                )
         dims = [b.dim for b in sc.bodies]
         for i, d in enumerate(dims):
             if d != dims[0]:
                 what = "geometry" if isinstance(sc.bodies[i], FlexibleBody) else "position"
-                raise fail(f"bodies[{i}].{what}", f"is {d}D but bodies[0] is {dims[0]}D: all "
-                           "bodies are planar or all spatial")  # fmt: skip
+                raise fail(
+                    f"bodies[{i}].{what}",
+                    f"is {d}D but bodies[0] is {dims[0]}D: all bodies are planar or all spatial",
+                )
         return dims[0]
 
     def place(self, key: str, v: int | str, ground: bool = False) -> ResolvedPlace:
@@ -103,8 +108,10 @@ def _supports(c: _Context) -> list[ResolvedPlace]:
         for k in ("position", "direction", "axis"):
             _size(f"{key}.{k}", s[k], c.dim)
         if s.motion is not None and time_size(s.motion) != c.dim:
-            raise fail(f"{key}.motion", f"must be a displacement of {c.dim} components, got "
-                       f"{time_size(s.motion)}")  # fmt: skip
+            raise fail(
+                f"{key}.motion",
+                f"must be a displacement of {c.dim} components, got {time_size(s.motion)}",
+            )
     return places
 
 
@@ -120,8 +127,9 @@ def _loads(c: _Context) -> None:
             continue
         if el == "rigid":
             if c.dim == 2 and isinstance(m, list):
-                raise fail(f"{key}.moment", f"must be a number in 2D (the torque about z), got "
-                           f"{show(m)}")  # fmt: skip
+                raise fail(
+                    f"{key}.moment", f"must be a number in 2D (the torque about z), got {show(m)}"
+                )
             if c.dim == 3 and not isinstance(m, list):
                 raise fail(f"{key}.moment", f"must be a list of 3 numbers, got {show(m)}")
         else:
@@ -135,8 +143,10 @@ def _motion(c: _Context) -> None:
     for i, iv in enumerate(sc.initial_velocity):
         p = c.place(f"initial_velocity[{i}].at", iv.at)
         if p.where != "node":
-            raise fail(f"initial_velocity[{i}].at", "must be a node of a flexible body (rigid "
-                       "bodies and point masses take velocity)")  # fmt: skip
+            raise fail(
+                f"initial_velocity[{i}].at",
+                "must be a node of a flexible body (rigid bodies and point masses take velocity)",
+            )
         _size(f"initial_velocity[{i}].value", iv.value, c.dim)
     per_body = [i for i, b in enumerate(sc.bodies) if getattr(b, "initial_motion", None)]
     if sc.initial_motion is not None:
@@ -147,8 +157,11 @@ def _motion(c: _Context) -> None:
         if sc.initial_velocity:
             raise fail("initial_motion", "give [initial_motion] or [[initial_velocity]], not both")
         if per_body:
-            raise fail("initial_motion", f"give [initial_motion] for the whole system or "
-                       f"bodies[{per_body[0]}].initial_motion, not both")  # fmt: skip
+            raise fail(
+                "initial_motion",
+                f"give [initial_motion] for the whole system or "
+                f"bodies[{per_body[0]}].initial_motion, not both",
+            )
 
 
 def _sliding(c: _Context, key: str, j: Any) -> None:
@@ -157,20 +170,29 @@ def _sliding(c: _Context, key: str, j: Any) -> None:
     a, b = j.between
     body = c.bodies.get(str(a)) if c.bodies is not None else (c.sc if a == "body" else None)
     if body is None or (c.bodies is not None and not isinstance(body, FlexibleBody)):
-        names = [k for k, v in (c.bodies or {"body": None}).items()
-                 if c.bodies is None or isinstance(v, FlexibleBody)]  # fmt: skip
+        names = [
+            k
+            for k, v in (c.bodies or {"body": None}).items()
+            if c.bodies is None or isinstance(v, FlexibleBody)
+        ]
         known = shorten(", ".join(names)) or "none"
-        raise fail(f"{key}.between[0]", f"names the flexible body that slides through the "
-                   f"place (one of {known}), got {show(a)}")  # fmt: skip
+        raise fail(
+            f"{key}.between[0]",
+            f"names the flexible body that slides through the "
+            f"place (one of {known}), got {show(a)}",
+        )
     if body.mesh.element == "beam":
         raise fail(f"{key}.between[0]", "a body of cable or rod elements slides (not beams)")
     p = c.place(f"{key}.between[1]", b, ground=True)
     if p.where == "ground" and j.position is None:
-        raise fail(f"{key}.position", "required for a sliding joint to the ground: where the "
-                   "guide is")  # fmt: skip
+        raise fail(
+            f"{key}.position", "required for a sliding joint to the ground: where the guide is"
+        )
     if p.where != "ground" and j.position is not None:
-        raise fail(f"{key}.position", "only for a sliding joint to the ground (a place on a "
-                   "body is where it is)")  # fmt: skip
+        raise fail(
+            f"{key}.position",
+            "only for a sliding joint to the ground (a place on a body is where it is)",
+        )
     _size(f"{key}.position", j.position, c.dim)
 
 
@@ -190,19 +212,24 @@ def _joints(c: _Context) -> None:
         els = [c.element(p) for p in ps]
         _size(f"{key}.axis", j.axis, c.dim)
         if j.kind == "revolute" and c.dim == 2:
-            raise fail(f"{key}.kind", 'revolute joints are spatial: in 2D a "pin" is a revolute '
-                       "joint")  # fmt: skip
+            raise fail(
+                f"{key}.kind", 'revolute joints are spatial: in 2D a "pin" is a revolute joint'
+            )
         if j.kind == "fixed" and "mass" in els:
-            raise fail(f"{key}.kind", "a point mass has no orientation: a fixed joint needs "
-                       "bodies with orientation (use a pin)")  # fmt: skip
+            raise fail(
+                f"{key}.kind",
+                "a point mass has no orientation: a fixed joint needs "
+                "bodies with orientation (use a pin)",
+            )
         if j.angle is not None:
             if j.kind == "pin" and c.dim == 3:
                 raise fail(f"{key}.angle", "a pin is spherical in 3D: drive a revolute joint")
             if "rigid" not in els:
                 raise fail(f"{key}.angle", "a driven joint needs a rigid body on one side")
     for i, s in enumerate(c.sc.springs):
-        ps = [c.place(f"springs[{i}].between[{k}]", v, ground=True)
-              for k, v in enumerate(s.between)]  # fmt: skip
+        ps = [
+            c.place(f"springs[{i}].between[{k}]", v, ground=True) for k, v in enumerate(s.between)
+        ]
         if all(p.where == "ground" for p in ps):
             raise fail(f"springs[{i}].between", "joins the ground to itself")
 
@@ -216,8 +243,10 @@ def _sensors(c: _Context, supports: list[ResolvedPlace]) -> None:
         if s.name in names or s.name == "t":
             raise fail(f"{key}.name", f"{show(s.name)} is used twice or reserved")
         if s.winch is not None and s.winch not in winches:
-            raise fail(f"{key}.winch", f"names no winch: {show(s.winch)} (winches: "
-                       f"{', '.join(winches) or 'none'})")  # fmt: skip
+            raise fail(
+                f"{key}.winch",
+                f"names no winch: {show(s.winch)} (winches: {', '.join(winches) or 'none'})",
+            )
         names.add(s.name)
         _size(f"{key}.about", s.about, c.dim)
         places = []
@@ -228,14 +257,19 @@ def _sensors(c: _Context, supports: list[ResolvedPlace]) -> None:
         _size(f"{key}.at_point", s.at_point, c.dim)
         els = [c.element(p) for p in places]
         if s.kind == "twist" and places and els[0] != "rod":
-            raise fail(f"{key}.kind", f"'twist' needs rod elements (mesh.element = \"rod\"), not "
-                       f"{els[0]!r}")  # fmt: skip
+            raise fail(
+                f"{key}.kind",
+                f"'twist' needs rod elements (mesh.element = \"rod\"), not {els[0]!r}",
+            )
         if s.kind in ("axial_force", "tension") and places and places[0].where != "node":
             raise fail(f"{key}.at", f"a {s.kind} sensor measures at a node of a flexible body")
         if s.kind == "reaction":
             if s.joint is not None and s.joint not in joints:
-                raise fail(f"{key}.joint", f"names no joint: {show(s.joint)} (joints: "
-                           f"{', '.join(sorted(joints)) or 'none'})")  # fmt: skip
+                raise fail(
+                    f"{key}.joint",
+                    f"names no joint: {show(s.joint)} (joints: "
+                    f"{', '.join(sorted(joints)) or 'none'})",
+                )
             if s.at is not None and places[0] not in supports:
                 raise fail(f"{key}.at", f"must be the place of a support, got {show(s.at)}")
         if s.body is not None:
@@ -270,24 +304,35 @@ def _obstacles(c: _Context) -> set[str]:
             b = None if c.bodies is None else c.bodies.get(o.body)
             if not isinstance(b, RigidBody):
                 raise fail(f"{key}.body", f"must name a rigid body, got {show(o.body)}")
-    flex = ["body"] if c.bodies is None else [
-        n for n, b in c.bodies.items() if isinstance(b, FlexibleBody)
-    ]  # fmt: skip
+    flex = (
+        ["body"]
+        if c.bodies is None
+        else [n for n, b in c.bodies.items() if isinstance(b, FlexibleBody)]
+    )
     for i, pair in enumerate(c.sc.contacts or []):
         if len(pair) != 2 or pair[0] not in flex or pair[1] not in names:
-            raise fail(f"contacts[{i}]", f"must be [FLEXIBLE_BODY, OBSTACLE] (bodies: "
-                       f"{', '.join(flex)}; obstacles: {', '.join(sorted(names)) or 'none'}), "
-                       f"got {show(pair)}")  # fmt: skip
+            raise fail(
+                f"contacts[{i}]",
+                f"must be [FLEXIBLE_BODY, OBSTACLE] (bodies: "
+                f"{', '.join(flex)}; obstacles: {', '.join(sorted(names)) or 'none'}), "
+                f"got {show(pair)}",
+            )
     _once("contacts", [tuple(p) for p in c.sc.contacts or []])
     for i, pair in enumerate(c.sc.body_contacts):
         if len(pair) != 2 or not all(x in flex for x in pair):
-            raise fail(f"body_contacts[{i}]", f"must be [FLEXIBLE_BODY, FLEXIBLE_BODY] (bodies: "
-                       f"{', '.join(flex)}), got {show(pair)}")  # fmt: skip
+            raise fail(
+                f"body_contacts[{i}]",
+                f"must be [FLEXIBLE_BODY, FLEXIBLE_BODY] (bodies: "
+                f"{', '.join(flex)}), got {show(pair)}",
+            )
     _once("body_contacts", [tuple(sorted(p)) for p in c.sc.body_contacts])
     for i, s in enumerate(c.sc.sensor_tables):
         if s.obstacle is not None and s.obstacle not in names:
-            raise fail(f"sensors[{i}].obstacle", f"names no obstacle: {show(s.obstacle)} "
-                       f"(obstacles: {', '.join(sorted(names)) or 'none'})")  # fmt: skip
+            raise fail(
+                f"sensors[{i}].obstacle",
+                f"names no obstacle: {show(s.obstacle)} "
+                f"(obstacles: {', '.join(sorted(names)) or 'none'})",
+            )
     return names
 
 
@@ -297,9 +342,12 @@ def _once(key: str, pairs: list[tuple[str, ...]]) -> None:
     seen: dict[tuple[str, ...], int] = {}
     for i, pair in enumerate(pairs):
         if pair in seen:
-            raise fail(f"{key}[{i}]", f"lists the pair {show(list(pair))} again ({key}"
-                       f"[{seen[pair]}] has it; its contact would count twice): give each pair "
-                       "once")  # fmt: skip
+            raise fail(
+                f"{key}[{i}]",
+                f"lists the pair {show(list(pair))} again ({key}"
+                f"[{seen[pair]}] has it; its contact would count twice): give each pair "
+                "once",
+            )
         seen[pair] = i
 
 
@@ -310,14 +358,20 @@ def _winches(c: _Context) -> None:
     for i, w in enumerate(c.sc.winches):
         key = f"winches[{i}]"
         if w.name in names:
-            raise fail(f"{key}.name", f"{show(w.name)} is used twice (winches[{names[w.name]}] "
-                       "has it): each winch needs its own name")  # fmt: skip
+            raise fail(
+                f"{key}.name",
+                f"{show(w.name)} is used twice (winches[{names[w.name]}] "
+                "has it): each winch needs its own name",
+            )
         names[w.name] = i
         body = w.at.rpartition(":")[0] if c.bodies is not None else ""
         if body in bodies:
             which = f"body {show(body)}" if body else "the body"
-            raise fail(f"{key}.at", f"{show(w.at)}: {which} already has a winch "
-                       f"(winches[{bodies[body]}]): one winch per body")  # fmt: skip
+            raise fail(
+                f"{key}.at",
+                f"{show(w.at)}: {which} already has a winch "
+                f"(winches[{bodies[body]}]): one winch per body",
+            )
         bodies[body] = i
 
 

@@ -24,18 +24,21 @@ class StrainRateDampingTable(Table):
     """
 
     axial: NonNegative = Field(
-        0.0, description="c_a in the tension N = EA eps + c_a d(eps)/dt [N s] (MoorDyn's BA): "
+        0.0,
+        description="c_a in the tension N = EA eps + c_a d(eps)/dt [N s] (MoorDyn's BA): "
         "a stretching mode of frequency omega decays with zeta = c_a omega / (2 EA)",
-    )  # fmt: skip
+    )
     bending: NonNegative = Field(
-        0.0, description="c_b in the bending moment M = EI kappa + c_b d(kappa)/dt [N m^2 s]: a "
+        0.0,
+        description="c_b in the bending moment M = EI kappa + c_b d(kappa)/dt [N m^2 s]: a "
         "bending mode of frequency omega decays with zeta = c_b omega / (2 EI)",
-    )  # fmt: skip
+    )
     torsion: NonNegative = Field(
-        0.0, description="rod elements: c_t in the twist moment GJ tau + c_t d(tau)/dt [N m^2 s]: "
+        0.0,
+        description="rod elements: c_t in the twist moment GJ tau + c_t d(tau)/dt [N m^2 s]: "
         "a torsion mode of frequency omega decays with zeta = c_t omega / (2 GJ); refused on the "
         "other elements",
-    )  # fmt: skip
+    )
 
 
 class DampingTable(StrainRateDampingTable):

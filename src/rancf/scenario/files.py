@@ -60,13 +60,15 @@ def read_toml(p: Path) -> dict[str, Any]:
         text = data.decode("utf-8")
     except UnicodeDecodeError as exc:
         line = data[: exc.start].count(b"\n") + 1
-        raise ScenarioError(str(p), "file", f"is not UTF-8 text (byte {exc.start}, line {line}); "
-                            "save it as UTF-8") from None  # fmt: skip
+        raise ScenarioError(
+            str(p), "file", f"is not UTF-8 text (byte {exc.start}, line {line}); save it as UTF-8"
+        ) from None
     try:
         return tomllib.loads(text)
     except RecursionError:
-        raise ScenarioError(str(p), "file", "is nested too deeply (arrays or tables within each "
-                            "other)") from None  # fmt: skip
+        raise ScenarioError(
+            str(p), "file", "is nested too deeply (arrays or tables within each other)"
+        ) from None
     except ValueError as exc:  # TOMLDecodeError, or an integer of more than 4300 digits
         raise ScenarioError(str(p), "file", f"is not valid TOML: {shorten(str(exc))}") from None
 

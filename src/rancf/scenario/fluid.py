@@ -38,9 +38,10 @@ class FluidTable(Table):
 
     density: Positive = Field(description="density [kg/m^3] (1025 seawater, 1.225 air)")
     surface: Number | None = Field(
-        None, description="height of the still free surface on the vertical (last) axis [m]; "
+        None,
+        description="height of the still free surface on the vertical (last) axis [m]; "
         "absent: every point submerged",
-    )  # fmt: skip
+    )
     current: Vector23 | None = Field(None, description="uniform current velocity [m/s]")
     current_profile: list[list[Number]] | None = Field(
         None, description="rows [height, u...]: the current, linear in height [m, m/s]"
@@ -58,8 +59,11 @@ class FluidTable(Table):
             n = len(rows[0])
             for i, r in enumerate(rows):
                 if len(r) != n or n not in (3, 4):
-                    raise fail(f"current_profile[{i}]", f"must be [height, u...] with 2 or 3 "
-                               f"velocity components like row 0, got {r}")  # fmt: skip
+                    raise fail(
+                        f"current_profile[{i}]",
+                        f"must be [height, u...] with 2 or 3 "
+                        f"velocity components like row 0, got {r}",
+                    )
             z = [r[0] for r in rows]
             if any(b <= a for a, b in zip(z, z[1:], strict=False)):
                 raise fail("current_profile", f"heights must increase, got {z}")
@@ -72,8 +76,11 @@ class FluidTable(Table):
         if self.current is not None and len(self.current) != dim:
             raise fail("current", f"must be a list of {dim} numbers, got {self.current}")
         if self.current_profile is not None and len(self.current_profile[0]) != dim + 1:
-            raise fail("current_profile[0]", f"must be [height, u...] with {dim} velocity "
-                       f"components, got {self.current_profile[0]}")  # fmt: skip
+            raise fail(
+                "current_profile[0]",
+                f"must be [height, u...] with {dim} velocity "
+                f"components, got {self.current_profile[0]}",
+            )
 
 
 class HydroTable(Table):
@@ -97,12 +104,14 @@ def fluid_value(t: FluidTable | None, dim: int) -> Any:
     t.check_dim(dim)
     w = t.waves
     return Fluid(
-        density=t.density, surface=t.surface,
+        density=t.density,
+        surface=t.surface,
         current=None if t.current is None else tuple(t.current),
-        current_profile=None if t.current_profile is None
+        current_profile=None
+        if t.current_profile is None
         else tuple(tuple(r) for r in t.current_profile),
         waves=None if w is None else Waves(w.height, w.period, w.direction_deg, w.depth),
-    )  # fmt: skip
+    )
 
 
 def hydro_value(t: HydroTable) -> Any:

@@ -162,8 +162,11 @@ class NurbsGeometry(_Geometry):
             _same_dim(self.dim, f"control_points[{i}]", pt)
         w = [abs(x) for x in self.weights or () if x != 0.0]
         if w and max(w) > MAX_WEIGHT_RATIO * min(w):
-            raise fail("weights", f"the largest weight may be at most {MAX_WEIGHT_RATIO:g} times "
-                       f"the smallest, got {max(w):g} and {min(w):g}")  # fmt: skip
+            raise fail(
+                "weights",
+                f"the largest weight may be at most {MAX_WEIGHT_RATIO:g} times "
+                f"the smallest, got {max(w):g} and {min(w):g}",
+            )
         return self
 
     @property
@@ -201,11 +204,16 @@ class EllipseGeometry(_Geometry):
             if not v > 0.0:
                 raise fail(f"semi_axes[{i}]", f"must be > 0, got {show(v)}")
         if self.dim == 2 and self.axes is not None:
-            raise fail("axes", "applies to a spatial ellipse (3 center coordinates); a planar "
-                       "one turns by rotation_deg")  # fmt: skip
+            raise fail(
+                "axes",
+                "applies to a spatial ellipse (3 center coordinates); a planar "
+                "one turns by rotation_deg",
+            )
         if self.dim == 3 and self.rotation_deg is not None:
-            raise fail("rotation_deg", "applies to a planar ellipse (2 center coordinates); a "
-                       "spatial one has axes")  # fmt: skip
+            raise fail(
+                "rotation_deg",
+                "applies to a planar ellipse (2 center coordinates); a spatial one has axes",
+            )
         if self.axes is not None:
             from rancf.geometry.ellipse import ellipse_axes
 

@@ -48,10 +48,20 @@ from rancf.scenario.base import (
 from rancf.scenario.table_files import ROWS_SCHEMA, table_rows
 
 __all__ = [
-    "DistributedLoadTable", "TableFunction", "RampFunction", "HarmonicFunction", "SpinUpFunction",
-    "TimeFunctionValue", "time_function", "time_size", "SupportTable", "PointLoadTable",
-    "LoadsTable", "InitialVelocityTable", "InitialMotionTable",
-]  # fmt: skip
+    "DistributedLoadTable",
+    "TableFunction",
+    "RampFunction",
+    "HarmonicFunction",
+    "SpinUpFunction",
+    "TimeFunctionValue",
+    "time_function",
+    "time_size",
+    "SupportTable",
+    "PointLoadTable",
+    "LoadsTable",
+    "InitialVelocityTable",
+    "InitialMotionTable",
+]
 
 Amount = NumberOrVector123
 
@@ -101,11 +111,17 @@ class TableFunction(_Function):
         width = len(self.table[0])
         for i, row in enumerate(self.table):
             if len(row) < 2 or len(row) != width:
-                raise fail(f"table[{i}]", f"must be a row [t, v...] of {max(width, 2)} numbers "
-                           f"like the first row, got {show(row)}")  # fmt: skip
+                raise fail(
+                    f"table[{i}]",
+                    f"must be a row [t, v...] of {max(width, 2)} numbers "
+                    f"like the first row, got {show(row)}",
+                )
             if i and not row[0] > self.table[i - 1][0]:
-                raise fail(f"table[{i}][0]", f"times must increase strictly, got {show(row[0])} "
-                           f"after {show(self.table[i - 1][0])}")  # fmt: skip
+                raise fail(
+                    f"table[{i}][0]",
+                    f"times must increase strictly, got {show(row[0])} "
+                    f"after {show(self.table[i - 1][0])}",
+                )
         return self
 
     def _function(self) -> TimeFunction:
@@ -210,7 +226,7 @@ TimeFunctionValue = Annotated[
         _time_kind,
         custom_error_type="time_function",
         custom_error_message="must be a time function",
-    ),  # fmt: skip
+    ),
 ]
 
 
@@ -294,9 +310,10 @@ class PointLoadTable(Table):
     at: PlaceValue = Field(description="where the load acts")
     force: Vector23 | None = Field(None, description="force [N]")
     moment: NumberOrVector3 | None = Field(
-        None, description="moment [N m]: [mx, my, mz] (rods, 3D rigid bodies); a number (the "
+        None,
+        description="moment [N m]: [mx, my, mz] (rods, 3D rigid bodies); a number (the "
         "torque about z) on a 2D rigid body",
-    )  # fmt: skip
+    )
     frequency_hz: Positive | None = Field(
         None, description="a harmonic load F sin(2 pi f t) [Hz] (or time)"
     )
@@ -354,8 +371,9 @@ class InitialMotionTable(Table):
     angular_velocity: NumberOrVector3 | None = Field(
         None, description="[rad/s]: 3 components in 3D, the rate about z in 2D"
     )
-    about: Vector23 | None = Field(None, description="the point omega turns about [m] "
-                                       "(default: the origin)")  # fmt: skip
+    about: Vector23 | None = Field(
+        None, description="the point omega turns about [m] (default: the origin)"
+    )
 
     @model_validator(mode="after")
     def _some(self) -> InitialMotionTable:

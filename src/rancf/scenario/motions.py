@@ -30,8 +30,15 @@ import numpy as np
 from rancf.bodies.time_function import TimeFunction
 from rancf.scenario.loads import HarmonicFunction, RampFunction, TableFunction, time_function
 
-__all__ = ["motion_function", "BUILD_UP_PERIODS", "Law", "start_warning", "start_warnings",
-           "start_jump", "JUMP_RTOL"]  # fmt: skip
+__all__ = [
+    "motion_function",
+    "BUILD_UP_PERIODS",
+    "Law",
+    "start_warning",
+    "start_warnings",
+    "start_jump",
+    "JUMP_RTOL",
+]
 
 #: A jump of a value or rate at ``t = 0`` up to this fraction of the largest magnitude the same
 #: reaches over the run is not reported: the transient a jump excites is linear in it, and an
@@ -81,9 +88,11 @@ def motion_function(v: Any, key: str) -> tuple[TimeFunction | None, str | None]:
     if not np.any(np.abs(rate) > 1e-12 * max(1.0, float(np.max(np.abs(f.values))))):
         return f, None
     b = BUILD_UP_PERIODS / v.harmonic
-    note = (f"{key}: the harmonic would start with a jump of its rate to "
-            f"{float(np.max(np.abs(rate))):.3g}; it builds up over {b:g} s ({BUILD_UP_PERIODS:g} "
-            f"periods; give build_up = 0 to start it at once)")  # fmt: skip
+    note = (
+        f"{key}: the harmonic would start with a jump of its rate to "
+        f"{float(np.max(np.abs(rate))):.3g}; it builds up over {b:g} s ({BUILD_UP_PERIODS:g} "
+        f"periods; give build_up = 0 to start it at once)"
+    )
     return f.with_build_up(b), note
 
 
@@ -122,9 +131,11 @@ def start_warning(
         return None
     b = float(f"{_time_scale(f, t_end) / 10.0:.1g}")
     alt = _alternative(v, law, b)
-    return (f"{item}: the {law.what} jumps from 0 to {jump:.4g}{law.unit} at t = 0, an "
-            f"impulsive start (an impact: forces and ringing far above a smooth start's); give "
-            f"build_up = {b:g} to build it up over {b:g} s{alt}")  # fmt: skip
+    return (
+        f"{item}: the {law.what} jumps from 0 to {jump:.4g}{law.unit} at t = 0, an "
+        f"impulsive start (an impact: forces and ringing far above a smooth start's); give "
+        f"build_up = {b:g} to build it up over {b:g} s{alt}"
+    )
 
 
 def _time_scale(f: TimeFunction, t_end: float) -> float:
@@ -154,8 +165,11 @@ def _alternative(v: Any, law: Law, b: float) -> str:
 #: Support motions and joint angles: the rate (here) and the value (:data:`_PLACED`).
 _MOVED = {"motion": Law("velocity", " m/s", 1), "angle": Law("angular rate", " rad/s", 1)}
 _PLACED = {"motion": Law("displacement", " m", 0, True), "angle": Law("angle", " rad", 0, True)}
-_WINCH = {"length": Law("pay-out rate", " m/s", 1), "speed": Law("pay-out rate", " m/s", 0),
-          "torque": Law("torque", " N m", 0, True)}  # fmt: skip
+_WINCH = {
+    "length": Law("pay-out rate", " m/s", 1),
+    "speed": Law("pay-out rate", " m/s", 0),
+    "torque": Law("torque", " N m", 0, True),
+}
 _LOAD = Law("load factor", "", 0, True)
 
 

@@ -72,8 +72,9 @@ class ObstacleTable(Table):
         for keys in OBSTACLE_KEYS.values():
             for k in keys:
                 if k not in own and self[k] is not None:
-                    raise fail(k, f"does not apply to kind = {self.kind!r} (its keys: "
-                               f"{', '.join(own)})")  # fmt: skip
+                    raise fail(
+                        k, f"does not apply to kind = {self.kind!r} (its keys: {', '.join(own)})"
+                    )
         for k in own:
             if k != "axis" and self[k] is None:
                 raise fail(k, f"required for a {self.kind}")

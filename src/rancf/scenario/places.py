@@ -93,8 +93,11 @@ def resolve_place(
         raise fail(key, f'must be "start", "end" or a node index, got {show(v)}')
     names = ", ".join(bodies)
     if isinstance(v, int):
-        raise fail(key, f'must be "BODY:start", "BODY:end", "BODY:N", "BODY" or "BODY:POINT" '
-                   f"with [[bodies]] (bodies: {shorten(names)}), got {show(v)}")  # fmt: skip
+        raise fail(
+            key,
+            f'must be "BODY:start", "BODY:end", "BODY:N", "BODY" or "BODY:POINT" '
+            f"with [[bodies]] (bodies: {shorten(names)}), got {show(v)}",
+        )
     name, _, sub = v.partition(":")
     body = bodies.get(name)
     if body is None:
@@ -102,8 +105,11 @@ def resolve_place(
     if isinstance(body, FlexibleBody):
         node = _node(sub)
         if node is None:
-            raise fail(key, f'a place of the flexible body {show(name)} is "{name}:start", '
-                       f'"{name}:end" or "{name}:N" (a node index), got {show(v)}')  # fmt: skip
+            raise fail(
+                key,
+                f'a place of the flexible body {show(name)} is "{name}:start", '
+                f'"{name}:end" or "{name}:N" (a node index), got {show(v)}',
+            )
         return ResolvedPlace(v, "node", name, node=node)
     if not sub:
         return ResolvedPlace(v, "center", name)

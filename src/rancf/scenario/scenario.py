@@ -248,8 +248,12 @@ class Scenario(Table):
         in their table form."""
         for key, f in self._time_functions():
             if getattr(f, "kind", None) == "callable":
-                raise ScenarioError(self.path, key, "is a Python function: it cannot be saved "
-                                    "(give it as a table, ramp, harmonic or spin_up)")  # fmt: skip
+                raise ScenarioError(
+                    self.path,
+                    key,
+                    "is a Python function: it cannot be saved "
+                    "(give it as a table, ramp, harmonic or spin_up)",
+                )
         return self.model_dump(by_alias=True, exclude_unset=True, exclude_none=True)
 
     def to_toml(self, relative_to: str | Path | None = None) -> str:
@@ -279,10 +283,14 @@ class Scenario(Table):
         out = [(f"supports[{i}].motion", s.motion) for i, s in enumerate(self.supports)]
         out += [(f"loads.point[{i}].time", p.time) for i, p in enumerate(self.loads.point)]
         out += [(f"joints[{i}].angle", j.angle) for i, j in enumerate(self.joints)]
-        out += [(f"loads.distributed[{i}].time", p.time)
-                for i, p in enumerate(self.loads.distributed)]  # fmt: skip
-        out += [(f"winches[{i}].{k}", w[k]) for i, w in enumerate(self.winches)
-                for k in ("length", "speed", "torque")]  # fmt: skip
+        out += [
+            (f"loads.distributed[{i}].time", p.time) for i, p in enumerate(self.loads.distributed)
+        ]
+        out += [
+            (f"winches[{i}].{k}", w[k])
+            for i, w in enumerate(self.winches)
+            for k in ("length", "speed", "torque")
+        ]
         return [(k, f) for k, f in out if f is not None]
 
     def _cad_tables(self, d: dict[str, Any]) -> list[tuple[dict[str, Any], CadGeometry]]:
@@ -337,26 +345,38 @@ def _data(sc: Scenario) -> dict[str, Any]:
         notes.extend([note] if note else [])
         return f
 
-    d["joints"] = [{**j.model_dump(exclude={"angle"}),
-                    "angle": motion(j.angle, f"joints[{i}].angle")}
-                   for i, j in enumerate(sc.joints)]  # fmt: skip
+    d["joints"] = [
+        {**j.model_dump(exclude={"angle"}), "angle": motion(j.angle, f"joints[{i}].angle")}
+        for i, j in enumerate(sc.joints)
+    ]
     d["springs"] = [s.model_dump() for s in sc.springs]
     d["obstacles"] = [o.model_dump() for o in sc.obstacles]
-    d["winches"] = [{**w.model_dump(exclude={"length", "speed", "torque"}),
-                     **{k: _tf(w[k]) for k in ("length", "speed", "torque")}}
-                    for w in sc.winches]  # fmt: skip
+    d["winches"] = [
+        {
+            **w.model_dump(exclude={"length", "speed", "torque"}),
+            **{k: _tf(w[k]) for k in ("length", "speed", "torque")},
+        }
+        for w in sc.winches
+    ]
     d["supports"] = [
-        {**s.model_dump(exclude={"motion"}), "at": _node_or_text(s.at, one), "label": s.at,
-         "motion": motion(s.motion, f"supports[{i}].motion")}
+        {
+            **s.model_dump(exclude={"motion"}),
+            "at": _node_or_text(s.at, one),
+            "label": s.at,
+            "motion": motion(s.motion, f"supports[{i}].motion"),
+        }
         for i, s in enumerate(sc.supports)
-    ]  # fmt: skip
+    ]
     d["loads"] = {
         "gravity": sc.loads.gravity,
-        "point": [{**p.model_dump(exclude={"time"}), "at": _node_or_text(p.at, one),
-                   "time": _tf(p.time)} for p in sc.loads.point],
-        "distributed": [{**p.model_dump(exclude={"time"}), "time": _tf(p.time)}
-                        for p in sc.loads.distributed],
-    }  # fmt: skip
+        "point": [
+            {**p.model_dump(exclude={"time"}), "at": _node_or_text(p.at, one), "time": _tf(p.time)}
+            for p in sc.loads.point
+        ],
+        "distributed": [
+            {**p.model_dump(exclude={"time"}), "time": _tf(p.time)} for p in sc.loads.distributed
+        ],
+    }
     d["damping"] = sc.damping.model_dump()
     d["initial_velocity"] = [
         {"at": _node_or_text(iv.at, one), "value": iv.value} for iv in sc.initial_velocity
@@ -376,9 +396,12 @@ def _columns_once(sensors: tuple[Sensor, ...], dim: int) -> None:
         for col in s.columns(dim):
             if col in owner:
                 j = owner[col]
-                raise fail(f"sensors[{i}].name", f"{show(s.name)} gives the column {col!r}, as "
-                           f"sensors[{j}] ({show(sensors[j].name)}, kind {sensors[j].kind!r}) "
-                           "does: each column of sensors.csv needs its own name")  # fmt: skip
+                raise fail(
+                    f"sensors[{i}].name",
+                    f"{show(s.name)} gives the column {col!r}, as "
+                    f"sensors[{j}] ({show(sensors[j].name)}, kind {sensors[j].kind!r}) "
+                    "does: each column of sensors.csv needs its own name",
+                )
             owner[col] = i
 
 

@@ -63,12 +63,18 @@ class SectionTable(Table):
                 raise fail("", f"give either radius, or area and inertia, not both ({extra[0]})")
         elif principal:
             if self.inertia is not None:
-                raise fail("inertia", "give inertia (equal bending stiffnesses) or inertia_y + "
-                           "inertia_z + orientation, not both")  # fmt: skip
+                raise fail(
+                    "inertia",
+                    "give inertia (equal bending stiffnesses) or inertia_y + "
+                    "inertia_z + orientation, not both",
+                )
             for k in ("area", "inertia_y", "inertia_z", "orientation"):
                 if self[k] is None:
-                    raise fail(k, "required with principal inertias (area + inertia_y + "
-                               "inertia_z + orientation)")  # fmt: skip
+                    raise fail(
+                        k,
+                        "required with principal inertias (area + inertia_y + "
+                        "inertia_z + orientation)",
+                    )
             if not any(x != 0.0 for x in self.orientation or ()):
                 raise fail("orientation", "must be a nonzero vector, got [0, 0, 0]")
         elif self.area is None or self.inertia is None:
@@ -84,8 +90,11 @@ def _check_radius(r: float) -> None:
     except OverflowError:
         area = inertia = math.inf
     if not (math.isfinite(inertia) and inertia >= sys.float_info.min and area > 0):
-        raise fail("radius", f"must give a finite, nonzero area π r² and second moment π r⁴/4, "
-                   f"got {r:g} (second moment {inertia:g})")  # fmt: skip
+        raise fail(
+            "radius",
+            f"must give a finite, nonzero area π r² and second moment π r⁴/4, "
+            f"got {r:g} (second moment {inertia:g})",
+        )
 
 
 class MaterialTable(Table):
@@ -144,8 +153,14 @@ def check_flexible(
         if material[k] is not None:
             _rod_only(f"material.{k}", el)
     if material.axial_strain != "green_lagrange" and el not in ("rancf", "ancf"):
-        raise fail("material.axial_strain", f'"engineering" applies to cable elements '
-                   f'(mesh.element = "rancf" or "ancf"), not {el!r}')  # fmt: skip
+        raise fail(
+            "material.axial_strain",
+            f'"engineering" applies to cable elements '
+            f'(mesh.element = "rancf" or "ancf"), not {el!r}',
+        )
     if el == "rod" and material.shear_modulus is None and material.poisson_ratio is None:
-        raise fail("material.shear_modulus", "required for rod elements: give shear_modulus or "
-                   "poisson_ratio (the torsional stiffness is G J)")  # fmt: skip
+        raise fail(
+            "material.shear_modulus",
+            "required for rod elements: give shear_modulus or "
+            "poisson_ratio (the torsional stiffness is G J)",
+        )

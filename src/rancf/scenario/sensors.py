@@ -46,13 +46,36 @@ from rancf.scenario.base import Name, PlacePair, PlaceValue, Table, Vector23, fa
 __all__ = ["Sensor", "SensorTable", "SENSOR_KINDS", "SYSTEM_SENSOR_KINDS", "AT_POINT_KINDS"]
 
 #: Sensor kinds.
-SENSOR_KINDS = ("distance", "position", "twist", "angular_momentum", "energy", "reaction",
-                "axial_force", "tension", "angle", "center_of_mass", "momentum",
-                "contact_force", "fluid_force", "touchdown", "winch")  # fmt: skip
+SENSOR_KINDS = (
+    "distance",
+    "position",
+    "twist",
+    "angular_momentum",
+    "energy",
+    "reaction",
+    "axial_force",
+    "tension",
+    "angle",
+    "center_of_mass",
+    "momentum",
+    "contact_force",
+    "fluid_force",
+    "touchdown",
+    "winch",
+)
 #: The kinds the system solver computes (not from node positions).
-SYSTEM_SENSOR_KINDS = ("reaction", "axial_force", "tension", "angle", "center_of_mass",
-                       "momentum", "contact_force", "fluid_force", "touchdown",
-                       "winch")  # fmt: skip
+SYSTEM_SENSOR_KINDS = (
+    "reaction",
+    "axial_force",
+    "tension",
+    "angle",
+    "center_of_mass",
+    "momentum",
+    "contact_force",
+    "fluid_force",
+    "touchdown",
+    "winch",
+)
 _SCALAR = ("distance", "twist", "energy", "axial_force", "tension")
 #: The kinds that take ``at_point`` (a material point found anew at every output).
 AT_POINT_KINDS = ("position", "twist", "axial_force", "tension")
@@ -106,10 +129,22 @@ class SensorTable(Table):
 
     name: Name = Field(description="column name (letters, digits, _), unique, not t")
     kind: Literal[
-        "distance", "position", "twist", "angular_momentum", "energy", "reaction",
-        "axial_force", "tension", "angle", "center_of_mass", "momentum", "contact_force",
-        "fluid_force", "touchdown", "winch",
-    ] = Field(description="what is measured (the sensor kinds: docs/guide/outputs.md)")  # fmt: skip
+        "distance",
+        "position",
+        "twist",
+        "angular_momentum",
+        "energy",
+        "reaction",
+        "axial_force",
+        "tension",
+        "angle",
+        "center_of_mass",
+        "momentum",
+        "contact_force",
+        "fluid_force",
+        "touchdown",
+        "winch",
+    ] = Field(description="what is measured (the sensor kinds: docs/guide/outputs.md)")
     between: PlacePair | None = Field(None, description="distance: the two places")
     at: PlaceValue | None = Field(
         None,
@@ -167,12 +202,24 @@ class SensorTable(Table):
                 raise fail("at_point", "instead of at (not both)")
             return self  # body = NAME: the flexible body searched (default all)
         if self.body is not None and kd not in (
-            "angle", "center_of_mass", "momentum", "fluid_force"
-        ):  # fmt: skip
-            raise fail("body", "applies to angle, center_of_mass, momentum, fluid_force and "
-                       "touchdown sensors only")  # fmt: skip
-        if kd in ("angular_momentum", "energy", "angle", "center_of_mass", "momentum",
-                  "fluid_force"):  # fmt: skip
+            "angle",
+            "center_of_mass",
+            "momentum",
+            "fluid_force",
+        ):
+            raise fail(
+                "body",
+                "applies to angle, center_of_mass, momentum, fluid_force and "
+                "touchdown sensors only",
+            )
+        if kd in (
+            "angular_momentum",
+            "energy",
+            "angle",
+            "center_of_mass",
+            "momentum",
+            "fluid_force",
+        ):
             for k in ("at", "between"):
                 if self[k] is not None:
                     what = "whole model" if kd in ("angular_momentum", "energy") else "a body"
@@ -186,8 +233,10 @@ class SensorTable(Table):
             if self.between is not None:
                 raise fail("between", "not for a reaction sensor")
             if (self.joint is None) == (self.at is None):
-                raise fail("joint", "a reaction sensor needs joint = NAME or at = a support's "
-                           "place (one of them)")  # fmt: skip
+                raise fail(
+                    "joint",
+                    "a reaction sensor needs joint = NAME or at = a support's place (one of them)",
+                )
         elif self.between is not None or self.at is None:
             raise fail("at", f"a {kd} sensor needs at = PLACE")
         return self
@@ -202,5 +251,15 @@ class SensorTable(Table):
         """The :class:`Sensor` of this table (``nodes``: its places as node indices)."""
         about = None if self.about is None else tuple(self.about)
         point = None if self.at_point is None else tuple(self.at_point)
-        return Sensor(self.name, self.kind, nodes, about, self.places(), self.joint, self.body,
-                      self.obstacle, point, self.winch)  # fmt: skip
+        return Sensor(
+            self.name,
+            self.kind,
+            nodes,
+            about,
+            self.places(),
+            self.joint,
+            self.body,
+            self.obstacle,
+            point,
+            self.winch,
+        )

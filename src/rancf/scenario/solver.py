@@ -46,8 +46,18 @@ else:
 
 __all__ = ["SolverTable", "ModesTable"]
 
-_DYNAMIC_KEYS = ("t_end", "step", "rho_inf", "adaptive", "rtol", "min_step", "output_step",
-                 "newton_tol", "max_newton", "newton")  # fmt: skip
+_DYNAMIC_KEYS = (
+    "t_end",
+    "step",
+    "rho_inf",
+    "adaptive",
+    "rtol",
+    "min_step",
+    "output_step",
+    "newton_tol",
+    "max_newton",
+    "newton",
+)
 
 
 def _shown(value: object) -> str:
@@ -125,8 +135,11 @@ class SolverTable(Table):
     def static_options(self) -> dict[str, Any]:
         """The keywords of :func:`rancf.solvers.static.solve_static` in this table
         (``load_steps``, ``method``, ``static_friction``)."""
-        return {"load_steps": self.load_steps, "method": self.static_method,
-                "static_friction": self.static_friction}  # fmt: skip
+        return {
+            "load_steps": self.load_steps,
+            "method": self.static_method,
+            "static_friction": self.static_friction,
+        }
 
 
 def _spin_rate(v: Any) -> float:

@@ -51,10 +51,17 @@ def _rigid(b: Any, dim: int) -> RigidBody | PointMass:
     else:
         orient = tuple(tuple(r) for r in b.orientation) if b.orientation is not None else 0.0
     return RigidBody(
-        dim, b.mass, b.inertia if dim == 2 else tuple(b.inertia), tuple(b.position), orient,
-        _tuple(b.velocity), b.angular_velocity if not isinstance(b.angular_velocity, list)
-        else tuple(b.angular_velocity), {k: tuple(v) for k, v in b.points.items()},
-    )  # fmt: skip
+        dim,
+        b.mass,
+        b.inertia if dim == 2 else tuple(b.inertia),
+        tuple(b.position),
+        orient,
+        _tuple(b.velocity),
+        b.angular_velocity
+        if not isinstance(b.angular_velocity, list)
+        else tuple(b.angular_velocity),
+        {k: tuple(v) for k, v in b.points.items()},
+    )
 
 
 def _tuple(v: Any) -> tuple[float, ...] | None:
@@ -81,8 +88,9 @@ def scenario_keys(sc: ScenarioView) -> Iterator[None]:
     try:
         yield
     except InputError as exc:
-        raise ScenarioError(sc.path, winch_key(sc.winches, exc.parameter),
-                            f"{exc.allowed} (got {exc.value!r})") from None  # fmt: skip
+        raise ScenarioError(
+            sc.path, winch_key(sc.winches, exc.parameter), f"{exc.allowed} (got {exc.value!r})"
+        ) from None
 
 
 def build_system(sc: ScenarioView) -> System:
@@ -109,8 +117,14 @@ def _build(sc: ScenarioView) -> System:
     beta = sc.damping.stiffness_proportional
     if not sc.bodies:
         model = body_model(sc)
-        return System({ONE_BODY: model}, gravity=gravity, damping=damping, stiffness_damping=beta,
-                      horizon=sc.solver.t_end, **_parts(sc, {ONE_BODY: model}))  # fmt: skip
+        return System(
+            {ONE_BODY: model},
+            gravity=gravity,
+            damping=damping,
+            stiffness_damping=beta,
+            horizon=sc.solver.t_end,
+            **_parts(sc, {ONE_BODY: model}),
+        )
     d = sc.data
     bodies: dict[str, Any] = {}
     for i, b in enumerate(sc.bodies):
@@ -133,13 +147,24 @@ def _build(sc: ScenarioView) -> System:
             if p.where == "node" and p.body == b.name and p.node is not None
         ]
         bodies[b.name] = flexible_model(
-            sc, f"bodies[{i}].", (b.geometry, b.mesh, b.section, b.material),
-            at(d["supports"], "supports"), at(d["loads"]["point"], "loads.point"),
-            at(d["initial_velocity"], "initial_velocity"), d["bodies"][i]["initial_motion"], nodes,
+            sc,
+            f"bodies[{i}].",
+            (b.geometry, b.mesh, b.section, b.material),
+            at(d["supports"], "supports"),
+            at(d["loads"]["point"], "loads.point"),
+            at(d["initial_velocity"], "initial_velocity"),
+            d["bodies"][i]["initial_motion"],
+            nodes,
             ("", sc.damping) if b.damping is None else (f"bodies[{i}].", b.damping),
-        )  # fmt: skip
-    return System(bodies, gravity=gravity, damping=damping, stiffness_damping=beta,
-                  horizon=sc.solver.t_end, **_parts(sc, bodies))  # fmt: skip
+        )
+    return System(
+        bodies,
+        gravity=gravity,
+        damping=damping,
+        stiffness_damping=beta,
+        horizon=sc.solver.t_end,
+        **_parts(sc, bodies),
+    )
 
 
 def _parts(sc: ScenarioView, bodies: dict[str, Any]) -> dict[str, Any]:
@@ -155,8 +180,16 @@ def _parts(sc: ScenarioView, bodies: dict[str, Any]) -> dict[str, Any]:
             continue
         kind = _SUPPORT_JOINT[s.kind]
         axis = None if s.axis is None else tuple(s.axis)
-        joints.append(Joint(kind, (place(s.at), Place(None)), axis, None, f"support{i}",
-                            sc.data["supports"][i]["motion"]))  # fmt: skip
+        joints.append(
+            Joint(
+                kind,
+                (place(s.at), Place(None)),
+                axis,
+                None,
+                f"support{i}",
+                sc.data["supports"][i]["motion"],
+            )
+        )
     for j, jd in zip(sc.joints, sc.data["joints"], strict=True):
         if j.kind == "sliding":  # a flexible body (by name) through a place
             body = Place(str(j.between[0]) if sc.bodies else ONE_BODY)
@@ -164,13 +197,19 @@ def _parts(sc: ScenarioView, bodies: dict[str, Any]) -> dict[str, Any]:
             joints.append(Joint("sliding", (body, place(j.between[1])), name=j.name, position=pos))
             continue
         axis = None if j.axis is None else tuple(j.axis)
-        joints.append(Joint(j.kind, (place(j.between[0]), place(j.between[1])), axis,
-                            jd["angle"], j.name))  # fmt: skip
+        joints.append(
+            Joint(j.kind, (place(j.between[0]), place(j.between[1])), axis, jd["angle"], j.name)
+        )
     springs = [
-        Spring((place(s.between[0]), place(s.between[1])), s.stiffness, s.damping, s.length,
-               s.name or f"spring{k}")
+        Spring(
+            (place(s.between[0]), place(s.between[1])),
+            s.stiffness,
+            s.damping,
+            s.length,
+            s.name or f"spring{k}",
+        )
         for k, s in enumerate(sc.springs)
-    ]  # fmt: skip
+    ]
     loads = []
     for k, (ld, t) in enumerate(zip(sc.loads.point, sc.data["loads"]["point"], strict=True)):
         p = sc.place(ld.at)
@@ -178,19 +217,28 @@ def _parts(sc: ScenarioView, bodies: dict[str, Any]) -> dict[str, Any]:
             continue
         if ld.frequency_hz is not None:
             raise ScenarioError(
-                sc.path, f"loads.point[{k}].frequency_hz",
+                sc.path,
+                f"loads.point[{k}].frequency_hz",
                 "applies to flexible bodies; on a rigid body give time = { harmonic = F }",
-            )  # fmt: skip
+            )
         moment = ld.moment
         torque = None if moment is None else tuple(np.atleast_1d(moment).tolist())
         loads.append(Load(place(ld.at), _tuple(ld.force), torque, t["time"]))
     obstacles = [Obstacle(**_record_fields(o.model_dump())) for o in sc.obstacles]
     contacts = None if sc.contacts is None else [(a, b) for a, b in sc.contacts]
-    return {"joints": joints, "springs": springs, "loads": loads, "observe": _observed(sc),
-            "obstacles": obstacles, "contacts": contacts,
-            "body_contacts": [(a, b) for a, b in sc.body_contacts],
-            "contact_points": sc.contact_points, "body_friction": sc.body_friction,
-            "winches": system_winches(sc, bodies, ONE_BODY), **_fluid(sc, bodies)}  # fmt: skip
+    return {
+        "joints": joints,
+        "springs": springs,
+        "loads": loads,
+        "observe": _observed(sc),
+        "obstacles": obstacles,
+        "contacts": contacts,
+        "body_contacts": [(a, b) for a, b in sc.body_contacts],
+        "contact_points": sc.contact_points,
+        "body_friction": sc.body_friction,
+        "winches": system_winches(sc, bodies, ONE_BODY),
+        **_fluid(sc, bodies),
+    }
 
 
 def _fluid(sc: ScenarioView, bodies: dict[str, Any]) -> dict[str, Any]:
@@ -207,14 +255,17 @@ def _fluid(sc: ScenarioView, bodies: dict[str, Any]) -> dict[str, Any]:
             sc.path, f"fluid.{ctx.get('key', '')}", str(ctx.get("problem"))
         ) from None
     if sc.bodies and sc.hydro is not None:
-        raise ScenarioError(sc.path, "hydro", "belongs to a body in a file with [[bodies]] "
-                            "(give [bodies.hydro])")  # fmt: skip
+        raise ScenarioError(
+            sc.path, "hydro", "belongs to a body in a file with [[bodies]] (give [bodies.hydro])"
+        )
     hydro = {ONE_BODY: hydro_value(sc.hydro)} if sc.hydro is not None else {}
     for b in sc.bodies:
         if getattr(b, "hydro", None) is not None:
             hydro[b.name] = hydro_value(b.hydro)
-    dist = [DistributedLoad(tuple(d["force"]), d["body"], d["time"])
-            for d in sc.data["loads"]["distributed"]]  # fmt: skip
+    dist = [
+        DistributedLoad(tuple(d["force"]), d["body"], d["time"])
+        for d in sc.data["loads"]["distributed"]
+    ]
     _check_depth(sc, fluid, {k: bodies.get(k) for k in hydro})
     return {"fluid": fluid, "hydro": hydro, "distributed": dist}
 
@@ -233,10 +284,14 @@ def _check_depth(sc: ScenarioView, fluid: Any, wet: dict[str, Any]) -> None:
         z = body.node_positions(body.q0)[:, -1]
         low = float(z.min())
         if low < floor - 1e-9 * max(1.0, abs(floor)):
-            raise ScenarioError(sc.path, "fluid.waves.depth", f"must reach the bodies in the "
-                                f"fluid: depth = {waves.depth:g} m puts the floor at "
-                                f"{floor:g} m, above {name}'s node at {low:g} m (give depth "
-                                f">= {fluid.surface - low:g} m)")  # fmt: skip
+            raise ScenarioError(
+                sc.path,
+                "fluid.waves.depth",
+                f"must reach the bodies in the "
+                f"fluid: depth = {waves.depth:g} m puts the floor at "
+                f"{floor:g} m, above {name}'s node at {low:g} m (give depth "
+                f">= {fluid.surface - low:g} m)",
+            )
 
 
 def _record_fields(table: dict[str, Any]) -> dict[str, Any]:

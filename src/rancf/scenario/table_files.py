@@ -84,12 +84,15 @@ def read_table(file: str, scenario_path: str) -> list[list[float]]:
         if not all(math.isfinite(x) for x in row):
             raise fail("", f"{path} line {number}: the numbers must be finite")
         if rows and len(row) != len(rows[0]):
-            raise fail("", f"{path} line {number}: {len(row)} numbers, but the first row "
-                       f"has {len(rows[0])}")  # fmt: skip
+            raise fail(
+                "",
+                f"{path} line {number}: {len(row)} numbers, but the first row has {len(rows[0])}",
+            )
         rows.append(row)
     if len(rows) < 2:
-        raise fail("", f"{path} holds {len(rows)} rows of numbers: at least 2 rows "
-                   "[t, v...] are needed")  # fmt: skip
+        raise fail(
+            "", f"{path} holds {len(rows)} rows of numbers: at least 2 rows [t, v...] are needed"
+        )
     return rows
 
 

@@ -59,8 +59,9 @@ class WinchTable(Table):
     def _one_law(self) -> WinchTable:
         given = [k for k in ("length", "speed", "torque") if self[k] is not None]
         if len(given) != 1:
-            raise fail("length", "give one of length, speed or torque (got "
-                       f"{', '.join(given) or 'none'})")  # fmt: skip
+            raise fail(
+                "length", f"give one of length, speed or torque (got {', '.join(given) or 'none'})"
+            )
         check_scalar(given[0], self[given[0]])
         for k in ("radius", "inertia"):
             if self[k] is None and self.torque is not None:
@@ -70,8 +71,9 @@ class WinchTable(Table):
                     + ("radius [m]" if k == "radius" else "moment of inertia [kg m^2]"),
                 )
             if self[k] is not None and self.torque is None:
-                raise fail(k, "belongs to a driven drum: give torque with radius and inertia "
-                           "(or drop it)")  # fmt: skip
+                raise fail(
+                    k, "belongs to a driven drum: give torque with radius and inertia (or drop it)"
+                )
         return self
 
 
@@ -99,23 +101,38 @@ def system_winches(sc: Any, bodies: dict[str, Any], one_body: str) -> list[Winch
             raise ScenarioError(sc.path, f"{key}.at", exc.problem) from None
         body = bodies.get(p.body or one_body) if p.where == "node" else None
         if not isinstance(body, Model) or p.node not in (0, -1, body.n_nodes - 1):
-            raise ScenarioError(sc.path, f"{key}.at", f'"BODY:start" or "BODY:end" of a cable '
-                                f"body (got {w.at!r})")  # fmt: skip
+            raise ScenarioError(
+                sc.path, f"{key}.at", f'"BODY:start" or "BODY:end" of a cable body (got {w.at!r})'
+            )
         node = 0 if p.node == 0 else body.n_nodes - 1
         end = "start" if node == 0 else "end"
         at = f"{p.body or one_body}:{end}"
         if w.position is not None:
             x = body.node_positions(body.q0)[node]
             if len(w.position) != x.size:
-                raise ScenarioError(sc.path, f"{key}.position", f"{x.size} numbers (the body is "
-                                    f"{x.size}D; got {w.position})")  # fmt: skip
+                raise ScenarioError(
+                    sc.path,
+                    f"{key}.position",
+                    f"{x.size} numbers (the body is {x.size}D; got {w.position})",
+                )
             if np.linalg.norm(np.asarray(w.position) - x) > 1e-9 * max(1.0, np.abs(x).max()):
-                raise ScenarioError(sc.path, f"{key}.position", f"where the body's {end} is "
-                                    f"drawn, {x.tolist()} (draw the line from the winch; got "
-                                    f"{w.position})")  # fmt: skip
+                raise ScenarioError(
+                    sc.path,
+                    f"{key}.position",
+                    f"where the body's {end} is "
+                    f"drawn, {x.tolist()} (draw the line from the winch; got "
+                    f"{w.position})",
+                )
         length = wd["length"]
-        winch = Winch(w.name, at, length=length, speed=wd["speed"], torque=wd["torque"],
-                      radius=w.radius, inertia=w.inertia)  # fmt: skip
+        winch = Winch(
+            w.name,
+            at,
+            length=length,
+            speed=wd["speed"],
+            torque=wd["torque"],
+            radius=w.radius,
+            inertia=w.inertia,
+        )
         _check_lengths(sc, key, winch, unstretched_length(body))  # before the body is stretched
         if length is not None:
             start = float(np.ravel(length_law(length).value(0.0))[0])
@@ -134,10 +151,14 @@ def _check_stretch(sc: Any, key: str, start: float, drawn: float) -> None:
     """Refuse a start length so far from the drawn line's that stretching the drawing about
     the winch to it would make a line of another scale (a unit mistake, or overflow)."""
     if not drawn / MAX_STRETCH <= start <= drawn * MAX_STRETCH:
-        raise ScenarioError(sc.path, f"{key}.length", f"a start length within a factor "
-                            f"{MAX_STRETCH:g} of the drawn line's {drawn:.6g} m (the drawing is "
-                            f"stretched about the winch to it; draw the line at about its start "
-                            f"length), got {start:.6g} m at t = 0")  # fmt: skip
+        raise ScenarioError(
+            sc.path,
+            f"{key}.length",
+            f"a start length within a factor "
+            f"{MAX_STRETCH:g} of the drawn line's {drawn:.6g} m (the drawing is "
+            f"stretched about the winch to it; draw the line at about its start "
+            f"length), got {start:.6g} m at t = 0",
+        )
 
 
 #: Uniform samples of ``[0, t_end]`` a winch's length is checked at (with a table's times).
@@ -163,6 +184,10 @@ def _check_lengths(sc: Any, key: str, w: Winch, length0: float) -> None:
     if bad.size:
         which = "length" if w.length is not None else "speed"
         t, v = float(times[bad[0]]), float(values[bad[0]]) + 0.0  # no "-0"
-        raise ScenarioError(sc.path, f"{key}.{which}", f"the length outside the winch must stay "
-                            f"> 0 m over the run (t = 0 to t_end = {t_end:g} s), but it is "
-                            f"{v:.6g} m at t = {t:.6g} s")  # fmt: skip
+        raise ScenarioError(
+            sc.path,
+            f"{key}.{which}",
+            f"the length outside the winch must stay "
+            f"> 0 m over the run (t = 0 to t_end = {t_end:g} s), but it is "
+            f"{v:.6g} m at t = {t:.6g} s",
+        )

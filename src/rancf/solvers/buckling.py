@@ -91,8 +91,9 @@ class BucklingResult:
 class _Path:
     """The static path ``z(p)`` followed by Newton, and the linearized system on it."""
 
-    def __init__(self, system: System, problem: SystemEquilibrium, z: NDArray, p: float,
-                 u: NDArray) -> None:  # fmt: skip
+    def __init__(
+        self, system: System, problem: SystemEquilibrium, z: NDArray, p: float, u: NDArray
+    ) -> None:
         self.system, self.problem, self.u = system, problem, u
         self.z, self.p = z.copy(), p
 
@@ -114,8 +115,10 @@ class _Path:
                 self.z, self.p = z, p
                 return
         if depth >= 6:
-            raise ConvergenceError(f"the static path could not be followed to load factor {p:.6g} "
-                                   "to check the buckling loads")  # fmt: skip
+            raise ConvergenceError(
+                f"the static path could not be followed to load factor {p:.6g} "
+                "to check the buckling loads"
+            )
         mid = 0.5 * (self.p + p)
         self.go(mid, depth + 1)
         self.go(p, depth + 1)
@@ -155,8 +158,11 @@ def linear_buckling(
         raise InputError("--about", about, 'one of "reference", "static"')
     system = as_system(model)
     if any(j.kind == "sliding" for j in system.joints):
-        raise InputError("joints.kind", "sliding", "no sliding joint in a buckling analysis "
-                         "(statics, modes and dynamics take them)")  # fmt: skip
+        raise InputError(
+            "joints.kind",
+            "sliding",
+            "no sliding joint in a buckling analysis (statics, modes and dynamics take them)",
+        )
     problem = SystemEquilibrium(system)
     if about == "reference":
         system.reset_triads()
@@ -329,8 +335,17 @@ def _confirm(
     return [f for f, _ in found[:count]], [x for _, x in found[:count]]
 
 
-def _bisect(path: _Path, a: float, na: int, b: float, nb: int, found: list, count: int,
-            x: NDArray | None, lin0: Linearized) -> None:  # fmt: skip
+def _bisect(
+    path: _Path,
+    a: float,
+    na: int,
+    b: float,
+    nb: int,
+    found: list,
+    count: int,
+    x: NDArray | None,
+    lin0: Linearized,
+) -> None:
     """Critical loads in ``(a, b]`` where the negative count goes from ``na`` to ``nb``."""
     if len(found) >= count or nb <= na:
         return
@@ -376,5 +391,7 @@ def _mesh_hint(system: System) -> str:
     if not lengths:
         return "check the loads and supports"
     ell = np.concatenate(lengths)
-    return (f"elements from {ell.min():.3g} m to {ell.max():.3g} m long; use fewer, longer "
-            "elements where the spans are short (mesh.elements)")  # fmt: skip
+    return (
+        f"elements from {ell.min():.3g} m to {ell.max():.3g} m long; use fewer, longer "
+        "elements where the spans are short (mesh.elements)"
+    )

@@ -126,9 +126,11 @@ def rotating_modes(
     lin = linearize(system, y, lam, 1.0 if loads else 0.0)
     n_free = lin.k.shape[0]
     if n_free > MAX_FREE:
-        raise RancfError(f"modes.spin_rates: the rotating eigenproblem is dense, for at most "
-                         f"{MAX_FREE} free coordinates; this system has {n_free} (use fewer "
-                         "elements)")  # fmt: skip
+        raise RancfError(
+            f"modes.spin_rates: the rotating eigenproblem is dense, for at most "
+            f"{MAX_FREE} free coordinates; this system has {n_free} (use fewer "
+            "elements)"
+        )
     if isinstance(count, bool) or not 1 <= count <= n_free:
         raise InputError("count", count, f"an integer in [1, {n_free}]")
     idx = np.flatnonzero(lin.free)
@@ -149,8 +151,9 @@ def rotating_modes(
     s, phi = s[keep], phi[:, keep]
     order = np.argsort(np.abs(s.imag), kind="stable")[:count]
     if order.size < count:
-        raise RancfError(f"only {order.size} modes found about the spin rate {spin.rate:g} "
-                         f"rad/s, {count} asked")  # fmt: skip
+        raise RancfError(
+            f"only {order.size} modes found about the spin rate {spin.rate:g} rad/s, {count} asked"
+        )
     s, phi = s[order], phi[:, order]
     if basis is not None:
         phi = basis @ phi
@@ -176,20 +179,26 @@ def campbell(
     spin_axis = Spin.of(axis, center, 0.0).axis
     runs = []
     for rate in rates:
-        runs.append(rotating_modes(system, Spin.of(axis, center, rate), count, loads, load_steps,
-                                   method))  # fmt: skip
+        runs.append(
+            rotating_modes(system, Spin.of(axis, center, rate), count, loads, load_steps, method)
+        )
     system.reset_triads()
     freqs = np.array([r.frequencies_hz for r in runs])
     growth = np.array([r.growth_rates for r in runs])
     order = track([r.modes for r in runs])  # order[i, j]: rate i's mode on line j
     rows = np.arange(len(runs))[:, None]
     freqs, growth = freqs[rows, order], growth[rows, order]
-    shares = np.array([[motion_shares(system, r.y, r.modes[k], spin_axis) for k in o]
-                       for r, o in zip(runs, order, strict=True)])  # fmt: skip
+    shares = np.array(
+        [
+            [motion_shares(system, r.y, r.modes[k], spin_axis) for k in o]
+            for r, o in zip(runs, order, strict=True)
+        ]
+    )
     lines = np.lexsort((freqs[-1], freqs[0]))  # by the first rate's frequency (ties: the last)
     labels = _number(motion_label(shares[:, j]) for j in lines)
-    return CampbellResult(np.asarray(rates, dtype=float), freqs[:, lines], growth[:, lines],
-                          tuple(labels))  # fmt: skip
+    return CampbellResult(
+        np.asarray(rates, dtype=float), freqs[:, lines], growth[:, lines], tuple(labels)
+    )
 
 
 def mac(a: NDArray, b: NDArray) -> NDArray[np.float64]:

@@ -21,9 +21,14 @@ __all__ = ["free_drums"]
 
 
 def free_drums(
-    system: System, y: NDArray, lam: NDArray, t: float | None, scale: NDArray, tol: float,
+    system: System,
+    y: NDArray,
+    lam: NDArray,
+    t: float | None,
+    scale: NDArray,
+    tol: float,
     max_iter: int,
-) -> tuple[NDArray[np.float64], NDArray[np.float64], bool, int]:  # fmt: skip
+) -> tuple[NDArray[np.float64], NDArray[np.float64], bool, int]:
     """Newton from ``(y, λ)`` (an equilibrium with the drums held) with the drums' lengths
     free, at the loads of time ``t`` (None: their amplitudes); converged when the largest
     increment times ``scale`` (per unknown of ``(y, λ)``) is at most ``tol``.  Returns

@@ -62,8 +62,17 @@ CALL_SECONDS = 0.1
 CALL_TARGET_SECONDS = 0.002
 
 
-def _left_range(check: Callable, k0: int, stored: int, out_time: Callable, oy: NDArray,
-                ol: NDArray | None, t: float, y: NDArray, lam: NDArray) -> bool:  # fmt: skip
+def _left_range(
+    check: Callable,
+    k0: int,
+    stored: int,
+    out_time: Callable,
+    oy: NDArray,
+    ol: NDArray | None,
+    t: float,
+    y: NDArray,
+    lam: NDArray,
+) -> bool:
     """Whether a call of the compiled loop left a bounded coordinate's range: at one of its
     ``stored`` outputs (from the ``k0``-th) or at its end state ``(t, y, λ)`` (a step past the
     last output)."""
@@ -166,19 +175,30 @@ def integrate(
         last[:] = [row]
         result.n_outputs += 1
 
-    def store_block(k0: int, oy: NDArray, ov: NDArray, oe: NDArray | None, ol: NDArray,
-                    oa: NDArray | None) -> None:  # fmt: skip
+    def store_block(
+        k0: int, oy: NDArray, ov: NDArray, oe: NDArray | None, ol: NDArray, oa: NDArray | None
+    ) -> None:
         """Outputs ``k0, k0 + 1, ...`` from the core's loop, passed on as one block (rods: one
         output a block, whose state is the one the triads were carried to)."""
         ts = np.array([out_time(k0 + i) for i in range(len(oy))])
         qs, vs = system.q_from_y(oy), system.q_from_y(ov)
         m1 = directors(oy[-1])
         ll = ol if mult else None
-        target_sink.append_block(ts, qs, vs, oe, directors=None if m1 is None else m1[None],
-                                 lam=ll, alpha=oa)  # fmt: skip
+        target_sink.append_block(
+            ts, qs, vs, oe, directors=None if m1 is None else m1[None], lam=ll, alpha=oa
+        )
         last_y[:] = [oy[-1].copy(), ov[-1].copy()]
-        last[:] = [(float(ts[-1]), qs[-1], vs[-1], None if oe is None else np.array(oe[-1]), m1,
-                    None if ll is None else ll[-1], None if oa is None else oa[-1])]  # fmt: skip
+        last[:] = [
+            (
+                float(ts[-1]),
+                qs[-1],
+                vs[-1],
+                None if oe is None else np.array(oe[-1]),
+                m1,
+                None if ll is None else ll[-1],
+                None if oa is None else oa[-1],
+            )
+        ]
         result.n_outputs += len(oy)
 
     empty = np.empty(0)
@@ -227,10 +247,20 @@ def integrate(
         result.n_factorizations = integ.n_factorizations
         result.wall_time = base["wall_time"] + time.perf_counter() - started
         result.state = DynamicState(
-            t, y.copy(), v.copy(), a.copy(), w.copy(), lam.copy(), h, min(k_out, n_grid), within,
-            triads_of(system), integ.memory(), {k: getattr(result, k) for k in COUNTERS},
+            t,
+            y.copy(),
+            v.copy(),
+            a.copy(),
+            w.copy(),
+            lam.copy(),
+            h,
+            min(k_out, n_grid),
+            within,
+            triads_of(system),
+            integ.memory(),
+            {k: getattr(result, k) for k in COUNTERS},
             o.t_end,
-        )  # fmt: skip
+        )
         return result
 
     status, message = DynamicStatus.COMPLETED, f"reached t_end = {o.t_end:g} s"
@@ -260,8 +290,7 @@ def integrate(
         on_grid = within > 0 or abs(t - last_out) <= 1e-12 * max(1.0, t)
         if fast and h == o.step and k_out < n_grid and on_grid and t >= slow_until:
             n_chunk = min(chunk_out, n_grid - k_out)
-            before = None if check is None else (y.copy(), v.copy(), a.copy(), w.copy(),
-                                                 lam.copy())  # fmt: skip
+            before = None if check is None else (y.copy(), v.copy(), a.copy(), w.copy(), lam.copy())
             called = time.perf_counter()
             done, st, iters, stored, oy, ov, oe, ol, oa, err, t_err = integ.run_steps(
                 y,
@@ -279,8 +308,9 @@ def integrate(
                 k_out,
                 energies=loop_energies,
             )
-            left = check is not None and _left_range(check, k_out, stored, out_time, oy, ol,
-                                                     t, y, lam)  # fmt: skip
+            left = check is not None and _left_range(
+                check, k_out, stored, out_time, oy, ol, t, y, lam
+            )
             if left and before is not None:
                 y, v, a, w, lam = before  # again step by step, to the step that leaves it
                 slow_until = out_time(min(k_out + n_chunk, n_grid) - 1)
@@ -292,8 +322,14 @@ def integrate(
                 grown = stored * CALL_TARGET_SECONDS / took
                 chunk_out = int(np.clip(grown, max(least, chunk_out // 4), min(cap, 4 * chunk_out)))
             if stored:
-                store_block(k_out, oy[:stored], ov[:stored], None if oe is None else oe[:stored],
-                            ol[:stored], None if oa is None else oa[:stored])  # fmt: skip
+                store_block(
+                    k_out,
+                    oy[:stored],
+                    ov[:stored],
+                    None if oe is None else oe[:stored],
+                    ol[:stored],
+                    None if oa is None else oa[:stored],
+                )
             k_out += stored
             within = within + done - stored * per_out
             last_out = out_time(k_out - 1) if k_out else 0.0

@@ -105,9 +105,15 @@ class GeneralizedAlpha:
         return a
 
     def step(
-        self, y: NDArray, v: NDArray, a: NDArray, w: NDArray, t: float, h: float,
+        self,
+        y: NDArray,
+        v: NDArray,
+        a: NDArray,
+        w: NDArray,
+        t: float,
+        h: float,
         lam: NDArray | None = None,
-    ) -> tuple[bool, NDArray, NDArray, NDArray, NDArray, float]:  # fmt: skip
+    ) -> tuple[bool, NDArray, NDArray, NDArray, NDArray, float]:
         """Advance by ``h``; returns ``(converged, y1, v1, a1, w1, error)``, ``error`` the
         step's local error estimate (:meth:`relative_error`: in units of the tolerance ``rtol *
         size`` once divided by it; 0 if it did not converge).  The new multipliers replace
@@ -164,9 +170,25 @@ class GeneralizedAlpha:
         of = (np.empty((n_out, n)), np.empty((n_out, n))) if contact else (None, None)
         lam = np.zeros(m) if lam is None else lam
         done, ok, iters, stored, err, t_err = self._core.run(
-            y, v, a, w, lam, t, h, n_steps, per_out, done_before, max_seconds, oy, ov, ol, oe,
-            *of, out_dt, k_last,
-        )  # fmt: skip
+            y,
+            v,
+            a,
+            w,
+            lam,
+            t,
+            h,
+            n_steps,
+            per_out,
+            done_before,
+            max_seconds,
+            oy,
+            ov,
+            ol,
+            oe,
+            *of,
+            out_dt,
+            k_last,
+        )
         oa = np.concatenate(of, axis=1) if contact else None  # type: ignore[arg-type]
         self.n_newton += iters
         return done, int(ok), iters, stored, oy, ov, oe, ol, oa, err, t_err

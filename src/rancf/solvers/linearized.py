@@ -69,19 +69,35 @@ class Linearized:
 
 
 def system_jacobian(
-    system: System, y: NDArray, lam: NDArray, ck: float, ca: float, load_factor: float,
-    amplitude: bool, t: float,
-) -> sp.csr_matrix:  # fmt: skip
+    system: System,
+    y: NDArray,
+    lam: NDArray,
+    ck: float,
+    ca: float,
+    load_factor: float,
+    amplitude: bool,
+    t: float,
+) -> sp.csr_matrix:
     """The core's ``ck ∂/∂y + ca ∂/∂a`` over ``(y, λ)``, coupling unknowns eliminated."""
     z = np.zeros(system.n)
     ok, size, rows, cols, vals = system.core.sparse_jacobian(
-        np.ascontiguousarray(y), z, z, np.ascontiguousarray(lam), t, ck, 0.0, ca, ca != 0.0,
-        load_factor, amplitude,
-    )  # fmt: skip
+        np.ascontiguousarray(y),
+        z,
+        z,
+        np.ascontiguousarray(lam),
+        t,
+        ck,
+        0.0,
+        ca,
+        ca != 0.0,
+        load_factor,
+        amplitude,
+    )
     if not ok:
         raise RancfError("the system's tangent is not finite at this configuration")
-    j = sp.coo_matrix((np.asarray(vals), (np.asarray(rows), np.asarray(cols))),
-                      shape=(size, size)).tocsr()  # fmt: skip
+    j = sp.coo_matrix(
+        (np.asarray(vals), (np.asarray(rows), np.asarray(cols))), shape=(size, size)
+    ).tocsr()
     keep = system.n + system.m
     if size == keep:
         return j
@@ -119,7 +135,7 @@ def linearize(
 
 def _condense_sliding(
     system: System, j: sp.csr_matrix, k: sp.csr_matrix, g: sp.csr_matrix, gt: sp.csr_matrix
-) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:  # fmt: skip
+) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
     """The sliding joints' material coordinates ``σ`` eliminated (docs/derivations/sliding.md
     sec. 4): along the rope, ``G_y dy + r_σ dσ = 0`` gives ``dσ = T dy``,
     ``T = -r_σᵀ G_y / |r_σ|²``, and the stiffness ``K + k_yσ T + Tᵀ k_σy + Tᵀ k_σσ T``; normal

@@ -249,8 +249,9 @@ def _sparse(lin: Linearized, want: int) -> tuple[NDArray, NDArray, bool]:
     try:
         lu = spla.splu((k - sigma * mass).tocsc())
     except RuntimeError as exc:
-        raise RancfError(f"the shifted stiffness is singular ({exc}): redundant constraints?"
-                         ) from None  # fmt: skip
+        raise RancfError(
+            f"the shifted stiffness is singular ({exc}): redundant constraints?"
+        ) from None
     op = spla.LinearOperator(k.shape, matvec=lambda x: lu.solve(mass @ x), dtype=float)
     mu, vec = spla.eigs(op, k=min(want, k.shape[0] - 2), which="LM", tol=1e-12, maxiter=10000)
     ok = mu != 0

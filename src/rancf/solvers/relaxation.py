@@ -69,9 +69,14 @@ class RelaxationOutcome:
 
 
 def relax(
-    problem: SystemEquilibrium, z: NDArray, p: float, tol: float, max_iter: int,
-    polish_at_start: bool = True, max_steps: int = MAX_STEPS,
-) -> RelaxationOutcome:  # fmt: skip
+    problem: SystemEquilibrium,
+    z: NDArray,
+    p: float,
+    tol: float,
+    max_iter: int,
+    polish_at_start: bool = True,
+    max_steps: int = MAX_STEPS,
+) -> RelaxationOutcome:
     """Follow ``M dz/dτ = -r(z, p)`` from ``z`` to rest, then polish by Newton (module
     docstring).  ``z`` is not modified; the supports are placed at ``p``.
 
@@ -115,14 +120,24 @@ def relax(
         problem.accept(z)
         steps += 1
         if float(np.max(np.abs((z - start) * problem.scale))) > DRIFT:
-            return RelaxationOutcome(False, z, steps, iterations, factorizations, residuals, (
-                f"it moved more than {DRIFT:g} times its size without coming to rest: a "
-                "mechanism with no equilibrium, add a support"))  # fmt: skip
+            return RelaxationOutcome(
+                False,
+                z,
+                steps,
+                iterations,
+                factorizations,
+                residuals,
+                (
+                    f"it moved more than {DRIFT:g} times its size without coming to rest: a "
+                    "mechanism with no equilibrium, add a support"
+                ),
+            )
         new = balance(problem.residual(z, p))
         residuals += 1
         if not np.isfinite(new):
-            return RelaxationOutcome(False, z, steps, iterations, factorizations, residuals,
-                                     "the residual is not finite")  # fmt: skip
+            return RelaxationOutcome(
+                False, z, steps, iterations, factorizations, residuals, "the residual is not finite"
+            )
         rate *= min(new / norm, 2.0) if norm > 0.0 else 0.5  # SER: Δτ ∝ 1/|r|
         if move < 0.25 * MAX_MOVE:
             rate *= 0.5  # a short step: the pseudo-time step may grow

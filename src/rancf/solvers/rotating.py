@@ -120,8 +120,10 @@ def frame_terms(system: System, axis: ArrayLike, center: ArrayLike) -> FrameTerm
         turned by a linear map).
     """
     if system.dim != 3:
-        raise RancfError("modes.spin_rates: a spin needs a spatial (3D) scenario (its axis and "
-                         "the motion out of the plane); this one is planar")  # fmt: skip
+        raise RancfError(
+            "modes.spin_rates: a spin needs a spatial (3D) scenario (its axis and "
+            "the motion out of the plane); this one is planar"
+        )
     n_hat = np.asarray(axis, dtype=float)
     n_hat = n_hat / np.linalg.norm(n_hat)
     c = np.asarray(center, dtype=float)
@@ -148,8 +150,10 @@ def frame_terms(system: System, axis: ArrayLike, center: ArrayLike) -> FrameTerm
             blocks_m.append(b.mass * np.eye(3))
             centers.append(c.copy())
         else:
-            raise RancfError(f"modes.spin_rates: a spin needs a system of flexible bodies and "
-                             f"point masses; {name!r} is a rigid body")  # fmt: skip
+            raise RancfError(
+                f"modes.spin_rates: a spin needs a system of flexible bodies and "
+                f"point masses; {name!r} is a rigid body"
+            )
     w = sp.block_diag(blocks_w, format="csr")
     mass = sp.block_diag(blocks_m, format="csr")
     return FrameTerms(w, np.concatenate(centers), mass)

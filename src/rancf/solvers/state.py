@@ -34,9 +34,19 @@ from rancf.errors import InputError
 __all__ = ["DynamicState", "COUNTERS"]
 
 #: The run's counters a state carries on (the resumed result counts the whole run).
-COUNTERS = ("n_steps", "n_newton", "n_factorizations", "n_rejected", "n_outputs", "wall_time",
-            "min_step_taken", "max_step_taken", "error_estimate", "error_time",
-            "error_step")  # fmt: skip
+COUNTERS = (
+    "n_steps",
+    "n_newton",
+    "n_factorizations",
+    "n_rejected",
+    "n_outputs",
+    "wall_time",
+    "min_step_taken",
+    "max_step_taken",
+    "error_estimate",
+    "error_time",
+    "error_step",
+)
 
 #: Version 2 holds ``w`` (rancf 0.4, the Arnold–Brüls form); version 1's runs go on with
 #: ``w = a`` (the start of a run).
@@ -93,21 +103,41 @@ class DynamicState:
     def copy(self) -> DynamicState:
         """A deep copy (the arrays of a running integration change in place)."""
         return DynamicState(
-            self.t, self.y.copy(), self.v.copy(), self.a.copy(), self.w.copy(), self.lam.copy(),
+            self.t,
+            self.y.copy(),
+            self.v.copy(),
+            self.a.copy(),
+            self.w.copy(),
+            self.lam.copy(),
             self.step,
-            self.k_out, self.within, [x.copy() for x in self.triads], self.memory.copy(),
-            dict(self.counters), self.t_end,
-        )  # fmt: skip
+            self.k_out,
+            self.within,
+            [x.copy() for x in self.triads],
+            self.memory.copy(),
+            dict(self.counters),
+            self.t_end,
+        )
 
     def to_bytes(self) -> bytes:
         """The state as an ``.npz`` archive (what :meth:`save` writes)."""
         meta = {
-            "version": _VERSION, "t": self.t, "step": self.step, "k_out": self.k_out,
-            "within": self.within, "counters": self.counters, "t_end": self.t_end,
+            "version": _VERSION,
+            "t": self.t,
+            "step": self.step,
+            "k_out": self.k_out,
+            "within": self.within,
+            "counters": self.counters,
+            "t_end": self.t_end,
             "n_triads": len(self.triads),
-        }  # fmt: skip
-        arrays: dict[str, Any] = {"y": self.y, "v": self.v, "a": self.a, "w": self.w,
-                                  "lam": self.lam, "memory": self.memory}  # fmt: skip
+        }
+        arrays: dict[str, Any] = {
+            "y": self.y,
+            "v": self.v,
+            "a": self.a,
+            "w": self.w,
+            "lam": self.lam,
+            "memory": self.memory,
+        }
         arrays.update({f"triads_{i}": x for i, x in enumerate(self.triads)})
         buf = io.BytesIO()
         np.savez(buf, meta=np.array(json.dumps(meta)), **arrays)
@@ -135,10 +165,20 @@ class DynamicState:
             triads = [arrays[f"triads_{i}"] for i in range(int(meta["n_triads"]))]
             w = arrays["w"] if meta["version"] == _VERSION else arrays["a"]
             return cls(
-                float(meta["t"]), arrays["y"], arrays["v"], arrays["a"], w, arrays["lam"],
-                float(meta["step"]), int(meta["k_out"]), int(meta["within"]), triads,
-                arrays["memory"], dict(meta["counters"]), float(meta["t_end"]),
-            )  # fmt: skip
+                float(meta["t"]),
+                arrays["y"],
+                arrays["v"],
+                arrays["a"],
+                w,
+                arrays["lam"],
+                float(meta["step"]),
+                int(meta["k_out"]),
+                int(meta["within"]),
+                triads,
+                arrays["memory"],
+                dict(meta["counters"]),
+                float(meta["t_end"]),
+            )
         except NPZ_ERRORS as exc:
             raise InputError(
                 "checkpoint", str(path), f"a state written by a rancf run (reading it: {exc})"
@@ -154,22 +194,37 @@ class DynamicState:
         InputError
             Naming the first such entry.
         """
-        arrays = {"y": self.y, "v": self.v, "a": self.a, "w": self.w, "lam": self.lam,
-                  "memory": self.memory}  # fmt: skip
+        arrays = {
+            "y": self.y,
+            "v": self.v,
+            "a": self.a,
+            "w": self.w,
+            "lam": self.lam,
+            "memory": self.memory,
+        }
         arrays.update({f"triads_{i}": x for i, x in enumerate(self.triads)})
-        bad = [f"a NaN or infinite number in {k}" for k, x in arrays.items()
-               if not np.all(np.isfinite(x))]  # fmt: skip
-        counts = {"k_out": self.k_out, "within": self.within,
-                  "n_outputs": self.counters.get("n_outputs", 0)}  # fmt: skip
-        bad[:0] = [f"{k} = {n!r}" for k, n in counts.items()
-                   if not (isinstance(n, int) and n >= 0)]  # fmt: skip
+        bad = [
+            f"a NaN or infinite number in {k}"
+            for k, x in arrays.items()
+            if not np.all(np.isfinite(x))
+        ]
+        counts = {
+            "k_out": self.k_out,
+            "within": self.within,
+            "n_outputs": self.counters.get("n_outputs", 0),
+        }
+        bad[:0] = [f"{k} = {n!r}" for k, n in counts.items() if not (isinstance(n, int) and n >= 0)]
         if not (np.isfinite(self.step) and self.step > 0.0):
             bad.insert(0, f"step = {self.step!r}")
         if not (np.isfinite(self.t) and self.t >= 0.0):
             bad.insert(0, f"t = {self.t!r}")
         if bad:
-            raise InputError(where, bad[0], "a state of finite numbers, t >= 0, step > 0 and "
-                             "counts k_out, within, n_outputs >= 0")  # fmt: skip
+            raise InputError(
+                where,
+                bad[0],
+                "a state of finite numbers, t >= 0, step > 0 and "
+                "counts k_out, within, n_outputs >= 0",
+            )
 
     def check_fits(self, n: int, m: int, triad_sizes: list[int], where: str = "state") -> None:
         """Refuse a state of another system: ``n`` coordinates, ``m`` multipliers and rods whose
@@ -181,16 +236,20 @@ class DynamicState:
             Naming what differs.
         """
         sizes = [x.size for x in self.triads]
-        for what, have, want in (("coordinates", self.y.size, n), ("multipliers", self.lam.size, m),
-                                 ("rod triad numbers", sizes, triad_sizes)):  # fmt: skip
+        for what, have, want in (
+            ("coordinates", self.y.size, n),
+            ("multipliers", self.lam.size, m),
+            ("rod triad numbers", sizes, triad_sizes),
+        ):
             if have != want:
                 raise InputError(where, f"{what} {have}", f"a state of this system ({what} {want})")
 
 
 def triads_of(system: Any) -> list[NDArray[np.float64]]:
     """Copies of the rods' nodal reference tangents and directors, body by body."""
-    return [x.copy() for b in system.flex if b.element == "rod"
-            for x in (b.kernel.tref, b.kernel.m1ref)]  # fmt: skip
+    return [
+        x.copy() for b in system.flex if b.element == "rod" for x in (b.kernel.tref, b.kernel.m1ref)
+    ]
 
 
 def take_up(system: Any, integ: Any, state: DynamicState, result: Any, base: dict) -> tuple:
@@ -213,11 +272,28 @@ def take_up(system: Any, integ: Any, state: DynamicState, result: Any, base: dic
         b.kernel.m1ref[...] = state.triads[2 * i + 1].reshape(b.kernel.m1ref.shape)
     c = state.counters
     integ.restore(state.memory, int(c.get("n_factorizations", 0)))
-    for key in ("n_steps", "n_rejected", "n_outputs", "min_step_taken", "max_step_taken",
-                "error_estimate", "error_time", "error_step"):  # fmt: skip
+    for key in (
+        "n_steps",
+        "n_rejected",
+        "n_outputs",
+        "min_step_taken",
+        "max_step_taken",
+        "error_estimate",
+        "error_time",
+        "error_step",
+    ):
         if c.get(key) is not None:
             setattr(result, key, c[key])
     base["n_newton"] = int(c.get("n_newton", 0))
     base["wall_time"] = float(c.get("wall_time", 0.0))
-    return (state.t, state.y.copy(), state.v.copy(), state.a.copy(), state.w.copy(),
-            state.lam.copy(), state.step, state.k_out, state.within)  # fmt: skip
+    return (
+        state.t,
+        state.y.copy(),
+        state.v.copy(),
+        state.a.copy(),
+        state.w.copy(),
+        state.lam.copy(),
+        state.step,
+        state.k_out,
+        state.within,
+    )

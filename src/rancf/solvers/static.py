@@ -164,8 +164,15 @@ def solve_static(
             return _checked(system, first)
         again = method != "load" or clamped_lines(system)  # a start not tried yet
         try:
-            res = solve_equilibrium(SystemEquilibrium(system, at_time), load_steps, tol, max_iter,
-                                    on_step, method, start)  # fmt: skip
+            res = solve_equilibrium(
+                SystemEquilibrium(system, at_time),
+                load_steps,
+                tol,
+                max_iter,
+                on_step,
+                method,
+                start,
+            )
         except ConvergenceError as exc:
             late = _sagged(system, at_time, tol, max_iter, on_step, start) if again else None
             if late is None:
@@ -187,16 +194,26 @@ def solve_static(
     held_lam = np.zeros(0) if held.lam is None else held.lam  # no constraints: none
     y, lam, ok, its = free_drums(system, held.y, held_lam, at_time, scale, tol, max_iter)
     refuse_static_drums(system, y if ok else None, at_time)
-    done = replace(held, q=system.q_from_y(y), y=y, lam=lam, n_newton=held.n_newton + its,
-                   n_factorizations=held.n_factorizations + its,
-                   wall_time=time.perf_counter() - start)  # fmt: skip
+    done = replace(
+        held,
+        q=system.q_from_y(y),
+        y=y,
+        lam=lam,
+        n_newton=held.n_newton + its,
+        n_factorizations=held.n_factorizations + its,
+        wall_time=time.perf_counter() - start,
+    )
     return _checked(system, done)
 
 
 def _with_friction(
-    system: System, res: StaticResult, at_time: float | None, tol: float, max_iter: int,
+    system: System,
+    res: StaticResult,
+    at_time: float | None,
+    tol: float,
+    max_iter: int,
     on_step: Callable[[float, NDArray[np.float64]], None] | None,
-) -> StaticResult:  # fmt: skip
+) -> StaticResult:
     """``res`` carried to the equilibrium with seabed friction
     (:func:`rancf.solvers.static_friction.solve_with_friction`)."""
     p = float(res.load_factors[-1])
@@ -207,16 +224,28 @@ def _with_friction(
     n = system.n
     if on_step is not None:
         on_step(p, z[:n])
-    return replace(res, q=system.q_from_y(z[:n]), y=z[:n], lam=z[n:], method=res.method + FRICTION,
-                   n_newton=res.n_newton + its, n_factorizations=res.n_factorizations + its,
-                   load_factors=np.r_[res.load_factors, p])  # fmt: skip
+    return replace(
+        res,
+        q=system.q_from_y(z[:n]),
+        y=z[:n],
+        lam=z[n:],
+        method=res.method + FRICTION,
+        n_newton=res.n_newton + its,
+        n_factorizations=res.n_factorizations + its,
+        load_factors=np.r_[res.load_factors, p],
+    )
 
 
 def _sagged(
-    system: System, at_time: float | None, tol: float, max_iter: int,
-    on_step: Callable[[float, NDArray[np.float64]], None] | None, start: float,
-    pinned: bool = False, rejected: list[str] | None = None,
-) -> StaticResult | None:  # fmt: skip
+    system: System,
+    at_time: float | None,
+    tol: float,
+    max_iter: int,
+    on_step: Callable[[float, NDArray[np.float64]], None] | None,
+    start: float,
+    pinned: bool = False,
+    rejected: list[str] | None = None,
+) -> StaticResult | None:
     """The equilibrium from a sagged start shape (:mod:`rancf.solvers.sag_start`; ``pinned``:
     of the lines without a clamped end only), or None when no line has one or none is found
     from it that passes the checks (the first problem of a state it found then goes to
@@ -226,13 +255,25 @@ def _sagged(
         return None
     z, end, its, facts, resid, steps = found
     n = system.n
-    res = StaticResult(system.q_from_y(z[:n]), z[:n], np.array([0.0, end]), its, facts,
-                       time.perf_counter() - start, resid, SAG_START, z[n:], steps)  # fmt: skip
+    res = StaticResult(
+        system.q_from_y(z[:n]),
+        z[:n],
+        np.array([0.0, end]),
+        its,
+        facts,
+        time.perf_counter() - start,
+        resid,
+        SAG_START,
+        z[n:],
+        steps,
+    )
     problems = static_state_problems(system, res.q)
     if problems:
         if rejected is not None:
-            rejected.append(f"from its sagged start shape it came to a state that is no "
-                            f"equilibrium: {problems[0]}")  # fmt: skip
+            rejected.append(
+                f"from its sagged start shape it came to a state that is no "
+                f"equilibrium: {problems[0]}"
+            )
         return None
     if on_step is not None:
         on_step(float(res.load_factors[-1]), res.y)
@@ -247,8 +288,9 @@ def _checked(system: System, res: StaticResult) -> StaticResult:
         lam = float(res.load_factors[-1])
         raise ConvergenceError(
             f"static equilibrium not found: the {res.method} path ended at load factor {lam:.4g} "
-            f"in a state that is no equilibrium: {problems[0]}", reached=lam,
-        )  # fmt: skip
+            f"in a state that is no equilibrium: {problems[0]}",
+            reached=lam,
+        )
     return res
 
 
@@ -298,9 +340,13 @@ def solve_equilibrium(
 
 
 def _relax(
-    problem: SystemEquilibrium, path: PathState, end: float, tol: float, max_iter: int,
+    problem: SystemEquilibrium,
+    path: PathState,
+    end: float,
+    tol: float,
+    max_iter: int,
     failed: ConvergenceError | None,
-) -> None:  # fmt: skip
+) -> None:
     """Finish a stage the path method gave up on (``failed``; None: a mechanism at its reference,
     the path not tried) by relaxation at its end (module docstring)."""
     out = relax(problem, path.y, end, tol, max_iter, polish_at_start=failed is not None)

@@ -75,23 +75,28 @@ def _body_problems(model: Model, y: NDArray[np.float64]) -> list[str]:
     fold = _fold_element(sampler.positions(y), sampler.positions(model.y0), k)
     if fold is not None or stretch.min() < FOLD_STRETCH:
         e = fold if fold is not None else int(el[np.argmin(stretch)])
-        out.append(f"element {e} is folded (the curve turns back on itself or its stretch "
-                   f"falls to {stretch[el == e].min():.3g}, below {FOLD_STRETCH}): not an "
-                   "equilibrium a line rests in")  # fmt: skip
+        out.append(
+            f"element {e} is folded (the curve turns back on itself or its stretch "
+            f"falls to {stretch[el == e].min():.3g}, below {FOLD_STRETCH}): not an "
+            "equilibrium a line rests in"
+        )
     # each element's mean axial force: a coarse element of a stiff line has its own strain
     # oscillate about the mean by more than the mean (a 20-element chain: -1.0 MN to 2.4 MN
     # within one element whose mean pulls 1.3 MN), while a loop compresses whole elements
     starts = sampler.s[::k][: model.n_el]
     ell = np.diff(np.r_[starts, sampler.s[-1]])
     mean = np.array([vals[el == e, 1].mean() for e in range(model.n_el)])
-    allowed = (COMPRESSION_BUCKLING * np.pi**2 * model.props.ei / ell**2
-               + COMPRESSION_ROUNDOFF * model.props.ea)  # fmt: skip
+    allowed = (
+        COMPRESSION_BUCKLING * np.pi**2 * model.props.ei / ell**2
+        + COMPRESSION_ROUNDOFF * model.props.ea
+    )
     e = int(np.argmin(mean + allowed))
     if mean[e] < -allowed[e]:
-        out.append(f"a compressive loop: element {e} (s = {starts[e]:.4g} m) is compressed by "
-                   f"{-mean[e]:.4g} N on average, beyond the {allowed[e]:.3g} N it carries "
-                   f"({COMPRESSION_BUCKLING:g} π² EI / ℓ² + {COMPRESSION_ROUNDOFF:g} EA)"
-                   )  # fmt: skip
+        out.append(
+            f"a compressive loop: element {e} (s = {starts[e]:.4g} m) is compressed by "
+            f"{-mean[e]:.4g} N on average, beyond the {allowed[e]:.3g} N it carries "
+            f"({COMPRESSION_BUCKLING:g} π² EI / ℓ² + {COMPRESSION_ROUNDOFF:g} EA)"
+        )
     return out
 
 
@@ -126,8 +131,13 @@ def _touchdown_problems(system: Any, q: NDArray[np.float64]) -> list[str]:
             w = pressing_weight(system, name, np.r_[n, np.zeros(3 - n.size)])
             if model.element == "beam" or (name, ob_name) not in pairs or not w > 0.0:
                 continue
-            line = _unresolved_bend(model, model.y_from_q(np.asarray(q)[system.body_slice(name)]),
-                                    np.asarray(ob.point, dtype=float), n, w)  # fmt: skip
+            line = _unresolved_bend(
+                model,
+                model.y_from_q(np.asarray(q)[system.body_slice(name)]),
+                np.asarray(ob.point, dtype=float),
+                n,
+                w,
+            )
             if line:
                 out.append(f"body {name!r}: {line} {ob_name!r}")
     return out
@@ -156,10 +166,12 @@ def _unresolved_bend(model: Model, y: NDArray, point: NDArray, n: NDArray, w: fl
         inner = [j for j in (e, e + 1) if 0 < j < model.n_nodes - 1]
         bend = max(max(float(axial[j]) for j in inner), 0.0) / w
         if bend < ell[e]:
-            return (f"its bend at s = {sampler.s[i]:.4g} m has the radius T/w = {bend:.3g} m, "
-                    f"shorter than its element ({ell[e]:.3g} m): the touchdown is not resolved "
-                    "and the line's forces, T among them, may be far off; refine the mesh "
-                    "until its elements there are shorter than T/w, where it leaves")  # fmt: skip
+            return (
+                f"its bend at s = {sampler.s[i]:.4g} m has the radius T/w = {bend:.3g} m, "
+                f"shorter than its element ({ell[e]:.3g} m): the touchdown is not resolved "
+                "and the line's forces, T among them, may be far off; refine the mesh "
+                "until its elements there are shorter than T/w, where it leaves"
+            )
     return ""
 
 
@@ -177,7 +189,9 @@ def _penetration_problems(system: Any, q: NDArray[np.float64]) -> list[str]:
             continue
         d = 2.0 * min(system.bodies[f].section.radius for f in touching)
         if st.penetration > PENETRATION_LIMIT * d:
-            out.append(f"obstacle {name!r} is penetrated {st.penetration:.4g} m deep, more than "
-                       f"{PENETRATION_LIMIT:g} of the diameter {d:.4g} m: raise its stiffness "
-                       "(obstacles.stiffness) or leave it to the default")  # fmt: skip
+            out.append(
+                f"obstacle {name!r} is penetrated {st.penetration:.4g} m deep, more than "
+                f"{PENETRATION_LIMIT:g} of the diameter {d:.4g} m: raise its stiffness "
+                "(obstacles.stiffness) or leave it to the default"
+            )
     return out

@@ -33,8 +33,14 @@ from rancf.solvers.newton import newton
 from rancf.solvers.system_equilibrium import SystemEquilibrium
 from rancf.system.seabed_friction import seabed_friction
 
-__all__ = ["seabed_friction", "FrictionEquilibrium", "solve_with_friction",
-           "FRICTION_RTOL", "FRICTION_FLOOR", "MAX_FRICTION_ITERATIONS"]  # fmt: skip
+__all__ = [
+    "seabed_friction",
+    "FrictionEquilibrium",
+    "solve_with_friction",
+    "FRICTION_RTOL",
+    "FRICTION_FLOOR",
+    "MAX_FRICTION_ITERATIONS",
+]
 
 #: The fixed point stops when the friction force changes by less than this (relative).
 FRICTION_RTOL = 1e-8
@@ -61,8 +67,9 @@ class FrictionEquilibrium(SystemEquilibrium):
         return r, ok
 
 
-def solve_with_friction(system, z: NDArray, p: float, at_time: float | None, tol: float,
-                        max_iter: int) -> tuple[NDArray, int]:  # fmt: skip
+def solve_with_friction(
+    system, z: NDArray, p: float, at_time: float | None, tol: float, max_iter: int
+) -> tuple[NDArray, int]:
     """The equilibrium with seabed friction from the frictionless one ``z`` (``(y, μ)`` at path
     parameter ``p``, the end of the path): ``(z, Newton iterations)`` (module docstring)."""
     probe = SystemEquilibrium(system, at_time)
@@ -84,12 +91,14 @@ def solve_with_friction(system, z: NDArray, p: float, at_time: float | None, tol
         if not out.converged:
             raise ConvergenceError(
                 "static equilibrium with seabed friction (solver.static_friction) not found: "
-                "Newton failed under the friction of the last state", reached=p,
-            )  # fmt: skip
+                "Newton failed under the friction of the last state",
+                reached=p,
+            )
         z = out.y
         problem.accept(z)
     raise ConvergenceError(
         f"static equilibrium with seabed friction (solver.static_friction) not found: the friction "
         f"still changed by {change / max(float(np.linalg.norm(new)), 1e-300):.2g} after "
-        f"{MAX_FRICTION_ITERATIONS} iterations", reached=p,
-    )  # fmt: skip
+        f"{MAX_FRICTION_ITERATIONS} iterations",
+        reached=p,
+    )

@@ -98,8 +98,16 @@ class SystemEquilibrium:
                 pos[: s.dim] = True
             scale[sl][pos] = 1.0 / self.size
         self.scale = scale
-        scheme = _core.Scheme(alpha_m=0.0, alpha_f=0.0, gamma=0.5, beta=0.25, damping=0.0,
-                              tol=1e-10, max_iter=1, modified=False)  # fmt: skip
+        scheme = _core.Scheme(
+            alpha_m=0.0,
+            alpha_f=0.0,
+            gamma=0.5,
+            beta=0.25,
+            damping=0.0,
+            tol=1e-10,
+            max_iter=1,
+            modified=False,
+        )
         self._integ = _core.SystemIntegrator(s.core, scheme)
 
     @property
@@ -128,9 +136,16 @@ class SystemEquilibrium:
         r = np.empty(self.n + self.m)
         zero = self._zero
         ok = self.system.core.residual(
-            z[: self.n], zero, zero, z[self.n :], self._t, self.load_factor(p), self._amp,
-            dynamic=False, r=r,
-        )  # fmt: skip
+            z[: self.n],
+            zero,
+            zero,
+            z[self.n :],
+            self._t,
+            self.load_factor(p),
+            self._amp,
+            dynamic=False,
+            r=r,
+        )
         return r if ok else np.full_like(r, np.nan)
 
     def residual(self, z: NDArray, p: float) -> NDArray[np.float64]:
@@ -146,8 +161,14 @@ class SystemEquilibrium:
         :data:`STABILIZER` times the largest stiffness-to-mass ratio of the diagonals: a
         quasi-Newton step, the residual (and so the equilibrium found) unchanged."""
         r = np.empty(self.n + self.m)
-        args = (np.ascontiguousarray(z[: self.n]), np.ascontiguousarray(z[self.n :]),
-                self.load_factor(p), self._amp, self._t, r)  # fmt: skip
+        args = (
+            np.ascontiguousarray(z[: self.n]),
+            np.ascontiguousarray(z[self.n :]),
+            self.load_factor(p),
+            self._amp,
+            self._t,
+            r,
+        )
         ok = self._integ.factor_static(*args)
         if not ok and np.all(np.isfinite(r)):
             ok = self._integ.factor_static(*args, stab=STABILIZER * self._stiffness_scale(z))
@@ -159,9 +180,15 @@ class SystemEquilibrium:
         ``(M/Δτ + K) Δz = -r`` of pseudo-transient continuation, ``rate = 1/Δτ``
         (:mod:`rancf.solvers.relaxation`)."""
         r = np.empty(self.n + self.m)
-        ok = self._integ.factor_static(np.ascontiguousarray(z[: self.n]),
-                                       np.ascontiguousarray(z[self.n :]), self.load_factor(p),
-                                       self._amp, self._t, r, stab=float(rate))  # fmt: skip
+        ok = self._integ.factor_static(
+            np.ascontiguousarray(z[: self.n]),
+            np.ascontiguousarray(z[self.n :]),
+            self.load_factor(p),
+            self._amp,
+            self._t,
+            r,
+            stab=float(rate),
+        )
         r[self.fixed] = 0.0
         return r, bool(ok)
 

@@ -52,8 +52,15 @@ def run(sc: Scenario, model: Model, **overrides: Any) -> DynamicResult:
     """Integrate a scenario's model with its ``[solver]`` settings (``overrides`` win)."""
     s = dict(sc.data["solver"])
     s.update(overrides)
-    keys: tuple[str, ...] = ("t_end", "step", "rho_inf", "adaptive", "rtol", "min_step",
-                             "output_step")  # fmt: skip
+    keys: tuple[str, ...] = (
+        "t_end",
+        "step",
+        "rho_inf",
+        "adaptive",
+        "rtol",
+        "min_step",
+        "output_step",
+    )
     keys += ("newton_tol", "max_newton", "newton")
     opts = DynamicOptions(**{k: s[k] for k in keys})
     return integrate(model, opts)

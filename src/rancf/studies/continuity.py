@@ -30,8 +30,9 @@ from rancf.studies.common import load_example, run, variant
 __all__ = ["BETA", "N_REF", "cantilever_rows", "pendulum_rows", "continuity_study"]
 
 #: ``β_i L`` of the clamped-free Euler–Bernoulli beam, first five modes.
-BETA = np.array([1.875104068711961, 4.694091132974175, 7.854757438237613, 10.99554073487547,
-                 14.13716839104647])  # fmt: skip
+BETA = np.array(
+    [1.875104068711961, 4.694091132974175, 7.854757438237613, 10.99554073487547, 14.13716839104647]
+)
 #: Elements of the pendulum's reference (C¹, Kopt).
 N_REF = 24
 
@@ -54,14 +55,20 @@ def cantilever_rows(ns: list[int]) -> list[dict[str, Any]]:
     rows = []
     for c in ("C1", "C2"):
         for n in ns:
-            _, model = variant(raw, f"cantilever {c} n={n}", mesh__elements=n,
-                               mesh__continuity=c)  # fmt: skip
+            _, model = variant(raw, f"cantilever {c} n={n}", mesh__elements=n, mesh__continuity=c)
             f, top = _bending(model, natural_modes(model))
             err = np.full(5, np.nan)
             k = min(5, f.size)
             err[:k] = f[:k] / exact[:k] - 1.0
-            rows.append(dict(continuity=c, elements=n, unknowns=int(np.sum(~model.fixed)),
-                             errors=err.tolist(), highest_hz=top))  # fmt: skip
+            rows.append(
+                dict(
+                    continuity=c,
+                    elements=n,
+                    unknowns=int(np.sum(~model.fixed)),
+                    errors=err.tolist(),
+                    highest_hz=top,
+                )
+            )
     return rows
 
 

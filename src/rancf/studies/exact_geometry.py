@@ -59,9 +59,12 @@ def _plan(quick: bool) -> dict[str, Any]:
     if quick:
         return dict(es=[2e6, 2e9], ns=[1, 2, 3], n_ref=6, n_check=4, t_end=0.2)
     return dict(
-        es=[2e6, 2e7, 2e8, 2e9, 2e10], ns=[1, 2, 3, 4, 5, 6, 7, 8, 10, 12], n_ref=24, n_check=16,
+        es=[2e6, 2e7, 2e8, 2e9, 2e10],
+        ns=[1, 2, 3, 4, 5, 6, 7, 8, 10, 12],
+        n_ref=24,
+        n_check=16,
         t_end=1.0,
-    )  # fmt: skip
+    )
 
 
 def _needed(errs: dict[int, float], tol: float) -> int | None:
@@ -98,7 +101,7 @@ def run_study(
             mesh__elements=n,
             solver__t_end=p["t_end"],
             **opts,
-        )  # fmt: skip
+        )
         for i, (e, kind, n, opts) in enumerate(plan)
     ]
     soft_ref = variants[0].name  # the reference at the softest E: animated as soon as it ran

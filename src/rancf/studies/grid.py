@@ -79,9 +79,16 @@ def read_run(folder: Path, row: dict[str, Any]) -> GridRun:
     """A :class:`GridRun` from a run folder and its result row."""
     if not (folder / "results.npz").is_file():  # failed before the time loop
         return GridRun(
-            n_el=0, t=np.zeros(0), tip=np.zeros((0, 2)), ab=np.zeros(0), gradients=np.zeros(0),
-            status=row["status"], message=row.get("message", ""), wall=0.0, folder=folder,
-        )  # fmt: skip
+            n_el=0,
+            t=np.zeros(0),
+            tip=np.zeros((0, 2)),
+            ab=np.zeros(0),
+            gradients=np.zeros(0),
+            status=row["status"],
+            message=row.get("message", ""),
+            wall=0.0,
+            folder=folder,
+        )
     from rancf.post.system_run import load_run
 
     b = load_run(folder).body()

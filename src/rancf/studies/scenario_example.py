@@ -117,8 +117,10 @@ def run_scenario(name: str, out: str | Path, quick: bool = False) -> StudyResult
 
             brun = run_buckling(sc, 2)
             system, buck = brun.system, brun.result
-            atomic_write(out / "buckling.json", strict_json(
-                {"load_factors": buck.load_factors.tolist(), "about": buck.about}))  # fmt: skip
+            atomic_write(
+                out / "buckling.json",
+                strict_json({"load_factors": buck.load_factors.tolist(), "about": buck.about}),
+            )
             plot_buckling(system, buck, out / "buckling.png")
             res.figures.append(("buckling mode shapes", "buckling.png"))
             res.add_table(
@@ -132,14 +134,16 @@ def run_scenario(name: str, out: str | Path, quick: bool = False) -> StudyResult
             from rancf.runs.simulate import run_simulate
 
             info = {"scenario": str(scenario.resolve())}
-            dynamic = run_simulate(sc, out / "run", info, MAX_EXAMPLE_GB,
-                               "the limit of an example run (GB)")  # fmt: skip
+            dynamic = run_simulate(
+                sc, out / "run", info, MAX_EXAMPLE_GB, "the limit of an example run (GB)"
+            )
             result, outputs, summary = dynamic.result, dynamic.outputs, dynamic.summary
             assert summary is not None  # a folder was given
             _notes(res, summary)
             _figures(res, out, out / "run", "simulation")
-            names, vals = sensor_table(outputs, sc.sensors, result.q[-1:], result.v[-1:],
-                                       t=result.t[-1:])  # fmt: skip
+            names, vals = sensor_table(
+                outputs, sc.sensors, result.q[-1:], result.v[-1:], t=result.t[-1:]
+            )
             res.add_table(
                 out,
                 f"Simulation: {summary['status']}, t = {result.t_reached:g} s, "

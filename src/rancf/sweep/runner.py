@@ -56,8 +56,9 @@ def _simulate(sc: Any, folder: Path) -> Outcome:
     res, summary = run.result, run.summary
     assert summary is not None  # a folder was given
     energy = np.array([[res.kinetic[-1], res.strain[-1], res.gravity[-1]]])
-    names, vals = sensor_table(run.outputs, sc.sensors, res.q[-1:], res.v[-1:], energy,
-                               t=res.t[-1:])  # fmt: skip
+    names, vals = sensor_table(
+        run.outputs, sc.sensors, res.q[-1:], res.v[-1:], energy, t=res.t[-1:]
+    )
     values = {"t_reached": float(res.t_reached), "steps": float(res.n_steps)}
     values.update(zip(names, map(float, vals[0]), strict=True))
     return summary["status"], res.message, float(res.wall_time), values
@@ -81,8 +82,11 @@ def _modes(sc: Any, folder: Path) -> Outcome:
     wall = time.perf_counter() - t0
     res = run.result
     f = res.frequencies_hz
-    out = {"frequencies_hz": f.tolist(), "rigid_body_modes_removed": res.n_rigid,
-           "about": run.about}  # fmt: skip
+    out = {
+        "frequencies_hz": f.tolist(),
+        "rigid_body_modes_removed": res.n_rigid,
+        "about": run.about,
+    }
     atomic_write(folder / "modes.json", strict_json(out))
     values = {f"f{i + 1}_hz": float(x) for i, x in enumerate(f[:FREQUENCY_COLUMNS])}
     return "completed", "", wall, values
@@ -131,8 +135,9 @@ def scenario_hash(raw: dict[str, Any], analysis: str, base: str | Path) -> str:
     from rancf.scenario.read_files import file_digests
 
     files = file_digests(raw, base)
-    text = json.dumps({"analysis": analysis, "scenario": raw, "files": files}, sort_keys=True,
-                      default=repr)  # fmt: skip
+    text = json.dumps(
+        {"analysis": analysis, "scenario": raw, "files": files}, sort_keys=True, default=repr
+    )
     return hashlib.sha256(text.encode("utf-8")).hexdigest()
 
 

@@ -117,9 +117,13 @@ def _check_table(where: str, key: str, base_raw: dict[str, Any]) -> None:
     if have is None or isinstance(have, dict):
         return
     what = f"an array of tables ([[{table}]])" if isinstance(have, list) else "a value"
-    raise ScenarioError(where, f"grid.{key}", f"{table!r} is {what} in the base scenario, not "
-                        f"a table: a grid key names a key of a table ([{table}] key = ...); "
-                        "sweep a copy of the base file per value instead")  # fmt: skip
+    raise ScenarioError(
+        where,
+        f"grid.{key}",
+        f"{table!r} is {what} in the base scenario, not "
+        f"a table: a grid key names a key of a table ([{table}] key = ...); "
+        "sweep a copy of the base file per value instead",
+    )
 
 
 def _check_size(sc: Any) -> None:
@@ -129,9 +133,11 @@ def _check_size(sc: Any) -> None:
     from rancf.post.run_plan import check_output_size
     from rancf.sweep.runner import LIMIT, MAX_RUN_GB
 
-    meshes = [sc.data["mesh"]] if sc.data.get("mesh") else [
-        b["mesh"] for b in sc.data.get("bodies") or [] if b.get("mesh")
-    ]  # fmt: skip
+    meshes = (
+        [sc.data["mesh"]]
+        if sc.data.get("mesh")
+        else [b["mesh"] for b in sc.data.get("bodies") or [] if b.get("mesh")]
+    )
     n_q = n_rods = 0
     for mesh in meshes:
         n_nodes = mesh["elements"] + 1

@@ -8,7 +8,20 @@ from rancf.system.system import System, as_system
 from rancf.system.winches import Winch
 
 __all__ = [
-    "System", "Joint", "Spring", "Load", "Place", "GROUND", "Obstacle", "ContactState",
-    "contact_outputs", "contact_history", "as_system", "Fluid", "Waves", "Hydro",
-    "DistributedLoad", "Winch",
-]  # fmt: skip
+    "System",
+    "Joint",
+    "Spring",
+    "Load",
+    "Place",
+    "GROUND",
+    "Obstacle",
+    "ContactState",
+    "contact_outputs",
+    "contact_history",
+    "as_system",
+    "Fluid",
+    "Waves",
+    "Hydro",
+    "DistributedLoad",
+    "Winch",
+]

@@ -63,8 +63,14 @@ from rancf.geometry.quadrature import gauss_legendre
 from rancf.kernels import _core
 from rancf.system.seabed import seabed_stiffness
 
-__all__ = ["Obstacle", "ContactState", "OBSTACLE_KINDS", "contact_outputs", "contact_history",
-           "obstacle_records"]  # fmt: skip
+__all__ = [
+    "Obstacle",
+    "ContactState",
+    "OBSTACLE_KINDS",
+    "contact_outputs",
+    "contact_history",
+    "obstacle_records",
+]
 
 
 class ContactSystem(Protocol):
@@ -218,8 +224,11 @@ def build_contact(
             if not isinstance(b, RigidBody):
                 raise InputError(f"obstacles.{name}.body", ob.body, "the name of a rigid body")
             body = system.rigid.index(b)
-        for key, v in (("friction", ob.friction), ("damping", ob.damping),
-                       ("damping_normal", ob.damping_normal)):  # fmt: skip
+        for key, v in (
+            ("friction", ob.friction),
+            ("damping", ob.damping),
+            ("damping_normal", ob.damping_normal),
+        ):
             _number(f"obstacles.{name}.{key}", v, 0.0, False)
         _number(f"obstacles.{name}.slip_velocity", ob.slip_velocity, 0.0, True)
         for key, given in (("stiffness", ob.stiffness), ("onset", ob.onset)):
@@ -261,9 +270,11 @@ def build_contact(
                 )
             if model.reduction is not None:
                 raise InputError(
-                    "contacts", name, "flexible bodies of C1 meshes (contact of a C2-reduced "
+                    "contacts",
+                    name,
+                    "flexible bodies of C1 meshes (contact of a C2-reduced "
                     "mesh is not implemented)",
-                )  # fmt: skip
+                )
             n0, n1, gw, w = _body_points(model, n_c)
         lists["nc"].append(n_c if name in used else 0)
         lists["radius"].append(model.section.radius)
@@ -271,8 +282,9 @@ def build_contact(
             lists[key].append(np.ascontiguousarray(arr.ravel()))
         mesh = model.mesh
         on = name in curves
-        lists["weights"].append(np.ascontiguousarray(mesh.weights, float).ravel() if on
-                                else np.zeros(0))  # fmt: skip
+        lists["weights"].append(
+            np.ascontiguousarray(mesh.weights, float).ravel() if on else np.zeros(0)
+        )
         lists["scales"].append(np.ascontiguousarray(mesh.scales, float) if on else np.zeros(0))
         lists["arc0"].append(np.r_[0.0, np.cumsum(w.sum(axis=1))] if on else np.zeros(0))
     data = []
@@ -322,8 +334,16 @@ def obstacle_records(system: ContactSystem) -> list[dict]:
     out = []
     for ob, name in zip(system.obstacles, system.obstacle_names, strict=True):
         p, d, rad = _geometry(ob, system.dim)
-        out.append({"name": name, "kind": ob.kind, "point": p.tolist(), "direction": d.tolist(),
-                    "radius": rad, "body": ob.body})  # fmt: skip
+        out.append(
+            {
+                "name": name,
+                "kind": ob.kind,
+                "point": p.tolist(),
+                "direction": d.tolist(),
+                "radius": rad,
+                "body": ob.body,
+            }
+        )
     return out
 
 
@@ -376,7 +396,7 @@ def contact_outputs(
             float(row[8]) if d == 2 else row[6:9].copy(),
             float(row[9]),
             float(row[10]),
-        )  # fmt: skip
+        )
         for name, row in zip(names, out, strict=True)
     }
 

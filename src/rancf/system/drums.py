@@ -25,8 +25,13 @@ from rancf.errors import InputError
 from rancf.kernels.cable import CableKernel
 
 __all__ = [
-    "drum_torque", "attach_drum", "drum_state", "drum_mass", "hold_drums", "refuse_static_drums",
-]  # fmt: skip
+    "drum_torque",
+    "attach_drum",
+    "drum_state",
+    "drum_mass",
+    "hold_drums",
+    "refuse_static_drums",
+]
 
 
 def drum_torque(w: Any, tf: Callable) -> int:
@@ -35,17 +40,32 @@ def drum_torque(w: Any, tf: Callable) -> int:
     for key in ("radius", "inertia"):
         v = getattr(w, key)
         if v is None or not (np.isfinite(v) and v > 0):
-            raise InputError(f"winches.{w.name}.{key}", v, "a driven drum's " + (
-                "radius [m], > 0" if key == "radius" else "moment of inertia [kg m^2], > 0 "
-                "(the drum's, with the rope on it at t = 0)"))  # fmt: skip
+            raise InputError(
+                f"winches.{w.name}.{key}",
+                v,
+                "a driven drum's "
+                + (
+                    "radius [m], > 0"
+                    if key == "radius"
+                    else "moment of inertia [kg m^2], > 0 "
+                    "(the drum's, with the rope on it at t = 0)"
+                ),
+            )
     if not np.isfinite(drum_mass(w)) or drum_mass(w) == 0.0:
-        raise InputError(f"winches.{w.name}.radius", w.radius, "a driven drum's radius [m] with "
-                         f"a finite, non-zero mass along the line J / r^2 (J = {w.inertia:g} kg "
-                         "m^2)")  # fmt: skip
+        raise InputError(
+            f"winches.{w.name}.radius",
+            w.radius,
+            "a driven drum's radius [m] with "
+            f"a finite, non-zero mass along the line J / r^2 (J = {w.inertia:g} kg "
+            "m^2)",
+        )
     f = w.torque if isinstance(w.torque, TimeFunction) else TimeFunction.constant(w.torque)
     if np.ravel(f.value(0.0)).size != 1:
-        raise InputError(f"winches.{w.name}.torque", np.ravel(f.value(0.0)).tolist(),
-                         "a scalar time function [N m]")  # fmt: skip
+        raise InputError(
+            f"winches.{w.name}.torque",
+            np.ravel(f.value(0.0)).tolist(),
+            "a scalar time function [N m]",
+        )
     return tf(f)
 
 
@@ -59,10 +79,16 @@ def attach_drum(system: Any, k: int, w: Any, body: Model, node: int, torque: int
     """Make the core's winch ``k`` (the winch ``w`` at ``node`` of ``body``) a driven drum and
     add its coordinate ``L`` to the system (``n``, ``y0`` = its length at the start, ``v0`` = 0);
     returns the coordinate's index."""
-    if any(s.motion is not None for s in body.supports
-           if body.check_node(s.node, "supports.at") == node):  # fmt: skip
-        raise InputError(f"winches.{w.name}.at", w.at, "a fixed support (a driven drum's "
-                         "line leaves it at a fixed place; no support motion)")  # fmt: skip
+    if any(
+        s.motion is not None
+        for s in body.supports
+        if body.check_node(s.node, "supports.at") == node
+    ):
+        raise InputError(
+            f"winches.{w.name}.at",
+            w.at,
+            "a fixed support (a driven drum's line leaves it at a fixed place; no support motion)",
+        )
     gravity = np.zeros(3)
     if body.gravity is not None:
         gravity[: body.dim] = body.gravity
@@ -71,8 +97,17 @@ def attach_drum(system: Any, k: int, w: Any, body: Model, node: int, torque: int
         raise InputError(f"winches.{w.name}.at", w.at, "a place on a cable body")
     rho_a = float(kernel.props.rho_a)
     start = float(np.sum(kernel.wj))  # the body's unstretched length
-    index = int(system.core.attach_drum(k, torque, drum_mass(w), float(w.radius), rho_a,
-                                        rho_a * gravity, int(body.node_base(node))))  # fmt: skip
+    index = int(
+        system.core.attach_drum(
+            k,
+            torque,
+            drum_mass(w),
+            float(w.radius),
+            rho_a,
+            rho_a * gravity,
+            int(body.node_base(node)),
+        )
+    )
     if index != system.n or int(system.core.n) != system.n + 1:
         raise InputError(f"winches.{w.name}", index, f"the coordinate {system.n}")
     system.n += 1
@@ -81,8 +116,9 @@ def attach_drum(system: Any, k: int, w: Any, body: Model, node: int, torque: int
     return index
 
 
-def drum_state(index: int, y: Sequence[float], v: Sequence[float] | None = None
-               ) -> tuple[float, float]:  # fmt: skip
+def drum_state(
+    index: int, y: Sequence[float], v: Sequence[float] | None = None
+) -> tuple[float, float]:
     """``(L, L̇)`` of the drum whose coordinate is ``index`` in ``y`` (and ``v``)."""
     return float(y[index]), (0.0 if v is None else float(v[index]))
 
@@ -109,7 +145,11 @@ def refuse_static_drums(
     w = next(w for w in system.winches if w.name == name)
     f = w.torque if isinstance(w.torque, TimeFunction) else TimeFunction.constant(w.torque)
     torque = float(np.ravel(f.value(0.0 if t is None else t))[0])
-    raise InputError(f"winches.{name}.torque", torque, "a torque the line holds at rest at some "
-                     "length L > 0 (statics: r T = torque; none found, the hanging weight "
-                     "cannot balance it): start the run from the reference, or change the "
-                     "torque") from failed  # fmt: skip
+    raise InputError(
+        f"winches.{name}.torque",
+        torque,
+        "a torque the line holds at rest at some "
+        "length L > 0 (statics: r T = torque; none found, the hanging weight "
+        "cannot balance it): start the run from the reference, or change the "
+        "torque",
+    ) from failed

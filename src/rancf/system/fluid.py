@@ -105,17 +105,27 @@ def _fluid_record(fl: Fluid, gravity: np.ndarray, dim: int) -> FluidRecord:
         if not g > 0:
             raise InputError("fluid.waves", "waves", "gravity (loads.gravity) for waves")
         b = math.radians(w.direction_deg)
-        wave = {"waves": True, "wave_height": float(w.height),
-                "wave_omega": 2.0 * math.pi / w.period, "wave_depth": float(w.depth),
-                "wave_k": wave_number(w.period, w.depth, g),
-                "wave_dir": (math.cos(b), math.sin(b), 0.0) if dim == 3 else
-                (math.copysign(1.0, math.cos(b)), 0.0, 0.0)}  # fmt: skip
+        wave = {
+            "waves": True,
+            "wave_height": float(w.height),
+            "wave_omega": 2.0 * math.pi / w.period,
+            "wave_depth": float(w.depth),
+            "wave_k": wave_number(w.period, w.depth, g),
+            "wave_dir": (math.cos(b), math.sin(b), 0.0)
+            if dim == 3
+            else (math.copysign(1.0, math.cos(b)), 0.0, 0.0),
+        }
     cur = [0.0, 0.0, 0.0] if fl.current is None else list(fl.current) + [0.0] * (3 - dim)
     return FluidRecord(
-        density=float(fl.density), gravity=vec3(gravity[:3]),
-        has_surface=fl.surface is not None, surface=float(fl.surface or 0.0),
-        current=vec3(cur), profile_z=prof_z, profile_u=prof_u, **wave,
-    )  # fmt: skip
+        density=float(fl.density),
+        gravity=vec3(gravity[:3]),
+        has_surface=fl.surface is not None,
+        surface=float(fl.surface or 0.0),
+        current=vec3(cur),
+        profile_z=prof_z,
+        profile_u=prof_u,
+        **wave,
+    )
 
 
 def _line(
@@ -128,11 +138,20 @@ def _line(
     h = hydro or Hydro()
     d = h.diameter if h.diameter is not None else math.sqrt(4.0 * model.section.area / math.pi)
     return LineRecord(
-        body=index, hydro=hydro is not None, diameter=float(d), drag_normal=h.drag_normal,
-        drag_axial=h.drag_axial, added_mass_normal=h.added_mass_normal,
-        added_mass_axial=h.added_mass_axial, n_qp=int(c.gw.size), n0=floats(c.n0),
-        n1=floats(c.n1), gw=floats(c.gw), j0=floats(c.j0), loads=tuple(loads),
-    )  # fmt: skip
+        body=index,
+        hydro=hydro is not None,
+        diameter=float(d),
+        drag_normal=h.drag_normal,
+        drag_axial=h.drag_axial,
+        added_mass_normal=h.added_mass_normal,
+        added_mass_axial=h.added_mass_axial,
+        n_qp=int(c.gw.size),
+        n0=floats(c.n0),
+        n1=floats(c.n1),
+        gw=floats(c.gw),
+        j0=floats(c.j0),
+        loads=tuple(loads),
+    )
 
 
 def fluid_records(
@@ -151,15 +170,19 @@ def fluid_records(
         if name not in flex_names:
             raise InputError("hydro", name, f"a flexible body (one of {list(flex_names)})")
     if hydro and fluid is None:
-        raise InputError("hydro", sorted(hydro), "coefficients of bodies in a fluid: give the "
-                         "[fluid] table too")  # fmt: skip
+        raise InputError(
+            "hydro", sorted(hydro), "coefficients of bodies in a fluid: give the [fluid] table too"
+        )
     loads: dict[str, list[DistributedRecord]] = {n: [] for n in flex_names}
     for i, ld in enumerate(distributed):
         if len(ld.force) != dim:
             raise InputError(f"loads.distributed[{i}].force", list(ld.force), f"{dim} components")
         if ld.body is not None and ld.body not in loads:
-            raise InputError(f"loads.distributed[{i}].body", ld.body,
-                             f"a flexible body (one of {list(flex_names)})")  # fmt: skip
+            raise InputError(
+                f"loads.distributed[{i}].body",
+                ld.body,
+                f"a flexible body (one of {list(flex_names)})",
+            )
         rec = DistributedRecord(vec3(list(ld.force) + [0.0] * (3 - dim)), tf(ld.time))
         for n in [ld.body] if ld.body is not None else flex_names:
             loads[n].append(rec)

@@ -64,16 +64,27 @@ def joint_data(
     """The core's record of joint ``j`` between the places ``a`` and ``b`` (their indices among
     the system's place records) whose reference frames are ``fa``, ``fb`` ``(k, 3)``, in
     dimension ``d``; ``angle``: the time function of a driven joint (-1: none)."""
-    info: dict = {"kind": j.kind, "a": a, "b": b, "driven": False, "angle": -1,
-                  "beta0": 0.0, "rel": np.zeros(9), "axis_a": np.zeros(3),
-                  "normals_b": np.zeros(6), "w_a": np.zeros(3), "w_b": np.zeros(3)}  # fmt: skip
+    info: dict = {
+        "kind": j.kind,
+        "a": a,
+        "b": b,
+        "driven": False,
+        "angle": -1,
+        "beta0": 0.0,
+        "rel": np.zeros(9),
+        "axis_a": np.zeros(3),
+        "normals_b": np.zeros(6),
+        "w_a": np.zeros(3),
+        "w_b": np.zeros(3),
+    }
     axis = _axis(j, d)
     need = {"fixed": True, "slider": True}.get(j.kind, j.angle is not None)
     if need and (len(fb) < 3 or (j.kind != "slider" and len(fa) < 3 and d == 2)):
         raise InputError(
-            "joints.between", _between(j), "places with an orientation for this joint (not a "
-            "point mass)",
-        )  # fmt: skip
+            "joints.between",
+            _between(j),
+            "places with an orientation for this joint (not a point mass)",
+        )
     if j.angle is not None:
         if j.kind not in ("pin", "revolute"):
             raise InputError("joints.angle", "set", "a pin or revolute joint")
@@ -100,9 +111,10 @@ def joint_data(
             info["normals_b"] = np.r_[fb @ n1, fb @ n2]
             return _record(info)
         raise InputError(
-            "joints.kind", "fixed",
+            "joints.kind",
+            "fixed",
             "a frame on at least one side (a 3D cable has only a tangent: use rods)",
-        )  # fmt: skip
+        )
     if j.kind == "slider":
         if len(fb) < 3:
             raise InputError("joints.between", str(j.between[1]), "a place with a frame")
@@ -113,9 +125,10 @@ def joint_data(
     if j.kind == "revolute":
         if len(fa) < 3 or len(fb) < 3:
             raise InputError(
-                "joints.between", _between(j),
+                "joints.between",
+                _between(j),
                 "places with a frame (a 3D cable node has only a tangent: a rod)",
-            )  # fmt: skip
+            )
         assert axis is not None  # required in 3D (_axis)
         n1, n2 = normals(axis)
         info["axis_a"], info["normals_b"] = fa @ axis, np.r_[fb @ n1, fb @ n2]

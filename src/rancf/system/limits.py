@@ -32,8 +32,11 @@ def _laws(system: Any) -> list[tuple[str, Any]]:
     """``(name, L(t))`` of the winches whose length is given (a ``length`` or ``speed`` law)."""
     drums = getattr(system, "drums", {})
     lengths = getattr(system, "winch_lengths", {})
-    return [(w.name, lengths[w.name]) for w in getattr(system, "winches", ())
-            if w.name not in drums and w.name in lengths]  # fmt: skip
+    return [
+        (w.name, lengths[w.name])
+        for w in getattr(system, "winches", ())
+        if w.name not in drums and w.name in lengths
+    ]
 
 
 def _guides(system: Any) -> list[tuple[str, str, int, int]]:
@@ -62,22 +65,28 @@ def state_limits(system: Any) -> LimitCheck | None:
         for name, index in drums:
             length = float(y[index])
             if not length > 0.0:
-                return (f"winch {name!r}: the length outside the drum is {length:.6g} m at "
-                        f"t = {t:.6g} s, not > 0 (the drum has reeled in the whole line); the "
-                        "run stops at the step before")  # fmt: skip
+                return (
+                    f"winch {name!r}: the length outside the drum is {length:.6g} m at "
+                    f"t = {t:.6g} s, not > 0 (the drum has reeled in the whole line); the "
+                    "run stops at the step before"
+                )
         for name, f in laws:
             length = float(np.ravel(f.value(t))[0])
             if not length > 0.0:
-                return (f"winch {name!r}: its length law gives {length:.6g} m at t = {t:.6g} s, "
-                        "not > 0; the run stops at the step before")  # fmt: skip
+                return (
+                    f"winch {name!r}: its length law gives {length:.6g} m at t = {t:.6g} s, "
+                    "not > 0; the run stops at the step before"
+                )
         for joint, body, slot, n_el in guides:
             sigma = float(lam[slot])
             if not 0.0 <= sigma <= n_el:
                 end = "start" if sigma < 0.0 else "end"
-                return (f"sliding joint {joint!r}: the {end} of body {body!r} passes through "
-                        f"its place at t = {t:.6g} s (material coordinate {sigma:.6g} of "
-                        f"0..{n_el} elements); the run stops at the step before (make the body "
-                        "longer)")  # fmt: skip
+                return (
+                    f"sliding joint {joint!r}: the {end} of body {body!r} passes through "
+                    f"its place at t = {t:.6g} s (material coordinate {sigma:.6g} of "
+                    f"0..{n_el} elements); the run stops at the step before (make the body "
+                    "longer)"
+                )
         return None
 
     return check

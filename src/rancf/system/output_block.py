@@ -39,8 +39,14 @@ def takes_block(system: Any, static: bool, directors: NDArray | None, k: int) ->
     return not (static or sliding) and directors is None and k > 0
 
 
-def block_derived(outputs: Any, t: NDArray, ys: NDArray, vs: NDArray, out: dict[str, NDArray],
-                  alpha: NDArray | None = None) -> tuple[NDArray, NDArray]:  # fmt: skip
+def block_derived(
+    outputs: Any,
+    t: NDArray,
+    ys: NDArray,
+    vs: NDArray,
+    out: dict[str, NDArray],
+    alpha: NDArray | None = None,
+) -> tuple[NDArray, NDArray]:
     """Accelerations ``out["a"]``, multipliers ``out["lam"]`` and reactions ``out["r"]`` of the
     states ``ys``, ``vs`` ``(k, n)`` at times ``t``; returns the bodies' own terms of the
     balance and the element forces ``(k, n)`` each, from the assembly that gives the residual
@@ -53,16 +59,27 @@ def block_derived(outputs: Any, t: NDArray, ys: NDArray, vs: NDArray, out: dict[
     res, jr = np.empty((k, s.n + s.m)), np.empty((k, nj, 6))
     res0, fint = (np.empty((k, s.n)), np.empty((k, s.n))) if outputs.recovered else (None, None)
     step = np.ascontiguousarray(alpha, dtype=float) if s.has_contact and alpha is not None else None
-    outputs.integrator.derived_rows(np.ascontiguousarray(t), np.ascontiguousarray(ys),
-                                    np.ascontiguousarray(vs), a, lam, res, jr, nj, res0,
-                                    fint, step)  # fmt: skip
+    outputs.integrator.derived_rows(
+        np.ascontiguousarray(t),
+        np.ascontiguousarray(ys),
+        np.ascontiguousarray(vs),
+        a,
+        lam,
+        res,
+        jr,
+        nj,
+        res0,
+        fint,
+        step,
+    )
     out["a"], out["lam"] = s.q_from_y(a), lam
     parts = []
     for name, b in outputs.flex:
         sl = s.body_slice(name)
         if b.supports:
-            parts.append(reaction_row(support_reactions(b, ys[:, sl], res[:, sl],
-                                                        outputs.labels[name])))  # fmt: skip
+            parts.append(
+                reaction_row(support_reactions(b, ys[:, sl], res[:, sl], outputs.labels[name]))
+            )
     for j in range(nj):
         parts.append(jr[:, j, : s.dim])
         if len(outputs.joint_names[j]) > s.dim:  # the joint reports a moment
@@ -105,10 +122,16 @@ def contact_row(s: Any, yc: NDArray, vc: NDArray | None, y1: NDArray | None) -> 
     return np.concatenate(parts) if parts else np.empty(0)
 
 
-def block_sections(outputs: Any, raws: dict[str, list[NDArray]],
-                   factors: dict[str, list[float]], ys: NDArray, t: NDArray,
-                   nodal: dict[str, list[NDArray]], res0: NDArray,
-                   internal: NDArray | None = None) -> None:  # fmt: skip
+def block_sections(
+    outputs: Any,
+    raws: dict[str, list[NDArray]],
+    factors: dict[str, list[float]],
+    ys: NDArray,
+    t: NDArray,
+    nodal: dict[str, list[NDArray]],
+    res0: NDArray,
+    internal: NDArray | None = None,
+) -> None:
     """Strains and curvatures ``(k, n_points, w)`` of the rows ``ys`` into ``raws``, their
     bodies' length factors (:func:`~rancf.system.winches.winch_factor`) into ``factors`` and,
     for the bodies whose axial force comes from the nodal forces, those of the bodies' own

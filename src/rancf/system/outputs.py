@@ -112,8 +112,9 @@ class SystemOutputs:
         self.samplers = {name: SectionSampler(b, per_element) for name, b in self.flex}
         winched = {winch_node(s, w)[0] for w in getattr(s, "winches", ())}
         #: The flexible bodies whose axial force is read from their nodal forces.
-        self.recovered = {name for name, b in self.flex
-                          if recovers_axial_force(b) and name not in winched}  # fmt: skip
+        self.recovered = {
+            name for name, b in self.flex if recovers_axial_force(b) and name not in winched
+        }
         self.section_names = {name: section_names(b) for name, b in self.flex}
         self.support_names = {name: reaction_columns(b, self.labels[name]) for name, b in self.flex}
         self.joint_names: list[list[str]] = []
@@ -137,12 +138,21 @@ class SystemOutputs:
         for first, second in s.body_contacts:
             pair = f"{first}_{second}"
             self.reaction_names += [f"{pair}_contact_force", f"{pair}_penetration"]
-        self.along_widths = {n: sp.n_points * len(self.section_names[n])
-                             for n, sp in self.samplers.items()}  # fmt: skip
+        self.along_widths = {
+            n: sp.n_points * len(self.section_names[n]) for n, sp in self.samplers.items()
+        }
         self.sensors = SensorReader(self, sensors)
         self.sensor_names = self.sensors.names
-        scheme = _core.Scheme(alpha_m=0.0, alpha_f=0.0, gamma=0.5, beta=0.25, damping=s.damping,
-                              tol=1e-10, max_iter=1, modified=False)  # fmt: skip
+        scheme = _core.Scheme(
+            alpha_m=0.0,
+            alpha_f=0.0,
+            gamma=0.5,
+            beta=0.25,
+            damping=s.damping,
+            tol=1e-10,
+            max_iter=1,
+            modified=False,
+        )
         #: The core's integrator of the system, for the rows' consistent accelerations.
         self.integrator = _core.SystemIntegrator(s.core, scheme)
         #: The largest |axial strain| of the rows seen so far, and the ``t`` of its row.
@@ -222,8 +232,12 @@ class SystemOutputs:
         if per_body and energy is not None and self._body_is_system and not static:
             out["eb"], per_body = np.array(energy, dtype=float).reshape(k, 3), False
         elif per_body and ys is not None:  # the block's bodies' energies in one call
-            s.core.body_energies_rows(np.ascontiguousarray(t), np.ascontiguousarray(ys),
-                                      np.ascontiguousarray(vs), out["eb"])  # fmt: skip
+            s.core.body_energies_rows(
+                np.ascontiguousarray(t),
+                np.ascontiguousarray(ys),
+                np.ascontiguousarray(vs),
+                out["eb"],
+            )
             per_body = False
         with self._triads() as set_row:
             for i in range(k if ys is None else 0):
@@ -236,8 +250,18 @@ class SystemOutputs:
                     if lam is not None:
                         li[:] = lam[i]
                     s.core.residual(y, vy, a, li, 0.0, min(float(t[i]), 1.0), True, False, res)
-                    s.core.residual(y, vy, a, no_lam, 0.0, min(float(t[i]), 1.0), True, False,
-                                    res0, distributed_only=True)  # fmt: skip
+                    s.core.residual(
+                        y,
+                        vy,
+                        a,
+                        no_lam,
+                        0.0,
+                        min(float(t[i]), 1.0),
+                        True,
+                        False,
+                        res0,
+                        distributed_only=True,
+                    )
                     if (fr := static_friction_load(s, y)) is not None:  # the seabeds' friction
                         res[: s.n] -= fr
                         res0[: s.n] -= fr
@@ -246,8 +270,19 @@ class SystemOutputs:
                     step = self._step(alpha, i, y, vy)
                     self.integrator.initial_acceleration(y, vy, float(t[i]), a, li, *step)
                     s.core.residual(y, vy, a, li, float(t[i]), 1.0, False, True, res, *step)
-                    s.core.residual(y, vy, a, no_lam, float(t[i]), 1.0, False, True, res0, *step,
-                                    distributed_only=True)  # fmt: skip
+                    s.core.residual(
+                        y,
+                        vy,
+                        a,
+                        no_lam,
+                        float(t[i]),
+                        1.0,
+                        False,
+                        True,
+                        res0,
+                        *step,
+                        distributed_only=True,
+                    )
                 out["a"][i], out["lam"][i] = s.q_from_y(a), li
                 vc = None if static else vy  # friction from the velocities
                 out["r"][i] = self._reactions(y, res[: s.n], float(t[i]), li, vc, step)
@@ -312,20 +347,27 @@ class SystemOutputs:
         return (row[: s.n], row[s.n :], y)
 
     def _reactions(
-        self, y: NDArray, res: NDArray, t: float, lam: NDArray, v: NDArray | None = None,
+        self,
+        y: NDArray,
+        res: NDArray,
+        t: float,
+        lam: NDArray,
+        v: NDArray | None = None,
         step: tuple[NDArray, ...] = (),
-    ) -> NDArray:  # fmt: skip
+    ) -> NDArray:
         s = self.system
         yc, vc, y1 = step if step else (y, v, None)
-        return np.concatenate([reaction_row(self.reactions(y, res, t, lam)),
-                               contact_row(s, yc, vc, y1)])  # fmt: skip
+        return np.concatenate(
+            [reaction_row(self.reactions(y, res, t, lam)), contact_row(s, yc, vc, y1)]
+        )
 
     def _body_energies(self, y: NDArray, v: NDArray, t: float) -> NDArray:
         """Every flexible body's kinetic, strain and gravitational energy at time ``t`` (a
         winch's body at its length at ``t``), by the core."""
         out = np.empty(3 * len(self.flex))
-        self.system.core.body_energies(np.ascontiguousarray(y), np.ascontiguousarray(v),
-                                       float(t), out)  # fmt: skip
+        self.system.core.body_energies(
+            np.ascontiguousarray(y), np.ascontiguousarray(v), float(t), out
+        )
         return out
 
     def _along(

@@ -86,15 +86,23 @@ class SensorReader:
             self._kinds.append(sen.kind)
 
     def values(
-        self, t: NDArray, q: NDArray, v: NDArray | None, derived: dict[str, NDArray],
+        self,
+        t: NDArray,
+        q: NDArray,
+        v: NDArray | None,
+        derived: dict[str, NDArray],
         energy: NDArray | None,
-    ) -> NDArray[np.float64]:  # fmt: skip
+    ) -> NDArray[np.float64]:
         """Columns ``(k, n_columns)`` of rows ``q``, ``v`` with their ``derived`` values."""
         vv = np.zeros_like(q) if v is None else np.asarray(v, dtype=float).reshape(q.shape)
         if energy is None and any(s == "energy" for s in self._kinds):
             sy = self.system
-            energy = np.array([sy.energies(sy.y_from_q(a), sy.y_from_q(b), tt)
-                               for a, b, tt in zip(q, vv, t, strict=True)])  # fmt: skip
+            energy = np.array(
+                [
+                    sy.energies(sy.y_from_q(a), sy.y_from_q(b), tt)
+                    for a, b, tt in zip(q, vv, t, strict=True)
+                ]
+            )
         block = (t, q, vv, derived, energy if energy is not None else np.zeros((len(t), 3)))
         cols = [np.asarray(r(block), dtype=float).reshape(len(t), -1) for r in self._readers]
         return np.concatenate(cols, axis=1) if cols else np.empty((len(t), 0))
@@ -123,8 +131,12 @@ class SensorReader:
         s.place_state(p, s.y0)  # raises unless the place is observed
 
         def read(blk: Block) -> NDArray:
-            return np.array([s.place_state(p, s.y_from_q(row), tt)[0][: s.dim]
-                             for tt, row in zip(blk[0], blk[1], strict=True)])  # fmt: skip
+            return np.array(
+                [
+                    s.place_state(p, s.y_from_q(row), tt)[0][: s.dim]
+                    for tt, row in zip(blk[0], blk[1], strict=True)
+                ]
+            )
 
         return read
 
@@ -202,8 +214,11 @@ class SensorReader:
     def _contact_force(self, sen: Any) -> Reader:
         names = self.system.obstacle_names
         if sen.obstacle not in names:
-            raise InputError(f"sensors.{sen.name}.obstacle", sen.obstacle,
-                             f"an obstacle: {', '.join(names) or 'none'}")  # fmt: skip
+            raise InputError(
+                f"sensors.{sen.name}.obstacle",
+                sen.obstacle,
+                f"an obstacle: {', '.join(names) or 'none'}",
+            )
         c, d = self.out.contact_columns(sen.obstacle).start, self.system.dim
         return lambda blk: blk[3]["r"][:, c : c + d] + blk[3]["r"][:, c + d : c + 2 * d]
 
@@ -215,8 +230,9 @@ class SensorReader:
         flex = [n for n, _ in self.out.flex]
         body = getattr(sen, "body", None)
         if body is not None and body not in flex:
-            raise InputError(f"sensors.{sen.name}.body", body,
-                             f"a flexible body: {', '.join(flex)}")  # fmt: skip
+            raise InputError(
+                f"sensors.{sen.name}.body", body, f"a flexible body: {', '.join(flex)}"
+            )
         pick = [flex.index(body)] if body is not None else list(range(len(flex)))
 
         def read(blk: Block) -> NDArray:
@@ -238,15 +254,24 @@ class SensorReader:
         names = list(s.obstacle_names)
         ob = s.obstacles[names.index(sen.obstacle)] if sen.obstacle in names else None
         if ob is None or ob.kind != "plane" or ob.body is not None:
-            planes = [n for n, o in zip(names, s.obstacles, strict=False)
-                      if o.kind == "plane" and o.body is None]  # fmt: skip
-            raise InputError(f"sensors.{sen.name}.obstacle", sen.obstacle,
-                             f"a fixed plane: {', '.join(planes) or 'none'}")  # fmt: skip
+            planes = [
+                n
+                for n, o in zip(names, s.obstacles, strict=False)
+                if o.kind == "plane" and o.body is None
+            ]
+            raise InputError(
+                f"sensors.{sen.name}.obstacle",
+                sen.obstacle,
+                f"a fixed plane: {', '.join(planes) or 'none'}",
+            )
         flex = [n for n, b in self.out.flex if b.element != "beam"]
         body = getattr(sen, "body", None) or (flex[0] if len(flex) == 1 else None)
         if body not in flex:
-            raise InputError(f"sensors.{sen.name}.body", body,
-                             f"a line (cable or rod elements): {', '.join(flex)}")  # fmt: skip
+            raise InputError(
+                f"sensors.{sen.name}.body",
+                body,
+                f"a line (cable or rod elements): {', '.join(flex)}",
+            )
         m, sl = s.bodies[body], s.body_slice(body)
         point, normal = np.asarray(ob.point, float), np.asarray(ob.normal, float)
         return lambda blk: np.array([touchdown_point(m, q[sl], point, normal) for q in blk[1]])
@@ -266,8 +291,9 @@ class SensorReader:
         b = s.bodies.get(sen.body)
         if not isinstance(b, RigidBody):
             rigid = [n for n, x in s.bodies.items() if isinstance(x, RigidBody)]
-            raise InputError(f"sensors.{sen.name}.body", sen.body,
-                             f"a rigid body: {', '.join(rigid) or 'none'}")  # fmt: skip
+            raise InputError(
+                f"sensors.{sen.name}.body", sen.body, f"a rigid body: {', '.join(rigid) or 'none'}"
+            )
         o = s.offsets[sen.body]
         if s.dim == 2:
             return lambda blk: blk[1][:, o + 2]

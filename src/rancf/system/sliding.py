@@ -29,9 +29,17 @@ from rancf.system.connections import Joint
 from rancf.system.places import Place
 
 __all__ = [
-    "sliding_body", "sliding_pair", "sliding_record", "attach_sliding", "start_multipliers",
-    "arc_length", "material_coordinate", "sliding_values", "sliding_slots", "ON_BODY_RTOL",
-]  # fmt: skip
+    "sliding_body",
+    "sliding_pair",
+    "sliding_record",
+    "attach_sliding",
+    "start_multipliers",
+    "arc_length",
+    "material_coordinate",
+    "sliding_values",
+    "sliding_slots",
+    "ON_BODY_RTOL",
+]
 
 #: The place lies on the body in the reference to this (relative to the system's size).
 ON_BODY_RTOL = 1e-6
@@ -47,11 +55,19 @@ def sliding_body(system: Any, j: Joint) -> tuple[str, Model]:
     key = f"{j.name or 'joints'}.between"
     body = system.bodies.get(p.body) if p.body is not None else None
     if not isinstance(body, Model) or body.element == "beam" or body.reduction is not None:
-        raise InputError(key, str(spec), 'first a flexible body of cable or rod elements with '
-                         'continuity "C1" (the body that slides, by name: "rope")')  # fmt: skip
+        raise InputError(
+            key,
+            str(spec),
+            "first a flexible body of cable or rod elements with "
+            'continuity "C1" (the body that slides, by name: "rope")',
+        )
     if p.at is not None and system.single is None:
-        raise InputError(key, str(spec), f"the body itself ({p.body!r}), not one of its "
-                         "places: it slides through the second place")  # fmt: skip
+        raise InputError(
+            key,
+            str(spec),
+            f"the body itself ({p.body!r}), not one of its "
+            "places: it slides through the second place",
+        )
     return str(p.body), body
 
 
@@ -66,14 +82,20 @@ def sliding_pair(system: Any, j: Joint, rows: Any) -> tuple[int, int]:
     point = None
     if b.body is None:
         if j.position is None or np.asarray(j.position).size != system.dim:
-            raise InputError(f"{key}.position", None if j.position is None else
-                             list(j.position), f"the guide's position on the ground "
-                             f"({system.dim} numbers): required for a sliding joint to the "
-                             "ground")  # fmt: skip
+            raise InputError(
+                f"{key}.position",
+                None if j.position is None else list(j.position),
+                f"the guide's position on the ground "
+                f"({system.dim} numbers): required for a sliding joint to the "
+                "ground",
+            )
         point = np.r_[np.asarray(j.position, dtype=float), np.zeros(3 - system.dim)]
     elif j.position is not None:
-        raise InputError(f"{key}.position", list(j.position), "only for a sliding joint to the "
-                         "ground (a place on a body is where it is)")  # fmt: skip
+        raise InputError(
+            f"{key}.position",
+            list(j.position),
+            "only for a sliding joint to the ground (a place on a body is where it is)",
+        )
     a = system.place_index(Place(name, 0), rows)
     return a, system.place_index(b, rows, point)
 
@@ -101,19 +123,24 @@ def _evaluate(body: Model, nodal: NDArray, sigma: NDArray) -> tuple[NDArray, NDA
     xi = sigma - e
     out = []
     for order in range(3):
-        n = np.stack([
-            cable_shape_functions(m.weights[k : k + 1], m.scales[k : k + 1], [x])[order][0, 0]
-            for k, x in zip(e, xi, strict=True)
-        ])  # fmt: skip
+        n = np.stack(
+            [
+                cable_shape_functions(m.weights[k : k + 1], m.scales[k : k + 1], [x])[order][0, 0]
+                for k, x in zip(e, xi, strict=True)
+            ]
+        )
         el = np.concatenate([nodal[e], nodal[e + 1]], axis=1)  # (k, 4, dim)
         out.append(np.einsum("kj,kjd->kd", n, el))
     return out[0], out[1], out[2]
 
 
 def material_coordinate(
-    body: Model, x: ArrayLike, y: NDArray | None = None, guess: float | None = None,
+    body: Model,
+    x: ArrayLike,
+    y: NDArray | None = None,
+    guess: float | None = None,
     beyond: bool = False,
-) -> tuple[float, float]:  # fmt: skip
+) -> tuple[float, float]:
     """``σ`` of the body's point closest to ``x`` (its ``dim`` components), and the distance:
     the nearest of ``_SAMPLES`` points per element (or ``guess``), then Newton on
     ``(r(σ) - x) · r_σ = 0`` kept within the body (``beyond``: on the end elements continued
@@ -173,18 +200,21 @@ def attach_sliding(system: Any) -> None:
         if name not in done:
             m = body.mesh
             system.core.attach_sliding(
-                system.flex.index(body), np.ascontiguousarray(m.weights),
-                np.ascontiguousarray(m.scales), bool(body.closed),
-            )  # fmt: skip
+                system.flex.index(body),
+                np.ascontiguousarray(m.weights),
+                np.ascontiguousarray(m.scales),
+                bool(body.closed),
+            )
             done.add(name)
         x, _ = system.core.place(system.records.joints[k].b, system.y0, 0.0)
         sigma, gap = material_coordinate(body, x)
         if not gap <= ON_BODY_RTOL * system.size:
             raise InputError(
-                f"{j.name or f'joints[{k}]'}.between", [str(v) for v in j.between],
+                f"{j.name or f'joints[{k}]'}.between",
+                [str(v) for v in j.between],
                 f"a place on the body {name!r} in the reference configuration (it is "
                 f"{gap:.4g} m from it; move the place or the body)",
-            )  # fmt: skip
+            )
         system.sliding_start[k] = sigma
 
 
@@ -200,8 +230,9 @@ def start_multipliers(system: Any, y: NDArray | None = None) -> NDArray[np.float
     return lam
 
 
-def sliding_values(system: Any, k: int, y: NDArray, lam: NDArray,
-                   warn: Callable[[str], None] | None = None) -> float:  # fmt: skip
+def sliding_values(
+    system: Any, k: int, y: NDArray, lam: NDArray, warn: Callable[[str], None] | None = None
+) -> float:
     """The arc length ``s`` [m] of sliding joint ``k`` at the state ``(y, λ)`` (its ``σ`` in
     the slot), with one warning line (``warn``, default :func:`warnings.warn`) when the body's
     end has passed through the place (once a joint)."""
@@ -211,10 +242,12 @@ def sliding_values(system: Any, k: int, y: NDArray, lam: NDArray,
     passed: set[int] = getattr(system, "sliding_passed", set())
     if not body.closed and not (0.0 <= sigma <= body.n_el) and k not in passed:
         passed.add(k)
-        msg = (f"rancf: sliding joint {j.name or k!r}: the {'start' if sigma < 0 else 'end'} "
-               f"of body {name!r} has passed through its place (material coordinate "
-               f"{sigma:.6g} of 0..{body.n_el} elements): the joint continues the end element "
-               "beyond the body; make the body longer")  # fmt: skip
+        msg = (
+            f"rancf: sliding joint {j.name or k!r}: the {'start' if sigma < 0 else 'end'} "
+            f"of body {name!r} has passed through its place (material coordinate "
+            f"{sigma:.6g} of 0..{body.n_el} elements): the joint continues the end element "
+            "beyond the body; make the body longer"
+        )
         (warn or (lambda s: warnings.warn(s, stacklevel=3)))(msg)
     if body.closed:
         laps, rest = divmod(sigma, float(body.n_el))

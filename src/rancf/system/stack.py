@@ -188,7 +188,10 @@ class BodyStack:
     def size(self) -> float:
         """Characteristic length: the largest extent of the reference (Newton tolerances)."""
         pts = [b.node_positions(b.q0) for b in self.flex]
-        pts += [np.atleast_2d(self.y0[self.body_slice(k)][: self.dim]) for k, b in
-                self.bodies.items() if not isinstance(b, Model)]  # fmt: skip
+        pts += [
+            np.atleast_2d(self.y0[self.body_slice(k)][: self.dim])
+            for k, b in self.bodies.items()
+            if not isinstance(b, Model)
+        ]
         allp = np.concatenate(pts)
         return float(np.ptp(allp, axis=0).max()) or 1.0

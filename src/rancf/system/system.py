@@ -72,16 +72,23 @@ class _Rows:
             return -1
         if f.kind == "callable":
             if self.horizon is None or not self.horizon > 0:
-                raise InputError("horizon", self.horizon, "the run's end time t_end [s] > 0 (a "
-                                 "Python time function is sampled on [0, t_end])")  # fmt: skip
+                raise InputError(
+                    "horizon",
+                    self.horizon,
+                    "the run's end time t_end [s] > 0 (a "
+                    "Python time function is sampled on [0, t_end])",
+                )
             f = f.sampled(float(self.horizon))
         self.tfs.append(core_record(f))
         return len(self.tfs) - 1
 
     def records(self, **parts: Sequence) -> SystemRecords:
         """The records so far with ``parts`` (joints, springs, loads, prescribed, linear)."""
-        return SystemRecords(tuple(self.places), time_functions=tuple(self.tfs),
-                             **{k: tuple(v) for k, v in parts.items()})  # fmt: skip
+        return SystemRecords(
+            tuple(self.places),
+            time_functions=tuple(self.tfs),
+            **{k: tuple(v) for k, v in parts.items()},
+        )
 
 
 class System(BodyStack):
@@ -164,8 +171,9 @@ class System(BodyStack):
             raise InputError("damping.mass_proportional", damping, "a finite number >= 0")
         self.damping = float(damping)
         if not (np.isfinite(stiffness_damping) and stiffness_damping >= 0):
-            raise InputError("damping.stiffness_proportional", stiffness_damping,
-                             "a finite number >= 0")  # fmt: skip
+            raise InputError(
+                "damping.stiffness_proportional", stiffness_damping, "a finite number >= 0"
+            )
         self.stiffness_damping = float(stiffness_damping)
         self.horizon = horizon
         #: One line each on an impulsive start (a scenario's, :attr:`Scenario.warnings`).
@@ -181,8 +189,16 @@ class System(BodyStack):
             "linear": linear,
         }
         self.fluid, self.hydro = fluid, dict(hydro or {})
-        in_fluid = fluid_records(self.names[: len(self.flex)], self.flex, self.dim, self.gravity,
-                                 fluid, self.hydro, distributed, rows.tf)  # fmt: skip
+        in_fluid = fluid_records(
+            self.names[: len(self.flex)],
+            self.flex,
+            self.dim,
+            self.gravity,
+            fluid,
+            self.hydro,
+            distributed,
+            rows.tf,
+        )
         for spec in observe:
             p = self.resolve(spec)
             if p.body is None:
@@ -221,10 +237,13 @@ class System(BodyStack):
             return
         for name, b in zip(self.names, self.flex, strict=False):
             if b.gravity is None:
-                warnings.warn(f"rancf: body {name!r} has no gravity of its own, so its weight "
-                              f"is left out of the system's gravity "
-                              f"{self.gravity[: self.dim].tolist()}: give its Model the same "
-                              "gravity (or gravity=[0, ...] to mean it)", stacklevel=3)  # fmt: skip
+                warnings.warn(
+                    f"rancf: body {name!r} has no gravity of its own, so its weight "
+                    f"is left out of the system's gravity "
+                    f"{self.gravity[: self.dim].tolist()}: give its Model the same "
+                    "gravity (or gravity=[0, ...] to mean it)",
+                    stacklevel=3,
+                )
 
     def _check_reference(self) -> None:
         """Every joint holds in the reference configuration at t = 0 (positions to 1e-9 of the
@@ -240,14 +259,16 @@ class System(BodyStack):
             if not gap <= 1e-9 * self.size:
                 name = j.name or f"joints[{k}]"
                 raise InputError(
-                    f"{name}.between", [str(x) for x in j.between],
+                    f"{name}.between",
+                    [str(x) for x in j.between],
                     f"places that coincide in the reference configuration (they are "
                     f"{gap:.4g} m apart; move the bodies, or the points, so they meet)",
-                )  # fmt: skip
+                )
 
     # ---------------------------------------------------------------- places
-    def place_index(self, p: Place, rows: _Rows, ground_point: NDArray | None = None,
-               motion: int = -1) -> int:  # fmt: skip
+    def place_index(
+        self, p: Place, rows: _Rows, ground_point: NDArray | None = None, motion: int = -1
+    ) -> int:
         """The index of the record of the place ``p`` (resolved); the ground: at
         ``ground_point``, moved by the time function ``motion``."""
         if p.body is None:
@@ -314,10 +335,13 @@ class System(BodyStack):
         ref = 0.0 if xa is None or xb is None else float(np.linalg.norm(xa - xb))
         length = ref if s.length is None else float(s.length)
         if length != 0.0 and ref <= 1e-12 * self.size:  # no direction where the places meet
-            raise InputError(f"springs.{s.name or '/'.join(map(str, s.between))}.length",
-                             length, "0 where its places meet at the reference (ground sits at "
-                             "the other place's reference): the linear spring-damper "
-                             "k (x_a - x_b) + c (v_a - v_b)")  # fmt: skip
+            raise InputError(
+                f"springs.{s.name or '/'.join(map(str, s.between))}.length",
+                length,
+                "0 where its places meet at the reference (ground sits at "
+                "the other place's reference): the linear spring-damper "
+                "k (x_a - x_b) + c (v_a - v_b)",
+            )
         return SpringRecord(a, b, float(s.stiffness), float(s.damping), length)
 
     def _all_loads(self) -> list[Load]:
@@ -365,8 +389,16 @@ class System(BodyStack):
         return self._pair(j.between, rows, rows.tf(j.motion))
 
     def _build(self, records: SystemRecords) -> _core.System:
-        return build_core(self.dim, self.flex, self.rigid, records, self.gravity, self.damping,
-                          self.y0, self.stiffness_damping)  # fmt: skip
+        return build_core(
+            self.dim,
+            self.flex,
+            self.rigid,
+            records,
+            self.gravity,
+            self.damping,
+            self.y0,
+            self.stiffness_damping,
+        )
 
     def _frames(self, index: int) -> tuple[NDArray, NDArray]:
         x, f = self.core.place(index, self.y0, 0.0)

@@ -29,9 +29,17 @@ from rancf.errors import InputError
 from rancf.system.drums import attach_drum, drum_torque
 
 __all__ = [
-    "Winch", "winch_length", "winch_functions", "attach_winches", "winch_node", "unloaded_at",
-    "winch_reader", "winch_factor", "LENGTH_RTOL", "length_law",
-]  # fmt: skip
+    "Winch",
+    "winch_length",
+    "winch_functions",
+    "attach_winches",
+    "winch_node",
+    "unloaded_at",
+    "winch_reader",
+    "winch_factor",
+    "LENGTH_RTOL",
+    "length_law",
+]
 
 
 class WinchedSystem(Protocol):
@@ -129,8 +137,9 @@ def winch_length(w: Winch, length0: float, horizon: float | None) -> TimeFunctio
     ``[0, 1.05 horizon]``, then a cubic table of the core's)."""
     given = [k for k in ("length", "speed", "torque") if getattr(w, k) is not None]
     if len(given) != 1:
-        raise InputError(f"winches.{w.name}", " and ".join(given) or "none",
-                         "one of length, speed, torque")  # fmt: skip
+        raise InputError(
+            f"winches.{w.name}", " and ".join(given) or "none", "one of length, speed, torque"
+        )
     if w.torque is not None:  # the drum's start: its length at t = 0, a coordinate after
         return TimeFunction.constant(length0)
     if w.length is not None:
@@ -139,8 +148,11 @@ def winch_length(w: Winch, length0: float, horizon: float | None) -> TimeFunctio
     assert w.speed is not None  # the one given
     speed = w.speed if isinstance(w.speed, TimeFunction) else TimeFunction.constant(w.speed)
     if horizon is None or not horizon > 0:
-        raise InputError("horizon", horizon, "the run's end time t_end [s] > 0 (a winch's "
-                         "speed is integrated on [0, t_end])")  # fmt: skip
+        raise InputError(
+            "horizon",
+            horizon,
+            "the run's end time t_end [s] > 0 (a winch's speed is integrated on [0, t_end])",
+        )
     t = np.linspace(0.0, HORIZON_MARGIN * float(horizon), 20001)
     rate = np.array([float(np.ravel(speed.value(x))[0]) for x in t])
     cum = length0 + np.r_[0.0, np.cumsum(0.5 * (rate[1:] + rate[:-1]) * np.diff(t))]
@@ -181,13 +193,21 @@ def winch_functions(
         f = winch_length(w, length0, system.horizon)
         start = float(np.ravel(f.value(0.0))[0])
         if abs(start - length0) > LENGTH_RTOL * max(length0, 1.0):
-            raise InputError(f"winches.{w.name}.length", start, f"the body's unstretched "
-                             f"length at t = 0, {length0!r} m (rancf.bodies.length."
-                             "set_unstretched_length gives the body its start length)")  # fmt: skip
+            raise InputError(
+                f"winches.{w.name}.length",
+                start,
+                f"the body's unstretched "
+                f"length at t = 0, {length0!r} m (rancf.bodies.length."
+                "set_unstretched_length gives the body its start length)",
+            )
         if f.kind == "callable":
             if system.horizon is None:
-                raise InputError("horizon", None, "the run's end time t_end [s] (a winch's "
-                                 "length function is sampled on [0, t_end])")  # fmt: skip
+                raise InputError(
+                    "horizon",
+                    None,
+                    "the run's end time t_end [s] (a winch's "
+                    "length function is sampled on [0, t_end])",
+                )
             f = f.sampled(HORIZON_MARGIN * float(system.horizon))
         functions[w.name] = f
         out.append((tf(f), drum_torque(w, tf) if w.driven else -1))
@@ -209,8 +229,9 @@ def attach_winches(
         start = float(np.ravel(system.winch_lengths[w.name].value(0.0))[0])
         system.core.attach_winch(index, tf, start, c1, c2, d2)
         if torque >= 0:
-            system.drums[w.name] = attach_drum(system, k, w, _body(system, w),
-                                               winch_node(system, w)[1], torque)  # fmt: skip
+            system.drums[w.name] = attach_drum(
+                system, k, w, _body(system, w), winch_node(system, w)[1], torque
+            )
 
 
 def winch_node(system: WinchedSystem, w: Winch) -> tuple[str, int]:
@@ -226,8 +247,11 @@ def _body(system: WinchedSystem, w: Winch) -> Model:
         raise InputError(f"winches.{w.name}.at", w.at, "the end of a flexible (cable) body")
     node = 0 if end == "start" else body.n_nodes - 1
     if not any(body.check_node(s.node, "supports.at") == node for s in body.supports):
-        raise InputError(f"winches.{w.name}.at", w.at, "an end held by a support (pin or "
-                         "clamp) where the line leaves the drum")  # fmt: skip
+        raise InputError(
+            f"winches.{w.name}.at",
+            w.at,
+            "an end held by a support (pin or clamp) where the line leaves the drum",
+        )
     return body
 
 
