@@ -161,11 +161,11 @@ def test_core_sources_compile_without_warnings():
     cxx = shutil.which(os.environ.get("CXX", "c++")) or shutil.which("g++")
     if cxx is None:
         pytest.skip("no C++ compiler")
-    src = sorted((ROOT / "src" / "cpp").glob("*.cpp"))
+    src = sorted((ROOT / "src" / "cpp").rglob("*.cpp"))
     if not src:
         pytest.skip("C++ sources not in this checkout")
     flags = ["-std=c++17", "-fsyntax-only", "-Wall", "-Wextra", "-Wpedantic", "-Wshadow"]
-    flags += ["-Wconversion", "-Werror"]
+    flags += ["-Wconversion", "-Werror", f"-I{ROOT / 'src' / 'cpp'}"]
     for f in src:
         if f.name.startswith("bindings"):  # need the nanobind headers (built by pip)
             continue
@@ -178,7 +178,7 @@ def test_core_sources_are_formatted():
     exe = shutil.which("clang-format") or str(Path(sys.executable).parent / "clang-format")
     if not Path(exe).exists():
         pytest.skip("clang-format not installed (it comes with the test extra)")
-    src = sorted((ROOT / "src" / "cpp").glob("*.[ch]pp"))
+    src = sorted((ROOT / "src" / "cpp").rglob("*.[ch]pp"))
     if not src:
         pytest.skip("C++ sources not in this checkout")
     p = subprocess.run(

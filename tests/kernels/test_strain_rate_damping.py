@@ -162,7 +162,7 @@ def test_velocity_jacobian_at_the_reference_is_the_scaled_elastic_tangent(dim, g
     assert np.abs(f - expect @ v).max() <= 1e-9 * np.abs(expect @ v).max()
 
 
-# ---- rods: axial, torsion (K1) and bending (K2, K3) rates (src/cpp/rod_damping.hpp)
+# ---- rods: axial, torsion (K1) and bending (K2, K3) rates (src/cpp/elements/rod_damping.hpp)
 
 ROD_MAT = Material(6000.0, 2.0e6, poisson_ratio=0.3)
 ROD_SEC = Section(3.0e-4, 1.2e-8, 2.0e-8, 2.5e-8, (0.0, 0.0, 1.0))  # unequal principal inertias

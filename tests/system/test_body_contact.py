@@ -1,4 +1,4 @@
-"""Contact between flexible bodies and self-contact (src/cpp/body_contact.hpp): forces
+"""Contact between flexible bodies and self-contact (src/cpp/contact/body_contact.hpp): forces
 are the gradient of the penalty energy, the tangent matches differences, a rigid motion rotates
 the forces; a cable dropped on another comes to rest on it (its weight carried, penetration
 below 1 % of the radius); a rod twisted on the ground coils without its tube passing through

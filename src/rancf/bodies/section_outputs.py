@@ -1,7 +1,7 @@
 """Section quantities along the body: strain, axial force, curvatures and moments.
 
 At sample points ``ξ`` of every element the compiled core evaluates the strain and curvatures
-the element's strain energy uses (``src/cpp/sections.cpp``); the section forces are their energy
+the element's strain energy uses (``src/cpp/bodies/sections.cpp``); the section forces are their energy
 conjugates (docs/derivations/cable.md §6, docs/derivations/rod.md §5).  The energy per reference
 length is
 ``W = ½ EA ε² + ½ Σ C_i (κ_i - κ_i⁰)²`` with the Green–Lagrange strain ``ε``, the stretch
@@ -154,7 +154,7 @@ class SectionSampler:
         """:meth:`values` from :meth:`raw`, for one state or a stack ``(..., n_points, w)``
         (``factor``: as :meth:`values`, or one a state, shaped to broadcast: ``(k, 1, 1)``);
         cables and rods by the core's ``section_forces`` (the module docstring's ``M_i`` and
-        ``N``, ``src/cpp/sections.hpp``)."""
+        ``N``, ``src/cpp/bodies/sections.hpp``)."""
         m = self.model
         raw = np.ascontiguousarray(raw, dtype=float)
         if m.element != "beam":  # the core, every point of every state in one call

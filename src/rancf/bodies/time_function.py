@@ -38,7 +38,7 @@ acceleration at ``t = 0`` or ``t = B``) and ``g = f`` after ``B``.
 
 At a kink (a table's breakpoint, the end of a ramp) the rate is the one of the interval that
 starts there (the right derivative).  The compiled core evaluates the same functions
-(``src/cpp/time_function.hpp``) from the records of :func:`core_record`.
+(``src/cpp/system/time_function.hpp``) from the records of :func:`core_record`.
 """
 
 from __future__ import annotations

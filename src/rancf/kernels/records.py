@@ -1,7 +1,7 @@
-"""The named records a system crosses into the compiled core as (``src/cpp/system.hpp``).
+"""The named records a system crosses into the compiled core as (``src/cpp/system/system.hpp``).
 
 :class:`rancf.kernels._core.System` takes lists of these records; its binding
-(``src/cpp/bindings_records.cpp``) reads every field by its name into the C++ struct of the same
+(``src/cpp/bindings/bindings_records.cpp``) reads every field by its name into the C++ struct of the same
 name and fields, and refuses a field of the wrong type, size or value in one line that names it
 (``places[2].kind: expected one of ground, cable, ..., got 'bar'``).  Vectors are tuples of floats
 (a matrix row-major), so that every record is immutable and hashable.
@@ -37,11 +37,11 @@ __all__ = [
     "vec3",
 ]
 
-#: Kinds of places (``PlaceKind``, ``src/cpp/places.hpp``).
+#: Kinds of places (``PlaceKind``, ``src/cpp/system/places.hpp``).
 PLACE_KINDS = ("ground", "cable", "rod", "beam", "rigid2d", "rigid3d", "mass")
-#: Kinds of joint rows (``JointKind``, ``src/cpp/joints.hpp``).
+#: Kinds of joint rows (``JointKind``, ``src/cpp/system/joints.hpp``).
 JOINT_KINDS = ("pin", "fixed", "tangent", "revolute", "slider", "sliding")
-#: Kinds of time functions (``TimeKind``, ``src/cpp/time_function.hpp``).
+#: Kinds of time functions (``TimeKind``, ``src/cpp/system/time_function.hpp``).
 TIME_KINDS = ("constant", "piecewise", "ramp", "harmonic", "spin_up")
 
 
@@ -58,7 +58,7 @@ def vec3(values: ArrayLike) -> tuple[float, float, float]:
 
 @dataclass(frozen=True)
 class RigidRecord:
-    """A rigid body or point mass (``RigidInertia``, ``src/cpp/rigid.hpp``): ``inertia`` the
+    """A rigid body or point mass (``RigidInertia``, ``src/cpp/system/rigid.hpp``): ``inertia`` the
     principal moments (2D: ``(J, 0, 0)``)."""
 
     dim: int
@@ -69,7 +69,7 @@ class RigidRecord:
 
 @dataclass(frozen=True)
 class PlaceRecord:
-    """A place (``PlaceRef``, ``src/cpp/system.hpp``).
+    """A place (``PlaceRef``, ``src/cpp/system/system.hpp``).
 
     Attributes
     ----------
@@ -98,7 +98,7 @@ class PlaceRecord:
 
 @dataclass(frozen=True)
 class JointRecord:
-    """A joint (``JointData``, ``src/cpp/system.hpp``; its rows in ``src/cpp/joints.hpp``).
+    """A joint (``JointData``, ``src/cpp/system/system.hpp``; its rows in ``src/cpp/system/joints.hpp``).
 
     Attributes
     ----------
@@ -165,7 +165,7 @@ class LoadRecord:
 @dataclass(frozen=True)
 class TimeFunctionRecord:
     """A time function as the core evaluates it (``TimeFunction``,
-    ``src/cpp/time_function.hpp``).
+    ``src/cpp/system/time_function.hpp``).
 
     Attributes
     ----------
@@ -217,7 +217,7 @@ class LinearTerm:
 
 @dataclass(frozen=True)
 class FluidRecord:
-    """The fluid the bodies are in (``FluidField``, ``src/cpp/fluid.hpp``): ``density``
+    """The fluid the bodies are in (``FluidField``, ``src/cpp/fluid/fluid.hpp``): ``density``
     [kg/m^3], ``gravity`` (3) for buoyancy, the still ``surface`` height on the last axis (if
     ``has_surface``), a uniform ``current`` or a profile (``profile_z`` increasing heights,
     ``profile_u`` their velocities ``(n, 3)`` row-major), and linear waves (``waves``: height

@@ -1,6 +1,6 @@
 """The compiled core's :class:`rancf.kernels._core.System` of a system's bodies and the named
 records of its parts (:mod:`rancf.kernels.records`), which the constructor
-(``src/cpp/bindings_system.cpp``) reads field by field."""
+(``src/cpp/bindings/bindings_system.cpp``) reads field by field."""
 
 from __future__ import annotations
 

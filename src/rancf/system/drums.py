@@ -8,7 +8,7 @@ outside the drum (its kinetic energy with the material's flow through the mesh, 
 energy at the stretched reference, its weight), the drum's inertia ``J(L) = J − ρA r² (L − L0)``
 (the rope wound off it leaves with it) and the torque; statics: ``L`` where the line's pull on
 the drum balances the torque (docs/derivations/variable-length.md §3).  The compiled core
-assembles it (``src/cpp/winch.cpp``, ``drum_terms``).
+assembles it (``src/cpp/system/winch.cpp``, ``drum_terms``).
 """
 
 from __future__ import annotations

@@ -1,5 +1,5 @@
 """Lines in water and wind: the fluid, the bodies' hydrodynamic coefficients and distributed
-loads, as the compiled core takes them (``src/cpp/fluid.hpp``; docs/derivations/fluid.md).
+loads, as the compiled core takes them (``src/cpp/fluid/fluid.hpp``; docs/derivations/fluid.md).
 
 A :class:`Fluid` (density, free surface, current or current profile, linear waves) acts on every
 flexible body that has :class:`Hydro` coefficients: buoyancy of the displaced volume below the

@@ -12,7 +12,7 @@ coordinates alone do not fix).  :class:`SystemOutputs` turns rows of them into
   ``M a + g + c M v + f_int - f_ext + Gᵀ λ``;
 * the reactions of the joints: the resultant force and moment the joint exerts on its first
   place, the least-squares resultant of the generalized forces ``-G_Aᵀ λ`` on that place's
-  coordinates (``src/cpp/system_outputs.cpp``);
+  coordinates (``src/cpp/system/system_outputs.cpp``);
 * the section values of every flexible body (:mod:`rancf.bodies.section_outputs`);
 * the sensors (:mod:`rancf.system.sensors`).
 

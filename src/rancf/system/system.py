@@ -1,5 +1,5 @@
 """A system: flexible bodies, rigid bodies and point masses, joints, springs and loads, assembled
-into the compiled core's :class:`rancf.kernels._core.System` (``src/cpp/system.hpp``).
+into the compiled core's :class:`rancf.kernels._core.System` (``src/cpp/system/system.hpp``).
 
 Coordinates ``y`` stack the bodies in the order flexible bodies (their model coordinates, held
 supports included), then rigid bodies and point masses (:mod:`rancf.bodies.rigid`).  A joint's

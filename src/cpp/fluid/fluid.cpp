@@ -1,0 +1,279 @@
+// Fluid loads on lines (fluid.hpp; docs/derivations/fluid.md).
+#include "fluid/fluid.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "bodies/assembly.hpp"
+
+namespace rancf {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+std::size_t sz(int i) { return static_cast<std::size_t>(i); }
+
+/// cosh(k (zs + h)) / sinh(k h) and sinh(k (zs + h)) / sinh(k h), zs <= 0 (deep water: exp(k zs)).
+void depth_ratios(double k, double h, double zs, double& cr, double& sr) {
+  if (k * h > 25.0) {
+    cr = sr = std::exp(k * zs);
+    return;
+  }
+  const double s = std::sinh(k * h);
+  cr = std::cosh(k * (zs + h)) / s;
+  sr = std::sinh(k * (zs + h)) / s;
+}
+
+/// Offset in an element's coordinates of its position/gradient block k (0: rA, 1: rA', 2: rB,
+/// 3: rB'): cables k dim, rods as rod_common.hpp (a twist after each node's gradient).
+int block_offset(const Model& m, int k) {
+  if (m.kind == ElementKind::rod) {
+    constexpr int off[4] = {0, 3, 7, 10};
+    return off[k];
+  }
+  return k * m.dim;
+}
+
+}  // namespace
+
+void fluid_point(const FluidField& f, int dim, const double* r, double t, bool waves,
+                 FluidPoint& out) {
+  out = FluidPoint{};
+  const int zi = dim - 1;
+  const double z = r[zi];
+  const std::size_t np = f.profile_z.size();
+  if (np > 0) {  // linear in height between the rows, constant beyond them
+    if (z <= f.profile_z[0] || np == 1) {
+      for (int i = 0; i < 3; ++i) out.u[i] = f.profile_u[sz(i)];
+    } else if (z >= f.profile_z[np - 1]) {
+      for (int i = 0; i < 3; ++i) out.u[i] = f.profile_u[3 * (np - 1) + sz(i)];
+    } else {
+      std::size_t k = 0;
+      while (f.profile_z[k + 1] < z) ++k;
+      const double h = f.profile_z[k + 1] - f.profile_z[k], s = (z - f.profile_z[k]) / h;
+      for (int i = 0; i < 3; ++i) {
+        const double u0 = f.profile_u[3 * k + sz(i)], u1 = f.profile_u[3 * (k + 1) + sz(i)];
+        out.u[i] = u0 + s * (u1 - u0);
+        out.u_r[i][zi] = (u1 - u0) / h;
+      }
+    }
+  } else {
+    for (int i = 0; i < 3; ++i) out.u[i] = f.current[i];
+  }
+  double eta = f.surface;
+  if (waves && f.waves.on) {
+    const Waves& w = f.waves;
+    double x = 0.0;
+    for (int j = 0; j < zi; ++j) x += r[j] * w.dir[j];
+    const double th = w.k * x - w.omega * t, c = std::cos(th), s = std::sin(th);
+    eta += 0.5 * w.height * c;
+    const bool above = z > f.surface;  // above the still surface: the values at it
+    const double zs = above ? 0.0 : z - f.surface, dz = above ? 0.0 : 1.0;
+    double cr = 0.0, sr = 0.0;
+    depth_ratios(w.k, w.depth, zs, cr, sr);
+    const double a = 0.5 * w.height * w.omega, om = w.omega, k = w.k;
+    const double uh = a * cr * c, uv = a * sr * s;
+    const double duh = a * om * cr * s, duv = -a * om * sr * c;
+    for (int j = 0; j < zi; ++j) {
+      out.u[j] += uh * w.dir[j];
+      out.du[j] += duh * w.dir[j];
+    }
+    out.u[zi] += uv;
+    out.du[zi] += duv;
+    // derivatives of (uh, uv, duh, duv) along the direction (d th / d r_j = k dir_j) and in z
+    const double uh_x = -a * cr * s * k, uh_z = a * k * sr * c * dz;
+    const double uv_x = a * sr * c * k, uv_z = a * k * cr * s * dz;
+    const double duh_x = a * om * cr * c * k, duh_z = a * om * k * sr * s * dz;
+    const double duv_x = a * om * sr * s * k, duv_z = -a * om * k * cr * c * dz;
+    for (int j = 0; j < zi; ++j) {
+      for (int i = 0; i < zi; ++i) {
+        out.u_r[i][j] += uh_x * w.dir[i] * w.dir[j];
+        out.du_r[i][j] += duh_x * w.dir[i] * w.dir[j];
+      }
+      out.u_r[zi][j] += uv_x * w.dir[j];
+      out.du_r[zi][j] += duv_x * w.dir[j];
+      out.u_r[j][zi] += uh_z * w.dir[j];
+      out.du_r[j][zi] += duh_z * w.dir[j];
+    }
+    out.u_r[zi][zi] += uv_z;
+    out.du_r[zi][zi] += duv_z;
+  }
+  out.wet = !f.has_surface || z < eta;
+}
+
+namespace {
+
+// assemble_line with the dimension a constant (the small loops unrolled).
+template <int dim>
+void line_forces(const Model& m, const FluidSet& fs, const LineFluid& line, const double* y,
+                 const double* v, const double* acc, const LineTerms& tm, double* r,
+                 const BandView* jac, double* force) {
+  const int nde = m.nde(), nq = line.n_qp;
+  const bool dynamic = acc != nullptr;
+  const FluidField& fl = fs.field;
+  const double rho = fl.density, d = line.diameter, area = 0.25 * kPi * d * d;
+  const double cn = 0.5 * rho * d * line.cdn, ct = 0.5 * rho * kPi * d * line.cdt;
+  const double lf = tm.load_factor;
+  // the derivatives along positions and rates count (the mass matrix alone needs neither)
+  const bool moves = tm.ck != 0.0 || tm.cv != 0.0;
+  double load[3] = {0.0, 0.0, 0.0};  // the distributed loads at time t
+  for (const DistributedLoad& ld : line.loads) {
+    const double fac = ld.factor >= 0 ? evaluate((*tm.tfs)[sz(ld.factor)], 0, tm.t).f : 1.0;
+    for (int i = 0; i < 3; ++i) load[i] += lf * fac * ld.force[i];
+  }
+  int off[4];
+  for (int k = 0; k < 4; ++k) off[k] = block_offset(m, k);
+  std::array<double, kMaxElementDofs> e{}, ev{}, ea{}, fe{};
+  std::array<double, kMaxElementDofs * kMaxElementDofs> ke{};
+  // the fluid's kinematics do not depend on the point: set once (fluid_point's values there)
+  const bool uniform = fl.profile_z.empty() && !(dynamic && fl.waves.on);
+  FluidPoint fp;
+  if (uniform)
+    for (int i = 0; i < 3; ++i) fp.u[i] = fl.current[i];
+  for (int el = 0; el < m.n_el; ++el) {
+    gather_element(m, el, y, e.data());
+    gather_element(m, el, v, ev.data());
+    gather_element(m, el, acc, ea.data());
+    fe.fill(0.0);
+    if (jac != nullptr) ke.fill(0.0);
+    for (int q = 0; q < nq; ++q) {
+      const std::size_t iq = sz(el * nq + q);
+      const double* S = line.n0.data() + 4 * iq;
+      const double* S1 = line.n1.data() + 4 * iq;
+      const double w = line.gw[sz(q)] * line.j0[iq];
+      double x[3] = {}, a[3] = {}, vel[3] = {}, ac[3] = {};
+      for (int k = 0; k < 4; ++k)
+        for (int i = 0; i < dim; ++i) {
+          x[i] += S[k] * e[sz(off[k] + i)];
+          a[i] += S1[k] * e[sz(off[k] + i)];
+          vel[i] += S[k] * ev[sz(off[k] + i)];
+          ac[i] += S[k] * ea[sz(off[k] + i)];
+        }
+      double f[3] = {load[0], load[1], load[2]};
+      double Fr[3][3] = {}, Fa[3][3] = {}, Fv[3][3] = {}, Fc[3][3] = {};  // df/dr, /da, /dv, /dacc
+      if (!line.hydro) {
+      } else if (uniform) {  // a uniform current, no waves: u, no du, no gradients
+        fp.wet = !fl.has_surface || x[dim - 1] < fl.surface;
+      } else {
+        fluid_point(fl, dim, x, tm.t, dynamic, fp);
+      }
+      if (line.hydro && fp.wet) {
+        double fx[3] = {0.0, 0.0, 0.0};  // the fluid's force (no loads)
+        double la = 0.0;
+        for (int i = 0; i < dim; ++i) la += a[i] * a[i];
+        la = std::sqrt(la);
+        double t[3] = {0.0, 0.0, 0.0}, wv[3] = {0.0, 0.0, 0.0}, wn[3] = {0.0, 0.0, 0.0};
+        double wt = 0.0, nn = 0.0;
+        const double inv_la = 1.0 / la;
+        for (int i = 0; i < dim; ++i) {
+          t[i] = a[i] * inv_la;
+          wv[i] = fp.u[i] - vel[i];
+          wt += wv[i] * t[i];
+        }
+        for (int i = 0; i < dim; ++i) {
+          wn[i] = wv[i] - wt * t[i];
+          nn += wn[i] * wn[i];
+        }
+        nn = std::sqrt(nn);
+        const double awt = std::abs(wt);
+        for (int i = 0; i < dim; ++i)
+          fx[i] += lf * (cn * nn * wn[i] + ct * awt * wt * t[i]) - lf * rho * area * fs.gravity[i];
+        double hh[3] = {0.0, 0.0, 0.0}, th = 0.0;
+        const double ra = rho * area, dc = line.cat - line.can;
+        if (dynamic) {  // Froude-Krylov and added mass
+          for (int i = 0; i < dim; ++i) {
+            hh[i] = dc * (fp.du[i] - ac[i]);
+            th += t[i] * hh[i];
+          }
+          for (int i = 0; i < dim; ++i)
+            fx[i] += ra * ((1.0 + line.can) * fp.du[i] - line.can * ac[i] + t[i] * th);
+        }
+        if (jac != nullptr && moves) {
+          // d f_D / d w and d f_D / d t (w held): d(|wn| wn)/d wn = |wn| I + wn wn^T / |wn|;
+          // d wn / d w = I - t t^T, d wn / d t = -(t w^T + (w.t) I); the axial part
+          // 2 |wt| t (d wt) + |wt| wt (d t)
+          double dn[3][3] = {}, P[3][3], G[3][3], Ft[3][3];
+          const double inv_nn = nn > 0.0 ? 1.0 / nn : 0.0;
+          if (nn > 0.0)
+            for (int i = 0; i < dim; ++i)
+              for (int l = 0; l < dim; ++l)
+                dn[i][l] = nn * (i == l ? 1.0 : 0.0) + wn[i] * wn[l] * inv_nn;
+          for (int l = 0; l < dim; ++l)
+            for (int j = 0; j < dim; ++j) P[l][j] = (l == j ? 1.0 : 0.0) - t[l] * t[j];
+          for (int i = 0; i < dim; ++i)
+            for (int j = 0; j < dim; ++j) {
+              const double id = i == j ? 1.0 : 0.0;
+              double g = ct * 2.0 * awt * t[i] * t[j];
+              double h = ct * (2.0 * awt * t[i] * wv[j] + awt * wt * id);
+              for (int l = 0; l < dim; ++l) {
+                g += cn * dn[i][l] * P[l][j];
+                h -= cn * dn[i][l] * (t[l] * wv[j] + wt * (l == j ? 1.0 : 0.0));
+              }
+              G[i][j] = lf * g;
+              Ft[i][j] = lf * h;
+            }
+          for (int i = 0; i < dim; ++i)
+            for (int j = 0; j < dim; ++j) {
+              Fv[i][j] = -G[i][j];
+              double gr = 0.0;
+              for (int l = 0; l < dim; ++l) gr += G[i][l] * fp.u_r[l][j];
+              Fr[i][j] = gr;
+            }
+          if (dynamic)
+            for (int i = 0; i < dim; ++i)
+              for (int j = 0; j < dim; ++j) {
+                const double id = i == j ? 1.0 : 0.0;
+                Ft[i][j] += ra * (th * id + t[i] * hh[j]);
+                const double fu = ra * ((1.0 + line.can) * id + dc * t[i] * t[j]);
+                for (int l = 0; l < dim; ++l) Fr[i][l] += fu * fp.du_r[j][l];
+              }
+          for (int i = 0; i < dim; ++i)  // d t / d a = (I - t t^T) / |a|
+            for (int j = 0; j < dim; ++j) {
+              double sum = 0.0;
+              for (int l = 0; l < dim; ++l) sum += Ft[i][l] * P[l][j];
+              Fa[i][j] = sum * inv_la;
+            }
+        }
+        if (jac != nullptr && dynamic)  // the added mass
+          for (int i = 0; i < dim; ++i)
+            for (int j = 0; j < dim; ++j)
+              Fc[i][j] = -ra * (line.can * (i == j ? 1.0 : 0.0) + dc * t[i] * t[j]);
+        for (int i = 0; i < dim; ++i) {
+          f[i] += fx[i];
+          if (force != nullptr) force[i] += w * fx[i];
+        }
+      }
+      for (int k = 0; k < 4; ++k)
+        for (int i = 0; i < dim; ++i) fe[sz(off[k] + i)] -= w * S[k] * f[i];
+      if (jac == nullptr) continue;
+      for (int l = 0; l < 4; ++l) {
+        double kl[3][3];  // the force's derivative along block l, then spread over the blocks k
+        for (int i = 0; i < dim; ++i)
+          for (int j = 0; j < dim; ++j)
+            kl[i][j] = tm.ck * (Fr[i][j] * S[l] + Fa[i][j] * S1[l]) + tm.cv * Fv[i][j] * S[l] +
+                       tm.ca * Fc[i][j] * S[l];
+        for (int k = 0; k < 4; ++k) {
+          const double wk = w * S[k];
+          for (int i = 0; i < dim; ++i)
+            for (int j = 0; j < dim; ++j) ke[sz((off[k] + i) * nde + off[l] + j)] -= wk * kl[i][j];
+        }
+      }
+    }
+    scatter_element(m, el, fe.data(), jac != nullptr ? ke.data() : nullptr, r, jac, 1.0);
+  }
+}
+
+}  // namespace
+
+void assemble_line(const Model& m, const FluidSet& fs, const LineFluid& line, const double* y,
+                   const double* v, const double* acc, const LineTerms& tm, double* r,
+                   const BandView* jac, double* force) {
+  if (m.dim == 2)
+    line_forces<2>(m, fs, line, y, v, acc, tm, r, jac, force);
+  else
+    line_forces<3>(m, fs, line, y, v, acc, tm, r, jac, force);
+}
+
+}  // namespace rancf

@@ -1,0 +1,69 @@
+// A block-diagonal band matrix bordered by a few sparse rows and columns
+// (docs/derivations/systems.md section 4):
+//
+//   [ A  P ] [x]   [r]        A = diag(A_1, ..., A_k), band blocks (LU with partial pivoting)
+//   [ Q  D ] [z] = [s]        P (n x p), Q (p x n) sparse; D (p x p) dense
+//
+// Schur complement on the border: W = A^-1 P (each column solved in the blocks it touches only),
+// S = D - Q W (dense LU with partial pivoting), z = S^-1 (s - Q A^-1 r), x = A^-1 r - W z.
+// Cost per factorization: the bands O(n b^2), p column solves, O(p^3): linear in the number of
+// elements for a fixed border.  Held coordinates (supports) are rows and columns of the identity.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "linalg/band.hpp"
+
+namespace rancf {
+
+class BorderedLU {
+ public:
+  /// Blocks as (offset, size, half bandwidth), contiguous from 0; fixed (n): held coordinates.
+  BorderedLU(const std::vector<int>& offsets, const std::vector<int>& sizes,
+             const std::vector<int>& kus, const std::uint8_t* fixed);
+  [[nodiscard]] int n() const { return n_; }
+  [[nodiscard]] int blocks() const { return static_cast<int>(lu_.size()); }
+  /// Block b's matrix (set to zero), in local indices.
+  BandView block(int b);
+  /// Block b's matrix as it is.
+  BandView view(int b) { return lu_[static_cast<std::size_t>(b)].view(); }
+  [[nodiscard]] int block_ku(int b) const { return lu_[static_cast<std::size_t>(b)].ku(); }
+  [[nodiscard]] int block_of(int i) const;
+  [[nodiscard]] int block_offset(int b) const { return off_[static_cast<std::size_t>(b)]; }
+  /// Clear the border and size it for p extra unknowns.
+  void reset_border(int p);
+  void add_p(int col, int row, double v);  ///< P[row][col] += v
+  void add_q(int row, int col, double v);  ///< Q[row][col] += v
+  void add_d(int i, int j, double v);      ///< D[i][j] += v
+  /// Factor the blocks and the Schur complement; false if singular.
+  bool factor();
+  /// Solve in place: x (n) holds r, z (p) holds s.
+  void solve(double* x, double* z) const;
+  [[nodiscard]] int border() const { return p_; }
+  /// Before factor(): the dense matrix of x and the first `keep` border unknowns, the others
+  /// (coupling unknowns with D = -I) eliminated: [A + P_z Q_z, P_k; Q_k, D_kk], row-major
+  /// (n + keep)^2.  For checks and small eigenproblems.
+  void dense(int keep, double* out);
+  /// Before factor(): the nonzeros of [A P; Q D] (size n + p) as triplets (row, column, value),
+  /// band entries of every block and the border's; for sparse eigenproblems.
+  void triplets(std::vector<int>& rows, std::vector<int>& cols, std::vector<double>& vals);
+
+ private:
+  struct Entry {
+    int index;
+    double value;
+  };
+  void solve_blocks(double* x, const std::vector<char>* touched) const;
+  int n_ = 0, p_ = 0;
+  std::vector<int> off_, size_;
+  std::vector<BandLU> lu_;
+  std::vector<std::vector<std::uint8_t>> fixed_;
+  std::vector<std::vector<Entry>> pcol_, qrow_;
+  std::vector<double> d_, w_, s_;  // D (p x p), W (n x p, column-major), Schur LU (p x p)
+  std::vector<int> wlo_, whi_;     // rows [lo, hi) of W's column c that can be nonzero
+  std::vector<int> piv_;
+  mutable std::vector<double> rhs_;  // solve's work array
+};
+
+}  // namespace rancf
