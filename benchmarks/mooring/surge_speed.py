@@ -12,17 +12,18 @@ Four parts, each printed as a table, the CPU and its load named at the end:
    ``compare_surge.py``).
 2. **Whole runs, pairs interleaved.** ``rancf simulate`` of the scenario (static initial state
    included) against ``moordyn_surge.py --segments 40 --dt 1e-4`` (its static solve included),
-   A B A B ...; per run the process wall time, and apart: rancf's ``setup_wall_time_s``
+   A B A B ...; per run the process wall and CPU time (user + system: on a shared machine
+   the steadier figure), and apart: rancf's ``setup_wall_time_s``
    (process start to the first step, imports included) and solve time, MoorDyn's
    initialization (its static solve) and solve time.  The ratio is taken pair by pair and its
-   median quoted.
+   median quoted, of the wall and of the CPU times.
 3. **Per Newton iteration.** The scenario for 20 s with ``newton = "full"`` (a Jacobian every
    iteration) at each of ``--iteration-elements``, against the same line without fluid and
    seabed (a plain cable hanging between the same points): solve time over Newton iterations,
    pairs interleaved, the ratio's median.
 4. **Set-up, phase by phase**, in fresh processes (the median of the runs): the imports of a
    run, reading the scenario (pydantic's first validation builds the validator), building the
-   system, the static initial state.
+   system, the static initial state; wall and CPU times.
 """
 
 from __future__ import annotations
@@ -31,6 +32,7 @@ import argparse
 import json
 import os
 import re
+import resource
 import statistics
 import subprocess
 import sys
@@ -47,34 +49,45 @@ from provenance import machine, version  # noqa: E402
 PHASES = """
 import importlib, json, os, sys, time
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
-t0 = time.perf_counter()
+T = [(time.perf_counter(), time.process_time())]
 before = set(sys.modules)
 for name in json.loads(sys.argv[2]):  # what the run below loads, first (all of it imports)
     importlib.import_module(name)
 from rancf.cli.resume import scenario_for_run
 from rancf.post.run_plan import plan_run
 from rancf.solvers.start import start_state
-t1 = time.perf_counter()
+T.append((time.perf_counter(), time.process_time()))
 sc, copy = scenario_for_run(sys.argv[1], None)
-t2 = time.perf_counter()
+T.append((time.perf_counter(), time.process_time()))
 system, outputs = plan_run(sc, 10.0)
-t3 = time.perf_counter()
+T.append((time.perf_counter(), time.process_time()))
 y0, info = start_state(sc, system)
-t4 = time.perf_counter()
+T.append((time.perf_counter(), time.process_time()))
 loaded = [m for m in sys.modules if m not in before and "._" not in m and m[0] != "_"]
-print(json.dumps({"imports": t1 - t0, "read": t2 - t1, "build": t3 - t2, "static": t4 - t3,
-                  "modules": loaded}))
+out = {"modules": loaded}
+for i, k in enumerate(("imports", "read", "build", "static")):
+    out[k] = T[i + 1][0] - T[i][0]
+    out[k + " cpu"] = T[i + 1][1] - T[i][1]
+print(json.dumps(out))
 """
 
 
+def children_cpu() -> float:
+    """User and system CPU time of the finished child processes so far [s]."""
+    r = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return r.ru_utime + r.ru_stime
+
+
 def run_rancf(scenario: Path, out: Path) -> dict[str, float]:
-    """``rancf simulate`` as a process: its summary's times and the process wall time."""
+    """``rancf simulate`` as a process: its summary's times, the process wall and CPU time."""
+    cpu0 = children_cpu()
     proc, wall = rancf("simulate", str(scenario), "--out", str(out), "--quiet", "--overwrite")
     if proc.returncode != 0:
         raise RuntimeError(f"rancf simulate {scenario.name} failed:\n{proc.stderr[-2000:]}")
     s = json.loads((out / "summary.json").read_text())
     return {
         "wall": wall,
+        "cpu": children_cpu() - cpu0,
         "setup": s["setup_wall_time_s"],
         "static": s["static"]["wall_time_s"] if "static" in s else float("nan"),
         "solve": s["solve_wall_time_s"],
@@ -118,21 +131,30 @@ def accuracy(a: argparse.Namespace, tmp: Path) -> list[list[str]]:
     return rows
 
 
-def whole_runs(a: argparse.Namespace, tmp: Path) -> tuple[list[list[str]], float]:
+def whole_runs(a: argparse.Namespace, tmp: Path) -> tuple[list[list[str]], tuple[float, float]]:
     """Part 2: rancf and MoorDyn (40 segments, 1e-4 s) in turn; the median process ratio."""
     ra, md, ratios = [], [], []
     for _ in range(a.pairs):
         ra.append(run_rancf(HERE / a.scenario, tmp / "run"))
-        t0 = time.perf_counter()
+        t0, cpu0 = time.perf_counter(), children_cpu()
         out, _ = peer(a.peer_python, "moordyn_surge.py", "--segments", "40", "--dt", "1e-4")
-        out["wall"] = time.perf_counter() - t0
+        out["wall"], out["cpu"] = time.perf_counter() - t0, children_cpu() - cpu0
         md.append(out)
-        ratios.append(ra[-1]["wall"] / md[-1]["wall"])
+        ratios.append((ra[-1]["wall"] / md[-1]["wall"], ra[-1]["cpu"] / md[-1]["cpu"]))
 
     def med(runs: list[dict], key: str) -> float:
         return statistics.median(r[key] for r in runs)
 
-    rows = [["code", "set-up [s]", "of it the static state [s]", "solve [s]", "process [s]"]]
+    rows = [
+        [
+            "code",
+            "set-up [s]",
+            "of it the static state [s]",
+            "solve [s]",
+            "process [s]",
+            "process CPU [s]",
+        ]
+    ]
     rows.append(
         [
             f"rancf {a.scenario}",
@@ -140,6 +162,7 @@ def whole_runs(a: argparse.Namespace, tmp: Path) -> tuple[list[list[str]], float
             f"{med(ra, 'static'):.3f}",
             f"{med(ra, 'solve'):.3f}",
             f"{med(ra, 'wall'):.3f}",
+            f"{med(ra, 'cpu'):.3f}",
         ]
     )
     rows.append(
@@ -149,9 +172,10 @@ def whole_runs(a: argparse.Namespace, tmp: Path) -> tuple[list[list[str]], float
             f"{med(md, 'init_s'):.3f}",
             f"{med(md, 'solve_s'):.3f}",
             f"{med(md, 'wall'):.3f}",
+            f"{med(md, 'cpu'):.3f}",
         ]
     )
-    return rows, statistics.median(ratios)
+    return rows, (statistics.median(r[0] for r in ratios), statistics.median(r[1] for r in ratios))
 
 
 def per_iteration(a: argparse.Namespace, tmp: Path) -> list[list[str]]:
@@ -198,12 +222,15 @@ def phases(a: argparse.Namespace) -> list[list[str]]:
             modules = got["modules"]
         else:
             runs.append(got)
-    med = {k: statistics.median(r[k] for r in runs) for k in ("imports", "read", "build", "static")}
-    rest = med["read"] + med["build"] + med["static"]
-    return [
-        ["imports [s]", "read [s]", "build [s]", "static state [s]", "set-up but imports [s]"],
-        [f"{med[k]:.4f}" for k in ("imports", "read", "build", "static")] + [f"{rest:.4f}"],
+    keys = ("imports", "read", "build", "static")
+    rows = [
+        ["", "imports [s]", "read [s]", "build [s]", "static state [s]", "set-up but imports [s]"]
     ]
+    for label, suffix in (("wall", ""), ("CPU", " cpu")):
+        med = {k: statistics.median(r[k + suffix] for r in runs) for k in keys}
+        rest = med["read"] + med["build"] + med["static"]
+        rows.append([label] + [f"{med[k]:.4f}" for k in keys] + [f"{rest:.4f}"])
+    return rows
 
 
 def main() -> None:
@@ -221,7 +248,10 @@ def main() -> None:
             print(table(accuracy(a, tmpd)), "\n", flush=True)
         rows, ratio = whole_runs(a, tmpd)
         print(table(rows))
-        print(f"whole run rancf / MoorDyn (process, median of {a.pairs} pairs): {ratio:.3f}\n")
+        print(
+            f"whole run rancf / MoorDyn, medians of {a.pairs} pairs: wall {ratio[0]:.3f}, "
+            f"CPU {ratio[1]:.3f}\n"
+        )
         print(table(per_iteration(a, tmpd)), "\n", flush=True)
     print(table(phases(a)))
     print(f"\nrancf {version('rancf')}; {machine()}, {load0:.1f} at the start")
