@@ -7,9 +7,9 @@ Four parts, each printed as a table, the CPU and its load named at the end:
 
 1. **Accuracy.** MoorDyn at 160 segments (its default step, 0.04 s / 160) is the converged
    answer; ``--scenario`` (default ``mooring-surge-fast.toml``: 20 elements, 0.2 s steps, the
-   coarsest settings found within 3 %) and MoorDyn at 40 segments and 1e-4 s are compared with
-   it once a second from t = 20 s to 60 s (the fairlead force's size, as
-   ``compare_surge.py``).
+   coarsest settings found within 3 %), the same file with the element counts and steps of
+   ``--scan`` and MoorDyn at 40 segments and 1e-4 s are compared with it once a second from
+   t = 20 s to 60 s (the fairlead force's size, as ``compare_surge.py``).
 2. **Whole runs, pairs interleaved.** ``rancf simulate`` of the scenario (static initial state
    included) against ``moordyn_surge.py --segments 40 --dt 1e-4`` (its static solve included),
    A B A B ...; per run the process wall and CPU time (user + system: on a shared machine
@@ -126,6 +126,18 @@ def accuracy(a: argparse.Namespace, tmp: Path) -> list[list[str]]:
     run_rancf(HERE / a.scenario, tmp / "acc")
     s = read_series(tmp / "acc" / "sensors.csv")
     differences(rows, ref, {"t": s["t"], "f": reaction_size(s)}, f"rancf {a.scenario}")
+    base = (HERE / a.scenario).read_text()
+    for spec in a.scan:  # the file with other element counts and steps
+        n, h = spec.split(":")
+        f = tmp / f"scan-{n}-{h}.toml"
+        f.write_text(variant(base, elements=n, step=h))
+        try:
+            run_rancf(f, tmp / "scan")
+        except RuntimeError as exc:
+            rows.append([f"rancf {n} elements, {h} s", "failed", str(exc).splitlines()[-1][:60]])
+            continue
+        s = read_series(tmp / "scan" / "sensors.csv")
+        differences(rows, ref, {"t": s["t"], "f": reaction_size(s)}, f"rancf {n} elements, {h} s")
     s40 = read_series(csv40)
     differences(rows, ref, {"t": s40["t_s"], "f": s40["tension_N"]}, "MoorDyn 40 segments, 1e-4 s")
     return rows
@@ -240,6 +252,13 @@ def main() -> None:
     p.add_argument("--scenario", default="mooring-surge-fast.toml")
     p.add_argument("--iteration-elements", type=int, nargs="*", default=[20, 80])
     p.add_argument("--skip-accuracy", action="store_true")
+    p.add_argument(
+        "--scan",
+        nargs="*",
+        default=["20:0.1", "20:0.25", "16:0.2", "12:0.1", "12:0.2", "10:0.1"],
+        metavar="ELEMENTS:STEP",
+        help="the scenario also with these element counts and steps (accuracy only)",
+    )
     a = p.parse_args()
     load0 = os.getloadavg()[0]
     with tempfile.TemporaryDirectory() as tmp:
