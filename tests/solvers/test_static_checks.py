@@ -328,3 +328,84 @@ def test_a_sagged_start_run_folder_holds_its_solve_only(tmp_path):
     summary = json.loads((tmp_path / "r" / "summary.json").read_text())
     assert summary["method"] == SAG_START and summary["warnings"] == []
     assert len((tmp_path / "r" / "sensors.csv").read_text().splitlines()) == 2
+
+
+def test_a_line_passing_through_itself_is_found():
+    from types import SimpleNamespace
+
+    from rancf.solvers.static_checks import self_crossing
+
+    model = SimpleNamespace(section=SimpleNamespace(radius=0.1), mesh=SimpleNamespace(closed=False))
+    t = np.linspace(0.0, 1.0, 200)
+    assert self_crossing(model, np.c_[10.0 * t, 0.0 * t], 10.0 * t) == ""
+    th = np.linspace(-0.3, 2.0 * np.pi + 0.3, 400)  # a loop of radius 2 m drawn along x
+    loop = np.c_[2.0 * np.sin(th) + 0.1 * th, 2.0 - 2.0 * np.cos(th)]
+    s = np.r_[0.0, np.cumsum(np.linalg.norm(np.diff(loop, axis=0), axis=1))]
+    assert "passes through itself" in self_crossing(model, loop, s)
+    # a hairpin whose arms stay two radii apart (touching, not passing through) is no crossing
+    arm = np.linspace(0.0, 5.0, 100)
+    bend = (
+        0.1 * np.c_[np.sin(np.linspace(0.0, np.pi, 40)), 1.0 - np.cos(np.linspace(0.0, np.pi, 40))]
+    )
+    hairpin = np.r_[np.c_[-arm[::-1], 0.0 * arm], bend[1:-1], np.c_[-arm, 0.2 + 0.0 * arm]]
+    s = np.r_[0.0, np.cumsum(np.linalg.norm(np.diff(hairpin, axis=0), axis=1))]
+    assert self_crossing(model, hairpin, s) == ""
+
+
+MOORING_3D = """
+[geometry]
+kind = "conic"
+start = [-300.0, 0.0, -100.0]
+end = [0.0, 0.0, 0.0]
+angles_deg = [18.43494882292201, 71.56505117707799]
+point = [-96.55665347288583, 0.0, -67.81444884237139]
+[mesh]
+elements = {n}
+quadrature_points = 5
+[section]
+area = 0.03668789808917197
+inertia = 1.0e-7
+[material]
+density = 7850.0
+youngs_modulus = 33596909722.222225
+axial_strain = "engineering"
+[fluid]
+density = 1025.0
+[hydro]
+diameter = 0.216
+[[supports]]
+at = "start"
+kind = "pin"
+[[supports]]
+at = "end"
+kind = "pin"
+[[obstacles]]
+name = "seabed"
+kind = "plane"
+point = [0.0, 0.0, -100.10806535367585]
+normal = [0.0, 0.0, 1.0]
+stiffness = 648000.0
+[loads]
+gravity = [0.0, 0.0, -9.81]
+"""
+
+
+def test_a_looped_mooring_line_is_not_an_equilibrium(tmp_path):
+    # the 330 m chain of benchmarks/mooring/mooring-surge-3d.toml at 15 elements: the sagged
+    # start settled into a loop near the anchor (16.6 % strain, 66 MN at the fairlead); refused,
+    # the load path finds the line on the seabed: 751 kN, 2.8 % under the 40-element 773 kN
+    from rancf.system.outputs import SystemOutputs
+
+    tension = {}
+    for n in (15, 40):
+        path = tmp_path / f"line{n}.toml"
+        path.write_text(MOORING_3D.format(n=n))
+        sc = load_scenario(path)
+        system = sc.build_system()
+        res = solve_static(system, **sc.static_options())
+        assert static_state_problems(system, res.q) == []
+        tip = system.y_from_q(res.q)[system.body_slice(system.names[0])]
+        assert np.all(np.diff(tip.reshape(-1, 6)[:, 0]) > 0.0)  # x grows along the line: no loop
+        ends = SystemOutputs(system, []).static_reactions(res.y, res.lam)
+        tension[n] = float(np.linalg.norm(ends[1].force))
+    assert abs(tension[15] / tension[40] - 1.0) < 0.05, tension

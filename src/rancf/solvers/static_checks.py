@@ -16,6 +16,10 @@ line).  Criteria (docs/guide/statics.md, "Checked equilibria"):
   element's reference length (a multiple of the element's own Euler load: a column below its
   buckling load passes; a cable, whose ``EI`` is negligible, may carry no compression beyond the
   round-off of its axial stiffness);
+* **passing through itself**: two stretches of a body that are not neighbours along it (more
+  than ``π r`` of arc apart, ``r`` the section radius: a tube bent no tighter than its own
+  radius) come closer than ``r`` (:func:`self_crossing`; a loop of a planar line crosses
+  itself, the distance is 0);
 * **penetration**: an obstacle's largest penetration exceeds :data:`PENETRATION_LIMIT` of the
   diameter ``2 sqrt(A / π)`` of the thinnest body that touches it;
 * **unresolved touchdown**: where a line meets or leaves a seabed (a fixed plane its wet weight
@@ -39,6 +43,7 @@ __all__ = [
     "COMPRESSION_ROUNDOFF",
     "PENETRATION_LIMIT",
     "static_state_problems",
+    "self_crossing",
 ]
 
 #: Smallest stretch of a sample point that is not a fold.
@@ -90,6 +95,9 @@ def _body_problems(model: Model, y: NDArray[np.float64]) -> list[str]:
         COMPRESSION_BUCKLING * np.pi**2 * model.props.ei / ell**2
         + COMPRESSION_ROUNDOFF * model.props.ea
     )
+    crossing = self_crossing(model, sampler.positions(y), sampler.s)
+    if crossing:
+        out.append(crossing)
     e = int(np.argmin(mean + allowed))
     if mean[e] < -allowed[e]:
         out.append(
@@ -98,6 +106,55 @@ def _body_problems(model: Model, y: NDArray[np.float64]) -> list[str]:
             f"({COMPRESSION_BUCKLING:g} π² EI / ℓ² + {COMPRESSION_ROUNDOFF:g} EA)"
         )
     return out
+
+
+def self_crossing(model: Model, x: NDArray[np.float64], s: NDArray[np.float64]) -> str:
+    """Where the polyline through the sample points ``x`` (arc lengths ``s``) of ``model``
+    passes through itself: two of its chords more than ``π r`` of arc apart whose closest
+    points are nearer than the section radius ``r``, as a line naming both arc lengths (empty
+    when there is none).  Candidate pairs come from a k-d tree of the chords' midpoints."""
+    from scipy.spatial import cKDTree
+
+    r = float(model.section.radius)
+    a, b = x[:-1], x[1:]
+    half = 0.5 * float(np.max(np.linalg.norm(b - a, axis=1)))
+    pairs = cKDTree(0.5 * (a + b)).query_pairs(2.0 * half + r, output_type="ndarray")
+    if not len(pairs):
+        return ""
+    i, j = np.sort(pairs, axis=1).T
+    apart = s[j] - s[i + 1]  # the arc between the two chords
+    if getattr(model.mesh, "closed", False):
+        apart = np.minimum(apart, s[-1] - s[0] - (s[j + 1] - s[i]))
+    keep = apart > np.pi * r
+    i, j = i[keep], j[keep]
+    d = _chord_distances(a[i], b[i], a[j], b[j])
+    if not d.size or d.min() >= r:
+        return ""
+    k = int(np.argmin(d))
+    return (
+        f"the line passes through itself: at s = {s[i[k]]:.4g} m and s = {s[j[k]]:.4g} m "
+        f"its centre line is {d[k]:.3g} m from itself, closer than its radius {r:.3g} m "
+        "(a loop): not an equilibrium a line rests in"
+    )
+
+
+def _chord_distances(p0: NDArray, p1: NDArray, q0: NDArray, q1: NDArray) -> NDArray:
+    """The distances of the segments ``p0 p1`` and ``q0 q1`` (rows), from their closest points
+    (Ericson, *Real-Time Collision Detection*, sec. 5.1.9, parameters clamped to [0, 1])."""
+    d1, d2, r0 = p1 - p0, q1 - q0, p0 - q0
+    a = np.einsum("ij,ij->i", d1, d1)
+    e = np.einsum("ij,ij->i", d2, d2)
+    f = np.einsum("ij,ij->i", d2, r0)
+    c = np.einsum("ij,ij->i", d1, r0)
+    bb = np.einsum("ij,ij->i", d1, d2)
+    den = a * e - bb * bb
+    safe = np.where(den > 1e-300, den, 1.0)
+    sp = np.where(den > 1e-14 * a * e, np.clip((bb * f - c * e) / safe, 0.0, 1.0), 0.0)
+    tq = (bb * sp + f) / np.where(e > 0.0, e, 1.0)
+    tq_c = np.clip(tq, 0.0, 1.0)
+    sp = np.where(tq != tq_c, np.clip((bb * tq_c - c) / np.where(a > 0.0, a, 1.0), 0.0, 1.0), sp)
+    gap = p0 + sp[:, None] * d1 - (q0 + tq_c[:, None] * d2)
+    return np.linalg.norm(gap, axis=1)
 
 
 def _fold_element(x: NDArray[np.float64], x0: NDArray[np.float64], k: int) -> int | None:
