@@ -64,17 +64,16 @@ def refine_for_touchdowns(sc: Any, system: Any, ratios: dict[str, float]) -> tup
     docstring), and the warning lines; ``sc`` itself and no lines when nothing is refined."""
     counts = _element_counts(sc)
     factors, notes = {}, []
-    for name, ratio in ratios.items():
-        n = counts.get(name)
-        m = 0 if n is None else _halvings(ratio, n)
+    for name, (ratio, ell) in ratios.items():
+        n = system.bodies[name].n_el
+        m = 0 if name not in counts else _halvings(ratio, n)
         if m == 0:
             continue
         factors[name] = 2**m
-        ell = system.bodies[name].mesh.arc_lengths().max()
         notes.append(
             f"body {name!r}: its {n} elements refined to {n * 2**m} for the static solve: "
             f"where it meets the seabed it bends with the radius T/w = {ell / ratio:.3g} m, "
-            f"which elements of {ell:.3g} m do not resolve (at most "
+            f"which its {ell:.3g} m elements there do not resolve (at most "
             f"{TOUCHDOWN_RESOLUTION:.2g} of it: docs/guide/statics.md)"
         )
     if not factors or _node_indexed(sc.model_dump(by_alias=True, exclude_unset=True)):
@@ -125,14 +124,21 @@ def _node_indexed(d: Any) -> bool:
     return False
 
 
-def start_ratios(system: Any) -> dict[str, float]:
-    """Per cable body whose sagged start shape meets a seabed, its longest element over that
-    shape's bend radius there (:func:`rancf.solvers.sag_start.touchdown_radius`)."""
+def start_ratios(system: Any) -> dict[str, tuple[float, float]]:
+    """Per cable body whose sagged start shape meets a seabed, the largest ratio of the length
+    of an element holding a touchdown point of that shape to its bend radius there
+    (:func:`rancf.solvers.sag_start.touchdown_radius`)."""
+    import numpy as np
+
     from rancf.solvers.sag_start import touchdown_radius
 
     out = {}
     for name, model in zip(system.names, system.flex, strict=False):
-        a = touchdown_radius(system, name, model)
-        if a is not None and a > 0.0:
-            out[name] = float(model.mesh.arc_lengths().max()) / a
+        found = touchdown_radius(system, name, model)
+        if found is None or not found[0] > 0.0 or not found[1]:
+            continue
+        ell = model.mesh.arc_lengths()
+        starts = np.r_[0.0, np.cumsum(ell)]
+        e = np.clip(np.searchsorted(starts, found[1], side="right") - 1, 0, ell.size - 1)
+        out[name] = (float(ell[e].max()) / found[0], float(ell[e].max()))
     return out

@@ -178,9 +178,10 @@ def _line_geometry(system: Any, name: str, model: Model, pinned: bool = False) -
     return q, up, p1, chord, s_nodes, span, rise
 
 
-def touchdown_radius(system: Any, name: str, model: Model) -> float | None:
+def touchdown_radius(system: Any, name: str, model: Model) -> tuple[float, list[float]] | None:
     """The bend radius ``a = H / w`` where body ``name``'s sagged start shape (module
-    docstring) meets the seabed, or None (no sagged shape, or one that does not touch)."""
+    docstring) meets the seabed and the reference arc lengths of its touchdown points (where a
+    hanging part meets it), or None (no sagged shape, or one that does not touch)."""
     geo = _line_geometry(system, name, model)
     if geo is None:
         return None
@@ -192,7 +193,12 @@ def touchdown_radius(system: Any, name: str, model: Model) -> float | None:
     floor = _floor(system, name, model, up, p1)
     if floor is None:
         return None
-    return _grounded(span, max(-floor, 0.0), max(rise - floor, 0.0), length)
+    h1, h2 = max(-floor, 0.0), max(rise - floor, 0.0)
+    a = _grounded(span, h1, h2, length)
+    if a is None:
+        return None
+    s1, s2 = (math.sqrt(h * h + 2.0 * a * h) for h in (h1, h2))
+    return a, [s for s, h in ((s1, h1), (length - s2, h2)) if h > 0.0]
 
 
 def _body_sag(

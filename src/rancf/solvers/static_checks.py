@@ -134,16 +134,17 @@ def _touchdown_problems(system: Any, q: NDArray[np.float64]) -> list[str]:
     return out
 
 
-def touchdown_ratios(system: Any, q: NDArray[np.float64]) -> dict[str, float]:
+def touchdown_ratios(system: Any, q: NDArray[np.float64]) -> dict[str, tuple[float, float]]:
     """Per line touching a seabed (module docstring) at the static state ``q``, the largest
     ratio ``ℓ / (T / w)`` of an element's length to the bend radius where the line meets or
-    leaves the seabed in that element (``inf`` where ``T <= 0``); lines with no touchdown are
-    left out."""
-    out: dict[str, float] = {}
+    leaves the seabed in that element (``inf`` where ``T <= 0``) and that element's length
+    ``ℓ``; lines with no touchdown are left out."""
+    out: dict[str, tuple[float, float]] = {}
     for name, _, bends in _seabed_bends(system, q):
         for _, bend, ell in bends:
             ratio = ell / bend if bend > 0.0 else np.inf
-            out[name] = max(out.get(name, 0.0), ratio)
+            if ratio > out.get(name, (0.0, 0.0))[0]:
+                out[name] = (ratio, ell)
     return out
 
 
