@@ -10,9 +10,9 @@ catenary, see :mod:`tests.solvers.test_moorpy_catenary`).  Per case and mesh: th
 largest error relative to the fairlead tension, the method, Newton iterations, relaxation
 steps, the elements it was solved on (``rancf static`` refines a line whose touchdown its mesh
 does not resolve) and the solve time ``rancf static`` reports (``wall_time_s``, median over
-the repeats); MoorPy's time is that of its ``catenary`` call (median over the repeats) in the interpreter given by
-``--moorpy-python`` (a venv with ``moorpy==1.3.*``: a benchmark dependency, not one of rancf's),
-run in the same session, case by case after rancf's.  Writes
+the repeats); MoorPy's time is that of its ``catenary`` call (median over the repeats) in the
+interpreter given by ``--moorpy-python`` (a venv with ``moorpy==1.3.*``: a benchmark
+dependency, not one of rancf's), run in the same session, case by case after rancf's.  Writes
 ``benchmarks/results/moorpy_catenary_suite.json``.
 """
 
