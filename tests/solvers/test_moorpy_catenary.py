@@ -154,3 +154,15 @@ def test_a_touchdown_found_unresolved_after_the_solve_is_solved_again_refined(
     got = -np.r_[ends[0].force[:2], ends[-1].force[:2]]
     want = expected(case)
     assert np.abs(got - want).max() <= TOL * np.hypot(*want[2:]), (got, want)
+
+
+def test_a_mesh_named_by_node_index_is_kept_with_a_warning(tmp_path):
+    """The U's half at 40 elements with a sensor at node 20: the static run keeps the mesh (its
+    nodes would move) and says that its elements do not resolve the touchdown."""
+    case = next(c for c in CASES if c.name == "u-half")
+    path = tmp_path / "u.toml"
+    sensor = '[[sensors]]\nname = "mid"\nkind = "position"\nat = 20\n'
+    path.write_text(scenario_text(case, 40) + sensor)
+    run = run_static(load_scenario(path))
+    assert run.system.flex[0].n_el == 40 and len(run.notes) == 1, run.notes
+    assert "do not resolve" in run.notes[0] and "keeps its 40 elements" in run.notes[0]

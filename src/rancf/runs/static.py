@@ -26,7 +26,8 @@ class StaticRun:
     outputs: SystemOutputs
     sensors: dict[str, float]
     summary: dict[str, Any] | None
-    #: One line per body whose mesh the static solve refined (:mod:`rancf.runs.static_mesh`).
+    #: One line per body whose mesh the static solve refined, or would have but could not
+    #: (:mod:`rancf.runs.static_mesh`).
     notes: list[str]
 
 
@@ -44,16 +45,16 @@ def run_static(
     With a ``folder``, the converged load steps are written there
     (:func:`~rancf.post.results.write_static_run`) also when a later increment fails or the run
     is interrupted: the summary's ``status`` then says so and the error propagates. ``info``:
-    more keys of ``summary.json`` (with a refined mesh, ``"mesh_refined"``: the lines of
-    :attr:`StaticRun.notes`); ``on_written``: called with the summary once the folder holds the
-    run.
+    more keys of ``summary.json`` (where a mesh was refined or could not be,
+    ``"mesh_refinement"``: the lines of :attr:`StaticRun.notes`); ``on_written``: called with
+    the summary once the folder holds the run.
     """
     from rancf.runs.static_mesh import refine_for_touchdowns, start_ratios
 
     system = sc.build_system()
-    sc, notes = refine_for_touchdowns(sc, system, start_ratios(system))
-    if notes:
-        system = sc.build_system()
+    finer, notes = refine_for_touchdowns(sc, system, start_ratios(system))
+    if finer is not None:
+        sc, system = finer, finer.build_system()
     run = _run_static(sc, system, folder, info, on_written, notes, recheck=True)
     if isinstance(run, StaticRun):
         return run
@@ -87,14 +88,21 @@ def _run_static(
     path = LoadPath(system, labels)
     outputs = SystemOutputs(system, sc.sensors, labels)  # the run folder's and the full loads'
     doc = None
-    keys = dict(info or {}, **({"mesh_refined": notes} if notes else {}))
+    keys = dict(info or {})
     finer: tuple[Any, list[str], float] | None = None
     try:
         with scenario_keys(sc):
             res = solve_static(system, on_step=path.record, **sc.static_options())
         if recheck:
             sc2, more = refine_for_touchdowns(sc, system, touchdown_ratios(system, res.q))
-            finer = (sc2, more, res.wall_time) if more else None
+            finer = None if sc2 is None else (sc2, more, res.wall_time)
+            named = {n.split(":")[0] for n in notes}  # a body's line once
+            notes = (
+                notes
+                if sc2 is not None
+                else notes + [m for m in more if m.split(":")[0] not in named]
+            )
+        keys.update({"mesh_refinement": notes} if notes else {})
         if res.method.startswith(SAG_START) or res.method.endswith(FRICTION):  # the path's
             path.steps[:] = path.steps[-1:]  # states were abandoned or are frictionless
         keys.update(

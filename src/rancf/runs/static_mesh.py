@@ -29,7 +29,8 @@ geometry's mesh, ``[mesh] elements`` times ``2^m``) so that its elements are at 
 Each refinement is one line of the run's warnings naming the body, its element counts and the
 radius.  At most :data:`MAX_ELEMENTS` elements per body; a scenario that names nodes by index
 (a support, load, sensor or joint at node ``N`` other than the ends) is not refined (its nodes
-would move): a touchdown still unresolved there is refused by the static checks as before.
+would move) and its warning line says so; a touchdown longer than its bend radius there is
+refused by the static checks as before.
 Time-domain runs (their static start) and the other analyses keep the user's mesh.
 """
 
@@ -60,28 +61,38 @@ def _halvings(ratio: float, n: int) -> int:
 
 def refine_for_touchdowns(
     sc: Any, system: Any, ratios: dict[str, tuple[float, float]]
-) -> tuple[Any, list[str]]:
+) -> tuple[Any | None, list[str]]:
     """``sc`` with the elements of every body of ``system`` whose touchdown ``ratios``
     (element length over bend radius, and that element's length) exceed
-    :data:`TOUCHDOWN_RESOLUTION` divided (module docstring), and the warning lines; ``sc``
-    itself and no lines when nothing is refined."""
+    :data:`TOUCHDOWN_RESOLUTION` divided (module docstring), and the warning lines; None and
+    no lines when nothing needs it, None and lines saying so where the scenario names nodes
+    by index."""
     counts = _element_counts(sc)
     factors: dict[str, int] = {}
-    notes: list[str] = []
+    why: dict[str, str] = {}
     for name, (ratio, ell) in ratios.items():
         n = system.bodies[name].n_el
         m = 0 if name not in counts else _halvings(ratio, n)
-        if m == 0:
-            continue
-        factors[name] = 2**m
-        notes.append(
-            f"body {name!r}: its {n} elements refined to {n * 2**m} for the static solve: "
-            f"where it meets the seabed it bends with the radius T/w = {ell / ratio:.3g} m, "
-            f"which its {ell:.3g} m elements there do not resolve (at most "
-            f"{TOUCHDOWN_RESOLUTION:.2g} of it: docs/guide/statics.md)"
-        )
-    if not factors or _node_indexed(sc.model_dump(by_alias=True, exclude_unset=True)):
-        return sc, []
+        if m > 0:
+            factors[name] = 2**m
+            why[name] = (
+                f"where it meets the seabed it bends with the radius T/w = {ell / ratio:.3g} m, "
+                f"which its {ell:.3g} m elements there do not resolve (at most "
+                f"{TOUCHDOWN_RESOLUTION:.2g} of it: docs/guide/statics.md)"
+            )
+    if not factors:
+        return None, []
+    if _node_indexed(sc.model_dump(by_alias=True, exclude_unset=True)):
+        return None, [
+            f"body {name!r}: {text}; the scenario names nodes by index, so the static solve "
+            f"keeps its {system.bodies[name].n_el} elements: refine [mesh] elements"
+            for name, text in why.items()
+        ]
+    notes = [
+        f"body {name!r}: its {system.bodies[name].n_el} elements refined to "
+        f"{system.bodies[name].n_el * f} for the static solve: {why[name]}"
+        for name, f in factors.items()
+    ]
     return refined(sc, factors), notes
 
 
