@@ -258,17 +258,39 @@ def test_sag_start_shape_is_moorpy_catenary():
     assert free[1] == pytest.approx([100.0, 10.0], abs=1e-9)
 
 
-def test_refused_state_exits_3_in_one_line(tmp_path):
-    text = U_INSTALLED + U_LINE.format(stiffness="stiffness = 1.0e6", fluid="")
+def _cli_static(tmp_path, text: str) -> subprocess.CompletedProcess:
     (tmp_path / "u.toml").write_text(text)
     src = str(Path(rancf.__file__).resolve().parents[1])
-    p = subprocess.run(
-        [sys.executable, "-m", "rancf", "static", "u.toml"],
+    return subprocess.run(
+        [sys.executable, "-m", "rancf", "static", "u.toml", "--json"],
         cwd=tmp_path,
         capture_output=True,
         text=True,
         env={**os.environ, "PYTHONPATH": src},
     )
+
+
+def test_coarse_touchdown_is_solved_on_a_refined_mesh_with_a_warning(tmp_path):
+    """``rancf static`` of the straight 40-element line installed as a U on a 1e6 N/m² seabed
+    (the solver alone refuses it, test_coarse_touchdown_is_refused): the static run refines the
+    line to 160 elements, says so in one warning line, and gives MoorPy's H (the penalty's
+    sinking: -0.53 %)."""
+    import json
+
+    p = _cli_static(tmp_path, U_INSTALLED + U_LINE.format(stiffness="stiffness = 1.0e6", fluid=""))
+    assert p.returncode == 0, p.stderr
+    assert p.stderr.count("warning") == 1 and "40 elements refined to 160" in p.stderr
+    out = json.loads(p.stdout)
+    assert abs(out["reactions"][-1]["force"][0]) == pytest.approx(H_U, rel=6e-3)
+    assert len(out["positions"]["body"]) == 161
+
+
+def test_refused_state_exits_3_in_one_line(tmp_path):
+    """The same line with a sensor at node 20: the static run does not refine a mesh whose
+    nodes the scenario names by index, and the state is refused: exit 3, one line."""
+    sensor = '[[sensors]]\nname = "mid"\nkind = "position"\nat = 20\n'
+    text = U_INSTALLED + U_LINE.format(stiffness="stiffness = 1.0e6", fluid="") + sensor
+    p = _cli_static(tmp_path, text)
     assert p.returncode == 3
     lines = [x for x in p.stderr.splitlines() if "no equilibrium" in x]
     assert len(lines) == 1 and "no equilibrium" in lines[0]

@@ -44,6 +44,7 @@ __all__ = [
     "PENETRATION_LIMIT",
     "static_state_problems",
     "self_crossing",
+    "touchdown_ratios",
 ]
 
 #: Smallest stretch of a sample point that is not a fold.
@@ -175,6 +176,38 @@ def _touchdown_problems(system: Any, q: NDArray[np.float64]) -> list[str]:
     bends there with the catenary's radius ``T / w``; an element longer than that cannot take
     the bend, and the stiff line settles into a state whose forces are far off (an inextensible
     U-shaped line of 40 elements: a fairlead force 4.5 times too small)."""
+    out = []
+    for name, ob_name, bends in _seabed_bends(system, q):
+        for s, bend, ell in bends:
+            if bend < ell:
+                out.append(
+                    f"body {name!r}: its bend at s = {s:.4g} m has the radius T/w = "
+                    f"{bend:.3g} m, shorter than its element ({ell:.3g} m): the touchdown is "
+                    "not resolved and the line's forces, T among them, may be far off; refine "
+                    "the mesh until its elements there are shorter than T/w, where it leaves "
+                    f"{ob_name!r}"
+                )
+                break
+    return out
+
+
+def touchdown_ratios(system: Any, q: NDArray[np.float64]) -> dict[str, tuple[float, float]]:
+    """Per line touching a seabed (module docstring) at the static state ``q``, the largest
+    ratio ``ℓ / (T / w)`` of an element's length to the bend radius where the line meets or
+    leaves the seabed in that element (``inf`` where ``T <= 0``) and that element's length
+    ``ℓ``; lines with no touchdown are left out."""
+    out: dict[str, tuple[float, float]] = {}
+    for name, _, bends in _seabed_bends(system, q):
+        for _, bend, ell in bends:
+            ratio = ell / bend if bend > 0.0 else np.inf
+            if ratio > out.get(name, (0.0, 0.0))[0]:
+                out[name] = (ratio, ell)
+    return out
+
+
+def _seabed_bends(system: Any, q: NDArray[np.float64]) -> list[tuple[str, str, list]]:
+    """``(body, plane, bends)`` of every cable body and fixed plane its wet weight presses on
+    (:func:`_bends`)."""
     from rancf.system.seabed import pressing_weight
 
     out = []
@@ -188,29 +221,25 @@ def _touchdown_problems(system: Any, q: NDArray[np.float64]) -> list[str]:
             w = pressing_weight(system, name, np.r_[n, np.zeros(3 - n.size)])
             if model.element == "beam" or (name, ob_name) not in pairs or not w > 0.0:
                 continue
-            line = _unresolved_bend(
-                model,
-                model.y_from_q(np.asarray(q)[system.body_slice(name)]),
-                np.asarray(ob.point, dtype=float),
-                n,
-                w,
-            )
-            if line:
-                out.append(f"body {name!r}: {line} {ob_name!r}")
+            y = model.y_from_q(np.asarray(q)[system.body_slice(name)])
+            bends = _bends(model, y, np.asarray(ob.point, dtype=float), n, w)
+            out.append((name, ob_name, bends))
     return out
 
 
-def _unresolved_bend(model: Model, y: NDArray, point: NDArray, n: NDArray, w: float) -> str:
-    """The first place where ``model`` at ``y`` leaves or meets the plane through ``point``
-    (unit normal ``n``) with a bend radius ``T / w`` below its element's length, as the start of
-    a line naming the plane (empty when every such bend is resolved).  ``T`` is read from the
-    nodal forces at the element's inner nodes
+def _bends(
+    model: Model, y: NDArray, point: NDArray, n: NDArray, w: float
+) -> list[tuple[float, float, float]]:
+    """``(s, T / w, ℓ)`` where ``model`` at ``y`` leaves or meets the plane through ``point``
+    (unit normal ``n``): the arc length ``s`` of the sample point, the bend radius under the
+    axial force ``T`` there and the length ``ℓ`` of the element holding it.  ``T`` is read from
+    the nodal forces at the element's inner nodes
     (:func:`~rancf.bodies.nodal_forces.nodal_axial_forces`: a stiff line's strain oscillates
     inside coarse elements by far more than its tension)."""
     from rancf.bodies.nodal_forces import nodal_axial_forces, recovers_axial_force
 
     if not recovers_axial_force(model) or model.n_el < 2:
-        return ""
+        return []
     sampler = SectionSampler(model)
     k, radius = sampler.per_element, model.section.radius
     gap = (sampler.positions(y) - point) @ n - radius
@@ -218,18 +247,13 @@ def _unresolved_bend(model: Model, y: NDArray, point: NDArray, n: NDArray, w: fl
     axial = nodal_axial_forces(model, y, np.zeros_like(y))  # inner nodes only are used
     starts = sampler.s[::k][: model.n_el]
     ell = np.diff(np.r_[starts, sampler.s[-1]])
+    out = []
     for i in np.flatnonzero(touch[1:] != touch[:-1]):
         e = min(int(i) // k, model.n_el - 1)
         inner = [j for j in (e, e + 1) if 0 < j < model.n_nodes - 1]
         bend = max(max(float(axial[j]) for j in inner), 0.0) / w
-        if bend < ell[e]:
-            return (
-                f"its bend at s = {sampler.s[i]:.4g} m has the radius T/w = {bend:.3g} m, "
-                f"shorter than its element ({ell[e]:.3g} m): the touchdown is not resolved "
-                "and the line's forces, T among them, may be far off; refine the mesh "
-                "until its elements there are shorter than T/w, where it leaves"
-            )
-    return ""
+        out.append((float(sampler.s[i]), bend, float(ell[e])))
+    return out
 
 
 def _penetration_problems(system: Any, q: NDArray[np.float64]) -> list[str]:
