@@ -103,6 +103,33 @@ def test_spinning_blade_tension_has_no_chord_error(tmp_path, rho):
     assert abs(stretch / u_exact - 1.0) < 1e-2, stretch
 
 
+# the same blade with a ground it never reaches: a system with contact
+FAR_GROUND = """
+contacts = [["blade", "far"]]
+
+[[obstacles]]
+name = "far"
+kind = "plane"
+point = [0.0, -5.0]
+normal = [0.0, 1.0]
+"""
+
+
+@pytest.mark.parametrize("rho", [0.5, 0.9, 1.0])
+def test_spinning_blade_with_a_contact_has_no_chord_error(tmp_path, rho):
+    # the contact forces are taken at the step's alpha point; the elements' at real states
+    path = tmp_path / "blade.toml"
+    path.write_text(FAR_GROUND + BLADE.replace("RHO", str(rho)))
+    sc = load_scenario(path)
+    system = sc.build_system()
+    assert system.has_contact
+    res = rancf.integrate(system, sc.dynamic_options())
+    assert res.status.value == "completed"
+    names, values = rancf.sensor_table(system, sc.sensors, res.q, res.v, t=res.t)
+    tension = values[res.t >= 11.0, names.index("root_tension")].mean()
+    assert abs(tension / _blade_exact()[0] - 1.0) < 1e-3, tension
+
+
 def _pendulum() -> rancf.Model:
     arc = rancf.conic_arc(0.5, [30, 40], [0.315, 0.077])
     return rancf.Model(

@@ -13,10 +13,12 @@
 // -G^T lambda is the joints' force on the bodies.  Constraints hold at every step to the Newton
 // tolerance.  Held coordinates that follow time functions (moving supports) are set at t_{n+1}
 // before the iterations; their accelerations and velocities follow from the Newmark relations.
-// Systems with contact keep the Chung-Hulbert form (the balance at the alpha point, forces at
-// blends of the step's states, with the step's mean pressure: contact.hpp): in the form above
-// the impacts of a stiff penalty gain energy, and a cable dropped on the ground does not come
-// to rest (docs/derivations/time-integration.md sec. 4).  There w = a.
+// Systems with contact: the contact's residual C*_{n+1} in the balance at t_{n+1} follows
+// (1 - af) C*_{n+1} + af C*_n = C(yf, vf, y1), the step's mean pressure of contact.hpp at the
+// alpha point, and C*_n is minus the rest of the balance's residual at the step's start:
+// the other forces stay at real states, and for a constant mass matrix the contact enters as
+// in the Chung-Hulbert form, whose penalty impacts do not gain energy (in the form above they
+// do; docs/derivations/time-integration.md sec. 4).
 #pragma once
 
 #include <cstdint>
@@ -114,7 +116,8 @@ class SystemIntegrator {
   /// What the loop keeps between steps: [s], the steps since one started again from y0 (0:
   /// none; step()), then, modified Newton with valid factors, the point the factored Jacobian
   /// was assembled at: [h, ck, cv, ca, tf, t1, yf (n), vf (n), am (n), y1 (n), lambda (m)]
-  /// (assemble_system's arguments: the balance's state and the constraints' point).
+  /// (assemble_system's arguments: the balance's state and the constraints' point) and,
+  /// with contact, its alpha point (y, v: 2 n).
   [[nodiscard]] std::vector<double> memory() const;
   /// Take up memory() of another integrator on the same system: the Jacobian is assembled at
   /// the same point and factored again (bit for bit the same factors); factorizations, the
@@ -147,9 +150,13 @@ class SystemIntegrator {
   bool mass_factored_ = false;  // lu_ holds the factors of that matrix
   double lu_h_ = -1.0;
   long factorizations_ = 0;
-  std::vector<double> base_, yf_, vf_, am_, r_, dz_, zb_, zero_, rate_g_;
-  /// Contact: the Chung-Hulbert form (module comment)
-  bool chung_hulbert_ = false;
+  /// The terms of a step from t of length h (contact: at the alpha point yf_, vf_).
+  [[nodiscard]] AssemblyTerms step_terms(double t, double h) const;
+  /// Contact: r0_ = R_n, the balance's residual without contact at the step's start.
+  bool start_residual(const StepIn& s0, double t);
+  std::vector<double> base_, yf_, vf_, am_, r_, dz_, zb_, zero_, rate_g_, r0_;
+  /// Contact: its forces at the alpha point, carried (module comment)
+  bool contact_ = false;
   /// Steps since one had to start again from y0 (0: the last started from the predictor and
   /// converged); below kFromY0Steps the next step starts from y0 at once, at it from the
   /// predictor.
