@@ -1,7 +1,8 @@
 """Section quantities along the body: strain, axial force, curvatures and moments.
 
 At sample points ``ξ`` of every element the compiled core evaluates the strain and curvatures
-the element's strain energy uses (``src/cpp/bodies/sections.cpp``); the section forces are their energy
+the element's strain energy uses (``src/cpp/bodies/sections.cpp``); the section forces are their
+energy
 conjugates (docs/derivations/cable.md §6, docs/derivations/rod.md §5).  The energy per reference
 length is
 ``W = ½ EA ε² + ½ Σ C_i (κ_i - κ_i⁰)²`` with the Green–Lagrange strain ``ε``, the stretch
