@@ -7,6 +7,7 @@
 
 #include "bodies/assembly.hpp"
 #include "bodies/inertia.hpp"
+#include "bodies/sections.hpp"
 #include "contact/contact.hpp"
 #include "fluid/fluid.hpp"
 #include "system/sliding.hpp"
@@ -95,6 +96,13 @@ StepOutcome SystemIntegrator::step(const StepIn& s0, double t, double h, const S
   if (out.converged) {
     project_rates(s1, t + h);
     out.error = local_error(s0.w, s1.w, h);
+    if (!strain_points_.empty()) {  // the error vector (TI.8) in the bodies' strains (TI.13)
+      const double c = std::abs(sc_.beta - 0.5 * sc_.gamma + 1.0 / 12.0) * h * h;
+      std::vector<double>& e = am_;
+      for (int i = 0; i < s_.n; ++i)
+        e[sz(i)] = error_scale_[sz(i)] > 0.0 ? c * (s1.w[i] - s0.w[i]) : 0.0;
+      out.error = std::max(out.error, strain_error(s1.y, e.data()));
+    }
     if (error_tol_ > 0.0 && out.error > error_tol_ && lu_valid_)
       out.error = std::min(out.error, filtered_error(s0, s1, t + h, h));
   }
@@ -150,6 +158,60 @@ double SystemIntegrator::filtered_error(const StepIn& s0, const StepOut& s1, dou
   solve_negative();  // dz = -S^-1 c_a M e
   double out = 0.0;
   for (int i = 0; i < n; ++i) out = std::max(out, std::abs(dz_[sz(i)]) * error_scale_[sz(i)]);
+  if (strain_points_.empty()) return out;
+  // the strains: filtered once more (TI.13), so that what the step does not resolve counts
+  // by its amplitude over (omega h)^2, and the resolved motion as before
+  for (int i = 0; i < n; ++i) e[sz(i)] = dz_[sz(i)];
+  if (!assemble_system(s_, s1.y, s1.v, e.data(), s1.lam, s1.y, terms, r_.data(), nullptr))
+    return std::numeric_limits<double>::infinity();
+  for (int i = 0; i < n; ++i) r_[sz(i)] = ca * (r_[sz(i)] - r0[sz(i)]);
+  std::fill(r_.begin() + n, r_.end(), 0.0);
+  solve_negative();
+  return std::max(out, strain_error(s1.y, dz_.data()));
+}
+
+bool SystemIntegrator::add_strain_points(int b, std::vector<double> xi, std::vector<double> n1,
+                                         std::vector<double> n2, std::vector<double> ref,
+                                         double floor, double length) {
+  if (b < 0 || sz(b) >= s_.flex.size()) return false;
+  const Model& mod = *s_.flex[sz(b)];
+  const std::size_t points = sz(mod.n_el) * xi.size();
+  if (mod.kind == ElementKind::beam || n1.size() != 4 * points || n2.size() != n1.size() ||
+      ref.size() != points || !(floor > 0.0))
+    return false;
+  StrainPoints p;
+  p.body = b;
+  p.xi = std::move(xi);
+  p.n1 = std::move(n1);
+  p.n2 = std::move(n2);
+  p.ref = std::move(ref);
+  p.floor = floor;
+  p.length = length;
+  strain_points_.push_back(std::move(p));
+  return true;
+}
+
+double SystemIntegrator::strain_error(const double* y1, const double* e) {
+  double out = 0.0;
+  for (const StrainPoints& p : strain_points_) {
+    const Model& mod = *s_.flex[sz(p.body)];
+    const int o = s_.offset[sz(p.body)], nb = mod.n(), w = section_width(mod);
+    const int np = static_cast<int>(p.xi.size());
+    const SamplePoints pts{np, p.xi.data(), p.n1.data(), p.n2.data(), p.ref.data()};
+    const auto k = sz(mod.n_el * np * w);
+    strain_a_.resize(k);
+    strain_b_.resize(k);
+    strain_y_.assign(y1 + o, y1 + o + nb);
+    section_strains(mod, pts, strain_y_.data(), strain_a_.data());
+    for (int i = 0; i < nb; ++i) strain_y_[sz(i)] += e[o + i];
+    section_strains(mod, pts, strain_y_.data(), strain_b_.data());
+    double de = 0.0, eps = p.floor;
+    for (std::size_t i = 0; i < k; i += sz(w)) {
+      de = std::max(de, std::abs(strain_b_[i] - strain_a_[i]));
+      eps = std::max(eps, std::abs(strain_a_[i]));
+    }
+    out = std::max(out, p.length * de / eps);
+  }
   return out;
 }
 

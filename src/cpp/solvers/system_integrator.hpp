@@ -111,6 +111,15 @@ class SystemIntegrator {
   /// docs/derivations/time-integration.md), which leaves resolved motion alone and divides
   /// what the step does not resolve by about (omega h)^2.
   void set_error_tolerance(double tol) { error_tol_ = tol; }
+  /// Measure a step's error in flexible body b's axial strain too (TI.13 of
+  /// docs/derivations/time-integration.md): at sample points (sections.hpp's SamplePoints:
+  /// xi, n1, n2, ref) the change of the strain that the error vector makes, relative to the
+  /// largest strain there at the step's end (at least floor), counts as that fraction of
+  /// length (the model's size: the displacement test's tolerance is rtol times it).
+  /// False (nothing added) if b is no flexible body or a beam, or the sizes do not fit.
+  bool add_strain_points(int b, std::vector<double> xi, std::vector<double> n1,
+                         std::vector<double> n2, std::vector<double> ref, double floor,
+                         double length);
   /// The held coordinates that follow time functions, at time t (any pointer may be null).
   void set_prescribed(double t, double* y, double* v, double* a) const;
   /// What the loop keeps between steps: [s], the steps since one started again from y0 (0:
@@ -138,6 +147,9 @@ class SystemIntegrator {
   /// e_f = S^-1 c_a M e, e = h^2 |beta - gamma/2 + 1/12| (w1 - w0), in the norm of
   /// local_error (TI.12); M e from two residuals of the balance at the step's end.
   double filtered_error(const StepIn& s0, const StepOut& s1, double t1, double h);
+  /// The strain part of the error (add_strain_points) of the error vector e (n) at the
+  /// step's end y1: max over the bodies of length |d eps|_max / max(|eps|_max, floor).
+  double strain_error(const double* y1, const double* e);
   /// Modified Newton: where the factored Jacobian was assembled (assemble_system's yf, vf,
   /// am, lambda and y1).
   void remember(double h, const AssemblyTerms& terms, const double* yf, const double* vf,
@@ -166,6 +178,13 @@ class SystemIntegrator {
   std::vector<double> scale_;        ///< set_increment_scale (empty: none)
   std::vector<double> error_scale_;  ///< scale_ (1 without) and 0 at the held coordinates
   double error_tol_ = 0.0;           ///< set_error_tolerance
+  struct StrainPoints {              ///< add_strain_points
+    int body = 0;
+    std::vector<double> xi, n1, n2, ref;
+    double floor = 0.0, length = 0.0;
+  };
+  std::vector<StrainPoints> strain_points_;
+  std::vector<double> strain_y_, strain_a_, strain_b_;
 };
 
 /// Kinetic, strain (elements and springs) and gravitational energy of the system at (y, v)
