@@ -106,7 +106,8 @@ class _Outputs:
         """Outputs ``k0, k0 + 1, ...`` from the core's loop (the first ``stored`` of ``rows``,
         :class:`rancf.solvers.stepper.Block`), passed on as one block (rods: one output a
         block, whose state is the one the triads were carried to)."""
-        oy, ov, oe, ol, oa = (None if x is None else x[:stored] for x in rows)
+        oy, ov, ol = (x[:stored] for x in (rows[0], rows[1], rows[3]))
+        oe, oa = (None if x is None else x[:stored] for x in (rows[2], rows[4]))
         ts = np.array([self.out_time(k0 + i) for i in range(len(oy))])
         qs, vs = self.system.q_from_y(oy), self.system.q_from_y(ov)
         m1 = self.directors(oy[-1])
