@@ -157,12 +157,12 @@ void pair_geometry(const Side& A, const Side& B, int e, int q, int f, const doub
 /// The force of point q of element e (side A, coordinates ea) against element f (side B,
 /// coordinates eb): fe (n = na + nb: on e, then on f), with the step's mean pressure up to
 /// (ea1, eb1) (null: statics); K (if not null, n x n): minus its Jacobian with respect to the
-/// step's end, ck d/d(ea, eb) + d/d(ea1, eb1).  Returns the gap (1e300: not kept); pw: the
+/// step's end, ck d/d(ea, eb) + c1 d/d(ea1, eb1).  Returns the gap (1e300: not kept); pw: the
 /// point's normal force.
 double point_force(const BodyPair& bp, const Side& A, const Side& B, int e, int q, int f,
                    const double* ea, const double* eb, const double* ea1, const double* eb1,
                    const double* va, const double* vb, double* fe, double* pw, double ck = 1.0,
-                   double* K = nullptr) {
+                   double* K = nullptr, double c1 = 1.0) {
   const int n = A.m->nde() + B.m->nde();
   Pair pf;
   pair_geometry(A, B, e, q, f, ea, eb, K != nullptr, pf);
@@ -217,7 +217,7 @@ double point_force(const BodyPair& bp, const Side& A, const Side& B, int e, int 
   for (int a = 0; a < n; ++a)
     for (int c = 0; c < n; ++c)
       K[a * n + c] = -w * (ck * (dpf * pf.G[sz(a)] * pf.G[sz(c)] + pm * pf.Hg[sz(a * n + c)]) +
-                           (ea1 != nullptr ? dp1 * pf.G[sz(a)] * G1[c] : 0.0));
+                           (ea1 != nullptr ? c1 * dp1 * pf.G[sz(a)] * G1[c] : 0.0));
   return pf.g;
 }
 
@@ -284,7 +284,7 @@ void each_pair(const System& s, const ContactSet& c, const double* y, const doub
 }
 
 /// Minus the Jacobian of a point's forces with friction (n x n into K) with respect to the
-/// step's end: ck d/dyf + cv d/dvf + d/dy1, by central differences of point_force (steps
+/// step's end: ck d/dyf + cv d/dvf + c1 d/dy1, by central differences of point_force (steps
 /// 1e-7 (1 + |z|) and at most 1e-3 of the onset for positions, 1e-4 eps (1 + |z|) for
 /// velocities, as contact.hpp's carried obstacles).
 void friction_tangent(const BodyPair& bp, const Side& A, const Side& B, int e, int q, int f,
@@ -300,7 +300,7 @@ void friction_tangent(const BodyPair& bp, const Side& A, const Side& B, int e, i
     if (src[k] != nullptr)
       std::copy(src[sz(k)], src[sz(k)] + (k % 2 == 0 ? na : n - na), z[sz(k)].begin());
   std::array<double, 2 * kMaxElementDofs> fp{}, fm{};
-  const double coef[3] = {tm.ck, 1.0, tm.cv};
+  const double coef[3] = {tm.ck, tm.c1, tm.cv};
   for (int set = 0; set < 3; ++set) {
     if ((set == 1 && !dyn) || coef[set] == 0.0) continue;
     for (int j = 0; j < n; ++j) {
@@ -370,7 +370,7 @@ void assemble_body_contact(const System& s, const ContactSet& c, const double* y
                 K.assign(sz(n * n), 0.0);
                 double pw = 0.0;
                 point_force(bp, A, B, e, q, f, ea, eb, ea1, eb1, nullptr, nullptr, f0.data(), &pw,
-                            tm.ck, K.data());
+                            tm.ck, K.data(), tm.c1);
               } else if (add != nullptr) {  // friction: central differences of the point forces
                 friction_tangent(bp, A, B, e, q, f, ea, eb, ea1, eb1, va, vb, tm, K);
               }
