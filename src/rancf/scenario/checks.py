@@ -15,9 +15,9 @@ from pydantic_core import PydanticCustomError
 
 from rancf.scenario.base import fail, shorten, show, under
 from rancf.scenario.bodies import FlexibleBody, RigidBody
-from rancf.scenario.loads import time_size
 from rancf.scenario.places import ResolvedPlace, resolve_place
 from rancf.scenario.section import check_flexible
+from rancf.scenario.time_functions import time_size
 from rancf.scenario.view import ScenarioView
 
 __all__ = ["check_scenario"]

@@ -23,7 +23,7 @@ from rancf.bodies.flexible import Model
 from rancf.bodies.length import set_unstretched_length, unstretched_length
 from rancf.errors import ScenarioError
 from rancf.scenario.base import Name, Positive, Table, Vector23, fail
-from rancf.scenario.loads import TimeFunctionValue, check_scalar
+from rancf.scenario.time_functions import TimeFunctionValue, check_scalar
 from rancf.system.winches import LENGTH_RTOL, Winch, length_law, winch_length
 
 __all__ = ["WinchTable", "system_winches", "winch_key"]
