@@ -73,15 +73,16 @@ def check_results(npz: Path, data: dict[str, Any]) -> None:
 
 def scenario_fits(sc: Any, meta: dict[str, Any]) -> str | None:
     """Why the scenario ``sc`` is not the one of a run with ``meta`` (None: it fits)."""
-    if "mesh" not in sc.data:
-        return "the scenario is written with [[bodies]]: a system, not one body's results"
-    mesh = sc.data["mesh"]
+    bodies = sc.data["bodies"]
+    if len(bodies) != 1 or bodies[0]["kind"] != "flexible":
+        return "the scenario is a system of several bodies, not one body's results"
+    mesh = bodies[0]["mesh"]
     if mesh["element"] != meta["element"] or sc.dim != meta["dim"]:
         return (
             f"the scenario has {mesh['element']} elements in {sc.dim} dimensions, the results "
             f"{meta['element']} elements in {meta['dim']}"
         )
-    kind = sc.data["geometry"]["kind"]
+    kind = bodies[0]["geometry"]["kind"]
     if kind in ("conic", "line") and mesh["elements"] != meta["n_elements"]:
         return f"the scenario has {mesh['elements']} elements, the results {meta['n_elements']}"
     return None

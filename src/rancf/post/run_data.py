@@ -209,7 +209,7 @@ def load_body(folder: str | Path, static: bool = False) -> RunData:
             logger.warning("%s: skipping the scenario %s: %s", path, sc_path, why)
             sc = None
     if sc is not None and radius is None:  # runs of rancf < 0.3
-        s = sc.data["section"]
+        s = sc.data["bodies"][0]["section"]
         radius = s["radius"] if s["radius"] is not None else math.sqrt(s["area"] / math.pi)
         if meta["element"] == "beam" and angles is None:
             nodes = sc.build_model().mesh.nodes

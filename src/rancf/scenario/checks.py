@@ -63,6 +63,8 @@ class _Context:
                     k,
                     f"does not apply with [[bodies]]: give it in each flexible body ([bodies.{k}])",
                 )
+        if sc.hydro is not None:
+            raise fail("hydro", "belongs to a body in a file with [[bodies]] (give [bodies.hydro])")
         dims = [b.dim for b in sc.bodies]
         for i, d in enumerate(dims):
             if d != dims[0]:

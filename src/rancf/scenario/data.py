@@ -1,8 +1,17 @@
-"""A validated scenario's tables as plain dictionaries, and its sensors' records.
+"""A validated scenario's bodies in one form, its tables as plain dictionaries, its sensors.
+
+One schema past parsing: :func:`body_tables` gives every scenario's bodies as ``[[bodies]]``
+tables with the prefix of their keys; a file without ``[[bodies]]`` is the flexible body
+:data:`~rancf.scenario.places.ONE_BODY` made of its ``geometry``, ``mesh``, ``section``,
+``material``, ``hydro`` and ``initial_motion`` (keys without a prefix), whose places resolve to
+it (:func:`~rancf.scenario.places.resolve_place`).  Code past parsing reads these and never
+asks which form the file was written in.
 
 :func:`scenario_data` gives :attr:`rancf.scenario.scenario.Scenario.data`: every table with its
 defaults filled in, TIME_FUNCTIONs as :class:`~rancf.bodies.time_function.TimeFunction`, the
-places as written (``label``) and, in a one-body file, ``"start"``/``"end"`` as node numbers.
+places as written (``label``) and, in a one-body file, ``"start"``/``"end"`` as node numbers;
+``bodies`` holds every body (of :func:`body_tables`, each with its ``key`` prefix), and a
+one-body file's own tables stay at the top too, as written.
 """
 
 from __future__ import annotations
@@ -13,10 +22,21 @@ from rancf.scenario.base import fail, show
 from rancf.scenario.bodies import FlexibleBody
 from rancf.scenario.geometry import GEOMETRY_KEYS, CadGeometry
 from rancf.scenario.motions import motion_function
+from rancf.scenario.places import ONE_BODY
 from rancf.scenario.sensors import Sensor, SensorTable
 from rancf.scenario.time_functions import time_function
 
-__all__ = ["scenario_data", "columns_once", "sensor_record"]
+__all__ = ["body_tables", "scenario_data", "columns_once", "sensor_record"]
+
+
+def body_tables(sc: Any) -> tuple[tuple[str, Any], ...]:
+    """Every body of a validated scenario as ``(key prefix, [[bodies]] table)`` (module
+    docstring): ``("bodies[i].", table)``, or a one-body file's ``("", flexible body)``."""
+    if sc.bodies:
+        return tuple((f"bodies[{i}].", b) for i, b in enumerate(sc.bodies))
+    tables = ("geometry", "mesh", "section", "material", "hydro", "initial_motion")
+    one = FlexibleBody.model_construct(name=ONE_BODY, **{k: sc[k] for k in tables})
+    return (("", one),)
 
 
 def _geometry_data(g: Any) -> dict[str, Any]:
@@ -47,8 +67,8 @@ def scenario_data(sc: Any) -> dict[str, Any]:
         for k in ("mesh", "section", "material"):
             d[k] = sc[k].model_dump()
     d["bodies"] = []
-    for b in sc.bodies:
-        bd = b.model_dump()
+    for key, b in body_tables(sc):
+        bd = {**b.model_dump(), "key": key}
         if isinstance(b, FlexibleBody):
             bd["geometry"] = _geometry_data(b.geometry)
             im = b.initial_motion

@@ -23,7 +23,7 @@ from rancf.scenario.base import ContactPoints, Name, NonNegative, Table
 from rancf.scenario.bodies import Body, FlexibleBody
 from rancf.scenario.checks import check_scenario
 from rancf.scenario.damping import DampingTable
-from rancf.scenario.data import columns_once, scenario_data, sensor_record
+from rancf.scenario.data import body_tables, columns_once, scenario_data, sensor_record
 from rancf.scenario.files import deferred_interrupts, read_toml, write_atomic
 from rancf.scenario.fluid import FluidTable, HydroTable
 from rancf.scenario.geometry import CadGeometry, Geometry, MeshTable
@@ -119,6 +119,7 @@ class Scenario(Table):
     _support_places: list[Any] = PrivateAttr(default_factory=list)
     _data: dict[str, Any] = PrivateAttr(default_factory=dict)
     _sensors: tuple[Sensor, ...] = PrivateAttr(())
+    _body_tables: tuple[tuple[str, Any], ...] = PrivateAttr(())
 
     @classmethod
     def error_path(cls) -> str:
@@ -132,6 +133,7 @@ class Scenario(Table):
     def _whole(self, info: ValidationInfo) -> Scenario:
         self._path = str((info.context or {}).get("path", _PYTHON))
         self._dim, self._bodies, self._support_places = check_scenario(self)
+        self._body_tables = body_tables(self)
         self._data = scenario_data(self)
         self._data["warnings"] = start_warnings(self)
         self._sensors = tuple(sensor_record(s, self._bodies) for s in self.sensor_tables)
@@ -180,6 +182,12 @@ class Scenario(Table):
     def support_place(self, i: int) -> ResolvedPlace:
         """The resolved place of ``supports[i]``."""
         return self._support_places[i]
+
+    @property
+    def body_tables(self) -> tuple[tuple[str, Any], ...]:
+        """Every body as ``(key prefix, [[bodies]] table)``, a one-body file's too: the one form
+        code past parsing reads (:func:`rancf.scenario.data.body_tables`)."""
+        return self._body_tables
 
     @property
     def bodies_by_name(self) -> dict[str, Any]:

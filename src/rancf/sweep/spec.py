@@ -133,11 +133,7 @@ def _check_size(sc: Any) -> None:
     from rancf.post.run_plan import check_output_size
     from rancf.sweep.runner import LIMIT, MAX_RUN_GB
 
-    meshes = (
-        [sc.data["mesh"]]
-        if sc.data.get("mesh")
-        else [b["mesh"] for b in sc.data.get("bodies") or [] if b.get("mesh")]
-    )
+    meshes = [b["mesh"] for b in sc.data["bodies"] if b.get("mesh")]
     n_q = n_rods = 0
     for mesh in meshes:
         n_nodes = mesh["elements"] + 1
