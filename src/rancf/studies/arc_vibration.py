@@ -23,13 +23,13 @@ import numpy as np
 from rancf.atomic import atomic_write
 from rancf.post.plots import pyplot
 from rancf.post.results import write_run
-from rancf.solvers.modal import natural_modes
 from rancf.studies.common import (
     Comparison,
     StudyResult,
     add_animation,
     begin_study,
     fft_peak,
+    modes,
     run,
     save_figure,
     variant,
@@ -58,10 +58,10 @@ def _spatial(raw: dict[str, Any]) -> dict[str, Any]:
 
 def _free(raw: dict[str, Any], name: str, t_end: float, component: int) -> dict[str, Any]:
     sc, m = variant(raw, name, solver__t_end=t_end)
-    r = run(sc, m)
+    r = run(sc)
     tip = m.node_positions(r.q)[:, -1, component] - m.node_positions(m.q0)[-1, component]
     spec = fft_peak(r.t, tip, f_min=0.2)
-    modal = natural_modes(m, count=sc.data["modes"]["count"])
+    modal = modes(sc, sc.data["modes"]["count"])
     e = r.total_energy
     return {
         "t": r.t,
@@ -153,8 +153,8 @@ def _frequencies(
         ("ANCF, 8 elements", dict(mesh__element="ancf")),
         ("beam, 32 elements", dict(mesh__element="beam", mesh__elements=32)),
     ):
-        _, m_other = variant(raw, NAME, **changes)
-        f_other = float(natural_modes(m_other, count=1).frequencies_hz[0])
+        sc_other, _ = variant(raw, NAME, **changes)
+        f_other = float(modes(sc_other, 1).frequencies_hz[0])
         res.comparison.append(
             Comparison(
                 f"first frequency, in-plane, modes, {label} [Hz]",
@@ -264,7 +264,7 @@ def _forced(
         loads={"point": [{"at": "end", "force": [0.0, 0.1], "frequency_hz": f_exc}]},
     )
     sc, m = variant(forced, NAME)
-    r = run(sc, m)
+    r = run(sc)
     tail = r.t >= r.t[-1] - 3.0 / f_exc
     write_run(out / "forced_run", m, sc.sensors, r.select(tail))
     # the scenario beside the run: `rancf plot`/`animate` (and the animation below) read the
