@@ -29,7 +29,7 @@ from rancf.kernels.rod import ROD_DOFS, RodKernel
 from rancf.mesh.factories import to_ancf
 from rancf.mesh.mesh import CableMesh
 
-__all__ = ["Built", "ElementFamily", "ElementKind", "FAMILIES", "family"]
+__all__ = ["Built", "ElementFamily", "ElementKind", "FAMILIES", "family", "framed"]
 
 ElementKind = Literal["rancf", "ancf", "beam", "rod"]
 
@@ -72,6 +72,16 @@ class ElementFamily:
     has_triads: bool
     engineering_strain: bool
     build: Callable[..., Built]
+
+    @property
+    def cable(self) -> bool:
+        """A cable element (``rancf``, ``ancf``): position and gradient per node, no frame."""
+        return self.gradient and not self.has_triads
+
+    @property
+    def place_kind(self) -> str:
+        """The core's kind of a place at one of its nodes: ``cable``, ``rod`` or ``beam``."""
+        return "rod" if self.has_triads else "cable" if self.gradient else "beam"
 
     def dofs_per_node(self, dim: int) -> int:
         """Coordinates per node: ``2 dim`` (cables), 7 (rods), 3 (beams)."""
@@ -147,6 +157,13 @@ FAMILIES: dict[str, ElementFamily] = {
     "rod": ElementFamily("rod", (3,), True, True, False, _rod),
     "beam": ElementFamily("beam", (2,), False, False, False, _beam),
 }
+
+
+def framed(kind: str | None) -> bool:
+    """Whether ``kind`` (an element kind, or ``"rigid"``, ``"mass"``, None) names an element
+    family whose nodes carry a material frame (rods)."""
+    fam = FAMILIES.get(kind or "")
+    return fam is not None and fam.has_triads
 
 
 def family(name: str) -> ElementFamily:

@@ -98,12 +98,12 @@ def rigid_velocity(model: MovingBody, motion: RigidMotion) -> NDArray[np.float64
     q = model.q0.reshape(model.n_nodes, model.dpn)
     out = np.zeros_like(q)
     out[:, :dim] = v0 + _omega_cross(w, q[:, :dim] - c)
-    if model.element == "beam":
+    if not model.family.gradient:
         out[:, 2] = w[0]
     else:
         grad = q[:, dim : 2 * dim]
         out[:, dim : 2 * dim] = _omega_cross(w, grad)
-        if model.element == "rod":
+        if model.family.has_triads:
             out[:, 6] = grad @ w / np.linalg.norm(grad, axis=1)
     return out.ravel()
 
@@ -144,7 +144,7 @@ def angular_momentum(
     c = _vector("sensors.about", about, dim)
     nodes_q = qq.reshape(n_t, model.n_nodes, model.dpn)
     nodes_v = vv.reshape(n_t, model.n_nodes, model.dpn)
-    if model.element == "beam":  # consistent linear mass ρA l0/6 [2 1; 1 2], lumped ρ I l0 / 2
+    if not model.family.gradient:  # consistent linear mass ρA l0/6 [2 1; 1 2], lumped ρ I l0 / 2
         k = model.kernel
         xs, vs2 = nodes_q[..., :2] - c, nodes_v[..., :2]
         mt = k.props.rho_a * k.l0 / 6.0
@@ -172,7 +172,7 @@ def angular_momentum(
             else:
                 cr = (pos[k][..., 0] * vel[m][..., 1] - pos[k][..., 1] * vel[m][..., 0])[..., None]
             out += np.einsum("e,tei->ti", m4[:, k, m], cr)
-    if model.element == "rod":
+    if model.family.has_triads:
         ys, vs = model.y_from_q(qq), model.y_from_q(vv)
         for i in range(n_t):
             out[i] += model.core.rotary_angular_momentum(ys[i], vs[i], True)

@@ -10,13 +10,10 @@ from typing import Any
 
 import numpy as np
 
+from rancf.bodies.families import FAMILIES
 from rancf.errors import InputError
 
 __all__ = ["check_results", "scenario_fits"]
-
-
-#: Element kinds and coordinates per node a results.npz may hold.
-_DOFS_PER_NODE = {"rancf": {2: 4, 3: 6}, "ancf": {2: 4, 3: 6}, "beam": {2: 3}, "rod": {3: 7}}
 
 
 def check_results(npz: Path, data: dict[str, Any]) -> None:
@@ -31,8 +28,9 @@ def check_results(npz: Path, data: dict[str, Any]) -> None:
         raise bad("its metadata is not a table")
     element, dim = meta.get("element"), meta.get("dim")
     dpn = None
-    if isinstance(element, str) and isinstance(dim, int):
-        dpn = _DOFS_PER_NODE.get(element, {}).get(dim)
+    fam = FAMILIES.get(element) if isinstance(element, str) else None
+    if fam is not None and isinstance(dim, int) and dim in fam.dims:
+        dpn = fam.dofs_per_node(dim)
     if dpn is None:
         raise bad(f"element {element!r} in {dim!r} dimensions is not a known kind")
     names = meta.get("sensor_columns")

@@ -13,6 +13,7 @@ from typing import Any
 
 from pydantic_core import PydanticCustomError
 
+from rancf.bodies.families import family, framed
 from rancf.scenario.base import fail, shorten, show, under
 from rancf.scenario.bodies import FlexibleBody, RigidBody
 from rancf.scenario.places import ResolvedPlace, resolve_place
@@ -92,7 +93,7 @@ class _Context:
 
 
 def _rod_only(key: str, el: str | None) -> None:
-    if el != "rod":
+    if not framed(el):
         raise fail(key, f'applies to rod elements only (mesh.element = "rod"), not {el!r}')
 
 
@@ -183,7 +184,7 @@ def _sliding(c: _Context, key: str, j: Any) -> None:
             f"names the flexible body that slides through the "
             f"place (one of {known}), got {show(a)}",
         )
-    if body.mesh.element == "beam":
+    if not family(body.mesh.element).gradient:
         raise fail(f"{key}.between[0]", "a body of cable or rod elements slides (not beams)")
     p = c.place(f"{key}.between[1]", b, ground=True)
     if p.where == "ground" and j.position is None:
@@ -258,7 +259,7 @@ def _sensors(c: _Context, supports: list[ResolvedPlace]) -> None:
             places = [c.place(f"{key}.at", s.at)]
         _size(f"{key}.at_point", s.at_point, c.dim)
         els = [c.element(p) for p in places]
-        if s.kind == "twist" and places and els[0] != "rod":
+        if s.kind == "twist" and places and not framed(els[0]):
             raise fail(
                 f"{key}.kind",
                 f"'twist' needs rod elements (mesh.element = \"rod\"), not {els[0]!r}",

@@ -151,7 +151,7 @@ def _body_sag(
 ) -> NDArray[np.float64] | None:
     """The sagged start of one body's model coordinates (module docstring), or None;
     ``pinned``: None also where an end holds its direction (a clamp)."""
-    if model.element not in ("rancf", "ancf") or model.closed or model.gravity is None:
+    if not model.family.cable or model.closed or model.gravity is None:
         return None
     ends = (0, model.n_nodes - 1)
     if not all(_held_position(model, k) for k in ends):

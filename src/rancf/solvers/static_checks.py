@@ -129,7 +129,7 @@ def _touchdown_problems(system: Any, q: NDArray[np.float64]) -> list[str]:
         n = n / np.linalg.norm(n)
         for name, model in zip(system.names, system.flex, strict=False):
             w = pressing_weight(system, name, np.r_[n, np.zeros(3 - n.size)])
-            if model.element == "beam" or (name, ob_name) not in pairs or not w > 0.0:
+            if not model.family.gradient or (name, ob_name) not in pairs or not w > 0.0:
                 continue
             line = _unresolved_bend(
                 model,

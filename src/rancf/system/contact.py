@@ -262,7 +262,7 @@ def build_contact(
         model = system.bodies[name]
         n0 = n1 = gw = w = np.zeros(0)
         if name in used:
-            if model.element == "beam":
+            if not model.family.gradient:
                 raise InputError(
                     "contacts", name, "flexible bodies of cable or rod elements (not beam)"
                 )

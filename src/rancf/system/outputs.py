@@ -153,7 +153,7 @@ class SystemOutputs:
     @property
     def n_directors(self) -> int:
         """Numbers of a row's rod directors (3 a rod node)."""
-        return 3 * sum(b.n_nodes for _, b in self.flex if b.element == "rod")
+        return 3 * sum(b.n_nodes for _, b in self.flex if b.family.has_triads)
 
     @property
     def n_along(self) -> int:

@@ -92,7 +92,7 @@ def load_record(system: Any, ld: Load, rows: RecordRows) -> LoadRecord:
     if ld.force is not None and f.size != system.dim:
         raise InputError("loads.point.force", list(f), f"{system.dim} components")
     b = system.bodies[p.body]
-    rod = isinstance(b, Model) and b.element == "rod"
+    rod = isinstance(b, Model) and b.family.has_triads
     if ld.torque is not None and not (isinstance(b, RigidBody) or rod):
         raise InputError("loads.point.moment", list(t), "a rigid body or a rod's node")
     tt = np.r_[np.zeros(2), t] if t.size == 1 else np.r_[t, np.zeros(3 - t.size)]
