@@ -70,3 +70,15 @@ def test_no_code_past_parsing_reads_the_file_form():
 def test_the_form_scan_finds_a_branch():
     assert FORM.search("    if not sc.bodies:") and FORM.search('mesh = sc.data["mesh"]')
     assert not FORM.search('for b in sc.data["bodies"]:')
+
+
+def test_the_system_rigid_motion_moves_a_body_in_either_form():
+    """``[initial_motion]`` of a file is the whole system's: its flexible body starts with that
+    rigid motion whether the file is written with ``[[bodies]]`` or without."""
+    d = tomllib.loads(BASE)
+    d["initial_motion"] = {"velocity": [0.0, 1.0]}
+    d.pop("supports")
+    sc = parse_scenario(d)
+    a, b = sc.build_system(), as_bodies(sc).build_system()
+    assert np.abs(a.v0).max() == 1.0
+    np.testing.assert_array_equal(a.v0, b.v0)

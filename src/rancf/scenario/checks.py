@@ -165,6 +165,14 @@ def _motion(c: _Context) -> None:
                 f"give [initial_motion] for the whole system or "
                 f"bodies[{per_body[0]}].initial_motion, not both",
             )
+        rigid = [i for i, b in enumerate(sc.bodies) if not isinstance(b, FlexibleBody)]
+        if rigid:
+            raise fail(
+                "initial_motion",
+                f"moves the flexible bodies: give bodies[{rigid[0]}] (a rigid body or point "
+                "mass) its velocity in its own table, and each flexible body its "
+                "[bodies.initial_motion]",
+            )
 
 
 def _sliding(c: _Context, key: str, j: Any) -> None:

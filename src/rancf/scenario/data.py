@@ -71,7 +71,8 @@ def scenario_data(sc: Any) -> dict[str, Any]:
         bd = {**b.model_dump(), "key": key}
         if isinstance(b, FlexibleBody):
             bd["geometry"] = _geometry_data(b.geometry)
-            im = b.initial_motion
+            # its own, else the whole system's rigid motion (one form: a one-body file's too)
+            im = b.initial_motion if b.initial_motion is not None else sc.initial_motion
             bd["initial_motion"] = None if im is None else im.as_dict()
         d["bodies"].append(bd)
     notes: list[str] = []
