@@ -41,7 +41,8 @@ from numpy.typing import NDArray
 from pydantic import Field, model_validator
 
 from rancf.errors import InputError
-from rancf.scenario.base import Name, PlacePair, PlaceValue, Table, Vector23, fail
+from rancf.scenario.base import Name, Table, Vector23, fail
+from rancf.scenario.place_types import PlacePair, PlaceValue
 
 __all__ = ["Sensor", "SensorTable", "SENSOR_KINDS", "SYSTEM_SENSOR_KINDS", "AT_POINT_KINDS"]
 
