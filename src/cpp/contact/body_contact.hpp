@@ -21,10 +21,10 @@
 // cells as large as the largest sphere (hash map of cells): pairs of elements in the same or
 // neighbouring cells whose spheres overlap; cost near linear in the number of elements.
 //
-// Tangent: exact without friction, from the gap's Hessian including the projection's variation
-// (body_contact.cpp pair_geometry); with friction, central differences of the point forces;
-// couplings of distant elements go through the sink (the bordered solve's far
-// columns).
+// Tangent: exact, from the gap's Hessian including the projection's variation
+// (body_contact.cpp pair_geometry) and, with friction, the slip's variation with the normal,
+// the closest point and the velocities (body_contact.cpp friction); couplings of distant
+// elements go through the sink (the bordered solve's far columns).
 #pragma once
 
 #include "contact/contact.hpp"

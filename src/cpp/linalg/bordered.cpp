@@ -29,10 +29,12 @@ int BorderedLU::block_of(int i) const {
 }
 
 void BorderedLU::reset_border(int p) {
-  p_ = p;
+  p_ = pu_ = p;
   pcol_.assign(sz(p), {});
   qrow_.assign(sz(p), {});
-  d_.assign(sz(p * p), 0.0);
+  du_.assign(sz(p * p), 0.0);
+  far_.clear();
+  merged_ = false;
 }
 
 void BorderedLU::add_p(int col, int row, double v) {
@@ -41,7 +43,7 @@ void BorderedLU::add_p(int col, int row, double v) {
 void BorderedLU::add_q(int row, int col, double v) {
   if (v != 0.0) qrow_[sz(row)].push_back({col, v});
 }
-void BorderedLU::add_d(int i, int j, double v) { d_[sz(i * p_ + j)] += v; }
+void BorderedLU::add_d(int i, int j, double v) { du_[sz(i * pu_ + j)] += v; }
 
 void BorderedLU::dense(int keep, double* out) {
   const int w = n_ + keep;
@@ -53,11 +55,12 @@ void BorderedLU::dense(int keep, double* out) {
       for (int j = std::max(0, i - ku); j < std::min(nb, i + ku + 1); ++j)
         out[sz(o + i) * sz(w) + sz(o + j)] = v.at(i, j);
   }
-  for (int c = 0; c < p_; ++c) {
+  for (const Far& e : far_) out[sz(e.i) * sz(w) + sz(e.j)] += e.v;
+  for (int c = 0; c < pu_; ++c) {
     if (c < keep) {
       for (const Entry& e : pcol_[sz(c)]) out[sz(e.index) * sz(w) + sz(n_ + c)] += e.value;
       for (const Entry& e : qrow_[sz(c)]) out[sz(n_ + c) * sz(w) + sz(e.index)] += e.value;
-      for (int d = 0; d < keep; ++d) out[sz(n_ + c) * sz(w) + sz(n_ + d)] += d_[sz(c * p_ + d)];
+      for (int d = 0; d < keep; ++d) out[sz(n_ + c) * sz(w) + sz(n_ + d)] += du_[sz(c * pu_ + d)];
     } else {  // z_c = Q_c x: A += P_c Q_c
       for (const Entry& pe : pcol_[sz(c)])
         for (const Entry& qe : qrow_[sz(c)])
@@ -81,14 +84,22 @@ void BorderedLU::triplets(std::vector<int>& rows, std::vector<int>& cols,
       for (int j = std::max(0, i - ku); j < std::min(nb, i + ku + 1); ++j)
         put(o + i, o + j, v.at(i, j));
   }
-  for (int c = 0; c < p_; ++c) {
+  for (const Far& e : far_) put(e.i, e.j, e.v);
+  for (int c = 0; c < pu_; ++c) {
     for (const Entry& e : pcol_[sz(c)]) put(e.index, n_ + c, e.value);
     for (const Entry& e : qrow_[sz(c)]) put(n_ + c, e.index, e.value);
-    for (int d = 0; d < p_; ++d) put(n_ + c, n_ + d, d_[sz(c * p_ + d)]);
+    for (int d = 0; d < pu_; ++d) put(n_ + c, n_ + d, du_[sz(c * pu_ + d)]);
   }
 }
 
 void BorderedLU::solve_blocks(double* x, const std::vector<char>* touched) const {
+  if (merged_) {
+    mx_.resize(sz(n_));
+    for (int k = 0; k < n_; ++k) mx_[sz(k)] = x[perm_[sz(k)]];
+    big_.solve(mx_.data(), mfixed_.data());
+    for (int k = 0; k < n_; ++k) x[perm_[sz(k)]] = mx_[sz(k)];
+    return;
+  }
   for (std::size_t b = 0; b < lu_.size(); ++b) {
     if (touched != nullptr && !(*touched)[b]) continue;  // zero there already
     lu_[b].solve(x + off_[b], fixed_[b].data());
@@ -96,8 +107,21 @@ void BorderedLU::solve_blocks(double* x, const std::vector<char>* touched) const
 }
 
 bool BorderedLU::factor() {
-  for (std::size_t b = 0; b < lu_.size(); ++b)
-    if (!lu_[b].factor(fixed_[b].data())) return false;
+  p_ = pu_;  // the caller's border, then the unknowns of the far entries (place_far)
+  pcol_.resize(sz(pu_));
+  qrow_.resize(sz(pu_));
+  merged_ = false;
+  place_far();
+  if (merged_) {
+    if (!big_.factor(mfixed_.data())) return false;
+  } else {
+    for (std::size_t b = 0; b < lu_.size(); ++b)
+      if (!lu_[b].factor(fixed_[b].data())) return false;
+  }
+  return factor_schur();
+}
+
+bool BorderedLU::factor_schur() {
   if (p_ == 0) return true;
   w_.resize(sz(n_) * sz(p_));
   wlo_.assign(sz(p_), n_);
@@ -107,6 +131,7 @@ bool BorderedLU::factor() {
     double* col = w_.data() + sz(c) * sz(n_);
     std::fill(touched.begin(), touched.end(), 0);
     for (const Entry& e : pcol_[sz(c)]) touched[sz(block_of(e.index))] = 1;
+    if (merged_) std::fill(touched.begin(), touched.end(), 1);  // one band: the whole column
     for (std::size_t b = 0; b < lu_.size(); ++b)
       if (touched[b]) {
         std::fill(col + off_[b], col + off_[b] + size_[b], 0.0);
@@ -149,7 +174,8 @@ void BorderedLU::solve(double* x, double* z) const {
   solve_blocks(x, nullptr);  // x0 = A^-1 r
   if (p_ == 0) return;
   std::vector<double>& rhs = rhs_;  // s - Q x0 (kept between calls: no allocation a solve)
-  rhs.assign(z, z + p_);
+  rhs.assign(z, z + pu_);
+  rhs.resize(sz(p_), 0.0);  // the far entries' unknowns: zero right-hand side
   for (int r = 0; r < p_; ++r)
     for (const Entry& e : qrow_[sz(r)]) rhs[sz(r)] -= e.value * x[e.index];
   for (int k = 0; k < p_; ++k) std::swap(rhs[sz(k)], rhs[sz(piv_[sz(k)])]);
@@ -159,12 +185,162 @@ void BorderedLU::solve(double* x, double* z) const {
     for (int j = i + 1; j < p_; ++j) rhs[sz(i)] -= s_[sz(i * p_ + j)] * rhs[sz(j)];
     rhs[sz(i)] /= s_[sz(i * p_ + i)];
   }
-  std::copy(rhs.begin(), rhs.end(), z);
+  std::copy(rhs.begin(), rhs.begin() + pu_, z);
   for (int c = 0; c < p_; ++c) {
-    const double zc = z[c];
+    const double zc = rhs[sz(c)];
     if (zc == 0.0) continue;
     const double* col = w_.data() + sz(c) * sz(n_);
     for (int i = wlo_[sz(c)]; i < whi_[sz(c)]; ++i) x[i] -= col[i] * zc;
+  }
+}
+
+void BorderedLU::place_far() {
+  d_.assign(sz(p_ * p_), 0.0);
+  if (far_.empty()) {
+    d_ = du_;
+    return;
+  }
+  // each entry's group: its row's if the row holds more far entries than its column
+  std::vector<int> rows(sz(n_), 0), cols(sz(n_), 0), count(sz(2 * n_), 0);
+  for (const Far& e : far_) {
+    ++rows[sz(e.i)];
+    ++cols[sz(e.j)];
+  }
+  auto group = [&](const Far& e) { return rows[sz(e.i)] > cols[sz(e.j)] ? n_ + e.i : e.j; };
+  for (const Far& e : far_) ++count[sz(group(e))];
+  int kmax = 0;
+  for (const BandLU& b : lu_) kmax = std::max(kmax, b.ku());
+  // a group longer than two band rows (a rigid body's coupling with a line) stays an unknown
+  const int dense = 2 * (2 * kmax + 1);
+  std::vector<Far> rest;
+  int groups = 0;
+  for (const Far& e : far_)
+    if (count[sz(group(e))] <= dense) rest.push_back(e);
+  for (int c : count) groups += c > 0 && c <= dense ? 1 : 0;
+  int kb = 0;
+  if (!rest.empty()) {
+    // operation counts: the blocks' bands and one column solve and Schur row per unknown,
+    // against one band of half width kb
+    kb = order(rest);
+    const double n = n_, g = groups, k = kmax, b = kb;
+    merged_ = 3.0 * n * b * b < 3.0 * n * k * k + 4.0 * g * n * k + 2.0 / 3.0 * g * g * g;
+  }
+  std::vector<int> idx;  // the entries that become unknowns, by group
+  for (int k = 0; k < static_cast<int>(far_.size()); ++k)
+    if (!merged_ || count[sz(group(far_[sz(k)]))] > dense) idx.push_back(k);
+  std::stable_sort(idx.begin(), idx.end(),
+                   [&](int a, int b) { return group(far_[sz(a)]) < group(far_[sz(b)]); });
+  int z = pu_ - 1, last = -1;
+  std::vector<int> key;
+  for (int k : idx) {
+    const Far& e = far_[sz(k)];
+    const int gk = group(e);
+    if (gk != last) {
+      ++z;
+      last = gk;
+      key.push_back(gk);
+      pcol_.emplace_back();
+      qrow_.emplace_back();
+    }
+    if (gk >= n_)  // w = K_i. x: Q[w][j] = K_ij, P[i][w] = 1
+      qrow_[sz(z)].push_back({e.j, e.v});
+    else  // z = x_j: P[i][z] = K_ij, Q[z][j] = 1
+      pcol_[sz(z)].push_back({e.i, e.v});
+  }
+  p_ = pu_ + static_cast<int>(key.size());
+  d_.assign(sz(p_ * p_), 0.0);
+  for (int i = 0; i < pu_; ++i)
+    for (int j = 0; j < pu_; ++j) d_[sz(i * p_ + j)] = du_[sz(i * pu_ + j)];
+  for (int c = pu_; c < p_; ++c) {
+    const int gk = key[sz(c - pu_)];
+    if (gk >= n_)
+      pcol_[sz(c)].push_back({gk - n_, 1.0});
+    else
+      qrow_[sz(c)].push_back({gk, 1.0});
+    d_[sz(c * p_ + c)] = -1.0;
+  }
+  if (merged_) fill_merged(rest, kb);
+}
+
+int BorderedLU::order(const std::vector<Far>& rest) {
+  // A's pattern without the held coordinates (identity rows and columns): the blocks' bands
+  // and the far entries, symmetric
+  std::vector<std::uint8_t> held(sz(n_));
+  for (std::size_t b = 0; b < lu_.size(); ++b)
+    std::copy(fixed_[b].begin(), fixed_[b].end(), held.begin() + off_[b]);
+  std::vector<std::vector<int>> adj(sz(n_));
+  auto link = [&](int i, int j) {
+    if (i == j || held[sz(i)] || held[sz(j)]) return;
+    adj[sz(i)].push_back(j);
+    adj[sz(j)].push_back(i);
+  };
+  for (std::size_t b = 0; b < lu_.size(); ++b)
+    for (int i = 0; i < size_[b]; ++i)
+      for (int j = i + 1; j <= std::min(size_[b] - 1, i + lu_[b].ku()); ++j)
+        link(off_[b] + i, off_[b] + j);
+  for (const Far& e : rest) link(e.i, e.j);
+  for (auto& a : adj) {
+    std::sort(a.begin(), a.end());
+    a.erase(std::unique(a.begin(), a.end()), a.end());
+  }
+  auto degree = [&](int i) { return adj[sz(i)].size(); };
+  for (auto& a : adj)
+    std::stable_sort(a.begin(), a.end(), [&](int x, int y) { return degree(x) < degree(y); });
+  // Cuthill-McKee by components, each from a pseudo-peripheral node (the last level of a
+  // breadth-first search from its node of least degree, once), then reversed
+  std::vector<int> seen(sz(n_), 0), cm;
+  cm.reserve(sz(n_));
+  auto bfs = [&](int start, int mark, std::vector<int>& out) {
+    out.clear();
+    out.push_back(start);
+    seen[sz(start)] = mark;
+    for (std::size_t h = 0; h < out.size(); ++h)
+      for (int j : adj[sz(out[h])])
+        if (seen[sz(j)] != mark) {
+          seen[sz(j)] = mark;
+          out.push_back(j);
+        }
+  };
+  std::vector<int> comp, probe;
+  for (int s0 = 0; s0 < n_; ++s0) {
+    if (seen[sz(s0)] != 0) continue;
+    bfs(s0, -1, comp);  // the component: its node of least degree
+    int start = s0;
+    for (int i : comp)
+      if (degree(i) < degree(start)) start = i;
+    bfs(start, -2, probe);
+    start = probe.back();
+    for (int i : probe) seen[sz(i)] = -1;  // the probe's marks back to the component's
+    bfs(start, 1, probe);
+    cm.insert(cm.end(), probe.begin(), probe.end());
+  }
+  perm_.assign(cm.rbegin(), cm.rend());
+  pos_.assign(sz(n_), 0);
+  for (int k = 0; k < n_; ++k) pos_[sz(perm_[sz(k)])] = k;
+  int kb = 0;
+  for (int i = 0; i < n_; ++i)
+    for (int j : adj[sz(i)]) kb = std::max(kb, std::abs(pos_[sz(i)] - pos_[sz(j)]));
+  return kb;
+}
+
+void BorderedLU::fill_merged(const std::vector<Far>& rest, int kb) {
+  if (big_.n() != n_ || big_.ku() != kb) big_ = BandLU(n_, kb);
+  const BandView a = big_.matrix();
+  mfixed_.assign(sz(n_), 0);
+  for (std::size_t b = 0; b < lu_.size(); ++b) {
+    const BandView v = lu_[b].view();
+    const int o = off_[b], nb = size_[b], ku = lu_[b].ku();
+    for (int i = 0; i < nb; ++i) {
+      const int pi = pos_[sz(o + i)];
+      mfixed_[sz(pi)] = fixed_[b][sz(i)];
+      if (fixed_[b][sz(i)]) continue;
+      for (int j = std::max(0, i - ku); j < std::min(nb, i + ku + 1); ++j)
+        if (!fixed_[b][sz(j)]) a.at(pi, pos_[sz(o + j)]) += v.at(i, j);
+    }
+  }
+  for (const Far& e : rest) {
+    const int pi = pos_[sz(e.i)], pj = pos_[sz(e.j)];
+    if (!mfixed_[sz(pi)] && !mfixed_[sz(pj)]) a.at(pi, pj) += e.v;
   }
 }
 
