@@ -384,28 +384,51 @@ void rotate_pair(const Side& A, const Side& B, int e, int f, double* fe, double*
 void assemble_body_contact(const System& s, const ContactSet& c, const double* yf, const double* vf,
                            const double* y1, const AssemblyTerms& tm, double* r,
                            const MatrixSink* add) {
-  std::vector<double> K;
+  // the points of element e against element f come one after the other: their forces and
+  // tangents are summed, then given to r and the sink once per element pair (flush)
+  std::vector<double> K, Ksum;
+  std::array<double, 2 * kMaxElementDofs> fsum{};
+  Side sides[2];
+  int key[4] = {-1, -1, -1, -1};  // bodies of A and B, e, f
+  auto flush = [&]() {
+    if (key[0] < 0) return;
+    const Side &A = sides[0], &B = sides[1];
+    const int e = key[2], f = key[3], na = A.m->nde(), n = na + B.m->nde();
+    std::array<int, 2 * kMaxElementDofs> idx{};
+    for (int a = 0; a < na; ++a) idx[sz(a)] = A.offset + e * A.m->dpn + a;
+    for (int a = 0; a < n - na; ++a) idx[sz(na + a)] = B.offset + f * B.m->dpn + a;
+    rotate_pair(A, B, e, f, fsum.data(), add != nullptr ? Ksum.data() : nullptr);
+    for (int a = 0; a < n; ++a) r[idx[sz(a)]] -= fsum[sz(a)];
+    if (add != nullptr) (*add)(idx.data(), n, Ksum.data());
+    key[0] = -1;
+  };
   each_pair(s, c, yf, y1, vf, true,
             [&](const BodyPair& bp, const Side& A, const Side& B, int e, int q, int f,
                 const double* ea, const double* eb, const double* ea1, const double* eb1,
                 const double* va, const double* vb, const double* fe, double, double pw0) {
               if (pw0 == 0.0) return;
-              const int na = A.m->nde(), nb = B.m->nde(), n = na + nb;
-              std::array<double, 2 * kMaxElementDofs> f0{};
-              std::copy(fe, fe + n, f0.begin());
-              std::array<int, 2 * kMaxElementDofs> idx{};
-              for (int a = 0; a < na; ++a) idx[sz(a)] = A.offset + e * A.m->dpn + a;
-              for (int a = 0; a < nb; ++a) idx[sz(na + a)] = B.offset + f * B.m->dpn + a;
-              if (add != nullptr) {  // the exact tangent (with friction: friction())
-                K.assign(sz(n * n), 0.0);
-                double pw = 0.0;
-                point_force(bp, A, B, e, q, f, ea, eb, ea1, eb1, va, vb, f0.data(), &pw, tm.ck,
-                            tm.cv, K.data());
+              const int n = A.m->nde() + B.m->nde();
+              if (key[0] != A.body || key[1] != B.body || key[2] != e || key[3] != f) {
+                flush();
+                sides[0] = A;
+                sides[1] = B;
+                key[0] = A.body;
+                key[1] = B.body;
+                key[2] = e;
+                key[3] = f;
+                std::fill(fsum.begin(), fsum.end(), 0.0);
+                if (add != nullptr) Ksum.assign(sz(n * n), 0.0);
               }
-              rotate_pair(A, B, e, f, f0.data(), add != nullptr ? K.data() : nullptr);
-              for (int a = 0; a < n; ++a) r[idx[sz(a)]] -= f0[sz(a)];
-              if (add != nullptr) (*add)(idx.data(), n, K.data());
+              for (int a = 0; a < n; ++a) fsum[sz(a)] += fe[a];
+              if (add == nullptr) return;
+              K.assign(sz(n * n), 0.0);  // the exact tangent (with friction: friction())
+              std::array<double, 2 * kMaxElementDofs> f0{};
+              double pw = 0.0;
+              point_force(bp, A, B, e, q, f, ea, eb, ea1, eb1, va, vb, f0.data(), &pw, tm.ck, tm.cv,
+                          K.data());
+              for (int a = 0; a < n * n; ++a) Ksum[sz(a)] += K[sz(a)];
             });
+  flush();
 }
 
 double body_contact_energy(const System& s, const ContactSet& c, const double* y) {

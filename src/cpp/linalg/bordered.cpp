@@ -195,13 +195,12 @@ void BorderedLU::solve(double* x, double* z) const {
 }
 
 void BorderedLU::place_far() {
-  d_.assign(sz(p_ * p_), 0.0);
   if (far_.empty()) {
     d_ = du_;
     return;
   }
   // each entry's group: its row's if the row holds more far entries than its column
-  std::vector<int> rows(sz(n_), 0), cols(sz(n_), 0), count(sz(2 * n_), 0);
+  std::vector<int> rows(sz(n_), 0), cols(sz(n_), 0), count(sz(2 * n_ + 1), 0);
   for (const Far& e : far_) {
     ++rows[sz(e.i)];
     ++cols[sz(e.j)];
@@ -210,26 +209,57 @@ void BorderedLU::place_far() {
   for (const Far& e : far_) ++count[sz(group(e))];
   int kmax = 0;
   for (const BandLU& b : lu_) kmax = std::max(kmax, b.ku());
-  // a group longer than two band rows (a rigid body's coupling with a line) stays an unknown
+  // the cheapest of: (a) every group an unknown; (b) every entry in the merged band; (c) the
+  // groups longer than two band rows (a rigid body's coupling with a line) unknowns, the rest
+  // merged; by operation counts: a band LU 4 n k^2, a column solve 6 n k, the Schur LU
+  // 2 g^3 / 3
   const int dense = 2 * (2 * kmax + 1);
+  int groups = 0, long_groups = 0;
+  for (int c : count) {
+    groups += c > 0 ? 1 : 0;
+    long_groups += c > dense ? 1 : 0;
+  }
   std::vector<Far> rest;
-  int groups = 0;
   for (const Far& e : far_)
     if (count[sz(group(e))] <= dense) rest.push_back(e);
-  for (int c : count) groups += c > 0 && c <= dense ? 1 : 0;
-  int kb = 0;
-  if (!rest.empty()) {
-    // operation counts: the blocks' bands and one column solve and Schur row per unknown,
-    // against one band of half width kb
-    kb = order(rest);
-    const double n = n_, g = groups, k = kmax, b = kb;
-    merged_ = 3.0 * n * b * b < 3.0 * n * k * k + 4.0 * g * n * k + 2.0 / 3.0 * g * g * g;
+  const bool split = long_groups > 0 && !rest.empty();
+  // the choice and the order are kept while the far entries' pattern stays (a hash of their
+  // positions in the order they came: a step's contacts)
+  std::uint64_t sig = 1469598103934665603ull ^ far_.size();
+  for (const Far& e : far_)
+    sig = (sig ^ (static_cast<std::uint64_t>(e.i) << 32 ^ static_cast<std::uint64_t>(e.j))) *
+          1099511628211ull;
+  if (sig != sig_ || perm_.size() != sz(n_)) {
+    sig_ = sig;
+    const double n = n_;
+    auto cost = [n](double k, double g) {
+      return 4.0 * n * k * k + 6.0 * g * n * k + g * g * g / 1.5;
+    };
+    const double cost_a = cost(kmax, groups);
+    const int kb_b = order(far_);
+    const double cost_b = cost(kb_b, 0.0);
+    const int kb_c = split ? order(rest) : 0;  // the last order() computed: (c)'s if split
+    const double cost_c = split ? cost(kb_c, long_groups) : cost_b + 1.0;
+    choice_ = std::min(cost_b, cost_c) >= cost_a ? 0 : (cost_c < cost_b ? 2 : 1);
+    kb_ = choice_ == 2 ? kb_c : kb_b;
+    if (choice_ == 1 && split) order(far_);
   }
-  std::vector<int> idx;  // the entries that become unknowns, by group
-  for (int k = 0; k < static_cast<int>(far_.size()); ++k)
-    if (!merged_ || count[sz(group(far_[sz(k)]))] > dense) idx.push_back(k);
-  std::stable_sort(idx.begin(), idx.end(),
-                   [&](int a, int b) { return group(far_[sz(a)]) < group(far_[sz(b)]); });
+  merged_ = choice_ > 0;
+  if (choice_ == 1) rest = far_;
+  const int limit = choice_ == 0 ? -1 : (choice_ == 2 ? dense : static_cast<int>(far_.size()));
+  // the entries that become unknowns, grouped (columns, then rows, each ascending) by a
+  // counting sort; their order within a group kept
+  std::vector<int> at(sz(2 * n_ + 1), 0), idx;
+  int total = 0;
+  for (int gk = 0; gk < 2 * n_; ++gk) {
+    at[sz(gk)] = total;
+    if (count[sz(gk)] > limit) total += count[sz(gk)];
+  }
+  idx.resize(sz(total));
+  for (int k = 0; k < static_cast<int>(far_.size()); ++k) {
+    const int gk = group(far_[sz(k)]);
+    if (count[sz(gk)] > limit) idx[sz(at[sz(gk)]++)] = k;
+  }
   int z = pu_ - 1, last = -1;
   std::vector<int> key;
   for (int k : idx) {
@@ -259,7 +289,7 @@ void BorderedLU::place_far() {
       qrow_[sz(c)].push_back({gk, 1.0});
     d_[sz(c * p_ + c)] = -1.0;
   }
-  if (merged_) fill_merged(rest, kb);
+  if (merged_) fill_merged(rest, kb_);
 }
 
 int BorderedLU::order(const std::vector<Far>& rest) {

@@ -88,6 +88,8 @@ class BorderedLU {
   std::vector<Far> far_;
   std::vector<double> du_;  // the caller's D (pu x pu)
   bool merged_ = false;
+  std::uint64_t sig_ = 0;    // place_far's choice for the far entries' pattern sig_: (a), (b) or
+  int choice_ = 0, kb_ = 0;  // (c) as 0, 1, 2, and the merged band's half width
   std::vector<int> perm_, pos_;       // merged: new -> old and old -> new index
   std::vector<std::uint8_t> mfixed_;  // merged: held coordinates in the new order
   BandLU big_{0, 0};                  // merged: the band of all blocks
