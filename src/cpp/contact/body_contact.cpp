@@ -257,7 +257,7 @@ double point_force(const BodyPair& bp, const Side& A, const Side& B, int e, int 
                    double cv = 0.0, double* K = nullptr) {
   const int n = A.m->nde() + B.m->nde();
   Pair pf;
-  pair_geometry(A, B, e, q, f, ea, eb, K != nullptr, pf);
+  pair_geometry(A, B, e, q, f, ea, eb, false, pf);
   std::fill(fe, fe + n, 0.0);
   *pw = 0.0;
   if (!pf.kept) return 1e300;
@@ -277,6 +277,7 @@ double point_force(const BodyPair& bp, const Side& A, const Side& B, int e, int 
     dp1 -= dpa;
   }
   if (pm == 0.0 && dpf == 0.0 && dp1 == 0.0) return pf.g;
+  if (K != nullptr) pair_geometry(A, B, e, q, f, ea, eb, true, pf);  // in contact: the Hessian
   const double w = A.cb->w[sz(e * A.cb->n_c + q)];
   *pw = w * pm;
   for (int a = 0; a < n; ++a) fe[a] = w * pm * pf.G[sz(a)];
@@ -311,7 +312,8 @@ bool near(const Broad& br, int ea, int fb, const double* x, double ra, double on
 /// with near_only (the forces) points out of reach of the element (near) are not projected.
 template <class Fn>
 void each_pair(const System& s, const ContactSet& c, const double* y, const double* y1,
-               const double* v, bool near_only, Fn fn) {
+               const double* v, bool near_only, Fn fn, const AssemblyTerms* tm = nullptr,
+               double* K = nullptr) {
   if (c.body_pairs.empty()) return;
   const Broad br = spheres(s, c, y, y1);
   Coords ea{}, eb{}, ea1{}, eb1{}, va{}, vb{};
@@ -346,8 +348,9 @@ void each_pair(const System& s, const ContactSet& c, const double* y, const doub
             if (!near(br, sa, sb, x, A.cb->radius, bp.onset)) continue;
           }
           double pw = 0.0;
-          const double g = point_force(bp, A, B, e, q, f, ea.data(), eb.data(), pa1, pb1, pva, pvb,
-                                       fe.data(), &pw);
+          const double g =
+              point_force(bp, A, B, e, q, f, ea.data(), eb.data(), pa1, pb1, pva, pvb, fe.data(),
+                          &pw, tm != nullptr ? tm->ck : 1.0, tm != nullptr ? tm->cv : 0.0, K);
           fn(bp, A, B, e, q, f, ea.data(), eb.data(), pa1, pb1, pva, pvb, fe.data(), g, pw);
         }
       }
@@ -386,7 +389,7 @@ void assemble_body_contact(const System& s, const ContactSet& c, const double* y
                            const MatrixSink* add) {
   // the points of element e against element f come one after the other: their forces and
   // tangents are summed, then given to r and the sink once per element pair (flush)
-  std::vector<double> K, Ksum;
+  std::vector<double> K(sz(4 * kMaxElementDofs * kMaxElementDofs)), Ksum;
   std::array<double, 2 * kMaxElementDofs> fsum{};
   Side sides[2];
   int key[4] = {-1, -1, -1, -1};  // bodies of A and B, e, f
@@ -402,32 +405,29 @@ void assemble_body_contact(const System& s, const ContactSet& c, const double* y
     if (add != nullptr) (*add)(idx.data(), n, Ksum.data());
     key[0] = -1;
   };
-  each_pair(s, c, yf, y1, vf, true,
-            [&](const BodyPair& bp, const Side& A, const Side& B, int e, int q, int f,
-                const double* ea, const double* eb, const double* ea1, const double* eb1,
-                const double* va, const double* vb, const double* fe, double, double pw0) {
-              if (pw0 == 0.0) return;
-              const int n = A.m->nde() + B.m->nde();
-              if (key[0] != A.body || key[1] != B.body || key[2] != e || key[3] != f) {
-                flush();
-                sides[0] = A;
-                sides[1] = B;
-                key[0] = A.body;
-                key[1] = B.body;
-                key[2] = e;
-                key[3] = f;
-                std::fill(fsum.begin(), fsum.end(), 0.0);
-                if (add != nullptr) Ksum.assign(sz(n * n), 0.0);
-              }
-              for (int a = 0; a < n; ++a) fsum[sz(a)] += fe[a];
-              if (add == nullptr) return;
-              K.assign(sz(n * n), 0.0);  // the exact tangent (with friction: friction())
-              std::array<double, 2 * kMaxElementDofs> f0{};
-              double pw = 0.0;
-              point_force(bp, A, B, e, q, f, ea, eb, ea1, eb1, va, vb, f0.data(), &pw, tm.ck, tm.cv,
-                          K.data());
-              for (int a = 0; a < n * n; ++a) Ksum[sz(a)] += K[sz(a)];
-            });
+  each_pair(
+      s, c, yf, y1, vf, true,
+      [&](const BodyPair&, const Side& A, const Side& B, int e, int, int f, const double*,
+          const double*, const double*, const double*, const double*, const double*,
+          const double* fe, double, double pw0) {
+        if (pw0 == 0.0) return;
+        const int n = A.m->nde() + B.m->nde();
+        if (key[0] != A.body || key[1] != B.body || key[2] != e || key[3] != f) {
+          flush();
+          sides[0] = A;
+          sides[1] = B;
+          key[0] = A.body;
+          key[1] = B.body;
+          key[2] = e;
+          key[3] = f;
+          std::fill(fsum.begin(), fsum.end(), 0.0);
+          if (add != nullptr) Ksum.assign(sz(n * n), 0.0);
+        }
+        for (int a = 0; a < n; ++a) fsum[sz(a)] += fe[a];
+        if (add != nullptr)  // the point's exact tangent (point_force)
+          for (int a = 0; a < n * n; ++a) Ksum[sz(a)] += K[sz(a)];
+      },
+      &tm, add != nullptr ? K.data() : nullptr);
   flush();
 }
 
