@@ -30,11 +30,12 @@ void shape(const ContactBody& cb, int el, double xi, double* N, double* N1, doub
 
 double dot3(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
-/// The closest point of element f (coordinates e) to x: xi in [0, 1], the shape functions there.
+/// The closest point of element f (coordinates e) to x: xi in [0, 1], the shape functions there;
+/// Newton from the best of five samples, or from start (>= 0: a closest point known nearby).
 double project(const Model& m, const ContactBody& cb, int f, const double* e, const double* x,
-               double* N) {
-  double best = 0.0, dmin = 1e300, y[3], N1[4], N2[4];
-  for (int s = 0; s <= 4; ++s) {
+               double* N, double start = -1.0) {
+  double best = start, dmin = 1e300, y[3], N1[4], N2[4];
+  for (int s = 0; s <= 4 && start < 0.0; ++s) {
     const double xi = 0.25 * s;
     shape(cb, f, xi, N, nullptr, nullptr);
     contact_point::point_of(m, N, e, y);
@@ -80,6 +81,7 @@ struct Side {
 /// eta is fixed (no b term).
 struct Pair {
   bool kept = false;  ///< a valid projection (inside the element or at a free end)
+  double xi = 0.0;    ///< the closest point's element coordinate
   double g = 0.0, rho = 0.0, n[3] = {0.0, 0.0, 0.0};
   double Nb[4] = {0.0, 0.0, 0.0, 0.0};   ///< B's shape functions at the closest point
   double Nb1[4] = {0.0, 0.0, 0.0, 0.0};  ///< and their eta-derivatives
@@ -93,14 +95,15 @@ struct Pair {
 };
 
 void pair_geometry(const Side& A, const Side& B, int e, int q, int f, const double* ea,
-                   const double* eb, bool hess, Pair& out) {
+                   const double* eb, bool hess, Pair& out, double start = -1.0) {
   const Model& ma = *A.m;
   const Model& mb = *B.m;
   const int na = ma.nde(), n = na + mb.nde();
   const double* Na = A.cb->N.data() + 4 * (e * A.cb->n_c + q);
   double x[3], y[3], Nb[4], Nb1[4], Nb2[4], y1[3], y2[3];
   contact_point::point_of(ma, Na, ea, x);
-  const double xi = project(mb, *B.cb, f, eb, x, Nb);
+  const double xi = project(mb, *B.cb, f, eb, x, Nb, start);
+  out.xi = xi;
   const bool at_end = xi == 0.0 || xi == 1.0;
   out.kept = false;
   if (at_end && !((xi == 0.0 && f == 0) || (xi == 1.0 && f == mb.n_el - 1))) return;
@@ -268,7 +271,7 @@ double point_force(const BodyPair& bp, const Side& A, const Side& B, int e, int 
     pm = law.p(pf.g);
     dpf = law.slope(pf.g);
   } else {  // the step's mean pressure over [2 gf - g1, g1] (contact.hpp)
-    pair_geometry(A, B, e, q, f, ea1, eb1, false, p1);
+    pair_geometry(A, B, e, q, f, ea1, eb1, false, p1, pf.xi);  // from the alpha point's
     if (!p1.kept) p1 = pf;
     const double ga = 2.0 * pf.g - p1.g;
     double dpa = 0.0;
@@ -277,7 +280,7 @@ double point_force(const BodyPair& bp, const Side& A, const Side& B, int e, int 
     dp1 -= dpa;
   }
   if (pm == 0.0 && dpf == 0.0 && dp1 == 0.0) return pf.g;
-  if (K != nullptr) pair_geometry(A, B, e, q, f, ea, eb, true, pf);  // in contact: the Hessian
+  if (K != nullptr) pair_geometry(A, B, e, q, f, ea, eb, true, pf, pf.xi);  // the Hessian
   const double w = A.cb->w[sz(e * A.cb->n_c + q)];
   *pw = w * pm;
   for (int a = 0; a < n; ++a) fe[a] = w * pm * pf.G[sz(a)];
