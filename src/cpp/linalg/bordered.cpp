@@ -200,13 +200,20 @@ void BorderedLU::place_far() {
     return;
   }
   // each entry's group: its row's if the row holds more far entries than its column
-  std::vector<int> rows(sz(n_), 0), cols(sz(n_), 0), count(sz(2 * n_ + 1), 0);
+  std::vector<int>&rows = rows_, &cols = cols_, &count = count_, &gid = gid_;
+  rows.assign(sz(n_), 0);
+  cols.assign(sz(n_), 0);
+  count.assign(sz(2 * n_ + 1), 0);
+  gid.resize(far_.size());
   for (const Far& e : far_) {
     ++rows[sz(e.i)];
     ++cols[sz(e.j)];
   }
-  auto group = [&](const Far& e) { return rows[sz(e.i)] > cols[sz(e.j)] ? n_ + e.i : e.j; };
-  for (const Far& e : far_) ++count[sz(group(e))];
+  for (std::size_t k = 0; k < far_.size(); ++k) {
+    const Far& e = far_[k];
+    gid[k] = rows[sz(e.i)] > cols[sz(e.j)] ? n_ + e.i : e.j;
+    ++count[sz(gid[k])];
+  }
   int kmax = 0;
   for (const BandLU& b : lu_) kmax = std::max(kmax, b.ku());
   // the cheapest of: (a) every group an unknown; (b) every entry in the merged band; (c) the
@@ -215,15 +222,12 @@ void BorderedLU::place_far() {
   // and column of the Schur complement 20 n k (measured: twice the flops of the solve, which
   // runs slower than the factorization's loops), the Schur LU 2 g^3 / 3
   const int dense = 2 * (2 * kmax + 1);
-  int groups = 0, long_groups = 0;
-  for (int c : count) {
-    groups += c > 0 ? 1 : 0;
-    long_groups += c > dense ? 1 : 0;
-  }
-  std::vector<Far> rest;
-  for (const Far& e : far_)
-    if (count[sz(group(e))] <= dense) rest.push_back(e);
-  const bool split = long_groups > 0 && !rest.empty();
+  auto short_entries = [&]() {
+    std::vector<Far> out;
+    for (std::size_t k = 0; k < far_.size(); ++k)
+      if (count[sz(gid[k])] <= dense) out.push_back(far_[k]);
+    return out;
+  };
   // the choice and the order are kept while the far entries' pattern stays (a hash of their
   // positions in the order they came: a step's contacts)
   std::uint64_t sig = 1469598103934665603ull ^ far_.size();
@@ -232,6 +236,13 @@ void BorderedLU::place_far() {
           1099511628211ull;
   if (sig != sig_ || perm_.size() != sz(n_)) {
     sig_ = sig;
+    int groups = 0, long_groups = 0;
+    for (int c : count) {
+      groups += c > 0 ? 1 : 0;
+      long_groups += c > dense ? 1 : 0;
+    }
+    const std::vector<Far> rest = short_entries();
+    const bool split = long_groups > 0 && !rest.empty();
     const double n = n_;
     auto cost = [n](double k, double g) {
       return 4.0 * n * k * k + 20.0 * g * n * k + g * g * g / 1.5;
@@ -246,11 +257,11 @@ void BorderedLU::place_far() {
     if (choice_ == 1 && split) order(far_);
   }
   merged_ = choice_ > 0;
-  if (choice_ == 1) rest = far_;
   const int limit = choice_ == 0 ? -1 : (choice_ == 2 ? dense : static_cast<int>(far_.size()));
   // the entries that become unknowns, grouped (columns, then rows, each ascending) by a
   // counting sort; their order within a group kept
-  std::vector<int> at(sz(2 * n_ + 1), 0), idx;
+  std::vector<int>&at = at_, &idx = idx_;
+  at.assign(sz(2 * n_ + 1), 0);
   int total = 0;
   for (int gk = 0; gk < 2 * n_; ++gk) {
     at[sz(gk)] = total;
@@ -258,14 +269,14 @@ void BorderedLU::place_far() {
   }
   idx.resize(sz(total));
   for (int k = 0; k < static_cast<int>(far_.size()); ++k) {
-    const int gk = group(far_[sz(k)]);
+    const int gk = gid[sz(k)];
     if (count[sz(gk)] > limit) idx[sz(at[sz(gk)]++)] = k;
   }
   int z = pu_ - 1, last = -1;
   std::vector<int> key;
   for (int k : idx) {
     const Far& e = far_[sz(k)];
-    const int gk = group(e);
+    const int gk = gid[sz(k)];
     if (gk != last) {
       ++z;
       last = gk;
@@ -290,7 +301,8 @@ void BorderedLU::place_far() {
       qrow_[sz(c)].push_back({gk, 1.0});
     d_[sz(c * p_ + c)] = -1.0;
   }
-  if (merged_) fill_merged(rest, kb_);
+  if (choice_ == 1) fill_merged(far_, kb_);
+  if (choice_ == 2) fill_merged(short_entries(), kb_);
 }
 
 int BorderedLU::order(const std::vector<Far>& rest) {

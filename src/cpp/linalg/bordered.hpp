@@ -86,7 +86,8 @@ class BorderedLU {
   bool factor_schur();
   int n_ = 0, p_ = 0, pu_ = 0;  // border unknowns: all, the caller's
   std::vector<Far> far_;
-  std::vector<double> du_;  // the caller's D (pu x pu)
+  std::vector<int> rows_, cols_, count_, gid_, at_, idx_;  // place_far's work arrays
+  std::vector<double> du_;                                 // the caller's D (pu x pu)
   bool merged_ = false;
   std::uint64_t sig_ = 0;    // place_far's choice for the far entries' pattern sig_: (a), (b) or
   int choice_ = 0, kb_ = 0;  // (c) as 0, 1, 2, and the merged band's half width

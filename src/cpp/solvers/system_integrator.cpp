@@ -240,7 +240,7 @@ StepOutcome SystemIntegrator::iterate(const StepIn& s0, double t, double h, cons
     }
     solve_negative();
     if (fresh && it > 3) factor = damp_reversal(factor, w);  // after Newton's quadratic start
-    if (fresh) prev_dz_.assign(dz_.begin(), dz_.end());
+    prev_dz_.assign(dz_.begin(), dz_.end());                 // the step taken
     double norm = 0.0;  // increments measured as displacements (docs/derivations/newton.md)
     for (int i = 0; i < n; ++i) {
       y1[i] += dz_[sz(i)];
