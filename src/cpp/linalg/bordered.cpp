@@ -229,12 +229,21 @@ void BorderedLU::place_far() {
     return out;
   };
   // the choice and the order are kept while the far entries' pattern stays (a hash of their
-  // positions in the order they came: a step's contacts)
+  // positions in the order they came: a step's contacts; and, against a collision, the
+  // merged entries within the kept band)
   std::uint64_t sig = 1469598103934665603ull ^ far_.size();
   for (const Far& e : far_)
     sig = (sig ^ (static_cast<std::uint64_t>(e.i) << 32 ^ static_cast<std::uint64_t>(e.j))) *
           1099511628211ull;
-  if (sig != sig_ || perm_.size() != sz(n_)) {
+  auto fits = [&]() {  // the kept order holds the merged entries within its band
+    if (choice_ == 0) return true;
+    for (std::size_t k = 0; k < far_.size(); ++k)
+      if ((choice_ == 1 || count[sz(gid[k])] <= dense) &&
+          std::abs(pos_[sz(far_[k].i)] - pos_[sz(far_[k].j)]) > kb_)
+        return false;
+    return true;
+  };
+  if (sig != sig_ || perm_.size() != sz(n_) || !fits()) {
     sig_ = sig;
     int groups = 0, long_groups = 0;
     for (int c : count) {
