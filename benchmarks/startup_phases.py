@@ -7,7 +7,10 @@ Each run is a new interpreter (``OPENBLAS_NUM_THREADS=1``, as ``rancf simulate``
 times, one after the other: NumPy and the compiled core; pydantic; the scenario modules (the
 model classes and the modules of ours they import); the first ``load_scenario`` of the
 8-element pendulum of ``cli_cases.py`` (pydantic builds the validator of the whole tree) and a
-second one.  Prints the median of every phase over the runs, in seconds, as one JSON line.
+second one; the modules of a run (checks, the run folder, the time loop, the start); building
+the system and its initial state.  Prints the median of every phase over the runs, in seconds,
+wall and CPU (user + system of the process: the steadier figure on a shared machine), as one
+JSON line.
 """
 
 from __future__ import annotations
@@ -26,21 +29,34 @@ from cli_cases import SCENARIO  # noqa: E402
 
 CODE = """
 import json, sys, time
-t0 = time.perf_counter()
+marks = [("start", time.perf_counter(), time.process_time())]
+def mark(name):
+    marks.append((name, time.perf_counter(), time.process_time()))
 import numpy, rancf.kernels._core
-t1 = time.perf_counter()
+mark("numpy and the core")
 import pydantic
 from pydantic import BaseModel
-t2 = time.perf_counter()
+mark("pydantic")
 import rancf.scenario.scenario
-t3 = time.perf_counter()
+mark("scenario modules")
 from rancf.scenario import load_scenario
+sc = load_scenario(sys.argv[1])
+mark("first read")
 load_scenario(sys.argv[1])
-t4 = time.perf_counter()
-load_scenario(sys.argv[1])
-t5 = time.perf_counter()
-print(json.dumps({"numpy and the core": t1 - t0, "pydantic": t2 - t1,
-                  "scenario modules": t3 - t2, "first read": t4 - t3, "second read": t5 - t4}))
+mark("second read")
+from rancf.post.checks import before_run_warnings
+from rancf.post.history import HistoryStore
+from rancf.post.run_plan import plan_run
+from rancf.solvers.dynamic import integrate
+from rancf.solvers.start import start_state
+mark("run modules")
+system, outputs = plan_run(sc, 10.0)
+start_state(sc, system)
+mark("build and start")
+out = {}
+for (_, w0, c0), (name, w1, c1) in zip(marks, marks[1:]):
+    out[name], out[name + " (CPU)"] = w1 - w0, c1 - c0
+print(json.dumps(out))
 """
 
 

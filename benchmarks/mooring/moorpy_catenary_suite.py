@@ -7,11 +7,12 @@ side by side with MoorPy's ``catenary`` on the same inputs.
 The cases, their scenarios and expected values are those of the tests
 (:mod:`tests.solvers.moorpy_catenary_cases`; the hardest near-taut case against the exact elastic
 catenary, see :mod:`tests.solvers.test_moorpy_catenary`).  Per case and mesh: the end forces'
-largest error relative to the fairlead tension, the method, Newton iterations, relaxation steps
-and the solve time ``rancf static`` reports (``wall_time_s``, median over the repeats); MoorPy's
-time is that of its ``catenary`` call (median over the repeats) in the interpreter given by
-``--moorpy-python`` (a venv with ``moorpy==1.3.*``: a benchmark dependency, not one of rancf's),
-run in the same session, case by case after rancf's.  Writes
+largest error relative to the fairlead tension, the method, Newton iterations, relaxation
+steps, the elements it was solved on (``rancf static`` refines a line whose touchdown its mesh
+does not resolve) and the solve time ``rancf static`` reports (``wall_time_s``, median over
+the repeats); MoorPy's time is that of its ``catenary`` call (median over the repeats) in the
+interpreter given by ``--moorpy-python`` (a venv with ``moorpy==1.3.*``: a benchmark
+dependency, not one of rancf's), run in the same session, case by case after rancf's.  Writes
 ``benchmarks/results/moorpy_catenary_suite.json``.
 """
 
@@ -74,6 +75,8 @@ def run_rancf(case, elements: int, repeats: int, folder: Path) -> dict:
         "forces": got.tolist(),
         "error": float(np.abs(got - want).max() / np.hypot(*want[2:])),
         "method": out["method"],
+        "elements_solved": len(next(iter(out["positions"].values()))) - 1,
+        "warnings": out["warnings"],
         "newton_iterations": out["newton_iterations"],
         "relaxation_steps": out["relaxation_steps"],
         "time_s": statistics.median(times),
@@ -126,7 +129,7 @@ def markdown(rows: list[dict], elements: list[int]) -> str:
     for row in rows:
         first = row[f"rancf_{elements[0]}"]
         runs = [row[f"rancf_{n}"] for n in elements]
-        errs = " / ".join(f"{100 * r['error']:.2f} %" if r["converged"] else "exit 3" for r in runs)
+        errs = " / ".join(_error(r, n) for r, n in zip(runs, elements, strict=True))
         want = row["expected"]
         got = (
             f"{-first['forces'][2]:.1f}, {-first['forces'][3]:.1f} N"
@@ -139,6 +142,15 @@ def markdown(rows: list[dict], elements: list[int]) -> str:
             f"| {row['case']} | {-want[2]:.1f}, {-want[3]:.1f} N | {got} | {errs} | {rt} | {mt} |"
         )
     return "\n".join(out)
+
+
+def _error(run: dict, elements: int) -> str:
+    """A run's error for the table, with the elements it was solved on where ``rancf static``
+    refined the mesh (a touchdown: docs/guide/statics.md)."""
+    if not run["converged"]:
+        return "exit 3"
+    solved = run.get("elements_solved", elements)
+    return f"{100 * run['error']:.2f} %" + (f" ({solved} el.)" if solved != elements else "")
 
 
 if __name__ == "__main__":

@@ -57,6 +57,10 @@ class DynamicOptions:
     adaptive : bool
         Adapt the step to ``rtol`` (local error relative to the model size).
     rtol : float
+    strain_error : bool
+        The local error estimate measures the flexible bodies' axial strain too (the tension
+        of stiff lines), relative to each body's largest strain (at least 0.1 %), against
+        ``rtol`` (TI.13 of ``docs/derivations/time-integration.md``).
     min_step, max_step : float, optional
         Step bounds (defaults ``step / 1024`` and ``max(output_step, step)``);
         ``min_step <= step`` and ``min_step <= max_step``.
@@ -92,6 +96,7 @@ class DynamicOptions:
     rho_inf: float = 0.9
     adaptive: bool = False
     rtol: float = 1e-5
+    strain_error: bool = False
     min_step: float | None = None
     max_step: float | None = None
     output_step: float | None = None

@@ -23,6 +23,13 @@ G = 9.81
 #: (``rancf.system.seabed.SEABED_PENETRATION``): the plane is that much higher than a tube
 #: touching it at the bed's depth, so that the resting line lies at MoorPy's seabed depth.
 SINK = 0.01
+#: Second moment of area of every case [m⁴]: with MoorPy's EA its ``EI`` is negligible for every
+#: case but the U and its half (``EI = 127`` N m², a bending length ``sqrt(EI / H) = 0.7`` m at a
+#: bend of radius ``H / w = 2.6`` m): their lines come to the heavy elastica's ``H`` 2 % below
+#: MoorPy's (0.23 % of the fairlead tension, :func:`grounded_elastica`).  With 1e-14 or 1e-15 the
+#: U's static solve fails at 40 to 160 elements (the sagged start's Newton and relaxation too)
+#: where it converges to within 0.01 % of MoorPy at 160.
+INERTIA = 1.0e-12
 
 
 @dataclass(frozen=True)
@@ -200,8 +207,8 @@ CASES = [
 
 
 def scenario_text(case: Case, elements: int) -> str:
-    """The case as a 2D ``rancf static`` scenario: a cable (round section of DIAMETER, EI
-    negligible) drawn straight from the anchor at the origin toward the fairlead with its
+    """The case as a 2D ``rancf static`` scenario: a cable (round section of DIAMETER,
+    INERTIA) drawn straight from the anchor at the origin toward the fairlead with its
     unstretched length, its end pinned at the fairlead; the seabed (if any) a plane on which
     the resting line lies at the anchor's depth (``CB >= 0``) or ``|CB|`` below it
     (:data:`SINK`), sloped by ``alpha``, its friction ``CB`` in statics.  A buoyant line
@@ -222,7 +229,7 @@ def scenario_text(case: Case, elements: int) -> str:
         "",
         "[section]",
         f"area = {area!r}",
-        "inertia = 1.0e-12",
+        f"inertia = {INERTIA!r}",
         "",
         "[material]",
         f"density = {abs(case.w) / (G * area)!r}",
@@ -290,3 +297,58 @@ def suspended_catenary(case: Case, guess: tuple[float, float]) -> tuple[float, f
     if max(abs(e) for e in gap(np.array([h, v]))) > 1e-12:
         raise ValueError(f"{case.name}: the catenary equations are not solved from {guess}")
     return h, v - w * length, -h, -v
+
+
+def section_ei(case: Case) -> float:
+    """The bending stiffness ``EI`` [N m²] the case's scenario gives the line
+    (:func:`scenario_text`: ``inertia`` 1e-12 m⁴ with ``E = EA / A``)."""
+    return case.ea / (math.pi * DIAMETER**2 / 4.0) * INERTIA
+
+
+def grounded_elastica(case: Case, ei: float, nodes: int = 2001) -> tuple[float, float]:
+    """The fairlead's ``(H, V)`` of a line lying on a rigid frictionless seabed at the anchor's
+    depth (a case whose anchor is on the bed, as the U's half) and rising to the fairlead as an
+    inextensible heavy elastica of bending stiffness ``ei`` (MoorPy's catenary is its
+    ``EI = 0`` limit), pinned (no moment) at the fairlead.
+
+    On the suspended length ``l`` (arc length ``s`` from the lift-off point, ``θ`` the slope,
+    ``H`` the horizontal force, constant without friction, ``V(s) = V0 + w s`` the vertical
+    one) the moment balance of the elastica, ``EI θ'' = H sin θ - V(s) cos θ``, with
+    ``x' = cos θ``, ``z' = sin θ``; at the lift-off the line leaves the bed flat and straight
+    (``z = θ = θ' = 0``, ``x = L - l``: the rest lies on the bed), at the fairlead ``x, z`` are
+    the case's and ``θ' = 0``: seven conditions for the four states and ``(H, V0, l)``, solved
+    by collocation (:func:`scipy.integrate.solve_bvp`) from the catenary ``a = H / w`` of the
+    ``EI = 0`` limit.  Returns ``(H, V0 + w l)``."""
+    import numpy as np
+    from scipy.integrate import solve_bvp
+
+    w, length = case.w, case.length
+    a = case.expected[0] / w
+    l0 = math.sqrt(case.z**2 + 2.0 * a * case.z)
+    sig = np.linspace(0.0, 1.0, nodes)
+    u = np.arcsinh(l0 * sig / a)
+    guess = np.vstack(
+        [
+            length - l0 + a * u,
+            a * (np.cosh(u) - 1.0),
+            np.arctan(np.sinh(u)),
+            1 / (a * np.cosh(u) ** 2),
+        ]
+    )
+
+    def rates(t: np.ndarray, y: np.ndarray, p: np.ndarray) -> np.ndarray:
+        h, v0, l = p
+        c, s = np.cos(y[2]), np.sin(y[2])
+        return l * np.vstack([c, s, y[3], (h * s - (v0 + w * l * t) * c) / ei])
+
+    def ends(ya: np.ndarray, yb: np.ndarray, p: np.ndarray) -> np.ndarray:
+        l = p[2]
+        return np.array(
+            [ya[0] - (length - l), ya[1], ya[2], ya[3], yb[0] - case.x, yb[1] - case.z, yb[3]]
+        )
+
+    sol = solve_bvp(rates, ends, sig, guess, p=[a * w, 0.0, l0], tol=1e-8, max_nodes=100000)
+    if sol.status != 0:
+        raise ValueError(f"{case.name}: the elastica is not solved ({sol.message})")
+    h, v0, l = sol.p
+    return float(h), float(v0 + w * l)

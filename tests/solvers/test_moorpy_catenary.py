@@ -13,21 +13,21 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from rancf.runs.static import StaticRun, run_static
 from rancf.scenario.scenario import load_scenario
 from rancf.solvers.static import solve_static
 from rancf.solvers.static_checks import static_state_problems
-from rancf.system.outputs import SystemOutputs
-from tests.solvers.moorpy_catenary_cases import CASES, Case, scenario_text, suspended_catenary
+from tests.solvers.moorpy_catenary_cases import (
+    CASES,
+    Case,
+    grounded_elastica,
+    scenario_text,
+    section_ei,
+    suspended_catenary,
+)
 
 #: Forces within this fraction of the fairlead tension.
 TOL = 5e-3
-#: Cases not yet solved at 40 elements, with what rancf gives (not counted as passes).
-OPEN = {
-    "u-shape": "refused (exit 3): 3.25 m elements at touchdowns bending with radius H / w = "
-    "2.6 m settle into H 4.5 times too small (1.9 % at 80 elements, 0.34 % at 160)",
-    "u-half": "H 1.9 % off: 1.6 m elements at a touchdown bending with radius H / w = 2.6 m "
-    "(0.31 % at 80 elements)",
-}
 
 
 def expected(case: Case) -> np.ndarray:
@@ -38,28 +38,22 @@ def expected(case: Case) -> np.ndarray:
 
 
 def solved_forces(tmp_path, case: Case, elements: int) -> tuple[np.ndarray, str]:
-    """``(fAH, fAV, fBH, fBV)`` of the line on its supports (MoorPy's signs) and the method."""
+    """``(fAH, fAV, fBH, fBV)`` of the line on its supports (MoorPy's signs) and the method, as
+    ``rancf static`` solves the case (:func:`rancf.runs.static.run_static`: the mesh refined
+    where a touchdown needs it)."""
+    run = _run(tmp_path, case, elements)
+    assert static_state_problems(run.system, run.result.q) == []
+    ends = run.outputs.static_reactions(run.result.y, run.result.lam)
+    return -np.r_[ends[0].force[:2], ends[-1].force[:2]], run.result.method
+
+
+def _run(tmp_path, case: Case, elements: int) -> StaticRun:
     path = tmp_path / f"{case.name}.toml"
     path.write_text(scenario_text(case, elements))
-    sc = load_scenario(path)
-    system = sc.build_system()
-    res = solve_static(system, **sc.static_options())
-    assert static_state_problems(system, res.q) == []
-    system.static_friction = sc.solver.static_friction
-    ends = SystemOutputs(system, []).static_reactions(res.y, res.lam)
-    return -np.r_[ends[0].force[:2], ends[1].force[:2]], res.method
+    return run_static(load_scenario(path))
 
 
-def _marked(elements: int) -> list:
-    return [
-        pytest.param(c, marks=pytest.mark.xfail(reason=OPEN[c.name], strict=True))
-        if c.name in OPEN and elements == 40
-        else c
-        for c in CASES
-    ]
-
-
-@pytest.mark.parametrize("case", _marked(40), ids=[c.name for c in CASES])
+@pytest.mark.parametrize("case", CASES, ids=[c.name for c in CASES])
 def test_moorpy_case_at_40_elements(tmp_path, case):
     got, _ = solved_forces(tmp_path, case, 40)
     want = expected(case)
@@ -77,7 +71,7 @@ def test_suspended_references_agree_with_moorpy():
         assert (off > 1e-2) if case.name == "near-taut" else (off < 1e-5), (case.name, off)
 
 
-@pytest.mark.parametrize("name", ["seabed-cb5", "u-half"])
+@pytest.mark.parametrize("name", ["seabed-cb5", "u-shape", "u-half"])
 def test_moorpy_touchdown_at_160_elements(tmp_path, name):
     """Lines on the seabed at 160 elements, from the catenary start shape."""
     case = next(c for c in CASES if c.name == name)
@@ -98,16 +92,77 @@ def test_moorpy_friction_holding_the_whole_tension_at_80_elements(tmp_path):
 
 
 def test_an_unresolved_touchdown_is_refused_not_reported(tmp_path):
-    """The full U at 40 elements: its stiff line (EA = 1e12) cannot bend within one 3.25 m
+    """The full U at 40 elements solved on its own mesh (the static solver, as a time-domain
+    run's static start uses it): its stiff line (EA = 1e12) cannot bend within one 3.25 m
     element where it meets the seabed, and settles into a state whose fairlead force is 4.5
     times too small; the static solve refuses it, naming the bend radius ``T / w`` and the
     element's length, instead of reporting it."""
     from rancf.errors import ConvergenceError
 
     case = next(c for c in CASES if c.name == "u-shape")
+    path = tmp_path / "u.toml"
+    path.write_text(scenario_text(case, 40))
+    sc = load_scenario(path)
     with pytest.raises(
         ConvergenceError,
         match=r"radius T/w = .* shorter than its element "
         r"\(3.25 m\): the touchdown is not resolved",
     ):
-        solved_forces(tmp_path, case, 40)
+        solve_static(sc.build_system(), **sc.static_options())
+
+
+def test_the_static_run_refines_an_unresolved_touchdown_and_says_so(tmp_path):
+    """``rancf static`` of the full U at 40 elements: the sagged start's touchdown bends with
+    the radius ``H / w = 2.63`` m; the body is solved with 160 elements (0.81 m, under a third
+    of it), one warning line naming it; the U's half at 160 elements is left as it is."""
+    u, half = (next(c for c in CASES if c.name == n) for n in ("u-shape", "u-half"))
+    run = _run(tmp_path, u, 40)
+    assert run.system.flex[0].n_el == 160
+    assert len(run.notes) == 1
+    assert "40 elements refined to 160" in run.notes[0] and "T/w = 2.63 m" in run.notes[0]
+    run = _run(tmp_path, half, 160)
+    assert run.system.flex[0].n_el == 160 and run.notes == []
+
+
+def test_the_u_converges_to_the_heavy_elastica_of_its_bending_stiffness(tmp_path):
+    """The U's half at 160 and 320 elements against the exact inextensible heavy elastica with
+    the scenario's own EI (127 N m², on a rigid seabed): H and V within 1e-4 of the fairlead
+    tension, while that elastica's H is 2 % below MoorPy's (EI = 0): the rest of the error
+    against MoorPy is the line's bending stiffness, not the discretization."""
+    case = next(c for c in CASES if c.name == "u-half")
+    h, v = grounded_elastica(case, section_ei(case), nodes=501)
+    assert abs(h - case.expected[0]) > 1e-2 * case.expected[0]
+    for n in (160, 320):
+        got, _ = solved_forces(tmp_path, case, n)
+        assert abs(-got[2] - h) < 1e-4 * v and abs(-got[3] - v) < 1e-4 * v, (n, got, h, v)
+
+
+def test_a_touchdown_found_unresolved_after_the_solve_is_solved_again_refined(
+    tmp_path, monkeypatch
+):
+    """Without the start shape's radius (a line the sagged start does not know), the U's half
+    at 40 elements is solved, its solved touchdown (``T / w`` about 2.2 m at 1.6 m elements)
+    asks for 160 elements, and the run is solved again on them: one warning line, the
+    forces within 0.5 %."""
+    import rancf.runs.static_mesh as static_mesh
+
+    monkeypatch.setattr(static_mesh, "start_ratios", lambda system: {})
+    case = next(c for c in CASES if c.name == "u-half")
+    run = _run(tmp_path, case, 40)
+    assert run.system.flex[0].n_el == 160 and len(run.notes) == 1, run.notes
+    ends = run.outputs.static_reactions(run.result.y, run.result.lam)
+    got = -np.r_[ends[0].force[:2], ends[-1].force[:2]]
+    want = expected(case)
+    assert np.abs(got - want).max() <= TOL * np.hypot(*want[2:]), (got, want)
+
+
+def test_a_mesh_named_by_node_index_is_kept_with_a_warning(tmp_path):
+    """The U's half at 40 elements with a sensor at node 20: the static run keeps the mesh (its
+    nodes would move) and says that its elements do not resolve the touchdown."""
+    case = next(c for c in CASES if c.name == "u-half")
+    path = tmp_path / "u.toml"
+    sensor = '[[sensors]]\nname = "mid"\nkind = "position"\nat = 20\n'
+    path.write_text(scenario_text(case, 40) + sensor)
+    run = run_static(load_scenario(path))
+    assert run.system.flex[0].n_el == 40 and len(run.notes) == 1, run.notes
+    assert "do not resolve" in run.notes[0] and "keeps its 40 elements" in run.notes[0]

@@ -258,17 +258,39 @@ def test_sag_start_shape_is_moorpy_catenary():
     assert free[1] == pytest.approx([100.0, 10.0], abs=1e-9)
 
 
-def test_refused_state_exits_3_in_one_line(tmp_path):
-    text = U_INSTALLED + U_LINE.format(stiffness="stiffness = 1.0e6", fluid="")
+def _cli_static(tmp_path, text: str) -> subprocess.CompletedProcess:
     (tmp_path / "u.toml").write_text(text)
     src = str(Path(rancf.__file__).resolve().parents[1])
-    p = subprocess.run(
-        [sys.executable, "-m", "rancf", "static", "u.toml"],
+    return subprocess.run(
+        [sys.executable, "-m", "rancf", "static", "u.toml", "--json"],
         cwd=tmp_path,
         capture_output=True,
         text=True,
         env={**os.environ, "PYTHONPATH": src},
     )
+
+
+def test_coarse_touchdown_is_solved_on_a_refined_mesh_with_a_warning(tmp_path):
+    """``rancf static`` of the straight 40-element line installed as a U on a 1e6 N/m² seabed
+    (the solver alone refuses it, test_coarse_touchdown_is_refused): the static run refines the
+    line to 160 elements, says so in one warning line, and gives MoorPy's H (the penalty's
+    sinking: -0.53 %)."""
+    import json
+
+    p = _cli_static(tmp_path, U_INSTALLED + U_LINE.format(stiffness="stiffness = 1.0e6", fluid=""))
+    assert p.returncode == 0, p.stderr
+    assert p.stderr.count("warning") == 1 and "40 elements refined to 160" in p.stderr
+    out = json.loads(p.stdout)
+    assert abs(out["reactions"][-1]["force"][0]) == pytest.approx(H_U, rel=6e-3)
+    assert len(out["positions"]["body"]) == 161
+
+
+def test_refused_state_exits_3_in_one_line(tmp_path):
+    """The same line with a sensor at node 20: the static run does not refine a mesh whose
+    nodes the scenario names by index, and the state is refused: exit 3, one line."""
+    sensor = '[[sensors]]\nname = "mid"\nkind = "position"\nat = 20\n'
+    text = U_INSTALLED + U_LINE.format(stiffness="stiffness = 1.0e6", fluid="") + sensor
+    p = _cli_static(tmp_path, text)
     assert p.returncode == 3
     lines = [x for x in p.stderr.splitlines() if "no equilibrium" in x]
     assert len(lines) == 1 and "no equilibrium" in lines[0]
@@ -328,3 +350,84 @@ def test_a_sagged_start_run_folder_holds_its_solve_only(tmp_path):
     summary = json.loads((tmp_path / "r" / "summary.json").read_text())
     assert summary["method"] == SAG_START and summary["warnings"] == []
     assert len((tmp_path / "r" / "sensors.csv").read_text().splitlines()) == 2
+
+
+def test_a_line_passing_through_itself_is_found():
+    from types import SimpleNamespace
+
+    from rancf.solvers.static_checks import self_crossing
+
+    model = SimpleNamespace(section=SimpleNamespace(radius=0.1), mesh=SimpleNamespace(closed=False))
+    t = np.linspace(0.0, 1.0, 200)
+    assert self_crossing(model, np.c_[10.0 * t, 0.0 * t], 10.0 * t) == ""
+    th = np.linspace(-0.3, 2.0 * np.pi + 0.3, 400)  # a loop of radius 2 m drawn along x
+    loop = np.c_[2.0 * np.sin(th) + 0.1 * th, 2.0 - 2.0 * np.cos(th)]
+    s = np.r_[0.0, np.cumsum(np.linalg.norm(np.diff(loop, axis=0), axis=1))]
+    assert "passes through itself" in self_crossing(model, loop, s)
+    # a hairpin whose arms stay two radii apart (touching, not passing through) is no crossing
+    arm = np.linspace(0.0, 5.0, 100)
+    bend = (
+        0.1 * np.c_[np.sin(np.linspace(0.0, np.pi, 40)), 1.0 - np.cos(np.linspace(0.0, np.pi, 40))]
+    )
+    hairpin = np.r_[np.c_[-arm[::-1], 0.0 * arm], bend[1:-1], np.c_[-arm, 0.2 + 0.0 * arm]]
+    s = np.r_[0.0, np.cumsum(np.linalg.norm(np.diff(hairpin, axis=0), axis=1))]
+    assert self_crossing(model, hairpin, s) == ""
+
+
+MOORING_3D = """
+[geometry]
+kind = "conic"
+start = [-300.0, 0.0, -100.0]
+end = [0.0, 0.0, 0.0]
+angles_deg = [18.43494882292201, 71.56505117707799]
+point = [-96.55665347288583, 0.0, -67.81444884237139]
+[mesh]
+elements = {n}
+quadrature_points = 5
+[section]
+area = 0.03668789808917197
+inertia = 1.0e-7
+[material]
+density = 7850.0
+youngs_modulus = 33596909722.222225
+axial_strain = "engineering"
+[fluid]
+density = 1025.0
+[hydro]
+diameter = 0.216
+[[supports]]
+at = "start"
+kind = "pin"
+[[supports]]
+at = "end"
+kind = "pin"
+[[obstacles]]
+name = "seabed"
+kind = "plane"
+point = [0.0, 0.0, -100.10806535367585]
+normal = [0.0, 0.0, 1.0]
+stiffness = 648000.0
+[loads]
+gravity = [0.0, 0.0, -9.81]
+"""
+
+
+def test_a_looped_mooring_line_is_not_an_equilibrium(tmp_path):
+    # the 330 m chain of benchmarks/mooring/mooring-surge-3d.toml at 15 elements: the sagged
+    # start settled into a loop near the anchor (16.6 % strain, 66 MN at the fairlead); refused,
+    # the load path finds the line on the seabed: 751 kN, 2.8 % under the 40-element 773 kN
+    from rancf.system.outputs import SystemOutputs
+
+    tension = {}
+    for n in (15, 40):
+        path = tmp_path / f"line{n}.toml"
+        path.write_text(MOORING_3D.format(n=n))
+        sc = load_scenario(path)
+        system = sc.build_system()
+        res = solve_static(system, **sc.static_options())
+        assert static_state_problems(system, res.q) == []
+        tip = system.y_from_q(res.q)[system.body_slice(system.names[0])]
+        assert np.all(np.diff(tip.reshape(-1, 6)[:, 0]) > 0.0)  # x grows along the line: no loop
+        ends = SystemOutputs(system, []).static_reactions(res.y, res.lam)
+        tension[n] = float(np.linalg.norm(ends[1].force))
+    assert abs(tension[15] / tension[40] - 1.0) < 0.05, tension

@@ -4,7 +4,8 @@ the seabed a plane obstacle), simulated as a 2D line in the x-z plane and as a 3
 the same motion and the same fairlead reaction, and the 3D line never leaves its plane.
 
 The chain has no bending stiffness to speak of (inertia 1e-13 m^4): the 2D cable bends by its
-signed curvature, the 3D cable by its size (src/cpp/elements/cable.cpp), which differ where the curvature
+signed curvature, the 3D cable by its size (src/cpp/elements/cable.cpp), which differ where the
+curvature
 changes sign against the reference's; with the benchmark chain's EI = 3.4 kN m^2 that moves the
 fairlead reaction by 1e-5 (the same without fluid and seabed), without it by 1e-11."""
 

@@ -480,6 +480,19 @@ void bind_system(nb::module_& mod) {
           "The local error a step may have (rtol times the model's size; 0: none): above it, "
           "the estimate is filtered through the iteration matrix (TI.12).")
       .def(
+          "add_strain_points",
+          [](SystemIntegratorHolder& h, int body, const std::vector<double>& xi,
+             const std::vector<double>& n1, const std::vector<double>& n2,
+             const std::vector<double>& ref, double floor, double length) {
+            check(h.integ.add_strain_points(body, xi, n1, n2, ref, floor, length),
+                  "strain points: a flexible body (not a beam), n1, n2 (n_el, n, 4), ref (n_el, "
+                  "n), floor > 0");
+          },
+          "body"_a, "xi"_a, "n1"_a, "n2"_a, "ref"_a, "floor"_a, "length"_a,
+          "Measure the local error in the body's axial strain too (TI.13): at the sample "
+          "points, its change relative to the largest strain (at least floor), as that "
+          "fraction of length.")
+      .def(
           "memory", [](const SystemIntegratorHolder& h) { return h.integ.memory(); },
           "What the loop keeps between steps (see system_integrator.hpp); empty if nothing.")
       .def(

@@ -172,7 +172,7 @@ void pair_geometry(const Side& A, const Side& B, int e, int q, int f, const doub
 }
 
 /// A point's weight and pressure and the pressure's slopes (point_force): w, pm, the
-/// coefficients ck (d/dyf) and cv (d/dvf), dp/dgf, dp/dg1 and the gradient G1 of g1.
+/// coefficients ck (d/dyf) and cv (d/dvf), dp/dgf, c1 dp/dg1 and the gradient G1 of g1.
 struct Slopes {
   double w, pm, ck, cv, dpf, dp1;
   const double* G1;
@@ -252,12 +252,12 @@ void friction(const BodyPair& bp, const Side& A, const Side& B, const Pair& pf, 
 /// The force of point q of element e (side A, coordinates ea) against element f (side B,
 /// coordinates eb): fe (n = na + nb: on e, then on f), with the step's mean pressure up to
 /// (ea1, eb1) (null: statics); K (if not null, n x n): minus its Jacobian with respect to the
-/// step's end, ck d/d(ea, eb) + d/d(ea1, eb1).  Returns the gap (1e300: not kept); pw: the
-/// point's normal force.
+/// step's end, ck d/d(ea, eb) + cv d/d(va, vb) + c1 d/d(ea1, eb1) (friction: friction()).
+/// Returns the gap (1e300: not kept); pw: the point's normal force.
 double point_force(const BodyPair& bp, const Side& A, const Side& B, int e, int q, int f,
                    const double* ea, const double* eb, const double* ea1, const double* eb1,
                    const double* va, const double* vb, double* fe, double* pw, double ck = 1.0,
-                   double cv = 0.0, double* K = nullptr) {
+                   double cv = 0.0, double* K = nullptr, double c1 = 1.0) {
   const int n = A.m->nde() + B.m->nde();
   Pair pf;
   pair_geometry(A, B, e, q, f, ea, eb, false, pf);
@@ -289,9 +289,9 @@ double point_force(const BodyPair& bp, const Side& A, const Side& B, int e, int 
     for (int a = 0; a < n; ++a)
       for (int c = 0; c < n; ++c)
         K[a * n + c] = -w * (ck * (dpf * pf.G[sz(a)] * pf.G[sz(c)] + pm * pf.Hg[sz(a * n + c)]) +
-                             (ea1 != nullptr ? dp1 * pf.G[sz(a)] * G1[c] : 0.0));
+                             (ea1 != nullptr ? c1 * dp1 * pf.G[sz(a)] * G1[c] : 0.0));
   if (bp.friction > 0.0 && va != nullptr && pm > 0.0) {
-    const Slopes sl{w, pm, ck, cv, dpf, ea1 != nullptr ? dp1 : 0.0, G1};
+    const Slopes sl{w, pm, ck, cv, dpf, ea1 != nullptr ? c1 * dp1 : 0.0, G1};
     friction(bp, A, B, pf, sl, va, vb, fe, K);
   }
   return pf.g;
@@ -353,7 +353,8 @@ void each_pair(const System& s, const ContactSet& c, const double* y, const doub
           double pw = 0.0;
           const double g =
               point_force(bp, A, B, e, q, f, ea.data(), eb.data(), pa1, pb1, pva, pvb, fe.data(),
-                          &pw, tm != nullptr ? tm->ck : 1.0, tm != nullptr ? tm->cv : 0.0, K);
+                          &pw, tm != nullptr ? tm->ck : 1.0, tm != nullptr ? tm->cv : 0.0, K,
+                          tm != nullptr ? tm->c1 : 1.0);
           fn(bp, A, B, e, q, f, ea.data(), eb.data(), pa1, pb1, pva, pvb, fe.data(), g, pw);
         }
       }

@@ -38,7 +38,7 @@ namespace rancf {
 /// pressure up to y1 (null: statics, the pressure at yf; contact.hpp) and, where the pair has
 /// friction and vf is given, the regularized Coulomb friction of contact.hpp on the slip
 /// velocity relative to the other body's material point; their Jacobian with respect to y1
-/// (ck d/dyf + cv d/dvf + d/dy1) into add (if not null).
+/// (ck d/dyf + cv d/dvf + c1 d/dy1, AssemblyTerms) into add (if not null).
 void assemble_body_contact(const System& s, const ContactSet& c, const double* yf, const double* vf,
                            const double* y1, const AssemblyTerms& tm, double* r,
                            const MatrixSink* add);

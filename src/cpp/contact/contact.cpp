@@ -207,7 +207,7 @@ bool carried_tangent(const ContactPair& cp, const Pose& pf, const Pose& p1, cons
     }
     if (dyn) {
       for (int i = 0; i < 3; ++i) dF[i] = (pl.G1[i] - pl.Ga[i]) * g1.n[m];
-      put(m, 1.0, dF, nullptr);
+      put(m, tm.c1, dF, nullptr);
     }
   }
   for (int k = 0; k < nb; ++k) {  // the body: u (alpha), its velocity, its end
@@ -239,7 +239,7 @@ bool carried_tangent(const ContactPair& cp, const Pose& pf, const Pose& p1, cons
     if (dyn) {
       const double dg1 = dot(g1.n, rates1[k]);
       for (int i = 0; i < 3; ++i) dF[i] = -(pl.G1[i] - pl.Ga[i]) * dg1;
-      put(d + k, 1.0, dF, nullptr);
+      put(d + k, tm.c1, dF, nullptr);
     }
   }
   return true;
@@ -372,7 +372,7 @@ void carried_pair(const System& s, const ContactSet& c, const ContactPair& cp, c
           if (!pl.active && !dyn) continue;
           if (add != nullptr) {  // ck d/dzf + cv d/dzd + d/dz1, central differences
             double* vars[3] = {zf, zd, z1};
-            const double coef[3] = {tm.ck, vf != nullptr ? tm.cv : 0.0, dyn ? 1.0 : 0.0};
+            const double coef[3] = {tm.ck, vf != nullptr ? tm.cv : 0.0, dyn ? tm.c1 : 0.0};
             double fp[kMaxLoc], fm[kMaxLoc];
             for (int h = 0; h < 3; ++h) {
               if (coef[h] == 0.0) continue;
@@ -493,12 +493,14 @@ void fixed_pair(const System& s, const ContactSet& c, const ContactPair& cp, int
       for (int k = 0; k < 4; ++k)
         for (int i = 0; i < d; ++i) fe[sz(off[k] + i)] += wq * N[k] * pl.F[i];
       if (!jac) continue;
-      // ga = 2 g(rf) - g(r1): d/dy1 = (2 ck nf - n1) . dr1
+      // ga = 2 g(rf) - g(r1): d/dy1 = (2 ck nf - c1 n1) . dr1
       double K[3][3];
       for (int i = 0; i < d; ++i)
         for (int j = 0; j < d; ++j)
           K[i][j] = tm.ck * pl.A[i][j] + tm.cv * pl.B[i][j] +
-                    (dyn ? pl.Ga[i] * (2.0 * tm.ck * gf.n[j] - g1.n[j]) + pl.G1[i] * g1.n[j] : 0.0);
+                    (dyn ? pl.Ga[i] * (2.0 * tm.ck * gf.n[j] - tm.c1 * g1.n[j]) +
+                               tm.c1 * pl.G1[i] * g1.n[j]
+                         : 0.0);
       // sum of w N_k N_l K over the points: the (k, l) and (l, k) blocks are equal
       for (int k = 0, kl = 0; k < 4; ++k)
         for (int l = k; l < 4; ++l, ++kl) {

@@ -103,9 +103,9 @@ using MatrixSink = std::function<void(const int* idx, int k, const double* K)>;
 
 /// Contact forces into the balance r (r -= generalized contact forces) at (yf, vf) (vf null:
 /// statics) with the step's mean pressure between yf and y1 (y1 == yf: the pressure at yf), and
-/// their Jacobian with respect to y1 (ck d/dyf + cv d/dvf + d/dy1): fixed obstacles' straight
-/// into the flexible bodies' band blocks of lu (if not null; else into add), carried obstacles'
-/// (couplings with the body) into add.  No Jacobian if both are null.
+/// their Jacobian with respect to y1 (ck d/dyf + cv d/dvf + c1 d/dy1, AssemblyTerms): fixed
+/// obstacles' straight into the flexible bodies' band blocks of lu (if not null; else into add),
+/// carried obstacles' (couplings with the body) into add.  No Jacobian if both are null.
 void assemble_contact(const System& s, const ContactSet& c, const double* yf, const double* vf,
                       const double* y1, const AssemblyTerms& tm, double* r, BorderedLU* lu,
                       const MatrixSink* add);

@@ -152,7 +152,8 @@ void line_forces(const Model& m, const FluidSet& fs, const LineFluid& line, cons
           ac[i] += S[k] * ea[sz(off[k] + i)];
         }
       double f[3] = {load[0], load[1], load[2]};
-      double Fr[3][3] = {}, Fa[3][3] = {}, Fv[3][3] = {}, Fc[3][3] = {};  // df/dr, /da, /dv, /dacc
+      // the force's derivative: A = ck d/dr + cv d/dv + ca d/dacc, B = ck d/da
+      double A[3][3] = {}, B[3][3] = {};
       if (!line.hydro) {
       } else if (uniform) {  // a uniform current, no waves: u, no du, no gradients
         fp.wet = !fl.has_surface || x[dim - 1] < fl.surface;
@@ -161,22 +162,24 @@ void line_forces(const Model& m, const FluidSet& fs, const LineFluid& line, cons
       }
       if (line.hydro && fp.wet) {
         double fx[3] = {0.0, 0.0, 0.0};  // the fluid's force (no loads)
-        double la = 0.0;
-        for (int i = 0; i < dim; ++i) la += a[i] * a[i];
-        la = std::sqrt(la);
-        double t[3] = {0.0, 0.0, 0.0}, wv[3] = {0.0, 0.0, 0.0}, wn[3] = {0.0, 0.0, 0.0};
-        double wt = 0.0, nn = 0.0;
-        const double inv_la = 1.0 / la;
+        // the normal part wn = w - (w.a / a.a) a and |a| as two independent chains (each one
+        // square root), not one after the other through t
+        double la2 = 0.0, wa = 0.0, wv[3] = {0.0, 0.0, 0.0}, wn[3] = {0.0, 0.0, 0.0};
         for (int i = 0; i < dim; ++i) {
-          t[i] = a[i] * inv_la;
           wv[i] = fp.u[i] - vel[i];
-          wt += wv[i] * t[i];
+          la2 += a[i] * a[i];
+          wa += wv[i] * a[i];
         }
+        const double sa = wa / la2, inv_la = 1.0 / std::sqrt(la2);
+        double nn = 0.0;
         for (int i = 0; i < dim; ++i) {
-          wn[i] = wv[i] - wt * t[i];
+          wn[i] = wv[i] - sa * a[i];
           nn += wn[i] * wn[i];
         }
         nn = std::sqrt(nn);
+        const double wt = wa * inv_la;
+        double t[3] = {0.0, 0.0, 0.0};
+        for (int i = 0; i < dim; ++i) t[i] = a[i] * inv_la;
         const double awt = std::abs(wt);
         for (int i = 0; i < dim; ++i)
           fx[i] += lf * (cn * nn * wn[i] + ct * awt * wt * t[i]) - lf * rho * area * fs.gravity[i];
@@ -191,55 +194,43 @@ void line_forces(const Model& m, const FluidSet& fs, const LineFluid& line, cons
             fx[i] += ra * ((1.0 + line.can) * fp.du[i] - line.can * ac[i] + t[i] * th);
         }
         if (jac != nullptr && moves) {
-          // d f_D / d w and d f_D / d t (w held): d(|wn| wn)/d wn = |wn| I + wn wn^T / |wn|;
-          // d wn / d w = I - t t^T, d wn / d t = -(t w^T + (w.t) I); the axial part
-          // 2 |wt| t (d wt) + |wt| wt (d t)
-          double dn[3][3] = {}, P[3][3], G[3][3], Ft[3][3];
+          // d f_D / d w = G and d f_D / d t (w held) = Ft in closed form (fluid.md section 4):
+          // with wn normal to t, d(|wn| wn)/d wn = dn = |wn| I + wn wn^T / |wn| gives
+          // dn (I - t t^T) = dn - |wn| t t^T and dn (t w^T + wt I) = |wn| t w^T + wt dn; the
+          // axial part 2 |wt| t (d wt) + |wt| wt (d t)
           const double inv_nn = nn > 0.0 ? 1.0 / nn : 0.0;
-          if (nn > 0.0)
-            for (int i = 0; i < dim; ++i)
-              for (int l = 0; l < dim; ++l)
-                dn[i][l] = nn * (i == l ? 1.0 : 0.0) + wn[i] * wn[l] * inv_nn;
-          for (int l = 0; l < dim; ++l)
-            for (int j = 0; j < dim; ++j) P[l][j] = (l == j ? 1.0 : 0.0) - t[l] * t[j];
+          double G[3][3], Ft[3][3], Ftt[3] = {0.0, 0.0, 0.0};
           for (int i = 0; i < dim; ++i)
             for (int j = 0; j < dim; ++j) {
-              const double id = i == j ? 1.0 : 0.0;
-              double g = ct * 2.0 * awt * t[i] * t[j];
-              double h = ct * (2.0 * awt * t[i] * wv[j] + awt * wt * id);
-              for (int l = 0; l < dim; ++l) {
-                g += cn * dn[i][l] * P[l][j];
-                h -= cn * dn[i][l] * (t[l] * wv[j] + wt * (l == j ? 1.0 : 0.0));
-              }
-              G[i][j] = lf * g;
-              Ft[i][j] = lf * h;
+              const double id = i == j ? 1.0 : 0.0, tt = t[i] * t[j];
+              const double dn = nn * id + wn[i] * wn[j] * inv_nn;
+              G[i][j] = lf * (2.0 * ct * awt * tt + cn * (dn - nn * tt));
+              Ft[i][j] = lf * (ct * awt * (2.0 * t[i] * wv[j] + wt * id) -
+                               cn * (nn * t[i] * wv[j] + wt * dn));
+              if (dynamic) Ft[i][j] += ra * (th * id + t[i] * hh[j]);
+              Ftt[i] += Ft[i][j] * t[j];
+              A[i][j] = -tm.cv * G[i][j];
             }
-          for (int i = 0; i < dim; ++i)
-            for (int j = 0; j < dim; ++j) {
-              Fv[i][j] = -G[i][j];
-              double gr = 0.0;
-              for (int l = 0; l < dim; ++l) gr += G[i][l] * fp.u_r[l][j];
-              Fr[i][j] = gr;
-            }
-          if (dynamic)
+          if (!uniform)  // through the fluid's kinematics at r
             for (int i = 0; i < dim; ++i)
               for (int j = 0; j < dim; ++j) {
-                const double id = i == j ? 1.0 : 0.0;
-                Ft[i][j] += ra * (th * id + t[i] * hh[j]);
-                const double fu = ra * ((1.0 + line.can) * id + dc * t[i] * t[j]);
-                for (int l = 0; l < dim; ++l) Fr[i][l] += fu * fp.du_r[j][l];
+                double fr = 0.0;
+                for (int l = 0; l < dim; ++l) {
+                  fr += G[i][l] * fp.u_r[l][j];
+                  if (dynamic) {
+                    const double id = i == l ? 1.0 : 0.0;
+                    fr += ra * ((1.0 + line.can) * id + dc * t[i] * t[l]) * fp.du_r[l][j];
+                  }
+                }
+                A[i][j] += tm.ck * fr;
               }
           for (int i = 0; i < dim; ++i)  // d t / d a = (I - t t^T) / |a|
-            for (int j = 0; j < dim; ++j) {
-              double sum = 0.0;
-              for (int l = 0; l < dim; ++l) sum += Ft[i][l] * P[l][j];
-              Fa[i][j] = sum * inv_la;
-            }
+            for (int j = 0; j < dim; ++j) B[i][j] = tm.ck * (Ft[i][j] - Ftt[i] * t[j]) * inv_la;
         }
         if (jac != nullptr && dynamic)  // the added mass
           for (int i = 0; i < dim; ++i)
             for (int j = 0; j < dim; ++j)
-              Fc[i][j] = -ra * (line.can * (i == j ? 1.0 : 0.0) + dc * t[i] * t[j]);
+              A[i][j] -= tm.ca * ra * (line.can * (i == j ? 1.0 : 0.0) + dc * t[i] * t[j]);
         for (int i = 0; i < dim; ++i) {
           f[i] += fx[i];
           if (force != nullptr) force[i] += w * fx[i];
@@ -247,17 +238,14 @@ void line_forces(const Model& m, const FluidSet& fs, const LineFluid& line, cons
       }
       for (int k = 0; k < 4; ++k)
         for (int i = 0; i < dim; ++i) fe[sz(off[k] + i)] -= w * S[k] * f[i];
-      if (jac == nullptr) continue;
-      for (int l = 0; l < 4; ++l) {
-        double kl[3][3];  // the force's derivative along block l, then spread over the blocks k
-        for (int i = 0; i < dim; ++i)
-          for (int j = 0; j < dim; ++j)
-            kl[i][j] = tm.ck * (Fr[i][j] * S[l] + Fa[i][j] * S1[l]) + tm.cv * Fv[i][j] * S[l] +
-                       tm.ca * Fc[i][j] * S[l];
-        for (int k = 0; k < 4; ++k) {
-          const double wk = w * S[k];
+      if (jac == nullptr || !line.hydro || !fp.wet) continue;  // loads alone: no derivative
+      for (int k = 0; k < 4; ++k) {  // the block (k, l): -w S_k (A S_l + B S'_l)
+        const double wk = w * S[k];
+        for (int l = 0; l < 4; ++l) {
+          const double al = wk * S[l], be = wk * S1[l];
           for (int i = 0; i < dim; ++i)
-            for (int j = 0; j < dim; ++j) ke[sz((off[k] + i) * nde + off[l] + j)] -= wk * kl[i][j];
+            for (int j = 0; j < dim; ++j)
+              ke[sz((off[k] + i) * nde + off[l] + j)] -= al * A[i][j] + be * B[i][j];
         }
       }
     }

@@ -7,6 +7,7 @@
 
 #include "bodies/assembly.hpp"
 #include "bodies/inertia.hpp"
+#include "bodies/sections.hpp"
 #include "contact/contact.hpp"
 #include "fluid/fluid.hpp"
 #include "system/sliding.hpp"
@@ -31,7 +32,7 @@ SystemIntegrator::SystemIntegrator(const System& s, const Scheme& scheme)
   // no constraints, rigid bodies, rotary inertia or contact: [M G^T; G 0] is M, whatever the
   // state (the element tangents count zero times in it)
   mass_constant_ = s.m == 0 && s.rigid.empty() && s.contact == nullptr;
-  chung_hulbert_ = s.contact != nullptr;
+  contact_ = s.contact != nullptr;
   // contact switches within a step, where reused factors lead the iteration astray (rejected
   // steps): chord is full Newton there
   if (s.contact != nullptr) sc_.chord = false;
@@ -70,6 +71,7 @@ void SystemIntegrator::set_increment_scale(std::vector<double> scale) {
 
 StepOutcome SystemIntegrator::step(const StepIn& s0, double t, double h, const StepOut& s1) {
   StepOutcome out;
+  if (contact_ && !start_residual(s0, t)) return out;
   if (from_y0_ > 0 && from_y0_ < kFromY0Steps) {  // the steps before started again from y0
     out = iterate(s0, t, h, s1, true);
     if (out.converged) {
@@ -94,18 +96,51 @@ StepOutcome SystemIntegrator::step(const StepIn& s0, double t, double h, const S
   if (out.converged) {
     project_rates(s1, t + h);
     out.error = local_error(s0.w, s1.w, h);
+    if (!strain_points_.empty()) {  // the error vector (TI.8) in the bodies' strains (TI.13)
+      const double c = std::abs(sc_.beta - 0.5 * sc_.gamma + 1.0 / 12.0) * h * h;
+      std::vector<double>& e = am_;
+      for (int i = 0; i < s_.n; ++i)
+        e[sz(i)] = error_scale_[sz(i)] > 0.0 ? c * (s1.w[i] - s0.w[i]) : 0.0;
+      out.error = std::max(out.error, strain_error(s1.y, e.data()));
+    }
     if (error_tol_ > 0.0 && out.error > error_tol_ && lu_valid_)
       out.error = std::min(out.error, filtered_error(s0, s1, t + h, h));
   }
   return out;
 }
 
+AssemblyTerms SystemIntegrator::step_terms(double t, double h) const {
+  const double af = sc_.alpha_f, bh2 = sc_.beta * h * h;
+  AssemblyTerms terms;
+  terms.ck = 1.0;
+  terms.cv = sc_.gamma / (sc_.beta * h);
+  terms.ca = (1.0 - sc_.alpha_m) / ((1.0 - af) * bh2);
+  terms.tf = t + h;
+  terms.t1 = t + h;
+  if (contact_) {  // s P(yf, vf, y1), s = 1/(1 - af): d/dy1 = ck d/dyf + cv d/dvf + s d/dy1
+    terms.contact_step = true;
+    terms.contact_scale = 1.0 / (1.0 - af);
+    terms.c1 = 1.0 / (1.0 - af);
+    terms.contact_yf = yf_.data();
+    terms.contact_vf = vf_.data();
+  }
+  return terms;
+}
+
+bool SystemIntegrator::start_residual(const StepIn& s0, double t) {
+  AssemblyTerms terms;  // R_n: the balance's residual at the step's start without contact
+  terms.tf = t;
+  terms.t1 = t;
+  terms.skip_contact = true;
+  r0_.resize(r_.size());
+  return assemble_system(s_, s0.y, s0.v, s0.a, s0.lam, s0.y, terms, r0_.data(), nullptr);
+}
+
 double SystemIntegrator::filtered_error(const StepIn& s0, const StepOut& s1, double t1, double h) {
   const int n = s_.n;
   const double c = std::abs(sc_.beta - 0.5 * sc_.gamma + 1.0 / 12.0) * h * h;
   const double bh2 = sc_.beta * h * h;
-  const double ca = chung_hulbert_ ? (1.0 - sc_.alpha_m) / bh2
-                                   : (1.0 - sc_.alpha_m) / ((1.0 - sc_.alpha_f) * bh2);
+  const double ca = (1.0 - sc_.alpha_m) / ((1.0 - sc_.alpha_f) * bh2);
   std::vector<double>& e = yf_;
   std::vector<double>& r0 = vf_;
   for (int i = 0; i < n; ++i) e[sz(i)] = error_scale_[sz(i)] > 0.0 ? c * (s1.w[i] - s0.w[i]) : 0.0;
@@ -123,6 +158,60 @@ double SystemIntegrator::filtered_error(const StepIn& s0, const StepOut& s1, dou
   solve_negative();  // dz = -S^-1 c_a M e
   double out = 0.0;
   for (int i = 0; i < n; ++i) out = std::max(out, std::abs(dz_[sz(i)]) * error_scale_[sz(i)]);
+  if (strain_points_.empty()) return out;
+  // the strains: filtered once more (TI.13), so that what the step does not resolve counts
+  // by its amplitude over (omega h)^2, and the resolved motion as before
+  for (int i = 0; i < n; ++i) e[sz(i)] = dz_[sz(i)];
+  if (!assemble_system(s_, s1.y, s1.v, e.data(), s1.lam, s1.y, terms, r_.data(), nullptr))
+    return std::numeric_limits<double>::infinity();
+  for (int i = 0; i < n; ++i) r_[sz(i)] = ca * (r_[sz(i)] - r0[sz(i)]);
+  std::fill(r_.begin() + n, r_.end(), 0.0);
+  solve_negative();
+  return std::max(out, strain_error(s1.y, dz_.data()));
+}
+
+bool SystemIntegrator::add_strain_points(int b, std::vector<double> xi, std::vector<double> n1,
+                                         std::vector<double> n2, std::vector<double> ref,
+                                         double floor, double length) {
+  if (b < 0 || sz(b) >= s_.flex.size()) return false;
+  const Model& mod = *s_.flex[sz(b)];
+  const std::size_t points = sz(mod.n_el) * xi.size();
+  if (mod.kind == ElementKind::beam || n1.size() != 4 * points || n2.size() != n1.size() ||
+      ref.size() != points || !(floor > 0.0))
+    return false;
+  StrainPoints p;
+  p.body = b;
+  p.xi = std::move(xi);
+  p.n1 = std::move(n1);
+  p.n2 = std::move(n2);
+  p.ref = std::move(ref);
+  p.floor = floor;
+  p.length = length;
+  strain_points_.push_back(std::move(p));
+  return true;
+}
+
+double SystemIntegrator::strain_error(const double* y1, const double* e) {
+  double out = 0.0;
+  for (const StrainPoints& p : strain_points_) {
+    const Model& mod = *s_.flex[sz(p.body)];
+    const int o = s_.offset[sz(p.body)], nb = mod.n(), w = section_width(mod);
+    const int np = static_cast<int>(p.xi.size());
+    const SamplePoints pts{np, p.xi.data(), p.n1.data(), p.n2.data(), p.ref.data()};
+    const auto k = sz(mod.n_el * np * w);
+    strain_a_.resize(k);
+    strain_b_.resize(k);
+    strain_y_.assign(y1 + o, y1 + o + nb);
+    section_strains(mod, pts, strain_y_.data(), strain_a_.data());
+    for (int i = 0; i < nb; ++i) strain_y_[sz(i)] += e[o + i];
+    section_strains(mod, pts, strain_y_.data(), strain_b_.data());
+    double de = 0.0, eps = p.floor;
+    for (std::size_t i = 0; i < k; i += sz(w)) {
+      de = std::max(de, std::abs(strain_b_[i] - strain_a_[i]));
+      eps = std::max(eps, std::abs(strain_a_[i]));
+    }
+    out = std::max(out, p.length * de / eps);
+  }
   return out;
 }
 
@@ -199,31 +288,25 @@ StepOutcome SystemIntegrator::iterate(const StepIn& s0, double t, double h, cons
   }
   set_prescribed(t + h, y1, nullptr, nullptr);
   std::copy(s0.lam, s0.lam + m, l1);
-  // the balance at t + h (TI.1-TI.6): d a1/d y1 = (1 - am)/((1 - af) beta h^2); contact: at
-  // the alpha point (TI.0), the derivatives of yf, vf and am by y1
-  const bool ch = chung_hulbert_;
-  AssemblyTerms terms;
-  terms.ck = ch ? 1.0 - af : 1.0;
-  terms.cv = (ch ? 1.0 - af : 1.0) * gamma / (beta * h);
-  terms.ca = ch ? (1.0 - am) / bh2 : (1.0 - am) / ((1.0 - af) * bh2);
-  terms.tf = ch ? t + (1.0 - af) * h : t + h;
-  terms.t1 = t + h;
+  // the balance at t + h (TI.1-TI.6): d a1/d y1 = (1 - am)/((1 - af) beta h^2)
+  const bool ch = contact_;
+  AssemblyTerms terms = step_terms(t, h);
   double prev = std::numeric_limits<double>::infinity(), factor = 1.0;
   const double* w = scale_.empty() ? nullptr : scale_.data();
   auto rates = [&]() {  // w1, v1 and a1 of y1 (the Newmark relations and the alpha blend)
     for (int i = 0; i < n; ++i) {
       w1[i] = (y1[i] - base_[sz(i)]) / bh2;
       v1[i] = v0[i] + h * ((1.0 - gamma) * w0[i] + gamma * w1[i]);
-      a1[i] = ch ? w1[i] : ((1.0 - am) * w1[i] + am * w0[i] - af * a0[i]) / (1.0 - af);
-      if (!ch) continue;
+      a1[i] = ((1.0 - am) * w1[i] + am * w0[i] - af * a0[i]) / (1.0 - af);
+      if (!ch) continue;  // contact: its forces at the alpha point (sec. 4)
       yf_[sz(i)] = (1.0 - af) * y1[i] + af * y0[i];
       vf_[sz(i)] = (1.0 - af) * v1[i] + af * v0[i];
-      am_[sz(i)] = (1.0 - am) * w1[i] + am * w0[i];
     }
   };
-  const double* yb = ch ? yf_.data() : y1;  // the balance's state
-  const double* vb = ch ? vf_.data() : v1;
-  const double* ab = ch ? am_.data() : a1;
+  const double* yb = y1;  // the balance's state
+  const double* vb = v1;
+  const double* ab = a1;
+  const double carry = af / (1.0 - af);  // contact: the start's residual R_n (sec. 4)
   for (int it = 1; it <= max_iter; ++it) {
     rates();
     const bool fresh = !reuse || !lu_valid_;
@@ -232,6 +315,8 @@ StepOutcome SystemIntegrator::iterate(const StepIn& s0, double t, double h, cons
       lu_valid_ = false;
       return {false, it};
     }
+    if (ch)
+      for (int i = 0; i < n; ++i) r_[sz(i)] += carry * r0_[sz(i)];
     if (fresh) {
       ++factorizations_;
       lu_valid_ = lu_.factor();
@@ -285,6 +370,9 @@ void SystemIntegrator::remember(double h, const AssemblyTerms& terms, const doub
   factored_at_.assign({h, terms.ck, terms.cv, terms.ca, terms.tf, terms.t1});
   for (const double* x : {yf, vf, am, y1}) factored_at_.insert(factored_at_.end(), x, x + n);
   factored_at_.insert(factored_at_.end(), l1, l1 + m);
+  if (contact_)  // the contact's alpha point
+    for (const double* x : {yf_.data(), vf_.data()})
+      factored_at_.insert(factored_at_.end(), x, x + n);
 }
 
 std::vector<double> SystemIntegrator::memory() const {
@@ -294,7 +382,7 @@ std::vector<double> SystemIntegrator::memory() const {
 }
 
 bool SystemIntegrator::restore(const std::vector<double>& saved, long factorizations) {
-  const auto n = sz(s_.n), m = sz(s_.m), point = 6 + 4 * n + m;
+  const auto n = sz(s_.n), m = sz(s_.m), point = 6 + (contact_ ? 6 : 4) * n + m;
   factorizations_ = factorizations;
   lu_valid_ = false;
   factored_at_.clear();
@@ -308,13 +396,17 @@ bool SystemIntegrator::restore(const std::vector<double>& saved, long factorizat
   }
   if (memory.empty()) return true;
   if (!sc_.modified || memory.size() != point) return false;
-  AssemblyTerms terms;
+  const double* p = memory.data() + 6;
+  AssemblyTerms terms = step_terms(memory[5] - memory[0], memory[0]);
+  if (contact_) {
+    std::copy(p + 4 * n + m, p + 5 * n + m, yf_.begin());
+    std::copy(p + 5 * n + m, p + 6 * n + m, vf_.begin());
+  }
   terms.ck = memory[1];
   terms.cv = memory[2];
   terms.ca = memory[3];
   terms.tf = memory[4];
   terms.t1 = memory[5];
-  const double* p = memory.data() + 6;
   if (!assemble_system(s_, p, p + n, p + 2 * n, p + 4 * n, p + 3 * n, terms, r_.data(), &lu_))
     return false;
   lu_valid_ = lu_.factor();

@@ -13,10 +13,12 @@
 // -G^T lambda is the joints' force on the bodies.  Constraints hold at every step to the Newton
 // tolerance.  Held coordinates that follow time functions (moving supports) are set at t_{n+1}
 // before the iterations; their accelerations and velocities follow from the Newmark relations.
-// Systems with contact keep the Chung-Hulbert form (the balance at the alpha point, forces at
-// blends of the step's states, with the step's mean pressure: contact.hpp): in the form above
-// the impacts of a stiff penalty gain energy, and a cable dropped on the ground does not come
-// to rest (docs/derivations/time-integration.md sec. 4).  There w = a.
+// Systems with contact: the contact's residual C*_{n+1} in the balance at t_{n+1} follows
+// (1 - af) C*_{n+1} + af C*_n = C(yf, vf, y1), the step's mean pressure of contact.hpp at the
+// alpha point, and C*_n is minus the rest of the balance's residual at the step's start:
+// the other forces stay at real states, and for a constant mass matrix the contact enters as
+// in the Chung-Hulbert form, whose penalty impacts do not gain energy (in the form above they
+// do; docs/derivations/time-integration.md sec. 4).
 #pragma once
 
 #include <cstdint>
@@ -109,12 +111,22 @@ class SystemIntegrator {
   /// docs/derivations/time-integration.md), which leaves resolved motion alone and divides
   /// what the step does not resolve by about (omega h)^2.
   void set_error_tolerance(double tol) { error_tol_ = tol; }
+  /// Measure a step's error in flexible body b's axial strain too (TI.13 of
+  /// docs/derivations/time-integration.md): at sample points (sections.hpp's SamplePoints:
+  /// xi, n1, n2, ref) the change of the strain that the error vector makes, relative to the
+  /// largest strain there at the step's end (at least floor), counts as that fraction of
+  /// length (the model's size: the displacement test's tolerance is rtol times it).
+  /// False (nothing added) if b is no flexible body or a beam, or the sizes do not fit.
+  bool add_strain_points(int b, std::vector<double> xi, std::vector<double> n1,
+                         std::vector<double> n2, std::vector<double> ref, double floor,
+                         double length);
   /// The held coordinates that follow time functions, at time t (any pointer may be null).
   void set_prescribed(double t, double* y, double* v, double* a) const;
   /// What the loop keeps between steps: [s], the steps since one started again from y0 (0:
   /// none; step()), then, modified Newton with valid factors, the point the factored Jacobian
   /// was assembled at: [h, ck, cv, ca, tf, t1, yf (n), vf (n), am (n), y1 (n), lambda (m)]
-  /// (assemble_system's arguments: the balance's state and the constraints' point).
+  /// (assemble_system's arguments: the balance's state and the constraints' point) and,
+  /// with contact, its alpha point (y, v: 2 n).
   [[nodiscard]] std::vector<double> memory() const;
   /// Take up memory() of another integrator on the same system: the Jacobian is assembled at
   /// the same point and factored again (bit for bit the same factors); factorizations, the
@@ -139,6 +151,9 @@ class SystemIntegrator {
   /// e_f = S^-1 c_a M e, e = h^2 |beta - gamma/2 + 1/12| (w1 - w0), in the norm of
   /// local_error (TI.12); M e from two residuals of the balance at the step's end.
   double filtered_error(const StepIn& s0, const StepOut& s1, double t1, double h);
+  /// The strain part of the error (add_strain_points) of the error vector e (n) at the
+  /// step's end y1: max over the bodies of length |d eps|_max / max(|eps|_max, floor).
+  double strain_error(const double* y1, const double* e);
   /// Modified Newton: where the factored Jacobian was assembled (assemble_system's yf, vf,
   /// am, lambda and y1).
   void remember(double h, const AssemblyTerms& terms, const double* yf, const double* vf,
@@ -151,10 +166,14 @@ class SystemIntegrator {
   bool mass_factored_ = false;  // lu_ holds the factors of that matrix
   double lu_h_ = -1.0;
   long factorizations_ = 0;
-  std::vector<double> base_, yf_, vf_, am_, r_, dz_, zb_, zero_, rate_g_;
+  /// The terms of a step from t of length h (contact: at the alpha point yf_, vf_).
+  [[nodiscard]] AssemblyTerms step_terms(double t, double h) const;
+  /// Contact: r0_ = R_n, the balance's residual without contact at the step's start.
+  bool start_residual(const StepIn& s0, double t);
+  std::vector<double> base_, yf_, vf_, am_, r_, dz_, zb_, zero_, rate_g_, r0_;
   std::vector<double> prev_dz_;  // the last full Newton step taken (damp_reversal)
-  /// Contact: the Chung-Hulbert form (module comment)
-  bool chung_hulbert_ = false;
+  /// Contact: its forces at the alpha point, carried (module comment)
+  bool contact_ = false;
   /// Steps since one had to start again from y0 (0: the last started from the predictor and
   /// converged); below kFromY0Steps the next step starts from y0 at once, at it from the
   /// predictor.
@@ -164,6 +183,13 @@ class SystemIntegrator {
   std::vector<double> scale_;        ///< set_increment_scale (empty: none)
   std::vector<double> error_scale_;  ///< scale_ (1 without) and 0 at the held coordinates
   double error_tol_ = 0.0;           ///< set_error_tolerance
+  struct StrainPoints {              ///< add_strain_points
+    int body = 0;
+    std::vector<double> xi, n1, n2, ref;
+    double floor = 0.0, length = 0.0;
+  };
+  std::vector<StrainPoints> strain_points_;
+  std::vector<double> strain_y_, strain_a_, strain_b_;
 };
 
 /// Kinetic, strain (elements and springs) and gravitational energy of the system at (y, v)

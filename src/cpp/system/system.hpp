@@ -179,6 +179,15 @@ struct AssemblyTerms {
   /// r as distributed_only would give them without multipliers, taken from the same pass
   double* internal = nullptr;
   double* own = nullptr;
+  /// Time steps of systems with contact (docs/derivations/time-integration.md sec. 4): the
+  /// contact forces at the step's alpha point (contact_yf, contact_vf) and end (y1), with
+  /// their Jacobian, times contact_scale (residual and Jacobian); c1 is the coefficient of
+  /// the contact kernels' d/dy1 (ck and cv those of d/dyf and d/dvf).
+  bool contact_step = false;
+  double contact_scale = 1.0;
+  double c1 = 1.0;
+  /// The residual without the contact forces.
+  bool skip_contact = false;
 };
 
 bool assemble_system(const System& s, const double* yf, const double* vf, const double* am,

@@ -472,8 +472,19 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
   }
   // ---- contact with obstacles (contact.hpp); its forces are the bodies' own terms too
   thread_local std::vector<double> before;
-  if (tm.own != nullptr && s.contact != nullptr) before.assign(r, r + n);
-  if (s.contact != nullptr && tm.contact_yf != nullptr) {  // forces of another state
+  const bool rescaled = tm.contact_step && tm.contact_scale != 1.0;
+  if ((tm.own != nullptr || rescaled) && s.contact != nullptr) before.assign(r, r + n);
+  if (s.contact != nullptr && tm.skip_contact) {
+    // the residual without contact (the step's start, time-integration.md sec. 4)
+  } else if (s.contact != nullptr && tm.contact_step) {  // a step's: at its alpha point
+    const MatrixSink sink = [&](const int* idx, int k, const double* K) {
+      add_matrix(*lu, idx, k, K, far);
+    };
+    assemble_contact(s, *s.contact, tm.contact_yf, tm.contact_vf, y1, tm, r, lu,
+                     lu != nullptr ? &sink : nullptr);
+    if (rescaled)
+      for (int i = 0; i < n; ++i) r[i] = before[sz(i)] + tm.contact_scale * (r[i] - before[sz(i)]);
+  } else if (s.contact != nullptr && tm.contact_yf != nullptr) {  // forces of another state
     assemble_contact(s, *s.contact, tm.contact_yf, tm.contact_vf, tm.contact_y1, tm, r, nullptr,
                      nullptr);
   } else if (s.contact != nullptr) {

@@ -1,7 +1,8 @@
 """Section quantities along the body: strain, axial force, curvatures and moments.
 
 At sample points ``ξ`` of every element the compiled core evaluates the strain and curvatures
-the element's strain energy uses (``src/cpp/bodies/sections.cpp``); the section forces are their energy
+the element's strain energy uses (``src/cpp/bodies/sections.cpp``); the section forces are their
+energy
 conjugates (docs/derivations/cable.md §6, docs/derivations/rod.md §5).  The energy per reference
 length is
 ``W = ½ EA ε² + ½ Σ C_i (κ_i - κ_i⁰)²`` with the Green–Lagrange strain ``ε``, the stretch
@@ -60,6 +61,19 @@ def section_names(model: Model) -> tuple[str, ...]:
     return ("strain", "axial_force", "curvature", "bending_moment")
 
 
+def sample_points(model: Model, xi: NDArray) -> tuple[NDArray, NDArray, NDArray]:
+    """The section strains' sample data of a cable or rod model at parameters ``xi`` of every
+    element (``sections.hpp``'s ``SamplePoints``): the shape functions' first and second
+    derivatives ``(n_el, len(xi), 4)`` and the reference ``s0 = |r0'|²`` (cable) or
+    ``j0 = |r0'|`` (rod), ``(n_el, len(xi))``."""
+    mesh = model.mesh
+    _, n1, n2 = cable_shape_functions(mesh.weights, mesh.scales, xi)
+    a0 = np.einsum("eqk,ekd->eqd", n1, mesh.element_nodal())
+    j0 = np.linalg.norm(a0, axis=-1)
+    ref = j0 if model.element == "rod" else j0**2
+    return np.ascontiguousarray(n1), np.ascontiguousarray(n2), np.ascontiguousarray(ref)
+
+
 class SectionSampler:
     """Evaluates :func:`section_names` at the sample points of a model.
 
@@ -87,14 +101,8 @@ class SectionSampler:
             s_el = l0[:, None] * xi[None, :]
             starts = np.r_[0.0, np.cumsum(l0)[:-1]]
         else:
-            mesh = model.mesh
-            _, n1, n2 = cable_shape_functions(mesh.weights, mesh.scales, xi)
-            self.n1, self.n2 = np.ascontiguousarray(n1), np.ascontiguousarray(n2)
-            e0 = mesh.element_nodal()  # (n_el, 4, dim)
-            a0 = np.einsum("eqk,ekd->eqd", n1, e0)
-            j0 = np.linalg.norm(a0, axis=-1)
-            self.ref = np.ascontiguousarray(j0 if model.element == "rod" else j0**2)
-            s_el, starts = _arc_lengths(mesh, xi)
+            self.n1, self.n2, self.ref = sample_points(model, xi)
+            s_el, starts = _arc_lengths(model.mesh, xi)
         self.s = (starts[:, None] + s_el).ravel()[self._rows]
         ref_vals = self._raw(model.y0)
         # the moments are relative to the stress-free curvature (zero for a straight one)

@@ -49,7 +49,7 @@ def _cmd_buckling(args: argparse.Namespace) -> int:
 def _cmd_static(args: argparse.Namespace) -> int:
     import numpy as np
 
-    from rancf.post.checks import run_warnings
+    from rancf.post.checks import element_notes, run_warnings
     from rancf.post.results import strict_json
     from rancf.post.static_run import positions_json, reactions_json
     from rancf.runs.static import run_static
@@ -75,9 +75,11 @@ def _cmd_static(args: argparse.Namespace) -> int:
     # the load path's outputs tracked the largest strain (--out), else the last state's
     largest = run.outputs.largest_strain
     if run.summary is not None:
-        notes = _warn(run.summary["warnings"])
+        notes = _warn(run.notes + run.summary["warnings"])
     else:
-        notes = _warn(run_warnings(system, static=True, largest=largest))
+        notes = _warn(run.notes + run_warnings(system, static=True, largest=largest))
+    for note in element_notes(system):  # a curved spatial cable's missing stiffness
+        print(f"rancf: {note}", file=sys.stderr)
     out = {
         "positions": positions_json(system, res.q),
         "sensors": run.sensors,

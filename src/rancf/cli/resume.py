@@ -72,7 +72,9 @@ def _check_memory(state: Any, system: Any, options: Any) -> None:
 
     o = options
     try:
-        integ = GeneralizedAlpha(system, o.rho_inf, o.newton_tol, o.max_newton, o.newton, o.rtol)
+        integ = GeneralizedAlpha(
+            system, o.rho_inf, o.newton_tol, o.max_newton, o.newton, o.rtol, o.strain_error
+        )
         integ.restore(state.memory, int(state.counters.get("n_factorizations", 0)))
     except (ValueError, TypeError):
         raise InputError(

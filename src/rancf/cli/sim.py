@@ -77,7 +77,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     od = OutputDir(args.out, kind=kind, overwrite=args.overwrite)  # checks the path up front
     from rancf.atomic import atomic_write
     from rancf.cli.resume import Resume, scenario_for_run
-    from rancf.post.checks import before_run_warnings, finished_warnings
+    from rancf.post.checks import before_run_warnings, element_notes, finished_warnings
     from rancf.post.history import HistoryStore
     from rancf.post.results import run_summary
     from rancf.post.run_plan import plan_run
@@ -108,13 +108,15 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
                     file=sys.stderr,
                 )
         notes = _warn(before_run_warnings(system, opts))  # the run goes on
-        for note in sc.notes:  # defaults the file did not state (a harmonic's build-up)
+        # defaults the file did not state (a harmonic's build-up), a curved spatial cable's
+        all_notes = sc.notes + element_notes(system)
+        for note in all_notes:
             print(f"rancf: {note}", file=sys.stderr)
         info: dict[str, Any] = {
             "scenario": str(Path(args.scenario).resolve()),
             "setup_wall_time_s": None,
         }
-        info["notes"] = sc.notes
+        info["notes"] = all_notes
         info["input_files"] = files
         info.update(start_info)
         store = HistoryStore(out, outputs, {**info, "warnings": notes})

@@ -1,6 +1,7 @@
 """Planar co-rotational Euler–Bernoulli beam element (the conventional baseline): data and mass.
 
-The forces, tangent and energy below live once, in the compiled core (``src/cpp/elements/beam.cpp``).
+The forces, tangent and energy below live once, in the compiled core
+(``src/cpp/elements/beam.cpp``).
 
 Crisfield, *Non-linear Finite Element Analysis of Solids and Structures*, vol. 1, sec. 7.3: nodal
 coordinates ``(x, y, θ)`` per node, ``θ`` the rotation of the node from its reference orientation.

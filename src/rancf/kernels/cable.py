@@ -2,8 +2,8 @@
 
 Conic-section paper sec. 5 (eqs. 34–41); docs/derivations/cable.md sec. 6.  The elastic forces,
 tangent stiffness
-and strain energy live once, in the compiled core (``src/cpp/elements/cable.cpp``): with ``a = r_ξ`` and
-``b = r_ξξ`` at a Gauss point and the reference ``a0`` (``J0 = |a0|``, ``s0 = J0²``),
+and strain energy live once, in the compiled core (``src/cpp/elements/cable.cpp``): with ``a =
+r_ξ`` and ``b = r_ξξ`` at a Gauss point and the reference ``a0`` (``J0 = |a0|``, ``s0 = J0²``),
 
 * axial strain (Green–Lagrange, relative to the reference): ``ε = (a·a - s0) / (2 s0)``;
 * curvature: planar (signed) ``κ = (a × b)_z / |a|³``; spatial ``κ = |a × b| / |a|³`` on a

@@ -1,7 +1,8 @@
 """The named records a system crosses into the compiled core as (``src/cpp/system/system.hpp``).
 
 :class:`rancf.kernels._core.System` takes lists of these records; its binding
-(``src/cpp/bindings/bindings_records.cpp``) reads every field by its name into the C++ struct of the same
+(``src/cpp/bindings/bindings_records.cpp``) reads every field by its name into the C++ struct of
+the same
 name and fields, and refuses a field of the wrong type, size or value in one line that names it
 (``places[2].kind: expected one of ground, cable, ..., got 'bar'``).  Vectors are tuples of floats
 (a matrix row-major), so that every record is immutable and hashable.
@@ -98,7 +99,8 @@ class PlaceRecord:
 
 @dataclass(frozen=True)
 class JointRecord:
-    """A joint (``JointData``, ``src/cpp/system/system.hpp``; its rows in ``src/cpp/system/joints.hpp``).
+    """A joint (``JointData``, ``src/cpp/system/system.hpp``; its rows in
+    ``src/cpp/system/joints.hpp``).
 
     Attributes
     ----------

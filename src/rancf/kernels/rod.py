@@ -1,6 +1,7 @@
 """Spatial Kirchhoff rods with torsion on the RANCF centerline: data, triads, mass and gravity.
 
-The element (``src/cpp/elements/rod_kernel.hpp``, derivation in ``docs/derivations/rod-kernel.md``) keeps the
+The element (``src/cpp/elements/rod_kernel.hpp``, derivation in ``docs/derivations/rod-kernel.md``)
+keeps the
 cable's exact centerline — nodal ``r``, ``r_x``, weights and gradient scales — and adds one twist
 ``φ`` per node (7 coordinates per node: ``r, r_x, φ``).  Material triads follow Meier, Popp & Wall
 (2014): node ``N`` has the triad ``m1 = cos φ u + sin φ t × u`` with ``u = SR(t_ref → t) m1_ref``
@@ -14,7 +15,8 @@ with the cable's Green–Lagrange ``ε``, the material curvatures ``K1`` (torsio
 ``K3 = κ·m2`` and ``K⁰`` evaluated on the reference with the reference triads, so any curved
 reference is stress free.  This module prepares the data the core takes and holds, in NumPy,
 the constant translational mass (the cable's) and gravity.  The rotary inertia depends on the
-configuration and lives in the core (``src/cpp/elements/rod_inertia.hpp``, ``docs/derivations/rod-kernel.md``
+configuration and lives in the core (``src/cpp/elements/rod_inertia.hpp``,
+``docs/derivations/rod-kernel.md``
 §11): kinetic energy ``½ ∫ [ρ I_p s² + ρ I |ṫ|²] |r0'| dξ`` with the exact spin ``s = ω·t`` of the
 material frame (``I_p = I_y + I_z``; the bending part ``ρ I`` only with
 ``section.rotary_inertia = "full"``).

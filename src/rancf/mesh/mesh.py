@@ -19,7 +19,6 @@ on the paper's example 2), which ruins the conditioning; a warning is logged abo
 
 from __future__ import annotations
 
-import logging
 import numbers
 from dataclasses import dataclass, field
 from typing import Literal
@@ -44,7 +43,6 @@ __all__ = [
 
 Spacing = Literal["arc", "parameter"]
 
-logger = logging.getLogger(__name__)
 
 #: Above this ratio of largest to smallest nodal gradient a mesh is reported as ill-conditioned.
 GRADIENT_SPAN_WARNING = 1e6
@@ -325,7 +323,9 @@ def mesh_from_arrays(
     kk = np.full(n_el, np.nan) if k is None else np.asarray(k, dtype=float)
     if span > GRADIENT_SPAN_WARNING:
         fixed = bool(np.all(np.isfinite(kk))) and np.ptp(kk) == 0.0
-        logger.warning(
+        import logging  # only for this warning (logging is a start-up cost of every run)
+
+        logging.getLogger(__name__).warning(
             "nodal gradient magnitudes span a factor %.3g over %d elements: the consistent "
             "shared nodes grow along the chain and the model is badly conditioned; %s",
             span,

@@ -40,6 +40,7 @@ __all__ = [
     "STRAIN_LIMIT",
     "RADIUS_LIMIT",
     "section_warnings",
+    "element_notes",
     "step_warnings",
     "error_warnings",
     "strain_warning",
@@ -84,6 +85,39 @@ def section_warnings(model: Model | System) -> list[str]:
         f"the section's radius {r:.4g} m is more than a tenth of the body's length "
         f"{length:.4g} m: check the units of section.radius or section.area (metres)"
     ]
+
+
+#: Smallest difference of two unit nodal tangents that makes a reference curved.
+CURVED_TANGENTS = 1e-9
+#: The note on a curved spatial cable (printed by ``rancf static`` and ``simulate``; ``rancf
+#: modes`` prints its own where the zero-frequency modes show it).
+CURVED_CABLE_NOTE = (
+    "note: a cable element on a curved spatial route resists no out-of-plane bending about its "
+    "curved reference (its energy takes the magnitude of the curvature): where that stiffness "
+    'matters, use mesh.element = "rod" (torsion and out-of-plane bending; docs/guide/rods.md)'
+)
+
+
+def element_notes(model: Model | System) -> list[str]:
+    """The note :data:`CURVED_CABLE_NOTE` for every spatial cable body whose stress-free reference
+    is curved (nodal tangents not all parallel): its bending energy
+    ``½ EI (|κ| - |κ0|)²`` (docs/derivations/cable.md sec. 6) has no stiffness against turning
+    the plane of the curvature, which the rod element resists (every flexible body of a
+    system, named)."""
+    if isinstance(model, System):
+        return [
+            f"{name}: {n}"
+            for name, b in zip(model.names, model.flex, strict=False)
+            for n in element_notes(b)
+        ]
+    if model.dim != 3 or model.element not in ("rancf", "ancf"):
+        return []
+    if model.stress_free != "reference":
+        return []
+    t = np.asarray(model.mesh.nodes[:, 1], dtype=float)
+    t = t / np.linalg.norm(t, axis=1)[:, None]
+    curved = float(np.max(np.linalg.norm(t - t[0], axis=1))) > CURVED_TANGENTS
+    return [CURVED_CABLE_NOTE] if curved else []
 
 
 def _crossing_warnings(system: System) -> list[str]:

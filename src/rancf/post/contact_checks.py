@@ -53,8 +53,8 @@ def _gaps(system: System, k: int, n_el: int) -> np.ndarray:
 
 def _body_pairs(system: System) -> list[str]:
     """Pairs of flexible bodies in contact (``body_contacts``) that start inside each other by
-    more than the thinner section radius (the gap of ``src/cpp/contact/body_contact.hpp``: the centre
-    lines' distance less both radii)."""
+    more than the thinner section radius (the gap of ``src/cpp/contact/body_contact.hpp``: the
+    centre lines' distance less both radii)."""
     if not system.body_contacts:
         return []
     bo = np.empty(3 * len(system.body_contacts))

@@ -6,7 +6,7 @@ loads."""
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -26,6 +26,9 @@ class StaticRun:
     outputs: SystemOutputs
     sensors: dict[str, float]
     summary: dict[str, Any] | None
+    #: One line per body whose mesh the static solve refined, or would have but could not
+    #: (:mod:`rancf.runs.static_mesh`).
+    notes: list[str]
 
 
 def run_static(
@@ -35,27 +38,71 @@ def run_static(
     on_written: Callable[[dict[str, Any]], None] | None = None,
 ) -> StaticRun:
     """Solve the static equilibrium of scenario ``sc`` (:func:`rancf.solvers.static.solve_static`
-    with the ``[solver]`` table's ``load_steps`` and ``static_method``).
+    with the ``[solver]`` table's ``load_steps`` and ``static_method``), on a mesh refined where
+    a line's touchdown on a seabed needs it (:mod:`rancf.runs.static_mesh`: before the solve from
+    its sagged start shape, after it from the solved state, then solved once more).
 
     With a ``folder``, the converged load steps are written there
     (:func:`~rancf.post.results.write_static_run`) also when a later increment fails or the run
     is interrupted: the summary's ``status`` then says so and the error propagates. ``info``:
-    more keys of ``summary.json``; ``on_written``: called with the summary once the folder
-    holds the run.
+    more keys of ``summary.json`` (where a mesh was refined or could not be,
+    ``"mesh_refinement"``: the lines of :attr:`StaticRun.notes`); ``on_written``: called with
+    the summary once the folder holds the run.
     """
+    from rancf.runs.static_mesh import refine_for_touchdowns, start_ratios
+
+    system = sc.build_system()
+    finer, notes = refine_for_touchdowns(sc, system, start_ratios(system))
+    if finer is not None:
+        sc, system = finer, finer.build_system()
+    run = _run_static(sc, system, folder, info, on_written, notes, recheck=True)
+    if isinstance(run, StaticRun):
+        return run
+    sc, more, first = run
+    solved = _run_static(sc, sc.build_system(), folder, info, on_written, notes + more, False)
+    assert isinstance(solved, StaticRun)
+    # the solve time counts both solves
+    solved.result = replace(solved.result, wall_time=solved.result.wall_time + first)
+    return solved
+
+
+def _run_static(
+    sc: Any,
+    system: Any,
+    folder: str | Path | None,
+    info: dict[str, Any] | None,
+    on_written: Callable[[dict[str, Any]], None] | None,
+    notes: list[str],
+    recheck: bool,
+) -> StaticRun | tuple[Any, list[str], float]:
+    """:func:`run_static` on ``system`` of ``sc``; with ``recheck``, the refined scenario, its
+    lines and the solve's time instead where the solved touchdowns need a finer mesh (nothing
+    written)."""
+    from rancf.runs.static_mesh import refine_for_touchdowns
     from rancf.scenario.system_build import scenario_keys, support_labels
     from rancf.solvers.sag_start import SAG_START
     from rancf.solvers.static import FRICTION, solve_static
+    from rancf.solvers.static_checks import touchdown_ratios
 
-    system = sc.build_system()
     labels = support_labels(sc)
     path = LoadPath(system, labels)
     outputs = SystemOutputs(system, sc.sensors, labels)  # the run folder's and the full loads'
     doc = None
     keys = dict(info or {})
+    finer: tuple[Any, list[str], float] | None = None
     try:
         with scenario_keys(sc):
             res = solve_static(system, on_step=path.record, **sc.static_options())
+        if recheck:
+            sc2, more = refine_for_touchdowns(sc, system, touchdown_ratios(system, res.q))
+            finer = None if sc2 is None else (sc2, more, res.wall_time)
+            named = {n.split(":")[0] for n in notes}  # a body's line once
+            notes = (
+                notes
+                if sc2 is not None
+                else notes + [m for m in more if m.split(":")[0] not in named]
+            )
+        keys.update({"mesh_refinement": notes} if notes else {})
         if res.method.startswith(SAG_START) or res.method.endswith(FRICTION):  # the path's
             path.steps[:] = path.steps[-1:]  # states were abandoned or are frictionless
         keys.update(
@@ -71,13 +118,15 @@ def run_static(
         keys.update(status=kind, message=text)
         raise
     finally:
-        if folder is not None and path.steps:  # what converged is kept
+        if folder is not None and path.steps and finer is None:  # what converged is kept
             doc = write_static_run(folder, path, sc.sensors, keys, outputs)
             if on_written is not None:
                 on_written(doc)
+    if finer is not None:
+        return finer
     assert res.lam is not None  # a system's solution has its multipliers (empty: no joints)
     names, vals = sensor_table(
         outputs, sc.sensors, res.q, static=True, t=res.load_factors[-1:], lam=res.lam[None]
     )
     sensors = dict(zip(names, map(float, vals[0]), strict=True))
-    return StaticRun(system, res, outputs, sensors, doc)
+    return StaticRun(system, res, outputs, sensors, doc, notes)

@@ -125,6 +125,17 @@ class Table(BaseModel):
     # validation from a dictionary (model_validate) validates directly, without __init__
     __init__.__pydantic_base_init__ = True  # type: ignore[attr-defined]  # pydantic reads it
 
+    def plain(self, exclude: frozenset[str] = frozenset()) -> dict[str, Any]:
+        """The table's values as ``model_dump()`` gives them (nested tables as dictionaries,
+        other values as they are), but ``exclude``; without building pydantic's serializer
+        of the table, which would cost a run's first read about as much again as its
+        validator (the tables are built lazily, ``defer_build``)."""
+        return {
+            k: _plain(v)
+            for k, v in self.__dict__.items()
+            if k in type(self).model_fields and k not in exclude
+        }
+
     @classmethod
     def error_path(cls) -> str:
         """What errors of a table built in Python name instead of a file."""
@@ -394,3 +405,14 @@ def _pair(v: Any) -> Any:
 
 #: Two places ``[A, B]``.
 PlacePair = Annotated[list[PlaceValue], Field(min_length=2, max_length=2), BeforeValidator(_pair)]
+
+
+def _plain(v: Any) -> Any:
+    """A value of :meth:`Table.plain`: tables as dictionaries, in lists, tuples and dicts too."""
+    if isinstance(v, BaseModel):
+        return {k: _plain(x) for k, x in v.__dict__.items() if k in type(v).model_fields}
+    if isinstance(v, (list, tuple)):
+        return type(v)(_plain(x) for x in v)
+    if isinstance(v, dict):
+        return {k: _plain(x) for k, x in v.items()}
+    return v

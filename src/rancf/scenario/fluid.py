@@ -118,4 +118,4 @@ def hydro_value(t: HydroTable) -> Any:
     """The :class:`rancf.system.fluid.Hydro` of the table."""
     from rancf.system.fluid import Hydro
 
-    return Hydro(**t.model_dump())
+    return Hydro(**t.plain())

@@ -305,7 +305,7 @@ class Scenario(Table):
 
 def _geometry_data(g: Any) -> dict[str, Any]:
     out: dict[str, Any] = dict.fromkeys(k for keys in GEOMETRY_KEYS.values() for k in keys)
-    out.update(g.model_dump())
+    out.update(g.plain())
     if isinstance(g, CadGeometry):
         out["file"], out["curves"], out["labels"] = g.resolved_file, g.curves, g.labels
         out["curve"] = 0 if g.curve is None else g.curve
@@ -329,10 +329,10 @@ def _data(sc: Scenario) -> dict[str, Any]:
     if one:
         d["geometry"] = _geometry_data(sc.geometry)
         for k in ("mesh", "section", "material"):
-            d[k] = sc[k].model_dump()
+            d[k] = sc[k].plain()
     d["bodies"] = []
     for b in sc.bodies:
-        bd = b.model_dump()
+        bd = b.plain()
         if isinstance(b, FlexibleBody):
             bd["geometry"] = _geometry_data(b.geometry)
             im = b.initial_motion
@@ -346,21 +346,21 @@ def _data(sc: Scenario) -> dict[str, Any]:
         return f
 
     d["joints"] = [
-        {**j.model_dump(exclude={"angle"}), "angle": motion(j.angle, f"joints[{i}].angle")}
+        {**j.plain(frozenset({"angle"})), "angle": motion(j.angle, f"joints[{i}].angle")}
         for i, j in enumerate(sc.joints)
     ]
-    d["springs"] = [s.model_dump() for s in sc.springs]
-    d["obstacles"] = [o.model_dump() for o in sc.obstacles]
+    d["springs"] = [s.plain() for s in sc.springs]
+    d["obstacles"] = [o.plain() for o in sc.obstacles]
     d["winches"] = [
         {
-            **w.model_dump(exclude={"length", "speed", "torque"}),
+            **w.plain(frozenset({"length", "speed", "torque"})),
             **{k: _tf(w[k]) for k in ("length", "speed", "torque")},
         }
         for w in sc.winches
     ]
     d["supports"] = [
         {
-            **s.model_dump(exclude={"motion"}),
+            **s.plain(frozenset({"motion"})),
             "at": _node_or_text(s.at, one),
             "label": s.at,
             "motion": motion(s.motion, f"supports[{i}].motion"),
@@ -370,20 +370,20 @@ def _data(sc: Scenario) -> dict[str, Any]:
     d["loads"] = {
         "gravity": sc.loads.gravity,
         "point": [
-            {**p.model_dump(exclude={"time"}), "at": _node_or_text(p.at, one), "time": _tf(p.time)}
+            {**p.plain(frozenset({"time"})), "at": _node_or_text(p.at, one), "time": _tf(p.time)}
             for p in sc.loads.point
         ],
         "distributed": [
-            {**p.model_dump(exclude={"time"}), "time": _tf(p.time)} for p in sc.loads.distributed
+            {**p.plain(frozenset({"time"})), "time": _tf(p.time)} for p in sc.loads.distributed
         ],
     }
-    d["damping"] = sc.damping.model_dump()
+    d["damping"] = sc.damping.plain()
     d["initial_velocity"] = [
         {"at": _node_or_text(iv.at, one), "value": iv.value} for iv in sc.initial_velocity
     ]
     d["initial_motion"] = None if sc.initial_motion is None else sc.initial_motion.as_dict()
-    d["solver"] = sc.solver.model_dump()
-    d["modes"] = sc.modes.model_dump()
+    d["solver"] = sc.solver.plain()
+    d["modes"] = sc.modes.plain()
     d["notes"] = notes
     return d
 

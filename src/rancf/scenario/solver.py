@@ -52,6 +52,7 @@ _DYNAMIC_KEYS = (
     "rho_inf",
     "adaptive",
     "rtol",
+    "strain_error",
     "min_step",
     "output_step",
     "newton_tol",
@@ -84,6 +85,11 @@ class SolverTable(Table):
         1e-5,
         description="local error / model size: adaptive steps keep below it, fixed "
         "steps warn at the end of a run above it",
+    )
+    strain_error: Flag = Field(
+        False,
+        description="the local error estimate measures the flexible bodies' axial strain "
+        "too, relative to their largest strain (tension of stiff lines)",
     )
     output_step: Positive | None = Field(
         None,

@@ -224,7 +224,7 @@ def _parts(sc: ScenarioView, bodies: dict[str, Any]) -> dict[str, Any]:
         moment = ld.moment
         torque = None if moment is None else tuple(np.atleast_1d(moment).tolist())
         loads.append(Load(place(ld.at), _tuple(ld.force), torque, t["time"]))
-    obstacles = [Obstacle(**_record_fields(o.model_dump())) for o in sc.obstacles]
+    obstacles = [Obstacle(**_record_fields(o.plain())) for o in sc.obstacles]
     contacts = None if sc.contacts is None else [(a, b) for a, b in sc.contacts]
     return {
         "joints": joints,

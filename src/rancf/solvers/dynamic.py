@@ -24,6 +24,11 @@ stops with status ``FAILED`` and keeps everything computed up to then.  So does 
 takes a bounded coordinate out of its range (:mod:`rancf.system.limits`: a driven drum's
 length, a sliding guide's place on the rope): the run stops at the step before, storing
 nothing from it on.
+
+The steps are the :class:`rancf.solvers.stepper.Stepper`'s (the state, one step or a block of
+fixed steps in the compiled core: accepted or rejected, with the error estimate and the step
+to take next); the loop here chooses where steps end (the output times), stores the outputs,
+counts and reports (:class:`_Loop`, :class:`_Outputs`).
 """
 
 from __future__ import annotations
@@ -40,8 +45,9 @@ from rancf.solvers.generalized_alpha import GeneralizedAlpha
 from rancf.solvers.output import MemorySink, OutputSink
 from rancf.solvers.result import DynamicResult, DynamicStatus
 from rancf.solvers.state import COUNTERS, DynamicState, take_up, triads_of
+from rancf.solvers.stepper import Stepper
 from rancf.system import System, as_system
-from rancf.system.limits import first_outside, state_limits
+from rancf.system.limits import state_limits
 from rancf.system.sliding import start_multipliers
 
 __all__ = ["DynamicOptions", "DynamicStatus", "DynamicResult", "GeneralizedAlpha", "integrate"]
@@ -62,31 +68,248 @@ CALL_SECONDS = 0.1
 CALL_TARGET_SECONDS = 0.002
 
 
-def _left_range(
-    check: Callable,
-    k0: int,
-    stored: int,
-    out_time: Callable,
-    oy: NDArray,
-    ol: NDArray | None,
-    t: float,
-    y: NDArray,
-    lam: NDArray,
-) -> bool:
-    """Whether a call of the compiled loop left a bounded coordinate's range: at one of its
-    ``stored`` outputs (from the ``k0``-th) or at its end state ``(t, y, λ)`` (a step past the
-    last output)."""
-    ts = np.array([out_time(k0 + i) for i in range(stored)])
-    if first_outside(check, ts, oy[:stored], None if ol is None else ol[:stored]) >= 0:
-        return True
-    return check(t, y, lam) is not None
+class _Outputs:
+    """Where a run's outputs go (a sink, or memory) and the result they make: the rows stored,
+    the last one kept for snapshots of a streamed run."""
+
+    def __init__(self, system: System, sink: OutputSink | None, out_time: Callable) -> None:
+        self.system = system
+        self.memory = MemorySink() if sink is None else None
+        self.sink: OutputSink = self.memory if self.memory is not None else sink  # type: ignore[assignment]
+        self.out_time = out_time
+        self.directors = system.nodal_directors  # rods: of the state the triads were carried to
+        self.mult = system.m > 0  # store the joints' multipliers
+        # a sink that derives the energies from the stored rows (beside the loop): none here
+        self.energies = not getattr(self.sink, "derives_energies", False)
+        self.last: list = []  # the last row
+        self.last_y: list = []  # the last row's y, v (its energies where the sink derives them)
+        empty = np.empty(0)
+        self.result = DynamicResult(
+            empty, empty, empty, empty, empty, empty, DynamicStatus.COMPLETED, ""
+        )
+
+    def store(
+        self, tt: float, yy: NDArray, vv: NDArray, lam: NDArray, alpha: NDArray | None
+    ) -> None:
+        """One output row at time ``tt``."""
+        system = self.system
+        e = np.array(system.energies(yy, vv, tt)) if self.energies else None
+        self.last_y[:] = [yy.copy(), vv.copy()]
+        m1 = self.directors(yy)
+        ll = lam.copy() if self.mult else None
+        row = (tt, system.q_from_y(yy), system.q_from_y(vv), e, m1, ll, alpha)
+        self.sink.append(tt, row[1], row[2], e, directors=m1, lam=ll, alpha=alpha)
+        self.last[:] = [row]
+        self.result.n_outputs += 1
+
+    def store_block(self, k0: int, rows: tuple, stored: int) -> None:
+        """Outputs ``k0, k0 + 1, ...`` from the core's loop (the first ``stored`` of ``rows``,
+        :class:`rancf.solvers.stepper.Block`), passed on as one block (rods: one output a
+        block, whose state is the one the triads were carried to)."""
+        oy, ov, ol = (x[:stored] for x in (rows[0], rows[1], rows[3]))
+        oe, oa = (None if x is None else x[:stored] for x in (rows[2], rows[4]))
+        ts = np.array([self.out_time(k0 + i) for i in range(len(oy))])
+        qs, vs = self.system.q_from_y(oy), self.system.q_from_y(ov)
+        m1 = self.directors(oy[-1])
+        ll = ol if self.mult else None
+        self.sink.append_block(
+            ts, qs, vs, oe, directors=None if m1 is None else m1[None], lam=ll, alpha=oa
+        )
+        self.last_y[:] = [oy[-1].copy(), ov[-1].copy()]
+        self.last[:] = [
+            (
+                float(ts[-1]),
+                qs[-1],
+                vs[-1],
+                None if oe is None else np.array(oe[-1]),
+                m1,
+                None if ll is None else ll[-1],
+                None if oa is None else oa[-1],
+            )
+        ]
+        self.result.n_outputs += len(oy)
+
+    def _history(self) -> tuple[NDArray, NDArray, NDArray, NDArray]:
+        """``(t, q, v, energies)`` of the result, and its other streams set."""
+        result, system = self.result, self.system
+        if not self.last:  # a resumed run with nothing stored yet
+            result.directors = result.lam = result.alpha = None
+            return np.empty(0), np.empty((0, system.n)), np.empty((0, system.n)), np.empty((0, 3))
+        if self.memory is not None:
+            ts, qs, vs, es = self.memory.arrays()
+            result.directors = self.memory.stream("directors")
+            result.lam = self.memory.stream("lam")
+            result.alpha = self.memory.stream("alpha")
+            return ts, qs, vs, es
+        tt, qq, vv, ee, m1, ll, aa = self.last[0]
+        if ee is None:  # derived by the sink: the last row's here, as the sink does
+            ee = np.empty((1, 3))
+            system.core.energies_rows(np.array([tt]), *self.last_y, ee)
+            self.last[0] = (tt, qq, vv, ee[0], m1, ll, aa)
+        result.directors = None if m1 is None else m1[None]
+        result.lam = None if ll is None else ll[None]
+        result.alpha = None if aa is None else aa[None]
+        return np.array([tt]), qq[None], vv[None], np.reshape(ee, (1, 3))
+
+    def snapshot(self, loop: _Loop, status: DynamicStatus, message: str) -> DynamicResult:
+        """The result so far, with the state the run stands at."""
+        result, st = self.result, loop.stepper
+        ts, qs, vs, es = self._history()
+        result.t, result.q, result.v = ts, qs, vs
+        result.kinetic, result.strain, result.gravity = es[:, 0], es[:, 1], es[:, 2]
+        result.status, result.message = status, message
+        result.n_newton = int(loop.base["n_newton"]) + loop.integ.n_newton
+        result.n_factorizations = loop.integ.n_factorizations
+        result.wall_time = loop.base["wall_time"] + time.perf_counter() - loop.started
+        result.state = DynamicState(
+            st.t,
+            st.y.copy(),
+            st.v.copy(),
+            st.a.copy(),
+            st.w.copy(),
+            st.lam.copy(),
+            st.h,
+            min(loop.k_out, loop.n_grid),
+            loop.within,
+            triads_of(self.system),
+            loop.integ.memory(),
+            {k: getattr(result, k) for k in COUNTERS},
+            loop.options.t_end,
+        )
+        return result
 
 
-def _failure_message(t: float, min_step: float) -> str:
-    return (
-        f"Newton iteration did not converge at t = {t:.6g} s even with the minimum "
-        f"step {min_step:.3g} s; results up to t = {t:.6g} s are kept"
-    )
+class _Loop:
+    """The time loop of :func:`integrate`: it chooses the steps' ends (the output grid), has
+    the :class:`Stepper` take them (blocks of fixed steps in the compiled core where it can),
+    stores the outputs, counts, reports and polls the stop flag."""
+
+    def __init__(
+        self,
+        options: DynamicOptions,
+        stepper: Stepper,
+        outputs: _Outputs,
+        grid: tuple[float, int, int],
+        position: tuple[int, int],
+        base: dict,
+        on_output: Callable[[float, Callable[[], DynamicResult]], None] | None,
+        should_stop: Callable[[], bool] | None,
+    ) -> None:
+        o = self.options = options
+        self.stepper, self.integ, self.outputs = stepper, stepper.integ, outputs
+        self.result = outputs.result
+        self.out_dt, self.n_grid, self.n_out = grid
+        self.k_out, self.within = position
+        self.base, self.on_output, self.should_stop = base, on_output, should_stop
+        self.out_time = outputs.out_time  # the i-th output time after the initial state
+        self.started = time.perf_counter()
+        system = self.integ.system
+        # compiled fixed-step loop: outputs on a grid that is a whole number of steps
+        ratio = self.out_dt / o.step
+        self.per_out = int(round(ratio))
+        fast = not o.adaptive and self.per_out >= 1 and abs(ratio - self.per_out) < 1e-9
+        # outputs per compiled call: first ~1 % of the run, then sized to CALL_TARGET_SECONDS;
+        # at most ~16 MB of stored states per array
+        self.cap = max(1, (1 << 21) // system.n)
+        self.chunk_out = self.least = int(np.clip(self.n_grid // 100, 1, self.cap))
+        if any(b.element == "rod" for b in system.flex):  # the triads at a call's end are
+            self.chunk_out = self.least = self.cap = 1  # those of its one stored state
+            fast = fast and stepper.check is None  # (a rod's triads cannot step back)
+        self.fast = fast
+        self.slow_until = -1.0  # the compiled loop left a coordinate's range: steps until then
+
+    def _notify(self, tt: float) -> None:
+        if self.on_output is not None:
+            msg = f"running, t = {tt:g} s"
+            self.on_output(tt, lambda: self.outputs.snapshot(self, DynamicStatus.INTERRUPTED, msg))
+
+    def _stopped(self) -> tuple[DynamicStatus, str] | None:
+        if self.should_stop is not None and self.should_stop():
+            return DynamicStatus.INTERRUPTED, f"interrupted at t = {self.stepper.t:.6g} s"
+        return None
+
+    def run(self) -> tuple[DynamicStatus, str]:
+        """Step to the end (or a failure, or the stop flag): the run's status and message."""
+        o, st = self.options, self.stepper
+        while self.k_out < self.n_out:
+            last_out = self.out_time(self.k_out - 1) if self.k_out else 0.0
+            on_grid = self.within > 0 or abs(st.t - last_out) <= 1e-12 * max(1.0, st.t)
+            if (
+                self.fast
+                and st.h == o.step
+                and self.k_out < self.n_grid
+                and on_grid
+                and st.t >= self.slow_until
+            ):
+                end = self._block()
+            else:
+                end = self._single(self.out_time(self.k_out))
+            if end is not None:
+                return end
+        return DynamicStatus.COMPLETED, f"reached t_end = {o.t_end:g} s"
+
+    def _block(self) -> tuple[DynamicStatus, str] | None:
+        """A block of fixed steps in the compiled core, sized to the wall clock."""
+        o, st, result = self.options, self.stepper, self.result
+        n_chunk = min(self.chunk_out, self.n_grid - self.k_out)
+        called = time.perf_counter()
+        b = st.block(
+            n_chunk * self.per_out - self.within,
+            self.per_out,
+            self.within,
+            self.k_out,
+            self.out_time,
+            self.outputs.energies,
+            CALL_SECONDS,
+        )
+        if b.left:  # again step by step, to the step that leaves it
+            self.slow_until = self.out_time(min(self.k_out + n_chunk, self.n_grid) - 1)
+            return None
+        result.took(o.step, b.done)
+        result.note_error(b.error, b.t_error, o.step)
+        took = time.perf_counter() - called
+        if b.stored == n_chunk and took > 0.0:  # a whole call: the next sized to the target
+            grown = b.stored * CALL_TARGET_SECONDS / took
+            lo, hi = max(self.least, self.chunk_out // 4), min(self.cap, 4 * self.chunk_out)
+            self.chunk_out = int(np.clip(grown, lo, hi))
+        if b.stored:
+            self.outputs.store_block(self.k_out, b.rows, b.stored)
+        self.k_out += b.stored
+        self.within = self.within + b.done - b.stored * self.per_out
+        last_out = self.out_time(self.k_out - 1) if self.k_out else 0.0
+        st.t = float(last_out) + self.within * o.step if self.within else float(last_out)
+        if b.stored:
+            self._notify(float(last_out))
+        stop = self._stopped()
+        if stop is not None or b.converged:
+            return stop
+        step = st.after_failed_block()
+        if not step.rejected:  # left a length law's range: the state stays here
+            return DynamicStatus.FAILED, str(step.failure)
+        self.within = 0  # the steps to the next output are taken one by one, smaller
+        result.n_rejected += 1
+        return None if step.failure is None else (DynamicStatus.FAILED, step.failure)
+
+    def _single(self, target: float) -> tuple[DynamicStatus, str] | None:
+        """One step through Python (adaptive, or toward an output off the fixed grid)."""
+        st, result = self.stepper, self.result
+        h_try = min(st.h, target - st.t)
+        if target - (st.t + h_try) < 1e-12 * max(1.0, target):
+            h_try = target - st.t
+        step = st.step(h_try)
+        if step.rejected:
+            result.n_rejected += 1
+            return None if step.failure is None else (DynamicStatus.FAILED, step.failure)
+        if not step.accepted:
+            return DynamicStatus.FAILED, str(step.failure)
+        result.took(h_try)
+        result.note_error(step.error, st.t, h_try)
+        if abs(st.t - target) <= 1e-12 * max(1.0, target):
+            st.t = float(target)
+            self.outputs.store(st.t, st.y, st.v, st.lam, step.alpha)
+            self.k_out += 1
+            self._notify(st.t)
+        return self._stopped()
 
 
 def integrate(
@@ -143,254 +366,34 @@ def integrate(
         raise ValueError("integrate: give initial (coordinates) or start (a state), not both")
     if initial is None and start is None:
         system.reset_triads()
-    integ = GeneralizedAlpha(system, o.rho_inf, o.newton_tol, o.max_newton, o.newton, o.rtol)
+    integ = GeneralizedAlpha(
+        system, o.rho_inf, o.newton_tol, o.max_newton, o.newton, o.rtol, o.strain_error
+    )
     out_dt = o.output_step if o.output_step is not None else o.step
-    n_out = o.n_outputs - 1
     n_grid = int(np.floor(o.t_end / out_dt + 1e-9))
-
-    def out_time(i: int) -> float:  # the i-th output after the initial state (0-based)
-        return out_dt * (i + 1) if i < n_grid else o.t_end
-
-    min_step = o.min_step if o.min_step is not None else o.step / 1024.0
-    max_step = o.max_step if o.max_step is not None else max(out_dt, o.step)
-    memory = MemorySink() if sink is None else None
-    target_sink: OutputSink = memory if memory is not None else sink  # type: ignore[assignment]
-    last: list = []
-
-    rod = any(b.element == "rod" for b in system.flex)
-    directors = system.nodal_directors  # rods: of the state the triads were last carried to
-    mult = system.m > 0  # store the joints' multipliers
-    # a sink that derives the energies from the stored rows (beside the loop): none here
-    loop_energies = not getattr(target_sink, "derives_energies", False)
-
-    last_y: list = []  # the last row's y, v (its energies where the sink derives them)
-
-    def store(tt: float, yy: NDArray, vv: NDArray, alpha: NDArray | None) -> None:
-        e = np.array(system.energies(yy, vv, tt)) if loop_energies else None
-        last_y[:] = [yy.copy(), vv.copy()]
-        m1 = directors(yy)
-        ll = lam.copy() if mult else None
-        row = (tt, system.q_from_y(yy), system.q_from_y(vv), e, m1, ll, alpha)
-        target_sink.append(tt, row[1], row[2], e, directors=m1, lam=ll, alpha=alpha)
-        last[:] = [row]
-        result.n_outputs += 1
-
-    def store_block(
-        k0: int, oy: NDArray, ov: NDArray, oe: NDArray | None, ol: NDArray, oa: NDArray | None
-    ) -> None:
-        """Outputs ``k0, k0 + 1, ...`` from the core's loop, passed on as one block (rods: one
-        output a block, whose state is the one the triads were carried to)."""
-        ts = np.array([out_time(k0 + i) for i in range(len(oy))])
-        qs, vs = system.q_from_y(oy), system.q_from_y(ov)
-        m1 = directors(oy[-1])
-        ll = ol if mult else None
-        target_sink.append_block(
-            ts, qs, vs, oe, directors=None if m1 is None else m1[None], lam=ll, alpha=oa
-        )
-        last_y[:] = [oy[-1].copy(), ov[-1].copy()]
-        last[:] = [
-            (
-                float(ts[-1]),
-                qs[-1],
-                vs[-1],
-                None if oe is None else np.array(oe[-1]),
-                m1,
-                None if ll is None else ll[-1],
-                None if oa is None else oa[-1],
-            )
-        ]
-        result.n_outputs += len(oy)
-
-    empty = np.empty(0)
-    result = DynamicResult(empty, empty, empty, empty, empty, empty, DynamicStatus.COMPLETED, "")
-    contact = system.has_contact
-    h, k_out, within, base = o.step, 0, 0, {"n_newton": 0, "wall_time": 0.0}
+    grid = (out_dt, n_grid, o.n_outputs - 1)
+    outputs = _Outputs(system, sink, lambda i: out_dt * (i + 1) if i < n_grid else o.t_end)
+    base = {"n_newton": 0, "wall_time": 0.0}
     if start is None:
         y = system.y0.copy() if initial is None else np.array(initial, dtype=float)
         v = system.v0.copy()
-        t = 0.0
         integ.prescribe(0.0, y, v)  # moving supports at t = 0
         lam = start_multipliers(system, None if initial is None else y)
-        a = integ.initial_acceleration(y, v, t, lam)
+        a = integ.initial_acceleration(y, v, 0.0, lam)
         w = a.copy()  # the algorithmic accelerations start at the consistent ones
-        store(0.0, y, v, np.concatenate([y, v]) if contact else None)
+        outputs.store(0.0, y, v, lam, np.concatenate([y, v]) if system.has_contact else None)
+        state, h, position = (0.0, y, v, a, w, lam), o.step, (0, 0)
     else:
-        t, y, v, a, w, lam, h, k_out, within = take_up(system, integ, start, result, base)
+        t, y, v, a, w, lam, h, k_out, within = take_up(system, integ, start, outputs.result, base)
+        state, position = (t, y, v, a, w, lam), (k_out, within)
+    min_step = o.min_step if o.min_step is not None else o.step / 1024.0
+    max_step = o.max_step if o.max_step is not None else max(out_dt, o.step)
+    stepper = Stepper(integ, o, state, h, min_step, max_step, state_limits(system))
     if on_start is not None:
         on_start()
-    started = time.perf_counter()
-
-    def snapshot(status: DynamicStatus, message: str) -> DynamicResult:
-        if not last:  # a resumed run with nothing stored yet
-            ts, qs, vs, es = empty, np.empty((0, system.n)), np.empty((0, system.n)), empty
-            es = np.empty((0, 3))
-            result.directors = result.lam = result.alpha = None
-        elif memory is not None:
-            ts, qs, vs, es = memory.arrays()
-            result.directors = memory.stream("directors")
-            result.lam = memory.stream("lam")
-            result.alpha = memory.stream("alpha")
-        else:
-            tt, qq, vv, ee, m1, ll, aa = last[0]
-            if ee is None:  # derived by the sink: the last row's here, as the sink does
-                ee = np.empty((1, 3))
-                system.core.energies_rows(np.array([tt]), *last_y, ee)
-                last[0] = (tt, qq, vv, ee[0], m1, ll, aa)
-            ts, qs, vs, es = np.array([tt]), qq[None], vv[None], np.reshape(ee, (1, 3))
-            result.directors = None if m1 is None else m1[None]
-            result.lam = None if ll is None else ll[None]
-            result.alpha = None if aa is None else aa[None]
-        result.t, result.q, result.v = ts, qs, vs
-        result.kinetic, result.strain, result.gravity = es[:, 0], es[:, 1], es[:, 2]
-        result.status, result.message = status, message
-        result.n_newton = int(base["n_newton"]) + integ.n_newton
-        result.n_factorizations = integ.n_factorizations
-        result.wall_time = base["wall_time"] + time.perf_counter() - started
-        result.state = DynamicState(
-            t,
-            y.copy(),
-            v.copy(),
-            a.copy(),
-            w.copy(),
-            lam.copy(),
-            h,
-            min(k_out, n_grid),
-            within,
-            triads_of(system),
-            integ.memory(),
-            {k: getattr(result, k) for k in COUNTERS},
-            o.t_end,
-        )
-        return result
-
-    status, message = DynamicStatus.COMPLETED, f"reached t_end = {o.t_end:g} s"
-    # compiled fixed-step loop: outputs on a grid that is a whole number of steps
-    ratio = out_dt / o.step
-    per_out = int(round(ratio))
-    fast = not o.adaptive and per_out >= 1 and abs(ratio - per_out) < 1e-9
-    # outputs per compiled call: first ~1 % of the run, then sized to CALL_TARGET_SECONDS; at
-    # most ~16 MB of stored states per array
-    cap = max(1, (1 << 21) // system.n)
-    chunk_out = least = int(np.clip(n_grid // 100, 1, cap))
-    if rod:  # the triads at a call's end are those of its one stored state
-        chunk_out = least = cap = 1
-
-    check = state_limits(system)  # bounded coordinates: each step checked
-    fast = fast and not (check is not None and rod)  # (a rod's triads cannot step back)
-    slow_until = -1.0  # the compiled loop left a coordinate's range: steps here until then
-
-    def notify(tt: float) -> None:
-        if on_output is not None:
-            msg = f"running, t = {tt:g} s"
-            on_output(tt, lambda: snapshot(DynamicStatus.INTERRUPTED, msg))
-
-    while k_out < n_out:
-        target = out_time(k_out)
-        last_out = out_time(k_out - 1) if k_out else 0.0
-        on_grid = within > 0 or abs(t - last_out) <= 1e-12 * max(1.0, t)
-        if fast and h == o.step and k_out < n_grid and on_grid and t >= slow_until:
-            n_chunk = min(chunk_out, n_grid - k_out)
-            before = None if check is None else (y.copy(), v.copy(), a.copy(), w.copy(), lam.copy())
-            called = time.perf_counter()
-            done, st, iters, stored, oy, ov, oe, ol, oa, err, t_err = integ.run_steps(
-                y,
-                v,
-                a,
-                w,
-                t,
-                o.step,
-                n_chunk * per_out - within,
-                per_out,
-                within,
-                CALL_SECONDS,  # the step times do not depend on where a call ends
-                lam,
-                out_dt,
-                k_out,
-                energies=loop_energies,
-            )
-            left = check is not None and _left_range(
-                check, k_out, stored, out_time, oy, ol, t, y, lam
-            )
-            if left and before is not None:
-                y, v, a, w, lam = before  # again step by step, to the step that leaves it
-                slow_until = out_time(min(k_out + n_chunk, n_grid) - 1)
-                continue
-            result.took(o.step, done)
-            result.note_error(integ.relative_error(err, o.rtol), t_err, o.step)
-            took = time.perf_counter() - called
-            if stored == n_chunk and took > 0.0:  # a whole call: the next sized to the target
-                grown = stored * CALL_TARGET_SECONDS / took
-                chunk_out = int(np.clip(grown, max(least, chunk_out // 4), min(cap, 4 * chunk_out)))
-            if stored:
-                store_block(
-                    k_out,
-                    oy[:stored],
-                    ov[:stored],
-                    None if oe is None else oe[:stored],
-                    ol[:stored],
-                    None if oa is None else oa[:stored],
-                )
-            k_out += stored
-            within = within + done - stored * per_out
-            last_out = out_time(k_out - 1) if k_out else 0.0
-            t = float(last_out) + within * o.step if within else float(last_out)
-            if stored:
-                notify(float(last_out))
-            if should_stop is not None and should_stop():
-                status, message = DynamicStatus.INTERRUPTED, f"interrupted at t = {t:.6g} s"
-                break
-            if st == 1:
-                continue
-            ahead = None if check is None else check(t + o.step, y, lam)  # the step's end
-            if ahead is not None:  # left a length law's range: no retry, the state stays here
-                status, message = DynamicStatus.FAILED, ahead
-                break
-            within = 0  # the steps to the next output are taken below
-            h = o.step * 0.25  # the failing step is retried below, smaller
-            result.n_rejected += 1
-            if h < min_step:
-                status, message = DynamicStatus.FAILED, _failure_message(t, min_step)
-                break
-            continue
-        h_try = min(h, target - t)
-        if target - (t + h_try) < 1e-12 * max(1.0, target):
-            h_try = target - t
-        ahead = None if check is None else check(t + h_try, y, lam)  # a law at the step's end
-        if ahead is not None:
-            status, message = DynamicStatus.FAILED, ahead
-            break
-        lam_try = lam.copy()
-        ok, y1, v1, a1, w1, e1 = integ.step(y, v, a, w, t, h_try, lam_try)
-        err = integ.relative_error(e1, o.rtol)
-        if not ok or (o.adaptive and err > 1.0):
-            result.n_rejected += 1
-            h = h_try * (0.25 if not ok else max(0.2, 0.9 * err ** (-1.0 / 3.0)))
-            if h < min_step:
-                status, message = DynamicStatus.FAILED, _failure_message(t, min_step)
-                break
-            continue
-        outside = None if check is None else check(t + h_try, y1, lam_try)
-        if outside is not None:  # the state stays at the step before
-            status, message = DynamicStatus.FAILED, outside
-            break
-        alpha = integ.alpha_point(y, v, y1, v1) if contact else None  # before re-referencing
-        y, v, a, w, t, lam = y1, v1, a1, w1, t + h_try, lam_try
-        system.rereference(y, v, a, w)  # rods: triads follow the step, twist rates the spin
-        result.took(h_try)
-        result.note_error(err, t, h_try)
-        if o.adaptive:
-            h = min(max_step, h_try * min(2.0, 0.9 * max(err, 1e-10) ** (-1.0 / 3.0)))
-        else:
-            h = o.step
-        if abs(t - target) <= 1e-12 * max(1.0, target):
-            t = float(target)
-            store(t, y, v, alpha)
-            k_out += 1
-            notify(t)
-        if should_stop is not None and should_stop():
-            status, message = DynamicStatus.INTERRUPTED, f"interrupted at t = {t:.6g} s"
-            break
-    settle = getattr(target_sink, "flush", None)  # rows a sink derives beside the loop or
+    loop = _Loop(o, stepper, outputs, grid, position, base, on_output, should_stop)
+    status, message = loop.run()
+    settle = getattr(outputs.sink, "flush", None)  # rows a sink derives beside the loop or
     if settle is not None:  # holds in a buffer: all of them derived and appended, counted in
         settle()  # the loop's time
-    return snapshot(status, message)
+    return outputs.snapshot(loop, status, message)

@@ -8,12 +8,22 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rancf.bodies.flexible import Model
+from rancf.bodies.section_outputs import sample_points
 from rancf.kernels import _core
 from rancf.solvers.increment_scale import increment_scale
 from rancf.system import System, as_system
 from rancf.system.sliding import start_multipliers
 
-__all__ = ["GeneralizedAlpha"]
+__all__ = ["STRAIN_FLOOR", "GeneralizedAlpha"]
+
+#: The least strain a body's strain error is measured against (TI.13 of
+#: ``docs/derivations/time-integration.md``): a line stretched less is measured as if at 0.1 %,
+#: about a steel rope's or a chain's working strain, so that a slack or unstretched body's
+#: tiny strains do not set its step.
+STRAIN_FLOOR = 1e-3
+
+#: Where in each element the strain error is measured (its middle).
+STRAIN_POINTS = np.array([0.5])
 
 
 class GeneralizedAlpha:
@@ -26,6 +36,7 @@ class GeneralizedAlpha:
     system.  ``rtol`` (> 0): a step whose estimate (TI.9) is above ``rtol * size`` reports it
     filtered through the iteration matrix (TI.12 of ``docs/derivations/time-integration.md``:
     what the step does not resolve counts as its amplitude, not ``(ω h)²`` times it); 0: never.
+    ``strain_error``: the estimate measures the flexible bodies' axial strains too (TI.13).
     """
 
     def __init__(
@@ -36,6 +47,7 @@ class GeneralizedAlpha:
         max_newton: int,
         newton: str = "chord",
         rtol: float = 0.0,
+        strain_error: bool = False,
     ) -> None:
         self.system = as_system(model)
         r = rho_inf
@@ -64,6 +76,29 @@ class GeneralizedAlpha:
         self._core.set_increment_scale(increment_scale(self.system).tolist())
         # above rtol * size a step's estimate is filtered (TI.12): what the step does not resolve
         self._core.set_error_tolerance(float(rtol) * size)
+        if strain_error:
+            self._strain_points()
+
+    def _strain_points(self) -> None:
+        """The estimate in the flexible bodies' axial strains too (TI.13): at every element's
+        middle, relative to the body's largest strain and at least :data:`STRAIN_FLOOR`
+        (beams and bodies on a winch, whose arrays hold another length, are left to the
+        displacement test)."""
+        system = self.system
+        wound = {w.body_and_end()[0] for w in system.winches}
+        for b, (name, body) in enumerate(zip(system.names, system.flex, strict=False)):
+            if body.element == "beam" or name in wound:
+                continue
+            n1, n2, ref = sample_points(body, STRAIN_POINTS)
+            self._core.add_strain_points(
+                b,
+                STRAIN_POINTS.tolist(),
+                n1.ravel().tolist(),
+                n2.ravel().tolist(),
+                ref.ravel().tolist(),
+                STRAIN_FLOOR,
+                self.size,
+            )
 
     @property
     def n_factorizations(self) -> int:

@@ -34,7 +34,14 @@ from rancf.solvers.newton import newton
 from rancf.solvers.relaxation import relax
 from rancf.solvers.system_equilibrium import SystemEquilibrium
 
-__all__ = ["SAG_START", "catenary_shape", "sag_state", "solve_from_sag", "clamped_lines"]
+__all__ = [
+    "SAG_START",
+    "catenary_shape",
+    "sag_state",
+    "solve_from_sag",
+    "clamped_lines",
+    "touchdown_radius",
+]
 
 #: ``StaticResult.method`` of an equilibrium found from the sagged start shape.
 SAG_START = "sag start+newton"
@@ -146,11 +153,11 @@ def _clamped(model: Model, node: int) -> bool:
     return bool(np.any(model.fixed[b : b + model.dim]))
 
 
-def _body_sag(
-    system: Any, name: str, model: Model, pinned: bool = False
-) -> NDArray[np.float64] | None:
-    """The sagged start of one body's model coordinates (module docstring), or None;
-    ``pinned``: None also where an end holds its direction (a clamp)."""
+def _line_geometry(system: Any, name: str, model: Model, pinned: bool = False) -> Any:
+    """``(q, up, p1, chord, s_nodes, span, rise)`` of a cable body whose two end nodes hold
+    their positions (installed; ``q`` the installed nodal coordinates ``(n_nodes, dpn)``, ``up``
+    against gravity, ``p1`` the start, ``s_nodes`` the nodes' reference arc lengths), or None
+    (no such line; ``pinned``: None also where an end holds its direction)."""
     if model.element not in ("rancf", "ancf") or model.closed or model.gravity is None:
         return None
     ends = (0, model.n_nodes - 1)
@@ -163,14 +170,49 @@ def _body_sag(
         return None
     up = -g / np.linalg.norm(g)
     q = model.q_from_y(model.y_installed).reshape(model.n_nodes, model.dpn)
-    dim = model.dim
-    p1, p2 = q[0, :dim], q[-1, :dim]
+    p1 = q[0, : model.dim]
+    chord = q[-1, : model.dim] - p1
     s_nodes = np.r_[0.0, np.cumsum(model.mesh.arc_lengths())]
-    length = float(s_nodes[-1])
-    chord = p2 - p1
     rise = float(chord @ up)
+    span = float(np.linalg.norm(chord - rise * up))
+    return q, up, p1, chord, s_nodes, span, rise
+
+
+def touchdown_radius(system: Any, name: str, model: Model) -> tuple[float, list[float]] | None:
+    """The bend radius ``a = H / w`` where body ``name``'s sagged start shape (module
+    docstring) meets the seabed and the reference arc lengths of its touchdown points (where a
+    hanging part meets it), or None (no sagged shape, or one that does not touch)."""
+    geo = _line_geometry(system, name, model)
+    if geo is None:
+        return None
+    q, up, p1, chord, s_nodes, span, rise = geo
+    length = float(s_nodes[-1])
+    stretch = float(np.linalg.norm(chord)) / length
+    if stretch * (1.0 + SLACK_RTOL) >= 1.0 or span <= 1e-9 * length:
+        return None
+    floor = _floor(system, name, model, up, p1)
+    if floor is None:
+        return None
+    h1, h2 = max(-floor, 0.0), max(rise - floor, 0.0)
+    a = _grounded(span, h1, h2, length)
+    if a is None:
+        return None
+    s1, s2 = (math.sqrt(h * h + 2.0 * a * h) for h in (h1, h2))
+    return a, [s for s, h in ((s1, h1), (length - s2, h2)) if h > 0.0]
+
+
+def _body_sag(
+    system: Any, name: str, model: Model, pinned: bool = False
+) -> NDArray[np.float64] | None:
+    """The sagged start of one body's model coordinates (module docstring), or None;
+    ``pinned``: None also where an end holds its direction (a clamp)."""
+    geo = _line_geometry(system, name, model, pinned)
+    if geo is None:
+        return None
+    q, up, p1, chord, s_nodes, span, rise = geo
+    dim = model.dim
+    length = float(s_nodes[-1])
     horiz = chord - rise * up
-    span = float(np.linalg.norm(horiz))
     grad = np.linalg.norm(model.q0.reshape(model.n_nodes, model.dpn)[:, dim:], axis=1)
     out = q.copy()
     stretch = float(np.linalg.norm(chord)) / length

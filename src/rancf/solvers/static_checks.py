@@ -16,6 +16,10 @@ line).  Criteria (docs/guide/statics.md, "Checked equilibria"):
   element's reference length (a multiple of the element's own Euler load: a column below its
   buckling load passes; a cable, whose ``EI`` is negligible, may carry no compression beyond the
   round-off of its axial stiffness);
+* **passing through itself**: two stretches of a body that are not neighbours along it (more
+  than ``π r`` of arc apart, ``r`` the section radius: a tube bent no tighter than its own
+  radius) come closer than ``r`` (:func:`self_crossing`; a loop of a planar line crosses
+  itself, the distance is 0);
 * **penetration**: an obstacle's largest penetration exceeds :data:`PENETRATION_LIMIT` of the
   diameter ``2 sqrt(A / π)`` of the thinnest body that touches it;
 * **unresolved touchdown**: where a line meets or leaves a seabed (a fixed plane its wet weight
@@ -39,6 +43,8 @@ __all__ = [
     "COMPRESSION_ROUNDOFF",
     "PENETRATION_LIMIT",
     "static_state_problems",
+    "self_crossing",
+    "touchdown_ratios",
 ]
 
 #: Smallest stretch of a sample point that is not a fold.
@@ -90,6 +96,9 @@ def _body_problems(model: Model, y: NDArray[np.float64]) -> list[str]:
         COMPRESSION_BUCKLING * np.pi**2 * model.props.ei / ell**2
         + COMPRESSION_ROUNDOFF * model.props.ea
     )
+    crossing = self_crossing(model, sampler.positions(y), sampler.s)
+    if crossing:
+        out.append(crossing)
     e = int(np.argmin(mean + allowed))
     if mean[e] < -allowed[e]:
         out.append(
@@ -98,6 +107,55 @@ def _body_problems(model: Model, y: NDArray[np.float64]) -> list[str]:
             f"({COMPRESSION_BUCKLING:g} π² EI / ℓ² + {COMPRESSION_ROUNDOFF:g} EA)"
         )
     return out
+
+
+def self_crossing(model: Model, x: NDArray[np.float64], s: NDArray[np.float64]) -> str:
+    """Where the polyline through the sample points ``x`` (arc lengths ``s``) of ``model``
+    passes through itself: two of its chords more than ``π r`` of arc apart whose closest
+    points are nearer than the section radius ``r``, as a line naming both arc lengths (empty
+    when there is none).  Candidate pairs come from a k-d tree of the chords' midpoints."""
+    from scipy.spatial import cKDTree
+
+    r = float(model.section.radius)
+    a, b = x[:-1], x[1:]
+    half = 0.5 * float(np.max(np.linalg.norm(b - a, axis=1)))
+    pairs = cKDTree(0.5 * (a + b)).query_pairs(2.0 * half + r, output_type="ndarray")
+    if not len(pairs):
+        return ""
+    i, j = np.sort(pairs, axis=1).T
+    apart = s[j] - s[i + 1]  # the arc between the two chords
+    if getattr(model.mesh, "closed", False):
+        apart = np.minimum(apart, s[-1] - s[0] - (s[j + 1] - s[i]))
+    keep = apart > np.pi * r
+    i, j = i[keep], j[keep]
+    d = _chord_distances(a[i], b[i], a[j], b[j])
+    if not d.size or d.min() >= r:
+        return ""
+    k = int(np.argmin(d))
+    return (
+        f"the line passes through itself: at s = {s[i[k]]:.4g} m and s = {s[j[k]]:.4g} m "
+        f"its centre line is {d[k]:.3g} m from itself, closer than its radius {r:.3g} m "
+        "(a loop): not an equilibrium a line rests in"
+    )
+
+
+def _chord_distances(p0: NDArray, p1: NDArray, q0: NDArray, q1: NDArray) -> NDArray:
+    """The distances of the segments ``p0 p1`` and ``q0 q1`` (rows), from their closest points
+    (Ericson, *Real-Time Collision Detection*, sec. 5.1.9, parameters clamped to [0, 1])."""
+    d1, d2, r0 = p1 - p0, q1 - q0, p0 - q0
+    a = np.einsum("ij,ij->i", d1, d1)
+    e = np.einsum("ij,ij->i", d2, d2)
+    f = np.einsum("ij,ij->i", d2, r0)
+    c = np.einsum("ij,ij->i", d1, r0)
+    bb = np.einsum("ij,ij->i", d1, d2)
+    den = a * e - bb * bb
+    safe = np.where(den > 1e-300, den, 1.0)
+    sp = np.where(den > 1e-14 * a * e, np.clip((bb * f - c * e) / safe, 0.0, 1.0), 0.0)
+    tq = (bb * sp + f) / np.where(e > 0.0, e, 1.0)
+    tq_c = np.clip(tq, 0.0, 1.0)
+    sp = np.where(tq != tq_c, np.clip((bb * tq_c - c) / np.where(a > 0.0, a, 1.0), 0.0, 1.0), sp)
+    gap = p0 + sp[:, None] * d1 - (q0 + tq_c[:, None] * d2)
+    return np.linalg.norm(gap, axis=1)
 
 
 def _fold_element(x: NDArray[np.float64], x0: NDArray[np.float64], k: int) -> int | None:
@@ -118,6 +176,38 @@ def _touchdown_problems(system: Any, q: NDArray[np.float64]) -> list[str]:
     bends there with the catenary's radius ``T / w``; an element longer than that cannot take
     the bend, and the stiff line settles into a state whose forces are far off (an inextensible
     U-shaped line of 40 elements: a fairlead force 4.5 times too small)."""
+    out = []
+    for name, ob_name, bends in _seabed_bends(system, q):
+        for s, bend, ell in bends:
+            if bend < ell:
+                out.append(
+                    f"body {name!r}: its bend at s = {s:.4g} m has the radius T/w = "
+                    f"{bend:.3g} m, shorter than its element ({ell:.3g} m): the touchdown is "
+                    "not resolved and the line's forces, T among them, may be far off; refine "
+                    "the mesh until its elements there are shorter than T/w, where it leaves "
+                    f"{ob_name!r}"
+                )
+                break
+    return out
+
+
+def touchdown_ratios(system: Any, q: NDArray[np.float64]) -> dict[str, tuple[float, float]]:
+    """Per line touching a seabed (module docstring) at the static state ``q``, the largest
+    ratio ``ℓ / (T / w)`` of an element's length to the bend radius where the line meets or
+    leaves the seabed in that element (``inf`` where ``T <= 0``) and that element's length
+    ``ℓ``; lines with no touchdown are left out."""
+    out: dict[str, tuple[float, float]] = {}
+    for name, _, bends in _seabed_bends(system, q):
+        for _, bend, ell in bends:
+            ratio = ell / bend if bend > 0.0 else np.inf
+            if ratio > out.get(name, (0.0, 0.0))[0]:
+                out[name] = (ratio, ell)
+    return out
+
+
+def _seabed_bends(system: Any, q: NDArray[np.float64]) -> list[tuple[str, str, list]]:
+    """``(body, plane, bends)`` of every cable body and fixed plane its wet weight presses on
+    (:func:`_bends`)."""
     from rancf.system.seabed import pressing_weight
 
     out = []
@@ -131,29 +221,25 @@ def _touchdown_problems(system: Any, q: NDArray[np.float64]) -> list[str]:
             w = pressing_weight(system, name, np.r_[n, np.zeros(3 - n.size)])
             if model.element == "beam" or (name, ob_name) not in pairs or not w > 0.0:
                 continue
-            line = _unresolved_bend(
-                model,
-                model.y_from_q(np.asarray(q)[system.body_slice(name)]),
-                np.asarray(ob.point, dtype=float),
-                n,
-                w,
-            )
-            if line:
-                out.append(f"body {name!r}: {line} {ob_name!r}")
+            y = model.y_from_q(np.asarray(q)[system.body_slice(name)])
+            bends = _bends(model, y, np.asarray(ob.point, dtype=float), n, w)
+            out.append((name, ob_name, bends))
     return out
 
 
-def _unresolved_bend(model: Model, y: NDArray, point: NDArray, n: NDArray, w: float) -> str:
-    """The first place where ``model`` at ``y`` leaves or meets the plane through ``point``
-    (unit normal ``n``) with a bend radius ``T / w`` below its element's length, as the start of
-    a line naming the plane (empty when every such bend is resolved).  ``T`` is read from the
-    nodal forces at the element's inner nodes
+def _bends(
+    model: Model, y: NDArray, point: NDArray, n: NDArray, w: float
+) -> list[tuple[float, float, float]]:
+    """``(s, T / w, ℓ)`` where ``model`` at ``y`` leaves or meets the plane through ``point``
+    (unit normal ``n``): the arc length ``s`` of the sample point, the bend radius under the
+    axial force ``T`` there and the length ``ℓ`` of the element holding it.  ``T`` is read from
+    the nodal forces at the element's inner nodes
     (:func:`~rancf.bodies.nodal_forces.nodal_axial_forces`: a stiff line's strain oscillates
     inside coarse elements by far more than its tension)."""
     from rancf.bodies.nodal_forces import nodal_axial_forces, recovers_axial_force
 
     if not recovers_axial_force(model) or model.n_el < 2:
-        return ""
+        return []
     sampler = SectionSampler(model)
     k, radius = sampler.per_element, model.section.radius
     gap = (sampler.positions(y) - point) @ n - radius
@@ -161,18 +247,13 @@ def _unresolved_bend(model: Model, y: NDArray, point: NDArray, n: NDArray, w: fl
     axial = nodal_axial_forces(model, y, np.zeros_like(y))  # inner nodes only are used
     starts = sampler.s[::k][: model.n_el]
     ell = np.diff(np.r_[starts, sampler.s[-1]])
+    out = []
     for i in np.flatnonzero(touch[1:] != touch[:-1]):
         e = min(int(i) // k, model.n_el - 1)
         inner = [j for j in (e, e + 1) if 0 < j < model.n_nodes - 1]
         bend = max(max(float(axial[j]) for j in inner), 0.0) / w
-        if bend < ell[e]:
-            return (
-                f"its bend at s = {sampler.s[i]:.4g} m has the radius T/w = {bend:.3g} m, "
-                f"shorter than its element ({ell[e]:.3g} m): the touchdown is not resolved "
-                "and the line's forces, T among them, may be far off; refine the mesh "
-                "until its elements there are shorter than T/w, where it leaves"
-            )
-    return ""
+        out.append((float(sampler.s[i]), bend, float(ell[e])))
+    return out
 
 
 def _penetration_problems(system: Any, q: NDArray[np.float64]) -> list[str]:

@@ -58,6 +58,7 @@ def run(sc: Scenario, model: Model, **overrides: Any) -> DynamicResult:
         "rho_inf",
         "adaptive",
         "rtol",
+        "strain_error",
         "min_step",
         "output_step",
     )

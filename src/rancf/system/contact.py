@@ -206,7 +206,8 @@ def build_contact(
 ) -> tuple[_core.Contact, list[str], list[tuple[str, str]]]:
     """The core's contact data of a system: (Contact, obstacle names, pairs).  ``body_contacts``:
     pairs of flexible bodies in contact with each other (a body twice: self-contact;
-    ``src/cpp/contact/body_contact.hpp``) with the Coulomb coefficient ``body_friction`` (regularized by
+    ``src/cpp/contact/body_contact.hpp``) with the Coulomb coefficient ``body_friction``
+    (regularized by
     :data:`SLIP_VELOCITY`), the stiffness ``E / 20`` of the softer (two sections in series, each
     ``E / 10``) and the onset ``1e-3`` of the thinner radius."""
     names = [ob.name or f"obstacle{i}" for i, ob in enumerate(obstacles)]

@@ -6,8 +6,8 @@ elements (the body itself, no node), the second the place it runs through: a poi
 body, a point mass, another body's node, or the ground (then ``position`` says where).  The
 joint's unknowns are its reaction ``λ`` (``dim`` multipliers) and the material coordinate
 ``σ = e + ξ`` (element ``e``, its parameter ``ξ``) of the body's point at the place, kept in the
-multiplier vector right after them (the core's slot, ``src/cpp/system/sliding.hpp``).  The place must
-lie on the body in the reference configuration; ``σ`` starts at its closest point.  Outputs
+multiplier vector right after them (the core's slot, ``src/cpp/system/sliding.hpp``).  The place
+must lie on the body in the reference configuration; ``σ`` starts at its closest point.  Outputs
 report ``σ`` as the reference arc length ``s`` from the body's start (``NAME_s``).
 """
 

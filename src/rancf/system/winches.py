@@ -3,8 +3,8 @@
 The body outside the winch keeps its mesh and its exact reference geometry; its unstretched
 length follows ``L(t)`` (``length``: any time function; ``speed``: the pay-out rate, ``L`` its
 integral from the body's length at ``t = 0``).  The material is spread uniformly over the mesh
-and moves through it; the compiled core (``src/cpp/system/winch.hpp``) stretches the body's reference
-by ``L(t)`` and adds the convective inertia of :mod:`rancf.bodies.winch_inertia`, so mass,
+and moves through it; the compiled core (``src/cpp/system/winch.hpp``) stretches the body's
+reference by ``L(t)`` and adds the convective inertia of :mod:`rancf.bodies.winch_inertia`, so mass,
 momentum and energy of the material outside the drum are exact: the material leaving the drum
 enters with the drum's speed (docs/derivations/variable-length.md §2).  The winch's end of the
 body must be held by a support (a pin, or a clamp for a line leaving in a fixed direction) at

@@ -1,0 +1,159 @@
+"""Touchdown-aware refinement of the static mesh: a line that meets a seabed with a bend its
+elements cannot follow is solved on a finer mesh, and the user is told.
+
+Where a cable leaves a seabed (a fixed plane its wet weight ``w`` presses on) under the axial
+force ``T`` it bends with the catenary's radius ``T / w``, from none on the seabed to ``w / T``
+off it.  A cubic element cannot take that jump in curvature while keeping its length, and a line
+whose axial stiffness ``EA`` is many orders above its tension locks (membrane locking): the
+stiff element resists the bend and the line settles where its forces are far off.  MoorPy's
+U-shaped line (inextensible, ``EA = 1e12`` N; the half: 65 m, 100 N/m, ends 50 m apart and 20 m
+above the bed, ``T / w = 2.63`` m) measured (docs/guide/statics.md, "Touchdown resolution"):
+elements of 0.62 ``T / w``: H 16 % low (2.1 % of the fairlead tension), of 0.31 ``T / w``:
+0.3 %, of 0.16: 0.2 % (the rest: the line's bending stiffness); the same line with ``EA = 1e8``
+N is within 0.24 % already at 0.62 ``T / w``.  Neither the seabed's quadrature (8 or 64 contact
+points per element: the same H to 0.1 %) nor its stiffness (1e4 to 1e7 N/m²: H 225.6 to 219.6
+N, MoorPy's 263.2 N) is the cause.
+
+The static driver (:func:`rancf.runs.static.run_static`, ``rancf static``) therefore divides
+every element of such a body into ``2^m`` (the same curve: a uniform refinement of the
+geometry's mesh, ``[mesh] elements`` times ``2^m``) so that its elements are at most
+:data:`TOUCHDOWN_RESOLUTION` of the bend radius:
+
+* before solving, with the radius ``a = H / w`` of the line's sagged start shape where it meets
+  the seabed (:func:`rancf.solvers.sag_start.touchdown_radius`: the inextensible catenary lying
+  on the seabed, MoorPy's frictionless shape);
+* after solving, with ``T / w`` of the solved state at its touchdowns
+  (:func:`rancf.solvers.static_checks.touchdown_ratios`): the body is refined further and the
+  static solve repeated once.
+
+Each refinement is one line of the run's warnings naming the body, its element counts and the
+radius.  At most :data:`MAX_ELEMENTS` elements per body; a scenario that names nodes by index
+(a support, load, sensor or joint at node ``N`` other than the ends) is not refined (its nodes
+would move) and its warning line says so; a touchdown longer than its bend radius there is
+refused by the static checks as before.
+Time-domain runs (their static start) and the other analyses keep the user's mesh.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from typing import Any
+
+__all__ = ["TOUCHDOWN_RESOLUTION", "MAX_ELEMENTS", "refine_for_touchdowns", "refined"]
+
+#: Elements at a touchdown at most this fraction of the bend radius ``T / w``.
+TOUCHDOWN_RESOLUTION = 1.0 / 3.0
+#: A refined body has at most this many elements.
+MAX_ELEMENTS = 2560
+
+
+def _halvings(ratio: float, n: int) -> int:
+    """How many times ``n`` elements whose length is ``ratio`` bend radii are halved (0 when
+    resolved or at :data:`MAX_ELEMENTS`)."""
+    if not ratio > TOUCHDOWN_RESOLUTION:
+        return 0
+    m = math.ceil(math.log2(ratio / TOUCHDOWN_RESOLUTION) - 1e-12) if math.isfinite(ratio) else 1
+    while m > 0 and n * 2**m > MAX_ELEMENTS:
+        m -= 1
+    return max(m, 0)
+
+
+def refine_for_touchdowns(
+    sc: Any, system: Any, ratios: dict[str, tuple[float, float]]
+) -> tuple[Any | None, list[str]]:
+    """``sc`` with the elements of every body of ``system`` whose touchdown ``ratios``
+    (element length over bend radius, and that element's length) exceed
+    :data:`TOUCHDOWN_RESOLUTION` divided (module docstring), and the warning lines; None and
+    no lines when nothing needs it, None and lines saying so where the scenario names nodes
+    by index."""
+    counts = _element_counts(sc)
+    factors: dict[str, int] = {}
+    why: dict[str, str] = {}
+    for name, (ratio, ell) in ratios.items():
+        n = system.bodies[name].n_el
+        m = 0 if name not in counts else _halvings(ratio, n)
+        if m > 0:
+            factors[name] = 2**m
+            why[name] = (
+                f"where it meets the seabed it bends with the radius T/w = {ell / ratio:.3g} m, "
+                f"which its {ell:.3g} m elements there do not resolve (at most "
+                f"{TOUCHDOWN_RESOLUTION:.2g} of it: docs/guide/statics.md)"
+            )
+    if not factors:
+        return None, []
+    if _node_indexed(sc.model_dump(by_alias=True, exclude_unset=True)):
+        return None, [
+            f"body {name!r}: {text}; the scenario names nodes by index, so the static solve "
+            f"keeps its {system.bodies[name].n_el} elements: refine [mesh] elements"
+            for name, text in why.items()
+        ]
+    notes = [
+        f"body {name!r}: its {system.bodies[name].n_el} elements refined to "
+        f"{system.bodies[name].n_el * f} for the static solve: {why[name]}"
+        for name, f in factors.items()
+    ]
+    return refined(sc, factors), notes
+
+
+def refined(sc: Any, factors: dict[str, int]) -> Any:
+    """The scenario ``sc`` with the ``[mesh] elements`` of each body in ``factors`` multiplied
+    by its factor (a one-body file's body is ``"body"``)."""
+    from rancf.scenario.scenario import Scenario
+
+    d = sc.model_dump(by_alias=True, exclude_unset=True)
+    if "mesh" in d and "body" in factors:
+        d["mesh"]["elements"] *= factors["body"]
+    for b in d.get("bodies", []):
+        if b.get("name") in factors and "mesh" in b:
+            b["mesh"]["elements"] *= factors[b["name"]]
+    return Scenario.from_dict(d, sc.path)
+
+
+def _element_counts(sc: Any) -> dict[str, int]:
+    """``[mesh] elements`` per flexible body of ``sc`` (one-body file: ``"body"``)."""
+    if sc.mesh is not None:
+        return {"body": int(sc.mesh.elements)}
+    return {b.name: int(b.mesh.elements) for b in sc.bodies if getattr(b, "mesh", None) is not None}
+
+
+_NODE = re.compile(r"(?:^|:)(-?\d+)$")
+
+
+def _node_indexed(d: Any) -> bool:
+    """Whether the dumped scenario ``d`` names a node by index other than the ends (``at`` or
+    ``between`` values ``N`` or ``"BODY:N"``, ``N`` not 0 or -1)."""
+    if isinstance(d, list):
+        return any(_node_indexed(v) for v in d)
+    if not isinstance(d, dict):
+        return False
+    for k, v in d.items():
+        if k in ("at", "between"):
+            for p in v if isinstance(v, list) else [v]:
+                m = _NODE.search(p) if isinstance(p, str) else None
+                node = int(m.group(1)) if m else p if isinstance(p, int) else None
+                if node is not None and node not in (0, -1):
+                    return True
+        elif _node_indexed(v):
+            return True
+    return False
+
+
+def start_ratios(system: Any) -> dict[str, tuple[float, float]]:
+    """Per cable body whose sagged start shape meets a seabed, the largest ratio of the length
+    of an element holding a touchdown point of that shape to its bend radius there
+    (:func:`rancf.solvers.sag_start.touchdown_radius`)."""
+    import numpy as np
+
+    from rancf.solvers.sag_start import touchdown_radius
+
+    out = {}
+    for name, model in zip(system.names, system.flex, strict=False):
+        found = touchdown_radius(system, name, model)
+        if found is None or not found[0] > 0.0 or not found[1]:
+            continue
+        ell = model.mesh.arc_lengths()
+        starts = np.r_[0.0, np.cumsum(ell)]
+        e = np.clip(np.searchsorted(starts, found[1], side="right") - 1, 0, ell.size - 1)
+        out[name] = (float(ell[e].max()) / found[0], float(ell[e].max()))
+    return out
