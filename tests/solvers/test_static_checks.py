@@ -372,6 +372,9 @@ def test_a_line_passing_through_itself_is_found():
     hairpin = np.r_[np.c_[-arm[::-1], 0.0 * arm], bend[1:-1], np.c_[-arm, 0.2 + 0.0 * arm]]
     s = np.r_[0.0, np.cumsum(np.linalg.norm(np.diff(hairpin, axis=0), axis=1))]
     assert self_crossing(model, hairpin, s) == ""
+    # a cantilever rolled into a full circle: its end meets its root, and touches it
+    th = np.linspace(0.0, 2.0 * np.pi, 120)
+    assert self_crossing(model, np.c_[np.sin(th), 1.0 - np.cos(th)], th) == ""
 
 
 MOORING_3D = """

@@ -112,7 +112,8 @@ def _body_problems(model: Model, y: NDArray[np.float64]) -> list[str]:
 def self_crossing(model: Model, x: NDArray[np.float64], s: NDArray[np.float64]) -> str:
     """Where the polyline through the sample points ``x`` (arc lengths ``s``) of ``model``
     passes through itself: two of its chords more than ``π r`` of arc apart whose closest
-    points are nearer than the section radius ``r``, as a line naming both arc lengths (empty
+    points are nearer than the section radius ``r`` (an open body's first and last chords left
+    out: an end that meets the body, a cantilever rolled into a full circle, touches it), as a line naming both arc lengths (empty
     when there is none).  Candidate pairs come from a k-d tree of the chords' midpoints."""
     from scipy.spatial import cKDTree
 
@@ -127,6 +128,8 @@ def self_crossing(model: Model, x: NDArray[np.float64], s: NDArray[np.float64]) 
     if getattr(model.mesh, "closed", False):
         apart = np.minimum(apart, s[-1] - s[0] - (s[j + 1] - s[i]))
     keep = apart > np.pi * r
+    if not getattr(model.mesh, "closed", False):  # an end that meets the body touches it
+        keep &= (i > 0) & (j < len(a) - 1)
     i, j = i[keep], j[keep]
     d = _chord_distances(a[i], b[i], a[j], b[j])
     if not d.size or d.min() >= r:
