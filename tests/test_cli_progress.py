@@ -10,7 +10,7 @@ from importlib.resources import files
 import numpy as np
 
 import rancf
-from rancf.cli import main, sim
+from rancf.cli import main, stream
 from rancf.scenario.toml_text import WIDTH, _compact, dumps
 
 
@@ -21,7 +21,7 @@ class _Terminal(io.StringIO):
 
 def test_progress_only_on_a_terminal(tmp_path, monkeypatch, capsys):
     monkeypatch.chdir(tmp_path)
-    monkeypatch.setattr(sim, "PROGRESS_AFTER_S", 0.0)  # a bar from the first output on
+    monkeypatch.setattr(stream, "PROGRESS_AFTER_S", 0.0)  # a bar from the first output on
     assert main(["example", "copy", "planar-pendulum", "."]) == 0
     args = ["simulate", "planar-pendulum.toml", "--t-end", "0.05"]
     capsys.readouterr()

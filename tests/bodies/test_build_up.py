@@ -16,8 +16,9 @@ from rancf.bodies.time_function import TimeFunction
 from rancf.cli import main
 from rancf.scenario import parse_scenario
 from rancf.scenario.joints import JointTable
-from rancf.scenario.loads import SupportTable, time_function
+from rancf.scenario.loads import SupportTable
 from rancf.scenario.system_build import build_system
+from rancf.scenario.time_functions import time_function
 from rancf.solvers.generalized_alpha import GeneralizedAlpha
 
 FUNCTIONS = [

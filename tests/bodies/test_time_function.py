@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 from rancf.bodies.time_function import TimeFunction, spin_up_angle
+from rancf.bodies.time_record import table_coefficients
 from rancf.errors import InputError
 
 TIMES = [-0.5, 0.0, 0.13, 0.7, 1.0, 1.9, 2.0, 3.3]
@@ -93,7 +94,7 @@ def test_cubic_table_is_exact_for_a_cubic():
         assert f.acceleration(t) == pytest.approx(p.deriv(2)(t), rel=1e-10, abs=1e-10)
     assert f.value(4.0) == pytest.approx(p(3.0), rel=1e-14) and f.rate(4.0) == 0.0
     # the packed piecewise coefficients evaluate to the same function
-    breaks, coef = f.coefficients()
+    breaks, coef = table_coefficients(f)
     i, s = 3, 0.3
     assert breaks.tolist() == ts.tolist()
     assert np.polyval(coef[i, ::-1, 0], s) == pytest.approx(p(ts[i] + s), rel=1e-12)
@@ -139,7 +140,8 @@ def test_from_callable_central_differences():
     ids=["constant", "vector", "ramp", "harmonic", "spin_up", "table"],
 )
 def test_file_form_round_trip(f):
-    from rancf.scenario.loads import SupportTable, time_function
+    from rancf.scenario.loads import SupportTable
+    from rancf.scenario.time_functions import time_function
 
     if f.vector and f.size == 2:
         back = time_function(SupportTable(at="end", motion=f.to_toml()).motion)
@@ -151,7 +153,7 @@ def test_file_form_round_trip(f):
 
 def _from_toml(v):
     from rancf.scenario.joints import JointTable
-    from rancf.scenario.loads import time_function
+    from rancf.scenario.time_functions import time_function
 
     if isinstance(v, list):
         return TimeFunction.constant(v)

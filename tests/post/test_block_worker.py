@@ -102,11 +102,11 @@ def test_the_loop_time_counts_every_stored_row(tmp_path, monkeypatch):
     """``solve_wall_time_s`` is taken after every stored row is derived and appended: when
     :func:`~rancf.solvers.dynamic.integrate` returns, the store holds them all (none left in
     its buffer for the last checkpoint: the store's ``flush``), with the worker and without it."""
-    import rancf.solvers.dynamic as dynamic
+    import rancf.runs.simulate as driver  # the dynamics driver rancf simulate runs
 
     monkeypatch.chdir(tmp_path)
     (tmp_path / "s.toml").write_text(mutated(solver__t_end=0.05, mesh__elements=8))
-    integrate, seen = dynamic.integrate, []
+    integrate, seen = driver.integrate, []
 
     def watched(*args, **kwargs):  # noqa: ANN002, ANN003, ANN202
         result = integrate(*args, **kwargs)
@@ -114,7 +114,7 @@ def test_the_loop_time_counts_every_stored_row(tmp_path, monkeypatch):
         seen.append((sink.n_rows, sink._pending, result.n_outputs))
         return result
 
-    monkeypatch.setattr(dynamic, "integrate", watched)
+    monkeypatch.setattr(driver, "integrate", watched)
     init = HistoryStore.__init__
     for beside in (True, False):
 

@@ -171,3 +171,21 @@ def test_the_validator_finds_problems(change, problem):
     d = tomllib.loads(BASE)
     change(d)
     assert any(p.startswith(problem) for p in _problems(d, SCHEMA)), _problems(d, SCHEMA)
+
+
+def test_the_schema_users_see_is_the_stored_one():
+    """``rancf schema`` prints the schema editors use: a one-body file and a file with
+    ``[[bodies]]`` are its two forms, whatever the code does with them after parsing.  A change
+    of the models that changes the schema shows here; regenerate the stored copy with
+    ``rancf schema > tests/scenario/data/schema.json`` when the change is meant."""
+    import json
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    stored = Path(__file__).parent / "data" / "schema.json"
+    out = subprocess.run(
+        [sys.executable, "-m", "rancf", "schema"], capture_output=True, text=True, check=True
+    ).stdout
+    assert json.loads(out) == json.loads(stored.read_text(encoding="utf-8"))
+    assert out == stored.read_text(encoding="utf-8")

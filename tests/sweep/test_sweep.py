@@ -249,20 +249,3 @@ gravity = [0.0, -9.81]
 about = "static"
 count = 3
 """
-
-
-def test_modes_sweep_equals_rancf_modes_about_the_static_state(tmp_path, capsys):
-    """A sagging power line's modes about its static state (``[modes] about = "static"``): the
-    sweep's frequencies are those of ``rancf modes``, not the slack reference's near-zero ones."""
-    (tmp_path / "line.toml").write_text(POWER_LINE)
-    assert main(["modes", str(tmp_path / "line.toml"), "--json"]) == 0
-    want = json.loads(capsys.readouterr().out)
-    assert want["about"] == "static" and want["frequencies_hz"][0] > 0.1
-    f = tmp_path / "s.toml"
-    f.write_text('base = "line.toml"\nanalysis = "modes"\n[grid]\n"mesh.elements" = [16]\n')
-    assert main(["sweep", str(f), "--out", str(tmp_path / "o"), "--workers", "1", "--quiet"]) == 0
-    (row,) = _rows(tmp_path / "o" / "results.csv")
-    got = [float(row[f"f{i}_hz"]) for i in (1, 2, 3)]
-    np.testing.assert_allclose(got, want["frequencies_hz"], rtol=1e-6)
-    modes = json.loads(next((tmp_path / "o" / "runs").iterdir()).joinpath("modes.json").read_text())
-    assert modes["about"] == "static"

@@ -46,13 +46,8 @@ using rancf_bind::ReductionHolder;
 using rancf_bind::RodHolder;
 using rancf_bind::SupportsHolder;
 
-}  // namespace
-
-NB_MODULE(_core, mod) {
-  mod.doc() = "rancf compiled core: element kernels, banded assembly and LU, generalized-alpha";
-  mod.attr("CABLE_ETA") = rancf::kCableEta;
-  mod.attr("CABLE_STRAIGHT") = rancf::kCableStraight;
-
+/// The records a model is made of (element data, stiffness, supports, loads) and the scheme.
+void bind_model_data(nb::module_& mod) {
   nb::class_<CableHolder>(mod, "CableData", "Cable quadrature data (see model.hpp).")
       .def(nb::init<In, In, In, In, In, In, In>(), nb::kw_only(), "n1"_a, "n2"_a, "gw"_a, "s0"_a,
            "k0"_a, "j0"_a, "qr"_a);
@@ -125,7 +120,10 @@ NB_MODULE(_core, mod) {
       .def_ro("alpha_f", &rancf::Scheme::alpha_f)
       .def_ro("tol", &rancf::Scheme::tol)
       .def_ro("max_iter", &rancf::Scheme::max_iter);
+}
 
+/// The assembled model: forces, tangents, energies and a rod's frames and curvatures.
+nb::class_<ModelHolder> bind_model(nb::module_& mod) {
   auto model_cls =
       nb::class_<ModelHolder>(mod, "Model",
                               "An assembled model (named parts, arrays by reference).")
@@ -303,6 +301,18 @@ NB_MODULE(_core, mod) {
               "xi"_a, "n1"_a, "n2"_a, "ref"_a, "y"_a, "out"_a.noconvert(),
               "Strains and curvatures at sample points of every element (see sections.hpp), "
               "of one state or k stacked ones.");
+  return model_cls;
+}
+
+}  // namespace
+
+NB_MODULE(_core, mod) {
+  mod.doc() = "rancf compiled core: element kernels, banded assembly and LU, generalized-alpha";
+  mod.attr("CABLE_ETA") = rancf::kCableEta;
+  mod.attr("CABLE_STRAIGHT") = rancf::kCableStraight;
+
+  bind_model_data(mod);
+  auto model_cls = bind_model(mod);
   rancf_bind::bind_inertia(model_cls);
 
   rancf_bind::bind_functions(mod);

@@ -82,41 +82,39 @@ void each_row(const SystemHolder& h, const In& t, const In& y, const In& v, Out&
     f(y.data() + i * n, v.data() + i * n, t.data()[i], out.data() + i * width);
 }
 
-}  // namespace
-
-void bind_system(nb::module_& mod) {
-  nb::class_<SystemHolder>(mod, "System", "A multibody system (see system.hpp).")
-      .def(
-          "__init__",
-          [](SystemHolder* h, int dim, nb::list models, nb::handle rigid, nb::handle places,
-             nb::handle joints, nb::handle springs, nb::handle loads, nb::handle time_functions,
-             nb::handle prescribed, nb::handle linear, nb::handle gravity, double damping,
-             In y_ref) {
-            new (h) SystemHolder();
-            rancf::System& s = h->s;
-            check(dim == 2 || dim == 3, "dim: expected 2 or 3, got " + std::to_string(dim));
-            s.dim = dim;
-            for (nb::handle m : models) {
-              h->models.emplace_back(nb::borrow(m));
-              s.flex.push_back(&nb::cast<const ModelHolder&>(m).m);
-            }
-            read_records(
-                {rigid, places, joints, springs, loads, time_functions, prescribed, linear}, s);
-            const std::vector<double> g = read_vector(gravity, "gravity", 3);
-            std::copy(g.begin(), g.end(), s.gravity);
-            s.damping = damping;
-            s.setup();
-            check_coordinates(s);
-            expect_size(y_ref, static_cast<std::size_t>(s.n), "y_ref");
-            h->y_ref.assign(y_ref.data(), y_ref.data() + s.n);
-            s.y_ref = h->y_ref.data();
-          },
-          nb::kw_only(), "dim"_a, "models"_a, "rigid"_a, "places"_a, "joints"_a, "springs"_a,
-          "loads"_a, "time_functions"_a, "prescribed"_a, "linear"_a, "gravity"_a, "damping"_a,
-          "y_ref"_a,
-          "A system from its flexible bodies' Models and the lists of its records "
-          "(rancf.kernels.records: rigid bodies, places, joints, springs, loads, time functions, "
-          "prescribed motions, linear terms), read by field name.")
+/// Construction and the parts attached to the core: contact, fluid.
+void bind_system_setup(nb::class_<SystemHolder>& cls) {
+  cls.def(
+         "__init__",
+         [](SystemHolder* h, int dim, nb::list models, nb::handle rigid, nb::handle places,
+            nb::handle joints, nb::handle springs, nb::handle loads, nb::handle time_functions,
+            nb::handle prescribed, nb::handle linear, nb::handle gravity, double damping,
+            In y_ref) {
+           new (h) SystemHolder();
+           rancf::System& s = h->s;
+           check(dim == 2 || dim == 3, "dim: expected 2 or 3, got " + std::to_string(dim));
+           s.dim = dim;
+           for (nb::handle m : models) {
+             h->models.emplace_back(nb::borrow(m));
+             s.flex.push_back(&nb::cast<const ModelHolder&>(m).m);
+           }
+           read_records({rigid, places, joints, springs, loads, time_functions, prescribed, linear},
+                        s);
+           const std::vector<double> g = read_vector(gravity, "gravity", 3);
+           std::copy(g.begin(), g.end(), s.gravity);
+           s.damping = damping;
+           s.setup();
+           check_coordinates(s);
+           expect_size(y_ref, static_cast<std::size_t>(s.n), "y_ref");
+           h->y_ref.assign(y_ref.data(), y_ref.data() + s.n);
+           s.y_ref = h->y_ref.data();
+         },
+         nb::kw_only(), "dim"_a, "models"_a, "rigid"_a, "places"_a, "joints"_a, "springs"_a,
+         "loads"_a, "time_functions"_a, "prescribed"_a, "linear"_a, "gravity"_a, "damping"_a,
+         "y_ref"_a,
+         "A system from its flexible bodies' Models and the lists of its records "
+         "(rancf.kernels.records: rigid bodies, places, joints, springs, loads, time functions, "
+         "prescribed motions, linear terms), read by field name.")
       .def_prop_rw(
           "stiffness_damping", [](const SystemHolder& h) { return h.s.stiffness_damping; },
           [](SystemHolder& h, double beta) {
@@ -143,20 +141,24 @@ void bind_system(nb::module_& mod) {
           },
           "fluid"_a, "lines"_a,
           "The fluid (a FluidRecord) and the flexible bodies in it with their distributed loads "
-          "(LineRecords), rancf.kernels.records (fluid.hpp).")
-      .def(
-          "fluid_forces",
-          [](const SystemHolder& h, In y, In v, In a, double t, bool dynamic) {
-            const auto n = static_cast<std::size_t>(h.s.n);
-            for (const auto* x : {&y, &v, &a}) expect_size(*x, n, "state");
-            std::vector<double> out(3 * h.s.flex.size());
-            rancf::fluid_forces(h.s, y.data(), dynamic ? v.data() : nullptr,
-                                dynamic ? a.data() : nullptr, t, out.data());
-            return out;
-          },
-          "y"_a, "v"_a, "a"_a, "t"_a, "dynamic"_a = true,
-          "The fluid's force (drag, inertia, buoyancy) on each flexible body, 3 values per body "
-          "(world axes); dynamic = False: statics (no velocity, no inertia, no waves).")
+          "(LineRecords), rancf.kernels.records (fluid.hpp).");
+}
+
+/// Fluid forces, winches, sliding joints and drums, sizes and rows.
+void bind_system_drums(nb::class_<SystemHolder>& cls) {
+  cls.def(
+         "fluid_forces",
+         [](const SystemHolder& h, In y, In v, In a, double t, bool dynamic) {
+           const auto n = static_cast<std::size_t>(h.s.n);
+           for (const auto* x : {&y, &v, &a}) expect_size(*x, n, "state");
+           std::vector<double> out(3 * h.s.flex.size());
+           rancf::fluid_forces(h.s, y.data(), dynamic ? v.data() : nullptr,
+                               dynamic ? a.data() : nullptr, t, out.data());
+           return out;
+         },
+         "y"_a, "v"_a, "a"_a, "t"_a, "dynamic"_a = true,
+         "The fluid's force (drag, inertia, buoyancy) on each flexible body, 3 values per body "
+         "(world axes); dynamic = False: statics (no velocity, no inertia, no waves).")
       .def(
           "attach_winch",
           [](SystemHolder& h, int body, int length, double length_set, In c1, In c2, In d2) {
@@ -274,18 +276,22 @@ void bind_system(nb::module_& mod) {
       .def_prop_ro("m", [](const SystemHolder& h) { return h.s.m; })
       .def_prop_ro("offsets", [](const SystemHolder& h) { return h.s.offset; })
       .def_prop_ro("joint_rows", [](const SystemHolder& h) { return h.s.joint_row; })
-      .def_prop_ro("linear_row", [](const SystemHolder& h) { return h.s.linear_row; })
-      .def(
-          "constraints",
-          [](const SystemHolder& h, In y, double t, Out g, std::optional<In> lam) {
-            expect_size(y, static_cast<std::size_t>(h.s.n), "y");
-            expect_size(g, static_cast<std::size_t>(h.s.m), "g");
-            if (lam) expect_size(*lam, static_cast<std::size_t>(h.s.m), "lam");
-            rancf::constraints(h.s, y.data(), t, g.data(), lam ? lam->data() : nullptr);
-          },
-          "y"_a, "t"_a, "g"_a.noconvert(), "lam"_a.none() = nb::none(),
-          "Constraint residual g(y, t); lam: the multipliers, whose slots hold the sliding "
-          "joints' material coordinates (needed with sliding joints).")
+      .def_prop_ro("linear_row", [](const SystemHolder& h) { return h.s.linear_row; });
+}
+
+/// Constraints, the balance's residual, places and their Jacobians.
+void bind_system_balance(nb::class_<SystemHolder>& cls) {
+  cls.def(
+         "constraints",
+         [](const SystemHolder& h, In y, double t, Out g, std::optional<In> lam) {
+           expect_size(y, static_cast<std::size_t>(h.s.n), "y");
+           expect_size(g, static_cast<std::size_t>(h.s.m), "g");
+           if (lam) expect_size(*lam, static_cast<std::size_t>(h.s.m), "lam");
+           rancf::constraints(h.s, y.data(), t, g.data(), lam ? lam->data() : nullptr);
+         },
+         "y"_a, "t"_a, "g"_a.noconvert(), "lam"_a.none() = nb::none(),
+         "Constraint residual g(y, t); lam: the multipliers, whose slots hold the sliding "
+         "joints' material coordinates (needed with sliding joints).")
       .def(
           "residual",
           [](const SystemHolder& h, In y, In v, In a, In lam, double t, double load_factor,
@@ -345,33 +351,37 @@ void bind_system(nb::module_& mod) {
             return std::make_tuple(idx, dx);
           },
           "index"_a, "y"_a, "t"_a,
-          "(global indices of the place's coordinates, d x / d local (3 x n, row-major)).")
-      .def(
-          "dense_jacobian",
-          [](const SystemHolder& h, In y, In v, In a, In lam, double t, double ck, double cv,
-             double ca, bool dynamic, Out out) {
-            const auto n = static_cast<std::size_t>(h.s.n), m = static_cast<std::size_t>(h.s.m);
-            for (const auto* x : {&y, &v, &a}) expect_size(*x, n, "state");
-            expect_size(lam, m, "lam");
-            expect_size(out, (n + m) * (n + m), "out");
-            rancf::BorderedLU lu(h.s.offset, h.s.block_size, h.s.block_ku, h.s.fixed.data());
-            std::vector<double> r(n + m);
-            rancf::AssemblyTerms terms;
-            terms.ck = ck;
-            terms.cv = cv;
-            terms.ca = ca;
-            terms.tf = terms.t1 = t;
-            if (!rancf::assemble_system(h.s, y.data(), dynamic ? v.data() : nullptr,
-                                        dynamic ? a.data() : nullptr, lam.data(), y.data(), terms,
-                                        r.data(), &lu))
-              return false;
-            lu.dense(h.s.m, out.data());
-            return true;
-          },
-          "y"_a, "v"_a, "a"_a, "lam"_a, "t"_a, "ck"_a, "cv"_a, "ca"_a, "dynamic"_a = true,
-          "out"_a.noconvert(),
-          "The Jacobian of residual() (balance and constraints) with respect to (y, lambda): ck "
-          "d/dy + cv d/dv + ca d/da, dense (n + m)^2, held rows and columns as assembled.")
+          "(global indices of the place's coordinates, d x / d local (3 x n, row-major)).");
+}
+
+/// Jacobians, joint reactions and energies.
+void bind_system_outputs(nb::class_<SystemHolder>& cls) {
+  cls.def(
+         "dense_jacobian",
+         [](const SystemHolder& h, In y, In v, In a, In lam, double t, double ck, double cv,
+            double ca, bool dynamic, Out out) {
+           const auto n = static_cast<std::size_t>(h.s.n), m = static_cast<std::size_t>(h.s.m);
+           for (const auto* x : {&y, &v, &a}) expect_size(*x, n, "state");
+           expect_size(lam, m, "lam");
+           expect_size(out, (n + m) * (n + m), "out");
+           rancf::BorderedLU lu(h.s.offset, h.s.block_size, h.s.block_ku, h.s.fixed.data());
+           std::vector<double> r(n + m);
+           rancf::AssemblyTerms terms;
+           terms.ck = ck;
+           terms.cv = cv;
+           terms.ca = ca;
+           terms.tf = terms.t1 = t;
+           if (!rancf::assemble_system(h.s, y.data(), dynamic ? v.data() : nullptr,
+                                       dynamic ? a.data() : nullptr, lam.data(), y.data(), terms,
+                                       r.data(), &lu))
+             return false;
+           lu.dense(h.s.m, out.data());
+           return true;
+         },
+         "y"_a, "v"_a, "a"_a, "lam"_a, "t"_a, "ck"_a, "cv"_a, "ca"_a, "dynamic"_a = true,
+         "out"_a.noconvert(),
+         "The Jacobian of residual() (balance and constraints) with respect to (y, lambda): ck "
+         "d/dy + cv d/dv + ca d/da, dense (n + m)^2, held rows and columns as assembled.")
       .def(
           "sparse_jacobian",
           [](const SystemHolder& h, In y, In v, In a, In lam, double t, double ck, double cv,
@@ -458,7 +468,10 @@ void bind_system(nb::module_& mod) {
           },
           "t"_a, "y"_a, "v"_a, "out"_a.noconvert(),
           "body_energies of k states (rows of y, v at times t) into the rows of out.");
+}
 
+/// The system's integrator: steps, runs, statics and derived rows.
+void bind_system_integrator(nb::module_& mod) {
   nb::class_<SystemIntegratorHolder>(mod, "SystemIntegrator",
                                      "Generalized-alpha with constraints on a system.")
       .def(nb::init<const SystemHolder&, const rancf::Scheme&>(), "system"_a, "scheme"_a,
@@ -659,6 +672,17 @@ void bind_system(nb::module_& mod) {
           "y"_a, "lam"_a, "load_factor"_a, "amplitude"_a, "t"_a, "dy"_a.noconvert(),
           "dlam"_a.noconvert(), "residual"_a.noconvert(),
           "One static Newton increment (K dy + G^T dlam = -r, G dy = -g); False if singular.");
+}
+
+}  // namespace
+
+void bind_system(nb::module_& mod) {
+  nb::class_<SystemHolder> cls(mod, "System", "A multibody system (see system.hpp).");
+  bind_system_setup(cls);
+  bind_system_drums(cls);
+  bind_system_balance(cls);
+  bind_system_outputs(cls);
+  bind_system_integrator(mod);
 }
 
 }  // namespace rancf_bind

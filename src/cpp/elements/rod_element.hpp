@@ -52,108 +52,17 @@ inline void rotate_blocks(const double* e, const double* f0, const double* f1, c
   }
 }
 
-// The element gradient fe = dPhi/de and (WithH) Hessian ke of Phi(e) = sum_q phi_q(x_q(e)), the
-// per-point function given in node A's frame by density(q, a, b, alpha_B, theta, xi, g, H)
-// (gradient g[8], Hessian H[8][8] upper triangle, in x = (a~, b~, phiA, alpha_B); false: not
-// evaluable), mapped by the shape functions and the chain rule (docs/derivations/rod-kernel.md 0,
-// 5). The elastic forces are this with the energy density (element_forces); the strain-rate
-// damping uses it with single strain measures (rod_damping.hpp).
-template <bool WithH, class Density>
-inline bool element_chain(const ElementInput& in, const double* e, Density&& density, double* fe,
-                          double* ke) {
-  // ---- per element: nodal jets, beta (alpha_B = wrap(phiB - phiA + beta)); local frame R0 = (tA,
-  // uA, vA)
-  FrameJet JA;
-  frame_jet<WithH>(in.tref_a, in.m1ref_a, e + 3, JA);
-  double tB[3], uB[3];  // node B: t and u = SR(tref_B -> tB) m1ref_B are all that is needed
-  const double sB = std::sqrt(dot3(e + 10, e + 10));
-  for (int i = 0; i < 3; ++i) tB[i] = e[10 + i] / sB;
-  const double alB = 1.0 + dot3(in.tref_b, tB);
-  {
-    const double kB = dot3(tB, in.m1ref_b) / alB;
-    for (int i = 0; i < 3; ++i) uB[i] = in.m1ref_b[i] - kB * (tB[i] + in.tref_b[i]);
-  }
-  if (!(JA.align > kMinAlign) || !(alB > kMinAlign)) return false;
-  double pab = 0.0;
-  const double beta = beta_value(JA.t, JA.u, JA.v, tB, uB, pab);
-  if (!(pab > kMinAlign)) return false;
-  double gb[6], Hb[6][6];
-  beta_derivs<WithH>(JA.t, JA.s, in.tref_a, tB, sB, in.tref_b, gb, Hb);
-  const double aB = wrap_pi(e[13] - e[6] + beta);
+// The tangent part of element_chain: ke from the local Hessian Ht, the local gradient gt, its
+// contraction G with the positions and beta's derivatives gb, Hb (docs/derivations/rod-kernel.md
+// 5): the position blocks rotated by R0, the frame's derivatives, phiA and alpha_B.
+inline void chain_hessian(const double* e, const FrameJet& JA, const double (&Ht)[14][14],
+                          const double (&gt)[14], const double (&G)[3][3], const double (&gb)[6],
+                          const double (&Hb)[6][6], double* ke) {
+  constexpr int pmap[12] = {0, 1, 2, 3, 4, 5, 7, 8, 9, 10, 11, 12};
   const double* F[3] = {JA.t, JA.u, JA.v};
   const double (*dF[3])[3] = {JA.dt, JA.du, JA.dv};  // dF[i][j][m] = d F_i[j] / d rA_x[m]
-  double pt[4][3];
-  rotate_blocks(e, F[0], F[1], F[2], pt);
-
-  // ---- per quadrature point: density in the local frame, mapped by the shape-function blocks
-  // local variables: p~ (12), phiA (12), alpha_B (13)
-  double gt[14] = {};
-  alignas(64) double Ht[14][14];
-  if (WithH)
-    for (int i = 0; i < 14; ++i)
-      for (int j = 0; j < 14; ++j) Ht[i][j] = 0.0;
-  for (int q = 0; q < in.nq; ++q) {
-    double a[3], b[3], g[8], H[8][8];
-    local_ab(in, q, pt, a, b);
-    const double xq = in.xi[q];
-    if (!density(q, a, b, aB, e[6] + xq * aB, xq, g, H)) return false;
-    const double n1[4] = {in.n1[4 * q], in.n1[4 * q + 1], in.n1[4 * q + 2], in.n1[4 * q + 3]};
-    const double n2[4] = {in.n2[4 * q], in.n2[4 * q + 1], in.n2[4 * q + 2], in.n2[4 * q + 3]};
-    for (int k = 0; k < 4; ++k)
-      for (int i = 0; i < 3; ++i) gt[3 * k + i] += n1[k] * g[i] + n2[k] * g[3 + i];
-    gt[12] += g[6];
-    gt[13] += g[7];
-    if (WithH) {
-      for (int i = 0; i < 6; ++i)
-        for (int j = 0; j < i; ++j) H[i][j] = H[j][i];
-      // V = H N (rows rho = a0..b2; columns 3l+j of p~, then phiA, alpha_B), Ht_row(3k+i) += n1k
-      // V_i + n2k V_3+i
-      double V[6][14];
-      for (int r = 0; r < 6; ++r) {
-        for (int l = 0; l < 4; ++l)
-          for (int j = 0; j < 3; ++j) V[r][3 * l + j] = n1[l] * H[r][j] + n2[l] * H[r][3 + j];
-        V[r][12] = H[r][6];
-        V[r][13] = H[r][7];
-      }
-      for (int k = 0; k < 4; ++k)
-        for (int i = 0; i < 3; ++i) {
-          double* row = Ht[3 * k + i];
-          const double* va = V[i];
-          const double* vb = V[3 + i];
-          for (int c = 3 * k; c < 14; ++c) row[c] += n1[k] * va[c] + n2[k] * vb[c];
-        }
-      Ht[12][12] += H[6][6];
-      Ht[12][13] += H[6][7];
-      Ht[13][13] += H[7][7];
-    }
-  }
-
-  // ---- chain rule back to e (docs/derivations/rod-kernel.md 5): p_k = R0 p~_k with R0 = R0(rA_x);
-  // alpha_B = alpha_B(e)
-  constexpr int pmap[12] = {0, 1, 2, 3, 4, 5, 7, 8, 9, 10, 11, 12};
-  double G[3][3];  // G_i = sum_k gt_{k,i} p_k
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      G[i][j] = gt[i] * e[j] + gt[3 + i] * e[3 + j] + gt[6 + i] * e[7 + j] + gt[9 + i] * e[10 + j];
-  for (int k = 0; k < 4; ++k)
-    for (int j = 0; j < 3; ++j)
-      fe[pmap[3 * k + j]] = F[0][j] * gt[3 * k] + F[1][j] * gt[3 * k + 1] + F[2][j] * gt[3 * k + 2];
-  for (int m = 0; m < 3; ++m) {
-    double acc = 0.0;
-    for (int i = 0; i < 3; ++i)
-      acc += dF[i][0][m] * G[i][0] + dF[i][1][m] * G[i][1] + dF[i][2][m] * G[i][2];
-    fe[3 + m] += acc;
-  }
-  const double galpha = gt[13];  // dU/d alpha_B
-  fe[6] = gt[12] - galpha;
-  fe[13] = galpha;
-  for (int m = 0; m < 3; ++m) {
-    fe[3 + m] += galpha * gb[m];
-    fe[10 + m] += galpha * gb[3 + m];
-  }
-  if (!WithH) return true;
-
-  alignas(64) double K[14][14];  // assembled locally, copied to ke at the end
+  const double galpha = gt[13];                      // dU/d alpha_B
+  alignas(64) double K[14][14];                      // assembled locally, copied to ke at the end
   // Hpp = Rblk Ht_pp Rblk^T, blockwise R X R^T (R[j][i] = F[i][j])
   alignas(64) double Hpp[12][12];
   for (int k = 0; k < 4; ++k)
@@ -275,6 +184,110 @@ inline bool element_chain(const ElementInput& in, const double* e, Density&& den
   for (int m = 0; m < 6; ++m)
     for (int n = 0; n < 6; ++n) K[bmap[m]][bmap[n]] += galpha * Hb[m][n];
   std::copy(&K[0][0], &K[0][0] + 196, ke);
+}
+
+// The element gradient fe = dPhi/de and (WithH) Hessian ke of Phi(e) = sum_q phi_q(x_q(e)), the
+// per-point function given in node A's frame by density(q, a, b, alpha_B, theta, xi, g, H)
+// (gradient g[8], Hessian H[8][8] upper triangle, in x = (a~, b~, phiA, alpha_B); false: not
+// evaluable), mapped by the shape functions and the chain rule (docs/derivations/rod-kernel.md 0,
+// 5). The elastic forces are this with the energy density (element_forces); the strain-rate
+// damping uses it with single strain measures (rod_damping.hpp).
+template <bool WithH, class Density>
+inline bool element_chain(const ElementInput& in, const double* e, Density&& density, double* fe,
+                          double* ke) {
+  // ---- per element: nodal jets, beta (alpha_B = wrap(phiB - phiA + beta)); local frame R0 = (tA,
+  // uA, vA)
+  FrameJet JA;
+  frame_jet<WithH>(in.tref_a, in.m1ref_a, e + 3, JA);
+  double tB[3], uB[3];  // node B: t and u = SR(tref_B -> tB) m1ref_B are all that is needed
+  const double sB = std::sqrt(dot3(e + 10, e + 10));
+  for (int i = 0; i < 3; ++i) tB[i] = e[10 + i] / sB;
+  const double alB = 1.0 + dot3(in.tref_b, tB);
+  {
+    const double kB = dot3(tB, in.m1ref_b) / alB;
+    for (int i = 0; i < 3; ++i) uB[i] = in.m1ref_b[i] - kB * (tB[i] + in.tref_b[i]);
+  }
+  if (!(JA.align > kMinAlign) || !(alB > kMinAlign)) return false;
+  double pab = 0.0;
+  const double beta = beta_value(JA.t, JA.u, JA.v, tB, uB, pab);
+  if (!(pab > kMinAlign)) return false;
+  double gb[6], Hb[6][6];
+  beta_derivs<WithH>(JA.t, JA.s, in.tref_a, tB, sB, in.tref_b, gb, Hb);
+  const double aB = wrap_pi(e[13] - e[6] + beta);
+  const double* F[3] = {JA.t, JA.u, JA.v};
+  const double (*dF[3])[3] = {JA.dt, JA.du, JA.dv};  // dF[i][j][m] = d F_i[j] / d rA_x[m]
+  double pt[4][3];
+  rotate_blocks(e, F[0], F[1], F[2], pt);
+
+  // ---- per quadrature point: density in the local frame, mapped by the shape-function blocks
+  // local variables: p~ (12), phiA (12), alpha_B (13)
+  double gt[14] = {};
+  alignas(64) double Ht[14][14];
+  if (WithH)
+    for (int i = 0; i < 14; ++i)
+      for (int j = 0; j < 14; ++j) Ht[i][j] = 0.0;
+  for (int q = 0; q < in.nq; ++q) {
+    double a[3], b[3], g[8], H[8][8];
+    local_ab(in, q, pt, a, b);
+    const double xq = in.xi[q];
+    if (!density(q, a, b, aB, e[6] + xq * aB, xq, g, H)) return false;
+    const double n1[4] = {in.n1[4 * q], in.n1[4 * q + 1], in.n1[4 * q + 2], in.n1[4 * q + 3]};
+    const double n2[4] = {in.n2[4 * q], in.n2[4 * q + 1], in.n2[4 * q + 2], in.n2[4 * q + 3]};
+    for (int k = 0; k < 4; ++k)
+      for (int i = 0; i < 3; ++i) gt[3 * k + i] += n1[k] * g[i] + n2[k] * g[3 + i];
+    gt[12] += g[6];
+    gt[13] += g[7];
+    if (WithH) {
+      for (int i = 0; i < 6; ++i)
+        for (int j = 0; j < i; ++j) H[i][j] = H[j][i];
+      // V = H N (rows rho = a0..b2; columns 3l+j of p~, then phiA, alpha_B), Ht_row(3k+i) += n1k
+      // V_i + n2k V_3+i
+      double V[6][14];
+      for (int r = 0; r < 6; ++r) {
+        for (int l = 0; l < 4; ++l)
+          for (int j = 0; j < 3; ++j) V[r][3 * l + j] = n1[l] * H[r][j] + n2[l] * H[r][3 + j];
+        V[r][12] = H[r][6];
+        V[r][13] = H[r][7];
+      }
+      for (int k = 0; k < 4; ++k)
+        for (int i = 0; i < 3; ++i) {
+          double* row = Ht[3 * k + i];
+          const double* va = V[i];
+          const double* vb = V[3 + i];
+          for (int c = 3 * k; c < 14; ++c) row[c] += n1[k] * va[c] + n2[k] * vb[c];
+        }
+      Ht[12][12] += H[6][6];
+      Ht[12][13] += H[6][7];
+      Ht[13][13] += H[7][7];
+    }
+  }
+
+  // ---- chain rule back to e (docs/derivations/rod-kernel.md 5): p_k = R0 p~_k with R0 = R0(rA_x);
+  // alpha_B = alpha_B(e)
+  constexpr int pmap[12] = {0, 1, 2, 3, 4, 5, 7, 8, 9, 10, 11, 12};
+  double G[3][3];  // G_i = sum_k gt_{k,i} p_k
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      G[i][j] = gt[i] * e[j] + gt[3 + i] * e[3 + j] + gt[6 + i] * e[7 + j] + gt[9 + i] * e[10 + j];
+  for (int k = 0; k < 4; ++k)
+    for (int j = 0; j < 3; ++j)
+      fe[pmap[3 * k + j]] = F[0][j] * gt[3 * k] + F[1][j] * gt[3 * k + 1] + F[2][j] * gt[3 * k + 2];
+  for (int m = 0; m < 3; ++m) {
+    double acc = 0.0;
+    for (int i = 0; i < 3; ++i)
+      acc += dF[i][0][m] * G[i][0] + dF[i][1][m] * G[i][1] + dF[i][2][m] * G[i][2];
+    fe[3 + m] += acc;
+  }
+  const double galpha = gt[13];  // dU/d alpha_B
+  fe[6] = gt[12] - galpha;
+  fe[13] = galpha;
+  for (int m = 0; m < 3; ++m) {
+    fe[3 + m] += galpha * gb[m];
+    fe[10 + m] += galpha * gb[3 + m];
+  }
+  if (!WithH) return true;
+
+  chain_hessian(e, JA, Ht, gt, G, gb, Hb, ke);
   return true;
 }
 

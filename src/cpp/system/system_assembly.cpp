@@ -203,23 +203,40 @@ void constraints(const System& s, const double* y, double t, double* g, const do
   for (const LinearTerm& lt : s.linear) g[s.linear_row + lt.row] += lt.coef * y[lt.col];
 }
 
-bool assemble_system(const System& s, const double* yf, const double* vf, const double* am,
-                     const double* lam, const double* y1, const AssemblyTerms& tm, double* r,
-                     BorderedLU* lu) {
-  const int n = s.n, m = s.m;
-  const double c = s.damping;
-  std::fill(r, r + n + m, 0.0);
-  if (tm.own != nullptr) std::fill(tm.own, tm.own + n, 0.0);
-  Far far;
-  // ---- flexible bodies: elements, loads, constant mass, rotary inertia
-  thread_local std::vector<double> f, g, acc, mv;  // work arrays, kept between calls
-  thread_local ScaledBody scaled;                  // a winch's body at its length L(t)
-  struct DrumRow {
-    int offset, drum;  // the line's first coordinate, the drum's
-    DrumTerms terms;
-  };
-  thread_local std::vector<DrumRow> drums;
-  drums.clear();
+namespace {
+
+/// The arguments of assemble_system, and what its stages share: the far entries of the Jacobian.
+struct Stage {
+  const System& s;
+  const double *yf, *vf, *am, *lam, *y1;
+  const AssemblyTerms& tm;
+  double* r;
+  BorderedLU* lu;
+  Far& far;
+};
+
+/// A driven drum's coupling to its line (its row goes into the border).
+struct DrumRow {
+  int offset, drum;  // the line's first coordinate, the drum's
+  DrumTerms terms;
+};
+
+/// Each joint's Jacobian of its rows over its places' local coordinates.
+using JointJacobians = std::vector<std::array<double, kMaxJointRows * 2 * kMaxLocal>>;
+
+/// Flexible bodies: elements, loads, constant mass, rotary inertia, fluid, winches and drums.
+void flexible_terms(const Stage& st, std::vector<DrumRow>& drums) {
+  const System& s = st.s;
+  const double* yf = st.yf;
+  const double* vf = st.vf;
+  const double* am = st.am;
+  const AssemblyTerms& tm = st.tm;
+  double* r = st.r;
+  BorderedLU* lu = st.lu;
+  Far& far = st.far;
+  const double c = st.s.damping;
+  thread_local std::vector<double> f, g, acc, mv;    // work arrays, kept between calls
+  thread_local ScaledBody scaled;                    // a winch's body at its length L(t)
   const bool moving = am != nullptr && !tm.statics;  // a drum's rates count
   for (std::size_t b = 0; b < s.flex.size(); ++b) {
     const Winch* win = winch_of(s, b);
@@ -293,7 +310,18 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
       }
     }
   }
-  // ---- rigid bodies and point masses: inertia, damping, gravity
+}
+
+/// Rigid bodies and point masses: inertia, damping, gravity.
+void rigid_terms(const Stage& st) {
+  const System& s = st.s;
+  const double* yf = st.yf;
+  const double* vf = st.vf;
+  const double* am = st.am;
+  const AssemblyTerms& tm = st.tm;
+  double* r = st.r;
+  BorderedLU* lu = st.lu;
+  const double c = st.s.damping;
   for (std::size_t k = 0; k < s.rigid.size(); ++k) {
     const RigidInertia& body = s.rigid[k];
     const int o = s.rigid_offset(static_cast<int>(k)), nb = rigid_size(body);
@@ -322,9 +350,16 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
         for (int j = 0; j < nb; ++j)
           if (std::abs(i - j) <= lu->block_ku(bi)) jac.at(i, j) += kk[sz(i * nb + j)];
   }
-  if (tm.own != nullptr)  // the bodies' own terms so far: elements, weight, inertia, fluid
-    for (int i = 0; i < n; ++i) tm.own[i] += r[i];
-  // ---- loads at places (forces, and torques on rigid bodies)
+}
+
+/// Loads at places (forces, and torques on rigid bodies).
+void load_terms(const Stage& st) {
+  const System& s = st.s;
+  const double* yf = st.yf;
+  const AssemblyTerms& tm = st.tm;
+  double* r = st.r;
+  BorderedLU* lu = st.lu;
+  Far& far = st.far;
   for (const PlaceLoad& ld : s.loads) {
     if (tm.distributed_only) break;
     const PlaceRef& p = s.places[sz(ld.place)];
@@ -354,7 +389,17 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
       add_matrix(*lu, map.index, map.n, K.data(), far);
     }
   }
-  // ---- springs between two places
+}
+
+/// Springs between two places.
+void spring_terms(const Stage& st) {
+  const System& s = st.s;
+  const double* yf = st.yf;
+  const double* vf = st.vf;
+  const AssemblyTerms& tm = st.tm;
+  double* r = st.r;
+  BorderedLU* lu = st.lu;
+  Far& far = st.far;
   for (const SpringData& sp : s.springs) {
     if (tm.distributed_only) break;
     const PlaceRef &pa = s.places[sz(sp.a)], &pb = s.places[sz(sp.b)];
@@ -470,7 +515,19 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
       add_matrix(*lu, idx, k, K.data(), far);
     }
   }
-  // ---- contact with obstacles (contact.hpp); its forces are the bodies' own terms too
+}
+
+/// Contact with obstacles (contact.hpp); its forces are the bodies' own terms too.
+void contact_terms(const Stage& st) {
+  const System& s = st.s;
+  const double* yf = st.yf;
+  const double* vf = st.vf;
+  const double* y1 = st.y1;
+  const AssemblyTerms& tm = st.tm;
+  double* r = st.r;
+  BorderedLU* lu = st.lu;
+  Far& far = st.far;
+  const int n = st.s.n;
   thread_local std::vector<double> before;
   const bool rescaled = tm.contact_step && tm.contact_scale != 1.0;
   if ((tm.own != nullptr || rescaled) && s.contact != nullptr) before.assign(r, r + n);
@@ -495,10 +552,19 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
   }
   if (tm.own != nullptr && s.contact != nullptr)
     for (int i = 0; i < n; ++i) tm.own[i] += r[i] - before[sz(i)];
-  // ---- joints: G(yf)^T lambda, g(y1), and their derivatives
-  thread_local std::vector<std::array<double, kMaxJointRows * 2 * kMaxLocal>> jac1, jacf;
-  jac1.resize(s.joints.size());
-  jacf.resize(s.joints.size());
+}
+
+/// Joints: G(yf)^T lambda, g(y1), and their derivatives (the Jacobians kept for the border).
+void joint_terms(const Stage& st, JointJacobians& jac1, JointJacobians& jacf) {
+  const System& s = st.s;
+  const double* yf = st.yf;
+  const double* lam = st.lam;
+  const double* y1 = st.y1;
+  const AssemblyTerms& tm = st.tm;
+  double* r = st.r;
+  BorderedLU* lu = st.lu;
+  Far& far = st.far;
+  const int n = st.s.n;
   const MatrixSink joint_sink = [&](const int* idx, int k, const double* K) {
     add_matrix(*lu, idx, k, K, far);
   };
@@ -573,6 +639,18 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
       }
     }
   }
+}
+
+/// Quaternion normalization rows of rigid bodies, and the linear rows g = A y1.
+void normalization_terms(const Stage& st) {
+  const System& s = st.s;
+  const double* yf = st.yf;
+  const double* lam = st.lam;
+  const double* y1 = st.y1;
+  const AssemblyTerms& tm = st.tm;
+  double* r = st.r;
+  BorderedLU* lu = st.lu;
+  const int n = st.s.n;
   for (std::size_t b = 0; b < s.rigid.size(); ++b) {  // quaternion normalization
     if (s.norm_row[b] < 0) continue;
     const int o = s.rigid_offset(static_cast<int>(b)) + 3, row = s.norm_row[b];
@@ -588,11 +666,20 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
     r[n + s.linear_row + t.row] += t.coef * y1[t.col];
     r[t.col] += t.coef * lam[s.linear_row + t.row];
   }
-  for (int i = 0; i < n + m; ++i)
-    if (!std::isfinite(r[i])) return false;
-  if (lu == nullptr) return true;
-  // ---- the border: multipliers (m), then the drums'; the far entries to the solver (its
-  // border's unknowns or a reordered band: bordered.hpp)
+}
+
+/// The border: multipliers (m), then the drums'; the far entries to the solver (its border's
+/// unknowns or a reordered band: bordered.hpp).
+void border_terms(const Stage& st, const std::vector<DrumRow>& drums, const JointJacobians& jac1,
+                  const JointJacobians& jacf) {
+  const System& s = st.s;
+  const double* yf = st.yf;
+  const double* lam = st.lam;
+  const double* y1 = st.y1;
+  const AssemblyTerms& tm = st.tm;
+  BorderedLU* lu = st.lu;
+  Far& far = st.far;
+  const int m = st.s.m;
   lu->reset_border(m + static_cast<int>(drums.size()));
   for (const FarEntry& e : far.entries) lu->add_far(e.i, e.j, e.v);
   for (std::size_t jj = 0; jj < s.joints.size(); ++jj) {
@@ -631,6 +718,36 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
     lu->add_d(z, z, -1.0);
     ++z;
   }
+}
+
+}  // namespace
+
+bool assemble_system(const System& s, const double* yf, const double* vf, const double* am,
+                     const double* lam, const double* y1, const AssemblyTerms& tm, double* r,
+                     BorderedLU* lu) {
+  const int n = s.n, m = s.m;
+  std::fill(r, r + n + m, 0.0);
+  if (tm.own != nullptr) std::fill(tm.own, tm.own + n, 0.0);
+  Far far;
+  const Stage st{s, yf, vf, am, lam, y1, tm, r, lu, far};
+  thread_local std::vector<DrumRow> drums;
+  drums.clear();
+  flexible_terms(st, drums);
+  rigid_terms(st);
+  if (tm.own != nullptr)  // the bodies' own terms so far: elements, weight, inertia, fluid
+    for (int i = 0; i < n; ++i) tm.own[i] += r[i];
+  load_terms(st);
+  spring_terms(st);
+  contact_terms(st);
+  thread_local JointJacobians jac1, jacf;
+  jac1.resize(s.joints.size());
+  jacf.resize(s.joints.size());
+  joint_terms(st, jac1, jacf);
+  normalization_terms(st);
+  for (int i = 0; i < n + m; ++i)
+    if (!std::isfinite(r[i])) return false;
+  if (lu == nullptr) return true;
+  border_terms(st, drums, jac1, jacf);
   return true;
 }
 

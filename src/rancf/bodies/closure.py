@@ -47,6 +47,7 @@ class SeamedBody(Protocol):
     dim: int
     dpn: int
     element: str
+    family: Any  # rancf.bodies.families.ElementFamily (which reads this module)
     closed: bool
     mesh: CableMesh
     supports: Sequence[Any]
@@ -67,7 +68,7 @@ def seam_scales(model: SeamedBody) -> NDArray[np.float64]:
     """``s_i`` of the rows ``q_n[i] - s_i q_0[i] = 0`` over one node's coordinates ``(dpn,)``."""
     d = model.dim
     s = np.ones(model.dpn)
-    if model.element != "beam":
+    if model.family.gradient:
         s[d : 2 * d] = model.mesh.seam_ratio
     return s
 

@@ -22,31 +22,47 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from rancf.bodies.closure import arc_fractions
+from rancf.bodies.families import ElementFamily, ElementKind, family
 from rancf.bodies.flexible_core import core_model
-from rancf.bodies.motion import RigidMotion, check_supports_at_rest, rigid_velocity
+from rancf.bodies.motion import RigidMotion, initial_velocity
 from rancf.bodies.properties import Material, PointLoad, Section, StrainRateDamping, Support
 from rancf.bodies.support_layout import support_layout
 from rancf.errors import InputError
 from rancf.kernels.beam import BeamKernel
 from rancf.kernels.cable import CableKernel, CableProperties
-from rancf.kernels.rod import ROD_DOFS, RodKernel
-from rancf.mesh.continuity import (
-    Continuity,
-    Reduction,
-    jump_note,
-    reduced_band,
-    reduction,
-    rotated,
-)
+from rancf.kernels.rod import RodKernel
+from rancf.mesh.continuity import Continuity, Reduction, jump_note, reduced_band, reduction, rotated
 from rancf.mesh.coordinates import Coordinates
-from rancf.mesh.factories import to_ancf
 from rancf.mesh.mesh import CableMesh
 
 __all__ = ["Section", "Material", "Support", "PointLoad", "Model", "ElementKind", "RigidMotion"]
 
-ElementKind = Literal["rancf", "ancf", "beam", "rod"]
 _STRESS_FREE = '"reference" or, for cables and rods, "straight"'
+
+
+def _check_options(
+    fam: ElementFamily, continuity: str, stress_free: str, material: Material, section: Section
+) -> None:
+    """A clear error for an option the element family does not have."""
+    if stress_free != "reference" and (stress_free != "straight" or not fam.gradient):
+        raise InputError("mesh.stress_free", stress_free, _STRESS_FREE)
+    if continuity not in ("C1", "C2"):
+        raise InputError("mesh.continuity", continuity, 'one of "C1", "C2"')
+    if continuity == "C2" and not fam.gradient:
+        raise InputError(
+            "mesh.continuity",
+            "C2",
+            f'"C1" with {fam.name} elements (C2 needs cable or rod '
+            'elements: mesh.element = "rancf", "ancf" or "rod")',
+        )
+    if material.axial_strain != "green_lagrange" and not fam.engineering_strain:
+        allowed = (
+            f'"green_lagrange" with {fam.name} elements (the engineering strain is '
+            'built for cable elements: mesh.element = "rancf" or "ancf")'
+        )
+        raise InputError("material.axial_strain", material.axial_strain, allowed)
+    if not fam.has_triads and section.rotary_inertia != "torsion":
+        raise InputError("section.rotary_inertia", section.rotary_inertia, "rod elements")
 
 
 class Model(Coordinates):
@@ -109,8 +125,8 @@ class Model(Coordinates):
         strain_rate_damping: StrainRateDamping | None = None,
     ) -> None:
         self.element, self.stress_free = element, stress_free
-        if stress_free != "reference" and (stress_free != "straight" or element == "beam"):
-            raise InputError("mesh.stress_free", stress_free, _STRESS_FREE)
+        self.family = fam = family(element)
+        _check_options(fam, continuity, stress_free, material, section)
         self.section = section
         self.material = material
         self.dim = mesh.dim
@@ -122,88 +138,70 @@ class Model(Coordinates):
         self.reduction: Reduction | None = None
         #: Remarks for the user: the mesh's (:attr:`CableMesh.notes`) and C² nodes kept C¹.
         self.notes: tuple[str, ...] = tuple(mesh.notes)
-        if continuity not in ("C1", "C2"):
-            raise InputError("mesh.continuity", continuity, 'one of "C1", "C2"')
-        if continuity == "C2" and element not in ("rancf", "ancf", "rod"):
-            raise InputError(
-                "mesh.continuity",
-                "C2",
-                f'"C1" with {element} elements (C2 needs cable or rod '
-                'elements: mesh.element = "rancf", "ancf" or "rod")',
-            )
         self.n_el = mesh.n_elements
-        if material.axial_strain != "green_lagrange" and element not in ("rancf", "ancf"):
-            allowed = (
-                f'"green_lagrange" with {element} elements (the engineering strain is '
-                'built for cable elements: mesh.element = "rancf" or "ancf")'
-            )
-            raise InputError("material.axial_strain", material.axial_strain, allowed)
         rho, e_mod = material.density, material.youngs_modulus
-        props = CableProperties(e_mod * section.area, e_mod * section.inertia, rho * section.area)
-        self.props = props
-        if element == "beam":
-            if self.dim != 2:
-                raise InputError("mesh.element", "beam", "the beam element is planar (2D geometry)")
-            t = mesh.nodes[:, 1]
-            self.kernel: CableKernel | BeamKernel | RodKernel = BeamKernel(
-                mesh.nodes[:, 0], np.arctan2(t[:, 1], t[:, 0]), props, rho * section.inertia
-            )
-            self.dpn = 3
-            q0 = np.concatenate([mesh.nodes[:, 0], np.zeros((self.n_nodes, 1))], axis=1).ravel()
-            self.mesh = mesh
-        elif element in ("rancf", "ancf", "rod"):
-            m = to_ancf(mesh) if (element == "ancf" and mesh.kind != "ancf") else mesh
-            self.mesh = m
-            if n_qp is None:
-                n_qp = 6 if np.all(m.weights == 1.0) else 10
-            if element == "rod":
-                if self.dim != 3:
-                    raise InputError(
-                        "mesh.element", "rod", "the rod element is spatial (3D geometry)"
-                    )
-                self.kernel = RodKernel(
-                    m.weights,
-                    m.scales,
-                    m.element_nodal(),
-                    props,
-                    rho * section.polar,
-                    n_qp,
-                    section.orientation,
-                    section.bending_rotary(rho),
-                    arc_fractions(m) if m.closed else None,
-                    stress_free,
-                )
-                self.dpn = ROD_DOFS
-                q0 = np.concatenate(
-                    [m.nodes.reshape(self.n_nodes, 6), np.zeros((self.n_nodes, 1))], axis=1
-                ).ravel()
-            else:
-                ref = m.element_nodal()
-                self.kernel = CableKernel(m.weights, m.scales, ref, props, n_qp, stress_free)
-                self.dpn = 2 * self.dim
-                q0 = m.q0
-        else:
-            raise InputError("mesh.element", element, 'one of "rancf", "ancf", "beam", "rod"')
-        if element != "rod" and section.rotary_inertia != "torsion":
-            raise InputError("section.rotary_inertia", section.rotary_inertia, "rod elements")
+        self.props = CableProperties(
+            e_mod * section.area, e_mod * section.inertia, rho * section.area
+        )
+        fam.check_dim(self.dim)
+        built = fam.build(mesh, section, self.props, rho, n_qp, stress_free)
+        self.kernel: CableKernel | BeamKernel | RodKernel = built.kernel
+        self.mesh, q0 = built.mesh, built.q0
+        self.dpn = fam.dofs_per_node(self.dim)
         self.n = self.n_nodes * self.dpn
         self.nde = 2 * self.dpn
         self.ku = self.nde - 1
         #: The indices in ``q`` of every element's coordinates ``(n_el, nde)``.
         self.element_dofs = np.arange(self.n_el)[:, None] * self.dpn + np.arange(self.nde)[None, :]
+        installed, base_q = self._place_supports(mesh, supports, continuity, initial_velocities, q0)
+        self._element_rotations()
+        self.q0 = q0
+        self.y0 = self.y_from_q(q0) if self.reduction is None else base_q
+        #: ``y0`` with the held entries at the installed supports' values
+        self.y_installed = self.y0.copy()
+        for i, val in installed.items():
+            self.y_installed[i] = val
+        self.mass_el = self.to_y_elements(self.kernel.mass_matrices())
+        self.mass_band = (
+            self.assemble_band(self.mass_el)
+            if self.reduction is None
+            else reduced_band(self.reduction, self.mass_el)
+        )
+        self._loads(gravity, point_loads)
+        if not (np.isfinite(damping) and damping >= 0):
+            raise InputError("damping.mass_proportional", damping, "a finite number >= 0")
+        self.damping = float(damping)
+        self.strain_rate_damping = (strain_rate_damping or StrainRateDamping()).checked(element)
+        self.v0 = initial_velocity(self, initial_velocities, initial_motion)
+        self.core = core_model(self)
+        if isinstance(self.kernel, RodKernel):  # reference curvatures by the core itself
+            k, eps = self.kernel.kref.copy(), np.empty(self.kernel.kref.shape[:2])
+            self.core.rod_curvatures(self.y0, k, eps)
+            self.kernel.set_reference_curvatures(k)
+            self._triads0 = (self.kernel.tref.copy(), self.kernel.m1ref.copy())
 
-        # supports -> held entries of y, rotated blocks, installed values
+    def _place_supports(
+        self,
+        mesh: CableMesh,
+        supports: Sequence[Support],
+        continuity: Continuity,
+        initial_velocities: dict[int, ArrayLike] | None,
+        q0: NDArray,
+    ) -> tuple[dict[int, float], NDArray]:
+        """Supports -> held entries of ``y`` and rotated node blocks (C²: in the reduction's
+        maps); returns the installed values of held entries and the base coordinates."""
         tangents = mesh.nodes[:, 1]
         base_q, node_base = q0, None
         if continuity == "C2":
             held = {self.check_node(sup.node, "supports.at") for sup in supports}
             # a node started alone keeps its own coordinates too: its velocity exactly as given
             held |= {self.check_node(k, "initial_velocity.at") for k in initial_velocities or {}}
-            self.reduction, base_q = reduction(self.mesh, self.dpn, element == "rod", held, q0)
+            rod = self.family.has_triads
+            self.reduction, base_q = reduction(self.mesh, self.dpn, rod, held, q0)
             self.notes += jump_note(self.reduction, self.n_el)
             node_base = self.node_base
         layout = support_layout(
-            supports, element, self.dim, self.dpn, base_q, tangents, self.check_node, node_base
+            supports, self.element, self.dim, self.dpn, base_q, tangents, self.check_node, node_base
         )
         self.fixed = layout.fixed
         self.rotations = list(layout.rotations)
@@ -215,7 +213,10 @@ class Model(Coordinates):
             self.rotations = []
             self.fixed[self.reduction.n_real :] = True
             self.ku = self.reduction.ku
-        # element-level transformations for elements touching a rotated node
+        return dict(layout.installed), base_q
+
+    def _element_rotations(self) -> None:
+        """Element-level transformations for the elements touching a rotated node."""
         aff = sorted(
             {
                 min(max(off // self.dpn - j, 0), self.n_el - 1)
@@ -232,18 +233,8 @@ class Model(Coordinates):
                     te[i, loc : loc + self.dim, loc : loc + self.dim] = basis
         self._te = te
 
-        self.q0 = q0
-        self.y0 = self.y_from_q(q0) if self.reduction is None else base_q
-        #: ``y0`` with the held entries at the installed supports' values
-        self.y_installed = self.y0.copy()
-        for i, val in layout.installed.items():
-            self.y_installed[i] = val
-        self.mass_el = self.to_y_elements(self.kernel.mass_matrices())
-        self.mass_band = (
-            self.assemble_band(self.mass_el)
-            if self.reduction is None
-            else reduced_band(self.reduction, self.mass_el)
-        )
+    def _loads(self, gravity: ArrayLike | None, point_loads: Sequence[PointLoad]) -> None:
+        """Gravity's force vector and the checked point loads."""
         self.gravity = None if gravity is None else np.asarray(gravity, dtype=float)
         if self.gravity is not None and self.gravity.size != self.dim:
             raise InputError("loads.gravity", self.gravity.tolist(), f"{self.dim} components")
@@ -257,42 +248,10 @@ class Model(Coordinates):
             self.check_node(pl.node, "loads.point.at")
             if pl.force is not None and len(pl.force) != self.dim:
                 raise InputError("loads.point.force", list(pl.force), f"{self.dim} components")
-            if pl.moment is not None and element != "rod":
+            if pl.moment is not None and not self.family.has_triads:
                 raise InputError("loads.point.moment", list(pl.moment), "rod elements only")
             if pl.moment is not None and len(pl.moment) != 3:
                 raise InputError("loads.point.moment", list(pl.moment), "3 components")
-        if not (np.isfinite(damping) and damping >= 0):
-            raise InputError("damping.mass_proportional", damping, "a finite number >= 0")
-        self.damping = float(damping)
-        self.strain_rate_damping = (strain_rate_damping or StrainRateDamping()).checked(element)
-        v0 = np.zeros(self.n)
-        for node, vel in (initial_velocities or {}).items():
-            nd = self.check_node(node, "initial_velocity.at")
-            vv = np.asarray(vel, dtype=float)
-            if vv.size != self.dim:
-                raise InputError("initial_velocity.value", vv.tolist(), f"{self.dim} components")
-            v0[nd * self.dpn : nd * self.dpn + self.dim] = vv
-            if self.closed and nd == 0:  # the stored repeat of node 0 moves with it
-                v0[self.n - self.dpn : self.n - self.dpn + self.dim] = vv
-        if initial_motion is not None:
-            if initial_velocities:
-                raise InputError(
-                    "initial_motion", "with initial_velocity", "one of the two, not both"
-                )
-            v0 = rigid_velocity(self, initial_motion)
-        if self.reduction is None or initial_motion is not None:  # C²: rigid motions are exact
-            self.v0 = self.y_from_q(v0)
-        else:  # single nodes: their own blocks, nothing else moves
-            self.v0 = self._own_blocks(v0)
-        if initial_motion is not None:
-            check_supports_at_rest(self, self.v0)
-        self.v0[self.fixed] = 0.0
-        self.core = core_model(self)
-        if isinstance(self.kernel, RodKernel):  # reference curvatures by the core itself
-            k, eps = self.kernel.kref.copy(), np.empty(self.kernel.kref.shape[:2])
-            self.core.rod_curvatures(self.y0, k, eps)
-            self.kernel.set_reference_curvatures(k)
-            self._triads0 = (self.kernel.tref.copy(), self.kernel.m1ref.copy())
 
     def reset_triads(self) -> None:
         """Rods: put the nodal reference triads back to those of the reference configuration.
@@ -372,7 +331,7 @@ class Model(Coordinates):
     def mass_matrix(self, y: ArrayLike | None = None) -> NDArray[np.float64]:
         """The mass matrix at ``y`` (default the reference) in band storage: the constant
         :attr:`mass_band` plus a rod's rotary mass ``M_r(y)`` (the core's ``inertia``)."""
-        if self.element != "rod":
+        if not self.family.has_triads:
             return self.mass_band.copy()
         yy = self.y0 if y is None else np.asarray(y, dtype=float)
         z, f, ab = np.zeros(self.n), np.empty(self.n), np.empty_like(self.mass_band)
@@ -399,7 +358,7 @@ class Model(Coordinates):
     def nodal_directors(self, y: ArrayLike) -> NDArray[np.float64] | None:
         """Rods: each node's director ``m1`` ``(n_nodes, 3)`` at ``y``, from the nodal triads as
         the solvers last carried them (exact for the state they were carried to); else None."""
-        if self.element != "rod":
+        if not self.family.has_triads:
             return None
         t, m1 = np.empty(3 * self.n_nodes), np.empty(3 * self.n_nodes)
         self.core.nodal_triads(np.asarray(y, dtype=float), t, m1)

@@ -77,7 +77,7 @@ def section_stiffness(model: AssembledBody) -> _core.Stiffness:
         "damping_bending": kv.bending,
         "damping_torsion": kv.torsion,
     }
-    if model.element != "rod":
+    if not model.family.has_triads:
         engineering = model.material.axial_strain == "engineering"
         return _core.Stiffness(
             ea=model.props.ea, ei=model.props.ei, engineering=engineering, **rates

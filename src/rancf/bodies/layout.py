@@ -5,12 +5,15 @@ from __future__ import annotations
 
 from typing import Protocol
 
+from rancf.bodies.families import ElementFamily
+
 __all__ = ["BodyLayout"]
 
 
 class BodyLayout(Protocol):
     """The node layout of a flexible body: dimension, coordinates per node, elements, nodes and
-    the element kind."""
+    the element kind, and its family (:mod:`rancf.bodies.families`: what differs between the
+    kinds is asked of it, not of the kind's name)."""
 
     # read-only: implementations may narrow a member's type
     @property
@@ -27,3 +30,6 @@ class BodyLayout(Protocol):
 
     @property
     def element(self) -> str: ...
+
+    @property
+    def family(self) -> ElementFamily: ...

@@ -36,7 +36,13 @@ from numpy.typing import ArrayLike, NDArray
 from rancf.bodies.layout import BodyLayout
 from rancf.errors import InputError
 
-__all__ = ["RigidMotion", "rigid_velocity", "check_supports_at_rest", "angular_momentum"]
+__all__ = [
+    "RigidMotion",
+    "rigid_velocity",
+    "check_supports_at_rest",
+    "angular_momentum",
+    "initial_velocity",
+]
 
 
 class MovingBody(BodyLayout, Protocol):
@@ -92,12 +98,12 @@ def rigid_velocity(model: MovingBody, motion: RigidMotion) -> NDArray[np.float64
     q = model.q0.reshape(model.n_nodes, model.dpn)
     out = np.zeros_like(q)
     out[:, :dim] = v0 + _omega_cross(w, q[:, :dim] - c)
-    if model.element == "beam":
+    if not model.family.gradient:
         out[:, 2] = w[0]
     else:
         grad = q[:, dim : 2 * dim]
         out[:, dim : 2 * dim] = _omega_cross(w, grad)
-        if model.element == "rod":
+        if model.family.has_triads:
             out[:, 6] = grad @ w / np.linalg.norm(grad, axis=1)
     return out.ravel()
 
@@ -138,7 +144,7 @@ def angular_momentum(
     c = _vector("sensors.about", about, dim)
     nodes_q = qq.reshape(n_t, model.n_nodes, model.dpn)
     nodes_v = vv.reshape(n_t, model.n_nodes, model.dpn)
-    if model.element == "beam":  # consistent linear mass ρA l0/6 [2 1; 1 2], lumped ρ I l0 / 2
+    if not model.family.gradient:  # consistent linear mass ρA l0/6 [2 1; 1 2], lumped ρ I l0 / 2
         k = model.kernel
         xs, vs2 = nodes_q[..., :2] - c, nodes_v[..., :2]
         mt = k.props.rho_a * k.l0 / 6.0
@@ -166,8 +172,58 @@ def angular_momentum(
             else:
                 cr = (pos[k][..., 0] * vel[m][..., 1] - pos[k][..., 1] * vel[m][..., 0])[..., None]
             out += np.einsum("e,tei->ti", m4[:, k, m], cr)
-    if model.element == "rod":
+    if model.family.has_triads:
         ys, vs = model.y_from_q(qq), model.y_from_q(vv)
         for i in range(n_t):
             out[i] += model.core.rotary_angular_momentum(ys[i], vs[i], True)
+    return out
+
+
+class StartingBody(MovingBody, Protocol):
+    """What the initial velocity reads of a flexible body, besides :class:`MovingBody`."""
+
+    @property
+    def closed(self) -> bool: ...
+
+    @property
+    def reduction(self) -> Any: ...
+
+    @property
+    def n(self) -> int: ...
+
+    def check_node(self, node: int, key: str) -> int: ...
+
+    def _own_blocks(self, q: NDArray) -> NDArray[np.float64]: ...
+
+
+def initial_velocity(
+    model: StartingBody,
+    initial_velocities: dict[int, ArrayLike] | None,
+    initial_motion: RigidMotion | None,
+) -> NDArray[np.float64]:
+    """The initial velocity in model coordinates, held entries at rest.
+
+    Single nodes' position velocities (``initial_velocities``; nothing else moves, C²: their own
+    blocks) or a rigid motion given exactly to every coordinate (M.1), not both.
+    """
+    v0 = np.zeros(model.n)
+    for node, vel in (initial_velocities or {}).items():
+        nd = model.check_node(node, "initial_velocity.at")
+        vv = np.asarray(vel, dtype=float)
+        if vv.size != model.dim:
+            raise InputError("initial_velocity.value", vv.tolist(), f"{model.dim} components")
+        v0[nd * model.dpn : nd * model.dpn + model.dim] = vv
+        if model.closed and nd == 0:  # the stored repeat of node 0 moves with it
+            v0[model.n - model.dpn : model.n - model.dpn + model.dim] = vv
+    if initial_motion is not None:
+        if initial_velocities:
+            raise InputError("initial_motion", "with initial_velocity", "one of the two, not both")
+        v0 = rigid_velocity(model, initial_motion)
+    if model.reduction is None or initial_motion is not None:  # C²: rigid motions are exact
+        out = model.y_from_q(v0)
+    else:  # single nodes: their own blocks, nothing else moves
+        out = model._own_blocks(v0)
+    if initial_motion is not None:
+        check_supports_at_rest(model, out)
+    out[model.fixed] = 0.0
     return out

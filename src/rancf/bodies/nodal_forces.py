@@ -42,7 +42,7 @@ __all__ = ["nodal_axial_forces", "recovers_axial_force"]
 def recovers_axial_force(model: Model) -> bool:
     """Whether :func:`nodal_axial_forces` applies to ``model`` (a cable or rod without C²
     reduction)."""
-    return model.element != "beam" and model.reduction is None
+    return model.family.gradient and model.reduction is None
 
 
 def nodal_axial_forces(

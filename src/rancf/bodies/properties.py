@@ -7,6 +7,7 @@ from typing import Literal
 
 import numpy as np
 
+from rancf.bodies.families import framed
 from rancf.bodies.time_function import TimeFunction
 from rancf.errors import InputError
 
@@ -170,7 +171,7 @@ class StrainRateDamping:
     def checked(self, element: str) -> StrainRateDamping:
         """Itself, or :class:`~rancf.errors.InputError` if ``torsion`` is given to an element
         without a twist (every element but the rod)."""
-        if self.torsion > 0 and element != "rod":
+        if self.torsion > 0 and not framed(element):
             raise InputError(
                 "damping.torsion",
                 self.torsion,

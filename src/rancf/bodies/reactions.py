@@ -46,7 +46,7 @@ class Reaction:
 
 def has_moment(model: Model, kind: str) -> bool:
     """Whether the reaction of a support of this kind reports a moment."""
-    return model.element == "rod" or kind == "clamp"
+    return model.family.has_triads or kind == "clamp"
 
 
 def _label(at: int | str) -> str:
@@ -94,7 +94,7 @@ def support_reactions(
         force = rq[..., base : base + dim].copy()
         moment = None
         if has_moment(model, sup.kind):
-            if model.element == "beam":
+            if not model.family.gradient:
                 moment = rq[..., base + 2 : base + 3].copy()
             else:
                 rx = q[..., base + dim : base + 2 * dim]
@@ -103,7 +103,7 @@ def support_reactions(
                     moment = (rx[..., 0] * qg[..., 1] - rx[..., 1] * qg[..., 0])[..., None]
                 else:
                     moment = np.cross(rx, qg)
-                    if model.element == "rod":
+                    if model.family.has_triads:
                         t = rx / np.linalg.norm(rx, axis=-1, keepdims=True)
                         moment = moment + rq[..., base + 6, None] * t
         out.append(Reaction(labels[i] if labels is not None else sup.node, force, moment))

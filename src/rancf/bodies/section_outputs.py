@@ -47,7 +47,7 @@ __all__ = ["SectionSampler", "section_names"]
 
 def section_names(model: Model) -> tuple[str, ...]:
     """Names of the quantities, in the column order of :meth:`SectionSampler.values`."""
-    if model.element == "rod":
+    if model.family.has_triads:
         return (
             "strain",
             "axial_force",
@@ -70,7 +70,7 @@ def sample_points(model: Model, xi: NDArray) -> tuple[NDArray, NDArray, NDArray]
     _, n1, n2 = cable_shape_functions(mesh.weights, mesh.scales, xi)
     a0 = np.einsum("eqk,ekd->eqd", n1, mesh.element_nodal())
     j0 = np.linalg.norm(a0, axis=-1)
-    ref = j0 if model.element == "rod" else j0**2
+    ref = j0 if model.family.has_triads else j0**2
     return np.ascontiguousarray(n1), np.ascontiguousarray(n2), np.ascontiguousarray(ref)
 
 
@@ -128,7 +128,7 @@ class SectionSampler:
         element's curve; a beam's chord)."""
         m = self.model
         nodes = m.q_from_y(np.asarray(y, dtype=float)).reshape(m.n_nodes, m.dpn)
-        if m.element == "beam":
+        if not m.family.gradient:
             x = nodes[:, :2]
             pts = x[:-1, None, :] + self.xi[None, :, None] * (x[1:] - x[:-1])[:, None, :]
         else:
@@ -137,12 +137,12 @@ class SectionSampler:
 
     def _raw(self, y: NDArray, factor: float = 1.0) -> NDArray[np.float64]:
         m = self.model
-        width = 4 if m.element == "rod" else 2
+        width = 4 if m.family.has_triads else 2
         y = np.ascontiguousarray(y, dtype=float)
         lead = y.shape[:-1]  # k states (k, n) at once: (k, n_points, width)
         out = np.empty((*lead, m.n_el, self.xi.size, width))
         lam = _scale(m) * factor  # another unstretched length (rancf.bodies.length, winches)
-        ref = self.ref * (lam if m.element == "rod" else lam * lam)
+        ref = self.ref * (lam if m.family.has_triads else lam * lam)
         m.core.section_strains(self.xi, self.n1, self.n2, ref, y, out)
         return out.reshape(*lead, -1, width)[..., self._rows, :]
 
@@ -165,9 +165,9 @@ class SectionSampler:
         ``N``, ``src/cpp/bodies/sections.hpp``)."""
         m = self.model
         raw = np.ascontiguousarray(raw, dtype=float)
-        if m.element != "beam":  # the core, every point of every state in one call
+        if m.family.gradient:  # the core, every point of every state in one call
             st = section_stiffness(m)
-            c = np.array([st.gj, st.ei2, st.ei3]) if m.element == "rod" else np.array([st.ei])
+            c = np.array([st.gj, st.ei2, st.ei3]) if m.family.has_triads else np.array([st.ei])
             k = int(np.prod(raw.shape[:-2]))
             scale = np.broadcast_to(_scale(m) * np.asarray(factor, dtype=float).ravel(), (k,))
             out = np.empty((*raw.shape[:-1], 2 * raw.shape[-1]))

@@ -25,6 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from rancf.bodies.families import family, framed
 from rancf.bodies.properties import Support
 from rancf.errors import InputError
 
@@ -113,7 +114,7 @@ def support_layout(
             for i in range(dim):
                 installed[base + i] = float(target[i])
         if sup.kind == "clamp":
-            if element == "beam":  # θ is the rotation from the reference tangent
+            if not family(element).gradient:  # θ is the rotation from the reference tangent
                 fixed[base + 2] = True
                 t0 = tangents[node]
                 d = t0 if direction is None else direction
@@ -127,7 +128,7 @@ def support_layout(
                 fixed[base + dim + 1 : base + 2 * dim] = True
                 for i in range(1, dim):
                     installed[base + dim + i] = 0.0
-        if element == "rod" and (sup.kind == "clamp" or sup.fix_twist):
+        if framed(element) and (sup.kind == "clamp" or sup.fix_twist):
             fixed[base + 6] = True  # the twist: the cross-section's orientation
             installed[base + 6] = 0.0
         elif sup.fix_twist:

@@ -38,7 +38,8 @@ acceleration at ``t = 0`` or ``t = B``) and ``g = f`` after ``B``.
 
 At a kink (a table's breakpoint, the end of a ramp) the rate is the one of the interval that
 starts there (the right derivative).  The compiled core evaluates the same functions
-(``src/cpp/system/time_function.hpp``) from the records of :func:`core_record`.
+(``src/cpp/system/time_function.hpp``) from the records of
+:func:`rancf.bodies.time_record.core_record`.
 """
 
 from __future__ import annotations
@@ -51,29 +52,16 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from rancf.errors import InputError
-from rancf.kernels.records import TimeFunctionRecord, floats
 
 __all__ = [
     "TimeFunction",
     "KINDS",
-    "CORE_KINDS",
     "spin_up_angle",
-    "core_record",
     "build_up_factor",
 ]
 
 #: The kinds of time functions.
 KINDS = ("constant", "table", "ramp", "harmonic", "spin_up", "callable")
-#: The kinds the compiled core evaluates and its names of them (a callable goes as its sampled
-#: table).
-CORE_KINDS = {
-    "constant": "constant",
-    "table": "piecewise",
-    "ramp": "ramp",
-    "harmonic": "harmonic",
-    "spin_up": "spin_up",
-}
-
 _H1, _H2 = 6e-6, 1.2e-4  # central-difference steps of callables [s]
 
 
@@ -160,11 +148,12 @@ class TimeFunction:
         self.build_up = build_up
         self.duration, self.frequency, self.phase = duration, frequency, phase
         self.rows, self.interpolation, self.fn = rows, interpolation, fn
-        self._spline: Any = None
+        #: A cubic table's spline (:class:`scipy.interpolate.CubicSpline`), else None.
+        self.spline: Any = None
         if kind == "table" and interpolation == "cubic" and rows is not None and len(rows) > 2:
             from scipy.interpolate import CubicSpline
 
-            self._spline = CubicSpline(rows[:, 0], rows[:, 1:], axis=0, bc_type="not-a-knot")
+            self.spline = CubicSpline(rows[:, 0], rows[:, 1:], axis=0, bc_type="not-a-knot")
 
     # ------------------------------------------------------------------ construction
     @classmethod
@@ -304,8 +293,8 @@ class TimeFunction:
         if t < ts[0] or t >= ts[-1]:
             held = vs[0] if t < ts[0] else vs[-1]
             return held.copy() if order == 0 else 0.0 * held
-        if self._spline is not None:
-            return np.asarray(self._spline(t, order), dtype=float)
+        if self.spline is not None:
+            return np.asarray(self.spline(t, order), dtype=float)
         i = int(np.searchsorted(ts, t, side="right")) - 1
         slope = (vs[i + 1] - vs[i]) / (ts[i + 1] - ts[i])
         return (vs[i] + slope * (t - ts[i]), slope, 0.0 * slope)[order]
@@ -334,20 +323,6 @@ class TimeFunction:
         out = TimeFunction.table(np.column_stack([t, vals]), "cubic")
         out.vector = self.vector
         return out
-
-    def coefficients(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-        """A table's breakpoints ``(k + 1,)`` and piecewise-cubic coefficients ``(k, 4, n)``
-        (``c0 + c1 s + c2 s² + c3 s³``, ``s = t − t_i``); empty arrays for the other kinds."""
-        if self.kind != "table" or self.rows is None:
-            return np.zeros(0), np.zeros(0)
-        t, v = self.rows[:, 0], self.rows[:, 1:]
-        coef = np.zeros((t.size - 1, 4, v.shape[1]))
-        if self._spline is None:
-            coef[:, 0] = v[:-1]
-            coef[:, 1] = np.diff(v, axis=0) / np.diff(t)[:, None]
-        else:
-            coef = np.transpose(self._spline.c[::-1], (1, 0, 2))
-        return t.copy(), np.ascontiguousarray(coef)
 
     def to_toml(self) -> float | list[float] | dict[str, Any]:
         """The scenario file's form of this function (a callable has none)."""
@@ -415,29 +390,3 @@ class TimeFunction:
         if self.kind == "callable":
             return f"TimeFunction.from_callable({self.fn!r})"
         return f"TimeFunction({self.to_toml()!r})"
-
-
-def core_record(f: TimeFunction) -> TimeFunctionRecord:
-    """The record of ``f`` the compiled core evaluates
-    (:class:`rancf.kernels.records.TimeFunctionRecord`; a table is the core's ``piecewise``
-    kind with its :meth:`TimeFunction.coefficients`).
-
-    A callable cannot be called from the compiled loop: give ``f.sampled(t_end)`` instead.
-    """
-    if f.kind not in CORE_KINDS:
-        raise InputError(
-            "time function",
-            f.fn,
-            "a function the core evaluates (sample a Python callable first: f.sampled(t_end))",
-        )
-    breaks, coef = f.coefficients()
-    return TimeFunctionRecord(
-        CORE_KINDS[f.kind],
-        floats(f.values),
-        f.duration,
-        f.frequency,
-        f.phase,
-        floats(breaks),
-        floats(coef),
-        f.build_up,
-    )

@@ -33,7 +33,7 @@ def run_to_nurbs(run: Any, i: int) -> Any:
 
     from rancf.elements.cad import ElementChain, chain_to_nurbs
 
-    if run.element == "beam":
+    if not run.family.gradient:
         raise InputError(
             "RUN_DIR",
             str(run.path),
@@ -88,7 +88,7 @@ def _cmd_export(args: argparse.Namespace) -> int:
             if r.directors is not None:
                 nodes = out.path / name / f"{name}_nodes.pvd"
                 print(f"{name}: rod nodes and material frames: {nodes}")
-            elif r.element == "rod":
+            elif r.family.has_triads:
                 print(
                     f"rancf: note: {r.path} holds no rod directors (written by an older rancf): "
                     "no material frames exported; run `rancf simulate` again to get them",

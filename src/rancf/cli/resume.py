@@ -170,7 +170,7 @@ class Resume:
 
         state = self.state
         assert state is not None
-        rods = [b for b in system.flex if b.element == "rod"]
+        rods = [b for b in system.flex if b.family.has_triads]
         sizes = [x.size for b in rods for x in (b.kernel.tref, b.kernel.m1ref)]
         try:
             state.check_finite()

@@ -8,35 +8,19 @@ import math
 import os
 import signal
 import sys
-import time
 import tomllib
 from pathlib import Path
 from typing import Any, Literal
 
 from rancf.cli.io import OutputDir
+from rancf.cli.stream import DiskStream, NothingToDo
+from rancf.cli.stream import warn as _warn
 from rancf.errors import InputError, RunFailedError
 
 __all__ = ["add_parsers", "DEFAULT_MAX_OUTPUT_GB"]
 
 #: Default ``--max-output-gb``: the disk a run's stored states may take.
 DEFAULT_MAX_OUTPUT_GB = 2.0
-
-
-def _process_age() -> float:
-    """Seconds since this process started (Linux ``/proc``, to its clock tick, 0.01 s: rounded
-    to it; else since the CLI was imported)."""
-    try:
-        with open("/proc/self/stat", encoding="ascii") as fh:
-            start_ticks = int(fh.read().rsplit(")", 1)[1].split()[19])
-        with open("/proc/uptime", encoding="ascii") as fh:
-            uptime = float(fh.read().split()[0])
-        ticks = os.sysconf("SC_CLK_TCK")  # 100: 2 decimals
-        return max(0.0, round(uptime - start_ticks / ticks, len(str(ticks)) - 1))
-    except (OSError, ValueError, IndexError):  # pragma: no cover - not Linux
-        return time.monotonic() - _IMPORTED
-
-
-_IMPORTED = time.monotonic()
 
 
 def _positive(option: str, value: float, what: str) -> float:
@@ -75,69 +59,32 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         _positive("--t-end", args.t_end, "a finite time in s > 0")
     kind: Literal["resume", "run"] = "resume" if args.resume else "run"
     od = OutputDir(args.out, kind=kind, overwrite=args.overwrite)  # checks the path up front
-    from rancf.atomic import atomic_write
-    from rancf.cli.resume import Resume, scenario_for_run
-    from rancf.post.checks import before_run_warnings, element_notes, finished_warnings
-    from rancf.post.history import HistoryStore
-    from rancf.post.results import run_summary
-    from rancf.post.run_plan import plan_run
+    from rancf.cli.resume import scenario_for_run
+    from rancf.runs.simulate import plan_simulate, simulate_planned
     from rancf.scenario.read_files import file_digests
-    from rancf.solvers.start import start_state
 
     sc, copy = scenario_for_run(args.scenario, args.t_end)
     files = file_digests(tomllib.loads(copy), args.scenario)  # the run's CSV and CAD files
-    opts = sc.dynamic_options()
-    system, outputs = plan_run(sc, limit)
+    plan = plan_simulate(sc, limit)  # refused before the folder is touched
     out = od.path
     stop = _StopFlag()
     with stop, od:
-        resume = Resume(out, copy, files) if od.earlier_run else None
-        state = None if resume is None else resume.state
-        if resume is None or state is None:
-            y_start, start_info = start_state(sc, system)
-            od.clear()  # --resume of a run killed before its first checkpoint: from the start
-        else:
-            rows = resume.take_up(system, outputs, opts)  # all checked before the folder changes
-            od.keep()  # the earlier run's files stay whatever happens
-            y_start, start_info = None, resume.start_info()
-            if state.t >= opts.t_end * (1.0 - 1e-12):
-                return _nothing_to_do(args, out, state.t, opts.t_end)
-            if not args.quiet:
-                print(
-                    f"rancf: {resume.killed_note()}; resuming from t = {state.t:g} s",
-                    file=sys.stderr,
-                )
-        notes = _warn(before_run_warnings(system, opts))  # the run goes on
-        # defaults the file did not state (a harmonic's build-up), a curved spatial cable's
-        all_notes = sc.notes + element_notes(system)
-        for note in all_notes:
-            print(f"rancf: {note}", file=sys.stderr)
-        info: dict[str, Any] = {
-            "scenario": str(Path(args.scenario).resolve()),
-            "setup_wall_time_s": None,
-        }
-        info["notes"] = all_notes
-        info["input_files"] = files
-        info.update(start_info)
-        store = HistoryStore(out, outputs, {**info, "warnings": notes})
+        disk = DiskStream(args, sc, copy, files, od, stop, every)
         try:
-            if state is not None:
-                store.seed(rows)
-            atomic_write(out / "scenario.toml", copy)
-            t0 = 0.0 if state is None else state.t
-            store.write_summary(_running(system, t0))
-            res = _run(args, system, opts, store, stop, every, od.keep, y_start, state)
-            summary = run_summary(system, res)
-            store.flush()  # every row's derived outputs, the strain among them
-            store.info["warnings"] = finished_warnings(system, outputs.largest_strain, res, opts)
-            store.finish(summary, res.state)
+            run = simulate_planned(sc, plan, stream=disk)
+        except NothingToDo as done:
+            return _nothing_to_do(args, out, done.t, plan.options.t_end)
         except BaseException as exc:
-            err = _end_broken(store, system, exc, od.kept, out)
+            disk.close_bar()
+            if disk.store is None:  # before the run's files: nothing of it to keep
+                raise
+            err = _end_broken(disk.store, plan.system, exc, od.kept, out)
             if err is exc:
                 raise
             raise err from None
-    _warn(store.info["warnings"][len(notes) :])
-    return _report(args, res, {**summary, **store.info}, out)
+    _warn(run.warnings[len(disk.notes) :])
+    assert run.summary is not None  # the stream ended the folder
+    return _report(args, run.result, run.summary, out)
 
 
 def _nothing_to_do(args: argparse.Namespace, out: Path, t: float, t_end: float) -> int:
@@ -148,13 +95,6 @@ def _nothing_to_do(args: argparse.Namespace, out: Path, t: float, t_end: float) 
             file=sys.stderr,
         )
     return 0
-
-
-def _warn(notes: list[str]) -> list[str]:
-    """Print each warning as one line on standard error; returns them."""
-    for note in notes:
-        print(f"rancf: warning: {note}", file=sys.stderr)
-    return notes
 
 
 def _end_broken(store: Any, model: Any, exc: BaseException, kept: bool, out: Path) -> BaseException:
@@ -203,17 +143,6 @@ class _StopFlag:
             signal.signal(sig, old)
 
 
-def _running(model: Any, t: float) -> dict[str, Any]:
-    from rancf.post.results import run_sizes
-
-    return {
-        "status": "running",
-        "message": f"running, t = {t:g} s",
-        "t_reached": t,
-        **run_sizes(model),
-    }
-
-
 def _broken(model: Any, store: Any, exc: BaseException) -> dict[str, Any]:
     """Summary of a run ended by an exception (the error path prints the message)."""
     from rancf.post.results import run_sizes
@@ -229,78 +158,6 @@ def _broken(model: Any, store: Any, exc: BaseException) -> dict[str, Any]:
         "outputs": store.n_rows,
         **run_sizes(model),
     }
-
-
-#: A progress bar appears once a run has been stepping this long [s] (short runs stay silent).
-PROGRESS_AFTER_S = 0.5
-
-
-def _terminal(stream: Any) -> bool:
-    """Whether ``stream`` is a terminal (a progress bar's carriage returns belong only there)."""
-    try:
-        return bool(stream.isatty())
-    except (AttributeError, ValueError):  # closed or not a file
-        return False
-
-
-def _progress_bar(t_end: float, t: float) -> Any:
-    from tqdm import tqdm  # imported only for runs long enough to show a bar
-
-    return tqdm(
-        total=t_end,
-        initial=t,
-        unit="s",
-        file=sys.stderr,
-        leave=False,
-        bar_format="{l_bar}{bar}| t = {n:.4g}/{total:.4g} s [{elapsed}<{remaining}]",
-    )
-
-
-def _run(
-    args: argparse.Namespace,
-    model: Any,
-    opts: Any,
-    store: Any,
-    stop: Any,
-    every: float,
-    started: Any,
-    y_start: Any = None,
-    state: Any = None,
-) -> Any:
-    """Integrate into ``store`` from ``y_start`` (default the reference) or an earlier run's
-    ``state``; ``started()`` once the first checkpoint is on disk."""
-    from rancf.post.results import run_summary
-    from rancf.solvers.dynamic import integrate
-
-    bar: list[Any] = []
-    pace = {"next": time.monotonic() + every, "every": every, "bar": math.inf}
-
-    def on_start() -> None:
-        store.info["setup_wall_time_s"] = _process_age()
-        t0 = 0.0 if state is None else state.t  # every file exists before the first step
-        store.checkpoint(_running(model, t0), state)
-        started()
-        if not args.quiet and _terminal(sys.stderr):  # no carriage returns in logs
-            pace["bar"] = time.monotonic() + PROGRESS_AFTER_S
-
-    def on_output(t: float, snapshot: Any) -> None:
-        if bar:
-            bar[0].update(t - bar[0].n)
-        elif time.monotonic() >= pace["bar"]:
-            bar.append(_progress_bar(opts.t_end, t))
-        now = time.monotonic()
-        if now >= pace["next"]:
-            now_at = snapshot()
-            summary = {**run_summary(model, now_at), **_running(model, t)}
-            store.checkpoint(summary, now_at.state)
-            took = time.monotonic() - now
-            pace["next"] = time.monotonic() + max(pace["every"], 4.0 * took)
-
-    try:
-        return integrate(model, opts, on_output, stop, store, on_start, y_start, state)
-    finally:
-        if bar:
-            bar[0].close()
 
 
 def _report(args: argparse.Namespace, res: Any, summary: dict[str, Any], out: Path) -> int:

@@ -71,7 +71,7 @@ def _curvature(d1: NDArray, d2: NDArray) -> NDArray:
 def centerline_nodes(run: RunData, x: NDArray) -> NDArray[np.float64]:
     """Nodal position and gradient ``(n_nodes, 2, dim)`` of a cable or rod state ``x``
     (coordinates or velocities); a rod's twist ``φ`` is left out."""
-    if run.element == "beam":
+    if not run.family.gradient:
         raise ValueError("beam elements have no nodal gradients")
     nodes = np.asarray(x, dtype=float).reshape(run.n_nodes, -1)
     return nodes[:, : 2 * run.dim].reshape(run.n_nodes, 2, run.dim)
@@ -150,7 +150,7 @@ def sample_centerline(run: RunData, i: int, per_element: int = 16) -> Centerline
     if isinstance(per_element, bool) or not isinstance(per_element, int) or per_element < 1:
         raise InputError("per_element", per_element, "an integer >= 1")
     xi = np.linspace(0.0, 1.0, per_element + 1)
-    fields = _beam_fields if run.element == "beam" else _cable_fields
+    fields = _beam_fields if not run.family.gradient else _cable_fields
     r, r0, vel, strain, kappa = fields(run, run.q[i], run.v[i], xi)
     el = np.repeat(np.arange(r.shape[0])[:, None], xi.size, axis=1)
     r, r0 = _join(r), _join(r0)
@@ -190,7 +190,7 @@ class NodalFrames:
 def nodal_frames(run: RunData, i: int) -> NodalFrames:
     """The nodes and material frames of stored state ``i`` of a rod run (the stored directors
     ``m1``; the tangent is the nodal gradient's direction)."""
-    if run.element != "rod" or run.directors is None:
+    if not run.family.has_triads or run.directors is None:
         raise InputError("RUN_DIR", str(run.path), "a run of rod elements (with stored directors)")
     nodes, ref = centerline_nodes(run, run.q[i]), centerline_nodes(run, run.reference)
     vel = centerline_nodes(run, run.v[i])

@@ -110,7 +110,7 @@ def element_notes(model: Model | System) -> list[str]:
             for name, b in zip(model.names, model.flex, strict=False)
             for n in element_notes(b)
         ]
-    if model.dim != 3 or model.element not in ("rancf", "ancf"):
+    if model.dim != 3 or not model.family.cable:
         return []
     if model.stress_free != "reference":
         return []

@@ -45,11 +45,11 @@ def centerline(model: Model, q: NDArray, per_element: int = 16) -> NDArray[np.fl
     beam elements as their chords.
     """
     q = np.asarray(q, dtype=float)
-    if model.element == "beam":
+    if not model.family.gradient:
         return model.node_positions(q)
     xi = np.linspace(0.0, 1.0, per_element + 1)
     n = cable_shape_functions(model.mesh.weights, model.mesh.scales, xi)[0]
-    if model.element == "rod":  # r, r_x of both nodes
+    if model.family.has_triads:  # r, r_x of both nodes
         nodes = q.reshape(model.n_nodes, model.dpn)[:, : 2 * model.dim]
         e = np.concatenate([nodes[:-1], nodes[1:]], axis=1).reshape(model.n_el, 4, model.dim)
     else:
@@ -171,7 +171,7 @@ def positions_at(model: Model, q: NDArray, sbar: NDArray) -> NDArray[np.float64]
     q = np.asarray(q, dtype=float)
     sbar = np.asarray(sbar, dtype=float)
     hist = q.reshape(-1, model.n)
-    if model.element == "beam":
+    if not model.family.gradient:
         pos0 = model.node_positions(model.q0)
         seg = np.linalg.norm(np.diff(pos0, axis=0), axis=1)
         s_nodes = np.concatenate([[0.0], np.cumsum(seg)]) / seg.sum()

@@ -98,11 +98,11 @@ def stored_rows(out: Path, outputs: SystemOutputs, n: int) -> dict[str, NDArray]
     along, energies, directors = [], [], []
     for name, model in outputs.flex:
         keys: tuple[str, ...] = ("along", "kinetic", "strain", "gravity")
-        keys += ("directors",) if model.element == "rod" else ()
+        keys += ("directors",) if model.family.has_triads else ()
         body = _load(out / "bodies" / name / "results.npz", keys, n)
         along.append(body["along"].reshape(n, -1))
         energies.append(np.column_stack([body["kinetic"], body["strain"], body["gravity"]]))
-        if model.element == "rod":
+        if model.family.has_triads:
             directors.append(body["directors"].reshape(n, -1))
     rows["s"] = np.concatenate(along, axis=1) if along else np.empty((n, 0))
     rows["eb"] = np.concatenate(energies, axis=1) if energies else np.empty((n, 0))

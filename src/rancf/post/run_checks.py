@@ -10,13 +10,10 @@ from typing import Any
 
 import numpy as np
 
+from rancf.bodies.families import FAMILIES
 from rancf.errors import InputError
 
 __all__ = ["check_results", "scenario_fits"]
-
-
-#: Element kinds and coordinates per node a results.npz may hold.
-_DOFS_PER_NODE = {"rancf": {2: 4, 3: 6}, "ancf": {2: 4, 3: 6}, "beam": {2: 3}, "rod": {3: 7}}
 
 
 def check_results(npz: Path, data: dict[str, Any]) -> None:
@@ -31,8 +28,9 @@ def check_results(npz: Path, data: dict[str, Any]) -> None:
         raise bad("its metadata is not a table")
     element, dim = meta.get("element"), meta.get("dim")
     dpn = None
-    if isinstance(element, str) and isinstance(dim, int):
-        dpn = _DOFS_PER_NODE.get(element, {}).get(dim)
+    fam = FAMILIES.get(element) if isinstance(element, str) else None
+    if fam is not None and isinstance(dim, int) and dim in fam.dims:
+        dpn = fam.dofs_per_node(dim)
     if dpn is None:
         raise bad(f"element {element!r} in {dim!r} dimensions is not a known kind")
     names = meta.get("sensor_columns")
@@ -73,15 +71,16 @@ def check_results(npz: Path, data: dict[str, Any]) -> None:
 
 def scenario_fits(sc: Any, meta: dict[str, Any]) -> str | None:
     """Why the scenario ``sc`` is not the one of a run with ``meta`` (None: it fits)."""
-    if "mesh" not in sc.data:
-        return "the scenario is written with [[bodies]]: a system, not one body's results"
-    mesh = sc.data["mesh"]
+    bodies = sc.data["bodies"]
+    if len(bodies) != 1 or bodies[0]["kind"] != "flexible":
+        return "the scenario is a system of several bodies, not one body's results"
+    mesh = bodies[0]["mesh"]
     if mesh["element"] != meta["element"] or sc.dim != meta["dim"]:
         return (
             f"the scenario has {mesh['element']} elements in {sc.dim} dimensions, the results "
             f"{meta['element']} elements in {meta['dim']}"
         )
-    kind = sc.data["geometry"]["kind"]
+    kind = bodies[0]["geometry"]["kind"]
     if kind in ("conic", "line") and mesh["elements"] != meta["n_elements"]:
         return f"the scenario has {mesh['elements']} elements, the results {meta['n_elements']}"
     return None

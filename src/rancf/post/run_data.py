@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from rancf.bodies.families import ElementFamily, family
 from rancf.errors import InputError, shorten
 from rancf.post.results import load_results
 from rancf.post.run_checks import check_results, scenario_fits
@@ -87,6 +88,11 @@ class RunData:
     static: bool = False
     along: NDArray[np.float64] | None = None
     section_names: list[str] = field(default_factory=list)
+
+    @property
+    def family(self) -> ElementFamily:
+        """The element family of :attr:`element` (:mod:`rancf.bodies.families`)."""
+        return family(self.element)
 
     @property
     def time_label(self) -> str:
@@ -209,9 +215,9 @@ def load_body(folder: str | Path, static: bool = False) -> RunData:
             logger.warning("%s: skipping the scenario %s: %s", path, sc_path, why)
             sc = None
     if sc is not None and radius is None:  # runs of rancf < 0.3
-        s = sc.data["section"]
+        s = sc.data["bodies"][0]["section"]
         radius = s["radius"] if s["radius"] is not None else math.sqrt(s["area"] / math.pi)
-        if meta["element"] == "beam" and angles is None:
+        if not family(meta["element"]).gradient and angles is None:
             nodes = sc.build_model().mesh.nodes
             if nodes.shape[0] != meta["n_elements"] + 1:
                 raise InputError(

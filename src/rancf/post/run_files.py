@@ -57,7 +57,7 @@ def reader_metadata(model: Model) -> dict[str, Any]:
     """What readers of a body's results need besides the states: ``section_radius``
     (``sqrt(A / π)``) and, for beams, the reference nodal ``tangent_angles`` [rad]."""
     meta: dict[str, Any] = {"section_radius": model.section.radius}
-    if model.element == "beam":
+    if not model.family.gradient:
         t = model.mesh.nodes[:, 1]
         meta["tangent_angles"] = np.arctan2(t[:, 1], t[:, 0]).tolist()
     return meta
@@ -203,7 +203,7 @@ def _drums(outputs: SystemOutputs) -> list[dict[str, Any]]:
 def _director_cut(outputs: SystemOutputs, name: str) -> slice:
     start = 0
     for n, b in outputs.flex:
-        if b.element != "rod":
+        if not b.family.has_triads:
             continue
         if n == name:
             return slice(start, start + 3 * b.n_nodes)
@@ -232,7 +232,7 @@ def _body_arrays(
         along_shape,
         (envelope.update(t[r], outputs.body_along(c["s"], name)) for r, c in chunks),
     )
-    if model.element == "rod" and m1 is not None:
+    if model.family.has_triads and m1 is not None:
         cut = _director_cut(outputs, name)
         _npy(z, "directors", (n, model.n_nodes, 3), (m1[r, cut] for r, _ in chunks))
     _small(

@@ -139,7 +139,7 @@ def export_vtk(run: RunData, out_dir: str | Path, every: int = 1, per_element: i
     idx = frame_indices(run.t.size, every)
     parts: list[tuple[str, Callable[[int], Any]]]
     parts = [(run.name, lambda i: centerline_mesh(run, i, per_element))]
-    if run.element == "rod" and run.directors is not None:
+    if run.family.has_triads and run.directors is not None:
         parts.append((f"{run.name}_nodes", lambda i: nodes_mesh(run, i)))
     with FileSet() as files:
         return _export(run.t, out, idx, parts, files)

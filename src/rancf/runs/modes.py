@@ -41,6 +41,7 @@ def run_modes(
     *,
     at_least: int | None = None,
     count_key: str | None = None,
+    every: bool = False,
 ) -> ModesRun:
     """The ``count`` lowest natural modes of scenario ``sc`` (default ``[modes] count``) about
     ``about`` (default ``[modes] about``: the reference or the static equilibrium under the full
@@ -48,7 +49,8 @@ def run_modes(
 
     ``at_least``: given, ask for at least this many modes but never more than the model has (a
     sweep's frequency columns, an example's table); ``count_key``: the name an error message gives
-    ``count``.
+    ``count``; ``every``: every mode of the free coordinates (a convergence study's spectrum;
+    ``count`` is not used).
 
     Raises
     ------
@@ -75,6 +77,6 @@ def run_modes(
         for name, b in zip(system.names, system.flex, strict=False):  # the equilibrium's strain
             largest = max(largest, largest_strain(b, np.ones(1), q[None, system.body_slice(name)]))
     notes = run_warnings(system, static=True, largest=largest)
-    res = natural_modes(system, y, count, lam)
+    res = natural_modes(system, y, None if every else count, lam)
     cam = run_campbell(sc, system, count, about) if sc.data["modes"]["spin_rates"] else None
     return ModesRun(system, res, about, y, n_free, notes, cam)

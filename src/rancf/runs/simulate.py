@@ -1,23 +1,28 @@
-"""The dynamics driver for runs held in memory: :func:`run_simulate` (sweeps, the shipped
-examples) and the Python API's :func:`simulate` on it.
+"""The dynamics driver: :func:`run_simulate` for runs held in memory (sweeps, the shipped
+examples, the Python API's :func:`simulate`) and, through the same steps, ``rancf simulate``,
+which streams its rows to disk as the run goes (:mod:`rancf.cli.sim`: checkpoints,
+``--resume``, the progress bar).
 
-``rancf simulate`` streams its rows to disk as the run goes (checkpoints, ``--resume``, the
-progress bar, :mod:`rancf.cli.sim`) but takes the same steps: the system and its outputs planned
-against a size limit (:func:`~rancf.post.run_plan.plan_run`), the start state
-(:func:`~rancf.solvers.start.start_state`), generalized-α on the constrained system
-(:func:`~rancf.solvers.dynamic.integrate`) and the same warnings
-(:func:`~rancf.post.checks.finished_warnings`).
+The steps: the system and its outputs planned against a size limit (:func:`plan_simulate`,
+:func:`~rancf.post.run_plan.plan_run`), the start state (:func:`~rancf.solvers.start.start_state`;
+a resumed run goes on from its checkpoint), generalized-α on the constrained system
+(:func:`~rancf.solvers.dynamic.integrate`) and the run's warnings
+(:func:`~rancf.post.checks.finished_warnings`), in :func:`simulate_planned`.  A :class:`Stream`
+is what a streamed run adds: where it starts, the sink of its stored states and its callbacks,
+and how its folder ends.
 """
 
 from __future__ import annotations
 
 import warnings as _warnings
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, Protocol
 
 from numpy.typing import NDArray
 
+from rancf.options import DynamicOptions
 from rancf.post.checks import finished_warnings
 from rancf.post.results import sensor_table, write_run
 from rancf.post.run_plan import plan_run
@@ -25,7 +30,16 @@ from rancf.solvers.dynamic import DynamicResult, integrate
 from rancf.solvers.start import start_state
 from rancf.system.outputs import SystemOutputs
 
-__all__ = ["MAX_OUTPUT_GB", "SimulateRun", "run_simulate", "simulate"]
+__all__ = [
+    "MAX_OUTPUT_GB",
+    "Plan",
+    "Stream",
+    "SimulateRun",
+    "plan_simulate",
+    "simulate_planned",
+    "run_simulate",
+    "simulate",
+]
 
 #: The disk a run folder may take [GB] (``rancf simulate``'s default ``--max-output-gb``).
 MAX_OUTPUT_GB = 2.0
@@ -48,6 +62,102 @@ class SimulateRun:
     values: NDArray | None
 
 
+@dataclass(frozen=True)
+class Plan:
+    """A planned dynamic run: the system, its outputs and the ``[solver]`` options."""
+
+    system: Any
+    outputs: SystemOutputs
+    options: DynamicOptions
+
+
+class Stream(Protocol):
+    """What a run streamed to disk adds to :func:`simulate_planned` (``rancf simulate``)."""
+
+    def start(self, plan: Plan) -> tuple[Any, dict[str, Any]]:
+        """Where the run goes on from: an earlier run's state and its start keys, or
+        ``(None, {})`` to start anew (from the start state)."""
+        ...
+
+    def ready(self, plan: Plan, start: dict[str, Any]) -> Any:
+        """The sink of the stored states (:class:`~rancf.solvers.dynamic.OutputSink`), once the
+        start is known, right before the time loop."""
+        ...
+
+    def callbacks(
+        self,
+    ) -> tuple[Callable[..., None] | None, Callable[[], bool] | None, Callable[[], None] | None]:
+        """``on_output``, ``should_stop`` and ``on_start`` of
+        :func:`~rancf.solvers.dynamic.integrate`."""
+        ...
+
+    def flush(self) -> None:
+        """Derive the rows of every stored state (the largest strain among them)."""
+        ...
+
+    def finish(self, plan: Plan, result: DynamicResult, warnings: list[str]) -> dict[str, Any]:
+        """End the run's folder with the result and its warnings; returns its summary."""
+        ...
+
+
+def plan_simulate(sc: Any, limit_gb: float = MAX_OUTPUT_GB, limit_key: str = "limit_gb") -> Plan:
+    """The system of scenario ``sc`` and its outputs, planned against the disk ``limit_gb``
+    (``limit_key`` names it in the refusal), and the ``[solver]`` options.
+
+    Raises
+    ------
+    RunTooLargeError
+        The files would pass ``limit_gb``.
+    """
+    system, outputs = plan_run(sc, limit_gb, limit_key)
+    return Plan(system, outputs, sc.dynamic_options())
+
+
+def simulate_planned(
+    sc: Any,
+    plan: Plan,
+    folder: str | Path | None = None,
+    info: dict[str, Any] | None = None,
+    table: bool = False,
+    stream: Stream | None = None,
+) -> SimulateRun:
+    """Run the dynamics of scenario ``sc`` as planned, from the reference or its static
+    equilibrium (``solver.initial_state``; a ``stream`` may go on from an earlier run) to
+    ``solver.t_end``.
+
+    With a ``folder``, the run folder is written (:func:`~rancf.post.results.write_run`; ``info``:
+    more keys of its ``summary.json``); with a ``stream``, the stream writes it as the run goes.
+    ``table``: derive the sensors at every stored time. A run that fails keeps what it
+    computed: ``result.status`` says so.
+    """
+    system, outputs, opts = plan.system, plan.outputs, plan.options
+    state, start = (None, {}) if stream is None else stream.start(plan)
+    y0 = None
+    if state is None:
+        y0, start = start_state(sc, system)
+    summary = None
+    if stream is None:
+        result = integrate(system, opts, initial=y0)
+        if folder is not None:  # the rows are derived here: the largest strain is tracked
+            extra = {**(info or {}), **start}
+            summary = write_run(
+                folder, system, sc.sensors, result, extra, outputs=outputs, options=opts
+            )
+    else:
+        sink = stream.ready(plan, start)
+        on_output, should_stop, on_start = stream.callbacks()
+        result = integrate(system, opts, on_output, should_stop, sink, on_start, y0, state)
+        stream.flush()
+    names: list[str] = list(outputs.sensor_names)
+    values = None
+    if table:
+        names, values = sensor_table(outputs, sc.sensors, result.q, result.v, t=result.t)
+    notes = finished_warnings(system, outputs.largest_strain, result, opts)
+    if stream is not None:
+        summary = stream.finish(plan, result, notes)
+    return SimulateRun(system, outputs, result, start, notes, summary, names, values)
+
+
 def run_simulate(
     sc: Any,
     folder: str | Path | None = None,
@@ -56,35 +166,17 @@ def run_simulate(
     limit_key: str = "limit_gb",
     table: bool = False,
 ) -> SimulateRun:
-    """Run the dynamics of scenario ``sc`` from the reference or its static equilibrium
-    (``solver.initial_state``) to ``solver.t_end``.
-
-    With a ``folder``, the run folder is written (:func:`~rancf.post.results.write_run`; ``info``:
-    more keys of its ``summary.json``). ``limit_gb``: the disk the folder may take (``limit_key``
-    names it in the refusal); ``table``: derive the sensors at every stored time. A run that
-    fails keeps what it computed: ``result.status`` says so.
+    """Plan (:func:`plan_simulate`) and run (:func:`simulate_planned`) the dynamics of scenario
+    ``sc``: the run folder written to ``folder`` when given (``info``: more keys of its
+    ``summary.json``), the sensors at every stored time with ``table``.
 
     Raises
     ------
     RunTooLargeError
         The files would pass ``limit_gb``.
     """
-    system, outputs = plan_run(sc, limit_gb, limit_key)
-    y0, start = start_state(sc, system)
-    opts = sc.dynamic_options()
-    result = integrate(system, opts, initial=y0)
-    summary = None
-    if folder is not None:  # the rows are derived here: the largest strain is tracked
-        extra = {**(info or {}), **start}
-        summary = write_run(
-            folder, system, sc.sensors, result, extra, outputs=outputs, options=opts
-        )
-    names: list[str] = list(outputs.sensor_names)
-    values = None
-    if table:
-        names, values = sensor_table(outputs, sc.sensors, result.q, result.v, t=result.t)
-    notes = finished_warnings(system, outputs.largest_strain, result, opts)
-    return SimulateRun(system, outputs, result, start, notes, summary, names, values)
+    plan = plan_simulate(sc, limit_gb, limit_key)
+    return simulate_planned(sc, plan, folder, info, table)
 
 
 def simulate(

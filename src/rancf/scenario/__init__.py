@@ -26,15 +26,11 @@ from rancf.scenario.geometry import (
 )
 from rancf.scenario.joints import JointTable, SpringTable
 from rancf.scenario.loads import (
-    HarmonicFunction,
     InitialMotionTable,
     InitialVelocityTable,
     LoadsTable,
     PointLoadTable,
-    RampFunction,
-    SpinUpFunction,
     SupportTable,
-    TableFunction,
 )
 from rancf.scenario.places import ResolvedPlace
 from rancf.scenario.scenario import Scenario, load_scenario, parse_scenario
@@ -42,6 +38,12 @@ from rancf.scenario.schema import scenario_schema
 from rancf.scenario.section import MaterialTable, SectionTable
 from rancf.scenario.sensors import Sensor, SensorTable
 from rancf.scenario.solver import ModesTable, SolverTable
+from rancf.scenario.time_functions import (
+    HarmonicFunction,
+    RampFunction,
+    SpinUpFunction,
+    TableFunction,
+)
 
 __all__ = [
     "Scenario",

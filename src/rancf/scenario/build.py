@@ -137,10 +137,12 @@ SYSTEM_KEYS = (
 
 
 def build_model(sc: ScenarioView) -> Model:
-    """The flexible body of a one-body scenario (errors name the scenario key); a scenario with
-    more parts (:data:`SYSTEM_KEYS`) is refused in one line that points to its system."""
+    """The flexible body of a scenario of one flexible body (errors name the scenario key); a
+    scenario with more parts (:data:`SYSTEM_KEYS`) is refused in one line that points to its
+    system."""
+    many = len(sc.body_tables) != 1 or sc.body_tables[0][1].kind != "flexible"
     for k in SYSTEM_KEYS:
-        if sc[k]:
+        if (k == "bodies" and many) or (k != "bodies" and sc[k]):
             raise ScenarioError(
                 sc.path,
                 k,
@@ -153,23 +155,41 @@ def build_model(sc: ScenarioView) -> Model:
             "loads.distributed",
             "act on the scenario's system: Scenario.build_system() builds it",
         )
-    return body_model(sc)
+    return body_model(sc, 0)
 
 
-def body_model(sc: ScenarioView) -> Model:
-    """The flexible body of a file without ``[[bodies]]`` (its supports, moving ones included,
-    loads, initial motion), as the system of such a file holds it."""
+def body_model(sc: ScenarioView, i: int) -> Model:
+    """The model of the flexible body ``i`` of the scenario's ``body_tables``
+    (:func:`rancf.scenario.data.body_tables`): its tables, and the supports, point loads,
+    initial velocities and sensor nodes at its places (moving supports included), as the
+    scenario's system holds it."""
+    key, b = sc.body_tables[i]
     d = sc.data
+
+    def at(rows: list[dict[str, Any]], what: str) -> list[tuple[str, int, dict[str, Any]]]:
+        out = []
+        for k, t in enumerate(rows):
+            p = sc.place(t["at"])
+            if p.where == "node" and p.body == b.name and p.node is not None:
+                out.append((f"{what}[{k}]", p.node, t))
+        return out
+
+    nodes = [
+        (f"sensors.{sn.name}", p.node)
+        for sn in sc.sensors
+        for p in map(sc.place, sn.places)
+        if p.where == "node" and p.body == b.name and p.node is not None
+    ]
     return flexible_model(
         sc,
-        "",
-        (sc.geometry, sc.mesh, sc.section, sc.material),
-        [(f"supports[{i}]", t["at"], t) for i, t in enumerate(d["supports"])],
-        [(f"loads.point[{i}]", t["at"], t) for i, t in enumerate(d["loads"]["point"])],
-        [(f"initial_velocity[{i}]", t["at"], t) for i, t in enumerate(d["initial_velocity"])],
-        d["initial_motion"],
-        [(f"sensors.{sn.name}", nd) for sn in sc.sensors for nd in sn.nodes],
-        ("", sc.damping),
+        key,
+        (b.geometry, b.mesh, b.section, b.material),
+        at(d["supports"], "supports"),
+        at(d["loads"]["point"], "loads.point"),
+        at(d["initial_velocity"], "initial_velocity"),
+        d["bodies"][i]["initial_motion"],
+        nodes,
+        ("", sc.damping) if b.damping is None else (key, b.damping),
     )
 
 

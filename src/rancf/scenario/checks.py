@@ -13,11 +13,12 @@ from typing import Any
 
 from pydantic_core import PydanticCustomError
 
+from rancf.bodies.families import family, framed
 from rancf.scenario.base import fail, shorten, show, under
 from rancf.scenario.bodies import FlexibleBody, RigidBody
-from rancf.scenario.loads import time_size
 from rancf.scenario.places import ResolvedPlace, resolve_place
 from rancf.scenario.section import check_flexible
+from rancf.scenario.time_functions import time_size
 from rancf.scenario.view import ScenarioView
 
 __all__ = ["check_scenario"]
@@ -63,6 +64,8 @@ class _Context:
                     k,
                     f"does not apply with [[bodies]]: give it in each flexible body ([bodies.{k}])",
                 )
+        if sc.hydro is not None:
+            raise fail("hydro", "belongs to a body in a file with [[bodies]] (give [bodies.hydro])")
         dims = [b.dim for b in sc.bodies]
         for i, d in enumerate(dims):
             if d != dims[0]:
@@ -90,7 +93,7 @@ class _Context:
 
 
 def _rod_only(key: str, el: str | None) -> None:
-    if el != "rod":
+    if not framed(el):
         raise fail(key, f'applies to rod elements only (mesh.element = "rod"), not {el!r}')
 
 
@@ -162,6 +165,14 @@ def _motion(c: _Context) -> None:
                 f"give [initial_motion] for the whole system or "
                 f"bodies[{per_body[0]}].initial_motion, not both",
             )
+        rigid = [i for i, b in enumerate(sc.bodies) if not isinstance(b, FlexibleBody)]
+        if rigid:
+            raise fail(
+                "initial_motion",
+                f"moves the flexible bodies: give bodies[{rigid[0]}] (a rigid body or point "
+                "mass) its velocity in its own table, and each flexible body its "
+                "[bodies.initial_motion]",
+            )
 
 
 def _sliding(c: _Context, key: str, j: Any) -> None:
@@ -181,7 +192,7 @@ def _sliding(c: _Context, key: str, j: Any) -> None:
             f"names the flexible body that slides through the "
             f"place (one of {known}), got {show(a)}",
         )
-    if body.mesh.element == "beam":
+    if not family(body.mesh.element).gradient:
         raise fail(f"{key}.between[0]", "a body of cable or rod elements slides (not beams)")
     p = c.place(f"{key}.between[1]", b, ground=True)
     if p.where == "ground" and j.position is None:
@@ -256,7 +267,7 @@ def _sensors(c: _Context, supports: list[ResolvedPlace]) -> None:
             places = [c.place(f"{key}.at", s.at)]
         _size(f"{key}.at_point", s.at_point, c.dim)
         els = [c.element(p) for p in places]
-        if s.kind == "twist" and places and els[0] != "rod":
+        if s.kind == "twist" and places and not framed(els[0]):
             raise fail(
                 f"{key}.kind",
                 f"'twist' needs rod elements (mesh.element = \"rod\"), not {els[0]!r}",

@@ -35,7 +35,7 @@ from rancf.scenario.base import (
     fail,
     show,
 )
-from rancf.scenario.loads import TimeFunctionValue, check_scalar
+from rancf.scenario.time_functions import TimeFunctionValue, check_scalar
 
 __all__ = ["JointTable", "SpringTable", "JOINT_KINDS"]
 

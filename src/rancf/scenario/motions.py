@@ -28,7 +28,12 @@ from typing import Any
 import numpy as np
 
 from rancf.bodies.time_function import TimeFunction
-from rancf.scenario.loads import HarmonicFunction, RampFunction, TableFunction, time_function
+from rancf.scenario.time_functions import (
+    HarmonicFunction,
+    RampFunction,
+    TableFunction,
+    time_function,
+)
 
 __all__ = [
     "motion_function",

@@ -21,7 +21,11 @@ from rancf.scenario.base import fail, shorten, show
 from rancf.scenario.bodies import FlexibleBody, PointMass, RigidBody
 from rancf.system.places import GROUND, Place
 
-__all__ = ["ResolvedPlace", "resolve_place"]
+__all__ = ["ResolvedPlace", "resolve_place", "ONE_BODY"]
+
+#: The name of the one flexible body of a file without ``[[bodies]]``: parsing gives the file the
+#: bodies form, that body's places resolve to it.
+ONE_BODY = "body"
 
 
 @dataclass(frozen=True)
@@ -36,7 +40,7 @@ class ResolvedPlace:
         ``"node"`` (of a flexible body), ``"center"`` (a rigid body's centre of mass or a point
         mass), ``"point"`` (a named point of a rigid body) or ``"ground"``.
     body : str or None
-        The body's name (None: the one body of a file without ``[[bodies]]``, or the ground).
+        The body's name (:data:`ONE_BODY` in a file without ``[[bodies]]``; None: the ground).
     node : int or None
         The node index (``"start"``: 0, ``"end"``: -1) of a ``"node"`` place.
     point : str or None
@@ -49,13 +53,11 @@ class ResolvedPlace:
     node: int | None = None
     point: str | None = None
 
-    def system_place(self, single: str = "body") -> Place:
-        """The :class:`rancf.system.places.Place` of the system builder (``single``: the body's
-        name in a file without ``[[bodies]]``)."""
-        if self.where == "ground":
+    def system_place(self) -> Place:
+        """The :class:`rancf.system.places.Place` of the system builder."""
+        if self.where == "ground" or self.body is None:
             return GROUND
-        body = self.body if self.body is not None else single
-        return Place(body, self.node if self.where == "node" else self.point)
+        return Place(self.body, self.node if self.where == "node" else self.point)
 
 
 def _node(text: str) -> int | None:
@@ -87,9 +89,9 @@ def resolve_place(
         return ResolvedPlace(v, "ground")
     if bodies is None:
         if isinstance(v, int):
-            return ResolvedPlace(v, "node", node=v)
+            return ResolvedPlace(v, "node", ONE_BODY, node=v)
         if v in ("start", "end"):
-            return ResolvedPlace(v, "node", node=0 if v == "start" else -1)
+            return ResolvedPlace(v, "node", ONE_BODY, node=0 if v == "start" else -1)
         raise fail(key, f'must be "start", "end" or a node index, got {show(v)}')
     names = ", ".join(bodies)
     if isinstance(v, int):

@@ -19,23 +19,23 @@ from typing import TYPE_CHECKING, Any
 from pydantic import Field, PrivateAttr, ValidationError, ValidationInfo, model_validator
 
 from rancf.errors import ScenarioError
-from rancf.scenario.base import ContactPoints, Name, NonNegative, Table, fail, show
+from rancf.scenario.base import ContactPoints, Name, NonNegative, Table
 from rancf.scenario.bodies import Body, FlexibleBody
 from rancf.scenario.checks import check_scenario
 from rancf.scenario.damping import DampingTable
+from rancf.scenario.data import body_tables, columns_once, scenario_data, sensor_record
 from rancf.scenario.files import deferred_interrupts, read_toml, write_atomic
 from rancf.scenario.fluid import FluidTable, HydroTable
-from rancf.scenario.geometry import GEOMETRY_KEYS, CadGeometry, Geometry, MeshTable
+from rancf.scenario.geometry import CadGeometry, Geometry, MeshTable
 from rancf.scenario.joints import JointTable, SpringTable
 from rancf.scenario.loads import (
     InitialMotionTable,
     InitialVelocityTable,
     LoadsTable,
     SupportTable,
-    time_function,
 )
 from rancf.scenario.messages import scenario_error
-from rancf.scenario.motions import motion_function, start_warnings
+from rancf.scenario.motions import start_warnings
 from rancf.scenario.obstacles import ObstacleTable
 from rancf.scenario.section import MaterialTable, SectionTable
 from rancf.scenario.sensors import Sensor, SensorTable
@@ -119,6 +119,7 @@ class Scenario(Table):
     _support_places: list[Any] = PrivateAttr(default_factory=list)
     _data: dict[str, Any] = PrivateAttr(default_factory=dict)
     _sensors: tuple[Sensor, ...] = PrivateAttr(())
+    _body_tables: tuple[tuple[str, Any], ...] = PrivateAttr(())
 
     @classmethod
     def error_path(cls) -> str:
@@ -132,10 +133,11 @@ class Scenario(Table):
     def _whole(self, info: ValidationInfo) -> Scenario:
         self._path = str((info.context or {}).get("path", _PYTHON))
         self._dim, self._bodies, self._support_places = check_scenario(self)
-        self._data = _data(self)
+        self._body_tables = body_tables(self)
+        self._data = scenario_data(self)
         self._data["warnings"] = start_warnings(self)
-        self._sensors = tuple(_record(s, self._bodies) for s in self.sensor_tables)
-        _columns_once(self._sensors, self._dim)
+        self._sensors = tuple(sensor_record(s, self._bodies) for s in self.sensor_tables)
+        columns_once(self._sensors, self._dim)
         return self
 
     # ------------------------------------------------------------------ the facade
@@ -180,6 +182,12 @@ class Scenario(Table):
     def support_place(self, i: int) -> ResolvedPlace:
         """The resolved place of ``supports[i]``."""
         return self._support_places[i]
+
+    @property
+    def body_tables(self) -> tuple[tuple[str, Any], ...]:
+        """Every body as ``(key prefix, [[bodies]] table)``, a one-body file's too: the one form
+        code past parsing reads (:func:`rancf.scenario.data.body_tables`)."""
+        return self._body_tables
 
     @property
     def bodies_by_name(self) -> dict[str, Any]:
@@ -301,114 +309,6 @@ class Scenario(Table):
             if isinstance(b, FlexibleBody) and isinstance(b.geometry, CadGeometry):
                 out.append((raw["geometry"], b.geometry))
         return out
-
-
-def _geometry_data(g: Any) -> dict[str, Any]:
-    out: dict[str, Any] = dict.fromkeys(k for keys in GEOMETRY_KEYS.values() for k in keys)
-    out.update(g.plain())
-    if isinstance(g, CadGeometry):
-        out["file"], out["curves"], out["labels"] = g.resolved_file, g.curves, g.labels
-        out["curve"] = 0 if g.curve is None else g.curve
-    return out
-
-
-def _tf(v: Any) -> Any:
-    return None if v is None else time_function(v)
-
-
-def _node_or_text(v: int | str, one_body: bool) -> int | str:
-    if one_body and v in ("start", "end"):
-        return 0 if v == "start" else -1
-    return v
-
-
-def _data(sc: Scenario) -> dict[str, Any]:
-    """The tables as plain dictionaries (:attr:`Scenario.data`)."""
-    one = not sc.bodies
-    d: dict[str, Any] = {}
-    if one:
-        d["geometry"] = _geometry_data(sc.geometry)
-        for k in ("mesh", "section", "material"):
-            d[k] = sc[k].plain()
-    d["bodies"] = []
-    for b in sc.bodies:
-        bd = b.plain()
-        if isinstance(b, FlexibleBody):
-            bd["geometry"] = _geometry_data(b.geometry)
-            im = b.initial_motion
-            bd["initial_motion"] = None if im is None else im.as_dict()
-        d["bodies"].append(bd)
-    notes: list[str] = []
-
-    def motion(v: Any, key: str) -> Any:
-        f, note = motion_function(v, key)
-        notes.extend([note] if note else [])
-        return f
-
-    d["joints"] = [
-        {**j.plain(frozenset({"angle"})), "angle": motion(j.angle, f"joints[{i}].angle")}
-        for i, j in enumerate(sc.joints)
-    ]
-    d["springs"] = [s.plain() for s in sc.springs]
-    d["obstacles"] = [o.plain() for o in sc.obstacles]
-    d["winches"] = [
-        {
-            **w.plain(frozenset({"length", "speed", "torque"})),
-            **{k: _tf(w[k]) for k in ("length", "speed", "torque")},
-        }
-        for w in sc.winches
-    ]
-    d["supports"] = [
-        {
-            **s.plain(frozenset({"motion"})),
-            "at": _node_or_text(s.at, one),
-            "label": s.at,
-            "motion": motion(s.motion, f"supports[{i}].motion"),
-        }
-        for i, s in enumerate(sc.supports)
-    ]
-    d["loads"] = {
-        "gravity": sc.loads.gravity,
-        "point": [
-            {**p.plain(frozenset({"time"})), "at": _node_or_text(p.at, one), "time": _tf(p.time)}
-            for p in sc.loads.point
-        ],
-        "distributed": [
-            {**p.plain(frozenset({"time"})), "time": _tf(p.time)} for p in sc.loads.distributed
-        ],
-    }
-    d["damping"] = sc.damping.plain()
-    d["initial_velocity"] = [
-        {"at": _node_or_text(iv.at, one), "value": iv.value} for iv in sc.initial_velocity
-    ]
-    d["initial_motion"] = None if sc.initial_motion is None else sc.initial_motion.as_dict()
-    d["solver"] = sc.solver.plain()
-    d["modes"] = sc.modes.plain()
-    d["notes"] = notes
-    return d
-
-
-def _columns_once(sensors: tuple[Sensor, ...], dim: int) -> None:
-    """Refuse two sensors that give a column of the same name (a position ``tip`` gives
-    ``tip_x``, as a sensor named ``tip_x`` does): readers would take one for the other."""
-    owner: dict[str, int] = {}
-    for i, s in enumerate(sensors):
-        for col in s.columns(dim):
-            if col in owner:
-                j = owner[col]
-                raise fail(
-                    f"sensors[{i}].name",
-                    f"{show(s.name)} gives the column {col!r}, as "
-                    f"sensors[{j}] ({show(sensors[j].name)}, kind {sensors[j].kind!r}) "
-                    "does: each column of sensors.csv needs its own name",
-                )
-            owner[col] = i
-
-
-def _record(s: SensorTable, bodies: dict[str, Any] | None) -> Sensor:
-    if bodies is not None:
-        return s.record()
-    return s.record(tuple(int(_node_or_text(p, True)) for p in s.places()))
 
 
 def load_scenario(path: str | Path) -> Scenario:

@@ -21,6 +21,7 @@ from typing import Any, Literal
 
 from pydantic import Field, model_validator
 
+from rancf.bodies.families import family, framed
 from rancf.scenario.base import PoissonRatio, Positive, Table, Vector3, fail, show
 from rancf.scenario.geometry import MeshTable
 
@@ -132,7 +133,7 @@ class MaterialTable(Table):
 
 
 def _rod_only(key: str, element: str) -> None:
-    if element != "rod":
+    if not framed(element):
         raise fail(key, f'applies to rod elements only (mesh.element = "rod"), not {element!r}')
 
 
@@ -142,23 +143,23 @@ def check_flexible(
     """The checks of a flexible body that need several of its tables (keys relative to the
     body: ``mesh.element``, ``section.inertia_y``, ``material.shear_modulus``)."""
     el, dim = mesh.element, geometry.dim
-    if el == "beam" and dim != 2:
-        raise fail("mesh.element", "the beam element is planar: use 2-coordinate geometry")
-    if el == "rod" and dim != 3:
-        raise fail("mesh.element", "the rod element is spatial: use 3-coordinate geometry")
+    fam = family(el)
+    if dim not in fam.dims:
+        plane = "planar: use 2-coordinate" if fam.dims == (2,) else "spatial: use 3-coordinate"
+        raise fail("mesh.element", f"the {el} element is {plane} geometry")
     for k in _ROD_SECTION:
         if section[k] is not None:
             _rod_only(f"section.{k}", el)
     for k in ("shear_modulus", "poisson_ratio"):
         if material[k] is not None:
             _rod_only(f"material.{k}", el)
-    if material.axial_strain != "green_lagrange" and el not in ("rancf", "ancf"):
+    if material.axial_strain != "green_lagrange" and not fam.engineering_strain:
         raise fail(
             "material.axial_strain",
             f'"engineering" applies to cable elements '
             f'(mesh.element = "rancf" or "ancf"), not {el!r}',
         )
-    if el == "rod" and material.shear_modulus is None and material.poisson_ratio is None:
+    if fam.has_triads and material.shear_modulus is None and material.poisson_ratio is None:
         raise fail(
             "material.shear_modulus",
             "required for rod elements: give shear_modulus or "

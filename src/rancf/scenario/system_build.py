@@ -29,16 +29,15 @@ import numpy as np
 
 from rancf.bodies.rigid import PointMass, RigidBody
 from rancf.errors import InputError, ScenarioError
-from rancf.scenario.build import body_model, flexible_model
+from rancf.scenario.build import body_model
 from rancf.scenario.fluid import fluid_value, hydro_value
+from rancf.scenario.places import ONE_BODY
 from rancf.scenario.view import ScenarioView
 from rancf.scenario.winches import system_winches, winch_key
 from rancf.system import Joint, Load, Obstacle, Place, Spring, System
 
 __all__ = ["build_system", "scenario_keys", "support_labels", "ONE_BODY"]
 
-#: The name of the one body of a file without ``[[bodies]]``.
-ONE_BODY = "body"
 
 _SUPPORT_JOINT = {"pin": "pin", "clamp": "fixed", "roller": "slider"}
 
@@ -70,8 +69,6 @@ def _tuple(v: Any) -> tuple[float, ...] | None:
 
 def support_labels(sc: ScenarioView) -> dict[str, list[int | str]]:
     """The supports' ``at`` as written, per flexible body (reaction column names)."""
-    if not sc.bodies:
-        return {ONE_BODY: list(sc.support_labels)}
     out: dict[str, list[int | str]] = {}
     for i, s in enumerate(sc.supports):
         p = sc.support_place(i)
@@ -108,55 +105,16 @@ def _observed(sc: ScenarioView) -> list[Place]:
         for text in sen.places:
             p = sc.place(text)
             if p.where == "point":
-                out.append(p.system_place(ONE_BODY))
+                out.append(p.system_place())
     return out
 
 
 def _build(sc: ScenarioView) -> System:
     gravity, damping = sc.loads.gravity, sc.damping.mass_proportional
     beta = sc.damping.stiffness_proportional
-    if not sc.bodies:
-        model = body_model(sc)
-        return System(
-            {ONE_BODY: model},
-            gravity=gravity,
-            damping=damping,
-            stiffness_damping=beta,
-            horizon=sc.solver.t_end,
-            **_parts(sc, {ONE_BODY: model}),
-        )
-    d = sc.data
     bodies: dict[str, Any] = {}
-    for i, b in enumerate(sc.bodies):
-        if b.kind != "flexible":
-            bodies[b.name] = _rigid(b, sc.dim)
-            continue
-
-        def at(rows: list[dict[str, Any]], key: str, name: str = b.name) -> list:
-            out = []
-            for k, t in enumerate(rows):
-                p = sc.place(t["at"])
-                if p.where == "node" and p.body == name:
-                    out.append((f"{key}[{k}]", p.node, t))
-            return out
-
-        nodes = [
-            (f"sensors.{sn.name}", p.node)
-            for sn in sc.sensors
-            for p in map(sc.place, sn.places)
-            if p.where == "node" and p.body == b.name and p.node is not None
-        ]
-        bodies[b.name] = flexible_model(
-            sc,
-            f"bodies[{i}].",
-            (b.geometry, b.mesh, b.section, b.material),
-            at(d["supports"], "supports"),
-            at(d["loads"]["point"], "loads.point"),
-            at(d["initial_velocity"], "initial_velocity"),
-            d["bodies"][i]["initial_motion"],
-            nodes,
-            ("", sc.damping) if b.damping is None else (f"bodies[{i}].", b.damping),
-        )
+    for i, (_, b) in enumerate(sc.body_tables):
+        bodies[b.name] = body_model(sc, i) if b.kind == "flexible" else _rigid(b, sc.dim)
     return System(
         bodies,
         gravity=gravity,
@@ -171,7 +129,7 @@ def _parts(sc: ScenarioView, bodies: dict[str, Any]) -> dict[str, Any]:
     """Joints (with supports of rigid places), springs, loads on rigid places, observed places."""
 
     def place(text: Any) -> Place:
-        return sc.place(text).system_place(ONE_BODY)
+        return sc.place(text).system_place()
 
     joints = []
     for i, s in enumerate(sc.supports):
@@ -192,7 +150,7 @@ def _parts(sc: ScenarioView, bodies: dict[str, Any]) -> dict[str, Any]:
         )
     for j, jd in zip(sc.joints, sc.data["joints"], strict=True):
         if j.kind == "sliding":  # a flexible body (by name) through a place
-            body = Place(str(j.between[0]) if sc.bodies else ONE_BODY)
+            body = Place(str(j.between[0]))
             pos = None if j.position is None else tuple(j.position)
             joints.append(Joint("sliding", (body, place(j.between[1])), name=j.name, position=pos))
             continue
@@ -236,7 +194,7 @@ def _parts(sc: ScenarioView, bodies: dict[str, Any]) -> dict[str, Any]:
         "body_contacts": [(a, b) for a, b in sc.body_contacts],
         "contact_points": sc.contact_points,
         "body_friction": sc.body_friction,
-        "winches": system_winches(sc, bodies, ONE_BODY),
+        "winches": system_winches(sc, bodies),
         **_fluid(sc, bodies),
     }
 
@@ -254,14 +212,11 @@ def _fluid(sc: ScenarioView, bodies: dict[str, Any]) -> dict[str, Any]:
         raise ScenarioError(
             sc.path, f"fluid.{ctx.get('key', '')}", str(ctx.get("problem"))
         ) from None
-    if sc.bodies and sc.hydro is not None:
-        raise ScenarioError(
-            sc.path, "hydro", "belongs to a body in a file with [[bodies]] (give [bodies.hydro])"
-        )
-    hydro = {ONE_BODY: hydro_value(sc.hydro)} if sc.hydro is not None else {}
-    for b in sc.bodies:
-        if getattr(b, "hydro", None) is not None:
-            hydro[b.name] = hydro_value(b.hydro)
+    hydro = {
+        b.name: hydro_value(b.hydro)
+        for _, b in sc.body_tables
+        if getattr(b, "hydro", None) is not None
+    }
     dist = [
         DistributedLoad(tuple(d["force"]), d["body"], d["time"])
         for d in sc.data["loads"]["distributed"]

@@ -71,6 +71,9 @@ class ScenarioView(Protocol):
     def bodies(self) -> Sequence[Any]: ...
 
     @property
+    def body_tables(self) -> tuple[tuple[str, Any], ...]: ...
+
+    @property
     def joints(self) -> Sequence[Any]: ...
 
     @property

@@ -23,7 +23,7 @@ from rancf.bodies.flexible import Model
 from rancf.bodies.length import set_unstretched_length, unstretched_length
 from rancf.errors import ScenarioError
 from rancf.scenario.base import Name, Positive, Table, Vector23, fail
-from rancf.scenario.loads import TimeFunctionValue, check_scalar
+from rancf.scenario.time_functions import TimeFunctionValue, check_scalar
 from rancf.system.winches import LENGTH_RTOL, Winch, length_law, winch_length
 
 __all__ = ["WinchTable", "system_winches", "winch_key"]
@@ -88,7 +88,7 @@ def winch_key(winches: Any, parameter: str) -> str:
     return parameter
 
 
-def system_winches(sc: Any, bodies: dict[str, Any], one_body: str) -> list[Winch]:
+def system_winches(sc: Any, bodies: dict[str, Any]) -> list[Winch]:
     """The :class:`~rancf.system.winches.Winch` of every ``[[winches]]`` table; a body whose
     length at ``t = 0`` is not its drawing's is stretched about the winch first
     (:func:`~rancf.bodies.length.set_unstretched_length`).  Errors name the key."""
@@ -99,14 +99,14 @@ def system_winches(sc: Any, bodies: dict[str, Any], one_body: str) -> list[Winch
             p = sc.place(w.at)
         except ScenarioError as exc:
             raise ScenarioError(sc.path, f"{key}.at", exc.problem) from None
-        body = bodies.get(p.body or one_body) if p.where == "node" else None
+        body = bodies.get(p.body) if p.where == "node" and p.body is not None else None
         if not isinstance(body, Model) or p.node not in (0, -1, body.n_nodes - 1):
             raise ScenarioError(
                 sc.path, f"{key}.at", f'"BODY:start" or "BODY:end" of a cable body (got {w.at!r})'
             )
         node = 0 if p.node == 0 else body.n_nodes - 1
         end = "start" if node == 0 else "end"
-        at = f"{p.body or one_body}:{end}"
+        at = f"{p.body}:{end}"
         if w.position is not None:
             x = body.node_positions(body.q0)[node]
             if len(w.position) != x.size:

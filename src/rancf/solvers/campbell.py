@@ -251,7 +251,7 @@ def motion_shares(system: System, y: NDArray, shape: NDArray, axis: Sequence[flo
         out[0] += np.sum(np.abs(fl) ** 2)
         out[2] += np.sum(np.abs(ax) ** 2)
         out[1] += np.sum(np.abs(d) ** 2) - np.sum(np.abs(fl) ** 2) - np.sum(np.abs(ax) ** 2)
-        if b.element == "rod":
+        if b.family.has_triads:
             twist = shape[sl].reshape(b.n_nodes, b.dpn)[:, -1]
             out[3] += np.sum(np.abs(twist) ** 2) * b.section.radius**2 / 2
     total = out.sum()

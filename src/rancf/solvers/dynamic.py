@@ -212,7 +212,7 @@ class _Loop:
         # at most ~16 MB of stored states per array
         self.cap = max(1, (1 << 21) // system.n)
         self.chunk_out = self.least = int(np.clip(self.n_grid // 100, 1, self.cap))
-        if any(b.element == "rod" for b in system.flex):  # the triads at a call's end are
+        if any(b.family.has_triads for b in system.flex):  # the triads at a call's end are
             self.chunk_out = self.least = self.cap = 1  # those of its one stored state
             fast = fast and stepper.check is None  # (a rod's triads cannot step back)
         self.fast = fast

@@ -87,7 +87,7 @@ class GeneralizedAlpha:
         system = self.system
         wound = {w.body_and_end()[0] for w in system.winches}
         for b, (name, body) in enumerate(zip(system.names, system.flex, strict=False)):
-            if body.element == "beam" or name in wound:
+            if not body.family.gradient or name in wound:
                 continue
             n1, n2, ref = sample_points(body, STRAIN_POINTS)
             self._core.add_strain_points(

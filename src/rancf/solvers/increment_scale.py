@@ -37,7 +37,7 @@ def body_scale(model: Model) -> NDArray[np.float64] | None:
     Cables (``"rancf"``, ``"ancf"``), rods and beams with nodal coordinates: positions 1, each
     node's gradient (beams: angle) ``ℓ_min / |r'_ref|`` (beams: ``ℓ_min``); a rod's twist 1.
     """
-    if model.element not in ("rancf", "ancf", "beam", "rod") or model.reduction is not None:
+    if model.reduction is not None:
         return None
     q = np.asarray(model.q0, dtype=float).reshape(model.n_nodes, model.dpn)
     d = model.dim
@@ -46,7 +46,7 @@ def body_scale(model: Model) -> NDArray[np.float64] | None:
     if lengths.size == 0 or not np.all(lengths > 0.0):
         return None
     near = np.minimum(np.r_[lengths[0], lengths], np.r_[lengths, lengths[-1]])
-    if model.element == "beam":
+    if not model.family.gradient:
         grad = near
     else:
         size = np.linalg.norm(q[:, d : 2 * d], axis=1)

@@ -134,7 +134,7 @@ def rigid_candidates(model: Model, y: NDArray) -> NDArray[np.float64]:
         if dim == 2:
             rel = pos - centre
             v[:, 0], v[:, 1] = -rel[:, 1], rel[:, 0]
-            if model.element == "beam":
+            if not model.family.gradient:
                 v[:, 2] = 1.0
             else:
                 g = nodes[:, 2:4]
@@ -142,7 +142,7 @@ def rigid_candidates(model: Model, y: NDArray) -> NDArray[np.float64]:
         else:
             v[:, :3] = np.cross(w, pos - centre)
             v[:, 3:6] = np.cross(w, nodes[:, 3:6])
-            if model.element == "rod":  # the cross-section turns with it: spin w·t about t
+            if model.family.has_triads:  # the cross-section turns with it: spin w·t about t
                 g = nodes[:, 3:6]
                 v[:, 6] = g @ w / np.linalg.norm(g, axis=1)
         cols.append(v.ravel())

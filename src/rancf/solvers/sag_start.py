@@ -158,7 +158,7 @@ def _line_geometry(system: Any, name: str, model: Model, pinned: bool = False) -
     their positions (installed; ``q`` the installed nodal coordinates ``(n_nodes, dpn)``, ``up``
     against gravity, ``p1`` the start, ``s_nodes`` the nodes' reference arc lengths), or None
     (no such line; ``pinned``: None also where an end holds its direction)."""
-    if model.element not in ("rancf", "ancf") or model.closed or model.gravity is None:
+    if not model.family.cable or model.closed or model.gravity is None:
         return None
     ends = (0, model.n_nodes - 1)
     if not all(_held_position(model, k) for k in ends):

@@ -248,7 +248,10 @@ class DynamicState:
 def triads_of(system: Any) -> list[NDArray[np.float64]]:
     """Copies of the rods' nodal reference tangents and directors, body by body."""
     return [
-        x.copy() for b in system.flex if b.element == "rod" for x in (b.kernel.tref, b.kernel.m1ref)
+        x.copy()
+        for b in system.flex
+        if b.family.has_triads
+        for x in (b.kernel.tref, b.kernel.m1ref)
     ]
 
 
@@ -264,7 +267,7 @@ def take_up(system: Any, integ: Any, state: DynamicState, result: Any, base: dic
     InputError
         If the state is of another system.
     """
-    rods = [b for b in system.flex if b.element == "rod"]
+    rods = [b for b in system.flex if b.family.has_triads]
     sizes = [x.size for b in rods for x in (b.kernel.tref, b.kernel.m1ref)]
     state.check_fits(system.n, system.m, sizes)
     for i, b in enumerate(rods):

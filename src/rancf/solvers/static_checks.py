@@ -113,8 +113,9 @@ def self_crossing(model: Model, x: NDArray[np.float64], s: NDArray[np.float64]) 
     """Where the polyline through the sample points ``x`` (arc lengths ``s``) of ``model``
     passes through itself: two of its chords more than ``π r`` of arc apart whose closest
     points are nearer than the section radius ``r`` (an open body's first and last chords left
-    out: an end that meets the body, a cantilever rolled into a full circle, touches it), as a line naming both arc lengths (empty
-    when there is none).  Candidate pairs come from a k-d tree of the chords' midpoints."""
+    out: an end that meets the body, a cantilever rolled into a full circle, touches it), as a
+    line naming both arc lengths (empty when there is none).  Candidate pairs come from a k-d
+    tree of the chords' midpoints."""
     from scipy.spatial import cKDTree
 
     r = float(model.section.radius)
@@ -222,7 +223,7 @@ def _seabed_bends(system: Any, q: NDArray[np.float64]) -> list[tuple[str, str, l
         n = n / np.linalg.norm(n)
         for name, model in zip(system.names, system.flex, strict=False):
             w = pressing_weight(system, name, np.r_[n, np.zeros(3 - n.size)])
-            if model.element == "beam" or (name, ob_name) not in pairs or not w > 0.0:
+            if not model.family.gradient or (name, ob_name) not in pairs or not w > 0.0:
                 continue
             y = model.y_from_q(np.asarray(q)[system.body_slice(name)])
             bends = _bends(model, y, np.asarray(ob.point, dtype=float), n, w)
@@ -263,7 +264,7 @@ def _penetration_problems(system: Any, q: NDArray[np.float64]) -> list[str]:
     """Obstacles penetrated deeper than :data:`PENETRATION_LIMIT` of the touching diameter."""
     if not getattr(system, "obstacle_names", None):
         return []
-    from rancf.system.contact import contact_outputs
+    from rancf.system.contact_outputs import contact_outputs
 
     states = contact_outputs(system, system.y_from_q(q))
     out = []

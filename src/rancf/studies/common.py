@@ -17,7 +17,8 @@ from rancf.atomic import atomic_write
 from rancf.bodies.flexible import Model
 from rancf.errors import ConvergenceError
 from rancf.scenario import Scenario, parse_scenario
-from rancf.solvers.dynamic import DynamicOptions, DynamicResult, DynamicStatus, integrate
+from rancf.solvers.dynamic import DynamicResult, DynamicStatus
+from rancf.solvers.modal import ModalResult
 from rancf.studies.catalog import EXAMPLES, SCENARIO_ANALYSES, example_path
 from rancf.studies.grid import Executor, GridRun, grid_variant, run_grid, variant_raw
 
@@ -28,6 +29,7 @@ __all__ = [
     "load_example",
     "variant",
     "run",
+    "modes",
     "fft_peak",
     "Comparison",
     "StudyResult",
@@ -48,23 +50,21 @@ def variant(raw: dict[str, Any], name: str, **changes: Any) -> tuple[Scenario, M
     return sc, sc.build_model()
 
 
-def run(sc: Scenario, model: Model, **overrides: Any) -> DynamicResult:
-    """Integrate a scenario's model with its ``[solver]`` settings (``overrides`` win)."""
-    s = dict(sc.data["solver"])
-    s.update(overrides)
-    keys: tuple[str, ...] = (
-        "t_end",
-        "step",
-        "rho_inf",
-        "adaptive",
-        "rtol",
-        "strain_error",
-        "min_step",
-        "output_step",
-    )
-    keys += ("newton_tol", "max_newton", "newton")
-    opts = DynamicOptions(**{k: s[k] for k in keys})
-    return integrate(model, opts)
+def run(sc: Scenario) -> DynamicResult:
+    """The dynamics of a scenario with its ``[solver]`` settings, as ``rancf simulate`` runs it
+    (:func:`rancf.runs.simulate.run_simulate`, held in memory)."""
+    from rancf.runs.simulate import run_simulate
+
+    return run_simulate(sc).result
+
+
+def modes(sc: Scenario, count: int | None = None) -> ModalResult:
+    """The natural modes of a scenario as ``rancf modes`` computes them
+    (:func:`rancf.runs.modes.run_modes`): ``count`` of them, or every one of the free
+    coordinates."""
+    from rancf.runs.modes import run_modes
+
+    return run_modes(sc, count, every=count is None).result
 
 
 def fft_peak(t: NDArray, x: NDArray, f_min: float = 0.0) -> dict[str, Any]:

@@ -24,8 +24,7 @@ from typing import Any
 
 import numpy as np
 
-from rancf.solvers.modal import natural_modes
-from rancf.studies.common import load_example, run, variant
+from rancf.studies.common import load_example, modes, run, variant
 
 __all__ = ["BETA", "N_REF", "cantilever_rows", "pendulum_rows", "continuity_study"]
 
@@ -55,8 +54,8 @@ def cantilever_rows(ns: list[int]) -> list[dict[str, Any]]:
     rows = []
     for c in ("C1", "C2"):
         for n in ns:
-            _, model = variant(raw, f"cantilever {c} n={n}", mesh__elements=n, mesh__continuity=c)
-            f, top = _bending(model, natural_modes(model))
+            sc, model = variant(raw, f"cantilever {c} n={n}", mesh__elements=n, mesh__continuity=c)
+            f, top = _bending(model, modes(sc))
             err = np.full(5, np.nan)
             k = min(5, f.size)
             err[:k] = f[:k] / exact[:k] - 1.0
@@ -78,8 +77,14 @@ def pendulum_rows(ns: list[int], t_end: float = 1.0) -> tuple[list[dict[str, Any
     raw = load_example("planar-pendulum")
 
     def tip(n: int, c: str) -> tuple[int, np.ndarray]:
-        sc, model = variant(raw, f"pendulum {c} n={n}", mesh__elements=n, mesh__continuity=c)
-        res = run(sc, model, t_end=t_end)
+        sc, model = variant(
+            raw,
+            f"pendulum {c} n={n}",
+            mesh__elements=n,
+            mesh__continuity=c,
+            solver__t_end=t_end,
+        )
+        res = run(sc)
         return int(np.sum(~model.fixed)), model.node_positions(res.q)[:, -1]
 
     _, ref = tip(N_REF, "C1")

@@ -172,7 +172,8 @@ def _exudyn_errors(
     from rancf.scenario import parse_scenario
 
     sc = parse_scenario(raw, NAME)
-    g, s = sc.data["geometry"], sc.data["solver"]
+    body, s = sc.data["bodies"][0], sc.data["solver"]
+    g = body["geometry"]
     from rancf.geometry.conic import conic_arc_through
     from rancf.mesh.factories import mesh_conic, to_ancf
 
@@ -185,7 +186,7 @@ def _exudyn_errors(
     for e in (e for e in es if e <= EXUDYN_MAX_E):
         tips = {
             n: exudyn_cable.curved_pendulum_tip(
-                m.nodes, m.scales, solver, area, inertia, sc.data["material"]["density"], e
+                m.nodes, m.scales, solver, area, inertia, body["material"]["density"], e
             )[1]
             for n, m in meshes.items()
         }

@@ -57,34 +57,7 @@ def run_study(
     t_end = 0.3 if quick else 1.0
 
     # --- K study (Figs. 12, 13) -------------------------------------------------------------
-    conic = conic_arc(0.5, [30.0, 40.0], [0.315, 0.077])
-    k_opt = kopt(conic)
-    ks = [0.2, k_opt, 0.6]
-    ratios = [gradient_ratio(conic.cubic(k)) for k in ks]
-    res.comparison.append(Comparison("Kopt", "0.406", f"{k_opt:.4f}", f"{k_opt - 0.406:+.4f}"))
-    for k, r, p in zip(["0.2", "Kopt", "0.6"], ratios, ["1.96", "1.04", "1.68"], strict=True):
-        res.comparison.append(
-            Comparison(
-                f"gradient ratio, K = {k}",
-                p,
-                f"{r:.3f}",
-                f"{r - float(p):+.3f}",
-                "the paper rounds to 2 decimals",
-            )
-        )
-    fig = k_study_figure(
-        conic,
-        ks,
-        k_opt,
-        ("Fig. 12: gradient curves", "Fig. 13: parameter distributions (ξ = 0, 0.1, ..., 1)"),
-    )
-    save_figure(
-        fig,
-        out / "fig12_13_gradients.png",
-        res,
-        "Figs. 12–13: gradient curves and parameter distributions",
-    )
-
+    k_opt, ratios = _k_study(out, res)
     # --- the runs ---------------------------------------------------------------------------
     ns_full = [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 16, 20, 24, 32, 48]
     ns = [1, 2, 4] if quick else ns_full
@@ -115,7 +88,66 @@ def run_study(
     res.data["found_beam_own"] = found_own
     res.data["beam_reference_offset"] = float(np.max(np.linalg.norm(tip_b - ref["tip"], axis=1)))
 
-    # element-efficiency table and error curves
+    _efficiency(out, res, plt, runs, found, own, found_own, t_end, n_ref)
+    _ab_figures(out, res, plt, runs, ref, n_ref)
+    _configurations(out, res, plt, runs, t_end)
+    l2, linf = _refinement(out, res, plt, runs, t_end, quick)
+    res.data.update(
+        l2=l2,
+        linf=linf,
+        k_opt=k_opt,
+        ratios=ratios,
+        energy_drift=_energy_drift(r_ref),
+        ref_tip=ref["tip"],
+    )
+    return res.finish()
+
+
+def _k_study(out: Path, res: StudyResult) -> tuple[float, list[float]]:
+    """Figs. 12-13: Kopt and the gradient ratios of K = 0.2, Kopt, 0.6."""
+    conic = conic_arc(0.5, [30.0, 40.0], [0.315, 0.077])
+    k_opt = kopt(conic)
+    ks = [0.2, k_opt, 0.6]
+    ratios = [gradient_ratio(conic.cubic(k)) for k in ks]
+    res.comparison.append(Comparison("Kopt", "0.406", f"{k_opt:.4f}", f"{k_opt - 0.406:+.4f}"))
+    for k, r, p in zip(["0.2", "Kopt", "0.6"], ratios, ["1.96", "1.04", "1.68"], strict=True):
+        res.comparison.append(
+            Comparison(
+                f"gradient ratio, K = {k}",
+                p,
+                f"{r:.3f}",
+                f"{r - float(p):+.3f}",
+                "the paper rounds to 2 decimals",
+            )
+        )
+    fig = k_study_figure(
+        conic,
+        ks,
+        k_opt,
+        ("Fig. 12: gradient curves", "Fig. 13: parameter distributions (ξ = 0, 0.1, ..., 1)"),
+    )
+    save_figure(
+        fig,
+        out / "fig12_13_gradients.png",
+        res,
+        "Figs. 12–13: gradient curves and parameter distributions",
+    )
+
+    return k_opt, ratios
+
+
+def _efficiency(
+    out: Path,
+    res: StudyResult,
+    plt: Any,
+    runs: dict,
+    found: dict,
+    own: dict,
+    found_own: int | None,
+    t_end: float,
+    n_ref: int,
+) -> None:
+    """The element-efficiency table and the error curves."""
     rows = []
     for kind in KINDS:
         f = found[kind]
@@ -184,7 +216,9 @@ def run_study(
         fig, out / "error_vs_elements.png", res, "Tip-position error against the number of elements"
     )
 
-    # Figs. 15–17 and 21: AB(t) convergence
+
+def _ab_figures(out: Path, res: StudyResult, plt: Any, runs: dict, ref: dict, n_ref: int) -> None:
+    """Figs. 15-17 and 21: AB(t) convergence, and the reference run's animation."""
     add_animation(
         res,
         ref["folder"],
@@ -207,7 +241,9 @@ def run_study(
             f"AB(t) for increasing numbers of elements, {kind}",
         )
 
-    # Fig. 14: configurations
+
+def _configurations(out: Path, res: StudyResult, plt: Any, runs: dict, t_end: float) -> None:
+    """Fig. 14: configurations at several times."""
     conf = runs["Kopt"][max(n for n in runs["Kopt"] if n <= 10)]
     fig, ax = plt.subplots(figsize=(6.5, 6), constrained_layout=True)
     m, r = conf["model"], conf["result"]
@@ -226,7 +262,11 @@ def run_study(
         fig, out / "fig14_configurations.png", res, "Fig. 14: cable configurations at several times"
     )
 
-    # Figs. 18–20: 5 vs 10 elements at t = 0.5 s
+
+def _refinement(
+    out: Path, res: StudyResult, plt: Any, runs: dict, t_end: float, quick: bool
+) -> tuple[float, float]:
+    """Figs. 18-20: 5 against 10 elements at t = 0.5 s; the L2 and L∞ norms of the difference."""
     t_cmp = min(0.5, t_end)
     n_a, n_b = (2, 4) if quick else (5, 10)
     sbar = np.linspace(0.0, 1.0, 201)
@@ -294,15 +334,7 @@ def run_study(
         ][::10],
         "mesh_refinement.csv",
     )
-    res.data.update(
-        l2=l2,
-        linf=linf,
-        k_opt=k_opt,
-        ratios=ratios,
-        energy_drift=_energy_drift(r_ref),
-        ref_tip=ref["tip"],
-    )
-    return res.finish()
+    return l2, linf
 
 
 def _energy_drift(r: Any) -> float:

@@ -16,13 +16,13 @@ from typing import Any
 import numpy as np
 
 from rancf.post.plots import pyplot
-from rancf.solvers.modal import natural_modes
 from rancf.studies.common import (
     Comparison,
     StudyResult,
     convergence_runs,
     fft_peak,
     format_error,
+    modes,
     run,
     save_figure,
     variant,
@@ -166,8 +166,8 @@ def arc_rod_modes(
     ns = [4, 8, 16] if quick else [4, 8, 16, 32, 64]
     table, inplane = [], None
     for n in ns:
-        _, m = variant(spatial, "arc-vibration (rod)", mesh__elements=n, **ROD)
-        fi, fo = split_in_out_of_plane(m, natural_modes(m))
+        sc_n, m = variant(spatial, "arc-vibration (rod)", mesh__elements=n, **ROD)
+        fi, fo = split_in_out_of_plane(m, modes(sc_n))
         table.append(fo[:4])
         if n == 8:
             inplane, n_zero = fi, int(np.sum(np.concatenate([fi, fo]) < 1e-3))
@@ -183,7 +183,7 @@ def arc_rod_modes(
     k = min(len(f_planar), len(inplane))
     in_diff = float(np.max(np.abs(inplane[:k] / f_planar[:k] - 1)))
     sc, m = variant(spatial, "arc-vibration (rod)", solver__t_end=4.0 if quick else 20.0, **ROD)
-    r = run(sc, m)
+    r = run(sc)
     tip = m.node_positions(r.q)[:, -1, 2] - m.node_positions(m.q0)[-1, 2]
     spec = fft_peak(r.t, tip, f_min=0.2)
     f1 = float(table[-1][0])

@@ -22,6 +22,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from rancf.bodies.families import family
 from rancf.errors import RunTooLargeError, ScenarioError, shorten
 
 __all__ = ["SweepSpec", "Variant", "load_sweep", "ANALYSES"]
@@ -133,16 +134,13 @@ def _check_size(sc: Any) -> None:
     from rancf.post.run_plan import check_output_size
     from rancf.sweep.runner import LIMIT, MAX_RUN_GB
 
-    meshes = (
-        [sc.data["mesh"]]
-        if sc.data.get("mesh")
-        else [b["mesh"] for b in sc.data.get("bodies") or [] if b.get("mesh")]
-    )
+    meshes = [b["mesh"] for b in sc.data["bodies"] if b.get("mesh")]
     n_q = n_rods = 0
     for mesh in meshes:
         n_nodes = mesh["elements"] + 1
-        n_q += n_nodes * {"beam": 3, "rod": 7}.get(mesh["element"], 2 * sc.dim)
-        n_rods += 3 * n_nodes if mesh["element"] == "rod" else 0
+        fam = family(mesh["element"])
+        n_q += n_nodes * fam.dofs_per_node(sc.dim)
+        n_rods += 3 * n_nodes if fam.has_triads else 0
     n_cols = sum(len(s.columns(sc.dim)) for s in sc.sensors)
     n_out = sc.dynamic_options().n_outputs
     check_output_size(sc.path, n_out, n_q, n_cols, n_rods, MAX_RUN_GB, LIMIT)

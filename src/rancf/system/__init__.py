@@ -1,7 +1,8 @@
 """Systems of bodies: places, joints, springs, loads, the fluid they are in and their assembly."""
 
 from rancf.system.connections import Joint, Load, Spring
-from rancf.system.contact import ContactState, Obstacle, contact_history, contact_outputs
+from rancf.system.contact import Obstacle
+from rancf.system.contact_outputs import ContactState, contact_history, contact_outputs
 from rancf.system.fluid import DistributedLoad, Fluid, Hydro, Waves
 from rancf.system.places import GROUND, Place
 from rancf.system.system import System, as_system

@@ -46,7 +46,7 @@ class NearestPoint:
     """The centreline of one flexible body, searched for the point nearest to ``p``."""
 
     def __init__(self, model: Model) -> None:
-        if model.element == "beam":
+        if not model.family.gradient:
             raise InputError("sensors.at_point", "a beam body", "cable or rod elements")
         self.model = model
         self.xi = np.linspace(0.0, 1.0, COARSE + 1)
@@ -126,7 +126,7 @@ def at_point_reader(out_: Any, sen: Any) -> Any:
             raise InputError(f"{key}.body", sen.body, f"a flexible body: {', '.join(flex)}")
         flex = {sen.body: flex[sen.body]}
     if sen.kind == "twist":
-        flex = {k: b for k, b in flex.items() if b.element == "rod"}
+        flex = {k: b for k, b in flex.items() if b.family.has_triads}
         if not flex:
             raise InputError(f"{key}.kind", "twist", 'a rod body (mesh.element = "rod")')
     finders = {k: NearestPoint(b) for k, b in flex.items()}

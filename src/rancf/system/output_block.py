@@ -14,11 +14,14 @@
 Only for dynamic rows without rods' directors or sliding joints (their multipliers' slots and
 extra columns are the row loop's).  Rows with contact take the forces of the step that ended at
 them (``alpha``, as the row loop does), and their obstacles' columns come from
-:func:`contact_row` row by row.
+:func:`contact_row` row by row.  :func:`rod_triads` sets rods' triads from a row's stored
+directors for the row loop.
 """
 
 from __future__ import annotations
 
+import contextlib
+from collections.abc import Iterator, Sequence
 from typing import Any
 
 import numpy as np
@@ -26,11 +29,12 @@ from numpy.typing import NDArray
 
 from rancf.bodies.nodal_forces import nodal_axial_forces
 from rancf.bodies.reactions import reaction_row, support_reactions
-from rancf.system.contact import contact_outputs
+from rancf.kernels.rod import RodKernel
+from rancf.system.contact_outputs import contact_outputs
 from rancf.system.seabed_friction import seabed_friction
 from rancf.system.winches import winch_factor
 
-__all__ = ["block_derived", "block_sections", "contact_row", "takes_block"]
+__all__ = ["block_derived", "block_sections", "contact_row", "takes_block", "rod_triads"]
 
 
 def takes_block(system: Any, static: bool, directors: NDArray | None, k: int) -> bool:
@@ -105,9 +109,9 @@ def _contact_block(s: Any, ys: NDArray, vs: NDArray, alpha: NDArray | None) -> N
 
 def contact_row(s: Any, yc: NDArray, vc: NDArray | None, y1: NDArray | None) -> NDArray:
     """The contact columns of one row: per obstacle the normal and friction force, moment,
-    contact length and penetration (:func:`rancf.system.contact.contact_outputs` at the contact
-    state ``yc``, ``vc``, ``y1``), per pair of flexible bodies the contact force and
-    penetration (at ``yc``)."""
+    contact length and penetration (:func:`rancf.system.contact_outputs.contact_outputs` at
+    the contact state ``yc``, ``vc``, ``y1``), per pair of flexible bodies the contact force
+    and penetration (at ``yc``)."""
     parts: list = []
     totals: dict = {}  # a static state's seabed friction (static_friction)
     if vc is None and getattr(s, "static_friction", False):
@@ -152,3 +156,31 @@ def block_sections(
             raws[name].append(samp.raw(ys[:, sl], fs[0]))
         else:
             raws[name] += [samp.raw(y[None, sl], f) for y, f in zip(ys, fs, strict=True)]
+
+
+@contextlib.contextmanager
+def rod_triads(system: Any, flex: Sequence[tuple[str, Any]]) -> Iterator:
+    """Rods: a setter of the triads of a row from its directors (``flex``: the system's
+    flexible bodies by name); restored at the end."""
+    rods = [
+        (b, b.kernel, system.body_slice(name))
+        for name, b in flex
+        if isinstance(b.kernel, RodKernel)
+    ]
+    saved = [(kern.tref.copy(), kern.m1ref.copy()) for _, kern, _ in rods]
+
+    def set_row(y: NDArray, m1: NDArray) -> None:
+        start = 0
+        for b, kern, sl in rods:
+            g = b.q_from_y(y[sl]).reshape(b.n_nodes, b.dpn)[:, 3:6]
+            kern.tref[...] = (g / np.linalg.norm(g, axis=1, keepdims=True)).reshape(kern.tref.shape)
+            kern.m1ref[...] = m1[start : start + 3 * b.n_nodes].reshape(kern.m1ref.shape)
+            y[sl][b.twist_indices()] = 0.0
+            start += 3 * b.n_nodes
+
+    try:
+        yield set_row
+    finally:
+        for (_, kern, _), (tr, m1) in zip(rods, saved, strict=True):
+            kern.tref[...] = tr
+            kern.m1ref[...] = m1

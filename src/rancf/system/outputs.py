@@ -40,7 +40,7 @@ support's place as the caller wrote it, else ``BODY:AT``); a joint's ``NAME_fx .
 joints that transmit a moment (``fixed``, a 3D ``revolute``, a driven joint), ``NAME_mz`` or
 ``NAME_mx, _my, _mz``, and for a ``sliding`` joint the arc length ``NAME_s`` [m] of the
 body's point at its place (:mod:`rancf.system.sliding`); then every obstacle's
-(:func:`rancf.system.contact.contact_outputs`): the force it exerts on the bodies,
+(:func:`rancf.system.contact_outputs.contact_outputs`): the force it exerts on the bodies,
 ``NAME_normal_x, _y[, _z]`` and ``NAME_friction_x, _y[, _z]`` [N], the contact length
 ``NAME_length`` [m] and the largest
 penetration ``NAME_penetration`` [m]; then every pair of flexible bodies in contact
@@ -51,8 +51,7 @@ penetration ``NAME_penetration`` [m]; then every pair of flexible bodies in cont
 
 from __future__ import annotations
 
-import contextlib
-from collections.abc import Iterator, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
@@ -62,8 +61,19 @@ from rancf.bodies.nodal_forces import recovers_axial_force
 from rancf.bodies.reactions import Reaction, reaction_columns, reaction_row, support_reactions
 from rancf.bodies.section_outputs import SectionSampler, section_names
 from rancf.kernels import _core
-from rancf.kernels.rod import RodKernel
-from rancf.system.output_block import block_derived, block_sections, contact_row, takes_block
+from rancf.system.output_block import (
+    block_derived,
+    block_sections,
+    contact_row,
+    rod_triads,
+    takes_block,
+)
+from rancf.system.output_columns import (
+    contact_column_names,
+    joint_column_names,
+    joint_has_moment,
+    support_labels,
+)
 from rancf.system.seabed_friction import static_friction_load
 from rancf.system.sensors import SensorReader
 from rancf.system.sliding import sliding_slots, sliding_values
@@ -71,11 +81,6 @@ from rancf.system.system import System
 from rancf.system.winches import winch_node
 
 __all__ = ["SystemOutputs"]
-
-
-def _joint_has_moment(system: System, k: int) -> bool:
-    j = system.joints[k]
-    return j.kind == "fixed" or j.angle is not None or (j.kind == "revolute" and system.dim == 3)
 
 
 class SystemOutputs:
@@ -102,13 +107,7 @@ class SystemOutputs:
     ) -> None:
         self.system = s = system
         self.flex = [(name, b) for name, b in zip(s.names, s.flex, strict=False)]
-        labels = dict(labels or {})
-        self.labels: dict[str, list[int | str]] = {}
-        for name, b in self.flex:
-            # as the user wrote them, else BODY:AT (unique in every system)
-            given = labels.get(name)
-            default: list[int | str] = [f"{name}:{_node_name(b, sup.node)}" for sup in b.supports]
-            self.labels[name] = list(given) if given is not None else default
+        self.labels = support_labels(self.flex, labels)
         self.samplers = {name: SectionSampler(b, per_element) for name, b in self.flex}
         winched = {winch_node(s, w)[0] for w in getattr(s, "winches", ())}
         #: The flexible bodies whose axial force is read from their nodal forces.
@@ -117,27 +116,11 @@ class SystemOutputs:
         }
         self.section_names = {name: section_names(b) for name, b in self.flex}
         self.support_names = {name: reaction_columns(b, self.labels[name]) for name, b in self.flex}
-        self.joint_names: list[list[str]] = []
-        axes = "xyz"[: s.dim]
-        for k, j in enumerate(s.joints):
-            lab = j.name or f"joint{k}"
-            cols = [f"{lab}_f{a}" for a in axes]
-            if _joint_has_moment(s, k):
-                cols += [f"{lab}_mz"] if s.dim == 2 else [f"{lab}_m{a}" for a in "xyz"]
-            if j.kind == "sliding":  # the arc length at the place (rancf.system.sliding)
-                cols.append(f"{lab}_s")
-            self.joint_names.append(cols)
+        self.joint_names = joint_column_names(s)
         self.reaction_names = [c for cols in self.support_names.values() for c in cols]
         self.reaction_names += [c for cols in self.joint_names for c in cols]
         self.contact_start = len(self.reaction_names)
-        moments = ["z"] if s.dim == 2 else ["x", "y", "z"]
-        for ob in s.obstacle_names:
-            cols = [f"{ob}_{part}_{a}" for part in ("normal", "friction") for a in axes]
-            cols += [f"{ob}_m{a}" for a in moments]
-            self.reaction_names += [*cols, f"{ob}_length", f"{ob}_penetration"]
-        for first, second in s.body_contacts:
-            pair = f"{first}_{second}"
-            self.reaction_names += [f"{pair}_contact_force", f"{pair}_penetration"]
+        self.reaction_names += contact_column_names(s)
         self.along_widths = {
             n: sp.n_points * len(self.section_names[n]) for n, sp in self.samplers.items()
         }
@@ -170,7 +153,7 @@ class SystemOutputs:
     @property
     def n_directors(self) -> int:
         """Numbers of a row's rod directors (3 a rod node)."""
-        return 3 * sum(b.n_nodes for _, b in self.flex if b.element == "rod")
+        return 3 * sum(b.n_nodes for _, b in self.flex if b.family.has_triads)
 
     @property
     def n_along(self) -> int:
@@ -239,7 +222,7 @@ class SystemOutputs:
                 out["eb"],
             )
             per_body = False
-        with self._triads() as set_row:
+        with rod_triads(s, self.flex) as set_row:
             for i in range(k if ys is None else 0):
                 y = s.y_from_q(q[i])
                 if directors is not None:
@@ -328,7 +311,7 @@ class SystemOutputs:
         for k, j in enumerate(s.joints):
             force, moment = s.core.joint_reaction(k, y, t, lam)
             mom, extra = None, None
-            if _joint_has_moment(s, k):
+            if joint_has_moment(s, k):
                 mom = np.asarray(moment)[2:] if s.dim == 2 else np.asarray(moment)
             if j.kind == "sliding":
                 extra = np.array([sliding_values(s, k, y, lam)])
@@ -406,37 +389,3 @@ class SystemOutputs:
                 return cut.reshape(cut.shape[0], -1, len(self.section_names[name]))
             start += w
         raise KeyError(name)
-
-    @contextlib.contextmanager
-    def _triads(self) -> Iterator:
-        """Rods: a setter of the triads of a row from its directors; restored at the end."""
-        rods = [
-            (b, b.kernel, self.system.body_slice(name))
-            for name, b in self.flex
-            if isinstance(b.kernel, RodKernel)
-        ]
-        saved = [(kern.tref.copy(), kern.m1ref.copy()) for _, kern, _ in rods]
-
-        def set_row(y: NDArray, m1: NDArray) -> None:
-            start = 0
-            for b, kern, sl in rods:
-                g = b.q_from_y(y[sl]).reshape(b.n_nodes, b.dpn)[:, 3:6]
-                kern.tref[...] = (g / np.linalg.norm(g, axis=1, keepdims=True)).reshape(
-                    kern.tref.shape
-                )
-                kern.m1ref[...] = m1[start : start + 3 * b.n_nodes].reshape(kern.m1ref.shape)
-                y[sl][b.twist_indices()] = 0.0
-                start += 3 * b.n_nodes
-
-        try:
-            yield set_row
-        finally:
-            for (_, kern, _), (tr, m1) in zip(rods, saved, strict=True):
-                kern.tref[...] = tr
-                kern.m1ref[...] = m1
-
-
-def _node_name(body: Any, node: int) -> str:
-    """A node as a scenario spells it: ``start``, ``end`` or ``nodeK``."""
-    k = node % body.n_nodes
-    return "start" if k == 0 else "end" if k == body.n_nodes - 1 else f"node{k}"

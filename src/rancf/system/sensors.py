@@ -182,7 +182,7 @@ class SensorReader:
         p = self._place(sen, spec)
         body = p.body_name()
         b = self.system.bodies[body]
-        if not (isinstance(b, Model) and b.element == "rod"):
+        if not (isinstance(b, Model) and b.family.has_triads):
             raise InputError(f"sensors.{sen.name}.at", str(p), "a node of a rod")
         i = self.system.offsets[body] + p.node() * b.dpn + 6
         return lambda blk: blk[1][:, i]
@@ -264,7 +264,7 @@ class SensorReader:
                 sen.obstacle,
                 f"a fixed plane: {', '.join(planes) or 'none'}",
             )
-        flex = [n for n, b in self.out.flex if b.element != "beam"]
+        flex = [n for n, b in self.out.flex if b.family.gradient]
         body = getattr(sen, "body", None) or (flex[0] if len(flex) == 1 else None)
         if body not in flex:
             raise InputError(

@@ -54,7 +54,7 @@ def sliding_body(system: Any, j: Joint) -> tuple[str, Model]:
     p = Place.parse(spec, system.single) if not isinstance(spec, Place) else spec
     key = f"{j.name or 'joints'}.between"
     body = system.bodies.get(p.body) if p.body is not None else None
-    if not isinstance(body, Model) or body.element == "beam" or body.reduction is not None:
+    if not isinstance(body, Model) or not body.family.gradient or body.reduction is not None:
         raise InputError(
             key,
             str(spec),

@@ -20,7 +20,6 @@ from rancf.system.places import Place
 __all__ = ["BodyStack", "Body"]
 
 Body = Model | RigidBody | PointMass
-_NODE_KIND = {"rancf": "cable", "ancf": "cable", "rod": "rod", "beam": "beam"}
 
 
 class BodyStack:
@@ -119,7 +118,7 @@ class BodyStack:
         if isinstance(b, Model):
             node = p.node()
             angle0 = float(b.kernel.psi0[node]) if isinstance(b.kernel, BeamKernel) else 0.0
-            return PlaceRecord(_NODE_KIND[b.element], self.flex.index(b), node, angle0=angle0)
+            return PlaceRecord(b.family.place_kind, self.flex.index(b), node, angle0=angle0)
         if isinstance(b, PointMass):
             return PlaceRecord("mass", self.rigid.index(b))
         kind = "rigid2d" if self.dim == 2 else "rigid3d"
@@ -168,7 +167,7 @@ class BodyStack:
 
     def nodal_directors(self, y: NDArray) -> NDArray[np.float64] | None:
         """Rods' nodal directors ``(n_rod_nodes, 3)`` of every rod body (None without rods)."""
-        parts = [b.nodal_directors(y[sl]) for b, sl in self._each_flex() if b.element == "rod"]
+        parts = [b.nodal_directors(y[sl]) for b, sl in self._each_flex() if b.family.has_triads]
         rods = [d for d in parts if d is not None]  # a rod has directors
         return np.concatenate(rods) if rods else None
 
@@ -176,7 +175,7 @@ class BodyStack:
         """Rods: carry the nodal triads to ``y`` (their spin rates in ``v``, ``a`` kept; the
         algorithmic accelerations ``w`` carried as ``a``)."""
         for b, sl in self._each_flex():
-            if b.element == "rod":
+            if b.family.has_triads:
                 vv, aa = v[sl].copy(), a[sl].copy()
                 ww = None if w is None else w[sl].copy()
                 b.core.rereference(y[sl], vv, aa, ww)

@@ -15,7 +15,7 @@ gravity is its model's.
 from __future__ import annotations
 
 import warnings
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
@@ -23,17 +23,11 @@ from numpy.typing import ArrayLike, NDArray
 
 from rancf.bodies.closure import closure_terms
 from rancf.bodies.flexible import Model
-from rancf.bodies.rigid import RigidBody
-from rancf.bodies.time_function import TimeFunction, core_record
 from rancf.errors import InputError
 from rancf.kernels import _core
 from rancf.kernels.records import (
     JointRecord,
-    LoadRecord,
     PlaceRecord,
-    PrescribedRecord,
-    SpringRecord,
-    TimeFunctionRecord,
     vec3,
 )
 from rancf.system.connections import JOINT_KINDS, Joint, Load, Spring
@@ -41,54 +35,14 @@ from rancf.system.contact import CONTACT_POINTS, Obstacle, build_contact
 from rancf.system.core_data import SystemRecords, build_core
 from rancf.system.fluid import DistributedLoad, Fluid, Hydro, fluid_records
 from rancf.system.joint_data import joint_data
+from rancf.system.part_records import all_loads, load_record, motion_records, spring_record
 from rancf.system.places import Place
+from rancf.system.record_rows import RecordRows
 from rancf.system.sliding import attach_sliding, sliding_pair, sliding_record, start_multipliers
 from rancf.system.stack import Body, BodyStack
 from rancf.system.winches import Winch, attach_winches, winch_functions
 
 __all__ = ["System", "Body", "as_system"]
-
-
-class _Rows:
-    """The place and time function records as they are made (numbered by position); a place
-    made twice (the same key) is one record."""
-
-    def __init__(self, horizon: float | None) -> None:
-        self.places: list[PlaceRecord] = []
-        self.tfs: list[TimeFunctionRecord] = []
-        self.horizon = horizon
-        self._known: dict[Place | PlaceRecord, int] = {}
-
-    def place(self, key: Place | PlaceRecord, make: Callable[[], PlaceRecord]) -> int:
-        if key not in self._known:
-            self.places.append(make())
-            self._known[key] = len(self.places) - 1
-        return self._known[key]
-
-    def tf(self, f: TimeFunction | None) -> int:
-        """The index of the core's record of ``f`` (a callable sampled on the horizon); -1 for
-        None."""
-        if f is None:
-            return -1
-        if f.kind == "callable":
-            if self.horizon is None or not self.horizon > 0:
-                raise InputError(
-                    "horizon",
-                    self.horizon,
-                    "the run's end time t_end [s] > 0 (a "
-                    "Python time function is sampled on [0, t_end])",
-                )
-            f = f.sampled(float(self.horizon))
-        self.tfs.append(core_record(f))
-        return len(self.tfs) - 1
-
-    def records(self, **parts: Sequence) -> SystemRecords:
-        """The records so far with ``parts`` (joints, springs, loads, prescribed, linear)."""
-        return SystemRecords(
-            tuple(self.places),
-            time_functions=tuple(self.tfs),
-            **{k: tuple(v) for k, v in parts.items()},
-        )
 
 
 class System(BodyStack):
@@ -180,12 +134,12 @@ class System(BodyStack):
         self.start_warnings: tuple[str, ...] = ()
         self.joints, self.springs, self.loads = tuple(joints), tuple(springs), tuple(loads)
         linear = closure_terms(self.names, self.flex, self.offsets)
-        rows = _Rows(horizon)
+        rows = RecordRows(horizon)
         self._place_index: dict[Place, int] = {}
         parts: dict[str, Sequence[Any]] = {
-            "prescribed": self._motions(rows),
-            "springs": [self._spring(s, rows) for s in springs],
-            "loads": [self._load(ld, rows) for ld in self._all_loads()],
+            "prescribed": motion_records(self, rows),
+            "springs": [spring_record(self, s, rows) for s in springs],
+            "loads": [load_record(self, ld, rows) for ld in all_loads(self)],
             "linear": linear,
         }
         self.fluid, self.hydro = fluid, dict(hydro or {})
@@ -267,7 +221,7 @@ class System(BodyStack):
 
     # ---------------------------------------------------------------- places
     def place_index(
-        self, p: Place, rows: _Rows, ground_point: NDArray | None = None, motion: int = -1
+        self, p: Place, rows: RecordRows, ground_point: NDArray | None = None, motion: int = -1
     ) -> int:
         """The index of the record of the place ``p`` (resolved); the ground: at
         ``ground_point``, moved by the time function ``motion``."""
@@ -292,7 +246,7 @@ class System(BodyStack):
         x, f = self.core.place(self._place_index[key], np.asarray(y, dtype=float), float(t))
         return np.asarray(x), np.asarray(f).reshape(-1, 3)
 
-    def _pair(self, between: Sequence, rows: _Rows, motion: int = -1) -> tuple[int, int]:
+    def place_pair(self, between: Sequence, rows: RecordRows, motion: int = -1) -> tuple[int, int]:
         if len(between) != 2:
             raise InputError("between", list(between), "two places")
         a, b = (self.resolve(x) for x in between)
@@ -304,89 +258,12 @@ class System(BodyStack):
         return self.place_index(a, rows), self.place_index(b, rows, gp, motion)
 
     # ---------------------------------------------------------------- parts
-    def _motions(self, rows: _Rows) -> list[PrescribedRecord]:
-        """Held positions of flexible bodies that follow their support's motion."""
-        out = []
-        for name, b in zip(self.names, self.flex, strict=False):
-            for sup in b.supports:
-                if sup.motion is None:
-                    continue
-                if sup.kind == "roller":
-                    raise InputError(
-                        "supports.motion", "roller", "a pin or clamp (moving supports)"
-                    )
-                if sup.motion.size != self.dim:
-                    raise InputError("supports.motion", sup.motion.size, f"{self.dim} components")
-                k = rows.tf(sup.motion)
-                base = b.node_base(b.check_node(sup.node, "supports.at"))
-                for i in range(self.dim):
-                    coord = self.offsets[name] + base + i
-                    out.append(PrescribedRecord(coord, k, i, float(b.y_installed[base + i])))
-        return out
-
-    def _spring(self, s: Spring, rows: _Rows) -> SpringRecord:
-        a, b = self._pair(s.between, rows)
-        for key, v in (("springs.stiffness", s.stiffness), ("springs.damping", s.damping)):
-            if not (np.isfinite(v) and v >= 0):
-                raise InputError(key, v, "a finite number >= 0")
-        pa, pb = (self.resolve(x) for x in s.between)
-        xa = self.reference_position(pa) if pa.body is not None else None
-        xb = self.reference_position(pb) if pb.body is not None else None
-        ref = 0.0 if xa is None or xb is None else float(np.linalg.norm(xa - xb))
-        length = ref if s.length is None else float(s.length)
-        if length != 0.0 and ref <= 1e-12 * self.size:  # no direction where the places meet
-            raise InputError(
-                f"springs.{s.name or '/'.join(map(str, s.between))}.length",
-                length,
-                "0 where its places meet at the reference (ground sits at "
-                "the other place's reference): the linear spring-damper "
-                "k (x_a - x_b) + c (v_a - v_b)",
-            )
-        return SpringRecord(a, b, float(s.stiffness), float(s.damping), length)
-
-    def _all_loads(self) -> list[Load]:
-        """The loads, and flexible bodies' point forces (and rods' moments) times a time
-        function."""
-        out = list(self.loads)
-        for name, b in zip(self.names, self.flex, strict=False):
-            for p in b.point_loads:
-                if p.time is None:
-                    continue
-                out.append(
-                    Load(
-                        Place(name, b.check_node(p.node, "loads.point.at")),
-                        p.force,
-                        p.moment,
-                        p.time,
-                    )
-                )
-        return out
-
-    def _load(self, ld: Load, rows: _Rows) -> LoadRecord:
-        p = self.resolve(ld.at)
-        if p.body is None:
-            raise InputError("loads.point.at", "ground", "a place on a body")
-        f = np.zeros(3) if ld.force is None else np.asarray(ld.force, dtype=float)
-        t = np.zeros(3) if ld.torque is None else np.asarray(ld.torque, dtype=float)
-        if ld.force is not None and f.size != self.dim:
-            raise InputError("loads.point.force", list(f), f"{self.dim} components")
-        b = self.bodies[p.body]
-        rod = isinstance(b, Model) and b.element == "rod"
-        if ld.torque is not None and not (isinstance(b, RigidBody) or rod):
-            raise InputError("loads.point.moment", list(t), "a rigid body or a rod's node")
-        tt = np.r_[np.zeros(2), t] if t.size == 1 else np.r_[t, np.zeros(3 - t.size)]
-        if ld.time is not None and ld.time.size != 1:
-            raise InputError("loads.point.time", ld.time.size, "a scalar time function (a factor)")
-        place = self.place_index(p, rows)
-        force = vec3(np.r_[f, np.zeros(3 - f.size)])
-        return LoadRecord(place, force, vec3(tt), rows.tf(ld.time))
-
-    def _place(self, j: Joint, rows: _Rows) -> tuple[int, int]:
+    def _place(self, j: Joint, rows: RecordRows) -> tuple[int, int]:
         if j.kind not in JOINT_KINDS:
             raise InputError("joints.kind", j.kind, f"one of {', '.join(JOINT_KINDS)}")
         if j.kind == "sliding":  # a body through a place
             return sliding_pair(self, j, rows)
-        return self._pair(j.between, rows, rows.tf(j.motion))
+        return self.place_pair(j.between, rows, rows.tf(j.motion))
 
     def _build(self, records: SystemRecords) -> _core.System:
         return build_core(
@@ -404,7 +281,7 @@ class System(BodyStack):
         x, f = self.core.place(index, self.y0, 0.0)
         return np.asarray(x), np.asarray(f).reshape(-1, 3)
 
-    def _joint(self, j: Joint, ab: tuple[int, int], rows: _Rows) -> JointRecord:
+    def _joint(self, j: Joint, ab: tuple[int, int], rows: RecordRows) -> JointRecord:
         a, b = ab
         if j.kind == "sliding":
             return sliding_record(self, j, a, b)
