@@ -470,12 +470,63 @@ void bind_system_outputs(nb::class_<SystemHolder>& cls) {
           "body_energies of k states (rows of y, v at times t) into the rows of out.");
 }
 
-/// The system's integrator: steps, runs, statics and derived rows.
+/// The statics' entry points of the system integrator: a factored residual, Newton increments.
+void bind_integrator_statics(nb::class_<SystemIntegratorHolder>& cls) {
+  cls.def(
+         "factor_static",
+         [](SystemIntegratorHolder& h, In y, In lam, double lf, bool amplitude, double t,
+            Out residual, double stab) {
+           expect_size(y, h.n, "y");
+           expect_size(lam, h.m, "lam");
+           expect_size(residual, h.n + h.m, "residual");
+           return h.integ.factor_static(y.data(), lam.data(), lf, amplitude, t, residual.data(),
+                                        stab);
+         },
+         "y"_a, "lam"_a, "load_factor"_a, "amplitude"_a, "t"_a, "residual"_a.noconvert(),
+         "stab"_a = 0.0,
+         "The statics' residual (balance, constraints) and its Jacobian factored (stab > 0: plus "
+         "stab M, the residual unchanged); False if not finite or singular.")
+      .def(
+          "solve_factored",
+          [](SystemIntegratorHolder& h, Out x, Out z) {
+            expect_size(x, h.n, "x");
+            expect_size(z, h.m, "z");
+            h.integ.solve_factored(x.data(), z.data());
+          },
+          "x"_a.noconvert(), "z"_a.noconvert(),
+          "Solve with the last factorization (right-hand sides in x, z; solutions into them).")
+      .def(
+          "prescribe",
+          [](SystemIntegratorHolder& h, double t, Out y, Out v) {
+            expect_size(y, h.n, "y");
+            expect_size(v, h.n, "v");
+            h.integ.set_prescribed(t, y.data(), v.data(), nullptr);
+          },
+          "t"_a, "y"_a.noconvert(), "v"_a.noconvert(),
+          "Set the moving supports' held coordinates and their rates at time t.")
+      .def(
+          "static_increment",
+          [](SystemIntegratorHolder& h, In y, In lam, double lf, bool amplitude, double t, Out dy,
+             Out dlam, Out residual) {
+            expect_size(y, h.n, "y");
+            expect_size(dy, h.n, "dy");
+            expect_size(lam, h.m, "lam");
+            expect_size(dlam, h.m, "dlam");
+            expect_size(residual, h.n + h.m, "residual");
+            return h.integ.static_increment(y.data(), lam.data(), lf, amplitude, t, dy.data(),
+                                            dlam.data(), residual.data());
+          },
+          "y"_a, "lam"_a, "load_factor"_a, "amplitude"_a, "t"_a, "dy"_a.noconvert(),
+          "dlam"_a.noconvert(), "residual"_a.noconvert(),
+          "One static Newton increment (K dy + G^T dlam = -r, G dy = -g); False if singular.");
+}
+
+/// The system's integrator: steps, runs, derived rows (and its statics' entry points).
 void bind_system_integrator(nb::module_& mod) {
-  nb::class_<SystemIntegratorHolder>(mod, "SystemIntegrator",
-                                     "Generalized-alpha with constraints on a system.")
-      .def(nb::init<const SystemHolder&, const rancf::Scheme&>(), "system"_a, "scheme"_a,
-           nb::keep_alive<1, 2>())
+  nb::class_<SystemIntegratorHolder> cls(mod, "SystemIntegrator",
+                                         "Generalized-alpha with constraints on a system.");
+  cls.def(nb::init<const SystemHolder&, const rancf::Scheme&>(), "system"_a, "scheme"_a,
+          nb::keep_alive<1, 2>())
       .def_prop_ro("factorizations",
                    [](const SystemIntegratorHolder& h) { return h.integ.factorizations(); })
       .def(
@@ -624,54 +675,8 @@ void bind_system_integrator(nb::module_& mod) {
           "alone (distributed_only, no multipliers), internal: the element forces, n a row "
           "each, from the same assembly; alpha (k rows of 2 n, systems with contact): each "
           "row's step's alpha point (yf, vf), whose contact forces the row takes (without it "
-          "the row's own state's).")
-      .def(
-          "factor_static",
-          [](SystemIntegratorHolder& h, In y, In lam, double lf, bool amplitude, double t,
-             Out residual, double stab) {
-            expect_size(y, h.n, "y");
-            expect_size(lam, h.m, "lam");
-            expect_size(residual, h.n + h.m, "residual");
-            return h.integ.factor_static(y.data(), lam.data(), lf, amplitude, t, residual.data(),
-                                         stab);
-          },
-          "y"_a, "lam"_a, "load_factor"_a, "amplitude"_a, "t"_a, "residual"_a.noconvert(),
-          "stab"_a = 0.0,
-          "The statics' residual (balance, constraints) and its Jacobian factored (stab > 0: plus "
-          "stab M, the residual unchanged); False if not finite or singular.")
-      .def(
-          "solve_factored",
-          [](SystemIntegratorHolder& h, Out x, Out z) {
-            expect_size(x, h.n, "x");
-            expect_size(z, h.m, "z");
-            h.integ.solve_factored(x.data(), z.data());
-          },
-          "x"_a.noconvert(), "z"_a.noconvert(),
-          "Solve with the last factorization (right-hand sides in x, z; solutions into them).")
-      .def(
-          "prescribe",
-          [](SystemIntegratorHolder& h, double t, Out y, Out v) {
-            expect_size(y, h.n, "y");
-            expect_size(v, h.n, "v");
-            h.integ.set_prescribed(t, y.data(), v.data(), nullptr);
-          },
-          "t"_a, "y"_a.noconvert(), "v"_a.noconvert(),
-          "Set the moving supports' held coordinates and their rates at time t.")
-      .def(
-          "static_increment",
-          [](SystemIntegratorHolder& h, In y, In lam, double lf, bool amplitude, double t, Out dy,
-             Out dlam, Out residual) {
-            expect_size(y, h.n, "y");
-            expect_size(dy, h.n, "dy");
-            expect_size(lam, h.m, "lam");
-            expect_size(dlam, h.m, "dlam");
-            expect_size(residual, h.n + h.m, "residual");
-            return h.integ.static_increment(y.data(), lam.data(), lf, amplitude, t, dy.data(),
-                                            dlam.data(), residual.data());
-          },
-          "y"_a, "lam"_a, "load_factor"_a, "amplitude"_a, "t"_a, "dy"_a.noconvert(),
-          "dlam"_a.noconvert(), "residual"_a.noconvert(),
-          "One static Newton increment (K dy + G^T dlam = -r, G dy = -g); False if singular.");
+          "the row's own state's).");
+  bind_integrator_statics(cls);
 }
 
 }  // namespace

@@ -112,9 +112,11 @@ def refined(sc: Any, factors: dict[str, int]) -> Any:
 
 def _element_counts(sc: Any) -> dict[str, int]:
     """``[mesh] elements`` per flexible body of ``sc`` (one-body file: ``"body"``)."""
-    if sc.mesh is not None:
-        return {"body": int(sc.mesh.elements)}
-    return {b.name: int(b.mesh.elements) for b in sc.bodies if getattr(b, "mesh", None) is not None}
+    return {
+        b.name: int(b.mesh.elements)
+        for _, b in sc.body_tables
+        if getattr(b, "mesh", None) is not None
+    }
 
 
 _NODE = re.compile(r"(?:^|:)(-?\d+)$")

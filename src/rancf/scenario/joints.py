@@ -28,13 +28,13 @@ from pydantic import Field, model_validator
 from rancf.scenario.base import (
     Name,
     NonNegative,
-    PlacePair,
     Positive,
     Table,
     Vector23,
     fail,
     show,
 )
+from rancf.scenario.place_types import PlacePair
 from rancf.scenario.time_functions import TimeFunctionValue, check_scalar
 
 __all__ = ["JointTable", "SpringTable", "JOINT_KINDS"]

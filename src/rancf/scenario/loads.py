@@ -26,7 +26,6 @@ from rancf.scenario.base import (
     Name,
     NumberOrVector3,
     NumberOrVector123,
-    PlaceValue,
     Positive,
     Table,
     Vector23,
@@ -34,6 +33,7 @@ from rancf.scenario.base import (
     show,
     to_number,
 )
+from rancf.scenario.place_types import PlaceValue
 from rancf.scenario.time_functions import TimeFunctionValue, check_scalar, time_size
 
 __all__ = [

@@ -34,19 +34,20 @@ Column names: ``NAME`` for one number, ``NAME_x``, ``NAME_y`` (, ``NAME_z``) for
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Literal
+from typing import Literal, get_args
 
 import numpy as np
 from numpy.typing import NDArray
 from pydantic import Field, model_validator
 
 from rancf.errors import InputError
-from rancf.scenario.base import Name, PlacePair, PlaceValue, Table, Vector23, fail
+from rancf.scenario.base import Name, Table, Vector23, fail
+from rancf.scenario.place_types import PlacePair, PlaceValue
 
 __all__ = ["Sensor", "SensorTable", "SENSOR_KINDS", "SYSTEM_SENSOR_KINDS", "AT_POINT_KINDS"]
 
 #: Sensor kinds.
-SENSOR_KINDS = (
+SensorKind = Literal[
     "distance",
     "position",
     "twist",
@@ -62,7 +63,8 @@ SENSOR_KINDS = (
     "fluid_force",
     "touchdown",
     "winch",
-)
+]
+SENSOR_KINDS: tuple[str, ...] = get_args(SensorKind)
 #: The kinds the system solver computes (not from node positions).
 SYSTEM_SENSOR_KINDS = (
     "reaction",
@@ -128,23 +130,9 @@ class SensorTable(Table):
     """One ``[[sensors]]`` table."""
 
     name: Name = Field(description="column name (letters, digits, _), unique, not t")
-    kind: Literal[
-        "distance",
-        "position",
-        "twist",
-        "angular_momentum",
-        "energy",
-        "reaction",
-        "axial_force",
-        "tension",
-        "angle",
-        "center_of_mass",
-        "momentum",
-        "contact_force",
-        "fluid_force",
-        "touchdown",
-        "winch",
-    ] = Field(description="what is measured (the sensor kinds: docs/guide/outputs.md)")
+    kind: SensorKind = Field(
+        description="what is measured (the sensor kinds: docs/guide/outputs.md)"
+    )
     between: PlacePair | None = Field(None, description="distance: the two places")
     at: PlaceValue | None = Field(
         None,
