@@ -16,7 +16,7 @@ Every run is a whole process; solve time from each side's own clock (rancf: ``su
 Exudyn: ``SolveDynamic``), set-up (process start to the first step) quoted apart.  The belts
 are compared per simulated second (solve time / simulated time), the coil per step.  Runs
 alternate (A B A B ...) after one warm-up pair (the coil: no warm-up, ``--coil-repeats``
-pairs, as one of its runs takes minutes); ratios are taken pair by pair and their median is
+pairs, 5 by default); ratios are taken pair by pair and their median is
 quoted.  Writes ``belt_bench.json`` to ``--out`` (default ``benchmarks/results``) with the CPU's
 name and prints a table.
 """
@@ -133,7 +133,7 @@ def cases(repeats: int, coil_repeats: int, coil: bool) -> dict[str, Any]:
 def main() -> None:
     p = argparse.ArgumentParser()
     p.add_argument("--repeats", type=int, default=5)
-    p.add_argument("--coil-repeats", type=int, default=1)
+    p.add_argument("--coil-repeats", type=int, default=5)
     p.add_argument("--out", default=str(HERE / "results"))
     p.add_argument("--no-coil", action="store_true")
     a = p.parse_args()

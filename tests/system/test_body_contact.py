@@ -333,3 +333,62 @@ def test_a_cable_sliding_on_another_decelerates_at_mu_g():
     slope = np.polyfit(res.t[sliding], vx[sliding], 1)[0]
     assert -slope == pytest.approx(mu * G, rel=0.01)
     assert np.all(np.abs(vx[res.t > 1.1 * v0 / (mu * G)]) < 1e-3)  # stopped
+
+
+def test_the_solver_of_a_coiled_rope_matches_a_dense_solve():
+    """A soft rope (40 elements) released upright on the ground coils on itself: its
+    self-contact couples distant elements, whose entries fall outside the band (the solver
+    merges them into a reordered band or makes them border unknowns, by operation counts:
+    src/cpp/linalg/bordered.cpp). In the coil, the factored tangent solves as a dense solve of
+    the same matrix does."""
+    from rancf.kernels import _core
+
+    rope = Model(
+        mesh_line([0.0, 0.005], [0.02, 2.0], 40),
+        "rancf",
+        Section.circular(0.005),
+        Material(1100.0, 1.0e6),
+        [],
+        gravity=[0, -G],
+    )
+    ground = Obstacle("plane", point=(0, 0), normal=(0, 1), friction=0.3, damping=1.0)
+    s = System(
+        {"rope": rope},
+        obstacles=[ground],
+        body_contacts=[("rope", "rope")],
+        body_friction=0.3,
+        gravity=[0, -G],
+    )
+    res = integrate(
+        s, DynamicOptions(t_end=0.5, step=1e-3, rho_inf=0.5, max_newton=25, output_step=0.05)
+    )
+    assert res.status.value == "completed", res.message
+    y = res.q[-1]
+    out = np.empty(3)
+    s.contact.body_outputs(y, out)
+    assert out[1] >= 20  # points in contact with the rope itself
+    scheme = _core.Scheme(
+        alpha_m=0.0,
+        alpha_f=0.0,
+        gamma=0.5,
+        beta=0.25,
+        damping=0.0,
+        tol=1e-10,
+        max_iter=1,
+        modified=False,
+    )
+    integ = _core.SystemIntegrator(s.core, scheme)
+    stab, lam, z = 1e6, np.zeros(s.m), np.zeros(s.n)
+    r = np.empty(s.n + s.m)
+    assert integ.factor_static(y, lam, 1.0, False, 0.0, r, stab=stab)
+    jac = np.empty((s.n + s.m) ** 2)
+    assert s.core.dense_jacobian(y, z, z, lam, 0.0, 1.0, 0.0, stab, out=jac)
+    jac = jac.reshape(s.n + s.m, s.n + s.m)
+    free = ~s.fixed
+    b = np.random.default_rng(5).standard_normal(s.n)
+    b[~free] = 0.0
+    x = b.copy()
+    integ.solve_factored(x, np.zeros(s.m))
+    want = np.zeros(s.n)
+    want[free] = np.linalg.solve(jac[np.ix_(free, free)], b[free])
+    assert x == pytest.approx(want, rel=1e-8, abs=1e-10 * np.abs(want).max())

@@ -30,11 +30,12 @@ void shape(const ContactBody& cb, int el, double xi, double* N, double* N1, doub
 
 double dot3(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
-/// The closest point of element f (coordinates e) to x: xi in [0, 1], the shape functions there.
+/// The closest point of element f (coordinates e) to x: xi in [0, 1], the shape functions there;
+/// Newton from the best of five samples, or from start (>= 0: a closest point known nearby).
 double project(const Model& m, const ContactBody& cb, int f, const double* e, const double* x,
-               double* N) {
-  double best = 0.0, dmin = 1e300, y[3], N1[4], N2[4];
-  for (int s = 0; s <= 4; ++s) {
+               double* N, double start = -1.0) {
+  double best = start, dmin = 1e300, y[3], N1[4], N2[4];
+  for (int s = 0; s <= 4 && start < 0.0; ++s) {
     const double xi = 0.25 * s;
     shape(cb, f, xi, N, nullptr, nullptr);
     contact_point::point_of(m, N, e, y);
@@ -80,21 +81,29 @@ struct Side {
 /// eta is fixed (no b term).
 struct Pair {
   bool kept = false;  ///< a valid projection (inside the element or at a free end)
+  double xi = 0.0;    ///< the closest point's element coordinate
   double g = 0.0, rho = 0.0, n[3] = {0.0, 0.0, 0.0};
-  double Nb[4] = {0.0, 0.0, 0.0, 0.0};  ///< B's shape functions at the closest point
+  double Nb[4] = {0.0, 0.0, 0.0, 0.0};   ///< B's shape functions at the closest point
+  double Nb1[4] = {0.0, 0.0, 0.0, 0.0};  ///< and their eta-derivatives
   std::array<double, 2 * kMaxElementDofs> G{};
   std::vector<double> Hg;  ///< (n x n), if asked for
+  /// J and T (3 x n, row-major), and (if asked for) b (d eta = b . dq; zero at a free end or
+  /// where the projection is no minimum) and y' = dy/d eta: the friction's tangent
+  std::array<double, 3 * 2 * kMaxElementDofs> J{}, T{};
+  std::array<double, 2 * kMaxElementDofs> b{};
+  double yt[3] = {0.0, 0.0, 0.0};
 };
 
 void pair_geometry(const Side& A, const Side& B, int e, int q, int f, const double* ea,
-                   const double* eb, bool hess, Pair& out) {
+                   const double* eb, bool hess, Pair& out, double start = -1.0) {
   const Model& ma = *A.m;
   const Model& mb = *B.m;
   const int na = ma.nde(), n = na + mb.nde();
   const double* Na = A.cb->N.data() + 4 * (e * A.cb->n_c + q);
   double x[3], y[3], Nb[4], Nb1[4], Nb2[4], y1[3], y2[3];
   contact_point::point_of(ma, Na, ea, x);
-  const double xi = project(mb, *B.cb, f, eb, x, Nb);
+  const double xi = project(mb, *B.cb, f, eb, x, Nb, start);
+  out.xi = xi;
   const bool at_end = xi == 0.0 || xi == 1.0;
   out.kept = false;
   if (at_end && !((xi == 0.0 && f == 0) || (xi == 1.0 && f == mb.n_el - 1))) return;
@@ -105,7 +114,10 @@ void pair_geometry(const Side& A, const Side& B, int e, int q, int f, const doub
     if (std::abs(s_pt - s_y) < M_PI * (A.cb->radius + B.cb->radius)) return;
   }
   shape(*B.cb, f, xi, Nb, Nb1, Nb2);
-  for (int k = 0; k < 4; ++k) out.Nb[k] = Nb[k];
+  for (int k = 0; k < 4; ++k) {
+    out.Nb[k] = Nb[k];
+    out.Nb1[k] = Nb1[k];
+  }
   contact_point::point_of(mb, Nb, eb, y);
   const double d[3] = {x[0] - y[0], x[1] - y[1], x[2] - y[2]};
   out.rho = std::sqrt(dot3(d, d));
@@ -114,7 +126,11 @@ void pair_geometry(const Side& A, const Side& B, int e, int q, int f, const doub
   if (!out.kept) return;
   for (int i = 0; i < 3; ++i) out.n[i] = d[i] / out.rho;
   // J (3 x n) and T (3 x n), row-major
-  std::array<double, 3 * 2 * kMaxElementDofs> J{}, T{};
+  auto& J = out.J;
+  auto& T = out.T;
+  std::fill(J.begin(), J.end(), 0.0);
+  std::fill(T.begin(), T.end(), 0.0);
+  std::fill(out.b.begin(), out.b.end(), 0.0);
   for (int k = 0; k < 4; ++k) {
     const int oa = (k / 2) * ma.dpn + (k % 2) * ma.dim,
               ob = na + (k / 2) * mb.dpn + (k % 2) * mb.dim;
@@ -132,6 +148,7 @@ void pair_geometry(const Side& A, const Side& B, int e, int q, int f, const doub
   if (!hess) return;
   contact_point::point_of(mb, Nb1, eb, y1);
   contact_point::point_of(mb, Nb2, eb, y2);
+  for (int i = 0; i < 3; ++i) out.yt[i] = y1[i];
   out.Hg.assign(sz(n * n), 0.0);
   // J^T P J = J^T J - G G^T
   for (int a = 0; a < n; ++a)
@@ -143,7 +160,7 @@ void pair_geometry(const Side& A, const Side& B, int e, int q, int f, const doub
   if (at_end) return;
   const double cc = dot3(y1, y1) - out.rho * dot3(out.n, y2);
   if (!(cc > 0.0)) return;  // a projection that is no minimum: the first order terms only
-  std::array<double, 2 * kMaxElementDofs> bb{};
+  auto& bb = out.b;
   for (int a = 0; a < n; ++a) {
     double v = 0.0;
     for (int i = 0; i < 3; ++i)
@@ -154,18 +171,96 @@ void pair_geometry(const Side& A, const Side& B, int e, int q, int f, const doub
     for (int c = 0; c < n; ++c) out.Hg[sz(a * n + c)] -= cc * bb[sz(a)] * bb[sz(c)] / out.rho;
 }
 
+/// A point's weight and pressure and the pressure's slopes (point_force): w, pm, the
+/// coefficients ck (d/dyf) and cv (d/dvf), dp/dgf, c1 dp/dg1 and the gradient G1 of g1.
+struct Slopes {
+  double w, pm, ck, cv, dpf, dp1;
+  const double* G1;
+};
+
+/// The regularized Coulomb friction of a point (body_contact.hpp) into fe, and (K not null)
+/// minus its exact Jacobian into K (n x n, added): with the relative velocity u = J v (J at
+/// the closest point eta), v_t = P u (P = I - n n^T), phi = v_t / s, s = sqrt(|v_t|^2 + eps^2),
+///   f = J^T F,  F = -mu w p phi,
+///   dF = -mu w (phi dp + p Pphi dv_t),  Pphi = (I - phi phi^T) / s,
+///   dv_t = P J dv - P y.' (b . dq) - u_n dn - n (u . dn),  dn = (P J dq - P y' (b . dq)) / rho,
+///   d(J^T) F = -T^T F (b . dq)
+/// (y.' = N_B'(eta) v_B, u_n = n . u; b, T, y' of pair_geometry); p's slopes as the normal
+/// force's (ck dpf G dqf + dp1 G1 dq1).
+void friction(const BodyPair& bp, const Side& A, const Side& B, const Pair& pf, const Slopes& sl,
+              const double* va, const double* vb, double* fe, double* K) {
+  const Model& ma = *A.m;
+  const Model& mb = *B.m;
+  const int n = ma.nde() + mb.nde();
+  const double* J = pf.J.data();
+  double u[3] = {0.0, 0.0, 0.0};
+  for (int i = 0; i < 3; ++i)
+    for (int a = 0; a < ma.nde(); ++a) u[i] += J[sz(i * n + a)] * va[a];
+  for (int i = 0; i < 3; ++i)
+    for (int a = 0; a < mb.nde(); ++a) u[i] += J[sz(i * n + ma.nde() + a)] * vb[a];
+  const double un = dot3(pf.n, u);
+  double vt[3], phi[3];
+  for (int i = 0; i < 3; ++i) vt[i] = u[i] - un * pf.n[i];
+  const double s = std::sqrt(dot3(vt, vt) + bp.slip_velocity * bp.slip_velocity);
+  for (int i = 0; i < 3; ++i) phi[i] = vt[i] / s;
+  const double c = bp.friction * sl.w * sl.pm;
+  std::array<double, 2 * kMaxElementDofs> Jphi{}, Tphi{};
+  for (int a = 0; a < n; ++a) {
+    for (int i = 0; i < 3; ++i) {
+      Jphi[sz(a)] += J[sz(i * n + a)] * phi[i];
+      Tphi[sz(a)] += pf.T[sz(i * n + a)] * phi[i];
+    }
+    fe[a] -= c * Jphi[sz(a)];
+  }
+  if (K == nullptr) return;
+  double yd[3];  // y.' = N_B'(eta) v_B: the rate of the tangent at the material point
+  contact_point::point_of(mb, pf.Nb1, vb, yd);
+  double Pyt[3], Pyd[3];
+  const double nyt = dot3(pf.n, pf.yt), nyd = dot3(pf.n, yd);
+  for (int i = 0; i < 3; ++i) {
+    Pyt[i] = pf.yt[i] - nyt * pf.n[i];
+    Pyd[i] = yd[i] - nyd * pf.n[i];
+  }
+  std::array<double, 3 * 2 * kMaxElementDofs> Dn{}, M{};  // dn/dq, then Pphi dv_t/d(q, v)
+  std::array<double, 2 * kMaxElementDofs> uDn{};
+  for (int i = 0; i < 3; ++i)
+    for (int a = 0; a < n; ++a) {
+      const double PJ = J[sz(i * n + a)] - pf.n[i] * pf.G[sz(a)];
+      Dn[sz(i * n + a)] = (PJ - Pyt[i] * pf.b[sz(a)]) / pf.rho;
+      uDn[sz(a)] += u[i] * Dn[sz(i * n + a)];
+    }
+  for (int i = 0; i < 3; ++i)
+    for (int a = 0; a < n; ++a) {
+      const double PJ = J[sz(i * n + a)] - pf.n[i] * pf.G[sz(a)];
+      const double Vq = -Pyd[i] * pf.b[sz(a)] - un * Dn[sz(i * n + a)] - pf.n[i] * uDn[sz(a)];
+      M[sz(i * n + a)] = sl.ck * Vq + sl.cv * PJ;
+    }
+  for (int a = 0; a < n; ++a) {  // Pphi M = (M - phi (phi^T M)) / s
+    double pm = 0.0;
+    for (int i = 0; i < 3; ++i) pm += phi[i] * M[sz(i * n + a)];
+    for (int i = 0; i < 3; ++i) M[sz(i * n + a)] = (M[sz(i * n + a)] - phi[i] * pm) / s;
+  }
+  const double mw = bp.friction * sl.w;
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < n; ++b) {
+      double v = mw * Jphi[sz(a)] * (sl.ck * sl.dpf * pf.G[sz(b)] + sl.dp1 * sl.G1[b]);
+      for (int i = 0; i < 3; ++i) v += c * J[sz(i * n + a)] * M[sz(i * n + b)];
+      K[a * n + b] += v - sl.ck * c * Tphi[sz(a)] * pf.b[sz(b)];
+    }
+}
+
 /// The force of point q of element e (side A, coordinates ea) against element f (side B,
 /// coordinates eb): fe (n = na + nb: on e, then on f), with the step's mean pressure up to
 /// (ea1, eb1) (null: statics); K (if not null, n x n): minus its Jacobian with respect to the
-/// step's end, ck d/d(ea, eb) + c1 d/d(ea1, eb1).  Returns the gap (1e300: not kept); pw: the
-/// point's normal force.
+/// step's end, ck d/d(ea, eb) + cv d/d(va, vb) + c1 d/d(ea1, eb1) (friction: friction()).
+/// Returns the gap (1e300: not kept); pw: the point's normal force.
 double point_force(const BodyPair& bp, const Side& A, const Side& B, int e, int q, int f,
                    const double* ea, const double* eb, const double* ea1, const double* eb1,
                    const double* va, const double* vb, double* fe, double* pw, double ck = 1.0,
-                   double* K = nullptr, double c1 = 1.0) {
+                   double cv = 0.0, double* K = nullptr, double c1 = 1.0) {
   const int n = A.m->nde() + B.m->nde();
   Pair pf;
-  pair_geometry(A, B, e, q, f, ea, eb, K != nullptr, pf);
+  pair_geometry(A, B, e, q, f, ea, eb, false, pf);
   std::fill(fe, fe + n, 0.0);
   *pw = 0.0;
   if (!pf.kept) return 1e300;
@@ -176,7 +271,7 @@ double point_force(const BodyPair& bp, const Side& A, const Side& B, int e, int 
     pm = law.p(pf.g);
     dpf = law.slope(pf.g);
   } else {  // the step's mean pressure over [2 gf - g1, g1] (contact.hpp)
-    pair_geometry(A, B, e, q, f, ea1, eb1, false, p1);
+    pair_geometry(A, B, e, q, f, ea1, eb1, false, p1, pf.xi);  // from the alpha point's
     if (!p1.kept) p1 = pf;
     const double ga = 2.0 * pf.g - p1.g;
     double dpa = 0.0;
@@ -185,39 +280,20 @@ double point_force(const BodyPair& bp, const Side& A, const Side& B, int e, int 
     dp1 -= dpa;
   }
   if (pm == 0.0 && dpf == 0.0 && dp1 == 0.0) return pf.g;
+  if (K != nullptr) pair_geometry(A, B, e, q, f, ea, eb, true, pf, pf.xi);  // the Hessian
   const double w = A.cb->w[sz(e * A.cb->n_c + q)];
   *pw = w * pm;
   for (int a = 0; a < n; ++a) fe[a] = w * pm * pf.G[sz(a)];
-  if (bp.friction > 0.0 && va != nullptr && pm > 0.0) {
-    // regularized Coulomb friction on the slip of x relative to B's material point y(eta):
-    // f_t = -mu p v_t / sqrt(|v_t|^2 + eps^2), v_t = (I - n n^T)(v_x - v_y) (contact.hpp)
-    const Model& ma = *A.m;
-    const Model& mb = *B.m;
-    const int na = ma.nde();
-    const double* Na = A.cb->N.data() + 4 * (e * A.cb->n_c + q);
-    double ux[3], uy[3], vt[3];
-    contact_point::point_of(ma, Na, va, ux);
-    contact_point::point_of(mb, pf.Nb, vb, uy);
-    double un = 0.0;
-    for (int i = 0; i < 3; ++i) un += pf.n[i] * (ux[i] - uy[i]);
-    for (int i = 0; i < 3; ++i) vt[i] = ux[i] - uy[i] - un * pf.n[i];
-    const double sl = std::sqrt(dot3(vt, vt) + bp.slip_velocity * bp.slip_velocity);
-    for (int k = 0; k < 4; ++k) {
-      const int oa = (k / 2) * ma.dpn + (k % 2) * ma.dim;
-      const int ob = na + (k / 2) * mb.dpn + (k % 2) * mb.dim;
-      for (int i = 0; i < ma.dim; ++i) {
-        const double ft = -bp.friction * w * pm * vt[i] / sl;
-        fe[oa + i] += Na[k] * ft;
-        fe[ob + i] -= pf.Nb[k] * ft;
-      }
-    }
-  }
-  if (K == nullptr) return pf.g;
   const double* G1 = ea1 != nullptr ? p1.G.data() : pf.G.data();
-  for (int a = 0; a < n; ++a)
-    for (int c = 0; c < n; ++c)
-      K[a * n + c] = -w * (ck * (dpf * pf.G[sz(a)] * pf.G[sz(c)] + pm * pf.Hg[sz(a * n + c)]) +
-                           (ea1 != nullptr ? c1 * dp1 * pf.G[sz(a)] * G1[c] : 0.0));
+  if (K != nullptr)
+    for (int a = 0; a < n; ++a)
+      for (int c = 0; c < n; ++c)
+        K[a * n + c] = -w * (ck * (dpf * pf.G[sz(a)] * pf.G[sz(c)] + pm * pf.Hg[sz(a * n + c)]) +
+                             (ea1 != nullptr ? c1 * dp1 * pf.G[sz(a)] * G1[c] : 0.0));
+  if (bp.friction > 0.0 && va != nullptr && pm > 0.0) {
+    const Slopes sl{w, pm, ck, cv, dpf, ea1 != nullptr ? c1 * dp1 : 0.0, G1};
+    friction(bp, A, B, pf, sl, va, vb, fe, K);
+  }
   return pf.g;
 }
 
@@ -239,7 +315,8 @@ bool near(const Broad& br, int ea, int fb, const double* x, double ra, double on
 /// with near_only (the forces) points out of reach of the element (near) are not projected.
 template <class Fn>
 void each_pair(const System& s, const ContactSet& c, const double* y, const double* y1,
-               const double* v, bool near_only, Fn fn) {
+               const double* v, bool near_only, Fn fn, const AssemblyTerms* tm = nullptr,
+               double* K = nullptr) {
   if (c.body_pairs.empty()) return;
   const Broad br = spheres(s, c, y, y1);
   Coords ea{}, eb{}, ea1{}, eb1{}, va{}, vb{};
@@ -274,53 +351,13 @@ void each_pair(const System& s, const ContactSet& c, const double* y, const doub
             if (!near(br, sa, sb, x, A.cb->radius, bp.onset)) continue;
           }
           double pw = 0.0;
-          const double g = point_force(bp, A, B, e, q, f, ea.data(), eb.data(), pa1, pb1, pva, pvb,
-                                       fe.data(), &pw);
+          const double g =
+              point_force(bp, A, B, e, q, f, ea.data(), eb.data(), pa1, pb1, pva, pvb, fe.data(),
+                          &pw, tm != nullptr ? tm->ck : 1.0, tm != nullptr ? tm->cv : 0.0, K,
+                          tm != nullptr ? tm->c1 : 1.0);
           fn(bp, A, B, e, q, f, ea.data(), eb.data(), pa1, pb1, pva, pvb, fe.data(), g, pw);
         }
       }
-    }
-  }
-}
-
-/// Minus the Jacobian of a point's forces with friction (n x n into K) with respect to the
-/// step's end: ck d/dyf + cv d/dvf + c1 d/dy1, by central differences of point_force (steps
-/// 1e-7 (1 + |z|) and at most 1e-3 of the onset for positions, 1e-4 eps (1 + |z|) for
-/// velocities, as contact.hpp's carried obstacles).
-void friction_tangent(const BodyPair& bp, const Side& A, const Side& B, int e, int q, int f,
-                      const double* ea, const double* eb, const double* ea1, const double* eb1,
-                      const double* va, const double* vb, const AssemblyTerms& tm,
-                      std::vector<double>& K) {
-  const int na = A.m->nde(), n = na + B.m->nde();
-  K.assign(sz(n * n), 0.0);
-  const bool dyn = ea1 != nullptr;
-  std::array<Coords, 6> z{};  // ea, eb, ea1, eb1, va, vb
-  const double* src[6] = {ea, eb, ea1, eb1, va, vb};
-  for (int k = 0; k < 6; ++k)
-    if (src[k] != nullptr)
-      std::copy(src[sz(k)], src[sz(k)] + (k % 2 == 0 ? na : n - na), z[sz(k)].begin());
-  std::array<double, 2 * kMaxElementDofs> fp{}, fm{};
-  const double coef[3] = {tm.ck, tm.c1, tm.cv};
-  for (int set = 0; set < 3; ++set) {
-    if ((set == 1 && !dyn) || coef[set] == 0.0) continue;
-    for (int j = 0; j < n; ++j) {
-      Coords& zz = z[sz(2 * set + (j < na ? 0 : 1))];
-      double& x = zz[sz(j < na ? j : j - na)];
-      const double x0 = x;
-      const double h = set == 2 ? 1e-4 * bp.slip_velocity * (1.0 + std::abs(x0))
-                                : std::min(1e-7 * (1.0 + std::abs(x0)), 1e-3 * bp.onset);
-      double pw = 0.0;
-      const double* z1a = dyn ? z[2].data() : nullptr;
-      const double* z1b = dyn ? z[3].data() : nullptr;
-      x = x0 + h;
-      point_force(bp, A, B, e, q, f, z[0].data(), z[1].data(), z1a, z1b, z[4].data(), z[5].data(),
-                  fp.data(), &pw);
-      x = x0 - h;
-      point_force(bp, A, B, e, q, f, z[0].data(), z[1].data(), z1a, z1b, z[4].data(), z[5].data(),
-                  fm.data(), &pw);
-      x = x0;
-      for (int i = 0; i < n; ++i)
-        K[sz(i * n + j)] -= coef[set] * (fp[sz(i)] - fm[sz(i)]) / (2.0 * h);
     }
   }
 }
@@ -354,30 +391,48 @@ void rotate_pair(const Side& A, const Side& B, int e, int f, double* fe, double*
 void assemble_body_contact(const System& s, const ContactSet& c, const double* yf, const double* vf,
                            const double* y1, const AssemblyTerms& tm, double* r,
                            const MatrixSink* add) {
-  std::vector<double> K;
-  each_pair(s, c, yf, y1, vf, true,
-            [&](const BodyPair& bp, const Side& A, const Side& B, int e, int q, int f,
-                const double* ea, const double* eb, const double* ea1, const double* eb1,
-                const double* va, const double* vb, const double* fe, double, double pw0) {
-              if (pw0 == 0.0) return;
-              const int na = A.m->nde(), nb = B.m->nde(), n = na + nb;
-              std::array<double, 2 * kMaxElementDofs> f0{};
-              std::copy(fe, fe + n, f0.begin());
-              std::array<int, 2 * kMaxElementDofs> idx{};
-              for (int a = 0; a < na; ++a) idx[sz(a)] = A.offset + e * A.m->dpn + a;
-              for (int a = 0; a < nb; ++a) idx[sz(na + a)] = B.offset + f * B.m->dpn + a;
-              if (add != nullptr && va == nullptr) {  // frictionless: exact
-                K.assign(sz(n * n), 0.0);
-                double pw = 0.0;
-                point_force(bp, A, B, e, q, f, ea, eb, ea1, eb1, nullptr, nullptr, f0.data(), &pw,
-                            tm.ck, K.data(), tm.c1);
-              } else if (add != nullptr) {  // friction: central differences of the point forces
-                friction_tangent(bp, A, B, e, q, f, ea, eb, ea1, eb1, va, vb, tm, K);
-              }
-              rotate_pair(A, B, e, f, f0.data(), add != nullptr ? K.data() : nullptr);
-              for (int a = 0; a < n; ++a) r[idx[sz(a)]] -= f0[sz(a)];
-              if (add != nullptr) (*add)(idx.data(), n, K.data());
-            });
+  // the points of element e against element f come one after the other: their forces and
+  // tangents are summed, then given to r and the sink once per element pair (flush)
+  std::vector<double> K(sz(4 * kMaxElementDofs * kMaxElementDofs)), Ksum;
+  std::array<double, 2 * kMaxElementDofs> fsum{};
+  Side sides[2];
+  int key[4] = {-1, -1, -1, -1};  // bodies of A and B, e, f
+  auto flush = [&]() {
+    if (key[0] < 0) return;
+    const Side &A = sides[0], &B = sides[1];
+    const int e = key[2], f = key[3], na = A.m->nde(), n = na + B.m->nde();
+    std::array<int, 2 * kMaxElementDofs> idx{};
+    for (int a = 0; a < na; ++a) idx[sz(a)] = A.offset + e * A.m->dpn + a;
+    for (int a = 0; a < n - na; ++a) idx[sz(na + a)] = B.offset + f * B.m->dpn + a;
+    rotate_pair(A, B, e, f, fsum.data(), add != nullptr ? Ksum.data() : nullptr);
+    for (int a = 0; a < n; ++a) r[idx[sz(a)]] -= fsum[sz(a)];
+    if (add != nullptr) (*add)(idx.data(), n, Ksum.data());
+    key[0] = -1;
+  };
+  each_pair(
+      s, c, yf, y1, vf, true,
+      [&](const BodyPair&, const Side& A, const Side& B, int e, int, int f, const double*,
+          const double*, const double*, const double*, const double*, const double*,
+          const double* fe, double, double pw0) {
+        if (pw0 == 0.0) return;
+        const int n = A.m->nde() + B.m->nde();
+        if (key[0] != A.body || key[1] != B.body || key[2] != e || key[3] != f) {
+          flush();
+          sides[0] = A;
+          sides[1] = B;
+          key[0] = A.body;
+          key[1] = B.body;
+          key[2] = e;
+          key[3] = f;
+          std::fill(fsum.begin(), fsum.end(), 0.0);
+          if (add != nullptr) Ksum.assign(sz(n * n), 0.0);
+        }
+        for (int a = 0; a < n; ++a) fsum[sz(a)] += fe[a];
+        if (add != nullptr)  // the point's exact tangent (point_force)
+          for (int a = 0; a < n * n; ++a) Ksum[sz(a)] += K[sz(a)];
+      },
+      &tm, add != nullptr ? K.data() : nullptr);
+  flush();
 }
 
 double body_contact_energy(const System& s, const ContactSet& c, const double* y) {

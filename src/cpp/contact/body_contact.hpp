@@ -4,7 +4,8 @@
 // Every contact point x_i (the Gauss points of contact.hpp, weight w_i: the integral over the
 // reference arc length) of body A is projected on every element f of body B that the broad
 // phase finds near it: y(xi*) = sum_k N_k(xi*) e_k with xi* minimizing |x_i - y(xi)| over
-// [0, 1] (Newton on (y - x) . y' = 0 from the best of five samples).  The gap is
+// [0, 1] (Newton on (y - x) . y' = 0 from the best of five samples; at a step's end from the
+// alpha point's xi*).  The gap is
 //   g = |x_i - y(xi*)| - r_A - r_B,   n = (x_i - y) / |x_i - y|,
 // and the energy w_i Phi(g) / 2 with the penalty of contact_law.hpp (in a time step the
 // pressure is its mean over the gaps [2 g(yf) - g(y1), g(y1)], as contact.hpp's); A against B and B
@@ -21,10 +22,10 @@
 // cells as large as the largest sphere (hash map of cells): pairs of elements in the same or
 // neighbouring cells whose spheres overlap; cost near linear in the number of elements.
 //
-// Tangent: exact without friction, from the gap's Hessian including the projection's variation
-// (body_contact.cpp pair_geometry); with friction, central differences of the point forces;
-// couplings of distant elements go through the sink (the bordered solve's far
-// columns).
+// Tangent: exact, from the gap's Hessian including the projection's variation
+// (body_contact.cpp pair_geometry) and, with friction, the slip's variation with the normal,
+// the closest point and the velocities (body_contact.cpp friction); couplings of distant
+// elements go through the sink (the bordered solve's far columns).
 #pragma once
 
 #include "contact/contact.hpp"

@@ -261,11 +261,9 @@ void point_at(const int* off, const double* N, const double* e, double* r) {
 /// r = sum_k N_k e_k (blocks of the element coordinates; 3 components, zero z in 2D).
 inline void point_of(const Model& m, const double* N, const double* e, double* r) {
   const int d = m.dim;
-  r[0] = r[1] = r[2] = 0.0;
-  for (int k = 0; k < 4; ++k) {
-    const double* b = e + (k / 2) * m.dpn + (k % 2) * d;
-    for (int i = 0; i < d; ++i) r[i] += N[k] * b[i];
-  }
+  const double *b0 = e, *b1 = e + d, *b2 = e + m.dpn, *b3 = e + m.dpn + d;  // blocks k = 0..3
+  r[2] = 0.0;
+  for (int i = 0; i < d; ++i) r[i] = N[0] * b0[i] + N[1] * b1[i] + N[2] * b2[i] + N[3] * b3[i];
 }
 
 /// A carried obstacle's point: forces (dim on r, nb on the body) from z = (r, ub) at the alpha

@@ -246,6 +246,26 @@ double SystemIntegrator::local_error(const double* w0, const double* w1, double 
   return std::abs(sc_.beta - 0.5 * sc_.gamma + 1.0 / 12.0) * h * h * e;
 }
 
+double SystemIntegrator::damp_reversal(double factor, const double* w) {
+  // a full Newton increment that turns back along the step before (cosine below -1/2, scaled
+  // as the convergence test) without being shorter than half of it: the iterates circle a
+  // root where the forces saturate (regularized friction); the factor on the increment is
+  // halved at each such turn and doubled (up to 1) at each other iteration
+  const int n = s_.n;
+  double dot = 0.0, a2 = 0.0, b2 = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const double sc = w != nullptr ? w[i] * w[i] : 1.0;
+    dot += sc * dz_[sz(i)] * prev_dz_[sz(i)];
+    a2 += sc * dz_[sz(i)] * dz_[sz(i)];
+    b2 += sc * prev_dz_[sz(i)] * prev_dz_[sz(i)];
+  }
+  const bool turn = dot < -0.5 * std::sqrt(a2 * b2) && a2 > 0.25 * b2;
+  factor = turn ? 0.5 * factor : std::min(1.0, 2.0 * factor);
+  if (factor < 1.0)
+    for (double& d : dz_) d *= factor;
+  return factor;
+}
+
 StepOutcome SystemIntegrator::iterate(const StepIn& s0, double t, double h, const StepOut& s1,
                                       bool from_y0) {
   const int n = s_.n, m = s_.m;
@@ -271,7 +291,7 @@ StepOutcome SystemIntegrator::iterate(const StepIn& s0, double t, double h, cons
   // the balance at t + h (TI.1-TI.6): d a1/d y1 = (1 - am)/((1 - af) beta h^2)
   const bool ch = contact_;
   AssemblyTerms terms = step_terms(t, h);
-  double prev = std::numeric_limits<double>::infinity();
+  double prev = std::numeric_limits<double>::infinity(), factor = 1.0;
   const double* w = scale_.empty() ? nullptr : scale_.data();
   auto rates = [&]() {  // w1, v1 and a1 of y1 (the Newmark relations and the alpha blend)
     for (int i = 0; i < n; ++i) {
@@ -304,6 +324,8 @@ StepOutcome SystemIntegrator::iterate(const StepIn& s0, double t, double h, cons
       if (sc_.modified) remember(h, terms, yb, vb, ab, l1, y1);
     }
     solve_negative();
+    if (fresh && it > 3) factor = damp_reversal(factor, w);  // after Newton's quadratic start
+    prev_dz_.assign(dz_.begin(), dz_.end());                 // the step taken
     double norm = 0.0;  // increments measured as displacements (docs/derivations/newton.md)
     for (int i = 0; i < n; ++i) {
       y1[i] += dz_[sz(i)];
@@ -316,7 +338,7 @@ StepOutcome SystemIntegrator::iterate(const StepIn& s0, double t, double h, cons
     }
     // with a fresh (exact) tangent convergence is quadratic: a small increment is a small
     // error; with reused factors the error is about |d| r / (1 - r), r = |d| / |d_prev|
-    bool done = norm <= sc_.tol;
+    bool done = norm <= sc_.tol && factor == 1.0;  // a damped increment: once more
     if (done && !fresh) {
       const double r = norm / prev;
       done = r < 1.0 && norm * r / (1.0 - r) <= sc_.tol;

@@ -138,6 +138,10 @@ class SystemIntegrator {
   /// The Newton iterations of step(), from the predictor y0 + h v0 + h^2/2 a0 or from y0.
   StepOutcome iterate(const StepIn& s0, double t, double h, const StepOut& s1, bool from_y0);
   void solve_negative();
+  /// The factor on a full Newton increment dz_ (applied to it) after the step before,
+  /// prev_dz_, was taken with `factor`: halved where dz_ turns back along it, else doubled
+  /// up to 1 (system_integrator.cpp); w the convergence test's scale (may be null).
+  double damp_reversal(double factor, const double* w);
   /// The velocities v1 of a converged step projected onto the constraints' rates at t1,
   /// G v1 + g_t = 0, in the metric of the step's iteration matrix (TI.11 of
   /// docs/derivations/time-integration.md): index-3 constraints leave the rate errors of a
@@ -167,6 +171,7 @@ class SystemIntegrator {
   /// Contact: r0_ = R_n, the balance's residual without contact at the step's start.
   bool start_residual(const StepIn& s0, double t);
   std::vector<double> base_, yf_, vf_, am_, r_, dz_, zb_, zero_, rate_g_, r0_;
+  std::vector<double> prev_dz_;  // the last full Newton step taken (damp_reversal)
   /// Contact: its forces at the alpha point, carried (module comment)
   bool contact_ = false;
   /// Steps since one had to start again from y0 (0: the last started from the predictor and

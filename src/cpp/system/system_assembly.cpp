@@ -37,46 +37,6 @@ struct Far {
   void add(int i, int j, double v) { entries.push_back({i, j, v}); }
 };
 
-/// The far entries as border unknowns (docs/derivations/systems.md section 4): an entry whose
-/// row has more far entries than its column goes to the row's unknown w_i = sum_j K_ij x_j
-/// (Q[w] = K_i., P[i][w] = 1, D = -1), the others to their column's z_j = x_j (P[.][z] = K_.j,
-/// Q[z][j] = 1, D = -1): a rigid body coupled to many coordinates of a line (a carried
-/// obstacle's contact) adds a few unknowns, not one per coordinate.  Sorted: columns, then
-/// rows, each ascending (key), entries in the order they came; `unknowns` counts the groups.
-struct FarGroup {
-  bool by_row;
-  int key, other, seq;
-  double v;
-};
-
-int group_far(const Far& far, int n, std::vector<FarGroup>& out) {
-  thread_local std::vector<int> rows, cols, at;  // far entries per row, per column; placement
-  rows.assign(sz(n), 0);
-  cols.assign(sz(n), 0);
-  for (const FarEntry& e : far.entries) {
-    ++rows[sz(e.i)];
-    ++cols[sz(e.j)];
-  }
-  // entries per group: columns' at [0, n), rows' at [n, 2 n); then each group's first place
-  at.assign(sz(2 * n), 0);
-  for (const FarEntry& e : far.entries) ++at[rows[sz(e.i)] > cols[sz(e.j)] ? sz(n + e.i) : sz(e.j)];
-  int unknowns = 0, next = 0;
-  for (int& c : at) {
-    const int count = c;
-    c = next;
-    next += count;
-    unknowns += count > 0 ? 1 : 0;
-  }
-  out.resize(far.entries.size());
-  int seq = 0;
-  for (const FarEntry& e : far.entries) {
-    const bool by_row = rows[sz(e.i)] > cols[sz(e.j)];
-    const int key = by_row ? e.i : e.j;
-    out[sz(at[sz(by_row ? n + key : key)]++)] = {by_row, key, by_row ? e.j : e.i, seq++, e.v};
-  }
-  return unknowns;
-}
-
 /// K (k x k, row-major) over global indices idx into lu's bands, or into far.
 void add_matrix(BorderedLU& lu, const int* idx, int k, const double* K, Far& far) {
   for (int a = 0; a < k; ++a) {
@@ -708,7 +668,8 @@ void normalization_terms(const Stage& st) {
   }
 }
 
-/// The border: multipliers (m), then the far entries' unknowns (group_far), the drums'.
+/// The border: multipliers (m), then the drums'; the far entries to the solver (its border's
+/// unknowns or a reordered band: bordered.hpp).
 void border_terms(const Stage& st, const std::vector<DrumRow>& drums, const JointJacobians& jac1,
                   const JointJacobians& jacf) {
   const System& s = st.s;
@@ -718,11 +679,9 @@ void border_terms(const Stage& st, const std::vector<DrumRow>& drums, const Join
   const AssemblyTerms& tm = st.tm;
   BorderedLU* lu = st.lu;
   Far& far = st.far;
-  const int n = st.s.n;
   const int m = st.s.m;
-  thread_local std::vector<FarGroup> groups;
-  const int nfar = group_far(far, n, groups);
-  lu->reset_border(m + nfar + static_cast<int>(drums.size()));
+  lu->reset_border(m + static_cast<int>(drums.size()));
+  for (const FarEntry& e : far.entries) lu->add_far(e.i, e.j, e.v);
   for (std::size_t jj = 0; jj < s.joints.size(); ++jj) {
     const JointData& jd = s.joints[jj];
     if (jd.info.kind == JointKind::sliding) {
@@ -751,24 +710,6 @@ void border_terms(const Stage& st, const std::vector<DrumRow>& drums, const Join
     lu->add_q(s.linear_row + t.row, t.col, t.coef);
   }
   int z = m;
-  for (std::size_t k = 0; k < groups.size(); ++k) {
-    const FarGroup& fg = groups[k];
-    if (k > 0 && (fg.by_row != groups[k - 1].by_row || fg.key != groups[k - 1].key)) ++z;
-    if (fg.by_row) {  // w = K_key,. x: Q[w][j] = K_key,j, P[key][w] = 1, D = -1
-      lu->add_q(z, fg.other, fg.v);
-    } else {  // z = x_key: P[i][z] = K_i,key, Q[z][key] = 1, D = -1
-      lu->add_p(z, fg.other, fg.v);
-    }
-    const bool last =
-        k + 1 == groups.size() || groups[k + 1].by_row != fg.by_row || groups[k + 1].key != fg.key;
-    if (!last) continue;
-    if (fg.by_row)
-      lu->add_p(z, fg.key, 1.0);
-    else
-      lu->add_q(z, fg.key, 1.0);
-    lu->add_d(z, z, -1.0);
-  }
-  if (!groups.empty()) ++z;
   // a drum's row by the line's coordinates: w = row . x, Q[w] = row, D = -1, P[drum][w] = 1
   for (const DrumRow& d : drums) {
     for (std::size_t i = 0; i < d.terms.row.size(); ++i)
