@@ -78,7 +78,8 @@ def _body_problems(model: Model, y: NDArray[np.float64]) -> list[str]:
     stretch = np.sqrt(np.clip(1.0 + 2.0 * vals[:, 0], 0.0, None))
     el = np.minimum(np.arange(stretch.size) // k, model.n_el - 1)
     out = []
-    fold = _fold_element(sampler.positions(y), sampler.positions(model.y0), k)
+    x = sampler.positions(y)
+    fold = _fold_element(x, sampler.positions(model.y0), k)
     if fold is not None or stretch.min() < FOLD_STRETCH:
         e = fold if fold is not None else int(el[np.argmin(stretch)])
         out.append(
@@ -86,6 +87,9 @@ def _body_problems(model: Model, y: NDArray[np.float64]) -> list[str]:
             f"falls to {stretch[el == e].min():.3g}, below {FOLD_STRETCH}): not an "
             "equilibrium a line rests in"
         )
+    crossing = self_crossing(model, x, sampler.s)
+    if crossing:
+        out.append(crossing)
     # each element's mean axial force: a coarse element of a stiff line has its own strain
     # oscillate about the mean by more than the mean (a 20-element chain: -1.0 MN to 2.4 MN
     # within one element whose mean pulls 1.3 MN), while a loop compresses whole elements
@@ -96,9 +100,6 @@ def _body_problems(model: Model, y: NDArray[np.float64]) -> list[str]:
         COMPRESSION_BUCKLING * np.pi**2 * model.props.ei / ell**2
         + COMPRESSION_ROUNDOFF * model.props.ea
     )
-    crossing = self_crossing(model, sampler.positions(y), sampler.s)
-    if crossing:
-        out.append(crossing)
     e = int(np.argmin(mean + allowed))
     if mean[e] < -allowed[e]:
         out.append(
