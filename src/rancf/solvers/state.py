@@ -48,6 +48,11 @@ COUNTERS = (
     "error_step",
 )
 
+#: The counters a resumed result does not take over as they stand: the factorizations go to
+#: the integrator (``restore``), the Newton iterations and wall time so far to the run's base,
+#: to which the resumed run adds its own.
+_GOING_ON = ("n_newton", "n_factorizations", "wall_time")
+
 #: Version 2 holds ``w`` (rancf 0.4, the Arnold–Brüls form); version 1's runs go on with
 #: ``w = a`` (the start of a run).
 _VERSION = 2
@@ -275,17 +280,8 @@ def take_up(system: Any, integ: Any, state: DynamicState, result: Any, base: dic
         b.kernel.m1ref[...] = state.triads[2 * i + 1].reshape(b.kernel.m1ref.shape)
     c = state.counters
     integ.restore(state.memory, int(c.get("n_factorizations", 0)))
-    for key in (
-        "n_steps",
-        "n_rejected",
-        "n_outputs",
-        "min_step_taken",
-        "max_step_taken",
-        "error_estimate",
-        "error_time",
-        "error_step",
-    ):
-        if c.get(key) is not None:
+    for key in COUNTERS:
+        if key not in _GOING_ON and c.get(key) is not None:
             setattr(result, key, c[key])
     base["n_newton"] = int(c.get("n_newton", 0))
     base["wall_time"] = float(c.get("wall_time", 0.0))
