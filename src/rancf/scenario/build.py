@@ -230,7 +230,7 @@ def flexible_model(
             )
         v0[node] = t["value"]
     try:
-        return Model(
+        model = Model(
             mesh,
             mesh_table.element,
             section_of(section),
@@ -257,6 +257,12 @@ def flexible_model(
         raise ScenarioError(
             sc.path, pre + exc.parameter, f"{exc.allowed} (got {_value(exc.value)})"
         ) from None
+    length = getattr(geometry, "length", None)
+    if length is not None:  # the line's material stretched or compressed onto its chord
+        from rancf.bodies.length import set_unstretched_length
+
+        set_unstretched_length(model, length)
+    return model
 
 
 def section_of(s: Any) -> Section:

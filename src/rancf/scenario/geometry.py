@@ -32,6 +32,7 @@ from rancf.scenario.base import (
     KindOf,
     Number,
     Point,
+    Positive,
     QuadraturePoints,
     SemiAxes,
     Table,
@@ -64,7 +65,7 @@ ELEMENTS = ("rancf", "ancf", "beam", "rod")
 #: Keys of ``[geometry]`` for each kind.
 GEOMETRY_KEYS = {
     "conic": ("start", "end", "angles_deg", "point"),
-    "line": ("start", "end"),
+    "line": ("start", "end", "length"),
     "nurbs": ("degree", "knots", "control_points", "weights"),
     "cad": ("file", "curve"),
     "ellipse": ("center", "semi_axes", "rotation_deg", "axes", "start_deg"),
@@ -95,12 +96,19 @@ def _same_dim(dim: int, key: str, v: list[float]) -> None:
 
 
 class LineGeometry(_Geometry):
-    """A straight line from ``start`` to ``end``."""
+    """A straight line from ``start`` to ``end``; with ``length``, of that unstretched length
+    (the line's unloaded state is straight, its material stretched or compressed uniformly onto
+    the chord: :func:`rancf.bodies.length.set_unstretched_length`)."""
 
     KIND: ClassVar[str] = "line"
     kind: Literal["line"] = Field(description="a straight line")
     start: Point = Field(description="start point [m]; 2 coordinates: planar, 3: spatial")
     end: Point = Field(description="end point [m], as many coordinates as start")
+    length: Positive | None = Field(
+        None,
+        description="unstretched length [m], longer (slack) or shorter (taut) than the chord "
+        "(default: the chord); cables and rods",
+    )
 
     @model_validator(mode="after")
     def _dims(self) -> LineGeometry:

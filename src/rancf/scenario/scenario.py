@@ -214,6 +214,19 @@ class Scenario(Table):
                     return f"supports[{i}].{k}"
         return None
 
+    def length_keys(self) -> list[str]:
+        """The keys that give a flexible body an unstretched length other than its reference's
+        (``geometry.length`` of a line), so that its reference carries a force."""
+        out = []
+        for key, b in self.body_tables:
+            g = getattr(b, "geometry", None)
+            length = getattr(g, "length", None)
+            if length is not None:
+                chord = sum((e - s) ** 2 for s, e in zip(g.start, g.end, strict=True)) ** 0.5
+                if abs(length - chord) > 1e-9 * chord:
+                    out.append(f"{key}geometry.length")
+        return out
+
     def dynamic_options(self) -> DynamicOptions:
         """:class:`~rancf.options.DynamicOptions` of the ``[solver]`` table."""
         return self.solver.dynamic_options()

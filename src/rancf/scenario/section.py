@@ -147,6 +147,12 @@ def check_flexible(
     if dim not in fam.dims:
         plane = "planar: use 2-coordinate" if fam.dims == (2,) else "spatial: use 3-coordinate"
         raise fail("mesh.element", f"the {el} element is {plane} geometry")
+    if getattr(geometry, "length", None) is not None and not fam.gradient:
+        raise fail(
+            "geometry.length",
+            f'applies to cable and rod elements (mesh.element = "rancf", "ancf" or "rod"), '
+            f"not {el!r}",
+        )
     for k in _ROD_SECTION:
         if section[k] is not None:
             _rod_only(f"section.{k}", el)

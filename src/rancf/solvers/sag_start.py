@@ -6,15 +6,17 @@ far from its sag, may be led by the load path into a root of the residual no rea
 in (:mod:`rancf.solvers.static_checks`).  :func:`solve_from_sag` starts again from the shape
 the line would hang in: for every cable body (``"rancf"``/``"ancf"`` elements) whose two end
 nodes hold their positions (supports, installed where they are installed) and whose reference
-arc length ``L`` exceeds the chord between them, the inextensible catenary of length ``L``
+arc length ``L`` (its unstretched length: :func:`rancf.bodies.length.unstretched_length`)
+exceeds the chord between them, the inextensible catenary of length ``L``
 between the installed end positions in the vertical plane through them (vertical: against the
 body's gravity).  Where that catenary dips below a fixed plane facing up against gravity that
 the body touches (a seabed), the shape is instead two catenaries from the ends down to
 touchdown points, where they are tangent to the plane, and the line straight on the plane
 between them (no friction: one horizontal tension ``H = w a`` throughout); the centerline lies
 one tube radius ``sqrt(A / π)`` above the plane.  Each node is placed at the point of the shape
-at its reference arc length, its gradient ``r_x`` along the shape's tangent with the length
-of its reference gradient (the element's gradient scale: a node's ``|r_x|`` is unchanged).
+at its unstretched arc length, its gradient ``r_x`` along the shape's tangent with the length
+of its unstretched gradient (``λ |r0_x|``, the element's gradient scale times the length
+scale ``λ`` of docs/derivations/variable-length.md §2.1).
 A line shorter than that chord (installed stretched) starts straight between its held ends,
 stretched evenly (its gradients too).  Other bodies keep their reference.  From there Newton's
 method at the full load with the supports installed (the last stage's end), and relaxation
@@ -30,6 +32,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rancf.bodies.flexible import Model
+from rancf.bodies.length import length_scale
 from rancf.solvers.newton import newton
 from rancf.solvers.relaxation import relax
 from rancf.solvers.system_equilibrium import SystemEquilibrium
@@ -172,7 +175,7 @@ def _line_geometry(system: Any, name: str, model: Model, pinned: bool = False) -
     q = model.q_from_y(model.y_installed).reshape(model.n_nodes, model.dpn)
     p1 = q[0, : model.dim]
     chord = q[-1, : model.dim] - p1
-    s_nodes = np.r_[0.0, np.cumsum(model.mesh.arc_lengths())]
+    s_nodes = np.r_[0.0, np.cumsum(model.mesh.arc_lengths())] * length_scale(model)
     rise = float(chord @ up)
     span = float(np.linalg.norm(chord - rise * up))
     return q, up, p1, chord, s_nodes, span, rise
@@ -213,7 +216,8 @@ def _body_sag(
     dim = model.dim
     length = float(s_nodes[-1])
     horiz = chord - rise * up
-    grad = np.linalg.norm(model.q0.reshape(model.n_nodes, model.dpn)[:, dim:], axis=1)
+    # the mesh's gradients (a winch's anchored scaling leaves them; q0 it scales)
+    grad = np.linalg.norm(model.mesh.nodes[:, 1], axis=1) * length_scale(model)
     out = q.copy()
     stretch = float(np.linalg.norm(chord)) / length
     if stretch > 1.0 + SLACK_RTOL:  # taut: straight, stretched evenly

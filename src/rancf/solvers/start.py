@@ -30,7 +30,8 @@ def start_state(
     Raises
     ------
     ScenarioError
-        A support installed away from its reference with ``initial_state = "reference"``.
+        A support installed away from its reference, or a line given a length other than its
+        chord (``geometry.length``), with ``initial_state = "reference"``.
     """
     key = sc.installed_support()
     if sc.solver["initial_state"] == "reference":
@@ -40,6 +41,14 @@ def start_state(
                 key,
                 "installs a support away from its reference, which needs solver.initial_state "
                 '= "static" (the static solution moves it there before the run)',
+            )
+        lengths = sc.length_keys()
+        if lengths:
+            raise ScenarioError(
+                sc.path,
+                lengths[0],
+                "gives the line a length its reference is not at rest in, which needs "
+                'solver.initial_state = "static" (the run starts from its equilibrium)',
             )
         return None, {"initial_state": "reference"}
     from rancf.scenario.system_build import scenario_keys
