@@ -61,6 +61,7 @@ _API = {
     "RigidBody": "rancf.bodies.rigid",
     "PointMass": "rancf.bodies.rigid",
     "solve_static": "rancf.solvers.static",
+    "find_form": "rancf.solvers.form",
     "natural_modes": "rancf.solvers.modal",
     # results and plots
     "sensor_table": "rancf.post.results",

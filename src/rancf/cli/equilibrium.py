@@ -90,6 +90,7 @@ def _cmd_static(args: argparse.Namespace) -> int:
         "wall_time_s": res.wall_time,
         "reactions": reactions_json(run.outputs, res.y, res.lam),
         "warnings": notes,
+        **run.form,
     }
     if args.json:
         print(strict_json(out).rstrip())
@@ -100,6 +101,8 @@ def _cmd_static(args: argparse.Namespace) -> int:
         f"static equilibrium ({res.method}): {len(res.load_factors) - 1} load steps, "
         f"{res.n_newton} Newton iterations{relaxed}{where}"
     )
+    for line in run.form_lines:
+        print(f"  {line}")
     for k, v in out["sensors"].items():
         print(f"  {k:12s} {v: .9g}")
     # forces below the round-off of the internal forces (100 ε EA) print as 0
@@ -120,6 +123,7 @@ def _cmd_modes(args: argparse.Namespace) -> int:
     from rancf.post.results import strict_json
     from rancf.runs.modes import run_modes
     from rancf.scenario import load_scenario
+    from rancf.solvers.form import form_lines, form_summary
 
     plot = check_plot_path(args.plot) if args.plot else None
     if args.count is not None and args.count < 1:
@@ -144,6 +148,7 @@ def _cmd_modes(args: argparse.Namespace) -> int:
         "n_dofs_free": run.n_free,
         "constraints": system.m,
         "warnings": notes,
+        **form_summary(sc),
     }
     if cam is not None:
         out["campbell"] = {
@@ -163,6 +168,8 @@ def _cmd_modes(args: argparse.Namespace) -> int:
             f"natural frequencies about the {run.about} configuration "
             f"({res.n_rigid} rigid-body mode(s) removed):"
         )
+        for line in form_lines(sc):
+            print(f"  {line}")
         for i, (f, g) in enumerate(zip(res.frequencies_hz, res.growth_rates, strict=True), 1):
             extra = "" if res.symmetric and g == 0 else f"  growth rate {g:.6g} 1/s"
             print(f"  mode {i:2d}  {f:12.6f} Hz{extra}")

@@ -66,6 +66,11 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     sc, copy = scenario_for_run(args.scenario, args.t_end)
     files = file_digests(tomllib.loads(copy), args.scenario)  # the run's CSV and CAD files
     plan = plan_simulate(sc, limit)  # refused before the folder is touched
+    if not args.quiet:
+        from rancf.solvers.form import form_lines
+
+        for line in form_lines(sc):
+            print(f"rancf: {line}", file=sys.stderr)
     out = od.path
     stop = _StopFlag()
     with stop, od:

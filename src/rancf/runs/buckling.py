@@ -8,8 +8,9 @@ from typing import Any, Literal
 from numpy.typing import NDArray
 
 from rancf.errors import InputError
-from rancf.runs.common import static_state
+from rancf.runs.common import refuse_unloaded_reference, static_state
 from rancf.solvers.buckling import BucklingResult, linear_buckling
+from rancf.solvers.form import find_form
 
 __all__ = ["BucklingRun", "run_buckling"]
 
@@ -37,8 +38,11 @@ def run_buckling(
     """
     if count < 1:
         raise InputError("--count", count, "an integer >= 1")
+    find_form(sc)
     system = sc.build_system()
     y = lam = None
+    if about == "reference":
+        refuse_unloaded_reference(sc, "buckling")
     if about == "static":
         y, lam = static_state(sc, system)
     return BucklingRun(system, linear_buckling(system, count, about, y, lam), y)

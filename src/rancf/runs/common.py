@@ -6,7 +6,29 @@ from typing import Any
 
 from numpy.typing import NDArray
 
-__all__ = ["static_state"]
+__all__ = ["static_state", "refuse_unloaded_reference"]
+
+
+def refuse_unloaded_reference(sc: Any, analysis: str) -> None:
+    """Refuse an ``analysis`` (``"modes"``, ``"buckling"``) about the reference of a scenario
+    whose line has a length other than its chord (``geometry.length``, ``[form]``): that
+    reference carries a force and is no equilibrium.
+
+    Raises
+    ------
+    ScenarioError
+        Naming the key, and that ``--about static`` is the way.
+    """
+    from rancf.errors import ScenarioError
+
+    keys = sc.length_keys()
+    if keys:
+        raise ScenarioError(
+            sc.path,
+            keys[0],
+            f"gives the line a length its reference is not at rest in: {analysis} about the "
+            'static equilibrium (--about static, or [modes] about = "static")',
+        )
 
 
 def static_state(sc: Any, system: Any) -> tuple[NDArray, NDArray]:

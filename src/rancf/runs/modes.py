@@ -12,8 +12,9 @@ from numpy.typing import NDArray
 from rancf.errors import InputError
 from rancf.post.checks import largest_strain, run_warnings
 from rancf.runs.campbell import run_campbell
-from rancf.runs.common import static_state
+from rancf.runs.common import refuse_unloaded_reference, static_state
 from rancf.solvers.campbell import CampbellResult
+from rancf.solvers.form import find_form
 from rancf.solvers.modal import ModalResult, natural_modes
 
 __all__ = ["ModesRun", "run_modes"]
@@ -57,6 +58,7 @@ def run_modes(
     InputError
         ``count < 1``, or ``count`` not below the free coordinates (without ``at_least``).
     """
+    find_form(sc)
     system = sc.build_system()
     n_free = int(np.sum(~system.fixed))
     key = count_key or f"{sc.path}: modes.count"
@@ -69,6 +71,8 @@ def run_modes(
     if count >= n_free:
         raise InputError(key, count, f"at most {n_free - 1} (the free coordinates - 1)")
     about = about or sc.data["modes"]["about"]
+    if about == "reference":
+        refuse_unloaded_reference(sc, "modes")
     y = lam = None
     largest = (0.0, 1.0)
     if about == "static":

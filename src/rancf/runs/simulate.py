@@ -27,6 +27,7 @@ from rancf.post.checks import finished_warnings
 from rancf.post.results import sensor_table, write_run
 from rancf.post.run_plan import plan_run
 from rancf.solvers.dynamic import DynamicResult, integrate
+from rancf.solvers.form import find_form
 from rancf.solvers.start import start_state
 from rancf.system.outputs import SystemOutputs
 
@@ -109,6 +110,7 @@ def plan_simulate(sc: Any, limit_gb: float = MAX_OUTPUT_GB, limit_key: str = "li
     RunTooLargeError
         The files would pass ``limit_gb``.
     """
+    find_form(sc)  # a [form]'s length first: the system is built with it
     system, outputs = plan_run(sc, limit_gb, limit_key)
     return Plan(system, outputs, sc.dynamic_options())
 

@@ -6,7 +6,7 @@ loads."""
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -29,6 +29,12 @@ class StaticRun:
     #: One line per body whose mesh the static solve refined, or would have but could not
     #: (:mod:`rancf.runs.static_mesh`).
     notes: list[str]
+    #: ``{"unstretched_length": ...}`` of the bodies with a ``[form]`` (found on the mesh
+    #: solved: :func:`rancf.solvers.form.form_summary`), or empty.
+    form: dict[str, Any] = field(default_factory=dict)
+    #: One line per body with a ``[form]``: the length found
+    #: (:func:`~rancf.solvers.form.form_lines`).
+    form_lines: list[str] = field(default_factory=list)
 
 
 def run_static(
@@ -50,19 +56,27 @@ def run_static(
     the summary once the folder holds the run.
     """
     from rancf.runs.static_mesh import refine_for_touchdowns, start_ratios
+    from rancf.solvers.form import find_form, form_lines, form_summary
 
+    find_form(sc)  # a [form]'s length (found again on a refined mesh)
     system = sc.build_system()
     finer, notes = refine_for_touchdowns(sc, system, start_ratios(system))
     if finer is not None:
+        find_form(finer)
         sc, system = finer, finer.build_system()
-    run = _run_static(sc, system, folder, info, on_written, notes, recheck=True)
+    keys = {**(info or {}), **form_summary(sc)}
+    run = _run_static(sc, system, folder, keys, on_written, notes, recheck=True)
     if isinstance(run, StaticRun):
+        run.form, run.form_lines = form_summary(sc), form_lines(sc)
         return run
     sc, more, first = run
-    solved = _run_static(sc, sc.build_system(), folder, info, on_written, notes + more, False)
+    find_form(sc)
+    keys = {**(info or {}), **form_summary(sc)}
+    solved = _run_static(sc, sc.build_system(), folder, keys, on_written, notes + more, False)
     assert isinstance(solved, StaticRun)
     # the solve time counts both solves
     solved.result = replace(solved.result, wall_time=solved.result.wall_time + first)
+    solved.form, solved.form_lines = form_summary(sc), form_lines(sc)
     return solved
 
 

@@ -38,6 +38,7 @@ from rancf.scenario.base import (
 )
 from rancf.scenario.damping import StrainRateDampingTable
 from rancf.scenario.fluid import HydroTable
+from rancf.scenario.form import FormTable
 from rancf.scenario.geometry import Geometry, MeshTable
 from rancf.scenario.loads import InitialMotionTable
 from rancf.scenario.section import MaterialTable, SectionTable, check_flexible
@@ -82,10 +83,15 @@ class FlexibleBody(Table):
         description="this body's strain-rate damping (axial, bending, torsion), in place "
         "of those keys of [damping]",
     )
+    form: FormTable | None = Field(
+        None,
+        description="form-finding: the unstretched length found to meet a sag, horizontal "
+        "tension or end tension in statics",
+    )
 
     @model_validator(mode="after")
     def _together(self) -> FlexibleBody:
-        check_flexible(self.geometry, self.mesh, self.section, self.material)
+        check_flexible(self.geometry, self.mesh, self.section, self.material, self.form)
         if self.initial_motion is not None:
             try:
                 self.initial_motion.check_dim(self.dim)

@@ -180,7 +180,7 @@ def body_model(sc: ScenarioView, i: int) -> Model:
         for p in map(sc.place, sn.places)
         if p.where == "node" and p.body == b.name and p.node is not None
     ]
-    return flexible_model(
+    model = flexible_model(
         sc,
         key,
         (b.geometry, b.mesh, b.section, b.material),
@@ -191,6 +191,12 @@ def body_model(sc: ScenarioView, i: int) -> Model:
         nodes,
         ("", sc.damping) if b.damping is None else (key, b.damping),
     )
+    length = sc.body_length(b.name)  # a [form] not found yet is refused there
+    if length is not None:  # the material stretched or compressed onto its reference
+        from rancf.bodies.length import set_unstretched_length
+
+        set_unstretched_length(model, length)
+    return model
 
 
 def flexible_model(
@@ -257,11 +263,6 @@ def flexible_model(
         raise ScenarioError(
             sc.path, pre + exc.parameter, f"{exc.allowed} (got {_value(exc.value)})"
         ) from None
-    length = getattr(geometry, "length", None)
-    if length is not None:  # the line's material stretched or compressed onto its chord
-        from rancf.bodies.length import set_unstretched_length
-
-        set_unstretched_length(model, length)
     return model
 
 

@@ -54,18 +54,16 @@ class _Context:
                 if sc[k] is None:
                     raise fail(k, "required table is missing")
             try:
-                check_flexible(sc.geometry, sc.mesh, sc.section, sc.material)
+                check_flexible(sc.geometry, sc.mesh, sc.section, sc.material, sc["form"])
             except PydanticCustomError as exc:
                 raise under("", exc) from None
             return int(sc.geometry.dim)
-        for k in _FLEX_TABLES:
+        for k in (*_FLEX_TABLES, "hydro", "form"):
             if sc[k] is not None:
                 raise fail(
                     k,
                     f"does not apply with [[bodies]]: give it in each flexible body ([bodies.{k}])",
                 )
-        if sc.hydro is not None:
-            raise fail("hydro", "belongs to a body in a file with [[bodies]] (give [bodies.hydro])")
         dims = [b.dim for b in sc.bodies]
         for i, d in enumerate(dims):
             if d != dims[0]:

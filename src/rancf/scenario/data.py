@@ -34,7 +34,7 @@ def body_tables(sc: Any) -> tuple[tuple[str, Any], ...]:
     docstring): ``("bodies[i].", table)``, or a one-body file's ``("", flexible body)``."""
     if sc.bodies:
         return tuple((f"bodies[{i}].", b) for i, b in enumerate(sc.bodies))
-    tables = ("geometry", "mesh", "section", "material", "hydro", "initial_motion")
+    tables = ("geometry", "mesh", "section", "material", "hydro", "initial_motion", "form")
     one = FlexibleBody.model_construct(name=ONE_BODY, **{k: sc[k] for k in tables})
     return (("", one),)
 

@@ -96,19 +96,13 @@ def _same_dim(dim: int, key: str, v: list[float]) -> None:
 
 
 class LineGeometry(_Geometry):
-    """A straight line from ``start`` to ``end``; with ``length``, of that unstretched length
-    (the line's unloaded state is straight, its material stretched or compressed uniformly onto
-    the chord: :func:`rancf.bodies.length.set_unstretched_length`)."""
+    """A straight line from ``start`` to ``end``, of unstretched ``length`` (default: its chord)."""
 
     KIND: ClassVar[str] = "line"
     kind: Literal["line"] = Field(description="a straight line")
     start: Point = Field(description="start point [m]; 2 coordinates: planar, 3: spatial")
     end: Point = Field(description="end point [m], as many coordinates as start")
-    length: Positive | None = Field(
-        None,
-        description="unstretched length [m], longer (slack) or shorter (taut) than the chord "
-        "(default: the chord); cables and rods",
-    )
+    length: Positive | None = Field(None, description="unstretched length [m] (default: the chord)")
 
     @model_validator(mode="after")
     def _dims(self) -> LineGeometry:

@@ -13,6 +13,8 @@ naming the file (``<scenario>`` for one built in Python) and the key
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -26,6 +28,7 @@ from rancf.scenario.damping import DampingTable
 from rancf.scenario.data import body_tables, columns_once, scenario_data, sensor_record
 from rancf.scenario.files import deferred_interrupts, read_toml, write_atomic
 from rancf.scenario.fluid import FluidTable, HydroTable
+from rancf.scenario.form import FormTable
 from rancf.scenario.geometry import CadGeometry, Geometry, MeshTable
 from rancf.scenario.joints import JointTable, SpringTable
 from rancf.scenario.loads import (
@@ -98,6 +101,11 @@ class Scenario(Table):
     hydro: HydroTable | None = Field(
         None, description="one-body file: the body's hydrodynamic coefficients"
     )
+    form: FormTable | None = Field(
+        None,
+        description="one-body file: form-finding, the unstretched length found to meet a sag, "
+        "horizontal tension or end tension in statics",
+    )
     damping: DampingTable = Field(
         default_factory=DampingTable,
         description="Rayleigh (mass- and stiffness-proportional) and Kelvin-Voigt strain-rate "
@@ -120,6 +128,8 @@ class Scenario(Table):
     _data: dict[str, Any] = PrivateAttr(default_factory=dict)
     _sensors: tuple[Sensor, ...] = PrivateAttr(())
     _body_tables: tuple[tuple[str, Any], ...] = PrivateAttr(())
+    _form_lengths: dict[str, float] = PrivateAttr(default_factory=dict)
+    _form_search: bool = PrivateAttr(False)
 
     @classmethod
     def error_path(cls) -> str:
@@ -214,14 +224,66 @@ class Scenario(Table):
                     return f"supports[{i}].{k}"
         return None
 
+    def forms(self) -> list[tuple[str, str, FormTable]]:
+        """Every ``[form]`` as ``(key prefix, body name, table)``."""
+        return [
+            (key, b.name, b.form)
+            for key, b in self.body_tables
+            if getattr(b, "form", None) is not None
+        ]
+
+    def set_form_length(self, name: str, length: float) -> None:
+        """Give body ``name`` (with a ``[form]``) the unstretched length its form-finding found
+        (:func:`rancf.solvers.form.find_form`): every model built from here on has it."""
+        self._form_lengths[name] = float(length)
+
+    def form_length(self, name: str) -> float | None:
+        """The unstretched length found for body ``name``'s ``[form]``, or None (not found)."""
+        return self._form_lengths.get(name)
+
+    @contextmanager
+    def form_search(self) -> Iterator[None]:
+        """Within it, a body whose ``[form]`` has no length yet is built at its reference's
+        (the form-finding's own system: :func:`rancf.solvers.form.find_form`)."""
+        self._form_search = True
+        try:
+            yield
+        finally:
+            self._form_search = False
+
+    def body_length(self, name: str) -> float | None:
+        """The unstretched length body ``name`` is given (its ``[form]``'s found length, or a
+        line's ``geometry.length``), or None (its reference's).
+
+        Raises
+        ------
+        ScenarioError
+            The body has a ``[form]`` whose length is not found yet (outside
+            :meth:`form_search`).
+        """
+        if name in self._form_lengths:
+            return self._form_lengths[name]
+        for key, b in self.body_tables:
+            if b.name != name:
+                continue
+            if getattr(b, "form", None) is not None and not self._form_search:
+                raise ScenarioError(
+                    self.path,
+                    f"{key}form",
+                    "asks for an unstretched length found by a static solve first: "
+                    "rancf.find_form(scenario) finds it (the rancf commands do)",
+                )
+            return getattr(getattr(b, "geometry", None), "length", None)
+        return None
+
     def length_keys(self) -> list[str]:
         """The keys that give a flexible body an unstretched length other than its reference's
-        (``geometry.length`` of a line), so that its reference carries a force."""
-        out = []
+        (``geometry.length`` of a line, a ``[form]``), so that its reference carries a force."""
+        out = [f"{key}form" for key, _, _ in self.forms()]
         for key, b in self.body_tables:
             g = getattr(b, "geometry", None)
             length = getattr(g, "length", None)
-            if length is not None:
+            if length is not None and g is not None:
                 chord = sum((e - s) ** 2 for s, e in zip(g.start, g.end, strict=True)) ** 0.5
                 if abs(length - chord) > 1e-9 * chord:
                     out.append(f"{key}geometry.length")

@@ -138,12 +138,23 @@ def _rod_only(key: str, element: str) -> None:
 
 
 def check_flexible(
-    geometry: Any, mesh: MeshTable, section: SectionTable, material: MaterialTable
+    geometry: Any,
+    mesh: MeshTable,
+    section: SectionTable,
+    material: MaterialTable,
+    form: Any = None,
 ) -> None:
     """The checks of a flexible body that need several of its tables (keys relative to the
-    body: ``mesh.element``, ``section.inertia_y``, ``material.shear_modulus``)."""
+    body: ``mesh.element``, ``section.inertia_y``, ``material.shear_modulus``, ``form``)."""
     el, dim = mesh.element, geometry.dim
     fam = family(el)
+    if form is not None and not fam.gradient:
+        raise fail("form", f"applies to cable and rod elements, not {el!r}")
+    if form is not None and getattr(geometry, "length", None) is not None:
+        raise fail(
+            "form",
+            "finds the unstretched length: give [form] or geometry.length, not both",
+        )
     if dim not in fam.dims:
         plane = "planar: use 2-coordinate" if fam.dims == (2,) else "spatial: use 3-coordinate"
         raise fail("mesh.element", f"the {el} element is {plane} geometry")

@@ -56,7 +56,10 @@ def start_state(
 
     with scenario_keys(sc):
         res = solve_static(model, at_time=0.0, **sc.static_options())
+    from rancf.solvers.form import form_summary
+
     info = {
+        **form_summary(sc),
         "initial_state": "static",
         "static": {
             "method": res.method,
