@@ -20,6 +20,7 @@ ORDER = [
     "plot_ring.py",
     "plot_mooring_line.py",
     "plot_power_line_gust.py",
+    "plot_power_line_sag.py",
 ]
 
 
