@@ -132,6 +132,20 @@ def test_infeasible_or_bad_targets_are_one_line(form, more, match):
     assert "\n" not in str(e.value)
 
 
+def test_a_chain_on_the_seabed_by_its_fairlead_tension():
+    """The 100 m chain of tests/scenario/test_line_length.py in seawater on its seabed, given
+    by MoorPy's fairlead tension instead of its length: the length found is MoorPy's 100 m
+    within 0.01 % (measured: 100.0005 m), the tension met."""
+    from tests.scenario.test_line_length import D_VOL, T_MOORPY, _system
+
+    raw = _system(-30.0 - D_VOL / 2).to_dict()
+    del raw["bodies"][0]["geometry"]["length"]
+    raw["bodies"][0]["form"] = {"end_tension": T_MOORPY}
+    run = run_static(parse_scenario(raw))
+    assert run.form["unstretched_length"] == pytest.approx(100.0, rel=1e-4)
+    assert run.sensors["fairlead"] == pytest.approx(T_MOORPY, rel=1e-6)
+
+
 def test_form_where_it_does_not_apply():
     raw = _span({"sag": 1.0})
     raw["geometry"]["length"] = 201.0

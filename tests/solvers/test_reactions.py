@@ -15,6 +15,7 @@ from rancf.mesh.factories import mesh_line
 from rancf.post.results import system_outputs
 from rancf.scenario import load_scenario
 from rancf.solvers.dynamic import DynamicOptions, integrate
+from rancf.solvers.form import find_form
 from rancf.solvers.static import solve_static
 from rancf.solvers.system_equilibrium import SystemEquilibrium
 from rancf.system import as_system
@@ -51,6 +52,7 @@ def test_shipped_examples_reactions_balance_the_loads(name):
     reactions are those ``rancf static`` reports (:meth:`SystemOutputs.static_reactions`)."""
     with resources.as_file(resources.files("rancf.examples") / name) as path:
         sc = load_scenario(path)
+    find_form(sc)  # a [form]'s length first
     m = sc.build_model()
     res = solve_static(m, sc.solver["load_steps"])
     if "pendulum" in name or "exact-geometry" in name:

@@ -166,10 +166,15 @@ PRESTRESSED = {"atwood-guides"}
 #: modes (test_unloaded_belt_has_no_contact_stiffness).
 ZERO_GAP = {"belt-drive"}
 
+#: Shipped examples whose length is found under their loads (``[form]``): unloaded, no length
+#: meets the target (a sag needs the line's weight).
+FORM_FOUND = {"power-line-sag"}
+
 EXAMPLES = sorted(
     f.name.removesuffix(".toml")
     for f in resources.files("rancf.examples").iterdir()
-    if f.name.endswith(".toml") and f.name.removesuffix(".toml") not in PRESTRESSED | ZERO_GAP
+    if f.name.endswith(".toml")
+    and f.name.removesuffix(".toml") not in PRESTRESSED | ZERO_GAP | FORM_FOUND
 )
 
 

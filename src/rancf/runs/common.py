@@ -16,18 +16,18 @@ def refuse_unloaded_reference(sc: Any, analysis: str) -> None:
 
     Raises
     ------
-    ScenarioError
-        Naming the key, and that ``--about static`` is the way.
+    InputError
+        Naming ``--about`` and that ``static`` is the way.
     """
-    from rancf.errors import ScenarioError
+    from rancf.errors import InputError
 
-    keys = sc.length_keys()
-    if keys:
-        raise ScenarioError(
-            sc.path,
-            keys[0],
-            f"gives the line a length its reference is not at rest in: {analysis} about the "
-            'static equilibrium (--about static, or [modes] about = "static")',
+    if sc.length_keys():
+        raise InputError(
+            "--about",
+            "reference",
+            f'"static" ({analysis} about the static equilibrium: a line given a length by '
+            "geometry.length or [form] is not at rest in its reference; "
+            '[modes] about = "static" for modes)',
         )
 
 

@@ -22,7 +22,7 @@ if TYPE_CHECKING:
 __all__ = ["as_bodies"]
 
 #: The tables of a one-body file that describe its flexible body.
-BODY_TABLES = ("geometry", "mesh", "section", "material", "hydro")
+BODY_TABLES = ("geometry", "mesh", "section", "material", "hydro", "form")
 
 
 def as_bodies(sc: Scenario, name: str = "body") -> Scenario:

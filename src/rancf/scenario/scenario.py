@@ -232,10 +232,14 @@ class Scenario(Table):
             if getattr(b, "form", None) is not None
         ]
 
-    def set_form_length(self, name: str, length: float) -> None:
+    def set_form_length(self, name: str, length: float | None) -> None:
         """Give body ``name`` (with a ``[form]``) the unstretched length its form-finding found
-        (:func:`rancf.solvers.form.find_form`): every model built from here on has it."""
-        self._form_lengths[name] = float(length)
+        (:func:`rancf.solvers.form.find_form`): every model built from here on has it (None:
+        not found)."""
+        if length is None:
+            self._form_lengths.pop(name, None)
+        else:
+            self._form_lengths[name] = float(length)
 
     def form_length(self, name: str) -> float | None:
         """The unstretched length found for body ``name``'s ``[form]``, or None (not found)."""

@@ -16,21 +16,24 @@ scenario's system with the body's unstretched length ``L``
 The start is the elastic catenary's length for the target between the body's installed end
 positions (:func:`~rancf.solvers.catenary.catenary_length`: its weight ``ρ A |g|``, its ``EA``),
 the second point the catenary's length for the target shifted by the first point's difference
-between the body and its catenary; from there the secant method, kept inside the bracket where
-one is known, until ``|m - target| <= RTOL target``.  Bodies with a ``[form]`` are found one
-after the other, in sweeps until all meet their targets.  The lengths found are stored on the
-scenario (:meth:`~rancf.scenario.scenario.Scenario.set_form_length`): every system built from it
-has them.
+between the body and its catenary; from there the secant method (a system built at every
+length tried, so that every record of the body, its fluid loads too, has that length), kept
+inside the bracket where one is known, until ``|m - target| <= RTOL target``.  Bodies with a
+``[form]`` are found one after the other, in sweeps until all meet their targets.  The lengths
+found are stored on the scenario
+(:meth:`~rancf.scenario.scenario.Scenario.set_form_length`): every system built from it has
+them.
 """
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-from rancf.bodies.length import set_unstretched_length, unstretched_length
+from rancf.bodies.length import unstretched_length
 from rancf.bodies.nodal_forces import nodal_axial_forces, recovers_axial_force
 from rancf.errors import ConvergenceError, InputError, ScenarioError
 from rancf.solvers.catenary import Target, catenary, catenary_length
@@ -137,35 +140,57 @@ class _Search:
             else f"needs {exc.allowed}, got {exc.value}",
         )
 
-    def estimate(self, shift: float = 0.0) -> float:
-        """The elastic catenary's length for ``target - shift`` between the installed ends."""
-        m = self.model
-        pos, _ = _ends(m, m.y_installed)
-        try:
-            span, rise, _, _ = _span(m, pos[0], pos[-1])
-            w = m.props.rho_a * float(np.linalg.norm(m.gravity))
-            key = f"{self.key}form.{self.kind}"
-            return catenary_length(self.kind, self.target - shift, span, rise, w, m.props.ea, key)
-        except InputError as exc:
-            raise self.error(exc) from None
-
-    def catenary_measure(self, length: float) -> float:
-        m = self.model
+    def _catenary_data(self) -> tuple[float, float, float]:
+        """``(span, rise, w)`` of the body's catenary: its installed ends, its weight per
+        length less the buoyancy of its ``[hydro]`` diameter in the ``[fluid]``."""
+        m, s = self.model, self.system
         pos, _ = _ends(m, m.y_installed)
         span, rise, _, _ = _span(m, pos[0], pos[-1])
-        w = m.props.rho_a * float(np.linalg.norm(m.gravity))
-        return catenary(span, rise, length, w, m.props.ea).measure(self.kind)
+        g = float(np.linalg.norm(m.gravity))
+        w = m.props.rho_a * g
+        hydro = getattr(s, "hydro", {}).get(self.name)
+        fluid = getattr(s, "fluid", None)
+        if hydro is not None and fluid is not None:
+            d = hydro.diameter or math.sqrt(4.0 * m.section.area / math.pi)
+            w -= fluid.density * g * math.pi * d * d / 4.0
+        return span, rise, w
+
+    def estimate(self, shift: float = 0.0) -> float:
+        """The elastic catenary's length for ``target - shift`` between the installed ends
+        (a body that touches an obstacle, where the catenary meets no such target: 1.02 times
+        its reference length, the secant's start)."""
+        key = f"{self.key}form.{self.kind}"
+        try:
+            span, rise, w = self._catenary_data()
+            if not w > 0.0:
+                raise InputError(key, "a buoyant line", "a line heavier than the fluid")
+            ea = self.model.props.ea
+            return catenary_length(self.kind, self.target - shift, span, rise, w, ea, key)
+        except InputError as exc:
+            if shift == 0.0 and self.touches and exc.parameter == key:
+                return 1.02 * unstretched_length(self.model)
+            raise self.error(exc) from None
+
+    @property
+    def touches(self) -> bool:
+        """Whether the body is in contact with an obstacle (its catenary is no bound)."""
+        return any(b == self.name for b, _ in getattr(self.system, "contact_pairs", ()))
+
+    def catenary_measure(self, length: float) -> float:
+        span, rise, w = self._catenary_data()
+        return catenary(span, rise, length, w, self.model.props.ea).measure(self.kind)
 
     def residual(self, length: float) -> float:
         """``m(L) - target`` of the static equilibrium at the unstretched length ``L``."""
         from rancf.scenario.system_build import scenario_keys
         from rancf.solvers.static import solve_static
 
-        set_unstretched_length(self.model, length)
+        self.sc.set_form_length(self.name, length)  # a system of its own: every record at L
+        system = self.sc.build_system()
         with scenario_keys(self.sc):
-            res = solve_static(self.system, **self.sc.static_options())
+            res = solve_static(system, **self.sc.static_options())
         try:
-            value = line_measure(self.system, self.name, self.kind, res.y, res.load_factors[-1])
+            value = line_measure(system, self.name, self.kind, res.y, res.load_factors[-1])
         except InputError as exc:
             raise self.error(exc) from None
         self.tried.append((length, value - self.target))
@@ -186,7 +211,7 @@ class _Search:
             return l0
         try:  # the catenary's length for the target less the body's offset from it
             l1 = self.estimate(g0 + self.target - self.catenary_measure(l0))
-        except ScenarioError:
+        except (ScenarioError, ConvergenceError):  # no catenary meets the shifted target
             l1 = l0 * (1.0 + 1e-3)
         if not abs(l1 - l0) > 1e-12 * l0:
             l1 = l0 * (1.0 + 1e-6)
@@ -237,18 +262,27 @@ def find_form(sc: Any) -> None:
     with sc.form_search():
         system = sc.build_system()
     searches = [_Search(sc, system, k, n, *f.target) for k, n, f in todo]
+    try:
+        for s in searches:  # every body at its catenary's length while the others are found
+            sc.set_form_length(s.name, s.estimate())
+        _sweeps(sc, searches)
+    except BaseException:
+        for s in searches:
+            sc.set_form_length(s.name, None)
+        raise
+
+
+def _sweeps(sc: Any, searches: list[_Search]) -> None:
+    """Each body's length found with the others' held, in sweeps until all meet their
+    targets together (one sweep for one body)."""
     for _ in range(MAX_SWEEPS):
-        lengths = [s.solve() for s in searches]
-        for s, length in zip(searches, lengths, strict=True):
-            set_unstretched_length(s.model, length)
+        for s in searches:
+            sc.set_form_length(s.name, s.solve())
         if len(searches) == 1 or all(
-            abs(s.residual(L)) <= RTOL * s.target for s, L in zip(searches, lengths, strict=True)
+            abs(s.residual(sc.form_length(s.name))) <= RTOL * s.target for s in searches
         ):
-            break
-    else:
-        raise ConvergenceError("form-finding: the bodies' targets were not met together")
-    for s in searches:
-        sc.set_form_length(s.name, unstretched_length(s.model))
+            return
+    raise ConvergenceError("form-finding: the bodies' targets were not met together")
 
 
 def form_summary(sc: Any) -> dict[str, Any]:

@@ -1,0 +1,146 @@
+"""Irregular seas as sums of linear (Airy) components: a JONSWAP spectrum's components or a
+measured elevation record's (docs/derivations/fluid.md, "Irregular seas").
+
+The free-surface elevation at the horizontal position ``x`` and time ``t`` is::
+
+    η(x, t) = Σ_i a_i cos(ω_i t - k_i e·x + φ_i)                                          (1)
+
+with ``e`` the direction of travel and ``k_i`` the root of ``ω_i² = g k tanh(k h)``
+(:func:`rancf.system.fluid.wave_number`).
+
+* :func:`jonswap_components`: ``n`` components over ``[0.5 ω_p, 4 ω_p]`` in bins of equal
+  width ``Δω``, each at a frequency drawn uniformly inside its bin (a sum of commensurate
+  frequencies would repeat every ``2π / Δω``), amplitude ``a_i = sqrt(2 S(ω_i) Δω)`` of the
+  JONSWAP spectrum ``S`` (:func:`jonswap`), phase drawn uniformly in ``[0, 2π)``; both draws
+  from ``numpy.random.default_rng(seed)``: the same seed gives the same sea.
+* :func:`record_components`: the discrete Fourier series of a record ``η(t_j)`` sampled at
+  equal steps at the origin: eq. (1) reproduces it at ``t_j`` to round-off (the mean as a
+  component of ``ω = 0``; the Nyquist term with half its weight).
+
+These components are not yet fed to the fluid kernel (its record takes one regular wave): it
+takes eq. (1)'s arrays ``(a_i, ω_i, k_i, φ_i)`` in place of one wave's height, frequency and
+wave number, each component's Airy kinematics added (module docstring of
+:mod:`rancf.system.fluid`).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from rancf.errors import InputError
+from rancf.system.fluid import wave_number
+
+__all__ = ["WaveComponents", "jonswap", "jonswap_components", "record_components"]
+
+#: The band of :func:`jonswap_components`, in multiples of the peak frequency.
+BAND = (0.5, 4.0)
+
+
+@dataclass(frozen=True)
+class WaveComponents:
+    """Components of eq. (1): amplitudes [m], angular frequencies [rad/s], wave numbers
+    [1/m], phases [rad]; the direction of travel (from the x axis, degrees) and the depth."""
+
+    amplitude: NDArray[np.float64]
+    omega: NDArray[np.float64]
+    k: NDArray[np.float64]
+    phase: NDArray[np.float64]
+    direction_deg: float
+    depth: float
+
+    def elevation(self, t: ArrayLike, x: ArrayLike = (0.0, 0.0)) -> NDArray[np.float64]:
+        """``η`` (eq. (1)) at the times ``t`` and the horizontal position ``x``."""
+        b = math.radians(self.direction_deg)
+        ex = float(np.asarray(x, dtype=float) @ np.array([math.cos(b), math.sin(b)]))
+        tt = np.atleast_1d(np.asarray(t, dtype=float))
+        out = np.zeros(tt.shape)
+        for a, w, k, p in zip(self.amplitude, self.omega, self.k, self.phase, strict=True):
+            out += a * np.cos(w * tt - k * ex + p)
+        return out
+
+
+def jonswap(omega: ArrayLike, hs: float, tp: float, gamma: float = 3.3) -> NDArray[np.float64]:
+    """The JONSWAP spectrum ``S(ω)`` [m² s] (DNV-RP-C205, 2010, eqs. 3.5.5-3.5.6)::
+
+        S = A_γ (5/16) Hs² ω_p⁴ ω⁻⁵ exp(-5/4 (ω/ω_p)⁻⁴) γ^exp(-(ω - ω_p)² / (2 σ² ω_p²))
+
+    ``A_γ = 1 - 0.287 ln γ``, ``σ = 0.07`` below the peak ``ω_p = 2π / T_p``, 0.09 above."""
+    w = np.asarray(omega, dtype=float)
+    wp = 2.0 * math.pi / tp
+    sigma = np.where(w <= wp, 0.07, 0.09)
+    pm = 5.0 / 16.0 * hs**2 * wp**4 * w**-5.0 * np.exp(-1.25 * (w / wp) ** -4.0)
+    peak = gamma ** np.exp(-0.5 * ((w - wp) / (sigma * wp)) ** 2)
+    return (1.0 - 0.287 * math.log(gamma)) * pm * peak
+
+
+def jonswap_components(
+    hs: float,
+    tp: float,
+    gamma: float = 3.3,
+    depth: float = 1000.0,
+    components: int = 200,
+    seed: int = 0,
+    direction_deg: float = 0.0,
+    g: float = 9.80665,
+) -> WaveComponents:
+    """The components of a JONSWAP sea (module docstring).
+
+    Raises
+    ------
+    InputError
+        ``hs``, ``tp`` or ``depth`` not > 0, ``gamma`` not in [1, 7] (DNV's range),
+        ``components`` not an integer >= 1.
+    """
+    for key, v in (("hs", hs), ("tp", tp), ("depth", depth)):
+        if not (math.isfinite(v) and v > 0.0):
+            raise InputError(f"fluid.waves.{key}", v, "a finite number > 0")
+    if not 1.0 <= gamma <= 7.0:
+        raise InputError("fluid.waves.gamma", gamma, "a peak enhancement in [1, 7]")
+    if isinstance(components, bool) or int(components) != components or components < 1:
+        raise InputError("fluid.waves.components", components, "an integer >= 1")
+    rng = np.random.default_rng(seed)
+    wp = 2.0 * math.pi / tp
+    edges = np.linspace(BAND[0] * wp, BAND[1] * wp, int(components) + 1)
+    dw = edges[1] - edges[0]
+    omega = edges[:-1] + dw * rng.uniform(size=int(components))
+    phase = rng.uniform(0.0, 2.0 * math.pi, size=int(components))
+    amp = np.sqrt(2.0 * jonswap(omega, hs, tp, gamma) * dw)
+    k = np.array([wave_number(2.0 * math.pi / w, depth, g) for w in omega])
+    return WaveComponents(amp, omega, k, phase, float(direction_deg), float(depth))
+
+
+def record_components(
+    t: ArrayLike, eta: ArrayLike, depth: float, direction_deg: float = 0.0, g: float = 9.80665
+) -> WaveComponents:
+    """The components of a measured elevation record at the origin (module docstring).
+
+    Raises
+    ------
+    InputError
+        Fewer than 4 samples, times not increasing at equal steps (to 1e-6 of a step), or
+        values that are not finite.
+    """
+    tt, ee = np.asarray(t, dtype=float), np.asarray(eta, dtype=float)
+    if tt.ndim != 1 or tt.shape != ee.shape or tt.size < 4:
+        raise InputError("fluid.waves.elevation", tt.size, "rows [t, eta], at least 4")
+    dt = np.diff(tt)
+    step = float(np.mean(dt))
+    if not (step > 0.0 and np.all(np.abs(dt - step) <= 1e-6 * step)):
+        raise InputError("fluid.waves.elevation", "t", "times at equal steps, increasing")
+    if not np.all(np.isfinite(ee)):
+        raise InputError("fluid.waves.elevation", "eta", "finite elevations")
+    n = tt.size
+    c = np.fft.rfft(ee) / n
+    weight = np.full(c.size, 2.0)
+    weight[0] = 1.0
+    if n % 2 == 0:
+        weight[-1] = 1.0
+    omega = 2.0 * math.pi * np.fft.rfftfreq(n, step)
+    amp = weight * np.abs(c)
+    phase = np.angle(c) - omega * tt[0]  # the record starts at t[0]
+    k = np.array([0.0 if w == 0.0 else wave_number(2.0 * math.pi / w, depth, g) for w in omega])
+    return WaveComponents(amp, omega, k, phase, float(direction_deg), float(depth))
