@@ -18,11 +18,13 @@ __all__ = ["add_parsers"]
 def _cmd_buckling(args: argparse.Namespace) -> int:
     from rancf.runs.buckling import run_buckling
     from rancf.scenario import load_scenario
+    from rancf.solvers.form import form_lines, form_summary
 
     plot = check_plot_path(args.plot) if args.plot else None
     if args.count < 1:
         raise InputError("--count", args.count, "an integer >= 1")
-    run = run_buckling(load_scenario(args.scenario), args.count, args.about)
+    sc = load_scenario(args.scenario)
+    run = run_buckling(sc, args.count, args.about)
     res = run.result
     if plot is not None:
         from rancf.post.plots import plot_buckling
@@ -32,6 +34,7 @@ def _cmd_buckling(args: argparse.Namespace) -> int:
         "load_factors": res.load_factors.tolist(),
         "about": res.about,
         "eigenproblem": "symmetric" if res.symmetric else "general",
+        **form_summary(sc),
     }
     if args.json:
         from rancf.post.results import strict_json
@@ -39,6 +42,8 @@ def _cmd_buckling(args: argparse.Namespace) -> int:
         print(strict_json(out).rstrip())
     else:
         print(f"buckling about the {res.about} configuration (critical load factors):")
+        for line in form_lines(sc):
+            print(f"  {line}")
         for i, lam_i in enumerate(res.load_factors, 1):
             print(f"  mode {i:2d}  {lam_i:14.8g}")
         if plot is not None:

@@ -21,7 +21,6 @@ import math
 from typing import Literal
 
 import numpy as np
-from scipy.optimize import brentq, fsolve, minimize_scalar
 
 from rancf.errors import ConvergenceError, InputError
 
@@ -49,6 +48,7 @@ class Catenary:
 
     def sag(self) -> float:
         """The largest vertical distance below the chord."""
+        from scipy.optimize import minimize_scalar  # SciPy only where a catenary is solved
 
         def below(s: float) -> float:
             x, z = self.points(np.array([s]))
@@ -75,6 +75,8 @@ class Catenary:
 def _start(span: float, rise: float, length: float, w: float, ea: float) -> tuple[float, float]:
     """``(H, V)`` of the inextensible catenary of ``length`` (slack), or of the straight line
     stretched onto the chord (taut): Newton's start."""
+    from scipy.optimize import brentq
+
     chord = math.hypot(span, rise)
     if length > chord * (1.0 + 1e-9):
         c = math.sqrt(length**2 - rise**2)
@@ -96,6 +98,8 @@ def catenary(span: float, rise: float, length: float, w: float, ea: float) -> Ca
     ConvergenceError
         Newton's method (``scipy.optimize.fsolve`` in ``log H``) finds no ``(H, V)``.
     """
+    from scipy.optimize import fsolve
+
     h0, v0 = _start(span / span, rise / span, length / span, 1.0, ea / (w * span))
     scale = w * span  # the unknowns in units of w l
 
@@ -122,6 +126,8 @@ def catenary_length(
     InputError
         No length gives ``target`` (an end tension below the least one any length gives).
     """
+    from scipy.optimize import brentq, minimize_scalar
+
     chord = math.hypot(span, rise)
 
     def f(length: float) -> float:
