@@ -139,8 +139,8 @@ def record_components(
     weight[0] = 1.0
     if n % 2 == 0:
         weight[-1] = 1.0
-    omega = 2.0 * math.pi * np.fft.rfftfreq(n, step)
-    amp = weight * np.abs(c)
-    phase = np.angle(c) - omega * tt[0]  # the record starts at t[0]
+    omega = np.asarray(2.0 * math.pi * np.fft.rfftfreq(n, step), dtype=np.float64)
+    amp = np.asarray(weight * np.abs(c), dtype=np.float64)
+    phase = np.asarray(np.angle(c) - omega * tt[0], dtype=np.float64)  # the record starts at t[0]
     k = np.array([0.0 if w == 0.0 else wave_number(2.0 * math.pi / w, depth, g) for w in omega])
     return WaveComponents(amp, omega, k, phase, float(direction_deg), float(depth))
