@@ -218,12 +218,12 @@ def scale_walk(d0: NDArray, d1: NDArray, key: str) -> NDArray[np.float64]:
         raise InputError(key, "a vanishing derivative", "a regular surface (no collapsed edge)")
     ratio = num / den
     miss = np.linalg.norm(d0[1:] - ratio[:, None, None] * d1[:-1], axis=-1)
-    size = np.linalg.norm(d0[1:], axis=-1)
-    if np.any(miss > JOIN_RTOL * np.maximum(size, size.max())):
-        e = int(np.argmax(np.max(miss / np.maximum(size, size.max()), axis=1)))
+    size = float(np.linalg.norm(d0, axis=-1).max())
+    if miss.size and miss.max() > JOIN_RTOL * size:
+        e = int(np.argmax(miss.max(axis=1)))
         raise InputError(
             key,
-            f"joint {e + 1}: tangent mismatch {float(np.max(miss[e] / size.max())):.3g}",
+            f"joint {e + 1}: tangent mismatch {float(miss[e].max() / size):.3g}",
             "a tangent-continuous surface (one gradient ratio along each element edge)",
         )
     scales = np.concatenate([[1.0], np.cumprod(ratio)])
