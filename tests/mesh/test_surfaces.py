@@ -311,3 +311,22 @@ def test_mapping_factor_only_on_curved_directions():
         _cylinder((2, 2), [0.5, 0.4])
     with pytest.raises(InputError, match="mesh.k"):
         mesh_surface(_bspline_spec(), [1, 1], 0.4)
+
+
+@pytest.mark.parametrize(
+    ("change", "key"),
+    [
+        ({"degree": [4, 2]}, "geometry.degree"),
+        ({"degree": "cubic"}, "geometry.degree"),
+        ({"knots_u": [0, 0, 0, 0, 0.7, 0.3, 1, 1, 1, 1]}, "geometry.knots_u"),
+        ({"knots_v": [0, 0, 0, 1, 1, 1]}, "geometry.control_points"),
+        ({"control_points": [[0, 0, "a"]] * 24}, "geometry.control_points"),
+        ({"weights": [1.0] * 23}, "geometry.weights"),
+        ({"weights": [1.0] * 23 + [-1.0]}, "geometry.weights"),
+    ],
+)
+def test_bad_nurbs_surface_names_the_key(change, key):
+    spec = {**_bspline_spec(), **change}
+    with pytest.raises(InputError, match=key.replace(".", r"\.")) as err:
+        mesh_surface(spec, [1, 1])
+    assert "\n" not in str(err.value)

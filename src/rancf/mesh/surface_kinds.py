@@ -201,27 +201,50 @@ def _span_operators(knots: NDArray, degree: int, n_ctrl: int, n: int) -> tuple[N
     return np.array(rows), (ends_arr - ends_arr[0]) / (ends_arr[-1] - ends_arr[0])
 
 
-def _nurbs(spec: Mapping[str, Any], n: tuple[int, int], k: Any) -> SurfaceMesh:
-    deg = np.asarray(spec["degree"]).ravel()
+def _floats(spec: Mapping[str, Any], key: str, what: str) -> NDArray[np.float64]:
+    """``spec[key]`` as a float array, or an InputError naming the key."""
+    try:
+        x = np.asarray(spec[key], dtype=float)
+    except (TypeError, ValueError):
+        raise InputError(f"geometry.{key}", spec[key], what) from None
+    if not np.all(np.isfinite(x)):
+        raise InputError(f"geometry.{key}", spec[key], what)
+    return x
+
+
+def _nurbs_data(spec: Mapping[str, Any]) -> tuple[int, int, NDArray, NDArray, NDArray, NDArray]:
+    """Degrees, checked knot vectors, control points ``(nv, nu, 3)`` and weights ``(nv, nu)``."""
+    deg = _floats(spec, "degree", "[p, q], each 1, 2 or 3").ravel()
     if deg.size != 2 or not all(int(d) == d and 1 <= d <= 3 for d in deg):
         raise InputError("geometry.degree", spec["degree"], "[p, q], each 1, 2 or 3")
+    p, q = int(deg[0]), int(deg[1])
+    ku = _floats(spec, "knots_u", "a knot vector (numbers)").ravel()
+    kv = _floats(spec, "knots_v", "a knot vector (numbers)").ravel()
+    nu_c, nv_c = ku.size - p - 1, kv.size - q - 1
+    want = f"{max(nu_c, 0)} × {max(nv_c, 0)} points [x, y, z], u fastest"
+    pts = _floats(spec, "control_points", want)
+    if nu_c < p + 1 or nv_c < q + 1 or pts.shape != (nu_c * nv_c, 3):
+        raise InputError("geometry.control_points", pts.shape, want)
+    w = _floats(spec, "weights", f"{nu_c * nv_c} weights > 0, u fastest").ravel()
+    if w.size != nu_c * nv_c:
+        raise InputError("geometry.weights", w.size, f"{nu_c * nv_c} weights, u fastest")
+    knots = []
+    for key, kn, deg_, n_c in (("knots_u", ku, p, nu_c), ("knots_v", kv, q, nv_c)):
+        try:
+            knots.append(check_knots(kn, deg_, n_c))
+        except InputError as err:
+            raise InputError(f"geometry.{key}", kn.tolist(), err.allowed) from None
+    return p, q, knots[0], knots[1], pts.reshape(nv_c, nu_c, 3), w.reshape(nv_c, nu_c)
+
+
+def _nurbs(spec: Mapping[str, Any], n: tuple[int, int], k: Any) -> SurfaceMesh:
     if k is not None and not (isinstance(k, str) and k == "opt"):
         raise InputError("mesh.k", k, "none for a NURBS surface (its elements keep its weights)")
-    p, q = int(deg[0]), int(deg[1])
-    ku, kv = np.asarray(spec["knots_u"], float).ravel(), np.asarray(spec["knots_v"], float).ravel()
-    nu_c, nv_c = ku.size - p - 1, kv.size - q - 1
-    pts = np.asarray(spec["control_points"], dtype=float)
-    if nu_c < p + 1 or nv_c < q + 1 or pts.shape != (nu_c * nv_c, 3):
-        raise InputError(
-            "geometry.control_points",
-            pts.shape,
-            f"{max(nu_c, 0)} × {max(nv_c, 0)} points [x, y, z]",
-        )
-    w = np.asarray(spec["weights"], dtype=float).reshape(nv_c, nu_c)
+    p, q, ku, kv, pts, w = _nurbs_data(spec)
     a, b = _product_weights(w)
-    ou, bu = _span_operators(check_knots(ku, p, nu_c), p, nu_c, n[0])
-    ov, bv = _span_operators(check_knots(kv, q, nv_c), q, nv_c, n[1])
-    h = np.concatenate([pts.reshape(nv_c, nu_c, 3) * w[..., None], w[..., None]], axis=-1)
+    ou, bu = _span_operators(ku, p, pts.shape[1], n[0])
+    ov, bv = _span_operators(kv, q, pts.shape[0], n[1])
+    h = np.concatenate([pts * w[..., None], w[..., None]], axis=-1)
     patch = np.einsum("iak,jbl,lkx->jiabx", ou, ov, h)
     wu, wv = ou @ a, ov @ b
     nan_u, nan_v = np.full(wu.shape[0], np.nan), np.full(wv.shape[0], np.nan)

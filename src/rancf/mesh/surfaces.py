@@ -236,23 +236,22 @@ def mesh_from_patches(
 ) -> SurfaceMesh:
     """A mesh from each element's bicubic control points ``(nv, nu, 4, 4, 3)`` (``[j, i, a,
     b]``, ``a`` along ``u``) and the directions' weights, breaks and factors (their scales
-    are set here by :func:`scale_walk`; eqs. 3.3–3.5)."""
-    wu, wv = u.weights, v.weights
-    du0 = 3.0 * (wu[:, 1] / wu[:, 0])[None, :, None, None] * (points[:, :, 1] - points[:, :, 0])
-    du1 = 3.0 * (wu[:, 2] / wu[:, 3])[None, :, None, None] * (points[:, :, 3] - points[:, :, 2])
-    dv0 = (
-        3.0 * (wv[:, 1] / wv[:, 0])[:, None, None, None] * (points[:, :, :, 1] - points[:, :, :, 0])
-    )
-    dv1 = (
-        3.0 * (wv[:, 2] / wv[:, 3])[:, None, None, None] * (points[:, :, :, 3] - points[:, :, :, 2])
-    )
-    su = scale_walk(_rows(du0, 1), _rows(du1, 1), key)
-    sv = scale_walk(_rows(dv0, 0), _rows(dv1, 0), key)
-    u = Direction(wu, su, u.breaks, u.k, u.half_angle, u.closed)
-    v = Direction(wv, sv, v.breaks, v.k, v.half_angle, v.closed)
-    tu = np.array([control_to_nodal_matrix(w, s) for w, s in _pairs(u)])
-    tv = np.array([control_to_nodal_matrix(w, s) for w, s in _pairs(v)])
-    e = np.einsum("iac,jbd,jicdx->jiabx", tu, tv, points)
+    are set here by :func:`scale_walk`; eqs. 3.3–3.5).
+
+    The cable's map ``T(w, 1)`` along one index gives each control row's end derivatives
+    ``d/dξ`` for the walk; ``T(w, l) = diag(1, 1/l, 1, 1/l) T(w, 1)`` then gives eq. 3.3.
+    """
+    tu = np.array([control_to_nodal_matrix(w, 1.0) for w in u.weights])
+    tv = np.array([control_to_nodal_matrix(w, 1.0) for w in v.weights])
+    along_u = np.einsum("iac,jicbx->jiabx", tu, points)  # rows 1, 3: d/dξ of each control row
+    along_v = np.einsum("jbd,jiadx->jiabx", tv, points)
+    su = scale_walk(_rows(along_u[:, :, 1], 1), _rows(along_u[:, :, 3], 1), key)
+    sv = scale_walk(_rows(along_v[:, :, :, 1], 0), _rows(along_v[:, :, :, 3], 0), key)
+    u = Direction(u.weights, su, u.breaks, u.k, u.half_angle, u.closed)
+    v = Direction(v.weights, sv, v.breaks, v.k, v.half_angle, v.closed)
+    gu = np.stack([np.ones_like(su), 1.0 / su, np.ones_like(su), 1.0 / su], axis=1)  # T(w, l)
+    gv = np.stack([np.ones_like(sv), 1.0 / sv, np.ones_like(sv), 1.0 / sv], axis=1)
+    e = np.einsum("ia,jb,jiabx->jiabx", gu, gv, np.einsum("jbd,jiadx->jiabx", tv, along_u))
     nodes = np.empty((v.n + 1, u.n + 1, 4, 3))
     for nj in (1, 0):  # corners of the last row/column first, then every element's first
         for ni in (1, 0):
