@@ -12,12 +12,19 @@ body's gravity).  Where that catenary dips below a fixed plane facing up against
 the body touches (a seabed), the shape is instead two catenaries from the ends down to
 touchdown points, where they are tangent to the plane, and the line straight on the plane
 between them (no friction: one horizontal tension ``H = w a`` throughout); the centerline lies
-one tube radius ``sqrt(A / π)`` above the plane.  Each node is placed at the point of the shape
+one tube radius ``sqrt(A / π)`` above the plane.  On a sloped plane (its normal within 60° of
+``up``; MoorPy's ``alpha``) whose line in that vertical plane rises by ``tan β`` per metre, a
+line with one end on the plane lies straight on it from that end to a touchdown point, where
+the catenary to the other end leaves it tangent to it (``sinh u = tan β`` there; MoorPy's
+frictionless sloped seabed: the grounded length and ``a`` from the two conditions that the
+catenary reaches the other end and the lengths add up, :func:`_sloped`); a line with both ends
+above a sloped plane hangs free.  Each node is placed at the point of the shape
 at its reference arc length, its gradient ``r_x`` along the shape's tangent with the length
 of its reference gradient (the element's gradient scale: a node's ``|r_x|`` is unchanged).
 A line shorter than that chord (installed stretched) starts straight between its held ends,
 stretched evenly (its gradients too).  Other bodies keep their reference.  From there Newton's
-method at the full load with the supports installed (the last stage's end), and relaxation
+method at the full load with the supports installed (the last stage's end; at least
+:data:`NEWTON_ITERATIONS` iterations), and relaxation
 (:func:`rancf.solvers.relaxation.relax`, at most :data:`RELAX_STEPS` steps) if Newton fails.
 """
 
@@ -49,6 +56,10 @@ SAG_START = "sag start+newton"
 #: through its touchdowns, e.g. 625 steps for a 500 m line of 80 elements; the load path's
 #: relaxation keeps :data:`rancf.solvers.relaxation.MAX_STEPS`).
 RELAX_STEPS = 2000
+#: Newton's iterations from the sagged start at least (a stiff line, ``EA / T`` about 1e9, creeps
+#: along its inextensible shapes for 30 to 40 iterations before it converges quadratically:
+#: MoorPy's sloped lines at 40 to 160 elements; the solver's ``max_iter`` if larger).
+NEWTON_ITERATIONS = 60
 #: A line within this (relative) of its chord keeps its reference: no start shape.
 SLACK_RTOL = 1e-9
 
@@ -97,15 +108,102 @@ def _grounded(span: float, h1: float, h2: float, length: float) -> float | None:
     return _bisect(lambda a: parts(a)[0] + span - parts(a)[1] - length, span * 1e-9, a_hi)
 
 
+def _sloped(dx: float, dz: float, length: float, slope: float) -> tuple[float, float] | None:
+    """``(l_b, a)`` of a line of ``length`` lying from ``(0, 0)`` along the floor ``z = x tan β``
+    (``slope = tan β``) for the grounded length ``l_b``, then hanging as the catenary tangent to
+    the floor at the touchdown ``l_b (cos β, sin β)`` (``sinh u_t = tan β``) up to ``(dx, dz)``
+    above the floor (module docstring); None where the line is too short to touch it or too long
+    to hang (it would pile up).  Given ``l_b``, ``a`` solves ``a (cosh(u_t + Δx / a) - cosh
+    u_t) = Δz`` (the catenary from the touchdown to the end); ``l_b`` makes the lengths add up:
+    ``l_b + a (sinh(u_t + Δx / a) - sinh u_t) = length``."""
+    c, sn = 1.0 / math.hypot(1.0, slope), slope / math.hypot(1.0, slope)
+    ut = math.asinh(slope)
+
+    def hang(lb: float) -> tuple[float, float] | None:  # (a, hanging length) from l_b
+        ex, ez = dx - lb * c, dz - lb * sn
+        if ex <= 0.0 or ez <= ex * slope:
+            return None
+        size = math.hypot(ex, ez)
+
+        def f(a: float) -> float:  # positive while a is too small (the curve too deep)
+            u = ut + ex / a
+            return a * (math.cosh(u) - math.cosh(ut)) - ez if u < 700.0 else math.inf
+
+        a = _bisect(f, size * 1e-9, size * 1e9)
+        return a, a * (math.sinh(ut + ex / a) - math.sinh(ut))
+
+    def gap(lb: float) -> float:  # positive while l_b is too long
+        h = hang(lb)
+        return math.inf if h is None else lb + h[1] - length
+
+    lo = 0.0
+    if not gap(lo) < 0.0:
+        return None  # the line is too short to lie on the floor
+    top = min(dx / c, length)  # the touchdown short of the end's foot: l_b < top
+    hi = next((t for t in (top * (1.0 - 0.5**k) for k in range(1, 50)) if gap(t) > 0.0), None)
+    if hi is None or not math.isfinite(gap(hi)):
+        return None
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if gap(mid) < 0.0 else (lo, mid)
+        if hi - lo < 1e-13 * length:
+            break
+    lb = 0.5 * (lo + hi)
+    h = hang(lb)
+    return None if h is None else (lb, h[0])
+
+
+def _sloped_shape(
+    span: float, rise: float, length: float, s: NDArray, floor: float, slope: float
+) -> tuple[NDArray[np.float64], NDArray[np.float64]] | None:
+    """:func:`catenary_shape` on the sloped floor ``z = floor + x slope`` with one end on it
+    (within 1e-6 of the length), or None (no end on it, or no grounded shape)."""
+    tol = 1e-6 * length
+    h1, h2 = -floor, rise - floor - span * slope
+    if abs(h1) <= tol and h2 > tol:  # the start on the floor
+        found = _sloped(span, rise - floor, length, slope)
+        mirror = False
+    elif abs(h2) <= tol and h1 > tol:  # the end on it: solved from the end, mirrored
+        found = _sloped(span, h1 - span * slope, length, -slope)
+        mirror = True
+    else:
+        return None
+    if found is None:
+        return None
+    lb, a = found
+    sig = length - s if mirror else s  # arc length from the grounded end
+    k = -slope if mirror else slope
+    c, sn = 1.0 / math.hypot(1.0, k), k / math.hypot(1.0, k)
+    ut = math.asinh(k)
+    on = sig <= lb
+    u = np.where(on, ut, np.arcsinh(math.sinh(ut) + np.maximum(sig - lb, 0.0) / a))
+    x = np.where(on, sig * c, lb * c + a * (u - ut))
+    z = np.where(on, sig * sn, lb * sn + a * (np.cosh(u) - math.cosh(ut)))
+    tan = np.c_[1.0 / np.cosh(u), np.tanh(u)]
+    if mirror:  # from the end back: x measured from the end, the tangent reversed
+        return np.c_[span - x, z + floor + span * slope], np.c_[tan[:, 0], -tan[:, 1]]
+    return np.c_[x, z + floor], tan
+
+
 def catenary_shape(
-    span: float, rise: float, length: float, s: NDArray, floor: float | None = None
+    span: float,
+    rise: float,
+    length: float,
+    s: NDArray,
+    floor: float | None = None,
+    slope: float = 0.0,
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Points ``(x, z)`` and unit tangents of the inextensible catenary of ``length`` from
     ``(0, 0)`` to ``(span, rise)`` (``span > 0``, ``length`` above the chord) at the arc lengths
-    ``s`` from its start, lying on the line ``z = floor`` where it would dip below it (module
-    docstring); ``(n, 2)`` each."""
+    ``s`` from its start, lying on the line ``z = floor + x slope`` where it would dip below it
+    (module docstring); ``(n, 2)`` each."""
     s = np.clip(np.asarray(s, dtype=float), 0.0, length)
     a = None
+    if floor is not None and slope != 0.0:
+        shape = _sloped_shape(span, rise, length, s, floor, slope)
+        if shape is not None:
+            return shape
+        floor = None  # both ends above a sloped floor: hanging free
     if floor is not None:
         h1, h2 = max(-floor, 0.0), max(rise - floor, 0.0)
         a = _grounded(span, h1, h2, length)
@@ -132,19 +230,39 @@ def _held_position(model: Model, node: int) -> bool:
     return bool(np.all(model.fixed[b : b + model.dim]))
 
 
-def _floor(system: Any, name: str, model: Model, up: NDArray, p1: NDArray) -> float | None:
-    """The height above ``p1`` (along ``up``) of the centerline resting on the highest fixed
-    plane facing ``up`` that body ``name`` touches, or None."""
+def _floor(
+    system: Any, name: str, model: Model, up: NDArray, p1: NDArray, chord: NDArray
+) -> tuple[float, float] | None:
+    """``(z0, slope)``: the line ``z = z0 + x slope`` (``x`` horizontal along the ``chord``
+    from ``p1``, ``z`` along ``up``) of the centerline resting on the fixed plane facing up (its
+    normal within 60° of ``up``) that body ``name`` touches, highest under the middle of the
+    span of those, or None.  A sloped line is moved to pass through an end that is within a
+    tube radius of it (an anchor on the seabed)."""
     best, pairs = None, set(getattr(system, "contact_pairs", ()))
+    rise = float(chord @ up)
+    ex = chord - rise * up
+    span = float(np.linalg.norm(ex))
+    ex = ex / span if span > 0.0 else ex
     for ob, oname in zip(system.obstacles, system.obstacle_names, strict=False):
         if ob.kind != "plane" or ob.body is not None or (name, oname) not in pairs:
             continue
         n = np.asarray(ob.normal, dtype=float)
         n = n / np.linalg.norm(n)
-        if n @ up < 1.0 - 1e-9:
+        if n @ up < 0.5:
             continue
-        h = float((np.asarray(ob.point, dtype=float) - p1) @ up) + model.section.radius
-        best = h if best is None else max(best, h)
+        rest = np.asarray(ob.point, dtype=float) + model.section.radius * n - p1
+        z0, slope = float(rest @ n) / float(n @ up), -float(ex @ n) / float(n @ up)
+        if abs(slope) < 1e-12:
+            slope = 0.0
+        if best is None or z0 + 0.5 * span * slope > best[0] + 0.5 * span * best[1]:
+            best = (z0, slope)
+    if best is not None and best[1] != 0.0:
+        z0, slope = best
+        near = model.section.radius
+        if abs(z0) <= near:
+            best = (0.0, slope)
+        elif abs(rise - z0 - span * slope) <= near:
+            best = (rise - span * slope, slope)
     return best
 
 
@@ -190,15 +308,38 @@ def touchdown_radius(system: Any, name: str, model: Model) -> tuple[float, list[
     stretch = float(np.linalg.norm(chord)) / length
     if stretch * (1.0 + SLACK_RTOL) >= 1.0 or span <= 1e-9 * length:
         return None
-    floor = _floor(system, name, model, up, p1)
-    if floor is None:
+    found = _floor(system, name, model, up, p1, chord)
+    if found is None:
         return None
+    floor, slope = found
+    if slope != 0.0:
+        return _sloped_touchdown(span, rise, length, floor, slope)
     h1, h2 = max(-floor, 0.0), max(rise - floor, 0.0)
     a = _grounded(span, h1, h2, length)
     if a is None:
         return None
     s1, s2 = (math.sqrt(h * h + 2.0 * a * h) for h in (h1, h2))
     return a, [s for s, h in ((s1, h1), (length - s2, h2)) if h > 0.0]
+
+
+def _sloped_touchdown(
+    span: float, rise: float, length: float, floor: float, slope: float
+) -> tuple[float, list[float]] | None:
+    """:func:`touchdown_radius` on a sloped floor: ``T / w = a cosh u_t = a sqrt(1 + tan² β)``
+    at the touchdown of :func:`_sloped` (one end on the floor), or None."""
+    tol = 1e-6 * length
+    h1, h2 = -floor, rise - floor - span * slope
+    if abs(h1) <= tol and h2 > tol:
+        found = _sloped(span, rise - floor, length, slope)
+        at = None if found is None else found[0]
+    elif abs(h2) <= tol and h1 > tol:
+        found = _sloped(span, h1 - span * slope, length, -slope)
+        at = None if found is None else length - found[0]
+    else:
+        return None
+    if found is None or at is None:
+        return None
+    return found[1] * math.hypot(1.0, slope), [at]
 
 
 def _body_sag(
@@ -223,8 +364,9 @@ def _body_sag(
         return None
     else:
         ex = horiz / span
-        floor = _floor(system, name, model, up, p1)
-        pts, tan = catenary_shape(span, rise, length, s_nodes, floor)
+        found = _floor(system, name, model, up, p1, chord)
+        floor, slope = (None, 0.0) if found is None else found
+        pts, tan = catenary_shape(span, rise, length, s_nodes, floor, slope)
         out[:, :dim] = p1 + pts[:, :1] * ex + pts[:, 1:] * up
         out[:, dim:] = grad[:, None] * (tan[:, :1] * ex + tan[:, 1:] * up)
     y = model.y_from_q(out.ravel())
@@ -270,7 +412,7 @@ def solve_from_sag(
     problem.stage = len(problem.stages) - 1
     end = problem.stages[-1][1]
     problem.place_supports(z, end)
-    out = newton(problem, z, end, tol, max_iter)
+    out = newton(problem, z, end, tol, max(max_iter, NEWTON_ITERATIONS))
     if out.converged:
         problem.accept(out.y)
         return out.y, end, out.iterations, out.iterations, out.residuals, 0
