@@ -97,13 +97,13 @@ class Refinement:
 
 
 def refine_for_touchdowns(
-    sc: Any, system: Any, ratios: dict[str, tuple[float, float]]
+    sc: Any, system: Any, ratios: dict[str, tuple[float, float]], use: str = "the static solve"
 ) -> Refinement:
     """``sc`` with the elements of every body of ``system`` whose touchdown ``ratios``
     (element length over bend radius, and that element's length) exceed
     :data:`TOUCHDOWN_RESOLUTION` divided (module docstring), and the notes; no scenario and no
     notes when nothing needs it, no scenario and notes saying so where the scenario names
-    nodes by index."""
+    nodes by index.  ``use``: what the refined mesh is for, named in the notes."""
     counts = _element_counts(sc)
     factors: dict[str, int] = {}
     why: dict[str, str] = {}
@@ -125,9 +125,8 @@ def refine_for_touchdowns(
             tuple(
                 MeshNote(
                     name,
-                    f"body {name!r}: {text}; the scenario names nodes by index, so the static "
-                    f"solve keeps its {system.bodies[name].n_el} elements: refine [mesh] "
-                    "elements",
+                    f"body {name!r}: {text}; the scenario names nodes by index, so {use} "
+                    f"keeps its {system.bodies[name].n_el} elements: refine [mesh] elements",
                 )
                 for name, text in why.items()
             ),
@@ -136,19 +135,19 @@ def refine_for_touchdowns(
         MeshNote(
             name,
             f"body {name!r}: its {system.bodies[name].n_el} elements refined to "
-            f"{system.bodies[name].n_el * f} for the static solve: {why[name]}",
+            f"{system.bodies[name].n_el * f} for {use}: {why[name]}",
         )
         for name, f in factors.items()
     )
     return Refinement(refined(sc, factors), notes)
 
 
-def refine_for_start(sc: Any, system: Any) -> Refinement:
+def refine_for_start(sc: Any, system: Any, use: str = "the static solve") -> Refinement:
     """:func:`refine_for_touchdowns` of ``sc`` (its ``system``) before a static solve, with the
     bend radii of the lines' sagged start shapes where they meet a seabed
     (:func:`start_ratios`): the one rule of ``rancf static`` and of a time-domain run's static
-    start (module docstring)."""
-    return refine_for_touchdowns(sc, system, start_ratios(system))
+    start (module docstring); ``use`` as there."""
+    return refine_for_touchdowns(sc, system, start_ratios(system), use)
 
 
 def refined(sc: Any, factors: dict[str, int]) -> Any:
