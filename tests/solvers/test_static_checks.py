@@ -23,8 +23,9 @@ import pytest
 import rancf
 from rancf.errors import ConvergenceError
 from rancf.scenario.scenario import load_scenario
-from rancf.solvers.sag_start import SAG_START, catenary_shape
+from rancf.solvers.sag_start import SAG_START
 from rancf.solvers.static import solve_static
+from rancf.solvers.static_catenary import catenary_shape
 from rancf.solvers.static_checks import static_state_problems
 from rancf.system.seabed import SEABED_PENETRATION
 

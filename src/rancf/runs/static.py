@@ -94,7 +94,8 @@ class _Solve:
         from rancf.runs.static_mesh import refine_for_touchdowns
         from rancf.scenario.system_build import scenario_keys, support_labels
         from rancf.solvers.sag_start import SAG_START
-        from rancf.solvers.static import FRICTION, solve_static
+        from rancf.solvers.static import solve_static
+        from rancf.solvers.static_friction import FRICTION
 
         sc = self.sc
         labels = support_labels(sc)

@@ -60,7 +60,7 @@ from rancf.solvers.newton import newton
 from rancf.solvers.relaxation import relax
 from rancf.solvers.sag_start import SAG_START, clamped_lines, solve_from_sag
 from rancf.solvers.static_checks import check_state
-from rancf.solvers.static_friction import solve_with_friction
+from rancf.solvers.static_friction import with_friction
 from rancf.solvers.system_equilibrium import SystemEquilibrium
 from rancf.system import System, as_system
 from rancf.system.drums import hold_drums, refuse_static_drums
@@ -68,9 +68,6 @@ from rancf.system.drums import hold_drums, refuse_static_drums
 __all__ = ["StaticResult", "solve_static", "solve_equilibrium", "StaticMethod"]
 
 StaticMethod = Literal["load", "arc_length"]
-
-#: Appended to ``StaticResult.method`` when the seabeds' friction acted (``static_friction``).
-FRICTION = "+friction"
 
 #: ``StaticResult.method`` when a stage was finished by relaxation.
 RELAXED = "relaxation+newton"
@@ -159,7 +156,7 @@ def solve_static(
         if getattr(system, "drums", None):
             raise InputError("solver.static_friction", True, "false with drums")
         res = solve_static(system, load_steps, tol, max_iter, on_step, method, at_time)
-        return _checked(system, _with_friction(system, res, at_time, tol, max_iter, on_step))
+        return _checked(system, with_friction(system, res, at_time, tol, max_iter, on_step))
     if not getattr(system, "drums", None):
         first = None
         rejected: list[str] = []  # what the sagged start found, said if nothing else converges
@@ -213,37 +210,6 @@ def solve_static(
         wall_time=time.perf_counter() - start,
     )
     return _checked(system, done)
-
-
-def _with_friction(
-    system: System,
-    res: StaticResult,
-    at_time: float | None,
-    tol: float,
-    max_iter: int,
-    on_step: Callable[[float, NDArray[np.float64]], None] | None,
-) -> StaticResult:
-    """``res`` carried to the equilibrium with seabed friction
-    (:func:`rancf.solvers.static_friction.solve_with_friction`)."""
-    p = float(res.load_factors[-1])
-    z, its = solve_with_friction(system, np.r_[res.y, res.lam], p, at_time, tol, max_iter)
-    if its == 0:
-        return res
-    system.static_friction = True  # type: ignore[attr-defined]
-    n = system.n
-    if on_step is not None:
-        on_step(p, z[:n])
-    return replace(
-        res,
-        q=system.q_from_y(z[:n]),
-        y=z[:n],
-        lam=z[n:],
-        method=res.method + FRICTION,
-        n_newton=res.n_newton + its,
-        n_factorizations=res.n_factorizations + its,
-        load_factors=np.r_[res.load_factors, p],
-        touchdowns=None,  # a new state: checked again
-    )
 
 
 def _sagged(
