@@ -66,6 +66,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     sc, copy = scenario_for_run(args.scenario, args.t_end)
     files = file_digests(tomllib.loads(copy), args.scenario)  # the run's CSV and CAD files
     plan = plan_simulate(sc, limit)  # refused before the folder is touched
+    _warn(list(plan.notes))  # a mesh refined for the static start: said before the run
     out = od.path
     stop = _StopFlag()
     with stop, od:
@@ -82,7 +83,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
             if err is exc:
                 raise
             raise err from None
-    _warn(run.warnings[len(disk.notes) :])
+    _warn(run.warnings[len(plan.notes) + len(disk.notes) :])
     assert run.summary is not None  # the stream ended the folder
     return _report(args, run.result, run.summary, out)
 
