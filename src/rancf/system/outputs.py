@@ -78,7 +78,6 @@ from rancf.system.seabed_friction import static_friction_load
 from rancf.system.sensors import SensorReader
 from rancf.system.sliding import sliding_slots, sliding_values
 from rancf.system.system import System
-from rancf.system.winches import winch_node
 
 __all__ = ["SystemOutputs"]
 
@@ -109,7 +108,11 @@ class SystemOutputs:
         self.flex = [(name, b) for name, b in zip(s.names, s.flex, strict=False)]
         self.labels = support_labels(self.flex, labels)
         self.samplers = {name: SectionSampler(b, per_element) for name, b in self.flex}
-        winched = {winch_node(s, w)[0] for w in getattr(s, "winches", ())}
+        winched = set()
+        if getattr(s, "winches", ()):
+            from rancf.system.winches import winch_node
+
+            winched = {winch_node(s, w)[0] for w in s.winches}
         #: The flexible bodies whose axial force is read from their nodal forces.
         self.recovered = {
             name for name, b in self.flex if recovers_axial_force(b) and name not in winched
