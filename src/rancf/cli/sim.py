@@ -51,8 +51,28 @@ def one_blas_thread() -> None:
         os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 
+def element_threads(system: Any, asked: int | None) -> int:
+    """The threads a run's element loops use (``--threads``, else chosen): ``asked``, or every
+    core this process may use for a system with a flexible body of at least
+    ``min_parallel_elements()`` elements (fewer: a loop shared between threads costs more
+    than it saves), else 1.  The sums are the same bit for bit whatever the number
+    (``src/cpp/bodies/threads.hpp``); a sweep's runs keep one each."""
+    from rancf.kernels import _core
+
+    if asked is not None:
+        return asked
+    largest = max((getattr(b, "n_el", 0) for b in system.flex), default=0)
+    if largest < _core.min_parallel_elements():
+        return 1
+    from rancf.sweep.threads import default_threads
+
+    return default_threads()
+
+
 def _cmd_simulate(args: argparse.Namespace) -> int:
     one_blas_thread()
+    if args.threads is not None and args.threads < 1:
+        raise InputError("--threads", args.threads, "an integer >= 1")
     every = _positive("--checkpoint-every", args.checkpoint_every, "a finite number of seconds > 0")
     limit = _positive("--max-output-gb", args.max_output_gb, "a finite size in GB > 0")
     if args.t_end is not None:
@@ -66,6 +86,9 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     sc, copy = scenario_for_run(args.scenario, args.t_end)
     files = file_digests(tomllib.loads(copy), args.scenario)  # the run's CSV and CAD files
     plan = plan_simulate(sc, limit)  # refused before the folder is touched
+    from rancf.kernels import _core
+
+    _core.set_assembly_threads(element_threads(plan.system, args.threads))
     out = od.path
     stop = _StopFlag()
     with stop, od:
@@ -226,5 +249,13 @@ def add_parsers(sub: Any) -> None:
         metavar="GB",
         help="refuse a run whose stored states would need more disk than this "
         f"(default {DEFAULT_MAX_OUTPUT_GB:g})",
+    )
+    s.add_argument(
+        "--threads",
+        type=int,
+        default=None,
+        metavar="N",
+        help="threads of the element loops (default: every core this process may use where a "
+        "body has enough elements to share, else 1; the results are the same bit for bit)",
     )
     s.set_defaults(func=_cmd_simulate)
