@@ -1,7 +1,7 @@
 """The element loop shared between threads (``src/cpp/bodies/threads.hpp``): a run on two
 threads gives the same numbers bit for bit as on one (each thread computes its elements, the
 calling thread adds them in element order), for a planar pinned cable, a clamped one (the
-rotated gradient blocks) and a spatial conic chain; ``rancf simulate`` chooses one thread for a
+rotated gradient blocks), a spatial conic chain and a mooring line (its fluid loads' loop too); ``rancf simulate`` chooses one thread for a
 small model and takes ``--threads``."""
 
 from __future__ import annotations
@@ -35,13 +35,19 @@ def _case(name: str, elements: int, clamp: bool = False) -> str:
     text = example_path(name).read_text()
     text = re.sub(r"(?m)^elements = \d+", f"elements = {elements}", text)
     text = re.sub(r"(?m)^t_end = .*$", "t_end = 0.01", text)
+    text = re.sub(r"(?m)^step = .*$", "step = 0.001", text)
     text = re.sub(r"(?m)^output_step = .*$", "", text)
     return text.replace('kind = "pin"', 'kind = "clamp"', 1) if clamp else text
 
 
 @pytest.mark.parametrize(
     ("name", "clamp"),
-    [("planar-pendulum", False), ("planar-pendulum", True), ("spatial-pendulum", False)],
+    [
+        ("planar-pendulum", False),
+        ("planar-pendulum", True),
+        ("spatial-pendulum", False),
+        ("mooring-line", False),
+    ],
 )
 def test_two_threads_give_the_numbers_of_one(tmp_path, name, clamp):
     text = _case(name, _core.min_parallel_elements(), clamp)
