@@ -1,8 +1,8 @@
 """The element loop shared between threads (``src/cpp/bodies/threads.hpp``): a run on two
 threads gives the same numbers bit for bit as on one (each thread computes its elements, the
 calling thread adds them in element order), for a planar pinned cable, a clamped one (the
-rotated gradient blocks), a spatial conic chain and a mooring line (its fluid loads' loop too); ``rancf simulate`` chooses one thread for a
-small model and takes ``--threads``."""
+rotated gradient blocks), a spatial conic chain and a mooring line (its fluid loads' loop
+too); ``rancf simulate`` chooses one thread for a small model and takes ``--threads``."""
 
 from __future__ import annotations
 
