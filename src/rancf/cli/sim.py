@@ -52,10 +52,11 @@ def one_blas_thread() -> None:
 
 
 def element_threads(system: Any, asked: int | None) -> int:
-    """The threads a run's element loops use (``--threads``, else chosen): ``asked``, or every
-    core this process may use for a system with a flexible body of at least
-    ``min_parallel_elements()`` elements (fewer: a loop shared between threads costs more
-    than it saves), else 1.  The sums are the same bit for bit whatever the number
+    """The threads a run's element loops use (``--threads``, else chosen): ``asked``, or, for a
+    system with a flexible body of at least ``min_parallel_elements()`` elements (fewer: a loop
+    shared between threads costs more than it saves), the cores this process may use that the
+    last minute's load average leaves idle (at least 1: a thread that waits for a core holds up
+    every loop it shares), else 1.  The sums are the same bit for bit whatever the number
     (``src/cpp/bodies/threads.hpp``); a sweep's runs keep one each."""
     from rancf.kernels import _core
 
@@ -66,7 +67,12 @@ def element_threads(system: Any, asked: int | None) -> int:
         return 1
     from rancf.sweep.threads import default_threads
 
-    return default_threads()
+    cores = default_threads()
+    try:
+        busy = os.getloadavg()[0]
+    except OSError:  # pragma: no cover - not available
+        busy = 0.0
+    return max(1, min(cores, int(cores - busy + 0.5)))
 
 
 def _cmd_simulate(args: argparse.Namespace) -> int:
@@ -255,7 +261,7 @@ def add_parsers(sub: Any) -> None:
         type=int,
         default=None,
         metavar="N",
-        help="threads of the element loops (default: every core this process may use where a "
-        "body has enough elements to share, else 1; the results are the same bit for bit)",
+        help="threads of the element loops (default: the idle cores this process may use where "
+        "a body has enough elements to share, else 1; the results are the same bit for bit)",
     )
     s.set_defaults(func=_cmd_simulate)
