@@ -59,7 +59,10 @@ def test_two_threads_give_the_numbers_of_one(tmp_path, name, clamp):
         assert np.array_equal(getattr(one, key), getattr(two, key)), key
 
 
-def test_a_run_chooses_its_threads(tmp_path):
+def test_a_run_chooses_its_threads(tmp_path, monkeypatch):
+    """One thread for a small model; for a large one the idle cores (here 4 cores at load
+    average 1.2: 3), less one where the output worker derives every step's row beside the
+    loop; ``--threads`` as given."""
     small = load_scenario(example_path("planar-pendulum")).build_system()
     assert max(b.n_el for b in small.flex) < _core.min_parallel_elements()
     assert element_threads(small, None) == 1
@@ -67,5 +70,10 @@ def test_a_run_chooses_its_threads(tmp_path):
     path = tmp_path / "large.toml"
     path.write_text(_case("planar-pendulum", _core.min_parallel_elements()))
     large = load_scenario(path).build_system()
-    assert element_threads(large, None) >= 1
+    monkeypatch.setattr("rancf.sweep.threads.default_threads", lambda: 4)
+    monkeypatch.setattr("os.getloadavg", lambda: (1.2, 1.0, 1.0))
+    assert element_threads(large, None) == 3
+    assert element_threads(large, None, rows_beside=True) == 2
     assert element_threads(large, 1) == 1
+    monkeypatch.setattr("os.getloadavg", lambda: (9.0, 9.0, 9.0))
+    assert element_threads(large, None, rows_beside=True) == 1

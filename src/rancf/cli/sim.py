@@ -51,13 +51,14 @@ def one_blas_thread() -> None:
         os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 
-def element_threads(system: Any, asked: int | None) -> int:
+def element_threads(system: Any, asked: int | None, rows_beside: bool = False) -> int:
     """The threads a run's element loops use (``--threads``, else chosen): ``asked``, or, for a
     system with a flexible body of at least ``min_parallel_elements()`` elements (fewer: a loop
     shared between threads costs more than it saves), the cores this process may use that the
-    last minute's load average leaves idle (at least 1: a thread that waits for a core holds up
-    every loop it shares), else 1.  The sums are the same bit for bit whatever the number
-    (``src/cpp/bodies/threads.hpp``); a sweep's runs keep one each."""
+    last minute's load average leaves idle, less one for the output worker where it derives
+    every step's row beside the loop (``rows_beside``), at least 1 (a thread that waits for a
+    core holds up every loop it shares); else 1.  The sums are the same bit for bit whatever
+    the number (``src/cpp/bodies/threads.hpp``); a sweep's runs keep one each."""
     from rancf.kernels import _core
 
     if asked is not None:
@@ -72,7 +73,17 @@ def element_threads(system: Any, asked: int | None) -> int:
         busy = os.getloadavg()[0]
     except OSError:  # pragma: no cover - not available
         busy = 0.0
-    return max(1, min(cores, int(cores - busy + 0.5)))
+    return max(1, min(cores, int(cores - busy + 0.5)) - int(rows_beside))
+
+
+def _rows_beside(plan: Any) -> bool:
+    """Whether a worker thread derives every step's output row beside the time loop (the
+    default output; :func:`rancf.post.block_worker.works_beside`): it keeps a core busy."""
+    from rancf.post.block_worker import works_beside
+
+    opts = plan.options
+    every_step = opts.output_step is None or opts.output_step <= opts.step
+    return every_step and works_beside(plan.outputs)
 
 
 def _cmd_simulate(args: argparse.Namespace) -> int:
@@ -94,7 +105,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     plan = plan_simulate(sc, limit)  # refused before the folder is touched
     from rancf.kernels import _core
 
-    _core.set_assembly_threads(element_threads(plan.system, args.threads))
+    _core.set_assembly_threads(element_threads(plan.system, args.threads, _rows_beside(plan)))
     out = od.path
     stop = _StopFlag()
     with stop, od:
