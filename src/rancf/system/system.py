@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import warnings
 from collections.abc import Mapping, Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -31,18 +31,23 @@ from rancf.kernels.records import (
     vec3,
 )
 from rancf.system.connections import JOINT_KINDS, Joint, Load, Spring
-from rancf.system.contact import CONTACT_POINTS, Obstacle, build_contact
 from rancf.system.core_data import SystemRecords, build_core
-from rancf.system.fluid import DistributedLoad, Fluid, Hydro, fluid_records
 from rancf.system.joint_data import joint_data
 from rancf.system.part_records import all_loads, load_record, motion_records, spring_record
 from rancf.system.places import Place
 from rancf.system.record_rows import RecordRows
 from rancf.system.sliding import attach_sliding, sliding_pair, sliding_record, start_multipliers
 from rancf.system.stack import Body, BodyStack
-from rancf.system.winches import Winch, attach_winches, winch_functions
+
+if TYPE_CHECKING:  # imported where a system has them: a run without them loads none
+    from rancf.system.contact import Obstacle
+    from rancf.system.fluid import DistributedLoad, Fluid, Hydro
+    from rancf.system.winches import Winch
 
 __all__ = ["System", "Body", "as_system"]
+
+#: Gauss points per element at which contact is evaluated (default; :mod:`rancf.system.contact`).
+CONTACT_POINTS = 8
 
 
 class System(BodyStack):
@@ -143,16 +148,7 @@ class System(BodyStack):
             "linear": linear,
         }
         self.fluid, self.hydro = fluid, dict(hydro or {})
-        in_fluid = fluid_records(
-            self.names[: len(self.flex)],
-            self.flex,
-            self.dim,
-            self.gravity,
-            fluid,
-            self.hydro,
-            distributed,
-            rows.tf,
-        )
+        in_fluid = self._fluid_records(fluid, distributed, rows)
         for spec in observe:
             p = self.resolve(spec)
             if p.body is None:
@@ -162,7 +158,12 @@ class System(BodyStack):
         self.core = self._build(rows.records(**parts))
         parts["joints"] = [self._joint(j, ab, rows) for j, ab in zip(joints, pre, strict=True)]
         self.winches = tuple(winches)
-        self.winch_lengths, winch_tfs = winch_functions(self, self.winches, rows.tf)
+        self.winch_lengths: dict[str, Any] = {}
+        winch_tfs: list[tuple[int, int]] = []
+        if self.winches:
+            from rancf.system.winches import winch_functions
+
+            self.winch_lengths, winch_tfs = winch_functions(self, self.winches, rows.tf)
         self.records = rows.records(**parts)
         self.core = self._build(self.records)
         if in_fluid is not None:
@@ -175,13 +176,33 @@ class System(BodyStack):
         self.obstacle_names: list[str] = []
         self.contact_pairs: list[tuple[str, str]] = []
         if self.obstacles or contacts or body_contacts:  # build_contact: the core's Contact
+            from rancf.system.contact import build_contact
+
             self.contact, self.obstacle_names, self.contact_pairs = build_contact(
                 self, self.obstacles, contacts, contact_points, body_contacts, body_friction
             )
             self.core.attach_contact(self.contact)
-        attach_winches(self, self.winches, winch_tfs)
+        self.drums = {}
+        if self.winches:
+            from rancf.system.winches import attach_winches
+
+            attach_winches(self, self.winches, winch_tfs)
         attach_sliding(self)
         self._check_reference()
+
+    def _fluid_records(
+        self, fluid: Fluid | None, distributed: Sequence[DistributedLoad], rows: RecordRows
+    ) -> Any:
+        """The core's records of the fluid and the distributed loads
+        (:func:`rancf.system.fluid.fluid_records`; None: neither, and nothing of them loaded)."""
+        if fluid is None and not self.hydro and not distributed:
+            return None
+        from rancf.system.fluid import fluid_records
+
+        names = self.names[: len(self.flex)]
+        return fluid_records(
+            names, self.flex, self.dim, self.gravity, fluid, self.hydro, distributed, rows.tf
+        )
 
     def _check_gravity(self) -> None:
         """A flexible body's weight comes from its model's ``gravity``, a rigid body's from the
