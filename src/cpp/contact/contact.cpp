@@ -23,6 +23,32 @@ struct PointEval {
   PointLaw law;
 };
 
+/// The step's gaps gm = {ga, g1} at a point of a fixed obstacle (contact.hpp): g1 = g(r1) and
+/// ga = 2 gs - g1, with gs the step's gap: the alpha point's, g(rf) (gf), or with af > 0
+/// (ContactSet::step_alpha_f) the blend of the gaps at the step's ends, (1 - af) g(r1) +
+/// af g(r0), r0 = (rf - (1 - af) r1) / af (time-integration.md sec. 4, TI.16); da (if not
+/// null): d ga/d rf (3) and d ga/d r1 (3) over rf and r1 as independent.
+void step_gaps(const Pose& pose, double rt, const double* rf, const Gap& gf, const double* r1,
+               double af, Gap& g1, double* gm, double* da) {
+  gap(pose, r1, rt, g1, false);
+  double gs = gf.g;
+  Gap g0;
+  const bool blend = af > 0.0 && pose.kind != ObstacleKind::plane;  // a plane's is linear: gf
+  if (blend) {
+    double r0[3];
+    for (int i = 0; i < 3; ++i) r0[i] = (rf[i] - (1.0 - af) * r1[i]) / af;
+    gap(pose, r0, rt, g0, false);
+    gs = (1.0 - af) * g1.g + af * g0.g;
+  }
+  gm[0] = 2.0 * gs - g1.g;
+  gm[1] = g1.g;
+  if (da == nullptr) return;
+  for (int i = 0; i < 3; ++i) {  // gs's derivatives: n0 by rf, (1 - af) (n1 - n0) by r1
+    da[i] = 2.0 * (blend ? g0.n[i] : gf.n[i]);
+    da[3 + i] = (blend ? 2.0 * (1.0 - af) * (g1.n[i] - g0.n[i]) : 0.0) - g1.n[i];
+  }
+}
+
 /// Visit the points of pair cp at state (y, v): fn(el, q, pose, PointEval&).  With y1 (a time
 /// step's end; y, v its alpha point) the pressure is the step's mean, as assemble_contact's.
 template <class Fn>
@@ -51,14 +77,14 @@ void each_point(const System& s, const ContactSet& c, const ContactPair& cp, con
       PointEval pt;
       point_of(m, N, e.data(), pt.r);
       gap(pose, pt.r, cb.radius, pt.gap, false);
-      double gm[2] = {pt.gap.g, pt.gap.g};  // the step's gaps [2 g(yf) - g(y1), g(y1)]
+      double gm[2] = {pt.gap.g, pt.gap.g};  // the step's gaps [2 gs - g(y1), g(y1)]
       if (y1 != nullptr) {
         double r1[3];
         Gap g1;
         point_of(m, N, e1.data(), r1);
-        gap(pose1, r1, cb.radius, g1, false);
-        gm[0] = 2.0 * pt.gap.g - g1.g;
-        gm[1] = g1.g;
+        // fixed obstacles: gs the blend of the step's gaps (step_gaps); carried: g(yf)
+        step_gaps(pose1, cb.radius, pt.r, pt.gap, r1, cr.fixed ? c.step_alpha_f : 0.0, g1, gm,
+                  nullptr);
       }
       double u[3] = {0.0, 0.0, 0.0};
       if (v != nullptr) {
@@ -475,12 +501,10 @@ void fixed_pair(const System& s, const ContactSet& c, const ContactPair& cp, int
       point_at<d>(off, N, ef.data(), rf);
       Gap gf, g1;
       gap(pose, rf, cb.radius, gf, jac);
-      double gm[2] = {gf.g, gf.g};
+      double gm[2] = {gf.g, gf.g}, da[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
       if (dyn) {
         point_at<d>(off, N, e1.data(), r1);
-        gap(pose, r1, cb.radius, g1, false);
-        gm[0] = 2.0 * gf.g - g1.g;
-        gm[1] = g1.g;
+        step_gaps(pose, cb.radius, rf, gf, r1, c.step_alpha_f, g1, gm, jac ? da : nullptr);
       }
       if (gm[0] >= 0.0 && gm[1] >= 0.0) continue;
       double u[3] = {0.0, 0.0, 0.0};
@@ -493,14 +517,14 @@ void fixed_pair(const System& s, const ContactSet& c, const ContactPair& cp, int
       for (int k = 0; k < 4; ++k)
         for (int i = 0; i < d; ++i) fe[sz(off[k] + i)] += wq * N[k] * pl.F[i];
       if (!jac) continue;
-      // ga = 2 g(rf) - g(r1): d/dy1 = (2 ck nf - c1 n1) . dr1
+      // the step's gaps: d ga/dy1 = (ck d ga/drf + c1 d ga/dr1) . dr1 (step_gaps)
       double K[3][3];
       for (int i = 0; i < d; ++i)
         for (int j = 0; j < d; ++j)
-          K[i][j] = tm.ck * pl.A[i][j] + tm.cv * pl.B[i][j] +
-                    (dyn ? pl.Ga[i] * (2.0 * tm.ck * gf.n[j] - tm.c1 * g1.n[j]) +
-                               tm.c1 * pl.G1[i] * g1.n[j]
-                         : 0.0);
+          K[i][j] =
+              tm.ck * pl.A[i][j] + tm.cv * pl.B[i][j] +
+              (dyn ? pl.Ga[i] * (tm.ck * da[j] + tm.c1 * da[3 + j]) + tm.c1 * pl.G1[i] * g1.n[j]
+                   : 0.0);
       // sum of w N_k N_l K over the points: the (k, l) and (l, k) blocks are equal
       for (int k = 0, kl = 0; k < 4; ++k)
         for (int l = k; l < 4; ++l, ++kl) {
