@@ -148,7 +148,7 @@ void bind_contact(nb::module_& mod) {
             h.c.step_alpha_f = af;
           },
           "alpha_f of the time steps whose alpha points the contact forces are given at: a "
-          "fixed obstacle's gap of a step is the blend of its gaps at the step's ends (0: the "
+          "point's gap of a step is the blend of its gaps at the step's ends (0: the "
           "gap at the alpha point).")
       .def(
           "body_outputs",

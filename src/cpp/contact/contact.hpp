@@ -23,7 +23,7 @@
 //
 // In a time step (velocities given and y1 apart from yf) the elastic pressure is the mean of p_k
 // over [ga, g1], g1 = g(y1), ga = 2 gf - g1, an interval centred on the alpha point's gap gf
-// (fixed obstacles with ContactSet::step_alpha_f: the blend of the gaps at the step's ends)
+// (with ContactSet::step_alpha_f the step's gap: the blend of the gaps at the step's ends)
 // (the damping factor multiplies it): on the linear piece exactly p_k(gf), the generalized-
 // alpha force; with rho_inf = 1 (the midpoint rule, ga = g(y0) for blended gaps) the discrete
 // gradient (Phi(g0) - Phi(g1)) / (g1 - g0), so that the penalty's energy balance is exact for a
@@ -98,9 +98,10 @@ struct ContactSet {
   std::vector<ContactPair> pairs;
   std::vector<BodyPair> body_pairs;
   /// alpha_f of the time steps whose alpha points (yf, with y1 their end) the contact forces
-  /// are given at: a fixed obstacle's gap of a step is then the blend of the gaps at the
-  /// step's start and end, (1 - af) g(r1) + af g(r0), r0 = (rf - (1 - af) r1) / af, never the
-  /// gap of a blend of positions (time-integration.md sec. 4); 0: the gap at yf.
+  /// are given at: a point's gap of a step (obstacles fixed or carried, body pairs) is then
+  /// the blend of the gaps at the step's start and end, (1 - af) g(y1) + af g(y0),
+  /// y0 = (yf - (1 - af) y1) / af, never the gap of a blend of positions (time-integration.md
+  /// sec. 4, TI.16); 0: the gap at yf.
   double step_alpha_f = 0.0;
 };
 
