@@ -72,6 +72,8 @@ class GeneralizedAlpha:
             chord=newton == "chord",
         )
         self._core = _core.SystemIntegrator(self.system.core, scheme)
+        if self.system.contact is not None:  # a step's gap on a fixed obstacle: the blend of
+            self.system.contact.step_alpha_f = self.af  # the gaps at its ends (TI.16)
         # the test measures increments as displacements (gradients times their elements' length)
         self._core.set_increment_scale(increment_scale(self.system).tolist())
         # above rtol * size a step's estimate is filtered (TI.12): what the step does not resolve
