@@ -24,23 +24,30 @@ from numpy.typing import ArrayLike, NDArray
 from rancf.bodies.closure import closure_terms
 from rancf.bodies.flexible import Model
 from rancf.errors import InputError
-from rancf.kernels import _core
-from rancf.kernels.records import (
-    JointRecord,
-    PlaceRecord,
-    vec3,
-)
+from rancf.kernels.records import JointRecord, PlaceRecord, SystemModel, vec3
 from rancf.system.connections import JOINT_KINDS, Joint, Load, Spring
 from rancf.system.contact import CONTACT_POINTS, Obstacle, build_contact
-from rancf.system.core_data import SystemRecords, build_core
+from rancf.system.core_data import (
+    Attached,
+    SystemRecords,
+    build_core,
+    place_frames,
+    system_model,
+)
 from rancf.system.fluid import DistributedLoad, Fluid, Hydro, fluid_records
 from rancf.system.joint_data import joint_data
 from rancf.system.part_records import all_loads, load_record, motion_records, spring_record
 from rancf.system.places import Place
 from rancf.system.record_rows import RecordRows
-from rancf.system.sliding import attach_sliding, sliding_pair, sliding_record, start_multipliers
+from rancf.system.sliding import (
+    sliding_pair,
+    sliding_record,
+    sliding_records,
+    sliding_starts,
+    start_multipliers,
+)
 from rancf.system.stack import Body, BodyStack
-from rancf.system.winches import Winch, attach_winches, winch_functions
+from rancf.system.winches import Winch, add_drums, winch_functions, winch_records
 
 __all__ = ["System", "Body", "as_system"]
 
@@ -88,7 +95,10 @@ class System(BodyStack):
     Attributes
     ----------
     records : :class:`rancf.system.core_data.SystemRecords`
-        The parts as the compiled core ``core`` took them (:mod:`rancf.kernels.records`).
+        The places, joints, springs, loads, time functions, prescribed motions and linear rows
+        as the compiled core ``core`` took them (:mod:`rancf.kernels.records`).
+    model : :class:`rancf.kernels.records.SystemModel`
+        The one record the core was built from, once: the bodies and every part.
     """
 
     drums: dict[str, int]  #: each driven drum's coordinate (rancf.system.winches.attach_winches)
@@ -159,17 +169,14 @@ class System(BodyStack):
                 raise InputError("place", "ground", "a place on a body")
             self.place_index(p, rows)
         pre = [self._place(j, rows) for j in joints]  # places first: their reference frames
-        self.core = self._build(rows.records(**parts))
-        parts["joints"] = [self._joint(j, ab, rows) for j, ab in zip(joints, pre, strict=True)]
+        frames = place_frames(self._model(rows.records(**parts)), self.y0)
+        parts["joints"] = [
+            self._joint(j, ab, rows, frames) for j, ab in zip(joints, pre, strict=True)
+        ]
         self.winches = tuple(winches)
         self.winch_lengths, winch_tfs = winch_functions(self, self.winches, rows.tf)
         self.records = rows.records(**parts)
-        self.core = self._build(self.records)
-        if in_fluid is not None:
-            self.core.attach_fluid(*in_fluid)
-        self.m = int(self.core.m)
-        self.joint_rows = list(self.core.joint_rows)
-        self.obstacles = tuple(obstacles)  # contact: attached to the core
+        self.obstacles = tuple(obstacles)
         self.body_contacts, self.contact_points = [(a, b) for a, b in body_contacts], contact_points
         self.contact: Any = None  # the core's Contact
         self.obstacle_names: list[str] = []
@@ -178,9 +185,19 @@ class System(BodyStack):
             self.contact, self.obstacle_names, self.contact_pairs = build_contact(
                 self, self.obstacles, contacts, contact_points, body_contacts, body_friction
             )
-            self.core.attach_contact(self.contact)
-        attach_winches(self, self.winches, winch_tfs)
-        attach_sliding(self)
+        attached = Attached(
+            fluid=None if in_fluid is None else in_fluid[0],
+            lines=() if in_fluid is None else tuple(in_fluid[1]),
+            contact=self.contact,
+            winches=winch_records(self, self.winches, winch_tfs),
+            sliding=sliding_records(self, self.joints),
+        )
+        self.model = self._model(self.records, attached)
+        self.core = build_core(self.model)  # once, every part
+        self.m = int(self.core.m)
+        self.joint_rows = list(self.core.joint_rows)
+        add_drums(self, self.winches)
+        sliding_starts(self)
         self._check_reference()
 
     def _check_gravity(self) -> None:
@@ -209,7 +226,7 @@ class System(BodyStack):
             rows = g[self.joint_rows[k] : self.joint_rows[k] + (2 if self.dim == 2 else 3)]
             if j.kind == "slider":
                 rows = g[self.joint_rows[k] : self.joint_rows[k] + self.dim - 1]
-            gap = 0.0 if j.kind == "sliding" else float(np.linalg.norm(rows))  # attach_sliding
+            gap = 0.0 if j.kind == "sliding" else float(np.linalg.norm(rows))  # sliding_starts
             if not gap <= 1e-9 * self.size:
                 name = j.name or f"joints[{k}]"
                 raise InputError(
@@ -265,8 +282,8 @@ class System(BodyStack):
             return sliding_pair(self, j, rows)
         return self.place_pair(j.between, rows, rows.tf(j.motion))
 
-    def _build(self, records: SystemRecords) -> _core.System:
-        return build_core(
+    def _model(self, records: SystemRecords, attached: Attached | None = None) -> SystemModel:
+        return system_model(
             self.dim,
             self.flex,
             self.rigid,
@@ -275,18 +292,19 @@ class System(BodyStack):
             self.damping,
             self.y0,
             self.stiffness_damping,
+            attached or Attached(),
         )
 
-    def _frames(self, index: int) -> tuple[NDArray, NDArray]:
-        x, f = self.core.place(index, self.y0, 0.0)
-        return np.asarray(x), np.asarray(f).reshape(-1, 3)
-
-    def _joint(self, j: Joint, ab: tuple[int, int], rows: RecordRows) -> JointRecord:
+    def _joint(
+        self, j: Joint, ab: tuple[int, int], rows: RecordRows, frames: Sequence[tuple]
+    ) -> JointRecord:
+        """The core's record of joint ``j`` between the places ``ab``, its orientation data in
+        their reference ``frames`` (:func:`rancf.system.core_data.place_frames`)."""
         a, b = ab
         if j.kind == "sliding":
             return sliding_record(self, j, a, b)
         angle = rows.tf(j.angle) if j.angle is not None else -1
-        return joint_data(j, a, b, self._frames(a)[1], self._frames(b)[1], self.dim, angle)
+        return joint_data(j, a, b, frames[a][1], frames[b][1], self.dim, angle)
 
     # ---------------------------------------------------------------- coordinates
     @property
