@@ -130,6 +130,14 @@ void read_springs(nb::handle list, rancf::System& s) {
     d.stiffness = f.number("stiffness");
     d.damping = f.number("damping");
     d.length = f.number("length");
+    d.law = f.index("law", -1, s.tfs.size(), "a time function");
+    if (d.law >= 0) {
+      const rancf::TimeFunction& law = s.tfs[static_cast<std::size_t>(d.law)];
+      if (law.kind != rancf::TimeKind::piecewise || law.n != 1)
+        f.fail("law", "a scalar piecewise (table) function of the stretch", std::to_string(d.law));
+      if (!(d.length > 0.0))
+        f.fail("length", "a rest length > 0 with a law", std::to_string(d.length));
+    }
     s.springs.push_back(d);
   });
 }

@@ -11,6 +11,7 @@
 #include "contact/contact.hpp"
 #include "fluid/fluid.hpp"
 #include "system/sliding.hpp"
+#include "system/spring_law.hpp"
 #include "system/winch.hpp"
 
 namespace rancf {
@@ -603,7 +604,7 @@ void system_energies(const System& s, const double* y, const double* v, double* 
     double len = 0.0;
     for (int i = 0; i < 3; ++i) len += (ea.x[i] - eb.x[i]) * (ea.x[i] - eb.x[i]);
     const double dl = std::sqrt(len) - sp.length;
-    out[1] += 0.5 * sp.stiffness * dl * dl;
+    out[1] += sp.law < 0 ? 0.5 * sp.stiffness * dl * dl : spring_law_energy(s.tfs[sz(sp.law)], dl);
   }
   if (s.contact != nullptr) out[1] += contact_energy(s, *s.contact, y);
   if (s.winches != nullptr)  // driven drums: J(L) L'^2 / (2 r^2), the rope wound off

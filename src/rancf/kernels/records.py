@@ -154,13 +154,16 @@ class JointRecord:
 @dataclass(frozen=True)
 class SpringRecord:
     """A spring-damper between the places ``a`` and ``b`` (``SpringData``): tension
-    ``stiffness (l - length) + damping dl/dt``."""
+    ``stiffness (l - length) + damping dl/dt``, or with ``law`` (a scalar table among the time
+    functions, evaluated at the stretch ``e = l - length``; ``src/cpp/system/spring_law.hpp``)
+    ``T(e) + damping dl/dt``."""
 
     a: int
     b: int
     stiffness: float
     damping: float = 0.0
     length: float = 0.0
+    law: int = -1
 
 
 @dataclass(frozen=True)

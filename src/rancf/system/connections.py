@@ -1,4 +1,5 @@
-"""Joints, springs and loads of a system (frozen values; :class:`rancf.system.System` assembles).
+"""Joints, springs and loads of a system (frozen values; :class:`rancf.system.System` assembles;
+a spring is a part of its own, :mod:`rancf.system.parts.spring`).
 
 Joint kinds (docs/derivations/systems.md section 3): ``"pin"`` (positions coincide: revolute in 2D,
 spherical in
@@ -18,6 +19,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 from rancf.bodies.time_function import TimeFunction
+from rancf.system.parts.spring import Spring
 from rancf.system.places import Place
 
 __all__ = ["Joint", "Spring", "Load", "JOINT_KINDS"]
@@ -38,22 +40,6 @@ class Joint:
     motion: TimeFunction | None = None
     #: A sliding joint to the ground: the guide's position (world, reference configuration).
     position: Sequence[float] | None = None
-
-
-@dataclass(frozen=True)
-class Spring:
-    """A spring-damper between two places: tension ``k (ℓ - ℓ0) + c dℓ/dt`` along the line
-    between them; ``length`` ℓ0 defaults to their distance in the reference configuration.
-
-    With ``ℓ0 = 0`` (a spring to ``ground``, which sits at the other place's reference) it is
-    the linear spring-damper ``F = k (x_a - x_b) + c (v_a - v_b)``: the same stiffness, with a
-    direction also where the places meet; ``ℓ0 > 0`` needs the places apart at the reference."""
-
-    between: tuple[Place | str, Place | str]
-    stiffness: float
-    damping: float = 0.0
-    length: float | None = None
-    name: str = ""
 
 
 @dataclass(frozen=True)

@@ -1,4 +1,4 @@
-"""The records of a system's prescribed motions, springs and point loads for the compiled core
+"""The records of a system's prescribed motions and point loads for the compiled core
 (:mod:`rancf.kernels.records`), made from the parts as :class:`rancf.system.system.System`
 gathers them (``system``: the system being built).
 """
@@ -12,12 +12,12 @@ import numpy as np
 from rancf.bodies.flexible import Model
 from rancf.bodies.rigid import RigidBody
 from rancf.errors import InputError
-from rancf.kernels.records import LoadRecord, PrescribedRecord, SpringRecord, vec3
-from rancf.system.connections import Load, Spring
+from rancf.kernels.records import LoadRecord, PrescribedRecord, vec3
+from rancf.system.connections import Load
 from rancf.system.places import Place
 from rancf.system.record_rows import RecordRows
 
-__all__ = ["motion_records", "spring_record", "all_loads", "load_record"]
+__all__ = ["motion_records", "all_loads", "load_record"]
 
 
 def motion_records(system: Any, rows: RecordRows) -> list[PrescribedRecord]:
@@ -38,29 +38,6 @@ def motion_records(system: Any, rows: RecordRows) -> list[PrescribedRecord]:
                 coord = system.offsets[name] + base + i
                 out.append(PrescribedRecord(coord, k, i, float(b.y_installed[base + i])))
     return out
-
-
-def spring_record(system: Any, s: Spring, rows: RecordRows) -> SpringRecord:
-    """The record of a linear spring-damper ``k (x_a - x_b) + c (v_a - v_b)`` (rest length:
-    its places' reference distance unless given)."""
-    a, b = system.place_pair(s.between, rows)
-    for key, v in (("springs.stiffness", s.stiffness), ("springs.damping", s.damping)):
-        if not (np.isfinite(v) and v >= 0):
-            raise InputError(key, v, "a finite number >= 0")
-    pa, pb = (system.resolve(x) for x in s.between)
-    xa = system.reference_position(pa) if pa.body is not None else None
-    xb = system.reference_position(pb) if pb.body is not None else None
-    ref = 0.0 if xa is None or xb is None else float(np.linalg.norm(xa - xb))
-    length = ref if s.length is None else float(s.length)
-    if length != 0.0 and ref <= 1e-12 * system.size:  # no direction where the places meet
-        raise InputError(
-            f"springs.{s.name or '/'.join(map(str, s.between))}.length",
-            length,
-            "0 where its places meet at the reference (ground sits at "
-            "the other place's reference): the linear spring-damper "
-            "k (x_a - x_b) + c (v_a - v_b)",
-        )
-    return SpringRecord(a, b, float(s.stiffness), float(s.damping), length)
 
 
 def all_loads(system: Any) -> list[Load]:

@@ -36,7 +36,7 @@ from rancf.system.core_data import (
 )
 from rancf.system.fluid import DistributedLoad, Fluid, Hydro, fluid_records
 from rancf.system.joint_data import joint_data
-from rancf.system.part_records import all_loads, load_record, motion_records, spring_record
+from rancf.system.part_records import all_loads, load_record, motion_records
 from rancf.system.places import Place
 from rancf.system.record_rows import RecordRows
 from rancf.system.sliding import (
@@ -59,7 +59,9 @@ class System(BodyStack):
     Parameters
     ----------
     bodies : mapping name -> Model | RigidBody | PointMass
-    joints, springs, loads : sequences of :class:`Joint`, :class:`Spring`, :class:`Load`
+    joints, springs, loads : sequences of :class:`Joint`, :class:`Spring` (or any spring
+        :class:`~rancf.system.part.Part`, e.g. a :class:`~rancf.system.parts.spring.SpringLaw`),
+        :class:`Load`
     gravity : ``(dim,)``, optional
         On rigid bodies and point masses.
     damping : float
@@ -148,7 +150,7 @@ class System(BodyStack):
         self._place_index: dict[Place, int] = {}
         parts: dict[str, Sequence[Any]] = {
             "prescribed": motion_records(self, rows),
-            "springs": [spring_record(self, s, rows) for s in springs],
+            "springs": [s.record(self, rows) for s in springs],  # Parts (system.part)
             "loads": [load_record(self, ld, rows) for ld in all_loads(self)],
             "linear": linear,
         }
