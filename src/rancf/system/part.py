@@ -1,4 +1,4 @@
-"""The interface of a system's physical items (a spring, ...): a :class:`Part`.
+"""The interface of a system's physical items (a spring, a joint, ...): a :class:`Part`.
 
 A Part is one item of a :class:`rancf.system.System` in a module of its own
 (:mod:`rancf.system.parts`).  It knows its name, what it reads (its fields, checked when it
@@ -58,6 +58,9 @@ class Part(Protocol):
         """The output columns it offers."""
         ...
 
-    def reactions(self, system: PartHost, y: NDArray) -> Mapping[str, float]:
-        """Its output columns' values at the coordinates ``y``."""
+    def reactions(
+        self, system: PartHost, y: NDArray, lam: NDArray, t: float = 0.0
+    ) -> Mapping[str, float]:
+        """Its output columns' values at the coordinates ``y``, multipliers ``lam``, time
+        ``t``."""
         ...

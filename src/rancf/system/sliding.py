@@ -25,7 +25,7 @@ from rancf.elements.cable import cable_shape_functions
 from rancf.errors import InputError
 from rancf.geometry.quadrature import gauss_legendre
 from rancf.kernels.records import JointRecord, SlidingRecord, floats
-from rancf.system.connections import Joint
+from rancf.system.joint_data import JointFields
 from rancf.system.places import Place
 
 __all__ = [
@@ -49,7 +49,7 @@ ON_BODY_RTOL = 1e-6
 _SAMPLES = 16
 
 
-def sliding_body(system: Any, j: Joint) -> tuple[str, Model]:
+def sliding_body(system: Any, j: JointFields) -> tuple[str, Model]:
     """The name and model of the flexible body of sliding joint ``j`` (its first place)."""
     spec = j.between[0]
     p = Place.parse(spec, system.single) if not isinstance(spec, Place) else spec
@@ -72,7 +72,7 @@ def sliding_body(system: Any, j: Joint) -> tuple[str, Model]:
     return str(p.body), body
 
 
-def sliding_pair(system: Any, j: Joint, rows: Any) -> tuple[int, int]:
+def sliding_pair(system: Any, j: JointFields, rows: Any) -> tuple[int, int]:
     """The place records of sliding joint ``j``: the body's node 0 (a placeholder the core
     does not evaluate) and the place it runs through (the ground at ``position``)."""
     name, body = sliding_body(system, j)
@@ -101,7 +101,7 @@ def sliding_pair(system: Any, j: Joint, rows: Any) -> tuple[int, int]:
     return a, system.place_index(b, rows, point)
 
 
-def sliding_record(system: Any, j: Joint, a: int, b: int) -> JointRecord:
+def sliding_record(system: Any, j: JointFields, a: int, b: int) -> JointRecord:
     """The core's record of sliding joint ``j`` between the place records ``a``, ``b``."""
     name, body = sliding_body(system, j)
     return JointRecord("sliding", a, b, body=system.flex.index(body))
@@ -189,7 +189,7 @@ def arc_length(body: Model, sigma: ArrayLike) -> NDArray[np.float64]:
     return out
 
 
-def sliding_records(system: Any, joints: Sequence[Joint]) -> tuple[SlidingRecord, ...]:
+def sliding_records(system: Any, joints: Sequence[JointFields]) -> tuple[SlidingRecord, ...]:
     """The core's record of the element geometry of every body a sliding joint runs along."""
     out: dict[str, SlidingRecord] = {}
     for j in joints:

@@ -24,8 +24,8 @@ from numpy.typing import ArrayLike, NDArray
 from rancf.bodies.closure import closure_terms
 from rancf.bodies.flexible import Model
 from rancf.errors import InputError
-from rancf.kernels.records import JointRecord, PlaceRecord, SystemModel, vec3
-from rancf.system.connections import JOINT_KINDS, Joint, Load, Spring
+from rancf.kernels.records import PlaceRecord, SystemModel, vec3
+from rancf.system.connections import Joint, Load, Spring
 from rancf.system.contact import CONTACT_POINTS, Obstacle, build_contact
 from rancf.system.core_data import (
     Attached,
@@ -35,13 +35,10 @@ from rancf.system.core_data import (
     system_model,
 )
 from rancf.system.fluid import DistributedLoad, Fluid, Hydro, fluid_records
-from rancf.system.joint_data import joint_data
-from rancf.system.part_records import all_loads, load_record, motion_records
+from rancf.system.part_records import all_loads, motion_records
 from rancf.system.places import Place
 from rancf.system.record_rows import RecordRows
 from rancf.system.sliding import (
-    sliding_pair,
-    sliding_record,
     sliding_records,
     sliding_starts,
     start_multipliers,
@@ -151,7 +148,7 @@ class System(BodyStack):
         parts: dict[str, Sequence[Any]] = {
             "prescribed": motion_records(self, rows),
             "springs": [s.record(self, rows) for s in springs],  # Parts (system.part)
-            "loads": [load_record(self, ld, rows) for ld in all_loads(self)],
+            "loads": [ld.record(self, rows) for ld in all_loads(self)],  # Parts
             "linear": linear,
         }
         self.fluid, self.hydro = fluid, dict(hydro or {})
@@ -170,11 +167,8 @@ class System(BodyStack):
             if p.body is None:
                 raise InputError("place", "ground", "a place on a body")
             self.place_index(p, rows)
-        pre = [self._place(j, rows) for j in joints]  # places first: their reference frames
-        frames = place_frames(self._model(rows.records(**parts)), self.y0)
-        parts["joints"] = [
-            self._joint(j, ab, rows, frames) for j, ab in zip(joints, pre, strict=True)
-        ]
+        self._frames: list[tuple[NDArray, NDArray]] = []
+        parts["joints"] = [j.record(self, rows) for j in joints]  # Parts (system.part)
         self.winches = tuple(winches)
         self.winch_lengths, winch_tfs = winch_functions(self, self.winches, rows.tf)
         self.records = rows.records(**parts)
@@ -225,10 +219,7 @@ class System(BodyStack):
         g = np.empty(self.m)
         self.core.constraints(self.y0, 0.0, g, start_multipliers(self))
         for k, j in enumerate(self.joints):
-            rows = g[self.joint_rows[k] : self.joint_rows[k] + (2 if self.dim == 2 else 3)]
-            if j.kind == "slider":
-                rows = g[self.joint_rows[k] : self.joint_rows[k] + self.dim - 1]
-            gap = 0.0 if j.kind == "sliding" else float(np.linalg.norm(rows))  # sliding_starts
+            gap = j.reference_gap(g[self.joint_rows[k] :], self.dim)
             if not gap <= 1e-9 * self.size:
                 name = j.name or f"joints[{k}]"
                 raise InputError(
@@ -277,12 +268,13 @@ class System(BodyStack):
         return self.place_index(a, rows), self.place_index(b, rows, gp, motion)
 
     # ---------------------------------------------------------------- parts
-    def _place(self, j: Joint, rows: RecordRows) -> tuple[int, int]:
-        if j.kind not in JOINT_KINDS:
-            raise InputError("joints.kind", j.kind, f"one of {', '.join(JOINT_KINDS)}")
-        if j.kind == "sliding":  # a body through a place
-            return sliding_pair(self, j, rows)
-        return self.place_pair(j.between, rows, rows.tf(j.motion))
+    def reference_frames(self, rows: RecordRows) -> list[tuple[NDArray, NDArray]]:
+        """``(position, frame rows)`` of every place registered in ``rows`` so far, in the
+        reference configuration (:func:`rancf.system.core_data.place_frames`; evaluated again
+        only when places were added since): what joints measure their orientation data in."""
+        if len(self._frames) < len(rows.places):
+            self._frames = place_frames(self._model(rows.records()), self.y0)
+        return self._frames
 
     def _model(self, records: SystemRecords, attached: Attached | None = None) -> SystemModel:
         return system_model(
@@ -296,17 +288,6 @@ class System(BodyStack):
             self.stiffness_damping,
             attached or Attached(),
         )
-
-    def _joint(
-        self, j: Joint, ab: tuple[int, int], rows: RecordRows, frames: Sequence[tuple]
-    ) -> JointRecord:
-        """The core's record of joint ``j`` between the places ``ab``, its orientation data in
-        their reference ``frames`` (:func:`rancf.system.core_data.place_frames`)."""
-        a, b = ab
-        if j.kind == "sliding":
-            return sliding_record(self, j, a, b)
-        angle = rows.tf(j.angle) if j.angle is not None else -1
-        return joint_data(j, a, b, frames[a][1], frames[b][1], self.dim, angle)
 
     # ---------------------------------------------------------------- coordinates
     @property

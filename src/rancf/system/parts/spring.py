@@ -89,7 +89,9 @@ class Spring:
         """Its output column: the elastic tension ``NAME_tension`` [N]."""
         return (f"{self.name}_tension",)
 
-    def reactions(self, system: PartHost, y: NDArray) -> Mapping[str, float]:
+    def reactions(
+        self, system: PartHost, y: NDArray, lam: NDArray, t: float = 0.0
+    ) -> Mapping[str, float]:
         """The elastic tension (:meth:`tension` of the stretch) at the coordinates ``y``."""
         xa, _ = system.place_state(self.between[0], y)
         xb, _ = system.place_state(self.between[1], y)
