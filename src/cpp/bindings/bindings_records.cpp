@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "bindings/bindings_fields.hpp"
+#include "elements/registry.hpp"
 
 namespace rancf_bind {
 
@@ -207,7 +208,7 @@ void read_fluid(nb::handle fluid, nb::handle lines, const rancf::System& s, ranc
     rancf::LineFluid ln;
     ln.body = g.index("body", 0, s.flex.size(), "a flexible body");
     const rancf::Model& m = *s.flex[static_cast<std::size_t>(ln.body)];
-    if (m.kind == rancf::ElementKind::beam)
+    if (!rancf::kernel_for(m).centre_line)
       g.fail("body", "a body of cable or rod elements", "a beam body");
     ln.hydro = g.flag("hydro");
     ln.diameter = g.number("diameter");

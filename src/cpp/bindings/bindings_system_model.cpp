@@ -15,6 +15,7 @@
 #include "bindings/bindings_model.hpp"
 #include "bindings/bindings_records.hpp"
 #include "bindings/bindings_system.hpp"
+#include "elements/registry.hpp"
 
 namespace rancf_bind {
 
@@ -63,7 +64,7 @@ void read_winches(nb::handle list, SystemHolder& h) {
     rancf::Winch w;
     w.body = f.index("body", 0, s.flex.size(), "a flexible body");
     const rancf::Model& mod = *s.flex[static_cast<std::size_t>(w.body)];
-    if (mod.kind != rancf::ElementKind::cable)
+    if (!rancf::kernel_for(mod).winch)
       f.fail("body", "a body of cable elements", std::to_string(w.body));
     w.length = f.index("length", 0, s.tfs.size(), "a time function");
     w.length_set = f.number("length_set");
@@ -96,7 +97,7 @@ void read_sliding(nb::handle list, SystemHolder& h) {
   each(list, "model.sliding", [&](const Fields& f) {
     const int body = f.index("body", 0, s.flex.size(), "a flexible body");
     const rancf::Model& mod = *s.flex[static_cast<std::size_t>(body)];
-    if (mod.kind == rancf::ElementKind::beam || mod.reduced())
+    if (!rancf::kernel_for(mod).centre_line || mod.reduced())
       f.fail("body", "a body of cable or rod elements with C1 continuity", std::to_string(body));
     const auto ne = static_cast<std::size_t>(mod.n_el);
     rancf::SlidingBody b;

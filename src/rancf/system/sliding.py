@@ -31,7 +31,7 @@ from rancf.system.places import Place
 __all__ = [
     "sliding_body",
     "sliding_pair",
-    "sliding_record",
+    "sliding_joint",
     "sliding_records",
     "sliding_starts",
     "start_multipliers",
@@ -101,10 +101,11 @@ def sliding_pair(system: Any, j: JointFields, rows: Any) -> tuple[int, int]:
     return a, system.place_index(b, rows, point)
 
 
-def sliding_record(system: Any, j: JointFields, a: int, b: int) -> JointRecord:
-    """The core's record of sliding joint ``j`` between the place records ``a``, ``b``."""
-    name, body = sliding_body(system, j)
-    return JointRecord("sliding", a, b, body=system.flex.index(body))
+def sliding_joint(system: Any, j: JointFields, rows: Any) -> JointRecord:
+    """The core's record of sliding joint ``j``, its places registered in ``rows``
+    (:func:`sliding_pair`)."""
+    a, b = sliding_pair(system, j, rows)
+    return JointRecord("sliding", a, b, body=system.flex.index(sliding_body(system, j)[1]))
 
 
 def _nodal(body: Model, y: NDArray | None = None) -> NDArray:

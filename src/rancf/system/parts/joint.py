@@ -26,7 +26,7 @@ from rancf.errors import InputError
 from rancf.kernels.records import JointRecord
 from rancf.system.joint_data import joint_data
 from rancf.system.places import Place
-from rancf.system.sliding import sliding_pair, sliding_record
+from rancf.system.sliding import sliding_joint
 
 if TYPE_CHECKING:
     from rancf.system.record_rows import RecordRows
@@ -52,17 +52,15 @@ class Joint:
 
     def record(self, system: Any, rows: RecordRows) -> JointRecord:
         """The core's record: its places (and a moving ground's time function) registered in
-        ``rows``, its orientation data measured in their reference frames
-        (``system.reference_frames``, :mod:`rancf.system.joint_data`), a driven joint's angle
-        registered after them."""
+        ``rows`` with a driven joint's angle, its orientation data measured in their reference
+        frames (``system.reference_frames``, :mod:`rancf.system.joint_data`)."""
         if self.kind not in JOINT_KINDS:
             raise InputError("joints.kind", self.kind, f"one of {', '.join(JOINT_KINDS)}")
         if self.kind == "sliding":  # a body through a place
-            a, b = sliding_pair(system, self, rows)
-            return sliding_record(system, self, a, b)
-        a, b = system.place_pair(self.between, rows, rows.tf(self.motion))
+            return sliding_joint(system, self, rows)
+        motion, angle = rows.tf(self.motion), rows.tf(self.angle)
+        a, b = system.place_pair(self.between, rows, motion)
         frames = system.reference_frames(rows)
-        angle = rows.tf(self.angle) if self.angle is not None else -1
         return joint_data(self, a, b, frames[a][1], frames[b][1], system.dim, angle)
 
     def reference_gap(self, g: NDArray, dim: int) -> float:
