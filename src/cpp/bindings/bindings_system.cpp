@@ -87,29 +87,52 @@ void bind_system_setup(nb::class_<SystemHolder>& cls) {
          "model"_a,
          "A system from one model record (rancf.kernels.records.SystemModel: its flexible "
          "bodies' Models and the records of its parts), every part at once, read by field name.")
-      .def_static(
-          "place_frames",
-          [](nb::handle model, In y, double t) {
-            SystemHolder h;
-            read_places_only(model, h);
-            expect_size(y, static_cast<std::size_t>(h.s.n), "y");
+      .def_prop_ro(
+          "stiffness_damping", [](const SystemHolder& h) { return h.s.stiffness_damping; },
+          "Stiffness-proportional damping beta [s] of the flexible bodies (force beta K_T v).");
+}
+
+/// The bodies of a model record alone, to evaluate places on before the joints exist.
+struct PlaceFramesHolder {
+  SystemHolder h;
+};
+
+void bind_place_frames(nb::module_& mod) {
+  nb::class_<PlaceFramesHolder>(mod, "PlaceFrames",
+                                "The places of a model's bodies at a state, before its joints.")
+      .def(
+          "__init__",
+          [](PlaceFramesHolder* p, nb::handle model) {
+            new (p) PlaceFramesHolder();
+            read_places_only(model, p->h);
+          },
+          "model"_a,
+          "From a model record's bodies (its dim, models and rigid; places and time functions "
+          "are given at each call).")
+      .def(
+          "__call__",
+          [](PlaceFramesHolder& p, nb::handle places, nb::handle time_functions, In y, double t) {
+            rancf::System& s = p.h.s;
+            s.places.clear();
+            s.tfs.clear();
+            read_records({nb::list(), places, nb::list(), nb::list(), nb::list(), time_functions,
+                          nb::list(), nb::list()},
+                         s);
+            s.setup();
+            expect_size(y, static_cast<std::size_t>(s.n), "y");
             std::vector<std::tuple<std::vector<double>, std::vector<double>>> out;
-            for (const rancf::PlaceRef& p : h.s.places) {
+            for (const rancf::PlaceRef& pl : s.places) {
               rancf::PlaceEval e;
-              rancf::place_at(h.s, p, rancf::place_map(h.s, p), t, y.data(), e);
+              rancf::place_at(s, pl, rancf::place_map(s, pl), t, y.data(), e);
               std::vector<double> fr;
               for (int k = 0; k < e.nf; ++k) fr.insert(fr.end(), e.f[k], e.f[k] + 3);
               out.emplace_back(std::vector<double>(e.x, e.x + 3), std::move(fr));
             }
             return out;
           },
-          "model"_a, "y"_a, "t"_a = 0.0,
-          "(position (3), frame rows (3 k)) of every place of a model record at (y, t), read "
-          "from its bodies, time functions and places alone: the places' reference frames a "
-          "joint's record is measured in, before the joints exist.")
-      .def_prop_ro(
-          "stiffness_damping", [](const SystemHolder& h) { return h.s.stiffness_damping; },
-          "Stiffness-proportional damping beta [s] of the flexible bodies (force beta K_T v).");
+          "places"_a, "time_functions"_a, "y"_a, "t"_a = 0.0,
+          "(position (3), frame rows (3 k)) of each place record at (y, t) (the time functions "
+          "they refer to by position): the reference frames a joint's record is measured in.");
 }
 
 /// Fluid forces, sliding joints, drums, sizes and rows.
@@ -572,6 +595,7 @@ void bind_system(nb::module_& mod) {
   bind_system_balance(cls);
   bind_system_outputs(cls);
   bind_system_integrator(mod);
+  bind_place_frames(mod);
 }
 
 }  // namespace rancf_bind

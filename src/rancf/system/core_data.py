@@ -36,7 +36,7 @@ __all__ = [
     "Attached",
     "system_model",
     "build_core",
-    "place_frames",
+    "PlaceFrames",
     "rigid_record",
 ]
 
@@ -119,10 +119,20 @@ def build_core(model: SystemModel) -> _core.System:
     return _core.System(model)
 
 
-def place_frames(model: SystemModel, y: NDArray) -> list[tuple[NDArray, NDArray]]:
-    """``(position (3,), frame rows (k, 3))`` of every place of ``model`` at ``y``, ``t = 0``,
-    from its bodies, time functions and places alone (the joints' reference frames)."""
-    return [
-        (np.asarray(x), np.asarray(f).reshape(-1, 3))
-        for x, f in _core.System.place_frames(model, np.ascontiguousarray(y, dtype=float), 0.0)
-    ]
+class PlaceFrames:
+    """The places of a model's bodies in their reference configuration, evaluated as they are
+    made (the joints' reference frames): built once from the bodies of ``model``
+    (:class:`rancf.kernels._core.PlaceFrames`)."""
+
+    def __init__(self, model: SystemModel) -> None:
+        self._core = _core.PlaceFrames(model)
+        self._y = np.ascontiguousarray(model.y_ref, dtype=float)
+
+    def __call__(
+        self, places: Sequence[PlaceRecord], time_functions: Sequence[TimeFunctionRecord]
+    ) -> list[tuple[NDArray, NDArray]]:
+        """``(position (3,), frame rows (k, 3))`` of each of ``places`` at ``t = 0``."""
+        return [
+            (np.asarray(x), np.asarray(f).reshape(-1, 3))
+            for x, f in self._core(list(places), list(time_functions), self._y, 0.0)
+        ]

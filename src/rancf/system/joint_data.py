@@ -25,7 +25,7 @@ from numpy.typing import NDArray
 from rancf.errors import InputError
 from rancf.kernels.records import JointRecord, floats
 
-__all__ = ["JointFields", "joint_data", "normals"]
+__all__ = ["JointFields", "joint_data", "normals", "uses_frames"]
 
 
 class JointFields(Protocol):
@@ -78,6 +78,12 @@ def _record(info: dict[str, Any]) -> JointRecord:
     vectors = ("rel", "axis_a", "normals_b", "w_a", "w_b")
     fields: dict[str, Any] = {k: floats(v) if k in vectors else v for k, v in info.items()}
     return JointRecord(**fields)
+
+
+def uses_frames(j: JointFields) -> bool:
+    """Whether the record of ``j`` reads its places' reference frames: a fixed, slider or
+    revolute joint, or a driven one (a pin's positions need none)."""
+    return j.kind in ("fixed", "slider", "revolute") or j.angle is not None
 
 
 def joint_data(

@@ -29,9 +29,9 @@ from rancf.system.connections import Joint, Load, Spring
 from rancf.system.contact import CONTACT_POINTS, Obstacle, build_contact
 from rancf.system.core_data import (
     Attached,
+    PlaceFrames,
     SystemRecords,
     build_core,
-    place_frames,
     system_model,
 )
 from rancf.system.fluid import DistributedLoad, Fluid, Hydro, fluid_records
@@ -168,6 +168,7 @@ class System(BodyStack):
                 raise InputError("place", "ground", "a place on a body")
             self.place_index(p, rows)
         self._frames: list[tuple[NDArray, NDArray]] = []
+        self._place_frames: PlaceFrames | None = None  # the bodies alone (reference_frames)
         parts["joints"] = [j.record(self, rows) for j in joints]  # Parts (system.part)
         self.winches = tuple(winches)
         self.winch_lengths, winch_tfs = winch_functions(self, self.winches, rows.tf)
@@ -270,10 +271,13 @@ class System(BodyStack):
     # ---------------------------------------------------------------- parts
     def reference_frames(self, rows: RecordRows) -> list[tuple[NDArray, NDArray]]:
         """``(position, frame rows)`` of every place registered in ``rows`` so far, in the
-        reference configuration (:func:`rancf.system.core_data.place_frames`; evaluated again
-        only when places were added since): what joints measure their orientation data in."""
-        if len(self._frames) < len(rows.places):
-            self._frames = place_frames(self._model(rows.records()), self.y0)
+        reference configuration (:class:`rancf.system.core_data.PlaceFrames`; the places added
+        since the last call only): what joints measure their orientation data in."""
+        done = len(self._frames)
+        if done < len(rows.places):  # the new places only
+            if self._place_frames is None:
+                self._place_frames = PlaceFrames(self._model(SystemRecords()))
+            self._frames += self._place_frames(rows.places[done:], rows.tfs)
         return self._frames
 
     def _model(self, records: SystemRecords, attached: Attached | None = None) -> SystemModel:

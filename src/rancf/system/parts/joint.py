@@ -24,7 +24,7 @@ from numpy.typing import NDArray
 from rancf.bodies.time_function import TimeFunction
 from rancf.errors import InputError
 from rancf.kernels.records import JointRecord
-from rancf.system.joint_data import joint_data
+from rancf.system.joint_data import joint_data, uses_frames
 from rancf.system.places import Place
 from rancf.system.sliding import sliding_joint
 
@@ -60,8 +60,11 @@ class Joint:
             return sliding_joint(system, self, rows)
         motion, angle = rows.tf(self.motion), rows.tf(self.angle)
         a, b = system.place_pair(self.between, rows, motion)
-        frames = system.reference_frames(rows)
-        return joint_data(self, a, b, frames[a][1], frames[b][1], system.dim, angle)
+        fa = fb = np.zeros((0, 3))  # a pin reads no frames
+        if uses_frames(self):
+            frames = system.reference_frames(rows)
+            fa, fb = frames[a][1], frames[b][1]
+        return joint_data(self, a, b, fa, fb, system.dim, angle)
 
     def reference_gap(self, g: NDArray, dim: int) -> float:
         """How far apart its places are, from its constraint rows ``g`` (from its first row on)
