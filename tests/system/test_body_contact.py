@@ -343,6 +343,7 @@ def test_the_solver_of_a_coiled_rope_matches_a_dense_solve():
     src/cpp/linalg/bordered.cpp). In the coil, the factored tangent solves as a dense solve of
     the same matrix does."""
     from rancf.kernels import _core
+    from rancf.kernels.call_records import StaticOptions, StaticPoint
 
     rope = Model(
         mesh_line([0.0, 0.005], [0.02, 2.0], 40),
@@ -381,7 +382,7 @@ def test_the_solver_of_a_coiled_rope_matches_a_dense_solve():
     integ = _core.SystemIntegrator(s.core, scheme)
     stab, lam, z = 1e6, np.zeros(s.m), np.zeros(s.n)
     r = np.empty(s.n + s.m)
-    assert integ.factor_static(y, lam, 1.0, False, 0.0, r, stab=stab)
+    assert integ.factor_static(StaticPoint(y, lam, r), StaticOptions(1.0, False, 0.0, stab=stab))
     jac = np.empty((s.n + s.m) ** 2)
     assert s.core.dense_jacobian(y, z, z, lam, 0.0, 1.0, 0.0, stab, out=jac)
     jac = jac.reshape(s.n + s.m, s.n + s.m)

@@ -386,7 +386,7 @@ void subtract_load_stiffness(const Model& m, double t, const double* y, const Ba
 }
 
 void rereference(const Model& m, const double* y) {
-  if (m.kind != ElementKind::rod) return;
+  if (!kernel_for(m).triads) return;
   std::array<double, 3> rx{};
   for (int node = 0; node < m.n_nodes; ++node) {
     nodal_gradient(m, y, node, rx.data());

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "bodies/assembly.hpp"
+#include "elements/registry.hpp"
 
 namespace rancf {
 
@@ -29,7 +30,7 @@ void depth_ratios(double k, double h, double zs, double& cr, double& sr) {
 /// Offset in an element's coordinates of its position/gradient block k (0: rA, 1: rA', 2: rB,
 /// 3: rB'): cables k dim, rods as rod_common.hpp (a twist after each node's gradient).
 int block_offset(const Model& m, int k) {
-  if (m.kind == ElementKind::rod) {
+  if (kernel_for(m).triads) {
     constexpr int off[4] = {0, 3, 7, 10};
     return off[k];
   }
