@@ -166,3 +166,53 @@ def test_touchdown_of_a_mooring_line_against_the_catenary():
     assert abs(v["td_y"] + 100.0) < 0.05 * 0.108
     anchor = w * 330.0 - v["fair_y"] - v["bed_y"]  # the anchor's share of the weight
     assert abs((v["bed_y"] + anchor) / (w * laid) - 1) < 2e-3
+
+
+def _paid_out_in_water(t_end: float) -> dict:
+    """A steel cable hanging in water from a winch that pays it out from 5 m to 15 m in 10 s
+    (strain-rate damping settles the axial waves of the stop)."""
+    cable = {
+        "name": "cable",
+        "geometry": {"kind": "line", "start": [0.0, 0.0], "end": [0.0, -5.0]},
+        "mesh": {"elements": 10},
+        "section": {"radius": 0.005},
+        "material": {"density": 7850.0, "youngs_modulus": 2.0e11},
+        "damping": {"axial": 2.0e4},
+        "hydro": {"diameter": 0.01, "drag_normal": 1.2},
+    }
+    return {
+        "bodies": [cable],
+        "fluid": {"density": RHO_W},
+        "supports": [{"at": "cable:start", "kind": "pin"}],
+        "winches": [
+            {
+                "name": "drum",
+                "at": "cable:start",
+                "position": [0.0, 0.0],
+                "length": {"table": [[0.0, 5.0], [10.0, 15.0]], "build_up": 2.0},
+            }
+        ],
+        "loads": {"gravity": [0.0, -G]},
+        "damping": {"mass_proportional": 0.5},
+        "solver": {"t_end": t_end, "step": 0.01, "initial_state": "static"},
+        "sensors": [
+            {"name": "top", "kind": "reaction", "at": "cable:start"},
+            {"name": "fluid", "kind": "fluid_force"},
+        ],
+    }
+
+
+def test_a_line_paid_out_in_water_carries_its_submerged_weight_at_its_new_length():
+    """Buoyancy (every fluid term) is per unstretched length: a line paid out from 5 to 15 m
+    hangs with its submerged weight of 15 m, and the fluid force output is the buoyancy of
+    15 m, not of the 5 m its arrays were built at."""
+    import rancf
+    from rancf.scenario import parse_scenario
+
+    result, names, values = rancf.simulate(parse_scenario(_paid_out_in_water(22.0)))
+    last = dict(zip(names, values[-1], strict=True))
+    area = math.pi * 0.005**2
+    submerged = (7850.0 - RHO_W) * G * area * 15.0
+    buoyancy = RHO_W * G * area * 15.0
+    assert abs(last["top_y"] / submerged - 1) < 1e-6, last
+    assert abs(last["fluid_y"] / buoyancy - 1) < 1e-6, last

@@ -160,7 +160,7 @@ struct LineElements {
       const std::size_t iq = sz(el * nq + q);
       const double* S = line.n0.data() + 4 * iq;
       const double* S1 = line.n1.data() + 4 * iq;
-      const double w = line.gw[sz(q)] * line.j0[iq];
+      const double w = line.gw[sz(q)] * line.j0[iq] * tm.length_ratio;
       double x[3] = {}, a[3] = {}, vel[3] = {}, ac[3] = {};
       for (int k = 0; k < 4; ++k)
         for (int i = 0; i < dim; ++i) {

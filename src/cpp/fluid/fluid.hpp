@@ -82,6 +82,9 @@ struct LineTerms {
   double ck = 1.0, cv = 0.0, ca = 0.0;
   double load_factor = 1.0;  ///< on drag, buoyancy and loads (statics' load stepping)
   const std::vector<TimeFunction>* tfs = nullptr;
+  /// the unstretched length over the one the line's arrays hold (a winch's L(t) / length_set):
+  /// every term is per unstretched length, so its measure j0 dxi scales with it
+  double length_ratio = 1.0;
 };
 
 /// Add -Q of line `line` of model m at (y, v, acc) (v, acc null: statics, no inertia, no waves)

@@ -265,7 +265,7 @@ void flexible_terms(const Stage& st, std::vector<DrumRow>& drums) {
         tm.own[o + i] =
             tm.distributed_only ? 0.0 : tm.load_factor * (g[sz(i)] - mod.loads.f_gravity[i]);
     if (s.fluid != nullptr) {  // buoyancy, Morison loads, distributed loads (fluid.hpp)
-      const LineTerms lt{tm.tf, tm.ck, tm.cv, tm.ca, tm.load_factor, &s.tfs};
+      const LineTerms lt{tm.tf, tm.ck, tm.cv, tm.ca, tm.load_factor, &s.tfs, ws.ratio};
       for (const LineFluid& ln : s.fluid->lines)
         if (ln.body == static_cast<int>(b))
           assemble_line(mod, *s.fluid, ln, yf + o, am != nullptr ? vf + o : nullptr,
@@ -764,10 +764,12 @@ void fluid_forces(const System& s, const double* y, const double* v, const doubl
   std::fill(out, out + 3 * s.flex.size(), 0.0);
   if (s.fluid == nullptr) return;
   std::vector<double> r;
-  const LineTerms lt{t, 1.0, 0.0, 0.0, 1.0, &s.tfs};
+  LineTerms lt{t, 1.0, 0.0, 0.0, 1.0, &s.tfs};
   for (const LineFluid& ln : s.fluid->lines) {
     const std::size_t b = sz(ln.body);
     const int o = s.offset[b];
+    const Winch* win = winch_of(s, b);  // a winch's line: its terms at its length L(t)
+    lt.length_ratio = win != nullptr ? winch_state(s, *win, t, y).ratio : 1.0;
     r.assign(sz(s.flex[b]->n()), 0.0);
     assemble_line(*s.flex[b], *s.fluid, ln, y + o, a != nullptr ? v + o : nullptr,
                   a != nullptr ? a + o : nullptr, lt, r.data(), nullptr, out + 3 * b);

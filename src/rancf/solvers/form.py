@@ -5,7 +5,7 @@ For every flexible body with a ``[form]`` (:mod:`rancf.scenario.form`: ``sag``,
 ``horizontal_tension`` or ``end_tension``), :func:`find_form` solves the scalar equation
 ``m(L) = target``, ``m`` the measure of the static equilibrium (:func:`solve_static`) of the
 scenario's system with the body's unstretched length ``L``
-(:func:`~rancf.bodies.length.set_unstretched_length`, in place on one system):
+(:func:`~rancf.bodies.length.set_unstretched_length` on the body, the system built at that length):
 
 * the sag: the largest vertical distance (against gravity) of the body's centre line below the
   chord between its end nodes, sampled at :data:`SAMPLES` points per element;
