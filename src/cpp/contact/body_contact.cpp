@@ -30,16 +30,26 @@ void shape(const ContactBody& cb, int el, double xi, double* N, double* N1, doub
 
 double dot3(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
-/// The closest point of element f (coordinates e) to x: xi in [0, 1], the shape functions there;
-/// Newton from the best of five samples, or from start (>= 0: a closest point known nearby).
-double project(const Model& m, const ContactBody& cb, int f, const double* e, const double* x,
-               double* N, double start = -1.0) {
-  double best = start, dmin = 1e300, y[3], N1[4], N2[4];
+/// A closest point on an element: its coordinate xi, the shape functions and their first and
+/// second xi-derivatives there, and the curve's point and derivatives y, y', y''.
+struct Projection {
+  double xi = 0.0;
+  double N[4], N1[4], N2[4];
+  double y[3], y1[3], y2[3];
+};
+
+/// The closest point of element f (coordinates e) to x, xi in [0, 1] (project): Newton on
+/// h = (y - x) . y' = 0 (step -h / h', or -h / |y'|^2 where h' <= 0) from the best of five
+/// samples, or from start (>= 0: a closest point known nearby); it stops where the step is
+/// below 1e-13 (or is clamped to nothing at an end), keeping the point it evaluated.
+void project(const Model& m, const ContactBody& cb, int f, const double* e, const double* x,
+             Projection& p, double start = -1.0) {
+  double best = start, dmin = 1e300;
   for (int s = 0; s <= 4 && start < 0.0; ++s) {
     const double xi = 0.25 * s;
-    shape(cb, f, xi, N, nullptr, nullptr);
-    contact_point::point_of(m, N, e, y);
-    const double dd[3] = {y[0] - x[0], y[1] - x[1], y[2] - x[2]};
+    shape(cb, f, xi, p.N, nullptr, nullptr);
+    contact_point::point_of(m, p.N, e, p.y);
+    const double dd[3] = {p.y[0] - x[0], p.y[1] - x[1], p.y[2] - x[2]};
     if (dot3(dd, dd) < dmin) {
       dmin = dot3(dd, dd);
       best = xi;
@@ -47,21 +57,18 @@ double project(const Model& m, const ContactBody& cb, int f, const double* e, co
   }
   double xi = best;
   for (int it = 0; it < 30; ++it) {
-    double y1[3], y2[3];
-    shape(cb, f, xi, N, N1, N2);
-    contact_point::point_of(m, N, e, y);
-    contact_point::point_of(m, N1, e, y1);
-    contact_point::point_of(m, N2, e, y2);
-    const double dd[3] = {y[0] - x[0], y[1] - x[1], y[2] - x[2]};
-    const double h = dot3(dd, y1), dh = dot3(y1, y1) + dot3(dd, y2);
-    const double step = dh > 0.0 ? -h / dh : -h / dot3(y1, y1);
+    shape(cb, f, xi, p.N, p.N1, p.N2);
+    contact_point::point_of(m, p.N, e, p.y);
+    contact_point::point_of(m, p.N1, e, p.y1);
+    contact_point::point_of(m, p.N2, e, p.y2);
+    const double dd[3] = {p.y[0] - x[0], p.y[1] - x[1], p.y[2] - x[2]};
+    const double h = dot3(dd, p.y1), dh = dot3(p.y1, p.y1) + dot3(dd, p.y2);
+    const double step = dh > 0.0 ? -h / dh : -h / dot3(p.y1, p.y1);
     const double next = std::clamp(xi + step, 0.0, 1.0);
-    const bool done = std::abs(next - xi) < 1e-15;
+    if (std::abs(next - xi) < 1e-13) break;
     xi = next;
-    if (done) break;
   }
-  shape(cb, f, xi, N, nullptr, nullptr);
-  return xi;
+  p.xi = xi;
 }
 
 /// One body pair's geometry: bodies, radii, the element coordinates at a state.
@@ -71,9 +78,80 @@ struct Side {
   int body = 0, offset = 0;
 };
 
+/// The reference arc length of point q of element e along its body (the points' quadrature).
+double point_arc(const ContactBody& cb, int e, int q) {
+  double s = cb.arc0[sz(e)];
+  for (int k = 0; k <= q; ++k) s += cb.w[sz(e * cb.n_c + k)] * (k == q ? 0.5 : 1.0);
+  return s;
+}
+
+/// Self-contact ignores points less than this reference arc length apart (body_contact.hpp).
+double excluded_arc(const Side& A, const Side& B) { return M_PI * (A.cb->radius + B.cb->radius); }
+
+/// A lower bound of the distance from x to the part [lo, hi] of element f's curve (lo < hi):
+/// the curve is a rational cubic Bezier curve, y = sum_i R_i P_i with the weights w_i > 0 of the
+/// element and the control points P0 = r0, P1 = r0 + c1 r0', P2 = r1 + c3 r1', P3 = r1 (the
+/// coefficients of cable_shape), so that its part on [lo, hi] (de Casteljau's subdivision of
+/// the homogeneous points) lies in the convex hull of that part's control points Q0..Q3, hence
+/// in the capsule about the chord Q0 Q3 through Q1 and Q2.  -1 (no bound) for weights <= 0.
+double distance_bound(const Model& m, const ContactBody& cb, int f, const double* e,
+                      const double* x, double lo, double hi) {
+  const double* w = cb.weights.data() + 4 * f;
+  const double l = cb.scales[sz(f)];
+  if (!(w[0] > 0.0 && w[1] > 0.0 && w[2] > 0.0 && w[3] > 0.0)) return -1.0;
+  const double c[2] = {l * w[0] / (3.0 * w[1]), -l * w[3] / (3.0 * w[2])};
+  double h[4][4] = {};  // homogeneous control points (w P, w)
+  for (int i = 0; i < m.dim; ++i) {
+    const double r0 = e[i], d0 = e[m.dim + i], r1 = e[m.dpn + i], d1 = e[m.dpn + m.dim + i];
+    const double P[4] = {r0, r0 + c[0] * d0, r1 + c[1] * d1, r1};
+    for (int k = 0; k < 4; ++k) h[k][i] = w[k] * P[k];
+  }
+  for (int k = 0; k < 4; ++k) h[k][3] = w[k];
+  auto split = [&h](double t, bool left) {  // keep [0, t] (left) or [t, 1] of the curve
+    double b[4][4][4];
+    for (int k = 0; k < 4; ++k)
+      for (int i = 0; i < 4; ++i) b[0][k][i] = h[k][i];
+    for (int r = 1; r < 4; ++r)
+      for (int k = 0; k + r < 4; ++k)
+        for (int i = 0; i < 4; ++i)
+          b[r][k][i] = (1.0 - t) * b[r - 1][k][i] + t * b[r - 1][k + 1][i];
+    for (int k = 0; k < 4; ++k)
+      for (int i = 0; i < 4; ++i) h[k][i] = left ? b[k][0][i] : b[3 - k][k][i];
+  };
+  if (hi < 1.0) split(hi, true);
+  if (lo > 0.0) split(lo / hi, false);
+  double Q[4][3] = {};
+  for (int k = 0; k < 4; ++k)
+    for (int i = 0; i < 3; ++i) Q[k][i] = h[k][i] / h[k][3];
+  const double seg[6] = {Q[0][0], Q[0][1], Q[0][2], Q[3][0], Q[3][1], Q[3][2]};
+  const double off = std::max(to_segment(seg, Q[1]), to_segment(seg, Q[2]));
+  return to_segment(seg, x) - off;
+}
+
+/// Self-contact: whether point q of element e (at x) is out of reach of the part of element f
+/// outside its excluded arc (body_contact.hpp): that part empty, or farther from x than reach
+/// (distance_bound).  A point for which this holds has no kept projection within reach.
+bool window_out_of_reach(const Side& A, const Side& B, int e, int q, int f, const double* eb,
+                         const double* x, double reach) {
+  const double s_pt = point_arc(*A.cb, e, q), ex = excluded_arc(A, B);
+  const double s0 = B.cb->arc0[sz(f)], len = B.cb->arc0[sz(f + 1)] - s0;
+  if (!(len > 0.0)) return false;
+  // the xi of f at least ex away from s_pt along the body: one interval (s_pt is outside f)
+  double lo = 0.0, hi = 1.0;
+  if (s_pt <= s0)
+    lo = std::max(lo, (s_pt + ex - s0) / len);
+  else
+    hi = std::min(hi, (s_pt - ex - s0) / len);
+  if (lo <= 0.0 && hi >= 1.0) return false;  // all of f counts: the capsule decided
+  if (!(lo < hi)) return true;
+  const double d = distance_bound(*B.m, *B.cb, f, eb, x, lo, hi);
+  return d > reach;
+}
+
 /// A contact point x of side A against its closest point y(eta) on element f of side B
-/// (body_contact.hpp): the gap, the normal, and (Jacobian wanted) the gap's gradient G and
-/// Hessian Hg over the coordinates of both elements (n = na + nb):
+/// (body_contact.hpp): the gap and the normal (pair_geometry), and on demand (pair_gradient)
+/// the gap's gradient G and (pair_hessian) Hessian Hg over the coordinates of both elements
+/// (n = na + nb):
 ///   J dq = N_A de - N_B(eta) df  (the relative displacement at fixed eta),  G = J^T n,
 ///   Hg = (J^T P J - c b b^T) / rho,  P = I - n n^T,  c = |y'|^2 - rho n . y'',
 ///   b = (J^T y' + rho T^T n) / c (d eta = b . dq),  T dq = N_B'(eta) df,
@@ -81,63 +159,59 @@ struct Side {
 /// eta is fixed (no b term).
 struct Pair {
   bool kept = false;  ///< a valid projection (inside the element or at a free end)
-  double xi = 0.0;    ///< the closest point's element coordinate
+  bool at_end = false;
+  double xi = 0.0;  ///< the closest point's element coordinate
   double g = 0.0, rho = 0.0, n[3] = {0.0, 0.0, 0.0};
-  double Nb[4] = {0.0, 0.0, 0.0, 0.0};   ///< B's shape functions at the closest point
-  double Nb1[4] = {0.0, 0.0, 0.0, 0.0};  ///< and their eta-derivatives
+  const double* Na = nullptr;  ///< A's shape functions at the point
+  Projection pr;               ///< B's closest point (shape functions, y, y', y'')
   std::array<double, 2 * kMaxElementDofs> G{};
   std::vector<double> Hg;  ///< (n x n), if asked for
   /// J and T (3 x n, row-major), and (if asked for) b (d eta = b . dq; zero at a free end or
-  /// where the projection is no minimum) and y' = dy/d eta: the friction's tangent
+  /// where the projection is no minimum): the friction's tangent
   std::array<double, 3 * 2 * kMaxElementDofs> J{}, T{};
   std::array<double, 2 * kMaxElementDofs> b{};
-  double yt[3] = {0.0, 0.0, 0.0};
 };
 
 void pair_geometry(const Side& A, const Side& B, int e, int q, int f, const double* ea,
-                   const double* eb, bool hess, Pair& out, double start = -1.0) {
+                   const double* eb, Pair& out, double start = -1.0) {
   const Model& ma = *A.m;
   const Model& mb = *B.m;
-  const int na = ma.nde(), n = na + mb.nde();
-  const double* Na = A.cb->N.data() + 4 * (e * A.cb->n_c + q);
-  double x[3], y[3], Nb[4], Nb1[4], Nb2[4], y1[3], y2[3];
-  contact_point::point_of(ma, Na, ea, x);
-  const double xi = project(mb, *B.cb, f, eb, x, Nb, start);
+  out.Na = A.cb->N.data() + 4 * (e * A.cb->n_c + q);
+  double x[3];
+  contact_point::point_of(ma, out.Na, ea, x);
+  project(mb, *B.cb, f, eb, x, out.pr, start);
+  const double xi = out.pr.xi;
   out.xi = xi;
-  const bool at_end = xi == 0.0 || xi == 1.0;
+  out.at_end = xi == 0.0 || xi == 1.0;
   out.kept = false;
-  if (at_end && !((xi == 0.0 && f == 0) || (xi == 1.0 && f == mb.n_el - 1))) return;
+  if (out.at_end && !((xi == 0.0 && f == 0) || (xi == 1.0 && f == mb.n_el - 1))) return;
   if (A.body == B.body) {  // self-contact: not near along the body
-    double s_pt = A.cb->arc0[sz(e)];
-    for (int k = 0; k <= q; ++k) s_pt += A.cb->w[sz(e * A.cb->n_c + k)] * (k == q ? 0.5 : 1.0);
     const double s_y = B.cb->arc0[sz(f)] + xi * (B.cb->arc0[sz(f + 1)] - B.cb->arc0[sz(f)]);
-    if (std::abs(s_pt - s_y) < M_PI * (A.cb->radius + B.cb->radius)) return;
+    if (std::abs(point_arc(*A.cb, e, q) - s_y) < excluded_arc(A, B)) return;
   }
-  shape(*B.cb, f, xi, Nb, Nb1, Nb2);
-  for (int k = 0; k < 4; ++k) {
-    out.Nb[k] = Nb[k];
-    out.Nb1[k] = Nb1[k];
-  }
-  contact_point::point_of(mb, Nb, eb, y);
+  const double* y = out.pr.y;
   const double d[3] = {x[0] - y[0], x[1] - y[1], x[2] - y[2]};
   out.rho = std::sqrt(dot3(d, d));
   out.g = out.rho - A.cb->radius - B.cb->radius;
   out.kept = out.rho > 0.0;
   if (!out.kept) return;
   for (int i = 0; i < 3; ++i) out.n[i] = d[i] / out.rho;
-  // J (3 x n) and T (3 x n), row-major
+}
+
+/// J, T and G of a kept pair (pair_geometry).
+void pair_gradient(const Model& ma, const Model& mb, Pair& out) {
+  const int na = ma.nde(), n = na + mb.nde();
   auto& J = out.J;
   auto& T = out.T;
-  std::fill(J.begin(), J.end(), 0.0);
-  std::fill(T.begin(), T.end(), 0.0);
-  std::fill(out.b.begin(), out.b.end(), 0.0);
+  std::fill(J.begin(), J.begin() + 3 * n, 0.0);
+  std::fill(T.begin(), T.begin() + 3 * n, 0.0);
   for (int k = 0; k < 4; ++k) {
     const int oa = (k / 2) * ma.dpn + (k % 2) * ma.dim,
               ob = na + (k / 2) * mb.dpn + (k % 2) * mb.dim;
     for (int i = 0; i < ma.dim; ++i) {
-      J[sz(i * n + oa + i)] += Na[k];
-      J[sz(i * n + ob + i)] -= Nb[k];
-      T[sz(i * n + ob + i)] += Nb1[k];
+      J[sz(i * n + oa + i)] += out.Na[k];
+      J[sz(i * n + ob + i)] -= out.pr.N[k];
+      T[sz(i * n + ob + i)] += out.pr.N1[k];
     }
   }
   for (int a = 0; a < n; ++a) {
@@ -145,10 +219,15 @@ void pair_geometry(const Side& A, const Side& B, int e, int q, int f, const doub
     for (int i = 0; i < 3; ++i) v += J[sz(i * n + a)] * out.n[i];
     out.G[sz(a)] = v;
   }
-  if (!hess) return;
-  contact_point::point_of(mb, Nb1, eb, y1);
-  contact_point::point_of(mb, Nb2, eb, y2);
-  for (int i = 0; i < 3; ++i) out.yt[i] = y1[i];
+}
+
+/// Hg and b of a kept pair after pair_gradient (pair_geometry).
+void pair_hessian(int n, Pair& out) {
+  const auto& J = out.J;
+  const auto& T = out.T;
+  const double* y1 = out.pr.y1;
+  const double* y2 = out.pr.y2;
+  std::fill(out.b.begin(), out.b.end(), 0.0);
   out.Hg.assign(sz(n * n), 0.0);
   // J^T P J = J^T J - G G^T
   for (int a = 0; a < n; ++a)
@@ -157,7 +236,7 @@ void pair_geometry(const Side& A, const Side& B, int e, int q, int f, const doub
       for (int i = 0; i < 3; ++i) v += J[sz(i * n + a)] * J[sz(i * n + c)];
       out.Hg[sz(a * n + c)] = v / out.rho;
     }
-  if (at_end) return;
+  if (out.at_end) return;
   const double cc = dot3(y1, y1) - out.rho * dot3(out.n, y2);
   if (!(cc > 0.0)) return;  // a projection that is no minimum: the first order terms only
   auto& bb = out.b;
@@ -214,11 +293,11 @@ void friction(const BodyPair& bp, const Side& A, const Side& B, const Pair& pf, 
   }
   if (K == nullptr) return;
   double yd[3];  // y.' = N_B'(eta) v_B: the rate of the tangent at the material point
-  contact_point::point_of(mb, pf.Nb1, vb, yd);
+  contact_point::point_of(mb, pf.pr.N1, vb, yd);
   double Pyt[3], Pyd[3];
-  const double nyt = dot3(pf.n, pf.yt), nyd = dot3(pf.n, yd);
+  const double nyt = dot3(pf.n, pf.pr.y1), nyd = dot3(pf.n, yd);
   for (int i = 0; i < 3; ++i) {
-    Pyt[i] = pf.yt[i] - nyt * pf.n[i];
+    Pyt[i] = pf.pr.y1[i] - nyt * pf.n[i];
     Pyd[i] = yd[i] - nyd * pf.n[i];
   }
   std::array<double, 3 * 2 * kMaxElementDofs> Dn{}, M{};  // dn/dq, then Pphi dv_t/d(q, v)
@@ -260,7 +339,7 @@ double point_force(const BodyPair& bp, const Side& A, const Side& B, int e, int 
                    double cv = 0.0, double* K = nullptr, double c1 = 1.0) {
   const int n = A.m->nde() + B.m->nde();
   Pair pf;
-  pair_geometry(A, B, e, q, f, ea, eb, false, pf);
+  pair_geometry(A, B, e, q, f, ea, eb, pf);
   std::fill(fe, fe + n, 0.0);
   *pw = 0.0;
   if (!pf.kept) return 1e300;
@@ -271,7 +350,7 @@ double point_force(const BodyPair& bp, const Side& A, const Side& B, int e, int 
     pm = law.p(pf.g);
     dpf = law.slope(pf.g);
   } else {  // the step's mean pressure over [2 gf - g1, g1] (contact.hpp)
-    pair_geometry(A, B, e, q, f, ea1, eb1, false, p1, pf.xi);  // from the alpha point's
+    pair_geometry(A, B, e, q, f, ea1, eb1, p1, pf.xi);  // from the alpha point's
     if (!p1.kept) p1 = pf;
     const double ga = 2.0 * pf.g - p1.g;
     double dpa = 0.0;
@@ -280,7 +359,11 @@ double point_force(const BodyPair& bp, const Side& A, const Side& B, int e, int 
     dp1 -= dpa;
   }
   if (pm == 0.0 && dpf == 0.0 && dp1 == 0.0) return pf.g;
-  if (K != nullptr) pair_geometry(A, B, e, q, f, ea, eb, true, pf, pf.xi);  // the Hessian
+  pair_gradient(*A.m, *B.m, pf);
+  if (K != nullptr) {
+    pair_hessian(n, pf);
+    if (ea1 != nullptr) pair_gradient(*A.m, *B.m, p1);
+  }
   const double w = A.cb->w[sz(e * A.cb->n_c + q)];
   *pw = w * pm;
   for (int a = 0; a < n; ++a) fe[a] = w * pm * pf.G[sz(a)];
@@ -307,6 +390,12 @@ Side side(const System& s, const ContactSet& c, int body) {
 bool near(const Broad& br, int ea, int fb, const double* x, double ra, double onset) {
   const auto& cap = br.capsule[sz(fb)];
   return to_segment(cap.data(), x) <= cap[6] + ra + onset + br.moved[sz(ea)];
+}
+
+/// The distance within which a point of element ea can touch element fb within a step: the
+/// tubes' radii, the onset and both elements' motion in a step (the broad phase's margins).
+double reach(const Broad& br, int ea, int fb, const Side& A, const Side& B, const BodyPair& bp) {
+  return A.cb->radius + B.cb->radius + bp.onset + br.moved[sz(ea)] + br.moved[sz(fb)];
 }
 
 /// Visit every kept (point, element) pair of every body pair in both directions at y:
@@ -349,6 +438,9 @@ void each_pair(const System& s, const ContactSet& c, const double* y, const doub
             double x[3];
             contact_point::point_of(*A.m, A.cb->N.data() + 4 * (e * A.cb->n_c + q), ea.data(), x);
             if (!near(br, sa, sb, x, A.cb->radius, bp.onset)) continue;
+            if (A.body == B.body &&
+                window_out_of_reach(A, B, e, q, f, eb.data(), x, reach(br, sa, sb, A, B, bp)))
+              continue;
           }
           double pw = 0.0;
           const double g =
