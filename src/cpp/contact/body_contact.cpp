@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <mutex>
 #include <unordered_map>
 #include <vector>
 
@@ -78,74 +79,17 @@ struct Side {
   int body = 0, offset = 0;
 };
 
-/// The reference arc length of point q of element e along its body (the points' quadrature).
-double point_arc(const ContactBody& cb, int e, int q) {
-  double s = cb.arc0[sz(e)];
-  for (int k = 0; k <= q; ++k) s += cb.w[sz(e * cb.n_c + k)] * (k == q ? 0.5 : 1.0);
-  return s;
-}
-
-/// Self-contact ignores points less than this reference arc length apart (body_contact.hpp).
-double excluded_arc(const Side& A, const Side& B) { return M_PI * (A.cb->radius + B.cb->radius); }
-
-/// A lower bound of the distance from x to the part [lo, hi] of element f's curve (lo < hi):
-/// the curve is a rational cubic Bezier curve, y = sum_i R_i P_i with the weights w_i > 0 of the
-/// element and the control points P0 = r0, P1 = r0 + c1 r0', P2 = r1 + c3 r1', P3 = r1 (the
-/// coefficients of cable_shape), so that its part on [lo, hi] (de Casteljau's subdivision of
-/// the homogeneous points) lies in the convex hull of that part's control points Q0..Q3, hence
-/// in the capsule about the chord Q0 Q3 through Q1 and Q2.  -1 (no bound) for weights <= 0.
-double distance_bound(const Model& m, const ContactBody& cb, int f, const double* e,
-                      const double* x, double lo, double hi) {
-  const double* w = cb.weights.data() + 4 * f;
-  const double l = cb.scales[sz(f)];
-  if (!(w[0] > 0.0 && w[1] > 0.0 && w[2] > 0.0 && w[3] > 0.0)) return -1.0;
-  const double c[2] = {l * w[0] / (3.0 * w[1]), -l * w[3] / (3.0 * w[2])};
-  double h[4][4] = {};  // homogeneous control points (w P, w)
-  for (int i = 0; i < m.dim; ++i) {
-    const double r0 = e[i], d0 = e[m.dim + i], r1 = e[m.dpn + i], d1 = e[m.dpn + m.dim + i];
-    const double P[4] = {r0, r0 + c[0] * d0, r1 + c[1] * d1, r1};
-    for (int k = 0; k < 4; ++k) h[k][i] = w[k] * P[k];
-  }
-  for (int k = 0; k < 4; ++k) h[k][3] = w[k];
-  auto split = [&h](double t, bool left) {  // keep [0, t] (left) or [t, 1] of the curve
-    double b[4][4][4];
-    for (int k = 0; k < 4; ++k)
-      for (int i = 0; i < 4; ++i) b[0][k][i] = h[k][i];
-    for (int r = 1; r < 4; ++r)
-      for (int k = 0; k + r < 4; ++k)
-        for (int i = 0; i < 4; ++i)
-          b[r][k][i] = (1.0 - t) * b[r - 1][k][i] + t * b[r - 1][k + 1][i];
-    for (int k = 0; k < 4; ++k)
-      for (int i = 0; i < 4; ++i) h[k][i] = left ? b[k][0][i] : b[3 - k][k][i];
-  };
-  if (hi < 1.0) split(hi, true);
-  if (lo > 0.0) split(lo / hi, false);
-  double Q[4][3] = {};
-  for (int k = 0; k < 4; ++k)
-    for (int i = 0; i < 3; ++i) Q[k][i] = h[k][i] / h[k][3];
-  const double seg[6] = {Q[0][0], Q[0][1], Q[0][2], Q[3][0], Q[3][1], Q[3][2]};
-  const double off = std::max(to_segment(seg, Q[1]), to_segment(seg, Q[2]));
-  return to_segment(seg, x) - off;
-}
-
 /// Self-contact: whether point q of element e (at x) is out of reach of the part of element f
 /// outside its excluded arc (body_contact.hpp): that part empty, or farther from x than reach
-/// (distance_bound).  A point for which this holds has no kept projection within reach.
-bool window_out_of_reach(const Side& A, const Side& B, int e, int q, int f, const double* eb,
-                         const double* x, double reach) {
-  const double s_pt = point_arc(*A.cb, e, q), ex = excluded_arc(A, B);
-  const double s0 = B.cb->arc0[sz(f)], len = B.cb->arc0[sz(f + 1)] - s0;
-  if (!(len > 0.0)) return false;
-  // the xi of f at least ex away from s_pt along the body: one interval (s_pt is outside f)
+/// (hull_distance).  A point for which this holds has no kept projection within reach.
+bool window_out_of_reach(const Side& B, int e, int q, int f, const double* eb, const double* x,
+                         double reach) {
   double lo = 0.0, hi = 1.0;
-  if (s_pt <= s0)
-    lo = std::max(lo, (s_pt + ex - s0) / len);
-  else
-    hi = std::min(hi, (s_pt - ex - s0) / len);
+  if (!outside_window(*B.cb, e, q, f, lo, hi)) return true;
   if (lo <= 0.0 && hi >= 1.0) return false;  // all of f counts: the capsule decided
-  if (!(lo < hi)) return true;
-  const double d = distance_bound(*B.m, *B.cb, f, eb, x, lo, hi);
-  return d > reach;
+  double P[4][3];
+  control_points(*B.m, *B.cb, f, eb, P);
+  return hull_distance(*B.cb, f, P, x, lo, hi) > reach;
 }
 
 /// A contact point x of side A against its closest point y(eta) on element f of side B
@@ -187,7 +131,7 @@ void pair_geometry(const Side& A, const Side& B, int e, int q, int f, const doub
   if (out.at_end && !((xi == 0.0 && f == 0) || (xi == 1.0 && f == mb.n_el - 1))) return;
   if (A.body == B.body) {  // self-contact: not near along the body
     const double s_y = B.cb->arc0[sz(f)] + xi * (B.cb->arc0[sz(f + 1)] - B.cb->arc0[sz(f)]);
-    if (std::abs(point_arc(*A.cb, e, q) - s_y) < excluded_arc(A, B)) return;
+    if (std::abs(point_arc(*A.cb, e, q) - s_y) < excluded_arc(*A.cb, *B.cb)) return;
   }
   const double* y = out.pr.y;
   const double d[3] = {x[0] - y[0], x[1] - y[1], x[2] - y[2]};
@@ -332,14 +276,16 @@ void friction(const BodyPair& bp, const Side& A, const Side& B, const Pair& pf, 
 /// coordinates eb): fe (n = na + nb: on e, then on f), with the step's mean pressure up to
 /// (ea1, eb1) (null: statics); K (if not null, n x n): minus its Jacobian with respect to the
 /// step's end, ck d/d(ea, eb) + cv d/d(va, vb) + c1 d/d(ea1, eb1) (friction: friction()).
-/// Returns the gap (1e300: not kept); pw: the point's normal force.
+/// Returns the gap (1e300: not kept); pw: the point's normal force.  xi (if not null): the
+/// projection's start (< 0: none) and its closest point.
 double point_force(const BodyPair& bp, const Side& A, const Side& B, int e, int q, int f,
                    const double* ea, const double* eb, const double* ea1, const double* eb1,
                    const double* va, const double* vb, double* fe, double* pw, double ck = 1.0,
-                   double cv = 0.0, double* K = nullptr, double c1 = 1.0) {
+                   double cv = 0.0, double* K = nullptr, double c1 = 1.0, double* xi = nullptr) {
   const int n = A.m->nde() + B.m->nde();
   Pair pf;
-  pair_geometry(A, B, e, q, f, ea, eb, pf);
+  pair_geometry(A, B, e, q, f, ea, eb, pf, xi != nullptr ? *xi : -1.0);
+  if (xi != nullptr) *xi = pf.xi;
   std::fill(fe, fe + n, 0.0);
   *pw = 0.0;
   if (!pf.kept) return 1e300;
@@ -439,7 +385,7 @@ void each_pair(const System& s, const ContactSet& c, const double* y, const doub
             contact_point::point_of(*A.m, A.cb->N.data() + 4 * (e * A.cb->n_c + q), ea.data(), x);
             if (!near(br, sa, sb, x, A.cb->radius, bp.onset)) continue;
             if (A.body == B.body &&
-                window_out_of_reach(A, B, e, q, f, eb.data(), x, reach(br, sa, sb, A, B, bp)))
+                window_out_of_reach(B, e, q, f, eb.data(), x, reach(br, sa, sb, A, B, bp)))
               continue;
           }
           double pw = 0.0;
@@ -451,6 +397,45 @@ void each_pair(const System& s, const ContactSet& c, const double* y, const doub
         }
       }
     }
+  }
+}
+
+/// each_pair's visit over the near points of nl (update_near) at (y, y1, v), the forces: each
+/// point's projection starts from its closest point of the assembly before.
+template <class Fn>
+void each_near(const System& s, const ContactSet& c, NearList& nl, const double* y,
+               const double* y1, const double* v, Fn fn, const AssemblyTerms& tm, double* K) {
+  Coords ea{}, eb{}, ea1{}, eb1{}, va{}, vb{};
+  std::array<double, 2 * kMaxElementDofs> fe{};
+  int key[4] = {-1, -1, -1, -1};  // pair, dir, e, f gathered
+  for (NearPoint& p : nl.points) {
+    const BodyPair& bp = c.body_pairs[sz(p.pair)];
+    const Side A = side(s, c, p.dir == 0 ? bp.a : bp.b), B = side(s, c, p.dir == 0 ? bp.b : bp.a);
+    const bool rub = v != nullptr && bp.friction > 0.0;
+    if (key[0] != p.pair || key[1] != p.dir || key[2] != p.e || key[3] != p.f) {
+      element_coordinates(*A.m, y + A.offset, p.e, ea.data());
+      element_coordinates(*B.m, y + B.offset, p.f, eb.data());
+      if (y1 != nullptr) {
+        element_coordinates(*A.m, y1 + A.offset, p.e, ea1.data());
+        element_coordinates(*B.m, y1 + B.offset, p.f, eb1.data());
+      }
+      if (rub) {
+        element_coordinates(*A.m, v + A.offset, p.e, va.data());
+        element_coordinates(*B.m, v + B.offset, p.f, vb.data());
+      }
+      key[0] = p.pair;
+      key[1] = p.dir;
+      key[2] = p.e;
+      key[3] = p.f;
+    }
+    const double* pa1 = y1 != nullptr ? ea1.data() : nullptr;
+    const double* pb1 = y1 != nullptr ? eb1.data() : nullptr;
+    const double* pva = rub ? va.data() : nullptr;
+    const double* pvb = rub ? vb.data() : nullptr;
+    double pw = 0.0;
+    const double g = point_force(bp, A, B, p.e, p.q, p.f, ea.data(), eb.data(), pa1, pb1, pva, pvb,
+                                 fe.data(), &pw, tm.ck, tm.cv, K, tm.c1, &p.xi);
+    fn(bp, A, B, p.e, p.q, p.f, ea.data(), eb.data(), pa1, pb1, pva, pvb, fe.data(), g, pw);
   }
 }
 
@@ -501,29 +486,35 @@ void assemble_body_contact(const System& s, const ContactSet& c, const double* y
     if (add != nullptr) (*add)(idx.data(), n, Ksum.data());
     key[0] = -1;
   };
-  each_pair(
-      s, c, yf, y1, vf, true,
-      [&](const BodyPair&, const Side& A, const Side& B, int e, int, int f, const double*,
-          const double*, const double*, const double*, const double*, const double*,
-          const double* fe, double, double pw0) {
-        if (pw0 == 0.0) return;
-        const int n = A.m->nde() + B.m->nde();
-        if (key[0] != A.body || key[1] != B.body || key[2] != e || key[3] != f) {
-          flush();
-          sides[0] = A;
-          sides[1] = B;
-          key[0] = A.body;
-          key[1] = B.body;
-          key[2] = e;
-          key[3] = f;
-          std::fill(fsum.begin(), fsum.end(), 0.0);
-          if (add != nullptr) Ksum.assign(sz(n * n), 0.0);
-        }
-        for (int a = 0; a < n; ++a) fsum[sz(a)] += fe[a];
-        if (add != nullptr)  // the point's exact tangent (point_force)
-          for (int a = 0; a < n * n; ++a) Ksum[sz(a)] += K[sz(a)];
-      },
-      &tm, add != nullptr ? K.data() : nullptr);
+  auto visit = [&](const BodyPair&, const Side& A, const Side& B, int e, int, int f, const double*,
+                   const double*, const double*, const double*, const double*, const double*,
+                   const double* fe, double, double pw0) {
+    if (pw0 == 0.0) return;
+    const int n = A.m->nde() + B.m->nde();
+    if (key[0] != A.body || key[1] != B.body || key[2] != e || key[3] != f) {
+      flush();
+      sides[0] = A;
+      sides[1] = B;
+      key[0] = A.body;
+      key[1] = B.body;
+      key[2] = e;
+      key[3] = f;
+      std::fill(fsum.begin(), fsum.end(), 0.0);
+      if (add != nullptr) Ksum.assign(sz(n * n), 0.0);
+    }
+    for (int a = 0; a < n; ++a) fsum[sz(a)] += fe[a];
+    if (add != nullptr)  // the point's exact tangent (point_force)
+      for (int a = 0; a < n * n; ++a) Ksum[sz(a)] += K[sz(a)];
+  };
+  double* Kp = add != nullptr ? K.data() : nullptr;
+  NearList& nl = *c.near;
+  std::unique_lock<std::mutex> lock(nl.mu, std::try_to_lock);
+  if (lock.owns_lock() && !c.body_pairs.empty()) {  // the near points kept between assemblies
+    update_near(s, c, yf, y1, nl);
+    each_near(s, c, nl, yf, y1, vf, visit, tm, Kp);
+  } else {  // another thread has them: from the broad phase
+    each_pair(s, c, yf, y1, vf, true, visit, &tm, Kp);
+  }
   flush();
 }
 
