@@ -282,6 +282,7 @@ bool update_near(const System& s, const ContactSet& c, const double* y, const do
   const std::vector<double> P = all_control_points(s, c, y, &start);
   const double moved =
       y1 != nullptr ? largest_motion(P, all_control_points(s, c, y1, nullptr)) : 0.0;
+  nl.moved = moved;
   if (nl.valid && nl.ref.size() == P.size() &&
       2.0 * (largest_motion(P, nl.ref) + moved) < nl.margin)
     return false;

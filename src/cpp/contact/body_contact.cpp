@@ -277,11 +277,13 @@ void friction(const BodyPair& bp, const Side& A, const Side& B, const Pair& pf, 
 /// (ea1, eb1) (null: statics); K (if not null, n x n): minus its Jacobian with respect to the
 /// step's end, ck d/d(ea, eb) + cv d/d(va, vb) + c1 d/d(ea1, eb1) (friction: friction()).
 /// Returns the gap (1e300: not kept); pw: the point's normal force.  xi (if not null): the
-/// projection's start (< 0: none) and its closest point.
+/// projection's start (< 0: none) and its closest point; clear: a gap above which the step's
+/// gaps cannot reach zero (the points' motion in the step is below it).
 double point_force(const BodyPair& bp, const Side& A, const Side& B, int e, int q, int f,
                    const double* ea, const double* eb, const double* ea1, const double* eb1,
                    const double* va, const double* vb, double* fe, double* pw, double ck = 1.0,
-                   double cv = 0.0, double* K = nullptr, double c1 = 1.0, double* xi = nullptr) {
+                   double cv = 0.0, double* K = nullptr, double c1 = 1.0, double* xi = nullptr,
+                   double clear = 1e300) {
   const int n = A.m->nde() + B.m->nde();
   Pair pf;
   pair_geometry(A, B, e, q, f, ea, eb, pf, xi != nullptr ? *xi : -1.0);
@@ -289,6 +291,7 @@ double point_force(const BodyPair& bp, const Side& A, const Side& B, int e, int 
   std::fill(fe, fe + n, 0.0);
   *pw = 0.0;
   if (!pf.kept) return 1e300;
+  if (ea1 != nullptr && pf.g > clear) return pf.g;  // no pressure within the step
   const Penalty law{0.5 * bp.stiffness, bp.onset};
   double pm = 0.0, dpf = 0.0, dp1 = 0.0;  // the pressure and its slopes over gf and g1
   Pair p1;
@@ -434,7 +437,7 @@ void each_near(const System& s, const ContactSet& c, NearList& nl, const double*
     const double* pvb = rub ? vb.data() : nullptr;
     double pw = 0.0;
     const double g = point_force(bp, A, B, p.e, p.q, p.f, ea.data(), eb.data(), pa1, pb1, pva, pvb,
-                                 fe.data(), &pw, tm.ck, tm.cv, K, tm.c1, &p.xi);
+                                 fe.data(), &pw, tm.ck, tm.cv, K, tm.c1, &p.xi, 2.0 * nl.moved);
     fn(bp, A, B, p.e, p.q, p.f, ea.data(), eb.data(), pa1, pb1, pva, pvb, fe.data(), g, pw);
   }
 }

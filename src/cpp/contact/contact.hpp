@@ -106,6 +106,7 @@ struct NearList {
   std::mutex mu;
   bool valid = false;
   double margin = 0.0;
+  double moved = 0.0;       ///< the largest motion of a control point in the step (y to y1)
   std::vector<double> ref;  ///< the elements' Bezier control points where it was made
   std::vector<NearPoint> points;
 };
