@@ -108,12 +108,13 @@ struct Pair {
   double g = 0.0, rho = 0.0, n[3] = {0.0, 0.0, 0.0};
   const double* Na = nullptr;  ///< A's shape functions at the point
   Projection pr;               ///< B's closest point (shape functions, y, y', y'')
-  std::array<double, 2 * kMaxElementDofs> G{};
-  std::vector<double> Hg;  ///< (n x n), if asked for
+  // (the arrays are filled where they are asked for: pair_gradient, pair_hessian)
+  std::array<double, 2 * kMaxElementDofs> G;
+  std::array<double, 4 * kMaxElementDofs * kMaxElementDofs> Hg;  ///< (n x n), if asked for
   /// J and T (3 x n, row-major), and (if asked for) b (d eta = b . dq; zero at a free end or
   /// where the projection is no minimum): the friction's tangent
-  std::array<double, 3 * 2 * kMaxElementDofs> J{}, T{};
-  std::array<double, 2 * kMaxElementDofs> b{};
+  std::array<double, 3 * 2 * kMaxElementDofs> J, T;
+  std::array<double, 2 * kMaxElementDofs> b;
 };
 
 void pair_geometry(const Side& A, const Side& B, int e, int q, int f, const double* ea,
@@ -171,8 +172,7 @@ void pair_hessian(int n, Pair& out) {
   const auto& T = out.T;
   const double* y1 = out.pr.y1;
   const double* y2 = out.pr.y2;
-  std::fill(out.b.begin(), out.b.end(), 0.0);
-  out.Hg.assign(sz(n * n), 0.0);
+  std::fill(out.b.begin(), out.b.begin() + n, 0.0);
   // J^T P J = J^T J - G G^T
   for (int a = 0; a < n; ++a)
     for (int c = 0; c < n; ++c) {
