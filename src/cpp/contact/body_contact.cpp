@@ -111,9 +111,11 @@ struct Pair {
   // (the arrays are filled where they are asked for: pair_gradient, pair_hessian)
   std::array<double, 2 * kMaxElementDofs> G;
   std::array<double, 4 * kMaxElementDofs * kMaxElementDofs> Hg;  ///< (n x n), if asked for
-  /// J and T (3 x n, row-major), and (if asked for) b (d eta = b . dq; zero at a free end or
-  /// where the projection is no minimum): the friction's tangent
-  std::array<double, 3 * 2 * kMaxElementDofs> J, T;
+  /// J and T by their columns, each with one entry at most: J(jd[a], a) = jc[a],
+  /// T(jd[a], a) = tc[a] (jd[a] < 0: a zero column), and (if asked for) b (d eta = b . dq;
+  /// zero at a free end or where the projection is no minimum): the friction's tangent
+  std::array<double, 2 * kMaxElementDofs> jc, tc;
+  std::array<int, 2 * kMaxElementDofs> jd;
   std::array<double, 2 * kMaxElementDofs> b;
 };
 
@@ -146,30 +148,29 @@ void pair_geometry(const Side& A, const Side& B, int e, int q, int f, const doub
 /// J, T and G of a kept pair (pair_geometry).
 void pair_gradient(const Model& ma, const Model& mb, Pair& out) {
   const int na = ma.nde(), n = na + mb.nde();
-  auto& J = out.J;
-  auto& T = out.T;
-  std::fill(J.begin(), J.begin() + 3 * n, 0.0);
-  std::fill(T.begin(), T.begin() + 3 * n, 0.0);
+  std::fill(out.jc.begin(), out.jc.begin() + n, 0.0);
+  std::fill(out.tc.begin(), out.tc.begin() + n, 0.0);
+  std::fill(out.jd.begin(), out.jd.begin() + n, -1);
   for (int k = 0; k < 4; ++k) {
     const int oa = (k / 2) * ma.dpn + (k % 2) * ma.dim,
               ob = na + (k / 2) * mb.dpn + (k % 2) * mb.dim;
     for (int i = 0; i < ma.dim; ++i) {
-      J[sz(i * n + oa + i)] += out.Na[k];
-      J[sz(i * n + ob + i)] -= out.pr.N[k];
-      T[sz(i * n + ob + i)] += out.pr.N1[k];
+      out.jd[sz(oa + i)] = out.jd[sz(ob + i)] = i;
+      out.jc[sz(oa + i)] = out.Na[k];
+      out.jc[sz(ob + i)] = -out.pr.N[k];
+      out.tc[sz(ob + i)] = out.pr.N1[k];
     }
   }
   for (int a = 0; a < n; ++a) {
-    double v = 0.0;
-    for (int i = 0; i < 3; ++i) v += J[sz(i * n + a)] * out.n[i];
-    out.G[sz(a)] = v;
+    const int i = out.jd[sz(a)];
+    out.G[sz(a)] = i >= 0 ? out.jc[sz(a)] * out.n[i] : 0.0;
   }
 }
 
 /// Hg and b of a kept pair after pair_gradient (pair_geometry).
 void pair_hessian(int n, Pair& out) {
-  const auto& J = out.J;
-  const auto& T = out.T;
+  const auto& jc = out.jc;
+  const auto& jd = out.jd;
   const double* y1 = out.pr.y1;
   const double* y2 = out.pr.y2;
   std::fill(out.b.begin(), out.b.begin() + n, 0.0);
@@ -177,7 +178,7 @@ void pair_hessian(int n, Pair& out) {
   for (int a = 0; a < n; ++a)
     for (int c = 0; c < n; ++c) {
       double v = -out.G[sz(a)] * out.G[sz(c)];
-      for (int i = 0; i < 3; ++i) v += J[sz(i * n + a)] * J[sz(i * n + c)];
+      if (jd[sz(a)] >= 0 && jd[sz(a)] == jd[sz(c)]) v += jc[sz(a)] * jc[sz(c)];
       out.Hg[sz(a * n + c)] = v / out.rho;
     }
   if (out.at_end) return;
@@ -185,10 +186,8 @@ void pair_hessian(int n, Pair& out) {
   if (!(cc > 0.0)) return;  // a projection that is no minimum: the first order terms only
   auto& bb = out.b;
   for (int a = 0; a < n; ++a) {
-    double v = 0.0;
-    for (int i = 0; i < 3; ++i)
-      v += J[sz(i * n + a)] * y1[i] + out.rho * T[sz(i * n + a)] * out.n[i];
-    bb[sz(a)] = v / cc;
+    const int i = jd[sz(a)];
+    bb[sz(a)] = i >= 0 ? (jc[sz(a)] * y1[i] + out.rho * out.tc[sz(a)] * out.n[i]) / cc : 0.0;
   }
   for (int a = 0; a < n; ++a)
     for (int c = 0; c < n; ++c) out.Hg[sz(a * n + c)] -= cc * bb[sz(a)] * bb[sz(c)] / out.rho;
@@ -215,12 +214,11 @@ void friction(const BodyPair& bp, const Side& A, const Side& B, const Pair& pf, 
   const Model& ma = *A.m;
   const Model& mb = *B.m;
   const int n = ma.nde() + mb.nde();
-  const double* J = pf.J.data();
+  const auto& jc = pf.jc;
+  const auto& jd = pf.jd;
   double u[3] = {0.0, 0.0, 0.0};
-  for (int i = 0; i < 3; ++i)
-    for (int a = 0; a < ma.nde(); ++a) u[i] += J[sz(i * n + a)] * va[a];
-  for (int i = 0; i < 3; ++i)
-    for (int a = 0; a < mb.nde(); ++a) u[i] += J[sz(i * n + ma.nde() + a)] * vb[a];
+  for (int a = 0; a < n; ++a)
+    if (jd[sz(a)] >= 0) u[jd[sz(a)]] += jc[sz(a)] * (a < ma.nde() ? va[a] : vb[a - ma.nde()]);
   const double un = dot3(pf.n, u);
   double vt[3], phi[3];
   for (int i = 0; i < 3; ++i) vt[i] = u[i] - un * pf.n[i];
@@ -229,10 +227,10 @@ void friction(const BodyPair& bp, const Side& A, const Side& B, const Pair& pf, 
   const double c = bp.friction * sl.w * sl.pm;
   std::array<double, 2 * kMaxElementDofs> Jphi{}, Tphi{};
   for (int a = 0; a < n; ++a) {
-    for (int i = 0; i < 3; ++i) {
-      Jphi[sz(a)] += J[sz(i * n + a)] * phi[i];
-      Tphi[sz(a)] += pf.T[sz(i * n + a)] * phi[i];
-    }
+    const int i = jd[sz(a)];
+    if (i < 0) continue;
+    Jphi[sz(a)] = jc[sz(a)] * phi[i];
+    Tphi[sz(a)] = pf.tc[sz(a)] * phi[i];
     fe[a] -= c * Jphi[sz(a)];
   }
   if (K == nullptr) return;
@@ -246,15 +244,16 @@ void friction(const BodyPair& bp, const Side& A, const Side& B, const Pair& pf, 
   }
   std::array<double, 3 * 2 * kMaxElementDofs> Dn{}, M{};  // dn/dq, then Pphi dv_t/d(q, v)
   std::array<double, 2 * kMaxElementDofs> uDn{};
+  auto Jia = [&](int i, int a) { return jd[sz(a)] == i ? jc[sz(a)] : 0.0; };
   for (int i = 0; i < 3; ++i)
     for (int a = 0; a < n; ++a) {
-      const double PJ = J[sz(i * n + a)] - pf.n[i] * pf.G[sz(a)];
+      const double PJ = Jia(i, a) - pf.n[i] * pf.G[sz(a)];
       Dn[sz(i * n + a)] = (PJ - Pyt[i] * pf.b[sz(a)]) / pf.rho;
       uDn[sz(a)] += u[i] * Dn[sz(i * n + a)];
     }
   for (int i = 0; i < 3; ++i)
     for (int a = 0; a < n; ++a) {
-      const double PJ = J[sz(i * n + a)] - pf.n[i] * pf.G[sz(a)];
+      const double PJ = Jia(i, a) - pf.n[i] * pf.G[sz(a)];
       const double Vq = -Pyd[i] * pf.b[sz(a)] - un * Dn[sz(i * n + a)] - pf.n[i] * uDn[sz(a)];
       M[sz(i * n + a)] = sl.ck * Vq + sl.cv * PJ;
     }
@@ -267,7 +266,7 @@ void friction(const BodyPair& bp, const Side& A, const Side& B, const Pair& pf, 
   for (int a = 0; a < n; ++a)
     for (int b = 0; b < n; ++b) {
       double v = mw * Jphi[sz(a)] * (sl.ck * sl.dpf * pf.G[sz(b)] + sl.dp1 * sl.G1[b]);
-      for (int i = 0; i < 3; ++i) v += c * J[sz(i * n + a)] * M[sz(i * n + b)];
+      if (jd[sz(a)] >= 0) v += c * jc[sz(a)] * M[sz(jd[sz(a)] * n + b)];
       K[a * n + b] += v - sl.ck * c * Tphi[sz(a)] * pf.b[sz(b)];
     }
 }
