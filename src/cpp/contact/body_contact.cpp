@@ -403,13 +403,16 @@ void each_pair(const System& s, const ContactSet& c, const double* y, const doub
 }
 
 /// each_pair's visit over the near points of nl (update_near) at (y, y1, v), the forces: each
-/// point's projection starts from its closest point of the assembly before.
+/// point's projection starts from its closest point of the assembly before; a point farther
+/// from f's hull (body_broad.hpp) than the tubes' radii, the onset and both elements' motion
+/// in the step cannot touch it in the step and is not projected.
 template <class Fn>
 void each_near(const System& s, const ContactSet& c, NearList& nl, const double* y,
                const double* y1, const double* v, Fn fn, const AssemblyTerms& tm, double* K) {
   Coords ea{}, eb{}, ea1{}, eb1{}, va{}, vb{};
   std::array<double, 2 * kMaxElementDofs> fe{};
   int key[4] = {-1, -1, -1, -1};  // pair, dir, e, f gathered
+  double seg[6], off = 0.0;       // f's hull: its chord and the control points' distance
   for (NearPoint& p : nl.points) {
     const BodyPair& bp = c.body_pairs[sz(p.pair)];
     const Side A = side(s, c, p.dir == 0 ? bp.a : bp.b), B = side(s, c, p.dir == 0 ? bp.b : bp.a);
@@ -425,6 +428,13 @@ void each_near(const System& s, const ContactSet& c, NearList& nl, const double*
         element_coordinates(*A.m, v + A.offset, p.e, va.data());
         element_coordinates(*B.m, v + B.offset, p.f, vb.data());
       }
+      double P[4][3];
+      control_points(*B.m, *B.cb, p.f, eb.data(), P);
+      for (int i = 0; i < 3; ++i) {
+        seg[i] = P[0][i];
+        seg[3 + i] = P[3][i];
+      }
+      off = std::max(to_segment(seg, P[1]), to_segment(seg, P[2]));
       key[0] = p.pair;
       key[1] = p.dir;
       key[2] = p.e;
@@ -434,6 +444,10 @@ void each_near(const System& s, const ContactSet& c, NearList& nl, const double*
     const double* pb1 = y1 != nullptr ? eb1.data() : nullptr;
     const double* pva = rub ? va.data() : nullptr;
     const double* pvb = rub ? vb.data() : nullptr;
+    double x[3];
+    contact_point::point_of(*A.m, A.cb->N.data() + 4 * (p.e * A.cb->n_c + p.q), ea.data(), x);
+    if (to_segment(seg, x) - off > A.cb->radius + B.cb->radius + bp.onset + 2.0 * nl.moved)
+      continue;
     double pw = 0.0;
     const double g = point_force(bp, A, B, p.e, p.q, p.f, ea.data(), eb.data(), pa1, pb1, pva, pvb,
                                  fe.data(), &pw, tm.ck, tm.cv, K, tm.c1, &p.xi, 2.0 * nl.moved);
