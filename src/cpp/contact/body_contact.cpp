@@ -536,7 +536,7 @@ void assemble_body_contact(const System& s, const ContactSet& c, const double* y
 
 double body_contact_energy(const System& s, const ContactSet& c, const double* y) {
   double total = 0.0;
-  each_pair(s, c, y, nullptr, nullptr, false,
+  each_pair(s, c, y, nullptr, nullptr, true,  // the points that can touch (g < 0)
             [&](const BodyPair& bp, const Side& A, const Side&, int e, int q, int, const double*,
                 const double*, const double*, const double*, const double*, const double*,
                 const double*, double g, double) {
