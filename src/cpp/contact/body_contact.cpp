@@ -42,7 +42,9 @@ struct Projection {
 /// The closest point of element f (coordinates e) to x, xi in [0, 1] (project): Newton on
 /// h = (y - x) . y' = 0 (step -h / h', or -h / |y'|^2 where h' <= 0) from the best of five
 /// samples, or from start (>= 0: a closest point known nearby); it stops where the step is
-/// below 1e-13 (or is clamped to nothing at an end), keeping the point it evaluated.
+/// below 1e-13 (or is clamped to nothing at an end) or the step that came to the point was
+/// below 1e-8 (Newton's quadratic convergence: the point is then within about 1e-16),
+/// keeping the point it evaluated.
 void project(const Model& m, const ContactBody& cb, int f, const double* e, const double* x,
              Projection& p, double start = -1.0) {
   double best = start, dmin = 1e300;
@@ -56,7 +58,7 @@ void project(const Model& m, const ContactBody& cb, int f, const double* e, cons
       best = xi;
     }
   }
-  double xi = best;
+  double xi = best, last = 1.0;  // last: the step that came to xi
   for (int it = 0; it < 30; ++it) {
     shape(cb, f, xi, p.N, p.N1, p.N2);
     contact_point::point_of(m, p.N, e, p.y);
@@ -66,7 +68,8 @@ void project(const Model& m, const ContactBody& cb, int f, const double* e, cons
     const double h = dot3(dd, p.y1), dh = dot3(p.y1, p.y1) + dot3(dd, p.y2);
     const double step = dh > 0.0 ? -h / dh : -h / dot3(p.y1, p.y1);
     const double next = std::clamp(xi + step, 0.0, 1.0);
-    if (std::abs(next - xi) < 1e-13) break;
+    if (std::abs(next - xi) < 1e-13 || last < 1e-8) break;
+    last = std::abs(next - xi);
     xi = next;
   }
   p.xi = xi;
