@@ -15,8 +15,10 @@
 Every run is a whole process; solve time from each side's own clock (rancf: ``summary.json``;
 Exudyn: ``SolveDynamic``), set-up (process start to the first step) quoted apart, and the
 whole process's CPU time (user + system, from the children's resource usage: less sensitive
-to other jobs on the machine than the wall clock; for the coil, the difference of the two
-processes' CPU times per step is what the self-contact costs).  The belts
+to other jobs on the machine than the wall clock).  For the coil the start-up's CPU time (the
+same rope run for one step, ``--coil-repeats`` times, median) is taken off both processes'
+CPU times, giving ``cpu_per_step_ratio``: the solves' CPU time per step, coil over free rope.
+The belts
 are compared per simulated second (solve time / simulated time), the coil per step.  Runs
 alternate (A B A B ...) after one warm-up pair (the coil: no warm-up, ``--coil-repeats``
 pairs, 5 by default); ratios are taken pair by pair and their median is
@@ -136,13 +138,24 @@ def cases(repeats: int, coil_repeats: int, coil: bool) -> dict[str, Any]:
             without = tmpd / "rope-fall.toml"
             text = with_self.read_text()
             without.write_text(text.replace('body_contacts = [["body", "body"]]\n', ""))
-            rows["rope coil: self-contact vs none"] = _pairs(
+            row = _pairs(
                 lambda: _rancf(with_self, tmpd / "coil"),
                 lambda: _rancf(without, tmpd / "fall"),
                 coil_repeats,
                 "step",
                 warm=False,
             )
+            # the start-up's CPU time: the same rope for one step; the rest is the solve's
+            start = tmpd / "rope-start.toml"
+            start.write_text(text.replace("t_end = 0.6\n", "t_end = 0.001\n"))
+            s0 = statistics.median(
+                _rancf(start, tmpd / f"start{k}")["cpu_s"] for k in range(coil_repeats)
+            )
+            row["startup_cpu_s"] = s0
+            row["cpu_per_step_ratio"] = ((row["a_cpu_s"] - s0) / row["a_steps"]) / (
+                (row["b_cpu_s"] - s0) / row["b_steps"]
+            )
+            rows["rope coil: self-contact vs none"] = row
     return rows
 
 
@@ -165,6 +178,8 @@ def main() -> None:
     for name, r in rows.items():
         if not isinstance(r, dict):
             continue
+        if "cpu_per_step_ratio" in r:
+            print(f"{name}: CPU per step (start-up taken off) ratio {r['cpu_per_step_ratio']:.3f}")
         per = "second" if "a_s_per_second" in r else "step"
         unit = "s/sim-s" if per == "second" else "ms/step"
         scale = 1.0 if per == "second" else 1e3

@@ -68,7 +68,7 @@ double hull_distance(const ContactBody& cb, int el, const double (*P)[3], const 
                      double lo, double hi);
 
 /// Make nl valid at (y, y1) (y1 null: statics): kept if no element's control point has moved
-/// by more than a quarter of its margin less a step's motion (y to y1) since it was made, else
+/// since it was made by half its margin less the largest motion in the step (y to y1), else
 /// made again (body_broad.cpp).  Returns whether it was made again.
 bool update_near(const System& s, const ContactSet& c, const double* y, const double* y1,
                  NearList& nl);
