@@ -113,7 +113,7 @@ struct Pair {
   Projection pr;               ///< B's closest point (shape functions, y, y', y'')
   // (the arrays are filled where they are asked for: pair_gradient, pair_hessian)
   std::array<double, 2 * kMaxElementDofs> G;
-  std::array<double, 4 * kMaxElementDofs * kMaxElementDofs> Hg;  ///< (n x n), if asked for
+  double cc = 0.0;  ///< c of Hg (pair_hessian; 0: no b term)
   /// J and T by their columns, each with one entry at most: J(jd[a], a) = jc[a],
   /// T(jd[a], a) = tc[a] (jd[a] < 0: a zero column), and (if asked for) b (d eta = b . dq;
   /// zero at a free end or where the projection is no minimum): the friction's tangent
@@ -170,30 +170,32 @@ void pair_gradient(const Model& ma, const Model& mb, Pair& out) {
   }
 }
 
-/// Hg and b of a kept pair after pair_gradient (pair_geometry).
+/// c and b of Hg of a kept pair after pair_gradient (pair_geometry); Hg itself by entries
+/// (hessian_entry).
 void pair_hessian(int n, Pair& out) {
   const auto& jc = out.jc;
   const auto& jd = out.jd;
   const double* y1 = out.pr.y1;
   const double* y2 = out.pr.y2;
   std::fill(out.b.begin(), out.b.begin() + n, 0.0);
-  // J^T P J = J^T J - G G^T
-  for (int a = 0; a < n; ++a)
-    for (int c = 0; c < n; ++c) {
-      double v = -out.G[sz(a)] * out.G[sz(c)];
-      if (jd[sz(a)] >= 0 && jd[sz(a)] == jd[sz(c)]) v += jc[sz(a)] * jc[sz(c)];
-      out.Hg[sz(a * n + c)] = v / out.rho;
-    }
+  out.cc = 0.0;
   if (out.at_end) return;
   const double cc = dot3(y1, y1) - out.rho * dot3(out.n, y2);
   if (!(cc > 0.0)) return;  // a projection that is no minimum: the first order terms only
+  out.cc = cc;
   auto& bb = out.b;
   for (int a = 0; a < n; ++a) {
     const int i = jd[sz(a)];
     bb[sz(a)] = i >= 0 ? (jc[sz(a)] * y1[i] + out.rho * out.tc[sz(a)] * out.n[i]) / cc : 0.0;
   }
-  for (int a = 0; a < n; ++a)
-    for (int c = 0; c < n; ++c) out.Hg[sz(a * n + c)] -= cc * bb[sz(a)] * bb[sz(c)] / out.rho;
+}
+
+/// Hg(a, c) = (J^T J - G G^T - c b b^T)(a, c) / rho after pair_hessian (J^T J from J's columns:
+/// jc[a] jc[c] where both move the same component).
+double hessian_entry(const Pair& p, int a, int c) {
+  double v = -p.G[sz(a)] * p.G[sz(c)] - p.cc * p.b[sz(a)] * p.b[sz(c)];
+  if (p.jd[sz(a)] >= 0 && p.jd[sz(a)] == p.jd[sz(c)]) v += p.jc[sz(a)] * p.jc[sz(c)];
+  return v / p.rho;
 }
 
 /// A point's weight and pressure and the pressure's slopes (point_force): w, pm, the
@@ -322,7 +324,7 @@ double point_force(const BodyPair& bp, const Side& A, const Side& B, int e, int 
   if (K != nullptr)
     for (int a = 0; a < n; ++a)
       for (int c = 0; c < n; ++c)
-        K[a * n + c] = -w * (ck * (dpf * pf.G[sz(a)] * pf.G[sz(c)] + pm * pf.Hg[sz(a * n + c)]) +
+        K[a * n + c] = -w * (ck * (dpf * pf.G[sz(a)] * pf.G[sz(c)] + pm * hessian_entry(pf, a, c)) +
                              (ea1 != nullptr ? c1 * dp1 * pf.G[sz(a)] * G1[c] : 0.0));
   if (bp.friction > 0.0 && va != nullptr && pm > 0.0) {
     const Slopes sl{w, pm, ck, cv, dpf, ea1 != nullptr ? c1 * dp1 : 0.0, G1};
