@@ -571,6 +571,7 @@ BAD_ARGS = [
         "--max-output-gb",
     ),
     ("simulate-no-out", ["simulate", "s.toml"], 2, "--out"),
+    ("threads-0", ["simulate", "s.toml", "--out", "run", "--threads", "0"], 2, "--threads = 0"),
     ("modes-count-0", ["modes", "c.toml", "--count", "0"], 2, "--count"),
     ("modes-count-10000", ["modes", "c.toml", "--count", "10000"], 2, "--count"),
     ("modes-about", ["modes", "c.toml", "--about", "dynamic"], 2, "--about"),

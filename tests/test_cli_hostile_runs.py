@@ -82,7 +82,7 @@ def test_a_static_run_stopped_by_sigterm_says_so(tmp_path):
     text = mutated(**clamped, loads=loads, mesh__elements=20000, solver__load_steps=10**6)
     (tmp_path / "st.toml").write_text(text)
     delay = max(_boot_times()) + 2.0  # meshing and assembly, then some 2 s of load steps
-    for attempt in range(4):
+    for attempt in range(8):
         out = tmp_path / f"eq{attempt}"
         p = subprocess.Popen(
             [*RANCF, "static", "st.toml", "--out", out.name],

@@ -130,6 +130,7 @@ def test_summary_separates_setup_and_time_loop(tmp_path, pendulum_file, capsys):
     # to the clock tick of /proc (0.01 s on Linux), with no digits beyond it
     assert len(repr(summary["setup_wall_time_s"]).split(".")[1]) <= 3
     assert summary["pid"] > 0 and summary["started_at"] and summary["updated_at"]
+    assert summary["threads"] == 1  # a small model's element loops: one thread
     assert summary["time_per_step_s"] == pytest.approx(summary["solve_wall_time_s"] / 20)
     line = capsys.readouterr().out
     assert f"{1e3 * summary['time_per_step_s']:.3f} ms/step" in line

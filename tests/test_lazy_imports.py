@@ -1,7 +1,8 @@
 """``rancf simulate`` loads only what the command uses: a plain run of a shipped example imports
 neither SciPy (sparse solvers of the static and modal analyses) nor the plotting, viewer or
 cluster libraries, whose imports would be most of its start-up, nor rancf's static solvers (a
-run from the reference needs no equilibrium)."""
+run from the reference needs no equilibrium), nor the contact, fluid and winch modules of a
+system that has none of them."""
 
 from __future__ import annotations
 
@@ -22,6 +23,16 @@ STATIC = (
     "rancf.solvers.relaxation",
     "rancf.solvers.newton",
 )
+#: rancf's contact, fluid and winch modules: loaded by a system that has obstacles, a fluid or
+#: distributed loads, winches.
+PARTS = (
+    "rancf.system.contact",
+    "rancf.system.contact_outputs",
+    "rancf.system.fluid",
+    "rancf.system.winches",
+    "rancf.system.drums",
+    "rancf.system.touchdown",
+)
 SCRIPT = """
 import json, sys
 from rancf.cli import main
@@ -37,7 +48,7 @@ def test_simulate_loads_no_heavy_library(tmp_path, name):
         [
             sys.executable,
             "-c",
-            SCRIPT.format(heavy=set(HEAVY), static=set(STATIC)),
+            SCRIPT.format(heavy=set(HEAVY), static=set(STATIC + PARTS)),
             str(example_path(name)),
             str(tmp_path / "run"),
         ],

@@ -1,5 +1,6 @@
-"""The compiled core's System from named records (rancf.kernels.records): every field read by its
-name, and a field of the wrong type, size or value refused in one line that names it."""
+"""The compiled core's System from one model record (rancf.kernels.records.SystemModel) and its
+entry points from two records each (rancf.kernels.call_records): every field read by its name,
+and a field of the wrong type, size or value refused in one line that names it."""
 
 from __future__ import annotations
 
@@ -9,6 +10,7 @@ import numpy as np
 import pytest
 
 from rancf.kernels import _core
+from rancf.kernels.call_records import RunBuffers, RunOptions
 from rancf.kernels.records import (
     JointRecord,
     LinearTerm,
@@ -17,7 +19,9 @@ from rancf.kernels.records import (
     PrescribedRecord,
     RigidRecord,
     SpringRecord,
+    SystemModel,
     TimeFunctionRecord,
+    WinchRecord,
 )
 
 
@@ -40,11 +44,10 @@ def _parts() -> dict:
     }
 
 
-def _system(gravity=(0.0, -9.81, 0.0), **parts) -> _core.System:
+def _system(gravity=(0.0, -9.81, 0.0), dim=2, **parts) -> _core.System:
     kw = _parts() | parts
-    return _core.System(
-        dim=2, models=[], gravity=gravity, damping=0.0, y_ref=np.array([1.0, 0.0, 1.0, 0.0]), **kw
-    )
+    y_ref = np.array([1.0, 0.0, 1.0, 0.0])
+    return _core.System(SystemModel(dim=dim, models=(), y_ref=y_ref, gravity=gravity, **kw))
 
 
 def test_a_system_of_records():
@@ -173,9 +176,44 @@ def test_a_bad_field_is_one_line_naming_it(parts, error, message):
 
 
 def test_bad_gravity_and_dimension_are_named():
-    with pytest.raises(ValueError, match=r"^gravity: expected 3 numbers, got 2$"):
+    with pytest.raises(ValueError, match=r"^model.gravity: expected 3 numbers, got 2$"):
         _system(gravity=(0.0, -9.81))
-    with pytest.raises(ValueError, match=r"^dim: expected 2 or 3, got 4$"):
-        _core.System(
-            dim=4, models=[], gravity=(0.0, 0.0, 0.0), damping=0.0, y_ref=np.zeros(0), **_parts()
-        )
+    with pytest.raises(ValueError, match=r"^model.dim: expected 2 or 3, got 4$"):
+        _system(dim=4)
+
+
+def test_a_winch_on_no_flexible_body_is_named():
+    band = np.zeros(3)
+    winch = WinchRecord(body=0, length=0, length_set=1.0, c1=band, c2=band, d2=band)
+    with pytest.raises(ValueError, match=r"^model.winches\[0\].body: expected a flexible body in "):
+        _system(winches=(winch,))
+
+
+def _run_buffers(n: int, m: int, dtype: type = float) -> RunBuffers:
+    """The state at zero (y of ``dtype``) and room for one stored row."""
+    y, v, a, w = np.zeros(n, dtype=dtype), np.zeros(n), np.zeros(n), np.zeros(n)
+    return RunBuffers(y, v, a, w, np.zeros(m), np.zeros((1, n)), np.zeros((1, n)), np.zeros((1, m)))
+
+
+def test_run_takes_buffers_and_options_and_writes_in_place():
+    """One step of the pinned masses from rest: the state and the stored row are written into
+    the buffers themselves; an integer array (a copy would be written) is refused by name."""
+    s = _system()
+    scheme = _core.Scheme(
+        alpha_m=0.0,
+        alpha_f=0.0,
+        gamma=0.5,
+        beta=0.25,
+        damping=0.0,
+        tol=1e-10,
+        max_iter=20,
+        modified=False,
+    )
+    integ = _core.SystemIntegrator(s, scheme)
+    buffers = _run_buffers(s.n, s.m)
+    steps, ok, _, stored, _, _ = integ.run(buffers, RunOptions(t0=0.0, h=1e-3, n_steps=1))
+    assert (steps, ok, stored) == (1, True, 1)
+    assert buffers.out_y[0] == pytest.approx(buffers.y, abs=0.0)
+    assert np.any(buffers.y != np.zeros(s.n))
+    with pytest.raises(TypeError, match=r"^buffers.y: expected a C-contiguous float64 array"):
+        integ.run(_run_buffers(s.n, s.m, int), RunOptions(t0=0.0, h=1e-3, n_steps=1))

@@ -81,6 +81,12 @@ def test_a_winch_paying_out_at_once_warns(tmp_path, capsys):
     )
     assert "give build_up = 1 to build it up over 1 s, or start the table at rate 0" in line
     assert summary["warnings"] == [line, error]
+    # the fixed-step run's estimate, once at the end: where, the step, and a step that meets it
+    err, h, at = summary["error_estimate"], summary["error_step_s"], summary["error_time_s"]
+    assert err > 1.0 and h > 0.0 and 0.0 < at <= 0.5
+    assert f"is {err:.3g} times solver.rtol" in error and f"at t = {at:.6g} s" in error
+    assert f"with a step of {h:.3g} s" in error
+    assert f"a step of about {h * 0.9 * err ** (-1 / 3):.3g} s meets it there" in error
     assert f"rancf: warning: {line}\n" in GUIDE.read_text()  # the guide shows it as it is
 
 

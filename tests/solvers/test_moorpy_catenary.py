@@ -166,3 +166,35 @@ def test_a_mesh_named_by_node_index_is_kept_with_a_warning(tmp_path):
     run = run_static(load_scenario(path))
     assert run.system.flex[0].n_el == 40 and len(run.notes) == 1, run.notes
     assert "do not resolve" in run.notes[0] and "keeps its 40 elements" in run.notes[0]
+
+
+@pytest.mark.parametrize("name", ["sloped-up", "sloped-down"])
+def test_a_line_anchored_on_a_sloped_seabed_starts_on_its_sloped_catenary(tmp_path, name):
+    """MoorPy's sloped pair: the sagged start lies on the sloped seabed from the grounded end and
+    lifts off tangent to it (MoorPy's shape), from which Newton alone converges (no
+    relaxation) to forces within 0.5 %."""
+    case = next(c for c in CASES if c.name == name)
+    run = _run(tmp_path, case, 40)
+    assert run.result.method == "sag start+newton" and run.result.relaxation_steps == 0
+    ends = run.outputs.static_reactions(run.result.y, run.result.lam)
+    got = -np.r_[ends[0].force[:2], ends[-1].force[:2]]
+    want = expected(case)
+    assert np.abs(got - want).max() <= TOL * np.hypot(*want[2:]), (got, want)
+
+
+def test_a_run_from_its_static_state_refines_the_touchdown_as_the_static_run(tmp_path):
+    """``initial_state = "static"`` on the full U at 40 elements: the run is planned, solved and
+    integrated on the 160 elements ``rancf static`` solves it on, with the same warning line
+    (naming the static start and the run) in its warnings and its ``mesh_refinement``."""
+    from rancf.runs.simulate import run_simulate
+
+    case = next(c for c in CASES if c.name == "u-shape")
+    path = tmp_path / "u.toml"
+    solver = '\n[solver]\ninitial_state = "static"\nt_end = 0.01\nstep = 0.01\n'
+    path.write_text(scenario_text(case, 40) + solver)
+    run = run_simulate(load_scenario(path))
+    assert run.system.flex[0].n_el == 160
+    lines = [w for w in run.warnings if "refined to 160" in w]
+    assert len(lines) == 1 and "for the static start and the run" in lines[0]
+    assert run.start["mesh_refinement"] == lines
+    assert run.result.status.value == "completed"

@@ -140,3 +140,26 @@ def test_a_state_of_another_system_is_refused(tmp_path):
     (tmp_path / "bad.npz").write_text("not a state")
     with pytest.raises(InputError, match="bad.npz"):
         DynamicState.load(tmp_path / "bad.npz")
+
+
+def test_resumed_from_any_output_counts_as_one_run(monkeypatch):
+    # compiled calls of many outputs, and steps too hard for 3 iterations: calls end at failed
+    # steps after storing outputs, where a snapshot (a checkpoint) may be taken
+    monkeypatch.setattr(dynamic, "CALL_TARGET_SECONDS", 10.0)
+    sc = _scenario("stiff-line", max_newton=3, output_step=1e-3, t_end=0.05)
+    states = []
+
+    def run(start=None):
+        system = build_system(sc)
+        y0 = None if start is not None else start_state(sc, system)[0]
+        snap = None if start is not None else lambda t, s: states.append(s().state)
+        return integrate(system, sc.dynamic_options(), snap, lambda: False, y0, start=start)
+
+    whole = run()
+    assert whole.n_rejected > 10 and len(states) > 10
+    counts = {(whole.n_newton, whole.n_rejected, whole.n_steps)}
+    for state in states[:-1]:
+        again = run(start=state)
+        counts.add((again.n_newton, again.n_rejected, again.n_steps))
+        assert _close(again.state.y, whole.state.y) <= RTOL
+    assert counts == {(whole.n_newton, whole.n_rejected, whole.n_steps)}

@@ -23,8 +23,9 @@ import pytest
 import rancf
 from rancf.errors import ConvergenceError
 from rancf.scenario.scenario import load_scenario
-from rancf.solvers.sag_start import SAG_START, catenary_shape
+from rancf.solvers.sag_start import SAG_START
 from rancf.solvers.static import solve_static
+from rancf.solvers.static_catenary import catenary_shape
 from rancf.solvers.static_checks import static_state_problems
 from rancf.system.seabed import SEABED_PENETRATION
 
@@ -434,3 +435,28 @@ def test_a_looped_mooring_line_is_not_an_equilibrium(tmp_path):
         ends = SystemOutputs(system, []).static_reactions(res.y, res.lam)
         tension[n] = float(np.linalg.norm(ends[1].force))
     assert abs(tension[15] / tension[40] - 1.0) < 0.05, tension
+
+
+def test_sag_start_shape_on_a_sloped_seabed_is_moorpy_catenary():
+    """MoorPy's sloped line (anchor on a 10° slope, fairlead 60 m on and 40 m up, 80 m long):
+    straight on the slope from the anchor, then the catenary tangent to it with MoorPy's
+    ``a = H / w = 13.0987`` m; the same line seen from its other end (the slope falling) is its
+    mirror image."""
+    import math
+
+    slope = math.tan(math.radians(10.0))
+    s = np.linspace(0.0, 80.0, 8001)
+    pts, tan = catenary_shape(60.0, 40.0, 80.0, s, floor=0.0, slope=slope)
+    assert pts[0] == pytest.approx([0.0, 0.0], abs=1e-9)
+    assert pts[-1] == pytest.approx([60.0, 40.0], abs=1e-9)
+    assert np.linalg.norm(np.diff(pts, axis=0), axis=1).sum() == pytest.approx(80.0, rel=1e-6)
+    assert np.all(pts[:, 1] >= pts[:, 0] * slope - 1e-9)  # nowhere below the seabed
+    on = np.abs(pts[:, 1] - pts[:, 0] * slope) < 1e-9
+    lift = np.flatnonzero(on)[-1]  # the touchdown: the tangent along the slope
+    assert tan[lift, 1] / tan[lift, 0] == pytest.approx(slope, rel=1e-6)
+    h = 1309.865537260965 / 100.0  # MoorPy's fairlead H over w
+    # the catenary's a from the tangent angles at the touchdown and the fairlead
+    u_t, u_f = math.asinh(slope), math.asinh(tan[-1, 1] / tan[-1, 0])
+    assert (pts[-1, 0] - pts[lift, 0]) / (u_f - u_t) == pytest.approx(h, rel=1e-3)
+    down, _ = catenary_shape(60.0, -40.0, 80.0, s, floor=-40.0 + 60.0 * slope, slope=-slope)
+    assert np.abs(down[::-1] - np.c_[60.0 - pts[:, 0], pts[:, 1] - 40.0]).max() < 1e-9

@@ -144,15 +144,19 @@ def test_system_tangent_with_contact(build, which, speed, rng):
     _check(jac, fd, ~s.fixed, np.abs(_residual(s, y, v, a, dyn)).max(), step)
 
 
+@pytest.mark.parametrize("blend", [False, True], ids=["gap-at-yf", "gaps-blended"])
 @pytest.mark.parametrize("build", [planar, spatial])
-def test_discrete_gradient_tangent(build, rng):
+def test_discrete_gradient_tangent(build, blend, rng):
     """Over a step: y_f = (1 - af) y1 + af y0, v_f = v* + c (y1 - y*), the pressure the mean over
-    [2 g(y_f) - g(y1), g(y1)]; d r / d y1 (ck = 1 - af, cv = c) against differences in y1."""
+    [2 g_s - g(y1), g(y1)], g_s = g(y_f) or (fixed curved obstacles, step_alpha_f = af) the
+    blend (1 - af) g(y1) + af g(y0); d r / d y1 (ck = 1 - af, cv = c) against differences in
+    y1."""
     s = build()
     y1, v = _state(s, rng)
     y0 = y1 + 2e-4 * rng.standard_normal(s.n)
     y0[s.fixed] = y1[s.fixed]
     af, c = 0.4, 30.0
+    s.contact.step_alpha_f = af if blend else 0.0
     ystar = y1.copy()
 
     def contact_r(yy1: np.ndarray, jac: np.ndarray | None = None) -> np.ndarray:

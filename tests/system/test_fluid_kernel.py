@@ -10,6 +10,7 @@ import pytest
 
 from rancf.bodies.flexible import Material, Model, Section, Support
 from rancf.bodies.time_function import TimeFunction
+from rancf.kernels.call_records import StatePoint, TangentOptions
 from rancf.mesh.factories import mesh_line
 from rancf.system import System
 from rancf.system.fluid import DistributedLoad, Fluid, Hydro, Waves
@@ -123,7 +124,8 @@ def test_fluid_statics_tangent(rng):
     z = np.zeros(s.n)
     free = np.flatnonzero(~s.fixed)
     ok, size, rows, cols, vals = s.core.sparse_jacobian(
-        y, z, z, np.zeros(s.m), 0.0, 1.0, 0.0, 0.0, dynamic=False, load_factor=0.6
+        StatePoint(y, z, z, np.zeros(s.m)),
+        TangentOptions(0.0, 1.0, 0.0, 0.0, dynamic=False, load_factor=0.6),
     )
     assert ok
     jac = np.zeros((size, size))

@@ -25,6 +25,7 @@
 #include "bodies/model.hpp"
 #include "bodies/sections.hpp"
 #include "elements/cable.hpp"
+#include "elements/registry.hpp"
 #include "elements/rod.hpp"
 #include "solvers/integrator.hpp"
 
@@ -248,7 +249,7 @@ nb::class_<ModelHolder> bind_model(nb::module_& mod) {
                 const auto nn = static_cast<std::size_t>(h.m.n_nodes);
                 expect_size(t, 3 * nn, "t");
                 expect_size(m1, 3 * nn, "m1");
-                if (h.m.kind != rancf::ElementKind::rod)
+                if (!rancf::kernel_for(h.m).triads)
                   throw std::invalid_argument("nodal_triads: rod models only");
                 for (int node = 0; node < h.m.n_nodes; ++node) {
                   double rx[3];
@@ -264,7 +265,7 @@ nb::class_<ModelHolder> bind_model(nb::module_& mod) {
               "rod_curvatures",
               [](const ModelHolder& h, In y, Out k, Out eps) {
                 expect_size(y, h.n(), "y");
-                if (h.m.kind != rancf::ElementKind::rod)
+                if (!rancf::kernel_for(h.m).triads)
                   throw std::invalid_argument("rod_curvatures: rod models only");
                 const auto npts = static_cast<std::size_t>(h.m.n_el * h.m.rod.n_qp);
                 expect_size(k, 3 * npts, "k");
@@ -286,7 +287,7 @@ nb::class_<ModelHolder> bind_model(nb::module_& mod) {
                 const std::size_t nd = h.n(), k = nd > 0 ? y.size() / nd : 0;
                 if (k == 0 || y.size() != k * nd) expect_size(y, nd, "y");
                 const std::size_t np = xi.size(), ne = static_cast<std::size_t>(h.m.n_el);
-                const bool pts = h.m.kind != rancf::ElementKind::beam;
+                const bool pts = rancf::kernel_for(h.m).centre_line;
                 expect_size(n1, pts ? ne * np * 4 : n1.size(), "n1");
                 expect_size(n2, pts ? ne * np * 4 : n2.size(), "n2");
                 expect_size(ref, pts ? ne * np : ref.size(), "ref");

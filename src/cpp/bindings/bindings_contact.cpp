@@ -141,6 +141,15 @@ void bind_contact(nb::module_& mod) {
           "body_w"_a, "ob_kind"_a, "ob_body"_a, "ob_point"_a, "ob_dir"_a, "ob_radius"_a,
           "pair_flex"_a, "pair_obstacle"_a, "pair_data"_a, "body_weights"_a, "body_scales"_a,
           "body_arc0"_a, "bpair_a"_a, "bpair_b"_a, "bpair_data"_a)
+      .def_prop_rw(
+          "step_alpha_f", [](const ContactHolder& h) { return h.c.step_alpha_f; },
+          [](ContactHolder& h, double af) {
+            check(af >= 0.0 && af < 1.0, "step_alpha_f: a number in [0, 1)");
+            h.c.step_alpha_f = af;
+          },
+          "alpha_f of the time steps whose alpha points the contact forces are given at: a "
+          "point's gap of a step is the blend of its gaps at the step's ends (0: the "
+          "gap at the alpha point).")
       .def(
           "body_outputs",
           [](const ContactHolder& h, In y, Out out) {

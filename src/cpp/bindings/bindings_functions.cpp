@@ -9,6 +9,7 @@
 
 #include "bindings/bindings.hpp"
 #include "bodies/sections.hpp"
+#include "bodies/threads.hpp"
 #include "elements/cable.hpp"
 #include "elements/rod.hpp"
 #include "linalg/band.hpp"
@@ -18,6 +19,21 @@ namespace rancf_bind {
 using namespace nb::literals;
 
 void bind_functions(nb::module_& mod) {
+  mod.def(
+      "set_assembly_threads",
+      [](int n) {
+        if (n < 1) throw std::invalid_argument("threads: expected an integer >= 1");
+        rancf::set_assembly_threads(n);
+      },
+      "n"_a,
+      "Threads the element loops of this process may use (1: none; bodies/threads.hpp); the "
+      "sums are the same bit for bit whatever the number.");
+  mod.def("assembly_threads", &rancf::assembly_threads,
+          "Threads the element loops of this process may use.");
+  mod.def(
+      "min_parallel_elements", [] { return rancf::kMinParallelElements; },
+      "The fewest elements a body has for its element loop to be shared between threads.");
+
   mod.def(
       "rod_nodal_triad",
       [](In tref, In m1ref, In rx, double phi) {

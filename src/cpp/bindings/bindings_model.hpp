@@ -11,6 +11,7 @@
 
 #include "bindings/bindings.hpp"
 #include "bodies/model.hpp"
+#include "elements/registry.hpp"
 #include "solvers/integrator.hpp"
 
 namespace rancf_bind {
@@ -133,7 +134,7 @@ struct ModelHolder {
     const std::size_t nm = loads.moment_node.size();
     expect_size(loads.moment, 3 * nm, "loads.moment");
     expect_size(loads.moment_freq, nm, "loads.moment_freq");
-    if (nm > 0 && m.kind != rancf::ElementKind::rod)
+    if (nm > 0 && !rancf::kernel_for(m).triads)
       throw std::invalid_argument("loads.moment: point moments need rod elements");
     for (std::size_t i = 0; i < nm; ++i) {
       const std::int64_t nd = loads.moment_node.data()[i];
@@ -149,7 +150,7 @@ struct ModelHolder {
     m.y_ref = y_ref.data();
     if (!(rotary.polar >= 0.0 && rotary.bend >= 0.0))  // also rejects NaN
       throw std::invalid_argument("rotary: expected finite moments >= 0");
-    if ((rotary.polar > 0.0 || rotary.bend > 0.0) && m.kind != rancf::ElementKind::rod)
+    if ((rotary.polar > 0.0 || rotary.bend > 0.0) && !rancf::kernel_for(m).triads)
       throw std::invalid_argument("rotary: a rotary inertia needs rod elements");
     m.rotary = rotary;
   }
@@ -178,7 +179,7 @@ struct ModelHolder {
         throw std::invalid_argument("reduction.node_start: window out of range");
     }
     const std::int64_t* tw = nullptr;
-    if (m.kind == rancf::ElementKind::rod) {
+    if (rancf::kernel_for(m).triads) {
       expect_size(r.twist, sz(nn), "reduction.twist");
       for (int k = 0; k < nn; ++k)
         if (r.twist.data()[k] < 0 || r.twist.data()[k] >= r.n_y)

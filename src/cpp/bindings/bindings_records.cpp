@@ -14,6 +14,9 @@
 #include <string>
 #include <utility>
 
+#include "bindings/bindings_fields.hpp"
+#include "elements/registry.hpp"
+
 namespace rancf_bind {
 
 namespace {
@@ -24,124 +27,6 @@ constexpr std::array<const char*, 6> kJointKinds = {"pin",      "fixed",  "tange
                                                     "revolute", "slider", "sliding"};
 constexpr std::array<const char*, 5> kTimeKinds = {"constant", "piecewise", "ramp", "harmonic",
                                                    "spin_up"};
-constexpr std::size_t kAnySize = static_cast<std::size_t>(-1);
-
-std::string shown(nb::handle v) {
-  std::string s = nb::repr(v).c_str();
-  return s.size() > 60 ? s.substr(0, 57) + "..." : s;
-}
-
-std::string range(const char* what, std::size_t first, std::size_t end) {
-  return std::string(what) + " in [" + std::to_string(first) + ", " + std::to_string(end) + ")";
-}
-
-/// The fields of one record, named `where` in messages (e.g. "places[2]").
-class Fields {
- public:
-  Fields(nb::handle obj, std::string where) : obj_(obj), where_(std::move(where)) {}
-
-  [[nodiscard]] std::string name(const char* field) const { return where_ + "." + field; }
-
-  /// A value error naming the field.
-  [[noreturn]] void fail(const char* field, const std::string& expected,
-                         const std::string& got) const {
-    throw std::invalid_argument(name(field) + ": expected " + expected + ", got " + got);
-  }
-
-  [[nodiscard]] int integer(const char* field) const {
-    nb::object v = get(field);
-    std::int64_t x = 0;
-    if (PyBool_Check(v.ptr()) || !nb::try_cast(v, x)) wrong_type(field, "an integer", v);
-    if (x < INT_MIN || x > INT_MAX) fail(field, "a 32-bit integer", shown(v));
-    return static_cast<int>(x);
-  }
-
-  /// An index in [0, end), or -1 (none) if first is -1.
-  [[nodiscard]] int index(const char* field, int first, std::size_t end, const char* what) const {
-    const int i = integer(field);
-    if (i < first || (i >= 0 && static_cast<std::size_t>(i) >= end))
-      fail(field,
-           range(what, static_cast<std::size_t>(std::max(first, 0)), end) +
-               (first < 0 ? " or -1" : ""),
-           std::to_string(i));
-    return i;
-  }
-
-  [[nodiscard]] nb::object object(const char* field) const { return get(field); }
-
-  [[nodiscard]] double number(const char* field) const {
-    nb::object v = get(field);
-    double x = 0.0;
-    if (PyBool_Check(v.ptr()) || !nb::try_cast(v, x)) wrong_type(field, "a number", v);
-    return x;
-  }
-
-  [[nodiscard]] bool flag(const char* field) const {
-    nb::object v = get(field);
-    bool x = false;
-    if (!nb::try_cast(v, x)) wrong_type(field, "True or False", v);
-    return x;
-  }
-
-  /// A vector of `size` numbers (kAnySize: any number of them).
-  [[nodiscard]] std::vector<double> numbers(const char* field, std::size_t size) const {
-    nb::object v = get(field);
-    std::vector<double> x;
-    if (nb::isinstance<nb::str>(v) || !nb::try_cast(v, x))
-      wrong_type(field, "a sequence of numbers", v);
-    if (size != kAnySize && x.size() != size)
-      fail(field, std::to_string(size) + " numbers", std::to_string(x.size()));
-    return x;
-  }
-
-  void numbers_into(const char* field, double* out, std::size_t size) const {
-    const std::vector<double> x = numbers(field, size);
-    std::copy(x.begin(), x.end(), out);
-  }
-
-  /// One of `names`, as the enum of its position.
-  template <class E, std::size_t N>
-  [[nodiscard]] E choice(const char* field, const std::array<const char*, N>& names) const {
-    nb::object v = get(field);
-    std::string allowed;
-    for (const char* n : names) allowed += (allowed.empty() ? "" : ", ") + std::string(n);
-    if (!nb::isinstance<nb::str>(v)) wrong_type(field, "one of " + allowed, v);
-    const std::string s = nb::cast<std::string>(v);
-    for (std::size_t k = 0; k < N; ++k)
-      if (s == names[k]) return static_cast<E>(k);
-    fail(field, "one of " + allowed, shown(v));
-  }
-
- private:
-  nb::handle obj_;
-  std::string where_;
-
-  [[nodiscard]] nb::object get(const char* field) const {
-    if (!nb::hasattr(obj_, field))
-      throw nb::type_error((name(field) + ": missing (a record with the field " + field +
-                            " expected, got " + shown(obj_) + ")")
-                               .c_str());
-    return nb::getattr(obj_, field);
-  }
-
-  [[noreturn]] void wrong_type(const char* field, const std::string& expected, nb::handle v) const {
-    throw nb::type_error((name(field) + ": expected " + expected + ", got " + shown(v)).c_str());
-  }
-};
-
-/// Call f(fields) for every record of the list `list` (named `name`).
-template <class F>
-void each(nb::handle list, const char* name, F&& f) {
-  if (!nb::isinstance<nb::sequence>(list) || nb::isinstance<nb::str>(list))
-    throw nb::type_error(
-        (std::string(name) + ": expected a list of records, got " + shown(list)).c_str());
-  const std::size_t n = nb::len(list);
-  for (std::size_t i = 0; i < n; ++i) {
-    const nb::object item = list[i];
-    f(Fields(item, std::string(name) + "[" + std::to_string(i) + "]"));
-  }
-}
-
 bool node_kind(rancf::PlaceKind k) {
   return k == rancf::PlaceKind::cable || k == rancf::PlaceKind::rod || k == rancf::PlaceKind::beam;
 }
@@ -246,6 +131,14 @@ void read_springs(nb::handle list, rancf::System& s) {
     d.stiffness = f.number("stiffness");
     d.damping = f.number("damping");
     d.length = f.number("length");
+    d.law = f.index("law", -1, s.tfs.size(), "a time function");
+    if (d.law >= 0) {
+      const rancf::TimeFunction& law = s.tfs[static_cast<std::size_t>(d.law)];
+      if (law.kind != rancf::TimeKind::piecewise || law.n != 1)
+        f.fail("law", "a scalar piecewise (table) function of the stretch", std::to_string(d.law));
+      if (!(d.length > 0.0))
+        f.fail("length", "a rest length > 0 with a law", std::to_string(d.length));
+    }
     s.springs.push_back(d);
   });
 }
@@ -315,7 +208,7 @@ void read_fluid(nb::handle fluid, nb::handle lines, const rancf::System& s, ranc
     rancf::LineFluid ln;
     ln.body = g.index("body", 0, s.flex.size(), "a flexible body");
     const rancf::Model& m = *s.flex[static_cast<std::size_t>(ln.body)];
-    if (m.kind == rancf::ElementKind::beam)
+    if (!rancf::kernel_for(m).centre_line)
       g.fail("body", "a body of cable or rod elements", "a beam body");
     ln.hydro = g.flag("hydro");
     ln.diameter = g.number("diameter");

@@ -1,6 +1,8 @@
 // Python bindings of systems (rancf._core.System, SystemIntegrator): conversion and forwarding
 // only.  A system's parts arrive as lists of named records read into the structs of system.hpp
 // (bindings_records.hpp); its flexible bodies are Model objects kept alive by the holder.
+#include "bindings/bindings_system.hpp"
+
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
 #include <nanobind/stl/array.h>
@@ -20,6 +22,7 @@
 
 #include "bindings/bindings.hpp"
 #include "bindings/bindings_contact.hpp"
+#include "bindings/bindings_fields.hpp"
 #include "bindings/bindings_model.hpp"
 #include "bindings/bindings_records.hpp"
 #include "fluid/fluid.hpp"
@@ -48,15 +51,6 @@ void step_contact(const std::optional<In>& yf, const std::optional<In>& vf,
   terms.contact_y1 = y1->data();
 }
 
-struct SystemHolder {
-  std::vector<nb::object> models;  // keeps the flexible bodies' arrays alive
-  std::vector<double> y_ref;
-  rancf::System s;
-  rancf::FluidSet fluid;
-  rancf::WinchSet winches;    // s.winches points here once one is attached
-  rancf::SlidingSet sliding;  // s.sliding points here once a body is attached
-};
-
 struct SystemIntegratorHolder {
   rancf::SystemIntegrator integ;
   std::size_t n, m;
@@ -82,69 +76,66 @@ void each_row(const SystemHolder& h, const In& t, const In& y, const In& v, Out&
     f(y.data() + i * n, v.data() + i * n, t.data()[i], out.data() + i * width);
 }
 
-/// Construction and the parts attached to the core: contact, fluid.
+/// Construction from one model record.
 void bind_system_setup(nb::class_<SystemHolder>& cls) {
   cls.def(
          "__init__",
-         [](SystemHolder* h, int dim, nb::list models, nb::handle rigid, nb::handle places,
-            nb::handle joints, nb::handle springs, nb::handle loads, nb::handle time_functions,
-            nb::handle prescribed, nb::handle linear, nb::handle gravity, double damping,
-            In y_ref) {
+         [](SystemHolder* h, nb::handle model) {
            new (h) SystemHolder();
-           rancf::System& s = h->s;
-           check(dim == 2 || dim == 3, "dim: expected 2 or 3, got " + std::to_string(dim));
-           s.dim = dim;
-           for (nb::handle m : models) {
-             h->models.emplace_back(nb::borrow(m));
-             s.flex.push_back(&nb::cast<const ModelHolder&>(m).m);
-           }
-           read_records({rigid, places, joints, springs, loads, time_functions, prescribed, linear},
-                        s);
-           const std::vector<double> g = read_vector(gravity, "gravity", 3);
-           std::copy(g.begin(), g.end(), s.gravity);
-           s.damping = damping;
-           s.setup();
-           check_coordinates(s);
-           expect_size(y_ref, static_cast<std::size_t>(s.n), "y_ref");
-           h->y_ref.assign(y_ref.data(), y_ref.data() + s.n);
-           s.y_ref = h->y_ref.data();
+           read_model(model, *h);
          },
-         nb::kw_only(), "dim"_a, "models"_a, "rigid"_a, "places"_a, "joints"_a, "springs"_a,
-         "loads"_a, "time_functions"_a, "prescribed"_a, "linear"_a, "gravity"_a, "damping"_a,
-         "y_ref"_a,
-         "A system from its flexible bodies' Models and the lists of its records "
-         "(rancf.kernels.records: rigid bodies, places, joints, springs, loads, time functions, "
-         "prescribed motions, linear terms), read by field name.")
-      .def_prop_rw(
+         "model"_a,
+         "A system from one model record (rancf.kernels.records.SystemModel: its flexible "
+         "bodies' Models and the records of its parts), every part at once, read by field name.")
+      .def_prop_ro(
           "stiffness_damping", [](const SystemHolder& h) { return h.s.stiffness_damping; },
-          [](SystemHolder& h, double beta) {
-            check(beta >= 0.0 && std::isfinite(beta),
-                  "stiffness_damping: expected a finite number >= 0");
-            h.s.stiffness_damping = beta;
-          },
-          "Stiffness-proportional damping beta [s] of the flexible bodies (force beta K_T v).")
-      .def(
-          "attach_contact",
-          [](SystemHolder& h, ContactHolder& c) {
-            check(c.c.bodies.size() == h.s.flex.size(), "contact: one entry per flexible body");
-            h.s.contact = &c.c;
-            c.sys = &h.s;
-          },
-          "contact"_a, nb::keep_alive<1, 2>(), "Obstacles and contact pairs (contact.hpp).")
-      .def(
-          "attach_fluid",
-          [](SystemHolder& h, nb::handle fluid, nb::handle lines) {
-            rancf::FluidSet fs;
-            read_fluid(fluid, lines, h.s, fs);
-            h.fluid = std::move(fs);
-            h.s.fluid = &h.fluid;
-          },
-          "fluid"_a, "lines"_a,
-          "The fluid (a FluidRecord) and the flexible bodies in it with their distributed loads "
-          "(LineRecords), rancf.kernels.records (fluid.hpp).");
+          "Stiffness-proportional damping beta [s] of the flexible bodies (force beta K_T v).");
 }
 
-/// Fluid forces, winches, sliding joints and drums, sizes and rows.
+/// The bodies of a model record alone, to evaluate places on before the joints exist.
+struct PlaceFramesHolder {
+  SystemHolder h;
+};
+
+void bind_place_frames(nb::module_& mod) {
+  nb::class_<PlaceFramesHolder>(mod, "PlaceFrames",
+                                "The places of a model's bodies at a state, before its joints.")
+      .def(
+          "__init__",
+          [](PlaceFramesHolder* p, nb::handle model) {
+            new (p) PlaceFramesHolder();
+            read_places_only(model, p->h);
+          },
+          "model"_a,
+          "From a model record's bodies (its dim, models and rigid; places and time functions "
+          "are given at each call).")
+      .def(
+          "__call__",
+          [](PlaceFramesHolder& p, nb::handle places, nb::handle time_functions, In y, double t) {
+            rancf::System& s = p.h.s;
+            s.places.clear();
+            s.tfs.clear();
+            read_records({nb::list(), places, nb::list(), nb::list(), nb::list(), time_functions,
+                          nb::list(), nb::list()},
+                         s);
+            s.setup();
+            expect_size(y, static_cast<std::size_t>(s.n), "y");
+            std::vector<std::tuple<std::vector<double>, std::vector<double>>> out;
+            for (const rancf::PlaceRef& pl : s.places) {
+              rancf::PlaceEval e;
+              rancf::place_at(s, pl, rancf::place_map(s, pl), t, y.data(), e);
+              std::vector<double> fr;
+              for (int k = 0; k < e.nf; ++k) fr.insert(fr.end(), e.f[k], e.f[k] + 3);
+              out.emplace_back(std::vector<double>(e.x, e.x + 3), std::move(fr));
+            }
+            return out;
+          },
+          "places"_a, "time_functions"_a, "y"_a, "t"_a = 0.0,
+          "(position (3), frame rows (3 k)) of each place record at (y, t) (the time functions "
+          "they refer to by position): the reference frames a joint's record is measured in.");
+}
+
+/// Fluid forces, sliding joints, drums, sizes and rows.
 void bind_system_drums(nb::class_<SystemHolder>& cls) {
   cls.def(
          "fluid_forces",
@@ -160,68 +151,13 @@ void bind_system_drums(nb::class_<SystemHolder>& cls) {
          "The fluid's force (drag, inertia, buoyancy) on each flexible body, 3 values per body "
          "(world axes); dynamic = False: statics (no velocity, no inertia, no waves).")
       .def(
-          "attach_winch",
-          [](SystemHolder& h, int body, int length, double length_set, In c1, In c2, In d2) {
-            check(body >= 0 && static_cast<std::size_t>(body) < h.s.flex.size(),
-                  "winch: body out of range");
-            check(length >= 0 && static_cast<std::size_t>(length) < h.s.tfs.size(),
-                  "winch: time function out of range");
-            const rancf::Model& mod = *h.s.flex[static_cast<std::size_t>(body)];
-            check(mod.kind == rancf::ElementKind::cable, "winch: a body of cable elements");
-            rancf::Winch w;
-            w.body = body;
-            w.length = length;
-            w.length_set = length_set;
-            w.n = mod.n();
-            w.ku = mod.ku();
-            const std::size_t size = static_cast<std::size_t>((2 * w.ku + 1) * w.n);
-            expect_size(c1, size, "c1");
-            expect_size(c2, size, "c2");
-            expect_size(d2, size, "d2");
-            w.c1.assign(c1.data(), c1.data() + size);
-            w.c2.assign(c2.data(), c2.data() + size);
-            w.d2.assign(d2.data(), d2.data() + size);
-            h.winches.of_body.resize(h.s.flex.size(), -1);
-            check(h.winches.of_body[static_cast<std::size_t>(body)] < 0,
-                  "winch: one winch per body");
-            h.winches.of_body[static_cast<std::size_t>(body)] =
-                static_cast<int>(h.winches.winches.size());
-            h.winches.winches.push_back(std::move(w));
-            h.s.winches = &h.winches;
-          },
-          "body"_a, "length"_a, "length_set"_a, "c1"_a, "c2"_a, "d2"_a,
-          "A winch at a cable body's end (winch.hpp): time function `length` of L(t), the "
-          "length the body's arrays hold, and the convective band matrices.")
-      .def(
-          "attach_sliding",
-          [](SystemHolder& h, int body, In weights, In scales, bool closed) {
-            check(body >= 0 && static_cast<std::size_t>(body) < h.s.flex.size(),
-                  "sliding: body out of range");
-            const rancf::Model& mod = *h.s.flex[static_cast<std::size_t>(body)];
-            check(mod.kind != rancf::ElementKind::beam && !mod.reduced(),
-                  "sliding: a body of cable or rod elements with C1 continuity");
-            const auto ne = static_cast<std::size_t>(mod.n_el);
-            expect_size(weights, 4 * ne, "weights");
-            expect_size(scales, ne, "scales");
-            rancf::SlidingBody b;
-            b.weights.assign(weights.data(), weights.data() + 4 * ne);
-            b.scales.assign(scales.data(), scales.data() + ne);
-            b.closed = closed;
-            h.sliding.of_body.resize(h.s.flex.size());
-            h.sliding.of_body[static_cast<std::size_t>(body)] = std::move(b);
-            h.s.sliding = &h.sliding;
-          },
-          "body"_a, "weights"_a, "scales"_a, "closed"_a,
-          "The element geometry (rational weights (n_el, 4), gradient scales (n_el)) of a "
-          "flexible body that sliding joints run along (sliding.hpp).")
-      .def(
           "sliding_point",
           [](const SystemHolder& h, int body, In y, double sigma) {
             expect_size(y, static_cast<std::size_t>(h.s.n), "y");
             check(h.s.sliding != nullptr && body >= 0 &&
                       static_cast<std::size_t>(body) < h.s.sliding->of_body.size() &&
                       !h.s.sliding->of_body[static_cast<std::size_t>(body)].weights.empty(),
-                  "sliding_point: a body attached with attach_sliding");
+                  "sliding_point: a body a sliding joint runs along (model.sliding)");
             rancf::SlidePoint p;
             rancf::slide_point(h.s, body, y.data(), sigma, p);
             return std::make_tuple(std::vector<double>(p.r, p.r + 3),
@@ -232,37 +168,6 @@ void bind_system_drums(nb::class_<SystemHolder>& cls) {
           "(r, dr/dsigma, d2r/dsigma2) of a flexible body's centre line at the material "
           "coordinate sigma (element + parameter), 3 values each.")
       .def_prop_ro("slots", [](const SystemHolder& h) { return h.s.slots; })
-      .def(
-          "attach_drum",
-          [](SystemHolder& h, int winch, int torque, double mass, double radius, double rho_a,
-             In weight, int exit) {
-            check(winch >= 0 && static_cast<std::size_t>(winch) < h.winches.winches.size(),
-                  "drum: winch out of range");
-            check(torque >= 0 && static_cast<std::size_t>(torque) < h.s.tfs.size(),
-                  "drum: time function out of range");
-            check(mass > 0.0 && radius > 0.0 && rho_a >= 0.0, "drum: mass, radius > 0");
-            expect_size(weight, 3, "weight");
-            rancf::Winch& w = h.winches.winches[static_cast<std::size_t>(winch)];
-            check(w.drum < 0, "drum: the winch has one");
-            check(exit >= 0 && exit + h.s.dim <= w.n, "drum: exit out of range");
-            w.torque = torque;
-            w.mass = mass;
-            w.radius = radius;
-            w.rho_a = rho_a;
-            std::copy(weight.data(), weight.data() + 3, w.weight);
-            w.exit = exit;
-            w.drum = h.s.n;  // appended after every body and drum so far
-            ++h.winches.drums;
-            h.s.setup();
-            h.y_ref.push_back(w.length_set);
-            h.s.y_ref = h.y_ref.data();
-            return w.drum;
-          },
-          "winch"_a, "torque"_a, "mass"_a, "radius"_a, "rho_a"_a, "weight"_a, "exit"_a,
-          "Make winch (an index, attached before) a driven drum (winch.hpp): the time function "
-          "of its torque [N m], J / r^2 [kg], r [m], the line's mass per length, its weight per "
-          "length (3), the body's coordinate of the exit's position.  Adds the coordinate L "
-          "(returned) after the bodies.")
       .def(
           "hold_drums",
           [](SystemHolder& h, bool hold) {
@@ -384,20 +289,22 @@ void bind_system_outputs(nb::class_<SystemHolder>& cls) {
          "d/dy + cv d/dv + ca d/da, dense (n + m)^2, held rows and columns as assembled.")
       .def(
           "sparse_jacobian",
-          [](const SystemHolder& h, In y, In v, In a, In lam, double t, double ck, double cv,
-             double ca, bool dynamic, double load_factor, bool amplitude) {
+          [](const SystemHolder& h, nb::handle point, nb::handle options) {
             const auto n = static_cast<std::size_t>(h.s.n), m = static_cast<std::size_t>(h.s.m);
-            for (const auto* x : {&y, &v, &a}) expect_size(*x, n, "state");
-            expect_size(lam, m, "lam");
+            const Fields p(point, "point"), o(options, "options");
+            const In y = p.array("y"), v = p.array("v"), a = p.array("a"), lam = p.array("lam");
+            for (const auto* x : {&y, &v, &a}) expect_size(*x, n, "point.y, v, a");
+            expect_size(lam, m, "point.lam");
+            rancf::AssemblyTerms terms;
+            terms.ck = o.number("ck");
+            terms.cv = o.number("cv");
+            terms.ca = o.number("ca");
+            terms.tf = terms.t1 = o.number("t");
+            terms.load_factor = o.number("load_factor");
+            terms.amplitude = o.flag("amplitude");
+            const bool dynamic = o.flag("dynamic");
             rancf::BorderedLU lu(h.s.offset, h.s.block_size, h.s.block_ku, h.s.fixed.data());
             std::vector<double> r(n + m);
-            rancf::AssemblyTerms terms;
-            terms.ck = ck;
-            terms.cv = cv;
-            terms.ca = ca;
-            terms.tf = terms.t1 = t;
-            terms.load_factor = load_factor;
-            terms.amplitude = amplitude;
             std::vector<int> rows, cols;
             std::vector<double> vals;
             const bool ok = rancf::assemble_system(h.s, y.data(), dynamic ? v.data() : nullptr,
@@ -406,13 +313,12 @@ void bind_system_outputs(nb::class_<SystemHolder>& cls) {
             if (ok) lu.triplets(rows, cols, vals);
             return std::make_tuple(ok, h.s.n + lu.border(), rows, cols, vals);
           },
-          "y"_a, "v"_a, "a"_a, "lam"_a, "t"_a, "ck"_a, "cv"_a, "ca"_a, "dynamic"_a = true,
-          "load_factor"_a = 1.0, "amplitude"_a = false,
-          "(ok, size, rows, cols, values): the Jacobian of residual() as the bordered solver "
-          "holds it, [A P; Q D] over (y, lambda, coupling unknowns z = x_j with D = -1), held "
-          "rows and columns as assembled (identity on the diagonal only after factoring: here "
-          "as assembled); statics: the loads times load_factor, at their amplitude if "
-          "amplitude.")
+          "point"_a, "options"_a,
+          "(ok, size, rows, cols, values): the Jacobian of residual() at a StatePoint (y, v, a, "
+          "lam) with TangentOptions (ck d/dy + cv d/dv + ca d/da at t; dynamic = False: "
+          "statics; the loads times load_factor, at their amplitude if amplitude) as the "
+          "bordered solver holds it, [A P; Q D] over (y, lambda, coupling unknowns z = x_j with "
+          "D = -1), held rows and columns as assembled (rancf.kernels.records).")
       .def(
           "joint_reaction",
           [](const SystemHolder& h, int k, In y, double t, In lam) {
@@ -474,18 +380,20 @@ void bind_system_outputs(nb::class_<SystemHolder>& cls) {
 void bind_integrator_statics(nb::class_<SystemIntegratorHolder>& cls) {
   cls.def(
          "factor_static",
-         [](SystemIntegratorHolder& h, In y, In lam, double lf, bool amplitude, double t,
-            Out residual, double stab) {
-           expect_size(y, h.n, "y");
-           expect_size(lam, h.m, "lam");
-           expect_size(residual, h.n + h.m, "residual");
-           return h.integ.factor_static(y.data(), lam.data(), lf, amplitude, t, residual.data(),
-                                        stab);
+         [](SystemIntegratorHolder& h, nb::handle point, nb::handle options) {
+           const Fields p(point, "point"), o(options, "options");
+           const In y = p.array("y"), lam = p.array("lam");
+           expect_size(y, h.n, "point.y");
+           expect_size(lam, h.m, "point.lam");
+           Out residual = *p.buffer("residual", h.n + h.m);
+           return h.integ.factor_static(y.data(), lam.data(), o.number("load_factor"),
+                                        o.flag("amplitude"), o.number("t"), residual.data(),
+                                        o.number("stab"));
          },
-         "y"_a, "lam"_a, "load_factor"_a, "amplitude"_a, "t"_a, "residual"_a.noconvert(),
-         "stab"_a = 0.0,
-         "The statics' residual (balance, constraints) and its Jacobian factored (stab > 0: plus "
-         "stab M, the residual unchanged); False if not finite or singular.")
+         "point"_a, "options"_a,
+         "The statics' residual (balance, constraints) into point.residual at a StaticPoint (y, "
+         "lam) and its Jacobian factored, with StaticOptions (load_factor, amplitude, t; stab "
+         "> 0: plus stab M, the residual unchanged); False if not finite or singular.")
       .def(
           "solve_factored",
           [](SystemIntegratorHolder& h, Out x, Out z) {
@@ -506,19 +414,20 @@ void bind_integrator_statics(nb::class_<SystemIntegratorHolder>& cls) {
           "Set the moving supports' held coordinates and their rates at time t.")
       .def(
           "static_increment",
-          [](SystemIntegratorHolder& h, In y, In lam, double lf, bool amplitude, double t, Out dy,
-             Out dlam, Out residual) {
-            expect_size(y, h.n, "y");
-            expect_size(dy, h.n, "dy");
-            expect_size(lam, h.m, "lam");
-            expect_size(dlam, h.m, "dlam");
-            expect_size(residual, h.n + h.m, "residual");
-            return h.integ.static_increment(y.data(), lam.data(), lf, amplitude, t, dy.data(),
+          [](SystemIntegratorHolder& h, nb::handle point, nb::handle options) {
+            const Fields p(point, "point"), o(options, "options");
+            const In y = p.array("y"), lam = p.array("lam");
+            expect_size(y, h.n, "point.y");
+            expect_size(lam, h.m, "point.lam");
+            Out dy = *p.buffer("dy", h.n), dlam = *p.buffer("dlam", h.m);
+            Out residual = *p.buffer("residual", h.n + h.m);
+            return h.integ.static_increment(y.data(), lam.data(), o.number("load_factor"),
+                                            o.flag("amplitude"), o.number("t"), dy.data(),
                                             dlam.data(), residual.data());
           },
-          "y"_a, "lam"_a, "load_factor"_a, "amplitude"_a, "t"_a, "dy"_a.noconvert(),
-          "dlam"_a.noconvert(), "residual"_a.noconvert(),
-          "One static Newton increment (K dy + G^T dlam = -r, G dy = -g); False if singular.");
+          "point"_a, "options"_a,
+          "One static Newton increment at a StaticPoint (K dy + G^T dlam = -r, G dy = -g into "
+          "point.dy, point.dlam, point.residual) with StaticOptions; False if singular.");
 }
 
 /// The system's integrator: steps, runs, derived rows (and its statics' entry points).
@@ -588,26 +497,25 @@ void bind_system_integrator(nb::module_& mod) {
           "returns (converged, Newton iterations, local error estimate).")
       .def(
           "run",
-          [](SystemIntegratorHolder& h, Out y, Out v, Out a, Out w, Out lam, double t0, double dt,
-             std::int64_t n_steps, std::int64_t out_every, std::int64_t done_before,
-             double max_seconds, Out out_y, Out out_v, Out out_l, std::optional<Out> out_e,
-             std::optional<Out> out_yf, std::optional<Out> out_vf, double out_dt,
-             std::int64_t k_last) {
-            for (const auto* x : {&y, &v, &a, &w}) expect_size(*x, h.n, "state");
-            expect_size(lam, h.m, "lambda");
+          [](SystemIntegratorHolder& h, nb::handle buffers, nb::handle options) {
+            const Fields o(options, "options"), b(buffers, "buffers");
+            const int n_steps = o.integer("n_steps"), out_every = o.integer("out_every");
+            const int done_before = o.integer("done_before");
             if (out_every < 1 || n_steps < 0 || done_before < 0)
               throw std::invalid_argument("run: bad step counts");
+            Out y = *b.buffer("y", h.n), v = *b.buffer("v", h.n), a = *b.buffer("a", h.n);
+            Out w = *b.buffer("w", h.n), lam = *b.buffer("lam", h.m);
             const auto n_out = static_cast<std::size_t>((done_before + n_steps) / out_every);
-            expect_size(out_y, n_out * h.n, "out_y");
-            expect_size(out_v, n_out * h.n, "out_v");
-            expect_size(out_l, n_out * h.m, "out_l");
-            if (out_e) expect_size(*out_e, n_out * 3, "out_e");
+            Out out_y = *b.buffer("out_y", n_out * h.n), out_v = *b.buffer("out_v", n_out * h.n);
+            Out out_l = *b.buffer("out_l", n_out * h.m);
+            const std::optional<Out> out_e = b.buffer("out_e", n_out * 3, true);
+            const std::optional<Out> out_yf = b.buffer("out_yf", n_out * h.n, true);
+            const std::optional<Out> out_vf = b.buffer("out_vf", n_out * h.n, true);
             if (out_yf.has_value() != out_vf.has_value())
-              throw std::invalid_argument("run: out_yf and out_vf go together");
-            if (out_yf) {
-              expect_size(*out_yf, n_out * h.n, "out_yf");
-              expect_size(*out_vf, n_out * h.n, "out_vf");
-            }
+              throw std::invalid_argument("run: buffers.out_yf and out_vf go together");
+            const double t0 = o.number("t0"), dt = o.number("h");
+            const double max_seconds = o.number("max_seconds"), out_dt = o.number("out_dt");
+            const std::int64_t k_last = o.integer("k_last");
             rancf::RunOutcome r;
             {
               nb::gil_scoped_release release;
@@ -620,14 +528,13 @@ void bind_system_integrator(nb::module_& mod) {
             return std::make_tuple(r.steps, r.converged, r.iterations, r.stored, r.max_error,
                                    r.t_max_error);
           },
-          "y"_a.noconvert(), "v"_a.noconvert(), "a"_a.noconvert(), "w"_a.noconvert(),
-          "lam"_a.noconvert(), "t0"_a, "h"_a, "n_steps"_a, "out_every"_a, "done_before"_a,
-          "max_seconds"_a, "out_y"_a.noconvert(), "out_v"_a.noconvert(), "out_l"_a.noconvert(),
-          "out_e"_a.noconvert().none(), "out_yf"_a.noconvert().none() = nb::none(),
-          "out_vf"_a.noconvert().none() = nb::none(), "out_dt"_a = 0.0, "k_last"_a = 0,
-          "Fixed steps (state y, v, a, w, lam updated in place); returns (steps, converged, "
-          "Newton iterations, outputs stored, largest local error estimate, its time); out_yf, "
-          "out_vf: each stored row's step's alpha point (its contact forces' state).")
+          "buffers"_a, "options"_a,
+          "Fixed steps with RunOptions (t0, h, n_steps, out_every, done_before, max_seconds, "
+          "out_dt, k_last) on RunBuffers (the state y, v, a, w, lam updated in place; the rows "
+          "stored into out_y, out_v, out_l, out_e; out_yf, out_vf: each stored row's step's "
+          "alpha point, its contact forces' state) (rancf.kernels.records); returns (steps, "
+          "converged, Newton iterations, outputs stored, largest local error estimate, its "
+          "time).")
       .def(
           "initial_acceleration",
           [](SystemIntegratorHolder& h, In y, In v, double t, Out a, Out lam,
@@ -688,6 +595,7 @@ void bind_system(nb::module_& mod) {
   bind_system_balance(cls);
   bind_system_outputs(cls);
   bind_system_integrator(mod);
+  bind_place_frames(mod);
 }
 
 }  // namespace rancf_bind

@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
+#include "bodies/threads.hpp"
 #include "elements/registry.hpp"
 #include "elements/rod.hpp"
 
@@ -151,10 +154,79 @@ int twist_index(const Model& m, int node) {
   return m.reduced() ? static_cast<int>(m.reduction.twist[node]) : node * m.dpn + 6;
 }
 
+namespace {
+
+/// One element loop shared between threads (bodies/threads.hpp): chunk 0's elements are
+/// added by the calling thread as they come, the other chunks' forces and tangents kept in
+/// `out` (one stride a element, from element `kept`) and added afterwards in element order.
+struct ElementLoop {
+  const Model& m;
+  ElementTerms terms;
+  const void* ctx;
+  double* f;
+  const BandView* k;
+  double k_scale;
+  int n_chunks, kept;
+  std::ptrdiff_t stride;
+  double* out;
+
+  [[nodiscard]] int first(int c) const {
+    return static_cast<int>(std::int64_t{m.n_el} * c / n_chunks);
+  }
+
+  void chunk(int c) const {
+    std::array<double, kMaxElementDofs*(kMaxElementDofs + 1)> own{};
+    for (int el = first(c); el < first(c + 1); ++el) {
+      double* fe = c == 0 ? own.data() : out + (el - kept) * stride;
+      double* ke = k == nullptr ? nullptr : fe + kMaxElementDofs;
+      terms(ctx, el, fe, ke);
+      if (c == 0) scatter_element(m, el, fe, ke, f, k, k_scale);
+    }
+  }
+};
+
+void run_chunk(void* loop, int c) { static_cast<const ElementLoop*>(loop)->chunk(c); }
+
+struct KernelTerms {
+  const Model& m;
+  const ElementKernel& kern;
+  const double* y;
+};
+
+void kernel_terms(const void* ctx, int el, double* fe, double* ke) {
+  const auto& kt = *static_cast<const KernelTerms*>(ctx);
+  std::array<double, kMaxElementDofs> e{};
+  gather_element(kt.m, el, kt.y, e.data());
+  kt.kern.forces(kt.m, el, e.data(), fe, ke);
+}
+
+}  // namespace
+
+bool add_elements_shared(const Model& m, ElementTerms terms, const void* ctx, double* f,
+                         const BandView* k, double k_scale) {
+  const int threads = assembly_threads();
+  if (threads < 2 || m.n_el < kMinParallelElements) return false;
+  thread_local std::vector<double> out;
+  const std::ptrdiff_t stride =
+      k != nullptr ? kMaxElementDofs * (kMaxElementDofs + 1) : kMaxElementDofs;
+  ElementLoop loop{m, terms, ctx, f, k, k_scale, threads, 0, stride, nullptr};
+  loop.kept = loop.first(1);
+  out.resize(static_cast<std::size_t>((m.n_el - loop.kept) * stride));
+  loop.out = out.data();
+  if (!run_chunks(threads, run_chunk, &loop)) return false;
+  for (int el = loop.kept; el < m.n_el; ++el) {
+    const double* fe = loop.out + (el - loop.kept) * stride;
+    scatter_element(m, el, fe, k != nullptr ? fe + kMaxElementDofs : nullptr, f, k, k_scale);
+  }
+  return true;
+}
+
 void assemble(const Model& m, const double* y, double* f, const BandView* k, double k_scale) {
   const ElementKernel& kern = kernel_for(m);
   const int n = m.n();
   std::fill(f, f + n, 0.0);
+  const KernelTerms kt{m, kern, y};
+  if (add_elements_shared(m, kernel_terms, &kt, f, k, k_scale)) return;
   std::array<double, kMaxElementDofs> e{}, fe{};
   std::array<double, kMaxElementDofs * kMaxElementDofs> ke{};
   double* kep = k != nullptr ? ke.data() : nullptr;
@@ -314,7 +386,7 @@ void subtract_load_stiffness(const Model& m, double t, const double* y, const Ba
 }
 
 void rereference(const Model& m, const double* y) {
-  if (m.kind != ElementKind::rod) return;
+  if (!kernel_for(m).triads) return;
   std::array<double, 3> rx{};
   for (int node = 0; node < m.n_nodes; ++node) {
     nodal_gradient(m, y, node, rx.data());

@@ -39,6 +39,18 @@ void scatter_node(const Model& m, int node, const double* g, double* f);
 /// Index in y of a rod node's twist.
 int twist_index(const Model& m, int node);
 
+/// An element's terms: its force fe (2 dpn values, full nodal coordinates q) and, if ke is not
+/// null, its matrix ke (row-major); ctx is the caller's.
+using ElementTerms = void (*)(const void* ctx, int el, double* fe, double* ke);
+
+/// Every element's terms added into f and, if k is not null, k_scale times their matrices into
+/// the band k (scatter_element), computed on assembly_threads() threads and added in element
+/// order, so the sums are those of one thread bit for bit (bodies/threads.hpp).  False
+/// (nothing done) where the loop is not shared: fewer than kMinParallelElements elements, one
+/// thread, or the pool busy; the caller then runs its own loop.
+bool add_elements_shared(const Model& m, ElementTerms terms, const void* ctx, double* f,
+                         const BandView* k, double k_scale);
+
 /// Internal force f (n) and, if k is not null, the tangent added into *k (scaled by k_scale).
 void assemble(const Model& m, const double* y, double* f, const BandView* k, double k_scale);
 

@@ -4,12 +4,13 @@
 #include <array>
 
 #include "bodies/assembly.hpp"
+#include "elements/registry.hpp"
 #include "elements/rod.hpp"
 
 namespace rancf {
 
 bool has_rotary_inertia(const Model& m) {
-  return m.kind == ElementKind::rod && (m.rotary.polar > 0.0 || m.rotary.bend > 0.0);
+  return kernel_for(m).triads && (m.rotary.polar > 0.0 || m.rotary.bend > 0.0);
 }
 
 void assemble_inertia(const Model& m, const double* y, const double* v, const double* a,
@@ -53,7 +54,7 @@ void rotary_angular_momentum(const Model& m, const double* y, const double* v, b
 }
 
 void rereference_rates(const Model& m, const double* y, double* v, double* a) {
-  if (m.kind != ElementKind::rod) return;
+  if (!kernel_for(m).triads) return;
   for (int node = 0; node < m.n_nodes; ++node) {
     const int o = twist_index(m, node);
     if (m.supports.fixed[o] != 0) continue;

@@ -6,15 +6,14 @@
 
 #include "bodies/assembly.hpp"
 #include "elements/cable.hpp"
+#include "elements/registry.hpp"
 #include "elements/rod.hpp"
 
 namespace rancf {
 
-int section_width(const Model& m) { return m.kind == ElementKind::rod ? 4 : 2; }
+int section_width(const Model& m) { return kernel_for(m).section_width; }
 
-namespace {
-
-void cable_points(const Model& m, const SamplePoints& p, int el, const double* e, double* out) {
+void section_cable(const Model& m, const SamplePoints& p, int el, const double* e, double* out) {
   const int d = m.dim;
   for (int q = 0; q < p.n; ++q) {
     const int k = el * p.n + q;
@@ -30,24 +29,21 @@ void cable_points(const Model& m, const SamplePoints& p, int el, const double* e
   }
 }
 
-}  // namespace
+void section_beam(const Model& m, const SamplePoints& p, int el, const double* e, double* out) {
+  beam_section(m, el, e, p.xi, p.n, out + 2 * el * p.n);
+}
+
+void section_rod(const Model& m, const SamplePoints& p, int el, const double* e, double* out) {
+  rod_point_strains(m, el, e, p.n, p.xi, p.n1 + 4 * el * p.n, p.n2 + 4 * el * p.n, p.ref + el * p.n,
+                    out + 4 * el * p.n);
+}
 
 void section_strains(const Model& m, const SamplePoints& p, const double* y, double* out) {
+  const ElementKernel& kernel = kernel_for(m);
   std::array<double, kMaxElementDofs> e{};
   for (int el = 0; el < m.n_el; ++el) {
     element_coordinates(m, y, el, e.data());
-    switch (m.kind) {
-      case ElementKind::cable:
-        cable_points(m, p, el, e.data(), out);
-        break;
-      case ElementKind::beam:
-        beam_section(m, el, e.data(), p.xi, p.n, out + 2 * el * p.n);
-        break;
-      case ElementKind::rod:
-        rod_point_strains(m, el, e.data(), p.n, p.xi, p.n1 + 4 * el * p.n, p.n2 + 4 * el * p.n,
-                          p.ref + el * p.n, out + 4 * el * p.n);
-        break;
-    }
+    kernel.section(m, p, el, e.data(), out);
   }
 }
 

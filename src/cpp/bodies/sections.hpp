@@ -22,6 +22,12 @@ struct SamplePoints {
   const double* ref = nullptr;
 };
 
+/// The section values of element el (coordinates e) at the sample points p into the element's
+/// rows of out (n_el, p.n, width), one function a family (its ElementKernel::section).
+void section_cable(const Model& m, const SamplePoints& p, int el, const double* e, double* out);
+void section_beam(const Model& m, const SamplePoints& p, int el, const double* e, double* out);
+void section_rod(const Model& m, const SamplePoints& p, int el, const double* e, double* out);
+
 /// Beam element el: [eps, kappa(xi)] at the n points xi into out (n, 2) (beam.cpp).
 void beam_section(const Model& m, int el, const double* e, const double* xi, int n, double* out);
 

@@ -280,8 +280,12 @@ bool update_near(const System& s, const ContactSet& c, const double* y, const do
                  NearList& nl) {
   std::vector<int> start;
   const std::vector<double> P = all_control_points(s, c, y, &start);
+  // the step's motion: to its end y1 and, where its gaps blend those of its ends (alpha_f
+  // > 0), to its start y0 = (y - (1 - af) y1) / af, (1 - af) / af times as far
+  const double af = y1 != nullptr ? c.step_alpha_f : 0.0;
   const double moved =
-      y1 != nullptr ? largest_motion(P, all_control_points(s, c, y1, nullptr)) : 0.0;
+      (y1 != nullptr ? largest_motion(P, all_control_points(s, c, y1, nullptr)) : 0.0) *
+      (af > 0.0 ? std::max(1.0, (1.0 - af) / af) : 1.0);
   nl.moved = moved;
   if (nl.valid && nl.ref.size() == P.size() &&
       2.0 * (largest_motion(P, nl.ref) + moved) < nl.margin)

@@ -14,10 +14,11 @@
 // kept against element f if the distance bound of x from f's hull (or, in self-contact, from
 // the hull of f's part outside the excluded arc, de Casteljau's subdivision) is within the
 // tubes' radii, the onset and a margin delta.  The list stays valid while
-//   2 (max |P - P_list| + max |P(y1) - P(y)|) < delta:
+//   2 (max |P - P_list| + m) < delta,  m = max |P(y1) - P(y)| (times (1 - af) / af where the
+//   step's gaps blend those at its start y0 = (y - (1 - af) y1) / af and end, af < 1/2):
 // a point it left out was farther than r_A + r_B + onset + delta from f when it was made, so
-// its gap stays above the onset at y and at the step's end (the gap is 1-Lipschitz in the
-// points' motion).  delta = max(r_A + r_B, 4 max |P(y1) - P(y)|).  The closest point found at
+// its gap stays above the onset at y and at the step's start and end (the gap is 1-Lipschitz
+// in the points' motion).  delta = max(r_A + r_B, 4 m).  The closest point found at
 // the last assembly is kept per point and starts the next projection (Newton from it).
 #pragma once
 

@@ -123,7 +123,7 @@ struct Pair {
 };
 
 void pair_geometry(const Side& A, const Side& B, int e, int q, int f, const double* ea,
-                   const double* eb, Pair& out, double start = -1.0) {
+                   const double* eb, Pair& out, double start = -1.0, bool ends = false) {
   const Model& ma = *A.m;
   const Model& mb = *B.m;
   out.Na = A.cb->N.data() + 4 * (e * A.cb->n_c + q);
@@ -134,7 +134,7 @@ void pair_geometry(const Side& A, const Side& B, int e, int q, int f, const doub
   out.xi = xi;
   out.at_end = xi == 0.0 || xi == 1.0;
   out.kept = false;
-  if (out.at_end && !((xi == 0.0 && f == 0) || (xi == 1.0 && f == mb.n_el - 1))) return;
+  if (out.at_end && !ends && !((xi == 0.0 && f == 0) || (xi == 1.0 && f == mb.n_el - 1))) return;
   if (A.body == B.body) {  // self-contact: not near along the body
     const double s_y = B.cb->arc0[sz(f)] + xi * (B.cb->arc0[sz(f + 1)] - B.cb->arc0[sz(f)]);
     if (std::abs(point_arc(*A.cb, e, q) - s_y) < excluded_arc(*A.cb, *B.cb)) return;
@@ -199,10 +199,11 @@ double hessian_entry(const Pair& p, int a, int c) {
 }
 
 /// A point's weight and pressure and the pressure's slopes (point_force): w, pm, the
-/// coefficients ck (d/dyf) and cv (d/dvf), dp/dgf, c1 dp/dg1 and the gradient G1 of g1.
+/// coefficients ck (d/dyf) and cv (d/dvf), and dP, the pressure's slope over the pair's
+/// coordinates at the step's end (ck d/def + c1 d/de1; n values).
 struct Slopes {
-  double w, pm, ck, cv, dpf, dp1;
-  const double* G1;
+  double w, pm, ck, cv;
+  const double* dP;
 };
 
 /// The regularized Coulomb friction of a point (body_contact.hpp) into fe, and (K not null)
@@ -213,7 +214,7 @@ struct Slopes {
 ///   dv_t = P J dv - P y.' (b . dq) - u_n dn - n (u . dn),  dn = (P J dq - P y' (b . dq)) / rho,
 ///   d(J^T) F = -T^T F (b . dq)
 /// (y.' = N_B'(eta) v_B, u_n = n . u; b, T, y' of pair_geometry); p's slopes as the normal
-/// force's (ck dpf G dqf + dp1 G1 dq1).
+/// force's (dP).
 void friction(const BodyPair& bp, const Side& A, const Side& B, const Pair& pf, const Slopes& sl,
               const double* va, const double* vb, double* fe, double* K) {
   const Model& ma = *A.m;
@@ -270,7 +271,7 @@ void friction(const BodyPair& bp, const Side& A, const Side& B, const Pair& pf, 
   const double mw = bp.friction * sl.w;
   for (int a = 0; a < n; ++a)
     for (int b = 0; b < n; ++b) {
-      double v = mw * Jphi[sz(a)] * (sl.ck * sl.dpf * pf.G[sz(b)] + sl.dp1 * sl.G1[b]);
+      double v = mw * Jphi[sz(a)] * sl.dP[b];
       if (jd[sz(a)] >= 0) v += c * jc[sz(a)] * M[sz(jd[sz(a)] * n + b)];
       K[a * n + b] += v - sl.ck * c * Tphi[sz(a)] * pf.b[sz(b)];
     }
@@ -279,16 +280,20 @@ void friction(const BodyPair& bp, const Side& A, const Side& B, const Pair& pf, 
 /// The force of point q of element e (side A, coordinates ea) against element f (side B,
 /// coordinates eb): fe (n = na + nb: on e, then on f), with the step's mean pressure up to
 /// (ea1, eb1) (null: statics); K (if not null, n x n): minus its Jacobian with respect to the
-/// step's end, ck d/d(ea, eb) + cv d/d(va, vb) + c1 d/d(ea1, eb1) (friction: friction()).
-/// Returns the gap (1e300: not kept); pw: the point's normal force.  xi (if not null): the
-/// projection's start (< 0: none) and its closest point; clear: a gap above which the step's
-/// gaps cannot reach zero (the points' motion in the step is below it).
+/// step's end, ck d/d(ea, eb) + cv d/d(va, vb) + c1 d/d(ea1, eb1) (friction: friction());
+/// af > 0: the step's gap is the blend of the gaps at its ends (time-integration.md TI.16), the
+/// start's coordinates (ea - (1 - af) ea1) / af projected from the alpha point's closest point
+/// (kept at an end of the element, the distance to that end: the gap stays continuous where
+/// the closest point passes to the next element within the step).  Returns
+/// the gap (1e300: not kept); pw: the point's normal force.  xi (if not null): the
+/// projection's start (< 0: none) and its closest point; clear: a gap at the alpha point above
+/// which the step's gaps cannot reach zero (the points' motion in the step is below it).
 double point_force(const BodyPair& bp, const Side& A, const Side& B, int e, int q, int f,
                    const double* ea, const double* eb, const double* ea1, const double* eb1,
                    const double* va, const double* vb, double* fe, double* pw, double ck = 1.0,
-                   double cv = 0.0, double* K = nullptr, double c1 = 1.0, double* xi = nullptr,
-                   double clear = 1e300) {
-  const int n = A.m->nde() + B.m->nde();
+                   double cv = 0.0, double* K = nullptr, double c1 = 1.0, double af = 0.0,
+                   double* xi = nullptr, double clear = 1e300) {
+  const int na = A.m->nde(), n = na + B.m->nde();
   Pair pf;
   pair_geometry(A, B, e, q, f, ea, eb, pf, xi != nullptr ? *xi : -1.0);
   if (xi != nullptr) *xi = pf.xi;
@@ -297,37 +302,52 @@ double point_force(const BodyPair& bp, const Side& A, const Side& B, int e, int 
   if (!pf.kept) return 1e300;
   if (ea1 != nullptr && pf.g > clear) return pf.g;  // no pressure within the step
   const Penalty law{0.5 * bp.stiffness, bp.onset};
-  double pm = 0.0, dpf = 0.0, dp1 = 0.0;  // the pressure and its slopes over gf and g1
-  Pair p1;
+  double pm = 0.0, slope = 0.0, dpa = 0.0, dp1 = 0.0;  // the pressure and its slopes
+  Pair p1, p0;
   if (ea1 == nullptr) {
     pm = law.p(pf.g);
-    dpf = law.slope(pf.g);
-  } else {  // the step's mean pressure over [2 gf - g1, g1] (contact.hpp)
+    slope = law.slope(pf.g);
+  } else {  // the step's mean pressure over [2 gs - g1, g1] (contact.hpp)
     pair_geometry(A, B, e, q, f, ea1, eb1, p1, pf.xi);  // from the alpha point's
     if (!p1.kept) p1 = pf;
-    const double ga = 2.0 * pf.g - p1.g;
-    double dpa = 0.0;
-    mean_pressure(law, ga, p1.g, pm, dpa, dp1);
-    dpf = 2.0 * dpa;
-    dp1 -= dpa;
+    if (af > 0.0) {  // the step's start at the alpha point's closest point
+      Coords ea0{}, eb0{};
+      contact_point::step_start(ea, ea1, af, na, ea0.data());
+      contact_point::step_start(eb, eb1, af, n - na, eb0.data());
+      pair_geometry(A, B, e, q, f, ea0.data(), eb0.data(), p0, pf.xi, true);
+    }
+    const double gs = p0.kept ? (1.0 - af) * p1.g + af * p0.g : pf.g;
+    mean_pressure(law, 2.0 * gs - p1.g, p1.g, pm, dpa, dp1);
   }
-  if (pm == 0.0 && dpf == 0.0 && dp1 == 0.0) return pf.g;
+  if (pm == 0.0 && slope == 0.0 && dpa == 0.0 && dp1 == 0.0) return pf.g;
   pair_gradient(*A.m, *B.m, pf);
+  // dP (the tangent's): the pressure's slope over the step's end; ga = 2 gs - g1 over the
+  // alpha point and the end: 2 G and -G1 for gs = g(alpha), 2 G0 and (1 - 2 af) G1 -
+  // 2 (1 - af) G0 for the blend
+  std::array<double, 2 * kMaxElementDofs> dP{};
   if (K != nullptr) {
     pair_hessian(n, pf);
     if (ea1 != nullptr) pair_gradient(*A.m, *B.m, p1);
+    if (p0.kept) pair_gradient(*A.m, *B.m, p0);
+  }
+  for (int a = 0; a < n && K != nullptr; ++a) {
+    if (ea1 == nullptr)
+      dP[sz(a)] = ck * slope * pf.G[sz(a)];
+    else if (p0.kept)
+      dP[sz(a)] = 2.0 * dpa * (ck - c1 * (1.0 - af)) * p0.G[sz(a)] +
+                  c1 * (dp1 + (1.0 - 2.0 * af) * dpa) * p1.G[sz(a)];
+    else
+      dP[sz(a)] = 2.0 * ck * dpa * pf.G[sz(a)] + c1 * (dp1 - dpa) * p1.G[sz(a)];
   }
   const double w = A.cb->w[sz(e * A.cb->n_c + q)];
   *pw = w * pm;
   for (int a = 0; a < n; ++a) fe[a] = w * pm * pf.G[sz(a)];
-  const double* G1 = ea1 != nullptr ? p1.G.data() : pf.G.data();
   if (K != nullptr)
     for (int a = 0; a < n; ++a)
       for (int c = 0; c < n; ++c)
-        K[a * n + c] = -w * (ck * (dpf * pf.G[sz(a)] * pf.G[sz(c)] + pm * hessian_entry(pf, a, c)) +
-                             (ea1 != nullptr ? c1 * dp1 * pf.G[sz(a)] * G1[c] : 0.0));
+        K[a * n + c] = -w * (ck * pm * hessian_entry(pf, a, c) + pf.G[sz(a)] * dP[sz(c)]);
   if (bp.friction > 0.0 && va != nullptr && pm > 0.0) {
-    const Slopes sl{w, pm, ck, cv, dpf, ea1 != nullptr ? c1 * dp1 : 0.0, G1};
+    const Slopes sl{w, pm, ck, cv, dP.data()};
     friction(bp, A, B, pf, sl, va, vb, fe, K);
   }
   return pf.g;
@@ -399,7 +419,7 @@ void each_pair(const System& s, const ContactSet& c, const double* y, const doub
           const double g =
               point_force(bp, A, B, e, q, f, ea.data(), eb.data(), pa1, pb1, pva, pvb, fe.data(),
                           &pw, tm != nullptr ? tm->ck : 1.0, tm != nullptr ? tm->cv : 0.0, K,
-                          tm != nullptr ? tm->c1 : 1.0);
+                          tm != nullptr ? tm->c1 : 1.0, y1 != nullptr ? c.step_alpha_f : 0.0);
           fn(bp, A, B, e, q, f, ea.data(), eb.data(), pa1, pb1, pva, pvb, fe.data(), g, pw);
         }
       }
@@ -416,6 +436,7 @@ void each_near(const System& s, const ContactSet& c, NearList& nl, const double*
                const double* y1, const double* v, Fn fn, const AssemblyTerms& tm, double* K) {
   Coords ea{}, eb{}, ea1{}, eb1{}, va{}, vb{};
   std::array<double, 2 * kMaxElementDofs> fe{};
+  const double af = y1 != nullptr ? c.step_alpha_f : 0.0;
   int key[4] = {-1, -1, -1, -1};  // pair, dir, e, f gathered
   double seg[6], off = 0.0;       // f's hull: its chord and the control points' distance
   for (NearPoint& p : nl.points) {
@@ -455,7 +476,7 @@ void each_near(const System& s, const ContactSet& c, NearList& nl, const double*
       continue;
     double pw = 0.0;
     const double g = point_force(bp, A, B, p.e, p.q, p.f, ea.data(), eb.data(), pa1, pb1, pva, pvb,
-                                 fe.data(), &pw, tm.ck, tm.cv, K, tm.c1, &p.xi, 2.0 * nl.moved);
+                                 fe.data(), &pw, tm.ck, tm.cv, K, tm.c1, af, &p.xi, 2.0 * nl.moved);
     fn(bp, A, B, p.e, p.q, p.f, ea.data(), eb.data(), pa1, pb1, pva, pvb, fe.data(), g, pw);
   }
 }

@@ -8,11 +8,11 @@
 // alpha point's xi*).  The gap is
 //   g = |x_i - y(xi*)| - r_A - r_B,   n = (x_i - y) / |x_i - y|,
 // and the energy w_i Phi(g) / 2 with the penalty of contact_law.hpp (in a time step the
-// pressure is its mean over the gaps [2 g(yf) - g(y1), g(y1)], as contact.hpp's); A against B and B
-// against A both count (hence the half), so the pair is symmetric.  A projection is kept where xi*
-// is inside the element, or at a free end of B (else the neighbouring element holds the closest
-// point).  Self-contact ignores points less than pi (r_A + r_B) of reference arc length apart
-// along the body (a tube bent no tighter than its radius cannot touch itself there).  Since g
+// pressure is its mean over the gaps [2 gs - g(y1), g(y1)], gs the step's gap, as contact.hpp's); A
+// against B and B against A both count (hence the half), so the pair is symmetric.  A projection is
+// kept where xi* is inside the element, or at a free end of B (else the neighbouring element holds
+// the closest point).  Self-contact ignores points less than pi (r_A + r_B) of reference arc length
+// apart along the body (a tube bent no tighter than its radius cannot touch itself there).  Since g
 // is stationary in xi*, its gradient is n . (dx - N(xi*) de_f), so the forces are the exact
 // gradient of the energy: p w_i n on x_i, -p w_i n at y(xi*) (p = -Phi'(g) / 2 ... as
 // contact_law.hpp's p with stiffness k / 2).

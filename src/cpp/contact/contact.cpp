@@ -23,6 +23,17 @@ struct PointEval {
   PointLaw law;
 };
 
+/// The slopes of the step's lower gap ga = 2 gs - g1 (step_gap) over the alpha point and the
+/// end, rf and r1 taken apart: da[0..3) = d ga/d rf, da[3..6) = d ga/d r1 (normals nf, n0, n1
+/// of the gaps at rf, r0, r1): 2 nf and -n1 for gs = g(rf); for the blend 2 n0 and
+/// (1 - 2 af) n1 - 2 (1 - af) n0.
+void ga_slopes(double af, const double* nf, const double* n0, const double* n1, double* da) {
+  for (int i = 0; i < 3; ++i) {
+    da[i] = af > 0.0 ? 2.0 * n0[i] : 2.0 * nf[i];
+    da[3 + i] = af > 0.0 ? (1.0 - 2.0 * af) * n1[i] - 2.0 * (1.0 - af) * n0[i] : -n1[i];
+  }
+}
+
 /// Visit the points of pair cp at state (y, v): fn(el, q, pose, PointEval&).  With y1 (a time
 /// step's end; y, v its alpha point) the pressure is the step's mean, as assemble_contact's.
 template <class Fn>
@@ -41,6 +52,12 @@ void each_point(const System& s, const ContactSet& c, const ContactPair& cp, con
   PlaceEval pe;
   const Pose pose = pose_at(s, ob, cr, ub, &pe);
   const Pose pose1 = y1 != nullptr ? pose_at(s, ob, cr, ub1, nullptr) : pose;
+  // the step's gap: the blend of its ends' (a fixed plane's is linear: the alpha point's)
+  const double af =
+      y1 == nullptr || (cr.fixed && ob.kind == ObstacleKind::plane) ? 0.0 : c.step_alpha_f;
+  double ub0[kMaxBody] = {};
+  if (af > 0.0) step_start(ub, ub1, af, cr.map.n, ub0);
+  const Pose pose0 = af > 0.0 && !cr.fixed ? pose_at(s, ob, cr, ub0, nullptr) : pose;
   std::array<double, kMaxElementDofs> e{}, ev{}, e1{};
   for (int el = 0; el < m.n_el; ++el) {
     element_coordinates(m, y + o, el, e.data());
@@ -51,13 +68,14 @@ void each_point(const System& s, const ContactSet& c, const ContactPair& cp, con
       PointEval pt;
       point_of(m, N, e.data(), pt.r);
       gap(pose, pt.r, cb.radius, pt.gap, false);
-      double gm[2] = {pt.gap.g, pt.gap.g};  // the step's gaps [2 g(yf) - g(y1), g(y1)]
+      double gm[2] = {pt.gap.g, pt.gap.g};  // the step's gaps [2 gs - g(y1), g(y1)]
       if (y1 != nullptr) {
-        double r1[3];
-        Gap g1;
+        double r1[3], r0[3];
+        Gap g1, g0;
         point_of(m, N, e1.data(), r1);
         gap(pose1, r1, cb.radius, g1, false);
-        gm[0] = 2.0 * pt.gap.g - g1.g;
+        const double gs = step_gap(pose0, cb.radius, pt.r, pt.gap.g, r1, g1.g, af, g0, r0);
+        gm[0] = 2.0 * gs - g1.g;
         gm[1] = g1.g;
       }
       double u[3] = {0.0, 0.0, 0.0};
@@ -143,10 +161,13 @@ void rates_of(const Field& f, const double* r, double (*out)[3]) {
 /// with rho = R^T (r - c), rho' = R^T u in the body's frame, so that a turn dw of the body adds
 /// dw x F and moves the point relative to it by -rates_j du_j (docs/guide/contact.md).
 struct CarriedPoint {
-  const double* r;    ///< the point at the alpha state
-  const double* ur;   ///< its velocity (null: statics)
-  const double* r1;   ///< at the step's end (null: no step)
-  const double* ubd;  ///< the body's velocities
+  const double* r;            ///< the point at the alpha state
+  const double* ur;           ///< its velocity (null: statics)
+  const double* r1;           ///< at the step's end (null: no step)
+  const double* ubd;          ///< the body's velocities
+  double af = 0.0;            ///< > 0: the step's gap the blend of its ends' (step_gap)
+  const Pose* p0 = nullptr;   ///< then the pose at the step's start
+  const Field* f0 = nullptr;  ///< and the body's velocity field there
 };
 
 bool carried_tangent(const ContactPair& cp, const Pose& pf, const Pose& p1, const Field& ff,
@@ -166,11 +187,31 @@ bool carried_tangent(const ContactPair& cp, const Pose& pf, const Pose& p1, cons
       }
   }
   double gm[2] = {gf.g, gf.g};
+  // the slopes of ga = 2 gs - g1 (ga_slopes): over r at the alpha point and the end (da), over
+  // the body's coordinates there (dau, over the end: dau + nb), gap slopes -n . rates_k
+  double da[6], dau[2 * kMaxBody];
+  ga_slopes(0.0, gf.n, gf.n, gf.n, da);
+  for (int k = 0; k < nb; ++k) dau[k] = -2.0 * dot(gf.n, rates[k]);
   if (pt.r1 != nullptr) {
     gap(p1, pt.r1, rt, g1, false);
     rates_of(f1, pt.r1, rates1);
-    gm[0] = 2.0 * gf.g - g1.g;
+    Gap g0;
+    double r0[3], rates0[kMaxBody][3];
+    const double gs = step_gap(*pt.p0, rt, pt.r, gf.g, pt.r1, g1.g, pt.af, g0, r0);
+    gm[0] = 2.0 * gs - g1.g;
     gm[1] = g1.g;
+    ga_slopes(pt.af, gf.n, g0.n, g1.n, da);
+    if (pt.af > 0.0) rates_of(*pt.f0, r0, rates0);
+    for (int k = 0; k < nb; ++k) {
+      const double s1 = dot(g1.n, rates1[k]);
+      if (pt.af > 0.0) {
+        const double s0 = dot(g0.n, rates0[k]);
+        dau[k] = -2.0 * s0;
+        dau[nb + k] = 2.0 * (1.0 - pt.af) * s0 - (1.0 - 2.0 * pt.af) * s1;
+      } else {
+        dau[nb + k] = s1;
+      }
+    }
   }
   PointLaw pl;
   point_law(cp, gf, pt.ur != nullptr ? u : nullptr, pt.r1 != nullptr ? gm : nullptr, true, pl);
@@ -194,7 +235,7 @@ bool carried_tangent(const ContactPair& cp, const Pose& pf, const Pose& p1, cons
     double oe[3], Boe[3], dF[3];
     cross(om, em, oe);  // du/dr = -[om]x
     mul(pl.B, oe, Boe);
-    for (int i = 0; i < 3; ++i) dF[i] = pl.A[i][m] - Boe[i] + 2.0 * pl.Ga[i] * gf.n[m];
+    for (int i = 0; i < 3; ++i) dF[i] = pl.A[i][m] - Boe[i] + pl.Ga[i] * da[m];
     double Fw[3];
     for (int j = 0; j < nb; ++j) {  // d rates_j / dr = [w_j]x: F . (w_j x e_m)
       cross(pl.F, ff.w[j], Fw);
@@ -206,7 +247,7 @@ bool carried_tangent(const ContactPair& cp, const Pose& pf, const Pose& p1, cons
       put(m, tm.cv, dF, nullptr);
     }
     if (dyn) {
-      for (int i = 0; i < 3; ++i) dF[i] = (pl.G1[i] - pl.Ga[i]) * g1.n[m];
+      for (int i = 0; i < 3; ++i) dF[i] = pl.G1[i] * g1.n[m] + pl.Ga[i] * da[3 + m];
       put(m, tm.c1, dF, nullptr);
     }
   }
@@ -222,8 +263,7 @@ bool carried_tangent(const ContactPair& cp, const Pose& pf, const Pose& p1, cons
     for (int i = 0; i < 3; ++i) dV[i] += wu[i];
     mul(pl.A, rates[k], Ar);
     mul(pl.B, dV, BV);
-    const double dg = dot(gf.n, rates[k]);
-    for (int i = 0; i < 3; ++i) dF[i] = wF[i] - Ar[i] - BV[i] - 2.0 * pl.Ga[i] * dg;
+    for (int i = 0; i < 3; ++i) dF[i] = wF[i] - Ar[i] - BV[i] + pl.Ga[i] * dau[k];
     for (int j = 0; j < nb; ++j) {  // d rates_j / du_k at r
       double c[3], dr[3];
       cross(ff.dw[j][k], pt.r, c);
@@ -238,7 +278,7 @@ bool carried_tangent(const ContactPair& cp, const Pose& pf, const Pose& p1, cons
     }
     if (dyn) {
       const double dg1 = dot(g1.n, rates1[k]);
-      for (int i = 0; i < 3; ++i) dF[i] = -(pl.G1[i] - pl.Ga[i]) * dg1;
+      for (int i = 0; i < 3; ++i) dF[i] = -pl.G1[i] * dg1 + pl.Ga[i] * dau[nb + k];
       put(d + k, tm.c1, dF, nullptr);
     }
   }
@@ -302,14 +342,19 @@ void carried_pair(const System& s, const ContactSet& c, const ContactPair& cp, c
     if (dyn) gather_body(cr.map, y1, ub1);
     const Pose pf = pose_at(s, ob, cr, ubf, nullptr);
     const Pose p1 = dyn ? pose_at(s, ob, cr, ub1, nullptr) : pf;
+    const double af = dyn ? c.step_alpha_f : 0.0;  // the step's gap: the blend of its ends'
+    double ub0[kMaxBody] = {};
+    if (af > 0.0) step_start(ubf, ub1, af, nb, ub0);
+    const Pose p0 = af > 0.0 ? pose_at(s, ob, cr, ub0, nullptr) : pf;
     // planar bodies: the exact tangent (carried_tangent); in 3D central differences
     const bool planar = d == 2;
-    Field ff, f1;
+    Field ff, f1, f0;
     if (planar) {
       ff = field_of(s, ob, cr, ubf);
       f1 = dyn ? field_of(s, ob, cr, ub1) : ff;
+      f0 = af > 0.0 ? field_of(s, ob, cr, ub0) : ff;
     }
-    std::array<double, kMaxElementDofs> ef{}, ev{}, e1{};
+    std::array<double, kMaxElementDofs> ef{}, ev{}, e1{}, e0{};
     std::array<double, kMaxAll> fe{};
     std::array<double, kMaxAll * kMaxAll> ke{};
     int idx[kMaxAll], shp[kMaxAll], cmp[kMaxAll];  // shape function and local component
@@ -327,7 +372,12 @@ void carried_pair(const System& s, const ContactSet& c, const ContactPair& cp, c
       element_coordinates(m, yf + o, el, ef.data());
       if (vf != nullptr) element_coordinates(m, vf + o, el, ev.data());
       if (dyn) element_coordinates(m, y1 + o, el, e1.data());
-      if (out_of_reach(m, cb, el, ef.data(), dyn ? e1.data() : nullptr, pf, p1)) continue;
+      if (af > 0.0) {  // no point within reach at the step's start and end: ga, g1 >= 0
+        step_start(ef.data(), e1.data(), af, nde, e0.data());
+        if (out_of_reach(m, cb, el, e0.data(), e1.data(), p0, p1)) continue;
+      } else if (out_of_reach(m, cb, el, ef.data(), dyn ? e1.data() : nullptr, pf, p1)) {
+        continue;
+      }
       bool any = false;
       for (int q = 0; q < cb.n_c; ++q) {
         const double* N = cb.N.data() + 4 * (el * cb.n_c + q);
@@ -337,9 +387,11 @@ void carried_pair(const System& s, const ContactSet& c, const ContactPair& cp, c
         gap(pf, rf, cb.radius, gf, false);
         double gmv[2] = {gf.g, gf.g};  // skip points out of contact over the whole step
         if (dyn) {
+          Gap g0;
+          double r0[3];
           point_of(m, N, e1.data(), r1);
           gap(p1, r1, cb.radius, g1, false);
-          gmv[0] = 2.0 * gf.g - g1.g;
+          gmv[0] = 2.0 * step_gap(p0, cb.radius, rf, gf.g, r1, g1.g, af, g0, r0) - g1.g;
           gmv[1] = g1.g;
         }
         if (gmv[0] >= 0.0 && gmv[1] >= 0.0) continue;
@@ -348,7 +400,8 @@ void carried_pair(const System& s, const ContactSet& c, const ContactPair& cp, c
         const double wq = cb.w[sz(el * cb.n_c + q)];
         double F[kMaxLoc] = {}, K[kMaxLoc * kMaxLoc] = {};
         if (planar) {
-          const CarriedPoint pt{rf, vf != nullptr ? u : nullptr, dyn ? r1 : nullptr, ubd};
+          const CarriedPoint pt{rf, vf != nullptr ? u : nullptr, dyn ? r1 : nullptr, ubd, af, &p0,
+                                &f0};
           if (!carried_tangent(cp, pf, p1, ff, f1, cb.radius, pt, tm, d, F, K)) continue;
         } else {
           double zf[kMaxLoc] = {}, zd[kMaxLoc] = {}, z1[kMaxLoc] = {};
@@ -365,10 +418,10 @@ void carried_pair(const System& s, const ContactSet& c, const ContactPair& cp, c
           const double* zdp = vf != nullptr ? zd : nullptr;
           const double* z1p = dyn ? z1 : nullptr;
           auto eval = [&](double* out) {
-            carried_force(s, cp, ob, cr, cb.radius, zf, zdp, z1p, out, nullptr);
+            carried_force(s, cp, ob, cr, cb.radius, zf, zdp, z1p, af, out, nullptr);
           };
           PointLaw pl;
-          carried_force(s, cp, ob, cr, cb.radius, zf, zdp, z1p, F, &pl);
+          carried_force(s, cp, ob, cr, cb.radius, zf, zdp, z1p, af, F, &pl);
           if (!pl.active && !dyn) continue;
           if (add != nullptr) {  // ck d/dzf + cv d/dzd + d/dz1, central differences
             double* vars[3] = {zf, zd, z1};
@@ -463,6 +516,8 @@ void fixed_pair(const System& s, const ContactSet& c, const ContactPair& cp, int
   double acc[10][d][d] = {};
   BandView band{nullptr, 0, 0, 0};
   if (lu != nullptr) band = lu->view(block);
+  // the step's gap: the blend of its ends' (step_gap; a plane's is linear: the alpha point's)
+  const double af = ob.kind == ObstacleKind::plane ? 0.0 : c.step_alpha_f;
   for (int el = 0; el < m.n_el; ++el) {
     element_coordinates(m, yf + o, el, ef.data());
     if (rates) element_coordinates(m, vf + o, el, ev.data());
@@ -475,12 +530,16 @@ void fixed_pair(const System& s, const ContactSet& c, const ContactPair& cp, int
       point_at<d>(off, N, ef.data(), rf);
       Gap gf, g1;
       gap(pose, rf, cb.radius, gf, jac);
-      double gm[2] = {gf.g, gf.g};
+      double gm[2] = {gf.g, gf.g}, da[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
       if (dyn) {
+        double r0[3];
+        Gap g0;
         point_at<d>(off, N, e1.data(), r1);
         gap(pose, r1, cb.radius, g1, false);
-        gm[0] = 2.0 * gf.g - g1.g;
+        const double gs = step_gap(pose, cb.radius, rf, gf.g, r1, g1.g, af, g0, r0);
+        gm[0] = 2.0 * gs - g1.g;
         gm[1] = g1.g;
+        if (jac) ga_slopes(af, gf.n, g0.n, g1.n, da);
       }
       if (gm[0] >= 0.0 && gm[1] >= 0.0) continue;
       double u[3] = {0.0, 0.0, 0.0};
@@ -493,14 +552,14 @@ void fixed_pair(const System& s, const ContactSet& c, const ContactPair& cp, int
       for (int k = 0; k < 4; ++k)
         for (int i = 0; i < d; ++i) fe[sz(off[k] + i)] += wq * N[k] * pl.F[i];
       if (!jac) continue;
-      // ga = 2 g(rf) - g(r1): d/dy1 = (2 ck nf - c1 n1) . dr1
+      // the step's gaps: d ga/dy1 = (ck d ga/drf + c1 d ga/dr1) . dr1 (step_gaps)
       double K[3][3];
       for (int i = 0; i < d; ++i)
         for (int j = 0; j < d; ++j)
-          K[i][j] = tm.ck * pl.A[i][j] + tm.cv * pl.B[i][j] +
-                    (dyn ? pl.Ga[i] * (2.0 * tm.ck * gf.n[j] - tm.c1 * g1.n[j]) +
-                               tm.c1 * pl.G1[i] * g1.n[j]
-                         : 0.0);
+          K[i][j] =
+              tm.ck * pl.A[i][j] + tm.cv * pl.B[i][j] +
+              (dyn ? pl.Ga[i] * (tm.ck * da[j] + tm.c1 * da[3 + j]) + tm.c1 * pl.G1[i] * g1.n[j]
+                   : 0.0);
       // sum of w N_k N_l K over the points: the (k, l) and (l, k) blocks are equal
       for (int k = 0, kl = 0; k < 4; ++k)
         for (int l = k; l < 4; ++l, ++kl) {

@@ -22,13 +22,14 @@
 // u the velocity of the point relative to the obstacle's material point there.
 //
 // In a time step (velocities given and y1 apart from yf) the elastic pressure is the mean of p_k
-// over [ga, g1], g1 = g(y1), ga = 2 g(yf) - g1, an interval centred on the alpha point's gap
-// (the damping factor multiplies it): on the linear piece exactly p_k(g(yf)), the generalized-
-// alpha force; with rho_inf = 1 (the midpoint rule, ga = g(y0) for a plane) the discrete gradient
-// (Phi(g0) - Phi(g1)) / (g1 - g0), so that the penalty's energy balance is exact for a plane and
-// to O(dy^3) for curved obstacles (Laursen & Chawla 1997); and a point that comes into contact
-// within a step meets a pressure that grows smoothly with g1.  Statics (no velocities): p_k(g),
-// no friction, no damping.
+// over [ga, g1], g1 = g(y1), ga = 2 gf - g1, an interval centred on the alpha point's gap gf
+// (with ContactSet::step_alpha_f the step's gap: the blend of the gaps at the step's ends)
+// (the damping factor multiplies it): on the linear piece exactly p_k(gf), the generalized-
+// alpha force; with rho_inf = 1 (the midpoint rule, ga = g(y0) for blended gaps) the discrete
+// gradient (Phi(g0) - Phi(g1)) / (g1 - g0), so that the penalty's energy balance is exact for a
+// plane and to O(dy^3) for curved obstacles (Laursen & Chawla 1997); and a point that comes into
+// contact within a step meets a pressure that grows smoothly with g1.  Statics (no velocities):
+// p_k(g), no friction, no damping.
 //
 // Tangents: exact for fixed obstacles (2x2 / 3x3 point matrices mapped by N) and for obstacles
 // carried by planar rigid bodies (the law's objectivity, contact.cpp carried_tangent; the body's
@@ -106,7 +107,7 @@ struct NearList {
   std::mutex mu;
   bool valid = false;
   double margin = 0.0;
-  double moved = 0.0;       ///< the largest motion of a control point in the step (y to y1)
+  double moved = 0.0;       ///< the largest motion of a control point in the step (y to y1, y0)
   std::vector<double> ref;  ///< the elements' Bezier control points where it was made
   std::vector<NearPoint> points;
 };
@@ -116,6 +117,12 @@ struct ContactSet {
   std::vector<Obstacle> obstacles;
   std::vector<ContactPair> pairs;
   std::vector<BodyPair> body_pairs;
+  /// alpha_f of the time steps whose alpha points (yf, with y1 their end) the contact forces
+  /// are given at: a point's gap of a step (obstacles fixed or carried, body pairs) is then
+  /// the blend of the gaps at the step's start and end, (1 - af) g(y1) + af g(y0),
+  /// y0 = (yf - (1 - af) y1) / af, never the gap of a blend of positions (time-integration.md
+  /// sec. 4, TI.16); 0: the gap at yf.
+  double step_alpha_f = 0.0;
   /// the body pairs' near points, kept between assemblies (shared by copies)
   std::shared_ptr<NearList> near = std::make_shared<NearList>();
 };

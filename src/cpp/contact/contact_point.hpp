@@ -266,11 +266,31 @@ inline void point_of(const Model& m, const double* N, const double* e, double* r
   for (int i = 0; i < d; ++i) r[i] = N[0] * b0[i] + N[1] * b1[i] + N[2] * b2[i] + N[3] * b3[i];
 }
 
+/// The coordinates at a step's start from those at its alpha point and end (n values):
+/// x0 = (xf - (1 - af) x1) / af, af > 0 (the rounding error eps |x| / af this makes in x0 is
+/// multiplied back by af where x0 enters the step's gap).
+inline void step_start(const double* xf, const double* x1, double af, int n, double* x0) {
+  for (int i = 0; i < n; ++i) x0[i] = (xf[i] - (1.0 - af) * x1[i]) / af;
+}
+
+/// The step's gap of a point (time-integration.md TI.16): with af > 0 the blend of the gaps at
+/// the step's ends, (1 - af) g1 + af g(r0) (obstacle at pose p0, g0 and r0 written), r0 the
+/// point at the step's start (step_start); af = 0: the alpha point's gap gf.
+inline double step_gap(const Pose& p0, double rt, const double* rf, double gf, const double* r1,
+                       double g1, double af, Gap& g0, double* r0) {
+  if (!(af > 0.0)) return gf;
+  r0[2] = 0.0;
+  step_start(rf, r1, af, 3, r0);
+  gap(p0, r0, rt, g0, false);
+  return (1.0 - af) * g1 + af * g0.g;
+}
+
 /// A carried obstacle's point: forces (dim on r, nb on the body) from z = (r, ub) at the alpha
-/// point, their rates zd (null: statics), and at the step's end z1 (null: statics).
+/// point, their rates zd (null: statics), and at the step's end z1 (null: statics); af > 0:
+/// the step's gap the blend of the gaps at its ends (step_gap), z0 from zf and z1.
 inline void carried_force(const System& s, const ContactPair& cp, const Obstacle& ob,
                           const Carrier& cr, double rt, const double* zf, const double* zd,
-                          const double* z1, double* out, PointLaw* law) {
+                          const double* z1, double af, double* out, PointLaw* law) {
   const int d = s.dim, nb = cr.map.n;
   double r[3] = {0.0, 0.0, 0.0};
   for (int i = 0; i < d; ++i) r[i] = zf[i];
@@ -290,9 +310,15 @@ inline void carried_force(const System& s, const ContactPair& cp, const Obstacle
   if (z1 != nullptr) {
     double r1[3] = {0.0, 0.0, 0.0};
     for (int i = 0; i < d; ++i) r1[i] = z1[i];
-    Gap g1;
+    Gap g1, g0;
     gap(pose_at(s, ob, cr, z1 + d, nullptr), r1, rt, g1, false);
-    gm[0] = 2.0 * gf.g - g1.g;
+    double gs = gf.g;
+    if (af > 0.0) {
+      double z0[3 + kMaxBody], r0[3];
+      step_start(zf, z1, af, d + nb, z0);
+      gs = step_gap(pose_at(s, ob, cr, z0 + d, nullptr), rt, r, gf.g, r1, g1.g, af, g0, r0);
+    }
+    gm[0] = 2.0 * gs - g1.g;
     gm[1] = g1.g;
   }
   PointLaw pl;

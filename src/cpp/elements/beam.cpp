@@ -119,7 +119,9 @@ void beam_damping(const Model& m, int el, const double* e, const double* ed, dou
 
 }  // namespace
 
-const ElementKernel beam_kernel = {beam_forces, beam_energy, beam_damping};
+const ElementKernel beam_kernel = {
+    beam_forces,      beam_energy,           beam_damping,   section_beam, 2,
+    /*triads=*/false, /*centre_line=*/false, /*winch=*/false};
 
 void beam_section(const Model& m, int el, const double* e, const double* xi, int n, double* out) {
   const BeamLocal b = beam_local(m, el, e);

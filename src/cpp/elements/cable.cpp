@@ -22,6 +22,7 @@
 
 #include <cmath>
 
+#include "bodies/sections.hpp"
 #include "elements/registry.hpp"
 #include "elements/strain_rate.hpp"
 
@@ -372,7 +373,11 @@ QpGeometry cable_qp_geometry(const double* a, const double* b, int dim) {
   return out;
 }
 
-const ElementKernel cable2d_kernel = {cable_forces<2>, cable_energy<2>, cable_damping<2>};
-const ElementKernel cable3d_kernel = {cable_forces<3>, cable_energy<3>, cable_damping<3>};
+const ElementKernel cable2d_kernel = {
+    cable_forces<2>,      cable_energy<2>, cable_damping<2>, section_cable, 2, /*triads=*/false,
+    /*centre_line=*/true, /*winch=*/true};
+const ElementKernel cable3d_kernel = {
+    cable_forces<3>,      cable_energy<3>, cable_damping<3>, section_cable, 2, /*triads=*/false,
+    /*centre_line=*/true, /*winch=*/true};
 
 }  // namespace rancf

@@ -16,6 +16,7 @@
 #include <cmath>
 #include <vector>
 
+#include "bodies/sections.hpp"
 #include "elements/registry.hpp"
 #include "elements/rod_damping.hpp"
 #include "elements/rod_inertia.hpp"
@@ -77,7 +78,9 @@ void rod_damping(const Model& m, int el, const double* e, const double* ed, doub
 
 }  // namespace
 
-const ElementKernel rod_kernel = {rod_forces, rod_energy, rod_damping};
+const ElementKernel rod_kernel = {
+    rod_forces,      rod_energy,           rod_damping,    section_rod, 4,
+    /*triads=*/true, /*centre_line=*/true, /*winch=*/false};
 
 void rod_curvatures(const Model& m, int el, const double* e, double* k, double* eps) {
   rod::curvatures(rod_input(m, el), e, k, eps);

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "bodies/assembly.hpp"
+#include "elements/registry.hpp"
 
 namespace rancf {
 
@@ -29,7 +30,7 @@ void depth_ratios(double k, double h, double zs, double& cr, double& sr) {
 /// Offset in an element's coordinates of its position/gradient block k (0: rA, 1: rA', 2: rB,
 /// 3: rB'): cables k dim, rods as rod_common.hpp (a twist after each node's gradient).
 int block_offset(const Model& m, int k) {
-  if (m.kind == ElementKind::rod) {
+  if (kernel_for(m).triads) {
     constexpr int off[4] = {0, 3, 7, 10};
     return off[k];
   }
@@ -105,39 +106,56 @@ void fluid_point(const FluidField& f, int dim, const double* r, double t, bool w
 
 namespace {
 
-// assemble_line with the dimension a constant (the small loops unrolled).
+// assemble_line's terms of one element at a time, with the dimension a constant (the small
+// loops unrolled): set up once a call, then element() for each element (on any thread).
 template <int dim>
-void line_forces(const Model& m, const FluidSet& fs, const LineFluid& line, const double* y,
-                 const double* v, const double* acc, const LineTerms& tm, double* r,
-                 const BandView* jac, double* force) {
-  const int nde = m.nde(), nq = line.n_qp;
-  const bool dynamic = acc != nullptr;
-  const FluidField& fl = fs.field;
-  const double rho = fl.density, d = line.diameter, area = 0.25 * kPi * d * d;
-  const double cn = 0.5 * rho * d * line.cdn, ct = 0.5 * rho * kPi * d * line.cdt;
-  const double lf = tm.load_factor;
-  // the derivatives along positions and rates count (the mass matrix alone needs neither)
-  const bool moves = tm.ck != 0.0 || tm.cv != 0.0;
+struct LineElements {
+  const Model& m;
+  const FluidSet& fs;
+  const LineFluid& line;
+  const double *y, *v, *acc;
+  const LineTerms& tm;
+  const FluidField& fl;
+  bool dynamic, moves, uniform;
+  double rho, d, area, cn, ct, lf;
   double load[3] = {0.0, 0.0, 0.0};  // the distributed loads at time t
-  for (const DistributedLoad& ld : line.loads) {
-    const double fac = ld.factor >= 0 ? evaluate((*tm.tfs)[sz(ld.factor)], 0, tm.t).f : 1.0;
-    for (int i = 0; i < 3; ++i) load[i] += lf * fac * ld.force[i];
+  int off[4] = {0, 0, 0, 0};
+  FluidPoint fp0;  // a uniform fluid's kinematics (fluid_point's values at every point)
+
+  LineElements(const Model& m_, const FluidSet& fs_, const LineFluid& line_, const double* y_,
+               const double* v_, const double* acc_, const LineTerms& tm_)
+      : m(m_), fs(fs_), line(line_), y(y_), v(v_), acc(acc_), tm(tm_), fl(fs_.field) {
+    dynamic = acc != nullptr;
+    rho = fl.density;
+    d = line.diameter;
+    area = 0.25 * kPi * d * d;
+    cn = 0.5 * rho * d * line.cdn;
+    ct = 0.5 * rho * kPi * d * line.cdt;
+    lf = tm.load_factor;
+    // the derivatives along positions and rates count (the mass matrix alone needs neither)
+    moves = tm.ck != 0.0 || tm.cv != 0.0;
+    for (const DistributedLoad& ld : line.loads) {
+      const double fac = ld.factor >= 0 ? evaluate((*tm.tfs)[sz(ld.factor)], 0, tm.t).f : 1.0;
+      for (int i = 0; i < 3; ++i) load[i] += lf * fac * ld.force[i];
+    }
+    for (int k = 0; k < 4; ++k) off[k] = block_offset(m, k);
+    // the fluid's kinematics do not depend on the point: set once
+    uniform = fl.profile_z.empty() && !(dynamic && fl.waves.on);
+    if (uniform)
+      for (int i = 0; i < 3; ++i) fp0.u[i] = fl.current[i];
   }
-  int off[4];
-  for (int k = 0; k < 4; ++k) off[k] = block_offset(m, k);
-  std::array<double, kMaxElementDofs> e{}, ev{}, ea{}, fe{};
-  std::array<double, kMaxElementDofs * kMaxElementDofs> ke{};
-  // the fluid's kinematics do not depend on the point: set once (fluid_point's values there)
-  const bool uniform = fl.profile_z.empty() && !(dynamic && fl.waves.on);
-  FluidPoint fp;
-  if (uniform)
-    for (int i = 0; i < 3; ++i) fp.u[i] = fl.current[i];
-  for (int el = 0; el < m.n_el; ++el) {
+
+  /// Element el's force fe and, if ke is not null, its Jacobian ke (both written whole);
+  /// force (if not null) += the fluid's force on it.
+  void element(int el, double* fe, double* ke, double* force) const {
+    const int nde = m.nde(), nq = line.n_qp;
+    std::array<double, kMaxElementDofs> e{}, ev{}, ea{};
+    FluidPoint fp = fp0;
     gather_element(m, el, y, e.data());
     gather_element(m, el, v, ev.data());
     gather_element(m, el, acc, ea.data());
-    fe.fill(0.0);
-    if (jac != nullptr) ke.fill(0.0);
+    std::fill(fe, fe + kMaxElementDofs, 0.0);
+    if (ke != nullptr) std::fill(ke, ke + kMaxElementDofs * kMaxElementDofs, 0.0);
     for (int q = 0; q < nq; ++q) {
       const std::size_t iq = sz(el * nq + q);
       const double* S = line.n0.data() + 4 * iq;
@@ -193,7 +211,7 @@ void line_forces(const Model& m, const FluidSet& fs, const LineFluid& line, cons
           for (int i = 0; i < dim; ++i)
             fx[i] += ra * ((1.0 + line.can) * fp.du[i] - line.can * ac[i] + t[i] * th);
         }
-        if (jac != nullptr && moves) {
+        if (ke != nullptr && moves) {
           // d f_D / d w = G and d f_D / d t (w held) = Ft in closed form (fluid.md section 4):
           // with wn normal to t, d(|wn| wn)/d wn = dn = |wn| I + wn wn^T / |wn| gives
           // dn (I - t t^T) = dn - |wn| t t^T and dn (t w^T + wt I) = |wn| t w^T + wt dn; the
@@ -227,7 +245,7 @@ void line_forces(const Model& m, const FluidSet& fs, const LineFluid& line, cons
           for (int i = 0; i < dim; ++i)  // d t / d a = (I - t t^T) / |a|
             for (int j = 0; j < dim; ++j) B[i][j] = tm.ck * (Ft[i][j] - Ftt[i] * t[j]) * inv_la;
         }
-        if (jac != nullptr && dynamic)  // the added mass
+        if (ke != nullptr && dynamic)  // the added mass
           for (int i = 0; i < dim; ++i)
             for (int j = 0; j < dim; ++j)
               A[i][j] -= tm.ca * ra * (line.can * (i == j ? 1.0 : 0.0) + dc * t[i] * t[j]);
@@ -238,7 +256,7 @@ void line_forces(const Model& m, const FluidSet& fs, const LineFluid& line, cons
       }
       for (int k = 0; k < 4; ++k)
         for (int i = 0; i < dim; ++i) fe[sz(off[k] + i)] -= w * S[k] * f[i];
-      if (jac == nullptr || !line.hydro || !fp.wet) continue;  // loads alone: no derivative
+      if (ke == nullptr || !line.hydro || !fp.wet) continue;  // loads alone: no derivative
       for (int k = 0; k < 4; ++k) {  // the block (k, l): -w S_k (A S_l + B S'_l)
         const double wk = w * S[k];
         for (int l = 0; l < 4; ++l) {
@@ -249,6 +267,26 @@ void line_forces(const Model& m, const FluidSet& fs, const LineFluid& line, cons
         }
       }
     }
+  }
+};
+
+template <int dim>
+void line_terms(const void* ctx, int el, double* fe, double* ke) {
+  static_cast<const LineElements<dim>*>(ctx)->element(el, fe, ke, nullptr);
+}
+
+// assemble_line with the dimension a constant; shared between threads unless the fluid's force
+// is summed (its sum in element order, point by point, on one thread).
+template <int dim>
+void line_forces(const Model& m, const FluidSet& fs, const LineFluid& line, const double* y,
+                 const double* v, const double* acc, const LineTerms& tm, double* r,
+                 const BandView* jac, double* force) {
+  const LineElements<dim> le(m, fs, line, y, v, acc, tm);
+  if (force == nullptr && add_elements_shared(m, line_terms<dim>, &le, r, jac, 1.0)) return;
+  std::array<double, kMaxElementDofs> fe{};
+  std::array<double, kMaxElementDofs * kMaxElementDofs> ke{};
+  for (int el = 0; el < m.n_el; ++el) {
+    le.element(el, fe.data(), jac != nullptr ? ke.data() : nullptr, force);
     scatter_element(m, el, fe.data(), jac != nullptr ? ke.data() : nullptr, r, jac, 1.0);
   }
 }

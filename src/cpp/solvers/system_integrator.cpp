@@ -9,8 +9,10 @@
 #include "bodies/inertia.hpp"
 #include "bodies/sections.hpp"
 #include "contact/contact.hpp"
+#include "elements/registry.hpp"
 #include "fluid/fluid.hpp"
 #include "system/sliding.hpp"
+#include "system/spring_law.hpp"
 #include "system/winch.hpp"
 
 namespace rancf {
@@ -176,7 +178,7 @@ bool SystemIntegrator::add_strain_points(int b, std::vector<double> xi, std::vec
   if (b < 0 || sz(b) >= s_.flex.size()) return false;
   const Model& mod = *s_.flex[sz(b)];
   const std::size_t points = sz(mod.n_el) * xi.size();
-  if (mod.kind == ElementKind::beam || n1.size() != 4 * points || n2.size() != n1.size() ||
+  if (!kernel_for(mod).centre_line || n1.size() != 4 * points || n2.size() != n1.size() ||
       ref.size() != points || !(floor > 0.0))
     return false;
   StrainPoints p;
@@ -603,7 +605,7 @@ void system_energies(const System& s, const double* y, const double* v, double* 
     double len = 0.0;
     for (int i = 0; i < 3; ++i) len += (ea.x[i] - eb.x[i]) * (ea.x[i] - eb.x[i]);
     const double dl = std::sqrt(len) - sp.length;
-    out[1] += 0.5 * sp.stiffness * dl * dl;
+    out[1] += sp.law < 0 ? 0.5 * sp.stiffness * dl * dl : spring_law_energy(s.tfs[sz(sp.law)], dl);
   }
   if (s.contact != nullptr) out[1] += contact_energy(s, *s.contact, y);
   if (s.winches != nullptr)  // driven drums: J(L) L'^2 / (2 r^2), the rope wound off
@@ -637,8 +639,8 @@ void system_rereference(const System& s, double* y, double* v, double* a, double
   for (std::size_t b = 0; b < s.flex.size(); ++b) {
     const Model& mod = *s.flex[b];
     const int o = s.offset[b];
-    if (w != nullptr && mod.kind == ElementKind::rod) {  // w's twist as a's (its own rates
-      vw.assign(v + o, v + o + mod.n());                 // discarded: v is carried below)
+    if (w != nullptr && kernel_for(mod).triads) {  // w's twist as a's (its own rates
+      vw.assign(v + o, v + o + mod.n());           // discarded: v is carried below)
       rereference_rates(mod, y + o, vw.data(), w + o);
     }
     rereference_rates(mod, y + o, v + o, a + o);

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "bodies/cable_shape.hpp"
+#include "elements/registry.hpp"
 
 namespace rancf {
 
@@ -29,7 +30,7 @@ void slide_point(const System& s, int body, const double* y, double sigma, Slide
   double n0[4], n1[4], n2[4];
   cable_shape(&g.weights[sz(4 * e)], g.scales[sz(e)], o.xi, n0, n1, n2);
   double d2[3][2 * kMaxLocal] = {};
-  const PlaceKind kind = m.kind == ElementKind::rod ? PlaceKind::rod : PlaceKind::cable;
+  const PlaceKind kind = kernel_for(m).triads ? PlaceKind::rod : PlaceKind::cable;
   for (int k = 0; k < 2; ++k) {  // the element's nodes e, e + 1: positions and gradients
     PlaceRef p;
     p.kind = kind;

@@ -54,6 +54,7 @@ struct JointData {
 struct SpringData {
   int a = 0, b = 0;
   double stiffness = 0.0, damping = 0.0, length = 0.0;
+  int law = -1;  ///< the time function of its tension law T(e) (spring_law.hpp), or -1: k e
 };
 
 /// A force (and, on rigid bodies, a torque) at a place, times a time function (-1: constant).

@@ -18,6 +18,7 @@
 #include "contact/contact.hpp"
 #include "fluid/fluid.hpp"
 #include "system/sliding.hpp"
+#include "system/spring_law.hpp"
 #include "system/system.hpp"
 #include "system/winch.hpp"
 
@@ -391,6 +392,12 @@ void load_terms(const Stage& st) {
   }
 }
 
+/// A spring's elastic tension T and dT/dl at the length len: k (len - length), or its law's.
+LawValue spring_tension(const System& s, const SpringData& sp, double len) {
+  if (sp.law < 0) return {sp.stiffness * (len - sp.length), sp.stiffness};
+  return spring_law(s.tfs[sz(sp.law)], len - sp.length);
+}
+
 /// Springs between two places.
 void spring_terms(const Stage& st) {
   const System& s = st.s;
@@ -433,7 +440,7 @@ void spring_terms(const Stage& st) {
         dvel[i] = va - vb;
         if (!linear) rate += d[i] / len * dvel[i];
       }
-      const double tension = linear ? 0.0 : sp.stiffness * (len - sp.length) + sp.damping * rate;
+      const double tension = linear ? 0.0 : spring_tension(s, sp, len).t + sp.damping * rate;
       double F[3];
       for (int i = 0; i < 3; ++i)  // zero rest length: F = k d + c dv (no direction needed)
         F[i] = linear ? sp.stiffness * d[i] + sp.damping * dvel[i] : tension * d[i] / len;
@@ -469,7 +476,8 @@ void spring_terms(const Stage& st) {
         e[i] = d[i] / len;
         rate += e[i] * dv[i];
       }
-      const double tension = linear ? 0.0 : sp.stiffness * (len - sp.length) + sp.damping * rate;
+      const LawValue law = linear ? LawValue{0.0, sp.stiffness} : spring_tension(s, sp, len);
+      const double tension = linear ? 0.0 : law.t + sp.damping * rate;
       double A[3][3];
       for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) {
@@ -480,7 +488,7 @@ void spring_terms(const Stage& st) {
           }
           const double perp = id - e[i] * e[j];
           const double dvp = dv[j] - rate * e[j];  // (I - e e^T) dv
-          A[i][j] = tm.ck * (sp.stiffness * e[i] * e[j] + tension / len * perp +
+          A[i][j] = tm.ck * (law.dt * e[i] * e[j] + tension / len * perp +
                              sp.damping * e[i] * dvp / len) +
                     tm.cv * sp.damping * e[i] * e[j];
         }

@@ -51,8 +51,45 @@ def one_blas_thread() -> None:
         os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 
+def element_threads(system: Any, asked: int | None, rows_beside: bool = False) -> int:
+    """The threads a run's element loops use (``--threads``, else chosen): ``asked``, or, for a
+    system with a flexible body of at least ``min_parallel_elements()`` elements (fewer: a loop
+    shared between threads costs more than it saves), the cores this process may use that the
+    last minute's load average leaves idle, less one for the output worker where it derives
+    every step's row beside the loop (``rows_beside``), at least 1 (a thread that waits for a
+    core holds up every loop it shares); else 1.  The sums are the same bit for bit whatever
+    the number (``src/cpp/bodies/threads.hpp``); a sweep's runs keep one each."""
+    from rancf.kernels import _core
+
+    if asked is not None:
+        return asked
+    largest = max((getattr(b, "n_el", 0) for b in system.flex), default=0)
+    if largest < _core.min_parallel_elements():
+        return 1
+    from rancf.sweep.threads import default_threads
+
+    cores = default_threads()
+    try:
+        busy = os.getloadavg()[0]
+    except OSError:  # pragma: no cover - not available
+        busy = 0.0
+    return max(1, min(cores, int(cores - busy + 0.5)) - int(rows_beside))
+
+
+def _rows_beside(plan: Any) -> bool:
+    """Whether a worker thread derives every step's output row beside the time loop (the
+    default output; :func:`rancf.post.block_worker.works_beside`): it keeps a core busy."""
+    from rancf.post.block_worker import works_beside
+
+    opts = plan.options
+    every_step = opts.output_step is None or opts.output_step <= opts.step
+    return every_step and works_beside(plan.outputs)
+
+
 def _cmd_simulate(args: argparse.Namespace) -> int:
     one_blas_thread()
+    if args.threads is not None and args.threads < 1:
+        raise InputError("--threads", args.threads, "an integer >= 1")
     every = _positive("--checkpoint-every", args.checkpoint_every, "a finite number of seconds > 0")
     limit = _positive("--max-output-gb", args.max_output_gb, "a finite size in GB > 0")
     if args.t_end is not None:
@@ -66,6 +103,10 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     sc, copy = scenario_for_run(args.scenario, args.t_end)
     files = file_digests(tomllib.loads(copy), args.scenario)  # the run's CSV and CAD files
     plan = plan_simulate(sc, limit)  # refused before the folder is touched
+    _warn(list(plan.notes))  # a mesh refined for the static start: said before the run
+    from rancf.kernels import _core
+
+    _core.set_assembly_threads(element_threads(plan.system, args.threads, _rows_beside(plan)))
     out = od.path
     stop = _StopFlag()
     with stop, od:
@@ -82,7 +123,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
             if err is exc:
                 raise
             raise err from None
-    _warn(run.warnings[len(disk.notes) :])
+    _warn(run.warnings[len(plan.notes) + len(disk.notes) :])
     assert run.summary is not None  # the stream ended the folder
     return _report(args, run.result, run.summary, out)
 
@@ -226,5 +267,13 @@ def add_parsers(sub: Any) -> None:
         metavar="GB",
         help="refuse a run whose stored states would need more disk than this "
         f"(default {DEFAULT_MAX_OUTPUT_GB:g})",
+    )
+    s.add_argument(
+        "--threads",
+        type=int,
+        default=None,
+        metavar="N",
+        help="threads of the element loops (default: the idle cores this process may use where "
+        "a body has enough elements to share, else 1; the results are the same bit for bit)",
     )
     s.set_defaults(func=_cmd_simulate)

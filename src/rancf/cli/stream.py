@@ -120,6 +120,9 @@ class DiskStream:
         }
         info["notes"] = notes
         info["input_files"] = self.files
+        from rancf.kernels import _core
+
+        info["threads"] = _core.assembly_threads()  # the element loops' (cli.sim.element_threads)
         info.update(start)
         self.store = HistoryStore(self.od.path, plan.outputs, {**info, "warnings": self.notes})
         if self.state is not None:

@@ -1,11 +1,16 @@
-"""The named records a system crosses into the compiled core as (``src/cpp/system/system.hpp``).
+"""The named records everything crosses into the compiled core as (``src/cpp/system/system.hpp``):
+the one convention of the boundary (the solvers' entry points: :mod:`rancf.kernels.call_records`).
 
-:class:`rancf.kernels._core.System` takes lists of these records; its binding
-(``src/cpp/bindings/bindings_records.cpp``) reads every field by its name into the C++ struct of
-the same
-name and fields, and refuses a field of the wrong type, size or value in one line that names it
-(``places[2].kind: expected one of ground, cable, ..., got 'bar'``).  Vectors are tuples of floats
-(a matrix row-major), so that every record is immutable and hashable.
+:class:`rancf.kernels._core.System` takes one :class:`SystemModel` (its bodies and lists of
+per-part records: places, joints, springs, loads, winches, ...); the integrator's entry points
+take two records each: ``run(RunBuffers, RunOptions)``, ``factor_static`` and
+``static_increment(StaticPoint, StaticOptions)``, and the system's ``sparse_jacobian(StatePoint,
+TangentOptions)`` (statics and modes).  The bindings (``src/cpp/bindings/bindings_fields.hpp``)
+read every field by its name into the C++ struct of the same name and fields, and refuse a field
+of the wrong type, size or value in one line that names it (``places[2].kind: expected one of
+ground, cable, ..., got 'bar'``).  Vectors of the parts' records are tuples of floats (a matrix
+row-major), so that those records are immutable and hashable; arrays (band matrices, states,
+buffers written in place) are NumPy arrays of float64.
 
 Coordinates ``y`` stack the flexible bodies, then the rigid bodies and point masses
 (:mod:`rancf.system.system`); places, time functions and linear rows are numbered by their
@@ -15,9 +20,10 @@ position in their lists.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 
 __all__ = [
     "PLACE_KINDS",
@@ -34,6 +40,10 @@ __all__ = [
     "FluidRecord",
     "LineRecord",
     "DistributedRecord",
+    "DrumRecord",
+    "WinchRecord",
+    "SlidingRecord",
+    "SystemModel",
     "floats",
     "vec3",
 ]
@@ -144,13 +154,16 @@ class JointRecord:
 @dataclass(frozen=True)
 class SpringRecord:
     """A spring-damper between the places ``a`` and ``b`` (``SpringData``): tension
-    ``stiffness (l - length) + damping dl/dt``."""
+    ``stiffness (l - length) + damping dl/dt``, or with ``law`` (a scalar table among the time
+    functions, evaluated at the stretch ``e = l - length``; ``src/cpp/system/spring_law.hpp``)
+    ``T(e) + damping dl/dt``."""
 
     a: int
     b: int
     stiffness: float
     damping: float = 0.0
     length: float = 0.0
+    law: int = -1
 
 
 @dataclass(frozen=True)
@@ -269,3 +282,96 @@ class LineRecord:
     gw: tuple[float, ...]
     j0: tuple[float, ...]
     loads: tuple[DistributedRecord, ...] = ()
+
+
+@dataclass(frozen=True, eq=False)
+class DrumRecord:
+    """A winch's driven drum (``Winch``, ``src/cpp/system/winch.hpp``): the time function
+    ``torque`` [N m] reeling in, ``mass = J / r²`` [kg], ``radius`` [m], the line's ``rho_a``
+    [kg/m] and weight per length ``weight`` (3) [N/m], and ``exit``, the body's coordinate of the
+    exit node's position.  Its length ``L`` is a coordinate of the system, after every body and
+    drum before it."""
+
+    torque: int
+    mass: float
+    radius: float
+    rho_a: float
+    weight: tuple[float, float, float]
+    exit: int
+
+
+@dataclass(frozen=True, eq=False)
+class WinchRecord:
+    """A winch at a cable body's end (``Winch``): the flexible ``body``, the time function
+    ``length`` of ``L(t)``, ``length_set`` the length the body's arrays hold, the convective band
+    matrices ``c1``, ``c2``, ``d2`` (``(2 ku + 1, n)``) and its driven ``drum`` (or None)."""
+
+    body: int
+    length: int
+    length_set: float
+    c1: NDArray[np.float64]
+    c2: NDArray[np.float64]
+    d2: NDArray[np.float64]
+    drum: DrumRecord | None = None
+
+
+@dataclass(frozen=True, eq=False)
+class SlidingRecord:
+    """A flexible body sliding joints run along (``SlidingBody``, ``src/cpp/system/sliding.hpp``):
+    its rational ``weights`` ``(n_el, 4)`` and gradient ``scales`` ``(n_el)``, row-major, and
+    whether it is ``closed``."""
+
+    body: int
+    weights: tuple[float, ...]
+    scales: tuple[float, ...]
+    closed: bool
+
+
+@dataclass(frozen=True, eq=False)
+class SystemModel:
+    """A whole system as the core is built from it, once (``System``,
+    ``src/cpp/system/system.hpp``; ``src/cpp/bindings/bindings_system_model.cpp``).
+
+    Attributes
+    ----------
+    dim : int
+        2 or 3.
+    models : sequence of :class:`rancf.kernels._core.Model`
+        The flexible bodies' cores, in the order of ``y``.
+    rigid, places, joints, springs, loads, time_functions, prescribed, linear : sequences
+        The parts' records (:class:`RigidRecord`, :class:`PlaceRecord`, ...), indices between
+        them by position.
+    gravity : (3,) floats
+        On rigid bodies and point masses.
+    damping, stiffness_damping : float
+        Mass-proportional ``c`` [1/s] of every body, stiffness-proportional ``β`` [s] of the
+        flexible bodies.
+    y_ref : (n,) array
+        The reference coordinates of the bodies (a driven drum's coordinate is added after them).
+    fluid : :class:`FluidRecord` or None
+        The fluid, and ``lines`` (:class:`LineRecord`) the flexible bodies in it.
+    contact : :class:`rancf.kernels._core.Contact` or None
+        Obstacles and contact pairs.
+    winches : sequence of :class:`WinchRecord`
+    sliding : sequence of :class:`SlidingRecord`
+    """
+
+    dim: int
+    models: tuple[Any, ...]
+    y_ref: NDArray[np.float64]
+    gravity: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    damping: float = 0.0
+    stiffness_damping: float = 0.0
+    rigid: tuple[RigidRecord, ...] = ()
+    places: tuple[PlaceRecord, ...] = ()
+    joints: tuple[JointRecord, ...] = ()
+    springs: tuple[SpringRecord, ...] = ()
+    loads: tuple[LoadRecord, ...] = ()
+    time_functions: tuple[TimeFunctionRecord, ...] = ()
+    prescribed: tuple[PrescribedRecord, ...] = ()
+    linear: tuple[LinearTerm, ...] = ()
+    fluid: FluidRecord | None = None
+    lines: tuple[LineRecord, ...] = ()
+    contact: Any = None
+    winches: tuple[WinchRecord, ...] = ()
+    sliding: tuple[SlidingRecord, ...] = ()

@@ -27,7 +27,7 @@ from __future__ import annotations
 import numpy as np
 
 from rancf.bodies.flexible import Model
-from rancf.system import System, contact_outputs
+from rancf.system import System
 
 __all__ = ["contact_warnings", "wrap_error", "WRAP_ANGLE_LIMIT", "TOUCH_FACTOR"]
 
@@ -83,6 +83,8 @@ def contact_warnings(system: System) -> list[str]:
         return []
     if not system.contact_pairs:
         return _body_pairs(system)
+    from rancf.system.contact_outputs import contact_outputs
+
     forces = {
         k: float(np.linalg.norm(c.normal)) for k, c in contact_outputs(system, system.y0).items()
     }

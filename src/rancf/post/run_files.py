@@ -41,7 +41,6 @@ from rancf.atomic import FileSet
 from rancf.bodies.flexible import Model
 from rancf.bodies.rigid import PointMass
 from rancf.post.envelope import Envelope
-from rancf.system.contact import obstacle_records
 from rancf.system.outputs import SystemOutputs
 
 __all__ = ["write_history_files", "reader_metadata", "CHUNK_BYTES", "DERIVED"]
@@ -156,7 +155,7 @@ def write_history_files(
         "drums": _drums(outputs),
         "sensor_columns": names,
         "reaction_columns": outputs.reaction_names,
-        "obstacles": obstacle_records(s),
+        "obstacles": _obstacles(s),
     }
     with (
         files.file(out_dir / "results.npz") as fh,
@@ -192,6 +191,16 @@ def _bodies(outputs: SystemOutputs) -> list[dict[str, Any]]:
                 row["points"] = {k: list(map(float, p)) for k, p in b.points.items()}
         rows.append(row)
     return rows
+
+
+def _obstacles(s: Any) -> list[dict[str, Any]]:
+    """Every obstacle as plain data (:func:`rancf.system.contact.obstacle_records`; a system
+    without obstacles loads no contact module)."""
+    if not getattr(s, "obstacles", ()):
+        return []
+    from rancf.system.contact import obstacle_records
+
+    return obstacle_records(s)
 
 
 def _drums(outputs: SystemOutputs) -> list[dict[str, Any]]:

@@ -64,11 +64,13 @@ class SimulateRun:
 
 @dataclass(frozen=True)
 class Plan:
-    """A planned dynamic run: the system, its outputs and the ``[solver]`` options."""
+    """A planned dynamic run: the system, its outputs, the ``[solver]`` options and the warning
+    lines of a mesh refined for the static start (:mod:`rancf.runs.static_mesh`)."""
 
     system: Any
     outputs: SystemOutputs
     options: DynamicOptions
+    notes: tuple[str, ...] = ()
 
 
 class Stream(Protocol):
@@ -102,7 +104,10 @@ class Stream(Protocol):
 
 def plan_simulate(sc: Any, limit_gb: float = MAX_OUTPUT_GB, limit_key: str = "limit_gb") -> Plan:
     """The system of scenario ``sc`` and its outputs, planned against the disk ``limit_gb``
-    (``limit_key`` names it in the refusal), and the ``[solver]`` options.
+    (``limit_key`` names it in the refusal), and the ``[solver]`` options.  A run from its
+    static equilibrium (``solver.initial_state = "static"``) is planned on the mesh that
+    ``rancf static`` solves on where a line's touchdown needs a finer one
+    (:func:`rancf.runs.static_mesh.refine_for_start`: the same rule and warning lines).
 
     Raises
     ------
@@ -110,7 +115,15 @@ def plan_simulate(sc: Any, limit_gb: float = MAX_OUTPUT_GB, limit_key: str = "li
         The files would pass ``limit_gb``.
     """
     system, outputs = plan_run(sc, limit_gb, limit_key)
-    return Plan(system, outputs, sc.dynamic_options())
+    notes: tuple[str, ...] = ()
+    if sc.solver["initial_state"] == "static":
+        from rancf.runs.static_mesh import refine_for_start
+
+        found = refine_for_start(sc, system, "the static start and the run")
+        notes = tuple(str(n) for n in found.notes)
+        if found.scenario is not None:
+            system, outputs = plan_run(found.scenario, limit_gb, limit_key)
+    return Plan(system, outputs, sc.dynamic_options(), notes)
 
 
 def simulate_planned(
@@ -135,6 +148,7 @@ def simulate_planned(
     y0 = None
     if state is None:
         y0, start = start_state(sc, system)
+        start.update({"mesh_refinement": list(plan.notes)} if plan.notes else {})
     summary = None
     if stream is None:
         result = integrate(system, opts, initial=y0)
@@ -152,7 +166,7 @@ def simulate_planned(
     values = None
     if table:
         names, values = sensor_table(outputs, sc.sensors, result.q, result.v, t=result.t)
-    notes = finished_warnings(system, outputs.largest_strain, result, opts)
+    notes = list(plan.notes) + finished_warnings(system, outputs.largest_strain, result, opts)
     if stream is not None:
         summary = stream.finish(plan, result, notes)
     return SimulateRun(system, outputs, result, start, notes, summary, names, values)

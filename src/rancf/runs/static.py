@@ -49,84 +49,97 @@ def run_static(
     ``"mesh_refinement"``: the lines of :attr:`StaticRun.notes`); ``on_written``: called with
     the summary once the folder holds the run.
     """
-    from rancf.runs.static_mesh import refine_for_touchdowns, start_ratios
+    from rancf.runs.static_mesh import refine_for_start
 
     system = sc.build_system()
-    finer, notes = refine_for_touchdowns(sc, system, start_ratios(system))
-    if finer is not None:
-        sc, system = finer, finer.build_system()
-    run = _run_static(sc, system, folder, info, on_written, notes, recheck=True)
+    first = refine_for_start(sc, system)
+    if first.scenario is not None:
+        sc, system = first.scenario, first.scenario.build_system()
+    out = _Solve(sc, folder, info, on_written)
+    run = out.run(system, list(first.notes), recheck=True)
     if isinstance(run, StaticRun):
         return run
-    sc, more, first = run
-    solved = _run_static(sc, sc.build_system(), folder, info, on_written, notes + more, False)
+    more = run.refinement
+    solved = replace(out, sc=more.scenario).run(
+        more.scenario.build_system(), list(first.notes) + list(more.notes), recheck=False
+    )
     assert isinstance(solved, StaticRun)
     # the solve time counts both solves
-    solved.result = replace(solved.result, wall_time=solved.result.wall_time + first)
+    solved.result = replace(solved.result, wall_time=solved.result.wall_time + run.wall_time)
     return solved
 
 
-def _run_static(
-    sc: Any,
-    system: Any,
-    folder: str | Path | None,
-    info: dict[str, Any] | None,
-    on_written: Callable[[dict[str, Any]], None] | None,
-    notes: list[str],
-    recheck: bool,
-) -> StaticRun | tuple[Any, list[str], float]:
-    """:func:`run_static` on ``system`` of ``sc``; with ``recheck``, the refined scenario, its
-    lines and the solve's time instead where the solved touchdowns need a finer mesh (nothing
-    written)."""
-    from rancf.runs.static_mesh import refine_for_touchdowns
-    from rancf.scenario.system_build import scenario_keys, support_labels
-    from rancf.solvers.sag_start import SAG_START
-    from rancf.solvers.static import FRICTION, solve_static
-    from rancf.solvers.static_checks import touchdown_ratios
+@dataclass(frozen=True)
+class _Again:
+    """A solve whose solved touchdowns need a finer mesh: the refinement and the solve's
+    time (nothing was written)."""
 
-    labels = support_labels(sc)
-    path = LoadPath(system, labels)
-    outputs = SystemOutputs(system, sc.sensors, labels)  # the run folder's and the full loads'
-    doc = None
-    keys = dict(info or {})
-    finer: tuple[Any, list[str], float] | None = None
-    try:
-        with scenario_keys(sc):
-            res = solve_static(system, on_step=path.record, **sc.static_options())
-        if recheck:
-            sc2, more = refine_for_touchdowns(sc, system, touchdown_ratios(system, res.q))
-            finer = None if sc2 is None else (sc2, more, res.wall_time)
-            named = {n.split(":")[0] for n in notes}  # a body's line once
-            notes = (
-                notes
-                if sc2 is not None
-                else notes + [m for m in more if m.split(":")[0] not in named]
+    refinement: Any  # rancf.runs.static_mesh.Refinement
+    wall_time: float
+
+
+@dataclass(frozen=True)
+class _Solve:
+    """One static solve of :func:`run_static`: the scenario and where its run goes."""
+
+    sc: Any
+    folder: str | Path | None
+    info: dict[str, Any] | None
+    on_written: Callable[[dict[str, Any]], None] | None
+
+    def run(self, system: Any, notes: list[Any], recheck: bool) -> StaticRun | _Again:
+        """:func:`run_static` on ``system`` of the scenario (``notes``: the mesh's so far,
+        :class:`~rancf.runs.static_mesh.MeshNote`); with ``recheck``, :class:`_Again` instead
+        where the solved touchdowns need a finer mesh."""
+        from rancf.runs.static_mesh import refine_for_touchdowns
+        from rancf.scenario.system_build import scenario_keys, support_labels
+        from rancf.solvers.sag_start import SAG_START
+        from rancf.solvers.static import solve_static
+        from rancf.solvers.static_friction import FRICTION
+
+        sc = self.sc
+        labels = support_labels(sc)
+        path = LoadPath(system, labels)
+        outputs = SystemOutputs(system, sc.sensors, labels)  # the run folder's and full loads'
+        doc = None
+        keys = dict(self.info or {})
+        again: _Again | None = None
+        try:
+            with scenario_keys(sc):
+                res = solve_static(system, on_step=path.record, **sc.static_options())
+            if recheck:
+                found = refine_for_touchdowns(sc, system, res.touchdowns or {})
+                named = {n.body for n in notes}  # a body's note once
+                if found.scenario is not None:
+                    again = _Again(found, res.wall_time)
+                else:
+                    notes = notes + [m for m in found.notes if m.body not in named]
+            lines = [str(n) for n in notes]
+            keys.update({"mesh_refinement": lines} if lines else {})
+            if res.method.startswith(SAG_START) or res.method.endswith(FRICTION):  # the path's
+                path.steps[:] = path.steps[-1:]  # states were abandoned or are frictionless
+            keys.update(
+                status="completed",
+                message="reached the end of the load path",
+                method=res.method,
+                relaxation_steps=res.relaxation_steps,
             )
-        keys.update({"mesh_refinement": notes} if notes else {})
-        if res.method.startswith(SAG_START) or res.method.endswith(FRICTION):  # the path's
-            path.steps[:] = path.steps[-1:]  # states were abandoned or are frictionless
-        keys.update(
-            status="completed",
-            message="reached the end of the load path",
-            method=res.method,
-            relaxation_steps=res.relaxation_steps,
+        except BaseException as exc:
+            kind = "interrupted" if isinstance(exc, KeyboardInterrupt) else "failed"
+            lam = path.steps[-1][0] if path.steps else 0.0
+            text = " ".join(str(exc).split()) or f"{kind} at load factor {lam:g}"
+            keys.update(status=kind, message=text)
+            raise
+        finally:
+            if self.folder is not None and path.steps and again is None:  # what converged
+                doc = write_static_run(self.folder, path, sc.sensors, keys, outputs)
+                if self.on_written is not None:
+                    self.on_written(doc)
+        if again is not None:
+            return again
+        assert res.lam is not None  # a system's solution has its multipliers (empty: no joints)
+        names, vals = sensor_table(
+            outputs, sc.sensors, res.q, static=True, t=res.load_factors[-1:], lam=res.lam[None]
         )
-    except BaseException as exc:
-        kind = "interrupted" if isinstance(exc, KeyboardInterrupt) else "failed"
-        lam = path.steps[-1][0] if path.steps else 0.0
-        text = " ".join(str(exc).split()) or f"{kind} at load factor {lam:g}"
-        keys.update(status=kind, message=text)
-        raise
-    finally:
-        if folder is not None and path.steps and finer is None:  # what converged is kept
-            doc = write_static_run(folder, path, sc.sensors, keys, outputs)
-            if on_written is not None:
-                on_written(doc)
-    if finer is not None:
-        return finer
-    assert res.lam is not None  # a system's solution has its multipliers (empty: no joints)
-    names, vals = sensor_table(
-        outputs, sc.sensors, res.q, static=True, t=res.load_factors[-1:], lam=res.lam[None]
-    )
-    sensors = dict(zip(names, map(float, vals[0]), strict=True))
-    return StaticRun(system, res, outputs, sensors, doc, notes)
+        sensors = dict(zip(names, map(float, vals[0]), strict=True))
+        return StaticRun(system, res, outputs, sensors, doc, [str(n) for n in notes])

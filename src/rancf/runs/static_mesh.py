@@ -31,16 +31,33 @@ radius.  At most :data:`MAX_ELEMENTS` elements per body; a scenario that names n
 (a support, load, sensor or joint at node ``N`` other than the ends) is not refined (its nodes
 would move) and its warning line says so; a touchdown longer than its bend radius there is
 refused by the static checks as before.
-Time-domain runs (their static start) and the other analyses keep the user's mesh.
+A time-domain run that starts from its static equilibrium (``solver.initial_state =
+"static"``, :func:`rancf.runs.simulate.plan_simulate`) takes the same rule before its solve
+(:func:`refine_for_start`): the line whose sagged start shape meets the seabed with a bend its
+elements do not resolve is refined for the static start and the dynamics that go on from it
+(the same curve and model, on the finer mesh that the static solve needs: the unresolved bend
+would lock the dynamics as it locks the statics), with the same warning line; its sensors and
+outputs are those of the refined line.  The check after the solve is ``rancf static``'s only:
+a time-domain run whose solved touchdown is still unresolved is refused by the static checks,
+naming the bend and the element.  The other analyses (modes, buckling) keep the user's mesh.
 """
 
 from __future__ import annotations
 
 import math
 import re
+from dataclasses import dataclass
 from typing import Any
 
-__all__ = ["TOUCHDOWN_RESOLUTION", "MAX_ELEMENTS", "refine_for_touchdowns", "refined"]
+__all__ = [
+    "TOUCHDOWN_RESOLUTION",
+    "MAX_ELEMENTS",
+    "MeshNote",
+    "Refinement",
+    "refine_for_touchdowns",
+    "refine_for_start",
+    "refined",
+]
 
 #: Elements at a touchdown at most this fraction of the bend radius ``T / w``.
 TOUCHDOWN_RESOLUTION = 1.0 / 3.0
@@ -59,14 +76,34 @@ def _halvings(ratio: float, n: int) -> int:
     return max(m, 0)
 
 
+@dataclass(frozen=True)
+class MeshNote:
+    """One warning line about a body's mesh at a touchdown: the body and the line."""
+
+    body: str
+    text: str
+
+    def __str__(self) -> str:
+        return self.text
+
+
+@dataclass(frozen=True)
+class Refinement:
+    """What :func:`refine_for_touchdowns` decided: the refined scenario (None: the mesh is
+    kept) and one note per body it refined or would have refined."""
+
+    scenario: Any | None
+    notes: tuple[MeshNote, ...] = ()
+
+
 def refine_for_touchdowns(
-    sc: Any, system: Any, ratios: dict[str, tuple[float, float]]
-) -> tuple[Any | None, list[str]]:
+    sc: Any, system: Any, ratios: dict[str, tuple[float, float]], use: str = "the static solve"
+) -> Refinement:
     """``sc`` with the elements of every body of ``system`` whose touchdown ``ratios``
     (element length over bend radius, and that element's length) exceed
-    :data:`TOUCHDOWN_RESOLUTION` divided (module docstring), and the warning lines; None and
-    no lines when nothing needs it, None and lines saying so where the scenario names nodes
-    by index."""
+    :data:`TOUCHDOWN_RESOLUTION` divided (module docstring), and the notes; no scenario and no
+    notes when nothing needs it, no scenario and notes saying so where the scenario names
+    nodes by index.  ``use``: what the refined mesh is for, named in the notes."""
     counts = _element_counts(sc)
     factors: dict[str, int] = {}
     why: dict[str, str] = {}
@@ -81,19 +118,36 @@ def refine_for_touchdowns(
                 f"{TOUCHDOWN_RESOLUTION:.2g} of it: docs/guide/statics.md)"
             )
     if not factors:
-        return None, []
+        return Refinement(None)
     if _node_indexed(sc.model_dump(by_alias=True, exclude_unset=True)):
-        return None, [
-            f"body {name!r}: {text}; the scenario names nodes by index, so the static solve "
-            f"keeps its {system.bodies[name].n_el} elements: refine [mesh] elements"
-            for name, text in why.items()
-        ]
-    notes = [
-        f"body {name!r}: its {system.bodies[name].n_el} elements refined to "
-        f"{system.bodies[name].n_el * f} for the static solve: {why[name]}"
+        return Refinement(
+            None,
+            tuple(
+                MeshNote(
+                    name,
+                    f"body {name!r}: {text}; the scenario names nodes by index, so {use} "
+                    f"keeps its {system.bodies[name].n_el} elements: refine [mesh] elements",
+                )
+                for name, text in why.items()
+            ),
+        )
+    notes = tuple(
+        MeshNote(
+            name,
+            f"body {name!r}: its {system.bodies[name].n_el} elements refined to "
+            f"{system.bodies[name].n_el * f} for {use}: {why[name]}",
+        )
         for name, f in factors.items()
-    ]
-    return refined(sc, factors), notes
+    )
+    return Refinement(refined(sc, factors), notes)
+
+
+def refine_for_start(sc: Any, system: Any, use: str = "the static solve") -> Refinement:
+    """:func:`refine_for_touchdowns` of ``sc`` (its ``system``) before a static solve, with the
+    bend radii of the lines' sagged start shapes where they meet a seabed
+    (:func:`start_ratios`): the one rule of ``rancf static`` and of a time-domain run's static
+    start (module docstring); ``use`` as there."""
+    return refine_for_touchdowns(sc, system, start_ratios(system), use)
 
 
 def refined(sc: Any, factors: dict[str, int]) -> Any:

@@ -97,10 +97,10 @@ class HydroTable(Table):
 
 def fluid_value(t: FluidTable | None, dim: int) -> Any:
     """The :class:`rancf.system.fluid.Fluid` of the table (None without one)."""
-    from rancf.system.fluid import Fluid, Waves
-
     if t is None:
         return None
+    from rancf.system.fluid import Fluid, Waves
+
     t.check_dim(dim)
     w = t.waves
     return Fluid(

@@ -34,7 +34,7 @@ from rancf.scenario.fluid import fluid_value, hydro_value
 from rancf.scenario.places import ONE_BODY
 from rancf.scenario.view import ScenarioView
 from rancf.scenario.winches import system_winches, winch_key
-from rancf.system import Joint, Load, Obstacle, Place, Spring, System
+from rancf.system import Joint, Load, Place, Spring, System
 
 __all__ = ["build_system", "scenario_keys", "support_labels", "ONE_BODY"]
 
@@ -182,7 +182,11 @@ def _parts(sc: ScenarioView, bodies: dict[str, Any]) -> dict[str, Any]:
         moment = ld.moment
         torque = None if moment is None else tuple(np.atleast_1d(moment).tolist())
         loads.append(Load(place(ld.at), _tuple(ld.force), torque, t["time"]))
-    obstacles = [Obstacle(**_record_fields(o.plain())) for o in sc.obstacles]
+    obstacles = []
+    if sc.obstacles:
+        from rancf.system.contact import Obstacle
+
+        obstacles = [Obstacle(**_record_fields(o.plain())) for o in sc.obstacles]
     contacts = None if sc.contacts is None else [(a, b) for a, b in sc.contacts]
     return {
         "joints": joints,
@@ -203,8 +207,6 @@ def _fluid(sc: ScenarioView, bodies: dict[str, Any]) -> dict[str, Any]:
     """The fluid, the flexible bodies' coefficients and the distributed loads."""
     from pydantic_core import PydanticCustomError
 
-    from rancf.system.fluid import DistributedLoad
-
     try:
         fluid = fluid_value(sc.fluid, sc.dim)
     except PydanticCustomError as exc:
@@ -217,10 +219,14 @@ def _fluid(sc: ScenarioView, bodies: dict[str, Any]) -> dict[str, Any]:
         for _, b in sc.body_tables
         if getattr(b, "hydro", None) is not None
     }
-    dist = [
-        DistributedLoad(tuple(d["force"]), d["body"], d["time"])
-        for d in sc.data["loads"]["distributed"]
-    ]
+    dist = []
+    if sc.data["loads"]["distributed"]:
+        from rancf.system.fluid import DistributedLoad
+
+        dist = [
+            DistributedLoad(tuple(d["force"]), d["body"], d["time"])
+            for d in sc.data["loads"]["distributed"]
+        ]
     _check_depth(sc, fluid, {k: bodies.get(k) for k in hydro})
     return {"fluid": fluid, "hydro": hydro, "distributed": dist}
 

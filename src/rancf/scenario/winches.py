@@ -14,7 +14,7 @@ stretches the drawing about the winch (:mod:`rancf.system.winches`).  A ``length
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from pydantic import Field, model_validator
@@ -24,7 +24,9 @@ from rancf.bodies.length import set_unstretched_length, unstretched_length
 from rancf.errors import ScenarioError
 from rancf.scenario.base import Name, Positive, Table, Vector23, fail
 from rancf.scenario.time_functions import TimeFunctionValue, check_scalar
-from rancf.system.winches import LENGTH_RTOL, Winch, length_law, winch_length
+
+if TYPE_CHECKING:  # loaded by a file with winches only
+    from rancf.system.winches import Winch
 
 __all__ = ["WinchTable", "system_winches", "winch_key"]
 
@@ -92,6 +94,10 @@ def system_winches(sc: Any, bodies: dict[str, Any]) -> list[Winch]:
     """The :class:`~rancf.system.winches.Winch` of every ``[[winches]]`` table; a body whose
     length at ``t = 0`` is not its drawing's is stretched about the winch first
     (:func:`~rancf.bodies.length.set_unstretched_length`).  Errors name the key."""
+    if not sc.winches:
+        return []
+    from rancf.system.winches import LENGTH_RTOL, Winch, length_law
+
     out = []
     for i, (w, wd) in enumerate(zip(sc.winches, sc.data["winches"], strict=True)):
         key = f"winches[{i}]"
@@ -171,6 +177,8 @@ def _check_lengths(sc: Any, key: str, w: Winch, length0: float) -> None:
     A driven drum's length is a coordinate: the run stops where it leaves its range."""
     if w.driven:
         return
+    from rancf.system.winches import winch_length
+
     t_end = float(sc.dynamic_options().t_end)
     law = w.length if w.length is not None else w.speed
     f = winch_length(w, length0, t_end)

@@ -15,6 +15,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
+from rancf.kernels.call_records import StatePoint, TangentOptions
 from rancf.system import System
 
 __all__ = ["free_drums"]
@@ -45,7 +46,8 @@ def free_drums(
         r = np.empty(n + m)
         ok = system.core.residual(z[:n], zero, zero, z[n:], tt, 1.0, amp, False, r)
         ok2, size, rows, cols, vals = system.core.sparse_jacobian(
-            z[:n], zero, zero, z[n:], tt, 1.0, 0.0, 0.0, False, 1.0, amp
+            StatePoint(np.ascontiguousarray(z[:n]), zero, zero, np.ascontiguousarray(z[n:])),
+            TangentOptions(tt, 1.0, 0.0, 0.0, False, 1.0, amp),
         )
         if not (ok and ok2):
             return z[:n], z[n:], False, it

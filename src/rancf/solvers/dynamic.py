@@ -278,17 +278,18 @@ class _Loop:
         self.within = self.within + b.done - b.stored * self.per_out
         last_out = self.out_time(self.k_out - 1) if self.k_out else 0.0
         st.t = float(last_out) + self.within * o.step if self.within else float(last_out)
+        end = None  # a failed step: rejected before the outputs are announced, so that a
+        if not b.converged:  # snapshot (a checkpoint) there holds the rejection and its cost
+            step = st.after_failed_block()
+            if not step.rejected:  # left a length law's range: the state stays here
+                end = DynamicStatus.FAILED, str(step.failure)
+            else:  # the steps to the next output are taken one by one, smaller
+                self.within = 0
+                result.n_rejected += 1
+                end = None if step.failure is None else (DynamicStatus.FAILED, step.failure)
         if b.stored:
             self._notify(float(last_out))
-        stop = self._stopped()
-        if stop is not None or b.converged:
-            return stop
-        step = st.after_failed_block()
-        if not step.rejected:  # left a length law's range: the state stays here
-            return DynamicStatus.FAILED, str(step.failure)
-        self.within = 0  # the steps to the next output are taken one by one, smaller
-        result.n_rejected += 1
-        return None if step.failure is None else (DynamicStatus.FAILED, step.failure)
+        return end if end is not None else self._stopped()
 
     def _single(self, target: float) -> tuple[DynamicStatus, str] | None:
         """One step through Python (adaptive, or toward an output off the fixed grid)."""

@@ -10,6 +10,7 @@ from numpy.typing import NDArray
 from rancf.bodies.flexible import Model
 from rancf.bodies.section_outputs import sample_points
 from rancf.kernels import _core
+from rancf.kernels.call_records import RunBuffers, RunOptions
 from rancf.solvers.increment_scale import increment_scale
 from rancf.system import System, as_system
 from rancf.system.sliding import start_multipliers
@@ -72,6 +73,8 @@ class GeneralizedAlpha:
             chord=newton == "chord",
         )
         self._core = _core.SystemIntegrator(self.system.core, scheme)
+        if self.system.contact is not None:  # a step's gap on a fixed obstacle: the blend of
+            self.system.contact.step_alpha_f = self.af  # the gaps at its ends (TI.16)
         # the test measures increments as displacements (gradients times their elements' length)
         self._core.set_increment_scale(increment_scale(self.system).tolist())
         # above rtol * size a step's estimate is filtered (TI.12): what the step does not resolve
@@ -205,24 +208,8 @@ class GeneralizedAlpha:
         of = (np.empty((n_out, n)), np.empty((n_out, n))) if contact else (None, None)
         lam = np.zeros(m) if lam is None else lam
         done, ok, iters, stored, err, t_err = self._core.run(
-            y,
-            v,
-            a,
-            w,
-            lam,
-            t,
-            h,
-            n_steps,
-            per_out,
-            done_before,
-            max_seconds,
-            oy,
-            ov,
-            ol,
-            oe,
-            *of,
-            out_dt,
-            k_last,
+            RunBuffers(y, v, a, w, lam, oy, ov, ol, oe, *of),
+            RunOptions(t, h, n_steps, per_out, done_before, max_seconds, out_dt, k_last),
         )
         oa = np.concatenate(of, axis=1) if contact else None  # type: ignore[arg-type]
         self.n_newton += iters

@@ -26,6 +26,7 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 
 from rancf.errors import RancfError
+from rancf.kernels.call_records import StatePoint, TangentOptions
 from rancf.system import System
 from rancf.system.joint_data import normals as _normals
 from rancf.system.sliding import start_multipliers
@@ -81,17 +82,8 @@ def system_jacobian(
     """The core's ``ck ∂/∂y + ca ∂/∂a`` over ``(y, λ)``, coupling unknowns eliminated."""
     z = np.zeros(system.n)
     ok, size, rows, cols, vals = system.core.sparse_jacobian(
-        np.ascontiguousarray(y),
-        z,
-        z,
-        np.ascontiguousarray(lam),
-        t,
-        ck,
-        0.0,
-        ca,
-        ca != 0.0,
-        load_factor,
-        amplitude,
+        StatePoint(np.ascontiguousarray(y), z, z, np.ascontiguousarray(lam)),
+        TangentOptions(t, ck, 0.0, ca, ca != 0.0, load_factor, amplitude),
     )
     if not ok:
         raise RancfError("the system's tangent is not finite at this configuration")

@@ -12,18 +12,24 @@ body's gravity).  Where that catenary dips below a fixed plane facing up against
 the body touches (a seabed), the shape is instead two catenaries from the ends down to
 touchdown points, where they are tangent to the plane, and the line straight on the plane
 between them (no friction: one horizontal tension ``H = w a`` throughout); the centerline lies
-one tube radius ``sqrt(A / π)`` above the plane.  Each node is placed at the point of the shape
-at its reference arc length, its gradient ``r_x`` along the shape's tangent with the length
+one tube radius ``sqrt(A / π)`` above the plane.  On a sloped plane (its normal within 60° of
+``up``; MoorPy's ``alpha``) whose line in that vertical plane rises by ``tan β`` per metre, a
+line with one end on the plane lies straight on it from that end to a touchdown point, where
+the catenary to the other end leaves it tangent to it (``sinh u = tan β`` there; MoorPy's
+frictionless sloped seabed: the grounded length and ``a`` from the two conditions that the
+catenary reaches the other end and the lengths add up; :mod:`rancf.solvers.static_catenary`);
+a line with both ends above a sloped plane hangs free.  Each node is placed at the point of the
+shape at its reference arc length, its gradient ``r_x`` along the shape's tangent with the length
 of its reference gradient (the element's gradient scale: a node's ``|r_x|`` is unchanged).
 A line shorter than that chord (installed stretched) starts straight between its held ends,
 stretched evenly (its gradients too).  Other bodies keep their reference.  From there Newton's
-method at the full load with the supports installed (the last stage's end), and relaxation
+method at the full load with the supports installed (the last stage's end; at least
+:data:`NEWTON_ITERATIONS` iterations), and relaxation
 (:func:`rancf.solvers.relaxation.relax`, at most :data:`RELAX_STEPS` steps) if Newton fails.
 """
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 import numpy as np
@@ -32,6 +38,7 @@ from numpy.typing import NDArray
 from rancf.bodies.flexible import Model
 from rancf.solvers.newton import newton
 from rancf.solvers.relaxation import relax
+from rancf.solvers.static_catenary import catenary_shape, touchdowns
 from rancf.solvers.system_equilibrium import SystemEquilibrium
 
 __all__ = [
@@ -49,82 +56,15 @@ SAG_START = "sag start+newton"
 #: through its touchdowns, e.g. 625 steps for a 500 m line of 80 elements; the load path's
 #: relaxation keeps :data:`rancf.solvers.relaxation.MAX_STEPS`).
 RELAX_STEPS = 2000
+#: Newton's iterations from the sagged start at least (the solver's ``max_iter`` if larger).  A
+#: line whose ``EA`` is about 1e9 times its tension creeps along its nearly inextensible shapes
+#: (the residual falls by about half per 25 iterations) before it converges quadratically:
+#: MoorPy's sloped lines in 34 to 41 iterations.  Not more: its U (a bend of radius 2.6 m at the
+#: touchdowns, 160 elements) creeps for 182 iterations into a root that holds 0.9 % more line
+#: off the seabed than the heavy elastica, where relaxation comes to rest at the elastica's.
+NEWTON_ITERATIONS = 60
 #: A line within this (relative) of its chord keeps its reference: no start shape.
 SLACK_RTOL = 1e-9
-
-
-def _bisect(f: Any, lo: float, hi: float, n: int = 200) -> float:
-    """A root of ``f`` in ``[lo, hi]`` (``f(lo) > 0 >= f(hi)``) by bisection in ``log``."""
-    for _ in range(n):
-        mid = math.sqrt(lo * hi)
-        if f(mid) > 0.0:
-            lo = mid
-        else:
-            hi = mid
-        if hi / lo - 1.0 < 1e-14:
-            break
-    return math.sqrt(lo * hi)
-
-
-def _free(span: float, rise: float, length: float) -> tuple[float, float]:
-    """``(a, x_v)`` of the catenary ``z = z_v + a (cosh((x - x_v)/a) - 1)`` of ``length``
-    from ``(0, 0)`` to ``(span, rise)``: ``sqrt(L² - rise²) = 2 a sinh(span / (2 a))``,
-    ``x_v = span/2 - a atanh(rise / L)``."""
-    c = math.sqrt(length**2 - rise**2)
-
-    def f(a: float) -> float:  # positive while a is too small (too long a curve)
-        u = span / (2.0 * a)
-        return 2.0 * a * math.sinh(u) - c if u < 700.0 else math.inf
-
-    a = _bisect(f, span * 1e-6, span * 1e6)
-    return a, span / 2.0 - a * math.atanh(rise / length)
-
-
-def _grounded(span: float, h1: float, h2: float, length: float) -> float | None:
-    """``a`` of the line touching down on a plane ``h1``, ``h2`` below its ends (module
-    docstring), or None where the free catenary does not reach the plane or the line is longer
-    than ``h1 + h2 + span`` (no touchdown shape: it would pile up)."""
-    if length >= h1 + h2 + span:
-        return None
-
-    def parts(a: float) -> tuple[float, float]:  # suspended lengths, horizontal extents
-        s = [math.sqrt(h * h + 2.0 * a * h) for h in (h1, h2)]
-        return sum(s), sum(a * math.asinh(si / a) for si in s)
-
-    a_hi = _bisect(lambda a: span - parts(a)[1], span * 1e-9, span * 1e9)  # no grounded length
-    if parts(a_hi)[0] >= length:
-        return None  # the hanging line does not reach the plane
-    return _bisect(lambda a: parts(a)[0] + span - parts(a)[1] - length, span * 1e-9, a_hi)
-
-
-def catenary_shape(
-    span: float, rise: float, length: float, s: NDArray, floor: float | None = None
-) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Points ``(x, z)`` and unit tangents of the inextensible catenary of ``length`` from
-    ``(0, 0)`` to ``(span, rise)`` (``span > 0``, ``length`` above the chord) at the arc lengths
-    ``s`` from its start, lying on the line ``z = floor`` where it would dip below it (module
-    docstring); ``(n, 2)`` each."""
-    s = np.clip(np.asarray(s, dtype=float), 0.0, length)
-    a = None
-    if floor is not None:
-        h1, h2 = max(-floor, 0.0), max(rise - floor, 0.0)
-        a = _grounded(span, h1, h2, length)
-    if a is None or floor is None:
-        a, xv = _free(span, rise, length)
-        u1 = -xv / a
-        u = np.arcsinh(math.sinh(u1) + s / a)
-        x = xv + a * u
-        z = a * (np.cosh(u) - math.cosh(u1))
-        return np.c_[x, z], np.c_[1.0 / np.cosh(u), np.tanh(u)]
-    s1, s2 = (math.sqrt(h * h + 2.0 * a * h) for h in (h1, h2))
-    x1, x2 = (a * math.asinh(si / a) for si in (s1, s2))
-    u = np.zeros_like(s)  # on the plane: u = 0, the tangent horizontal
-    first, last = s < s1, s > length - s2
-    u[first] = -np.arcsinh((s1 - s[first]) / a)
-    u[last] = np.arcsinh((s[last] - (length - s2)) / a)
-    x = np.where(first, x1 + a * u, np.where(last, span - x2 + a * u, x1 + s - s1))
-    z = floor + a * (np.cosh(u) - 1.0)
-    return np.c_[x, z], np.c_[1.0 / np.cosh(u), np.tanh(u)]
 
 
 def _held_position(model: Model, node: int) -> bool:
@@ -132,19 +72,39 @@ def _held_position(model: Model, node: int) -> bool:
     return bool(np.all(model.fixed[b : b + model.dim]))
 
 
-def _floor(system: Any, name: str, model: Model, up: NDArray, p1: NDArray) -> float | None:
-    """The height above ``p1`` (along ``up``) of the centerline resting on the highest fixed
-    plane facing ``up`` that body ``name`` touches, or None."""
+def _floor(
+    system: Any, name: str, model: Model, up: NDArray, p1: NDArray, chord: NDArray
+) -> tuple[float, float] | None:
+    """``(z0, slope)``: the line ``z = z0 + x slope`` (``x`` horizontal along the ``chord``
+    from ``p1``, ``z`` along ``up``) of the centerline resting on the fixed plane facing up (its
+    normal within 60° of ``up``) that body ``name`` touches, highest under the middle of the
+    span of those, or None.  A sloped line is moved to pass through an end that is within a
+    tube radius of it (an anchor on the seabed)."""
     best, pairs = None, set(getattr(system, "contact_pairs", ()))
+    rise = float(chord @ up)
+    ex = chord - rise * up
+    span = float(np.linalg.norm(ex))
+    ex = ex / span if span > 0.0 else ex
     for ob, oname in zip(system.obstacles, system.obstacle_names, strict=False):
         if ob.kind != "plane" or ob.body is not None or (name, oname) not in pairs:
             continue
         n = np.asarray(ob.normal, dtype=float)
         n = n / np.linalg.norm(n)
-        if n @ up < 1.0 - 1e-9:
+        if n @ up < 0.5:
             continue
-        h = float((np.asarray(ob.point, dtype=float) - p1) @ up) + model.section.radius
-        best = h if best is None else max(best, h)
+        rest = np.asarray(ob.point, dtype=float) + model.section.radius * n - p1
+        z0, slope = float(rest @ n) / float(n @ up), -float(ex @ n) / float(n @ up)
+        if abs(slope) < 1e-12:
+            slope = 0.0
+        if best is None or z0 + 0.5 * span * slope > best[0] + 0.5 * span * best[1]:
+            best = (z0, slope)
+    if best is not None and best[1] != 0.0:
+        z0, slope = best
+        near = model.section.radius
+        if abs(z0) <= near:
+            best = (0.0, slope)
+        elif abs(rise - z0 - span * slope) <= near:
+            best = (rise - span * slope, slope)
     return best
 
 
@@ -190,15 +150,10 @@ def touchdown_radius(system: Any, name: str, model: Model) -> tuple[float, list[
     stretch = float(np.linalg.norm(chord)) / length
     if stretch * (1.0 + SLACK_RTOL) >= 1.0 or span <= 1e-9 * length:
         return None
-    floor = _floor(system, name, model, up, p1)
-    if floor is None:
+    found = _floor(system, name, model, up, p1, chord)
+    if found is None:
         return None
-    h1, h2 = max(-floor, 0.0), max(rise - floor, 0.0)
-    a = _grounded(span, h1, h2, length)
-    if a is None:
-        return None
-    s1, s2 = (math.sqrt(h * h + 2.0 * a * h) for h in (h1, h2))
-    return a, [s for s, h in ((s1, h1), (length - s2, h2)) if h > 0.0]
+    return touchdowns(span, rise, length, *found)
 
 
 def _body_sag(
@@ -223,8 +178,9 @@ def _body_sag(
         return None
     else:
         ex = horiz / span
-        floor = _floor(system, name, model, up, p1)
-        pts, tan = catenary_shape(span, rise, length, s_nodes, floor)
+        found = _floor(system, name, model, up, p1, chord)
+        floor, slope = (None, 0.0) if found is None else found
+        pts, tan = catenary_shape(span, rise, length, s_nodes, floor, slope)
         out[:, :dim] = p1 + pts[:, :1] * ex + pts[:, 1:] * up
         out[:, dim:] = grad[:, None] * (tan[:, :1] * ex + tan[:, 1:] * up)
     y = model.y_from_q(out.ravel())
@@ -270,7 +226,7 @@ def solve_from_sag(
     problem.stage = len(problem.stages) - 1
     end = problem.stages[-1][1]
     problem.place_supports(z, end)
-    out = newton(problem, z, end, tol, max_iter)
+    out = newton(problem, z, end, tol, max(max_iter, NEWTON_ITERATIONS))
     if out.converged:
         problem.accept(out.y)
         return out.y, end, out.iterations, out.iterations, out.residuals, 0

@@ -59,8 +59,8 @@ from rancf.solvers.load_path import MIN_INCREMENT, PathState
 from rancf.solvers.newton import newton
 from rancf.solvers.relaxation import relax
 from rancf.solvers.sag_start import SAG_START, clamped_lines, solve_from_sag
-from rancf.solvers.static_checks import static_state_problems
-from rancf.solvers.static_friction import solve_with_friction
+from rancf.solvers.static_checks import check_state
+from rancf.solvers.static_friction import with_friction
 from rancf.solvers.system_equilibrium import SystemEquilibrium
 from rancf.system import System, as_system
 from rancf.system.drums import hold_drums, refuse_static_drums
@@ -68,9 +68,6 @@ from rancf.system.drums import hold_drums, refuse_static_drums
 __all__ = ["StaticResult", "solve_static", "solve_equilibrium", "StaticMethod"]
 
 StaticMethod = Literal["load", "arc_length"]
-
-#: Appended to ``StaticResult.method`` when the seabeds' friction acted (``static_friction``).
-FRICTION = "+friction"
 
 #: ``StaticResult.method`` when a stage was finished by relaxation.
 RELAXED = "relaxation+newton"
@@ -111,6 +108,11 @@ class StaticResult:
     #: without joints.
     lam: NDArray[np.float64] | None = None
     relaxation_steps: int = 0
+    #: Per line touching a seabed, the largest ratio of an element's length to the bend radius
+    #: at a touchdown in it and that element's length
+    #: (:attr:`~rancf.solvers.static_checks.StateCheck.touchdowns`), once the state has passed
+    #: the checks (None before).
+    touchdowns: dict[str, tuple[float, float]] | None = None
 
 
 def solve_static(
@@ -154,7 +156,7 @@ def solve_static(
         if getattr(system, "drums", None):
             raise InputError("solver.static_friction", True, "false with drums")
         res = solve_static(system, load_steps, tol, max_iter, on_step, method, at_time)
-        return _checked(system, _with_friction(system, res, at_time, tol, max_iter, on_step))
+        return _checked(system, with_friction(system, res, at_time, tol, max_iter, on_step))
     if not getattr(system, "drums", None):
         first = None
         rejected: list[str] = []  # what the sagged start found, said if nothing else converges
@@ -180,8 +182,12 @@ def solve_static(
                     raise ConvergenceError(f"{exc}; {rejected[0]}", exc.reached) from exc
                 raise
             return _checked(system, late)
-        if again and static_state_problems(system, res.q):
-            res = _sagged(system, at_time, tol, max_iter, on_step, start) or res
+        if again:
+            report = check_state(system, res.q)
+            if report.problems:
+                res = _sagged(system, at_time, tol, max_iter, on_step, start) or res
+            else:
+                res = replace(res, touchdowns=report.touchdowns)
         return _checked(system, res)
     hold_drums(system, True)  # driven drums: the line loaded at their start lengths first
     try:
@@ -204,36 +210,6 @@ def solve_static(
         wall_time=time.perf_counter() - start,
     )
     return _checked(system, done)
-
-
-def _with_friction(
-    system: System,
-    res: StaticResult,
-    at_time: float | None,
-    tol: float,
-    max_iter: int,
-    on_step: Callable[[float, NDArray[np.float64]], None] | None,
-) -> StaticResult:
-    """``res`` carried to the equilibrium with seabed friction
-    (:func:`rancf.solvers.static_friction.solve_with_friction`)."""
-    p = float(res.load_factors[-1])
-    z, its = solve_with_friction(system, np.r_[res.y, res.lam], p, at_time, tol, max_iter)
-    if its == 0:
-        return res
-    system.static_friction = True  # type: ignore[attr-defined]
-    n = system.n
-    if on_step is not None:
-        on_step(p, z[:n])
-    return replace(
-        res,
-        q=system.q_from_y(z[:n]),
-        y=z[:n],
-        lam=z[n:],
-        method=res.method + FRICTION,
-        n_newton=res.n_newton + its,
-        n_factorizations=res.n_factorizations + its,
-        load_factors=np.r_[res.load_factors, p],
-    )
 
 
 def _sagged(
@@ -267,23 +243,27 @@ def _sagged(
         z[n:],
         steps,
     )
-    problems = static_state_problems(system, res.q)
-    if problems:
+    report = check_state(system, res.q)
+    if report.problems:
         if rejected is not None:
             rejected.append(
                 f"from its sagged start shape it came to a state that is no "
-                f"equilibrium: {problems[0]}"
+                f"equilibrium: {report.problems[0]}"
             )
         return None
     if on_step is not None:
         on_step(float(res.load_factors[-1]), res.y)
-    return res
+    return replace(res, touchdowns=report.touchdowns)
 
 
 def _checked(system: System, res: StaticResult) -> StaticResult:
-    """``res`` if its state passes :func:`~rancf.solvers.static_checks.static_state_problems`;
+    """``res`` with its touchdowns if its state passes
+    :func:`~rancf.solvers.static_checks.check_state` (a result that has them passed already);
     else :class:`~rancf.errors.ConvergenceError` naming the first problem (one line)."""
-    problems = static_state_problems(system, res.q)
+    if res.touchdowns is not None:
+        return res
+    report = check_state(system, res.q)
+    problems = report.problems
     if problems:
         lam = float(res.load_factors[-1])
         raise ConvergenceError(
@@ -291,7 +271,7 @@ def _checked(system: System, res: StaticResult) -> StaticResult:
             f"in a state that is no equilibrium: {problems[0]}",
             reached=lam,
         )
-    return res
+    return replace(res, touchdowns=report.touchdowns)
 
 
 def solve_equilibrium(

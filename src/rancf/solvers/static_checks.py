@@ -29,6 +29,7 @@ line).  Criteria (docs/guide/statics.md, "Checked equilibria"):
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -42,6 +43,8 @@ __all__ = [
     "COMPRESSION_BUCKLING",
     "COMPRESSION_ROUNDOFF",
     "PENETRATION_LIMIT",
+    "StateCheck",
+    "check_state",
     "static_state_problems",
     "self_crossing",
     "touchdown_ratios",
@@ -59,20 +62,42 @@ COMPRESSION_ROUNDOFF = 1e-6
 PENETRATION_LIMIT = 1.0
 
 
-def static_state_problems(system: Any, q: NDArray[np.float64], lam: float = 1.0) -> list[str]:
-    """The problems of the static state ``q`` (full coordinates) of ``system`` (module
-    docstring), one line each; empty when it may be reported as an equilibrium.  ``lam``: the
-    path parameter, named in the lines."""
-    out: list[str] = []
+@dataclass(frozen=True)
+class StateCheck:
+    """The checks of one static state: its problems (module docstring, one line each; empty: it
+    may be reported as an equilibrium) and, per line touching a seabed, the largest ratio of an
+    element's length to the bend radius at a touchdown in it and that element's length
+    (:func:`touchdown_ratios`)."""
+
+    problems: list[str]
+    touchdowns: dict[str, tuple[float, float]]
+
+
+def check_state(system: Any, q: NDArray[np.float64]) -> StateCheck:
+    """The checks of the static state ``q`` (full coordinates) of ``system``: every flexible
+    body sampled once (:class:`~rancf.bodies.section_outputs.SectionSampler`) for its folds,
+    compressive loops, self-crossings and seabed bends."""
+    problems: list[str] = []
+    samplers = {}
     for name, model in zip(system.names, system.flex, strict=False):
+        samplers[name] = sampler = SectionSampler(model)
         y = model.y_from_q(np.asarray(q)[system.body_slice(name)])
-        out += [f"body {name!r}: {p}" for p in _body_problems(model, y)]
-    return out + _penetration_problems(system, q) + _touchdown_problems(system, q)
+        problems += [f"body {name!r}: {p}" for p in _body_problems(model, y, sampler)]
+    bends = _seabed_bends(system, q, samplers)
+    problems += _penetration_problems(system, q) + _touchdown_problems(bends)
+    return StateCheck(problems, _ratios(bends))
 
 
-def _body_problems(model: Model, y: NDArray[np.float64]) -> list[str]:
-    """Folds and compressive loops of one flexible body at its model coordinates ``y``."""
-    sampler = SectionSampler(model)
+def static_state_problems(system: Any, q: NDArray[np.float64]) -> list[str]:
+    """The problems of the static state ``q`` (full coordinates) of ``system`` (module
+    docstring, :func:`check_state`), one line each; empty when it may be reported as an
+    equilibrium."""
+    return check_state(system, q).problems
+
+
+def _body_problems(model: Model, y: NDArray[np.float64], sampler: SectionSampler) -> list[str]:
+    """Folds and compressive loops of one flexible body at its model coordinates ``y``
+    (``sampler``: the body's)."""
     vals = sampler.values(y)
     k = sampler.per_element
     stretch = np.sqrt(np.clip(1.0 + 2.0 * vals[:, 0], 0.0, None))
@@ -175,15 +200,15 @@ def _fold_element(x: NDArray[np.float64], x0: NDArray[np.float64], k: int) -> in
     return int((bad[0] + 1) // k) if bad.size else None
 
 
-def _touchdown_problems(system: Any, q: NDArray[np.float64]) -> list[str]:
+def _touchdown_problems(bends: list[tuple[str, str, list]]) -> list[str]:
     """Lines whose bend where they leave a seabed is shorter than one of their elements: a
     line leaving a fixed plane its wet weight ``w`` presses on under the axial force ``T``
     bends there with the catenary's radius ``T / w``; an element longer than that cannot take
     the bend, and the stiff line settles into a state whose forces are far off (an inextensible
     U-shaped line of 40 elements: a fairlead force 4.5 times too small)."""
     out = []
-    for name, ob_name, bends in _seabed_bends(system, q):
-        for s, bend, ell in bends:
+    for name, ob_name, found in bends:
+        for s, bend, ell in found:
             if bend < ell:
                 out.append(
                     f"body {name!r}: its bend at s = {s:.4g} m has the radius T/w = "
@@ -200,19 +225,27 @@ def touchdown_ratios(system: Any, q: NDArray[np.float64]) -> dict[str, tuple[flo
     """Per line touching a seabed (module docstring) at the static state ``q``, the largest
     ratio ``ℓ / (T / w)`` of an element's length to the bend radius where the line meets or
     leaves the seabed in that element (``inf`` where ``T <= 0``) and that element's length
-    ``ℓ``; lines with no touchdown are left out."""
+    ``ℓ``; lines with no touchdown are left out (:attr:`StateCheck.touchdowns` of
+    :func:`check_state`, which has them with the problems)."""
+    return check_state(system, q).touchdowns
+
+
+def _ratios(bends: list[tuple[str, str, list]]) -> dict[str, tuple[float, float]]:
+    """:func:`touchdown_ratios` from the bends of :func:`_seabed_bends`."""
     out: dict[str, tuple[float, float]] = {}
-    for name, _, bends in _seabed_bends(system, q):
-        for _, bend, ell in bends:
+    for name, _, found in bends:
+        for _, bend, ell in found:
             ratio = ell / bend if bend > 0.0 else np.inf
             if ratio > out.get(name, (0.0, 0.0))[0]:
                 out[name] = (ratio, ell)
     return out
 
 
-def _seabed_bends(system: Any, q: NDArray[np.float64]) -> list[tuple[str, str, list]]:
+def _seabed_bends(
+    system: Any, q: NDArray[np.float64], samplers: dict[str, SectionSampler]
+) -> list[tuple[str, str, list]]:
     """``(body, plane, bends)`` of every cable body and fixed plane its wet weight presses on
-    (:func:`_bends`)."""
+    (:func:`_bends`; ``samplers``: the bodies')."""
     from rancf.system.seabed import pressing_weight
 
     out = []
@@ -227,13 +260,14 @@ def _seabed_bends(system: Any, q: NDArray[np.float64]) -> list[tuple[str, str, l
             if not model.family.gradient or (name, ob_name) not in pairs or not w > 0.0:
                 continue
             y = model.y_from_q(np.asarray(q)[system.body_slice(name)])
-            bends = _bends(model, y, np.asarray(ob.point, dtype=float), n, w)
+            point = np.asarray(ob.point, dtype=float)
+            bends = _bends(model, samplers[name], y, point, n, w)
             out.append((name, ob_name, bends))
     return out
 
 
 def _bends(
-    model: Model, y: NDArray, point: NDArray, n: NDArray, w: float
+    model: Model, sampler: SectionSampler, y: NDArray, point: NDArray, n: NDArray, w: float
 ) -> list[tuple[float, float, float]]:
     """``(s, T / w, ℓ)`` where ``model`` at ``y`` leaves or meets the plane through ``point``
     (unit normal ``n``): the arc length ``s`` of the sample point, the bend radius under the
@@ -245,7 +279,6 @@ def _bends(
 
     if not recovers_axial_force(model) or model.n_el < 2:
         return []
-    sampler = SectionSampler(model)
     k, radius = sampler.per_element, model.section.radius
     gap = (sampler.positions(y) - point) @ n - radius
     touch = gap <= 5e-2 * radius  # the touchdown sensor's tolerance

@@ -25,6 +25,10 @@ the touchdown's axial force, which the Newton tolerance leaves uncertain by ~1e-
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from dataclasses import replace
+from typing import Any
+
 import numpy as np
 from numpy.typing import NDArray
 
@@ -34,6 +38,8 @@ from rancf.solvers.system_equilibrium import SystemEquilibrium
 from rancf.system.seabed_friction import seabed_friction
 
 __all__ = [
+    "FRICTION",
+    "with_friction",
     "seabed_friction",
     "FrictionEquilibrium",
     "solve_with_friction",
@@ -101,4 +107,41 @@ def solve_with_friction(
         f"still changed by {change / max(float(np.linalg.norm(new)), 1e-300):.2g} after "
         f"{MAX_FRICTION_ITERATIONS} iterations",
         reached=p,
+    )
+
+
+#: Appended to ``StaticResult.method`` when the seabeds' friction acted (``static_friction``).
+FRICTION = "+friction"
+
+
+def with_friction(
+    system: Any,
+    res: Any,
+    at_time: float | None,
+    tol: float,
+    max_iter: int,
+    on_step: Callable[[float, NDArray[np.float64]], None] | None,
+) -> Any:
+    """The frictionless equilibrium ``res`` (a :class:`~rancf.solvers.static.StaticResult`)
+    carried to the equilibrium with seabed friction (:func:`solve_with_friction`), its
+    ``method`` ending in :data:`FRICTION`, unchecked (``touchdowns`` None); ``res`` itself
+    where the friction does not act."""
+    p = float(res.load_factors[-1])
+    z, its = solve_with_friction(system, np.r_[res.y, res.lam], p, at_time, tol, max_iter)
+    if its == 0:
+        return res
+    system.static_friction = True
+    n = system.n
+    if on_step is not None:
+        on_step(p, z[:n])
+    return replace(
+        res,
+        q=system.q_from_y(z[:n]),
+        y=z[:n],
+        lam=z[n:],
+        method=res.method + FRICTION,
+        n_newton=res.n_newton + its,
+        n_factorizations=res.n_factorizations + its,
+        load_factors=np.r_[res.load_factors, p],
+        touchdowns=None,  # a new state: checked again
     )

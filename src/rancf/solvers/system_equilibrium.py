@@ -30,11 +30,14 @@ multipliers take no part in norms and tolerances (scale 0); the reactions of the
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 from numpy.typing import NDArray
 
 from rancf.bodies.flexible import Model
 from rancf.kernels import _core
+from rancf.kernels.call_records import StatePoint, StaticOptions, StaticPoint, TangentOptions
 from rancf.system import System
 from rancf.system.sliding import start_multipliers
 from rancf.system.winches import unloaded_at
@@ -161,17 +164,12 @@ class SystemEquilibrium:
         :data:`STABILIZER` times the largest stiffness-to-mass ratio of the diagonals: a
         quasi-Newton step, the residual (and so the equilibrium found) unchanged."""
         r = np.empty(self.n + self.m)
-        args = (
-            np.ascontiguousarray(z[: self.n]),
-            np.ascontiguousarray(z[self.n :]),
-            self.load_factor(p),
-            self._amp,
-            self._t,
-            r,
-        )
-        ok = self._integ.factor_static(*args)
+        point = StaticPoint(np.ascontiguousarray(z[: self.n]), np.ascontiguousarray(z[self.n :]), r)
+        options = StaticOptions(self.load_factor(p), self._amp, self._t)
+        ok = self._integ.factor_static(point, options)
         if not ok and np.all(np.isfinite(r)):
-            ok = self._integ.factor_static(*args, stab=STABILIZER * self._stiffness_scale(z))
+            stab = STABILIZER * self._stiffness_scale(z)
+            ok = self._integ.factor_static(point, replace(options, stab=stab))
         r[self.fixed] = 0.0
         return r, bool(ok)
 
@@ -181,13 +179,8 @@ class SystemEquilibrium:
         (:mod:`rancf.solvers.relaxation`)."""
         r = np.empty(self.n + self.m)
         ok = self._integ.factor_static(
-            np.ascontiguousarray(z[: self.n]),
-            np.ascontiguousarray(z[self.n :]),
-            self.load_factor(p),
-            self._amp,
-            self._t,
-            r,
-            stab=float(rate),
+            StaticPoint(np.ascontiguousarray(z[: self.n]), np.ascontiguousarray(z[self.n :]), r),
+            StaticOptions(self.load_factor(p), self._amp, self._t, stab=float(rate)),
         )
         r[self.fixed] = 0.0
         return r, bool(ok)
@@ -206,7 +199,8 @@ class SystemEquilibrium:
         """``|diag(ck K + ca M)|`` on the free coordinates at ``z`` (loads at their full value)."""
         y, lam, zero = z[: self.n], z[self.n :], np.zeros(self.n)
         _, _, rows, cols, vals = self.system.core.sparse_jacobian(
-            y, zero, zero, lam, self._t, ck, 0.0, ca, ca != 0.0
+            StatePoint(np.ascontiguousarray(y), zero, zero, np.ascontiguousarray(lam)),
+            TangentOptions(self._t, ck, 0.0, ca, ca != 0.0),
         )
         d = np.zeros(self.n)
         rows, cols, vals = np.asarray(rows), np.asarray(cols), np.asarray(vals)

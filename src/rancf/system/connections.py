@@ -1,4 +1,6 @@
-"""Joints, springs and loads of a system (frozen values; :class:`rancf.system.System` assembles).
+"""Joints, springs and loads of a system: Parts (:mod:`rancf.system.part`), one module a kind in
+:mod:`rancf.system.parts` (:mod:`~rancf.system.parts.joint`, :mod:`~rancf.system.parts.spring`,
+:mod:`~rancf.system.parts.load`), gathered here.
 
 Joint kinds (docs/derivations/systems.md section 3): ``"pin"`` (positions coincide: revolute in 2D,
 spherical in
@@ -14,54 +16,8 @@ coordinates in the reference configuration.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-from dataclasses import dataclass
-
-from rancf.bodies.time_function import TimeFunction
-from rancf.system.places import Place
+from rancf.system.parts.joint import JOINT_KINDS, Joint
+from rancf.system.parts.load import Load
+from rancf.system.parts.spring import Spring
 
 __all__ = ["Joint", "Spring", "Load", "JOINT_KINDS"]
-
-JOINT_KINDS = ("pin", "revolute", "fixed", "slider", "sliding")
-
-
-@dataclass(frozen=True)
-class Joint:
-    """A joint between two places (module docstring)."""
-
-    kind: str
-    between: tuple[Place | str, Place | str]
-    axis: Sequence[float] | None = None
-    angle: TimeFunction | None = None
-    name: str = ""
-    #: A joint to the ground: the ground point moves by this displacement (a moving support).
-    motion: TimeFunction | None = None
-    #: A sliding joint to the ground: the guide's position (world, reference configuration).
-    position: Sequence[float] | None = None
-
-
-@dataclass(frozen=True)
-class Spring:
-    """A spring-damper between two places: tension ``k (ℓ - ℓ0) + c dℓ/dt`` along the line
-    between them; ``length`` ℓ0 defaults to their distance in the reference configuration.
-
-    With ``ℓ0 = 0`` (a spring to ``ground``, which sits at the other place's reference) it is
-    the linear spring-damper ``F = k (x_a - x_b) + c (v_a - v_b)``: the same stiffness, with a
-    direction also where the places meet; ``ℓ0 > 0`` needs the places apart at the reference."""
-
-    between: tuple[Place | str, Place | str]
-    stiffness: float
-    damping: float = 0.0
-    length: float | None = None
-    name: str = ""
-
-
-@dataclass(frozen=True)
-class Load:
-    """A force (and, on a rigid body, a torque) at a place, world axes, times ``time`` (a
-    factor; None: constant)."""
-
-    at: Place | str
-    force: Sequence[float] | None = None
-    torque: Sequence[float] | None = None
-    time: TimeFunction | None = None

@@ -86,8 +86,6 @@ class ContactSystem(Protocol):
 
 OBSTACLE_KINDS = ("plane", "cylinder", "sphere")
 _KIND = {k: i for i, k in enumerate(OBSTACLE_KINDS)}
-#: Gauss points per element at which contact is evaluated (default).
-CONTACT_POINTS = 8
 #: Default penalty stiffness per Young's modulus (module docstring).
 STIFFNESS_FACTOR = 0.1
 #: Default onset width per tube radius (module docstring).

@@ -23,10 +23,12 @@ from rancf.bodies.flexible import Model
 from rancf.bodies.time_function import TimeFunction
 from rancf.errors import InputError
 from rancf.kernels.cable import CableKernel
+from rancf.kernels.records import DrumRecord, vec3
 
 __all__ = [
     "drum_torque",
-    "attach_drum",
+    "drum_record",
+    "add_drum_coordinate",
     "drum_state",
     "drum_mass",
     "hold_drums",
@@ -75,10 +77,10 @@ def drum_mass(w: Any) -> float:
         return float(np.float64(w.inertia) / np.float64(w.radius) ** 2)
 
 
-def attach_drum(system: Any, k: int, w: Any, body: Model, node: int, torque: int) -> int:
-    """Make the core's winch ``k`` (the winch ``w`` at ``node`` of ``body``) a driven drum and
-    add its coordinate ``L`` to the system (``n``, ``y0`` = its length at the start, ``v0`` = 0);
-    returns the coordinate's index."""
+def drum_record(w: Any, body: Model, node: int, torque: int) -> DrumRecord:
+    """The core's record of the driven drum of the winch ``w`` at ``node`` of ``body``
+    (``torque``: its time function's index); its length ``L`` becomes a coordinate of the
+    system, after every body and drum before it (:func:`add_drum_coordinate`)."""
     if any(
         s.motion is not None
         for s in body.supports
@@ -96,22 +98,27 @@ def attach_drum(system: Any, k: int, w: Any, body: Model, node: int, torque: int
     if not isinstance(kernel, CableKernel):
         raise InputError(f"winches.{w.name}.at", w.at, "a place on a cable body")
     rho_a = float(kernel.props.rho_a)
-    start = float(np.sum(kernel.wj))  # the body's unstretched length
-    index = int(
-        system.core.attach_drum(
-            k,
-            torque,
-            drum_mass(w),
-            float(w.radius),
-            rho_a,
-            rho_a * gravity,
-            int(body.node_base(node)),
-        )
+    return DrumRecord(
+        torque=torque,
+        mass=drum_mass(w),
+        radius=float(w.radius),
+        rho_a=rho_a,
+        weight=vec3(rho_a * gravity),
+        exit=int(body.node_base(node)),
     )
-    if index != system.n or int(system.core.n) != system.n + 1:
+
+
+def add_drum_coordinate(system: Any, w: Any, body: Model) -> int:
+    """Add the coordinate ``L`` of the driven drum of winch ``w`` (on ``body``) to the system:
+    ``n``, ``y0`` (its length at the start: the body's unstretched length), ``v0`` (0), as the
+    core appended it; returns its index."""
+    index = system.n
+    if int(system.core.n) <= index:
         raise InputError(f"winches.{w.name}", index, f"the coordinate {system.n}")
+    kernel = body.kernel
+    assert isinstance(kernel, CableKernel)  # drum_record
     system.n += 1
-    system.y0 = np.r_[system.y0, start]
+    system.y0 = np.r_[system.y0, float(np.sum(kernel.wj))]
     system.v0 = np.r_[system.v0, 0.0]
     return index
 

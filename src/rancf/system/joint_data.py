@@ -16,16 +16,38 @@ tangent, for a cable node; none for a point mass), so every joint holds exactly 
 
 from __future__ import annotations
 
-from typing import Any
+from collections.abc import Sequence
+from typing import Any, Protocol
 
 import numpy as np
 from numpy.typing import NDArray
 
 from rancf.errors import InputError
 from rancf.kernels.records import JointRecord, floats
-from rancf.system.connections import Joint
 
-__all__ = ["joint_data", "normals"]
+__all__ = ["JointFields", "joint_data", "normals", "uses_frames"]
+
+
+class JointFields(Protocol):
+    """The fields of a joint the record is made from (:class:`rancf.system.parts.joint.Joint`)."""
+
+    @property
+    def kind(self) -> str: ...
+
+    @property
+    def between(self) -> tuple[Any, Any]: ...
+
+    @property
+    def axis(self) -> Sequence[float] | None: ...
+
+    @property
+    def angle(self) -> Any: ...
+
+    @property
+    def name(self) -> str: ...
+
+    @property
+    def position(self) -> Sequence[float] | None: ...
 
 
 def normals(e: NDArray) -> tuple[NDArray, NDArray]:
@@ -37,7 +59,7 @@ def normals(e: NDArray) -> tuple[NDArray, NDArray]:
     return n1, np.cross(e, n1)
 
 
-def _axis(j: Joint, d: int) -> NDArray | None:
+def _axis(j: JointFields, d: int) -> NDArray | None:
     if j.axis is None:
         if j.kind in ("revolute", "slider") and not (d == 2 and j.kind == "revolute"):
             raise InputError("joints.axis", None, f"required for a {j.kind} joint")
@@ -48,7 +70,7 @@ def _axis(j: Joint, d: int) -> NDArray | None:
     return axis / np.linalg.norm(axis)
 
 
-def _between(j: Joint) -> list[str]:
+def _between(j: JointFields) -> list[str]:
     return [str(x) for x in j.between]
 
 
@@ -58,8 +80,14 @@ def _record(info: dict[str, Any]) -> JointRecord:
     return JointRecord(**fields)
 
 
+def uses_frames(j: JointFields) -> bool:
+    """Whether the record of ``j`` reads its places' reference frames: a fixed, slider or
+    revolute joint, or a driven one (a pin's positions need none)."""
+    return j.kind in ("fixed", "slider", "revolute") or j.angle is not None
+
+
 def joint_data(
-    j: Joint, a: int, b: int, fa: NDArray, fb: NDArray, d: int, angle: int
+    j: JointFields, a: int, b: int, fa: NDArray, fb: NDArray, d: int, angle: int
 ) -> JointRecord:
     """The core's record of joint ``j`` between the places ``a`` and ``b`` (their indices among
     the system's place records) whose reference frames are ``fa``, ``fb`` ``(k, 3)``, in

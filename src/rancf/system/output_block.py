@@ -30,9 +30,7 @@ from numpy.typing import NDArray
 from rancf.bodies.nodal_forces import nodal_axial_forces
 from rancf.bodies.reactions import reaction_row, support_reactions
 from rancf.kernels.rod import RodKernel
-from rancf.system.contact_outputs import contact_outputs
 from rancf.system.seabed_friction import seabed_friction
-from rancf.system.winches import winch_factor
 
 __all__ = ["block_derived", "block_sections", "contact_row", "takes_block", "rod_triads"]
 
@@ -112,6 +110,8 @@ def contact_row(s: Any, yc: NDArray, vc: NDArray | None, y1: NDArray | None) -> 
     contact length and penetration (:func:`rancf.system.contact_outputs.contact_outputs` at
     the contact state ``yc``, ``vc``, ``y1``), per pair of flexible bodies the contact force
     and penetration (at ``yc``)."""
+    from rancf.system.contact_outputs import contact_outputs  # loaded with contact only
+
     parts: list = []
     totals: dict = {}  # a static state's seabed friction (static_friction)
     if vc is None and getattr(s, "static_friction", False):
@@ -148,6 +148,8 @@ def block_sections(
             fi = None if internal is None else internal[:, sl]
             nodal[name].append(nodal_axial_forces(b, ys[:, sl], res0[:, sl], fi))
         if getattr(s, "winches", ()):  # the body's length at each row
+            from rancf.system.winches import winch_factor
+
             fs = [winch_factor(s, name, float(x), y) for x, y in zip(t, ys, strict=True)]
         else:
             fs = [1.0] * len(t)

@@ -20,10 +20,12 @@ Static rows (a load path, ``t`` the path parameter) have ``a = v = 0``, the resi
 ``f_int - p f_ext + Gᵀ λ`` at the load factor ``p = min(t, 1)`` (loads at their amplitude, as
 :func:`rancf.solvers.static.solve_static` takes them) and the solver's multipliers.
 
-Why not the integrator's own acceleration: in generalized-α ``a_{n+1}`` approximates the
+Why not the integrator's own accelerations: its algorithmic ``w_{n+1}`` approximates the
 acceleration at ``t_{n+1} + (α_m - α_f) h`` (Arnold & Brüls 2007), a first-order shift for
-``ρ∞ < 1``; the consistent acceleration of the stored ``(y, v)`` has only their error, so the
-reactions converge at second order.
+``ρ∞ < 1``; its ``a_{n+1}`` satisfies the balance at ``t_{n+1}`` to the Newton tolerance only,
+and a row needs the force pass at its ``(y, v)`` anyway (the reactions, the nodal axial
+forces), after which the consistent acceleration costs one band solve more (a fraction of a
+row's time: ``docs/guide/performance.md``).
 
 Contact is the exception: a penalty vibrates far faster than any step resolves, the integrator
 damps that vibration, and the state at a step's end samples it (the unbraked belt drive's pulley,
@@ -78,7 +80,6 @@ from rancf.system.seabed_friction import static_friction_load
 from rancf.system.sensors import SensorReader
 from rancf.system.sliding import sliding_slots, sliding_values
 from rancf.system.system import System
-from rancf.system.winches import winch_node
 
 __all__ = ["SystemOutputs"]
 
@@ -109,7 +110,11 @@ class SystemOutputs:
         self.flex = [(name, b) for name, b in zip(s.names, s.flex, strict=False)]
         self.labels = support_labels(self.flex, labels)
         self.samplers = {name: SectionSampler(b, per_element) for name, b in self.flex}
-        winched = {winch_node(s, w)[0] for w in getattr(s, "winches", ())}
+        winched = set()
+        if getattr(s, "winches", ()):
+            from rancf.system.winches import winch_node
+
+            winched = {winch_node(s, w)[0] for w in s.winches}
         #: The flexible bodies whose axial force is read from their nodal forces.
         self.recovered = {
             name for name, b in self.flex if recovers_axial_force(b) and name not in winched

@@ -1,4 +1,4 @@
-"""The records of a system's prescribed motions, springs and point loads for the compiled core
+"""The records of a system's prescribed motions, and its point loads for the compiled core
 (:mod:`rancf.kernels.records`), made from the parts as :class:`rancf.system.system.System`
 gathers them (``system``: the system being built).
 """
@@ -7,17 +7,13 @@ from __future__ import annotations
 
 from typing import Any
 
-import numpy as np
-
-from rancf.bodies.flexible import Model
-from rancf.bodies.rigid import RigidBody
 from rancf.errors import InputError
-from rancf.kernels.records import LoadRecord, PrescribedRecord, SpringRecord, vec3
-from rancf.system.connections import Load, Spring
+from rancf.kernels.records import PrescribedRecord
+from rancf.system.parts.load import Load
 from rancf.system.places import Place
 from rancf.system.record_rows import RecordRows
 
-__all__ = ["motion_records", "spring_record", "all_loads", "load_record"]
+__all__ = ["motion_records", "all_loads"]
 
 
 def motion_records(system: Any, rows: RecordRows) -> list[PrescribedRecord]:
@@ -40,29 +36,6 @@ def motion_records(system: Any, rows: RecordRows) -> list[PrescribedRecord]:
     return out
 
 
-def spring_record(system: Any, s: Spring, rows: RecordRows) -> SpringRecord:
-    """The record of a linear spring-damper ``k (x_a - x_b) + c (v_a - v_b)`` (rest length:
-    its places' reference distance unless given)."""
-    a, b = system.place_pair(s.between, rows)
-    for key, v in (("springs.stiffness", s.stiffness), ("springs.damping", s.damping)):
-        if not (np.isfinite(v) and v >= 0):
-            raise InputError(key, v, "a finite number >= 0")
-    pa, pb = (system.resolve(x) for x in s.between)
-    xa = system.reference_position(pa) if pa.body is not None else None
-    xb = system.reference_position(pb) if pb.body is not None else None
-    ref = 0.0 if xa is None or xb is None else float(np.linalg.norm(xa - xb))
-    length = ref if s.length is None else float(s.length)
-    if length != 0.0 and ref <= 1e-12 * system.size:  # no direction where the places meet
-        raise InputError(
-            f"springs.{s.name or '/'.join(map(str, s.between))}.length",
-            length,
-            "0 where its places meet at the reference (ground sits at "
-            "the other place's reference): the linear spring-damper "
-            "k (x_a - x_b) + c (v_a - v_b)",
-        )
-    return SpringRecord(a, b, float(s.stiffness), float(s.damping), length)
-
-
 def all_loads(system: Any) -> list[Load]:
     """The loads, and flexible bodies' point forces (and rods' moments) times a time
     function."""
@@ -80,24 +53,3 @@ def all_loads(system: Any) -> list[Load]:
                 )
             )
     return out
-
-
-def load_record(system: Any, ld: Load, rows: RecordRows) -> LoadRecord:
-    """The record of a point load (force and moment times its time function)."""
-    p = system.resolve(ld.at)
-    if p.body is None:
-        raise InputError("loads.point.at", "ground", "a place on a body")
-    f = np.zeros(3) if ld.force is None else np.asarray(ld.force, dtype=float)
-    t = np.zeros(3) if ld.torque is None else np.asarray(ld.torque, dtype=float)
-    if ld.force is not None and f.size != system.dim:
-        raise InputError("loads.point.force", list(f), f"{system.dim} components")
-    b = system.bodies[p.body]
-    rod = isinstance(b, Model) and b.family.has_triads
-    if ld.torque is not None and not (isinstance(b, RigidBody) or rod):
-        raise InputError("loads.point.moment", list(t), "a rigid body or a rod's node")
-    tt = np.r_[np.zeros(2), t] if t.size == 1 else np.r_[t, np.zeros(3 - t.size)]
-    if ld.time is not None and ld.time.size != 1:
-        raise InputError("loads.point.time", ld.time.size, "a scalar time function (a factor)")
-    place = system.place_index(p, rows)
-    force = vec3(np.r_[f, np.zeros(3 - f.size)])
-    return LoadRecord(place, force, vec3(tt), rows.tf(ld.time))

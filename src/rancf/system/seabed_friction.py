@@ -10,7 +10,6 @@ from numpy.typing import NDArray
 
 from rancf.bodies.nodal_forces import nodal_axial_forces, recovers_axial_force
 from rancf.bodies.section_outputs import SectionSampler
-from rancf.system.contact import _geometry
 from rancf.system.seabed import pressing_weight
 
 __all__ = ["seabed_friction", "static_friction_load"]
@@ -28,6 +27,8 @@ _SLIP = 1e6
 
 def _seabed_pairs(system) -> list[tuple[int, str, NDArray, float]]:
     """(pair index, body, unit normal (3), ε) of every frictional seabed pair."""
+    from rancf.system.contact import _geometry  # a system with contact has it loaded
+
     out = []
     for k, (body, name) in enumerate(getattr(system, "contact_pairs", [])):
         ob = system.obstacles[system.obstacle_names.index(name)]

@@ -48,7 +48,6 @@ from rancf.errors import InputError
 from rancf.system.at_point import at_point_reader
 from rancf.system.places import Place
 from rancf.system.readers import Block, NamedReader, Reader
-from rancf.system.winches import winch_reader
 
 __all__ = ["SensorReader"]
 
@@ -173,6 +172,8 @@ class SensorReader:
         elif kind == "touchdown":
             reader = self._touchdown(sen)
         elif kind == "winch":
+            from rancf.system.winches import winch_reader
+
             reader = winch_reader(self.out, sen)
         else:
             raise InputError(f"sensors.{sen.name}.kind", kind, "a sensor kind")

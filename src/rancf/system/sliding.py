@@ -14,7 +14,7 @@ report ``σ`` as the reference arc length ``s`` from the body's start (``NAME_s`
 from __future__ import annotations
 
 import warnings
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from typing import Any
 
 import numpy as np
@@ -24,15 +24,16 @@ from rancf.bodies.flexible import Model
 from rancf.elements.cable import cable_shape_functions
 from rancf.errors import InputError
 from rancf.geometry.quadrature import gauss_legendre
-from rancf.kernels.records import JointRecord
-from rancf.system.connections import Joint
+from rancf.kernels.records import JointRecord, SlidingRecord, floats
+from rancf.system.joint_data import JointFields
 from rancf.system.places import Place
 
 __all__ = [
     "sliding_body",
     "sliding_pair",
-    "sliding_record",
-    "attach_sliding",
+    "sliding_joint",
+    "sliding_records",
+    "sliding_starts",
     "start_multipliers",
     "arc_length",
     "material_coordinate",
@@ -48,7 +49,7 @@ ON_BODY_RTOL = 1e-6
 _SAMPLES = 16
 
 
-def sliding_body(system: Any, j: Joint) -> tuple[str, Model]:
+def sliding_body(system: Any, j: JointFields) -> tuple[str, Model]:
     """The name and model of the flexible body of sliding joint ``j`` (its first place)."""
     spec = j.between[0]
     p = Place.parse(spec, system.single) if not isinstance(spec, Place) else spec
@@ -71,7 +72,7 @@ def sliding_body(system: Any, j: Joint) -> tuple[str, Model]:
     return str(p.body), body
 
 
-def sliding_pair(system: Any, j: Joint, rows: Any) -> tuple[int, int]:
+def sliding_pair(system: Any, j: JointFields, rows: Any) -> tuple[int, int]:
     """The place records of sliding joint ``j``: the body's node 0 (a placeholder the core
     does not evaluate) and the place it runs through (the ground at ``position``)."""
     name, body = sliding_body(system, j)
@@ -100,10 +101,11 @@ def sliding_pair(system: Any, j: Joint, rows: Any) -> tuple[int, int]:
     return a, system.place_index(b, rows, point)
 
 
-def sliding_record(system: Any, j: Joint, a: int, b: int) -> JointRecord:
-    """The core's record of sliding joint ``j`` between the place records ``a``, ``b``."""
-    name, body = sliding_body(system, j)
-    return JointRecord("sliding", a, b, body=system.flex.index(body))
+def sliding_joint(system: Any, j: JointFields, rows: Any) -> JointRecord:
+    """The core's record of sliding joint ``j``, its places registered in ``rows``
+    (:func:`sliding_pair`)."""
+    a, b = sliding_pair(system, j, rows)
+    return JointRecord("sliding", a, b, body=system.flex.index(sliding_body(system, j)[1]))
 
 
 def _nodal(body: Model, y: NDArray | None = None) -> NDArray:
@@ -188,24 +190,32 @@ def arc_length(body: Model, sigma: ArrayLike) -> NDArray[np.float64]:
     return out
 
 
-def attach_sliding(system: Any) -> None:
-    """Give the core the element geometry of every body a sliding joint runs along, and keep
-    each joint's start ``σ`` (``system.sliding_start``: joint index -> σ)."""
+def sliding_records(system: Any, joints: Sequence[JointFields]) -> tuple[SlidingRecord, ...]:
+    """The core's record of the element geometry of every body a sliding joint runs along."""
+    out: dict[str, SlidingRecord] = {}
+    for j in joints:
+        if j.kind != "sliding":
+            continue
+        name, body = sliding_body(system, j)
+        if name not in out:
+            m = body.mesh
+            out[name] = SlidingRecord(
+                body=system.flex.index(body),
+                weights=floats(m.weights),
+                scales=floats(m.scales),
+                closed=bool(body.closed),
+            )
+    return tuple(out.values())
+
+
+def sliding_starts(system: Any) -> None:
+    """After the core is built: each sliding joint's start ``σ`` (``system.sliding_start``:
+    joint index -> σ), its place on the body in the reference configuration."""
     system.sliding_start, system.sliding_passed = {}, set()
-    done: set[str] = set()
     for k, j in enumerate(system.joints):
         if j.kind != "sliding":
             continue
         name, body = sliding_body(system, j)
-        if name not in done:
-            m = body.mesh
-            system.core.attach_sliding(
-                system.flex.index(body),
-                np.ascontiguousarray(m.weights),
-                np.ascontiguousarray(m.scales),
-                bool(body.closed),
-            )
-            done.add(name)
         x, _ = system.core.place(system.records.joints[k].b, system.y0, 0.0)
         sigma, gap = material_coordinate(body, x)
         if not gap <= ON_BODY_RTOL * system.size:

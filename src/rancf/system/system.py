@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import warnings
 from collections.abc import Mapping, Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -24,25 +24,34 @@ from numpy.typing import ArrayLike, NDArray
 from rancf.bodies.closure import closure_terms
 from rancf.bodies.flexible import Model
 from rancf.errors import InputError
-from rancf.kernels import _core
-from rancf.kernels.records import (
-    JointRecord,
-    PlaceRecord,
-    vec3,
+from rancf.kernels.records import PlaceRecord, SystemModel, vec3
+from rancf.system.connections import Joint, Load, Spring
+from rancf.system.core_data import (
+    Attached,
+    PlaceFrames,
+    SystemRecords,
+    build_core,
+    system_model,
 )
-from rancf.system.connections import JOINT_KINDS, Joint, Load, Spring
-from rancf.system.contact import CONTACT_POINTS, Obstacle, build_contact
-from rancf.system.core_data import SystemRecords, build_core
-from rancf.system.fluid import DistributedLoad, Fluid, Hydro, fluid_records
-from rancf.system.joint_data import joint_data
-from rancf.system.part_records import all_loads, load_record, motion_records, spring_record
+from rancf.system.part_records import all_loads, motion_records
 from rancf.system.places import Place
 from rancf.system.record_rows import RecordRows
-from rancf.system.sliding import attach_sliding, sliding_pair, sliding_record, start_multipliers
+from rancf.system.sliding import (
+    sliding_records,
+    sliding_starts,
+    start_multipliers,
+)
 from rancf.system.stack import Body, BodyStack
-from rancf.system.winches import Winch, attach_winches, winch_functions
+
+if TYPE_CHECKING:  # imported where a system has them: a run without them loads none
+    from rancf.system.contact import Obstacle
+    from rancf.system.fluid import DistributedLoad, Fluid, Hydro
+    from rancf.system.winches import Winch
 
 __all__ = ["System", "Body", "as_system"]
+
+#: Gauss points per element at which contact is evaluated (default; :mod:`rancf.system.contact`).
+CONTACT_POINTS = 8
 
 
 class System(BodyStack):
@@ -52,7 +61,9 @@ class System(BodyStack):
     Parameters
     ----------
     bodies : mapping name -> Model | RigidBody | PointMass
-    joints, springs, loads : sequences of :class:`Joint`, :class:`Spring`, :class:`Load`
+    joints, springs, loads : sequences of :class:`Joint`, :class:`Spring` (or any spring
+        :class:`~rancf.system.part.Part`, e.g. a :class:`~rancf.system.parts.spring.SpringLaw`),
+        :class:`Load`
     gravity : ``(dim,)``, optional
         On rigid bodies and point masses.
     damping : float
@@ -88,7 +99,10 @@ class System(BodyStack):
     Attributes
     ----------
     records : :class:`rancf.system.core_data.SystemRecords`
-        The parts as the compiled core ``core`` took them (:mod:`rancf.kernels.records`).
+        The places, joints, springs, loads, time functions, prescribed motions and linear rows
+        as the compiled core ``core`` took them (:mod:`rancf.kernels.records`).
+    model : :class:`rancf.kernels.records.SystemModel`
+        The one record the core was built from, once: the bodies and every part.
     """
 
     drums: dict[str, int]  #: each driven drum's coordinate (rancf.system.winches.attach_winches)
@@ -138,50 +152,76 @@ class System(BodyStack):
         self._place_index: dict[Place, int] = {}
         parts: dict[str, Sequence[Any]] = {
             "prescribed": motion_records(self, rows),
-            "springs": [spring_record(self, s, rows) for s in springs],
-            "loads": [load_record(self, ld, rows) for ld in all_loads(self)],
+            "springs": [s.record(self, rows) for s in springs],  # Parts (system.part)
+            "loads": [ld.record(self, rows) for ld in all_loads(self)],  # Parts
             "linear": linear,
         }
         self.fluid, self.hydro = fluid, dict(hydro or {})
-        in_fluid = fluid_records(
-            self.names[: len(self.flex)],
-            self.flex,
-            self.dim,
-            self.gravity,
-            fluid,
-            self.hydro,
-            distributed,
-            rows.tf,
-        )
+        in_fluid = self._fluid_records(fluid, distributed, rows)
         for spec in observe:
             p = self.resolve(spec)
             if p.body is None:
                 raise InputError("place", "ground", "a place on a body")
             self.place_index(p, rows)
-        pre = [self._place(j, rows) for j in joints]  # places first: their reference frames
-        self.core = self._build(rows.records(**parts))
-        parts["joints"] = [self._joint(j, ab, rows) for j, ab in zip(joints, pre, strict=True)]
+        self._frames: list[tuple[NDArray, NDArray]] = []
+        self._place_frames: PlaceFrames | None = None  # the bodies alone (reference_frames)
+        parts["joints"] = [j.record(self, rows) for j in joints]  # Parts (system.part)
         self.winches = tuple(winches)
-        self.winch_lengths, winch_tfs = winch_functions(self, self.winches, rows.tf)
+        self.winch_lengths: dict[str, Any] = {}
+        winch_tfs: list[tuple[int, int]] = []
+        if self.winches:
+            from rancf.system.winches import winch_functions
+
+            self.winch_lengths, winch_tfs = winch_functions(self, self.winches, rows.tf)
         self.records = rows.records(**parts)
-        self.core = self._build(self.records)
-        if in_fluid is not None:
-            self.core.attach_fluid(*in_fluid)
-        self.m = int(self.core.m)
-        self.joint_rows = list(self.core.joint_rows)
-        self.obstacles = tuple(obstacles)  # contact: attached to the core
+        self.obstacles = tuple(obstacles)
         self.body_contacts, self.contact_points = [(a, b) for a, b in body_contacts], contact_points
         self.contact: Any = None  # the core's Contact
         self.obstacle_names: list[str] = []
         self.contact_pairs: list[tuple[str, str]] = []
         if self.obstacles or contacts or body_contacts:  # build_contact: the core's Contact
+            from rancf.system.contact import build_contact
+
             self.contact, self.obstacle_names, self.contact_pairs = build_contact(
                 self, self.obstacles, contacts, contact_points, body_contacts, body_friction
             )
-            self.core.attach_contact(self.contact)
-        attach_winches(self, self.winches, winch_tfs)
-        attach_sliding(self)
+        winch_records: tuple[Any, ...] = ()
+        if self.winches:
+            from rancf.system.winches import winch_records as records_of
+
+            winch_records = records_of(self, self.winches, winch_tfs)
+        attached = Attached(
+            fluid=None if in_fluid is None else in_fluid[0],
+            lines=() if in_fluid is None else tuple(in_fluid[1]),
+            contact=self.contact,
+            winches=winch_records,
+            sliding=sliding_records(self, self.joints),
+        )
+        self.model = self._model(self.records, attached)
+        self.core = build_core(self.model)  # once, every part
+        self.m = int(self.core.m)
+        self.joint_rows = list(self.core.joint_rows)
+        self.drums = {}
+        if self.winches:
+            from rancf.system.winches import add_drums
+
+            add_drums(self, self.winches)
+        sliding_starts(self)
         self._check_reference()
+
+    def _fluid_records(
+        self, fluid: Fluid | None, distributed: Sequence[DistributedLoad], rows: RecordRows
+    ) -> Any:
+        """The core's records of the fluid and the distributed loads
+        (:func:`rancf.system.fluid.fluid_records`; None: neither, and nothing of them loaded)."""
+        if fluid is None and not self.hydro and not distributed:
+            return None
+        from rancf.system.fluid import fluid_records
+
+        names = self.names[: len(self.flex)]
+        return fluid_records(
+            names, self.flex, self.dim, self.gravity, fluid, self.hydro, distributed, rows.tf
+        )
 
     def _check_gravity(self) -> None:
         """A flexible body's weight comes from its model's ``gravity``, a rigid body's from the
@@ -206,10 +246,7 @@ class System(BodyStack):
         g = np.empty(self.m)
         self.core.constraints(self.y0, 0.0, g, start_multipliers(self))
         for k, j in enumerate(self.joints):
-            rows = g[self.joint_rows[k] : self.joint_rows[k] + (2 if self.dim == 2 else 3)]
-            if j.kind == "slider":
-                rows = g[self.joint_rows[k] : self.joint_rows[k] + self.dim - 1]
-            gap = 0.0 if j.kind == "sliding" else float(np.linalg.norm(rows))  # attach_sliding
+            gap = j.reference_gap(g[self.joint_rows[k] :], self.dim)
             if not gap <= 1e-9 * self.size:
                 name = j.name or f"joints[{k}]"
                 raise InputError(
@@ -258,15 +295,19 @@ class System(BodyStack):
         return self.place_index(a, rows), self.place_index(b, rows, gp, motion)
 
     # ---------------------------------------------------------------- parts
-    def _place(self, j: Joint, rows: RecordRows) -> tuple[int, int]:
-        if j.kind not in JOINT_KINDS:
-            raise InputError("joints.kind", j.kind, f"one of {', '.join(JOINT_KINDS)}")
-        if j.kind == "sliding":  # a body through a place
-            return sliding_pair(self, j, rows)
-        return self.place_pair(j.between, rows, rows.tf(j.motion))
+    def reference_frames(self, rows: RecordRows) -> list[tuple[NDArray, NDArray]]:
+        """``(position, frame rows)`` of every place registered in ``rows`` so far, in the
+        reference configuration (:class:`rancf.system.core_data.PlaceFrames`; the places added
+        since the last call only): what joints measure their orientation data in."""
+        done = len(self._frames)
+        if done < len(rows.places):  # the new places only
+            if self._place_frames is None:
+                self._place_frames = PlaceFrames(self._model(SystemRecords()))
+            self._frames += self._place_frames(rows.places[done:], rows.tfs)
+        return self._frames
 
-    def _build(self, records: SystemRecords) -> _core.System:
-        return build_core(
+    def _model(self, records: SystemRecords, attached: Attached | None = None) -> SystemModel:
+        return system_model(
             self.dim,
             self.flex,
             self.rigid,
@@ -275,18 +316,8 @@ class System(BodyStack):
             self.damping,
             self.y0,
             self.stiffness_damping,
+            attached or Attached(),
         )
-
-    def _frames(self, index: int) -> tuple[NDArray, NDArray]:
-        x, f = self.core.place(index, self.y0, 0.0)
-        return np.asarray(x), np.asarray(f).reshape(-1, 3)
-
-    def _joint(self, j: Joint, ab: tuple[int, int], rows: RecordRows) -> JointRecord:
-        a, b = ab
-        if j.kind == "sliding":
-            return sliding_record(self, j, a, b)
-        angle = rows.tf(j.angle) if j.angle is not None else -1
-        return joint_data(j, a, b, self._frames(a)[1], self._frames(b)[1], self.dim, angle)
 
     # ---------------------------------------------------------------- coordinates
     @property

@@ -26,13 +26,15 @@ from rancf.bodies.rigid import PointMass
 from rancf.bodies.time_function import TimeFunction, build_up_factor
 from rancf.bodies.winch_inertia import convective_matrices
 from rancf.errors import InputError
-from rancf.system.drums import attach_drum, drum_torque
+from rancf.kernels.records import WinchRecord
+from rancf.system.drums import add_drum_coordinate, drum_record, drum_torque
 
 __all__ = [
     "Winch",
     "winch_length",
     "winch_functions",
-    "attach_winches",
+    "winch_records",
+    "add_drums",
     "winch_node",
     "unloaded_at",
     "winch_reader",
@@ -45,7 +47,7 @@ __all__ = [
 class WinchedSystem(Protocol):
     """What the winches use of a system (:class:`rancf.system.system.System`)."""
 
-    #: the coordinate of each driven drum by name (set by :func:`attach_winches`)
+    #: the coordinate of each driven drum by name (set by :func:`add_drums`)
     drums: dict[str, int]
 
     # read-only: implementations may narrow a member's type
@@ -214,24 +216,42 @@ def winch_functions(
     return functions, out
 
 
-def attach_winches(
+def winch_records(
     system: WinchedSystem, winches: tuple[Winch, ...], tfs: list[tuple[int, int]]
-) -> None:
-    """Give the core each winch: its body, the index of its ``L(t)``, the length the body's
-    arrays hold (``L(0)``: equal to the body's to ``LENGTH_RTOL``, so the body is exactly at its
-    length at the start) and the convective matrices; a driven drum its coordinate
-    (:mod:`rancf.system.drums`; ``system.drums``: the coordinate of each by name)."""
-    system.drums = {}
-    for k, (w, (tf, torque)) in enumerate(zip(winches, tfs, strict=True)):
+) -> tuple[WinchRecord, ...]:
+    """The core's record of each winch: its body, the index of its ``L(t)``, the length the
+    body's arrays hold (``L(0)``: equal to the body's to ``LENGTH_RTOL``, so the body is exactly
+    at its length at the start), the convective matrices and a driven drum's record
+    (:mod:`rancf.system.drums`)."""
+    out = []
+    for w, (tf, torque) in zip(winches, tfs, strict=True):
         name, end = w.body_and_end()
-        c1, c2, d2 = convective_matrices(_body(system, w), end)
-        index = system.names.index(name)  # flexible bodies come first
-        start = float(np.ravel(system.winch_lengths[w.name].value(0.0))[0])
-        system.core.attach_winch(index, tf, start, c1, c2, d2)
+        body = _body(system, w)
+        c1, c2, d2 = convective_matrices(body, end)
+        drum = None
         if torque >= 0:
-            system.drums[w.name] = attach_drum(
-                system, k, w, _body(system, w), winch_node(system, w)[1], torque
+            drum = drum_record(w, body, winch_node(system, w)[1], torque)
+        out.append(
+            WinchRecord(
+                body=system.names.index(name),  # flexible bodies come first
+                length=tf,
+                length_set=float(np.ravel(system.winch_lengths[w.name].value(0.0))[0]),
+                c1=np.ascontiguousarray(c1, dtype=float),
+                c2=np.ascontiguousarray(c2, dtype=float),
+                d2=np.ascontiguousarray(d2, dtype=float),
+                drum=drum,
             )
+        )
+    return tuple(out)
+
+
+def add_drums(system: WinchedSystem, winches: tuple[Winch, ...]) -> None:
+    """After the core is built: each driven drum's coordinate added to the system
+    (``system.drums``: the coordinate of each by name)."""
+    system.drums = {}
+    for w in winches:
+        if w.driven:
+            system.drums[w.name] = add_drum_coordinate(system, w, _body(system, w))
 
 
 def winch_node(system: WinchedSystem, w: Winch) -> tuple[str, int]:

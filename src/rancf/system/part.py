@@ -1,0 +1,66 @@
+"""The interface of a system's physical items (a spring, a joint, ...): a :class:`Part`.
+
+A Part is one item of a :class:`rancf.system.System` in a module of its own
+(:mod:`rancf.system.parts`).  It knows its name, what it reads (its fields, checked when it
+makes its record), the record it gives the compiled core (:mod:`rancf.kernels.records`; the
+places and time functions it needs registered in ``rows``), the output columns it offers and
+their values at a state.  The System gathers its parts' records and builds the core from them
+once.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from typing import TYPE_CHECKING, Any, Protocol
+
+from numpy.typing import NDArray
+
+if TYPE_CHECKING:
+    from rancf.system.record_rows import RecordRows
+
+__all__ = ["Part", "PartHost"]
+
+
+class PartHost(Protocol):
+    """What a part uses of the system it is built into (:class:`rancf.system.System`)."""
+
+    @property
+    def dim(self) -> int: ...
+
+    @property
+    def size(self) -> float: ...
+
+    def resolve(self, spec: Any) -> Any: ...
+
+    def reference_position(self, p: Any) -> NDArray: ...
+
+    def place_pair(
+        self, between: Sequence, rows: RecordRows, motion: int = -1
+    ) -> tuple[int, int]: ...
+
+    def place_state(self, spec: Any, y: NDArray, t: float = 0.0) -> tuple[NDArray, NDArray]: ...
+
+
+class Part(Protocol):
+    """One physical item of a system (module docstring)."""
+
+    @property
+    def name(self) -> str:
+        """Its name (its output columns start with it)."""
+        ...
+
+    def record(self, system: PartHost, rows: RecordRows) -> Any:
+        """Its record for the core, its fields checked (one line naming the key on bad input),
+        its places and time functions registered in ``rows``."""
+        ...
+
+    def sensors(self) -> Sequence[str]:
+        """The output columns it offers."""
+        ...
+
+    def reactions(
+        self, system: PartHost, y: NDArray, lam: NDArray, t: float = 0.0
+    ) -> Mapping[str, float]:
+        """Its output columns' values at the coordinates ``y``, multipliers ``lam``, time
+        ``t``."""
+        ...

@@ -1,0 +1,89 @@
+"""Joints: a joint between two places, a :class:`~rancf.system.part.Part`.
+
+Joint kinds (docs/derivations/systems.md section 3): ``"pin"`` (positions coincide: revolute in 2D,
+spherical in
+3D), ``"revolute"`` (3D: positions, and the ``axis`` of the first place normal to the second's
+frame's normals of it), ``"fixed"`` (positions and orientations: a cable end's tangent direction,
+a rod end's material frame, a rigid body's frame), ``"slider"`` (the first place moves along
+``axis`` through the second, orientation free), ``"sliding"`` (a flexible body, the first entry,
+runs through the second place without friction: :mod:`rancf.system.sliding`; to the ground at
+``position``).  A pin or revolute with ``angle`` is driven: the
+relative rotation from the reference follows the time function [rad].  Axes are given in world
+coordinates in the reference configuration.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from rancf.bodies.time_function import TimeFunction
+from rancf.errors import InputError
+from rancf.kernels.records import JointRecord
+from rancf.system.joint_data import joint_data, uses_frames
+from rancf.system.places import Place
+from rancf.system.sliding import sliding_joint
+
+if TYPE_CHECKING:
+    from rancf.system.record_rows import RecordRows
+
+__all__ = ["Joint", "JOINT_KINDS"]
+
+JOINT_KINDS = ("pin", "revolute", "fixed", "slider", "sliding")
+
+
+@dataclass(frozen=True)
+class Joint:
+    """A joint between two places (module docstring)."""
+
+    kind: str
+    between: tuple[Place | str, Place | str]
+    axis: Sequence[float] | None = None
+    angle: TimeFunction | None = None
+    name: str = ""
+    #: A joint to the ground: the ground point moves by this displacement (a moving support).
+    motion: TimeFunction | None = None
+    #: A sliding joint to the ground: the guide's position (world, reference configuration).
+    position: Sequence[float] | None = None
+
+    def record(self, system: Any, rows: RecordRows) -> JointRecord:
+        """The core's record: its places (and a moving ground's time function) registered in
+        ``rows`` with a driven joint's angle, its orientation data measured in their reference
+        frames (``system.reference_frames``, :mod:`rancf.system.joint_data`)."""
+        if self.kind not in JOINT_KINDS:
+            raise InputError("joints.kind", self.kind, f"one of {', '.join(JOINT_KINDS)}")
+        if self.kind == "sliding":  # a body through a place
+            return sliding_joint(system, self, rows)
+        motion, angle = rows.tf(self.motion), rows.tf(self.angle)
+        a, b = system.place_pair(self.between, rows, motion)
+        fa = fb = np.zeros((0, 3))  # a pin reads no frames
+        if uses_frames(self):
+            frames = system.reference_frames(rows)
+            fa, fb = frames[a][1], frames[b][1]
+        return joint_data(self, a, b, fa, fb, system.dim, angle)
+
+    def reference_gap(self, g: NDArray, dim: int) -> float:
+        """How far apart its places are, from its constraint rows ``g`` (from its first row on)
+        at the reference: its position rows' norm (a slider's ``dim - 1`` rows across its axis);
+        a sliding joint's place is checked on its body instead
+        (:func:`rancf.system.sliding.sliding_starts`)."""
+        if self.kind == "sliding":
+            return 0.0
+        n = dim - 1 if self.kind == "slider" else (2 if dim == 2 else 3)
+        return float(np.linalg.norm(g[:n]))
+
+    def sensors(self) -> Sequence[str]:
+        """Its reaction columns: the force and moment it exerts on its first place's body."""
+        return tuple(f"{self.name}_{q}{x}" for q in ("F", "M") for x in "xyz")
+
+    def reactions(
+        self, system: Any, y: NDArray, lam: NDArray, t: float = 0.0
+    ) -> Mapping[str, float]:
+        """Its force and moment on its first place's body (world axes) at ``(y, λ, t)``."""
+        k = next(k for k, j in enumerate(system.joints) if j is self)
+        force, moment = system.core.joint_reaction(k, y, t, lam)
+        return dict(zip(self.sensors(), [*force, *moment], strict=True))
