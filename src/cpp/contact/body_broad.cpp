@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdint>
 #include <unordered_map>
+#include <utility>
+#include <vector>
 
 #include "bodies/assembly.hpp"
 #include "contact/contact_point.hpp"
@@ -128,6 +130,205 @@ std::vector<std::pair<int, int>> candidates(const Broad& br, const BodyPair& bp)
         }
   }
   return out;
+}
+
+double point_arc(const ContactBody& cb, int e, int q) {
+  double s = cb.arc0[sz(e)];
+  for (int k = 0; k <= q; ++k) s += cb.w[sz(e * cb.n_c + k)] * (k == q ? 0.5 : 1.0);
+  return s;
+}
+
+double excluded_arc(const ContactBody& a, const ContactBody& b) {
+  return M_PI * (a.radius + b.radius);
+}
+
+bool outside_window(const ContactBody& cb, int e, int q, int f, double& lo, double& hi) {
+  const double s_pt = point_arc(cb, e, q), ex = excluded_arc(cb, cb);
+  const double s0 = cb.arc0[sz(f)], len = cb.arc0[sz(f + 1)] - s0;
+  lo = 0.0;
+  hi = 1.0;
+  if (!(len > 0.0)) return true;
+  // one interval: s_pt is outside f
+  if (s_pt <= s0)
+    lo = std::max(lo, (s_pt + ex - s0) / len);
+  else
+    hi = std::min(hi, (s_pt - ex - s0) / len);
+  return lo < hi;
+}
+
+void control_points(const Model& m, const ContactBody& cb, int el, const double* x,
+                    double (*P)[3]) {
+  const double* w = cb.weights.data() + 4 * el;
+  const double l = cb.scales[sz(el)];
+  const double c1 = l * w[0] / (3.0 * w[1]), c3 = -l * w[3] / (3.0 * w[2]);
+  for (int k = 0; k < 4; ++k) P[k][2] = 0.0;
+  for (int i = 0; i < m.dim; ++i) {
+    const double r0 = x[i], d0 = x[m.dim + i], r1 = x[m.dpn + i], d1 = x[m.dpn + m.dim + i];
+    P[0][i] = r0;
+    P[1][i] = r0 + c1 * d0;
+    P[2][i] = r1 + c3 * d1;
+    P[3][i] = r1;
+  }
+}
+
+double hull_distance(const ContactBody& cb, int el, const double (*P)[3], const double* x,
+                     double lo, double hi) {
+  const double* w = cb.weights.data() + 4 * el;
+  if (!(w[0] > 0.0 && w[1] > 0.0 && w[2] > 0.0 && w[3] > 0.0)) return -1.0;
+  double h[4][4];  // homogeneous control points (w P, w)
+  for (int k = 0; k < 4; ++k) {
+    for (int i = 0; i < 3; ++i) h[k][i] = w[k] * P[k][i];
+    h[k][3] = w[k];
+  }
+  auto split = [&h](double t, bool left) {  // keep [0, t] (left) or [t, 1] of the curve
+    double b[4][4][4];
+    for (int k = 0; k < 4; ++k)
+      for (int i = 0; i < 4; ++i) b[0][k][i] = h[k][i];
+    for (int r = 1; r < 4; ++r)
+      for (int k = 0; k + r < 4; ++k)
+        for (int i = 0; i < 4; ++i)
+          b[r][k][i] = (1.0 - t) * b[r - 1][k][i] + t * b[r - 1][k + 1][i];
+    for (int k = 0; k < 4; ++k)
+      for (int i = 0; i < 4; ++i) h[k][i] = left ? b[k][0][i] : b[3 - k][k][i];
+  };
+  if (hi < 1.0) split(hi, true);
+  if (lo > 0.0) split(lo / hi, false);
+  double Q[4][3];
+  for (int k = 0; k < 4; ++k)
+    for (int i = 0; i < 3; ++i) Q[k][i] = h[k][i] / h[k][3];
+  const double seg[6] = {Q[0][0], Q[0][1], Q[0][2], Q[3][0], Q[3][1], Q[3][2]};
+  const double off = std::max(to_segment(seg, Q[1]), to_segment(seg, Q[2]));
+  return to_segment(seg, x) - off;
+}
+
+namespace {
+
+/// The control points of every element with contact curves at y (12 per element, Broad's
+/// order) and the first of each body.
+std::vector<double> all_control_points(const System& s, const ContactSet& c, const double* y,
+                                       std::vector<int>* start) {
+  std::vector<double> out;
+  Coords e{};
+  double P[4][3];
+  for (std::size_t k = 0; k < c.bodies.size(); ++k) {
+    if (start != nullptr) start->push_back(static_cast<int>(out.size() / 12));
+    const ContactBody& cb = c.bodies[k];
+    if (cb.weights.empty()) continue;
+    const Model& m = *s.flex[k];
+    for (int el = 0; el < m.n_el; ++el) {
+      element_coordinates(m, y + s.offset[k], el, e.data());
+      control_points(m, cb, el, e.data(), P);
+      for (const auto& p : P) out.insert(out.end(), p, p + 3);
+    }
+  }
+  if (start != nullptr) start->push_back(static_cast<int>(out.size() / 12));
+  return out;
+}
+
+/// The largest distance between corresponding control points of a and b.
+double largest_motion(const std::vector<double>& a, const std::vector<double>& b) {
+  double d = 0.0;
+  for (std::size_t i = 0; i + 2 < a.size(); i += 3) {
+    const double dd[3] = {a[i] - b[i], a[i + 1] - b[i + 1], a[i + 2] - b[i + 2]};
+    d = std::max(d, dot3(dd, dd));
+  }
+  return std::sqrt(d);
+}
+
+std::int64_t near_key(const NearPoint& p) {
+  return (((static_cast<std::int64_t>(p.pair) * 2 + p.dir) * (1 << 20) + p.e) * 128 + p.q) *
+             (1 << 20) +
+         p.f;
+}
+
+/// The near points of body pair k in order dir at the control points P (update_near).
+void near_points(const System& s, const ContactSet& c, const double* y, int k, int dir,
+                 const std::vector<std::pair<int, int>>& cand, const std::vector<double>& P,
+                 const std::vector<int>& start, double margin, std::vector<NearPoint>& out) {
+  const BodyPair& bp = c.body_pairs[sz(k)];
+  const int ba = dir == 0 ? bp.a : bp.b, bb = dir == 0 ? bp.b : bp.a;
+  const ContactBody &A = c.bodies[sz(ba)], &B = c.bodies[sz(bb)];
+  const Model& ma = *s.flex[sz(ba)];
+  const double reach = A.radius + B.radius + bp.onset + margin;
+  Coords ea{};
+  for (const auto& [ei, fi] : cand) {
+    if (bp.a == bp.b && ei == fi) continue;
+    const int e = dir == 0 ? ei : fi, f = dir == 0 ? fi : ei;
+    element_coordinates(ma, y + s.offset[sz(ba)], e, ea.data());
+    const auto* Pf = reinterpret_cast<const double (*)[3]>(P.data() + 12 * (start[sz(bb)] + f));
+    const double seg[6] = {Pf[0][0], Pf[0][1], Pf[0][2], Pf[3][0], Pf[3][1], Pf[3][2]};
+    const double off = std::max(to_segment(seg, Pf[1]), to_segment(seg, Pf[2]));
+    for (int q = 0; q < A.n_c; ++q) {
+      double x[3];
+      contact_point::point_of(ma, A.N.data() + 4 * (e * A.n_c + q), ea.data(), x);
+      double bound = to_segment(seg, x) - off;
+      if (bound > reach) continue;
+      if (ba == bb) {  // self-contact: f's part outside the excluded arc
+        double lo = 0.0, hi = 1.0;
+        if (!outside_window(B, e, q, f, lo, hi)) continue;
+        if (lo > 0.0 || hi < 1.0) bound = std::max(bound, hull_distance(B, f, Pf, x, lo, hi));
+        if (bound > reach) continue;
+      }
+      out.push_back(NearPoint{k, dir, e, q, f, -1.0});
+    }
+  }
+}
+
+}  // namespace
+
+bool update_near(const System& s, const ContactSet& c, const double* y, const double* y1,
+                 NearList& nl) {
+  std::vector<int> start;
+  const std::vector<double> P = all_control_points(s, c, y, &start);
+  // the step's motion: to its end y1 and, where its gaps blend those of its ends (alpha_f
+  // > 0), to its start y0 = (y - (1 - af) y1) / af, (1 - af) / af times as far
+  const double af = y1 != nullptr ? c.step_alpha_f : 0.0;
+  const double moved =
+      (y1 != nullptr ? largest_motion(P, all_control_points(s, c, y1, nullptr)) : 0.0) *
+      (af > 0.0 ? std::max(1.0, (1.0 - af) / af) : 1.0);
+  nl.moved = moved;
+  if (nl.valid && nl.ref.size() == P.size() &&
+      2.0 * (largest_motion(P, nl.ref) + moved) < nl.margin)
+    return false;
+  double rsum = 0.0;
+  for (const BodyPair& bp : c.body_pairs)
+    rsum = std::max(rsum, c.bodies[sz(bp.a)].radius + c.bodies[sz(bp.b)].radius);
+  const double margin = std::max(rsum, 4.0 * moved);
+  // spheres about the hulls, enlarged by the tube and half the margin: the candidate pairs
+  Broad br;
+  br.start = start;
+  for (std::size_t k = 0; k + 1 < start.size(); ++k)
+    for (int el = start[k]; el < start[k + 1]; ++el) {
+      const double* p = P.data() + 12 * el;
+      std::array<double, 4> sp{};
+      for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 3; ++i) sp[sz(i)] += 0.25 * p[3 * j + i];
+      double rad = 0.0;
+      for (int j = 0; j < 4; ++j) {
+        const double dd[3] = {p[3 * j] - sp[0], p[3 * j + 1] - sp[1], p[3 * j + 2] - sp[2]};
+        rad = std::max(rad, std::sqrt(dot3(dd, dd)));
+      }
+      sp[3] = rad + c.bodies[k].radius + 0.5 * margin;
+      br.sphere.push_back(sp);
+    }
+  std::unordered_map<std::int64_t, double> last;  // the closest points found so far
+  for (const NearPoint& p : nl.points) last[near_key(p)] = p.xi;
+  std::vector<NearPoint> pts;
+  for (std::size_t k = 0; k < c.body_pairs.size(); ++k) {
+    const BodyPair& bp = c.body_pairs[k];
+    const auto cand = candidates(br, bp);
+    for (int dir = 0; dir < (bp.a == bp.b ? 1 : 2); ++dir)
+      near_points(s, c, y, static_cast<int>(k), dir, cand, P, start, margin, pts);
+  }
+  for (NearPoint& p : pts) {
+    const auto it = last.find(near_key(p));
+    if (it != last.end()) p.xi = it->second;
+  }
+  nl.points = std::move(pts);
+  nl.ref = P;
+  nl.margin = margin;
+  nl.valid = true;
+  return true;
 }
 
 }  // namespace rancf

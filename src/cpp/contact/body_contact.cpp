@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <mutex>
 #include <unordered_map>
 #include <vector>
 
@@ -30,38 +31,48 @@ void shape(const ContactBody& cb, int el, double xi, double* N, double* N1, doub
 
 double dot3(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
-/// The closest point of element f (coordinates e) to x: xi in [0, 1], the shape functions there;
-/// Newton from the best of five samples, or from start (>= 0: a closest point known nearby).
-double project(const Model& m, const ContactBody& cb, int f, const double* e, const double* x,
-               double* N, double start = -1.0) {
-  double best = start, dmin = 1e300, y[3], N1[4], N2[4];
+/// A closest point on an element: its coordinate xi, the shape functions and their first and
+/// second xi-derivatives there, and the curve's point and derivatives y, y', y''.
+struct Projection {
+  double xi = 0.0;
+  double N[4], N1[4], N2[4];
+  double y[3], y1[3], y2[3];
+};
+
+/// The closest point of element f (coordinates e) to x, xi in [0, 1] (project): Newton on
+/// h = (y - x) . y' = 0 (step -h / h', or -h / |y'|^2 where h' <= 0) from the best of five
+/// samples, or from start (>= 0: a closest point known nearby); it stops where the step is
+/// below 1e-13 (or is clamped to nothing at an end) or the step that came to the point was
+/// below 1e-8 (Newton's quadratic convergence: the point is then within about 1e-16),
+/// keeping the point it evaluated.
+void project(const Model& m, const ContactBody& cb, int f, const double* e, const double* x,
+             Projection& p, double start = -1.0) {
+  double best = start, dmin = 1e300;
   for (int s = 0; s <= 4 && start < 0.0; ++s) {
     const double xi = 0.25 * s;
-    shape(cb, f, xi, N, nullptr, nullptr);
-    contact_point::point_of(m, N, e, y);
-    const double dd[3] = {y[0] - x[0], y[1] - x[1], y[2] - x[2]};
+    shape(cb, f, xi, p.N, nullptr, nullptr);
+    contact_point::point_of(m, p.N, e, p.y);
+    const double dd[3] = {p.y[0] - x[0], p.y[1] - x[1], p.y[2] - x[2]};
     if (dot3(dd, dd) < dmin) {
       dmin = dot3(dd, dd);
       best = xi;
     }
   }
-  double xi = best;
+  double xi = best, last = 1.0;  // last: the step that came to xi
   for (int it = 0; it < 30; ++it) {
-    double y1[3], y2[3];
-    shape(cb, f, xi, N, N1, N2);
-    contact_point::point_of(m, N, e, y);
-    contact_point::point_of(m, N1, e, y1);
-    contact_point::point_of(m, N2, e, y2);
-    const double dd[3] = {y[0] - x[0], y[1] - x[1], y[2] - x[2]};
-    const double h = dot3(dd, y1), dh = dot3(y1, y1) + dot3(dd, y2);
-    const double step = dh > 0.0 ? -h / dh : -h / dot3(y1, y1);
+    shape(cb, f, xi, p.N, p.N1, p.N2);
+    contact_point::point_of(m, p.N, e, p.y);
+    contact_point::point_of(m, p.N1, e, p.y1);
+    contact_point::point_of(m, p.N2, e, p.y2);
+    const double dd[3] = {p.y[0] - x[0], p.y[1] - x[1], p.y[2] - x[2]};
+    const double h = dot3(dd, p.y1), dh = dot3(p.y1, p.y1) + dot3(dd, p.y2);
+    const double step = dh > 0.0 ? -h / dh : -h / dot3(p.y1, p.y1);
     const double next = std::clamp(xi + step, 0.0, 1.0);
-    const bool done = std::abs(next - xi) < 1e-15;
+    if (std::abs(next - xi) < 1e-13 || last < 1e-8) break;
+    last = std::abs(next - xi);
     xi = next;
-    if (done) break;
   }
-  shape(cb, f, xi, N, nullptr, nullptr);
-  return xi;
+  p.xi = xi;
 }
 
 /// One body pair's geometry: bodies, radii, the element coordinates at a state.
@@ -71,9 +82,23 @@ struct Side {
   int body = 0, offset = 0;
 };
 
+/// Self-contact: whether point q of element e (at x) is out of reach of the part of element f
+/// outside its excluded arc (body_contact.hpp): that part empty, or farther from x than reach
+/// (hull_distance).  A point for which this holds has no kept projection within reach.
+bool window_out_of_reach(const Side& B, int e, int q, int f, const double* eb, const double* x,
+                         double reach) {
+  double lo = 0.0, hi = 1.0;
+  if (!outside_window(*B.cb, e, q, f, lo, hi)) return true;
+  if (lo <= 0.0 && hi >= 1.0) return false;  // all of f counts: the capsule decided
+  double P[4][3];
+  control_points(*B.m, *B.cb, f, eb, P);
+  return hull_distance(*B.cb, f, P, x, lo, hi) > reach;
+}
+
 /// A contact point x of side A against its closest point y(eta) on element f of side B
-/// (body_contact.hpp): the gap, the normal, and (Jacobian wanted) the gap's gradient G and
-/// Hessian Hg over the coordinates of both elements (n = na + nb):
+/// (body_contact.hpp): the gap and the normal (pair_geometry), and on demand (pair_gradient)
+/// the gap's gradient G and (pair_hessian) Hessian Hg over the coordinates of both elements
+/// (n = na + nb):
 ///   J dq = N_A de - N_B(eta) df  (the relative displacement at fixed eta),  G = J^T n,
 ///   Hg = (J^T P J - c b b^T) / rho,  P = I - n n^T,  c = |y'|^2 - rho n . y'',
 ///   b = (J^T y' + rho T^T n) / c (d eta = b . dq),  T dq = N_B'(eta) df,
@@ -81,94 +106,96 @@ struct Side {
 /// eta is fixed (no b term).
 struct Pair {
   bool kept = false;  ///< a valid projection (inside the element or at a free end)
-  double xi = 0.0;    ///< the closest point's element coordinate
+  bool at_end = false;
+  double xi = 0.0;  ///< the closest point's element coordinate
   double g = 0.0, rho = 0.0, n[3] = {0.0, 0.0, 0.0};
-  double Nb[4] = {0.0, 0.0, 0.0, 0.0};   ///< B's shape functions at the closest point
-  double Nb1[4] = {0.0, 0.0, 0.0, 0.0};  ///< and their eta-derivatives
-  std::array<double, 2 * kMaxElementDofs> G{};
-  std::vector<double> Hg;  ///< (n x n), if asked for
-  /// J and T (3 x n, row-major), and (if asked for) b (d eta = b . dq; zero at a free end or
-  /// where the projection is no minimum) and y' = dy/d eta: the friction's tangent
-  std::array<double, 3 * 2 * kMaxElementDofs> J{}, T{};
-  std::array<double, 2 * kMaxElementDofs> b{};
-  double yt[3] = {0.0, 0.0, 0.0};
+  const double* Na = nullptr;  ///< A's shape functions at the point
+  Projection pr;               ///< B's closest point (shape functions, y, y', y'')
+  // (the arrays are filled where they are asked for: pair_gradient, pair_hessian)
+  std::array<double, 2 * kMaxElementDofs> G;
+  double cc = 0.0;  ///< c of Hg (pair_hessian; 0: no b term)
+  /// J and T by their columns, each with one entry at most: J(jd[a], a) = jc[a],
+  /// T(jd[a], a) = tc[a] (jd[a] < 0: a zero column), and (if asked for) b (d eta = b . dq;
+  /// zero at a free end or where the projection is no minimum): the friction's tangent
+  std::array<double, 2 * kMaxElementDofs> jc, tc;
+  std::array<int, 2 * kMaxElementDofs> jd;
+  std::array<double, 2 * kMaxElementDofs> b;
 };
 
 void pair_geometry(const Side& A, const Side& B, int e, int q, int f, const double* ea,
-                   const double* eb, bool hess, Pair& out, double start = -1.0, bool ends = false) {
+                   const double* eb, Pair& out, double start = -1.0, bool ends = false) {
   const Model& ma = *A.m;
   const Model& mb = *B.m;
-  const int na = ma.nde(), n = na + mb.nde();
-  const double* Na = A.cb->N.data() + 4 * (e * A.cb->n_c + q);
-  double x[3], y[3], Nb[4], Nb1[4], Nb2[4], y1[3], y2[3];
-  contact_point::point_of(ma, Na, ea, x);
-  const double xi = project(mb, *B.cb, f, eb, x, Nb, start);
+  out.Na = A.cb->N.data() + 4 * (e * A.cb->n_c + q);
+  double x[3];
+  contact_point::point_of(ma, out.Na, ea, x);
+  project(mb, *B.cb, f, eb, x, out.pr, start);
+  const double xi = out.pr.xi;
   out.xi = xi;
-  const bool at_end = xi == 0.0 || xi == 1.0;
+  out.at_end = xi == 0.0 || xi == 1.0;
   out.kept = false;
-  if (at_end && !ends && !((xi == 0.0 && f == 0) || (xi == 1.0 && f == mb.n_el - 1))) return;
+  if (out.at_end && !ends && !((xi == 0.0 && f == 0) || (xi == 1.0 && f == mb.n_el - 1))) return;
   if (A.body == B.body) {  // self-contact: not near along the body
-    double s_pt = A.cb->arc0[sz(e)];
-    for (int k = 0; k <= q; ++k) s_pt += A.cb->w[sz(e * A.cb->n_c + k)] * (k == q ? 0.5 : 1.0);
     const double s_y = B.cb->arc0[sz(f)] + xi * (B.cb->arc0[sz(f + 1)] - B.cb->arc0[sz(f)]);
-    if (std::abs(s_pt - s_y) < M_PI * (A.cb->radius + B.cb->radius)) return;
+    if (std::abs(point_arc(*A.cb, e, q) - s_y) < excluded_arc(*A.cb, *B.cb)) return;
   }
-  shape(*B.cb, f, xi, Nb, Nb1, Nb2);
-  for (int k = 0; k < 4; ++k) {
-    out.Nb[k] = Nb[k];
-    out.Nb1[k] = Nb1[k];
-  }
-  contact_point::point_of(mb, Nb, eb, y);
+  const double* y = out.pr.y;
   const double d[3] = {x[0] - y[0], x[1] - y[1], x[2] - y[2]};
   out.rho = std::sqrt(dot3(d, d));
   out.g = out.rho - A.cb->radius - B.cb->radius;
   out.kept = out.rho > 0.0;
   if (!out.kept) return;
   for (int i = 0; i < 3; ++i) out.n[i] = d[i] / out.rho;
-  // J (3 x n) and T (3 x n), row-major
-  auto& J = out.J;
-  auto& T = out.T;
-  std::fill(J.begin(), J.end(), 0.0);
-  std::fill(T.begin(), T.end(), 0.0);
-  std::fill(out.b.begin(), out.b.end(), 0.0);
+}
+
+/// J, T and G of a kept pair (pair_geometry).
+void pair_gradient(const Model& ma, const Model& mb, Pair& out) {
+  const int na = ma.nde(), n = na + mb.nde();
+  std::fill(out.jc.begin(), out.jc.begin() + n, 0.0);
+  std::fill(out.tc.begin(), out.tc.begin() + n, 0.0);
+  std::fill(out.jd.begin(), out.jd.begin() + n, -1);
   for (int k = 0; k < 4; ++k) {
     const int oa = (k / 2) * ma.dpn + (k % 2) * ma.dim,
               ob = na + (k / 2) * mb.dpn + (k % 2) * mb.dim;
     for (int i = 0; i < ma.dim; ++i) {
-      J[sz(i * n + oa + i)] += Na[k];
-      J[sz(i * n + ob + i)] -= Nb[k];
-      T[sz(i * n + ob + i)] += Nb1[k];
+      out.jd[sz(oa + i)] = out.jd[sz(ob + i)] = i;
+      out.jc[sz(oa + i)] = out.Na[k];
+      out.jc[sz(ob + i)] = -out.pr.N[k];
+      out.tc[sz(ob + i)] = out.pr.N1[k];
     }
   }
   for (int a = 0; a < n; ++a) {
-    double v = 0.0;
-    for (int i = 0; i < 3; ++i) v += J[sz(i * n + a)] * out.n[i];
-    out.G[sz(a)] = v;
+    const int i = out.jd[sz(a)];
+    out.G[sz(a)] = i >= 0 ? out.jc[sz(a)] * out.n[i] : 0.0;
   }
-  if (!hess) return;
-  contact_point::point_of(mb, Nb1, eb, y1);
-  contact_point::point_of(mb, Nb2, eb, y2);
-  for (int i = 0; i < 3; ++i) out.yt[i] = y1[i];
-  out.Hg.assign(sz(n * n), 0.0);
-  // J^T P J = J^T J - G G^T
-  for (int a = 0; a < n; ++a)
-    for (int c = 0; c < n; ++c) {
-      double v = -out.G[sz(a)] * out.G[sz(c)];
-      for (int i = 0; i < 3; ++i) v += J[sz(i * n + a)] * J[sz(i * n + c)];
-      out.Hg[sz(a * n + c)] = v / out.rho;
-    }
-  if (at_end) return;
+}
+
+/// c and b of Hg of a kept pair after pair_gradient (pair_geometry); Hg itself by entries
+/// (hessian_entry).
+void pair_hessian(int n, Pair& out) {
+  const auto& jc = out.jc;
+  const auto& jd = out.jd;
+  const double* y1 = out.pr.y1;
+  const double* y2 = out.pr.y2;
+  std::fill(out.b.begin(), out.b.begin() + n, 0.0);
+  out.cc = 0.0;
+  if (out.at_end) return;
   const double cc = dot3(y1, y1) - out.rho * dot3(out.n, y2);
   if (!(cc > 0.0)) return;  // a projection that is no minimum: the first order terms only
+  out.cc = cc;
   auto& bb = out.b;
   for (int a = 0; a < n; ++a) {
-    double v = 0.0;
-    for (int i = 0; i < 3; ++i)
-      v += J[sz(i * n + a)] * y1[i] + out.rho * T[sz(i * n + a)] * out.n[i];
-    bb[sz(a)] = v / cc;
+    const int i = jd[sz(a)];
+    bb[sz(a)] = i >= 0 ? (jc[sz(a)] * y1[i] + out.rho * out.tc[sz(a)] * out.n[i]) / cc : 0.0;
   }
-  for (int a = 0; a < n; ++a)
-    for (int c = 0; c < n; ++c) out.Hg[sz(a * n + c)] -= cc * bb[sz(a)] * bb[sz(c)] / out.rho;
+}
+
+/// Hg(a, c) = (J^T J - G G^T - c b b^T)(a, c) / rho after pair_hessian (J^T J from J's columns:
+/// jc[a] jc[c] where both move the same component).
+double hessian_entry(const Pair& p, int a, int c) {
+  double v = -p.G[sz(a)] * p.G[sz(c)] - p.cc * p.b[sz(a)] * p.b[sz(c)];
+  if (p.jd[sz(a)] >= 0 && p.jd[sz(a)] == p.jd[sz(c)]) v += p.jc[sz(a)] * p.jc[sz(c)];
+  return v / p.rho;
 }
 
 /// A point's weight and pressure and the pressure's slopes (point_force): w, pm, the
@@ -193,12 +220,11 @@ void friction(const BodyPair& bp, const Side& A, const Side& B, const Pair& pf, 
   const Model& ma = *A.m;
   const Model& mb = *B.m;
   const int n = ma.nde() + mb.nde();
-  const double* J = pf.J.data();
+  const auto& jc = pf.jc;
+  const auto& jd = pf.jd;
   double u[3] = {0.0, 0.0, 0.0};
-  for (int i = 0; i < 3; ++i)
-    for (int a = 0; a < ma.nde(); ++a) u[i] += J[sz(i * n + a)] * va[a];
-  for (int i = 0; i < 3; ++i)
-    for (int a = 0; a < mb.nde(); ++a) u[i] += J[sz(i * n + ma.nde() + a)] * vb[a];
+  for (int a = 0; a < n; ++a)
+    if (jd[sz(a)] >= 0) u[jd[sz(a)]] += jc[sz(a)] * (a < ma.nde() ? va[a] : vb[a - ma.nde()]);
   const double un = dot3(pf.n, u);
   double vt[3], phi[3];
   for (int i = 0; i < 3; ++i) vt[i] = u[i] - un * pf.n[i];
@@ -207,32 +233,33 @@ void friction(const BodyPair& bp, const Side& A, const Side& B, const Pair& pf, 
   const double c = bp.friction * sl.w * sl.pm;
   std::array<double, 2 * kMaxElementDofs> Jphi{}, Tphi{};
   for (int a = 0; a < n; ++a) {
-    for (int i = 0; i < 3; ++i) {
-      Jphi[sz(a)] += J[sz(i * n + a)] * phi[i];
-      Tphi[sz(a)] += pf.T[sz(i * n + a)] * phi[i];
-    }
+    const int i = jd[sz(a)];
+    if (i < 0) continue;
+    Jphi[sz(a)] = jc[sz(a)] * phi[i];
+    Tphi[sz(a)] = pf.tc[sz(a)] * phi[i];
     fe[a] -= c * Jphi[sz(a)];
   }
   if (K == nullptr) return;
   double yd[3];  // y.' = N_B'(eta) v_B: the rate of the tangent at the material point
-  contact_point::point_of(mb, pf.Nb1, vb, yd);
+  contact_point::point_of(mb, pf.pr.N1, vb, yd);
   double Pyt[3], Pyd[3];
-  const double nyt = dot3(pf.n, pf.yt), nyd = dot3(pf.n, yd);
+  const double nyt = dot3(pf.n, pf.pr.y1), nyd = dot3(pf.n, yd);
   for (int i = 0; i < 3; ++i) {
-    Pyt[i] = pf.yt[i] - nyt * pf.n[i];
+    Pyt[i] = pf.pr.y1[i] - nyt * pf.n[i];
     Pyd[i] = yd[i] - nyd * pf.n[i];
   }
   std::array<double, 3 * 2 * kMaxElementDofs> Dn{}, M{};  // dn/dq, then Pphi dv_t/d(q, v)
   std::array<double, 2 * kMaxElementDofs> uDn{};
+  auto Jia = [&](int i, int a) { return jd[sz(a)] == i ? jc[sz(a)] : 0.0; };
   for (int i = 0; i < 3; ++i)
     for (int a = 0; a < n; ++a) {
-      const double PJ = J[sz(i * n + a)] - pf.n[i] * pf.G[sz(a)];
+      const double PJ = Jia(i, a) - pf.n[i] * pf.G[sz(a)];
       Dn[sz(i * n + a)] = (PJ - Pyt[i] * pf.b[sz(a)]) / pf.rho;
       uDn[sz(a)] += u[i] * Dn[sz(i * n + a)];
     }
   for (int i = 0; i < 3; ++i)
     for (int a = 0; a < n; ++a) {
-      const double PJ = J[sz(i * n + a)] - pf.n[i] * pf.G[sz(a)];
+      const double PJ = Jia(i, a) - pf.n[i] * pf.G[sz(a)];
       const double Vq = -Pyd[i] * pf.b[sz(a)] - un * Dn[sz(i * n + a)] - pf.n[i] * uDn[sz(a)];
       M[sz(i * n + a)] = sl.ck * Vq + sl.cv * PJ;
     }
@@ -245,7 +272,7 @@ void friction(const BodyPair& bp, const Side& A, const Side& B, const Pair& pf, 
   for (int a = 0; a < n; ++a)
     for (int b = 0; b < n; ++b) {
       double v = mw * Jphi[sz(a)] * sl.dP[b];
-      for (int i = 0; i < 3; ++i) v += c * J[sz(i * n + a)] * M[sz(i * n + b)];
+      if (jd[sz(a)] >= 0) v += c * jc[sz(a)] * M[sz(jd[sz(a)] * n + b)];
       K[a * n + b] += v - sl.ck * c * Tphi[sz(a)] * pf.b[sz(b)];
     }
 }
@@ -258,17 +285,22 @@ void friction(const BodyPair& bp, const Side& A, const Side& B, const Pair& pf, 
 /// start's coordinates (ea - (1 - af) ea1) / af projected from the alpha point's closest point
 /// (kept at an end of the element, the distance to that end: the gap stays continuous where
 /// the closest point passes to the next element within the step).  Returns
-/// the gap (1e300: not kept); pw: the point's normal force.
+/// the gap (1e300: not kept); pw: the point's normal force.  xi (if not null): the
+/// projection's start (< 0: none) and its closest point; clear: a gap at the alpha point above
+/// which the step's gaps cannot reach zero (the points' motion in the step is below it).
 double point_force(const BodyPair& bp, const Side& A, const Side& B, int e, int q, int f,
                    const double* ea, const double* eb, const double* ea1, const double* eb1,
                    const double* va, const double* vb, double* fe, double* pw, double ck = 1.0,
-                   double cv = 0.0, double* K = nullptr, double c1 = 1.0, double af = 0.0) {
+                   double cv = 0.0, double* K = nullptr, double c1 = 1.0, double af = 0.0,
+                   double* xi = nullptr, double clear = 1e300) {
   const int na = A.m->nde(), n = na + B.m->nde();
   Pair pf;
-  pair_geometry(A, B, e, q, f, ea, eb, false, pf);
+  pair_geometry(A, B, e, q, f, ea, eb, pf, xi != nullptr ? *xi : -1.0);
+  if (xi != nullptr) *xi = pf.xi;
   std::fill(fe, fe + n, 0.0);
   *pw = 0.0;
   if (!pf.kept) return 1e300;
+  if (ea1 != nullptr && pf.g > clear) return pf.g;  // no pressure within the step
   const Penalty law{0.5 * bp.stiffness, bp.onset};
   double pm = 0.0, slope = 0.0, dpa = 0.0, dp1 = 0.0;  // the pressure and its slopes
   Pair p1, p0;
@@ -276,22 +308,29 @@ double point_force(const BodyPair& bp, const Side& A, const Side& B, int e, int 
     pm = law.p(pf.g);
     slope = law.slope(pf.g);
   } else {  // the step's mean pressure over [2 gs - g1, g1] (contact.hpp)
-    pair_geometry(A, B, e, q, f, ea1, eb1, false, p1, pf.xi);  // from the alpha point's
+    pair_geometry(A, B, e, q, f, ea1, eb1, p1, pf.xi);  // from the alpha point's
     if (!p1.kept) p1 = pf;
     if (af > 0.0) {  // the step's start at the alpha point's closest point
       Coords ea0{}, eb0{};
       contact_point::step_start(ea, ea1, af, na, ea0.data());
       contact_point::step_start(eb, eb1, af, n - na, eb0.data());
-      pair_geometry(A, B, e, q, f, ea0.data(), eb0.data(), false, p0, pf.xi, true);
+      pair_geometry(A, B, e, q, f, ea0.data(), eb0.data(), p0, pf.xi, true);
     }
     const double gs = p0.kept ? (1.0 - af) * p1.g + af * p0.g : pf.g;
     mean_pressure(law, 2.0 * gs - p1.g, p1.g, pm, dpa, dp1);
   }
   if (pm == 0.0 && slope == 0.0 && dpa == 0.0 && dp1 == 0.0) return pf.g;
-  // dP: the pressure's slope over the step's end; ga = 2 gs - g1 over the alpha point and the
-  // end: 2 G and -G1 for gs = g(alpha), 2 G0 and (1 - 2 af) G1 - 2 (1 - af) G0 for the blend
+  pair_gradient(*A.m, *B.m, pf);
+  // dP (the tangent's): the pressure's slope over the step's end; ga = 2 gs - g1 over the
+  // alpha point and the end: 2 G and -G1 for gs = g(alpha), 2 G0 and (1 - 2 af) G1 -
+  // 2 (1 - af) G0 for the blend
   std::array<double, 2 * kMaxElementDofs> dP{};
-  for (int a = 0; a < n; ++a) {
+  if (K != nullptr) {
+    pair_hessian(n, pf);
+    if (ea1 != nullptr) pair_gradient(*A.m, *B.m, p1);
+    if (p0.kept) pair_gradient(*A.m, *B.m, p0);
+  }
+  for (int a = 0; a < n && K != nullptr; ++a) {
     if (ea1 == nullptr)
       dP[sz(a)] = ck * slope * pf.G[sz(a)];
     else if (p0.kept)
@@ -300,14 +339,13 @@ double point_force(const BodyPair& bp, const Side& A, const Side& B, int e, int 
     else
       dP[sz(a)] = 2.0 * ck * dpa * pf.G[sz(a)] + c1 * (dp1 - dpa) * p1.G[sz(a)];
   }
-  if (K != nullptr) pair_geometry(A, B, e, q, f, ea, eb, true, pf, pf.xi);  // the Hessian
   const double w = A.cb->w[sz(e * A.cb->n_c + q)];
   *pw = w * pm;
   for (int a = 0; a < n; ++a) fe[a] = w * pm * pf.G[sz(a)];
   if (K != nullptr)
     for (int a = 0; a < n; ++a)
       for (int c = 0; c < n; ++c)
-        K[a * n + c] = -w * (ck * pm * pf.Hg[sz(a * n + c)] + pf.G[sz(a)] * dP[sz(c)]);
+        K[a * n + c] = -w * (ck * pm * hessian_entry(pf, a, c) + pf.G[sz(a)] * dP[sz(c)]);
   if (bp.friction > 0.0 && va != nullptr && pm > 0.0) {
     const Slopes sl{w, pm, ck, cv, dP.data()};
     friction(bp, A, B, pf, sl, va, vb, fe, K);
@@ -325,6 +363,12 @@ Side side(const System& s, const ContactSet& c, int body) {
 bool near(const Broad& br, int ea, int fb, const double* x, double ra, double onset) {
   const auto& cap = br.capsule[sz(fb)];
   return to_segment(cap.data(), x) <= cap[6] + ra + onset + br.moved[sz(ea)];
+}
+
+/// The distance within which a point of element ea can touch element fb within a step: the
+/// tubes' radii, the onset and both elements' motion in a step (the broad phase's margins).
+double reach(const Broad& br, int ea, int fb, const Side& A, const Side& B, const BodyPair& bp) {
+  return A.cb->radius + B.cb->radius + bp.onset + br.moved[sz(ea)] + br.moved[sz(fb)];
 }
 
 /// Visit every kept (point, element) pair of every body pair in both directions at y:
@@ -367,6 +411,9 @@ void each_pair(const System& s, const ContactSet& c, const double* y, const doub
             double x[3];
             contact_point::point_of(*A.m, A.cb->N.data() + 4 * (e * A.cb->n_c + q), ea.data(), x);
             if (!near(br, sa, sb, x, A.cb->radius, bp.onset)) continue;
+            if (A.body == B.body &&
+                window_out_of_reach(B, e, q, f, eb.data(), x, reach(br, sa, sb, A, B, bp)))
+              continue;
           }
           double pw = 0.0;
           const double g =
@@ -377,6 +424,60 @@ void each_pair(const System& s, const ContactSet& c, const double* y, const doub
         }
       }
     }
+  }
+}
+
+/// each_pair's visit over the near points of nl (update_near) at (y, y1, v), the forces: each
+/// point's projection starts from its closest point of the assembly before; a point farther
+/// from f's hull (body_broad.hpp) than the tubes' radii, the onset and both elements' motion
+/// in the step cannot touch it in the step and is not projected.
+template <class Fn>
+void each_near(const System& s, const ContactSet& c, NearList& nl, const double* y,
+               const double* y1, const double* v, Fn fn, const AssemblyTerms& tm, double* K) {
+  Coords ea{}, eb{}, ea1{}, eb1{}, va{}, vb{};
+  std::array<double, 2 * kMaxElementDofs> fe{};
+  const double af = y1 != nullptr ? c.step_alpha_f : 0.0;
+  int key[4] = {-1, -1, -1, -1};  // pair, dir, e, f gathered
+  double seg[6], off = 0.0;       // f's hull: its chord and the control points' distance
+  for (NearPoint& p : nl.points) {
+    const BodyPair& bp = c.body_pairs[sz(p.pair)];
+    const Side A = side(s, c, p.dir == 0 ? bp.a : bp.b), B = side(s, c, p.dir == 0 ? bp.b : bp.a);
+    const bool rub = v != nullptr && bp.friction > 0.0;
+    if (key[0] != p.pair || key[1] != p.dir || key[2] != p.e || key[3] != p.f) {
+      element_coordinates(*A.m, y + A.offset, p.e, ea.data());
+      element_coordinates(*B.m, y + B.offset, p.f, eb.data());
+      if (y1 != nullptr) {
+        element_coordinates(*A.m, y1 + A.offset, p.e, ea1.data());
+        element_coordinates(*B.m, y1 + B.offset, p.f, eb1.data());
+      }
+      if (rub) {
+        element_coordinates(*A.m, v + A.offset, p.e, va.data());
+        element_coordinates(*B.m, v + B.offset, p.f, vb.data());
+      }
+      double P[4][3];
+      control_points(*B.m, *B.cb, p.f, eb.data(), P);
+      for (int i = 0; i < 3; ++i) {
+        seg[i] = P[0][i];
+        seg[3 + i] = P[3][i];
+      }
+      off = std::max(to_segment(seg, P[1]), to_segment(seg, P[2]));
+      key[0] = p.pair;
+      key[1] = p.dir;
+      key[2] = p.e;
+      key[3] = p.f;
+    }
+    const double* pa1 = y1 != nullptr ? ea1.data() : nullptr;
+    const double* pb1 = y1 != nullptr ? eb1.data() : nullptr;
+    const double* pva = rub ? va.data() : nullptr;
+    const double* pvb = rub ? vb.data() : nullptr;
+    double x[3];
+    contact_point::point_of(*A.m, A.cb->N.data() + 4 * (p.e * A.cb->n_c + p.q), ea.data(), x);
+    if (to_segment(seg, x) - off > A.cb->radius + B.cb->radius + bp.onset + 2.0 * nl.moved)
+      continue;
+    double pw = 0.0;
+    const double g = point_force(bp, A, B, p.e, p.q, p.f, ea.data(), eb.data(), pa1, pb1, pva, pvb,
+                                 fe.data(), &pw, tm.ck, tm.cv, K, tm.c1, af, &p.xi, 2.0 * nl.moved);
+    fn(bp, A, B, p.e, p.q, p.f, ea.data(), eb.data(), pa1, pb1, pva, pvb, fe.data(), g, pw);
   }
 }
 
@@ -427,35 +528,41 @@ void assemble_body_contact(const System& s, const ContactSet& c, const double* y
     if (add != nullptr) (*add)(idx.data(), n, Ksum.data());
     key[0] = -1;
   };
-  each_pair(
-      s, c, yf, y1, vf, true,
-      [&](const BodyPair&, const Side& A, const Side& B, int e, int, int f, const double*,
-          const double*, const double*, const double*, const double*, const double*,
-          const double* fe, double, double pw0) {
-        if (pw0 == 0.0) return;
-        const int n = A.m->nde() + B.m->nde();
-        if (key[0] != A.body || key[1] != B.body || key[2] != e || key[3] != f) {
-          flush();
-          sides[0] = A;
-          sides[1] = B;
-          key[0] = A.body;
-          key[1] = B.body;
-          key[2] = e;
-          key[3] = f;
-          std::fill(fsum.begin(), fsum.end(), 0.0);
-          if (add != nullptr) Ksum.assign(sz(n * n), 0.0);
-        }
-        for (int a = 0; a < n; ++a) fsum[sz(a)] += fe[a];
-        if (add != nullptr)  // the point's exact tangent (point_force)
-          for (int a = 0; a < n * n; ++a) Ksum[sz(a)] += K[sz(a)];
-      },
-      &tm, add != nullptr ? K.data() : nullptr);
+  auto visit = [&](const BodyPair&, const Side& A, const Side& B, int e, int, int f, const double*,
+                   const double*, const double*, const double*, const double*, const double*,
+                   const double* fe, double, double pw0) {
+    if (pw0 == 0.0) return;
+    const int n = A.m->nde() + B.m->nde();
+    if (key[0] != A.body || key[1] != B.body || key[2] != e || key[3] != f) {
+      flush();
+      sides[0] = A;
+      sides[1] = B;
+      key[0] = A.body;
+      key[1] = B.body;
+      key[2] = e;
+      key[3] = f;
+      std::fill(fsum.begin(), fsum.end(), 0.0);
+      if (add != nullptr) Ksum.assign(sz(n * n), 0.0);
+    }
+    for (int a = 0; a < n; ++a) fsum[sz(a)] += fe[a];
+    if (add != nullptr)  // the point's exact tangent (point_force)
+      for (int a = 0; a < n * n; ++a) Ksum[sz(a)] += K[sz(a)];
+  };
+  double* Kp = add != nullptr ? K.data() : nullptr;
+  NearList& nl = *c.near;
+  std::unique_lock<std::mutex> lock(nl.mu, std::try_to_lock);
+  if (lock.owns_lock() && !c.body_pairs.empty()) {  // the near points kept between assemblies
+    update_near(s, c, yf, y1, nl);
+    each_near(s, c, nl, yf, y1, vf, visit, tm, Kp);
+  } else {  // another thread has them: from the broad phase
+    each_pair(s, c, yf, y1, vf, true, visit, &tm, Kp);
+  }
   flush();
 }
 
 double body_contact_energy(const System& s, const ContactSet& c, const double* y) {
   double total = 0.0;
-  each_pair(s, c, y, nullptr, nullptr, false,
+  each_pair(s, c, y, nullptr, nullptr, true,  // the points that can touch (g < 0)
             [&](const BodyPair& bp, const Side& A, const Side&, int e, int q, int, const double*,
                 const double*, const double*, const double*, const double*, const double*,
                 const double*, double g, double) {

@@ -20,7 +20,10 @@
 // Broad phase: a bounding sphere per element (its nodes and contact points, enlarged by a
 // tenth of its chord for the curve between them, and the tube radius) in a uniform grid of
 // cells as large as the largest sphere (hash map of cells): pairs of elements in the same or
-// neighbouring cells whose spheres overlap; cost near linear in the number of elements.
+// neighbouring cells whose spheres overlap; cost near linear in the number of elements.  The
+// forces of a time step take their points from a list of near points kept between assemblies
+// (body_broad.hpp update_near: made again when an element has moved by a margin), each
+// projection started from the point's last closest point.
 //
 // Tangent: exact, from the gap's Hessian including the projection's variation
 // (body_contact.cpp pair_geometry) and, with friction, the slip's variation with the normal,

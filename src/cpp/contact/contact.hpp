@@ -41,6 +41,8 @@
 #pragma once
 
 #include <functional>
+#include <memory>
+#include <mutex>
 #include <vector>
 
 #include "linalg/bordered.hpp"
@@ -92,6 +94,24 @@ struct BodyPair {
   double slip_velocity = 1.0;  ///< eps of the friction's regularization [m/s]
 };
 
+/// A contact point of a body pair's side A near an element of side B (body_broad.hpp).
+struct NearPoint {
+  int pair = 0, dir = 0;  ///< the body pair and its order (0: a against b, 1: b against a)
+  int e = 0, q = 0, f = 0;
+  double xi = -1.0;  ///< its last closest point on f (-1: none yet)
+};
+
+/// The points of the body pairs that can touch an element while no element has moved by
+/// more than a margin (body_broad.hpp update_near), and their last closest points.
+struct NearList {
+  std::mutex mu;
+  bool valid = false;
+  double margin = 0.0;
+  double moved = 0.0;       ///< the largest motion of a control point in the step (y to y1, y0)
+  std::vector<double> ref;  ///< the elements' Bezier control points where it was made
+  std::vector<NearPoint> points;
+};
+
 struct ContactSet {
   std::vector<ContactBody> bodies;  ///< one per flexible body of the system
   std::vector<Obstacle> obstacles;
@@ -103,6 +123,8 @@ struct ContactSet {
   /// y0 = (yf - (1 - af) y1) / af, never the gap of a blend of positions (time-integration.md
   /// sec. 4, TI.16); 0: the gap at yf.
   double step_alpha_f = 0.0;
+  /// the body pairs' near points, kept between assemblies (shared by copies)
+  std::shared_ptr<NearList> near = std::make_shared<NearList>();
 };
 
 /// Receives a small dense matrix K (k x k, row-major) over global indices idx (add_matrix).

@@ -230,7 +230,9 @@ void BorderedLU::place_far() {
   };
   // the choice and the order are kept while the far entries' pattern stays (a hash of their
   // positions in the order they came: a step's contacts; and, against a collision, the
-  // merged entries within the kept band)
+  // merged entries within the kept band); a merged band is kept for another pattern too
+  // while that pattern's merged entries fit in it (contacts that come and go between Newton
+  // iterations and steps)
   std::uint64_t sig = 1469598103934665603ull ^ far_.size();
   for (const Far& e : far_)
     sig = (sig ^ (static_cast<std::uint64_t>(e.i) << 32 ^ static_cast<std::uint64_t>(e.j))) *
@@ -243,7 +245,8 @@ void BorderedLU::place_far() {
         return false;
     return true;
   };
-  if (sig != sig_ || perm_.size() != sz(n_) || !fits()) {
+  const bool kept = perm_.size() == sz(n_) && (sig == sig_ || choice_ > 0) && fits();
+  if (!kept) {
     sig_ = sig;
     int groups = 0, long_groups = 0;
     for (int c : count) {
