@@ -216,3 +216,20 @@ def test_a_line_paid_out_in_water_carries_its_submerged_weight_at_its_new_length
     buoyancy = RHO_W * G * area * 15.0
     assert abs(last["top_y"] / submerged - 1) < 1e-6, last
     assert abs(last["fluid_y"] / buoyancy - 1) < 1e-6, last
+
+
+def test_a_driven_drum_of_a_line_in_water_is_refused_in_one_line():
+    """A driven drum's balance of its length has the line's weight but not the fluid's loads:
+    a drum on a line with [hydro] is refused, naming the winch, instead of a wrong balance."""
+    import pytest
+
+    import rancf
+    from rancf.errors import ScenarioError
+    from rancf.scenario import parse_scenario
+
+    d = _paid_out_in_water(1.0)
+    d["winches"][0].pop("length")
+    d["winches"][0].update({"torque": 0.5, "radius": 0.1, "inertia": 0.01})
+    d["solver"]["initial_state"] = "reference"
+    with pytest.raises(ScenarioError, match=r"\[winches\[0\]\.torque\] .*\(cable has \[hydro\]\)"):
+        rancf.simulate(parse_scenario(d))

@@ -229,6 +229,13 @@ def winch_records(
         body = _body(system, w)
         c1, c2, d2 = convective_matrices(body, end)
         drum = None
+        if torque >= 0 and name in getattr(system, "hydro", {}):
+            raise InputError(
+                f"winches.{w.name}.torque",
+                "a driven drum",
+                f"a length or speed for a line in the fluid ({name} has [hydro]): a drum's "
+                "balance does not take the fluid's loads yet",
+            )
         if torque >= 0:
             drum = drum_record(w, body, winch_node(system, w)[1], torque)
         out.append(
