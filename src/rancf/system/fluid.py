@@ -21,7 +21,6 @@ import numpy as np
 
 from rancf.errors import InputError
 from rancf.kernels.records import DistributedRecord, FluidRecord, LineRecord, floats, vec3
-from rancf.kernels.rod import RodKernel
 
 __all__ = ["Fluid", "Waves", "Hydro", "DistributedLoad", "wave_number", "fluid_records"]
 
@@ -131,9 +130,8 @@ def _fluid_record(fl: Fluid, gravity: np.ndarray, dim: int) -> FluidRecord:
 def _line(
     index: int, model: Any, hydro: Hydro | None, loads: list[DistributedRecord]
 ) -> LineRecord:
-    k = model.kernel
-    c = k.cable if isinstance(k, RodKernel) else k
-    if not hasattr(c, "n0"):
+    c = model.family.centre_line(model.kernel)
+    if c is None:
         raise InputError("hydro", "beam elements", "a body of cable or rod elements")
     h = hydro or Hydro()
     d = h.diameter if h.diameter is not None else math.sqrt(4.0 * model.section.area / math.pi)
