@@ -32,6 +32,9 @@ PARTS = (
     "rancf.system.winches",
     "rancf.system.drums",
     "rancf.system.touchdown",
+    "rancf.system.parts.winch",
+    "rancf.system.parts.obstacle",
+    "rancf.system.parts.contact_pair",
 )
 SCRIPT = """
 import json, sys

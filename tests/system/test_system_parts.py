@@ -1,6 +1,7 @@
-"""Supports and winches are Parts (rancf.system.part): the system's prescribed and winch records
-are the ones their parts make, a moving support's records follow its node's coordinates, and a
-winch's output column reads its length law."""
+"""Supports, winches, obstacles and contact pairs are Parts (rancf.system.part): the system's
+prescribed and winch records are the ones their parts make, a moving support's records follow
+its node's coordinates, a winch's output column reads its length law, an obstacle's record is
+its checked geometry and a pair's its contact law with the defaults."""
 
 from __future__ import annotations
 
@@ -11,7 +12,8 @@ from rancf.bodies.flexible import Material, Model, Section, Support
 from rancf.bodies.time_function import TimeFunction
 from rancf.errors import InputError
 from rancf.mesh.factories import mesh_line
-from rancf.system import System
+from rancf.system import Obstacle, System
+from rancf.system.parts.contact_pair import BodyPair, ContactPair
 from rancf.system.parts.support import supports_of
 from rancf.system.record_rows import RecordRows
 from tests.system.test_winch import hoist, payout
@@ -59,3 +61,26 @@ def test_a_winchs_record_and_length_column():
     assert w.sensors() == ("hoist_length",)
     got = w.reactions(s, s.y0, np.zeros(s.m), 5.0)["hoist_length"]
     assert got == pytest.approx(payout(5.0), rel=1e-6)
+
+
+def test_an_obstacles_record_and_its_pairs_laws():
+    s = _shaken()
+    plane = Obstacle("plane", point=[0.0, -1.0], normal=[0.0, 2.0], friction=0.3, name="floor")
+    rec = plane.record(s)
+    assert (rec.kind, rec.body, rec.radius) == (0, -1, 0.0)
+    assert rec.point.tolist() == [0.0, -1.0, 0.0] and rec.direction.tolist() == [0.0, 1.0, 0.0]
+    law = ContactPair("w", plane, "floor").record(s)
+    rt, e = WIRE.radius, STEEL.youngs_modulus
+    assert law == (0.1 * e, 1e-3 * rt, 0.0, 0.3, 1e-3, 0.0)
+    assert BodyPair("w", "w", 0.2).record(s) == (0.05 * e, 1e-3 * rt, 0.2, 1e-3)
+    assert plane.sensors() == () and ContactPair("w", plane, "floor").name == "w/floor"
+
+
+def test_an_obstacles_bad_field_is_named_with_its_system_name():
+    s = _shaken()
+    with pytest.raises(InputError, match=r"obstacles\.obstacle0\.friction"):
+        Obstacle("plane", point=[0.0, 0.0], normal=[0.0, 1.0], friction=-1.0).record(
+            s, None, "obstacle0"
+        )
+    with pytest.raises(InputError, match=r"obstacles\.plane\.normal"):
+        Obstacle("plane", point=[0.0, 0.0], normal=[0.0, 0.0]).record(s)
