@@ -35,6 +35,7 @@ PARTS = (
     "rancf.system.parts.winch",
     "rancf.system.parts.obstacle",
     "rancf.system.parts.contact_pair",
+    "rancf.system.parts.distributed",
 )
 SCRIPT = """
 import json, sys

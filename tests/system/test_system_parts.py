@@ -1,7 +1,8 @@
 """Supports, winches, obstacles and contact pairs are Parts (rancf.system.part): the system's
 prescribed and winch records are the ones their parts make, a moving support's records follow
 its node's coordinates, a winch's output column reads its length law, an obstacle's record is
-its checked geometry and a pair's its contact law with the defaults."""
+its checked geometry and a pair's its contact law with the defaults; a distributed load's record
+is its force and time function."""
 
 from __future__ import annotations
 
@@ -14,6 +15,7 @@ from rancf.errors import InputError
 from rancf.mesh.factories import mesh_line
 from rancf.system import Obstacle, System
 from rancf.system.parts.contact_pair import BodyPair, ContactPair
+from rancf.system.parts.distributed import DistributedLoad
 from rancf.system.parts.support import supports_of
 from rancf.system.record_rows import RecordRows
 from tests.system.test_winch import hoist, payout
@@ -84,3 +86,15 @@ def test_an_obstacles_bad_field_is_named_with_its_system_name():
         )
     with pytest.raises(InputError, match=r"obstacles\.plane\.normal"):
         Obstacle("plane", point=[0.0, 0.0], normal=[0.0, 0.0]).record(s)
+
+
+def test_a_distributed_loads_record():
+    s = _shaken()
+    rows = RecordRows(1.0)
+    rec = DistributedLoad((0.0, -9.0), "w", TimeFunction.constant(2.0)).record(s, rows, 3)
+    assert rec.force == (0.0, -9.0, 0.0) and rec.factor == len(rows.tfs) - 1 == 0
+    assert DistributedLoad((1.0, 0.0)).record(s, rows).factor == -1
+    with pytest.raises(InputError, match=r"loads\.distributed\[3\]\.force"):
+        DistributedLoad((1.0, 0.0, 0.0)).record(s, rows, 3)
+    with pytest.raises(InputError, match=r"loads\.distributed\[0\]\.body = 'x'.*\['w'\]"):
+        DistributedLoad((1.0, 0.0), "x").record(s, rows)

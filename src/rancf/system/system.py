@@ -46,7 +46,8 @@ from rancf.system.stack import Body, BodyStack
 
 if TYPE_CHECKING:  # imported where a system has them: a run without them loads none
     from rancf.system.contact import Obstacle
-    from rancf.system.fluid import DistributedLoad, Fluid, Hydro
+    from rancf.system.fluid import Fluid, Hydro
+    from rancf.system.parts.distributed import DistributedLoad
     from rancf.system.parts.winch import Winch
 
 __all__ = ["System", "Body", "as_system"]
@@ -90,7 +91,7 @@ class System(BodyStack):
     fluid : :class:`rancf.system.fluid.Fluid`, optional
         The fluid the bodies are in; ``hydro`` maps flexible bodies to their coefficients
         (:class:`~rancf.system.fluid.Hydro`; bodies without them feel no fluid).
-    distributed : sequence of :class:`~rancf.system.fluid.DistributedLoad`
+    distributed : sequence of :class:`~rancf.system.parts.distributed.DistributedLoad`
         Forces per length on flexible bodies.
     horizon : float, optional
         The end of the runs [s]: time functions given as Python callables are sampled on
@@ -215,9 +216,8 @@ class System(BodyStack):
         from rancf.system.fluid import fluid_records
 
         names = self.names[: len(self.flex)]
-        return fluid_records(
-            names, self.flex, self.dim, self.gravity, fluid, self.hydro, distributed, rows.tf
-        )
+        loads = [(d.body, d.record(self, rows, i)) for i, d in enumerate(distributed)]  # Parts
+        return fluid_records(names, self.flex, self.dim, self.gravity, fluid, self.hydro, loads)
 
     def _check_gravity(self) -> None:
         """A flexible body's weight comes from its model's ``gravity``, a rigid body's from the
