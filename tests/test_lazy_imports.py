@@ -32,6 +32,10 @@ PARTS = (
     "rancf.system.winches",
     "rancf.system.drums",
     "rancf.system.touchdown",
+    "rancf.system.parts.winch",
+    "rancf.system.parts.obstacle",
+    "rancf.system.parts.contact_pair",
+    "rancf.system.parts.distributed",
 )
 SCRIPT = """
 import json, sys

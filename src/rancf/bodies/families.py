@@ -3,8 +3,8 @@
 A family knows what differs between the element kinds of a flexible body: its nodal layout
 (coordinates per node, the position entries), the geometries and options it accepts, and how it
 builds its element kernel (shape functions, mass, forces and tangents, evaluated by the core) from
-a mesh.  Code outside this module asks the family (``family("rod").has_triads``) instead of
-comparing kind names.
+a mesh.  Code outside this module asks the family (``family("rod").has_triads``,
+``model.family.rod_kernel(model.kernel)``) instead of comparing kind names or kernel classes.
 
 * ``"rancf"``, ``"ancf"``: gradient-deficient cable elements, ``[r, r_x]`` per node
   (:mod:`rancf.kernels.cable`); ``"ancf"`` converts an exact mesh to polynomial elements.
@@ -16,7 +16,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any, Literal
+from typing import Any, Literal, cast
 
 import numpy as np
 from numpy.typing import NDArray
@@ -82,6 +82,29 @@ class ElementFamily:
     def place_kind(self) -> str:
         """The core's kind of a place at one of its nodes: ``cable``, ``rod`` or ``beam``."""
         return "rod" if self.has_triads else "cable" if self.gradient else "beam"
+
+    @property
+    def core_kind(self) -> int:
+        """The core's element kind of a flexible body: 0 cable, 1 beam, 2 rod."""
+        return 2 if self.has_triads else 0 if self.gradient else 1
+
+    def cable_kernel(self, kernel: Kernel) -> CableKernel | None:
+        """Its kernel as the cable element's (``rancf``, ``ancf``); None for the other kinds."""
+        return cast(CableKernel, kernel) if self.cable else None
+
+    def rod_kernel(self, kernel: Kernel) -> RodKernel | None:
+        """Its kernel as the rod element's; None for the other kinds."""
+        return cast(RodKernel, kernel) if self.has_triads else None
+
+    def beam_kernel(self, kernel: Kernel) -> BeamKernel | None:
+        """Its kernel as the beam element's; None for the other kinds."""
+        return None if self.gradient else cast(BeamKernel, kernel)
+
+    def centre_line(self, kernel: Kernel) -> CableKernel | None:
+        """The cable kernel of its centre line ``r(ξ)``: a cable's own, a rod's (its ``cable``);
+        None for a beam."""
+        rod = self.rod_kernel(kernel)
+        return rod.cable if rod is not None else self.cable_kernel(kernel)
 
     def dofs_per_node(self, dim: int) -> int:
         """Coordinates per node: ``2 dim`` (cables), 7 (rods), 3 (beams)."""

@@ -174,11 +174,12 @@ class Model(Coordinates):
         self.strain_rate_damping = (strain_rate_damping or StrainRateDamping()).checked(element)
         self.v0 = initial_velocity(self, initial_velocities, initial_motion)
         self.core = core_model(self)
-        if isinstance(self.kernel, RodKernel):  # reference curvatures by the core itself
-            k, eps = self.kernel.kref.copy(), np.empty(self.kernel.kref.shape[:2])
+        rod = fam.rod_kernel(self.kernel)
+        if rod is not None:  # reference curvatures by the core itself
+            k, eps = rod.kref.copy(), np.empty(rod.kref.shape[:2])
             self.core.rod_curvatures(self.y0, k, eps)
-            self.kernel.set_reference_curvatures(k)
-            self._triads0 = (self.kernel.tref.copy(), self.kernel.m1ref.copy())
+            rod.set_reference_curvatures(k)
+            self._triads0 = (rod.tref.copy(), rod.m1ref.copy())
 
     def _place_supports(
         self,
@@ -260,9 +261,10 @@ class Model(Coordinates):
         state); :func:`~rancf.solvers.dynamic.integrate` and
         :func:`~rancf.solvers.static.solve_static` call this first.  No-op for other elements.
         """
-        if isinstance(self.kernel, RodKernel):
-            self.kernel.tref[...] = self._triads0[0]
-            self.kernel.m1ref[...] = self._triads0[1]
+        rod = self.family.rod_kernel(self.kernel)
+        if rod is not None:
+            rod.tref[...] = self._triads0[0]
+            rod.m1ref[...] = self._triads0[1]
 
     # ------------------------------------------------------------------ bookkeeping
     @property

@@ -107,11 +107,11 @@ def core_model(model: AssembledBody) -> _core.Model:
         The structure kept as :attr:`Model.core <rancf.bodies.flexible.Model.core>`.
     """
 
-    k = model.kernel
-    cable = k.core_data() if isinstance(k, CableKernel) else _empty_cable()
-    beam = k.core_data() if isinstance(k, BeamKernel) else _empty_beam()
-    rod = k.core_data() if isinstance(k, RodKernel) else _empty_rod()
-    kind = {CableKernel: 0, BeamKernel: 1, RodKernel: 2}[type(k)]
+    fam, k = model.family, model.kernel
+    as_cable, as_beam, as_rod = fam.cable_kernel(k), fam.beam_kernel(k), fam.rod_kernel(k)
+    cable = as_cable.core_data() if as_cable is not None else _empty_cable()
+    beam = as_beam.core_data() if as_beam is not None else _empty_beam()
+    rod = as_rod.core_data() if as_rod is not None else _empty_rod()
     stiffness = section_stiffness(model)
     rot_of_node = np.full((model.n_nodes, 2), -1, dtype=np.int64)
     rot = np.zeros((max(len(model.rotations), 1), model.dim, model.dim))
@@ -121,7 +121,7 @@ def core_model(model: AssembledBody) -> _core.Model:
     base, f0, freq = _point_forces(model)
     moments = [p for p in model.point_loads if p.moment is not None and p.time is None]
     return _core.Model(
-        kind=kind,
+        kind=fam.core_kind,
         dim=model.dim,
         dpn=model.dpn,
         n_el=model.n_el,
@@ -145,7 +145,7 @@ def core_model(model: AssembledBody) -> _core.Model:
         ),
         mass_band=np.ascontiguousarray(model.mass_band),
         y_ref=np.ascontiguousarray(model.y0),
-        rotary=k.core_inertia() if isinstance(k, RodKernel) else _core.SectionInertia(),
+        rotary=as_rod.core_inertia() if as_rod is not None else _core.SectionInertia(),
         closed=model.closed,
         reduction=_reduction(model),
     )

@@ -16,26 +16,22 @@ import numpy as np
 
 from rancf.bodies.flexible import Model
 from rancf.errors import InputError
-from rancf.kernels.beam import BeamKernel
 from rancf.kernels.cable import CableKernel
-from rancf.kernels.rod import RodKernel
 
 __all__ = ["length_scale", "reference_length", "set_unstretched_length", "unstretched_length"]
 
 
 def _cable(model: Model) -> CableKernel:
-    k = model.kernel
-    if isinstance(k, RodKernel):
-        return k.cable
-    if isinstance(k, CableKernel):
-        return k
+    c = model.family.centre_line(model.kernel)
+    if c is not None:
+        return c
     raise InputError("unstretched length", model.element, "cable or rod elements")
 
 
 def length_scale(model: Model) -> float:
     """``λ``: the unstretched length over the reference's (1 for a beam)."""
-    k = model.kernel
-    return float(_cable(model).length_scale) if isinstance(k, CableKernel | RodKernel) else 1.0
+    c = model.family.centre_line(model.kernel)
+    return float(c.length_scale) if c is not None else 1.0
 
 
 def reference_length(model: Model) -> float:
@@ -70,9 +66,8 @@ def set_unstretched_length(model: Model, length: float, anchor: int | None = Non
     c = _cable(model)
     scale = float(length) / reference_length(model)
     ratio = scale / c.length_scale
-    kernel = model.kernel
-    assert not isinstance(kernel, BeamKernel)  # refused by _cable
-    kernel.scale_length(scale)
+    rod = model.family.rod_kernel(model.kernel)
+    (rod if rod is not None else c).scale_length(scale)  # a cable's kernel is c
     model.mass_band *= ratio  # shared with the core: in place
     model.mass_el *= ratio
     model.f_gravity *= ratio

@@ -124,10 +124,8 @@ def check_supports_at_rest(model: MovingBody, v: NDArray) -> None:
 
 def _scalar_mass_blocks(model: MovingBody) -> NDArray[np.float64]:
     """``m_kl = ρA ∫ S_k S_l |r0'| dξ`` per element ``(n_el, 4, 4)``, blocks rA, r_xA, rB, r_xB."""
-    from rancf.kernels.rod import RodKernel
-
-    k = model.kernel
-    c = k.cable if isinstance(k, RodKernel) else k
+    c = model.family.centre_line(model.kernel)
+    assert c is not None  # cables and rods only: beams have their own (angular_momentum)
     return c.props.rho_a * np.einsum("eq,eqk,eql->ekl", c.wj, c.n0, c.n0)
 
 

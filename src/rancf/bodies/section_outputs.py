@@ -39,7 +39,6 @@ from rancf.bodies.flexible_core import section_stiffness
 from rancf.elements.cable import cable_shape_functions
 from rancf.geometry.quadrature import gauss_legendre
 from rancf.kernels import _core
-from rancf.kernels.beam import BeamKernel
 from rancf.mesh.mesh import CableMesh
 
 __all__ = ["SectionSampler", "section_names"]
@@ -95,8 +94,9 @@ class SectionSampler:
             (np.arange(n_el)[:, None] * (per_element + 1) + np.arange(per_element)).ravel(),
             n_el * (per_element + 1) - 1,
         ]
-        if isinstance(model.kernel, BeamKernel):
-            l0 = model.kernel.l0
+        beam = model.family.beam_kernel(model.kernel)
+        if beam is not None:
+            l0 = beam.l0
             self.n1 = self.n2 = self.ref = np.zeros(0)
             s_el = l0[:, None] * xi[None, :]
             starts = np.r_[0.0, np.cumsum(l0)[:-1]]

@@ -68,8 +68,8 @@ def convective_matrices(model: Model, at: Literal["start", "end"]) -> Convective
     at : {"start", "end"}
         The end of the body at the winch.
     """
-    k = model.kernel
-    if not isinstance(k, CableKernel) or model.reduction is not None:
+    k = model.family.cable_kernel(model.kernel)
+    if k is None or model.reduction is not None:
         raise InputError(
             "winches.at",
             model.element,

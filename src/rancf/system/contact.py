@@ -49,19 +49,23 @@ are in the body's frame, relative to its centre of mass (as its named points); o
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
-from typing import Any, Literal, Protocol
+from typing import Any, Protocol
 
 import numpy as np
 from numpy.typing import NDArray
 
 from rancf.bodies.flexible import Model
-from rancf.bodies.rigid import RigidBody
 from rancf.elements.cable import cable_shape_functions
 from rancf.errors import InputError
 from rancf.geometry.quadrature import gauss_legendre
 from rancf.kernels import _core
-from rancf.system.seabed import seabed_stiffness
+from rancf.system.parts.contact_pair import BodyPair, ContactPair
+from rancf.system.parts.obstacle import (
+    OBSTACLE_KINDS,
+    Obstacle,
+    _geometry,
+    _number,
+)
 
 __all__ = [
     "Obstacle",
@@ -82,103 +86,6 @@ class ContactSystem(Protocol):
     contact: Any
 
     def y_from_q(self, q: Any) -> NDArray[np.float64]: ...
-
-
-OBSTACLE_KINDS = ("plane", "cylinder", "sphere")
-_KIND = {k: i for i, k in enumerate(OBSTACLE_KINDS)}
-#: Default penalty stiffness per Young's modulus (module docstring).
-STIFFNESS_FACTOR = 0.1
-#: Default onset width per tube radius (module docstring).
-ONSET_FACTOR = 1e-3
-#: Default regularization velocity ε of the friction [m/s].
-SLIP_VELOCITY = 1e-3
-
-
-@dataclass(frozen=True)
-class Obstacle:
-    """An obstacle (module docstring).
-
-    Parameters
-    ----------
-    kind : {"plane", "cylinder", "sphere"}
-    point, normal : (dim,)
-        Plane: a point of it and its outward normal (need not be unit).
-    center, radius :
-        Cylinder (a circle in 2D) and sphere.
-    axis : (3,)
-        Cylinder in 3D.
-    body : str, optional
-        The rigid body that carries it (geometry then in its frame).
-    friction : float
-        Coulomb coefficient μ.
-    stiffness : float, optional
-        Penalty ``k`` [N/m²]; default: on a seabed (a fixed plane in a fluid facing up against
-        the body's gravity) the body's wet weight over 1 % of its diameter
-        (:func:`rancf.system.seabed.seabed_stiffness`), else a tenth of its Young's modulus.
-    onset : float, optional
-        Width ``d`` [m] of the pressure's smooth onset; default 1e-3 of each body's radius.
-    damping : float
-        Hunt–Crossley factor ``χ`` [s/m]: the pressure is ``k <-g> (1 + χ <-ġ>)`` while the
-        point approaches the obstacle (``ġ < 0``), so impacts lose energy and nothing pulls.
-    damping_normal : float
-        Linear normal damping ``c`` per unit contact area [Pa s/m] while in contact, as
-        MoorDyn's seabed ``cBot``: the force per length ``p - c D ġ`` (``D`` the tube's
-        diameter, the contact width), never pulling.
-    slip_velocity : float
-        Regularization ``ε`` of the friction [m/s] (module docstring).
-    name : str
-    """
-
-    kind: Literal["plane", "cylinder", "sphere"]
-    point: Sequence[float] | None = None
-    normal: Sequence[float] | None = None
-    center: Sequence[float] | None = None
-    radius: float | None = None
-    axis: Sequence[float] | None = None
-    body: str | None = None
-    friction: float = 0.0
-    stiffness: float | None = None
-    onset: float | None = None
-    damping: float = 0.0
-    damping_normal: float = 0.0
-    slip_velocity: float = SLIP_VELOCITY
-    name: str = ""
-
-
-def _vec(key: str, v: Sequence[float] | None, dim: int, unit: bool = False) -> NDArray:
-    a = np.asarray([] if v is None else v, dtype=float)
-    if a.shape != (dim,) or not np.all(np.isfinite(a)) or (unit and not np.linalg.norm(a) > 0):
-        what = "a nonzero vector" if unit else "a point"
-        raise InputError(key, None if v is None else list(v), f"{what} of {dim} finite numbers")
-    a = np.r_[a, np.zeros(3 - dim)]
-    return a / np.linalg.norm(a) if unit else a
-
-
-def _number(key: str, v: float | None, lo: float, strict: bool) -> float:
-    ok = v is not None and np.isfinite(v) and (v > lo if strict else v >= lo)
-    if not ok:
-        raise InputError(key, v, f"a finite number {'>' if strict else '>='} {lo:g}")
-    return float(v)  # type: ignore[arg-type]
-
-
-def _geometry(ob: Obstacle, dim: int) -> tuple[NDArray, NDArray, float]:
-    """(point, direction, radius) of an obstacle, 3 components each."""
-    key = f"obstacles.{ob.name or ob.kind}"
-    if ob.kind not in OBSTACLE_KINDS:
-        raise InputError("obstacles.kind", ob.kind, f"one of {', '.join(OBSTACLE_KINDS)}")
-    if ob.kind == "plane":
-        return _vec(f"{key}.point", ob.point, dim), _vec(f"{key}.normal", ob.normal, dim, True), 0.0
-    if ob.kind == "sphere" and dim == 2:
-        raise InputError(f"{key}.kind", "sphere", 'a 3D system (in 2D a circle is "cylinder")')
-    center = _vec(f"{key}.center", ob.center, dim)
-    radius = _number(f"{key}.radius", ob.radius, 0.0, True)
-    if ob.kind == "sphere":
-        return center, np.array([0.0, 0.0, 1.0]), radius
-    if dim == 2:
-        if ob.axis is not None:
-            raise InputError(f"{key}.axis", list(ob.axis), "none in 2D (a circle in the plane)")
-        return center, np.array([0.0, 0.0, 1.0]), radius
-    return center, _vec(f"{key}.axis", ob.axis, 3, True), radius
 
 
 def _body_points(model: Model, n_c: int) -> tuple[NDArray, NDArray, NDArray, NDArray]:
@@ -210,31 +117,7 @@ def build_contact(
         raise InputError("obstacles.name", names, "distinct names")
     if not (isinstance(n_c, int) and 1 <= n_c <= 64):
         raise InputError("contact_points", n_c, "an integer in 1 .. 64")
-    dim = system.dim
-    kinds, bodies, points, dirs, radii = [], [], [], [], []
-    for ob, name in zip(obstacles, names, strict=True):
-        p, d, rad = _geometry(ob, dim)
-        body = -1
-        if ob.body is not None:
-            b = system.bodies.get(ob.body)
-            if not isinstance(b, RigidBody):
-                raise InputError(f"obstacles.{name}.body", ob.body, "the name of a rigid body")
-            body = system.rigid.index(b)
-        for key, v in (
-            ("friction", ob.friction),
-            ("damping", ob.damping),
-            ("damping_normal", ob.damping_normal),
-        ):
-            _number(f"obstacles.{name}.{key}", v, 0.0, False)
-        _number(f"obstacles.{name}.slip_velocity", ob.slip_velocity, 0.0, True)
-        for key, given in (("stiffness", ob.stiffness), ("onset", ob.onset)):
-            if given is not None:
-                _number(f"obstacles.{name}.{key}", given, 0.0, True)
-        kinds.append(_KIND[ob.kind])
-        bodies.append(body)
-        points.append(p)
-        dirs.append(d)
-        radii.append(rad)
+    obs = [ob.record(system, None, name) for ob, name in zip(obstacles, names, strict=True)]
     flex_names = [k for k, b in system.bodies.items() if isinstance(b, Model)]
     if contacts is None:
         pairs = [(f, o) for f in flex_names for o in names]
@@ -251,9 +134,44 @@ def build_contact(
     for pair in body_contacts:
         if len(pair) != 2 or not all(x in flex_names for x in pair):
             raise InputError("body_contacts", list(pair), "[FLEXIBLE_BODY, FLEXIBLE_BODY] pairs")
-        bpairs.append((pair[0], pair[1]))
-    used = {f for f, _ in pairs} | {x for p in bpairs for x in p}
-    curves = {x for p in bpairs for x in p}
+        bpairs.append(BodyPair(pair[0], pair[1], body_friction))
+    lists = _body_columns(system, flex_names, {f for f, _ in pairs}, bpairs, n_c)
+    parts = [ContactPair(f, obstacles[names.index(o)], o) for f, o in pairs]
+    data = [p.record(system) for p in parts]  # Parts (system.part)
+    i64 = np.int64
+    core = _core.Contact(
+        body_nc=lists["nc"],
+        body_radius=lists["radius"],
+        body_n=lists["n"],
+        body_n1=lists["n1"],
+        body_gw=lists["gw"],
+        body_w=lists["w"],
+        ob_kind=np.array([r.kind for r in obs], dtype=i64),
+        ob_body=np.array([r.body for r in obs], dtype=i64),
+        ob_point=np.array([r.point for r in obs], dtype=float).reshape(-1, 3),
+        ob_dir=np.array([r.direction for r in obs], dtype=float).reshape(-1, 3),
+        ob_radius=np.array([r.radius for r in obs], dtype=float),
+        pair_flex=np.array([flex_names.index(f) for f, _ in pairs], dtype=i64),
+        pair_obstacle=np.array([names.index(o) for _, o in pairs], dtype=i64),
+        pair_data=np.array(data, dtype=float).reshape(-1, 6),
+        body_weights=lists["weights"],
+        body_scales=lists["scales"],
+        body_arc0=lists["arc0"],
+        bpair_a=np.array([flex_names.index(p.a) for p in bpairs], dtype=i64),
+        bpair_b=np.array([flex_names.index(p.b) for p in bpairs], dtype=i64),
+        bpair_data=np.array([p.record(system) for p in bpairs], dtype=float).reshape(-1, 4),
+    )
+    return core, names, pairs
+
+
+def _body_columns(
+    system: ContactSystem, flex_names: list[str], on_obstacles: set[str], bpairs: list, n_c: int
+) -> dict[str, list]:
+    """Per flexible body, the core's contact columns: its Gauss points (``n_c`` per element where
+    it is in a pair, else none), radius, shape functions, weights; and, on a body in contact
+    with bodies, its mesh's weights, scales and reference arc lengths."""
+    curves = {x for p in bpairs for x in (p.a, p.b)}
+    used = on_obstacles | curves
     keys = ("nc", "radius", "n", "n1", "gw", "w", "weights", "scales", "arc0")
     lists: dict[str, list] = {k: [] for k in keys}
     for name in flex_names:
@@ -283,44 +201,7 @@ def build_contact(
         )
         lists["scales"].append(np.ascontiguousarray(mesh.scales, float) if on else np.zeros(0))
         lists["arc0"].append(np.r_[0.0, np.cumsum(w.sum(axis=1))] if on else np.zeros(0))
-    data = []
-    for f, o in pairs:
-        ob = obstacles[names.index(o)]
-        k = ob.stiffness
-        if k is None:
-            k = seabed_stiffness(system, f, ob, dirs[names.index(o)])
-        if k is None:
-            k = STIFFNESS_FACTOR * system.bodies[f].material.youngs_modulus
-        rt = system.bodies[f].section.radius
-        onset = ONSET_FACTOR * rt if ob.onset is None else ob.onset
-        cn = ob.damping_normal * 2.0 * rt  # per area to per length: the contact width D
-        data.append([k, onset, ob.damping, ob.friction, ob.slip_velocity, cn])
-    i64 = np.int64
-    core = _core.Contact(
-        body_nc=lists["nc"],
-        body_radius=lists["radius"],
-        body_n=lists["n"],
-        body_n1=lists["n1"],
-        body_gw=lists["gw"],
-        body_w=lists["w"],
-        ob_kind=np.array(kinds, dtype=i64),
-        ob_body=np.array(bodies, dtype=i64),
-        ob_point=np.array(points, dtype=float).reshape(-1, 3),
-        ob_dir=np.array(dirs, dtype=float).reshape(-1, 3),
-        ob_radius=np.array(radii, dtype=float),
-        pair_flex=np.array([flex_names.index(f) for f, _ in pairs], dtype=i64),
-        pair_obstacle=np.array([names.index(o) for _, o in pairs], dtype=i64),
-        pair_data=np.array(data, dtype=float).reshape(-1, 6),
-        body_weights=lists["weights"],
-        body_scales=lists["scales"],
-        body_arc0=lists["arc0"],
-        bpair_a=np.array([flex_names.index(a) for a, _ in bpairs], dtype=i64),
-        bpair_b=np.array([flex_names.index(b) for _, b in bpairs], dtype=i64),
-        bpair_data=np.array(
-            [_body_pair_data(system, a, b, body_friction) for a, b in bpairs], dtype=float
-        ).reshape(-1, 4),
-    )
-    return core, names, pairs
+    return lists
 
 
 def obstacle_records(system: ContactSystem) -> list[dict]:
@@ -341,12 +222,3 @@ def obstacle_records(system: ContactSystem) -> list[dict]:
             }
         )
     return out
-
-
-def _body_pair_data(system: ContactSystem, a: str, b: str, friction: float) -> list[float]:
-    """Stiffness, onset, friction and slip velocity of two flexible bodies in contact
-    (:func:`build_contact`)."""
-    ma, mb = system.bodies[a], system.bodies[b]
-    k = 0.5 * STIFFNESS_FACTOR * min(ma.material.youngs_modulus, mb.material.youngs_modulus)
-    onset = ONSET_FACTOR * min(ma.section.radius, mb.section.radius)
-    return [k, onset, friction, SLIP_VELOCITY]

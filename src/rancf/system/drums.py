@@ -22,7 +22,6 @@ from numpy.typing import NDArray
 from rancf.bodies.flexible import Model
 from rancf.bodies.time_function import TimeFunction
 from rancf.errors import InputError
-from rancf.kernels.cable import CableKernel
 from rancf.kernels.records import DrumRecord, vec3
 
 __all__ = [
@@ -94,8 +93,8 @@ def drum_record(w: Any, body: Model, node: int, torque: int) -> DrumRecord:
     gravity = np.zeros(3)
     if body.gravity is not None:
         gravity[: body.dim] = body.gravity
-    kernel = body.kernel
-    if not isinstance(kernel, CableKernel):
+    kernel = body.family.cable_kernel(body.kernel)
+    if kernel is None:
         raise InputError(f"winches.{w.name}.at", w.at, "a place on a cable body")
     rho_a = float(kernel.props.rho_a)
     return DrumRecord(
@@ -115,8 +114,8 @@ def add_drum_coordinate(system: Any, w: Any, body: Model) -> int:
     index = system.n
     if int(system.core.n) <= index:
         raise InputError(f"winches.{w.name}", index, f"the coordinate {system.n}")
-    kernel = body.kernel
-    assert isinstance(kernel, CableKernel)  # drum_record
+    kernel = body.family.cable_kernel(body.kernel)
+    assert kernel is not None  # a cable body: drum_record
     system.n += 1
     system.y0 = np.r_[system.y0, float(np.sum(kernel.wj))]
     system.v0 = np.r_[system.v0, 0.0]

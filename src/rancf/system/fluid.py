@@ -13,7 +13,7 @@ forces (fluid.md section 3).
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -21,7 +21,7 @@ import numpy as np
 
 from rancf.errors import InputError
 from rancf.kernels.records import DistributedRecord, FluidRecord, LineRecord, floats, vec3
-from rancf.kernels.rod import RodKernel
+from rancf.system.parts.distributed import DistributedLoad
 
 __all__ = ["Fluid", "Waves", "Hydro", "DistributedLoad", "wave_number", "fluid_records"]
 
@@ -61,16 +61,6 @@ class Hydro:
     drag_axial: float = 0.0
     added_mass_normal: float = 1.0
     added_mass_axial: float = 0.0
-
-
-@dataclass(frozen=True)
-class DistributedLoad:
-    """A force per reference length ``force`` [N/m] (world axes) on the flexible body ``body``
-    (None: every flexible body), times the time function ``time`` (None: constant)."""
-
-    force: tuple[float, ...]
-    body: str | None = None
-    time: Any = None
 
 
 def wave_number(period: float, depth: float, g: float) -> float:
@@ -131,9 +121,8 @@ def _fluid_record(fl: Fluid, gravity: np.ndarray, dim: int) -> FluidRecord:
 def _line(
     index: int, model: Any, hydro: Hydro | None, loads: list[DistributedRecord]
 ) -> LineRecord:
-    k = model.kernel
-    c = k.cable if isinstance(k, RodKernel) else k
-    if not hasattr(c, "n0"):
+    c = model.family.centre_line(model.kernel)
+    if c is None:
         raise InputError("hydro", "beam elements", "a body of cable or rod elements")
     h = hydro or Hydro()
     d = h.diameter if h.diameter is not None else math.sqrt(4.0 * model.section.area / math.pi)
@@ -161,11 +150,11 @@ def fluid_records(
     gravity: np.ndarray,
     fluid: Fluid | None,
     hydro: Mapping[str, Hydro],
-    distributed: Sequence[DistributedLoad],
-    tf: Callable[[Any], int],
+    distributed: Sequence[tuple[str | None, DistributedRecord]],
 ) -> tuple[FluidRecord, list[LineRecord]] | None:
     """The core's records of the fluid and of every flexible body it or a distributed load acts
-    on (None: neither); ``tf`` registers a time function and gives its index."""
+    on (None: neither); ``distributed``: each distributed load's body (None: every flexible
+    body) and record (:meth:`DistributedLoad.record`)."""
     for name in hydro:
         if name not in flex_names:
             raise InputError("hydro", name, f"a flexible body (one of {list(flex_names)})")
@@ -174,17 +163,8 @@ def fluid_records(
             "hydro", sorted(hydro), "coefficients of bodies in a fluid: give the [fluid] table too"
         )
     loads: dict[str, list[DistributedRecord]] = {n: [] for n in flex_names}
-    for i, ld in enumerate(distributed):
-        if len(ld.force) != dim:
-            raise InputError(f"loads.distributed[{i}].force", list(ld.force), f"{dim} components")
-        if ld.body is not None and ld.body not in loads:
-            raise InputError(
-                f"loads.distributed[{i}].body",
-                ld.body,
-                f"a flexible body (one of {list(flex_names)})",
-            )
-        rec = DistributedRecord(vec3(list(ld.force) + [0.0] * (3 - dim)), tf(ld.time))
-        for n in [ld.body] if ld.body is not None else flex_names:
+    for body, rec in distributed:
+        for n in [body] if body is not None else flex_names:
             loads[n].append(rec)
     lines = [
         _line(i, m, hydro.get(n), loads[n])

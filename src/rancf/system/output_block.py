@@ -29,7 +29,6 @@ from numpy.typing import NDArray
 
 from rancf.bodies.nodal_forces import nodal_axial_forces
 from rancf.bodies.reactions import reaction_row, support_reactions
-from rancf.kernels.rod import RodKernel
 from rancf.system.seabed_friction import seabed_friction
 
 __all__ = ["block_derived", "block_sections", "contact_row", "takes_block", "rod_triads"]
@@ -165,9 +164,9 @@ def rod_triads(system: Any, flex: Sequence[tuple[str, Any]]) -> Iterator:
     """Rods: a setter of the triads of a row from its directors (``flex``: the system's
     flexible bodies by name); restored at the end."""
     rods = [
-        (b, b.kernel, system.body_slice(name))
+        (b, kern, system.body_slice(name))
         for name, b in flex
-        if isinstance(b.kernel, RodKernel)
+        if (kern := b.family.rod_kernel(b.kernel)) is not None
     ]
     saved = [(kern.tref.copy(), kern.m1ref.copy()) for _, kern, _ in rods]
 

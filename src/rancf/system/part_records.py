@@ -1,5 +1,5 @@
-"""The records of a system's prescribed motions, and its point loads for the compiled core
-(:mod:`rancf.kernels.records`), made from the parts as :class:`rancf.system.system.System`
+"""A system's point loads as Parts (:class:`~rancf.system.parts.load.Load`): its own and its
+flexible bodies' point loads with a time function, as :class:`rancf.system.system.System`
 gathers them (``system``: the system being built).
 """
 
@@ -7,33 +7,10 @@ from __future__ import annotations
 
 from typing import Any
 
-from rancf.errors import InputError
-from rancf.kernels.records import PrescribedRecord
 from rancf.system.parts.load import Load
 from rancf.system.places import Place
-from rancf.system.record_rows import RecordRows
 
-__all__ = ["motion_records", "all_loads"]
-
-
-def motion_records(system: Any, rows: RecordRows) -> list[PrescribedRecord]:
-    """The prescribed records: held positions of flexible bodies that follow their support's
-    motion."""
-    out = []
-    for name, b in zip(system.names, system.flex, strict=False):
-        for sup in b.supports:
-            if sup.motion is None:
-                continue
-            if sup.kind == "roller":
-                raise InputError("supports.motion", "roller", "a pin or clamp (moving supports)")
-            if sup.motion.size != system.dim:
-                raise InputError("supports.motion", sup.motion.size, f"{system.dim} components")
-            k = rows.tf(sup.motion)
-            base = b.node_base(b.check_node(sup.node, "supports.at"))
-            for i in range(system.dim):
-                coord = system.offsets[name] + base + i
-                out.append(PrescribedRecord(coord, k, i, float(b.y_installed[base + i])))
-    return out
+__all__ = ["all_loads"]
 
 
 def all_loads(system: Any) -> list[Load]:

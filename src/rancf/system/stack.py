@@ -13,7 +13,6 @@ from numpy.typing import ArrayLike, NDArray
 from rancf.bodies.flexible import Model
 from rancf.bodies.rigid import PointMass, RigidBody
 from rancf.errors import InputError
-from rancf.kernels.beam import BeamKernel
 from rancf.kernels.records import PlaceRecord, vec3
 from rancf.system.places import Place
 
@@ -117,7 +116,8 @@ class BodyStack:
         b = self.bodies[p.body_name()]
         if isinstance(b, Model):
             node = p.node()
-            angle0 = float(b.kernel.psi0[node]) if isinstance(b.kernel, BeamKernel) else 0.0
+            beam = b.family.beam_kernel(b.kernel)
+            angle0 = float(beam.psi0[node]) if beam is not None else 0.0
             return PlaceRecord(b.family.place_kind, self.flex.index(b), node, angle0=angle0)
         if isinstance(b, PointMass):
             return PlaceRecord("mass", self.rigid.index(b))

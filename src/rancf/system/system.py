@@ -33,7 +33,8 @@ from rancf.system.core_data import (
     build_core,
     system_model,
 )
-from rancf.system.part_records import all_loads, motion_records
+from rancf.system.part_records import all_loads
+from rancf.system.parts.support import supports_of
 from rancf.system.places import Place
 from rancf.system.record_rows import RecordRows
 from rancf.system.sliding import (
@@ -45,8 +46,9 @@ from rancf.system.stack import Body, BodyStack
 
 if TYPE_CHECKING:  # imported where a system has them: a run without them loads none
     from rancf.system.contact import Obstacle
-    from rancf.system.fluid import DistributedLoad, Fluid, Hydro
-    from rancf.system.winches import Winch
+    from rancf.system.fluid import Fluid, Hydro
+    from rancf.system.parts.distributed import DistributedLoad
+    from rancf.system.parts.winch import Winch
 
 __all__ = ["System", "Body", "as_system"]
 
@@ -89,7 +91,7 @@ class System(BodyStack):
     fluid : :class:`rancf.system.fluid.Fluid`, optional
         The fluid the bodies are in; ``hydro`` maps flexible bodies to their coefficients
         (:class:`~rancf.system.fluid.Hydro`; bodies without them feel no fluid).
-    distributed : sequence of :class:`~rancf.system.fluid.DistributedLoad`
+    distributed : sequence of :class:`~rancf.system.parts.distributed.DistributedLoad`
         Forces per length on flexible bodies.
     horizon : float, optional
         The end of the runs [s]: time functions given as Python callables are sampled on
@@ -151,7 +153,7 @@ class System(BodyStack):
         rows = RecordRows(horizon)
         self._place_index: dict[Place, int] = {}
         parts: dict[str, Sequence[Any]] = {
-            "prescribed": motion_records(self, rows),
+            "prescribed": [r for sup in supports_of(self) for r in sup.record(self, rows)],  # Parts
             "springs": [s.record(self, rows) for s in springs],  # Parts (system.part)
             "loads": [ld.record(self, rows) for ld in all_loads(self)],  # Parts
             "linear": linear,
@@ -168,11 +170,11 @@ class System(BodyStack):
         parts["joints"] = [j.record(self, rows) for j in joints]  # Parts (system.part)
         self.winches = tuple(winches)
         self.winch_lengths: dict[str, Any] = {}
-        winch_tfs: list[tuple[int, int]] = []
         if self.winches:
             from rancf.system.winches import winch_functions
 
-            self.winch_lengths, winch_tfs = winch_functions(self, self.winches, rows.tf)
+            self.winch_lengths = winch_functions(self, self.winches)
+        winch_records = [w.record(self, rows) for w in self.winches]  # Parts (system.part)
         self.records = rows.records(**parts)
         self.obstacles = tuple(obstacles)
         self.body_contacts, self.contact_points = [(a, b) for a, b in body_contacts], contact_points
@@ -185,16 +187,11 @@ class System(BodyStack):
             self.contact, self.obstacle_names, self.contact_pairs = build_contact(
                 self, self.obstacles, contacts, contact_points, body_contacts, body_friction
             )
-        winch_records: tuple[Any, ...] = ()
-        if self.winches:
-            from rancf.system.winches import winch_records as records_of
-
-            winch_records = records_of(self, self.winches, winch_tfs)
         attached = Attached(
             fluid=None if in_fluid is None else in_fluid[0],
             lines=() if in_fluid is None else tuple(in_fluid[1]),
             contact=self.contact,
-            winches=winch_records,
+            winches=tuple(winch_records),
             sliding=sliding_records(self, self.joints),
         )
         self.model = self._model(self.records, attached)
@@ -219,9 +216,8 @@ class System(BodyStack):
         from rancf.system.fluid import fluid_records
 
         names = self.names[: len(self.flex)]
-        return fluid_records(
-            names, self.flex, self.dim, self.gravity, fluid, self.hydro, distributed, rows.tf
-        )
+        loads = [(d.body, d.record(self, rows, i)) for i, d in enumerate(distributed)]  # Parts
+        return fluid_records(names, self.flex, self.dim, self.gravity, fluid, self.hydro, loads)
 
     def _check_gravity(self) -> None:
         """A flexible body's weight comes from its model's ``gravity``, a rigid body's from the

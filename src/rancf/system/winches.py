@@ -14,8 +14,7 @@ the place where the line leaves the drum.
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass
-from typing import Any, Literal, Protocol
+from typing import Any, Protocol
 
 import numpy as np
 
@@ -24,16 +23,14 @@ from rancf.bodies.length import unstretched_length
 from rancf.bodies.reactions import has_moment
 from rancf.bodies.rigid import PointMass
 from rancf.bodies.time_function import TimeFunction, build_up_factor
-from rancf.bodies.winch_inertia import convective_matrices
 from rancf.errors import InputError
-from rancf.kernels.records import WinchRecord
-from rancf.system.drums import add_drum_coordinate, drum_record, drum_torque
+from rancf.system.drums import add_drum_coordinate
+from rancf.system.parts.winch import Winch
 
 __all__ = [
     "Winch",
     "winch_length",
     "winch_functions",
-    "winch_records",
     "add_drums",
     "winch_node",
     "unloaded_at",
@@ -90,49 +87,6 @@ HORIZON_MARGIN = 1.05
 LENGTH_RTOL = 1e-9
 
 
-@dataclass(frozen=True)
-class Winch:
-    """A winch (module docstring).
-
-    Parameters
-    ----------
-    name : str
-    at : str
-        ``"BODY:start"`` or ``"BODY:end"``: the end of a cable body at the drum.
-    length : TimeFunction or float, optional
-        The unstretched length outside the winch [m] as a function of time.
-    speed : TimeFunction or float, optional
-        The pay-out rate [m/s] (reeling in: negative); one of ``length``, ``speed`` and
-        ``torque``.
-    torque : TimeFunction or float, optional
-        A driven drum: the torque on it [N m], positive reeling in; with ``radius`` [m] and
-        ``inertia`` [kg m²] (the drum's, with the rope on it at ``t = 0``): the length follows
-        from the drum's balance (:mod:`rancf.system.drums`).
-    """
-
-    name: str
-    at: str
-    length: TimeFunction | float | None = None
-    speed: TimeFunction | float | None = None
-    torque: TimeFunction | float | None = None
-    radius: float | None = None
-    inertia: float | None = None
-
-    @property
-    def driven(self) -> bool:
-        """Whether the winch is a driven drum (its length a coordinate of the system)."""
-        return self.torque is not None
-
-    def body_and_end(self) -> tuple[str, Literal["start", "end"]]:
-        """The body's name and the end at the drum."""
-        body, _, end = self.at.rpartition(":")
-        if body and end == "start":
-            return body, "start"
-        if body and end == "end":
-            return body, "end"
-        raise InputError(f"winches.{self.name}.at", self.at, '"BODY:start" or "BODY:end"')
-
-
 def winch_length(w: Winch, length0: float, horizon: float | None) -> TimeFunction:
     """``L(t)`` of a winch whose body is ``length0`` long at ``t = 0``: its ``length``, or
     ``length0`` plus the integral of its ``speed`` (trapezoidal on 20 001 points of
@@ -181,14 +135,11 @@ def length_law(f: TimeFunction) -> TimeFunction:
     return TimeFunction.from_callable(length)
 
 
-def winch_functions(
-    system: WinchedSystem, winches: tuple[Winch, ...], tf: Callable
-) -> tuple[dict[str, TimeFunction], list[tuple[int, int]]]:
+def winch_functions(system: WinchedSystem, winches: tuple[Winch, ...]) -> dict[str, TimeFunction]:
     """Each winch's ``L(t)`` as the core evaluates it (a callable sampled on the horizon; a
-    driven drum: its start) by name, and its index among the core's time functions (``tf``
-    registers one) with its torque's (a driven drum; else -1); ``L(0)`` must be the body's
-    unstretched length."""
-    out, functions = [], {}
+    driven drum: its start) by name (its record, :meth:`Winch.record`, registers it);
+    ``L(0)`` must be the body's unstretched length."""
+    functions = {}
     for w in winches:
         body = _body(system, w)
         length0 = unstretched_length(body)
@@ -212,44 +163,7 @@ def winch_functions(
                 )
             f = f.sampled(HORIZON_MARGIN * float(system.horizon))
         functions[w.name] = f
-        out.append((tf(f), drum_torque(w, tf) if w.driven else -1))
-    return functions, out
-
-
-def winch_records(
-    system: WinchedSystem, winches: tuple[Winch, ...], tfs: list[tuple[int, int]]
-) -> tuple[WinchRecord, ...]:
-    """The core's record of each winch: its body, the index of its ``L(t)``, the length the
-    body's arrays hold (``L(0)``: equal to the body's to ``LENGTH_RTOL``, so the body is exactly
-    at its length at the start), the convective matrices and a driven drum's record
-    (:mod:`rancf.system.drums`)."""
-    out = []
-    for w, (tf, torque) in zip(winches, tfs, strict=True):
-        name, end = w.body_and_end()
-        body = _body(system, w)
-        c1, c2, d2 = convective_matrices(body, end)
-        drum = None
-        if torque >= 0 and name in getattr(system, "hydro", {}):
-            raise InputError(
-                f"winches.{w.name}.torque",
-                "a driven drum",
-                f"a length or speed for a line in the fluid ({name} has [hydro]): a drum's "
-                "balance does not take the fluid's loads yet",
-            )
-        if torque >= 0:
-            drum = drum_record(w, body, winch_node(system, w)[1], torque)
-        out.append(
-            WinchRecord(
-                body=system.names.index(name),  # flexible bodies come first
-                length=tf,
-                length_set=float(np.ravel(system.winch_lengths[w.name].value(0.0))[0]),
-                c1=np.ascontiguousarray(c1, dtype=float),
-                c2=np.ascontiguousarray(c2, dtype=float),
-                d2=np.ascontiguousarray(d2, dtype=float),
-                drum=drum,
-            )
-        )
-    return tuple(out)
+    return functions
 
 
 def add_drums(system: WinchedSystem, winches: tuple[Winch, ...]) -> None:
@@ -268,18 +182,7 @@ def winch_node(system: WinchedSystem, w: Winch) -> tuple[str, int]:
 
 
 def _body(system: WinchedSystem, w: Winch) -> Model:
-    name, end = w.body_and_end()
-    body = system.bodies.get(name)
-    if not isinstance(body, Model):
-        raise InputError(f"winches.{w.name}.at", w.at, "the end of a flexible (cable) body")
-    node = 0 if end == "start" else body.n_nodes - 1
-    if not any(body.check_node(s.node, "supports.at") == node for s in body.supports):
-        raise InputError(
-            f"winches.{w.name}.at",
-            w.at,
-            "an end held by a support (pin or clamp) where the line leaves the drum",
-        )
-    return body
+    return w.body(system)
 
 
 def unloaded_at(system: WinchedSystem, t: float) -> np.ndarray:

@@ -1,0 +1,119 @@
+"""Pairs in contact, :class:`~rancf.system.part.Part`\\ s: a flexible body and an obstacle
+(:class:`ContactPair`), two flexible bodies (:class:`BodyPair`; the same twice: self-contact).
+
+Their records are the contact law's coefficients per pair as the core's contact
+(``src/cpp/contact/contact.hpp``, ``src/cpp/contact/body_contact.hpp``) takes them; the law and
+its defaults are in :mod:`rancf.system.contact`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, NamedTuple
+
+from numpy.typing import NDArray
+
+from rancf.system.parts.obstacle import (
+    ONSET_FACTOR,
+    SLIP_VELOCITY,
+    STIFFNESS_FACTOR,
+    Obstacle,
+    _geometry,
+)
+from rancf.system.seabed import seabed_stiffness
+
+if TYPE_CHECKING:
+    from rancf.system.record_rows import RecordRows
+
+__all__ = ["ContactPair", "PairRecord", "BodyPair", "BodyPairRecord"]
+
+
+class PairRecord(NamedTuple):
+    """The contact law of a body on an obstacle: penalty ``k`` [N/m²], onset ``d`` [m],
+    Hunt–Crossley ``χ`` [s/m], Coulomb ``μ``, regularization ``ε`` [m/s] and the normal damping
+    per length ``c D`` [N s/m²]."""
+
+    stiffness: float
+    onset: float
+    damping: float
+    friction: float
+    slip_velocity: float
+    damping_normal: float
+
+
+class BodyPairRecord(NamedTuple):
+    """The contact law of two flexible bodies: penalty ``k``, onset ``d``, Coulomb ``μ`` and
+    regularization ``ε``."""
+
+    stiffness: float
+    onset: float
+    friction: float
+    slip_velocity: float
+
+
+class _NoOutputs:
+    def sensors(self) -> Sequence[str]:
+        """None of its own: its forces are in the outputs' contact columns."""
+        return ()
+
+    def reactions(
+        self, system: Any, y: NDArray, lam: NDArray, t: float = 0.0
+    ) -> Mapping[str, float]:
+        """None (:meth:`sensors`)."""
+        return {}
+
+
+@dataclass(frozen=True)
+class ContactPair(_NoOutputs):
+    """The flexible body ``body`` on the obstacle ``obstacle`` (called ``obstacle_name`` in the
+    system)."""
+
+    body: str
+    obstacle: Obstacle
+    obstacle_name: str
+
+    @property
+    def name(self) -> str:
+        """``BODY/OBSTACLE``."""
+        return f"{self.body}/{self.obstacle_name}"
+
+    def record(self, system: Any, rows: RecordRows | None = None) -> PairRecord:
+        """Its law: the obstacle's coefficients; the stiffness by default a seabed's
+        (:func:`rancf.system.seabed.seabed_stiffness`) or ``STIFFNESS_FACTOR E``, the onset
+        ``ONSET_FACTOR`` of the body's radius, the normal damping per area times the contact
+        width ``D`` (:mod:`rancf.system.contact`)."""
+        ob = self.obstacle
+        k = ob.stiffness
+        if k is None:
+            k = seabed_stiffness(system, self.body, ob, _geometry(ob, system.dim)[1])
+        if k is None:
+            k = STIFFNESS_FACTOR * system.bodies[self.body].material.youngs_modulus
+        rt = system.bodies[self.body].section.radius
+        onset = ONSET_FACTOR * rt if ob.onset is None else ob.onset
+        cn = ob.damping_normal * 2.0 * rt  # per area to per length: the contact width D
+        return PairRecord(k, onset, ob.damping, ob.friction, ob.slip_velocity, cn)
+
+
+@dataclass(frozen=True)
+class BodyPair(_NoOutputs):
+    """The flexible bodies ``a`` and ``b`` in contact (the same: self-contact), with the Coulomb
+    coefficient ``friction``."""
+
+    a: str
+    b: str
+    friction: float = 0.0
+
+    @property
+    def name(self) -> str:
+        """``A/B``."""
+        return f"{self.a}/{self.b}"
+
+    def record(self, system: Any, rows: RecordRows | None = None) -> BodyPairRecord:
+        """Its law: the stiffness ``STIFFNESS_FACTOR E / 2`` of the softer (two sections in
+        series), the onset ``ONSET_FACTOR`` of the thinner radius, regularized by
+        ``SLIP_VELOCITY``."""
+        ma, mb = system.bodies[self.a], system.bodies[self.b]
+        k = 0.5 * STIFFNESS_FACTOR * min(ma.material.youngs_modulus, mb.material.youngs_modulus)
+        onset = ONSET_FACTOR * min(ma.section.radius, mb.section.radius)
+        return BodyPairRecord(k, onset, self.friction, SLIP_VELOCITY)
