@@ -18,7 +18,7 @@ from numpy.typing import NDArray
 if TYPE_CHECKING:
     from rancf.system.record_rows import RecordRows
 
-__all__ = ["Part", "PartHost"]
+__all__ = ["NoOutputs", "Part", "PartHost"]
 
 
 class PartHost(Protocol):
@@ -64,3 +64,18 @@ class Part(Protocol):
         """Its output columns' values at the coordinates ``y``, multipliers ``lam``, time
         ``t``."""
         ...
+
+
+class NoOutputs:
+    """The outputs of a part with no columns of its own: a load's force is an input, and a
+    contact pair's forces are in the contact columns of the outputs."""
+
+    def sensors(self) -> Sequence[str]:
+        """None (class docstring)."""
+        return ()
+
+    def reactions(
+        self, system: PartHost, y: NDArray, lam: NDArray, t: float = 0.0
+    ) -> Mapping[str, float]:
+        """None (class docstring)."""
+        return {}

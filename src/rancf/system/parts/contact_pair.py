@@ -8,12 +8,10 @@ its defaults are in :mod:`rancf.system.contact`.
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, NamedTuple
 
-from numpy.typing import NDArray
-
+from rancf.system.part import NoOutputs
 from rancf.system.parts.obstacle import (
     ONSET_FACTOR,
     SLIP_VELOCITY,
@@ -52,20 +50,8 @@ class BodyPairRecord(NamedTuple):
     slip_velocity: float
 
 
-class _NoOutputs:
-    def sensors(self) -> Sequence[str]:
-        """None of its own: its forces are in the outputs' contact columns."""
-        return ()
-
-    def reactions(
-        self, system: Any, y: NDArray, lam: NDArray, t: float = 0.0
-    ) -> Mapping[str, float]:
-        """None (:meth:`sensors`)."""
-        return {}
-
-
 @dataclass(frozen=True)
-class ContactPair(_NoOutputs):
+class ContactPair(NoOutputs):
     """The flexible body ``body`` on the obstacle ``obstacle`` (called ``obstacle_name`` in the
     system)."""
 
@@ -96,7 +82,7 @@ class ContactPair(_NoOutputs):
 
 
 @dataclass(frozen=True)
-class BodyPair(_NoOutputs):
+class BodyPair(NoOutputs):
     """The flexible bodies ``a`` and ``b`` in contact (the same: self-contact), with the Coulomb
     coefficient ``friction``."""
 

@@ -9,14 +9,12 @@ docs/derivations/fluid.md section 3; :mod:`rancf.system.fluid` gathers the recor
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
-from numpy.typing import NDArray
-
 from rancf.errors import InputError
 from rancf.kernels.records import DistributedRecord, vec3
+from rancf.system.part import NoOutputs
 
 if TYPE_CHECKING:
     from rancf.system.record_rows import RecordRows
@@ -25,7 +23,7 @@ __all__ = ["DistributedLoad"]
 
 
 @dataclass(frozen=True)
-class DistributedLoad:
+class DistributedLoad(NoOutputs):
     """A force per reference length ``force`` [N/m] (world axes) on the flexible body ``body``
     (None: every flexible body), times the time function ``time`` (None: constant)."""
 
@@ -54,13 +52,3 @@ class DistributedLoad:
                 f"a flexible body (one of {flex_names})",
             )
         return DistributedRecord(vec3(list(self.force) + [0.0] * (3 - dim)), rows.tf(self.time))
-
-    def sensors(self) -> Sequence[str]:
-        """None: its force is an input (the reactions of what holds the bodies are outputs)."""
-        return ()
-
-    def reactions(
-        self, system: Any, y: NDArray, lam: NDArray, t: float = 0.0
-    ) -> Mapping[str, float]:
-        """None (:meth:`sensors`)."""
-        return {}

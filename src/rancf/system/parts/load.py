@@ -3,18 +3,18 @@ times a time function; a :class:`~rancf.system.part.Part`."""
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from numpy.typing import NDArray
 
 from rancf.bodies.flexible import Model
 from rancf.bodies.rigid import RigidBody
 from rancf.bodies.time_function import TimeFunction
 from rancf.errors import InputError
 from rancf.kernels.records import LoadRecord, vec3
+from rancf.system.part import NoOutputs
 from rancf.system.places import Place
 
 if TYPE_CHECKING:
@@ -24,7 +24,7 @@ __all__ = ["Load"]
 
 
 @dataclass(frozen=True)
-class Load:
+class Load(NoOutputs):
     """A force (and, on a rigid body, a torque) at a place, world axes, times ``time`` (a
     factor; None: constant)."""
 
@@ -59,13 +59,3 @@ class Load:
         place = system.place_index(p, rows)
         force = vec3(np.r_[f, np.zeros(3 - f.size)])
         return LoadRecord(place, force, vec3(tt), rows.tf(ld.time))
-
-    def sensors(self) -> Sequence[str]:
-        """None: a load's force is its input (the reactions of what holds it are outputs)."""
-        return ()
-
-    def reactions(
-        self, system: Any, y: NDArray, lam: NDArray, t: float = 0.0
-    ) -> Mapping[str, float]:
-        """None (:meth:`sensors`)."""
-        return {}
