@@ -15,7 +15,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -23,7 +23,19 @@ from rancf.errors import InputError
 from rancf.kernels.records import DistributedRecord, FluidRecord, LineRecord, floats, vec3
 from rancf.kernels.rod import RodKernel
 
-__all__ = ["Fluid", "Waves", "Hydro", "DistributedLoad", "wave_number", "fluid_records"]
+if TYPE_CHECKING:
+    from rancf.system.irregular_waves import WaveComponents
+
+__all__ = [
+    "Fluid",
+    "Waves",
+    "JonswapWaves",
+    "RecordedWaves",
+    "Hydro",
+    "DistributedLoad",
+    "wave_number",
+    "fluid_records",
+]
 
 
 @dataclass(frozen=True)
@@ -36,6 +48,66 @@ class Waves:
     direction_deg: float = 0.0
     depth: float = 1000.0
 
+    def wave_components(self, g: float) -> WaveComponents:
+        """The wave as one component of amplitude ``H/2`` and phase 0."""
+        from rancf.system.irregular_waves import WaveComponents
+
+        def one(x: float) -> np.ndarray:
+            return np.array([x], dtype=float)
+
+        om = 2.0 * math.pi / self.period
+        k = wave_number(self.period, self.depth, g)
+        amp = one(0.5 * float(self.height))
+        return WaveComponents(amp, one(om), one(k), one(0.0), self.direction_deg, self.depth)
+
+
+@dataclass(frozen=True)
+class JonswapWaves:
+    """An irregular sea of ``components`` Airy components of a JONSWAP spectrum (significant
+    height ``hs`` [m], peak period ``tp`` [s], peak enhancement ``gamma``), phases drawn from
+    ``seed`` (:func:`rancf.system.irregular_waves.jonswap_components`)."""
+
+    hs: float
+    tp: float
+    gamma: float = 3.3
+    depth: float = 1000.0
+    components: int = 200
+    seed: int = 0
+    direction_deg: float = 0.0
+
+    def wave_components(self, g: float) -> WaveComponents:
+        """The sea's components under gravity ``g``."""
+        from rancf.system.irregular_waves import jonswap_components
+
+        return jonswap_components(
+            self.hs,
+            self.tp,
+            self.gamma,
+            self.depth,
+            self.components,
+            self.seed,
+            self.direction_deg,
+            g,
+        )
+
+
+@dataclass(frozen=True)
+class RecordedWaves:
+    """A measured elevation record ``eta`` [m] at the times ``t`` [s] (equal steps) at the
+    origin, as the components of its discrete Fourier series
+    (:func:`rancf.system.irregular_waves.record_components`)."""
+
+    t: tuple[float, ...]
+    eta: tuple[float, ...]
+    depth: float = 1000.0
+    direction_deg: float = 0.0
+
+    def wave_components(self, g: float) -> WaveComponents:
+        """The record's components under gravity ``g``."""
+        from rancf.system.irregular_waves import record_components
+
+        return record_components(self.t, self.eta, self.depth, self.direction_deg, g)
+
 
 @dataclass(frozen=True)
 class Fluid:
@@ -47,7 +119,7 @@ class Fluid:
     surface: float | None = None
     current: tuple[float, ...] | None = None
     current_profile: tuple[tuple[float, ...], ...] | None = None
-    waves: Waves | None = None
+    waves: Waves | JonswapWaves | RecordedWaves | None = None
 
 
 @dataclass(frozen=True)
@@ -104,13 +176,15 @@ def _fluid_record(fl: Fluid, gravity: np.ndarray, dim: int) -> FluidRecord:
             raise InputError("fluid.waves", "waves", "a fluid with a surface (fluid.surface)")
         if not g > 0:
             raise InputError("fluid.waves", "waves", "gravity (loads.gravity) for waves")
-        b = math.radians(w.direction_deg)
+        c = w.wave_components(g)
+        b = math.radians(c.direction_deg)
         wave = {
             "waves": True,
-            "wave_height": float(w.height),
-            "wave_omega": 2.0 * math.pi / w.period,
-            "wave_depth": float(w.depth),
-            "wave_k": wave_number(w.period, w.depth, g),
+            "wave_amplitude": floats(c.amplitude),
+            "wave_omega": floats(c.omega),
+            "wave_k": floats(c.k),
+            "wave_phase": floats(c.phase),
+            "wave_depth": float(c.depth),
             "wave_dir": (math.cos(b), math.sin(b), 0.0)
             if dim == 3
             else (math.copysign(1.0, math.cos(b)), 0.0, 0.0),

@@ -17,6 +17,8 @@ Kinds (column names ``NAME`` for one number, ``NAME_x``, ``NAME_y`` (, ``NAME_z`
 * ``touchdown``: where a line leaves a plane obstacle (:mod:`rancf.system.touchdown`);
 * ``fluid_force`` on a flexible body (``body``) or on all of them: buoyancy, drag and the
   waves' Froude–Krylov force (:mod:`rancf.system.fluid`; the added mass left out);
+* ``wave_elevation`` with ``at_point``: the free surface's height above that point's horizontal
+  position (:func:`surface_elevation`);
 * ``angle`` of a rigid body: its angle [rad] in 2D (continuous, as integrated), its rotation
   vector in 3D;
 * ``center_of_mass`` [m] and ``momentum`` (linear, [kg m/s]) of the body ``body`` or, without
@@ -49,7 +51,7 @@ from rancf.system.at_point import at_point_reader
 from rancf.system.places import Place
 from rancf.system.readers import Block, NamedReader, Reader
 
-__all__ = ["SensorReader"]
+__all__ = ["SensorReader", "surface_elevation"]
 
 
 class OutputsView(Protocol):
@@ -144,7 +146,10 @@ class SensorReader:
         kind = sen.kind
         places = tuple(getattr(sen, "places", ()) or getattr(sen, "nodes", ()))
         reader: Reader
-        if getattr(sen, "point", None) is not None:
+        if kind == "wave_elevation":
+            pt = sen.point
+            reader = lambda blk: surface_elevation(self.system, pt, blk[0])  # noqa: E731
+        elif getattr(sen, "point", None) is not None:
             reader = at_point_reader(self.out, sen)
         elif kind == "position":
             reader = self._position(sen, places[0])
@@ -371,6 +376,25 @@ class SensorReader:
             return total
 
         return read
+
+
+def surface_elevation(system: Any, point: Sequence[float], t: Any) -> NDArray[np.float64]:
+    """The free surface's height (the still surface plus the waves' elevation, eq. (1) of
+    :mod:`rancf.system.irregular_waves`) above the horizontal position of ``point`` at the
+    times ``t``, from the fluid kernel (``surface_elevation`` of ``src/cpp/fluid/fluid.hpp``).
+
+    Raises
+    ------
+    InputError
+        The system is in no fluid with a free surface.
+    """
+    fl = getattr(system, "fluid", None)
+    if fl is None or fl.surface is None:
+        raise InputError("sensors.wave_elevation", "at_point", "a [fluid] with a surface")
+    p = np.zeros(3)
+    p[: len(point)] = point
+    tt = np.atleast_1d(np.asarray(t, dtype=float))
+    return np.asarray(system.core.surface_elevation(p, np.ascontiguousarray(tt)), dtype=float)
 
 
 def _columns_reader(name: str, dim: int, cols: slice, extra: tuple[str, ...] = ()) -> Reader:
