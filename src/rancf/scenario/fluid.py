@@ -103,21 +103,21 @@ class ElevationTable(Table):
 def _wave_kind(v: Any) -> str | None:
     if isinstance(v, dict):
         found = [k for k in ("spectrum", "elevation") if k in v]
-        return found[0] if len(found) == 1 else ("height" if not found else None)
+        return f"[{found[0]}]" if len(found) == 1 else ("[regular]" if not found else None)
     return _WAVE_TAGS.get(type(v))
 
 
 _WAVE_TAGS: dict[type, str] = {
-    WavesTable: "height",
-    JonswapTable: "spectrum",
-    ElevationTable: "elevation",
+    WavesTable: "[regular]",
+    JonswapTable: "[spectrum]",
+    ElevationTable: "[elevation]",
 }
 
 #: ``waves``: a regular wave, a JONSWAP sea or a measured elevation record.
 WavesValue = Annotated[
-    Annotated[WavesTable, Tag("height")]
-    | Annotated[JonswapTable, Tag("spectrum")]
-    | Annotated[ElevationTable, Tag("elevation")],
+    Annotated[WavesTable, Tag("[regular]")]
+    | Annotated[JonswapTable, Tag("[spectrum]")]
+    | Annotated[ElevationTable, Tag("[elevation]")],
     KindOf(
         _wave_kind,
         custom_error_type="waves",
