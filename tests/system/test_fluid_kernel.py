@@ -1,7 +1,7 @@
 """Fluid loads on lines (docs/derivations/fluid.md): every force's tangent against central
 differences of the assembled residual (positions, velocities, accelerations; cables and rods,
-2D and 3D; current profile, waves and an irregular sea), a rigid motion in still water without drag gives no
-fluid force, and the added mass sits in the Jacobian's mass part."""
+2D and 3D; current profile, waves and an irregular sea), a rigid motion in still water without
+drag gives no fluid force, and the added mass sits in the Jacobian's mass part."""
 
 from __future__ import annotations
 
