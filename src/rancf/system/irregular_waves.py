@@ -17,10 +17,9 @@ with ``e`` the direction of travel and ``k_i`` the root of ``ω_i² = g k tanh(k
   equal steps at the origin: eq. (1) reproduces it at ``t_j`` to round-off (the mean as a
   component of ``ω = 0``; the Nyquist term with half its weight).
 
-These components are not yet fed to the fluid kernel (its record takes one regular wave): it
-takes eq. (1)'s arrays ``(a_i, ω_i, k_i, φ_i)`` in place of one wave's height, frequency and
-wave number, each component's Airy kinematics added (module docstring of
-:mod:`rancf.system.fluid`).
+The fluid kernel takes eq. (1)'s arrays ``(a_i, ω_i, k_i, φ_i)`` (``FluidRecord``), each
+component's Airy kinematics added (:class:`rancf.system.fluid.JonswapWaves`,
+:class:`rancf.system.fluid.RecordedWaves`; a regular wave is one component).
 """
 
 from __future__ import annotations
