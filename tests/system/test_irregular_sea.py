@@ -17,8 +17,7 @@ from rancf.errors import ScenarioError
 from rancf.mesh.factories import mesh_line
 from rancf.scenario.scenario import parse_scenario
 from rancf.system import System
-from rancf.system.fluid import Fluid, Hydro, JonswapWaves, RecordedWaves, Waves
-from rancf.system.sensors import surface_elevation
+from rancf.system.fluid import Fluid, Hydro, JonswapWaves, RecordedWaves, Waves, surface_elevation
 
 HS, TP, G = 6.0, 10.0, 9.80665
 SEC, MAT = Section.circular(0.02), Material(3000.0, 1e7)

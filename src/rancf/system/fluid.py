@@ -15,16 +15,15 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from rancf.errors import InputError
 from rancf.kernels.records import DistributedRecord, FluidRecord, LineRecord, floats, vec3
 from rancf.kernels.rod import RodKernel
-
-if TYPE_CHECKING:
-    from rancf.system.irregular_waves import WaveComponents
+from rancf.system.irregular_waves import JonswapWaves, RecordedWaves, Waves, wave_number
 
 __all__ = [
     "Fluid",
@@ -35,78 +34,8 @@ __all__ = [
     "DistributedLoad",
     "wave_number",
     "fluid_records",
+    "surface_elevation",
 ]
-
-
-@dataclass(frozen=True)
-class Waves:
-    """Linear (Airy) waves: ``height`` H [m], ``period`` T [s], ``direction_deg`` of travel in
-    the horizontal plane from the x axis, water ``depth`` h [m] below the still surface."""
-
-    height: float
-    period: float
-    direction_deg: float = 0.0
-    depth: float = 1000.0
-
-    def wave_components(self, g: float) -> WaveComponents:
-        """The wave as one component of amplitude ``H/2`` and phase 0."""
-        from rancf.system.irregular_waves import WaveComponents
-
-        def one(x: float) -> np.ndarray:
-            return np.array([x], dtype=float)
-
-        om = 2.0 * math.pi / self.period
-        k = wave_number(self.period, self.depth, g)
-        amp = one(0.5 * float(self.height))
-        return WaveComponents(amp, one(om), one(k), one(0.0), self.direction_deg, self.depth)
-
-
-@dataclass(frozen=True)
-class JonswapWaves:
-    """An irregular sea of ``components`` Airy components of a JONSWAP spectrum (significant
-    height ``hs`` [m], peak period ``tp`` [s], peak enhancement ``gamma``), phases drawn from
-    ``seed`` (:func:`rancf.system.irregular_waves.jonswap_components`)."""
-
-    hs: float
-    tp: float
-    gamma: float = 3.3
-    depth: float = 1000.0
-    components: int = 200
-    seed: int = 0
-    direction_deg: float = 0.0
-
-    def wave_components(self, g: float) -> WaveComponents:
-        """The sea's components under gravity ``g``."""
-        from rancf.system.irregular_waves import jonswap_components
-
-        return jonswap_components(
-            self.hs,
-            self.tp,
-            self.gamma,
-            self.depth,
-            self.components,
-            self.seed,
-            self.direction_deg,
-            g,
-        )
-
-
-@dataclass(frozen=True)
-class RecordedWaves:
-    """A measured elevation record ``eta`` [m] at the times ``t`` [s] (equal steps) at the
-    origin, as the components of its discrete Fourier series
-    (:func:`rancf.system.irregular_waves.record_components`)."""
-
-    t: tuple[float, ...]
-    eta: tuple[float, ...]
-    depth: float = 1000.0
-    direction_deg: float = 0.0
-
-    def wave_components(self, g: float) -> WaveComponents:
-        """The record's components under gravity ``g``."""
-        from rancf.system.irregular_waves import record_components
-
-        return record_components(self.t, self.eta, self.depth, self.direction_deg, g)
 
 
 @dataclass(frozen=True)
@@ -143,22 +72,6 @@ class DistributedLoad:
     force: tuple[float, ...]
     body: str | None = None
     time: Any = None
-
-
-def wave_number(period: float, depth: float, g: float) -> float:
-    """The root ``k`` of the dispersion relation ``ω² = g k tanh(k h)`` (Newton from the deep-water
-    value; fluid.md section 2)."""
-    om2 = (2.0 * math.pi / period) ** 2
-    k = max(om2 / g, math.sqrt(om2 / (g * depth)))
-    for _ in range(100):
-        th = math.tanh(k * depth)
-        f = g * k * th - om2
-        df = g * th + g * k * depth * (1.0 - th * th)
-        step = f / df
-        k -= step
-        if abs(step) <= 1e-15 * k:
-            break
-    return k
 
 
 def _fluid_record(fl: Fluid, gravity: np.ndarray, dim: int) -> FluidRecord:
@@ -269,3 +182,22 @@ def fluid_records(
         return None
     fl = fluid if fluid is not None else Fluid(density=0.0)
     return _fluid_record(fl, np.asarray(gravity, float), dim), lines
+
+
+def surface_elevation(system: Any, point: Sequence[float], t: Any) -> NDArray[np.float64]:
+    """The free surface's height (the still surface plus the waves' elevation, eq. (1) of
+    :mod:`rancf.system.irregular_waves`) above the horizontal position of ``point`` at the
+    times ``t``, from the fluid kernel (``surface_elevation`` of ``src/cpp/fluid/fluid.hpp``).
+
+    Raises
+    ------
+    InputError
+        The system is in no fluid with a free surface.
+    """
+    fl = getattr(system, "fluid", None)
+    if fl is None or fl.surface is None:
+        raise InputError("sensors.wave_elevation", "at_point", "a [fluid] with a surface")
+    p = np.zeros(3)
+    p[: len(point)] = point
+    tt = np.atleast_1d(np.asarray(t, dtype=float))
+    return np.asarray(system.core.surface_elevation(p, np.ascontiguousarray(tt)), dtype=float)

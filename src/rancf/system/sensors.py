@@ -48,10 +48,11 @@ from rancf.bodies.reactions import has_moment
 from rancf.bodies.rigid import PointMass, RigidBody, body_angular_velocity
 from rancf.errors import InputError
 from rancf.system.at_point import at_point_reader
+from rancf.system.fluid import surface_elevation
 from rancf.system.places import Place
 from rancf.system.readers import Block, NamedReader, Reader
 
-__all__ = ["SensorReader", "surface_elevation"]
+__all__ = ["SensorReader"]
 
 
 class OutputsView(Protocol):
@@ -376,25 +377,6 @@ class SensorReader:
             return total
 
         return read
-
-
-def surface_elevation(system: Any, point: Sequence[float], t: Any) -> NDArray[np.float64]:
-    """The free surface's height (the still surface plus the waves' elevation, eq. (1) of
-    :mod:`rancf.system.irregular_waves`) above the horizontal position of ``point`` at the
-    times ``t``, from the fluid kernel (``surface_elevation`` of ``src/cpp/fluid/fluid.hpp``).
-
-    Raises
-    ------
-    InputError
-        The system is in no fluid with a free surface.
-    """
-    fl = getattr(system, "fluid", None)
-    if fl is None or fl.surface is None:
-        raise InputError("sensors.wave_elevation", "at_point", "a [fluid] with a surface")
-    p = np.zeros(3)
-    p[: len(point)] = point
-    tt = np.atleast_1d(np.asarray(t, dtype=float))
-    return np.asarray(system.core.surface_elevation(p, np.ascontiguousarray(tt)), dtype=float)
 
 
 def _columns_reader(name: str, dim: int, cols: slice, extra: tuple[str, ...] = ()) -> Reader:
