@@ -48,7 +48,6 @@ from rancf.bodies.reactions import has_moment
 from rancf.bodies.rigid import PointMass, RigidBody, body_angular_velocity
 from rancf.errors import InputError
 from rancf.system.at_point import at_point_reader
-from rancf.system.fluid import surface_elevation
 from rancf.system.places import Place
 from rancf.system.readers import Block, NamedReader, Reader
 
@@ -148,6 +147,8 @@ class SensorReader:
         places = tuple(getattr(sen, "places", ()) or getattr(sen, "nodes", ()))
         reader: Reader
         if kind == "wave_elevation":
+            from rancf.system.fluid import surface_elevation
+
             pt = sen.point
             reader = lambda blk: surface_elevation(self.system, pt, blk[0])  # noqa: E731
         elif getattr(sen, "point", None) is not None:
