@@ -1,7 +1,7 @@
 """Fluid loads on lines (docs/derivations/fluid.md): every force's tangent against central
 differences of the assembled residual (positions, velocities, accelerations; cables and rods,
-2D and 3D; current profile and waves), a rigid motion in still water without drag gives no
-fluid force, and the added mass sits in the Jacobian's mass part."""
+2D and 3D; current profile, waves and an irregular sea), a rigid motion in still water without
+drag gives no fluid force, and the added mass sits in the Jacobian's mass part."""
 
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ from rancf.bodies.time_function import TimeFunction
 from rancf.kernels.call_records import StatePoint, TangentOptions
 from rancf.mesh.factories import mesh_line
 from rancf.system import System
-from rancf.system.fluid import DistributedLoad, Fluid, Hydro, Waves
+from rancf.system.fluid import DistributedLoad, Fluid, Hydro, JonswapWaves, Waves
 
 SEC, MAT = Section.circular(0.02), Material(3000.0, 1e7)
 ROD = Material(3000.0, 1e7, poisson_ratio=0.3)
@@ -56,6 +56,12 @@ def _fluids(dim: int) -> dict[str, Fluid]:
         "current": Fluid(1025.0, surface=-1.3, current=cur),
         "profile": Fluid(1025.0, current_profile=prof),
         "waves": Fluid(1025.0, surface=0.0, current=cur, waves=Waves(1.5, 4.0, 30.0, depth=6.0)),
+        "sea": Fluid(
+            1025.0,
+            surface=0.0,
+            current=cur,
+            waves=JonswapWaves(1.5, 4.0, depth=6.0, components=6, seed=2, direction_deg=30.0),
+        ),
     }
 
 
@@ -85,7 +91,7 @@ def _fluid_jacobian(s: System, bare: System, y, v, a, t, coef) -> np.ndarray:
 
 
 @pytest.mark.parametrize("case", ["2d", "cable", "rod", "rod-clamp"])
-@pytest.mark.parametrize("which", ["current", "profile", "waves"])
+@pytest.mark.parametrize("which", ["current", "profile", "waves", "sea"])
 def test_fluid_tangent_against_differences(case, which, rng):
     """ck d/dy, cv d/dv and ca d/da of the fluid's and distributed loads' part of the residual
     against central differences (error below 1e-6 of the largest entry)."""

@@ -197,13 +197,18 @@ void read_fluid(nb::handle fluid, nb::handle lines, const rancf::System& s, ranc
       f.fail("profile_z", "increasing heights", std::to_string(ff.profile_z[k]));
   rancf::Waves& w = ff.waves;
   w.on = f.flag("waves");
-  w.height = f.number("wave_height");
-  w.omega = f.number("wave_omega");
-  w.k = f.number("wave_k");
+  w.amplitude = f.numbers("wave_amplitude", kAnySize);
+  const std::size_t nw = w.amplitude.size();
+  w.omega = f.numbers("wave_omega", nw);
+  w.k = f.numbers("wave_k", nw);
+  w.phase = f.numbers("wave_phase", nw);
   w.depth = f.number("wave_depth");
   f.numbers_into("wave_dir", w.dir, 3);
-  if (w.on && !(w.k > 0.0 && w.omega > 0.0 && w.depth > 0.0))
-    f.fail("wave_k", "waves with k, omega and depth > 0", std::to_string(w.k));
+  if (w.on && !(nw > 0 && w.depth > 0.0))
+    f.fail("wave_amplitude", "waves with components and depth > 0", std::to_string(nw));
+  for (std::size_t i = 0; w.on && i < nw; ++i)
+    if (!(w.k[i] >= 0.0 && w.omega[i] >= 0.0 && (w.k[i] > 0.0) == (w.omega[i] > 0.0)))
+      f.fail("wave_k", "k, omega >= 0, both 0 or both > 0", std::to_string(w.k[i]));
   each(lines, "lines", [&](const Fields& g) {
     rancf::LineFluid ln;
     ln.body = g.index("body", 0, s.flex.size(), "a flexible body");

@@ -151,6 +151,22 @@ void bind_system_drums(nb::class_<SystemHolder>& cls) {
          "The fluid's force (drag, inertia, buoyancy) on each flexible body, 3 values per body "
          "(world axes); dynamic = False: statics (no velocity, no inertia, no waves).")
       .def(
+          "surface_elevation",
+          [](const SystemHolder& h, In points, In t) {
+            check(h.s.fluid != nullptr && points.size() % 3 == 0,
+                  "surface_elevation: a system in a fluid and points (n, 3)");
+            const std::size_t np = points.size() / 3;
+            std::vector<double> out(np * t.size());
+            for (std::size_t i = 0; i < t.size(); ++i)
+              for (std::size_t j = 0; j < np; ++j)
+                out[i * np + j] = rancf::surface_elevation(h.s.fluid->field, h.s.dim,
+                                                           points.data() + 3 * j, t.data()[i]);
+            return out;
+          },
+          "points"_a, "t"_a,
+          "The free surface's height (the still surface plus the waves' elevation) above the "
+          "horizontal positions of points (n, 3) at the times t: (len(t), n) row-major.")
+      .def(
           "sliding_point",
           [](const SystemHolder& h, int body, In y, double sigma) {
             expect_size(y, static_cast<std::size_t>(h.s.n), "y");

@@ -27,6 +27,46 @@ void depth_ratios(double k, double h, double zs, double& cr, double& sr) {
   sr = std::sinh(k * (zs + h)) / s;
 }
 
+/// Component i's phase k_i x - omega_i t - phi_i at x along the direction of travel.
+double wave_phase(const Waves& w, std::size_t i, double x, double t) {
+  return w.k[i] * x - w.omega[i] * t - w.phase[i];
+}
+
+/// Component i's Airy velocity and acceleration, and their derivatives with respect to r, at
+/// phase th and depth zs below the still surface (above: held at it) added to out.
+void add_airy(const Waves& w, std::size_t i, double th, double zs, bool above, int zi,
+              FluidPoint& out) {
+  const double c = std::cos(th), s = std::sin(th), dz = above ? 0.0 : 1.0;
+  double cr = 0.0, sr = 0.0;
+  depth_ratios(w.k[i], w.depth, zs, cr, sr);
+  const double a = w.amplitude[i] * w.omega[i], om = w.omega[i], k = w.k[i];
+  const double uh = a * cr * c, uv = a * sr * s;
+  const double duh = a * om * cr * s, duv = -a * om * sr * c;
+  for (int j = 0; j < zi; ++j) {
+    out.u[j] += uh * w.dir[j];
+    out.du[j] += duh * w.dir[j];
+  }
+  out.u[zi] += uv;
+  out.du[zi] += duv;
+  // derivatives of (uh, uv, duh, duv) along the direction (d th / d r_j = k dir_j) and in z
+  const double uh_x = -a * cr * s * k, uh_z = a * k * sr * c * dz;
+  const double uv_x = a * sr * c * k, uv_z = a * k * cr * s * dz;
+  const double duh_x = a * om * cr * c * k, duh_z = a * om * k * sr * s * dz;
+  const double duv_x = a * om * sr * s * k, duv_z = -a * om * k * cr * c * dz;
+  for (int j = 0; j < zi; ++j) {
+    for (int l = 0; l < zi; ++l) {
+      out.u_r[l][j] += uh_x * w.dir[l] * w.dir[j];
+      out.du_r[l][j] += duh_x * w.dir[l] * w.dir[j];
+    }
+    out.u_r[zi][j] += uv_x * w.dir[j];
+    out.du_r[zi][j] += duv_x * w.dir[j];
+    out.u_r[j][zi] += uh_z * w.dir[j];
+    out.du_r[j][zi] += duh_z * w.dir[j];
+  }
+  out.u_r[zi][zi] += uv_z;
+  out.du_r[zi][zi] += duv_z;
+}
+
 /// Offset in an element's coordinates of its position/gradient block k (0: rA, 1: rA', 2: rB,
 /// 3: rB'): cables k dim, rods as rod_common.hpp (a twist after each node's gradient).
 int block_offset(const Model& m, int k) {
@@ -68,40 +108,26 @@ void fluid_point(const FluidField& f, int dim, const double* r, double t, bool w
     const Waves& w = f.waves;
     double x = 0.0;
     for (int j = 0; j < zi; ++j) x += r[j] * w.dir[j];
-    const double th = w.k * x - w.omega * t, c = std::cos(th), s = std::sin(th);
-    eta += 0.5 * w.height * c;
     const bool above = z > f.surface;  // above the still surface: the values at it
-    const double zs = above ? 0.0 : z - f.surface, dz = above ? 0.0 : 1.0;
-    double cr = 0.0, sr = 0.0;
-    depth_ratios(w.k, w.depth, zs, cr, sr);
-    const double a = 0.5 * w.height * w.omega, om = w.omega, k = w.k;
-    const double uh = a * cr * c, uv = a * sr * s;
-    const double duh = a * om * cr * s, duv = -a * om * sr * c;
-    for (int j = 0; j < zi; ++j) {
-      out.u[j] += uh * w.dir[j];
-      out.du[j] += duh * w.dir[j];
+    const double zs = above ? 0.0 : z - f.surface;
+    for (std::size_t i = 0; i < w.amplitude.size(); ++i) {
+      const double th = wave_phase(w, i, x, t);
+      eta += w.amplitude[i] * std::cos(th);
+      if (w.k[i] > 0.0) add_airy(w, i, th, zs, above, zi, out);
     }
-    out.u[zi] += uv;
-    out.du[zi] += duv;
-    // derivatives of (uh, uv, duh, duv) along the direction (d th / d r_j = k dir_j) and in z
-    const double uh_x = -a * cr * s * k, uh_z = a * k * sr * c * dz;
-    const double uv_x = a * sr * c * k, uv_z = a * k * cr * s * dz;
-    const double duh_x = a * om * cr * c * k, duh_z = a * om * k * sr * s * dz;
-    const double duv_x = a * om * sr * s * k, duv_z = -a * om * k * cr * c * dz;
-    for (int j = 0; j < zi; ++j) {
-      for (int i = 0; i < zi; ++i) {
-        out.u_r[i][j] += uh_x * w.dir[i] * w.dir[j];
-        out.du_r[i][j] += duh_x * w.dir[i] * w.dir[j];
-      }
-      out.u_r[zi][j] += uv_x * w.dir[j];
-      out.du_r[zi][j] += duv_x * w.dir[j];
-      out.u_r[j][zi] += uh_z * w.dir[j];
-      out.du_r[j][zi] += duh_z * w.dir[j];
-    }
-    out.u_r[zi][zi] += uv_z;
-    out.du_r[zi][zi] += duv_z;
   }
   out.wet = !f.has_surface || z < eta;
+}
+
+double surface_elevation(const FluidField& f, int dim, const double* r, double t) {
+  double eta = f.surface;
+  if (!f.waves.on) return eta;
+  const Waves& w = f.waves;
+  double x = 0.0;
+  for (int j = 0; j < dim - 1; ++j) x += r[j] * w.dir[j];
+  for (std::size_t i = 0; i < w.amplitude.size(); ++i)
+    eta += w.amplitude[i] * std::cos(wave_phase(w, i, x, t));
+  return eta;
 }
 
 namespace {

@@ -20,12 +20,14 @@
 
 namespace rancf {
 
-/// Linear (Airy) waves: elevation (H/2) cos(k x.e - omega t) about the still surface.
+/// Linear (Airy) waves, a sum of components i: elevation a_i cos(k_i x.e - omega_i t - phi_i)
+/// about the still surface (one regular wave: one component of amplitude H/2 and phase 0).
 struct Waves {
   bool on = false;
-  double height = 0.0;              ///< H
-  double omega = 0.0;               ///< 2 pi / T
-  double k = 0.0;                   ///< wave number (k tanh(k h) = omega^2 / g)
+  std::vector<double> amplitude;    ///< a_i
+  std::vector<double> omega;        ///< omega_i = 2 pi / T_i
+  std::vector<double> k;            ///< wave numbers (k tanh(k h) = omega^2 / g; 0: a mean level)
+  std::vector<double> phase;        ///< phi_i
   double depth = 0.0;               ///< h, still surface to the bottom
   double dir[3] = {1.0, 0.0, 0.0};  ///< unit horizontal direction of travel
 };
@@ -75,6 +77,10 @@ struct FluidPoint {
 };
 void fluid_point(const FluidField& f, int dim, const double* r, double t, bool waves,
                  FluidPoint& out);
+
+/// The free surface's height at the horizontal position of r (its last coordinate ignored) at
+/// time t: the still surface plus the waves' elevation.
+double surface_elevation(const FluidField& f, int dim, const double* r, double t);
 
 /// What assemble_line needs of the time step.
 struct LineTerms {

@@ -235,8 +235,9 @@ class FluidRecord:
     """The fluid the bodies are in (``FluidField``, ``src/cpp/fluid/fluid.hpp``): ``density``
     [kg/m^3], ``gravity`` (3) for buoyancy, the still ``surface`` height on the last axis (if
     ``has_surface``), a uniform ``current`` or a profile (``profile_z`` increasing heights,
-    ``profile_u`` their velocities ``(n, 3)`` row-major), and linear waves (``waves``: height
-    ``H``, ``omega = 2 pi / T``, wave number ``k``, ``depth`` and the unit direction)."""
+    ``profile_u`` their velocities ``(n, 3)`` row-major), and linear waves (``waves``: a sum of
+    Airy components ``a_i cos(k_i x.e - omega_i t - phi_i)``, their amplitudes, angular
+    frequencies, wave numbers and phases; ``depth`` and the unit direction ``e``)."""
 
     density: float
     gravity: tuple[float, float, float]
@@ -246,9 +247,10 @@ class FluidRecord:
     profile_z: tuple[float, ...] = ()
     profile_u: tuple[float, ...] = ()
     waves: bool = False
-    wave_height: float = 0.0
-    wave_omega: float = 0.0
-    wave_k: float = 0.0
+    wave_amplitude: tuple[float, ...] = ()
+    wave_omega: tuple[float, ...] = ()
+    wave_k: tuple[float, ...] = ()
+    wave_phase: tuple[float, ...] = ()
     wave_depth: float = 0.0
     wave_dir: tuple[float, float, float] = (1.0, 0.0, 0.0)
 

@@ -9,7 +9,7 @@ import hashlib
 from pathlib import Path
 from typing import Any
 
-from rancf.scenario.table_files import TABLE_KEY
+from rancf.scenario.table_files import FILE_KEYS
 
 __all__ = ["read_file_paths", "file_digests", "changed_file"]
 
@@ -26,7 +26,7 @@ def read_file_paths(raw: Any, scenario_path: str | Path) -> list[Path]:
     def walk(node: Any) -> None:
         if isinstance(node, dict):
             for key, value in node.items():
-                if key == TABLE_KEY and isinstance(value, str):
+                if key in FILE_KEYS and isinstance(value, str):
                     found.add((base / value).resolve())
                 else:
                     walk(value)

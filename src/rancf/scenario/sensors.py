@@ -19,7 +19,8 @@ A sensor names one monitored quantity.  Kinds and their keys:
   the line, walked from its start, leaves the plane (:mod:`rancf.system.touchdown`) [m];
 * of a fluid: ``fluid_force`` (buoyancy, drag and the waves' Froude-Krylov force on the body
   ``body``, default every flexible body; the added-mass force, which needs the accelerations,
-  is left out) [N];
+  is left out) [N]; ``wave_elevation`` (``at_point``: the free surface's height above that
+  point's horizontal position, the still surface plus the waves' elevation) [m];
 * of a winch (``winch = NAME``): ``winch``, its line's unstretched length outside the drum
   ``NAME_length`` [m], pay-out rate ``NAME_speed`` [m/s] and tension ``NAME_tension`` [N] (the
   force of the winch's support on the line).
@@ -61,6 +62,7 @@ SensorKind = Literal[
     "momentum",
     "contact_force",
     "fluid_force",
+    "wave_elevation",
     "touchdown",
     "winch",
 ]
@@ -75,10 +77,11 @@ SYSTEM_SENSOR_KINDS = (
     "momentum",
     "contact_force",
     "fluid_force",
+    "wave_elevation",
     "touchdown",
     "winch",
 )
-_SCALAR = ("distance", "twist", "energy", "axial_force", "tension")
+_SCALAR = ("distance", "twist", "energy", "axial_force", "tension", "wave_elevation")
 #: The kinds that take ``at_point`` (a material point found anew at every output).
 AT_POINT_KINDS = ("position", "twist", "axial_force", "tension")
 
@@ -145,7 +148,8 @@ class SensorTable(Table):
     at_point: Vector23 | None = Field(
         None,
         description="position, twist (rods), axial_force: instead of at, the material point "
-        "nearest to this fixed point in space [m], found anew at every output",
+        "nearest to this fixed point in space [m], found anew at every output; "
+        "wave_elevation: the point whose horizontal position is read",
     )
     joint: Name | None = Field(None, description="reaction: the joint's name")
     obstacle: Name | None = Field(
@@ -182,6 +186,13 @@ class SensorTable(Table):
                     raise fail(k, f"not for a {kd} sensor (of the obstacle)")
             if kd == "contact_force" and self.body is not None:
                 raise fail("body", "not for a contact_force sensor (the obstacle's total force)")
+            return self
+        if kd == "wave_elevation":
+            if self.at_point is None:
+                raise fail("at_point", "a wave_elevation sensor needs at_point = [x, y(, z)]")
+            for k in ("at", "between", "body"):
+                if self[k] is not None:
+                    raise fail(k, "not for a wave_elevation sensor (of the fluid at at_point)")
             return self
         if self.at_point is not None:
             if kd not in AT_POINT_KINDS:

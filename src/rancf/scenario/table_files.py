@@ -21,10 +21,19 @@ from pydantic import ValidationInfo
 
 from rancf.scenario.base import fail
 
-__all__ = ["read_table", "table_rows", "absolute_table_paths", "TABLE_KEY", "ROWS_SCHEMA"]
+__all__ = [
+    "read_table",
+    "table_rows",
+    "absolute_table_paths",
+    "TABLE_KEY",
+    "FILE_KEYS",
+    "ROWS_SCHEMA",
+]
 
 #: The key whose text value names a CSV file.
 TABLE_KEY = "table"
+#: Every key whose text value names a CSV file (``[fluid] waves = { elevation = "eta.csv" }``).
+FILE_KEYS = (TABLE_KEY, "elevation")
 
 
 #: The JSON Schema of a table: rows of numbers, or a CSV file's name.
@@ -114,11 +123,12 @@ def _is_number(text: str) -> bool:
 
 
 def absolute_table_paths(raw: Any, scenario_path: str | Path) -> Any:
-    """``raw`` (a parsed scenario, changed in place) with every ``table = "file"`` made
-    absolute against the folder of ``scenario_path``; returns ``raw``."""
+    """``raw`` (a parsed scenario, changed in place) with every ``table = "file"`` (and
+    ``elevation = "file"``) made absolute against the folder of ``scenario_path``; returns
+    ``raw``."""
     if isinstance(raw, dict):
         for key, value in raw.items():
-            if key == TABLE_KEY and isinstance(value, str):
+            if key in FILE_KEYS and isinstance(value, str):
                 raw[key] = str(_absolute(_base(str(scenario_path)) / value))
             else:
                 absolute_table_paths(value, scenario_path)

@@ -18,23 +18,24 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from rancf.errors import InputError
 from rancf.kernels.records import DistributedRecord, FluidRecord, LineRecord, floats, vec3
+from rancf.system.irregular_waves import JonswapWaves, RecordedWaves, Waves, wave_number
 from rancf.system.parts.distributed import DistributedLoad
 
-__all__ = ["Fluid", "Waves", "Hydro", "DistributedLoad", "wave_number", "fluid_records"]
-
-
-@dataclass(frozen=True)
-class Waves:
-    """Linear (Airy) waves: ``height`` H [m], ``period`` T [s], ``direction_deg`` of travel in
-    the horizontal plane from the x axis, water ``depth`` h [m] below the still surface."""
-
-    height: float
-    period: float
-    direction_deg: float = 0.0
-    depth: float = 1000.0
+__all__ = [
+    "Fluid",
+    "Waves",
+    "JonswapWaves",
+    "RecordedWaves",
+    "Hydro",
+    "DistributedLoad",
+    "wave_number",
+    "fluid_records",
+    "surface_elevation",
+]
 
 
 @dataclass(frozen=True)
@@ -47,7 +48,7 @@ class Fluid:
     surface: float | None = None
     current: tuple[float, ...] | None = None
     current_profile: tuple[tuple[float, ...], ...] | None = None
-    waves: Waves | None = None
+    waves: Waves | JonswapWaves | RecordedWaves | None = None
 
 
 @dataclass(frozen=True)
@@ -61,22 +62,6 @@ class Hydro:
     drag_axial: float = 0.0
     added_mass_normal: float = 1.0
     added_mass_axial: float = 0.0
-
-
-def wave_number(period: float, depth: float, g: float) -> float:
-    """The root ``k`` of the dispersion relation ``ω² = g k tanh(k h)`` (Newton from the deep-water
-    value; fluid.md section 2)."""
-    om2 = (2.0 * math.pi / period) ** 2
-    k = max(om2 / g, math.sqrt(om2 / (g * depth)))
-    for _ in range(100):
-        th = math.tanh(k * depth)
-        f = g * k * th - om2
-        df = g * th + g * k * depth * (1.0 - th * th)
-        step = f / df
-        k -= step
-        if abs(step) <= 1e-15 * k:
-            break
-    return k
 
 
 def _fluid_record(fl: Fluid, gravity: np.ndarray, dim: int) -> FluidRecord:
@@ -94,13 +79,15 @@ def _fluid_record(fl: Fluid, gravity: np.ndarray, dim: int) -> FluidRecord:
             raise InputError("fluid.waves", "waves", "a fluid with a surface (fluid.surface)")
         if not g > 0:
             raise InputError("fluid.waves", "waves", "gravity (loads.gravity) for waves")
-        b = math.radians(w.direction_deg)
+        c = w.wave_components(g)
+        b = math.radians(c.direction_deg)
         wave = {
             "waves": True,
-            "wave_height": float(w.height),
-            "wave_omega": 2.0 * math.pi / w.period,
-            "wave_depth": float(w.depth),
-            "wave_k": wave_number(w.period, w.depth, g),
+            "wave_amplitude": floats(c.amplitude),
+            "wave_omega": floats(c.omega),
+            "wave_k": floats(c.k),
+            "wave_phase": floats(c.phase),
+            "wave_depth": float(c.depth),
             "wave_dir": (math.cos(b), math.sin(b), 0.0)
             if dim == 3
             else (math.copysign(1.0, math.cos(b)), 0.0, 0.0),
@@ -175,3 +162,22 @@ def fluid_records(
         return None
     fl = fluid if fluid is not None else Fluid(density=0.0)
     return _fluid_record(fl, np.asarray(gravity, float), dim), lines
+
+
+def surface_elevation(system: Any, point: Sequence[float], t: Any) -> NDArray[np.float64]:
+    """The free surface's height (the still surface plus the waves' elevation, eq. (1) of
+    :mod:`rancf.system.irregular_waves`) above the horizontal position of ``point`` at the
+    times ``t``, from the fluid kernel (``surface_elevation`` of ``src/cpp/fluid/fluid.hpp``).
+
+    Raises
+    ------
+    InputError
+        The system is in no fluid with a free surface.
+    """
+    fl = getattr(system, "fluid", None)
+    if fl is None or fl.surface is None:
+        raise InputError("sensors.wave_elevation", "at_point", "a [fluid] with a surface")
+    p = np.zeros(3)
+    p[: len(point)] = point
+    tt = np.atleast_1d(np.asarray(t, dtype=float))
+    return np.asarray(system.core.surface_elevation(p, np.ascontiguousarray(tt)), dtype=float)

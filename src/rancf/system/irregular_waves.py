@@ -6,7 +6,7 @@ The free-surface elevation at the horizontal position ``x`` and time ``t`` is::
     η(x, t) = Σ_i a_i cos(ω_i t - k_i e·x + φ_i)                                          (1)
 
 with ``e`` the direction of travel and ``k_i`` the root of ``ω_i² = g k tanh(k h)``
-(:func:`rancf.system.fluid.wave_number`).
+(:func:`wave_number`).
 
 * :func:`jonswap_components`: ``n`` components over ``[0.5 ω_p, 4 ω_p]`` in bins of equal
   width ``Δω``, each at a frequency drawn uniformly inside its bin (a sum of commensurate
@@ -17,10 +17,9 @@ with ``e`` the direction of travel and ``k_i`` the root of ``ω_i² = g k tanh(k
   equal steps at the origin: eq. (1) reproduces it at ``t_j`` to round-off (the mean as a
   component of ``ω = 0``; the Nyquist term with half its weight).
 
-These components are not yet fed to the fluid kernel (its record takes one regular wave): it
-takes eq. (1)'s arrays ``(a_i, ω_i, k_i, φ_i)`` in place of one wave's height, frequency and
-wave number, each component's Airy kinematics added (module docstring of
-:mod:`rancf.system.fluid`).
+The fluid kernel takes eq. (1)'s arrays ``(a_i, ω_i, k_i, φ_i)`` (``FluidRecord``), each
+component's Airy kinematics added (:class:`JonswapWaves`, :class:`RecordedWaves`; a regular
+wave, :class:`Waves`, is one component).
 """
 
 from __future__ import annotations
@@ -32,12 +31,36 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from rancf.errors import InputError
-from rancf.system.fluid import wave_number
 
-__all__ = ["WaveComponents", "jonswap", "jonswap_components", "record_components"]
+__all__ = [
+    "WaveComponents",
+    "Waves",
+    "JonswapWaves",
+    "RecordedWaves",
+    "wave_number",
+    "jonswap",
+    "jonswap_components",
+    "record_components",
+]
 
 #: The band of :func:`jonswap_components`, in multiples of the peak frequency.
 BAND = (0.5, 4.0)
+
+
+def wave_number(period: float, depth: float, g: float) -> float:
+    """The root ``k`` of the dispersion relation ``ω² = g k tanh(k h)`` (Newton from the deep-water
+    value; fluid.md section 2)."""
+    om2 = (2.0 * math.pi / period) ** 2
+    k = max(om2 / g, math.sqrt(om2 / (g * depth)))
+    for _ in range(100):
+        th = math.tanh(k * depth)
+        f = g * k * th - om2
+        df = g * th + g * k * depth * (1.0 - th * th)
+        step = f / df
+        k -= step
+        if abs(step) <= 1e-15 * k:
+            break
+    return k
 
 
 @dataclass(frozen=True)
@@ -144,3 +167,69 @@ def record_components(
     phase = np.asarray(np.angle(c) - omega * tt[0], dtype=np.float64)  # the record starts at t[0]
     k = np.array([0.0 if w == 0.0 else wave_number(2.0 * math.pi / w, depth, g) for w in omega])
     return WaveComponents(amp, omega, k, phase, float(direction_deg), float(depth))
+
+
+@dataclass(frozen=True)
+class Waves:
+    """Linear (Airy) waves: ``height`` H [m], ``period`` T [s], ``direction_deg`` of travel in
+    the horizontal plane from the x axis, water ``depth`` h [m] below the still surface."""
+
+    height: float
+    period: float
+    direction_deg: float = 0.0
+    depth: float = 1000.0
+
+    def wave_components(self, g: float) -> WaveComponents:
+        """The wave as one component of amplitude ``H/2`` and phase 0."""
+
+        def one(x: float) -> np.ndarray:
+            return np.array([x], dtype=float)
+
+        om = 2.0 * math.pi / self.period
+        k = wave_number(self.period, self.depth, g)
+        amp = one(0.5 * float(self.height))
+        return WaveComponents(amp, one(om), one(k), one(0.0), self.direction_deg, self.depth)
+
+
+@dataclass(frozen=True)
+class JonswapWaves:
+    """An irregular sea of ``components`` Airy components of a JONSWAP spectrum (significant
+    height ``hs`` [m], peak period ``tp`` [s], peak enhancement ``gamma``), phases drawn from
+    ``seed`` (:func:`rancf.system.irregular_waves.jonswap_components`)."""
+
+    hs: float
+    tp: float
+    gamma: float = 3.3
+    depth: float = 1000.0
+    components: int = 200
+    seed: int = 0
+    direction_deg: float = 0.0
+
+    def wave_components(self, g: float) -> WaveComponents:
+        """The sea's components under gravity ``g``."""
+        return jonswap_components(
+            self.hs,
+            self.tp,
+            self.gamma,
+            self.depth,
+            self.components,
+            self.seed,
+            self.direction_deg,
+            g,
+        )
+
+
+@dataclass(frozen=True)
+class RecordedWaves:
+    """A measured elevation record ``eta`` [m] at the times ``t`` [s] (equal steps) at the
+    origin, as the components of its discrete Fourier series
+    (:func:`rancf.system.irregular_waves.record_components`)."""
+
+    t: tuple[float, ...]
+    eta: tuple[float, ...]
+    depth: float = 1000.0
+    direction_deg: float = 0.0
+
+    def wave_components(self, g: float) -> WaveComponents:
+        """The record's components under gravity ``g``."""
+        return record_components(self.t, self.eta, self.depth, self.direction_deg, g)

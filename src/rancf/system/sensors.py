@@ -17,6 +17,8 @@ Kinds (column names ``NAME`` for one number, ``NAME_x``, ``NAME_y`` (, ``NAME_z`
 * ``touchdown``: where a line leaves a plane obstacle (:mod:`rancf.system.touchdown`);
 * ``fluid_force`` on a flexible body (``body``) or on all of them: buoyancy, drag and the
   waves' Froude–Krylov force (:mod:`rancf.system.fluid`; the added mass left out);
+* ``wave_elevation`` with ``at_point``: the free surface's height above that point's horizontal
+  position (:func:`surface_elevation`);
 * ``angle`` of a rigid body: its angle [rad] in 2D (continuous, as integrated), its rotation
   vector in 3D;
 * ``center_of_mass`` [m] and ``momentum`` (linear, [kg m/s]) of the body ``body`` or, without
@@ -144,7 +146,12 @@ class SensorReader:
         kind = sen.kind
         places = tuple(getattr(sen, "places", ()) or getattr(sen, "nodes", ()))
         reader: Reader
-        if getattr(sen, "point", None) is not None:
+        if kind == "wave_elevation":
+            from rancf.system.fluid import surface_elevation
+
+            pt = sen.point
+            reader = lambda blk: surface_elevation(self.system, pt, blk[0])  # noqa: E731
+        elif getattr(sen, "point", None) is not None:
             reader = at_point_reader(self.out, sen)
         elif kind == "position":
             reader = self._position(sen, places[0])
