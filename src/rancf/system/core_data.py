@@ -5,7 +5,7 @@ records of its parts: one :class:`~rancf.kernels.records.SystemModel`, which the
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from typing import Any
 
 import numpy as np
@@ -99,19 +99,15 @@ def system_model(
         damping=float(damping),
         stiffness_damping=float(stiffness_damping),
         rigid=tuple(rigid_record(b) for b in rigid),
-        places=records.places,
-        joints=records.joints,
-        springs=records.springs,
-        loads=records.loads,
-        time_functions=records.time_functions,
-        prescribed=records.prescribed,
-        linear=records.linear,
-        fluid=attached.fluid,
-        lines=attached.lines,
-        contact=attached.contact,
-        winches=attached.winches,
-        sliding=attached.sliding,
+        **_by_name(records),
+        **_by_name(attached),
     )
+
+
+def _by_name(parts: SystemRecords | Attached) -> dict[str, Any]:
+    """The fields of ``parts`` by name (not copied): each is the model record's field of that
+    name, so a field added to :class:`SystemRecords` or :class:`Attached` reaches the core."""
+    return {f.name: getattr(parts, f.name) for f in fields(parts)}
 
 
 def build_core(model: SystemModel) -> _core.System:
