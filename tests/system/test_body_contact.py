@@ -342,8 +342,7 @@ def test_the_solver_of_a_coiled_rope_matches_a_dense_solve():
     merges them into a reordered band or makes them border unknowns, by operation counts:
     src/cpp/linalg/bordered.cpp). In the coil, the factored tangent solves as a dense solve of
     the same matrix does."""
-    from rancf.kernels import _core
-    from rancf.kernels.call_records import StaticOptions, StaticPoint
+    from rancf.kernels.call_records import StaticOptions, StaticPoint, evaluator
 
     rope = Model(
         mesh_line([0.0, 0.005], [0.02, 2.0], 40),
@@ -369,17 +368,7 @@ def test_the_solver_of_a_coiled_rope_matches_a_dense_solve():
     out = np.empty(3)
     s.contact.body_outputs(y, out)
     assert out[1] >= 20  # points in contact with the rope itself
-    scheme = _core.Scheme(
-        alpha_m=0.0,
-        alpha_f=0.0,
-        gamma=0.5,
-        beta=0.25,
-        damping=0.0,
-        tol=1e-10,
-        max_iter=1,
-        modified=False,
-    )
-    integ = _core.SystemIntegrator(s.core, scheme)
+    integ = evaluator(s.core)
     stab, lam, z = 1e6, np.zeros(s.m), np.zeros(s.n)
     r = np.empty(s.n + s.m)
     assert integ.factor_static(StaticPoint(y, lam, r), StaticOptions(1.0, False, 0.0, stab=stab))

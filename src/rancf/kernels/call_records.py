@@ -10,9 +10,12 @@ place are never converted (a wrong one is refused in one line naming its field).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
+
+from rancf.kernels import _core
 
 __all__ = [
     "RunBuffers",
@@ -21,6 +24,7 @@ __all__ = [
     "StaticOptions",
     "StatePoint",
     "TangentOptions",
+    "evaluator",
 ]
 
 
@@ -107,3 +111,21 @@ class TangentOptions:
     dynamic: bool = True
     load_factor: float = 1.0
     amplitude: bool = False
+
+
+def evaluator(core: Any, damping: float = 0.0) -> Any:
+    """A core integrator of the system ``core`` used only for what it evaluates at a given state
+    (consistent accelerations, residuals, reactions), never to step: the trapezoidal scheme
+    (``alpha_m = alpha_f = 0``, ``gamma = 1/2``, ``beta = 1/4``), mass-proportional ``damping``
+    [1/s], one Newton iteration."""
+    scheme = _core.Scheme(
+        alpha_m=0.0,
+        alpha_f=0.0,
+        gamma=0.5,
+        beta=0.25,
+        damping=damping,
+        tol=1e-10,
+        max_iter=1,
+        modified=False,
+    )
+    return _core.SystemIntegrator(core, scheme)

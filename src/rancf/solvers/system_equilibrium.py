@@ -36,8 +36,13 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rancf.bodies.flexible import Model
-from rancf.kernels import _core
-from rancf.kernels.call_records import StatePoint, StaticOptions, StaticPoint, TangentOptions
+from rancf.kernels.call_records import (
+    StatePoint,
+    StaticOptions,
+    StaticPoint,
+    TangentOptions,
+    evaluator,
+)
 from rancf.system import System
 from rancf.system.sliding import start_multipliers
 from rancf.system.winches import unloaded_at
@@ -101,17 +106,7 @@ class SystemEquilibrium:
                 pos[: s.dim] = True
             scale[sl][pos] = 1.0 / self.size
         self.scale = scale
-        scheme = _core.Scheme(
-            alpha_m=0.0,
-            alpha_f=0.0,
-            gamma=0.5,
-            beta=0.25,
-            damping=0.0,
-            tol=1e-10,
-            max_iter=1,
-            modified=False,
-        )
-        self._integ = _core.SystemIntegrator(s.core, scheme)
+        self._integ = evaluator(s.core)
 
     @property
     def conservative(self) -> bool:

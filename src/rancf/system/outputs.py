@@ -62,7 +62,7 @@ from numpy.typing import NDArray
 from rancf.bodies.nodal_forces import recovers_axial_force
 from rancf.bodies.reactions import Reaction, reaction_columns, reaction_row, support_reactions
 from rancf.bodies.section_outputs import SectionSampler, section_names
-from rancf.kernels import _core
+from rancf.kernels.call_records import evaluator
 from rancf.system.output_block import (
     block_derived,
     block_sections,
@@ -131,18 +131,8 @@ class SystemOutputs:
         }
         self.sensors = SensorReader(self, sensors)
         self.sensor_names = self.sensors.names
-        scheme = _core.Scheme(
-            alpha_m=0.0,
-            alpha_f=0.0,
-            gamma=0.5,
-            beta=0.25,
-            damping=s.damping,
-            tol=1e-10,
-            max_iter=1,
-            modified=False,
-        )
         #: The core's integrator of the system, for the rows' consistent accelerations.
-        self.integrator = _core.SystemIntegrator(s.core, scheme)
+        self.integrator = evaluator(s.core, s.damping)
         #: The largest |axial strain| of the rows seen so far, and the ``t`` of its row.
         self.largest_strain: tuple[float, float] = (0.0, 0.0)
         #: One flexible body, nothing else with energy: its energies are the system's (stored).
