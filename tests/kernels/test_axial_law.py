@@ -164,3 +164,26 @@ def test_bad_tables_are_refused_in_one_line(rows, match):
 def test_a_beam_refuses_the_law():
     with pytest.raises(InputError, match="material.axial_law.*cable and rod"):
         Model(mesh_line([0.0, 0.0], [1.0, 0.0], 2), "beam", SEC, MAT)
+
+
+def test_strain_rate_damping_damps_the_laws_engineering_strain():
+    """A bar stretching uniformly at the rate dλ/dt with ``[damping] axial = c`` is pulled back
+    by ``c dλ/dt`` at its end: the rate of the engineering strain the table is written in (the
+    Green–Lagrange rate would be ``λ dλ/dt``)."""
+    from rancf.bodies.properties import StrainRateDamping
+    from rancf.bodies.strain_rate import damping_force
+
+    c, lam, rate = 7.0, 1.25, 0.3
+    model = Model(
+        mesh_line([0.0, 0.0], [0.8, 0.0], 4),
+        "rancf",
+        SEC,
+        MAT,
+        strain_rate_damping=StrainRateDamping(axial=c),
+    )
+    q = model.q0.reshape(model.n_nodes, 2, 2)
+    y = (q * [[[lam, 1.0]]]).ravel()  # positions and gradients stretched along x
+    v = (q * [[[rate, 0.0]]]).ravel()
+    f = np.asarray(damping_force(model, y, v)).reshape(model.n_nodes, 2, 2)
+    assert f[-1, 0, 0] == pytest.approx(c * rate, rel=1e-12)
+    assert f[0, 0, 0] == pytest.approx(-c * rate, rel=1e-12)
