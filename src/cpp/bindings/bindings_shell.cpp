@@ -60,8 +60,8 @@ rancf::ShellInput read_shell(nb::handle record) {
   in.material = {f.number("thickness"), f.number("youngs_modulus"), f.number("poisson_ratio"),
                  f.number("density")};
   in.gauss = f.integer("gauss");
-  in.membrane =
-      f.choice<rancf::MembraneStrains>("membrane", std::array<const char*, 2>{"full", "projected"});
+  in.membrane = f.choice<rancf::MembraneStrains>(
+      "membrane", std::array<const char*, 3>{"full", "projected", "reduced"});
   return in;
 }
 

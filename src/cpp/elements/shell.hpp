@@ -10,9 +10,10 @@
 // Strain energy (eqs. 4.5-4.7): Green-Lagrange membrane strains and curvature changes, a St.
 // Venant-Kirchhoff plane-stress law in the reference metric, an n x n Gauss rule on the element;
 // forces and tangent are the exact first and second variations (eqs. 4.8, 4.9).  Membrane
-// strains are used as they are ("full") or as their element-local L2(dA) projections (eq. 5.1,
-// "projected"): eps_11 on degree (2, 3) in (xi, eta), eps_22 on (3, 2), eps_12 on (2, 2).  The
-// mass and the loads per reference area are consistent (sec. 6).
+// strains are used as they are ("full"), as their element-local L2(dA) projections (eq. 5.1,
+// "projected": eps_11 on degree (2, 3) in (xi, eta), eps_22 on (3, 2), eps_12 on (2, 2)), or as
+// they are on a 3 x 3 rule ("reduced", the fallback of sec. 5); bending always on the full rule.
+// The mass and the loads per reference area are consistent (sec. 6).
 //
 // The family does not use the line elements' registry (elements/registry.hpp): that one serves
 // Models of line elements (two nodes, at most 14 coordinates an element); a shell body holds its
@@ -27,8 +28,12 @@ namespace rancf {
 inline constexpr int kShellShapes = 16;  ///< nodal vectors of an element
 inline constexpr int kShellDofs = 48;    ///< coordinates of an element
 
-/// Membrane strains: as they are, or projected (docs/derivations/shell.md eq. 5.1).
-enum class MembraneStrains : int { full = 0, projected = 1 };
+/// Membrane strains: as they are, projected (docs/derivations/shell.md eq. 5.1), or as they are
+/// on a reduced kReducedGauss x kReducedGauss rule (sec. 5, the fallback).
+enum class MembraneStrains : int { full = 0, projected = 1, reduced = 2 };
+
+/// Gauss points per direction of the reduced membrane rule (one less than a cubic's full 4).
+inline constexpr int kReducedGauss = 3;
 
 /// Material and section of a shell body.
 struct ShellMaterial {
@@ -97,19 +102,30 @@ class ShellElements {
 
  private:
   ShellInput in_;
-  int n_qp_ = 0;
-  std::vector<ShellPoint> pts_;  ///< (n_el, n_qp)
-  std::vector<double> proj_;     ///< (n_el, 3, n_qp, n_qp) membrane projections (eq. 5.1)
+  int n_qp_ = 0;                  ///< Gauss points of an element (bending, mass, loads)
+  int n_mp_ = 0;                  ///< Gauss points of an element's membrane energy
+  std::vector<ShellPoint> pts_;   ///< (n_el, n_qp)
+  std::vector<ShellPoint> mpts_;  ///< (n_el, n_mp): the membrane's (the same rule unless reduced)
+  std::vector<double> proj_;      ///< (n_el, 3, n_mp, n_mp) membrane projections (eq. 5.1; I)
 
   [[nodiscard]] const ShellPoint* points(int el) const {
     return pts_.data() + static_cast<std::size_t>(el) * static_cast<std::size_t>(n_qp_);
   }
-  [[nodiscard]] const double* projection(int el) const {
-    return proj_.data() + static_cast<std::size_t>(el) * 3 * static_cast<std::size_t>(n_qp_) *
-                              static_cast<std::size_t>(n_qp_);
+  [[nodiscard]] const ShellPoint* membrane_points(int el) const {
+    return mpts_.data() + static_cast<std::size_t>(el) * static_cast<std::size_t>(n_mp_);
   }
-  void set_up_points(int el, const std::vector<double>& x, const std::vector<double>& w);
+  [[nodiscard]] const double* projection(int el) const {
+    return proj_.data() + static_cast<std::size_t>(el) * 3 * static_cast<std::size_t>(n_mp_) *
+                              static_cast<std::size_t>(n_mp_);
+  }
+  /// Shape functions and reference data of element el on the rule (x, w) x (x, w) into out.
+  void set_up_points(int el, const std::vector<double>& x, const std::vector<double>& w,
+                     ShellPoint* out) const;
   void set_up_projection(int el, const std::vector<double>& x);
+  /// The membrane strains (projected if so chosen) at the membrane points, (n_mp, 3).
+  [[nodiscard]] std::vector<double> membrane_strains(int el, const double* e) const;
+  /// The membrane's forces and (if ke is not null) tangent added to fe, ke.
+  void add_membrane(int el, const double* e, double* fe, double* ke) const;
 };
 
 /// Gauss-Legendre points x and weights w on [0, 1] (n points, exact to degree 2 n - 1).

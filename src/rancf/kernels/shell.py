@@ -18,9 +18,9 @@ The energy, forces, tangent, mass and area loads live once, in the compiled core
 Coordinates run node by node, 12 a node ``[r, r_x, r_y, r_xy]`` (eq. 3.1), as
 :attr:`rancf.mesh.surfaces.SurfaceMesh.q0`; ``connectivity[e, i + 2 j]`` is the node of corner
 ``(i, j)`` of element ``e`` (``i`` along ``u``, ``j`` along ``v``).  ``membrane``:
-``"full"`` (the Green–Lagrange membrane strains as they are) or ``"projected"`` (their
+``"full"`` (the Green–Lagrange membrane strains as they are), ``"projected"`` (their
 element-local L²(dA) projections, the assumed membrane strains of eq. 5.1 against membrane
-locking).
+locking) or ``"reduced"`` (the membrane term on a 3 × 3 Gauss rule, bending on the full one).
 """
 
 from __future__ import annotations
@@ -37,7 +37,7 @@ from rancf.kernels import _core
 __all__ = ["MEMBRANE", "ShellRecord", "ShellKernel", "surface_connectivity"]
 
 #: Treatments of the membrane strains (``MembraneStrains``, ``src/cpp/elements/shell.hpp``).
-MEMBRANE = ("full", "projected")
+MEMBRANE = ("full", "projected", "reduced")
 
 
 @dataclass(frozen=True, eq=False)
@@ -76,8 +76,11 @@ class ShellRecord:
 
 
 class _Direction(Protocol):
-    weights: NDArray[np.float64]
-    scales: NDArray[np.float64]
+    @property
+    def weights(self) -> NDArray[np.float64]: ...
+
+    @property
+    def scales(self) -> NDArray[np.float64]: ...
 
     @property
     def n(self) -> int: ...
