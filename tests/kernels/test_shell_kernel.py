@@ -194,6 +194,8 @@ def test_a_mesh_record_by_hand_matches_from_mesh():
         ("thickness", -1.0, "shell.thickness: expected a number > 0, got -1"),
         ("poisson_ratio", 0.5, "shell.poisson_ratio: expected a number in (-1, 0.5), got 0.5"),
         ("q0", np.zeros(7), "shell.q0: expected 12 coordinates a node, got 7"),
+        ("connectivity", np.zeros((1, 4)), "shell.connectivity: expected an array of integers"),
+        ("connectivity", np.array([[0, 1, 2, 4]]), "shell.connectivity: expected node indices"),
     ],
 )
 def test_bad_input_is_one_line_naming_the_field(field, value, message):

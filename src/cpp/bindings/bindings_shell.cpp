@@ -44,8 +44,11 @@ rancf::ShellInput read_shell(nb::handle record) {
   const Fields f(record, "shell");
   rancf::ShellInput in;
   InI conn;
-  if (!nb::try_cast(f.object("connectivity"), conn))
-    f.fail("connectivity", "a C-contiguous int64 array (n_el, 4)", shown(f.object("connectivity")));
+  const nb::object c = f.object("connectivity");
+  const bool integer =
+      nb::hasattr(c, "dtype") && std::string(nb::str(c.attr("dtype").attr("kind")).c_str()) == "i";
+  if (!integer || !nb::try_cast(c, conn))
+    f.fail("connectivity", "an array of integers (n_el, 4)", shown(c));
   if (conn.size() == 0 || conn.size() % 4 != 0)
     f.fail("connectivity", "(n_el, 4) node indices, n_el >= 1", std::to_string(conn.size()));
   in.connectivity.assign(conn.data(), conn.data() + conn.size());
