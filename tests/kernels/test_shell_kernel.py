@@ -210,3 +210,26 @@ def test_a_wrong_state_size_is_refused():
     _, k = _kernel("rectangle", (1, 1))
     with pytest.raises(ValueError, match="q: expected 48 values, got 47"):
         k.forces(np.zeros(47))
+
+
+def test_pressure_forces_and_their_tangent():
+    """A follower pressure along a3 (toward the axis on a cylinder): on the half cylinder
+    ``[0°, 180°]`` its total force is ``-2 p R L e_z`` to 1e-12; in a deformed state its tangent
+    is the central difference of its forces (1e-6) and not symmetric."""
+    geo = {"kind": "cylinder", "radius": 2.0, "length": 3.0, "angles_deg": [0.0, 180.0]}
+    mesh = mesh_surface(geo, [3, 2])
+    k = ShellKernel.from_mesh(mesh, T, E, NU, RHO, gauss=16)
+    total = k.pressure(mesh.q0, 5.0).reshape(-1, 4, 3)[:, 0].sum(axis=0)
+    np.testing.assert_allclose(total, [0.0, 0.0, -2.0 * 5.0 * 2.0 * 3.0], atol=1e-12 * 60.0)
+    k = ShellKernel.from_mesh(mesh, T, E, NU, RHO)
+    q = mesh.q0 + 0.05 * np.random.default_rng(5).normal(size=k.n)
+    kt = k.pressure_tangent(q, 5.0).toarray()
+    kd = _central(lambda x: k.pressure(x, 5.0), q, 1e-6)
+    assert np.abs(kt - kd).max() <= 1e-6 * np.abs(kt).max()
+    assert np.abs(kt - kt.T).max() >= 1e-3 * np.abs(kt).max()
+
+
+def test_pressure_on_a_flat_patch_is_p_times_area_along_the_normal():
+    mesh, k = _kernel("rectangle", (3, 2))
+    total = k.pressure(mesh.q0, -2.0).reshape(-1, 4, 3)[:, 0].sum(axis=0)
+    np.testing.assert_allclose(total, [0.0, 0.0, -2.0 * 3.0], atol=1e-12)

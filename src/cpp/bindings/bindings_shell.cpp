@@ -125,7 +125,28 @@ void bind_shell(nb::module_& mod) {
             s.area_load(p.data(), f.data());
             return to_numpy(std::move(f));
           },
-          "p"_a, "Consistent nodal forces of a constant force p (3) per reference area (sec. 6).");
+          "p"_a, "Consistent nodal forces of a constant force p (3) per reference area (sec. 6).")
+      .def(
+          "pressure",
+          [](const rancf::ShellElements& s, In q, double p) {
+            expect_q(s, q);
+            std::vector<double> f(static_cast<std::size_t>(s.n()));
+            s.pressure(q.data(), p, f.data(), nullptr);
+            return to_numpy(std::move(f));
+          },
+          "q"_a, "p"_a, "Forces of a follower pressure p along the current normal a3 (sec. 6).")
+      .def(
+          "pressure_tangent",
+          [](const rancf::ShellElements& s, In q, double p) {
+            expect_q(s, q);
+            std::vector<double> f(static_cast<std::size_t>(s.n()));
+            rancf::Triplets t;
+            s.pressure(q.data(), p, f.data(), &t);
+            return triplets(std::move(t));
+          },
+          "q"_a, "p"_a,
+          "d/dq of the pressure forces (not symmetric) as (rows, cols, values), duplicates to be "
+          "summed.");
 }
 
 }  // namespace rancf_bind

@@ -345,7 +345,8 @@ void ShellElements::set_up_points(int el, const std::vector<double>& x,
       if (!(k.at > 0.0) || !std::isfinite(k.at))
         fail("q0", "a regular reference surface (|A1 x A2| > 0)",
              "a vanishing normal in element " + std::to_string(el));
-      pt.wda = w[static_cast<std::size_t>(p)] * w[static_cast<std::size_t>(q)] * k.at;
+      pt.w = w[static_cast<std::size_t>(p)] * w[static_cast<std::size_t>(q)];
+      pt.wda = pt.w * k.at;
       pt.a_ref[0] = dot(k.a[0], k.a[0]);
       pt.a_ref[1] = dot(k.a[1], k.a[1]);
       pt.a_ref[2] = dot(k.a[0], k.a[1]);
@@ -590,6 +591,43 @@ void ShellElements::area_load(const double* p, double* f) const {
       for (int q = 0; q < n_qp_; ++q) a += pt[q].wda * pt[q].s[0][s];
       for (int d = 0; d < 3; ++d) f[g[3 * s + d]] += a * p[d];
     }
+  }
+}
+
+void ShellElements::pressure(const double* q, double p, double* f, Triplets* t) const {
+  std::fill(f, f + n(), 0.0);
+  double e[kD], ke[kD * kD];
+  std::int64_t g[kD];
+  for (int el = 0; el < n_el(); ++el) {
+    const ShellPoint* pt = points(el);
+    gather(el, q, e);
+    dof_map(in_.connectivity.data() + 4 * el, g);
+    std::fill(ke, ke + kD * kD, 0.0);
+    for (int gp = 0; gp < n_qp_; ++gp) {
+      const Kin k = kinematics(pt[gp], e);
+      const double wp = pt[gp].w * p;
+      for (int s = 0; s < kShellShapes; ++s)
+        for (int d = 0; d < 3; ++d) f[g[3 * s + d]] += wp * pt[gp].s[0][s] * k.nt[d];
+      if (t == nullptr) continue;
+      for (int u = 0; u < kShellShapes; ++u)  // a3t_(u, c) = S_u,1 e_c x a_2 + S_u,2 a_1 x e_c
+        for (int c = 0; c < 3; ++c) {
+          double ec[3] = {0.0, 0.0, 0.0}, c1[3], c2[3];
+          ec[c] = 1.0;
+          cross(ec, k.a[1], c1);
+          cross(k.a[0], ec, c2);
+          for (int s = 0; s < kShellShapes; ++s)
+            for (int d = 0; d < 3; ++d)
+              ke[(3 * s + d) * kD + 3 * u + c] +=
+                  wp * pt[gp].s[0][s] * (pt[gp].s[1][u] * c1[d] + pt[gp].s[2][u] * c2[d]);
+        }
+    }
+    if (t == nullptr) continue;
+    for (int r = 0; r < kD; ++r)
+      for (int u = 0; u < kD; ++u) {
+        t->rows.push_back(g[r]);
+        t->cols.push_back(g[u]);
+        t->values.push_back(ke[r * kD + u]);
+      }
   }
 }
 

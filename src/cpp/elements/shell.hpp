@@ -60,6 +60,7 @@ struct ShellInput {
 /// Shape functions and reference data at one Gauss point of one element.
 struct ShellPoint {
   double s[6][kShellShapes];  ///< S, S_1, S_2, S_11, S_22, S_12 (1 = xi, 2 = eta)
+  double w;                   ///< Gauss weight
   double wda;                 ///< Gauss weight times the reference |A1 x A2| (eq. 4.3)
   double a_ref[3];            ///< A_11, A_22, A_12
   double b_ref[3];            ///< B_11, B_22, B_12
@@ -93,6 +94,11 @@ class ShellElements {
   [[nodiscard]] Triplets mass() const;
   /// Consistent nodal forces of a constant force p (3) per reference area into f (n values).
   void area_load(const double* p, double* f) const;
+
+  /// Follower pressure p along the current normal a3 (per current area, sec. 6): the forces
+  /// Q = int p S^T a3t dxi deta into f (n values) and, if t is not null, dQ/dq (not symmetric)
+  /// as triplets into t.
+  void pressure(const double* q, double p, double* f, Triplets* t) const;
 
   /// One element: its 48 coordinates from q.
   void gather(int el, const double* q, double* e) const;

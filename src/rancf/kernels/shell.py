@@ -12,6 +12,8 @@ The energy, forces, tangent, mass and area loads live once, in the compiled core
     kernel.mass() -> csr_matrix (n, n)        # consistent, constant (sec. 6)
     kernel.area_load(p) -> (n,)               # a constant force p (3) per reference area
     kernel.gravity(g) -> (n,)                 # area_load(density * thickness * g)
+    kernel.pressure(q, p) -> (n,)             # follower pressure p along a3 (sec. 6)
+    kernel.pressure_tangent(q, p) -> csr_matrix   # its dQ/dq (not symmetric)
     kernel.core                               # rancf.kernels._core.ShellKernel: the same
                                               # methods, matrices as (rows, cols, values)
 
@@ -174,6 +176,15 @@ class ShellKernel:
         """Consistent nodal forces ``∫ Sᵀ p dA`` of a constant force ``p`` (3) per reference
         area (sec. 6)."""
         return np.asarray(self.core.area_load(np.ascontiguousarray(p, dtype=float)))
+
+    def pressure(self, q: ArrayLike, p: float) -> NDArray[np.float64]:
+        """Forces ``∫ p Sᵀ ã3 dξ dη`` of a follower pressure ``p`` along the current normal
+        ``a3`` (per current area; sec. 6)."""
+        return np.asarray(self.core.pressure(self._q(q), float(p)))
+
+    def pressure_tangent(self, q: ArrayLike, p: float) -> sp.csr_matrix:
+        """``∂Q/∂q = ∫ p Sᵀ ∂ã3/∂q dξ dη`` of :meth:`pressure` (not symmetric), sparse."""
+        return _coo(self.core.pressure_tangent(self._q(q), float(p)), self.n)
 
     def gravity(self, g: ArrayLike) -> NDArray[np.float64]:
         """Weight ``∫ ρ t Sᵀ g dA`` (sec. 6)."""
