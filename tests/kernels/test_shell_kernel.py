@@ -233,3 +233,20 @@ def test_pressure_on_a_flat_patch_is_p_times_area_along_the_normal():
     mesh, k = _kernel("rectangle", (3, 2))
     total = k.pressure(mesh.q0, -2.0).reshape(-1, 4, 3)[:, 0].sum(axis=0)
     np.testing.assert_allclose(total, [0.0, 0.0, -2.0 * 3.0], atol=1e-12)
+
+
+def test_the_tangent_is_the_same_with_two_threads():
+    """The element loop shared by two threads gives the same triplets bit for bit."""
+    from rancf.kernels import _core
+
+    mesh, k = _kernel("sphere", (8, 8))
+    q = mesh.q0 + 0.01 * np.random.default_rng(2).normal(size=k.n)
+    before = _core.assembly_threads()
+    try:
+        _core.set_assembly_threads(1)
+        one = k.core.tangent(q)
+        _core.set_assembly_threads(2)
+        two = k.core.tangent(q)
+    finally:
+        _core.set_assembly_threads(before)
+    assert all(np.array_equal(a, b) for a, b in zip(one, two, strict=True))

@@ -24,6 +24,7 @@
 #include <utility>
 
 #include "bodies/cable_shape.hpp"
+#include "bodies/threads.hpp"
 
 namespace rancf {
 namespace {
@@ -536,25 +537,52 @@ void dof_map(const std::int64_t* conn, std::int64_t* g) {
 
 }  // namespace
 
-Triplets ShellElements::tangent(const double* q) const {
-  Triplets t;
-  const std::size_t size = static_cast<std::size_t>(n_el()) * kD * kD;
-  t.rows.reserve(size);
-  t.cols.reserve(size);
-  t.values.reserve(size);
+namespace {
+
+/// The tangent's element loop in chunks of elements, each writing its elements' 2304 triplets
+/// at their own place (the result does not depend on the number of threads).
+struct TangentJob {
+  const ShellElements* shell;
+  const double* q;
+  Triplets* t;
+  int n_chunks;
+};
+
+void tangent_chunk(void* ctx, int chunk) {
+  const auto* job = static_cast<const TangentJob*>(ctx);
+  const ShellElements& s = *job->shell;
+  const int lo = s.n_el() * chunk / job->n_chunks, hi = s.n_el() * (chunk + 1) / job->n_chunks;
   std::vector<double> ke(kD * kD);
   double e[kD], fe[kD];
   std::int64_t g[kD];
-  for (int el = 0; el < n_el(); ++el) {
-    gather(el, q, e);
-    element_forces(el, e, fe, ke.data());
-    dof_map(in_.connectivity.data() + 4 * el, g);
+  for (int el = lo; el < hi; ++el) {
+    s.gather(el, job->q, e);
+    s.element_forces(el, e, fe, ke.data());
+    dof_map(s.input().connectivity.data() + 4 * el, g);
+    const std::size_t at = static_cast<std::size_t>(el) * kD * kD;
     for (int r = 0; r < kD; ++r)
       for (int u = 0; u < kD; ++u) {
-        t.rows.push_back(g[r]);
-        t.cols.push_back(g[u]);
-        t.values.push_back(ke[static_cast<std::size_t>(r * kD + u)]);
+        const std::size_t i = at + static_cast<std::size_t>(r * kD + u);
+        job->t->rows[i] = g[r];
+        job->t->cols[i] = g[u];
+        job->t->values[i] = ke[static_cast<std::size_t>(r * kD + u)];
       }
+  }
+}
+
+}  // namespace
+
+Triplets ShellElements::tangent(const double* q) const {
+  Triplets t;
+  const std::size_t size = static_cast<std::size_t>(n_el()) * kD * kD;
+  t.rows.resize(size);
+  t.cols.resize(size);
+  t.values.resize(size);
+  const int threads = n_el() >= kMinParallelElements ? assembly_threads() : 1;
+  TangentJob job{this, q, &t, threads};
+  if (threads <= 1 || !run_chunks(threads, tangent_chunk, &job)) {
+    job.n_chunks = 1;
+    tangent_chunk(&job, 0);
   }
   return t;
 }

@@ -88,7 +88,8 @@ class ShellElements {
   [[nodiscard]] double energy(const double* q) const;
   /// Internal forces dW/dq into f (n values, overwritten).
   void forces(const double* q, double* f) const;
-  /// Tangent d2W/dq2 as triplets (2304 an element, duplicates summed by the caller).
+  /// Tangent d2W/dq2 as triplets (2304 an element in element order, duplicates summed by the
+  /// caller); the elements shared among the assembly threads (bodies/threads.hpp).
   [[nodiscard]] Triplets tangent(const double* q) const;
   /// Consistent mass matrix (sec. 6) as triplets.
   [[nodiscard]] Triplets mass() const;
