@@ -26,13 +26,17 @@ gradient ``r_x`` along the shape's tangent with the length of its unstretched gr
 docs/derivations/variable-length.md §2.1).
 A line shorter than that chord (installed stretched) starts straight between its held ends,
 stretched evenly (its gradients too).  Other bodies keep their reference.  From there Newton's
-method at the full load with the supports installed (the last stage's end; at least
-:data:`NEWTON_ITERATIONS` iterations), and relaxation
+method at the full load with the supports installed (the last stage's end): where a sagged line
+is stiff (its ``EA`` above :data:`rancf.solvers.axial_continuation.STIFF_RATIO` times its
+weight) first with the ``EA`` of such lines continued up to their own
+(:func:`rancf.solvers.axial_continuation.continued_newton`), else or where that fails from the
+start shape at their own ``EA`` (at least :data:`NEWTON_ITERATIONS` iterations); relaxation
 (:func:`rancf.solvers.relaxation.relax`, at most :data:`RELAX_STEPS` steps) if Newton fails.
 """
 
 from __future__ import annotations
 
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -40,7 +44,8 @@ from numpy.typing import NDArray
 
 from rancf.bodies.flexible import Model
 from rancf.bodies.length import length_scale
-from rancf.solvers.newton import newton
+from rancf.solvers.axial_continuation import continued_newton, stiff_lines
+from rancf.solvers.newton import NewtonOutcome, newton
 from rancf.solvers.relaxation import relax
 from rancf.solvers.static_catenary import catenary_shape, touchdowns
 from rancf.solvers.system_equilibrium import SystemEquilibrium
@@ -60,12 +65,13 @@ SAG_START = "sag start+newton"
 #: through its touchdowns, e.g. 625 steps for a 500 m line of 80 elements; the load path's
 #: relaxation keeps :data:`rancf.solvers.relaxation.MAX_STEPS`).
 RELAX_STEPS = 2000
-#: Newton's iterations from the sagged start at least (the solver's ``max_iter`` if larger).  A
-#: line whose ``EA`` is about 1e9 times its tension creeps along its nearly inextensible shapes
-#: (the residual falls by about half per 25 iterations) before it converges quadratically:
-#: MoorPy's sloped lines in 34 to 41 iterations.  Not more: its U (a bend of radius 2.6 m at the
-#: touchdowns, 160 elements) creeps for 182 iterations into a root that holds 0.9 % more line
-#: off the seabed than the heavy elastica, where relaxation comes to rest at the elastica's.
+#: Newton's iterations from the sagged start at least (the solver's ``max_iter`` if larger), at
+#: the lines' own ``EA``.  A line whose ``EA`` is about 1e9 times its tension creeps along its
+#: nearly inextensible shapes (the residual falls by about half per 25 iterations) before it
+#: converges quadratically: MoorPy's sloped lines in 34 to 41 iterations (with the continuation
+#: in ``EA`` of :mod:`rancf.solvers.axial_continuation` 25 to 35, taken first).  Not more: its U
+#: on a mesh too coarse for its touchdowns (160 elements, 0.31 of the bend radius) creeps for
+#: 182 iterations into one of the several states such a locked mesh holds.
 NEWTON_ITERATIONS = 60
 #: A line within this (relative) of its chord keeps its reference: no start shape.
 SLACK_RTOL = 1e-9
@@ -140,6 +146,17 @@ def _line_geometry(system: Any, name: str, model: Model, pinned: bool = False) -
     rise = float(chord @ up)
     span = float(np.linalg.norm(chord - rise * up))
     return q, up, p1, chord, s_nodes, span, rise
+
+
+def _slack(system: Any, name: str, model: Model, pinned: bool) -> bool:
+    """Whether body ``name`` gets a sagged (not a straight, stretched) start shape."""
+    geo = _line_geometry(system, name, model, pinned)
+    if geo is None:
+        return False
+    chord, s_nodes, span = geo[3], geo[4], geo[5]
+    length = float(s_nodes[-1])
+    stretch = float(np.linalg.norm(chord)) / length
+    return stretch * (1.0 + SLACK_RTOL) < 1.0 and span > 1e-9 * length
 
 
 def touchdown_radius(system: Any, name: str, model: Model) -> tuple[float, list[float]] | None:
@@ -231,7 +248,20 @@ def solve_from_sag(
     problem.stage = len(problem.stages) - 1
     end = problem.stages[-1][1]
     problem.place_supports(z, end)
+    slack = [
+        n for n, m in zip(system.names, system.flex, strict=False) if _slack(system, n, m, pinned)
+    ]
+    stiff = stiff_lines(system, slack)
+    tried = NewtonOutcome(False, z, 0, 0, np.inf)
+    if stiff:
+        tried = continued_newton(problem, z, end, tol, stiff)
+        if tried.converged:
+            problem.accept(tried.y)
+            return tried.y, end, tried.iterations, tried.iterations, tried.residuals, 0
     out = newton(problem, z, end, tol, max(max_iter, NEWTON_ITERATIONS))
+    out = replace(
+        out, iterations=out.iterations + tried.iterations, residuals=out.residuals + tried.residuals
+    )
     if out.converged:
         problem.accept(out.y)
         return out.y, end, out.iterations, out.iterations, out.residuals, 0
