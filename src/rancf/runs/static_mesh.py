@@ -203,19 +203,8 @@ def _node_indexed(d: Any) -> bool:
 
 def start_ratios(system: Any) -> dict[str, tuple[float, float]]:
     """Per cable body whose sagged start shape meets a seabed, the largest ratio of the length
-    of an element holding a touchdown point of that shape to its bend radius there
-    (:func:`rancf.solvers.sag_start.touchdown_radius`)."""
-    import numpy as np
+    of an element holding a touchdown point of that shape to its bend radius there, and that
+    element's length (:func:`rancf.solvers.sag_start.start_touchdowns`)."""
+    from rancf.solvers.sag_start import start_touchdowns
 
-    from rancf.solvers.sag_start import touchdown_radius
-
-    out = {}
-    for name, model in zip(system.names, system.flex, strict=False):
-        found = touchdown_radius(system, name, model)
-        if found is None or not found[0] > 0.0 or not found[1]:
-            continue
-        ell = model.mesh.arc_lengths()
-        starts = np.r_[0.0, np.cumsum(ell)]
-        e = np.clip(np.searchsorted(starts, found[1], side="right") - 1, 0, ell.size - 1)
-        out[name] = (float(ell[e].max()) / found[0], float(ell[e].max()))
-    return out
+    return start_touchdowns(system)

@@ -49,6 +49,8 @@ from rancf.solvers.newton import NewtonOutcome, newton
 from rancf.solvers.relaxation import relax
 from rancf.solvers.static_catenary import catenary_shape, touchdowns
 from rancf.solvers.system_equilibrium import SystemEquilibrium
+from rancf.system.parts.contact_pair import ContactPair
+from rancf.system.seabed import pressing_weight
 
 __all__ = [
     "SAG_START",
@@ -57,6 +59,8 @@ __all__ = [
     "solve_from_sag",
     "clamped_lines",
     "touchdown_radius",
+    "start_touchdowns",
+    "touchdown_causes",
 ]
 
 #: ``StaticResult.method`` of an equilibrium found from the sagged start shape.
@@ -82,6 +86,21 @@ def _held_position(model: Model, node: int) -> bool:
     return bool(np.all(model.fixed[b : b + model.dim]))
 
 
+def _resting_height(system: Any, name: str, ob: Any, n: NDArray) -> float:
+    """The height above the plane ``ob`` (unit normal ``n``) of body ``name``'s centerline
+    resting on it under its wet weight: its tube radius less the penalty's sinking
+    ``w_n / k + d / 2`` (:mod:`rancf.system.seabed`; ``k``, ``d`` the pair's stiffness and
+    onset), at least 0.  Resting there, not touching at the onset, the grounded line has the
+    contact's stiffness from the start: with no tension yet (the start is unstretched) its
+    bending stiffness alone would hold it up, and Newton's first steps moved a 330 m chain on
+    160 elements by kilometres."""
+    radius = float(system.bodies[name].section.radius)
+    law = ContactPair(name, ob, "").record(system)
+    w_n = pressing_weight(system, name, np.r_[n, np.zeros(3 - n.size)])
+    sink = max(w_n, 0.0) / law.stiffness + 0.5 * law.onset
+    return max(radius - sink, 0.0)
+
+
 def _floor(
     system: Any, name: str, model: Model, up: NDArray, p1: NDArray, chord: NDArray
 ) -> tuple[float, float] | None:
@@ -102,7 +121,7 @@ def _floor(
         n = n / np.linalg.norm(n)
         if n @ up < 0.5:
             continue
-        rest = np.asarray(ob.point, dtype=float) + model.section.radius * n - p1
+        rest = np.asarray(ob.point, dtype=float) + _resting_height(system, name, ob, n) * n - p1
         z0, slope = float(rest @ n) / float(n @ up), -float(ex @ n) / float(n @ up)
         if abs(slope) < 1e-12:
             slope = 0.0
@@ -175,6 +194,36 @@ def touchdown_radius(system: Any, name: str, model: Model) -> tuple[float, list[
     if found is None:
         return None
     return touchdowns(span, rise, length, *found)
+
+
+def start_touchdowns(system: Any) -> dict[str, tuple[float, float]]:
+    """Per cable body whose sagged start shape meets a seabed, the largest ratio of the length
+    of an element holding a touchdown point of that shape to its bend radius there
+    (:func:`touchdown_radius`), and that element's length."""
+    out = {}
+    for name, model in zip(system.names, system.flex, strict=False):
+        found = touchdown_radius(system, name, model)
+        if found is None or not found[0] > 0.0 or not found[1]:
+            continue
+        ell = model.mesh.arc_lengths()
+        starts = np.r_[0.0, np.cumsum(ell)]
+        e = np.clip(np.searchsorted(starts, found[1], side="right") - 1, 0, ell.size - 1)
+        out[name] = (float(ell[e].max()) / found[0], float(ell[e].max()))
+    return out
+
+
+def touchdown_causes(system: Any) -> list[str]:
+    """A cause of a failed static solve, one line per cable body whose sagged start shape meets
+    a seabed with a bend radius ``H / w`` shorter than the element there
+    (:func:`start_touchdowns`): a stiff line locks in such an element (docs/guide/statics.md,
+    "Touchdown resolution")."""
+    return [
+        f"body {name!r}: its sagged start meets the seabed with the bend radius "
+        f"H/w = {ell / ratio:.3g} m, shorter than its {ell:.3g} m elements there: refine the "
+        f"mesh until they are shorter than it"
+        for name, (ratio, ell) in start_touchdowns(system).items()
+        if ratio > 1.0
+    ]
 
 
 def _body_sag(
