@@ -167,17 +167,6 @@ def _line_geometry(system: Any, name: str, model: Model, pinned: bool = False) -
     return q, up, p1, chord, s_nodes, span, rise
 
 
-def _slack(system: Any, name: str, model: Model, pinned: bool) -> bool:
-    """Whether body ``name`` gets a sagged (not a straight, stretched) start shape."""
-    geo = _line_geometry(system, name, model, pinned)
-    if geo is None:
-        return False
-    chord, s_nodes, span = geo[3], geo[4], geo[5]
-    length = float(s_nodes[-1])
-    stretch = float(np.linalg.norm(chord)) / length
-    return stretch * (1.0 + SLACK_RTOL) < 1.0 and span > 1e-9 * length
-
-
 def touchdown_radius(system: Any, name: str, model: Model) -> tuple[float, list[float]] | None:
     """The bend radius ``a = H / w`` where body ``name``'s sagged start shape (module
     docstring) meets the seabed and the reference arc lengths of its touchdown points (where a
@@ -228,9 +217,10 @@ def touchdown_causes(system: Any) -> list[str]:
 
 def _body_sag(
     system: Any, name: str, model: Model, pinned: bool = False
-) -> NDArray[np.float64] | None:
-    """The sagged start of one body's model coordinates (module docstring), or None;
-    ``pinned``: None also where an end holds its direction (a clamp)."""
+) -> tuple[NDArray[np.float64], bool] | None:
+    """The sagged start of one body's model coordinates (module docstring) and whether it is
+    slack (sagged, not straight and stretched), or None; ``pinned``: None also where an end
+    holds its direction (a clamp)."""
     geo = _line_geometry(system, name, model, pinned)
     if geo is None:
         return None
@@ -256,7 +246,7 @@ def _body_sag(
         out[:, dim:] = grad[:, None] * (tan[:, :1] * ex + tan[:, 1:] * up)
     y = model.y_from_q(out.ravel())
     y[model.fixed] = model.y_installed[model.fixed]
-    return y
+    return y, stretch < 1.0
 
 
 def clamped_lines(system: Any) -> bool:
@@ -271,15 +261,21 @@ def sag_state(problem: SystemEquilibrium, pinned: bool = False) -> NDArray[np.fl
     """The start ``z`` of :func:`solve_from_sag` (the problem's start with every line that has
     a sagged shape in it; ``pinned``: lines without a clamped end only), or None when no body
     has one."""
+    return _sag_state(problem, pinned)[0]
+
+
+def _sag_state(problem: SystemEquilibrium, pinned: bool) -> tuple[NDArray | None, list[str]]:
+    """:func:`sag_state` and the names of the slack lines in it."""
     system = problem.system
     z = problem.start()
-    changed = False
+    changed, slack = False, []
     for name, model in zip(system.names, system.flex, strict=False):
-        y = _body_sag(system, name, model, pinned)
-        if y is not None:
-            z[system.body_slice(name)] = y
+        found = _body_sag(system, name, model, pinned)
+        if found is not None:
+            z[system.body_slice(name)] = found[0]
             changed = True
-    return z if changed else None
+            slack += [name] if found[1] else []
+    return (z if changed else None), slack
 
 
 def solve_from_sag(
@@ -291,15 +287,12 @@ def solve_from_sag(
     sagged shape or neither Newton nor relaxation converges from it."""
     system.reset_triads()
     problem = SystemEquilibrium(system, at_time)
-    z = sag_state(problem, pinned)
+    z, slack = _sag_state(problem, pinned)
     if z is None:
         return None
     problem.stage = len(problem.stages) - 1
     end = problem.stages[-1][1]
     problem.place_supports(z, end)
-    slack = [
-        n for n, m in zip(system.names, system.flex, strict=False) if _slack(system, n, m, pinned)
-    ]
     stiff = stiff_lines(system, slack)
     tried = NewtonOutcome(False, z, 0, 0, np.inf)
     if stiff:
