@@ -4,7 +4,7 @@
 // A place has a position x (world, 3 components; z = 0 in 2D) and up to three frame vectors f_k
 // (unit, world), each with its derivatives with respect to the place's local coordinates:
 //   ground     none; x = the ground point, f = (e_x, e_y, e_z), or the columns of R(t) for a
-//              turning frame (a rotating clamp: docs/derivations/systems.md section 3.1)
+//              turning frame (a rotating clamp: docs/derivations/clamp-paths.md sec. 2)
 //   cable      a cable node (r, r_x): x = r; f_0 = t = r_x / |r_x|; in 2D also f_1 = e_z x t, f_2 =
 //   e_z rod        a rod node (r, r_x, phi): x = r; (t, m1, m2), the nodal triad by smallest
 //   rotation

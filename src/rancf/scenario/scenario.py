@@ -366,8 +366,8 @@ class Scenario(Table):
         write_atomic(Path(path), self.to_toml(Path(path).resolve().parent))
 
     def _time_functions(self) -> list[tuple[str, Any]]:
-        out = [(f"supports[{i}].motion", s.motion) for i, s in enumerate(self.supports)]
-        out += [(f"supports[{i}].rotation", s.rotation) for i, s in enumerate(self.supports)]
+        out = [(f"supports[{i}].rotation", s.rotation) for i, s in enumerate(self.supports)]
+        out += [(f"supports[{i}].motion", s.motion) for i, s in enumerate(self.supports)]
         out += [(f"loads.point[{i}].time", p.time) for i, p in enumerate(self.loads.point)]
         out += [(f"joints[{i}].angle", j.angle) for i, j in enumerate(self.joints)]
         out += [

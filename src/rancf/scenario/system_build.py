@@ -192,7 +192,7 @@ def _support_joints(sc: ScenarioView, bodies: dict[str, Any]) -> list[Joint]:
     """The supports that are joints to the ground: at a rigid body's place or a point mass (a
     ``pin`` a pin, a ``clamp`` a fixed joint, a ``roller`` a slider; named ``supportI``), and a
     clamp with a ``rotation`` at a flexible body's node (a fixed joint to a frame turned by the
-    rotation, ``docs/derivations/systems.md`` section 3.1; named by its place as written, so its
+    rotation, ``docs/derivations/clamp-paths.md`` §2; named by its place as written, so its
     reaction columns are a support's).  A ``motion`` moves the ground point; one of absolute
     positions is made the displacement from the place's reference point."""
     from rancf.scenario.motions import absolute_motion

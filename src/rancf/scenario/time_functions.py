@@ -113,8 +113,8 @@ class TableFunction(_Function):
 
 class PathTable(TableFunction):
     """A support's ``motion`` as a table: displacements from the reference position, or with
-    ``absolute = true`` the positions themselves (a robot's path file; ``docs/guide/systems.md``,
-    "Moving and turning supports")."""
+    ``absolute = true`` the positions themselves (a robot's path file;
+    ``docs/derivations/clamp-paths.md`` §1)."""
 
     absolute: Flag = Field(
         False,
