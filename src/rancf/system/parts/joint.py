@@ -87,8 +87,10 @@ class Joint:
         """How far apart its places are, from its constraint rows ``g`` (from its first row on)
         at the reference: its position rows' norm (a slider's ``dim - 1`` rows across its axis);
         a sliding joint's place is checked on its body instead
-        (:func:`rancf.system.sliding.sliding_starts`)."""
-        if self.kind == "sliding":
+        (:func:`rancf.system.sliding.sliding_starts`), and a moving ground point is the body's
+        place's reference point moved by its motion at ``t = 0`` (a static start installs it
+        there; a jump from rest is warned about or refused where the motion is read)."""
+        if self.kind == "sliding" or self.motion is not None:
             return 0.0
         n = dim - 1 if self.kind == "slider" else (2 if dim == 2 else 3)
         return float(np.linalg.norm(g[:n]))
