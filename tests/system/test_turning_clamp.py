@@ -177,9 +177,7 @@ def test_gripper_in_a_system_file(tmp_path, turning):
     x, tangent = _end_frames(run)
     assert np.abs(x - _path(t, 2)).max() < (1e-6 if turning else 1e-12)
     angle = np.degrees(np.arctan2(tangent[:, 1], tangent[:, 0]))
-    assert np.abs(angle - (90.0 * _smooth(t) if turning else 0.0)).max() < (
-        1e-6 if turning else 2.0
-    )
+    assert np.abs(angle - (90.0 * _smooth(t) if turning else 0.0)).max() < 1e-6
     head = (tmp_path / "run" / "reactions.csv").read_text().splitlines()[0].split(",")
     assert head[4:] == ["cable:end_fx", "cable:end_fy", "cable:end_mz"]
 
