@@ -7,8 +7,10 @@ direction, a rod end's material frame, a rigid body's frame), ``"slider"`` (the 
 along ``axis`` through the second, orientation free), ``"sliding"`` (a flexible body, the first
 entry, runs through the second place without friction: :mod:`rancf.system.sliding`; to the ground
 at ``position``). A pin or revolute with ``angle`` is driven: the relative rotation from the
-reference follows the time function [rad]. Axes are given in world coordinates in the reference
-configuration.
+reference follows the time function [rad]. A joint to the ground may move its ground point
+(``motion``, a displacement) and a fixed one turn its ground frame (``rotation``: 2D the angle
+about z, 3D the rotation vector [rad]; a turning clamp, ``docs/derivations/clamp-paths.md``).
+Axes are given in world coordinates in the reference configuration.
 """
 
 from __future__ import annotations
