@@ -11,8 +11,8 @@ in radians, along the same cubic). The gripper is a support with
 "turn.csv" }``: its clamped direction turns by the angle (docs/derivations/clamp-paths.md). The
 path starts at the cable's end, so the run may start at rest; it starts from the static sag.
 
-Expected run time: about 3 s (most of it importing and plotting) on 2 cores of an AMD EPYC
-(Zen 2), Python 3.11.
+Expected run time: about 1.5 s of CPU time (4 s wall time with other work on the machine; most
+of it importing and plotting) on 2 cores of an AMD EPYC (Zen 2), Python 3.11.
 """
 
 import tempfile
