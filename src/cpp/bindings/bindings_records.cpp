@@ -88,6 +88,7 @@ void read_places(nb::handle list, rancf::System& s) {
     }
     f.numbers_into("point", p.point, 3);
     p.motion = f.index("motion", -1, s.tfs.size(), "a time function");
+    p.rotation = f.index("rotation", -1, s.tfs.size(), "a time function");
     p.angle0 = f.number("angle0");
     s.places.push_back(p);
   });

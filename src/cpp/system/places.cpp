@@ -25,6 +25,25 @@ int place_size(PlaceKind kind, int dim) {
   return 0;
 }
 
+void rotation_matrix(int dim, const double* rot, double* R) {
+  for (int i = 0; i < 9; ++i) R[i] = i % 4 == 0 ? 1.0 : 0.0;
+  if (dim == 2) {
+    const double c = std::cos(rot[0]), s = std::sin(rot[0]);
+    R[0] = c, R[1] = -s, R[3] = s, R[4] = c;
+    return;
+  }
+  const double a = std::sqrt(rot[0] * rot[0] + rot[1] * rot[1] + rot[2] * rot[2]);
+  if (a == 0.0) return;
+  const double k[3] = {rot[0] / a, rot[1] / a, rot[2] / a};
+  const double s = std::sin(a), c1 = 1.0 - std::cos(a);
+  const double K[9] = {0.0, -k[2], k[1], k[2], 0.0, -k[0], -k[1], k[0], 0.0};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const double kk = k[i] * k[j] - (i == j ? 1.0 : 0.0);  // (K^2)_ij
+      R[3 * i + j] += s * K[3 * i + j] + c1 * kk;
+    }
+}
+
 void quaternion_rotation(const double* p, double* R, double (*dR)[9]) {
   // R = (p0^2 - v.v) I + 2 v v^T + 2 p0 [v]x,  v = (p1, p2, p3)
   const double p0 = p[0], a = p[1], b = p[2], c = p[3];
@@ -94,7 +113,8 @@ void eval_place(const PlaceInfo& info, const double* q, PlaceEval& o) {
     case PlaceKind::ground:
       for (int i = 0; i < 3; ++i) o.x[i] = info.point[i];
       o.nf = 3;
-      for (int k = 0; k < 3; ++k) o.f[k][k] = 1.0;
+      for (int k = 0; k < 3; ++k)
+        for (int i = 0; i < 3; ++i) o.f[k][i] = info.frame[3 * i + k];  // column k
       return;
     case PlaceKind::mass:
       for (int i = 0; i < d; ++i) {

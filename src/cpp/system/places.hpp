@@ -3,7 +3,8 @@
 //
 // A place has a position x (world, 3 components; z = 0 in 2D) and up to three frame vectors f_k
 // (unit, world), each with its derivatives with respect to the place's local coordinates:
-//   ground     none; x = the ground point, f = (e_x, e_y, e_z)
+//   ground     none; x = the ground point, f = (e_x, e_y, e_z), or the columns of R(t) for a
+//              turning frame (a rotating clamp: docs/derivations/clamp-paths.md sec. 2)
 //   cable      a cable node (r, r_x): x = r; f_0 = t = r_x / |r_x|; in 2D also f_1 = e_z x t, f_2 =
 //   e_z rod        a rod node (r, r_x, phi): x = r; (t, m1, m2), the nodal triad by smallest
 //   rotation
@@ -39,6 +40,8 @@ struct PlaceInfo {
   const double* tref = nullptr;       ///< rod: the node's reference tangent
   const double* m1ref = nullptr;      ///< rod: the node's reference director
   double angle0 = 0.0;                ///< beam: the node's reference tangent angle
+  /// ground: its frame's rotation from the world axes (row-major; the identity unless turned)
+  double frame[9] = {1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0};
   /// false: the position and its derivatives alone (nf = 0; rigid bodies still get frames),
   /// for joints that use no frame (a pin)
   bool frames = true;
@@ -61,6 +64,10 @@ int place_size(PlaceKind kind, int dim);
 
 /// Position, frame vectors and their first derivatives at local coordinates `local`.
 void eval_place(const PlaceInfo& info, const double* local, PlaceEval& out);
+
+/// Rotation matrix R (row-major) of a turning ground frame: 2D rot[0] the angle about z; 3D
+/// rot[0..2] the rotation vector (Rodrigues: R = I + sin|r| K + (1 - cos|r|) K^2, K = [r/|r|]x).
+void rotation_matrix(int dim, const double* rot, double* R);
 
 /// Rotation matrix R(p) (row-major) of a quaternion p (scalar first; exact for |p| = 1) and, if
 /// dR is not null, dR[j] = dR/dp_j (4 matrices, row-major).

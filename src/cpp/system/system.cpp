@@ -109,6 +109,11 @@ PlaceInfo place_info(const System& s, const PlaceRef& p, double t) {
   info.angle0 = p.angle0;
   if (p.kind == PlaceKind::ground && p.motion >= 0)
     for (int i = 0; i < s.dim; ++i) info.point[i] += evaluate(s.tfs[sz(p.motion)], i, t).f;
+  if (p.kind == PlaceKind::ground && p.rotation >= 0) {
+    double rot[3] = {0.0, 0.0, 0.0};
+    for (int i = 0; i < (s.dim == 2 ? 1 : 3); ++i) rot[i] = evaluate(s.tfs[sz(p.rotation)], i, t).f;
+    rotation_matrix(s.dim, rot, info.frame);
+  }
   if (p.kind == PlaceKind::rod) {
     const Model& m = *s.flex[sz(p.body)];
     info.tref = m.rod.tref + 3 * p.node;

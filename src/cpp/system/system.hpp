@@ -34,13 +34,16 @@ struct WinchSet;    // winch.hpp
 struct SlidingSet;  // sliding.hpp
 
 /// A place: on a flexible body's node (kind cable/rod/beam), a rigid body or point mass, or the
-/// ground (optionally moving: point + u(t)).
+/// ground (optionally moving: point + u(t), its frame turned by R(t)).
 struct PlaceRef {
   PlaceKind kind = PlaceKind::ground;
   int body = -1;  ///< flexible body (node kinds) or rigid body/mass index
   int node = 0;   ///< node of a flexible body
   double point[3] = {0.0, 0.0, 0.0};
-  int motion = -1;      ///< ground: time function of the displacement (dim components), or -1
+  int motion = -1;  ///< ground: time function of the displacement (dim components), or -1
+  /// ground: time function of the frame's rotation from the world axes (2D: the angle about z;
+  /// 3D: the rotation vector), or -1 (places.hpp: rotation_matrix)
+  int rotation = -1;
   double angle0 = 0.0;  ///< beam node: its reference tangent angle
 };
 

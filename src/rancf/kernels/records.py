@@ -97,6 +97,9 @@ class PlaceRecord:
         The ground: the time function of the point's displacement (``dim`` components), or -1.
     angle0 : float
         A beam node: its reference tangent angle.
+    rotation : int
+        The ground: the time function of its frame's rotation from the world axes (2D the
+        angle about z, 3D the rotation vector [rad]), or -1.
     """
 
     kind: str
@@ -105,6 +108,7 @@ class PlaceRecord:
     point: tuple[float, float, float] = (0.0, 0.0, 0.0)
     motion: int = -1
     angle0: float = 0.0
+    rotation: int = -1
 
 
 @dataclass(frozen=True)

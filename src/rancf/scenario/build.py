@@ -170,7 +170,8 @@ def body_model(sc: ScenarioView, i: int) -> Model:
         out = []
         for k, t in enumerate(rows):
             p = sc.place(t["at"])
-            if p.where == "node" and p.body == b.name and p.node is not None:
+            turning = t.get("rotation") is not None  # a joint to a turning frame (system_build)
+            if p.where == "node" and p.body == b.name and p.node is not None and not turning:
                 out.append((f"{what}[{k}]", p.node, t))
         return out
 
@@ -220,6 +221,7 @@ def flexible_model(
     mesh = mesh_geometry(sc.path, geometry, mesh_table, prefix)
     n_nodes = mesh.n_nodes
     supported = {_check_node(sc, n_nodes, f"{key}.at", node) for key, node, _ in supports}
+    supports = [(key, node, _path(sc, key, t, mesh.nodes[node, 0])) for key, node, t in supports]
     for key, node, _ in loads:
         _check_node(sc, n_nodes, f"{key}.at", node)
     for key, node in sensor_nodes:
@@ -283,6 +285,21 @@ def section_of(s: Any) -> Section:
 
 def _vec(v: list[float] | None) -> tuple[float, ...] | None:
     return None if v is None else tuple(v)
+
+
+def _path(sc: ScenarioView, key: str, t: dict[str, Any], reference: Any) -> dict[str, Any]:
+    """A support's table ``t`` with a motion of absolute positions made the displacement from
+    the support's ``reference`` point (:func:`rancf.scenario.motions.absolute_motion`)."""
+    if not t.get("absolute"):
+        return t
+    from rancf.scenario.motions import absolute_motion
+
+    static = sc.solver.initial_state == "static"
+    try:
+        motion = absolute_motion(t["motion"], reference, f"{key}.motion", static)
+    except InputError as exc:
+        raise ScenarioError(sc.path, exc.parameter, f"{exc.allowed} (got {exc.value})") from None
+    return {**t, "motion": motion}
 
 
 def _support(node: int, t: dict[str, Any]) -> Support:

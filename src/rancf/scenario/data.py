@@ -24,7 +24,7 @@ from rancf.scenario.geometry import GEOMETRY_KEYS, CadGeometry
 from rancf.scenario.motions import motion_function
 from rancf.scenario.places import ONE_BODY
 from rancf.scenario.sensors import Sensor, SensorTable
-from rancf.scenario.time_functions import time_function
+from rancf.scenario.time_functions import is_absolute, time_function
 
 __all__ = ["body_tables", "scenario_data", "columns_once", "sensor_record"]
 
@@ -97,10 +97,12 @@ def scenario_data(sc: Any) -> dict[str, Any]:
     ]
     d["supports"] = [
         {
-            **s.plain(frozenset({"motion"})),
+            **s.plain(frozenset({"motion", "rotation"})),
             "at": _node_or_text(s.at, one),
             "label": s.at,
             "motion": motion(s.motion, f"supports[{i}].motion"),
+            "absolute": is_absolute(s.motion),
+            "rotation": motion(s.rotation, f"supports[{i}].rotation"),
         }
         for i, s in enumerate(sc.supports)
     ]

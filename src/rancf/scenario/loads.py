@@ -7,7 +7,10 @@ Rules besides the types (each violation names its key):
 
 * ``[[supports]]``: ``axis`` for rollers only (and required there), ``direction`` for clamps
   only, both nonzero; ``fix_twist = true`` (rods) also holds the twist of a pin; ``motion`` is a
-  displacement vector from the reference position (not with ``position``).
+  displacement vector from the reference position (not with ``position``), or with a table's
+  ``absolute = true`` the positions themselves; ``rotation`` (clamps only, not with
+  ``direction``) turns the clamped direction: the angle about z in 2D, the rotation vector in 3D
+  [rad].
 * ``[[loads.point]]``: ``force``, ``moment`` or both; ``time`` (a factor on both) or the older
   ``frequency_hz`` (``sin(2π f t)``), not both.
 * ``[initial_motion]``: ``velocity`` and/or ``angular_velocity`` (3 numbers in 3D, one in 2D)
@@ -34,7 +37,12 @@ from rancf.scenario.base import (
     to_number,
 )
 from rancf.scenario.place_types import PlaceValue
-from rancf.scenario.time_functions import TimeFunctionValue, check_scalar, time_size
+from rancf.scenario.time_functions import (
+    MotionValue,
+    TimeFunctionValue,
+    check_scalar,
+    time_size,
+)
 
 __all__ = [
     "DistributedLoadTable",
@@ -67,10 +75,16 @@ class SupportTable(Table):
         None, description="clamps: the installed tangent direction (default: the reference)"
     )
     axis: Vector23 | None = Field(None, description="rollers: the line it moves along")
-    motion: TimeFunctionValue | None = Field(
+    motion: MotionValue | None = Field(
         None,
         description="prescribed displacement from the reference position [m]: a vector "
-        "TIME_FUNCTION",
+        "TIME_FUNCTION; a table with absolute = true gives the positions themselves",
+    )
+    rotation: TimeFunctionValue | None = Field(
+        None,
+        description="clamps: the turn of the clamped direction from the reference [rad], a "
+        "TIME_FUNCTION: 2D the angle about z (a number), 3D the rotation vector [rx, ry, rz] "
+        "(rods: the cross-section turns with it, twist included)",
     )
 
     @model_validator(mode="after")
@@ -84,6 +98,15 @@ class SupportTable(Table):
         for k in ("direction", "axis"):
             if self[k] is not None and not any(x != 0.0 for x in self[k]):
                 raise fail(k, "must be a nonzero vector")
+        if self.rotation is not None:
+            if self.kind != "clamp":
+                raise fail(
+                    "rotation",
+                    f'applies to kind = "clamp" only (it turns a clamped '
+                    f"direction), not {self.kind!r}",
+                )
+            if self.direction is not None:
+                raise fail("rotation", "give direction (installed) or rotation, not both")
         if self.motion is not None:
             if time_size(self.motion) is None:
                 raise fail("motion", "must be a vector time function (a displacement [m])")

@@ -26,8 +26,10 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from rancf.bodies.time_function import TimeFunction
+from rancf.errors import InputError
 from rancf.scenario.time_functions import (
     HarmonicFunction,
     RampFunction,
@@ -43,6 +45,8 @@ __all__ = [
     "start_warnings",
     "start_jump",
     "JUMP_RTOL",
+    "absolute_motion",
+    "PATH_START_TOL",
 ]
 
 #: A jump of a value or rate at ``t = 0`` up to this fraction of the largest magnitude the same
@@ -99,6 +103,44 @@ def motion_function(v: Any, key: str) -> tuple[TimeFunction | None, str | None]:
         f"periods; give build_up = 0 to start it at once)"
     )
     return f.with_build_up(b), note
+
+
+#: How far [m] (times the larger of 1 and the largest coordinate of the reference point) a path
+#: of absolute positions may start from the support's reference point: the rounding of a path
+#: file written with six decimals in metres.
+PATH_START_TOL = 1e-6
+
+
+def absolute_motion(f: TimeFunction, reference: NDArray, key: str, static: bool) -> TimeFunction:
+    """The displacement from ``reference`` (the support's reference point, ``dim``) of a motion
+    ``f`` given as absolute positions (a table, :class:`~rancf.scenario.time_functions.PathTable`
+    with ``absolute = true``; its build-up kept: ``r(t) (p(t) − reference)``, T.6).
+
+    At ``t = 0`` the body lies in its reference shape, the support at ``reference``.  A path
+    that starts farther than :data:`PATH_START_TOL` from there would make the support jump; it
+    is refused in one line naming ``key``, unless ``f`` builds up (the support moves smoothly
+    from its reference point onto the path) or the run starts from the static equilibrium
+    (``static``: the statics installs the support at the path's start)."""
+    ref = np.asarray(reference, dtype=float)[: f.size]
+    assert f.rows is not None  # a PathTable is a table
+    gap = float(np.linalg.norm(f.rows[0, 1:] - ref))
+    tol = PATH_START_TOL * max(1.0, float(np.abs(ref).max(initial=0.0)))
+    if gap > tol and not f.build_up and not static:
+        b = float(f"{_time_scale(f, 0.0) / 10.0:.1g}")
+        raise InputError(
+            key,
+            f"a path starting at {_point(f.rows[0, 1:])}",
+            f"a path that starts at the support's reference point {_point(ref)} (it starts "
+            f"{gap:.4g} m away): draw the body with the support there, give build_up = {b:g} "
+            "to move it onto the path smoothly, or start from the static equilibrium "
+            '(solver.initial_state = "static")',
+        )
+    out = TimeFunction.table(f.rows - np.r_[0.0, ref], f.interpolation)  # (T.2): linear in rows
+    return out.with_build_up(f.build_up)
+
+
+def _point(x: NDArray) -> str:
+    return "(" + ", ".join(f"{v:.6g}" for v in x) + ")"
 
 
 @dataclass(frozen=True)
@@ -191,7 +233,10 @@ def start_warnings(sc: Any) -> list[str]:
 
     for i, s in enumerate(sc.supports):
         f, item = d["supports"][i]["motion"], f"support at {s.at!r} (supports[{i}].motion)"
-        check(s.motion, f, item, _PLACED["motion"], _MOVED["motion"])
+        placed = () if d["supports"][i]["absolute"] else (_PLACED["motion"],)  # absolute_motion
+        check(s.motion, f, item, *placed, _MOVED["motion"])
+        f, item = d["supports"][i]["rotation"], f"support at {s.at!r} (supports[{i}].rotation)"
+        check(s.rotation, f, item, _PLACED["angle"], _MOVED["angle"])
     for i, j in enumerate(sc.joints):
         f, item = d["joints"][i]["angle"], f"joint {j.name!r} (joints[{i}].angle)"
         check(j.angle, f, item, _PLACED["angle"], _MOVED["angle"])

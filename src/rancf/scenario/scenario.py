@@ -363,11 +363,11 @@ class Scenario(Table):
 
     def save(self, path: str | Path) -> None:
         """Write the scenario to ``path`` as TOML (atomically: a complete file or none)."""
-        p = Path(path)
-        write_atomic(p, self.to_toml(p.resolve().parent))
+        write_atomic(Path(path), self.to_toml(Path(path).resolve().parent))
 
     def _time_functions(self) -> list[tuple[str, Any]]:
-        out = [(f"supports[{i}].motion", s.motion) for i, s in enumerate(self.supports)]
+        out = [(f"supports[{i}].rotation", s.rotation) for i, s in enumerate(self.supports)]
+        out += [(f"supports[{i}].motion", s.motion) for i, s in enumerate(self.supports)]
         out += [(f"loads.point[{i}].time", p.time) for i, p in enumerate(self.loads.point)]
         out += [(f"joints[{i}].angle", j.angle) for i, j in enumerate(self.joints)]
         out += [

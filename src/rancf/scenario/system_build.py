@@ -72,7 +72,8 @@ def support_labels(sc: ScenarioView) -> dict[str, list[int | str]]:
     out: dict[str, list[int | str]] = {}
     for i, s in enumerate(sc.supports):
         p = sc.support_place(i)
-        if p.where == "node" and p.body is not None:  # (a node place names its body)
+        held = s.rotation is None  # a turning clamp is a joint (_support_joints)
+        if p.where == "node" and p.body is not None and held:  # (a node place names its body)
             out.setdefault(p.body, []).append(s.at)
     return out
 
@@ -131,23 +132,7 @@ def _parts(sc: ScenarioView, bodies: dict[str, Any]) -> dict[str, Any]:
     def place(text: Any) -> Place:
         return sc.place(text).system_place()
 
-    joints = []
-    for i, s in enumerate(sc.supports):
-        p = sc.support_place(i)
-        if p.where in ("node", "ground"):
-            continue
-        kind = _SUPPORT_JOINT[s.kind]
-        axis = None if s.axis is None else tuple(s.axis)
-        joints.append(
-            Joint(
-                kind,
-                (place(s.at), Place(None)),
-                axis,
-                None,
-                f"support{i}",
-                sc.data["supports"][i]["motion"],
-            )
-        )
+    joints = _support_joints(sc, bodies)
     for j, jd in zip(sc.joints, sc.data["joints"], strict=True):
         if j.kind == "sliding":  # a flexible body (by name) through a place
             body = Place(str(j.between[0]))
@@ -201,6 +186,41 @@ def _parts(sc: ScenarioView, bodies: dict[str, Any]) -> dict[str, Any]:
         "winches": system_winches(sc, bodies),
         **_fluid(sc, bodies),
     }
+
+
+def _support_joints(sc: ScenarioView, bodies: dict[str, Any]) -> list[Joint]:
+    """The supports that are joints to the ground: at a rigid body's place or a point mass (a
+    ``pin`` a pin, a ``clamp`` a fixed joint, a ``roller`` a slider; named ``supportI``), and a
+    clamp with a ``rotation`` at a flexible body's node (a fixed joint to a frame turned by the
+    rotation, ``docs/derivations/clamp-paths.md`` §2; named by its place as written, so its
+    reaction columns are a support's).  A ``motion`` moves the ground point; one of absolute
+    positions is made the displacement from the place's reference point."""
+    from rancf.scenario.motions import absolute_motion
+    from rancf.system.stack import BodyStack
+
+    stack, joints = BodyStack(bodies), []
+    static = sc.solver.initial_state == "static"
+    for i, s in enumerate(sc.supports):
+        p, d = sc.support_place(i), sc.data["supports"][i]
+        if p.where == "ground" or (p.where == "node" and s.rotation is None):
+            continue
+        at = p.system_place()
+        motion = d["motion"]
+        if d["absolute"]:
+            ref = stack.reference_position(stack.resolve(at))
+            motion = absolute_motion(motion, ref, f"supports[{i}].motion", static)
+        rot = d["rotation"]
+        if rot is not None and (rot.size, rot.vector) != ((1, False) if sc.dim == 2 else (3, True)):
+            what = "the angle about z (a number)" if sc.dim == 2 else "a rotation vector of 3"
+            raise InputError(f"supports[{i}].rotation", f"{rot.size} components", f"{what} [rad]")
+        label = f"node{s.at}" if isinstance(s.at, int) else str(s.at)  # as a support's columns
+        name = f"support{i}" if p.where != "node" else label
+        axis = None if s.axis is None else tuple(s.axis)
+        kind = _SUPPORT_JOINT[s.kind]
+        joints.append(
+            Joint(kind, (at, Place(None)), axis, None, name, motion, rotation=d["rotation"])
+        )
+    return joints
 
 
 def _fluid(sc: ScenarioView, bodies: dict[str, Any]) -> dict[str, Any]:

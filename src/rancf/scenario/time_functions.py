@@ -4,7 +4,8 @@ A TIME_FUNCTION (:class:`~rancf.bodies.time_function.TimeFunction`, equations T.
 as a number (or a vector where the key is a vector: a support's ``motion``), or as a table with
 one of the keys ``table``, ``ramp``, ``harmonic`` or ``spin_up`` (and an optional ``build_up``);
 in Python also a ``TimeFunction`` or any callable ``f(t)``.  :func:`time_function` turns a
-validated value into its ``TimeFunction``.
+validated value into its ``TimeFunction``.  A support's ``motion`` (:data:`MotionValue`) may also
+be a table of absolute positions (:class:`PathTable`, ``absolute = true``).
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ from pydantic.json_schema import SkipJsonSchema
 from rancf.bodies.time_function import TimeFunction
 from rancf.errors import InputError
 from rancf.scenario.base import (
+    Flag,
     JsonSchema,
     KindOf,
     NonNegative,
@@ -32,12 +34,15 @@ from rancf.scenario.table_files import ROWS_SCHEMA, table_rows
 
 __all__ = [
     "TableFunction",
+    "PathTable",
+    "MotionValue",
     "RampFunction",
     "HarmonicFunction",
     "SpinUpFunction",
     "TimeFunctionValue",
     "time_function",
     "time_size",
+    "is_absolute",
     "check_scalar",
 ]
 
@@ -106,6 +111,19 @@ class TableFunction(_Function):
         return TimeFunction.table(self.table, self.interpolation)
 
 
+class PathTable(TableFunction):
+    """A support's ``motion`` as a table: displacements from the reference position, or with
+    ``absolute = true`` the positions themselves (a robot's path file;
+    ``docs/derivations/clamp-paths.md`` §1)."""
+
+    absolute: Flag = Field(
+        False,
+        description="true: the rows are absolute positions [m] of the support (a path), not "
+        "displacements from its reference position; the path must start at the reference "
+        "point unless build_up is given or the run starts from the static equilibrium",
+    )
+
+
 class RampFunction(_Function):
     """``{ ramp = DURATION, value = ... }``: ``value · min(t / DURATION, 1)`` (T.3)."""
 
@@ -160,6 +178,7 @@ _KINDS = ("table", "ramp", "harmonic", "spin_up")
 
 _TAGS: dict[type, str] = {
     TableFunction: "[table]",
+    PathTable: "[table]",
     RampFunction: "[ramp]",
     HarmonicFunction: "[harmonic]",
     SpinUpFunction: "[spin_up]",
@@ -206,6 +225,29 @@ TimeFunctionValue = Annotated[
         custom_error_message="must be a time function",
     ),
 ]
+#: A support's ``motion``: a TIME_FUNCTION whose table may hold absolute positions
+#: (:class:`PathTable`).
+MotionValue = Annotated[
+    Annotated[Number, Tag("[number]")]
+    | Annotated[Vector123, Tag("[vector]")]
+    | Annotated[PathTable, Tag("[table]")]
+    | Annotated[RampFunction, Tag("[ramp]")]
+    | Annotated[HarmonicFunction, Tag("[harmonic]")]
+    | Annotated[SpinUpFunction, Tag("[spin_up]")]
+    | SkipJsonSchema[
+        Annotated[
+            TimeFunction,
+            PlainValidator(_python_function),
+            PlainSerializer(_serialize_python),
+            Tag("[python]"),
+        ]
+    ],
+    KindOf(
+        _time_kind,
+        custom_error_type="time_function",
+        custom_error_message="must be a time function",
+    ),
+]
 
 
 def time_function(v: Any) -> TimeFunction:
@@ -215,6 +257,11 @@ def time_function(v: Any) -> TimeFunction:
     if isinstance(v, int | float | list):
         return TimeFunction.constant(v)
     return v.function()
+
+
+def is_absolute(v: Any) -> bool:
+    """Whether a validated motion ``v`` is a table of absolute positions (:class:`PathTable`)."""
+    return isinstance(v, PathTable) and v.absolute
 
 
 def time_size(v: Any) -> int | None:

@@ -217,6 +217,10 @@ class SensorReader:
                 if name == p.body and b.check_node(sup.node, "supports.at") == p.at:
                     return _columns_reader(sen.name, d, slice(start, start + width))
                 start += width
+        turning = [j for j in self.system.joints if getattr(j, "rotation", None) is not None]
+        for j in turning:  # a turning clamp: a joint with a support's columns (its name)
+            if self.system.resolve(j.between[0]) == p:
+                return _columns_reader(sen.name, d, out.joint_columns(j.name))
         raise InputError(f"sensors.{sen.name}.at", str(p), "the place of a support")
 
     def _contact_force(self, sen: Any) -> Reader:

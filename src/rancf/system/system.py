@@ -254,15 +254,21 @@ class System(BodyStack):
 
     # ---------------------------------------------------------------- places
     def place_index(
-        self, p: Place, rows: RecordRows, ground_point: NDArray | None = None, motion: int = -1
+        self,
+        p: Place,
+        rows: RecordRows,
+        ground_point: NDArray | None = None,
+        motion: int = -1,
+        rotation: int = -1,
     ) -> int:
         """The index of the record of the place ``p`` (resolved); the ground: at
-        ``ground_point``, moved by the time function ``motion``."""
+        ``ground_point``, moved by the time function ``motion``, its frame turned by
+        ``rotation``."""
         if p.body is None:
             assert ground_point is not None  # the callers give the ground's point
             point = np.zeros(3)
             point[: self.dim] = ground_point[: self.dim]
-            ground = PlaceRecord("ground", point=vec3(point), motion=motion)
+            ground = PlaceRecord("ground", point=vec3(point), motion=motion, rotation=rotation)
             return rows.place(ground, lambda: ground)
         self._place_index[p] = rows.place(p, lambda: self.place_record(p))
         return self._place_index[p]
@@ -279,7 +285,9 @@ class System(BodyStack):
         x, f = self.core.place(self._place_index[key], np.asarray(y, dtype=float), float(t))
         return np.asarray(x), np.asarray(f).reshape(-1, 3)
 
-    def place_pair(self, between: Sequence, rows: RecordRows, motion: int = -1) -> tuple[int, int]:
+    def place_pair(
+        self, between: Sequence, rows: RecordRows, motion: int = -1, rotation: int = -1
+    ) -> tuple[int, int]:
         if len(between) != 2:
             raise InputError("between", list(between), "two places")
         a, b = (self.resolve(x) for x in between)
@@ -288,7 +296,7 @@ class System(BodyStack):
         if a.body is None:  # the body's place first
             a, b = b, a
         gp = self.reference_position(a)
-        return self.place_index(a, rows), self.place_index(b, rows, gp, motion)
+        return self.place_index(a, rows), self.place_index(b, rows, gp, motion, rotation)
 
     # ---------------------------------------------------------------- parts
     def reference_frames(self, rows: RecordRows) -> list[tuple[NDArray, NDArray]]:

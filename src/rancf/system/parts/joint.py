@@ -7,8 +7,10 @@ direction, a rod end's material frame, a rigid body's frame), ``"slider"`` (the 
 along ``axis`` through the second, orientation free), ``"sliding"`` (a flexible body, the first
 entry, runs through the second place without friction: :mod:`rancf.system.sliding`; to the ground
 at ``position``). A pin or revolute with ``angle`` is driven: the relative rotation from the
-reference follows the time function [rad]. Axes are given in world coordinates in the reference
-configuration.
+reference follows the time function [rad]. A joint to the ground may move its ground point
+(``motion``, a displacement) and a fixed one turn its ground frame (``rotation``: 2D the angle
+about z, 3D the rotation vector [rad]; a turning clamp, ``docs/derivations/clamp-paths.md``).
+Axes are given in world coordinates in the reference configuration.
 """
 
 from __future__ import annotations
@@ -48,6 +50,9 @@ class Joint:
     motion: TimeFunction | None = None
     #: A sliding joint to the ground: the guide's position (world, reference configuration).
     position: Sequence[float] | None = None
+    #: A fixed joint to the ground: the ground's frame turns by this rotation from the world
+    #: axes (2D the angle about z, 3D the rotation vector [rad]; a turning clamp).
+    rotation: TimeFunction | None = None
 
     def record(self, system: Any, rows: RecordRows) -> JointRecord:
         """The core's record: its places (and a moving ground's time function) registered in
@@ -58,19 +63,36 @@ class Joint:
         if self.kind == "sliding":  # a body through a place
             return sliding_joint(system, self, rows)
         motion, angle = rows.tf(self.motion), rows.tf(self.angle)
-        a, b = system.place_pair(self.between, rows, motion)
+        a, b = system.place_pair(self.between, rows, motion, self._rotation(system.dim, rows))
         fa = fb = np.zeros((0, 3))  # a pin reads no frames
         if uses_frames(self):
             frames = system.reference_frames(rows)
             fa, fb = frames[a][1], frames[b][1]
+            if self.rotation is not None:  # measured against the unturned axes
+                fb = np.eye(3)
         return joint_data(self, a, b, fa, fb, system.dim, angle)
+
+    def _rotation(self, dim: int, rows: RecordRows) -> int:
+        """The time function of the ground frame's rotation registered in ``rows`` (-1: none),
+        its kind and size checked."""
+        if self.rotation is None:
+            return -1
+        if self.kind != "fixed":
+            raise InputError("supports.rotation", self.kind, "a clamp (a fixed joint)")
+        size = 1 if dim == 2 else 3
+        if self.rotation.size != size or (dim == 3) != self.rotation.vector:
+            what = "the angle about z (a scalar)" if dim == 2 else "a rotation vector of 3"
+            raise InputError("supports.rotation", self.rotation.size, f"{what} [rad]")
+        return rows.tf(self.rotation)
 
     def reference_gap(self, g: NDArray, dim: int) -> float:
         """How far apart its places are, from its constraint rows ``g`` (from its first row on)
         at the reference: its position rows' norm (a slider's ``dim - 1`` rows across its axis);
         a sliding joint's place is checked on its body instead
-        (:func:`rancf.system.sliding.sliding_starts`)."""
-        if self.kind == "sliding":
+        (:func:`rancf.system.sliding.sliding_starts`), and a moving ground point is the body's
+        place's reference point moved by its motion at ``t = 0`` (a static start installs it
+        there; a jump from rest is warned about or refused where the motion is read)."""
+        if self.kind == "sliding" or self.motion is not None:
             return 0.0
         n = dim - 1 if self.kind == "slider" else (2 if dim == 2 else 3)
         return float(np.linalg.norm(g[:n]))

@@ -5,7 +5,10 @@ A flexible body's supports are its model's own (held coordinates, :mod:`rancf.bo
 function: the core's prescribed records, one per held position coordinate, each the
 coordinate's installed value plus that component of the motion (``src/cpp/system/system.hpp``).
 A support without a motion needs no record.  Its reaction is the held rows of the balance
-residual, read with every support's by the outputs (:mod:`rancf.bodies.reactions`).
+residual, read with every support's by the outputs (:mod:`rancf.bodies.reactions`).  A clamp
+whose direction turns (a scenario's ``rotation``) is no held support: it is a fixed
+:class:`~rancf.system.parts.joint.Joint` to a turning ground frame
+(``docs/derivations/clamp-paths.md``).
 """
 
 from __future__ import annotations
