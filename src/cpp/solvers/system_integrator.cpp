@@ -478,6 +478,35 @@ RunOutcome SystemIntegrator::run(const StepOut& x, double t0, double h, std::int
   return out;
 }
 
+void SystemIntegrator::constraint_curvature(const double* y, const double* v, const double* known,
+                                            const double* lam, double t) {
+  // c = d2/ds2 g(y + s v + s^2/2 a_known, t + s) at s = 0 into r_[n..n+m): central differences,
+  // but right-sided at the run's start (t <= 0), where the motion before t = 0 is no part of the
+  // run (a path table is flat there: a central difference would give half its acceleration);
+  // the one-sided rule (2 g0 - 5 g1 + 4 g2 - g3) / e^2 is second order like the central one
+  const int n = s_.n, m = s_.m;
+  double scale = 1.0;
+  for (int i = 0; i < n; ++i) scale = std::max(scale, std::abs(v[i]));
+  const double e = 1e-4 / scale;
+  std::vector<double> yp(sz(n)), lp(sz(m)), rate(sz(m), 0.0), g(sz(m));
+  // sliding joints' material coordinates move at their rates: sigma(s) = sigma + s sigma'
+  sliding_rates(s_, y, v, lam, t, rate.data());
+  const bool start = t <= 0.0;
+  const double at[4] = {0.0, e, start ? 2.0 * e : -e, 3.0 * e};
+  const double w[4] = {start ? 2.0 : -2.0, start ? -5.0 : 1.0, start ? 4.0 : 1.0,
+                       start ? -1.0 : 0.0};
+  for (int i = 0; i < m; ++i) r_[sz(n + i)] = 0.0;
+  for (int p = 0; p < 4; ++p) {
+    if (w[p] == 0.0) continue;
+    const double sp = at[p];
+    for (int i = 0; i < n; ++i) yp[sz(i)] = y[i] + sp * v[i] + 0.5 * sp * sp * known[sz(i)];
+    std::copy(lam, lam + m, lp.begin());
+    for (int k : s_.slots) lp[sz(k)] += sp * rate[sz(k)];
+    constraints(s_, yp.data(), t + sp, g.data(), lp.data());
+    for (int i = 0; i < m; ++i) r_[sz(n + i)] += w[p] * g[sz(i)] / (e * e);
+  }
+}
+
 bool SystemIntegrator::initial_acceleration(const double* y, const double* v, double t, double* a,
                                             double* lam, const AssemblyTerms* contact) {
   const int n = s_.n, m = s_.m;
@@ -508,27 +537,7 @@ bool SystemIntegrator::initial_acceleration(const double* y, const double* v, do
     if (!mass_factored_) return false;
   }
   // acceleration-level constraints: d2/ds2 g(y + s v + s^2/2 a_known, t + s) = c + G a_free = 0
-  if (m > 0) {
-    std::vector<double> yp(sz(n)), ym(sz(n)), gp(sz(m)), gm(sz(m)), g0(sz(m));
-    double scale = 1.0;
-    for (int i = 0; i < n; ++i) scale = std::max(scale, std::abs(v[i]));
-    const double e = 1e-4 / scale;
-    for (int i = 0; i < n; ++i) {
-      yp[sz(i)] = y[i] + e * v[i] + 0.5 * e * e * known[sz(i)];
-      ym[sz(i)] = y[i] - e * v[i] + 0.5 * e * e * known[sz(i)];
-    }
-    // sliding joints' material coordinates move at their rates: sigma(s) = sigma + s sigma'
-    std::vector<double> lp(zero), lm(zero), rate(sz(m), 0.0);
-    sliding_rates(s_, y, v, zero.data(), t, rate.data());
-    for (int k : s_.slots) {
-      lp[sz(k)] += e * rate[sz(k)];
-      lm[sz(k)] -= e * rate[sz(k)];
-    }
-    constraints(s_, yp.data(), t + e, gp.data(), lp.data());
-    constraints(s_, ym.data(), t - e, gm.data(), lm.data());
-    constraints(s_, y, t, g0.data(), zero.data());
-    for (int i = 0; i < m; ++i) r_[sz(n + i)] = (gp[sz(i)] - 2.0 * g0[sz(i)] + gm[sz(i)]) / (e * e);
-  }
+  if (m > 0) constraint_curvature(y, v, known.data(), zero.data(), t);
   solve_negative();
   for (int i = 0; i < n; ++i) a[i] = known[sz(i)] + dz_[sz(i)];
   for (int i = 0; i < m; ++i) zero[sz(i)] = dz_[sz(n + i)];

@@ -122,6 +122,10 @@ class SystemIntegrator {
                          double length);
   /// The held coordinates that follow time functions, at time t (any pointer may be null).
   void set_prescribed(double t, double* y, double* v, double* a) const;
+  /// The constraints' second time derivative along y + s v + s^2/2 a_known into r_'s last m rows
+  /// (right-sided at the run's start t <= 0).
+  void constraint_curvature(const double* y, const double* v, const double* known,
+                            const double* lam, double t);
   /// What the loop keeps between steps: [s], the steps since one started again from y0 (0:
   /// none; step()), then, modified Newton with valid factors, the point the factored Jacobian
   /// was assembled at: [h, ck, cv, ca, tf, t1, yf (n), vf (n), am (n), y1 (n), lambda (m)]
