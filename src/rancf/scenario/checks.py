@@ -16,7 +16,7 @@ from pydantic_core import PydanticCustomError
 from rancf.bodies.families import family, framed
 from rancf.scenario.base import fail, shorten, show, under
 from rancf.scenario.bodies import FlexibleBody, RigidBody
-from rancf.scenario.places import ResolvedPlace, resolve_place
+from rancf.scenario.places import ResolvedPlace, held_once, resolve_place
 from rancf.scenario.section import check_flexible
 from rancf.scenario.time_functions import time_size
 from rancf.scenario.view import ScenarioView
@@ -100,7 +100,7 @@ def _supports(c: _Context) -> list[ResolvedPlace]:
     for i, s in enumerate(c.sc.supports):
         key = f"supports[{i}]"
         p = c.place(f"{key}.at", s.at)
-        _held_once(key, p, places)
+        held_once(f"{key}.at", p, places, "supports")
         places.append(p)
         el = c.element(p)
         if el == "mass" and s.kind != "pin":
@@ -115,19 +115,6 @@ def _supports(c: _Context) -> list[ResolvedPlace]:
                 f"must be a displacement of {c.dim} components, got {time_size(s.motion)}",
             )
     return places
-
-
-def _held_once(key: str, p: ResolvedPlace, earlier: list[ResolvedPlace]) -> None:
-    """Refuse a second support at a rigid body's or point mass's place (nodes: when the mesh is
-    known, :mod:`rancf.scenario.build`): the solve would see the place held twice."""
-    if p.where == "node":
-        return
-    for j, q in enumerate(earlier):
-        if (q.where, q.body, q.point) == (p.where, p.body, p.point):
-            raise fail(
-                f"{key}.at",
-                f"{p.text!r} is held by supports[{j}] already: one support per place",
-            )
 
 
 def _loads(c: _Context) -> None:
