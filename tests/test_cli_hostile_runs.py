@@ -327,7 +327,7 @@ def test_sweep_rows_with_non_finite_values_fail(tmp_path, monkeypatch):
     from rancf.sweep.spec import Variant
 
     monkeypatch.setattr(
-        runner, "_analyse", lambda sc, a, f: ("completed", "", 0.1, {"f1_hz": float("inf")})
+        runner, "_analyse", lambda sc, a, f: ("completed", "", 0.1, {"f1_hz": float("inf")}, [])
     )
     raw = __import__("tomllib").loads(ROD)
     row = runner.run_variant("r", raw, str(tmp_path / "b.toml"), "modes", str(tmp_path / "r"))

@@ -89,6 +89,13 @@ BAD = [
     (lambda d: d["loads"].update(gravity=[0.0, -9.81, 0.0]), "loads.gravity", "2"),
     (lambda d: d["sensors"][1].update(at="middle"), "sensors[1].at", "start"),
     (lambda d: d["geometry"].update(kind="spline"), "geometry.kind", "one of"),
+    # a second support at a node held already (node 0 is "start"): each would report the whole
+    # reaction, and the later position would silently win
+    (
+        lambda d: d["supports"].append({"at": 0, "kind": "pin", "position": [0.0, 0.1]}),
+        "supports[1].at",
+        "node 0 is held by supports[0] already: one support per node",
+    ),
 ]
 
 

@@ -513,6 +513,12 @@ BAD_3D = [
         "sensors[0].kind",
         "rod elements",
     ),
+    (
+        "support-twice-at-a-mass",
+        {"supports__1": {"at": "payload", "kind": "pin"}, "supports__2": {"at": "payload"}},
+        "supports[2].at",
+        "'payload' is held by supports[1] already: one support per place",
+    ),
 ]
 
 

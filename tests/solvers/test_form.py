@@ -186,3 +186,17 @@ def test_cli_prints_and_writes_the_length(tmp_path):
     assert f"unstretched length {length:.9g} m (form: sag = 5 m)" in p.stdout
     summary = json.loads((tmp_path / "run" / "summary.json").read_text())
     assert summary["unstretched_length"] == length
+
+
+def test_a_sag_met_only_in_compression_is_refused():
+    """A section so stiff that its weight alone bends it less than the sag (a radius of 3 m on
+    the 200 m span, as 3 mm would read in metres: EI = 2e13 N m²) meets the sag only as a beam
+    longer than its span, pushed in: that is refused naming the key, not printed as a power
+    line with a negative tension; the 1.1 cm conductor's own section is in tension."""
+    raw = _span({"sag": SAG})
+    raw["section"] = {"radius": 3.0}
+    with pytest.raises(ScenarioError, match=r"\[form\.sag\] needs a line in tension.*compress"):
+        run_static(parse_scenario(raw))
+    raw["section"] = {"radius": 0.0113}
+    run = run_static(parse_scenario(raw))
+    assert run.sensors["pull"] > 0.0

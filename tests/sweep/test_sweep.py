@@ -249,3 +249,26 @@ gravity = [0.0, -9.81]
 about = "static"
 count = 3
 """
+
+
+def test_warned_runs_say_so_in_the_table(tmp_path, capsys):
+    """A run that completes with a warning (here a section radius of 0.3 m on a 0.5 m body: a
+    unit mistake) carries that warning into its row of ``results.csv`` and ``row.json``, and
+    the summary line counts it; a run without warnings has an empty cell."""
+    (tmp_path / "cant.toml").write_text(
+        __import__("tests.test_cli_sim", fromlist=["CANTILEVER"]).CANTILEVER
+    )
+    for analysis in ("static", "modes"):
+        f = tmp_path / f"{analysis}.toml"
+        f.write_text(
+            f'base = "cant.toml"\nanalysis = "{analysis}"\n[grid]\n"section.radius" = [0.03, 0.3]\n'
+        )
+        out = tmp_path / analysis
+        assert main(["sweep", str(f), "--out", str(out), "--threads", "1"]) == 0
+        assert "0 failed, 1 with warnings (its column) ->" in capsys.readouterr().out
+        rows = _rows(out / "results.csv")
+        assert [r["status"] for r in rows] == ["completed"] * 2
+        assert rows[0]["warnings"] == ""
+        assert "section's radius 0.3 m" in rows[1]["warnings"]
+        row = json.loads((out / "runs" / rows[1]["run"] / "row.json").read_text())
+        assert any("section.radius" in w for w in row["warnings"])

@@ -111,19 +111,14 @@ def test_fluid_force_sensor_carries_the_weight_at_terminal_speed():
     assert abs(last["mid"]) < 1e-6 * weight
 
 
-def test_touchdown_of_a_mooring_line_against_the_catenary():
-    """A 2D chain from an anchor on the seabed to a fairlead 100 m above it, in water: with the
-    horizontal tension H the model gives and the weight in water w per length, the suspended
-    part is a catenary of length sqrt(h^2 + 2 h H / w) (no friction), so the chain leaves the
-    seabed that far along it from the fairlead; the ``touchdown`` sensor agrees within 0.15 of
-    an element (11 m: the curvature's jump at the touchdown point is spread over the element
-    holding it; measured 0.99 m), and the seabed and the anchor carry the laid length's
-    weight."""
+def _chain_on_the_seabed(elements: int) -> tuple[dict, float]:
+    """The 2D chain of the touchdown tests solved in statics: its sensors and its weight in
+    water per length."""
     import rancf
     from rancf.post.results import sensor_table
     from rancf.scenario import parse_scenario
 
-    area, rho_c, ea, d = 0.0366435, 7859.5, 1.2326e9, 0.216
+    area, rho_c, ea = 0.0366435, 7859.5, 1.2326e9
     d = {
         "geometry": {
             "kind": "nurbs",
@@ -131,7 +126,7 @@ def test_touchdown_of_a_mooring_line_against_the_catenary():
             "knots": [0, 0, 0, 1, 1, 1],
             "control_points": [[-300.0, -100.0], [-54.61196092449089, -100.0], [0.0, 0.0]],
         },
-        "mesh": {"elements": 30},
+        "mesh": {"elements": elements},
         "section": {"area": area, "inertia": 3e-8},
         "material": {"density": rho_c, "youngs_modulus": ea / area},
         "fluid": {"density": 1025.0, "surface": 0.0},
@@ -157,15 +152,41 @@ def test_touchdown_of_a_mooring_line_against_the_catenary():
     system = sc.build_system()
     res = rancf.solve_static(system, 10)
     names, vals = sensor_table(system, sc.sensors, res.q, static=True, t=np.ones(1), lam=res.lam)
-    v = dict(zip(names, vals[0], strict=True))
     w = (rho_c * area - 1025.0 * math.pi * 0.216**2 / 4) * G
-    h_force = v["fair_x"]
-    suspended = math.sqrt(100.0**2 + 2 * 100.0 * h_force / w)
-    laid = 330.0 - suspended
+    return dict(zip(names, vals[0], strict=True)), w
+
+
+def _catenary_touchdown(v: dict, w: float) -> float:
+    """Where the catenary of the model's horizontal tension leaves the seabed: its suspended
+    part is sqrt(h^2 + 2 h H / w) long (no friction)."""
+    suspended = math.sqrt(100.0**2 + 2 * 100.0 * v["fair_x"] / w)
+    return -300.0 + 330.0 - suspended
+
+
+def test_touchdown_of_a_mooring_line_against_the_catenary():
+    """A 2D chain from an anchor on the seabed to a fairlead 100 m above it, in water: with the
+    horizontal tension H the model gives and the weight in water w per length, the suspended
+    part is a catenary of length sqrt(h^2 + 2 h H / w) (no friction), so the chain leaves the
+    seabed that far along it from the fairlead; the ``touchdown`` sensor agrees within 0.15 of
+    an element (11 m: the curvature's jump at the touchdown point is spread over the element
+    holding it; measured 0.99 m), and the seabed and the anchor carry the laid length's
+    weight."""
+    v, w = _chain_on_the_seabed(30)
+    laid = 300.0 + _catenary_touchdown(v, w)
     assert abs(v["td_x"] - (-300.0 + laid)) < 0.15 * 11.0
     assert abs(v["td_y"] + 100.0) < 0.05 * 0.108
     anchor = w * 330.0 - v["fair_y"] - v["bed_y"]  # the anchor's share of the weight
     assert abs((v["bed_y"] + anchor) / (w * laid) - 1) < 2e-3
+
+
+def test_the_touchdown_sensor_converges_past_the_lift_off_by_its_tolerance():
+    """Refined (60 elements of 5.5 m), the sensor lies where the catenary of radius a = H / w
+    has risen its tolerance (a twentieth of the tube radius) off the bed: sqrt(2 a tol) (1.5 m)
+    beyond the catenary's lift-off point, within a tenth of that."""
+    v, w = _chain_on_the_seabed(60)
+    beyond = math.sqrt(2.0 * v["fair_x"] / w * 0.05 * 0.108)
+    assert 1.4 < beyond < 1.6
+    assert abs(v["td_x"] - _catenary_touchdown(v, w) - beyond) < 0.1 * beyond
 
 
 def _paid_out_in_water(t_end: float) -> dict:

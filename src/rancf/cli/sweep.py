@@ -40,9 +40,10 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
     where = args.scheduler or f"a local cluster of {args.workers or 'all'} worker(s)"
     if args.threads is not None:
         where = f"{args.threads} thread(s) of this process"
+    warned = f", {rep.warned} with warnings (its column)" if rep.warned else ""
     print(
         f"{rep.total} run(s): {rep.skipped} already finished, {rep.ran} run on {where}, "
-        f"{rep.failed} failed -> {rep.csv_path}"
+        f"{rep.failed} failed{warned} -> {rep.csv_path}"
     )
     return 0
 

@@ -96,9 +96,11 @@ def section_warnings(model: Model | System) -> list[str]:
 #: The note on a curved spatial cable (printed by ``rancf static`` and ``simulate``; ``rancf
 #: modes`` prints its own where the zero-frequency modes show it).
 CURVED_CABLE_NOTE = (
-    "note: a cable element on a curved spatial route resists no out-of-plane bending about its "
-    "curved reference (its energy takes the magnitude of the curvature): where that stiffness "
-    'matters, use mesh.element = "rod" (torsion and out-of-plane bending; docs/guide/rods.md)'
+    "note: a cable element on a curved spatial route bends with the magnitude of its curvature: "
+    "it resists no out-of-plane bending about its curved reference, and a bend past straight "
+    "(the curvature reversed, in the plane too) stores the energy of the mirror bend, far too "
+    'little; where that matters, use mesh.element = "rod" (torsion, out-of-plane bending and '
+    "the curvature's sign; docs/guide/rods.md)"
 )
 
 
@@ -106,8 +108,9 @@ def element_notes(model: Model | System) -> list[str]:
     """The note :data:`CURVED_CABLE_NOTE` for every spatial cable body whose stress-free reference
     is curved (nodal tangents not all parallel): its bending energy
     ``½ EI (|κ| - |κ0|)²`` (docs/derivations/cable.md sec. 6) has no stiffness against turning
-    the plane of the curvature, which the rod element resists (every flexible body of a
-    system, named)."""
+    the plane of the curvature and cannot tell a curvature reversed through straight from the
+    reference's (a planar motion bent past straight is far too soft), which the rod element
+    resists (every flexible body of a system, named)."""
     if isinstance(model, System):
         return [
             f"{name}: {n}"

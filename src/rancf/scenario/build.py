@@ -226,6 +226,7 @@ def flexible_model(
         _check_node(sc, n_nodes, f"{key}.at", node)
     for key, node in sensor_nodes:
         _check_node(sc, n_nodes, key, node)
+    _one_support_per_node(sc, n_nodes, supports)
     v0 = {}
     for key, at, t in velocities:
         node = _check_node(sc, n_nodes, f"{key}.at", at)
@@ -316,6 +317,26 @@ def _support(node: int, t: dict[str, Any]) -> Support:
 
 def _load(node: int, t: dict[str, Any]) -> PointLoad:
     return PointLoad(node, _vec(t["force"]), t["frequency_hz"], _vec(t["moment"]), t["time"])
+
+
+def _one_support_per_node(
+    sc: ScenarioView, n_nodes: int, supports: list[tuple[str, int, dict[str, Any]]]
+) -> None:
+    """Refuse a second support at a node, naming its key: the two would each report the whole
+    reaction (their sum twice the load) and the later one's position, direction or motion would
+    silently replace the earlier one's."""
+    seen: dict[int, str] = {}
+    for key, at, _ in supports:
+        node = _check_node(sc, n_nodes, f"{key}.at", at)
+        if node in seen:
+            raise ScenarioError(
+                sc.path,
+                f"{key}.at",
+                f"node {at}{'' if at == node else f' (node {node})'} is held by {seen[node]} "
+                "already: one support per node (a clamp holds the position too; give one "
+                "support its position or motion)",
+            )
+        seen[node] = key
 
 
 def _check_node(sc: ScenarioView, n_nodes: int, key: str, node: int) -> int:

@@ -16,7 +16,7 @@ from pydantic_core import PydanticCustomError
 from rancf.bodies.families import family, framed
 from rancf.scenario.base import fail, shorten, show, under
 from rancf.scenario.bodies import FlexibleBody, RigidBody
-from rancf.scenario.places import ResolvedPlace, resolve_place
+from rancf.scenario.places import ResolvedPlace, held_once, resolve_place
 from rancf.scenario.section import check_flexible
 from rancf.scenario.time_functions import time_size
 from rancf.scenario.view import ScenarioView
@@ -96,10 +96,11 @@ def _rod_only(key: str, el: str | None) -> None:
 
 
 def _supports(c: _Context) -> list[ResolvedPlace]:
-    places = []
+    places: list[ResolvedPlace] = []
     for i, s in enumerate(c.sc.supports):
         key = f"supports[{i}]"
         p = c.place(f"{key}.at", s.at)
+        held_once(f"{key}.at", p, places, "supports")
         places.append(p)
         el = c.element(p)
         if el == "mass" and s.kind != "pin":

@@ -21,7 +21,7 @@ from rancf.scenario.base import fail, shorten, show
 from rancf.scenario.bodies import FlexibleBody, PointMass, RigidBody
 from rancf.system.places import GROUND, Place
 
-__all__ = ["ResolvedPlace", "resolve_place", "ONE_BODY"]
+__all__ = ["ResolvedPlace", "resolve_place", "held_once", "ONE_BODY"]
 
 #: The name of the one flexible body of a file without ``[[bodies]]``: parsing gives the file the
 #: bodies form, that body's places resolve to it.
@@ -124,3 +124,12 @@ def resolve_place(
             key, f"the rigid body {show(name)} has no point {show(sub)} (its points: {known})"
         )
     return ResolvedPlace(v, "point", name, point=sub)
+
+
+def held_once(key: str, p: ResolvedPlace, earlier: list[ResolvedPlace], what: str) -> None:
+    """Refuse ``p`` (at ``key``) where an ``earlier`` place of the list ``what`` (``"supports"``)
+    is the same rigid body's or point mass's place: held twice, its reaction is split in no
+    defined way.  Nodes are compared once the mesh is known (:mod:`rancf.scenario.build`)."""
+    if p.where != "node" and p in earlier:
+        held = f"{what}[{earlier.index(p)}]"
+        raise fail(key, f"{p.text!r} is held by {held} already: one support per place")

@@ -129,6 +129,7 @@ class _Search:
         self.kind, self.target = kind, target
         self.model = system.bodies[name]
         self.tried: list[tuple[float, float]] = []  # (L, m(L) - target)
+        self.end_force: dict[float, float] = {}  # L -> the axial force at the end (a sag's)
 
     def error(self, exc: InputError) -> ScenarioError:
         """``exc`` (a problem of the target) naming the ``[form]`` key."""
@@ -193,8 +194,28 @@ class _Search:
             value = line_measure(system, self.name, self.kind, res.y, res.load_factors[-1])
         except InputError as exc:
             raise self.error(exc) from None
+        if self.kind == "sag" and recovers_axial_force(system.bodies[self.name]):
+            force = _end_force(system, self.name, res.y, res.load_factors[-1])[0]
+            self.end_force[length] = force
         self.tried.append((length, value - self.target))
         return value - self.target
+
+    def check_tension(self, length: float) -> None:
+        """Refuse a sag met by a body in compression at ``length`` (a section so stiff that it
+        holds the sag up as a buckled beam: no line is strung so; often a radius or area in
+        millimetres), naming the ``[form]`` key."""
+        force = self.end_force.get(length)
+        if force is None or force >= 0.0:
+            return
+        ei = self.model.props.ei
+        raise ScenarioError(
+            self.sc.path,
+            f"{self.key}form.sag",
+            f"needs a line in tension, got {self.target:g}: the length that meets it "
+            f"({length:.6g} m) is in compression (end axial force {force:.4g} N), a beam "
+            f"pushed into its span (EI = {ei:.3g} N m^2); check the units of section.radius "
+            "or section.area (metres)",
+        )
 
     def solve(self) -> float:
         """The length meeting the target (module docstring).
@@ -277,7 +298,9 @@ def _sweeps(sc: Any, searches: list[_Search]) -> None:
     targets together (one sweep for one body)."""
     for _ in range(MAX_SWEEPS):
         for s in searches:
-            sc.set_form_length(s.name, s.solve())
+            length = s.solve()
+            s.check_tension(length)
+            sc.set_form_length(s.name, length)
         if len(searches) == 1 or all(
             abs(s.residual(sc.form_length(s.name))) <= RTOL * s.target for s in searches
         ):

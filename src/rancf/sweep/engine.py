@@ -3,9 +3,11 @@ an existing scheduler; resume, progress bar, ``results.csv``.
 
 ``DIR/results.csv`` has one row per run in grid order: ``run``, the grid values, ``status``
 (``completed``/``failed``/``interrupted``, or ``pending`` before it ran), ``message``,
-``wall_time_s`` (the whole run in its worker), ``solve_time_s`` (the solver alone) and the
-result columns (``simulate``: ``t_reached``, ``steps`` and the final sensor values; ``static``:
-the equilibrium sensor values; ``modes``: ``f1_hz`` …).  It is rewritten atomically as runs
+``warnings`` (the run's warnings as ``rancf simulate``, ``static`` or ``modes`` prints them,
+joined by `` | ``: a completed run's numbers may still be suspect), ``wall_time_s`` (the
+whole run in its worker), ``solve_time_s`` (the solver alone) and the result columns
+(``simulate``: ``t_reached``, ``steps`` and the final sensor values; ``static``: the
+equilibrium sensor values; ``modes``: ``f1_hz`` …).  It is rewritten atomically as runs
 finish (at most every :data:`CSV_INTERVAL_S` seconds) and when the sweep ends or is interrupted;
 each run's own ``row.json`` is written first, so the table can always be rebuilt from them.  A
 run whose folder already holds ``row.json`` is not run again.
@@ -53,13 +55,15 @@ CSV_INTERVAL_S = 1.0
 
 @dataclass(frozen=True)
 class SweepReport:
-    """What a sweep did: runs in total, skipped (finished before), run now, failed."""
+    """What a sweep did: runs in total, skipped (finished before), run now, failed, and the runs
+    (of all) with warnings."""
 
     total: int
     skipped: int
     ran: int
     failed: int
     csv_path: Path
+    warned: int = 0
 
 
 def results_table(variants: list[Variant], rows: dict[str, dict[str, Any]]) -> str:
@@ -72,7 +76,8 @@ def results_table(variants: list[Variant], rows: dict[str, dict[str, Any]]) -> s
                 value_cols.append(c)
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
-    w.writerow(["run", *keys, "status", "message", "wall_time_s", "solve_time_s", *value_cols])
+    head = ["run", *keys, "status", "message", "warnings", "wall_time_s", "solve_time_s"]
+    w.writerow([*head, *value_cols])
     for v in variants:
         r = rows.get(v.name, {"status": "pending", "message": "", "values": {}})
         vals = r.get("values", {})
@@ -82,6 +87,7 @@ def results_table(variants: list[Variant], rows: dict[str, dict[str, Any]]) -> s
                 *(v.values[k] for k in keys),
                 r["status"],
                 r.get("message", ""),
+                " | ".join(r.get("warnings", ())),
                 _num(r.get("wall_time_s")),
                 _num(r.get("solve_time_s")),
                 *(_num(vals.get(c)) for c in value_cols),
@@ -338,4 +344,7 @@ def run_sweep(
                 atomic_write(out / "results.csv", results_table(variants, done))
     skipped = sum(1 for name in finished if name in rows)
     failed = sum(1 for r in rows.values() if r.get("status") != "completed")
-    return SweepReport(len(variants), skipped, len(variants) - skipped, failed, out / "results.csv")
+    warned = sum(1 for r in rows.values() if r.get("warnings"))
+    return SweepReport(
+        len(variants), skipped, len(variants) - skipped, failed, out / "results.csv", warned
+    )

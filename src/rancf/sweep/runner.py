@@ -32,8 +32,9 @@ LIMIT = "the limit of a sweep run (GB)"
 FREQUENCY_COLUMNS = 6
 
 
-#: What an analysis returns: status, message, solve time and the row's result values.
-Outcome = tuple[str, str, float, dict[str, float]]
+#: What an analysis returns: status, message, solve time, the row's result values and the run's
+#: warnings (one line each, as the command prints them).
+Outcome = tuple[str, str, float, dict[str, float], list[str]]
 
 
 def _analyse(sc: Any, analysis: str, folder: Path) -> Outcome:
@@ -61,7 +62,7 @@ def _simulate(sc: Any, folder: Path) -> Outcome:
     )
     values = {"t_reached": float(res.t_reached), "steps": float(res.n_steps)}
     values.update(zip(names, map(float, vals[0]), strict=True))
-    return summary["status"], res.message, float(res.wall_time), values
+    return summary["status"], res.message, float(res.wall_time), values, list(run.warnings)
 
 
 def _static(sc: Any, folder: Path) -> Outcome:
@@ -71,7 +72,9 @@ def _static(sc: Any, folder: Path) -> Outcome:
     run = run_static(sc, folder, {"scenario": str(folder / "scenario.toml")})
     out = {"positions": positions_json(run.system, run.result.q), "sensors": run.sensors}
     atomic_write(folder / "static.json", strict_json(out))
-    return "completed", "", float(run.result.wall_time), run.sensors
+    assert run.summary is not None  # a folder was given
+    warned = list(run.notes) + list(run.summary["warnings"])
+    return "completed", "", float(run.result.wall_time), run.sensors, warned
 
 
 def _modes(sc: Any, folder: Path) -> Outcome:
@@ -89,7 +92,7 @@ def _modes(sc: Any, folder: Path) -> Outcome:
     }
     atomic_write(folder / "modes.json", strict_json(out))
     values = {f"f{i + 1}_hz": float(x) for i, x in enumerate(f[:FREQUENCY_COLUMNS])}
-    return "completed", "", wall, values
+    return "completed", "", wall, values, list(run.warnings)
 
 
 def run_variant(
@@ -106,9 +109,9 @@ def run_variant(
     atomic_write(out / "scenario.toml", dumps(raw))
     try:
         sc = parse_scenario(raw, base)
-        status, message, solve, values = _analyse(sc, analysis, out)
+        status, message, solve, values, warned = _analyse(sc, analysis, out)
     except Exception as exc:  # noqa: BLE001 - every failure becomes a row, never a crash
-        status, message, solve, values = "failed", _one_line(exc), None, {}
+        status, message, solve, values, warned = "failed", _one_line(exc), None, {}, []
         atomic_write(out / "error.txt", traceback.format_exc())
     bad = [k for k, x in values.items() if not math.isfinite(x)]
     if bad and status == "completed":
@@ -118,6 +121,7 @@ def run_variant(
         "run": name,
         "status": status,
         "message": message,
+        "warnings": warned,
         "wall_time_s": time.perf_counter() - t0,
         "solve_time_s": solve,
         "values": values,
