@@ -28,6 +28,11 @@ namespace rancf {
 
 class BorderedLU {
  public:
+  /// An entry A[i][j] outside the blocks' bands (add_far).
+  struct Far {
+    int i, j;
+    double v;
+  };
   /// Blocks as (offset, size, half bandwidth), contiguous from 0; fixed (n): held coordinates.
   BorderedLU(const std::vector<int>& offsets, const std::vector<int>& sizes,
              const std::vector<int>& kus, const std::uint8_t* fixed);
@@ -49,6 +54,9 @@ class BorderedLU {
   void add_far(int i, int j, double v) {
     if (v != 0.0) far_.push_back({i, j, v});
   }
+  /// After reset_border: the far entries are those of `entries` (nonzero, any order), which
+  /// gets the earlier ones (a swap: no copy, and both vectors keep their memory).
+  void swap_far(std::vector<Far>& entries) { far_.swap(entries); }
   /// Factor the blocks and the Schur complement; false if singular.
   bool factor();
   /// Solve in place: x (n) holds r, z (p) holds s.
@@ -69,10 +77,6 @@ class BorderedLU {
   struct Entry {
     int index;
     double value;
-  };
-  struct Far {
-    int i, j;
-    double v;
   };
   void solve_blocks(double* x, const std::vector<char>* touched) const;
   /// Far entries into border unknowns or the merged band (class comment).
