@@ -442,9 +442,10 @@ void each_pair(const System& s, const ContactSet& c, const double* y, const doub
 }
 
 /// each_pair's visit over the near points of nl (update_near) at (y, y1, v), the forces: each
-/// point's projection starts from its closest point of the assembly before; a point farther
-/// from f's hull (body_broad.hpp) than the tubes' radii, the onset and both elements' motion
-/// in the step cannot touch it in the step and is not projected.
+/// point's projection starts from its closest point of the assembly before; a point whose
+/// kept lower bound of its gap less e's and f's drifts since (body_broad.hpp) exceeds both
+/// elements' motion in the step, or farther from f's hull than the tubes' radii, the onset
+/// and that motion, cannot touch f in the step and is not projected.
 template <class Fn>
 void each_near(const System& s, const ContactSet& c, NearList& nl, const double* y,
                const double* y1, const double* v, Fn fn, const AssemblyTerms& tm, double* K) {
