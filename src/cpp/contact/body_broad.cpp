@@ -349,6 +349,7 @@ bool update_near(const System& s, const ContactSet& c, const double* y, const do
     const auto it = last.find(near_key(p));
     if (it == last.end()) continue;
     p.xi = it->second->xi;
+    p.xi_ends = it->second->xi_ends;
     p.gap = it->second->gap;
     p.drift = it->second->drift;
   }

@@ -303,12 +303,15 @@ void friction(const BodyPair& bp, const Side& A, const Side& B, const Pair& pf, 
 /// the gap (1e300: not kept); pw: the point's normal force.  xi (if not null): the
 /// projection's start (< 0: none) and its closest point; clear: a gap at the alpha point above
 /// which the step's gaps cannot reach zero (the points' motion in the step is below it);
-/// seen (if not null): the gap at the alpha point's closest point on f, kept or not.
+/// seen (if not null): the gap at the alpha point's closest point on f, kept or not; ends (if
+/// not null): the closest points at the step's end and start of the point's last force (< 0:
+/// none), starts of their projections near the alpha point's, and set to those found.
 double point_force(const BodyPair& bp, const Side& A, const Side& B, int e, int q, int f,
                    const double* ea, const double* eb, const double* ea1, const double* eb1,
                    const double* va, const double* vb, double* fe, double* pw, double ck = 1.0,
                    double cv = 0.0, double* K = nullptr, double c1 = 1.0, double af = 0.0,
-                   double* xi = nullptr, double clear = 1e300, double* seen = nullptr) {
+                   double* xi = nullptr, double clear = 1e300, double* seen = nullptr,
+                   double* ends = nullptr) {
   const int na = A.m->nde(), n = na + B.m->nde();
   Pair pf;
   pair_geometry(A, B, e, q, f, ea, eb, pf, xi != nullptr ? *xi : -1.0);
@@ -325,13 +328,20 @@ double point_force(const BodyPair& bp, const Side& A, const Side& B, int e, int 
     pm = law.p(pf.g);
     slope = law.slope(pf.g);
   } else {  // the step's mean pressure over [2 gs - g1, g1] (contact.hpp)
-    pair_geometry(A, B, e, q, f, ea1, eb1, p1, pf.xi);  // from the alpha point's
+    // from the alpha point's closest point, or from the end's (start's) of the assembly before
+    // where that is near it (the same closest point: Newton from nearer)
+    auto from = [&](int k) {
+      return ends != nullptr && ends[k] >= 0.0 && std::abs(ends[k] - pf.xi) < 0.1 ? ends[k] : pf.xi;
+    };
+    pair_geometry(A, B, e, q, f, ea1, eb1, p1, from(0));
+    if (ends != nullptr) ends[0] = p1.xi;
     if (!p1.kept) p1 = pf;
     if (af > 0.0) {  // the step's start at the alpha point's closest point
       Coords ea0{}, eb0{};
       contact_point::step_start(ea, ea1, af, na, ea0.data());
       contact_point::step_start(eb, eb1, af, n - na, eb0.data());
-      pair_geometry(A, B, e, q, f, ea0.data(), eb0.data(), p0, pf.xi, true);
+      pair_geometry(A, B, e, q, f, ea0.data(), eb0.data(), p0, from(1), true);
+      if (ends != nullptr) ends[1] = p0.xi;
     }
     const double gs = p0.kept ? (1.0 - af) * p1.g + af * p0.g : pf.g;
     mean_pressure(law, 2.0 * gs - p1.g, p1.g, pm, dpa, dp1);
@@ -495,8 +505,9 @@ void each_near(const System& s, const ContactSet& c, NearList& nl, const double*
     p.gap = to_segment(seg, x) - off - A.cb->radius - B.cb->radius;  // f's hull: a lower bound
     if (p.gap > bp.onset + clear) continue;
     double pw = 0.0;
-    const double g = point_force(bp, A, B, p.e, p.q, p.f, ea.data(), eb.data(), pa1, pb1, pva, pvb,
-                                 fe.data(), &pw, tm.ck, tm.cv, K, tm.c1, af, &p.xi, clear, &p.gap);
+    const double g =
+        point_force(bp, A, B, p.e, p.q, p.f, ea.data(), eb.data(), pa1, pb1, pva, pvb, fe.data(),
+                    &pw, tm.ck, tm.cv, K, tm.c1, af, &p.xi, clear, &p.gap, p.xi_ends.data());
     fn(bp, A, B, p.e, p.q, p.f, ea.data(), eb.data(), pa1, pb1, pva, pvb, fe.data(), g, pw);
   }
 }

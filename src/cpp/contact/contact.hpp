@@ -40,6 +40,7 @@
 // Couplings between an element and a body go through the sink (add_matrix: the border).
 #pragma once
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -98,7 +99,8 @@ struct BodyPair {
 struct NearPoint {
   int pair = 0, dir = 0;  ///< the body pair and its order (0: a against b, 1: b against a)
   int e = 0, q = 0, f = 0;
-  double xi = -1.0;  ///< its last closest point on f (-1: none yet)
+  double xi = -1.0;                           ///< its last closest point on f (-1: none yet)
+  std::array<double, 2> xi_ends{-1.0, -1.0};  ///< the same at the step's end and start
   /// a lower bound of its gap to f when the drift_el of e and f (NearList) summed to `drift`
   double gap = -1e300, drift = 0.0;
 };
