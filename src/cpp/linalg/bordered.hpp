@@ -90,8 +90,8 @@ class BorderedLU {
   bool factor_schur();
   int n_ = 0, p_ = 0, pu_ = 0;  // border unknowns: all, the caller's
   std::vector<Far> far_;
-  std::vector<int> rows_, cols_, count_, gid_, at_, idx_;  // place_far's work arrays
-  std::vector<double> du_;                                 // the caller's D (pu x pu)
+  std::vector<int> rows_, cols_, count_, gid_, at_, idx_, keys_;  // place_far's work arrays
+  std::vector<double> du_;                                        // the caller's D (pu x pu)
   bool merged_ = false;
   std::uint64_t sig_ = 0;    // place_far's choice for the far entries' pattern sig_: (a), (b) or
   int choice_ = 0, kb_ = 0;  // (c) as 0, 1, 2, and the merged band's half width
@@ -102,6 +102,7 @@ class BorderedLU {
   std::vector<int> off_, size_;
   std::vector<BandLU> lu_;
   std::vector<std::vector<std::uint8_t>> fixed_;
+  // P's columns and Q's rows (the first p_ of them count; more are kept for their memory)
   std::vector<std::vector<Entry>> pcol_, qrow_;
   std::vector<double> d_, w_, s_;  // D (p x p), W (n x p, column-major), Schur LU (p x p)
   std::vector<int> wlo_, whi_;     // rows [lo, hi) of W's column c that can be nonzero
