@@ -383,6 +383,32 @@ def test_the_solver_of_a_coiled_rope_matches_a_dense_solve():
     want = np.zeros(s.n)
     want[free] = np.linalg.solve(jac[np.ix_(free, free)], b[free])
     assert x == pytest.approx(want, rel=1e-8, abs=1e-10 * np.abs(want).max())
+    # the near points kept through the run skip the points whose kept gap bounds (less their
+    # elements' motion since) stay clear: at the coil and moved from it, their forces and
+    # tangent are those of a new system's list, which projects every near point
+    new = System(
+        {"rope": rope},
+        obstacles=[ground],
+        body_contacts=[("rope", "rope")],
+        body_friction=0.3,
+        gravity=[0, -G],
+    )
+    rng = np.random.default_rng(7)
+    v = res.v[-1]
+    for moved in (y, y + 2e-4 * rng.standard_normal(s.n)):
+        for system in (s, new):
+            system.contact.step_alpha_f = s.contact.step_alpha_f
+        got = [_step_terms(system, moved, v, y) for system in (s, new)]
+        assert got[0][0] == pytest.approx(got[1][0], abs=1e-9 * np.abs(got[1][0]).max())
+        assert got[0][1] == pytest.approx(got[1][1], abs=1e-9 * np.abs(got[1][1]).max())
+
+
+def _step_terms(s: System, yf: np.ndarray, v: np.ndarray, y1: np.ndarray):
+    """The contact residual and tangent of a step from yf to y1 at velocity v."""
+    r = np.empty(s.n)
+    j = np.empty(s.n * s.n)
+    s.contact.assemble(yf, v, y1, 0.5, 100.0, r, j)
+    return r, j
 
 
 @pytest.mark.parametrize("blend", [False, True], ids=["gap-at-yf", "gaps-blended"])

@@ -16,10 +16,11 @@ void cable_shape(const double* w, double l, double xi, double* n0, double* n1, d
     d2 += w[i] * b2[i];
   }
   double r0[4], r1[4], r2[4];
+  const double inv = 1.0 / d0;
   for (int i = 0; i < 4; ++i) {
-    r0[i] = w[i] * b0[i] / d0;
-    r1[i] = (w[i] * b1[i] - r0[i] * d1) / d0;
-    r2[i] = (w[i] * b2[i] - 2.0 * r1[i] * d1 - r0[i] * d2) / d0;
+    r0[i] = w[i] * b0[i] * inv;
+    r1[i] = (w[i] * b1[i] - r0[i] * d1) * inv;
+    r2[i] = (w[i] * b2[i] - 2.0 * r1[i] * d1 - r0[i] * d2) * inv;
   }
   const double c1 = l * w[0] / (3.0 * w[1]), c3 = -l * w[3] / (3.0 * w[2]);
   const double* rr[3] = {r0, r1, r2};

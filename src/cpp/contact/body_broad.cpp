@@ -235,6 +235,20 @@ double largest_motion(const std::vector<double>& a, const std::vector<double>& b
   return std::sqrt(d);
 }
 
+/// Per element (12 coordinates of a and b each): the largest distance between its
+/// corresponding control points times fac, into out (add: added to it).
+void element_motion(const std::vector<double>& a, const std::vector<double>& b, double fac,
+                    double* out, bool add = false) {
+  for (std::size_t el = 0; 12 * el + 11 < a.size(); ++el) {
+    double d = 0.0;
+    for (std::size_t i = 12 * el; i < 12 * el + 12; i += 3) {
+      const double dd[3] = {a[i] - b[i], a[i + 1] - b[i + 1], a[i + 2] - b[i + 2]};
+      d = std::max(d, dot3(dd, dd));
+    }
+    out[el] = (add ? out[el] : 0.0) + fac * std::sqrt(d);
+  }
+}
+
 std::int64_t near_key(const NearPoint& p) {
   return (((static_cast<std::int64_t>(p.pair) * 2 + p.dir) * (1 << 20) + p.e) * 128 + p.q) *
              (1 << 20) +
@@ -283,10 +297,21 @@ bool update_near(const System& s, const ContactSet& c, const double* y, const do
   // the step's motion: to its end y1 and, where its gaps blend those of its ends (alpha_f
   // > 0), to its start y0 = (y - (1 - af) y1) / af, (1 - af) / af times as far
   const double af = y1 != nullptr ? c.step_alpha_f : 0.0;
-  const double moved =
-      (y1 != nullptr ? largest_motion(P, all_control_points(s, c, y1, nullptr)) : 0.0) *
-      (af > 0.0 ? std::max(1.0, (1.0 - af) / af) : 1.0);
+  const std::size_t nel = P.size() / 12;
+  nl.moved_el.assign(nel, 0.0);
+  if (y1 != nullptr)
+    element_motion(P, all_control_points(s, c, y1, nullptr),
+                   af > 0.0 ? std::max(1.0, (1.0 - af) / af) : 1.0, nl.moved_el.data());
+  const double moved = nel > 0 ? *std::max_element(nl.moved_el.begin(), nl.moved_el.end()) : 0.0;
   nl.moved = moved;
+  if (nl.last.size() != P.size()) {
+    nl.drift_el.assign(nel, 0.0);
+    for (NearPoint& p : nl.points) p.gap = -1e300;
+  } else {
+    element_motion(P, nl.last, 1.0, nl.drift_el.data(), true);
+  }
+  nl.last = P;
+  nl.start = start;
   if (nl.valid && nl.ref.size() == P.size() &&
       2.0 * (largest_motion(P, nl.ref) + moved) < nl.margin)
     return false;
@@ -311,8 +336,8 @@ bool update_near(const System& s, const ContactSet& c, const double* y, const do
       sp[3] = rad + c.bodies[k].radius + 0.5 * margin;
       br.sphere.push_back(sp);
     }
-  std::unordered_map<std::int64_t, double> last;  // the closest points found so far
-  for (const NearPoint& p : nl.points) last[near_key(p)] = p.xi;
+  std::unordered_map<std::int64_t, const NearPoint*> last;  // the closest points so far
+  for (const NearPoint& p : nl.points) last[near_key(p)] = &p;
   std::vector<NearPoint> pts;
   for (std::size_t k = 0; k < c.body_pairs.size(); ++k) {
     const BodyPair& bp = c.body_pairs[k];
@@ -322,7 +347,11 @@ bool update_near(const System& s, const ContactSet& c, const double* y, const do
   }
   for (NearPoint& p : pts) {
     const auto it = last.find(near_key(p));
-    if (it != last.end()) p.xi = it->second;
+    if (it == last.end()) continue;
+    p.xi = it->second->xi;
+    p.xi_ends = it->second->xi_ends;
+    p.gap = it->second->gap;
+    p.drift = it->second->drift;
   }
   nl.points = std::move(pts);
   nl.ref = P;

@@ -20,6 +20,13 @@
 // its gap stays above the onset at y and at the step's start and end (the gap is 1-Lipschitz
 // in the points' motion).  delta = max(r_A + r_B, 4 m).  The closest point found at
 // the last assembly is kept per point and starts the next projection (Newton from it).
+// Each point also keeps a lower bound of its gap to f (its gap at its last projection, or
+// the hull's bound where it was not projected) and the sum of e's and f's drifts then (an
+// element's drift: the largest motion of its control points from one assembly to the next,
+// summed over the assemblies): the gap is 1-Lipschitz in the motion of x (a convex
+// combination of e's control points) and of f's curve, so it is at least that bound less
+// the drifts since.  A point whose bound exceeds e's and f's motion in the step cannot
+// touch f within it and is not projected (body_contact.cpp each_near).
 #pragma once
 
 #include <array>

@@ -134,15 +134,15 @@ void pair_geometry(const Side& A, const Side& B, int e, int q, int f, const doub
   out.xi = xi;
   out.at_end = xi == 0.0 || xi == 1.0;
   out.kept = false;
+  const double* y = out.pr.y;
+  const double d[3] = {x[0] - y[0], x[1] - y[1], x[2] - y[2]};
+  out.rho = std::sqrt(dot3(d, d));
+  out.g = out.rho - A.cb->radius - B.cb->radius;  // (also where not kept: each_near's bound)
   if (out.at_end && !ends && !((xi == 0.0 && f == 0) || (xi == 1.0 && f == mb.n_el - 1))) return;
   if (A.body == B.body) {  // self-contact: not near along the body
     const double s_y = B.cb->arc0[sz(f)] + xi * (B.cb->arc0[sz(f + 1)] - B.cb->arc0[sz(f)]);
     if (std::abs(point_arc(*A.cb, e, q) - s_y) < excluded_arc(*A.cb, *B.cb)) return;
   }
-  const double* y = out.pr.y;
-  const double d[3] = {x[0] - y[0], x[1] - y[1], x[2] - y[2]};
-  out.rho = std::sqrt(dot3(d, d));
-  out.g = out.rho - A.cb->radius - B.cb->radius;
   out.kept = out.rho > 0.0;
   if (!out.kept) return;
   for (int i = 0; i < 3; ++i) out.n[i] = d[i] / out.rho;
@@ -190,12 +190,27 @@ void pair_hessian(int n, Pair& out) {
   }
 }
 
-/// Hg(a, c) = (J^T J - G G^T - c b b^T)(a, c) / rho after pair_hessian (J^T J from J's columns:
-/// jc[a] jc[c] where both move the same component).
-double hessian_entry(const Pair& p, int a, int c) {
-  double v = -p.G[sz(a)] * p.G[sz(c)] - p.cc * p.b[sz(a)] * p.b[sz(c)];
-  if (p.jd[sz(a)] >= 0 && p.jd[sz(a)] == p.jd[sz(c)]) v += p.jc[sz(a)] * p.jc[sz(c)];
-  return v / p.rho;
+/// K = s Hg - w G dP^T (n x n, row-major) after pair_hessian, with
+/// Hg = (J^T J - G G^T - c b b^T) / rho: K = G u^T + v b^T + (s / rho) J^T J,
+/// u = -(s / rho) G - w dP, v = -(s c / rho) b, J^T J from J's columns (jc[a] jc[c] where both
+/// move the same component).
+void point_tangent(const Pair& p, int n, double s, double w, const double* dP, double* K) {
+  const double sr = s / p.rho;
+  std::array<double, 2 * kMaxElementDofs> u, v;
+  for (int c = 0; c < n; ++c) {
+    u[sz(c)] = -sr * p.G[sz(c)] - w * dP[c];
+    v[sz(c)] = -sr * p.cc * p.b[sz(c)];
+  }
+  for (int a = 0; a < n; ++a) {
+    const double ga = p.G[sz(a)], va = v[sz(a)];
+    double* row = K + a * n;
+    for (int c = 0; c < n; ++c) row[c] = ga * u[sz(c)] + va * p.b[sz(c)];
+    const int i = p.jd[sz(a)];
+    if (i < 0) continue;
+    const double ja = sr * p.jc[sz(a)];
+    for (int c = 0; c < n; ++c)
+      if (p.jd[sz(c)] == i) row[c] += ja * p.jc[sz(c)];
+  }
 }
 
 /// A point's weight and pressure and the pressure's slopes (point_force): w, pm, the
@@ -287,16 +302,21 @@ void friction(const BodyPair& bp, const Side& A, const Side& B, const Pair& pf, 
 /// the closest point passes to the next element within the step).  Returns
 /// the gap (1e300: not kept); pw: the point's normal force.  xi (if not null): the
 /// projection's start (< 0: none) and its closest point; clear: a gap at the alpha point above
-/// which the step's gaps cannot reach zero (the points' motion in the step is below it).
+/// which the step's gaps cannot reach zero (the points' motion in the step is below it);
+/// seen (if not null): the gap at the alpha point's closest point on f, kept or not; ends (if
+/// not null): the closest points at the step's end and start of the point's last force (< 0:
+/// none), starts of their projections near the alpha point's, and set to those found.
 double point_force(const BodyPair& bp, const Side& A, const Side& B, int e, int q, int f,
                    const double* ea, const double* eb, const double* ea1, const double* eb1,
                    const double* va, const double* vb, double* fe, double* pw, double ck = 1.0,
                    double cv = 0.0, double* K = nullptr, double c1 = 1.0, double af = 0.0,
-                   double* xi = nullptr, double clear = 1e300) {
+                   double* xi = nullptr, double clear = 1e300, double* seen = nullptr,
+                   double* ends = nullptr) {
   const int na = A.m->nde(), n = na + B.m->nde();
   Pair pf;
   pair_geometry(A, B, e, q, f, ea, eb, pf, xi != nullptr ? *xi : -1.0);
   if (xi != nullptr) *xi = pf.xi;
+  if (seen != nullptr) *seen = pf.g;
   std::fill(fe, fe + n, 0.0);
   *pw = 0.0;
   if (!pf.kept) return 1e300;
@@ -308,13 +328,20 @@ double point_force(const BodyPair& bp, const Side& A, const Side& B, int e, int 
     pm = law.p(pf.g);
     slope = law.slope(pf.g);
   } else {  // the step's mean pressure over [2 gs - g1, g1] (contact.hpp)
-    pair_geometry(A, B, e, q, f, ea1, eb1, p1, pf.xi);  // from the alpha point's
+    // from the alpha point's closest point, or from the end's (start's) of the assembly before
+    // where that is near it (the same closest point: Newton from nearer)
+    auto from = [&](int k) {
+      return ends != nullptr && ends[k] >= 0.0 && std::abs(ends[k] - pf.xi) < 0.1 ? ends[k] : pf.xi;
+    };
+    pair_geometry(A, B, e, q, f, ea1, eb1, p1, from(0));
+    if (ends != nullptr) ends[0] = p1.xi;
     if (!p1.kept) p1 = pf;
     if (af > 0.0) {  // the step's start at the alpha point's closest point
       Coords ea0{}, eb0{};
       contact_point::step_start(ea, ea1, af, na, ea0.data());
       contact_point::step_start(eb, eb1, af, n - na, eb0.data());
-      pair_geometry(A, B, e, q, f, ea0.data(), eb0.data(), p0, pf.xi, true);
+      pair_geometry(A, B, e, q, f, ea0.data(), eb0.data(), p0, from(1), true);
+      if (ends != nullptr) ends[1] = p0.xi;
     }
     const double gs = p0.kept ? (1.0 - af) * p1.g + af * p0.g : pf.g;
     mean_pressure(law, 2.0 * gs - p1.g, p1.g, pm, dpa, dp1);
@@ -342,10 +369,7 @@ double point_force(const BodyPair& bp, const Side& A, const Side& B, int e, int 
   const double w = A.cb->w[sz(e * A.cb->n_c + q)];
   *pw = w * pm;
   for (int a = 0; a < n; ++a) fe[a] = w * pm * pf.G[sz(a)];
-  if (K != nullptr)
-    for (int a = 0; a < n; ++a)
-      for (int c = 0; c < n; ++c)
-        K[a * n + c] = -w * (ck * pm * hessian_entry(pf, a, c) + pf.G[sz(a)] * dP[sz(c)]);
+  if (K != nullptr) point_tangent(pf, n, -w * ck * pm, w, dP.data(), K);
   if (bp.friction > 0.0 && va != nullptr && pm > 0.0) {
     const Slopes sl{w, pm, ck, cv, dP.data()};
     friction(bp, A, B, pf, sl, va, vb, fe, K);
@@ -428,9 +452,10 @@ void each_pair(const System& s, const ContactSet& c, const double* y, const doub
 }
 
 /// each_pair's visit over the near points of nl (update_near) at (y, y1, v), the forces: each
-/// point's projection starts from its closest point of the assembly before; a point farther
-/// from f's hull (body_broad.hpp) than the tubes' radii, the onset and both elements' motion
-/// in the step cannot touch it in the step and is not projected.
+/// point's projection starts from its closest point of the assembly before; a point whose
+/// kept lower bound of its gap less e's and f's drifts since (body_broad.hpp) exceeds both
+/// elements' motion in the step, or farther from f's hull than the tubes' radii, the onset
+/// and that motion, cannot touch f in the step and is not projected.
 template <class Fn>
 void each_near(const System& s, const ContactSet& c, NearList& nl, const double* y,
                const double* y1, const double* v, Fn fn, const AssemblyTerms& tm, double* K) {
@@ -442,6 +467,10 @@ void each_near(const System& s, const ContactSet& c, NearList& nl, const double*
   for (NearPoint& p : nl.points) {
     const BodyPair& bp = c.body_pairs[sz(p.pair)];
     const Side A = side(s, c, p.dir == 0 ? bp.a : bp.b), B = side(s, c, p.dir == 0 ? bp.b : bp.a);
+    const int ia = nl.start[sz(A.body)] + p.e, ib = nl.start[sz(B.body)] + p.f;
+    const double drift = nl.drift_el[sz(ia)] + nl.drift_el[sz(ib)];
+    const double clear = y1 != nullptr ? nl.moved_el[sz(ia)] + nl.moved_el[sz(ib)] : 0.0;
+    if (p.gap - (drift - p.drift) > clear) continue;  // still clear of f
     const bool rub = v != nullptr && bp.friction > 0.0;
     if (key[0] != p.pair || key[1] != p.dir || key[2] != p.e || key[3] != p.f) {
       element_coordinates(*A.m, y + A.offset, p.e, ea.data());
@@ -472,11 +501,13 @@ void each_near(const System& s, const ContactSet& c, NearList& nl, const double*
     const double* pvb = rub ? vb.data() : nullptr;
     double x[3];
     contact_point::point_of(*A.m, A.cb->N.data() + 4 * (p.e * A.cb->n_c + p.q), ea.data(), x);
-    if (to_segment(seg, x) - off > A.cb->radius + B.cb->radius + bp.onset + 2.0 * nl.moved)
-      continue;
+    p.drift = drift;
+    p.gap = to_segment(seg, x) - off - A.cb->radius - B.cb->radius;  // f's hull: a lower bound
+    if (p.gap > bp.onset + clear) continue;
     double pw = 0.0;
-    const double g = point_force(bp, A, B, p.e, p.q, p.f, ea.data(), eb.data(), pa1, pb1, pva, pvb,
-                                 fe.data(), &pw, tm.ck, tm.cv, K, tm.c1, af, &p.xi, 2.0 * nl.moved);
+    const double g =
+        point_force(bp, A, B, p.e, p.q, p.f, ea.data(), eb.data(), pa1, pb1, pva, pvb, fe.data(),
+                    &pw, tm.ck, tm.cv, K, tm.c1, af, &p.xi, clear, &p.gap, p.xi_ends.data());
     fn(bp, A, B, p.e, p.q, p.f, ea.data(), eb.data(), pa1, pb1, pva, pvb, fe.data(), g, pw);
   }
 }
@@ -505,14 +536,84 @@ void rotate_pair(const Side& A, const Side& B, int e, int f, double* fe, double*
   for (int i = 0; i < n; ++i) vec(K + i * n, 1);  // rows: (T^T K) T
 }
 
+/// Node blocks of the contacts' tangent: (row start, width, column start, width) and their
+/// dense entries, summed over the element pairs that give them.
+class NodeBlocks {
+ public:
+  /// No blocks, for a system of n coordinates: its blocks found through a table of n x n
+  /// (small n; its entries of the blocks before set back) or a hash map.
+  void reset(int n) {
+    if (!table_.empty())
+      for (const Head& h : heads_) table_[sz(h.r0) * sz(n_) + sz(h.c0)] = -1;
+    if (n != n_) {
+      n_ = n;
+      table_.assign(n <= kTable ? sz(n) * sz(n) : 0, -1);
+    }
+    at_.clear();
+    heads_.clear();
+    vals_.clear();
+  }
+  /// Add the wr x wc block of K (row stride ld) at global rows r0.., columns c0...
+  void add(int r0, int wr, int c0, int wc, const double* K, int ld) {
+    std::size_t h = heads_.size();
+    if (!table_.empty()) {
+      int& t = table_[sz(r0) * sz(n_) + sz(c0)];
+      if (t < 0) t = static_cast<int>(h);
+      h = sz(t);
+    } else {
+      const std::int64_t k = static_cast<std::int64_t>(r0) * n_ + c0;
+      h = at_.try_emplace(k, h).first->second;
+    }
+    if (h == heads_.size()) {
+      heads_.push_back({r0, wr, c0, wc, vals_.size()});
+      vals_.resize(vals_.size() + sz(wr * wc), 0.0);
+    }
+    double* v = vals_.data() + heads_[h].at;
+    for (int i = 0; i < wr; ++i)
+      for (int j = 0; j < wc; ++j) v[i * wc + j] += K[i * ld + j];
+  }
+  /// Each block to the sink once (as a square matrix over its rows and columns).
+  void emit(const MatrixSink& add) const {
+    std::array<int, 2 * kMaxElementDofs> idx{};
+    std::array<double, 4 * kMaxElementDofs * kMaxElementDofs> M{};
+    for (const Head& h : heads_) {
+      const double* v = vals_.data() + h.at;
+      const bool diag = h.r0 == h.c0;
+      const int k = diag ? h.wr : h.wr + h.wc, co = diag ? 0 : h.wr;
+      for (int i = 0; i < h.wr; ++i) idx[sz(i)] = h.r0 + i;
+      for (int j = 0; j < h.wc; ++j) idx[sz(co + j)] = h.c0 + j;
+      std::fill(M.begin(), M.begin() + k * k, 0.0);
+      for (int i = 0; i < h.wr; ++i)
+        for (int j = 0; j < h.wc; ++j) M[sz(i * k + co + j)] = v[i * h.wc + j];
+      add(idx.data(), k, M.data());
+    }
+  }
+
+ private:
+  struct Head {
+    int r0, wr, c0, wc;
+    std::size_t at;
+  };
+  static constexpr int kTable = 1024;
+  int n_ = -1;
+  std::vector<int> table_;
+  std::unordered_map<std::int64_t, std::size_t> at_;
+  std::vector<Head> heads_;
+  std::vector<double> vals_;
+};
+
 }  // namespace
 
 void assemble_body_contact(const System& s, const ContactSet& c, const double* yf, const double* vf,
                            const double* y1, const AssemblyTerms& tm, double* r,
                            const MatrixSink* add) {
   // the points of element e against element f come one after the other: their forces and
-  // tangents are summed, then given to r and the sink once per element pair (flush)
+  // tangents are summed, then given to r and the tangents to node blocks once per element
+  // pair (flush); the node blocks (summed over the element pairs that share nodes, in both
+  // orders) go to the sink at the end, each once
   std::vector<double> K(sz(4 * kMaxElementDofs * kMaxElementDofs)), Ksum;
+  thread_local NodeBlocks blocks;
+  blocks.reset(s.n);
   std::array<double, 2 * kMaxElementDofs> fsum{};
   Side sides[2];
   int key[4] = {-1, -1, -1, -1};  // bodies of A and B, e, f
@@ -525,7 +626,16 @@ void assemble_body_contact(const System& s, const ContactSet& c, const double* y
     for (int a = 0; a < n - na; ++a) idx[sz(na + a)] = B.offset + f * B.m->dpn + a;
     rotate_pair(A, B, e, f, fsum.data(), add != nullptr ? Ksum.data() : nullptr);
     for (int a = 0; a < n; ++a) r[idx[sz(a)]] -= fsum[sz(a)];
-    if (add != nullptr) (*add)(idx.data(), n, Ksum.data());
+    if (add != nullptr) {
+      const int nodes[4] = {idx[0], idx[sz(A.m->dpn)], idx[sz(na)], idx[sz(na + B.m->dpn)]};
+      const int width[4] = {A.m->dpn, A.m->dpn, B.m->dpn, B.m->dpn};
+      for (int bi = 0; bi < 4; ++bi)
+        for (int bj = 0; bj < 4; ++bj)
+          blocks.add(nodes[bi], width[bi], nodes[bj], width[bj],
+                     Ksum.data() + (bi / 2) * na * n + (bi % 2) * width[bi] * n + (bj / 2) * na +
+                         (bj % 2) * width[bj],
+                     n);
+    }
     key[0] = -1;
   };
   auto visit = [&](const BodyPair&, const Side& A, const Side& B, int e, int, int f, const double*,
@@ -558,6 +668,7 @@ void assemble_body_contact(const System& s, const ContactSet& c, const double* y
     each_pair(s, c, yf, y1, vf, true, visit, &tm, Kp);
   }
   flush();
+  if (add != nullptr) blocks.emit(*add);
 }
 
 double body_contact_energy(const System& s, const ContactSet& c, const double* y) {

@@ -23,12 +23,15 @@
 // neighbouring cells whose spheres overlap; cost near linear in the number of elements.  The
 // forces of a time step take their points from a list of near points kept between assemblies
 // (body_broad.hpp update_near: made again when an element has moved by a margin), each
-// projection started from the point's last closest point.
+// projection started from the point's last closest point, and a point whose kept lower bound
+// of its gap (body_broad.hpp) shows it clear of the element within the step not projected.
 //
 // Tangent: exact, from the gap's Hessian including the projection's variation
 // (body_contact.cpp pair_geometry) and, with friction, the slip's variation with the normal,
-// the closest point and the velocities (body_contact.cpp friction); couplings of distant
-// elements go through the sink (the bordered solve's far columns).
+// the closest point and the velocities (body_contact.cpp friction); the element pairs'
+// tangents are summed by node blocks (a node pair's block once, whichever element pairs and
+// orders give it), which then go through the sink (couplings of distant elements: the
+// bordered solve's far entries).
 #pragma once
 
 #include "contact/contact.hpp"

@@ -40,6 +40,7 @@
 // Couplings between an element and a body go through the sink (add_matrix: the border).
 #pragma once
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -98,7 +99,10 @@ struct BodyPair {
 struct NearPoint {
   int pair = 0, dir = 0;  ///< the body pair and its order (0: a against b, 1: b against a)
   int e = 0, q = 0, f = 0;
-  double xi = -1.0;  ///< its last closest point on f (-1: none yet)
+  double xi = -1.0;                           ///< its last closest point on f (-1: none yet)
+  std::array<double, 2> xi_ends{-1.0, -1.0};  ///< the same at the step's end and start
+  /// a lower bound of its gap to f when the drift_el of e and f (NearList) summed to `drift`
+  double gap = -1e300, drift = 0.0;
 };
 
 /// The points of the body pairs that can touch an element while no element has moved by
@@ -109,6 +113,13 @@ struct NearList {
   double margin = 0.0;
   double moved = 0.0;       ///< the largest motion of a control point in the step (y to y1, y0)
   std::vector<double> ref;  ///< the elements' Bezier control points where it was made
+  std::vector<int> start;   ///< the first element of each body in the arrays below
+  std::vector<double> moved_el;  ///< per element: the largest motion of its control points in
+                                 ///< the step (as `moved`)
+  /// per element: the sum over the assemblies so far of the largest motion of its control
+  /// points since the assembly before (at the control points `last`), a bound of its motion
+  /// between any two assemblies
+  std::vector<double> drift_el, last;
   std::vector<NearPoint> points;
 };
 

@@ -166,12 +166,15 @@ bool BandLU::factor_lu() {
     if (jp != 0)
       for (int c = j; c <= ju; ++c) std::swap(at(j, c), at(j + jp, c));
     const double inv = 1.0 / col[0];
-    for (int p = 1; p <= km; ++p) col[p] *= inv;
+    int lm = km;  // the column's last nonzero below the diagonal (a sparse band: fewer updates)
+    while (lm > 0 && col[lm] == 0.0) --lm;
+    for (int p = 1; p <= lm; ++p) col[p] *= inv;
+    if (lm == 0) continue;
     for (int c = j + 1; c <= ju; ++c) {
       const double ujc = at(j, c);
       if (ujc == 0.0) continue;
       double* cc = a + static_cast<std::ptrdiff_t>(c) * ld_ + kv + j - c;  // cc[p] = A(j + p, c)
-      for (int p = 1; p <= km; ++p) cc[p] -= col[p] * ujc;
+      for (int p = 1; p <= lm; ++p) cc[p] -= col[p] * ujc;
     }
   }
   return true;

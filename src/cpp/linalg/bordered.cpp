@@ -30,8 +30,12 @@ int BorderedLU::block_of(int i) const {
 
 void BorderedLU::reset_border(int p) {
   p_ = pu_ = p;
-  pcol_.assign(sz(p), {});
-  qrow_.assign(sz(p), {});
+  for (auto& v : pcol_) v.clear();  // (kept: their memory serves the next assembly)
+  for (auto& v : qrow_) v.clear();
+  if (pcol_.size() < sz(p)) {
+    pcol_.resize(sz(p));
+    qrow_.resize(sz(p));
+  }
   du_.assign(sz(p * p), 0.0);
   far_.clear();
   merged_ = false;
@@ -108,8 +112,10 @@ void BorderedLU::solve_blocks(double* x, const std::vector<char>* touched) const
 
 bool BorderedLU::factor() {
   p_ = pu_;  // the caller's border, then the unknowns of the far entries (place_far)
-  pcol_.resize(sz(pu_));
-  qrow_.resize(sz(pu_));
+  for (std::size_t c = sz(pu_); c < pcol_.size(); ++c) {  // the last factor()'s far unknowns
+    pcol_[c].clear();
+    qrow_[c].clear();
+  }
   merged_ = false;
   place_far();
   if (merged_) {
@@ -285,7 +291,8 @@ void BorderedLU::place_far() {
     if (count[sz(gk)] > limit) idx[sz(at[sz(gk)]++)] = k;
   }
   int z = pu_ - 1, last = -1;
-  std::vector<int> key;
+  std::vector<int>& key = keys_;
+  key.clear();
   for (int k : idx) {
     const Far& e = far_[sz(k)];
     const int gk = gid[sz(k)];
@@ -293,8 +300,10 @@ void BorderedLU::place_far() {
       ++z;
       last = gk;
       key.push_back(gk);
-      pcol_.emplace_back();
-      qrow_.emplace_back();
+      if (pcol_.size() <= sz(z)) {
+        pcol_.emplace_back();
+        qrow_.emplace_back();
+      }
     }
     if (gk >= n_)  // w = K_i. x: Q[w][j] = K_ij, P[i][w] = 1
       qrow_[sz(z)].push_back({e.j, e.v});

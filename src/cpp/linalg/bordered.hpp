@@ -28,6 +28,11 @@ namespace rancf {
 
 class BorderedLU {
  public:
+  /// An entry A[i][j] outside the blocks' bands (add_far).
+  struct Far {
+    int i, j;
+    double v;
+  };
   /// Blocks as (offset, size, half bandwidth), contiguous from 0; fixed (n): held coordinates.
   BorderedLU(const std::vector<int>& offsets, const std::vector<int>& sizes,
              const std::vector<int>& kus, const std::uint8_t* fixed);
@@ -49,6 +54,9 @@ class BorderedLU {
   void add_far(int i, int j, double v) {
     if (v != 0.0) far_.push_back({i, j, v});
   }
+  /// After reset_border: the far entries are those of `entries` (nonzero, any order), which
+  /// gets the earlier ones (a swap: no copy, and both vectors keep their memory).
+  void swap_far(std::vector<Far>& entries) { far_.swap(entries); }
   /// Factor the blocks and the Schur complement; false if singular.
   bool factor();
   /// Solve in place: x (n) holds r, z (p) holds s.
@@ -70,10 +78,6 @@ class BorderedLU {
     int index;
     double value;
   };
-  struct Far {
-    int i, j;
-    double v;
-  };
   void solve_blocks(double* x, const std::vector<char>* touched) const;
   /// Far entries into border unknowns or the merged band (class comment).
   void place_far();
@@ -86,8 +90,8 @@ class BorderedLU {
   bool factor_schur();
   int n_ = 0, p_ = 0, pu_ = 0;  // border unknowns: all, the caller's
   std::vector<Far> far_;
-  std::vector<int> rows_, cols_, count_, gid_, at_, idx_;  // place_far's work arrays
-  std::vector<double> du_;                                 // the caller's D (pu x pu)
+  std::vector<int> rows_, cols_, count_, gid_, at_, idx_, keys_;  // place_far's work arrays
+  std::vector<double> du_;                                        // the caller's D (pu x pu)
   bool merged_ = false;
   std::uint64_t sig_ = 0;    // place_far's choice for the far entries' pattern sig_: (a), (b) or
   int choice_ = 0, kb_ = 0;  // (c) as 0, 1, 2, and the merged band's half width
@@ -98,6 +102,7 @@ class BorderedLU {
   std::vector<int> off_, size_;
   std::vector<BandLU> lu_;
   std::vector<std::vector<std::uint8_t>> fixed_;
+  // P's columns and Q's rows (the first p_ of them count; more are kept for their memory)
   std::vector<std::vector<Entry>> pcol_, qrow_;
   std::vector<double> d_, w_, s_;  // D (p x p), W (n x p, column-major), Schur LU (p x p)
   std::vector<int> wlo_, whi_;     // rows [lo, hi) of W's column c that can be nonzero

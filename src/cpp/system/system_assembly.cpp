@@ -28,30 +28,29 @@ namespace {
 
 std::size_t sz(int i) { return static_cast<std::size_t>(i); }
 
-/// Entries of the Jacobian that do not fit into a block's band, (row, column, value).
-struct FarEntry {
-  int i, j;
-  double v;
-};
+/// Entries of the Jacobian that do not fit into a block's band, (row, column, value), nonzero;
+/// kept from one assembly to the next for their memory (the solver swaps them in).
 struct Far {
-  std::vector<FarEntry> entries;
+  std::vector<BorderedLU::Far> entries;
   void add(int i, int j, double v) { entries.push_back({i, j, v}); }
 };
 
 /// K (k x k, row-major) over global indices idx into lu's bands, or into far.
 void add_matrix(BorderedLU& lu, const int* idx, int k, const double* K, Far& far) {
+  thread_local std::vector<int> blk;  // each index's block
+  blk.resize(sz(k));
+  for (int a = 0; a < k; ++a) blk[sz(a)] = lu.block_of(idx[a]);
   for (int a = 0; a < k; ++a) {
-    const int i = idx[a], bi = lu.block_of(i);
+    const int i = idx[a], bi = blk[sz(a)], ku = lu.block_ku(bi), o = lu.block_offset(bi);
+    const BandView band = lu.view(bi);
     for (int b = 0; b < k; ++b) {
       const double v = K[a * k + b];
       if (v == 0.0) continue;
-      const int j = idx[b], bj = lu.block_of(j);
-      if (bi == bj && std::abs(i - j) <= lu.block_ku(bi)) {
-        const int o = lu.block_offset(bi);
-        lu.view(bi).at(i - o, j - o) += v;
-      } else {
+      const int j = idx[b];
+      if (blk[sz(b)] == bi && std::abs(i - j) <= ku)
+        band.at(i - o, j - o) += v;
+      else
         far.add(i, j, v);
-      }
     }
   }
 }
@@ -689,7 +688,7 @@ void border_terms(const Stage& st, const std::vector<DrumRow>& drums, const Join
   Far& far = st.far;
   const int m = st.s.m;
   lu->reset_border(m + static_cast<int>(drums.size()));
-  for (const FarEntry& e : far.entries) lu->add_far(e.i, e.j, e.v);
+  lu->swap_far(far.entries);
   for (std::size_t jj = 0; jj < s.joints.size(); ++jj) {
     const JointData& jd = s.joints[jj];
     if (jd.info.kind == JointKind::sliding) {
@@ -736,7 +735,8 @@ bool assemble_system(const System& s, const double* yf, const double* vf, const 
   const int n = s.n, m = s.m;
   std::fill(r, r + n + m, 0.0);
   if (tm.own != nullptr) std::fill(tm.own, tm.own + n, 0.0);
-  Far far;
+  thread_local Far far;
+  far.entries.clear();
   const Stage st{s, yf, vf, am, lam, y1, tm, r, lu, far};
   thread_local std::vector<DrumRow> drums;
   drums.clear();
