@@ -5,11 +5,15 @@ from __future__ import annotations
 
 import copy
 import tomllib
+from pathlib import Path
 
+import numpy as np
 import pytest
 
+from rancf.bodies.shell_loads import resultant
 from rancf.errors import ScenarioError
 from rancf.scenario import Scenario
+from rancf.scenario.shell_build import shell_body, shell_indices, shell_load, shell_sensors
 
 ROOF = """
 [geometry]
@@ -218,3 +222,32 @@ def test_the_system_refuses_a_shell_in_one_line():
     sc = Scenario.from_dict(_raw(), "roof.toml")
     with pytest.raises(ScenarioError, match=r"^roof.toml: \[geometry\] 'cylinder' makes the body"):
         sc.build_system()
+
+
+DATA = Path(__file__).parent / "data"
+
+
+def test_the_roof_file_builds_its_shell_body():
+    sc = Scenario.from_toml(DATA / "scordelis_lo.toml")
+    (i,) = shell_indices(sc)
+    body = shell_body(sc, i)
+    assert body.thickness == 0.25 and body.poisson_ratio == 0.0 and len(body.supports) == 3
+    c, d = body.constraint_rows()
+    assert c.shape == (5 * 4 + 2 * 5 * 6, body.n_dofs)  # a node: diaphragm 4, symmetry 6 rows
+    force, _ = resultant(body, shell_load(sc, body))
+    area = 25.0 * np.radians(40.0) * 25.0
+    np.testing.assert_allclose(force, [0.0, 0.0, -90.0 * area], rtol=1e-12, atol=1e-8)
+    ((name, uv),) = shell_sensors(sc, body)
+    a = np.radians(130.0)
+    np.testing.assert_allclose(body.position(uv), [25 * np.cos(a), 25.0, 25 * np.sin(a)])
+    assert name == "free_mid"
+
+
+def test_gravity_on_a_shell_is_its_weight_per_area():
+    raw = _raw()
+    raw["loads"] = {"gravity": [0.0, 0.0, -9.81]}
+    sc = Scenario.from_dict(raw)
+    body = shell_body(sc, 0)
+    force, _ = resultant(body, shell_load(sc, body))
+    weight = 1.0 * 0.25 * 25.0 * np.radians(80.0) * 50.0 * 9.81
+    np.testing.assert_allclose(force, [0.0, 0.0, -weight], rtol=1e-12, atol=1e-8)
