@@ -13,7 +13,13 @@ import pytest
 from rancf.bodies.shell_loads import resultant
 from rancf.errors import ScenarioError
 from rancf.scenario import Scenario
-from rancf.scenario.shell_build import shell_body, shell_indices, shell_load, shell_sensors
+from rancf.scenario.shell_build import (
+    shell_body,
+    shell_indices,
+    shell_load,
+    shell_sensor_values,
+    shell_sensors,
+)
 
 ROOF = """
 [geometry]
@@ -241,6 +247,11 @@ def test_the_roof_file_builds_its_shell_body():
     a = np.radians(130.0)
     np.testing.assert_allclose(body.position(uv), [25 * np.cos(a), 25.0, 25 * np.sin(a)])
     assert name == "free_mid"
+    moved = body.q0.reshape(-1, 4, 3).copy()
+    moved[:, 0, 2] -= 0.3
+    cols = shell_sensor_values(sc, body, moved.ravel())
+    assert list(cols) == ["free_mid_x", "free_mid_y", "free_mid_z"]
+    assert abs(cols["free_mid_z"] - (25 * np.sin(a) - 0.3)) < 1e-12
 
 
 def test_gravity_on_a_shell_is_its_weight_per_area():

@@ -20,7 +20,7 @@ from rancf.errors import ScenarioError
 from rancf.scenario.shell_checks import shell_mesh
 from rancf.scenario.surface import is_surface
 
-__all__ = ["shell_body", "shell_load", "shell_sensors", "shell_indices"]
+__all__ = ["shell_body", "shell_load", "shell_sensors", "shell_sensor_values", "shell_indices"]
 
 
 def shell_indices(sc: Any) -> list[int]:
@@ -91,4 +91,14 @@ def shell_sensors(sc: Any, body: ShellBody) -> list[tuple[str, tuple[float, floa
             p = _on(sc, body.name, s.at)
             if p is not None and p.uv is not None:
                 out.append((s.name, p.uv))
+    return out
+
+
+def shell_sensor_values(sc: Any, body: ShellBody, q: NDArray) -> dict[str, float]:
+    """The columns ``NAME_x``, ``NAME_y``, ``NAME_z`` of the body's ``position`` sensors in the
+    configuration ``q``."""
+    out = {}
+    for name, uv in shell_sensors(sc, body):
+        for c, x in zip("xyz", body.position(uv, q), strict=True):
+            out[f"{name}_{c}"] = float(x)
     return out
