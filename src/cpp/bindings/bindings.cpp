@@ -319,4 +319,5 @@ NB_MODULE(_core, mod) {
   rancf_bind::bind_functions(mod);
   rancf_bind::bind_contact(mod);
   rancf_bind::bind_system(mod);
+  rancf_bind::bind_shell(mod);
 }

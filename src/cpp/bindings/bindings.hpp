@@ -34,4 +34,7 @@ void bind_system(nb::module_& mod);
 /// Contact (bindings_contact.cpp).
 void bind_contact(nb::module_& mod);
 
+/// Shell elements (bindings_shell.cpp).
+void bind_shell(nb::module_& mod);
+
 }  // namespace rancf_bind
