@@ -137,10 +137,11 @@ class ShellBody:
         return np.einsum("k,kc->c", f, qq[idx])
 
     def constraint_rows(self) -> tuple[sp.csr_matrix, NDArray[np.float64]]:
-        """All supports (and the seam of a closed direction) as rows ``C q = d`` with
-        ``d = C q0`` (sec. 7): ``(C, d)``."""
-        from rancf.bodies.shell_supports import closure_rows, support_rows
+        """All supports (and the seam of a closed direction) as independent rows ``C q = d``
+        with ``d = C q0`` (sec. 7): ``(C, d)``; where supports meet, the coordinates they both
+        hold are held once (:func:`~rancf.bodies.shell_supports.independent_rows`)."""
+        from rancf.bodies.shell_supports import closure_rows, independent_rows, support_rows
 
         blocks = [support_rows(self, s) for s in self.supports] + [closure_rows(self)]
-        c = sp.vstack(blocks, format="csr") if blocks else sp.csr_matrix((0, self.n_dofs))
+        c = independent_rows(sp.vstack(blocks, format="csr"), NODE_DOFS)
         return c, c @ self.q0

@@ -197,3 +197,30 @@ def closure_rows(body: ShellBody) -> sp.csr_matrix:
                 cols = np.stack([body.dof(last, k, c), body.dof(first, k, c)], axis=1)
                 rows.add(cols, np.stack([np.ones_like(ratio), -ratio], axis=1))
     return rows.matrix()
+
+
+#: Singular values of a node's rows below this fraction of the largest are dependent rows.
+RANK_RTOL = 1e-10
+
+
+def independent_rows(c: sp.csr_matrix, node_dofs: int = 12) -> sp.csr_matrix:
+    """Rows with the row space of ``c`` and no dependent ones: two supports meeting at a corner
+    hold some coordinates twice (a diaphragm and a symmetry plane both hold ``x · r``).  The
+    rows within one node's coordinates are replaced, node by node, by an orthonormal basis of
+    their span (SVD); rows over several nodes are kept."""
+    c = sp.csr_matrix(c)
+    nodes = [
+        np.unique(c.indices[c.indptr[i] : c.indptr[i + 1]] // node_dofs) for i in range(c.shape[0])
+    ]
+    single = np.array([n.size == 1 for n in nodes], dtype=bool)
+    keep = [c[~single]] if np.any(~single) else []
+    owner = np.array([n[0] if n.size == 1 else -1 for n in nodes])
+    rows = _Rows(c.shape[1])
+    for node in np.unique(owner[single]):
+        sel = np.flatnonzero(owner == node)
+        cols = node_dofs * node + np.arange(node_dofs)
+        block = c[sel][:, cols].toarray()
+        _, s, vt = np.linalg.svd(block, full_matrices=False)
+        basis = vt[s > RANK_RTOL * s[0]]
+        rows.add(np.broadcast_to(cols, basis.shape).copy(), basis)
+    return sp.vstack([rows.matrix(), *keep], format="csr")
