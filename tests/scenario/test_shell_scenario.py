@@ -264,3 +264,18 @@ def test_gravity_on_a_shell_is_its_weight_per_area():
     force, _ = resultant(body, shell_load(sc, body))
     weight = 1.0 * 0.25 * 25.0 * np.radians(80.0) * 50.0 * 9.81
     np.testing.assert_allclose(force, [0.0, 0.0, -weight], rtol=1e-12, atol=1e-8)
+
+
+@pytest.mark.parametrize("command", ["static", "simulate", "modes"])
+def test_the_commands_refuse_a_shell_in_one_line_and_write_nothing(
+    tmp_path, monkeypatch, capsys, command
+):
+    from rancf.cli import main
+
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "roof.toml").write_text((DATA / "scordelis_lo.toml").read_text())
+    argv = [command, "roof.toml"] + (["--out", "run"] if command != "modes" else [])
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "[geometry] 'cylinder' makes the body a shell" in err[0], err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["roof.toml"]

@@ -207,20 +207,39 @@ def independent_rows(c: sp.csr_matrix, node_dofs: int = 12) -> sp.csr_matrix:
     """Rows with the row space of ``c`` and no dependent ones: two supports meeting at a corner
     hold some coordinates twice (a diaphragm and a symmetry plane both hold ``x · r``).  The
     rows within one node's coordinates are replaced, node by node, by an orthonormal basis of
-    their span (SVD); rows over several nodes are kept."""
+    their span (SVD); the rows over several nodes (points between nodes, a seam), less their
+    parts in those spans, by an orthonormal basis of what is left."""
     c = sp.csr_matrix(c)
     nodes = [
         np.unique(c.indices[c.indptr[i] : c.indptr[i + 1]] // node_dofs) for i in range(c.shape[0])
     ]
-    single = np.array([n.size == 1 for n in nodes], dtype=bool)
-    keep = [c[~single]] if np.any(~single) else []
-    owner = np.array([n[0] if n.size == 1 else -1 for n in nodes])
+    owner = np.array([n[0] if n.size == 1 else -1 for n in nodes], dtype=np.int64)
     rows = _Rows(c.shape[1])
-    for node in np.unique(owner[single]):
-        sel = np.flatnonzero(owner == node)
+    bases: dict[int, NDArray] = {}
+    for node in np.unique(owner[owner >= 0]):
         cols = node_dofs * node + np.arange(node_dofs)
-        block = c[sel][:, cols].toarray()
-        _, s, vt = np.linalg.svd(block, full_matrices=False)
-        basis = vt[s > RANK_RTOL * s[0]]
+        bases[int(node)] = _basis(c[np.flatnonzero(owner == node)][:, cols].toarray())
+        rows.add(np.broadcast_to(cols, bases[int(node)].shape).copy(), bases[int(node)])
+    multi = np.flatnonzero(owner < 0)
+    if multi.size:
+        touched = np.unique(c[multi].indices // node_dofs)
+        cols = (node_dofs * touched[:, None] + np.arange(node_dofs)).ravel()
+        block = c[multi][:, cols].toarray()
+        for k, node in enumerate(touched):
+            b = bases.get(int(node))
+            if b is not None and b.size:
+                sl = slice(node_dofs * k, node_dofs * (k + 1))
+                block[:, sl] -= (block[:, sl] @ b.T) @ b
+        basis = _basis(block, float(np.abs(c[multi]).max()))
         rows.add(np.broadcast_to(cols, basis.shape).copy(), basis)
-    return sp.vstack([rows.matrix(), *keep], format="csr")
+    return rows.matrix()
+
+
+def _basis(block: NDArray, scale: float | None = None) -> NDArray:
+    """An orthonormal basis (rows) of the row space of ``block``: singular values below
+    :data:`RANK_RTOL` of ``scale`` (default the largest) are dependence."""
+    if block.size == 0:
+        return block[:0]
+    _, s, vt = np.linalg.svd(block, full_matrices=False)
+    ref = s[0] if scale is None else scale
+    return vt[s > RANK_RTOL * ref]
