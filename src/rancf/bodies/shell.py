@@ -3,9 +3,10 @@
 Coordinates run node by node, twelve a node: ``[r, r_x, r_y, r_xy]`` (docs/derivations/shell.md
 eq. 3.1), node ``j (nu + 1) + i`` (u fastest), so coordinate ``12 n + 3 k + c`` is component
 ``c`` of nodal vector ``k`` of node ``n``.  The body gives what every analysis needs besides the
-element kernel: the shape-function rows of a surface point (eq. 3.2), its supports as linear
-constraint rows ``C q = C q0`` (sec. 7, :mod:`rancf.bodies.shell_supports`), its loads as
-consistent nodal vectors (sec. 6, :mod:`rancf.bodies.shell_loads`) and its ``position`` sensors.
+element kernel: the shape-function rows of a surface point (eq. 3.2) and its ``position``
+sensors; its supports as linear constraint rows ``C q = C q0`` (sec. 7) are made by
+:func:`rancf.bodies.shell_supports.constraint_rows`, its loads as consistent nodal vectors
+(sec. 6) by :mod:`rancf.bodies.shell_loads`.
 """
 
 from __future__ import annotations
@@ -135,13 +136,3 @@ class ShellBody:
         if qq.shape != (self.n_dofs,):
             raise InputError("q", qq.shape, f"{self.n_dofs} coordinates of the shell")
         return np.einsum("k,kc->c", f, qq[idx])
-
-    def constraint_rows(self) -> tuple[sp.csr_matrix, NDArray[np.float64]]:
-        """All supports (and the seam of a closed direction) as independent rows ``C q = d``
-        with ``d = C q0`` (sec. 7): ``(C, d)``; where supports meet, the coordinates they both
-        hold are held once (:func:`~rancf.bodies.shell_supports.independent_rows`)."""
-        from rancf.bodies.shell_supports import closure_rows, independent_rows, support_rows
-
-        blocks = [support_rows(self, s) for s in self.supports] + [closure_rows(self)]
-        c = independent_rows(sp.vstack(blocks, format="csr"), NODE_DOFS)
-        return c, c @ self.q0

@@ -31,7 +31,14 @@ from rancf.errors import InputError
 if TYPE_CHECKING:
     from rancf.bodies.shell import ShellBody, ShellSupport
 
-__all__ = ["support_rows", "closure_rows", "edge_plane", "PLANE_RTOL"]
+__all__ = [
+    "constraint_rows",
+    "support_rows",
+    "closure_rows",
+    "independent_rows",
+    "edge_plane",
+    "PLANE_RTOL",
+]
 
 #: Relative size of the out-of-plane extent of an edge (or of the misalignment of a cross
 #: tangent with a symmetry normal) above which the support is refused.
@@ -243,3 +250,12 @@ def _basis(block: NDArray, scale: float | None = None) -> NDArray:
     _, s, vt = np.linalg.svd(block, full_matrices=False)
     ref = s[0] if scale is None else scale
     return vt[s > RANK_RTOL * ref]
+
+
+def constraint_rows(body: ShellBody) -> tuple[sp.csr_matrix, NDArray[np.float64]]:
+    """All supports of ``body`` (and the seam of a closed direction) as independent rows
+    ``C q = d`` with ``d = C q0`` (module docstring): ``(C, d)``; where supports meet, the
+    coordinates they both hold are held once (:func:`independent_rows`)."""
+    blocks = [support_rows(body, s) for s in body.supports] + [closure_rows(body)]
+    c = independent_rows(sp.vstack(blocks, format="csr"), 12)
+    return c, c @ body.q0
