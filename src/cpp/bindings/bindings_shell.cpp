@@ -44,8 +44,11 @@ rancf::ShellInput read_shell(nb::handle record) {
   const Fields f(record, "shell");
   rancf::ShellInput in;
   InI conn;
-  if (!nb::try_cast(f.object("connectivity"), conn))
-    f.fail("connectivity", "a C-contiguous int64 array (n_el, 4)", shown(f.object("connectivity")));
+  const nb::object c = f.object("connectivity");
+  const bool integer =
+      nb::hasattr(c, "dtype") && std::string(nb::str(c.attr("dtype").attr("kind")).c_str()) == "i";
+  if (!integer || !nb::try_cast(c, conn))
+    f.fail("connectivity", "an array of integers (n_el, 4)", shown(c));
   if (conn.size() == 0 || conn.size() % 4 != 0)
     f.fail("connectivity", "(n_el, 4) node indices, n_el >= 1", std::to_string(conn.size()));
   in.connectivity.assign(conn.data(), conn.data() + conn.size());
@@ -60,8 +63,8 @@ rancf::ShellInput read_shell(nb::handle record) {
   in.material = {f.number("thickness"), f.number("youngs_modulus"), f.number("poisson_ratio"),
                  f.number("density")};
   in.gauss = f.integer("gauss");
-  in.membrane =
-      f.choice<rancf::MembraneStrains>("membrane", std::array<const char*, 2>{"full", "projected"});
+  in.membrane = f.choice<rancf::MembraneStrains>(
+      "membrane", std::array<const char*, 3>{"full", "projected", "reduced"});
   return in;
 }
 
@@ -122,7 +125,28 @@ void bind_shell(nb::module_& mod) {
             s.area_load(p.data(), f.data());
             return to_numpy(std::move(f));
           },
-          "p"_a, "Consistent nodal forces of a constant force p (3) per reference area (sec. 6).");
+          "p"_a, "Consistent nodal forces of a constant force p (3) per reference area (sec. 6).")
+      .def(
+          "pressure",
+          [](const rancf::ShellElements& s, In q, double p) {
+            expect_q(s, q);
+            std::vector<double> f(static_cast<std::size_t>(s.n()));
+            s.pressure(q.data(), p, f.data(), nullptr);
+            return to_numpy(std::move(f));
+          },
+          "q"_a, "p"_a, "Forces of a follower pressure p along the current normal a3 (sec. 6).")
+      .def(
+          "pressure_tangent",
+          [](const rancf::ShellElements& s, In q, double p) {
+            expect_q(s, q);
+            std::vector<double> f(static_cast<std::size_t>(s.n()));
+            rancf::Triplets t;
+            s.pressure(q.data(), p, f.data(), &t);
+            return triplets(std::move(t));
+          },
+          "q"_a, "p"_a,
+          "d/dq of the pressure forces (not symmetric) as (rows, cols, values), duplicates to be "
+          "summed.");
 }
 
 }  // namespace rancf_bind

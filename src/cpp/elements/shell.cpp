@@ -5,8 +5,9 @@
 //   eps = [(a_1.a_1 - A_11)/2, (a_2.a_2 - A_22)/2, a_1.a_2 - A_12]          (eq. 4.5)
 //   kap = [B_11 - a_11.a3, B_22 - a_22.a3, 2 (B_12 - a_12.a3)]
 //   W   = 1/2 sum_g wdA_g [t epsb_g.D_g epsb_g + t^3/12 kap_g.D_g kap_g]   (eq. 4.7)
-// with epsb = P eps the projected membrane strains (eq. 5.1; P = I for "full"), P the discrete
-// L2(dA) projection on the Gauss points of each strain component.  With coordinate r = (s, d)
+// with epsb = P eps the projected membrane strains (eq. 5.1; P = I for "full" and "reduced"),
+// P the discrete L2(dA) projection on the Gauss points of each strain component; "reduced" sums
+// the membrane term on its own 3 x 3 rule.  With coordinate r = (s, d)
 // (shape s, axis d) and S_s,a its shape function's derivatives, a_a,r = S_s,a e_d and (eq. 4.8)
 //   eps_r = [S_s,1 a_1[d], S_s,2 a_2[d], S_s,1 a_2[d] + S_s,2 a_1[d]]
 //   a3t_r = S_s,1 e_d x a_2 + S_s,2 a_1 x e_d,  at_r = a3.a3t_r,  a3_r = (a3t_r - a3 at_r) / at
@@ -23,12 +24,24 @@
 #include <utility>
 
 #include "bodies/cable_shape.hpp"
+#include "bodies/threads.hpp"
 
 namespace rancf {
 namespace {
 
 constexpr int kD = kShellDofs;
 constexpr double kPi = 3.14159265358979323846;
+
+std::string number(double x) {
+  std::string s = std::to_string(x);
+  return s.size() > 24 ? s.substr(0, 24) : s;
+}
+
+/// One line naming the field, what it allows and what it got.
+[[noreturn]] void fail(const char* field, const std::string& expected, const std::string& got) {
+  throw std::invalid_argument(std::string("shell.") + field + ": expected " + expected + ", got " +
+                              got);
+}
 
 inline double dot(const double* a, const double* b) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
@@ -82,10 +95,25 @@ void strains(const Kin& k, const ShellPoint& p, double* eps, double* kap) {
   kap[2] = 2.0 * (p.b_ref[2] - dot(k.a[4], k.n));
 }
 
-/// First variations at a Gauss point (eq. 4.8): membrane bm and bending bb (3 x 48 each), and
+/// First variations of the membrane strains at a Gauss point (eq. 4.8), 3 x 48.
+struct MembraneVariations {
+  double bm[3][kD];
+};
+
+void membrane_variations(const Kin& k, const ShellPoint& p, MembraneVariations& v) {
+  for (int s = 0; s < kShellShapes; ++s)
+    for (int d = 0; d < 3; ++d) {
+      const int r = 3 * s + d;
+      v.bm[0][r] = p.s[1][s] * k.a[0][d];
+      v.bm[1][r] = p.s[2][s] * k.a[1][d];
+      v.bm[2][r] = p.s[1][s] * k.a[1][d] + p.s[2][s] * k.a[0][d];
+    }
+}
+
+/// First variations of the curvature changes at a Gauss point (eq. 4.8): bb (3 x 48), and
 /// a3t_r, a3_r (48 x 3), at_r (48) for the second variation.
 struct Variations {
-  double bm[3][kD], bb[3][kD];
+  double bb[3][kD];
   double nt_r[kD][3], n_r[kD][3], at_r[kD];
 };
 
@@ -101,9 +129,6 @@ void variations(const Kin& k, const ShellPoint& p, Variations& v) {
       for (int x = 0; x < 3; ++x) v.nt_r[r][x] = s1 * c1[x] + s2 * c2[x];
       v.at_r[r] = dot(k.n, v.nt_r[r]);
       for (int x = 0; x < 3; ++x) v.n_r[r][x] = (v.nt_r[r][x] - k.n[x] * v.at_r[r]) / k.at;
-      v.bm[0][r] = s1 * k.a[0][d];
-      v.bm[1][r] = s2 * k.a[1][d];
-      v.bm[2][r] = s1 * k.a[1][d] + s2 * k.a[0][d];
       v.bb[0][r] = -(p.s[3][s] * k.n[d] + dot(k.a[2], v.n_r[r]));
       v.bb[1][r] = -(p.s[4][s] * k.n[d] + dot(k.a[3], v.n_r[r]));
       v.bb[2][r] = -2.0 * (p.s[5][s] * k.n[d] + dot(k.a[4], v.n_r[r]));
@@ -173,7 +198,8 @@ void cholesky_solve(std::vector<double>& g, int n, std::vector<double>& b, int m
   for (int j = 0; j < n; ++j) {
     double s = g[j * n + j];
     for (int k = 0; k < j; ++k) s -= g[j * n + k] * g[j * n + k];
-    if (!(s > 0.0)) throw std::invalid_argument("shell: singular membrane projection (gauss)");
+    if (!(s > 0.0))
+      fail("gauss", "a rule that resolves the projection spaces", "a singular Gram matrix");
     g[j * n + j] = std::sqrt(s);
     for (int i = j + 1; i < n; ++i) {
       double t = g[i * n + j];
@@ -208,33 +234,44 @@ double legendre01(int k, double x) {
   return p1;
 }
 
+void check_values(const char* field, const std::vector<double>& v, bool positive) {
+  for (const double x : v)
+    if (!std::isfinite(x) || (positive && !(x > 0.0)))
+      fail(field, positive ? "finite values > 0" : "finite values", number(x));
+}
+
 void check_input(const ShellInput& in) {
   const ShellMaterial& m = in.material;
-  const auto fail = [](const std::string& what) { throw std::invalid_argument("shell: " + what); };
-  if (!(m.thickness > 0.0)) fail("thickness: expected a number > 0");
-  if (!(m.youngs_modulus > 0.0)) fail("youngs_modulus: expected a number > 0");
+  if (!(m.thickness > 0.0)) fail("thickness", "a number > 0", number(m.thickness));
+  if (!(m.youngs_modulus > 0.0)) fail("youngs_modulus", "a number > 0", number(m.youngs_modulus));
   if (!(m.poisson_ratio > -1.0 && m.poisson_ratio < 0.5))
-    fail("poisson_ratio: expected a number in (-1, 0.5)");
-  if (!(m.density >= 0.0)) fail("density: expected a number >= 0");
-  const int lo = in.membrane == MembraneStrains::projected ? 4 : 2;
+    fail("poisson_ratio", "a number in (-1, 0.5)", number(m.poisson_ratio));
+  if (!(m.density >= 0.0)) fail("density", "a number >= 0", number(m.density));
+  const bool projected = in.membrane == MembraneStrains::projected;
+  const int lo = projected ? 4 : kReducedGauss;
   if (in.gauss < lo || in.gauss > 16)
-    fail("gauss: expected " + std::to_string(lo) + " to 16 points per direction (" +
-         (lo == 4 ? "projected membrane strains need 4" : "full") + "), got " +
+    fail("gauss",
+         std::to_string(lo) + " to 16 points per direction" +
+             (projected ? " (projected membrane strains need 4)" : ""),
          std::to_string(in.gauss));
   const std::size_t ne = in.connectivity.size() / 4;
   if (ne == 0 || in.connectivity.size() != 4 * ne)
-    fail("connectivity: expected (n_el, 4) node indices, n_el >= 1");
-  if (in.weights_u.size() != 4 * ne || in.weights_v.size() != 4 * ne)
-    fail("weights_u, weights_v: expected (n_el, 4) values each");
-  if (in.scales.size() != 2 * ne) fail("scales: expected (n_el, 2) values");
-  if (in.q0.size() != 12 * static_cast<std::size_t>(in.n_nodes)) fail("q0: expected 12 n_nodes");
+    fail("connectivity", "(n_el, 4) node indices, n_el >= 1",
+         std::to_string(in.connectivity.size()) + " values");
+  const std::string el = std::to_string(ne) + " elements";
+  if (in.weights_u.size() != 4 * ne) fail("weights_u", "(n_el, 4) values", el);
+  if (in.weights_v.size() != 4 * ne) fail("weights_v", "(n_el, 4) values", el);
+  if (in.scales.size() != 2 * ne) fail("scales", "(n_el, 2) values", el);
+  if (in.q0.size() != 12 * static_cast<std::size_t>(in.n_nodes))
+    fail("q0", "12 values a node", std::to_string(in.q0.size()));
   for (const std::int64_t c : in.connectivity)
     if (c < 0 || c >= in.n_nodes)
-      fail("connectivity: expected node indices in [0, " + std::to_string(in.n_nodes) + "), got " +
+      fail("connectivity", "node indices in [0, " + std::to_string(in.n_nodes) + ")",
            std::to_string(c));
-  for (const auto* v : {&in.weights_u, &in.weights_v, &in.scales})
-    for (const double x : *v)
-      if (!(x > 0.0 && std::isfinite(x))) fail("weights and scales: expected finite values > 0");
+  check_values("weights_u", in.weights_u, true);
+  check_values("weights_v", in.weights_v, true);
+  check_values("scales", in.scales, true);
+  check_values("q0", in.q0, false);
 }
 
 }  // namespace
@@ -264,20 +301,26 @@ void gauss_legendre01(int n, std::vector<double>& x, std::vector<double>& w) {
 
 ShellElements::ShellElements(ShellInput in) : in_(std::move(in)) {
   check_input(in_);
+  const int gm = in_.membrane == MembraneStrains::reduced ? kReducedGauss : in_.gauss;
   n_qp_ = in_.gauss * in_.gauss;
-  std::vector<double> x, w;
+  n_mp_ = gm * gm;
+  std::vector<double> x, w, xm, wm;
   gauss_legendre01(in_.gauss, x, w);
-  pts_.resize(static_cast<std::size_t>(n_el()) * static_cast<std::size_t>(n_qp_));
-  proj_.assign(pts_.size() * 3 * static_cast<std::size_t>(n_qp_), 0.0);
+  gauss_legendre01(gm, xm, wm);
+  const auto ne = static_cast<std::size_t>(n_el());
+  pts_.resize(ne * static_cast<std::size_t>(n_qp_));
+  mpts_.resize(ne * static_cast<std::size_t>(n_mp_));
+  proj_.assign(ne * 3 * static_cast<std::size_t>(n_mp_ * n_mp_), 0.0);
   for (int el = 0; el < n_el(); ++el) {
-    set_up_points(el, x, w);
-    set_up_projection(el, x);
+    set_up_points(el, x, w, pts_.data() + static_cast<std::size_t>(el * n_qp_));
+    set_up_points(el, xm, wm, mpts_.data() + static_cast<std::size_t>(el * n_mp_));
+    set_up_projection(el, xm);
   }
 }
 
 void ShellElements::set_up_points(int el, const std::vector<double>& x,
-                                  const std::vector<double>& w) {
-  const int ng = in_.gauss;
+                                  const std::vector<double>& w, ShellPoint* out) const {
+  const int ng = static_cast<int>(x.size());
   const double* wu = in_.weights_u.data() + 4 * el;
   const double* wv = in_.weights_v.data() + 4 * el;
   const double lu = in_.scales[2 * static_cast<std::size_t>(el)];
@@ -292,7 +335,7 @@ void ShellElements::set_up_points(int el, const std::vector<double>& x,
       double n[3][4], m[3][4];
       cable_shape(wu, lu, x[static_cast<std::size_t>(p)], n[0], n[1], n[2]);
       cable_shape(wv, lv, x[static_cast<std::size_t>(q)], m[0], m[1], m[2]);
-      ShellPoint& pt = pts_[static_cast<std::size_t>(el * n_qp_ + p + ng * q)];
+      ShellPoint& pt = out[p + ng * q];
       static constexpr int kOrder[6][2] = {{0, 0}, {1, 0}, {0, 1}, {2, 0}, {0, 2}, {1, 1}};
       for (int s = 0; s < kShellShapes; ++s) {
         const int corner = s / 4, k = s % 4;
@@ -301,9 +344,10 @@ void ShellElements::set_up_points(int el, const std::vector<double>& x,
       }
       const Kin k = kinematics(pt, e0);
       if (!(k.at > 0.0) || !std::isfinite(k.at))
-        throw std::invalid_argument("shell: q0: a degenerate reference surface in element " +
-                                    std::to_string(el) + " (vanishing |A1 x A2|)");
-      pt.wda = w[static_cast<std::size_t>(p)] * w[static_cast<std::size_t>(q)] * k.at;
+        fail("q0", "a regular reference surface (|A1 x A2| > 0)",
+             "a vanishing normal in element " + std::to_string(el));
+      pt.w = w[static_cast<std::size_t>(p)] * w[static_cast<std::size_t>(q)];
+      pt.wda = pt.w * k.at;
       pt.a_ref[0] = dot(k.a[0], k.a[0]);
       pt.a_ref[1] = dot(k.a[1], k.a[1]);
       pt.a_ref[2] = dot(k.a[0], k.a[1]);
@@ -320,15 +364,15 @@ void ShellElements::set_up_points(int el, const std::vector<double>& x,
 }
 
 void ShellElements::set_up_projection(int el, const std::vector<double>& x) {
-  const int ng = in_.gauss, nq = n_qp_;
+  const int ng = static_cast<int>(x.size()), nq = n_mp_;
   double* pr = proj_.data() + static_cast<std::size_t>(el) * 3 * static_cast<std::size_t>(nq * nq);
-  if (in_.membrane == MembraneStrains::full) {
+  if (in_.membrane != MembraneStrains::projected) {
     for (int i = 0; i < 3; ++i)
       for (int g = 0; g < nq; ++g) pr[(i * nq + g) * nq + g] = 1.0;
     return;
   }
   static constexpr int kDeg[3][2] = {{2, 3}, {3, 2}, {2, 2}};  // eq. 5.1
-  const ShellPoint* pt = points(el);
+  const ShellPoint* pt = membrane_points(el);
   for (int i = 0; i < 3; ++i) {
     const int du = kDeg[i][0] + 1, dv = kDeg[i][1] + 1, np = du * dv;
     std::vector<double> phi(static_cast<std::size_t>(np * nq));  // (np, nq)
@@ -367,71 +411,67 @@ void ShellElements::gather(int el, const double* q, double* e) const {
   }
 }
 
-double ShellElements::element_energy(int el, const double* e) const {
-  const ShellPoint* pt = points(el);
+std::vector<double> ShellElements::membrane_strains(int el, const double* e) const {
+  const ShellPoint* pt = membrane_points(el);
   const double* pr = projection(el);
-  const int nq = n_qp_;
-  const double t = in_.material.thickness, tb = t * t * t / 12.0;
-  std::vector<double> eps(static_cast<std::size_t>(3 * nq));
-  double w = 0.0;
+  const int nq = n_mp_;
+  std::vector<double> eps(static_cast<std::size_t>(3 * nq)), eb(eps.size(), 0.0);
   for (int g = 0; g < nq; ++g) {
     double kap[3];
     strains(kinematics(pt[g], e), pt[g], &eps[static_cast<std::size_t>(3 * g)], kap);
-    w += 0.5 * tb * pt[g].wda * dform(pt[g].d, kap, kap);
   }
-  for (int g = 0; g < nq; ++g) {
-    double eb[3] = {0.0, 0.0, 0.0};
+  for (int g = 0; g < nq; ++g)
     for (int i = 0; i < 3; ++i)
       for (int h = 0; h < nq; ++h)
-        eb[i] += pr[(i * nq + g) * nq + h] * eps[static_cast<std::size_t>(3 * h + i)];
-    w += 0.5 * t * pt[g].wda * dform(pt[g].d, eb, eb);
+        eb[static_cast<std::size_t>(3 * g + i)] +=
+            pr[(i * nq + g) * nq + h] * eps[static_cast<std::size_t>(3 * h + i)];
+  return eb;
+}
+
+double ShellElements::element_energy(int el, const double* e) const {
+  const ShellPoint* pt = points(el);
+  const ShellPoint* mp = membrane_points(el);
+  const double t = in_.material.thickness, tb = t * t * t / 12.0;
+  double w = 0.0;
+  for (int g = 0; g < n_qp_; ++g) {
+    double eps[3], kap[3];
+    strains(kinematics(pt[g], e), pt[g], eps, kap);
+    w += 0.5 * tb * pt[g].wda * dform(pt[g].d, kap, kap);
+  }
+  const std::vector<double> eb = membrane_strains(el, e);
+  for (int g = 0; g < n_mp_; ++g) {
+    const double* x = &eb[static_cast<std::size_t>(3 * g)];
+    w += 0.5 * t * mp[g].wda * dform(mp[g].d, x, x);
   }
   return w;
 }
 
-void ShellElements::element_forces(int el, const double* e, double* fe, double* ke) const {
-  const ShellPoint* pt = points(el);
+void ShellElements::add_membrane(int el, const double* e, double* fe, double* ke) const {
+  const ShellPoint* pt = membrane_points(el);
   const double* pr = projection(el);
-  const int nq = n_qp_;
-  const double t = in_.material.thickness, tb = t * t * t / 12.0;
-  std::fill(fe, fe + kD, 0.0);
-  if (ke != nullptr) std::fill(ke, ke + kD * kD, 0.0);
-  std::vector<Variations> var(static_cast<std::size_t>(nq));
-  std::vector<double> eps(static_cast<std::size_t>(3 * nq));
-  for (int g = 0; g < nq; ++g) {  // bending, and the membrane strains and their variations
-    const Kin k = kinematics(pt[g], e);
-    Variations& v = var[static_cast<std::size_t>(g)];
-    double kap[3], m[3];
-    strains(k, pt[g], &eps[static_cast<std::size_t>(3 * g)], kap);
-    variations(k, pt[g], v);
-    dtimes(pt[g].d, kap, m);
-    for (double& x : m) x *= tb * pt[g].wda;
-    for (int r = 0; r < kD; ++r) fe[r] += m[0] * v.bb[0][r] + m[1] * v.bb[1][r] + m[2] * v.bb[2][r];
-    if (ke == nullptr) continue;
-    add_material(ke, v.bb, pt[g].d, tb * pt[g].wda);
-    add_bending_geometric(ke, pt[g], k, v, m, 1.0);
-  }
-  // membrane: epsb_g = P eps, nb_g = t D_g epsb_g, nt_h = sum_g P_gh wdA_g nb_g (per component)
+  const int nq = n_mp_;
+  const double t = in_.material.thickness;
+  std::vector<MembraneVariations> var(static_cast<std::size_t>(nq));
+  for (int g = 0; g < nq; ++g) membrane_variations(kinematics(pt[g], e), pt[g], var[g]);
+  // epsb = P eps, nb_g = t D_g epsb_g, nt_h = sum_g P_gh wdA_g nb_g (per component)
+  const std::vector<double> eb = membrane_strains(el, e);
   std::vector<double> nt(static_cast<std::size_t>(3 * nq), 0.0);
   for (int g = 0; g < nq; ++g) {
-    double eb[3] = {0.0, 0.0, 0.0}, nb[3];
-    for (int i = 0; i < 3; ++i)
-      for (int h = 0; h < nq; ++h)
-        eb[i] += pr[(i * nq + g) * nq + h] * eps[static_cast<std::size_t>(3 * h + i)];
-    dtimes(pt[g].d, eb, nb);
+    double nb[3];
+    dtimes(pt[g].d, &eb[static_cast<std::size_t>(3 * g)], nb);
     for (int i = 0; i < 3; ++i)
       for (int h = 0; h < nq; ++h)
         nt[static_cast<std::size_t>(3 * h + i)] +=
             pr[(i * nq + g) * nq + h] * t * pt[g].wda * nb[i];
   }
   for (int h = 0; h < nq; ++h) {
-    const Variations& v = var[static_cast<std::size_t>(h)];
+    const MembraneVariations& v = var[static_cast<std::size_t>(h)];
     const double* n = &nt[static_cast<std::size_t>(3 * h)];
     for (int r = 0; r < kD; ++r) fe[r] += n[0] * v.bm[0][r] + n[1] * v.bm[1][r] + n[2] * v.bm[2][r];
     if (ke != nullptr) add_membrane_geometric(ke, pt[h], n);
   }
   if (ke == nullptr) return;
-  for (int g = 0; g < nq; ++g) {  // material membrane part with the projected variations
+  for (int g = 0; g < nq; ++g) {  // material part with the projected variations
     double bb[3][kD] = {};
     for (int i = 0; i < 3; ++i)
       for (int h = 0; h < nq; ++h) {
@@ -442,6 +482,27 @@ void ShellElements::element_forces(int el, const double* e, double* fe, double* 
       }
     add_material(ke, bb, pt[g].d, t * pt[g].wda);
   }
+}
+
+void ShellElements::element_forces(int el, const double* e, double* fe, double* ke) const {
+  const ShellPoint* pt = points(el);
+  const double t = in_.material.thickness, tb = t * t * t / 12.0;
+  std::fill(fe, fe + kD, 0.0);
+  if (ke != nullptr) std::fill(ke, ke + kD * kD, 0.0);
+  Variations v;
+  for (int g = 0; g < n_qp_; ++g) {  // bending
+    const Kin k = kinematics(pt[g], e);
+    double eps[3], kap[3], m[3];
+    strains(k, pt[g], eps, kap);
+    variations(k, pt[g], v);
+    dtimes(pt[g].d, kap, m);
+    for (double& x : m) x *= tb * pt[g].wda;
+    for (int r = 0; r < kD; ++r) fe[r] += m[0] * v.bb[0][r] + m[1] * v.bb[1][r] + m[2] * v.bb[2][r];
+    if (ke == nullptr) continue;
+    add_material(ke, v.bb, pt[g].d, tb * pt[g].wda);
+    add_bending_geometric(ke, pt[g], k, v, m, 1.0);
+  }
+  add_membrane(el, e, fe, ke);
 }
 
 double ShellElements::energy(const double* q) const {
@@ -476,25 +537,52 @@ void dof_map(const std::int64_t* conn, std::int64_t* g) {
 
 }  // namespace
 
-Triplets ShellElements::tangent(const double* q) const {
-  Triplets t;
-  const std::size_t size = static_cast<std::size_t>(n_el()) * kD * kD;
-  t.rows.reserve(size);
-  t.cols.reserve(size);
-  t.values.reserve(size);
+namespace {
+
+/// The tangent's element loop in chunks of elements, each writing its elements' 2304 triplets
+/// at their own place (the result does not depend on the number of threads).
+struct TangentJob {
+  const ShellElements* shell;
+  const double* q;
+  Triplets* t;
+  int n_chunks;
+};
+
+void tangent_chunk(void* ctx, int chunk) {
+  const auto* job = static_cast<const TangentJob*>(ctx);
+  const ShellElements& s = *job->shell;
+  const int lo = s.n_el() * chunk / job->n_chunks, hi = s.n_el() * (chunk + 1) / job->n_chunks;
   std::vector<double> ke(kD * kD);
   double e[kD], fe[kD];
   std::int64_t g[kD];
-  for (int el = 0; el < n_el(); ++el) {
-    gather(el, q, e);
-    element_forces(el, e, fe, ke.data());
-    dof_map(in_.connectivity.data() + 4 * el, g);
+  for (int el = lo; el < hi; ++el) {
+    s.gather(el, job->q, e);
+    s.element_forces(el, e, fe, ke.data());
+    dof_map(s.input().connectivity.data() + 4 * el, g);
+    const std::size_t at = static_cast<std::size_t>(el) * kD * kD;
     for (int r = 0; r < kD; ++r)
       for (int u = 0; u < kD; ++u) {
-        t.rows.push_back(g[r]);
-        t.cols.push_back(g[u]);
-        t.values.push_back(ke[static_cast<std::size_t>(r * kD + u)]);
+        const std::size_t i = at + static_cast<std::size_t>(r * kD + u);
+        job->t->rows[i] = g[r];
+        job->t->cols[i] = g[u];
+        job->t->values[i] = ke[static_cast<std::size_t>(r * kD + u)];
       }
+  }
+}
+
+}  // namespace
+
+Triplets ShellElements::tangent(const double* q) const {
+  Triplets t;
+  const std::size_t size = static_cast<std::size_t>(n_el()) * kD * kD;
+  t.rows.resize(size);
+  t.cols.resize(size);
+  t.values.resize(size);
+  const int threads = n_el() >= kMinParallelElements ? assembly_threads() : 1;
+  TangentJob job{this, q, &t, threads};
+  if (threads <= 1 || !run_chunks(threads, tangent_chunk, &job)) {
+    job.n_chunks = 1;
+    tangent_chunk(&job, 0);
   }
   return t;
 }
@@ -531,6 +619,43 @@ void ShellElements::area_load(const double* p, double* f) const {
       for (int q = 0; q < n_qp_; ++q) a += pt[q].wda * pt[q].s[0][s];
       for (int d = 0; d < 3; ++d) f[g[3 * s + d]] += a * p[d];
     }
+  }
+}
+
+void ShellElements::pressure(const double* q, double p, double* f, Triplets* t) const {
+  std::fill(f, f + n(), 0.0);
+  double e[kD], ke[kD * kD];
+  std::int64_t g[kD];
+  for (int el = 0; el < n_el(); ++el) {
+    const ShellPoint* pt = points(el);
+    gather(el, q, e);
+    dof_map(in_.connectivity.data() + 4 * el, g);
+    std::fill(ke, ke + kD * kD, 0.0);
+    for (int gp = 0; gp < n_qp_; ++gp) {
+      const Kin k = kinematics(pt[gp], e);
+      const double wp = pt[gp].w * p;
+      for (int s = 0; s < kShellShapes; ++s)
+        for (int d = 0; d < 3; ++d) f[g[3 * s + d]] += wp * pt[gp].s[0][s] * k.nt[d];
+      if (t == nullptr) continue;
+      for (int u = 0; u < kShellShapes; ++u)  // a3t_(u, c) = S_u,1 e_c x a_2 + S_u,2 a_1 x e_c
+        for (int c = 0; c < 3; ++c) {
+          double ec[3] = {0.0, 0.0, 0.0}, c1[3], c2[3];
+          ec[c] = 1.0;
+          cross(ec, k.a[1], c1);
+          cross(k.a[0], ec, c2);
+          for (int s = 0; s < kShellShapes; ++s)
+            for (int d = 0; d < 3; ++d)
+              ke[(3 * s + d) * kD + 3 * u + c] +=
+                  wp * pt[gp].s[0][s] * (pt[gp].s[1][u] * c1[d] + pt[gp].s[2][u] * c2[d]);
+        }
+    }
+    if (t == nullptr) continue;
+    for (int r = 0; r < kD; ++r)
+      for (int u = 0; u < kD; ++u) {
+        t->rows.push_back(g[r]);
+        t->cols.push_back(g[u]);
+        t->values.push_back(ke[r * kD + u]);
+      }
   }
 }
 

@@ -12,15 +12,17 @@ The energy, forces, tangent, mass and area loads live once, in the compiled core
     kernel.mass() -> csr_matrix (n, n)        # consistent, constant (sec. 6)
     kernel.area_load(p) -> (n,)               # a constant force p (3) per reference area
     kernel.gravity(g) -> (n,)                 # area_load(density * thickness * g)
+    kernel.pressure(q, p) -> (n,)             # follower pressure p along a3 (sec. 6)
+    kernel.pressure_tangent(q, p) -> csr_matrix   # its dQ/dq (not symmetric)
     kernel.core                               # rancf.kernels._core.ShellKernel: the same
                                               # methods, matrices as (rows, cols, values)
 
 Coordinates run node by node, 12 a node ``[r, r_x, r_y, r_xy]`` (eq. 3.1), as
 :attr:`rancf.mesh.surfaces.SurfaceMesh.q0`; ``connectivity[e, i + 2 j]`` is the node of corner
 ``(i, j)`` of element ``e`` (``i`` along ``u``, ``j`` along ``v``).  ``membrane``:
-``"full"`` (the Green–Lagrange membrane strains as they are) or ``"projected"`` (their
+``"full"`` (the Green–Lagrange membrane strains as they are), ``"projected"`` (their
 element-local L²(dA) projections, the assumed membrane strains of eq. 5.1 against membrane
-locking).
+locking) or ``"reduced"`` (the membrane term on a 3 × 3 Gauss rule, bending on the full one).
 """
 
 from __future__ import annotations
@@ -37,7 +39,7 @@ from rancf.kernels import _core
 __all__ = ["MEMBRANE", "ShellRecord", "ShellKernel", "surface_connectivity"]
 
 #: Treatments of the membrane strains (``MembraneStrains``, ``src/cpp/elements/shell.hpp``).
-MEMBRANE = ("full", "projected")
+MEMBRANE = ("full", "projected", "reduced")
 
 
 @dataclass(frozen=True, eq=False)
@@ -76,8 +78,11 @@ class ShellRecord:
 
 
 class _Direction(Protocol):
-    weights: NDArray[np.float64]
-    scales: NDArray[np.float64]
+    @property
+    def weights(self) -> NDArray[np.float64]: ...
+
+    @property
+    def scales(self) -> NDArray[np.float64]: ...
 
     @property
     def n(self) -> int: ...
@@ -171,6 +176,15 @@ class ShellKernel:
         """Consistent nodal forces ``∫ Sᵀ p dA`` of a constant force ``p`` (3) per reference
         area (sec. 6)."""
         return np.asarray(self.core.area_load(np.ascontiguousarray(p, dtype=float)))
+
+    def pressure(self, q: ArrayLike, p: float) -> NDArray[np.float64]:
+        """Forces ``∫ p Sᵀ ã3 dξ dη`` of a follower pressure ``p`` along the current normal
+        ``a3`` (per current area; sec. 6)."""
+        return np.asarray(self.core.pressure(self._q(q), float(p)))
+
+    def pressure_tangent(self, q: ArrayLike, p: float) -> sp.csr_matrix:
+        """``∂Q/∂q = ∫ p Sᵀ ∂ã3/∂q dξ dη`` of :meth:`pressure` (not symmetric), sparse."""
+        return _coo(self.core.pressure_tangent(self._q(q), float(p)), self.n)
 
     def gravity(self, g: ArrayLike) -> NDArray[np.float64]:
         """Weight ``∫ ρ t Sᵀ g dA`` (sec. 6)."""
