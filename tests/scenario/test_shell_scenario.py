@@ -136,6 +136,10 @@ def test_a_shell_among_bodies_has_named_places():
             "[material.shear_modulus] applies to line bodies",
         ),
         (lambda d: d["mesh"].update(continuity="C2"), "[mesh.continuity] applies to line bodies"),
+        (
+            lambda d: d["material"].update(axial_law={"table": [[0.0, 0.0], [0.1, 1e6]]}),
+            "[material.axial_law] applies to line bodies",
+        ),
         (lambda d: d["mesh"].update(elements=4), "[mesh.elements] must be [nu, nv] for a shell"),
         (lambda d: d["mesh"].update(elements=[4, 0]), "[mesh.elements[1]] must be >= 1"),
         (lambda d: d["material"].pop("poisson_ratio"), "[material.poisson_ratio] required"),

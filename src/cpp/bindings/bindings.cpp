@@ -34,6 +34,7 @@ using namespace nb::literals;
 
 namespace {
 
+using rancf_bind::AxialLawHolder;
 using rancf_bind::BeamHolder;
 using rancf_bind::CableHolder;
 using rancf_bind::expect_size;
@@ -81,6 +82,26 @@ void bind_model_data(nb::module_& mod) {
       .def_ro("damping_axial", &rancf::Stiffness::damping_axial)
       .def_ro("damping_bending", &rancf::Stiffness::damping_bending)
       .def_ro("damping_torsion", &rancf::Stiffness::damping_torsion);
+  nb::class_<AxialLawHolder>(mod, "AxialLaw",
+                             "A tension law T(e) of the engineering strain: a C1 piecewise cubic "
+                             "(elements/tension_law.hpp).")
+      .def(
+          "__init__",
+          [](AxialLawHolder* h, In breaks, In coef) {
+            const std::size_t k = breaks.size();
+            if (k < 2) throw std::invalid_argument("AxialLaw.breaks: expected >= 2 values");
+            expect_size(coef, 4 * (k - 1), "AxialLaw.coef");
+            for (std::size_t i = 0; i + 1 < k; ++i)
+              if (!(breaks.data()[i] < breaks.data()[i + 1]))
+                throw std::invalid_argument("AxialLaw.breaks: expected increasing values");
+            for (std::size_t i = 0; i < coef.size(); ++i)
+              if (!std::isfinite(coef.data()[i]))
+                throw std::invalid_argument("AxialLaw.coef: expected finite values");
+            new (h) AxialLawHolder{breaks, coef};
+          },
+          nb::kw_only(), "breaks"_a, "coef"_a)
+      .def_ro("breaks", &AxialLawHolder::breaks)
+      .def_ro("coef", &AxialLawHolder::coef);
   nb::class_<rancf::SectionInertia>(mod, "SectionInertia",
                                     "Rotary inertia of rod sections per length (rho Ip, rho I).")
       .def(
@@ -128,12 +149,14 @@ nb::class_<ModelHolder> bind_model(nb::module_& mod) {
   auto model_cls =
       nb::class_<ModelHolder>(mod, "Model",
                               "An assembled model (named parts, arrays by reference).")
-          .def(nb::init<int, int, int, int, const rancf::Stiffness&, CableHolder, BeamHolder,
-                        RodHolder, SupportsHolder, LoadsHolder, In, In,
-                        const rancf::SectionInertia&, bool, ReductionHolder>(),
-               nb::kw_only(), "kind"_a, "dim"_a, "dpn"_a, "n_el"_a, "stiffness"_a, "cable"_a,
-               "beam"_a, "rod"_a, "supports"_a, "loads"_a, "mass_band"_a, "y_ref"_a,
-               "rotary"_a = rancf::SectionInertia{}, "closed"_a = false, "reduction"_a)
+          .def(
+              nb::init<int, int, int, int, const rancf::Stiffness&, CableHolder, BeamHolder,
+                       RodHolder, SupportsHolder, LoadsHolder, In, In, const rancf::SectionInertia&,
+                       bool, ReductionHolder, std::optional<AxialLawHolder>>(),
+              nb::kw_only(), "kind"_a, "dim"_a, "dpn"_a, "n_el"_a, "stiffness"_a, "cable"_a,
+              "beam"_a, "rod"_a, "supports"_a, "loads"_a, "mass_band"_a, "y_ref"_a,
+              "rotary"_a = rancf::SectionInertia{}, "closed"_a = false, "reduction"_a,
+              "axial_law"_a = nb::none())
           .def_prop_ro("n", [](const ModelHolder& h) { return h.n(); })
           .def(
               "internal_force",

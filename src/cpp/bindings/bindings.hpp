@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "elements/tension_law.hpp"
+
 namespace rancf_bind {
 
 namespace nb = nanobind;
@@ -23,6 +25,20 @@ void expect_size(const A& a, std::size_t size, const char* name) {
   if (a.size() != size)
     throw std::invalid_argument(std::string(name) + ": expected " + std::to_string(size) +
                                 " values, got " + std::to_string(a.size()));
+}
+
+/// A tabulated tension law (elements/tension_law.hpp): breakpoints (k + 1, increasing) and cubic
+/// coefficients (k, 4); checked by the constructor (bindings.cpp).
+struct AxialLawHolder {
+  In breaks, coef;
+  [[nodiscard]] rancf::TensionTable table() const {
+    return {breaks.data(), coef.data(), static_cast<int>(breaks.size()) - 1};
+  }
+};
+
+/// The law's view, or none.
+inline rancf::TensionTable law_table(const AxialLawHolder* law) {
+  return law != nullptr ? law->table() : rancf::TensionTable{};
 }
 
 /// Module-level functions (bindings_functions.cpp).

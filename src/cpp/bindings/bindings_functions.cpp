@@ -1,10 +1,12 @@
 // Module-level functions of rancf._core: nodal triads, a band solve, Gauss-point geometry.
 // Conversion and forwarding only (see bindings.cpp).
 #include <nanobind/stl/array.h>
+#include <nanobind/stl/optional.h>
 #include <nanobind/stl/tuple.h>
 
 #include <algorithm>
 #include <array>
+#include <optional>
 #include <tuple>
 
 #include "bindings/bindings.hpp"
@@ -49,7 +51,8 @@ void bind_functions(nb::module_& mod) {
 
   mod.def(
       "section_forces",
-      [](In raw, In kappa0, In c, double ea, bool engineering, In scale, Out out) {
+      [](In raw, In kappa0, In c, double ea, bool engineering, In scale, Out out,
+         std::optional<AxialLawHolder> law) {
         // raw (k, n_points, w); kappa0 (n_points, w - 1); c (w - 1); scale (k); out
         // (k, n_points, 2 w)
         const std::size_t k = scale.size(), nk = c.size(), w = nk + 1;
@@ -60,12 +63,32 @@ void bind_functions(nb::module_& mod) {
         expect_size(out, k * np * 2 * w, "out");
         nb::gil_scoped_release release;
         rancf::section_forces(static_cast<int>(k), static_cast<int>(np), static_cast<int>(w),
-                              raw.data(), kappa0.data(), c.data(), ea, engineering, scale.data(),
-                              out.data());
+                              raw.data(), kappa0.data(), c.data(), ea, engineering,
+                              law_table(law ? &*law : nullptr), scale.data(), out.data());
       },
       "raw"_a, "kappa0"_a, "c"_a, "ea"_a, "engineering"_a, "scale"_a, "out"_a.noconvert(),
+      "axial_law"_a = nb::none(),
       "Section values [eps, N, kappa, M] of a cable or rod from its strains and curvatures (k "
       "states; see sections.hpp).");
+
+  mod.def(
+      "tension_law",
+      [](const AxialLawHolder& law, In e, Out t, Out dt, Out w) {
+        const std::size_t n = e.size();
+        expect_size(t, n, "t");
+        expect_size(dt, n, "dt");
+        expect_size(w, n, "w");
+        const rancf::TensionTable f = law.table();
+        for (std::size_t i = 0; i < n; ++i) {
+          const rancf::LawValue v = rancf::tension_law(f, e.data()[i]);
+          t.data()[i] = v.t;
+          dt.data()[i] = v.dt;
+          w.data()[i] = rancf::tension_law_energy(f, e.data()[i]);
+        }
+      },
+      "law"_a, "e"_a, "t"_a.noconvert(), "dt"_a.noconvert(), "w"_a.noconvert(),
+      "The law's tension T(e), slope dT/de and energy int_0^e T at the strains e (into t, dt, "
+      "w; elements/tension_law.hpp).");
 
   mod.def(
       "band_solve",

@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <utility>
 
@@ -56,11 +57,13 @@ struct ModelHolder {
   ReductionHolder reduction;
   LoadsHolder loads;
   In mass_band, y_ref;
+  std::optional<AxialLawHolder> axial_law;
   rancf::Model m;
 
   ModelHolder(int kind, int dim, int dpn, int n_el, const rancf::Stiffness& st, CableHolder c,
               BeamHolder b, RodHolder r, SupportsHolder s, LoadsHolder l, In mass, In yref,
-              const rancf::SectionInertia& rotary, bool closed, ReductionHolder red)
+              const rancf::SectionInertia& rotary, bool closed, ReductionHolder red,
+              std::optional<AxialLawHolder> law = std::nullopt)
       : cable(std::move(c)),
         beam(std::move(b)),
         rod(std::move(r)),
@@ -68,7 +71,8 @@ struct ModelHolder {
         reduction(std::move(red)),
         loads(std::move(l)),
         mass_band(std::move(mass)),
-        y_ref(std::move(yref)) {
+        y_ref(std::move(yref)),
+        axial_law(std::move(law)) {
     if (kind < 0 || kind > 2)
       throw std::invalid_argument("kind: expected 0 (cable), 1 (beam) or 2 (rod)");
     if (dim != 2 && dim != 3) throw std::invalid_argument("dim: expected 2 or 3");
@@ -82,6 +86,9 @@ struct ModelHolder {
     m.n_nodes = n_el + 1;
     m.closed = closed;
     m.stiffness = st;
+    m.stiffness.axial_law = law_table(axial_law ? &*axial_law : nullptr);
+    if (m.stiffness.axial_law.active() && m.kind == rancf::ElementKind::beam)
+      throw std::invalid_argument("axial_law: cable and rod elements only");
     set_reduction();
     const auto n = static_cast<std::size_t>(m.n()), ne = static_cast<std::size_t>(n_el);
     if (m.kind == rancf::ElementKind::cable) {

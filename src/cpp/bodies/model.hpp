@@ -8,6 +8,8 @@
 
 #include <cstdint>
 
+#include "elements/tension_law.hpp"
+
 namespace rancf {
 
 /// Largest number of coordinates of one element (2 nodes x 7 for a spatial rod).
@@ -63,6 +65,9 @@ struct Stiffness {
   double damping_axial = 0.0;
   double damping_bending = 0.0;
   double damping_torsion = 0.0;
+  /// Nonlinear axial law (cables, rods): the tension T(e) of the engineering strain replaces
+  /// EA e in the axial energy, W = J0 int_0^e T (docs/derivations/axial-law.md); none: EA.
+  TensionTable axial_law{};
   [[nodiscard]] bool strain_rate_damping() const {
     return damping_axial > 0.0 || damping_bending > 0.0 || damping_torsion > 0.0;
   }

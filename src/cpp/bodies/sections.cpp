@@ -48,8 +48,8 @@ void section_strains(const Model& m, const SamplePoints& p, const double* y, dou
 }
 
 void section_forces(int k, int n_points, int w, const double* raw, const double* kappa0,
-                    const double* c, double ea, bool engineering, const double* scale,
-                    double* out) {
+                    const double* c, double ea, bool engineering, const TensionTable& law,
+                    const double* scale, double* out) {
   const int nk = w - 1;
   for (int i = 0; i < k; ++i) {
     const double sc = scale[i];
@@ -67,7 +67,9 @@ void section_forces(int k, int n_points, int w, const double* raw, const double*
         o[2 + nk + j] = mom;
         bend += mom * kap;
       }
-      o[1] = ea * (engineering ? lam - 1.0 : eps * lam) - bend;
+      const double axial =
+          law.active() ? tension_law(law, lam - 1.0).t : ea * (engineering ? lam - 1.0 : eps * lam);
+      o[1] = axial - bend;
     }
   }
 }

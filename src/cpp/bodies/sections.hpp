@@ -43,7 +43,10 @@ void section_strains(const Model& m, const SamplePoints& p, const double* y, dou
 /// lambda = sqrt(max(1 + 2 eps, 0)), M_i = c_i (kappa_i - kappa0_i / scale_k) / lambda and
 /// N = ea (engineering ? lambda - 1 : eps lambda) - sum_i M_i kappa_i; kappa0 (n_points, w - 1)
 /// the stress-free curvatures, scale (k) the unstretched length over the reference's per state.
+/// With an axial law (law.active()) the axial part is its tension T(lambda - 1) instead
+/// (docs/derivations/axial-law.md).
 void section_forces(int k, int n_points, int w, const double* raw, const double* kappa0,
-                    const double* c, double ea, bool engineering, const double* scale, double* out);
+                    const double* c, double ea, bool engineering, const TensionTable& law,
+                    const double* scale, double* out);
 
 }  // namespace rancf

@@ -48,12 +48,17 @@ inline AxialMeasure axial_measure(bool engineering, double aa, double s0) {
 // gradient is fe a and its Hessian eaj a a^T + fe I in a = r', fe = EA J0 e d1 and eaj = EA J0
 // (d1^2 + e d2): Green-Lagrange fe = EA J0 eps / s0, eaj = EA J0 / s0^2; engineering fe = EA J0
 // (1 - 1/lambda) / s0, eaj = EA J0 / (lambda^3 s0^2) (written out: the rounding of the elastic
-// law is kept).
+// law is kept).  A nonlinear axial law (Stiffness::axial_law): W_a = J0 w(eps) of the
+// Green-Lagrange eps, fe = J0 w' / s0 and eaj = J0 w'' / s0^2 (docs/derivations/axial-law.md).
 struct Axial {
   double fe, eaj, w;
 };
 
 inline Axial axial_terms(const Stiffness& st, double aa, double s0, double j0) {
+  if (st.axial_law.active()) {  // the law in the Green-Lagrange strain (axial-law.md eq. 3)
+    const AxialDensity d = axial_law_density(st.axial_law, green_lagrange(aa, s0));
+    return {j0 * d.dw / s0, j0 * d.ddw / (s0 * s0), j0 * d.w};
+  }
   if (!st.engineering) {
     const double eps = green_lagrange(aa, s0);
     return {st.ea * j0 * eps / s0, st.ea * j0 / (s0 * s0), 0.5 * st.ea * eps * eps * j0};
@@ -234,7 +239,7 @@ inline void kv_point(const Model& m, int k, const double* a, const double* b, co
   const double qr = D == 3 ? m.cable.qr[k] : 0.0;
   double mz[Z], mzz[Z][Z];
   if (st.damping_axial > 0.0) {
-    axial_z<D>(st.engineering, a, m.cable.s0[k], mz, mzz);
+    axial_z<D>(st.engineering || st.axial_law.active(), a, m.cable.s0[k], mz, mzz);
     kv_measure<Z>(st.damping_axial * j0, mz, mzz, zd, ck, cv, g, jz);
   }
   if (st.damping_bending > 0.0 && bending_z<D>(a, b, qr, mz, mzz))

@@ -57,7 +57,7 @@ rod::ElementInput current_input(const Model& m, int el, const double* e, double*
 }
 
 rod::Stiffness rod_stiffness(const Model& m) {
-  return {m.stiffness.ea, m.stiffness.gj, m.stiffness.ei2, m.stiffness.ei3};
+  return {m.stiffness.ea, m.stiffness.gj, m.stiffness.ei2, m.stiffness.ei3, m.stiffness.axial_law};
 }
 
 void rod_forces(const Model& m, int el, const double* e, double* fe, double* ke) {

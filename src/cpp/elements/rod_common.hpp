@@ -6,10 +6,15 @@
 
 #include <cmath>
 
+#include "elements/tension_law.hpp"
+
 namespace rancf::rod {
 
+// axial_law: the tension T(e) of the engineering strain in place of EA (none: EA;
+// docs/derivations/axial-law.md).
 struct Stiffness {
   double ea, gj, ei2, ei3;
+  TensionTable axial_law{};
 };
 
 // Node dofs: 7 per node = r(3), r_x(3), phi(1). Element vector e[14]: node A e[0..6], node B
@@ -50,6 +55,14 @@ inline double nan_value() { return std::nan(""); }
 
 constexpr int kPosOff[4] = {0, 3, 7, 10};  // e offsets of the blocks rA, rA_x, rB, rB_x
 constexpr int kAlphaDof[8] = {3, 4, 5, 6, 10, 11, 12, 13};  // e indices of (rA_x, phiA, rB_x, phiB)
+
+// The axial energy density per reference length w(eps) of the Green-Lagrange strain eps and its
+// first two derivatives: 1/2 EA eps^2, EA eps, EA; or the axial law's
+// (docs/derivations/axial-law.md eq. 3).
+inline AxialDensity axial_density(const Stiffness& s, double eps) {
+  if (s.axial_law.active()) return axial_law_density(s.axial_law, eps);
+  return {0.5 * s.ea * eps * eps, s.ea * eps, s.ea};
+}
 
 inline void fill_nan(double* p, int n) {
   for (int i = 0; i < n; ++i) p[i] = nan_value();

@@ -189,9 +189,10 @@ inline bool qdensity(const double* a, const double* b, double aB, double th, dou
                      double (*H)[8]) {
   const auto elastic = [&](double eps, const double* K) {
     const double r1 = K[0] - k0[0], r2 = K[1] - k0[1], r3 = K[2] - k0[2];
-    f = 0.5 * W * (s.ea * eps * eps + s.gj * r1 * r1 + s.ei2 * r2 * r2 + s.ei3 * r3 * r3);
-    return Coef{W * s.ea * eps, W * s.gj * r1, W * s.ei2 * r2, W * s.ei3 * r3,
-                W * s.ea,       W * s.gj,      W * s.ei2,      W * s.ei3};
+    const AxialDensity ax = axial_density(s, eps);
+    f = W * (ax.w + 0.5 * (s.gj * r1 * r1 + s.ei2 * r2 * r2 + s.ei3 * r3 * r3));
+    return Coef{W * ax.dw,  W * s.gj * r1, W * s.ei2 * r2, W * s.ei3 * r3,
+                W * ax.ddw, W * s.gj,      W * s.ei2,      W * s.ei3};
   };
   return qterms<WithH>(a, b, aB, th, xi, j0, elastic, g, H);
 }

@@ -79,7 +79,8 @@ inline void curvatures(const ElementInput& in, const double* e, double* out_k, d
   }
 }
 
-// U = sum_q gw j0 1/2 [EA eps^2 + GJ (K1-K1^0)^2 + EI2 (K2-K2^0)^2 + EI3 (K3-K3^0)^2]
+// U = sum_q gw j0 [w(eps) + 1/2 (GJ (K1-K1^0)^2 + EI2 (K2-K2^0)^2 + EI3 (K3-K3^0)^2)], with
+// w(eps) = 1/2 EA eps^2 or the axial law's (axial_density)
 inline double energy(const ElementInput& in, const Stiffness& s, const double* e) {
   detail::ElemValues v;
   detail::elem_values(in, e, v);
@@ -96,8 +97,9 @@ inline double energy(const ElementInput& in, const Stiffness& s, const double* e
     const double eps = 0.5 * (n2 - j2) / j2;
     const double* k0 = in.kref + 3 * q;
     const double r1 = K[0] - k0[0], r2 = K[1] - k0[1], r3 = K[2] - k0[2];
-    U += 0.5 * in.gw[q] * in.j0[q] *
-         (s.ea * eps * eps + s.gj * r1 * r1 + s.ei2 * r2 * r2 + s.ei3 * r3 * r3);
+    U += in.gw[q] * in.j0[q] *
+         (detail::axial_density(s, eps).w +
+          0.5 * (s.gj * r1 * r1 + s.ei2 * r2 * r2 + s.ei3 * r3 * r3));
   }
   return U;
 }

@@ -153,6 +153,7 @@ void drum_terms(const Model& base, const Model& scaled, const Winch& w, const Wi
   if (scaled.stiffness.ei != 0.0) {
     Model bend = scaled;
     bend.stiffness.ea = 0.0;
+    bend.stiffness.axial_law = {};
     assemble(bend, y, fb.data(), nullptr, 1.0);
     ub = strain_energy(bend, y);
   }

@@ -61,6 +61,8 @@ def _check_options(
             'built for cable elements: mesh.element = "rancf" or "ancf")'
         )
         raise InputError("material.axial_strain", material.axial_strain, allowed)
+    if material.axial_law is not None and not fam.gradient:
+        raise InputError("material.axial_law", "a table", 'cable and rod elements (not "beam")')
     if not fam.has_triads and section.rotary_inertia != "torsion":
         raise InputError("section.rotary_inertia", section.rotary_inertia, "rod elements")
 
@@ -140,9 +142,9 @@ class Model(Coordinates):
         self.notes: tuple[str, ...] = tuple(mesh.notes)
         self.n_el = mesh.n_elements
         rho, e_mod = material.density, material.youngs_modulus
-        self.props = CableProperties(
-            e_mod * section.area, e_mod * section.inertia, rho * section.area
-        )
+        law = material.axial_law  # its small-strain slope stands for EA in estimates and scales
+        ea = e_mod * section.area if law is None else law.ea0
+        self.props = CableProperties(ea, e_mod * section.inertia, rho * section.area)
         fam.check_dim(self.dim)
         built = fam.build(mesh, section, self.props, rho, n_qp, stress_free)
         self.kernel: CableKernel | BeamKernel | RodKernel = built.kernel

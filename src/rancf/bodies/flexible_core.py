@@ -18,7 +18,7 @@ from rancf.kernels.beam import BeamKernel
 from rancf.kernels.cable import CableKernel
 from rancf.kernels.rod import RodKernel
 
-__all__ = ["core_model", "section_stiffness"]
+__all__ = ["axial_law_record", "core_model", "section_stiffness"]
 
 
 class AssembledBody(BodyLayout, Protocol):
@@ -78,7 +78,8 @@ def section_stiffness(model: AssembledBody) -> _core.Stiffness:
         "damping_torsion": kv.torsion,
     }
     if not model.family.has_triads:
-        engineering = model.material.axial_strain == "engineering"
+        law = model.material.axial_law  # its table is in the engineering strain
+        engineering = model.material.axial_strain == "engineering" or law is not None
         return _core.Stiffness(
             ea=model.props.ea, ei=model.props.ei, engineering=engineering, **rates
         )
@@ -148,7 +149,14 @@ def core_model(model: AssembledBody) -> _core.Model:
         rotary=as_rod.core_inertia() if as_rod is not None else _core.SectionInertia(),
         closed=model.closed,
         reduction=_reduction(model),
+        axial_law=axial_law_record(model),
     )
+
+
+def axial_law_record(model: AssembledBody) -> Any:
+    """The core's record of the body's axial law (:mod:`rancf.bodies.axial_law`), or None."""
+    law = model.material.axial_law
+    return None if law is None else law.core
 
 
 def _reduction(model: AssembledBody) -> _core.Reduction:

@@ -7,6 +7,7 @@ from typing import Literal
 
 import numpy as np
 
+from rancf.bodies.axial_law import AxialLaw
 from rancf.bodies.families import framed
 from rancf.bodies.time_function import TimeFunction
 from rancf.errors import InputError
@@ -103,13 +104,18 @@ class Material:
 
     ``axial_strain``: the strain of the axial energy ``½ EA e²`` of cable elements:
     ``"green_lagrange"`` (``e = (λ² − 1)/2``, the default) or ``"engineering"`` (``e = λ − 1``,
-    the tension ``EA (λ − 1)`` of mooring codes); docs/derivations/cable.md §6."""
+    the tension ``EA (λ − 1)`` of mooring codes); docs/derivations/cable.md §6.
+
+    ``axial_law``: a tension-strain table (:class:`~rancf.bodies.axial_law.AxialLaw`, cables and
+    rods) in place of ``EA`` in the axial energy, in the engineering strain; bending keeps
+    ``E I`` (docs/derivations/axial-law.md)."""
 
     density: float
     youngs_modulus: float
     shear_modulus: float | None = None
     poisson_ratio: float | None = None
     axial_strain: str = "green_lagrange"
+    axial_law: AxialLaw | None = None
 
     def __post_init__(self) -> None:
         if self.axial_strain not in AXIAL_STRAINS:

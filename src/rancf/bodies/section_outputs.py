@@ -13,7 +13,8 @@ tension (the forces of a cut section, as equilibrium sees them):
     M_i = ∂W/∂k_i = C_i (κ_i - κ_i⁰) / λ,        N = ∂W/∂λ = EA ε λ - Σ M_i κ_i
 
 (a cable with ``material.axial_strain = "engineering"``: ``W = ½ EA (λ − 1)² + ...`` and
-``N = EA (λ − 1) − Σ M_i κ_i``; the ``strain`` output stays the Green–Lagrange ``ε``);
+``N = EA (λ − 1) − Σ M_i κ_i``; with an axial law ``W = w(λ − 1) + ...`` and ``N = T(λ − 1) −
+Σ M_i κ_i``, docs/derivations/axial-law.md; the ``strain`` output stays the Green–Lagrange ``ε``);
 
 * cable: one curvature (planar: signed, about ``z``; spatial: the magnitude), ``C = EI``;
 * beam: ``κ(ξ)`` of the co-rotational cubic per reference length, ``M = EI κ``, ``N = EA ε λ``;
@@ -35,7 +36,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rancf.bodies.flexible import Model
-from rancf.bodies.flexible_core import section_stiffness
+from rancf.bodies.flexible_core import axial_law_record, section_stiffness
 from rancf.elements.cable import cable_shape_functions
 from rancf.geometry.quadrature import gauss_legendre
 from rancf.kernels import _core
@@ -172,7 +173,9 @@ class SectionSampler:
             scale = np.broadcast_to(_scale(m) * np.asarray(factor, dtype=float).ravel(), (k,))
             out = np.empty((*raw.shape[:-1], 2 * raw.shape[-1]))
             k0, scale = np.ascontiguousarray(self._k0), np.ascontiguousarray(scale)
-            _core.section_forces(raw, k0, c, float(m.props.ea), bool(st.engineering), scale, out)
+            law = axial_law_record(m)
+            ea, eng = float(m.props.ea), bool(st.engineering)
+            _core.section_forces(raw, k0, c, ea, eng, scale, out, axial_law=law)
             return out
         eps, kappa = raw[..., 0], raw[..., 1:]  # a beam: per reference length already
         stretch = np.sqrt(np.clip(1.0 + 2.0 * eps, 0.0, None))

@@ -82,7 +82,12 @@ def _cmd_static(args: argparse.Namespace) -> int:
     if run.summary is not None:
         notes = _warn(run.notes + run.summary["warnings"])
     else:
-        notes = _warn(run.notes + run_warnings(system, static=True, largest=largest))
+        notes = _warn(
+            run.notes
+            + run_warnings(
+                system, static=True, largest=largest, by_body=run.outputs.largest_by_body
+            )
+        )
     for note in element_notes(system):  # a curved spatial cable's missing stiffness
         print(f"rancf: {note}", file=sys.stderr)
     out = {

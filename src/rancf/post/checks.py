@@ -13,6 +13,8 @@ and an entry of ``summary.json``'s ``"warnings"`` list.
   takes shorter steps of one size that divides the interval
   (:meth:`~rancf.options.DynamicOptions.fitted`; ``output_step = 1.5e-3`` with ``step =
   1e-3``: steps of 7.5e-4 s, 1333 a second instead of 1000).
+* A body whose strain leaves its ``axial_law`` table (:func:`axial_law_warnings`): the tension
+  beyond the table's last row is its linear extrapolation.
 * An impulsive start of a dynamic run (:attr:`System.start_warnings`,
   :mod:`rancf.scenario.motions`): a prescribed rate, value or load that jumps at ``t = 0``.
 
@@ -24,6 +26,8 @@ are written (:class:`rancf.system.outputs.SystemOutputs`), so checking it costs 
 
 from __future__ import annotations
 
+import math
+from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
@@ -44,7 +48,9 @@ __all__ = [
     "step_warnings",
     "error_warnings",
     "strain_warning",
+    "axial_law_warnings",
     "largest_strain",
+    "largest_stretch",
     "run_warnings",
     "before_run_warnings",
     "finished_warnings",
@@ -206,11 +212,14 @@ def run_warnings(
     static: bool = False,
     largest: tuple[float, float] | None = None,
     options: DynamicOptions | None = None,
+    by_body: Mapping[str, float] | None = None,
 ) -> list[str]:
     """Every warning of a run: its impulsive starts (a dynamic run's), the section's radius, the
     steps against the output interval (``options``, a dynamic run's), and the largest axial
     strain — ``largest = (strain, t)`` as a :class:`~rancf.system.outputs.SystemOutputs` tracked
-    it, or of a model's states ``q (n_t, n)`` at times (or load factors, ``static``) ``t``."""
+    it, or of a model's states ``q (n_t, n)`` at times (or load factors, ``static``) ``t``; and
+    the bodies whose largest strain ``by_body`` (their names to their largest Green–Lagrange
+    strains) leaves their ``axial_law`` table (:func:`axial_law_warnings`)."""
     if largest is None:
         largest = (0.0, 0.0)
         if not isinstance(model, System) and q is not None and np.size(q):
@@ -222,7 +231,22 @@ def run_warnings(
         first = before_run_warnings(model, options)
     else:
         first = ([] if static else start_warnings(model)) + section_warnings(model)
-    return first + ([strain] if strain else [])
+    return first + ([strain] if strain else []) + axial_law_warnings(model, by_body or {})
+
+
+def axial_law_warnings(model: Model | System, by_body: Mapping[str, float]) -> list[str]:
+    """One line per body with an axial law whose largest Green–Lagrange strain ``by_body[name]``
+    (the name ``""``: a model's) has an engineering strain ``sqrt(1 + 2 ε) − 1`` beyond its
+    table's last row (:meth:`~rancf.bodies.axial_law.AxialLaw.leaves_table`)."""
+    pairs = zip(model.names, model.flex, strict=False) if isinstance(model, System) else []
+    out = []
+    for name, body in pairs if isinstance(model, System) else [("", model)]:
+        law = body.material.axial_law if isinstance(body, Model) else None
+        g = by_body.get(name)
+        line = "" if law is None or g is None else law.leaves_table(math.sqrt(1.0 + 2.0 * g) - 1.0)
+        if line:
+            out.append(f"body {name!r}: {line}" if name else line)
+    return out
 
 
 def before_run_warnings(model: Model | System, options: DynamicOptions) -> list[str]:
@@ -232,12 +256,17 @@ def before_run_warnings(model: Model | System, options: DynamicOptions) -> list[
 
 
 def finished_warnings(
-    model: Model | System, largest: tuple[float, float], result: Any, options: DynamicOptions
+    model: Model | System,
+    largest: tuple[float, float],
+    result: Any,
+    options: DynamicOptions,
+    by_body: Mapping[str, float] | None = None,
 ) -> list[str]:
     """Every warning of a finished dynamic run: :func:`run_warnings` (``largest`` as its outputs
     tracked it) and, for a completed run, the steps whose error estimate passed the tolerance
-    (:func:`error_warnings`; a failed or stopped run says so instead)."""
-    found = run_warnings(model, largest=largest, options=options)
+    (:func:`error_warnings`; a failed or stopped run says so instead); ``by_body``: as
+    :func:`run_warnings`'."""
+    found = run_warnings(model, largest=largest, options=options, by_body=by_body)
     done = result.status.value == "completed"
     return found + (error_warnings(result, options) if done else [])
 
@@ -258,3 +287,9 @@ def largest_strain(model: Model, t: NDArray, q: NDArray) -> tuple[float, float]:
         if eps > best[0]:
             best = (eps, float(tt))
     return best
+
+
+def largest_stretch(model: Model, q: NDArray) -> float:
+    """The largest (signed) Green–Lagrange strain of the state ``q`` (full coordinates) at the
+    section sample points: the most stretched point (:func:`axial_law_warnings`)."""
+    return float(np.max(SectionSampler(model).values(model.y_from_q(q))[:, 0]))

@@ -194,9 +194,13 @@ def write_run(
         )
         summary = {
             **run_summary(model, result),
-            "warnings": run_warnings(model, largest=outputs.largest_strain)
+            "warnings": run_warnings(
+                model, largest=outputs.largest_strain, by_body=outputs.largest_by_body
+            )
             if options is None
-            else finished_warnings(model, outputs.largest_strain, result, options),
+            else finished_warnings(
+                model, outputs.largest_strain, result, options, outputs.largest_by_body
+            ),
             **(extra or {}),
         }
         files.write(out / "summary.json", strict_json(summary))
@@ -272,7 +276,9 @@ def write_static_run(
             "load_steps_converged": int(t.size - 1),
             **run_sizes(s),
             "outputs": int(t.size),
-            "warnings": run_warnings(s, static=True, largest=outputs.largest_strain),
+            "warnings": run_warnings(
+                s, static=True, largest=outputs.largest_strain, by_body=outputs.largest_by_body
+            ),
             **summary,
         }
         files.write(out / "summary.json", strict_json(doc))

@@ -10,7 +10,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rancf.errors import InputError
-from rancf.post.checks import largest_strain, run_warnings
+from rancf.post.checks import largest_strain, largest_stretch, run_warnings
 from rancf.runs.campbell import run_campbell
 from rancf.runs.common import refuse_unloaded_reference, static_state
 from rancf.solvers.campbell import CampbellResult
@@ -74,13 +74,15 @@ def run_modes(
     if about == "reference":
         refuse_unloaded_reference(sc, "modes")
     y = lam = None
-    largest = (0.0, 1.0)
+    largest, by_body = (0.0, 1.0), {}
     if about == "static":
         y, lam = static_state(sc, system)
         q = system.q_from_y(y)
         for name, b in zip(system.names, system.flex, strict=False):  # the equilibrium's strain
-            largest = max(largest, largest_strain(b, np.ones(1), q[None, system.body_slice(name)]))
-    notes = run_warnings(system, static=True, largest=largest)
+            qb = q[system.body_slice(name)]
+            largest = max(largest, largest_strain(b, np.ones(1), qb[None]))
+            by_body[name] = largest_stretch(b, qb)
+    notes = run_warnings(system, static=True, largest=largest, by_body=by_body)
     res = natural_modes(system, y, None if every else count, lam)
     cam = run_campbell(sc, system, count, about) if sc.data["modes"]["spin_rates"] else None
     return ModesRun(system, res, about, y, n_free, notes, cam)

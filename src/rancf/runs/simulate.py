@@ -169,7 +169,9 @@ def simulate_planned(
     values = None
     if table:
         names, values = sensor_table(outputs, sc.sensors, result.q, result.v, t=result.t)
-    notes = list(plan.notes) + finished_warnings(system, outputs.largest_strain, result, opts)
+    notes = list(plan.notes) + finished_warnings(
+        system, outputs.largest_strain, result, opts, outputs.largest_by_body
+    )
     if stream is not None:
         summary = stream.finish(plan, result, notes)
     return SimulateRun(system, outputs, result, start, notes, summary, names, values)

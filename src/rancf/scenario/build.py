@@ -255,6 +255,7 @@ def flexible_model(
                 material.shear_modulus,
                 material.poisson_ratio,
                 material.axial_strain,
+                None if material.axial_law is None else material.axial_law.law(),
             ),
             [_support(node, t) for _, node, t in supports],
             sc.loads.gravity,

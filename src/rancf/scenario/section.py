@@ -17,17 +17,29 @@ from __future__ import annotations
 
 import math
 import sys
-from typing import Any, Literal
+from typing import Annotated, Any, Literal
 
-from pydantic import Field, model_validator
+from pydantic import BeforeValidator, Field, model_validator
 
+from rancf.bodies.axial_law import AxialLaw
 from rancf.bodies.families import family, framed
-from rancf.scenario.base import PoissonRatio, Positive, Table, Vector3, fail, show
+from rancf.errors import InputError
+from rancf.scenario.base import (
+    JsonSchema,
+    Number,
+    PoissonRatio,
+    Positive,
+    Table,
+    Vector3,
+    fail,
+    show,
+)
 from rancf.scenario.mesh_table import MeshTable
 from rancf.scenario.shell_checks import check_shell
 from rancf.scenario.surface import is_surface
+from rancf.scenario.table_files import ROWS_SCHEMA, table_rows
 
-__all__ = ["SectionTable", "MaterialTable", "check_flexible"]
+__all__ = ["AxialLawTable", "SectionTable", "MaterialTable", "check_flexible"]
 
 _ROD_SECTION = ("inertia_y", "inertia_z", "orientation", "torsion_constant", "rotary_inertia")
 
@@ -107,6 +119,32 @@ def _check_radius(r: float) -> None:
         )
 
 
+class AxialLawTable(Table):
+    """``axial_law = { table = [[strain, tension], ...] }`` or ``{ table = "file.csv" }``: the
+    tension-strain curve of a cable or rod (:class:`~rancf.bodies.axial_law.AxialLaw`)."""
+
+    table: Annotated[list[list[Number]], BeforeValidator(table_rows), JsonSchema(ROWS_SCHEMA)] = (
+        Field(
+            description="rows [engineering strain, tension N] from [0, 0], both strictly "
+            "increasing (monotone cubic between rows, the last slope beyond); or a CSV file of "
+            'such rows ("path.csv", relative to the scenario file; a header row is allowed)'
+        )
+    )
+
+    @model_validator(mode="after")
+    def _law(self) -> AxialLawTable:
+        try:
+            AxialLaw(self.table)
+        except InputError as exc:
+            key = exc.parameter.removeprefix("material.axial_law.")
+            raise fail(key, f"needs {exc.allowed}, got {show(exc.value)}") from None
+        return self
+
+    def law(self) -> AxialLaw:
+        """The law of the table."""
+        return AxialLaw(self.table)
+
+
 class MaterialTable(Table):
     """``[material]``: density and elastic moduli."""
 
@@ -126,6 +164,13 @@ class MaterialTable(Table):
         "mooring codes)",
     )
 
+    axial_law: AxialLawTable | None = Field(
+        None,
+        description="cables and rods: a tension-strain table { table = [[strain, tension], "
+        '...] } or { table = "file.csv" } in place of EA in the axial energy (engineering '
+        "strain); bending keeps E I",
+    )
+
     @model_validator(mode="before")
     @classmethod
     def _nu_range(cls, data: Any) -> Any:
@@ -138,6 +183,13 @@ class MaterialTable(Table):
     def _one_modulus(self) -> MaterialTable:
         if self.shear_modulus is not None and self.poisson_ratio is not None:
             raise fail("poisson_ratio", "give shear_modulus or poisson_ratio, not both")
+        if self.axial_law is not None and "axial_strain" in self.model_fields_set:
+            if self.axial_strain != "engineering":
+                raise fail(
+                    "axial_strain",
+                    'is "engineering" with an axial_law (its table is in the engineering '
+                    f"strain), got {show(self.axial_strain)}",
+                )
         return self
 
 
@@ -194,6 +246,12 @@ def check_flexible(
             "material.axial_strain",
             f'"engineering" applies to cable elements '
             f'(mesh.element = "rancf" or "ancf"), not {el!r}',
+        )
+    if material.axial_law is not None and not fam.gradient:
+        raise fail(
+            "material.axial_law",
+            f'applies to cable and rod elements (mesh.element = "rancf", "ancf" or "rod"), '
+            f"not {el!r}",
         )
     if fam.has_triads and material.shear_modulus is None and material.poisson_ratio is None:
         raise fail(

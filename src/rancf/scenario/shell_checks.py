@@ -32,7 +32,7 @@ _LINE_ONLY: dict[str, dict[str, Any]] = {
             "rotary_inertia",
         )
     },
-    "material": {"shear_modulus": None, "axial_strain": "green_lagrange"},
+    "material": {"shear_modulus": None, "axial_strain": "green_lagrange", "axial_law": None},
     "mesh": {"element": "rancf", "spacing": "arc", "continuity": "C1", "stress_free": "reference"},
 }
 _SHELL = "applies to line bodies (cables, beams, rods), not to a shell (a surface [geometry])"

@@ -31,6 +31,7 @@ SCENARIO_ANALYSES: dict[str, tuple[str, ...]] = {
     "installed-hose": ("static", "simulate"),
     "mooring-line": ("static",),
     "power-line-gust": ("simulate",),
+    "polyester-rope": ("static", "modes"),
     "power-line-sag": ("static",),
     "ring": ("modes", "simulate"),
     "robot-cable": ("simulate",),

@@ -135,6 +135,8 @@ class SystemOutputs:
         self.integrator = evaluator(s.core, s.damping)
         #: The largest |axial strain| of the rows seen so far, and the ``t`` of its row.
         self.largest_strain: tuple[float, float] = (0.0, 0.0)
+        #: Every flexible body's largest axial strain (signed: the most stretched) so far.
+        self.largest_by_body: dict[str, float] = {}
         #: One flexible body, nothing else with energy: its energies are the system's (stored).
         others = s.rigid or s.springs or s.has_contact or getattr(s, "winches", ())
         self._body_is_system = len(s.flex) == 1 and not others
@@ -370,6 +372,8 @@ class SystemOutputs:
             i = int(np.argmax(strain)) if strain.size else 0  # the first of equal ones
             if strain.size and strain[i] > self.largest_strain[0]:
                 self.largest_strain = (float(strain[i]), float(t[i]))
+            stretched = np.nan_to_num(vals[:, :, 0], nan=-np.inf).max(initial=-np.inf)
+            self.largest_by_body[name] = max(self.largest_by_body.get(name, -np.inf), stretched)
             parts.append(vals.reshape(vals.shape[0], -1))
         if len(parts) == 1:  # one body: no copy
             return parts[0]

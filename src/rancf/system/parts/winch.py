@@ -106,6 +106,13 @@ class Winch:
                 "balance does not take the fluid's loads yet",
             )
         body = self.body(system)
+        if self.driven and body.material.axial_law is not None:
+            raise InputError(
+                f"winches.{self.name}.torque",
+                "a driven drum",
+                f"a length or speed for a line with an axial_law ({name}): a drum's balance "
+                "takes the energy of a linear EA (docs/derivations/variable-length.md §3.3)",
+            )
         c1, c2, d2 = convective_matrices(body, end)
         node = 0 if end == "start" else body.n_nodes - 1
         return WinchRecord(
