@@ -9,11 +9,12 @@ The cases, their scenarios and expected values are those of the tests
 catenary, see :mod:`tests.solvers.test_moorpy_catenary`).  Per case and mesh: the end forces'
 largest error relative to the fairlead tension, the method, Newton iterations, relaxation
 steps, the elements it was solved on (``rancf static`` refines a line whose touchdown its mesh
-does not resolve) and the solve time ``rancf static`` reports (``wall_time_s``, median over
-the repeats); MoorPy's time is that of its ``catenary`` call (median over the repeats) in the
-interpreter given by ``--moorpy-python`` (a venv with ``moorpy==1.3.*``: a benchmark
-dependency, not one of rancf's), run in the same session, case by case after rancf's.  Writes
-``benchmarks/results/moorpy_catenary_suite.json``.
+does not resolve), the solve time ``rancf static`` reports (``wall_time_s``, median over
+the repeats) and the solve's CPU time (:func:`solve_cpu`); MoorPy's time is that of its
+``catenary`` call (median over the repeats) in the interpreter given by ``--moorpy-python`` (a
+venv with ``moorpy==1.3.*``: a benchmark dependency, not one of rancf's), run in the same
+session, case by case after rancf's.  Writes ``benchmarks/results/moorpy_catenary_suite.json``.
+Run it under ``flock /tmp/rancf-bench.lock`` on a shared machine.
 """
 
 from __future__ import annotations
@@ -80,7 +81,41 @@ def run_rancf(case, elements: int, repeats: int, folder: Path) -> dict:
         "newton_iterations": out["newton_iterations"],
         "relaxation_steps": out["relaxation_steps"],
         "time_s": statistics.median(times),
+        "cpu_s": solve_cpu(path, repeats),
     }
+
+
+def solve_cpu(path: Path, repeats: int) -> float:
+    """The CPU time [s] of the static solve alone (every call of
+    :func:`rancf.solvers.static.solve_static` of one ``run_static``: a re-solve on a refined
+    mesh counted too), in this process, median over ``repeats`` runs after a warm-up: on a
+    shared machine the wall time also counts the other jobs' share of the cores."""
+    import time
+
+    import rancf.solvers.static as static
+    from rancf.runs.static import run_static
+    from rancf.scenario.scenario import load_scenario
+
+    solve, spent = static.solve_static, [0.0]
+
+    def timed(*args, **kwargs):
+        t0 = time.process_time()
+        try:
+            return solve(*args, **kwargs)
+        finally:
+            spent[0] += time.process_time() - t0
+
+    static.solve_static = timed
+    try:
+        times = []
+        for k in range(repeats + 1):
+            spent[0] = 0.0
+            run_static(load_scenario(path))
+            if k:
+                times.append(spent[0])
+    finally:
+        static.solve_static = solve
+    return statistics.median(times)
 
 
 def run_moorpy(case, python: str, repeats: int) -> dict:
@@ -109,7 +144,12 @@ def main() -> None:
             for n in a.elements:
                 row[f"rancf_{n}"] = r = run_rancf(case, n, a.repeats, Path(tmp))
                 err = f"{100 * r['error']:.3f} %" if r["converged"] else f"exit {r['exit']}"
-                how = f"{r['method']}, {1e3 * r['time_s']:.1f} ms" if r["converged"] else ""
+                how = (
+                    f"{r['method']}, {r['newton_iterations']} it, {1e3 * r['time_s']:.1f} ms wall, "
+                    f"{1e3 * r['cpu_s']:.1f} ms CPU"
+                    if r["converged"]
+                    else ""
+                )
                 print(f"{case.name:16s} {n:4d}  {err:>10s}  {how}", flush=True)
             rows.append(row)
     Path(a.out).write_text(json.dumps({"cases": rows}, indent=1) + "\n")
@@ -123,7 +163,7 @@ def markdown(rows: list[dict], elements: list[int]) -> str:
     meshes = " / ".join(str(n) for n in elements)
     out = [
         f"| case | expected fairlead (H, V) | rancf, {elements[0]} el. | error, {meshes} el. "
-        f"| rancf time | MoorPy time |",
+        f"| rancf solve (wall / CPU), {meshes} el. | MoorPy time |",
         "|---|---|---|---|---|---|",
     ]
     for row in rows:
@@ -136,12 +176,19 @@ def markdown(rows: list[dict], elements: list[int]) -> str:
             if first["converged"]
             else "exit 3"
         )
-        rt = f"{1e3 * first['time_s']:.1f} ms" if first["converged"] else ""
+        rt = " / ".join(_times(r) for r in runs)
         mt = f"{1e3 * row['moorpy']['time_s']:.2f} ms" if "time_s" in row["moorpy"] else ""
         out.append(
             f"| {row['case']} | {-want[2]:.1f}, {-want[3]:.1f} N | {got} | {errs} | {rt} | {mt} |"
         )
     return "\n".join(out)
+
+
+def _times(run: dict) -> str:
+    """A run's solve times for the table: wall / CPU [ms]."""
+    if not run["converged"]:
+        return "-"
+    return f"{1e3 * run['time_s']:.0f}/{1e3 * run['cpu_s']:.0f}"
 
 
 def _error(run: dict, elements: int) -> str:

@@ -81,6 +81,48 @@ def test_moorpy_touchdown_at_160_elements(tmp_path, name):
     assert method.startswith("sag start+newton")
 
 
+def test_the_stiff_u_converges_by_newton_through_its_axial_stiffness(tmp_path):
+    """The full U (EA = 1e12 N, 4e9 times its tension at the touchdowns) at 320 elements (its
+    touchdowns resolved: no refinement): from its sagged start Newton converges with the line's
+    EA continued from 1e4 times its weight (no relaxation; about 200 iterations at its own EA
+    alone), to the U's half's forces at 160 elements (the same element length) within 1e-5 of
+    the tension, and the model keeps its own EA."""
+    u, half = (next(c for c in CASES if c.name == n) for n in ("u-shape", "u-half"))
+    run = _run(tmp_path, u, 320)
+    assert run.notes == [] and run.system.flex[0].n_el == 320
+    assert run.result.method == "sag start+newton" and run.result.relaxation_steps == 0
+    assert run.result.n_newton <= 80, run.result.n_newton
+    assert run.system.flex[0].core.axial_stiffness == u.ea
+    ends = run.outputs.static_reactions(run.result.y, run.result.lam)
+    got = -np.r_[ends[-1].force[:2]]
+    want, _ = solved_forces(tmp_path, half, 160)
+    assert np.abs(got - want[2:]).max() <= 1e-5 * np.hypot(*want[2:]), (got, want)
+
+
+def test_the_axial_stiffness_is_restored_when_a_solve_fails(tmp_path, monkeypatch):
+    """A continuation interrupted by an error in a Newton solve leaves every line's EA as it
+    was."""
+    import rancf.solvers.axial_continuation as ac
+    from rancf.solvers.system_equilibrium import SystemEquilibrium
+
+    case = next(c for c in CASES if c.name == "u-half")
+    path = tmp_path / "u.toml"
+    path.write_text(scenario_text(case, 40))
+    system = load_scenario(path).build_system()
+    lines = ac.stiff_lines(system, system.names)
+    assert len(lines) == 1 and lines[0][1] == case.ea
+
+    def fail(*args, **kwargs):
+        assert system.flex[0].core.axial_stiffness == pytest.approx(ac.START_RATIO * lines[0][2])
+        raise RuntimeError("stop")
+
+    monkeypatch.setattr(ac, "newton", fail)
+    problem = SystemEquilibrium(system)
+    with pytest.raises(RuntimeError, match="stop"):
+        ac.continued_newton(problem, problem.start(), 1.0, 1e-10, lines)
+    assert system.flex[0].core.axial_stiffness == case.ea
+
+
 def test_moorpy_friction_holding_the_whole_tension_at_80_elements(tmp_path):
     """CB = 5: the friction on the grounded length takes the whole tension (MoorPy: no force on
     the anchor), also at 80 elements."""
@@ -94,9 +136,9 @@ def test_moorpy_friction_holding_the_whole_tension_at_80_elements(tmp_path):
 def test_an_unresolved_touchdown_is_refused_not_reported(tmp_path):
     """The full U at 40 elements solved on its own mesh (the static solver, as a time-domain
     run's static start uses it): its stiff line (EA = 1e12) cannot bend within one 3.25 m
-    element where it meets the seabed, and settles into a state whose fairlead force is 4.5
-    times too small; the static solve refuses it, naming the bend radius ``T / w`` and the
-    element's length, instead of reporting it."""
+    element where it meets the seabed; no state is reported (a state it settles into there is
+    refused by the touchdown check, its fairlead force 4.5 times too small), and the failure
+    names the start shape's bend radius ``H / w`` and the element's length."""
     from rancf.errors import ConvergenceError
 
     case = next(c for c in CASES if c.name == "u-shape")
@@ -105,21 +147,21 @@ def test_an_unresolved_touchdown_is_refused_not_reported(tmp_path):
     sc = load_scenario(path)
     with pytest.raises(
         ConvergenceError,
-        match=r"radius T/w = .* shorter than its element "
-        r"\(3.25 m\): the touchdown is not resolved",
+        match=r"radius (T/w = .* shorter than its element \(3.25 m\): the touchdown is not "
+        r"resolved|H/w = 2.63 m, shorter than its 3.25 m elements there)",
     ):
         solve_static(sc.build_system(), **sc.static_options())
 
 
 def test_the_static_run_refines_an_unresolved_touchdown_and_says_so(tmp_path):
     """``rancf static`` of the full U at 40 elements: the sagged start's touchdown bends with
-    the radius ``H / w = 2.63`` m; the body is solved with 160 elements (0.81 m, under a third
+    the radius ``H / w = 2.63`` m; the body is solved with 320 elements (0.41 m, under a sixth
     of it), one warning line naming it; the U's half at 160 elements is left as it is."""
     u, half = (next(c for c in CASES if c.name == n) for n in ("u-shape", "u-half"))
     run = _run(tmp_path, u, 40)
-    assert run.system.flex[0].n_el == 160
+    assert run.system.flex[0].n_el == 320
     assert len(run.notes) == 1
-    assert "40 elements refined to 160" in run.notes[0] and "T/w = 2.63 m" in run.notes[0]
+    assert "40 elements refined to 320" in run.notes[0] and "T/w = 2.63 m" in run.notes[0]
     run = _run(tmp_path, half, 160)
     assert run.system.flex[0].n_el == 160 and run.notes == []
 
@@ -142,14 +184,14 @@ def test_a_touchdown_found_unresolved_after_the_solve_is_solved_again_refined(
 ):
     """Without the start shape's radius (a line the sagged start does not know), the U's half
     at 40 elements is solved, its solved touchdown (``T / w`` about 2.2 m at 1.6 m elements)
-    asks for 160 elements, and the run is solved again on them: one warning line, the
-    forces within 0.5 %."""
+    asks for 320 elements (under a sixth of it), and the run is solved again on them: one
+    warning line, the forces within 0.5 %."""
     import rancf.runs.static_mesh as static_mesh
 
     monkeypatch.setattr(static_mesh, "start_ratios", lambda system: {})
     case = next(c for c in CASES if c.name == "u-half")
     run = _run(tmp_path, case, 40)
-    assert run.system.flex[0].n_el == 160 and len(run.notes) == 1, run.notes
+    assert run.system.flex[0].n_el == 320 and len(run.notes) == 1, run.notes
     ends = run.outputs.static_reactions(run.result.y, run.result.lam)
     got = -np.r_[ends[0].force[:2], ends[-1].force[:2]]
     want = expected(case)
@@ -184,7 +226,7 @@ def test_a_line_anchored_on_a_sloped_seabed_starts_on_its_sloped_catenary(tmp_pa
 
 def test_a_run_from_its_static_state_refines_the_touchdown_as_the_static_run(tmp_path):
     """``initial_state = "static"`` on the full U at 40 elements: the run is planned, solved and
-    integrated on the 160 elements ``rancf static`` solves it on, with the same warning line
+    integrated on the 320 elements ``rancf static`` solves it on, with the same warning line
     (naming the static start and the run) in its warnings and its ``mesh_refinement``."""
     from rancf.runs.simulate import run_simulate
 
@@ -193,8 +235,8 @@ def test_a_run_from_its_static_state_refines_the_touchdown_as_the_static_run(tmp
     solver = '\n[solver]\ninitial_state = "static"\nt_end = 0.01\nstep = 0.01\n'
     path.write_text(scenario_text(case, 40) + solver)
     run = run_simulate(load_scenario(path))
-    assert run.system.flex[0].n_el == 160
-    lines = [w for w in run.warnings if "refined to 160" in w]
+    assert run.system.flex[0].n_el == 320
+    lines = [w for w in run.warnings if "refined to 320" in w]
     assert len(lines) == 1 and "for the static start and the run" in lines[0]
     assert run.start["mesh_refinement"] == lines
     assert run.result.status.value == "completed"

@@ -274,16 +274,16 @@ def _cli_static(tmp_path, text: str) -> subprocess.CompletedProcess:
 def test_coarse_touchdown_is_solved_on_a_refined_mesh_with_a_warning(tmp_path):
     """``rancf static`` of the straight 40-element line installed as a U on a 1e6 N/m² seabed
     (the solver alone refuses it, test_coarse_touchdown_is_refused): the static run refines the
-    line to 160 elements, says so in one warning line, and gives MoorPy's H (the penalty's
-    sinking: -0.53 %)."""
+    line to 320 elements, says so in one warning line, and gives MoorPy's H (the penalty's
+    sinking and the line's EI: -0.26 %)."""
     import json
 
     p = _cli_static(tmp_path, U_INSTALLED + U_LINE.format(stiffness="stiffness = 1.0e6", fluid=""))
     assert p.returncode == 0, p.stderr
-    assert p.stderr.count("warning") == 1 and "40 elements refined to 160" in p.stderr
+    assert p.stderr.count("warning") == 1 and "40 elements refined to 320" in p.stderr
     out = json.loads(p.stdout)
-    assert abs(out["reactions"][-1]["force"][0]) == pytest.approx(H_U, rel=6e-3)
-    assert len(out["positions"]["body"]) == 161
+    assert abs(out["reactions"][-1]["force"][0]) == pytest.approx(H_U, rel=4e-3)
+    assert len(out["positions"]["body"]) == 321
 
 
 def test_refused_state_exits_3_in_one_line(tmp_path):
@@ -460,3 +460,52 @@ def test_sag_start_shape_on_a_sloped_seabed_is_moorpy_catenary():
     assert (pts[-1, 0] - pts[lift, 0]) / (u_f - u_t) == pytest.approx(h, rel=1e-3)
     down, _ = catenary_shape(60.0, -40.0, 80.0, s, floor=-40.0 + 60.0 * slope, slope=-slope)
     assert np.abs(down[::-1] - np.c_[60.0 - pts[:, 0], pts[:, 1] - 40.0]).max() < 1e-9
+
+
+def test_a_chain_without_rest_curvature_starts_resting_and_converges_at_160_elements(tmp_path):
+    """The 330 m chain on 160 elements with ``stress_free = "straight"``: its sagged start lies
+    on the seabed at the depth its wet weight presses it to (its contact stiffness acting from
+    the start: at the onset of contact, with no tension yet, Newton's first steps moved it by
+    kilometres), and Newton alone converges from there."""
+    from rancf.solvers.sag_start import sag_state
+    from rancf.solvers.system_equilibrium import SystemEquilibrium
+    from rancf.system.seabed import pressing_weight
+
+    path = tmp_path / "chain.toml"
+    text = MOORING_3D.format(n=160).replace("[mesh]\n", '[mesh]\nstress_free = "straight"\n')
+    path.write_text(text)
+    sc = load_scenario(path)
+    system = sc.build_system()
+    z = sag_state(SystemEquilibrium(system), True)
+    assert z is not None
+    x = system.q_from_y(z[: system.n]).reshape(-1, 6)
+    w = pressing_weight(system, "body", np.array([0.0, 0.0, 1.0]))
+    radius = system.flex[0].section.radius
+    sink = w / 648000.0 + 0.5e-3 * radius  # the penalty's sinking w/k + d/2, d = 1e-3 r
+    assert x[1, 2] == pytest.approx(-100.10806535367585 + radius - sink, abs=1e-9)
+    res = solve_static(system, **sc.static_options())
+    assert res.method == SAG_START and res.relaxation_steps == 0 and res.n_newton <= 15
+
+
+def test_a_failed_solve_of_a_curved_spatial_cable_names_its_kink(tmp_path, monkeypatch):
+    """A static solve that fails on a spatial cable drawn curved (the chain as a conic) names
+    the kink of its bending energy where it lies straight, and what to set; the same chain
+    with ``stress_free = "straight"`` has no such line."""
+    import rancf.solvers.static as static
+
+    def fail(*args, **kwargs):
+        raise ConvergenceError("static equilibrium not found: stopped", 0.0)
+
+    monkeypatch.setattr(static, "_sagged", lambda *args, **kwargs: None)
+    monkeypatch.setattr(static, "solve_equilibrium", fail)
+    for straight in (False, True):
+        text = MOORING_3D.format(n=8)
+        if straight:
+            text = text.replace("[mesh]\n", '[mesh]\nstress_free = "straight"\n')
+        path = tmp_path / "chain.toml"
+        path.write_text(text)
+        with pytest.raises(ConvergenceError) as err:
+            solve_static(load_scenario(path).build_system())
+        kink = "has a kink where it lies straight" in str(err.value)
+        assert kink != straight and str(err.value).startswith("static equilibrium not found")
+        assert ('stress_free = "straight"' in str(err.value)) != straight

@@ -158,6 +158,15 @@ nb::class_<ModelHolder> bind_model(nb::module_& mod) {
               "rotary"_a = rancf::SectionInertia{}, "closed"_a = false, "reduction"_a,
               "axial_law"_a = nb::none())
           .def_prop_ro("n", [](const ModelHolder& h) { return h.n(); })
+          .def_prop_rw(
+              "axial_stiffness", [](const ModelHolder& h) { return h.m.stiffness.ea; },
+              [](ModelHolder& h, double ea) {
+                if (!(ea > 0.0 && std::isfinite(ea)))
+                  throw std::invalid_argument("axial_stiffness: a finite number > 0");
+                h.m.stiffness.ea = ea;
+              },
+              "EA [N] the element kernels read at every evaluation (the static solver's axial "
+              "stiffness continuation lowers it for a while: rancf.solvers.axial_continuation).")
           .def(
               "internal_force",
               [](const ModelHolder& h, In y, Out f) {

@@ -93,8 +93,6 @@ def section_warnings(model: Model | System) -> list[str]:
     ]
 
 
-#: Smallest difference of two unit nodal tangents that makes a reference curved.
-CURVED_TANGENTS = 1e-9
 #: The note on a curved spatial cable (printed by ``rancf static`` and ``simulate``; ``rancf
 #: modes`` prints its own where the zero-frequency modes show it).
 CURVED_CABLE_NOTE = (
@@ -116,14 +114,9 @@ def element_notes(model: Model | System) -> list[str]:
             for name, b in zip(model.names, model.flex, strict=False)
             for n in element_notes(b)
         ]
-    if model.dim != 3 or not model.family.cable:
-        return []
-    if model.stress_free != "reference":
-        return []
-    t = np.asarray(model.mesh.nodes[:, 1], dtype=float)
-    t = t / np.linalg.norm(t, axis=1)[:, None]
-    curved = float(np.max(np.linalg.norm(t - t[0], axis=1))) > CURVED_TANGENTS
-    return [CURVED_CABLE_NOTE] if curved else []
+    from rancf.solvers.curved_cable import curved_spatial_cable
+
+    return [CURVED_CABLE_NOTE] if curved_spatial_cable(model) else []
 
 
 def _crossing_warnings(system: System) -> list[str]:

@@ -10,7 +10,12 @@ U-shaped line (inextensible, ``EA = 1e12`` N; the half: 65 m, 100 N/m, ends 50 m
 above the bed, ``T / w = 2.63`` m) measured (docs/guide/statics.md, "Touchdown resolution"):
 elements of 0.62 ``T / w``: H 16 % low (2.1 % of the fairlead tension), of 0.31 ``T / w``:
 0.3 %, of 0.16: 0.2 % (the rest: the line's bending stiffness); the same line with ``EA = 1e8``
-N is within 0.24 % already at 0.62 ``T / w``.  Neither the seabed's quadrature (8 or 64 contact
+N is within 0.24 % already at 0.62 ``T / w``.  At 0.31 the stiff full U also holds several
+equilibria that pass the checks (Newton from the start shape: V = 2262 N; relaxation: an
+asymmetric state, V = 2246 and 2242 N at its ends; the heavy elastica: 2243 N), and the
+continuation in ``EA`` (:mod:`rancf.solvers.axial_continuation`) does not converge there; at
+0.16 and finer Newton, relaxation and the continuation agree (H = 258.04, 258.08 N at 0.16,
+0.08: toward the elastica's 258.11 N).  Neither the seabed's quadrature (8 or 64 contact
 points per element: the same H to 0.1 %) nor its stiffness (1e4 to 1e7 N/m²: H 225.6 to 219.6
 N, MoorPy's 263.2 N) is the cause.
 
@@ -59,8 +64,9 @@ __all__ = [
     "refined",
 ]
 
-#: Elements at a touchdown at most this fraction of the bend radius ``T / w``.
-TOUCHDOWN_RESOLUTION = 1.0 / 3.0
+#: Elements at a touchdown at most this fraction of the bend radius ``T / w`` (module docstring:
+#: a third left the stiff U with several equilibria).
+TOUCHDOWN_RESOLUTION = 1.0 / 6.0
 #: A refined body has at most this many elements.
 MAX_ELEMENTS = 2560
 
@@ -197,19 +203,8 @@ def _node_indexed(d: Any) -> bool:
 
 def start_ratios(system: Any) -> dict[str, tuple[float, float]]:
     """Per cable body whose sagged start shape meets a seabed, the largest ratio of the length
-    of an element holding a touchdown point of that shape to its bend radius there
-    (:func:`rancf.solvers.sag_start.touchdown_radius`)."""
-    import numpy as np
+    of an element holding a touchdown point of that shape to its bend radius there, and that
+    element's length (:func:`rancf.solvers.sag_start.start_touchdowns`)."""
+    from rancf.solvers.sag_start import start_touchdowns
 
-    from rancf.solvers.sag_start import touchdown_radius
-
-    out = {}
-    for name, model in zip(system.names, system.flex, strict=False):
-        found = touchdown_radius(system, name, model)
-        if found is None or not found[0] > 0.0 or not found[1]:
-            continue
-        ell = model.mesh.arc_lengths()
-        starts = np.r_[0.0, np.cumsum(ell)]
-        e = np.clip(np.searchsorted(starts, found[1], side="right") - 1, 0, ell.size - 1)
-        out[name] = (float(ell[e].max()) / found[0], float(ell[e].max()))
-    return out
+    return start_touchdowns(system)

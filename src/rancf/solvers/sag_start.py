@@ -26,13 +26,17 @@ gradient ``r_x`` along the shape's tangent with the length of its unstretched gr
 docs/derivations/variable-length.md §2.1).
 A line shorter than that chord (installed stretched) starts straight between its held ends,
 stretched evenly (its gradients too).  Other bodies keep their reference.  From there Newton's
-method at the full load with the supports installed (the last stage's end; at least
-:data:`NEWTON_ITERATIONS` iterations), and relaxation
+method at the full load with the supports installed (the last stage's end): where a sagged line
+is stiff (its ``EA`` above :data:`rancf.solvers.axial_continuation.STIFF_RATIO` times its
+weight) first with the ``EA`` of such lines continued up to their own
+(:func:`rancf.solvers.axial_continuation.continued_newton`), else or where that fails from the
+start shape at their own ``EA`` (at least :data:`NEWTON_ITERATIONS` iterations); relaxation
 (:func:`rancf.solvers.relaxation.relax`, at most :data:`RELAX_STEPS` steps) if Newton fails.
 """
 
 from __future__ import annotations
 
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -40,10 +44,13 @@ from numpy.typing import NDArray
 
 from rancf.bodies.flexible import Model
 from rancf.bodies.length import length_scale
-from rancf.solvers.newton import newton
+from rancf.solvers.axial_continuation import continued_newton, stiff_lines
+from rancf.solvers.newton import NewtonOutcome, newton
 from rancf.solvers.relaxation import relax
 from rancf.solvers.static_catenary import catenary_shape, touchdowns
 from rancf.solvers.system_equilibrium import SystemEquilibrium
+from rancf.system.parts.contact_pair import ContactPair
+from rancf.system.seabed import pressing_weight
 
 __all__ = [
     "SAG_START",
@@ -52,6 +59,8 @@ __all__ = [
     "solve_from_sag",
     "clamped_lines",
     "touchdown_radius",
+    "start_touchdowns",
+    "touchdown_causes",
 ]
 
 #: ``StaticResult.method`` of an equilibrium found from the sagged start shape.
@@ -60,12 +69,13 @@ SAG_START = "sag start+newton"
 #: through its touchdowns, e.g. 625 steps for a 500 m line of 80 elements; the load path's
 #: relaxation keeps :data:`rancf.solvers.relaxation.MAX_STEPS`).
 RELAX_STEPS = 2000
-#: Newton's iterations from the sagged start at least (the solver's ``max_iter`` if larger).  A
-#: line whose ``EA`` is about 1e9 times its tension creeps along its nearly inextensible shapes
-#: (the residual falls by about half per 25 iterations) before it converges quadratically:
-#: MoorPy's sloped lines in 34 to 41 iterations.  Not more: its U (a bend of radius 2.6 m at the
-#: touchdowns, 160 elements) creeps for 182 iterations into a root that holds 0.9 % more line
-#: off the seabed than the heavy elastica, where relaxation comes to rest at the elastica's.
+#: Newton's iterations from the sagged start at least (the solver's ``max_iter`` if larger), at
+#: the lines' own ``EA``.  A line whose ``EA`` is about 1e9 times its tension creeps along its
+#: nearly inextensible shapes (the residual falls by about half per 25 iterations) before it
+#: converges quadratically: MoorPy's sloped lines in 34 to 41 iterations (with the continuation
+#: in ``EA`` of :mod:`rancf.solvers.axial_continuation` 25 to 35, taken first).  Not more: its U
+#: on a mesh too coarse for its touchdowns (160 elements, 0.31 of the bend radius) creeps for
+#: 182 iterations into one of the several states such a locked mesh holds.
 NEWTON_ITERATIONS = 60
 #: A line within this (relative) of its chord keeps its reference: no start shape.
 SLACK_RTOL = 1e-9
@@ -74,6 +84,21 @@ SLACK_RTOL = 1e-9
 def _held_position(model: Model, node: int) -> bool:
     b = model.node_base(node)
     return bool(np.all(model.fixed[b : b + model.dim]))
+
+
+def _resting_height(system: Any, name: str, ob: Any, n: NDArray) -> float:
+    """The height above the plane ``ob`` (unit normal ``n``) of body ``name``'s centerline
+    resting on it under its wet weight: its tube radius less the penalty's sinking
+    ``w_n / k + d / 2`` (:mod:`rancf.system.seabed`; ``k``, ``d`` the pair's stiffness and
+    onset), at least 0.  Resting there, not touching at the onset, the grounded line has the
+    contact's stiffness from the start: with no tension yet (the start is unstretched) its
+    bending stiffness alone would hold it up, and Newton's first steps moved a 330 m chain on
+    160 elements by kilometres."""
+    radius = float(system.bodies[name].section.radius)
+    law = ContactPair(name, ob, "").record(system)
+    w_n = pressing_weight(system, name, np.r_[n, np.zeros(3 - n.size)])
+    sink = max(w_n, 0.0) / law.stiffness + 0.5 * law.onset
+    return max(radius - sink, 0.0)
 
 
 def _floor(
@@ -96,7 +121,7 @@ def _floor(
         n = n / np.linalg.norm(n)
         if n @ up < 0.5:
             continue
-        rest = np.asarray(ob.point, dtype=float) + model.section.radius * n - p1
+        rest = np.asarray(ob.point, dtype=float) + _resting_height(system, name, ob, n) * n - p1
         z0, slope = float(rest @ n) / float(n @ up), -float(ex @ n) / float(n @ up)
         if abs(slope) < 1e-12:
             slope = 0.0
@@ -160,11 +185,42 @@ def touchdown_radius(system: Any, name: str, model: Model) -> tuple[float, list[
     return touchdowns(span, rise, length, *found)
 
 
+def start_touchdowns(system: Any) -> dict[str, tuple[float, float]]:
+    """Per cable body whose sagged start shape meets a seabed, the largest ratio of the length
+    of an element holding a touchdown point of that shape to its bend radius there
+    (:func:`touchdown_radius`), and that element's length."""
+    out = {}
+    for name, model in zip(system.names, system.flex, strict=False):
+        found = touchdown_radius(system, name, model)
+        if found is None or not found[0] > 0.0 or not found[1]:
+            continue
+        ell = model.mesh.arc_lengths()
+        starts = np.r_[0.0, np.cumsum(ell)]
+        e = np.clip(np.searchsorted(starts, found[1], side="right") - 1, 0, ell.size - 1)
+        out[name] = (float(ell[e].max()) / found[0], float(ell[e].max()))
+    return out
+
+
+def touchdown_causes(system: Any) -> list[str]:
+    """A cause of a failed static solve, one line per cable body whose sagged start shape meets
+    a seabed with a bend radius ``H / w`` shorter than the element there
+    (:func:`start_touchdowns`): a stiff line locks in such an element (docs/guide/statics.md,
+    "Touchdown resolution")."""
+    return [
+        f"body {name!r}: its sagged start meets the seabed with the bend radius "
+        f"H/w = {ell / ratio:.3g} m, shorter than its {ell:.3g} m elements there: refine the "
+        f"mesh until they are shorter than it"
+        for name, (ratio, ell) in start_touchdowns(system).items()
+        if ratio > 1.0
+    ]
+
+
 def _body_sag(
     system: Any, name: str, model: Model, pinned: bool = False
-) -> NDArray[np.float64] | None:
-    """The sagged start of one body's model coordinates (module docstring), or None;
-    ``pinned``: None also where an end holds its direction (a clamp)."""
+) -> tuple[NDArray[np.float64], bool] | None:
+    """The sagged start of one body's model coordinates (module docstring) and whether it is
+    slack (sagged, not straight and stretched), or None; ``pinned``: None also where an end
+    holds its direction (a clamp)."""
     geo = _line_geometry(system, name, model, pinned)
     if geo is None:
         return None
@@ -190,7 +246,7 @@ def _body_sag(
         out[:, dim:] = grad[:, None] * (tan[:, :1] * ex + tan[:, 1:] * up)
     y = model.y_from_q(out.ravel())
     y[model.fixed] = model.y_installed[model.fixed]
-    return y
+    return y, stretch < 1.0
 
 
 def clamped_lines(system: Any) -> bool:
@@ -205,15 +261,21 @@ def sag_state(problem: SystemEquilibrium, pinned: bool = False) -> NDArray[np.fl
     """The start ``z`` of :func:`solve_from_sag` (the problem's start with every line that has
     a sagged shape in it; ``pinned``: lines without a clamped end only), or None when no body
     has one."""
+    return _sag_state(problem, pinned)[0]
+
+
+def _sag_state(problem: SystemEquilibrium, pinned: bool) -> tuple[NDArray | None, list[str]]:
+    """:func:`sag_state` and the names of the slack lines in it."""
     system = problem.system
     z = problem.start()
-    changed = False
+    changed, slack = False, []
     for name, model in zip(system.names, system.flex, strict=False):
-        y = _body_sag(system, name, model, pinned)
-        if y is not None:
-            z[system.body_slice(name)] = y
+        found = _body_sag(system, name, model, pinned)
+        if found is not None:
+            z[system.body_slice(name)] = found[0]
             changed = True
-    return z if changed else None
+            slack += [name] if found[1] else []
+    return (z if changed else None), slack
 
 
 def solve_from_sag(
@@ -225,13 +287,23 @@ def solve_from_sag(
     sagged shape or neither Newton nor relaxation converges from it."""
     system.reset_triads()
     problem = SystemEquilibrium(system, at_time)
-    z = sag_state(problem, pinned)
+    z, slack = _sag_state(problem, pinned)
     if z is None:
         return None
     problem.stage = len(problem.stages) - 1
     end = problem.stages[-1][1]
     problem.place_supports(z, end)
+    stiff = stiff_lines(system, slack)
+    tried = NewtonOutcome(False, z, 0, 0, np.inf)
+    if stiff:
+        tried = continued_newton(problem, z, end, tol, stiff)
+        if tried.converged:
+            problem.accept(tried.y)
+            return tried.y, end, tried.iterations, tried.iterations, tried.residuals, 0
     out = newton(problem, z, end, tol, max(max_iter, NEWTON_ITERATIONS))
+    out = replace(
+        out, iterations=out.iterations + tried.iterations, residuals=out.residuals + tried.residuals
+    )
     if out.converged:
         problem.accept(out.y)
         return out.y, end, out.iterations, out.iterations, out.residuals, 0

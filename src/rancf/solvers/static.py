@@ -54,11 +54,12 @@ from numpy.typing import NDArray
 from rancf.bodies.flexible import Model
 from rancf.errors import ConvergenceError, InputError
 from rancf.solvers.arc_length import arc_length_path
+from rancf.solvers.curved_cable import curved_cable_causes
 from rancf.solvers.drum_statics import free_drums
 from rancf.solvers.load_path import MIN_INCREMENT, PathState
 from rancf.solvers.newton import newton
 from rancf.solvers.relaxation import relax
-from rancf.solvers.sag_start import SAG_START, clamped_lines, solve_from_sag
+from rancf.solvers.sag_start import SAG_START, clamped_lines, solve_from_sag, touchdown_causes
 from rancf.solvers.static_checks import check_state
 from rancf.solvers.static_friction import with_friction
 from rancf.solvers.system_equilibrium import SystemEquilibrium
@@ -178,9 +179,9 @@ def solve_static(
         except ConvergenceError as exc:
             late = _sagged(system, at_time, tol, max_iter, on_step, start) if again else None
             if late is None:
-                if rejected:
-                    raise ConvergenceError(f"{exc}; {rejected[0]}", exc.reached) from exc
-                raise
+                why = [str(exc), *rejected[:1], *touchdown_causes(system)]
+                why += curved_cable_causes(system)
+                raise ConvergenceError("; ".join(why), exc.reached) from exc
             return _checked(system, late)
         if again:
             report = check_state(system, res.q)
