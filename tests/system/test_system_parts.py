@@ -12,6 +12,13 @@ import pytest
 from rancf.bodies.flexible import Material, Model, Section, Support
 from rancf.bodies.time_function import TimeFunction
 from rancf.errors import InputError
+from rancf.kernels import _core
+from rancf.kernels.contact_records import (
+    BodyPairRecord,
+    ContactPairRecord,
+    ContactRecord,
+    ObstacleRecord,
+)
 from rancf.mesh.factories import mesh_line
 from rancf.system import Obstacle, System
 from rancf.system.parts.contact_pair import BodyPair, ContactPair
@@ -69,13 +76,28 @@ def test_an_obstacles_record_and_its_pairs_laws():
     s = _shaken()
     plane = Obstacle("plane", point=[0.0, -1.0], normal=[0.0, 2.0], friction=0.3, name="floor")
     rec = plane.record(s)
-    assert (rec.kind, rec.body, rec.radius) == (0, -1, 0.0)
-    assert rec.point.tolist() == [0.0, -1.0, 0.0] and rec.direction.tolist() == [0.0, 1.0, 0.0]
-    law = ContactPair("w", plane, "floor").record(s)
+    assert (rec.kind, rec.body, rec.radius) == ("plane", -1, 0.0)
+    assert rec.point == (0.0, -1.0, 0.0) and rec.direction == (0.0, 1.0, 0.0)
+    law = ContactPair("w", plane, "floor", 2).record(s)
     rt, e = WIRE.radius, STEEL.youngs_modulus
-    assert law == (0.1 * e, 1e-3 * rt, 0.0, 0.3, 1e-3, 0.0)
-    assert BodyPair("w", "w", 0.2).record(s) == (0.05 * e, 1e-3 * rt, 0.2, 1e-3)
+    assert law == ContactPairRecord(0, 2, 0.1 * e, 1e-3 * rt, 0.0, 0.3, 1e-3, 0.0)
+    pair = BodyPair("w", "w", 0.2).record(s)
+    assert pair == BodyPairRecord(0, 0, 0.05 * e, 1e-3 * rt, 0.2, 1e-3)
     assert plane.sensors() == () and ContactPair("w", plane, "floor").name == "w/floor"
+
+
+def test_a_contact_record_field_of_a_wrong_value_is_named_in_one_line():
+    cone = ObstacleRecord("cone", -1, (0.0, 0.0, 0.0), (0.0, 0.0, 1.0), 0.0)
+    with pytest.raises(
+        ValueError,
+        match=r"^contact\.obstacles\[0\]\.kind: expected one of "
+        r"plane, cylinder, sphere, got 'cone'$",
+    ):
+        _core.Contact(ContactRecord(obstacles=(cone,)))
+    plane = ObstacleRecord("plane", -1, (0.0, 0.0, 0.0), (0.0, 0.0, 1.0), 0.0)
+    pair = ContactPairRecord(0, 0, 1.0, 1.0, 0.0, 0.0, 1.0, 0.0)
+    with pytest.raises(ValueError, match=r"^contact\.pairs\[0\]\.body: expected a flexible"):
+        _core.Contact(ContactRecord(obstacles=(plane,), pairs=(pair,)))
 
 
 def test_an_obstacles_bad_field_is_named_with_its_system_name():

@@ -89,7 +89,10 @@ void bind_system_setup(nb::class_<SystemHolder>& cls) {
          "bodies' Models and the records of its parts), every part at once, read by field name.")
       .def_prop_ro(
           "stiffness_damping", [](const SystemHolder& h) { return h.s.stiffness_damping; },
-          "Stiffness-proportional damping beta [s] of the flexible bodies (force beta K_T v).");
+          "Stiffness-proportional damping beta [s] of the flexible bodies (force beta K_T v).")
+      .def_prop_ro(
+          "contact", [](const SystemHolder& h) { return h.contact; },
+          "Its contact (rancf._core.Contact, built from the model's contact record), or None.");
 }
 
 /// The bodies of a model record alone, to evaluate places on before the joints exist.

@@ -14,6 +14,7 @@ from numpy.typing import NDArray
 from rancf.bodies.flexible import Model
 from rancf.bodies.rigid import PointMass, RigidBody
 from rancf.kernels import _core
+from rancf.kernels.contact_records import ContactRecord
 from rancf.kernels.records import (
     FluidRecord,
     JointRecord,
@@ -70,7 +71,7 @@ class Attached:
 
     fluid: FluidRecord | None = None
     lines: tuple[LineRecord, ...] = ()
-    contact: Any = None
+    contact: ContactRecord | None = None
     winches: tuple[WinchRecord, ...] = ()
     sliding: tuple[SlidingRecord, ...] = ()
 

@@ -178,24 +178,25 @@ class System(BodyStack):
         self.records = rows.records(**parts)
         self.obstacles = tuple(obstacles)
         self.body_contacts, self.contact_points = [(a, b) for a, b in body_contacts], contact_points
-        self.contact: Any = None  # the core's Contact
+        contact = None  # the contact's record (the core builds its Contact from it)
         self.obstacle_names: list[str] = []
         self.contact_pairs: list[tuple[str, str]] = []
-        if self.obstacles or contacts or body_contacts:  # build_contact: the core's Contact
+        if self.obstacles or contacts or body_contacts:
             from rancf.system.contact import build_contact
 
-            self.contact, self.obstacle_names, self.contact_pairs = build_contact(
+            contact, self.obstacle_names, self.contact_pairs = build_contact(
                 self, self.obstacles, contacts, contact_points, body_contacts, body_friction
             )
         attached = Attached(
             fluid=None if in_fluid is None else in_fluid[0],
             lines=() if in_fluid is None else tuple(in_fluid[1]),
-            contact=self.contact,
+            contact=contact,
             winches=tuple(winch_records),
             sliding=sliding_records(self, self.joints),
         )
         self.model = self._model(self.records, attached)
         self.core = build_core(self.model)  # once, every part
+        self.contact: Any = self.core.contact  # the core's Contact, or None
         self.m = int(self.core.m)
         self.joint_rows = list(self.core.joint_rows)
         self.drums = {}

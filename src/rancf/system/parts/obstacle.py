@@ -18,40 +18,26 @@ from numpy.typing import NDArray
 
 from rancf.bodies.rigid import RigidBody
 from rancf.errors import InputError
+from rancf.kernels.contact_records import OBSTACLE_KINDS, ObstacleRecord
+from rancf.kernels.records import vec3
 
 if TYPE_CHECKING:
     from rancf.system.record_rows import RecordRows
 
 __all__ = [
     "Obstacle",
-    "ObstacleRecord",
     "OBSTACLE_KINDS",
     "STIFFNESS_FACTOR",
     "ONSET_FACTOR",
     "SLIP_VELOCITY",
 ]
 
-OBSTACLE_KINDS = ("plane", "cylinder", "sphere")
-_KIND = {k: i for i, k in enumerate(OBSTACLE_KINDS)}
 #: Default penalty stiffness per Young's modulus (:mod:`rancf.system.contact`).
 STIFFNESS_FACTOR = 0.1
 #: Default onset width per tube radius (:mod:`rancf.system.contact`).
 ONSET_FACTOR = 1e-3
 #: Default regularization velocity ε of the friction [m/s].
 SLIP_VELOCITY = 1e-3
-
-
-@dataclass(frozen=True)
-class ObstacleRecord:
-    """An obstacle as the core's contact takes it: its kind's index in :data:`OBSTACLE_KINDS`,
-    the rigid body that carries it (its index among the rigid bodies; -1: none), its point and
-    direction (3 components each, in the carrying body's frame if any) and its radius."""
-
-    kind: int
-    body: int
-    point: NDArray[np.float64]
-    direction: NDArray[np.float64]
-    radius: float
 
 
 @dataclass(frozen=True)
@@ -125,7 +111,7 @@ class Obstacle:
         for key, given in (("stiffness", self.stiffness), ("onset", self.onset)):
             if given is not None:
                 _number(f"obstacles.{name}.{key}", given, 0.0, True)
-        return ObstacleRecord(_KIND[self.kind], body, p, d, rad)
+        return ObstacleRecord(self.kind, body, vec3(p), vec3(d), float(rad))
 
     def sensors(self) -> Sequence[str]:
         """None of its own: its contact forces are the outputs' contact columns
