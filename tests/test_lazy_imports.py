@@ -36,6 +36,7 @@ PARTS = (
     "rancf.system.parts.obstacle",
     "rancf.system.parts.contact_pair",
     "rancf.system.parts.distributed",
+    "rancf.system.parts.fluid",
 )
 SCRIPT = """
 import json, sys

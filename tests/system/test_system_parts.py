@@ -49,7 +49,7 @@ def test_a_moving_supports_records_are_its_nodes_coordinates():
     assert [p.name for p in parts] == ["w:0", "w:-1"]
     assert parts[0].record(s, RecordRows(1.0)) == ()  # a support that stays
     mine = parts[1].record(s, RecordRows(1.0))
-    assert mine == s.records.prescribed
+    assert mine == s.model.prescribed
     base = s.offsets["w"] + s.bodies["w"].node_base(4)
     assert [(r.coord, r.comp) for r in mine] == [(base, 0), (base + 1, 1)]
     assert [r.base for r in mine] == [4.0, 0.0]

@@ -49,7 +49,7 @@ are in the body's frame, relative to its centre of mass (as its named points); o
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Any, Protocol
+from typing import Any, NamedTuple, Protocol
 
 import numpy as np
 from numpy.typing import NDArray
@@ -98,6 +98,17 @@ def _body_points(model: Model, n_c: int) -> tuple[NDArray, NDArray, NDArray, NDA
     return np.ascontiguousarray(n0), np.ascontiguousarray(n1), np.ascontiguousarray(gw), w
 
 
+class ContactParts(NamedTuple):
+    """A system's contact: the core's record, the obstacles' names, the pairs of a flexible
+    body and an obstacle and the pairs of flexible bodies (Parts, :mod:`rancf.system.parts.
+    contact_pair`)."""
+
+    record: ContactRecord
+    obstacle_names: list[str]
+    pairs: list[ContactPair]
+    body_pairs: list[BodyPair]
+
+
 def build_contact(
     system: ContactSystem,
     obstacles: Sequence[Obstacle],
@@ -105,9 +116,9 @@ def build_contact(
     n_c: int,
     body_contacts: Sequence[tuple[str, str]] = (),
     body_friction: float = 0.0,
-) -> tuple[ContactRecord, list[str], list[tuple[str, str]]]:
-    """The core's contact record of a system, its obstacle names and its pairs (flexible body,
-    obstacle).  ``body_contacts``:
+) -> ContactParts:
+    """The core's contact record of a system, its obstacle names and its pairs in contact
+    (:class:`ContactParts`).  ``body_contacts``:
     pairs of flexible bodies in contact with each other (a body twice: self-contact;
     ``src/cpp/contact/body_contact.hpp``) with the Coulomb coefficient ``body_friction``
     (regularized by
@@ -143,7 +154,7 @@ def build_contact(
         pairs=tuple(p.record(system) for p in parts),  # Parts (system.part)
         body_pairs=tuple(p.record(system) for p in bpairs),
     )
-    return record, names, pairs
+    return ContactParts(record, names, parts, bpairs)
 
 
 def _contact_bodies(

@@ -33,6 +33,8 @@ class Support:
     body: str
     index: int
     node: int
+    #: Its place as the user wrote it (its output columns' label); None: ``BODY:AT``.
+    label: int | str | None = None
 
     @property
     def name(self) -> str:
@@ -75,8 +77,4 @@ class Support:
 
 def supports_of(system: Any) -> list[Support]:
     """The supports of the system's flexible bodies, body by body in file order."""
-    return [
-        Support(name, i, int(sup.node))
-        for name, b in zip(system.names, system.flex, strict=False)
-        for i, sup in enumerate(b.supports)
-    ]
+    return list(system.supports)
