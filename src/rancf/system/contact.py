@@ -49,7 +49,7 @@ are in the body's frame, relative to its centre of mass (as its named points); o
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Any, NamedTuple, Protocol
+from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import NDArray
@@ -59,6 +59,7 @@ from rancf.elements.cable import cable_shape_functions
 from rancf.errors import InputError
 from rancf.geometry.quadrature import gauss_legendre
 from rancf.kernels.contact_records import ContactBodyRecord, ContactRecord
+from rancf.system.contact_outputs import ContactSystem
 from rancf.system.parts.contact_pair import BodyPair, ContactPair
 from rancf.system.parts.obstacle import (
     OBSTACLE_KINDS,
@@ -72,20 +73,6 @@ __all__ = [
     "OBSTACLE_KINDS",
     "obstacle_records",
 ]
-
-
-class ContactSystem(Protocol):
-    """What contact reads of a system (:class:`rancf.system.system.System`): it is built by the
-    system, so it sees the system through this protocol rather than importing it."""
-
-    dim: int
-    bodies: dict[str, Any]
-    rigid: list[Any]
-    obstacles: tuple[Any, ...]
-    obstacle_names: list[str]
-    contact: Any
-
-    def y_from_q(self, q: Any) -> NDArray[np.float64]: ...
 
 
 def _body_points(model: Model, n_c: int) -> tuple[NDArray, NDArray, NDArray, NDArray]:

@@ -217,10 +217,21 @@ class System(BodyStack):
         """Every Part of the system, in the order of their records and output columns: the
         bodies, supports, springs, point loads, the fluid, joints, winches, obstacles and the
         pairs in contact."""
+        return self.labelled_parts()
+
+    def labelled_parts(
+        self, labels: Mapping[str, Sequence[int | str] | None] | None = None
+    ) -> list[Part]:
+        """:attr:`parts`, the supports' columns labelled by ``labels`` (per flexible body, the
+        supports' places as the user wrote them; default ``BODY:AT``)."""
+        supports = self.supports
+        if labels:
+            flexible = [p for p in self.body_parts if isinstance(p, FlexibleBody)]
+            supports = [sup for p in flexible for sup in p.supports(labels.get(p.name))]
         fluid = [] if self.fluid_part is None else [self.fluid_part]
         return [
             *self.body_parts,
-            *self.supports,
+            *supports,
             *self.springs,
             *self.point_loads,
             *fluid,

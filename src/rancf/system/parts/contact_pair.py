@@ -8,8 +8,12 @@ its defaults are in :mod:`rancf.system.contact`.
 
 from __future__ import annotations
 
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import NDArray
 
 from rancf.kernels.contact_records import BodyPairRecord, ContactPairRecord
 from rancf.system.part import NoOutputs
@@ -64,7 +68,7 @@ class ContactPair(NoOutputs):
 
 
 @dataclass(frozen=True)
-class BodyPair(NoOutputs):
+class BodyPair:
     """The flexible bodies ``a`` and ``b`` in contact (the same: self-contact), with the Coulomb
     coefficient ``friction``."""
 
@@ -86,3 +90,20 @@ class BodyPair(NoOutputs):
         onset = ONSET_FACTOR * min(ma.section.radius, mb.section.radius)
         a, b = system.flex.index(ma), system.flex.index(mb)
         return BodyPairRecord(a, b, k, onset, self.friction, SLIP_VELOCITY)
+
+    def sensors(self, system: Any) -> Sequence[str]:
+        """Its contact columns: the total contact force ``A_B_contact_force`` [N] (the sum of
+        the pressures' magnitudes) and the largest penetration ``A_B_penetration`` [m]."""
+        return (f"{self.a}_{self.b}_contact_force", f"{self.a}_{self.b}_penetration")
+
+    def reactions(
+        self, system: Any, y: NDArray, lam: NDArray, t: float = 0.0
+    ) -> Mapping[str, float]:
+        """Its contact columns at the coordinates ``y`` (``src/cpp/contact/body_contact.hpp``)."""
+        k = next(k for k, p in enumerate(system.contact_parts) if p is self) - len(
+            system.contact_pairs
+        )
+        out = np.empty(3 * len(system.body_contacts))
+        system.contact.body_outputs(np.ascontiguousarray(y, dtype=float), out)
+        values = (float(out[3 * k + 2]), max(0.0, -float(out[3 * k])))
+        return dict(zip(self.sensors(system), values, strict=True))

@@ -113,16 +113,32 @@ class Obstacle:
                 _number(f"obstacles.{name}.{key}", given, 0.0, True)
         return ObstacleRecord(self.kind, body, vec3(p), vec3(d), float(rad))
 
-    def sensors(self) -> Sequence[str]:
-        """None of its own: its contact forces are the outputs' contact columns
-        (:meth:`rancf.system.outputs.SystemOutputs.contact_columns`)."""
-        return ()
+    def sensors(self, system: Any) -> Sequence[str]:
+        """Its contact columns: the force it exerts on the bodies, normal ``NAME_normal_x, _y[,
+        _z]`` and friction ``NAME_friction_x ...`` [N], their moment about its point
+        ``NAME_mz`` (3D ``NAME_mx, _my, _mz``) [N m], the contact length ``NAME_length`` and the
+        largest penetration ``NAME_penetration`` [m] (``NAME``: its name in the system)."""
+        name, dim = _system_name(system, self), system.dim
+        cols = [f"{name}_{part}_{a}" for part in ("normal", "friction") for a in "xyz"[:dim]]
+        cols += [f"{name}_m{a}" for a in ("z" if dim == 2 else "xyz")]
+        return [*cols, f"{name}_length", f"{name}_penetration"]
 
     def reactions(
         self, system: Any, y: NDArray, lam: NDArray, t: float = 0.0
     ) -> Mapping[str, float]:
-        """None (:meth:`sensors`)."""
-        return {}
+        """Its contact columns at the coordinates ``y`` without velocities (no friction)
+        (:func:`rancf.system.contact_outputs.contact_outputs`)."""
+        from rancf.system.contact_outputs import contact_outputs
+
+        c = contact_outputs(system, y)[_system_name(system, self)]
+        values = [*c.normal, *c.friction, *np.atleast_1d(c.moment), c.length, c.penetration]
+        return dict(zip(self.sensors(system), map(float, values), strict=True))
+
+
+def _system_name(system: Any, ob: Obstacle) -> str:
+    """The name of the obstacle ``ob`` in ``system`` (its own, or ``obstacleK``)."""
+    k = next(k for k, o in enumerate(system.obstacles) if o is ob)
+    return str(system.obstacle_names[k])
 
 
 def _vec(key: str, v: Sequence[float] | None, dim: int, unit: bool = False) -> NDArray:
