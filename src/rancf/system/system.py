@@ -102,7 +102,7 @@ class System(BodyStack):
         Every part, bodies included (:attr:`parts`).
     """
 
-    drums: dict[str, int]  #: each driven drum's coordinate (rancf.system.winches.attach_winches)
+    drums: dict[str, int]  #: each driven drum's coordinate (rancf.system.winches.add_drums)
 
     def __init__(
         self,
