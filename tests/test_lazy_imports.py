@@ -28,6 +28,7 @@ STATIC = (
 PARTS = (
     "rancf.system.contact",
     "rancf.system.contact_outputs",
+    "rancf.system.contact_view",
     "rancf.system.fluid",
     "rancf.system.winches",
     "rancf.system.drums",

@@ -59,7 +59,7 @@ from rancf.elements.cable import cable_shape_functions
 from rancf.errors import InputError
 from rancf.geometry.quadrature import gauss_legendre
 from rancf.kernels.contact_records import ContactBodyRecord, ContactRecord
-from rancf.system.contact_outputs import ContactSystem
+from rancf.system.contact_view import ContactSystem
 from rancf.system.parts.contact_pair import BodyPair, ContactPair
 from rancf.system.parts.obstacle import (
     OBSTACLE_KINDS,

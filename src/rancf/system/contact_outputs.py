@@ -7,28 +7,14 @@ normal and friction forces per obstacle, their moment, the contact length and th
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any, Protocol
 
 import numpy as np
 from numpy.typing import NDArray
 
 from rancf.kernels import _core
+from rancf.system.contact_view import ContactSystem
 
-__all__ = ["ContactSystem", "ContactState", "contact_outputs", "contact_history"]
-
-
-class ContactSystem(Protocol):
-    """What contact reads of a system (:class:`rancf.system.system.System`): it is built by the
-    system, so it sees the system through this protocol rather than importing it."""
-
-    dim: int
-    bodies: dict[str, Any]
-    rigid: list[Any]
-    obstacles: tuple[Any, ...]
-    obstacle_names: list[str]
-    contact: Any
-
-    def y_from_q(self, q: Any) -> NDArray[np.float64]: ...
+__all__ = ["ContactState", "contact_outputs", "contact_history"]
 
 
 @dataclass(frozen=True)
