@@ -11,6 +11,8 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from typing import Any
 
+from rancf.system.parts.flexible import FlexibleBody
+
 __all__ = ["support_labels", "part_columns"]
 
 
@@ -23,7 +25,7 @@ def support_labels(
     return {
         p.name: [sup.label(system) for sup in p.supports(given.get(p.name))]
         for p in system.body_parts
-        if hasattr(p, "supports")
+        if isinstance(p, FlexibleBody)
     }
 
 

@@ -71,6 +71,7 @@ from rancf.system.output_block import (
     takes_block,
 )
 from rancf.system.output_columns import part_columns, support_labels
+from rancf.system.parts.flexible import FlexibleBody
 from rancf.system.seabed_friction import static_friction_load
 from rancf.system.sensors import SensorReader
 from rancf.system.sliding import sliding_slots, sliding_values
@@ -122,7 +123,7 @@ class SystemOutputs:
         self.support_names = {
             p.name: [c for sup in p.supports(self.labels[p.name]) for c in sup.sensors(s)]
             for p in s.body_parts
-            if hasattr(p, "supports")
+            if isinstance(p, FlexibleBody)
         }
         self.joint_names = [cols[id(j)] for j in s.joints]
         self.reaction_names = [x for _, c in self.part_columns for x in c]

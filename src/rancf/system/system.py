@@ -98,8 +98,6 @@ class System(BodyStack):
         The one record the core was built from, once: the bodies' and every part's records
         (places, joints, springs, loads, time functions, prescribed motions, linear rows, the
         fluid, contact, winches, sliding bodies; :mod:`rancf.kernels.records`).
-    parts : list of :class:`~rancf.system.part.Part`
-        Every part, bodies included (:attr:`parts`).
     """
 
     drums: dict[str, int]  #: each driven drum's coordinate (rancf.system.winches.add_drums)
@@ -198,7 +196,7 @@ class System(BodyStack):
             self.contact_parts = [*built.pairs, *built.body_pairs]
             self.contact_pairs = [(p.body, p.obstacle_name) for p in built.pairs]
         records["sliding"] = sliding_records(self, self.joints)
-        #: The one record the core is built from: the bodies' and every part's.
+        # the one record the core is built from (the class docstring's ``model``)
         self.model = self._model(**rows.fields(**records))
         self.core = build_core(self.model)  # once, every part
         self.contact: Any = self.core.contact  # the core's Contact (from model.contact), or None
