@@ -28,6 +28,7 @@ STATIC = (
 PARTS = (
     "rancf.system.contact",
     "rancf.system.contact_outputs",
+    "rancf.system.contact_view",
     "rancf.system.fluid",
     "rancf.system.winches",
     "rancf.system.drums",
@@ -36,6 +37,7 @@ PARTS = (
     "rancf.system.parts.obstacle",
     "rancf.system.parts.contact_pair",
     "rancf.system.parts.distributed",
+    "rancf.system.parts.fluid",
 )
 SCRIPT = """
 import json, sys

@@ -1,4 +1,4 @@
-"""Static results that are no equilibrium are refused (issue 38): folded elements, compressive
+"""Static results that are no equilibrium are refused: folded elements, compressive
 loops of a cable, deep penetration; lines on a seabed against MoorPy's elastic catenary.
 
 Reference numbers: MoorPy 1.3.0, ``moorpy.Catenary.catenary`` (a separate venv, not a

@@ -1,4 +1,4 @@
-"""Seabed friction in statics (``[solver] static_friction``, issue 38) against MoorPy.
+"""Seabed friction in statics (``[solver] static_friction``) against MoorPy.
 
 Reference numbers: MoorPy 1.3.0, ``moorpy.Catenary.catenary`` (a separate venv, not a
 dependency): ``catenary(447, 100, 500, EA=1.2326e9, W=2456.820077, CB=CB)`` gives at the anchor

@@ -1,8 +1,8 @@
 """Supports, winches, obstacles and contact pairs are Parts (rancf.system.part): the system's
 prescribed and winch records are the ones their parts make, a moving support's records follow
-its node's coordinates, a winch's output column reads its length law, an obstacle's record is
-its checked geometry and a pair's its contact law with the defaults; a distributed load's record
-is its force and time function."""
+its node's coordinates, a winch's length follows its law (no column of its own), an obstacle's
+record is its checked geometry and a pair's its contact law with the defaults; a distributed
+load's record is its force and time function."""
 
 from __future__ import annotations
 
@@ -12,6 +12,13 @@ import pytest
 from rancf.bodies.flexible import Material, Model, Section, Support
 from rancf.bodies.time_function import TimeFunction
 from rancf.errors import InputError
+from rancf.kernels import _core
+from rancf.kernels.contact_records import (
+    BodyPairRecord,
+    ContactPairRecord,
+    ContactRecord,
+    ObstacleRecord,
+)
 from rancf.mesh.factories import mesh_line
 from rancf.system import Obstacle, System
 from rancf.system.parts.contact_pair import BodyPair, ContactPair
@@ -42,11 +49,11 @@ def test_a_moving_supports_records_are_its_nodes_coordinates():
     assert [p.name for p in parts] == ["w:0", "w:-1"]
     assert parts[0].record(s, RecordRows(1.0)) == ()  # a support that stays
     mine = parts[1].record(s, RecordRows(1.0))
-    assert mine == s.records.prescribed
+    assert mine == s.model.prescribed
     base = s.offsets["w"] + s.bodies["w"].node_base(4)
     assert [(r.coord, r.comp) for r in mine] == [(base, 0), (base + 1, 1)]
     assert [r.base for r in mine] == [4.0, 0.0]
-    assert parts[1].sensors() == () and parts[1].reactions(s, s.y0, np.zeros(0)) == {}
+    assert parts[1].sensors(s) == ["w:end_fx", "w:end_fy"]  # a pin: no moment
 
 
 def test_a_moving_roller_is_refused_naming_the_key():
@@ -54,14 +61,14 @@ def test_a_moving_roller_is_refused_naming_the_key():
         _shaken("roller", (1.0, 0.0))
 
 
-def test_a_winchs_record_and_length_column():
+def test_a_winchs_record_and_length():
     s = hoist(payout, 10.0, n_el=4)
     (w,) = s.winches
     rec = w.record(s, RecordRows(10.0))
     assert rec.body == s.model.winches[0].body == 0 and rec.length_set == pytest.approx(5.0)
     assert np.array_equal(rec.c1, s.model.winches[0].c1) and rec.drum is None
-    assert w.sensors() == ("hoist_length",)
-    got = w.reactions(s, s.y0, np.zeros(s.m), 5.0)["hoist_length"]
+    assert w.sensors(s) == ()  # its length is the winch sensor's
+    got = float(np.ravel(s.winch_lengths["hoist"].value(5.0))[0])
     assert got == pytest.approx(payout(5.0), rel=1e-6)
 
 
@@ -69,13 +76,28 @@ def test_an_obstacles_record_and_its_pairs_laws():
     s = _shaken()
     plane = Obstacle("plane", point=[0.0, -1.0], normal=[0.0, 2.0], friction=0.3, name="floor")
     rec = plane.record(s)
-    assert (rec.kind, rec.body, rec.radius) == (0, -1, 0.0)
-    assert rec.point.tolist() == [0.0, -1.0, 0.0] and rec.direction.tolist() == [0.0, 1.0, 0.0]
-    law = ContactPair("w", plane, "floor").record(s)
+    assert (rec.kind, rec.body, rec.radius) == ("plane", -1, 0.0)
+    assert rec.point == (0.0, -1.0, 0.0) and rec.direction == (0.0, 1.0, 0.0)
+    law = ContactPair("w", plane, "floor", 2).record(s)
     rt, e = WIRE.radius, STEEL.youngs_modulus
-    assert law == (0.1 * e, 1e-3 * rt, 0.0, 0.3, 1e-3, 0.0)
-    assert BodyPair("w", "w", 0.2).record(s) == (0.05 * e, 1e-3 * rt, 0.2, 1e-3)
-    assert plane.sensors() == () and ContactPair("w", plane, "floor").name == "w/floor"
+    assert law == ContactPairRecord(0, 2, 0.1 * e, 1e-3 * rt, 0.0, 0.3, 1e-3, 0.0)
+    pair = BodyPair("w", "w", 0.2).record(s)
+    assert pair == BodyPairRecord(0, 0, 0.05 * e, 1e-3 * rt, 0.2, 1e-3)
+    assert ContactPair("w", plane, "floor").name == "w/floor"
+
+
+def test_a_contact_record_field_of_a_wrong_value_is_named_in_one_line():
+    cone = ObstacleRecord("cone", -1, (0.0, 0.0, 0.0), (0.0, 0.0, 1.0), 0.0)
+    with pytest.raises(
+        ValueError,
+        match=r"^contact\.obstacles\[0\]\.kind: expected one of "
+        r"plane, cylinder, sphere, got 'cone'$",
+    ):
+        _core.Contact(ContactRecord(obstacles=(cone,)))
+    plane = ObstacleRecord("plane", -1, (0.0, 0.0, 0.0), (0.0, 0.0, 1.0), 0.0)
+    pair = ContactPairRecord(0, 0, 1.0, 1.0, 0.0, 0.0, 1.0, 0.0)
+    with pytest.raises(ValueError, match=r"^contact\.pairs\[0\]\.body: expected a flexible"):
+        _core.Contact(ContactRecord(obstacles=(plane,), pairs=(pair,)))
 
 
 def test_an_obstacles_bad_field_is_named_with_its_system_name():

@@ -1,4 +1,4 @@
-"""A system's parts as the named records the core takes (System.records): one record per place,
+"""A system's parts as the named records the core takes (System.model): one record per place,
 joints, springs, loads and time functions referring to them by position, and nothing else the
 core needs."""
 
@@ -23,7 +23,7 @@ def test_records_of_the_slider_crank():
     twice (at the pivot and at the slider), the motor's spin-up; a place used twice (the slider:
     rod end and guide) is one record."""
     s = _slider_crank()
-    r = s.records
+    r = s.model
     places = [(p.kind, p.body, p.node, p.point[:2]) for p in r.places]
     assert places == [
         ("rigid2d", 0, 0, (-0.075, 0.0)),
@@ -53,7 +53,9 @@ def test_the_records_are_all_the_core_takes():
     """A core built again from the system's one model record (System.model) gives the same
     residual, bit for bit, at a perturbed state."""
     s = _slider_crank()
-    assert s.model.joints == s.records.joints and s.model.places == s.records.places
+    rod = s.bodies["rod"]
+    assert s.model.models == (rod.core,) and [p.name for p in s.body_parts] == s.names
+    assert [r.point_mass for r in s.model.rigid] == [False, True]  # the crank, the slider
     again = build_core(s.model)
     rng = np.random.default_rng(3)
     y = s.y0 + 1e-3 * rng.standard_normal(s.n) * ~s.fixed

@@ -1,5 +1,5 @@
-// Python bindings of contact (rancf._core.Contact): copies the arrays into the named structs of
-// contact.hpp, checks sizes, forwards.
+// Python bindings of contact (rancf._core.Contact): reads its named record
+// (rancf.kernels.records.ContactRecord) field by field into the structs of contact.hpp, forwards.
 #include "bindings/bindings_contact.hpp"
 
 #include <nanobind/nanobind.h>
@@ -7,10 +7,13 @@
 #include <nanobind/stl/optional.h>
 
 #include <algorithm>
+#include <array>
 #include <optional>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
+#include "bindings/bindings_fields.hpp"
 #include "contact/body_contact.hpp"
 
 namespace rancf_bind {
@@ -34,113 +37,108 @@ const double* opt(const std::optional<In>& a, std::size_t n, const char* name) {
   return a->data();
 }
 
+/// A vector field of `size` values (an array: the bodies' quadrature).
+std::vector<double> values(const Fields& f, const char* field, std::size_t size) {
+  const In a = f.array(field);
+  if (size != kAnySize && a.size() != size)
+    f.fail(field, std::to_string(size) + " values", std::to_string(a.size()));
+  return {a.data(), a.data() + a.size()};
+}
+
+/// The flexible bodies' contact points and curves (ContactBodyRecord, one per flexible body).
+void read_bodies(nb::handle list, rancf::ContactSet& c) {
+  each(list, "contact.bodies", [&](const Fields& f) {
+    rancf::ContactBody cb;
+    cb.n_c = f.integer("n_c");
+    if (cb.n_c < 0) f.fail("n_c", "an integer >= 0", std::to_string(cb.n_c));
+    cb.radius = f.number("radius");
+    cb.gw = values(f, "gw", static_cast<std::size_t>(cb.n_c));
+    cb.w = values(f, "w", kAnySize);
+    cb.N = values(f, "n", 4 * cb.w.size());
+    cb.N1 = values(f, "n1", 4 * cb.w.size());
+    cb.scales = values(f, "scales", kAnySize);
+    cb.weights = values(f, "weights", 4 * cb.scales.size());
+    cb.arc0 = values(f, "arc0", cb.scales.empty() ? 0 : cb.scales.size() + 1);
+    c.bodies.push_back(std::move(cb));
+  });
+}
+
+constexpr std::array<const char*, 3> kObstacleKinds = {"plane", "cylinder", "sphere"};
+
+/// The obstacles (ObstacleRecord).
+void read_obstacles(nb::handle list, rancf::ContactSet& c) {
+  each(list, "contact.obstacles", [&](const Fields& f) {
+    rancf::Obstacle ob;
+    ob.kind = f.choice<rancf::ObstacleKind>("kind", kObstacleKinds);
+    ob.body = f.integer("body");
+    if (ob.body < -1) f.fail("body", "a rigid body's index or -1", std::to_string(ob.body));
+    f.numbers_into("point", ob.point, 3);
+    f.numbers_into("direction", ob.dir, 3);
+    ob.radius = f.number("radius");
+    c.obstacles.push_back(ob);
+  });
+}
+
+/// The pairs of a flexible body and an obstacle (ContactPairRecord).
+void read_pairs(nb::handle list, rancf::ContactSet& c) {
+  each(list, "contact.pairs", [&](const Fields& f) {
+    rancf::ContactPair cp;
+    cp.flex = f.index("body", 0, c.bodies.size(), "a flexible body");
+    cp.obstacle = f.index("obstacle", 0, c.obstacles.size(), "an obstacle");
+    cp.stiffness = f.number("stiffness");
+    cp.onset = f.number("onset");
+    cp.damping = f.number("damping");
+    cp.friction = f.number("friction");
+    cp.slip_velocity = f.number("slip_velocity");
+    cp.damping_normal = f.number("damping_normal");
+    if (!(cp.stiffness > 0.0 && cp.onset > 0.0 && cp.slip_velocity > 0.0))
+      f.fail("stiffness", "stiffness, onset and slip_velocity > 0", std::to_string(cp.stiffness));
+    c.pairs.push_back(cp);
+  });
+}
+
+/// The pairs of flexible bodies in contact (BodyPairRecord).
+void read_body_pairs(nb::handle list, rancf::ContactSet& c) {
+  each(list, "contact.body_pairs", [&](const Fields& f) {
+    rancf::BodyPair bp;
+    bp.a = f.index("a", 0, c.bodies.size(), "a flexible body");
+    bp.b = f.index("b", 0, c.bodies.size(), "a flexible body");
+    for (const int x : {bp.a, bp.b})
+      if (c.bodies[static_cast<std::size_t>(x)].scales.empty())
+        f.fail("a", "a body with contact curves (scales)", std::to_string(x));
+    bp.stiffness = f.number("stiffness");
+    bp.onset = f.number("onset");
+    bp.friction = f.number("friction");
+    bp.slip_velocity = f.number("slip_velocity");
+    if (!(bp.stiffness > 0.0 && bp.onset > 0.0 && bp.friction >= 0.0 && bp.slip_velocity > 0.0))
+      f.fail("stiffness", "stiffness, onset, slip_velocity > 0 and friction >= 0",
+             std::to_string(bp.stiffness));
+    c.body_pairs.push_back(bp);
+  });
+}
+
 }  // namespace
+
+void read_contact_record(nb::handle record, rancf::ContactSet& c) {
+  const Fields f(record, "contact");
+  read_bodies(f.object("bodies"), c);
+  read_obstacles(f.object("obstacles"), c);
+  read_pairs(f.object("pairs"), c);
+  read_body_pairs(f.object("body_pairs"), c);
+}
 
 void bind_contact(nb::module_& mod) {
   mod.attr("CONTACT_OUTPUTS") = rancf::kContactOutputs;
   nb::class_<ContactHolder>(mod, "Contact", "Obstacles and contact pairs (see contact.hpp).")
       .def(
           "__init__",
-          [](ContactHolder* h, nb::list body_nc, nb::list body_radius, nb::list body_n,
-             nb::list body_n1, nb::list body_gw, nb::list body_w, InI ob_kind, InI ob_body,
-             In ob_point, In ob_dir, In ob_radius, InI pair_flex, InI pair_obstacle, In pair_data,
-             nb::list body_weights, nb::list body_scales, nb::list body_arc0, InI bpair_a,
-             InI bpair_b, In bpair_data) {
+          [](ContactHolder* h, nb::handle record) {
             new (h) ContactHolder();
-            rancf::ContactSet& c = h->c;
-            const std::size_t nbody = body_nc.size();
-            check(body_radius.size() == nbody && body_n.size() == nbody &&
-                      body_n1.size() == nbody && body_gw.size() == nbody && body_w.size() == nbody,
-                  "contact bodies: lists of one length");
-            for (std::size_t b = 0; b < nbody; ++b) {
-              rancf::ContactBody cb;
-              cb.n_c = nb::cast<int>(body_nc[b]);
-              cb.radius = nb::cast<double>(body_radius[b]);
-              const In n = nb::cast<In>(body_n[b]), n1 = nb::cast<In>(body_n1[b]);
-              const In gw = nb::cast<In>(body_gw[b]), w = nb::cast<In>(body_w[b]);
-              expect_size(gw, static_cast<std::size_t>(cb.n_c), "body_gw");
-              check(n.size() == 4 * w.size() && n1.size() == n.size(),
-                    "contact bodies: N, N1 (n_el, n_c, 4) and w (n_el, n_c)");
-              cb.N.assign(n.data(), n.data() + n.size());
-              cb.N1.assign(n1.data(), n1.data() + n1.size());
-              cb.gw.assign(gw.data(), gw.data() + gw.size());
-              cb.w.assign(w.data(), w.data() + w.size());
-              if (body_weights.size() == nbody) {  // curves for contact between bodies
-                const In wt = nb::cast<In>(body_weights[b]), sc = nb::cast<In>(body_scales[b]);
-                const In a0 = nb::cast<In>(body_arc0[b]);
-                check(wt.size() == 4 * sc.size() && (sc.size() == 0 || a0.size() == sc.size() + 1),
-                      "contact bodies: weights (n_el, 4), scales (n_el), arc0 (n_el + 1)");
-                cb.weights.assign(wt.data(), wt.data() + wt.size());
-                cb.scales.assign(sc.data(), sc.data() + sc.size());
-                cb.arc0.assign(a0.data(), a0.data() + a0.size());
-              }
-              c.bodies.push_back(std::move(cb));
-            }
-            const std::size_t no = ob_kind.size();
-            expect_size(ob_body, no, "ob_body");
-            expect_size(ob_point, 3 * no, "ob_point");
-            expect_size(ob_dir, 3 * no, "ob_dir");
-            expect_size(ob_radius, no, "ob_radius");
-            for (std::size_t i = 0; i < no; ++i) {
-              rancf::Obstacle ob;
-              check(ob_kind.data()[i] >= 0 && ob_kind.data()[i] <= 2, "ob_kind: 0, 1 or 2");
-              ob.kind = static_cast<rancf::ObstacleKind>(ob_kind.data()[i]);
-              ob.body = static_cast<int>(ob_body.data()[i]);
-              for (int k = 0; k < 3; ++k) {
-                ob.point[k] = ob_point.data()[3 * i + static_cast<std::size_t>(k)];
-                ob.dir[k] = ob_dir.data()[3 * i + static_cast<std::size_t>(k)];
-              }
-              ob.radius = ob_radius.data()[i];
-              c.obstacles.push_back(ob);
-            }
-            const std::size_t np = pair_flex.size();
-            expect_size(pair_obstacle, np, "pair_obstacle");
-            expect_size(pair_data, 6 * np, "pair_data");
-            for (std::size_t i = 0; i < np; ++i) {
-              rancf::ContactPair cp;
-              cp.flex = static_cast<int>(pair_flex.data()[i]);
-              cp.obstacle = static_cast<int>(pair_obstacle.data()[i]);
-              check(cp.flex >= 0 && static_cast<std::size_t>(cp.flex) < nbody,
-                    "pair_flex: no such body");
-              check(cp.obstacle >= 0 && static_cast<std::size_t>(cp.obstacle) < no,
-                    "pair_obstacle: no such obstacle");
-              const double* d = pair_data.data() + 6 * i;
-              cp.stiffness = d[0];
-              cp.onset = d[1];
-              cp.damping = d[2];
-              cp.friction = d[3];
-              cp.slip_velocity = d[4];
-              cp.damping_normal = d[5];
-              check(cp.stiffness > 0.0 && cp.onset > 0.0 && cp.slip_velocity > 0.0,
-                    "pair_data: stiffness, onset and slip velocity > 0");
-              c.pairs.push_back(cp);
-            }
-            const std::size_t nbp = bpair_a.size();
-            expect_size(bpair_b, nbp, "bpair_b");
-            expect_size(bpair_data, 4 * nbp, "bpair_data");
-            for (std::size_t i = 0; i < nbp; ++i) {
-              rancf::BodyPair bp;
-              bp.a = static_cast<int>(bpair_a.data()[i]);
-              bp.b = static_cast<int>(bpair_b.data()[i]);
-              for (int x : {bp.a, bp.b})
-                check(x >= 0 && static_cast<std::size_t>(x) < nbody &&
-                          !c.bodies[static_cast<std::size_t>(x)].scales.empty(),
-                      "bpair: a body with contact curves");
-              const double* d = bpair_data.data() + 4 * i;
-              bp.stiffness = d[0];
-              bp.onset = d[1];
-              bp.friction = d[2];
-              bp.slip_velocity = d[3];
-              check(bp.stiffness > 0.0 && bp.onset > 0.0 && bp.friction >= 0.0 &&
-                        bp.slip_velocity > 0.0,
-                    "bpair_data: stiffness, onset, slip velocity > 0, friction >= 0");
-              c.body_pairs.push_back(bp);
-            }
+            read_contact_record(record, h->c);
           },
-          nb::kw_only(), "body_nc"_a, "body_radius"_a, "body_n"_a, "body_n1"_a, "body_gw"_a,
-          "body_w"_a, "ob_kind"_a, "ob_body"_a, "ob_point"_a, "ob_dir"_a, "ob_radius"_a,
-          "pair_flex"_a, "pair_obstacle"_a, "pair_data"_a, "body_weights"_a, "body_scales"_a,
-          "body_arc0"_a, "bpair_a"_a, "bpair_b"_a, "bpair_data"_a)
+          "record"_a,
+          "The contact of a record (rancf.kernels.records.ContactRecord: its bodies, "
+          "obstacles, pairs and body pairs), read by field name.")
       .def_prop_rw(
           "step_alpha_f", [](const ContactHolder& h) { return h.c.step_alpha_f; },
           [](ContactHolder& h, double af) {

@@ -13,4 +13,8 @@ struct ContactHolder {
   const rancf::System* sys = nullptr;
 };
 
+/// Read a contact record (rancf.kernels.records.ContactRecord) into `c`, field by field: one
+/// line naming the field on bad input.
+void read_contact_record(nb::handle record, rancf::ContactSet& c);
+
 }  // namespace rancf_bind

@@ -89,7 +89,10 @@ void bind_system_setup(nb::class_<SystemHolder>& cls) {
          "bodies' Models and the records of its parts), every part at once, read by field name.")
       .def_prop_ro(
           "stiffness_damping", [](const SystemHolder& h) { return h.s.stiffness_damping; },
-          "Stiffness-proportional damping beta [s] of the flexible bodies (force beta K_T v).");
+          "Stiffness-proportional damping beta [s] of the flexible bodies (force beta K_T v).")
+      .def_prop_ro(
+          "contact", [](const SystemHolder& h) { return h.contact; },
+          "Its contact (rancf._core.Contact, built from the model's contact record), or None.");
 }
 
 /// The bodies of a model record alone, to evaluate places on before the joints exist.
@@ -392,19 +395,34 @@ void bind_system_outputs(nb::class_<SystemHolder>& cls) {
           "body_energies of k states (rows of y, v at times t) into the rows of out.");
 }
 
+/// A StaticPoint (y, lam and its residual buffer) and StaticOptions, read as both statics' entry
+/// points take them.
+struct StaticCall {
+  In y, lam;
+  Out residual;
+  double load_factor, t;
+  bool amplitude;
+};
+
+StaticCall read_static(const SystemIntegratorHolder& h, const Fields& p, nb::handle options) {
+  const Fields o(options, "options");
+  StaticCall c{
+      p.array("y"),  p.array("lam"),     *p.buffer("residual", h.n + h.m), o.number("load_factor"),
+      o.number("t"), o.flag("amplitude")};
+  expect_size(c.y, h.n, "point.y");
+  expect_size(c.lam, h.m, "point.lam");
+  return c;
+}
+
 /// The statics' entry points of the system integrator: a factored residual, Newton increments.
 void bind_integrator_statics(nb::class_<SystemIntegratorHolder>& cls) {
   cls.def(
          "factor_static",
          [](SystemIntegratorHolder& h, nb::handle point, nb::handle options) {
-           const Fields p(point, "point"), o(options, "options");
-           const In y = p.array("y"), lam = p.array("lam");
-           expect_size(y, h.n, "point.y");
-           expect_size(lam, h.m, "point.lam");
-           Out residual = *p.buffer("residual", h.n + h.m);
-           return h.integ.factor_static(y.data(), lam.data(), o.number("load_factor"),
-                                        o.flag("amplitude"), o.number("t"), residual.data(),
-                                        o.number("stab"));
+           const StaticCall c = read_static(h, Fields(point, "point"), options);
+           return h.integ.factor_static(c.y.data(), c.lam.data(), c.load_factor, c.amplitude, c.t,
+                                        c.residual.data(),
+                                        Fields(options, "options").number("stab"));
          },
          "point"_a, "options"_a,
          "The statics' residual (balance, constraints) into point.residual at a StaticPoint (y, "
@@ -431,15 +449,11 @@ void bind_integrator_statics(nb::class_<SystemIntegratorHolder>& cls) {
       .def(
           "static_increment",
           [](SystemIntegratorHolder& h, nb::handle point, nb::handle options) {
-            const Fields p(point, "point"), o(options, "options");
-            const In y = p.array("y"), lam = p.array("lam");
-            expect_size(y, h.n, "point.y");
-            expect_size(lam, h.m, "point.lam");
+            const Fields p(point, "point");
+            const StaticCall c = read_static(h, p, options);
             Out dy = *p.buffer("dy", h.n), dlam = *p.buffer("dlam", h.m);
-            Out residual = *p.buffer("residual", h.n + h.m);
-            return h.integ.static_increment(y.data(), lam.data(), o.number("load_factor"),
-                                            o.flag("amplitude"), o.number("t"), dy.data(),
-                                            dlam.data(), residual.data());
+            return h.integ.static_increment(c.y.data(), c.lam.data(), c.load_factor, c.amplitude,
+                                            c.t, dy.data(), dlam.data(), c.residual.data());
           },
           "point"_a, "options"_a,
           "One static Newton increment at a StaticPoint (K dy + G^T dlam = -r, G dy = -g into "

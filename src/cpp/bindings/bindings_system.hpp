@@ -18,7 +18,8 @@ namespace nb = nanobind;
 /// The core's System and what it points into: the flexible bodies' Models and the Contact (kept
 /// alive), the reference coordinates, fluid, winches and sliding joints' bodies.
 struct SystemHolder {
-  std::vector<nb::object> keep;  // the flexible bodies' Models and the Contact
+  std::vector<nb::object> keep;     // the flexible bodies' Models
+  nb::object contact = nb::none();  // its rancf._core.Contact (None: no contact)
   std::vector<double> y_ref;
   rancf::System s;
   rancf::FluidSet fluid;

@@ -110,20 +110,21 @@ void read_sliding(nb::handle list, SystemHolder& h) {
   });
 }
 
-/// The contact (a rancf._core.Contact, one entry per flexible body), or None.
+/// The contact (a rancf.kernels.records.ContactRecord, one body entry per flexible body), or
+/// None: the system's own rancf._core.Contact, built from it (System.contact).
 void read_contact(const Fields& f, SystemHolder& h) {
   if (f.none("contact")) return;
-  const nb::object c = f.object("contact");
-  ContactHolder* ch = nullptr;
-  if (!nb::try_cast(c, ch) || ch == nullptr)
-    f.fail("contact", "a rancf._core.Contact or None", shown(c));
-  if (ch->sys != nullptr && ch->sys != &h.s)
-    f.fail("contact", "a Contact of no other System (build one per System)", shown(c));
-  if (ch->c.bodies.size() != h.s.flex.size())
-    f.fail("contact", "one entry per flexible body", std::to_string(ch->c.bodies.size()));
-  h.keep.emplace_back(c);
-  h.s.contact = &ch->c;
-  ch->sys = &h.s;
+  nb::object c = nb::type<ContactHolder>()(f.object("contact"));
+  ContactHolder& ch = nb::cast<ContactHolder&>(c);
+  if (ch.c.bodies.size() != h.s.flex.size())
+    f.fail("contact.bodies", "one entry per flexible body", std::to_string(ch.c.bodies.size()));
+  for (const rancf::Obstacle& ob : ch.c.obstacles)
+    if (ob.body >= static_cast<int>(h.s.rigid.size()))
+      f.fail("contact.obstacles", "obstacles on the system's rigid bodies",
+             std::to_string(ob.body));
+  h.s.contact = &ch.c;
+  ch.sys = &h.s;
+  h.contact = std::move(c);
 }
 
 /// The gravity and damping of the bodies.

@@ -226,15 +226,8 @@ using JointJacobians = std::vector<std::array<double, kMaxJointRows * 2 * kMaxLo
 
 /// Flexible bodies: elements, loads, constant mass, rotary inertia, fluid, winches and drums.
 void flexible_terms(const Stage& st, std::vector<DrumRow>& drums) {
-  const System& s = st.s;
-  const double* yf = st.yf;
-  const double* vf = st.vf;
-  const double* am = st.am;
-  const AssemblyTerms& tm = st.tm;
-  double* r = st.r;
-  BorderedLU* lu = st.lu;
-  Far& far = st.far;
-  const double c = st.s.damping;
+  const auto& [s, yf, vf, am, lam, y1, tm, r, lu, far] = st;  // what this stage reads
+  const double c = s.damping;
   thread_local std::vector<double> f, g, acc, mv;    // work arrays, kept between calls
   thread_local ScaledBody scaled;                    // a winch's body at its length L(t)
   const bool moving = am != nullptr && !tm.statics;  // a drum's rates count
@@ -314,14 +307,8 @@ void flexible_terms(const Stage& st, std::vector<DrumRow>& drums) {
 
 /// Rigid bodies and point masses: inertia, damping, gravity.
 void rigid_terms(const Stage& st) {
-  const System& s = st.s;
-  const double* yf = st.yf;
-  const double* vf = st.vf;
-  const double* am = st.am;
-  const AssemblyTerms& tm = st.tm;
-  double* r = st.r;
-  BorderedLU* lu = st.lu;
-  const double c = st.s.damping;
+  const auto& [s, yf, vf, am, lam, y1, tm, r, lu, far] = st;  // what this stage reads
+  const double c = s.damping;
   for (std::size_t k = 0; k < s.rigid.size(); ++k) {
     const RigidInertia& body = s.rigid[k];
     const int o = s.rigid_offset(static_cast<int>(k)), nb = rigid_size(body);
@@ -354,12 +341,7 @@ void rigid_terms(const Stage& st) {
 
 /// Loads at places (forces, and torques on rigid bodies).
 void load_terms(const Stage& st) {
-  const System& s = st.s;
-  const double* yf = st.yf;
-  const AssemblyTerms& tm = st.tm;
-  double* r = st.r;
-  BorderedLU* lu = st.lu;
-  Far& far = st.far;
+  const auto& [s, yf, vf, am, lam, y1, tm, r, lu, far] = st;  // what this stage reads
   for (const PlaceLoad& ld : s.loads) {
     if (tm.distributed_only) break;
     const PlaceRef& p = s.places[sz(ld.place)];
@@ -399,13 +381,7 @@ LawValue spring_tension(const System& s, const SpringData& sp, double len) {
 
 /// Springs between two places.
 void spring_terms(const Stage& st) {
-  const System& s = st.s;
-  const double* yf = st.yf;
-  const double* vf = st.vf;
-  const AssemblyTerms& tm = st.tm;
-  double* r = st.r;
-  BorderedLU* lu = st.lu;
-  Far& far = st.far;
+  const auto& [s, yf, vf, am, lam, y1, tm, r, lu, far] = st;  // what this stage reads
   for (const SpringData& sp : s.springs) {
     if (tm.distributed_only) break;
     const PlaceRef &pa = s.places[sz(sp.a)], &pb = s.places[sz(sp.b)];
@@ -526,15 +502,8 @@ void spring_terms(const Stage& st) {
 
 /// Contact with obstacles (contact.hpp); its forces are the bodies' own terms too.
 void contact_terms(const Stage& st) {
-  const System& s = st.s;
-  const double* yf = st.yf;
-  const double* vf = st.vf;
-  const double* y1 = st.y1;
-  const AssemblyTerms& tm = st.tm;
-  double* r = st.r;
-  BorderedLU* lu = st.lu;
-  Far& far = st.far;
-  const int n = st.s.n;
+  const auto& [s, yf, vf, am, lam, y1, tm, r, lu, far] = st;  // what this stage reads
+  const int n = s.n;
   thread_local std::vector<double> before;
   const bool rescaled = tm.contact_step && tm.contact_scale != 1.0;
   if ((tm.own != nullptr || rescaled) && s.contact != nullptr) before.assign(r, r + n);
@@ -563,15 +532,8 @@ void contact_terms(const Stage& st) {
 
 /// Joints: G(yf)^T lambda, g(y1), and their derivatives (the Jacobians kept for the border).
 void joint_terms(const Stage& st, JointJacobians& jac1, JointJacobians& jacf) {
-  const System& s = st.s;
-  const double* yf = st.yf;
-  const double* lam = st.lam;
-  const double* y1 = st.y1;
-  const AssemblyTerms& tm = st.tm;
-  double* r = st.r;
-  BorderedLU* lu = st.lu;
-  Far& far = st.far;
-  const int n = st.s.n;
+  const auto& [s, yf, vf, am, lam, y1, tm, r, lu, far] = st;  // what this stage reads
+  const int n = s.n;
   const MatrixSink joint_sink = [&](const int* idx, int k, const double* K) {
     add_matrix(*lu, idx, k, K, far);
   };
@@ -650,14 +612,8 @@ void joint_terms(const Stage& st, JointJacobians& jac1, JointJacobians& jacf) {
 
 /// Quaternion normalization rows of rigid bodies, and the linear rows g = A y1.
 void normalization_terms(const Stage& st) {
-  const System& s = st.s;
-  const double* yf = st.yf;
-  const double* lam = st.lam;
-  const double* y1 = st.y1;
-  const AssemblyTerms& tm = st.tm;
-  double* r = st.r;
-  BorderedLU* lu = st.lu;
-  const int n = st.s.n;
+  const auto& [s, yf, vf, am, lam, y1, tm, r, lu, far] = st;  // what this stage reads
+  const int n = s.n;
   for (std::size_t b = 0; b < s.rigid.size(); ++b) {  // quaternion normalization
     if (s.norm_row[b] < 0) continue;
     const int o = s.rigid_offset(static_cast<int>(b)) + 3, row = s.norm_row[b];
@@ -679,14 +635,8 @@ void normalization_terms(const Stage& st) {
 /// unknowns or a reordered band: bordered.hpp).
 void border_terms(const Stage& st, const std::vector<DrumRow>& drums, const JointJacobians& jac1,
                   const JointJacobians& jacf) {
-  const System& s = st.s;
-  const double* yf = st.yf;
-  const double* lam = st.lam;
-  const double* y1 = st.y1;
-  const AssemblyTerms& tm = st.tm;
-  BorderedLU* lu = st.lu;
-  Far& far = st.far;
-  const int m = st.s.m;
+  const auto& [s, yf, vf, am, lam, y1, tm, r, lu, far] = st;  // what this stage reads
+  const int m = s.m;
   lu->reset_border(m + static_cast<int>(drums.size()));
   lu->swap_far(far.entries);
   for (std::size_t jj = 0; jj < s.joints.size(); ++jj) {

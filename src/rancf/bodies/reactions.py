@@ -22,6 +22,7 @@ equilibrium; in a dynamic run it equals the rate of change of the body's momentu
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -29,7 +30,7 @@ from numpy.typing import NDArray
 
 from rancf.bodies.flexible import Model
 
-__all__ = ["Reaction", "support_reactions", "reaction_columns", "has_moment"]
+__all__ = ["Reaction", "support_reactions", "has_moment", "support_label"]
 
 
 @dataclass(frozen=True)
@@ -49,26 +50,14 @@ def has_moment(model: Model, kind: str) -> bool:
     return model.family.has_triads or kind == "clamp"
 
 
-def _label(at: int | str) -> str:
+def support_label(at: int | str) -> str:
+    """A support's label in its column names: its place as written, a node index as
+    ``nodeK``."""
     return at if isinstance(at, str) else f"node{at}"
 
 
-def reaction_columns(model: Model, labels: list[int | str] | None = None) -> list[str]:
-    """CSV column names of the reactions, support by support: ``LABEL_fx, LABEL_fy[, LABEL_fz]``
-    then ``LABEL_mz`` (planar) or ``LABEL_mx, LABEL_my, LABEL_mz``.  ``labels``: the supports'
-    ``at`` as the user wrote it (default: their node indices)."""
-    axes = "xyz"[: model.dim]
-    names: list[str] = []
-    for i, sup in enumerate(model.supports):
-        lab = _label(labels[i] if labels is not None else sup.node)
-        names += [f"{lab}_f{a}" for a in axes]
-        if has_moment(model, sup.kind):
-            names += [f"{lab}_mz"] if model.dim == 2 else [f"{lab}_m{a}" for a in "xyz"]
-    return names
-
-
 def support_reactions(
-    model: Model, y: NDArray, residual: NDArray, labels: list[int | str] | None = None
+    model: Model, y: NDArray, residual: NDArray, labels: Sequence[int | str] | None = None
 ) -> list[Reaction]:
     """Reactions of every support, in the order of ``model.supports``.
 
@@ -111,7 +100,8 @@ def support_reactions(
 
 
 def reaction_row(reactions: list[Reaction]) -> NDArray[np.float64]:
-    """The reactions flattened in the order of :func:`reaction_columns`."""
+    """The reactions flattened: each one's force, moment and extra values, in order (the
+    order of their parts' columns, :meth:`rancf.system.parts.support.Support.sensors`)."""
     parts = []
     for r in reactions:
         parts.append(r.force)

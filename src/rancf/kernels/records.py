@@ -25,6 +25,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from rancf.kernels.contact_records import ContactRecord
+
 __all__ = [
     "PLACE_KINDS",
     "JOINT_KINDS",
@@ -356,8 +358,8 @@ class SystemModel:
         The reference coordinates of the bodies (a driven drum's coordinate is added after them).
     fluid : :class:`FluidRecord` or None
         The fluid, and ``lines`` (:class:`LineRecord`) the flexible bodies in it.
-    contact : :class:`rancf.kernels._core.Contact` or None
-        Obstacles and contact pairs.
+    contact : :class:`ContactRecord` or None
+        Obstacles and contact pairs (the core's ``System.contact`` is built from it).
     winches : sequence of :class:`WinchRecord`
     sliding : sequence of :class:`SlidingRecord`
     """
@@ -378,6 +380,6 @@ class SystemModel:
     linear: tuple[LinearTerm, ...] = ()
     fluid: FluidRecord | None = None
     lines: tuple[LineRecord, ...] = ()
-    contact: Any = None
+    contact: ContactRecord | None = None
     winches: tuple[WinchRecord, ...] = ()
     sliding: tuple[SlidingRecord, ...] = ()

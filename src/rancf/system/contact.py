@@ -49,7 +49,7 @@ are in the body's frame, relative to its centre of mass (as its named points); o
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Any, Protocol
+from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import NDArray
@@ -58,7 +58,8 @@ from rancf.bodies.flexible import Model
 from rancf.elements.cable import cable_shape_functions
 from rancf.errors import InputError
 from rancf.geometry.quadrature import gauss_legendre
-from rancf.kernels import _core
+from rancf.kernels.contact_records import ContactBodyRecord, ContactRecord
+from rancf.system.contact_view import ContactSystem
 from rancf.system.parts.contact_pair import BodyPair, ContactPair
 from rancf.system.parts.obstacle import (
     OBSTACLE_KINDS,
@@ -74,20 +75,6 @@ __all__ = [
 ]
 
 
-class ContactSystem(Protocol):
-    """What contact reads of a system (:class:`rancf.system.system.System`): it is built by the
-    system, so it sees the system through this protocol rather than importing it."""
-
-    dim: int
-    bodies: dict[str, Any]
-    rigid: list[Any]
-    obstacles: tuple[Any, ...]
-    obstacle_names: list[str]
-    contact: Any
-
-    def y_from_q(self, q: Any) -> NDArray[np.float64]: ...
-
-
 def _body_points(model: Model, n_c: int) -> tuple[NDArray, NDArray, NDArray, NDArray]:
     """Shape functions (n_el, n_c, 4), their derivatives, Gauss weights and weights × |r0'|."""
     mesh = model.mesh
@@ -98,6 +85,17 @@ def _body_points(model: Model, n_c: int) -> tuple[NDArray, NDArray, NDArray, NDA
     return np.ascontiguousarray(n0), np.ascontiguousarray(n1), np.ascontiguousarray(gw), w
 
 
+class ContactParts(NamedTuple):
+    """A system's contact: the core's record, the obstacles' names, the pairs of a flexible
+    body and an obstacle and the pairs of flexible bodies (Parts, :mod:`rancf.system.parts.
+    contact_pair`)."""
+
+    record: ContactRecord
+    obstacle_names: list[str]
+    pairs: list[ContactPair]
+    body_pairs: list[BodyPair]
+
+
 def build_contact(
     system: ContactSystem,
     obstacles: Sequence[Obstacle],
@@ -105,8 +103,9 @@ def build_contact(
     n_c: int,
     body_contacts: Sequence[tuple[str, str]] = (),
     body_friction: float = 0.0,
-) -> tuple[_core.Contact, list[str], list[tuple[str, str]]]:
-    """The core's contact data of a system: (Contact, obstacle names, pairs).  ``body_contacts``:
+) -> ContactParts:
+    """The core's contact record of a system, its obstacle names and its pairs in contact
+    (:class:`ContactParts`).  ``body_contacts``:
     pairs of flexible bodies in contact with each other (a body twice: self-contact;
     ``src/cpp/contact/body_contact.hpp``) with the Coulomb coefficient ``body_friction``
     (regularized by
@@ -135,48 +134,29 @@ def build_contact(
         if len(pair) != 2 or not all(x in flex_names for x in pair):
             raise InputError("body_contacts", list(pair), "[FLEXIBLE_BODY, FLEXIBLE_BODY] pairs")
         bpairs.append(BodyPair(pair[0], pair[1], body_friction))
-    lists = _body_columns(system, flex_names, {f for f, _ in pairs}, bpairs, n_c)
-    parts = [ContactPair(f, obstacles[names.index(o)], o) for f, o in pairs]
-    data = [p.record(system) for p in parts]  # Parts (system.part)
-    i64 = np.int64
-    core = _core.Contact(
-        body_nc=lists["nc"],
-        body_radius=lists["radius"],
-        body_n=lists["n"],
-        body_n1=lists["n1"],
-        body_gw=lists["gw"],
-        body_w=lists["w"],
-        ob_kind=np.array([r.kind for r in obs], dtype=i64),
-        ob_body=np.array([r.body for r in obs], dtype=i64),
-        ob_point=np.array([r.point for r in obs], dtype=float).reshape(-1, 3),
-        ob_dir=np.array([r.direction for r in obs], dtype=float).reshape(-1, 3),
-        ob_radius=np.array([r.radius for r in obs], dtype=float),
-        pair_flex=np.array([flex_names.index(f) for f, _ in pairs], dtype=i64),
-        pair_obstacle=np.array([names.index(o) for _, o in pairs], dtype=i64),
-        pair_data=np.array(data, dtype=float).reshape(-1, 6),
-        body_weights=lists["weights"],
-        body_scales=lists["scales"],
-        body_arc0=lists["arc0"],
-        bpair_a=np.array([flex_names.index(p.a) for p in bpairs], dtype=i64),
-        bpair_b=np.array([flex_names.index(p.b) for p in bpairs], dtype=i64),
-        bpair_data=np.array([p.record(system) for p in bpairs], dtype=float).reshape(-1, 4),
+    parts = [ContactPair(f, obstacles[names.index(o)], o, names.index(o)) for f, o in pairs]
+    record = ContactRecord(
+        bodies=_contact_bodies(system, flex_names, {f for f, _ in pairs}, bpairs, n_c),
+        obstacles=tuple(obs),
+        pairs=tuple(p.record(system) for p in parts),  # Parts (system.part)
+        body_pairs=tuple(p.record(system) for p in bpairs),
     )
-    return core, names, pairs
+    return ContactParts(record, names, parts, bpairs)
 
 
-def _body_columns(
+def _contact_bodies(
     system: ContactSystem, flex_names: list[str], on_obstacles: set[str], bpairs: list, n_c: int
-) -> dict[str, list]:
-    """Per flexible body, the core's contact columns: its Gauss points (``n_c`` per element where
+) -> tuple[ContactBodyRecord, ...]:
+    """Per flexible body, the core's contact record: its Gauss points (``n_c`` per element where
     it is in a pair, else none), radius, shape functions, weights; and, on a body in contact
     with bodies, its mesh's weights, scales and reference arc lengths."""
     curves = {x for p in bpairs for x in (p.a, p.b)}
     used = on_obstacles | curves
-    keys = ("nc", "radius", "n", "n1", "gw", "w", "weights", "scales", "arc0")
-    lists: dict[str, list] = {k: [] for k in keys}
+    out = []
+    none = np.zeros(0)
     for name in flex_names:
         model = system.bodies[name]
-        n0 = n1 = gw = w = np.zeros(0)
+        n0 = n1 = gw = w = none
         if name in used:
             if not model.family.gradient:
                 raise InputError(
@@ -190,18 +170,22 @@ def _body_columns(
                     "mesh is not implemented)",
                 )
             n0, n1, gw, w = _body_points(model, n_c)
-        lists["nc"].append(n_c if name in used else 0)
-        lists["radius"].append(model.section.radius)
-        for key, arr in (("n", n0), ("n1", n1), ("gw", gw), ("w", w)):
-            lists[key].append(np.ascontiguousarray(arr.ravel()))
-        mesh = model.mesh
         on = name in curves
-        lists["weights"].append(
-            np.ascontiguousarray(mesh.weights, float).ravel() if on else np.zeros(0)
+        mesh = model.mesh
+        out.append(
+            ContactBodyRecord(
+                n_c=n_c if name in used else 0,
+                radius=float(model.section.radius),
+                n=np.ascontiguousarray(n0.ravel()),
+                n1=np.ascontiguousarray(n1.ravel()),
+                gw=np.ascontiguousarray(gw.ravel()),
+                w=np.ascontiguousarray(w.ravel()),
+                weights=np.ascontiguousarray(mesh.weights, float).ravel() if on else none,
+                scales=np.ascontiguousarray(mesh.scales, float).ravel() if on else none,
+                arc0=np.r_[0.0, np.cumsum(w.sum(axis=1))] if on else none,
+            )
         )
-        lists["scales"].append(np.ascontiguousarray(mesh.scales, float) if on else np.zeros(0))
-        lists["arc0"].append(np.r_[0.0, np.cumsum(w.sum(axis=1))] if on else np.zeros(0))
-    return lists
+    return tuple(out)
 
 
 def obstacle_records(system: ContactSystem) -> list[dict]:

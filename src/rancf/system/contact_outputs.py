@@ -12,7 +12,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rancf.kernels import _core
-from rancf.system.contact import ContactSystem
+from rancf.system.contact_view import ContactSystem
 
 __all__ = ["ContactState", "contact_outputs", "contact_history"]
 

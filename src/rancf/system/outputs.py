@@ -36,19 +36,19 @@ stream the integrator stores), and the row's accelerations, multipliers and reac
 consistent ones with those contact forces, so every body's forces balance ``M a``.  Contact
 between flexible bodies is reported at ``y_f`` with the pressure there.
 
-Column names: a support's ``LABEL_fx, LABEL_fy[, LABEL_fz]`` then its moment (``LABEL_mz`` or
-``LABEL_mx, _my, _mz``) as :func:`rancf.bodies.reactions.reaction_columns` (the label is the
-support's place as the caller wrote it, else ``BODY:AT``); a joint's ``NAME_fx ...`` and, for
-joints that transmit a moment (``fixed``, a 3D ``revolute``, a driven joint), ``NAME_mz`` or
-``NAME_mx, _my, _mz``, and for a ``sliding`` joint the arc length ``NAME_s`` [m] of the
-body's point at its place (:mod:`rancf.system.sliding`); then every obstacle's
+Column names: each Part names its own (:meth:`rancf.system.part.Part.sensors`), in the order of
+:attr:`rancf.system.system.System.parts`: a support's ``LABEL_fx, LABEL_fy[, LABEL_fz]`` then
+its moment (``LABEL_mz`` or ``LABEL_mx, _my, _mz``; the label is the support's place as the
+caller wrote it, else ``BODY:AT``); a joint's ``NAME_fx ...`` and, for joints that transmit a
+moment (``fixed``, a 3D ``revolute``, a driven joint), ``NAME_mz`` or ``NAME_mx, _my, _mz``,
+and for a ``sliding`` joint the arc length ``NAME_s`` [m] of the body's point at its place
+(:mod:`rancf.system.sliding`); then every obstacle's
 (:func:`rancf.system.contact_outputs.contact_outputs`): the force it exerts on the bodies,
-``NAME_normal_x, _y[, _z]`` and ``NAME_friction_x, _y[, _z]`` [N], the contact length
-``NAME_length`` [m] and the largest
-penetration ``NAME_penetration`` [m]; then every pair of flexible bodies in contact
-(``body_contacts``, ``A_B_...``; ``A_A_...`` self-contact): the total contact force
-``A_B_contact_force`` [N] (the sum of the pressures' magnitudes) and the largest penetration
-``A_B_penetration`` [m].
+``NAME_normal_x, _y[, _z]`` and ``NAME_friction_x, _y[, _z]`` [N], their moment, the contact
+length ``NAME_length`` [m] and the largest penetration ``NAME_penetration`` [m]; then every
+pair of flexible bodies in contact (``body_contacts``, ``A_B_...``; ``A_A_...``
+self-contact): the total contact force ``A_B_contact_force`` [N] (the sum of the pressures'
+magnitudes) and the largest penetration ``A_B_penetration`` [m].
 """
 
 from __future__ import annotations
@@ -60,7 +60,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rancf.bodies.nodal_forces import recovers_axial_force
-from rancf.bodies.reactions import Reaction, reaction_columns, reaction_row, support_reactions
+from rancf.bodies.reactions import Reaction, reaction_row, support_reactions
 from rancf.bodies.section_outputs import SectionSampler, section_names
 from rancf.kernels.call_records import evaluator
 from rancf.system.output_block import (
@@ -70,12 +70,8 @@ from rancf.system.output_block import (
     rod_triads,
     takes_block,
 )
-from rancf.system.output_columns import (
-    contact_column_names,
-    joint_column_names,
-    joint_has_moment,
-    support_labels,
-)
+from rancf.system.output_columns import part_columns, support_labels
+from rancf.system.parts.flexible import FlexibleBody
 from rancf.system.seabed_friction import static_friction_load
 from rancf.system.sensors import SensorReader
 from rancf.system.sliding import sliding_slots, sliding_values
@@ -108,7 +104,7 @@ class SystemOutputs:
     ) -> None:
         self.system = s = system
         self.flex = [(name, b) for name, b in zip(s.names, s.flex, strict=False)]
-        self.labels = support_labels(self.flex, labels)
+        self.labels = support_labels(s, labels)
         self.samplers = {name: SectionSampler(b, per_element) for name, b in self.flex}
         winched = set()
         if getattr(s, "winches", ()):
@@ -120,12 +116,19 @@ class SystemOutputs:
             name for name, b in self.flex if recovers_axial_force(b) and name not in winched
         }
         self.section_names = {name: section_names(b) for name, b in self.flex}
-        self.support_names = {name: reaction_columns(b, self.labels[name]) for name, b in self.flex}
-        self.joint_names = joint_column_names(s)
-        self.reaction_names = [c for cols in self.support_names.values() for c in cols]
-        self.reaction_names += [c for cols in self.joint_names for c in cols]
-        self.contact_start = len(self.reaction_names)
-        self.reaction_names += contact_column_names(s)
+        #: Every part with output columns and its columns (its :meth:`~rancf.system.part.
+        #: Part.sensors`), in order: the reaction columns are theirs.
+        self.part_columns = part_columns(s, self.labels)
+        cols = {id(p): c for p, c in self.part_columns}
+        self.support_names = {
+            p.name: [c for sup in p.supports(self.labels[p.name]) for c in sup.sensors(s)]
+            for p in s.body_parts
+            if isinstance(p, FlexibleBody)
+        }
+        self.joint_names = [cols[id(j)] for j in s.joints]
+        self.reaction_names = [x for _, c in self.part_columns for x in c]
+        self.contact_start = sum(len(c) for c in self.support_names.values())
+        self.contact_start += sum(len(c) for c in self.joint_names)
         self.along_widths = {
             n: sp.n_points * len(self.section_names[n]) for n, sp in self.samplers.items()
         }
@@ -160,10 +163,10 @@ class SystemOutputs:
     def joint_columns(self, name: str) -> slice:
         """The reaction columns of the joint called ``name``."""
         start = sum(len(c) for c in self.support_names.values())
-        for k, j in enumerate(self.system.joints):
-            if (j.name or f"joint{k}") == name:
-                return slice(start, start + len(self.joint_names[k]))
-            start += len(self.joint_names[k])
+        for j, cols in zip(self.system.joints, self.joint_names, strict=True):
+            if j.label(self.system) == name:
+                return slice(start, start + len(cols))
+            start += len(cols)
         raise KeyError(name)
 
     # ------------------------------------------------------------------ rows
@@ -277,9 +280,13 @@ class SystemOutputs:
     def contact_columns(self, name: str) -> slice:
         """The columns of the obstacle called ``name`` (normal, friction, moment, length,
         penetration)."""
-        k = self.system.obstacle_names.index(name)
-        w = 2 * self.system.dim + (1 if self.system.dim == 2 else 3) + 2
-        return slice(self.contact_start + k * w, self.contact_start + (k + 1) * w)
+        start = self.contact_start
+        for ob, oname in zip(self.system.obstacles, self.system.obstacle_names, strict=True):
+            w = len(ob.sensors(self.system))
+            if oname == name:
+                return slice(start, start + w)
+            start += w
+        raise ValueError(name)
 
     def static_reactions(
         self, y: NDArray, lam: NDArray, load_factor: float = 1.0
@@ -308,7 +315,7 @@ class SystemOutputs:
         for k, j in enumerate(s.joints):
             force, moment = s.core.joint_reaction(k, y, t, lam)
             mom, extra = None, None
-            if joint_has_moment(s, k):
+            if j.transmits_moment(s.dim):
                 mom = np.asarray(moment)[2:] if s.dim == 2 else np.asarray(moment)
             if j.kind == "sliding":
                 extra = np.array([sliding_values(s, k, y, lam)])

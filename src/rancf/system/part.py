@@ -1,11 +1,19 @@
 """The interface of a system's physical items (a spring, a joint, ...): a :class:`Part`.
 
 A Part is one item of a :class:`rancf.system.System` in a module of its own
-(:mod:`rancf.system.parts`).  It knows its name, what it reads (its fields, checked when it
-makes its record), the record it gives the compiled core (:mod:`rancf.kernels.records`; the
-places and time functions it needs registered in ``rows``), the output columns it offers and
-their values at a state.  The System gathers its parts' records and builds the core from them
-once.
+(:mod:`rancf.system.parts`): a flexible body, rigid body or point mass, a support, spring,
+point load, distributed load, the fluid, a joint, winch, obstacle or pair in contact.  It knows
+its name, what it reads (its fields, checked when it makes its record), the record it gives the
+compiled core (:mod:`rancf.kernels.records`; the places and time functions it needs registered
+in ``rows``), its output columns and their values at a state.  The System gathers its parts'
+records into one model record and builds the core from it once (:attr:`System.parts`).
+
+Output columns.  A part's :meth:`Part.sensors` are the one place that names its columns among
+a run's reactions (``reactions.csv``): :class:`rancf.system.outputs.SystemOutputs` writes the
+columns of every part in the order of :attr:`System.parts`, and a ``reaction`` sensor of a
+joint or support takes its columns and their suffixes from there.  :meth:`Part.reactions`
+gives their values at a static state; the outputs compute the same values for blocks of rows
+in the core (a test holds the two equal).
 """
 
 from __future__ import annotations
@@ -54,28 +62,29 @@ class Part(Protocol):
         its places and time functions registered in ``rows``."""
         ...
 
-    def sensors(self) -> Sequence[str]:
-        """The output columns it offers."""
+    def sensors(self, system: Any) -> Sequence[str]:
+        """Its output columns in ``system`` (module docstring), in order."""
         ...
 
     def reactions(
-        self, system: PartHost, y: NDArray, lam: NDArray, t: float = 0.0
+        self, system: Any, y: NDArray, lam: NDArray, t: float = 0.0
     ) -> Mapping[str, float]:
-        """Its output columns' values at the coordinates ``y``, multipliers ``lam``, time
-        ``t``."""
+        """Its output columns' values at the static state of coordinates ``y`` and multipliers
+        ``lam``, the loads at the factor ``t`` (a load path's parameter, at most 1)."""
         ...
 
 
 class NoOutputs:
-    """The outputs of a part with no columns of its own: a load's force is an input, and a
-    contact pair's forces are in the contact columns of the outputs."""
+    """The outputs of a part with no columns of its own: a load's force is an input, a body's
+    outputs are its section values and sensors, and a contact pair's forces are in its
+    obstacle's columns."""
 
-    def sensors(self) -> Sequence[str]:
+    def sensors(self, system: Any) -> Sequence[str]:
         """None (class docstring)."""
         return ()
 
     def reactions(
-        self, system: PartHost, y: NDArray, lam: NDArray, t: float = 0.0
+        self, system: Any, y: NDArray, lam: NDArray, t: float = 0.0
     ) -> Mapping[str, float]:
         """None (class docstring)."""
         return {}

@@ -2,13 +2,13 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
+from typing import Any
 
 from rancf.bodies.time_function import TimeFunction
 from rancf.bodies.time_record import core_record
 from rancf.errors import InputError
 from rancf.kernels.records import PlaceRecord, TimeFunctionRecord
-from rancf.system.core_data import SystemRecords
 from rancf.system.places import Place
 
 __all__ = ["RecordRows"]
@@ -47,10 +47,8 @@ class RecordRows:
         self.tfs.append(core_record(f))
         return len(self.tfs) - 1
 
-    def records(self, **parts: Sequence) -> SystemRecords:
-        """The records so far with ``parts`` (joints, springs, loads, prescribed, linear)."""
-        return SystemRecords(
-            tuple(self.places),
-            time_functions=tuple(self.tfs),
-            **{k: tuple(v) for k, v in parts.items()},
-        )
+    def fields(self, **parts: Any) -> dict[str, Any]:
+        """The fields of the model record (:class:`rancf.kernels.records.SystemModel`, by
+        name): the places and time functions so far, and ``parts`` (sequences as tuples)."""
+        out = {k: tuple(v) if isinstance(v, list | tuple) else v for k, v in parts.items()}
+        return {"places": tuple(self.places), "time_functions": tuple(self.tfs), **out}

@@ -44,10 +44,10 @@ from numpy.typing import NDArray
 
 from rancf.bodies.flexible import Model
 from rancf.bodies.motion import angular_momentum
-from rancf.bodies.reactions import has_moment
 from rancf.bodies.rigid import PointMass, RigidBody, body_angular_velocity
 from rancf.errors import InputError
 from rancf.system.at_point import at_point_reader
+from rancf.system.parts.support import Support
 from rancf.system.places import Place
 from rancf.system.readers import Block, NamedReader, Reader
 
@@ -61,6 +61,7 @@ class OutputsView(Protocol):
     system: Any
     flex: list[tuple[str, Model]]
     samplers: dict[str, Any]
+    part_columns: list[tuple[Any, list[str]]]
 
     def joint_columns(self, name: str) -> slice: ...
 
@@ -196,31 +197,32 @@ class SensorReader:
         return lambda blk: blk[1][:, i]
 
     def _reaction(self, sen: Any, places: tuple) -> Reader:
-        """The reaction columns of the joint or support: its force, then its moment where it
-        carries one (the same columns as ``reactions.csv``), named ``NAME_x, NAME_y[, NAME_z]``
-        and ``NAME_mz`` (planar) or ``NAME_mx, NAME_my, NAME_mz``."""
-        out, d = self.out, self.system.dim
+        """The reaction columns of the joint or support (its Part's columns in
+        ``reactions.csv``, :meth:`~rancf.system.part.Part.sensors`), renamed for the sensor:
+        ``LABEL_fx`` as ``NAME_x``, ``LABEL_mz`` as ``NAME_mz``, ``LABEL_s`` as ``NAME_s``."""
+        out, sy = self.out, self.system
         if getattr(sen, "joint", None) is not None:
             try:
                 cols = out.joint_columns(sen.joint)
             except KeyError:
-                names = [j.name for j in self.system.joints if j.name]
+                names = [j.name for j in sy.joints if j.name]
                 allowed = f"a joint: {', '.join(names) or 'none named'}"
                 raise InputError(f"sensors.{sen.name}.joint", sen.joint, allowed) from None
-            sliding = any(j.kind == "sliding" and j.name == sen.joint for j in self.system.joints)
-            return _columns_reader(sen.name, d, cols, ("s",) if sliding else ())
+            joint = next(j for j in sy.joints if j.label(sy) == sen.joint)
+            return _columns_reader(sen.name, joint.label(sy), joint.sensors(sy), cols)
         p = self._place(sen, places[0])
         start = 0
-        for name, b in out.flex:
-            for sup in b.supports:
-                width = d + (0 if not has_moment(b, sup.kind) else (1 if d == 2 else 3))
-                if name == p.body and b.check_node(sup.node, "supports.at") == p.at:
-                    return _columns_reader(sen.name, d, slice(start, start + width))
-                start += width
-        turning = [j for j in self.system.joints if getattr(j, "rotation", None) is not None]
+        for part, names in out.part_columns:
+            if isinstance(part, Support) and part.body == p.body:
+                if sy.bodies[p.body].check_node(part.node, "supports.at") == p.at:
+                    cols = slice(start, start + len(names))
+                    return _columns_reader(sen.name, part.label(sy), names, cols)
+            start += len(names)
+        turning = [j for j in sy.joints if getattr(j, "rotation", None) is not None]
         for j in turning:  # a turning clamp: a joint with a support's columns (its name)
-            if self.system.resolve(j.between[0]) == p:
-                return _columns_reader(sen.name, d, out.joint_columns(j.name))
+            if sy.resolve(j.between[0]) == p:
+                cols = out.joint_columns(j.name)
+                return _columns_reader(sen.name, j.label(sy), j.sensors(sy), cols)
         raise InputError(f"sensors.{sen.name}.at", str(p), "the place of a support")
 
     def _contact_force(self, sen: Any) -> Reader:
@@ -384,13 +386,11 @@ class SensorReader:
         return read
 
 
-def _columns_reader(name: str, dim: int, cols: slice, extra: tuple[str, ...] = ()) -> Reader:
-    """A reader of the reaction columns ``cols`` (force, then a moment when wider than ``dim``
-    and the ``extra`` values), its column names as its ``columns`` attribute."""
-    moment = cols.stop - cols.start - dim - len(extra)
-    names = [f"{name}_{a}" for a in "xyz"[:dim]]
-    names += [f"{name}_m{a}" for a in ("z" if moment == 1 else "xyz")] if moment else []
-    names += [f"{name}_{e}" for e in extra]
+def _columns_reader(name: str, label: str, columns: Sequence[str], cols: slice) -> Reader:
+    """A reader of the reaction columns ``cols``, named ``columns`` (``LABEL_SUFFIX``) by their
+    part: as the sensor ``name``'s ``NAME_SUFFIX``, a force's ``fx`` as ``x``."""
+    suffixes = [c[len(label) + 1 :] for c in columns]
+    names = [f"{name}_{x[1:] if x[:1] == 'f' and len(x) == 2 else x}" for x in suffixes]
 
     def read(blk: Block) -> NDArray:
         return blk[3]["r"][:, cols]

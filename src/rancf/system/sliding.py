@@ -216,7 +216,7 @@ def sliding_starts(system: Any) -> None:
         if j.kind != "sliding":
             continue
         name, body = sliding_body(system, j)
-        x, _ = system.core.place(system.records.joints[k].b, system.y0, 0.0)
+        x, _ = system.core.place(system.model.joints[k].b, system.y0, 0.0)
         sigma, gap = material_coordinate(body, x)
         if not gap <= ON_BODY_RTOL * system.size:
             raise InputError(
@@ -278,7 +278,7 @@ def sliding_slots(system: Any, y: NDArray, lam: NDArray | None = None) -> NDArra
             out[slot] = lam[slot]
             continue
         name, body = sliding_body(system, j)
-        x, _ = system.core.place(system.records.joints[k].b, np.ascontiguousarray(y), 0.0)
+        x, _ = system.core.place(system.model.joints[k].b, np.ascontiguousarray(y), 0.0)
         yb = np.asarray(y)[system.body_slice(name)]
         out[slot] = material_coordinate(body, x, yb, beyond=not body.closed)[0]
     return out

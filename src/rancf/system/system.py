@@ -26,15 +26,9 @@ from rancf.bodies.flexible import Model
 from rancf.errors import InputError
 from rancf.kernels.records import PlaceRecord, SystemModel, vec3
 from rancf.system.connections import Joint, Load, Spring
-from rancf.system.core_data import (
-    Attached,
-    PlaceFrames,
-    SystemRecords,
-    build_core,
-    system_model,
-)
-from rancf.system.part_records import all_loads
-from rancf.system.parts.support import supports_of
+from rancf.system.core_data import PlaceFrames, body_parts, build_core
+from rancf.system.part import Part
+from rancf.system.parts.flexible import FlexibleBody
 from rancf.system.places import Place
 from rancf.system.record_rows import RecordRows
 from rancf.system.sliding import (
@@ -100,14 +94,13 @@ class System(BodyStack):
 
     Attributes
     ----------
-    records : :class:`rancf.system.core_data.SystemRecords`
-        The places, joints, springs, loads, time functions, prescribed motions and linear rows
-        as the compiled core ``core`` took them (:mod:`rancf.kernels.records`).
     model : :class:`rancf.kernels.records.SystemModel`
-        The one record the core was built from, once: the bodies and every part.
+        The one record the core was built from, once: the bodies' and every part's records
+        (places, joints, springs, loads, time functions, prescribed motions, linear rows, the
+        fluid, contact, winches, sliding bodies; :mod:`rancf.kernels.records`).
     """
 
-    drums: dict[str, int]  #: each driven drum's coordinate (rancf.system.winches.attach_winches)
+    drums: dict[str, int]  #: each driven drum's coordinate (rancf.system.winches.add_drums)
 
     def __init__(
         self,
@@ -149,17 +142,30 @@ class System(BodyStack):
         #: One line each on an impulsive start (a scenario's, :attr:`Scenario.warnings`).
         self.start_warnings: tuple[str, ...] = ()
         self.joints, self.springs, self.loads = tuple(joints), tuple(springs), tuple(loads)
-        linear = closure_terms(self.names, self.flex, self.offsets)
+        #: The bodies as Parts, in the order of ``y`` (flexible bodies, then rigid bodies and
+        #: point masses), and the flexible bodies' supports.
+        self.body_parts = body_parts(self.names, self.bodies)
+        flexible = [p for p in self.body_parts if isinstance(p, FlexibleBody)]
+        self.supports = [sup for p in flexible for sup in p.supports()]
+        #: The point loads: the system's, then the flexible bodies' with a time function.
+        self.point_loads = [*self.loads, *(ld for p in flexible for ld in p.loads())]
         rows = RecordRows(horizon)
         self._place_index: dict[Place, int] = {}
-        parts: dict[str, Sequence[Any]] = {
-            "prescribed": [r for sup in supports_of(self) for r in sup.record(self, rows)],  # Parts
-            "springs": [s.record(self, rows) for s in springs],  # Parts (system.part)
-            "loads": [ld.record(self, rows) for ld in all_loads(self)],  # Parts
-            "linear": linear,
+        records: dict[str, Any] = {  # each Part's record (system.part)
+            "prescribed": [r for sup in self.supports for r in sup.record(self, rows)],
+            "springs": [s.record(self, rows) for s in springs],
+            "loads": [ld.record(self, rows) for ld in self.point_loads],
+            "linear": closure_terms(self.names, self.flex, self.offsets),
         }
         self.fluid, self.hydro = fluid, dict(hydro or {})
-        in_fluid = self._fluid_records(fluid, distributed, rows)
+        self.fluid_part: Part | None = None
+        if fluid is not None or self.hydro or distributed:  # else nothing of the fluid loaded
+            from rancf.system.parts.fluid import FluidPart
+
+            self.fluid_part = FluidPart(fluid, self.hydro, tuple(distributed))
+            in_fluid = self.fluid_part.record(self, rows)
+            if in_fluid is not None:
+                records["fluid"], records["lines"] = in_fluid
         for spec in observe:
             p = self.resolve(spec)
             if p.body is None:
@@ -167,35 +173,33 @@ class System(BodyStack):
             self.place_index(p, rows)
         self._frames: list[tuple[NDArray, NDArray]] = []
         self._place_frames: PlaceFrames | None = None  # the bodies alone (reference_frames)
-        parts["joints"] = [j.record(self, rows) for j in joints]  # Parts (system.part)
+        records["joints"] = [j.record(self, rows) for j in joints]
         self.winches = tuple(winches)
         self.winch_lengths: dict[str, Any] = {}
         if self.winches:
             from rancf.system.winches import winch_functions
 
             self.winch_lengths = winch_functions(self, self.winches)
-        winch_records = [w.record(self, rows) for w in self.winches]  # Parts (system.part)
-        self.records = rows.records(**parts)
+        records["winches"] = [w.record(self, rows) for w in self.winches]
         self.obstacles = tuple(obstacles)
         self.body_contacts, self.contact_points = [(a, b) for a, b in body_contacts], contact_points
-        self.contact: Any = None  # the core's Contact
+        self.contact_parts: list[Part] = []  # the pairs in contact (body-obstacle, body-body)
         self.obstacle_names: list[str] = []
         self.contact_pairs: list[tuple[str, str]] = []
-        if self.obstacles or contacts or body_contacts:  # build_contact: the core's Contact
+        if self.obstacles or contacts or body_contacts:
             from rancf.system.contact import build_contact
 
-            self.contact, self.obstacle_names, self.contact_pairs = build_contact(
+            built = build_contact(
                 self, self.obstacles, contacts, contact_points, body_contacts, body_friction
             )
-        attached = Attached(
-            fluid=None if in_fluid is None else in_fluid[0],
-            lines=() if in_fluid is None else tuple(in_fluid[1]),
-            contact=self.contact,
-            winches=tuple(winch_records),
-            sliding=sliding_records(self, self.joints),
-        )
-        self.model = self._model(self.records, attached)
+            records["contact"], self.obstacle_names = built.record, built.obstacle_names
+            self.contact_parts = [*built.pairs, *built.body_pairs]
+            self.contact_pairs = [(p.body, p.obstacle_name) for p in built.pairs]
+        records["sliding"] = sliding_records(self, self.joints)
+        # the one record the core is built from (the class docstring's ``model``)
+        self.model = self._model(**rows.fields(**records))
         self.core = build_core(self.model)  # once, every part
+        self.contact: Any = self.core.contact  # the core's Contact (from model.contact), or None
         self.m = int(self.core.m)
         self.joint_rows = list(self.core.joint_rows)
         self.drums = {}
@@ -206,18 +210,34 @@ class System(BodyStack):
         sliding_starts(self)
         self._check_reference()
 
-    def _fluid_records(
-        self, fluid: Fluid | None, distributed: Sequence[DistributedLoad], rows: RecordRows
-    ) -> Any:
-        """The core's records of the fluid and the distributed loads
-        (:func:`rancf.system.fluid.fluid_records`; None: neither, and nothing of them loaded)."""
-        if fluid is None and not self.hydro and not distributed:
-            return None
-        from rancf.system.fluid import fluid_records
+    @property
+    def parts(self) -> list[Part]:
+        """Every Part of the system, in the order of their records and output columns: the
+        bodies, supports, springs, point loads, the fluid, joints, winches, obstacles and the
+        pairs in contact."""
+        return self.labelled_parts()
 
-        names = self.names[: len(self.flex)]
-        loads = [(d.body, d.record(self, rows, i)) for i, d in enumerate(distributed)]  # Parts
-        return fluid_records(names, self.flex, self.dim, self.gravity, fluid, self.hydro, loads)
+    def labelled_parts(
+        self, labels: Mapping[str, Sequence[int | str] | None] | None = None
+    ) -> list[Part]:
+        """:attr:`parts`, the supports' columns labelled by ``labels`` (per flexible body, the
+        supports' places as the user wrote them; default ``BODY:AT``)."""
+        supports = self.supports
+        if labels:
+            flexible = [p for p in self.body_parts if isinstance(p, FlexibleBody)]
+            supports = [sup for p in flexible for sup in p.supports(labels.get(p.name))]
+        fluid = [] if self.fluid_part is None else [self.fluid_part]
+        return [
+            *self.body_parts,
+            *supports,
+            *self.springs,
+            *self.point_loads,
+            *fluid,
+            *self.joints,
+            *self.winches,
+            *self.obstacles,
+            *self.contact_parts,
+        ]
 
     def _check_gravity(self) -> None:
         """A flexible body's weight comes from its model's ``gravity``, a rigid body's from the
@@ -306,21 +326,22 @@ class System(BodyStack):
         done = len(self._frames)
         if done < len(rows.places):  # the new places only
             if self._place_frames is None:
-                self._place_frames = PlaceFrames(self._model(SystemRecords()))
+                self._place_frames = PlaceFrames(self._model())
             self._frames += self._place_frames(rows.places[done:], rows.tfs)
         return self._frames
 
-    def _model(self, records: SystemRecords, attached: Attached | None = None) -> SystemModel:
-        return system_model(
-            self.dim,
-            self.flex,
-            self.rigid,
-            records,
-            self.gravity,
-            self.damping,
-            self.y0,
-            self.stiffness_damping,
-            attached or Attached(),
+    def _model(self, **records: Any) -> SystemModel:
+        """The model record of the bodies (their Parts' records) with the parts' ``records``
+        (fields of :class:`~rancf.kernels.records.SystemModel` by name)."""
+        return SystemModel(
+            dim=self.dim,
+            models=tuple(p.record(self) for p in self.body_parts if isinstance(p, FlexibleBody)),
+            rigid=tuple(p.record(self) for p in self.body_parts if not isinstance(p, FlexibleBody)),
+            y_ref=np.ascontiguousarray(self.y0, dtype=float),
+            gravity=vec3(self.gravity),
+            damping=self.damping,
+            stiffness_damping=self.stiffness_damping,
+            **records,
         )
 
     # ---------------------------------------------------------------- coordinates

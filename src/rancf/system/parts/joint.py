@@ -27,7 +27,7 @@ from rancf.errors import InputError
 from rancf.kernels.records import JointRecord
 from rancf.system.joint_data import joint_data, uses_frames
 from rancf.system.places import Place
-from rancf.system.sliding import sliding_joint
+from rancf.system.sliding import sliding_joint, sliding_values
 
 if TYPE_CHECKING:
     from rancf.system.record_rows import RecordRows
@@ -97,14 +97,43 @@ class Joint:
         n = dim - 1 if self.kind == "slider" else (2 if dim == 2 else 3)
         return float(np.linalg.norm(g[:n]))
 
-    def sensors(self) -> Sequence[str]:
-        """Its reaction columns: the force and moment it exerts on its first place's body."""
-        return tuple(f"{self.name}_{q}{x}" for q in ("F", "M") for x in "xyz")
+    def transmits_moment(self, dim: int) -> bool:
+        """Whether it transmits a moment (``fixed``, a 3D ``revolute``, a driven joint)."""
+        return (
+            self.kind == "fixed" or self.angle is not None or (self.kind == "revolute" and dim == 3)
+        )
+
+    def label(self, system: Any) -> str:
+        """Its name, or ``jointK`` (its position ``K`` among the system's joints)."""
+        return self.name or f"joint{_index(system, self)}"
+
+    def sensors(self, system: Any) -> Sequence[str]:
+        """Its reaction columns: the force it exerts on its first place ``LABEL_fx, _fy[,
+        _fz]``, its moment where it transmits one (``LABEL_mz``; 3D ``LABEL_mx, _my, _mz``),
+        a sliding joint's arc length ``LABEL_s`` (:mod:`rancf.system.sliding`)."""
+        lab, dim = self.label(system), system.dim
+        cols = [f"{lab}_f{a}" for a in "xyz"[:dim]]
+        if self.transmits_moment(dim):
+            cols += [f"{lab}_mz"] if dim == 2 else [f"{lab}_m{a}" for a in "xyz"]
+        if self.kind == "sliding":
+            cols.append(f"{lab}_s")
+        return cols
 
     def reactions(
         self, system: Any, y: NDArray, lam: NDArray, t: float = 0.0
     ) -> Mapping[str, float]:
-        """Its force and moment on its first place's body (world axes) at ``(y, λ, t)``."""
-        k = next(k for k, j in enumerate(system.joints) if j is self)
+        """Its force and moment on its first place's body (world axes) and a sliding joint's
+        arc length at ``(y, λ, t)`` (:meth:`sensors`)."""
+        k, dim = _index(system, self), system.dim
         force, moment = system.core.joint_reaction(k, y, t, lam)
-        return dict(zip(self.sensors(), [*force, *moment], strict=True))
+        values = [*np.asarray(force)[:dim]]
+        if self.transmits_moment(dim):
+            values += [*(np.asarray(moment)[2:] if dim == 2 else np.asarray(moment))]
+        if self.kind == "sliding":
+            values.append(sliding_values(system, k, y, lam))
+        return dict(zip(self.sensors(system), map(float, values), strict=True))
+
+
+def _index(system: Any, joint: Joint) -> int:
+    """The position of ``joint`` among the system's joints."""
+    return next(k for k, j in enumerate(system.joints) if j is joint)

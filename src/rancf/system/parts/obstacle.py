@@ -18,40 +18,26 @@ from numpy.typing import NDArray
 
 from rancf.bodies.rigid import RigidBody
 from rancf.errors import InputError
+from rancf.kernels.contact_records import OBSTACLE_KINDS, ObstacleRecord
+from rancf.kernels.records import vec3
 
 if TYPE_CHECKING:
     from rancf.system.record_rows import RecordRows
 
 __all__ = [
     "Obstacle",
-    "ObstacleRecord",
     "OBSTACLE_KINDS",
     "STIFFNESS_FACTOR",
     "ONSET_FACTOR",
     "SLIP_VELOCITY",
 ]
 
-OBSTACLE_KINDS = ("plane", "cylinder", "sphere")
-_KIND = {k: i for i, k in enumerate(OBSTACLE_KINDS)}
 #: Default penalty stiffness per Young's modulus (:mod:`rancf.system.contact`).
 STIFFNESS_FACTOR = 0.1
 #: Default onset width per tube radius (:mod:`rancf.system.contact`).
 ONSET_FACTOR = 1e-3
 #: Default regularization velocity ε of the friction [m/s].
 SLIP_VELOCITY = 1e-3
-
-
-@dataclass(frozen=True)
-class ObstacleRecord:
-    """An obstacle as the core's contact takes it: its kind's index in :data:`OBSTACLE_KINDS`,
-    the rigid body that carries it (its index among the rigid bodies; -1: none), its point and
-    direction (3 components each, in the carrying body's frame if any) and its radius."""
-
-    kind: int
-    body: int
-    point: NDArray[np.float64]
-    direction: NDArray[np.float64]
-    radius: float
 
 
 @dataclass(frozen=True)
@@ -125,18 +111,34 @@ class Obstacle:
         for key, given in (("stiffness", self.stiffness), ("onset", self.onset)):
             if given is not None:
                 _number(f"obstacles.{name}.{key}", given, 0.0, True)
-        return ObstacleRecord(_KIND[self.kind], body, p, d, rad)
+        return ObstacleRecord(self.kind, body, vec3(p), vec3(d), float(rad))
 
-    def sensors(self) -> Sequence[str]:
-        """None of its own: its contact forces are the outputs' contact columns
-        (:meth:`rancf.system.outputs.SystemOutputs.contact_columns`)."""
-        return ()
+    def sensors(self, system: Any) -> Sequence[str]:
+        """Its contact columns: the force it exerts on the bodies, normal ``NAME_normal_x, _y[,
+        _z]`` and friction ``NAME_friction_x ...`` [N], their moment about its point
+        ``NAME_mz`` (3D ``NAME_mx, _my, _mz``) [N m], the contact length ``NAME_length`` and the
+        largest penetration ``NAME_penetration`` [m] (``NAME``: its name in the system)."""
+        name, dim = _system_name(system, self), system.dim
+        cols = [f"{name}_{part}_{a}" for part in ("normal", "friction") for a in "xyz"[:dim]]
+        cols += [f"{name}_m{a}" for a in ("z" if dim == 2 else "xyz")]
+        return [*cols, f"{name}_length", f"{name}_penetration"]
 
     def reactions(
         self, system: Any, y: NDArray, lam: NDArray, t: float = 0.0
     ) -> Mapping[str, float]:
-        """None (:meth:`sensors`)."""
-        return {}
+        """Its contact columns at the coordinates ``y`` without velocities (no friction)
+        (:func:`rancf.system.contact_outputs.contact_outputs`)."""
+        from rancf.system.contact_outputs import contact_outputs
+
+        c = contact_outputs(system, y)[_system_name(system, self)]
+        values = [*c.normal, *c.friction, *np.atleast_1d(c.moment), c.length, c.penetration]
+        return dict(zip(self.sensors(system), map(float, values), strict=True))
+
+
+def _system_name(system: Any, ob: Obstacle) -> str:
+    """The name of the obstacle ``ob`` in ``system`` (its own, or ``obstacleK``)."""
+    k = next(k for k, o in enumerate(system.obstacles) if o is ob)
+    return str(system.obstacle_names[k])
 
 
 def _vec(key: str, v: Sequence[float] | None, dim: int, unit: bool = False) -> NDArray:

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -85,18 +85,22 @@ class Spring:
         """The index of its law's table among the core's time functions; -1: ``k e``."""
         return -1
 
-    def sensors(self) -> Sequence[str]:
-        """Its output column: the elastic tension ``NAME_tension`` [N]."""
-        return (f"{self.name}_tension",)
-
-    def reactions(
-        self, system: PartHost, y: NDArray, lam: NDArray, t: float = 0.0
-    ) -> Mapping[str, float]:
-        """The elastic tension (:meth:`tension` of the stretch) at the coordinates ``y``."""
+    def stretch(self, system: PartHost, y: NDArray) -> float:
+        """Its stretch ``e = ℓ - ℓ0`` [m] at the coordinates ``y`` (its tension:
+        :meth:`tension` of it)."""
         xa, _ = system.place_state(self.between[0], y)
         xb, _ = system.place_state(self.between[1], y)
-        stretch = float(np.linalg.norm(xa - xb)) - self.rest_length(system)[0]
-        return {f"{self.name}_tension": float(self.tension(stretch))}
+        return float(np.linalg.norm(xa - xb)) - self.rest_length(system)[0]
+
+    def sensors(self, system: Any) -> Sequence[str]:
+        """None among the outputs' columns (its tension: :meth:`stretch`, :meth:`tension`)."""
+        return ()
+
+    def reactions(
+        self, system: Any, y: NDArray, lam: NDArray, t: float = 0.0
+    ) -> Mapping[str, float]:
+        """None (:meth:`sensors`)."""
+        return {}
 
 
 @dataclass(frozen=True)

@@ -5,7 +5,7 @@ A flexible body's supports are its model's own (held coordinates, :mod:`rancf.bo
 function: the core's prescribed records, one per held position coordinate, each the
 coordinate's installed value plus that component of the motion (``src/cpp/system/system.hpp``).
 A support without a motion needs no record.  Its reaction is the held rows of the balance
-residual, read with every support's by the outputs (:mod:`rancf.bodies.reactions`).  A clamp
+residual (:mod:`rancf.bodies.reactions`), the outputs read every support's at once.  A clamp
 whose direction turns (a scenario's ``rotation``) is no held support: it is a fixed
 :class:`~rancf.system.parts.joint.Joint` to a turning ground frame
 (``docs/derivations/clamp-paths.md``).
@@ -17,8 +17,10 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+import numpy as np
 from numpy.typing import NDArray
 
+from rancf.bodies.reactions import has_moment, support_label, support_reactions
 from rancf.errors import InputError
 from rancf.kernels.records import PrescribedRecord
 
@@ -36,6 +38,8 @@ class Support:
     body: str
     index: int
     node: int
+    #: Its place as the user wrote it (its output columns' label); None: ``BODY:AT``.
+    label_as: int | str | None = None
 
     @property
     def name(self) -> str:
@@ -64,22 +68,41 @@ class Support:
             for i in range(system.dim)
         )
 
-    def sensors(self) -> Sequence[str]:
-        """None of its own: its reaction is among the outputs' support reactions (module
-        docstring)."""
-        return ()
+    def label(self, system: Any) -> str:
+        """Its columns' label: its place as the user wrote it, else ``BODY:AT`` (``AT``:
+        ``start``, ``end`` or ``nodeK``)."""
+        if self.label_as is not None:
+            return support_label(self.label_as)
+        b = system.bodies[self.body]
+        k = self.node % b.n_nodes
+        at = "start" if k == 0 else "end" if k == b.n_nodes - 1 else f"node{k}"
+        return f"{self.body}:{at}"
+
+    def sensors(self, system: Any) -> Sequence[str]:
+        """Its reaction columns: the force it exerts on its body ``LABEL_fx, _fy[, _fz]``, then
+        its moment where it carries one (a clamp, a rod's support): ``LABEL_mz`` (planar) or
+        ``LABEL_mx, _my, _mz``."""
+        lab, dim = self.label(system), system.dim
+        cols = [f"{lab}_f{a}" for a in "xyz"[:dim]]
+        if has_moment(system.bodies[self.body], self.held(system).kind):
+            cols += [f"{lab}_mz"] if dim == 2 else [f"{lab}_m{a}" for a in "xyz"]
+        return cols
 
     def reactions(
         self, system: Any, y: NDArray, lam: NDArray, t: float = 0.0
     ) -> Mapping[str, float]:
-        """None (:meth:`sensors`)."""
-        return {}
+        """Its reaction at the static state ``(y, λ)``, the loads at the factor ``t``: the held
+        rows of the static residual (module docstring)."""
+        res, zero = np.empty(system.n + system.m), np.zeros(system.n)
+        y = np.ascontiguousarray(y, dtype=float)
+        lam = np.ascontiguousarray(lam, dtype=float)
+        system.core.residual(y, zero, zero, lam, 0.0, min(float(t), 1.0), True, False, res)
+        b, sl = system.bodies[self.body], system.body_slice(self.body)
+        r = support_reactions(b, y[sl], res[sl])[self.index]
+        values = [*r.force, *(() if r.moment is None else r.moment)]
+        return dict(zip(self.sensors(system), map(float, values), strict=True))
 
 
 def supports_of(system: Any) -> list[Support]:
     """The supports of the system's flexible bodies, body by body in file order."""
-    return [
-        Support(name, i, int(sup.node))
-        for name, b in zip(system.names, system.flex, strict=False)
-        for i, sup in enumerate(b.supports)
-    ]
+    return list(system.supports)

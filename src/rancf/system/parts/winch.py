@@ -125,18 +125,13 @@ class Winch:
             drum=None if torque < 0 else drum_record(self, body, node, torque),
         )
 
-    def sensors(self) -> Sequence[str]:
-        """Its output column: the unstretched length outside the drum ``NAME_length`` [m] (the
-        ``winch`` sensor adds its rate and the line's pull, :func:`~rancf.system.winches.
-        winch_reader`)."""
-        return (f"{self.name}_length",)
+    def sensors(self, system: Any) -> Sequence[str]:
+        """None among the outputs' columns: the ``winch`` sensor reads its length, rate and
+        the line's pull (:func:`~rancf.system.winches.winch_reader`)."""
+        return ()
 
     def reactions(
         self, system: Any, y: NDArray, lam: NDArray, t: float = 0.0
     ) -> Mapping[str, float]:
-        """The unstretched length at ``t``: ``L(t)``, a driven drum's coordinate in ``y``."""
-        drum = getattr(system, "drums", {}).get(self.name)
-        if drum is not None:
-            return {f"{self.name}_length": float(y[drum])}
-        f = system.winch_lengths[self.name]
-        return {f"{self.name}_length": float(np.ravel(f.value(t))[0])}
+        """None (:meth:`sensors`)."""
+        return {}

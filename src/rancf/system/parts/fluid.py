@@ -1,0 +1,160 @@
+"""The fluid of a system and what acts on its flexible bodies through it, a
+:class:`~rancf.system.part.Part` (:mod:`rancf.system.fluid`; ``src/cpp/fluid/fluid.hpp``;
+docs/derivations/fluid.md).
+
+What it reads: the fluid (:class:`~rancf.system.fluid.Fluid`), the bodies' coefficients
+(:class:`~rancf.system.fluid.Hydro`, by flexible body) and the distributed loads
+(:class:`~rancf.system.parts.distributed.DistributedLoad`, Parts of their own whose records it
+gathers per body).  Its record for the core: the fluid field (:class:`FluidRecord`) and one
+:class:`LineRecord` per flexible body the fluid or a distributed load acts on (its quadrature,
+coefficients and loads); none without a fluid, coefficients or distributed loads.  Its outputs
+are the ``fluid_force`` and ``wave_elevation`` sensors (:mod:`rancf.system.sensors`): no
+columns of its own.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from rancf.errors import InputError
+from rancf.kernels.records import DistributedRecord, FluidRecord, LineRecord, floats, vec3
+from rancf.system.fluid import Fluid, Hydro
+from rancf.system.part import NoOutputs
+from rancf.system.parts.distributed import DistributedLoad
+
+if TYPE_CHECKING:
+    from rancf.system.record_rows import RecordRows
+
+__all__ = ["FluidPart", "fluid_records"]
+
+
+@dataclass(frozen=True, eq=False)
+class FluidPart(NoOutputs):
+    """The fluid ``fluid`` (None: none, only distributed loads), the coefficients ``hydro`` of
+    the flexible bodies in it and the ``distributed`` loads (module docstring)."""
+
+    fluid: Fluid | None = None
+    hydro: Mapping[str, Hydro] = field(default_factory=dict)
+    distributed: Sequence[DistributedLoad] = ()
+    name = "fluid"
+
+    @property
+    def empty(self) -> bool:
+        """Neither a fluid, nor coefficients, nor distributed loads: no record."""
+        return self.fluid is None and not self.hydro and not self.distributed
+
+    def record(self, system: Any, rows: RecordRows) -> tuple[FluidRecord, list[LineRecord]] | None:
+        """The core's records of the fluid and of every flexible body it or a distributed load
+        acts on, the loads' time functions registered in ``rows`` (None: :attr:`empty`)."""
+        if self.empty:
+            return None
+        loads = [(d.body, d.record(system, rows, i)) for i, d in enumerate(self.distributed)]
+        names = system.names[: len(system.flex)]
+        return fluid_records(
+            names, system.flex, system.dim, system.gravity, self.fluid, self.hydro, loads
+        )
+
+
+def _fluid_record(fl: Fluid, gravity: np.ndarray, dim: int) -> FluidRecord:
+    g = float(np.linalg.norm(gravity))
+    prof_z: tuple[float, ...] = ()
+    prof_u: tuple[float, ...] = ()
+    if fl.current_profile is not None:
+        rows = sorted(fl.current_profile, key=lambda r: r[0])
+        prof_z = floats([r[0] for r in rows])
+        prof_u = floats([list(r[1:]) + [0.0] * (3 - dim) for r in rows])
+    wave: dict[str, Any] = {}
+    if fl.waves is not None:
+        w = fl.waves
+        if fl.surface is None:
+            raise InputError("fluid.waves", "waves", "a fluid with a surface (fluid.surface)")
+        if not g > 0:
+            raise InputError("fluid.waves", "waves", "gravity (loads.gravity) for waves")
+        c = w.wave_components(g)
+        b = math.radians(c.direction_deg)
+        wave = {
+            "waves": True,
+            "wave_amplitude": floats(c.amplitude),
+            "wave_omega": floats(c.omega),
+            "wave_k": floats(c.k),
+            "wave_phase": floats(c.phase),
+            "wave_depth": float(c.depth),
+            "wave_dir": (math.cos(b), math.sin(b), 0.0)
+            if dim == 3
+            else (math.copysign(1.0, math.cos(b)), 0.0, 0.0),
+        }
+    cur = [0.0, 0.0, 0.0] if fl.current is None else list(fl.current) + [0.0] * (3 - dim)
+    return FluidRecord(
+        density=float(fl.density),
+        gravity=vec3(gravity[:3]),
+        has_surface=fl.surface is not None,
+        surface=float(fl.surface or 0.0),
+        current=vec3(cur),
+        profile_z=prof_z,
+        profile_u=prof_u,
+        **wave,
+    )
+
+
+def _line(
+    index: int, model: Any, hydro: Hydro | None, loads: list[DistributedRecord]
+) -> LineRecord:
+    c = model.family.centre_line(model.kernel)
+    if c is None:
+        raise InputError("hydro", "beam elements", "a body of cable or rod elements")
+    h = hydro or Hydro()
+    d = h.diameter if h.diameter is not None else math.sqrt(4.0 * model.section.area / math.pi)
+    return LineRecord(
+        body=index,
+        hydro=hydro is not None,
+        diameter=float(d),
+        drag_normal=h.drag_normal,
+        drag_axial=h.drag_axial,
+        added_mass_normal=h.added_mass_normal,
+        added_mass_axial=h.added_mass_axial,
+        n_qp=int(c.gw.size),
+        n0=floats(c.n0),
+        n1=floats(c.n1),
+        gw=floats(c.gw),
+        j0=floats(c.j0),
+        loads=tuple(loads),
+    )
+
+
+def fluid_records(
+    flex_names: Sequence[str],
+    flex: Sequence[Any],
+    dim: int,
+    gravity: np.ndarray,
+    fluid: Fluid | None,
+    hydro: Mapping[str, Hydro],
+    distributed: Sequence[tuple[str | None, DistributedRecord]],
+) -> tuple[FluidRecord, list[LineRecord]] | None:
+    """The core's records of the fluid and of every flexible body it or a distributed load acts
+    on (None: neither); ``distributed``: each distributed load's body (None: every flexible
+    body) and record (:meth:`DistributedLoad.record`)."""
+    for name in hydro:
+        if name not in flex_names:
+            raise InputError("hydro", name, f"a flexible body (one of {list(flex_names)})")
+    if hydro and fluid is None:
+        raise InputError(
+            "hydro", sorted(hydro), "coefficients of bodies in a fluid: give the [fluid] table too"
+        )
+    loads: dict[str, list[DistributedRecord]] = {n: [] for n in flex_names}
+    for body, rec in distributed:
+        for n in [body] if body is not None else flex_names:
+            loads[n].append(rec)
+    lines = [
+        _line(i, m, hydro.get(n), loads[n])
+        for i, (n, m) in enumerate(zip(flex_names, flex, strict=True))
+        if n in hydro or loads[n]
+    ]
+    if not lines and fluid is None:
+        return None
+    fl = fluid if fluid is not None else Fluid(density=0.0)
+    return _fluid_record(fl, np.asarray(gravity, float), dim), lines
