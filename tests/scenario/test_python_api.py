@@ -158,8 +158,8 @@ def _deep(n: int) -> list:
         ),
         (
             {"supports": [{"at": True}]},
-            '<scenario>: [supports[0].at] must be a place ("start", "end", a node index or '
-            '"BODY:..."), got True',
+            '<scenario>: [supports[0].at] must be a place ("start", "end", a node index, '
+            '"BODY:..."; a shell\'s edge "u0" or point [u, v]), got True',
         ),
     ],
 )

@@ -151,7 +151,7 @@ def test_shipped_scenarios_are_valid_against_the_schema(name):
 @pytest.mark.parametrize(
     ("change", "problem"),
     [
-        (lambda d: d["mesh"].update(elements=0), "$.mesh.elements: minimum 1"),
+        (lambda d: d["mesh"].update(elements=0), "$.mesh.elements: matches not exactly one"),
         (lambda d: d["mesh"].update(elemnts=3), "$.mesh.elemnts: unknown"),
         (lambda d: d["geometry"].update(kind="spline"), "$.geometry: matches not exactly one"),
         (lambda d: d["supports"][0].update(kind="weld"), "$.supports[0].kind: not one of"),

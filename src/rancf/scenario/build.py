@@ -24,6 +24,7 @@ from rancf.bodies.flexible import Material, Model, PointLoad, RigidMotion, Secti
 from rancf.bodies.properties import StrainRateDamping
 from rancf.errors import ConvergenceError, InputError, ScenarioError
 from rancf.scenario.geometry import MAX_ELEMENTS, CadGeometry, ConicGeometry, NurbsGeometry
+from rancf.scenario.surface import is_surface
 from rancf.scenario.view import ScenarioView
 
 if TYPE_CHECKING:
@@ -83,28 +84,28 @@ def _mesh(path: str, g: Any, m: MeshTable, prefix: str) -> Any:
 
     if g.kind == "conic":
         conic = conic_arc_through(g.start, g.end, g.angles_deg, g.point)
-        return mesh_conic(conic, m.elements, m.k, m.spacing)
+        return mesh_conic(conic, m.count, m.k, m.spacing)
     if g.kind == "line":
-        return mesh_line(g.start, g.end, m.elements)
+        return mesh_line(g.start, g.end, m.count)
     if g.kind == "ellipse":
         from rancf.mesh.ellipse_mesh import mesh_ellipse
 
-        return mesh_ellipse(g.ellipse(), m.elements, m.k, m.spacing, g.start_deg)
+        return mesh_ellipse(g.ellipse(), m.count, m.k, m.spacing, g.start_deg)
     if isinstance(g, CadGeometry):
         from rancf.mesh.cad_geometry import mesh_curve_chain
 
-        return mesh_curve_chain(g.curves, g.labels, m.elements, g.notes)
+        return mesh_curve_chain(g.curves, g.labels, m.count, g.notes)
     pts = np.array(g.control_points)
     w = np.ones(len(pts)) if g.weights is None else np.array(g.weights)
     curve = NurbsCurve(g.degree, np.array(g.knots), pts, w)
     spans = len(curve.bezier_segments()[0]) - 1
-    if spans * m.elements > MAX_ELEMENTS:
+    if spans * m.count > MAX_ELEMENTS:
         raise ScenarioError(
             path,
             f"{prefix}mesh.elements",
-            f"{m.elements} per knot span x {spans} spans is more than {MAX_ELEMENTS} elements",
+            f"{m.count} per knot span x {spans} spans is more than {MAX_ELEMENTS} elements",
         )
-    return mesh_nurbs(curve, m.elements)
+    return mesh_nurbs(curve, m.count)
 
 
 def mesh_geometry(path: str, geometry: Any, mesh: MeshTable, prefix: str = "") -> Any:
@@ -164,6 +165,14 @@ def body_model(sc: ScenarioView, i: int) -> Model:
     initial velocities and sensor nodes at its places (moving supports included), as the
     scenario's system holds it."""
     key, b = sc.body_tables[i]
+    if is_surface(b.geometry):
+        raise ScenarioError(
+            sc.path,
+            f"{key}geometry",
+            f"{b.geometry.kind!r} makes the body a shell: the shell body is read and checked "
+            "(rancf.bodies.shell.ShellBody), but the System does not hold shells yet "
+            "(docs/derivations/shell.md sec. 8)",
+        )
     d = sc.data
 
     def at(rows: list[dict[str, Any]], what: str) -> list[tuple[str, int, dict[str, Any]]]:

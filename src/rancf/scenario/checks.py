@@ -18,6 +18,8 @@ from rancf.scenario.base import fail, shorten, show, under
 from rancf.scenario.bodies import FlexibleBody, RigidBody
 from rancf.scenario.places import ResolvedPlace, resolve_place
 from rancf.scenario.section import check_flexible
+from rancf.scenario.shell_checks import check_shell_uses
+from rancf.scenario.surface import is_surface
 from rancf.scenario.time_functions import time_size
 from rancf.scenario.view import ScenarioView
 
@@ -46,6 +48,7 @@ class _Context:
                     )
                 self.bodies[b.name] = b
         self.dim = self._dim()
+        self.shell = self.bodies is None and is_surface(sc.geometry)
 
     def _dim(self) -> int:
         sc = self.sc
@@ -74,19 +77,16 @@ class _Context:
                 )
         return dims[0]
 
-    def place(self, key: str, v: int | str, ground: bool = False) -> ResolvedPlace:
-        return resolve_place(key, v, self.bodies, ground)
+    def place(self, key: str, v: Any, ground: bool = False) -> ResolvedPlace:
+        return resolve_place(key, v, self.bodies, ground, self.shell)
 
     def element(self, p: ResolvedPlace) -> str | None:
         """The element kind at a node place; ``"rigid"``, ``"mass"``; None for the ground."""
         if p.where == "ground":
             return None
-        if self.bodies is None:
-            return self.sc.mesh.element
-        assert p.body is not None  # a place of a body with [[bodies]] names it
-        b = self.bodies[p.body]
-        if isinstance(b, FlexibleBody):
-            return b.mesh.element
+        b = self.sc if self.bodies is None else self.bodies[str(p.body)]
+        if self.bodies is None or isinstance(b, FlexibleBody):
+            return "shell" if is_surface(b.geometry) else b.mesh.element
         return "rigid" if isinstance(b, RigidBody) else "mass"
 
 
@@ -395,4 +395,5 @@ def check_scenario(sc: ScenarioView) -> tuple[int, dict[str, Any] | None, list[R
     _sensors(c, supports)
     _obstacles(c)
     _winches(c)
+    check_shell_uses(c)
     return c.dim, c.bodies, supports

@@ -24,6 +24,7 @@ from rancf.scenario.geometry import GEOMETRY_KEYS, CadGeometry
 from rancf.scenario.motions import motion_function
 from rancf.scenario.places import ONE_BODY
 from rancf.scenario.sensors import Sensor, SensorTable
+from rancf.scenario.surface import is_surface
 from rancf.scenario.time_functions import time_function
 
 __all__ = ["body_tables", "scenario_data", "columns_once", "sensor_record"]
@@ -52,7 +53,7 @@ def _tf(v: Any) -> Any:
     return None if v is None else time_function(v)
 
 
-def _node_or_text(v: int | str, one_body: bool) -> int | str:
+def _node_or_text(v: Any, one_body: bool) -> Any:
     if one_body and v in ("start", "end"):
         return 0 if v == "start" else -1
     return v
@@ -113,6 +114,7 @@ def scenario_data(sc: Any) -> dict[str, Any]:
         "distributed": [
             {**p.plain(frozenset({"time"})), "time": _tf(p.time)} for p in sc.loads.distributed
         ],
+        "edge": [{**p.plain(frozenset({"time"})), "time": _tf(p.time)} for p in sc.loads.edge],
     }
     d["damping"] = sc.damping.plain()
     d["initial_velocity"] = [
@@ -142,8 +144,9 @@ def columns_once(sensors: tuple[Sensor, ...], dim: int) -> None:
             owner[col] = i
 
 
-def sensor_record(s: SensorTable, bodies: dict[str, Any] | None) -> Sensor:
-    """The sensor record of a ``[[sensors]]`` table (a one-body file: its nodes by number)."""
-    if bodies is not None:
+def sensor_record(s: SensorTable, bodies: dict[str, Any] | None, geometry: Any = None) -> Sensor:
+    """The sensor record of a ``[[sensors]]`` table (a one-body file: its nodes by number; a
+    shell's, of a surface ``geometry``: its places as written)."""
+    if bodies is not None or is_surface(geometry):
         return s.record()
     return s.record(tuple(int(_node_or_text(p, True)) for p in s.places()))

@@ -21,26 +21,31 @@ from pydantic import (
     model_validator,
 )
 
-from rancf.elements.mapping import K_RANGE  # the factors a scenario may fix
 from rancf.errors import InputError
 from rancf.scenario.base import (
     MAX_COORDINATE,
     MAX_ELEMENTS,
     Degree,
-    ElementCount,
-    JsonSchema,
     KindOf,
     Number,
     Point,
     Positive,
-    QuadraturePoints,
     SemiAxes,
     Table,
     Vector2,
     Vector3,
     fail,
     show,
-    to_number,
+)
+from rancf.scenario.geometry_keys import GEOMETRY_KEYS
+from rancf.scenario.mesh_table import MeshTable
+from rancf.scenario.surface import (
+    SURFACE_KINDS,
+    ConeGeometry,
+    CylinderGeometry,
+    NurbsSurfaceGeometry,
+    RectangleGeometry,
+    SphereGeometry,
 )
 
 __all__ = [
@@ -62,14 +67,6 @@ __all__ = [
 MAX_WEIGHT_RATIO = 1e12
 #: Element kinds of ``mesh.element``.
 ELEMENTS = ("rancf", "ancf", "beam", "rod")
-#: Keys of ``[geometry]`` for each kind.
-GEOMETRY_KEYS = {
-    "conic": ("start", "end", "angles_deg", "point"),
-    "line": ("start", "end", "length"),
-    "nurbs": ("degree", "knots", "control_points", "weights"),
-    "cad": ("file", "curve"),
-    "ellipse": ("center", "semi_axes", "rotation_deg", "axes", "start_deg"),
-}
 
 
 class _Geometry(Table):
@@ -327,74 +324,25 @@ Geometry = Annotated[
     | Annotated[LineGeometry, Tag("[line]")]
     | Annotated[NurbsGeometry, Tag("[nurbs]")]
     | Annotated[CadGeometry, Tag("[cad]")]
-    | Annotated[EllipseGeometry, Tag("[ellipse]")],
+    | Annotated[EllipseGeometry, Tag("[ellipse]")]
+    | Annotated[CylinderGeometry, Tag("[cylinder]")]
+    | Annotated[SphereGeometry, Tag("[sphere]")]
+    | Annotated[ConeGeometry, Tag("[cone]")]
+    | Annotated[RectangleGeometry, Tag("[rectangle]")]
+    | Annotated[NurbsSurfaceGeometry, Tag("[nurbs_surface]")],
     KindOf(
         _geometry_kind,
         custom_error_type="choice",
         custom_error_message="must be one of the geometry kinds",
         custom_error_context={
             "key": "kind",
-            "allowed": "'conic', 'line', 'nurbs', 'cad', 'ellipse'",
+            "allowed": "'conic', 'line', 'nurbs', 'cad', 'ellipse' (curves); "
+            + ", ".join(repr(k) for k in SURFACE_KINDS)
+            + " (surfaces: a shell)",
         },
     ),
-    Field(description="the reference geometry (its kind selects its keys)"),
+    Field(
+        description="the reference geometry (its kind selects its keys; a surface kind makes "
+        "the body a shell)"
+    ),
 ]
-
-
-def _k(v: Any) -> Any:
-    lo, hi = K_RANGE
-    bad = f'must be "opt" or a number in [{lo:g}, {hi:g}], got {show(v)}'
-    if v == "opt" and isinstance(v, str):
-        return v
-    try:
-        k = to_number(v)
-    except Exception:  # noqa: BLE001 - any non-number is the same mistake
-        raise fail("", bad) from None
-    if not lo <= k <= hi:
-        raise fail("", bad)
-    return k
-
-
-class MeshTable(Table):
-    """``[mesh]``: how the geometry is divided into elements."""
-
-    elements: ElementCount = Field(
-        description="number of elements (NURBS and CAD curves: per knot span)"
-    )
-    element: Literal["rancf", "ancf", "beam", "rod"] = Field(
-        "rancf",
-        description='"rancf" (rational, exact conics) | "ancf" (polynomial cable) | "beam" '
-        '(planar co-rotational Euler-Bernoulli, 2D only) | "rod" (spatial rod with torsion, '
-        "3D only)",
-    )
-    k: Annotated[
-        Literal["opt"] | float,
-        BeforeValidator(_k),
-        JsonSchema(
-            {
-                "oneOf": [
-                    {"const": "opt"},
-                    {"type": "number", "minimum": K_RANGE[0], "maximum": K_RANGE[1]},
-                ]
-            }
-        ),
-    ] = Field("opt", description='mapping factor: "opt" (Kopt per element) or a number')
-    spacing: Literal["arc", "parameter"] = Field(
-        "arc", description='"arc" (equal arc length) | "parameter" (equal parameter steps)'
-    )
-    continuity: Literal["C1", "C2"] = Field(
-        "C1",
-        description='"C1" (shared nodes: the nodal coordinates are the unknowns) | "C2" (the '
-        "control points of the cubic (rational) B-spline through the mesh are the unknowns: "
-        "curvature continuous, fewer unknowns; cables and rods)",
-    )
-    stress_free: Literal["reference", "straight"] = Field(
-        "reference",
-        description='"reference" (the start shape is unloaded) | "straight" (unloaded straight, '
-        "same arc length: a rope laid over a pulley carries its bending energy; cables and rods)",
-    )
-    quadrature_points: QuadraturePoints | None = Field(
-        None,
-        description="Gauss points per element (default: 6 for polynomial (ANCF) elements, 10 "
-        "for rational ones)",
-    )

@@ -28,6 +28,7 @@ from rancf.scenario.base import (
     NumberOrVector123,
     Positive,
     Table,
+    Vector3,
     Vector23,
     fail,
     show,
@@ -40,6 +41,7 @@ __all__ = [
     "DistributedLoadTable",
     "SupportTable",
     "PointLoadTable",
+    "EdgeLoadTable",
     "LoadsTable",
     "InitialVelocityTable",
     "InitialMotionTable",
@@ -52,10 +54,11 @@ class SupportTable(Table):
     """``[[supports]]``: a place held fixed, or moved along a prescribed path."""
 
     at: PlaceValue = Field(description="the supported place")
-    kind: Literal["pin", "clamp", "roller"] = Field(
+    kind: Literal["pin", "clamp", "roller", "diaphragm", "symmetry"] = Field(
         "pin",
         description='"pin" (position fixed) | "clamp" (position and direction) | "roller" '
-        "(moves along axis only)",
+        '(moves along axis only) | shells: "diaphragm" (an edge\'s displacements in its plane '
+        'fixed) | "symmetry" (an edge on the plane with normal `normal`)',
     )
     fix_twist: Flag = Field(
         False, description="rods: also hold the twist (a clamp holds it anyway)"
@@ -67,6 +70,9 @@ class SupportTable(Table):
         None, description="clamps: the installed tangent direction (default: the reference)"
     )
     axis: Vector23 | None = Field(None, description="rollers: the line it moves along")
+    normal: Vector3 | None = Field(
+        None, description="symmetry (shells): the normal of the plane of symmetry"
+    )
     motion: TimeFunctionValue | None = Field(
         None,
         description="prescribed displacement from the reference position [m]: a vector "
@@ -79,9 +85,11 @@ class SupportTable(Table):
             raise fail("axis", "required for a roller (the direction it moves along)")
         if self.kind != "roller" and self.axis is not None:
             raise fail("axis", f'applies to kind = "roller" only, not {self.kind!r}')
+        if (self.kind == "symmetry") != (self.normal is not None):
+            raise fail("normal", 'required for kind = "symmetry" and only there')
         if self.kind != "clamp" and self.direction is not None:
             raise fail("direction", f'applies to kind = "clamp" only, not {self.kind!r}')
-        for k in ("direction", "axis"):
+        for k in ("direction", "axis", "normal"):
             if self[k] is not None and not any(x != 0.0 for x in self[k]):
                 raise fail(k, "must be a nonzero vector")
         if self.motion is not None:
@@ -123,7 +131,10 @@ class DistributedLoadTable(Table):
     """``[[loads.distributed]]``: a force per reference length on flexible bodies
     (:mod:`rancf.scenario.fluid`)."""
 
-    force: Vector23 = Field(description="force per reference length, global axes [N/m]")
+    force: Vector23 = Field(
+        description="force per reference length, global axes [N/m] (shells: per reference "
+        "area [N/m^2])"
+    )
     body: Name | None = Field(None, description="the flexible body (default: every one)")
     time: TimeFunctionValue | None = Field(
         None, description="a scalar TIME_FUNCTION multiplying the force"
@@ -135,13 +146,39 @@ class DistributedLoadTable(Table):
         return self
 
 
+class EdgeLoadTable(Table):
+    """``[[loads.edge]]``: a total force and/or moment spread evenly along a shell's edge
+    (docs/derivations/shell.md sec. 6)."""
+
+    at: PlaceValue = Field(description='the edge: "u0", "u1", "v0", "v1" ("BODY:u1" with bodies)')
+    force: Vector3 | None = Field(None, description="total force on the edge [N]")
+    moment: Vector3 | None = Field(
+        None,
+        description="total moment [N m]: its component along the edge bends, the one across "
+        "it twists (a component along the normal is refused)",
+    )
+    time: TimeFunctionValue | None = Field(
+        None, description="a scalar TIME_FUNCTION multiplying force and moment"
+    )
+
+    @model_validator(mode="after")
+    def _given(self) -> EdgeLoadTable:
+        if self.force is None and self.moment is None:
+            raise fail("force", "required key is missing (give force, moment or both)")
+        check_scalar("time", self.time)
+        return self
+
+
 class LoadsTable(Table):
     """``[loads]``: gravity on every body, point loads and distributed loads."""
 
     gravity: Vector23 | None = Field(None, description="gravitational acceleration [m/s^2]")
     point: list[PointLoadTable] = Field([], description="point forces and moments")
     distributed: list[DistributedLoadTable] = Field(
-        [], description="forces per length on flexible bodies [N/m]"
+        [], description="forces per length on flexible bodies [N/m] (shells: per area [N/m^2])"
+    )
+    edge: list[EdgeLoadTable] = Field(
+        [], description="shells: a total force or moment spread along an edge"
     )
 
 

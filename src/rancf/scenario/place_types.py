@@ -13,22 +13,30 @@ from rancf.scenario.base import fail, show
 def _place(v: Any) -> Any:
     if isinstance(v, np.integer):
         v = int(v)
+    if isinstance(v, list | tuple) and len(v) == 2:
+        if all(isinstance(x, int | float) and not isinstance(x, bool) for x in v):
+            return [float(x) for x in v]
     if isinstance(v, bool) or not isinstance(v, int | str) or v == "":
         raise fail(
-            "", f'must be a place ("start", "end", a node index or "BODY:..."), got {show(v)}'
+            "",
+            f'must be a place ("start", "end", a node index, "BODY:..."; a shell\'s edge "u0" '
+            f"or point [u, v]), got {show(v)}",
         )
     return v
 
 
 #: A place as written: ``"start"``, ``"end"``, a node index, ``"ground"`` or ``"BODY[:WHERE]"``
-#: (checked against the scenario's bodies by :mod:`rancf.scenario.places`).
+#: (checked against the scenario's bodies by :mod:`rancf.scenario.places`); a shell's edge
+#: ``"u0"`` or surface point ``[u, v]``.
 PlaceValue = Annotated[
-    int | str,
+    int | str | list[float],
     BeforeValidator(_place),
     Field(
         description='"start", "end" or a node index (negative from the end) in a one-body file; '
         '"BODY:start", "BODY:end", "BODY:N", "BODY" (a rigid body\'s centre of mass or a point '
-        'mass), "BODY:POINT" (a named point of a rigid body) or "ground" with [[bodies]]'
+        'mass), "BODY:POINT" (a named point of a rigid body) or "ground" with [[bodies]]; a '
+        'shell: an edge "u0", "u1", "v0", "v1" or a surface point [u, v] in [0, 1]^2 ("BODY:u0", '
+        '"BODY:u,v" with [[bodies]])'
     ),
 ]
 

@@ -10,6 +10,9 @@ In a file with ``[[bodies]]``:
 
 In a file without ``[[bodies]]`` (one flexible body) a place is ``"start"``, ``"end"`` or a node
 index, as always (and ``"ground"`` for joints and springs).
+
+A shell (a surface ``[geometry]``) has edges ``"u0"``, ``"u1"``, ``"v0"``, ``"v1"`` and surface
+points ``[u, v]`` (``"NAME:u0"``, ``"NAME:u,v"`` with ``[[bodies]]``).
 """
 
 from __future__ import annotations
@@ -17,8 +20,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
+from rancf.errors import InputError
 from rancf.scenario.base import fail, shorten, show
 from rancf.scenario.bodies import FlexibleBody, PointMass, RigidBody
+from rancf.scenario.surface import is_surface
 from rancf.system.places import GROUND, Place
 
 __all__ = ["ResolvedPlace", "resolve_place", "ONE_BODY"]
@@ -45,16 +50,24 @@ class ResolvedPlace:
         The node index (``"start"``: 0, ``"end"``: -1) of a ``"node"`` place.
     point : str or None
         The point's name of a ``"point"`` place.
+    edge : str or None
+        A shell's edge (``"u0"``, ``"u1"``, ``"v0"``, ``"v1"``) of an ``"edge"`` place.
+    uv : tuple of float or None
+        A shell's surface point ``(u, v)`` of a ``"surface"`` place.
     """
 
-    text: int | str
+    text: Any
     where: str
     body: str | None = None
     node: int | None = None
     point: str | None = None
+    edge: str | None = None
+    uv: tuple[float, float] | None = None
 
     def system_place(self) -> Place:
         """The :class:`rancf.system.places.Place` of the system builder."""
+        if self.where in ("edge", "surface"):
+            raise InputError("at", self.text, "a place of a line or rigid body (not a shell's)")
         if self.where == "ground" or self.body is None:
             return GROUND
         return Place(self.body, self.node if self.where == "node" else self.point)
@@ -71,8 +84,40 @@ def _node(text: str) -> int | None:
         return None
 
 
+_SHELL_PLACE = (
+    'a place of a shell is an edge ("u0", "u1", "v0", "v1") or a surface point [u, v] '
+    "with 0 <= u, v <= 1"
+)
+
+
+def _uv(v: Any) -> tuple[float, float] | None:
+    """``[u, v]`` (a list, or the text ``"u,v"``) as two numbers in [0, 1], else None."""
+    if isinstance(v, str):
+        try:
+            v = [float(x) for x in v.split(",")]
+        except ValueError:
+            return None
+    if not isinstance(v, list | tuple) or len(v) != 2:
+        return None
+    if not all(isinstance(x, int | float) and not isinstance(x, bool) for x in v):
+        return None
+    if not all(0.0 <= float(x) <= 1.0 for x in v):
+        return None
+    return float(v[0]), float(v[1])
+
+
+def shell_place(key: str, v: Any, body: str, sub: Any) -> ResolvedPlace:
+    """The place ``sub`` of the shell ``body`` (``v`` as written): an edge or a point."""
+    if sub in ("u0", "u1", "v0", "v1"):
+        return ResolvedPlace(v, "edge", body, edge=str(sub))
+    uv = _uv(sub)
+    if uv is None:
+        raise fail(key, f"{_SHELL_PLACE}, got {show(v)}")
+    return ResolvedPlace(v, "surface", body, uv=uv)
+
+
 def resolve_place(
-    key: str, v: int | str, bodies: dict[str, Any] | None, ground: bool = False
+    key: str, v: Any, bodies: dict[str, Any] | None, ground: bool = False, shell: bool = False
 ) -> ResolvedPlace:
     """The :class:`ResolvedPlace` of ``v`` (of the key ``key``, relative to the table validated).
 
@@ -82,11 +127,19 @@ def resolve_place(
         The bodies by name; None for a file without ``[[bodies]]``.
     ground : bool
         Whether ``"ground"`` is allowed (joints and springs).
+    shell : bool
+        The one body of a file without ``[[bodies]]`` is a shell: its places are edges and
+        surface points (:func:`shell_place`); with ``[[bodies]]`` a shell's are ``"NAME:u0"``
+        and ``"NAME:u,v"``.
     """
     if v == "ground":
         if not ground:
             raise fail(key, 'cannot be "ground" here (the ground does not move)')
         return ResolvedPlace(v, "ground")
+    if bodies is None and shell:
+        return shell_place(key, v, ONE_BODY, v)
+    if isinstance(v, list):
+        raise fail(key, f"a surface point [u, v] is a place of a shell, got {show(v)}")
     if bodies is None:
         if isinstance(v, int):
             return ResolvedPlace(v, "node", ONE_BODY, node=v)
@@ -104,6 +157,8 @@ def resolve_place(
     body = bodies.get(name)
     if body is None:
         raise fail(key, f"names no body: {show(name)} (bodies: {shorten(names)})")
+    if isinstance(body, FlexibleBody) and is_surface(body.geometry):
+        return shell_place(key, v, name, sub)
     if isinstance(body, FlexibleBody):
         node = _node(sub)
         if node is None:

@@ -43,6 +43,7 @@ from rancf.scenario.obstacles import ObstacleTable
 from rancf.scenario.section import MaterialTable, SectionTable
 from rancf.scenario.sensors import Sensor, SensorTable
 from rancf.scenario.solver import ModesTable, SolverTable
+from rancf.scenario.surface import is_surface
 from rancf.scenario.winches import WinchTable
 
 if TYPE_CHECKING:
@@ -57,12 +58,9 @@ _PYTHON = "<scenario>"
 
 
 class Scenario(Table):
-    """A validated scenario (module docstring); the keys of the file are its fields.
-
-    Attributes besides the tables: :attr:`path` (the file, or ``<scenario>``), :attr:`dim`
-    (2 or 3), :attr:`data` (every table as plain dictionaries, defaults filled in),
-    :attr:`sensors` (the :class:`~rancf.scenario.sensors.Sensor` records of ``[[sensors]]``).
-    """
+    """A validated scenario (module docstring); the keys of the file are its fields.  Besides
+    the tables: :attr:`path`, :attr:`dim`, :attr:`data` (every table as plain dictionaries,
+    defaults filled in), :attr:`sensors` (the records of ``[[sensors]]``)."""
 
     geometry: Geometry | None = None
     mesh: MeshTable | None = Field(None, description="one-body file: the elements")
@@ -146,7 +144,8 @@ class Scenario(Table):
         self._body_tables = body_tables(self)
         self._data = scenario_data(self)
         self._data["warnings"] = start_warnings(self)
-        self._sensors = tuple(sensor_record(s, self._bodies) for s in self.sensor_tables)
+        g, b = self.geometry, self._bodies
+        self._sensors = tuple(sensor_record(s, b, g) for s in self.sensor_tables)
         columns_once(self._sensors, self._dim)
         return self
 
@@ -185,7 +184,7 @@ class Scenario(Table):
         return self._sensors
 
     @property
-    def support_labels(self) -> list[int | str]:
+    def support_labels(self) -> list[Any]:
         """Each support's ``at`` as written (``"start"``, ``"end"``, a node index, a place)."""
         return [s.at for s in self.supports]
 
@@ -211,7 +210,7 @@ class Scenario(Table):
         from rancf.scenario.places import resolve_place
 
         try:
-            return resolve_place("", value, self._bodies, ground=True)
+            return resolve_place("", value, self._bodies, True, is_surface(self.geometry))
         except PydanticCustomError as exc:
             raise ScenarioError(self.path, "place", str(exc)) from None
 
@@ -373,6 +372,7 @@ class Scenario(Table):
         out += [
             (f"loads.distributed[{i}].time", p.time) for i, p in enumerate(self.loads.distributed)
         ]
+        out += [(f"loads.edge[{i}].time", p.time) for i, p in enumerate(self.loads.edge)]
         out += [
             (f"winches[{i}].{k}", w[k])
             for i, w in enumerate(self.winches)

@@ -34,7 +34,9 @@ from rancf.scenario.base import (
     fail,
     show,
 )
-from rancf.scenario.geometry import MeshTable
+from rancf.scenario.mesh_table import MeshTable
+from rancf.scenario.shell_checks import check_shell
+from rancf.scenario.surface import is_surface
 from rancf.scenario.table_files import ROWS_SCHEMA, table_rows
 
 __all__ = ["AxialLawTable", "SectionTable", "MaterialTable", "check_flexible"]
@@ -60,6 +62,7 @@ class SectionTable(Table):
     torsion_constant: Positive | None = Field(
         None, description="rods: torsion constant J [m^4] (default inertia_y + inertia_z)"
     )
+    thickness: Positive | None = Field(None, description="shells: the wall thickness t [m]")
     rotary_inertia: Literal["torsion", "full"] | None = Field(
         None,
         description='rods: "torsion" (default: rho I_p about the tangent) | "full" (adds rho I '
@@ -69,7 +72,13 @@ class SectionTable(Table):
     @model_validator(mode="after")
     def _one_way(self) -> SectionTable:
         principal = [k for k in ("inertia_y", "inertia_z", "orientation") if self[k] is not None]
-        if self.radius is not None:
+        if self.thickness is not None:
+            others = [
+                k for k in type(self).model_fields if k != "thickness" and self[k] is not None
+            ]
+            if others:
+                raise fail(others[0], "a shell's section is its thickness only (no other keys)")
+        elif self.radius is not None:
             _check_radius(self.radius)
             extra = [k for k in ("area", "inertia", *principal) if self[k] is not None]
             if extra:
@@ -91,7 +100,7 @@ class SectionTable(Table):
             if not any(x != 0.0 for x in self.orientation or ()):
                 raise fail("orientation", "must be a nonzero vector, got [0, 0, 0]")
         elif self.area is None or self.inertia is None:
-            raise fail("", "requires radius, or both area and inertia")
+            raise fail("", "requires radius, or both area and inertia (a shell: thickness)")
         return self
 
 
@@ -146,7 +155,7 @@ class MaterialTable(Table):
     )
     poisson_ratio: PoissonRatio | None = Field(
         None,
-        description="rods (or shear_modulus): G = E / (2 (1 + nu)), in (-1, 0.5)",
+        description="rods (or shear_modulus): G = E / (2 (1 + nu)); shells: required; in (-1, 0.5)",
     )
     axial_strain: Literal["green_lagrange", "engineering"] = Field(
         "green_lagrange",
@@ -198,6 +207,16 @@ def check_flexible(
 ) -> None:
     """The checks of a flexible body that need several of its tables (keys relative to the
     body: ``mesh.element``, ``section.inertia_y``, ``material.shear_modulus``, ``form``)."""
+    if is_surface(geometry):
+        check_shell(geometry, mesh, section, material, form)
+        return
+    if section.thickness is not None:
+        raise fail("section.thickness", "applies to shells (a surface [geometry]), not to a line")
+    if not isinstance(mesh.elements, int):
+        raise fail(
+            "mesh.elements",
+            f"must be one number for a line ([nu, nv] is a shell's), got {show(mesh.elements)}",
+        )
     el, dim = mesh.element, geometry.dim
     fam = family(el)
     if form is not None and not fam.gradient:

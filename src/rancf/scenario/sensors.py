@@ -35,7 +35,7 @@ Column names: ``NAME`` for one number, ``NAME_x``, ``NAME_y`` (, ``NAME_z``) for
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Literal, get_args
+from typing import Any, Literal, get_args
 
 import numpy as np
 from numpy.typing import NDArray
@@ -240,7 +240,7 @@ class SensorTable(Table):
             raise fail("at", f"a {kd} sensor needs at = PLACE")
         return self
 
-    def places(self) -> tuple[int | str, ...]:
+    def places(self) -> tuple[Any, ...]:
         """The places the sensor reads (``between`` or ``at``)."""
         if self.between is not None:
             return tuple(self.between)

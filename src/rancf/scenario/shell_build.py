@@ -1,0 +1,104 @@
+"""The shell bodies of a scenario: the :class:`~rancf.bodies.shell.ShellBody` of a body whose
+``[geometry]`` is a surface, with the supports at its places, its load vector and its sensors.
+
+The load vector is the sum of the point loads at its surface points, the edge loads on its
+edges, the distributed loads (per reference area) on it and gravity ``ρ t g`` per area, at their
+full value (a ``time`` factor is applied by the analysis that runs them).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+from pydantic_core import PydanticCustomError
+
+from rancf.bodies.shell import ShellBody, ShellSupport
+from rancf.bodies.shell_loads import distributed_load, edge_load, point_load
+from rancf.errors import ScenarioError
+from rancf.scenario.shell_checks import shell_mesh
+from rancf.scenario.surface import is_surface
+
+__all__ = ["shell_body", "shell_load", "shell_sensors", "shell_sensor_values", "shell_indices"]
+
+
+def shell_indices(sc: Any) -> list[int]:
+    """The indices in ``sc.body_tables`` of the shell bodies."""
+    return [i for i, (_, b) in enumerate(sc.body_tables) if is_surface(b.geometry)]
+
+
+def _on(sc: Any, name: str, at: Any) -> Any:
+    """The resolved place ``at`` if it is on the shell ``name``, else None."""
+    p = sc.place(at)
+    return p if p.body == name and p.where in ("edge", "surface") else None
+
+
+def shell_body(sc: Any, i: int) -> ShellBody:
+    """The shell body ``i`` of ``sc.body_tables`` with the supports at its places."""
+    key, b = sc.body_tables[i]
+    try:
+        mesh = shell_mesh(b.geometry, b.mesh)
+    except PydanticCustomError as exc:
+        ctx = exc.context or {}
+        raise ScenarioError(sc.path, f"{key}{ctx.get('key', '')}", str(exc)) from None
+    supports = []
+    for s in sc.supports:
+        p = _on(sc, b.name, s.at)
+        if p is not None:
+            at = p.edge if p.where == "edge" else p.uv
+            normal = None if s.normal is None else tuple(s.normal)
+            axis = None if s.axis is None else tuple(s.axis)
+            supports.append(ShellSupport(s.kind, at, normal, axis))
+    return ShellBody(
+        mesh,
+        float(b.section.thickness),
+        float(b.material.youngs_modulus),
+        float(b.material.poisson_ratio),
+        float(b.material.density),
+        b.name,
+        supports,
+    )
+
+
+def shell_load(sc: Any, body: ShellBody) -> NDArray[np.float64]:
+    """The body's load vector (module docstring)."""
+    q = np.zeros(body.n_dofs)
+    for pl in sc.loads.point:
+        p = _on(sc, body.name, pl.at)
+        if p is not None and pl.force is not None:
+            q += point_load(body, p.uv, pl.force)
+    for el in sc.loads.edge:
+        p = _on(sc, body.name, el.at)
+        if p is not None:
+            q += edge_load(body, str(p.edge), el.force, el.moment)
+    per_area = np.zeros(3)
+    for dl in sc.loads.distributed:
+        if dl.body in (None, body.name):
+            per_area += dl.force
+    if sc.loads.gravity is not None:
+        per_area += body.density * body.thickness * np.asarray(sc.loads.gravity, dtype=float)
+    if np.any(per_area != 0.0):
+        q += distributed_load(body, per_area)
+    return q
+
+
+def shell_sensors(sc: Any, body: ShellBody) -> list[tuple[str, tuple[float, float]]]:
+    """The ``position`` sensors on the body: ``(name, (u, v))``."""
+    out = []
+    for s in sc.sensor_tables:
+        if s.kind == "position" and s.at is not None:
+            p = _on(sc, body.name, s.at)
+            if p is not None and p.uv is not None:
+                out.append((s.name, p.uv))
+    return out
+
+
+def shell_sensor_values(sc: Any, body: ShellBody, q: NDArray) -> dict[str, float]:
+    """The columns ``NAME_x``, ``NAME_y``, ``NAME_z`` of the body's ``position`` sensors in the
+    configuration ``q``."""
+    out = {}
+    for name, uv in shell_sensors(sc, body):
+        for c, x in zip("xyz", body.position(uv, q), strict=True):
+            out[f"{name}_{c}"] = float(x)
+    return out
