@@ -28,7 +28,7 @@ import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 
 from rancf.bodies.shell import ShellBody, ShellSupport
-from rancf.bodies.shell_loads import _edge_frames, edge_load
+from rancf.bodies.shell_loads import _edge_frames, edge_load, point_load
 from rancf.bodies.shell_supports import constraint_rows
 from rancf.kernels.shell import ShellKernel
 from rancf.mesh.surface_kinds import _revolution, circle_pieces, line_pieces, mesh_surface
@@ -60,6 +60,38 @@ SZE_ANNULAR = np.array(
         [0.90, 13.282, 16.886],
         [0.95, 13.590, 17.212],
         [1.00, 13.891, 17.528],
+    ]
+)
+
+#: Sze, Liu & Lo (2004), pull-out of an open-ended cylinder, their 16 × 24 S4R table on the
+#: octant: ``P / Pmax``, ``w_A`` (outward, under the load), ``−u_B``, ``−u_C`` (inward, 90° from
+#: the load at mid-length and at the free end) (as transcribed in MBDyn's
+#: tests/plates/sze2004/sze35/sze35_ref.dat).
+SZE_PULLOUT = np.array(
+    [
+        [0.025, 0.819, 0.864, 0.872],
+        [0.05, 1.260, 1.471, 1.493],
+        [0.075, 1.527, 1.901, 1.946],
+        [0.10, 1.707, 2.217, 2.293],
+        [0.15, 1.936, 2.641, 2.792],
+        [0.20, 2.079, 2.904, 3.106],
+        [0.25, 2.180, 3.087, 3.310],
+        [0.30, 2.257, 3.227, 3.452],
+        [0.35, 2.321, 3.342, 3.556],
+        [0.40, 2.376, 3.443, 3.632],
+        [0.45, 2.425, 3.539, 3.688],
+        [0.50, 2.473, 3.653, 3.718],
+        [0.525, 2.543, 4.061, 3.580],
+        [0.55, 2.577, 4.171, 3.518],
+        [0.60, 2.618, 4.274, 3.452],
+        [0.65, 2.648, 4.338, 3.410],
+        [0.70, 2.672, 4.385, 3.378],
+        [0.75, 2.692, 4.423, 3.353],
+        [0.80, 2.710, 4.455, 3.332],
+        [0.85, 2.726, 4.483, 3.313],
+        [0.90, 2.741, 4.508, 3.297],
+        [0.95, 2.755, 4.530, 3.283],
+        [1.00, 2.768, 4.551, 3.269],
     ]
 )
 
@@ -183,15 +215,46 @@ def annular(nu: int, nv: int, factors: NDArray) -> NDArray[np.float64]:
     )
 
 
-def annular_table(nu: int, nv: int) -> str:
-    """Markdown: the deflections of A and B against Sze et al.'s table."""
-    rows = annular(nu, nv, SZE_ANNULAR[:, 0])
-    out = [
-        f"| P/Pmax | w_A ({nu} × {nv}) | w_A Sze | w_B ({nu} × {nv}) | w_B Sze |",
-        "| ---: | ---: | ---: | ---: | ---: |",
-    ]
-    for (lam, wa, wb), (_, ra, rb) in zip(rows, SZE_ANNULAR[:, :], strict=True):
-        out.append(f"| {lam:.1f} | {wa:.3f} | {ra:.3f} | {wb:.3f} | {rb:.3f} |")
+def pullout(nu: int, nv: int, factors: NDArray) -> NDArray[np.float64]:
+    """Pull-out of an open-ended cylinder (R 4.953, L 10.35, t 0.094, E 10.5e6, ν 0.3125, two
+    opposite radial forces P up to 40000 at mid-length), the octant ``[0°, 90°] × [0, L/2]`` on
+    ``nu × nv`` elements with symmetry planes at 0°, 90° and ``y = L/2`` and ``P/4`` outward at
+    A ``[1, 1]``.  Rows ``[λ, w_A, −u_B, −u_C]``: B ``[0, 1]`` and C ``[0, 0]`` (the free end)."""
+    geo = {"kind": "cylinder", "radius": 4.953, "length": 10.35 / 2, "angles_deg": [0.0, 90.0]}
+    mesh = mesh_surface(geo, [nu, nv])
+    planes = (("u0", (0.0, 0.0, 1.0)), ("u1", (1.0, 0.0, 0.0)), ("v1", (0.0, 1.0, 0.0)))
+    supports = [ShellSupport("symmetry", e, normal=n) for e, n in planes]
+    body = ShellBody(mesh, 0.094, 10.5e6, 0.3125, 1.0, supports=supports)
+    kernel = ShellKernel.from_mesh(mesh, 0.094, 10.5e6, 0.3125, 1.0)
+    f = point_load(body, [1.0, 1.0], [0.0, 0.0, 40000.0 / 4.0])
+    path = newton_path(kernel, body, lambda q, lam: (lam * f, None), factors)
+    d = [lambda q, p=p: body.position(p, q) - body.position(p) for p in ([1, 1], [0, 1], [0, 0])]
+    return np.array(
+        [[lam, d[0](q)[2], -d[1](q)[0], -d[2](q)[0]] for lam, q in zip(factors, path, strict=True)]
+    )
+
+
+#: The loads the tables show (every load of the reference table is solved).
+SHOWN = (0.05, 0.1, 0.2, 0.3, 0.5, 0.525, 0.6, 0.8, 1.0)
+#: ``case: (solver, reference table, column names)``.
+SZE_CASES = {
+    "annular": (annular, SZE_ANNULAR, ("w_A", "w_B")),
+    "pullout": (pullout, SZE_PULLOUT, ("w_A", "−u_B", "−u_C")),
+}
+
+
+def sze_table(case: str, meshes: list[tuple[int, int]]) -> str:
+    """Markdown: a Sze et al. case on each mesh beside their table, at the loads
+    :data:`SHOWN` (each solve runs through every load of their table)."""
+    solve, ref, names = SZE_CASES[case]
+    runs = [solve(nu, nv, ref[:, 0]) for nu, nv in meshes]
+    head = [f"{q} {m[0]} × {m[1]}" if m else f"{q} Sze" for q in names for m in [*meshes, None]]
+    out = ["| P/Pmax | " + " | ".join(head) + " |", "| ---: |" + " ---: |" * len(head)]
+    for r, lam in enumerate(ref[:, 0]):
+        if not np.any(np.isclose(lam, SHOWN)):
+            continue
+        values = [x[r, 1 + k] for k in range(len(names)) for x in [*runs, ref]]
+        out.append(f"| {lam:g} | " + " | ".join(f"{v:.3f}" for v in values) + " |")
     return "\n".join(out)
 
 
@@ -206,15 +269,18 @@ def rollup_table(sizes: list[int], steps: int) -> str:
 def main() -> None:
     """Print the tables."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--case", nargs="+", default=["rollup", "annular"])
+    parser.add_argument("--case", nargs="+", default=["rollup", "annular", "pullout"])
     parser.add_argument("--sizes", type=int, nargs="+", default=[4, 8, 16])
     parser.add_argument("--steps", type=int, default=20)
-    parser.add_argument("--annular", type=int, nargs=2, default=[24, 4])
+    parser.add_argument("--annular", type=int, nargs="+", default=[16, 2, 32, 4, 48, 6])
+    parser.add_argument("--pullout", type=int, nargs="+", default=[8, 8, 16, 16])
     args = parser.parse_args()
     if "rollup" in args.case:
         print(rollup_table(args.sizes, args.steps))
-    if "annular" in args.case:
-        print(annular_table(*args.annular))
+    for case in ("annular", "pullout"):
+        if case in args.case:
+            n = getattr(args, case)
+            print(sze_table(case, list(zip(n[::2], n[1::2], strict=True))))
 
 
 if __name__ == "__main__":
