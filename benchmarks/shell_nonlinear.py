@@ -99,6 +99,8 @@ SZE_PULLOUT = np.array(
 #: (round-off holds it near 1e-9 in the annular plate).
 NEWTON_RTOL = 1e-7
 NEWTON_MAX = 40
+#: Halvings of a load step that does not converge before a solve gives up.
+CUTS = 6
 
 #: ``(Q, dQ/dq)`` of the external load at load factor ``λ`` and coordinates ``q``.
 Load = Callable[[NDArray[np.float64], float], tuple[NDArray[np.float64], sp.spmatrix | None]]
@@ -137,33 +139,51 @@ def follower_moment(
     return out, k.tocsr()
 
 
+def _newton(
+    kernel: ShellKernel, c: sp.csr_matrix, load: Load, q: NDArray, lam: float, scale: float
+) -> NDArray[np.float64] | None:
+    """Newton from ``q`` at load factor ``lam``: the converged coordinates, or None."""
+    cct = spla.splu(sp.csc_matrix(c @ c.T))
+    n, nc = q.size, c.shape[0]
+    for _ in range(NEWTON_MAX):
+        f, k_ext = load(q, lam)
+        r = kernel.forces(q) - f
+        free = r - c.T @ cct.solve(c @ r)
+        if not np.all(np.isfinite(free)):
+            return None
+        if np.linalg.norm(free) <= NEWTON_RTOL * scale:
+            return q
+        k = kernel.tangent(q) if k_ext is None else kernel.tangent(q) - k_ext
+        a = sp.bmat([[k, c.T], [c, None]], format="csc")
+        q = q + spla.spsolve(a, np.concatenate([-r, np.zeros(nc)]))[:n]
+    return None
+
+
 def newton_path(
     kernel: ShellKernel, body: ShellBody, load: Load, factors: NDArray
 ) -> list[NDArray[np.float64]]:
     """Coordinates at each load factor of ``factors`` (increasing from 0): Newton on
-    ``f_int(q) − Q(q, λ) + Cᵀ μ = 0``, ``C q = C q0``; a step that does not converge in
-    :data:`NEWTON_MAX` iterations raises ``RuntimeError``."""
+    ``f_int(q) − Q(q, λ) + Cᵀ μ = 0``, ``C q = C q0``.  A step that does not converge in
+    :data:`NEWTON_MAX` iterations is halved, up to :data:`CUTS` times; then ``RuntimeError``."""
     c, _ = constraint_rows(body)
-    cct = spla.splu(sp.csc_matrix(c @ c.T))
-    q = body.q0.copy()
-    n, nc = body.n_dofs, c.shape[0]
+    q, lam0 = body.q0.copy(), 0.0
     scale = max(float(np.linalg.norm(load(q, float(factors[-1]))[0])), 1e-300)
     out = []
-    for lam in factors:
-        for _ in range(NEWTON_MAX):
-            f, k_ext = load(q, float(lam))
-            r = kernel.forces(q) - f
-            free = r - c.T @ cct.solve(c @ r)
-            if np.linalg.norm(free) <= NEWTON_RTOL * scale:
-                break
-            k = kernel.tangent(q) if k_ext is None else kernel.tangent(q) - k_ext
-            a = sp.bmat([[k, c.T], [c, None]], format="csc")
-            q = q + spla.spsolve(a, np.concatenate([-r, np.zeros(nc)]))[:n]
-        else:
-            raise RuntimeError(
-                f"Newton did not converge at load factor {lam:g}: free residual "
-                f"{np.linalg.norm(free) / scale:.3e} of the load after {NEWTON_MAX} iterations"
-            )
+    for target in factors:
+        step, cuts = float(target) - lam0, 0
+        while lam0 < target:
+            lam = min(lam0 + step, float(target))
+            new = _newton(kernel, c, load, q, lam, scale)
+            if new is None:
+                cuts += 1
+                if cuts > CUTS:
+                    raise RuntimeError(
+                        f"Newton did not converge at load factor {lam:g} (from {lam0:g}, "
+                        f"after {CUTS} halvings of the step, {NEWTON_MAX} iterations each)"
+                    )
+                step *= 0.5
+                continue
+            q, lam0 = new, lam
         out.append(q.copy())
     return out
 
