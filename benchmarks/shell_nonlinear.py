@@ -3,17 +3,20 @@
 Load steps, each solved by Newton's method on ``f_int(q) = λ f_ext(q)`` with the supports held
 as Lagrange multipliers (``C q = C q0``, :func:`rancf.bodies.shell_supports.constraint_rows`),
 the loads as consistent nodal vectors (:mod:`rancf.bodies.shell_loads`) and a follower end
-moment (docs/derivations/shell.md sec. 6, eq. 6.4).  Cases (sec. 9):
+moment (docs/derivations/shell.md sec. 6, eq. 6.1).  Cases (sec. 9):
 
 * the plate strip rolled into a full circle by ``M = 2π EI / L`` (L 12, b 1, t 0.1, E 1.2e6,
   ν 0, clamped at one end): the free edge returns to the clamp;
 * the slit annular plate of Sze, Liu & Lo (2004) (R 6..10, t 0.03, E 21e6, ν 0, one slit edge
   clamped, a line force up to 0.8 per length on the other): the vertical deflections of the
-  loaded edge's inner (A) and outer (B) corners against their load-deflection table.
+  loaded edge's inner (A) and outer (B) corners against their load-deflection table;
+* their pull-out of an open-ended cylinder (R 4.953, L 10.35, t 0.094, E 10.5e6, ν 0.3125, two
+  opposite radial forces up to 40000): the radial displacements at A, B and C likewise.
 
 The cases are also the tests' (tests/kernels/test_shell_nonlinear.py), on coarse meshes.
 
-    python benchmarks/shell_nonlinear.py [--case rollup annular]
+    python benchmarks/shell_nonlinear.py [--case rollup annular pullout] [--sizes 4 8 16]
+        [--annular 16 2 32 4] [--pullout 8 8 16 16]
 """
 
 from __future__ import annotations
@@ -111,7 +114,7 @@ def follower_moment(
 ) -> tuple[NDArray[np.float64], sp.csr_matrix]:
     """A total bending moment ``moment`` about the fixed ``axis`` spread along ``edge`` as a
     follower couple: ``m = moment / L`` per reference length on the rotation ``θ`` of the
-    current cross tangent ``a`` about ``axis`` (eq. 6.4), ``Q = ∫ m S_νᵀ g ds`` with
+    current cross tangent ``a`` about ``axis`` (eq. 6.1), ``Q = ∫ m S_νᵀ g ds`` with
     ``g = axis × a / |a_p|²`` (``a_p`` the part of ``a`` normal to ``axis``), and its
     (symmetric) derivative ``∫ m S_νᵀ ∂g/∂a S_ν ds``."""
     t = np.asarray(axis, dtype=float) / np.linalg.norm(axis)
