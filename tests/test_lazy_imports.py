@@ -27,7 +27,7 @@ STATIC = (
 #: distributed loads, winches.
 PARTS = (
     "rancf.system.contact",
-    "rancf.system.contact_outputs",
+    "rancf.system.contact_states",
     "rancf.system.contact_view",
     "rancf.system.fluid",
     "rancf.system.winches",
@@ -88,3 +88,17 @@ def test_the_command_line_itself_loads_neither_numpy_nor_pydantic(args, tmp_path
         assert (tmp_path / "planar-pendulum.toml").read_bytes() == example_path(
             "planar-pendulum"
         ).read_bytes()
+
+
+def test_lazily_exported_names_stay_functions_after_their_modules_load():
+    """A name the package exports lazily is not shadowed by a submodule of the same name once
+    that submodule has been imported (``from rancf.system import contact_outputs`` stays the
+    function)."""
+    code = (
+        "import importlib, rancf.system as s\n"
+        "for name, mod in s._LAZY.items():\n"
+        "    importlib.import_module(mod)\n"
+        "    assert callable(getattr(s, name)), name\n"
+        "    assert getattr(s, name) is getattr(importlib.import_module(mod), name), name\n"
+    )
+    subprocess.run([sys.executable, "-c", code], check=True)

@@ -83,7 +83,7 @@ def contact_warnings(system: System) -> list[str]:
         return []
     if not system.contact_pairs:
         return _body_pairs(system)
-    from rancf.system.contact_outputs import contact_outputs
+    from rancf.system.contact_states import contact_outputs
 
     forces = {
         k: float(np.linalg.norm(c.normal)) for k, c in contact_outputs(system, system.y0).items()

@@ -298,7 +298,7 @@ def _penetration_problems(system: Any, q: NDArray[np.float64]) -> list[str]:
     """Obstacles penetrated deeper than :data:`PENETRATION_LIMIT` of the touching diameter."""
     if not getattr(system, "obstacle_names", None):
         return []
-    from rancf.system.contact_outputs import contact_outputs
+    from rancf.system.contact_states import contact_outputs
 
     states = contact_outputs(system, system.y_from_q(q))
     out = []

@@ -15,16 +15,16 @@ from rancf.system.system import System, as_system
 
 if TYPE_CHECKING:
     from rancf.system.contact import Obstacle
-    from rancf.system.contact_outputs import ContactState, contact_history, contact_outputs
+    from rancf.system.contact_states import ContactState, contact_history, contact_outputs
     from rancf.system.fluid import DistributedLoad, Fluid, Hydro, Waves
     from rancf.system.winches import Winch
 
 #: Name loaded on first use -> module that defines it.
 _LAZY = {
     "Obstacle": "rancf.system.contact",
-    "ContactState": "rancf.system.contact_outputs",
-    "contact_outputs": "rancf.system.contact_outputs",
-    "contact_history": "rancf.system.contact_outputs",
+    "ContactState": "rancf.system.contact_states",
+    "contact_outputs": "rancf.system.contact_states",
+    "contact_history": "rancf.system.contact_states",
     "Fluid": "rancf.system.fluid",
     "Waves": "rancf.system.fluid",
     "Hydro": "rancf.system.fluid",

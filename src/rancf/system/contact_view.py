@@ -1,5 +1,5 @@
 """What contact reads of a system (:class:`ContactSystem`): the contact modules
-(:mod:`rancf.system.contact`, :mod:`rancf.system.contact_outputs`) are used by the system, so
+(:mod:`rancf.system.contact`, :mod:`rancf.system.contact_states`) are used by the system, so
 they see it through this protocol rather than importing it."""
 
 from __future__ import annotations

@@ -106,10 +106,10 @@ def _contact_block(s: Any, ys: NDArray, vs: NDArray, alpha: NDArray | None) -> N
 
 def contact_row(s: Any, yc: NDArray, vc: NDArray | None, y1: NDArray | None) -> NDArray:
     """The contact columns of one row: per obstacle the normal and friction force, moment,
-    contact length and penetration (:func:`rancf.system.contact_outputs.contact_outputs` at
+    contact length and penetration (:func:`rancf.system.contact_states.contact_outputs` at
     the contact state ``yc``, ``vc``, ``y1``), per pair of flexible bodies the contact force
     and penetration (at ``yc``)."""
-    from rancf.system.contact_outputs import contact_outputs  # loaded with contact only
+    from rancf.system.contact_states import contact_outputs  # loaded with contact only
 
     parts: list = []
     totals: dict = {}  # a static state's seabed friction (static_friction)

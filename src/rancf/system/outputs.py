@@ -43,7 +43,7 @@ caller wrote it, else ``BODY:AT``); a joint's ``NAME_fx ...`` and, for joints th
 moment (``fixed``, a 3D ``revolute``, a driven joint), ``NAME_mz`` or ``NAME_mx, _my, _mz``,
 and for a ``sliding`` joint the arc length ``NAME_s`` [m] of the body's point at its place
 (:mod:`rancf.system.sliding`); then every obstacle's
-(:func:`rancf.system.contact_outputs.contact_outputs`): the force it exerts on the bodies,
+(:func:`rancf.system.contact_states.contact_outputs`): the force it exerts on the bodies,
 ``NAME_normal_x, _y[, _z]`` and ``NAME_friction_x, _y[, _z]`` [N], their moment, the contact
 length ``NAME_length`` [m] and the largest penetration ``NAME_penetration`` [m]; then every
 pair of flexible bodies in contact (``body_contacts``, ``A_B_...``; ``A_A_...``

@@ -127,8 +127,8 @@ class Obstacle:
         self, system: Any, y: NDArray, lam: NDArray, t: float = 0.0
     ) -> Mapping[str, float]:
         """Its contact columns at the coordinates ``y`` without velocities (no friction)
-        (:func:`rancf.system.contact_outputs.contact_outputs`)."""
-        from rancf.system.contact_outputs import contact_outputs
+        (:func:`rancf.system.contact_states.contact_outputs`)."""
+        from rancf.system.contact_states import contact_outputs
 
         c = contact_outputs(system, y)[_system_name(system, self)]
         values = [*c.normal, *c.friction, *np.atleast_1d(c.moment), c.length, c.penetration]
