@@ -105,8 +105,9 @@ def _line(
     index: int, model: Any, hydro: Hydro | None, loads: list[DistributedRecord]
 ) -> LineRecord:
     c = model.family.centre_line(model.kernel)
-    if c is None:
-        raise InputError("hydro", "beam elements", "a body of cable or rod elements")
+    if c is None:  # the key that brought the body here: its [hydro], else a distributed load
+        key = "hydro" if hydro is not None or not loads else "loads.distributed"
+        raise InputError(key, "beam elements", "a body of cable or rod elements")
     h = hydro or Hydro()
     d = h.diameter if h.diameter is not None else math.sqrt(4.0 * model.section.area / math.pi)
     return LineRecord(
