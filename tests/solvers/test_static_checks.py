@@ -576,3 +576,14 @@ def test_a_compressed_straight_hose_is_unstable_and_its_buckled_state_is_found(t
     q = res.q.reshape(-1, 4)
     assert q[:, 1].min() < -0.2
     assert 3.1 < most_compressed(system, res.q)[2] < 5.0
+
+
+def test_an_unstable_end_of_an_arc_length_path_is_kept_with_a_warning(tmp_path):
+    """The column pushed by 1 N along an arc-length path (which passes unstable states on
+    purpose) stays straight: the end state is returned, with one warning naming it."""
+    text = COLUMN.format(push=-1.0) + '\n[solver]\nstatic_method = "arc_length"\n'
+    (tmp_path / "c.toml").write_text(text)
+    sc = load_scenario(tmp_path / "c.toml")
+    with pytest.warns(UserWarning, match="arc-length path ends in an unstable equilibrium"):
+        res = solve_static(sc.build_system(), **sc.static_options())
+    assert res.method == "arc_length" and res.load_factors[-1] == pytest.approx(1.0)

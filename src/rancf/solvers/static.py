@@ -278,6 +278,7 @@ def _checked(system: System, res: StaticResult) -> StaticResult:
         res = replace(res, touchdowns=report.touchdowns)
     why = instability(system, res.y, res.lam)
     if why and res.method == "arc_length":  # a path traced past a limit point: said, kept
+        why = why.split("; try")[0]  # the hints: load steps, imperfection, arc length
         warnings.warn(f"rancf: warning: the arc-length path ends in an {why}", stacklevel=3)
     elif why:
         raise ConvergenceError(
