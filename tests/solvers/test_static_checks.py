@@ -24,9 +24,10 @@ import rancf
 from rancf.errors import ConvergenceError
 from rancf.scenario.scenario import load_scenario
 from rancf.solvers.sag_start import SAG_START
-from rancf.solvers.static import solve_static
+from rancf.solvers.static import solve_equilibrium, solve_static
 from rancf.solvers.static_catenary import catenary_shape
-from rancf.solvers.static_checks import static_state_problems
+from rancf.solvers.static_checks import instability, most_compressed, static_state_problems
+from rancf.solvers.system_equilibrium import SystemEquilibrium
 from rancf.system.seabed import SEABED_PENETRATION
 
 H_U = 263.1579634329022
@@ -509,3 +510,80 @@ def test_a_failed_solve_of_a_curved_spatial_cable_names_its_kink(tmp_path, monke
         kink = "has a kink where it lies straight" in str(err.value)
         assert kink != straight and str(err.value).startswith("static equilibrium not found")
         assert ('stress_free = "straight"' in str(err.value)) != straight
+
+
+#: A 1 m column (EI = 0.0785 N m², EA = 3142 N) clamped at its start, pushed along its axis at
+#: its free end: its Euler load π² EI / (4 L²) is 0.194 N.
+COLUMN = """
+[geometry]
+kind = "line"
+start = [0.0, 0.0]
+end = [1.0, 0.0]
+
+[mesh]
+elements = 8
+
+[section]
+radius = 0.01
+
+[material]
+density = 1200.0
+youngs_modulus = 1.0e7
+
+[[supports]]
+at = "start"
+kind = "clamp"
+
+[[loads.point]]
+at = "end"
+force = [{push}, 0.0]
+"""
+
+
+def test_a_column_past_its_euler_load_exits_3_naming_the_instability(tmp_path):
+    """Pushed by 1 N (5 times its Euler load, a quarter of its elements' own), the straight
+    column converges and passes the per-element compression check, but its tangent has a
+    negative eigenvalue: refused, exit 3, one line naming it and the compression."""
+    p = _cli_static(tmp_path, COLUMN.format(push=-1.0))
+    assert p.returncode == 3, p.stdout
+    lines = [x for x in p.stderr.splitlines() if "unstable equilibrium" in x]
+    assert len(lines) == 1 and "1 negative eigenvalue" in lines[0]
+    assert "compression 1 N in element" in lines[0] and "arc_length" in lines[0]
+
+
+def test_a_column_below_its_euler_load_is_an_equilibrium(tmp_path):
+    """Pushed by 0.1 N (half its Euler load) the straight column is a stable equilibrium."""
+    (tmp_path / "c.toml").write_text(COLUMN.format(push=-0.1))
+    system = load_scenario(tmp_path / "c.toml").build_system()
+    res = solve_static(system)
+    assert instability(system, res.y, res.lam) == ""
+    assert np.abs(res.y[1::4]).max() < 1e-9  # straight: no transverse displacement
+
+
+def test_a_compressed_straight_hose_is_unstable_and_its_buckled_state_is_found(tmp_path):
+    """The installed hose under a 1e-3 m/s² gravity: its load path ends straight, compressed by
+    452 N (20 %) between its clamps; that state is found unstable and the buckled one
+    (compression near the clamped Euler load 4 π² EI / L² = 3.1 N, sagging by 0.27 m) is
+    returned instead."""
+    text = (Path(rancf.__file__).parent / "examples" / "installed-hose.toml").read_text()
+    (tmp_path / "h.toml").write_text(text.replace("-9.81", "-1.0e-3"))
+    system = load_scenario(tmp_path / "h.toml").build_system()
+    path = solve_equilibrium(SystemEquilibrium(system), 10)
+    assert most_compressed(system, path.q)[2] > 400.0  # straight and crushed
+    why = instability(system, path.y, path.lam)
+    assert why.startswith("unstable equilibrium") and "negative eigenvalue" in why
+    res = solve_static(system)
+    q = res.q.reshape(-1, 4)
+    assert q[:, 1].min() < -0.2
+    assert 3.1 < most_compressed(system, res.q)[2] < 5.0
+
+
+def test_an_unstable_end_of_an_arc_length_path_is_kept_with_a_warning(tmp_path):
+    """The column pushed by 1 N along an arc-length path (which passes unstable states on
+    purpose) stays straight: the end state is returned, with one warning naming it."""
+    text = COLUMN.format(push=-1.0) + '\n[solver]\nstatic_method = "arc_length"\n'
+    (tmp_path / "c.toml").write_text(text)
+    sc = load_scenario(tmp_path / "c.toml")
+    with pytest.warns(UserWarning, match="arc-length path ends in an unstable equilibrium"):
+        res = solve_static(sc.build_system(), **sc.static_options())
+    assert res.method == "arc_length" and res.load_factors[-1] == pytest.approx(1.0)

@@ -37,13 +37,15 @@ in, lying on a seabed where it touches one, is far closer to its equilibrium tha
 (a straight or flared line), whose load path needed relaxation or ended in a compressive loop.
 Where that start fails (Newton and relaxation find no equilibrium, or one that fails the
 checks) the load path is followed.  Where the path fails or ends in a state that fails the
-checks, lines with a clamped end (and, after an arc-length path, all lines) are started again
-from their sagged shape before the path's failure is raised.
+checks or is unstable (:func:`~rancf.solvers.static_checks.instability`), lines with a
+clamped end (and, after an arc-length path, all lines) are started again from their sagged
+shape before the path's failure is raised.
 """
 
 from __future__ import annotations
 
 import time
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, replace
 from typing import Literal
@@ -60,7 +62,7 @@ from rancf.solvers.load_path import MIN_INCREMENT, PathState
 from rancf.solvers.newton import newton
 from rancf.solvers.relaxation import relax
 from rancf.solvers.sag_start import SAG_START, clamped_lines, solve_from_sag, touchdown_causes
-from rancf.solvers.static_checks import check_state
+from rancf.solvers.static_checks import check_state, instability
 from rancf.solvers.static_friction import with_friction
 from rancf.solvers.system_equilibrium import SystemEquilibrium
 from rancf.system import System, as_system
@@ -185,7 +187,7 @@ def solve_static(
             return _checked(system, late)
         if again:
             report = check_state(system, res.q)
-            if report.problems:
+            if report.problems or instability(system, res.y, res.lam):
                 res = _sagged(system, at_time, tol, max_iter, on_step, start) or res
             else:
                 res = replace(res, touchdowns=report.touchdowns)
@@ -260,19 +262,31 @@ def _sagged(
 def _checked(system: System, res: StaticResult) -> StaticResult:
     """``res`` with its touchdowns if its state passes
     :func:`~rancf.solvers.static_checks.check_state` (a result that has them passed already);
-    else :class:`~rancf.errors.ConvergenceError` naming the first problem (one line)."""
-    if res.touchdowns is not None:
-        return res
-    report = check_state(system, res.q)
-    problems = report.problems
-    if problems:
-        lam = float(res.load_factors[-1])
+    else :class:`~rancf.errors.ConvergenceError` naming the first problem (one line).  Then
+    its stability (:func:`~rancf.solvers.static_checks.instability`): an unstable state is
+    refused the same way, or, at the end of an arc-length path (which passes unstable states
+    on purpose), kept with a warning."""
+    lam = float(res.load_factors[-1])
+    if res.touchdowns is None:
+        report = check_state(system, res.q)
+        if report.problems:
+            raise ConvergenceError(
+                f"static equilibrium not found: the {res.method} path ended at load factor "
+                f"{lam:.4g} in a state that is no equilibrium: {report.problems[0]}",
+                reached=lam,
+            )
+        res = replace(res, touchdowns=report.touchdowns)
+    why = instability(system, res.y, res.lam)
+    if why and res.method == "arc_length":  # a path traced past a limit point: said, kept
+        why = why.split("; try")[0]  # the hints: load steps, imperfection, arc length
+        warnings.warn(f"rancf: warning: the arc-length path ends in an {why}", stacklevel=3)
+    elif why:
         raise ConvergenceError(
-            f"static equilibrium not found: the {res.method} path ended at load factor {lam:.4g} "
-            f"in a state that is no equilibrium: {problems[0]}",
+            f"static equilibrium not found: the {res.method} path ended at load factor "
+            f"{lam:.4g} in an {why}",
             reached=lam,
         )
-    return replace(res, touchdowns=report.touchdowns)
+    return res
 
 
 def solve_equilibrium(

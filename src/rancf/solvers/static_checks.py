@@ -25,6 +25,10 @@ line).  Criteria (docs/guide/statics.md, "Checked equilibria"):
 * **unresolved touchdown**: where a line meets or leaves a seabed (a fixed plane its wet weight
   ``w`` presses on), its bend radius ``T / w`` under the axial force ``T`` there is shorter than
   the element holding it.
+
+The final state of a static solve is also checked for stability (:func:`instability`, only
+where an element carries compression beyond round-off): a negative eigenvalue of the tangent
+on the constraints' null space is an error, after an arc-length path a warning.
 """
 
 from __future__ import annotations
@@ -43,8 +47,11 @@ __all__ = [
     "COMPRESSION_BUCKLING",
     "COMPRESSION_ROUNDOFF",
     "PENETRATION_LIMIT",
+    "STABILITY_MODES",
     "StateCheck",
     "check_state",
+    "instability",
+    "most_compressed",
     "static_state_problems",
     "self_crossing",
     "touchdown_ratios",
@@ -60,6 +67,8 @@ COMPRESSION_ROUNDOFF = 1e-6
 #: wholly below the surface.  (MoorDyn's own soft seabeds sink lines by half a diameter: its
 #: WD0050 regression input, kBot = 1e5 Pa/m, rests its 0.252 m chain 0.13 m deep.)
 PENETRATION_LIMIT = 1.0
+#: Eigenvalues of the tangent the stability check of a compressed state looks at (the lowest).
+STABILITY_MODES = 6
 
 
 @dataclass(frozen=True)
@@ -115,12 +124,7 @@ def _body_problems(model: Model, y: NDArray[np.float64], sampler: SectionSampler
     crossing = self_crossing(model, x, sampler.s)
     if crossing:
         out.append(crossing)
-    # each element's mean axial force: a coarse element of a stiff line has its own strain
-    # oscillate about the mean by more than the mean (a 20-element chain: -1.0 MN to 2.4 MN
-    # within one element whose mean pulls 1.3 MN), while a loop compresses whole elements
-    starts = sampler.s[::k][: model.n_el]
-    ell = np.diff(np.r_[starts, sampler.s[-1]])
-    mean = np.array([vals[el == e, 1].mean() for e in range(model.n_el)])
+    starts, ell, mean = _element_forces(model, vals, sampler)
     allowed = (
         COMPRESSION_BUCKLING * np.pi**2 * model.props.ei / ell**2
         + COMPRESSION_ROUNDOFF * model.props.ea
@@ -133,6 +137,78 @@ def _body_problems(model: Model, y: NDArray[np.float64], sampler: SectionSampler
             f"({COMPRESSION_BUCKLING:g} π² EI / ℓ² + {COMPRESSION_ROUNDOFF:g} EA)"
         )
     return out
+
+
+def _element_forces(
+    model: Model, vals: NDArray[np.float64], sampler: SectionSampler
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """Each element's start arc length, reference length and mean axial force over its sample
+    points (``vals``: ``sampler``'s values).  The mean: a coarse element of a stiff line has
+    its own strain oscillate about it by more than it (a 20-element chain: -1.0 MN to 2.4 MN
+    within one element whose mean pulls 1.3 MN), while a loop compresses whole elements."""
+    k = sampler.per_element
+    el = np.minimum(np.arange(vals.shape[0]) // k, model.n_el - 1)
+    starts = sampler.s[::k][: model.n_el]
+    ell = np.diff(np.r_[starts, sampler.s[-1]])
+    mean = np.array([vals[el == e, 1].mean() for e in range(model.n_el)])
+    return starts, ell, mean
+
+
+def most_compressed(system: Any, q: NDArray[np.float64]) -> tuple[str, int, float, float] | None:
+    """The element carrying the largest mean compression beyond round-off
+    (``N < -COMPRESSION_ROUNDOFF EA``) in the state ``q`` (full coordinates) of ``system``:
+    its body, index, compression ``-N`` [N] and own Euler load ``π² EI / ℓ²`` [N]; None when
+    no element does (a tensioned line)."""
+    worst: tuple[str, int, float, float] | None = None
+    for name, model in zip(system.names, system.flex, strict=False):
+        sampler = SectionSampler(model)
+        y = model.y_from_q(np.asarray(q)[system.body_slice(name)])
+        _, ell, mean = _element_forces(model, sampler.values(y), sampler)
+        e = int(np.argmin(mean))
+        if mean[e] < -COMPRESSION_ROUNDOFF * model.props.ea and (
+            worst is None or -mean[e] > worst[2]
+        ):
+            worst = (name, e, float(-mean[e]), float(np.pi**2 * model.props.ei / ell[e] ** 2))
+    return worst
+
+
+def instability(system: Any, y: NDArray[np.float64], lam: NDArray[np.float64] | None) -> str:
+    """Why the converged static state ``y`` (model coordinates; multipliers ``lam``) of
+    ``system`` is no stable equilibrium, or ``""``.  Checked only where an element carries
+    compression beyond round-off (:func:`most_compressed`; a tensioned line pays nothing): the
+    lowest :data:`STABILITY_MODES` eigenvalues ``λ`` of the tangent stiffness on the null space
+    of the constraints, ``K φ + Gᵀ μ = λ M φ``, ``G φ = 0``
+    (:func:`rancf.solvers.modal.natural_modes`: dense for small models, shift-invert near 0
+    beyond; a follower load's non-symmetric tangent by QZ / Arnoldi); one with a negative real
+    part beyond round-off (a growth rate > 0) makes the state unstable: past a buckling load,
+    it is no equilibrium a line rests in (docs/guide/statics.md, "Checked equilibria").  Not
+    with drums: a drum's line has its length outside the drum as a coordinate, which the
+    section samples do not follow (a hanging wire read as compressed by 778 N), and a drum
+    held by a constant torque is a divergent equilibrium of its own (the line paid out weighs
+    more: growth rate 0.49 1/s in ``drum-hoist.toml``) that its runs start from on purpose."""
+    from rancf.solvers.modal import natural_modes  # modal builds on the solvers importing us
+
+    if getattr(system, "drums", None):
+        return ""
+    q = system.q_from_y(np.asarray(y))
+    worst = most_compressed(system, q)
+    n_free = int(np.sum(~system.fixed))
+    if worst is None or n_free < 2:
+        return ""
+    res = natural_modes(system, y, min(STABILITY_MODES, n_free - 1), lam)
+    bad = (res.growth_rates > 0) & (np.asarray(res.eigenvalues).real < 0)
+    if not np.any(bad):
+        return ""
+    low = complex(np.asarray(res.eigenvalues)[bad][0])
+    name, e, n_c, euler = worst
+    return (
+        f"unstable equilibrium: the tangent stiffness has {int(bad.sum())} negative "
+        f"eigenvalue(s) on the constraints' null space (lowest λ = ω² = {low.real:.4g} 1/s², "
+        f"growth rate {float(res.growth_rates[bad].max()):.4g} 1/s), compression "
+        f"{n_c:.4g} N in element {e} of body {name!r} (its own Euler load π² EI / ℓ² is "
+        f"{euler:.3g} N): the state is past a buckling load; try more load steps, an "
+        'imperfection (a slightly bent reference) or solver.static_method = "arc_length"'
+    )
 
 
 def self_crossing(model: Model, x: NDArray[np.float64], s: NDArray[np.float64]) -> str:
