@@ -19,6 +19,8 @@ from dataclasses import dataclass
 #: k = w / (0.01 D) and the contact offset D / 2).
 DIAMETER = 0.1
 G = 9.81
+#: Density of the seawater [kg/m³].
+WATER = 1025.0
 #: A line on the seabed with its default stiffness sinks in by this fraction of its diameter
 #: (``rancf.system.seabed.SEABED_PENETRATION``): the plane is that much higher than a tube
 #: touching it at the bed's depth, so that the resting line lies at MoorPy's seabed depth.
@@ -211,10 +213,12 @@ def scenario_text(case: Case, elements: int) -> str:
     INERTIA) drawn straight from the anchor at the origin toward the fairlead with its
     unstretched length, its end pinned at the fairlead; the seabed (if any) a plane on which
     the resting line lies at the anchor's depth (``CB >= 0``) or ``|CB|`` below it
-    (:data:`SINK`), sloped by ``alpha``, its friction ``CB`` in statics.  A buoyant line
-    (``w < 0``) has gravity upward.  The line is in seawater without hydrodynamic
-    coefficients: its weight stays ``w`` (MoorPy's wet weight) and the seabed's default
-    stiffness is that of a seabed, ``w / (0.01 D)``."""
+    (:data:`SINK`), sloped by ``alpha``, its friction ``CB`` in statics.  The line weighs
+    ``|w|`` in air and is in seawater without hydrodynamic coefficients: its weight stays ``w``
+    (MoorPy's wet weight) and the seabed's default stiffness is that of a seabed,
+    ``w / (0.01 D)``; a buoyant line (``w < 0``) gets ``[hydro]`` coefficients whose
+    diameter displaces water weighing ``2 |w|``, so that its wet weight is ``w``, as a user
+    would give it."""
     area = math.pi * DIAMETER**2 / 4.0
     chord = math.hypot(case.x, case.z)
     ux, uz = case.x / chord, case.z / chord
@@ -246,12 +250,15 @@ def scenario_text(case: Case, elements: int) -> str:
         f"position = [{case.x!r}, {case.z!r}]",
         "",
         "[loads]",
-        f"gravity = [0.0, {math.copysign(G, -case.w)!r}]",
+        f"gravity = [0.0, {-G!r}]",
         "",
         "[fluid]",
-        "density = 1025.0",
+        f"density = {WATER!r}",
         "",
     ]
+    if case.w < 0.0:  # buoyancy of twice its weight: a hydrodynamic diameter displacing 2 |w|
+        d = math.sqrt(8.0 * abs(case.w) / (math.pi * WATER * G))
+        lines += ["[hydro]", f"diameter = {d!r}", ""]
     if case.cb is not None:
         depth = 0.0 if case.cb >= 0.0 else -case.cb
         a = math.radians(case.alpha)

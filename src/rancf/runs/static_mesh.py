@@ -56,6 +56,7 @@ from typing import Any
 
 __all__ = [
     "TOUCHDOWN_RESOLUTION",
+    "FREE_RESOLUTION",
     "MAX_ELEMENTS",
     "MeshNote",
     "Refinement",
@@ -67,16 +68,19 @@ __all__ = [
 #: Elements at a touchdown at most this fraction of the bend radius ``T / w`` (module docstring:
 #: a third left the stiff U with several equilibria).
 TOUCHDOWN_RESOLUTION = 1.0 / 6.0
+#: Elements of a line hanging free at most this multiple of its smallest bend radius ``H / w``
+#: (module docstring; its curvature has no jump there).
+FREE_RESOLUTION = 1.0
 #: A refined body has at most this many elements.
 MAX_ELEMENTS = 2560
 
 
-def _halvings(ratio: float, n: int) -> int:
-    """How many times ``n`` elements whose length is ``ratio`` bend radii are halved (0 when
-    resolved or at :data:`MAX_ELEMENTS`)."""
-    if not ratio > TOUCHDOWN_RESOLUTION:
+def _halvings(ratio: float, n: int, resolution: float = TOUCHDOWN_RESOLUTION) -> int:
+    """How many times ``n`` elements whose length is ``ratio`` bend radii are halved to at most
+    ``resolution`` of it (0 when resolved or at :data:`MAX_ELEMENTS`)."""
+    if not ratio > resolution:
         return 0
-    m = math.ceil(math.log2(ratio / TOUCHDOWN_RESOLUTION) - 1e-12) if math.isfinite(ratio) else 1
+    m = math.ceil(math.log2(ratio / resolution) - 1e-12) if math.isfinite(ratio) else 1
     while m > 0 and n * 2**m > MAX_ELEMENTS:
         m -= 1
     return max(m, 0)
@@ -103,26 +107,36 @@ class Refinement:
 
 
 def refine_for_touchdowns(
-    sc: Any, system: Any, ratios: dict[str, tuple[float, float]], use: str = "the static solve"
+    sc: Any,
+    system: Any,
+    ratios: dict[str, tuple[float, float]],
+    use: str = "the static solve",
+    free: dict[str, tuple[float, float]] | None = None,
 ) -> Refinement:
     """``sc`` with the elements of every body of ``system`` whose touchdown ``ratios``
     (element length over bend radius, and that element's length) exceed
-    :data:`TOUCHDOWN_RESOLUTION` divided (module docstring), and the notes; no scenario and no
-    notes when nothing needs it, no scenario and notes saying so where the scenario names
-    nodes by index.  ``use``: what the refined mesh is for, named in the notes."""
+    :data:`TOUCHDOWN_RESOLUTION`, or whose ``free`` ratios (of a line hanging free, at its
+    smallest bend radius) exceed :data:`FREE_RESOLUTION`, divided (module docstring), and the
+    notes; no scenario and no notes when nothing needs it, no scenario and notes saying so
+    where the scenario names nodes by index.  ``use``: what the refined mesh is for, named in
+    the notes."""
     counts = _element_counts(sc)
     factors: dict[str, int] = {}
     why: dict[str, str] = {}
-    for name, (ratio, ell) in ratios.items():
-        n = system.bodies[name].n_el
-        m = 0 if name not in counts else _halvings(ratio, n)
-        if m > 0:
-            factors[name] = 2**m
-            why[name] = (
-                f"where it meets the seabed it bends with the radius T/w = {ell / ratio:.3g} m, "
-                f"which its {ell:.3g} m elements there do not resolve (at most "
-                f"{TOUCHDOWN_RESOLUTION:.2g} of it: docs/guide/statics.md)"
-            )
+    rules = (
+        (ratios, TOUCHDOWN_RESOLUTION, "where it meets the seabed it bends with the radius T/w"),
+        (free or {}, FREE_RESOLUTION, "hanging free it bends with the radius H/w"),
+    )
+    for found, resolution, where in rules:
+        for name, (ratio, ell) in found.items():
+            n = system.bodies[name].n_el
+            m = 0 if name not in counts else _halvings(ratio, n, resolution)
+            if m > 0:
+                factors[name] = 2**m
+                why[name] = (
+                    f"{where} = {ell / ratio:.3g} m, which its {ell:.3g} m elements there do "
+                    f"not resolve (at most {resolution:.2g} of it: docs/guide/statics.md)"
+                )
     if not factors:
         return Refinement(None)
     if _node_indexed(sc.model_dump(by_alias=True, exclude_unset=True)):
@@ -153,7 +167,9 @@ def refine_for_start(sc: Any, system: Any, use: str = "the static solve") -> Ref
     bend radii of the lines' sagged start shapes where they meet a seabed
     (:func:`start_ratios`): the one rule of ``rancf static`` and of a time-domain run's static
     start (module docstring); ``use`` as there."""
-    return refine_for_touchdowns(sc, system, start_ratios(system), use)
+    from rancf.solvers.sag_start import start_free_bends
+
+    return refine_for_touchdowns(sc, system, start_ratios(system), use, start_free_bends(system))
 
 
 def refined(sc: Any, factors: dict[str, int]) -> Any:

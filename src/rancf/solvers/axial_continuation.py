@@ -12,13 +12,13 @@ about 200 Newton iterations from there at 320 elements, whatever the mesh; with 
 hundred times lower, 23, and with ``1e4`` times lower, 12.
 
 So the sagged start (:mod:`rancf.solvers.sag_start`) of a system with a slack line whose
-``EA`` exceeds :data:`STIFF_RATIO` times its weight ``W`` (the magnitude of the sum of its
-gravity forces) solves with the ``EA`` of every such line lowered to :data:`START_RATIO`
-``W`` first, then raises it :data:`RISE` times per Newton solve, each from the last state, to
-its own value: the equilibria of neighbouring stiffnesses lie within each other's quadratic
-convergence.  The intermediate solves stop at the scaled increment :data:`STAGE_TOL` (the
-next one goes on from there), the last at the solver's tolerance; each has at most
-:data:`STAGE_ITERATIONS` iterations, and a failed one ends the continuation (the caller then
+``EA`` exceeds :data:`STIFF_RATIO` times its weight ``W`` (the magnitude of its wet weight,
+buoyancy counted: :func:`rancf.system.seabed.wet_weight`) solves with the ``EA`` of every such
+line lowered to :data:`START_RATIO` ``W`` first, then raises it :data:`RISE` times per Newton
+solve, each from the last state, to its own value: the equilibria of neighbouring stiffnesses
+lie within each other's quadratic convergence.  The intermediate solves stop at the scaled increment
+:data:`STAGE_TOL` (the next one goes on from there), the last at the solver's tolerance; each has at
+most :data:`STAGE_ITERATIONS` iterations, and a failed one ends the continuation (the caller then
 goes on from the start shape without it).  The model's ``EA`` is restored in every case.
 Equilibria are those of the line's own ``EA``: the continuation is a path to them, not a
 change of the model.
@@ -33,8 +33,10 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from rancf.bodies.length import unstretched_length
 from rancf.solvers.newton import NewtonOutcome, newton
 from rancf.solvers.system_equilibrium import SystemEquilibrium
+from rancf.system.seabed import wet_weight
 
 __all__ = [
     "STIFF_RATIO",
@@ -58,19 +60,21 @@ STAGE_TOL = 1.0e-6
 STAGE_ITERATIONS = 40
 
 
-def _weight(model: Any) -> float:
-    """The magnitude of the sum of a body's nodal gravity forces [N]."""
-    f = np.asarray(model.f_gravity, dtype=float).reshape(-1, model.dpn)[:, : model.dim]
-    return float(np.linalg.norm(f.sum(axis=0)))
+def _weight(system: Any, name: str) -> float:
+    """The magnitude of body ``name``'s wet weight [N]: its wet weight per length
+    (:func:`rancf.system.seabed.wet_weight`, buoyancy counted) times its unstretched length."""
+    model = system.bodies[name]
+    w = float(np.linalg.norm(wet_weight(system, name)))
+    return w * unstretched_length(model)
 
 
 def stiff_lines(system: Any, names: list[str]) -> list[tuple[Any, float, float]]:
     """``(core, EA, W)`` of every body in ``names`` whose ``EA`` exceeds :data:`STIFF_RATIO`
-    times its weight ``W`` (module docstring)."""
+    times its wet weight ``W`` (module docstring)."""
     out = []
     for name in names:
         model = system.bodies[name]
-        w = _weight(model)
+        w = _weight(system, name)
         ea = float(model.core.axial_stiffness)
         if w > 0.0 and ea > STIFF_RATIO * w:
             out.append((model.core, ea, w))

@@ -9,21 +9,23 @@ nodes hold their positions (supports, installed where they are installed) and wh
 arc length ``L`` (its unstretched length: :func:`rancf.bodies.length.unstretched_length`)
 exceeds the chord between them, the inextensible catenary of length ``L``
 between the installed end positions in the vertical plane through them (vertical: against the
-body's gravity).  Where that catenary dips below a fixed plane facing up against gravity that
-the body touches (a seabed), the shape is instead two catenaries from the ends down to
-touchdown points, where they are tangent to the plane, and the line straight on the plane
-between them (no friction: one horizontal tension ``H = w a`` throughout); the centerline lies
-one tube radius ``sqrt(A / π)`` above the plane.  On a sloped plane (its normal within 60° of
-``up``; MoorPy's ``alpha``) whose line in that vertical plane rises by ``tan β`` per metre, a
-line with one end on the plane lies straight on it from that end to a touchdown point, where
-the catenary to the other end leaves it tangent to it (``sinh u = tan β`` there; MoorPy's
-frictionless sloped seabed: the grounded length and ``a`` from the two conditions that the
-catenary reaches the other end and the lengths add up; :mod:`rancf.solvers.static_catenary`);
-a line with both ends above a sloped plane hangs free.  Each node is placed at the point of the
-shape at its unstretched arc length (:func:`rancf.bodies.length.unstretched_length`), its
-gradient ``r_x`` along the shape's tangent with the length of its unstretched gradient
-(``λ |r0_x|``, the element's gradient scale times the length scale ``λ`` of
-docs/derivations/variable-length.md §2.1).
+body's wet weight per length, its weight less its buoyancy in a ``[fluid]`` where it has
+``hydro`` coefficients, :func:`rancf.system.seabed.wet_weight`: a buoyant line arches up, the
+catenary flipped; a line as heavy as the water it displaces has no start shape).  Where that
+catenary dips below a fixed plane facing up (against that weight) that the body touches (a
+seabed), the shape is instead two catenaries from the ends down to touchdown points, where
+they are tangent to the plane, and the line straight on the plane between them (no friction: one
+horizontal tension ``H = w a`` throughout); the centerline lies one tube radius ``sqrt(A / π)``
+above the plane.  On a sloped plane (its normal within 60° of ``up``; MoorPy's ``alpha``) whose line
+in that vertical plane rises by ``tan β`` per metre, a line with one end on the plane lies straight
+on it from that end to a touchdown point, where the catenary to the other end leaves it tangent to
+it (``sinh u = tan β`` there; MoorPy's frictionless sloped seabed: the grounded length and ``a``
+from the two conditions that the catenary reaches the other end and the lengths add up;
+:mod:`rancf.solvers.static_catenary`); a line with both ends above a sloped plane hangs free.  Each
+node is placed at the point of the shape at its unstretched arc length
+(:func:`rancf.bodies.length.unstretched_length`), its gradient ``r_x`` along the shape's tangent
+with the length of its unstretched gradient (``λ |r0_x|``, the element's gradient scale times the
+length scale ``λ`` of docs/derivations/variable-length.md §2.1).
 A line shorter than that chord (installed stretched) starts straight between its held ends,
 stretched evenly (its gradients too).  Other bodies keep their reference.  From there Newton's
 method at the full load with the supports installed (the last stage's end): where a sagged line
@@ -47,10 +49,10 @@ from rancf.bodies.length import length_scale
 from rancf.solvers.axial_continuation import continued_newton, stiff_lines
 from rancf.solvers.newton import NewtonOutcome, newton
 from rancf.solvers.relaxation import relax
-from rancf.solvers.static_catenary import catenary_shape, touchdowns
+from rancf.solvers.static_catenary import catenary_shape, free_bend_radii, touchdowns
 from rancf.solvers.system_equilibrium import SystemEquilibrium
 from rancf.system.parts.contact_pair import ContactPair
-from rancf.system.seabed import pressing_weight
+from rancf.system.seabed import pressing_weight, wet_weight
 
 __all__ = [
     "SAG_START",
@@ -60,6 +62,7 @@ __all__ = [
     "clamped_lines",
     "touchdown_radius",
     "start_touchdowns",
+    "start_free_bends",
     "touchdown_causes",
 ]
 
@@ -145,7 +148,8 @@ def _clamped(model: Model, node: int) -> bool:
 def _line_geometry(system: Any, name: str, model: Model, pinned: bool = False) -> Any:
     """``(q, up, p1, chord, s_nodes, span, rise)`` of a cable body whose two end nodes hold
     their positions (installed; ``q`` the installed nodal coordinates ``(n_nodes, dpn)``, ``up``
-    against gravity, ``p1`` the start, ``s_nodes`` the nodes' reference arc lengths), or None
+    against its wet weight (:func:`rancf.system.seabed.wet_weight`), ``p1`` the start,
+    ``s_nodes`` the nodes' reference arc lengths), or None
     (no such line; ``pinned``: None also where an end holds its direction)."""
     if not model.family.cable or model.closed or model.gravity is None:
         return None
@@ -154,10 +158,10 @@ def _line_geometry(system: Any, name: str, model: Model, pinned: bool = False) -
         return None
     if pinned and any(_clamped(model, k) for k in ends):
         return None
-    g = np.asarray(model.gravity, dtype=float)
-    if not np.linalg.norm(g) > 0.0:
+    w = wet_weight(system, name)[: model.dim]
+    if not np.linalg.norm(w) > 0.0:
         return None
-    up = -g / np.linalg.norm(g)
+    up = -w / np.linalg.norm(w)
     q = model.q_from_y(model.y_installed).reshape(model.n_nodes, model.dpn)
     p1 = q[0, : model.dim]
     chord = q[-1, : model.dim] - p1
@@ -198,6 +202,29 @@ def start_touchdowns(system: Any) -> dict[str, tuple[float, float]]:
         starts = np.r_[0.0, np.cumsum(ell)]
         e = np.clip(np.searchsorted(starts, found[1], side="right") - 1, 0, ell.size - 1)
         out[name] = (float(ell[e].max()) / found[0], float(ell[e].max()))
+    return out
+
+
+def start_free_bends(system: Any) -> dict[str, tuple[float, float]]:
+    """Per cable body whose sagged start shape hangs free (meets no seabed), the largest ratio
+    of an element's length to the smallest bend radius of that shape along it
+    (:func:`rancf.solvers.static_catenary.free_bend_radii`: ``H / w`` at the vertex, a buoyant
+    line's crest), and that element's length."""
+    out = {}
+    for name, model in zip(system.names, system.flex, strict=False):
+        geo = _line_geometry(system, name, model)
+        if geo is None:
+            continue
+        q, up, p1, chord, s_nodes, span, rise = geo
+        length = float(s_nodes[-1])
+        if float(np.linalg.norm(chord)) * (1.0 + SLACK_RTOL) >= length or span <= 1e-9 * length:
+            continue
+        if touchdown_radius(system, name, model) is not None:
+            continue  # on a seabed: start_touchdowns
+        ell = np.diff(s_nodes)
+        ratio = ell / free_bend_radii(span, rise, length, s_nodes)
+        e = int(np.argmax(ratio))
+        out[name] = (float(ratio[e]), float(ell[e]))
     return out
 
 

@@ -20,7 +20,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["catenary_shape", "touchdowns"]
+__all__ = ["catenary_shape", "free_bend_radii", "touchdowns"]
 
 
 def _bisect(f: Any, lo: float, hi: float, n: int = 200) -> float:
@@ -142,6 +142,18 @@ def _sloped_shape(
     if mirror:  # from the end back: x measured from the end, the tangent reversed
         return np.c_[span - x, z + floor + span * slope], np.c_[tan[:, 0], -tan[:, 1]]
     return np.c_[x, z + floor], tan
+
+
+def free_bend_radii(span: float, rise: float, length: float, s: NDArray) -> NDArray[np.float64]:
+    """The smallest bend radius ``a cosh²(u)`` (``u = (x - x_v) / a``, :func:`_free`) over each
+    stretch ``[s_i, s_(i+1)]`` of the arc lengths ``s`` along the inextensible catenary of
+    ``length`` hanging free from ``(0, 0)`` to ``(span, rise)``: ``a`` at the vertex where the
+    stretch holds it (``n - 1`` values)."""
+    a, xv = _free(span, rise, length)
+    u = np.arcsinh(math.sinh(-xv / a) + np.clip(np.asarray(s, dtype=float), 0.0, length) / a)
+    lo, hi = u[:-1], u[1:]
+    nearest = np.where((lo <= 0.0) & (hi >= 0.0), 0.0, np.minimum(np.abs(lo), np.abs(hi)))
+    return np.asarray(a * np.cosh(nearest) ** 2, dtype=float)
 
 
 def catenary_shape(

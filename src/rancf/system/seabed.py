@@ -27,21 +27,22 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["SEABED_PENETRATION", "seabed_stiffness", "pressing_weight"]
+__all__ = ["SEABED_PENETRATION", "seabed_stiffness", "pressing_weight", "wet_weight"]
 
 #: The default seabed stiffness lets the line's own wet weight press it in by this fraction of
 #: its diameter.
 SEABED_PENETRATION = 0.01
 
 
-def pressing_weight(system: Any, body: str, normal: np.ndarray) -> float:
-    """The wet weight per reference length [N/m] of flexible body ``body`` of ``system`` along
-    the inward normal ``-normal`` (unit, 3 components) of a plane: ``(ρ A − ρ_f A_f) (−g · n̂)``
-    (module docstring); 0 without gravity, negative when it lifts the body off."""
+def wet_weight(system: Any, body: str) -> np.ndarray:
+    """The wet weight per reference length [N/m] of flexible body ``body`` of ``system`` as a
+    vector (3 components): ``(ρ A − ρ_f A_f) g`` (module docstring; the buoyancy counted
+    wherever the body has ``hydro`` coefficients in a ``[fluid]``, as if wholly submerged);
+    zero without gravity, against ``g`` for a line lighter than the water it displaces."""
     model = system.bodies[body]
     g = getattr(model, "gravity", None)
     if g is None:
-        return 0.0
+        return np.zeros(3)
     g3 = np.r_[np.asarray(g, float), np.zeros(3 - len(g))]
     mass = model.material.density * model.section.area
     fluid, hydro = getattr(system, "fluid", None), getattr(system, "hydro", {}) or {}
@@ -49,7 +50,15 @@ def pressing_weight(system: Any, body: str, normal: np.ndarray) -> float:
         h = hydro[body]
         d = h.diameter if h.diameter is not None else math.sqrt(4.0 * model.section.area / math.pi)
         mass -= fluid.density * math.pi * d * d / 4.0
-    return float(mass * -(g3 @ normal))
+    return np.asarray(mass * g3, dtype=float)
+
+
+def pressing_weight(system: Any, body: str, normal: np.ndarray) -> float:
+    """The wet weight per reference length [N/m] of flexible body ``body`` of ``system`` along
+    the inward normal ``-normal`` (unit, 3 components) of a plane: ``(ρ A − ρ_f A_f) (−g · n̂)``
+    (module docstring, :func:`wet_weight`); 0 without gravity, negative when it lifts the body
+    off."""
+    return float(-(wet_weight(system, body) @ normal))
 
 
 def seabed_stiffness(system: Any, body: str, obstacle: Any, normal: np.ndarray) -> float | None:
