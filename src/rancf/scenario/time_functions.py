@@ -202,52 +202,35 @@ def _time_kind(v: Any) -> str | None:
     return None
 
 
+#: The TIME_FUNCTION forms before a table (a number, a vector) and after it (the function
+#: tables and, in Python, a :class:`~rancf.bodies.time_function.TimeFunction` or a callable),
+#: in the order the schema lists them.
+_PLAIN = Annotated[Number, Tag("[number]")] | Annotated[Vector123, Tag("[vector]")]
+_FUNCTIONS = (
+    Annotated[RampFunction, Tag("[ramp]")]
+    | Annotated[HarmonicFunction, Tag("[harmonic]")]
+    | Annotated[SpinUpFunction, Tag("[spin_up]")]
+    | SkipJsonSchema[
+        Annotated[
+            TimeFunction,
+            PlainValidator(_python_function),
+            PlainSerializer(_serialize_python),
+            Tag("[python]"),
+        ]
+    ]
+)
+#: The value's kind picks its form (:func:`_time_kind`).
+_KIND = KindOf(
+    _time_kind,
+    custom_error_type="time_function",
+    custom_error_message="must be a time function",
+)
 #: A TIME_FUNCTION value: a number, a vector, one of the function tables, or (Python) a
 #: :class:`~rancf.bodies.time_function.TimeFunction` or a callable.
-TimeFunctionValue = Annotated[
-    Annotated[Number, Tag("[number]")]
-    | Annotated[Vector123, Tag("[vector]")]
-    | Annotated[TableFunction, Tag("[table]")]
-    | Annotated[RampFunction, Tag("[ramp]")]
-    | Annotated[HarmonicFunction, Tag("[harmonic]")]
-    | Annotated[SpinUpFunction, Tag("[spin_up]")]
-    | SkipJsonSchema[
-        Annotated[
-            TimeFunction,
-            PlainValidator(_python_function),
-            PlainSerializer(_serialize_python),
-            Tag("[python]"),
-        ]
-    ],
-    KindOf(
-        _time_kind,
-        custom_error_type="time_function",
-        custom_error_message="must be a time function",
-    ),
-]
+TimeFunctionValue = Annotated[_PLAIN | Annotated[TableFunction, Tag("[table]")] | _FUNCTIONS, _KIND]
 #: A support's ``motion``: a TIME_FUNCTION whose table may hold absolute positions
 #: (:class:`PathTable`).
-MotionValue = Annotated[
-    Annotated[Number, Tag("[number]")]
-    | Annotated[Vector123, Tag("[vector]")]
-    | Annotated[PathTable, Tag("[table]")]
-    | Annotated[RampFunction, Tag("[ramp]")]
-    | Annotated[HarmonicFunction, Tag("[harmonic]")]
-    | Annotated[SpinUpFunction, Tag("[spin_up]")]
-    | SkipJsonSchema[
-        Annotated[
-            TimeFunction,
-            PlainValidator(_python_function),
-            PlainSerializer(_serialize_python),
-            Tag("[python]"),
-        ]
-    ],
-    KindOf(
-        _time_kind,
-        custom_error_type="time_function",
-        custom_error_message="must be a time function",
-    ),
-]
+MotionValue = Annotated[_PLAIN | Annotated[PathTable, Tag("[table]")] | _FUNCTIONS, _KIND]
 
 
 def time_function(v: Any) -> TimeFunction:
