@@ -187,10 +187,9 @@ def solve_static(
             return _checked(system, late)
         if again:
             report = check_state(system, res.q)
-            if report.problems or instability(system, res.y, res.lam):
-                res = _sagged(system, at_time, tol, max_iter, on_step, start) or res
-            else:
-                res = replace(res, touchdowns=report.touchdowns)
+            if not report.problems and not instability(system, res.y, res.lam):
+                return replace(res, touchdowns=report.touchdowns)  # checked, and stable
+            res = _sagged(system, at_time, tol, max_iter, on_step, start) or res
         return _checked(system, res)
     hold_drums(system, True)  # driven drums: the line loaded at their start lengths first
     try:
