@@ -27,7 +27,6 @@ them.
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 import numpy as np
@@ -37,6 +36,7 @@ from rancf.bodies.length import unstretched_length
 from rancf.bodies.nodal_forces import nodal_axial_forces, recovers_axial_force
 from rancf.errors import ConvergenceError, InputError, ScenarioError
 from rancf.solvers.catenary import Target, catenary, catenary_length
+from rancf.system.seabed import wet_weight
 
 __all__ = ["find_form", "form_lines", "form_summary", "line_measure", "RTOL", "SAMPLES"]
 
@@ -147,13 +147,9 @@ class _Search:
         m, s = self.model, self.system
         pos, _ = _ends(m, m.y_installed)
         span, rise, _, _ = _span(m, pos[0], pos[-1])
-        g = float(np.linalg.norm(m.gravity))
-        w = m.props.rho_a * g
-        hydro = getattr(s, "hydro", {}).get(self.name)
-        fluid = getattr(s, "fluid", None)
-        if hydro is not None and fluid is not None:
-            d = hydro.diameter or math.sqrt(4.0 * m.section.area / math.pi)
-            w -= fluid.density * g * math.pi * d * d / 4.0
+        wet = wet_weight(s, self.name)  # along gravity: the weight less the buoyancy
+        g = np.r_[np.asarray(m.gravity, float), np.zeros(3 - len(m.gravity))]
+        w = float(wet @ g / np.linalg.norm(g)) if g.any() else 0.0
         return span, rise, w
 
     def estimate(self, shift: float = 0.0) -> float:
