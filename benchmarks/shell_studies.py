@@ -27,6 +27,7 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
+from threadpoolctl import threadpool_limits
 
 from rancf.bodies.shell import ShellBody, ShellSupport
 from rancf.bodies.shell_supports import constraint_rows
@@ -162,21 +163,22 @@ def k_row(case: str, n: int, k: float | str) -> dict[str, float]:
     spread = max(float(d.scales.max() / d.scales.min()) for d in (mesh.u, mesh.v))
     c, _ = constraint_rows(body)
     kk = kernel.tangent(body.q0)
-    z = sla.null_space(c.toarray())
     u = cases.saddle_solve(kk, c, f)
     at, comp, sign = K_READ[case]
     w = sign * float(body.position(at, body.q0 + u)[comp] - body.position(at)[comp])
-    kz = z.T @ kk.toarray() @ z
-    mz = z.T @ kernel.mass().toarray() @ z
-    jacobi = 1.0 / np.sqrt(np.diag(kz))
-    return {
-        "spread": spread,
-        "cond_m": _cond(np.linalg.eigvalsh(kernel.mass().toarray())),
-        "cond_k": _cond(np.linalg.eigvalsh(kz)),
-        "cond_kj": _cond(np.linalg.eigvalsh(jacobi[:, None] * kz * jacobi[None, :])),
-        "omega_max": _omega_max(kz, mz),
-        "w": w,
-    }
+    with threadpool_limits(1):  # small dense problems: threads only contend on a shared machine
+        z = sla.null_space(c.toarray())
+        kz = z.T @ kk.toarray() @ z
+        mz = z.T @ kernel.mass().toarray() @ z
+        jacobi = 1.0 / np.sqrt(np.diag(kz))
+        return {
+            "spread": spread,
+            "cond_m": _cond(np.linalg.eigvalsh(kernel.mass().toarray())),
+            "cond_k": _cond(np.linalg.eigvalsh(kz)),
+            "cond_kj": _cond(np.linalg.eigvalsh(jacobi[:, None] * kz * jacobi[None, :])),
+            "omega_max": _omega_max(kz, mz),
+            "w": w,
+        }
 
 
 def _fmt(x: float) -> str:
