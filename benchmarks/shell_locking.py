@@ -36,7 +36,8 @@ ROOF_REF = -0.3006
 PINCHED_REF = -1.8248e-5
 PLATE_COEF = 0.00406235
 #: Pinched hemisphere with an 18° hole: the radial displacement under a load (MacNeal & Harder
-#: 1985 give 0.094; the Kirchhoff–Love value used by Kiendl et al. 2009 and later is 0.0924).
+#: 1985 give 0.094; 0.0924 is the value of Belytschko et al. 1985 that the Kirchhoff–Love IGA
+#: papers, Kiendl et al. 2009 among them, compare with).
 HEMISPHERE_REF = 0.0924
 #: The unit square plate and its four edges.
 SQUARE = {"kind": "rectangle", "corner": [0.0, 0.0], "size": [1.0, 1.0]}

@@ -7,8 +7,8 @@
 * The mapping factor K of the circular directions (sec. 3, eq. 3.7): one fixed K on every
   element of the Scordelis–Lo roof and the pinched hemisphere of benchmarks/shell_locking.py,
   from K = 0.01 to 0.99, against Kopt = 1/2: the spread of the nodal gradient scales, the
-  condition numbers of ``M`` and of the supported ``K`` (on the null space of ``C``), and the
-  displacement.
+  condition numbers of ``M`` and of the supported ``K`` (on the null space of ``C``), also
+  scaled by its diagonal, the highest frequency, and the displacement.
 
 Prints the Markdown tables of docs/derivations/shell.md sec. 9; the cases are also the tests'
 (tests/kernels/test_shell_studies.py), on coarse meshes.
@@ -39,10 +39,10 @@ import shell_locking as cases  # noqa: E402
 
 #: The plate: side, thickness, E, ν, ρ.
 PLATE = (1.0, 0.01, 2e11, 0.3, 7850.0)
-#: The mapping factors of the K study (Kopt = 1/2 for every circular element, eq. 3.7).
 #: ``ω²`` below this fraction of ``max|K| / max|M|`` is a zero-energy mode (round-off leaves
 #: the rigid modes of a free 2 × 2 plate at 1e-16 of it; its first pinned mode is at 2e-4).
 ZERO_RTOL = 1e-10
+#: The mapping factors of the K study (Kopt = 1/2 for every circular element, eq. 3.7).
 K_VALUES = (0.01, 0.05, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 0.95, 0.99)
 
 
