@@ -22,8 +22,10 @@ The cases are also the tests' (tests/kernels/test_shell_nonlinear.py), on coarse
 from __future__ import annotations
 
 import argparse
+import sys
 from collections.abc import Callable
 from dataclasses import replace
+from pathlib import Path
 
 import numpy as np
 import scipy.sparse as sp
@@ -31,10 +33,18 @@ import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 
 from rancf.bodies.shell import ShellBody, ShellSupport
-from rancf.bodies.shell_loads import _edge_frames, edge_load, point_load
+from rancf.bodies.shell_loads import edge_frames, edge_load, point_load
 from rancf.bodies.shell_supports import constraint_rows
 from rancf.kernels.shell import ShellKernel
-from rancf.mesh.surface_kinds import _revolution, circle_pieces, line_pieces, mesh_surface
+from rancf.mesh.surface_kinds import (
+    circle_pieces,
+    line_pieces,
+    mesh_surface,
+    surface_of_revolution,
+)
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from shell_locking import saddle_solve  # noqa: E402
 
 #: Sze, Liu & Lo (2004), slit annular plate, their 10 × 80 S4R table: ``P / Pmax``, ``w_A``,
 #: ``w_B`` (as transcribed in MBDyn's tests/plates/sze2004/sze33/sze33_ref.dat).
@@ -118,7 +128,7 @@ def follower_moment(
     ``g = axis × a / |a_p|²`` (``a_p`` the part of ``a`` normal to ``axis``), and its
     (symmetric) derivative ``∫ m S_νᵀ ∂g/∂a S_ν ds``."""
     t = np.asarray(axis, dtype=float) / np.linalg.norm(axis)
-    frames = _edge_frames(body, edge, points)
+    frames = edge_frames(body, edge, points)
     m = moment / float(sum(f[5].sum() for f in frames))
     out = np.zeros(body.n_dofs)
     rows_i, cols_i, vals = [], [], []
@@ -147,7 +157,6 @@ def _newton(
 ) -> NDArray[np.float64] | None:
     """Newton from ``q`` at load factor ``lam``: the converged coordinates, or None."""
     cct = spla.splu(sp.csc_matrix(c @ c.T))
-    n, nc = q.size, c.shape[0]
     for _ in range(NEWTON_MAX):
         f, k_ext = load(q, lam)
         r = kernel.forces(q) - f
@@ -157,8 +166,7 @@ def _newton(
         if np.linalg.norm(free) <= NEWTON_RTOL * scale:
             return q
         k = kernel.tangent(q) if k_ext is None else kernel.tangent(q) - k_ext
-        a = sp.bmat([[k, c.T], [c, None]], format="csc")
-        q = q + spla.spsolve(a, np.concatenate([-r, np.zeros(nc)]))[:n]
+        q = q + saddle_solve(k, c, -r)
     return None
 
 
@@ -224,7 +232,7 @@ def annular(nu: int, nv: int, factors: NDArray) -> NDArray[np.float64]:
     pts, w, pu = circle_pieces(0.0, 2.0 * np.pi, nu, "opt")
     tv, pv = line_pieces(nv)
     profile = np.stack([6.0 + 4.0 * tv, 0.0 * tv], axis=-1)
-    mesh = _revolution((pts, w, replace(pu, closed=False)), profile, pv, "xy", "annulus")
+    mesh = surface_of_revolution((pts, w, replace(pu, closed=False)), profile, pv, "xy", "annulus")
     body = ShellBody(mesh, 0.03, 21e6, 0.0, 1.0, supports=[ShellSupport("clamp", "u0")])
     kernel = ShellKernel.from_mesh(mesh, 0.03, 21e6, 0.0, 1.0)
     f = edge_load(body, "u1", force=[0.0, 0.0, 0.8 * 4.0])

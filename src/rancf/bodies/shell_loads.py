@@ -32,7 +32,14 @@ from rancf.geometry.quadrature import gauss_legendre
 if TYPE_CHECKING:
     from rancf.bodies.shell import ShellBody
 
-__all__ = ["point_load", "distributed_load", "edge_load", "resultant", "DRILLING_RTOL"]
+__all__ = [
+    "point_load",
+    "distributed_load",
+    "edge_load",
+    "edge_frames",
+    "resultant",
+    "DRILLING_RTOL",
+]
 
 #: Largest component of an edge moment along the surface normal, relative to its size.
 DRILLING_RTOL = 1e-9
@@ -116,7 +123,7 @@ _ORDERS_U = ((0, 0), (1, 0), (0, 1))
 _ORDERS_V = ((0, 0), (0, 1), (1, 0))
 
 
-def _edge_frames(body: ShellBody, edge: str, points: int) -> list[tuple]:
+def edge_frames(body: ShellBody, edge: str, points: int) -> list[tuple]:
     """Per element along ``edge``: ``(dofs, rows, T, A_ν, a3, ds)`` at its Gauss points."""
     if edge not in ("u0", "u1", "v0", "v1"):
         raise InputError("at", edge, 'an edge "u0", "u1", "v0" or "v1"')
@@ -144,7 +151,7 @@ def edge_load(
 ) -> NDArray[np.float64]:
     """``Q`` of a total ``force`` and/or ``moment`` spread evenly along ``edge`` (module
     docstring)."""
-    frames = _edge_frames(body, edge, points)
+    frames = edge_frames(body, edge, points)
     length = float(sum(f[5].sum() for f in frames))
     out = np.zeros(body.n_dofs)
     f = None if force is None else _vector(force, "force")

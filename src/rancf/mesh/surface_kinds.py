@@ -24,7 +24,7 @@ from rancf.mesh.conic_chain import cubic_forms, kopt_many
 from rancf.mesh.mesh import check_element_count
 from rancf.mesh.surfaces import Direction, SurfaceMesh, mesh_from_patches, regular_or_raise
 
-__all__ = ["SURFACE_KEYS", "mesh_surface", "circle_pieces", "line_pieces"]
+__all__ = ["SURFACE_KEYS", "mesh_surface", "circle_pieces", "line_pieces", "surface_of_revolution"]
 
 #: The keys of each kind (besides ``kind``).
 SURFACE_KEYS: dict[str, tuple[str, ...]] = {
@@ -115,15 +115,35 @@ def _split_k(k: KFactor | tuple | list, curved: tuple[bool, bool]) -> tuple[KFac
     return ks[0], ks[1]
 
 
-def _revolution(
+def surface_of_revolution(
     circle: tuple[NDArray, NDArray, Direction],
     profile: NDArray,
     pv: Direction,
     place: str,
     kind: str,
 ) -> SurfaceMesh:
-    """Circle ``(cos, sin)`` pieces times a profile ``(radius, axial)`` ``(nv, 4, 2)`` (eq. 2.4)
-    placed ``"xz"`` (axis +y: cylinder, cone) or ``"xy"`` (axis +z: sphere)."""
+    """A surface of revolution: circle pieces times a profile (docs/derivations/shell.md eq. 2.4).
+
+    Parameters
+    ----------
+    circle : (points, weights, Direction)
+        The azimuthal pieces of :func:`circle_pieces` (``points`` ``(nu, 4, 2)``: ``(cos, sin)``).
+    profile : ndarray, shape (nv, 4, 2)
+        Cubic control points ``(radius, axial)`` of the profile, one row per element along
+        ``v`` (a line from :func:`line_pieces`, or the sphere's meridian).
+    pv : Direction
+        The profile direction's data (its weights carry a rational profile).
+    place : str
+        ``"xz"`` (the circle in the x–z plane, axis +y: cylinder, cone) or ``"xy"`` (axis +z:
+        sphere, a flat annulus).
+    kind : str
+        The mesh's kind label.
+
+    Returns
+    -------
+    SurfaceMesh
+        Checked regular (:func:`rancf.mesh.surfaces.regular_or_raise`).
+    """
     c, _, pu = circle
     rad, ax = profile[:, None, None, :, 0], profile[:, None, None, :, 1]  # [j, ., ., b]
     cx, cs = c[None, :, :, None, 0], c[None, :, :, None, 1]  # [., i, a, .]
@@ -149,7 +169,7 @@ def _cylinder_or_cone(spec: Mapping[str, Any], n: tuple[int, int], k: Any) -> Su
     ku, _ = _split_k(k, (True, False))
     t, pv = line_pieces(n[1])
     profile = np.stack([r[0] + t * (r[1] - r[0]), length * t], axis=-1)
-    return _revolution(circle_pieces(a[0], a[1], n[0], ku), profile, pv, "xz", kind)
+    return surface_of_revolution(circle_pieces(a[0], a[1], n[0], ku), profile, pv, "xz", kind)
 
 
 def _sphere(spec: Mapping[str, Any], n: tuple[int, int], k: Any) -> SurfaceMesh:
@@ -163,7 +183,7 @@ def _sphere(spec: Mapping[str, Any], n: tuple[int, int], k: Any) -> SurfaceMesh:
     ku, kv = _split_k(k, (True, True))
     m, _, pv = circle_pieces(pol[0], pol[1], n[1], kv)
     profile = radius * m[..., ::-1]  # (sin θ, cos θ): radius and height
-    return _revolution(circle_pieces(az[0], az[1], n[0], ku), profile, pv, "xy", "sphere")
+    return surface_of_revolution(circle_pieces(az[0], az[1], n[0], ku), profile, pv, "xy", "sphere")
 
 
 def _rectangle(spec: Mapping[str, Any], n: tuple[int, int], k: Any) -> SurfaceMesh:

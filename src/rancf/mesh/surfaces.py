@@ -21,6 +21,7 @@ from numpy.typing import ArrayLike, NDArray
 from rancf.elements.cable import cable_shape_functions, control_to_nodal_matrix
 from rancf.errors import InputError
 from rancf.geometry.quadrature import gauss_legendre
+from rancf.mesh.mesh import GRADIENT_SPAN_WARNING
 
 __all__ = ["EDGES", "Direction", "SurfaceMesh", "mesh_from_patches", "scale_walk"]
 
@@ -227,8 +228,24 @@ def scale_walk(d0: NDArray, d1: NDArray, key: str) -> NDArray[np.float64]:
             "a tangent-continuous surface (one gradient ratio along each element edge)",
         )
     scales = np.concatenate([[1.0], np.cumprod(ratio)])
-    mean = float(np.mean(np.linalg.norm(d0, axis=-1) / scales[:, None]))
-    return scales * mean
+    mags = np.linalg.norm(d0, axis=-1) / scales[:, None]
+    _warn_span(float(mags.max() / mags.min()), len(scales))
+    return scales * float(np.mean(mags))
+
+
+def _warn_span(span: float, n_el: int) -> None:
+    """The cable mesher's warning (:data:`rancf.mesh.mesh.GRADIENT_SPAN_WARNING`): one fixed K
+    far from Kopt makes the consistent nodal gradients grow geometrically along a direction
+    (docs/derivations/shell.md sec. 9, the mapping factor K on shells)."""
+    if span > GRADIENT_SPAN_WARNING:
+        import logging  # only for this warning (logging is a start-up cost of every run)
+
+        logging.getLogger(__name__).warning(
+            "nodal gradient magnitudes span a factor %.3g over %d elements along one direction "
+            "of the surface: the model is badly conditioned; use k='opt' or fewer elements",
+            span,
+            n_el,
+        )
 
 
 def mesh_from_patches(
