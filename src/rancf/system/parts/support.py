@@ -22,6 +22,7 @@ from numpy.typing import NDArray
 
 from rancf.bodies.reactions import has_moment, support_label, support_reactions
 from rancf.errors import InputError
+from rancf.kernels.call_records import ResidualOptions, ResidualPoint
 from rancf.kernels.records import PrescribedRecord
 
 if TYPE_CHECKING:
@@ -93,10 +94,11 @@ class Support:
     ) -> Mapping[str, float]:
         """Its reaction at the static state ``(y, λ)``, the loads at the factor ``t``: the held
         rows of the static residual (module docstring)."""
-        res, zero = np.empty(system.n + system.m), np.zeros(system.n)
+        res = np.empty(system.n + system.m)
         y = np.ascontiguousarray(y, dtype=float)
         lam = np.ascontiguousarray(lam, dtype=float)
-        system.core.residual(y, zero, zero, lam, 0.0, min(float(t), 1.0), True, False, res)
+        static = ResidualOptions(0.0, min(float(t), 1.0), amplitude=True, dynamic=False)
+        system.core.residual(ResidualPoint(y, lam, res), static)
         b, sl = system.bodies[self.body], system.body_slice(self.body)
         r = support_reactions(b, y[sl], res[sl])[self.index]
         values = [*r.force, *(() if r.moment is None else r.moment)]
