@@ -75,7 +75,7 @@ from rancf.system.output_columns import part_columns, support_labels
 from rancf.system.parts.flexible import FlexibleBody
 from rancf.system.seabed_friction import static_friction_load
 from rancf.system.sensors import SensorReader
-from rancf.system.sliding import sliding_slots, sliding_values
+from rancf.system.sliding import sliding_slots
 from rancf.system.system import System
 
 __all__ = ["SystemOutputs"]
@@ -305,8 +305,8 @@ class SystemOutputs:
             mom, extra = None, None
             if j.transmits_moment(s.dim):
                 mom = np.asarray(moment)[2:] if s.dim == 2 else np.asarray(moment)
-            if j.kind == "sliding":
-                extra = np.array([sliding_values(s, k, y, lam)])
+            if more := j.entry.values(s, k, y, lam):
+                extra = np.array(more)
             out.append(Reaction(j.name or f"joint{k}", np.asarray(force)[: s.dim], mom, extra))
         return out
 

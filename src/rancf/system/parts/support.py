@@ -21,6 +21,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rancf.bodies.reactions import has_moment, support_label, support_reactions
+from rancf.bodies.support_kinds import support_kind
 from rancf.errors import InputError
 from rancf.kernels.call_records import ResidualOptions, ResidualPoint
 from rancf.kernels.records import PrescribedRecord
@@ -57,8 +58,8 @@ class Support:
         b, sup = system.bodies[self.body], self.held(system)
         if sup.motion is None:
             return ()
-        if sup.kind == "roller":
-            raise InputError("supports.motion", "roller", "a pin or clamp (moving supports)")
+        if not support_kind(sup.kind).moves:
+            raise InputError("supports.motion", sup.kind, "a pin or clamp (moving supports)")
         if sup.motion.size != system.dim:
             raise InputError("supports.motion", sup.motion.size, f"{system.dim} components")
         k = rows.tf(sup.motion)
