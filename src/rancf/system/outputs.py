@@ -233,10 +233,10 @@ class SystemOutputs:
                 if static:
                     if lam is not None:
                         li[:] = lam[i]
-                    static = ResidualOptions(0.0, min(float(t[i]), 1.0), True, dynamic=False)
-                    s.core.residual(ResidualPoint(y, li, res), static)
+                    at = ResidualOptions(0.0, min(float(t[i]), 1.0), True, dynamic=False)
+                    s.core.residual(ResidualPoint(y, li, res), at)
                     s.core.residual(
-                        ResidualPoint(y, no_lam, res0), replace(static, distributed_only=True)
+                        ResidualPoint(y, no_lam, res0), replace(at, distributed_only=True)
                     )
                     if (fr := static_friction_load(s, y)) is not None:  # the seabeds' friction
                         res[: s.n] -= fr
