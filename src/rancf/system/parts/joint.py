@@ -18,7 +18,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 from numpy.typing import NDArray
@@ -28,7 +28,9 @@ from rancf.errors import InputError
 from rancf.kernels.records import JointRecord
 from rancf.system.joint_data import joint_data
 from rancf.system.parts.joint_kinds import KINDS, JointKind, joint_kind
+from rancf.system.parts.support import reaction_reader
 from rancf.system.places import Place
+from rancf.system.readers import SensorBuilder
 
 if TYPE_CHECKING:
     from rancf.system.record_rows import RecordRows
@@ -54,6 +56,8 @@ class Joint:
     #: A fixed joint to the ground: the ground's frame turns by this rotation from the world
     #: axes (2D the angle about z, 3D the rotation vector [rad]; a turning clamp).
     rotation: TimeFunction | None = None
+    #: Its sensor kinds: its ``reaction`` (:func:`rancf.system.parts.support.reaction_reader`).
+    sensor_kinds: ClassVar[Mapping[str, SensorBuilder]] = {"reaction": reaction_reader}
 
     @property
     def entry(self) -> JointKind:

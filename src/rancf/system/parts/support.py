@@ -5,7 +5,8 @@ A flexible body's supports are its model's own (held coordinates, :mod:`rancf.bo
 function: the core's prescribed records, one per held position coordinate, each the
 coordinate's installed value plus that component of the motion (``src/cpp/system/system.hpp``).
 A support without a motion needs no record.  Its reaction is the held rows of the balance
-residual (:mod:`rancf.bodies.reactions`), the outputs read every support's at once.  A clamp
+residual (:mod:`rancf.bodies.reactions`), the outputs read every support's at once; a ``reaction``
+sensor reads a support's or a joint's columns (:func:`reaction_reader`).  A clamp
 whose direction turns (a scenario's ``rotation``) is no held support: it is a fixed
 :class:`~rancf.system.parts.joint.Joint` to a turning ground frame
 (``docs/derivations/clamp-paths.md``).
@@ -15,7 +16,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 from numpy.typing import NDArray
@@ -25,11 +26,62 @@ from rancf.bodies.support_kinds import support_kind
 from rancf.errors import InputError
 from rancf.kernels.call_records import ResidualOptions, ResidualPoint
 from rancf.kernels.records import PrescribedRecord
+from rancf.system.readers import (
+    Block,
+    NamedReader,
+    Reader,
+    SensorBuilder,
+    SensorHost,
+    sensor_places,
+)
 
 if TYPE_CHECKING:
     from rancf.system.record_rows import RecordRows
 
-__all__ = ["Support", "supports_of"]
+__all__ = ["Support", "reaction_reader", "supports_of"]
+
+
+def _columns_reader(name: str, label: str, columns: Sequence[str], cols: slice) -> Reader:
+    """A reader of the reaction columns ``cols``, named ``columns`` (``LABEL_SUFFIX``) by their
+    part: as the sensor ``name``'s ``NAME_SUFFIX``, a force's ``fx`` as ``x``."""
+    suffixes = [c[len(label) + 1 :] for c in columns]
+    names = [f"{name}_{x[1:] if x[:1] == 'f' and len(x) == 2 else x}" for x in suffixes]
+
+    def read(blk: Block) -> NDArray:
+        return blk[3]["r"][:, cols]
+
+    return NamedReader(read, names)
+
+
+def reaction_reader(host: SensorHost, sen: Any) -> Reader:
+    """A ``reaction`` sensor: the reaction columns of the joint ``sen.joint`` or of the support
+    at its place (its Part's columns in ``reactions.csv``,
+    :meth:`~rancf.system.part.Part.sensors`), renamed for the sensor: ``LABEL_fx`` as
+    ``NAME_x``, ``LABEL_mz`` as ``NAME_mz``, ``LABEL_s`` as ``NAME_s``."""
+    out, sy = host.out, host.system
+    if getattr(sen, "joint", None) is not None:
+        try:
+            cols = out.joint_columns(sen.joint)
+        except KeyError:
+            names = [j.name for j in sy.joints if j.name]
+            allowed = f"a joint: {', '.join(names) or 'none named'}"
+            raise InputError(f"sensors.{sen.name}.joint", sen.joint, allowed) from None
+        joint = next(j for j in sy.joints if j.label(sy) == sen.joint)
+        return _columns_reader(sen.name, joint.label(sy), joint.sensors(sy), cols)
+    p = host.place(sen, sensor_places(sen)[0])
+    start = 0
+    for part, names in out.part_columns:
+        if isinstance(part, Support) and part.body == p.body:
+            if sy.bodies[p.body].check_node(part.node, "supports.at") == p.at:
+                cols = slice(start, start + len(names))
+                return _columns_reader(sen.name, part.label(sy), names, cols)
+        start += len(names)
+    turning = [j for j in sy.joints if getattr(j, "rotation", None) is not None]
+    for j in turning:  # a turning clamp: a joint with a support's columns (its name)
+        if sy.resolve(j.between[0]) == p:
+            cols = out.joint_columns(j.name)
+            return _columns_reader(sen.name, j.label(sy), j.sensors(sy), cols)
+    raise InputError(f"sensors.{sen.name}.at", str(p), "the place of a support")
 
 
 @dataclass(frozen=True)
@@ -42,6 +94,8 @@ class Support:
     node: int
     #: Its place as the user wrote it (its output columns' label); None: ``BODY:AT``.
     label_as: int | str | None = None
+    #: Its sensor kinds: its ``reaction`` (:func:`reaction_reader`).
+    sensor_kinds: ClassVar[Mapping[str, SensorBuilder]] = {"reaction": reaction_reader}
 
     @property
     def name(self) -> str:
