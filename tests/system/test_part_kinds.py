@@ -88,3 +88,24 @@ def test_a_kind_added_to_the_registry_is_one_class(monkeypatch):
     values = s.joints[0].reactions(s, tether.y, tether.lam)
     assert values["j_fy"] == pytest.approx(3.0 * 9.81, rel=1e-9)
     assert values["j_r"] == pytest.approx(0.1, rel=1e-12)
+
+
+def test_past_the_scenario_no_code_compares_a_joint_or_support_kinds_name():
+    """The system, solvers, outputs and drivers ask the kind (its registry entry); the
+    scenario's tables check their keys before a system exists, and shells have kinds of
+    their own."""
+    import re
+    from pathlib import Path
+
+    src = Path(joint_kinds.__file__).resolve().parents[2]
+    names = "|".join([*joint_kinds.KINDS, *support_kinds.KINDS])
+    compare = re.compile(rf"kind\s*(==|!=|in|not in)\s*\(?\s*[\"']({names})[\"']")
+    found = [
+        f"{f.relative_to(src)}:{i}"
+        for folder in ("system", "solvers", "post", "runs", "sweep", "studies", "bodies")
+        for f in sorted((src / folder).rglob("*.py"))
+        if not f.name.startswith("shell")
+        for i, line in enumerate(f.read_text(encoding="utf-8").splitlines(), 1)
+        if compare.search(line)
+    ]
+    assert not found

@@ -199,8 +199,8 @@ def unloaded_at(system: WinchedSystem, t: float) -> np.ndarray:
         q[:, :d] = a + factor * (q[:, :d] - a)
         q[:, d : 2 * d] *= factor
         y[sl] = body.y_from_q(q.ravel())
-        for j in system.joints:  # a point mass pinned to the body goes with its node
-            if j.kind != "pin":
+        for j in system.joints:  # a point mass joined to the body goes with its node
+            if not j.entry.joins_positions:
                 continue
             ends = [system.resolve(p) for p in j.between]
             for p, other in (ends, ends[::-1]):

@@ -54,6 +54,8 @@ class JointKind:
     slides: ClassVar[bool] = False
     #: Its ground frame may turn (``rotation``: a turning clamp).
     turns: ClassVar[bool] = False
+    #: Its places' positions coincide (a point mass on it goes where its other place goes).
+    joins_positions: ClassVar[bool] = True
 
     def axis_required(self, dim: int) -> bool:
         """Whether its record needs an ``axis`` in dimension ``dim``."""
@@ -173,6 +175,7 @@ class Slider(JointKind):
     name = "slider"
     takes_axis = True
     drivable = False
+    joins_positions = False
 
     def axis_required(self, dim: int) -> bool:
         return True
@@ -206,6 +209,7 @@ class Sliding(JointKind):
     name = "sliding"
     drivable = False
     slides = True
+    joins_positions = False
 
     def gap_rows(self, dim: int) -> int:
         return 0
