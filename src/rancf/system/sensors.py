@@ -155,7 +155,7 @@ class SensorReader:
         modules of parts it lacks stay unloaded)."""
         kinds: dict[str, SensorBuilder] = {}
         for part in self.system.parts:
-            kinds.update(type(part).sensor_kinds)
+            kinds.update(getattr(type(part), "sensor_kinds", {}))
         return kinds
 
     def _system_kinds(self) -> dict[str, SensorBuilder]:
