@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 
 from rancf.bodies.rigid import PointMass
+from rancf.kernels.call_records import ResidualOptions, ResidualPoint
 from rancf.solvers.static import solve_static
 from rancf.system import Joint, System
 
@@ -69,7 +70,8 @@ def test_beyond_its_range_the_law_goes_on_linearly(tmp_path, monkeypatch):
     y, e, hi = system.y0.copy(), 0.7, 0.5
     y[system.body_slice("bob")][1] = -1.0 - e
     r = np.empty(system.n + system.m)
-    z = np.zeros(system.n)
-    system.core.residual(y, z, z, np.zeros(system.m), 0.0, 0.0, False, False, r)
+    system.core.residual(
+        ResidualPoint(y, np.zeros(system.m), r), ResidualOptions(0.0, 0.0, dynamic=False)
+    )
     tension = K * hi + K3 * hi**3 + (K + 3 * K3 * hi**2) * (e - hi)
     assert -r[system.body_slice("bob")][1] == pytest.approx(tension, rel=1e-9)  # pulls it up

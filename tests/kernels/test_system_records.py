@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from rancf.kernels import _core
-from rancf.kernels.call_records import RunBuffers, RunOptions
+from rancf.kernels.call_records import ResidualOptions, ResidualPoint, RunBuffers, RunOptions
 from rancf.kernels.records import (
     JointRecord,
     LinearTerm,
@@ -58,10 +58,31 @@ def test_a_system_of_records():
     assert (s.n, s.m, list(s.joint_rows)) == (4, 2, [0])
     y = np.array([1.0, 0.0, 1.1, 0.0])
     r = np.empty(6)
-    s.residual(y, np.zeros(4), np.zeros(4), np.zeros(2), 0.25, 1.0, False, False, r)
+    s.residual(ResidualPoint(y, np.zeros(2), r), ResidualOptions(0.25, dynamic=False))
     weight = np.array([0.0, 9.81, 0.0, 2 * 9.81])
     assert r[:4] == pytest.approx(weight + [0.0, 0.5, 1.0, 0.0], abs=1e-12)
     assert r[4:] == pytest.approx([-0.1, 0.0], abs=1e-12)
+
+
+def test_the_residual_takes_a_point_and_options_and_names_a_bad_field():
+    """A dynamic residual reads the point's velocities and accelerations (at rest with zero
+    accelerations it equals the static one); a missing or wrong field is one line naming it."""
+    s = _system()
+    y, lam = np.array([1.0, 0.0, 1.1, 0.0]), np.zeros(2)
+    static, dynamic = np.empty(6), np.empty(6)
+    s.residual(ResidualPoint(y, lam, static), ResidualOptions(0.25, dynamic=False))
+    z = np.zeros(4)
+    s.residual(ResidualPoint(y, lam, dynamic, z, z), ResidualOptions(0.25))
+    np.testing.assert_array_equal(dynamic, static)
+    a = np.array([0.0, 1.0, 0.0, 0.0])
+    s.residual(ResidualPoint(y, lam, dynamic, z, a), ResidualOptions(0.25))
+    assert dynamic[1] - static[1] == pytest.approx(1.0)  # the first mass (1 kg) times a
+    with pytest.raises(TypeError, match=r"^point.v: expected an array of numbers, got None$"):
+        s.residual(ResidualPoint(y, lam, dynamic), ResidualOptions(0.25))
+    with pytest.raises(ValueError, match=r"^point.residual: expected 6 values, got 5$"):
+        s.residual(ResidualPoint(y, lam, np.empty(5)), ResidualOptions(dynamic=False))
+    with pytest.raises(ValueError, match=r"all three or none"):
+        s.residual(ResidualPoint(y, lam, dynamic, z, z, contact_yf=y), ResidualOptions())
 
 
 def _bad(name: str, i: int, **fields) -> dict:

@@ -19,6 +19,7 @@ from rancf.bodies.properties import PointLoad
 from rancf.bodies.reactions import support_reactions
 from rancf.geometry.ellipse import Ellipse, ellipse_axes
 from rancf.geometry.nurbs import NurbsCurve
+from rancf.kernels.call_records import StatePoint, TangentOptions
 from rancf.mesh.ellipse_mesh import mesh_ellipse
 from rancf.mesh.factories import mesh_line
 from rancf.mesh.nurbs_mesh import mesh_nurbs
@@ -313,7 +314,9 @@ def test_closed_c2_curves_have_continuous_curvature_across_the_seam(dim, rng):
         assert s.m == m.dpn + (dim if c == "C2" else 0)  # positions, gradients (, curvature)
         dense = np.empty((s.n + s.m) ** 2)
         z = np.zeros(s.n)
-        assert s.core.dense_jacobian(s.y0, z, z, np.zeros(s.m), 0.0, 1.0, 0.0, 0.0, out=dense)
+        assert s.core.dense_jacobian(
+            StatePoint(s.y0, z, z, np.zeros(s.m)), TangentOptions(0.0, 1.0), dense
+        )
         a = dense.reshape(s.n + s.m, -1)[s.n :, : s.n]
         free = ~s.fixed
         for j in rng.choice(np.flatnonzero(free), 6, replace=False):

@@ -13,6 +13,7 @@ import pytest
 from rancf.bodies.properties import StrainRateDamping
 from rancf.bodies.strain_rate import damping_force
 from rancf.errors import ScenarioError
+from rancf.kernels.call_records import ResidualOptions, ResidualPoint, StatePoint, TangentOptions
 from rancf.scenario.scenario import parse_scenario
 
 LINE = {
@@ -37,20 +38,20 @@ def test_one_body_keys_reach_the_body_and_the_balance():
     y = s.y0 + 1e-3 * rng.normal(size=s.n)
     v, z, lam = rng.normal(size=s.n), np.zeros(s.n), np.zeros(s.m)
     r1, r0 = np.empty(s.n + s.m), np.empty(s.n + s.m)
-    s.core.residual(y, v, z, lam, 0.0, r=r1)
-    s.core.residual(y, np.zeros(s.n), z, lam, 0.0, r=r0)
+    s.core.residual(ResidualPoint(y, lam, r1, v, z), ResidualOptions(0.0))
+    s.core.residual(ResidualPoint(y, lam, r0, np.zeros(s.n), z), ResidualOptions(0.0))
     mass_part = 0.1 * body.mass_times(v)
     f_d = damping_force(body, y, v)
     assert np.abs(f_d).max() > 1e-3 * np.abs(mass_part).max()
     assert np.allclose((r1 - r0)[: s.n], f_d + mass_part, rtol=0, atol=1e-10 * np.abs(f_d).max())
     # statics: no velocities, no damping force
     rs = np.empty(s.n + s.m)
-    s.core.residual(y, v, z, lam, 0.0, dynamic=False, r=rs)
+    s.core.residual(ResidualPoint(y, lam, rs), ResidualOptions(0.0, dynamic=False))
     assert np.allclose(rs, r0, rtol=0, atol=1e-12 * np.abs(r0).max())
     # the balance's velocity Jacobian: cv (c M + d f_d / dv)
     nm = s.n + s.m
     jac = np.empty(nm * nm)
-    assert s.core.dense_jacobian(y, v, z, lam, 0.0, 0.0, 1.0, 0.0, out=jac)
+    assert s.core.dense_jacobian(StatePoint(y, v, z, lam), TangentOptions(0.0, 0.0, 1.0), jac)
     _, ab = damping_force(body, y, v, ck=0.0, cv=1.0)
     expect = body.dense(ab) + 0.1 * body.dense(body.mass_band)
     free = np.flatnonzero(~body.fixed)
@@ -135,7 +136,7 @@ def test_the_balances_position_jacobian_carries_the_damping():
     y, v = s.y0 + 1e-3 * rng.normal(size=s.n), 50.0 * rng.normal(size=s.n)
     z, lam, nm = np.zeros(s.n), np.zeros(s.m), s.n + s.m
     jac = np.empty(nm * nm)
-    assert s.core.dense_jacobian(y, v, z, lam, 0.0, 1.0, 0.0, 0.0, out=jac)
+    assert s.core.dense_jacobian(StatePoint(y, v, z, lam), TangentOptions(0.0, 1.0), jac)
     free = np.flatnonzero(~s.bodies["body"].fixed)
     got = jac.reshape(nm, nm)[np.ix_(free, free)]
     h, rp, rm = 1e-7, np.empty(nm), np.empty(nm)
@@ -143,8 +144,8 @@ def test_the_balances_position_jacobian_carries_the_damping():
     for k, j in enumerate(free):
         d = np.zeros(s.n)
         d[j] = h
-        s.core.residual(y + d, v, z, lam, 0.0, r=rp)
-        s.core.residual(y - d, v, z, lam, 0.0, r=rm)
+        s.core.residual(ResidualPoint(y + d, lam, rp, v, z), ResidualOptions(0.0))
+        s.core.residual(ResidualPoint(y - d, lam, rm, v, z), ResidualOptions(0.0))
         fd[:, k] = ((rp - rm) / (2 * h))[free]
     body = s.bodies["body"]
     _, ab = damping_force(body, y, v, ck=1.0, cv=0.0)

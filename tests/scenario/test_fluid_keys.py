@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 from rancf.errors import ScenarioError
+from rancf.kernels.call_records import ResidualOptions, ResidualPoint
 from rancf.scenario.scenario import parse_scenario
 from rancf.system.fluid import Fluid, Hydro, Waves
 
@@ -56,9 +57,9 @@ def test_one_body_keys_reach_the_system():
     # the fluid and the load act: the residual differs from the same body without them
     bare = parse_scenario(ONE).build_system()
     r, r0 = np.empty(s.n + s.m), np.empty(s.n + s.m)
-    z = np.zeros(s.n)
-    s.core.residual(s.y0, z, z, np.zeros(s.m), 1.0, dynamic=False, r=r)
-    bare.core.residual(s.y0, z, z, np.zeros(s.m), 1.0, dynamic=False, r=r0)
+    static = ResidualOptions(1.0, dynamic=False)
+    s.core.residual(ResidualPoint(s.y0, np.zeros(s.m), r), static)
+    bare.core.residual(ResidualPoint(s.y0, np.zeros(s.m), r0), static)
     assert np.abs(r - r0).max() > 1.0
 
 

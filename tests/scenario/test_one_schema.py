@@ -10,6 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
+from rancf.kernels.call_records import ResidualOptions, ResidualPoint
 from rancf.scenario import as_bodies, parse_scenario
 from rancf.scenario.places import ONE_BODY
 from tests.scenario.test_scenario import BASE
@@ -50,9 +51,10 @@ def test_both_forms_build_the_same_system():
     assert a.names == b.names == [ONE_BODY]
     y = a.y0 + 1e-3 * np.sin(np.arange(a.n))
     ra, rb = np.empty(a.n + a.m), np.empty(b.n + b.m)
-    z, lam = np.zeros(a.n), np.zeros(a.m)
-    a.core.residual(y, z, z, lam, 0.0, 1.0, True, False, ra)
-    b.core.residual(y, z, z, lam, 0.0, 1.0, True, False, rb)
+    lam = np.zeros(a.m)
+    static = ResidualOptions(0.0, amplitude=True, dynamic=False)
+    a.core.residual(ResidualPoint(y, lam, ra), static)
+    b.core.residual(ResidualPoint(y, lam, rb), static)
     np.testing.assert_array_equal(ra, rb)
 
 

@@ -16,6 +16,7 @@ import pytest
 
 from rancf.cli import main
 from rancf.errors import ScenarioError
+from rancf.kernels.call_records import ResidualOptions, ResidualPoint
 from rancf.scenario import FlexibleBody, PointMass, RigidBody, parse_scenario
 from tests.scenario.systems import SLIDER_CRANK, TETHER_3D
 from tests.scenario.test_scenario import BASE
@@ -126,7 +127,7 @@ def test_one_body_files_build_their_model_whatever_they_hold(tables):
     r1, r2 = (np.empty(s.n + s.m) for s in (one, system))
     for s, r in ((one, r1), (system, r2)):
         z = np.zeros(s.n)
-        s.core.residual(s.y0, z, z, np.zeros(s.m), 0.1, 1.0, False, True, r)
+        s.core.residual(ResidualPoint(s.y0, np.zeros(s.m), r, z, z), ResidualOptions(0.1))
     assert np.array_equal(r1, r2)
 
 

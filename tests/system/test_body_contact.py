@@ -12,6 +12,7 @@ import pytest
 from rancf.bodies.flexible import Material, Model, PointLoad, Section, Support
 from rancf.bodies.section_outputs import SectionSampler
 from rancf.bodies.time_function import TimeFunction
+from rancf.kernels.call_records import StatePoint, TangentOptions
 from rancf.mesh.factories import mesh_line
 from rancf.solvers.dynamic import DynamicOptions, integrate
 from rancf.system import Obstacle, System, contact_outputs
@@ -373,7 +374,7 @@ def test_the_solver_of_a_coiled_rope_matches_a_dense_solve():
     r = np.empty(s.n + s.m)
     assert integ.factor_static(StaticPoint(y, lam, r), StaticOptions(1.0, False, 0.0, stab=stab))
     jac = np.empty((s.n + s.m) ** 2)
-    assert s.core.dense_jacobian(y, z, z, lam, 0.0, 1.0, 0.0, stab, out=jac)
+    assert s.core.dense_jacobian(StatePoint(y, z, z, lam), TangentOptions(0.0, 1.0, 0.0, stab), jac)
     jac = jac.reshape(s.n + s.m, s.n + s.m)
     free = ~s.fixed
     b = np.random.default_rng(5).standard_normal(s.n)

@@ -13,6 +13,7 @@ from rancf.errors import InputError
 from rancf.geometry.ellipse import Ellipse, ellipse_axes
 from rancf.geometry.nurbs import NurbsCurve
 from rancf.kernels import _core
+from rancf.kernels.call_records import StatePoint, TangentOptions
 from rancf.mesh.ellipse_mesh import mesh_ellipse
 from rancf.mesh.nurbs_mesh import mesh_nurbs
 from rancf.options import DynamicOptions
@@ -81,7 +82,9 @@ def test_seam_rows_hold_and_their_jacobian_is_exact(element, rng):
     y = s.y0 + 1e-2 * rng.standard_normal(s.n)
     z = np.zeros(s.n)
     dense = np.empty((s.n + s.m) ** 2)
-    assert s.core.dense_jacobian(y, z, z, np.zeros(s.m), 0.0, 1.0, 0.0, 0.0, out=dense)
+    assert s.core.dense_jacobian(
+        StatePoint(y, z, z, np.zeros(s.m)), TangentOptions(0.0, 1.0), dense
+    )
     rows = dense.reshape(s.n + s.m, -1)[s.n :, : s.n]
     fd = np.empty((s.m, s.n))
     for j in range(s.n):

@@ -10,6 +10,7 @@ import pytest
 
 from rancf.bodies.flexible import Material, Model, Section, Support
 from rancf.bodies.rigid import RigidBody
+from rancf.kernels.call_records import ResidualOptions, ResidualPoint, StatePoint, TangentOptions
 from rancf.mesh.factories import mesh_line
 from rancf.system import Obstacle, System, contact_outputs
 
@@ -100,7 +101,9 @@ def _state(s: System, rng: np.random.Generator, speed: float = 0.3):
 
 def _residual(s: System, y, v, a, dynamic=True) -> np.ndarray:
     r = np.empty(s.n + s.m)
-    assert s.core.residual(y, v, a, np.zeros(s.m), 0.3, dynamic=dynamic, r=r)
+    assert s.core.residual(
+        ResidualPoint(y, np.zeros(s.m), r, v, a), ResidualOptions(0.3, dynamic=dynamic)
+    )
     return r[: s.n]
 
 
@@ -127,7 +130,9 @@ def test_system_tangent_with_contact(build, which, speed, rng):
     dyn = which != "static"
     ck, cv = (0.0, 1.0) if which == "v" else (1.0, 0.0)
     dense = np.empty((s.n + s.m) ** 2)
-    assert s.core.dense_jacobian(y, v, a, np.zeros(s.m), 0.3, ck, cv, 0.0, dyn, out=dense)
+    assert s.core.dense_jacobian(
+        StatePoint(y, v, a, np.zeros(s.m)), TangentOptions(0.3, ck, cv, 0.0, dyn), dense
+    )
     jac = dense.reshape(s.n + s.m, -1)[: s.n, : s.n]
     fd = np.zeros((s.n, s.n))
     step = 1e-8 if which == "v" else 1e-6  # the friction varies on the scale of 1e-4 in v

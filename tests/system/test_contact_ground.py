@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from rancf.bodies.flexible import Material, Model, Section, Support
+from rancf.kernels.call_records import ResidualOptions, ResidualPoint
 from rancf.mesh.factories import mesh_line
 from rancf.solvers.dynamic import DynamicOptions, integrate
 from rancf.solvers.static import solve_static
@@ -90,7 +91,7 @@ def test_static_cable_on_the_ground():
     st = solve_static(s, load_steps=1)
     out = contact_outputs(s, st.y)["ground"]
     r = np.empty(s.n + s.m)
-    s.core.residual(st.y, np.zeros(s.n), np.zeros(s.n), np.zeros(s.m), 0.0, dynamic=False, r=r)
+    s.core.residual(ResidualPoint(st.y, np.zeros(s.m), r), ResidualOptions(0.0, dynamic=False))
     pin = r[1]  # the held coordinate's residual: the pin's reaction
     assert out.normal[1] + pin == pytest.approx(weight, rel=1e-9)
     assert out.normal[1] > 0.95 * weight

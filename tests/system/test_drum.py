@@ -21,6 +21,7 @@ from rancf.bodies.flexible import Material, Model, Section, Support
 from rancf.bodies.rigid import PointMass
 from rancf.bodies.time_function import TimeFunction
 from rancf.errors import InputError
+from rancf.kernels.call_records import ResidualOptions, ResidualPoint, StatePoint, TangentOptions
 from rancf.mesh.factories import mesh_line
 from rancf.solvers.dynamic import DynamicOptions, integrate
 from rancf.solvers.static import solve_static
@@ -166,8 +167,8 @@ def test_energy_balance_and_mass():
         z, a = np.zeros(s.n), np.zeros(s.n)
         a[sl] = np.tile([1.0, 0.0, 0.0, 0.0], s.bodies["wire"].n_nodes)
         r1, r0 = np.empty(s.n + s.m), np.empty(s.n + s.m)
-        s.core.residual(y, z, a, np.zeros(s.m), t[i], 1.0, False, True, r1)
-        s.core.residual(y, z, z, np.zeros(s.m), t[i], 1.0, False, True, r0)
+        s.core.residual(ResidualPoint(y, np.zeros(s.m), r1, z, a), ResidualOptions(t[i]))
+        s.core.residual(ResidualPoint(y, np.zeros(s.m), r0, z, z), ResidualOptions(t[i]))
         mass = float((r1 - r0)[sl][0::4].sum())
         assert mass == pytest.approx(RHO_A * y[drum], rel=1e-9)
 
@@ -195,14 +196,15 @@ def test_drum_jacobian_against_central_differences(dynamic, strain):
 
     def res(state):
         r = np.empty(n + m)
-        s.core.residual(*state, lam, 0.7, 1.0, False, dynamic, r)
+        yy, vv, aa = state
+        s.core.residual(ResidualPoint(yy, lam, r, vv, aa), ResidualOptions(0.7, dynamic=dynamic))
         return r[:n]
 
     for k in range(3 if dynamic else 1):
         coef = [0.0, 0.0, 0.0]
         coef[k] = 1.0
         jac = np.empty((n + m) ** 2)
-        s.core.dense_jacobian(y, v, a, lam, 0.7, *coef, dynamic, jac)
+        s.core.dense_jacobian(StatePoint(y, v, a, lam), TangentOptions(0.7, *coef, dynamic), jac)
         jac = jac.reshape(n + m, n + m)[:n, :n]
         fd = np.zeros((n, n))
         for j in np.flatnonzero(free):

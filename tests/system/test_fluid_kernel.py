@@ -10,7 +10,7 @@ import pytest
 
 from rancf.bodies.flexible import Material, Model, Section, Support
 from rancf.bodies.time_function import TimeFunction
-from rancf.kernels.call_records import StatePoint, TangentOptions
+from rancf.kernels.call_records import ResidualOptions, ResidualPoint, StatePoint, TangentOptions
 from rancf.mesh.factories import mesh_line
 from rancf.system import System
 from rancf.system.fluid import DistributedLoad, Fluid, Hydro, JonswapWaves, Waves
@@ -67,7 +67,9 @@ def _fluids(dim: int) -> dict[str, Fluid]:
 
 def _residual(s: System, y, v, a, t, dynamic=True) -> np.ndarray:
     r = np.empty(s.n + s.m)
-    assert s.core.residual(y, v, a, np.zeros(s.m), t, dynamic=dynamic, r=r)
+    assert s.core.residual(
+        ResidualPoint(y, np.zeros(s.m), r, v, a), ResidualOptions(t, dynamic=dynamic)
+    )
     return r[: s.n]
 
 
@@ -85,7 +87,9 @@ def _fluid_jacobian(s: System, bare: System, y, v, a, t, coef) -> np.ndarray:
     out = []
     for x in (s, bare):
         dense = np.empty((x.n + x.m) ** 2)
-        assert x.core.dense_jacobian(y, v, a, np.zeros(x.m), t, *coef, out=dense)
+        assert x.core.dense_jacobian(
+            StatePoint(y, v, a, np.zeros(x.m)), TangentOptions(t, *coef), dense
+        )
         out.append(dense.reshape(x.n + x.m, -1)[: x.n, : x.n])
     return out[0] - out[1]
 
@@ -140,7 +144,9 @@ def test_fluid_statics_tangent(rng):
 
     def res(x):
         r = np.empty(s.n + s.m)
-        s.core.residual(x, z, z, np.zeros(s.m), 0.0, load_factor=0.6, dynamic=False, r=r)
+        s.core.residual(
+            ResidualPoint(x, np.zeros(s.m), r), ResidualOptions(0.0, 0.6, dynamic=False)
+        )
         return r[: s.n]
 
     for j in free:

@@ -12,6 +12,7 @@ from importlib import resources
 import numpy as np
 import pytest
 
+from rancf.kernels.call_records import ResidualOptions, ResidualPoint
 from rancf.scenario import load_scenario
 from rancf.scenario.scenario import parse_scenario
 from rancf.system.outputs import SystemOutputs
@@ -60,16 +61,8 @@ def test_own_terms_and_element_forces_of_the_block(name):
     for i in range(k):
         want = np.empty(s.n + s.m)
         s.core.residual(
-            y[i],
-            v[i],
-            a[i],
-            np.zeros(s.m),
-            float(t[i]),
-            1.0,
-            False,
-            True,
-            want,
-            distributed_only=True,
+            ResidualPoint(y[i], np.zeros(s.m), want, v[i], a[i]),
+            ResidualOptions(float(t[i]), distributed_only=True),
         )
         scale = max(1.0, np.abs(want[: s.n]).max())
         assert np.abs(own[i] - want[: s.n]).max() <= 1e-12 * scale, i

@@ -11,6 +11,7 @@ from importlib import resources
 import numpy as np
 import pytest
 
+from rancf.kernels.call_records import ResidualOptions, ResidualPoint
 from rancf.scenario import load_scenario
 from rancf.system.outputs import SystemOutputs
 
@@ -34,7 +35,7 @@ def _row_by_row(out: SystemOutputs, t: float, y: np.ndarray, v: np.ndarray):
     s = out.system
     a, lam, res = np.zeros(s.n), np.zeros(s.m), np.empty(s.n + s.m)
     out.integrator.initial_acceleration(y, v, t, a, lam)
-    s.core.residual(y, v, a, lam, t, 1.0, False, True, res)
+    s.core.residual(ResidualPoint(y, lam, res, v, a), ResidualOptions(t))
     return s.q_from_y(a), lam, out._reactions(y, res[: s.n], t, lam, v)
 
 

@@ -18,6 +18,7 @@ from rancf.bodies.flexible import Material, Model, Section, Support
 from rancf.bodies.rigid import PointMass, RigidBody
 from rancf.errors import InputError
 from rancf.geometry.ellipse import Ellipse, ellipse_axes
+from rancf.kernels.call_records import ResidualOptions, ResidualPoint, StatePoint, TangentOptions
 from rancf.mesh.ellipse_mesh import mesh_ellipse
 from rancf.mesh.factories import mesh_line
 from rancf.mesh.mesh import mesh_from_arrays
@@ -68,8 +69,8 @@ def through(place: str, dim: int = 2, element: str = "rancf", supports: bool = T
 
 
 def _residual(s: System, y: np.ndarray, lam: np.ndarray) -> np.ndarray:
-    r, z = np.empty(s.n + s.m), np.zeros(s.n)
-    assert s.core.residual(y, z, z, lam, 0.0, 1.0, False, False, r)
+    r = np.empty(s.n + s.m)
+    assert s.core.residual(ResidualPoint(y, lam, r), ResidualOptions(0.0, dynamic=False))
     return r
 
 
@@ -79,7 +80,9 @@ def _jacobians(s: System, y: np.ndarray, lam: np.ndarray) -> tuple[np.ndarray, n
     size = s.n + s.m
     jac = np.empty(size * size)
     z = np.zeros(s.n)
-    assert s.core.dense_jacobian(y, z, z, lam, 0.0, 1.0, 0.0, 0.0, False, jac)
+    assert s.core.dense_jacobian(
+        StatePoint(y, z, z, lam), TangentOptions(0.0, 1.0, dynamic=False), jac
+    )
     x0, fd = np.r_[y, lam], np.zeros((size, size))
     for c in range(size):
         h = 1e-6 * (1.0 + abs(x0[c]))

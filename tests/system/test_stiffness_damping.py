@@ -11,6 +11,7 @@ from importlib.resources import files
 import numpy as np
 import pytest
 
+from rancf.kernels.call_records import ResidualOptions, ResidualPoint, StatePoint, TangentOptions
 from rancf.scenario import parse_scenario
 from rancf.scenario.system_build import build_system
 from rancf.solvers.dynamic import integrate
@@ -32,7 +33,7 @@ def _system(raw: dict, beta: float):
 
 def _residual(s, y, v, a):
     r = np.empty(s.n + s.m)
-    assert s.core.residual(y, v, a, np.zeros(s.m), 0.1, r=r)
+    assert s.core.residual(ResidualPoint(y, np.zeros(s.m), r, v, a), ResidualOptions(0.1))
     return r[: s.n]
 
 
@@ -46,14 +47,15 @@ def test_force_and_tangent(raw, rng):
     a = rng.standard_normal(s.n)
     dense = np.empty((s.n + s.m) ** 2)
     # the force: beta K_T v, K_T the elements' tangent (the statics' Jacobian, no inertia)
-    assert s0.core.dense_jacobian(y, v, a, np.zeros(s.m), 0.1, 1.0, 0.0, 0.0, False, out=dense)
+    point = StatePoint(y, v, a, np.zeros(s.m))
+    assert s0.core.dense_jacobian(point, TangentOptions(0.1, 1.0, dynamic=False), dense)
     k = dense.reshape(s.n + s.m, -1)[: s.n, : s.n]
     extra = _residual(s, y, v, a) - _residual(s0, y, v, a)
     np.testing.assert_allclose(
         extra[free], beta * (k @ v)[free], rtol=1e-10, atol=1e-12 * np.abs(beta * k @ v).max()
     )
     for ck, cv in ((1.0, 0.0), (0.0, 1.0)):  # d/dy and d/dv against differences
-        assert s.core.dense_jacobian(y, v, a, np.zeros(s.m), 0.1, ck, cv, 0.0, out=dense)
+        assert s.core.dense_jacobian(point, TangentOptions(0.1, ck, cv), dense)
         jac = dense.reshape(s.n + s.m, -1)[: s.n, : s.n]
         fd = np.zeros((s.n, s.n))
         for j in np.flatnonzero(free):

@@ -11,6 +11,7 @@ import pytest
 from rancf.bodies.flexible import Material, Model, PointLoad, Section, Support
 from rancf.bodies.rigid import PointMass, RigidBody
 from rancf.bodies.time_function import TimeFunction
+from rancf.kernels.call_records import ResidualOptions, ResidualPoint, StatePoint, TangentOptions
 from rancf.mesh.factories import mesh_line
 from rancf.system import Joint, Load, Spring, System
 
@@ -123,7 +124,7 @@ def _perturbed(s: System, rng: np.random.Generator, scale: float = 1e-2) -> np.n
 
 def _residual(s: System, y, v, a, lam, t, dynamic=True) -> np.ndarray:
     r = np.empty(s.n + s.m)
-    assert s.core.residual(y, v, a, lam, t, dynamic=dynamic, r=r)
+    assert s.core.residual(ResidualPoint(y, lam, r, v, a), ResidualOptions(t, dynamic=dynamic))
     return r
 
 
@@ -133,7 +134,9 @@ def test_constraint_jacobian_against_differences(build, rng):
     y = _perturbed(s, rng)
     z = np.zeros(s.n)
     dense = np.empty((s.n + s.m) ** 2)
-    assert s.core.dense_jacobian(y, z, z, np.zeros(s.m), 0.3, 1.0, 0.0, 0.0, out=dense)
+    assert s.core.dense_jacobian(
+        StatePoint(y, z, z, np.zeros(s.m)), TangentOptions(0.3, 1.0), dense
+    )
     g_rows = dense.reshape(s.n + s.m, -1)[s.n :, : s.n]
     fd = np.empty((s.m, s.n))
     g0 = np.empty(s.m)
@@ -162,7 +165,7 @@ def test_tangent_against_differences(build, which, rng):
     lam = rng.standard_normal(s.m)
     ck, cv, ca = {"y": (1, 0, 0), "v": (0, 1, 0), "a": (0, 0, 1)}[which]
     dense = np.empty((s.n + s.m) ** 2)
-    assert s.core.dense_jacobian(y, v, a, lam, 0.4, ck, cv, ca, out=dense)
+    assert s.core.dense_jacobian(StatePoint(y, v, a, lam), TangentOptions(0.4, ck, cv, ca), dense)
     jac = dense.reshape(s.n + s.m, -1)[: s.n]
     free = ~s.fixed
     fd = np.zeros((s.n, s.n + s.m))
@@ -200,7 +203,9 @@ def test_a_spring_to_ground_is_the_linear_spring_at_zero_length():
     z = np.zeros(s.n)
     r = _residual(s, s.y0, z, z, np.zeros(s.m), 0.0)
     dense = np.empty((s.n + s.m) ** 2)
-    assert s.core.dense_jacobian(s.y0, z, z, np.zeros(s.m), 0.0, 1.0, 1.0, 0.0, out=dense)
+    assert s.core.dense_jacobian(
+        StatePoint(s.y0, z, z, np.zeros(s.m)), TangentOptions(0.0, 1.0, 1.0), dense
+    )
     assert np.all(np.isfinite(r)) and np.all(np.isfinite(dense))
     assert np.abs(r).max() == 0.0
     y, v = s.y0 + np.array([0.01, -0.02]), np.array([0.4, 0.3])

@@ -11,6 +11,7 @@ from scipy.spatial.transform import Rotation
 
 from rancf.bodies.flexible import Material, Model, Section
 from rancf.bodies.rigid import PointMass, RigidBody, quaternion_from_matrix
+from rancf.kernels.call_records import ResidualOptions, ResidualPoint
 from rancf.mesh.factories import mesh_line
 from rancf.system import Joint, System
 
@@ -103,7 +104,6 @@ def test_rigid_motion_keeps_every_joint(build):
     s.core.constraints(y, 0.0, g)
     assert np.abs(g).max() <= 1e-13
     # no elastic force: the balance at rest without loads is zero on the bodies' rows
-    zero, lam = np.zeros(s.n), np.zeros(s.m)
     r = np.empty(s.n + s.m)
-    s.core.residual(y, zero, zero, lam, 0.0, dynamic=False, r=r)
+    s.core.residual(ResidualPoint(y, np.zeros(s.m), r), ResidualOptions(0.0, dynamic=False))
     assert np.abs(r[: s.n]).max() <= 1e-6  # EA = 7.85e2 N: round-off of the strains

@@ -8,6 +8,7 @@ import tomllib
 
 import numpy as np
 
+from rancf.kernels.call_records import ResidualOptions, ResidualPoint
 from rancf.scenario import parse_scenario
 from rancf.scenario.system_build import build_system
 from rancf.system.core_data import build_core
@@ -61,6 +62,6 @@ def test_the_records_are_all_the_core_takes():
     y = s.y0 + 1e-3 * rng.standard_normal(s.n) * ~s.fixed
     v, a, lam = rng.standard_normal(s.n), rng.standard_normal(s.n), rng.standard_normal(s.m)
     r1, r2 = np.empty(s.n + s.m), np.empty(s.n + s.m)
-    s.core.residual(y, v, a, lam, 0.03, 1.0, False, True, r1)
-    again.residual(y, v, a, lam, 0.03, 1.0, False, True, r2)
+    s.core.residual(ResidualPoint(y, lam, r1, v, a), ResidualOptions(0.03))
+    again.residual(ResidualPoint(y, lam, r2, v, a), ResidualOptions(0.03))
     assert np.array_equal(r1, r2) and np.abs(r1).max() > 0

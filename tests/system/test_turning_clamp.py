@@ -16,6 +16,7 @@ from rancf.bodies.flexible import Material, Model, Section, Support
 from rancf.bodies.time_function import TimeFunction
 from rancf.cli import main
 from rancf.errors import ScenarioError
+from rancf.kernels.call_records import ResidualOptions, ResidualPoint, StatePoint, TangentOptions
 from rancf.mesh.factories import mesh_line
 from rancf.post.system_run import load_run
 from rancf.scenario import load_scenario
@@ -240,7 +241,9 @@ def _check_multiplier_terms(s: System, y: np.ndarray, t: float, rng) -> None:
     vectors in it) against central differences of the static residual, on the free rows."""
     z, lam = np.zeros(s.n), rng.standard_normal(s.m)
     dense = np.empty((s.n + s.m) ** 2)
-    assert s.core.dense_jacobian(y, z, z, lam, t, 1.0, 0.0, 0.0, dynamic=False, out=dense)
+    assert s.core.dense_jacobian(
+        StatePoint(y, z, z, lam), TangentOptions(t, 1.0, dynamic=False), dense
+    )
     free = np.flatnonzero(~s.fixed)
     jac = dense.reshape(s.n + s.m, -1)[np.ix_(free, free)]
     fd = np.empty_like(jac)
@@ -251,7 +254,7 @@ def _check_multiplier_terms(s: System, y: np.ndarray, t: float, rng) -> None:
         for sign in (1.0, -1.0):
             yy = y.copy()
             yy[j] += sign * h
-            assert s.core.residual(yy, z, z, lam, t, dynamic=False, r=r)
+            assert s.core.residual(ResidualPoint(yy, lam, r), ResidualOptions(t, dynamic=False))
             out.append(r[free].copy())
         fd[:, c] = (out[0] - out[1]) / (2 * h)
     assert np.abs(jac - fd).max() <= 2e-6 * max(1.0, np.abs(fd).max())
@@ -292,7 +295,7 @@ def test_turning_frame_rows_against_differences(k, rng):
     y[s.fixed] = s.y0[s.fixed]
     z = np.zeros(s.n)
     dense = np.empty((s.n + s.m) ** 2)
-    assert s.core.dense_jacobian(y, z, z, np.zeros(s.m), t, 1.0, 0.0, 0.0, out=dense)
+    assert s.core.dense_jacobian(StatePoint(y, z, z, np.zeros(s.m)), TangentOptions(t, 1.0), dense)
     rows = dense.reshape(s.n + s.m, -1)[s.n :, : s.n]
     fd = np.empty((s.m, s.n))
     for j in range(s.n):

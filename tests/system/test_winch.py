@@ -17,6 +17,7 @@ import pytest
 from rancf.bodies.flexible import Material, Model, Section, Support
 from rancf.bodies.rigid import PointMass
 from rancf.bodies.time_function import TimeFunction
+from rancf.kernels.call_records import ResidualOptions, ResidualPoint, StatePoint, TangentOptions
 from rancf.mesh.factories import mesh_line
 from rancf.solvers.dynamic import DynamicOptions, integrate
 from rancf.solvers.static import solve_static
@@ -75,8 +76,8 @@ def _mass_in_core(s: System, y: np.ndarray, t: float) -> float:
     sl = s.body_slice("wire")
     a[sl] = np.tile([1.0, 0.0, 0.0, 0.0], s.bodies["wire"].n_nodes)
     r1, r0 = np.empty(s.n + s.m), np.empty(s.n + s.m)
-    s.core.residual(y, z, a, np.zeros(s.m), t, 1.0, False, True, r1)
-    s.core.residual(y, z, z, np.zeros(s.m), t, 1.0, False, True, r0)
+    s.core.residual(ResidualPoint(y, np.zeros(s.m), r1, z, a), ResidualOptions(t))
+    s.core.residual(ResidualPoint(y, np.zeros(s.m), r0, z, z), ResidualOptions(t))
     return float((r1 - r0)[sl][0::4].sum())
 
 
@@ -163,7 +164,7 @@ def test_tangent_against_central_differences():
     t, free = 3.3, np.flatnonzero(~s.fixed)
     for k, (ck, cv, ca) in enumerate([(1, 0, 0), (0, 1, 0), (0, 0, 1)]):
         dense = np.empty((s.n + s.m) ** 2)
-        assert s.core.dense_jacobian(y, v, a, lam, t, ck, cv, ca, out=dense)
+        assert s.core.dense_jacobian(StatePoint(y, v, a, lam), TangentOptions(t, ck, cv, ca), dense)
         jac = dense.reshape(s.n + s.m, -1)[: s.n, : s.n]
         fd = np.zeros((s.n, s.n))
         for j in free:
@@ -174,7 +175,9 @@ def test_tangent_against_central_differences():
                 xs = [x.copy() for x in args]
                 xs[k][j] += sign * h
                 r = np.empty(s.n + s.m)
-                assert s.core.residual(*xs, lam, t, dynamic=True, r=r)
+                assert s.core.residual(
+                    ResidualPoint(xs[0], lam, r, xs[1], xs[2]), ResidualOptions(t)
+                )
                 rs.append(r[: s.n])
             fd[:, j] = (rs[0] - rs[1]) / (2 * h)
         sub = np.ix_(free, free)
@@ -200,7 +203,7 @@ def test_stretched_wire_moved_rigidly_carries_no_elastic_force():
     v = y / (5.0 + t)  # the winch at the origin
     z = np.zeros(s.n)
     r = np.empty(s.n + s.m)
-    s.core.residual(y, v, z, np.zeros(s.m), t, 1.0, False, True, r)
+    s.core.residual(ResidualPoint(y, np.zeros(s.m), r, v, z), ResidualOptions(t))
     assert np.max(np.abs(r[: s.n][~s.fixed])) < 1e-9 * EA
 
 

@@ -42,7 +42,8 @@ void step_contact(const std::optional<In>& yf, const std::optional<In>& vf,
                   const std::optional<In>& y1, std::size_t n, rancf::AssemblyTerms& terms) {
   if (!yf && !vf && !y1) return;
   if (!(yf && vf && y1))
-    throw std::invalid_argument("contact_yf, contact_vf and contact_y1 go together");
+    throw std::invalid_argument(
+        "contact_yf, contact_vf and contact_y1: all three or none (a time step's contact)");
   expect_size(*yf, n, "contact_yf");
   expect_size(*vf, n, "contact_vf");
   expect_size(*y1, n, "contact_y1");
@@ -57,6 +58,25 @@ struct SystemIntegratorHolder {
   SystemIntegratorHolder(const SystemHolder& h, const rancf::Scheme& sc)
       : integ(h.s, sc), n(static_cast<std::size_t>(h.s.n)), m(static_cast<std::size_t>(h.s.m)) {}
 };
+
+/// An optional float64 array field (None: none).
+std::optional<In> optional_array(const Fields& p, const char* field) {
+  if (p.none(field)) return std::nullopt;
+  return p.array(field);
+}
+
+/// The assembly terms of TangentOptions: ck d/dy + cv d/dv + ca d/da at t, the loads times
+/// load_factor (at their amplitude).
+rancf::AssemblyTerms tangent_terms(const Fields& o) {
+  rancf::AssemblyTerms terms;
+  terms.ck = o.number("ck");
+  terms.cv = o.number("cv");
+  terms.ca = o.number("ca");
+  terms.tf = terms.t1 = o.number("t");
+  terms.load_factor = o.number("load_factor");
+  terms.amplitude = o.flag("amplitude");
+  return terms;
+}
 
 void check(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument(what);
@@ -218,32 +238,42 @@ void bind_system_balance(nb::class_<SystemHolder>& cls) {
          "joints' material coordinates (needed with sliding joints).")
       .def(
           "residual",
-          [](const SystemHolder& h, In y, In v, In a, In lam, double t, double load_factor,
-             bool amplitude, bool dynamic, Out r, std::optional<In> contact_yf,
-             std::optional<In> contact_vf, std::optional<In> contact_y1, bool distributed_only) {
+          [](const SystemHolder& h, nb::handle point, nb::handle options) {
             const auto n = static_cast<std::size_t>(h.s.n), m = static_cast<std::size_t>(h.s.m);
-            for (const auto* x : {&y, &v, &a}) expect_size(*x, n, "state");
-            expect_size(lam, m, "lam");
-            expect_size(r, n + m, "r");
+            const Fields p(point, "point"), o(options, "options");
+            const bool dynamic = o.flag("dynamic");
+            const In y = p.array("y"), lam = p.array("lam");
+            expect_size(y, n, "point.y");
+            expect_size(lam, m, "point.lam");
+            Out r = *p.buffer("residual", n + m);
+            std::optional<In> v, a;
+            if (dynamic) {
+              v = p.array("v");
+              a = p.array("a");
+              expect_size(*v, n, "point.v");
+              expect_size(*a, n, "point.a");
+            }
             rancf::AssemblyTerms terms;
-            terms.tf = terms.t1 = t;
-            terms.load_factor = load_factor;
-            terms.amplitude = amplitude;
-            terms.distributed_only = distributed_only;
-            step_contact(contact_yf, contact_vf, contact_y1, n, terms);
-            return rancf::assemble_system(h.s, y.data(), dynamic ? v.data() : nullptr,
-                                          dynamic ? a.data() : nullptr, lam.data(), y.data(), terms,
+            terms.tf = terms.t1 = o.number("t");
+            terms.load_factor = o.number("load_factor");
+            terms.amplitude = o.flag("amplitude");
+            terms.distributed_only = o.flag("distributed_only");
+            const std::optional<In> yf = optional_array(p, "contact_yf"),
+                                    vf = optional_array(p, "contact_vf"),
+                                    y1 = optional_array(p, "contact_y1");
+            step_contact(yf, vf, y1, n, terms);  // pointers into yf, vf, y1: kept alive here
+            return rancf::assemble_system(h.s, y.data(), v ? v->data() : nullptr,
+                                          a ? a->data() : nullptr, lam.data(), y.data(), terms,
                                           r.data(), nullptr);
           },
-          "y"_a, "v"_a, "a"_a, "lam"_a, "t"_a, "load_factor"_a = 1.0, "amplitude"_a = false,
-          "dynamic"_a = true, "r"_a.noconvert(), "contact_yf"_a.none() = nb::none(),
-          "contact_vf"_a.none() = nb::none(), "contact_y1"_a.none() = nb::none(),
-          "distributed_only"_a = false,
-          "The balance residual (n) and the constraints (m) at (y, v, a, lambda, t); dynamic = "
-          "False: statics (no inertia); contact_yf, contact_vf, contact_y1: the contact forces "
-          "of a time step (its alpha point and end) instead of those at (y, v); "
-          "distributed_only: the bodies' own terms only (no point loads, loads at places or "
-          "springs).  Returns False if not finite.")
+          "point"_a, "options"_a,
+          "The balance residual (n) and the constraints (m) at a ResidualPoint (y, lam; v, a "
+          "where dynamic) into point.residual, with ResidualOptions (at t; dynamic = False: "
+          "statics, no velocity or inertia terms; the loads times load_factor, at their "
+          "amplitude; distributed_only: the bodies' own terms only, no point loads, loads at "
+          "places or springs); point.contact_yf, contact_vf, contact_y1: the contact forces of "
+          "a time step (its alpha point and end) instead of those at (y, v) "
+          "(rancf.kernels.call_records).  Returns False if not finite.")
       .def(
           "place",
           [](const SystemHolder& h, int index, In y, double t) {
@@ -282,19 +312,17 @@ void bind_system_balance(nb::class_<SystemHolder>& cls) {
 void bind_system_outputs(nb::class_<SystemHolder>& cls) {
   cls.def(
          "dense_jacobian",
-         [](const SystemHolder& h, In y, In v, In a, In lam, double t, double ck, double cv,
-            double ca, bool dynamic, Out out) {
+         [](const SystemHolder& h, nb::handle point, nb::handle options, Out out) {
            const auto n = static_cast<std::size_t>(h.s.n), m = static_cast<std::size_t>(h.s.m);
-           for (const auto* x : {&y, &v, &a}) expect_size(*x, n, "state");
-           expect_size(lam, m, "lam");
+           const Fields p(point, "point"), o(options, "options");
+           const In y = p.array("y"), v = p.array("v"), a = p.array("a"), lam = p.array("lam");
+           for (const auto* x : {&y, &v, &a}) expect_size(*x, n, "point.y, v, a");
+           expect_size(lam, m, "point.lam");
            expect_size(out, (n + m) * (n + m), "out");
            rancf::BorderedLU lu(h.s.offset, h.s.block_size, h.s.block_ku, h.s.fixed.data());
            std::vector<double> r(n + m);
-           rancf::AssemblyTerms terms;
-           terms.ck = ck;
-           terms.cv = cv;
-           terms.ca = ca;
-           terms.tf = terms.t1 = t;
+           const rancf::AssemblyTerms terms = tangent_terms(o);
+           const bool dynamic = o.flag("dynamic");
            if (!rancf::assemble_system(h.s, y.data(), dynamic ? v.data() : nullptr,
                                        dynamic ? a.data() : nullptr, lam.data(), y.data(), terms,
                                        r.data(), &lu))
@@ -302,10 +330,10 @@ void bind_system_outputs(nb::class_<SystemHolder>& cls) {
            lu.dense(h.s.m, out.data());
            return true;
          },
-         "y"_a, "v"_a, "a"_a, "lam"_a, "t"_a, "ck"_a, "cv"_a, "ca"_a, "dynamic"_a = true,
-         "out"_a.noconvert(),
-         "The Jacobian of residual() (balance and constraints) with respect to (y, lambda): ck "
-         "d/dy + cv d/dv + ca d/da, dense (n + m)^2, held rows and columns as assembled.")
+         "point"_a, "options"_a, "out"_a.noconvert(),
+         "The Jacobian of residual() (balance and constraints) with respect to (y, lambda) at a "
+         "StatePoint with TangentOptions (as sparse_jacobian), dense (n + m)^2 into out, held "
+         "rows and columns as assembled.")
       .def(
           "sparse_jacobian",
           [](const SystemHolder& h, nb::handle point, nb::handle options) {
@@ -314,13 +342,7 @@ void bind_system_outputs(nb::class_<SystemHolder>& cls) {
             const In y = p.array("y"), v = p.array("v"), a = p.array("a"), lam = p.array("lam");
             for (const auto* x : {&y, &v, &a}) expect_size(*x, n, "point.y, v, a");
             expect_size(lam, m, "point.lam");
-            rancf::AssemblyTerms terms;
-            terms.ck = o.number("ck");
-            terms.cv = o.number("cv");
-            terms.ca = o.number("ca");
-            terms.tf = terms.t1 = o.number("t");
-            terms.load_factor = o.number("load_factor");
-            terms.amplitude = o.flag("amplitude");
+            const rancf::AssemblyTerms terms = tangent_terms(o);
             const bool dynamic = o.flag("dynamic");
             rancf::BorderedLU lu(h.s.offset, h.s.block_size, h.s.block_ku, h.s.fixed.data());
             std::vector<double> r(n + m);

@@ -29,6 +29,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rancf.bodies.flexible import Model
+from rancf.bodies.support_kinds import support_kind
 
 __all__ = ["Reaction", "support_reactions", "has_moment", "support_label"]
 
@@ -47,7 +48,7 @@ class Reaction:
 
 def has_moment(model: Model, kind: str) -> bool:
     """Whether the reaction of a support of this kind reports a moment."""
-    return model.family.has_triads or kind == "clamp"
+    return model.family.has_triads or support_kind(kind).holds_direction
 
 
 def support_label(at: int | str) -> str:

@@ -2,9 +2,11 @@
 work on and how (the convention of :mod:`rancf.kernels.records`).
 
 ``SystemIntegrator.run(RunBuffers, RunOptions)``, ``SystemIntegrator.factor_static`` and
-``static_increment(StaticPoint, StaticOptions)``, ``System.sparse_jacobian(StatePoint,
-TangentOptions)`` (statics and modes).  Arrays are float64 and C-contiguous; those written in
-place are never converted (a wrong one is refused in one line naming its field).
+``static_increment(StaticPoint, StaticOptions)``, ``System.residual(ResidualPoint,
+ResidualOptions)`` (the balance residual and the constraints), ``System.sparse_jacobian`` and
+``dense_jacobian(StatePoint, TangentOptions)`` (statics and modes).  Arrays are float64 and
+C-contiguous; those written in place are never converted (a wrong one is refused in one line
+naming its field).
 """
 
 from __future__ import annotations
@@ -20,6 +22,8 @@ from rancf.kernels import _core
 __all__ = [
     "RunBuffers",
     "RunOptions",
+    "ResidualOptions",
+    "ResidualPoint",
     "StaticPoint",
     "StaticOptions",
     "StatePoint",
@@ -111,6 +115,37 @@ class TangentOptions:
     dynamic: bool = True
     load_factor: float = 1.0
     amplitude: bool = False
+
+
+@dataclass(frozen=True, eq=False)
+class ResidualPoint:
+    """Where ``System.residual`` evaluates: ``y`` ``(n,)``, ``lam`` ``(m,)``, and ``v``, ``a``
+    ``(n,)`` where :attr:`ResidualOptions.dynamic` (unread in statics); written in place:
+    ``residual`` ``(n + m,)`` (the balance, then the constraints).  ``contact_yf``,
+    ``contact_vf``, ``contact_y1`` ``(n,)`` (all three or none): the contact forces of a time
+    step, at its α point and end, instead of those at ``(y, v)``."""
+
+    y: NDArray[np.float64]
+    lam: NDArray[np.float64]
+    residual: NDArray[np.float64]
+    v: NDArray[np.float64] | None = None
+    a: NDArray[np.float64] | None = None
+    contact_yf: NDArray[np.float64] | None = None
+    contact_vf: NDArray[np.float64] | None = None
+    contact_y1: NDArray[np.float64] | None = None
+
+
+@dataclass(frozen=True)
+class ResidualOptions:
+    """The residual at time ``t`` (``dynamic`` False: statics, no velocity or inertia terms; the
+    loads times ``load_factor``, at their ``amplitude``; ``distributed_only``: the bodies' own
+    terms only, no point loads, loads at places or springs)."""
+
+    t: float = 0.0
+    load_factor: float = 1.0
+    amplitude: bool = False
+    dynamic: bool = True
+    distributed_only: bool = False
 
 
 def evaluator(core: Any, damping: float = 0.0) -> Any:

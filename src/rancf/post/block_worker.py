@@ -27,7 +27,7 @@ def works_beside(outputs: Any) -> bool:
     derived beside the time loop: they take the block path and nothing of theirs is changed
     by the steps (rods re-reference their triads, contact keeps its state)."""
     s = outputs.system
-    sliding = any(j.kind == "sliding" for j in s.joints)
+    sliding = any(j.entry.slides for j in s.joints)
     return not (s.has_contact or sliding or outputs.n_directors)
 
 

@@ -36,11 +36,17 @@ from rancf.scenario.base import (
 )
 from rancf.scenario.place_types import PlacePair
 from rancf.scenario.time_functions import TimeFunctionValue, check_scalar
+from rancf.system.parts.joint_kinds import KINDS
 
 __all__ = ["JointTable", "SpringTable", "JOINT_KINDS"]
 
-#: Joint kinds.
-JOINT_KINDS = ("pin", "revolute", "fixed", "slider", "sliding")
+#: Joint kinds (:mod:`rancf.system.parts.joint_kinds`; the schema's list is the same).
+JOINT_KINDS = tuple(KINDS)
+
+
+def _kinds(has: str) -> str:
+    """The joint kinds with the flag ``has``, as ``"a and b"``."""
+    return " and ".join(k.name for k in KINDS.values() if getattr(k, has))
 
 
 class JointTable(Table):
@@ -67,18 +73,18 @@ class JointTable(Table):
 
     @model_validator(mode="after")
     def _kind_keys(self) -> JointTable:
-        needs_axis = self.kind in ("revolute", "slider")
-        if needs_axis and self.axis is None:
+        kind = KINDS[self.kind]
+        if kind.takes_axis and self.axis is None:
             raise fail("axis", f"required for a {self.kind} joint")
-        if not needs_axis and self.axis is not None:
-            raise fail("axis", f"applies to revolute and slider joints only, not {self.kind!r}")
+        if not kind.takes_axis and self.axis is not None:
+            raise fail("axis", f"applies to {_kinds('takes_axis')} joints only, not {self.kind!r}")
         if self.axis is not None and not any(x != 0.0 for x in self.axis):
             raise fail("axis", "must be a nonzero vector")
-        if self.angle is not None and self.kind not in ("pin", "revolute"):
-            raise fail("angle", f"drives pin and revolute joints only, not {self.kind!r}")
+        if self.angle is not None and not kind.drivable:
+            raise fail("angle", f"drives {_kinds('drivable')} joints only, not {self.kind!r}")
         check_scalar("angle", self.angle)
-        if self.position is not None and self.kind != "sliding":
-            raise fail("position", f"applies to sliding joints only, not {self.kind!r}")
+        if self.position is not None and not kind.slides:
+            raise fail("position", f"applies to {_kinds('slides')} joints only, not {self.kind!r}")
         a, b = self.between
         if a == b:
             raise fail("between", f"must be two different places, got {show(a)} twice")

@@ -28,6 +28,7 @@ from typing import Any
 import numpy as np
 
 from rancf.bodies.rigid import PointMass, RigidBody
+from rancf.bodies.support_kinds import support_kind
 from rancf.errors import InputError, ScenarioError
 from rancf.scenario.build import body_model
 from rancf.scenario.fluid import fluid_value, hydro_value
@@ -35,11 +36,9 @@ from rancf.scenario.places import ONE_BODY
 from rancf.scenario.view import ScenarioView
 from rancf.scenario.winches import system_winches, winch_key
 from rancf.system import Joint, Load, Place, Spring, System
+from rancf.system.parts.joint_kinds import joint_kind
 
 __all__ = ["build_system", "scenario_keys", "support_labels", "ONE_BODY"]
-
-
-_SUPPORT_JOINT = {"pin": "pin", "clamp": "fixed", "roller": "slider"}
 
 
 def _rigid(b: Any, dim: int) -> RigidBody | PointMass:
@@ -134,7 +133,7 @@ def _parts(sc: ScenarioView, bodies: dict[str, Any]) -> dict[str, Any]:
 
     joints = _support_joints(sc, bodies)
     for j, jd in zip(sc.joints, sc.data["joints"], strict=True):
-        if j.kind == "sliding":  # a flexible body (by name) through a place
+        if joint_kind(j.kind).slides:  # a flexible body (by name) through a place
             body = Place(str(j.between[0]))
             pos = None if j.position is None else tuple(j.position)
             joints.append(Joint("sliding", (body, place(j.between[1])), name=j.name, position=pos))
@@ -216,7 +215,7 @@ def _support_joints(sc: ScenarioView, bodies: dict[str, Any]) -> list[Joint]:
         label = f"node{s.at}" if isinstance(s.at, int) else str(s.at)  # as a support's columns
         name = f"support{i}" if p.where != "node" else label
         axis = None if s.axis is None else tuple(s.axis)
-        kind = _SUPPORT_JOINT[s.kind]
+        kind = support_kind(s.kind).joint
         joints.append(
             Joint(kind, (at, Place(None)), axis, None, name, motion, rotation=d["rotation"])
         )

@@ -157,7 +157,7 @@ def linear_buckling(
     if about not in ("reference", "static"):
         raise InputError("--about", about, 'one of "reference", "static"')
     system = as_system(model)
-    if any(j.kind == "sliding" for j in system.joints):
+    if any(j.entry.slides for j in system.joints):
         raise InputError(
             "joints.kind",
             "sliding",

@@ -15,7 +15,12 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from rancf.kernels.call_records import StatePoint, TangentOptions
+from rancf.kernels.call_records import (
+    ResidualOptions,
+    ResidualPoint,
+    StatePoint,
+    TangentOptions,
+)
 from rancf.system import System
 
 __all__ = ["free_drums"]
@@ -44,7 +49,9 @@ def free_drums(
     z = np.r_[y, lam].astype(float)
     for it in range(1, max_iter + 1):
         r = np.empty(n + m)
-        ok = system.core.residual(z[:n], zero, zero, z[n:], tt, 1.0, amp, False, r)
+        ok = system.core.residual(
+            ResidualPoint(z[:n], z[n:], r), ResidualOptions(tt, 1.0, amp, dynamic=False)
+        )
         ok2, size, rows, cols, vals = system.core.sparse_jacobian(
             StatePoint(np.ascontiguousarray(z[:n]), zero, zero, np.ascontiguousarray(z[n:])),
             TangentOptions(tt, 1.0, 0.0, 0.0, False, 1.0, amp),

@@ -35,6 +35,7 @@ from numpy.typing import NDArray
 from rancf.bodies.length import unstretched_length
 from rancf.bodies.nodal_forces import nodal_axial_forces, recovers_axial_force
 from rancf.errors import ConvergenceError, InputError, ScenarioError
+from rancf.kernels.call_records import ResidualOptions, ResidualPoint
 from rancf.solvers.catenary import Target, catenary, catenary_length
 from rancf.system.seabed import wet_weight
 
@@ -89,18 +90,10 @@ def _end_force(system: Any, name: str, y: NDArray, load_factor: float) -> tuple[
         raise InputError(
             "form", "C2 coordinates", 'a body of C1 coordinates (mesh.continuity = "C1")'
         )
-    zero, res0 = np.zeros(system.n), np.empty(system.n + system.m)
+    res0 = np.empty(system.n + system.m)
     system.core.residual(
-        y,
-        zero,
-        zero,
-        np.zeros(system.m),
-        0.0,
-        load_factor,
-        True,
-        False,
-        res0,
-        distributed_only=True,
+        ResidualPoint(y, np.zeros(system.m), res0),
+        ResidualOptions(0.0, load_factor, amplitude=True, dynamic=False, distributed_only=True),
     )
     sl = system.body_slice(name)
     axial = float(nodal_axial_forces(model, y[sl], res0[: system.n][sl])[-1])

@@ -120,7 +120,7 @@ def linearize(
     k = j[idx][:, idx].tocsr()
     g = j[n : n + m][:, idx].tocsr()
     gt = j[idx][:, n : n + m].tocsr()
-    if any(jt.kind == "sliding" for jt in system.joints):
+    if any(jt.entry.slides for jt in system.joints):
         k, g, gt = _condense_sliding(system, j, k, g, gt)
     return Linearized(k, g, gt, mass[idx][:, idx].tocsr(), free)
 
@@ -136,7 +136,7 @@ def _condense_sliding(
     n, d = system.n, system.dim
     keep, rows, cols = np.ones(system.m, dtype=bool), [], []
     for jj, joint in enumerate(system.joints):
-        if joint.kind != "sliding":
+        if not joint.entry.slides:
             continue
         r0 = system.joint_rows[jj]
         slot = r0 + d

@@ -37,6 +37,8 @@ from numpy.typing import NDArray
 
 from rancf.bodies.flexible import Model
 from rancf.kernels.call_records import (
+    ResidualOptions,
+    ResidualPoint,
     StatePoint,
     StaticOptions,
     StaticPoint,
@@ -132,17 +134,9 @@ class SystemEquilibrium:
     def full_residual(self, z: NDArray, p: float) -> NDArray[np.float64]:
         """Balance (held rows kept: the reactions) and constraints at ``(z, p)``."""
         r = np.empty(self.n + self.m)
-        zero = self._zero
         ok = self.system.core.residual(
-            z[: self.n],
-            zero,
-            zero,
-            z[self.n :],
-            self._t,
-            self.load_factor(p),
-            self._amp,
-            dynamic=False,
-            r=r,
+            ResidualPoint(z[: self.n], z[self.n :], r),
+            ResidualOptions(self._t, self.load_factor(p), self._amp, dynamic=False),
         )
         return r if ok else np.full_like(r, np.nan)
 

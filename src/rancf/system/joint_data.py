@@ -3,21 +3,15 @@ reference configuration (docs/derivations/systems.md section 3).
 
 Axes are given in world coordinates in the reference configuration and stored in the frames of
 the places (``fa``, ``fb``: the rows of each place's frame at the reference; one row, the
-tangent, for a cable node; none for a point mass), so every joint holds exactly there:
-
-* 2D ``fixed`` or driven pin: the reference relative angle ``β0``; 2D ``slider``: the normal of
-  the axis in the second place's frame;
-* 3D ``fixed`` between two frames: their relative rotation ``Fa Fbᵀ``; between a cable tangent
-  and a frame (``tangent`` rows): two normals of the tangent in the frame;
-* 3D ``slider``: two normals of the axis in the second frame; 3D ``revolute``: the axis in the
-  first frame and two normals of it in the second (a driven one also the reference normals
-  ``w_a``, ``w_b`` whose angle is the joint angle).
+tangent, for a cable node; none for a point mass), so every joint holds exactly there.  What each
+kind stores is its own (:mod:`rancf.system.parts.joint_kinds`); this module checks what all
+kinds share (the axis, the driving angle, the places' orientation) and fills the record.
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Any, Protocol
+from typing import Any, ClassVar, Protocol
 
 import numpy as np
 from numpy.typing import NDArray
@@ -25,7 +19,7 @@ from numpy.typing import NDArray
 from rancf.errors import InputError
 from rancf.kernels.records import JointRecord, floats
 
-__all__ = ["JointFields", "joint_data", "normals", "uses_frames"]
+__all__ = ["JointFields", "JointKindData", "joint_data", "normals"]
 
 
 class JointFields(Protocol):
@@ -49,6 +43,30 @@ class JointFields(Protocol):
     @property
     def position(self) -> Sequence[float] | None: ...
 
+    @property
+    def entry(self) -> JointKindData:
+        """Its kind."""
+        ...
+
+
+class JointKindData(Protocol):
+    """What the record takes of a joint's kind
+    (:class:`rancf.system.parts.joint_kinds.JointKind`)."""
+
+    name: ClassVar[str]
+    drivable: ClassVar[bool]
+    slides: ClassVar[bool]
+
+    def axis_required(self, dim: int) -> bool: ...
+
+    def needs_orientation(self, fa: NDArray, fb: NDArray, dim: int, driven: bool) -> bool: ...
+
+    def planar(self, info: dict, axis: NDArray | None, fa: NDArray, fb: NDArray) -> None: ...
+
+    def spatial(
+        self, j: Any, info: dict, axis: NDArray | None, fa: NDArray, fb: NDArray
+    ) -> None: ...
+
 
 def normals(e: NDArray) -> tuple[NDArray, NDArray]:
     """Two unit vectors normal to ``e`` and to each other."""
@@ -59,9 +77,9 @@ def normals(e: NDArray) -> tuple[NDArray, NDArray]:
     return n1, np.cross(e, n1)
 
 
-def _axis(j: JointFields, d: int) -> NDArray | None:
+def _axis(j: JointFields, kind: JointKindData, d: int) -> NDArray | None:
     if j.axis is None:
-        if j.kind in ("revolute", "slider") and not (d == 2 and j.kind == "revolute"):
+        if kind.axis_required(d):
             raise InputError("joints.axis", None, f"required for a {j.kind} joint")
         return None
     axis = np.r_[np.asarray(j.axis, dtype=float), np.zeros(3)][:3]
@@ -70,30 +88,27 @@ def _axis(j: JointFields, d: int) -> NDArray | None:
     return axis / np.linalg.norm(axis)
 
 
-def _between(j: JointFields) -> list[str]:
-    return [str(x) for x in j.between]
-
-
 def _record(info: dict[str, Any]) -> JointRecord:
     vectors = ("rel", "axis_a", "normals_b", "w_a", "w_b")
     fields: dict[str, Any] = {k: floats(v) if k in vectors else v for k, v in info.items()}
     return JointRecord(**fields)
 
 
-def uses_frames(j: JointFields) -> bool:
-    """Whether the record of ``j`` reads its places' reference frames: a fixed, slider or
-    revolute joint, or a driven one (a pin's positions need none)."""
-    return j.kind in ("fixed", "slider", "revolute") or j.angle is not None
-
-
 def joint_data(
-    j: JointFields, a: int, b: int, fa: NDArray, fb: NDArray, d: int, angle: int
+    j: JointFields,
+    kind: JointKindData,
+    a: int,
+    b: int,
+    fa: NDArray,
+    fb: NDArray,
+    d: int,
+    angle: int,
 ) -> JointRecord:
-    """The core's record of joint ``j`` between the places ``a`` and ``b`` (their indices among
-    the system's place records) whose reference frames are ``fa``, ``fb`` ``(k, 3)``, in
-    dimension ``d``; ``angle``: the time function of a driven joint (-1: none)."""
+    """The core's record of joint ``j`` of the kind ``kind`` between the places ``a`` and ``b``
+    (their indices among the system's place records) whose reference frames are ``fa``, ``fb``
+    ``(k, 3)``, in dimension ``d``; ``angle``: the time function of a driven joint (-1: none)."""
     info: dict = {
-        "kind": j.kind,
+        "kind": kind.name,
         "a": a,
         "b": b,
         "driven": False,
@@ -105,64 +120,21 @@ def joint_data(
         "w_a": np.zeros(3),
         "w_b": np.zeros(3),
     }
-    axis = _axis(j, d)
-    need = {"fixed": True, "slider": True}.get(j.kind, j.angle is not None)
-    if need and (len(fb) < 3 or (j.kind != "slider" and len(fa) < 3 and d == 2)):
+    axis = _axis(j, kind, d)
+    if kind.needs_orientation(fa, fb, d, j.angle is not None):
         raise InputError(
             "joints.between",
-            _between(j),
+            [str(x) for x in j.between],
             "places with an orientation for this joint (not a point mass)",
         )
     if j.angle is not None:
-        if j.kind not in ("pin", "revolute"):
+        if not kind.drivable:
             raise InputError("joints.angle", "set", "a pin or revolute joint")
         if j.angle.size != 1:
             raise InputError("joints.angle", j.angle.size, "a scalar time function [rad]")
         info["driven"], info["angle"] = True, angle
     if d == 2:
-        if j.kind == "revolute":
-            info["kind"] = "pin"
-        if j.kind == "fixed" or j.angle is not None:
-            info["beta0"] = float(np.arctan2(fa[0] @ fb[1], fa[0] @ fb[0]))
-        if j.kind == "slider":
-            assert axis is not None  # required (_axis)
-            normal = np.array([-axis[1], axis[0], 0.0])
-            info["normals_b"][:3] = fb @ normal
-        return _record(info)
-    if j.kind == "fixed":
-        if len(fa) == 3 and len(fb) == 3:
-            info["rel"] = (fa @ fb.T).ravel()
-            return _record(info)
-        if len(fa) == 1 and len(fb) == 3:
-            info["kind"] = "tangent"
-            n1, n2 = normals(fa[0])
-            info["normals_b"] = np.r_[fb @ n1, fb @ n2]
-            return _record(info)
-        raise InputError(
-            "joints.kind",
-            "fixed",
-            "a frame on at least one side (a 3D cable has only a tangent: use rods)",
-        )
-    if j.kind == "slider":
-        if len(fb) < 3:
-            raise InputError("joints.between", str(j.between[1]), "a place with a frame")
-        assert axis is not None  # required (_axis)
-        n1, n2 = normals(axis)
-        info["normals_b"] = np.r_[fb @ n1, fb @ n2]
-        return _record(info)
-    if j.kind == "revolute":
-        if len(fa) < 3 or len(fb) < 3:
-            raise InputError(
-                "joints.between",
-                _between(j),
-                "places with a frame (a 3D cable node has only a tangent: a rod)",
-            )
-        assert axis is not None  # required in 3D (_axis)
-        n1, n2 = normals(axis)
-        info["axis_a"], info["normals_b"] = fa @ axis, np.r_[fb @ n1, fb @ n2]
-        if j.angle is not None:
-            info["w_a"], info["w_b"] = fa @ n1, fb @ n1
-        return _record(info)
-    if j.angle is not None:
-        raise InputError("joints.angle", "pin", "a revolute joint in 3D (it needs an axis)")
+        kind.planar(info, axis, fa, fb)
+    else:
+        kind.spatial(j, info, axis, fa, fb)
     return _record(info)

@@ -46,7 +46,7 @@ def _guides(system: Any) -> list[tuple[str, str, int, int]]:
 
     out = []
     for k, j in enumerate(getattr(system, "joints", ())):
-        if j.kind != "sliding":
+        if not j.entry.slides:
             continue
         name, body = sliding_body(system, j)
         if not body.closed:

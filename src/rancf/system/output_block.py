@@ -36,7 +36,7 @@ __all__ = ["block_derived", "block_sections", "contact_row", "takes_block", "rod
 
 def takes_block(system: Any, static: bool, directors: NDArray | None, k: int) -> bool:
     """Whether ``k`` rows of ``system`` go through the core as one block."""
-    sliding = any(j.kind == "sliding" for j in system.joints)
+    sliding = any(j.entry.slides for j in system.joints)
     return not (static or sliding) and directors is None and k > 0
 
 

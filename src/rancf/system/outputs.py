@@ -54,6 +54,7 @@ magnitudes) and the largest penetration ``A_B_penetration`` [m].
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -62,7 +63,7 @@ from numpy.typing import NDArray
 from rancf.bodies.nodal_forces import recovers_axial_force
 from rancf.bodies.reactions import Reaction, reaction_row, support_reactions
 from rancf.bodies.section_outputs import SectionSampler, section_names
-from rancf.kernels.call_records import evaluator
+from rancf.kernels.call_records import ResidualOptions, ResidualPoint, evaluator
 from rancf.system.output_block import (
     block_derived,
     block_sections,
@@ -74,7 +75,7 @@ from rancf.system.output_columns import part_columns, support_labels
 from rancf.system.parts.flexible import FlexibleBody
 from rancf.system.seabed_friction import static_friction_load
 from rancf.system.sensors import SensorReader
-from rancf.system.sliding import sliding_slots, sliding_values
+from rancf.system.sliding import sliding_slots
 from rancf.system.system import System
 
 __all__ = ["SystemOutputs"]
@@ -232,18 +233,10 @@ class SystemOutputs:
                 if static:
                     if lam is not None:
                         li[:] = lam[i]
-                    s.core.residual(y, vy, a, li, 0.0, min(float(t[i]), 1.0), True, False, res)
+                    at = ResidualOptions(0.0, min(float(t[i]), 1.0), True, dynamic=False)
+                    s.core.residual(ResidualPoint(y, li, res), at)
                     s.core.residual(
-                        y,
-                        vy,
-                        a,
-                        no_lam,
-                        0.0,
-                        min(float(t[i]), 1.0),
-                        True,
-                        False,
-                        res0,
-                        distributed_only=True,
+                        ResidualPoint(y, no_lam, res0), replace(at, distributed_only=True)
                     )
                     if (fr := static_friction_load(s, y)) is not None:  # the seabeds' friction
                         res[: s.n] -= fr
@@ -252,19 +245,11 @@ class SystemOutputs:
                 else:
                     step = self._step(alpha, i, y, vy)
                     self.integrator.initial_acceleration(y, vy, float(t[i]), a, li, *step)
-                    s.core.residual(y, vy, a, li, float(t[i]), 1.0, False, True, res, *step)
+                    at = ResidualOptions(float(t[i]))
+                    s.core.residual(ResidualPoint(y, li, res, vy, a, *step), at)
                     s.core.residual(
-                        y,
-                        vy,
-                        a,
-                        no_lam,
-                        float(t[i]),
-                        1.0,
-                        False,
-                        True,
-                        res0,
-                        *step,
-                        distributed_only=True,
+                        ResidualPoint(y, no_lam, res0, vy, a, *step),
+                        replace(at, distributed_only=True),
                     )
                 out["a"][i], out["lam"][i] = s.q_from_y(a), li
                 vc = None if static else vy  # friction from the velocities
@@ -298,8 +283,11 @@ class SystemOutputs:
         s = self.system
         y = np.asarray(y, dtype=float)
         lam = np.asarray(lam, dtype=float)
-        res, zero = np.empty(s.n + s.m), np.zeros(s.n)
-        s.core.residual(y, zero, zero, lam, 0.0, float(load_factor), True, False, res)
+        res = np.empty(s.n + s.m)
+        s.core.residual(
+            ResidualPoint(y, lam, res),
+            ResidualOptions(0.0, float(load_factor), amplitude=True, dynamic=False),
+        )
         if (fr := static_friction_load(s, y)) is not None:
             res[: s.n] -= fr
         return self.reactions(y, res[: s.n], 0.0, lam)
@@ -317,8 +305,8 @@ class SystemOutputs:
             mom, extra = None, None
             if j.transmits_moment(s.dim):
                 mom = np.asarray(moment)[2:] if s.dim == 2 else np.asarray(moment)
-            if j.kind == "sliding":
-                extra = np.array([sliding_values(s, k, y, lam)])
+            if more := j.entry.values(s, k, y, lam):
+                extra = np.array(more)
             out.append(Reaction(j.name or f"joint{k}", np.asarray(force)[: s.dim], mom, extra))
         return out
 

@@ -8,6 +8,11 @@ compiled core (:mod:`rancf.kernels.records`; the places and time functions it ne
 in ``rows``), its output columns and their values at a state.  The System gathers its parts'
 records into one model record and builds the core from it once (:attr:`System.parts`).
 
+Sensors.  A part's class offers the sensor kinds it can give (:attr:`Part.sensor_kinds`: kind
+name -> builder of the sensor's reader, :mod:`rancf.system.readers`); the sensors of a run find
+every kind among the part classes of :mod:`rancf.system.parts.catalog`, so a new part brings its
+sensors with it.
+
 Output columns.  A part's :meth:`Part.sensors` are the one place that names its columns among
 a run's reactions (``reactions.csv``): :class:`rancf.system.outputs.SystemOutputs` writes the
 columns of every part in the order of :attr:`System.parts`, and a ``reaction`` sensor of a
@@ -19,7 +24,7 @@ in the core (a test holds the two equal).
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from typing import TYPE_CHECKING, Any, Protocol
+from typing import TYPE_CHECKING, Any, ClassVar, Protocol
 
 from numpy.typing import NDArray
 
@@ -52,6 +57,10 @@ class PartHost(Protocol):
 class Part(Protocol):
     """One physical item of a system (module docstring)."""
 
+    #: The sensor kinds it offers: name -> ``build(host, sensor) -> Reader``
+    #: (:data:`rancf.system.readers.SensorBuilder`).
+    sensor_kinds: ClassVar[Mapping[str, Any]]
+
     @property
     def name(self) -> str:
         """Its name (its output columns start with it)."""
@@ -78,6 +87,8 @@ class NoOutputs:
     """The outputs of a part with no columns of its own: a load's force is an input, a body's
     outputs are its section values and sensors, and a contact pair's forces are in its
     obstacle's columns."""
+
+    sensor_kinds: ClassVar[Mapping[str, Any]] = {}
 
     def sensors(self, system: Any) -> Sequence[str]:
         """None (class docstring)."""

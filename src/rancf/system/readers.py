@@ -4,10 +4,11 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any, Protocol
 
 from numpy.typing import NDArray
 
-__all__ = ["Block", "Reader", "NamedReader"]
+__all__ = ["Block", "Reader", "NamedReader", "SensorBuilder", "SensorHost", "sensor_places"]
 
 #: Rows of outputs: ``(t, q, v, derived, energy)``.
 Block = tuple[NDArray, NDArray, NDArray, dict[str, NDArray], NDArray]
@@ -24,3 +25,24 @@ class NamedReader:
 
     def __call__(self, blk: Block) -> NDArray:
         return self.read(blk)
+
+
+class SensorHost(Protocol):
+    r"""What a sensor kind's builder reads (:class:`rancf.system.sensors.SensorReader`): the
+    run's derived ``out``\ puts, its ``system``, and a sensor's places."""
+
+    out: Any
+    system: Any
+
+    def place(self, sen: Any, spec: Any) -> Any:
+        """The place ``spec`` of sensor ``sen`` on a body (one line naming the sensor if not)."""
+        ...
+
+
+#: A sensor kind's builder: ``build(host, sensor) -> Reader`` (a Part's ``sensor_kinds``).
+SensorBuilder = Callable[[Any, Any], Reader]
+
+
+def sensor_places(sen: Any) -> tuple[Any, ...]:
+    """The places a sensor names (``places``, or ``nodes``)."""
+    return tuple(getattr(sen, "places", ()) or getattr(sen, "nodes", ()))

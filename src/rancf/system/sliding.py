@@ -194,7 +194,7 @@ def sliding_records(system: Any, joints: Sequence[JointFields]) -> tuple[Sliding
     """The core's record of the element geometry of every body a sliding joint runs along."""
     out: dict[str, SlidingRecord] = {}
     for j in joints:
-        if j.kind != "sliding":
+        if not j.entry.slides:
             continue
         name, body = sliding_body(system, j)
         if name not in out:
@@ -213,7 +213,7 @@ def sliding_starts(system: Any) -> None:
     joint index -> σ), its place on the body in the reference configuration."""
     system.sliding_start, system.sliding_passed = {}, set()
     for k, j in enumerate(system.joints):
-        if j.kind != "sliding":
+        if not j.entry.slides:
             continue
         name, body = sliding_body(system, j)
         x, _ = system.core.place(system.model.joints[k].b, system.y0, 0.0)
@@ -271,7 +271,7 @@ def sliding_slots(system: Any, y: NDArray, lam: NDArray | None = None) -> NDArra
     to the place (:func:`material_coordinate`; what the joint holds at a converged state)."""
     out = np.zeros(system.m)
     for k, j in enumerate(system.joints):
-        if j.kind != "sliding":
+        if not j.entry.slides:
             continue
         slot = system.joint_rows[k] + system.dim
         if lam is not None:

@@ -13,14 +13,13 @@ the place where the line leaves the drum.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from typing import Any, Protocol
 
 import numpy as np
 
 from rancf.bodies.flexible import Model
 from rancf.bodies.length import unstretched_length
-from rancf.bodies.reactions import has_moment
 from rancf.bodies.rigid import PointMass
 from rancf.bodies.time_function import TimeFunction, build_up_factor
 from rancf.errors import InputError
@@ -34,7 +33,6 @@ __all__ = [
     "add_drums",
     "winch_node",
     "unloaded_at",
-    "winch_reader",
     "winch_factor",
     "LENGTH_RTOL",
     "length_law",
@@ -177,8 +175,7 @@ def add_drums(system: WinchedSystem, winches: tuple[Winch, ...]) -> None:
 
 def winch_node(system: WinchedSystem, w: Winch) -> tuple[str, int]:
     """The body and the node at the drum."""
-    name, end = w.body_and_end()
-    return name, 0 if end == "start" else _body(system, w).n_nodes - 1
+    return w.node(system)
 
 
 def _body(system: WinchedSystem, w: Winch) -> Model:
@@ -202,8 +199,8 @@ def unloaded_at(system: WinchedSystem, t: float) -> np.ndarray:
         q[:, :d] = a + factor * (q[:, :d] - a)
         q[:, d : 2 * d] *= factor
         y[sl] = body.y_from_q(q.ravel())
-        for j in system.joints:  # a point mass pinned to the body goes with its node
-            if j.kind != "pin":
+        for j in system.joints:  # a point mass joined to the body goes with its node
+            if not j.entry.joins_positions:
                 continue
             ends = [system.resolve(p) for p in j.between]
             for p, other in (ends, ends[::-1]):
@@ -211,41 +208,6 @@ def unloaded_at(system: WinchedSystem, t: float) -> np.ndarray:
                 if p.body == name and isinstance(mass, PointMass):
                     y[system.body_slice(other.body)][:d] = q[int(p.at), :d]
     return y
-
-
-def winch_reader(outputs: Any, sen: Any) -> Callable[[Any], np.ndarray]:
-    """The columns of a ``winch`` sensor (``NAME_length``, ``NAME_speed``, ``NAME_tension``):
-    ``L(t)``, ``L'(t)`` and the magnitude of the force of the winch's support on the line
-    (:class:`rancf.system.outputs.SystemOutputs`' reaction columns)."""
-    s = outputs.system
-    found = [w for w in getattr(s, "winches", ()) if w.name == sen.winch]
-    if not found:
-        names = ", ".join(w.name for w in getattr(s, "winches", ())) or "none"
-        raise InputError(f"sensors.{sen.name}.winch", sen.winch, f"a winch: {names}")
-    w = found[0]
-    name, node = winch_node(s, w)
-    f = s.winch_lengths[w.name]
-    start, d, cols = 0, s.dim, slice(0, 0)
-    for body_name, b in outputs.flex:
-        for sup in b.supports:
-            width = d + (0 if not has_moment(b, sup.kind) else (1 if d == 2 else 3))
-            if body_name == name and b.check_node(sup.node, "supports.at") == node:
-                cols = slice(start, start + d)
-            start += width
-
-    drum = getattr(s, "drums", {}).get(w.name)
-
-    def read(blk: Any) -> np.ndarray:
-        t = blk[0]
-        if drum is not None:  # a driven drum: L and L' are the state's (rows of y, v)
-            length, rate = blk[1][:, drum], blk[2][:, drum]
-        else:
-            length = np.array([float(np.ravel(f.value(x))[0]) for x in t])
-            rate = np.array([float(np.ravel(f.rate(x))[0]) for x in t])
-        tension = np.linalg.norm(blk[3]["r"][:, cols], axis=1)
-        return np.column_stack([length, rate, tension])
-
-    return read
 
 
 def winch_factor(system: Any, name: str, t: float, y: np.ndarray | None = None) -> float:

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 from numpy.typing import NDArray
@@ -75,6 +75,8 @@ class BodyPair:
     a: str
     b: str
     friction: float = 0.0
+    #: No sensor kinds of its own (its forces: its bodies' contact outputs).
+    sensor_kinds: ClassVar[Mapping[str, Any]] = {}
 
     @property
     def name(self) -> str:

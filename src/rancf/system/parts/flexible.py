@@ -8,24 +8,60 @@ are Parts of their own (:mod:`rancf.system.parts.support`, :mod:`rancf.system.pa
 which it lists; a point load without a time function is the model's own load vector.  A
 closed body's seam is held by linear rows (:func:`rancf.bodies.closure.closure_terms`).  Its
 outputs are its section values (:mod:`rancf.bodies.section_outputs`) and its supports'
-reactions: no columns of its own.
+reactions: no columns of its own.  Its sensor kinds: ``twist`` at a rod's node (its twist
+coordinate ``φ`` [rad]) and ``axial_force`` (or ``tension``) at a node (the section value ``N``);
+with ``at_point``: at the material point nearest to a fixed point (:mod:`rancf.system.at_point`).
 """
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, ClassVar
 
 from rancf.bodies.flexible import Model
+from rancf.errors import InputError
+from rancf.system.at_point import at_point_reader
 from rancf.system.part import NoOutputs
 from rancf.system.parts.load import Load
 from rancf.system.parts.support import Support
 from rancf.system.places import Place
+from rancf.system.readers import Reader, SensorBuilder, SensorHost, sensor_places
 
 if TYPE_CHECKING:
     from rancf.system.record_rows import RecordRows
 
 __all__ = ["FlexibleBody"]
+
+
+def twist_reader(host: SensorHost, sen: Any) -> Reader:
+    """A ``twist`` sensor: the twist coordinate ``φ`` [rad] of a rod's node."""
+    if getattr(sen, "point", None) is not None:
+        return at_point_reader(host.out, sen)
+    s = host.system
+    p = host.place(sen, sensor_places(sen)[0])
+    body = p.body_name()
+    b = s.bodies[body]
+    if not (isinstance(b, Model) and b.family.has_triads):
+        raise InputError(f"sensors.{sen.name}.at", str(p), "a node of a rod")
+    i = s.offsets[body] + p.node() * b.dpn + 6
+    return lambda blk: blk[1][:, i]
+
+
+def axial_force_reader(host: SensorHost, sen: Any) -> Reader:
+    """An ``axial_force`` (or ``tension``: a line's tension is its axial force) sensor: the
+    section value ``N`` at a node (:mod:`rancf.bodies.section_outputs`; of cables and rods from
+    the nodal forces, :mod:`rancf.bodies.nodal_forces`)."""
+    if getattr(sen, "point", None) is not None:
+        return at_point_reader(host.out, sen)
+    p = host.place(sen, sensor_places(sen)[0])
+    name = p.body_name()
+    if not isinstance(host.system.bodies[name], Model):
+        raise InputError(f"sensors.{sen.name}.at", str(p), "a node of a flexible body")
+    out = host.out
+    sp = out.samplers[name]
+    point = min(p.node() * sp.per_element, sp.n_points - 1)
+    return lambda blk: out.body_along(blk[3]["s"], name)[:, point, 1]
 
 
 @dataclass(frozen=True, eq=False)
@@ -34,6 +70,12 @@ class FlexibleBody(NoOutputs):
 
     name: str
     model: Model
+    #: Its sensor kinds (module docstring).
+    sensor_kinds: ClassVar[Mapping[str, SensorBuilder]] = {
+        "twist": twist_reader,
+        "axial_force": axial_force_reader,
+        "tension": axial_force_reader,
+    }
 
     def record(self, system: Any = None, rows: RecordRows | None = None) -> Any:
         """The core's model of the body (``rancf.kernels._core.Model``)."""

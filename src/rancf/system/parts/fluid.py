@@ -8,8 +8,10 @@ What it reads: the fluid (:class:`~rancf.system.fluid.Fluid`), the bodies' coeff
 gathers per body).  Its record for the core: the fluid field (:class:`FluidRecord`) and one
 :class:`LineRecord` per flexible body the fluid or a distributed load acts on (its quadrature,
 coefficients and loads); none without a fluid, coefficients or distributed loads.  Its outputs
-are the ``fluid_force`` and ``wave_elevation`` sensors (:mod:`rancf.system.sensors`): no
-columns of its own.
+are its sensor kinds: ``fluid_force`` on a flexible body (``body``) or on all of them
+(buoyancy, drag and the waves' Froude–Krylov force; the added mass left out) and
+``wave_elevation`` with ``at_point`` (the free surface's height above that point's horizontal
+position, :func:`rancf.system.fluid.surface_elevation`): no columns of its own.
 """
 
 from __future__ import annotations
@@ -17,20 +19,50 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 
 from rancf.errors import InputError
 from rancf.kernels.records import DistributedRecord, FluidRecord, LineRecord, floats, vec3
-from rancf.system.fluid import Fluid, Hydro
+from rancf.system.fluid import Fluid, Hydro, surface_elevation
 from rancf.system.part import NoOutputs
 from rancf.system.parts.distributed import DistributedLoad
+from rancf.system.readers import Block, Reader, SensorBuilder, SensorHost
 
 if TYPE_CHECKING:
     from rancf.system.record_rows import RecordRows
 
 __all__ = ["FluidPart", "fluid_records"]
+
+
+def fluid_force_reader(host: SensorHost, sen: Any) -> Reader:
+    """A ``fluid_force`` sensor: buoyancy, drag and the waves' Froude-Krylov force on one
+    flexible body or on all of them (docs/derivations/fluid.md section 3; the added mass needs
+    accelerations: left out)."""
+    s, d = host.system, host.system.dim
+    flex = [n for n, _ in host.out.flex]
+    body = getattr(sen, "body", None)
+    if body is not None and body not in flex:
+        raise InputError(f"sensors.{sen.name}.body", body, f"a flexible body: {', '.join(flex)}")
+    pick = [flex.index(body)] if body is not None else list(range(len(flex)))
+
+    def read(blk: Block) -> np.ndarray:
+        out = np.zeros((len(blk[0]), d))
+        for k, (tt, q, v) in enumerate(zip(blk[0], blk[1], blk[2], strict=True)):
+            y, w = s.y_from_q(q), s.y_from_q(v)
+            f = np.asarray(s.core.fluid_forces(y, w, np.zeros_like(y), float(tt)))
+            out[k] = f.reshape(-1, 3)[pick, :d].sum(axis=0)
+        return out
+
+    return read
+
+
+def wave_elevation_reader(host: SensorHost, sen: Any) -> Reader:
+    """A ``wave_elevation`` sensor: the free surface's height above the horizontal position of
+    ``sen.point`` (:func:`rancf.system.fluid.surface_elevation`)."""
+    pt, system = sen.point, host.system
+    return lambda blk: surface_elevation(system, pt, blk[0])
 
 
 @dataclass(frozen=True, eq=False)
@@ -42,6 +74,11 @@ class FluidPart(NoOutputs):
     hydro: Mapping[str, Hydro] = field(default_factory=dict)
     distributed: Sequence[DistributedLoad] = ()
     name = "fluid"
+    #: Its sensor kinds (module docstring).
+    sensor_kinds: ClassVar[Mapping[str, SensorBuilder]] = {
+        "fluid_force": fluid_force_reader,
+        "wave_elevation": wave_elevation_reader,
+    }
 
     @property
     def empty(self) -> bool:

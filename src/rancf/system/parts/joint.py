@@ -1,6 +1,7 @@
 """Joints: a joint between two places, a :class:`~rancf.system.part.Part`.
 
-Joint kinds (docs/derivations/systems.md section 3): ``"pin"`` (positions coincide: revolute in 2D,
+Joint kinds (docs/derivations/systems.md section 3), one class each in
+:mod:`rancf.system.parts.joint_kinds`: ``"pin"`` (positions coincide: revolute in 2D,
 spherical in 3D), ``"revolute"`` (3D: positions, and the ``axis`` of the first place normal to the
 second's frame's normals of it), ``"fixed"`` (positions and orientations: a cable end's tangent
 direction, a rod end's material frame, a rigid body's frame), ``"slider"`` (the first place moves
@@ -17,7 +18,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 from numpy.typing import NDArray
@@ -25,16 +26,18 @@ from numpy.typing import NDArray
 from rancf.bodies.time_function import TimeFunction
 from rancf.errors import InputError
 from rancf.kernels.records import JointRecord
-from rancf.system.joint_data import joint_data, uses_frames
+from rancf.system.joint_data import joint_data
+from rancf.system.parts.joint_kinds import KINDS, JointKind, joint_kind
+from rancf.system.parts.support import reaction_reader
 from rancf.system.places import Place
-from rancf.system.sliding import sliding_joint, sliding_values
+from rancf.system.readers import SensorBuilder
 
 if TYPE_CHECKING:
     from rancf.system.record_rows import RecordRows
 
 __all__ = ["Joint", "JOINT_KINDS"]
 
-JOINT_KINDS = ("pin", "revolute", "fixed", "slider", "sliding")
+JOINT_KINDS = tuple(KINDS)
 
 
 @dataclass(frozen=True)
@@ -53,31 +56,40 @@ class Joint:
     #: A fixed joint to the ground: the ground's frame turns by this rotation from the world
     #: axes (2D the angle about z, 3D the rotation vector [rad]; a turning clamp).
     rotation: TimeFunction | None = None
+    #: Its sensor kinds: its ``reaction`` (:func:`rancf.system.parts.support.reaction_reader`).
+    sensor_kinds: ClassVar[Mapping[str, SensorBuilder]] = {"reaction": reaction_reader}
+
+    @property
+    def entry(self) -> JointKind:
+        """Its kind (:mod:`rancf.system.parts.joint_kinds`); an unknown one is one line naming
+        ``joints.kind``."""
+        return joint_kind(self.kind)
 
     def record(self, system: Any, rows: RecordRows) -> JointRecord:
         """The core's record: its places (and a moving ground's time function) registered in
         ``rows`` with a driven joint's angle, its orientation data measured in their reference
-        frames (``system.reference_frames``, :mod:`rancf.system.joint_data`)."""
-        if self.kind not in JOINT_KINDS:
-            raise InputError("joints.kind", self.kind, f"one of {', '.join(JOINT_KINDS)}")
-        if self.kind == "sliding":  # a body through a place
-            return sliding_joint(system, self, rows)
+        frames (``system.reference_frames``, its kind's, :mod:`rancf.system.joint_data`); a kind
+        with a record of its own gives it (a body through a place)."""
+        kind = self.entry
+        own = kind.record(self, system, rows)
+        if own is not None:
+            return own
         motion, angle = rows.tf(self.motion), rows.tf(self.angle)
         a, b = system.place_pair(self.between, rows, motion, self._rotation(system.dim, rows))
         fa = fb = np.zeros((0, 3))  # a pin reads no frames
-        if uses_frames(self):
+        if kind.uses_frames(self.angle is not None):
             frames = system.reference_frames(rows)
             fa, fb = frames[a][1], frames[b][1]
             if self.rotation is not None:  # measured against the unturned axes
                 fb = np.eye(3)
-        return joint_data(self, a, b, fa, fb, system.dim, angle)
+        return joint_data(self, kind, a, b, fa, fb, system.dim, angle)
 
     def _rotation(self, dim: int, rows: RecordRows) -> int:
         """The time function of the ground frame's rotation registered in ``rows`` (-1: none),
         its kind and size checked."""
         if self.rotation is None:
             return -1
-        if self.kind != "fixed":
+        if not self.entry.turns:
             raise InputError("supports.rotation", self.kind, "a clamp (a fixed joint)")
         size = 1 if dim == 2 else 3
         if self.rotation.size != size or (dim == 3) != self.rotation.vector:
@@ -92,16 +104,13 @@ class Joint:
         (:func:`rancf.system.sliding.sliding_starts`), and a moving ground point is the body's
         place's reference point moved by its motion at ``t = 0`` (a static start installs it
         there; a jump from rest is warned about or refused where the motion is read)."""
-        if self.kind == "sliding" or self.motion is not None:
+        if self.motion is not None:
             return 0.0
-        n = dim - 1 if self.kind == "slider" else (2 if dim == 2 else 3)
-        return float(np.linalg.norm(g[:n]))
+        return float(np.linalg.norm(g[: self.entry.gap_rows(dim)]))
 
     def transmits_moment(self, dim: int) -> bool:
         """Whether it transmits a moment (``fixed``, a 3D ``revolute``, a driven joint)."""
-        return (
-            self.kind == "fixed" or self.angle is not None or (self.kind == "revolute" and dim == 3)
-        )
+        return self.entry.transmits_moment(dim, self.angle is not None)
 
     def label(self, system: Any) -> str:
         """Its name, or ``jointK`` (its position ``K`` among the system's joints)."""
@@ -115,9 +124,7 @@ class Joint:
         cols = [f"{lab}_f{a}" for a in "xyz"[:dim]]
         if self.transmits_moment(dim):
             cols += [f"{lab}_mz"] if dim == 2 else [f"{lab}_m{a}" for a in "xyz"]
-        if self.kind == "sliding":
-            cols.append(f"{lab}_s")
-        return cols
+        return cols + self.entry.columns(lab)
 
     def reactions(
         self, system: Any, y: NDArray, lam: NDArray, t: float = 0.0
@@ -129,8 +136,7 @@ class Joint:
         values = [*np.asarray(force)[:dim]]
         if self.transmits_moment(dim):
             values += [*(np.asarray(moment)[2:] if dim == 2 else np.asarray(moment))]
-        if self.kind == "sliding":
-            values.append(sliding_values(system, k, y, lam))
+        values += self.entry.values(system, k, y, lam)
         return dict(zip(self.sensors(system), map(float, values), strict=True))
 
 

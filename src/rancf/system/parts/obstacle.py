@@ -4,14 +4,16 @@ An obstacle (a plane, a cylinder or a sphere; carried by a rigid body or fixed) 
 law's coefficients; the law itself and its defaults are in :mod:`rancf.system.contact`.  Its
 record is what the core's contact (``src/cpp/contact/contact.hpp``) takes of it: its kind, the
 rigid body that carries it and its point, direction and radius.  The pairs of bodies and
-obstacles in contact are Parts of :mod:`rancf.system.parts.contact_pair`.
+obstacles in contact are Parts of :mod:`rancf.system.parts.contact_pair`.  Its sensor kinds:
+``contact_force`` (the normal and friction forces on it, from its columns) and, a fixed plane,
+``touchdown`` (where a line leaves it, :mod:`rancf.system.touchdown`).
 """
 
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Literal
+from typing import TYPE_CHECKING, Any, ClassVar, Literal
 
 import numpy as np
 from numpy.typing import NDArray
@@ -20,6 +22,7 @@ from rancf.bodies.rigid import RigidBody
 from rancf.errors import InputError
 from rancf.kernels.contact_records import OBSTACLE_KINDS, ObstacleRecord
 from rancf.kernels.records import vec3
+from rancf.system.readers import Reader, SensorBuilder, SensorHost
 
 if TYPE_CHECKING:
     from rancf.system.record_rows import RecordRows
@@ -38,6 +41,52 @@ STIFFNESS_FACTOR = 0.1
 ONSET_FACTOR = 1e-3
 #: Default regularization velocity ε of the friction [m/s].
 SLIP_VELOCITY = 1e-3
+
+
+def contact_force_reader(host: SensorHost, sen: Any) -> Reader:
+    """A ``contact_force`` sensor: the normal plus the friction force on the obstacle
+    ``sen.obstacle`` (its columns among the reactions)."""
+    names = host.system.obstacle_names
+    if sen.obstacle not in names:
+        raise InputError(
+            f"sensors.{sen.name}.obstacle",
+            sen.obstacle,
+            f"an obstacle: {', '.join(names) or 'none'}",
+        )
+    c, d = host.out.contact_columns(sen.obstacle).start, host.system.dim
+    return lambda blk: blk[3]["r"][:, c : c + d] + blk[3]["r"][:, c + d : c + 2 * d]
+
+
+def touchdown_reader(host: SensorHost, sen: Any) -> Reader:
+    """A ``touchdown`` sensor: where the line leaves the fixed plane ``sen.obstacle``
+    (:func:`rancf.system.touchdown.touchdown_point`)."""
+    from rancf.system.touchdown import touchdown_point
+
+    s = host.system
+    names = list(s.obstacle_names)
+    ob = s.obstacles[names.index(sen.obstacle)] if sen.obstacle in names else None
+    if ob is None or ob.kind != "plane" or ob.body is not None:
+        planes = [
+            n
+            for n, o in zip(names, s.obstacles, strict=False)
+            if o.kind == "plane" and o.body is None
+        ]
+        raise InputError(
+            f"sensors.{sen.name}.obstacle",
+            sen.obstacle,
+            f"a fixed plane: {', '.join(planes) or 'none'}",
+        )
+    flex = [n for n, b in host.out.flex if b.family.gradient]
+    body = getattr(sen, "body", None) or (flex[0] if len(flex) == 1 else None)
+    if body not in flex:
+        raise InputError(
+            f"sensors.{sen.name}.body",
+            body,
+            f"a line (cable or rod elements): {', '.join(flex)}",
+        )
+    m, sl = s.bodies[body], s.body_slice(body)
+    point, normal = np.asarray(ob.point, float), np.asarray(ob.normal, float)
+    return lambda blk: np.array([touchdown_point(m, q[sl], point, normal) for q in blk[1]])
 
 
 @dataclass(frozen=True)
@@ -89,6 +138,11 @@ class Obstacle:
     damping_normal: float = 0.0
     slip_velocity: float = SLIP_VELOCITY
     name: str = ""
+    #: Its sensor kinds (module docstring).
+    sensor_kinds: ClassVar[Mapping[str, SensorBuilder]] = {
+        "contact_force": contact_force_reader,
+        "touchdown": touchdown_reader,
+    }
 
     def record(self, system: Any, rows: RecordRows | None = None, name: str = "") -> ObstacleRecord:
         """Its record (module docstring), its fields checked; ``name``: its name in the system

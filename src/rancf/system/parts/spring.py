@@ -44,6 +44,8 @@ class Spring:
     damping: float = 0.0
     length: float | None = None
     name: str = ""
+    #: No sensor kinds of its own (its tension: :meth:`stretch`, :meth:`tension`).
+    sensor_kinds: ClassVar[Mapping[str, Any]] = {}
 
     def key(self) -> str:
         """Its scenario key: ``springs.NAME`` (or its places)."""

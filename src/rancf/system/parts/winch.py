@@ -2,7 +2,8 @@
 :class:`~rancf.system.part.Part`.
 
 Its length law ``L(t)`` and what follows from it (the start for statics, the ``winch`` sensor,
-a driven drum's coordinate) are in :mod:`rancf.system.winches`; here: what it reads and its
+a driven drum's coordinate) are in :mod:`rancf.system.winches`, which builds its ``winch``
+sensor; here: what it reads and its
 record for the compiled core (``src/cpp/system/winch.hpp``): its body, the index of its
 ``L(t)``, the length the body's arrays hold, the convective matrices of
 :mod:`rancf.bodies.winch_inertia` and a driven drum's record (:mod:`rancf.system.drums`).
@@ -12,22 +13,59 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Literal
+from typing import TYPE_CHECKING, Any, ClassVar, Literal
 
 import numpy as np
 from numpy.typing import NDArray
 
 from rancf.bodies.flexible import Model
+from rancf.bodies.reactions import has_moment
 from rancf.bodies.time_function import TimeFunction
 from rancf.bodies.winch_inertia import convective_matrices
 from rancf.errors import InputError
 from rancf.kernels.records import WinchRecord
 from rancf.system.drums import drum_record, drum_torque
+from rancf.system.readers import Reader, SensorBuilder, SensorHost
 
 if TYPE_CHECKING:
     from rancf.system.record_rows import RecordRows
 
 __all__ = ["Winch"]
+
+
+def winch_sensor(host: SensorHost, sen: Any) -> Reader:
+    """The columns of a ``winch`` sensor (``NAME_length``, ``NAME_speed``, ``NAME_tension``):
+    ``L(t)``, ``L'(t)`` and the magnitude of the force of the winch's support on the line
+    (:class:`rancf.system.outputs.SystemOutputs`' reaction columns)."""
+    outputs, s = host.out, host.system
+    found = [w for w in getattr(s, "winches", ()) if w.name == sen.winch]
+    if not found:
+        names = ", ".join(w.name for w in getattr(s, "winches", ())) or "none"
+        raise InputError(f"sensors.{sen.name}.winch", sen.winch, f"a winch: {names}")
+    w = found[0]
+    name, node = w.node(s)
+    f = s.winch_lengths[w.name]
+    start, d, cols = 0, s.dim, slice(0, 0)
+    for body_name, b in outputs.flex:
+        for sup in b.supports:
+            width = d + (0 if not has_moment(b, sup.kind) else (1 if d == 2 else 3))
+            if body_name == name and b.check_node(sup.node, "supports.at") == node:
+                cols = slice(start, start + d)
+            start += width
+
+    drum = getattr(s, "drums", {}).get(w.name)
+
+    def read(blk: Any) -> np.ndarray:
+        t = blk[0]
+        if drum is not None:  # a driven drum: L and L' are the state's (rows of y, v)
+            length, rate = blk[1][:, drum], blk[2][:, drum]
+        else:
+            length = np.array([float(np.ravel(f.value(x))[0]) for x in t])
+            rate = np.array([float(np.ravel(f.rate(x))[0]) for x in t])
+        tension = np.linalg.norm(blk[3]["r"][:, cols], axis=1)
+        return np.column_stack([length, rate, tension])
+
+    return read
 
 
 @dataclass(frozen=True)
@@ -57,6 +95,8 @@ class Winch:
     torque: TimeFunction | float | None = None
     radius: float | None = None
     inertia: float | None = None
+    #: Its sensor kind: ``winch`` (module docstring).
+    sensor_kinds: ClassVar[Mapping[str, SensorBuilder]] = {"winch": winch_sensor}
 
     @property
     def driven(self) -> bool:
@@ -71,6 +111,11 @@ class Winch:
         if body and end == "end":
             return body, "end"
         raise InputError(f"winches.{self.name}.at", self.at, '"BODY:start" or "BODY:end"')
+
+    def node(self, system: Any) -> tuple[str, int]:
+        """The body and the node at the drum."""
+        name, end = self.body_and_end()
+        return name, 0 if end == "start" else self.body(system).n_nodes - 1
 
     def body(self, system: Any) -> Model:
         """Its body: a flexible body whose end at the drum is held by a support."""
@@ -127,7 +172,7 @@ class Winch:
 
     def sensors(self, system: Any) -> Sequence[str]:
         """None among the outputs' columns: the ``winch`` sensor reads its length, rate and
-        the line's pull (:func:`~rancf.system.winches.winch_reader`)."""
+        the line's pull (:func:`winch_sensor`)."""
         return ()
 
     def reactions(
