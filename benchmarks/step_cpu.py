@@ -2,6 +2,7 @@
 default) and every 10 ms, in `rancf simulate` and in the Exudyn script, from whole processes.
 
     taskset -c 0 python benchmarks/step_cpu.py --elements 8 32 128 512 [--pairs 3]
+        [--install before=PATH --install after=PATH]
 
 A time a step from a run's own clock (``solve_wall_time_s``) is wall time: on a core shared
 with other processes it counts their time too.  Here every case runs at two lengths, ``T`` and
@@ -17,6 +18,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import resource
 import shutil
 import statistics
@@ -31,14 +33,15 @@ sys.path.insert(0, str(HERE))
 from cli_cases import SCENARIO  # noqa: E402
 
 STEP = 1e-3
-#: Default run length [s] by elements: about 1-2 s of CPU a run.
-T_END = {8: 8.0, 32: 4.0, 128: 1.0, 512: 0.4}
+#: Default run length [s] by elements: enough steps that the noise of a process's CPU time
+#: (about 10 ms on a shared core) is a few per cent of the difference.
+T_END = {8: 16.0, 32: 6.0, 128: 2.0, 512: 0.6}
 
 
-def _cpu(cmd: list[str]) -> float:
+def _cpu(cmd: list[str], env: dict[str, str] | None = None) -> float:
     """The CPU time (user + system) of the process ``cmd``."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    subprocess.run(cmd, check=True, capture_output=True)
+    subprocess.run(cmd, check=True, capture_output=True, env=env)
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
@@ -67,24 +70,27 @@ def _exudyn(n: int, t_end: float, every: float | None) -> list[str]:
     return cmd + ([] if every is None else ["--output-step", str(every)])
 
 
-def measure(n: int, t_end: float, pairs: int, exudyn: bool, tmp: Path) -> dict[str, Any]:
+def measure(
+    n: int, t_end: float, pairs: int, exudyn: bool, tmp: Path, installs: dict[str, str]
+) -> dict[str, Any]:
     """µs of CPU a step of every case (medians) and the ratios, pair by pair, for ``n``
-    elements."""
-    cases = {("rancf", None), ("rancf", 0.01)}
-    if exudyn:
-        cases |= {("exudyn", None), ("exudyn", 0.01)}
-    order = sorted(cases, key=lambda c: (c[0], c[1] or 0.0))
+    elements; ``installs``: label -> ``PYTHONPATH`` of the rancf sources to run (label
+    ``rancf``: this environment's)."""
+    codes = list(installs) + (["exudyn"] if exudyn else [])
+    order = [(code, every) for code in codes for every in (None, 0.01)]
     steps = {t: round(t / STEP) for t in (t_end, t_end / 2)}
     per_step: dict[tuple[str, float | None], list[float]] = {c: [] for c in order}
     for _ in range(pairs):
         for code, every in order:
             cpu = {}
             for t in steps:
-                if code == "rancf":
-                    cmd = _rancf(tmp, n, t, every)
+                if code == "exudyn":
+                    cpu[t] = _cpu(_exudyn(n, t, every))
                 else:
-                    cmd = _exudyn(n, t, every)
-                cpu[t] = _cpu(cmd)
+                    env = dict(os.environ)
+                    if installs[code]:
+                        env["PYTHONPATH"] = installs[code]
+                    cpu[t] = _cpu(_rancf(tmp, n, t, every), env)
             grown = cpu[t_end] - cpu[t_end / 2]
             per_step[(code, every)].append(1e6 * grown / (steps[t_end] - steps[t_end / 2]))
     row: dict[str, Any] = {"elements": n, "t_end": t_end, "pairs": pairs}
@@ -96,10 +102,11 @@ def measure(n: int, t_end: float, pairs: int, exudyn: bool, tmp: Path) -> dict[s
     def ratio(a: tuple[str, float | None], b: tuple[str, float | None]) -> float:
         return statistics.median(x / y for x, y in zip(per_step[a], per_step[b], strict=True))
 
-    row["rancf every step / every 10 ms"] = ratio(("rancf", None), ("rancf", 0.01))
-    if exudyn:
-        row["rancf / Exudyn, every step"] = ratio(("rancf", None), ("exudyn", None))
-        row["rancf / Exudyn, every 10 ms"] = ratio(("rancf", 0.01), ("exudyn", 0.01))
+    for code in installs:
+        row[f"{code} every step / every 10 ms"] = ratio((code, None), (code, 0.01))
+        if exudyn:
+            row[f"{code} / Exudyn, every step"] = ratio((code, None), ("exudyn", None))
+            row[f"{code} / Exudyn, every 10 ms"] = ratio((code, 0.01), ("exudyn", 0.01))
     return row
 
 
@@ -108,13 +115,26 @@ def main(argv: list[str] | None = None) -> list[dict[str, Any]]:
     p.add_argument("--elements", type=int, nargs="+", default=[8, 32, 128, 512])
     p.add_argument("--pairs", type=int, default=3)
     p.add_argument("--t-end", type=float, default=None, help="T [s] (default: by size)")
-    p.add_argument("--no-exudyn", action="store_true", help="rancf's two outputs only")
+    p.add_argument(
+        "--no-exudyn",
+        action="store_true",
+        help="rancf's two outputs only (Exudyn's pendulum of 512 elements slows down to many "
+        "minutes, or gives up, after about 0.1 s on the machine of the performance page)",
+    )
+    p.add_argument(
+        "--install",
+        action="append",
+        default=[],
+        metavar="LABEL=PATH",
+        help="rancf from the sources at PATH (its PYTHONPATH), repeatable; default: this one",
+    )
     a = p.parse_args(argv)
+    installs = dict(x.split("=", 1) for x in a.install) or {"rancf": ""}
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         for n in a.elements:
             t_end = a.t_end if a.t_end is not None else T_END.get(n, 0.4)
-            rows.append(measure(n, t_end, a.pairs, not a.no_exudyn, Path(tmp)))
+            rows.append(measure(n, t_end, a.pairs, not a.no_exudyn, Path(tmp), installs))
             print(json.dumps(rows[-1], ensure_ascii=False), flush=True)
     return rows
 
