@@ -135,7 +135,8 @@ def test_a_worker_hands_over_small_blocks(tmp_path, monkeypatch):
     :data:`~rancf.post.history.WORKER_BLOCK_ROWS` rows, so that the last block, which the loop
     waits for, is short and a small model's rows too are derived beside the loop: a run of
     201 rows of 8 elements is handed over as the first row (the first checkpoint, before the
-    first step), three full blocks of 64 and the rest."""
+    first step), three full blocks of 64 and the rest (two idle cores: the loop's and the
+    worker's)."""
     from rancf.post import history
 
     assert history.WORKER_BLOCK_BYTES <= 1 << 20 and history.WORKER_BLOCK_ROWS <= 128
@@ -153,8 +154,31 @@ def test_a_worker_hands_over_small_blocks(tmp_path, monkeypatch):
         submit(self, job, rows, alpha, k)
 
     monkeypatch.setattr(BlockWorker, "submit", counted)
+    monkeypatch.setattr("rancf.cli.sim.idle_cores", lambda: 2)
     assert main(["simulate", "s.toml", "--out", "run", "--quiet"]) == 0
     assert sizes == [1, 64, 64, 64, 8]
+
+
+@pytest.mark.parametrize("idle", [0, 1])
+def test_without_a_core_of_its_own_no_worker(tmp_path, monkeypatch, idle):
+    """With fewer than two idle cores (the loop's and the worker's) `rancf simulate` derives
+    the rows between the steps: no worker thread, nothing handed over."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "s.toml").write_text(mutated(solver__t_end=0.05, mesh__elements=8))
+    handed, stores = [], []
+    monkeypatch.setattr(BlockWorker, "submit", lambda self, *a: handed.append(a))
+    init = HistoryStore.__init__
+
+    def seen(self, *args, **kwargs):  # noqa: ANN001, ANN002, ANN003, ANN202
+        init(self, *args, **kwargs)
+        stores.append(self._worker)
+
+    monkeypatch.setattr(HistoryStore, "__init__", seen)
+    monkeypatch.setattr("rancf.cli.sim.idle_cores", lambda: idle)
+    assert main(["simulate", "s.toml", "--out", "run", "--quiet"]) == 0
+    assert stores == [None] and handed == []
+    with np.load(tmp_path / "run" / "results.npz") as z:
+        assert z["t"].size == 51 and np.isfinite(z["a"]).all()
 
 
 def test_energies_derived_from_the_rows_equal_the_loops(tmp_path, monkeypatch):

@@ -51,21 +51,9 @@ def one_blas_thread() -> None:
         os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 
-def element_threads(system: Any, asked: int | None, rows_beside: bool = False) -> int:
-    """The threads a run's element loops use (``--threads``, else chosen): ``asked``, or, for a
-    system with a flexible body of at least ``min_parallel_elements()`` elements (fewer: a loop
-    shared between threads costs more than it saves), the cores this process may use that the
-    last minute's load average leaves idle, less one for the output worker where it derives
-    every step's row beside the loop (``rows_beside``), at least 1 (a thread that waits for a
-    core holds up every loop it shares); else 1.  The sums are the same bit for bit whatever
-    the number (``src/cpp/bodies/threads.hpp``); a sweep's runs keep one each."""
-    from rancf.kernels import _core
-
-    if asked is not None:
-        return asked
-    largest = max((getattr(b, "n_el", 0) for b in system.flex), default=0)
-    if largest < _core.min_parallel_elements():
-        return 1
+def idle_cores() -> int:
+    """The cores this process may use (its CPU affinity) that the last minute's load average
+    leaves idle, at least 0."""
     from rancf.sweep.threads import default_threads
 
     cores = default_threads()
@@ -73,17 +61,38 @@ def element_threads(system: Any, asked: int | None, rows_beside: bool = False) -
         busy = os.getloadavg()[0]
     except OSError:  # pragma: no cover - not available
         busy = 0.0
-    return max(1, min(cores, int(cores - busy + 0.5)) - int(rows_beside))
+    return max(0, min(cores, int(cores - busy + 0.5)))
+
+
+def element_threads(system: Any, asked: int | None, rows_beside: bool = False) -> int:
+    """The threads a run's element loops use (``--threads``, else chosen): ``asked``, or, for a
+    system with a flexible body of at least ``min_parallel_elements()`` elements (fewer: a loop
+    shared between threads costs more than it saves), the idle cores (:func:`idle_cores`), less
+    one for the output worker where it derives every step's row beside the loop
+    (``rows_beside``), at least 1 (a thread that waits for a core holds up every loop it
+    shares); else 1.  The sums are the same bit for bit whatever the number
+    (``src/cpp/bodies/threads.hpp``); a sweep's runs keep one each."""
+    from rancf.kernels import _core
+
+    if asked is not None:
+        return asked
+    largest = max((getattr(b, "n_el", 0) for b in system.flex), default=0)
+    if largest < _core.min_parallel_elements():
+        return 1
+    return max(1, idle_cores() - int(rows_beside))
 
 
 def _rows_beside(plan: Any) -> bool:
     """Whether a worker thread derives every step's output row beside the time loop (the
-    default output; :func:`rancf.post.block_worker.works_beside`): it keeps a core busy."""
+    default output; :func:`rancf.post.block_worker.works_beside`): where it has a core of its
+    own, two idle cores (:func:`idle_cores`) for the loop and it.  Without one the rows are
+    derived between the steps, in larger blocks: a worker that shares the loop's core adds the
+    threads' hand-overs to the same work."""
     from rancf.post.block_worker import works_beside
 
     opts = plan.options
     every_step = opts.output_step is None or opts.output_step <= opts.step
-    return every_step and works_beside(plan.outputs)
+    return every_step and works_beside(plan.outputs) and idle_cores() >= 2
 
 
 def _cmd_simulate(args: argparse.Namespace) -> int:
@@ -106,7 +115,8 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     _warn(list(plan.notes))  # a mesh refined for the static start: said before the run
     from rancf.kernels import _core
 
-    _core.set_assembly_threads(element_threads(plan.system, args.threads, _rows_beside(plan)))
+    beside = _rows_beside(plan)
+    _core.set_assembly_threads(element_threads(plan.system, args.threads, beside))
     if not args.quiet:
         from rancf.solvers.form import form_lines
 
@@ -115,7 +125,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     out = od.path
     stop = _StopFlag()
     with stop, od:
-        disk = DiskStream(args, sc, copy, files, od, stop, every)
+        disk = DiskStream(args, sc, copy, files, od, stop, every, beside)
         try:
             run = simulate_planned(sc, plan, stream=disk)
         except NothingToDo as done:

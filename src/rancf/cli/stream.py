@@ -64,7 +64,8 @@ class DiskStream:
     """How ``rancf simulate`` streams a run to its folder (:class:`rancf.runs.simulate.Stream`):
     an earlier run taken up (``--resume``), the rows stored as they come
     (:class:`~rancf.post.history.HistoryStore`), checkpoints every ``every`` seconds, a progress
-    bar on a terminal, and the folder's summary at the end."""
+    bar on a terminal, and the folder's summary at the end; ``beside``: the rows are derived on
+    the output worker's thread (:mod:`rancf.post.block_worker`), else between the steps."""
 
     def __init__(
         self,
@@ -75,9 +76,10 @@ class DiskStream:
         od: OutputDir,
         stop: Any,
         every: float,
+        beside: bool = False,
     ) -> None:
         self.args, self.sc, self.copy, self.files = args, sc, copy, files
-        self.od, self.stop, self.every = od, stop, every
+        self.od, self.stop, self.every, self.beside = od, stop, every, beside
         self.store: Any = None
         self.notes: list[str] = []
         self.state: Any = None
@@ -124,7 +126,9 @@ class DiskStream:
 
         info["threads"] = _core.assembly_threads()  # the element loops' (cli.sim.element_threads)
         info.update(start)
-        self.store = HistoryStore(self.od.path, plan.outputs, {**info, "warnings": self.notes})
+        self.store = HistoryStore(
+            self.od.path, plan.outputs, {**info, "warnings": self.notes}, beside=self.beside
+        )
         if self.state is not None:
             self.store.seed(self._rows)
         atomic_write(self.od.path / "scenario.toml", self.copy)

@@ -20,12 +20,13 @@ position in their lists.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from rancf.kernels.contact_records import ContactRecord
+if TYPE_CHECKING:  # the contact modules load with a system that has contact
+    from rancf.kernels.contact_records import ContactRecord
 
 __all__ = [
     "PLACE_KINDS",

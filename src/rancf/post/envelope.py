@@ -21,6 +21,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rancf.atomic import FileSet
+from rancf.post.csv_rows import write_rows
 
 __all__ = ["Envelope", "read_envelope", "plot_envelopes"]
 
@@ -80,7 +81,7 @@ class Envelope:
     def write(self, fh: IO[bytes]) -> None:
         """The CSV file (module docstring)."""
         fh.write((",".join(self.columns()) + "\n").encode())
-        np.savetxt(fh, self.table(), delimiter=",", fmt="%.12g")
+        write_rows(fh, self.table())
 
 
 def read_envelope(path: str) -> dict[str, NDArray[np.float64]]:

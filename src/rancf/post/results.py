@@ -29,6 +29,7 @@ from rancf.bodies.flexible import Model
 from rancf.errors import InputError
 from rancf.options import DynamicOptions
 from rancf.post.checks import finished_warnings, run_warnings
+from rancf.post.csv_rows import write_rows
 from rancf.post.run_files import reader_metadata, write_history_files
 from rancf.solvers.dynamic import DynamicResult
 from rancf.system import System, as_system
@@ -314,7 +315,7 @@ def write_along_csv(
         folder.mkdir(parents=True, exist_ok=True)
         with files.file(folder / "along.csv") as fh:
             fh.write(head.encode())
-            np.savetxt(fh, np.column_stack([sampler.s, pos, along]), delimiter=",", fmt="%.12g")
+            write_rows(fh, np.column_stack([sampler.s, pos, along]))
 
 
 def load_results(path: str | Path) -> dict[str, Any]:

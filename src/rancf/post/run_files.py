@@ -40,6 +40,7 @@ from numpy.typing import NDArray
 from rancf.atomic import FileSet
 from rancf.bodies.flexible import Model
 from rancf.bodies.rigid import PointMass
+from rancf.post.csv_rows import write_rows
 from rancf.post.envelope import Envelope
 from rancf.system.outputs import SystemOutputs
 
@@ -137,17 +138,17 @@ def write_history_files(
     with files.file(out_dir / "sensors.csv") as fh:
         fh.write((",".join(["t", *names]) + "\n").encode())
         for r, c in chunks:
-            np.savetxt(fh, np.column_stack([t[r], c["c"]]), delimiter=",", fmt="%.12g")
+            write_rows(fh, np.column_stack([t[r], c["c"]]))
     with files.file(out_dir / "energy.csv") as fh:
         fh.write(b"t,kinetic,strain,gravity,total\n")
         for r in _rows(n, 5):
             e = energy[r]
-            np.savetxt(fh, np.column_stack([t[r], e, e.sum(axis=1)]), delimiter=",", fmt="%.12g")
+            write_rows(fh, np.column_stack([t[r], e, e.sum(axis=1)]))
     if outputs.reaction_names:
         with files.file(out_dir / "reactions.csv") as fh:
             fh.write((",".join(["t", *outputs.reaction_names]) + "\n").encode())
             for r, c in chunks:
-                np.savetxt(fh, np.column_stack([t[r], c["r"]]), delimiter=",", fmt="%.12g")
+                write_rows(fh, np.column_stack([t[r], c["r"]]))
     meta: dict[str, Any] = {
         "system": True,
         "dim": s.dim,

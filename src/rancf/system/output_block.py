@@ -146,12 +146,13 @@ def block_sections(
         if name in outputs.recovered:  # the axial force from the nodal forces
             fi = None if internal is None else internal[:, sl]
             nodal[name].append(nodal_axial_forces(b, ys[:, sl], res0[:, sl], fi))
-        if getattr(s, "winches", ()):  # the body's length at each row
-            from rancf.system.winches import winch_factor
+        if not getattr(s, "winches", ()):  # the same length at every row: one call
+            factors[name] += [1.0] * len(t)
+            raws[name].append(samp.raw(ys[:, sl], 1.0))
+            continue
+        from rancf.system.winches import winch_factor  # the body's length at each row
 
-            fs = [winch_factor(s, name, float(x), y) for x, y in zip(t, ys, strict=True)]
-        else:
-            fs = [1.0] * len(t)
+        fs = [winch_factor(s, name, float(x), y) for x, y in zip(t, ys, strict=True)]
         factors[name] += fs
         if all(f == fs[0] for f in fs):
             raws[name].append(samp.raw(ys[:, sl], fs[0]))
