@@ -6,11 +6,12 @@ sec. 6): it takes the magnitude of the curvature, so about a curved stress-free 
 taut).  Newton's method may not settle there (the straight state is ill-posed:
 docs/derivations/cable.md sec. 8): the 330 m chain of
 ``benchmarks/mooring/mooring-surge-3d.toml`` (drawn as a conic) unloaded as drawn fails at
-160 elements, its residual stalling at 1 N with 1 µm steps of the grounded nodes, while the same chain drawn straight, or unloaded straight (``[mesh]
-stress_free = "straight"``, or ``"auto"``, the default, for a line whose rest curvature's moment
-is negligible: :mod:`rancf.bodies.stress_free`), converges in 7 Newton iterations.  A
-failed static solve names such bodies (:func:`curved_cable_causes`); ``rancf static`` and
-``simulate`` note them before any solve (:func:`rancf.post.checks.element_notes`).
+160 elements, its residual stalling at 1 N with 1 µm steps of the grounded nodes, while the
+same chain drawn straight, or unloaded straight (``[mesh] stress_free = "straight"``, or
+``"auto"``, the default, for a line whose rest curvature's moment is negligible:
+:mod:`rancf.bodies.stress_free`), converges in 7 Newton iterations.  A failed static solve
+names such bodies (:func:`curved_cable_causes`); ``rancf static`` and ``simulate`` note them
+before any solve (:func:`rancf.post.checks.element_notes`).
 """
 
 from __future__ import annotations
