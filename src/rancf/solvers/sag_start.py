@@ -53,15 +53,11 @@ from rancf.bodies.length import length_scale
 from rancf.solvers.axial_continuation import continued_newton, stiff_lines
 from rancf.solvers.newton import NewtonOutcome, newton
 from rancf.solvers.relaxation import relax
-from rancf.solvers.static_catenary import (
-    catenary_shape,
-    free_bend_radii,
-    touchdowns,
-    weighted_catenary,
-)
+from rancf.solvers.static_catenary import catenary_shape, free_bend_radii, touchdowns
+from rancf.solvers.surface_start import across_surface, place_shape, still_surface
 from rancf.solvers.system_equilibrium import SystemEquilibrium
 from rancf.system.parts.contact_pair import ContactPair
-from rancf.system.seabed import element_weights, pressing_weight, weight_per_length, wet_weight
+from rancf.system.seabed import pressing_weight, weight_per_length, wet_weight
 
 __all__ = [
     "SAG_START",
@@ -91,9 +87,6 @@ RELAX_STEPS = 2000
 NEWTON_ITERATIONS = 60
 #: A line within this (relative) of its chord keeps its reference: no start shape.
 SLACK_RTOL = 1e-9
-#: Passes of a hanging line's start crossing the free surface at most (shares under water,
-#: then the catenary of their weights).
-SURFACE_PASSES = 10
 
 
 def _held_position(model: Model, node: int) -> bool:
@@ -171,7 +164,7 @@ def _line_geometry(system: Any, name: str, model: Model, pinned: bool = False) -
     if pinned and any(_clamped(model, k) for k in ends):
         return None
     w = wet_weight(system, name)[: model.dim]
-    if not np.linalg.norm(w) > 0.0 and _surface(system) is not None:
+    if not np.linalg.norm(w) > 0.0 and still_surface(system) is not None:
         w = weight_per_length(system, name, 0.0)[: model.dim]  # as heavy as water: its dry part
     if not np.linalg.norm(w) > 0.0:
         return None
@@ -283,54 +276,12 @@ def _body_sag(
         found = _floor(system, name, model, up, p1, chord)
         floor, slope = (None, 0.0) if found is None else found
         pts, tan = catenary_shape(span, rise, length, s_nodes, floor, slope)
-        _place(out, p1, ex, up, grad, pts, tan)
-        if _surface(system) is not None and slope == 0.0:
-            _across_surface(system, name, model, out, geo, grad, floor)
+        place_shape(out, p1, ex, up, grad, pts, tan)
+        if still_surface(system) is not None and slope == 0.0:
+            across_surface(system, name, out, geo, grad, floor)
     y = model.y_from_q(out.ravel())
     y[model.fixed] = model.y_installed[model.fixed]
     return y, stretch < 1.0
-
-
-def _surface(system: Any) -> float | None:
-    """The still free surface's height of the system's fluid, or None (none)."""
-    fluid = getattr(system, "fluid", None)
-    return None if fluid is None else fluid.surface
-
-
-def _place(
-    out: NDArray, p1: NDArray, ex: NDArray, up: NDArray, grad: NDArray, pts: NDArray, tan: NDArray
-) -> None:
-    """Nodes at the shape's points ``(x, z)`` (``x`` along ``ex`` from ``p1``, ``z`` along
-    ``up``), gradients along its tangents with the lengths ``grad``, in place."""
-    dim = p1.size
-    out[:, :dim] = p1 + pts[:, :1] * ex + pts[:, 1:] * up
-    out[:, dim : 2 * dim] = grad[:, None] * (tan[:, :1] * ex + tan[:, 1:] * up)
-
-
-def _across_surface(
-    system: Any, name: str, model: Model, out: NDArray, geo: Any, grad: NDArray, floor: Any
-) -> None:
-    """The start of a hanging line whose weight per length changes along it where it crosses
-    the free surface (its buoyancy only under water): the weight of each element with its
-    share under water in the shape (:func:`rancf.system.seabed.element_weights`, the one
-    formula), the catenary of those weights
-    (:func:`rancf.solvers.static_catenary.weighted_catenary`) and again, until the shares
-    repeat (at most :data:`SURFACE_PASSES` times); in place.  Kept where no such shape is found
-    or it dips below the ``floor``."""
-    q, up, p1, chord, s_nodes, span, rise = geo
-    up3 = np.r_[up, np.zeros(3 - up.size)]
-    ex = (chord - rise * up) / span
-    last, guess = None, None
-    for _ in range(SURFACE_PASSES):
-        w = element_weights(system, name, out.ravel()) @ -up3
-        if np.ptp(w) == 0.0 or (last is not None and np.array_equal(w, last)):
-            return
-        found = weighted_catenary(span, rise, s_nodes, w, guess)
-        if found is None or (floor is not None and np.min(found[0][:, 1]) < floor):
-            return
-        pts, tan, guess = found
-        _place(out, p1, ex, up, grad, pts, tan)
-        last = w
 
 
 def clamped_lines(system: Any) -> bool:
