@@ -14,7 +14,10 @@ table with the forces, the difference, both wall times (rancf: its static solve,
 profile at; its catenary is exact) and rancf's elements, and the CPU.  A third row checks the
 chain's model (geometry, seabed, supports) through keys rancf had before ``[fluid]``: the chain
 in air with gravity scaled to w / m (in statics buoyancy is a uniform upward load); it does not
-count for the exit status, which is 1 when a case misses the tolerance or rancf fails.
+count for the exit status, which is 1 when a case misses the tolerance or rancf fails.  The
+chain in space (``mooring-surge-3d.toml``: drawn as a conic, unloaded straight by the default
+``stress_free = "auto"``, docs/derivations/cable.md sec. 8) at 40, 80 and 160 elements is held
+to the same tolerance.
 """
 
 from __future__ import annotations
@@ -38,6 +41,16 @@ FILES = {"chain": "mooring-chain.toml", "taut buoyant": "taut-buoyant.toml"}
 #: The check of the chain's model without the fluid tables: in statics buoyancy is a uniform
 #: upward load, so the chain in air under g w / (m g) per mass weighs what it weighs in water.
 DRY = "chain, g scaled to w/m (no [fluid])"
+#: The chain drawn in space, meshed with these element counts.
+SPATIAL = (40, 80, 160)
+
+
+def spatial_chain(n: int, folder: Path) -> Path:
+    """``mooring-surge-3d.toml`` (the chain in space, drawn as a conic) on ``n`` elements."""
+    text = (HERE / "mooring-surge-3d.toml").read_text().replace("elements = 30", f"elements = {n}")
+    path = folder / f"chain-3d-{n}.toml"
+    path.write_text(text)
+    return path
 
 
 def dry_chain(wet_weight: float, mass: float, folder: Path) -> Path:
@@ -90,9 +103,10 @@ def main() -> None:
     files = {
         **{k: HERE / v for k, v in FILES.items()},
         DRY: dry_chain(chain["wet_weight_N_per_m"], chain["mass_kg_per_m"], tmp),
+        **{f"chain in space, {n} el.": spatial_chain(n, tmp) for n in SPATIAL},
     }
     for name, path in files.items():
-        peer_case = mp["cases"]["chain" if name == DRY else name]
+        peer_case = mp["cases"]["chain" if name == DRY or name.startswith("chain ") else name]
         ref = peer_case["fairlead_force_N"]
         elements = tomllib.loads(path.read_text())["mesh"]["elements"]
         proc, wall = rancf("static", str(path), "--json")

@@ -109,7 +109,8 @@ def test_the_axial_stiffness_is_restored_when_a_solve_fails(tmp_path, monkeypatc
     path = tmp_path / "u.toml"
     path.write_text(scenario_text(case, 40))
     system = load_scenario(path).build_system()
-    lines = ac.stiff_lines(system, system.names)
+    problem = SystemEquilibrium(system)
+    lines = ac.stiff_lines(system, system.names, problem.start())
     assert len(lines) == 1 and lines[0][1] == case.ea
 
     def fail(*args, **kwargs):
@@ -117,7 +118,6 @@ def test_the_axial_stiffness_is_restored_when_a_solve_fails(tmp_path, monkeypatc
         raise RuntimeError("stop")
 
     monkeypatch.setattr(ac, "newton", fail)
-    problem = SystemEquilibrium(system)
     with pytest.raises(RuntimeError, match="stop"):
         ac.continued_newton(problem, problem.start(), 1.0, 1e-10, lines)
     assert system.flex[0].core.axial_stiffness == case.ea

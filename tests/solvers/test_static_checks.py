@@ -489,9 +489,10 @@ def test_a_chain_without_rest_curvature_starts_resting_and_converges_at_160_elem
 
 
 def test_a_failed_solve_of_a_curved_spatial_cable_names_its_kink(tmp_path, monkeypatch):
-    """A static solve that fails on a spatial cable drawn curved (the chain as a conic) names
-    the kink of its bending energy where it lies straight, and what to set; the same chain
-    with ``stress_free = "straight"`` has no such line."""
+    """A static solve that fails on a spatial cable unloaded as drawn curved (the chain as a
+    conic, ``stress_free = "reference"``) names the kink of its bending energy where it lies
+    straight, and what to set; the same chain with ``stress_free = "straight"`` has no such
+    line."""
     import rancf.solvers.static as static
 
     def fail(*args, **kwargs):
@@ -501,8 +502,8 @@ def test_a_failed_solve_of_a_curved_spatial_cable_names_its_kink(tmp_path, monke
     monkeypatch.setattr(static, "solve_equilibrium", fail)
     for straight in (False, True):
         text = MOORING_3D.format(n=8)
-        if straight:
-            text = text.replace("[mesh]\n", '[mesh]\nstress_free = "straight"\n')
+        state = "straight" if straight else "reference"
+        text = text.replace("[mesh]\n", f'[mesh]\nstress_free = "{state}"\n')
         path = tmp_path / "chain.toml"
         path.write_text(text)
         with pytest.raises(ConvergenceError) as err:
@@ -510,6 +511,64 @@ def test_a_failed_solve_of_a_curved_spatial_cable_names_its_kink(tmp_path, monke
         kink = "has a kink where it lies straight" in str(err.value)
         assert kink != straight and str(err.value).startswith("static equilibrium not found")
         assert ('stress_free = "straight"' in str(err.value)) != straight
+
+
+#: MoorPy 1.3's force of the 330 m chain on its fairlead [N] (``python
+#: benchmarks/mooring/moorpy_statics.py`` in an environment with MoorPy: its exact elastic
+#: catenary with 99.96 m on a frictionless seabed).
+MOORPY_CHAIN_FAIRLEAD = (-527645.5065459731, 0.0, -565177.2291925576)
+
+
+@pytest.mark.parametrize("n", [40, 80, 160])
+def test_a_spatial_chain_drawn_curved_is_unloaded_straight_and_meets_moorpy(tmp_path, n):
+    """The 330 m chain drawn as a conic in space, with the default ``stress_free = "auto"``:
+    its rest curvature's moment (EI max κ0 = 164 N m) is far below its weight's (w L²/8 =
+    3.9e7 N m), so it is unloaded straight, with a note, and Newton from the sagged start
+    converges at 40, 80 and 160 elements (unloaded as drawn, 160 elements failed) to MoorPy's
+    fairlead force within 0.5 %."""
+    from rancf.post.checks import element_notes
+    from rancf.system.outputs import SystemOutputs
+
+    path = tmp_path / "chain.toml"
+    path.write_text(MOORING_3D.format(n=n))
+    sc = load_scenario(path)
+    system = sc.build_system()
+    assert system.flex[0].stress_free == "straight"
+    (note,) = element_notes(system)
+    assert 'unloaded straight (mesh.stress_free = "auto")' in note
+    res = solve_static(system, **sc.static_options())
+    assert res.method == SAG_START and res.relaxation_steps == 0
+    force = -SystemOutputs(system, []).static_reactions(res.y, res.lam)[1].force
+    ref = np.array(MOORPY_CHAIN_FAIRLEAD)
+    assert np.linalg.norm(force - ref) / np.linalg.norm(ref) < 0.005
+
+
+def test_auto_keeps_the_curved_reference_where_its_moment_counts():
+    """``stress_free = "auto"`` keeps the drawn shape unloaded for a spatial cable whose rest
+    curvature's moment is not negligible against its weight's (a steel wire bent to a 0.5 m
+    radius), for one without gravity, and for a planar one; the chain's rule, checked on the
+    moments: EI max κ0 against 1e-3 w L²/8."""
+    from rancf.bodies.stress_free import REST_MOMENT_SHARE
+    from rancf.geometry.conic import conic_arc_through
+    from rancf.mesh.factories import mesh_conic
+
+    def wire(dim, gravity, inertia=7.85e-9):
+        c = 0.5 * np.sqrt(0.5)
+        ends = [[0.5, 0.0, 0.0], [0.0, 0.5, 0.0], [c, c, 0.0]]  # a quarter circle, radius 0.5
+        arc = conic_arc_through(*(p[:dim] for p in ends[:2]), [45.0, 45.0], ends[2][:dim])
+        mesh = mesh_conic(arc, 4)
+        sec = rancf.Section(3.14e-4, inertia)
+        return rancf.Model(mesh, "rancf", sec, rancf.Material(7850.0, 2e11), gravity=gravity)
+
+    g3 = [0.0, 0.0, -9.81]
+    assert wire(3, g3).stress_free == "reference"  # EI κ0 = 3140 N m against 2.4 N m
+    assert wire(3, None).stress_free == "reference"
+    assert wire(2, [0.0, -9.81]).stress_free == "reference"
+    # a wire whose EI max κ0 is just under / over 1e-3 of its weight's moment
+    weight = 7850.0 * 3.14e-4 * 9.81 * (0.25 * np.pi) ** 2 / 8.0
+    limit = REST_MOMENT_SHARE * weight / (2e11 * 2.0)  # the inertia at the share, κ0 = 2 / m
+    assert wire(3, g3, 0.99 * limit).stress_free == "straight"
+    assert wire(3, g3, 1.01 * limit).stress_free == "reference"
 
 
 #: A 1 m column (EI = 0.0785 N m², EA = 3142 N) clamped at its start, pushed along its axis at

@@ -54,6 +54,8 @@ void read_drum(const Fields& f, rancf::System& s, rancf::Winch& w) {
   f.numbers_into("weight", w.weight, 3);
   w.exit = f.integer("exit");
   if (w.exit < 0 || w.exit + s.dim > w.n) f.fail("exit", "a node's coordinate", "out of range");
+  const In c = f.array("convective");
+  w.convective.assign(c.data(), c.data() + c.size());
 }
 
 /// Winches at cable bodies' ends; a driven drum adds its coordinate after every body and drum so

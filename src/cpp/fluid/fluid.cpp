@@ -171,9 +171,27 @@ struct LineElements {
       for (int i = 0; i < 3; ++i) fp0.u[i] = fl.current[i];
   }
 
+  /// A driven drum's share at one Gauss point (DrumFluid): its residual -c f.a and, if de is
+  /// not null, the derivative of it in the element's coordinates into de; A, B the force's
+  /// derivatives in r (with v, acc) and a = r' (ck d/dy + cv d/dv + ca d/dacc).
+  void drum_point(double c, const double* f, const double* a, const double (&A)[3][3],
+                  const double (&B)[3][3], const double* S, const double* S1, double* de) const {
+    double fa = 0.0;
+    for (int i = 0; i < dim; ++i) fa += f[i] * a[i];
+    tm.drum->residual -= c * fa;
+    if (de == nullptr) return;
+    for (int k = 0; k < 4; ++k)
+      for (int i = 0; i < dim; ++i) {
+        double g = tm.ck * f[i] * S1[k];  // d a / dy
+        for (int j = 0; j < dim; ++j) g += a[j] * (A[j][i] * S[k] + B[j][i] * S1[k]);
+        de[sz(off[k] + i)] -= c * g;
+      }
+  }
+
   /// Element el's force fe and, if ke is not null, its Jacobian ke (both written whole);
-  /// force (if not null) += the fluid's force on it.
-  void element(int el, double* fe, double* ke, double* force) const {
+  /// force (if not null) += the fluid's force on it; a drum's share (tm.drum) of it into de
+  /// (written whole, if not null) and tm.drum->residual.
+  void element(int el, double* fe, double* ke, double* force, double* de = nullptr) const {
     const int nde = m.nde(), nq = line.n_qp;
     std::array<double, kMaxElementDofs> e{}, ev{}, ea{};
     FluidPoint fp = fp0;
@@ -181,6 +199,7 @@ struct LineElements {
     gather_element(m, el, v, ev.data());
     gather_element(m, el, acc, ea.data());
     std::fill(fe, fe + kMaxElementDofs, 0.0);
+    if (de != nullptr) std::fill(de, de + kMaxElementDofs, 0.0);
     if (ke != nullptr) std::fill(ke, ke + kMaxElementDofs * kMaxElementDofs, 0.0);
     for (int q = 0; q < nq; ++q) {
       const std::size_t iq = sz(el * nq + q);
@@ -282,6 +301,7 @@ struct LineElements {
       }
       for (int k = 0; k < 4; ++k)
         for (int i = 0; i < dim; ++i) fe[sz(off[k] + i)] -= w * S[k] * f[i];
+      if (tm.drum != nullptr) drum_point(tm.drum->c[iq], f, a, A, B, S, S1, de);
       if (ke == nullptr || !line.hydro || !fp.wet) continue;  // loads alone: no derivative
       for (int k = 0; k < 4; ++k) {  // the block (k, l): -w S_k (A S_l + B S'_l)
         const double wk = w * S[k];
@@ -302,18 +322,24 @@ void line_terms(const void* ctx, int el, double* fe, double* ke) {
 }
 
 // assemble_line with the dimension a constant; shared between threads unless the fluid's force
-// is summed (its sum in element order, point by point, on one thread).
+// is summed or a drum's share taken (their sums in element order, point by point, on one
+// thread).
 template <int dim>
 void line_forces(const Model& m, const FluidSet& fs, const LineFluid& line, const double* y,
                  const double* v, const double* acc, const LineTerms& tm, double* r,
                  const BandView* jac, double* force) {
   const LineElements<dim> le(m, fs, line, y, v, acc, tm);
-  if (force == nullptr && add_elements_shared(m, line_terms<dim>, &le, r, jac, 1.0)) return;
-  std::array<double, kMaxElementDofs> fe{};
+  if (force == nullptr && tm.drum == nullptr &&
+      add_elements_shared(m, line_terms<dim>, &le, r, jac, 1.0))
+    return;
+  std::array<double, kMaxElementDofs> fe{}, de{};
   std::array<double, kMaxElementDofs * kMaxElementDofs> ke{};
+  double* row = tm.drum != nullptr ? tm.drum->row : nullptr;
   for (int el = 0; el < m.n_el; ++el) {
-    le.element(el, fe.data(), jac != nullptr ? ke.data() : nullptr, force);
+    le.element(el, fe.data(), jac != nullptr ? ke.data() : nullptr, force,
+               row != nullptr ? de.data() : nullptr);
     scatter_element(m, el, fe.data(), jac != nullptr ? ke.data() : nullptr, r, jac, 1.0);
+    if (row != nullptr) scatter_element(m, el, de.data(), nullptr, row, nullptr, 1.0);
   }
 }
 

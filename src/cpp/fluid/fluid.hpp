@@ -82,6 +82,16 @@ void fluid_point(const FluidField& f, int dim, const double* r, double t, bool w
 /// time t: the still surface plus the waves' elevation.
 double surface_elevation(const FluidField& f, int dim, const double* r, double t);
 
+/// A driven drum's share of its line's fluid loads (docs/derivations/variable-length.md §3.5):
+/// the generalized force of the loads f (per unstretched length) on the line's length L is
+/// sum_q c_q f.r' with c_q = gw_q d_q L_ref / L_s (the material's convective move per L at the
+/// Gauss point), so the drum's balance R_L gains -sum_q c_q f.r'.
+struct DrumFluid {
+  const double* c = nullptr;  ///< c_q per Gauss point (n_el * n_qp)
+  double residual = 0.0;      ///< += -sum_q c_q f.r'
+  double* row = nullptr;      ///< (the model's n) += ck d/dy + cv d/dv + ca d/dacc of it, or null
+};
+
 /// What assemble_line needs of the time step.
 struct LineTerms {
   double t = 0.0;
@@ -91,6 +101,7 @@ struct LineTerms {
   /// the unstretched length over the one the line's arrays hold (a winch's L(t) / length_set):
   /// every term is per unstretched length, so its measure j0 dxi scales with it
   double length_ratio = 1.0;
+  DrumFluid* drum = nullptr;  ///< a driven drum's share of the loads (its line), or null
 };
 
 /// Add -Q of line `line` of model m at (y, v, acc) (v, acc null: statics, no inertia, no waves)

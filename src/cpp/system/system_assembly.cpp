@@ -228,9 +228,9 @@ using JointJacobians = std::vector<std::array<double, kMaxJointRows * 2 * kMaxLo
 void flexible_terms(const Stage& st, std::vector<DrumRow>& drums) {
   const auto& [s, yf, vf, am, lam, y1, tm, r, lu, far] = st;  // what this stage reads
   const double c = s.damping;
-  thread_local std::vector<double> f, g, acc, mv;    // work arrays, kept between calls
-  thread_local ScaledBody scaled;                    // a winch's body at its length L(t)
-  const bool moving = am != nullptr && !tm.statics;  // a drum's rates count
+  thread_local std::vector<double> f, g, acc, mv, fl, dfrow;  // work arrays, kept between calls
+  thread_local ScaledBody scaled;                             // a winch's body at its length L(t)
+  const bool moving = am != nullptr && !tm.statics;           // a drum's rates count
   for (std::size_t b = 0; b < s.flex.size(); ++b) {
     const Winch* win = winch_of(s, b);
     const WinchState ws = win != nullptr ? winch_state(s, *win, tm.tf, yf, moving ? vf : nullptr,
@@ -256,13 +256,22 @@ void flexible_terms(const Stage& st, std::vector<DrumRow>& drums) {
       for (int i = 0; i < nb; ++i)
         tm.own[o + i] =
             tm.distributed_only ? 0.0 : tm.load_factor * (g[sz(i)] - mod.loads.f_gravity[i]);
+    // a driven drum's share of its line's fluid loads: the line's rows (fl, for the drum's
+    // column: every term is proportional to L) and the drum's residual and row
+    const bool drum_fluid = win != nullptr && win->drum >= 0 && !win->convective.empty();
+    DrumFluid dfl{drum_fluid ? win->convective.data() : nullptr, 0.0, nullptr};
+    fl.assign(drum_fluid ? sz(nb) : 0, 0.0);
+    dfrow.assign(drum_fluid && lu != nullptr ? sz(nb) : 0, 0.0);
+    if (drum_fluid && lu != nullptr) dfl.row = dfrow.data();
     if (s.fluid != nullptr) {  // buoyancy, Morison loads, distributed loads (fluid.hpp)
-      const LineTerms lt{tm.tf, tm.ck, tm.cv, tm.ca, tm.load_factor, &s.tfs, ws.ratio};
+      const LineTerms lt{tm.tf,          tm.ck,  tm.cv,    tm.ca,
+                         tm.load_factor, &s.tfs, ws.ratio, drum_fluid ? &dfl : nullptr};
       for (const LineFluid& ln : s.fluid->lines)
         if (ln.body == static_cast<int>(b))
           assemble_line(mod, *s.fluid, ln, yf + o, am != nullptr ? vf + o : nullptr,
-                        am != nullptr ? am + o : nullptr, lt, r + o, lu != nullptr ? &jac : nullptr,
-                        nullptr);
+                        am != nullptr ? am + o : nullptr, lt, drum_fluid ? fl.data() : r + o,
+                        lu != nullptr ? &jac : nullptr, nullptr);
+      for (std::size_t i = 0; i < fl.size(); ++i) r[o + static_cast<int>(i)] += fl[i];
     }
     if (am != nullptr) {  // M (am + c vf)
       acc.resize(sz(nb));
@@ -294,6 +303,11 @@ void flexible_terms(const Stage& st, std::vector<DrumRow>& drums) {
       drum_terms(*s.flex[b], mod, *win, ws, yf + o, moving ? vf + o : nullptr,
                  moving ? am + o : nullptr, torque, tm.load_factor, c, tm.ck, tm.cv, tm.ca,
                  lu != nullptr, dt);
+      dt.residual += dfl.residual;
+      for (std::size_t i = 0; i < dfrow.size(); ++i) {  // (variable-length.md §3.5)
+        dt.row[i] += dfrow[i];
+        dt.col[i] += tm.ck * fl[i] / ws.length;
+      }
       r[win->drum] += dt.residual;
       if (lu != nullptr) {
         for (int i = 0; i < nb; ++i)

@@ -41,6 +41,9 @@ struct Winch {
   double rho_a = 0.0;     ///< the line's mass per unstretched length [kg/m]
   double weight[3] = {};  ///< rho_a g [N/m]
   int exit = 0;           ///< the body's coordinate of the exit node's position (x)
+  /// a drum's convective weights gw d L_ref / L_s per Gauss point of its line's fluid terms
+  /// (DrumFluid; n_el * n_qp, empty: no fluid)
+  std::vector<double> convective;
 };
 
 struct WinchSet {

@@ -26,6 +26,7 @@ from rancf.bodies.families import ElementFamily, ElementKind, family
 from rancf.bodies.flexible_core import core_model
 from rancf.bodies.motion import RigidMotion, initial_velocity
 from rancf.bodies.properties import Material, PointLoad, Section, StrainRateDamping, Support
+from rancf.bodies.stress_free import resolve_stress_free
 from rancf.bodies.support_layout import support_layout
 from rancf.errors import InputError
 from rancf.kernels.beam import BeamKernel
@@ -37,14 +38,14 @@ from rancf.mesh.mesh import CableMesh
 
 __all__ = ["Section", "Material", "Support", "PointLoad", "Model", "ElementKind", "RigidMotion"]
 
-_STRESS_FREE = '"reference" or, for cables and rods, "straight"'
+_STRESS_FREE = '"auto", "reference" or, for cables and rods, "straight"'
 
 
 def _check_options(
     fam: ElementFamily, continuity: str, stress_free: str, material: Material, section: Section
 ) -> None:
     """A clear error for an option the element family does not have."""
-    if stress_free != "reference" and (stress_free != "straight" or not fam.gradient):
+    if stress_free not in ("auto", "reference") and (stress_free != "straight" or not fam.gradient):
         raise InputError("mesh.stress_free", stress_free, _STRESS_FREE)
     if continuity not in ("C1", "C2"):
         raise InputError("mesh.continuity", continuity, 'one of "C1", "C2"')
@@ -98,8 +99,12 @@ class Model(Coordinates):
         (:mod:`rancf.mesh.continuity`; cables and rods): ``q = T y``, ``y`` padded with held
         zeros to the size of ``q``; supported nodes and nodes given an initial velocity keep
         their own coordinates (C¹ there).
-    stress_free : {"reference", "straight"}
-        Unloaded state: the reference, or straight of equal arc length (cables, rods).
+    stress_free : {"auto", "reference", "straight"}
+        Unloaded state: the reference, or straight of equal arc length (cables, rods); ``"auto"``
+        is ``"straight"`` for a spatial cable drawn curved whose rest curvature's moment is
+        negligible against its weight's, else ``"reference"``
+        (:func:`rancf.bodies.stress_free.resolve_stress_free`; the attribute holds the state
+        chosen, :attr:`stress_free_note` the note on that choice).
     strain_rate_damping : StrainRateDamping, optional
         Kelvin-Voigt damping of the strain rates (kept as an attribute).
 
@@ -123,10 +128,10 @@ class Model(Coordinates):
         n_qp: int | None = None,
         initial_motion: RigidMotion | None = None,
         continuity: Continuity = "C1",
-        stress_free: Literal["reference", "straight"] = "reference",
+        stress_free: Literal["auto", "reference", "straight"] = "auto",
         strain_rate_damping: StrainRateDamping | None = None,
     ) -> None:
-        self.element, self.stress_free = element, stress_free
+        self.element = element
         self.family = fam = family(element)
         _check_options(fam, continuity, stress_free, material, section)
         self.section = section
@@ -148,6 +153,11 @@ class Model(Coordinates):
         fam.check_dim(self.dim)
         built = fam.build(mesh, section, self.props, rho, n_qp, stress_free)
         self.kernel: CableKernel | BeamKernel | RodKernel = built.kernel
+        #: The unloaded state chosen (``"reference"`` or ``"straight"``) and, where ``"auto"``
+        #: chose straight, the note saying so.
+        self.stress_free, self.stress_free_note = resolve_stress_free(
+            stress_free, fam, self.kernel, self.props, gravity
+        )
         self.mesh, q0 = built.mesh, built.q0
         self.dpn = fam.dofs_per_node(self.dim)
         self.n = self.n_nodes * self.dpn

@@ -107,8 +107,6 @@ class CableKernel:
         self.n1, self.n2 = np.ascontiguousarray(n1), np.ascontiguousarray(n2)
         self.s0, self.kappa0 = qp_geometry(self.n1, self.n2, self.reference)
         self.j0 = np.sqrt(self.s0)
-        if stress_free == "straight":  # same arc length element by element, no curvature
-            self.kappa0 = np.zeros_like(self.s0)
         # spatial: η² κ0² at curved reference points (κ0 J0 above round-off), zero elsewhere
         self.qreg = np.zeros_like(self.s0)
         if self.dim == 3:
@@ -118,6 +116,16 @@ class CableKernel:
         #: The unstretched length over the reference's (:meth:`scale_length`).
         self.length_scale = 1.0
         self._unscaled = (self.s0.copy(), self.kappa0.copy(), self.qreg.copy())
+        if stress_free == "straight":
+            self.straighten()
+
+    def straighten(self) -> None:
+        """Make the unloaded state straight: the same arc length element by element (``J0``
+        kept), no curvature (``κ0 = 0``, no regularization).  In place, before the core is
+        built (:func:`rancf.bodies.stress_free.resolve_stress_free`)."""
+        for k0, qr in ((self.kappa0, self.qreg), self._unscaled[1:]):
+            k0[...] = 0.0
+            qr[...] = 0.0
 
     def scale_length(self, scale: float) -> None:
         """Make the unloaded state the reference stretched uniformly by ``scale`` (an unstretched

@@ -297,9 +297,11 @@ class LineRecord:
 class DrumRecord:
     """A winch's driven drum (``Winch``, ``src/cpp/system/winch.hpp``): the time function
     ``torque`` [N m] reeling in, ``mass = J / r²`` [kg], ``radius`` [m], the line's ``rho_a``
-    [kg/m] and weight per length ``weight`` (3) [N/m], and ``exit``, the body's coordinate of the
-    exit node's position.  Its length ``L`` is a coordinate of the system, after every body and
-    drum before it."""
+    [kg/m] and weight per length ``weight`` (3) [N/m], ``exit``, the body's coordinate of the
+    exit node's position, and ``convective``, the weights ``gw d L_ref / L_s`` of the line's
+    fluid loads in the drum's balance per Gauss point ``(n_el * n_qp)``
+    (docs/derivations/variable-length.md §3.5).  Its length ``L`` is a coordinate of the
+    system, after every body and drum before it."""
 
     torque: int
     mass: float
@@ -307,6 +309,7 @@ class DrumRecord:
     rho_a: float
     weight: tuple[float, float, float]
     exit: int
+    convective: NDArray[np.float64]
 
 
 @dataclass(frozen=True, eq=False)

@@ -110,7 +110,9 @@ def element_notes(model: Model | System) -> list[str]:
     ``½ EI (|κ| - |κ0|)²`` (docs/derivations/cable.md sec. 6) has no stiffness against turning
     the plane of the curvature and cannot tell a curvature reversed through straight from the
     reference's (a planar motion bent past straight is far too soft), which the rod element
-    resists (every flexible body of a system, named)."""
+    resists; and the note of a spatial cable that ``stress_free = "auto"`` unloaded straight
+    (:func:`rancf.bodies.stress_free.resolve_stress_free`; every flexible body of a system,
+    named)."""
     if isinstance(model, System):
         return [
             f"{name}: {n}"
@@ -119,7 +121,9 @@ def element_notes(model: Model | System) -> list[str]:
         ]
     from rancf.solvers.curved_cable import curved_spatial_cable
 
-    return [CURVED_CABLE_NOTE] if curved_spatial_cable(model) else []
+    if curved_spatial_cable(model):
+        return [CURVED_CABLE_NOTE]
+    return [] if model.stress_free_note is None else [f"note: {model.stress_free_note}"]
 
 
 def _crossing_warnings(system: System) -> list[str]:

@@ -110,10 +110,13 @@ class MeshTable(Table):
         "control points of the cubic (rational) B-spline through the mesh are the unknowns: "
         "curvature continuous, fewer unknowns; cables and rods)",
     )
-    stress_free: Literal["reference", "straight"] = Field(
-        "reference",
-        description='"reference" (the start shape is unloaded) | "straight" (unloaded straight, '
-        "same arc length: a rope laid over a pulley carries its bending energy; cables and rods)",
+    stress_free: Literal["auto", "reference", "straight"] = Field(
+        "auto",
+        description='"auto" ("straight" for a spatial cable drawn curved whose rest curvature\'s '
+        "moment EI max k0 is below 1e-3 of its weight's moment w L^2/8, a chain or a rope, with "
+        'a note; else "reference") | "reference" (the start shape is unloaded) | "straight" '
+        "(unloaded straight, same arc length: a rope laid over a pulley carries its bending "
+        "energy; cables and rods)",
     )
     quadrature_points: QuadraturePoints | None = Field(
         None,

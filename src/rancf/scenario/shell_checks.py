@@ -33,7 +33,7 @@ _LINE_ONLY: dict[str, dict[str, Any]] = {
         )
     },
     "material": {"shear_modulus": None, "axial_strain": "green_lagrange", "axial_law": None},
-    "mesh": {"element": "rancf", "spacing": "arc", "continuity": "C1", "stress_free": "reference"},
+    "mesh": {"element": "rancf", "spacing": "arc", "continuity": "C1", "stress_free": "auto"},
 }
 _SHELL = "applies to line bodies (cables, beams, rods), not to a shell (a surface [geometry])"
 

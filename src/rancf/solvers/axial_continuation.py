@@ -12,8 +12,9 @@ about 200 Newton iterations from there at 320 elements, whatever the mesh; with 
 hundred times lower, 23, and with ``1e4`` times lower, 12.
 
 So the sagged start (:mod:`rancf.solvers.sag_start`) of a system with a slack line whose
-``EA`` exceeds :data:`STIFF_RATIO` times its weight ``W`` (the magnitude of its wet weight,
-buoyancy counted: :func:`rancf.system.seabed.wet_weight`) solves with the ``EA`` of every such
+``EA`` exceeds :data:`STIFF_RATIO` times its weight ``W`` (its elements' weights in the start
+shape, buoyancy counted where they are under water: :func:`rancf.system.seabed.element_weights`)
+solves with the ``EA`` of every such
 line lowered to :data:`START_RATIO` ``W`` first, then raises it :data:`RISE` times per Newton
 solve, each from the last state, to its own value: the equilibria of neighbouring stiffnesses
 lie within each other's quadratic convergence.  The intermediate solves stop at the scaled increment
@@ -36,7 +37,7 @@ from numpy.typing import NDArray
 from rancf.bodies.length import unstretched_length
 from rancf.solvers.newton import NewtonOutcome, newton
 from rancf.solvers.system_equilibrium import SystemEquilibrium
-from rancf.system.seabed import wet_weight
+from rancf.system.seabed import element_weights
 
 __all__ = [
     "STIFF_RATIO",
@@ -60,21 +61,26 @@ STAGE_TOL = 1.0e-6
 STAGE_ITERATIONS = 40
 
 
-def _weight(system: Any, name: str) -> float:
-    """The magnitude of body ``name``'s wet weight [N]: its wet weight per length
-    (:func:`rancf.system.seabed.wet_weight`, buoyancy counted) times its unstretched length."""
+def _weight(system: Any, name: str, z: NDArray[np.float64]) -> float:
+    """The weight [N] of body ``name`` in the system's state ``z``: the magnitudes of its
+    elements' weights per length (:func:`rancf.system.seabed.element_weights`, buoyancy counted
+    where they are under water) times their unstretched lengths."""
     model = system.bodies[name]
-    w = float(np.linalg.norm(wet_weight(system, name)))
-    return w * unstretched_length(model)
+    q = model.q_from_y(z[system.body_slice(name)])
+    w = np.linalg.norm(element_weights(system, name, q), axis=1)
+    ell = model.mesh.arc_lengths()
+    return float(w @ ell) * unstretched_length(model) / float(ell.sum())
 
 
-def stiff_lines(system: Any, names: list[str]) -> list[tuple[Any, float, float]]:
+def stiff_lines(
+    system: Any, names: list[str], z: NDArray[np.float64]
+) -> list[tuple[Any, float, float]]:
     """``(core, EA, W)`` of every body in ``names`` whose ``EA`` exceeds :data:`STIFF_RATIO`
-    times its wet weight ``W`` (module docstring)."""
+    times its weight ``W`` in the state ``z`` (module docstring)."""
     out = []
     for name in names:
         model = system.bodies[name]
-        w = _weight(system, name)
+        w = _weight(system, name, z)
         ea = float(model.core.axial_stiffness)
         if w > 0.0 and ea > STIFF_RATIO * w:
             out.append((model.core, ea, w))

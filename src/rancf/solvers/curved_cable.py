@@ -3,12 +3,15 @@
 A spatial cable element's bending energy is ``½ EI (|κ| - |κ0|)²`` (docs/derivations/cable.md
 sec. 6): it takes the magnitude of the curvature, so about a curved stress-free reference
 (``κ0 ≠ 0``) it has a kink at ``κ = 0``, where the line lies straight (on a seabed, pulled
-taut).  Newton's method may not settle there: the 330 m chain of
-``benchmarks/mooring/mooring-surge-3d.toml`` (drawn as a conic) failed at 160 elements, its
-residual stalling at 1 N with 1 µm steps of the grounded nodes, while the same chain drawn
-straight, or with ``[mesh] stress_free = "straight"``, converges in 7 Newton iterations.  A
-failed static solve names such bodies (:func:`curved_cable_causes`); ``rancf static`` and
-``simulate`` note them before any solve (:func:`rancf.post.checks.element_notes`).
+taut).  Newton's method may not settle there (the straight state is ill-posed:
+docs/derivations/cable.md sec. 8): the 330 m chain of
+``benchmarks/mooring/mooring-surge-3d.toml`` (drawn as a conic) unloaded as drawn fails at
+160 elements, its residual stalling at 1 N with 1 µm steps of the grounded nodes, while the
+same chain drawn straight, or unloaded straight (``[mesh] stress_free = "straight"``, or
+``"auto"``, the default, for a line whose rest curvature's moment is negligible:
+:mod:`rancf.bodies.stress_free`), converges in 7 Newton iterations.  A failed static solve
+names such bodies (:func:`curved_cable_causes`); ``rancf static`` and ``simulate`` note them
+before any solve (:func:`rancf.post.checks.element_notes`).
 """
 
 from __future__ import annotations

@@ -11,7 +11,11 @@ exceeds the chord between them, the inextensible catenary of length ``L``
 between the installed end positions in the vertical plane through them (vertical: against the
 body's wet weight per length, its weight less its buoyancy in a ``[fluid]`` where it has
 ``hydro`` coefficients, :func:`rancf.system.seabed.wet_weight`: a buoyant line arches up, the
-catenary flipped; a line as heavy as the water it displaces has no start shape).  Where that
+catenary flipped; a line as heavy as the water it displaces has none, unless it crosses the
+free surface).  A hanging line crossing the free surface starts on the catenary of each
+element's weight with its share under water (:func:`rancf.system.seabed.element_weights`,
+:func:`rancf.solvers.static_catenary.weighted_catenary`), the shares taken again in that shape
+until they repeat.  Where that
 catenary dips below a fixed plane facing up (against that weight) that the body touches (a
 seabed), the shape is instead two catenaries from the ends down to touchdown points, where
 they are tangent to the plane, and the line straight on the plane between them (no friction: one
@@ -50,9 +54,10 @@ from rancf.solvers.axial_continuation import continued_newton, stiff_lines
 from rancf.solvers.newton import NewtonOutcome, newton
 from rancf.solvers.relaxation import relax
 from rancf.solvers.static_catenary import catenary_shape, free_bend_radii, touchdowns
+from rancf.solvers.surface_start import across_surface, place_shape, still_surface
 from rancf.solvers.system_equilibrium import SystemEquilibrium
 from rancf.system.parts.contact_pair import ContactPair
-from rancf.system.seabed import pressing_weight, wet_weight
+from rancf.system.seabed import pressing_weight, weight_per_length, wet_weight
 
 __all__ = [
     "SAG_START",
@@ -159,6 +164,8 @@ def _line_geometry(system: Any, name: str, model: Model, pinned: bool = False) -
     if pinned and any(_clamped(model, k) for k in ends):
         return None
     w = wet_weight(system, name)[: model.dim]
+    if not np.linalg.norm(w) > 0.0 and still_surface(system) is not None:
+        w = weight_per_length(system, name, 0.0)[: model.dim]  # as heavy as water: its dry part
     if not np.linalg.norm(w) > 0.0:
         return None
     up = -w / np.linalg.norm(w)
@@ -269,8 +276,9 @@ def _body_sag(
         found = _floor(system, name, model, up, p1, chord)
         floor, slope = (None, 0.0) if found is None else found
         pts, tan = catenary_shape(span, rise, length, s_nodes, floor, slope)
-        out[:, :dim] = p1 + pts[:, :1] * ex + pts[:, 1:] * up
-        out[:, dim:] = grad[:, None] * (tan[:, :1] * ex + tan[:, 1:] * up)
+        place_shape(out, p1, ex, up, grad, pts, tan)
+        if still_surface(system) is not None and slope == 0.0:
+            across_surface(system, name, out, geo, grad, floor)
     y = model.y_from_q(out.ravel())
     y[model.fixed] = model.y_installed[model.fixed]
     return y, stretch < 1.0
@@ -320,7 +328,7 @@ def solve_from_sag(
     problem.stage = len(problem.stages) - 1
     end = problem.stages[-1][1]
     problem.place_supports(z, end)
-    stiff = stiff_lines(system, slack)
+    stiff = stiff_lines(system, slack, z)
     tried = NewtonOutcome(False, z, 0, 0, np.inf)
     if stiff:
         tried = continued_newton(problem, z, end, tol, stiff)

@@ -10,6 +10,8 @@ them) and their touchdown points.
   to the touchdown, where the catenary to the other end leaves it tangent to it
   (``sinh u_t = tan β``; MoorPy's frictionless sloped seabed, ``moorpy.Catenary.catenary`` with
   ``alpha``).
+* Free with a weight per length that changes from element to element (a line crossing the free
+  surface, its buoyancy only under water): :func:`weighted_catenary`.
 """
 
 from __future__ import annotations
@@ -20,7 +22,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["catenary_shape", "free_bend_radii", "touchdowns"]
+__all__ = ["catenary_shape", "free_bend_radii", "touchdowns", "weighted_catenary"]
 
 
 def _bisect(f: Any, lo: float, hi: float, n: int = 200) -> float:
@@ -231,3 +233,67 @@ def _sloped_touchdown(
     if found is None or at is None:
         return None
     return found[1] * math.hypot(1.0, slope), [at]
+
+
+def _weighted_ends(
+    h: float, v0: float, ell: NDArray, w: NDArray
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """Node increments ``dx``, ``dz`` and the vertical forces ``V`` at the nodes of the
+    inextensible line with horizontal tension ``h``, ``V = v0`` at its start and the weight
+    ``w_i`` per length on its piece ``i`` of length ``ell_i`` (:func:`weighted_catenary`)."""
+    v = v0 + np.r_[0.0, np.cumsum(w * ell)]
+    t = np.hypot(h, v)
+    va, vb, ta, tb = v[:-1], v[1:], t[:-1], t[1:]
+    dz = (va + vb) * ell / (ta + tb)  # (tb - ta) / w without the division
+    light = np.abs(w * ell) <= 1e-9 * (h + np.abs(va))
+    wl = np.where(light, 1.0, w)
+    dx = np.where(light, h * ell / ta, h / wl * (np.arcsinh(vb / h) - np.arcsinh(va / h)))
+    return dx, dz, v
+
+
+def weighted_catenary(
+    span: float, rise: float, s: NDArray, w: NDArray, guess: tuple[float, float] | None = None
+) -> tuple[NDArray[np.float64], NDArray[np.float64], tuple[float, float]] | None:
+    """Points ``(x, z)`` and unit tangents at the arc lengths ``s`` (the nodes, ``n + 1``) of
+    the inextensible line hanging free from ``(0, 0)`` to ``(span, rise)`` whose piece ``i``
+    (from ``s_i`` to ``s_i+1``) weighs ``w_i`` per length (along ``-z``; any sign), and its
+    ``(H, V0)``, or None where Newton's method finds none.
+
+    The tension ``(H, V(s))`` has ``V(s) = V0 + ∫ w`` (``H`` constant); on a piece with
+    ``V`` from ``V_a`` to ``V_b`` the catenary of ``a = H / w_i`` moves it by
+    ``dx = a (asinh(V_b / H) − asinh(V_a / H))``, ``dz = (T_b − T_a) / w_i``
+    (``T = sqrt(H² + V²)``; straight where ``w_i`` vanishes).  ``H`` (as ``log H``) and
+    ``V0`` solve ``Σ dx = span``, ``Σ dz = rise`` by Newton's method from ``guess = (H, V0)``
+    (default: the uniform catenary of the mean weight ``w̄``, ``H = |w̄| a``) with
+    central-difference derivatives.
+    """
+    ell = np.diff(np.asarray(s, dtype=float))
+    w = np.asarray(w, dtype=float)
+    length, scale = float(ell.sum()), float(np.sum(np.abs(w) * ell))
+    if not scale > 0.0:
+        return None
+    if guess is None:
+        mean = float(np.sum(w * ell)) / length
+        sign = 1.0 if mean >= 0.0 else -1.0
+        a, xv = _free(span, sign * rise, length)
+        h0 = a * max(abs(mean), scale / length * 1e-3)
+        guess = (h0, sign * h0 * math.sinh(-xv / a))
+
+    def gap(p: NDArray) -> NDArray[np.float64]:
+        dx, dz, _ = _weighted_ends(math.exp(p[0]), p[1] * scale, ell, w)
+        return np.array([dx.sum() - span, dz.sum() - rise]) / float(ell.sum())
+
+    p = np.array([math.log(guess[0]), guess[1] / scale])
+    for _ in range(60):
+        r = gap(p)
+        if np.max(np.abs(r)) < 1e-13:
+            break
+        jac = np.column_stack([(gap(p + d) - gap(p - d)) / 2e-7 for d in np.eye(2) * 1e-7])
+        step = np.linalg.solve(jac, -r)
+        p = p + step * min(1.0, 1.0 / max(np.max(np.abs(step)), 1e-300))
+    else:
+        return None
+    h, v0 = math.exp(p[0]), p[1] * scale
+    dx, dz, v = _weighted_ends(h, v0, ell, w)
+    pts = np.c_[np.r_[0.0, np.cumsum(dx)], np.r_[0.0, np.cumsum(dz)]]
+    return pts, np.c_[np.full(v.shape, h), v] / np.hypot(h, v)[:, None], (h, v0)

@@ -21,6 +21,7 @@ from numpy.typing import NDArray
 
 from rancf.bodies.flexible import Model
 from rancf.bodies.time_function import TimeFunction
+from rancf.bodies.winch_inertia import arc_fractions_at_gauss_points
 from rancf.errors import InputError
 from rancf.kernels.records import DrumRecord, vec3
 
@@ -76,10 +77,13 @@ def drum_mass(w: Any) -> float:
         return float(np.float64(w.inertia) / np.float64(w.radius) ** 2)
 
 
-def drum_record(w: Any, body: Model, node: int, torque: int) -> DrumRecord:
+def drum_record(w: Any, body: Model, node: int, torque: int, length_set: float) -> DrumRecord:
     """The core's record of the driven drum of the winch ``w`` at ``node`` of ``body``
-    (``torque``: its time function's index); its length ``L`` becomes a coordinate of the
-    system, after every body and drum before it (:func:`add_drum_coordinate`)."""
+    (``torque``: its time function's index; ``length_set`` the length ``L_s`` the body's arrays
+    hold); its length ``L`` becomes a coordinate of the system, after every body and drum before
+    it (:func:`add_drum_coordinate`).  Its line's fluid loads ``f`` enter its balance as
+    ``−Σ c_q f·r'`` with ``c_q = gw_q d_q L_ref / L_s`` (``d = 1 − σ`` at the start, ``−σ`` at
+    the end; docs/derivations/variable-length.md §3.5)."""
     if any(
         s.motion is not None
         for s in body.supports
@@ -97,6 +101,9 @@ def drum_record(w: Any, body: Model, node: int, torque: int) -> DrumRecord:
     if kernel is None:
         raise InputError(f"winches.{w.name}.at", w.at, "a place on a cable body")
     rho_a = float(kernel.props.rho_a)
+    sigma, l_ref = arc_fractions_at_gauss_points(kernel)
+    d = 1.0 - sigma if node == 0 else -sigma
+    convective = kernel.gw[None, :] * d * (l_ref / length_set)
     return DrumRecord(
         torque=torque,
         mass=drum_mass(w),
@@ -104,6 +111,7 @@ def drum_record(w: Any, body: Model, node: int, torque: int) -> DrumRecord:
         rho_a=rho_a,
         weight=vec3(rho_a * gravity),
         exit=int(body.node_base(node)),
+        convective=np.ascontiguousarray(convective.ravel(), dtype=float),
     )
 
 

@@ -143,13 +143,6 @@ class Winch:
         length = rows.tf(f)
         torque = drum_torque(self, rows.tf) if self.driven else -1
         name, end = self.body_and_end()
-        if self.driven and name in getattr(system, "hydro", {}):
-            raise InputError(
-                f"winches.{self.name}.torque",
-                "a driven drum",
-                f"a length or speed for a line in the fluid ({name} has [hydro]): a drum's "
-                "balance does not take the fluid's loads yet",
-            )
         body = self.body(system)
         if self.driven and body.material.axial_law is not None:
             raise InputError(
@@ -160,14 +153,15 @@ class Winch:
             )
         c1, c2, d2 = convective_matrices(body, end)
         node = 0 if end == "start" else body.n_nodes - 1
+        length_set = float(np.ravel(f.value(0.0))[0])
         return WinchRecord(
             body=system.names.index(name),  # flexible bodies come first
             length=length,
-            length_set=float(np.ravel(f.value(0.0))[0]),
+            length_set=length_set,
             c1=np.ascontiguousarray(c1, dtype=float),
             c2=np.ascontiguousarray(c2, dtype=float),
             d2=np.ascontiguousarray(d2, dtype=float),
-            drum=None if torque < 0 else drum_record(self, body, node, torque),
+            drum=None if torque < 0 else drum_record(self, body, node, torque, length_set),
         )
 
     def sensors(self, system: Any) -> Sequence[str]:
