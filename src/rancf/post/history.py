@@ -234,6 +234,7 @@ class HistoryStore:
                     alpha=alpha,
                 )
                 rows.update({d: derived[d].ravel() for d in DERIVED})
+                self.outputs.energy.add(rows["t"], rows["e"])
                 for key, val in rows.items():
                     self._fh[key].write(_raw_bytes(val))
             for key in self._fh:

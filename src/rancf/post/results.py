@@ -199,7 +199,12 @@ def write_run(
             )
             if options is None
             else finished_warnings(
-                model, outputs.largest_strain, result, options, outputs.largest_by_body
+                model,
+                outputs.largest_strain,
+                result,
+                options,
+                outputs.largest_by_body,
+                outputs.energy,
             ),
             **(extra or {}),
         }
