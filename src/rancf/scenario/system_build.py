@@ -116,6 +116,7 @@ def _build(sc: ScenarioView) -> System:
     bodies: dict[str, Any] = {}
     for i, (_, b) in enumerate(sc.body_tables):
         bodies[b.name] = body_model(sc, i) if b.kind == "flexible" else _rigid(b, sc.dim)
+    _held_once_by_joints(sc, bodies)
     return System(
         bodies,
         gravity=gravity,
@@ -124,6 +125,33 @@ def _build(sc: ScenarioView) -> System:
         horizon=sc.solver.t_end,
         **_parts(sc, bodies),
     )
+
+
+def _held_once_by_joints(sc: ScenarioView, bodies: dict[str, Any]) -> None:
+    """Refuse a joint between the ground and a supported place, naming both keys: its rows
+    repeat the support's (a redundant constraint: the Newton matrix is singular, the solves
+    failed with no key named), as two supports at one place are refused."""
+
+    def where(text: Any) -> tuple[Any, ...]:
+        p = sc.place(text)
+        if p.where != "node":
+            return (p.where, p.body, p.point, p.edge, p.uv)
+        n = bodies[str(p.body)].n_nodes
+        return ("node", p.body, int(p.node) % n if -n <= int(p.node) < n else p.node)
+
+    held = {where(t["at"]): f"supports[{i}]" for i, t in enumerate(sc.data["supports"])}
+    for i, j in enumerate(sc.joints):
+        for k, text in enumerate(j.between):
+            other = sc.place(j.between[1 - k])
+            if j.kind == "sliding" or other.where != "ground" or where(text) not in held:
+                continue
+            raise ScenarioError(
+                sc.path,
+                f"joints[{i}].between[{k}]",
+                f"{text!r} is held by {held[where(text)]} already: a joint to the ground there "
+                "holds it again (a redundant constraint: the solves would fail); remove the "
+                "joint or the support",
+            )
 
 
 def _parts(sc: ScenarioView, bodies: dict[str, Any]) -> dict[str, Any]:
