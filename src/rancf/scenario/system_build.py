@@ -141,9 +141,8 @@ def _held_once_by_joints(sc: ScenarioView, bodies: dict[str, Any]) -> None:
 
     held = {where(t["at"]): f"supports[{i}]" for i, t in enumerate(sc.data["supports"])}
     for i, j in enumerate(sc.joints):
-        for k, text in enumerate(j.between):
-            other = sc.place(j.between[1 - k])
-            if j.kind == "sliding" or other.where != "ground" or where(text) not in held:
+        for k, text in enumerate(j.between if j.kind != "sliding" else ()):
+            if sc.place(j.between[1 - k]).where != "ground" or where(text) not in held:
                 continue
             raise ScenarioError(
                 sc.path,
