@@ -25,6 +25,7 @@ def _cmd_buckling(args: argparse.Namespace) -> int:
         raise InputError("--count", args.count, "an integer >= 1")
     sc = load_scenario(args.scenario)
     run = run_buckling(sc, args.count, args.about)
+    _warn(run.warnings)
     res = run.result
     if plot is not None:
         from rancf.post.plots import plot_buckling

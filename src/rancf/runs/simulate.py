@@ -175,8 +175,12 @@ def simulate_planned(
     values = None
     if table:
         names, values = sensor_table(outputs, sc.sensors, result.q, result.v, t=result.t)
-    notes = list(plan.notes) + finished_warnings(
-        system, outputs.largest_strain, result, opts, outputs.largest_by_body, outputs.energy
+    notes = (
+        list(plan.notes)
+        + start.get("static", {}).get("warnings", [])
+        + finished_warnings(
+            system, outputs.largest_strain, result, opts, outputs.largest_by_body, outputs.energy
+        )
     )
     if stream is not None:
         summary = stream.finish(plan, result, notes)
