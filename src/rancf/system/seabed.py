@@ -47,8 +47,7 @@ def wet_weight(system: Any, body: str) -> np.ndarray:
     mass = model.material.density * model.section.area
     fluid, hydro = getattr(system, "fluid", None), getattr(system, "hydro", {}) or {}
     if fluid is not None and body in hydro:
-        h = hydro[body]
-        d = h.diameter if h.diameter is not None else math.sqrt(4.0 * model.section.area / math.pi)
+        d = hydro[body].line_diameter(model.section.area)
         mass -= fluid.density * math.pi * d * d / 4.0
     return np.asarray(mass * g3, dtype=float)
 
