@@ -152,3 +152,20 @@ def test_the_track_scale_bounds_the_energies_of_a_free_motion():
     assert np.isclose(energy_rise(track), 0.1)
     track.add([3.0], [[np.nan, 0.0, 0.0]])  # a diverged row
     assert energy_rise(track) == np.inf
+
+
+def test_a_resumed_run_is_checked_from_its_start(tmp_path, capsys):
+    """The spring pendulum run to 0.2 s, then resumed to its end: the check of the whole run,
+    its rise counted from t = 0 (the rows before the resumption included)."""
+    (tmp_path / "p.toml").write_text(SPRING_PENDULUM)
+    base = ["simulate", str(tmp_path / "p.toml"), "--quiet"]
+    assert main([*base, "--out", str(tmp_path / "whole")]) == 3
+    whole = [x for x in capsys.readouterr().err.splitlines() if "total energy" in x]
+    assert main([*base, "--out", str(tmp_path / "r"), "--t-end", "0.2"]) == 0
+    capsys.readouterr()
+    assert main([*base, "--out", str(tmp_path / "r"), "--resume"]) == 3
+    resumed = [x for x in capsys.readouterr().err.splitlines() if "total energy" in x]
+    assert len(whole) == 1 and "rose from 8579 J at t = 0 s" in whole[0]
+    assert [x.split(" (written to")[0] for x in resumed] == [
+        x.split(" (written to")[0] for x in whole
+    ]

@@ -182,6 +182,7 @@ class HistoryStore:
         :func:`rancf.post.resume.stored_rows`), already derived."""
         self.flush()
         n = len(rows["t"])
+        self.outputs.energy.add(rows["t"], rows["e"])  # the energy check sees the whole run
         for key, fh in self._fh.items():
             fh.write(_raw_bytes(rows[key]))
             fh.flush()
