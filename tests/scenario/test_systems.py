@@ -566,13 +566,19 @@ def test_bad_system_file_through_the_cli(tmp_path, capsys):
             "joints[2].between[0]",
             "'payload' is held by supports[1] already: a joint to the ground there holds it again",
         ),
+        (
+            {"joints__2": {"name": "again", "kind": "pin", "between": ["payload", "cable:-1"]}},
+            "joints[2].between",
+            "'payload' and 'cable:-1' are joined by joints[0] already: a second joint between",
+        ),
     ],
-    ids=["node", "point-mass"],
+    ids=["node", "point-mass", "joint-pair"],
 )
 def test_a_joint_to_the_ground_at_a_supported_place_is_refused_naming_both_keys(
     changes, key, needle
 ):
-    """Its rows repeat the support's: the solves failed without naming a key."""
+    """Its rows repeat the support's (or a second joint between the same two places repeats
+    the first's): the solves failed without naming a key."""
     with pytest.raises(ScenarioError) as info:
         _sc(TETHER_3D, **changes).build_system()
     msg = str(info.value)
