@@ -169,3 +169,15 @@ def test_a_resumed_run_is_checked_from_its_start(tmp_path, capsys):
     assert [x.split(" (written to")[0] for x in resumed] == [
         x.split(" (written to")[0] for x in whole
     ]
+
+
+def test_a_model_at_rest_is_not_failed_by_the_round_off_of_its_energy():
+    """A clamped curved rod at rest, no loads: its energy is the reference's round-off
+    (1e-27 J) and rises by a few times that, far below the model's energy unit."""
+    from tests.test_cli_errors import ROD
+
+    run = run_simulate(parse_scenario(_toml_dict(ROD)))
+    track = run.outputs.energy
+    assert 0.0 < track.e_max - track.e0 < 1e-24  # round-off, relative to its own 1e-27 J
+    assert run.result.status.value == "completed"
+    assert not [w for w in run.warnings if "energy" in w]

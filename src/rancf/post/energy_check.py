@@ -18,7 +18,8 @@ nothing does work on:
   ``rho_inf`` to change (:func:`energy_failure`);
 * above :data:`ENERGY_GROWTH` of ``S``, a warning line (:func:`energy_warnings`).
 
-A rise below ``1e-9`` of the largest energy magnitude is round-off, never warned about.
+A rise below ``1e-9`` of the largest energy magnitude, or below ``1e-20`` of the model's energy
+unit (:func:`energy_unit`), is round-off, never warned about.
 """
 
 from __future__ import annotations
@@ -35,6 +36,7 @@ __all__ = [
     "ENERGY_BLOW_UP",
     "EnergyTrack",
     "work_done_by",
+    "energy_unit",
     "energy_rise",
     "energy_failure",
     "energy_warnings",
@@ -45,6 +47,10 @@ __all__ = [
 ENERGY_GROWTH = 0.01
 #: Rise above which such a run is an error (unstable).
 ENERGY_BLOW_UP = 0.5
+#: Rise, relative to the model's energy unit (:func:`energy_unit`), below which it is
+#: round-off: a motion whose strains are below about 1e-10 (a clamped curved rod at rest,
+#: 1e-27 J of the reference's round-off in its strain energy).
+ENERGY_FLOOR = 1e-20
 #: The start of the message of a run failed by the check.
 UNSTABLE = "unstable: "
 #: Rise, relative to the largest energy magnitude, below which it is round-off.
@@ -70,13 +76,28 @@ def _driven(joint: Any) -> bool:
     return any(getattr(joint, k, None) is not None for k in ("angle", "motion", "rotation"))
 
 
-def energy_rise(track: EnergyTrack) -> float:
+def energy_unit(system: Any) -> float:
+    """The model's energy unit [J]: ``ℓ Σ EA`` of its flexible bodies, ``ℓ |g| Σ m`` of its
+    rigid bodies and point masses and ``ℓ² Σ k`` of its springs, ``ℓ`` the model's size (the
+    work of stretching its bodies by 100 %, lifting its masses or stretching its springs by
+    the model's size)."""
+    size = float(system.size)
+    flex = sum(float(b.props.ea) for b in system.flex)
+    mass = sum(float(getattr(b, "mass", 0.0)) for b in system.bodies.values())
+    springs = sum(float(getattr(sp, "stiffness", 0.0)) for sp in system.springs)
+    g = float(np.linalg.norm(system.gravity))
+    return size * flex + size * g * mass + size * size * springs
+
+
+def energy_rise(track: EnergyTrack, unit: float = 0.0) -> float:
     """The rise of the total energy over its first row's, relative to the track's scale
-    (0 below round-off, inf where the energy is not finite)."""
+    (0 below round-off: of the largest energy, or :data:`ENERGY_FLOOR` of the model's energy
+    ``unit`` (:func:`energy_unit`); inf where the energy is not finite)."""
     rise = track.e_max - track.e0
     if not np.isfinite(rise):
         return np.inf if track.t0 < np.inf else 0.0
-    if rise <= ENERGY_ROUND_OFF * track.magnitude or rise <= 0.0:
+    floor = max(ENERGY_ROUND_OFF * track.magnitude, ENERGY_FLOOR * unit)
+    if rise <= floor or rise <= 0.0:
         return 0.0
     return rise / track.scale if track.scale > 0.0 else np.inf
 
@@ -101,7 +122,7 @@ def energy_failure(system: Any, track: EnergyTrack, result: Any, options: Dynami
     :data:`ENERGY_BLOW_UP` of its scale in a system nothing does work on."""
     if result.status.value != "completed" or work_done_by(system) is not None:
         return
-    rise = energy_rise(track)
+    rise = energy_rise(track, energy_unit(system))
     if rise > ENERGY_BLOW_UP:
         from rancf.solvers.result import DynamicStatus
 
@@ -118,7 +139,7 @@ def energy_warnings(
     (it may tell why)."""
     if track is None or result.message.startswith(UNSTABLE) or work_done_by(system) is not None:
         return []
-    rise = energy_rise(track)
+    rise = energy_rise(track, energy_unit(system))
     completed = result.status.value == "completed"
     if not rise > ENERGY_GROWTH or (completed and rise > ENERGY_BLOW_UP):
         return []

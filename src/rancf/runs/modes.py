@@ -74,7 +74,8 @@ def run_modes(
     if about == "reference":
         refuse_unloaded_reference(sc, "modes")
     y = lam = None
-    largest, by_body, solved = (0.0, 1.0), {}, []
+    largest, by_body = (0.0, 1.0), {}
+    solved: list[str] = []
     if about == "static":
         y, lam, solved = static_state(sc, system)
         q = system.q_from_y(y)

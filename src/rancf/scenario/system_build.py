@@ -137,8 +137,8 @@ def _held_once_by_joints(sc: ScenarioView, bodies: dict[str, Any]) -> None:
         p = sc.place(text)
         if p.where != "node":
             return (p.where, p.body, p.point, p.edge, p.uv)
-        n = bodies[str(p.body)].n_nodes
-        return ("node", p.body, int(p.node) % n if -n <= int(p.node) < n else p.node)
+        n, node = bodies[str(p.body)].n_nodes, int(p.node or 0)  # a node place has its node
+        return ("node", p.body, node % n if -n <= node < n else node)
 
     def refuse(key: str, done: str, again: str) -> None:
         raise ScenarioError(
