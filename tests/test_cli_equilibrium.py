@@ -127,3 +127,53 @@ def test_static_and_modes_of_one_body_with_system_keys(tmp_path, capsys):
     assert main(["static", str(plain), "--json"]) == 0
     tip = json.loads(capsys.readouterr().out)["sensors"]["tip_y"]
     assert doc["sensors"]["tip_y"] == pytest.approx(tip, rel=1e-9)
+
+
+#: A rope pinned at its end, its start hung by a pin joint to the ground (labels of 8 and 6).
+PINNED_ROPE = """
+[[bodies]]
+name = "rope"
+[bodies.geometry]
+kind = "line"
+start = [0.0, 0.0]
+end = [1.0, 0.0]
+[bodies.mesh]
+elements = 4
+[bodies.section]
+radius = 0.005
+[bodies.material]
+density = 1000.0
+youngs_modulus = 1.0e9
+
+[[supports]]
+at = "rope:end"
+kind = "pin"
+
+[[joints]]
+name = "anchor"
+kind = "pin"
+between = ["rope:start", "ground"]
+
+[[sensors]]
+name = "middle_of_the_rope"
+kind = "position"
+at = "rope:2"
+
+[loads]
+gravity = [0.0, -9.81]
+"""
+
+
+def test_static_table_columns_align_with_long_labels(tmp_path, capsys):
+    from rancf.cli import main
+
+    (tmp_path / "rope.toml").write_text(PINNED_ROPE)
+    assert main(["static", str(tmp_path / "rope.toml")]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    reactions = [x for x in lines if x.startswith("  reaction at ")]
+    assert [x.split()[2] for x in reactions] == ["rope:end", "anchor"]
+    assert len({x.index(" force [") for x in reactions}) == 1, reactions
+    values = [x for x in lines if x.startswith("  middle_of_the_rope_")]
+    assert len(values) == 2, lines
+    # the numbers start in one column, after the longest name (a sign's column before them)
+    assert len({x.index(x.split()[1]) + (x.split()[1][0] == "-") for x in values}) == 1, values

@@ -549,3 +549,45 @@ def test_bad_system_file_through_the_cli(tmp_path, capsys):
         "(bodies: crank, rod, slider)"
     ]
     assert not (tmp_path / "run").exists()
+
+
+@pytest.mark.parametrize(
+    ("changes", "key", "needle"),
+    [
+        (
+            {"joints__2": {"name": "anchor", "kind": "pin", "between": ["ground", "cable:0"]}},
+            "joints[2].between[1]",
+            "'cable:0' is held by supports[0] already: a joint to the ground there holds it again",
+        ),
+        (
+            {
+                "supports__1": {"at": "payload", "kind": "pin"},
+                "joints__2": {"name": "anchor", "kind": "pin", "between": ["payload", "ground"]},
+            },
+            "joints[2].between[0]",
+            "'payload' is held by supports[1] already: a joint to the ground there holds it again",
+        ),
+        (
+            {"joints__2": {"name": "again", "kind": "pin", "between": ["payload", "cable:-1"]}},
+            "joints[2].between",
+            "'payload' and 'cable:-1' are joined by joints[0] already: a second joint between",
+        ),
+    ],
+    ids=["node", "point-mass", "joint-pair"],
+)
+def test_a_joint_to_the_ground_at_a_supported_place_is_refused_naming_both_keys(
+    changes, key, needle
+):
+    """Its rows repeat the support's (or a second joint between the same two places repeats
+    the first's): the solves failed without naming a key."""
+    with pytest.raises(ScenarioError) as info:
+        _sc(TETHER_3D, **changes).build_system()
+    msg = str(info.value)
+    assert msg.startswith(f"s.toml: [{key}] "), msg
+    assert needle in msg and "redundant constraint" in msg, msg
+
+
+def test_a_joint_to_the_ground_at_another_node_is_kept():
+    joint = {"name": "anchor", "kind": "pin", "between": ["ground", "cable:end"]}
+    system = _sc(TETHER_3D, joints__2=joint).build_system()
+    assert "anchor" in [j.name for j in system.joints]

@@ -169,3 +169,41 @@ def test_a_mechanism_is_recognised_at_its_reference(tmp_path):
         problem = SystemEquilibrium(system)
         assert not problem.mechanism(problem.start())
     assert solve_static(load_scenario(g).build_system()).method == "load"
+
+
+def _cantilever(size: float) -> dict:
+    """A clamped cantilever of length ``size``, radius ``size / 50`` and a tip load with
+    ``P L² / EI = 2`` (the tip drops by half its length): the same problem at every size."""
+    length, radius, e_mod = size, size / 50, 2.0e9
+    load = 2.0 * e_mod * np.pi * radius**4 / 4 / length**2
+    return {
+        "geometry": {"kind": "line", "start": [0.0, 0.0], "end": [length, 0.0]},
+        "mesh": {"elements": 8},
+        "section": {"radius": radius},
+        "material": {"density": 6000.0, "youngs_modulus": e_mod},
+        "supports": [{"at": "start", "kind": "clamp"}],
+        "loads": {"point": [{"at": "end", "force": [0.0, -load]}]},
+    }
+
+
+@pytest.mark.parametrize("size", [1e-5, 1e4])
+def test_the_mechanism_test_and_the_path_do_not_depend_on_the_units(size):
+    """A 10 µm cantilever (and a 10 km one) is no mechanism, as the 1 m one: in metres its
+    gradients outweighed its positions in the Rayleigh quotient and the 10 µm one was taken
+    for a mechanism (relaxation instead of the load path); the horizontal pendulum is one at
+    any size. Both cantilevers follow the same load path to the same shape."""
+    from rancf.scenario import parse_scenario
+
+    small = parse_scenario(_cantilever(size)).build_system()
+    problem = SystemEquilibrium(small)
+    assert not problem.mechanism(problem.start())
+    pend = _cantilever(size)
+    pend["supports"][0]["kind"], pend["loads"] = "pin", {"gravity": [0.0, -G]}
+    pendulum = SystemEquilibrium(parse_scenario(pend).build_system())
+    assert pendulum.mechanism(pendulum.start())
+    res, ref = solve_static(small), solve_static(parse_scenario(_cantilever(1.0)).build_system())
+    assert res.method == ref.method == "load"
+    assert len(res.load_factors) == len(ref.load_factors)
+    q, q_ref = res.q.reshape(-1, 4), ref.q.reshape(-1, 4)  # positions, then gradients
+    assert np.allclose(q[:, :2] / size, q_ref[:, :2], rtol=0, atol=1e-12)
+    assert np.allclose(q[:, 2:], q_ref[:, 2:], rtol=0, atol=1e-12)

@@ -12,9 +12,11 @@ dependency), ``CB = 0``:
 
 from __future__ import annotations
 
+import json
 import os
 import subprocess
 import sys
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -637,12 +639,27 @@ def test_a_compressed_straight_hose_is_unstable_and_its_buckled_state_is_found(t
     assert 3.1 < most_compressed(system, res.q)[2] < 5.0
 
 
-def test_an_unstable_end_of_an_arc_length_path_is_kept_with_a_warning(tmp_path):
+def test_an_unstable_end_of_an_arc_length_path_is_kept_with_a_warning(tmp_path, capsys):
     """The column pushed by 1 N along an arc-length path (which passes unstable states on
-    purpose) stays straight: the end state is returned, with one warning naming it."""
+    purpose) stays straight: the end state is returned, with one warning line naming it, which
+    ``rancf static`` prints as its other warnings (no Python warning) and keeps in its
+    summary."""
+    from rancf.cli import main
+
     text = COLUMN.format(push=-1.0) + '\n[solver]\nstatic_method = "arc_length"\n'
     (tmp_path / "c.toml").write_text(text)
     sc = load_scenario(tmp_path / "c.toml")
-    with pytest.warns(UserWarning, match="arc-length path ends in an unstable equilibrium"):
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # no Python warning
         res = solve_static(sc.build_system(), **sc.static_options())
     assert res.method == "arc_length" and res.load_factors[-1] == pytest.approx(1.0)
+    (line,) = res.warnings
+    assert line.startswith("the arc-length path ends in an unstable equilibrium")
+    for out in ([], ["--out", str(tmp_path / "r")]):
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")
+            assert main(["static", str(tmp_path / "c.toml"), *out]) == 0
+        err = capsys.readouterr().err.splitlines()
+        assert err == [f"rancf: warning: {line}"], err
+    summary = json.loads((tmp_path / "r" / "summary.json").read_text())
+    assert summary["warnings"] == [line]

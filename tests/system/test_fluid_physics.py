@@ -259,3 +259,28 @@ def test_a_driven_drum_holds_a_line_in_water_by_its_submerged_weight():
     assert np.abs(length - 5.0).max() < 1e-4, length
     pull = values[:, names.index("drum_tension")]
     assert np.abs(pull / (torque / 0.1) - 1.0).max() < 1e-5, pull
+
+
+def test_the_default_hydro_diameter_is_one_formula_for_the_loads_and_the_wet_weight(
+    monkeypatch,
+):
+    """Without ``diameter`` the line's is the volume-equivalent sqrt(4 A / pi); the fluid's
+    line record and the statics' wet weight both take it from ``Hydro.line_diameter``."""
+    from rancf.system.seabed import wet_weight
+
+    area = math.pi * 0.01**2
+    assert Hydro().line_diameter(area) == math.sqrt(4.0 * area / math.pi)
+    assert Hydro(0.05).line_diameter(area) == 0.05
+    g = [0.0, -G]
+
+    def system() -> System:
+        mesh, section = mesh_line([0, 0], [4, 0], 2), Section(area, 1e-8)
+        cable = Model(mesh, "rancf", section, Material(2000.0, 1e9), [], gravity=g)
+        return System({"cable": cable}, gravity=g, fluid=Fluid(RHO_W), hydro={"cable": Hydro()})
+
+    plain = wet_weight(system(), "cable")[1]
+    assert math.isclose(plain, -(2000.0 - RHO_W) * area * G, rel_tol=1e-12)
+    monkeypatch.setattr(Hydro, "line_diameter", lambda self, a: 0.0)  # no buoyancy at all
+    s = system()
+    assert math.isclose(wet_weight(s, "cable")[1], -2000.0 * area * G, rel_tol=1e-12)
+    assert s.model.lines[0].diameter == 0.0

@@ -25,6 +25,7 @@ def _cmd_buckling(args: argparse.Namespace) -> int:
         raise InputError("--count", args.count, "an integer >= 1")
     sc = load_scenario(args.scenario)
     run = run_buckling(sc, args.count, args.about)
+    _warn(run.warnings)
     res = run.result
     if plot is not None:
         from rancf.post.plots import plot_buckling
@@ -113,13 +114,16 @@ def _cmd_static(args: argparse.Namespace) -> int:
     )
     for line in run.form_lines:
         print(f"  {line}")
+    wide = max((len(k) for k in out["sensors"]), default=0)  # the columns aligned
     for k, v in out["sensors"].items():
-        print(f"  {k:12s} {v: .9g}")
+        print(f"  {k:{max(12, wide)}s} {v: .9g}")
     # forces below the round-off of the internal forces (100 ε EA) print as 0
     floor = 100 * np.finfo(float).eps * max((b.props.ea for b in system.flex), default=0.0)
+    wide = max((len(str(r["at"])) for r in out["reactions"]), default=0)
     for r in out["reactions"]:
         moment = f"  moment {_vec(r['moment'], floor)}" if "moment" in r else ""
-        print(f"  reaction at {r['at']!s:6s} force {_vec(r['force'], floor)}{moment}")
+        at = f"{r['at']!s:{max(6, wide)}s}"
+        print(f"  reaction at {at} force {_vec(r['force'], floor)}{moment}")
     return 0
 
 

@@ -37,8 +37,10 @@ from rancf.bodies.flexible import Model
 from rancf.bodies.section_outputs import SectionSampler
 from rancf.options import DynamicOptions
 from rancf.post.contact_checks import contact_warnings
+from rancf.post.energy_check import energy_warnings
 from rancf.post.winch_checks import winch_warnings
-from rancf.system import System
+from rancf.system import System, as_system
+from rancf.system.energy_track import EnergyTrack
 
 __all__ = [
     "STRAIN_LIMIT",
@@ -261,14 +263,17 @@ def finished_warnings(
     result: Any,
     options: DynamicOptions,
     by_body: Mapping[str, float] | None = None,
+    energy: EnergyTrack | None = None,
 ) -> list[str]:
     """Every warning of a finished dynamic run: :func:`run_warnings` (``largest`` as its outputs
     tracked it) and, for a completed run, the steps whose error estimate passed the tolerance
-    (:func:`error_warnings`; a failed or stopped run says so instead); ``by_body``: as
-    :func:`run_warnings`'."""
+    (:func:`error_warnings`; a failed or stopped run says so instead), and the rise of its
+    ``energy`` where nothing does work on it (:func:`~rancf.post.energy_check.energy_warnings`);
+    ``by_body``: as :func:`run_warnings`'."""
     found = run_warnings(model, largest=largest, options=options, by_body=by_body)
     done = result.status.value == "completed"
-    return found + (error_warnings(result, options) if done else [])
+    rise = energy_warnings(as_system(model), energy, result, options)
+    return found + (error_warnings(result, options) if done else []) + rise
 
 
 def start_warnings(model: Model | System) -> list[str]:

@@ -188,6 +188,7 @@ class HistoryStore:
         :func:`rancf.post.resume.stored_rows`), already derived."""
         self.flush()
         n = len(rows["t"])
+        self.outputs.energy.add(rows["t"], rows["e"])  # the energy check sees the whole run
         for key, fh in self._fh.items():
             fh.write(_raw_bytes(rows[key]))
             fh.flush()
@@ -240,6 +241,7 @@ class HistoryStore:
                     alpha=alpha,
                 )
                 rows.update({d: derived[d].ravel() for d in DERIVED})
+                self.outputs.energy.add(rows["t"], rows["e"])
                 for key, val in rows.items():
                     self._fh[key].write(_raw_bytes(val))
             for key in self._fh:

@@ -200,7 +200,12 @@ def write_run(
             )
             if options is None
             else finished_warnings(
-                model, outputs.largest_strain, result, options, outputs.largest_by_body
+                model,
+                outputs.largest_strain,
+                result,
+                options,
+                outputs.largest_by_body,
+                outputs.energy,
             ),
             **(extra or {}),
         }
@@ -277,10 +282,11 @@ def write_static_run(
             "load_steps_converged": int(t.size - 1),
             **run_sizes(s),
             "outputs": int(t.size),
-            "warnings": run_warnings(
+            **summary,
+            "warnings": list(summary.get("warnings", ()))  # the solve's, then the states'
+            + run_warnings(
                 s, static=True, largest=outputs.largest_strain, by_body=outputs.largest_by_body
             ),
-            **summary,
         }
         files.write(out / "summary.json", strict_json(doc))
     return doc

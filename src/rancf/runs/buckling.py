@@ -17,12 +17,13 @@ __all__ = ["BucklingRun", "run_buckling"]
 
 @dataclass
 class BucklingRun:
-    """A buckling analysis: the system, the solver's result and the state it is about
-    (``y is None``: the reference)."""
+    """A buckling analysis: the system, the solver's result, the state it is about (``y is
+    None``: the reference) and the warning lines of its static solve."""
 
     system: Any
     result: BucklingResult
     y: NDArray | None
+    warnings: list[str]
 
 
 def run_buckling(
@@ -41,8 +42,9 @@ def run_buckling(
     find_form(sc)
     system = sc.build_system()
     y = lam = None
+    solved: list[str] = []
     if about == "reference":
         refuse_unloaded_reference(sc, "buckling")
     if about == "static":
-        y, lam = static_state(sc, system)
-    return BucklingRun(system, linear_buckling(system, count, about, y, lam), y)
+        y, lam, solved = static_state(sc, system)
+    return BucklingRun(system, linear_buckling(system, count, about, y, lam), y, solved)

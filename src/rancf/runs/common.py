@@ -31,13 +31,14 @@ def refuse_unloaded_reference(sc: Any, analysis: str) -> None:
         )
 
 
-def static_state(sc: Any, system: Any) -> tuple[NDArray, NDArray]:
+def static_state(sc: Any, system: Any) -> tuple[NDArray, NDArray, list[str]]:
     """The equilibrium of ``system`` under the full loads of scenario ``sc`` (coordinates and
-    multipliers), solved with the ``[solver]`` table's static options."""
+    multipliers), solved with the ``[solver]`` table's static options, and the solve's warning
+    lines (:attr:`~rancf.solvers.static.StaticResult.warnings`)."""
     from rancf.scenario.system_build import scenario_keys
     from rancf.solvers.static import solve_static
 
     with scenario_keys(sc):
         res = solve_static(system, **sc.static_options())
     assert res.lam is not None  # a system's solution has its multipliers (empty: no joints)
-    return res.y, res.lam
+    return res.y, res.lam, list(res.warnings)

@@ -75,14 +75,15 @@ def run_modes(
         refuse_unloaded_reference(sc, "modes")
     y = lam = None
     largest, by_body = (0.0, 1.0), {}
+    solved: list[str] = []
     if about == "static":
-        y, lam = static_state(sc, system)
+        y, lam, solved = static_state(sc, system)
         q = system.q_from_y(y)
         for name, b in zip(system.names, system.flex, strict=False):  # the equilibrium's strain
             qb = q[system.body_slice(name)]
             largest = max(largest, largest_strain(b, np.ones(1), qb[None]))
             by_body[name] = largest_stretch(b, qb)
-    notes = run_warnings(system, static=True, largest=largest, by_body=by_body)
+    notes = solved + run_warnings(system, static=True, largest=largest, by_body=by_body)
     res = natural_modes(system, y, None if every else count, lam)
     cam = run_campbell(sc, system, count, about) if sc.data["modes"]["spin_rates"] else None
     return ModesRun(system, res, about, y, n_free, notes, cam)

@@ -20,10 +20,12 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Protocol
 
+import numpy as np
 from numpy.typing import NDArray
 
 from rancf.options import DynamicOptions
 from rancf.post.checks import finished_warnings
+from rancf.post.energy_check import energy_failure
 from rancf.post.results import sensor_table, write_run
 from rancf.post.run_plan import plan_run
 from rancf.solvers.dynamic import DynamicResult, integrate
@@ -155,6 +157,9 @@ def simulate_planned(
     summary = None
     if stream is None:
         result = integrate(system, opts, initial=y0)
+        energies = np.column_stack([result.kinetic, result.strain, result.gravity])
+        outputs.energy.add(result.t, energies)
+        energy_failure(system, outputs.energy, result, opts)  # an unstable run fails
         if folder is not None:  # the rows are derived here: the largest strain is tracked
             extra = {**(info or {}), **start}
             summary = write_run(
@@ -165,12 +170,17 @@ def simulate_planned(
         on_output, should_stop, on_start = stream.callbacks()
         result = integrate(system, opts, on_output, should_stop, sink, on_start, y0, state)
         stream.flush()
+        energy_failure(system, outputs.energy, result, opts)  # an unstable run fails
     names: list[str] = list(outputs.sensor_names)
     values = None
     if table:
         names, values = sensor_table(outputs, sc.sensors, result.q, result.v, t=result.t)
-    notes = list(plan.notes) + finished_warnings(
-        system, outputs.largest_strain, result, opts, outputs.largest_by_body
+    notes = (
+        list(plan.notes)
+        + start.get("static", {}).get("warnings", [])
+        + finished_warnings(
+            system, outputs.largest_strain, result, opts, outputs.largest_by_body, outputs.energy
+        )
     )
     if stream is not None:
         summary = stream.finish(plan, result, notes)

@@ -136,6 +136,7 @@ class _Solve:
                 message="reached the end of the load path",
                 method=res.method,
                 relaxation_steps=res.relaxation_steps,
+                **({"warnings": list(res.warnings)} if res.warnings else {}),
             )
         except BaseException as exc:
             kind = "interrupted" if isinstance(exc, KeyboardInterrupt) else "failed"
@@ -155,4 +156,5 @@ class _Solve:
             outputs, sc.sensors, res.q, static=True, t=res.load_factors[-1:], lam=res.lam[None]
         )
         sensors = dict(zip(names, map(float, vals[0]), strict=True))
-        return StaticRun(system, res, outputs, sensors, doc, [str(n) for n in notes])
+        said = res.warnings if doc is None else ()  # else in the summary's warnings
+        return StaticRun(system, res, outputs, sensors, doc, [*map(str, notes), *said])

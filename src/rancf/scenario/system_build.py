@@ -115,6 +115,7 @@ def _build(sc: ScenarioView) -> System:
     bodies: dict[str, Any] = {}
     for i, (_, b) in enumerate(sc.body_tables):
         bodies[b.name] = body_model(sc, i) if b.kind == "flexible" else _rigid(b, sc.dim)
+    _held_once_by_joints(sc, bodies)
     return System(
         bodies,
         gravity=gravity,
@@ -123,6 +124,46 @@ def _build(sc: ScenarioView) -> System:
         horizon=sc.solver.t_end,
         **_parts(sc, bodies),
     )
+
+
+def _held_once_by_joints(sc: ScenarioView, bodies: dict[str, Any]) -> None:
+    """Refuse a joint between the ground and a supported place, or a second joint between the
+    same two places, naming both keys: its rows repeat the support's or the other joint's (a
+    redundant constraint: the Newton matrix is singular, the solves failed with no key named),
+    as two supports at one place are refused."""
+
+    def where(text: Any) -> tuple[Any, ...]:
+        p = sc.place(text)
+        if p.where != "node":
+            return (p.where, p.body, p.point, p.edge, p.uv)
+        n, node = bodies[str(p.body)].n_nodes, int(p.node or 0)  # a node place has its node
+        return ("node", p.body, node % n if -n <= node < n else node)
+
+    def refuse(key: str, done: str, again: str) -> None:
+        raise ScenarioError(
+            sc.path,
+            key,
+            f"{done} already: {again} (a redundant constraint: the solves would fail); remove "
+            "one of them",
+        )
+
+    held = {where(t["at"]): f"supports[{i}]" for i, t in enumerate(sc.data["supports"])}
+    pairs: dict[frozenset[tuple[Any, ...]], str] = {}
+    for i, j in enumerate(sc.joints):
+        if j.kind == "sliding":
+            continue
+        ends = [where(text) for text in j.between]
+        for k, text in enumerate(j.between):
+            if ends[1 - k][0] == "ground" and ends[k] in held:
+                where_k = f"joints[{i}].between[{k}]"
+                done = f"{text!r} is held by {held[ends[k]]}"
+                refuse(where_k, done, "a joint to the ground there holds it again")
+        pair = frozenset(ends)
+        if pair in pairs:
+            a, b = j.between
+            done = f"{a!r} and {b!r} are joined by {pairs[pair]}"
+            refuse(f"joints[{i}].between", done, "a second joint between them holds them again")
+        pairs[pair] = f"joints[{i}]"
 
 
 def _parts(sc: ScenarioView, bodies: dict[str, Any]) -> dict[str, Any]:

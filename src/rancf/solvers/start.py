@@ -67,6 +67,7 @@ def start_state(
             "relaxation_steps": res.relaxation_steps,
             "newton_iterations": res.n_newton,
             "wall_time_s": res.wall_time,
+            **({"warnings": list(res.warnings)} if res.warnings else {}),
         },
     }
     return res.y, info

@@ -45,7 +45,6 @@ shape before the path's failure is raised.
 from __future__ import annotations
 
 import time
-import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, replace
 from typing import Literal
@@ -116,6 +115,9 @@ class StaticResult:
     #: (:attr:`~rancf.solvers.static_checks.StateCheck.touchdowns`), once the state has passed
     #: the checks (None before).
     touchdowns: dict[str, tuple[float, float]] | None = None
+    #: Warning lines of the solve (without ``rancf: warning:``): an arc-length path that ends
+    #: in an unstable state; ``rancf static`` prints them as its other warnings.
+    warnings: tuple[str, ...] = ()
 
 
 def solve_static(
@@ -264,7 +266,7 @@ def _checked(system: System, res: StaticResult) -> StaticResult:
     else :class:`~rancf.errors.ConvergenceError` naming the first problem (one line).  Then
     its stability (:func:`~rancf.solvers.static_checks.instability`): an unstable state is
     refused the same way, or, at the end of an arc-length path (which passes unstable states
-    on purpose), kept with a warning."""
+    on purpose), kept with a warning line (:attr:`StaticResult.warnings`)."""
     lam = float(res.load_factors[-1])
     if res.touchdowns is None:
         report = check_state(system, res.q)
@@ -278,7 +280,7 @@ def _checked(system: System, res: StaticResult) -> StaticResult:
     why = instability(system, res.y, res.lam)
     if why and res.method == "arc_length":  # a path traced past a limit point: said, kept
         why = why.split("; try")[0]  # the hints: load steps, imperfection, arc length
-        warnings.warn(f"rancf: warning: the arc-length path ends in an {why}", stacklevel=3)
+        res = replace(res, warnings=(*res.warnings, f"the arc-length path ends in an {why}"))
     elif why:
         raise ConvergenceError(
             f"static equilibrium not found: the {res.method} path ended at load factor "

@@ -202,10 +202,13 @@ class SystemEquilibrium:
         the stiffness the loads meet there, the Rayleigh quotient ``ρ = xᵀK₀x / xᵀx = fᵀx / xᵀx``
         of the linear response ``K₀ x = f`` (``K₀`` the tangent at load factor 0 with the
         joints' constraints, ``f`` the load vector), is below round-off of the stiffest
-        coordinate: ``ρ <= ε max|diag K₀|``, ``ε`` the machine precision.  A pendulum pinned at
-        one end and drawn horizontal meets ``ρ ≈ 1e-20 max|diag K₀|`` (its swing has no
-        stiffness there: ``K₀`` is singular and ``x`` round-off's); a tension-free straight
-        cable, whose transverse stiffness is its bending stiffness alone, ``6e-13``.  A tangent
+        coordinate: ``ρ <= ε max|diag K₀|``, ``ε`` the machine precision, both in the scaled
+        coordinates of the norms (:attr:`scale`: positions over the model's size), so that the
+        test does not depend on the units (in metres a 10 µm cantilever's gradients outweighed
+        its positions in ``xᵀx`` and it was taken for a mechanism).  A pendulum pinned at one
+        end and drawn horizontal meets ``ρ ≈ 1e-20 max|diag K₀|`` (its swing has no stiffness
+        there: ``K₀`` is singular and ``x`` round-off's); a tension-free straight cable, whose
+        transverse stiffness is its bending stiffness alone, ``6e-13`` (at 1 m).  A tangent
         that cannot be factored is a mechanism too; loads that do no work (``f = 0``) are not
         moved by one."""
         _, ok = self.tangent(z, 0.0)
@@ -215,11 +218,12 @@ class SystemEquilibrium:
         x = self.solve(ok, f)
         if x is None:
             return True
-        fy, xy = f[: self.n], x[: self.n]
-        xx = float(xy @ xy)
+        fy, xy, sc = f[: self.n], x[: self.n], self.scale[: self.n]
+        xx = float(np.sum((xy * sc) ** 2))
         if xx == 0.0:
             return False
-        kmax = float(np.max(self._diagonal(z, 1.0, 0.0), initial=0.0))
+        diag = self._diagonal(z, 1.0, 0.0) / sc[~self.system.fixed] ** 2
+        kmax = float(np.max(diag, initial=0.0))
         return bool(float(fy @ xy) / xx <= np.finfo(float).eps * kmax)
 
     def solve(self, ok: bool, rhs: NDArray) -> NDArray[np.float64] | None:

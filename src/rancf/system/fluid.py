@@ -13,6 +13,7 @@ forces (fluid.md section 3).  Their records for the core are made by the fluid's
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -60,6 +61,13 @@ class Hydro:
     drag_axial: float = 0.0
     added_mass_normal: float = 1.0
     added_mass_axial: float = 0.0
+
+    def line_diameter(self, area: float) -> float:
+        """The hydrodynamic diameter of a line of section area ``area`` [m²]: ``diameter``, else
+        the volume-equivalent ``sqrt(4 A / pi)`` (``docs/derivations/fluid.md``)."""
+        if self.diameter is not None:
+            return float(self.diameter)
+        return math.sqrt(4.0 * area / math.pi)
 
 
 def surface_elevation(system: Any, point: Sequence[float], t: Any) -> NDArray[np.float64]:

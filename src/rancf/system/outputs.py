@@ -64,6 +64,7 @@ from rancf.bodies.nodal_forces import recovers_axial_force
 from rancf.bodies.reactions import Reaction, reaction_row, support_reactions
 from rancf.bodies.section_outputs import SectionSampler, section_names
 from rancf.kernels.call_records import ResidualOptions, ResidualPoint, evaluator
+from rancf.system.energy_track import EnergyTrack
 from rancf.system.output_block import (
     block_derived,
     block_sections,
@@ -141,6 +142,7 @@ class SystemOutputs:
         self.largest_strain: tuple[float, float] = (0.0, 0.0)
         #: Every flexible body's largest axial strain (signed: the most stretched) so far.
         self.largest_by_body: dict[str, float] = {}
+        self.energy = EnergyTrack()  #: the stored rows' energies (fed by the run's sink)
         #: One flexible body, nothing else with energy: its energies are the system's (stored).
         others = s.rigid or s.springs or s.has_contact or getattr(s, "winches", ())
         self._body_is_system = len(s.flex) == 1 and not others

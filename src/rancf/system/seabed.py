@@ -67,8 +67,7 @@ def weight_per_length(system: Any, body: str, submerged: Any = 1.0) -> np.ndarra
     fluid, hydro = getattr(system, "fluid", None), getattr(system, "hydro", {}) or {}
     displaced = 0.0
     if fluid is not None and body in hydro:
-        h = hydro[body]
-        d = h.diameter if h.diameter is not None else math.sqrt(4.0 * model.section.area / math.pi)
+        d = hydro[body].line_diameter(model.section.area)
         displaced = fluid.density * math.pi * d * d / 4.0
     return np.asarray((mass - displaced * share)[..., None] * g3, dtype=float)
 

@@ -146,7 +146,7 @@ def _line(
         key = "hydro" if hydro is not None or not loads else "loads.distributed"
         raise InputError(key, "beam elements", "a body of cable or rod elements")
     h = hydro or Hydro()
-    d = h.diameter if h.diameter is not None else math.sqrt(4.0 * model.section.area / math.pi)
+    d = h.line_diameter(model.section.area)
     return LineRecord(
         body=index,
         hydro=hydro is not None,
