@@ -16,11 +16,19 @@ from pydantic_core import PydanticCustomError
 
 from rancf.bodies.shell import ShellBody, ShellSupport
 from rancf.bodies.shell_loads import distributed_load, edge_load, point_load
-from rancf.errors import ScenarioError
+from rancf.bodies.shell_model import ShellModel
+from rancf.errors import InputError, ScenarioError
 from rancf.scenario.shell_checks import shell_mesh
 from rancf.scenario.surface import is_surface
 
-__all__ = ["shell_body", "shell_load", "shell_sensors", "shell_sensor_values", "shell_indices"]
+__all__ = [
+    "shell_body",
+    "shell_load",
+    "shell_model",
+    "shell_sensors",
+    "shell_sensor_values",
+    "shell_indices",
+]
 
 
 def shell_indices(sc: Any) -> list[int]:
@@ -102,3 +110,17 @@ def shell_sensor_values(sc: Any, body: ShellBody, q: NDArray) -> dict[str, float
         for c, x in zip("xyz", body.position(uv, q), strict=True):
             out[f"{name}_{c}"] = float(x)
     return out
+
+
+def shell_model(sc: Any, i: int) -> ShellModel:
+    """The shell body ``i`` of ``sc.body_tables`` as a flexible body of the scenario's System
+    (:class:`~rancf.bodies.shell_model.ShellModel`): its supports, its load vector
+    (:func:`shell_load`) and the scenario's mass-proportional damping."""
+    key, b = sc.body_tables[i]
+    body = shell_body(sc, i)
+    try:
+        return ShellModel(
+            body, shell_load(sc, body), sc.loads.gravity, sc.damping.mass_proportional
+        )
+    except InputError as exc:
+        raise ScenarioError(sc.path, exc.parameter, f"{exc.allowed} (got {exc.value!r})") from None

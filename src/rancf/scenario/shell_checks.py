@@ -14,6 +14,7 @@ from typing import Any
 
 from rancf.errors import InputError
 from rancf.scenario.base import fail, show
+from rancf.scenario.surface import is_surface
 
 __all__ = ["check_shell", "shell_mesh"]
 
@@ -94,8 +95,31 @@ def _supports(c: Any) -> None:
                 raise fail(f"{key}.{k}", "not for a shell's support (it holds the reference)")
 
 
+#: Why a shell's loads take no time function yet.
+_CONSTANT = (
+    "not for a load on a shell: its loads are constant (statics: scaled along the load path; "
+    "dynamics: constant in time)"
+)
+
+
+def _constant(key: str, table: Any, fields: tuple[str, ...]) -> None:
+    for k in fields:
+        if table[k] is not None:
+            raise fail(f"{key}.{k}", f"{_CONSTANT}; got {show(table[k])}")
+
+
 def _loads(c: Any) -> None:
+    shells = {
+        b.name for _, b in c.sc.body_tables if b.kind == "flexible" and is_surface(b.geometry)
+    }
+    for i, d in enumerate(c.sc.loads.distributed):
+        if d.body in shells or (d.body is None and shells):
+            _constant(f"loads.distributed[{i}]", d, ("time",))
+    for i, e in enumerate(c.sc.loads.edge):
+        _constant(f"loads.edge[{i}]", e, ("time",))
     for i, pl in enumerate(c.sc.loads.point):
+        if _shell_place(c.place(f"loads.point[{i}].at", pl.at)):
+            _constant(f"loads.point[{i}]", pl, ("time", "frequency_hz", "moment"))
         if c.place(f"loads.point[{i}].at", pl.at).where == "edge":
             raise fail(
                 f"loads.point[{i}].at",

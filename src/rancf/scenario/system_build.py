@@ -32,6 +32,7 @@ from rancf.errors import InputError, ScenarioError
 from rancf.scenario.build import body_model
 from rancf.scenario.fluid import fluid_value, hydro_value
 from rancf.scenario.places import ONE_BODY
+from rancf.scenario.surface import is_surface
 from rancf.scenario.view import ScenarioView
 from rancf.scenario.winches import system_winches, winch_key
 from rancf.system import Joint, Load, Place, Spring, System
@@ -40,6 +41,9 @@ __all__ = ["build_system", "scenario_keys", "support_labels", "ONE_BODY"]
 
 
 _SUPPORT_JOINT = {"pin": "pin", "clamp": "fixed", "roller": "slider"}
+
+#: The places of a shell (:mod:`rancf.scenario.places`): its supports and loads are its model's.
+SHELL_PLACES = ("edge", "surface")
 
 
 def _rigid(b: Any, dim: int) -> RigidBody | PointMass:
@@ -156,7 +160,7 @@ def _parts(sc: ScenarioView, bodies: dict[str, Any]) -> dict[str, Any]:
     loads = []
     for k, (ld, t) in enumerate(zip(sc.loads.point, sc.data["loads"]["point"], strict=True)):
         p = sc.place(ld.at)
-        if p.where == "node":
+        if p.where in ("node", *SHELL_PLACES):  # the body's own load vector
             continue
         if ld.frequency_hz is not None:
             raise ScenarioError(
@@ -202,8 +206,8 @@ def _support_joints(sc: ScenarioView, bodies: dict[str, Any]) -> list[Joint]:
     static = sc.solver.initial_state == "static"
     for i, s in enumerate(sc.supports):
         p, d = sc.support_place(i), sc.data["supports"][i]
-        if p.where == "ground" or (p.where == "node" and s.rotation is None):
-            continue
+        if p.where in ("ground", *SHELL_PLACES) or (p.where == "node" and s.rotation is None):
+            continue  # held by the body's model (a shell's: rancf.bodies.shell_model)
         at = p.system_place()
         motion = d["motion"]
         if d["absolute"]:
@@ -243,9 +247,12 @@ def _fluid(sc: ScenarioView, bodies: dict[str, Any]) -> dict[str, Any]:
     if sc.data["loads"]["distributed"]:
         from rancf.system.fluid import DistributedLoad
 
-        dist = [
+        shells = {b.name for _, b in sc.body_tables if is_surface(b.geometry)}
+        lines = {b.name for _, b in sc.body_tables if b.kind == "flexible"} - shells
+        dist = [  # a shell's are in its own load vector (rancf.scenario.shell_build)
             DistributedLoad(tuple(d["force"]), d["body"], d["time"])
             for d in sc.data["loads"]["distributed"]
+            if d["body"] in lines or (d["body"] is None and lines)
         ]
     _check_depth(sc, fluid, {k: bodies.get(k) for k in hydro})
     return {"fluid": fluid, "hydro": hydro, "distributed": dist}

@@ -89,6 +89,8 @@ def check_state(system: Any, q: NDArray[np.float64]) -> StateCheck:
     problems: list[str] = []
     samplers = {}
     for name, model in zip(system.names, system.flex, strict=False):
+        if model.family.surface:  # the checks of lines (a shell's: its stability, instability)
+            continue
         samplers[name] = sampler = SectionSampler(model)
         y = model.y_from_q(np.asarray(q)[system.body_slice(name)])
         problems += [f"body {name!r}: {p}" for p in _body_problems(model, y, sampler)]
@@ -161,6 +163,8 @@ def most_compressed(system: Any, q: NDArray[np.float64]) -> tuple[str, int, floa
     no element does (a tensioned line)."""
     worst: tuple[str, int, float, float] | None = None
     for name, model in zip(system.names, system.flex, strict=False):
+        if model.family.surface:
+            continue
         sampler = SectionSampler(model)
         y = model.y_from_q(np.asarray(q)[system.body_slice(name)])
         _, ell, mean = _element_forces(model, sampler.values(y), sampler)

@@ -45,6 +45,7 @@ from numpy.typing import NDArray
 from rancf.bodies.flexible import Model
 from rancf.bodies.motion import angular_momentum
 from rancf.bodies.rigid import PointMass, RigidBody, body_angular_velocity
+from rancf.bodies.shell_model import shell_point
 from rancf.errors import InputError
 from rancf.system.at_point import at_point_reader
 from rancf.system.parts.support import Support
@@ -121,6 +122,12 @@ class SensorReader:
 
     def _position(self, sen: Any, spec: Any) -> Reader:
         s = self.system
+        on_shell = shell_point(s, spec)
+        if on_shell is not None:  # a point [u, v] of a shell: its shape-function row
+            name, uv = on_shell
+            idx, f = s.bodies[name].body.shape_row(uv)
+            cols = s.offsets[name] + idx
+            return lambda blk: np.einsum("k,rkc->rc", f, blk[1][:, cols])
         p = self._place(sen, spec)
         body = p.body_name()
         b = s.bodies[body]

@@ -1,0 +1,279 @@
+"""A shell body as a flexible body of the System: the core's ``Model`` of the shell family.
+
+The System holds a flexible body as a :class:`rancf.bodies.flexible.Model`; :class:`ShellModel`
+is that model for a :class:`~rancf.bodies.shell.ShellBody` (docs/derivations/shell.md sec. 8,
+"What the System needs to hold a shell"):
+
+* **Elements.** The core gathers an element's 48 coordinates through the connectivity of the
+  body's :class:`~rancf.kernels.shell.ShellKernel` (``Connectivity``, ``src/cpp/bodies/model.hpp``)
+  and calls the shell family's kernel of the registry, which is ``ShellElements``: one
+  implementation of the shell's energy, forces and tangent.  The half bandwidth follows from the
+  connectivity: ``12 (largest node span of an element + 1) - 1``, ``12 (nu + 2) - 1`` with
+  nodes numbered ``u`` fastest.
+* **Supports** (sec. 7) fix components of nodal vectors.  Each support's rows
+  (:func:`rancf.bodies.shell_supports.support_rows`) are grouped by node and nodal vector; a
+  vector whose held directions are coordinate axes holds those coordinates, any other is
+  turned into an orthonormal basis whose first rows span the held directions
+  (``y_k = B q_k`` per node, :attr:`rotations` as for a line's clamp, held rows in
+  :attr:`fixed`).  Rows over several nodes (a support at a point between nodes, the seam of a
+  closed direction) are refused in one line: the System does not hold them yet.
+* **Loads** are one constant vector (point, edge and area loads, gravity:
+  :func:`rancf.scenario.shell_build.shell_load`), scaled by the load factor in statics and
+  constant in time in dynamics (the model's ``f_gravity``).
+* **Mass**: the consistent ``ShellKernel.mass()`` in model coordinates, band storage.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import scipy.sparse as sp
+from numpy.typing import ArrayLike, NDArray
+
+from rancf.bodies.families import SHELL
+from rancf.bodies.flexible import Model
+from rancf.bodies.properties import StrainRateDamping
+from rancf.bodies.shell import NODE_DOFS, ShellBody
+from rancf.bodies.shell_supports import support_rows
+from rancf.errors import InputError
+from rancf.kernels import _core
+from rancf.kernels.cable import CableProperties
+from rancf.kernels.shell import ShellKernel
+
+__all__ = ["ShellModel", "node_bases", "shell_point"]
+
+#: Entries of a support row below this fraction of its largest are zero (shape factors at a
+#: node that vanish to round-off).
+ROW_ZERO = 1e-13
+
+
+def node_bases(body: ShellBody) -> tuple[NDArray[np.bool_], list[tuple[int, NDArray]]]:
+    """The held coordinates and the rotated blocks of the body's supports (module docstring):
+    ``(fixed (n,), [(first index, basis (3, 3)), ...])`` with ``q_block = basis @ y_block``
+    (:class:`rancf.mesh.coordinates.Coordinates`)."""
+    held: dict[int, list[NDArray]] = {}  # first index of a nodal vector -> its held directions
+    for k, s in enumerate(body.supports):
+        c = sp.csr_matrix(support_rows(body, s))
+        for i in range(c.shape[0]):
+            cols = c.indices[c.indptr[i] : c.indptr[i + 1]]
+            vals = c.data[c.indptr[i] : c.indptr[i + 1]]
+            keep = np.abs(vals) > ROW_ZERO * np.abs(vals).max()
+            cols, vals = cols[keep], vals[keep]
+            first = np.unique(cols // 3)
+            if first.size != 1:
+                raise InputError(
+                    f"supports[{k}].at",
+                    s.at if isinstance(s.at, str) else list(s.at),
+                    "an edge, or a point at a node (a support between nodes or across nodes "
+                    "is not held by the System yet)",
+                )
+            d = np.zeros(3)
+            d[cols % 3] = vals
+            held.setdefault(3 * int(first[0]), []).append(d)
+    fixed = np.zeros(body.n_dofs, dtype=bool)
+    rotations: list[tuple[int, NDArray]] = []
+    for off, dirs in sorted(held.items()):
+        _, s, vt = np.linalg.svd(np.array(dirs), full_matrices=True)
+        rank = int(np.sum(s > 1e-10 * s[0]))
+        proj = vt[:rank].T @ vt[:rank]
+        diag = np.diag(proj)
+        if np.allclose(proj, np.diag(np.round(diag)), rtol=0.0, atol=1e-12):
+            fixed[off + np.flatnonzero(np.round(diag) == 1.0)] = True  # coordinate axes
+            continue
+        fixed[off : off + rank] = True  # y_block = vt q_block: its first `rank` entries held
+        rotations.append((off, vt.T.copy()))
+    return fixed, rotations
+
+
+class ShellModel(Model):
+    """A shell body as a flexible body of a System (module docstring).
+
+    Parameters
+    ----------
+    body : ShellBody
+        The shell, its supports included.
+    load : array_like, shape ``(12 n_nodes,)``, optional
+        The constant load vector on the nodal coordinates (default none).
+    gravity : array_like, optional
+        The gravity ``load`` holds the weight of (kept for the System's check that a flexible
+        body's weight is its own); None: none.
+    damping : float
+        Mass-proportional damping [1/s].
+    gauss : int
+        Gauss points per direction.
+    membrane : str
+        The treatment of the membrane strains (:data:`rancf.kernels.shell.MEMBRANE`).
+    """
+
+    def __init__(
+        self,
+        body: ShellBody,
+        load: ArrayLike | None = None,
+        gravity: ArrayLike | None = None,
+        damping: float = 0.0,
+        gauss: int = 5,
+        membrane: str = "projected",
+    ) -> None:
+        # the chain's set-up (Model.__init__) does not apply: the shell's own, field by field
+        self.body, self.element, self.stress_free = body, "shell", "reference"
+        self.family = SHELL
+        self.section: Any = None
+        self.material: Any = None
+        self.dim, self.closed, self.reduction, self.notes = 3, False, None, ()
+        self.n_nodes = body.n_nodes
+        self.kernel: Any = ShellKernel.from_mesh(
+            body.mesh,
+            body.thickness,
+            body.youngs_modulus,
+            body.poisson_ratio,
+            body.density,
+            gauss,
+            membrane,
+        )
+        conn = self.kernel.record.connectivity
+        self.n_el = int(conn.shape[0])
+        self.dpn, self.nde = NODE_DOFS, 4 * NODE_DOFS
+        self.n = NODE_DOFS * self.n_nodes
+        self.ku = NODE_DOFS * (int((conn.max(axis=1) - conn.min(axis=1)).max()) + 1) - 1
+        self.element_dofs = (conn[:, :, None] * NODE_DOFS + np.arange(NODE_DOFS)).reshape(
+            self.n_el, self.nde
+        )
+        self.fixed, self.rotations = node_bases(body)
+        ell = float(np.ptp(body.q0.reshape(-1, NODE_DOFS)[:, :3], axis=0).max())
+        t, e_mod = body.thickness, body.youngs_modulus
+        #: The force scales of a strip of the shell as wide as its largest extent ``ℓ``:
+        #: ``E t ℓ``, ``E t³ ℓ / 12``, ``ρ t ℓ`` (tolerances and round-off floors, as a
+        #: line's ``EA``, ``EI``, ``ρA``).
+        self.props = CableProperties(
+            e_mod * t * ell, e_mod * t**3 / 12.0 * ell, body.density * t * ell
+        )
+        self.supports = ()
+        self.mesh: Any = body.mesh
+        self.q0 = np.ascontiguousarray(body.q0, dtype=float)
+        self.y0 = self.y_from_q(self.q0)
+        self.y_installed = self.y0.copy()
+        self.v0 = np.zeros(self.n)
+        t = self._turn()
+        self.mass_band = self._band(t @ self.kernel.mass() @ t.T)
+        self.gravity = None if gravity is None else np.asarray(gravity, dtype=float)
+        f = np.zeros(self.n) if load is None else np.asarray(load, dtype=float)
+        if f.shape != (self.n,):
+            raise InputError("load", list(f.shape), f"{self.n} values (12 a node)")
+        self.f_gravity = np.ascontiguousarray(self.to_y(f))
+        self.point_loads = ()
+        if not (np.isfinite(damping) and damping >= 0):
+            raise InputError("damping.mass_proportional", damping, "a finite number >= 0")
+        self.damping = float(damping)
+        self.strain_rate_damping = StrainRateDamping()
+        self.core = self._core()
+
+    def _turn(self) -> sp.csr_matrix:
+        """``T`` with ``y = T q``: the rotated blocks' ``basisᵀ``, the identity elsewhere."""
+        t = sp.lil_matrix((self.n, self.n))
+        t.setdiag(1.0)
+        for off, basis in self.rotations:
+            t[off : off + 3, off : off + 3] = basis.T
+        return sp.csr_matrix(t)
+
+    def _band(self, a: sp.spmatrix) -> NDArray[np.float64]:
+        """A sparse matrix in general band storage ``(2 ku + 1, n)``."""
+        c = sp.coo_matrix(a)
+        ab = np.zeros((2 * self.ku + 1, self.n))
+        np.add.at(ab, (self.ku + c.row - c.col, c.col), c.data)
+        return ab
+
+    def _core(self) -> Any:
+        """The core's model of the shell family (``src/cpp/bodies/model.hpp``)."""
+        z, zi = np.zeros(0), np.zeros(0, dtype=np.int64)
+        node_rot = np.full(self.n_nodes, -1, dtype=np.int64)
+        bases: list[NDArray] = []
+        for off, basis in self.rotations:  # each node's 12 x 12 B (y_k = B q_k)
+            node = off // NODE_DOFS
+            if node_rot[node] < 0:
+                node_rot[node] = len(bases)
+                bases.append(np.eye(NODE_DOFS))
+            o = off % NODE_DOFS
+            bases[int(node_rot[node])][o : o + 3, o : o + 3] = basis.T
+        basis_arr = np.ascontiguousarray(np.array(bases).reshape(-1, NODE_DOFS, NODE_DOFS))
+        return _core.Model(
+            kind=self.family.core_kind,
+            dim=3,
+            dpn=NODE_DOFS,
+            n_el=self.n_el,
+            stiffness=_core.Stiffness(ea=0.0),
+            cable=_core.CableData(n1=z, n2=z, gw=z, s0=z, k0=z, j0=z, qr=z),
+            beam=_core.BeamData(l0=z, d0=z),
+            rod=_core.RodData(n1=z, n2=z, xi=z, gw=z, j0=z, kref=z, tref=z.copy(), m1ref=z.copy()),
+            supports=_core.Supports(
+                fixed=self.fixed.astype(np.uint8),
+                rot_of_node=np.full((self.n_nodes, 2), -1, dtype=np.int64),
+                rot=np.zeros((1, 3, 3)),
+            ),
+            loads=_core.Loads(
+                f_gravity=self.f_gravity,
+                base=zi,
+                f0=np.zeros((0, 3)),
+                freq=z,
+                moment_node=zi,
+                moment=np.zeros((0, 3)),
+                moment_freq=z,
+            ),
+            mass_band=np.ascontiguousarray(self.mass_band),
+            y_ref=np.ascontiguousarray(self.y0),
+            reduction=_core.Reduction(
+                n_y=0,
+                ku=0,
+                width=0,
+                node_width=0,
+                el_start=zi,
+                el_map=z,
+                node_start=zi,
+                node_map=z,
+                twist=zi,
+            ),
+            shell=_core.ShellData(
+                elements=self.kernel.core, node_rot=node_rot, node_basis=basis_arr
+            ),
+        )
+
+    def check_node(self, node: int, key: str) -> int:
+        """A shell's places are its edges and surface points, not node indices: refused in one
+        line naming ``key``."""
+        raise InputError(
+            key,
+            node,
+            f'a place on a line body (the shell {self.body.name!r} has edges "u0", "u1", "v0", '
+            '"v1" and points [u, v]; joints, springs and loads at places on a shell are not '
+            "held by the System yet)",
+        )
+
+    def reset_triads(self) -> None:
+        """No nodal frames: nothing to reset."""
+
+    def positions(self, y: ArrayLike, at: ArrayLike) -> NDArray[np.float64]:
+        """The point ``at = [u, v]`` at model coordinates ``y`` (a ``position`` sensor)."""
+        return self.body.position(at, self.q_from_y(np.asarray(y, dtype=float)))
+
+
+def shell_point(system: Any, spec: Any) -> tuple[str, tuple[float, float]] | None:
+    """The shell body and surface point ``(u, v)`` of a place ``spec`` of ``system``: ``[u, v]``
+    (the system's only body a shell) or ``"BODY:u,v"`` (``BODY`` a shell); None for any other
+    place (a node, a rigid body's point, the ground)."""
+    shells = [n for n, b in zip(system.names, system.flex, strict=False) if b.family.surface]
+    if not shells:
+        return None
+    name, at = (system.single, spec) if not isinstance(spec, str) else (None, spec)
+    if isinstance(at, str):
+        name, _, at = at.rpartition(":")
+        name = name or system.single
+        try:
+            at = [float(x) for x in at.split(",")]
+        except ValueError:
+            return None
+    if name not in shells or not isinstance(at, list | tuple) or len(at) != 2:
+        return None
+    u, v = (float(x) for x in at)
+    if not (0.0 <= u <= 1.0 and 0.0 <= v <= 1.0):
+        raise InputError("at", list(at), "a surface point [u, v] with 0 <= u, v <= 1")
+    return name, (u, v)
