@@ -25,6 +25,7 @@ is that model for a :class:`~rancf.bodies.shell.ShellBody` (docs/derivations/she
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
@@ -48,13 +49,20 @@ __all__ = ["ShellModel", "node_bases", "shell_point"]
 ROW_ZERO = 1e-13
 
 
-def node_bases(body: ShellBody) -> tuple[NDArray[np.bool_], list[tuple[int, NDArray]]]:
+def node_bases(
+    body: ShellBody, keys: Sequence[str] | None = None
+) -> tuple[NDArray[np.bool_], list[tuple[int, NDArray]]]:
     """The held coordinates and the rotated blocks of the body's supports (module docstring):
     ``(fixed (n,), [(first index, basis (3, 3)), ...])`` with ``q_block = basis @ y_block``
-    (:class:`rancf.mesh.coordinates.Coordinates`)."""
+    (:class:`rancf.mesh.coordinates.Coordinates`).  ``keys``: each support's key in errors
+    (default ``supports[K]``)."""
     held: dict[int, list[NDArray]] = {}  # first index of a nodal vector -> its held directions
     for k, s in enumerate(body.supports):
-        c = sp.csr_matrix(support_rows(body, s))
+        key = keys[k] if keys is not None else f"supports[{k}]"
+        try:
+            c = sp.csr_matrix(support_rows(body, s))
+        except InputError as exc:
+            raise InputError(f"{key}.{exc.parameter}", exc.value, exc.allowed) from None
         for i in range(c.shape[0]):
             cols = c.indices[c.indptr[i] : c.indptr[i + 1]]
             vals = c.data[c.indptr[i] : c.indptr[i + 1]]
@@ -63,7 +71,7 @@ def node_bases(body: ShellBody) -> tuple[NDArray[np.bool_], list[tuple[int, NDAr
             first = np.unique(cols // 3)
             if first.size != 1:
                 raise InputError(
-                    f"supports[{k}].at",
+                    f"{key}.at",
                     s.at if isinstance(s.at, str) else list(s.at),
                     "an edge, or a point at a node (a support between nodes or across nodes "
                     "is not held by the System yet)",
@@ -104,6 +112,8 @@ class ShellModel(Model):
         Gauss points per direction.
     membrane : str
         The treatment of the membrane strains (:data:`rancf.kernels.shell.MEMBRANE`).
+    support_keys : sequence of str, optional
+        Each support's key in errors (a scenario's ``supports[K]``).
     """
 
     def __init__(
@@ -114,6 +124,7 @@ class ShellModel(Model):
         damping: float = 0.0,
         gauss: int = 5,
         membrane: str = "projected",
+        support_keys: Sequence[str] | None = None,
     ) -> None:
         # the chain's set-up (Model.__init__) does not apply: the shell's own, field by field
         self.body, self.element, self.stress_free = body, "shell", "reference"
@@ -139,7 +150,7 @@ class ShellModel(Model):
         self.element_dofs = (conn[:, :, None] * NODE_DOFS + np.arange(NODE_DOFS)).reshape(
             self.n_el, self.nde
         )
-        self.fixed, self.rotations = node_bases(body)
+        self.fixed, self.rotations = node_bases(body, support_keys)
         ell = float(np.ptp(body.q0.reshape(-1, NODE_DOFS)[:, :3], axis=0).max())
         t, e_mod = body.thickness, body.youngs_modulus
         #: The force scales of a strip of the shell as wide as its largest extent ``ℓ``:

@@ -84,5 +84,9 @@ def run_modes(
             by_body[name] = largest_stretch(b, qb)
     notes = run_warnings(system, static=True, largest=largest, by_body=by_body)
     res = natural_modes(system, y, None if every else count, lam)
+    if sc.data["modes"]["spin_rates"]:
+        from rancf.scenario.shell_build import refuse_shells
+
+        refuse_shells(sc, "modes with [modes] spin_rates (a Campbell diagram)")
     cam = run_campbell(sc, system, count, about) if sc.data["modes"]["spin_rates"] else None
     return ModesRun(system, res, about, y, n_free, notes, cam)

@@ -25,6 +25,7 @@ __all__ = [
     "shell_body",
     "shell_load",
     "shell_model",
+    "refuse_shells",
     "shell_sensors",
     "shell_sensor_values",
     "shell_indices",
@@ -116,11 +117,46 @@ def shell_model(sc: Any, i: int) -> ShellModel:
     """The shell body ``i`` of ``sc.body_tables`` as a flexible body of the scenario's System
     (:class:`~rancf.bodies.shell_model.ShellModel`): its supports, its load vector
     (:func:`shell_load`) and the scenario's mass-proportional damping."""
-    key, b = sc.body_tables[i]
+    _, b = sc.body_tables[i]
     body = shell_body(sc, i)
+    keys = [f"supports[{k}]" for k, s in enumerate(sc.supports) if _on(sc, b.name, s.at)]
     try:
         return ShellModel(
-            body, shell_load(sc, body), sc.loads.gravity, sc.damping.mass_proportional
+            body,
+            shell_load(sc, body),
+            sc.loads.gravity,
+            sc.damping.mass_proportional,
+            support_keys=keys,
         )
     except InputError as exc:
         raise ScenarioError(sc.path, exc.parameter, f"{exc.allowed} (got {exc.value!r})") from None
+
+
+#: The tables a scenario with a shell may not have yet: the System holds a shell's elements,
+#: supports, loads and mass, not its contact, fluid loads or winches.
+NOT_WITH_SHELLS = ("obstacles", "body_contacts", "fluid", "hydro", "winches")
+
+
+def refuse_shells(sc: Any, what: str | None = None) -> None:
+    """Refuse, in one line naming the key, what a scenario with a shell body asks that the
+    System does not do for shells yet: a table of :data:`NOT_WITH_SHELLS`, or the analysis
+    ``what`` (e.g. ``"buckling"``, named by its command).  Nothing without a shell."""
+    i = next(iter(shell_indices(sc)), None)
+    if i is None:
+        return
+    key, b = sc.body_tables[i]
+    if what is not None:
+        raise ScenarioError(
+            sc.path,
+            f"{key}geometry",
+            f"{b.geometry.kind!r} makes the body a shell, and `rancf {what}` does not run "
+            "shells yet (static, modes and simulate do: docs/derivations/shell.md sec. 8)",
+        )
+    for k in NOT_WITH_SHELLS:
+        if sc[k]:
+            raise ScenarioError(
+                sc.path,
+                k,
+                f"not with a shell (body {b.name!r}) yet: the System holds a shell's elements, "
+                "supports, loads and mass (docs/derivations/shell.md sec. 8)",
+            )

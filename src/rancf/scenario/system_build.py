@@ -115,6 +115,9 @@ def _observed(sc: ScenarioView) -> list[Place]:
 
 
 def _build(sc: ScenarioView) -> System:
+    from rancf.scenario.shell_build import refuse_shells
+
+    refuse_shells(sc)
     gravity, damping = sc.loads.gravity, sc.damping.mass_proportional
     beta = sc.damping.stiffness_proportional
     bodies: dict[str, Any] = {}

@@ -179,7 +179,8 @@ def most_compressed(system: Any, q: NDArray[np.float64]) -> tuple[str, int, floa
 def instability(system: Any, y: NDArray[np.float64], lam: NDArray[np.float64] | None) -> str:
     """Why the converged static state ``y`` (model coordinates; multipliers ``lam``) of
     ``system`` is no stable equilibrium, or ``""``.  Checked only where an element carries
-    compression beyond round-off (:func:`most_compressed`; a tensioned line pays nothing): the
+    compression beyond round-off (:func:`most_compressed`; a tensioned line pays nothing) or
+    the system has a shell (whose membrane compression is not sampled: always checked): the
     lowest :data:`STABILITY_MODES` eigenvalues ``λ`` of the tangent stiffness on the null space
     of the constraints, ``K φ + Gᵀ μ = λ M φ``, ``G φ = 0``
     (:func:`rancf.solvers.modal.natural_modes`: dense for small models, shift-invert near 0
@@ -196,14 +197,22 @@ def instability(system: Any, y: NDArray[np.float64], lam: NDArray[np.float64] | 
         return ""
     q = system.q_from_y(np.asarray(y))
     worst = most_compressed(system, q)
+    shells = [n for n, b in zip(system.names, system.flex, strict=False) if b.family.surface]
     n_free = int(np.sum(~system.fixed))
-    if worst is None or n_free < 2:
+    if (worst is None and not shells) or n_free < 2:  # a shell's compression is not sampled
         return ""
     res = natural_modes(system, y, min(STABILITY_MODES, n_free - 1), lam)
     bad = (res.growth_rates > 0) & (np.asarray(res.eigenvalues).real < 0)
     if not np.any(bad):
         return ""
     low = complex(np.asarray(res.eigenvalues)[bad][0])
+    if worst is None:
+        return (
+            f"unstable equilibrium: the tangent stiffness has {int(bad.sum())} negative "
+            f"eigenvalue(s) on the constraints' null space (lowest λ = ω² = {low.real:.4g} "
+            f"1/s²), with the shell(s) {', '.join(map(repr, shells))}: the state is past a "
+            'buckling load; try more load steps or solver.static_method = "arc_length"'
+        )
     name, e, n_c, euler = worst
     return (
         f"unstable equilibrium: the tangent stiffness has {int(bad.sum())} negative "
