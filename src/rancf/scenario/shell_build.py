@@ -34,7 +34,11 @@ __all__ = [
 
 def shell_indices(sc: Any) -> list[int]:
     """The indices in ``sc.body_tables`` of the shell bodies."""
-    return [i for i, (_, b) in enumerate(sc.body_tables) if is_surface(b.geometry)]
+    return [
+        i
+        for i, (_, b) in enumerate(sc.body_tables)
+        if b.kind == "flexible" and is_surface(b.geometry)
+    ]
 
 
 def _on(sc: Any, name: str, at: Any) -> Any:

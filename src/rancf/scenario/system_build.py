@@ -250,12 +250,14 @@ def _fluid(sc: ScenarioView, bodies: dict[str, Any]) -> dict[str, Any]:
     if sc.data["loads"]["distributed"]:
         from rancf.system.fluid import DistributedLoad
 
-        shells = {b.name for _, b in sc.body_tables if is_surface(b.geometry)}
+        shells = {
+            b.name for _, b in sc.body_tables if b.kind == "flexible" and is_surface(b.geometry)
+        }
         lines = {b.name for _, b in sc.body_tables if b.kind == "flexible"} - shells
         dist = [  # a shell's are in its own load vector (rancf.scenario.shell_build)
             DistributedLoad(tuple(d["force"]), d["body"], d["time"])
             for d in sc.data["loads"]["distributed"]
-            if d["body"] in lines or (d["body"] is None and lines)
+            if d["body"] not in shells and (d["body"] is not None or lines)
         ]
     _check_depth(sc, fluid, {k: bodies.get(k) for k in hydro})
     return {"fluid": fluid, "hydro": hydro, "distributed": dist}
