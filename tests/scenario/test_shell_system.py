@@ -196,3 +196,17 @@ def test_a_shell_in_contact_is_refused_in_one_line():
     raw["obstacles"] = [{"name": "floor", "kind": "plane", "point": [0, 0, 0], "normal": [0, 0, 1]}]
     with pytest.raises(ScenarioError, match=r"\[obstacles\] not with a shell"):
         _scenario(raw, ROOF).build_system()
+
+
+def test_a_shell_starts_at_rest():
+    raw = _raw(ROOF)
+    raw["initial_motion"] = {"velocity": [0.0, 0.0, 1.0]}
+    with pytest.raises(ScenarioError, match=r"\[initial_motion\] not for a shell yet"):
+        _scenario(raw, ROOF)
+
+
+def test_a_time_function_on_a_shells_load_is_refused_in_one_line():
+    raw = _raw(ROOF)
+    raw["loads"]["distributed"][0]["time"] = {"ramp": 1.0}
+    with pytest.raises(ScenarioError, match=r"\[loads\.distributed\[0\]\.time\] not for a load"):
+        _scenario(raw, ROOF)

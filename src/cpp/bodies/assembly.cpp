@@ -240,6 +240,11 @@ int twist_index(const Model& m, int node) {
 
 namespace {
 
+/// The width of an element's terms in the shared loop's buffers: fe, then ke (width x width
+/// values, of which the kernel writes nde x nde) at fe + width; a line element's terms may fill
+/// the whole kMaxElementDofs (the fluid's), a shell's are 48.
+std::ptrdiff_t term_width(const Model& m) { return std::max(m.nde(), kMaxElementDofs); }
+
 /// One element loop shared between threads (bodies/threads.hpp): chunk 0's elements are
 /// added by the calling thread as they come, the other chunks' forces and tangents kept in
 /// `out` (one stride a element, from element `kept`) and added afterwards in element order.
@@ -260,10 +265,10 @@ struct ElementLoop {
 
   void chunk(int c) const {
     thread_local std::vector<double> own;
-    own.assign(static_cast<std::size_t>(stride), 0.0);
+    own.assign(static_cast<std::size_t>(stride), 0.0);  // zero once, as the array it replaced
     for (int el = first(c); el < first(c + 1); ++el) {
       double* fe = c == 0 ? own.data() : out + (el - kept) * stride;
-      double* ke = k == nullptr ? nullptr : fe + m.nde();
+      double* ke = k == nullptr ? nullptr : fe + term_width(m);
       terms(ctx, el, fe, ke);
       if (c == 0) scatter_element(m, el, fe, ke, f, k, k_scale);
     }
@@ -292,7 +297,7 @@ bool add_elements_shared(const Model& m, ElementTerms terms, const void* ctx, do
   const int threads = assembly_threads();
   if (threads < 2 || m.n_el < kMinParallelElements) return false;
   thread_local std::vector<double> out;
-  const std::ptrdiff_t nde = m.nde(), stride = k != nullptr ? nde * (nde + 1) : nde;
+  const std::ptrdiff_t w = term_width(m), stride = k != nullptr ? w * (w + 1) : w;
   ElementLoop loop{m, terms, ctx, f, k, k_scale, threads, 0, stride, nullptr};
   loop.kept = loop.first(1);
   out.resize(static_cast<std::size_t>((m.n_el - loop.kept) * stride));
@@ -300,7 +305,7 @@ bool add_elements_shared(const Model& m, ElementTerms terms, const void* ctx, do
   if (!run_chunks(threads, run_chunk, &loop)) return false;
   for (int el = loop.kept; el < m.n_el; ++el) {
     const double* fe = loop.out + (el - loop.kept) * stride;
-    scatter_element(m, el, fe, k != nullptr ? fe + nde : nullptr, f, k, k_scale);
+    scatter_element(m, el, fe, k != nullptr ? fe + w : nullptr, f, k, k_scale);
   }
   return true;
 }
@@ -313,7 +318,7 @@ void assemble(const Model& m, const double* y, double* f, const BandView* k, dou
   if (add_elements_shared(m, kernel_terms, &kt, f, k, k_scale)) return;
   std::array<double, kMaxAssemblyDofs> e{}, fe{};
   thread_local std::vector<double> ke;
-  ke.assign(static_cast<std::size_t>(m.nde() * m.nde()), 0.0);
+  ke.assign(static_cast<std::size_t>(term_width(m) * term_width(m)), 0.0);
   double* kep = k != nullptr ? ke.data() : nullptr;
   for (int el = 0; el < m.n_el; ++el) {
     gather_element(m, el, y, e.data());

@@ -109,11 +109,9 @@ def _constant(key: str, table: Any, fields: tuple[str, ...]) -> None:
 
 
 def _loads(c: Any) -> None:
-    shells = {
-        b.name for _, b in c.sc.body_tables if b.kind == "flexible" and is_surface(b.geometry)
-    }
+    shells = {b.name for b in c.sc.bodies or [] if b.kind == "flexible" and is_surface(b.geometry)}
     for i, d in enumerate(c.sc.loads.distributed):
-        if d.body in shells or (d.body is None and shells):
+        if d.body in shells or (d.body is None and (shells or c.shell)):
             _constant(f"loads.distributed[{i}]", d, ("time",))
     for i, e in enumerate(c.sc.loads.edge):
         _constant(f"loads.edge[{i}]", e, ("time",))
@@ -148,6 +146,24 @@ def _sensors(c: Any) -> None:
             raise fail(f"sensors[{i}].at", f"must be a surface point [u, v], got {show(s.at)}")
 
 
+def _motion(c: Any) -> None:
+    """A shell starts at rest: its initial velocities are not built yet."""
+    for i, iv in enumerate(c.sc.initial_velocity):
+        if _shell_place(c.place(f"initial_velocity[{i}].at", iv.at)):
+            raise fail(
+                f"initial_velocity[{i}].at",
+                f"a node of a line body, not a shell's {show(iv.at)} (a shell starts at rest)",
+            )
+    if c.shell and c.sc.initial_motion is not None:
+        raise fail("initial_motion", "not for a shell yet (a shell starts at rest)")
+    for i, b in enumerate(c.sc.bodies or []):
+        shell = b.kind == "flexible" and is_surface(b.geometry)
+        if shell and getattr(b, "initial_motion", None) is not None:
+            raise fail(
+                f"bodies[{i}].initial_motion", "not for a shell yet (a shell starts at rest)"
+            )
+
+
 def check_shell_uses(c: Any) -> None:
     """The supports, loads and sensors on shells (``c``: the scenario checks' context with its
     ``sc``, ``place`` and ``element``): a diaphragm or symmetry on an edge of a shell only, a
@@ -155,3 +171,4 @@ def check_shell_uses(c: Any) -> None:
     _supports(c)
     _loads(c)
     _sensors(c)
+    _motion(c)
