@@ -151,6 +151,9 @@ def test_the_simply_supported_plate_first_frequency():
     run = run_modes(Scenario.from_toml(PLATE), 1)
     f1 = float(run.result.frequencies_hz[0])
     assert abs(f1 - PLATE_F1) < 0.01 * PLATE_F1, f1
+    about = run_modes(Scenario.from_toml(PLATE), 1, "static")  # unloaded: the same plate
+    assert about.about == "static"
+    assert float(about.result.frequencies_hz[0]) == pytest.approx(f1, rel=1e-9)
 
 
 def test_a_plate_under_a_sudden_load_keeps_its_energy(tmp_path, monkeypatch):
@@ -189,6 +192,9 @@ def test_the_static_command_writes_the_roofs_run_folder(tmp_path, monkeypatch, c
     assert sensors[-1, 0] == 1.0 and sensors[-1, 3] < sensors[0, 3] - 0.2
     pvd = tmp_path / "run" / "bodies" / "body" / "body.pvd"
     assert pvd.exists() and len(list(pvd.parent.glob("body_*.vtu"))) == len(sensors)
+    assert main(["view", "run"]) == 2  # the surfaces are for ParaView: said in one line
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "'body' is a shell" in err[0] and "body.pvd" in err[0], err
 
 
 def test_a_shell_in_contact_is_refused_in_one_line():

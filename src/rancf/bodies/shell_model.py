@@ -26,7 +26,7 @@ is that model for a :class:`~rancf.bodies.shell.ShellBody` (docs/derivations/she
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 import scipy.sparse as sp
@@ -82,8 +82,8 @@ def node_bases(
     fixed = np.zeros(body.n_dofs, dtype=bool)
     rotations: list[tuple[int, NDArray]] = []
     for off, dirs in sorted(held.items()):
-        _, s, vt = np.linalg.svd(np.array(dirs), full_matrices=True)
-        rank = int(np.sum(s > 1e-10 * s[0]))
+        _, sv, vt = np.linalg.svd(np.array(dirs), full_matrices=True)
+        rank = int(np.sum(sv > 1e-10 * sv[0]))
         proj = vt[:rank].T @ vt[:rank]
         diag = np.diag(proj)
         if np.allclose(proj, np.diag(np.round(diag)), rtol=0.0, atol=1e-12):
@@ -127,7 +127,8 @@ class ShellModel(Model):
         support_keys: Sequence[str] | None = None,
     ) -> None:
         # the chain's set-up (Model.__init__) does not apply: the shell's own, field by field
-        self.body, self.element, self.stress_free = body, "shell", "reference"
+        self.body, self.stress_free = body, "reference"
+        self.element = cast(Any, SHELL.name)  # not a line's mesh.element
         self.family = SHELL
         self.section: Any = None
         self.material: Any = None
@@ -282,7 +283,9 @@ def shell_point(system: Any, spec: Any) -> tuple[str, tuple[float, float]] | Non
             at = [float(x) for x in at.split(",")]
         except ValueError:
             return None
-    if name not in shells or not isinstance(at, list | tuple) or len(at) != 2:
+    if not isinstance(name, str) or name not in shells:
+        return None
+    if not isinstance(at, list | tuple) or len(at) != 2:
         return None
     u, v = (float(x) for x in at)
     if not (0.0 <= u <= 1.0 and 0.0 <= v <= 1.0):

@@ -79,6 +79,8 @@ def run_modes(
         y, lam = static_state(sc, system)
         q = system.q_from_y(y)
         for name, b in zip(system.names, system.flex, strict=False):  # the equilibrium's strain
+            if b.family.surface:  # a line's section strain (a shell has none sampled)
+                continue
             qb = q[system.body_slice(name)]
             largest = max(largest, largest_strain(b, np.ones(1), qb[None]))
             by_body[name] = largest_stretch(b, qb)

@@ -168,7 +168,7 @@ def body_model(sc: ScenarioView, i: int) -> Model:
     if is_surface(b.geometry):  # a shell (docs/derivations/shell.md sec. 8)
         from rancf.scenario.shell_build import shell_model
 
-        return shell_model(sc, i)  # type: ignore[return-value]
+        return shell_model(sc, i)
     d = sc.data
 
     def at(rows: list[dict[str, Any]], what: str) -> list[tuple[str, int, dict[str, Any]]]:
