@@ -8,8 +8,8 @@ is that model for a :class:`~rancf.bodies.shell.ShellBody` (docs/derivations/she
   body's :class:`~rancf.kernels.shell.ShellKernel` (``Connectivity``, ``src/cpp/bodies/model.hpp``)
   and calls the shell family's kernel of the registry, which is ``ShellElements``: one
   implementation of the shell's energy, forces and tangent.  The half bandwidth follows from the
-  connectivity: ``12 (largest node span of an element + 1) - 1``, ``12 (nu + 2) - 1`` with
-  nodes numbered ``u`` fastest.
+  connectivity: ``12 (largest node span of an element + 1) - 1``, ``12 (min(nu, nv) + 3) - 1``
+  with the nodes numbered along the shorter direction first (:func:`short_first`).
 * **Supports** (sec. 7) fix components of nodal vectors.  Each support's rows
   (:func:`rancf.bodies.shell_supports.support_rows`) are grouped by node and nodal vector; a
   vector whose held directions are coordinate axes holds those coordinates, any other is
@@ -26,6 +26,7 @@ is that model for a :class:`~rancf.bodies.shell.ShellBody` (docs/derivations/she
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import replace
 from typing import Any, cast
 
 import numpy as np
@@ -42,7 +43,7 @@ from rancf.kernels import _core
 from rancf.kernels.cable import CableProperties
 from rancf.kernels.shell import ShellKernel
 
-__all__ = ["ShellModel", "node_bases", "shell_point"]
+__all__ = ["ShellModel", "node_bases", "shell_point", "short_first"]
 
 #: Entries of a support row below this fraction of its largest are zero (shape factors at a
 #: node that vanish to round-off).
@@ -94,6 +95,17 @@ def node_bases(
     return fixed, rotations
 
 
+def short_first(body: ShellBody) -> NDArray[np.int64]:
+    """Each of the body's coordinates' index in a numbering of the nodes along the shorter
+    direction first (docs/derivations/shell.md sec. 8: the half bandwidth ``12 (min(nu, nv) +
+    3) - 1``): the body's own (``u`` first) unless ``v`` has fewer elements, then node
+    ``j (nu + 1) + i`` becomes ``i (nv + 1) + j``."""
+    nv1, nu1 = body.mesh.nodes.shape[:2]
+    j, i = np.divmod(np.arange(body.n_nodes), nu1)
+    node = i * nv1 + j if nv1 < nu1 else np.arange(body.n_nodes)
+    return (node[:, None] * NODE_DOFS + np.arange(NODE_DOFS)).ravel()
+
+
 class ShellModel(Model):
     """A shell body as a flexible body of a System (module docstring).
 
@@ -134,7 +146,10 @@ class ShellModel(Model):
         self.material: Any = None
         self.dim, self.closed, self.reduction, self.notes = 3, False, None, ()
         self.n_nodes = body.n_nodes
-        self.kernel: Any = ShellKernel.from_mesh(
+        #: Each body coordinate's index in the model's (nodes numbered along the shorter
+        #: direction first: :func:`short_first`).
+        self.dof_perm = short_first(body)
+        kernel = ShellKernel.from_mesh(
             body.mesh,
             body.thickness,
             body.youngs_modulus,
@@ -143,7 +158,14 @@ class ShellModel(Model):
             gauss,
             membrane,
         )
-        conn = self.kernel.record.connectivity
+        node_perm = self.dof_perm[::NODE_DOFS] // NODE_DOFS
+        record = replace(
+            kernel.record,
+            connectivity=np.ascontiguousarray(node_perm[kernel.record.connectivity]),
+            q0=self.to_model(kernel.record.q0),
+        )
+        self.kernel: Any = ShellKernel(record)
+        conn = record.connectivity
         self.n_el = int(conn.shape[0])
         self.dpn, self.nde = NODE_DOFS, 4 * NODE_DOFS
         self.n = NODE_DOFS * self.n_nodes
@@ -151,7 +173,9 @@ class ShellModel(Model):
         self.element_dofs = (conn[:, :, None] * NODE_DOFS + np.arange(NODE_DOFS)).reshape(
             self.n_el, self.nde
         )
-        self.fixed, self.rotations = node_bases(body, support_keys)
+        fixed, rotations = node_bases(body, support_keys)
+        self.fixed = self.to_model(fixed)
+        self.rotations = [(int(self.dof_perm[off]), basis) for off, basis in rotations]
         ell = float(np.ptp(body.q0.reshape(-1, NODE_DOFS)[:, :3], axis=0).max())
         t, e_mod = body.thickness, body.youngs_modulus
         #: The force scales of a strip of the shell as wide as its largest extent ``ℓ``:
@@ -162,7 +186,7 @@ class ShellModel(Model):
         )
         self.supports = ()
         self.mesh: Any = body.mesh
-        self.q0 = np.ascontiguousarray(body.q0, dtype=float)
+        self.q0 = np.ascontiguousarray(record.q0, dtype=float)
         self.y0 = self.y_from_q(self.q0)
         self.y_installed = self.y0.copy()
         self.v0 = np.zeros(self.n)
@@ -172,7 +196,7 @@ class ShellModel(Model):
         f = np.zeros(self.n) if load is None else np.asarray(load, dtype=float)
         if f.shape != (self.n,):
             raise InputError("load", list(f.shape), f"{self.n} values (12 a node)")
-        self.f_gravity = np.ascontiguousarray(self.to_y(f))
+        self.f_gravity = np.ascontiguousarray(self.to_y(self.to_model(f)))
         self.point_loads = ()
         if not (np.isfinite(damping) and damping >= 0):
             raise InputError("damping.mass_proportional", damping, "a finite number >= 0")
@@ -263,9 +287,27 @@ class ShellModel(Model):
     def reset_triads(self) -> None:
         """No nodal frames: nothing to reset."""
 
+    def to_model(self, x: ArrayLike) -> NDArray:
+        """A vector on the body's coordinates (:class:`~rancf.bodies.shell.ShellBody`'s
+        numbering) in the model's numbering."""
+        x = np.asarray(x)
+        out = np.empty_like(x)
+        out[self.dof_perm] = x
+        return out
+
+    def to_body(self, q: ArrayLike) -> NDArray[np.float64]:
+        """Full coordinates ``(..., n)`` in the model's numbering in the body's."""
+        return np.asarray(q, dtype=float)[..., self.dof_perm]
+
+    def shape_row(self, at: ArrayLike) -> tuple[NDArray[np.int64], NDArray[np.float64]]:
+        """:meth:`ShellBody.shape_row <rancf.bodies.shell.ShellBody.shape_row>` of the point
+        ``at`` with the model's coordinate indices."""
+        idx, f = self.body.shape_row(at)
+        return self.dof_perm[idx], f
+
     def positions(self, y: ArrayLike, at: ArrayLike) -> NDArray[np.float64]:
         """The point ``at = [u, v]`` at model coordinates ``y`` (a ``position`` sensor)."""
-        return self.body.position(at, self.q_from_y(np.asarray(y, dtype=float)))
+        return self.body.position(at, self.to_body(self.q_from_y(np.asarray(y, dtype=float))))
 
 
 def shell_point(system: Any, spec: Any) -> tuple[str, tuple[float, float]] | None:

@@ -196,7 +196,7 @@ def _shell_folder(
     folder.mkdir(parents=True, exist_ok=True)
 
     def frame(i: int) -> Any:
-        return surface_grid(model.body.mesh, np.asarray(q[i]), SHELL_SAMPLES)
+        return surface_grid(model.body.mesh, model.to_body(q[i]), SHELL_SAMPLES)
 
     _export(np.asarray(t), folder, np.arange(t.shape[0]), [(name, frame)], files)
 

@@ -125,7 +125,7 @@ class SensorReader:
         on_shell = shell_point(s, spec)
         if on_shell is not None:  # a point [u, v] of a shell: its shape-function row
             name, uv = on_shell
-            idx, f = s.bodies[name].body.shape_row(uv)
+            idx, f = s.bodies[name].shape_row(uv)
             cols = s.offsets[name] + idx
             return lambda blk: np.einsum("k,rkc->rc", f, blk[1][:, cols])
         p = self._place(sen, spec)
