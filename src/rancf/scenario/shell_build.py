@@ -3,7 +3,11 @@
 
 The load vector is the sum of the point loads at its surface points, the edge loads on its
 edges, the distributed loads (per reference area) on it and gravity ``ρ t g`` per area, at their
-full value (a ``time`` factor is applied by the analysis that runs them).
+full value: the System scales it along a static load path and holds it constant in a
+simulation (a ``time`` on a shell's load is refused: :mod:`rancf.scenario.shell_checks`).
+:func:`shell_model` makes the body the System's flexible body
+(:class:`~rancf.bodies.shell_model.ShellModel`); :func:`refuse_shells` refuses, in one line,
+what the System does not do for shells yet.
 """
 
 from __future__ import annotations
