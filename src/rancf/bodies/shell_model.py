@@ -25,25 +25,34 @@ is that model for a :class:`~rancf.bodies.shell.ShellBody` (docs/derivations/she
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import replace
-from typing import Any, cast
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
-import scipy.sparse as sp
 from numpy.typing import ArrayLike, NDArray
 
 from rancf.bodies.families import SHELL
 from rancf.bodies.flexible import Model
 from rancf.bodies.properties import StrainRateDamping
-from rancf.bodies.shell import NODE_DOFS, ShellBody
-from rancf.bodies.shell_supports import support_rows
 from rancf.errors import InputError
 from rancf.kernels import _core
 from rancf.kernels.cable import CableProperties
-from rancf.kernels.shell import ShellKernel
 
-__all__ = ["ShellModel", "node_bases", "shell_point", "short_first"]
+if TYPE_CHECKING:  # SciPy and the shell's modules load with a shell, not with every system
+    from rancf.bodies.shell import ShellBody
+
+__all__ = [
+    "ShellModel",
+    "node_bases",
+    "shell_point",
+    "shell_reader",
+    "short_first",
+    "unstable_shells",
+]
+
+#: Coordinates per node: ``r, r_x, r_y, r_xy`` (:data:`rancf.bodies.shell.NODE_DOFS`).
+NODE_DOFS = 12
 
 #: Entries of a support row below this fraction of its largest are zero (shape factors at a
 #: node that vanish to round-off).
@@ -57,6 +66,10 @@ def node_bases(
     ``(fixed (n,), [(first index, basis (3, 3)), ...])`` with ``q_block = basis @ y_block``
     (:class:`rancf.mesh.coordinates.Coordinates`).  ``keys``: each support's key in errors
     (default ``supports[K]``)."""
+    import scipy.sparse as sp
+
+    from rancf.bodies.shell_supports import support_rows
+
     held: dict[int, list[NDArray]] = {}  # first index of a nodal vector -> its held directions
     for k, s in enumerate(body.supports):
         key = keys[k] if keys is not None else f"supports[{k}]"
@@ -149,6 +162,8 @@ class ShellModel(Model):
         #: Each body coordinate's index in the model's (nodes numbered along the shorter
         #: direction first: :func:`short_first`).
         self.dof_perm = short_first(body)
+        from rancf.kernels.shell import ShellKernel
+
         kernel = ShellKernel.from_mesh(
             body.mesh,
             body.thickness,
@@ -204,17 +219,20 @@ class ShellModel(Model):
         self.strain_rate_damping = StrainRateDamping()
         self.core = self._core()
 
-    def _turn(self) -> sp.csr_matrix:
-        """``T`` with ``y = T q``: the rotated blocks' ``basisᵀ``, the identity elsewhere."""
+    def _turn(self) -> Any:
+        """``T`` with ``y = T q`` (SciPy sparse): the rotated blocks' ``basisᵀ``, the identity
+        elsewhere."""
+        import scipy.sparse as sp
+
         t = sp.lil_matrix((self.n, self.n))
         t.setdiag(1.0)
         for off, basis in self.rotations:
             t[off : off + 3, off : off + 3] = basis.T
         return sp.csr_matrix(t)
 
-    def _band(self, a: sp.spmatrix) -> NDArray[np.float64]:
-        """A sparse matrix in general band storage ``(2 ku + 1, n)``."""
-        c = sp.coo_matrix(a)
+    def _band(self, a: Any) -> NDArray[np.float64]:
+        """A SciPy sparse matrix in general band storage ``(2 ku + 1, n)``."""
+        c = a.tocoo()
         ab = np.zeros((2 * self.ku + 1, self.n))
         np.add.at(ab, (self.ku + c.row - c.col, c.col), c.data)
         return ab
@@ -333,3 +351,27 @@ def shell_point(system: Any, spec: Any) -> tuple[str, tuple[float, float]] | Non
     if not (0.0 <= u <= 1.0 and 0.0 <= v <= 1.0):
         raise InputError("at", list(at), "a surface point [u, v] with 0 <= u, v <= 1")
     return name, (u, v)
+
+
+def shell_reader(system: Any, spec: Any) -> Callable[[Any], NDArray] | None:
+    """The ``position`` sensor of a shell's point ``spec`` (:func:`shell_point`) as a reader
+    of blocks of rows (``blk[1]``: full coordinates ``(k, n)``, :mod:`rancf.system.sensors`):
+    the point's shape-function row applied to its coordinates; None for any other place."""
+    on_shell = shell_point(system, spec)
+    if on_shell is None:
+        return None
+    name, uv = on_shell
+    idx, f = system.bodies[name].shape_row(uv)
+    cols = system.offsets[name] + idx
+    return lambda blk: np.einsum("k,rkc->rc", f, blk[1][:, cols])
+
+
+def unstable_shells(shells: Sequence[str], count: int, low: complex) -> str:
+    """The line of :func:`rancf.solvers.static_checks.instability` for a system with the shells
+    ``shells`` whose tangent has ``count`` negative eigenvalues, the lowest ``low``."""
+    return (
+        f"unstable equilibrium: the tangent stiffness has {count} negative eigenvalue(s) on the "
+        f"constraints' null space (lowest λ = ω² = {low.real:.4g} 1/s²), with the shell(s) "
+        f"{', '.join(map(repr, shells))}: the state is past a buckling load; try more load "
+        'steps or solver.static_method = "arc_length"'
+    )

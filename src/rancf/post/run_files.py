@@ -189,7 +189,7 @@ def _shell_folder(
     """``bodies/NAME/NAME.pvd`` and its ``.vtu`` frames: the shell's surfaces at every stored
     state (:func:`rancf.post.vtk_shell.surface_grid`, ``q`` its full coordinates), for
     ParaView."""
-    from rancf.post.vtk import _export
+    from rancf.post.vtk_frames import export_frames
     from rancf.post.vtk_shell import surface_grid
 
     folder = out_dir / "bodies" / name
@@ -198,7 +198,7 @@ def _shell_folder(
     def frame(i: int) -> Any:
         return surface_grid(model.body.mesh, model.to_body(q[i]), SHELL_SAMPLES)
 
-    _export(np.asarray(t), folder, np.arange(t.shape[0]), [(name, frame)], files)
+    export_frames(np.asarray(t), folder, np.arange(t.shape[0]), [(name, frame)], files)
 
 
 def _bodies(outputs: SystemOutputs) -> list[dict[str, Any]]:

@@ -73,6 +73,10 @@ def check_shell(geometry: Any, mesh: Any, section: Any, material: Any, form: Any
     shell_mesh(geometry, mesh)
 
 
+def _surface(b: Any) -> bool:
+    return is_surface(b.geometry)
+
+
 def _shell_place(p: Any) -> bool:
     return p.where in ("edge", "surface")
 
@@ -109,7 +113,7 @@ def _constant(key: str, table: Any, fields: tuple[str, ...]) -> None:
 
 
 def _loads(c: Any) -> None:
-    shells = {b.name for b in c.sc.bodies or [] if b.kind == "flexible" and is_surface(b.geometry)}
+    shells = {n for n, b in (c.bodies or {}).items() if b.kind == "flexible" and _surface(b)}
     for i, d in enumerate(c.sc.loads.distributed):
         if d.body in shells or (d.body is None and (shells or c.shell)):
             _constant(f"loads.distributed[{i}]", d, ("time",))
@@ -156,8 +160,8 @@ def _motion(c: Any) -> None:
             )
     if c.shell and c.sc.initial_motion is not None:
         raise fail("initial_motion", "not for a shell yet (a shell starts at rest)")
-    for i, b in enumerate(c.sc.bodies or []):
-        shell = b.kind == "flexible" and is_surface(b.geometry)
+    for i, b in enumerate((c.bodies or {}).values()):
+        shell = b.kind == "flexible" and _surface(b)
         if shell and getattr(b, "initial_motion", None) is not None:
             raise fail(
                 f"bodies[{i}].initial_motion", "not for a shell yet (a shell starts at rest)"

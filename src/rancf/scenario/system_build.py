@@ -115,9 +115,10 @@ def _observed(sc: ScenarioView) -> list[Place]:
 
 
 def _build(sc: ScenarioView) -> System:
-    from rancf.scenario.shell_build import refuse_shells
+    if any(b.kind == "flexible" and is_surface(b.geometry) for _, b in sc.body_tables):
+        from rancf.scenario.shell_build import refuse_shells  # loaded with a shell only
 
-    refuse_shells(sc)
+        refuse_shells(sc)
     gravity, damping = sc.loads.gravity, sc.damping.mass_proportional
     beta = sc.damping.stiffness_proportional
     bodies: dict[str, Any] = {}

@@ -41,6 +41,7 @@ from numpy.typing import NDArray
 
 from rancf.bodies.flexible import Model
 from rancf.bodies.section_outputs import SectionSampler
+from rancf.bodies.shell_model import unstable_shells
 
 __all__ = [
     "FOLD_STRETCH",
@@ -89,11 +90,10 @@ def check_state(system: Any, q: NDArray[np.float64]) -> StateCheck:
     problems: list[str] = []
     samplers = {}
     for name, model in zip(system.names, system.flex, strict=False):
-        if model.family.surface:  # the checks of lines (a shell's: its stability, instability)
-            continue
-        samplers[name] = sampler = SectionSampler(model)
-        y = model.y_from_q(np.asarray(q)[system.body_slice(name)])
-        problems += [f"body {name!r}: {p}" for p in _body_problems(model, y, sampler)]
+        if not model.family.surface:  # the checks of lines (a shell's: instability)
+            samplers[name] = sampler = SectionSampler(model)
+            y = model.y_from_q(np.asarray(q)[system.body_slice(name)])
+            problems += [f"body {name!r}: {p}" for p in _body_problems(model, y, sampler)]
     bends = _seabed_bends(system, q, samplers)
     problems += _penetration_problems(system, q) + _touchdown_problems(bends)
     return StateCheck(problems, _ratios(bends))
@@ -207,12 +207,7 @@ def instability(system: Any, y: NDArray[np.float64], lam: NDArray[np.float64] | 
         return ""
     low = complex(np.asarray(res.eigenvalues)[bad][0])
     if worst is None:
-        return (
-            f"unstable equilibrium: the tangent stiffness has {int(bad.sum())} negative "
-            f"eigenvalue(s) on the constraints' null space (lowest λ = ω² = {low.real:.4g} "
-            f"1/s²), with the shell(s) {', '.join(map(repr, shells))}: the state is past a "
-            'buckling load; try more load steps or solver.static_method = "arc_length"'
-        )
+        return unstable_shells(shells, int(bad.sum()), low)
     name, e, n_c, euler = worst
     return (
         f"unstable equilibrium: the tangent stiffness has {int(bad.sum())} negative "

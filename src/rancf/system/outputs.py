@@ -104,10 +104,8 @@ class SystemOutputs:
     ) -> None:
         self.system = s = system
         bodies = list(zip(s.names, s.flex, strict=False))
-        #: The line bodies (section values along them); a shell's outputs are its sensors
-        #: and surfaces (:attr:`shells`).
+        #: The line bodies (section values along them) and the shells (sensors, surfaces).
         self.flex = [(name, b) for name, b in bodies if not b.family.surface]
-        #: The shell bodies (:mod:`rancf.bodies.shell_model`).
         self.shells = [(name, b) for name, b in bodies if b.family.surface]
         self.labels = support_labels(s, labels)
         self.samplers = {name: SectionSampler(b, per_element) for name, b in self.flex}

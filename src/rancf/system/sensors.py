@@ -45,7 +45,7 @@ from numpy.typing import NDArray
 from rancf.bodies.flexible import Model
 from rancf.bodies.motion import angular_momentum
 from rancf.bodies.rigid import PointMass, RigidBody, body_angular_velocity
-from rancf.bodies.shell_model import shell_point
+from rancf.bodies.shell_model import shell_reader
 from rancf.errors import InputError
 from rancf.system.at_point import at_point_reader
 from rancf.system.parts.support import Support
@@ -122,12 +122,6 @@ class SensorReader:
 
     def _position(self, sen: Any, spec: Any) -> Reader:
         s = self.system
-        on_shell = shell_point(s, spec)
-        if on_shell is not None:  # a point [u, v] of a shell: its shape-function row
-            name, uv = on_shell
-            idx, f = s.bodies[name].shape_row(uv)
-            cols = s.offsets[name] + idx
-            return lambda blk: np.einsum("k,rkc->rc", f, blk[1][:, cols])
         p = self._place(sen, spec)
         body = p.body_name()
         b = s.bodies[body]
@@ -161,8 +155,8 @@ class SensorReader:
             reader = lambda blk: surface_elevation(self.system, pt, blk[0])  # noqa: E731
         elif getattr(sen, "point", None) is not None:
             reader = at_point_reader(self.out, sen)
-        elif kind == "position":
-            reader = self._position(sen, places[0])
+        elif kind == "position":  # a shell's point [u, v] by its shape-function row
+            reader = shell_reader(self.system, places[0]) or self._position(sen, places[0])
         elif kind == "distance":
             a, b = (self._position(sen, x) for x in places[:2])
             reader = lambda blk: np.linalg.norm(b(blk) - a(blk), axis=1)  # noqa: E731
