@@ -43,4 +43,4 @@ def test_the_scan_finds_a_dispatch():
 def test_the_registry_dispatches_once():
     """The registry's own switch is the one place the kinds are told apart (one case each)."""
     text = (CPP / "elements" / "registry.cpp").read_text(encoding="utf-8")
-    assert sorted(re.findall(r"case ElementKind::(\w+)", text)) == ["beam", "cable", "rod"]
+    assert sorted(re.findall(r"case ElementKind::(\w+)", text)) == ["beam", "cable", "rod", "shell"]

@@ -125,6 +125,15 @@ void bind_model_data(nb::module_& mod) {
           },
           nb::kw_only(), "n_y"_a, "ku"_a, "width"_a, "node_width"_a, "el_start"_a, "el_map"_a,
           "node_start"_a, "node_map"_a, "twist"_a);
+  nb::class_<rancf_bind::ShellHolder>(
+      mod, "ShellData",
+      "A shell model's elements (ShellKernel) and its supports' node bases (y_k = B q_k).")
+      .def(
+          "__init__",
+          [](rancf_bind::ShellHolder* h, nb::object elements, InI node_rot, In node_basis) {
+            new (h) rancf_bind::ShellHolder{std::move(elements), node_rot, node_basis};
+          },
+          nb::kw_only(), "elements"_a, "node_rot"_a, "node_basis"_a);
   nb::class_<LoadsHolder>(mod, "Loads", "Gravity forces and point loads.")
       .def(nb::init<In, InI, In, In, InI, In, In>(), nb::kw_only(), "f_gravity"_a, "base"_a, "f0"_a,
            "freq"_a, "moment_node"_a, "moment"_a, "moment_freq"_a);
@@ -149,14 +158,14 @@ nb::class_<ModelHolder> bind_model(nb::module_& mod) {
   auto model_cls =
       nb::class_<ModelHolder>(mod, "Model",
                               "An assembled model (named parts, arrays by reference).")
-          .def(
-              nb::init<int, int, int, int, const rancf::Stiffness&, CableHolder, BeamHolder,
-                       RodHolder, SupportsHolder, LoadsHolder, In, In, const rancf::SectionInertia&,
-                       bool, ReductionHolder, std::optional<AxialLawHolder>>(),
-              nb::kw_only(), "kind"_a, "dim"_a, "dpn"_a, "n_el"_a, "stiffness"_a, "cable"_a,
-              "beam"_a, "rod"_a, "supports"_a, "loads"_a, "mass_band"_a, "y_ref"_a,
-              "rotary"_a = rancf::SectionInertia{}, "closed"_a = false, "reduction"_a,
-              "axial_law"_a = nb::none())
+          .def(nb::init<int, int, int, int, const rancf::Stiffness&, CableHolder, BeamHolder,
+                        RodHolder, SupportsHolder, LoadsHolder, In, In,
+                        const rancf::SectionInertia&, bool, ReductionHolder,
+                        std::optional<AxialLawHolder>, std::optional<rancf_bind::ShellHolder>>(),
+               nb::kw_only(), "kind"_a, "dim"_a, "dpn"_a, "n_el"_a, "stiffness"_a, "cable"_a,
+               "beam"_a, "rod"_a, "supports"_a, "loads"_a, "mass_band"_a, "y_ref"_a,
+               "rotary"_a = rancf::SectionInertia{}, "closed"_a = false, "reduction"_a,
+               "axial_law"_a = nb::none(), "shell"_a = nb::none())
           .def_prop_ro("n", [](const ModelHolder& h) { return h.n(); })
           .def_prop_rw(
               "axial_stiffness", [](const ModelHolder& h) { return h.m.stiffness.ea; },

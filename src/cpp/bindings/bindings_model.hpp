@@ -4,15 +4,18 @@
 // bounds.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "bindings/bindings.hpp"
 #include "bodies/model.hpp"
 #include "elements/registry.hpp"
+#include "elements/shell.hpp"
 #include "solvers/integrator.hpp"
 
 namespace rancf_bind {
@@ -40,6 +43,12 @@ struct ReductionHolder {
   In node_map;
   InI twist;
 };
+/// A shell model's elements (rancf._core.ShellKernel, kept alive) and its supports' node bases.
+struct ShellHolder {
+  nb::object elements;
+  InI node_rot;
+  In node_basis;
+};
 struct LoadsHolder {
   In f_gravity;
   InI base;
@@ -58,12 +67,14 @@ struct ModelHolder {
   LoadsHolder loads;
   In mass_band, y_ref;
   std::optional<AxialLawHolder> axial_law;
+  std::optional<ShellHolder> shell;
   rancf::Model m;
 
   ModelHolder(int kind, int dim, int dpn, int n_el, const rancf::Stiffness& st, CableHolder c,
               BeamHolder b, RodHolder r, SupportsHolder s, LoadsHolder l, In mass, In yref,
               const rancf::SectionInertia& rotary, bool closed, ReductionHolder red,
-              std::optional<AxialLawHolder> law = std::nullopt)
+              std::optional<AxialLawHolder> law = std::nullopt,
+              std::optional<ShellHolder> shell_data = std::nullopt)
       : cable(std::move(c)),
         beam(std::move(b)),
         rod(std::move(r)),
@@ -72,11 +83,12 @@ struct ModelHolder {
         loads(std::move(l)),
         mass_band(std::move(mass)),
         y_ref(std::move(yref)),
-        axial_law(std::move(law)) {
-    if (kind < 0 || kind > 2)
-      throw std::invalid_argument("kind: expected 0 (cable), 1 (beam) or 2 (rod)");
+        axial_law(std::move(law)),
+        shell(std::move(shell_data)) {
+    if (kind < 0 || kind > 3)
+      throw std::invalid_argument("kind: expected 0 (cable), 1 (beam), 2 (rod) or 3 (shell)");
     if (dim != 2 && dim != 3) throw std::invalid_argument("dim: expected 2 or 3");
-    if (dpn < 1 || 2 * dpn > rancf::kMaxElementDofs)
+    if (dpn < 1 || (kind != 3 && 2 * dpn > rancf::kMaxElementDofs))
       throw std::invalid_argument("dpn: too many coordinates per node");
     if (n_el < 1) throw std::invalid_argument("n_el: expected >= 1");
     m.kind = static_cast<rancf::ElementKind>(kind);
@@ -84,6 +96,10 @@ struct ModelHolder {
     m.dpn = dpn;
     m.n_el = n_el;
     m.n_nodes = n_el + 1;
+    if (kind == 3)
+      set_shell();
+    else if (shell)
+      throw std::invalid_argument("shell: only a shell model (kind 3) has it");
     m.closed = closed;
     m.stiffness = st;
     m.stiffness.axial_law = law_table(axial_law ? &*axial_law : nullptr);
@@ -106,7 +122,7 @@ struct ModelHolder {
       expect_size(beam.l0, ne, "beam.l0");
       expect_size(beam.d0, 2 * ne, "beam.d0");
       m.beam = {beam.l0.data(), beam.d0.data()};
-    } else {
+    } else if (m.kind == rancf::ElementKind::rod) {
       if (dim != 3 || dpn != 7) throw std::invalid_argument("rod: spatial, 7 coordinates per node");
       const std::size_t nq = rod.gw.size();
       expect_size(rod.xi, nq, "rod.xi");
@@ -121,17 +137,22 @@ struct ModelHolder {
                rod.kref.data(),      rod.tref.data(), rod.m1ref.data()};
     }
     expect_size(supports.fixed, n, "supports.fixed");
-    expect_size(supports.rot_of_node, 2 * (ne + 1), "supports.rot_of_node");
+    const auto nn = static_cast<std::size_t>(m.n_nodes);
+    expect_size(supports.rot_of_node, 2 * nn, "supports.rot_of_node");
     const auto n_rot = supports.rot.size() / static_cast<std::size_t>(dim * dim);
-    for (std::size_t i = 0; i < 2 * (ne + 1); ++i)
-      if (supports.rot_of_node.data()[i] >= static_cast<std::int64_t>(n_rot))
+    for (std::size_t i = 0; i < 2 * nn; ++i) {
+      const std::int64_t r = supports.rot_of_node.data()[i];
+      if (r >= static_cast<std::int64_t>(n_rot))
         throw std::invalid_argument("supports.rot_of_node: index out of range");
+      if (r >= 0 && m.connectivity.nodes_of != nullptr)
+        throw std::invalid_argument("supports.rot_of_node: a shell has no rotated blocks (-1)");
+    }
     m.supports = {supports.fixed.data(), supports.rot_of_node.data(), supports.rot.data()};
     expect_size(loads.f_gravity, n, "loads.f_gravity");
     const std::size_t np = loads.base.size();
     expect_size(loads.f0, np * static_cast<std::size_t>(dim), "loads.f0");
     expect_size(loads.freq, np, "loads.freq");
-    const auto nq = static_cast<std::int64_t>((ne + 1) * static_cast<std::size_t>(dpn));
+    const auto nq = static_cast<std::int64_t>(nn * static_cast<std::size_t>(dpn));
     for (std::size_t i = 0; i < np; ++i) {  // node dpn (reduced: of the full coordinates)
       const std::int64_t b0 = loads.base.data()[i];
       if (b0 < 0 || b0 + dim > (m.reduced() ? nq : static_cast<std::int64_t>(n)) ||
@@ -145,7 +166,7 @@ struct ModelHolder {
       throw std::invalid_argument("loads.moment: point moments need rod elements");
     for (std::size_t i = 0; i < nm; ++i) {
       const std::int64_t nd = loads.moment_node.data()[i];
-      if (nd < 0 || nd > static_cast<std::int64_t>(ne))
+      if (nd < 0 || nd >= static_cast<std::int64_t>(nn))
         throw std::invalid_argument("loads.moment_node: index out of range");
     }
     m.loads = {loads.f_gravity.data(),   static_cast<int>(np), loads.base.data(),
@@ -160,6 +181,37 @@ struct ModelHolder {
     if ((rotary.polar > 0.0 || rotary.bend > 0.0) && !rancf::kernel_for(m).triads)
       throw std::invalid_argument("rotary: a rotary inertia needs rod elements");
     m.rotary = rotary;
+  }
+
+  /// A shell model's elements (rancf._core.ShellKernel) and their connectivity (4 nodes of 12
+  /// coordinates an element), the half bandwidth from the largest node span of an element.
+  void set_shell() {
+    rancf::ShellElements* el = nullptr;
+    if (!shell || !nb::try_cast(shell->elements, el) || el == nullptr)
+      throw std::invalid_argument("shell: a shell model needs its ShellData (a ShellKernel)");
+    if (m.dim != 3 || m.dpn != 12)
+      throw std::invalid_argument("shell: spatial, 12 coordinates per node");
+    if (el->n_el() != m.n_el)
+      throw std::invalid_argument("n_el: expected the shell's " + std::to_string(el->n_el()));
+    if (reduction.n_y != 0) throw std::invalid_argument("reduction: a shell has none (n_y 0)");
+    const auto& conn = el->input().connectivity;
+    int span = 0;
+    for (std::size_t e = 0; e < conn.size(); e += 4) {
+      const auto [lo, hi] = std::minmax_element(conn.begin() + static_cast<std::ptrdiff_t>(e),
+                                                conn.begin() + static_cast<std::ptrdiff_t>(e + 4));
+      span = std::max(span, static_cast<int>(*hi - *lo));
+    }
+    m.n_nodes = el->input().n_nodes;
+    const auto nn = static_cast<std::size_t>(m.n_nodes), b2 = static_cast<std::size_t>(144);
+    expect_size(shell->node_rot, nn, "shell.node_rot");
+    if (shell->node_basis.size() % b2 != 0)
+      throw std::invalid_argument("shell.node_basis: expected (n_rot, 12, 12) values");
+    const auto n_rot = static_cast<std::int64_t>(shell->node_basis.size() / b2);
+    for (std::size_t k = 0; k < nn; ++k)
+      if (shell->node_rot.data()[k] < -1 || shell->node_rot.data()[k] >= n_rot)
+        throw std::invalid_argument("shell.node_rot: index out of range");
+    m.shell = {el, shell->node_rot.data(), shell->node_basis.data()};
+    m.connectivity = {4, conn.data(), m.dpn * (span + 1) - 1};
   }
 
   /// The reduction's view (sizes and index ranges checked); none if n_y == 0.

@@ -88,13 +88,97 @@ void gather_element(const Model& m, int el, const double* x, double* e) {
     }
     return;
   }
+  if (m.connectivity.nodes_of != nullptr) {  // node by node, q_k = B^T y_k at supported nodes
+    const int dpn = m.dpn;
+    const std::int64_t* nodes = m.connectivity.nodes_of + std::ptrdiff_t{el} * m.connectivity.nodes;
+    for (int a = 0; a < m.connectivity.nodes; ++a) {
+      const double* xa = x + nodes[a] * dpn;
+      double* ea = e + a * dpn;
+      const std::int64_t r = m.shell.node_rot[nodes[a]];
+      if (r < 0) {
+        std::copy(xa, xa + dpn, ea);
+        continue;
+      }
+      const double* bas = m.shell.node_basis + r * dpn * dpn;
+      for (int i = 0; i < dpn; ++i) {
+        double v = 0.0;
+        for (int j = 0; j < dpn; ++j) v += bas[j * dpn + i] * xa[j];
+        ea[i] = v;
+      }
+    }
+    return;
+  }
   const int base = el * m.dpn;
   std::copy(x + base, x + base + nde, e);
   if (has_rotation(m, el)) rotate_to_q(m, el, e);
 }
 
+namespace {
+
+/// A connected element's force and matrix to model coordinates at its supported nodes:
+/// fe_a <- B fe_a, ke <- T ke T^T with T = diag(B_a) (B_a the identity at other nodes).
+void rotate_connected(const Model& m, const std::int64_t* nodes, double* fe, double* ke) {
+  const int nn = m.connectivity.nodes, dpn = m.dpn, nde = m.nde();
+  std::array<double, kMaxAssemblyDofs> t{};
+  for (int a = 0; a < nn; ++a) {
+    const std::int64_t r = m.shell.node_rot[nodes[a]];
+    if (r < 0) continue;
+    const double* bas = m.shell.node_basis + r * dpn * dpn;
+    const int o = a * dpn;
+    auto turn = [&](double* v, std::ptrdiff_t stride) {  // v <- B v (dpn values, stride apart)
+      for (int i = 0; i < dpn; ++i) {
+        double s = 0.0;
+        for (int j = 0; j < dpn; ++j) s += bas[i * dpn + j] * v[j * stride];
+        t[static_cast<std::size_t>(i)] = s;
+      }
+      for (int i = 0; i < dpn; ++i) v[i * stride] = t[static_cast<std::size_t>(i)];
+    };
+    turn(fe + o, 1);
+    if (ke == nullptr) continue;
+    for (int c = 0; c < nde; ++c) turn(ke + o * nde + c, nde);  // rows of block a
+    for (int c = 0; c < nde; ++c) turn(ke + c * nde + o, 1);    // columns of block a
+  }
+}
+
+/// scatter_element of a model with a connectivity: node blocks added where they belong.
+void scatter_connected(const Model& m, int el, const double* fe_q, const double* ke_q, double* f,
+                       const BandView* k, double k_scale) {
+  const int nn = m.connectivity.nodes, dpn = m.dpn, nde = m.nde();
+  const std::int64_t* nodes = m.connectivity.nodes_of + std::ptrdiff_t{el} * nn;
+  const double *fe = fe_q, *ke = ke_q;
+  bool turned = false;
+  for (int a = 0; a < nn; ++a) turned = turned || m.shell.node_rot[nodes[a]] >= 0;
+  thread_local std::vector<double> g, kk;
+  if (turned) {
+    g.assign(fe_q, fe_q + nde);
+    if (ke_q != nullptr) kk.assign(ke_q, ke_q + static_cast<std::ptrdiff_t>(nde) * nde);
+    rotate_connected(m, nodes, g.data(), ke_q != nullptr ? kk.data() : nullptr);
+    fe = g.data();
+    ke = ke_q != nullptr ? kk.data() : nullptr;
+  }
+  for (int a = 0; a < nn; ++a)
+    for (int i = 0; i < dpn; ++i) f[nodes[a] * dpn + i] += fe[a * dpn + i];
+  if (k == nullptr || ke == nullptr) return;
+  for (int b = 0; b < nn; ++b)
+    for (int j = 0; j < dpn; ++j) {
+      const int col = static_cast<int>(nodes[b]) * dpn + j;
+      for (int a = 0; a < nn; ++a) {
+        const int row = static_cast<int>(nodes[a]) * dpn;
+        double* c = &k->at(row, col);
+        const double* kr = ke + static_cast<std::ptrdiff_t>(a * dpn) * nde + b * dpn + j;
+        for (int i = 0; i < dpn; ++i) c[i * k->rs] += k_scale * kr[i * nde];
+      }
+    }
+}
+
+}  // namespace
+
 void scatter_element(const Model& m, int el, const double* fe, const double* ke, double* f,
                      const BandView* k, double k_scale) {
+  if (m.connectivity.nodes_of != nullptr) {
+    scatter_connected(m, el, fe, ke, f, k, k_scale);
+    return;
+  }
   const int nde = m.nde();
   const bool matrix = k != nullptr && ke != nullptr;
   if (m.reduced()) {
@@ -156,6 +240,11 @@ int twist_index(const Model& m, int node) {
 
 namespace {
 
+/// The width of an element's terms in the shared loop's buffers: fe, then ke (width x width
+/// values, of which the kernel writes nde x nde) at fe + width; a line element's terms may fill
+/// the whole kMaxElementDofs (the fluid's), a shell's are 48.
+std::ptrdiff_t term_width(const Model& m) { return std::max(m.nde(), kMaxElementDofs); }
+
 /// One element loop shared between threads (bodies/threads.hpp): chunk 0's elements are
 /// added by the calling thread as they come, the other chunks' forces and tangents kept in
 /// `out` (one stride a element, from element `kept`) and added afterwards in element order.
@@ -175,10 +264,11 @@ struct ElementLoop {
   }
 
   void chunk(int c) const {
-    std::array<double, kMaxElementDofs*(kMaxElementDofs + 1)> own{};
+    thread_local std::vector<double> own;
+    own.assign(static_cast<std::size_t>(stride), 0.0);  // zero once, as the array it replaced
     for (int el = first(c); el < first(c + 1); ++el) {
       double* fe = c == 0 ? own.data() : out + (el - kept) * stride;
-      double* ke = k == nullptr ? nullptr : fe + kMaxElementDofs;
+      double* ke = k == nullptr ? nullptr : fe + term_width(m);
       terms(ctx, el, fe, ke);
       if (c == 0) scatter_element(m, el, fe, ke, f, k, k_scale);
     }
@@ -195,7 +285,7 @@ struct KernelTerms {
 
 void kernel_terms(const void* ctx, int el, double* fe, double* ke) {
   const auto& kt = *static_cast<const KernelTerms*>(ctx);
-  std::array<double, kMaxElementDofs> e{};
+  std::array<double, kMaxAssemblyDofs> e{};
   gather_element(kt.m, el, kt.y, e.data());
   kt.kern.forces(kt.m, el, e.data(), fe, ke);
 }
@@ -207,8 +297,7 @@ bool add_elements_shared(const Model& m, ElementTerms terms, const void* ctx, do
   const int threads = assembly_threads();
   if (threads < 2 || m.n_el < kMinParallelElements) return false;
   thread_local std::vector<double> out;
-  const std::ptrdiff_t stride =
-      k != nullptr ? kMaxElementDofs * (kMaxElementDofs + 1) : kMaxElementDofs;
+  const std::ptrdiff_t w = term_width(m), stride = k != nullptr ? w * (w + 1) : w;
   ElementLoop loop{m, terms, ctx, f, k, k_scale, threads, 0, stride, nullptr};
   loop.kept = loop.first(1);
   out.resize(static_cast<std::size_t>((m.n_el - loop.kept) * stride));
@@ -216,7 +305,7 @@ bool add_elements_shared(const Model& m, ElementTerms terms, const void* ctx, do
   if (!run_chunks(threads, run_chunk, &loop)) return false;
   for (int el = loop.kept; el < m.n_el; ++el) {
     const double* fe = loop.out + (el - loop.kept) * stride;
-    scatter_element(m, el, fe, k != nullptr ? fe + kMaxElementDofs : nullptr, f, k, k_scale);
+    scatter_element(m, el, fe, k != nullptr ? fe + w : nullptr, f, k, k_scale);
   }
   return true;
 }
@@ -227,8 +316,9 @@ void assemble(const Model& m, const double* y, double* f, const BandView* k, dou
   std::fill(f, f + n, 0.0);
   const KernelTerms kt{m, kern, y};
   if (add_elements_shared(m, kernel_terms, &kt, f, k, k_scale)) return;
-  std::array<double, kMaxElementDofs> e{}, fe{};
-  std::array<double, kMaxElementDofs * kMaxElementDofs> ke{};
+  std::array<double, kMaxAssemblyDofs> e{}, fe{};
+  thread_local std::vector<double> ke;
+  ke.assign(static_cast<std::size_t>(term_width(m) * term_width(m)), 0.0);
   double* kep = k != nullptr ? ke.data() : nullptr;
   for (int el = 0; el < m.n_el; ++el) {
     gather_element(m, el, y, e.data());
@@ -254,7 +344,7 @@ void assemble_damping(const Model& m, const double* y, const double* v, double c
 
 double strain_energy(const Model& m, const double* y) {
   const ElementKernel& kern = kernel_for(m);
-  std::array<double, kMaxElementDofs> e{};
+  std::array<double, kMaxAssemblyDofs> e{};
   double total = 0.0;
   for (int el = 0; el < m.n_el; ++el) {
     gather_element(m, el, y, e.data());

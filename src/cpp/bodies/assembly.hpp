@@ -39,8 +39,9 @@ void scatter_node(const Model& m, int node, const double* g, double* f);
 /// Index in y of a rod node's twist.
 int twist_index(const Model& m, int node);
 
-/// An element's terms: its force fe (2 dpn values, full nodal coordinates q) and, if ke is not
-/// null, its matrix ke (row-major); ctx is the caller's.
+/// An element's terms: its force fe (nde values, full nodal coordinates q) and, if ke is not
+/// null, its matrix ke (row-major, nde x nde); fe and ke hold max(nde, kMaxElementDofs) and its
+/// square values; ctx is the caller's.
 using ElementTerms = void (*)(const void* ctx, int el, double* fe, double* ke);
 
 /// Every element's terms added into f and, if k is not null, k_scale times their matrices into

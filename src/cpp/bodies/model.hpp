@@ -12,11 +12,36 @@
 
 namespace rancf {
 
-/// Largest number of coordinates of one element (2 nodes x 7 for a spatial rod).
+/// Largest number of coordinates of one line element (2 nodes x 7 for a spatial rod): what the
+/// line bodies' own loops (contact, fluid, sections, inertia) gather.
 inline constexpr int kMaxElementDofs = 14;
 
+/// Largest number of coordinates of any element the assembly gathers (a shell's 4 x 12).
+inline constexpr int kMaxAssemblyDofs = 48;
+
 /// Element families; each has one kernel file and one entry in the registry (registry.cpp).
-enum class ElementKind : int { cable = 0, beam = 1, rod = 2 };
+enum class ElementKind : int { cable = 0, beam = 1, rod = 2, shell = 3 };
+
+class ShellElements;  // elements/shell.hpp
+
+/// Elements given by a connectivity (shells, docs/derivations/shell.md sec. 8): element el's
+/// coordinates are those of its nodes nodes_of[el nodes + a], node by node; none (nodes_of
+/// null): a chain, element el's nodes are el and el + 1.
+struct Connectivity {
+  int nodes = 2;                           ///< nodes of an element
+  const std::int64_t* nodes_of = nullptr;  ///< (n_el, nodes), or null: the chain
+  int ku = 0;  ///< half bandwidth: dpn (largest node span of an element + 1) - 1
+};
+
+/// The shell family's elements (elements/shell.hpp), owned by the binding layer, and its
+/// supports (docs/derivations/shell.md sec. 7-8): node k's model coordinates are y_k = B q_k,
+/// B = node_basis[node_rot[k]] (dpn x dpn, orthogonal, row-major; node_rot[k] = -1: y_k = q_k),
+/// the rows of B that a support holds marked in Supports::fixed.
+struct ShellData {
+  const ShellElements* elements = nullptr;
+  const std::int64_t* node_rot = nullptr;  ///< (n_nodes): basis of each node, or -1
+  const double* node_basis = nullptr;      ///< (n_rot, dpn, dpn)
+};
 
 /// Quadrature data of cable elements (docs/derivations/cable.md §3, §6).
 struct CableData {
@@ -134,6 +159,8 @@ struct Model {
   CableData cable;
   BeamData beam;
   RodData rod;
+  ShellData shell;
+  Connectivity connectivity;
   Supports supports;
   Reduction reduction;
   Loads loads;
@@ -143,8 +170,11 @@ struct Model {
 
   [[nodiscard]] bool reduced() const { return reduction.n_y > 0; }
   [[nodiscard]] int n() const { return reduced() ? reduction.n_y : n_nodes * dpn; }
-  [[nodiscard]] int nde() const { return 2 * dpn; }
-  [[nodiscard]] int ku() const { return reduced() ? reduction.ku : 2 * dpn - 1; }
+  [[nodiscard]] int nde() const { return connectivity.nodes * dpn; }
+  [[nodiscard]] int ku() const {
+    if (reduced()) return reduction.ku;
+    return connectivity.nodes_of != nullptr ? connectivity.ku : 2 * dpn - 1;
+  }
 };
 
 }  // namespace rancf

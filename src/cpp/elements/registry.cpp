@@ -12,6 +12,8 @@ const ElementKernel& kernel_for(const Model& m) {
       return beam_kernel;
     case ElementKind::rod:
       return rod_kernel;
+    case ElementKind::shell:
+      return shell_kernel;
   }
   throw std::invalid_argument("unknown element kind");
 }

@@ -1,8 +1,9 @@
 // Element kernels and their registry.
 //
-// A kernel computes, for element `el` with element coordinates `e` (2 dpn values, full nodal
-// coordinates q: clamp rotations already undone), the elastic forces fe = dU/de and, when
-// `ke` is not null, the tangent stiffness ke = d2U/de2 (row-major, 2 dpn x 2 dpn); and the
+// A kernel computes, for element `el` with element coordinates `e` (nde values: 2 dpn for a
+// line element, 4 x 12 for a shell; full nodal coordinates q: clamp rotations already undone),
+// the elastic forces fe = dU/de and, when `ke` is not null, the tangent stiffness
+// ke = d2U/de2 (row-major, nde x nde); and the
 // strain energy U; and, if the family has Kelvin-Voigt strain-rate damping (else null), the
 // damping force fe at (e, ed = de/dt) with, when `ke` is not null, its Jacobian
 // ke = ck dfe/de + cv dfe/ded (not symmetric; docs/derivations/strain-rate-damping.md).
@@ -26,7 +27,7 @@ struct ElementKernel {
   /// Section values (section_width each: [eps, kappa...]) of element el with element coordinates
   /// e at the sample points p, into out (n_el, p.n, section_width) at the element's rows.
   void (*section)(const Model& m, const SamplePoints& p, int el, const double* e, double* out);
-  int section_width;  ///< values per section point: 2 (cable, beam) or 4 (rod)
+  int section_width;  ///< values per section point: 2 (cable, beam), 4 (rod) or 0 (shell)
   bool triads;        ///< nodal material frames with a twist coordinate (rods): point moments,
                       ///< rotary inertia, re-referencing, frame places
   bool centre_line;   ///< a C1 centre line with its own sample points (cables, rods; not the
@@ -42,5 +43,6 @@ extern const ElementKernel cable2d_kernel;  // cable.cpp
 extern const ElementKernel cable3d_kernel;  // cable.cpp
 extern const ElementKernel beam_kernel;     // beam.cpp
 extern const ElementKernel rod_kernel;      // rod.cpp
+extern const ElementKernel shell_kernel;    // shell.cpp
 
 }  // namespace rancf

@@ -25,6 +25,7 @@
 
 #include "bodies/cable_shape.hpp"
 #include "bodies/threads.hpp"
+#include "elements/registry.hpp"
 
 namespace rancf {
 namespace {
@@ -658,5 +659,26 @@ void ShellElements::pressure(const double* q, double p, double* f, Triplets* t) 
       }
   }
 }
+
+// The shell family in the element registry (elements/registry.hpp): a Model whose elements are
+// the shell body's (ShellData), its coordinates gathered through the connectivity.
+namespace {
+
+void shell_forces(const Model& m, int el, const double* e, double* fe, double* ke) {
+  m.shell.elements->element_forces(el, e, fe, ke);
+}
+
+double shell_energy(const Model& m, int el, const double* e) {
+  return m.shell.elements->element_energy(el, e);
+}
+
+/// No line sections: a shell's outputs are its sensors and surfaces (section_width 0).
+void shell_section(const Model& /*m*/, const SamplePoints& /*p*/, int /*el*/, const double* /*e*/,
+                   double* /*out*/) {}
+
+}  // namespace
+
+const ElementKernel shell_kernel{shell_forces, shell_energy, nullptr, shell_section, 0,
+                                 false,        false,        false};
 
 }  // namespace rancf

@@ -15,9 +15,9 @@
 // they are on a 3 x 3 rule ("reduced", the fallback of sec. 5); bending always on the full rule.
 // The mass and the loads per reference area are consistent (sec. 6).
 //
-// The family does not use the line elements' registry (elements/registry.hpp): that one serves
-// Models of line elements (two nodes, at most 14 coordinates an element); a shell body holds its
-// own ShellElements.
+// In the element registry (elements/registry.hpp) the family "shell" is a Model holding these
+// elements (ShellData) and gathering an element's 48 coordinates through their connectivity
+// (bodies/model.hpp: Connectivity); its kernel calls element_forces and element_energy.
 #pragma once
 
 #include <cstdint>

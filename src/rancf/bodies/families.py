@@ -29,7 +29,7 @@ from rancf.kernels.rod import ROD_DOFS, RodKernel
 from rancf.mesh.factories import to_ancf
 from rancf.mesh.mesh import CableMesh
 
-__all__ = ["Built", "ElementFamily", "ElementKind", "FAMILIES", "family", "framed"]
+__all__ = ["Built", "ElementFamily", "ElementKind", "FAMILIES", "SHELL", "family", "framed"]
 
 ElementKind = Literal["rancf", "ancf", "beam", "rod"]
 
@@ -64,6 +64,9 @@ class ElementFamily:
         The engineering axial strain is built for it.
     build : callable
         ``build(mesh, section, props, rho, n_qp, stress_free) -> Built``.
+    surface : bool
+        A two-dimensional element (the shell, :data:`SHELL`): four nodes an element, gathered
+        through a connectivity; no line sections, centre line or node places.
     """
 
     name: str
@@ -72,6 +75,7 @@ class ElementFamily:
     has_triads: bool
     engineering_strain: bool
     build: Callable[..., Built]
+    surface: bool = False
 
     @property
     def cable(self) -> bool:
@@ -85,7 +89,9 @@ class ElementFamily:
 
     @property
     def core_kind(self) -> int:
-        """The core's element kind of a flexible body: 0 cable, 1 beam, 2 rod."""
+        """The core's element kind of a flexible body: 0 cable, 1 beam, 2 rod, 3 shell."""
+        if self.surface:
+            return 3
         return 2 if self.has_triads else 0 if self.gradient else 1
 
     def cable_kernel(self, kernel: Kernel) -> CableKernel | None:
@@ -98,7 +104,7 @@ class ElementFamily:
 
     def beam_kernel(self, kernel: Kernel) -> BeamKernel | None:
         """Its kernel as the beam element's; None for the other kinds."""
-        return None if self.gradient else cast(BeamKernel, kernel)
+        return None if self.gradient or self.surface else cast(BeamKernel, kernel)
 
     def centre_line(self, kernel: Kernel) -> CableKernel | None:
         """The cable kernel of its centre line ``r(ξ)``: a cable's own, a rod's (its ``cable``);
@@ -180,6 +186,15 @@ FAMILIES: dict[str, ElementFamily] = {
     "rod": ElementFamily("rod", (3,), True, True, False, _rod),
     "beam": ElementFamily("beam", (2,), False, False, False, _beam),
 }
+
+
+def _no_line(*args: Any) -> Built:
+    raise InputError("mesh.element", "shell", "a surface [geometry] (a shell is no line body)")
+
+
+#: The shell family (:mod:`rancf.bodies.shell_model`): Kirchhoff-Love RANCF shells, 12
+#: coordinates ``[r, r_x, r_y, r_xy]`` a node; built from a surface, not by ``mesh.element``.
+SHELL = ElementFamily("shell", (3,), False, False, False, _no_line, surface=True)
 
 
 def framed(kind: str | None) -> bool:

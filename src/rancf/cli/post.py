@@ -84,6 +84,10 @@ def _cmd_export(args: argparse.Namespace) -> int:
             print(f"{name}: open {p} in ParaView")
         if contact is not None:
             print(f"contact forces: open {contact} in ParaView")
+        for b in run.bodies:  # a shell's surfaces were written with its run
+            if b["kind"] == "shell":
+                shell = Path(run.path) / b["folder"] / f"{b['name']}.pvd"
+                print(f"{b['name']}: the shell's surfaces (written by the run): open {shell}")
         for name, r in run.flexible.items():
             if r.directors is not None:
                 nodes = out.path / name / f"{name}_nodes.pvd"

@@ -16,6 +16,15 @@ def _cmd_view(args: argparse.Namespace) -> int:
     from rancf.post.system_run import load_run
 
     run = load_run(args.run_dir)
+    shells = [b for b in run.bodies if b["kind"] == "shell"]
+    if shells:  # drawn in ParaView from the run's own surfaces
+        b = shells[0]
+        raise InputError(
+            "RUN_DIR",
+            str(args.run_dir),
+            f"a run of lines and rigid bodies: {b['name']!r} is a shell, whose surfaces are in "
+            f"{Path(args.run_dir) / b['folder'] / (b['name'] + '.pvd')} (open it in ParaView)",
+        )
     out = Path(args.out) if args.out is not None else Path(args.run_dir) / "view.html"
     n = _write(run, out, args)
     print(f"{n} of {run.t.size} stored times -> {out}")

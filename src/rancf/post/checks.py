@@ -76,6 +76,7 @@ def section_warnings(model: Model | System) -> list[str]:
             [
                 f"{name}: {w}"
                 for name, b in zip(model.names, model.flex, strict=False)
+                if not b.family.surface  # a line's section (a shell has a thickness)
                 for w in section_warnings(b)
             ]
             + _crossing_warnings(model)
@@ -119,6 +120,7 @@ def element_notes(model: Model | System) -> list[str]:
         return [
             f"{name}: {n}"
             for name, b in zip(model.names, model.flex, strict=False)
+            if not b.family.surface
             for n in element_notes(b)
         ]
     from rancf.solvers.curved_cable import curved_spatial_cable
@@ -243,7 +245,9 @@ def axial_law_warnings(model: Model | System, by_body: Mapping[str, float]) -> l
     pairs = zip(model.names, model.flex, strict=False) if isinstance(model, System) else []
     out = []
     for name, body in pairs if isinstance(model, System) else [("", model)]:
-        law = body.material.axial_law if isinstance(body, Model) else None
+        law = (
+            body.material.axial_law if isinstance(body, Model) and not body.family.surface else None
+        )
         g = by_body.get(name)
         line = "" if law is None or g is None else law.leaves_table(math.sqrt(1.0 + 2.0 * g) - 1.0)
         if line:

@@ -172,9 +172,34 @@ def write_history_files(
         _npy(z, "sensors", (n, len(names)), (c["c"] for _, c in chunks))
         _npy(z, "reactions", (n, len(outputs.reaction_names)), (c["r"] for _, c in chunks))
         _small(z, {"reference": s.q_from_y(s.y0), "metadata": np.array(json.dumps(meta))})
-    for k, (name, model) in enumerate(outputs.flex):
+    for name, model in outputs.flex:
+        k = s.names.index(name)  # its energies' place among the flexible bodies
         _body_folder(out_dir, outputs, name, model, k, t, q, v, m1, chunks, files)
+    for name, model in outputs.shells:
+        _shell_folder(out_dir, name, model, t, q[:, s.body_slice(name)], files)
     return names
+
+
+#: Points per element side of a shell's surfaces in its run folder (:mod:`rancf.post.vtk_shell`).
+SHELL_SAMPLES = 5
+
+
+def _shell_folder(
+    out_dir: Path, name: str, model: Any, t: NDArray, q: NDArray, files: FileSet
+) -> None:
+    """``bodies/NAME/NAME.pvd`` and its ``.vtu`` frames: the shell's surfaces at every stored
+    state (:func:`rancf.post.vtk_shell.surface_grid`, ``q`` its full coordinates), for
+    ParaView."""
+    from rancf.post.vtk_frames import export_frames
+    from rancf.post.vtk_shell import surface_grid
+
+    folder = out_dir / "bodies" / name
+    folder.mkdir(parents=True, exist_ok=True)
+
+    def frame(i: int) -> Any:
+        return surface_grid(model.body.mesh, model.to_body(q[i]), SHELL_SAMPLES)
+
+    export_frames(np.asarray(t), folder, np.arange(t.shape[0]), [(name, frame)], files)
 
 
 def _bodies(outputs: SystemOutputs) -> list[dict[str, Any]]:
@@ -183,7 +208,9 @@ def _bodies(outputs: SystemOutputs) -> list[dict[str, Any]]:
     for name in s.names:
         b, sl = s.bodies[name], s.body_slice(name)
         row: dict[str, Any] = {"name": name, "offset": sl.start, "size": sl.stop - sl.start}
-        if isinstance(b, Model):
+        if isinstance(b, Model) and b.family.surface:  # its surfaces in its folder
+            row.update({"kind": "shell", "element": b.element, "folder": f"bodies/{name}"})
+        elif isinstance(b, Model):
             row.update({"kind": "flexible", "element": b.element, "folder": f"bodies/{name}"})
         else:
             row["kind"] = "mass" if isinstance(b, PointMass) else "rigid"

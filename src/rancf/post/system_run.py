@@ -116,6 +116,8 @@ class SystemRun:
         as they are)."""
         out = []
         for b in self.bodies:
+            if b["kind"] == "shell":  # drawn by its surfaces (bodies/NAME/NAME.pvd)
+                continue
             if b["kind"] == "flexible":
                 run = self.flexible[b["name"]]
                 pts = _pad(sample_centerline(run, i, per_element).points)
@@ -293,7 +295,7 @@ def export_system_vtk(
     for r in run.flexible.values():
         check_export_size(r, every, per_element)
     paths = [export_vtk(r, out / name, every, per_element) for name, r in run.flexible.items()]
-    rigid = [b for b in run.bodies if b["kind"] != "flexible"]
+    rigid = [b for b in run.bodies if b["kind"] in ("rigid", "mass")]
     if not rigid:
         return paths
 

@@ -21,7 +21,6 @@ Ctrl-C) leaves the folder as it was, never ``.vtu`` files without their ``.pvd``
 
 from __future__ import annotations
 
-import html
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -34,13 +33,10 @@ from rancf.errors import InputError
 from rancf.geometry.conic_params import pad3
 from rancf.post.centerline import nodal_frames, sample_centerline
 from rancf.post.run_data import RunData, frame_indices
+from rancf.post.vtk_frames import MAX_POINTS, MAX_POINTS_PER_FRAME
+from rancf.post.vtk_frames import export_frames as _export
 
 __all__ = ["export_vtk", "centerline_mesh", "nodes_mesh", "check_export_size"]
-
-#: Most centreline points of one frame (``--samples`` per element times the elements).
-MAX_POINTS_PER_FRAME = 10**6
-#: Most centreline points of one export (all frames): about 2 GB of ``.vtu`` files.
-MAX_POINTS = 2 * 10**7
 
 
 def check_export_size(run: RunData, every: int, per_element: int) -> None:
@@ -143,41 +139,3 @@ def export_vtk(run: RunData, out_dir: str | Path, every: int = 1, per_element: i
         parts.append((f"{run.name}_nodes", lambda i: nodes_mesh(run, i)))
     with FileSet() as files:
         return _export(run.t, out, idx, parts, files)
-
-
-def _export(
-    times: NDArray[np.float64],
-    out: Path,
-    idx: NDArray[np.int64],
-    parts: list[tuple[str, Callable[[int], Any]]],
-    files: FileSet,
-) -> Path:
-    """Every frame ``idx`` (of the stored ``times``) of every part, then each part's ``.pvd``,
-    into the set ``files``."""
-    import meshio
-
-    paths = []
-    for name, mesh_at in parts:
-        entries = []
-        for k, i in enumerate(idx):
-            fname = f"{name}_{k:05d}.vtu"
-            with files.path(out / fname) as tmp:
-                meshio.write(tmp, mesh_at(int(i)), file_format="vtu")
-            entries.append(
-                f'    <DataSet timestep="{float(times[i])!r}" group="" part="0" '
-                f'file="{html.escape(fname, quote=True)}"/>'
-            )
-        pvd = "\n".join(
-            [
-                '<?xml version="1.0"?>',
-                '<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">',
-                "  <Collection>",
-                *entries,
-                "  </Collection>",
-                "</VTKFile>",
-                "",
-            ]
-        )
-        paths.append(out / f"{name}.pvd")
-        files.write(paths[-1], pvd)
-    return paths[0]

@@ -22,7 +22,8 @@ from numpy.typing import ArrayLike, NDArray
 from rancf.atomic import FileSet
 from rancf.errors import InputError
 from rancf.mesh.surfaces import SurfaceMesh
-from rancf.post.vtk import MAX_POINTS, MAX_POINTS_PER_FRAME, _export
+from rancf.post.vtk_frames import MAX_POINTS, MAX_POINTS_PER_FRAME
+from rancf.post.vtk_frames import export_frames as _export
 
 __all__ = ["surface_grid", "export_shell_vtk"]
 

@@ -39,6 +39,9 @@ def run_buckling(
     """
     if count < 1:
         raise InputError("--count", count, "an integer >= 1")
+    from rancf.scenario.shell_build import refuse_shells  # nothing without a shell
+
+    refuse_shells(sc, "buckling")
     find_form(sc)
     system = sc.build_system()
     y = lam = None

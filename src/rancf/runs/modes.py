@@ -80,10 +80,16 @@ def run_modes(
         y, lam, solved = static_state(sc, system)
         q = system.q_from_y(y)
         for name, b in zip(system.names, system.flex, strict=False):  # the equilibrium's strain
+            if b.family.surface:  # a line's section strain (a shell has none sampled)
+                continue
             qb = q[system.body_slice(name)]
             largest = max(largest, largest_strain(b, np.ones(1), qb[None]))
             by_body[name] = largest_stretch(b, qb)
     notes = solved + run_warnings(system, static=True, largest=largest, by_body=by_body)
     res = natural_modes(system, y, None if every else count, lam)
+    if sc.data["modes"]["spin_rates"]:
+        from rancf.scenario.shell_build import refuse_shells
+
+        refuse_shells(sc, "modes with [modes] spin_rates (a Campbell diagram)")
     cam = run_campbell(sc, system, count, about) if sc.data["modes"]["spin_rates"] else None
     return ModesRun(system, res, about, y, n_free, notes, cam)

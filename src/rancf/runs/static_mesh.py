@@ -187,11 +187,12 @@ def refined(sc: Any, factors: dict[str, int]) -> Any:
 
 
 def _element_counts(sc: Any) -> dict[str, int]:
-    """``[mesh] elements`` per flexible body of ``sc`` (one-body file: ``"body"``)."""
+    """``[mesh] elements`` per line body of ``sc`` (one-body file: ``"body"``; a shell's
+    ``[nu, nv]`` is not refined here)."""
     return {
         b.name: int(b.mesh.elements)
         for _, b in sc.body_tables
-        if getattr(b, "mesh", None) is not None
+        if getattr(b, "mesh", None) is not None and isinstance(b.mesh.elements, int)
     }
 
 

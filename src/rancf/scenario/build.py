@@ -165,14 +165,10 @@ def body_model(sc: ScenarioView, i: int) -> Model:
     initial velocities and sensor nodes at its places (moving supports included), as the
     scenario's system holds it."""
     key, b = sc.body_tables[i]
-    if is_surface(b.geometry):
-        raise ScenarioError(
-            sc.path,
-            f"{key}geometry",
-            f"{b.geometry.kind!r} makes the body a shell: the shell body is read and checked "
-            "(rancf.bodies.shell.ShellBody), but the System does not hold shells yet "
-            "(docs/derivations/shell.md sec. 8)",
-        )
+    if is_surface(b.geometry):  # a shell (docs/derivations/shell.md sec. 8)
+        from rancf.scenario.shell_build import shell_model
+
+        return shell_model(sc, i)
     d = sc.data
 
     def at(rows: list[dict[str, Any]], what: str) -> list[tuple[str, int, dict[str, Any]]]:

@@ -286,7 +286,7 @@ class Scenario(Table):
         for key, b in self.body_tables:
             g = getattr(b, "geometry", None)
             length = getattr(g, "length", None)
-            if length is not None and g is not None:
+            if length is not None and g is not None and not is_surface(g):  # a line's
                 chord = sum((e - s) ** 2 for s, e in zip(g.start, g.end, strict=True)) ** 0.5
                 if abs(length - chord) > 1e-9 * chord:
                     out.append(f"{key}geometry.length")

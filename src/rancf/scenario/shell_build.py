@@ -3,7 +3,11 @@
 
 The load vector is the sum of the point loads at its surface points, the edge loads on its
 edges, the distributed loads (per reference area) on it and gravity ``ρ t g`` per area, at their
-full value (a ``time`` factor is applied by the analysis that runs them).
+full value: the System scales it along a static load path and holds it constant in a
+simulation (a ``time`` on a shell's load is refused: :mod:`rancf.scenario.shell_checks`).
+:func:`shell_model` makes the body the System's flexible body
+(:class:`~rancf.bodies.shell_model.ShellModel`); :func:`refuse_shells` refuses, in one line,
+what the System does not do for shells yet.
 """
 
 from __future__ import annotations
@@ -16,16 +20,29 @@ from pydantic_core import PydanticCustomError
 
 from rancf.bodies.shell import ShellBody, ShellSupport
 from rancf.bodies.shell_loads import distributed_load, edge_load, point_load
-from rancf.errors import ScenarioError
+from rancf.bodies.shell_model import ShellModel
+from rancf.errors import InputError, ScenarioError
 from rancf.scenario.shell_checks import shell_mesh
 from rancf.scenario.surface import is_surface
 
-__all__ = ["shell_body", "shell_load", "shell_sensors", "shell_sensor_values", "shell_indices"]
+__all__ = [
+    "shell_body",
+    "shell_load",
+    "shell_model",
+    "refuse_shells",
+    "shell_sensors",
+    "shell_sensor_values",
+    "shell_indices",
+]
 
 
 def shell_indices(sc: Any) -> list[int]:
     """The indices in ``sc.body_tables`` of the shell bodies."""
-    return [i for i, (_, b) in enumerate(sc.body_tables) if is_surface(b.geometry)]
+    return [
+        i
+        for i, (_, b) in enumerate(sc.body_tables)
+        if b.kind == "flexible" and is_surface(b.geometry)
+    ]
 
 
 def _on(sc: Any, name: str, at: Any) -> Any:
@@ -102,3 +119,52 @@ def shell_sensor_values(sc: Any, body: ShellBody, q: NDArray) -> dict[str, float
         for c, x in zip("xyz", body.position(uv, q), strict=True):
             out[f"{name}_{c}"] = float(x)
     return out
+
+
+def shell_model(sc: Any, i: int) -> ShellModel:
+    """The shell body ``i`` of ``sc.body_tables`` as a flexible body of the scenario's System
+    (:class:`~rancf.bodies.shell_model.ShellModel`): its supports, its load vector
+    (:func:`shell_load`) and the scenario's mass-proportional damping."""
+    _, b = sc.body_tables[i]
+    body = shell_body(sc, i)
+    keys = [f"supports[{k}]" for k, s in enumerate(sc.supports) if _on(sc, b.name, s.at)]
+    try:
+        return ShellModel(
+            body,
+            shell_load(sc, body),
+            sc.loads.gravity,
+            sc.damping.mass_proportional,
+            support_keys=keys,
+        )
+    except InputError as exc:
+        raise ScenarioError(sc.path, exc.parameter, f"{exc.allowed} (got {exc.value!r})") from None
+
+
+#: The tables a scenario with a shell may not have yet: the System holds a shell's elements,
+#: supports, loads and mass, not its contact, fluid loads or winches.
+NOT_WITH_SHELLS = ("obstacles", "body_contacts", "fluid", "hydro", "winches")
+
+
+def refuse_shells(sc: Any, what: str | None = None) -> None:
+    """Refuse, in one line naming the key, what a scenario with a shell body asks that the
+    System does not do for shells yet: a table of :data:`NOT_WITH_SHELLS`, or the analysis
+    ``what`` (e.g. ``"buckling"``, named by its command).  Nothing without a shell."""
+    i = next(iter(shell_indices(sc)), None)
+    if i is None:
+        return
+    key, b = sc.body_tables[i]
+    if what is not None:
+        raise ScenarioError(
+            sc.path,
+            f"{key}geometry",
+            f"{b.geometry.kind!r} makes the body a shell, and `rancf {what}` does not run "
+            "shells yet (static, modes and simulate do: docs/derivations/shell.md sec. 8)",
+        )
+    for k in NOT_WITH_SHELLS:
+        if sc[k]:
+            raise ScenarioError(
+                sc.path,
+                k,
+                f"not with a shell (body {b.name!r}) yet: the System holds a shell's elements, "
+                "supports, loads and mass (docs/derivations/shell.md sec. 8)",
+            )

@@ -14,6 +14,7 @@ from typing import Any
 
 from rancf.errors import InputError
 from rancf.scenario.base import fail, show
+from rancf.scenario.surface import is_surface
 
 __all__ = ["check_shell", "shell_mesh"]
 
@@ -72,6 +73,10 @@ def check_shell(geometry: Any, mesh: Any, section: Any, material: Any, form: Any
     shell_mesh(geometry, mesh)
 
 
+def _surface(b: Any) -> bool:
+    return is_surface(b.geometry)
+
+
 def _shell_place(p: Any) -> bool:
     return p.where in ("edge", "surface")
 
@@ -94,8 +99,29 @@ def _supports(c: Any) -> None:
                 raise fail(f"{key}.{k}", "not for a shell's support (it holds the reference)")
 
 
+#: Why a shell's loads take no time function yet.
+_CONSTANT = (
+    "not for a load on a shell: its loads are constant (statics: scaled along the load path; "
+    "dynamics: constant in time)"
+)
+
+
+def _constant(key: str, table: Any, fields: tuple[str, ...]) -> None:
+    for k in fields:
+        if table[k] is not None:
+            raise fail(f"{key}.{k}", f"{_CONSTANT}; got {show(table[k])}")
+
+
 def _loads(c: Any) -> None:
+    shells = {n for n, b in (c.bodies or {}).items() if b.kind == "flexible" and _surface(b)}
+    for i, d in enumerate(c.sc.loads.distributed):
+        if d.body in shells or (d.body is None and (shells or c.shell)):
+            _constant(f"loads.distributed[{i}]", d, ("time",))
+    for i, e in enumerate(c.sc.loads.edge):
+        _constant(f"loads.edge[{i}]", e, ("time",))
     for i, pl in enumerate(c.sc.loads.point):
+        if _shell_place(c.place(f"loads.point[{i}].at", pl.at)):
+            _constant(f"loads.point[{i}]", pl, ("time", "frequency_hz", "moment"))
         if c.place(f"loads.point[{i}].at", pl.at).where == "edge":
             raise fail(
                 f"loads.point[{i}].at",
@@ -124,6 +150,24 @@ def _sensors(c: Any) -> None:
             raise fail(f"sensors[{i}].at", f"must be a surface point [u, v], got {show(s.at)}")
 
 
+def _motion(c: Any) -> None:
+    """A shell starts at rest: its initial velocities are not built yet."""
+    for i, iv in enumerate(c.sc.initial_velocity):
+        if _shell_place(c.place(f"initial_velocity[{i}].at", iv.at)):
+            raise fail(
+                f"initial_velocity[{i}].at",
+                f"a node of a line body, not a shell's {show(iv.at)} (a shell starts at rest)",
+            )
+    if c.shell and c.sc.initial_motion is not None:
+        raise fail("initial_motion", "not for a shell yet (a shell starts at rest)")
+    for i, b in enumerate((c.bodies or {}).values()):
+        shell = b.kind == "flexible" and _surface(b)
+        if shell and getattr(b, "initial_motion", None) is not None:
+            raise fail(
+                f"bodies[{i}].initial_motion", "not for a shell yet (a shell starts at rest)"
+            )
+
+
 def check_shell_uses(c: Any) -> None:
     """The supports, loads and sensors on shells (``c``: the scenario checks' context with its
     ``sc``, ``place`` and ``element``): a diaphragm or symmetry on an edge of a shell only, a
@@ -131,3 +175,4 @@ def check_shell_uses(c: Any) -> None:
     _supports(c)
     _loads(c)
     _sensors(c)
+    _motion(c)

@@ -33,12 +33,17 @@ from rancf.errors import InputError, ScenarioError
 from rancf.scenario.build import body_model
 from rancf.scenario.fluid import fluid_value, hydro_value
 from rancf.scenario.places import ONE_BODY
+from rancf.scenario.surface import is_surface
 from rancf.scenario.view import ScenarioView
 from rancf.scenario.winches import system_winches, winch_key
 from rancf.system import Joint, Load, Place, Spring, System
 from rancf.system.parts.joint_kinds import joint_kind
 
 __all__ = ["build_system", "scenario_keys", "support_labels", "ONE_BODY"]
+
+
+#: The places of a shell (:mod:`rancf.scenario.places`): its supports and loads are its model's.
+SHELL_PLACES = ("edge", "surface")
 
 
 def _rigid(b: Any, dim: int) -> RigidBody | PointMass:
@@ -110,6 +115,10 @@ def _observed(sc: ScenarioView) -> list[Place]:
 
 
 def _build(sc: ScenarioView) -> System:
+    if any(b.kind == "flexible" and is_surface(b.geometry) for _, b in sc.body_tables):
+        from rancf.scenario.shell_build import refuse_shells  # loaded with a shell only
+
+        refuse_shells(sc)
     gravity, damping = sc.loads.gravity, sc.damping.mass_proportional
     beta = sc.damping.stiffness_proportional
     bodies: dict[str, Any] = {}
@@ -196,7 +205,7 @@ def _parts(sc: ScenarioView, bodies: dict[str, Any]) -> dict[str, Any]:
     loads = []
     for k, (ld, t) in enumerate(zip(sc.loads.point, sc.data["loads"]["point"], strict=True)):
         p = sc.place(ld.at)
-        if p.where == "node":
+        if p.where in ("node", *SHELL_PLACES):  # the body's own load vector
             continue
         if ld.frequency_hz is not None:
             raise ScenarioError(
@@ -242,8 +251,8 @@ def _support_joints(sc: ScenarioView, bodies: dict[str, Any]) -> list[Joint]:
     static = sc.solver.initial_state == "static"
     for i, s in enumerate(sc.supports):
         p, d = sc.support_place(i), sc.data["supports"][i]
-        if p.where == "ground" or (p.where == "node" and s.rotation is None):
-            continue
+        if p.where in ("ground", *SHELL_PLACES) or (p.where == "node" and s.rotation is None):
+            continue  # held by the body's model (a shell's: rancf.bodies.shell_model)
         at = p.system_place()
         motion = d["motion"]
         if d["absolute"]:
@@ -283,9 +292,14 @@ def _fluid(sc: ScenarioView, bodies: dict[str, Any]) -> dict[str, Any]:
     if sc.data["loads"]["distributed"]:
         from rancf.system.fluid import DistributedLoad
 
-        dist = [
+        shells = {
+            b.name for _, b in sc.body_tables if b.kind == "flexible" and is_surface(b.geometry)
+        }
+        lines = {b.name for _, b in sc.body_tables if b.kind == "flexible"} - shells
+        dist = [  # a shell's are in its own load vector (rancf.scenario.shell_build)
             DistributedLoad(tuple(d["force"]), d["body"], d["time"])
             for d in sc.data["loads"]["distributed"]
+            if d["body"] not in shells and (d["body"] is not None or lines)
         ]
     _check_depth(sc, fluid, {k: bodies.get(k) for k in hydro})
     return {"fluid": fluid, "hydro": hydro, "distributed": dist}

@@ -41,6 +41,7 @@ from numpy.typing import NDArray
 
 from rancf.bodies.flexible import Model
 from rancf.bodies.section_outputs import SectionSampler
+from rancf.bodies.shell_model import unstable_shells
 
 __all__ = [
     "FOLD_STRETCH",
@@ -89,9 +90,10 @@ def check_state(system: Any, q: NDArray[np.float64]) -> StateCheck:
     problems: list[str] = []
     samplers = {}
     for name, model in zip(system.names, system.flex, strict=False):
-        samplers[name] = sampler = SectionSampler(model)
-        y = model.y_from_q(np.asarray(q)[system.body_slice(name)])
-        problems += [f"body {name!r}: {p}" for p in _body_problems(model, y, sampler)]
+        if not model.family.surface:  # the checks of lines (a shell's: instability)
+            samplers[name] = sampler = SectionSampler(model)
+            y = model.y_from_q(np.asarray(q)[system.body_slice(name)])
+            problems += [f"body {name!r}: {p}" for p in _body_problems(model, y, sampler)]
     bends = _seabed_bends(system, q, samplers)
     problems += _penetration_problems(system, q) + _touchdown_problems(bends)
     return StateCheck(problems, _ratios(bends))
@@ -161,6 +163,8 @@ def most_compressed(system: Any, q: NDArray[np.float64]) -> tuple[str, int, floa
     no element does (a tensioned line)."""
     worst: tuple[str, int, float, float] | None = None
     for name, model in zip(system.names, system.flex, strict=False):
+        if model.family.surface:
+            continue
         sampler = SectionSampler(model)
         y = model.y_from_q(np.asarray(q)[system.body_slice(name)])
         _, ell, mean = _element_forces(model, sampler.values(y), sampler)
@@ -175,7 +179,8 @@ def most_compressed(system: Any, q: NDArray[np.float64]) -> tuple[str, int, floa
 def instability(system: Any, y: NDArray[np.float64], lam: NDArray[np.float64] | None) -> str:
     """Why the converged static state ``y`` (model coordinates; multipliers ``lam``) of
     ``system`` is no stable equilibrium, or ``""``.  Checked only where an element carries
-    compression beyond round-off (:func:`most_compressed`; a tensioned line pays nothing): the
+    compression beyond round-off (:func:`most_compressed`; a tensioned line pays nothing) or
+    the system has a shell (whose membrane compression is not sampled: always checked): the
     lowest :data:`STABILITY_MODES` eigenvalues ``λ`` of the tangent stiffness on the null space
     of the constraints, ``K φ + Gᵀ μ = λ M φ``, ``G φ = 0``
     (:func:`rancf.solvers.modal.natural_modes`: dense for small models, shift-invert near 0
@@ -192,14 +197,17 @@ def instability(system: Any, y: NDArray[np.float64], lam: NDArray[np.float64] | 
         return ""
     q = system.q_from_y(np.asarray(y))
     worst = most_compressed(system, q)
+    shells = [n for n, b in zip(system.names, system.flex, strict=False) if b.family.surface]
     n_free = int(np.sum(~system.fixed))
-    if worst is None or n_free < 2:
+    if (worst is None and not shells) or n_free < 2:  # a shell's compression is not sampled
         return ""
     res = natural_modes(system, y, min(STABILITY_MODES, n_free - 1), lam)
     bad = (res.growth_rates > 0) & (np.asarray(res.eigenvalues).real < 0)
     if not np.any(bad):
         return ""
     low = complex(np.asarray(res.eigenvalues)[bad][0])
+    if worst is None:
+        return unstable_shells(shells, int(bad.sum()), low)
     name, e, n_c, euler = worst
     return (
         f"unstable equilibrium: the tangent stiffness has {int(bad.sum())} negative "

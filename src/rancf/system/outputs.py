@@ -105,7 +105,10 @@ class SystemOutputs:
         per_element: int = 4,
     ) -> None:
         self.system = s = system
-        self.flex = [(name, b) for name, b in zip(s.names, s.flex, strict=False)]
+        bodies = list(zip(s.names, s.flex, strict=False))
+        #: The line bodies (section values along them) and the shells (sensors, surfaces).
+        self.flex = [(name, b) for name, b in bodies if not b.family.surface]
+        self.shells = [(name, b) for name, b in bodies if b.family.surface]
         self.labels = support_labels(s, labels)
         self.samplers = {name: SectionSampler(b, per_element) for name, b in self.flex}
         winched = set()
@@ -203,7 +206,7 @@ class SystemOutputs:
             "lam": np.zeros((k, s.m)),
             "r": np.empty((k, len(self.reaction_names))),
             "s": np.empty((k, self.n_along)),
-            "eb": np.empty((k, 3 * len(self.flex) if per_body else 0)),
+            "eb": np.empty((k, 3 * len(s.flex) if per_body else 0)),
         }
         res, res0, no_lam = np.empty(s.n + s.m), np.empty(s.n + s.m), np.zeros(s.m)
         raws: dict[str, list[NDArray]] = {name: [] for name, _ in self.flex}
@@ -341,7 +344,7 @@ class SystemOutputs:
     def _body_energies(self, y: NDArray, v: NDArray, t: float) -> NDArray:
         """Every flexible body's kinetic, strain and gravitational energy at time ``t`` (a
         winch's body at its length at ``t``), by the core."""
-        out = np.empty(3 * len(self.flex))
+        out = np.empty(3 * len(self.system.flex))
         self.system.core.body_energies(
             np.ascontiguousarray(y), np.ascontiguousarray(v), float(t), out
         )

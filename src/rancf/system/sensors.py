@@ -38,6 +38,7 @@ from numpy.typing import NDArray
 from rancf.bodies.flexible import Model
 from rancf.bodies.motion import angular_momentum
 from rancf.bodies.rigid import PointMass, RigidBody, body_angular_velocity
+from rancf.bodies.shell_model import shell_reader
 from rancf.errors import InputError
 from rancf.system.at_point import at_point_reader
 from rancf.system.places import Place
@@ -173,7 +174,8 @@ class SensorReader:
     def _position_sensor(self, host: Any, sen: Any) -> Reader:
         if getattr(sen, "point", None) is not None:
             return at_point_reader(self.out, sen)
-        return self._position(sen, sensor_places(sen)[0])
+        place = sensor_places(sen)[0]  # a shell's point [u, v] by its shape-function row
+        return shell_reader(self.system, place) or self._position(sen, place)
 
     def _distance(self, host: Any, sen: Any) -> Reader:
         a, b = (self._position(sen, x) for x in sensor_places(sen)[:2])
