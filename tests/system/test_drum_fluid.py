@@ -19,6 +19,7 @@ from scipy.integrate import solve_ivp
 from rancf.bodies.flexible import Material, Model, Section, Support
 from rancf.bodies.rigid import PointMass
 from rancf.bodies.time_function import TimeFunction
+from rancf.kernels.call_records import ResidualOptions, ResidualPoint, StatePoint, TangentOptions
 from rancf.mesh.factories import mesh_line
 from rancf.solvers.dynamic import DynamicOptions, integrate
 from rancf.solvers.static import solve_static
@@ -69,13 +70,14 @@ def _jacobians(s, state, dynamic, k):
 
     def res(x):
         r = np.empty(n + m)
-        s.core.residual(*x, lam, 0.7, 1.0, False, dynamic, r)
+        y, v, a = x
+        s.core.residual(ResidualPoint(y, lam, r, v, a), ResidualOptions(0.7, 1.0, False, dynamic))
         return r[:n]
 
     coef = [0.0, 0.0, 0.0]
     coef[k] = 1.0
     jac = np.empty((n + m) ** 2)
-    s.core.dense_jacobian(*state, lam, 0.7, *coef, dynamic, jac)
+    s.core.dense_jacobian(StatePoint(*state, lam), TangentOptions(0.7, *coef, dynamic), jac)
     fd = np.zeros((n, n))
     for j in np.flatnonzero(~s.fixed):
         plus, minus = [x.copy() for x in state], [x.copy() for x in state]
