@@ -1,7 +1,9 @@
 #include "linalg/band.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <thread>
 #include <utility>
 
 #include "bodies/threads.hpp"
@@ -408,10 +410,9 @@ void BandLU::half_backward(int h, double* rhs) const {
   for (int r = 0; r < H.e; ++r) rhs[H.reversed ? n - 1 - r : r] = H.w[static_cast<std::size_t>(r)];
 }
 
-void BandLU::solve_split(double* rhs) const {
+void BandLU::solve_separator(double* rhs) const {
+  // z = S^-1 (r_s + the two halves' updates), with S's dense factors (factor_separator)
   const int n = n_, k = ku_, m = split_;
-  auto forward = [this, rhs](int h) { half_forward(h, rhs); };
-  run_two(forward);
   sr_.resize(static_cast<std::size_t>(k));
   std::vector<double>& z = sr_;
   for (int a = 0; a < k; ++a)
@@ -436,9 +437,53 @@ void BandLU::solve_split(double* rhs) const {
       Z(i) /= S(i, i);
     }
   }
-  auto backward = [this, rhs](int h) { half_backward(h, rhs); };
-  run_two(backward);
-  for (int a = 0; a < k; ++a) rhs[m + a] = Z(a);
+}
+
+namespace {
+
+/// A split solve as one loop of two chunks (bodies/threads.hpp): chunk 1 the bottom half's
+/// forward and backward passes, chunk 0 the top half's and, between them, the separator's
+/// once the bottom's forward pass is done.  Chunk 0 takes chunk 1 over if no worker has
+/// claimed it by the end of its own forward pass: it never waits for a chunk nobody runs.
+struct SplitSolve {
+  const BandLU* lu;
+  double* rhs;
+  std::atomic<int> claimed{0}, forward{0}, separator{0};
+
+  static void wait(const std::atomic<int>& flag) {
+    while (flag.load(std::memory_order_acquire) == 0) std::this_thread::yield();
+  }
+
+  void chunk(int c) {
+    if (c == 1) {
+      if (claimed.exchange(1) != 0) return;  // taken over by chunk 0
+      lu->half_forward(1, rhs);
+      forward.store(1, std::memory_order_release);
+      wait(separator);
+      lu->half_backward(1, rhs);
+      return;
+    }
+    lu->half_forward(0, rhs);
+    const bool alone = claimed.exchange(1) == 0;
+    if (alone)
+      lu->half_forward(1, rhs);
+    else
+      wait(forward);
+    lu->solve_separator(rhs);
+    separator.store(1, std::memory_order_release);
+    lu->half_backward(0, rhs);
+    if (alone) lu->half_backward(1, rhs);
+  }
+};
+
+void split_solve_chunk(void* ctx, int c) { static_cast<SplitSolve*>(ctx)->chunk(c); }
+
+}  // namespace
+
+void BandLU::solve_split(double* rhs) const {
+  SplitSolve job{this, rhs};
+  if (!run_chunks(2, split_solve_chunk, &job)) job.chunk(0);
+  for (int a = 0; a < ku_; ++a) rhs[split_ + a] = sr_[static_cast<std::size_t>(a)];
 }
 
 }  // namespace rancf

@@ -36,7 +36,7 @@ void band_matvec(const double* ab, const double* x, int n, int ku, double* out);
 /// Column-major storage with leading dimension 3 ku + 1; the diagonal sits at row 2 ku.
 ///
 /// A large band (n >= kSplitBands (ku + 1)) is factored in two halves and a separator
-/// (docs/derivations/systems.md section 5): the ku unknowns [m, m + ku) in its middle split it
+/// (docs/derivations/systems.md section 6): the ku unknowns [m, m + ku) in its middle split it
 /// into a top block, eliminated from its first column down, and a bottom block, eliminated
 /// from its last column up, each leaving its Schur complement on the separator; their sum with
 /// the separator's own entries is factored as a small dense matrix.  The two halves are
@@ -84,8 +84,16 @@ class BandLU {
   bool factor_separator(bool ldl);
   void solve_split(double* rhs) const;
   void half_factor(int h, bool ldl);
+
+ public:  // the passes of a split solve (its chunks, band.cpp)
+  /// Half h's forward pass: its block of rhs into its work vector, the separator's updates.
   void half_forward(int h, const double* rhs) const;
+  /// The separator's solution (after both forward passes).
+  void solve_separator(double* rhs) const;
+  /// Half h's backward pass, its block of rhs (after the separator's solution).
   void half_backward(int h, double* rhs) const;
+
+ private:
   int n_, ku_, ld_;
   bool chol_ = false;
   bool allow_split_ = true;
