@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <mutex>
@@ -13,12 +12,6 @@ namespace rancf {
 namespace {
 
 std::atomic<int> g_threads{1};
-
-/// How long a worker stays awake after a loop, polling for the next (yielding its core to any
-/// other thread that wants it) before it sleeps: a step's loops (the elements', the band
-/// factorization's and solves') follow each other within this, and a sleeping worker takes
-/// longer to wake than the shorter of them.
-constexpr std::chrono::microseconds kAwake{100};
 
 /// The workers and the one loop they share at a time (threads.hpp).  Never destroyed: its
 /// threads are detached and wait on cv_ until the process ends.
@@ -38,7 +31,6 @@ class Pool {
       done_.store(0);
       open_ = true;
       ++gen_;
-      posted_.store(gen_, std::memory_order_release);
     }
     cv_.notify_all();
     job(ctx, 0);
@@ -67,14 +59,6 @@ class Pool {
     std::uint64_t seen = 0;
     std::unique_lock<std::mutex> lk(mu_);
     for (;;) {
-      if (gen_ == seen) {  // a while awake first: the next loop of a step comes soon after
-        lk.unlock();
-        const auto until = std::chrono::steady_clock::now() + kAwake;
-        while (posted_.load(std::memory_order_acquire) == seen &&
-               std::chrono::steady_clock::now() < until)
-          std::this_thread::yield();
-        lk.lock();
-      }
       cv_.wait(lk, [&] { return gen_ != seen; });
       seen = gen_;
       if (!open_) continue;  // woken after the caller finished the loop alone
@@ -98,7 +82,6 @@ class Pool {
   void (*job_)(void*, int) = nullptr;
   void* ctx_ = nullptr;
   std::atomic<int> next_{0}, done_{0};
-  std::atomic<std::uint64_t> posted_{0};  // gen_, read without the lock by a waking worker
 };
 
 Pool& pool() {
