@@ -10,16 +10,43 @@
 
 namespace rancf {
 
-void band_matvec(const double* ab, const double* x, int n, int ku, double* out) {
+namespace {
+
+// Rows [i0, i1) of out = A x (band_matvec).
+void band_matvec_rows(const double* ab, const double* x, int n, int ku, int i0, int i1,
+                      double* out) {
   // by band rows (contiguous in ab), the diagonals of column offset j - i = ku - k in the order
   // of increasing j for every i: the same sums as row by row, without the stride n
-  std::fill(out, out + n, 0.0);
+  std::fill(out + i0, out + i1, 0.0);
   for (int k = 2 * ku; k >= 0; --k) {
     const int d = k - ku;  // i - j
     const double* row = ab + static_cast<std::ptrdiff_t>(k) * n;
-    const int i0 = std::max(0, d), i1 = std::min(n, n + d);
-    for (int i = i0; i < i1; ++i) out[i] += row[i - d] * x[i - d];
+    const int a = std::max(i0, d), b = std::min(i1, n + d);
+    for (int i = a; i < b; ++i) out[i] += row[i - d] * x[i - d];
   }
+}
+
+struct Matvec {
+  const double* ab;
+  const double* x;
+  int n, ku;
+  double* out;
+};
+
+void matvec_chunk(void* ctx, int c) {
+  const Matvec& m = *static_cast<const Matvec*>(ctx);
+  const int half = m.n / 2;
+  band_matvec_rows(m.ab, m.x, m.n, m.ku, c == 0 ? 0 : half, c == 0 ? half : m.n, m.out);
+}
+
+}  // namespace
+
+void band_matvec(const double* ab, const double* x, int n, int ku, double* out) {
+  // a large band's two halves of rows on two threads where the pool has them: every row's sum
+  // is the same whichever thread computes it
+  Matvec job{ab, x, n, ku, out};
+  if (n < kSplitBands * (ku + 1) || !run_chunks(2, matvec_chunk, &job))
+    band_matvec_rows(ab, x, n, ku, 0, n, out);
 }
 
 BandLU::BandLU(int n, int ku)
@@ -307,31 +334,39 @@ bool BandLU::factor_split(bool ldl) {
 }
 
 void BandLU::half_factor(int h, bool ldl) {
+  // the half's band copied column by column (a column of the reversed half is one of A read
+  // from its end), without the separator's own entries (its Schur complement only)
   Half& H = half_[h];
   const int n = n_, k = ku_, kv = 2 * ku_, hn = H.n, e = H.e;
-  const double* ab = ab_.data();
-  auto g = [&H, n](int r) { return H.reversed ? n - 1 - r : r; };  // local -> global
-  auto A = [ab, this, kv](int i, int j) {
-    return ab[static_cast<std::ptrdiff_t>(j) * ld_ + kv + i - j];
+  const bool rev = H.reversed;
+  auto column = [this, kv](int j) {
+    return ab_.data() + static_cast<std::ptrdiff_t>(j) * ld_ + kv;
   };
   if (ldl) {  // the lower band, read from the lower triangle of A in either order
     const int w = k + 1;
-    H.a.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(hn), 0.0);
-    for (int c = 0; c < e; ++c) {  // the separator's own columns: its Schur complement only
+    H.a.resize(static_cast<std::size_t>(w) * static_cast<std::size_t>(hn));
+    std::fill(H.a.begin() + static_cast<std::ptrdiff_t>(e) * w, H.a.end(), 0.0);
+    for (int c = 0; c < e; ++c) {
+      double* dst = H.a.data() + static_cast<std::ptrdiff_t>(c) * w;  // dst[p] = A'(c + p, c)
       const int pm = std::min(k, hn - 1 - c);
-      for (int p = 0; p <= pm; ++p) {
-        const int gi = g(c + p), gj = g(c);
-        H.a[static_cast<std::size_t>(c * w + p)] = gi > gj ? A(gi, gj) : A(gj, gi);
+      if (!rev) {
+        std::copy(column(c), column(c) + pm + 1, dst);
+        continue;
       }
+      const int gc = n - 1 - c;  // A'(c + p, c) = A(gc, gc - p), row gc of column gc - p
+      for (int p = 0; p <= pm; ++p) dst[p] = column(gc - p)[p];
     }
     half_ok_[h] = ldl_dispatch_factor(H.a.data(), hn, k, e);
     return;
   }
   H.a.assign(static_cast<std::size_t>(ld_) * static_cast<std::size_t>(hn), 0.0);
   H.piv.resize(static_cast<std::size_t>(hn));
-  for (int c = 0; c < hn; ++c)
-    for (int r = std::max(0, c - k); r < std::min(hn, c + k + 1); ++r)
-      if (r < e || c < e) H.a[static_cast<std::size_t>(c * ld_ + kv + r - c)] = A(g(r), g(c));
+  for (int c = 0; c < hn; ++c) {
+    double* dst = H.a.data() + static_cast<std::ptrdiff_t>(c) * ld_ + kv;  // dst[r - c]
+    const int r0 = std::max(0, c - k), r1 = std::min(c < e ? hn : e, c + k + 1);
+    const double* src = column(rev ? n - 1 - c : c);  // src[i - j] = A(i, j)
+    for (int r = r0; r < r1; ++r) dst[r - c] = src[rev ? c - r : r - c];
+  }
   half_ok_[h] = lu_columns(H.a.data(), ld_, hn, k, e, H.piv.data()) == 0;
 }
 
