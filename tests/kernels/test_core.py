@@ -71,6 +71,70 @@ def test_band_solve_symmetric_definite_and_indefinite(ku, shift):
     assert np.all(x[fixed == 1] == 0.0)
 
 
+def _split_case(kind: str, ku: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    rng = np.random.default_rng(ku)
+    n = _core.band_split_from(ku) + 17
+    b = rng.normal(size=(n, n))
+    a = 0.5 * (b + b.T) if kind != "dynamic" else b
+    a[np.abs(np.subtract.outer(np.arange(n), np.arange(n))) > ku] = 0.0
+    # spd: diagonally dominant; dynamic: unsymmetric with a strong diagonal (a step's
+    # Jacobian); indefinite: symmetric, its L D L^T fails, its LU pivots
+    a += {"spd": 4.0 * ku, "dynamic": 3.0 * np.sqrt(ku), "indefinite": -1.5}[kind] * np.eye(n)
+    fixed = np.zeros(n, dtype=np.uint8)
+    fixed[[0, 1, n // 2, n // 2 + 1, n - 1]] = 1  # the separator's rows among them
+    return a, fixed, rng.normal(size=n)
+
+
+@pytest.mark.parametrize("ku", [3, 7, 11, 13])
+@pytest.mark.parametrize(
+    ("kind", "path"),
+    [("spd", "split ldl"), ("dynamic", "split lu"), ("indefinite", "split lu")],
+)
+def test_a_large_band_is_split_and_solved_to_round_off(ku, kind, path):
+    # two halves and a separator (linalg/band.hpp): the solution of the dense solver and of
+    # the band factored as one to round-off, the same bit for bit on two threads
+    a, fixed, rhs = _split_case(kind, ku)
+    ab = _band(a, ku)
+    assert _core.band_factorization(ab, fixed) == path
+    assert _core.band_factorization(ab, fixed, split=False) == path.removeprefix("split ")
+    free = fixed == 0
+    ref = np.zeros(a.shape[0])
+    ref[free] = np.linalg.solve(a[np.ix_(free, free)], rhs[free])
+    x, one = rhs.copy(), rhs.copy()
+    assert _core.band_solve(ab, x, fixed) and _core.band_solve(ab, one, fixed, split=False)
+    assert np.abs(x - ref).max() <= 1e-13 * np.abs(ref).max()
+    assert np.abs(x - one).max() <= 1e-13 * np.abs(ref).max()
+    assert np.all(x[fixed == 1] == 0.0)
+    before = _core.assembly_threads()
+    _core.set_assembly_threads(2)
+    try:
+        two = rhs.copy()
+        assert _core.band_solve(ab, two, fixed)
+    finally:
+        _core.set_assembly_threads(before)
+    assert np.array_equal(x, two)
+
+
+def test_a_split_band_without_good_pivots_in_a_half_is_factored_as_one():
+    # the separator's first row outweighs every candidate of the top half's last pivot (its
+    # own rows): that half would take a pivot under a tenth of the column's largest entry
+    ku = 3
+    n = _core.band_split_from(ku)
+    rng = np.random.default_rng(1)
+    a = rng.normal(size=(n, n))
+    a[np.abs(np.subtract.outer(np.arange(n), np.arange(n))) > ku] = 0.0
+    a += 3.0 * np.eye(n)
+    m = (n - ku) // 2
+    a[m, m - 1] = 1e3
+    ab = _band(a, ku)
+    fixed = np.zeros(n, dtype=np.uint8)
+    assert _core.band_factorization(ab, fixed) == "lu"
+    rhs = rng.normal(size=n)
+    x = rhs.copy()
+    assert _core.band_solve(ab, x, fixed)
+    assert np.abs(x - np.linalg.solve(a, rhs)).max() <= 1e-12 * np.abs(x).max()
+
+
 def test_band_solve_reports_a_singular_matrix():
     ab = _band(np.zeros((6, 6)), 1)
     assert not _core.band_solve(ab, np.ones(6), np.zeros(6, dtype=np.uint8))

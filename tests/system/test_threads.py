@@ -1,8 +1,9 @@
 """The element loop shared between threads (``src/cpp/bodies/threads.hpp``): a run on two
 threads gives the same numbers bit for bit as on one (each thread computes its elements, the
-calling thread adds them in element order), for a planar pinned cable, a clamped one (the
-rotated gradient blocks), a spatial conic chain and a mooring line (its fluid loads' loop
-too); ``rancf simulate`` chooses one thread for a small model and takes ``--threads``."""
+calling thread adds them in element order; a large band's two halves, linalg/band.hpp), for
+a planar pinned cable, a clamped one (the rotated gradient blocks), a spatial conic chain and
+a mooring line (its fluid loads' loop too); ``rancf simulate`` chooses one thread for a small
+model and takes ``--threads``."""
 
 from __future__ import annotations
 
@@ -41,18 +42,22 @@ def _case(name: str, elements: int, clamp: bool = False) -> str:
 
 
 @pytest.mark.parametrize(
-    ("name", "clamp"),
+    ("name", "clamp", "elements"),
     [
-        ("planar-pendulum", False),
-        ("planar-pendulum", True),
-        ("spatial-pendulum", False),
-        ("mooring-line", False),
+        ("planar-pendulum", False, 64),
+        ("planar-pendulum", True, 64),
+        ("spatial-pendulum", False, 64),
+        ("mooring-line", False, 64),
+        ("planar-pendulum", False, 128),  # the band solver's two halves on two threads too
+        ("mooring-line", False, 128),
     ],
 )
-def test_two_threads_give_the_numbers_of_one(tmp_path, name, clamp):
-    text = _case(name, _core.min_parallel_elements(), clamp)
+def test_two_threads_give_the_numbers_of_one(tmp_path, name, clamp, elements):
+    text = _case(name, max(elements, _core.min_parallel_elements()), clamp)
     system, one = _run(text, tmp_path, 1)
     assert max(b.n_el for b in system.flex) >= _core.min_parallel_elements()
+    split = any(b.n >= _core.band_split_from(b.ku) for b in system.flex)
+    assert split == (elements >= 128)
     _, two = _run(text, tmp_path, 2)
     assert one.t.size > 5 and np.abs(one.q[-1] - one.q[0]).max() > 0  # it moved
     for key in ("q", "v"):

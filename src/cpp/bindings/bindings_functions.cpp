@@ -2,11 +2,13 @@
 // Conversion and forwarding only (see bindings.cpp).
 #include <nanobind/stl/array.h>
 #include <nanobind/stl/optional.h>
+#include <nanobind/stl/string.h>
 #include <nanobind/stl/tuple.h>
 
 #include <algorithm>
 #include <array>
 #include <optional>
+#include <string>
 #include <tuple>
 
 #include "bindings/bindings.hpp"
@@ -19,6 +21,25 @@
 namespace rancf_bind {
 
 using namespace nb::literals;
+
+namespace {
+
+/// A BandLU holding the (2 ku + 1, n) C-order band storage ab.
+rancf::BandLU band_from_numpy(const In& ab, std::size_t n, bool split) {
+  if (n == 0 || ab.size() % n != 0 || (ab.size() / n) % 2 != 1)
+    throw std::invalid_argument("ab: expected shape (2 ku + 1, n)");
+  const int ni = static_cast<int>(n), ku = static_cast<int>((ab.size() / n - 1) / 2);
+  rancf::BandLU lu(ni, ku);
+  lu.set_split(split);
+  const rancf::BandView a = lu.matrix();
+  for (int j = 0; j < ni; ++j)
+    for (int i = std::max(0, j - ku); i < std::min(ni, j + ku + 1); ++i)
+      a.at(i, j) =
+          ab.data()[static_cast<std::size_t>(ku + i - j) * n + static_cast<std::size_t>(j)];
+  return lu;
+}
+
+}  // namespace
 
 void bind_functions(nb::module_& mod) {
   mod.def(
@@ -92,25 +113,30 @@ void bind_functions(nb::module_& mod) {
 
   mod.def(
       "band_solve",
-      [](In ab, Out rhs, InB fixed) {
+      [](In ab, Out rhs, InB fixed, bool split) {
         // ab: (2 ku + 1, n) band storage; rhs: (n), solved in place; fixed: (n)
-        const std::size_t n = rhs.size();
-        expect_size(fixed, n, "fixed");
-        if (n == 0 || ab.size() % n != 0 || (ab.size() / n) % 2 != 1)
-          throw std::invalid_argument("ab: expected shape (2 ku + 1, n)");
-        const int ni = static_cast<int>(n), ku = static_cast<int>((ab.size() / n - 1) / 2);
-        rancf::BandLU lu(ni, ku);
-        const rancf::BandView a = lu.matrix();
-        for (int j = 0; j < ni; ++j)
-          for (int i = std::max(0, j - ku); i < std::min(ni, j + ku + 1); ++i)
-            a.at(i, j) =
-                ab.data()[static_cast<std::size_t>(ku + i - j) * n + static_cast<std::size_t>(j)];
+        expect_size(fixed, rhs.size(), "fixed");
+        rancf::BandLU lu = band_from_numpy(ab, rhs.size(), split);
         if (!lu.factor(fixed.data())) return false;
         lu.solve(rhs.data(), fixed.data());
         return true;
       },
-      "ab"_a, "rhs"_a.noconvert(), "fixed"_a,
-      "Solve A x = rhs in place (band LU with partial pivoting; x[fixed] = 0); False if singular.");
+      "ab"_a, "rhs"_a.noconvert(), "fixed"_a, "split"_a = true,
+      "Solve A x = rhs in place (the core's band solver: L D L^T or LU with partial pivoting, a "
+      "large band split in two halves unless split=False; x[fixed] = 0); False if singular.");
+  mod.def(
+      "band_split_from", [](int ku) { return rancf::kSplitBands * (ku + 1); }, "ku"_a,
+      "The fewest unknowns of a band of half width ku that the band solver splits in two halves.");
+  mod.def(
+      "band_factorization",
+      [](In ab, InB fixed, bool split) -> std::string {
+        rancf::BandLU lu = band_from_numpy(ab, fixed.size(), split);
+        if (!lu.factor(fixed.data())) return "singular";
+        return std::string(lu.split() ? "split " : "") + (lu.cholesky() ? "ldl" : "lu");
+      },
+      "ab"_a, "fixed"_a, "split"_a = true,
+      "Which factorization band_solve takes for A: 'ldl', 'lu', 'split ldl', 'split lu' (two "
+      "halves and a separator, linalg/band.hpp) or 'singular'.");
 
   mod.def(
       "cable_qp_geometry",

@@ -96,8 +96,14 @@ void set_assembly_threads(int n) { g_threads.store(std::max(1, n)); }
 int assembly_threads() { return g_threads.load(); }
 
 bool run_chunks(int n_chunks, void (*job)(void* ctx, int chunk), void* ctx) {
-  if (n_chunks < 2 || g_threads.load() < 2) return false;
-  return pool().run(n_chunks, job, ctx);
+  // a loop inside a chunk (a band solve in an element's job) runs on its thread alone: the
+  // pool is this loop's, and its lock is not taken twice by one thread
+  thread_local bool inside = false;
+  if (n_chunks < 2 || g_threads.load() < 2 || inside) return false;
+  inside = true;
+  const bool ran = pool().run(n_chunks, job, ctx);
+  inside = false;
+  return ran;
 }
 
 }  // namespace rancf

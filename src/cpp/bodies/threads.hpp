@@ -22,7 +22,7 @@ inline constexpr int kMinParallelElements = 64;
 /// Run job(ctx, c) for every chunk c = 0 .. n_chunks - 1, chunk 0 on the calling thread,
 /// the others on the pool's workers or, where none took them, the calling thread; returns
 /// when every chunk is done.  False (nothing run) if the pool is in use by another thread or
-/// has no workers: the caller then runs the loop alone.
+/// by this one (a loop inside a chunk) or has no workers: the caller then runs the loop alone.
 bool run_chunks(int n_chunks, void (*job)(void* ctx, int chunk), void* ctx);
 
 }  // namespace rancf
