@@ -174,8 +174,9 @@ bool carried_tangent(const ContactPair& cp, const Pose& pf, const Pose& p1, cons
                      const Field& f1, double rt, const CarriedPoint& pt, const AssemblyTerms& tm,
                      int d, double* F, double* K) {
   const int nb = ff.n, nloc = d + nb;
+  const bool jac = K != nullptr;  // null: the forces alone (a residual)
   Gap gf, g1;
-  gap(pf, pt.r, rt, gf, true);
+  gap(pf, pt.r, rt, gf, jac);
   double rates[kMaxBody][3], rates1[kMaxBody][3], om[3] = {0.0, 0.0, 0.0}, u[3] = {0.0, 0.0, 0.0};
   rates_of(ff, pt.r, rates);
   if (pt.ur != nullptr) {
@@ -214,10 +215,11 @@ bool carried_tangent(const ContactPair& cp, const Pose& pf, const Pose& p1, cons
     }
   }
   PointLaw pl;
-  point_law(cp, gf, pt.ur != nullptr ? u : nullptr, pt.r1 != nullptr ? gm : nullptr, true, pl);
+  point_law(cp, gf, pt.ur != nullptr ? u : nullptr, pt.r1 != nullptr ? gm : nullptr, jac, pl);
   if (!pl.active) return false;
   for (int i = 0; i < d; ++i) F[i] = pl.F[i];
   for (int j = 0; j < nb; ++j) F[d + j] = -dot(pl.F, rates[j]);
+  if (!jac) return true;
   std::fill(K, K + nloc * nloc, 0.0);
   // column b of group h: dF (3) and the extra part of the body's rows (beyond -dF . rates_j)
   auto put = [&](int b, double coef, const double* dF, const double* extra) {
@@ -402,7 +404,9 @@ void carried_pair(const System& s, const ContactSet& c, const ContactPair& cp, c
         if (planar) {
           const CarriedPoint pt{rf, vf != nullptr ? u : nullptr, dyn ? r1 : nullptr, ubd, af, &p0,
                                 &f0};
-          if (!carried_tangent(cp, pf, p1, ff, f1, cb.radius, pt, tm, d, F, K)) continue;
+          if (!carried_tangent(cp, pf, p1, ff, f1, cb.radius, pt, tm, d, F,
+                               add != nullptr ? K : nullptr))
+            continue;
         } else {
           double zf[kMaxLoc] = {}, zd[kMaxLoc] = {}, z1[kMaxLoc] = {};
           for (int i = 0; i < d; ++i) {
