@@ -294,9 +294,6 @@ StepOutcome SystemIntegrator::iterate(const StepIn& s0, double t, double h, cons
   const bool ch = contact_;
   AssemblyTerms terms = step_terms(t, h);
   double prev = std::numeric_limits<double>::infinity(), factor = 1.0;
-  bool full_before = false;  // the increment before was a full one
-  // rho_inf = 1 (gamma = 1/2) conserves the energy only at the root: the plain test there
-  const bool early = ch && sc_.gamma > 0.5;
   const double* w = scale_.empty() ? nullptr : scale_.data();
   auto rates = [&]() {  // w1, v1 and a1 of y1 (the Newmark relations and the alpha blend)
     for (int i = 0; i < n; ++i) {
@@ -347,15 +344,7 @@ StepOutcome SystemIntegrator::iterate(const StepIn& s0, double t, double h, cons
     if (done && !fresh) {
       const double r = norm / prev;
       done = r < 1.0 && norm * r / (1.0 - r) <= sc_.tol;
-    } else if (!done && fresh && early && factor == 1.0 && full_before) {
-      // contact, dissipative scheme: in Newton's quadratic regime (the ratio r of the last two
-      // full increments below 1/100) the error left is below |d| r / (1 - r)
-      // (docs/derivations/newton.md sec. 4): accepted there rather than after one more
-      // increment of that size
-      const double r = norm / prev;
-      done = r < 0.01 && norm * r / (1.0 - r) <= sc_.tol;
     }
-    full_before = factor == 1.0;
     if (done) {
       rates();
       return {true, it};
