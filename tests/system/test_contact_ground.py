@@ -132,3 +132,36 @@ def test_linear_normal_damping_adds_to_the_pressure_and_never_pulls(rate):
     got = contact_outputs(s, y, v)["ground"].normal[1]
     want = max(k * (depth - 0.5e-6) - c_n * 2.0 * R * rate, 0.0) * L
     assert got == pytest.approx(want, rel=1e-9, abs=1e-9)
+
+
+@pytest.mark.parametrize("depth_in_onsets", [0.0, 0.25, 0.5, 1.0, 2.0])
+def test_linear_normal_damping_ramps_in_over_the_onset(depth_in_onsets):
+    """Within the onset depth d the linear normal damping grows with the elastic pressure,
+    ``s = min(p_k / (k d / 2), 1)``: a cable approaching the ground (rate -0.01 m/s) sunk by
+    a fraction of d is pressed by ``(p_k + s c D |ġ|) L``, which is zero at the surface (no
+    jump where a point comes into contact) and the whole damping from d on."""
+    k, d, c_n, rate = 1e6, 1e-6, 5e5, -0.01
+    depth = depth_in_onsets * d
+    cable = Model(
+        mesh_line([0.0, R - depth], [L, R - depth], 10),
+        "rancf",
+        Section.circular(R),
+        Material(RHO, E),
+    )
+    ground = Obstacle(
+        "plane",
+        point=(0, 0),
+        normal=(0, 1),
+        stiffness=k,
+        onset=d,
+        damping_normal=c_n,
+        name="ground",
+    )
+    s = System({"cable": cable}, obstacles=[ground])
+    y, v = s.y0.copy(), np.zeros(s.n)
+    v[1::4] = rate
+    got = contact_outputs(s, y, v)["ground"].normal[1]
+    p_k = k * depth**2 / (2 * d) if depth <= d else k * (depth - d / 2)
+    ramp = min(p_k / (k * d / 2), 1.0)
+    want = (p_k - ramp * c_n * 2.0 * R * rate) * L
+    assert got == pytest.approx(want, rel=1e-9, abs=1e-12)

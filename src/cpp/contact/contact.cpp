@@ -168,14 +168,26 @@ struct CarriedPoint {
   double af = 0.0;            ///< > 0: the step's gap the blend of its ends' (step_gap)
   const Pose* p0 = nullptr;   ///< then the pose at the step's start
   const Field* f0 = nullptr;  ///< and the body's velocity field there
+  /// the step's gaps where already known (null: found here): at the end, at the start (with
+  /// the point there, r0) and the step's gap gs (step_gap)
+  const Gap *g1 = nullptr, *g0 = nullptr;
+  const double* r0 = nullptr;
+  double gs = 0.0;
 };
+
+/// A gap's value and normal (its H is not needed where it is copied).
+void copy_gap(const Gap& from, Gap& to) {
+  to.g = from.g;
+  std::copy(from.n, from.n + 3, to.n);
+}
 
 bool carried_tangent(const ContactPair& cp, const Pose& pf, const Pose& p1, const Field& ff,
                      const Field& f1, double rt, const CarriedPoint& pt, const AssemblyTerms& tm,
                      int d, double* F, double* K) {
   const int nb = ff.n, nloc = d + nb;
+  const bool jac = K != nullptr;  // null: the forces alone (a residual)
   Gap gf, g1;
-  gap(pf, pt.r, rt, gf, true);
+  gap(pf, pt.r, rt, gf, jac);
   double rates[kMaxBody][3], rates1[kMaxBody][3], om[3] = {0.0, 0.0, 0.0}, u[3] = {0.0, 0.0, 0.0};
   rates_of(ff, pt.r, rates);
   if (pt.ur != nullptr) {
@@ -193,11 +205,19 @@ bool carried_tangent(const ContactPair& cp, const Pose& pf, const Pose& p1, cons
   ga_slopes(0.0, gf.n, gf.n, gf.n, da);
   for (int k = 0; k < nb; ++k) dau[k] = -2.0 * dot(gf.n, rates[k]);
   if (pt.r1 != nullptr) {
-    gap(p1, pt.r1, rt, g1, false);
+    if (pt.g1 != nullptr)
+      copy_gap(*pt.g1, g1);
+    else
+      gap(p1, pt.r1, rt, g1, false);
     rates_of(f1, pt.r1, rates1);
     Gap g0;
     double r0[3], rates0[kMaxBody][3];
-    const double gs = step_gap(*pt.p0, rt, pt.r, gf.g, pt.r1, g1.g, pt.af, g0, r0);
+    const bool known = pt.g0 != nullptr && pt.r0 != nullptr;
+    if (known) {
+      copy_gap(*pt.g0, g0);
+      std::copy(pt.r0, pt.r0 + 3, r0);
+    }
+    const double gs = known ? pt.gs : step_gap(*pt.p0, rt, pt.r, gf.g, pt.r1, g1.g, pt.af, g0, r0);
     gm[0] = 2.0 * gs - g1.g;
     gm[1] = g1.g;
     ga_slopes(pt.af, gf.n, g0.n, g1.n, da);
@@ -214,10 +234,11 @@ bool carried_tangent(const ContactPair& cp, const Pose& pf, const Pose& p1, cons
     }
   }
   PointLaw pl;
-  point_law(cp, gf, pt.ur != nullptr ? u : nullptr, pt.r1 != nullptr ? gm : nullptr, true, pl);
+  point_law(cp, gf, pt.ur != nullptr ? u : nullptr, pt.r1 != nullptr ? gm : nullptr, jac, pl);
   if (!pl.active) return false;
   for (int i = 0; i < d; ++i) F[i] = pl.F[i];
   for (int j = 0; j < nb; ++j) F[d + j] = -dot(pl.F, rates[j]);
+  if (!jac) return true;
   std::fill(K, K + nloc * nloc, 0.0);
   // column b of group h: dF (3) and the extra part of the body's rows (beyond -dF . rates_j)
   auto put = [&](int b, double coef, const double* dF, const double* extra) {
@@ -383,15 +404,15 @@ void carried_pair(const System& s, const ContactSet& c, const ContactPair& cp, c
         const double* N = cb.N.data() + 4 * (el * cb.n_c + q);
         double rf[3], r1[3] = {0.0, 0.0, 0.0};
         point_of(m, N, ef.data(), rf);
-        Gap gf, g1;
+        Gap gf, g1, g0;
         gap(pf, rf, cb.radius, gf, false);
         double gmv[2] = {gf.g, gf.g};  // skip points out of contact over the whole step
+        double r0[3] = {0.0, 0.0, 0.0}, gs = gf.g;
         if (dyn) {
-          Gap g0;
-          double r0[3];
           point_of(m, N, e1.data(), r1);
           gap(p1, r1, cb.radius, g1, false);
-          gmv[0] = 2.0 * step_gap(p0, cb.radius, rf, gf.g, r1, g1.g, af, g0, r0) - g1.g;
+          gs = step_gap(p0, cb.radius, rf, gf.g, r1, g1.g, af, g0, r0);
+          gmv[0] = 2.0 * gs - g1.g;
           gmv[1] = g1.g;
         }
         if (gmv[0] >= 0.0 && gmv[1] >= 0.0) continue;
@@ -400,9 +421,16 @@ void carried_pair(const System& s, const ContactSet& c, const ContactPair& cp, c
         const double wq = cb.w[sz(el * cb.n_c + q)];
         double F[kMaxLoc] = {}, K[kMaxLoc * kMaxLoc] = {};
         if (planar) {
-          const CarriedPoint pt{rf, vf != nullptr ? u : nullptr, dyn ? r1 : nullptr, ubd, af, &p0,
-                                &f0};
-          if (!carried_tangent(cp, pf, p1, ff, f1, cb.radius, pt, tm, d, F, K)) continue;
+          CarriedPoint pt{rf, vf != nullptr ? u : nullptr, dyn ? r1 : nullptr, ubd, af, &p0, &f0};
+          if (dyn) {  // the gaps found above
+            pt.g1 = &g1;
+            pt.g0 = &g0;
+            pt.r0 = r0;
+            pt.gs = gs;
+          }
+          if (!carried_tangent(cp, pf, p1, ff, f1, cb.radius, pt, tm, d, F,
+                               add != nullptr ? K : nullptr))
+            continue;
         } else {
           double zf[kMaxLoc] = {}, zd[kMaxLoc] = {}, z1[kMaxLoc] = {};
           for (int i = 0; i < d; ++i) {

@@ -9,9 +9,11 @@
 //   sphere    g = |r - c| - R - rt
 // with the unit normal n = dg/dr and H = d2g/dr2 = (P - n n^T) / |P (r - c)| (plane: 0).  The
 // force per reference length on the body at a point is F = p n + f_t with the pressure
-//   p = <p_k(g) <1 - chi g'> - c_n g'>   (g' = n . u; Hunt & Crossley 1975 damping and a
-//                                          linear normal damping c_n while in contact, as
-//                                          MoorDyn's seabed cBot; never pulling)
+//   p = <p_k(g) <1 - chi g'> - s c_n g'>   (g' = n . u; Hunt & Crossley 1975 damping and a
+//                                            linear normal damping c_n while in contact, as
+//                                            MoorDyn's seabed cBot, ramped in over the
+//                                            onset, s = min(p_k / (k d / 2), 1): no jump
+//                                            where a point comes into contact; never pulling)
 // of a penalty of stiffness k with a smooth onset over a depth d (C1, convex potential Phi):
 //   p_k = 0 for g >= 0,  k g^2 / (2 d) for -d <= g < 0,  k (-g - d/2) below,
 // so that a point resting under a light load q sinks to sqrt(2 d q / k) with the stiffness

@@ -105,8 +105,11 @@ inline void point_law(const ContactPair& cp, const Gap& gf, const double* u, con
     const double sl = law.slope(gf.g);
     for (int i = 0; i < 3; ++i) dpr[i] = sl * gf.n[i];
   }
-  // Hunt-Crossley damping: p = pe (1 - chi g'), and the linear normal damping - c_n g' while
-  // in contact (pe > 0); clipped where a fast separation would pull
+  // Hunt-Crossley damping: p = pe (1 - chi g'), and the linear normal damping - s c_n g' while
+  // in contact (pe > 0), s = min(pe / ps, 1) ramping in with the elastic pressure over the
+  // onset (ps = k d / 2, its pressure at the onset's depth) so that the force is continuous
+  // where a point comes into contact; clipped where a fast separation would pull
+  const double dp1e = dp1, dpae = dpa, dpre[3] = {dpr[0], dpr[1], dpr[2]};  // d pe
   double p = pe;
   const double rate = u != nullptr ? dot(gf.n, u) : 0.0;
   if (u != nullptr && cp.damping > 0.0 && pe > 0.0) {
@@ -122,11 +125,16 @@ inline void point_law(const ContactPair& cp, const Gap& gf, const double* u, con
     }
   }
   if (u != nullptr && cp.damping_normal > 0.0 && pe > 0.0) {
-    const double pd = p - cp.damping_normal * rate;
+    const double ps = 0.5 * cp.stiffness * cp.onset;
+    const double ramp = pe < ps ? pe / ps : 1.0, cn = ramp * cp.damping_normal;
+    const double pd = p - cn * rate;
     if (pd > 0.0) {
+      const double dramp = pe < ps ? -cp.damping_normal * rate / ps : 0.0;  // d(-cn g')/d pe
+      dp1 += dramp * dp1e;
+      dpa += dramp * dpae;
       for (int i = 0; i < 3 && derivs; ++i) {
-        dpr[i] -= cp.damping_normal * dot(gf.H[i], u);
-        dpu[i] -= cp.damping_normal * gf.n[i];
+        dpr[i] += dramp * dpre[i] - cn * dot(gf.H[i], u);
+        dpu[i] -= cn * gf.n[i];
       }
     } else {  // a fast separation: no pressure, nothing pulls
       dp1 = dpa = 0.0;
