@@ -159,22 +159,27 @@ def axial_law_record(model: AssembledBody) -> Any:
     return None if law is None else law.core
 
 
+def no_reduction() -> _core.Reduction:
+    """The empty reduction record: a body whose coordinates are its nodal ones (C¹, shells)."""
+    zi, z = np.zeros(0, dtype=np.int64), np.zeros(0)
+    return _core.Reduction(
+        n_y=0,
+        ku=0,
+        width=0,
+        node_width=0,
+        el_start=zi,
+        el_map=z,
+        node_start=zi,
+        node_map=z,
+        twist=zi,
+    )
+
+
 def _reduction(model: AssembledBody) -> _core.Reduction:
     """A C² model's element and node maps (:mod:`rancf.mesh.continuity`); none for C¹."""
     red = model.reduction
     if red is None:
-        zi, z = np.zeros(0, dtype=np.int64), np.zeros(0)
-        return _core.Reduction(
-            n_y=0,
-            ku=0,
-            width=0,
-            node_width=0,
-            el_start=zi,
-            el_map=z,
-            node_start=zi,
-            node_map=z,
-            twist=zi,
-        )
+        return no_reduction()
     return _core.Reduction(
         n_y=red.n_y,
         ku=red.ku,

@@ -34,6 +34,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from rancf.bodies.families import SHELL
 from rancf.bodies.flexible import Model
+from rancf.bodies.flexible_core import no_reduction
 from rancf.bodies.properties import StrainRateDamping
 from rancf.errors import InputError
 from rancf.kernels import _core
@@ -275,17 +276,7 @@ class ShellModel(Model):
             ),
             mass_band=np.ascontiguousarray(self.mass_band),
             y_ref=np.ascontiguousarray(self.y0),
-            reduction=_core.Reduction(
-                n_y=0,
-                ku=0,
-                width=0,
-                node_width=0,
-                el_start=zi,
-                el_map=z,
-                node_start=zi,
-                node_map=z,
-                twist=zi,
-            ),
+            reduction=no_reduction(),
             shell=_core.ShellData(
                 elements=self.kernel.core, node_rot=node_rot, node_basis=basis_arr
             ),
