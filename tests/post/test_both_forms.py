@@ -55,10 +55,13 @@ def _all_commands(sc: Scenario, folder, capsys) -> None:
     curves = all(b.get("element") != "beam" for b in meta["bodies"] if b["kind"] == "flexible")
     nurbs = ["--nurbs", str(folder / "shape.json")] if len(_flexible(meta)) == 1 and curves else []
     assert main(["export", str(run), "--vtk", str(folder / "vtk"), *nurbs]) == 0
-    assert main(["animate", str(run), "--out", str(folder / "a.gif"), "--every", "3"]) == 0
+    shell = any(b["kind"] == "shell" for b in meta["bodies"])  # drawn from its VTK surfaces
+    code = main(["animate", str(run), "--out", str(folder / "a.gif"), "--every", "3"])
+    assert code == (2 if shell else 0)
     capsys.readouterr()
-    assert (run / "plots" / "configurations.png").stat().st_size > 0
-    assert (folder / "a.gif").stat().st_size > 0
+    if not shell:
+        assert (run / "plots" / "configurations.png").stat().st_size > 0
+        assert (folder / "a.gif").stat().st_size > 0
     for name in _flexible(meta):
         assert (folder / "vtk" / name / f"{name}.pvd").is_file()
 
@@ -88,6 +91,8 @@ def test_every_example_through_every_post_command_in_both_forms(tmp_path, capsys
     ma, mb = za["metadata"], zb["metadata"]
     assert ma["bodies"] == mb["bodies"] and ma["sensor_columns"] == mb["sensor_columns"]
     assert len(ma["reaction_columns"]) == len(mb["reaction_columns"])
+    if not (one / "bodies" / "body" / "results.npz").is_file():  # a shell: its surfaces
+        return
     ba = load_results(one / "bodies" / "body" / "results.npz")
     bb = load_results(two / "bodies" / "body" / "results.npz")
     assert sorted(ba) == sorted(bb)

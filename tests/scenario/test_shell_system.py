@@ -224,3 +224,13 @@ def test_a_time_function_on_a_shells_load_is_refused_in_one_line():
     raw["loads"]["distributed"][0]["time"] = {"ramp": 1.0}
     with pytest.raises(ScenarioError, match=r"\[loads\.distributed\[0\]\.time\] not for a load"):
         _scenario(raw, ROOF)
+
+
+def test_a_closed_cylinder_is_refused_in_one_line_not_split_at_its_seam():
+    """A 360 deg cylinder's seam ties nodes across the mesh, which the System does not hold:
+    refused naming the geometry, where it would otherwise be solved as a slit tube."""
+    raw = _raw(ROOF)
+    raw["geometry"]["angles_deg"] = [0.0, 360.0]
+    raw["supports"] = [{"at": "v0", "kind": "clamp"}]
+    with pytest.raises(ScenarioError, match=r"\[geometry\] an open surface.*closed in u"):
+        _scenario(raw, ROOF).build_system()

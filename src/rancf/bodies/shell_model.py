@@ -71,6 +71,14 @@ def node_bases(
 
     from rancf.bodies.shell_supports import support_rows
 
+    closed = [d for d, axis in (("u", body.mesh.u), ("v", body.mesh.v)) if axis.closed]
+    if closed:  # its seam is rows over two nodes, which the System does not hold yet
+        raise InputError(
+            "geometry",
+            f"closed in {closed[0]} (a 360 deg seam)",
+            "an open surface: the seam of a closed surface is not held by the System yet "
+            "(model a half or a quarter with symmetry supports)",
+        )
     held: dict[int, list[NDArray]] = {}  # first index of a nodal vector -> its held directions
     for k, s in enumerate(body.supports):
         key = keys[k] if keys is not None else f"supports[{k}]"

@@ -9,26 +9,32 @@ from typing import Any
 
 from rancf.errors import InputError
 
-__all__ = ["add_parsers"]
+__all__ = ["add_parsers", "refuse_shells"]
 
 
 def _cmd_view(args: argparse.Namespace) -> int:
     from rancf.post.system_run import load_run
 
     run = load_run(args.run_dir)
-    shells = [b for b in run.bodies if b["kind"] == "shell"]
-    if shells:  # drawn in ParaView from the run's own surfaces
-        b = shells[0]
-        raise InputError(
-            "RUN_DIR",
-            str(args.run_dir),
-            f"a run of lines and rigid bodies: {b['name']!r} is a shell, whose surfaces are in "
-            f"{Path(args.run_dir) / b['folder'] / (b['name'] + '.pvd')} (open it in ParaView)",
-        )
+    refuse_shells(run, args.run_dir)
     out = Path(args.out) if args.out is not None else Path(args.run_dir) / "view.html"
     n = _write(run, out, args)
     print(f"{n} of {run.t.size} stored times -> {out}")
     return 0
+
+
+def refuse_shells(run: Any, run_dir: str | Path) -> None:
+    """Refuse in one line a run with a shell (``rancf view``, ``rancf animate`` draw lines and
+    rigid bodies): its surfaces are drawn in ParaView from the run's own VTK files."""
+    shells = [b for b in run.bodies if b["kind"] == "shell"]
+    if shells:
+        b = shells[0]
+        raise InputError(
+            "RUN_DIR",
+            str(run_dir),
+            f"a run of lines and rigid bodies: {b['name']!r} is a shell, whose surfaces are in "
+            f"{Path(run_dir) / b['folder'] / (b['name'] + '.pvd')} (open it in ParaView)",
+        )
 
 
 def _write(run: Any, out: Path, args: argparse.Namespace) -> int:

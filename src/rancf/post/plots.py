@@ -141,13 +141,15 @@ def plot_shapes(
         moved += [np.atleast_2d(shape[sl][:dim]) for sl in other]
         amp = 0.15 * size / max(np.abs(np.concatenate(moved)).max(), 1e-300)
         for k, (r0, r1) in enumerate(zip(ref, points(base + amp * shape), strict=True)):
-            style = {"lw": 1} if len(r0) > 1 else {"marker": "o", "ls": ""}
+            style: dict[str, Any] = {"lw": 1} if len(r0) > 1 else {"marker": "o", "ls": ""}
+            if k < len(flex) and flex[k][0].family.surface:  # a shell: its nodes, not a line
+                style = {"marker": ".", "ls": "", "ms": 3}
             ax.plot(*r0.T, color="0.6", label="configuration" if k == 0 else None, **style)
             ax.plot(
                 *r1.T,
                 color="C3",
                 label="mode (scaled)" if k == 0 else None,
-                **({"lw": 2} if len(r1) > 1 else style),
+                **({"lw": 2} if len(r1) > 1 and "marker" not in style else style),
             )
         ax.set_title(titles[i])
         ax.set_xlabel("x [m]")

@@ -223,7 +223,10 @@ def plot_system_run(run: SystemRun, out_dir: str | Path, n_configurations: int =
         written += plot_envelopes(run.path, list(run.flexible), out, files)
         idx = np.unique(np.linspace(0, run.t.size - 1, max(n_configurations, 1)).round())
         frames = [run.shapes(int(i)) for i in idx]
-        allp = np.concatenate([p for f in frames for _, p in f])
+        points = [p for f in frames for _, p in f]
+        if not points:  # no body drawn as a line (a shell's surfaces are its VTK files)
+            return written
+        allp = np.concatenate(points)
         fig = plt.figure(figsize=(7, 5), constrained_layout=True)
         ax = _space_axes(fig, run.dim, allp)
         cmap = plt.get_cmap("viridis")

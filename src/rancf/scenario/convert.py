@@ -40,6 +40,8 @@ def as_bodies(sc: Scenario, name: str = "body") -> Scenario:
     d["bodies"] = [body]
 
     def place(v: Any) -> Any:
+        if isinstance(v, list | tuple):  # a shell's point [u, v]: "NAME:u,v"
+            return f"{name}:{','.join(repr(float(x)) for x in v)}"
         return v if v == "ground" else f"{name}:{v}"
 
     for key in ("supports", "initial_velocity"):

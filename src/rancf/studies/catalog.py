@@ -34,6 +34,7 @@ SCENARIO_ANALYSES: dict[str, tuple[str, ...]] = {
     "polyester-rope": ("static", "modes"),
     "power-line-sag": ("static",),
     "ring": ("modes", "simulate"),
+    "scordelis-lo-roof": ("static", "modes"),
     "robot-cable": ("simulate",),
     "slider-crank": ("simulate",),
     "spin-up-beam": ("simulate",),
