@@ -142,7 +142,7 @@ def _unloaded(raw: dict) -> dict:
     loads = raw.get("loads", {})
     if "gravity" in loads:
         loads["gravity"] = [0.0] * len(loads["gravity"])
-    for p in loads.get("point", []):
+    for p in [*loads.get("point", []), *loads.get("distributed", []), *loads.get("edge", [])]:
         for k in ("force", "moment"):
             if k in p:
                 p[k] = [0.0] * len(p[k]) if isinstance(p[k], list) else 0.0
