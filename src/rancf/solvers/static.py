@@ -18,6 +18,9 @@ installed places.  Each stage is followed by one of two methods (``method``):
   where load control cannot: the step length ``Δs`` in the scaled displacement norm adapts to
   the iterations of the last step; the last step is corrected back to exactly the end of the
   stage.
+* ``"linear"``: no path; the small-displacement answer of the linear benchmarks, one Newton
+  step from the reference at the end of the path (:mod:`rancf.solvers.linear_static`), not
+  checked as a nonlinear equilibrium.
 
 A structure that is a mechanism at its reference, where the loads meet no stiffness
 (:meth:`~rancf.solvers.system_equilibrium.SystemEquilibrium.mechanism`: a pinned pendulum drawn
@@ -57,6 +60,7 @@ from rancf.errors import ConvergenceError, InputError
 from rancf.solvers.arc_length import arc_length_path
 from rancf.solvers.curved_cable import curved_cable_causes
 from rancf.solvers.drum_statics import free_drums
+from rancf.solvers.linear_static import LINEAR, solve_linear
 from rancf.solvers.load_path import MIN_INCREMENT, PathState
 from rancf.solvers.newton import newton
 from rancf.solvers.relaxation import relax
@@ -69,7 +73,7 @@ from rancf.system.drums import hold_drums, refuse_static_drums
 
 __all__ = ["StaticResult", "solve_static", "solve_equilibrium", "StaticMethod"]
 
-StaticMethod = Literal["load", "arc_length"]
+StaticMethod = Literal["load", "arc_length", "linear"]
 
 #: ``StaticResult.method`` when a stage was finished by relaxation.
 RELAXED = "relaxation+newton"
@@ -151,12 +155,14 @@ def solve_static(
     """
     if isinstance(load_steps, bool) or int(load_steps) != load_steps or load_steps < 1:
         raise InputError("solver.load_steps", load_steps, "an integer >= 1")
-    if method not in ("load", "arc_length"):
-        raise InputError("solver.static_method", method, 'one of "load", "arc_length"')
+    if method not in ("load", "arc_length", "linear"):
+        raise InputError("solver.static_method", method, 'one of "load", "arc_length", "linear"')
     start = time.perf_counter()
     system = as_system(model)
     system.reset_triads()
     system.static_friction = False  # type: ignore[attr-defined]  # the outputs' reactions
+    if method == "linear":
+        return _linear(system, at_time, on_step, static_friction, start)
     if static_friction:
         if getattr(system, "drums", None):
             raise InputError("solver.static_friction", True, "false with drums")
@@ -214,6 +220,34 @@ def solve_static(
         wall_time=time.perf_counter() - start,
     )
     return _checked(system, done)
+
+
+def _linear(
+    system: System,
+    at_time: float | None,
+    on_step: Callable[[float, NDArray[np.float64]], None] | None,
+    static_friction: bool,
+    start: float,
+) -> StaticResult:
+    """The linear analysis (:func:`rancf.solvers.linear_static.solve_linear`: one Newton step
+    from the reference, not checked as a nonlinear equilibrium) as a result."""
+    if static_friction:
+        raise InputError("solver.static_friction", True, 'false with static_method = "linear"')
+    if getattr(system, "drums", None):
+        raise InputError("solver.static_method", LINEAR, '"load" or "arc_length" with drums')
+    z, end, warnings = solve_linear(system, at_time, on_step)
+    n = system.n
+    return StaticResult(
+        system.q_from_y(z[:n]),
+        z[:n],
+        np.array([0.0, end]),
+        1,
+        1,
+        time.perf_counter() - start,
+        method=LINEAR,
+        lam=z[n:],
+        warnings=warnings,
+    )
 
 
 def _sagged(
