@@ -34,7 +34,7 @@ from rancf.errors import InputError
 from rancf.solvers.system_equilibrium import SystemEquilibrium
 from rancf.system import System
 
-__all__ = ["solve_linear", "LARGE_ROTATION", "LINEAR"]
+__all__ = ["solve_linear", "LARGE_ROTATION", "LINEAR", "refuse_linear_start"]
 
 #: ``StaticResult.method`` of a linear analysis.
 LINEAR = "linear"
@@ -87,6 +87,7 @@ def solve_linear(
         )
     z += dz
     problem.accept(z)
+    system.linear_reference = z0  # type: ignore[attr-defined]  # the outputs' reactions
     if on_step is not None:
         on_step(end, z[:n])
     return z, end, large_displacement(system, z0[:n], z[:n])
@@ -117,3 +118,17 @@ def large_displacement(
                 f'{turn:.3g} rad): a nonlinear solve (solver.static_method = "load") differs'
             )
     return tuple(out)
+
+
+def refuse_linear_start(options: dict[str, object], what: str) -> None:
+    """Refuse a linear static state (``options``: the keywords of
+    :func:`~rancf.solvers.static.solve_static`) as the start of ``what`` (a dynamic run,
+    modes or buckling about the static equilibrium): it is no equilibrium of the nonlinear
+    balance, which those analyses start from (a run would start with a jolt)."""
+    if options.get("method") == LINEAR:
+        raise InputError(
+            "solver.static_method",
+            LINEAR,
+            f'"load" or "arc_length" for {what}: the linear state is no equilibrium of the '
+            "nonlinear balance they start from",
+        )

@@ -161,6 +161,7 @@ def solve_static(
     system = as_system(model)
     system.reset_triads()
     system.static_friction = False  # type: ignore[attr-defined]  # the outputs' reactions
+    system.linear_reference = None  # type: ignore[attr-defined]  # (set by a linear solve)
     if method == "linear":
         return _linear(system, at_time, on_step, static_friction, start)
     if static_friction:

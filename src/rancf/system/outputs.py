@@ -82,6 +82,27 @@ from rancf.system.system import System
 __all__ = ["SystemOutputs"]
 
 
+def static_residual(s: System, y: NDArray, lam: NDArray, res: NDArray, at: ResidualOptions) -> None:
+    """The static residual of ``s`` at ``(y, lam)`` into ``res`` (its held rows: the supports'
+    reactions).  After a linear analysis (:mod:`rancf.solvers.linear_static`, which leaves its
+    reference ``z₀`` as ``s.linear_reference``) the linear one,
+    ``r(z₀) + ∂r/∂z(z₀) (z - z₀)``, by the central difference
+    ``(r(z₀ + h Δz) - r(z₀ - h Δz)) / 2h`` (exact to ``O(h² |Δz|³)`` for the residual's
+    polynomial terms; ``h`` scales the largest entry of ``h Δz`` to 1e-3 of the model size):
+    the reactions of the linear solve, not of the nonlinear balance at its state."""
+    z0 = getattr(s, "linear_reference", None)
+    if z0 is None:
+        s.core.residual(ResidualPoint(y, lam, res), at)
+        return
+    dz = np.r_[y, lam] - z0
+    n, big = s.n, float(np.max(np.abs(dz[: s.n]), initial=0.0))
+    h = min(1.0, 1e-3 * s.size / big) if big > 0.0 else 1.0
+    rp, rm = np.empty_like(res), np.empty_like(res)
+    for z, r in ((z0, res), (z0 + h * dz, rp), (z0 - h * dz, rm)):
+        s.core.residual(ResidualPoint(np.ascontiguousarray(z[:n]), z[n:].copy(), r), at)
+    res += (rp - rm) / (2.0 * h)
+
+
 class SystemOutputs:
     """Accelerations, multipliers, reactions, section values and sensors of rows of states.
 
@@ -239,7 +260,7 @@ class SystemOutputs:
                     if lam is not None:
                         li[:] = lam[i]
                     at = ResidualOptions(0.0, min(float(t[i]), 1.0), True, dynamic=False)
-                    s.core.residual(ResidualPoint(y, li, res), at)
+                    static_residual(s, y, li, res, at)
                     s.core.residual(
                         ResidualPoint(y, no_lam, res0), replace(at, distributed_only=True)
                     )
@@ -289,10 +310,8 @@ class SystemOutputs:
         y = np.asarray(y, dtype=float)
         lam = np.asarray(lam, dtype=float)
         res = np.empty(s.n + s.m)
-        s.core.residual(
-            ResidualPoint(y, lam, res),
-            ResidualOptions(0.0, float(load_factor), amplitude=True, dynamic=False),
-        )
+        at = ResidualOptions(0.0, float(load_factor), amplitude=True, dynamic=False)
+        static_residual(s, y, lam, res, at)
         if (fr := static_friction_load(s, y)) is not None:
             res[: s.n] -= fr
         return self.reactions(y, res[: s.n], 0.0, lam)
