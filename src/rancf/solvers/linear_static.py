@@ -87,7 +87,7 @@ def solve_linear(
         )
     z += dz
     problem.accept(z)
-    system.linear_reference = z0  # type: ignore[attr-defined]  # the outputs' reactions
+    system.linear_reference = (z0, problem.scale)  # type: ignore[attr-defined]  # the outputs' reactions
     if on_step is not None:
         on_step(end, z[:n])
     return z, end, large_displacement(system, z0[:n], z[:n])
