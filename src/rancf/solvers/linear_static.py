@@ -30,6 +30,7 @@ from collections.abc import Callable
 import numpy as np
 from numpy.typing import NDArray
 
+from rancf.bodies.shell_model import ShellModel
 from rancf.errors import InputError
 from rancf.solvers.system_equilibrium import SystemEquilibrium
 from rancf.system import System
@@ -76,7 +77,7 @@ def solve_linear(
     end = problem.stages[-1][1]
     z = z0.copy()
     problem.place_supports(z, end)
-    r, ok = problem.tangent(z, end, stabilize=False)
+    r, ok = problem.exact_tangent(z, end)
     dz = problem.solve(ok, -r)
     if dz is None or not np.all(np.isfinite(r)):
         raise InputError(
@@ -105,12 +106,15 @@ def large_displacement(
         sl = system.body_slice(name)
         d = np.asarray(y[sl] - y0[sl])
         pos = body.position_mask()
-        size = body.body.thickness if body.family.surface else 2.0 * float(body.section.radius)
+        shell = isinstance(body, ShellModel)
+        if isinstance(body, ShellModel):
+            size = float(body.body.thickness)
+        else:
+            size = 2.0 * float(body.section.radius)
         x = d[pos].reshape(-1, system.dim)
         moved = float(np.max(np.linalg.norm(x, axis=1), initial=0.0))
-        turn = float(np.max(np.abs(d[~pos]), initial=0.0)) if body.family.gradient else 0.0
-        if body.family.surface:
-            turn = float(np.max(np.abs(d[~pos]), initial=0.0))
+        gradients = shell or body.family.gradient  # else rotation parameters, not checked
+        turn = float(np.max(np.abs(d[~pos]), initial=0.0)) if gradients else 0.0
         if moved > size or turn > LARGE_ROTATION:
             out.append(
                 f"body {name!r}: the linear displacement is large (deflection {moved:.4g} m, "

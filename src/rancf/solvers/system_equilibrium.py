@@ -145,15 +145,22 @@ class SystemEquilibrium:
         r[self.fixed] = 0.0
         return r
 
-    def tangent(self, z: NDArray, p: float, stabilize: bool = True) -> tuple[NDArray, bool]:
+    def tangent(self, z: NDArray, p: float) -> tuple[NDArray, bool]:
         """Residual (held rows zero) and the factored Jacobian (a flag: it is usable).
 
         A tangent that is singular (a hanging pendulum or spring before its tension builds up:
         its swing has no stiffness at zero load) is factored again with ``s M`` added, ``s``
         :data:`STABILIZER` times the largest stiffness-to-mass ratio of the diagonals: a
-        quasi-Newton step, the residual (and so the equilibrium found) unchanged.  Not with
-        ``stabilize`` false (a linear analysis, whose one step is its answer: a singular
-        tangent is then unusable)."""
+        quasi-Newton step, the residual (and so the equilibrium found) unchanged."""
+        return self._factored(z, p, True)
+
+    def exact_tangent(self, z: NDArray, p: float) -> tuple[NDArray, bool]:
+        """:meth:`tangent` without the stabilizer: a singular tangent is unusable (a linear
+        analysis, whose one step is its answer: :mod:`rancf.solvers.linear_static`)."""
+        return self._factored(z, p, False)
+
+    def _factored(self, z: NDArray, p: float, stabilize: bool) -> tuple[NDArray, bool]:
+        """:meth:`tangent` (``stabilize``) or :meth:`exact_tangent`."""
         r = np.empty(self.n + self.m)
         point = StaticPoint(np.ascontiguousarray(z[: self.n]), np.ascontiguousarray(z[self.n :]), r)
         options = StaticOptions(self.load_factor(p), self._amp, self._t)
