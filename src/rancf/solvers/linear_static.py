@@ -50,6 +50,7 @@ def solve_linear(
     system: System,
     at_time: float | None,
     on_step: Callable[[float, NDArray[np.float64]], None] | None,
+    static_friction: bool = False,
 ) -> tuple[NDArray[np.float64], float, tuple[str, ...]]:
     """The linear static state of ``system`` (module docstring): ``(z, p_end, warnings)``,
     ``z`` its model coordinates and multipliers.  ``on_step`` is called with the reference and
@@ -58,9 +59,14 @@ def solve_linear(
     Raises
     ------
     InputError
+        With ``static_friction`` or drums (the nonlinear solve's), or
         ``solver.static_method = "linear"`` where the structure is a mechanism at its reference
         or its tangent is singular.
     """
+    if static_friction:
+        raise InputError("solver.static_friction", True, f'false with static_method = "{LINEAR}"')
+    if getattr(system, "drums", None):
+        raise InputError("solver.static_method", LINEAR, '"load" or "arc_length" with drums')
     problem = SystemEquilibrium(system, at_time)
     z0 = problem.start()
     n = system.n
