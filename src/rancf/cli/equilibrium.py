@@ -108,10 +108,10 @@ def _cmd_static(args: argparse.Namespace) -> int:
         return 0
     relaxed = f", {res.relaxation_steps} relaxation steps" if res.relaxation_steps else ""
     where = f" -> {od.path}" if od is not None else ""
-    print(
-        f"static equilibrium ({res.method}): {len(res.load_factors) - 1} load steps, "
-        f"{res.n_newton} Newton iterations{relaxed}{where}"
-    )
+    steps = f"{len(res.load_factors) - 1} load steps, {res.n_newton} Newton iterations"
+    if res.method == "linear":
+        steps = "small displacements, one solve with the reference's stiffness"
+    print(f"static equilibrium ({res.method}): {steps}{relaxed}{where}")
     for line in run.form_lines:
         print(f"  {line}")
     wide = max((len(k) for k in out["sensors"]), default=0)  # the columns aligned

@@ -36,8 +36,10 @@ def static_state(sc: Any, system: Any) -> tuple[NDArray, NDArray, list[str]]:
     multipliers), solved with the ``[solver]`` table's static options, and the solve's warning
     lines (:attr:`~rancf.solvers.static.StaticResult.warnings`)."""
     from rancf.scenario.system_build import scenario_keys
+    from rancf.solvers.linear_static import refuse_linear_start
     from rancf.solvers.static import solve_static
 
+    refuse_linear_start(sc.static_options(), "an analysis about the static equilibrium")
     with scenario_keys(sc):
         res = solve_static(system, **sc.static_options())
     assert res.lam is not None  # a system's solution has its multipliers (empty: no joints)

@@ -109,9 +109,10 @@ class SolverTable(Table):
         description='"chord" (exact tangent at each step\'s first iteration, reused within the '
         'step) | "full" (exact tangent every iteration) | "modified" (reused across steps)',
     )
-    static_method: Literal["load", "arc_length"] = Field(
+    static_method: Literal["load", "arc_length", "linear"] = Field(
         "load",
-        description='statics: "load" (adaptive load increments) | "arc_length" (limit points)',
+        description='statics: "load" (adaptive load increments) | "arc_length" (limit points) '
+        '| "linear" (small displacements: one solve with the reference\'s stiffness)',
     )
     static_friction: Flag = Field(
         False,

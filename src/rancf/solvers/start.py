@@ -52,8 +52,10 @@ def start_state(
             )
         return None, {"initial_state": "reference"}
     from rancf.scenario.system_build import scenario_keys
+    from rancf.solvers.linear_static import refuse_linear_start
     from rancf.solvers.static import solve_static  # the static solvers, only for this start
 
+    refuse_linear_start(sc.static_options(), 'solver.initial_state = "static"')
     with scenario_keys(sc):
         res = solve_static(model, at_time=0.0, **sc.static_options())
     from rancf.solvers.form import form_summary

@@ -5,19 +5,23 @@ The problem is :class:`~rancf.solvers.system_equilibrium.SystemEquilibrium` (a o
 :class:`~rancf.bodies.flexible.Model` is solved as the system of that one body): the path parameter
 ``p`` runs from 0 to 1 with the loads at ``p`` times their amplitude (harmonic loads count with
 their amplitude), then, with installed supports, from 1 to 2 while the supports move to their
-installed places.  Each stage is followed by one of two methods (``method``):
+installed places.  Each stage is followed by one of two methods (``method``), or none:
 
 * ``"load"`` (default): load increments, each solved by Newton with a line search
   (:func:`rancf.solvers.newton.newton`).  The first increment is ``1 / load_steps``; an
   increment that converges in at most 5 iterations lets the next one double, one that needs
   more than 12 halves it, and a failed one is retried at a quarter of its size (from the last
   converged state).  The last increment ends exactly at the end of the stage.  The predictor
-  extrapolates the last converged increment of the stage (secant).
+  extrapolates the last converged increment of the stage (secant)
+  (:func:`rancf.solvers.load_control.load_control_path`).
 * ``"arc_length"``: Crisfield's cylindrical arc-length method
   (:func:`rancf.solvers.arc_length.arc_length_path`), which passes limit points (snap-through)
   where load control cannot: the step length ``Δs`` in the scaled displacement norm adapts to
   the iterations of the last step; the last step is corrected back to exactly the end of the
   stage.
+* ``"linear"``: no path; the small-displacement answer of the linear benchmarks, one Newton
+  step from the reference at the end of the path (:mod:`rancf.solvers.linear_static`), not
+  checked as a nonlinear equilibrium.
 
 A structure that is a mechanism at its reference, where the loads meet no stiffness
 (:meth:`~rancf.solvers.system_equilibrium.SystemEquilibrium.mechanism`: a pinned pendulum drawn
@@ -57,8 +61,9 @@ from rancf.errors import ConvergenceError, InputError
 from rancf.solvers.arc_length import arc_length_path
 from rancf.solvers.curved_cable import curved_cable_causes
 from rancf.solvers.drum_statics import free_drums
-from rancf.solvers.load_path import MIN_INCREMENT, PathState
-from rancf.solvers.newton import newton
+from rancf.solvers.linear_static import LINEAR, solve_linear
+from rancf.solvers.load_control import load_control_path
+from rancf.solvers.load_path import PathState
 from rancf.solvers.relaxation import relax
 from rancf.solvers.sag_start import SAG_START, clamped_lines, solve_from_sag, touchdown_causes
 from rancf.solvers.static_checks import check_state, instability
@@ -69,7 +74,7 @@ from rancf.system.drums import hold_drums, refuse_static_drums
 
 __all__ = ["StaticResult", "solve_static", "solve_equilibrium", "StaticMethod"]
 
-StaticMethod = Literal["load", "arc_length"]
+StaticMethod = Literal["load", "arc_length", "linear"]
 
 #: ``StaticResult.method`` when a stage was finished by relaxation.
 RELAXED = "relaxation+newton"
@@ -91,9 +96,9 @@ class StaticResult:
         a relaxation) and extra residual evaluations (line searches, relaxation).
     wall_time : float
     method : str
-        ``"load"``, ``"arc_length"``, or ``"relaxation+newton"`` when a stage was finished by
-        relaxation and Newton (its path then ends with the load factor the method reached and
-        the stage's end).
+        ``"load"``, ``"arc_length"``, ``"linear"`` (:mod:`rancf.solvers.linear_static`), or
+        ``"relaxation+newton"`` when a stage was finished by relaxation and Newton (its path
+        then ends with the load factor the method reached and the stage's end).
     relaxation_steps : int
         Pseudo-time steps of the relaxation (0 without).
     """
@@ -151,12 +156,19 @@ def solve_static(
     """
     if isinstance(load_steps, bool) or int(load_steps) != load_steps or load_steps < 1:
         raise InputError("solver.load_steps", load_steps, "an integer >= 1")
-    if method not in ("load", "arc_length"):
-        raise InputError("solver.static_method", method, 'one of "load", "arc_length"')
+    if method not in ("load", "arc_length", "linear"):
+        raise InputError("solver.static_method", method, 'one of "load", "arc_length", "linear"')
     start = time.perf_counter()
     system = as_system(model)
     system.reset_triads()
     system.static_friction = False  # type: ignore[attr-defined]  # the outputs' reactions
+    system.linear_reference = None  # type: ignore[attr-defined]  # (set by a linear solve)
+    if method == "linear":  # one step from the reference (rancf.solvers.linear_static)
+        z, end, said = solve_linear(system, at_time, on_step, static_friction)
+        n = system.n
+        y, lam, dt = z[:n], z[n:], time.perf_counter() - start
+        q, path = system.q_from_y(y), np.array([0.0, end])
+        return StaticResult(q, y, path, 1, 1, dt, method=LINEAR, lam=lam, warnings=said)
     if static_friction:
         if getattr(system, "drums", None):
             raise InputError("solver.static_friction", True, "false with drums")
@@ -314,7 +326,7 @@ def solve_equilibrium(
             continue
         try:
             if method == "load":
-                _load_control(problem, path, end, 1.0 / load_steps, tol, max_iter)
+                load_control_path(problem, path, end, 1.0 / load_steps, tol, max_iter)
             else:
                 arc_length_path(problem, path, end, 1.0 / load_steps, tol, max_iter)
         except ConvergenceError as exc:
@@ -356,40 +368,3 @@ def _relax(
             reached=path.lam,
         ) from failed
     path.accept(out.z, end)
-
-
-def _load_control(
-    problem: SystemEquilibrium,
-    path: PathState,
-    end: float,
-    first: float,
-    tol: float,
-    max_iter: int,
-) -> None:
-    """Adaptive load increments to the stage's ``end`` (module docstring)."""
-    dlam = first
-    while path.lam < end:
-        target = min(end, path.lam + dlam)
-        if target > end - 1e-12:
-            target = end  # the last increment ends at the stage's end, not end - rounding
-        trial = path.y.copy()
-        if path.prev is not None and path.lam > path.prev_lam:  # secant predictor
-            trial += (path.y - path.prev) * ((target - path.lam) / (path.lam - path.prev_lam))
-        problem.place_supports(trial, target)
-        out = newton(problem, trial, target, tol, max_iter)
-        if not out.converged and path.prev is not None:  # retry without the predictor
-            path.count(out.iterations, out.residuals)
-            trial = path.y.copy()
-            problem.place_supports(trial, target)
-            out = newton(problem, trial, target, tol, max_iter)
-        path.count(out.iterations, out.residuals)
-        if out.converged:
-            path.accept(out.y, target)
-            if out.iterations <= 5:
-                dlam = min(2.0 * dlam, 1.0)
-            elif out.iterations > 12:
-                dlam *= 0.5
-        else:
-            dlam *= 0.25
-        if dlam < MIN_INCREMENT * first:  # failed or crawling: the path stalls here
-            raise path.fail("Newton iteration")

@@ -152,11 +152,20 @@ class SystemEquilibrium:
         its swing has no stiffness at zero load) is factored again with ``s M`` added, ``s``
         :data:`STABILIZER` times the largest stiffness-to-mass ratio of the diagonals: a
         quasi-Newton step, the residual (and so the equilibrium found) unchanged."""
+        return self._factored(z, p, True)
+
+    def exact_tangent(self, z: NDArray, p: float) -> tuple[NDArray, bool]:
+        """:meth:`tangent` without the stabilizer: a singular tangent is unusable (a linear
+        analysis, whose one step is its answer: :mod:`rancf.solvers.linear_static`)."""
+        return self._factored(z, p, False)
+
+    def _factored(self, z: NDArray, p: float, stabilize: bool) -> tuple[NDArray, bool]:
+        """:meth:`tangent` (``stabilize``) or :meth:`exact_tangent`."""
         r = np.empty(self.n + self.m)
         point = StaticPoint(np.ascontiguousarray(z[: self.n]), np.ascontiguousarray(z[self.n :]), r)
         options = StaticOptions(self.load_factor(p), self._amp, self._t)
         ok = self._integ.factor_static(point, options)
-        if not ok and np.all(np.isfinite(r)):
+        if not ok and stabilize and np.all(np.isfinite(r)):
             stab = STABILIZER * self._stiffness_scale(z)
             ok = self._integ.factor_static(point, replace(options, stab=stab))
         r[self.fixed] = 0.0

@@ -77,6 +77,7 @@ from rancf.system.parts.flexible import FlexibleBody
 from rancf.system.seabed_friction import static_friction_load
 from rancf.system.sensors import SensorReader
 from rancf.system.sliding import sliding_slots
+from rancf.system.static_residual import static_residual
 from rancf.system.system import System
 
 __all__ = ["SystemOutputs"]
@@ -239,7 +240,7 @@ class SystemOutputs:
                     if lam is not None:
                         li[:] = lam[i]
                     at = ResidualOptions(0.0, min(float(t[i]), 1.0), True, dynamic=False)
-                    s.core.residual(ResidualPoint(y, li, res), at)
+                    static_residual(s, y, li, res, at)
                     s.core.residual(
                         ResidualPoint(y, no_lam, res0), replace(at, distributed_only=True)
                     )
@@ -289,10 +290,8 @@ class SystemOutputs:
         y = np.asarray(y, dtype=float)
         lam = np.asarray(lam, dtype=float)
         res = np.empty(s.n + s.m)
-        s.core.residual(
-            ResidualPoint(y, lam, res),
-            ResidualOptions(0.0, float(load_factor), amplitude=True, dynamic=False),
-        )
+        at = ResidualOptions(0.0, float(load_factor), amplitude=True, dynamic=False)
+        static_residual(s, y, lam, res, at)
         if (fr := static_friction_load(s, y)) is not None:
             res[: s.n] -= fr
         return self.reactions(y, res[: s.n], 0.0, lam)
