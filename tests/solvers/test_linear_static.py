@@ -107,3 +107,16 @@ def test_a_linear_state_is_no_start_for_a_run():
     sc = Scenario.from_dict(raw)
     with pytest.raises(InputError, match="initial_state"):
         start_state(sc, sc.build_system())
+
+
+def test_a_linear_answer_with_large_rotations_is_refused_in_one_line(tmp_path):
+    """The shipped mooring line unloaded straight: its linear answer about the straight
+    reference turns the chain by far more than a radian (and stretches it by 1e13 %): refused
+    naming the method, where it printed tensions of 1e25 N with warnings."""
+    with resources.as_file(resources.files("rancf.examples") / "mooring-line.toml") as src:
+        sc = load_scenario(src)
+    raw = sc.to_dict()
+    raw["solver"]["static_method"] = "linear"
+    with pytest.raises(ScenarioError, match=r"solver\.static_method.*turns by about") as exc:
+        run_static(Scenario.from_dict(raw, str(tmp_path / "m.toml")))
+    assert "\n" not in str(exc.value)

@@ -42,6 +42,9 @@ LINEAR = "linear"
 
 #: A rotation [rad] beyond which a linear answer is warned of (small-angle error ~ θ²/6).
 LARGE_ROTATION = 0.1
+#: A rotation [rad] beyond which a linear answer is refused: a gradient of unit length turned by
+#: as much as itself is no small displacement (a slack line's reference, not its sag).
+NO_LINEAR_ROTATION = 1.0
 
 _NONLINEAR = 'use the nonlinear statics (solver.static_method = "load")'
 
@@ -106,7 +109,13 @@ def large_displacement(
     """Warning lines where the linear displacement ``y - y0`` (model coordinates) of a flexible
     body is large: its largest position change beyond its section's size (a shell's thickness,
     a line's diameter), or its largest change of a gradient (of unit length at the reference:
-    the rotation, to first order) beyond :data:`LARGE_ROTATION`."""
+    the rotation, to first order) beyond :data:`LARGE_ROTATION`.
+
+    Raises
+    ------
+    InputError
+        Where a rotation exceeds :data:`NO_LINEAR_ROTATION`: the linear answer means nothing.
+    """
     out = []
     for name, body in zip(system.names, system.flex, strict=False):
         sl = system.body_slice(name)
@@ -121,6 +130,13 @@ def large_displacement(
         moved = float(np.max(np.linalg.norm(x, axis=1), initial=0.0))
         gradients = shell or body.family.gradient  # else rotation parameters, not checked
         turn = float(np.max(np.abs(d[~pos]), initial=0.0)) if gradients else 0.0
+        if turn > NO_LINEAR_ROTATION:
+            raise InputError(
+                "solver.static_method",
+                LINEAR,
+                f"small displacements: body {name!r} turns by about {turn:.3g} rad and moves "
+                f"{moved:.4g} m in the linear answer, which means nothing there: {_NONLINEAR}",
+            )
         if moved > size or turn > LARGE_ROTATION:
             out.append(
                 f"body {name!r}: the linear displacement is large (deflection {moved:.4g} m, "
