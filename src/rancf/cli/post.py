@@ -137,11 +137,11 @@ MAX_CONFIGURATIONS = 100
 
 
 def _cmd_animate(args: argparse.Namespace) -> int:
-    from rancf.cli.view import refuse_shells
+    from rancf.cli.view import refuse_shell_runs
     from rancf.post.system_run import animate_system_run, load_run
 
     run = load_run(args.run_dir)
-    refuse_shells(run, args.run_dir)
+    refuse_shell_runs(run, args.run_dir)
     n = animate_system_run(run, args.out, args.fps, args.every)
     print(f"{n} frames at {args.fps} fps -> {args.out}")
     return 0

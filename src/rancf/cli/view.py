@@ -9,21 +9,21 @@ from typing import Any
 
 from rancf.errors import InputError
 
-__all__ = ["add_parsers", "refuse_shells"]
+__all__ = ["add_parsers", "refuse_shell_runs"]
 
 
 def _cmd_view(args: argparse.Namespace) -> int:
     from rancf.post.system_run import load_run
 
     run = load_run(args.run_dir)
-    refuse_shells(run, args.run_dir)
+    refuse_shell_runs(run, args.run_dir)
     out = Path(args.out) if args.out is not None else Path(args.run_dir) / "view.html"
     n = _write(run, out, args)
     print(f"{n} of {run.t.size} stored times -> {out}")
     return 0
 
 
-def refuse_shells(run: Any, run_dir: str | Path) -> None:
+def refuse_shell_runs(run: Any, run_dir: str | Path) -> None:
     """Refuse in one line a run with a shell (``rancf view``, ``rancf animate`` draw lines and
     rigid bodies): its surfaces are drawn in ParaView from the run's own VTK files."""
     shells = [b for b in run.bodies if b["kind"] == "shell"]
